@@ -1,0 +1,23 @@
+/* app.h: the command-line layer.  Each subcommand parses and checks all of
+ * its options before touching any input, reports every bad option on stderr
+ * (one line each) and returns an exit status:
+ *   0  success
+ *   1  something failed (a record or a run; compare: values differ)
+ *   2  usage: bad or missing options, nothing was run
+ *   3  output could not be written (no partial file is left)
+ * Tabular output is TSV with a header row on stdout. */
+#ifndef AQ_APP_H
+#define AQ_APP_H
+
+#define AQ_VERSION "0.1.0"
+
+enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
+
+int aq_cmd_run(int argc, char **argv);       /* archquake [OPTIONS] RECORD... --arch FILE */
+int aq_cmd_info(int argc, char **argv);      /* archquake info */
+int aq_cmd_mechanism(int argc, char **argv); /* archquake mechanism */
+int aq_cmd_pulse(int argc, char **argv);     /* archquake pulse */
+int aq_cmd_domain(int argc, char **argv);    /* archquake domain */
+int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
+
+#endif

@@ -1,0 +1,12 @@
+/* cmd_pulse.c: placeholder until the stage behind it lands. */
+#include <stdio.h>
+
+#include "app.h"
+
+int aq_cmd_pulse(int argc, char **argv)
+{
+  (void)argc;
+  (void)argv;
+  fprintf(stderr, "archquake: pulse: not available in this build\n");
+  return AQ_EXIT_USAGE;
+}

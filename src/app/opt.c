@@ -1,0 +1,136 @@
+/* opt.c: checked option values (see opt.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "opt.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int parse_double(const char *s, double *x)
+{
+  if (!s || !*s)
+    return 0;
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s || *end || errno == ERANGE || !isfinite(v))
+    return 0;
+  *x = v;
+  return 1;
+}
+
+void aq_opt_double(const char *opt, const char *arg, double lo, double hi,
+                   double *out, int *nerr)
+{
+  double v;
+  if (!parse_double(arg, &v) || v < lo || v > hi) {
+    fprintf(stderr, "archquake: %s: expected a number in [%g, %g], got \"%s\"\n",
+            opt, lo, hi, arg ? arg : "");
+    (*nerr)++;
+    return;
+  }
+  *out = v;
+}
+
+void aq_opt_double_gt(const char *opt, const char *arg, double lo, double hi,
+                      double *out, int *nerr)
+{
+  double v;
+  if (!parse_double(arg, &v) || !(v > lo) || v > hi) {
+    fprintf(stderr, "archquake: %s: expected a number > %g and <= %g, got \"%s\"\n",
+            opt, lo, hi, arg ? arg : "");
+    (*nerr)++;
+    return;
+  }
+  *out = v;
+}
+
+void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
+                 int *nerr)
+{
+  char *end;
+  errno = 0;
+  long v = arg && *arg ? strtol(arg, &end, 10) : 0;
+  if (!arg || !*arg || *end || errno == ERANGE || v < lo || v > hi) {
+    fprintf(stderr, "archquake: %s: expected an integer in [%ld, %ld], got \"%s\"\n",
+            opt, lo, hi, arg ? arg : "");
+    (*nerr)++;
+    return;
+  }
+  *out = v;
+}
+
+void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
+                 size_t *n, int *nerr)
+{
+  size_t cap = 1;
+  for (const char *p = arg ? arg : ""; *p; p++)
+    cap += *p == ',';
+  double *v = malloc(cap * sizeof *v);
+  char *copy = arg ? strdup(arg) : NULL;
+  size_t k = 0;
+  int bad = !v || !copy || !*arg;
+  if (!bad) {
+    char *save = NULL;
+    for (char *tok = strtok_r(copy, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+      double x;
+      if (!parse_double(tok, &x) || !(x > lo)) {
+        bad = 1;
+        break;
+      }
+      v[k++] = x;
+    }
+    bad = bad || k == 0;
+  }
+  free(copy);
+  if (bad) {
+    free(v);
+    fprintf(stderr,
+            "archquake: %s: expected a comma-separated list of numbers > %g, "
+            "got \"%s\"\n",
+            opt, lo, arg ? arg : "");
+    (*nerr)++;
+    return;
+  }
+  free(*out);
+  *out = v;
+  *n = k;
+}
+
+void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
+                   int *out, int *nerr)
+{
+  for (int i = 0; choices[i]; i++)
+    if (arg && strcmp(arg, choices[i]) == 0) {
+      *out = i;
+      return;
+    }
+  char list[256] = "";
+  size_t k = 0;
+  for (int i = 0; choices[i] && k < sizeof list; i++) {
+    int w = snprintf(list + k, sizeof list - k, "%s%s", i ? "|" : "", choices[i]);
+    if (w > 0)
+      k += (size_t)w;
+  }
+  fprintf(stderr, "archquake: %s: expected one of %s, got \"%s\"\n", opt, list,
+          arg ? arg : "");
+  (*nerr)++;
+}
+
+void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
+                    int *nerr)
+{
+  const char *word = optind_after > 0 ? argv[optind_after - 1] : "?";
+  if (optopt_ && optopt_ < 128 && word[0] == '-' && word[1] != '-')
+    fprintf(stderr,
+            "archquake: -%c: unknown option or missing value (see 'archquake %s--help')\n",
+            optopt_, cmd);
+  else
+    fprintf(stderr,
+            "archquake: %s: unknown option or missing value (see 'archquake %s--help')\n",
+            word, cmd);
+  (*nerr)++;
+}

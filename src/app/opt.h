@@ -1,0 +1,31 @@
+/* opt.h: checked option values.  Each parser prints one line
+ *   archquake: --OPTION: expected ..., got "..."
+ * on stderr, increments *nerr on failure and leaves *out unchanged.
+ * Commands use getopt_long with opterr = 0 and aq_opt_unknown() so that
+ * every bad option is reported, not just the first. */
+#ifndef AQ_APP_OPT_H
+#define AQ_APP_OPT_H
+
+#include <stddef.h>
+
+/* A finite number in [lo, hi]. */
+void aq_opt_double(const char *opt, const char *arg, double lo, double hi,
+                   double *out, int *nerr);
+/* A finite number with lo < x (strict) and x <= hi. */
+void aq_opt_double_gt(const char *opt, const char *arg, double lo, double hi,
+                      double *out, int *nerr);
+/* An integer in [lo, hi]. */
+void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
+                 int *nerr);
+/* A comma-separated list of finite numbers each > lo; *out is malloc'd
+ * (caller frees), *n its length. */
+void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
+                 size_t *n, int *nerr);
+/* One of the words in choices (NULL-terminated); *out = its index. */
+void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
+                   int *out, int *nerr);
+/* Report the option getopt_long rejected (argv[optind-1], optopt). */
+void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
+                    int *nerr);
+
+#endif

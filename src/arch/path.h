@@ -1,0 +1,67 @@
+/* path.h: the work path of one hinge set, as the dynamic models see it.
+ *
+ * This is the contract between the static arch model (arch.c, workpath.c)
+ * and the dynamic models (stepper.c, eom.c).  A hinge set is a one-degree-
+ * of-freedom mechanism; its coordinate s >= 0 (rad) is the rotation of body
+ * 1 about H1 taken positive in the direction that opens every hinge
+ * (q = q_sign * s in the arch's global convention).  s = 0 is the undeformed
+ * arch.
+ *
+ * For a constant ground acceleration a_g (m/s^2, along +x) the exact energy
+ * balance (ERRATA item 5) from s1 is
+ *     KE(s) = KE1 - a_g m_T (x(s) - x(s1)) - g m_T (y(s) - y(s1))
+ * where (x, y) is the whole arch's centre of mass measured from its
+ * undeformed position, and the kinetic energy is T = 1/2 M(s) sdot^2
+ * (ERRATA item 4).  Motion along +s needs a_g * act_sign > lambda0 * g.
+ *
+ * An aq_path does not own ctx; whoever made it (the arch) outlives it.
+ */
+#ifndef AQ_ARCH_PATH_H
+#define AQ_ARCH_PATH_H
+
+#include <stddef.h>
+
+#define AQ_PATH_MAX_BODIES 3
+
+/* Everything about the mechanism at one position s. */
+typedef struct {
+  double x_m, y_m;       /* whole-arch centroid displacement from s = 0, m */
+  double dx_m, dy_m;     /* d/ds of x_m, y_m, m/rad */
+  double d2x_m, d2y_m;   /* d2/ds2 of x_m, y_m, m/rad^2 */
+  double mgen_kgm2;      /* generalised mass M(s) = sum m_i |dc_i/ds|^2 + I_i (dphi_i/ds)^2, kg m^2 */
+  double dmgen_kgm2;     /* dM/ds, kg m^2/rad */
+  double lambda;         /* static multiplier by virtual work: act_sign * dy / dx at s (lambda(0) = lambda0) */
+  size_t nbody;          /* moving bodies (<= AQ_PATH_MAX_BODIES) */
+  struct {
+    double mass_kg;      /* body mass */
+    double inertia_kgm2; /* centroidal moment of inertia */
+    double x_m, y_m;     /* centroid, absolute (arch centre at the origin), m */
+    double phi_rad;      /* rotation from the undeformed shape, rad */
+    double dx_m, dy_m, dphi; /* d/ds of the three, m/rad, m/rad, rad/rad */
+  } body[AQ_PATH_MAX_BODIES];
+} aq_path_point;
+
+/* Evaluate the path at s (0 <= s <= s_c_rad).  Returns 0 on success, non-zero
+ * when s is outside the admissible range or the linkage does not close. */
+typedef int (*aq_path_eval_fn)(const void *ctx, double s, aq_path_point *p);
+
+typedef struct {
+  const char *name;          /* "primary" or "reverse" */
+  aq_path_eval_fn eval;      /* fast evaluation (tables) */
+  aq_path_eval_fn eval_exact;/* exact evaluation (closed-form kinematics) */
+  const void *ctx;
+  double mass_kg;            /* m_T: whole arch (moving and fixed parts), kg */
+  double g_mps2;             /* gravity used for this arch, m/s^2 */
+  double lambda0;            /* static collapse multiplier at s = 0 */
+  double s_c_rad;            /* collapse: unloaded potential energy peaks (lambda = 0), or toggle limit */
+  int act_sign;              /* +1 or -1: sign of a_g that drives s forward */
+  int q_sign;                /* +1 or -1: q = q_sign * s (global rotation of body 1 about H1) */
+  int admissible;            /* 0: the set is not an admissible mechanism; never integrate it */
+  /* Impact when the arch returns to s = 0 on the OTHER set and continues on
+   * this one: post-impact sdot on this set = impact_vel_ratio * |pre-impact
+   * sdot on the other set| by the impulse-momentum balance about this set's
+   * hinges (the multi-body Housner rule).  Used with impact = momentum. */
+  double impact_vel_ratio;
+} aq_path;
+
+#endif

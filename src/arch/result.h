@@ -1,0 +1,37 @@
+/* result.h: what one dynamic run of one arch under one step list yields.
+ * Plain data; the optional history arrays are owned by the result and freed
+ * by aq_result_free (NULL-safe).  SI units; rotation in rad. */
+#ifndef AQ_ARCH_RESULT_H
+#define AQ_ARCH_RESULT_H
+
+#include <stddef.h>
+
+typedef struct {
+  size_t n, cap;
+  double *time_s;             /* step-end times, s */
+  double *rotation_rad;       /* q at step end (global sign), rad */
+  double *displacement_m;     /* x of the whole arch's centroid from rest, m */
+  double *kinetic_energy_j;   /* J */
+  double *potential_energy_j; /* J, from the undeformed arch */
+  int *set;                   /* 0 primary, 1 reverse, -1 at rest */
+} aq_history;
+
+typedef struct {
+  int collapsed;               /* 1 if q passed q_c of the active set */
+  double collapse_time_s;      /* NAN if it survived; s in record time */
+  double peak_rotation_rad;    /* max |q| */
+  double peak_displacement_m;  /* max |x - x0| of the whole arch's centroid */
+  double max_kinetic_energy_j; /* J */
+  double energy_in_j;          /* work done by the ground on the arch, J */
+  double energy_dissipated_j;  /* lost at impacts, J */
+  size_t impacts;              /* returns to the undeformed shape */
+  size_t reversals;            /* zero-velocity turning points */
+  size_t steps_total;          /* steps in the input */
+  size_t steps_moving;         /* steps integrated in motion (not skipped at rest) */
+  size_t evals;                /* path (or right-hand side) evaluations */
+  aq_history history;          /* filled only when asked */
+} aq_result;
+
+void aq_result_free(aq_result *r);
+
+#endif

@@ -1,0 +1,148 @@
+/* steps.c: constant-acceleration steps and their quiet index (see steps.h). */
+#include "steps.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { AQ_STEPS_BLOCK = 64 }; /* steps per quiet-index block */
+
+void aq_steps_free(aq_steps *s)
+{
+  if (!s)
+    return;
+  free(s->t_s);
+  free(s->dt_s);
+  free(s->a_mps2);
+  free(s->block_min_mps2);
+  free(s->block_max_mps2);
+  memset(s, 0, sizeof *s);
+}
+
+static aq_status steps_alloc(aq_steps *s, size_t n, aq_error *err)
+{
+  memset(s, 0, sizeof *s);
+  size_t m = n ? n : 1;
+  s->block = AQ_STEPS_BLOCK;
+  s->nblock = (n + s->block - 1) / s->block;
+  size_t nb = s->nblock ? s->nblock : 1;
+  s->t_s = malloc(m * sizeof *s->t_s);
+  s->dt_s = malloc(m * sizeof *s->dt_s);
+  s->a_mps2 = malloc(m * sizeof *s->a_mps2);
+  s->block_min_mps2 = malloc(nb * sizeof *s->block_min_mps2);
+  s->block_max_mps2 = malloc(nb * sizeof *s->block_max_mps2);
+  if (!s->t_s || !s->dt_s || !s->a_mps2 || !s->block_min_mps2 ||
+      !s->block_max_mps2) {
+    aq_steps_free(s);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "steps",
+                        "cannot allocate %zu steps", n);
+  }
+  s->n = n;
+  return AQ_OK;
+}
+
+static void steps_index(aq_steps *s)
+{
+  s->nblock = (s->n + s->block - 1) / s->block;
+  for (size_t b = 0; b < s->nblock; b++) {
+    size_t i0 = b * s->block, i1 = i0 + s->block;
+    if (i1 > s->n)
+      i1 = s->n;
+    double lo = s->a_mps2[i0], hi = s->a_mps2[i0];
+    for (size_t i = i0 + 1; i < i1; i++) {
+      if (s->a_mps2[i] < lo)
+        lo = s->a_mps2[i];
+      if (s->a_mps2[i] > hi)
+        hi = s->a_mps2[i];
+    }
+    s->block_min_mps2[b] = lo;
+    s->block_max_mps2[b] = hi;
+  }
+}
+
+aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
+                                double t0_s, double merge_tol_mps2,
+                                aq_steps *out, aq_error *err)
+{
+  if (!(dt_s > 0) || !isfinite(dt_s))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "dt",
+                        "expected a finite step > 0 s, got %g", dt_s);
+  if (!(merge_tol_mps2 >= 0) || !isfinite(merge_tol_mps2))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "merge-tol",
+                        "expected a finite tolerance >= 0, got %g",
+                        merge_tol_mps2);
+  aq_status st = steps_alloc(out, n, err);
+  if (st != AQ_OK)
+    return st;
+  size_t k = 0;
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    double sum = a_mps2[i];
+    if (merge_tol_mps2 > 0) {
+      /* grow the run while every sample stays within tol of the run's first */
+      double lo = a_mps2[i], hi = a_mps2[i];
+      while (j < n) {
+        double a = a_mps2[j];
+        double nlo = a < lo ? a : lo, nhi = a > hi ? a : hi;
+        if (nhi - nlo >= merge_tol_mps2)
+          break;
+        lo = nlo;
+        hi = nhi;
+        sum += a;
+        j++;
+      }
+    }
+    /* index arithmetic from t0 keeps times free of accumulated round-off */
+    out->t_s[k] = t0_s + (double)i * dt_s;
+    out->dt_s[k] = (double)(j - i) * dt_s;
+    out->a_mps2[k] = sum / (double)(j - i);
+    k++;
+    i = j;
+  }
+  out->n = k;
+  steps_index(out);
+  return AQ_OK;
+}
+
+aq_status aq_steps_from_list(const double *t_s, const double *dt_s,
+                             const double *a_mps2, size_t n, aq_steps *out,
+                             aq_error *err)
+{
+  for (size_t i = 0; i < n; i++) {
+    if (!(dt_s[i] > 0) || !isfinite(dt_s[i]) || !isfinite(t_s[i]) ||
+        !isfinite(a_mps2[i]))
+      return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "step",
+                          "step %zu: expected finite values and a duration "
+                          "> 0 s, got t=%g dt=%g a=%g",
+                          i, t_s[i], dt_s[i], a_mps2[i]);
+  }
+  aq_status st = steps_alloc(out, n, err);
+  if (st != AQ_OK)
+    return st;
+  if (n) {
+    memcpy(out->t_s, t_s, n * sizeof *t_s);
+    memcpy(out->dt_s, dt_s, n * sizeof *dt_s);
+    memcpy(out->a_mps2, a_mps2, n * sizeof *a_mps2);
+  }
+  steps_index(out);
+  return AQ_OK;
+}
+
+size_t aq_steps_next_outside(const aq_steps *s, size_t from, double lo,
+                             double hi)
+{
+  size_t i = from;
+  while (i < s->n) {
+    size_t b = i / s->block;
+    if (i % s->block == 0 && s->block_min_mps2[b] >= lo &&
+        s->block_max_mps2[b] <= hi) {
+      i += s->block; /* whole block quiet */
+      continue;
+    }
+    double a = s->a_mps2[i];
+    if (a < lo || a > hi)
+      return i;
+    i++;
+  }
+  return s->n;
+}

@@ -1,0 +1,47 @@
+/* steps.h: the constant-acceleration steps the arch stepper consumes.
+ *
+ * A step is (start time, duration, constant ground acceleration along +x).
+ * Times are s relative to the original record's first sample (steps in the
+ * front pad have negative times).  The block min/max arrays let the stepper
+ * skip quiet stretches cheaply (aq_steps_next_outside).  aq_steps owns its
+ * arrays; aq_steps_free releases them.
+ */
+#ifndef AQ_SIGNAL_STEPS_H
+#define AQ_SIGNAL_STEPS_H
+
+#include <stddef.h>
+
+#include "../error.h"
+
+typedef struct {
+  size_t n;         /* number of steps */
+  double *t_s;      /* start of step i, s */
+  double *dt_s;     /* duration of step i, s (> 0) */
+  double *a_mps2;   /* ground acceleration during step i, m/s^2 */
+  size_t block;     /* steps per block of the quiet index (power of two) */
+  size_t nblock;    /* number of blocks */
+  double *block_min_mps2; /* min a over each block */
+  double *block_max_mps2; /* max a over each block */
+} aq_steps;
+
+/* Build steps from n samples at dt_s (zero-order hold: sample i holds over
+ * [t0_s + i dt, t0_s + (i+1) dt)).  merge_tol_mps2 > 0 merges runs of
+ * consecutive samples that differ by less than it into one step at their
+ * duration-weighted mean; 0 keeps one step per sample. */
+aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
+                                double t0_s, double merge_tol_mps2,
+                                aq_steps *out, aq_error *err);
+
+/* Build from explicit lists (synthetic pulses, tests).  Copies the arrays. */
+aq_status aq_steps_from_list(const double *t_s, const double *dt_s,
+                             const double *a_mps2, size_t n, aq_steps *out,
+                             aq_error *err);
+
+/* Index of the first step i >= from with a_mps2[i] < lo or a_mps2[i] > hi,
+ * or s->n if there is none.  Costs O(blocks skipped + block). */
+size_t aq_steps_next_outside(const aq_steps *s, size_t from, double lo,
+                             double hi);
+
+void aq_steps_free(aq_steps *s);
+
+#endif

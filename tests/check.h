@@ -1,0 +1,55 @@
+/* check.h: the test harness.  Every tests/test_*.c defines tests with
+ * AQ_TEST(name) { ... } and checks with aq_check*; they register themselves
+ * and link into one runner (tests/runner.c) whose last line is
+ * "N passed, N failed".  A failed check prints file:line and both numbers;
+ * passing checks print only with AQ_TEST_VERBOSE set (as gsl_test does).
+ *
+ * Paths in tests are relative to the repository root (make check runs there).
+ * The CLI under test is aq_test_bin() (env AQ_BIN, default build/san/archquake).
+ */
+#ifndef AQ_TESTS_CHECK_H
+#define AQ_TESTS_CHECK_H
+
+#include <stddef.h>
+
+typedef void (*aq_test_fn)(void);
+void aq_test_register(const char *name, aq_test_fn fn);
+
+#define AQ_TEST(name)                                                     \
+  static void name(void);                                                 \
+  __attribute__((constructor)) static void name##_register(void)          \
+  {                                                                       \
+    aq_test_register(#name, name);                                        \
+  }                                                                       \
+  static void name(void)
+
+/* Each returns 1 if the check passed. */
+int aq_check_(int ok, const char *file, int line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+int aq_check_rel_(double got, double want, double rel, const char *file,
+                  int line, const char *fmt, ...)
+    __attribute__((format(printf, 6, 7)));
+int aq_check_abs_(double got, double want, double tol, const char *file,
+                  int line, const char *fmt, ...)
+    __attribute__((format(printf, 6, 7)));
+
+#define aq_check(cond, ...) aq_check_(!!(cond), __FILE__, __LINE__, __VA_ARGS__)
+/* |got - want| <= rel * |want| */
+#define aq_check_rel(got, want, rel, ...) \
+  aq_check_rel_((got), (want), (rel), __FILE__, __LINE__, __VA_ARGS__)
+/* |got - want| <= tol */
+#define aq_check_abs(got, want, tol, ...) \
+  aq_check_abs_((got), (want), (tol), __FILE__, __LINE__, __VA_ARGS__)
+
+/* Running the CLI: runs `aq_test_bin() args` through /bin/sh with stdin
+ * from /dev/null, captures stdout and stderr (each truncated to cap-1 bytes,
+ * NUL-terminated; either may be NULL) and returns the exit status (or -1).
+ * args is a shell fragment, e.g. "info records/x.AT2". */
+const char *aq_test_bin(void);
+int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
+                size_t err_cap);
+
+/* A fresh empty directory for this test under build/tmp (path in buf). */
+const char *aq_test_tmpdir(char *buf, size_t cap);
+
+#endif

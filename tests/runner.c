@@ -1,0 +1,172 @@
+/* runner.c: runs every registered test (or those whose names contain
+ * argv[1]); last line "N passed, N failed"; exit 1 if any failed. */
+#include "check.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define AQ_MAX_TESTS 1024
+
+static struct {
+  const char *name;
+  aq_test_fn fn;
+} tests[AQ_MAX_TESTS];
+static size_t ntests;
+static size_t checks_failed_in_test;
+static int verbose;
+static const char *current;
+
+void aq_test_register(const char *name, aq_test_fn fn)
+{
+  if (ntests < AQ_MAX_TESTS) {
+    tests[ntests].name = name;
+    tests[ntests].fn = fn;
+    ntests++;
+  }
+}
+
+static void report(int ok, const char *file, int line, const char *what,
+                   const char *fmt, va_list ap)
+{
+  if (ok && !verbose)
+    return;
+  fprintf(stderr, "%s %s:%d [%s] ", ok ? "  ok" : "FAIL", file, line,
+          current ? current : "?");
+  vfprintf(stderr, fmt, ap);
+  if (what[0])
+    fprintf(stderr, " (%s)", what);
+  fputc('\n', stderr);
+}
+
+int aq_check_(int ok, const char *file, int line, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  report(ok, file, line, "", fmt, ap);
+  va_end(ap);
+  if (!ok)
+    checks_failed_in_test++;
+  return ok;
+}
+
+int aq_check_rel_(double got, double want, double rel, const char *file,
+                  int line, const char *fmt, ...)
+{
+  double d = fabs(got - want);
+  int ok = d <= rel * fabs(want) && !isnan(got) && !isnan(want);
+  char what[200];
+  snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g > %.3g",
+           got, want, want != 0 ? d / fabs(want) : d, rel);
+  if (ok)
+    snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g", got,
+             want, want != 0 ? d / fabs(want) : d);
+  va_list ap;
+  va_start(ap, fmt);
+  report(ok, file, line, what, fmt, ap);
+  va_end(ap);
+  if (!ok)
+    checks_failed_in_test++;
+  return ok;
+}
+
+int aq_check_abs_(double got, double want, double tol, const char *file,
+                  int line, const char *fmt, ...)
+{
+  double d = fabs(got - want);
+  int ok = d <= tol && !isnan(got) && !isnan(want);
+  char what[200];
+  snprintf(what, sizeof what, "got %.17g, want %.17g, abs err %.3g%s%.3g",
+           got, want, d, ok ? " <= " : " > ", tol);
+  va_list ap;
+  va_start(ap, fmt);
+  report(ok, file, line, what, fmt, ap);
+  va_end(ap);
+  if (!ok)
+    checks_failed_in_test++;
+  return ok;
+}
+
+const char *aq_test_bin(void)
+{
+  const char *b = getenv("AQ_BIN");
+  return b && *b ? b : "build/san/archquake";
+}
+
+static void slurp(const char *path, char *buf, size_t cap)
+{
+  if (!buf || cap == 0)
+    return;
+  buf[0] = '\0';
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return;
+  size_t n = fread(buf, 1, cap - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+}
+
+int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
+                size_t err_cap)
+{
+  char dir[512], o[600], e[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(o, sizeof o, "%s/stdout", dir);
+  snprintf(e, sizeof e, "%s/stderr", dir);
+  size_t len = strlen(args) + strlen(aq_test_bin()) + 2 * sizeof o + 64;
+  char *cmd = malloc(len);
+  if (!cmd)
+    return -1;
+  snprintf(cmd, len, "%s %s </dev/null >%s 2>%s", aq_test_bin(), args, o, e);
+  int rc = system(cmd);
+  free(cmd);
+  slurp(o, out, out_cap);
+  slurp(e, errbuf, err_cap);
+  if (rc == -1 || !WIFEXITED(rc))
+    return -1;
+  return WEXITSTATUS(rc);
+}
+
+const char *aq_test_tmpdir(char *buf, size_t cap)
+{
+  static unsigned counter;
+  mkdir("build", 0777);
+  mkdir("build/tmp", 0777);
+  snprintf(buf, cap, "build/tmp/%s-%ld-%u", current ? current : "t",
+           (long)getpid(), counter++);
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", buf, buf);
+  if (system(cmd) != 0)
+    fprintf(stderr, "runner: cannot make %s\n", buf);
+  return buf;
+}
+
+int main(int argc, char **argv)
+{
+  verbose = getenv("AQ_TEST_VERBOSE") != NULL;
+  size_t passed = 0, failed = 0;
+  for (size_t i = 0; i < ntests; i++) {
+    if (argc > 1 && !strstr(tests[i].name, argv[1]))
+      continue;
+    current = tests[i].name;
+    checks_failed_in_test = 0;
+    tests[i].fn();
+    if (checks_failed_in_test) {
+      failed++;
+      fprintf(stderr, "FAIL %s (%zu checks failed)\n", tests[i].name,
+              checks_failed_in_test);
+    } else {
+      passed++;
+      if (verbose)
+        fprintf(stderr, "PASS %s\n", tests[i].name);
+    }
+    fflush(stderr);
+  }
+  printf("%zu passed, %zu failed\n", passed, failed);
+  return failed ? 1 : 0;
+}
