@@ -55,4 +55,20 @@ typedef struct {
 
 void aq_processed_free(aq_processed *p);
 
+/* Workspace: FFTW plans cached per transform size (made under a lock, then
+ * reused; safe to share between threads).  Free accepts NULL. */
+typedef struct aq_signal_ws aq_signal_ws;
+aq_signal_ws *aq_signal_ws_alloc(void);
+void aq_signal_ws_free(aq_signal_ws *ws);
+
+/* Baseline-correct rec with options o (detrend, taper, pad, filter, scale).
+ * Fills *out (caller frees with aq_processed_free).  Errors name rec->path
+ * and the option at fault (e.g. "--highpass"). */
+aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
+                            aq_signal_ws *ws, aq_processed *out,
+                            aq_error *err);
+
+/* Intensity measures of a processed record. */
+aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err);
+
 #endif

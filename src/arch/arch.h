@@ -1,0 +1,33 @@
+/* arch.h: an arch built from its .cfg (geometry, hinge sets, dynamics
+ * options), with the work paths of its primary and reverse hinge sets.
+ * Built once (aq_arch_load), then read-only and safe to share between
+ * threads.  aq_arch_free accepts NULL.  Reports through aq_error
+ * ("FILE:LINE: KEY: expected ..., got ...").  SI units throughout. */
+#ifndef AQ_ARCH_ARCH_H
+#define AQ_ARCH_ARCH_H
+
+#include "../error.h"
+#include "path.h"
+
+typedef struct aq_arch aq_arch;
+
+typedef enum { AQ_IMPACT_COR = 0, AQ_IMPACT_MOMENTUM } aq_impact;
+
+/* [dynamics] section */
+typedef struct {
+  double cor;       /* kinetic-energy ratio kept at an impact, 0..1 (ERRATA item 7) */
+  aq_impact impact; /* cor | momentum */
+  double g_mps2;    /* gravity, m/s^2 */
+} aq_arch_dynamics;
+
+aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err);
+void aq_arch_free(aq_arch *a);
+
+const char *aq_arch_name(const aq_arch *a);
+/* The .cfg text exactly as read (for the results file). */
+const char *aq_arch_config_text(const aq_arch *a);
+const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a);
+/* set 0: primary, 1: reverse.  Check ->admissible before integrating. */
+const aq_path *aq_arch_path(const aq_arch *a, int set);
+
+#endif

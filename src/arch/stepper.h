@@ -1,0 +1,36 @@
+/* stepper.h: dynamic response of a two-set hinge mechanism to a list of
+ * constant-acceleration steps (CVODE-like lifecycle: alloc, set options,
+ * run, read counters from the result, free).
+ *
+ * Models: AQ_MODEL_WORKPATH (default: exact energy balance, ERRATA items
+ * 4-9), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2; the
+ * reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison only).
+ * The stepper keeps pointers to the two paths (the arch outlives it).
+ * One stepper per thread.  aq_stepper_free accepts NULL. */
+#ifndef AQ_ARCH_STEPPER_H
+#define AQ_ARCH_STEPPER_H
+
+#include "../error.h"
+#include "../signal/steps.h"
+#include "path.h"
+#include "result.h"
+
+typedef enum { AQ_MODEL_WORKPATH = 0, AQ_MODEL_ODE, AQ_MODEL_PAPER } aq_model;
+
+typedef struct aq_stepper aq_stepper;
+
+aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
+                             aq_model model, aq_error *err);
+void aq_stepper_free(aq_stepper *st);
+
+void aq_stepper_set_cor(aq_stepper *st, double cor);           /* 0..1, KE ratio */
+void aq_stepper_set_impact(aq_stepper *st, int momentum);      /* 1: impulse-momentum rule */
+void aq_stepper_set_ode_rtol(aq_stepper *st, double rtol);     /* ode model tolerance */
+void aq_stepper_set_history(aq_stepper *st, int on);           /* keep step-end history */
+
+/* Run from rest at q = 0.  res is overwritten (free with aq_result_free).
+ * Errors name the time in the record ("at t = 12.340 s"). */
+aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps,
+                         aq_result *res, aq_error *err);
+
+#endif
