@@ -9,43 +9,34 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_record.h"
 
 static const char usage[] =
     "usage: archquake info [OPTIONS] RECORD...\n"
     "Describe accelerograms: one TSV row per record on stdout.\n"
-    "  --units U   override the file's units: g, gal, cm/s2, m/s2, nm/s2, counts\n"
-    "  --dt S      sample interval (s) for single-column text records\n"
-    "  --help      this text\n"
+    AQ_OPT_RECORD_USAGE
+    "  --help          this text\n"
     "Columns: file format npts dt_s duration_s units pga_g\n"
     "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n";
 
 int aq_cmd_info(int argc, char **argv)
 {
   static const struct option longopts[] = {
-      {"units", required_argument, NULL, 'u'},
-      {"dt", required_argument, NULL, 'd'},
+      AQ_OPT_RECORD_LONGOPTS,
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
-  static const char *const units[] = {"file", "g", "gal", "m/s2", "nm/s2",
-                                      "counts", "cm/s2", NULL};
   aq_read_opts ro = {0};
-  int nerr = 0, c, u = 0;
+  int nerr = 0, c;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
     switch (c) {
-    case 'u':
-      aq_opt_choice("--units", optarg, units, &u, &nerr);
-      ro.units = u == 6 ? AQ_UNITS_GAL : (aq_units)u;
-      break;
-    case 'd':
-      aq_opt_double_gt("--dt", optarg, 0, 3600, &ro.dt_s, &nerr);
-      break;
     case 'h':
       fputs(usage, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("info ", argv, optind, optopt, &nerr);
+      if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
+        aq_opt_unknown("info ", argv, optind, optopt, &nerr);
     }
   }
   if (optind >= argc) {
