@@ -30,7 +30,7 @@ typedef struct {
   double d2x_m, d2y_m;   /* d2/ds2 of x_m, y_m, m/rad^2 */
   double mgen_kgm2;      /* generalised mass M(s) = sum m_i |dc_i/ds|^2 + I_i (dphi_i/ds)^2, kg m^2 */
   double dmgen_kgm2;     /* dM/ds, kg m^2/rad */
-  double lambda;         /* static multiplier by virtual work: act_sign * dy / dx at s (lambda(0) = lambda0) */
+  double lambda;         /* static multiplier by virtual work, -act_sign * dy_m / dx_m at s (lambda(0) = lambda0) */
   size_t nbody;          /* moving bodies (<= AQ_PATH_MAX_BODIES) */
   struct {
     double mass_kg;      /* body mass */
