@@ -9,7 +9,7 @@
  * data, if it has as many fields as the data, names the columns ("time,acc
  * (g)", "t,acc_g", "NS,EW,UD").
  *
- * Columns: a column named t/time/sec/seconds is the time; without a header,
+ * Columns: a column named t/time/sec/seconds (zeit, tiempo, temps) is the time; without a header,
  * two or more columns and no dt known mean (time, acceleration...).  The
  * acceleration is column opts->column (1-based) or the first column that is
  * not time.  Times must be evenly spaced within CSV_TIME_TOL_REL of the step;
@@ -222,7 +222,9 @@ static int is_time_name(const char *name)
   }
   base[k] = '\0';
   return strcmp(base, "t") == 0 || strcmp(base, "time") == 0 ||
-         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0;
+         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0 ||
+         strcmp(base, "zeit") == 0 || strcmp(base, "tiempo") == 0 ||
+         strcmp(base, "temps") == 0;
 }
 
 /* "KEY = value" or "KEY: value" in a preamble line: returns the value's
@@ -268,9 +270,10 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   size_t ncols = 0;
   for (;;) {
     if (!next_line(&c, &b, &e))
-      return aq_error_set(err, AQ_EFORMAT, name, c.line > 0 ? c.line : -1, -1, NULL,
+      return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                           "expected rows of numbers (time, acceleration or "
-                          "acceleration only), found none");
+                          "acceleration only), found none in %ld lines",
+                          c.line);
     trim_line(s, &b, &e);
     if (b == e)
       continue;
