@@ -9,8 +9,10 @@
  * Threads: FFTW's planner is not thread-safe, so every planner call (create
  * and destroy) holds one process-wide mutex.  Plans are made with
  * FFTW_ESTIMATE (no timing measurements: the same plan, hence bit-identical
- * results, on every run) and executed with fftw_execute_dft_r2c/c2r on
- * buffers from fftw_malloc, which is the thread-safe part of FFTW's API.
+ * results, on every run) and executed in place with fftw_execute_dft_r2c/c2r
+ * (the thread-safe part of FFTW's API) on the caller's per-record array,
+ * aligned to 64 bytes by posix_memalign (aq_filter_alloc): no buffer is
+ * shared between threads, and free() releases the array.
  */
 #include "filter.h"
 
