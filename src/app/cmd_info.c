@@ -10,14 +10,14 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_record.h"
 #include "opt_signal.h"
 
 static const char usage_head[] =
     "usage: archquake info [OPTIONS] RECORD...\n"
     "Describe accelerograms: one TSV row per record on stdout.\n"
-    "  --units U   override the file's units: g, gal, cm/s2, m/s2, nm/s2, counts\n"
-    "  --dt S      sample interval (s) for single-column text records\n"
-    "  --help      this text\n"
+    AQ_OPT_RECORD_USAGE
+    "  --help          this text\n"
     "Processing (intensity measures are computed on the processed record):\n";
 static const char usage_tail[] =
     "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
@@ -28,38 +28,28 @@ static const char usage_tail[] =
 
 int aq_cmd_info(int argc, char **argv)
 {
-  struct option longopts[3 + AQ_OPT_SIGNAL_NOPTS + 1] = {
-      {"units", required_argument, NULL, 'u'},
-      {"dt", required_argument, NULL, 'd'},
-      {"help", no_argument, NULL, 'h'}};
-  size_t nlong = aq_opt_signal_append(longopts, 3);
+  struct option longopts[4 + AQ_OPT_SIGNAL_NOPTS + 1] = {
+      AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
+  size_t nlong = aq_opt_signal_append(longopts, 4);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   aq_signal_opts so;
   aq_signal_opts_default(&so);
-  static const char *const units[] = {"file", "g", "gal", "m/s2", "nm/s2",
-                                      "counts", "cm/s2", NULL};
   aq_read_opts ro = {0};
-  int nerr = 0, c, u = 0;
+  int nerr = 0, c;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
     if (aq_opt_signal_handle(c, optarg, &so, NULL, &nerr))
       continue;
     switch (c) {
-    case 'u':
-      aq_opt_choice("--units", optarg, units, &u, &nerr);
-      ro.units = u == 6 ? AQ_UNITS_GAL : (aq_units)u;
-      break;
-    case 'd':
-      aq_opt_double_gt("--dt", optarg, 0, 3600, &ro.dt_s, &nerr);
-      break;
     case 'h':
       fputs(usage_head, stdout);
       fputs(aq_opt_signal_usage, stdout);
       fputs(usage_tail, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("info ", argv, optind, optopt, &nerr);
+      if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
+        aq_opt_unknown("info ", argv, optind, optopt, &nerr);
     }
   }
   if (optind >= argc) {
