@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "io/record.h"
 #include "signal/signal.h"
 #include "units.h"
 
@@ -325,5 +326,42 @@ AQ_TEST(signal_fft_size_is_smooth_and_minimal)
     }
     if (!aq_check(m >= n && q == 1 && minimal, "fft size for %zu: %zu", n, m))
       break;
+  }
+}
+
+/* The same on a real raw record: Ridgecrest 2019, CJ.T001230 vertical, which
+ * carries +1 g of gravity (PROVENANCE.md), processed with the defaults. */
+AQ_TEST(signal_pads_at_rest_real_record)
+{
+  static const char *const files[] = {
+      "tests/data/records/20190706031952.CJ.T001230.HNZ.sac",
+      "tests/data/records/20190706031952.CJ.T001230.HNE.sac"};
+  for (size_t f = 0; f < 2; f++) {
+    aq_record r;
+    aq_read_opts ro = {0};
+    ro.units = AQ_UNITS_G; /* the file says nm/s2 but holds g */
+    aq_error e;
+    if (!aq_check(aq_record_read(files[f], &ro, &r, &e) == AQ_OK, "read %s: %s",
+                  files[f], e.message))
+      continue;
+    aq_signal_opts o;
+    aq_signal_opts_default(&o);
+    aq_processed p;
+    aq_im im;
+    aq_check(aq_signal_process(&r, &o, NULL, &p, &e) == AQ_OK &&
+                 aq_im_compute(&p, &im, &e) == AQ_OK,
+             "process %s", files[f]);
+    double pga = im.pga_g * AQ_G0_MPS2;
+    aq_check(fabs(p.acc_mps2[0]) < REST_ACC_REL * pga &&
+                 fabs(p.acc_mps2[p.n - 1]) < REST_ACC_REL * pga,
+             "%s: a at the ends %g, %g m/s^2 (PGA %g)", files[f],
+             p.acc_mps2[0], p.acc_mps2[p.n - 1], pga);
+    aq_check(fabs(im.v_end_mps) < REST_VEL_REL * im.pgv_mps,
+             "%s: v at end %g m/s (PGV %g)", files[f], im.v_end_mps,
+             im.pgv_mps);
+    aq_check(fabs(im.d_end_m) < REST_DISP_REL * im.pgd_m,
+             "%s: d at end %g m (PGD %g)", files[f], im.d_end_m, im.pgd_m);
+    aq_processed_free(&p);
+    aq_record_free(&r);
   }
 }

@@ -189,11 +189,6 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
     return st;
   const char *in = rec->path;
   size_t n = rec->npts;
-  for (size_t i = 0; i < n; i++)
-    if (!isfinite(rec->acc_mps2[i]))
-      return aq_error_set(err, AQ_EVALUE, in, -1, -1, "sample",
-                          "sample %zu: expected a finite acceleration, got %g",
-                          i, rec->acc_mps2[i]);
 
   size_t front = 0, ntot = n;
   if (o->filter) {
@@ -211,24 +206,39 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
                           "expected a record that fits an FFT, got %zu "
                           "samples", n);
   }
-  double *a = calloc(ntot, sizeof *a);
+  /* filtered: the array is also the in-place FFT buffer (aligned, room for
+   * the spectrum); free() releases either kind */
+  double *a = o->filter ? aq_filter_alloc(ntot) : malloc(ntot * sizeof *a);
   if (!a)
     return aq_error_set(err, AQ_ENOMEM, in, -1, -1, "npts",
                         "cannot allocate %zu samples", ntot);
   double *y = a + front;
-  memcpy(y, rec->acc_mps2, n * sizeof *y);
+  for (size_t i = 0; i < n; i++) {
+    y[i] = rec->acc_mps2[i];
+    if (!isfinite(y[i])) {
+      aq_error_set(err, AQ_EVALUE, in, -1, -1, "sample",
+                   "sample %zu: expected a finite acceleration, got %g", i,
+                   y[i]);
+      free(a);
+      return AQ_EVALUE;
+    }
+  }
+  if (front)
+    memset(a, 0, front * sizeof *a);
+  if (ntot > front + n)
+    memset(y + n, 0, (ntot - front - n) * sizeof *a);
   st = detrend(y, n, o->detrend, in, err);
   if (st == AQ_OK && o->filter) {
     taper(y, n, o->taper_frac);
-    st = aq_filter_apply(ws, a, ntot, rec->dt_s, o, in, err);
+    st = aq_filter_apply(ws, a, ntot, rec->dt_s, o, o->scale, in, err);
+  } else if (st == AQ_OK && o->scale != 1.0) {
+    for (size_t i = 0; i < ntot; i++)
+      a[i] *= o->scale;
   }
   if (st != AQ_OK) {
     free(a);
     return st;
   }
-  if (o->scale != 1.0)
-    for (size_t i = 0; i < ntot; i++)
-      a[i] *= o->scale;
   out->n = ntot;
   out->dt_s = rec->dt_s;
   out->pad_front = front;

@@ -9,8 +9,10 @@
  * Threads: FFTW's planner is not thread-safe, so every planner call (create
  * and destroy) holds one process-wide mutex.  Plans are made with
  * FFTW_ESTIMATE (no timing measurements: the same plan, hence bit-identical
- * results, on every run) and executed with fftw_execute_dft_r2c/c2r on
- * buffers from fftw_malloc, which is the thread-safe part of FFTW's API.
+ * results, on every run) and executed in place with fftw_execute_dft_r2c/c2r
+ * (the thread-safe part of FFTW's API) on the caller's per-record array,
+ * aligned to 64 bytes by posix_memalign (aq_filter_alloc): no buffer is
+ * shared between threads, and free() releases the array.
  */
 #include "filter.h"
 
@@ -18,6 +20,7 @@
 #include <limits.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
@@ -53,7 +56,8 @@ void aq_signal_ws_free(aq_signal_ws *ws)
   free(ws);
 }
 
-/* Find or make the plans for length n.  Caller holds the planner lock. */
+/* Find or make the in-place plans for length n.  Caller holds the planner
+ * lock. */
 static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
 {
   for (size_t i = 0; i < ws->nplans; i++)
@@ -67,17 +71,16 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
     ws->plans = p;
     ws->cap = cap;
   }
-  /* plan on scratch arrays of the alignment fftw_malloc gives, which is the
-   * alignment of every buffer later passed to the new-array execute calls */
-  double *x = fftw_malloc(n * sizeof *x);
-  fftw_complex *X = fftw_malloc((n / 2 + 1) * sizeof *X);
+  /* plan in place on a scratch array aligned as fftw_malloc aligns: every
+   * array later passed to the new-array execute calls is aligned alike
+   * (aq_filter_alloc) and also in place */
+  double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
   fftw_plan r2c = NULL, c2r = NULL;
-  if (x && X) {
-    r2c = fftw_plan_dft_r2c_1d((int)n, x, X, FFTW_ESTIMATE);
-    c2r = fftw_plan_dft_c2r_1d((int)n, X, x, FFTW_ESTIMATE);
+  if (x) {
+    r2c = fftw_plan_dft_r2c_1d((int)n, x, (fftw_complex *)x, FFTW_ESTIMATE);
+    c2r = fftw_plan_dft_c2r_1d((int)n, (fftw_complex *)x, x, FFTW_ESTIMATE);
   }
   fftw_free(x);
-  fftw_free(X);
   if (!r2c || !c2r) {
     if (r2c)
       fftw_destroy_plan(r2c);
@@ -90,6 +93,16 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
   pp->r2c = r2c;
   pp->c2r = c2r;
   return pp;
+}
+
+double *aq_filter_alloc(size_t n)
+{
+  void *p = NULL;
+  size_t m = 2 * (n / 2 + 1);
+  if (m > SIZE_MAX / sizeof(double) ||
+      posix_memalign(&p, AQ_FILTER_ALIGN, m * sizeof(double)) != 0)
+    return NULL;
+  return p;
 }
 
 /* x^k for integer k >= 1 by repeated squaring (cheaper than pow per bin). */
@@ -119,8 +132,8 @@ double aq_filter_gain(double f_hz, const aq_signal_opts *o)
 }
 
 aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
-                          const aq_signal_opts *o, const char *input,
-                          aq_error *err)
+                          const aq_signal_opts *o, double factor,
+                          const char *input, aq_error *err)
 {
   if (n < 2 || n > (size_t)INT_MAX)
     return aq_error_set(err, AQ_EVALUE, input, -1, -1, "--highpass",
@@ -141,31 +154,26 @@ aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
                         "cannot make FFTW plans for %zu points", n);
   }
 
-  size_t nc = n / 2 + 1;
-  double *buf = fftw_malloc(n * sizeof *buf);
-  fftw_complex *spec = fftw_malloc(nc * sizeof *spec);
-  if (!buf || !spec) {
-    fftw_free(buf);
-    fftw_free(spec);
-    aq_signal_ws_free(own);
-    return aq_error_set(err, AQ_ENOMEM, input, -1, -1, "fft",
-                        "cannot allocate FFT buffers of %zu points", n);
+  fftw_complex *spec = (fftw_complex *)x; /* in place: n/2+1 bins */
+  fftw_execute_dft_r2c(r2c, x, spec);
+  /* bin k is frequency k / (n dt); factor/n undoes FFTW's unnormalised pair.
+   * Without a low-pass the computed gain rises monotonically to exactly 1.0
+   * ((fc/f)^(2n) below half an ulp of 1) and stays there: the bins above
+   * are only scaled, bit-identically to multiplying by the gain. */
+  size_t nc = n / 2 + 1, k = 0;
+  double df_hz = 1.0 / ((double)n * dt_s), s = factor / (double)n;
+  for (; k < nc; k++) {
+    double g = aq_filter_gain((double)k * df_hz, o);
+    if (g == 1.0 && o->lowpass_hz <= 0)
+      break;
+    spec[k][0] *= g * s;
+    spec[k][1] *= g * s;
   }
-  for (size_t i = 0; i < n; i++)
-    buf[i] = x[i];
-  fftw_execute_dft_r2c(r2c, buf, spec);
-  /* bin k is frequency k / (n dt); 1/n undoes FFTW's unnormalised pair */
-  double df_hz = 1.0 / ((double)n * dt_s), inv_n = 1.0 / (double)n;
-  for (size_t k = 0; k < nc; k++) {
-    double g = aq_filter_gain((double)k * df_hz, o) * inv_n;
-    spec[k][0] *= g;
-    spec[k][1] *= g;
+  for (; k < nc; k++) {
+    spec[k][0] *= s;
+    spec[k][1] *= s;
   }
-  fftw_execute_dft_c2r(c2r, spec, buf);
-  for (size_t i = 0; i < n; i++)
-    x[i] = buf[i];
-  fftw_free(buf);
-  fftw_free(spec);
+  fftw_execute_dft_c2r(c2r, spec, x);
   aq_signal_ws_free(own);
   return AQ_OK;
 }

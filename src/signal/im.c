@@ -33,21 +33,27 @@ void aq_signal_integrate(const double *a_mps2, size_t n, double dt_s,
   }
 }
 
-/* Time (s from sample 0) where the cumulative trapezoidal int a^2 dt first
- * reaches target, interpolated linearly between the two samples around it. */
-static double arias_crossing(const double *a, size_t n, double dt_s,
-                             double target)
+/* Times (s from sample 0) where the cumulative trapezoidal int a^2 dt first
+ * reaches lo and hi (lo <= hi), each interpolated linearly between the two
+ * samples around it; one pass. */
+static void arias_crossings(const double *a, size_t n, double dt_s, double lo,
+                            double hi, double *t_lo, double *t_hi)
 {
   double cum = 0, h = 0.5 * dt_s;
-  if (target <= 0)
-    return 0;
-  for (size_t k = 1; k < n; k++) {
-    double inc = h * (a[k - 1] * a[k - 1] + a[k] * a[k]);
-    if (cum + inc >= target && inc > 0)
-      return ((double)(k - 1) + (target - cum) / inc) * dt_s;
-    cum += inc;
+  size_t k = 1;
+  *t_lo = *t_hi = (double)(n - 1) * dt_s;
+  for (int which = 0; which < 2; which++) {
+    double target = which ? hi : lo;
+    for (; k < n; k++) {
+      double inc = h * (a[k - 1] * a[k - 1] + a[k] * a[k]);
+      if (cum + inc >= target && inc > 0) {
+        double t = ((double)(k - 1) + (target - cum) / inc) * dt_s;
+        *(which ? t_hi : t_lo) = t;
+        break; /* k stays: the next target may lie in the same interval */
+      }
+      cum += inc;
+    }
   }
-  return (double)(n - 1) * dt_s;
 }
 
 aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
@@ -76,9 +82,10 @@ aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
       /* |a| along the linear interpolant: two triangles split at the zero */
       cav += h * (a0 * a0 + a1 * a1) / (fabs(a0) + fabs(a1));
     }
-    pga = fmax(pga, fabs(a1));
-    pgv = fmax(pgv, fabs(v));
-    pgd = fmax(pgd, fabs(d));
+    double fa = fabs(a1), fv = fabs(v), fd = fabs(d);
+    pga = fa > pga ? fa : pga;
+    pgv = fv > pgv ? fv : pgv;
+    pgd = fd > pgd ? fd : pgd;
   }
   im->pga_g = pga / AQ_G0_MPS2;
   im->pgv_mps = pgv;
@@ -87,9 +94,11 @@ aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
   im->cav_mps = cav;
   im->v_end_mps = v;
   im->d_end_m = d;
-  if (a2 > 0)
-    im->d5_95_s = arias_crossing(a, n, p->dt_s, 0.95 * a2) -
-                  arias_crossing(a, n, p->dt_s, 0.05 * a2);
+  if (a2 > 0) {
+    double t5, t95;
+    arias_crossings(a, n, p->dt_s, 0.05 * a2, 0.95 * a2, &t5, &t95);
+    im->d5_95_s = t95 - t5;
+  }
   im->residual_warn = (fabs(v) > AQ_IM_VEND_LIMIT_MPS ? AQ_IM_WARN_VEND : 0) |
                       (fabs(d) > AQ_IM_DEND_LIMIT_M ? AQ_IM_WARN_DEND : 0);
   return AQ_OK;
