@@ -141,6 +141,9 @@ int aq_cmd_run(int argc, char **argv)
     fprintf(stderr, "archquake: out of memory\n");
     return AQ_EXIT_FAIL;
   }
+  /* before getopt_long permutes argv */
+  char *cmdline = join_argv(argc, argv);
+  cfg.command_line = cmdline ? cmdline : "";
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":o:j:q", longopts, NULL)) != -1) {
@@ -183,6 +186,7 @@ int aq_cmd_run(int argc, char **argv)
       fputs(usage_tail, stdout);
       free(arches);
       free(scales);
+      free(cmdline);
       return AQ_EXIT_OK;
     default:
       if (aq_opt_record_handle(c, optarg, &cfg.read, &nerr)) {
@@ -217,6 +221,7 @@ int aq_cmd_run(int argc, char **argv)
   if (nerr) {
     free(arches);
     free(scales);
+    free(cmdline);
     return AQ_EXIT_USAGE;
   }
 
@@ -230,8 +235,6 @@ int aq_cmd_run(int argc, char **argv)
     cfg.nscale = scales ? nscale : 1;
   }
   cfg.progress = !quiet && isatty(STDERR_FILENO);
-  char *cmdline = join_argv(argc, argv);
-  cfg.command_line = cmdline ? cmdline : "";
 
   aq_cleanup_install();
   FILE *tf = NULL;
