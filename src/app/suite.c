@@ -373,10 +373,20 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
 {
   const aq_suite_cfg *c = S->cfg;
   aq_h5_writer *w;
+  /* registered before it exists, so that no signal can slip in between */
+  size_t len = strlen(c->h5_path) + 40;
+  char *tmp = malloc(len);
+  if (!tmp)
+    return aq_error_set(err, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory");
+  aq_h5_temp_name(c->h5_path, tmp, len);
+  *cleanup_slot = aq_cleanup_add(tmp);
+  free(tmp);
   aq_status s = aq_h5_open(c->h5_path, &w, err);
-  if (s != AQ_OK)
+  if (s != AQ_OK) {
+    aq_cleanup_remove(*cleanup_slot);
+    *cleanup_slot = -1;
     return s;
-  *cleanup_slot = aq_cleanup_add(aq_h5_temp_path(w));
+  }
   char created[64];
   iso_now(created, sizeof created);
   aq_h5_root root = {AQ_VERSION,
