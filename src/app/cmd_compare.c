@@ -1,12 +1,144 @@
-/* cmd_compare.c: placeholder until the stage behind it lands. */
+/* cmd_compare.c: `archquake compare A.h5 B.h5 [--rtol R] [--atol A]`:
+ * compare two results files run by run (report/compare.h).  Differences go
+ * to stdout as TSV (record arch scale field a b rel_diff), one row each, and
+ * a one-line count to stderr. */
+#define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
+#include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
+#include "../report/compare.h"
+#include "../report/h5.h"
+#include "../report/text.h"
 #include "app.h"
+#include "opt.h"
+
+/* Defaults: a nightly rerun of the same build reproduces every value
+ * exactly; 1e-9 leaves room only for a different compiler or libm. */
+#define AQ_COMPARE_RTOL_DEFAULT 1e-9
+#define AQ_COMPARE_ATOL_DEFAULT 0.0
+
+static const char usage[] =
+    "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A]\n"
+    "Compare two results files (archquake ... -o FILE.h5) run by run, matched\n"
+    "by record, arch and scale.  Numbers agree when |a-b| <= A + R*max(|a|,|b|)\n"
+    "(NaN equals NaN); collapsed, impacts, model and status must be equal.\n"
+    "  --rtol R   relative tolerance (default 1e-9)\n"
+    "  --atol A   absolute tolerance in each field's units (default 0)\n"
+    "  --help     this text\n"
+    "Each difference is a TSV row on stdout: record arch scale field a b rel_diff\n"
+    "(field \"present\" for a run found in only one file).\n"
+    "Exit status: 0 all runs agree, 1 some differ, 2 bad options or a file\n"
+    "that cannot be read as a results file.\n";
+
+typedef struct {
+  FILE *out;
+} sink;
+
+static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
+{
+  char num[64];
+  switch (fl->kind) {
+  case AQ_SF_STR:
+    fputs(aq_summary_get_str(s, fl), f);
+    break;
+  case AQ_SF_DOUBLE:
+    aq_text_double(num, sizeof num, aq_summary_get_double(s, fl));
+    fputs(num, f);
+    break;
+  case AQ_SF_INT:
+    fprintf(f, "%" PRId64, aq_summary_get_int(s, fl));
+    break;
+  }
+}
+
+static void on_diff(void *ctx, const aq_diff *d)
+{
+  FILE *f = ((sink *)ctx)->out;
+  const aq_summary *r = d->a ? d->a : d->b;
+  char num[64], rel[64];
+  aq_text_double(num, sizeof num, r->scale);
+  fprintf(f, "%s\t%s\t%s\t", r->record, r->arch, num);
+  if (d->kind == AQ_DIFF_VALUE) {
+    fprintf(f, "%s\t", d->field->name);
+    put_value(f, d->a, d->field);
+    fputc('\t', f);
+    put_value(f, d->b, d->field);
+    aq_text_double(rel, sizeof rel, d->rel);
+    fprintf(f, "\t%s\n", rel);
+  } else {
+    fprintf(f, "present\t%s\t%s\tnan\n", d->a ? "yes" : "no",
+            d->b ? "yes" : "no");
+  }
+}
 
 int aq_cmd_compare(int argc, char **argv)
 {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "archquake: compare: not available in this build\n");
-  return AQ_EXIT_USAGE;
+  static const struct option longopts[] = {
+      {"rtol", required_argument, NULL, 'r'},
+      {"atol", required_argument, NULL, 'a'},
+      {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
+  double rtol = AQ_COMPARE_RTOL_DEFAULT, atol = AQ_COMPARE_ATOL_DEFAULT;
+  int nerr = 0, c;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
+    switch (c) {
+    case 'r':
+      aq_opt_double("--rtol", optarg, 0, 1, &rtol, &nerr);
+      break;
+    case 'a':
+      aq_opt_double("--atol", optarg, 0, HUGE_VAL, &atol, &nerr);
+      break;
+    case 'h':
+      fputs(usage, stdout);
+      return AQ_EXIT_OK;
+    default:
+      aq_opt_unknown("compare ", argv, optind, optopt, &nerr);
+    }
+  }
+  if (argc - optind != 2) {
+    fprintf(stderr,
+            "archquake: compare: expected two results files A.h5 B.h5, got %d\n",
+            argc - optind);
+    nerr++;
+  }
+  if (nerr)
+    return AQ_EXIT_USAGE;
+
+  aq_summary *run[2] = {NULL, NULL};
+  size_t n[2] = {0, 0};
+  int bad = 0;
+  for (int k = 0; k < 2; k++) {
+    aq_error err;
+    aq_error_clear(&err);
+    if (aq_h5_read_runs(argv[optind + k], &run[k], &n[k], &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      bad = 1;
+    }
+  }
+  if (bad) {
+    free(run[0]);
+    free(run[1]);
+    return AQ_EXIT_USAGE;
+  }
+  sink s = {stdout};
+  printf("record\tarch\tscale\tfield\ta\tb\trel_diff\n");
+  size_t nd = aq_compare_runs(run[0], n[0], run[1], n[1], rtol, atol, on_diff, &s);
+  free(run[0]);
+  free(run[1]);
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "archquake: compare: cannot write the differences\n");
+    return AQ_EXIT_USAGE;
+  }
+  if (nd == (size_t)-1) {
+    fprintf(stderr, "archquake: compare: out of memory\n");
+    return AQ_EXIT_USAGE;
+  }
+  fprintf(stderr, "archquake: compare: %zu runs in %s, %zu in %s: %zu difference%s\n",
+          n[0], argv[optind], n[1], argv[optind + 1], nd, nd == 1 ? "" : "s");
+  return nd ? AQ_EXIT_FAIL : AQ_EXIT_OK;
 }

@@ -6,57 +6,68 @@
 #include <string.h>
 
 #include "../io/record.h"
+#include "../signal/signal.h"
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_record.h"
+#include "opt_signal.h"
 
-static const char usage[] =
+static const char usage_head[] =
     "usage: archquake info [OPTIONS] RECORD...\n"
     "Describe accelerograms: one TSV row per record on stdout.\n"
-    "  --units U   override the file's units: g, gal, cm/s2, m/s2, nm/s2, counts\n"
-    "  --dt S      sample interval (s) for single-column text records\n"
-    "  --help      this text\n"
-    "Columns: file format npts dt_s duration_s units pga_g\n"
+    AQ_OPT_RECORD_USAGE
+    "  --help          this text\n"
+    "Processing (intensity measures are computed on the processed record):\n";
+static const char usage_tail[] =
+    "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
+    "  arias_m_s d5_95_s cav_m_s (npts, duration_s: the record as read; the\n"
+    "  measures: the processed record, pads included; --no-filter --detrend\n"
+    "  none gives the record as read)\n"
     "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n";
 
 int aq_cmd_info(int argc, char **argv)
 {
-  static const struct option longopts[] = {
-      {"units", required_argument, NULL, 'u'},
-      {"dt", required_argument, NULL, 'd'},
-      {"help", no_argument, NULL, 'h'},
-      {NULL, 0, NULL, 0}};
-  static const char *const units[] = {"file", "g", "gal", "m/s2", "nm/s2",
-                                      "counts", "cm/s2", NULL};
+  struct option longopts[4 + AQ_OPT_SIGNAL_NOPTS + 1] = {
+      AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
+  size_t nlong = aq_opt_signal_append(longopts, 4);
+  longopts[nlong] = (struct option){NULL, 0, NULL, 0};
+  aq_signal_opts so;
+  aq_signal_opts_default(&so);
   aq_read_opts ro = {0};
-  int nerr = 0, c, u = 0;
+  int nerr = 0, c;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
+    if (aq_opt_signal_handle(c, optarg, &so, NULL, &nerr))
+      continue;
     switch (c) {
-    case 'u':
-      aq_opt_choice("--units", optarg, units, &u, &nerr);
-      ro.units = u == 6 ? AQ_UNITS_GAL : (aq_units)u;
-      break;
-    case 'd':
-      aq_opt_double_gt("--dt", optarg, 0, 3600, &ro.dt_s, &nerr);
-      break;
     case 'h':
-      fputs(usage, stdout);
+      fputs(usage_head, stdout);
+      fputs(aq_opt_signal_usage, stdout);
+      fputs(usage_tail, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("info ", argv, optind, optopt, &nerr);
+      if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
+        aq_opt_unknown("info ", argv, optind, optopt, &nerr);
     }
   }
   if (optind >= argc) {
     fprintf(stderr, "archquake: info: expected at least one RECORD\n");
     nerr++;
   }
+  aq_opt_signal_check(&so, &nerr);
   if (nerr)
     return AQ_EXIT_USAGE;
 
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  if (!ws) {
+    fprintf(stderr, "archquake: info: out of memory\n");
+    return AQ_EXIT_FAIL;
+  }
   int failed = 0;
-  printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\n");
+  printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
+         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\n");
   for (int i = optind; i < argc; i++) {
     aq_record rec;
     aq_error err;
@@ -66,17 +77,29 @@ int aq_cmd_info(int argc, char **argv)
       failed = 1;
       continue;
     }
-    double mean = 0, pga = 0;
-    for (size_t k = 0; k < rec.npts; k++)
-      mean += rec.acc_mps2[k];
-    mean /= rec.npts ? (double)rec.npts : 1.0;
-    for (size_t k = 0; k < rec.npts; k++)
-      pga = fmax(pga, fabs(rec.acc_mps2[k] - mean));
-    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\n", rec.path, rec.format,
-           rec.npts, rec.dt_s, rec.dt_s * (double)rec.npts, rec.units_orig,
-           pga / AQ_G0_MPS2);
+    aq_processed p;
+    aq_im im;
+    if (aq_signal_process(&rec, &so, ws, &p, &err) != AQ_OK ||
+        aq_im_compute(&p, &im, &err) != AQ_OK) {
+      if (!err.input[0])
+        snprintf(err.input, sizeof err.input, "%s", rec.path);
+      aq_error_print(&err, stderr);
+      aq_processed_free(&p);
+      aq_record_free(&rec);
+      failed = 1;
+      continue;
+    }
+    char warn[256];
+    if (aq_im_residual_warning(&im, warn, sizeof warn))
+      fprintf(stderr, "archquake: %s: warning: %s\n", rec.path, warn);
+    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n",
+           rec.path, rec.format, rec.npts, rec.dt_s,
+           rec.dt_s * (double)rec.npts, rec.units_orig, im.pga_g, im.pgv_mps,
+           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps);
+    aq_processed_free(&p);
     aq_record_free(&rec);
   }
+  aq_signal_ws_free(ws);
   fflush(stdout);
   return failed ? AQ_EXIT_FAIL : AQ_EXIT_OK;
 }

@@ -36,11 +36,44 @@ typedef enum {
   AQ_UNITS_COUNTS /* divided by the sensitivity (SAC SCALE, counts per m/s^2) */
 } aq_units;
 
+/* A per-file units rule (--units GLOB=U): records whose path as given
+ * matches glob (fnmatch(3), no flags, so '*' also matches '/') are read in
+ * units. */
+#define AQ_UNITS_RULES_MAX 16
+#define AQ_UNITS_GLOB_MAX 256
+typedef struct {
+  char glob[AQ_UNITS_GLOB_MAX];
+  aq_units units;
+} aq_units_rule;
+
 /* Reader options.  Zero-initialised means: units from the file, no dt. */
 typedef struct {
   aq_units units; /* override, or AQ_UNITS_FILE */
   double dt_s;    /* --dt for single-column text; 0 = not given */
+  /* Added with the readers: */
+  size_t column;  /* --column N: 1-based column of a text record to read as
+                     acceleration (counting a time column); 0 = the first
+                     column that is not time */
+  size_t nrules;  /* number of --units GLOB=U rules in rules[] */
+  aq_units_rule rules[AQ_UNITS_RULES_MAX]; /* the last matching rule wins */
 } aq_read_opts;
+
+/* The units override that applies to path: the last rule whose glob matches
+ * path (as given), else opts->units (AQ_UNITS_FILE if none).  opts may be
+ * NULL (AQ_UNITS_FILE). */
+aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path);
+
+/* Parse a units word: g, gal, cm/s2 (also cm/s^2, cm/s/s, cm/sec2, cmps2),
+ * m/s2 (m/s^2, m/s/s, mps2), nm/s2 (nm/s^2), counts; case-insensitive.
+ * Returns 1 and sets *out on success, 0 if s is not one of them. */
+int aq_units_parse(const char *s, aq_units *out);
+
+/* The canonical name of u ("g", "gal", "m/s2", "nm/s2", "counts", "file"). */
+const char *aq_units_name(aq_units u);
+
+/* Metres per second squared per unit of u (g: 9.80665, gal: 0.01, ...);
+ * 0 for AQ_UNITS_FILE and AQ_UNITS_COUNTS (counts need a sensitivity). */
+double aq_units_to_mps2(aq_units u);
 
 /* Read the file at path, detecting its format from its content.
  * On success fills *rec (caller frees with aq_record_free) and returns AQ_OK;

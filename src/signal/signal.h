@@ -51,7 +51,14 @@ typedef struct {
   double cav_mps;      /* int |a| dt, m/s */
   double v_end_mps;    /* residual velocity at the end, m/s */
   double d_end_m;      /* residual displacement at the end, m */
+  int residual_warn;   /* AQ_IM_WARN_* bits: residuals above PRISM's limits;
+                          the caller warns (aq_im_residual_warning), it is not an error */
 } aq_im;
+
+/* PRISM's residual limits: warn when |v_end| > 1 cm/s or |d_end| > 1 cm. */
+#define AQ_IM_VEND_LIMIT_MPS 0.01
+#define AQ_IM_DEND_LIMIT_M 0.01
+enum { AQ_IM_WARN_VEND = 1, AQ_IM_WARN_DEND = 2 };
 
 void aq_processed_free(aq_processed *p);
 
@@ -68,7 +75,26 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
                             aq_signal_ws *ws, aq_processed *out,
                             aq_error *err);
 
-/* Intensity measures of a processed record. */
+/* Intensity measures of a processed record (all n samples, pads included):
+ * PGA (g), PGV (m/s), PGD (m) with trapezoidal integration from rest at the
+ * first sample, Arias intensity pi/(2g) int a^2 dt (m/s), D5-95 (s) from the
+ * normalised Arias curve with linear interpolation, CAV int |a| dt (m/s),
+ * residual end velocity and displacement, residual_warn.  Allocates nothing.
+ * Returns AQ_EVALUE (err filled) for an empty record or dt <= 0. */
 aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err);
+
+/* Trapezoidal integration from rest: v[0] = 0, v[k+1] = v[k] + dt (a[k] +
+ * a[k+1]) / 2 (m/s from m/s^2), and likewise d from v (m).  v and d hold n
+ * values each; d may be NULL.  Any consistent units work (cm/s^2 -> cm/s). */
+void aq_signal_integrate(const double *a_mps2, size_t n, double dt_s,
+                         double *v_mps, double *d_m);
+
+/* If im->residual_warn is set, write one sentence into buf (no newline, e.g.
+ * "residual velocity 0.0231 m/s exceeds 0.01 m/s") and return 1; else
+ * return 0 and leave buf empty.  The caller prints it as a warning. */
+int aq_im_residual_warning(const aq_im *im, char *buf, size_t n);
+
+/* The smallest 2^a 3^b 5^c >= n (a fast FFTW size); 0 if none fits size_t. */
+size_t aq_signal_fft_size(size_t n);
 
 #endif

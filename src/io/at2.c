@@ -1,0 +1,319 @@
+/* at2.c: PEER NGA .AT2 reader (see readers.h; format notes in
+ * docs/at2-format.md).
+ *
+ * Layout: three free-text lines (the third says "ACCELERATION TIME SERIES IN
+ * UNITS OF G"), a line with NPTS and DT in one of the forms
+ *     NPTS=   5372, DT=   .0100 SEC,        (NGA-West2, maybe filter text after)
+ *     NPTS=  4000, DT= .01000 SEC           (older PEER)
+ *     npts= 4000, dt= 0.01                  (lower case, no SEC)
+ *     4000   0.0100   NPTS, DT              (NGA-West1: numbers first)
+ * then NPTS values in g, any number per line, separated by blanks (or
+ * commas), E-format possibly without a leading zero (-.6403182E-02) and
+ * possibly glued to a following negative value or to an "End Data" marker.
+ * NPTS is authoritative: reading stops after NPTS values.  Line ends may be
+ * LF, CRLF or CR.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "../units.h"
+#include "readers.h"
+
+#define AT2_MAX_HEADER_LINES 6 /* the NPTS line is looked for in lines 1..6 */
+#define AT2_TOKEN_MAX 64       /* longest number token accepted, characters */
+
+typedef struct {
+  const char *s;
+  size_t n, pos;
+  long line; /* 1-based line of pos */
+} at2_cur;
+
+/* Advance past one line end (LF, CRLF, CR, CR CR LF) at c->pos, if any. */
+static int skip_eol(at2_cur *c)
+{
+  if (c->pos >= c->n)
+    return 0;
+  if (c->s[c->pos] == '\n') {
+    c->pos++;
+    c->line++;
+    return 1;
+  }
+  if (c->s[c->pos] == '\r') {
+    while (c->pos < c->n && c->s[c->pos] == '\r')
+      c->pos++;
+    if (c->pos < c->n && c->s[c->pos] == '\n')
+      c->pos++;
+    c->line++;
+    return 1;
+  }
+  return 0;
+}
+
+/* The current line [*b, *e) and move to the next. */
+static void next_line(at2_cur *c, size_t *b, size_t *e)
+{
+  *b = c->pos;
+  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
+    c->pos++;
+  *e = c->pos;
+  skip_eol(c);
+}
+
+static const char *find_ci(const char *s, size_t n, const char *needle)
+{
+  size_t m = strlen(needle);
+  for (size_t i = 0; i + m <= n; i++)
+    if (strncasecmp(s + i, needle, m) == 0)
+      return s + i;
+  return NULL;
+}
+
+/* Copy s[0..n) into out (NUL-terminated, truncated to cap-1), for messages. */
+static void quote(const char *s, size_t n, char *out, size_t cap)
+{
+  size_t k = 0;
+  for (size_t i = 0; i < n && k + 1 < cap; i++)
+    out[k++] = isprint((unsigned char)s[i]) ? s[i] : '?';
+  out[k] = '\0';
+}
+
+/* Parse a number starting at s[0..n): skips blanks, copies the numeric
+ * characters to a local buffer (the input is not NUL-terminated) and uses
+ * strtod.  Returns the characters consumed (0 if none). */
+static size_t parse_num(const char *s, size_t n, double *x)
+{
+  size_t i = 0;
+  while (i < n && (s[i] == ' ' || s[i] == '\t'))
+    i++;
+  char tok[AT2_TOKEN_MAX];
+  size_t k = 0;
+  while (i + k < n && k + 1 < sizeof tok && strchr("0123456789.+-eE", s[i + k]) &&
+         s[i + k])
+    tok[k] = s[i + k], k++;
+  tok[k] = '\0';
+  if (k == 0)
+    return 0;
+  char *end;
+  errno = 0;
+  *x = strtod(tok, &end);
+  if (end == tok)
+    return 0;
+  return i + (size_t)(end - tok);
+}
+
+/* "UNITS OF X" in the text lines: X as acceleration units.  Returns 1 with
+ * *u set, 0 if no units are stated, -1 (word in *what) if X is not
+ * acceleration. */
+static int header_units(const char *s, size_t n, aq_units *u, char *what, size_t cap)
+{
+  const char *p = find_ci(s, n, "UNITS OF");
+  if (!p)
+    return 0;
+  p += 8;
+  const char *end = s + n;
+  while (p < end && *p == ' ')
+    p++;
+  size_t k = 0;
+  char word[32];
+  while (p + k < end && k + 1 < sizeof word && p[k] != ' ' && p[k] != ',' &&
+         p[k] != '\t')
+    word[k] = p[k], k++;
+  while (k > 0 && (word[k - 1] == '.' || word[k - 1] == ';'))
+    k--;
+  word[k] = '\0';
+  snprintf(what, cap, "%s", word);
+  if (aq_units_parse(word, u) && *u != AQ_UNITS_COUNTS)
+    return 1;
+  return -1;
+}
+
+aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+{
+  memset(rec, 0, sizeof *rec);
+  at2_cur c = {(const char *)buf, n, 0, 1};
+  size_t lb[AT2_MAX_HEADER_LINES], le[AT2_MAX_HEADER_LINES];
+  long npts_line = -1;
+  int nlines = 0;
+  while (nlines < AT2_MAX_HEADER_LINES && c.pos < c.n) {
+    long this_line = c.line;
+    next_line(&c, &lb[nlines], &le[nlines]);
+    nlines++;
+    if (find_ci(c.s + lb[nlines - 1], le[nlines - 1] - lb[nlines - 1], "NPTS")) {
+      npts_line = this_line;
+      break;
+    }
+  }
+  if (npts_line < 0)
+    return aq_error_set(err, AQ_EFORMAT, name, -1, -1, "NPTS",
+                        "expected a line with NPTS and DT among the first %d "
+                        "lines, found none",
+                        AT2_MAX_HEADER_LINES);
+  const char *hl = c.s + lb[nlines - 1];
+  size_t hn = le[nlines - 1] - lb[nlines - 1];
+  char got[80];
+  quote(hl, hn, got, sizeof got);
+
+  /* NPTS and DT. */
+  double npts_d = -1, dt = -1;
+  const char *pn = find_ci(hl, hn, "NPTS");
+  const char *q = pn + 4;
+  while (q < hl + hn && (*q == ' ' || *q == '\t'))
+    q++;
+  if (q < hl + hn && (*q == '=' || *q == ':')) {
+    size_t used = parse_num(q + 1, (size_t)(hl + hn - q - 1), &npts_d);
+    const char *after = q + 1 + used;
+    if (!used || (after < hl + hn && (isalnum((unsigned char)*after) || *after == '.')))
+      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
+                          "expected NPTS= a positive integer, got \"%s\"", got);
+    const char *pd = NULL;
+    for (const char *r = q + 1 + used; r + 2 <= hl + hn; r++)
+      if ((r[0] == 'D' || r[0] == 'd') && (r[1] == 'T' || r[1] == 't')) {
+        const char *t = r + 2;
+        while (t < hl + hn && (*t == ' ' || *t == '\t'))
+          t++;
+        if (t < hl + hn && (*t == '=' || *t == ':')) {
+          pd = t + 1;
+          break;
+        }
+      }
+    if (!pd || !parse_num(pd, (size_t)(hl + hn - pd), &dt))
+      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "DT",
+                          "expected DT= the sample interval in s, got \"%s\"", got);
+  } else { /* NGA-West1: "4000   0.0100   NPTS, DT" */
+    size_t used = parse_num(hl, (size_t)(pn - hl), &npts_d);
+    size_t used2 = used ? parse_num(hl + used, (size_t)(pn - hl) - used, &dt) : 0;
+    if (!used || !used2)
+      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
+                          "expected \"NPTS= N, DT= S\" or \"N S NPTS, DT\", got \"%s\"",
+                          got);
+  }
+  if (!(npts_d >= 1) || npts_d != floor(npts_d) || npts_d > 1e12)
+    return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
+                        "expected a positive integer, got \"%s\"", got);
+  if (!isfinite(dt) || !(dt > 0))
+    return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "DT",
+                        "expected a sample interval > 0 s, got \"%s\"", got);
+  size_t npts = (size_t)npts_d;
+
+  /* Units: the text lines say "UNITS OF G"; --units overrides. */
+  aq_units u = AQ_UNITS_G;
+  char uword[32] = "";
+  for (int k = 0; k + 1 < nlines; k++) {
+    aq_units hu;
+    int r = header_units(c.s + lb[k], le[k] - lb[k], &hu, uword, sizeof uword);
+    if (r == 1) {
+      u = hu;
+      break;
+    }
+    if (r < 0 && aq_read_opts_units_for(opts, name) == AQ_UNITS_FILE)
+      return aq_error_set(err, AQ_EUNITS, name, k + 1, -1, "units",
+                          "expected acceleration units (G, CM/S/S, M/S/S), got "
+                          "\"%s\"; if the values are acceleration, say in what "
+                          "with --units g|gal|cm/s2|m/s2",
+                          uword);
+  }
+  aq_units ov = aq_read_opts_units_for(opts, name);
+  if (ov == AQ_UNITS_COUNTS)
+    return aq_error_set(err, AQ_EUNITS, name, -1, -1, "units",
+                        "--units counts needs a sensitivity, which an AT2 file "
+                        "does not carry: give g, gal, cm/s2, m/s2 or nm/s2");
+  if (ov != AQ_UNITS_FILE)
+    u = ov;
+  double factor = aq_units_to_mps2(u);
+
+  /* Each value takes at least one character and one separator. */
+  size_t room = (c.n - c.pos + 1) / 2;
+  if (npts > room)
+    return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
+                        "expected at most %zu values in the %zu bytes that "
+                        "follow, got NPTS = %zu",
+                        room, c.n - c.pos, npts);
+  double *acc = malloc(npts * sizeof *acc);
+  if (!acc)
+    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL,
+                        "out of memory for %zu samples", npts);
+
+  size_t k = 0;
+  char field[40], tokq[AT2_TOKEN_MAX + 8];
+  while (k < npts) {
+    /* separators */
+    while (c.pos < c.n) {
+      char ch = c.s[c.pos];
+      if (ch == ' ' || ch == '\t' || ch == ',' || ch == '\f' || ch == '\v')
+        c.pos++;
+      else if (!skip_eol(&c))
+        break;
+    }
+    if (c.pos >= c.n)
+      break;
+    const char *t = c.s + c.pos;
+    size_t avail = c.n - c.pos, tl = 0;
+    while (tl < avail && !strchr(" \t,\r\n\f\v", t[tl]) && t[tl])
+      tl++;
+    if (tl == 0)
+      tl = 1; /* a NUL byte */
+    snprintf(field, sizeof field, "value %zu", k + 1);
+    quote(t, tl < AT2_TOKEN_MAX ? tl : AT2_TOKEN_MAX, tokq, sizeof tokq);
+    if (tl >= 3 && strncasecmp(t, "end", 3) == 0)
+      break; /* "End Data" marker */
+    double x;
+    size_t used = parse_num(t, tl, &x);
+    if (!used) {
+      free(acc);
+      if ((tl >= 3 && (strncasecmp(t, "nan", 3) == 0 || strncasecmp(t, "inf", 3) == 0)) ||
+          (tl >= 4 && (strncasecmp(t + 1, "nan", 3) == 0 || strncasecmp(t + 1, "inf", 3) == 0)))
+        return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
+                            "expected a finite number, got \"%s\"", tokq);
+      return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, field,
+                          "expected a number, got \"%s\"", tokq);
+    }
+    if (used < tl) {
+      char nx = t[used];
+      int glued_value = nx == '-' || nx == '+';
+      int glued_end = tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0;
+      if (!glued_value && !glued_end) {
+        free(acc);
+        if (c.pos + tl == c.n) /* cut off in the middle of a value */
+          return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "NPTS",
+                              "expected %zu values (NPTS, line %ld), got %zu and "
+                              "a cut-off \"%s\" at the end: file truncated",
+                              npts, npts_line, k, tokq);
+        return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, field,
+                            "expected a number, got \"%s\"", tokq);
+      }
+    }
+    if (!isfinite(x)) {
+      free(acc);
+      return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
+                          "expected a finite number, got \"%s\"", tokq);
+    }
+    acc[k++] = x * factor;
+    c.pos += used;
+  }
+  if (k < npts) {
+    free(acc);
+    return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "NPTS",
+                        "expected %zu values (NPTS, line %ld), got %zu: file "
+                        "truncated or NPTS too large",
+                        npts, npts_line, k);
+  }
+  aq_status s = aq_record_set_names_(rec, name, err);
+  if (s != AQ_OK) {
+    free(acc);
+    return s;
+  }
+  snprintf(rec->format, sizeof rec->format, "at2");
+  rec->npts = npts;
+  rec->dt_s = dt;
+  rec->begin_s = 0.0;
+  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(u));
+  rec->to_mps2 = factor;
+  rec->acc_mps2 = acc;
+  return AQ_OK;
+}

@@ -1,0 +1,559 @@
+/* csv.c: CSV / plain-text reader (see readers.h).
+ *
+ * Rows of numbers separated by ';', ',', tab or blanks (decided by the first
+ * data row: ';' if it has one, else ',', else tab, else blanks; with ';' a
+ * decimal comma is accepted).  Blank lines and '#' comments are skipped, line
+ * ends may be LF, CRLF or CR.  Lines before the first data row form a
+ * preamble: "SAMPLING RATE= 100Hz" (or "SAMPLING FREQ"), "DT = 0.01" and
+ * "UNIT = gal(cm/s/s)" are understood there, and the line just before the
+ * data, if it has as many fields as the data, names the columns ("time,acc
+ * (g)", "t,acc_g", "NS,EW,UD").
+ *
+ * Columns: a column named t/time/sec/seconds (zeit, tiempo, temps) is the time; without a header,
+ * two or more columns and no dt known mean (time, acceleration...).  The
+ * acceleration is column opts->column (1-based) or the first column that is
+ * not time.  Times must be evenly spaced: each step within CSV_TIME_TOL_REL
+ * of the median step, and each time within CSV_TIME_TOL_REL of a step of
+ * t_0 + k dt, dt = (t_last - t_0) / (n - 1); they need not start at 0
+ * (begin_s = t_0).
+ *
+ * Units: --units, else those of the column name ("acc (g)", "acc_g",
+ * "a [cm/s2]"), else the preamble's UNIT line, else the record is refused.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "readers.h"
+
+/* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
+ * times are rounded to a few decimals; 1 % of dt tolerates that and still
+ * catches a missing or repeated sample). */
+#define CSV_TIME_TOL_REL 0.01
+/* The step from a time column, (t_last - t_0) / (n - 1), is rounded to this
+ * many significant digits (removes binary noise: 31.18 / 1559 -> 0.02). */
+#define CSV_DT_SIG_DIGITS 9
+#define CSV_FIELD_MAX 128 /* characters kept of one field */
+#define CSV_NAME_MAX 64   /* characters kept of a column name */
+
+typedef struct {
+  const char *s;
+  size_t n, pos;
+  long line; /* line number of the line last returned */
+} csv_cur;
+
+/* Next line [*b, *e) (without its end), or 0 at the end of the input. */
+static int next_line(csv_cur *c, size_t *b, size_t *e)
+{
+  if (c->pos >= c->n)
+    return 0;
+  *b = c->pos;
+  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
+    c->pos++;
+  *e = c->pos;
+  if (c->pos < c->n && c->s[c->pos] == '\r') {
+    while (c->pos < c->n && c->s[c->pos] == '\r')
+      c->pos++;
+    if (c->pos < c->n && c->s[c->pos] == '\n')
+      c->pos++;
+  } else if (c->pos < c->n) {
+    c->pos++;
+  }
+  c->line++;
+  return 1;
+}
+
+/* Strip a '#' comment and surrounding blanks. */
+static void trim_line(const char *s, size_t *b, size_t *e)
+{
+  for (size_t i = *b; i < *e; i++)
+    if (s[i] == '#') {
+      *e = i;
+      break;
+    }
+  while (*b < *e && isspace((unsigned char)s[*b]))
+    (*b)++;
+  while (*e > *b && isspace((unsigned char)s[*e - 1]))
+    (*e)--;
+}
+
+static char pick_sep(const char *s, size_t b, size_t e)
+{
+  if (memchr(s + b, ';', e - b))
+    return ';';
+  if (memchr(s + b, ',', e - b))
+    return ',';
+  if (memchr(s + b, '\t', e - b))
+    return '\t';
+  return ' ';
+}
+
+/* Split [b, e) at sep (' ' = runs of blanks/tabs).  Fields are trimmed and
+ * stripped of double quotes.  Writes at most max fields; returns the count
+ * (which may exceed max). */
+typedef struct {
+  size_t b, e;
+} span;
+
+static size_t split(const char *s, size_t b, size_t e, char sep, span *f, size_t max)
+{
+  size_t k = 0, i = b;
+  if (b >= e)
+    return 0;
+  for (;;) {
+    size_t fb = i, fe;
+    if (sep == ' ') {
+      while (i < e && s[i] != ' ' && s[i] != '\t')
+        i++;
+      fe = i;
+      while (i < e && (s[i] == ' ' || s[i] == '\t'))
+        i++;
+    } else {
+      while (i < e && s[i] != sep)
+        i++;
+      fe = i;
+      if (i < e)
+        i++;
+    }
+    while (fb < fe && isspace((unsigned char)s[fb]))
+      fb++;
+    while (fe > fb && isspace((unsigned char)s[fe - 1]))
+      fe--;
+    if (fe - fb >= 2 && s[fb] == '"' && s[fe - 1] == '"')
+      fb++, fe--;
+    if (k < max)
+      f[k].b = fb, f[k].e = fe;
+    k++;
+    if (i >= e) {
+      if (sep != ' ' && e > b && s[e - 1] == sep) { /* trailing empty field */
+        if (k < max)
+          f[k].b = f[k].e = e;
+        k++;
+      }
+      break;
+    }
+  }
+  return k;
+}
+
+/* A field as a number: 1 finite, 2 NaN/Inf, 0 not a number. */
+static int field_num(const char *s, span f, int decimal_comma, double *x)
+{
+  char tok[CSV_FIELD_MAX];
+  size_t len = f.e - f.b;
+  if (len == 0 || len >= sizeof tok)
+    return 0;
+  for (size_t i = 0; i < len; i++) {
+    char ch = s[f.b + i];
+    if (ch == '\0')
+      return 0;
+    tok[i] = (decimal_comma && ch == ',') ? '.' : ch;
+  }
+  tok[len] = '\0';
+  /* hexadecimal floats are not numbers here */
+  for (size_t i = 0; i < len; i++)
+    if (tok[i] == 'x' || tok[i] == 'X' || tok[i] == 'p' || tok[i] == 'P')
+      return 0;
+  char *end;
+  errno = 0;
+  double v = strtod(tok, &end);
+  if (end == tok || *end)
+    return 0;
+  *x = v;
+  return isfinite(v) ? 1 : 2;
+}
+
+static void copy_field(const char *s, span f, char *out, size_t cap)
+{
+  size_t k = 0;
+  for (size_t i = f.b; i < f.e && k + 1 < cap; i++)
+    out[k++] = isprint((unsigned char)s[i]) ? s[i] : '?';
+  out[k] = '\0';
+}
+
+/* Units named in a piece of text: 1 acceleration (*u set), -1 units that are
+ * not acceleration (velocity, displacement, time), 0 none recognised. */
+static int units_in(const char *text, aq_units *u)
+{
+  static const char *const not_acc[] = {"cm/s", "m/s", "cm", "m", "mm", "in",
+                                         "in/s", "mm/s", "s", "sec", NULL};
+  char t[CSV_NAME_MAX];
+  snprintf(t, sizeof t, "%s", text);
+  /* inside () or [] */
+  char *o = strpbrk(t, "([");
+  if (o) {
+    char *cl = strpbrk(o + 1, ")]");
+    if (cl) {
+      *cl = '\0';
+      char *in = o + 1;
+      while (*in == ' ')
+        in++;
+      if (aq_units_parse(in, u))
+        return *u == AQ_UNITS_COUNTS ? 0 : 1;
+      for (int i = 0; not_acc[i]; i++)
+        if (strcasecmp(in, not_acc[i]) == 0)
+          return -1;
+    }
+    *o = '\0'; /* "gal(cm/s/s)" -> "gal" */
+  }
+  size_t l = strlen(t);
+  while (l > 0 && t[l - 1] == ' ')
+    t[--l] = '\0';
+  if (aq_units_parse(t, u) && *u != AQ_UNITS_COUNTS)
+    return 1;
+  char *sfx = strrchr(t, '_');
+  if (!sfx)
+    sfx = strrchr(t, ' ');
+  if (sfx && aq_units_parse(sfx + 1, u) && *u != AQ_UNITS_COUNTS)
+    return 1;
+  return 0;
+}
+
+static int is_time_name(const char *name)
+{
+  char base[CSV_NAME_MAX];
+  size_t k = 0;
+  for (const char *p = name; *p && k + 1 < sizeof base; p++) {
+    if (*p == '(' || *p == '[' || *p == '_' || *p == ' ')
+      break;
+    base[k++] = (char)tolower((unsigned char)*p);
+  }
+  base[k] = '\0';
+  return strcmp(base, "t") == 0 || strcmp(base, "time") == 0 ||
+         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0 ||
+         strcmp(base, "zeit") == 0 || strcmp(base, "tiempo") == 0 ||
+         strcmp(base, "temps") == 0;
+}
+
+/* "KEY = value" or "KEY: value" in a preamble line: returns the value's
+ * start (in s) if the line's key starts with key (case-insensitive). */
+static const char *kv(const char *s, size_t b, size_t e, const char *key)
+{
+  size_t m = strlen(key);
+  if (e - b < m || strncasecmp(s + b, key, m) != 0)
+    return NULL;
+  size_t i = b + m;
+  while (i < e && s[i] != '=' && s[i] != ':')
+    if (!isalpha((unsigned char)s[i]) && s[i] != ' ' && s[i] != '_' && s[i] != '.')
+      return NULL;
+    else
+      i++;
+  if (i >= e)
+    return NULL;
+  i++;
+  while (i < e && s[i] == ' ')
+    i++;
+  return s + i;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Median of the n - 1 steps of t (NaN if out of memory). */
+static double median_step(const double *t, size_t n)
+{
+  double *d = malloc((n - 1) * sizeof *d);
+  if (!d)
+    return NAN;
+  for (size_t i = 1; i < n; i++)
+    d[i - 1] = t[i] - t[i - 1];
+  qsort(d, n - 1, sizeof *d, cmp_double);
+  double m = d[(n - 1) / 2];
+  free(d);
+  return m;
+}
+
+aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+{
+  memset(rec, 0, sizeof *rec);
+  csv_cur c = {(const char *)buf, n, 0, 0};
+  const char *s = c.s;
+  size_t b, e;
+  enum { MAXF = 64 };
+  span f[MAXF];
+  double x;
+
+  /* Preamble. */
+  double pre_dt = 0;
+  int pre_units = 0;
+  aq_units pre_u = AQ_UNITS_FILE;
+  size_t hb = 0, he = 0; /* last non-numeric line before the data */
+  long hline = -1;
+  char sep = 0;
+  int dcomma = 0;
+  size_t ncols = 0;
+  for (;;) {
+    if (!next_line(&c, &b, &e))
+      return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
+                          "expected rows of numbers (time, acceleration or "
+                          "acceleration only), found none in %ld lines",
+                          c.line);
+    trim_line(s, &b, &e);
+    if (b == e)
+      continue;
+    char sp = pick_sep(s, b, e);
+    size_t nf = split(s, b, e, sp, f, MAXF);
+    int numeric = nf > 0 && nf <= MAXF, dc = 0;
+    for (size_t i = 0; numeric && i < nf; i++)
+      numeric = field_num(s, f[i], 0, &x) != 0;
+    if (!numeric && sp == ';' && nf <= MAXF) { /* decimal comma? */
+      numeric = nf > 0;
+      for (size_t i = 0; numeric && i < nf; i++)
+        numeric = field_num(s, f[i], 1, &x) != 0;
+      dc = numeric;
+    }
+    if (numeric) {
+      sep = sp;
+      dcomma = dc;
+      ncols = nf;
+      break;
+    }
+    const char *v;
+    char val[CSV_NAME_MAX];
+    if ((v = kv(s, b, e, "SAMPLING RATE")) || (v = kv(s, b, e, "SAMPLING FREQ"))) {
+      char tmp[CSV_FIELD_MAX];
+      copy_field(s, (span){(size_t)(v - s), e}, tmp, sizeof tmp);
+      double hz = strtod(tmp, NULL);
+      if (!(hz > 0) || !isfinite(hz))
+        return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "SAMPLING RATE",
+                            "expected a rate > 0 Hz, got \"%s\"", tmp);
+      pre_dt = 1.0 / hz;
+    } else if ((v = kv(s, b, e, "DT")) || (v = kv(s, b, e, "DELTA"))) {
+      char tmp[CSV_FIELD_MAX];
+      copy_field(s, (span){(size_t)(v - s), e}, tmp, sizeof tmp);
+      double d = strtod(tmp, NULL);
+      if (!(d > 0) || !isfinite(d))
+        return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "DT",
+                            "expected a sample interval > 0 s, got \"%s\"", tmp);
+      pre_dt = d;
+    } else if ((v = kv(s, b, e, "UNITS")) || (v = kv(s, b, e, "UNIT"))) {
+      copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
+      int r = units_in(val, &pre_u);
+      if (r < 0 && aq_read_opts_units_for(opts, name) == AQ_UNITS_FILE)
+        return aq_error_set(err, AQ_EUNITS, name, c.line, -1, "UNIT",
+                            "expected acceleration units (g, gal, cm/s2, m/s2), "
+                            "got \"%s\"",
+                            val);
+      pre_units = r > 0;
+    } else {
+      hb = b, he = e, hline = c.line; /* may name the columns */
+    }
+  }
+  long first_line = c.line;
+  size_t first_b = b, first_e = e;
+  if (ncols > MAXF)
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, first_line, -1, NULL,
+                        "expected at most %d columns, got %zu", MAXF, ncols);
+
+  /* Column names: the line just before the data, if it has as many fields. */
+  char names[MAXF][CSV_NAME_MAX];
+  int have_names = 0;
+  if (hline > 0) {
+    span hf[MAXF];
+    size_t hnf = split(s, hb, he, sep == ' ' ? pick_sep(s, hb, he) : sep, hf, MAXF);
+    if (hnf == ncols) {
+      have_names = 1;
+      for (size_t i = 0; i < ncols; i++)
+        copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+    }
+  }
+
+  /* Which column is time, which is acceleration. */
+  double dt_known = opts && opts->dt_s > 0 ? opts->dt_s : pre_dt;
+  long tcol = -1;
+  if (have_names) {
+    for (size_t i = 0; i < ncols; i++)
+      if (is_time_name(names[i])) {
+        tcol = (long)i;
+        break;
+      }
+  } else if (ncols >= 2 && !(dt_known > 0)) {
+    tcol = 0;
+  }
+  size_t acol;
+  if (opts && opts->column > 0) {
+    if (opts->column > ncols)
+      return aq_error_set(err, AQ_EOPTION, name, first_line, -1, "--column",
+                          "expected a column in 1..%zu, got %zu", ncols, opts->column);
+    if ((long)opts->column - 1 == tcol)
+      return aq_error_set(err, AQ_EOPTION, name, first_line, -1, "--column",
+                          "expected an acceleration column, got %zu (the time)",
+                          opts->column);
+    acol = opts->column - 1;
+  } else {
+    acol = tcol == 0 ? 1 : 0;
+    if (acol >= ncols)
+      return aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
+                          "expected an acceleration column beside the time, "
+                          "got %zu column",
+                          ncols);
+  }
+  if (tcol < 0 && !(dt_known > 0))
+    return aq_error_set(err, AQ_EFORMAT, name, first_line, -1, "dt",
+                        "no time column and no sample interval: give --dt S "
+                        "(or a time column, or a \"SAMPLING RATE= N Hz\" line)");
+
+  /* Units. */
+  aq_units u = aq_read_opts_units_for(opts, name);
+  if (u == AQ_UNITS_COUNTS)
+    return aq_error_set(err, AQ_EUNITS, name, -1, -1, "units",
+                        "--units counts needs a sensitivity, which a text record "
+                        "does not carry: give g, gal, cm/s2, m/s2 or nm/s2");
+  if (u == AQ_UNITS_FILE && have_names) {
+    aq_units cu;
+    int r = units_in(names[acol], &cu);
+    if (r < 0)
+      return aq_error_set(err, AQ_EUNITS, name, hline, -1, names[acol],
+                          "expected acceleration units (g, gal, cm/s2, m/s2), "
+                          "got a column of velocity, displacement or time; if it "
+                          "is acceleration, say in what with --units");
+    if (r > 0)
+      u = cu;
+  }
+  if (u == AQ_UNITS_FILE && pre_units)
+    u = pre_u;
+  if (u == AQ_UNITS_FILE)
+    return aq_error_set(err, AQ_EUNITS, name, have_names ? hline : first_line, -1,
+                        "units",
+                        "expected the units in a header (e.g. \"time,acc (g)\", "
+                        "\"t,acc_g\" or \"UNIT = gal\"), found none; say which "
+                        "with --units g|gal|cm/s2|m/s2|nm/s2 (or --units "
+                        "'GLOB=U')");
+  double factor = aq_units_to_mps2(u);
+
+  /* Rows: at most one per line end left, plus one. */
+  size_t cap = 2;
+  for (size_t i = first_b; i < n; i++)
+    cap += s[i] == '\n' || s[i] == '\r';
+  double *acc = malloc(cap * sizeof *acc);
+  double *tt = tcol >= 0 ? malloc(cap * sizeof *tt) : NULL;
+  long *lines = tcol >= 0 ? malloc(cap * sizeof *lines) : NULL;
+  if (!acc || (tcol >= 0 && (!tt || !lines))) {
+    free(acc), free(tt), free(lines);
+    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+  }
+  size_t k = 0;
+  aq_status st = AQ_OK;
+  b = first_b, e = first_e;
+  long line = first_line;
+  for (;;) {
+    size_t nf = split(s, b, e, sep, f, MAXF);
+    if (nf != ncols) {
+      st = aq_error_set(err, AQ_EFORMAT, name, line, -1, NULL,
+                        "expected %zu fields like line %ld, got %zu", ncols,
+                        first_line, nf);
+      break;
+    }
+    for (size_t i = 0; i < nf && st == AQ_OK; i++) {
+      int r = field_num(s, f[i], dcomma, &x);
+      if (r == 1) {
+        if (i == acol)
+          acc[k] = x * factor;
+        if ((long)i == tcol)
+          tt[k] = x;
+        continue;
+      }
+      char fld[CSV_NAME_MAX + 16], got[CSV_FIELD_MAX];
+      if (have_names)
+        snprintf(fld, sizeof fld, "column %zu (%s)", i + 1, names[i]);
+      else
+        snprintf(fld, sizeof fld, "column %zu", i + 1);
+      copy_field(s, f[i], got, sizeof got);
+      st = aq_error_set(err, r == 2 ? AQ_EVALUE : AQ_EFORMAT, name, line, -1, fld,
+                        "expected a %snumber, got \"%s\"", r == 2 ? "finite " : "",
+                        got);
+    }
+    if (st != AQ_OK)
+      break;
+    if (lines)
+      lines[k] = line;
+    k++;
+    int more = 0;
+    while (next_line(&c, &b, &e)) {
+      trim_line(s, &b, &e);
+      if (b < e) {
+        more = 1;
+        break;
+      }
+    }
+    if (!more)
+      break;
+    line = c.line;
+    if (k >= cap) { /* cannot happen: cap counts line ends */
+      st = aq_error_set(err, AQ_EINTERNAL, name, line, -1, NULL, "row count");
+      break;
+    }
+  }
+
+  double dt = dt_known, begin = 0;
+  if (st == AQ_OK && tcol >= 0) {
+    if (k < 2) {
+      st = aq_error_set(err, AQ_EFORMAT, name, first_line, -1, "time",
+                        "expected at least 2 rows to find the step, got %zu", k);
+    } else {
+      double est = (tt[k - 1] - tt[0]) / (double)(k - 1);
+      char txt[40];
+      snprintf(txt, sizeof txt, "%.*e", CSV_DT_SIG_DIGITS - 1, est);
+      dt = strtod(txt, NULL);
+      begin = tt[0];
+      if (!(dt > 0) || !isfinite(dt)) {
+        st = aq_error_set(err, AQ_EFORMAT, name, lines[k - 1], -1, "time",
+                          "expected increasing times, got %.9g after %.9g at "
+                          "line %ld",
+                          tt[k - 1], tt[0], first_line);
+      } else {
+        /* a step that is off (a missing or repeated row) is named at its
+         * line; then a slow drift of the times is caught cumulatively */
+        double med = median_step(tt, k);
+        if (isnan(med))
+          st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+        for (size_t i = 1; i < k && st == AQ_OK; i++)
+          if (fabs(tt[i] - tt[i - 1] - med) > CSV_TIME_TOL_REL * med)
+            st = aq_error_set(
+                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                "expected evenly spaced times (step %.9g s within %g %%), got a "
+                "step of %.9g s from %.9g to %.9g",
+                med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
+        for (size_t i = 1; i < k && st == AQ_OK; i++)
+          if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
+            st = aq_error_set(
+                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                "expected evenly spaced times (%.9g + k * %.9g s, within %g %% of "
+                "the step), got %.9g for sample %zu",
+                tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
+            break;
+          }
+      }
+    }
+  }
+  free(tt);
+  free(lines);
+  if (st == AQ_OK && k == 0)
+    st = aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
+                      "expected at least one row of numbers, got none");
+  if (st == AQ_OK)
+    st = aq_record_set_names_(rec, name, err);
+  if (st != AQ_OK) {
+    free(acc);
+    memset(rec, 0, sizeof *rec);
+    return st;
+  }
+  snprintf(rec->format, sizeof rec->format, "csv");
+  rec->npts = k;
+  rec->dt_s = dt;
+  rec->begin_s = begin;
+  if (have_names)
+    snprintf(rec->channel, sizeof rec->channel, "%.15s", names[acol]);
+  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(u));
+  rec->to_mps2 = factor;
+  rec->acc_mps2 = acc;
+  return AQ_OK;
+}

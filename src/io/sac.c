@@ -1,0 +1,295 @@
+/* sac.c: SAC binary reader (see readers.h; format notes in docs/sac-format.md).
+ *
+ * A SAC file is a 632-byte header (70 float32 words, 40 int32 words, then
+ * 8-byte strings, KEVNM 16) followed by NPTS float32 samples, all in one byte
+ * order; header version 7 adds a footer of 22 float64 words after the data.
+ * The byte order is the one in which NVHDR (word 76, byte 304) reads 6 or 7.
+ * -12345 marks an undefined value.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "readers.h"
+
+#define SAC_HEADER_BYTES 632
+#define SAC_FOOTER7_BYTES (22 * 8)
+#define SAC_UNDEF (-12345.0)
+#define SAC_IUNDEF (-12345)
+
+/* Float words. */
+enum { W_DELTA = 0, W_SCALE = 3, W_B = 5 };
+/* Integer words (word numbers, byte = 4 * word). */
+enum {
+  W_NZYEAR = 70, W_NZJDAY, W_NZHOUR, W_NZMIN, W_NZSEC, W_NZMSEC, W_NVHDR,
+  W_NPTS = 79, W_IFTYPE = 85, W_IDEP = 86, W_LEVEN = 105
+};
+/* Enumerated values. */
+enum { SAC_ITIME = 1, SAC_IUNKN = 5, SAC_IDISP = 6, SAC_IVEL = 7, SAC_IACC = 8,
+       SAC_IVOLTS = 50 };
+/* String byte offsets. */
+enum { K_STNM = 440, K_HOLE = 464, K_CMPNM = 600, K_NETWK = 608 };
+
+/* IDEP = IACC promises nm/s^2.  Real strong-motion records exceed this many
+ * nm/s^2 (1e-7 g, below any accelerometer's noise floor); a file whose
+ * largest |value| is smaller holds g or m/s^2 despite its IDEP, and is
+ * refused unless --units says what it holds. */
+#define SAC_IACC_MIN_PLAUSIBLE_NMPS2 1000.0
+
+/* DELTA is float32: the intended decimal step is recovered as the shortest
+ * decimal with at most this many significant digits that rounds to the same
+ * float32 (float32 carries 7.2 decimal digits); if none does, DELTA is taken
+ * as stored. */
+#define SAC_DELTA_SIG_DIGITS 7
+
+typedef struct {
+  const unsigned char *b;
+  int big;
+} sac_hdr;
+
+static uint32_t rd_u32(const unsigned char *p, int big)
+{
+  return big ? (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]
+             : (uint32_t)p[3] << 24 | (uint32_t)p[2] << 16 | (uint32_t)p[1] << 8 | p[0];
+}
+
+static float rd_f32(const unsigned char *p, int big)
+{
+  uint32_t u = rd_u32(p, big);
+  float f;
+  memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+static double rd_f64(const unsigned char *p, int big)
+{
+  uint64_t u = 0;
+  for (int i = 0; i < 8; i++)
+    u |= (uint64_t)p[big ? i : 7 - i] << (8 * (7 - i));
+  double d;
+  memcpy(&d, &u, sizeof d);
+  return d;
+}
+
+static float hf(const sac_hdr *h, int word) { return rd_f32(h->b + 4 * word, h->big); }
+static int32_t hi(const sac_hdr *h, int word) { return (int32_t)rd_u32(h->b + 4 * word, h->big); }
+
+/* Copy a header string (len bytes at off), cut at NUL, trailing blanks
+ * removed, "-12345" meaning undefined -> "". */
+static void hstr(const sac_hdr *h, int off, int len, char *out, size_t cap)
+{
+  size_t k = 0;
+  for (int i = 0; i < len && k + 1 < cap; i++) {
+    unsigned char c = h->b[off + i];
+    if (c == 0)
+      break;
+    out[k++] = (c >= 0x20 && c < 0x7f) ? (char)c : '?';
+  }
+  while (k > 0 && out[k - 1] == ' ')
+    k--;
+  out[k] = '\0';
+  /* leading blanks too */
+  size_t s = 0;
+  while (out[s] == ' ')
+    s++;
+  if (s)
+    memmove(out, out + s, k - s + 1);
+  if (strcmp(out, "-12345") == 0)
+    out[0] = '\0';
+}
+
+static const char *idep_name(int32_t v)
+{
+  switch (v) {
+  case SAC_IUNDEF:
+    return "undefined (-12345)";
+  case SAC_IUNKN:
+    return "IUNKN (5)";
+  case SAC_IDISP:
+    return "IDISP (6, displacement)";
+  case SAC_IVEL:
+    return "IVEL (7, velocity)";
+  case SAC_IACC:
+    return "IACC (8)";
+  case SAC_IVOLTS:
+    return "IVOLTS (50, volts)";
+  }
+  return "an unknown code";
+}
+
+/* Recover the intended decimal step from a float32 DELTA (rule above). */
+static double sac_delta_decimal(float f)
+{
+  for (int digits = 1; digits <= SAC_DELTA_SIG_DIGITS; digits++) {
+    char txt[40];
+    snprintf(txt, sizeof txt, "%.*e", digits - 1, (double)f);
+    double d = strtod(txt, NULL);
+    if ((float)d == f)
+      return d;
+  }
+  return (double)f;
+}
+
+static int is_leap(long y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+
+/* NZYEAR..NZMSEC -> "YYYY-MM-DDTHH:MM:SS.mmmZ", or "" if any is undefined
+ * or out of range. */
+static void sac_reference(const sac_hdr *h, char *out, size_t cap)
+{
+  long y = hi(h, W_NZYEAR), jd = hi(h, W_NZJDAY), hh = hi(h, W_NZHOUR),
+       mi = hi(h, W_NZMIN), ss = hi(h, W_NZSEC), ms = hi(h, W_NZMSEC);
+  out[0] = '\0';
+  if (y < 1 || y > 9999 || jd < 1 || jd > 365 + is_leap(y) || hh < 0 || hh > 23 ||
+      mi < 0 || mi > 59 || ss < 0 || ss > 60 || ms < 0 || ms > 999)
+    return;
+  static const int mdays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  long mon = 0, d = jd;
+  while (mon < 12) {
+    long len = mdays[mon] + (mon == 1 && is_leap(y));
+    if (d <= len)
+      break;
+    d -= len;
+    mon++;
+  }
+  char tmp[128];
+  snprintf(tmp, sizeof tmp, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.%03ldZ", y,
+           mon + 1, d, hh, mi, ss, ms);
+  size_t l = strlen(tmp) < cap ? strlen(tmp) : cap - 1;
+  memcpy(out, tmp, l);
+  out[l] = '\0';
+}
+
+aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+{
+  memset(rec, 0, sizeof *rec);
+  if (n < SAC_HEADER_BYTES)
+    return aq_error_set(err, AQ_EFORMAT, name, -1, (long)n, "header",
+                        "expected a %d-byte SAC header, got only %zu bytes",
+                        SAC_HEADER_BYTES, n);
+  sac_hdr h = {buf, 0};
+  int32_t nv = hi(&h, W_NVHDR);
+  if (nv != 6 && nv != 7) {
+    h.big = 1;
+    nv = hi(&h, W_NVHDR);
+  }
+  if (nv != 6 && nv != 7)
+    return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_NVHDR, "header NVHDR",
+                        "expected 6 in either byte order, got %ld (little-endian) "
+                        "and %ld (big-endian)",
+                        (long)(int32_t)rd_u32(buf + 4 * W_NVHDR, 0),
+                        (long)(int32_t)rd_u32(buf + 4 * W_NVHDR, 1));
+
+  int32_t iftype = hi(&h, W_IFTYPE), leven = hi(&h, W_LEVEN), npts = hi(&h, W_NPTS);
+  if (iftype != SAC_ITIME)
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, 4L * W_IFTYPE,
+                        "header IFTYPE",
+                        "expected ITIME (1, a time series), got %ld", (long)iftype);
+  if (leven != 1)
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, 4L * W_LEVEN,
+                        "header LEVEN",
+                        "expected 1 (evenly sampled), got %ld", (long)leven);
+  if (npts < 1)
+    return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_NPTS, "header NPTS",
+                        "expected a positive number of samples, got %ld", (long)npts);
+  size_t footer = nv == 7 ? SAC_FOOTER7_BYTES : 0;
+  size_t data_bytes = n - SAC_HEADER_BYTES;
+  size_t want = (size_t)npts * 4 + footer;
+  if (data_bytes != want)
+    return aq_error_set(
+        err, AQ_EFORMAT, name, -1, 4L * W_NPTS, "header NPTS",
+        "expected %zu bytes after the header for NPTS = %ld%s, got %zu (%s)", want,
+        (long)npts, footer ? " and the version-7 footer" : "", data_bytes,
+        data_bytes < want ? "file truncated" : "trailing bytes");
+
+  float delta_f = hf(&h, W_DELTA);
+  double delta = sac_delta_decimal(delta_f), b = hf(&h, W_B);
+  if (nv == 7) { /* the footer's float64 DELTA and B are exact */
+    const unsigned char *ft = buf + SAC_HEADER_BYTES + (size_t)npts * 4;
+    delta = rd_f64(ft, h.big);
+    b = rd_f64(ft + 8, h.big);
+  }
+  if (!isfinite(delta) || !(delta > 0) || delta == SAC_UNDEF)
+    return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_DELTA, "header DELTA",
+                        "expected a sample interval > 0 s, got %g", delta);
+  if (!isfinite(b) || b == SAC_UNDEF)
+    b = 0.0;
+
+  /* Units. */
+  aq_units u = aq_read_opts_units_for(opts, name);
+  int32_t idep = hi(&h, W_IDEP);
+  double factor;
+  const char *uname;
+  if (u == AQ_UNITS_COUNTS) {
+    double scale = hf(&h, W_SCALE);
+    if (!isfinite(scale) || !(scale > 0) || scale == SAC_UNDEF)
+      return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_SCALE, "header SCALE",
+                          "--units counts needs the sensitivity in counts per "
+                          "m/s2 in SCALE (as mseed2sac -M writes it), got %s",
+                          scale == SAC_UNDEF ? "undefined (-12345)" : "a value <= 0");
+    factor = 1.0 / scale;
+    uname = "counts";
+  } else if (u != AQ_UNITS_FILE) {
+    factor = aq_units_to_mps2(u);
+    uname = aq_units_name(u);
+  } else if (idep == SAC_IACC) {
+    factor = 1e-9; /* SAC: IACC is nm/s^2 */
+    uname = "nm/s2";
+  } else {
+    return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_IDEP, "header IDEP",
+                        "expected IACC (acceleration, nm/s2), got %s; if the "
+                        "values are ground acceleration, say in what with "
+                        "--units g|gal|cm/s2|m/s2|nm/s2|counts (or --units "
+                        "'GLOB=U')",
+                        idep_name(idep));
+  }
+
+  double *acc = malloc((size_t)npts * sizeof *acc);
+  if (!acc)
+    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL,
+                        "out of memory for %ld samples", (long)npts);
+  double maxabs = 0.0;
+  for (size_t k = 0; k < (size_t)npts; k++) {
+    size_t off = SAC_HEADER_BYTES + 4 * k;
+    float v = rd_f32(buf + off, h.big);
+    if (!isfinite(v)) {
+      free(acc);
+      return aq_error_set(err, AQ_EVALUE, name, -1, (long)off, "sample",
+                          "expected a finite number at sample %zu, got %s", k,
+                          isnan(v) ? "NaN" : "Inf");
+    }
+    maxabs = fmax(maxabs, fabs((double)v));
+    acc[k] = (double)v * factor;
+  }
+  if (u == AQ_UNITS_FILE && maxabs < SAC_IACC_MIN_PLAUSIBLE_NMPS2) {
+    free(acc);
+    return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_IDEP, "header IDEP",
+                        "IACC says nm/s2, but the largest |value| is %g "
+                        "(%.3g g): the values look like g or m/s2; say which "
+                        "with --units g|gal|cm/s2|m/s2|nm/s2|counts (or --units "
+                        "'GLOB=U')",
+                        maxabs, maxabs * 1e-9 / AQ_G0_MPS2);
+  }
+
+  aq_status s = aq_record_set_names_(rec, name, err);
+  if (s != AQ_OK) {
+    free(acc);
+    return s;
+  }
+  snprintf(rec->format, sizeof rec->format, "%s", h.big ? "sac-be" : "sac-le");
+  rec->npts = (size_t)npts;
+  rec->dt_s = delta;
+  rec->begin_s = b;
+  sac_reference(&h, rec->reference, sizeof rec->reference);
+  hstr(&h, K_NETWK, 8, rec->network, sizeof rec->network);
+  hstr(&h, K_STNM, 8, rec->station, sizeof rec->station);
+  hstr(&h, K_HOLE, 8, rec->location, sizeof rec->location);
+  hstr(&h, K_CMPNM, 8, rec->channel, sizeof rec->channel);
+  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", uname);
+  rec->to_mps2 = factor;
+  rec->acc_mps2 = acc;
+  return AQ_OK;
+}

@@ -1,0 +1,663 @@
+/* h5.c: the HDF5 results writer (see h5.h and docs/hdf5-layout.md). */
+#define _POSIX_C_SOURCE 200809L
+#include "h5.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+struct aq_h5_writer {
+  char *target;
+  char *tmp;
+  hid_t file;
+  hid_t g_records, g_arches, g_runs;
+  aq_summary *sum; /* every run's summary, in write order, for /summary */
+  size_t nsum, capsum;
+};
+
+/* ---- error reporting ---------------------------------------------------- */
+
+static herr_t walk_cb(unsigned n, const H5E_error2_t *e, void *data)
+{
+  char *buf = data;
+  if (n == 0 && e->desc && e->desc[0]) { /* innermost: where it started */
+    snprintf(buf, 200, "%s", e->desc);
+    char *extra = strstr(buf, ": time = "); /* drop the low-level details */
+    if (extra)
+      *extra = '\0';
+  }
+  return 0;
+}
+
+/* Fill err for a failed HDF5 call: what failed, HDF5's innermost
+ * description, and errno if set. */
+static aq_status h5_fail(aq_error *err, const char *input, const char *object,
+                         const char *what, int errno_)
+{
+  char desc[200] = "";
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, walk_cb, desc);
+  H5Eclear2(H5E_DEFAULT);
+  return aq_error_set(err, AQ_EIO, input, -1, -1, object,
+                      "HDF5: %s failed%s%s%s%s", what, desc[0] ? ": " : "",
+                      desc, errno_ ? ": " : "", errno_ ? strerror(errno_) : "");
+}
+
+/* Run an HDF5 call; on a negative result record the failure and goto fail. */
+#define CK(expr, what)                                                   \
+  do {                                                                   \
+    errno = 0;                                                           \
+    if ((expr) < 0) {                                                    \
+      st = h5_fail(err, w->target, obj, what, errno);                    \
+      goto fail;                                                         \
+    }                                                                    \
+  } while (0)
+
+/* ---- attribute and dataset helpers (return < 0 on failure) -------------- */
+
+static hid_t str_type(size_t size)
+{
+  hid_t t = H5Tcopy(H5T_C_S1);
+  if (t < 0)
+    return t;
+  if (H5Tset_size(t, size ? size : 1) < 0 ||
+      H5Tset_strpad(t, H5T_STR_NULLTERM) < 0) {
+    H5Tclose(t);
+    return -1;
+  }
+  return t;
+}
+
+static herr_t attr_write(hid_t loc, const char *name, hid_t type, hid_t space,
+                         const void *buf)
+{
+  hid_t a = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (a < 0)
+    return -1;
+  herr_t rc = H5Awrite(a, type, buf);
+  if (H5Aclose(a) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t attr_str(hid_t loc, const char *name, const char *value)
+{
+  if (!value)
+    value = "";
+  hid_t t = str_type(strlen(value) + 1);
+  hid_t s = H5Screate(H5S_SCALAR);
+  herr_t rc = -1;
+  if (t >= 0 && s >= 0)
+    rc = attr_write(loc, name, t, s, value);
+  if (s >= 0 && H5Sclose(s) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t attr_num(hid_t loc, const char *name, hid_t type, const void *v)
+{
+  hid_t s = H5Screate(H5S_SCALAR);
+  if (s < 0)
+    return -1;
+  herr_t rc = attr_write(loc, name, type, s, v);
+  if (H5Sclose(s) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t attr_double(hid_t loc, const char *name, double v)
+{
+  return attr_num(loc, name, H5T_NATIVE_DOUBLE, &v);
+}
+
+static herr_t attr_int(hid_t loc, const char *name, int64_t v)
+{
+  return attr_num(loc, name, H5T_NATIVE_INT64, &v);
+}
+
+static herr_t attr_doubles(hid_t loc, const char *name, const double *v,
+                           size_t n)
+{
+  hsize_t dim = n;
+  hid_t s = H5Screate_simple(1, &dim, NULL);
+  if (s < 0)
+    return -1;
+  herr_t rc = attr_write(loc, name, H5T_NATIVE_DOUBLE, s, v);
+  if (H5Sclose(s) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* A 1-D dataset of n values of mtype, stored as ftype, with a units
+ * attribute. */
+static herr_t dataset_1d(hid_t loc, const char *name, hid_t ftype, hid_t mtype,
+                         const void *v, size_t n, const char *units)
+{
+  hsize_t dim = n;
+  hid_t s = H5Screate_simple(1, &dim, NULL);
+  if (s < 0)
+    return -1;
+  hid_t d = H5Dcreate2(loc, name, ftype, s, H5P_DEFAULT, H5P_DEFAULT,
+                       H5P_DEFAULT);
+  herr_t rc = d < 0 ? -1 : 0;
+  if (rc == 0 && n > 0)
+    rc = H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
+  if (rc == 0)
+    rc = attr_str(d, "units", units);
+  if (d >= 0 && H5Dclose(d) < 0)
+    rc = -1;
+  if (H5Sclose(s) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t dataset_doubles(hid_t loc, const char *name, const double *v,
+                              size_t n, const char *units)
+{
+  return dataset_1d(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, n, units);
+}
+
+/* ---- lifecycle ---------------------------------------------------------- */
+
+static void writer_free(aq_h5_writer *w)
+{
+  if (!w)
+    return;
+  free(w->target);
+  free(w->tmp);
+  free(w->sum);
+  free(w);
+}
+
+/* Close every open handle, ignoring failures (used on the failure path). */
+static void close_quietly(aq_h5_writer *w)
+{
+  H5E_BEGIN_TRY
+  {
+    if (w->g_runs >= 0)
+      H5Gclose(w->g_runs);
+    if (w->g_arches >= 0)
+      H5Gclose(w->g_arches);
+    if (w->g_records >= 0)
+      H5Gclose(w->g_records);
+    if (w->file >= 0) {
+      /* close every object still open in the file, then the file */
+      ssize_t n = H5Fget_obj_count(w->file, H5F_OBJ_ALL & ~H5F_OBJ_FILE);
+      if (n > 0) {
+        hid_t *ids = malloc((size_t)n * sizeof *ids);
+        if (ids) {
+          ssize_t m = H5Fget_obj_ids(w->file, H5F_OBJ_ALL & ~H5F_OBJ_FILE,
+                                     (size_t)n, ids);
+          for (ssize_t i = 0; i < m; i++)
+            H5Idec_ref(ids[i]);
+          free(ids);
+        }
+      }
+      H5Fclose(w->file);
+    }
+  }
+  H5E_END_TRY;
+  w->g_runs = w->g_arches = w->g_records = w->file = -1;
+}
+
+aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
+{
+  *out = NULL;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  aq_h5_writer *w = calloc(1, sizeof *w);
+  if (!w)
+    return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
+  w->file = w->g_records = w->g_arches = w->g_runs = -1;
+  size_t len = strlen(target) + 40;
+  w->target = strdup(target);
+  w->tmp = malloc(len);
+  if (!w->target || !w->tmp) {
+    writer_free(w);
+    return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
+  }
+  snprintf(w->tmp, len, "%s.tmp.%ld", target, (long)getpid());
+  /* Create the temporary ourselves first, for a clear errno. */
+  int fd = open(w->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+  if (fd < 0) {
+    int e = errno;
+    aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
+                 "cannot create the output file (temporary %s): %s", w->tmp,
+                 strerror(e));
+    writer_free(w);
+    return AQ_EIO;
+  }
+  close(fd);
+  aq_status st = AQ_OK;
+  const char *obj = "/";
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  CK(fapl, "H5Pcreate");
+  /* 1.8 object format: attributes larger than 64 KiB (long command lines,
+   * arch configurations) go to dense storage instead of failing. */
+  CK(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST),
+     "H5Pset_libver_bounds");
+  w->file = H5Fcreate(w->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  CK(w->file, "H5Fcreate");
+  CK(H5Pclose(fapl), "H5Pclose");
+  fapl = -1;
+  obj = "/records";
+  w->g_records = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(w->g_records, "H5Gcreate");
+  obj = "/arches";
+  w->g_arches = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(w->g_arches, "H5Gcreate");
+  obj = "/runs";
+  w->g_runs = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(w->g_runs, "H5Gcreate");
+  *out = w;
+  return AQ_OK;
+fail:
+  if (fapl >= 0)
+    H5Pclose(fapl);
+  aq_h5_abort(w);
+  return st;
+}
+
+const char *aq_h5_temp_path(const aq_h5_writer *w)
+{
+  return w ? w->tmp : NULL;
+}
+
+void aq_h5_abort(aq_h5_writer *w)
+{
+  if (!w)
+    return;
+  close_quietly(w);
+  if (w->tmp)
+    unlink(w->tmp);
+  writer_free(w);
+}
+
+static const char *detrend_name(aq_detrend d)
+{
+  switch (d) {
+  case AQ_DETREND_MEAN:
+    return "mean";
+  case AQ_DETREND_LINEAR:
+    return "linear";
+  case AQ_DETREND_NONE:
+    return "none";
+  }
+  return "unknown";
+}
+
+/* Processing parameters (requested at the root, used per record). */
+static herr_t write_proc(hid_t loc, const aq_signal_opts *p)
+{
+  if (attr_str(loc, "detrend", detrend_name(p->detrend)) < 0 ||
+      attr_int(loc, "filter", p->filter ? 1 : 0) < 0 ||
+      attr_double(loc, "taper_frac", p->filter ? p->taper_frac : 0.0) < 0 ||
+      attr_double(loc, "highpass_hz", p->filter ? p->highpass_hz : NAN) < 0 ||
+      attr_int(loc, "highpass_order", p->filter ? p->order : 0) < 0 ||
+      attr_double(loc, "lowpass_hz",
+                  p->filter && p->lowpass_hz > 0 ? p->lowpass_hz : NAN) < 0)
+    return -1;
+  return 0;
+}
+
+aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
+{
+  aq_status st = AQ_OK;
+  const char *obj = "/";
+  hid_t f = w->file;
+  CK(attr_str(f, "archquake_version", r->version), "root attributes");
+  CK(attr_int(f, "format_version", AQ_H5_FORMAT_VERSION), "root attributes");
+  CK(attr_str(f, "command_line", r->command_line), "root attributes");
+  CK(attr_str(f, "created", r->created), "root attributes");
+  if (r->proc)
+    CK(write_proc(f, r->proc), "root attributes");
+  CK(attr_double(f, "merge_tol_g", r->merge_tol_g), "root attributes");
+  CK(attr_str(f, "units_override", r->units ? r->units : "file"),
+     "root attributes");
+  CK(attr_double(f, "dt_override_s", r->dt_override_s > 0 ? r->dt_override_s : NAN),
+     "root attributes");
+  CK(attr_str(f, "model", r->model), "root attributes");
+  CK(attr_double(f, "cor", r->cor), "root attributes");
+  if (r->scales) {
+    CK(attr_str(f, "scale_mode", "list"), "root attributes");
+    CK(attr_doubles(f, "scales", r->scales, r->nscale), "root attributes");
+  } else {
+    CK(attr_str(f, "scale_mode", "pga"), "root attributes");
+  }
+  CK(attr_double(f, "scale_to_pga_g", r->scale_to_pga_g), "root attributes");
+  CK(attr_int(f, "history", r->history ? 1 : 0), "root attributes");
+  CK(attr_int(f, "timing_threads", r->threads), "root attributes");
+  return AQ_OK;
+fail:
+  return st;
+}
+
+static const char *impact_name(aq_impact i)
+{
+  return i == AQ_IMPACT_MOMENTUM ? "momentum" : "cor";
+}
+
+aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
+                           aq_error *err)
+{
+  aq_status st = AQ_OK;
+  char obj[64];
+  snprintf(obj, sizeof obj, "/arches/%03zu", index);
+  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(g, "H5Gcreate");
+  CK(attr_str(g, "name", a->name), "arch attributes");
+  CK(attr_str(g, "source_file", a->source_file), "arch attributes");
+  CK(attr_str(g, "config", a->config_text), "arch attributes");
+  if (a->dyn) {
+    CK(attr_double(g, "cor", a->dyn->cor), "arch attributes");
+    CK(attr_str(g, "impact", impact_name(a->dyn->impact)), "arch attributes");
+    CK(attr_double(g, "g_m_s2", a->dyn->g_mps2), "arch attributes");
+  }
+  static const char *const set_name[2] = {"primary", "reverse"};
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = a->set[k];
+    char nm[64];
+    snprintf(nm, sizeof nm, "%s_admissible", set_name[k]);
+    CK(attr_int(g, nm, p && p->admissible ? 1 : 0), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_lambda0", set_name[k]);
+    CK(attr_double(g, nm, p ? p->lambda0 : NAN), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_q_c_rad", set_name[k]);
+    CK(attr_double(g, nm, p ? p->s_c_rad : NAN), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_mass_kg", set_name[k]);
+    CK(attr_double(g, nm, p ? p->mass_kg : NAN), "arch attributes");
+  }
+  CK(H5Gclose(g), "H5Gclose");
+  return AQ_OK;
+fail:
+  if (g >= 0)
+    H5E_BEGIN_TRY { H5Gclose(g); } H5E_END_TRY;
+  return st;
+}
+
+aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
+                             const aq_h5_record *r, aq_error *err)
+{
+  aq_status st = AQ_OK;
+  char obj[64];
+  snprintf(obj, sizeof obj, "/records/%05zu", index);
+  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(g, "H5Gcreate");
+  CK(attr_str(g, "source_file", r->source_file), "record attributes");
+  CK(attr_str(g, "status", r->status ? r->status : "ok"), "record attributes");
+  if (r->error)
+    CK(attr_str(g, "error", r->error), "record attributes");
+  if (r->rec) {
+    const aq_record *rec = r->rec;
+    CK(attr_str(g, "name", rec->name), "record attributes");
+    CK(attr_str(g, "format", rec->format), "record attributes");
+    CK(attr_str(g, "units_orig", rec->units_orig), "record attributes");
+    CK(attr_double(g, "to_m_s2", rec->to_mps2), "record attributes");
+    CK(attr_int(g, "npts", (int64_t)rec->npts), "record attributes");
+    CK(attr_double(g, "dt_s", rec->dt_s), "record attributes");
+    CK(attr_double(g, "begin_s", rec->begin_s), "record attributes");
+    CK(attr_str(g, "reference_time", rec->reference), "record attributes");
+    CK(attr_str(g, "network", rec->network), "record attributes");
+    CK(attr_str(g, "station", rec->station), "record attributes");
+    CK(attr_str(g, "location", rec->location), "record attributes");
+    CK(attr_str(g, "channel", rec->channel), "record attributes");
+  }
+  if (r->proc) {
+    const aq_processed *p = r->proc;
+    CK(write_proc(g, &p->used), "record attributes");
+    CK(attr_int(g, "pad_front", (int64_t)p->pad_front), "record attributes");
+    CK(attr_int(g, "pad_back", (int64_t)p->pad_back), "record attributes");
+    CK(attr_int(g, "n_orig", (int64_t)p->n_orig), "record attributes");
+    CK(dataset_doubles(g, "acceleration_m_s2", p->acc_mps2, p->n, "m/s^2"),
+       "acceleration_m_s2");
+    hid_t d = H5Dopen2(g, "acceleration_m_s2", H5P_DEFAULT);
+    CK(d, "H5Dopen");
+    herr_t rc = attr_double(d, "dt_s", p->dt_s);
+    if (rc >= 0)
+      rc = attr_double(d, "t0_s", -(double)p->pad_front * p->dt_s);
+    if (H5Dclose(d) < 0)
+      rc = -1;
+    CK(rc, "acceleration_m_s2 attributes");
+  }
+  if (r->im) {
+    const aq_im *m = r->im;
+    CK(attr_double(g, "pga_g", m->pga_g), "record attributes");
+    CK(attr_double(g, "pgv_m_s", m->pgv_mps), "record attributes");
+    CK(attr_double(g, "pgd_m", m->pgd_m), "record attributes");
+    CK(attr_double(g, "arias_m_s", m->arias_mps), "record attributes");
+    CK(attr_double(g, "d5_95_s", m->d5_95_s), "record attributes");
+    CK(attr_double(g, "cav_m_s", m->cav_mps), "record attributes");
+    CK(attr_double(g, "v_end_m_s", m->v_end_mps), "record attributes");
+    CK(attr_double(g, "d_end_m", m->d_end_m), "record attributes");
+  }
+  CK(attr_double(g, "timing_read_s", r->timing_read_s), "record attributes");
+  CK(attr_double(g, "timing_process_s", r->timing_process_s),
+     "record attributes");
+  CK(H5Gclose(g), "H5Gclose");
+  return AQ_OK;
+fail:
+  if (g >= 0)
+    H5E_BEGIN_TRY { H5Gclose(g); } H5E_END_TRY;
+  return st;
+}
+
+static herr_t write_summary_attrs(hid_t g, const aq_summary *s)
+{
+  for (size_t i = 0; i < aq_summary_nfields; i++) {
+    const aq_summary_field *f = &aq_summary_fields[i];
+    herr_t rc = 0;
+    switch (f->kind) {
+    case AQ_SF_STR:
+      rc = attr_str(g, f->name, aq_summary_get_str(s, f));
+      break;
+    case AQ_SF_DOUBLE:
+      rc = attr_double(g, f->name, aq_summary_get_double(s, f));
+      break;
+    case AQ_SF_INT:
+      rc = attr_int(g, f->name, aq_summary_get_int(s, f));
+      break;
+    }
+    if (rc < 0)
+      return -1;
+  }
+  return 0;
+}
+
+aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
+                          const aq_summary *s, const aq_result *res,
+                          const char *error, double timing_run_s,
+                          aq_error *err)
+{
+  aq_status st = AQ_OK;
+  char obj[96], link[64];
+  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu", ri, ai, si);
+  hid_t g = -1;
+  if (w->nsum == w->capsum) {
+    size_t cap = w->capsum ? 2 * w->capsum : 64;
+    aq_summary *p = realloc(w->sum, cap * sizeof *p);
+    if (!p)
+      return aq_error_set(err, AQ_ENOMEM, w->target, -1, -1, obj,
+                          "out of memory");
+    w->sum = p;
+    w->capsum = cap;
+  }
+  g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(g, "H5Gcreate");
+  CK(write_summary_attrs(g, s), "run attributes");
+  CK(attr_int(g, "record_index", (int64_t)ri), "run attributes");
+  CK(attr_int(g, "arch_index", (int64_t)ai), "run attributes");
+  CK(attr_int(g, "scale_index", (int64_t)si), "run attributes");
+  snprintf(link, sizeof link, "/records/%05zu", ri);
+  CK(attr_str(g, "record_group", link), "run attributes");
+  snprintf(link, sizeof link, "/arches/%03zu", ai);
+  CK(attr_str(g, "arch_group", link), "run attributes");
+  if (error)
+    CK(attr_str(g, "error", error), "run attributes");
+  if (res) {
+    CK(attr_int(g, "reversals", (int64_t)res->reversals), "run attributes");
+    CK(attr_int(g, "steps_total", (int64_t)res->steps_total), "run attributes");
+    CK(attr_int(g, "steps_moving", (int64_t)res->steps_moving),
+       "run attributes");
+    CK(attr_int(g, "path_evaluations", (int64_t)res->evals), "run attributes");
+    const aq_history *h = &res->history;
+    if (h->time_s) {
+      CK(dataset_doubles(g, "time_s", h->time_s, h->n, "s"), "time_s");
+      CK(dataset_doubles(g, "rotation_rad", h->rotation_rad, h->n, "rad"),
+         "rotation_rad");
+      CK(dataset_doubles(g, "displacement_m", h->displacement_m, h->n, "m"),
+         "displacement_m");
+      CK(dataset_doubles(g, "kinetic_energy_j", h->kinetic_energy_j, h->n, "J"),
+         "kinetic_energy_j");
+      CK(dataset_doubles(g, "potential_energy_j", h->potential_energy_j, h->n,
+                         "J"),
+         "potential_energy_j");
+      if (h->set)
+        CK(dataset_1d(g, "hinge_set", H5T_STD_I32LE, H5T_NATIVE_INT, h->set,
+                      h->n, "1 (0 primary, 1 reverse, -1 at rest)"),
+           "hinge_set");
+    }
+  }
+  CK(attr_double(g, "timing_run_s", timing_run_s), "run attributes");
+  CK(H5Gclose(g), "H5Gclose");
+  w->sum[w->nsum++] = *s;
+  return AQ_OK;
+fail:
+  if (g >= 0)
+    H5E_BEGIN_TRY { H5Gclose(g); } H5E_END_TRY;
+  return st;
+}
+
+/* The compound type of aq_summary (memory layout); *file gets the packed
+ * copy for the file.  Returns the memory type or < 0. */
+static hid_t summary_type(hid_t *file)
+{
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(aq_summary));
+  if (t < 0)
+    return -1;
+  for (size_t i = 0; i < aq_summary_nfields; i++) {
+    const aq_summary_field *f = &aq_summary_fields[i];
+    hid_t m = -1;
+    herr_t rc = -1;
+    switch (f->kind) {
+    case AQ_SF_STR:
+      m = str_type(f->size);
+      if (m >= 0) {
+        rc = H5Tinsert(t, f->name, f->offset, m);
+        if (H5Tclose(m) < 0)
+          rc = -1;
+      }
+      break;
+    case AQ_SF_DOUBLE:
+      rc = H5Tinsert(t, f->name, f->offset, H5T_NATIVE_DOUBLE);
+      break;
+    case AQ_SF_INT:
+      rc = H5Tinsert(t, f->name, f->offset, H5T_NATIVE_INT64);
+      break;
+    }
+    if (rc < 0) {
+      H5Tclose(t);
+      return -1;
+    }
+  }
+  *file = H5Tcopy(t);
+  if (*file < 0 || H5Tpack(*file) < 0) {
+    if (*file >= 0)
+      H5Tclose(*file);
+    H5Tclose(t);
+    return -1;
+  }
+  return t;
+}
+
+aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
+{
+  aq_status st = AQ_OK;
+  const char *obj = "/summary";
+  hid_t mt = -1, ft = -1, sp = -1, d = -1;
+  mt = summary_type(&ft);
+  CK(mt, "summary type");
+  hsize_t dim = w->nsum;
+  sp = H5Screate_simple(1, &dim, NULL);
+  CK(sp, "H5Screate");
+  d = H5Dcreate2(w->file, obj, ft, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(d, "H5Dcreate");
+  if (w->nsum > 0)
+    CK(H5Dwrite(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, w->sum), "H5Dwrite");
+  CK(attr_str(d, "units",
+              "per member: scale 1, pga_g g, *_s s, *_rad rad, *_m m, *_j J, "
+              "collapsed and impacts counts"),
+     "summary attributes");
+  CK(H5Dclose(d), "H5Dclose");
+  d = -1;
+  CK(H5Sclose(sp), "H5Sclose");
+  sp = -1;
+  CK(H5Tclose(mt), "H5Tclose");
+  mt = -1;
+  CK(H5Tclose(ft), "H5Tclose");
+  ft = -1;
+  obj = "/";
+  if (t) {
+    CK(attr_double(w->file, "timing_wall_s", t->wall_s), "root attributes");
+    CK(attr_double(w->file, "timing_read_s", t->read_s), "root attributes");
+    CK(attr_double(w->file, "timing_process_s", t->process_s),
+       "root attributes");
+    CK(attr_double(w->file, "timing_run_s", t->run_s), "root attributes");
+    CK(attr_double(w->file, "timing_write_s", t->write_s), "root attributes");
+  }
+  CK(H5Gclose(w->g_runs), "H5Gclose");
+  w->g_runs = -1;
+  CK(H5Gclose(w->g_arches), "H5Gclose");
+  w->g_arches = -1;
+  CK(H5Gclose(w->g_records), "H5Gclose");
+  w->g_records = -1;
+  {
+    hid_t f = w->file;
+    w->file = -1;
+    errno = 0;
+    if (H5Fclose(f) < 0) {
+      /* the identifier is gone either way: do not close it again */
+      int e = errno;
+      st = h5_fail(err, w->target, obj, "H5Fclose (flushing the file)", e);
+      goto fail;
+    }
+  }
+  /* Make the contents durable before the name points at them. */
+  int fd = open(w->tmp, O_RDONLY);
+  if (fd < 0 || fsync(fd) != 0) {
+    int e = errno;
+    if (fd >= 0)
+      close(fd);
+    st = aq_error_set(err, AQ_EIO, w->target, -1, -1, NULL,
+                      "cannot sync %s: %s", w->tmp, strerror(e));
+    goto fail;
+  }
+  close(fd);
+  if (rename(w->tmp, w->target) != 0) {
+    int e = errno;
+    st = aq_error_set(err, AQ_EIO, w->target, -1, -1, NULL,
+                      "cannot rename %s onto it: %s", w->tmp, strerror(e));
+    goto fail;
+  }
+  writer_free(w);
+  return AQ_OK;
+fail:
+  H5E_BEGIN_TRY
+  {
+    if (d >= 0)
+      H5Dclose(d);
+    if (sp >= 0)
+      H5Sclose(sp);
+    if (mt >= 0)
+      H5Tclose(mt);
+    if (ft >= 0)
+      H5Tclose(ft);
+  }
+  H5E_END_TRY;
+  aq_h5_abort(w);
+  return st;
+}

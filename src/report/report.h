@@ -1,0 +1,80 @@
+/* report.h: the results of a suite as the report writers see them
+ * (src/report).  One run = (record, arch, scale); its summary is one
+ * aq_summary, a plain struct with fixed-size strings, which is at once a text
+ * row (text.c), the attributes of the run's HDF5 group and a row of the
+ * HDF5 summary table (h5.c), and what `archquake compare` matches and
+ * compares (compare.c).  The field table aq_summary_fields[] lists the
+ * summary's fields in column order; every writer and the reader use it, so a
+ * name is the same everywhere.
+ *
+ * Units: SI (s, m, rad, J); pga_g in g; scale dimensionless.
+ * Nothing here allocates; no function prints.
+ */
+#ifndef AQ_REPORT_REPORT_H
+#define AQ_REPORT_REPORT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../arch/result.h"
+#include "../error.h"
+
+#define AQ_SUMMARY_RECORD_MAX 256
+#define AQ_SUMMARY_ARCH_MAX 128
+#define AQ_SUMMARY_MODEL_MAX 16
+#define AQ_SUMMARY_STATUS_MAX 48
+
+/* One run's summary.  A run that failed (or whose record failed) has status
+ * other than "ok", collapsed = 0, impacts = 0 and NAN for the numbers it
+ * could not compute. */
+typedef struct {
+  char record[AQ_SUMMARY_RECORD_MAX]; /* record file as given on the command line */
+  char arch[AQ_SUMMARY_ARCH_MAX];     /* arch name ([arch] name) */
+  char model[AQ_SUMMARY_MODEL_MAX];   /* workpath | ode | paper */
+  double scale;                       /* factor applied to the processed record */
+  double pga_g;                       /* PGA of the scaled processed record, g */
+  char status[AQ_SUMMARY_STATUS_MAX]; /* "ok" or a short code such as "read:eformat" */
+  int64_t collapsed;                  /* 1 collapsed, 0 survived (or failed) */
+  double collapse_time_s;             /* record time of collapse, s; NAN if it survived */
+  double peak_rotation_rad;           /* max |q|, rad */
+  double peak_displacement_m;         /* max |x - x0| of the arch's centroid, m */
+  double max_kinetic_energy_j;        /* J */
+  int64_t impacts;                    /* returns to the undeformed shape */
+  double energy_in_j;                 /* work done by the ground, J */
+  double energy_dissipated_j;         /* lost at impacts, J */
+} aq_summary;
+
+typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
+
+typedef struct {
+  const char *name;     /* column, attribute and compound member name */
+  aq_summary_kind kind; /* AQ_SF_STR: char[size]; DOUBLE: double; INT: int64_t */
+  size_t offset;        /* offsetof(aq_summary, field) */
+  size_t size;          /* sizeof the field */
+  int key;              /* 1 for the fields that identify a run (record, arch, scale) */
+} aq_summary_field;
+
+/* The fields in column order (record arch model scale pga_g status collapsed
+ * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
+ * impacts energy_in_j energy_dissipated_j). */
+extern const aq_summary_field aq_summary_fields[];
+extern const size_t aq_summary_nfields;
+
+/* Fill s for one run.  record, arch, model and status are copied (truncated
+ * to the field sizes); res may be NULL for a run that did not happen (then
+ * the result fields are as documented above).  pga_g may be NAN. */
+void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
+                     const char *model, double scale, double pga_g,
+                     const char *status, const aq_result *res);
+
+/* Short status code for a failure in a stage: "<stage>:<code>", e.g.
+ * "read:eformat", "run:enumeric" (code = the aq_status name in lower case
+ * without "AQ_"); buf receives it (NUL-terminated, truncated to n). */
+void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st);
+
+/* Field value access by table entry. */
+double aq_summary_get_double(const aq_summary *s, const aq_summary_field *f);
+int64_t aq_summary_get_int(const aq_summary *s, const aq_summary_field *f);
+const char *aq_summary_get_str(const aq_summary *s, const aq_summary_field *f);
+
+#endif

@@ -1,0 +1,108 @@
+/* summary.c: the run summary and its field table (see report.h). */
+#include "report.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#define AQ_SF(name, kind, key) \
+  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key}
+
+const aq_summary_field aq_summary_fields[] = {
+    AQ_SF(record, AQ_SF_STR, 1),
+    AQ_SF(arch, AQ_SF_STR, 1),
+    AQ_SF(model, AQ_SF_STR, 0),
+    AQ_SF(scale, AQ_SF_DOUBLE, 1),
+    AQ_SF(pga_g, AQ_SF_DOUBLE, 0),
+    AQ_SF(status, AQ_SF_STR, 0),
+    AQ_SF(collapsed, AQ_SF_INT, 0),
+    AQ_SF(collapse_time_s, AQ_SF_DOUBLE, 0),
+    AQ_SF(peak_rotation_rad, AQ_SF_DOUBLE, 0),
+    AQ_SF(peak_displacement_m, AQ_SF_DOUBLE, 0),
+    AQ_SF(max_kinetic_energy_j, AQ_SF_DOUBLE, 0),
+    AQ_SF(impacts, AQ_SF_INT, 0),
+    AQ_SF(energy_in_j, AQ_SF_DOUBLE, 0),
+    AQ_SF(energy_dissipated_j, AQ_SF_DOUBLE, 0),
+};
+const size_t aq_summary_nfields =
+    sizeof aq_summary_fields / sizeof aq_summary_fields[0];
+
+static void copy_str(char *dst, size_t n, const char *src)
+{
+  snprintf(dst, n, "%s", src ? src : "");
+}
+
+void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
+                     const char *model, double scale, double pga_g,
+                     const char *status, const aq_result *res)
+{
+  memset(s, 0, sizeof *s);
+  copy_str(s->record, sizeof s->record, record);
+  copy_str(s->arch, sizeof s->arch, arch);
+  copy_str(s->model, sizeof s->model, model);
+  copy_str(s->status, sizeof s->status, status);
+  s->scale = scale;
+  s->pga_g = pga_g;
+  if (res) {
+    s->collapsed = res->collapsed ? 1 : 0;
+    s->collapse_time_s = res->collapsed ? res->collapse_time_s : NAN;
+    s->peak_rotation_rad = res->peak_rotation_rad;
+    s->peak_displacement_m = res->peak_displacement_m;
+    s->max_kinetic_energy_j = res->max_kinetic_energy_j;
+    s->impacts = (int64_t)res->impacts;
+    s->energy_in_j = res->energy_in_j;
+    s->energy_dissipated_j = res->energy_dissipated_j;
+  } else {
+    s->collapsed = 0;
+    s->collapse_time_s = NAN;
+    s->peak_rotation_rad = NAN;
+    s->peak_displacement_m = NAN;
+    s->max_kinetic_energy_j = NAN;
+    s->impacts = 0;
+    s->energy_in_j = NAN;
+    s->energy_dissipated_j = NAN;
+  }
+}
+
+void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)
+{
+  const char *name = "einternal";
+  char low[32];
+  switch (st) {
+#define AQ_X_NAME(sym, code, text) \
+  case sym:                        \
+    name = #sym + 3;               \
+    break;
+    AQ_STATUS_LIST(AQ_X_NAME)
+#undef AQ_X_NAME
+  }
+  size_t k = 0;
+  for (; name[k] && k + 1 < sizeof low; k++)
+    low[k] = (char)tolower((unsigned char)name[k]);
+  low[k] = '\0';
+  if (st == AQ_OK)
+    snprintf(buf, n, "ok");
+  else
+    snprintf(buf, n, "%s:%s", stage ? stage : "run", low);
+}
+
+double aq_summary_get_double(const aq_summary *s, const aq_summary_field *f)
+{
+  double x;
+  memcpy(&x, (const char *)s + f->offset, sizeof x);
+  return x;
+}
+
+int64_t aq_summary_get_int(const aq_summary *s, const aq_summary_field *f)
+{
+  int64_t x;
+  memcpy(&x, (const char *)s + f->offset, sizeof x);
+  return x;
+}
+
+const char *aq_summary_get_str(const aq_summary *s, const aq_summary_field *f)
+{
+  return (const char *)s + f->offset;
+}

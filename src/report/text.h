@@ -1,0 +1,23 @@
+/* text.h: the TSV summary (one row per run, header row first).  Columns are
+ * the fields of aq_summary_fields[] in order.  Numbers are printed with
+ * %.17g (they read back to the same double), NaN as "nan" and infinities as
+ * "inf"/"-inf" whatever the C library would print; tabs and line breaks in
+ * names become spaces, so a row is always one line.  Deterministic: the same
+ * summary gives the same bytes.  The caller owns the FILE. */
+#ifndef AQ_REPORT_TEXT_H
+#define AQ_REPORT_TEXT_H
+
+#include <stdio.h>
+
+#include "report.h"
+
+/* Format x as the text writer does into buf (n >= 32). */
+void aq_text_double(char *buf, size_t n, double x);
+
+/* Write the header row.  Returns 0, or -1 if the write failed (errno set). */
+int aq_text_header(FILE *f);
+
+/* Write one row.  Returns 0, or -1 if the write failed (errno set). */
+int aq_text_row(FILE *f, const aq_summary *s);
+
+#endif

@@ -1,0 +1,250 @@
+/* baseline.c: baseline correction of an accelerogram (see signal.h):
+ * detrend, Hann taper, zero pads, acausal Butterworth filter, scale.
+ *
+ * Order of operations (docs/processing.md):
+ *   1. detrend the original samples: remove the mean, or the least-squares
+ *      line (gsl_fit_linear), or nothing;
+ *   2. Hann (cosine) taper over taper_frac of the record at each end;
+ *   3. zero pads: total 1.5 n / fc seconds (n = order, fc = high-pass corner;
+ *      Converse & Brady 1992, Boore 2005 BSSA 95(2) 745-750), half before and
+ *      half after the record, then more zeros after it up to a fast FFT size
+ *      2^a 3^b 5^c; the pads stay in the processed record (pad_front marks the
+ *      original first sample) so that velocity and displacement integrated
+ *      from it are consistent with the filtered acceleration (Boore 2005);
+ *   4. acausal Butterworth high-pass (and optional low-pass) as |H| applied
+ *      once in the frequency domain (filter.c);
+ *   5. multiply by the scale factor.
+ * With filter = 0 (--no-filter) steps 2-4 are skipped and there are no pads.
+ */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fit.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "filter.h"
+#include "signal.h"
+
+/* Converse & Brady (1992) / Boore (2005): total pad length = this * n / fc. */
+#define AQ_PAD_FACTOR 1.5
+#define AQ_ORDER_MAX 64 /* beyond this the response is a brick wall anyway */
+
+void aq_signal_opts_default(aq_signal_opts *o)
+{
+  o->detrend = AQ_DETREND_MEAN;
+  o->taper_frac = 0.05;
+  o->filter = 1;
+  o->highpass_hz = 0.05;
+  o->order = 4;
+  o->lowpass_hz = 0;
+  o->scale = 1.0;
+}
+
+void aq_processed_free(aq_processed *p)
+{
+  if (!p)
+    return;
+  free(p->acc_mps2);
+  memset(p, 0, sizeof *p);
+}
+
+size_t aq_signal_fft_size(size_t n)
+{
+  if (n <= 1)
+    return 1;
+  size_t best = 0;
+  for (size_t p5 = 1;; p5 *= 5) {
+    for (size_t p35 = p5;; p35 *= 3) {
+      size_t m = p35;
+      while (m < n && m <= SIZE_MAX / 2)
+        m *= 2;
+      if (m >= n && (best == 0 || m < best))
+        best = m;
+      if (p35 >= n || p35 > SIZE_MAX / 3)
+        break;
+    }
+    if (p5 >= n || p5 > SIZE_MAX / 5)
+      break;
+  }
+  return best;
+}
+
+/* Check the options against the record (dt, length). */
+static aq_status check_opts(const aq_record *rec, const aq_signal_opts *o,
+                            aq_error *err)
+{
+  const char *in = rec->path;
+  if (o->detrend != AQ_DETREND_MEAN && o->detrend != AQ_DETREND_LINEAR &&
+      o->detrend != AQ_DETREND_NONE)
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--detrend",
+                        "expected mean, linear or none, got code %d",
+                        (int)o->detrend);
+  if (!isfinite(o->scale))
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "scale",
+                        "expected a finite factor, got %g", o->scale);
+  if (!(rec->dt_s > 0) || !isfinite(rec->dt_s))
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "dt",
+                        "expected a finite sample interval > 0 s, got %g",
+                        rec->dt_s);
+  if (rec->npts < 1 || !rec->acc_mps2)
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "npts",
+                        "expected at least 1 sample, got %zu", rec->npts);
+  if (!o->filter)
+    return AQ_OK;
+  double nyq_hz = 0.5 / rec->dt_s;
+  if (!(o->taper_frac >= 0 && o->taper_frac <= 0.5))
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--taper",
+                        "expected a fraction of the record in [0, 0.5] at "
+                        "each end, got %g",
+                        o->taper_frac);
+  if (o->order < 1 || o->order > AQ_ORDER_MAX)
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--order",
+                        "expected a filter order in [1, %d], got %d",
+                        AQ_ORDER_MAX, o->order);
+  if (!(o->highpass_hz > 0) || !(o->highpass_hz < nyq_hz))
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--highpass",
+                        "expected a corner > 0 Hz and below the Nyquist "
+                        "frequency %g Hz (dt = %g s), got %g Hz",
+                        nyq_hz, rec->dt_s, o->highpass_hz);
+  if (o->lowpass_hz != 0) {
+    if (!(o->lowpass_hz > o->highpass_hz))
+      return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--lowpass",
+                          "expected a corner above the high-pass corner %g "
+                          "Hz, got %g Hz",
+                          o->highpass_hz, o->lowpass_hz);
+    if (!(o->lowpass_hz < nyq_hz))
+      return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--lowpass",
+                          "expected a corner below the Nyquist frequency %g "
+                          "Hz (dt = %g s), got %g Hz",
+                          nyq_hz, rec->dt_s, o->lowpass_hz);
+  }
+  /* a high-pass corner whose period exceeds the record cannot be resolved */
+  double dur_s = (double)rec->npts * rec->dt_s, need_s = 1.0 / o->highpass_hz;
+  if (dur_s < need_s)
+    return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--highpass",
+                        "expected a record of at least %g s (1/fc for a %g Hz "
+                        "corner), got %g s (%zu samples at %g s); raise "
+                        "--highpass or use --no-filter",
+                        need_s, o->highpass_hz, dur_s, rec->npts, rec->dt_s);
+  return AQ_OK;
+}
+
+static aq_status detrend(double *y, size_t n, aq_detrend how, const char *in,
+                         aq_error *err)
+{
+  if (how == AQ_DETREND_NONE)
+    return AQ_OK;
+  if (how == AQ_DETREND_MEAN || n < 2) {
+    double mean = 0;
+    for (size_t i = 0; i < n; i++)
+      mean += y[i];
+    mean /= (double)n;
+    for (size_t i = 0; i < n; i++)
+      y[i] -= mean;
+    return AQ_OK;
+  }
+  /* least-squares line against the sample index (times scale out) */
+  double *x = malloc(n * sizeof *x);
+  if (!x)
+    return aq_error_set(err, AQ_ENOMEM, in, -1, -1, "--detrend",
+                        "cannot allocate %zu samples", n);
+  for (size_t i = 0; i < n; i++)
+    x[i] = (double)i;
+  double c0, c1, cov00, cov01, cov11, sumsq;
+  int gs = gsl_fit_linear(x, 1, y, 1, n, &c0, &c1, &cov00, &cov01, &cov11,
+                          &sumsq);
+  free(x);
+  if (gs != GSL_SUCCESS || !isfinite(c0) || !isfinite(c1))
+    return aq_error_set(err, AQ_ENUMERIC, in, -1, -1, "--detrend",
+                        "linear least-squares fit failed: %s",
+                        gsl_strerror(gs));
+  for (size_t i = 0; i < n; i++)
+    y[i] -= c0 + c1 * (double)i;
+  return AQ_OK;
+}
+
+/* Hann taper over m = round(frac n) samples at each end: the weight rises
+ * from 0 at the end sample as (1 - cos(pi k / m)) / 2, k = 0..m-1. */
+static void taper(double *y, size_t n, double frac)
+{
+  size_t m = (size_t)floor(frac * (double)n + 0.5);
+  if (m > n / 2)
+    m = n / 2;
+  for (size_t k = 0; k < m; k++) {
+    double w = 0.5 * (1.0 - cos(AQ_PI * (double)k / (double)m));
+    y[k] *= w;
+    y[n - 1 - k] *= w;
+  }
+}
+
+aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
+                            aq_signal_ws *ws, aq_processed *out,
+                            aq_error *err)
+{
+  memset(out, 0, sizeof *out);
+  aq_status st = check_opts(rec, o, err);
+  if (st != AQ_OK)
+    return st;
+  const char *in = rec->path;
+  size_t n = rec->npts;
+
+  size_t front = 0, ntot = n;
+  if (o->filter) {
+    double pad_s = AQ_PAD_FACTOR * (double)o->order / o->highpass_hz;
+    double pad_n = ceil(pad_s / rec->dt_s);
+    if (!(pad_n < 1e9)) /* > 1e9 pad samples: far beyond any record */
+      return aq_error_set(err, AQ_EVALUE, in, -1, -1, "--highpass",
+                          "expected pads of at most 1e9 samples, got %g "
+                          "(1.5 n / fc = %g s at dt = %g s)",
+                          pad_n, pad_s, rec->dt_s);
+    front = ((size_t)pad_n + 1) / 2;
+    ntot = aq_signal_fft_size(n + 2 * front);
+    if (ntot == 0)
+      return aq_error_set(err, AQ_EVALUE, in, -1, -1, "npts",
+                          "expected a record that fits an FFT, got %zu "
+                          "samples", n);
+  }
+  /* filtered: the array is also the in-place FFT buffer (aligned, room for
+   * the spectrum); free() releases either kind */
+  double *a = o->filter ? aq_filter_alloc(ntot) : malloc(ntot * sizeof *a);
+  if (!a)
+    return aq_error_set(err, AQ_ENOMEM, in, -1, -1, "npts",
+                        "cannot allocate %zu samples", ntot);
+  double *y = a + front;
+  for (size_t i = 0; i < n; i++) {
+    y[i] = rec->acc_mps2[i];
+    if (!isfinite(y[i])) {
+      aq_error_set(err, AQ_EVALUE, in, -1, -1, "sample",
+                   "sample %zu: expected a finite acceleration, got %g", i,
+                   y[i]);
+      free(a);
+      return AQ_EVALUE;
+    }
+  }
+  if (front)
+    memset(a, 0, front * sizeof *a);
+  if (ntot > front + n)
+    memset(y + n, 0, (ntot - front - n) * sizeof *a);
+  st = detrend(y, n, o->detrend, in, err);
+  if (st == AQ_OK && o->filter) {
+    taper(y, n, o->taper_frac);
+    st = aq_filter_apply(ws, a, ntot, rec->dt_s, o, o->scale, in, err);
+  } else if (st == AQ_OK && o->scale != 1.0) {
+    for (size_t i = 0; i < ntot; i++)
+      a[i] *= o->scale;
+  }
+  if (st != AQ_OK) {
+    free(a);
+    return st;
+  }
+  out->n = ntot;
+  out->dt_s = rec->dt_s;
+  out->pad_front = front;
+  out->pad_back = ntot - n - front;
+  out->n_orig = n;
+  out->acc_mps2 = a;
+  out->used = *o;
+  return AQ_OK;
+}

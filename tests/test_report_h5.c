@@ -1,0 +1,496 @@
+/* test_report_h5.c: the HDF5 writer on synthetic records, arches and runs,
+ * read back with the HDF5 C API directly (not through archquake's reader)
+ * and with h5dump; failure paths: unwritable directory, a write that fails
+ * for lack of space (RLIMIT_FSIZE in a child), an existing target left
+ * untouched, no temporary left behind. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <hdf5.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "report/h5.h"
+#include "report/report.h"
+
+enum { NACC = 1237, NHIST = 311 };
+
+typedef struct {
+  aq_record rec;
+  aq_processed proc;
+  aq_im im;
+  double acc[NACC];
+  aq_path path[2];
+  aq_arch_dynamics dyn;
+  aq_summary sum[4];
+  aq_result res[4];
+  double t[NHIST], q[NHIST], x[NHIST], ke[NHIST], pe[NHIST];
+  int set[NHIST];
+} fixture;
+
+static void make_fixture(fixture *fx, size_t nhist)
+{
+  memset(fx, 0, sizeof *fx);
+  fx->rec.path = "records/synthetic.AT2";
+  fx->rec.name = "synthetic.AT2";
+  snprintf(fx->rec.format, sizeof fx->rec.format, "at2");
+  fx->rec.npts = 1000;
+  fx->rec.dt_s = 0.005;
+  fx->rec.begin_s = -0.25;
+  snprintf(fx->rec.units_orig, sizeof fx->rec.units_orig, "g");
+  fx->rec.to_mps2 = 9.80665;
+  snprintf(fx->rec.station, sizeof fx->rec.station, "ELC");
+  for (size_t i = 0; i < NACC; i++)
+    fx->acc[i] = 0.731 * sin(0.0173 * (double)i * (double)i) * exp(-1e-3 * (double)i);
+  fx->proc.n = NACC;
+  fx->proc.dt_s = 0.005;
+  fx->proc.pad_front = 118;
+  fx->proc.pad_back = 119;
+  fx->proc.n_orig = 1000;
+  fx->proc.acc_mps2 = fx->acc;
+  fx->proc.used.detrend = AQ_DETREND_LINEAR;
+  fx->proc.used.taper_frac = 0.0375;
+  fx->proc.used.filter = 1;
+  fx->proc.used.highpass_hz = 0.0625;
+  fx->proc.used.order = 6;
+  fx->proc.used.lowpass_hz = 0;
+  fx->proc.used.scale = 1;
+  fx->im = (aq_im){0.2816, 0.3317, 0.0912, 1.7436, 24.125, 8.9125, 1.5e-4, -2.5e-3};
+  fx->path[0] = (aq_path){.name = "primary", .mass_kg = 19634.954, .g_mps2 = 9.80665,
+                          .lambda0 = 0.1743219, .s_c_rad = 0.3491237,
+                          .act_sign = 1, .q_sign = -1, .admissible = 1};
+  fx->path[1] = fx->path[0];
+  fx->path[1].name = "reverse";
+  fx->path[1].lambda0 = 0.1811;
+  fx->path[1].s_c_rad = 0.2977;
+  fx->path[1].admissible = 0;
+  fx->dyn = (aq_arch_dynamics){0.55, AQ_IMPACT_MOMENTUM, 9.80665};
+  for (size_t i = 0; i < nhist; i++) {
+    fx->t[i] = -0.59 + 0.005 * (double)i;
+    fx->q[i] = 1e-3 * sin(0.1 * (double)i);
+    fx->x[i] = 2.3e-3 * cos(0.07 * (double)i);
+    fx->ke[i] = 17.5 * (double)i;
+    fx->pe[i] = 4.25 * (double)(i % 7);
+    fx->set[i] = (int)(i % 3) - 1;
+  }
+  for (int k = 0; k < 4; k++) {
+    aq_result *r = &fx->res[k];
+    r->collapsed = k == 1;
+    r->collapse_time_s = k == 1 ? 3.8724110395 : NAN;
+    r->peak_rotation_rad = 0.0123 * (k + 1.37);
+    r->peak_displacement_m = 0.00421 * (k + 2.11);
+    r->max_kinetic_energy_j = 123.4567 * (k + 0.5);
+    r->impacts = (size_t)(3 * k + 2);
+    r->energy_in_j = 991.25 * (k + 1);
+    r->energy_dissipated_j = 11.125 * k;
+    r->reversals = (size_t)k;
+    r->steps_total = 1237;
+    r->steps_moving = (size_t)(100 + k);
+    r->evals = (size_t)(5000 + 17 * k);
+    if (k == 0 && nhist) {
+      r->history.n = nhist;
+      r->history.time_s = fx->t;
+      r->history.rotation_rad = fx->q;
+      r->history.displacement_m = fx->x;
+      r->history.kinetic_energy_j = fx->ke;
+      r->history.potential_energy_j = fx->pe;
+      r->history.set = fx->set;
+    }
+  }
+  static const double scale[4] = {0.5, 1.25, 0.5, 1.25};
+  static const char *const arch[4] = {"oppenheim", "oppenheim", "thin", "thin"};
+  for (int k = 0; k < 4; k++)
+    aq_summary_fill(&fx->sum[k], "records/synthetic.AT2", arch[k], "workpath",
+                    scale[k], 0.2816 * scale[k], "ok", &fx->res[k]);
+}
+
+static aq_status write_fixture_to(aq_h5_writer *w, fixture *fx, aq_error *err);
+
+/* Write the fixture to target; returns the status of the first failing call. */
+static aq_status write_fixture(const char *target, fixture *fx, aq_error *err)
+{
+  aq_h5_writer *w;
+  aq_status st = aq_h5_open(target, &w, err);
+  if (st != AQ_OK)
+    return st;
+  st = write_fixture_to(w, fx, err);
+  if (st != AQ_OK) {
+    aq_h5_abort(w);
+    return st;
+  }
+  aq_h5_timing tm = {1, 0.1, 0.2, 0.6, 0.1};
+  return aq_h5_finish(w, &tm, err); /* frees w whatever happens */
+}
+
+static aq_status write_fixture_to(aq_h5_writer *w, fixture *fx, aq_error *err)
+{
+  aq_status st;
+  aq_signal_opts req = fx->proc.used;
+  static const double scales[2] = {0.5, 1.25};
+  aq_h5_root root = {"9.9.9", "archquake records/synthetic.AT2 --arch a.cfg -o x.h5",
+                     "2026-11-22T14:00:00Z", &req, 0.001, "file", 0, "workpath",
+                     NAN, scales, 2, NAN, 1, 2};
+  if ((st = aq_h5_write_root(w, &root, err)) != AQ_OK)
+    return st;
+  for (size_t a = 0; a < 2; a++) {
+    aq_h5_arch ha = {a ? "thin" : "oppenheim", a ? "arches/thin.cfg" : "arches/oppenheim.cfg",
+                     "[arch]\nname = oppenheim\nradius_m = 5.0\n", &fx->dyn,
+                     {&fx->path[0], &fx->path[1]}};
+    if ((st = aq_h5_write_arch(w, a, &ha, err)) != AQ_OK)
+      return st;
+  }
+  aq_h5_record hr = {"records/synthetic.AT2", &fx->rec, &fx->proc, &fx->im, "ok",
+                     NULL, 0.01, 0.02};
+  if ((st = aq_h5_write_record(w, 0, &hr, err)) != AQ_OK)
+    return st;
+  for (int k = 0; k < 4; k++)
+    if ((st = aq_h5_write_run(w, 0, (size_t)k / 2, (size_t)k % 2, &fx->sum[k],
+                              &fx->res[k], NULL, 0.003, err)) != AQ_OK)
+      return st;
+  return AQ_OK;
+}
+
+static double read_double_attr(hid_t loc, const char *name)
+{
+  double v = NAN;
+  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0)
+    v = -12345.678;
+  if (a >= 0)
+    H5Aclose(a);
+  return v;
+}
+
+static long long read_int_attr(hid_t loc, const char *name)
+{
+  long long v = -999;
+  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  if (a < 0 || H5Aread(a, H5T_NATIVE_LLONG, &v) < 0)
+    v = -999;
+  if (a >= 0)
+    H5Aclose(a);
+  return v;
+}
+
+static void read_str_attr(hid_t loc, const char *name, char *buf, size_t n)
+{
+  buf[0] = '\0';
+  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  if (a < 0)
+    return;
+  hid_t t = H5Aget_type(a);
+  size_t sz = H5Tget_size(t);
+  char *tmp = calloc(sz + 1, 1);
+  if (tmp && H5Aread(a, t, tmp) >= 0)
+    snprintf(buf, n, "%s", tmp);
+  free(tmp);
+  H5Tclose(t);
+  H5Aclose(a);
+}
+
+static size_t read_dataset(hid_t loc, const char *name, double *v, size_t cap,
+                           char *units, size_t ucap)
+{
+  hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+  if (d < 0)
+    return (size_t)-1;
+  hid_t s = H5Dget_space(d);
+  hssize_t n = H5Sget_simple_extent_npoints(s);
+  size_t got = (size_t)-1;
+  if (n >= 0 && (size_t)n <= cap && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                            H5P_DEFAULT, v) >= 0)
+    got = (size_t)n;
+  read_str_attr(d, "units", units, ucap);
+  H5Sclose(s);
+  H5Dclose(d);
+  return got;
+}
+
+AQ_TEST(report_h5_layout_read_back)
+{
+  static fixture fx;
+  make_fixture(&fx, NHIST);
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/suite.h5", dir);
+  aq_error err;
+  aq_error_clear(&err);
+  aq_status st = write_fixture(path, &fx, &err);
+  aq_check(st == AQ_OK, "write: %s", err.message);
+  if (st != AQ_OK)
+    return;
+
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  aq_check(f >= 0, "reopen");
+  char s[512];
+  read_str_attr(f, "archquake_version", s, sizeof s);
+  aq_check(strcmp(s, "9.9.9") == 0, "version %s", s);
+  read_str_attr(f, "command_line", s, sizeof s);
+  aq_check(strstr(s, "--arch a.cfg") != NULL, "command line %s", s);
+  read_str_attr(f, "created", s, sizeof s);
+  aq_check(strcmp(s, "2026-11-22T14:00:00Z") == 0, "created %s", s);
+  read_str_attr(f, "detrend", s, sizeof s);
+  aq_check(strcmp(s, "linear") == 0, "root detrend %s", s);
+  aq_check(read_double_attr(f, "highpass_hz") == 0.0625, "root highpass");
+
+  /* record group */
+  hid_t g = H5Gopen2(f, "/records/00000", H5P_DEFAULT);
+  aq_check(g >= 0, "record group");
+  read_str_attr(g, "source_file", s, sizeof s);
+  aq_check(strcmp(s, "records/synthetic.AT2") == 0, "source %s", s);
+  read_str_attr(g, "format", s, sizeof s);
+  aq_check(strcmp(s, "at2") == 0, "format %s", s);
+  read_str_attr(g, "units_orig", s, sizeof s);
+  aq_check(strcmp(s, "g") == 0, "units %s", s);
+  aq_check(read_double_attr(g, "dt_s") == 0.005, "dt");
+  aq_check(read_double_attr(g, "taper_frac") == 0.0375, "taper used");
+  aq_check(read_double_attr(g, "highpass_hz") == 0.0625, "corner used");
+  aq_check(read_int_attr(g, "highpass_order") == 6, "order used");
+  aq_check(isnan(read_double_attr(g, "lowpass_hz")), "no low-pass: nan");
+  aq_check(read_int_attr(g, "pad_front") == 118 && read_int_attr(g, "pad_back") == 119,
+           "pads");
+  aq_check(read_double_attr(g, "arias_m_s") == 1.7436, "arias");
+  aq_check(read_double_attr(g, "d5_95_s") == 24.125, "d5-95");
+  static double acc[NACC + 1];
+  char units[64];
+  size_t n = read_dataset(g, "acceleration_m_s2", acc, NACC + 1, units, sizeof units);
+  aq_check(n == NACC, "acceleration length %zu", n);
+  aq_check(memcmp(acc, fx.acc, sizeof fx.acc) == 0, "acceleration bit-identical");
+  aq_check(strcmp(units, "m/s^2") == 0, "acceleration units %s", units);
+  H5Gclose(g);
+
+  /* arch group */
+  g = H5Gopen2(f, "/arches/001", H5P_DEFAULT);
+  aq_check(g >= 0, "arch group");
+  read_str_attr(g, "name", s, sizeof s);
+  aq_check(strcmp(s, "thin") == 0, "arch name %s", s);
+  read_str_attr(g, "config", s, sizeof s);
+  aq_check(strcmp(s, "[arch]\nname = oppenheim\nradius_m = 5.0\n") == 0,
+           "config verbatim");
+  aq_check(read_double_attr(g, "primary_lambda0") == 0.1743219, "lambda0 primary");
+  aq_check(read_double_attr(g, "reverse_q_c_rad") == 0.2977, "q_c reverse");
+  aq_check(read_int_attr(g, "primary_admissible") == 1 &&
+               read_int_attr(g, "reverse_admissible") == 0,
+           "admissible flags");
+  H5Gclose(g);
+
+  /* runs: one group each, attributes = the summaries */
+  hid_t runs = H5Gopen2(f, "/runs", H5P_DEFAULT);
+  H5G_info_t info;
+  aq_check(H5Gget_info(runs, &info) >= 0 && info.nlinks == 4, "4 run groups");
+  for (int k = 0; k < 4; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "00000_%03d_%03d", k / 2, k % 2);
+    hid_t rg = H5Gopen2(runs, name, H5P_DEFAULT);
+    aq_check(rg >= 0, "run %s", name);
+    read_str_attr(rg, "arch", s, sizeof s);
+    aq_check(strcmp(s, fx.sum[k].arch) == 0, "arch %s", s);
+    aq_check(read_double_attr(rg, "scale") == fx.sum[k].scale, "scale");
+    aq_check(read_int_attr(rg, "collapsed") == fx.res[k].collapsed, "collapsed");
+    double ct = read_double_attr(rg, "collapse_time_s");
+    aq_check(k == 1 ? ct == 3.8724110395 : isnan(ct), "collapse time %g", ct);
+    aq_check(read_double_attr(rg, "peak_rotation_rad") == fx.res[k].peak_rotation_rad,
+             "rotation");
+    aq_check(read_double_attr(rg, "max_kinetic_energy_j") ==
+                 fx.res[k].max_kinetic_energy_j, "KE");
+    aq_check(read_int_attr(rg, "impacts") == (long long)fx.res[k].impacts, "impacts");
+    H5E_BEGIN_TRY { n = read_dataset(rg, "time_s", acc, NACC, units, sizeof units); }
+    H5E_END_TRY;
+    if (k == 0) {
+      aq_check(n == NHIST && memcmp(acc, fx.t, sizeof fx.t) == 0, "time history");
+      aq_check(strcmp(units, "s") == 0, "time units");
+      n = read_dataset(rg, "potential_energy_j", acc, NACC, units, sizeof units);
+      aq_check(n == NHIST && memcmp(acc, fx.pe, sizeof fx.pe) == 0, "PE history");
+      aq_check(strcmp(units, "J") == 0, "PE units %s", units);
+    } else {
+      aq_check(n == (size_t)-1, "no history for run %d", k);
+    }
+    H5Gclose(rg);
+  }
+  H5Gclose(runs);
+
+  /* the summary table: a compound dataset, one row per run */
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  aq_check(d >= 0, "summary dataset");
+  hid_t sp = H5Dget_space(d);
+  aq_check(H5Sget_simple_extent_npoints(sp) == 4, "4 rows");
+  typedef struct {
+    double scale, peak_displacement_m;
+    long long impacts;
+    char arch[32];
+  } row;
+  hid_t mt = H5Tcreate(H5T_COMPOUND, sizeof(row));
+  hid_t st32 = H5Tcopy(H5T_C_S1);
+  H5Tset_size(st32, 32);
+  H5Tinsert(mt, "scale", HOFFSET(row, scale), H5T_NATIVE_DOUBLE);
+  H5Tinsert(mt, "peak_displacement_m", HOFFSET(row, peak_displacement_m),
+            H5T_NATIVE_DOUBLE);
+  H5Tinsert(mt, "impacts", HOFFSET(row, impacts), H5T_NATIVE_LLONG);
+  H5Tinsert(mt, "arch", HOFFSET(row, arch), st32);
+  row rows[4];
+  memset(rows, 0, sizeof rows);
+  aq_check(H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0, "read table");
+  for (int k = 0; k < 4; k++) {
+    aq_check(rows[k].scale == fx.sum[k].scale, "table scale %d", k);
+    aq_check(rows[k].peak_displacement_m == fx.res[k].peak_displacement_m,
+             "table displacement %d", k);
+    aq_check(rows[k].impacts == (long long)fx.res[k].impacts, "table impacts %d", k);
+    aq_check(strcmp(rows[k].arch, fx.sum[k].arch) == 0, "table arch %d", k);
+  }
+  H5Tclose(st32);
+  H5Tclose(mt);
+  H5Sclose(sp);
+  H5Dclose(d);
+  aq_check(H5Fclose(f) >= 0, "close");
+
+  /* archquake's own reader gives back exactly the summaries */
+  aq_summary *back = NULL;
+  size_t nb = 0;
+  aq_check(aq_h5_read_runs(path, &back, &nb, &err) == AQ_OK, "read runs");
+  aq_check(nb == 4, "4 runs read");
+  for (size_t k = 0; k < nb && k < 4; k++)
+    aq_check(memcmp(&back[k].scale, &fx.sum[k].scale, sizeof(double)) == 0 &&
+                 strcmp(back[k].arch, fx.sum[k].arch) == 0 &&
+                 back[k].impacts == fx.sum[k].impacts &&
+                 back[k].peak_rotation_rad == fx.sum[k].peak_rotation_rad,
+             "run %zu read back", k);
+  free(back);
+
+  /* an independent program reads it */
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd,
+           "h5dump -A '%s' > '%s/dump.txt' 2>&1 && grep -q peak_rotation_rad '%s/dump.txt'"
+           " && h5dump -d /summary '%s' > /dev/null 2>&1",
+           path, dir, dir, path);
+  aq_check(system(cmd) == 0, "h5dump reads the file and shows the attributes");
+  /* no temporary left beside it */
+  DIR *dd = opendir(dir);
+  int extra = 0;
+  for (struct dirent *e; dd && (e = readdir(dd));)
+    extra += strstr(e->d_name, ".tmp") != NULL;
+  if (dd)
+    closedir(dd);
+  aq_check(extra == 0, "no temporary file left");
+}
+
+static int file_equals(const char *path, const char *want)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return 0;
+  char buf[256];
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  fclose(f);
+  buf[n] = '\0';
+  return strcmp(buf, want) == 0;
+}
+
+static int count_entries(const char *dir)
+{
+  DIR *d = opendir(dir);
+  int n = 0;
+  for (struct dirent *e; d && (e = readdir(d));)
+    n += e->d_name[0] != '.' || (e->d_name[1] && strcmp(e->d_name, "..") != 0);
+  if (d)
+    closedir(d);
+  return n;
+}
+
+AQ_TEST(report_h5_unwritable_directory)
+{
+  static fixture fx;
+  make_fixture(&fx, 0);
+  aq_error err;
+  aq_error_clear(&err);
+  /* /proc refuses new files even to root; a missing directory likewise */
+  aq_status st = write_fixture("/proc/archquake-test.h5", &fx, &err);
+  aq_check(st == AQ_EIO, "unwritable: status %d", st);
+  aq_check(strstr(err.input, "/proc/archquake-test.h5") != NULL, "names target");
+  aq_check(strstr(err.message, "cannot create") != NULL, "clear message: %s",
+           err.message);
+  aq_check(access("/proc/archquake-test.h5", F_OK) != 0, "no file");
+  char dir[512], path[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/no/such/dir/x.h5", dir);
+  aq_error_clear(&err);
+  st = write_fixture(path, &fx, &err);
+  aq_check(st == AQ_EIO, "missing dir: status %d", st);
+  aq_check(strstr(err.message, "No such file") != NULL, "errno text: %s",
+           err.message);
+  aq_check(count_entries(dir) == 0, "nothing created in %s", dir);
+}
+
+/* Child: write with the file size limited to limit bytes (SIGXFSZ ignored,
+ * so writes fail with EFBIG as on a full disk).  Exit 0 if the writer
+ * reported AQ_EIO with a message, 10 + status otherwise. */
+static int child_write_limited(const char *target, rlim_t limit)
+{
+  pid_t pid = fork();
+  if (pid == 0) {
+    signal(SIGXFSZ, SIG_IGN);
+    struct rlimit rl = {limit, limit};
+    setrlimit(RLIMIT_FSIZE, &rl);
+    static fixture fx;
+    make_fixture(&fx, NHIST);
+    /* make the processed record big enough to cross the limit */
+    size_t big = 400000;
+    double *acc = calloc(big, sizeof *acc);
+    for (size_t i = 0; acc && i < big; i++)
+      acc[i] = sin(0.001 * (double)i);
+    fx.proc.acc_mps2 = acc;
+    fx.proc.n = big;
+    aq_error err;
+    aq_error_clear(&err);
+    aq_status st = write_fixture(target, &fx, &err);
+    free(acc);
+    if (st == AQ_EIO && err.message[0]) {
+      fprintf(stderr, "  (expected failure: %s)\n", err.message);
+      _exit(0);
+    }
+    _exit(10 + (int)st);
+  }
+  int status = 0;
+  if (pid < 0 || waitpid(pid, &status, 0) != pid)
+    return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 100 + WTERMSIG(status);
+}
+
+AQ_TEST(report_h5_failing_write_leaves_target_untouched)
+{
+  char dir[512], path[700], ref[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(ref, sizeof ref, "%s/reference.h5", dir);
+  aq_check(child_write_limited(ref, RLIM_INFINITY) == 10, "unlimited write succeeds");
+  struct stat sb;
+  rlim_t full = stat(ref, &sb) == 0 ? (rlim_t)sb.st_size : 0;
+  aq_check(full > 3200000, "file size %lu", (unsigned long)full);
+  unlink(ref);
+  snprintf(path, sizeof path, "%s/suite.h5", dir);
+  FILE *f = fopen(path, "w");
+  fputs("last night's results\n", f);
+  fclose(f);
+  /* fails on the big dataset (64 KiB), and when only the last few hundred
+   * bytes (metadata flushed at close) cross the limit */
+  const rlim_t limits[] = {64 * 1024, full - 300};
+  for (size_t i = 0; i < 2; i++) {
+    int rc = child_write_limited(path, limits[i]);
+    aq_check(rc == 0, "limit %lu: writer reported the failure (child %d)",
+             (unsigned long)limits[i], rc);
+    aq_check(file_equals(path, "last night's results\n"),
+             "existing target untouched");
+    aq_check(count_entries(dir) == 1, "no temporary left (%d entries)",
+             count_entries(dir));
+  }
+  /* without the limit the same write succeeds and replaces the target */
+  aq_check(child_write_limited(path, RLIM_INFINITY) == 10, "unlimited: no failure");
+  aq_check(!file_equals(path, "last night's results\n"), "target replaced");
+  aq_check(count_entries(dir) == 1, "still one file");
+}
