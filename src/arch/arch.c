@@ -1,0 +1,474 @@
+/* arch.c: the arch file (.cfg, INI read with libinih) and the arch object.
+ *
+ * Sections and keys (all others are errors, as are duplicate keys):
+ *   [arch]      name (optional, default: the file name without directory and
+ *               .cfg), radius_m, thickness_m, embrace_deg, voussoirs,
+ *               density_kg_m3, depth_m
+ *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
+ *               (optional, default: the primary's joints, faces swapped);
+ *               without [hinges] the primary comes from the search (search.c)
+ *   [dynamics]  cor (0..1, kinetic-energy ratio, ERRATA item 7), impact
+ *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
+ * libinih calls the handler for each key as it reads the line; the reader
+ * below feeds it line by line and counts lines, so every message names the
+ * line of its key.
+ */
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "arch.h"
+#include "model.h"
+
+#define MAX_LINE_CHARS 190    /* libinih's line buffer is 200 bytes */
+#define MAX_VOUSSOIRS 1000    /* search cost grows as voussoirs^4 */
+#define MAX_FILE_BYTES 1000000
+
+struct aq_arch {
+  char *name;
+  char *text;
+  aq_arch_dynamics dyn;
+  aq_geom geom;
+  aq_hinge_set hs[2];
+  int searched;
+  aq_workpath *wp[2];
+};
+
+enum {
+  K_NAME, K_RADIUS, K_THICK, K_EMBRACE, K_VOUS, K_DENS, K_DEPTH,
+  K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
+};
+static const struct {
+  const char *section, *name;
+  int required;
+} keys[NKEYS] = {
+    {"arch", "name", 0},          {"arch", "radius_m", 1},
+    {"arch", "thickness_m", 1},   {"arch", "embrace_deg", 1},
+    {"arch", "voussoirs", 1},     {"arch", "density_kg_m3", 1},
+    {"arch", "depth_m", 1},       {"hinges", "primary", 0},
+    {"hinges", "reverse", 0},     {"dynamics", "cor", 0},
+    {"dynamics", "impact", 0},    {"dynamics", "g_mps2", 0},
+};
+
+typedef struct {
+  const char *file;
+  const char *text; /* cursor */
+  long line;        /* lines read so far */
+  long key_line[NKEYS];
+  int hinges_section; /* line of [hinges], 0 if absent */
+  aq_error *err;
+  int failed;
+  char name[64];
+  double num[NKEYS];
+  aq_hinge_set hs[2];
+  int impact;
+} parse_ctx;
+
+static int fail(parse_ctx *c, aq_status s, const char *field, const char *fmt,
+                const char *got)
+{
+  if (!c->failed) {
+    aq_error_set(c->err, s, c->file, c->line, -1, field, fmt, got);
+    c->failed = 1;
+  }
+  return 0;
+}
+
+static char *reader(char *str, int num, void *stream)
+{
+  parse_ctx *c = stream;
+  if (c->failed || !*c->text)
+    return NULL;
+  const char *nl = strchr(c->text, '\n');
+  size_t len = nl ? (size_t)(nl - c->text) + 1 : strlen(c->text);
+  c->line++;
+  if (len > MAX_LINE_CHARS || (int)len >= num) {
+    char got[32];
+    snprintf(got, sizeof got, "%zu", len);
+    fail(c, AQ_EFORMAT, NULL, "expected a line of at most " "190" " characters, got %s", got);
+    return NULL;
+  }
+  memcpy(str, c->text, len);
+  str[len] = '\0';
+  c->text += len;
+  /* sections: libinih does not report them, so check them here */
+  const char *p = str;
+  while (*p == ' ' || *p == '\t')
+    p++;
+  if (*p == '[') {
+    const char *e = strchr(p, ']');
+    size_t n = e ? (size_t)(e - p - 1) : 0;
+    char sec[64];
+    snprintf(sec, sizeof sec, "%.*s", (int)(n < 63 ? n : 63), p + 1);
+    if (!e || (strcmp(sec, "arch") && strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
+      char got[80];
+      snprintf(got, sizeof got, "[%s]", e ? sec : "...");
+      fail(c, AQ_EFORMAT, "section", "expected [arch], [hinges] or [dynamics], got %s", got);
+      return NULL;
+    }
+    if (!strcmp(sec, "hinges") && !c->hinges_section)
+      c->hinges_section = (int)c->line;
+  }
+  return str;
+}
+
+static int parse_number(const char *v, double *x)
+{
+  char *end;
+  errno = 0;
+  double d = strtod(v, &end);
+  if (end == v || *end || errno == ERANGE || !isfinite(d))
+    return 0;
+  *x = d;
+  return 1;
+}
+
+/* "0e 6i 12e 19i" -> hs (syntax only; the model checks range and order). */
+static int parse_hinges(const char *v, aq_hinge_set *hs)
+{
+  const char *p = v;
+  for (int k = 0; k < 4; k++) {
+    while (*p == ' ' || *p == '\t')
+      p++;
+    if (*p < '0' || *p > '9')
+      return 0;
+    char *end;
+    errno = 0;
+    unsigned long j = strtoul(p, &end, 10);
+    if (errno || j > 1000000 || (*end != 'e' && *end != 'i'))
+      return 0;
+    hs->joint[k] = (size_t)j;
+    hs->face[k] = *end;
+    p = end + 1;
+    if (*p && *p != ' ' && *p != '\t')
+      return 0;
+  }
+  while (*p == ' ' || *p == '\t')
+    p++;
+  return *p == '\0';
+}
+
+static int handler(void *user, const char *section, const char *name,
+                   const char *value)
+{
+  parse_ctx *c = user;
+  if (c->failed)
+    return 0;
+  int k;
+  for (k = 0; k < NKEYS; k++)
+    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
+      break;
+  if (k == NKEYS) {
+    char got[128];
+    snprintf(got, sizeof got, "\"%.100s\"", name);
+    if (!section[0])
+      return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [hinges] or "
+                  "[dynamics], got %s before any section", got);
+    char expect[256];
+    expect[0] = '\0';
+    for (int i = 0; i < NKEYS; i++)
+      if (!strcmp(keys[i].section, section)) {
+        strcat(expect, expect[0] ? ", " : "");
+        strcat(expect, keys[i].name);
+      }
+    char fmt[400];
+    snprintf(fmt, sizeof fmt, "expected a key of [%s] (%s), got %%s", section, expect);
+    return fail(c, AQ_EFORMAT, name, fmt, got);
+  }
+  if (c->key_line[k]) {
+    char got[64];
+    snprintf(got, sizeof got, "a second one (first on line %ld)", c->key_line[k]);
+    return fail(c, AQ_EFORMAT, name, "expected one value per key, got %s", got);
+  }
+  c->key_line[k] = c->line;
+  char got[160];
+  snprintf(got, sizeof got, "\"%.150s\"", value);
+  double x;
+  switch (k) {
+  case K_NAME:
+    if (!value[0] || strlen(value) >= sizeof c->name || strpbrk(value, "\t\r\n"))
+      return fail(c, AQ_EVALUE, name, "expected a name of 1..63 characters without tabs, got %s", got);
+    snprintf(c->name, sizeof c->name, "%s", value);
+    return 1;
+  case K_RADIUS:
+  case K_THICK:
+  case K_DEPTH:
+    if (!parse_number(value, &x) || !(x > 0))
+      return fail(c, AQ_EVALUE, name, "expected a length > 0 m, got %s", got);
+    break;
+  case K_DENS:
+    if (!parse_number(value, &x) || !(x > 0))
+      return fail(c, AQ_EVALUE, name, "expected a density > 0 kg/m^3, got %s", got);
+    break;
+  case K_EMBRACE:
+    if (!parse_number(value, &x) || !(x > 0) || !(x <= 180))
+      return fail(c, AQ_EVALUE, name, "expected an angle in (0, 180] deg, got %s", got);
+    break;
+  case K_VOUS: {
+    char *end;
+    errno = 0;
+    long v = strtol(value, &end, 10);
+    if (end == value || *end || errno || v < 4 || v > MAX_VOUSSOIRS)
+      return fail(c, AQ_EVALUE, name, "expected an integer in 4..1000, got %s", got);
+    x = (double)v;
+    break;
+  }
+  case K_PRIMARY:
+  case K_REVERSE:
+    if (!parse_hinges(value, &c->hs[k - K_PRIMARY]))
+      return fail(c, AQ_EVALUE, name,
+                  "expected four hinges JOINT FACE with FACE e or i (e.g. 0e 6i 12e 19i), got %s",
+                  got);
+    return 1;
+  case K_COR:
+    if (!parse_number(value, &x) || !(x >= 0) || !(x <= 1))
+      return fail(c, AQ_EVALUE, name, "expected a kinetic-energy ratio in [0, 1], got %s", got);
+    break;
+  case K_IMPACT:
+    if (!strcmp(value, "cor"))
+      c->impact = AQ_IMPACT_COR;
+    else if (!strcmp(value, "momentum"))
+      c->impact = AQ_IMPACT_MOMENTUM;
+    else
+      return fail(c, AQ_EVALUE, name, "expected cor or momentum, got %s", got);
+    return 1;
+  case K_G:
+    if (!parse_number(value, &x) || !(x > 0) || !(x <= 100))
+      return fail(c, AQ_EVALUE, name, "expected a gravity in (0, 100] m/s^2, got %s", got);
+    break;
+  }
+  c->num[k] = x;
+  return 1;
+}
+
+void aq_arch_free(aq_arch *a)
+{
+  if (!a)
+    return;
+  for (int s = 0; s < 2; s++)
+    aq_workpath_free(a->wp[s]);
+  aq_geom_free(&a->geom);
+  free(a->name);
+  free(a->text);
+  free(a);
+}
+
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf)
+{
+  if (joints)
+    snprintf(joints, nj, "%zu,%zu,%zu,%zu", hs->joint[0], hs->joint[1],
+             hs->joint[2], hs->joint[3]);
+  if (faces)
+    snprintf(faces, nf, "%c%c%c%c", hs->face[0], hs->face[1], hs->face[2],
+             hs->face[3]);
+}
+
+static aq_hinge_set swap_faces(const aq_hinge_set *hs)
+{
+  aq_hinge_set r = *hs;
+  for (int k = 0; k < 4; k++)
+    r.face[k] = hs->face[k] == 'e' ? 'i' : 'e';
+  return r;
+}
+
+/* Everything after the parameters: geometry, hinge sets, paths.  Errors
+ * carry the field ("primary", "reverse", a parameter key) but no file. */
+static aq_status build_core(aq_arch *a, const aq_arch_params *p,
+                            const aq_hinge_set *primary,
+                            const aq_hinge_set *reverse, aq_error *err)
+{
+  aq_status st = aq_geom_init(&a->geom, p, err);
+  if (st != AQ_OK)
+    return st;
+  if (primary) {
+    a->hs[0] = *primary;
+  } else {
+    st = aq_search_mechanism(&a->geom, a->dyn.g_mps2, &a->hs[0], NULL, err);
+    if (st != AQ_OK)
+      return st;
+    a->searched = 1;
+  }
+  a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
+  static const char *const names[2] = {"primary", "reverse"};
+  for (int s = 0; s < 2; s++) {
+    st = aq_workpath_build(&a->geom, &a->hs[s], a->dyn.g_mps2, names[s], &a->wp[s], err);
+    if (st != AQ_OK) {
+      if (err && !strcmp(err->field, "hinges"))
+        snprintf(err->field, sizeof err->field, "%s", names[s]);
+      return st;
+    }
+  }
+  if (!aq_workpath_path(a->wp[0])->admissible)
+    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "primary",
+                        "expected an admissible mechanism, got one where %s",
+                        aq_workpath_reason(a->wp[0]));
+  aq_workpath_set_impact(a->wp[0], a->wp[1]);
+  aq_workpath_set_impact(a->wp[1], a->wp[0]);
+  return AQ_OK;
+}
+
+aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
+                        const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                        const char *name, aq_arch **out, aq_error *err)
+{
+  *out = NULL;
+  aq_arch *a = calloc(1, sizeof *a);
+  if (!a)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  a->dyn.cor = 0;
+  a->dyn.impact = AQ_IMPACT_COR;
+  a->dyn.g_mps2 = AQ_G0_MPS2;
+  if (dyn)
+    a->dyn = *dyn;
+  a->name = strdup(name ? name : "arch");
+  a->text = strdup("");
+  if (!a->name || !a->text) {
+    aq_arch_free(a);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  aq_status st = build_core(a, p, primary, reverse, err);
+  if (st != AQ_OK) {
+    aq_arch_free(a);
+    return st;
+  }
+  *out = a;
+  return AQ_OK;
+}
+
+static char *read_text(const char *path, aq_error *err, aq_status *st)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                       "expected a readable arch file, got %s", strerror(errno));
+    return NULL;
+  }
+  char *buf = malloc(MAX_FILE_BYTES + 1);
+  size_t n = buf ? fread(buf, 1, MAX_FILE_BYTES + 1, f) : 0;
+  int bad = buf && ferror(f);
+  fclose(f);
+  if (!buf) {
+    *st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    return NULL;
+  }
+  if (bad || n > MAX_FILE_BYTES) {
+    free(buf);
+    *st = aq_error_set(err, bad ? AQ_EIO : AQ_EFORMAT, path, -1, -1, NULL,
+                       bad ? "expected a readable arch file, got a read error"
+                           : "expected an arch file of at most 1 MB, got more");
+    return NULL;
+  }
+  buf[n] = '\0';
+  if (memchr(buf, '\0', n)) {
+    free(buf);
+    *st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                       "expected a text arch file, got a NUL byte");
+    return NULL;
+  }
+  return buf;
+}
+
+aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
+{
+  *out = NULL;
+  aq_status st = AQ_OK;
+  char *text = read_text(path, err, &st);
+  if (!text)
+    return st;
+  parse_ctx c;
+  memset(&c, 0, sizeof c);
+  c.file = path;
+  c.text = text;
+  c.err = err;
+  c.num[K_G] = AQ_G0_MPS2;
+  int rc = ini_parse_stream(reader, &c, handler, &c);
+  if (!c.failed && rc > 0) {
+    /* a line libinih could not parse: show it */
+    const char *p = text;
+    for (int l = 1; l < rc && p; l++) {
+      p = strchr(p, '\n');
+      p = p ? p + 1 : NULL;
+    }
+    char got[120];
+    size_t len = p ? strcspn(p, "\r\n") : 0;
+    snprintf(got, sizeof got, "\"%.*s\"", (int)(len < 100 ? len : 100), p ? p : "");
+    aq_error_set(err, AQ_EFORMAT, path, rc, -1, NULL,
+                 "expected KEY = VALUE, [section] or a comment, got %s", got);
+    free(text);
+    return AQ_EFORMAT;
+  }
+  if (c.failed || rc < 0) {
+    free(text);
+    if (!c.failed)
+      return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    return err ? err->status : AQ_EFORMAT;
+  }
+  for (int k = 0; k < NKEYS; k++)
+    if (keys[k].required && !c.key_line[k]) {
+      free(text);
+      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
+                          "expected a value in [%s], got none", keys[k].section);
+    }
+  if (c.hinges_section && !c.key_line[K_PRIMARY]) {
+    free(text);
+    return aq_error_set(err, AQ_EFORMAT, path, c.hinges_section, -1, "primary",
+                        "expected a primary hinge set in [hinges], got none");
+  }
+  aq_arch_params p = {c.num[K_RADIUS], c.num[K_THICK], c.num[K_EMBRACE] * AQ_DEG_RAD,
+                      (size_t)c.num[K_VOUS], c.num[K_DENS], c.num[K_DEPTH]};
+  aq_arch_dynamics dyn = {c.num[K_COR], (aq_impact)c.impact, c.num[K_G]};
+  char name[64];
+  if (c.name[0]) {
+    snprintf(name, sizeof name, "%s", c.name);
+  } else {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t len = strlen(b);
+    if (len > 4 && !strcmp(b + len - 4, ".cfg"))
+      len -= 4;
+    snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
+  }
+  aq_arch *a = NULL;
+  st = aq_arch_build(&p, c.key_line[K_PRIMARY] ? &c.hs[0] : NULL,
+                     c.key_line[K_REVERSE] ? &c.hs[1] : NULL, &dyn, name, &a, err);
+  if (st != AQ_OK) {
+    if (err) {
+      /* name the file and the line of the key the model complained about */
+      long line = -1;
+      for (int k = 0; k < NKEYS; k++)
+        if (!strcmp(err->field, keys[k].name))
+          line = c.key_line[k];
+      if (!strcmp(err->field, "reverse") && !c.key_line[K_REVERSE])
+        line = c.key_line[K_PRIMARY];
+      if (!strcmp(err->field, "hinges") && !c.key_line[K_PRIMARY])
+        line = -1;
+      snprintf(err->input, sizeof err->input, "%s", path);
+      err->line = line > 0 ? line : -1;
+    }
+    free(text);
+    return st;
+  }
+  free(a->text);
+  a->text = text;
+  *out = a;
+  return AQ_OK;
+}
+
+const char *aq_arch_name(const aq_arch *a) { return a->name; }
+const char *aq_arch_config_text(const aq_arch *a) { return a->text; }
+const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a) { return &a->dyn; }
+const aq_path *aq_arch_path(const aq_arch *a, int set)
+{
+  return set == 0 || set == 1 ? aq_workpath_path(a->wp[set]) : NULL;
+}
+const aq_geom *aq_arch_geom(const aq_arch *a) { return &a->geom; }
+const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
+{
+  return set == 0 || set == 1 ? a->wp[set] : NULL;
+}
+int aq_arch_searched(const aq_arch *a) { return a->searched; }

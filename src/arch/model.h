@@ -1,0 +1,227 @@
+/* model.h: the static arch model behind arch.h and path.h (internal to
+ * src/arch, used by tests and bench).
+ *
+ * Geometry (geometry.c): an arch of n equal annular-sector voussoirs with
+ * radial joints, the centre of its circle at the origin.  Joint j (0..n) lies
+ * at polar angle theta_j = pi/2 - embrace/2 + j*embrace/n, counted
+ * counter-clockwise from the springing on the +x side; voussoir k lies
+ * between joints k and k+1.  A hinge sits at the extrados point (face 'e',
+ * radius r_e) or the intrados point (face 'i', radius r_i) of its joint.
+ *
+ * Four-bar (kinematics.c): hinges H1..H4 at joints j1 < j2 < j3 < j4; body 1
+ * (voussoirs j1..j2-1) turns about H1 by q, body 3 (j3..j4-1) about H4, body
+ * 2 (j2..j3-1) rides between; voussoirs outside [j1, j4) are fixed.  q is the
+ * global counter-clockwise rotation of body 1 (radians); the closure is by
+ * circle intersection on the branch continuous from q = 0 (ERRATA item 1).
+ *
+ * Equilibrium (kinematics.c): the paper's eq. (3), the 9x9 balance of the
+ * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
+ *
+ * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
+ * tables over s in [0, s_c].  Search (search.c): the upper-bound mechanism.
+ *
+ * Units: SI (m, kg, rad, N).  Nothing here prints; errors go to aq_error.
+ */
+#ifndef AQ_ARCH_MODEL_H
+#define AQ_ARCH_MODEL_H
+
+#include <stddef.h>
+
+#include "../error.h"
+#include "arch.h"
+#include "path.h"
+
+typedef struct {
+  double x, y;
+} aq_vec2;
+
+/* ---- geometry.c ---------------------------------------------------- */
+
+typedef struct {
+  double radius_m;      /* centre-line radius */
+  double thickness_m;   /* radial thickness */
+  double embrace_rad;   /* angle between the springings, (0, pi] */
+  size_t voussoirs;     /* >= 4 */
+  double density_kg_m3; /* > 0 */
+  double depth_m;       /* out-of-plane depth, > 0 */
+} aq_arch_params;
+
+/* Mass properties of one voussoir. */
+typedef struct {
+  double mass_kg;
+  aq_vec2 c;           /* centroid, m */
+  double inertia_kgm2; /* centroidal moment of inertia (about the out-of-plane axis) */
+} aq_mass;
+
+typedef struct {
+  aq_arch_params p;
+  double r_i_m, r_e_m;  /* intrados and extrados radii */
+  double *theta_rad;    /* n+1 joint angles */
+  aq_mass *vous;        /* n voussoirs */
+  double mass_kg;       /* whole arch */
+  aq_vec2 c;            /* whole-arch centroid */
+  /* prefix sums over voussoirs 0..k-1 (n+1 entries): mass, first moments */
+  double *cum_m, *cum_mx, *cum_my;
+} aq_geom;
+
+/* Exact mass, centroid and centroidal inertia of the annular sector
+ * r_i <= r <= r_e, th0 <= theta <= th1 (radians, th1 > th0), density rho
+ * (kg/m^3) and depth (m). */
+aq_mass aq_sector_mass(double r_i, double r_e, double th0, double th1,
+                       double rho, double depth);
+
+/* Check the parameters (AQ_EVALUE/AQ_EGEOMETRY with field set, no input or
+ * line) and fill g; aq_geom_free releases it (accepts a zeroed g). */
+aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err);
+void aq_geom_free(aq_geom *g);
+
+/* Point of joint j on face 'e' or 'i'. */
+aq_vec2 aq_geom_joint_point(const aq_geom *g, size_t j, char face);
+
+/* Mass properties of voussoirs [j0, j1) as one body: mass, centroid and
+ * centroidal inertia (parallel-axis sum). */
+aq_mass aq_geom_body(const aq_geom *g, size_t j0, size_t j1);
+
+/* ---- kinematics.c -------------------------------------------------- */
+
+typedef struct {
+  size_t joint[4]; /* j1 < j2 < j3 < j4, each in 0..n */
+  char face[4];    /* 'e' or 'i' */
+} aq_hinge_set;
+
+/* The four-bar of one hinge set, undeformed. */
+typedef struct {
+  const aq_geom *g;     /* not owned */
+  aq_hinge_set hs;
+  aq_vec2 h[4];         /* hinge points */
+  aq_mass body[3];      /* the moving bodies */
+  double l[3];          /* link lengths |H2-H1|, |H3-H2|, |H4-H3| */
+  int branch;           /* +1/-1: side of H2'H4 on which H3' lies */
+  int open[4];          /* +1: hinge k opens when (rotation of the body on its
+                           counter-clockwise side) - (on its clockwise side)
+                           grows ('i'); -1: when it shrinks ('e') */
+} aq_mech;
+
+/* The four-bar at one q with derivatives d/dq up to the third. */
+typedef struct {
+  double q;
+  double phi[3][4];  /* phi_b and its 1st..3rd derivatives (phi_1 = q) */
+  aq_vec2 h2, h3;    /* deformed H2', H3' */
+  aq_vec2 c[3][4];   /* body centroid and its 1st..3rd derivatives */
+  double toggle;     /* (H3'-H2') x (H4-H3') / (l23 l34): 0 at the toggle */
+} aq_mech_state;
+
+/* Set up the four-bar of hinge set hs on geometry g (joints checked). */
+aq_status aq_mech_init(aq_mech *m, const aq_geom *g, const aq_hinge_set *hs,
+                       aq_error *err);
+
+/* Evaluate at q (rad, global).  Returns 0, or -1 when the circles do not
+ * intersect (past the toggle) or the linkage is at its toggle. */
+int aq_mech_eval(const aq_mech *m, double q, aq_mech_state *st);
+
+/* Rotations of the four hinges (counter-clockwise body minus clockwise
+ * body, rad) at st; each opens when open[k] * rel[k] > 0. */
+void aq_mech_hinge_rel(const aq_mech_state *st, double rel[4]);
+
+/* |loop closure residual| (m) of st: R(q)u1 + R(phi2)u2 + R(phi3)u3 - (H4-H1). */
+double aq_mech_closure_residual(const aq_mech *m, const aq_mech_state *st);
+
+/* Loads for the equilibrium solve: dead load is always gravity g on every
+ * body; the live load (times the multiplier) is either the horizontal body
+ * force -act_sign*m_b*g on every body (AQ_LIVE_HORIZONTAL: lambda is the
+ * acceleration multiplier) or a vertical downward unit point load (N) at the
+ * body-fixed point `point` (undeformed position) carried by body
+ * `point_body` (AQ_LIVE_POINT: lambda is the load in N). */
+typedef enum { AQ_LIVE_HORIZONTAL = 0, AQ_LIVE_POINT } aq_live_kind;
+typedef struct {
+  aq_live_kind kind;
+  int act_sign;
+  aq_vec2 point;
+  int point_body;
+  double g_mps2;
+} aq_live;
+
+typedef struct {
+  double h[4], v[4]; /* hinge reactions (N): force on the counter-clockwise body */
+  double lambda;     /* multiplier */
+  double normal[4];  /* compressive normal component (N), the smaller of the
+                        two faces' normals; > 0 means compressive */
+} aq_equil;
+
+/* Solve eq. (3) (9x9, GSL LU) at state st.  AQ_ENUMERIC if singular. */
+aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
+                              const aq_live *live, aq_equil *out,
+                              aq_error *err);
+
+/* Velocity field of a set at s = 0 per unit ds: for voussoir k, centroid
+ * velocity u[k] (m/rad) and rotation rate w[k] (rad/rad), zero for fixed
+ * voussoirs.  q_sign converts d/dq to d/ds. */
+void aq_mech_field0(const aq_mech *m, int q_sign, aq_vec2 *u, double *w);
+
+/* sum_k m_k u_a[k].u_b[k] + I_k w_a[k] w_b[k] over n rigid parts. */
+double aq_field_dot(const aq_mass *parts, size_t n, const aq_vec2 *u_a,
+                    const double *w_a, const aq_vec2 *u_b, const double *w_b);
+
+/* ---- workpath.c ---------------------------------------------------- */
+
+/* Why the path ends at s_c. */
+typedef enum { AQ_END_PEAK = 0, AQ_END_TOGGLE, AQ_END_HINGE, AQ_END_NONE } aq_end;
+
+typedef struct aq_workpath aq_workpath;
+
+/* Build the work path of hinge set hs (tables included).  The set is always
+ * built; path->admissible says whether it may be used and
+ * aq_workpath_reason() why not.  AQ_ENOMEM/AQ_EGEOMETRY on failure. */
+aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
+                            double g_mps2, const char *name, aq_workpath **out,
+                            aq_error *err);
+void aq_workpath_free(aq_workpath *w);
+const aq_path *aq_workpath_path(const aq_workpath *w);
+const aq_mech *aq_workpath_mech(const aq_workpath *w);
+/* "" if admissible, else a short reason. */
+const char *aq_workpath_reason(const aq_workpath *w);
+aq_end aq_workpath_end(const aq_workpath *w);
+/* Table size (intervals) and its measured max relative error against
+ * eval_exact (over x, y, their derivatives, M, dM; relative to each
+ * function's max magnitude on [0, s_c]). */
+size_t aq_workpath_table_size(const aq_workpath *w);
+double aq_workpath_table_error(const aq_workpath *w);
+/* Equilibrium (horizontal live load) at s; AQ_EVALUE outside [0, s_c]. */
+aq_status aq_workpath_equilibrium(const aq_workpath *w, double s,
+                                  aq_equil *out, aq_error *err);
+/* Set impact_vel_ratio of b for impacts arriving on a (see path.h). */
+void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
+
+/* ---- search.c ------------------------------------------------------ */
+
+/* The alternating four-hinge set with the lowest positive admissible
+ * lambda0 (upper-bound mechanism) over all joints.  AQ_EINADMISSIBLE if
+ * none.  *nsets (if not NULL): sets enumerated. */
+aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
+                              aq_hinge_set *best, size_t *nsets,
+                              aq_error *err);
+
+/* lambda0 and opening test at s = 0 only (cheap; no tables, no equilibrium):
+ * returns 1 if every hinge opens at first order and fills *lambda0 (its sign
+ * as computed), else 0. */
+int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
+                       double *lambda0);
+
+/* ---- arch.c -------------------------------------------------------- */
+
+/* Build an arch from parameters (no file): primary NULL runs the search,
+ * reverse NULL takes the primary's face swap.  dyn NULL: cor 0, impact cor,
+ * standard gravity.  The caller frees with aq_arch_free. */
+aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
+                        const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                        const char *name, aq_arch **out, aq_error *err);
+const aq_geom *aq_arch_geom(const aq_arch *a);
+const aq_workpath *aq_arch_workpath(const aq_arch *a, int set);
+/* 1 if the primary came from the search. */
+int aq_arch_searched(const aq_arch *a);
+
+/* Format "0,6,12,19" and "eiei". */
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf);
+
+#endif

@@ -1,0 +1,449 @@
+/* workpath.c: the work path of one hinge set (path.h) with its tables.
+ *
+ * s = q_sign * q >= 0, where q_sign is the sign of q that opens H1 (and, for
+ * an admissible set, every hinge).  Along s:
+ *   x(s), y(s) = sum_b m_b (c_b(s) - c_b(0)) / m_T        (whole arch, m_T
+ *                includes the fixed voussoirs, which do not move)
+ *   M(s) = sum_b m_b |dc_b/ds|^2 + I_b (dphi_b/ds)^2        (ERRATA item 4)
+ *   lambda(s) = -act_sign (dy/ds) / (dx/ds)                  (virtual work,
+ *                ERRATA item 5: sum m_i lambda g dx_i = g sum m_i dy_i)
+ *   act_sign = -sign(dx/ds at 0): the inertial force -m a_g pushes along +s
+ *                when a_g has the sign act_sign.
+ *   s_c: the first s > 0 where dy/ds = 0 (lambda = 0: the unloaded potential
+ *        energy peaks, ERRATA item 9), where the four-bar reaches its toggle,
+ *        or where a hinge would close again, whichever comes first (located
+ *        by bisection to round-off after a scan in steps of SCAN_STEP_RAD).
+ *
+ * Tables: quintic Hermite interpolation on a uniform grid of n intervals over
+ * [0, s_c] from the exact value, first and second derivative of each of x, y,
+ * M and each body's centroid (x, y) and rotation, stored as power-basis
+ * coefficients per interval.  n starts at TABLE_N0 and doubles until the
+ * error measured against eval_exact at t = 1/4, 1/2, 3/4 of every interval,
+ * relative to the function's largest magnitude over the path, is below
+ * TABLE_REL_TOL for x, y, M and their first derivatives and for the second
+ * derivatives of x and y (or n reaches TABLE_N_MAX).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model.h"
+
+/* Tabled functions, each from its value, first and second derivative at the
+ * nodes.  F_DX, F_DY are dx/ds, dy/ds (from the second and third
+ * derivatives), so that d2x/ds2, d2y/ds2 come from a first derivative of an
+ * interpolant (round-off eps/h rather than eps/h^2). */
+enum { F_X = 0, F_Y, F_DX, F_DY, F_M, F_B0 /* then 3 per body: x, y, phi */, NF = F_B0 + 9 };
+
+#define SCAN_STEP_RAD 5e-4     /* scan for the end of the path */
+#define SCAN_MAX_RAD 3.0       /* no mechanism rotates body 1 further than this */
+#define TABLE_N0 16            /* first table size (intervals) */
+#define TABLE_N_MAX 16384      /* largest table size */
+#define TABLE_REL_TOL 1e-12    /* target relative error of the tables */
+#define TABLE_STALL 0.5        /* doubling n must at least halve the error */
+#define S_SLACK_REL 1e-12      /* s within this (relative to s_c) outside [0, s_c] is clamped */
+
+struct aq_workpath {
+  aq_path path;
+  aq_mech mech;
+  const aq_geom *g;
+  double g_mps2;
+  aq_vec2 c0[3];      /* body centroids at s = 0 as evaluated */
+  aq_end end;
+  char reason[200];
+  char name[16];
+  size_t n;           /* table intervals */
+  double h;           /* table step, rad */
+  double *coef;       /* n * NF * 6 */
+  double tab_err;
+};
+
+/* Exact values f[k][0..2] (value, d/ds, d2/ds2) of every tabled function. */
+static int exact_f(const aq_workpath *w, double s, double f[NF][3],
+                   aq_mech_state *stout)
+{
+  aq_mech_state st;
+  int qs = w->path.q_sign;
+  if (aq_mech_eval(&w->mech, (double)qs * s, &st) != 0)
+    return -1;
+  double mt = w->path.mass_kg;
+  double X[4] = {0, 0, 0, 0}, Y[4] = {0, 0, 0, 0}, M[3] = {0, 0, 0};
+  for (int b = 0; b < 3; b++) {
+    double mb = w->mech.body[b].mass_kg, ib = w->mech.body[b].inertia_kgm2;
+    aq_vec2 *c = st.c[b];
+    double *p = st.phi[b];
+    X[0] += mb * (c[0].x - w->c0[b].x);
+    Y[0] += mb * (c[0].y - w->c0[b].y);
+    X[1] += mb * c[1].x;
+    Y[1] += mb * c[1].y;
+    X[2] += mb * c[2].x;
+    Y[2] += mb * c[2].y;
+    X[3] += mb * c[3].x;
+    Y[3] += mb * c[3].y;
+    M[0] += mb * (c[1].x * c[1].x + c[1].y * c[1].y) + ib * p[1] * p[1];
+    M[1] += 2.0 * (mb * (c[1].x * c[2].x + c[1].y * c[2].y) + ib * p[1] * p[2]);
+    M[2] += 2.0 * (mb * (c[2].x * c[2].x + c[2].y * c[2].y + c[1].x * c[3].x +
+                         c[1].y * c[3].y) +
+                   ib * (p[2] * p[2] + p[1] * p[3]));
+    double *bx = f[F_B0 + 3 * b], *by = f[F_B0 + 3 * b + 1], *bp = f[F_B0 + 3 * b + 2];
+    bx[0] = c[0].x, bx[1] = qs * c[1].x, bx[2] = c[2].x;
+    by[0] = c[0].y, by[1] = qs * c[1].y, by[2] = c[2].y;
+    bp[0] = p[0], bp[1] = qs * p[1], bp[2] = p[2];
+  }
+  f[F_X][0] = X[0] / mt, f[F_X][1] = qs * X[1] / mt, f[F_X][2] = X[2] / mt;
+  f[F_Y][0] = Y[0] / mt, f[F_Y][1] = qs * Y[1] / mt, f[F_Y][2] = Y[2] / mt;
+  f[F_DX][0] = f[F_X][1], f[F_DX][1] = X[2] / mt, f[F_DX][2] = qs * X[3] / mt;
+  f[F_DY][0] = f[F_Y][1], f[F_DY][1] = Y[2] / mt, f[F_DY][2] = qs * Y[3] / mt;
+  f[F_M][0] = M[0], f[F_M][1] = qs * M[1], f[F_M][2] = M[2];
+  if (stout)
+    *stout = st;
+  return 0;
+}
+
+static void fill_point(const aq_workpath *w, double f[NF][3], aq_path_point *p)
+{
+  p->x_m = f[F_X][0], p->dx_m = f[F_DX][0], p->d2x_m = f[F_DX][1];
+  p->y_m = f[F_Y][0], p->dy_m = f[F_DY][0], p->d2y_m = f[F_DY][1];
+  p->mgen_kgm2 = f[F_M][0];
+  p->dmgen_kgm2 = f[F_M][1];
+  p->lambda = -(double)w->path.act_sign * p->dy_m / p->dx_m;
+  p->nbody = 3;
+  for (int b = 0; b < 3; b++) {
+    p->body[b].mass_kg = w->mech.body[b].mass_kg;
+    p->body[b].inertia_kgm2 = w->mech.body[b].inertia_kgm2;
+    p->body[b].x_m = f[F_B0 + 3 * b][0];
+    p->body[b].dx_m = f[F_B0 + 3 * b][1];
+    p->body[b].y_m = f[F_B0 + 3 * b + 1][0];
+    p->body[b].dy_m = f[F_B0 + 3 * b + 1][1];
+    p->body[b].phi_rad = f[F_B0 + 3 * b + 2][0];
+    p->body[b].dphi = f[F_B0 + 3 * b + 2][1];
+  }
+}
+
+/* s checked and clamped into [0, s_c]; -1 outside. */
+static int clamp_s(const aq_workpath *w, double *s)
+{
+  double sc = w->path.s_c_rad, slack = S_SLACK_REL * sc;
+  if (!w->path.admissible || !(*s >= -slack) || !(*s <= sc + slack))
+    return -1;
+  if (*s < 0)
+    *s = 0;
+  if (*s > sc)
+    *s = sc;
+  return 0;
+}
+
+static int eval_exact(const void *ctx, double s, aq_path_point *p)
+{
+  const aq_workpath *w = ctx;
+  double f[NF][3];
+  if (clamp_s(w, &s) != 0 || exact_f(w, s, f, NULL) != 0)
+    return -1;
+  fill_point(w, f, p);
+  return 0;
+}
+
+/* Table: value and derivatives of function k at interval i, local t. */
+static void table_f(const aq_workpath *w, size_t i, double t, int k, double out[3])
+{
+  const double *c = w->coef + (i * NF + (size_t)k) * 6;
+  double ih = 1.0 / w->h;
+  out[0] = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+  out[1] = (c[1] + t * (2 * c[2] + t * (3 * c[3] + t * (4 * c[4] + t * 5 * c[5])))) * ih;
+  out[2] = (2 * c[2] + t * (6 * c[3] + t * (12 * c[4] + t * 20 * c[5]))) * ih * ih;
+}
+
+static void table_all(const aq_workpath *w, double s, double f[NF][3])
+{
+  double u = s / w->h;
+  size_t i = u <= 0 ? 0 : (size_t)u;
+  if (i >= w->n)
+    i = w->n - 1;
+  double t = u - (double)i;
+  for (int k = 0; k < NF; k++)
+    table_f(w, i, t, k, f[k]);
+}
+
+static int eval_table(const void *ctx, double s, aq_path_point *p)
+{
+  const aq_workpath *w = ctx;
+  double f[NF][3];
+  if (clamp_s(w, &s) != 0)
+    return -1;
+  table_all(w, s, f);
+  fill_point(w, f, p);
+  return 0;
+}
+
+/* Quintic Hermite on one interval as power-basis coefficients in t. */
+static void hermite5(double p0, double d0, double e0, double p1, double d1,
+                     double e1, double h, double c[6])
+{
+  double hd0 = h * d0, hd1 = h * d1, he0 = h * h * e0, he1 = h * h * e1;
+  c[0] = p0;
+  c[1] = hd0;
+  c[2] = 0.5 * he0;
+  c[3] = -10 * p0 - 6 * hd0 - 1.5 * he0 + 0.5 * he1 - 4 * hd1 + 10 * p1;
+  c[4] = 15 * p0 + 8 * hd0 + 1.5 * he0 - he1 + 7 * hd1 - 15 * p1;
+  c[5] = -6 * p0 - 3 * hd0 - 0.5 * he0 + 0.5 * he1 - 3 * hd1 + 6 * p1;
+}
+
+/* Build tables with n intervals; measure their error.  -1 on failure. */
+static int build_tables(aq_workpath *w, size_t n)
+{
+  double (*node)[NF][3] = malloc((n + 1) * sizeof *node);
+  double *coef = malloc(n * NF * 6 * sizeof *coef);
+  if (!node || !coef) {
+    free(node);
+    free(coef);
+    return -1;
+  }
+  double h = w->path.s_c_rad / (double)n;
+  for (size_t i = 0; i <= n; i++) {
+    double s = i == n ? w->path.s_c_rad : h * (double)i;
+    if (exact_f(w, s, node[i], NULL) != 0) {
+      free(node);
+      free(coef);
+      return -1;
+    }
+  }
+  for (size_t i = 0; i < n; i++)
+    for (int k = 0; k < NF; k++)
+      hermite5(node[i][k][0], node[i][k][1], node[i][k][2], node[i + 1][k][0],
+               node[i + 1][k][1], node[i + 1][k][2], h, coef + (i * NF + (size_t)k) * 6);
+  free(w->coef);
+  w->coef = coef;
+  w->n = n;
+  w->h = h;
+  /* the contract's quantities: (function, derivative) pairs */
+  static const int chk[8][2] = {{F_X, 0}, {F_Y, 0}, {F_DX, 0}, {F_DY, 0},
+                                {F_DX, 1}, {F_DY, 1}, {F_M, 0}, {F_M, 1}};
+  double scale[8] = {0};
+  for (size_t i = 0; i <= n; i++)
+    for (int c = 0; c < 8; c++)
+      if (fabs(node[i][chk[c][0]][chk[c][1]]) > scale[c])
+        scale[c] = fabs(node[i][chk[c][0]][chk[c][1]]);
+  double err = 0;
+  for (size_t i = 0; i < n; i++)
+    for (int q = 1; q <= 3; q++) {
+      double t = 0.25 * q, f[NF][3];
+      if (exact_f(w, h * ((double)i + t), f, NULL) != 0)
+        continue;
+      for (int c = 0; c < 8; c++) {
+        double tv[3];
+        table_f(w, i, t, chk[c][0], tv);
+        double e = fabs(tv[chk[c][1]] - f[chk[c][0]][chk[c][1]]) /
+                   (scale[c] > 0 ? scale[c] : 1);
+        if (e > err)
+          err = e;
+      }
+    }
+  w->tab_err = err;
+  free(node);
+  return 0;
+}
+
+static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
+{
+  double rel[4];
+  aq_mech_hinge_rel(st, rel);
+  for (int k = 0; k < 4; k++)
+    if (!(w->mech.open[k] * rel[k] > 0))
+      return 0;
+  return 1;
+}
+
+/* 0: fine at s; else the reason it is past the end. */
+static aq_end past_end(const aq_workpath *w, double s)
+{
+  double f[NF][3];
+  aq_mech_state st;
+  if (exact_f(w, s, f, &st) != 0)
+    return AQ_END_TOGGLE;
+  if (!(f[F_Y][1] > 0))
+    return AQ_END_PEAK;
+  if (!hinges_open(w, &st))
+    return AQ_END_HINGE;
+  return AQ_END_NONE;
+}
+
+static void find_end(aq_workpath *w)
+{
+  double lo = 0, hi = 0;
+  aq_end why = AQ_END_NONE;
+  for (double s = SCAN_STEP_RAD; s <= SCAN_MAX_RAD; s += SCAN_STEP_RAD) {
+    why = past_end(w, s);
+    if (why != AQ_END_NONE) {
+      hi = s;
+      break;
+    }
+    lo = s;
+  }
+  if (why == AQ_END_NONE) {
+    w->path.s_c_rad = lo;
+    w->end = AQ_END_NONE;
+    return;
+  }
+  for (int it = 0; it < 200 && hi - lo > 2 * __DBL_EPSILON__ * hi; it++) {
+    double mid = 0.5 * (lo + hi);
+    aq_end e = past_end(w, mid);
+    if (e == AQ_END_NONE)
+      lo = mid;
+    else {
+      hi = mid;
+      why = e;
+    }
+  }
+  w->path.s_c_rad = lo;
+  w->end = why;
+}
+
+void aq_workpath_free(aq_workpath *w)
+{
+  if (!w)
+    return;
+  free(w->coef);
+  free(w);
+}
+
+static const char *face_name(char f) { return f == 'e' ? "extrados" : "intrados"; }
+
+aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
+                            double g_mps2, const char *name, aq_workpath **out,
+                            aq_error *err)
+{
+  *out = NULL;
+  aq_workpath *w = calloc(1, sizeof *w);
+  if (!w)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  aq_status st = aq_mech_init(&w->mech, g, hs, err);
+  if (st != AQ_OK) {
+    free(w);
+    return st;
+  }
+  w->g = g;
+  w->g_mps2 = g_mps2;
+  snprintf(w->name, sizeof w->name, "%s", name ? name : "");
+  aq_path *p = &w->path;
+  p->name = w->name;
+  p->eval = eval_table;
+  p->eval_exact = eval_exact;
+  p->ctx = w;
+  p->mass_kg = g->mass_kg;
+  p->g_mps2 = g_mps2;
+  p->q_sign = w->mech.open[0];
+  p->act_sign = 1;
+  p->admissible = 0;
+  aq_mech_state s0;
+  if (aq_mech_eval(&w->mech, 0.0, &s0) != 0) {
+    snprintf(w->reason, sizeof w->reason, "the linkage does not close at s = 0");
+    *out = w;
+    return AQ_OK;
+  }
+  for (int b = 0; b < 3; b++)
+    w->c0[b] = s0.c[b][0];
+  double f[NF][3];
+  exact_f(w, 0.0, f, NULL);
+  p->act_sign = f[F_X][1] > 0 ? -1 : 1;
+  p->lambda0 = f[F_X][1] != 0 ? -(double)p->act_sign * f[F_Y][1] / f[F_X][1] : 0;
+  /* first-order opening of every hinge: rates of the relative rotations */
+  double rate[4] = {1.0, s0.phi[1][1] - 1.0, s0.phi[2][1] - s0.phi[1][1], -s0.phi[2][1]};
+  for (int k = 0; k < 4; k++)
+    if (!(w->mech.open[k] * p->q_sign * rate[k] > 0)) {
+      snprintf(w->reason, sizeof w->reason,
+               "hinge %d (joint %zu, %s) does not open when H1 opens", k + 1,
+               hs->joint[k], face_name(hs->face[k]));
+      *out = w;
+      return AQ_OK;
+    }
+  if (!(p->lambda0 > 0) || !isfinite(p->lambda0)) {
+    snprintf(w->reason, sizeof w->reason,
+             "lambda0 = %.6g: the mechanism does not lift the arch's centroid",
+             p->lambda0);
+    *out = w;
+    return AQ_OK;
+  }
+  aq_equil eq;
+  aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, g_mps2};
+  aq_error e2;
+  aq_error_clear(&e2);
+  if (aq_mech_equilibrium(&w->mech, &s0, &live, &eq, &e2) != AQ_OK) {
+    snprintf(w->reason, sizeof w->reason, "singular equilibrium at s = 0");
+    *out = w;
+    return AQ_OK;
+  }
+  for (int k = 0; k < 4; k++)
+    if (!(eq.normal[k] > 0)) {
+      snprintf(w->reason, sizeof w->reason,
+               "hinge %d (joint %zu, %s) in tension at s = 0 (normal force %.6g N)",
+               k + 1, hs->joint[k], face_name(hs->face[k]), eq.normal[k]);
+      *out = w;
+      return AQ_OK;
+    }
+  find_end(w);
+  if (!(p->s_c_rad > 0) || w->end == AQ_END_NONE) {
+    snprintf(w->reason, sizeof w->reason, "no end of the path found in (0, %g] rad",
+             SCAN_MAX_RAD);
+    *out = w;
+    return AQ_OK;
+  }
+  p->admissible = 1;
+  /* double n until the error is below TABLE_REL_TOL or stops falling
+   * (round-off), then keep the best */
+  double prev = HUGE_VAL;
+  for (size_t n = TABLE_N0;; n *= 2) {
+    if (build_tables(w, n) != 0) {
+      aq_workpath_free(w);
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL,
+                          "out of memory (or the linkage failed) building tables");
+    }
+    if (w->tab_err > TABLE_STALL * prev && build_tables(w, n / 2) != 0) {
+      aq_workpath_free(w);
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    }
+    if (w->tab_err <= TABLE_REL_TOL || w->n < n || n >= TABLE_N_MAX)
+      break;
+    prev = w->tab_err;
+  }
+  *out = w;
+  return AQ_OK;
+}
+
+const aq_path *aq_workpath_path(const aq_workpath *w) { return &w->path; }
+const aq_mech *aq_workpath_mech(const aq_workpath *w) { return &w->mech; }
+const char *aq_workpath_reason(const aq_workpath *w) { return w->reason; }
+aq_end aq_workpath_end(const aq_workpath *w) { return w->end; }
+size_t aq_workpath_table_size(const aq_workpath *w) { return w->n; }
+double aq_workpath_table_error(const aq_workpath *w) { return w->tab_err; }
+
+aq_status aq_workpath_equilibrium(const aq_workpath *w, double s, aq_equil *out,
+                                  aq_error *err)
+{
+  aq_mech_state st;
+  if (w->path.admissible && clamp_s(w, &s) != 0)
+    s = -1;
+  if (!(s >= 0) || aq_mech_eval(&w->mech, (double)w->path.q_sign * s, &st) != 0)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "s",
+                        "expected a position in [0, %g] rad, got %g",
+                        w->path.s_c_rad, s);
+  aq_live live = {AQ_LIVE_HORIZONTAL, w->path.act_sign, {0, 0}, 0, w->g_mps2};
+  return aq_mech_equilibrium(&w->mech, &st, &live, out, err);
+}
+
+void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a)
+{
+  b->path.impact_vel_ratio = 0;
+  size_t n = b->g->p.voussoirs;
+  aq_vec2 *ua = malloc(2 * n * sizeof *ua);
+  double *wa = malloc(2 * n * sizeof *wa);
+  double f[NF][3];
+  if (ua && wa && exact_f(b, 0.0, f, NULL) == 0 && f[F_M][0] > 0) {
+    aq_mech_field0(&a->mech, a->path.q_sign, ua, wa);
+    aq_mech_field0(&b->mech, b->path.q_sign, ua + n, wa + n);
+    double d = aq_field_dot(b->g->vous, n, ua, wa, ua + n, wa + n);
+    b->path.impact_vel_ratio = -d / f[F_M][0];
+  }
+  free(ua);
+  free(wa);
+}
