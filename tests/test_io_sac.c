@@ -189,3 +189,148 @@ AQ_TEST(io_sac_big_endian_swapped_copy)
   aq_record_free(&a);
   aq_record_free(&b);
 }
+
+/* ---- mseed2sac: SAC files written by another program at test time ---- */
+
+/* The samples of a SAC alpha file written by mseed2sac -f 1: 14 lines of 5
+ * floats, 8 lines of 5 integers and 8 lines of strings form the header; the
+ * data follow, 5 per line.  Returns a malloc'd array (count in *n). */
+static double *read_alpha(const char *path, size_t *n)
+{
+  FILE *f = fopen(path, "r");
+  if (!f)
+    return NULL;
+  char line[512];
+  for (int i = 0; i < 30 && fgets(line, sizeof line, f); i++)
+    ;
+  size_t cap = 1024, k = 0;
+  double *v = malloc(cap * sizeof *v);
+  while (v && fgets(line, sizeof line, f)) {
+    char *p = line, *end;
+    for (;;) {
+      double x = strtod(p, &end);
+      if (end == p)
+        break;
+      if (k == cap) {
+        double *w = realloc(v, 2 * cap * sizeof *v);
+        if (!w) {
+          free(v);
+          v = NULL;
+          break;
+        }
+        v = w, cap *= 2;
+      }
+      v[k++] = x;
+      p = end;
+    }
+  }
+  fclose(f);
+  *n = k;
+  return v;
+}
+
+/* Run mseed2sac in dir on tests/data/records/<mseed> with args; the output
+ * file path goes to out. */
+static int run_mseed2sac(const char *dir, const char *args, const char *mseed,
+                         const char *outname, char *out, size_t cap)
+{
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "cd '%s' && mseed2sac %s '../../../" REC_DIR "%s' >/dev/null 2>&1",
+           dir, args, mseed);
+  int rc = system(cmd);
+  snprintf(out, cap, "%s/%s", dir, outname);
+  FILE *f = fopen(out, "rb");
+  if (f)
+    fclose(f);
+  return rc == 0 && f != NULL;
+}
+
+#define CLC_META "'CI,CLC,--,HNE,35.81574,-117.59751,775,0,90,90,,213945,0.03,M/S**2,100'"
+#define CLC_OUT "CI.CLC..HNE.D.2019.187.031923"
+#define CLC_SCALE 213945.0 /* counts per m/s2, CI.CLC.xml InstrumentSensitivity */
+
+AQ_TEST(io_sac_mseed2sac_both_byte_orders)
+{
+  char d1[512], d3[512], d4[512], alpha[700], le[700], be[700], msg[1400];
+  aq_test_tmpdir(d1, sizeof d1);
+  aq_test_tmpdir(d3, sizeof d3);
+  aq_test_tmpdir(d4, sizeof d4);
+  int ok = aq_check(run_mseed2sac(d1, "-f 1 -M " CLC_META, "CI.CLC..HNE.mseed",
+                                  CLC_OUT ".SACA", alpha, sizeof alpha),
+                    "mseed2sac -f 1 (alpha) ran");
+  ok &= aq_check(run_mseed2sac(d3, "-f 3 -M " CLC_META, "CI.CLC..HNE.mseed",
+                               CLC_OUT ".SAC", le, sizeof le),
+                 "mseed2sac -f 3 (little-endian) ran");
+  ok &= aq_check(run_mseed2sac(d4, "-f 4 -M " CLC_META, "CI.CLC..HNE.mseed",
+                               CLC_OUT ".SAC", be, sizeof be),
+                 "mseed2sac -f 4 (big-endian) ran");
+  if (!ok)
+    return;
+  size_t na = 0;
+  double *counts = read_alpha(alpha, &na);
+  aq_check(counts && na == 39001, "39001 samples in the alpha file, got %zu", na);
+  if (!counts)
+    return;
+  const char *files[2] = {le, be}, *fmts[2] = {"sac-le", "sac-be"};
+  for (int i = 0; i < 2; i++) {
+    aq_record raw, cnt;
+    aq_read_opts ro = {0};
+    /* m/s2 = the raw values as stored: the miniSEED counts themselves */
+    ro.units = AQ_UNITS_MPS2;
+    if (!aq_check(read_rec(files[i], &ro, &raw, msg, sizeof msg), "%s", msg))
+      continue;
+    ro.units = AQ_UNITS_COUNTS;
+    if (!aq_check(read_rec(files[i], &ro, &cnt, msg, sizeof msg), "%s", msg)) {
+      aq_record_free(&raw);
+      continue;
+    }
+    aq_check(strcmp(raw.format, fmts[i]) == 0, "format %s, want %s", raw.format, fmts[i]);
+    aq_check(raw.npts == na && cnt.npts == na, "npts %zu", raw.npts);
+    size_t bad_raw = 0, bad_cnt = 0;
+    for (size_t k = 0; k < na && k < raw.npts; k++) {
+      bad_raw += raw.acc_mps2[k] != counts[k];
+      bad_cnt += fabs(cnt.acc_mps2[k] - counts[k] / CLC_SCALE) >
+                 1e-15 * fabs(counts[k] / CLC_SCALE);
+    }
+    aq_check(bad_raw == 0, "%s: %zu samples differ from the miniSEED counts", fmts[i],
+             bad_raw);
+    aq_check(bad_cnt == 0, "%s: %zu samples differ from counts / SCALE", fmts[i], bad_cnt);
+    aq_check(cnt.dt_s == 0.01, "dt %.17g", cnt.dt_s);
+    aq_check_abs(cnt.begin_s, 0.0003, 1e-9, "B (mseed2sac: 0.0003 s)");
+    /* miniSEED start 2019-187 03:19:23.038 */
+    aq_check(strcmp(cnt.reference, "2019-07-06T03:19:23.038Z") == 0, "reference %s",
+             cnt.reference);
+    aq_check(strcmp(cnt.network, "CI") == 0 && strcmp(cnt.station, "CLC") == 0 &&
+                 strcmp(cnt.channel, "HNE") == 0 && cnt.location[0] == '\0',
+             "codes '%s' '%s' '%s' '%s'", cnt.network, cnt.station, cnt.location,
+             cnt.channel);
+    aq_check(strcmp(cnt.units_orig, "counts") == 0, "units %s", cnt.units_orig);
+    aq_record_free(&raw);
+    aq_record_free(&cnt);
+  }
+  free(counts);
+}
+
+AQ_TEST(io_sac_mseed2sac_counts_need_scale)
+{
+  /* without -M mseed2sac leaves SCALE undefined: --units counts is refused */
+  char d[512], out[700], msg[1400];
+  aq_test_tmpdir(d, sizeof d);
+  if (!aq_check(run_mseed2sac(d, "-f 4", "BK.CMB.00.HNE__20140824T102014Z__20140824T102244Z.mseed",
+                              "BK.CMB.00.HNE.M.2014.236.102014.SAC", out, sizeof out),
+                "mseed2sac ran"))
+    return;
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_COUNTS;
+  aq_record r;
+  aq_check(!read_rec(out, &ro, &r, msg, sizeof msg) && strstr(msg, "SCALE") &&
+               strstr(msg, "undefined"),
+           "counts without SCALE refused: %s", msg);
+  ro.units = AQ_UNITS_MPS2;
+  if (aq_check(read_rec(out, &ro, &r, msg, sizeof msg), "%s", msg)) {
+    aq_check(r.npts == 15000 && strcmp(r.format, "sac-be") == 0 &&
+                 strcmp(r.location, "00") == 0,
+             "npts %zu format %s location '%s'", r.npts, r.format, r.location);
+    aq_record_free(&r);
+  }
+}

@@ -279,6 +279,11 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       int glued_end = tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0;
       if (!glued_value && !glued_end) {
         free(acc);
+        if (c.pos + tl == c.n) /* cut off in the middle of a value */
+          return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "NPTS",
+                              "expected %zu values (NPTS, line %ld), got %zu and "
+                              "a cut-off \"%s\" at the end: file truncated",
+                              npts, npts_line, k, tokq);
         return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, field,
                             "expected a number, got \"%s\"", tokq);
       }

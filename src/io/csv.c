@@ -9,11 +9,13 @@
  * data, if it has as many fields as the data, names the columns ("time,acc
  * (g)", "t,acc_g", "NS,EW,UD").
  *
- * Columns: a column named t/time/sec/seconds is the time; without a header,
+ * Columns: a column named t/time/sec/seconds (zeit, tiempo, temps) is the time; without a header,
  * two or more columns and no dt known mean (time, acceleration...).  The
  * acceleration is column opts->column (1-based) or the first column that is
- * not time.  Times must be evenly spaced within CSV_TIME_TOL_REL of the step;
- * they need not start at 0 (begin_s = first time).
+ * not time.  Times must be evenly spaced: each step within CSV_TIME_TOL_REL
+ * of the median step, and each time within CSV_TIME_TOL_REL of a step of
+ * t_0 + k dt, dt = (t_last - t_0) / (n - 1); they need not start at 0
+ * (begin_s = t_0).
  *
  * Units: --units, else those of the column name ("acc (g)", "acc_g",
  * "a [cm/s2]"), else the preamble's UNIT line, else the record is refused.
@@ -222,7 +224,9 @@ static int is_time_name(const char *name)
   }
   base[k] = '\0';
   return strcmp(base, "t") == 0 || strcmp(base, "time") == 0 ||
-         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0;
+         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0 ||
+         strcmp(base, "zeit") == 0 || strcmp(base, "tiempo") == 0 ||
+         strcmp(base, "temps") == 0;
 }
 
 /* "KEY = value" or "KEY: value" in a preamble line: returns the value's
@@ -244,6 +248,26 @@ static const char *kv(const char *s, size_t b, size_t e, const char *key)
   while (i < e && s[i] == ' ')
     i++;
   return s + i;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Median of the n - 1 steps of t (NaN if out of memory). */
+static double median_step(const double *t, size_t n)
+{
+  double *d = malloc((n - 1) * sizeof *d);
+  if (!d)
+    return NAN;
+  for (size_t i = 1; i < n; i++)
+    d[i - 1] = t[i] - t[i - 1];
+  qsort(d, n - 1, sizeof *d, cmp_double);
+  double m = d[(n - 1) / 2];
+  free(d);
+  return m;
 }
 
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
@@ -268,9 +292,10 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   size_t ncols = 0;
   for (;;) {
     if (!next_line(&c, &b, &e))
-      return aq_error_set(err, AQ_EFORMAT, name, c.line > 0 ? c.line : -1, -1, NULL,
+      return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                           "expected rows of numbers (time, acceleration or "
-                          "acceleration only), found none");
+                          "acceleration only), found none in %ld lines",
+                          c.line);
     trim_line(s, &b, &e);
     if (b == e)
       continue;
@@ -485,7 +510,19 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                           "line %ld",
                           tt[k - 1], tt[0], first_line);
       } else {
-        for (size_t i = 1; i < k; i++)
+        /* a step that is off (a missing or repeated row) is named at its
+         * line; then a slow drift of the times is caught cumulatively */
+        double med = median_step(tt, k);
+        if (isnan(med))
+          st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+        for (size_t i = 1; i < k && st == AQ_OK; i++)
+          if (fabs(tt[i] - tt[i - 1] - med) > CSV_TIME_TOL_REL * med)
+            st = aq_error_set(
+                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                "expected evenly spaced times (step %.9g s within %g %%), got a "
+                "step of %.9g s from %.9g to %.9g",
+                med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
+        for (size_t i = 1; i < k && st == AQ_OK; i++)
           if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
             st = aq_error_set(
                 err, AQ_EFORMAT, name, lines[i], -1, "time",

@@ -225,7 +225,7 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
   for (size_t k = 0; k < nl && k < 6; k++)
-    if (has_ci(line[k], len[k], "NPTS") && has_ci(line[k], len[k], "DT")) {
+    if (has_ci(line[k], len[k], "NPTS")) {
       for (size_t j = 0; j < k; j++) {
         if (has_ci(line[j], len[j], "VELOCITY"))
           return AQ_FMT_PEER_VT2;

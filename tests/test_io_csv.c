@@ -1,0 +1,144 @@
+/* test_io_csv.c: the CSV/text reader: the JMA strong-motion CSV against the
+ * per-component PGA in tests/data/records/PROVENANCE.md, and layouts written
+ * here as text whose expected samples are the same text through strtod. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "io/readers.h"
+#include "io/record.h"
+#include "units.h"
+
+#define REC_DIR "tests/data/records/"
+#define PROV_PGA_ABS_G 0.5e-4 /* PROVENANCE.md prints 4 decimals of g */
+
+static double max_abs_g(const aq_record *r)
+{
+  double m = 0;
+  for (size_t k = 0; k < r->npts; k++)
+    m = fmax(m, fabs(r->acc_mps2[k]));
+  return m / AQ_G0_MPS2;
+}
+
+AQ_TEST(io_csv_jma_three_components)
+{
+  /* PROVENANCE: NS 0.3334 g, EW 0.2864 g, UD 0.2252 g; 30000 at 0.01 s, gal */
+  static const double pga[3] = {0.3334, 0.2864, 0.2252};
+  static const char *const comp[3] = {"NS", "EW", "UD"};
+  for (size_t col = 0; col <= 3; col++) {
+    aq_read_opts ro = {0};
+    ro.column = col; /* 0: default, the first column */
+    aq_record r;
+    aq_error e;
+    if (!aq_check(aq_record_read(REC_DIR "Q4149CF2.csv", &ro, &r, &e) == AQ_OK,
+                  "column %zu: %s", col, e.message))
+      continue;
+    size_t i = col ? col - 1 : 0;
+    aq_check(r.npts == 30000, "npts %zu", r.npts);
+    aq_check(r.dt_s == 0.01, "dt from SAMPLING RATE= 100Hz: %.17g", r.dt_s);
+    aq_check(strcmp(r.units_orig, "gal") == 0, "units %s", r.units_orig);
+    aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
+    aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
+    aq_record_free(&r);
+  }
+}
+
+/* Parse text; check npts, dt, begin, units and that sample k equals
+ * strtod(vals[k]) * factor. */
+static void check_text(const char *what, const char *text, const aq_read_opts *ro,
+                       const char *const *vals, size_t nv, double dt, double begin,
+                       double factor, const char *units)
+{
+  aq_record r;
+  aq_error e;
+  aq_error_clear(&e);
+  char msg[1400];
+  aq_status s = aq_csv_parse((const unsigned char *)text, strlen(text), what, ro, &r, &e);
+  aq_error_format(&e, msg, sizeof msg);
+  if (!aq_check(s == AQ_OK, "%s: %s", what, msg))
+    return;
+  aq_check(r.npts == nv, "%s: npts %zu, want %zu", what, r.npts, nv);
+  aq_check_rel(r.dt_s, dt, 1e-12, "%s: dt", what);
+  aq_check_abs(r.begin_s, begin, 1e-12, "%s: begin", what);
+  aq_check(strcmp(r.units_orig, units) == 0, "%s: units %s, want %s", what, r.units_orig,
+           units);
+  for (size_t k = 0; k < nv && k < r.npts; k++)
+    aq_check_rel(r.acc_mps2[k], strtod(vals[k], NULL) * factor, 1e-15, "%s: sample %zu",
+                 what, k);
+  aq_record_free(&r);
+}
+
+AQ_TEST(io_csv_layouts)
+{
+  static const char *const v[5] = {"0.02385", "-0.0771905", "1.0937E-01", "-3.14159e-4",
+                                   "0.2718281"};
+  static const char *const vc[5] = {"0.02385", "-0.0771905", "1.0937E-01", "-3.14159e-4",
+                                    "0.2718281"};
+  aq_read_opts none = {0}, dt = {0}, gal = {0};
+  dt.dt_s = 0.004;
+  dt.units = AQ_UNITS_GAL;
+  gal.units = AQ_UNITS_GAL;
+  check_text("comma-g", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
+                        "0.06,-3.14159e-4\n0.08,0.2718281\n",
+             &none, v, 5, 0.02, 0, AQ_G0_MPS2, "g");
+  check_text("t-acc_g-crlf-comments",
+             "# exported\r\nt,acc_g\r\n# start\r\n12.5,0.02385\r\n12.505,-0.0771905\r\n\r\n"
+             "12.51,1.0937E-01 # peak\r\n12.515,-3.14159e-4\r\n12.52,0.2718281\r\n",
+             &none, v, 5, 0.005, 12.5, AQ_G0_MPS2, "g");
+  check_text("tab-mps2", "time\ta [m/s2]\n0.0\t0.02385\n0.01\t-0.0771905\n0.02\t1.0937E-01\n"
+                         "0.03\t-3.14159e-4\n0.04\t0.2718281\n",
+             &none, v, 5, 0.01, 0, 1.0, "m/s2");
+  check_text("blanks-cms2", "  t    acc(cm/s^2)\n  0.0   0.02385\n  0.01  -0.0771905\n"
+                            "  0.02  1.0937E-01\n  0.03  -3.14159e-4\n  0.04  0.2718281\n",
+             &none, v, 5, 0.01, 0, 0.01, "gal");
+  check_text("semicolon-decimal-comma",
+             "zeit;acc (g)\n0,00;0,02385\n0,01;-0,0771905\n0,02;1,0937E-01\n"
+             "0,03;-3,14159e-4\n0,04;0,2718281\n",
+             &none, vc, 5, 0.01, 0, AQ_G0_MPS2, "g");
+  check_text("single-column-dt-override",
+             "0.02385\n-0.0771905\n1.0937E-01\n-3.14159e-4\n0.2718281", &dt, v, 5, 0.004, 0,
+             0.01, "gal");
+  check_text("preamble-rate-unit",
+             "STATION X\n SAMPLING RATE= 200Hz\n UNIT = gal(cm/s/s)\n NS\n0.02385\n"
+             "-0.0771905\n1.0937E-01\n-3.14159e-4\n0.2718281\n",
+             &none, v, 5, 0.005, 0, 0.01, "gal");
+  /* --units wins over the header */
+  check_text("units-override", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
+                               "0.06,-3.14159e-4\n0.08,0.2718281\n",
+             &gal, v, 5, 0.02, 0, 0.01, "gal");
+  /* a GLOB rule for this name */
+  aq_read_opts rule = {0};
+  snprintf(rule.rules[0].glob, sizeof rule.rules[0].glob, "*layout*");
+  rule.rules[0].units = AQ_UNITS_MPS2;
+  rule.nrules = 1;
+  rule.units = AQ_UNITS_GAL;
+  check_text("glob-layout", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
+                            "0.06,-3.14159e-4\n0.08,0.2718281\n",
+             &rule, v, 5, 0.02, 0, 1.0, "m/s2");
+}
+
+AQ_TEST(io_units_rules_last_match_wins)
+{
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_G;
+  const char *globs[3] = {"*.SAC", "records/*", "*/CI.*"};
+  aq_units us[3] = {AQ_UNITS_COUNTS, AQ_UNITS_GAL, AQ_UNITS_NMPS2};
+  for (int i = 0; i < 3; i++) {
+    snprintf(ro.rules[i].glob, sizeof ro.rules[i].glob, "%s", globs[i]);
+    ro.rules[i].units = us[i];
+  }
+  ro.nrules = 3;
+  aq_check(aq_read_opts_units_for(&ro, "records/CI.CLC.SAC") == AQ_UNITS_NMPS2, "3 match");
+  aq_check(aq_read_opts_units_for(&ro, "records/x.SAC") == AQ_UNITS_GAL, "2 match");
+  aq_check(aq_read_opts_units_for(&ro, "other/x.SAC") == AQ_UNITS_COUNTS, "* spans /");
+  aq_check(aq_read_opts_units_for(&ro, "x.AT2") == AQ_UNITS_G, "plain --units");
+  aq_check(aq_read_opts_units_for(NULL, "x.AT2") == AQ_UNITS_FILE, "no options");
+  aq_units u;
+  aq_check(aq_units_parse("cm/s2", &u) && u == AQ_UNITS_GAL, "cm/s2 is gal");
+  aq_check(aq_units_parse("M/S**2", &u) && u == AQ_UNITS_MPS2, "M/S**2");
+  aq_check(!aq_units_parse("cm/s", &u), "cm/s is not acceleration");
+  aq_check(aq_units_to_mps2(AQ_UNITS_G) == AQ_G0_MPS2 && aq_units_to_mps2(AQ_UNITS_GAL) == 0.01,
+           "factors");
+}
