@@ -17,6 +17,47 @@
 
 enum { REPS = 41 };
 
+/* The quiet index: find the one loud step at the end of a quiet stretch of
+ * n steps (|a| < 0.01 g) with aq_steps_next_outside, against a plain scan. */
+static int bench_quiet(void)
+{
+  static const size_t sizes[] = {20000, 80000, 320000};
+  printf("\nquiet_steps\tindex_us\tscan_us\tscan/index\n");
+  for (size_t s = 0; s < sizeof sizes / sizeof *sizes; s++) {
+    size_t n = sizes[s];
+    double *a = malloc(n * sizeof *a);
+    if (!a)
+      return 1;
+    for (size_t i = 0; i < n; i++)
+      a[i] = 0.05 * sin(0.37 * (double)i);
+    a[n - 1] = 3.0;
+    aq_steps st;
+    aq_error e;
+    if (aq_steps_from_samples(a, n, 0.005, 0, 0, &st, &e) != AQ_OK)
+      return 1;
+    double ti[REPS], ts[REPS];
+    size_t sink = 0;
+    for (int k = 0; k < REPS; k++) {
+      double t0 = aq_bench_now_s();
+      sink += aq_steps_next_outside(&st, (size_t)k, -0.098, 0.098);
+      double t1 = aq_bench_now_s();
+      size_t i = (size_t)k;
+      while (i < st.n && fabs(st.a_mps2[i]) <= 0.098)
+        i++;
+      sink += i;
+      double t2 = aq_bench_now_s();
+      ti[k] = t1 - t0;
+      ts[k] = t2 - t1;
+    }
+    double mi = aq_bench_median(ti, REPS), ms = aq_bench_median(ts, REPS);
+    printf("%zu\t%.2f\t%.2f\t%.1f%s\n", n, 1e6 * mi, 1e6 * ms, ms / mi,
+           sink == 1 ? " " : "");
+    aq_steps_free(&st);
+    free(a);
+  }
+  return 0;
+}
+
 int main(void)
 {
   static const size_t sizes[] = {5000, 20000, 80000};
@@ -95,5 +136,5 @@ int main(void)
     }
   }
   aq_signal_ws_free(ws);
-  return 0;
+  return bench_quiet();
 }

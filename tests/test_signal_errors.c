@@ -107,3 +107,33 @@ AQ_TEST(signal_errors_cli_options)
   aq_check(st == 0 && strstr(out, "--no-filter") && strstr(out, "cav_m_s"),
            "help lists the processing options and columns");
 }
+
+AQ_TEST(signal_errors_cli_per_record)
+{
+  char out[4096], err[4096];
+  /* 0.01 s sampling: Nyquist 50 Hz; the other record still gets its row */
+  int st = aq_test_run("info --highpass 60 tests/data/records/IELC180.AT2",
+                       out, sizeof out, err, sizeof err);
+  aq_check(st == 1 && strstr(err, "archquake: tests/data/records/IELC180.AT2: "
+                                  "--highpass: expected") &&
+               strstr(err, "Nyquist"),
+           "corner above Nyquist: exit %d, %s", st, err);
+  st = aq_test_run("info --highpass 0.02 tests/data/records/IELC180.AT2 "
+                   "tests/data/records/TCU052-N.AT2",
+                   out, sizeof out, err, sizeof err);
+  aq_check(st == 1 && strstr(err, "IELC180.AT2: --highpass") &&
+               strstr(err, "at least 50 s") && strstr(out, "TCU052-N.AT2") &&
+               !strstr(out, "IELC180"),
+           "short record refused, the other processed: exit %d, %s", st, err);
+  /* the raw Ridgecrest vertical carries +1 g: as read it drifts away */
+  st = aq_test_run("info --units g --no-filter --detrend none "
+                   "tests/data/records/20190706031952.CJ.T001230.HNZ.sac",
+                   out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(err, "HNZ.sac: warning: residual velocity") &&
+               strchr(out, '\n') != strrchr(out, '\n'),
+           "residuals warned, not failed: exit %d, %s", st, err);
+  st = aq_test_run("info --units g "
+                   "tests/data/records/20190706031952.CJ.T001230.HNZ.sac",
+                   out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && err[0] == '\0', "processed: no warning: %s", err);
+}

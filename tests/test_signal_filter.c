@@ -83,7 +83,7 @@ AQ_TEST(signal_filter_gain_matches_butterworth)
     /* the response is zero-phase: the output is symmetric about the impulse */
     size_t c = p.pad_front + 1733;
     double asym = 0;
-    for (size_t j = 1; j < 2000; j++)
+    for (size_t j = 1; j < 2000 && j <= c && c + j < p.n; j++)
       asym = fmax(asym, fabs(p.acc_mps2[c + j] - p.acc_mps2[c - j]));
     aq_check(asym < 1e-12 * amp, "zero phase: max asymmetry %g", asym);
     aq_processed_free(&p);

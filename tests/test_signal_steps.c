@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "signal/signal.h"
 #include "signal/steps.h"
 
 /* xorshift64*: reproducible irregular numbers in [0, 1) */
@@ -84,4 +85,31 @@ AQ_TEST(signal_steps_merge_matches_brute_force)
   aq_check(s.n > 10 && s.n < N / 5, "merging shortens the list: %zu", s.n);
   aq_steps_free(&s);
   free(a);
+}
+
+AQ_TEST(signal_steps_from_processed_record)
+{
+  /* a processed record by hand: 3 pad samples, 4 record samples, 2 pad */
+  double a[9] = {0, 0, 0, 1.25, -0.5, 0.75, 2.0, 0, 0};
+  aq_processed p = {0};
+  p.n = 9;
+  p.dt_s = 0.02;
+  p.pad_front = 3;
+  p.pad_back = 2;
+  p.n_orig = 4;
+  p.acc_mps2 = a;
+  aq_steps s;
+  aq_error e;
+  aq_status st0 = aq_steps_from_processed(&p, 0, &s, &e);
+  aq_check(st0 == AQ_OK && s.n == 9, "one step per sample: %zu", s.n);
+  aq_check_abs(s.t_s[0], -0.06, 1e-15, "front pad at negative time");
+  aq_check_abs(s.t_s[3], 0.0, 1e-15, "record starts at t = 0");
+  aq_check(s.a_mps2[3] == 1.25 && s.dt_s[3] == 0.02, "zero-order hold");
+  aq_steps_free(&s);
+  aq_status st = aq_steps_from_processed(&p, 0.1, &s, &e);
+  /* zeros | 1.25 | -0.5 | 0.75 | 2.0 | zeros: each pair differs by > 0.1 */
+  aq_check(st == AQ_OK && s.n == 6, "merge-tol joins the pad zeros: %zu steps",
+           s.n);
+  aq_check_abs(s.t_s[1], 0.0, 1e-15, "second step starts the record");
+  aq_steps_free(&s);
 }

@@ -8,8 +8,8 @@
  * positive are ranked by lambda0; the lowest SEARCH_KEEP are kept and checked
  * in order with the full equilibrium (eq. (3): every hinge reaction
  * compressive); the first that passes is the upper-bound mechanism.  Ties
- * (mirror-image mechanisms of a symmetric arch) go to the set enumerated
- * first (lowest joints, e i e i before i e i e).
+ * (lambda0 equal to TIE_REL, e.g. the mirror images of a symmetric arch) go
+ * to the set enumerated first (e i e i before i e i e, then lowest joints).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +18,10 @@
 #include "model.h"
 
 #define SEARCH_KEEP 256 /* candidates kept for the full admissibility check */
+#define TIE_REL 1e-12   /* lambda0 within this (relative) of another is a tie */
+
+/* a lower than b by more than a tie */
+static int lower(double a, double b) { return a < b - TIE_REL * fabs(b); }
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -103,10 +107,10 @@ aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
             double l0;
             if (!lambda0_fast(g, j, P, open[0], open, &l0) || !(l0 > 0))
               continue;
-            if (nk == SEARCH_KEEP && !(l0 < keep[nk - 1].lambda0))
+            if (nk == SEARCH_KEEP && !lower(l0, keep[nk - 1].lambda0))
               continue;
             size_t pos = nk < SEARCH_KEEP ? nk++ : nk - 1;
-            while (pos > 0 && l0 < keep[pos - 1].lambda0) {
+            while (pos > 0 && lower(l0, keep[pos - 1].lambda0)) {
               keep[pos] = keep[pos - 1];
               pos--;
             }

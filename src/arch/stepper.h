@@ -27,6 +27,11 @@ void aq_stepper_set_cor(aq_stepper *st, double cor);           /* 0..1, KE ratio
 void aq_stepper_set_impact(aq_stepper *st, int momentum);      /* 1: impulse-momentum rule */
 void aq_stepper_set_ode_rtol(aq_stepper *st, double rtol);     /* ode model tolerance */
 void aq_stepper_set_history(aq_stepper *st, int on);           /* keep step-end history */
+/* Added for the dynamics validations and the bench (all optional): */
+void aq_stepper_set_exact_path(aq_stepper *st, int on); /* use eval_exact, not tables */
+void aq_stepper_set_wp_tol(aq_stepper *st, double tol);  /* workpath panel tolerance (relative, time) */
+void aq_stepper_set_wp_nodes(aq_stepper *st, int n);     /* workpath Chebyshev nodes per panel, 4..32 */
+void aq_stepper_set_rest_tol(aq_stepper *st, double tol);/* rest: KE <= tol * m_T g y(s_c) after an impact */
 
 /* Run from rest at q = 0.  res is overwritten (free with aq_result_free).
  * Errors name the time in the record ("at t = 12.340 s"). */

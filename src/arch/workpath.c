@@ -434,6 +434,8 @@ aq_status aq_workpath_equilibrium(const aq_workpath *w, double s, aq_equil *out,
 void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a)
 {
   b->path.impact_vel_ratio = 0;
+  if (!b->path.admissible)
+    return; /* never entered */
   size_t n = b->g->p.voussoirs;
   aq_vec2 *ua = malloc(2 * n * sizeof *ua);
   double *wa = malloc(2 * n * sizeof *wa);

@@ -248,3 +248,15 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
   out->used = *o;
   return AQ_OK;
 }
+
+aq_status aq_steps_from_processed(const aq_processed *p, double merge_tol_mps2,
+                                  aq_steps *out, aq_error *err)
+{
+  memset(out, 0, sizeof *out);
+  if (!p || !p->acc_mps2 || p->n == 0)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "npts",
+                        "expected a processed record with samples, got none");
+  return aq_steps_from_samples(p->acc_mps2, p->n, p->dt_s,
+                               -(double)p->pad_front * p->dt_s, merge_tol_mps2,
+                               out, err);
+}

@@ -14,6 +14,7 @@
 
 #include "../error.h"
 #include "../io/record.h"
+#include "steps.h"
 
 typedef enum { AQ_DETREND_MEAN = 0, AQ_DETREND_LINEAR, AQ_DETREND_NONE } aq_detrend;
 
@@ -93,6 +94,14 @@ void aq_signal_integrate(const double *a_mps2, size_t n, double dt_s,
  * "residual velocity 0.0231 m/s exceeds 0.01 m/s") and return 1; else
  * return 0 and leave buf empty.  The caller prints it as a warning. */
 int aq_im_residual_warning(const aq_im *im, char *buf, size_t n);
+
+/* Constant-acceleration steps of a processed record, pads included: sample i
+ * holds over [(i - pad_front) dt, (i - pad_front + 1) dt) s, so the original
+ * record starts at t = 0 and the front pad has negative times (zero-order
+ * hold).  merge_tol_mps2 as in aq_steps_from_samples (--merge-tol G is
+ * G * AQ_G0_MPS2).  Fills *out (caller frees with aq_steps_free). */
+aq_status aq_steps_from_processed(const aq_processed *p, double merge_tol_mps2,
+                                  aq_steps *out, aq_error *err);
 
 /* The smallest 2^a 3^b 5^c >= n (a fast FFTW size); 0 if none fits size_t. */
 size_t aq_signal_fft_size(size_t n);

@@ -1,0 +1,980 @@
+/* stepper.c: dynamic response of a two-set hinge mechanism to constant-
+ * acceleration steps (see stepper.h), and the work-path model.
+ *
+ * The method is that of
+ *   G. L. Stockdale, V. Sarhosis, G. Milani, "Work-path approach seismic
+ *   modelling of hinge-controlled masonry arches" (sections 2.6-3, Fig. 9),
+ * with the corrections of ERRATA.md items 4-9: the exact energy balance
+ *     KE(s) = KE1 - a_g m_T (x(s) - x(s1)) - g m_T (y(s) - y(s1))  (eq. 19,
+ *                                                    per ERRATA item 5)
+ * and the exact time integral
+ *     t - t0 = int sqrt(M(s) / (2 KE(s))) ds       (eqs. 24-25, per ERRATA
+ *                                                    items 4 and 6).
+ *
+ * Work-path leg (wp_leg).  Along the direction of motion, sigma >= 0 is the
+ * distance travelled from the leg's start.  The leg is cut into panels
+ * [0, L]; on each the 1/sqrt singularities of the integrand at zeros of KE
+ * are removed analytically by a change of variable:
+ *   - za: distance behind the panel start to a zero of KE (0 when the panel
+ *     starts from rest or at a turning point; otherwise the root of the
+ *     quadratic Taylor model of KE, or none);
+ *   - zb: distance beyond the panel end to a zero of KE (0 at a turning
+ *     point, found to round-off by safeguarded Newton on KE).
+ *   Both near:  sigma = -za + W sin^2(phi/2), W = za + L + zb, so that
+ *               KE ~ (sigma + za)(L + zb - sigma) ~ sin^2 phi cancels the
+ *               Jacobian W/2 sin phi;
+ *   one near:   sigma + za = w^2 (or L + zb - sigma = w^2);
+ *   none near:  sigma linear.
+ * The regularised integrand is smooth; it is interpolated at n Chebyshev
+ * points of the first kind (which avoid the ends), integrated exactly as a
+ * Chebyshev series, and the panel is halved until the series' tail is
+ * below the tolerance.  The position at the end of a step solves
+ * time(psi) = dt by safeguarded Newton on that series.  A turning point
+ * (KE = 0 with s > 0) ends a panel exactly; the motion reverses and the
+ * step continues, so several events fit in one step.
+ *
+ * Rules (docs/dynamics.md):
+ *   - start from rest on set k only when a_g * act_sign_k > lambda0_k g;
+ *     quiet steps are skipped with aq_steps_next_outside;
+ *   - impact at the return to s = 0: switch to the other set and keep
+ *     cor * KE (cor is the kinetic-energy ratio, ERRATA item 7) or, with
+ *     the momentum rule, the velocity impact_vel_ratio * |sdot|;
+ *   - the other set inadmissible: plastic stop, the arch rests at s = 0
+ *     (ERRATA item 8: an inadmissible set is never integrated);
+ *   - rest: after an impact, KE <= rest_tol * E_ref (E_ref = m_T g y(s_c)
+ *     of the primary set, the energy that collapses it) ends the motion;
+ *     it restarts only when a step's acceleration activates a set;
+ *   - collapse: s reaches s_c of the active set (ERRATA item 9); the time is
+ *     that of the exact crossing within the step.
+ */
+#include "stepper.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "eom.h"
+#include "paper.h"
+
+#define WP_MAX_NODES 32
+static const double WP_PI = 3.14159265358979323846;
+enum { WP_DEFAULT_NODES = 12 };
+static const double WP_DEFAULT_TOL = 1e-12;  /* Chebyshev tail / mean, per panel */
+static const double WP_PANEL_FRAC = 0.125;   /* longest panel, fraction of s_c */
+static const double WP_NEAR_ZERO = 2.0;      /* a zero of KE within this many L is "near" */
+static const double WP_REACH_MARGIN = 1.3;   /* panel = margin * distance reachable in the step */
+static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8x */
+static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
+static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
+static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an error */
+
+/* cos(pi k (j + 1/2) / n) for the current n (node j is row k = 1). */
+typedef struct {
+  int n;
+  double cs[WP_MAX_NODES][WP_MAX_NODES];
+} wp_cos;
+
+struct aq_stepper {
+  const aq_path *path[2];
+  aq_model model;
+  double cor;
+  int momentum;
+  double ode_rtol;
+  int history;
+  int exact;
+  double wp_tol;
+  int wp_nodes;
+  double rest_tol;
+  double e_ref_j;
+  aq_eom *eom;
+  aq_paper *paper;
+  wp_cos ccos; /* Chebyshev cosines for wp_nodes */
+  /* one cached path evaluation (the end of the previous leg) */
+  const aq_path *cache_p;
+  double cache_s;
+  aq_path_point cache_pt;
+};
+
+/* ------------------------------------------------------------------ */
+/* Work-path model                                                     */
+
+typedef struct {
+  aq_stepper *st;
+  const aq_path *p;
+  double a;      /* ground acceleration, m/s^2 */
+  double mt, g;  /* m_T, g */
+  double sa;     /* leg start, rad */
+  int dir;
+  double ke_a, xa, ya; /* energy reference at the leg start */
+  aq_leg_stats *stats;
+} wp_ctx;
+
+typedef struct {
+  double sigma, s;
+  double ke;  /* KE from the energy balance, J (may be <= 0 beyond a zero) */
+  double k1;  /* dKE/dsigma, J/rad */
+  double k2;  /* d2KE/dsigma2, J/rad^2 */
+  double m;   /* M(s), kg m^2 */
+  double x, y;
+} wp_pt;
+
+static int wp_eval(wp_ctx *c, double s, aq_path_point *pt)
+{
+  aq_stepper *st = c->st;
+  if (st->cache_p == c->p && st->cache_s == s) {
+    *pt = st->cache_pt;
+    return 0;
+  }
+  c->stats->evals++;
+  int rc = c->st->exact ? c->p->eval_exact(c->p->ctx, s, pt)
+                        : c->p->eval(c->p->ctx, s, pt);
+  if (rc == 0) {
+    st->cache_p = c->p;
+    st->cache_s = s;
+    st->cache_pt = *pt;
+  }
+  return rc;
+}
+
+static int wp_point(wp_ctx *c, double sigma, wp_pt *o)
+{
+  double s = c->sa + c->dir * sigma;
+  if (s < 0)
+    s = 0;
+  if (s > c->p->s_c_rad)
+    s = c->p->s_c_rad;
+  aq_path_point pt;
+  if (wp_eval(c, s, &pt) != 0)
+    return -1;
+  o->sigma = sigma;
+  o->s = s;
+  o->x = pt.x_m;
+  o->y = pt.y_m;
+  /* eq. (19), per ERRATA item 5 */
+  o->ke = c->ke_a - c->mt * (c->a * (pt.x_m - c->xa) + c->g * (pt.y_m - c->ya));
+  o->k1 = -c->dir * c->mt * (c->a * pt.dx_m + c->g * pt.dy_m);
+  o->k2 = -c->mt * (c->a * pt.d2x_m + c->g * pt.d2y_m);
+  o->m = pt.mgen_kgm2;
+  aq_leg_stats *S = c->stats;
+  if (o->ke > S->peak_ke_j)
+    S->peak_ke_j = o->ke;
+  if (fabs(o->x) > S->peak_x_m)
+    S->peak_x_m = fabs(o->x);
+  return 0;
+}
+
+/* Distance to a zero of the quadratic model ke + k1 z + k2/2 z^2 (z >= 0)
+ * when ke > 0 and k1 < 0; INFINITY when the model has none. */
+static double zero_ahead(double ke, double k1, double k2)
+{
+  if (ke <= 0)
+    return 0;
+  if (!(k1 < 0))
+    return INFINITY;
+  double disc = k1 * k1 - 2 * k2 * ke;
+  if (disc < 0)
+    return INFINITY;
+  return 2 * ke / (-k1 + sqrt(disc));
+}
+
+/* The change of variable of one panel: psi in [-1, 1] -> sigma in [0, L]. */
+typedef struct {
+  int kind; /* 0 linear, 1 zero behind, 2 zero ahead, 3 both */
+  double L, za, zb, W, u0, u1;
+} wp_map;
+
+static void map_init(wp_map *mp, double L, double za, double zb)
+{
+  mp->L = L;
+  int near_a = za <= WP_NEAR_ZERO * L, near_b = zb <= WP_NEAR_ZERO * L;
+  mp->za = near_a ? za : 0;
+  mp->zb = near_b ? zb : 0;
+  if (near_a && near_b) {
+    mp->kind = 3;
+    mp->W = za + L + zb;
+    mp->u0 = 2 * asin(fmin(1.0, sqrt(za / mp->W)));
+    mp->u1 = 2 * asin(fmin(1.0, sqrt((za + L) / mp->W)));
+  } else if (near_a) {
+    mp->kind = 1;
+    mp->u0 = sqrt(za);
+    mp->u1 = sqrt(za + L);
+  } else if (near_b) {
+    mp->kind = 2;
+    mp->u0 = sqrt(L + zb);
+    mp->u1 = sqrt(zb);
+  } else {
+    mp->kind = 0;
+    mp->u0 = 0;
+    mp->u1 = L;
+  }
+}
+
+/* sigma(psi) and dsigma/dpsi. */
+static double map_sigma(const wp_map *mp, double psi, double *jac)
+{
+  double h = 0.5 * (mp->u1 - mp->u0);
+  double u = mp->u0 + h * (psi + 1);
+  double sg;
+  switch (mp->kind) {
+  case 3: {
+    double sn = sin(0.5 * u);
+    sg = -mp->za + mp->W * sn * sn;
+    *jac = 0.5 * mp->W * sin(u) * h;
+    break;
+  }
+  case 1:
+    sg = u * u - mp->za;
+    *jac = 2 * u * h;
+    break;
+  case 2:
+    sg = mp->L + mp->zb - u * u;
+    *jac = -2 * u * h;
+    break;
+  default:
+    sg = u;
+    *jac = h;
+  }
+  if (sg < 0)
+    sg = 0;
+  if (sg > mp->L)
+    sg = mp->L;
+  return sg;
+}
+
+/* Chebyshev series helpers: f(x) = sum' c_k T_k(x) (c_0 halved). */
+static double cheb_eval(const double *c, int n, double x)
+{
+  double b1 = 0, b2 = 0;
+  for (int k = n - 1; k >= 1; k--) {
+    double b0 = 2 * x * b1 - b2 + c[k];
+    b2 = b1;
+    b1 = b0;
+  }
+  return x * b1 - b2 + 0.5 * c[0];
+}
+
+typedef struct {
+  int n;
+  double c[WP_MAX_NODES + 1];  /* integrand series */
+  double ci[WP_MAX_NODES + 2]; /* antiderivative series, zero at psi = -1 */
+  double total;                /* panel time, s */
+  double tail;                 /* |c_{n-1}| + |c_{n-2}| relative to |c_0| */
+} wp_cheb;
+
+static void cheb_cos_init(wp_cos *t, int n)
+{
+  t->n = n;
+  for (int k = 0; k < n; k++)
+    for (int j = 0; j < n; j++)
+      t->cs[k][j] = cos(WP_PI * k * (j + 0.5) / n);
+}
+
+static void cheb_build(wp_cheb *ch, const wp_cos *t, const double *g, int n)
+{
+  ch->n = n;
+  for (int k = 0; k < n; k++) {
+    double sum = 0;
+    for (int j = 0; j < n; j++)
+      sum += g[j] * t->cs[k][j];
+    ch->c[k] = 2.0 * sum / n;
+  }
+  ch->c[n] = 0;
+  /* antiderivative: C_k = (c_{k-1} - c_{k+1}) / (2k), c_0 taken whole */
+  for (int k = 1; k <= n; k++) {
+    double cm = k == 1 ? ch->c[0] : ch->c[k - 1];
+    double cp = k + 1 <= n ? ch->c[k + 1] : 0;
+    ch->ci[k] = (cm - cp) / (2.0 * k);
+  }
+  ch->ci[0] = 0;
+  double at_m1 = cheb_eval(ch->ci, n + 1, -1.0);
+  ch->ci[0] = -2 * at_m1;
+  ch->total = cheb_eval(ch->ci, n + 1, 1.0);
+  double mean = fabs(ch->c[0]) > 0 ? fabs(ch->c[0]) : 1;
+  ch->tail = (fabs(ch->c[n - 1]) + fabs(ch->c[n - 2])) / mean;
+}
+
+typedef struct {
+  double L;
+  int kind;
+  wp_pt PB;
+  wp_map mp;
+  wp_cheb ch;
+} wp_panel;
+
+/* psi in [-1, 1] where the time reaches tau (0 <= tau <= total). */
+static double cheb_solve(const wp_cheb *ch, double tau)
+{
+  double lo = -1, hi = 1;
+  double x = -1 + 2 * tau / ch->total;
+  for (int it = 0; it < 100; it++) {
+    double f = cheb_eval(ch->ci, ch->n + 1, x) - tau;
+    if (f > 0)
+      hi = x;
+    else
+      lo = x;
+    double d = cheb_eval(ch->c, ch->n, x);
+    double xn = d > 0 ? x - f / d : 0.5 * (lo + hi);
+    if (!(xn > lo && xn < hi))
+      xn = 0.5 * (lo + hi);
+    if (fabs(xn - x) <= 4 * DBL_EPSILON)
+      return xn;
+    x = xn;
+    if (hi - lo <= 1e-16)
+      break;
+  }
+  return x;
+}
+
+/* A zero of KE in (lo, hi]: lo.ke > 0 >= hi.ke.  Safeguarded Newton on KE;
+ * the result is the turning point with ke set to 0. */
+static int wp_turn(wp_ctx *c, wp_pt lo, wp_pt hi, wp_pt *out)
+{
+  double tol = 4 * DBL_EPSILON * fmax(c->p->s_c_rad, 1.0);
+  wp_pt best = hi;
+  for (int it = 0; it < 200 && hi.sigma - lo.sigma > tol; it++) {
+    wp_pt *from = fabs(lo.ke) < fabs(hi.ke) ? &lo : &hi;
+    double x = from->k1 < 0 ? from->sigma - from->ke / from->k1 : NAN;
+    if (!(x > lo.sigma && x < hi.sigma))
+      x = 0.5 * (lo.sigma + hi.sigma);
+    wp_pt q;
+    if (wp_point(c, x, &q))
+      return -1;
+    if (fabs(q.ke) <= fabs(best.ke))
+      best = q;
+    if (q.ke > 0)
+      lo = q;
+    else
+      hi = q;
+    if (fabs(q.ke) == 0)
+      break;
+  }
+  if (fabs(lo.ke) < fabs(best.ke))
+    best = lo;
+  *out = best;
+  out->ke = 0;
+  return 0;
+}
+
+/* Where dKE/dsigma = 0 in (a, b) with a.k1 < 0 < b.k1: the minimum of KE. */
+static int wp_min(wp_ctx *c, wp_pt a, wp_pt b, wp_pt *out)
+{
+  double tol = 4 * DBL_EPSILON * fmax(c->p->s_c_rad, 1.0);
+  wp_pt q = a;
+  for (int it = 0; it < 200 && b.sigma - a.sigma > tol; it++) {
+    double x = q.k2 > 0 ? q.sigma - q.k1 / q.k2 : NAN;
+    if (!(x > a.sigma && x < b.sigma))
+      x = 0.5 * (a.sigma + b.sigma);
+    if (wp_point(c, x, &q))
+      return -1;
+    if (q.k1 < 0)
+      a = q;
+    else
+      b = q;
+    if (q.ke <= 0)
+      break; /* a zero is certain already */
+  }
+  *out = q;
+  return 0;
+}
+
+static aq_status wp_fail(aq_error *err, const aq_path *p, double s)
+{
+  return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, p->name,
+                      "path evaluation failed at s = %.9g rad", s);
+}
+
+static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
+                        aq_motion *m, double dt, double *used, aq_leg_end *end,
+                        aq_leg_stats *S, aq_error *err)
+{
+  wp_ctx c = {.st = st, .p = p, .a = a, .mt = p->mass_kg, .g = p->g_mps2,
+              .stats = S};
+  const double sc = p->s_c_rad;
+  const int n = st->wp_nodes;
+  double t = 0;
+  for (size_t nev = 0;; nev++) {
+    if (nev > MAX_EVENTS_PER_STEP)
+      return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, p->name,
+                          "no progress after %zu panels", nev);
+    double rem = dt - t;
+    if (rem <= 0) {
+      *used = dt;
+      *end = AQ_LEG_TIME;
+      return AQ_OK;
+    }
+    c.sa = m->s;
+    c.dir = m->dir;
+    c.ke_a = m->ke_j > 0 ? m->ke_j : 0;
+    c.xa = m->x_m;
+    c.ya = m->y_m;
+    wp_pt P0;
+    if (wp_point(&c, 0, &P0))
+      return wp_fail(err, p, m->s);
+    c.xa = P0.x; /* the energy reference is the path itself */
+    c.ya = P0.y;
+    P0.ke = c.ke_a;
+    if (c.ke_a <= 0) {
+      double kf = c.dir * P0.k1; /* dKE/ds */
+      int nd = kf > 0 ? 1 : (kf < 0 ? -1 : 0);
+      m->ke_j = 0;
+      if (m->s <= 0 && nd <= 0) {
+        *used = t;
+        *end = AQ_LEG_REST;
+        return AQ_OK;
+      }
+      if (nd == 0) { /* static equilibrium at s > 0 (measure zero) */
+        *used = dt;
+        *end = AQ_LEG_TIME;
+        return AQ_OK;
+      }
+      if (nd != m->dir) {
+        m->dir = nd;
+        if (m->s > 0)
+          S->reversals++;
+      }
+      c.dir = nd;
+      P0.k1 = fabs(kf);
+    }
+    double smax = c.dir > 0 ? sc - m->s : m->s;
+    if (smax <= 0) {
+      *used = t;
+      *end = c.dir > 0 ? AQ_LEG_COLLAPSE : AQ_LEG_IMPACT;
+      return AQ_OK;
+    }
+    double v = sqrt(2 * c.ke_a / P0.m), acc = P0.k1 / P0.m;
+    double reach = v * rem + 0.5 * fmax(acc, 0) * rem * rem;
+    double L = fmin(WP_REACH_MARGIN * reach, WP_PANEL_FRAC * sc);
+    if (!(L > 0))
+      L = WP_PANEL_FRAC * sc;
+
+    int kind = 0; /* panel end: 0 interior, 1 turning point, 2 s = 0 or s_c */
+    wp_pt PB;
+    wp_map mp;
+    wp_cheb ch;
+    double g[WP_MAX_NODES];
+    wp_panel prev = {0};
+    int have_prev = 0;
+    for (int halv = 0;; halv++) {
+      kind = 0;
+      if (L >= smax) {
+        L = smax;
+        kind = 2;
+      }
+      if (wp_point(&c, L, &PB))
+        return wp_fail(err, p, m->s + c.dir * L);
+      if (PB.ke <= 0) {
+        if (wp_turn(&c, P0, PB, &PB))
+          return wp_fail(err, p, m->s);
+        L = PB.sigma;
+        kind = 1;
+      } else if (P0.k1 < 0 && PB.k1 > 0) {
+        wp_pt Pm;
+        if (wp_min(&c, P0, PB, &Pm))
+          return wp_fail(err, p, m->s);
+        if (Pm.ke <= 0) {
+          if (wp_turn(&c, P0, Pm, &PB))
+            return wp_fail(err, p, m->s);
+          L = PB.sigma;
+          kind = 1;
+        }
+      }
+      if (!(L > 0)) { /* a turning point at the start itself */
+        PB = P0;
+        PB.ke = 0;
+        kind = 1;
+        ch.total = 0;
+        break;
+      }
+      double za = c.ke_a <= 0 ? 0 : zero_ahead(c.ke_a, -P0.k1, P0.k2);
+      double zb = kind == 1 ? 0 : zero_ahead(PB.ke, PB.k1, PB.k2);
+      map_init(&mp, L, za, zb);
+      int redo = 0;
+      for (int j = 0; j < n; j++) {
+        double psi = st->ccos.cs[1][j], jac;
+        double sg = map_sigma(&mp, psi, &jac);
+        wp_pt q;
+        if (wp_point(&c, sg, &q))
+          return wp_fail(err, p, m->s + c.dir * sg);
+        if (q.ke <= 0) {
+          if (kind != 1 && sg > 0 && c.ke_a > 0) {
+            /* a zero the end tests did not see: end the panel there */
+            if (wp_turn(&c, P0, q, &PB))
+              return wp_fail(err, p, m->s);
+            L = PB.sigma;
+            redo = 1;
+            break;
+          }
+          /* round-off at a node closer to a zero of KE than the zero's
+           * own precision: use the linear model about the nearer zero */
+          double kb = fabs(PB.k1) * (L - sg), ka = fabs(P0.k1) * sg;
+          q.ke = kind == 1 && (c.ke_a > 0 || L - sg < sg) ? kb : ka;
+          if (!(q.ke > 0))
+            q.ke = DBL_MIN;
+        }
+        g[j] = sqrt(0.5 * q.m) / sqrt(q.ke) * fabs(jac);
+      }
+      if (redo) {
+        halv--;
+        continue;
+      }
+      cheb_build(&ch, &st->ccos, g, n);
+      if (ch.tail <= st->wp_tol || !(L > WP_MIN_PANEL_FRAC * sc) || halv > 80)
+        break;
+      if (have_prev && !(ch.tail < WP_STALL_GAIN * prev.ch.tail)) {
+        /* halving no longer pays: the tail is round-off in KE near a zero
+         * (x, y differences), not truncation.  Keep the longer panel. */
+        L = prev.L;
+        kind = prev.kind;
+        PB = prev.PB;
+        mp = prev.mp;
+        ch = prev.ch;
+        break;
+      }
+      prev = (wp_panel){L, kind, PB, mp, ch};
+      have_prev = 1;
+      L *= 0.5;
+    }
+    if (!isfinite(ch.total))
+      return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, p->name,
+                          "time integral not finite at s = %.9g rad", m->s);
+
+    if (ch.total >= rem) {
+      double psi = cheb_solve(&ch, rem), jac;
+      double sg = map_sigma(&mp, psi, &jac);
+      wp_pt E;
+      if (wp_point(&c, sg, &E))
+        return wp_fail(err, p, m->s + c.dir * sg);
+      m->s = E.s;
+      m->ke_j = E.ke > 0 ? E.ke : 0;
+      m->x_m = E.x;
+      m->y_m = E.y;
+      if (m->s > S->peak_s)
+        S->peak_s = m->s;
+      *used = dt;
+      *end = AQ_LEG_TIME;
+      return AQ_OK;
+    }
+    t += ch.total;
+    m->s = PB.s;
+    m->x_m = PB.x;
+    m->y_m = PB.y;
+    if (m->s > S->peak_s)
+      S->peak_s = m->s;
+    if (kind == 1) {
+      m->ke_j = 0;
+      m->dir = -m->dir;
+      S->reversals++;
+      continue;
+    }
+    m->ke_j = PB.ke > 0 ? PB.ke : 0;
+    if (kind == 2) {
+      *used = t;
+      if (c.dir > 0) {
+        m->s = sc;
+        *end = AQ_LEG_COLLAPSE;
+      } else {
+        m->s = 0;
+        *end = AQ_LEG_IMPACT;
+      }
+      return AQ_OK;
+    }
+  }
+}
+
+/* ------------------------------------------------------------------ */
+/* The stepper                                                         */
+
+static int path_usable(const aq_path *p)
+{
+  return p && p->admissible && p->eval && p->eval_exact &&
+         isfinite(p->mass_kg) && p->mass_kg > 0 && isfinite(p->g_mps2) &&
+         p->g_mps2 > 0 && isfinite(p->lambda0) && p->lambda0 >= 0 &&
+         isfinite(p->s_c_rad) && p->s_c_rad > 0 &&
+         (p->act_sign == 1 || p->act_sign == -1) &&
+         (p->q_sign == 1 || p->q_sign == -1);
+}
+
+aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
+                             aq_model model, aq_error *err)
+{
+  if (!path_usable(primary)) {
+    aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "primary",
+                 "expected an admissible primary hinge set with finite "
+                 "mass, g > 0, lambda0 >= 0, s_c > 0 and signs +-1");
+    return NULL;
+  }
+  if (model != AQ_MODEL_WORKPATH && model != AQ_MODEL_ODE &&
+      model != AQ_MODEL_PAPER) {
+    aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "model",
+                 "expected workpath, ode or paper, got %d", (int)model);
+    return NULL;
+  }
+  aq_stepper *st = calloc(1, sizeof *st);
+  if (!st) {
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "stepper", "out of memory");
+    return NULL;
+  }
+  st->path[0] = primary;
+  st->path[1] = path_usable(reverse) ? reverse : NULL;
+  st->model = model;
+  st->ode_rtol = 1e-10;
+  st->wp_tol = WP_DEFAULT_TOL;
+  st->wp_nodes = WP_DEFAULT_NODES;
+  cheb_cos_init(&st->ccos, st->wp_nodes);
+  st->rest_tol = REST_TOL_DEFAULT;
+  aq_path_point pt;
+  if (primary->eval_exact(primary->ctx, primary->s_c_rad, &pt) != 0) {
+    aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "primary",
+                 "path evaluation failed at s_c = %.9g rad", primary->s_c_rad);
+    free(st);
+    return NULL;
+  }
+  st->e_ref_j = primary->mass_kg * primary->g_mps2 * fabs(pt.y_m);
+  if (!(st->e_ref_j > 0))
+    st->e_ref_j = primary->mass_kg * primary->g_mps2 * primary->s_c_rad;
+  if (model == AQ_MODEL_ODE) {
+    st->eom = aq_eom_alloc(err);
+    if (!st->eom) {
+      free(st);
+      return NULL;
+    }
+    aq_eom_set_tol(st->eom, st->ode_rtol);
+  } else if (model == AQ_MODEL_PAPER) {
+    st->paper = aq_paper_alloc(primary, st->path[1], err);
+    if (!st->paper) {
+      free(st);
+      return NULL;
+    }
+  }
+  return st;
+}
+
+void aq_stepper_free(aq_stepper *st)
+{
+  if (!st)
+    return;
+  aq_eom_free(st->eom);
+  aq_paper_free(st->paper);
+  free(st);
+}
+
+void aq_stepper_set_cor(aq_stepper *st, double cor)
+{
+  if (isfinite(cor))
+    st->cor = cor < 0 ? 0 : (cor > 1 ? 1 : cor);
+}
+void aq_stepper_set_impact(aq_stepper *st, int momentum) { st->momentum = momentum != 0; }
+void aq_stepper_set_ode_rtol(aq_stepper *st, double rtol)
+{
+  if (isfinite(rtol) && rtol > 0) {
+    st->ode_rtol = rtol;
+    if (st->eom)
+      aq_eom_set_tol(st->eom, rtol);
+  }
+}
+void aq_stepper_set_history(aq_stepper *st, int on) { st->history = on != 0; }
+void aq_stepper_set_exact_path(aq_stepper *st, int on)
+{
+  st->exact = on != 0;
+  if (st->eom)
+    aq_eom_set_exact(st->eom, st->exact);
+}
+void aq_stepper_set_wp_tol(aq_stepper *st, double tol)
+{
+  if (isfinite(tol) && tol > 0)
+    st->wp_tol = tol;
+}
+void aq_stepper_set_wp_nodes(aq_stepper *st, int n)
+{
+  if (n >= 4 && n <= WP_MAX_NODES) {
+    st->wp_nodes = n;
+    cheb_cos_init(&st->ccos, n);
+  }
+}
+void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
+{
+  if (isfinite(tol) && tol >= 0)
+    st->rest_tol = tol;
+}
+
+static aq_status hist_push(aq_history *h, double t, double q, double x,
+                           double ke, double pe, int set)
+{
+  if (h->n == h->cap) {
+    size_t cap = h->cap ? 2 * h->cap : 256;
+    double *a = realloc(h->time_s, cap * sizeof *a);
+    if (!a)
+      return AQ_ENOMEM;
+    h->time_s = a;
+    if (!(a = realloc(h->rotation_rad, cap * sizeof *a)))
+      return AQ_ENOMEM;
+    h->rotation_rad = a;
+    if (!(a = realloc(h->displacement_m, cap * sizeof *a)))
+      return AQ_ENOMEM;
+    h->displacement_m = a;
+    if (!(a = realloc(h->kinetic_energy_j, cap * sizeof *a)))
+      return AQ_ENOMEM;
+    h->kinetic_energy_j = a;
+    if (!(a = realloc(h->potential_energy_j, cap * sizeof *a)))
+      return AQ_ENOMEM;
+    h->potential_energy_j = a;
+    int *b = realloc(h->set, cap * sizeof *b);
+    if (!b)
+      return AQ_ENOMEM;
+    h->set = b;
+    h->cap = cap;
+  }
+  h->time_s[h->n] = t;
+  h->rotation_rad[h->n] = q;
+  h->displacement_m[h->n] = x;
+  h->kinetic_energy_j[h->n] = ke;
+  h->potential_energy_j[h->n] = pe;
+  h->set[h->n] = set;
+  h->n++;
+  return AQ_OK;
+}
+
+/* max |x(s)| over [0, smax]: 32 samples, then golden-section search about
+ * the largest.  Returns -1 if the path cannot be evaluated. */
+static double path_peak_x(const aq_path *p, int exact, double smax,
+                          size_t *evals)
+{
+  enum { NS = 32 };
+  const double gr = 0.5 * (sqrt(5.0) - 1);
+  aq_path_point pt;
+  double best = -1, sb = 0;
+  for (int i = 0; i <= NS; i++) {
+    double s = smax * i / NS;
+    if (aq_eom_eval(p, exact, s, &pt))
+      return -1;
+    (*evals)++;
+    if (fabs(pt.x_m) > best) {
+      best = fabs(pt.x_m);
+      sb = s;
+    }
+  }
+  double lo = fmax(0, sb - smax / NS), hi = fmin(smax, sb + smax / NS);
+  double c = hi - gr * (hi - lo), d = lo + gr * (hi - lo), fc, fd;
+  if (aq_eom_eval(p, exact, c, &pt))
+    return -1;
+  fc = fabs(pt.x_m);
+  if (aq_eom_eval(p, exact, d, &pt))
+    return -1;
+  fd = fabs(pt.x_m);
+  for (int it = 0; it < 80 && hi - lo > 1e-15 * fmax(smax, 1); it++) {
+    if (fc > fd) {
+      hi = d;
+      d = c;
+      fd = fc;
+      c = hi - gr * (hi - lo);
+      if (aq_eom_eval(p, exact, c, &pt))
+        return -1;
+      fc = fabs(pt.x_m);
+    } else {
+      lo = c;
+      c = d;
+      fc = fd;
+      d = lo + gr * (hi - lo);
+      if (aq_eom_eval(p, exact, d, &pt))
+        return -1;
+      fd = fabs(pt.x_m);
+    }
+    (*evals)++;
+  }
+  return fmax(best, fmax(fc, fd));
+}
+
+/* The set that a_mps2 would open from rest, or -1. */
+static int activated(const aq_stepper *st, double a)
+{
+  int best = -1;
+  double excess = 0;
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = st->path[k];
+    if (!p)
+      continue;
+    double e = a * p->act_sign - p->lambda0 * p->g_mps2;
+    if (e > 0 && e > excess) {
+      excess = e;
+      best = k;
+    }
+  }
+  return best;
+}
+
+static aq_status leg(aq_stepper *st, int set, double a, aq_motion *m,
+                     double dt, double *used, aq_leg_end *end,
+                     aq_leg_stats *S, aq_error *err)
+{
+  switch (st->model) {
+  case AQ_MODEL_ODE:
+    return aq_eom_leg(st->eom, st->path[set], a, m, dt, used, end, S, err);
+  case AQ_MODEL_PAPER:
+    return aq_paper_leg(st->paper, set, a, m, dt, used, end, S, err);
+  default:
+    return wp_leg(st, st->path[set], a, m, dt, used, end, S, err);
+  }
+}
+
+aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
+                         aq_error *err)
+{
+  memset(res, 0, sizeof *res);
+  res->collapse_time_s = NAN;
+  res->steps_total = steps->n;
+  st->cache_p = NULL;
+  aq_leg_stats S = {0};
+  double lo = -INFINITY, hi = INFINITY; /* quiet band at rest */
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = st->path[k];
+    if (!p)
+      continue;
+    double thr = p->lambda0 * p->g_mps2;
+    if (p->act_sign > 0)
+      hi = fmin(hi, thr);
+    else
+      lo = fmax(lo, -thr);
+  }
+  int rest = 1, set = -1;
+  double smax[2] = {0, 0}; /* largest s reached on each set */
+  aq_motion m = {0, 0, 1, 0, 0};
+  aq_status rc = AQ_OK;
+  double e_in = 0;
+  size_t i = 0;
+  while (i < steps->n) {
+    if (rest) {
+      size_t j = aq_steps_next_outside(steps, i, lo, hi);
+      if (st->history)
+        for (; i < j; i++)
+          if ((rc = hist_push(&res->history, steps->t_s[i] + steps->dt_s[i],
+                              0, 0, 0, 0, -1)) != AQ_OK)
+            goto nomem;
+      i = j;
+      if (i >= steps->n)
+        break;
+    }
+    const double a = steps->a_mps2[i], dt = steps->dt_s[i];
+    double t_in = 0; /* time used within step i */
+    res->steps_moving++;
+    for (size_t nev = 0; t_in < dt; nev++) {
+      if (nev > MAX_EVENTS_PER_STEP) {
+        rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "stepper",
+                          "no progress at t = %.3f s (%zu events in one step)",
+                          steps->t_s[i] + t_in, nev);
+        goto fail;
+      }
+      if (rest) {
+        int k = activated(st, a);
+        if (k < 0)
+          break;
+        rest = 0;
+        set = k;
+        m = (aq_motion){0, 0, 1, 0, 0};
+      }
+      double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
+      aq_leg_end end = AQ_LEG_TIME;
+      S.peak_s = m.s;
+      rc = leg(st, set, a, &m, dt - t_in, &used, &end, &S, err);
+      if (end == AQ_LEG_COLLAPSE)
+        S.peak_s = st->path[set]->s_c_rad;
+      smax[set] = fmax(smax[set], S.peak_s);
+      S.peak_s = fmax(S.peak_s, peak_s_all);
+      if (rc != AQ_OK) {
+        size_t len = strlen(err->message);
+        snprintf(err->message + len, sizeof err->message - len,
+                 " at t = %.3f s", steps->t_s[i] + t_in);
+        goto fail;
+      }
+      e_in += -a * st->path[set]->mass_kg * (m.x_m - x0);
+      if (m.ke_j > S.peak_ke_j)
+        S.peak_ke_j = m.ke_j;
+      if (fabs(m.x_m) > S.peak_x_m)
+        S.peak_x_m = fabs(m.x_m);
+      t_in = end == AQ_LEG_TIME ? dt : t_in + used;
+      if (end == AQ_LEG_COLLAPSE) {
+        res->collapsed = 1;
+        res->collapse_time_s = steps->t_s[i] + t_in;
+        S.peak_s = fmax(S.peak_s, st->path[set]->s_c_rad);
+        break;
+      }
+      if (end == AQ_LEG_REST) {
+        rest = 1;
+        m = (aq_motion){0, 0, 1, 0, 0};
+        if (activated(st, a) == set || activated(st, a) < 0)
+          break; /* nothing moves it within this step */
+        continue;
+      }
+      if (end == AQ_LEG_IMPACT) {
+        res->impacts++;
+        double ke_pre = m.ke_j, ke_post = 0;
+        int other = 1 - set;
+        const aq_path *q = st->path[other];
+        if (q) {
+          if (st->momentum) {
+            aq_path_point p0, p1;
+            if (aq_eom_eval(st->path[set], st->exact, 0, &p0) ||
+                aq_eom_eval(q, st->exact, 0, &p1)) {
+              rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "stepper",
+                                "path evaluation failed at s = 0");
+              goto fail;
+            }
+            S.evals += 2;
+            double sdot = sqrt(2 * ke_pre / p0.mgen_kgm2);
+            double v1 = q->impact_vel_ratio * sdot;
+            ke_post = 0.5 * p1.mgen_kgm2 * v1 * v1;
+          } else {
+            ke_post = st->cor * ke_pre; /* eq. (26): cor = KE_f / KE_i */
+          }
+        }
+        res->energy_dissipated_j += ke_pre - ke_post;
+        m = (aq_motion){0, ke_post, 1, 0, 0};
+        if (q && ke_post > st->rest_tol * st->e_ref_j) {
+          set = other;
+        } else { /* rest, or plastic stop before an inadmissible set */
+          res->energy_dissipated_j += ke_post;
+          m.ke_j = 0;
+          rest = 1;
+        }
+      }
+    }
+    if (st->history) {
+      const aq_path *p = set >= 0 ? st->path[set] : st->path[0];
+      double tt = res->collapsed ? res->collapse_time_s : steps->t_s[i] + dt;
+      rc = hist_push(&res->history, tt, rest ? 0 : p->q_sign * m.s,
+                     rest ? 0 : m.x_m, rest ? 0 : m.ke_j,
+                     rest ? 0 : p->mass_kg * p->g_mps2 * m.y_m,
+                     rest ? -1 : set);
+      if (rc != AQ_OK)
+        goto nomem;
+    }
+    if (res->collapsed)
+      break;
+    i++;
+  }
+  res->peak_rotation_rad = S.peak_s;
+  /* |x| depends on s alone: its peak is that of the path over the range of
+   * s each set covered (exact, whatever the model's sampling) */
+  res->peak_displacement_m = 0;
+  for (int k = 0; k < 2; k++)
+    if (st->path[k] && smax[k] > 0) {
+      double px = path_peak_x(st->path[k], st->exact, smax[k], &S.evals);
+      if (!(px >= 0)) {
+        rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, st->path[k]->name,
+                          "path evaluation failed in [0, %.9g] rad", smax[k]);
+        goto fail;
+      }
+      res->peak_displacement_m = fmax(res->peak_displacement_m, px);
+    }
+  res->max_kinetic_energy_j = S.peak_ke_j;
+  res->energy_in_j = e_in;
+  res->reversals = S.reversals;
+  res->evals = S.evals;
+  return AQ_OK;
+nomem:
+  rc = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "history", "out of memory");
+fail:
+  aq_result_free(res);
+  return rc;
+}

@@ -1,0 +1,140 @@
+/* test_arch_search.c: the mechanism search against random admissible hinge
+ * sets and against a brute force that uses the 9x9 equilibrium (a second,
+ * independent way to get lambda0) instead of virtual work. */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+
+#include "arch/model.h"
+#include "check.h"
+#include "units.h"
+
+#define TIE_TOL 1e-11 /* relative: lambda0 by two methods agree to round-off */
+
+/* lambda0 of hs by the 9x9 equilibrium; 1 if admissible there (hinges open
+ * at first order, lambda0 > 0, all hinge reactions compressive). */
+static int lambda0_by_equilibrium(const aq_geom *g, const aq_hinge_set *hs, double *l0)
+{
+  aq_mech m;
+  aq_mech_state st;
+  aq_equil eq;
+  aq_error e;
+  if (aq_mech_init(&m, g, hs, &e) != AQ_OK || aq_mech_eval(&m, 0.0, &st) != 0)
+    return 0;
+  int qs = hs->face[0] == 'i' ? 1 : -1;
+  double rate[4] = {1, st.phi[1][1] - 1, st.phi[2][1] - st.phi[1][1], -st.phi[2][1]};
+  for (int k = 0; k < 4; k++)
+    if (!((hs->face[k] == 'i' ? 1 : -1) * qs * rate[k] > 0))
+      return 0;
+  /* the multiplier of either direction of the horizontal load: the one
+   * that comes out positive is the mechanism's */
+  aq_live live = {AQ_LIVE_HORIZONTAL, 1, {0, 0}, 0, 9.80665};
+  if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
+    return 0;
+  if (eq.lambda < 0) {
+    live.act_sign = -1;
+    if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
+      return 0;
+  }
+  /* the direction must be the one the hinges open in: sum m dx/ds pushed by
+   * the inertial force, i.e. act_sign * q_sign * sum m dx/dq < 0 */
+  double wx = 0;
+  for (int b = 0; b < 3; b++)
+    wx += m.body[b].mass_kg * st.c[b][1].x;
+  if (!(live.act_sign * qs * wx < 0))
+    return 0;
+  for (int k = 0; k < 4; k++)
+    if (!(eq.normal[k] > 0))
+      return 0;
+  *l0 = eq.lambda;
+  return eq.lambda > 0;
+}
+
+static void random_set(unsigned *seed, size_t n, aq_hinge_set *hs)
+{
+  size_t j[4];
+  for (;;) {
+    for (int k = 0; k < 4; k++) {
+      *seed = *seed * 1103515245u + 12345u;
+      j[k] = (size_t)((*seed >> 8) % (n + 1));
+    }
+    /* sort */
+    for (int a = 0; a < 4; a++)
+      for (int b = a + 1; b < 4; b++)
+        if (j[b] < j[a]) {
+          size_t t = j[a];
+          j[a] = j[b];
+          j[b] = t;
+        }
+    if (j[0] < j[1] && j[1] < j[2] && j[2] < j[3])
+      break;
+  }
+  *seed = *seed * 1103515245u + 12345u;
+  int pat = (*seed >> 12) & 1;
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = j[k];
+    hs->face[k] = (k + pat) % 2 ? 'i' : 'e';
+  }
+}
+
+AQ_TEST(arch_search_beats_random_sets)
+{
+  gsl_set_error_handler_off();
+  aq_arch *a = NULL;
+  aq_error e;
+  if (!aq_check(aq_arch_load("arches/search.cfg", &a, &e) == AQ_OK, "load"))
+    return;
+  aq_check(aq_arch_searched(a), "primary came from the search");
+  const aq_geom *g = aq_arch_geom(a);
+  const aq_path *p = aq_arch_path(a, 0);
+  double best;
+  aq_check(lambda0_by_equilibrium(g, &aq_workpath_mech(aq_arch_workpath(a, 0))->hs, &best),
+           "the found set is admissible by the 9x9");
+  aq_check_rel(p->lambda0, best, TIE_TOL, "its lambda0 by virtual work = by the 9x9");
+  unsigned seed = 20261122u;
+  int found = 0, tries = 0;
+  while (found < 1000 && tries < 200000) {
+    aq_hinge_set hs;
+    double l0;
+    tries++;
+    random_set(&seed, g->p.voussoirs, &hs);
+    if (!lambda0_by_equilibrium(g, &hs, &l0))
+      continue;
+    found++;
+    aq_check(p->lambda0 <= l0 * (1 + TIE_TOL), "search %.12g <= random %.12g (%zu %zu %zu %zu %c%c%c%c)",
+             p->lambda0, l0, hs.joint[0], hs.joint[1], hs.joint[2], hs.joint[3],
+             hs.face[0], hs.face[1], hs.face[2], hs.face[3]);
+  }
+  aq_check(found == 1000, "1000 random admissible sets (%d tries)", tries);
+  aq_arch_free(a);
+}
+
+/* A small arch, every alternating set by brute force with the 9x9. */
+AQ_TEST(arch_search_brute_force)
+{
+  gsl_set_error_handler_off();
+  aq_arch_params pp = {2.73, 0.517, 143.0 * AQ_DEG_RAD, 9, 1711.0, 0.63};
+  aq_geom g;
+  aq_error e;
+  aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry");
+  double best = HUGE_VAL;
+  for (int pat = 0; pat < 2; pat++)
+    for (size_t a = 0; a <= 9; a++)
+      for (size_t b = a + 1; b <= 9; b++)
+        for (size_t c = b + 1; c <= 9; c++)
+          for (size_t d = c + 1; d <= 9; d++) {
+            aq_hinge_set hs = {{a, b, c, d}, {'e', 'i', 'e', 'i'}};
+            if (pat)
+              hs = (aq_hinge_set){{a, b, c, d}, {'i', 'e', 'i', 'e'}};
+            double l0;
+            if (lambda0_by_equilibrium(&g, &hs, &l0) && l0 < best)
+              best = l0;
+          }
+  aq_hinge_set found;
+  size_t nsets = 0;
+  aq_check(aq_search_mechanism(&g, 9.80665, &found, &nsets, &e) == AQ_OK, "search");
+  aq_check(nsets == 2 * 210, "C(10,4) sets per face pattern: %zu", nsets);
+  double l0;
+  aq_check(lambda0_by_equilibrium(&g, &found, &l0), "found set admissible");
+  aq_check_rel(l0, best, TIE_TOL, "search = brute force");
+  aq_geom_free(&g);
+}
