@@ -83,6 +83,9 @@ AQ_TEST(io_csv_layouts)
   check_text("comma-g", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
                         "0.06,-3.14159e-4\n0.08,0.2718281\n",
              &none, v, 5, 0.02, 0, AQ_G0_MPS2, "g");
+  check_text("utf8-bom", "\xEF\xBB\xBFtime,acc (g)\n0,0.02385\n0.02,-0.0771905\n"
+                        "0.04,1.0937E-01\n0.06,-3.14159e-4\n0.08,0.2718281\n",
+             &none, v, 5, 0.02, 0, AQ_G0_MPS2, "g");
   check_text("t-acc_g-crlf-comments",
              "# exported\r\nt,acc_g\r\n# start\r\n12.5,0.02385\r\n12.505,-0.0771905\r\n\r\n"
              "12.51,1.0937E-01 # peak\r\n12.515,-3.14159e-4\r\n12.52,0.2718281\r\n",

@@ -1,12 +1,189 @@
-/* cmd_domain.c: placeholder until the stage behind it lands. */
+/* cmd_domain.c: `archquake domain --arch FILE [--ratios LIST] ...`: the
+ * half-cycle collapse domain of the paper's section 4.1.  For each ratio r
+ * the shortest rectangular pulse of r lambda0 g, in the direction that opens
+ * the primary set, that collapses the arch, by bisection to --tol seconds
+ * (not the paper's 0.02 s stepping). */
+#define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
+#include "../arch/arch.h"
+#include "../arch/stepper.h"
+#include "../units.h"
 #include "app.h"
+#include "opt.h"
+
+static const char usage[] =
+    "usage: archquake domain --arch FILE [OPTIONS]\n"
+    "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
+    "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
+    "the arch, by bisection.\n"
+    "  --arch FILE      the arch file (.cfg)\n"
+    "  --ratios LIST    comma-separated r > 1 (default 1.05,1.1,1.2,1.5,2,3,4)\n"
+    "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default 0)\n"
+    "  --model M        workpath (default) | ode | paper\n"
+    "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
+    "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
+    "  --max-duration S give up above this duration, s (default 100)\n"
+    "  --help           this text\n"
+    "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
+    "  --max-duration)\n"
+    "Exit status: 0 success, 1 the arch or a run failed, 2 bad options.\n";
+
+static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const double FREE_TAIL_S = 30; /* free motion after the pulse */
+
+/* 1 if a pulse of a_mps2 for dur_s collapses the arch, 0 if not, -1 on error. */
+static int collapses(aq_stepper *st, double a_mps2, double dur_s, aq_error *err)
+{
+  double t[2] = {0, dur_s}, dt[2] = {dur_s, FREE_TAIL_S}, a[2] = {a_mps2, 0};
+  aq_steps s;
+  if (aq_steps_from_list(t, dt, a, 2, &s, err) != AQ_OK)
+    return -1;
+  aq_result r;
+  aq_status rc = aq_stepper_run(st, &s, &r, err);
+  aq_steps_free(&s);
+  if (rc != AQ_OK)
+    return -1;
+  int c = r.collapsed;
+  aq_result_free(&r);
+  return c;
+}
 
 int aq_cmd_domain(int argc, char **argv)
 {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "archquake: domain: not available in this build\n");
-  return AQ_EXIT_USAGE;
+  static const struct option longopts[] = {
+      {"arch", required_argument, NULL, 'a'},
+      {"ratios", required_argument, NULL, 'R'},
+      {"cor", required_argument, NULL, 'c'},
+      {"model", required_argument, NULL, 'm'},
+      {"ode-rtol", required_argument, NULL, 'r'},
+      {"tol", required_argument, NULL, 't'},
+      {"max-duration", required_argument, NULL, 'M'},
+      {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
+  const char *file = NULL;
+  double *ratios = NULL, cor = 0, rtol = 1e-10, tol = 1e-9, tmax = 100;
+  size_t nr = 0;
+  int model = 0, nerr = 0, c;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
+    switch (c) {
+    case 'a':
+      file = optarg;
+      break;
+    case 'R':
+      aq_opt_list("--ratios", optarg, 1, &ratios, &nr, &nerr);
+      break;
+    case 'c':
+      aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr);
+      break;
+    case 'm':
+      aq_opt_choice("--model", optarg, models, &model, &nerr);
+      break;
+    case 'r':
+      aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
+      break;
+    case 't':
+      aq_opt_double_gt("--tol", optarg, 0, 1, &tol, &nerr);
+      break;
+    case 'M':
+      aq_opt_double_gt("--max-duration", optarg, 0, 3600, &tmax, &nerr);
+      break;
+    case 'h':
+      free(ratios);
+      fputs(usage, stdout);
+      return AQ_EXIT_OK;
+    default:
+      aq_opt_unknown("domain ", argv, optind, optopt, &nerr);
+    }
+  }
+  if (optind < argc) {
+    fprintf(stderr, "archquake: domain: expected no operands, got \"%s\"\n",
+            argv[optind]);
+    nerr++;
+  }
+  if (!file) {
+    fprintf(stderr, "archquake: domain: expected --arch FILE, got none\n");
+    nerr++;
+  }
+  for (size_t i = 0; i < nr; i++)
+    if (!(ratios[i] <= 1000)) {
+      fprintf(stderr, "archquake: --ratios: expected ratios in (1, 1000], "
+                      "got %g\n", ratios[i]);
+      nerr++;
+      break;
+    }
+  if (nerr) {
+    free(ratios);
+    return AQ_EXIT_USAGE;
+  }
+  if (!ratios) {
+    static const double def[] = {1.05, 1.1, 1.2, 1.5, 2, 3, 4};
+    nr = sizeof def / sizeof def[0];
+    ratios = malloc(sizeof def);
+    if (!ratios) {
+      fprintf(stderr, "archquake: domain: out of memory\n");
+      return AQ_EXIT_FAIL;
+    }
+    memcpy(ratios, def, sizeof def);
+  }
+
+  aq_error err;
+  aq_error_clear(&err);
+  aq_arch *arch = NULL;
+  int status = AQ_EXIT_FAIL;
+  aq_stepper *st = NULL;
+  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    goto out;
+  }
+  const aq_path *pp = aq_arch_path(arch, 0);
+  st = aq_stepper_alloc(pp, aq_arch_path(arch, 1), (aq_model)model, &err);
+  if (!st) {
+    aq_error_print(&err, stderr);
+    goto out;
+  }
+  aq_stepper_set_cor(st, cor);
+  aq_stepper_set_ode_rtol(st, rtol);
+  printf("ratio\taccel_g\tmin_duration_s\n");
+  for (size_t i = 0; i < nr; i++) {
+    double a = pp->act_sign * ratios[i] * pp->lambda0 * pp->g_mps2;
+    double lo = 0, hi = 0.01;
+    int ch;
+    while ((ch = collapses(st, a, hi, &err)) == 0 && hi < tmax) {
+      lo = hi;
+      hi = fmin(2 * hi, tmax);
+    }
+    if (ch < 0)
+      goto runfail;
+    if (ch == 0) {
+      printf("%.9g\t%.9g\tinf\n", ratios[i], a / AQ_G0_MPS2);
+      continue;
+    }
+    while (hi - lo > tol) {
+      double mid = 0.5 * (lo + hi);
+      if ((ch = collapses(st, a, mid, &err)) < 0)
+        goto runfail;
+      if (ch)
+        hi = mid;
+      else
+        lo = mid;
+    }
+    printf("%.9g\t%.9g\t%.12g\n", ratios[i], a / AQ_G0_MPS2, hi);
+  }
+  status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
+  goto out;
+runfail:
+  snprintf(err.input, sizeof err.input, "%s", file);
+  aq_error_print(&err, stderr);
+out:
+  free(ratios);
+  aq_stepper_free(st);
+  aq_arch_free(arch);
+  return status;
 }

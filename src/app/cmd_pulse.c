@@ -1,12 +1,251 @@
-/* cmd_pulse.c: placeholder until the stage behind it lands. */
+/* cmd_pulse.c: `archquake pulse --arch FILE --accel-g A --duration S ...`:
+ * one arch under a rectangular ground-acceleration pulse; prints the run row
+ * (TSV header + row) and optionally the step-end history as CSV. */
+#define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
+#include "../arch/arch.h"
+#include "../arch/stepper.h"
+#include "../units.h"
 #include "app.h"
+#include "opt.h"
+
+static const char usage[] =
+    "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
+    "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
+    "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n"
+    "  --arch FILE      the arch file (.cfg)\n"
+    "  --accel-g A      pulse amplitude, g (signed, |A| <= 100)\n"
+    "  --duration S     pulse duration, s (0 < S <= 3600)\n"
+    "  --end S          stop at t = S (>= duration); default duration + 60 s\n"
+    "                   (quiet stretches at rest cost nothing)\n"
+    "  --dt S           constant steps of at most S seconds (default 0.01)\n"
+    "  --cor C          kinetic-energy ratio kept at an impact, 0..1\n"
+    "                   (default: the arch file's [dynamics] cor)\n"
+    "  --impact RULE    cor | momentum (default: the arch file's)\n"
+    "  --model M        workpath (default) | ode | paper\n"
+    "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
+    "  --history FILE   write the step-end history as CSV\n"
+    "  --help           this text\n"
+    "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
+    "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
+    "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
+    "Exit status: 0 success, 1 the arch or the run failed, 2 bad options,\n"
+    "3 the history could not be written.\n";
+
+static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const char *const impacts[] = {"cor", "momentum", NULL};
+
+/* Steps of at most dt_s: the pulse, then zero until end_s. */
+static aq_status pulse_steps(double a_mps2, double dur_s, double end_s,
+                             double dt_s, aq_steps *out, aq_error *err)
+{
+  size_t n1 = (size_t)ceil(dur_s / dt_s - 1e-9);
+  size_t n2 = end_s > dur_s ? (size_t)ceil((end_s - dur_s) / dt_s - 1e-9) : 0;
+  if (n1 < 1)
+    n1 = 1;
+  size_t n = n1 + n2;
+  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d),
+         *a = malloc(n * sizeof *a);
+  aq_status rc;
+  if (!t || !d || !a) {
+    rc = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "steps", "out of memory");
+  } else {
+    for (size_t i = 0; i < n1; i++) {
+      t[i] = dur_s * (double)i / (double)n1;
+      d[i] = dur_s * (double)(i + 1) / (double)n1 - t[i];
+      a[i] = a_mps2;
+    }
+    for (size_t i = 0; i < n2; i++) {
+      double span = end_s - dur_s;
+      t[n1 + i] = dur_s + span * (double)i / (double)n2;
+      d[n1 + i] = dur_s + span * (double)(i + 1) / (double)n2 - t[n1 + i];
+      a[n1 + i] = 0;
+    }
+    rc = aq_steps_from_list(t, d, a, n, out, err);
+  }
+  free(t);
+  free(d);
+  free(a);
+  return rc;
+}
+
+static int write_history(const char *path, const aq_history *h)
+{
+  char tmp[4096];
+  if (snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid()) >=
+      (int)sizeof tmp)
+    return -1;
+  FILE *f = fopen(tmp, "w");
+  if (!f)
+    return -1;
+  int bad = fprintf(f, "time_s,rotation_rad,displacement_m,kinetic_energy_j,"
+                       "potential_energy_j,set\n") < 0;
+  for (size_t i = 0; i < h->n && !bad; i++)
+    bad = fprintf(f, "%.10g,%.12g,%.12g,%.12g,%.12g,%d\n", h->time_s[i],
+                  h->rotation_rad[i], h->displacement_m[i],
+                  h->kinetic_energy_j[i], h->potential_energy_j[i],
+                  h->set[i]) < 0;
+  if (fclose(f) != 0)
+    bad = 1;
+  if (bad || rename(tmp, path) != 0) {
+    remove(tmp);
+    return -1;
+  }
+  return 0;
+}
 
 int aq_cmd_pulse(int argc, char **argv)
 {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "archquake: pulse: not available in this build\n");
-  return AQ_EXIT_USAGE;
+  static const struct option longopts[] = {
+      {"arch", required_argument, NULL, 'a'},
+      {"accel-g", required_argument, NULL, 'A'},
+      {"duration", required_argument, NULL, 'D'},
+      {"end", required_argument, NULL, 'e'},
+      {"dt", required_argument, NULL, 't'},
+      {"cor", required_argument, NULL, 'c'},
+      {"impact", required_argument, NULL, 'i'},
+      {"model", required_argument, NULL, 'm'},
+      {"ode-rtol", required_argument, NULL, 'r'},
+      {"history", required_argument, NULL, 'H'},
+      {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
+  const char *file = NULL, *hist = NULL;
+  double acc_g = NAN, dur = NAN, end = NAN, dt = 0.01, cor = NAN, rtol = 1e-10;
+  int model = 0, impact = -1, nerr = 0, c;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
+    switch (c) {
+    case 'a':
+      file = optarg;
+      break;
+    case 'A':
+      aq_opt_double("--accel-g", optarg, -100, 100, &acc_g, &nerr);
+      break;
+    case 'D':
+      aq_opt_double_gt("--duration", optarg, 0, 3600, &dur, &nerr);
+      break;
+    case 'e':
+      aq_opt_double_gt("--end", optarg, 0, 86400, &end, &nerr);
+      break;
+    case 't':
+      aq_opt_double_gt("--dt", optarg, 0, 3600, &dt, &nerr);
+      break;
+    case 'c':
+      aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr);
+      break;
+    case 'i':
+      aq_opt_choice("--impact", optarg, impacts, &impact, &nerr);
+      break;
+    case 'm':
+      aq_opt_choice("--model", optarg, models, &model, &nerr);
+      break;
+    case 'r':
+      aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
+      break;
+    case 'H':
+      hist = optarg;
+      break;
+    case 'h':
+      fputs(usage, stdout);
+      return AQ_EXIT_OK;
+    default:
+      aq_opt_unknown("pulse ", argv, optind, optopt, &nerr);
+    }
+  }
+  if (optind < argc) {
+    fprintf(stderr, "archquake: pulse: expected no operands, got \"%s\"\n",
+            argv[optind]);
+    nerr++;
+  }
+  if (!file) {
+    fprintf(stderr, "archquake: pulse: expected --arch FILE, got none\n");
+    nerr++;
+  }
+  if (isnan(acc_g)) {
+    fprintf(stderr, "archquake: pulse: expected --accel-g A, got none\n");
+    nerr++;
+  }
+  if (isnan(dur)) {
+    fprintf(stderr, "archquake: pulse: expected --duration S, got none\n");
+    nerr++;
+  }
+  if (!isnan(end) && !isnan(dur) && end < dur) {
+    fprintf(stderr,
+            "archquake: --end: expected a time >= --duration (%g s), got %g\n",
+            dur, end);
+    nerr++;
+  }
+  if (hist && !*hist) {
+    fprintf(stderr, "archquake: --history: expected a file name, got \"\"\n");
+    nerr++;
+  }
+  if (!isnan(dur) && (isnan(end) ? dur + 60 : end) / dt > 5e7) {
+    fprintf(stderr, "archquake: --dt: expected at most 5e7 steps, got %g\n",
+            (isnan(end) ? dur + 60 : end) / dt);
+    nerr++;
+  }
+  if (nerr)
+    return AQ_EXIT_USAGE;
+  if (isnan(end))
+    end = dur + 60;
+
+  aq_error err;
+  aq_error_clear(&err);
+  aq_arch *arch = NULL;
+  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    return AQ_EXIT_FAIL;
+  }
+  const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
+  if (isnan(cor))
+    cor = dyn->cor;
+  if (impact < 0)
+    impact = dyn->impact == AQ_IMPACT_MOMENTUM;
+  int status = AQ_EXIT_FAIL;
+  aq_steps steps = {0};
+  aq_result res;
+  memset(&res, 0, sizeof res);
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1),
+                                    (aq_model)model, &err);
+  if (!st || pulse_steps(acc_g * AQ_G0_MPS2, dur, end, dt, &steps, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    goto out;
+  }
+  aq_stepper_set_cor(st, cor);
+  aq_stepper_set_impact(st, impact);
+  aq_stepper_set_ode_rtol(st, rtol);
+  aq_stepper_set_history(st, hist != NULL);
+  if (aq_stepper_run(st, &steps, &res, &err) != AQ_OK) {
+    snprintf(err.input, sizeof err.input, "%s", file);
+    aq_error_print(&err, stderr);
+    goto out;
+  }
+  if (hist && write_history(hist, &res.history) != 0) {
+    fprintf(stderr, "archquake: %s: cannot write the history\n", hist);
+    status = AQ_EXIT_OUTPUT;
+    goto out;
+  }
+  printf("model\taccel_g\tduration_s\tend_s\tcollapsed\tcollapse_time_s\t"
+         "peak_rotation_rad\tpeak_displacement_m\tmax_kinetic_energy_j\timpacts\t"
+         "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals\n");
+  printf("%s\t%.9g\t%.9g\t%.9g\t%d\t%.12g\t%.12g\t%.12g\t%.12g\t%zu\t%zu\t%.12g\t"
+         "%.12g\t%zu\t%zu\n",
+         models[model], acc_g, dur, end, res.collapsed, res.collapse_time_s,
+         res.peak_rotation_rad, res.peak_displacement_m,
+         res.max_kinetic_energy_j, res.impacts, res.reversals, res.energy_in_j,
+         res.energy_dissipated_j, res.steps_moving, res.evals);
+  status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
+out:
+  aq_result_free(&res);
+  aq_steps_free(&steps);
+  aq_stepper_free(st);
+  aq_arch_free(arch);
+  return status;
 }

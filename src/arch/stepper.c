@@ -70,6 +70,12 @@ static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
 static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an error */
 
+/* cos(pi k (j + 1/2) / n) for the current n (node j is row k = 1). */
+typedef struct {
+  int n;
+  double cs[WP_MAX_NODES][WP_MAX_NODES];
+} wp_cos;
+
 struct aq_stepper {
   const aq_path *path[2];
   aq_model model;
@@ -84,6 +90,7 @@ struct aq_stepper {
   double e_ref_j;
   aq_eom *eom;
   aq_paper *paper;
+  wp_cos ccos; /* Chebyshev cosines for wp_nodes */
   /* one cached path evaluation (the end of the previous leg) */
   const aq_path *cache_p;
   double cache_s;
@@ -256,13 +263,21 @@ typedef struct {
   double tail;                 /* |c_{n-1}| + |c_{n-2}| relative to |c_0| */
 } wp_cheb;
 
-static void cheb_build(wp_cheb *ch, const double *g, int n)
+static void cheb_cos_init(wp_cos *t, int n)
+{
+  t->n = n;
+  for (int k = 0; k < n; k++)
+    for (int j = 0; j < n; j++)
+      t->cs[k][j] = cos(WP_PI * k * (j + 0.5) / n);
+}
+
+static void cheb_build(wp_cheb *ch, const wp_cos *t, const double *g, int n)
 {
   ch->n = n;
   for (int k = 0; k < n; k++) {
     double sum = 0;
     for (int j = 0; j < n; j++)
-      sum += g[j] * cos(WP_PI * k * (j + 0.5) / n);
+      sum += g[j] * t->cs[k][j];
     ch->c[k] = 2.0 * sum / n;
   }
   ch->c[n] = 0;
@@ -477,7 +492,7 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       map_init(&mp, L, za, zb);
       int redo = 0;
       for (int j = 0; j < n; j++) {
-        double psi = cos(WP_PI * (j + 0.5) / n), jac;
+        double psi = st->ccos.cs[1][j], jac;
         double sg = map_sigma(&mp, psi, &jac);
         wp_pt q;
         if (wp_point(&c, sg, &q))
@@ -504,7 +519,7 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
         halv--;
         continue;
       }
-      cheb_build(&ch, g, n);
+      cheb_build(&ch, &st->ccos, g, n);
       if (ch.tail <= st->wp_tol || !(L > WP_MIN_PANEL_FRAC * sc) || halv > 80)
         break;
       if (have_prev && !(ch.tail < WP_STALL_GAIN * prev.ch.tail)) {
@@ -607,6 +622,7 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
   st->ode_rtol = 1e-10;
   st->wp_tol = WP_DEFAULT_TOL;
   st->wp_nodes = WP_DEFAULT_NODES;
+  cheb_cos_init(&st->ccos, st->wp_nodes);
   st->rest_tol = REST_TOL_DEFAULT;
   aq_path_point pt;
   if (primary->eval_exact(primary->ctx, primary->s_c_rad, &pt) != 0) {
@@ -672,8 +688,10 @@ void aq_stepper_set_wp_tol(aq_stepper *st, double tol)
 }
 void aq_stepper_set_wp_nodes(aq_stepper *st, int n)
 {
-  if (n >= 4 && n <= WP_MAX_NODES)
+  if (n >= 4 && n <= WP_MAX_NODES) {
     st->wp_nodes = n;
+    cheb_cos_init(&st->ccos, n);
+  }
 }
 void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
 {
@@ -716,6 +734,56 @@ static aq_status hist_push(aq_history *h, double t, double q, double x,
   h->set[h->n] = set;
   h->n++;
   return AQ_OK;
+}
+
+/* max |x(s)| over [0, smax]: 32 samples, then golden-section search about
+ * the largest.  Returns -1 if the path cannot be evaluated. */
+static double path_peak_x(const aq_path *p, int exact, double smax,
+                          size_t *evals)
+{
+  enum { NS = 32 };
+  const double gr = 0.5 * (sqrt(5.0) - 1);
+  aq_path_point pt;
+  double best = -1, sb = 0;
+  for (int i = 0; i <= NS; i++) {
+    double s = smax * i / NS;
+    if (aq_eom_eval(p, exact, s, &pt))
+      return -1;
+    (*evals)++;
+    if (fabs(pt.x_m) > best) {
+      best = fabs(pt.x_m);
+      sb = s;
+    }
+  }
+  double lo = fmax(0, sb - smax / NS), hi = fmin(smax, sb + smax / NS);
+  double c = hi - gr * (hi - lo), d = lo + gr * (hi - lo), fc, fd;
+  if (aq_eom_eval(p, exact, c, &pt))
+    return -1;
+  fc = fabs(pt.x_m);
+  if (aq_eom_eval(p, exact, d, &pt))
+    return -1;
+  fd = fabs(pt.x_m);
+  for (int it = 0; it < 80 && hi - lo > 1e-15 * fmax(smax, 1); it++) {
+    if (fc > fd) {
+      hi = d;
+      d = c;
+      fd = fc;
+      c = hi - gr * (hi - lo);
+      if (aq_eom_eval(p, exact, c, &pt))
+        return -1;
+      fc = fabs(pt.x_m);
+    } else {
+      lo = c;
+      c = d;
+      fc = fd;
+      d = lo + gr * (hi - lo);
+      if (aq_eom_eval(p, exact, d, &pt))
+        return -1;
+      fd = fabs(pt.x_m);
+    }
+    (*evals)++;
+  }
+  return fmax(best, fmax(fc, fd));
 }
 
 /* The set that a_mps2 would open from rest, or -1. */
@@ -770,6 +838,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       lo = fmax(lo, -thr);
   }
   int rest = 1, set = -1;
+  double smax[2] = {0, 0}; /* largest s reached on each set */
   aq_motion m = {0, 0, 1, 0, 0};
   aq_status rc = AQ_OK;
   double e_in = 0;
@@ -804,9 +873,14 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         set = k;
         m = (aq_motion){0, 0, 1, 0, 0};
       }
-      double used = 0, x0 = m.x_m;
+      double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
       aq_leg_end end = AQ_LEG_TIME;
+      S.peak_s = m.s;
       rc = leg(st, set, a, &m, dt - t_in, &used, &end, &S, err);
+      if (end == AQ_LEG_COLLAPSE)
+        S.peak_s = st->path[set]->s_c_rad;
+      smax[set] = fmax(smax[set], S.peak_s);
+      S.peak_s = fmax(S.peak_s, peak_s_all);
       if (rc != AQ_OK) {
         size_t len = strlen(err->message);
         snprintf(err->message + len, sizeof err->message - len,
@@ -880,7 +954,19 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     i++;
   }
   res->peak_rotation_rad = S.peak_s;
-  res->peak_displacement_m = S.peak_x_m;
+  /* |x| depends on s alone: its peak is that of the path over the range of
+   * s each set covered (exact, whatever the model's sampling) */
+  res->peak_displacement_m = 0;
+  for (int k = 0; k < 2; k++)
+    if (st->path[k] && smax[k] > 0) {
+      double px = path_peak_x(st->path[k], st->exact, smax[k], &S.evals);
+      if (!(px >= 0)) {
+        rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, st->path[k]->name,
+                          "path evaluation failed in [0, %.9g] rad", smax[k]);
+        goto fail;
+      }
+      res->peak_displacement_m = fmax(res->peak_displacement_m, px);
+    }
   res->max_kinetic_energy_j = S.peak_ke_j;
   res->energy_in_j = e_in;
   res->reversals = S.reversals;

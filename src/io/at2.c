@@ -258,12 +258,20 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       tl++;
     if (tl == 0)
       tl = 1; /* a NUL byte */
-    snprintf(field, sizeof field, "value %zu", k + 1);
-    quote(t, tl < AT2_TOKEN_MAX ? tl : AT2_TOKEN_MAX, tokq, sizeof tokq);
     if (tl >= 3 && strncasecmp(t, "end", 3) == 0)
       break; /* "End Data" marker */
     double x;
     size_t used = parse_num(t, tl, &x);
+    int bad = !used || !isfinite(x);
+    if (!bad && used < tl) {
+      char nx = t[used];
+      bad = !(nx == '-' || nx == '+' ||
+              (tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0));
+    }
+    if (bad) { /* the message's parts, only on the error path */
+      snprintf(field, sizeof field, "value %zu", k + 1);
+      quote(t, tl < AT2_TOKEN_MAX ? tl : AT2_TOKEN_MAX, tokq, sizeof tokq);
+    }
     if (!used) {
       free(acc);
       if ((tl >= 3 && (strncasecmp(t, "nan", 3) == 0 || strncasecmp(t, "inf", 3) == 0)) ||

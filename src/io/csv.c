@@ -276,6 +276,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   memset(rec, 0, sizeof *rec);
   csv_cur c = {(const char *)buf, n, 0, 0};
   const char *s = c.s;
+  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte-order mark */
+    c.pos = 3;
   size_t b, e;
   enum { MAXF = 64 };
   span f[MAXF];
