@@ -176,18 +176,22 @@ static void writer_free(aq_h5_writer *w)
   free(w);
 }
 
-/* Close every open handle, ignoring failures (used on the failure path). */
+/* Close every open handle, ignoring failures (used on the failure path).
+ * A file that cannot be flushed is abandoned, not closed: HDF5 1.10 leaves a
+ * dangling identifier behind a failed H5Fclose, which crashes the library
+ * when it terminates (hence also H5dont_atexit in aq_h5_open).  The process
+ * is about to report the failure; the temporary is unlinked anyway. */
 static void close_quietly(aq_h5_writer *w)
 {
   H5E_BEGIN_TRY
   {
-    if (w->g_runs >= 0)
-      H5Gclose(w->g_runs);
-    if (w->g_arches >= 0)
-      H5Gclose(w->g_arches);
-    if (w->g_records >= 0)
-      H5Gclose(w->g_records);
-    if (w->file >= 0) {
+    if (w->file >= 0 && H5Fflush(w->file, H5F_SCOPE_LOCAL) >= 0) {
+      if (w->g_runs >= 0)
+        H5Gclose(w->g_runs);
+      if (w->g_arches >= 0)
+        H5Gclose(w->g_arches);
+      if (w->g_records >= 0)
+        H5Gclose(w->g_records);
       /* close every object still open in the file, then the file */
       ssize_t n = H5Fget_obj_count(w->file, H5F_OBJ_ALL & ~H5F_OBJ_FILE);
       if (n > 0) {
@@ -210,6 +214,9 @@ static void close_quietly(aq_h5_writer *w)
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
 {
   *out = NULL;
+  /* No library shutdown at exit (see close_quietly); must come before the
+   * library initialises, and fails harmlessly if it already has. */
+  H5dont_atexit();
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   aq_h5_writer *w = calloc(1, sizeof *w);
   if (!w)
@@ -222,7 +229,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
     writer_free(w);
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   }
-  snprintf(w->tmp, len, "%s.tmp.%ld", target, (long)getpid());
+  aq_h5_temp_name(target, w->tmp, len);
   /* Create the temporary ourselves first, for a clear errno. */
   int fd = open(w->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
   if (fd < 0) {
@@ -262,6 +269,11 @@ fail:
     H5Pclose(fapl);
   aq_h5_abort(w);
   return st;
+}
+
+void aq_h5_temp_name(const char *target, char *buf, size_t n)
+{
+  snprintf(buf, n, "%s.tmp.%ld", target, (long)getpid());
 }
 
 const char *aq_h5_temp_path(const aq_h5_writer *w)
@@ -616,13 +628,21 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
   CK(H5Gclose(w->g_records), "H5Gclose");
   w->g_records = -1;
   {
+    /* Flush first: a file that cannot be flushed is abandoned, never
+     * closed (see close_quietly). */
+    errno = 0;
+    if (H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0) {
+      int e = errno;
+      st = h5_fail(err, w->target, obj, "H5Fflush (writing the file)", e);
+      w->file = -1;
+      goto fail;
+    }
     hid_t f = w->file;
     w->file = -1;
     errno = 0;
     if (H5Fclose(f) < 0) {
-      /* the identifier is gone either way: do not close it again */
       int e = errno;
-      st = h5_fail(err, w->target, obj, "H5Fclose (flushing the file)", e);
+      st = h5_fail(err, w->target, obj, "H5Fclose", e);
       goto fail;
     }
   }
