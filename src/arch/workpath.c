@@ -59,6 +59,7 @@ struct aq_workpath {
   double h;           /* table step, rad */
   double *coef;       /* n * NF * 6 */
   double tab_err;
+  double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
 };
 
 /* Exact values f[k][0..2] (value, d/ds, d2/ds2) of every tabled function. */
@@ -443,6 +444,13 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
       *out = w;
       return AQ_OK;
     }
+  double *ecc = malloc((g->p.voussoirs + 1) * sizeof *ecc);
+  if (!ecc) {
+    aq_workpath_free(w);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  w->thrust0 = aq_mech_thrust(&w->mech, &s0, &live, &eq, ecc, NULL);
+  free(ecc);
   find_end(w);
   if (!(p->s_c_rad > 0) || w->end == AQ_END_NONE) {
     snprintf(w->reason, sizeof w->reason, "no end of the path found in (0, %g] rad",
@@ -466,6 +474,7 @@ const char *aq_workpath_reason(const aq_workpath *w) { return w->reason; }
 aq_end aq_workpath_end(const aq_workpath *w) { return w->end; }
 size_t aq_workpath_table_size(const aq_workpath *w) { return w->n; }
 double aq_workpath_table_error(const aq_workpath *w) { return w->tab_err; }
+double aq_workpath_thrust0(const aq_workpath *w) { return w->thrust0; }
 
 aq_status aq_workpath_equilibrium(const aq_workpath *w, double s, aq_equil *out,
                                   aq_error *err)
