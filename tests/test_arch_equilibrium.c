@@ -44,6 +44,18 @@ AQ_TEST(arch_equilibrium_vs_virtual_work)
         aq_check_rel(eq.lambda, lvw, LAMBDA_REL_TOL, "%s set %d s = %g: 9x9 vs virtual work",
                      arch_files[f], set, s);
         aq_check_rel(pt.lambda, lvw, 1e-13, "path lambda");
+        if (i == 0 && set == 0) {
+          /* the shipped primaries are upper-bound mechanisms: the line of
+           * thrust at lambda0 stays inside the arch (lower bound = upper) */
+          aq_mech_state st;
+          aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, p->g_mps2};
+          double ecc[64];
+          int tension = 1;
+          aq_mech_eval(aq_workpath_mech(w), 0.0, &st);
+          double emax = aq_mech_thrust(aq_workpath_mech(w), &st, &live, &eq, ecc, &tension);
+          aq_check(emax <= 1.0 && !tension, "%s: thrust inside (max |e| = %.6g)", arch_files[f], emax);
+          aq_check_rel(emax, aq_workpath_thrust0(w), 1e-12, "thrust0");
+        }
         if (i == 0)
           for (int k = 0; k < 4; k++)
             aq_check(eq.normal[k] > 0, "%s set %d hinge %d compressive", arch_files[f], set, k);

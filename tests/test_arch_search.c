@@ -91,7 +91,7 @@ AQ_TEST(arch_search_beats_random_sets)
            "the found set is admissible by the 9x9");
   aq_check_rel(p->lambda0, best, TIE_TOL, "its lambda0 by virtual work = by the 9x9");
   unsigned seed = 20261122u;
-  int found = 0, tries = 0;
+  int found = 0, tries = 0, above = 0, outside = 0;
   while (found < 1000 && tries < 200000) {
     aq_hinge_set hs;
     double l0;
@@ -100,11 +100,31 @@ AQ_TEST(arch_search_beats_random_sets)
     if (!lambda0_by_equilibrium(g, &hs, &l0))
       continue;
     found++;
+    /* uniqueness: a set above the minimum cannot keep its line of thrust
+     * inside the arch (else its lambda0 would also be a lower bound) */
+    if (l0 > p->lambda0 * (1 + 1e-9)) {
+      aq_mech m;
+      aq_mech_state st;
+      aq_equil eq;
+      aq_mech_init(&m, g, &hs, &e);
+      aq_mech_eval(&m, 0.0, &st);
+      double wx = 0;
+      for (int b = 0; b < 3; b++)
+        wx += m.body[b].mass_kg * st.c[b][1].x;
+      aq_live live = {AQ_LIVE_HORIZONTAL, m.open[0] * wx > 0 ? -1 : 1, {0, 0}, 0, 9.80665};
+      aq_mech_equilibrium(&m, &st, &live, &eq, &e);
+      double ecc[64];
+      outside += aq_mech_thrust(&m, &st, &live, &eq, ecc, NULL) > 1.0;
+      above++;
+    }
     aq_check(p->lambda0 <= l0 * (1 + TIE_TOL), "search %.12g <= random %.12g (%zu %zu %zu %zu %c%c%c%c)",
              p->lambda0, l0, hs.joint[0], hs.joint[1], hs.joint[2], hs.joint[3],
              hs.face[0], hs.face[1], hs.face[2], hs.face[3]);
   }
   aq_check(found == 1000, "1000 random admissible sets (%d tries)", tries);
+  aq_check(above > 0 && outside == above, "thrust escapes for all %d sets above the minimum (%d)",
+           above, outside);
+  aq_check(aq_workpath_thrust0(aq_arch_workpath(a, 0)) <= 1.0, "the minimum keeps it inside");
   aq_arch_free(a);
 }
 

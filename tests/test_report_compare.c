@@ -123,7 +123,8 @@ static int write_runs(const char *path, const aq_summary *s, size_t n)
   aq_error err;
   if (aq_h5_open(path, &w, &err) != AQ_OK)
     return -1;
-  aq_signal_opts o = {AQ_DETREND_MEAN, 0.05, 1, 0.05, 4, 0, 1};
+  aq_signal_opts o;
+  aq_signal_opts_default(&o);
   aq_h5_root root = {"0", "test", "2026-11-22T00:00:00Z", &o, 0, "file", 0,
                      "workpath", NAN, NULL, 1, 0.3, 0, 1};
   if (aq_h5_write_root(w, &root, &err) != AQ_OK)

@@ -62,7 +62,8 @@ static void make_fixture(fixture *fx, size_t nhist)
   fx->proc.used.order = 6;
   fx->proc.used.lowpass_hz = 0;
   fx->proc.used.scale = 1;
-  fx->im = (aq_im){0.2816, 0.3317, 0.0912, 1.7436, 24.125, 8.9125, 1.5e-4, -2.5e-3};
+  fx->im = (aq_im){.pga_g = 0.2816, .pgv_mps = 0.3317, .pgd_m = 0.0912, .arias_mps = 1.7436,
+                   .d5_95_s = 24.125, .cav_mps = 8.9125, .v_end_mps = 1.5e-4, .d_end_m = -2.5e-3};
   fx->path[0] = (aq_path){.name = "primary", .mass_kg = 19634.954, .g_mps2 = 9.80665,
                           .lambda0 = 0.1743219, .s_c_rad = 0.3491237,
                           .act_sign = 1, .q_sign = -1, .admissible = 1};
@@ -71,7 +72,7 @@ static void make_fixture(fixture *fx, size_t nhist)
   fx->path[1].lambda0 = 0.1811;
   fx->path[1].s_c_rad = 0.2977;
   fx->path[1].admissible = 0;
-  fx->dyn = (aq_arch_dynamics){0.55, AQ_IMPACT_MOMENTUM, 9.80665};
+  fx->dyn = (aq_arch_dynamics){.cor = 0.55, .impact = AQ_IMPACT_MOMENTUM, .g_mps2 = 9.80665};
   for (size_t i = 0; i < nhist; i++) {
     fx->t[i] = -0.59 + 0.005 * (double)i;
     fx->q[i] = 1e-3 * sin(0.1 * (double)i);
@@ -493,4 +494,65 @@ AQ_TEST(report_h5_failing_write_leaves_target_untouched)
   aq_check(child_write_limited(path, RLIM_INFINITY) == 10, "unlimited: no failure");
   aq_check(!file_equals(path, "last night's results\n"), "target replaced");
   aq_check(count_entries(dir) == 1, "still one file");
+}
+
+AQ_TEST(report_h5_summary_table_many_runs)
+{
+  /* more rows than one chunk of the table, in run order */
+  enum { N = 613 };
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/many.h5", dir);
+  aq_h5_writer *w;
+  aq_error err;
+  aq_check(aq_h5_open(path, &w, &err) == AQ_OK, "open");
+  aq_status st = AQ_OK;
+  for (size_t k = 0; k < N && st == AQ_OK; k++) {
+    aq_result r;
+    memset(&r, 0, sizeof r);
+    r.peak_rotation_rad = 1e-3 * sin(0.731 * (double)k);
+    r.impacts = k * 7 % 13;
+    aq_summary s;
+    char rec[64];
+    snprintf(rec, sizeof rec, "records/r%zu.AT2", k);
+    aq_summary_fill(&s, rec, "oppenheim", "workpath", 1.5, 0.25, "ok", &r);
+    st = aq_h5_write_run(w, k, 0, 0, &s, &r, NULL, 0, &err);
+  }
+  aq_check(st == AQ_OK, "runs written");
+  if (st != AQ_OK) {
+    aq_h5_abort(w);
+    return;
+  }
+  aq_check(aq_h5_finish(w, NULL, &err) == AQ_OK, "finish: %s", err.message);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  hid_t sp = H5Dget_space(d);
+  aq_check(H5Sget_simple_extent_npoints(sp) == N, "%d rows", N);
+  typedef struct {
+    char record[32];
+    double rot;
+    long long impacts;
+  } row;
+  hid_t mt = H5Tcreate(H5T_COMPOUND, sizeof(row));
+  hid_t s32 = H5Tcopy(H5T_C_S1);
+  H5Tset_size(s32, 32);
+  H5Tinsert(mt, "record", HOFFSET(row, record), s32);
+  H5Tinsert(mt, "peak_rotation_rad", HOFFSET(row, rot), H5T_NATIVE_DOUBLE);
+  H5Tinsert(mt, "impacts", HOFFSET(row, impacts), H5T_NATIVE_LLONG);
+  static row rows[N];
+  aq_check(H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0, "read");
+  size_t bad = 0;
+  for (size_t k = 0; k < N; k++) {
+    char rec[64];
+    snprintf(rec, sizeof rec, "records/r%zu.AT2", k);
+    bad += strcmp(rows[k].record, rec) != 0 ||
+           rows[k].rot != 1e-3 * sin(0.731 * (double)k) ||
+           rows[k].impacts != (long long)(k * 7 % 13);
+  }
+  aq_check(bad == 0, "rows in order and exact (%zu bad)", bad);
+  H5Tclose(s32);
+  H5Tclose(mt);
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(f);
 }

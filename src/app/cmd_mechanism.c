@@ -20,12 +20,14 @@ static const char usage[] =
     "  --points N    rows per set in --table (2..100000, default 101)\n"
     "  --help        this text\n"
     "Columns: set joints faces lambda0 q_c_rad admissible act_sign q_sign mass_kg\n"
-    "  impact_vel_ratio end table_n table_err searched reason\n"
+    "  impact_vel_ratio end table_n table_err thrust_ecc searched reason\n"
     "  q_c_rad is the rotation of body 1 about H1 at collapse (magnitude;\n"
     "  q = q_sign * s); act_sign is the sign of the ground acceleration along +x\n"
     "  that drives the set; end is why the path ends (peak: lambda = 0, toggle,\n"
     "  hinge: a hinge closes); table_err is the measured relative error of the\n"
-    "  interpolation tables against the exact kinematics.\n"
+    "  interpolation tables against the exact kinematics; thrust_ecc is the\n"
+    "  largest eccentricity |r - R|/(t/2) of the line of thrust over the joints\n"
+    "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
     "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
     "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
     "  m_T g y; min_normal_n the smallest compressive hinge force).\n"
@@ -95,18 +97,18 @@ int aq_cmd_mechanism(int argc, char **argv)
     return AQ_EXIT_FAIL;
   }
   printf("set\tjoints\tfaces\tlambda0\tq_c_rad\tadmissible\tact_sign\tq_sign\tmass_kg\t"
-         "impact_vel_ratio\tend\ttable_n\ttable_err\tsearched\treason\n");
+         "impact_vel_ratio\tend\ttable_n\ttable_err\tthrust_ecc\tsearched\treason\n");
   for (int s = 0; s < 2; s++) {
     const aq_workpath *w = aq_arch_workpath(a, s);
     const aq_path *p = aq_arch_path(a, s);
     const aq_mech *m = aq_workpath_mech(w);
     char joints[64], faces[8];
     aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
-    printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%d\t%s\n",
+    printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%.6g\t%d\t%s\n",
            p->name, joints, faces, p->lambda0, p->s_c_rad, p->admissible,
            p->act_sign, p->q_sign, p->mass_kg, p->impact_vel_ratio,
            p->admissible ? end_name(aq_workpath_end(w)) : "-",
-           aq_workpath_table_size(w), aq_workpath_table_error(w),
+           aq_workpath_table_size(w), aq_workpath_table_error(w), aq_workpath_thrust0(w),
            s == 0 && aq_arch_searched(a),
            p->admissible ? "-" : aq_workpath_reason(w));
   }

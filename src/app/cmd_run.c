@@ -1,12 +1,291 @@
-/* cmd_run.c: placeholder until the stage behind it lands. */
+/* cmd_run.c: `archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]`:
+ * the main job.  Parses and checks every option before any record is read,
+ * then hands the suite to suite.c.  The TSV goes to stdout, or with --text
+ * FILE to a temporary renamed onto FILE once complete. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
+#include "../arch/stepper.h"
 #include "app.h"
+#include "cleanup.h"
+#include "opt.h"
+#include "opt_record.h"
+#include "opt_signal.h"
+#include "suite.h"
+
+#define AQ_RUN_MAX_THREADS 1024
+
+static const char usage_head[] =
+    "usage: archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]\n"
+    "Run every record against every arch (and every scale factor): each record\n"
+    "is read and processed once.  One TSV row per run on stdout.\n"
+    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  -o, --output FILE.h5  write the HDF5 results file (docs/hdf5-layout.md)\n"
+    "  --text FILE         write the TSV to FILE instead of stdout\n"
+    "  --scale LIST        run each record scaled by each factor, e.g. 0.5,1,2\n"
+    "                      (default 1)\n"
+    "  --scale-to-pga G    scale each processed record to a PGA of G g instead\n"
+    "  -j, --jobs N        worker threads (default: the number of cores); the\n"
+    "                      results are the same for every N\n"
+    "  --model M           workpath (default), ode (reference), paper\n"
+    "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
+    "                      (default: each arch's [dynamics] cor)\n"
+    "  --history           keep step-end histories (in the HDF5 file)\n"
+    "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
+    "  --help              this text;  --version: the version\n"
+    "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
+static const char usage_tail[] =
+    "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
+    "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
+    "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
+    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives)\n"
+    "Exit status:\n"
+    "  0  every record read and every run done\n"
+    "  1  some record or run failed (each reported on stderr; the others ran)\n"
+    "  2  bad or missing options, or an arch file that cannot be loaded:\n"
+    "     nothing was run\n"
+    "  3  an output file could not be written (no partial file is left; an\n"
+    "     existing file of that name is untouched)\n"
+    "  A run interrupted by SIGINT/SIGTERM removes its temporaries and ends\n"
+    "  with that signal.\n";
+
+enum {
+  OPT_ARCH = 2000,
+  OPT_TEXT,
+  OPT_SCALE,
+  OPT_SCALE_PGA,
+  OPT_MODEL,
+  OPT_COR,
+  OPT_HISTORY,
+  OPT_HELP
+};
+
+/* argv joined by spaces, words with shell-special characters in single
+ * quotes (malloc'd; NULL when out of memory). */
+static char *join_argv(int argc, char **argv)
+{
+  size_t len = 1;
+  for (int i = 0; i < argc; i++)
+    len += 4 * strlen(argv[i]) + 3;
+  char *s = malloc(len), *p = s;
+  if (!s)
+    return NULL;
+  for (int i = 0; i < argc; i++) {
+    const char *w = argv[i];
+    int plain = *w != '\0';
+    for (const char *q = w; *q; q++)
+      if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                  "0123456789-_./=,:+@%", *q))
+        plain = 0;
+    if (i)
+      *p++ = ' ';
+    if (plain) {
+      strcpy(p, w);
+      p += strlen(w);
+    } else {
+      *p++ = '\'';
+      for (const char *q = w; *q; q++) {
+        if (*q == '\'') {
+          memcpy(p, "'\\''", 4);
+          p += 4;
+        } else
+          *p++ = *q;
+      }
+      *p++ = '\'';
+    }
+  }
+  *p = '\0';
+  return s;
+}
 
 int aq_cmd_run(int argc, char **argv)
 {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "archquake: run: not available in this build\n");
-  return AQ_EXIT_USAGE;
+  struct option longopts[32] = {
+      AQ_OPT_RECORD_LONGOPTS,
+      {"arch", required_argument, NULL, OPT_ARCH},
+      {"output", required_argument, NULL, 'o'},
+      {"text", required_argument, NULL, OPT_TEXT},
+      {"scale", required_argument, NULL, OPT_SCALE},
+      {"scale-to-pga", required_argument, NULL, OPT_SCALE_PGA},
+      {"jobs", required_argument, NULL, 'j'},
+      {"model", required_argument, NULL, OPT_MODEL},
+      {"cor", required_argument, NULL, OPT_COR},
+      {"history", no_argument, NULL, OPT_HISTORY},
+      {"quiet", no_argument, NULL, 'q'},
+      {"help", no_argument, NULL, OPT_HELP}};
+  size_t nlong = aq_opt_signal_append(longopts, 14);
+  longopts[nlong] = (struct option){NULL, 0, NULL, 0};
+  static const char *const models[] = {"workpath", "ode", "paper", NULL};
+
+  aq_suite_cfg cfg;
+  memset(&cfg, 0, sizeof cfg);
+  aq_signal_opts_default(&cfg.proc);
+  cfg.cor = NAN;
+  cfg.scale_to_pga_g = NAN;
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  cfg.threads = ncpu >= 1 ? (ncpu > AQ_RUN_MAX_THREADS ? AQ_RUN_MAX_THREADS : ncpu) : 1;
+  static const double one = 1.0;
+  double *scales = NULL;
+  size_t nscale = 0;
+  int quiet = 0, model = 0, nerr = 0, c;
+  const char *text_path = NULL;
+  char **arches = calloc((size_t)argc + 1, sizeof *arches);
+  char units_text[1024] = "";
+  if (!arches) {
+    fprintf(stderr, "archquake: out of memory\n");
+    return AQ_EXIT_FAIL;
+  }
+  /* before getopt_long permutes argv */
+  char *cmdline = join_argv(argc, argv);
+  cfg.command_line = cmdline ? cmdline : "";
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":o:j:q", longopts, NULL)) != -1) {
+    if (aq_opt_signal_handle(c, optarg, &cfg.proc, &cfg.merge_tol_g, &nerr))
+      continue;
+    switch (c) {
+    case OPT_ARCH:
+      arches[cfg.narches++] = optarg;
+      break;
+    case 'o':
+      cfg.h5_path = optarg;
+      break;
+    case OPT_TEXT:
+      text_path = optarg;
+      break;
+    case OPT_SCALE:
+      aq_opt_list("--scale", optarg, 0, &scales, &nscale, &nerr);
+      break;
+    case OPT_SCALE_PGA:
+      aq_opt_double_gt("--scale-to-pga", optarg, 0, 100, &cfg.scale_to_pga_g, &nerr);
+      break;
+    case 'j':
+      aq_opt_long("-j", optarg, 1, AQ_RUN_MAX_THREADS, &cfg.threads, &nerr);
+      break;
+    case OPT_MODEL:
+      aq_opt_choice("--model", optarg, models, &model, &nerr);
+      break;
+    case OPT_COR:
+      aq_opt_double("--cor", optarg, 0, 1, &cfg.cor, &nerr);
+      break;
+    case OPT_HISTORY:
+      cfg.history = 1;
+      break;
+    case 'q':
+      quiet = 1;
+      break;
+    case OPT_HELP:
+      fputs(usage_head, stdout);
+      fputs(aq_opt_signal_usage, stdout);
+      fputs(usage_tail, stdout);
+      free(arches);
+      free(scales);
+      free(cmdline);
+      return AQ_EXIT_OK;
+    default:
+      if (aq_opt_record_handle(c, optarg, &cfg.read, &nerr)) {
+        if (c == AQ_OPT_RECORD_UNITS) {
+          size_t k = strlen(units_text);
+          snprintf(units_text + k, sizeof units_text - k, "%s%s", k ? " " : "",
+                   optarg);
+        }
+      } else {
+        aq_opt_unknown("", argv, optind, optopt, &nerr);
+      }
+    }
+  }
+  aq_opt_signal_check(&cfg.proc, &nerr);
+  if (optind >= argc) {
+    fprintf(stderr, "archquake: expected at least one RECORD (see 'archquake --help')\n");
+    nerr++;
+  }
+  if (cfg.narches == 0) {
+    fprintf(stderr, "archquake: --arch: expected at least one arch file, got none\n");
+    nerr++;
+  }
+  if (scales && !isnan(cfg.scale_to_pga_g)) {
+    fprintf(stderr, "archquake: --scale, --scale-to-pga: expected one of them, got both\n");
+    nerr++;
+  }
+  if (cfg.h5_path && text_path && strcmp(cfg.h5_path, text_path) == 0) {
+    fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\" twice\n",
+            text_path);
+    nerr++;
+  }
+  if (nerr) {
+    free(arches);
+    free(scales);
+    free(cmdline);
+    return AQ_EXIT_USAGE;
+  }
+
+  cfg.records = argv + optind;
+  cfg.nrecords = (size_t)(argc - optind);
+  cfg.arch_paths = arches;
+  cfg.model = (aq_model)model;
+  cfg.units_text = units_text[0] ? units_text : NULL;
+  if (isnan(cfg.scale_to_pga_g)) {
+    cfg.scales = scales ? scales : &one;
+    cfg.nscale = scales ? nscale : 1;
+  }
+  cfg.progress = !quiet && isatty(STDERR_FILENO);
+
+  aq_cleanup_install();
+  FILE *tf = NULL;
+  char *tmp = NULL;
+  int tslot = -1;
+  if (text_path) {
+    size_t len = strlen(text_path) + 32;
+    tmp = malloc(len);
+    if (tmp) {
+      snprintf(tmp, len, "%s.tmp.%ld", text_path, (long)getpid());
+      tf = fopen(tmp, "wx");
+    }
+    if (!tf) {
+      fprintf(stderr, "archquake: %s: cannot create the text output (temporary %s): %s\n",
+              text_path, tmp ? tmp : "", tmp ? strerror(errno) : "out of memory");
+      free(tmp);
+      free(cmdline);
+      free(arches);
+      free(scales);
+      return AQ_EXIT_OUTPUT;
+    }
+    tslot = aq_cleanup_add(tmp);
+  }
+  cfg.text = tf ? tf : stdout;
+
+  int rc = aq_suite_run(&cfg, NULL);
+
+  if (tf) {
+    int ok = rc != AQ_EXIT_OUTPUT && rc != AQ_EXIT_USAGE;
+    if (fclose(tf) != 0 && ok) {
+      fprintf(stderr, "archquake: %s: cannot write the text output: %s\n", text_path,
+              strerror(errno));
+      ok = 0;
+      rc = AQ_EXIT_OUTPUT;
+    }
+    if (ok && rename(tmp, text_path) != 0) {
+      fprintf(stderr, "archquake: %s: cannot rename %s onto it: %s\n", text_path, tmp,
+              strerror(errno));
+      ok = 0;
+      rc = AQ_EXIT_OUTPUT;
+    }
+    if (!ok)
+      unlink(tmp);
+    aq_cleanup_remove(tslot);
+    free(tmp);
+  } else if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "archquake: stdout: cannot write the text output\n");
+    rc = AQ_EXIT_OUTPUT;
+  }
+  free(cmdline);
+  free(arches);
+  free(scales);
+  return rc;
 }

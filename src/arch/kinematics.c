@@ -251,6 +251,79 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
   return AQ_OK;
 }
 
+/* Deformed position of body-fixed point p0 of part `b` (-1: fixed). */
+static aq_vec2 carry(const aq_mech *m, const aq_mech_state *st, int b, aq_vec2 p0)
+{
+  if (b < 0)
+    return p0;
+  aq_vec2 piv0[3] = {m->h[0], m->h[1], m->h[3]};
+  aq_vec2 piv[3] = {m->h[0], st->h2, m->h[3]};
+  return add(piv[b], rot(st->phi[b][0], sub(p0, piv0[b])));
+}
+
+double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
+                      const aq_live *live, const aq_equil *eq, double *ecc,
+                      int *tension)
+{
+  const aq_geom *g = m->g;
+  size_t n = g->p.voussoirs;
+  const size_t *J = m->hs.joint;
+  double gg = live->g_mps2, lam = eq->lambda, worst = 0;
+  double half_t = 0.5 * g->p.thickness_m, rm = g->p.radius_m;
+  aq_vec2 hc[4] = {m->h[0], st->h2, st->h3, m->h[3]};
+  if (tension)
+    *tension = 0;
+  for (size_t j = 0; j <= n; j++) {
+    int k;
+    for (k = 0; k < 4 && J[k] != j; k++)
+      ;
+    if (k < 4) {
+      ecc[j] = m->hs.face[k] == 'e' ? 1.0 : -1.0;
+      continue;
+    }
+    /* the part j lies in (body index or -1 fixed), the hinge the sub-body
+     * runs to, the voussoirs [a, b) of the sub-body, the hinge force on it */
+    int part, cut_ccw;
+    size_t a, b;
+    aq_vec2 f, pf;
+    if (j < J[0]) { /* fixed, +x side: voussoirs j..J0-1, force -(h1, v1) at H1 */
+      part = -1, a = j, b = J[0], cut_ccw = 0;
+      f = v2(-eq->h[0], -eq->v[0]), pf = hc[0];
+    } else if (j > J[3]) { /* fixed, -x side: voussoirs J3..j-1, force (h4, v4) at H4 */
+      part = -1, a = J[3], b = j, cut_ccw = 1;
+      f = v2(eq->h[3], eq->v[3]), pf = hc[3];
+    } else {
+      int bb = j < J[1] ? 0 : j < J[2] ? 1 : 2;
+      part = bb, a = J[bb], b = j, cut_ccw = 1;
+      f = v2(eq->h[bb], eq->v[bb]), pf = hc[bb];
+    }
+    aq_vec2 t = f;
+    double m0 = cross(pf, f);
+    for (size_t v = a; v < b; v++) {
+      double mv = g->vous[v].mass_kg;
+      aq_vec2 load = v2(lam * -(double)live->act_sign * mv * gg, -mv * gg);
+      aq_vec2 c = carry(m, st, part, g->vous[v].c);
+      t = add(t, load);
+      m0 += cross(c, load);
+    }
+    /* joint line: P(r) = A + r u */
+    double th = g->theta_rad[j];
+    aq_vec2 u0 = v2(cos(th), sin(th));
+    aq_vec2 A = carry(m, st, part, v2(0, 0));
+    aq_vec2 u = sub(carry(m, st, part, u0), A);
+    double ut = cross(u, t);
+    double r = ut != 0 ? (m0 - cross(A, t)) / ut : HUGE_VAL;
+    ecc[j] = (r - rm) / half_t;
+    aq_vec2 nrm = perp(u); /* into the counter-clockwise side */
+    double push = dot(t, nrm) * (cut_ccw ? 1.0 : -1.0);
+    if (tension && !(push > 0))
+      *tension = 1;
+    if (fabs(ecc[j]) > worst)
+      worst = fabs(ecc[j]);
+  }
+  return worst;
+}
+
 void aq_mech_field0(const aq_mech *m, int q_sign, aq_vec2 *u, double *w)
 {
   const aq_geom *g = m->g;

@@ -153,6 +153,18 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
                               const aq_live *live, aq_equil *out,
                               aq_error *err);
 
+/* Line of thrust at every joint that is not a hinge (the lower-bound
+ * check): the resultant carried across joint j, found from the equilibrium
+ * of the voussoirs between j and the nearest hinge on the side of j towards
+ * that hinge (the hinge reaction of `eq` plus their dead and live loads,
+ * AQ_LIVE_HORIZONTAL only), crosses the joint at radius r.  Fills
+ * ecc[j] = (r - R) / (t/2) for j = 0..n (|ecc| <= 1: inside the section;
+ * hinge joints get their face, +1 or -1) and returns the largest |ecc|;
+ * *tension (if not NULL) is set to 1 if some joint's resultant pulls. */
+double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
+                      const aq_live *live, const aq_equil *eq, double *ecc,
+                      int *tension);
+
 /* Velocity field of a set at s = 0 per unit ds: for voussoir k, centroid
  * velocity u[k] (m/rad) and rotation rate w[k] (rad/rad), zero for fixed
  * voussoirs.  q_sign converts d/dq to d/ds. */
@@ -186,6 +198,11 @@ aq_end aq_workpath_end(const aq_workpath *w);
  * function's max magnitude on [0, s_c]). */
 size_t aq_workpath_table_size(const aq_workpath *w);
 double aq_workpath_table_error(const aq_workpath *w);
+/* Largest |eccentricity| of the line of thrust over the joints at s = 0
+ * (aq_mech_thrust): <= 1 when the thrust stays within the arch, i.e. the
+ * set is also statically admissible and lambda0 is the collapse multiplier
+ * (upper bound = lower bound); 0 if the set is inadmissible. */
+double aq_workpath_thrust0(const aq_workpath *w);
 /* Equilibrium (horizontal live load) at s; AQ_EVALUE outside [0, s_c]. */
 aq_status aq_workpath_equilibrium(const aq_workpath *w, double s,
                                   aq_equil *out, aq_error *err);

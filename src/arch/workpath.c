@@ -16,12 +16,13 @@
  *
  * Tables: quintic Hermite interpolation on a uniform grid of n intervals over
  * [0, s_c] from the exact value, first and second derivative of each of x, y,
- * M and each body's centroid (x, y) and rotation, stored as power-basis
- * coefficients per interval.  n starts at TABLE_N0 and doubles until the
- * error measured against eval_exact at t = 1/4, 1/2, 3/4 of every interval,
- * relative to the function's largest magnitude over the path, is below
- * TABLE_REL_TOL for x, y, M and their first derivatives and for the second
- * derivatives of x and y (or n reaches TABLE_N_MAX).
+ * dx/ds, dy/ds, M and each body's centroid (x, y) and rotation, stored as
+ * power-basis coefficients per interval.  n starts at TABLE_N0 and doubles
+ * until the error measured against eval_exact at the midpoint of every
+ * interval and at t = 0.276 (where the derivatives' error peaks), relative
+ * to the quantity's largest magnitude over the path, is
+ * below TABLE_REL_TOL for x, y, dx/ds, dy/ds, d2x/ds2, d2y/ds2, M and dM/ds,
+ * or stops falling (round-off), or n reaches TABLE_N_MAX.
  */
 #include <math.h>
 #include <stdio.h>
@@ -40,8 +41,9 @@ enum { F_X = 0, F_Y, F_DX, F_DY, F_M, F_B0 /* then 3 per body: x, y, phi */, NF 
 #define SCAN_MAX_RAD 3.0       /* no mechanism rotates body 1 further than this */
 #define TABLE_N0 16            /* first table size (intervals) */
 #define TABLE_N_MAX 16384      /* largest table size */
-#define TABLE_REL_TOL 1e-12    /* target relative error of the tables */
+#define TABLE_REL_TOL 4e-12    /* target relative error of the tables (round-off floor ~1e-12) */
 #define TABLE_STALL 0.5        /* doubling n must at least halve the error */
+#define TABLE_T_DERIV 0.2763932 /* (5 - sqrt 5)/10: peak of t^2 (1-t)^2 (1-2t) */
 #define S_SLACK_REL 1e-12      /* s within this (relative to s_c) outside [0, s_c] is clamped */
 
 struct aq_workpath {
@@ -57,6 +59,7 @@ struct aq_workpath {
   double h;           /* table step, rad */
   double *coef;       /* n * NF * 6 */
   double tab_err;
+  double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
 };
 
 /* Exact values f[k][0..2] (value, d/ds, d2/ds2) of every tabled function. */
@@ -189,36 +192,32 @@ static void hermite5(double p0, double d0, double e0, double p1, double d1,
   c[5] = -6 * p0 - 3 * hd0 - 0.5 * he0 + 0.5 * he1 - 3 * hd1 + 6 * p1;
 }
 
-/* Build tables with n intervals; measure their error.  -1 on failure. */
-static int build_tables(aq_workpath *w, size_t n)
+typedef double fvals[NF][3];
+
+/* Coefficients for n intervals from the n+1 node values; *coef malloc'd. */
+static int make_coef(const fvals *node, size_t n, double h, double **coef)
 {
-  double (*node)[NF][3] = malloc((n + 1) * sizeof *node);
-  double *coef = malloc(n * NF * 6 * sizeof *coef);
-  if (!node || !coef) {
-    free(node);
-    free(coef);
+  *coef = malloc(n * NF * 6 * sizeof **coef);
+  if (!*coef)
     return -1;
-  }
-  double h = w->path.s_c_rad / (double)n;
-  for (size_t i = 0; i <= n; i++) {
-    double s = i == n ? w->path.s_c_rad : h * (double)i;
-    if (exact_f(w, s, node[i], NULL) != 0) {
-      free(node);
-      free(coef);
-      return -1;
-    }
-  }
   for (size_t i = 0; i < n; i++)
     for (int k = 0; k < NF; k++)
       hermite5(node[i][k][0], node[i][k][1], node[i][k][2], node[i + 1][k][0],
-               node[i + 1][k][1], node[i + 1][k][2], h, coef + (i * NF + (size_t)k) * 6);
-  free(w->coef);
-  w->coef = coef;
-  w->n = n;
-  w->h = h;
-  /* the contract's quantities: (function, derivative) pairs */
+               node[i + 1][k][1], node[i + 1][k][2], h, *coef + (i * NF + (size_t)k) * 6);
+  return 0;
+}
+
+/* Largest error of the tables (w->coef, w->n) against the exact values at
+ * the interval midpoints (mid[i]; there the quintic Hermite error, which is
+ * proportional to t^3 (1-t)^3, peaks) and at t = TABLE_T_DERIV (where the
+ * error of the derivatives, proportional to t^2 (1-t)^2 (1-2t), peaks; it
+ * vanishes at the midpoint), relative to the largest magnitude of each of
+ * the contract's quantities over the nodes.  HUGE_VAL if the linkage fails. */
+static double table_error(const aq_workpath *w, const fvals *node, const fvals *mid)
+{
   static const int chk[8][2] = {{F_X, 0}, {F_Y, 0}, {F_DX, 0}, {F_DY, 0},
                                 {F_DX, 1}, {F_DY, 1}, {F_M, 0}, {F_M, 1}};
+  size_t n = w->n;
   double scale[8] = {0};
   for (size_t i = 0; i <= n; i++)
     for (int c = 0; c < 8; c++)
@@ -226,22 +225,86 @@ static int build_tables(aq_workpath *w, size_t n)
         scale[c] = fabs(node[i][chk[c][0]][chk[c][1]]);
   double err = 0;
   for (size_t i = 0; i < n; i++)
-    for (int q = 1; q <= 3; q++) {
-      double t = 0.25 * q, f[NF][3];
-      if (exact_f(w, h * ((double)i + t), f, NULL) != 0)
-        continue;
+    for (int q = 0; q < 2; q++) {
+      double t = q ? TABLE_T_DERIV : 0.5;
+      fvals at;
+      if (q && exact_f(w, w->h * ((double)i + t), at, NULL) != 0)
+        return HUGE_VAL;
+      const fvals *ex = q ? (const fvals *)&at : &mid[i];
       for (int c = 0; c < 8; c++) {
         double tv[3];
         table_f(w, i, t, chk[c][0], tv);
-        double e = fabs(tv[chk[c][1]] - f[chk[c][0]][chk[c][1]]) /
+        double e = fabs(tv[chk[c][1]] - (*ex)[chk[c][0]][chk[c][1]]) /
                    (scale[c] > 0 ? scale[c] : 1);
         if (e > err)
           err = e;
       }
     }
-  w->tab_err = err;
+  return err;
+}
+
+/* Tables: n = TABLE_N0, 2 TABLE_N0, ...; the midpoints evaluated to measure
+ * the error of one level are the new nodes of the next, so each level costs
+ * n exact evaluations.  Stops when the error is below TABLE_REL_TOL, or
+ * stops falling by TABLE_STALL (round-off: then the previous level is kept),
+ * or n reaches TABLE_N_MAX.  -1 on failure (memory, or the linkage). */
+static int build_tables(aq_workpath *w)
+{
+  size_t n = TABLE_N0;
+  double sc = w->path.s_c_rad;
+  fvals *node = malloc((n + 1) * sizeof *node), *mid = NULL;
+  if (!node)
+    return -1;
+  for (size_t i = 0; i <= n; i++)
+    if (exact_f(w, i == n ? sc : sc * (double)i / (double)n, node[i], NULL) != 0)
+      goto fail;
+  double prev_err = HUGE_VAL;
+  for (;;) {
+    double h = sc / (double)n, *coef;
+    mid = malloc(n * sizeof *mid);
+    if (!mid || make_coef(node, n, h, &coef) != 0)
+      goto fail;
+    for (size_t i = 0; i < n; i++)
+      if (exact_f(w, sc * ((double)i + 0.5) / (double)n, mid[i], NULL) != 0) {
+        free(coef);
+        goto fail;
+      }
+    double *old_coef = w->coef;
+    size_t old_n = w->n;
+    double old_h = w->h;
+    w->coef = coef, w->n = n, w->h = h;
+    double err = table_error(w, node, mid);
+    if (err > TABLE_STALL * prev_err) { /* round-off: keep the previous level */
+      free(coef);
+      w->coef = old_coef, w->n = old_n, w->h = old_h;
+      break;
+    }
+    free(old_coef);
+    w->tab_err = err;
+    if (err <= TABLE_REL_TOL || n >= TABLE_N_MAX)
+      break;
+    prev_err = err;
+    fvals *node2 = malloc((2 * n + 1) * sizeof *node2);
+    if (!node2)
+      goto fail;
+    for (size_t i = 0; i < n; i++) {
+      memcpy(node2[2 * i], node[i], sizeof(fvals));
+      memcpy(node2[2 * i + 1], mid[i], sizeof(fvals));
+    }
+    memcpy(node2[2 * n], node[n], sizeof(fvals));
+    free(node);
+    free(mid);
+    mid = NULL;
+    node = node2;
+    n *= 2;
+  }
   free(node);
+  free(mid);
   return 0;
+fail:
+  free(node);
+  free(mid);
+  return -1;
 }
 
 static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
@@ -381,6 +444,13 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
       *out = w;
       return AQ_OK;
     }
+  double *ecc = malloc((g->p.voussoirs + 1) * sizeof *ecc);
+  if (!ecc) {
+    aq_workpath_free(w);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  w->thrust0 = aq_mech_thrust(&w->mech, &s0, &live, &eq, ecc, NULL);
+  free(ecc);
   find_end(w);
   if (!(p->s_c_rad > 0) || w->end == AQ_END_NONE) {
     snprintf(w->reason, sizeof w->reason, "no end of the path found in (0, %g] rad",
@@ -389,22 +459,10 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
     return AQ_OK;
   }
   p->admissible = 1;
-  /* double n until the error is below TABLE_REL_TOL or stops falling
-   * (round-off), then keep the best */
-  double prev = HUGE_VAL;
-  for (size_t n = TABLE_N0;; n *= 2) {
-    if (build_tables(w, n) != 0) {
-      aq_workpath_free(w);
-      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL,
-                          "out of memory (or the linkage failed) building tables");
-    }
-    if (w->tab_err > TABLE_STALL * prev && build_tables(w, n / 2) != 0) {
-      aq_workpath_free(w);
-      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
-    }
-    if (w->tab_err <= TABLE_REL_TOL || w->n < n || n >= TABLE_N_MAX)
-      break;
-    prev = w->tab_err;
+  if (build_tables(w) != 0) {
+    aq_workpath_free(w);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL,
+                        "out of memory (or the linkage failed) building tables");
   }
   *out = w;
   return AQ_OK;
@@ -416,6 +474,7 @@ const char *aq_workpath_reason(const aq_workpath *w) { return w->reason; }
 aq_end aq_workpath_end(const aq_workpath *w) { return w->end; }
 size_t aq_workpath_table_size(const aq_workpath *w) { return w->n; }
 double aq_workpath_table_error(const aq_workpath *w) { return w->tab_err; }
+double aq_workpath_thrust0(const aq_workpath *w) { return w->thrust0; }
 
 aq_status aq_workpath_equilibrium(const aq_workpath *w, double s, aq_equil *out,
                                   aq_error *err)

@@ -12,13 +12,19 @@
 #include <string.h>
 #include <unistd.h>
 
+#define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
+
 struct aq_h5_writer {
   char *target;
   char *tmp;
   hid_t file;
   hid_t g_records, g_arches, g_runs;
-  aq_summary *sum; /* every run's summary, in write order, for /summary */
-  size_t nsum, capsum;
+  /* /summary grows by AQ_H5_SUMMARY_CHUNK rows at a time, so the writer's
+   * memory does not grow with the number of runs */
+  hid_t d_sum, mt_sum, ft_sum;
+  aq_summary buf[AQ_H5_SUMMARY_CHUNK];
+  size_t nbuf;   /* rows in buf */
+  hsize_t nrows; /* rows already in the dataset */
 };
 
 /* ---- error reporting ---------------------------------------------------- */
@@ -166,28 +172,40 @@ static herr_t dataset_doubles(hid_t loc, const char *name, const double *v,
 
 /* ---- lifecycle ---------------------------------------------------------- */
 
+static hid_t summary_type(hid_t *file);
+static herr_t summary_flush(aq_h5_writer *w);
+
 static void writer_free(aq_h5_writer *w)
 {
   if (!w)
     return;
   free(w->target);
   free(w->tmp);
-  free(w->sum);
   free(w);
 }
 
-/* Close every open handle, ignoring failures (used on the failure path). */
+/* Close every open handle, ignoring failures (used on the failure path).
+ * A file that cannot be flushed is abandoned, not closed: HDF5 1.10 leaves a
+ * dangling identifier behind a failed H5Fclose, which crashes the library
+ * when it terminates (hence also H5dont_atexit in aq_h5_open).  The process
+ * is about to report the failure; the temporary is unlinked anyway. */
 static void close_quietly(aq_h5_writer *w)
 {
   H5E_BEGIN_TRY
   {
-    if (w->g_runs >= 0)
-      H5Gclose(w->g_runs);
-    if (w->g_arches >= 0)
-      H5Gclose(w->g_arches);
-    if (w->g_records >= 0)
-      H5Gclose(w->g_records);
-    if (w->file >= 0) {
+    if (w->mt_sum >= 0)
+      H5Tclose(w->mt_sum);
+    if (w->ft_sum >= 0)
+      H5Tclose(w->ft_sum);
+    if (w->file >= 0 && H5Fflush(w->file, H5F_SCOPE_LOCAL) >= 0) {
+      if (w->d_sum >= 0)
+        H5Dclose(w->d_sum);
+      if (w->g_runs >= 0)
+        H5Gclose(w->g_runs);
+      if (w->g_arches >= 0)
+        H5Gclose(w->g_arches);
+      if (w->g_records >= 0)
+        H5Gclose(w->g_records);
       /* close every object still open in the file, then the file */
       ssize_t n = H5Fget_obj_count(w->file, H5F_OBJ_ALL & ~H5F_OBJ_FILE);
       if (n > 0) {
@@ -205,16 +223,21 @@ static void close_quietly(aq_h5_writer *w)
   }
   H5E_END_TRY;
   w->g_runs = w->g_arches = w->g_records = w->file = -1;
+  w->d_sum = w->mt_sum = w->ft_sum = -1;
 }
 
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
 {
   *out = NULL;
+  /* No library shutdown at exit (see close_quietly); must come before the
+   * library initialises, and fails harmlessly if it already has. */
+  H5dont_atexit();
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   aq_h5_writer *w = calloc(1, sizeof *w);
   if (!w)
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   w->file = w->g_records = w->g_arches = w->g_runs = -1;
+  w->d_sum = w->mt_sum = w->ft_sum = -1;
   size_t len = strlen(target) + 40;
   w->target = strdup(target);
   w->tmp = malloc(len);
@@ -222,7 +245,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
     writer_free(w);
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   }
-  snprintf(w->tmp, len, "%s.tmp.%ld", target, (long)getpid());
+  aq_h5_temp_name(target, w->tmp, len);
   /* Create the temporary ourselves first, for a clear errno. */
   int fd = open(w->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
   if (fd < 0) {
@@ -236,6 +259,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   close(fd);
   aq_status st = AQ_OK;
   const char *obj = "/";
+  hid_t sp = -1, dcpl = -1;
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   CK(fapl, "H5Pcreate");
   /* 1.8 object format: attributes larger than 64 KiB (long command lines,
@@ -255,13 +279,43 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   obj = "/runs";
   w->g_runs = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(w->g_runs, "H5Gcreate");
+  obj = "/summary";
+  w->mt_sum = summary_type(&w->ft_sum);
+  CK(w->mt_sum, "summary type");
+  {
+    hsize_t dim = 0, maxdim = H5S_UNLIMITED, chunk = AQ_H5_SUMMARY_CHUNK;
+    sp = H5Screate_simple(1, &dim, &maxdim);
+    CK(sp, "H5Screate");
+    dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    CK(dcpl, "H5Pcreate");
+    CK(H5Pset_chunk(dcpl, 1, &chunk), "H5Pset_chunk");
+    w->d_sum = H5Dcreate2(w->file, obj, w->ft_sum, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    CK(w->d_sum, "H5Dcreate");
+    CK(H5Pclose(dcpl), "H5Pclose");
+    dcpl = -1;
+    CK(H5Sclose(sp), "H5Sclose");
+    sp = -1;
+    CK(attr_str(w->d_sum, "units",
+                "per member: scale 1, pga_g g, *_s s, *_rad rad, *_m m, *_j J, "
+                "collapsed and impacts counts"),
+       "summary attributes");
+  }
   *out = w;
   return AQ_OK;
 fail:
   if (fapl >= 0)
     H5Pclose(fapl);
+  if (dcpl >= 0)
+    H5Pclose(dcpl);
+  if (sp >= 0)
+    H5Sclose(sp);
   aq_h5_abort(w);
   return st;
+}
+
+void aq_h5_temp_name(const char *target, char *buf, size_t n)
+{
+  snprintf(buf, n, "%s.tmp.%ld", target, (long)getpid());
 }
 
 const char *aq_h5_temp_path(const aq_h5_writer *w)
@@ -477,15 +531,6 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   char obj[96], link[64];
   snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu", ri, ai, si);
   hid_t g = -1;
-  if (w->nsum == w->capsum) {
-    size_t cap = w->capsum ? 2 * w->capsum : 64;
-    aq_summary *p = realloc(w->sum, cap * sizeof *p);
-    if (!p)
-      return aq_error_set(err, AQ_ENOMEM, w->target, -1, -1, obj,
-                          "out of memory");
-    w->sum = p;
-    w->capsum = cap;
-  }
   g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(write_summary_attrs(g, s), "run attributes");
@@ -524,7 +569,10 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   }
   CK(attr_double(g, "timing_run_s", timing_run_s), "run attributes");
   CK(H5Gclose(g), "H5Gclose");
-  w->sum[w->nsum++] = *s;
+  g = -1;
+  w->buf[w->nbuf++] = *s;
+  if (w->nbuf == AQ_H5_SUMMARY_CHUNK)
+    CK(summary_flush(w), "/summary rows");
   return AQ_OK;
 fail:
   if (g >= 0)
@@ -574,32 +622,44 @@ static hid_t summary_type(hid_t *file)
   return t;
 }
 
+/* Append the buffered rows to /summary.  Returns < 0 on failure. */
+static herr_t summary_flush(aq_h5_writer *w)
+{
+  if (w->nbuf == 0)
+    return 0;
+  hsize_t start = w->nrows, count = w->nbuf, size = w->nrows + w->nbuf;
+  if (H5Dset_extent(w->d_sum, &size) < 0)
+    return -1;
+  hid_t fs = H5Dget_space(w->d_sum);
+  if (fs < 0)
+    return -1;
+  hid_t ms = H5Screate_simple(1, &count, NULL);
+  herr_t rc = -1;
+  if (ms >= 0 &&
+      H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
+    rc = H5Dwrite(w->d_sum, w->mt_sum, ms, fs, H5P_DEFAULT, w->buf);
+  if (ms >= 0 && H5Sclose(ms) < 0)
+    rc = -1;
+  if (H5Sclose(fs) < 0)
+    rc = -1;
+  if (rc >= 0) {
+    w->nrows += w->nbuf;
+    w->nbuf = 0;
+  }
+  return rc;
+}
+
 aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
 {
   aq_status st = AQ_OK;
   const char *obj = "/summary";
-  hid_t mt = -1, ft = -1, sp = -1, d = -1;
-  mt = summary_type(&ft);
-  CK(mt, "summary type");
-  hsize_t dim = w->nsum;
-  sp = H5Screate_simple(1, &dim, NULL);
-  CK(sp, "H5Screate");
-  d = H5Dcreate2(w->file, obj, ft, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  CK(d, "H5Dcreate");
-  if (w->nsum > 0)
-    CK(H5Dwrite(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, w->sum), "H5Dwrite");
-  CK(attr_str(d, "units",
-              "per member: scale 1, pga_g g, *_s s, *_rad rad, *_m m, *_j J, "
-              "collapsed and impacts counts"),
-     "summary attributes");
-  CK(H5Dclose(d), "H5Dclose");
-  d = -1;
-  CK(H5Sclose(sp), "H5Sclose");
-  sp = -1;
-  CK(H5Tclose(mt), "H5Tclose");
-  mt = -1;
-  CK(H5Tclose(ft), "H5Tclose");
-  ft = -1;
+  CK(summary_flush(w), "/summary rows");
+  CK(H5Dclose(w->d_sum), "H5Dclose");
+  w->d_sum = -1;
+  CK(H5Tclose(w->mt_sum), "H5Tclose");
+  w->mt_sum = -1;
+  CK(H5Tclose(w->ft_sum), "H5Tclose");
+  w->ft_sum = -1;
   obj = "/";
   if (t) {
     CK(attr_double(w->file, "timing_wall_s", t->wall_s), "root attributes");
@@ -616,13 +676,21 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
   CK(H5Gclose(w->g_records), "H5Gclose");
   w->g_records = -1;
   {
+    /* Flush first: a file that cannot be flushed is abandoned, never
+     * closed (see close_quietly). */
+    errno = 0;
+    if (H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0) {
+      int e = errno;
+      st = h5_fail(err, w->target, obj, "H5Fflush (writing the file)", e);
+      w->file = -1;
+      goto fail;
+    }
     hid_t f = w->file;
     w->file = -1;
     errno = 0;
     if (H5Fclose(f) < 0) {
-      /* the identifier is gone either way: do not close it again */
       int e = errno;
-      st = h5_fail(err, w->target, obj, "H5Fclose (flushing the file)", e);
+      st = h5_fail(err, w->target, obj, "H5Fclose", e);
       goto fail;
     }
   }
@@ -646,18 +714,6 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
   writer_free(w);
   return AQ_OK;
 fail:
-  H5E_BEGIN_TRY
-  {
-    if (d >= 0)
-      H5Dclose(d);
-    if (sp >= 0)
-      H5Sclose(sp);
-    if (mt >= 0)
-      H5Tclose(mt);
-    if (ft >= 0)
-      H5Tclose(ft);
-  }
-  H5E_END_TRY;
   aq_h5_abort(w);
   return st;
 }

@@ -78,6 +78,10 @@ typedef struct {
  * directory is not writable).  *out is the writer (NULL on failure). */
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err);
 
+/* The name aq_h5_open will give the temporary for target (in this process),
+ * into buf[n]: a signal handler can know it before the file exists. */
+void aq_h5_temp_name(const char *target, char *buf, size_t n);
+
 /* The temporary file's name (for a signal handler that must remove it). */
 const char *aq_h5_temp_path(const aq_h5_writer *w);
 

@@ -1,0 +1,57 @@
+/* cleanup.c: remove registered temporaries on SIGINT/SIGTERM/SIGHUP (see
+ * cleanup.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "cleanup.h"
+
+#include <signal.h>
+#include <stdatomic.h>
+#include <string.h>
+#include <unistd.h>
+
+#define AQ_CLEANUP_SLOTS 8
+#define AQ_CLEANUP_PATH_MAX 4096
+
+static char slot_path[AQ_CLEANUP_SLOTS][AQ_CLEANUP_PATH_MAX];
+static volatile sig_atomic_t slot_used[AQ_CLEANUP_SLOTS];
+
+static void on_signal(int sig)
+{
+  for (int i = 0; i < AQ_CLEANUP_SLOTS; i++)
+    if (slot_used[i])
+      unlink(slot_path[i]);
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+void aq_cleanup_install(void)
+{
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+  for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigfillset(&sa.sa_mask); /* no other of ours while cleaning up */
+    sigaction(sigs[i], &sa, NULL);
+  }
+}
+
+int aq_cleanup_add(const char *path)
+{
+  size_t n = strlen(path);
+  if (n >= AQ_CLEANUP_PATH_MAX)
+    return -1;
+  for (int i = 0; i < AQ_CLEANUP_SLOTS; i++)
+    if (!slot_used[i]) {
+      memcpy(slot_path[i], path, n + 1);
+      atomic_signal_fence(memory_order_seq_cst);
+      slot_used[i] = 1; /* armed only once the path is complete */
+      return i;
+    }
+  return -1;
+}
+
+void aq_cleanup_remove(int slot)
+{
+  if (slot >= 0 && slot < AQ_CLEANUP_SLOTS)
+    slot_used[slot] = 0;
+}

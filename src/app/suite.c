@@ -1,0 +1,646 @@
+/* suite.c: records x arches x scales on worker threads, written in order by
+ * one writer (see suite.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "suite.h"
+
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "../arch/arch.h"
+#include "../arch/result.h"
+#include "../report/h5.h"
+#include "../report/report.h"
+#include "../report/text.h"
+#include "../signal/steps.h"
+#include "../units.h"
+#include "app.h"
+#include "cleanup.h"
+
+/* Records in flight per worker thread: enough that a worker finishing a
+ * short record finds the next one while a long one is still running. */
+#define AQ_SUITE_WINDOW_PER_THREAD 2
+/* Progress line refresh period, s. */
+#define AQ_SUITE_PROGRESS_PERIOD_S 0.25
+
+static double now_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- per-record work ---------------------------------------------------- */
+
+typedef struct {
+  aq_summary sum;
+  aq_result res;
+  int have_res;
+  aq_error err;  /* when the run failed */
+  int failed;
+  double run_s;
+} run_slot;
+
+enum { SLOT_FREE = 0, SLOT_BUSY, SLOT_DONE };
+
+typedef struct {
+  int state;
+  size_t index;       /* record index */
+  aq_record rec;      /* metadata (samples freed once processed) */
+  int have_rec;
+  aq_processed proc;
+  int have_proc;
+  aq_im im;
+  int have_im;
+  int failed;         /* record-level failure (read or process) */
+  aq_error err;
+  char status[AQ_SUMMARY_STATUS_MAX];
+  char warning[300];  /* residual warning, "" if none */
+  double read_s, process_s;
+  run_slot *runs;     /* narch * nscale, arch-major */
+} rec_slot;
+
+typedef struct {
+  const aq_suite_cfg *cfg;
+  aq_arch **arches;
+  int *arch_ok;             /* 0: its stepper cannot be made (reported once) */
+  aq_error *arch_err;
+  const char *model_name;
+  size_t nscale;            /* runs per arch per record */
+  size_t nruns;             /* per record: narch * nscale */
+  aq_signal_ws *ws;
+  pthread_mutex_t lock;
+  pthread_cond_t cond;      /* a slot finished or was freed */
+  rec_slot *slots;
+  size_t window;
+  size_t next_claim, next_write;
+  int stop;                 /* the writer gave up: workers stop claiming */
+  size_t runs_done;         /* for the progress line */
+  double read_s, process_s, run_s;
+} suite;
+
+static const char *const model_names[] = {"workpath", "ode", "paper"};
+
+static void slot_clear(suite *S, rec_slot *r)
+{
+  aq_record_free(&r->rec);
+  aq_processed_free(&r->proc);
+  if (r->runs)
+    for (size_t k = 0; k < S->nruns; k++)
+      if (r->runs[k].have_res)
+        aq_result_free(&r->runs[k].res);
+  free(r->runs);
+  memset(r, 0, sizeof *r);
+}
+
+/* Every run of a record that failed before any run: status, NAN values. */
+static void fail_runs(suite *S, rec_slot *r)
+{
+  const aq_suite_cfg *c = S->cfg;
+  for (size_t a = 0; a < c->narches; a++)
+    for (size_t k = 0; k < S->nscale; k++) {
+      run_slot *u = &r->runs[a * S->nscale + k];
+      double scale = c->scales ? c->scales[k] : NAN;
+      aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
+                      S->model_name, scale, NAN, r->status, NULL);
+    }
+}
+
+/* Read, process, scale, step and run record r->index with this thread's
+ * steppers (st[a] NULL when arch a cannot run). */
+static void do_record(suite *S, rec_slot *r, aq_stepper **st)
+{
+  const aq_suite_cfg *c = S->cfg;
+  const char *path = c->records[r->index];
+  r->runs = calloc(S->nruns, sizeof *r->runs);
+  if (!r->runs) {
+    r->failed = 1;
+    aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    aq_summary_status(r->status, sizeof r->status, "read", AQ_ENOMEM);
+    return; /* the writer reports it; no run rows can be made */
+  }
+  double t0 = now_s();
+  aq_status s = aq_record_read(path, &c->read, &r->rec, &r->err);
+  double t1 = now_s();
+  r->read_s = t1 - t0;
+  if (s != AQ_OK) {
+    r->failed = 1;
+    aq_summary_status(r->status, sizeof r->status, "read", s);
+    fail_runs(S, r);
+    return;
+  }
+  r->have_rec = 1;
+  aq_signal_opts po = c->proc;
+  po.scale = 1.0;
+  s = aq_signal_process(&r->rec, &po, S->ws, &r->proc, &r->err);
+  if (s == AQ_OK) {
+    r->have_proc = 1;
+    s = aq_im_compute(&r->proc, &r->im, &r->err);
+  }
+  if (s == AQ_OK) {
+    r->have_im = 1;
+    aq_im_residual_warning(&r->im, r->warning, sizeof r->warning);
+  }
+  free(r->rec.acc_mps2); /* the processed copy is all that is needed now */
+  r->rec.acc_mps2 = NULL;
+  if (s == AQ_OK && !c->scales && !(r->im.pga_g > 0)) {
+    s = aq_error_set(&r->err, AQ_EVALUE, path, -1, -1, "--scale-to-pga",
+                     "expected a record with PGA > 0 to scale, got PGA %g g",
+                     r->im.pga_g);
+  }
+  double *a = NULL;
+  if (s == AQ_OK && !(a = malloc((r->proc.n ? r->proc.n : 1) * sizeof *a)))
+    s = aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  r->process_s = now_s() - t1;
+  if (s != AQ_OK) {
+    r->failed = 1;
+    aq_summary_status(r->status, sizeof r->status, "process", s);
+    fail_runs(S, r);
+    free(a);
+    return;
+  }
+  snprintf(r->status, sizeof r->status, "ok");
+
+  const aq_processed *p = &r->proc;
+  for (size_t k = 0; k < S->nscale; k++) {
+    double t2 = now_s();
+    double scale = c->scales ? c->scales[k] : c->scale_to_pga_g / r->im.pga_g;
+    double amax = 0;
+    for (size_t i = 0; i < p->n; i++) {
+      a[i] = scale * p->acc_mps2[i];
+      amax = fmax(amax, fabs(a[i]));
+    }
+    double pga_g = amax / AQ_G0_MPS2;
+    aq_steps steps;
+    aq_error serr;
+    aq_error_clear(&serr);
+    aq_status ss = aq_steps_from_samples(a, p->n, p->dt_s,
+                                         -(double)p->pad_front * p->dt_s,
+                                         c->merge_tol_g * AQ_G0_MPS2, &steps, &serr);
+    r->process_s += now_s() - t2;
+    for (size_t ai = 0; ai < c->narches; ai++) {
+      run_slot *u = &r->runs[ai * S->nscale + k];
+      double t3 = now_s();
+      aq_status rs = ss;
+      if (rs != AQ_OK) {
+        u->err = serr;
+      } else if (!st[ai]) {
+        rs = S->arch_err[ai].status != AQ_OK ? S->arch_err[ai].status : AQ_EINTERNAL;
+        u->err = S->arch_err[ai];
+      } else {
+        aq_error_clear(&u->err);
+        memset(&u->res, 0, sizeof u->res);
+        rs = aq_stepper_run(st[ai], &steps, &u->res, &u->err);
+        u->have_res = 1;
+      }
+      char status[AQ_SUMMARY_STATUS_MAX];
+      aq_summary_status(status, sizeof status,
+                        ss != AQ_OK ? "process" : !st[ai] ? "arch" : "run", rs);
+      u->failed = rs != AQ_OK;
+      if (u->failed && u->have_res) {
+        aq_result_free(&u->res);
+        u->have_res = 0;
+      }
+      aq_summary_fill(&u->sum, path, aq_arch_name(S->arches[ai]), S->model_name,
+                      scale, pga_g, status, u->have_res ? &u->res : NULL);
+      u->run_s = now_s() - t3;
+      pthread_mutex_lock(&S->lock);
+      S->runs_done++;
+      pthread_mutex_unlock(&S->lock);
+    }
+    if (ss == AQ_OK)
+      aq_steps_free(&steps);
+  }
+  free(a);
+}
+
+/* ---- threads ------------------------------------------------------------ */
+
+typedef struct {
+  suite *S;
+  aq_stepper **st; /* one per arch, this thread's own */
+} worker_arg;
+
+static void *worker(void *arg)
+{
+  worker_arg *w = arg;
+  suite *S = w->S;
+  for (;;) {
+    pthread_mutex_lock(&S->lock);
+    while (!S->stop && S->next_claim < S->cfg->nrecords &&
+           S->next_claim >= S->next_write + S->window)
+      pthread_cond_wait(&S->cond, &S->lock);
+    if (S->stop || S->next_claim >= S->cfg->nrecords) {
+      pthread_mutex_unlock(&S->lock);
+      break;
+    }
+    size_t idx = S->next_claim++;
+    rec_slot *r = &S->slots[idx % S->window];
+    r->state = SLOT_BUSY;
+    r->index = idx;
+    pthread_mutex_unlock(&S->lock);
+
+    do_record(S, r, w->st);
+
+    pthread_mutex_lock(&S->lock);
+    r->state = SLOT_DONE;
+    S->read_s += r->read_s;
+    S->process_s += r->process_s;
+    for (size_t k = 0; r->runs && k < S->nruns; k++)
+      S->run_s += r->runs[k].run_s;
+    pthread_cond_broadcast(&S->cond);
+    pthread_mutex_unlock(&S->lock);
+  }
+  return NULL;
+}
+
+/* ---- the writer --------------------------------------------------------- */
+
+static void progress(suite *S, double t_start, size_t total, int final)
+{
+  if (!S->cfg->progress)
+    return;
+  if (final) {
+    fputs("\r\033[K", stderr);
+    return;
+  }
+  size_t done = S->runs_done;
+  double el = now_s() - t_start;
+  if (done > 0 && done < total)
+    fprintf(stderr, "\r\033[Karchquake: %zu/%zu runs, %.1f s elapsed, ~%.0f s left",
+            done, total, el, el * (double)(total - done) / (double)done);
+  else
+    fprintf(stderr, "\r\033[Karchquake: %zu/%zu runs, %.1f s elapsed", done,
+            total, el);
+  fflush(stderr);
+}
+
+/* 1 if writing r prints something on stderr. */
+static int has_diagnostics(const suite *S, const rec_slot *r)
+{
+  if (r->failed || r->warning[0])
+    return 1;
+  for (size_t i = 0; r->runs && i < S->nruns; i++)
+    if (r->runs[i].failed)
+      return 1;
+  return 0;
+}
+
+/* Write one finished record (report its problems, then its rows).  Returns
+ * AQ_OK, or the output failure with *err filled. */
+static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
+                              aq_suite_stats *stats, aq_error *err)
+{
+  const aq_suite_cfg *c = S->cfg;
+  const char *path = c->records[r->index];
+  if (r->failed) {
+    aq_error_print(&r->err, stderr);
+    stats->records_failed++;
+  }
+  if (r->warning[0])
+    fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
+  if (!r->runs)
+    return AQ_OK;
+  for (size_t i = 0; i < S->nruns; i++) {
+    run_slot *u = &r->runs[i];
+    size_t ai = i / S->nscale;
+    if (u->failed && !r->failed && S->arch_ok[ai]) {
+      char msg[1200], num[64];
+      aq_error_format(&u->err, msg, sizeof msg);
+      aq_text_double(num, sizeof num, u->sum.scale);
+      fprintf(stderr, "archquake: %s: arch %s, scale %s: %s\n", path,
+              aq_arch_name(S->arches[ai]), num, msg);
+    }
+  }
+  if (h5) {
+    aq_h5_record hr = {path,
+                       r->have_rec ? &r->rec : NULL,
+                       r->have_proc ? &r->proc : NULL,
+                       r->have_im ? &r->im : NULL,
+                       r->status,
+                       r->failed ? r->err.message : NULL,
+                       r->read_s,
+                       r->process_s};
+    char full[1200];
+    if (r->failed) {
+      aq_error_format(&r->err, full, sizeof full);
+      hr.error = full;
+    }
+    aq_status s = aq_h5_write_record(h5, r->index, &hr, err);
+    if (s != AQ_OK)
+      return s;
+  }
+  for (size_t i = 0; i < S->nruns; i++) {
+    run_slot *u = &r->runs[i];
+    stats->runs++;
+    stats->runs_failed += u->failed || r->failed;
+    if (c->text && aq_text_row(c->text, &u->sum) != 0)
+      return aq_error_set(err, AQ_EIO, "text output", -1, -1, NULL,
+                          "cannot write a row: %s", strerror(errno));
+    if (h5) {
+      char msg[1200];
+      const char *em = NULL;
+      if (u->failed) {
+        aq_error_format(&u->err, msg, sizeof msg);
+        em = msg;
+      }
+      aq_status s = aq_h5_write_run(h5, r->index, i / S->nscale, i % S->nscale,
+                                    &u->sum, u->have_res ? &u->res : NULL, em,
+                                    u->run_s, err);
+      if (s != AQ_OK)
+        return s;
+    }
+  }
+  return AQ_OK;
+}
+
+static void iso_now(char *buf, size_t n)
+{
+  time_t t = time(NULL);
+  struct tm tm;
+  if (gmtime_r(&t, &tm))
+    strftime(buf, n, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  else
+    snprintf(buf, n, "unknown");
+}
+
+/* Open the results file and write the root and the arches. */
+static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
+                         aq_error *err)
+{
+  const aq_suite_cfg *c = S->cfg;
+  aq_h5_writer *w;
+  /* registered before it exists, so that no signal can slip in between */
+  size_t len = strlen(c->h5_path) + 40;
+  char *tmp = malloc(len);
+  if (!tmp)
+    return aq_error_set(err, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory");
+  aq_h5_temp_name(c->h5_path, tmp, len);
+  *cleanup_slot = aq_cleanup_add(tmp);
+  free(tmp);
+  aq_status s = aq_h5_open(c->h5_path, &w, err);
+  if (s != AQ_OK) {
+    aq_cleanup_remove(*cleanup_slot);
+    *cleanup_slot = -1;
+    return s;
+  }
+  char created[64];
+  iso_now(created, sizeof created);
+  aq_h5_root root = {AQ_VERSION,
+                     c->command_line,
+                     created,
+                     &c->proc,
+                     c->merge_tol_g,
+                     c->units_text ? c->units_text : "file",
+                     c->read.dt_s,
+                     S->model_name,
+                     c->cor,
+                     c->scales,
+                     S->nscale,
+                     c->scales ? NAN : c->scale_to_pga_g,
+                     c->history,
+                     c->threads};
+  s = aq_h5_write_root(w, &root, err);
+  for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
+    aq_h5_arch ha = {aq_arch_name(S->arches[a]),
+                     c->arch_paths[a],
+                     aq_arch_config_text(S->arches[a]),
+                     aq_arch_dynamics_of(S->arches[a]),
+                     {aq_arch_path(S->arches[a], 0), aq_arch_path(S->arches[a], 1)}};
+    s = aq_h5_write_arch(w, a, &ha, err);
+  }
+  if (s != AQ_OK) {
+    aq_h5_abort(w);
+    aq_cleanup_remove(*cleanup_slot);
+    *cleanup_slot = -1;
+    return s;
+  }
+  *out = w;
+  return AQ_OK;
+}
+
+/* A stepper for arch a with the suite's settings, or NULL (err filled). */
+static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
+{
+  const aq_arch *arch = S->arches[a];
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1),
+                                    S->cfg->model, err);
+  if (!st)
+    return NULL;
+  const aq_arch_dynamics *d = aq_arch_dynamics_of(arch);
+  aq_stepper_set_cor(st, isnan(S->cfg->cor) ? d->cor : S->cfg->cor);
+  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
+  aq_stepper_set_history(st, S->cfg->history);
+  return st;
+}
+
+int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
+{
+  double t_start = now_s();
+  aq_suite_stats stats;
+  memset(&stats, 0, sizeof stats);
+  suite S;
+  memset(&S, 0, sizeof S);
+  S.cfg = c;
+  S.model_name = model_names[c->model <= AQ_MODEL_PAPER ? c->model : 0];
+  S.nscale = c->scales ? c->nscale : 1;
+  S.nruns = c->narches * S.nscale;
+  long nthreads = c->threads < 1 ? 1 : c->threads;
+  if ((size_t)nthreads > c->nrecords)
+    nthreads = c->nrecords ? (long)c->nrecords : 1;
+  S.window = (size_t)nthreads * AQ_SUITE_WINDOW_PER_THREAD;
+  int rc = AQ_EXIT_OK;
+
+  /* Arches: loaded once, every bad one reported; nothing runs if any is. */
+  S.arches = calloc(c->narches ? c->narches : 1, sizeof *S.arches);
+  S.arch_ok = calloc(c->narches ? c->narches : 1, sizeof *S.arch_ok);
+  S.arch_err = calloc(c->narches ? c->narches : 1, sizeof *S.arch_err);
+  S.slots = calloc(S.window, sizeof *S.slots);
+  S.ws = aq_signal_ws_alloc();
+  if (!S.arches || !S.arch_ok || !S.arch_err || !S.slots || !S.ws) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto out;
+  }
+  int bad_arch = 0;
+  for (size_t a = 0; a < c->narches; a++) {
+    aq_error e;
+    aq_error_clear(&e);
+    if (aq_arch_load(c->arch_paths[a], &S.arches[a], &e) != AQ_OK) {
+      aq_error_print(&e, stderr);
+      bad_arch = 1;
+    }
+  }
+  if (bad_arch) {
+    rc = AQ_EXIT_USAGE;
+    goto out;
+  }
+  /* An arch whose stepper cannot be made (no admissible mechanism...) is
+   * reported once; its runs fail. */
+  for (size_t a = 0; a < c->narches; a++) {
+    aq_error_clear(&S.arch_err[a]);
+    aq_stepper *st = make_stepper(&S, a, &S.arch_err[a]);
+    S.arch_ok[a] = st != NULL;
+    if (!st) {
+      char msg[1200];
+      aq_error_format(&S.arch_err[a], msg, sizeof msg);
+      fprintf(stderr, "archquake: %s: arch %s cannot run: %s\n", c->arch_paths[a],
+              aq_arch_name(S.arches[a]), msg);
+      rc = AQ_EXIT_FAIL;
+    }
+    aq_stepper_free(st);
+  }
+
+  /* Output before any record is read: an unwritable target fails now. */
+  aq_h5_writer *h5 = NULL;
+  int h5_slot = -1;
+  aq_error oerr;
+  aq_error_clear(&oerr);
+  double tw = now_s();
+  if (c->h5_path && open_h5(&S, &h5, &h5_slot, &oerr) != AQ_OK) {
+    aq_error_print(&oerr, stderr);
+    rc = AQ_EXIT_OUTPUT;
+    goto out;
+  }
+  if (c->text && aq_text_header(c->text) != 0) {
+    aq_error_set(&oerr, AQ_EIO, "text output", -1, -1, NULL,
+                 "cannot write: %s", strerror(errno));
+    goto output_failed;
+  }
+  stats.write_s += now_s() - tw;
+
+  /* Workers, each with its own steppers. */
+  pthread_mutex_init(&S.lock, NULL);
+  pthread_cond_init(&S.cond, NULL);
+  pthread_t *tid = calloc((size_t)nthreads, sizeof *tid);
+  worker_arg *wa = calloc((size_t)nthreads, sizeof *wa);
+  long started = 0;
+  for (long t = 0; tid && wa && t < nthreads; t++) {
+    wa[t].S = &S;
+    wa[t].st = calloc(c->narches ? c->narches : 1, sizeof *wa[t].st);
+    if (!wa[t].st)
+      break;
+    for (size_t a = 0; a < c->narches; a++)
+      if (S.arch_ok[a]) {
+        aq_error e;
+        wa[t].st[a] = make_stepper(&S, a, &e);
+      }
+    if (pthread_create(&tid[t], NULL, worker, &wa[t]) != 0)
+      break;
+    started++;
+  }
+  if (started == 0) {
+    aq_error_set(&oerr, AQ_ENOMEM, "", -1, -1, NULL, "cannot start a worker thread");
+    fprintf(stderr, "archquake: cannot start a worker thread\n");
+    rc = AQ_EXIT_FAIL;
+  }
+
+  /* Write in record order as records finish. */
+  size_t total = c->nrecords * S.nruns;
+  aq_status ws = AQ_OK;
+  double last_progress = 0;
+  for (size_t i = 0; started > 0 && i < c->nrecords; i++) {
+    rec_slot *r = &S.slots[i % S.window];
+    pthread_mutex_lock(&S.lock);
+    while (!(r->state == SLOT_DONE && r->index == i)) {
+      struct timespec ts;
+      clock_gettime(CLOCK_REALTIME, &ts);
+      ts.tv_nsec += (long)(AQ_SUITE_PROGRESS_PERIOD_S * 1e9);
+      if (ts.tv_nsec >= 1000000000L) {
+        ts.tv_sec++;
+        ts.tv_nsec -= 1000000000L;
+      }
+      pthread_cond_timedwait(&S.cond, &S.lock, &ts);
+      if (c->progress && now_s() - last_progress >= AQ_SUITE_PROGRESS_PERIOD_S) {
+        progress(&S, t_start, total, 0);
+        last_progress = now_s();
+      }
+    }
+    pthread_mutex_unlock(&S.lock);
+    double t0 = now_s();
+    if (c->progress && has_diagnostics(&S, r))
+      progress(&S, t_start, total, 1); /* clear the line before diagnostics */
+    ws = write_record(&S, r, h5, &stats, &oerr);
+    stats.write_s += now_s() - t0;
+    pthread_mutex_lock(&S.lock);
+    slot_clear(&S, r);
+    S.next_write = i + 1;
+    if (ws != AQ_OK)
+      S.stop = 1;
+    pthread_cond_broadcast(&S.cond);
+    pthread_mutex_unlock(&S.lock);
+    if (ws != AQ_OK)
+      break;
+  }
+  for (long t = 0; t < started; t++)
+    pthread_join(tid[t], NULL);
+  for (long t = 0; wa && t < nthreads; t++) {
+    for (size_t a = 0; wa[t].st && a < c->narches; a++)
+      aq_stepper_free(wa[t].st[a]);
+    free(wa[t].st);
+  }
+  free(tid);
+  free(wa);
+  for (size_t k = 0; k < S.window; k++)
+    slot_clear(&S, &S.slots[k]);
+  pthread_cond_destroy(&S.cond);
+  pthread_mutex_destroy(&S.lock);
+  if (c->progress)
+    progress(&S, t_start, total, 1);
+  if (ws != AQ_OK)
+    goto output_failed;
+  if (started == 0) {
+    aq_h5_abort(h5);
+    h5 = NULL;
+    aq_cleanup_remove(h5_slot);
+    goto out;
+  }
+
+  stats.read_s = S.read_s;
+  stats.process_s = S.process_s;
+  stats.run_s = S.run_s;
+  if (h5) {
+    double t0 = now_s();
+    aq_h5_timing tm = {now_s() - t_start, S.read_s, S.process_s, S.run_s,
+                       stats.write_s};
+    aq_status s = aq_h5_finish(h5, &tm, &oerr); /* frees h5 either way */
+    h5 = NULL;
+    aq_cleanup_remove(h5_slot);
+    stats.write_s += now_s() - t0;
+    if (s != AQ_OK) {
+      aq_error_print(&oerr, stderr);
+      rc = AQ_EXIT_OUTPUT;
+      goto out;
+    }
+  }
+  if (c->text && fflush(c->text) != 0) {
+    fprintf(stderr, "archquake: text output: cannot write: %s\n", strerror(errno));
+    rc = AQ_EXIT_OUTPUT;
+    goto out;
+  }
+  if (rc == AQ_EXIT_OK && (stats.runs_failed || stats.records_failed))
+    rc = AQ_EXIT_FAIL;
+  goto out;
+
+output_failed:
+  aq_error_print(&oerr, stderr);
+  aq_h5_abort(h5);
+  aq_cleanup_remove(h5_slot);
+  rc = AQ_EXIT_OUTPUT;
+out:
+  stats.wall_s = now_s() - t_start;
+  if (S.arches)
+    for (size_t a = 0; a < c->narches; a++)
+      aq_arch_free(S.arches[a]);
+  free(S.arches);
+  free(S.arch_ok);
+  free(S.arch_err);
+  free(S.slots);
+  aq_signal_ws_free(S.ws);
+  if (stats_out)
+    *stats_out = stats;
+  return rc;
+}

@@ -1,0 +1,64 @@
+/* suite.h: the main job's loop, records x arches x scales, on threads.
+ *
+ * Every record is read and processed once by one worker thread, scaled by
+ * each factor, split into steps once per factor and run against every arch
+ * with that thread's own steppers (one per arch per thread); the arches are
+ * loaded once and shared read-only.  At most `window` records are in flight
+ * (read but not yet written), so memory stays bounded whatever the number of
+ * records.  One writer (the calling thread) writes text rows, HDF5 groups and
+ * diagnostics in (record, arch, scale) order, never in completion order, so
+ * the output is the same for every number of threads.
+ *
+ * Diagnostics (one line each) and the progress line go to stderr; this is
+ * app code.  The HDF5 temporary is registered with cleanup.h while it
+ * exists, so SIGINT/SIGTERM remove it.  The caller owns everything in
+ * aq_suite_cfg.
+ */
+#ifndef AQ_APP_SUITE_H
+#define AQ_APP_SUITE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "../arch/stepper.h"
+#include "../io/record.h"
+#include "../signal/signal.h"
+
+typedef struct {
+  char **records;          /* record paths as given */
+  size_t nrecords;
+  char **arch_paths;       /* --arch files */
+  size_t narches;
+  aq_read_opts read;       /* reader options */
+  aq_signal_opts proc;     /* processing options (proc.scale is ignored) */
+  double merge_tol_g;      /* --merge-tol, g (0: one step per sample) */
+  const double *scales;    /* --scale factors, or NULL with --scale-to-pga */
+  size_t nscale;           /* their number */
+  double scale_to_pga_g;   /* --scale-to-pga target, g (used when scales is NULL) */
+  aq_model model;          /* --model */
+  double cor;              /* --cor, or NAN for each arch's own */
+  int history;             /* --history: keep and write step-end histories */
+  long threads;            /* -j (>= 1) */
+  int progress;            /* 1: progress line on stderr */
+  const char *h5_path;     /* -o target, or NULL */
+  FILE *text;              /* TSV rows go here (NULL: none) */
+  const char *command_line;/* for the results file */
+  const char *units_text;  /* --units as given (for the results file), or NULL */
+} aq_suite_cfg;
+
+/* Wall-time figures of a finished suite (s).  read/process/run are summed
+ * over worker threads; write is the writer's time in the report writers. */
+typedef struct {
+  size_t runs;           /* rows written */
+  size_t runs_failed;    /* rows whose status is not ok */
+  size_t records_failed; /* records that could not be read or processed */
+  double wall_s, read_s, process_s, run_s, write_s;
+} aq_suite_stats;
+
+/* Run the suite; returns the exit status (app.h): 0 all ran, 1 some record
+ * or run failed (each reported on stderr), 2 an arch could not be loaded
+ * (nothing ran), 3 the output could not be written (no partial file).
+ * stats may be NULL. */
+int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats);
+
+#endif
