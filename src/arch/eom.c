@@ -146,8 +146,12 @@ static int eom_locate(aq_eom *w, gsl_odeiv2_system *sys, double ta,
                       double v, double *tv, double yv[2])
 {
   double fa = ya[k] - v, fb = yb[k] - v;
+  int pos_a = !(fb > 0); /* the side of ta (fa may be 0: a root at ta is not wanted) */
   double lo = ta, hi = tb;
-  double t = fb != fa ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
+  double t = fa != 0 && fb != fa ? ta + (tb - ta) * fa / (fa - fb)
+                                 : 0.5 * (ta + tb);
+  if (!(t > lo && t <= hi))
+    t = 0.5 * (lo + hi);
   double y[2], yerr[2], f[2];
   for (int it = 0; it < EOM_LOCATE_ITER; it++) {
     y[0] = ya[0];
@@ -166,7 +170,7 @@ static int eom_locate(aq_eom *w, gsl_odeiv2_system *sys, double ta,
     *tv = t;
     if (r == 0)
       break;
-    if ((r > 0) == (fa > 0))
+    if ((r > 0) == pos_a)
       lo = t;
     else
       hi = t;
@@ -226,27 +230,57 @@ aq_status aq_eom_leg(aq_eom *w, const aq_path *p, double a_mps2, aq_motion *m,
       rc = eom_fail(err, p, gsl_strerror(gs), y[0]);
       goto done;
     }
-    double tv, yv[2];
-    if (y[0] < 0 && ya[1] < 0) { /* impact: s = 0 closing */
-      if (eom_locate(w, &sys, ta, ya, t, y, 0, 0.0, &tv, yv)) {
+    double tv, yv[2], tb = t, yb[2] = {y[0], y[1]};
+    if (y[0] >= 0 && ya[1] < 0 && y[1] > 0) {
+      /* closing, then opening: did s dip below 0 in between (a grazing
+       * impact)?  Take s at the turning point. */
+      if (eom_locate(w, &sys, ta, ya, t, y, 1, 0.0, &tv, yv)) {
+        rc = eom_fail(err, p, "turning point location failed", y[0]);
+        goto done;
+      }
+      if (yv[0] < 0) {
+        tb = tv;
+        yb[0] = yv[0];
+        yb[1] = yv[1];
+      }
+    }
+    if (y[0] > sc || (ya[1] > 0 && y[1] < 0)) {
+      /* opening, then closing: did s pass s_c in between? */
+      double tc = t, yc[2] = {y[0], y[1]};
+      if (ya[1] > 0 && y[1] < 0) {
+        if (eom_locate(w, &sys, ta, ya, t, y, 1, 0.0, &tv, yv)) {
+          rc = eom_fail(err, p, "turning point location failed", y[0]);
+          goto done;
+        }
+        if (yv[0] > sc) {
+          tc = tv;
+          yc[0] = yv[0];
+          yc[1] = yv[1];
+        }
+      }
+      if (yc[0] > sc) { /* collapse */
+        if (eom_locate(w, &sys, ta, ya, tc, yc, 0, sc, &tv, yv)) {
+          rc = eom_fail(err, p, "collapse location failed", y[0]);
+          goto done;
+        }
+        t = tv;
+        y[0] = sc;
+        y[1] = yv[1];
+        *end = AQ_LEG_COLLAPSE;
+        break;
+      }
+    }
+    if (yb[0] < 0) { /* impact: s = 0 closing */
+      if (eom_locate(w, &sys, ta, ya, tb, yb, 0, 0.0, &tv, yv)) {
         rc = eom_fail(err, p, "impact location failed", y[0]);
         goto done;
       }
       t = tv;
       y[0] = 0;
       y[1] = yv[1] < 0 ? yv[1] : -0.0;
+      if (ya[1] > 0) /* it turned within this step */
+        S->reversals++;
       *end = AQ_LEG_IMPACT;
-      break;
-    }
-    if (y[0] > sc) { /* collapse */
-      if (eom_locate(w, &sys, ta, ya, t, y, 0, sc, &tv, yv)) {
-        rc = eom_fail(err, p, "collapse location failed", y[0]);
-        goto done;
-      }
-      t = tv;
-      y[0] = sc;
-      y[1] = yv[1];
-      *end = AQ_LEG_COLLAPSE;
       break;
     }
     if ((ya[1] > 0 && y[1] <= 0) || (ya[1] < 0 && y[1] >= 0)) {

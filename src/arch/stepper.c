@@ -65,6 +65,7 @@ static const double WP_DEFAULT_TOL = 1e-12;  /* Chebyshev tail / mean, per panel
 static const double WP_PANEL_FRAC = 0.125;   /* longest panel, fraction of s_c */
 static const double WP_NEAR_ZERO = 2.0;      /* a zero of KE within this many L is "near" */
 static const double WP_REACH_MARGIN = 1.3;   /* panel = margin * distance reachable in the step */
+static const double WP_NOISE_GAIN = 16;      /* tail floor = this * KE round-off at the nodes */
 static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8x */
 static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
@@ -491,6 +492,7 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       double zb = kind == 1 ? 0 : zero_ahead(PB.ke, PB.k1, PB.k2);
       map_init(&mp, L, za, zb);
       int redo = 0;
+      double noise = 0; /* largest relative round-off of KE at the nodes */
       for (int j = 0; j < n; j++) {
         double psi = st->ccos.cs[1][j], jac;
         double sg = map_sigma(&mp, psi, &jac);
@@ -514,13 +516,20 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
             q.ke = DBL_MIN;
         }
         g[j] = sqrt(0.5 * q.m) / sqrt(q.ke) * fabs(jac);
+        /* round-off of KE at this node (eq. (19) as computed) */
+        double dke = DBL_EPSILON * (c.ke_a + c.mt * (fabs(c.a) * (fabs(q.x) + fabs(c.xa)) +
+                                                    c.g * (fabs(q.y) + fabs(c.ya))));
+        noise = fmax(noise, dke / q.ke);
       }
       if (redo) {
         halv--;
         continue;
       }
       cheb_build(&ch, &st->ccos, g, n);
-      if (ch.tail <= st->wp_tol || !(L > WP_MIN_PANEL_FRAC * sc) || halv > 80)
+      /* the tail cannot fall below the round-off of the integrand (half
+       * that of KE), amplified by the transform: accept it there */
+      if (ch.tail <= fmax(st->wp_tol, WP_NOISE_GAIN * noise) ||
+          !(L > WP_MIN_PANEL_FRAC * sc) || halv > 80)
         break;
       if (have_prev && !(ch.tail < WP_STALL_GAIN * prev.ch.tail)) {
         /* halving no longer pays: the tail is round-off in KE near a zero
