@@ -60,7 +60,7 @@ int main(void)
   if (nerr)
     return 1;
 
-  double rate[2][REPS], share[2][4][REPS], busy[2][REPS];
+  double rate[2][REPS], share[2][4][REPS], busy[2][REPS], wall_s[2][REPS];
   size_t runs = 0;
   for (int rep = 0; rep < REPS; rep++)
     for (int j = 0; j < 2; j++) {
@@ -77,11 +77,12 @@ int main(void)
       runs = st.runs;
       rate[j][rep] = (double)st.runs / wall;
       double sum = st.read_s + st.process_s + st.run_s + st.write_s;
-      share[j][0][rep] = st.read_s / sum;
-      share[j][1][rep] = st.process_s / sum;
-      share[j][2][rep] = st.run_s / sum;
-      share[j][3][rep] = st.write_s / sum;
+      share[j][0][rep] = st.read_s / wall;
+      share[j][1][rep] = st.process_s / wall;
+      share[j][2][rep] = st.run_s / wall;
+      share[j][3][rep] = st.write_s / wall;
       busy[j][rep] = sum / wall; /* > 1 with threads working in parallel */
+      wall_s[j][rep] = wall;
     }
   unlink(h5);
   fclose(text);
@@ -93,12 +94,14 @@ int main(void)
   printf("  -j 1: %8.1f runs/s\n  -j 2: %8.1f runs/s\n  ratio -j 2 / -j 1: %.2f\n", r1,
          r2, r2 / r1);
   static const char *const phase[4] = {"read", "process", "step", "write"};
+  printf("  phase time / wall time (read, process and step summed over the\n"
+         "  worker threads, write on the writer thread; the rest of -j 1's wall\n"
+         "  time is arch loading, opening the file and thread hand-over):\n");
   for (int j = 0; j < 2; j++) {
-    printf("  -j %d time shares (of summed phase time; %.2f x wall):", j + 1,
-           aq_bench_median(busy[j], REPS));
+    printf("  -j %d (wall %.3f s):", j + 1, aq_bench_median(wall_s[j], REPS));
     for (int p = 0; p < 4; p++)
       printf(" %s %.1f%%", phase[p], 100 * aq_bench_median(share[j][p], REPS));
-    printf("\n");
+    printf("  (sum %.0f%%)\n", 100 * aq_bench_median(busy[j], REPS));
   }
   return 0;
 }

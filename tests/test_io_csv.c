@@ -96,6 +96,9 @@ AQ_TEST(io_csv_layouts)
   check_text("blanks-cms2", "  t    acc(cm/s^2)\n  0.0   0.02385\n  0.01  -0.0771905\n"
                             "  0.02  1.0937E-01\n  0.03  -3.14159e-4\n  0.04  0.2718281\n",
              &none, v, 5, 0.01, 0, 0.01, "gal");
+  check_text("blanks-split-units", "time   acc (g)\n0.0 0.02385\n0.01 -0.0771905\n"
+                                   "0.02 1.0937E-01\n0.03 -3.14159e-4\n0.04 0.2718281\n",
+             &none, v, 5, 0.01, 0, AQ_G0_MPS2, "g");
   check_text("semicolon-decimal-comma",
              "zeit;acc (g)\n0,00;0,02385\n0,01;-0,0771905\n0,02;1,0937E-01\n"
              "0,03;-3,14159e-4\n0,04;0,2718281\n",

@@ -37,7 +37,8 @@ extern const struct option aq_opt_record_longopts[];
   "  --units U       read the records' values as U: g, gal, cm/s2, m/s2,\n"    \
   "                  nm/s2 or counts (SAC: divided by SCALE, counts per m/s2)\n" \
   "  --units GLOB=U  the same for records whose path matches GLOB, e.g.\n"      \
-  "                  --units '*.SAC=counts' (repeatable; last match wins)\n"    \
+  "                  --units '*.SAC=counts' (repeatable; the last matching\n"   \
+  "                  rule wins, and rules win over --units U)\n"                \
   "  --dt S          sample interval (s) of text records without time column\n"  \
   "  --column N      column N (1-based) of a text record is the acceleration\n"
 

@@ -15,7 +15,9 @@
  */
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,18 +84,99 @@ static void quote(const char *s, size_t n, char *out, size_t cap)
   out[k] = '\0';
 }
 
-/* Parse a number starting at s[0..n): skips blanks, copies the numeric
- * characters to a local buffer (the input is not NUL-terminated) and uses
- * strtod.  Returns the characters consumed (0 if none). */
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+
+static int is_numchar(char c)
+{
+  return is_digit(c) || c == '.' || c == '+' || c == '-' || c == 'e' || c == 'E';
+}
+
+static int is_sep(char c)
+{
+  return c == ' ' || c == '\t' || c == ',' || c == '\r' || c == '\n' || c == '\f' ||
+         c == '\v' || c == '\0';
+}
+
+/* Exact powers of ten representable in a double. */
+static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+#define AT2_FAST_MANTISSA_MAX 9007199254740992ULL /* 2^53 */
+
+/* Parse a number starting at s[0..n) (blanks skipped first); the input is
+ * not NUL-terminated.  Returns the characters consumed (0 if none), with
+ * strtod's syntax (hexadecimal forms, nan and inf excluded).
+ * Fast path (Clinger 1990): a decimal with at most 19 significant digits,
+ * mantissa m <= 2^53 and decimal exponent |e| <= 22 is m * 10^e or m / 10^-e,
+ * a single correctly rounded operation on two exact doubles, so the result
+ * is the same double strtod gives.  Anything else is copied to a local
+ * buffer and given to strtod. */
 static size_t parse_num(const char *s, size_t n, double *x)
 {
   size_t i = 0;
   while (i < n && (s[i] == ' ' || s[i] == '\t'))
     i++;
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+  {
+    size_t j = i;
+    int neg = 0, nd = 0, anyd = 0, slow = 0;
+    long frac = 0;
+    uint64_t m = 0;
+    if (j < n && (s[j] == '+' || s[j] == '-'))
+      neg = s[j++] == '-';
+    for (int part = 0; part < 2; part++) {
+      while (j < n && is_digit(s[j])) {
+        int d = s[j++] - '0';
+        anyd = 1;
+        if (part)
+          frac++;
+        if (m == 0 && d == 0)
+          continue; /* leading zeros are not significant */
+        if (nd >= 19) {
+          slow = 1;
+          continue;
+        }
+        m = m * 10 + (uint64_t)d;
+        nd++;
+      }
+      if (part == 0) {
+        if (j < n && s[j] == '.')
+          j++;
+        else
+          break;
+      }
+    }
+    if (anyd && !slow) {
+      long e = 0;
+      if (j < n && (s[j] == 'e' || s[j] == 'E')) {
+        size_t k = j + 1;
+        int eneg = 0, ed = 0;
+        if (k < n && (s[k] == '+' || s[k] == '-'))
+          eneg = s[k++] == '-';
+        while (k < n && is_digit(s[k]) && ed < 6)
+          e = e * 10 + (s[k++] - '0'), ed++;
+        if (k < n && is_digit(s[k]))
+          slow = 1; /* a huge exponent: strtod decides */
+        if (ed) {
+          j = k;
+          e = eneg ? -e : e;
+        } else {
+          e = 0; /* "1.5e" is 1.5 followed by "e" */
+        }
+      }
+      e -= frac;
+      if (!slow && m <= AT2_FAST_MANTISSA_MAX && e >= -22 && e <= 22) {
+        double v = (double)m;
+        v = e < 0 ? v / pow10_exact[-e] : v * pow10_exact[e];
+        *x = neg ? -v : v;
+        return j;
+      }
+    }
+  }
+#endif
   char tok[AT2_TOKEN_MAX];
   size_t k = 0;
-  while (i + k < n && k + 1 < sizeof tok && strchr("0123456789.+-eE", s[i + k]) &&
-         s[i + k])
+  while (i + k < n && k + 1 < sizeof tok && is_numchar(s[i + k]))
     tok[k] = s[i + k], k++;
   tok[k] = '\0';
   if (k == 0)
@@ -254,11 +337,11 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     const char *t = c.s + c.pos;
     size_t avail = c.n - c.pos, tl = 0;
-    while (tl < avail && !strchr(" \t,\r\n\f\v", t[tl]) && t[tl])
+    while (tl < avail && !is_sep(t[tl]))
       tl++;
     if (tl == 0)
       tl = 1; /* a NUL byte */
-    if (tl >= 3 && strncasecmp(t, "end", 3) == 0)
+    if ((t[0] == 'e' || t[0] == 'E') && tl >= 3 && strncasecmp(t, "end", 3) == 0)
       break; /* "End Data" marker */
     double x;
     size_t used = parse_num(t, tl, &x);

@@ -360,7 +360,17 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   int have_names = 0;
   if (hline > 0) {
     span hf[MAXF];
-    size_t hnf = split(s, hb, he, sep == ' ' ? pick_sep(s, hb, he) : sep, hf, MAXF);
+    char hsep = sep == ' ' ? pick_sep(s, hb, he) : sep;
+    size_t hnf = split(s, hb, he, hsep, hf, MAXF);
+    if (hsep == ' ' && hnf <= MAXF) { /* "acc (g)": units belong to the name */
+      size_t m = 0;
+      for (size_t i = 0; i < hnf; i++)
+        if (m > 0 && (s[hf[i].b] == '(' || s[hf[i].b] == '['))
+          hf[m - 1].e = hf[i].e;
+        else
+          hf[m++] = hf[i];
+      hnf = m;
+    }
     if (hnf == ncols) {
       have_names = 1;
       for (size_t i = 0; i < ncols; i++)
