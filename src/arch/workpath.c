@@ -14,15 +14,16 @@
  *        or where a hinge would close again, whichever comes first (located
  *        by bisection to round-off after a scan in steps of SCAN_STEP_RAD).
  *
- * Tables: quintic Hermite interpolation on a uniform grid of n intervals over
- * [0, s_c] from the exact value, first and second derivative of each of x, y,
+ * Tables: piecewise quintic Hermite interpolation over [0, s_c] from the
+ * exact value, first and second derivative at the breakpoints, of x, y,
  * dx/ds, dy/ds, M and each body's centroid (x, y) and rotation, stored as
- * power-basis coefficients per interval.  n starts at TABLE_N0 and doubles
- * until the error measured against eval_exact at the midpoint of every
- * interval and at t = 0.276 (where the derivatives' error peaks), relative
- * to the quantity's largest magnitude over the path, is
- * below TABLE_REL_TOL for x, y, dx/ds, dy/ds, d2x/ds2, d2y/ds2, M and dM/ds,
- * or stops falling (round-off), or n reaches TABLE_N_MAX.
+ * power-basis coefficients per interval; d2x/ds2 and d2y/ds2 come from the
+ * derivative of the dx/ds, dy/ds interpolants (round-off eps/h, not
+ * eps/h^2).  The grid starts as TABLE_N0 equal intervals; each is halved
+ * until its error against eval_exact, measured where the Hermite error of
+ * the values and of the derivatives peaks, is below TABLE_REL_TOL (see
+ * refine() for the error measure and the stopping rules).  The grid is thus
+ * fine only where the path varies fast (a four-bar near its toggle).
  */
 #include <math.h>
 #include <stdio.h>
@@ -39,10 +40,12 @@ enum { F_X = 0, F_Y, F_DX, F_DY, F_M, F_B0 /* then 3 per body: x, y, phi */, NF 
 
 #define SCAN_STEP_RAD 5e-4     /* scan for the end of the path */
 #define SCAN_MAX_RAD 3.0       /* no mechanism rotates body 1 further than this */
-#define TABLE_N0 16            /* first table size (intervals) */
-#define TABLE_N_MAX 16384      /* largest table size */
+#define TABLE_N0 16            /* initial equal intervals */
+#define TABLE_MAX_DEPTH 30     /* halvings of an initial interval at most */
+#define TABLE_FLOOR 1e-3       /* error floor of slopes, curvatures: this times their largest value */
 #define TABLE_REL_TOL 4e-12    /* target relative error of the tables (round-off floor ~1e-12) */
-#define TABLE_STALL 0.5        /* doubling n must at least halve the error */
+#define TABLE_STALL 0.5        /* a split must at least halve the error ... */
+#define TABLE_ROUNDOFF 1e-8    /* ... unless it is this small already (round-off) */
 #define TABLE_T_DERIV 0.2763932 /* (5 - sqrt 5)/10: peak of t^2 (1-t)^2 (1-2t) */
 #define S_SLACK_REL 1e-12      /* s within this (relative to s_c) outside [0, s_c] is clamped */
 
@@ -56,8 +59,9 @@ struct aq_workpath {
   char reason[200];
   char name[16];
   size_t n;           /* table intervals */
-  double h;           /* table step, rad */
-  double *coef;       /* n * NF * 6 */
+  double *bp;         /* n+1 breakpoints, rad */
+  double *coef;       /* n * NF * 6 power-basis coefficients in t = (s - bp[i]) / h_i */
+  size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
 };
@@ -151,7 +155,7 @@ static int eval_exact(const void *ctx, double s, aq_path_point *p)
 static void table_f(const aq_workpath *w, size_t i, double t, int k, double out[3])
 {
   const double *c = w->coef + (i * NF + (size_t)k) * 6;
-  double ih = 1.0 / w->h;
+  double ih = 1.0 / (w->bp[i + 1] - w->bp[i]);
   out[0] = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
   out[1] = (c[1] + t * (2 * c[2] + t * (3 * c[3] + t * (4 * c[4] + t * 5 * c[5])))) * ih;
   out[2] = (2 * c[2] + t * (6 * c[3] + t * (12 * c[4] + t * 20 * c[5]))) * ih * ih;
@@ -159,13 +163,18 @@ static void table_f(const aq_workpath *w, size_t i, double t, int k, double out[
 
 static void table_all(const aq_workpath *w, double s, double f[NF][3])
 {
-  double u = s / w->h;
-  size_t i = u <= 0 ? 0 : (size_t)u;
-  if (i >= w->n)
-    i = w->n - 1;
-  double t = u - (double)i;
+  /* the interval holding s: bp[lo] <= s < bp[lo+1] (binary search) */
+  size_t lo = 0, hi = w->n;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (s < w->bp[mid])
+      hi = mid;
+    else
+      lo = mid;
+  }
+  double t = (s - w->bp[lo]) / (w->bp[lo + 1] - w->bp[lo]);
   for (int k = 0; k < NF; k++)
-    table_f(w, i, t, k, f[k]);
+    table_f(w, lo, t, k, f[k]);
 }
 
 static int eval_table(const void *ctx, double s, aq_path_point *p)
@@ -194,117 +203,133 @@ static void hermite5(double p0, double d0, double e0, double p1, double d1,
 
 typedef double fvals[NF][3];
 
-/* Coefficients for n intervals from the n+1 node values; *coef malloc'd. */
-static int make_coef(const fvals *node, size_t n, double h, double **coef)
+/* The contract's quantities checked in the tables: (function, derivative),
+ * and how their error is measured: relative to the quantity's largest
+ * magnitude over the path (x, y), or to its local magnitude plus a floor of
+ * TABLE_FLOOR times that (slopes, curvatures), or to M itself (M, dM/ds,
+ * the latter with M/s_c as its floor). */
+static const int chk[8][2] = {{F_X, 0}, {F_Y, 0}, {F_DX, 0}, {F_DY, 0},
+                              {F_DX, 1}, {F_DY, 1}, {F_M, 0}, {F_M, 1}};
+
+typedef struct {
+  aq_workpath *w;
+  double scale[8]; /* largest magnitudes over the initial nodes */
+  double err;      /* largest accepted error */
+  int failed;
+} refine_ctx;
+
+static int append_interval(aq_workpath *w, double s0, const fvals f0, double s1,
+                           const fvals f1)
 {
-  *coef = malloc(n * NF * 6 * sizeof **coef);
-  if (!*coef)
-    return -1;
-  for (size_t i = 0; i < n; i++)
-    for (int k = 0; k < NF; k++)
-      hermite5(node[i][k][0], node[i][k][1], node[i][k][2], node[i + 1][k][0],
-               node[i + 1][k][1], node[i + 1][k][2], h, *coef + (i * NF + (size_t)k) * 6);
+  if (w->n == w->cap) {
+    size_t cap = w->cap ? 2 * w->cap : 64;
+    double *bp = realloc(w->bp, (cap + 1) * sizeof *bp);
+    if (!bp)
+      return -1;
+    w->bp = bp;
+    double *coef = realloc(w->coef, cap * NF * 6 * sizeof *coef);
+    if (!coef)
+      return -1;
+    w->coef = coef;
+    w->cap = cap;
+  }
+  double h = s1 - s0;
+  for (int k = 0; k < NF; k++)
+    hermite5(f0[k][0], f0[k][1], f0[k][2], f1[k][0], f1[k][1], f1[k][2], h,
+             w->coef + (w->n * NF + (size_t)k) * 6);
+  w->bp[w->n] = s0;
+  w->bp[w->n + 1] = s1;
+  w->n++;
   return 0;
 }
 
-/* Largest error of the tables (w->coef, w->n) against the exact values at
- * the interval midpoints (mid[i]; there the quintic Hermite error, which is
- * proportional to t^3 (1-t)^3, peaks) and at t = TABLE_T_DERIV (where the
- * error of the derivatives, proportional to t^2 (1-t)^2 (1-2t), peaks; it
- * vanishes at the midpoint), relative to the largest magnitude of each of
- * the contract's quantities over the nodes.  HUGE_VAL if the linkage fails. */
-static double table_error(const aq_workpath *w, const fvals *node, const fvals *mid)
+/* Error of the Hermite interpolant on [s0, s1] (coefficients at slot
+ * w->n, not yet counted) against exact values ex at local t. */
+static double interval_error(const refine_ctx *rc, size_t slot, double h, double t,
+                             const fvals ex)
 {
-  static const int chk[8][2] = {{F_X, 0}, {F_Y, 0}, {F_DX, 0}, {F_DY, 0},
-                                {F_DX, 1}, {F_DY, 1}, {F_M, 0}, {F_M, 1}};
-  size_t n = w->n;
-  double scale[8] = {0};
-  for (size_t i = 0; i <= n; i++)
-    for (int c = 0; c < 8; c++)
-      if (fabs(node[i][chk[c][0]][chk[c][1]]) > scale[c])
-        scale[c] = fabs(node[i][chk[c][0]][chk[c][1]]);
+  const aq_workpath *w = rc->w;
   double err = 0;
-  for (size_t i = 0; i < n; i++)
-    for (int q = 0; q < 2; q++) {
-      double t = q ? TABLE_T_DERIV : 0.5;
-      fvals at;
-      if (q && exact_f(w, w->h * ((double)i + t), at, NULL) != 0)
-        return HUGE_VAL;
-      const fvals *ex = q ? (const fvals *)&at : &mid[i];
-      for (int c = 0; c < 8; c++) {
-        double tv[3];
-        table_f(w, i, t, chk[c][0], tv);
-        double e = fabs(tv[chk[c][1]] - (*ex)[chk[c][0]][chk[c][1]]) /
-                   (scale[c] > 0 ? scale[c] : 1);
-        if (e > err)
-          err = e;
-      }
-    }
+  for (int c = 0; c < 8; c++) {
+    const double *cf = w->coef + (slot * NF + (size_t)chk[c][0]) * 6;
+    double v;
+    if (chk[c][1] == 0)
+      v = cf[0] + t * (cf[1] + t * (cf[2] + t * (cf[3] + t * (cf[4] + t * cf[5]))));
+    else
+      v = (cf[1] + t * (2 * cf[2] + t * (3 * cf[3] + t * (4 * cf[4] + t * 5 * cf[5])))) / h;
+    double x = ex[chk[c][0]][chk[c][1]], ref;
+    if (c < 2)
+      ref = rc->scale[c];
+    else if (c < 6)
+      ref = fabs(x) + TABLE_FLOOR * rc->scale[c];
+    else if (c == 6)
+      ref = fabs(x);
+    else
+      ref = fabs(x) + ex[F_M][0] / w->path.s_c_rad;
+    double e = fabs(v - x) / (ref > 0 ? ref : 1);
+    if (e > err)
+      err = e;
+  }
   return err;
 }
 
-/* Tables: n = TABLE_N0, 2 TABLE_N0, ...; the midpoints evaluated to measure
- * the error of one level are the new nodes of the next, so each level costs
- * n exact evaluations.  Stops when the error is below TABLE_REL_TOL, or
- * stops falling by TABLE_STALL (round-off: then the previous level is kept),
- * or n reaches TABLE_N_MAX.  -1 on failure (memory, or the linkage). */
+/* Accept [s0, s1] if its error (at the midpoint, where the Hermite value
+ * error, proportional to t^3 (1-t)^3, peaks, and at t = TABLE_T_DERIV,
+ * where the derivatives' error, proportional to t^2 (1-t)^2 (1-2t), peaks)
+ * is below TABLE_REL_TOL, or splitting stopped halving an error already
+ * below TABLE_ROUNDOFF (round-off), or
+ * the interval is TABLE_MAX_DEPTH halvings deep; else split at the
+ * midpoint (already evaluated) and refine both halves. */
+static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const fvals f1,
+                   int depth, double parent_err)
+{
+  aq_workpath *w = rc->w;
+  if (rc->failed)
+    return;
+  double h = s1 - s0;
+  fvals fm, fd;
+  if (append_interval(w, s0, f0, s1, f1) != 0 ||
+      exact_f(w, s0 + 0.5 * h, fm, NULL) != 0 ||
+      exact_f(w, s0 + TABLE_T_DERIV * h, fd, NULL) != 0) {
+    rc->failed = 1;
+    return;
+  }
+  w->n--; /* tentative: the slot is reused below */
+  double e1 = interval_error(rc, w->n, h, 0.5, fm);
+  double e2 = interval_error(rc, w->n, h, TABLE_T_DERIV, fd);
+  double err = e1 > e2 ? e1 : e2;
+  if (err <= TABLE_REL_TOL || depth >= TABLE_MAX_DEPTH ||
+      (err > TABLE_STALL * parent_err && err < TABLE_ROUNDOFF)) {
+    w->n++;
+    if (err > rc->err)
+      rc->err = err;
+    return;
+  }
+  double sm = s0 + 0.5 * h;
+  refine(rc, s0, f0, sm, fm, depth + 1, err);
+  refine(rc, sm, fm, s1, f1, depth + 1, err);
+}
+
+/* Tables over [0, s_c]: TABLE_N0 equal intervals, each refined by halving
+ * where needed (refine), so that the grid is fine only where the path
+ * varies fast (near a toggle).  -1 on failure (memory, or the linkage). */
 static int build_tables(aq_workpath *w)
 {
-  size_t n = TABLE_N0;
   double sc = w->path.s_c_rad;
-  fvals *node = malloc((n + 1) * sizeof *node), *mid = NULL;
-  if (!node)
-    return -1;
-  for (size_t i = 0; i <= n; i++)
-    if (exact_f(w, i == n ? sc : sc * (double)i / (double)n, node[i], NULL) != 0)
-      goto fail;
-  double prev_err = HUGE_VAL;
-  for (;;) {
-    double h = sc / (double)n, *coef;
-    mid = malloc(n * sizeof *mid);
-    if (!mid || make_coef(node, n, h, &coef) != 0)
-      goto fail;
-    for (size_t i = 0; i < n; i++)
-      if (exact_f(w, sc * ((double)i + 0.5) / (double)n, mid[i], NULL) != 0) {
-        free(coef);
-        goto fail;
-      }
-    double *old_coef = w->coef;
-    size_t old_n = w->n;
-    double old_h = w->h;
-    w->coef = coef, w->n = n, w->h = h;
-    double err = table_error(w, node, mid);
-    if (err > TABLE_STALL * prev_err) { /* round-off: keep the previous level */
-      free(coef);
-      w->coef = old_coef, w->n = old_n, w->h = old_h;
-      break;
-    }
-    free(old_coef);
-    w->tab_err = err;
-    if (err <= TABLE_REL_TOL || n >= TABLE_N_MAX)
-      break;
-    prev_err = err;
-    fvals *node2 = malloc((2 * n + 1) * sizeof *node2);
-    if (!node2)
-      goto fail;
-    for (size_t i = 0; i < n; i++) {
-      memcpy(node2[2 * i], node[i], sizeof(fvals));
-      memcpy(node2[2 * i + 1], mid[i], sizeof(fvals));
-    }
-    memcpy(node2[2 * n], node[n], sizeof(fvals));
-    free(node);
-    free(mid);
-    mid = NULL;
-    node = node2;
-    n *= 2;
+  fvals node[TABLE_N0 + 1];
+  refine_ctx rc = {w, {0}, 0, 0};
+  for (size_t i = 0; i <= TABLE_N0; i++) {
+    if (exact_f(w, i == TABLE_N0 ? sc : sc * (double)i / TABLE_N0, node[i], NULL) != 0)
+      return -1;
+    for (int c = 0; c < 8; c++)
+      if (fabs(node[i][chk[c][0]][chk[c][1]]) > rc.scale[c])
+        rc.scale[c] = fabs(node[i][chk[c][0]][chk[c][1]]);
   }
-  free(node);
-  free(mid);
-  return 0;
-fail:
-  free(node);
-  free(mid);
-  return -1;
+  for (size_t i = 0; i < TABLE_N0 && !rc.failed; i++)
+    refine(&rc, i == 0 ? 0.0 : sc * (double)i / TABLE_N0, node[i],
+           i + 1 == TABLE_N0 ? sc : sc * (double)(i + 1) / TABLE_N0, node[i + 1], 0, HUGE_VAL);
+  w->tab_err = rc.err;
+  return rc.failed ? -1 : 0;
 }
 
 static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
@@ -367,6 +392,7 @@ void aq_workpath_free(aq_workpath *w)
   if (!w)
     return;
   free(w->coef);
+  free(w->bp);
   free(w);
 }
 
