@@ -82,7 +82,7 @@ uninstall:
 
 # Debian packages the build, the tests and `make fuzz` need.
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
-            libinih-dev hdf5-tools mseed2sac clang libclang-rt-14-dev
+            libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)

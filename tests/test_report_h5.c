@@ -372,6 +372,18 @@ AQ_TEST(report_h5_layout_read_back)
            " && h5dump -d /summary '%s' > /dev/null 2>&1",
            path, dir, dir, path);
   aq_check(system(cmd) == 0, "h5dump reads the file and shows the attributes");
+  /* and h5py (Debian python3-h5py) */
+  snprintf(cmd, sizeof cmd,
+           "/usr/bin/python3 -c \"import h5py, math; f = h5py.File('%s', 'r'); "
+           "t = f['summary'][:]; assert len(t) == 4; "
+           "assert list(t['impacts']) == [2, 5, 8, 11]; "
+           "assert math.isnan(t['collapse_time_s'][0]) and t['collapse_time_s'][1] == 3.8724110395; "
+           "assert f['records/00000'].attrs['format'] == b'at2'; "
+           "assert f['records/00000/acceleration_m_s2'].shape == (%d,); "
+           "assert f['runs/00000_000_000/time_s'].shape == (%d,); "
+           "assert f['arches/001'].attrs['reverse_q_c_rad'] == 0.2977\" 2>&1",
+           path, NACC, NHIST);
+  aq_check(system(cmd) == 0, "h5py reads the file (python3-h5py)");
   /* no temporary left beside it */
   DIR *dd = opendir(dir);
   int extra = 0;
