@@ -87,9 +87,10 @@ static char *reader(char *str, int num, void *stream)
   size_t len = nl ? (size_t)(nl - c->text) + 1 : strlen(c->text);
   c->line++;
   if (len > MAX_LINE_CHARS || (int)len >= num) {
-    char got[32];
-    snprintf(got, sizeof got, "%zu", len);
-    fail(c, AQ_EFORMAT, NULL, "expected a line of at most " "190" " characters, got %s", got);
+    if (!c->failed)
+      aq_error_set(c->err, AQ_EFORMAT, c->file, c->line, -1, NULL,
+                   "expected a line of at most %d characters, got %zu", MAX_LINE_CHARS, len);
+    c->failed = 1;
     return NULL;
   }
   memcpy(str, c->text, len);

@@ -42,7 +42,9 @@ typedef struct {
 } aq_path_point;
 
 /* Evaluate the path at s (0 <= s <= s_c_rad).  Returns 0 on success, non-zero
- * when s is outside the admissible range or the linkage does not close. */
+ * when s is outside the admissible range or the linkage does not close.
+ * (The arch model clamps an s within 1e-12*s_c_rad outside [0, s_c_rad] to
+ * the nearer end; see docs/arch-model.md.) */
 typedef int (*aq_path_eval_fn)(const void *ctx, double s, aq_path_point *p);
 
 typedef struct {
