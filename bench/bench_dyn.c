@@ -1,0 +1,271 @@
+/* bench_dyn.c: speed against error of the dynamic models, one table from
+ * one run (so that the ratios hold on a noisy machine).
+ *
+ * Cases: arches/oppenheim.cfg under two rectangular pulses (0.01 s steps)
+ * and under the records in records/ (read, baseline-corrected with the
+ * default processing, scaled to a PGA of 2.5 lambda0 g), COR = 0.7.
+ * Settings: the work path (default, and coarser/finer Chebyshev panels, and
+ * records merged with --merge-tol), the ode model at several rtol, the
+ * paper model.  Reference: ode at rtol 1e-12 on unmerged steps.
+ * Reported per setting: the sum over cases of the median time per run, the
+ * speed ratio to ode at 1e-8, path evaluations, the largest relative error
+ * of the peak displacement, the largest error of the collapse time, and
+ * how many cases disagree with the reference on collapse. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/arch.h"
+#include "arch/stepper.h"
+#include "bench.h"
+#include "io/record.h"
+#include "signal/signal.h"
+#include "units.h"
+
+enum { MAX_CASES = 16, REPS = 5 };
+
+typedef struct {
+  const char *name;
+  aq_model model;
+  double rtol;     /* ode */
+  int nodes;       /* workpath */
+  double wtol;     /* workpath */
+  double merge_g;  /* merge tolerance for record steps, g */
+} setting;
+
+typedef struct {
+  char name[64];
+  int is_record;
+  aq_processed proc; /* records */
+  double pulse_a, pulse_dur, pulse_end;
+  aq_steps steps[3]; /* merge 0, 0.001 g, 0.01 g (records); [0] for pulses */
+} bcase;
+
+static const double MERGES_G[3] = {0, 0.001, 0.01};
+
+static int merge_index(double g)
+{
+  for (int k = 0; k < 3; k++)
+    if (g == MERGES_G[k])
+      return k;
+  return 0;
+}
+
+static int pulse_steps(double a, double dur, double end, double dt, aq_steps *s)
+{
+  size_t n1 = (size_t)ceil(dur / dt - 1e-9), n2 = (size_t)ceil((end - dur) / dt - 1e-9);
+  size_t n = n1 + n2;
+  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d),
+         *ac = malloc(n * sizeof *ac);
+  for (size_t i = 0; i < n; i++) {
+    int first = i < n1;
+    double t0 = first ? 0 : dur, span = first ? dur : end - dur;
+    size_t k = first ? i : i - n1, m = first ? n1 : n2;
+    t[i] = t0 + span * k / m;
+    d[i] = t0 + span * (k + 1) / m - t[i];
+    ac[i] = first ? a : 0;
+  }
+  aq_error e;
+  int ok = aq_steps_from_list(t, d, ac, n, s, &e) == AQ_OK;
+  free(t);
+  free(d);
+  free(ac);
+  return ok;
+}
+
+static int run(const aq_arch *a, const setting *S, const aq_steps *steps,
+               aq_result *r, double *sec)
+{
+  aq_error e;
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(a, 0), aq_arch_path(a, 1),
+                                    S->model, &e);
+  if (!st) {
+    fprintf(stderr, "bench_dyn: %s\n", e.message);
+    return 0;
+  }
+  aq_stepper_set_cor(st, 0.7);
+  if (S->model == AQ_MODEL_ODE)
+    aq_stepper_set_ode_rtol(st, S->rtol);
+  if (S->model == AQ_MODEL_WORKPATH) {
+    aq_stepper_set_wp_nodes(st, S->nodes);
+    aq_stepper_set_wp_tol(st, S->wtol);
+  }
+  double t0 = aq_bench_now_s();
+  aq_status rc = aq_stepper_run(st, steps, r, &e);
+  *sec = aq_bench_now_s() - t0;
+  aq_stepper_free(st);
+  if (rc != AQ_OK) {
+    fprintf(stderr, "bench_dyn: %s: %s\n", S->name, e.message);
+    return 0;
+  }
+  return 1;
+}
+
+int main(void)
+{
+  gsl_set_error_handler_off();
+  aq_error e;
+  aq_arch *a = NULL;
+  if (aq_arch_load("arches/oppenheim.cfg", &a, &e) != AQ_OK) {
+    fprintf(stderr, "bench_dyn: %s\n", e.message);
+    return 1;
+  }
+  const aq_path *p = aq_arch_path(a, 0);
+  static bcase cs[MAX_CASES];
+  size_t nc = 0;
+  /* pulses */
+  snprintf(cs[nc].name, sizeof cs[nc].name, "pulse 0.6g 0.45s");
+  cs[nc].pulse_a = p->act_sign * 0.6 * AQ_G0_MPS2;
+  cs[nc].pulse_dur = 0.45;
+  cs[nc].pulse_end = 10;
+  nc++;
+  snprintf(cs[nc].name, sizeof cs[nc].name, "pulse 0.5g 0.9s");
+  cs[nc].pulse_a = p->act_sign * 0.5 * AQ_G0_MPS2;
+  cs[nc].pulse_dur = 0.9;
+  cs[nc].pulse_end = 10;
+  nc++;
+  for (size_t k = 0; k < nc; k++)
+    if (!pulse_steps(cs[k].pulse_a, cs[k].pulse_dur, cs[k].pulse_end, 0.01,
+                     &cs[k].steps[0]))
+      return 1;
+  /* records */
+  DIR *dir = opendir("records");
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  struct dirent *de;
+  char *names[MAX_CASES];
+  size_t nn = 0;
+  while (dir && (de = readdir(dir)) && nn < MAX_CASES) {
+    if (de->d_name[0] == '.' || strstr(de->d_name, ".md"))
+      continue;
+    names[nn++] = strdup(de->d_name);
+  }
+  if (dir)
+    closedir(dir);
+  for (size_t i = 0; i < nn; i++) /* stable order */
+    for (size_t j = i + 1; j < nn; j++)
+      if (strcmp(names[i], names[j]) > 0) {
+        char *t = names[i];
+        names[i] = names[j];
+        names[j] = t;
+      }
+  for (size_t i = 0; i < nn && nc < MAX_CASES; i++) {
+    char path[512];
+    snprintf(path, sizeof path, "records/%s", names[i]);
+    aq_record rec;
+    aq_read_opts ro;
+    memset(&ro, 0, sizeof ro);
+    aq_signal_opts so;
+    aq_signal_opts_default(&so);
+    bcase *c = &cs[nc];
+    if (aq_record_read(path, &ro, &rec, &e) != AQ_OK) {
+      fprintf(stderr, "bench_dyn: skip %s: %s\n", path, e.message);
+      continue;
+    }
+    aq_processed pr;
+    aq_im im;
+    int ok = aq_signal_process(&rec, &so, ws, &pr, &e) == AQ_OK &&
+             aq_im_compute(&pr, &im, &e) == AQ_OK && im.pga_g > 0;
+    aq_record_free(&rec);
+    if (!ok) {
+      fprintf(stderr, "bench_dyn: skip %s: %s\n", path, e.message);
+      continue;
+    }
+    so.scale = 2.5 * p->lambda0 * p->g_mps2 / AQ_G0_MPS2 / im.pga_g;
+    aq_processed_free(&pr);
+    if (aq_record_read(path, &ro, &rec, &e) != AQ_OK ||
+        aq_signal_process(&rec, &so, ws, &c->proc, &e) != AQ_OK) {
+      aq_record_free(&rec);
+      continue;
+    }
+    aq_record_free(&rec);
+    c->is_record = 1;
+    snprintf(c->name, sizeof c->name, "%.40s", names[i]);
+    int good = 1;
+    for (int k = 0; k < 3; k++)
+      good &= aq_steps_from_processed(&c->proc, MERGES_G[k] * AQ_G0_MPS2,
+                                      &c->steps[k], &e) == AQ_OK;
+    if (good)
+      nc++;
+  }
+  for (size_t i = 0; i < nn; i++)
+    free(names[i]);
+  aq_signal_ws_free(ws);
+
+  static const setting set[] = {
+      {"workpath (default: 12 nodes, tol 1e-12)", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0},
+      {"workpath 8 nodes, tol 1e-9", AQ_MODEL_WORKPATH, 0, 8, 1e-9, 0},
+      {"workpath 16 nodes, tol 1e-14", AQ_MODEL_WORKPATH, 0, 16, 1e-14, 0},
+      {"workpath default, --merge-tol 0.001 g", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0.001},
+      {"workpath default, --merge-tol 0.01 g", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0.01},
+      {"ode rtol 1e-6", AQ_MODEL_ODE, 1e-6, 0, 0, 0},
+      {"ode rtol 1e-8", AQ_MODEL_ODE, 1e-8, 0, 0, 0},
+      {"ode rtol 1e-10", AQ_MODEL_ODE, 1e-10, 0, 0, 0},
+      {"ode rtol 1e-12 (reference)", AQ_MODEL_ODE, 1e-12, 0, 0, 0},
+      {"paper (as printed)", AQ_MODEL_PAPER, 0, 0, 0, 0},
+  };
+  enum { NS = sizeof set / sizeof set[0], REF = 8, ODE8 = 6 };
+  static double tmed[NS][MAX_CASES], peak[NS][MAX_CASES], tc[NS][MAX_CASES];
+  static int coll[NS][MAX_CASES];
+  static size_t evals[NS][MAX_CASES];
+  for (size_t c = 0; c < nc; c++) {
+    /* interleave the settings in each repetition: same machine state */
+    double ts[NS][REPS];
+    for (int rep = 0; rep < REPS; rep++)
+      for (size_t k = 0; k < NS; k++) {
+        const aq_steps *st = &cs[c].steps[cs[c].is_record ? merge_index(set[k].merge_g) : 0];
+        aq_result r;
+        if (!run(a, &set[k], st, &r, &ts[k][rep]))
+          return 1;
+        peak[k][c] = r.peak_displacement_m;
+        coll[k][c] = r.collapsed;
+        tc[k][c] = r.collapse_time_s;
+        evals[k][c] = r.evals;
+        aq_result_free(&r);
+      }
+    for (size_t k = 0; k < NS; k++)
+      tmed[k][c] = aq_bench_median(ts[k], REPS);
+  }
+  printf("Cases (%zu), reference = ode rtol 1e-12; COR 0.7; records scaled to "
+         "PGA 2.5 lambda0 g:\n", nc);
+  for (size_t c = 0; c < nc; c++)
+    printf("  %-34s steps %6zu  ref: %-18s peak x %.6g m  ode-1e-12 %.3f ms  "
+           "workpath %.3f ms\n",
+           cs[c].name, cs[c].steps[0].n, coll[REF][c] ? "collapses" : "survives",
+           peak[REF][c], 1e3 * tmed[REF][c], 1e3 * tmed[0][c]);
+  double t8 = 0;
+  for (size_t c = 0; c < nc; c++)
+    t8 += tmed[ODE8][c];
+  printf("\n%-42s %10s %8s %10s %12s %12s %8s\n", "setting", "time_ms",
+         "x_ode8", "evals", "err_peak_x", "err_tc_s", "flag_diff");
+  for (size_t k = 0; k < NS; k++) {
+    double tt = 0, ep = 0, et = 0;
+    size_t ev = 0;
+    int fd = 0;
+    for (size_t c = 0; c < nc; c++) {
+      tt += tmed[k][c];
+      ev += evals[k][c];
+      ep = fmax(ep, fabs(peak[k][c] / peak[REF][c] - 1));
+      if (coll[k][c] != coll[REF][c])
+        fd++;
+      else if (coll[k][c])
+        et = fmax(et, fabs(tc[k][c] - tc[REF][c]));
+    }
+    printf("%-42s %10.3f %8.2f %10zu %12.3g %12.3g %8d\n", set[k].name,
+           1e3 * tt, t8 / tt, ev, ep, et, fd);
+  }
+  printf("(time_ms: sum over cases of the median of %d runs; x_ode8: speed "
+         "relative to ode at 1e-8; err_peak_x: largest relative error of the "
+         "peak displacement; err_tc_s: largest collapse-time error where both "
+         "collapse; flag_diff: cases whose collapse flag differs)\n", REPS);
+  for (size_t c = 0; c < nc; c++) {
+    for (int k = 0; k < 3; k++)
+      aq_steps_free(&cs[c].steps[k]);
+    aq_processed_free(&cs[c].proc);
+  }
+  aq_arch_free(a);
+  return 0;
+}
