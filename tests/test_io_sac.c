@@ -334,3 +334,37 @@ AQ_TEST(io_sac_mseed2sac_counts_need_scale)
     aq_record_free(&r);
   }
 }
+
+/* Header version 7: a copy of ObsPy's test.sac with NVHDR = 7 and the
+ * 22-word float64 footer (DELTA, B, E, O, A, ...) appended. */
+AQ_TEST(io_sac_version7_footer)
+{
+  FILE *f = fopen(REC_DIR "test.sac", "rb");
+  unsigned char b[1032 + 176];
+  size_t n = f ? fread(b, 1, 1032, f) : 0;
+  if (f)
+    fclose(f);
+  if (!aq_check(n == 1032, "test.sac read"))
+    return;
+  b[304] = 7; /* NVHDR, little-endian */
+  const double footer[22] = {1.0, 10.000000000123, 109.0};
+  for (int w = 0; w < 22; w++) {
+    double v = w < 3 ? footer[w] : -12345.0;
+    unsigned char le[8];
+    memcpy(le, &v, 8); /* the test host is little-endian, as is test.sac */
+    memcpy(b + 1032 + 8 * w, le, 8);
+  }
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_MPS2;
+  aq_record r;
+  aq_error e;
+  if (aq_check(aq_sac_parse(b, sizeof b, "v7.sac", &ro, &r, &e) == AQ_OK, "v7: %s",
+               e.message)) {
+    aq_check(r.npts == 100 && r.dt_s == 1.0, "npts %zu dt %.17g", r.npts, r.dt_s);
+    aq_check(r.begin_s == 10.000000000123, "B from the float64 footer: %.17g", r.begin_s);
+    aq_record_free(&r);
+  }
+  aq_check(aq_sac_parse(b, 1032, "v7-nofooter.sac", &ro, &r, &e) == AQ_EFORMAT &&
+               strstr(e.message, "version-7 footer"),
+           "v7 without footer: %s", e.message);
+}

@@ -207,10 +207,14 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
 
   float delta_f = hf(&h, W_DELTA);
   double delta = sac_delta_decimal(delta_f), b = hf(&h, W_B);
-  if (nv == 7) { /* the footer's float64 DELTA and B are exact */
+  if (nv == 7) { /* the footer's float64 DELTA and B, where they agree with
+                   the header's float32 copies */
     const unsigned char *ft = buf + SAC_HEADER_BYTES + (size_t)npts * 4;
-    delta = rd_f64(ft, h.big);
-    b = rd_f64(ft + 8, h.big);
+    double d64 = rd_f64(ft, h.big), b64 = rd_f64(ft + 8, h.big);
+    if (isfinite(d64) && (float)d64 == delta_f)
+      delta = d64;
+    if (isfinite(b64) && (float)b64 == (float)b)
+      b = b64;
   }
   if (!isfinite(delta) || !(delta > 0) || delta == SAC_UNDEF)
     return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_DELTA, "header DELTA",
