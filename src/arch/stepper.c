@@ -160,11 +160,6 @@ static int wp_point(wp_ctx *c, double sigma, wp_pt *o)
   o->k1 = -c->dir * c->mt * (c->a * pt.dx_m + c->g * pt.dy_m);
   o->k2 = -c->mt * (c->a * pt.d2x_m + c->g * pt.d2y_m);
   o->m = pt.mgen_kgm2;
-  aq_leg_stats *S = c->stats;
-  if (o->ke > S->peak_ke_j)
-    S->peak_ke_j = o->ke;
-  if (fabs(o->x) > S->peak_x_m)
-    S->peak_x_m = fabs(o->x);
   return 0;
 }
 
@@ -624,6 +619,8 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       return AQ_OK;
     }
     t += ch.total;
+    if (PB.ke > S->peak_ke_j) /* a point actually reached */
+      S->peak_ke_j = PB.ke;
     m->s = PB.s;
     m->x_m = PB.x;
     m->y_m = PB.y;
