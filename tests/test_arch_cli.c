@@ -46,13 +46,44 @@ static void write_cfg(const char *path, int line, const char *repl, const char *
   fclose(f);
 }
 
+static void expect_error_in(const char *what, const char *path, const char *want);
+
 static void expect_error(const char *what, int line, const char *repl, const char *append,
                          const char *want)
 {
-  char dir[512], path[600], args[700], out[4096], err[4096];
+  char dir[512], path[600];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(path, sizeof path, "%s/a.cfg", dir);
   write_cfg(path, line, repl, append);
+  expect_error_in(what, path, want);
+}
+
+/* three lines replaced */
+static void expect_error_lines(const char *what, int l1, const char *r1, int l2, const char *r2,
+                               int l3, const char *r3, const char *want)
+{
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/a.cfg", dir);
+  FILE *f = fopen(path, "w");
+  const char *p = base;
+  for (int l = 1; *p; l++) {
+    const char *nl = strchr(p, '\n');
+    size_t len = (size_t)(nl - p) + 1;
+    const char *r = l == l1 ? r1 : l == l2 ? r2 : l == l3 ? r3 : NULL;
+    if (r)
+      fprintf(f, "%s\n", r);
+    else
+      fwrite(p, 1, len, f);
+    p += len;
+  }
+  fclose(f);
+  expect_error_in(what, path, want);
+}
+
+static void expect_error_in(const char *what, const char *path, const char *want)
+{
+  char args[700], out[4096], err[4096];
   snprintf(args, sizeof args, "mechanism --arch %s", path);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1, "%s: exit status %d", what, rc);
@@ -100,6 +131,10 @@ AQ_TEST(arch_cli_bad_files)
   expect_error("duplicate key", 0, NULL, "[arch]\nradius_m = 5\n", "%s:17: radius_m: expected one value per key");
   expect_error("missing key", 8, "", NULL, "%s: density_kg_m3: expected a value in [arch], got none");
   expect_error("hinges without primary", 11, "", NULL, "%s:10: primary: expected a primary hinge set");
+  /* no [hinges] and too many voussoirs for the search: lines 10-11 become
+   * comments, line 7 the size */
+  expect_error_lines("search too large", 7, "voussoirs = 400", 10, "; no hinges", 11, "; none",
+                     "%s:7: voussoirs: expected at most 150 voussoirs without [hinges]");
   expect_error("cor > 1", 13, "cor = 1.2", NULL, "%s:13: cor: expected");
   expect_error("impact", 14, "impact = newton", NULL, "%s:14: impact: expected cor or momentum");
   expect_error("not INI", 3, "name probe", NULL, "%s:3: expected KEY = VALUE");

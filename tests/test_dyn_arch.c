@@ -239,3 +239,39 @@ AQ_TEST(dyn_arch_domain_near_threshold)
   aq_stepper_free(st);
   aq_arch_free(a);
 }
+
+/* A pulse just above the shortest collapsing one: the arch creeps over the
+ * saddle of the potential near q_c with almost no kinetic energy.  The work
+ * path maps that near-double zero of KE analytically (sinh substitution):
+ * its collapse time agrees with ode and it stays cheap (counters). */
+AQ_TEST(dyn_arch_marginal_collapse)
+{
+  aq_arch *a = load("arches/oppenheim.cfg");
+  if (!a)
+    return;
+  const aq_path *p = aq_arch_path(a, 0);
+  double acc = p->act_sign * 2.0 * p->lambda0 * p->g_mps2;
+  aq_stepper *sw = stepper(a, AQ_MODEL_WORKPATH, 0, 1e-10);
+  aq_stepper *so = stepper(a, AQ_MODEL_ODE, 0, 1e-13);
+  double T = sw ? min_duration(sw, acc, 1e-12) : NAN;
+  for (int k = 0; k < 3 && sw && so; k++) {
+    double dur = T * (1 + 1e-8 * pow(100, k)); /* 1e-8, 1e-6, 1e-4 above */
+    aq_result rw, ro;
+    if (!run_pulse(sw, acc, dur, dur + 30, 1e9, 0, &rw))
+      break;
+    if (!run_pulse(so, acc, dur, dur + 30, 1e9, 0, &ro)) {
+      aq_result_free(&rw);
+      break;
+    }
+    aq_check(rw.collapsed && ro.collapsed, "collapses %g above", 1e-8 * pow(100, k));
+    aq_check_rel(rw.collapse_time_s, ro.collapse_time_s, 1e-6,
+                 "collapse time %g above the threshold", 1e-8 * pow(100, k));
+    aq_check(rw.evals < 800, "work path stays cheap: %zu evaluations (ode %zu)",
+             rw.evals, ro.evals);
+    aq_result_free(&rw);
+    aq_result_free(&ro);
+  }
+  aq_stepper_free(sw);
+  aq_stepper_free(so);
+  aq_arch_free(a);
+}

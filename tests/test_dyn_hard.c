@@ -420,6 +420,8 @@ AQ_TEST(dyn_hard_random_steps)
              r[1].impacts, r[0].reversals, r[1].reversals);
     aq_check_rel(r[0].peak_rotation_rad, r[1].peak_rotation_rad, 1e-6,
                  "run %d: peak rotation", run);
+    aq_check_rel(r[0].max_kinetic_energy_j, r[1].max_kinetic_energy_j, 1e-6,
+                 "run %d: peak kinetic energy", run);
     if (r[0].collapsed && r[1].collapsed)
       aq_check_rel(r[0].collapse_time_s, r[1].collapse_time_s, 1e-8,
                    "run %d: collapse time", run);

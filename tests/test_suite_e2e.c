@@ -451,6 +451,21 @@ AQ_TEST(suite_threads_give_identical_results)
   static char out[8192];
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 0,
            "compare exits 0: %s", out);
+  /* the ode reference too, with more runs per record than threads */
+  for (int k = 0; k < 2; k++) {
+    snprintf(args, sizeof args,
+             SUITE_RECORDS " " SUITE_ARCHES " --arch arches/thick.cfg --scale 1,2,4 "
+             "--model ode -j %d --text %s",
+             k ? 3 : 1, t[k]);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "ode -j %d: exit %d: %s", k ? 3 : 1, rc, err);
+  }
+  a = slurp_file(t[0], &n1);
+  b = slurp_file(t[1], &n2);
+  aq_check(a && b && n1 == n2 && memcmp(a, b, n1) == 0 && n1 > 500,
+           "ode: text byte-identical at -j 1 and -j 3 (%zu, %zu bytes)", n1, n2);
+  free(a);
+  free(b);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   walk w = compare_files(h[0], h[1]);
   aq_check(w.diffs == 0 && w.objects >= 35 && w.attrs > 600,

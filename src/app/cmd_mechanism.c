@@ -2,6 +2,7 @@
  * the hinge sets of an arch, their collapse multipliers and work paths. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +31,8 @@ static const char usage[] =
     "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
     "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
     "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
-    "  m_T g y; min_normal_n the smallest compressive hinge force).\n"
+    "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
+    "  as above, in the deformed arch at lambda(q)).\n"
     "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n";
 
 static const char *end_name(aq_end e)
@@ -114,7 +116,14 @@ int aq_cmd_mechanism(int argc, char **argv)
   }
   int rc = AQ_EXIT_OK;
   if (table) {
-    printf("\nset\ts_rad\tq_rad\tlambda\tlambda_eq\tx_m\ty_m\tpe_j\tmgen_kgm2\tmin_normal_n\n");
+    printf("\nset\ts_rad\tq_rad\tlambda\tlambda_eq\tx_m\ty_m\tpe_j\tmgen_kgm2\tmin_normal_n"
+           "\tthrust_ecc\n");
+    double *ecc = malloc((aq_arch_geom(a)->p.voussoirs + 1) * sizeof *ecc);
+    if (!ecc) {
+      fprintf(stderr, "archquake: mechanism: out of memory\n");
+      aq_arch_free(a);
+      return AQ_EXIT_FAIL;
+    }
     for (int s = 0; s < 2 && rc == AQ_EXIT_OK; s++) {
       const aq_workpath *w = aq_arch_workpath(a, s);
       const aq_path *p = aq_arch_path(a, s);
@@ -135,11 +144,17 @@ int aq_cmd_mechanism(int argc, char **argv)
         double nmin = eq.normal[0];
         for (int k = 1; k < 4; k++)
           nmin = eq.normal[k] < nmin ? eq.normal[k] : nmin;
-        printf("%s\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.6g\n",
+        aq_mech_state st;
+        aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, p->g_mps2};
+        double thrust = aq_mech_eval(aq_workpath_mech(w), p->q_sign * sv, &st) == 0
+                            ? aq_mech_thrust(aq_workpath_mech(w), &st, &live, &eq, ecc, NULL)
+                            : NAN;
+        printf("%s\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.6g\t%.6g\n",
                p->name, sv, p->q_sign * sv, pt.lambda, eq.lambda, pt.x_m, pt.y_m,
-               p->mass_kg * p->g_mps2 * pt.y_m, pt.mgen_kgm2, nmin);
+               p->mass_kg * p->g_mps2 * pt.y_m, pt.mgen_kgm2, nmin, thrust);
       }
     }
+    free(ecc);
   }
   aq_arch_free(a);
   return rc;

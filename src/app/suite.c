@@ -4,6 +4,9 @@
 #include "suite.h"
 
 #include <errno.h>
+#if defined(__GLIBC__) || defined(__linux__)
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -23,6 +26,10 @@
 /* Records in flight per worker thread: enough that a worker finishing a
  * short record finds the next one while a long one is still running. */
 #define AQ_SUITE_WINDOW_PER_THREAD 2
+/* Blocks up to this size come from the heap, not from mmap: every record
+ * allocates and frees arrays of 10^4-10^5 doubles, and fresh mmaps cost a
+ * page fault per page each time (a quarter of the suite's CPU time). */
+#define AQ_SUITE_MMAP_THRESHOLD_BYTES (256L << 20)
 /* Progress line refresh period, s. */
 #define AQ_SUITE_PROGRESS_PERIOD_S 0.25
 
@@ -35,6 +42,13 @@ static double now_s(void)
 
 /* ---- per-record work ---------------------------------------------------- */
 
+/* Work is handed out in two kinds of task: preparing a record (read,
+ * process, measure, scale and split into steps for every factor: one
+ * thread) and running one (arch, scale) of a prepared record (any thread).
+ * Runs of the oldest records go first, so the window keeps moving; a new
+ * record is prepared when no run is waiting.  A record with many arches or
+ * factors thus spreads over every thread. */
+
 typedef struct {
   aq_summary sum;
   aq_result res;
@@ -44,7 +58,7 @@ typedef struct {
   double run_s;
 } run_slot;
 
-enum { SLOT_FREE = 0, SLOT_BUSY, SLOT_DONE };
+enum { SLOT_FREE = 0, SLOT_PREPARING, SLOT_READY, SLOT_DONE };
 
 typedef struct {
   int state;
@@ -60,7 +74,14 @@ typedef struct {
   char status[AQ_SUMMARY_STATUS_MAX];
   char warning[300];  /* residual warning, "" if none */
   double read_s, process_s;
+  double *scale;      /* nscale factors applied */
+  double *pga_g;      /* PGA of each scaled record, g */
+  aq_steps *steps;    /* nscale step lists */
+  aq_status *steps_st;/* status of each step list */
+  aq_error *steps_err;
   run_slot *runs;     /* narch * nscale, arch-major */
+  size_t next_run;    /* next run to hand out (READY) */
+  size_t runs_done;
 } rec_slot;
 
 typedef struct {
@@ -73,7 +94,7 @@ typedef struct {
   size_t nruns;             /* per record: narch * nscale */
   aq_signal_ws *ws;
   pthread_mutex_t lock;
-  pthread_cond_t cond;      /* a slot finished or was freed */
+  pthread_cond_t cond;      /* a slot changed state or was freed */
   rec_slot *slots;
   size_t window;
   size_t next_claim, next_write;
@@ -92,7 +113,16 @@ static void slot_clear(suite *S, rec_slot *r)
     for (size_t k = 0; k < S->nruns; k++)
       if (r->runs[k].have_res)
         aq_result_free(&r->runs[k].res);
+  if (r->steps)
+    for (size_t k = 0; k < S->nscale; k++)
+      if (r->steps_st[k] == AQ_OK)
+        aq_steps_free(&r->steps[k]);
   free(r->runs);
+  free(r->scale);
+  free(r->pga_g);
+  free(r->steps);
+  free(r->steps_st);
+  free(r->steps_err);
   memset(r, 0, sizeof *r);
 }
 
@@ -109,19 +139,30 @@ static void fail_runs(suite *S, rec_slot *r)
     }
 }
 
-/* Read, process, scale, step and run record r->index with this thread's
- * steppers (st[a] NULL when arch a cannot run). */
-static void do_record(suite *S, rec_slot *r, aq_stepper **st)
+/* Read, process and measure record r->index, then scale it by each factor
+ * and split each into steps.  Returns 1 if its runs can go ahead, 0 if the
+ * record failed (its runs are filled as failed). */
+static int prepare_record(suite *S, rec_slot *r)
 {
   const aq_suite_cfg *c = S->cfg;
   const char *path = c->records[r->index];
   r->runs = calloc(S->nruns, sizeof *r->runs);
-  if (!r->runs) {
+  r->scale = calloc(S->nscale, sizeof *r->scale);
+  r->pga_g = calloc(S->nscale, sizeof *r->pga_g);
+  r->steps = calloc(S->nscale, sizeof *r->steps);
+  r->steps_st = calloc(S->nscale, sizeof *r->steps_st);
+  r->steps_err = calloc(S->nscale, sizeof *r->steps_err);
+  if (!r->runs || !r->scale || !r->pga_g || !r->steps || !r->steps_st ||
+      !r->steps_err) {
+    free(r->runs);
+    r->runs = NULL; /* the writer reports it; no run rows can be made */
     r->failed = 1;
     aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
     aq_summary_status(r->status, sizeof r->status, "read", AQ_ENOMEM);
-    return; /* the writer reports it; no run rows can be made */
+    return 0;
   }
+  for (size_t k = 0; k < S->nscale; k++)
+    r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
   aq_status s = aq_record_read(path, &c->read, &r->rec, &r->err);
   double t1 = now_s();
@@ -130,7 +171,7 @@ static void do_record(suite *S, rec_slot *r, aq_stepper **st)
     r->failed = 1;
     aq_summary_status(r->status, sizeof r->status, "read", s);
     fail_runs(S, r);
-    return;
+    return 0;
   }
   r->have_rec = 1;
   aq_signal_opts po = c->proc;
@@ -154,67 +195,84 @@ static void do_record(suite *S, rec_slot *r, aq_stepper **st)
   double *a = NULL;
   if (s == AQ_OK && !(a = malloc((r->proc.n ? r->proc.n : 1) * sizeof *a)))
     s = aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-  r->process_s = now_s() - t1;
   if (s != AQ_OK) {
+    r->process_s = now_s() - t1;
     r->failed = 1;
     aq_summary_status(r->status, sizeof r->status, "process", s);
     fail_runs(S, r);
     free(a);
-    return;
+    return 0;
   }
   snprintf(r->status, sizeof r->status, "ok");
-
   const aq_processed *p = &r->proc;
   for (size_t k = 0; k < S->nscale; k++) {
-    double t2 = now_s();
     double scale = c->scales ? c->scales[k] : c->scale_to_pga_g / r->im.pga_g;
     double amax = 0;
     for (size_t i = 0; i < p->n; i++) {
       a[i] = scale * p->acc_mps2[i];
       amax = fmax(amax, fabs(a[i]));
     }
-    double pga_g = amax / AQ_G0_MPS2;
-    aq_steps steps;
-    aq_error serr;
-    aq_error_clear(&serr);
-    aq_status ss = aq_steps_from_samples(a, p->n, p->dt_s,
-                                         -(double)p->pad_front * p->dt_s,
-                                         c->merge_tol_g * AQ_G0_MPS2, &steps, &serr);
-    r->process_s += now_s() - t2;
-    for (size_t ai = 0; ai < c->narches; ai++) {
-      run_slot *u = &r->runs[ai * S->nscale + k];
-      double t3 = now_s();
-      aq_status rs = ss;
-      if (rs != AQ_OK) {
-        u->err = serr;
-      } else if (!st[ai]) {
-        rs = S->arch_err[ai].status != AQ_OK ? S->arch_err[ai].status : AQ_EINTERNAL;
-        u->err = S->arch_err[ai];
-      } else {
-        aq_error_clear(&u->err);
-        memset(&u->res, 0, sizeof u->res);
-        rs = aq_stepper_run(st[ai], &steps, &u->res, &u->err);
-        u->have_res = 1;
-      }
-      char status[AQ_SUMMARY_STATUS_MAX];
-      aq_summary_status(status, sizeof status,
-                        ss != AQ_OK ? "process" : !st[ai] ? "arch" : "run", rs);
-      u->failed = rs != AQ_OK;
-      if (u->failed && u->have_res) {
-        aq_result_free(&u->res);
-        u->have_res = 0;
-      }
-      aq_summary_fill(&u->sum, path, aq_arch_name(S->arches[ai]), S->model_name,
-                      scale, pga_g, status, u->have_res ? &u->res : NULL);
-      u->run_s = now_s() - t3;
-      pthread_mutex_lock(&S->lock);
-      S->runs_done++;
-      pthread_mutex_unlock(&S->lock);
-    }
-    if (ss == AQ_OK)
-      aq_steps_free(&steps);
+    r->scale[k] = scale;
+    r->pga_g[k] = amax / AQ_G0_MPS2;
+    aq_error_clear(&r->steps_err[k]);
+    r->steps_st[k] = aq_steps_from_samples(a, p->n, p->dt_s,
+                                           -(double)p->pad_front * p->dt_s,
+                                           c->merge_tol_g * AQ_G0_MPS2,
+                                           &r->steps[k], &r->steps_err[k]);
   }
   free(a);
+  r->process_s = now_s() - t1;
+  return 1;
+}
+
+static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err);
+
+/* Run i (arch i / nscale, scale i % nscale) of prepared record r with this
+ * thread's steppers (st[a] NULL when arch a cannot run). */
+static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
+{
+  const aq_suite_cfg *c = S->cfg;
+  size_t ai = i / S->nscale, k = i % S->nscale;
+  run_slot *u = &r->runs[i];
+  double t0 = now_s();
+  aq_status rs = r->steps_st[k];
+  const char *stage = "run";
+  if (rs != AQ_OK) {
+    u->err = r->steps_err[k];
+    stage = "process";
+  } else if (!st[ai]) {
+    rs = S->arch_err[ai].status != AQ_OK ? S->arch_err[ai].status : AQ_EINTERNAL;
+    u->err = S->arch_err[ai];
+    stage = "arch";
+  } else {
+    aq_error_clear(&u->err);
+    memset(&u->res, 0, sizeof u->res);
+    /* The ode and paper steppers carry their last step size from one run
+     * into the next, which changes the last bits of a result with the order
+     * runs reach a thread: they get a fresh stepper per run, so that results
+     * do not depend on -j.  The work-path stepper keeps no such state. */
+    aq_stepper *own = NULL;
+    if (c->model != AQ_MODEL_WORKPATH)
+      own = make_stepper(S, ai, &u->err);
+    if (c->model != AQ_MODEL_WORKPATH && !own) {
+      rs = u->err.status != AQ_OK ? u->err.status : AQ_ENOMEM;
+    } else {
+      rs = aq_stepper_run(own ? own : st[ai], &r->steps[k], &u->res, &u->err);
+      u->have_res = 1;
+    }
+    aq_stepper_free(own);
+  }
+  char status[AQ_SUMMARY_STATUS_MAX];
+  aq_summary_status(status, sizeof status, stage, rs);
+  u->failed = rs != AQ_OK;
+  if (u->failed && u->have_res) {
+    aq_result_free(&u->res);
+    u->have_res = 0;
+  }
+  aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[ai]),
+                  S->model_name, r->scale[k], r->pga_g[k], status,
+                  u->have_res ? &u->res : NULL);
+  u->run_s = now_s() - t0;
 }
 
 /* ---- threads ------------------------------------------------------------ */
@@ -228,32 +286,65 @@ static void *worker(void *arg)
 {
   worker_arg *w = arg;
   suite *S = w->S;
+  const size_t nrec = S->cfg->nrecords;
+  pthread_mutex_lock(&S->lock);
   for (;;) {
-    pthread_mutex_lock(&S->lock);
-    while (!S->stop && S->next_claim < S->cfg->nrecords &&
-           S->next_claim >= S->next_write + S->window)
-      pthread_cond_wait(&S->cond, &S->lock);
-    if (S->stop || S->next_claim >= S->cfg->nrecords) {
-      pthread_mutex_unlock(&S->lock);
+    if (S->stop)
       break;
+    /* 1. a waiting run of the oldest prepared record */
+    rec_slot *r = NULL;
+    for (size_t idx = S->next_write; idx < S->next_claim && !r; idx++) {
+      rec_slot *x = &S->slots[idx % S->window];
+      if (x->state == SLOT_READY && x->next_run < S->nruns)
+        r = x;
     }
-    size_t idx = S->next_claim++;
-    rec_slot *r = &S->slots[idx % S->window];
-    r->state = SLOT_BUSY;
-    r->index = idx;
-    pthread_mutex_unlock(&S->lock);
-
-    do_record(S, r, w->st);
-
-    pthread_mutex_lock(&S->lock);
-    r->state = SLOT_DONE;
-    S->read_s += r->read_s;
-    S->process_s += r->process_s;
-    for (size_t k = 0; r->runs && k < S->nruns; k++)
-      S->run_s += r->runs[k].run_s;
-    pthread_cond_broadcast(&S->cond);
-    pthread_mutex_unlock(&S->lock);
+    if (r) {
+      size_t i = r->next_run++;
+      pthread_mutex_unlock(&S->lock);
+      run_one(S, r, i, w->st);
+      pthread_mutex_lock(&S->lock);
+      S->run_s += r->runs[i].run_s;
+      S->runs_done++;
+      if (++r->runs_done == S->nruns) {
+        r->state = SLOT_DONE;
+        pthread_cond_broadcast(&S->cond);
+      }
+      continue;
+    }
+    /* 2. prepare the next record, if the window has room */
+    if (S->next_claim < nrec && S->next_claim < S->next_write + S->window) {
+      size_t idx = S->next_claim++;
+      r = &S->slots[idx % S->window];
+      r->state = SLOT_PREPARING;
+      r->index = idx;
+      pthread_mutex_unlock(&S->lock);
+      int ok = prepare_record(S, r);
+      pthread_mutex_lock(&S->lock);
+      S->read_s += r->read_s;
+      S->process_s += r->process_s;
+      if (ok && S->nruns > 0) {
+        r->state = SLOT_READY;
+      } else {
+        S->runs_done += r->runs ? S->nruns : 0;
+        r->state = SLOT_DONE;
+      }
+      pthread_cond_broadcast(&S->cond);
+      continue;
+    }
+    /* 3. nothing left to hand out, or wait for the writer or a record */
+    if (S->next_claim >= nrec) {
+      int pending = 0;
+      for (size_t idx = S->next_write; idx < S->next_claim; idx++) {
+        rec_slot *x = &S->slots[idx % S->window];
+        pending |= x->state == SLOT_PREPARING ||
+                   (x->state == SLOT_READY && x->next_run < S->nruns);
+      }
+      if (!pending)
+        break;
+    }
+    pthread_cond_wait(&S->cond, &S->lock);
   }
+  pthread_mutex_unlock(&S->lock);
   return NULL;
 }
 
@@ -440,6 +531,10 @@ static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
 int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
+#if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
+  mallopt(M_MMAP_THRESHOLD, (int)AQ_SUITE_MMAP_THRESHOLD_BYTES);
+  mallopt(M_TRIM_THRESHOLD, (int)(2 * AQ_SUITE_MMAP_THRESHOLD_BYTES));
+#endif
   aq_suite_stats stats;
   memset(&stats, 0, sizeof stats);
   suite S;

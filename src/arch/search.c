@@ -18,6 +18,7 @@
 #include "model.h"
 
 #define SEARCH_KEEP 256 /* candidates kept for the full admissibility check */
+#define SEARCH_MAX_VOUSSOIRS 150 /* 2 C(151,4) = 4.2e7 sets: about a second */
 #define TIE_REL 1e-12   /* lambda0 within this (relative) of another is a tie */
 
 /* a lower than b by more than a tie */
@@ -79,6 +80,11 @@ aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
                               aq_hinge_set *best, size_t *nsets, aq_error *err)
 {
   size_t n = g->p.voussoirs, count = 0, nk = 0;
+  if (n > SEARCH_MAX_VOUSSOIRS)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "voussoirs",
+                        "expected at most %d voussoirs without [hinges] (the search "
+                        "grows as voussoirs^4), got %zu",
+                        SEARCH_MAX_VOUSSOIRS, n);
   aq_vec2 *pt = malloc(2 * (n + 1) * sizeof *pt); /* [face][joint] */
   cand *keep = malloc(SEARCH_KEEP * sizeof *keep);
   if (!pt || !keep) {

@@ -65,6 +65,8 @@ static const double WP_DEFAULT_TOL = 1e-12;  /* Chebyshev tail / mean, per panel
 static const double WP_PANEL_FRAC = 0.125;   /* longest panel, fraction of s_c */
 static const double WP_NEAR_ZERO = 2.0;      /* a zero of KE within this many L is "near" */
 static const double WP_REACH_MARGIN = 1.3;   /* panel = margin * distance reachable in the step */
+static const double WP_NEAR_MIN_FRAC = 0.1;  /* KE minimum this small vs the ends: split there */
+static const double WP_NEAR_MIN_SPAN = 0.25; /* sinh map when the minimum's width is within this * L */
 static const double WP_NOISE_GAIN = 16;      /* tail floor = this * KE round-off at the nodes */
 static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8x */
 static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
@@ -158,11 +160,6 @@ static int wp_point(wp_ctx *c, double sigma, wp_pt *o)
   o->k1 = -c->dir * c->mt * (c->a * pt.dx_m + c->g * pt.dy_m);
   o->k2 = -c->mt * (c->a * pt.d2x_m + c->g * pt.d2y_m);
   o->m = pt.mgen_kgm2;
-  aq_leg_stats *S = c->stats;
-  if (o->ke > S->peak_ke_j)
-    S->peak_ke_j = o->ke;
-  if (fabs(o->x) > S->peak_x_m)
-    S->peak_x_m = fabs(o->x);
   return 0;
 }
 
@@ -182,7 +179,8 @@ static double zero_ahead(double ke, double k1, double k2)
 
 /* The change of variable of one panel: psi in [-1, 1] -> sigma in [0, L]. */
 typedef struct {
-  int kind; /* 0 linear, 1 zero behind, 2 zero ahead, 3 both */
+  int kind; /* 0 linear, 1 zero behind, 2 zero ahead, 3 both, 4/5 near-zero
+              minimum at the start / end (sinh) */
   double L, za, zb, W, u0, u1;
 } wp_map;
 
@@ -212,6 +210,44 @@ static void map_init(wp_map *mp, double L, double za, double zb)
   }
 }
 
+/* A near-zero minimum of KE at or just beyond an end, from the quadratic
+ * model there: KE ~ KE_m + k2/2 (sigma - sigma_m)^2.  The substitution
+ * sigma - sigma_m = h sinh(w), h = sqrt(2 KE_m / k2), makes KE ~ KE_m
+ * cosh^2 w cancel the Jacobian h cosh w: the near-singular integrand of a
+ * slow passage over a saddle becomes smooth.  Start side first. */
+static void map_near_min(wp_map *mp, double kea, double k1a, double k2a,
+                         double keb, double k1b, double k2b)
+{
+  double L = mp->L;
+  if (kea > 0 && k2a > 0 && k1a >= 0) {
+    double sm = -k1a / k2a, km = kea - k1a * k1a / (2 * k2a);
+    if (km > 0) {
+      double h = sqrt(2 * km / k2a);
+      if (-sm + h < WP_NEAR_MIN_SPAN * L) {
+        mp->kind = 4;
+        mp->W = h;
+        mp->za = sm; /* centre, relative to the start (<= 0) */
+        mp->u0 = asinh(-sm / h);
+        mp->u1 = asinh((L - sm) / h);
+        return;
+      }
+    }
+  }
+  if (keb > 0 && k2b > 0 && k1b <= 0) {
+    double sm = -k1b / k2b, km = keb - k1b * k1b / (2 * k2b);
+    if (km > 0) {
+      double h = sqrt(2 * km / k2b);
+      if (sm + h < WP_NEAR_MIN_SPAN * L) {
+        mp->kind = 5;
+        mp->W = h;
+        mp->zb = sm; /* centre, beyond the end (>= 0) */
+        mp->u0 = asinh((L + sm) / h);
+        mp->u1 = asinh(sm / h);
+      }
+    }
+  }
+}
+
 /* sigma(psi) and dsigma/dpsi. */
 static double map_sigma(const wp_map *mp, double psi, double *jac)
 {
@@ -232,6 +268,14 @@ static double map_sigma(const wp_map *mp, double psi, double *jac)
   case 2:
     sg = mp->L + mp->zb - u * u;
     *jac = -2 * u * h;
+    break;
+  case 4:
+    sg = mp->za + mp->W * sinh(u);
+    *jac = mp->W * cosh(u) * h;
+    break;
+  case 5:
+    sg = mp->L + mp->zb - mp->W * sinh(u);
+    *jac = -mp->W * cosh(u) * h;
     break;
   default:
     sg = u;
@@ -479,6 +523,13 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
             return wp_fail(err, p, m->s);
           L = PB.sigma;
           kind = 1;
+        } else if (Pm.ke < WP_NEAR_MIN_FRAC * fmin(c.ke_a, PB.ke) &&
+                   Pm.sigma > 0 && Pm.sigma < L) {
+          /* a near-zero minimum of KE (a saddle of the potential): end
+           * the panel there, so that it sits at an end of two panels */
+          L = Pm.sigma;
+          PB = Pm;
+          kind = 0;
         }
       }
       if (!(L > 0)) { /* a turning point at the start itself */
@@ -491,6 +542,8 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       double za = c.ke_a <= 0 ? 0 : zero_ahead(c.ke_a, -P0.k1, P0.k2);
       double zb = kind == 1 ? 0 : zero_ahead(PB.ke, PB.k1, PB.k2);
       map_init(&mp, L, za, zb);
+      if (mp.kind == 0)
+        map_near_min(&mp, c.ke_a, P0.k1, P0.k2, PB.ke, PB.k1, PB.k2);
       int redo = 0;
       double noise = 0; /* largest relative round-off of KE at the nodes */
       for (int j = 0; j < n; j++) {
@@ -566,6 +619,8 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       return AQ_OK;
     }
     t += ch.total;
+    if (PB.ke > S->peak_ke_j) /* a point actually reached */
+      S->peak_ke_j = PB.ke;
     m->s = PB.s;
     m->x_m = PB.x;
     m->y_m = PB.y;

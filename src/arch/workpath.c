@@ -151,14 +151,14 @@ static int eval_exact(const void *ctx, double s, aq_path_point *p)
   return 0;
 }
 
-/* Table: value and derivatives of function k at interval i, local t. */
+/* Table: value and first derivative of function k at interval i, local t. */
 static void table_f(const aq_workpath *w, size_t i, double t, int k, double out[3])
 {
   const double *c = w->coef + (i * NF + (size_t)k) * 6;
   double ih = 1.0 / (w->bp[i + 1] - w->bp[i]);
   out[0] = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
   out[1] = (c[1] + t * (2 * c[2] + t * (3 * c[3] + t * (4 * c[4] + t * 5 * c[5])))) * ih;
-  out[2] = (2 * c[2] + t * (6 * c[3] + t * (12 * c[4] + t * 20 * c[5]))) * ih * ih;
+  out[2] = 0; /* second derivatives come from the F_DX, F_DY interpolants */
 }
 
 static void table_all(const aq_workpath *w, double s, double f[NF][3])

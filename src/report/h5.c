@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
+#define AQ_H5_COMPACT_ATTRS 96  /* attributes per group kept compact */
 
 struct aq_h5_writer {
   char *target;
@@ -22,6 +23,7 @@ struct aq_h5_writer {
   /* /summary grows by AQ_H5_SUMMARY_CHUNK rows at a time, so the writer's
    * memory does not grow with the number of runs */
   hid_t d_sum, mt_sum, ft_sum;
+  hid_t gcpl; /* record, arch and run groups: attributes kept compact */
   aq_summary buf[AQ_H5_SUMMARY_CHUNK];
   size_t nbuf;   /* rows in buf */
   hsize_t nrows; /* rows already in the dataset */
@@ -179,6 +181,8 @@ static void writer_free(aq_h5_writer *w)
 {
   if (!w)
     return;
+  if (w->gcpl >= 0)
+    H5Pclose(w->gcpl);
   free(w->target);
   free(w->tmp);
   free(w);
@@ -223,7 +227,7 @@ static void close_quietly(aq_h5_writer *w)
   }
   H5E_END_TRY;
   w->g_runs = w->g_arches = w->g_records = w->file = -1;
-  w->d_sum = w->mt_sum = w->ft_sum = -1;
+  w->d_sum = w->mt_sum = w->ft_sum = w->gcpl = -1;
 }
 
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
@@ -237,7 +241,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   if (!w)
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   w->file = w->g_records = w->g_arches = w->g_runs = -1;
-  w->d_sum = w->mt_sum = w->ft_sum = -1;
+  w->d_sum = w->mt_sum = w->ft_sum = w->gcpl = -1;
   size_t len = strlen(target) + 40;
   w->target = strdup(target);
   w->tmp = malloc(len);
@@ -270,6 +274,13 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   CK(w->file, "H5Fcreate");
   CK(H5Pclose(fapl), "H5Pclose");
   fapl = -1;
+  /* Up to AQ_H5_COMPACT_ATTRS attributes stay in the object header (the
+   * 1.8 format otherwise moves more than 8 to a heap and a B-tree, which
+   * costs the writer several times more per attribute). */
+  w->gcpl = H5Pcreate(H5P_GROUP_CREATE);
+  CK(w->gcpl, "H5Pcreate");
+  CK(H5Pset_attr_phase_change(w->gcpl, AQ_H5_COMPACT_ATTRS, AQ_H5_COMPACT_ATTRS - 8),
+     "H5Pset_attr_phase_change");
   obj = "/records";
   w->g_records = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(w->g_records, "H5Gcreate");
@@ -403,7 +414,7 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
   aq_status st = AQ_OK;
   char obj[64];
   snprintf(obj, sizeof obj, "/arches/%03zu", index);
-  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(attr_str(g, "name", a->name), "arch attributes");
   CK(attr_str(g, "source_file", a->source_file), "arch attributes");
@@ -440,7 +451,7 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
   aq_status st = AQ_OK;
   char obj[64];
   snprintf(obj, sizeof obj, "/records/%05zu", index);
-  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(attr_str(g, "source_file", r->source_file), "record attributes");
   CK(attr_str(g, "status", r->status ? r->status : "ok"), "record attributes");
@@ -531,7 +542,7 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   char obj[96], link[64];
   snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu", ri, ai, si);
   hid_t g = -1;
-  g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(write_summary_attrs(g, s), "run attributes");
   CK(attr_int(g, "record_index", (int64_t)ri), "run attributes");
