@@ -1,7 +1,8 @@
-/* cleanup.h: temporary files removed when SIGINT, SIGTERM or SIGHUP ends
- * the process, so that an interrupted run leaves no partial output.  The
- * handler unlinks every registered path, then re-raises the signal with its
- * default action (the exit status says which signal).  Paths are copied
+/* cleanup.h: temporary files removed when SIGINT, SIGTERM, SIGHUP or
+ * SIGPIPE (stdout closed early, as by `| head`) ends the process, so that an
+ * interrupted run leaves no partial output.  The handler unlinks every
+ * registered path, then re-raises the signal with its default action (the
+ * exit status says which signal).  Paths are copied
  * into static slots; the handler only reads them (async-signal-safe). */
 #ifndef AQ_APP_CLEANUP_H
 #define AQ_APP_CLEANUP_H

@@ -52,8 +52,8 @@ static const char usage_tail[] =
     "     nothing was run\n"
     "  3  an output file could not be written (no partial file is left; an\n"
     "     existing file of that name is untouched)\n"
-    "  A run interrupted by SIGINT/SIGTERM removes its temporaries and ends\n"
-    "  with that signal.\n";
+    "  A run ended by SIGINT, SIGTERM, SIGHUP or SIGPIPE removes its\n"
+    "  temporaries and ends with that signal.\n";
 
 enum {
   OPT_ARCH = 2000,
