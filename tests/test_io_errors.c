@@ -181,6 +181,10 @@ AQ_TEST(io_errors_at2)
   snprintf(p, sizeof p, "%s/over.AT2", d);
   edited_copy(src, p, "  .7743260E-02", "  .7743260E+999");
   expect_fail(p, 1, NEED("over.AT2:5: value 4: expected a finite number"));
+  snprintf(p, sizeof p, "%s/huge-g.AT2", d);
+  edited_copy(src, p, "  .7743260E-02", "  .7743260E+308");
+  expect_fail(p, 1, NEED("huge-g.AT2:5: value 4: expected a value that is finite in m/s2",
+                         "overflows"));
   /* --units counts has no sensitivity in an AT2 */
   char a[800];
   snprintf(a, sizeof a, "--units counts %s", src);
@@ -282,6 +286,9 @@ AQ_TEST(io_errors_csv)
   snprintf(p, sizeof p, "%s/nan.csv", d);
   put_text(p, "time,acc (g)\n0,0.1\n0.01,0.2\n0.02,nan\n0.03,0.1\n");
   expect_fail(p, 1, NEED("nan.csv:4: column 2 (acc (g)): expected a finite number, got \"nan\""));
+  snprintf(p, sizeof p, "%s/huge.csv", d);
+  put_text(p, "time,acc (g)\n0,0.1\n0.01,1.5e308\n");
+  expect_fail(p, 1, NEED("huge.csv:3: column 2 (acc (g)): expected a value that is finite in m/s2"));
   snprintf(p, sizeof p, "%s/word.csv", d);
   put_text(p, "time,acc (g)\r\n0,0.1\r\n0.01,0.2\r\n0.02,0.3\r\n0.03,abc\r\n");
   expect_fail(p, 1, NEED("word.csv:5: column 2 (acc (g)): expected a number, got \"abc\""));

@@ -384,7 +384,16 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
                           "expected a finite number, got \"%s\"", tokq);
     }
-    acc[k++] = x * factor;
+    acc[k] = x * factor;
+    if (!isfinite(acc[k])) {
+      snprintf(field, sizeof field, "value %zu", k + 1);
+      quote(t, used < AT2_TOKEN_MAX ? used : AT2_TOKEN_MAX, tokq, sizeof tokq);
+      free(acc);
+      return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
+                          "expected a value that is finite in m/s2, got \"%s\" "
+                          "(overflows)", tokq);
+    }
+    k++;
     c.pos += used;
   }
   if (k < npts) {

@@ -466,6 +466,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
     for (size_t i = 0; i < nf && st == AQ_OK; i++) {
       int r = field_num(s, f[i], dcomma, &x);
+      if (r == 1 && i == acol && !isfinite(x * factor))
+        r = 3; /* overflows in m/s2 */
       if (r == 1) {
         if (i == acol)
           acc[k] = x * factor;
@@ -479,9 +481,14 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       else
         snprintf(fld, sizeof fld, "column %zu", i + 1);
       copy_field(s, f[i], got, sizeof got);
-      st = aq_error_set(err, r == 2 ? AQ_EVALUE : AQ_EFORMAT, name, line, -1, fld,
-                        "expected a %snumber, got \"%s\"", r == 2 ? "finite " : "",
-                        got);
+      if (r == 3)
+        st = aq_error_set(err, AQ_EVALUE, name, line, -1, fld,
+                          "expected a value that is finite in m/s2, got \"%s\" "
+                          "(overflows)", got);
+      else
+        st = aq_error_set(err, r == 2 ? AQ_EVALUE : AQ_EFORMAT, name, line, -1, fld,
+                          "expected a %snumber, got \"%s\"", r == 2 ? "finite " : "",
+                          got);
     }
     if (st != AQ_OK)
       break;
