@@ -136,3 +136,75 @@ AQ_TEST(report_text_write_error_reported)
   aq_check(aq_text_row(f, &s) == -1, "row write fails");
   fclose(f);
 }
+
+AQ_TEST(report_text_aligned_columns)
+{
+  aq_summary s[3];
+  aq_result r;
+  memset(&r, 0, sizeof r);
+  r.collapsed = 1;
+  r.collapse_time_s = 12.3456789;
+  r.peak_rotation_rad = -2.2250738585072014e-308;
+  r.peak_displacement_m = 0.0216298185;
+  r.max_kinetic_energy_j = 98765.4321;
+  r.impacts = 123456;
+  aq_summary_fill(&s[0], "records/a-very-long-record-name.AT2", "oppenheim", "workpath",
+                  1.5, 0.28081234, "ok", &r);
+  aq_summary_fill(&s[1], "r.sac", "t", "ode", 0.25, 1e-300, "process:einadmissible",
+                  NULL);
+  aq_summary_fill(&s[2], "x.csv", "thin", "paper", 2, 0.5, "ok", &r);
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/t.txt", dir);
+  FILE *f = fopen(path, "w+");
+  if (!aq_check(f != NULL, "open"))
+    return;
+  aq_text_layout L;
+  aq_text_layout_init(&L, strlen("records/a-very-long-record-name.AT2"), strlen("oppenheim"));
+  aq_check(aq_text_header_aligned(f, &L) == 0, "header");
+  for (int i = 0; i < 3; i++)
+    aq_check(aq_text_row_aligned(f, &L, &s[i]) == 0, "row %d", i);
+  rewind(f);
+  /* every line has the same length, and every column boundary (two spaces
+   * before a cell) is at the same offset in every line */
+  char line[4][2048];
+  size_t len[4];
+  for (int i = 0; i < 4; i++) {
+    aq_check(fgets(line[i], sizeof line[i], f) != NULL, "line %d", i);
+    len[i] = strlen(line[i]);
+  }
+  fclose(f);
+  for (int i = 1; i < 4; i++)
+    aq_check(len[i] == len[0], "line %d length %zu = %zu", i, len[i], len[0]);
+  /* each column occupies width[i] characters followed by two spaces, in
+   * the header and in every row, and no cell is empty */
+  for (int i = 0; i < 4; i++) {
+    size_t at = 0;
+    for (size_t c = 0; c < aq_summary_nfields; c++) {
+      size_t w = (size_t)L.width[c];
+      int blank = 1;
+      for (size_t k = at; k < at + w && k < len[i]; k++)
+        blank &= line[i][k] == ' ';
+      aq_check(!blank, "line %d column %zu not empty", i, c);
+      if (c + 1 < aq_summary_nfields)
+        aq_check(line[i][at + w] == ' ' && line[i][at + w + 1] == ' ',
+                 "line %d: separator after column %zu at %zu", i, c, at + w);
+      at += w + 2;
+    }
+    aq_check(at - 2 + 1 == len[i], "line %d ends after the last column", i);
+  }
+  /* numbers: 6 significant digits */
+  char *tok, *save = NULL;
+  int col = 0;
+  for (tok = strtok_r(line[1], " \n", &save); tok; tok = strtok_r(NULL, " \n", &save), col++) {
+    if (col == 7)
+      aq_check_rel(strtod(tok, NULL), 12.3456789, 5e-6, "collapse time %s", tok);
+    if (col == 10)
+      aq_check_rel(strtod(tok, NULL), 98765.4321, 5e-6, "KE %s", tok);
+    if (col == 11)
+      aq_check(strcmp(tok, "123456") == 0, "impacts exact %s", tok);
+  }
+  aq_check(col == (int)aq_summary_nfields, "%d cells", col);
+  aq_check(strstr(line[2], "process:einadmissible") != NULL && strstr(line[2], "nan"),
+           "failed row readable");
+}

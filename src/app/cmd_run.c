@@ -41,6 +41,8 @@ static const char usage_head[] =
     "  --help              this text;  --version: the version\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
 static const char usage_tail[] =
+    "Output: TSV, one row per run (on a terminal: an aligned table with 6\n"
+    "significant digits; pipe or redirect it, or use --text, for the TSV).\n"
     "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
     "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
@@ -259,6 +261,7 @@ int aq_cmd_run(int argc, char **argv)
     tslot = aq_cleanup_add(tmp);
   }
   cfg.text = tf ? tf : stdout;
+  cfg.aligned = !tf && isatty(STDOUT_FILENO); /* TSV for files and pipes */
 
   int rc = aq_suite_run(&cfg, NULL);
 

@@ -101,6 +101,7 @@ typedef struct {
   int stop;                 /* the writer gave up: workers stop claiming */
   size_t runs_done;         /* for the progress line */
   double read_s, process_s, run_s;
+  aq_text_layout layout;    /* with cfg->aligned */
 } suite;
 
 static const char *const model_names[] = {"workpath", "ode", "paper"};
@@ -428,7 +429,8 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     run_slot *u = &r->runs[i];
     stats->runs++;
     stats->runs_failed += u->failed || r->failed;
-    if (c->text && aq_text_row(c->text, &u->sum) != 0)
+    if (c->text && (c->aligned ? aq_text_row_aligned(c->text, &S->layout, &u->sum)
+                               : aq_text_row(c->text, &u->sum)) != 0)
       return aq_error_set(err, AQ_EIO, "text output", -1, -1, NULL,
                           "cannot write a row: %s", strerror(errno));
     if (h5) {
@@ -600,7 +602,17 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     rc = AQ_EXIT_OUTPUT;
     goto out;
   }
-  if (c->text && aq_text_header(c->text) != 0) {
+  if (c->aligned) {
+    size_t rw = 6, aw = 4;
+    for (size_t i = 0; i < c->nrecords; i++)
+      rw = strlen(c->records[i]) > rw ? strlen(c->records[i]) : rw;
+    for (size_t a = 0; a < c->narches; a++)
+      aw = strlen(aq_arch_name(S.arches[a])) > aw ? strlen(aq_arch_name(S.arches[a])) : aw;
+    aq_text_layout_init(&S.layout, rw < AQ_SUMMARY_RECORD_MAX ? rw : AQ_SUMMARY_RECORD_MAX - 1,
+                        aw < AQ_SUMMARY_ARCH_MAX ? aw : AQ_SUMMARY_ARCH_MAX - 1);
+  }
+  if (c->text && (c->aligned ? aq_text_header_aligned(c->text, &S.layout)
+                             : aq_text_header(c->text)) != 0) {
     aq_error_set(&oerr, AQ_EIO, "text output", -1, -1, NULL,
                  "cannot write: %s", strerror(errno));
     goto output_failed;

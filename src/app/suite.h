@@ -44,6 +44,7 @@ typedef struct {
   int progress;            /* 1: progress line on stderr */
   const char *h5_path;     /* -o target, or NULL */
   FILE *text;              /* TSV rows go here (NULL: none) */
+  int aligned;             /* 1: an aligned table instead of TSV (a terminal) */
   const char *command_line;/* for the results file */
   const char *units_text;  /* --units as given (for the results file), or NULL */
 } aq_suite_cfg;

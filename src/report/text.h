@@ -20,4 +20,19 @@ int aq_text_header(FILE *f);
 /* Write one row.  Returns 0, or -1 if the write failed (errno set). */
 int aq_text_row(FILE *f, const aq_summary *s);
 
+
+/* An aligned table for a terminal (never for files or pipes): the same
+ * columns, padded with spaces to fixed widths, numbers with 6 significant
+ * digits.  Widths are fixed before the first row (so rows can stream):
+ * record_w and arch_w are the longest record path and arch name. */
+typedef struct {
+  int width[32]; /* per column of aq_summary_fields[] */
+} aq_text_layout;
+
+void aq_text_layout_init(aq_text_layout *L, size_t record_w, size_t arch_w);
+
+/* Header and row in the aligned layout.  Return 0, or -1 on a write error. */
+int aq_text_header_aligned(FILE *f, const aq_text_layout *L);
+int aq_text_row_aligned(FILE *f, const aq_text_layout *L, const aq_summary *s);
+
 #endif
