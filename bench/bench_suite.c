@@ -26,6 +26,46 @@ static const char *const sample[] = {
     "records/CI.CLC..HNE.D.2019.187.031923.SAC"};
 enum { NSAMPLE = sizeof sample / sizeof sample[0] };
 
+/* Run cfg REPS times at -j 1 and -j 2 alternately; print the medians. */
+static int measure(const char *title, aq_suite_cfg *cfg)
+{
+  double rate[2][REPS], share[2][4][REPS], busy[2][REPS], wall_s[2][REPS];
+  size_t runs = 0;
+  for (int rep = 0; rep < REPS; rep++)
+    for (int j = 0; j < 2; j++) {
+      cfg->threads = j + 1;
+      aq_suite_stats st;
+      double t0 = aq_bench_now_s();
+      int rc = aq_suite_run(cfg, &st);
+      double wall = aq_bench_now_s() - t0;
+      if (rc != 0) {
+        fprintf(stderr, "bench_suite: suite failed with status %d\n", rc);
+        return -1;
+      }
+      runs = st.runs;
+      rate[j][rep] = (double)st.runs / wall;
+      double sum = st.read_s + st.process_s + st.run_s + st.write_s;
+      share[j][0][rep] = st.read_s / wall;
+      share[j][1][rep] = st.process_s / wall;
+      share[j][2][rep] = st.run_s / wall;
+      share[j][3][rep] = st.write_s / wall;
+      busy[j][rep] = sum / wall; /* > 1 with threads working in parallel */
+      wall_s[j][rep] = wall;
+    }
+  double r1 = aq_bench_median(rate[0], REPS), r2 = aq_bench_median(rate[1], REPS);
+  printf("%s: %zu runs, median of %d\n", title, runs, REPS);
+  printf("  -j 1: %8.1f runs/s   -j 2: %8.1f runs/s   ratio -j 2 / -j 1: %.2f\n", r1,
+         r2, r2 / r1);
+  static const char *const phase[4] = {"read", "process", "step", "write"};
+  for (int j = 0; j < 2; j++) {
+    printf("  -j %d (wall %.3f s):", j + 1, aq_bench_median(wall_s[j], REPS));
+    for (int p = 0; p < 4; p++)
+      printf(" %s %.1f%%", phase[p], 100 * aq_bench_median(share[j][p], REPS));
+    printf("  (sum %.0f%%)\n", 100 * aq_bench_median(busy[j], REPS));
+  }
+  return 0;
+}
+
 int main(void)
 {
   gsl_set_error_handler_off();
@@ -60,48 +100,20 @@ int main(void)
   if (nerr)
     return 1;
 
-  double rate[2][REPS], share[2][4][REPS], busy[2][REPS], wall_s[2][REPS];
-  size_t runs = 0;
-  for (int rep = 0; rep < REPS; rep++)
-    for (int j = 0; j < 2; j++) {
-      cfg.threads = j + 1;
-      aq_suite_stats st;
-      double t0 = aq_bench_now_s();
-      int rc = aq_suite_run(&cfg, &st);
-      double wall = aq_bench_now_s() - t0;
-      if (rc != 0) {
-        fprintf(stderr, "bench_suite: suite failed with status %d\n", rc);
-        unlink(h5);
-        return 1;
-      }
-      runs = st.runs;
-      rate[j][rep] = (double)st.runs / wall;
-      double sum = st.read_s + st.process_s + st.run_s + st.write_s;
-      share[j][0][rep] = st.read_s / wall;
-      share[j][1][rep] = st.process_s / wall;
-      share[j][2][rep] = st.run_s / wall;
-      share[j][3][rep] = st.write_s / wall;
-      busy[j][rep] = sum / wall; /* > 1 with threads working in parallel */
-      wall_s[j][rep] = wall;
-    }
+  printf("Records in records/ x %d copies against arches/oppenheim.cfg at scale 2;\n"
+         "phase shares are phase time / wall time (read, process and step summed\n"
+         "over worker threads, write on the writer thread; under 100%% at -j 1:\n"
+         "arch loading, file creation, hand-over between threads).\n",
+         COPIES);
+  int rc = measure("workpath, TSV + HDF5 (-o)", &cfg);
+  cfg.h5_path = NULL;
+  if (rc == 0)
+    rc = measure("workpath, TSV only", &cfg);
+  cfg.h5_path = h5;
+  cfg.model = AQ_MODEL_ODE;
+  if (rc == 0)
+    rc = measure("ode reference, TSV + HDF5 (-o)", &cfg);
   unlink(h5);
   fclose(text);
-
-  double r1 = aq_bench_median(rate[0], REPS), r2 = aq_bench_median(rate[1], REPS);
-  printf("suite: %zu runs (%d records x %d copies, arches/oppenheim.cfg, scale 2), "
-         "median of %d\n",
-         runs, NSAMPLE, COPIES, REPS);
-  printf("  -j 1: %8.1f runs/s\n  -j 2: %8.1f runs/s\n  ratio -j 2 / -j 1: %.2f\n", r1,
-         r2, r2 / r1);
-  static const char *const phase[4] = {"read", "process", "step", "write"};
-  printf("  phase time / wall time (read, process and step summed over the\n"
-         "  worker threads, write on the writer thread; the rest of -j 1's wall\n"
-         "  time is arch loading, opening the file and thread hand-over):\n");
-  for (int j = 0; j < 2; j++) {
-    printf("  -j %d (wall %.3f s):", j + 1, aq_bench_median(wall_s[j], REPS));
-    for (int p = 0; p < 4; p++)
-      printf(" %s %.1f%%", phase[p], 100 * aq_bench_median(share[j][p], REPS));
-    printf("  (sum %.0f%%)\n", 100 * aq_bench_median(busy[j], REPS));
-  }
-  return 0;
+  return rc ? 1 : 0;
 }
