@@ -139,6 +139,8 @@ void aq_eom_set_tol(aq_eom *w, double rtol)
 
 void aq_eom_set_exact(aq_eom *w, int exact) { w->exact = exact != 0; }
 
+void aq_eom_reset(aq_eom *w) { w->h = EOM_H0_S; }
+
 /* Time in (ta, tb] where component k of the solution from (ta, ya) equals v:
  * Newton on single rk8pd steps from ta, bracketed.  yv gets the state. */
 static int eom_locate(aq_eom *w, gsl_odeiv2_system *sys, double ta,

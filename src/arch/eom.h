@@ -70,6 +70,9 @@ aq_eom *aq_eom_alloc(aq_error *err);
 void aq_eom_free(aq_eom *w);
 void aq_eom_set_tol(aq_eom *w, double rtol);
 void aq_eom_set_exact(aq_eom *w, int exact);
+/* Forget the step size carried between legs (call at the start of a run, so
+ * that a run does not depend on the runs before it). */
+void aq_eom_reset(aq_eom *w);
 
 /* Integrate (EOM) on p from state m for at most dt_s at constant a_mps2.
  * Events (impact at s = 0, collapse at s_c) are located by Newton iteration

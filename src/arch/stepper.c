@@ -889,6 +889,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->collapse_time_s = NAN;
   res->steps_total = steps->n;
   st->cache_p = NULL;
+  if (st->eom)
+    aq_eom_reset(st->eom);
   aq_leg_stats S = {0};
   double lo = -INFINITY, hi = INFINITY; /* quiet band at rest */
   for (int k = 0; k < 2; k++) {
