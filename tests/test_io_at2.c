@@ -17,6 +17,9 @@
 #define PROV_PGA_ABS_G 0.5e-4
 /* dt from the header text is exact decimal: only binary rounding remains. */
 #define DT_REL 1e-12
+/* A sample is strtod of the text times g0: the same double up to the one
+ * rounding of the product. */
+#define SAMPLE_REL 1e-15
 
 static char *slurp(const char *path, size_t *n)
 {
@@ -180,7 +183,7 @@ AQ_TEST(io_at2_same_samples_as_derived_csv)
     aq_check(diff == 0, "identical samples, %zu differ", diff);
     aq_check(strcmp(c.format, "csv") == 0 && strcmp(a.format, "at2") == 0, "formats");
     /* and the value itself: first token, in g, times g0 */
-    aq_check_rel(a.acc_mps2[0], strtod(tok[0], NULL) * AQ_G0_MPS2, 1e-15, "sample 0");
+    aq_check_rel(a.acc_mps2[0], strtod(tok[0], NULL) * AQ_G0_MPS2, SAMPLE_REL, "sample 0");
   }
   aq_record_free(&a);
   aq_record_free(&c);
@@ -210,7 +213,7 @@ static void check_variant(const char *what, const char *text, double dt_want)
   aq_check(r.npts == 6, "%s: npts %zu", what, r.npts);
   aq_check_rel(r.dt_s, dt_want, DT_REL, "%s: dt", what);
   for (size_t k = 0; k < 6 && k < r.npts; k++)
-    aq_check_rel(r.acc_mps2[k], strtod(variant_values[k], NULL) * AQ_G0_MPS2, 1e-15,
+    aq_check_rel(r.acc_mps2[k], strtod(variant_values[k], NULL) * AQ_G0_MPS2, SAMPLE_REL,
                  "%s: sample %zu", what, k);
   aq_record_free(&r);
 }

@@ -13,6 +13,11 @@
 
 #define REC_DIR "tests/data/records/"
 #define PROV_PGA_ABS_G 0.5e-4 /* PROVENANCE.md prints 4 decimals of g */
+/* dt and the first time come from decimal text: binary rounding only */
+#define TIME_REL 1e-12
+#define TIME_ABS_S 1e-12
+/* a sample is strtod of the text times the units factor: one rounding */
+#define SAMPLE_REL 1e-15
 
 static double max_abs_g(const aq_record *r)
 {
@@ -60,12 +65,12 @@ static void check_text(const char *what, const char *text, const aq_read_opts *r
   if (!aq_check(s == AQ_OK, "%s: %s", what, msg))
     return;
   aq_check(r.npts == nv, "%s: npts %zu, want %zu", what, r.npts, nv);
-  aq_check_rel(r.dt_s, dt, 1e-12, "%s: dt", what);
-  aq_check_abs(r.begin_s, begin, 1e-12, "%s: begin", what);
+  aq_check_rel(r.dt_s, dt, TIME_REL, "%s: dt", what);
+  aq_check_abs(r.begin_s, begin, TIME_ABS_S, "%s: begin", what);
   aq_check(strcmp(r.units_orig, units) == 0, "%s: units %s, want %s", what, r.units_orig,
            units);
   for (size_t k = 0; k < nv && k < r.npts; k++)
-    aq_check_rel(r.acc_mps2[k], strtod(vals[k], NULL) * factor, 1e-15, "%s: sample %zu",
+    aq_check_rel(r.acc_mps2[k], strtod(vals[k], NULL) * factor, SAMPLE_REL, "%s: sample %zu",
                  what, k);
   aq_record_free(&r);
 }

@@ -124,6 +124,9 @@ aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
  * at to recognise a format. */
 #define AQ_SNIFF_BYTES 8192
 #define AQ_SNIFF_LINES 8
+/* Text has no NUL and at most this percentage of other control bytes (a form
+ * feed or a stray escape may occur in exported text). */
+#define AQ_SNIFF_CTRL_PERCENT 1
 
 static int32_t get_i32(const unsigned char *p, int big)
 {
@@ -184,7 +187,7 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
     if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v')
       ctrl++;
   }
-  if (ctrl * 100 > m) /* more than 1 % control characters */
+  if (ctrl * 100 > AQ_SNIFF_CTRL_PERCENT * m)
     return AQ_FMT_UNKNOWN_BINARY;
 
   const char *s = (const char *)buf;
