@@ -186,6 +186,22 @@ static int eom_locate(aq_eom *w, gsl_odeiv2_system *sys, double ta,
   return 0;
 }
 
+/* A turning point (sdot from > 0 to <= 0) in (ta, tb]: raise S->peak_s to
+ * its s when it can exceed it (s_turn <= s(ta) + sdot(ta) (tb - ta) while
+ * decelerating, a bound that spares most locations). */
+static void eom_peak(aq_eom *w, gsl_odeiv2_system *sys, double ta,
+                     const double ya[2], double tb, const double yb[2],
+                     double sc, aq_leg_stats *S)
+{
+  double bound = fmax(ya[0], yb[0]) + ya[1] * (tb - ta);
+  double tv, yv[2];
+  if (bound <= S->peak_s)
+    return;
+  if (eom_locate(w, sys, ta, ya, tb, yb, 1, 0.0, &tv, yv) == 0 &&
+      yv[0] > S->peak_s)
+    S->peak_s = fmin(yv[0], sc);
+}
+
 static aq_status eom_fail(aq_error *err, const aq_path *p, const char *what,
                           double s)
 {
@@ -280,24 +296,17 @@ aq_status aq_eom_leg(aq_eom *w, const aq_path *p, double a_mps2, aq_motion *m,
       t = tv;
       y[0] = 0;
       y[1] = yv[1] < 0 ? yv[1] : -0.0;
-      if (ya[1] > 0) /* it turned within this step */
+      if (ya[1] > 0) { /* it turned within this step */
         S->reversals++;
+        eom_peak(w, &sys, ta, ya, tb, yb, sc, S);
+      }
       *end = AQ_LEG_IMPACT;
       break;
     }
     if ((ya[1] > 0 && y[1] <= 0) || (ya[1] < 0 && y[1] >= 0)) {
       /* a turning point: count it and take its s for the peaks */
-      if (ya[1] > 0 && y[1] <= 0 && ya[0] > 0) {
-        aq_path_point tp;
-        if (eom_locate(w, &sys, ta, ya, t, y, 1, 0.0, &tv, yv) == 0 &&
-            yv[0] > S->peak_s) {
-          S->peak_s = fmin(yv[0], sc);
-          par.evals++;
-          if (aq_eom_eval(p, w->exact, S->peak_s, &tp) == 0 &&
-              fabs(tp.x_m) > S->peak_x_m)
-            S->peak_x_m = fabs(tp.x_m);
-        }
-      }
+      if (ya[1] > 0 && y[1] <= 0)
+        eom_peak(w, &sys, ta, ya, t, y, sc, S);
       if (ya[0] > 0 || y[0] > 0)
         S->reversals++;
     }
