@@ -592,6 +592,10 @@ AQ_TEST(suite_output_failures_leave_no_partial_file)
   snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch arches/thin.cfg --text %s/none/x.tsv", dir);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 3, "text: exit 3");
   aq_check(strstr(err, "none/x.tsv") && strstr(err, "No such file"), "says so: %s", err);
+  snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch arches/thin.cfg -o %s", dir);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 3 &&
+               strstr(err, "got a directory") && out[0] == '\0',
+           "-o a directory: exit 3 before running: %s", err);
 
   /* a write that fails part way (file size limit): target untouched */
   snprintf(h5, sizeof h5, "%s/suite.h5", dir);

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../arch/stepper.h"
@@ -247,6 +248,15 @@ int aq_cmd_run(int argc, char **argv)
   FILE *tf = NULL;
   char *tmp = NULL;
   int tslot = -1;
+  struct stat sb;
+  if (text_path && stat(text_path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "archquake: %s: --text: expected a file name, got a directory\n",
+            text_path);
+    free(cmdline);
+    free(arches);
+    free(scales);
+    return AQ_EXIT_OUTPUT;
+  }
   if (text_path) {
     size_t len = strlen(text_path) + 32;
     tmp = malloc(len);

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
@@ -250,6 +251,13 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   }
   aq_h5_temp_name(target, w->tmp, len);
+  struct stat sb;
+  if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
+                 "expected a file name for the results, got a directory");
+    writer_free(w);
+    return AQ_EIO;
+  }
   /* Create the temporary ourselves first, for a clear errno. */
   int fd = open(w->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
   if (fd < 0) {
