@@ -672,6 +672,10 @@ AQ_TEST(suite_options_checked_before_any_record)
   aq_check(aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --scale 2 "
                        "--scale-to-pga 0.3", out, sizeof out, err, sizeof err) == 2,
            "--scale with --scale-to-pga");
+  aq_check(aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --history",
+                       out, sizeof out, err, sizeof err) == 2 &&
+               strstr(err, "--history"),
+           "--history without -o: %s", err);
   /* an arch that cannot be loaded: exit 2, no record read, no output file */
   char dir[512], args[1200];
   aq_test_tmpdir(dir, sizeof dir);

@@ -36,7 +36,7 @@ static const char usage_head[] =
     "  --model M           workpath (default), ode (reference), paper\n"
     "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
     "                      (default: each arch's [dynamics] cor)\n"
-    "  --history           keep step-end histories (in the HDF5 file)\n"
+    "  --history           write step-end histories to the HDF5 file (with -o)\n"
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
@@ -213,6 +213,11 @@ int aq_cmd_run(int argc, char **argv)
   }
   if (scales && !isnan(cfg.scale_to_pga_g)) {
     fprintf(stderr, "archquake: --scale, --scale-to-pga: expected one of them, got both\n");
+    nerr++;
+  }
+  if (cfg.history && !cfg.h5_path) {
+    fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
+                    "are written only to the results file)\n");
     nerr++;
   }
   if (cfg.h5_path && text_path && strcmp(cfg.h5_path, text_path) == 0) {
