@@ -17,7 +17,7 @@
 static const double EOM_ABS_SCALE = 0.1;    /* rad and rad/s: atol = rtol * this */
 static const double EOM_H0_S = 1e-3;        /* first trial step, s */
 static const int EOM_LOCATE_ITER = 40;      /* Newton iterations on an event time */
-static const size_t EOM_MAX_STEPS = 50000000; /* per leg; beyond: no progress */
+static const size_t EOM_MAX_STEPS = 5000000; /* per leg; beyond: no progress */
 
 int aq_eom_eval(const aq_path *p, int exact, double s, aq_path_point *pt)
 {
