@@ -226,8 +226,6 @@ static int prepare_record(suite *S, rec_slot *r)
   return 1;
 }
 
-static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err);
-
 /* Run i (arch i / nscale, scale i % nscale) of prepared record r with this
  * thread's steppers (st[a] NULL when arch a cannot run). */
 static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
@@ -248,20 +246,11 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   } else {
     aq_error_clear(&u->err);
     memset(&u->res, 0, sizeof u->res);
-    /* The ode and paper steppers carry their last step size from one run
-     * into the next, which changes the last bits of a result with the order
-     * runs reach a thread: they get a fresh stepper per run, so that results
-     * do not depend on -j.  The work-path stepper keeps no such state. */
-    aq_stepper *own = NULL;
-    if (c->model != AQ_MODEL_WORKPATH)
-      own = make_stepper(S, ai, &u->err);
-    if (c->model != AQ_MODEL_WORKPATH && !own) {
-      rs = u->err.status != AQ_OK ? u->err.status : AQ_ENOMEM;
-    } else {
-      rs = aq_stepper_run(own ? own : st[ai], &r->steps[k], &u->res, &u->err);
-      u->have_res = 1;
-    }
-    aq_stepper_free(own);
+    /* aq_stepper_run starts every run afresh (the ode model's step size
+     * included), so results do not depend on which runs a thread did before:
+     * the -j tests check it. */
+    rs = aq_stepper_run(st[ai], &r->steps[k], &u->res, &u->err);
+    u->have_res = 1;
   }
   char status[AQ_SUMMARY_STATUS_MAX];
   aq_summary_status(status, sizeof status, stage, rs);

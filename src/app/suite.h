@@ -3,9 +3,8 @@
  * Every record is read and processed once by one worker thread, scaled by
  * each factor and split into steps once per factor; its runs (every arch x
  * every factor) are then handed to whichever threads are free, each with its
- * own steppers (one per arch per thread; the ode and paper models get a
- * fresh one per run, see suite.c); the arches are loaded once and shared
- * read-only.  At most `window` (2 x threads) records are in flight (read but
+ * own steppers (one per arch per thread); the arches are loaded once and
+ * shared read-only.  At most `window` (2 x threads) records are in flight (read but
  * not yet written), so memory stays bounded whatever the number of records.
  * One writer (the calling thread) writes text rows, HDF5 groups and
  * diagnostics in (record, arch, scale) order, never in completion order, so
