@@ -294,7 +294,11 @@ AQ_TEST(dyn_hard_thin_and_thick)
         dm = fmax(dm, fabs(h->kinetic_energy_j[i] + h->potential_energy_j[i] - e0));
       aq_check(!r.collapsed && r.impacts >= 2, "%s: rocks (%zu impacts)",
                files[f], r.impacts);
-      aq_check(dm <= 1e-12 * e0, "%s: energy drift %.3g relative", files[f],
+      /* PE here is m_T g y(s) from the tables' values, KE follows the
+       * integral of their slopes (as in the ode model): the two agree to
+       * ~1e-12 of E on the thin arch, with no drift (the ode model at rtol
+       * 1e-12 shows 3e-12 on this measure); the issue asks 1e-9 per cycle */
+      aq_check(dm <= 5e-12 * e0, "%s: energy drift %.3g relative", files[f],
                dm / e0);
       aq_result_free(&r);
     }

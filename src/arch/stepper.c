@@ -70,6 +70,8 @@ static const double WP_NEAR_MIN_SPAN = 0.25; /* sinh map when the minimum's widt
 static const double WP_NOISE_GAIN = 16;      /* tail floor = this * KE round-off at the nodes */
 static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8x */
 static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
+static const double WP_KES_TAIL = 1e-13;     /* dKE/dpsi series tail / KE scale: resolved */
+static const double WP_KES_MISMATCH = 1e-9;  /* turning-point mismatch / KE scale: sane */
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
 static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an error */
 
@@ -341,12 +343,30 @@ static void cheb_build(wp_cheb *ch, const wp_cos *t, const double *g, int n)
   ch->tail = (fabs(ch->c[n - 1]) + fabs(ch->c[n - 2])) / mean;
 }
 
+/* KE along a panel from the integral of dKE/dsigma (see wp_leg). */
+typedef struct {
+  int on;       /* 0: use eq. (19) as it stands */
+  double ke_a;  /* KE at the panel start, J */
+  double mis;   /* KE at a turning-point end by the series (0 by the end's location), J */
+  double L;     /* panel length, rad */
+  wp_cheb f;    /* series of dKE/dpsi; f.ci its antiderivative */
+} wp_kes;
+
+/* KE at psi (sigma = sg) by the series: the start's KE plus the integral
+ * of dKE/dpsi, less the mismatch at a turning-point end spread in
+ * proportion to sigma (so that KE ~ (L - sigma) stays a smooth product). */
+static double kes_at(const wp_kes *k, double psi, double sg)
+{
+  return k->ke_a + cheb_eval(k->f.ci, k->f.n + 1, psi) - k->mis * (sg / k->L);
+}
+
 typedef struct {
   double L;
   int kind;
   wp_pt PB;
   wp_map mp;
   wp_cheb ch;
+  wp_kes ks;
 } wp_panel;
 
 /* psi in [-1, 1] where the time reaches tau (0 <= tau <= total). */
@@ -500,6 +520,9 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
     wp_map mp;
     wp_cheb ch;
     double g[WP_MAX_NODES];
+    wp_kes ks = {0};
+    double tp_L = -1; /* a turning point moved to where the series' KE vanishes */
+    int tp_done = 0;
     wp_panel prev = {0};
     int have_prev = 0;
     for (int halv = 0;; halv++) {
@@ -508,9 +531,14 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
         L = smax;
         kind = 2;
       }
-      if (wp_point(&c, L, &PB))
+      if (wp_point(&c, L = tp_L > 0 ? tp_L : L, &PB))
         return wp_fail(err, p, m->s + c.dir * L);
-      if (PB.ke <= 0) {
+      if (tp_L > 0) {
+        PB.ke = 0;
+        kind = 1;
+        tp_L = -1;
+        tp_done = 1;
+      } else if (PB.ke <= 0) {
         if (wp_turn(&c, P0, PB, &PB))
           return wp_fail(err, p, m->s);
         L = PB.sigma;
@@ -547,12 +575,15 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
         map_near_min(&mp, c.ke_a, P0.k1, P0.k2, PB.ke, PB.k1, PB.k2);
       int redo = 0;
       double noise = 0; /* largest relative round-off of KE at the nodes */
+      double fk[WP_MAX_NODES], kd[WP_MAX_NODES], sgs[WP_MAX_NODES],
+          mj[WP_MAX_NODES], jb[WP_MAX_NODES];
       for (int j = 0; j < n; j++) {
         double psi = st->ccos.cs[1][j], jac;
         double sg = map_sigma(&mp, psi, &jac);
         wp_pt q;
         if (wp_point(&c, sg, &q))
           return wp_fail(err, p, m->s + c.dir * sg);
+        fk[j] = q.k1 * jac; /* dKE/dpsi */
         if (q.ke <= 0) {
           if (kind != 1 && sg > 0 && c.ke_a > 0) {
             /* a zero the end tests did not see: end the panel there */
@@ -569,7 +600,10 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
           if (!(q.ke > 0))
             q.ke = DBL_MIN;
         }
-        g[j] = sqrt(0.5 * q.m) / sqrt(q.ke) * fabs(jac);
+        kd[j] = q.ke;
+        sgs[j] = sg;
+        mj[j] = q.m;
+        jb[j] = fabs(jac);
         /* round-off of KE at this node (eq. (19) as computed) */
         double dke = DBL_EPSILON * (c.ke_a + c.mt * (fabs(c.a) * (fabs(q.x) + fabs(c.xa)) +
                                                     c.g * (fabs(q.y) + fabs(c.ya))));
@@ -578,6 +612,49 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       if (redo) {
         halv--;
         continue;
+      }
+      /* KE at the nodes.  Eq. (19) subtracts x(s1) from x(s), each known to
+       * ~1e-15 m only (the tables carry the round-off of absolute centroid
+       * positions), while the slopes dx/ds, dy/ds are known to round-off
+       * relative to themselves; in a KE built from millimetre increments
+       * that is a relative error ~1e-13, a steady bias of the time
+       * integral (measured: 6e-15 rad of drift in 0.2 s of a constant
+       * pulse).  So KE is the start's KE plus the integral of
+       * dKE/dsigma = -m_T (a x' + g y') along the panel, exactly as a
+       * Chebyshev series on the same nodes (no more path evaluations).
+       * At a turning-point end the series' KE(L) differs from 0 by the
+       * location's round-off; that mismatch is spread along the panel.
+       * Eq. (19) as it stands is kept where the series is not resolved. */
+      cheb_build(&ks.f, &st->ccos, fk, n);
+      ks.ke_a = c.ke_a;
+      ks.L = L;
+      ks.mis = kind == 1 ? c.ke_a + ks.f.total : 0;
+      {
+        double scale = c.ke_a + fabs(ks.f.total) + fabs(ks.f.c[0]);
+        double ftail = fabs(ks.f.c[n - 1]) + fabs(ks.f.c[n - 2]);
+        ks.on = scale > 0 && ftail <= WP_KES_TAIL * scale &&
+                fabs(ks.mis) <= WP_KES_MISMATCH * scale;
+      }
+      if (ks.on && kind == 1 && !tp_done && ks.mis != 0 && PB.k1 < 0) {
+        /* the series puts the turning point mis / |dKE/dsigma| further:
+         * move the end there (once), so that the turning points follow
+         * the same KE as the panels (else each one resets the energy to
+         * eq. (19)'s, a drift over many cycles) */
+        double Ln = L + ks.mis / fabs(PB.k1);
+        if (Ln > 0 && Ln < smax) {
+          tp_L = Ln;
+          halv--;
+          continue;
+        }
+      }
+      for (int j = 0; j < n; j++) {
+        double ke = kd[j];
+        if (ks.on) {
+          double kj = kes_at(&ks, st->ccos.cs[1][j], sgs[j]);
+          if (kj > 0)
+            ke = kj;
+        }
+        g[j] = sqrt(0.5 * mj[j]) / sqrt(ke) * jb[j];
       }
       cheb_build(&ch, &st->ccos, g, n);
       /* the tail cannot fall below the round-off of the integrand (half
@@ -593,9 +670,10 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
         PB = prev.PB;
         mp = prev.mp;
         ch = prev.ch;
+        ks = prev.ks;
         break;
       }
-      prev = (wp_panel){L, kind, PB, mp, ch};
+      prev = (wp_panel){L, kind, PB, mp, ch, ks};
       have_prev = 1;
       L *= 0.5;
     }
@@ -609,6 +687,10 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       wp_pt E;
       if (wp_point(&c, sg, &E))
         return wp_fail(err, p, m->s + c.dir * sg);
+      if (ks.on) {
+        double ke = kes_at(&ks, psi, sg);
+        E.ke = ke > 0 ? ke : 0;
+      }
       m->s = E.s;
       m->ke_j = E.ke > 0 ? E.ke : 0;
       m->x_m = E.x;
@@ -620,6 +702,10 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       return AQ_OK;
     }
     t += ch.total;
+    if (ks.on && kind != 1 && L > 0) {
+      double ke = ks.ke_a + ks.f.total;
+      PB.ke = ke > 0 ? ke : 0;
+    }
     if (PB.ke > S->peak_ke_j) /* a point actually reached */
       S->peak_ke_j = PB.ke;
     m->s = PB.s;
