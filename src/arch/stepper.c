@@ -72,6 +72,7 @@ static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8
 static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
 static const double WP_KES_TAIL = 1e-13;     /* dKE/dpsi series tail / KE scale: resolved */
 static const double WP_KES_MISMATCH = 1e-9;  /* turning-point mismatch / KE scale: sane */
+static const double WP_TP_MISMATCH_ULPS = 32; /* move a turning point when the mismatch exceeds this many ulps of the KE scale */
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
 static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an error */
 
@@ -79,6 +80,10 @@ static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an er
 typedef struct {
   int n;
   double cs[WP_MAX_NODES][WP_MAX_NODES];
+  /* integral from -1 of the interpolant of nodal values v: at node j,
+   * sum_i iq[j][i] v_i; to +1, sum_i iw[i] v_i (cheb_quad_init) */
+  double iq[WP_MAX_NODES][WP_MAX_NODES];
+  double iw[WP_MAX_NODES];
 } wp_cos;
 
 struct aq_stepper {
@@ -343,21 +348,42 @@ static void cheb_build(wp_cheb *ch, const wp_cos *t, const double *g, int n)
   ch->tail = (fabs(ch->c[n - 1]) + fabs(ch->c[n - 2])) / mean;
 }
 
+/* The integration weights of cheb_build's antiderivative at the nodes and
+ * at +1, column by column (the map from nodal values is linear). */
+static void cheb_quad_init(wp_cos *t)
+{
+  const int n = t->n;
+  double e[WP_MAX_NODES] = {0};
+  wp_cheb ch;
+  for (int i = 0; i < n; i++) {
+    e[i] = 1;
+    cheb_build(&ch, t, e, n);
+    e[i] = 0;
+    for (int j = 0; j < n; j++)
+      t->iq[j][i] = cheb_eval(ch.ci, n + 1, t->cs[1][j]);
+    t->iw[i] = ch.total;
+  }
+}
+
 /* KE along a panel from the integral of dKE/dsigma (see wp_leg). */
 typedef struct {
   int on;       /* 0: use eq. (19) as it stands */
+  int n;
   double ke_a;  /* KE at the panel start, J */
   double mis;   /* KE at a turning-point end by the series (0 by the end's location), J */
   double L;     /* panel length, rad */
-  wp_cheb f;    /* series of dKE/dpsi; f.ci its antiderivative */
+  double total; /* integral of dKE/dpsi over the panel, J */
+  double fk[WP_MAX_NODES]; /* dKE/dpsi at the nodes, J */
 } wp_kes;
 
 /* KE at psi (sigma = sg) by the series: the start's KE plus the integral
  * of dKE/dpsi, less the mismatch at a turning-point end spread in
  * proportion to sigma (so that KE ~ (L - sigma) stays a smooth product). */
-static double kes_at(const wp_kes *k, double psi, double sg)
+static double kes_at(const wp_kes *k, const wp_cos *t, double psi, double sg)
 {
-  return k->ke_a + cheb_eval(k->f.ci, k->f.n + 1, psi) - k->mis * (sg / k->L);
+  wp_cheb f;
+  cheb_build(&f, t, k->fk, k->n);
+  return k->ke_a + cheb_eval(f.ci, k->n + 1, psi) - k->mis * (sg / k->L);
 }
 
 typedef struct {
@@ -625,17 +651,28 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
        * At a turning-point end the series' KE(L) differs from 0 by the
        * location's round-off; that mismatch is spread along the panel.
        * Eq. (19) as it stands is kept where the series is not resolved. */
-      cheb_build(&ks.f, &st->ccos, fk, n);
+      ks.n = n;
       ks.ke_a = c.ke_a;
       ks.L = L;
-      ks.mis = kind == 1 ? c.ke_a + ks.f.total : 0;
+      memcpy(ks.fk, fk, (size_t)n * sizeof *fk);
+      double kscale; /* the KE scale of the panel, J */
       {
-        double scale = c.ke_a + fabs(ks.f.total) + fabs(ks.f.c[0]);
-        double ftail = fabs(ks.f.c[n - 1]) + fabs(ks.f.c[n - 2]);
-        ks.on = scale > 0 && ftail <= WP_KES_TAIL * scale &&
-                fabs(ks.mis) <= WP_KES_MISMATCH * scale;
+        double tot = 0, c0 = 0, c1 = 0, c2 = 0;
+        for (int i = 0; i < n; i++) {
+          tot += st->ccos.iw[i] * fk[i];
+          c0 += fk[i];
+          c1 += fk[i] * st->ccos.cs[n - 1][i];
+          c2 += fk[i] * st->ccos.cs[n - 2][i];
+        }
+        ks.total = tot;
+        ks.mis = kind == 1 ? c.ke_a + tot : 0;
+        kscale = c.ke_a + fabs(tot) + fabs(2.0 * c0 / n);
+        double ftail = 2.0 * (fabs(c1) + fabs(c2)) / n;
+        ks.on = kscale > 0 && ftail <= WP_KES_TAIL * kscale &&
+                fabs(ks.mis) <= WP_KES_MISMATCH * kscale;
       }
-      if (ks.on && kind == 1 && !tp_done && ks.mis != 0 && PB.k1 < 0) {
+      if (ks.on && kind == 1 && !tp_done && PB.k1 < 0 &&
+          fabs(ks.mis) > WP_TP_MISMATCH_ULPS * DBL_EPSILON * kscale) {
         /* the series puts the turning point mis / |dKE/dsigma| further:
          * move the end there (once), so that the turning points follow
          * the same KE as the panels (else each one resets the energy to
@@ -650,7 +687,9 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       for (int j = 0; j < n; j++) {
         double ke = kd[j];
         if (ks.on) {
-          double kj = kes_at(&ks, st->ccos.cs[1][j], sgs[j]);
+          double kj = c.ke_a - ks.mis * (sgs[j] / L);
+          for (int i = 0; i < n; i++)
+            kj += st->ccos.iq[j][i] * fk[i];
           if (kj > 0)
             ke = kj;
         }
@@ -688,7 +727,7 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
       if (wp_point(&c, sg, &E))
         return wp_fail(err, p, m->s + c.dir * sg);
       if (ks.on) {
-        double ke = kes_at(&ks, psi, sg);
+        double ke = kes_at(&ks, &st->ccos, psi, sg);
         E.ke = ke > 0 ? ke : 0;
       }
       m->s = E.s;
@@ -703,7 +742,7 @@ static aq_status wp_leg(aq_stepper *st, const aq_path *p, double a,
     }
     t += ch.total;
     if (ks.on && kind != 1 && L > 0) {
-      double ke = ks.ke_a + ks.f.total;
+      double ke = ks.ke_a + ks.total;
       PB.ke = ke > 0 ? ke : 0;
     }
     if (PB.ke > S->peak_ke_j) /* a point actually reached */
@@ -774,6 +813,7 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
   st->wp_tol = WP_DEFAULT_TOL;
   st->wp_nodes = WP_DEFAULT_NODES;
   cheb_cos_init(&st->ccos, st->wp_nodes);
+  cheb_quad_init(&st->ccos);
   st->rest_tol = REST_TOL_DEFAULT;
   st->rest_since_s = NAN;
   aq_path_point pt;
@@ -843,6 +883,7 @@ void aq_stepper_set_wp_nodes(aq_stepper *st, int n)
   if (n >= 4 && n <= WP_MAX_NODES) {
     st->wp_nodes = n;
     cheb_cos_init(&st->ccos, n);
+    cheb_quad_init(&st->ccos);
   }
 }
 void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
