@@ -161,3 +161,95 @@ AQ_TEST(dyn_cli_history_unwritable)
   snprintf(cmd, sizeof cmd, "%s/missing", dir);
   aq_check(access(cmd, F_OK) != 0, "nothing created");
 }
+
+/* Default end (no --end): a COR 0 pulse rests after one impact.  The end is
+ * the first duration + k s after the rest that an explicit long run's
+ * history shows, and the row is that of the long run (and exactly that of
+ * --end end_s). */
+AQ_TEST(dyn_cli_pulse_default_end_rests)
+{
+  static char out2[8192];
+  char dir[512], cmd[1024], path[600];
+  const double dur = 0.371, dt = 0.01;
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/long.csv", dir);
+  int rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.587 "
+                       "--duration 0.371 --cor 0",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "exit 0, no note: %d %s", rc, err);
+  double end = field(out, 3);
+  aq_check(field(out, 4) == 0 && field(out, 9) == 1, "survives, 1 impact: %s",
+           out);
+  snprintf(cmd, sizeof cmd,
+           "pulse --arch arches/oppenheim.cfg --accel-g -0.587 --duration 0.371 "
+           "--cor 0 --end 40 --history %s",
+           path);
+  rc = aq_test_run(cmd, out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0, "long run exit 0: %s", err);
+  for (int k = 6; k <= 12; k++)
+    if (k != 10 && k != 11)
+      aq_check_rel(field(out, k), field(out2, k), 1e-12, "column %d as --end 40", k);
+  aq_check(field(out, 9) == field(out2, 9), "impacts as --end 40");
+  /* the first step end at rest after the last one in motion */
+  FILE *f = fopen(path, "r");
+  aq_check(f != NULL, "history written");
+  if (!f)
+    return;
+  char line[512];
+  double t, q, x, ke, pe, t_rest = NAN;
+  int set, prev = -1;
+  while (fgets(line, sizeof line, f))
+    if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%d", &t, &q, &x, &ke, &pe, &set) == 6) {
+      if (set == -1 && prev != -1)
+        t_rest = t;
+      prev = set;
+    }
+  fclose(f);
+  aq_check(t_rest > dur && prev == -1, "the long run rests at %g", t_rest);
+  double k = end - dur;
+  aq_check_abs(k, round(k), 1e-9, "end_s = duration + whole seconds (%g)", end);
+  aq_check(end >= t_rest - dt && end - 1 < t_rest,
+           "end_s %g: the first duration + k s at rest (rest in (%g, %g])", end,
+           t_rest - dt, t_rest);
+  snprintf(cmd, sizeof cmd,
+           "pulse --arch arches/oppenheim.cfg --accel-g -0.587 --duration 0.371 "
+           "--cor 0 --end %.9g",
+           end);
+  rc = aq_test_run(cmd, out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0 && strcmp(out, out2) == 0, "row = that of --end %g:\n%s%s",
+           end, out, out2);
+  /* collapse: the end is the first duration + k s after the collapse */
+  rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.5 "
+                   "--duration 0.9 --cor 0",
+                   out, sizeof out, err, sizeof err);
+  double tc = field(out, 5);
+  end = field(out, 3);
+  aq_check(rc == 0 && field(out, 4) == 1 && tc > 0.9, "collapses: %s", out);
+  aq_check(end >= tc && end - 1 < tc, "end_s %g just after collapse %g", end, tc);
+}
+
+/* Default end, COR 1: the motion never rests; the cap stops it with a
+ * one-line note, exit 0, and the row is that of --end cap. */
+AQ_TEST(dyn_cli_pulse_default_end_cap)
+{
+  static char out2[8192];
+  int rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.587 "
+                       "--duration 0.371 --cor 1 --max-end 13.7",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0, "exit 0 at the cap, got %d", rc);
+  aq_check(count_lines(err, "archquake: ") == 1 && strstr(err, "cap") &&
+               strchr(err, '\n') == err + strlen(err) - 1,
+           "one-line note: %s", err);
+  aq_check(field(out, 3) == 13.7 && field(out, 4) == 0 && field(out, 9) >= 10,
+           "ends at the cap, still rocking: %s", out);
+  rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.587 "
+                   "--duration 0.371 --cor 1 --end 13.7",
+                   out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0' && strcmp(out, out2) == 0,
+           "row = that of --end 13.7:\n%s%s", out, out2);
+  rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.587 "
+                   "--duration 0.371 --end 3 --max-end 0.2",
+                   out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "--max-end") && out[0] == '\0',
+           "--max-end with --end, or below --duration: usage: %s", err);
+}

@@ -22,8 +22,15 @@ static const char usage[] =
     "  --arch FILE      the arch file (.cfg)\n"
     "  --accel-g A      pulse amplitude, g (signed, |A| <= 100)\n"
     "  --duration S     pulse duration, s (0 < S <= 3600)\n"
-    "  --end S          stop at t = S (>= duration); default duration + 60 s\n"
-    "                   (quiet stretches at rest cost nothing)\n"
+    "  --end S          stop at t = S (>= duration).  Default: run until rest\n"
+    "                   or collapse: end_s is the first duration + k s\n"
+    "                   (k = 0, 1, 2, ...) at which the arch has collapsed or\n"
+    "                   is at rest (s = 0, no kinetic energy, by the stepper's\n"
+    "                   rest criterion); the row equals that of --end end_s.\n"
+    "                   Motion that never rests (COR 1) stops at the cap,\n"
+    "                   --max-end, with a note on stderr (exit 0)\n"
+    "  --max-end S      the cap of the default end, s (default duration +\n"
+    "                   3600 s, and at most 5e6 steps of --dt)\n"
     "  --dt S           constant steps of at most S seconds (default 0.01)\n"
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1\n"
     "                   (default: the arch file's [dynamics] cor)\n"
@@ -39,6 +46,12 @@ static const char usage[] =
     "3 the history could not be written.\n";
 
 static const char *const models[] = {"workpath", "ode", "paper", NULL};
+
+/* Default end: candidate ends are duration + k * REST_CHUNK_S. */
+static const double REST_CHUNK_S = 1.0;
+static const double REST_CAP_S = 3600; /* after the pulse */
+static const double REST_CAP_STEPS = 5e6;
+static const double MAX_STEPS = 5e7;
 static const char *const impacts[] = {"cor", "momentum", NULL};
 
 /* Steps of at most dt_s: the pulse, then zero until end_s. */
@@ -107,6 +120,7 @@ int aq_cmd_pulse(int argc, char **argv)
       {"accel-g", required_argument, NULL, 'A'},
       {"duration", required_argument, NULL, 'D'},
       {"end", required_argument, NULL, 'e'},
+      {"max-end", required_argument, NULL, 'M'},
       {"dt", required_argument, NULL, 't'},
       {"cor", required_argument, NULL, 'c'},
       {"impact", required_argument, NULL, 'i'},
@@ -116,7 +130,8 @@ int aq_cmd_pulse(int argc, char **argv)
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
   const char *file = NULL, *hist = NULL;
-  double acc_g = NAN, dur = NAN, end = NAN, dt = 0.01, cor = NAN, rtol = 1e-10;
+  double acc_g = NAN, dur = NAN, end = NAN, cap = NAN, dt = 0.01, cor = NAN,
+         rtol = 1e-10;
   int model = 0, impact = -1, nerr = 0, c;
   opterr = 0;
   optind = 1;
@@ -133,6 +148,9 @@ int aq_cmd_pulse(int argc, char **argv)
       break;
     case 'e':
       aq_opt_double_gt("--end", optarg, 0, 86400, &end, &nerr);
+      break;
+    case 'M':
+      aq_opt_double_gt("--max-end", optarg, 0, 86400, &cap, &nerr);
       break;
     case 't':
       aq_opt_double_gt("--dt", optarg, 0, 3600, &dt, &nerr);
@@ -182,19 +200,32 @@ int aq_cmd_pulse(int argc, char **argv)
             dur, end);
     nerr++;
   }
+  if (!isnan(cap) && !isnan(end)) {
+    fprintf(stderr, "archquake: --max-end: expected no --end (it caps the "
+                    "default end), got --end %g\n", end);
+    nerr++;
+  }
+  if (!isnan(cap) && !isnan(dur) && cap < dur) {
+    fprintf(stderr,
+            "archquake: --max-end: expected a time >= --duration (%g s), got %g\n",
+            dur, cap);
+    nerr++;
+  }
   if (hist && !*hist) {
     fprintf(stderr, "archquake: --history: expected a file name, got \"\"\n");
     nerr++;
   }
-  if (!isnan(dur) && (isnan(end) ? dur + 60 : end) / dt > 5e7) {
-    fprintf(stderr, "archquake: --dt: expected at most 5e7 steps, got %g\n",
-            (isnan(end) ? dur + 60 : end) / dt);
+  double last = isnan(end) ? (isnan(cap) ? dur : cap) : end;
+  if (!isnan(dur) && last / dt > MAX_STEPS) {
+    fprintf(stderr, "archquake: --dt: expected at most %g steps, got %g\n",
+            MAX_STEPS, last / dt);
     nerr++;
   }
   if (nerr)
     return AQ_EXIT_USAGE;
-  if (isnan(end))
-    end = dur + 60;
+  int until_rest = isnan(end);
+  if (until_rest && isnan(cap))
+    cap = dur + fmin(REST_CAP_S, REST_CAP_STEPS * dt);
 
   aq_error err;
   aq_error_clear(&err);
@@ -214,7 +245,7 @@ int aq_cmd_pulse(int argc, char **argv)
   memset(&res, 0, sizeof res);
   aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1),
                                     (aq_model)model, &err);
-  if (!st || pulse_steps(acc_g * AQ_G0_MPS2, dur, end, dt, &steps, &err) != AQ_OK) {
+  if (!st) {
     aq_error_print(&err, stderr);
     goto out;
   }
@@ -222,11 +253,54 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_stepper_set_impact(st, impact);
   aq_stepper_set_ode_rtol(st, rtol);
   aq_stepper_set_history(st, hist != NULL);
-  if (aq_stepper_run(st, &steps, &res, &err) != AQ_OK) {
-    snprintf(err.input, sizeof err.input, "%s", file);
-    aq_error_print(&err, stderr);
-    goto out;
+  /* Default end: runs to duration + k chunks with k = 1, 2, 4, ... (each
+   * from the start, so that the row is that of --end) until the arch rests
+   * or collapses or the cap is reached; then the first chunk end at or
+   * after the rest (collapse) time, checked by its own run. */
+  double kmax = until_rest ? floor((cap - dur) / REST_CHUNK_S + 1e-9) : 0;
+  double k = kmax < 1 ? kmax : 1, klo = -1; /* klo: largest k known not done */
+  int capped = 0, settled = 0;
+  for (;;) {
+    double e = until_rest ? (k >= kmax ? cap : dur + k * REST_CHUNK_S) : end;
+    aq_result_free(&res);
+    aq_steps_free(&steps);
+    if (pulse_steps(acc_g * AQ_G0_MPS2, dur, e, dt, &steps, &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      goto out;
+    }
+    if (aq_stepper_run(st, &steps, &res, &err) != AQ_OK) {
+      snprintf(err.input, sizeof err.input, "%s", file);
+      aq_error_print(&err, stderr);
+      goto out;
+    }
+    end = e;
+    if (!until_rest)
+      break;
+    double t_ev = res.collapsed ? res.collapse_time_s : aq_stepper_rest_since(st);
+    if (isnan(t_ev)) { /* still moving at e */
+      klo = k;
+      if (k >= kmax) {
+        capped = 1;
+        break;
+      }
+      if (settled) /* the chunk after a near-boundary rest */
+        k = k + 1;
+      else
+        k = fmin(2 * k, kmax);
+      continue;
+    }
+    /* done at e: the first chunk end at or after t_ev, if not this one */
+    double kf = fmax(ceil((t_ev - dur) / REST_CHUNK_S - 1e-12), klo + 1);
+    settled = 1;
+    if (kf >= k || e >= cap)
+      break;
+    k = kf;
   }
+  if (capped)
+    fprintf(stderr,
+            "archquake: %s: still moving at the cap t = %g s (--max-end); "
+            "the row is that of --end %g\n",
+            file, end, end);
   if (hist && write_history(hist, &res.history) != 0) {
     fprintf(stderr, "archquake: %s: cannot write the history\n", hist);
     status = AQ_EXIT_OUTPUT;

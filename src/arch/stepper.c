@@ -91,6 +91,7 @@ struct aq_stepper {
   int wp_nodes;
   double rest_tol;
   double e_ref_j;
+  double rest_since_s; /* last run: record time since which at rest at its end, or NAN */
   aq_eom *eom;
   aq_paper *paper;
   wp_cos ccos; /* Chebyshev cosines for wp_nodes */
@@ -688,6 +689,7 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
   st->wp_nodes = WP_DEFAULT_NODES;
   cheb_cos_init(&st->ccos, st->wp_nodes);
   st->rest_tol = REST_TOL_DEFAULT;
+  st->rest_since_s = NAN;
   aq_path_point pt;
   if (primary->eval_exact(primary->ctx, primary->s_c_rad, &pt) != 0) {
     aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "primary",
@@ -762,6 +764,8 @@ void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
   if (isfinite(tol) && tol >= 0)
     st->rest_tol = tol;
 }
+
+double aq_stepper_rest_since(const aq_stepper *st) { return st->rest_since_s; }
 
 static aq_status hist_push(aq_history *h, double t, double q, double x,
                            double ke, double pe, int set)
@@ -889,6 +893,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->collapse_time_s = NAN;
   res->steps_total = steps->n;
   st->cache_p = NULL;
+  st->rest_since_s = NAN;
+  double rest_since = steps->n ? steps->t_s[0] : 0; /* at rest from the start */
   if (st->eom)
     aq_eom_reset(st->eom);
   aq_leg_stats S = {0};
@@ -936,6 +942,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         if (k < 0)
           break;
         rest = 0;
+        rest_since = NAN;
         set = k;
         m = (aq_motion){0, 0, 1, 0, 0};
       }
@@ -967,6 +974,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       }
       if (end == AQ_LEG_REST) {
         rest = 1;
+        rest_since = steps->t_s[i] + t_in;
         m = (aq_motion){0, 0, 1, 0, 0};
         if (activated(st, a) == set || activated(st, a) < 0)
           break; /* nothing moves it within this step */
@@ -1002,6 +1010,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
           res->energy_dissipated_j += ke_post;
           m.ke_j = 0;
           rest = 1;
+          rest_since = steps->t_s[i] + t_in;
         }
       }
     }
@@ -1037,6 +1046,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->energy_in_j = e_in;
   res->reversals = S.reversals;
   res->evals = S.evals;
+  st->rest_since_s = rest && !res->collapsed ? rest_since : NAN;
   return AQ_OK;
 nomem:
   rc = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "history", "out of memory");

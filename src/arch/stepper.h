@@ -38,4 +38,11 @@ void aq_stepper_set_rest_tol(aq_stepper *st, double tol);/* rest: KE <= tol * m_
 aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps,
                          aq_result *res, aq_error *err);
 
+/* After a successful aq_stepper_run: the record time (s) since which the
+ * arch has been at rest (s = 0, no kinetic energy, by the rest criterion of
+ * aq_stepper_set_rest_tol or a plastic stop) at the end of the steps; the
+ * first step's start if it never moved.  NAN if it was still moving at the
+ * end, collapsed, or the run failed. */
+double aq_stepper_rest_since(const aq_stepper *st);
+
 #endif
