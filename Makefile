@@ -61,9 +61,9 @@ bench: archquake $(BENCH_BIN)
 
 # Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from records/.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
-build/fuzz/%: fuzz/%.c $(LIB_SRC) $(HDRS)
+build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS)
 	@mkdir -p $(dir $@)
-	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
+	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
 
 fuzz: $(FUZZ_BIN)
 	@for f in $(FUZZ_BIN); do \

@@ -73,7 +73,7 @@ void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)
   switch (st) {
 #define AQ_X_NAME(sym, code, text) \
   case sym:                        \
-    name = #sym + 3;               \
+    name = &(#sym)[3];            \
     break;
     AQ_STATUS_LIST(AQ_X_NAME)
 #undef AQ_X_NAME
