@@ -102,15 +102,8 @@ int aq_cmd_domain(int argc, char **argv)
       aq_opt_unknown("domain ", argv, optind, optopt, &nerr);
     }
   }
-  if (optind < argc) {
-    fprintf(stderr, "archquake: domain: expected no operands, got \"%s\"\n",
-            argv[optind]);
-    nerr++;
-  }
-  if (!file) {
-    fprintf(stderr, "archquake: domain: expected --arch FILE, got none\n");
-    nerr++;
-  }
+  aq_opt_no_operands("domain", argc, argv, optind, &nerr);
+  aq_opt_require("domain", "--arch FILE", file != NULL, &nerr);
   for (size_t i = 0; i < nr; i++)
     if (!(ratios[i] <= 1000)) {
       fprintf(stderr, "archquake: --ratios: expected ratios in (1, 1000], "

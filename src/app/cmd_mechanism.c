@@ -80,14 +80,8 @@ int aq_cmd_mechanism(int argc, char **argv)
       aq_opt_unknown("mechanism ", argv, optind, optopt, &nerr);
     }
   }
-  if (optind < argc) {
-    fprintf(stderr, "archquake: mechanism: expected no operands, got \"%s\"\n", argv[optind]);
-    nerr++;
-  }
-  if (!file) {
-    fprintf(stderr, "archquake: mechanism: expected --arch FILE, got none\n");
-    nerr++;
-  }
+  aq_opt_no_operands("mechanism", argc, argv, optind, &nerr);
+  aq_opt_require("mechanism", "--arch FILE", file != NULL, &nerr);
   if (nerr)
     return AQ_EXIT_USAGE;
 

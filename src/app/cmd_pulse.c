@@ -177,23 +177,10 @@ int aq_cmd_pulse(int argc, char **argv)
       aq_opt_unknown("pulse ", argv, optind, optopt, &nerr);
     }
   }
-  if (optind < argc) {
-    fprintf(stderr, "archquake: pulse: expected no operands, got \"%s\"\n",
-            argv[optind]);
-    nerr++;
-  }
-  if (!file) {
-    fprintf(stderr, "archquake: pulse: expected --arch FILE, got none\n");
-    nerr++;
-  }
-  if (isnan(acc_g)) {
-    fprintf(stderr, "archquake: pulse: expected --accel-g A, got none\n");
-    nerr++;
-  }
-  if (isnan(dur)) {
-    fprintf(stderr, "archquake: pulse: expected --duration S, got none\n");
-    nerr++;
-  }
+  aq_opt_no_operands("pulse", argc, argv, optind, &nerr);
+  aq_opt_require("pulse", "--arch FILE", file != NULL, &nerr);
+  aq_opt_require("pulse", "--accel-g A", !isnan(acc_g), &nerr);
+  aq_opt_require("pulse", "--duration S", !isnan(dur), &nerr);
   if (!isnan(end) && !isnan(dur) && end < dur) {
     fprintf(stderr,
             "archquake: --end: expected a time >= --duration (%g s), got %g\n",

@@ -134,3 +134,21 @@ void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
             word, cmd);
   (*nerr)++;
 }
+
+void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
+                        int *nerr)
+{
+  if (optind_ < argc) {
+    fprintf(stderr, "archquake: %s: expected no operands, got \"%s\"\n", cmd,
+            argv[optind_]);
+    (*nerr)++;
+  }
+}
+
+void aq_opt_require(const char *cmd, const char *what, int given, int *nerr)
+{
+  if (!given) {
+    fprintf(stderr, "archquake: %s: expected %s, got none\n", cmd, what);
+    (*nerr)++;
+  }
+}

@@ -24,6 +24,11 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
 /* One of the words in choices (NULL-terminated); *out = its index. */
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
                    int *out, int *nerr);
+/* Report operands (argv[optind_..argc-1]) that a command does not take. */
+void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
+                        int *nerr);
+/* Report a required option that was not given ("--arch FILE"). */
+void aq_opt_require(const char *cmd, const char *what, int given, int *nerr);
 /* Report the option getopt_long rejected (argv[optind-1], optopt). */
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr);
