@@ -25,7 +25,7 @@ REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all check bench install uninstall clean deps fuzz
+.PHONY: all check bench install uninstall clean deps print-deps fuzz
 all: archquake
 
 archquake: build/rel/src/main.o $(REL_OBJ)
@@ -86,6 +86,9 @@ DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)
+
+print-deps:
+	@echo $(DEB_PKGS)
 
 clean:
 	rm -rf build archquake
