@@ -49,3 +49,27 @@ AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 2, "run: exit %d (want 2, an arch that cannot be loaded): %s", rc, err);
 }
+
+/* An existing output that is not a regular file (here a FIFO; /dev/null
+ * and /dev/full alike) used to be replaced by the renamed temporary, with
+ * exit 0: as root, -o /dev/null turned /dev/null into a results file. */
+AQ_TEST(review_output_special_file_is_not_replaced)
+{
+  char dir[512], fifo[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+  if (!aq_check(mkfifo(fifo, 0600) == 0, "mkfifo %s", fifo))
+    return;
+  const char *opts[2] = {"-o", "--text"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(args, sizeof args, "%s --arch %s %s %s", REVIEW_RECORD, REVIEW_ARCH,
+             opts[k], fifo);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 3, "%s FIFO: exit %d (want 3, output not written): %s", opts[k], rc, err);
+    aq_check(count_lines(err) == 1 && strstr(err, "FIFO") && strstr(err, opts[k]),
+             "%s: one line naming the option and what the target is: %s", opts[k], err);
+    struct stat sb;
+    aq_check(stat(fifo, &sb) == 0 && S_ISFIFO(sb.st_mode), "%s: the FIFO is still a FIFO",
+             opts[k]);
+  }
+}
