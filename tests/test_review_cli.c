@@ -73,3 +73,68 @@ AQ_TEST(review_output_special_file_is_not_replaced)
              opts[k]);
   }
 }
+
+/* Bytes of a file (NULL if unreadable); *len its length. */
+static char *slurp(const char *path, size_t *len)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return NULL;
+  long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+  char *b = n >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc((size_t)n + 1) : NULL;
+  if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
+    free(b);
+    b = NULL;
+  }
+  fclose(f);
+  *len = b ? (size_t)n : 0;
+  return b;
+}
+
+static int copy_file(const char *from, const char *to)
+{
+  size_t n;
+  char *b = slurp(from, &n);
+  FILE *f = b ? fopen(to, "wb") : NULL;
+  int ok = f && fwrite(b, 1, n, f) == n;
+  if (f && fclose(f) != 0)
+    ok = 0;
+  free(b);
+  return ok;
+}
+
+static int same_bytes(const char *a, const char *b)
+{
+  size_t na, nb;
+  char *x = slurp(a, &na), *y = slurp(b, &nb);
+  int same = x && y && na == nb && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  return same;
+}
+/* -o or --text naming one of the inputs (a record, an arch file, under
+ * another spelling too) used to overwrite it with the results and exit 0. */
+AQ_TEST(review_output_naming_an_input_is_refused)
+{
+  char dir[512], rec[600], arch[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(rec, sizeof rec, "%s/rec.csv", dir);
+  snprintf(arch, sizeof arch, "%s/a.cfg", dir);
+  if (!aq_check(copy_file(REVIEW_RECORD, rec) && copy_file(REVIEW_ARCH, arch),
+                "copies of the inputs"))
+    return;
+  const char *variants[3][2] = {{"-o", "%s/./rec.csv"}, {"--text", "%s/rec.csv"},
+                                {"--text", "%s/a.cfg"}};
+  for (int v = 0; v < 3; v++) {
+    char target[700];
+    snprintf(target, sizeof target, variants[v][1], dir);
+    snprintf(args, sizeof args, "%s --arch %s %s %s", rec, arch, variants[v][0], target);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 2, "%s %s: exit %d (want 2, usage): %s", variants[v][0], target, rc, err);
+    aq_check(count_lines(err) == 1 && strstr(err, variants[v][0]) &&
+                 strstr(err, "other than the inputs"),
+             "one line naming the option: %s", err);
+    aq_check(same_bytes(rec, REVIEW_RECORD) && same_bytes(arch, REVIEW_ARCH),
+             "%s %s: the inputs are untouched", variants[v][0], target);
+  }
+}

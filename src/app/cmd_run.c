@@ -107,6 +107,26 @@ static char *join_argv(int argc, char **argv)
   return s;
 }
 
+/* An output path that names an existing input (a record or an arch file,
+ * possibly under another spelling) would destroy it: report it (one line)
+ * and return 1. */
+static int output_is_input(const char *opt, const char *out, char *const *records,
+                           size_t nrec, char *const *arches, size_t narch)
+{
+  struct stat so, si;
+  if (!out || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
+    return 0;
+  for (size_t i = 0; i < nrec + narch; i++) {
+    const char *in = i < nrec ? records[i] : arches[i - nrec];
+    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
+      fprintf(stderr, "archquake: %s: %s: expected a file other than the inputs, "
+                      "got the %s %s\n", out, opt, i < nrec ? "record" : "arch file", in);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 /* An existing output that is not a regular file (a device such as
  * /dev/null, a FIFO, a socket) would be replaced by the renamed temporary:
  * report it (one line) and return 1.  Directories are reported elsewhere. */
@@ -241,6 +261,12 @@ int aq_cmd_run(int argc, char **argv)
     fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\" twice\n",
             text_path);
     nerr++;
+  }
+  if (optind < argc) {
+    char *const *recs = argv + optind;
+    size_t nrec = (size_t)(argc - optind);
+    nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
+    nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }
   if (nerr) {
     free(arches);
