@@ -138,3 +138,20 @@ AQ_TEST(review_output_naming_an_input_is_refused)
              "%s %s: the inputs are untouched", variants[v][0], target);
   }
 }
+
+/* pulse --accel-g 1e3 used to print the range error and then a false
+ * "expected --accel-g A, got none": one problem, one line. */
+AQ_TEST(review_pulse_bad_value_reported_once)
+{
+  char err[4096];
+  int rc = aq_test_run("pulse --arch " REVIEW_ARCH " --accel-g 1e3 --duration -2", NULL, 0,
+                       err, sizeof err);
+  aq_check(rc == 2, "exit %d (want 2): %s", rc, err);
+  aq_check(count_lines(err) == 2 && strstr(err, "--accel-g") && strstr(err, "--duration") &&
+               !strstr(err, "got none"),
+           "one line per bad option, no 'got none': %s", err);
+  rc = aq_test_run("pulse --arch " REVIEW_ARCH, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && count_lines(err) == 2 && strstr(err, "--accel-g A, got none") &&
+               strstr(err, "--duration S, got none"),
+           "absent options still reported: exit %d: %s", rc, err);
+}
