@@ -155,3 +155,22 @@ AQ_TEST(review_pulse_bad_value_reported_once)
                strstr(err, "--duration S, got none"),
            "absent options still reported: exit %d: %s", rc, err);
 }
+
+/* -o and --text naming one new file under two spellings used to collide on
+ * the temporary name: exit 3 with "File exists", not saying why.  Expected:
+ * the usage error that the identical spelling gets (exit 2, one line). */
+AQ_TEST(review_output_same_file_two_spellings)
+{
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args, "%s --arch %s -o %s/./r.out --text %s/r.out", REVIEW_RECORD,
+           REVIEW_ARCH, dir, dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2, "exit %d (want 2): %s", rc, err);
+  aq_check(count_lines(err) == 1 && strstr(err, "--text") && strstr(err, "other than -o"),
+           "one line naming --text and -o: %s", err);
+  char path[700];
+  snprintf(path, sizeof path, "%s/r.out", dir);
+  struct stat sb;
+  aq_check(stat(path, &sb) != 0, "no output written");
+}
