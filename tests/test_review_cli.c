@@ -191,3 +191,22 @@ AQ_TEST(review_list_option_empty_item_refused)
     aq_check(out[0] == '\0', "%s: nothing ran: %s", cmds[k], out);
   }
 }
+
+/* pulse --history onto an existing special file (a FIFO here; /dev/null
+ * alike) used to rename the history over it with exit 0. */
+AQ_TEST(review_pulse_history_special_file_is_not_replaced)
+{
+  char dir[512], fifo[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+  if (!aq_check(mkfifo(fifo, 0600) == 0, "mkfifo %s", fifo))
+    return;
+  snprintf(args, sizeof args,
+           "pulse --arch " REVIEW_ARCH " --accel-g 0.731 --duration 0.237 --history %s", fifo);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 3, "exit %d (want 3, the history could not be written): %s", rc, err);
+  aq_check(count_lines(err) == 1 && strstr(err, "--history") && strstr(err, "FIFO"),
+           "one line naming --history: %s", err);
+  struct stat sb;
+  aq_check(stat(fifo, &sb) == 0 && S_ISFIFO(sb.st_mode), "the FIFO is still a FIFO");
+}
