@@ -132,7 +132,7 @@ int aq_cmd_pulse(int argc, char **argv)
   const char *file = NULL, *hist = NULL;
   double acc_g = NAN, dur = NAN, end = NAN, cap = NAN, dt = 0.01, cor = NAN,
          rtol = 1e-10;
-  int model = 0, impact = -1, nerr = 0, c;
+  int model = 0, impact = -1, nerr = 0, c, acc_given = 0, dur_given = 0;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
@@ -142,9 +142,11 @@ int aq_cmd_pulse(int argc, char **argv)
       break;
     case 'A':
       aq_opt_double("--accel-g", optarg, -100, 100, &acc_g, &nerr);
+      acc_given = 1;
       break;
     case 'D':
       aq_opt_double_gt("--duration", optarg, 0, 3600, &dur, &nerr);
+      dur_given = 1;
       break;
     case 'e':
       aq_opt_double_gt("--end", optarg, 0, 86400, &end, &nerr);
@@ -179,8 +181,9 @@ int aq_cmd_pulse(int argc, char **argv)
   }
   aq_opt_no_operands("pulse", argc, argv, optind, &nerr);
   aq_opt_require("pulse", "--arch FILE", file != NULL, &nerr);
-  aq_opt_require("pulse", "--accel-g A", !isnan(acc_g), &nerr);
-  aq_opt_require("pulse", "--duration S", !isnan(dur), &nerr);
+  /* a bad value was reported already: "got none" only when absent */
+  aq_opt_require("pulse", "--accel-g A", acc_given, &nerr);
+  aq_opt_require("pulse", "--duration S", dur_given, &nerr);
   if (!isnan(end) && !isnan(dur) && end < dur) {
     fprintf(stderr,
             "archquake: --end: expected a time >= --duration (%g s), got %g\n",

@@ -107,6 +107,42 @@ static char *join_argv(int argc, char **argv)
   return s;
 }
 
+/* An output path that names an existing input (a record or an arch file,
+ * possibly under another spelling) would destroy it: report it (one line)
+ * and return 1. */
+static int output_is_input(const char *opt, const char *out, char *const *records,
+                           size_t nrec, char *const *arches, size_t narch)
+{
+  struct stat so, si;
+  if (!out || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
+    return 0;
+  for (size_t i = 0; i < nrec + narch; i++) {
+    const char *in = i < nrec ? records[i] : arches[i - nrec];
+    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
+      fprintf(stderr, "archquake: %s: %s: expected a file other than the inputs, "
+                      "got the %s %s\n", out, opt, i < nrec ? "record" : "arch file", in);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* An existing output that is not a regular file (a device such as
+ * /dev/null, a FIFO, a socket) would be replaced by the renamed temporary:
+ * report it (one line) and return 1.  Directories are reported elsewhere. */
+static int output_not_regular(const char *opt, const char *out)
+{
+  struct stat sb;
+  if (!out || stat(out, &sb) != 0 || S_ISREG(sb.st_mode) || S_ISDIR(sb.st_mode))
+    return 0;
+  fprintf(stderr, "archquake: %s: %s: expected a regular file or a new file name, "
+                  "got a %s (it would be replaced)\n", out, opt,
+          S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode) ? "device"
+          : S_ISFIFO(sb.st_mode)                     ? "FIFO"
+                                                     : "special file");
+  return 1;
+}
+
 int aq_cmd_run(int argc, char **argv)
 {
   struct option longopts[32] = {
@@ -226,11 +262,23 @@ int aq_cmd_run(int argc, char **argv)
             text_path);
     nerr++;
   }
+  if (optind < argc) {
+    char *const *recs = argv + optind;
+    size_t nrec = (size_t)(argc - optind);
+    nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
+    nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
+  }
   if (nerr) {
     free(arches);
     free(scales);
     free(cmdline);
     return AQ_EXIT_USAGE;
+  }
+  if (output_not_regular("-o", cfg.h5_path) + output_not_regular("--text", text_path)) {
+    free(arches);
+    free(scales);
+    free(cmdline);
+    return AQ_EXIT_OUTPUT;
   }
 
   cfg.records = argv + optind;

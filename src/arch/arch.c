@@ -341,7 +341,7 @@ aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
   return AQ_OK;
 }
 
-static char *read_text(const char *path, aq_error *err, aq_status *st)
+static char *read_text(const char *path, size_t *len, aq_error *err, aq_status *st)
 {
   FILE *f = fopen(path, "rb");
   if (!f) {
@@ -357,20 +357,13 @@ static char *read_text(const char *path, aq_error *err, aq_status *st)
     *st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
     return NULL;
   }
-  if (bad || n > MAX_FILE_BYTES) {
+  if (bad) {
     free(buf);
-    *st = aq_error_set(err, bad ? AQ_EIO : AQ_EFORMAT, path, -1, -1, NULL,
-                       bad ? "expected a readable arch file, got a read error"
-                           : "expected an arch file of at most 1 MB, got more");
+    *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                       "expected a readable arch file, got a read error");
     return NULL;
   }
-  buf[n] = '\0';
-  if (memchr(buf, '\0', n)) {
-    free(buf);
-    *st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
-                       "expected a text arch file, got a NUL byte");
-    return NULL;
-  }
+  *len = n;
   return buf;
 }
 
@@ -378,9 +371,32 @@ aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
 {
   *out = NULL;
   aq_status st = AQ_OK;
-  char *text = read_text(path, err, &st);
-  if (!text)
+  size_t len = 0;
+  char *buf = read_text(path, &len, err, &st);
+  if (!buf)
     return st;
+  st = aq_arch_load_string(buf, len, path, out, err);
+  free(buf);
+  return st;
+}
+
+aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
+                              aq_arch **out, aq_error *err)
+{
+  *out = NULL;
+  aq_status st = AQ_OK;
+  if (len > MAX_FILE_BYTES)
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                        "expected an arch file of at most 1 MB, got more");
+  if (len && memchr(data, '\0', len))
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                        "expected a text arch file, got a NUL byte");
+  char *text = malloc(len + 1);
+  if (!text)
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  if (len)
+    memcpy(text, data, len);
+  text[len] = '\0';
   parse_ctx c;
   memset(&c, 0, sizeof c);
   c.file = path;

@@ -21,6 +21,12 @@ typedef struct {
 } aq_arch_dynamics;
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err);
+/* As aq_arch_load, from the len bytes at data (need not be NUL-terminated;
+ * a NUL byte inside is an error); path names the input in messages and
+ * gives the default name.  The bytes are copied; *out is the caller's
+ * (aq_arch_free), NULL on failure. */
+aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
+                              aq_arch **out, aq_error *err);
 void aq_arch_free(aq_arch *a);
 
 const char *aq_arch_name(const aq_arch *a);

@@ -47,6 +47,8 @@ enum { F_X = 0, F_Y, F_DX, F_DY, F_M, F_B0 /* then 3 per body: x, y, phi */, NF 
 #define TABLE_STALL 0.5        /* a split must at least halve the error ... */
 #define TABLE_ROUNDOFF 1e-8    /* ... unless it is this small already (round-off) */
 #define TABLE_T_DERIV 0.2763932 /* (5 - sqrt 5)/10: peak of t^2 (1-t)^2 (1-2t) */
+#define TABLE_MAX_INTERVALS 20000 /* at most this many intervals (shipped arches need < 200): a
+                                     path that needs more is refused, never tabulated for minutes */
 #define S_SLACK_REL 1e-12      /* s within this (relative to s_c) outside [0, s_c] is clamped */
 
 struct aq_workpath {
@@ -216,6 +218,7 @@ typedef struct {
   double scale[8]; /* largest magnitudes over the initial nodes */
   double err;      /* largest accepted error */
   int failed;
+  int too_many;    /* failed because of TABLE_MAX_INTERVALS */
 } refine_ctx;
 
 static int append_interval(aq_workpath *w, double s0, const fvals f0, double s1,
@@ -288,6 +291,10 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
     return;
   double h = s1 - s0;
   fvals fm, fd;
+  if (w->n >= TABLE_MAX_INTERVALS) {
+    rc->failed = rc->too_many = 1;
+    return;
+  }
   if (append_interval(w, s0, f0, s1, f1) != 0 ||
       exact_f(w, s0 + 0.5 * h, fm, NULL) != 0 ||
       exact_f(w, s0 + TABLE_T_DERIV * h, fd, NULL) != 0) {
@@ -312,12 +319,13 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
 
 /* Tables over [0, s_c]: TABLE_N0 equal intervals, each refined by halving
  * where needed (refine), so that the grid is fine only where the path
- * varies fast (near a toggle).  -1 on failure (memory, or the linkage). */
+ * varies fast (near a toggle).  -1 on failure (memory, or the linkage), -2
+ * when more than TABLE_MAX_INTERVALS would be needed. */
 static int build_tables(aq_workpath *w)
 {
   double sc = w->path.s_c_rad;
   fvals node[TABLE_N0 + 1];
-  refine_ctx rc = {w, {0}, 0, 0};
+  refine_ctx rc = {w, {0}, 0, 0, 0};
   for (size_t i = 0; i <= TABLE_N0; i++) {
     if (exact_f(w, i == TABLE_N0 ? sc : sc * (double)i / TABLE_N0, node[i], NULL) != 0)
       return -1;
@@ -329,7 +337,7 @@ static int build_tables(aq_workpath *w)
     refine(&rc, i == 0 ? 0.0 : sc * (double)i / TABLE_N0, node[i],
            i + 1 == TABLE_N0 ? sc : sc * (double)(i + 1) / TABLE_N0, node[i + 1], 0, HUGE_VAL);
   w->tab_err = rc.err;
-  return rc.failed ? -1 : 0;
+  return rc.too_many ? -2 : rc.failed ? -1 : 0;
 }
 
 static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
@@ -485,7 +493,17 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
     return AQ_OK;
   }
   p->admissible = 1;
-  if (build_tables(w) != 0) {
+  int tab = build_tables(w);
+  if (tab == -2) {
+    double lambda0 = p->lambda0, s_c = p->s_c_rad;
+    aq_workpath_free(w);
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
+                        "expected a work path that tables of at most %d intervals "
+                        "resolve to %g, got one that needs more (lambda0 = %g, "
+                        "q_c = %g rad: the arch barely stands)",
+                        TABLE_MAX_INTERVALS, TABLE_REL_TOL, lambda0, s_c);
+  }
+  if (tab != 0) {
     aq_workpath_free(w);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL,
                         "out of memory (or the linkage failed) building tables");

@@ -1,0 +1,157 @@
+/* test_review_cli.c: defects found by an adversarial review of the CLI, each
+ * reproduced through the command line: outputs that would replace an input
+ * or a special file, an arch whose work path cannot be tabulated (it used to
+ * refine for minutes), and a bad option value reported twice.  The
+ * expectations are the README's contract (exit statuses, one line per
+ * problem, no output replacing what it must not). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include "check.h"
+
+#define REVIEW_RECORD "records/elcentro_chopra.csv"
+#define REVIEW_ARCH "arches/thin.cfg"
+
+static size_t count_lines(const char *s)
+{
+  size_t n = 0;
+  for (; *s; s++)
+    n += *s == '\n';
+  return n;
+}
+
+/* A semicircular arch of t/R = 0.05 (below the minimum thickness, about
+ * 0.107 for a semicircle) with 40 voussoirs: the search finds a set with
+ * lambda0 ~ 6e-6 and q_c ~ 1e-6 rad whose tables never reach their
+ * tolerance, and the table refinement ran for minutes (found by
+ * fuzz/fuzz_arch.c).  Expected: a prompt, one-line refusal naming the set. */
+AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
+{
+  char dir[512], cfg[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(cfg, sizeof cfg, "%s/barely.cfg", dir);
+  FILE *f = fopen(cfg, "w");
+  if (!aq_check(f != NULL, "write %s", cfg))
+    return;
+  fputs("[arch]\nradius_m = 5.0\nthickness_m = 0.25\nembrace_deg = 180\n"
+        "voussoirs = 40\ndensity_kg_m3 = 2000\ndepth_m = 1.0\n", f);
+  fclose(f);
+  snprintf(args, sizeof args, "mechanism --arch %s", cfg);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1, "mechanism: exit %d (want 1, the arch could not be built): %s", rc, err);
+  aq_check(count_lines(err) == 1 && strstr(err, "barely.cfg") && strstr(err, "primary"),
+           "one line naming the file and the set: %s", err);
+  snprintf(args, sizeof args, "%s --arch %s", REVIEW_RECORD, cfg);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2, "run: exit %d (want 2, an arch that cannot be loaded): %s", rc, err);
+}
+
+/* An existing output that is not a regular file (here a FIFO; /dev/null
+ * and /dev/full alike) used to be replaced by the renamed temporary, with
+ * exit 0: as root, -o /dev/null turned /dev/null into a results file. */
+AQ_TEST(review_output_special_file_is_not_replaced)
+{
+  char dir[512], fifo[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+  if (!aq_check(mkfifo(fifo, 0600) == 0, "mkfifo %s", fifo))
+    return;
+  const char *opts[2] = {"-o", "--text"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(args, sizeof args, "%s --arch %s %s %s", REVIEW_RECORD, REVIEW_ARCH,
+             opts[k], fifo);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 3, "%s FIFO: exit %d (want 3, output not written): %s", opts[k], rc, err);
+    aq_check(count_lines(err) == 1 && strstr(err, "FIFO") && strstr(err, opts[k]),
+             "%s: one line naming the option and what the target is: %s", opts[k], err);
+    struct stat sb;
+    aq_check(stat(fifo, &sb) == 0 && S_ISFIFO(sb.st_mode), "%s: the FIFO is still a FIFO",
+             opts[k]);
+  }
+}
+
+/* Bytes of a file (NULL if unreadable); *len its length. */
+static char *slurp(const char *path, size_t *len)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return NULL;
+  long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+  char *b = n >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc((size_t)n + 1) : NULL;
+  if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
+    free(b);
+    b = NULL;
+  }
+  fclose(f);
+  *len = b ? (size_t)n : 0;
+  return b;
+}
+
+static int copy_file(const char *from, const char *to)
+{
+  size_t n;
+  char *b = slurp(from, &n);
+  FILE *f = b ? fopen(to, "wb") : NULL;
+  int ok = f && fwrite(b, 1, n, f) == n;
+  if (f && fclose(f) != 0)
+    ok = 0;
+  free(b);
+  return ok;
+}
+
+static int same_bytes(const char *a, const char *b)
+{
+  size_t na, nb;
+  char *x = slurp(a, &na), *y = slurp(b, &nb);
+  int same = x && y && na == nb && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  return same;
+}
+/* -o or --text naming one of the inputs (a record, an arch file, under
+ * another spelling too) used to overwrite it with the results and exit 0. */
+AQ_TEST(review_output_naming_an_input_is_refused)
+{
+  char dir[512], rec[600], arch[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(rec, sizeof rec, "%s/rec.csv", dir);
+  snprintf(arch, sizeof arch, "%s/a.cfg", dir);
+  if (!aq_check(copy_file(REVIEW_RECORD, rec) && copy_file(REVIEW_ARCH, arch),
+                "copies of the inputs"))
+    return;
+  const char *variants[3][2] = {{"-o", "%s/./rec.csv"}, {"--text", "%s/rec.csv"},
+                                {"--text", "%s/a.cfg"}};
+  for (int v = 0; v < 3; v++) {
+    char target[700];
+    snprintf(target, sizeof target, variants[v][1], dir);
+    snprintf(args, sizeof args, "%s --arch %s %s %s", rec, arch, variants[v][0], target);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 2, "%s %s: exit %d (want 2, usage): %s", variants[v][0], target, rc, err);
+    aq_check(count_lines(err) == 1 && strstr(err, variants[v][0]) &&
+                 strstr(err, "other than the inputs"),
+             "one line naming the option: %s", err);
+    aq_check(same_bytes(rec, REVIEW_RECORD) && same_bytes(arch, REVIEW_ARCH),
+             "%s %s: the inputs are untouched", variants[v][0], target);
+  }
+}
+
+/* pulse --accel-g 1e3 used to print the range error and then a false
+ * "expected --accel-g A, got none": one problem, one line. */
+AQ_TEST(review_pulse_bad_value_reported_once)
+{
+  char err[4096];
+  int rc = aq_test_run("pulse --arch " REVIEW_ARCH " --accel-g 1e3 --duration -2", NULL, 0,
+                       err, sizeof err);
+  aq_check(rc == 2, "exit %d (want 2): %s", rc, err);
+  aq_check(count_lines(err) == 2 && strstr(err, "--accel-g") && strstr(err, "--duration") &&
+               !strstr(err, "got none"),
+           "one line per bad option, no 'got none': %s", err);
+  rc = aq_test_run("pulse --arch " REVIEW_ARCH, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && count_lines(err) == 2 && strstr(err, "--accel-g A, got none") &&
+               strstr(err, "--duration S, got none"),
+           "absent options still reported: exit %d: %s", rc, err);
+}
