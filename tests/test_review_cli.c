@@ -155,3 +155,39 @@ AQ_TEST(review_pulse_bad_value_reported_once)
                strstr(err, "--duration S, got none"),
            "absent options still reported: exit %d: %s", rc, err);
 }
+
+/* -o and --text naming one new file under two spellings used to collide on
+ * the temporary name: exit 3 with "File exists", not saying why.  Expected:
+ * the usage error that the identical spelling gets (exit 2, one line). */
+AQ_TEST(review_output_same_file_two_spellings)
+{
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args, "%s --arch %s -o %s/./r.out --text %s/r.out", REVIEW_RECORD,
+           REVIEW_ARCH, dir, dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2, "exit %d (want 2): %s", rc, err);
+  aq_check(count_lines(err) == 1 && strstr(err, "--text") && strstr(err, "other than -o"),
+           "one line naming --text and -o: %s", err);
+  char path[700];
+  snprintf(path, sizeof path, "%s/r.out", dir);
+  struct stat sb;
+  aq_check(stat(path, &sb) != 0, "no output written");
+}
+
+/* A list option with an empty item ("--scale 1,,2", "--ratios 2,") used to
+ * be accepted silently (the empty items dropped): a typo must be reported. */
+AQ_TEST(review_list_option_empty_item_refused)
+{
+  const char *cmds[3] = {REVIEW_RECORD " --arch " REVIEW_ARCH " --scale 1.5,,2.5",
+                         REVIEW_RECORD " --arch " REVIEW_ARCH " --scale 1.5,",
+                         "domain --arch " REVIEW_ARCH " --ratios ,2.5"};
+  for (int k = 0; k < 3; k++) {
+    char out[4096], err[4096];
+    int rc = aq_test_run(cmds[k], out, sizeof out, err, sizeof err);
+    aq_check(rc == 2, "%s: exit %d (want 2): %s", cmds[k], rc, err);
+    aq_check(count_lines(err) == 1 && strstr(err, "comma-separated"), "%s: one line: %s",
+             cmds[k], err);
+    aq_check(out[0] == '\0', "%s: nothing ran: %s", cmds[k], out);
+  }
+}

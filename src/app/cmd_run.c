@@ -4,6 +4,7 @@
  * FILE to a temporary renamed onto FILE once complete. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <limits.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -105,6 +106,27 @@ static char *join_argv(int argc, char **argv)
   }
   *p = '\0';
   return s;
+}
+
+/* 1 if the paths a and b name the same file, existing or not: the same
+ * string, the same existing file, or the same name in the same directory
+ * (however spelled: "./x", "d/../x"). */
+static int same_output(const char *a, const char *b)
+{
+  struct stat sa, sb;
+  if (strcmp(a, b) == 0)
+    return 1;
+  if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  const char *ba = strrchr(a, '/'), *bb = strrchr(b, '/');
+  const char *na = ba ? ba + 1 : a, *nb = bb ? bb + 1 : b;
+  if (strcmp(na, nb) != 0)
+    return 0;
+  char da[PATH_MAX], db[PATH_MAX];
+  snprintf(da, sizeof da, "%.*s", ba ? (int)(ba - a) + 1 : 1, ba ? a : ".");
+  snprintf(db, sizeof db, "%.*s", bb ? (int)(bb - b) + 1 : 1, bb ? b : ".");
+  return stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
 }
 
 /* An output path that names an existing input (a record or an arch file,
@@ -257,9 +279,13 @@ int aq_cmd_run(int argc, char **argv)
                     "are written only to the results file)\n");
     nerr++;
   }
-  if (cfg.h5_path && text_path && strcmp(cfg.h5_path, text_path) == 0) {
-    fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\" twice\n",
-            text_path);
+  if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {
+    if (strcmp(cfg.h5_path, text_path) == 0)
+      fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\" twice\n",
+              text_path);
+    else
+      fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\", "
+                      "the same file as -o \"%s\"\n", text_path, cfg.h5_path);
     nerr++;
   }
   if (optind < argc) {

@@ -83,7 +83,7 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
       }
       v[k++] = x;
     }
-    bad = bad || k == 0;
+    bad = bad || k == 0 || k != cap; /* no empty items ("1,,2", "1,") */
   }
   free(copy);
   if (bad) {
