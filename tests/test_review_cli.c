@@ -210,3 +210,19 @@ AQ_TEST(review_pulse_history_special_file_is_not_replaced)
   struct stat sb;
   aq_check(stat(fifo, &sb) == 0 && S_ISFIFO(sb.st_mode), "the FIFO is still a FIFO");
 }
+
+/* --arch naming a directory used to say "got a read error", which does
+ * not tell the user what is wrong. */
+AQ_TEST(review_arch_directory_named_as_such)
+{
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args, "mechanism --arch %s", dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, dir) && strstr(err, "directory"),
+           "mechanism: exit %d, one line saying it is a directory: %s", rc, err);
+  snprintf(args, sizeof args, REVIEW_RECORD " --arch %s", dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, "directory"),
+           "run: exit %d (want 2), one line saying it is a directory: %s", rc, err);
+}
