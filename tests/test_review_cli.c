@@ -226,3 +226,24 @@ AQ_TEST(review_arch_directory_named_as_such)
   aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, "directory"),
            "run: exit %d (want 2), one line saying it is a directory: %s", rc, err);
 }
+
+/* A time column at t0 = 1e12 s, where doubles cannot hold the 0.01 s steps
+ * evenly: the refusal used to print both times as "1e+12", hiding where. */
+AQ_TEST(review_csv_uneven_time_message_shows_the_times)
+{
+  char dir[512], csv[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(csv, sizeof csv, "%s/epoch.csv", dir);
+  FILE *f = fopen(csv, "w");
+  if (!aq_check(f != NULL, "write %s", csv))
+    return;
+  fputs("time,acc (g)\n", f);
+  for (int i = 0; i < 100; i++) /* 1000000000000.00, .01, ... .99 */
+    fprintf(f, "1000000000000.%02d,%.4f\n", i, 0.0173 * (i % 7));
+  fclose(f);
+  snprintf(args, sizeof args, "info %s", csv);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "time") &&
+               strstr(err, "1000000000000.0") && !strstr(err, "1e+12"),
+           "exit %d, one line with the times in full: %s", rc, err);
+}
