@@ -191,3 +191,59 @@ AQ_TEST(review_list_option_empty_item_refused)
     aq_check(out[0] == '\0', "%s: nothing ran: %s", cmds[k], out);
   }
 }
+
+/* pulse --history onto an existing special file (a FIFO here; /dev/null
+ * alike) used to rename the history over it with exit 0. */
+AQ_TEST(review_pulse_history_special_file_is_not_replaced)
+{
+  char dir[512], fifo[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+  if (!aq_check(mkfifo(fifo, 0600) == 0, "mkfifo %s", fifo))
+    return;
+  snprintf(args, sizeof args,
+           "pulse --arch " REVIEW_ARCH " --accel-g 0.731 --duration 0.237 --history %s", fifo);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 3, "exit %d (want 3, the history could not be written): %s", rc, err);
+  aq_check(count_lines(err) == 1 && strstr(err, "--history") && strstr(err, "FIFO"),
+           "one line naming --history: %s", err);
+  struct stat sb;
+  aq_check(stat(fifo, &sb) == 0 && S_ISFIFO(sb.st_mode), "the FIFO is still a FIFO");
+}
+
+/* --arch naming a directory used to say "got a read error", which does
+ * not tell the user what is wrong. */
+AQ_TEST(review_arch_directory_named_as_such)
+{
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args, "mechanism --arch %s", dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, dir) && strstr(err, "directory"),
+           "mechanism: exit %d, one line saying it is a directory: %s", rc, err);
+  snprintf(args, sizeof args, REVIEW_RECORD " --arch %s", dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, "directory"),
+           "run: exit %d (want 2), one line saying it is a directory: %s", rc, err);
+}
+
+/* A time column at t0 = 1e12 s, where doubles cannot hold the 0.01 s steps
+ * evenly: the refusal used to print both times as "1e+12", hiding where. */
+AQ_TEST(review_csv_uneven_time_message_shows_the_times)
+{
+  char dir[512], csv[600], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(csv, sizeof csv, "%s/epoch.csv", dir);
+  FILE *f = fopen(csv, "w");
+  if (!aq_check(f != NULL, "write %s", csv))
+    return;
+  fputs("time,acc (g)\n", f);
+  for (int i = 0; i < 100; i++) /* 1000000000000.00, .01, ... .99 */
+    fprintf(f, "1000000000000.%02d,%.4f\n", i, 0.0173 * (i % 7));
+  fclose(f);
+  snprintf(args, sizeof args, "info %s", csv);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "time") &&
+               strstr(err, "1000000000000.0") && !strstr(err, "1e+12"),
+           "exit %d, one line with the times in full: %s", rc, err);
+}

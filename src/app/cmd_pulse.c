@@ -213,6 +213,8 @@ int aq_cmd_pulse(int argc, char **argv)
   }
   if (nerr)
     return AQ_EXIT_USAGE;
+  if (aq_opt_output_special("--history", hist))
+    return AQ_EXIT_OUTPUT;
   int until_rest = isnan(end);
   if (until_rest && isnan(cap))
     cap = dur + fmin(REST_CAP_S, REST_CAP_STEPS * dt);

@@ -149,22 +149,6 @@ static int output_is_input(const char *opt, const char *out, char *const *record
   return 0;
 }
 
-/* An existing output that is not a regular file (a device such as
- * /dev/null, a FIFO, a socket) would be replaced by the renamed temporary:
- * report it (one line) and return 1.  Directories are reported elsewhere. */
-static int output_not_regular(const char *opt, const char *out)
-{
-  struct stat sb;
-  if (!out || stat(out, &sb) != 0 || S_ISREG(sb.st_mode) || S_ISDIR(sb.st_mode))
-    return 0;
-  fprintf(stderr, "archquake: %s: %s: expected a regular file or a new file name, "
-                  "got a %s (it would be replaced)\n", out, opt,
-          S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode) ? "device"
-          : S_ISFIFO(sb.st_mode)                     ? "FIFO"
-                                                     : "special file");
-  return 1;
-}
-
 int aq_cmd_run(int argc, char **argv)
 {
   struct option longopts[32] = {
@@ -300,7 +284,7 @@ int aq_cmd_run(int argc, char **argv)
     free(cmdline);
     return AQ_EXIT_USAGE;
   }
-  if (output_not_regular("-o", cfg.h5_path) + output_not_regular("--text", text_path)) {
+  if (aq_opt_output_special("-o", cfg.h5_path) + aq_opt_output_special("--text", text_path)) {
     free(arches);
     free(scales);
     free(cmdline);

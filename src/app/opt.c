@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static int parse_double(const char *s, double *x)
 {
@@ -151,4 +152,17 @@ void aq_opt_require(const char *cmd, const char *what, int given, int *nerr)
     fprintf(stderr, "archquake: %s: expected %s, got none\n", cmd, what);
     (*nerr)++;
   }
+}
+
+int aq_opt_output_special(const char *opt, const char *path)
+{
+  struct stat sb;
+  if (!path || stat(path, &sb) != 0 || S_ISREG(sb.st_mode) || S_ISDIR(sb.st_mode))
+    return 0;
+  fprintf(stderr, "archquake: %s: %s: expected a regular file or a new file name, "
+                  "got a %s (it would be replaced)\n", path, opt,
+          S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode) ? "device"
+          : S_ISFIFO(sb.st_mode)                     ? "FIFO"
+                                                     : "special file");
+  return 1;
 }

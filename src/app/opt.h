@@ -29,6 +29,12 @@ void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
                         int *nerr);
 /* Report a required option that was not given ("--arch FILE"). */
 void aq_opt_require(const char *cmd, const char *what, int given, int *nerr);
+/* An existing output path that is not a regular file (a device such as
+ * /dev/null, a FIFO, a socket) would be replaced when the output's
+ * temporary is renamed onto it: report it in one line naming opt and
+ * return 1; 0 for a regular file, a directory (reported by the caller), a
+ * missing path or NULL. */
+int aq_opt_output_special(const char *opt, const char *path);
 /* Report the option getopt_long rejected (argv[optind-1], optopt). */
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr);

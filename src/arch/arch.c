@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "../units.h"
 #include "arch.h"
@@ -347,6 +348,13 @@ static char *read_text(const char *path, size_t *len, aq_error *err, aq_status *
   if (!f) {
     *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
                        "expected a readable arch file, got %s", strerror(errno));
+    return NULL;
+  }
+  struct stat sb;
+  if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    fclose(f);
+    *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                       "expected a readable arch file, got a directory");
     return NULL;
   }
   char *buf = malloc(MAX_FILE_BYTES + 1);

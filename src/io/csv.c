@@ -539,14 +539,14 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
             st = aq_error_set(
                 err, AQ_EFORMAT, name, lines[i], -1, "time",
                 "expected evenly spaced times (step %.9g s within %g %%), got a "
-                "step of %.9g s from %.9g to %.9g",
+                "step of %.9g s from %.15g to %.15g",
                 med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
         for (size_t i = 1; i < k && st == AQ_OK; i++)
           if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
             st = aq_error_set(
                 err, AQ_EFORMAT, name, lines[i], -1, "time",
-                "expected evenly spaced times (%.9g + k * %.9g s, within %g %% of "
-                "the step), got %.9g for sample %zu",
+                "expected evenly spaced times (%.15g + k * %.9g s, within %g %% of "
+                "the step), got %.15g for sample %zu",
                 tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
             break;
           }
