@@ -568,3 +568,107 @@ AQ_TEST(report_h5_summary_table_many_runs)
   H5Dclose(d);
   H5Fclose(f);
 }
+
+/* Several records whose datasets add up to more than the writer's
+ * background-sync step (8 MiB): records k = 0..NBIG-1 of NBIG_N samples
+ * each, sample i of record k = sin(0.00123 i + 0.7 k) * (1 + k). */
+enum { NBIG = 4, NBIG_N = 450000 };
+
+static double big_value(size_t k, size_t i)
+{
+  return sin(0.00123 * (double)i + 0.7 * (double)k) * (1.0 + (double)k);
+}
+
+static aq_status write_big(const char *target, aq_error *err)
+{
+  static fixture fx;
+  make_fixture(&fx, 0);
+  double *acc = malloc(NBIG_N * sizeof *acc);
+  if (!acc)
+    return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
+  aq_h5_writer *w;
+  aq_status st = aq_h5_open(target, &w, err);
+  if (st != AQ_OK) {
+    free(acc);
+    return st;
+  }
+  for (size_t k = 0; k < NBIG && st == AQ_OK; k++) {
+    for (size_t i = 0; i < NBIG_N; i++)
+      acc[i] = big_value(k, i);
+    fx.proc.acc_mps2 = acc;
+    fx.proc.n = NBIG_N;
+    aq_h5_record hr = {"records/synthetic.AT2", &fx.rec, &fx.proc, &fx.im, "ok",
+                       NULL, 0.01, 0.02};
+    st = aq_h5_write_record(w, k, &hr, err);
+    if (st == AQ_OK)
+      st = aq_h5_write_run(w, k, 0, 0, &fx.sum[0], &fx.res[0], NULL, 0.003, err);
+  }
+  free(acc);
+  if (st != AQ_OK) {
+    aq_h5_abort(w);
+    return st;
+  }
+  return aq_h5_finish(w, NULL, err);
+}
+
+AQ_TEST(report_h5_large_file_reads_back_exactly)
+{
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/big.h5", dir);
+  aq_error err;
+  aq_error_clear(&err);
+  aq_check(write_big(path, &err) == AQ_OK, "written: %s", err.message);
+  aq_check(count_entries(dir) == 1, "only the target (%d entries)", count_entries(dir));
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  aq_check(f >= 0, "opens");
+  if (f < 0)
+    return;
+  double *v = malloc(NBIG_N * sizeof *v);
+  for (size_t k = 0; v && k < NBIG; k++) {
+    char g[64], units[32];
+    snprintf(g, sizeof g, "/records/%05zu", k);
+    hid_t grp = H5Gopen2(f, g, H5P_DEFAULT);
+    size_t n = read_dataset(grp, "acceleration_m_s2", v, NBIG_N, units, sizeof units);
+    aq_check(n == NBIG_N, "%s: %zu samples", g, n);
+    size_t bad = 0;
+    for (size_t i = 0; n == NBIG_N && i < NBIG_N; i++)
+      bad += v[i] != big_value(k, i);
+    aq_check(bad == 0, "%s: every sample exact (%zu differ)", g, bad);
+    aq_check(strcmp(units, "m/s^2") == 0, "units %s", units);
+    H5Gclose(grp);
+  }
+  free(v);
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  hid_t sp = H5Dget_space(d);
+  aq_check(H5Sget_simple_extent_npoints(sp) == NBIG, "%d summary rows", NBIG);
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
+AQ_TEST(report_h5_large_file_failing_late_leaves_nothing)
+{
+  /* the limit falls in the last record, after more than 8 MiB were written */
+  char dir[512], path[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/big.h5", dir);
+  pid_t pid = fork();
+  if (pid == 0) {
+    signal(SIGXFSZ, SIG_IGN);
+    rlim_t limit = (rlim_t)(NBIG - 1) * NBIG_N * sizeof(double) + 1000000;
+    struct rlimit rl = {limit, limit};
+    setrlimit(RLIMIT_FSIZE, &rl);
+    aq_error err;
+    aq_error_clear(&err);
+    aq_status st = write_big(path, &err);
+    if (st == AQ_EIO && err.message[0])
+      fprintf(stderr, "  (expected failure: %s)\n", err.message);
+    _exit(st == AQ_EIO && err.message[0] ? 0 : 10 + (int)st);
+  }
+  int status = -1;
+  aq_check(pid > 0 && waitpid(pid, &status, 0) == pid, "child ran");
+  aq_check(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+           "writer reported the failure (status %d)", status);
+  aq_check(count_entries(dir) == 0, "no file left (%d entries)", count_entries(dir));
+}
