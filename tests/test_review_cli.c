@@ -277,3 +277,32 @@ AQ_TEST(review_error_one_line_with_newline_in_name)
   aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "--highpass"),
            "exit %d, one line: %s", rc, err);
 }
+
+/* compare used to print a record's name with its tab, so the row had one
+ * column too many; the main job's TSV turns it into a space. */
+AQ_TEST(review_compare_row_with_tab_in_record_name)
+{
+  char dir[512], args[4096], out[8192], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  char rec[700];
+  snprintf(rec, sizeof rec, "%s/ta\tb.csv", dir);
+  if (!aq_check(copy_file(REVIEW_RECORD, rec), "copy to a name with a tab"))
+    return;
+  snprintf(args, sizeof args,
+           "\"%s/$(printf 'ta\\tb.csv')\" --arch " REVIEW_ARCH " --quiet -o %s/a.h5 >/dev/null "
+           "&& %s " REVIEW_RECORD " --arch " REVIEW_ARCH " --quiet -o %s/b.h5 >/dev/null "
+           "&& %s compare %s/a.h5 %s/b.h5",
+           dir, dir, aq_test_bin(), dir, aq_test_bin(), dir, dir);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1, "compare: exit %d (want 1: a run in one file only): %s", rc, err);
+  aq_check(strstr(out, "ta b.csv") != NULL, "the tab shown as a space: %s", out);
+  size_t rows = 0;
+  for (char *save = NULL, *line = strtok_r(out, "\n", &save); line;
+       line = strtok_r(NULL, "\n", &save), rows++) {
+    size_t tabs = 0;
+    for (char *p = line; *p; p++)
+      tabs += *p == '\t';
+    aq_check(tabs == 6, "7 columns in \"%s\"", line);
+  }
+  aq_check(rows == 3, "header and two rows: %zu", rows);
+}

@@ -37,12 +37,21 @@ typedef struct {
   FILE *out;
 } sink;
 
+/* A text cell as the main job's TSV writes it: tab, CR and LF (possible in
+ * a record's file name) become spaces, so that a row stays one line of the
+ * header's columns. */
+static void put_cell(FILE *f, const char *s)
+{
+  for (; *s; s++)
+    fputc(*s == '\t' || *s == '\n' || *s == '\r' ? ' ' : *s, f);
+}
+
 static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
 {
   char num[64];
   switch (fl->kind) {
   case AQ_SF_STR:
-    fputs(aq_summary_get_str(s, fl), f);
+    put_cell(f, aq_summary_get_str(s, fl));
     break;
   case AQ_SF_DOUBLE:
     aq_text_double(num, sizeof num, aq_summary_get_double(s, fl));
@@ -60,7 +69,10 @@ static void on_diff(void *ctx, const aq_diff *d)
   const aq_summary *r = d->a ? d->a : d->b;
   char num[64], rel[64];
   aq_text_double(num, sizeof num, r->scale);
-  fprintf(f, "%s\t%s\t%s\t", r->record, r->arch, num);
+  put_cell(f, r->record);
+  fputc('\t', f);
+  put_cell(f, r->arch);
+  fprintf(f, "\t%s\t", num);
   if (d->kind == AQ_DIFF_VALUE) {
     fprintf(f, "%s\t", d->field->name);
     put_value(f, d->a, d->field);
