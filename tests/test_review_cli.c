@@ -306,3 +306,32 @@ AQ_TEST(review_compare_row_with_tab_in_record_name)
   }
   aq_check(rows == 3, "header and two rows: %zu", rows);
 }
+
+/* An arch file saved with a UTF-8 byte-order mark (as some Windows editors
+ * do) whose first line is a misspelt section: the section check used to
+ * miss it ("expected a key of [archx] ()"); a good file with a BOM loads. */
+AQ_TEST(review_arch_bom_section_checked)
+{
+  char dir[512], cfg[600], args[2048], out[4096], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  const char *body = "radius_m = 5.0\nthickness_m = 1.25\nembrace_deg = 180\nvoussoirs = 20\n"
+                     "density_kg_m3 = 2000\ndepth_m = 1.0\n";
+  const char *sec[2] = {"[archx]", "[arch]"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(cfg, sizeof cfg, "%s/bom%d.cfg", dir, k);
+    FILE *f = fopen(cfg, "w");
+    if (!aq_check(f != NULL, "write %s", cfg))
+      return;
+    fprintf(f, "\xEF\xBB\xBF%s\r\n%s", sec[k], body);
+    fclose(f);
+    snprintf(args, sizeof args, "mechanism --arch %s", cfg);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    if (k == 0)
+      aq_check(rc == 1 && count_lines(err) == 1 && strstr(err, "bom0.cfg:1: section") &&
+                   strstr(err, "got [archx]"),
+               "misspelt section on line 1: exit %d: %s", rc, err);
+    else
+      aq_check(rc == 0 && strstr(out, "primary"), "a good file with a BOM: exit %d: %s", rc,
+               err);
+  }
+}

@@ -99,6 +99,8 @@ static char *reader(char *str, int num, void *stream)
   c->text += len;
   /* sections: libinih does not report them, so check them here */
   const char *p = str;
+  if (c->line == 1 && !strncmp(p, "\xEF\xBB\xBF", 3))
+    p += 3; /* a UTF-8 byte-order mark, which libinih skips too */
   while (*p == ' ' || *p == '\t')
     p++;
   if (*p == '[') {
