@@ -335,3 +335,23 @@ AQ_TEST(review_arch_bom_section_checked)
                err);
   }
 }
+
+/* pulse --history naming a directory or a path in a missing directory used
+ * to say only "cannot write the history", after the run: say what is wrong. */
+AQ_TEST(review_pulse_history_unwritable_says_why)
+{
+  char dir[512], args[2048], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args,
+           "pulse --arch " REVIEW_ARCH " --accel-g 0.731 --duration 0.237 --history %s", dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 3 && count_lines(err) == 1 && strstr(err, "--history") &&
+               strstr(err, "directory"),
+           "a directory: exit %d: %s", rc, err);
+  snprintf(args, sizeof args,
+           "pulse --arch " REVIEW_ARCH " --accel-g 0.731 --duration 0.237 --history %s/no/h.csv",
+           dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 3 && count_lines(err) == 1 && strstr(err, "No such file or directory"),
+           "a missing directory: exit %d: %s", rc, err);
+}

@@ -2,11 +2,13 @@
  * one arch under a rectangular ground-acceleration pulse; prints the run row
  * (TSV header + row) and optionally the step-end history as CSV. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../arch/arch.h"
@@ -107,7 +109,9 @@ static int write_history(const char *path, const aq_history *h)
   if (fclose(f) != 0)
     bad = 1;
   if (bad || rename(tmp, path) != 0) {
+    int e = errno;
     remove(tmp);
+    errno = e; /* for the caller's message */
     return -1;
   }
   return 0;
@@ -215,6 +219,11 @@ int aq_cmd_pulse(int argc, char **argv)
     return AQ_EXIT_USAGE;
   if (aq_opt_output_special("--history", hist))
     return AQ_EXIT_OUTPUT;
+  struct stat hsb;
+  if (hist && stat(hist, &hsb) == 0 && S_ISDIR(hsb.st_mode)) {
+    fprintf(stderr, "archquake: %s: --history: expected a file name, got a directory\n", hist);
+    return AQ_EXIT_OUTPUT;
+  }
   int until_rest = isnan(end);
   if (until_rest && isnan(cap))
     cap = dur + fmin(REST_CAP_S, REST_CAP_STEPS * dt);
@@ -294,7 +303,7 @@ int aq_cmd_pulse(int argc, char **argv)
             "the row is that of --end %g\n",
             file, end, end);
   if (hist && write_history(hist, &res.history) != 0) {
-    fprintf(stderr, "archquake: %s: cannot write the history\n", hist);
+    fprintf(stderr, "archquake: %s: cannot write the history: %s\n", hist, strerror(errno));
     status = AQ_EXIT_OUTPUT;
     goto out;
   }
