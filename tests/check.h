@@ -49,6 +49,10 @@ const char *aq_test_bin(void);
 int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
                 size_t err_cap);
 
+/* The bytes of the file at path, NUL-terminated, malloc'd (caller frees);
+ * *n (if not NULL) its length.  NULL if it cannot be read. */
+char *aq_test_read_file(const char *path, size_t *n);
+
 /* A fresh empty directory for this test under build/tmp (path in buf). */
 const char *aq_test_tmpdir(char *buf, size_t cap);
 

@@ -132,6 +132,26 @@ int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
   return WEXITSTATUS(rc);
 }
 
+char *aq_test_read_file(const char *path, size_t *n)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return NULL;
+  long len = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+  char *b = len >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc((size_t)len + 1) : NULL;
+  if (b && fread(b, 1, (size_t)len, f) != (size_t)len) {
+    free(b);
+    b = NULL;
+  }
+  fclose(f);
+  if (b) {
+    b[len] = '\0';
+    if (n)
+      *n = (size_t)len;
+  }
+  return b;
+}
+
 const char *aq_test_tmpdir(char *buf, size_t cap)
 {
   static unsigned counter;

@@ -21,27 +21,6 @@
  * rounding of the product. */
 #define SAMPLE_REL 1e-15
 
-static char *slurp(const char *path, size_t *n)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return NULL;
-  fseek(f, 0, SEEK_END);
-  long sz = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = malloc((size_t)sz + 1);
-  if (b && fread(b, 1, (size_t)sz, f) != (size_t)sz) {
-    free(b);
-    b = NULL;
-  }
-  fclose(f);
-  if (b) {
-    b[sz] = '\0';
-    *n = (size_t)sz;
-  }
-  return b;
-}
-
 /* Rows of the PROVENANCE.md summary table: | `file` | format | event | units
  * | npts | dt | PGA |.  Calls fn for each row whose format contains want. */
 typedef void (*row_fn)(const char *file, const char *units, long npts, double dt,
@@ -49,7 +28,7 @@ typedef void (*row_fn)(const char *file, const char *units, long npts, double dt
 static int for_rows(const char *want, row_fn fn)
 {
   size_t n;
-  char *txt = slurp(REC_DIR "PROVENANCE.md", &n);
+  char *txt = aq_test_read_file(REC_DIR "PROVENANCE.md", &n);
   if (!txt)
     return 0;
   int rows = 0;
@@ -128,7 +107,7 @@ AQ_TEST(io_csv_g_records_against_provenance)
 static char **at2_tokens(const char *path, size_t *count)
 {
   size_t n;
-  char *txt = slurp(path, &n);
+  char *txt = aq_test_read_file(path, &n);
   if (!txt)
     return NULL;
   char **tok = malloc(n * sizeof *tok);

@@ -11,27 +11,6 @@
 
 #define REC_DIR "tests/data/records/"
 
-static char *slurp(const char *path, size_t *n)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return NULL;
-  fseek(f, 0, SEEK_END);
-  long sz = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = malloc((size_t)sz + 1);
-  if (b && fread(b, 1, (size_t)sz, f) != (size_t)sz) {
-    free(b);
-    b = NULL;
-  }
-  fclose(f);
-  if (b) {
-    b[sz] = '\0';
-    *n = (size_t)sz;
-  }
-  return b;
-}
-
 static void put(const char *path, const void *data, size_t n)
 {
   FILE *f = fopen(path, "wb");
@@ -123,7 +102,7 @@ AQ_TEST(io_errors_refused_formats)
 static void edited_copy(const char *src, const char *dst, const char *from, const char *to)
 {
   size_t n;
-  char *t = slurp(src, &n);
+  char *t = aq_test_read_file(src, &n);
   char *at = t ? strstr(t, from) : NULL;
   if (!at) {
     aq_check(0, "cannot edit %s", src);
@@ -149,7 +128,7 @@ AQ_TEST(io_errors_at2)
   expect_fail(p, 1, NEED("big.AT2:", "NPTS", "expected 4001 values", "got 4000"));
   /* truncated in the middle of the data */
   size_t n;
-  char *t = slurp(src, &n);
+  char *t = aq_test_read_file(src, &n);
   snprintf(p, sizeof p, "%s/cut.AT2", d);
   put(p, t, n / 2);
   free(t);
@@ -204,7 +183,7 @@ AQ_TEST(io_errors_sac)
   char d[512], p[700], a[900];
   aq_test_tmpdir(d, sizeof d);
   size_t n;
-  unsigned char *t = (unsigned char *)slurp(REC_DIR "CI.CLC..HNE.D.2019.187.031923.SAC", &n);
+  unsigned char *t = (unsigned char *)aq_test_read_file(REC_DIR "CI.CLC..HNE.D.2019.187.031923.SAC", &n);
   if (!aq_check(t && n == 156636, "source SAC"))
     return;
   unsigned char *c = malloc(n);

@@ -75,27 +75,10 @@ AQ_TEST(review_output_special_file_is_not_replaced)
   }
 }
 
-/* Bytes of a file (NULL if unreadable); *len its length. */
-static char *slurp(const char *path, size_t *len)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return NULL;
-  long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-  char *b = n >= 0 && fseek(f, 0, SEEK_SET) == 0 ? malloc((size_t)n + 1) : NULL;
-  if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-    free(b);
-    b = NULL;
-  }
-  fclose(f);
-  *len = b ? (size_t)n : 0;
-  return b;
-}
-
 static int copy_file(const char *from, const char *to)
 {
   size_t n;
-  char *b = slurp(from, &n);
+  char *b = aq_test_read_file(from, &n);
   FILE *f = b ? fopen(to, "wb") : NULL;
   int ok = f && fwrite(b, 1, n, f) == n;
   if (f && fclose(f) != 0)
@@ -107,7 +90,7 @@ static int copy_file(const char *from, const char *to)
 static int same_bytes(const char *a, const char *b)
 {
   size_t na, nb;
-  char *x = slurp(a, &na), *y = slurp(b, &nb);
+  char *x = aq_test_read_file(a, &na), *y = aq_test_read_file(b, &nb);
   int same = x && y && na == nb && memcmp(x, y, na) == 0;
   free(x);
   free(y);

@@ -43,28 +43,6 @@ static const struct {
     {"records/CI.CLC..HNE.D.2019.187.031923.SAC", 39001, 0.01},
 };
 
-static char *slurp_file(const char *path, size_t *n)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return NULL;
-  fseek(f, 0, SEEK_END);
-  long len = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *s = malloc((size_t)len + 1);
-  if (s && fread(s, 1, (size_t)len, f) != (size_t)len) {
-    free(s);
-    s = NULL;
-  }
-  fclose(f);
-  if (s) {
-    s[len] = '\0';
-    if (n)
-      *n = (size_t)len;
-  }
-  return s;
-}
-
 /* Split a line into at most max tab-separated cells (in place). */
 static size_t cells(char *line, char **c, size_t max)
 {
@@ -442,7 +420,7 @@ AQ_TEST(suite_threads_give_identical_results)
     aq_check(rc == 0, "-j %d: exit %d: %s", k + 1, rc, err);
   }
   size_t n1 = 0, n2 = 0;
-  char *a = slurp_file(t[0], &n1), *b = slurp_file(t[1], &n2);
+  char *a = aq_test_read_file(t[0], &n1), *b = aq_test_read_file(t[1], &n2);
   aq_check(a && b && n1 == n2 && memcmp(a, b, n1) == 0 && n1 > 500,
            "text byte-identical (%zu, %zu bytes)", n1, n2);
   free(a);
@@ -460,8 +438,8 @@ AQ_TEST(suite_threads_give_identical_results)
     int rc = aq_test_run(args, NULL, 0, err, sizeof err);
     aq_check(rc == 0, "ode -j %d: exit %d: %s", k ? 3 : 1, rc, err);
   }
-  a = slurp_file(t[0], &n1);
-  b = slurp_file(t[1], &n2);
+  a = aq_test_read_file(t[0], &n1);
+  b = aq_test_read_file(t[1], &n2);
   aq_check(a && b && n1 == n2 && memcmp(a, b, n1) == 0 && n1 > 500,
            "ode: text byte-identical at -j 1 and -j 3 (%zu, %zu bytes)", n1, n2);
   free(a);
@@ -495,7 +473,7 @@ AQ_TEST(suite_corrupt_record_among_good_ones)
   /* a truncated AT2 (the header promises more values than follow) */
   snprintf(bad, sizeof bad, "%s/truncated.AT2", dir);
   size_t n = 0;
-  char *at2 = slurp_file("records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", &n);
+  char *at2 = aq_test_read_file("records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", &n);
   FILE *f = fopen(bad, "wb");
   if (f && at2)
     fwrite(at2, 1, n / 3, f);
@@ -606,11 +584,11 @@ AQ_TEST(suite_output_failures_leave_no_partial_file)
   snprintf(args, sizeof args, SUITE_RECORDS " --arch arches/thin.cfg --history -o %s", h5);
   int rc = run_limited(args, 256 * 1024, errp);
   aq_check(rc == 3, "failing write: exit 3 (%d)", rc);
-  char *e = slurp_file(errp, NULL);
+  char *e = aq_test_read_file(errp, NULL);
   aq_check(e && strstr(e, "suite.h5") && strstr(e, "File too large"), "clear message: %s",
            e ? e : "");
   free(e);
-  char *now = slurp_file(h5, NULL);
+  char *now = aq_test_read_file(h5, NULL);
   aq_check(now && strcmp(now, "yesterday\n") == 0, "existing target untouched");
   free(now);
   aq_check(count_files(dir, ".tmp") == 0, "no temporary left");
