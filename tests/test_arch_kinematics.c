@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "arch/model.h"
+#include "arch_fixture.h"
 #include "check.h"
 #include "units.h"
 
@@ -20,21 +21,11 @@ static const char *const arch_files[] = {"arches/oppenheim.cfg", "arches/thin.cf
                                          "arches/search.cfg"};
 enum { NFILES = sizeof arch_files / sizeof arch_files[0] };
 
-static aq_arch *load(const char *f)
-{
-  aq_arch *a = NULL;
-  aq_error e;
-  aq_error_clear(&e);
-  if (!aq_check(aq_arch_load(f, &a, &e) == AQ_OK, "load %s: %s", f, e.message))
-    return NULL;
-  return a;
-}
-
 AQ_TEST(arch_kinematics_derivatives_vs_fd)
 {
   gsl_set_error_handler_off();
   for (size_t f = 0; f < NFILES; f++) {
-    aq_arch *a = load(arch_files[f]);
+    aq_arch *a = aq_test_arch_load(arch_files[f]);
     if (!a)
       continue;
     for (int set = 0; set < 2; set++) {
@@ -100,7 +91,7 @@ AQ_TEST(arch_kinematics_derivatives_vs_fd)
 AQ_TEST(arch_kinematics_closure_along_path)
 {
   for (size_t f = 0; f < NFILES; f++) {
-    aq_arch *a = load(arch_files[f]);
+    aq_arch *a = aq_test_arch_load(arch_files[f]);
     if (!a)
       continue;
     double r = aq_arch_geom(a)->p.radius_m;
@@ -147,7 +138,7 @@ static aq_vec2 carry(const aq_path_point *pt, const aq_mass *body0, int b, aq_ve
 AQ_TEST(arch_kinematics_hinges_open)
 {
   for (size_t f = 0; f < NFILES; f++) {
-    aq_arch *a = load(arch_files[f]);
+    aq_arch *a = aq_test_arch_load(arch_files[f]);
     if (!a)
       continue;
     const aq_geom *g = aq_arch_geom(a);
@@ -189,7 +180,7 @@ AQ_TEST(arch_tables_vs_exact)
 {
   unsigned seed = 12345u;
   for (size_t f = 0; f < NFILES; f++) {
-    aq_arch *a = load(arch_files[f]);
+    aq_arch *a = aq_test_arch_load(arch_files[f]);
     if (!a)
       continue;
     for (int set = 0; set < 2; set++) {
@@ -241,7 +232,7 @@ AQ_TEST(arch_tables_vs_exact)
 AQ_TEST(arch_collapse_at_peak)
 {
   for (size_t f = 0; f < NFILES; f++) {
-    aq_arch *a = load(arch_files[f]);
+    aq_arch *a = aq_test_arch_load(arch_files[f]);
     if (!a)
       continue;
     for (int set = 0; set < 2; set++) {
@@ -265,7 +256,7 @@ AQ_TEST(arch_collapse_at_peak)
  * its body's rigid motion, fixed voussoirs not moving) equals m_T g y(s). */
 AQ_TEST(arch_potential_energy_by_voussoir)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_geom *g = aq_arch_geom(a);

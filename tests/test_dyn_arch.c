@@ -9,20 +9,9 @@
 
 #include "arch/arch.h"
 #include "arch/stepper.h"
+#include "arch_fixture.h"
 #include "check.h"
 #include "units.h"
-
-static aq_arch *load(const char *f)
-{
-  gsl_set_error_handler_off();
-  aq_arch *a = NULL;
-  aq_error e;
-  if (aq_arch_load(f, &a, &e) != AQ_OK) {
-    aq_check(0, "load %s: %s", f, e.message);
-    return NULL;
-  }
-  return a;
-}
 
 static aq_stepper *stepper(const aq_arch *a, aq_model m, double cor,
                            double rtol)
@@ -112,7 +101,7 @@ static double min_duration(aq_stepper *st, double a, double tol)
  * bound; the paper lost 0.4 % per cycle), the ode model to its tolerance. */
 AQ_TEST(dyn_arch_energy_conservation_oppenheim)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -185,7 +174,7 @@ AQ_TEST(dyn_arch_domain_workpath_vs_ode)
  * with an error O(1/r) (gravity's share of the impulse). */
 AQ_TEST(dyn_arch_domain_impulse_limit)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -216,7 +205,7 @@ AQ_TEST(dyn_arch_domain_impulse_limit)
  * duration grows without bound, logarithmically. */
 AQ_TEST(dyn_arch_domain_near_threshold)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -246,7 +235,7 @@ AQ_TEST(dyn_arch_domain_near_threshold)
  * its collapse time agrees with ode and it stays cheap (counters). */
 AQ_TEST(dyn_arch_marginal_collapse)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -283,7 +272,7 @@ AQ_TEST(dyn_arch_marginal_collapse)
  * drifted steadily: 4.7e-12 rad apart over this run, now 2.5e-16. */
 AQ_TEST(dyn_arch_pulse_no_drift)
 {
-  aq_arch *a = load("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);

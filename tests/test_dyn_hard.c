@@ -10,20 +10,9 @@
 
 #include "arch/arch.h"
 #include "arch/stepper.h"
+#include "arch_fixture.h"
 #include "check.h"
 #include "units.h"
-
-static aq_arch *hload(const char *f)
-{
-  gsl_set_error_handler_off();
-  aq_arch *a = NULL;
-  aq_error e;
-  if (aq_arch_load(f, &a, &e) != AQ_OK) {
-    aq_check(0, "load %s: %s", f, e.message);
-    return NULL;
-  }
-  return a;
-}
 
 /* Run model mdl on explicit steps; history on. */
 static int hrun(const aq_arch *a, aq_model mdl, double cor, int momentum,
@@ -82,7 +71,7 @@ static int hpulse(const aq_arch *a, aq_model mdl, double cor, int momentum,
  * not collapse (the shortest collapsing pulse at this ratio is longer). */
 AQ_TEST(dyn_hard_threshold_plus_1e4)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -113,7 +102,7 @@ AQ_TEST(dyn_hard_threshold_plus_1e4)
  * relative); far from collapse. */
 AQ_TEST(dyn_hard_10g_1ms)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -147,7 +136,7 @@ AQ_TEST(dyn_hard_10g_1ms)
  * then rest by the stated criterion; all the energy put in is dissipated. */
 AQ_TEST(dyn_hard_cor03_many_impacts)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -179,7 +168,7 @@ AQ_TEST(dyn_hard_cor03_many_impacts)
  * pulse sampled at the step midpoints converges as dt^2. */
 AQ_TEST(dyn_hard_time_steps_converge)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -239,7 +228,7 @@ AQ_TEST(dyn_hard_thin_and_thick)
 {
   const char *files[] = {"arches/thin.cfg", "arches/thick.cfg"};
   for (int f = 0; f < 2; f++) {
-    aq_arch *a = hload(files[f]);
+    aq_arch *a = aq_test_arch_load(files[f]);
     if (!a)
       continue;
     const aq_path *p = aq_arch_path(a, 0);
@@ -312,7 +301,7 @@ AQ_TEST(dyn_hard_thin_and_thick)
  * set never moves it. */
 AQ_TEST(dyn_hard_inadmissible_reverse)
 {
-  aq_arch *a = hload("arches/segmental.cfg");
+  aq_arch *a = aq_test_arch_load("arches/segmental.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
@@ -342,7 +331,7 @@ AQ_TEST(dyn_hard_inadmissible_reverse)
  * quiet index skips it: no step is integrated, no path is evaluated. */
 AQ_TEST(dyn_hard_quiet_record)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p0 = aq_arch_path(a, 0), *p1 = aq_arch_path(a, 1);
@@ -379,7 +368,7 @@ AQ_TEST(dyn_hard_quiet_record)
  * on collapse, impacts and peak rotation. */
 AQ_TEST(dyn_hard_random_steps)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p0 = aq_arch_path(a, 0), *p1 = aq_arch_path(a, 1);
@@ -441,7 +430,7 @@ AQ_TEST(dyn_hard_random_steps)
  * what a fresh stepper gives: no state carried between runs. */
 AQ_TEST(dyn_hard_runs_independent)
 {
-  aq_arch *a = hload("arches/oppenheim.cfg");
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);

@@ -9,27 +9,16 @@
 #include "arch/arch.h"
 #include "arch/paper.h"
 #include "arch/stepper.h"
+#include "arch_fixture.h"
 #include "check.h"
 #include "units.h"
-
-static aq_arch *pload(void)
-{
-  gsl_set_error_handler_off();
-  aq_arch *a = NULL;
-  aq_error e;
-  if (aq_arch_load("arches/oppenheim.cfg", &a, &e) != AQ_OK) {
-    aq_check(0, "load: %s", e.message);
-    return NULL;
-  }
-  return a;
-}
 
 /* Fig. 7 / eq. (14): with the torque terms the printed W_min to collapse
  * exceeds the potential energy m_T g y(s_c) (ERRATA item 5: it should
  * equal it). */
 AQ_TEST(dyn_paper_wmin_exceeds_pe)
 {
-  aq_arch *a = pload();
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   aq_error e;
@@ -55,7 +44,7 @@ AQ_TEST(dyn_paper_wmin_exceeds_pe)
  * (test_dyn_arch.c). */
 AQ_TEST(dyn_paper_energy_loss_per_cycle)
 {
-  aq_arch *a = pload();
+  aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
   if (!a)
     return;
   const aq_path *p = aq_arch_path(a, 0);
