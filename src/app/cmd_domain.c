@@ -24,7 +24,7 @@ static const char usage[] =
     "  --arch FILE      the arch file (.cfg)\n"
     "  --ratios LIST    comma-separated r > 1 (default 1.05,1.1,1.2,1.5,2,3,4)\n"
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default 0)\n"
-    "  --model M        workpath (default) | ode | paper\n"
+    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
     "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
     "  --max-duration S give up above this duration, s (default 100)\n"
@@ -33,7 +33,7 @@ static const char usage[] =
     "  --max-duration)\n"
     "Exit status: 0 success, 1 the arch or a run failed, 2 bad options.\n";
 
-static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 static const double FREE_TAIL_S = 30; /* free motion after the pulse */
 
 /* 1 if a pulse of a_mps2 for dur_s collapses the arch, 0 if not, -1 on error. */

@@ -37,7 +37,7 @@ static const char usage[] =
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1\n"
     "                   (default: the arch file's [dynamics] cor)\n"
     "  --impact RULE    cor | momentum (default: the arch file's)\n"
-    "  --model M        workpath (default) | ode | paper\n"
+    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
     "  --history FILE   write the step-end history as CSV\n"
     "  --help           this text\n"
@@ -47,7 +47,7 @@ static const char usage[] =
     "Exit status: 0 success, 1 the arch or the run failed, 2 bad options,\n"
     "3 the history could not be written.\n";
 
-static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
 /* Default end: candidate ends are duration + k * REST_CHUNK_S. */
 static const double REST_CHUNK_S = 1.0;

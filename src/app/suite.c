@@ -104,7 +104,7 @@ typedef struct {
   aq_text_layout layout;    /* with cfg->aligned */
 } suite;
 
-static const char *const model_names[] = {"workpath", "ode", "paper"};
+static const char *const model_names[] = {"workpath", "ode", "paper", "workpath-quad"};
 
 static void slot_clear(suite *S, rec_slot *r)
 {
@@ -531,7 +531,7 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   suite S;
   memset(&S, 0, sizeof S);
   S.cfg = c;
-  S.model_name = model_names[c->model <= AQ_MODEL_PAPER ? c->model : 0];
+  S.model_name = model_names[c->model <= AQ_MODEL_WORKPATH_QUAD ? c->model : 0];
   S.nscale = c->scales ? c->nscale : 1;
   S.nruns = c->narches * S.nscale;
   long nthreads = c->threads < 1 ? 1 : c->threads;

@@ -273,6 +273,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     if (tl_piece(w, p, s, d, S))
       return tl_fail(err, p, "no table piece", s);
     const aq_path_piece *pc = &w->pc;
+    if ((d > 0 && s >= pc->s_hi && s < sc) || (d < 0 && s <= pc->s_lo && s > 0))
+      return tl_fail(err, p, "the table piece ahead ends where it starts", s);
     double h = dt - t;
     tl_series ts;
     tl_build(pc, mt, g, a, s, v, w->tol, &h, &ts);
