@@ -92,30 +92,41 @@ static double horner(const double *q, int n, double t)
   return r;
 }
 
-/* A root of q (degree n) in (ta, tb], where q(ta) and q(tb) differ in sign
- * or q(tb) = 0: Newton, kept inside the shrinking bracket. */
-static double poly_root(const double *q, int n, double ta, double tb)
+/* q(t) and q'(t) in one pass (two interleaved chains). */
+static double horner_d(const double *q, int n, double t, double *d)
 {
-  double dq[TL_MAX_ORDER + 1];
-  for (int k = 0; k < n; k++)
-    dq[k] = (k + 1) * q[k + 1];
+  double r = q[n], r1 = 0;
+  for (int k = n - 1; k >= 0; k--) {
+    r1 = r1 * t + r;
+    r = r * t + q[k];
+  }
+  *d = r1;
+  return r;
+}
+
+/* A root of q (degree n) in (ta, tb], where q(ta) and q(tb) differ in sign
+ * or q(tb) = 0, from the guess t0: Newton, kept inside the shrinking
+ * bracket. */
+static double poly_root(const double *q, int n, double ta, double tb, double t0)
+{
   double fa = horner(q, n, ta), fb = horner(q, n, tb);
   if (fb == 0)
     return tb;
   double lo = ta, hi = tb;
   int neg_lo = fa < 0;
-  double t = fa != fb ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
+  double t = t0;
+  if (!(t > lo && t < hi))
+    t = fa != fb ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
   if (!(t > lo && t < hi))
     t = 0.5 * (lo + hi);
   for (int it = 0; it < TL_ROOT_ITER; it++) {
-    double f = horner(q, n, t);
+    double d, f = horner_d(q, n, t, &d);
     if (f == 0)
       return t;
     if ((f < 0) == neg_lo)
       lo = t;
     else
       hi = t;
-    double d = horner(dq, n - 1, t);
     double tn = d != 0 ? t - f / d : NAN;
     if (!(tn > lo && tn < hi))
       tn = 0.5 * (lo + hi);
@@ -124,6 +135,21 @@ static double poly_root(const double *q, int n, double ta, double tb)
     t = tn;
   }
   return hi;
+}
+
+/* The smallest positive root of b t + a t^2 = r (a quadratic model), or
+ * NAN. */
+static double quad_guess(double a, double b, double r)
+{
+  double disc = b * b + 4 * a * r;
+  if (!(disc >= 0))
+    return NAN;
+  double sq = sqrt(disc);
+  double t1 = 2 * r / (b + (b >= 0 ? sq : -sq)); /* stable form */
+  double t2 = a != 0 ? (-b + (b >= 0 ? -sq : sq)) / (2 * a) : NAN;
+  if (t1 > 0 && (!(t2 > 0) || t1 < t2))
+    return t1;
+  return t2 > 0 ? t2 : NAN;
 }
 
 /* The series of one sub-step: s(t) = s0 + sum_{k=1..n} c_k t^k. */
@@ -305,7 +331,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
       turn = 1;
       if (S->turn || (s0 > 0 && (s + bound > S->peak_s || s + bound > pc->s_hi)) ||
           (s0 < 0 && s - bound < pc->s_lo)) {
-        seg[1] = poly_root(dq, n - 1, 0, h);
+        seg[1] = poly_root(dq, n - 1, 0, h,
+                           ts.c[2] != 0 ? -ts.c[1] / (2 * ts.c[2]) : NAN);
         nseg = 2;
         turn = 2;
       }
@@ -325,7 +352,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         for (int i = 0; i <= n; i++)
           q[i] = ts.c[i];
         q[0] = s - (cross > 0 ? pc->s_hi : pc->s_lo);
-        tx = poly_root(q, n, seg[k], seg[k + 1]);
+        tx = poly_root(q, n, seg[k], seg[k + 1],
+                       k == 0 ? quad_guess(ts.c[2], ts.c[1], -q[0]) : NAN);
         if (k == 0 && nseg == 2)
           turn = 0; /* the turning point lies beyond the crossing */
       }
@@ -344,13 +372,13 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         }
       }
     }
-    double vn = horner(dq, n - 1, tx);
+    double vn, un = horner_d(ts.c, n, tx, &vn);
     if (cross > 0) {
       s = pc->s_hi;
     } else if (cross < 0) {
       s = pc->s_lo;
     } else {
-      s += horner(ts.c, n, tx);
+      s += un;
       s = s < pc->s_lo ? pc->s_lo : (s > pc->s_hi ? pc->s_hi : s);
     }
     v = vn;
