@@ -104,12 +104,12 @@ static double horner_d(const double *q, int n, double t, double *d)
   return r;
 }
 
-/* A root of q (degree n) in (ta, tb], where q(ta) and q(tb) differ in sign
- * or q(tb) = 0, from the guess t0: Newton, kept inside the shrinking
- * bracket. */
-static double poly_root(const double *q, int n, double ta, double tb, double t0)
+/* A root of q (degree n) in (ta, tb], where fa = q(ta) and fb = q(tb)
+ * differ in sign or fb = 0, from the guess t0: Newton, kept inside the
+ * shrinking bracket. */
+static double poly_root(const double *q, int n, double ta, double tb,
+                        double fa, double fb, double t0)
 {
-  double fa = horner(q, n, ta), fb = horner(q, n, tb);
   if (fb == 0)
     return tb;
   double lo = ta, hi = tb;
@@ -331,7 +331,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
       turn = 1;
       if (S->turn || (s0 > 0 && (s + bound > S->peak_s || s + bound > pc->s_hi)) ||
           (s0 < 0 && s - bound < pc->s_lo)) {
-        seg[1] = poly_root(dq, n - 1, 0, h,
+        seg[1] = poly_root(dq, n - 1, 0, h, dq[0], vh,
                            ts.c[2] != 0 ? -ts.c[1] / (2 * ts.c[2]) : NAN);
         nseg = 2;
         turn = 2;
@@ -341,6 +341,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
      * each) */
     int cross = 0; /* +1 through s_hi, -1 through s_lo */
     double tx = h;
+    double ua = 0; /* s - s0 at the segment's start */
     for (int k = 0; k < nseg && !cross; k++) {
       double ub = horner(ts.c, n, seg[k + 1]), sb = s + ub;
       if (sb > pc->s_hi)
@@ -352,11 +353,12 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         for (int i = 0; i <= n; i++)
           q[i] = ts.c[i];
         q[0] = s - (cross > 0 ? pc->s_hi : pc->s_lo);
-        tx = poly_root(q, n, seg[k], seg[k + 1],
+        tx = poly_root(q, n, seg[k], seg[k + 1], q[0] + ua, q[0] + ub,
                        k == 0 ? quad_guess(ts.c[2], ts.c[1], -q[0]) : NAN);
         if (k == 0 && nseg == 2)
           turn = 0; /* the turning point lies beyond the crossing */
       }
+      ua = ub;
     }
     if (turn == 1 && (s > 0 || s + horner(ts.c, n, h) > 0)) {
       S->reversals++;
