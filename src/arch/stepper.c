@@ -434,7 +434,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       }
       double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
       aq_leg_end end = AQ_LEG_TIME;
-      S.peak_s = fmax(m.s, smax[set]); /* legs locate only turning points above */
+      /* legs locate only turning points above the set's largest s so far */
+      S.peak_s = fmax(m.s, smax[set]);
       hc.p = st->path[set];
       hc.set = set;
       hc.t0_s = steps->t_s[i] + t_in;
