@@ -242,3 +242,67 @@ AQ_TEST(dyn_history_samples_turning_points)
   aq_steps_free(&s);
   aq_arch_free(a);
 }
+
+/* Random step lists (0.1 ms to 80 ms, up to 2.2 lambda0 g either way, any
+ * COR, either impact rule) on the thick arch and on the searched one,
+ * where a sub-step could start at a piece's end, dip into the piece and
+ * come back through that same end (once a leg without progress): every
+ * run completes and agrees with the ode on collapse and impacts. */
+AQ_TEST(dyn_taylor_random_steps_vs_ode)
+{
+  const char *files[] = {"arches/thick.cfg", "arches/search.cfg"};
+  enum { N = 400, RUNS = 40 };
+  static double t[N], d[N], acc[N];
+  for (int f = 0; f < 2; f++) {
+    aq_arch *a = aq_test_arch_load(files[f]);
+    if (!a)
+      continue;
+    const aq_path *p0 = aq_arch_path(a, 0), *p1 = aq_arch_path(a, 1);
+    double l1 = p1->admissible ? p1->lambda0 * p1->g_mps2 : p0->lambda0 * p0->g_mps2;
+    unsigned long long x = 0x2545f4914f6cdd1dULL + (unsigned long long)f;
+#define TRNG() ((x = x * 6364136223846793005ULL + 1442695040888963407ULL), \
+                (double)(x >> 11) / 9007199254740992.0)
+    int bad = 0, moved = 0;
+    for (int run = 0; run < RUNS; run++) {
+      double tt = 0, amp = 0.8 + 1.4 * TRNG();
+      for (size_t i = 0; i < N; i++) {
+        t[i] = tt;
+        d[i] = 1e-4 + 0.08 * TRNG() * TRNG();
+        tt += d[i];
+        double u = 2 * TRNG() - 1;
+        acc[i] = u * amp * (u < 0 ? p0->lambda0 * p0->g_mps2 : l1);
+      }
+      double cor = TRNG();
+      int mom = TRNG() < 0.3;
+      aq_error e;
+      aq_steps s;
+      if (aq_steps_from_list(t, d, acc, N, &s, &e) != AQ_OK)
+        continue;
+      aq_result r[2];
+      int ok[2];
+      for (int m = 0; m < 2; m++) {
+        aq_stepper *st = aq_stepper_alloc(p0, p1, m ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH, &e);
+        aq_stepper_set_cor(st, cor);
+        aq_stepper_set_impact(st, mom);
+        aq_stepper_set_ode_rtol(st, 1e-12);
+        ok[m] = aq_stepper_run(st, &s, &r[m], &e) == AQ_OK;
+        if (!ok[m])
+          aq_check(0, "%s run %d model %d: %s", files[f], run, m, e.message);
+        aq_stepper_free(st);
+      }
+      if (ok[0] && ok[1]) {
+        bad += r[0].collapsed != r[1].collapsed || r[0].impacts != r[1].impacts;
+        moved += r[0].steps_moving > 0;
+      }
+      for (int m = 0; m < 2; m++)
+        if (ok[m])
+          aq_result_free(&r[m]);
+      aq_steps_free(&s);
+    }
+#undef TRNG
+    aq_check(bad == 0 && moved >= RUNS / 2,
+             "%s: %d of %d runs differ from the ode in collapse or impacts; %d moved",
+             files[f], bad, RUNS, moved);
+    aq_arch_free(a);
+  }
+}

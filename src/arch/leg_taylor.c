@@ -324,13 +324,16 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     int nseg = 1, turn = 0;
     if (s0 != 0 && sgn(vh) == -s0) {
       /* a turning point: located only when it may set a peak, cross a
-       * piece end, or be sampled (bound: sum |c_k| h^k) */
+       * piece end before it (bound: sum |c_k| h^k), end the sub-step
+       * beyond a piece end (the crossing after it needs the split), or be
+       * sampled */
       double bound = 0, tk = h;
       for (int k = 1; k <= n; k++, tk *= h)
         bound += fabs(ts.c[k]) * tk;
+      double sh = s + horner(ts.c, n, h);
       turn = 1;
       if (S->turn || (s0 > 0 && (s + bound > S->peak_s || s + bound > pc->s_hi)) ||
-          (s0 < 0 && s - bound < pc->s_lo)) {
+          (s0 < 0 && s - bound < pc->s_lo) || sh > pc->s_hi || sh < pc->s_lo) {
         seg[1] = poly_root(dq, n - 1, 0, h, dq[0], vh,
                            ts.c[2] != 0 ? -ts.c[1] / (2 * ts.c[2]) : NAN);
         nseg = 2;
