@@ -13,6 +13,7 @@
 #include "arch/stepper.h"
 #include "arch_fixture.h"
 #include "check.h"
+#include "test_dyn_steps.h"
 #include "units.h"
 
 static const double ODE_RTOL = 1e-13; /* the reference's tolerance */
@@ -21,44 +22,7 @@ static const double ODE_RTOL = 1e-13; /* the reference's tolerance */
 static int trun(const aq_arch *a, aq_model mdl, double cor, const aq_steps *s,
                 double k, aq_result *r)
 {
-  aq_error e;
-  aq_stepper *st = aq_stepper_alloc(aq_arch_path(a, 0), aq_arch_path(a, 1),
-                                    mdl, &e);
-  int ok = st != NULL;
-  if (st) {
-    aq_stepper_set_cor(st, cor);
-    aq_stepper_set_ode_rtol(st, ODE_RTOL);
-    aq_stepper_set_history(st, 1);
-    aq_stepper_set_scale(st, k);
-    ok = aq_stepper_run(st, s, r, &e) == AQ_OK;
-  }
-  if (!ok)
-    aq_check(0, "model %d: %s", (int)mdl, e.message);
-  aq_stepper_free(st);
-  return ok;
-}
-
-/* A pulse acc for dur, then free until end, in steps of dt. */
-static int tpulse(double acc, double dur, double end, double dt, aq_steps *s)
-{
-  size_t n1 = (size_t)ceil(dur / dt - 1e-9), n2 = (size_t)ceil((end - dur) / dt - 1e-9);
-  size_t n = n1 + n2;
-  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d),
-         *ac = malloc(n * sizeof *ac);
-  for (size_t i = 0; i < n; i++) {
-    int first = i < n1;
-    double t0 = first ? 0 : dur, span = first ? dur : end - dur;
-    size_t k = first ? i : i - n1, m = first ? n1 : n2;
-    t[i] = t0 + span * k / m;
-    d[i] = t0 + span * (k + 1) / m - t[i];
-    ac[i] = first ? acc : 0;
-  }
-  aq_error e;
-  int ok = aq_steps_from_list(t, d, ac, n, s, &e) == AQ_OK;
-  free(t);
-  free(d);
-  free(ac);
-  return ok;
+  return tds_run(a, mdl, cor, 0, ODE_RTOL, k, s, r);
 }
 
 typedef struct {
@@ -102,7 +66,7 @@ AQ_TEST(dyn_taylor_hard_cases_vs_ode)
     if (k->ratio == -1)
       acc = p->act_sign * 10 * AQ_G0_MPS2;
     aq_steps s;
-    if (!aq_check(tpulse(acc, k->dur, k->end, k->dt, &s), "%s: steps", k->what)) {
+    if (!aq_check(tds_pulse(acc, k->dur, k->end, k->dt, &s), "%s: steps", k->what)) {
       aq_arch_free(a);
       continue;
     }
@@ -206,7 +170,7 @@ AQ_TEST(dyn_history_samples_turning_points)
     return;
   const aq_path *p = aq_arch_path(a, 0);
   aq_steps s;
-  if (!tpulse(p->act_sign * 0.55 * AQ_G0_MPS2, 0.45, 6, 0.05, &s)) {
+  if (!tds_pulse(p->act_sign * 0.55 * AQ_G0_MPS2, 0.45, 6, 0.05, &s)) {
     aq_arch_free(a);
     return;
   }
@@ -260,36 +224,20 @@ AQ_TEST(dyn_taylor_random_steps_vs_ode)
     const aq_path *p0 = aq_arch_path(a, 0), *p1 = aq_arch_path(a, 1);
     double l1 = p1->admissible ? p1->lambda0 * p1->g_mps2 : p0->lambda0 * p0->g_mps2;
     unsigned long long x = 0x2545f4914f6cdd1dULL + (unsigned long long)f;
-#define TRNG() ((x = x * 6364136223846793005ULL + 1442695040888963407ULL), \
-                (double)(x >> 11) / 9007199254740992.0)
     int bad = 0, moved = 0;
     for (int run = 0; run < RUNS; run++) {
-      double tt = 0, amp = 0.8 + 1.4 * TRNG();
-      for (size_t i = 0; i < N; i++) {
-        t[i] = tt;
-        d[i] = 1e-4 + 0.08 * TRNG() * TRNG();
-        tt += d[i];
-        double u = 2 * TRNG() - 1;
-        acc[i] = u * amp * (u < 0 ? p0->lambda0 * p0->g_mps2 : l1);
-      }
-      double cor = TRNG();
-      int mom = TRNG() < 0.3;
+      tds_random(&x, p0->lambda0 * p0->g_mps2, l1, t, d, acc, N);
+      double cor = tds_rng(&x);
+      int mom = tds_rng(&x) < 0.3;
       aq_error e;
       aq_steps s;
       if (aq_steps_from_list(t, d, acc, N, &s, &e) != AQ_OK)
         continue;
       aq_result r[2];
       int ok[2];
-      for (int m = 0; m < 2; m++) {
-        aq_stepper *st = aq_stepper_alloc(p0, p1, m ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH, &e);
-        aq_stepper_set_cor(st, cor);
-        aq_stepper_set_impact(st, mom);
-        aq_stepper_set_ode_rtol(st, 1e-12);
-        ok[m] = aq_stepper_run(st, &s, &r[m], &e) == AQ_OK;
-        if (!ok[m])
-          aq_check(0, "%s run %d model %d: %s", files[f], run, m, e.message);
-        aq_stepper_free(st);
-      }
+      for (int m = 0; m < 2; m++)
+        ok[m] = tds_run(a, m ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH, cor, mom,
+                        1e-12, 1, &s, &r[m]);
       if (ok[0] && ok[1]) {
         bad += r[0].collapsed != r[1].collapsed || r[0].impacts != r[1].impacts;
         moved += r[0].steps_moving > 0;
@@ -299,7 +247,6 @@ AQ_TEST(dyn_taylor_random_steps_vs_ode)
           aq_result_free(&r[m]);
       aq_steps_free(&s);
     }
-#undef TRNG
     aq_check(bad == 0 && moved >= RUNS / 2,
              "%s: %d of %d runs differ from the ode in collapse or impacts; %d moved",
              files[f], bad, RUNS, moved);
