@@ -174,7 +174,8 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   }
   shift5(pp, u0);
   shift5(mm, u0);
-  double K[N + 1] = {0}, F[N + 1], G[N];
+  double K[N + 1] = {0}, Fz[N + 6] = {0}, G[N];
+  double *F = Fz + 5; /* F[-5..-1] = 0: the division below runs 5 terms */
   K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
   for (int k = 0; k < 6 && k + 1 <= N; k++)
     K[k + 1] = pp[k] / (k + 1);
@@ -193,22 +194,21 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   double scale = 0;
   for (int k = 0; k + 2 <= N; k++) {
     /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
-    double f = K[k + 1];
-    for (int j = 1; j <= 5 && j <= k + 1; j++)
-      f -= mm[j] * F[k + 1 - j];
+    double f = K[k + 1] - mm[1] * F[k] - mm[2] * F[k - 1] - mm[3] * F[k - 2] -
+               mm[4] * F[k - 3] - mm[5] * F[k - 4];
     F[k + 1] = f * im0;
     G[k] = (k + 1) * F[k + 1];
     /* the powers of u at order k (c_1..c_k are known) */
     U[1][k] = c[k];
+    double comp = k == 0 ? G[0] : G[1] * c[k];
     for (int j = 2; j <= k; j++) {
+      const double *up = &U[j - 1][k - 1]; /* U[j-1][k-i] = up[1 - i] */
       double sum = 0;
       for (int i = 1; i <= k - j + 1; i++)
-        sum += c[i] * U[j - 1][k - i];
+        sum += c[i] * up[1 - i];
       U[j][k] = sum;
+      comp += G[j] * sum;
     }
-    double comp = k == 0 ? G[0] : 0;
-    for (int j = 1; j <= k; j++)
-      comp += G[j] * U[j][k];
     c[k + 2] = comp / ((k + 1) * (k + 2));
     n = k + 2;
     if (n == 3) /* the sub-step's motion */

@@ -63,6 +63,7 @@ struct aq_workpath {
   size_t n;           /* table intervals */
   double *bp;         /* n+1 breakpoints, rad */
   double *coef;       /* n * NF * 6 power-basis coefficients in t = (s - bp[i]) / h_i */
+  aq_path_piece *piece; /* n pieces for path.h (coefficients in u = s - bp[i]) */
   size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
@@ -224,7 +225,7 @@ static int eval_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
   const aq_workpath *w = ctx;
   if (clamp_s(w, &s) != 0)
     return -1;
-  piece_of(w, interval_of(w, s, dir), pc);
+  *pc = w->piece[interval_of(w, s, dir)];
   return 0;
 }
 
@@ -395,6 +396,13 @@ static int build_tables(aq_workpath *w)
     refine(&rc, i == 0 ? 0.0 : sc * (double)i / TABLE_N0, node[i],
            i + 1 == TABLE_N0 ? sc : sc * (double)(i + 1) / TABLE_N0, node[i + 1], 0, HUGE_VAL);
   w->tab_err = rc.err;
+  if (!rc.failed && w->n > 0) {
+    w->piece = malloc(w->n * sizeof *w->piece);
+    if (!w->piece)
+      return -1;
+    for (size_t i = 0; i < w->n; i++)
+      piece_of(w, i, &w->piece[i]);
+  }
   return rc.too_many ? -2 : rc.failed ? -1 : 0;
 }
 
@@ -458,6 +466,7 @@ void aq_workpath_free(aq_workpath *w)
   if (!w)
     return;
   free(w->coef);
+  free(w->piece);
   free(w->bp);
   free(w);
 }
