@@ -8,7 +8,7 @@
  * records merged with --merge-tol), workpath-quad (Chebyshev panels, two
  * settings), the ode model at several rtol, the paper model.  Reference:
  * ode at rtol 1e-12 on unmerged steps.
- * Reported per case: moving steps, the reference's and the default's
+ * Reported per case: moving steps, impacts, the reference's and the default's
  * median times, their ratio and the default's errors.  Per setting: the
  * sum over cases of the median time per run, the speed ratio to the
  * reference and to ode at 1e-8, the smallest per-case ratio to the
@@ -222,7 +222,8 @@ int main(void)
   enum { NS = sizeof set / sizeof set[0], REF = 9, ODE8 = 7, QUAD = 4 };
   static double tmed[NS][MAX_CASES], peak[NS][MAX_CASES], tc[NS][MAX_CASES];
   static int coll[NS][MAX_CASES];
-  static size_t evals[NS][MAX_CASES], moving[NS][MAX_CASES], subs[NS][MAX_CASES];
+  static size_t evals[NS][MAX_CASES], moving[NS][MAX_CASES], subs[NS][MAX_CASES],
+      impacts[NS][MAX_CASES];
   for (size_t c = 0; c < nc; c++) {
     /* interleave the settings in each repetition: same machine state */
     double ts[NS][REPS];
@@ -238,6 +239,7 @@ int main(void)
         evals[k][c] = r.evals;
         moving[k][c] = r.steps_moving;
         subs[k][c] = r.substeps;
+        impacts[k][c] = r.impacts;
         aq_result_free(&r);
       }
     for (size_t k = 0; k < NS; k++)
@@ -245,14 +247,14 @@ int main(void)
   }
   printf("Cases (%zu), reference = ode rtol 1e-12; COR 0.7; records scaled to "
          "PGA 2.5 and 5 lambda0 g:\n", nc);
-  printf("  %-32s %6s %6s %-9s %10s %9s %7s %9s %9s %9s\n", "case", "steps",
-         "moving", "ref", "ode12_ms", "wp_ms", "x_ode12", "err_peak", "err_tc_s",
-         "quad_ms");
+  printf("  %-32s %6s %6s %5s %-9s %10s %9s %7s %9s %9s %9s\n", "case", "steps",
+         "moving", "imp", "ref", "ode12_ms", "wp_ms", "x_ode12", "err_peak",
+         "err_tc_s", "quad_ms");
   for (size_t c = 0; c < nc; c++) {
     double ep = fabs(peak[0][c] / peak[REF][c] - 1);
     double et = coll[0][c] && coll[REF][c] ? fabs(tc[0][c] - tc[REF][c]) : 0;
-    printf("  %-32s %6zu %6zu %-9s %10.3f %9.3f %7.1f %9.2g %9.2g %9.3f\n",
-           cs[c].name, cs[c].steps[0].n, moving[REF][c],
+    printf("  %-32s %6zu %6zu %5zu %-9s %10.3f %9.3f %7.1f %9.2g %9.2g %9.3f\n",
+           cs[c].name, cs[c].steps[0].n, moving[REF][c], impacts[0][c],
            coll[REF][c] ? "collapses" : "survives", 1e3 * tmed[REF][c],
            1e3 * tmed[0][c], tmed[REF][c] / tmed[0][c], ep, et,
            1e3 * tmed[QUAD][c]);
