@@ -40,8 +40,8 @@
 /* Junction length, s: the half-cosine that joins each end of the record to
  * its zero pad lasts this long, or one period of the low-pass corner if
  * that is longer (a step would ring at the low-pass corner).  0.1 s changes
- * the PGV of the shipped PEER records by at most 0.2 %; 1/fc (33 s) would
- * add up to 24 % (a record ending at a few mg; docs/processing.md). */
+ * the PGV of the shipped PEER records by at most 0.3 %; 1/fc (33 s) would
+ * add up to 24 % (IELC180 starts at -6.4 mg; docs/processing.md). */
 #define AQ_JUNCTION_S 0.1
 #define AQ_ORDER_MAX 64 /* beyond this the response is a brick wall anyway */
 
