@@ -3,8 +3,8 @@
  * Butterworth filter, scale.
  *
  * Order of operations (docs/processing.md):
- *   1. detrend the original samples: remove the mean, or the least-squares
- *      line (gsl_fit_linear), or nothing;
+ *   1. detrend the original samples: remove the least-squares line (closed
+ *      form; the default), or the mean, or nothing;
  *   2. with --taper FRAC > 0 only: Hann (cosine) taper over FRAC of the
  *      record at each end (default 0: the record itself is not tapered);
  *   3. zero pads: total 1.5 n / fc seconds (n = order, fc = high-pass corner;
@@ -23,8 +23,6 @@
  *   6. multiply by the scale factor.
  * With filter = 0 (--no-filter) steps 2-5 are skipped and there are no pads.
  */
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_fit.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -146,37 +144,31 @@ static aq_status check_opts(const aq_record *rec, const aq_signal_opts *o,
   return AQ_OK;
 }
 
+/* Remove the mean, or the least-squares line a + b i against the sample
+ * index (times scale out), or nothing.  The line in closed form, two passes,
+ * no allocation: with c = (n - 1)/2 (the mean index), b = sum (i - c) y_i /
+ * S with S = sum (i - c)^2 = n (n^2 - 1) / 12, and a + b i = mean + b (i - c). */
 static aq_status detrend(double *y, size_t n, aq_detrend how, const char *in,
                          aq_error *err)
 {
   if (how == AQ_DETREND_NONE)
     return AQ_OK;
-  if (how == AQ_DETREND_MEAN || n < 2) {
-    double mean = 0;
+  double mean = 0;
+  for (size_t i = 0; i < n; i++)
+    mean += y[i];
+  mean /= (double)n;
+  double b = 0, c = 0.5 * ((double)n - 1.0);
+  if (how == AQ_DETREND_LINEAR && n >= 2) {
+    double dn = (double)n, sxy = 0;
     for (size_t i = 0; i < n; i++)
-      mean += y[i];
-    mean /= (double)n;
-    for (size_t i = 0; i < n; i++)
-      y[i] -= mean;
-    return AQ_OK;
+      sxy += ((double)i - c) * (y[i] - mean);
+    b = sxy / (dn * (dn * dn - 1.0) / 12.0);
+    if (!isfinite(b))
+      return aq_error_set(err, AQ_ENUMERIC, in, -1, -1, "--detrend",
+                          "expected a finite least-squares slope, got %g", b);
   }
-  /* least-squares line against the sample index (times scale out) */
-  double *x = malloc(n * sizeof *x);
-  if (!x)
-    return aq_error_set(err, AQ_ENOMEM, in, -1, -1, "--detrend",
-                        "cannot allocate %zu samples", n);
   for (size_t i = 0; i < n; i++)
-    x[i] = (double)i;
-  double c0, c1, cov00, cov01, cov11, sumsq;
-  int gs = gsl_fit_linear(x, 1, y, 1, n, &c0, &c1, &cov00, &cov01, &cov11,
-                          &sumsq);
-  free(x);
-  if (gs != GSL_SUCCESS || !isfinite(c0) || !isfinite(c1))
-    return aq_error_set(err, AQ_ENUMERIC, in, -1, -1, "--detrend",
-                        "linear least-squares fit failed: %s",
-                        gsl_strerror(gs));
-  for (size_t i = 0; i < n; i++)
-    y[i] -= c0 + c1 * (double)i;
+    y[i] -= mean + b * ((double)i - c);
   return AQ_OK;
 }
 
