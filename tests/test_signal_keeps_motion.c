@@ -81,6 +81,18 @@ static size_t peer_files(glob_t *g)
   return g->gl_pathc;
 }
 
+/* A synthetic record of n samples at dt_s, zeroed (the caller frees
+ * r->acc_mps2); returns 1 if allocated. */
+static int synth_rec(aq_record *r, char *path, size_t n, double dt_s)
+{
+  memset(r, 0, sizeof *r);
+  r->path = path;
+  r->npts = n;
+  r->dt_s = dt_s;
+  r->acc_mps2 = calloc(n, sizeof(double));
+  return aq_check(r->acc_mps2 != NULL, "alloc %zu samples", n);
+}
+
 static int process_default(const aq_record *r, aq_processed *p)
 {
   aq_signal_opts o;
@@ -178,12 +190,7 @@ AQ_TEST(signal_default_removes_offset_and_drift_keeps_pulse)
 AQ_TEST(signal_default_corner_on_short_record)
 {
   aq_record r;
-  memset(&r, 0, sizeof r);
-  r.path = "short-25s.rec";
-  r.npts = 2500;
-  r.dt_s = 0.01;
-  r.acc_mps2 = calloc(r.npts, sizeof(double));
-  if (!aq_check(r.acc_mps2 != NULL, "alloc"))
+  if (!synth_rec(&r, "short-25s.rec", 2500, 0.01))
     return;
   for (size_t i = 0; i < r.npts; i++)
     r.acc_mps2[i] = sin(0.37 * (double)i);
@@ -217,12 +224,7 @@ AQ_TEST(signal_default_corner_on_short_record)
 AQ_TEST(signal_pads_join_the_record_without_a_step)
 {
   aq_record r;
-  memset(&r, 0, sizeof r);
-  r.path = "constant.rec";
-  r.npts = 4000;
-  r.dt_s = 0.01;
-  r.acc_mps2 = malloc(r.npts * sizeof(double));
-  if (!aq_check(r.acc_mps2 != NULL, "alloc"))
+  if (!synth_rec(&r, "constant.rec", 4000, 0.01))
     return;
   for (size_t i = 0; i < r.npts; i++)
     r.acc_mps2[i] = 1.0;
