@@ -2,9 +2,9 @@
  * leg contract): time-Taylor series of s(t) on the tables' pieces.
  *
  * Within one table piece (path.h aq_path_piece) the work term
- *     P(s) = dKE/ds = -m_T (a_g dx/ds + g dy/ds)          (eq. (19) per
- *                                                   ERRATA item 5, d/ds)
- * and the generalised mass M(s) (ERRATA item 4) are polynomials, so the
+ *     P(s) = dKE/ds = -m_T (a_g dx/ds + g dy/ds)     (eq. (19) per
+ *                                            docs/method.md sec. 5, d/ds)
+ * and the generalised mass M(s) (docs/method.md sec. 4) are polynomials, so the
  * kinetic energy KE(s) = KE0 + int_s0^s P is a polynomial too.  The energy
  * balance 1/2 M(s) sdot^2 = KE(s), differentiated in time, gives
  *     s'' = F'(s),   F = KE / M                                  (TL)

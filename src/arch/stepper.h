@@ -2,8 +2,8 @@
  * constant-acceleration steps (CVODE-like lifecycle: alloc, set options,
  * run, read counters from the result, free).
  *
- * Models: AQ_MODEL_WORKPATH (default: exact energy balance, ERRATA items
- * 4-9, integrated as time-Taylor series on the tables' pieces),
+ * Models: AQ_MODEL_WORKPATH (default: exact energy balance, docs/method.md
+ * sec. 4-9, integrated as time-Taylor series on the tables' pieces),
  * AQ_MODEL_WORKPATH_QUAD (the same balance by time quadrature; a second
  * reference), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2;
  * the reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison
