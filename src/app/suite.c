@@ -22,6 +22,7 @@
 #include "../units.h"
 #include "app.h"
 #include "cleanup.h"
+#include "opt.h"
 
 /* Records in flight per worker thread: enough that a worker finishing a
  * short record finds the next one while a long one is still running. */
@@ -487,10 +488,13 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
                      c->threads};
   s = aq_h5_write_root(w, &root, err);
   for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
+    /* the values the runs use: --cor over the file's; none with momentum */
+    aq_arch_dynamics used = *aq_arch_dynamics_of(S->arches[a]);
+    used.cor = used.impact == AQ_IMPACT_MOMENTUM ? NAN : isnan(c->cor) ? used.cor : c->cor;
     aq_h5_arch ha = {aq_arch_name(S->arches[a]),
                      c->arch_paths[a],
                      aq_arch_config_text(S->arches[a]),
-                     aq_arch_dynamics_of(S->arches[a]),
+                     &used,
                      {aq_arch_path(S->arches[a], 0), aq_arch_path(S->arches[a], 1)}};
     s = aq_h5_write_arch(w, a, &ha, err);
   }
@@ -559,6 +563,21 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
       aq_error_print(&e, stderr);
       bad_arch = 1;
     }
+  }
+  /* One name, one arch: rows are labelled and compared by name.  An option
+   * that cannot act on an arch is refused, not ignored. */
+  for (size_t a = 0; !bad_arch && a < c->narches; a++) {
+    for (size_t b = 0; b < a; b++)
+      if (strcmp(aq_arch_name(S.arches[a]), aq_arch_name(S.arches[b])) == 0) {
+        fprintf(stderr, "archquake: %s: name: expected a name unlike the other arches', "
+                        "got \"%s\", the name of %s too\n",
+                c->arch_paths[a], aq_arch_name(S.arches[a]), c->arch_paths[b]);
+        bad_arch = 1;
+        break;
+      }
+    bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
+                                    aq_arch_dynamics_of(S.arches[a])->impact ==
+                                        AQ_IMPACT_MOMENTUM);
   }
   if (bad_arch) {
     rc = AQ_EXIT_USAGE;

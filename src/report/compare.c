@@ -85,7 +85,9 @@ static size_t compare_pair(const aq_summary *a, const aq_summary *b,
       int64_t x = aq_summary_get_int(a, f), y = aq_summary_get_int(b, f);
       same = x == y;
       double m = fmax(fabs((double)x), fabs((double)y));
-      d.rel = m > 0 ? fabs((double)x - (double)y) / m : 0;
+      d.rel = x == AQ_SUMMARY_INT_NONE || y == AQ_SUMMARY_INT_NONE ? NAN
+              : m > 0                                              ? fabs((double)x - (double)y) / m
+                                                                   : 0;
       break;
     }
     case AQ_SF_DOUBLE: {

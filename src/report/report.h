@@ -24,9 +24,13 @@
 #define AQ_SUMMARY_MODEL_MAX 16
 #define AQ_SUMMARY_STATUS_MAX 48
 
+/* An integer result that a failed run did not compute (collapsed, impacts):
+ * the text writers show it as "nan", the HDF5 file stores it as is. */
+#define AQ_SUMMARY_INT_NONE (-1)
+
 /* One run's summary.  A run that failed (or whose record failed) has status
- * other than "ok", collapsed = 0, impacts = 0 and NAN for the numbers it
- * could not compute. */
+ * other than "ok" and no verdict: every result field (collapsed onwards) is
+ * NAN, or AQ_SUMMARY_INT_NONE for the integers. */
 typedef struct {
   char record[AQ_SUMMARY_RECORD_MAX]; /* record file as given on the command line */
   char arch[AQ_SUMMARY_ARCH_MAX];     /* arch name ([arch] name) */
@@ -34,12 +38,12 @@ typedef struct {
   double scale;                       /* factor applied to the processed record */
   double pga_g;                       /* PGA of the scaled processed record, g */
   char status[AQ_SUMMARY_STATUS_MAX]; /* "ok" or a short code such as "read:eformat" */
-  int64_t collapsed;                  /* 1 collapsed, 0 survived (or failed) */
+  int64_t collapsed;                  /* 1 collapsed, 0 survived, AQ_SUMMARY_INT_NONE failed */
   double collapse_time_s;             /* record time of collapse, s; NAN if it survived */
   double peak_rotation_rad;           /* max |q|, rad */
   double peak_displacement_m;         /* max |x - x0| of the arch's centroid, m */
   double max_kinetic_energy_j;        /* J */
-  int64_t impacts;                    /* returns to the undeformed shape */
+  int64_t impacts;                    /* returns to the undeformed shape (or _NONE) */
   double energy_in_j;                 /* work done by the ground, J */
   double energy_dissipated_j;         /* lost at impacts, J */
 } aq_summary;

@@ -55,12 +55,12 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
     s->energy_in_j = res->energy_in_j;
     s->energy_dissipated_j = res->energy_dissipated_j;
   } else {
-    s->collapsed = 0;
+    s->collapsed = AQ_SUMMARY_INT_NONE; /* no verdict: not "survived" */
     s->collapse_time_s = NAN;
     s->peak_rotation_rad = NAN;
     s->peak_displacement_m = NAN;
     s->max_kinetic_energy_j = NAN;
-    s->impacts = 0;
+    s->impacts = AQ_SUMMARY_INT_NONE;
     s->energy_in_j = NAN;
     s->energy_dissipated_j = NAN;
   }

