@@ -288,7 +288,7 @@ AQ_TEST(review_compare_row_with_tab_in_record_name)
     size_t tabs = 0;
     for (char *p = line; *p; p++)
       tabs += *p == '\t';
-    aq_check(tabs == 6, "7 columns in \"%s\"", line);
+    aq_check(tabs == 7, "8 columns (polarity among them) in \"%s\"", line);
   }
   aq_check(rows == 3, "header and two rows: %zu", rows);
 }

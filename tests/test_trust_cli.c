@@ -272,3 +272,168 @@ AQ_TEST(trust_duplicates_are_refused)
     aq_check(access(h5, F_OK) != 0 && out[0] == '\0', "no output");
   }
 }
+
+/* Item 8: polarity.  The arch's two sets from `mechanism` (the reference
+ * for lambda0 and q_c): a hinge-controlled arch swaps faces on the same
+ * joints, so its response depends on the record's sign. */
+static int mechanism_set(const char *out, const char *set, double *lambda0, double *qc,
+                         int *act)
+{
+  char key[32];
+  snprintf(key, sizeof key, "\n%s\t", set);
+  const char *p = strstr(out, key);
+  if (!p)
+    return 0;
+  p += strlen(key);
+  for (int k = 0; k < 2; k++) /* joints, faces */
+    p = strchr(p, '\t') + 1;
+  char *end;
+  *lambda0 = strtod(p, &end);
+  *qc = strtod(end + 1, &end);
+  strtol(end + 1, &end, 10); /* admissible */
+  *act = (int)strtol(end + 1, &end, 10);
+  return 1;
+}
+
+static double cell_double(const char *out, size_t row, const char *name)
+{
+  char cell[128];
+  return tsv_cell(out, row, name, cell, sizeof cell) ? strtod(cell, NULL) : NAN;
+}
+
+AQ_TEST(trust_polarity_and_normalised_results)
+{
+  static char out[16384], ode[16384], err[8192], mech[8192];
+  int rc = aq_test_run("mechanism --arch arches/thin.cfg", mech, sizeof mech, err, sizeof err);
+  double l0[2], qc[2];
+  int act[2];
+  aq_check(rc == 0 && mechanism_set(mech, "primary", &l0[0], &qc[0], &act[0]) &&
+               mechanism_set(mech, "reverse", &l0[1], &qc[1], &act[1]),
+           "mechanism thin.cfg: %s", err);
+  /* the issue's figures: 0.047 one way, 0.80 the other */
+  aq_check_abs(l0[0], 0.047, 0.0005, "thin.cfg primary lambda0 (issue: 0.047)");
+  aq_check_abs(l0[1], 0.80, 0.005, "thin.cfg reverse lambda0 (issue: 0.80)");
+  aq_check(act[0] == -act[1], "the two sets open under opposite signs: %+d %+d", act[0],
+           act[1]);
+  rc = aq_test_run(ELC " --arch arches/thin.cfg --scale 0.5,0.73 --polarity both", out,
+                   sizeof out, err, sizeof err);
+  int rc2 = aq_test_run(ELC " --arch arches/thin.cfg --scale 0.5,0.73 --polarity both "
+                        "--model ode", ode, sizeof ode, err, sizeof err);
+  aq_check(rc == 0 && rc2 == 0 && count_lines(out) == 5,
+           "--polarity both: two rows per factor (%zu lines): %s", count_lines(out), err);
+  char pol[4][32];
+  for (size_t r = 0; r < 4; r++)
+    tsv_cell(out, r + 1, "polarity", pol[r], sizeof pol[r]);
+  aq_check(!strcmp(pol[0], "normal") && !strcmp(pol[1], "reversed") &&
+               !strcmp(pol[2], "normal") && !strcmp(pol[3], "reversed"),
+           "each row says which: %s %s %s %s", pol[0], pol[1], pol[2], pol[3]);
+  /* the issue's figures at 0.5: 0.0049 as recorded, 0.011 negated; the ode
+   * model (the exact equation of motion) as the second method */
+  double pn = cell_double(out, 1, "peak_rotation_rad"), pr = cell_double(out, 2, "peak_rotation_rad");
+  aq_check_abs(pn, 0.0049, 0.00005, "peak rotation at 0.5 as recorded (issue: 0.0049)");
+  aq_check_abs(pr, 0.011, 0.0005, "peak rotation at 0.5 negated (issue: 0.011)");
+  for (size_t r = 1; r <= 4; r++) {
+    static const char *const cols[] = {"peak_rotation_rad", "lambda0_first",
+                                       "peak_rotation_over_qc", "pga_over_lambda0_g"};
+    for (size_t k = 0; k < 4; k++)
+      aq_check_rel(cell_double(out, r, cols[k]), cell_double(ode, r, cols[k]), 1e-9,
+                   "row %zu %s: workpath = ode", r, cols[k]);
+    double lf = cell_double(out, r, "lambda0_first"), peak = cell_double(out, r, "peak_rotation_rad");
+    double ratio = cell_double(out, r, "peak_rotation_over_qc");
+    aq_check(fabs(lf - l0[0]) <= 1e-9 * l0[0] || fabs(lf - l0[1]) <= 1e-9 * l0[1],
+             "row %zu: lambda0_first %.10g is one of mechanism's %.10g %.10g", r, lf, l0[0],
+             l0[1]);
+    aq_check(fabs(ratio * qc[0] - peak) <= 1e-8 * peak || fabs(ratio * qc[1] - peak) <= 1e-8 * peak,
+             "row %zu: peak / q_c of one of mechanism's sets (ratio %.6g)", r, ratio);
+    aq_check_rel(cell_double(out, r, "pga_over_lambda0_g"),
+                 cell_double(out, r, "pga_g") / lf, 1e-12, "row %zu: PGA/(lambda0 g)", r);
+  }
+  /* a PGA of 0.14 g cannot reach the reverse set's 0.80: the record drives
+   * the primary first whichever its sign */
+  aq_check_rel(cell_double(out, 2, "lambda0_first"), l0[0], 1e-9, "reversed: primary first");
+  /* the HDF5 summary holds the same values, the reversed run its own group */
+  char dir[512], h5[700], args[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/p.h5", dir);
+  snprintf(args, sizeof args, ELC " --arch arches/thin.cfg --scale 0.5,0.73 --polarity both "
+                              "-o %s", h5);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  static const char *const cols[] = {"lambda0_first", "peak_rotation_over_qc",
+                                     "pga_over_lambda0_g", "peak_rotation_rad"};
+  for (size_t r = 0; r < 4; r++)
+    for (size_t k = 0; k < 4; k++) {
+      double v = NAN;
+      int ok = h5_summary_double(h5, r, cols[k], &v);
+      aq_check(rc == 0 && ok && v == cell_double(out, r + 1, cols[k]),
+               "HDF5 summary row %zu %s = TSV: %.17g", r, cols[k], v);
+    }
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  aq_check(f >= 0 && H5Lexists(f, "/runs/00000_000_001r", H5P_DEFAULT) > 0,
+           "the reversed run of factor 2 has its group");
+  if (f >= 0)
+    H5Fclose(f);
+}
+
+/* Item 8: the reversed row equals a run of the record negated, written
+ * here as CSV (time, acceleration in g) from the AT2's values. */
+AQ_TEST(trust_polarity_reversed_equals_negated_copy)
+{
+  char dir[512], csv[700], neg[700], args[2048];
+  static char out[16384], out2[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  char *at2 = aq_test_read_file(ELC, NULL);
+  if (!aq_check(at2 != NULL, "read " ELC))
+    return;
+  const char *p = at2;
+  for (int l = 0; l < 4 && p; l++) { /* four header lines; NPTS 5372, DT 0.01 s */
+    p = strchr(p, '\n');
+    p = p ? p + 1 : NULL;
+  }
+  snprintf(csv, sizeof csv, "%s/elc180.csv", dir);
+  snprintf(neg, sizeof neg, "%s/elc180-negated.csv", dir);
+  FILE *f = fopen(csv, "w"), *g = fopen(neg, "w");
+  size_t n = 0;
+  if (f && g) {
+    fputs("time,acc (g)\n", f);
+    fputs("time,acc (g)\n", g);
+    char *end;
+    for (double v = strtod(p, &end); end != p; v = strtod(p, &end)) {
+      p = end;
+      fprintf(f, "%.2f,%.17g\n", 0.01 * (double)n, v);
+      fprintf(g, "%.2f,%.17g\n", 0.01 * (double)n, -v);
+      n++;
+    }
+  }
+  if (f)
+    fclose(f);
+  if (g)
+    fclose(g);
+  free(at2);
+  aq_check(n == 5372, "5372 samples (PEER header): %zu", n);
+  snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
+                              "--scale 0.5,2.2 --polarity both", csv);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
+                              "--scale 0.5,2.2", neg);
+  int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0 && rc2 == 0 && count_lines(out) == 9 && count_lines(out2) == 5,
+           "rows: %zu and %zu: %s", count_lines(out), count_lines(out2), err);
+  static const char *const cols[] = {"collapsed", "collapse_time_s", "peak_rotation_rad",
+                                     "peak_displacement_m", "max_kinetic_energy_j",
+                                     "impacts", "energy_in_j", "lambda0_first",
+                                     "peak_rotation_over_qc", "pga_over_lambda0_g"};
+  int collapsed = 0;
+  for (size_t r = 1; r <= 4; r++) {
+    char pol[32];
+    tsv_cell(out, 2 * r, "polarity", pol, sizeof pol);
+    aq_check(strcmp(pol, "reversed") == 0, "row %zu reversed", 2 * r);
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++) {
+      double a = cell_double(out, 2 * r, cols[k]), b = cell_double(out2, r, cols[k]);
+      aq_check((isnan(a) && isnan(b)) || fabs(a - b) <= 1e-9 * fabs(b),
+               "reversed row %zu %s %.17g = negated copy's %.17g", 2 * r, cols[k], a, b);
+    }
+    collapsed += cell_double(out2, r, "collapsed") == 1;
+  }
+  aq_check(collapsed > 0 && collapsed < 4, "both verdicts among the rows (%d collapsed)",
+           collapsed);
+}

@@ -27,6 +27,17 @@ void aq_opt_ode_rtol(int given, const char *model, int *nerr);
 /* --cor given for an arch whose [dynamics] impact (or --impact) is
  * momentum: one line naming the arch file; returns 1 (refuse, exit 2). */
 int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
+/* --polarity normal|reversed|both: the sign of the records a command runs
+ * (the record as read, negated, or each record both ways, each row saying
+ * which).  Declared here once for every command that runs records. */
+enum { AQ_POLARITY_NORMAL = 0, AQ_POLARITY_REVERSED, AQ_POLARITY_BOTH };
+extern const char *const aq_opt_polarity_names[]; /* indexed by the enum, NULL-terminated */
+#define AQ_OPT_POLARITY_USAGE                                                        \
+  "  --polarity P        normal (the record as read, default), reversed (negated)\n" \
+  "                      or both (each record both ways; the polarity column\n"    \
+  "                      says which: a hinge-controlled arch's response depends\n"  \
+  "                      on the sign)\n"
+void aq_opt_polarity(const char *arg, int *out, int *nerr);
 /* 1 if paths a and b name the same file: the same string, or the same
  * existing file however spelled (device and inode). */
 int aq_opt_same_file(const char *a, const char *b);
