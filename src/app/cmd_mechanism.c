@@ -70,6 +70,26 @@ static void print_set(const aq_workpath *w, int searched)
          p->admissible ? "-" : aq_workpath_reason(w));
 }
 
+void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
+{
+  aq_hinge_set mhs;
+  double ml0, l0 = aq_arch_path(a, 0)->lambda0;
+  if (!aq_arch_minimum(a, &mhs, &ml0)) {
+    fprintf(stderr, "archquake: %s: warning: the minimum-lambda0 set was not searched "
+                    "(more than %d voussoirs): that the arch stands is not checked\n",
+            path, AQ_SEARCH_MAX_VOUSSOIRS);
+    return;
+  }
+  if (aq_arch_searched(a) || !(ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)))
+    return;
+  char set[64], prim[64];
+  aq_hinge_set_text(&mhs, set, sizeof set);
+  aq_hinge_set_text(&aq_workpath_mech(aq_arch_workpath(a, 0))->hs, prim, sizeof prim);
+  fprintf(stderr, "archquake: %s: warning: the admissible hinge set %s has lambda0 = "
+                  "%.6g, below the primary %s's %.6g: that mechanism governs unless "
+                  "its joints are restrained\n", path, set, ml0, prim, l0);
+}
+
 int aq_cmd_mechanism(int argc, char **argv)
 {
   static const struct option longopts[] = {
@@ -131,20 +151,8 @@ int aq_cmd_mechanism(int argc, char **argv)
     }
     print_set(mw, aq_arch_searched(a));
     aq_workpath_free(mw);
-    double l0 = aq_arch_path(a, 0)->lambda0;
-    if (!aq_arch_searched(a) && ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)) {
-      char set[64], prim[64];
-      aq_hinge_set_text(&mhs, set, sizeof set);
-      aq_hinge_set_text(&aq_workpath_mech(aq_arch_workpath(a, 0))->hs, prim, sizeof prim);
-      fprintf(stderr, "archquake: %s: warning: the admissible hinge set %s has lambda0 = "
-                      "%.6g, below the primary %s's %.6g: that mechanism governs unless "
-                      "its joints are restrained\n", file, set, ml0, prim, l0);
-    }
-  } else {
-    fprintf(stderr, "archquake: %s: warning: the minimum-lambda0 set was not searched "
-                    "(more than %d voussoirs): that the arch stands is not checked\n",
-            file, AQ_SEARCH_MAX_VOUSSOIRS);
   }
+  aq_mechanism_warn_minimum(file, a);
   int rc = AQ_EXIT_OK;
   if (table) {
     printf("\nset\ts_rad\tq_rad\tlambda\tlambda_eq\tx_m\ty_m\tpe_j\tmgen_kgm2\tmin_normal_n"

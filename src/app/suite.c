@@ -597,6 +597,7 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
         bad_arch = 1;
         break;
       }
+    aq_mechanism_warn_minimum(c->arch_paths[a], S.arches[a]);
     bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
                                     aq_arch_dynamics_of(S.arches[a])->impact ==
                                         AQ_IMPACT_MOMENTUM);
