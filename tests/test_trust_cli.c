@@ -50,8 +50,10 @@ static int tsv_cell(const char *text, size_t row, const char *name, char *buf, s
 }
 
 /* Column `name` of row `row` (0-based) of the HDF5 /summary table, read
- * through a one-member compound type (double or int64). */
-static int h5_summary_double(const char *path, size_t row, const char *name, double *v)
+ * through a one-member compound type of the native type t (double or
+ * int64) into v (size bytes). */
+static int h5_summary_value(const char *path, size_t row, const char *name, hid_t t_mem,
+                            size_t size, void *v)
 {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -62,12 +64,12 @@ static int h5_summary_double(const char *path, size_t row, const char *name, dou
   hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
   int ok = 0;
   if (n > 0 && (size_t)n > row) {
-    double *all = malloc((size_t)n * sizeof *all);
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
-    H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE);
+    char *all = malloc((size_t)n * size);
+    hid_t t = H5Tcreate(H5T_COMPOUND, size);
+    H5Tinsert(t, name, 0, t_mem);
     ok = all && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0;
     if (ok)
-      *v = all[row];
+      memcpy(v, all + row * size, size);
     H5Tclose(t);
     free(all);
   }
@@ -79,32 +81,14 @@ static int h5_summary_double(const char *path, size_t row, const char *name, dou
   return ok;
 }
 
+static int h5_summary_double(const char *path, size_t row, const char *name, double *v)
+{
+  return h5_summary_value(path, row, name, H5T_NATIVE_DOUBLE, sizeof *v, v);
+}
+
 static int h5_summary_int(const char *path, size_t row, const char *name, int64_t *v)
 {
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0)
-    return 0;
-  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
-  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-  hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-  int ok = 0;
-  if (n > 0 && (size_t)n > row) {
-    int64_t *all = malloc((size_t)n * sizeof *all);
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(int64_t));
-    H5Tinsert(t, name, 0, H5T_NATIVE_INT64);
-    ok = all && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0;
-    if (ok)
-      *v = all[row];
-    H5Tclose(t);
-    free(all);
-  }
-  if (sp >= 0)
-    H5Sclose(sp);
-  if (d >= 0)
-    H5Dclose(d);
-  H5Fclose(f);
-  return ok;
+  return h5_summary_value(path, row, name, H5T_NATIVE_INT64, sizeof *v, v);
 }
 
 static int write_text(const char *path, const char *text)
@@ -116,13 +100,6 @@ static int write_text(const char *path, const char *text)
   return fclose(f) == 0;
 }
 
-static size_t count_lines(const char *s)
-{
-  size_t n = 0;
-  for (; *s; s++)
-    n += *s == '\n';
-  return n;
-}
 
 /* Item 5: a record that cannot be read gives a row with no verdict. */
 AQ_TEST(trust_failed_run_has_no_verdict)
@@ -131,14 +108,7 @@ AQ_TEST(trust_failed_run_has_no_verdict)
   static char out[16384], err[8192];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(bad, sizeof bad, "%s/truncated.AT2", dir);
-  size_t n = 0;
-  char *at2 = aq_test_read_file(ELC, &n);
-  FILE *f = fopen(bad, "wb");
-  if (f && at2)
-    fwrite(at2, 1, n / 3, f);
-  if (f)
-    fclose(f);
-  free(at2);
+  aq_check(aq_test_copy_prefix(ELC, bad, 1, 3), "write %s", bad);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
   snprintf(args, sizeof args, "%s %s --arch arches/thin.cfg -o %s", ELC, bad, h5);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
@@ -210,7 +180,7 @@ AQ_TEST(trust_ineffective_options_are_refused)
   for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
     snprintf(args, sizeof args, cmds[k], h5);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-    aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, why[k]),
+    aq_check(rc == 2 && aq_test_count_lines(err) == 1 && strstr(err, why[k]),
              "%s: exit %d (want 2), one line with the reason: %s", args, rc, err);
     aq_check(access(h5, F_OK) != 0, "no results file");
   }
@@ -269,7 +239,7 @@ AQ_TEST(trust_duplicates_are_refused)
     else
       snprintf(args, sizeof args, cases[k].args, junk, h5);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-    aq_check(rc == 2 && count_lines(err) == 1 && strstr(err, cases[k].says) &&
+    aq_check(rc == 2 && aq_test_count_lines(err) == 1 && strstr(err, cases[k].says) &&
                  !strstr(err, "junk"),
              "%s: exit %d (want 2), one line (%s), no record read: %s", args, rc,
              cases[k].says, err);
@@ -323,8 +293,8 @@ AQ_TEST(trust_polarity_and_normalised_results)
                    sizeof out, err, sizeof err);
   int rc2 = aq_test_run(ELC " --arch arches/thin.cfg --scale 0.5,0.73 --polarity both "
                         "--model ode", ode, sizeof ode, err, sizeof err);
-  aq_check(rc == 0 && rc2 == 0 && count_lines(out) == 5,
-           "--polarity both: two rows per factor (%zu lines): %s", count_lines(out), err);
+  aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 5,
+           "--polarity both: two rows per factor (%zu lines): %s", aq_test_count_lines(out), err);
   char pol[4][32];
   for (size_t r = 0; r < 4; r++)
     tsv_cell(out, r + 1, "polarity", pol[r], sizeof pol[r]);
@@ -420,8 +390,8 @@ AQ_TEST(trust_polarity_reversed_equals_negated_copy)
   snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
                               "--scale 0.5,2.2", neg);
   int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
-  aq_check(rc == 0 && rc2 == 0 && count_lines(out) == 9 && count_lines(out2) == 5,
-           "rows: %zu and %zu: %s", count_lines(out), count_lines(out2), err);
+  aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 9 && aq_test_count_lines(out2) == 5,
+           "rows: %zu and %zu: %s", aq_test_count_lines(out), aq_test_count_lines(out2), err);
   static const char *const cols[] = {"collapsed", "collapse_time_s", "peak_rotation_rad",
                                      "peak_displacement_m", "max_kinetic_energy_j",
                                      "impacts", "energy_in_j", "lambda0_first",
