@@ -411,3 +411,35 @@ AQ_TEST(trust_polarity_reversed_equals_negated_copy)
   aq_check(collapsed > 0 && collapsed < 4, "both verdicts among the rows (%d collapsed)",
            collapsed);
 }
+
+/* compare still reads a file written before the polarity and normalised
+ * columns existed: they read as polarity normal and NaN, so the runs match
+ * and the new values are reported as differences, not as a bad file. */
+AQ_TEST(trust_compare_reads_files_without_the_new_columns)
+{
+  char dir[512], a[700], b[700], args[2048];
+  static char out[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(a, sizeof a, "%s/a.h5", dir);
+  snprintf(b, sizeof b, "%s/b.h5", dir);
+  snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch arches/thin.cfg "
+                              "--scale 0.4,1.7 -o %s", a);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && aq_test_copy_prefix(a, b, 1, 1), "suite: %d %s", rc, err);
+  static const char *const added[] = {"polarity", "lambda0_first", "peak_rotation_over_qc",
+                                      "pga_over_lambda0_g"};
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(b, H5F_ACC_RDWR, H5P_DEFAULT);
+  static const char *const runs[] = {"/runs/00000_000_000", "/runs/00000_000_001"};
+  int removed = 0;
+  for (size_t r = 0; f >= 0 && r < 2; r++)
+    for (size_t k = 0; k < 4; k++)
+      removed += H5Adelete_by_name(f, runs[r], added[k], H5P_DEFAULT) >= 0;
+  if (f >= 0)
+    H5Fclose(f);
+  aq_check(removed == 8, "attributes removed: %d", removed);
+  snprintf(args, sizeof args, "compare %s %s", a, b);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "\tlambda0_first\t") && !strstr(out, "present"),
+           "exit %d (want 1: values differ), runs matched: %s %s", rc, out, err);
+}

@@ -64,6 +64,8 @@ typedef struct {
   size_t offset;        /* offsetof(aq_summary, field) */
   size_t size;          /* sizeof the field */
   int key;              /* 1 for the fields that identify a run (record, arch, scale, polarity) */
+  int optional;         /* 1: absent from files written before the field existed; read
+                           back as aq_summary_fill leaves it (polarity normal, NAN) */
 } aq_summary_field;
 
 /* The fields in column order (record arch model scale pga_g status collapsed

@@ -8,7 +8,9 @@
 #include <string.h>
 
 #define AQ_SF(name, kind, key) \
-  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key}
+  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key, 0}
+#define AQ_SF_ADDED(name, kind, key) \
+  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key, 1}
 
 const aq_summary_field aq_summary_fields[] = {
     AQ_SF(record, AQ_SF_STR, 1),
@@ -25,10 +27,10 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF(impacts, AQ_SF_INT, 0),
     AQ_SF(energy_in_j, AQ_SF_DOUBLE, 0),
     AQ_SF(energy_dissipated_j, AQ_SF_DOUBLE, 0),
-    AQ_SF(polarity, AQ_SF_STR, 1),
-    AQ_SF(lambda0_first, AQ_SF_DOUBLE, 0),
-    AQ_SF(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
-    AQ_SF(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(polarity, AQ_SF_STR, 1),
+    AQ_SF_ADDED(lambda0_first, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
