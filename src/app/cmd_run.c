@@ -38,7 +38,8 @@ static const char usage_head[] =
     "  --model M           workpath (default), ode (reference), paper, workpath-quad\n"
     "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
     "                      (default: each arch's [dynamics] cor)\n"
-    "  --history           write step-end histories to the HDF5 file (with -o)\n"
+    "  --history           write histories (step ends, turning points, impacts)\n"
+    "                      to the HDF5 file (with -o)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
