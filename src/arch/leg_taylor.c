@@ -40,6 +40,7 @@ static const double TL_SHRINK = 0.5;         /* step from the tail's own estimat
 static const int TL_ROOT_ITER = 60;          /* safeguarded Newton iterations at most */
 static const double TL_ROOT_EPS = 8 * DBL_EPSILON; /* root located: last Newton step / sub-step */
 static const size_t TL_MAX_SUBSTEPS = 2000000; /* per leg; beyond: no progress */
+static const int TL_MAX_HALVINGS = 60;       /* of a sub-step with two turning points */
 
 struct aq_taylor {
   double tol;
@@ -313,7 +314,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
      * turning point within the sub-step (else halve it) */
     int s0 = v != 0 ? sgn(v) : sgn(ts.c[2]);
     double vh = horner(dq, n - 1, h);
-    for (int it = 0; it < 60 && s0 != 0; it++) {
+    for (int it = 0; it < TL_MAX_HALVINGS && s0 != 0; it++) {
       double vm = horner(dq, n - 1, 0.5 * h);
       if (!(sgn(vm) == -s0 && sgn(vh) == s0))
         break;
