@@ -46,6 +46,8 @@ struct aq_taylor {
   double tol;
   const aq_path *p; /* owner of the cached piece, or NULL */
   aq_path_piece pc;
+  /* M at the last leg's end (on the cached piece): the next leg starts there */
+  double s_end, m_end;
 };
 
 aq_taylor *aq_taylor_alloc(aq_error *err)
@@ -56,6 +58,7 @@ aq_taylor *aq_taylor_alloc(aq_error *err)
     return NULL;
   }
   w->tol = TL_TOL_DEFAULT;
+  w->s_end = NAN;
   return w;
 }
 
@@ -67,22 +70,55 @@ void aq_taylor_set_tol(aq_taylor *w, double tol)
     w->tol = tol;
 }
 
-void aq_taylor_reset(aq_taylor *w) { w->p = NULL; }
+void aq_taylor_reset(aq_taylor *w)
+{
+  w->p = NULL;
+  w->s_end = NAN;
+}
 
 /* ------------------------------------------------------------------ */
 
-static double poly5(const double *c, double u)
+/* Function c of piece pc (one of its coefficient arrays, degree n) at s. */
+static double piece_val(const aq_path_piece *pc, const double *c, int n, double s)
 {
-  return c[0] + u * (c[1] + u * (c[2] + u * (c[3] + u * (c[4] + u * c[5]))));
+  double t = (s - pc->s_ref) * pc->iscale, r = c[n];
+  for (int k = n - 1; k >= 0; k--)
+    r = r * t + c[k];
+  return r;
 }
 
-/* c(u0 + u) in powers of u (degree 5), in place. */
-static void shift5(double *c, double u0)
+/* M (degree deg) and the work term's slopes at s. */
+#define PIECE_M(pc, s) piece_val((pc), (pc)->m, (pc)->deg, (s))
+#define PIECE_DX(pc, s) piece_val((pc), (pc)->dx, (pc)->deg, (s))
+#define PIECE_DY(pc, s) piece_val((pc), (pc)->dy, (pc)->deg, (s))
+/* x, y: degree deg + 1 */
+#define PIECE_X(pc, s) piece_val((pc), (pc)->x, (pc)->deg + 1, (s))
+#define PIECE_Y(pc, s) piece_val((pc), (pc)->y, (pc)->deg + 1, (s))
+
+/* M, x and y at s in one pass (three independent Horner chains, each
+ * rounded as piece_val rounds it). */
+static void piece_mxy(const aq_path_piece *pc, double s, double *mv, double *xv,
+                      double *yv)
 {
-  for (int k = 0; k < 5; k++)
-    for (int j = 4; j >= k; j--)
-      c[j] += u0 * c[j + 1];
+  const int n = pc->deg;
+  double t = (s - pc->s_ref) * pc->iscale;
+  double rm = pc->m[n], rx = pc->x[n + 1] * t + pc->x[n],
+         ry = pc->y[n + 1] * t + pc->y[n];
+  for (int k = n - 1; k >= 0; k--) {
+    rm = rm * t + pc->m[k];
+    rx = rx * t + pc->x[k];
+    ry = ry * t + pc->y[k];
+  }
+  *mv = rm;
+  *xv = rx;
+  *yv = ry;
 }
+
+/* 1 / k for the integral of P (no division in the loop). */
+static const double TL_INV[TL_MAX_ORDER + 1] = {
+    0,        1,        1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5,  1.0 / 6,
+    1.0 / 7,  1.0 / 8,  1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12, 1.0 / 13,
+    1.0 / 14, 1.0 / 15, 1.0 / 16, 1.0 / 17, 1.0 / 18, 1.0 / 19, 1.0 / 20};
 
 /* sum_{k=0..n} q_k t^k. */
 static double horner(const double *q, int n, double t)
@@ -166,20 +202,40 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
                      double s0, double v0, double tol, double *h,
                      tl_series *ts)
 {
-  enum { N = TL_MAX_ORDER };
-  double u0 = s0 - pc->s_lo;
-  double pp[6], mm[6];
-  for (int k = 0; k < 6; k++) {
-    pp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]); /* P(s) */
-    mm[k] = pc->m[k];
+  enum { N = TL_MAX_ORDER, D = AQ_PIECE_MAX_DEG };
+  const int d = pc->deg;
+  /* P and M shifted to s0, in powers of u = s - s0 (Taylor coefficients
+   * at t0 of the piece's polynomials in t, t0 in [0, 1]):
+   *   [u^j] = iscale^j / j! sum_i (c_{j+i} (j+i)!) (t0^i / i!)
+   * (independent sums, not a chain of Horner shifts) */
+  const double t0 = (s0 - pc->s_ref) * pc->iscale;
+  double wp[D + 1], wm[D + 1], q[D + 1];
+  double fk = 1, qi = 1;
+  for (int k = 0; k <= d; k++) {
+    if (k > 0) {
+      fk *= k;
+      qi *= t0 / k;
+    }
+    wp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]) * fk; /* P(s) */
+    wm[k] = pc->m[k] * fk;
+    q[k] = qi;
   }
-  shift5(pp, u0);
-  shift5(mm, u0);
-  double K[N + 1] = {0}, Fz[N + 6] = {0}, G[N];
-  double *F = Fz + 5; /* F[-5..-1] = 0: the division below runs 5 terms */
+  double pp[D + 1], mm[D + 1], sj = 1; /* iscale^j / j! */
+  for (int j = 0; j <= d; j++) {
+    if (j > 0)
+      sj *= pc->iscale / j;
+    double sp = 0, sm = 0;
+    for (int i = 0; i + j <= d; i++) {
+      sp += wp[j + i] * q[i];
+      sm += wm[j + i] * q[i];
+    }
+    pp[j] = sp * sj;
+    mm[j] = sm * sj;
+  }
+  double K[N + 1], F[N + 1], G[N];
   K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
-  for (int k = 0; k < 6 && k + 1 <= N; k++)
-    K[k + 1] = pp[k] / (k + 1);
+  for (int k = 0; k + 1 <= N; k++)
+    K[k + 1] = k <= d ? pp[k] * TL_INV[k + 1] : 0;
   const double im0 = 1.0 / mm[0];
   F[0] = K[0] * im0;
   /* U[j][k]: coefficient k of u(t)^j, u(t) = s(t) - s0 */
@@ -195,8 +251,9 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   double scale = 0;
   for (int k = 0; k + 2 <= N; k++) {
     /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
-    double f = K[k + 1] - mm[1] * F[k] - mm[2] * F[k - 1] - mm[3] * F[k - 2] -
-               mm[4] * F[k - 3] - mm[5] * F[k - 4];
+    double f = K[k + 1];
+    for (int j = 1, jn = d < k + 1 ? d : k + 1; j <= jn; j++)
+      f -= mm[j] * F[k + 1 - j];
     F[k + 1] = f * im0;
     G[k] = (k + 1) * F[k + 1];
     /* the powers of u at order k (c_1..c_k are known) */
@@ -248,6 +305,7 @@ static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
       !(dir <= 0 && s == pc->s_lo && pc->s_lo > 0))
     return 0;
   S->evals++;
+  w->s_end = NAN; /* M at the last end was on another piece */
   if (p->piece(p->ctx, s, dir, &w->pc) != 0) {
     w->p = NULL;
     return -1;
@@ -257,12 +315,12 @@ static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
 }
 
 /* s'' at rest (sdot = 0) on the cached piece: P / M. */
-static double tl_accel0(const aq_taylor *w, const aq_path *p, double a, double s)
+static double tl_accel0(const aq_taylor *w, const aq_path *p, double a, double g,
+                        double s)
 {
   const aq_path_piece *pc = &w->pc;
-  double u = s - pc->s_lo;
-  return -p->mass_kg * (a * poly5(pc->dx, u) + p->g_mps2 * poly5(pc->dy, u)) /
-         poly5(pc->m, u);
+  return -p->mass_kg * (a * PIECE_DX(pc, s) + g * PIECE_DY(pc, s)) /
+         PIECE_M(pc, s);
 }
 
 static int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
@@ -276,11 +334,11 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
   int dir = m->dir >= 0 ? 1 : -1;
   if (tl_piece(w, p, s, dir, S))
     return tl_fail(err, p, "no table piece", s);
-  double mass = poly5(w->pc.m, s - w->pc.s_lo);
+  double mass = s == w->s_end ? w->m_end : PIECE_M(&w->pc, s);
   double v = dir * sqrt(2 * fmax(m->ke_j, 0) / mass);
   double t = 0;
   *end = AQ_LEG_TIME;
-  if (s <= 0 && v <= 0 && tl_accel0(w, p, a, s) <= 0) {
+  if (s <= 0 && v <= 0 && tl_accel0(w, p, a, g, s) <= 0) {
     *used = 0;
     *end = AQ_LEG_REST;
     return AQ_OK;
@@ -296,7 +354,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     /* the piece ahead: by the velocity, or the acceleration at rest */
     int d = sgn(v);
     if (d == 0)
-      d = sgn(tl_accel0(w, p, a, s));
+      d = sgn(tl_accel0(w, p, a, g, s));
     if (tl_piece(w, p, s, d, S))
       return tl_fail(err, p, "no table piece", s);
     const aq_path_piece *pc = &w->pc;
@@ -373,8 +431,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         if (st > S->peak_s)
           S->peak_s = fmin(st, sc);
         if (S->turn) {
-          double u = st - pc->s_lo;
-          S->turn(S->turn_ctx, t + seg[1], st, poly5(pc->x, u), poly5(pc->y, u));
+          S->turn(S->turn_ctx, t + seg[1], st, PIECE_X(pc, st),
+                  PIECE_Y(pc, st));
         }
       }
     }
@@ -405,14 +463,15 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     }
   }
   const aq_path_piece *pc = &w->pc;
-  double u = s - pc->s_lo;
   *used = *end == AQ_LEG_TIME ? dt : t;
+  double mass_end;
+  piece_mxy(pc, s, &mass_end, &m->x_m, &m->y_m);
+  w->s_end = s;
+  w->m_end = mass_end;
   m->s = s;
-  m->ke_j = 0.5 * poly5(pc->m, u) * v * v;
+  m->ke_j = 0.5 * mass_end * v * v;
   if (v != 0)
     m->dir = v > 0 ? 1 : -1;
-  m->x_m = poly5(pc->x, u);
-  m->y_m = poly5(pc->y, u);
   if (m->ke_j > S->peak_ke_j)
     S->peak_ke_j = m->ke_j;
   return AQ_OK;
