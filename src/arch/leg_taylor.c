@@ -1,7 +1,9 @@
 /* leg_taylor.c: the default work-path leg (see leg.h, and eom.h for the
- * leg contract): time-Taylor series of s(t) on the tables' pieces.
+ * leg contract): time-Taylor series of s(t) on the path's polynomial
+ * pieces (path.h aq_path_piece: for an arch, Chebyshev fits of the exact
+ * kinematics, workpath.c).
  *
- * Within one table piece (path.h aq_path_piece) the work term
+ * Within one piece the work term
  *     P(s) = dKE/ds = -m_T (a_g dx/ds + g dy/ds)     (eq. (19) per
  *                                            docs/method.md sec. 5, d/ds)
  * and the generalised mass M(s) (docs/method.md sec. 4) are polynomials, so the
@@ -25,7 +27,8 @@
  * count and the history).  Crossings of the piece's ends are roots of the
  * series, located by safeguarded Newton: s = 0 closing is an impact, s = s_c
  * opening is collapse, any other end continues on the next piece with the
- * same s and sdot.
+ * same s and sdot.  Gravity g is the leg's parameter (tl_build,
+ * tl_accel0), read from the path once per leg.
  */
 #include "leg.h"
 
@@ -189,6 +192,28 @@ static double quad_guess(double a, double b, double r)
   return t2 > 0 ? t2 : NAN;
 }
 
+/* sum_i w_{j+i} q_i for the work term (wp) and M (wm), i = 0..d-j: the
+ * Taylor coefficient j of a shifted polynomial (tl_build), two chains. */
+static void tl_shift_j(const double *wp, const double *wm, const double *q,
+                       int d, int j, double *pj, double *mj)
+{
+  double sp0 = 0, sp1 = 0, sm0 = 0, sm1 = 0;
+  const double *a = wp + j, *b = wm + j;
+  int n = d - j, i = 0;
+  for (; i < n; i += 2) {
+    sp0 += a[i] * q[i];
+    sm0 += b[i] * q[i];
+    sp1 += a[i + 1] * q[i + 1];
+    sm1 += b[i + 1] * q[i + 1];
+  }
+  if (i == n) {
+    sp0 += a[i] * q[i];
+    sm0 += b[i] * q[i];
+  }
+  *pj = sp0 + sp1;
+  *mj = sm0 + sm1;
+}
+
 /* The series of one sub-step: s(t) = s0 + sum_{k=1..n} c_k t^k. */
 typedef struct {
   int n;
@@ -207,35 +232,30 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   /* P and M shifted to s0, in powers of u = s - s0 (Taylor coefficients
    * at t0 of the piece's polynomials in t, t0 in [0, 1]):
    *   [u^j] = iscale^j / j! sum_i (c_{j+i} (j+i)!) (t0^i / i!)
-   * (independent sums, not a chain of Horner shifts) */
+   * (independent sums, not a chain of Horner shifts, and only as far as
+   * the order needs) */
   const double t0 = (s0 - pc->s_ref) * pc->iscale;
   double wp[D + 1], wm[D + 1], q[D + 1];
   double fk = 1, qi = 1;
   for (int k = 0; k <= d; k++) {
     if (k > 0) {
       fk *= k;
-      qi *= t0 / k;
+      qi *= t0 * TL_INV[k];
     }
     wp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]) * fk; /* P(s) */
     wm[k] = pc->m[k] * fk;
     q[k] = qi;
   }
-  double pp[D + 1], mm[D + 1], sj = 1; /* iscale^j / j! */
-  for (int j = 0; j <= d; j++) {
-    if (j > 0)
-      sj *= pc->iscale / j;
-    double sp = 0, sm = 0;
-    for (int i = 0; i + j <= d; i++) {
-      sp += wp[j + i] * q[i];
-      sm += wm[j + i] * q[i];
-    }
-    pp[j] = sp * sj;
-    mm[j] = sm * sj;
-  }
+  /* coefficients taken as the order needs them (the series usually stops
+   * near order 10, before the piece's degree) */
+  double mm[D + 2], sj = 1; /* sj = iscale^j / j! for the next j */
   double K[N + 1], F[N + 1], G[N];
+  double pj, mj;
+  tl_shift_j(wp, wm, q, d, 0, &pj, &mj);
+  mm[0] = mj;
+  K[1] = pj;
+  int jm = 1; /* P and M known up to u^(jm - 1) */
   K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
-  for (int k = 0; k + 1 <= N; k++)
-    K[k + 1] = k <= d ? pp[k] * TL_INV[k + 1] : 0;
   const double im0 = 1.0 / mm[0];
   F[0] = K[0] * im0;
   /* U[j][k]: coefficient k of u(t)^j, u(t) = s(t) - s0 */
@@ -250,6 +270,19 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   int n = 1;
   double scale = 0;
   for (int k = 0; k + 2 <= N; k++) {
+    /* P's u^k (into K_{k+1}) and M's u^(k+1) */
+    if (jm <= k + 1) {
+      if (jm <= d) {
+        sj *= pc->iscale * TL_INV[jm];
+        tl_shift_j(wp, wm, q, d, jm, &pj, &mj);
+        K[jm + 1] = pj * sj * TL_INV[jm + 1];
+        mm[jm] = mj * sj;
+      } else {
+        K[jm + 1] = 0;
+        mm[jm] = 0;
+      }
+      jm++;
+    }
     /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
     double f = K[k + 1];
     for (int j = 1, jn = d < k + 1 ? d : k + 1; j <= jn; j++)
@@ -267,7 +300,7 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
       U[j][k] = sum;
       comp += G[j] * sum;
     }
-    c[k + 2] = comp / ((k + 1) * (k + 2));
+    c[k + 2] = comp * TL_INV[k + 1] * TL_INV[k + 2];
     n = k + 2;
     if (n == 3) /* the sub-step's motion */
       scale = fabs(c[1]) * hp[1] + fabs(c[2]) * hp[2] + fabs(c[3]) * hp[3];

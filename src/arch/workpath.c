@@ -379,7 +379,7 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
  * that the potential energy m_T g y(s) is that of the work integral the leg
  * uses (the energy balance holds to round-off of y, not of the arch's
  * coordinates, even for tiny rocking near s = 0). */
-#define PIECE_DEG 16            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
+#define PIECE_DEG 14            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
 #define PIECE_TAIL_TOL 2e-15    /* Chebyshev tail / scale (about ten unit round-offs) */
 #define PIECE_ROUNDOFF 1e-11    /* a tail that halving no longer halves and is below this: round-off */
 #define PIECE_MAX_DEPTH 40      /* halvings of [0, s_c] at most */
