@@ -166,3 +166,14 @@ int aq_opt_output_special(const char *opt, const char *path)
                                                      : "special file");
   return 1;
 }
+
+void aq_opt_polarity(const char *arg, int *out, int *nerr)
+{
+  static const char *const words[] = {"normal", "reversed", "both", NULL};
+  static const int bits[] = {AQ_POLARITY_NORMAL, AQ_POLARITY_REVERSED,
+                             AQ_POLARITY_BOTH};
+  int k = -1, before = *nerr;
+  aq_opt_choice("--polarity", arg, words, &k, nerr);
+  if (*nerr == before && k >= 0)
+    *out = bits[k];
+}

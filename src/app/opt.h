@@ -24,6 +24,10 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
 /* One of the words in choices (NULL-terminated); *out = its index. */
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
                    int *out, int *nerr);
+/* --polarity normal|reversed|both: *out = AQ_POLARITY_* bits (both: the
+ * record as read and negated, the worse governs). */
+enum { AQ_POLARITY_NORMAL = 1, AQ_POLARITY_REVERSED = 2, AQ_POLARITY_BOTH = 3 };
+void aq_opt_polarity(const char *arg, int *out, int *nerr);
 /* Report operands (argv[optind_..argc-1]) that a command does not take. */
 void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
                         int *nerr);

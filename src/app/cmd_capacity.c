@@ -1,0 +1,463 @@
+/* cmd_capacity.c: `archquake capacity RECORD... --arch FILE [--arch FILE]`:
+ * the collapse capacity of every (record, arch, polarity) and the lognormal
+ * fragility of each arch (src/capacity; docs/capacity.md).  Options are
+ * checked before any record is read; records are read and processed once,
+ * the pairs run on -j threads, and the rows are written in (record, arch,
+ * polarity) order, so the output is the same for every -j.  Outputs go to a
+ * temporary beside each target, renamed once complete. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../capacity/capacity.h"
+#include "../report/report.h"
+#include "../report/text.h"
+#include "../units.h"
+#include "app.h"
+#include "cleanup.h"
+#include "opt.h"
+#include "opt_record.h"
+#include "opt_signal.h"
+
+#define AQ_CAP_MAX_THREADS 1024
+
+static const char usage_head[] =
+    "usage: archquake capacity RECORD... --arch FILE [--arch FILE ...] [OPTIONS]\n"
+    "For each record, arch and polarity, every scale factor at which the arch's\n"
+    "verdict (collapse or not) changes, from the scale at which it first moves\n"
+    "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
+    "polarity) on stdout.\n"
+    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  -o, --output FILE.h5  write the results to a `capacity` group\n"
+    "  --text FILE         write the TSV to FILE instead of stdout\n"
+    "  --fragility FILE    lognormal fragility fits, one row per (arch, IM)\n"
+    "  --polarity P        normal, reversed or both (default; the worse governs)\n"
+    "  --scale-max S       highest scale (default: PGA = 20 lambda0 g)\n"
+    "  --resolution R      relative scan step: no window of either verdict wider\n"
+    "                      than R is missed (default 0.01; 1e-4 to 1)\n"
+    "  --tol T             relative tolerance of each change (default 1e-6;\n"
+    "                      1e-12 to R)\n"
+    "  -j, --jobs N        worker threads (default: the number of cores)\n"
+    "  --model M           workpath (default), ode (reference), paper\n"
+    "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
+    "  --help              this text\n"
+    "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
+static const char usage_tail[] =
+    "Columns: record arch polarity status move_scale first_collapse_scale\n"
+    "  first_collapse_pga_g first_collapse_pgv_m_s collapse_intervals\n"
+    "  resurrection runs scale_max  (status: ok, never_moves, read:CODE,\n"
+    "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
+    "  collapse holds at the cap)\n"
+    "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
+    "ran), 2 bad options or arch file, 3 an output could not be written.\n";
+
+enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
+       OPT_MODEL, OPT_COR, OPT_HELP };
+
+/* A record as read and processed (or the stage where it failed). */
+typedef struct {
+  aq_record rec;
+  aq_processed proc;
+  aq_im im;
+  double *neg; /* the processed record negated (reversed polarity), or NULL */
+  char status[48];
+  int ok, have_rec, have_proc;
+} rec_item;
+
+static void prepare(const char *path, const aq_read_opts *ro, const aq_signal_opts *po,
+                    aq_signal_ws *ws, int pol, rec_item *r)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  const char *stage = "read";
+  aq_status s = aq_record_read(path, ro, &r->rec, &e);
+  if (s == AQ_OK) {
+    r->have_rec = 1;
+    stage = "process";
+    aq_signal_opts o = *po;
+    o.scale = 1.0;
+    s = aq_signal_process(&r->rec, &o, ws, &r->proc, &e);
+  }
+  if (s == AQ_OK) {
+    r->have_proc = 1;
+    s = aq_im_compute(&r->proc, &r->im, &e);
+  }
+  if (s == AQ_OK && (pol & AQ_POLARITY_REVERSED)) {
+    r->neg = malloc((r->proc.n ? r->proc.n : 1) * sizeof *r->neg);
+    if (!r->neg)
+      s = aq_error_set(&e, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    else /* reversed polarity: the processed record's accelerations negated once */
+      for (size_t i = 0; i < r->proc.n; i++)
+        r->neg[i] = -r->proc.acc_mps2[i];
+  }
+  aq_summary_status(r->status, sizeof r->status, stage, s);
+  r->ok = s == AQ_OK;
+  if (!r->ok)
+    aq_error_print(&e, stderr);
+}
+
+/* "lo-hi;lo-hi" into buf */
+static void intervals_text(const aq_scan_result *s, char *buf, size_t n)
+{
+  size_t k = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; i < s->ninterval && k + 80 < n; i++) {
+    char a[40], b[40];
+    aq_text_double(a, sizeof a, s->interval[i].lo);
+    aq_text_double(b, sizeof b, s->interval[i].hi);
+    k += (size_t)snprintf(buf + k, n - k, "%s%s-%s", i ? ";" : "", a, b);
+  }
+  if (!s->ninterval)
+    snprintf(buf, n, "-");
+}
+
+static int write_rows(FILE *f, char **recs, size_t nrec, aq_arch **arches, size_t na,
+                      const rec_item *R, const int *pols, size_t npol,
+                      const aq_capacity *C)
+{
+  static const char *const polname[] = {"", "normal", "reversed"};
+  size_t cap = 1 << 16;
+  char *iv = malloc(cap);
+  if (!iv)
+    return -1;
+  fputs("record\tarch\tpolarity\tstatus\tmove_scale\tfirst_collapse_scale\t"
+        "first_collapse_pga_g\tfirst_collapse_pgv_m_s\tcollapse_intervals\t"
+        "resurrection\truns\tscale_max\n", f);
+  for (size_t r = 0; r < nrec; r++)
+    for (size_t a = 0; a < na; a++)
+      for (size_t p = 0; p < npol; p++) {
+        const aq_capacity *c = &C[(r * na + a) * npol + p];
+        char st[48], n1[40], n2[40], n3[40], n4[40], n5[40];
+        if (!R[r].ok)
+          snprintf(st, sizeof st, "%s", R[r].status);
+        else if (c->status == AQ_CAPACITY_FAILED)
+          aq_summary_status(st, sizeof st, "run", c->run_status);
+        else
+          snprintf(st, sizeof st, "%s",
+                   c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
+        int have = R[r].ok && c->status != AQ_CAPACITY_FAILED;
+        double fc = have ? c->first_collapse_scale : NAN;
+        aq_text_double(n1, sizeof n1, have ? c->move_scale : NAN);
+        aq_text_double(n2, sizeof n2, fc);
+        aq_text_double(n3, sizeof n3, have ? fc * R[r].im.pga_g : NAN);
+        aq_text_double(n4, sizeof n4, have ? fc * R[r].im.pgv_mps : NAN);
+        aq_text_double(n5, sizeof n5, have ? c->scale_max : NAN);
+        if (have)
+          intervals_text(&c->scan, iv, cap);
+        else
+          snprintf(iv, cap, "-");
+        fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s\n", recs[r],
+                aq_arch_name(arches[a]), polname[pols[p]], st, n1, n2, n3, n4, iv,
+                have ? c->resurrection : 0, have ? c->scan.runs : 0, n5);
+      }
+  free(iv);
+  return ferror(f) ? -1 : 0;
+}
+
+/* Per arch and IM: the governing (lowest over polarities) first-collapse
+ * intensity of each record that ran, censored at its cap if none. */
+static int write_fragility(FILE *f, size_t nrec, aq_arch **arches, size_t na,
+                           const rec_item *R, size_t npol, const aq_capacity *C,
+                           aq_fragility *fits)
+{
+  double *x = malloc((nrec ? nrec : 1) * sizeof *x);
+  int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
+  if (!x || !cen) {
+    free(x);
+    free(cen);
+    return -1;
+  }
+  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\n", f);
+  for (size_t a = 0; a < na; a++)
+    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
+      size_t n = 0;
+      for (size_t r = 0; r < nrec; r++) {
+        if (!R[r].ok)
+          continue;
+        double s = INFINITY, cap = NAN, l0 = NAN;
+        int bad = 0;
+        for (size_t p = 0; p < npol; p++) {
+          const aq_capacity *c = &C[(r * na + a) * npol + p];
+          bad |= c->status == AQ_CAPACITY_FAILED;
+          if (!isnan(c->first_collapse_scale))
+            s = fmin(s, c->first_collapse_scale);
+          cap = c->scale_max;
+          l0 = c->lambda0;
+        }
+        if (bad)
+          continue;
+        cen[n] = !isfinite(s);
+        x[n] = aq_fragility_im_at(&R[r].im, l0, m, cen[n] ? cap : s);
+        if (x[n] > 0 && isfinite(x[n]))
+          n++;
+      }
+      aq_fragility *fit = &fits[a * AQ_FRAGILITY_NIM + (size_t)m];
+      aq_error e;
+      if (aq_fragility_fit(x, cen, n, AQ_FRAGILITY_CI_DEFAULT, fit, &e) != AQ_OK) {
+        aq_error_print(&e, stderr);
+        fit->median = fit->beta = fit->median_lo = fit->median_hi = NAN;
+      }
+      char v[4][40];
+      aq_text_double(v[0], sizeof v[0], fit->median);
+      aq_text_double(v[1], sizeof v[1], fit->beta);
+      aq_text_double(v[2], sizeof v[2], fit->median_lo);
+      aq_text_double(v[3], sizeof v[3], fit->median_hi);
+      fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\n", aq_arch_name(arches[a]),
+              aq_fragility_im_names[m], fit->n, fit->ncensored, v[0], v[1], v[2], v[3]);
+    }
+  free(x);
+  free(cen);
+  return ferror(f) ? -1 : 0;
+}
+
+static int write_h5(const char *path, char **recs, size_t nrec, aq_arch **arches,
+                    size_t na, const rec_item *R, const int *pols, size_t npol,
+                    const aq_capacity *C, const aq_fragility *fits,
+                    const aq_scan_opts *so)
+{
+  (void)path; (void)recs; (void)nrec; (void)arches; (void)na; (void)R;
+  (void)pols; (void)npol; (void)C; (void)fits; (void)so;
+  return 0;
+}
+
+/* Open a temporary beside path (registered for cleanup). */
+static FILE *tmp_open(const char *path, char *tmp, size_t n, int *slot)
+{
+  snprintf(tmp, n, "%s.tmp.%ld", path, (long)getpid());
+  FILE *f = fopen(tmp, "wx");
+  if (!f)
+    fprintf(stderr, "archquake: %s: cannot create the output (temporary %s): %s\n",
+            path, tmp, strerror(errno));
+  else
+    *slot = aq_cleanup_add(tmp);
+  return f;
+}
+
+/* Close f and rename tmp onto path if ok; remove it otherwise.  0 or -1. */
+static int tmp_commit(FILE *f, const char *tmp, const char *path, int ok, int slot)
+{
+  if (fclose(f) != 0 || (ok && rename(tmp, path) != 0)) {
+    if (ok)
+      fprintf(stderr, "archquake: %s: cannot write the output: %s\n", path,
+              strerror(errno));
+    ok = 0;
+  }
+  if (!ok)
+    unlink(tmp);
+  aq_cleanup_remove(slot);
+  return ok ? 0 : -1;
+}
+
+int aq_cmd_capacity(int argc, char **argv)
+{
+  struct option lo[40] = {
+      AQ_OPT_RECORD_LONGOPTS,
+      {"arch", required_argument, NULL, OPT_ARCH},
+      {"output", required_argument, NULL, 'o'},
+      {"text", required_argument, NULL, OPT_TEXT},
+      {"fragility", required_argument, NULL, OPT_FRAG},
+      {"polarity", required_argument, NULL, OPT_POL},
+      {"scale-max", required_argument, NULL, OPT_SMAX},
+      {"resolution", required_argument, NULL, OPT_RES},
+      {"tol", required_argument, NULL, OPT_TOL},
+      {"jobs", required_argument, NULL, 'j'},
+      {"model", required_argument, NULL, OPT_MODEL},
+      {"cor", required_argument, NULL, OPT_COR},
+      {"help", no_argument, NULL, OPT_HELP}};
+  size_t nl = aq_opt_signal_append(lo, 15);
+  lo[nl] = (struct option){NULL, 0, NULL, 0};
+  static const char *const models[] = {"workpath", "ode", "paper", NULL};
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts po;
+  aq_signal_opts_default(&po);
+  double merge_tol_g = 0, cor = NAN, smax = NAN;
+  aq_scan_opts so = {AQ_SCAN_RESOLUTION_DEFAULT, AQ_SCAN_TOL_DEFAULT};
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN), threads = ncpu >= 1 ? ncpu : 1;
+  int pol = AQ_POLARITY_BOTH, model = 0, nerr = 0, c;
+  const char *h5 = NULL, *text = NULL, *frag = NULL;
+  char **arch_paths = calloc((size_t)argc + 1, sizeof *arch_paths);
+  size_t na = 0;
+  if (!arch_paths)
+    return AQ_EXIT_FAIL;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":o:j:", lo, NULL)) != -1) {
+    if (aq_opt_signal_handle(c, optarg, &po, &merge_tol_g, &nerr) ||
+        aq_opt_record_handle(c, optarg, &ro, &nerr))
+      continue;
+    switch (c) {
+    case OPT_ARCH: arch_paths[na++] = optarg; break;
+    case 'o': h5 = optarg; break;
+    case OPT_TEXT: text = optarg; break;
+    case OPT_FRAG: frag = optarg; break;
+    case OPT_POL: aq_opt_polarity(optarg, &pol, &nerr); break;
+    case OPT_SMAX: aq_opt_double_gt("--scale-max", optarg, 0, 1e6, &smax, &nerr); break;
+    case OPT_RES:
+      aq_opt_double("--resolution", optarg, AQ_SCAN_RESOLUTION_MIN,
+                    AQ_SCAN_RESOLUTION_MAX, &so.resolution, &nerr);
+      break;
+    case OPT_TOL: aq_opt_double("--tol", optarg, AQ_SCAN_TOL_MIN, 1, &so.tol, &nerr); break;
+    case 'j': aq_opt_long("-j", optarg, 1, AQ_CAP_MAX_THREADS, &threads, &nerr); break;
+    case OPT_MODEL: aq_opt_choice("--model", optarg, models, &model, &nerr); break;
+    case OPT_COR: aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr); break;
+    case OPT_HELP:
+      fputs(usage_head, stdout);
+      fputs(aq_opt_signal_usage, stdout);
+      fputs(usage_tail, stdout);
+      free(arch_paths);
+      return AQ_EXIT_OK;
+    default: aq_opt_unknown("capacity", argv, optind, optopt, &nerr);
+    }
+  }
+  aq_opt_signal_check(&po, &nerr);
+  aq_error se;
+  if (aq_scan_check(&so, &se) == AQ_OK) {
+  } else if (strcmp(se.field, "tol") == 0) {
+    fprintf(stderr, "archquake: --tol: expected %g to --resolution (%g), got %g\n",
+            AQ_SCAN_TOL_MIN, so.resolution, so.tol);
+    nerr++;
+  }
+  if (optind >= argc) {
+    fprintf(stderr, "archquake: capacity: expected at least one RECORD\n");
+    nerr++;
+  }
+  aq_opt_require("capacity", "--arch FILE", na > 0, &nerr);
+  const char *outs[3] = {h5, text, frag};
+  for (int i = 0; i < 3; i++)
+    for (int j = i + 1; j < 3; j++)
+      if (outs[i] && outs[j] && strcmp(outs[i], outs[j]) == 0) {
+        fprintf(stderr, "archquake: %s: expected different output files, got it twice\n",
+                outs[i]);
+        nerr++;
+      }
+  if (nerr) {
+    free(arch_paths);
+    return AQ_EXIT_USAGE;
+  }
+  if (aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
+      aq_opt_output_special("--fragility", frag)) {
+    free(arch_paths);
+    return AQ_EXIT_OUTPUT;
+  }
+
+  int rc = AQ_EXIT_OK;
+  char **recs = argv + optind;
+  size_t nrec = (size_t)(argc - optind);
+  aq_arch **arches = calloc(na, sizeof *arches);
+  int pols[2];
+  size_t npol = 0;
+  if (pol & AQ_POLARITY_NORMAL)
+    pols[npol++] = AQ_POLARITY_NORMAL;
+  if (pol & AQ_POLARITY_REVERSED)
+    pols[npol++] = AQ_POLARITY_REVERSED;
+  rec_item *R = calloc(nrec, sizeof *R);
+  size_t njob = nrec * na * npol;
+  aq_capacity_job *jobs = calloc(njob ? njob : 1, sizeof *jobs);
+  aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
+  aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  if (!arches || !R || !jobs || !C || !fits || !ws) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t a = 0; a < na; a++)
+    if (aq_arch_load(arch_paths[a], &arches[a], &se) != AQ_OK) {
+      aq_error_print(&se, stderr);
+      rc = AQ_EXIT_USAGE;
+    }
+  if (rc != AQ_EXIT_OK)
+    goto done;
+  for (size_t r = 0; r < nrec; r++) {
+    prepare(recs[r], &ro, &po, ws, pol, &R[r]);
+    if (!R[r].ok)
+      rc = AQ_EXIT_FAIL;
+  }
+  size_t nrun = 0; /* jobs of records that were read */
+  aq_capacity_job *jp = jobs;
+  size_t *slot = calloc(njob ? njob : 1, sizeof *slot);
+  if (!slot) {
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t i = 0; i < njob; i++) {
+    size_t r = i / (na * npol), a = i / npol % na, p = i % npol;
+    if (!R[r].ok)
+      continue;
+    jp[nrun] = (aq_capacity_job){&R[r].proc,
+                                 pols[p] == AQ_POLARITY_REVERSED ? R[r].neg
+                                                                 : R[r].proc.acc_mps2,
+                                 arches[a], (aq_model)model, cor,
+                                 merge_tol_g * AQ_G0_MPS2, smax, so};
+    slot[nrun++] = i;
+  }
+  aq_capacity *tmpC = calloc(nrun ? nrun : 1, sizeof *tmpC);
+  if (!tmpC || aq_capacity_run_all(jobs, nrun, threads, tmpC, &se) != AQ_OK) {
+    fprintf(stderr, "archquake: out of memory\n");
+    free(tmpC);
+    free(slot);
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t k = 0; k < nrun; k++)
+    C[slot[k]] = tmpC[k];
+  free(tmpC);
+  free(slot);
+  for (size_t i = 0; i < njob; i++)
+    if (R[i / (na * npol)].ok && C[i].status == AQ_CAPACITY_FAILED) {
+      char msg[1200];
+      aq_error_format(&C[i].err, msg, sizeof msg);
+      fprintf(stderr, "archquake: %s: arch %s: %s\n", recs[i / (na * npol)],
+              aq_arch_name(arches[i / npol % na]), msg);
+      rc = AQ_EXIT_FAIL;
+    }
+
+  /* outputs: every temporary is complete before any is renamed */
+  aq_cleanup_install();
+  char tt[4096], tf[4096];
+  int st = -1, sf = -1;
+  FILE *ft = text ? tmp_open(text, tt, sizeof tt, &st) : stdout;
+  FILE *ff = frag ? tmp_open(frag, tf, sizeof tf, &sf) : NULL;
+  int ok = ft && (!frag || ff);
+  if (ok && write_rows(ft, recs, nrec, arches, na, R, pols, npol, C) != 0)
+    ok = 0;
+  if (ok && ff && write_fragility(ff, nrec, arches, na, R, npol, C, fits) != 0)
+    ok = 0;
+  if (ok && h5 && write_h5(h5, recs, nrec, arches, na, R, pols, npol, C, fits,
+                           &so) != 0)
+    ok = 0;
+  if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
+    ok = 0;
+  if (text && ft && tmp_commit(ft, tt, text, ok, st) != 0)
+    ok = 0;
+  if (!text && (fflush(stdout) != 0 || ferror(stdout)))
+    ok = 0;
+  if (!ok)
+    rc = AQ_EXIT_OUTPUT;
+done:
+  for (size_t i = 0; i < njob && C; i++)
+    aq_capacity_free(&C[i]);
+  for (size_t r = 0; r < nrec && R; r++) {
+    if (R[r].have_rec)
+      free(R[r].rec.acc_mps2);
+    if (R[r].have_proc)
+      aq_processed_free(&R[r].proc);
+    free(R[r].neg);
+  }
+  for (size_t a = 0; a < na && arches; a++)
+    aq_arch_free(arches[a]);
+  aq_signal_ws_free(ws);
+  free(arches);
+  free(R);
+  free(jobs);
+  free(C);
+  free(fits);
+  free(arch_paths);
+  return rc;
+}
