@@ -445,7 +445,7 @@ done:
     aq_capacity_free(&C[i]);
   for (size_t r = 0; r < nrec && R; r++) {
     if (R[r].have_rec)
-      free(R[r].rec.acc_mps2);
+      aq_record_free(&R[r].rec);
     if (R[r].have_proc)
       aq_processed_free(&R[r].proc);
     free(R[r].neg);

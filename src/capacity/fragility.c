@@ -28,7 +28,9 @@
 #include "capacity.h"
 
 /* Convergence of the fits (dimensionless: ln theta and ln beta). */
-static const double FIT_SIMPLEX_SIZE = 1e-11; /* simplex size at convergence */
+/* simplex size at convergence: near the optimum the nll changes by about
+ * 0.5 n size^2, which meets its rounding (1e-16 of it) for size ~ 1e-8 */
+static const double FIT_SIMPLEX_SIZE = 1e-7;
 static const size_t FIT_MAX_ITER = 20000;
 static const double PROFILE_LNBETA_TOL = 1e-10; /* inner maximisation over ln beta */
 static const double CI_LNTHETA_TOL = 1e-9;      /* ends of the interval, in ln theta */
@@ -77,7 +79,7 @@ static int profile(data *d, double lt, double lb0, double *nll, double *lb_out)
   d->lt = lt;
   /* bracket: walk a coarse grid around lb0 for the lowest point */
   const double step = 0.25;
-  const int half = 40;
+  const int half = 12; /* +-3 in ln beta around the guess */
   int best = 0;
   double fb = GSL_POSINF;
   for (int k = -half; k <= half; k++) {
@@ -220,6 +222,10 @@ aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
   size_t it = 0;
   for (; rc == GSL_SUCCESS && it < FIT_MAX_ITER; it++) {
     rc = gsl_multimin_fminimizer_iterate(s);
+    if (rc == GSL_ENOPROG) { /* no simplex move improves: converged as far as it can */
+      rc = GSL_SUCCESS;
+      break;
+    }
     if (rc != GSL_SUCCESS)
       break;
     if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(s), FIT_SIMPLEX_SIZE) ==
