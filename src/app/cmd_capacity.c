@@ -12,9 +12,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "../capacity/capacity.h"
+#include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text.h"
 #include "../units.h"
@@ -101,6 +103,17 @@ static void prepare(const char *path, const aq_read_opts *ro, const aq_signal_op
     aq_error_print(&e, stderr);
 }
 
+/* The status cell of pair c of record r. */
+static void pair_status(const rec_item *r, const aq_capacity *c, char *st, size_t n)
+{
+  if (!r->ok)
+    snprintf(st, n, "%s", r->status);
+  else if (c->status == AQ_CAPACITY_FAILED)
+    aq_summary_status(st, n, "run", c->run_status);
+  else
+    snprintf(st, n, "%s", c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
+}
+
 /* "lo-hi;lo-hi" into buf */
 static void intervals_text(const aq_scan_result *s, char *buf, size_t n)
 {
@@ -133,13 +146,7 @@ static int write_rows(FILE *f, char **recs, size_t nrec, aq_arch **arches, size_
       for (size_t p = 0; p < npol; p++) {
         const aq_capacity *c = &C[(r * na + a) * npol + p];
         char st[48], n1[40], n2[40], n3[40], n4[40], n5[40];
-        if (!R[r].ok)
-          snprintf(st, sizeof st, "%s", R[r].status);
-        else if (c->status == AQ_CAPACITY_FAILED)
-          aq_summary_status(st, sizeof st, "run", c->run_status);
-        else
-          snprintf(st, sizeof st, "%s",
-                   c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
+        pair_status(&R[r], c, st, sizeof st);
         int have = R[r].ok && c->status != AQ_CAPACITY_FAILED;
         double fc = have ? c->first_collapse_scale : NAN;
         aq_text_double(n1, sizeof n1, have ? c->move_scale : NAN);
@@ -161,9 +168,8 @@ static int write_rows(FILE *f, char **recs, size_t nrec, aq_arch **arches, size_
 
 /* Per arch and IM: the governing (lowest over polarities) first-collapse
  * intensity of each record that ran, censored at its cap if none. */
-static int write_fragility(FILE *f, size_t nrec, aq_arch **arches, size_t na,
-                           const rec_item *R, size_t npol, const aq_capacity *C,
-                           aq_fragility *fits)
+static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
+                   const aq_capacity *C, aq_fragility *fits)
 {
   double *x = malloc((nrec ? nrec : 1) * sizeof *x);
   int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
@@ -172,7 +178,6 @@ static int write_fragility(FILE *f, size_t nrec, aq_arch **arches, size_t na,
     free(cen);
     return -1;
   }
-  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\n", f);
   for (size_t a = 0; a < na; a++)
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
       size_t n = 0;
@@ -202,6 +207,19 @@ static int write_fragility(FILE *f, size_t nrec, aq_arch **arches, size_t na,
         aq_error_print(&e, stderr);
         fit->median = fit->beta = fit->median_lo = fit->median_hi = NAN;
       }
+    }
+  free(x);
+  free(cen);
+  return 0;
+}
+
+static int write_fragility(FILE *f, aq_arch **arches, size_t na,
+                           const aq_fragility *fits)
+{
+  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\n", f);
+  for (size_t a = 0; a < na; a++)
+    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
+      const aq_fragility *fit = &fits[a * AQ_FRAGILITY_NIM + (size_t)m];
       char v[4][40];
       aq_text_double(v[0], sizeof v[0], fit->median);
       aq_text_double(v[1], sizeof v[1], fit->beta);
@@ -210,19 +228,97 @@ static int write_fragility(FILE *f, size_t nrec, aq_arch **arches, size_t na,
       fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\n", aq_arch_name(arches[a]),
               aq_fragility_im_names[m], fit->n, fit->ncensored, v[0], v[1], v[2], v[3]);
     }
-  free(x);
-  free(cen);
   return ferror(f) ? -1 : 0;
 }
 
-static int write_h5(const char *path, char **recs, size_t nrec, aq_arch **arches,
-                    size_t na, const rec_item *R, const int *pols, size_t npol,
-                    const aq_capacity *C, const aq_fragility *fits,
-                    const aq_scan_opts *so)
+/* The results file: root, arches, records, then the capacity group. */
+static int write_h5(const char *path, int argc, char **argv, char **recs, size_t nrec,
+                    char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
+                    const int *pols, size_t npol, const aq_capacity *C,
+                    const aq_fragility *fits, const aq_scan_opts *so,
+                    const aq_signal_opts *po, double merge_tol_g, int model, double cor,
+                    long threads)
 {
-  (void)path; (void)recs; (void)nrec; (void)arches; (void)na; (void)R;
-  (void)pols; (void)npol; (void)C; (void)fits; (void)so;
-  return 0;
+  static const char *const polname[] = {"", "normal", "reversed"};
+  static const char *const models[] = {"workpath", "ode", "paper"};
+  size_t npair = nrec * na * npol, nfit = na * AQ_FRAGILITY_NIM;
+  size_t n = npair ? npair : 1, nf = nfit ? nfit : 1;
+  const char **names = malloc(4 * n * sizeof *names), **fnames = malloc(2 * nf * sizeof *fnames);
+  char (*status)[48] = malloc(n * sizeof *status);
+  int *valid = malloc(n * sizeof *valid);
+  double *pga = malloc(n * sizeof *pga), *pgv = malloc(n * sizeof *pgv);
+  char cmd[4096] = "";
+  for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
+    k += snprintf(cmd + k, sizeof cmd - (size_t)k, "%s%s", i ? " " : "archquake ", argv[i]);
+  aq_error e;
+  aq_h5_writer *w = NULL;
+  int rc = -1, slot = -1;
+  if (!names || !fnames || !status || !valid || !pga || !pgv) {
+    fprintf(stderr, "archquake: %s: out of memory\n", path);
+    goto out;
+  }
+  for (size_t i = 0; i < npair; i++) {
+    size_t r = i / (na * npol), a = i / npol % na;
+    names[i] = recs[r];
+    names[n + i] = aq_arch_name(arches[a]);
+    names[2 * n + i] = polname[pols[i % npol]];
+    pair_status(&R[r], &C[i], status[i], sizeof status[i]);
+    names[3 * n + i] = status[i];
+    valid[i] = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
+    pga[i] = R[r].ok ? R[r].im.pga_g : NAN;
+    pgv[i] = R[r].ok ? R[r].im.pgv_mps : NAN;
+  }
+  for (size_t i = 0; i < nfit; i++) {
+    fnames[i] = aq_arch_name(arches[i / AQ_FRAGILITY_NIM]);
+    fnames[nf + i] = aq_fragility_im_names[i % AQ_FRAGILITY_NIM];
+  }
+  char tmp[4200], created[64];
+  aq_h5_temp_name(path, tmp, sizeof tmp);
+  slot = aq_cleanup_add(tmp);
+  time_t t = time(NULL);
+  struct tm tm;
+  if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
+    snprintf(created, sizeof created, "unknown");
+  aq_h5_root root = {AQ_VERSION, cmd, created, po, merge_tol_g, "file", 0,
+                     models[model], cor, NULL, 0, NAN, 0, threads};
+  aq_status s = aq_h5_open(path, &w, &e);
+  if (s == AQ_OK)
+    s = aq_h5_write_root(w, &root, &e);
+  for (size_t a = 0; s == AQ_OK && a < na; a++) {
+    aq_h5_arch ha = {aq_arch_name(arches[a]), arch_paths[a], aq_arch_config_text(arches[a]),
+                     aq_arch_dynamics_of(arches[a]),
+                     {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)}};
+    s = aq_h5_write_arch(w, a, &ha, &e);
+  }
+  for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
+    aq_h5_record hr = {recs[r], R[r].have_rec ? &R[r].rec : NULL,
+                       R[r].have_proc ? &R[r].proc : NULL, R[r].ok ? &R[r].im : NULL,
+                       R[r].status, NULL, 0, 0};
+    s = aq_h5_write_record(w, r, &hr, &e);
+  }
+  aq_h5_capacity hc = {npair, names, names + n, names + 2 * n, names + 3 * n, C, valid,
+                       pga, pgv, nfit, fnames, fnames + nf, fits, so->resolution, so->tol,
+                       AQ_FRAGILITY_CI_DEFAULT};
+  if (s == AQ_OK)
+    s = aq_h5_write_capacity(w, path, &hc, &e);
+  if (s == AQ_OK) {
+    s = aq_h5_finish(w, NULL, &e);
+    w = NULL;
+  }
+  if (s != AQ_OK)
+    aq_error_print(&e, stderr);
+  else
+    rc = 0;
+out:
+  aq_h5_abort(w);
+  aq_cleanup_remove(slot);
+  free(names);
+  free(fnames);
+  free(status);
+  free(valid);
+  free(pga);
+  free(pgv);
+  return rc;
 }
 
 /* Open a temporary beside path (registered for cleanup). */
@@ -427,10 +523,15 @@ int aq_cmd_capacity(int argc, char **argv)
   int ok = ft && (!frag || ff);
   if (ok && write_rows(ft, recs, nrec, arches, na, R, pols, npol, C) != 0)
     ok = 0;
-  if (ok && ff && write_fragility(ff, nrec, arches, na, R, npol, C, fits) != 0)
+  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0) {
+    fprintf(stderr, "archquake: out of memory\n");
     ok = 0;
-  if (ok && h5 && write_h5(h5, recs, nrec, arches, na, R, pols, npol, C, fits,
-                           &so) != 0)
+  }
+  if (ok && ff && write_fragility(ff, arches, na, fits) != 0)
+    ok = 0;
+  if (ok && h5 &&
+      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, pols, npol, C,
+               fits, &so, &po, merge_tol_g, model, cor, threads) != 0)
     ok = 0;
   if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
     ok = 0;

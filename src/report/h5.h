@@ -20,6 +20,7 @@
 #define AQ_REPORT_H5_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "../arch/arch.h"
 #include "../arch/path.h"
@@ -119,5 +120,9 @@ void aq_h5_abort(aq_h5_writer *w);
  * order.  *out is malloc'd (caller frees), *n its length. */
 aq_status aq_h5_read_runs(const char *path, aq_summary **out, size_t *n,
                           aq_error *err);
+
+/* The open file's HDF5 id (between aq_h5_open and aq_h5_finish), for the
+ * writers of further groups (h5_capacity.c); an hid_t. */
+int64_t aq_h5_file_id(const aq_h5_writer *w);
 
 #endif
