@@ -7,9 +7,11 @@
  * collapse is not monotonic in the scale (COR 0.5: collapse, survival,
  * collapse; COR 0: seven changes between 4.9 and 5.8).  The transitions are
  * spot-checked with --model ode; bad input, and -j, are checked too. */
+#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "check.h"
@@ -328,4 +330,89 @@ AQ_TEST(capacity_cli_same_for_every_j)
   free(f3);
   free(a);
   free(b);
+}
+
+AQ_TEST(capacity_cli_move_scale_against_the_main_job)
+{
+  /* the exact scale of first motion: the main job's arch does not move
+   * just below it (peak rotation 0) and moves just above it */
+  char *out = malloc(BIG), cell[256];
+  if (!out)
+    return;
+  const char *arches[] = {ARCH, "arches/thin.cfg"};
+  for (int k = 0; k < 2; k++) {
+    char args[512];
+    snprintf(args, sizeof args,
+             "capacity tests/data/records/IELC180.AT2 --arch %s --polarity normal "
+             "--resolution 0.5 --tol 0.4", arches[k]);
+    int rc = aq_test_run(args, out, BIG, NULL, 0);
+    double m = strtod(field(out, 1, 4, cell, sizeof cell), NULL);
+    aq_check(rc == 0 && m > 0 && isfinite(m), "%s: move_scale %g", arches[k], m);
+    const double d = 1e-9;
+    snprintf(args, sizeof args,
+             "tests/data/records/IELC180.AT2 --arch %s --scale %.17g,%.17g -j 1",
+             arches[k], m * (1 - d), m * (1 + d));
+    rc = aq_test_run(args, out, BIG, NULL, 0);
+    double below = strtod(field(out, 1, 8, cell, sizeof cell), NULL);
+    double above = strtod(field(out, 2, 8, cell, sizeof cell), NULL);
+    aq_check(rc == 0 && below == 0 && above > 0,
+             "%s: peak rotation %g rad at move_scale (1 - 1e-9), %g at (1 + 1e-9)",
+             arches[k], below, above);
+  }
+  free(out);
+}
+
+AQ_TEST(capacity_cli_results_file)
+{
+  char *out = malloc(BIG), dir[512], args[1200], h5[600], cell[256];
+  if (!out)
+    return;
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/cap.h5", dir);
+  snprintf(args, sizeof args,
+           "capacity " REC " tests/data/records/IELC180.AT2 --arch " ARCH
+           " --resolution 0.05 -j 2 -o %s", h5);
+  int rc = aq_test_run(args, out, BIG, NULL, 0);
+  aq_check(rc == 0, "exit %d", rc);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  aq_check(f >= 0, "results file opens");
+  if (f < 0) {
+    free(out);
+    return;
+  }
+  double fc[8], iv[64];
+  int64_t start[8], count[8];
+  hid_t d = H5Dopen2(f, "capacity/first_collapse_scale", H5P_DEFAULT);
+  aq_check(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, fc) >= 0,
+           "first_collapse_scale read");
+  H5Dclose(d);
+  d = H5Dopen2(f, "capacity/interval_start", H5P_DEFAULT);
+  aq_check(d >= 0 && H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, start) >= 0,
+           "interval_start read");
+  H5Dclose(d);
+  d = H5Dopen2(f, "capacity/interval_count", H5P_DEFAULT);
+  aq_check(d >= 0 && H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, count) >= 0,
+           "interval_count read");
+  H5Dclose(d);
+  d = H5Dopen2(f, "capacity/intervals", H5P_DEFAULT);
+  hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(sp, dims, NULL);
+  H5Sclose(sp);
+  aq_check(d >= 0 && dims[0] <= 32 && dims[1] == 2 &&
+               H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, iv) >= 0,
+           "intervals read (%llu x %llu)", (unsigned long long)dims[0],
+           (unsigned long long)dims[1]);
+  H5Dclose(d);
+  H5Fclose(f);
+  /* the same numbers as the TSV rows, to the last bit (%.17g) */
+  for (int r = 0; r < 4; r++) {
+    double want = strtod(field(out, r + 1, 5, cell, sizeof cell), NULL);
+    aq_check(fc[r] == want || (isnan(fc[r]) && isnan(want)), "row %d: h5 %.17g, tsv %.17g",
+             r, fc[r], want);
+    if (count[r] > 0)
+      aq_check(iv[2 * start[r]] == want, "row %d: first interval starts at the first "
+               "collapse", r);
+  }
+  free(out);
 }
