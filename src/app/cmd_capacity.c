@@ -166,51 +166,29 @@ static int write_rows(FILE *f, char **recs, size_t nrec, aq_arch **arches, size_
   return ferror(f) ? -1 : 0;
 }
 
-/* Per arch and IM: the governing (lowest over polarities) first-collapse
- * intensity of each record that ran, censored at its cap if none. */
+/* Per arch: the fits of every IM over the records that were read (stderr
+ * gets the reason of a fit that fails; its row stays nan). */
 static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
                    const aq_capacity *C, aq_fragility *fits)
 {
-  double *x = malloc((nrec ? nrec : 1) * sizeof *x);
-  int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
-  if (!x || !cen) {
-    free(x);
-    free(cen);
+  const aq_im **im = malloc((nrec ? nrec : 1) * sizeof *im);
+  if (!im)
     return -1;
+  for (size_t r = 0; r < nrec; r++)
+    im[r] = R[r].ok ? &R[r].im : NULL;
+  int rc = 0;
+  for (size_t a = 0; a < na && rc == 0; a++) {
+    aq_error e;
+    aq_status s = aq_fragility_fit_records(C + a * npol, nrec, na * npol, npol, im,
+                                           AQ_FRAGILITY_CI_DEFAULT,
+                                           fits + a * AQ_FRAGILITY_NIM, &e);
+    if (s == AQ_ENOMEM)
+      rc = -1;
+    else if (s != AQ_OK)
+      aq_error_print(&e, stderr);
   }
-  for (size_t a = 0; a < na; a++)
-    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
-      size_t n = 0;
-      for (size_t r = 0; r < nrec; r++) {
-        if (!R[r].ok)
-          continue;
-        double s = INFINITY, cap = NAN, l0 = NAN;
-        int bad = 0;
-        for (size_t p = 0; p < npol; p++) {
-          const aq_capacity *c = &C[(r * na + a) * npol + p];
-          bad |= c->status == AQ_CAPACITY_FAILED;
-          if (!isnan(c->first_collapse_scale))
-            s = fmin(s, c->first_collapse_scale);
-          cap = c->scale_max;
-          l0 = c->lambda0;
-        }
-        if (bad)
-          continue;
-        cen[n] = !isfinite(s);
-        x[n] = aq_fragility_im_at(&R[r].im, l0, m, cen[n] ? cap : s);
-        if (x[n] > 0 && isfinite(x[n]))
-          n++;
-      }
-      aq_fragility *fit = &fits[a * AQ_FRAGILITY_NIM + (size_t)m];
-      aq_error e;
-      if (aq_fragility_fit(x, cen, n, AQ_FRAGILITY_CI_DEFAULT, fit, &e) != AQ_OK) {
-        aq_error_print(&e, stderr);
-        fit->median = fit->beta = fit->median_lo = fit->median_hi = NAN;
-      }
-    }
-  free(x);
-  free(cen);
-  return 0;
+  free(im);
+  return rc;
 }
 
 static int write_fragility(FILE *f, aq_arch **arches, size_t na,

@@ -173,6 +173,16 @@ double aq_fragility_im_at(const aq_im *im, double lambda0, int which,
 aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
                            double ci, aq_fragility *out, aq_error *err);
 
+/* The fits of every IM for one arch over nrec records: record r's results
+ * are cap[r * stride + p], p < npol (its polarities; the lowest first
+ * collapse governs; none up to the cap: censored at the cap's intensity);
+ * im[r] its measures at scale 1, or NULL to leave the record out, as is a
+ * record one of whose pairs failed.  fits[AQ_FRAGILITY_NIM] are filled
+ * (NAN where a fit is impossible or fails: the status and err say why). */
+aq_status aq_fragility_fit_records(const aq_capacity *cap, size_t nrec, size_t stride,
+                                   size_t npol, const aq_im *const *im, double ci,
+                                   aq_fragility *fits, aq_error *err);
+
 /* The negative log-likelihood of (theta, beta) for the data above (the
  * function fitted; exposed for tests and the bench). */
 double aq_fragility_nll(const double *x, const int *censored, size_t n,

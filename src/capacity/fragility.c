@@ -274,3 +274,55 @@ double aq_fragility_im_at(const aq_im *im, double lambda0, int which,
     return NAN;
   }
 }
+
+aq_status aq_fragility_fit_records(const aq_capacity *cap, size_t nrec, size_t stride,
+                                   size_t npol, const aq_im *const *im, double ci,
+                                   aq_fragility *fits, aq_error *err)
+{
+  double *x = malloc((nrec ? nrec : 1) * sizeof *x);
+  int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
+  aq_status st = AQ_OK;
+  for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
+    fits[m] = (aq_fragility){0, 0, NAN, NAN, NAN, NAN, NAN};
+  if (!x || !cen) {
+    free(x);
+    free(cen);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "fragility", "out of memory");
+  }
+  for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
+    size_t n = 0;
+    for (size_t r = 0; r < nrec; r++) {
+      if (!im[r])
+        continue;
+      double s = INFINITY, top = NAN, l0 = NAN;
+      int bad = 0;
+      for (size_t p = 0; p < npol; p++) { /* the worse polarity governs */
+        const aq_capacity *c = &cap[r * stride + p];
+        bad |= c->status == AQ_CAPACITY_FAILED;
+        if (!isnan(c->first_collapse_scale))
+          s = fmin(s, c->first_collapse_scale);
+        top = c->scale_max;
+        l0 = c->lambda0;
+      }
+      if (bad)
+        continue;
+      cen[n] = !isfinite(s);
+      x[n] = aq_fragility_im_at(im[r], l0, m, cen[n] ? top : s);
+      if (x[n] > 0 && isfinite(x[n])) /* a record of zeros has no intensity */
+        n++;
+    }
+    aq_error e;
+    aq_status s = aq_fragility_fit(x, cen, n, ci, &fits[m], &e);
+    if (s != AQ_OK) {
+      fits[m].median = fits[m].beta = fits[m].median_lo = fits[m].median_hi = NAN;
+      if (st == AQ_OK) {
+        st = s;
+        if (err)
+          *err = e;
+      }
+    }
+  }
+  free(x);
+  free(cen);
+  return st;
+}
