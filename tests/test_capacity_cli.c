@@ -95,7 +95,7 @@ static size_t brute_force(double a, double b, const char *extra, double *t,
     goto out;
   for (size_t i = 0; i < n; i++)
     s[i] = fmin(b, a * exp((double)i * log1p(RES / 10)));
-  if (!main_job(s, n, extra, v))
+  if (!aq_check(main_job(s, n, extra, v), "brute-force scan: the main job ran"))
     goto out;
   double lo[MAXT], hi[MAXT];
   int vlo[MAXT];
@@ -115,7 +115,9 @@ static size_t brute_force(double a, double b, const char *extra, double *t,
         idx[open] = k;
         mid[open++] = sqrt(lo[k] * hi[k]);
       }
-    if (!open || !main_job(mid, open, extra, vm))
+    if (!open)
+      break;
+    if (!aq_check(main_job(mid, open, extra, vm), "bisection: the main job ran"))
       break;
     for (size_t j = 0; j < open; j++) {
       if (vm[j] == vlo[idx[j]])
@@ -461,4 +463,35 @@ AQ_TEST(capacity_cli_reversed_is_the_negated_record)
   }
   free(a);
   free(b);
+}
+
+AQ_TEST(capacity_cli_compare_handles_the_capacity_group)
+{
+  char *out = malloc(BIG), err[4096], dir[512], args[2400], h[3][600];
+  if (!out)
+    return;
+  aq_test_tmpdir(dir, sizeof dir);
+  const char *cors[3] = {"0.5", "0.5", "0.45"};
+  for (int k = 0; k < 3; k++) {
+    snprintf(h[k], sizeof h[k], "%s/c%d.h5", dir, k);
+    snprintf(args, sizeof args,
+             "capacity " REC " --arch " ARCH " --cor %s --polarity normal --resolution "
+             "0.05 --scale-max 3 -j %d -o %s", cors[k], k + 1, h[k]);
+    aq_check(aq_test_run(args, out, BIG, NULL, 0) == 0, "capacity %d", k);
+  }
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[1]);
+  int rc = aq_test_run(args, out, BIG, err, sizeof err);
+  aq_check(rc == 0 && !strstr(out, "capacity/"), "same capacity: exit %d\n%s", rc, out);
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[2]);
+  rc = aq_test_run(args, out, BIG, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "\tnormal\tcapacity/first_collapse_scale\t"),
+           "another cor: exit %d\n%s", rc, out);
+  /* a main-job file has no capacity group: reported as one difference */
+  snprintf(args, sizeof args, REC " --arch " ARCH " -o %s/run.h5", dir);
+  aq_check(aq_test_run(args, out, BIG, NULL, 0) == 0, "main job");
+  snprintf(args, sizeof args, "compare %s/run.h5 %s", dir, h[0]);
+  rc = aq_test_run(args, out, BIG, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "capacity/present\tno\tyes"), "group in one file only: "
+           "exit %d\n%s", rc, out);
+  free(out);
 }

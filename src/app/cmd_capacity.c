@@ -23,6 +23,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_dyn.h"
 #include "opt_record.h"
 #include "opt_signal.h"
 
@@ -45,8 +46,7 @@ static const char usage_head[] =
     "  --tol T             relative tolerance of each change (default 1e-6;\n"
     "                      1e-12 to R)\n"
     "  -j, --jobs N        worker threads (default: the number of cores)\n"
-    "  --model M           workpath (default), ode (reference), paper\n"
-    "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
+    AQ_OPT_DYN_USAGE
     "  --help              this text\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
 static const char usage_tail[] =
@@ -59,7 +59,7 @@ static const char usage_tail[] =
     "ran), 2 bad options or arch file, 3 an output could not be written.\n";
 
 enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
-       OPT_MODEL, OPT_COR, OPT_HELP };
+       OPT_HELP };
 
 /* A record as read and processed (or the stage where it failed). */
 typedef struct {
@@ -214,11 +214,10 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                     char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
                     const int *pols, size_t npol, const aq_capacity *C,
                     const aq_fragility *fits, const aq_scan_opts *so,
-                    const aq_signal_opts *po, double merge_tol_g, int model, double cor,
+                    const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
                     long threads)
 {
   static const char *const polname[] = {"", "normal", "reversed"};
-  static const char *const models[] = {"workpath", "ode", "paper"};
   size_t npair = nrec * na * npol, nfit = na * AQ_FRAGILITY_NIM;
   size_t n = npair ? npair : 1, nf = nfit ? nfit : 1;
   const char **names = malloc(4 * n * sizeof *names), **fnames = malloc(2 * nf * sizeof *fnames);
@@ -258,7 +257,8 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
     snprintf(created, sizeof created, "unknown");
   aq_h5_root root = {AQ_VERSION, cmd, created, po, merge_tol_g, "file", 0,
-                     models[model], cor, NULL, 0, NAN, 0, threads};
+                     aq_opt_dyn_model_name(dyn->model), dyn->cor, NULL, 0, NAN, 0,
+                     threads};
   aq_status s = aq_h5_open(path, &w, &e);
   if (s == AQ_OK)
     s = aq_h5_write_root(w, &root, &e);
@@ -340,20 +340,20 @@ int aq_cmd_capacity(int argc, char **argv)
       {"resolution", required_argument, NULL, OPT_RES},
       {"tol", required_argument, NULL, OPT_TOL},
       {"jobs", required_argument, NULL, 'j'},
-      {"model", required_argument, NULL, OPT_MODEL},
-      {"cor", required_argument, NULL, OPT_COR},
+      AQ_OPT_DYN_LONGOPTS,
       {"help", no_argument, NULL, OPT_HELP}};
   size_t nl = aq_opt_signal_append(lo, 15);
   lo[nl] = (struct option){NULL, 0, NULL, 0};
-  static const char *const models[] = {"workpath", "ode", "paper", NULL};
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
   aq_signal_opts po;
   aq_signal_opts_default(&po);
-  double merge_tol_g = 0, cor = NAN, smax = NAN;
+  double merge_tol_g = 0, smax = NAN;
+  aq_dyn_opts dyn;
+  aq_opt_dyn_default(&dyn);
   aq_scan_opts so = {AQ_SCAN_RESOLUTION_DEFAULT, AQ_SCAN_TOL_DEFAULT};
   long ncpu = sysconf(_SC_NPROCESSORS_ONLN), threads = ncpu >= 1 ? ncpu : 1;
-  int pol = AQ_POLARITY_BOTH, model = 0, nerr = 0, c;
+  int pol = AQ_POLARITY_BOTH, nerr = 0, c;
   const char *h5 = NULL, *text = NULL, *frag = NULL;
   char **arch_paths = calloc((size_t)argc + 1, sizeof *arch_paths);
   size_t na = 0;
@@ -363,7 +363,8 @@ int aq_cmd_capacity(int argc, char **argv)
   optind = 1;
   while ((c = getopt_long(argc, argv, ":o:j:", lo, NULL)) != -1) {
     if (aq_opt_signal_handle(c, optarg, &po, &merge_tol_g, &nerr) ||
-        aq_opt_record_handle(c, optarg, &ro, &nerr))
+        aq_opt_record_handle(c, optarg, &ro, &nerr) ||
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
       continue;
     switch (c) {
     case OPT_ARCH: arch_paths[na++] = optarg; break;
@@ -378,8 +379,6 @@ int aq_cmd_capacity(int argc, char **argv)
       break;
     case OPT_TOL: aq_opt_double("--tol", optarg, AQ_SCAN_TOL_MIN, 1, &so.tol, &nerr); break;
     case 'j': aq_opt_long("-j", optarg, 1, AQ_CAP_MAX_THREADS, &threads, &nerr); break;
-    case OPT_MODEL: aq_opt_choice("--model", optarg, models, &model, &nerr); break;
-    case OPT_COR: aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr); break;
     case OPT_HELP:
       fputs(usage_head, stdout);
       fputs(aq_opt_signal_usage, stdout);
@@ -467,7 +466,7 @@ int aq_cmd_capacity(int argc, char **argv)
     jp[nrun] = (aq_capacity_job){&R[r].proc,
                                  pols[p] == AQ_POLARITY_REVERSED ? R[r].neg
                                                                  : R[r].proc.acc_mps2,
-                                 arches[a], (aq_model)model, cor,
+                                 arches[a], dyn.model, dyn.cor,
                                  merge_tol_g * AQ_G0_MPS2, smax, so};
     slot[nrun++] = i;
   }
@@ -509,7 +508,7 @@ int aq_cmd_capacity(int argc, char **argv)
     ok = 0;
   if (ok && h5 &&
       write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, pols, npol, C,
-               fits, &so, &po, merge_tol_g, model, cor, threads) != 0)
+               fits, &so, &po, merge_tol_g, &dyn, threads) != 0)
     ok = 0;
   if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
     ok = 0;

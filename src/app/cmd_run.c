@@ -17,6 +17,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_dyn.h"
 #include "opt_record.h"
 #include "opt_signal.h"
 #include "suite.h"
@@ -35,9 +36,7 @@ static const char usage_head[] =
     "  --scale-to-pga G    scale each processed record to a PGA of G g instead\n"
     "  -j, --jobs N        worker threads (default: the number of cores); the\n"
     "                      results are the same for every N\n"
-    "  --model M           workpath (default), ode (reference), paper\n"
-    "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
-    "                      (default: each arch's [dynamics] cor)\n"
+    AQ_OPT_DYN_USAGE
     "  --history           write step-end histories to the HDF5 file (with -o)\n"
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -64,8 +63,6 @@ enum {
   OPT_TEXT,
   OPT_SCALE,
   OPT_SCALE_PGA,
-  OPT_MODEL,
-  OPT_COR,
   OPT_HISTORY,
   OPT_HELP
 };
@@ -159,14 +156,12 @@ int aq_cmd_run(int argc, char **argv)
       {"scale", required_argument, NULL, OPT_SCALE},
       {"scale-to-pga", required_argument, NULL, OPT_SCALE_PGA},
       {"jobs", required_argument, NULL, 'j'},
-      {"model", required_argument, NULL, OPT_MODEL},
-      {"cor", required_argument, NULL, OPT_COR},
+      AQ_OPT_DYN_LONGOPTS,
       {"history", no_argument, NULL, OPT_HISTORY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
   size_t nlong = aq_opt_signal_append(longopts, 14);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
-  static const char *const models[] = {"workpath", "ode", "paper", NULL};
 
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
@@ -178,7 +173,9 @@ int aq_cmd_run(int argc, char **argv)
   static const double one = 1.0;
   double *scales = NULL;
   size_t nscale = 0;
-  int quiet = 0, model = 0, nerr = 0, c;
+  int quiet = 0, nerr = 0, c;
+  aq_dyn_opts dyn;
+  aq_opt_dyn_default(&dyn);
   const char *text_path = NULL;
   char **arches = calloc((size_t)argc + 1, sizeof *arches);
   char units_text[1024] = "";
@@ -192,7 +189,8 @@ int aq_cmd_run(int argc, char **argv)
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":o:j:q", longopts, NULL)) != -1) {
-    if (aq_opt_signal_handle(c, optarg, &cfg.proc, &cfg.merge_tol_g, &nerr))
+    if (aq_opt_signal_handle(c, optarg, &cfg.proc, &cfg.merge_tol_g, &nerr) ||
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
       continue;
     switch (c) {
     case OPT_ARCH:
@@ -212,12 +210,6 @@ int aq_cmd_run(int argc, char **argv)
       break;
     case 'j':
       aq_opt_long("-j", optarg, 1, AQ_RUN_MAX_THREADS, &cfg.threads, &nerr);
-      break;
-    case OPT_MODEL:
-      aq_opt_choice("--model", optarg, models, &model, &nerr);
-      break;
-    case OPT_COR:
-      aq_opt_double("--cor", optarg, 0, 1, &cfg.cor, &nerr);
       break;
     case OPT_HISTORY:
       cfg.history = 1;
@@ -294,7 +286,8 @@ int aq_cmd_run(int argc, char **argv)
   cfg.records = argv + optind;
   cfg.nrecords = (size_t)(argc - optind);
   cfg.arch_paths = arches;
-  cfg.model = (aq_model)model;
+  cfg.model = dyn.model;
+  cfg.cor = dyn.cor;
   cfg.units_text = units_text[0] ? units_text : NULL;
   if (isnan(cfg.scale_to_pga_g)) {
     cfg.scales = scales ? scales : &one;

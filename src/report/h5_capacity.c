@@ -5,10 +5,14 @@
 #include <errno.h>
 #include <hdf5.h>
 #include <math.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "compare.h"
 #include "h5_capacity.h"
+#include "text.h"
 
 /* n variable-length strings as a 1-D dataset. */
 static herr_t ds_strings(hid_t g, const char *name, const char *const *v, size_t n)
@@ -99,11 +103,13 @@ typedef struct {
   size_t niv;
 } columns;
 
-static const char *const dnames[6] = {"move_scale", "first_collapse_scale",
-                                      "first_collapse_pga_g", "first_collapse_pgv_m_s",
-                                      "scale_max", "lambda0"};
-static const char *const inames[4] = {"resurrection", "runs", "interval_start",
-                                      "interval_count"};
+const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
+    "move_scale", "first_collapse_scale", "first_collapse_pga_g",
+    "first_collapse_pgv_m_s", "scale_max", "lambda0"};
+const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT] = {
+    "resurrection", "runs", "interval_start", "interval_count"};
+#define dnames aq_h5_capacity_double_names
+#define inames aq_h5_capacity_int_names
 
 static int fill(const aq_h5_capacity *c, columns *k)
 {
@@ -243,4 +249,226 @@ out:
   free(fn[1]);
   columns_free(&k);
   return st;
+}
+
+/* ---- reading back ---------------------------------------------------------- */
+
+void aq_h5_capacity_table_free(aq_h5_capacity_table *t)
+{
+  if (!t)
+    return;
+  free(t->row);
+  free(t->interval);
+  memset(t, 0, sizeof *t);
+}
+
+/* Read the 1-D (or n x 2) dataset name of g into buf (n values of type t). */
+static herr_t ds_read(hid_t g, const char *name, hid_t t, void *buf, hsize_t n,
+                      hsize_t cols)
+{
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  int nd = sp >= 0 ? H5Sget_simple_extent_dims(sp, dims, NULL) : -1;
+  herr_t rc = -1;
+  if (nd >= 1 && dims[0] == n && (cols == 1 ? nd == 1 : nd == 2 && dims[1] == cols))
+    rc = n ? H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (H5Dclose(d) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* A column of n variable-length strings into the rows at offset off, size cap. */
+static herr_t ds_read_strings(hid_t g, const char *name, aq_h5_capacity_row *rows,
+                              size_t n, size_t off, size_t cap)
+{
+  char **v = calloc(n ? n : 1, sizeof *v);
+  hid_t t = H5Tcopy(H5T_C_S1);
+  herr_t rc = -1;
+  if (v && t >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0 &&
+      ds_read(g, name, t, v, n, 1) >= 0) {
+    rc = 0;
+    for (size_t i = 0; i < n; i++)
+      snprintf((char *)&rows[i] + off, cap, "%s", v[i] ? v[i] : "");
+    hsize_t dim = n;
+    hid_t sp = H5Screate_simple(1, &dim, NULL);
+    if (n && sp >= 0)
+      H5Dvlen_reclaim(t, sp, H5P_DEFAULT, v);
+    if (sp >= 0)
+      H5Sclose(sp);
+  }
+  if (t >= 0)
+    H5Tclose(t);
+  free(v);
+  return rc;
+}
+
+aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
+                              aq_error *err)
+{
+  memset(t, 0, sizeof *t);
+  *present = 0;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected a readable HDF5 results file");
+  aq_status st = AQ_OK;
+  if (H5Lexists(f, "capacity", H5P_DEFAULT) <= 0) {
+    H5Fclose(f);
+    return AQ_OK;
+  }
+  *present = 1;
+  hid_t g = H5Gopen2(f, "capacity", H5P_DEFAULT), d = -1, sp = -1;
+  hsize_t n = 0, ni[2] = {0, 0};
+  const char *what = "record";
+  if (g < 0 || (d = H5Dopen2(g, "record", H5P_DEFAULT)) < 0 ||
+      (sp = H5Dget_space(d)) < 0 || H5Sget_simple_extent_dims(sp, &n, NULL) != 1)
+    goto bad;
+  H5Sclose(sp);
+  H5Dclose(d);
+  sp = d = -1;
+  what = "intervals";
+  if ((d = H5Dopen2(g, "intervals", H5P_DEFAULT)) < 0 || (sp = H5Dget_space(d)) < 0 ||
+      H5Sget_simple_extent_dims(sp, ni, NULL) != 2 || ni[1] != 2)
+    goto bad;
+  H5Sclose(sp);
+  H5Dclose(d);
+  sp = d = -1;
+  t->row = calloc(n ? n : 1, sizeof *t->row);
+  t->interval = malloc((ni[0] ? ni[0] : 1) * 2 * sizeof(double));
+  double *col = malloc((n ? n : 1) * sizeof *col);
+  int64_t *icol = malloc((n ? n : 1) * sizeof *icol);
+  if (!t->row || !t->interval || !col || !icol) {
+    free(col);
+    free(icol);
+    H5Gclose(g);
+    H5Fclose(f);
+    aq_h5_capacity_table_free(t);
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, "capacity", "out of memory");
+  }
+  t->n = (size_t)n;
+  t->ninterval = (size_t)ni[0];
+  int ok = 1;
+  what = "record, arch, polarity, status";
+  ok = ok && ds_read_strings(g, "record", t->row, t->n, offsetof(aq_h5_capacity_row, record),
+                             sizeof t->row->record) >= 0;
+  ok = ok && ds_read_strings(g, "arch", t->row, t->n, offsetof(aq_h5_capacity_row, arch),
+                             sizeof t->row->arch) >= 0;
+  ok = ok && ds_read_strings(g, "polarity", t->row, t->n,
+                             offsetof(aq_h5_capacity_row, polarity),
+                             sizeof t->row->polarity) >= 0;
+  ok = ok && ds_read_strings(g, "status", t->row, t->n, offsetof(aq_h5_capacity_row, status),
+                             sizeof t->row->status) >= 0;
+  for (int j = 0; ok && j < AQ_H5_CAP_NDOUBLE; j++) {
+    what = dnames[j];
+    ok = ds_read(g, dnames[j], H5T_NATIVE_DOUBLE, col, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->n; i++)
+      t->row[i].d[j] = col[i];
+  }
+  for (int j = 0; ok && j < AQ_H5_CAP_NINT; j++) {
+    what = inames[j];
+    ok = ds_read(g, inames[j], H5T_NATIVE_INT64, icol, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->n; i++)
+      t->row[i].i[j] = icol[i];
+  }
+  what = "intervals";
+  ok = ok && ds_read(g, "intervals", H5T_NATIVE_DOUBLE, t->interval, ni[0], 2) >= 0;
+  for (size_t i = 0; ok && i < t->n; i++) /* interval rows within the dataset */
+    ok = t->row[i].i[2] >= 0 && t->row[i].i[3] >= 0 &&
+         (uint64_t)(t->row[i].i[2] + t->row[i].i[3]) <= (uint64_t)t->ninterval;
+  free(col);
+  free(icol);
+  H5Gclose(g);
+  H5Fclose(f);
+  H5Eclear2(H5E_DEFAULT);
+  if (!ok) {
+    aq_h5_capacity_table_free(t);
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/capacity",
+                        "expected the capacity datasets (docs/capacity.md), "
+                        "could not read %s", what);
+  }
+  return st;
+bad:
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (g >= 0)
+    H5Gclose(g);
+  H5Fclose(f);
+  H5Eclear2(H5E_DEFAULT);
+  return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/capacity",
+                      "expected a one-dimensional %s dataset", what);
+}
+
+static int same_key(const aq_h5_capacity_row *x, const aq_h5_capacity_row *y)
+{
+  return strcmp(x->record, y->record) == 0 && strcmp(x->arch, y->arch) == 0 &&
+         strcmp(x->polarity, y->polarity) == 0;
+}
+
+static size_t emit(aq_h5_capacity_diff_fn fn, void *ctx, const aq_h5_capacity_row *a,
+                   const aq_h5_capacity_row *b, const char *field, double va, double vb,
+                   const char *sa, const char *sb)
+{
+  aq_h5_capacity_diff d = {a, b, field, "", "", NAN};
+  if (sa) {
+    snprintf(d.a_text, sizeof d.a_text, "%s", sa);
+    snprintf(d.b_text, sizeof d.b_text, "%s", sb);
+  } else if (field) {
+    aq_text_double(d.a_text, sizeof d.a_text, va);
+    aq_text_double(d.b_text, sizeof d.b_text, vb);
+    double m = fmax(fabs(va), fabs(vb));
+    d.rel = m > 0 ? fabs(va - vb) / m : 0;
+  }
+  if (fn)
+    fn(ctx, &d);
+  return 1;
+}
+
+size_t aq_h5_capacity_compare(const aq_h5_capacity_table *a,
+                              const aq_h5_capacity_table *b, double rtol, double atol,
+                              aq_h5_capacity_diff_fn fn, void *ctx)
+{
+  size_t nd = 0, j = 0;
+  for (size_t i = 0; i < a->n; i++) {
+    const aq_h5_capacity_row *x = &a->row[i];
+    size_t k = j;
+    while (k < b->n && !same_key(x, &b->row[k]))
+      k++;
+    if (k == b->n) {
+      nd += emit(fn, ctx, x, NULL, NULL, 0, 0, NULL, NULL);
+      continue;
+    }
+    for (; j < k; j++) /* rows of b skipped over: in b only */
+      nd += emit(fn, ctx, NULL, &b->row[j], NULL, 0, 0, NULL, NULL);
+    const aq_h5_capacity_row *y = &b->row[j++];
+    if (strcmp(x->status, y->status) != 0)
+      nd += emit(fn, ctx, x, y, "status", 0, 0, x->status, y->status);
+    for (int c = 0; c < AQ_H5_CAP_NDOUBLE; c++)
+      if (!aq_compare_close(x->d[c], y->d[c], rtol, atol))
+        nd += emit(fn, ctx, x, y, dnames[c], x->d[c], y->d[c], NULL, NULL);
+    for (int c = 0; c < AQ_H5_CAP_NINT; c++)
+      if (c != 2 && x->i[c] != y->i[c]) /* interval_start depends on earlier rows */
+        nd += emit(fn, ctx, x, y, inames[c], (double)x->i[c], (double)y->i[c], NULL,
+                   NULL);
+    if (x->i[3] != y->i[3])
+      continue;
+    for (int64_t q = 0; q < x->i[3]; q++)
+      for (int e = 0; e < 2; e++) {
+        double va = a->interval[2 * (x->i[2] + q) + e], vb = b->interval[2 * (y->i[2] + q) + e];
+        char name[48];
+        snprintf(name, sizeof name, "interval_%s[%lld]", e ? "hi" : "lo", (long long)q);
+        if (!aq_compare_close(va, vb, rtol, atol))
+          nd += emit(fn, ctx, x, y, name, va, vb, NULL, NULL);
+      }
+  }
+  for (; j < b->n; j++)
+    nd += emit(fn, ctx, NULL, &b->row[j], NULL, 0, 0, NULL, NULL);
+  return nd;
 }
