@@ -18,7 +18,7 @@
 #include "../capacity/capacity.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
-#include "../report/text.h"
+#include "../report/text_capacity.h"
 #include "../units.h"
 #include "app.h"
 #include "cleanup.h"
@@ -114,58 +114,6 @@ static void pair_status(const rec_item *r, const aq_capacity *c, char *st, size_
     snprintf(st, n, "%s", c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
 }
 
-/* "lo-hi;lo-hi" into buf */
-static void intervals_text(const aq_scan_result *s, char *buf, size_t n)
-{
-  size_t k = 0;
-  buf[0] = '\0';
-  for (size_t i = 0; i < s->ninterval && k + 80 < n; i++) {
-    char a[40], b[40];
-    aq_text_double(a, sizeof a, s->interval[i].lo);
-    aq_text_double(b, sizeof b, s->interval[i].hi);
-    k += (size_t)snprintf(buf + k, n - k, "%s%s-%s", i ? ";" : "", a, b);
-  }
-  if (!s->ninterval)
-    snprintf(buf, n, "-");
-}
-
-static int write_rows(FILE *f, char **recs, size_t nrec, aq_arch **arches, size_t na,
-                      const rec_item *R, const int *pols, size_t npol,
-                      const aq_capacity *C)
-{
-  static const char *const polname[] = {"", "normal", "reversed"};
-  size_t cap = 1 << 16;
-  char *iv = malloc(cap);
-  if (!iv)
-    return -1;
-  fputs("record\tarch\tpolarity\tstatus\tmove_scale\tfirst_collapse_scale\t"
-        "first_collapse_pga_g\tfirst_collapse_pgv_m_s\tcollapse_intervals\t"
-        "resurrection\truns\tscale_max\n", f);
-  for (size_t r = 0; r < nrec; r++)
-    for (size_t a = 0; a < na; a++)
-      for (size_t p = 0; p < npol; p++) {
-        const aq_capacity *c = &C[(r * na + a) * npol + p];
-        char st[48], n1[40], n2[40], n3[40], n4[40], n5[40];
-        pair_status(&R[r], c, st, sizeof st);
-        int have = R[r].ok && c->status != AQ_CAPACITY_FAILED;
-        double fc = have ? c->first_collapse_scale : NAN;
-        aq_text_double(n1, sizeof n1, have ? c->move_scale : NAN);
-        aq_text_double(n2, sizeof n2, fc);
-        aq_text_double(n3, sizeof n3, have ? fc * R[r].im.pga_g : NAN);
-        aq_text_double(n4, sizeof n4, have ? fc * R[r].im.pgv_mps : NAN);
-        aq_text_double(n5, sizeof n5, have ? c->scale_max : NAN);
-        if (have)
-          intervals_text(&c->scan, iv, cap);
-        else
-          snprintf(iv, cap, "-");
-        fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s\n", recs[r],
-                aq_arch_name(arches[a]), polname[pols[p]], st, n1, n2, n3, n4, iv,
-                have ? c->resurrection : 0, have ? c->scan.runs : 0, n5);
-      }
-  free(iv);
-  return ferror(f) ? -1 : 0;
-}
-
 /* Per arch: the fits of every IM over the records that were read (stderr
  * gets the reason of a fit that fails; its row stays nan). */
 static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
@@ -191,67 +139,60 @@ static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
   return rc;
 }
 
-static int write_fragility(FILE *f, aq_arch **arches, size_t na,
-                           const aq_fragility *fits)
+/* The report rows: one per (record, arch, polarity), one per (arch, IM). */
+typedef struct {
+  aq_capacity_row *row;
+  char (*status)[48];
+  aq_fragility_row *fit;
+} rows;
+
+static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t na,
+                     const rec_item *R, const int *pols, size_t npol, const aq_capacity *C,
+                     const aq_fragility *fits)
 {
-  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\n", f);
-  for (size_t a = 0; a < na; a++)
-    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
-      const aq_fragility *fit = &fits[a * AQ_FRAGILITY_NIM + (size_t)m];
-      char v[4][40];
-      aq_text_double(v[0], sizeof v[0], fit->median);
-      aq_text_double(v[1], sizeof v[1], fit->beta);
-      aq_text_double(v[2], sizeof v[2], fit->median_lo);
-      aq_text_double(v[3], sizeof v[3], fit->median_hi);
-      fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\n", aq_arch_name(arches[a]),
-              aq_fragility_im_names[m], fit->n, fit->ncensored, v[0], v[1], v[2], v[3]);
-    }
-  return ferror(f) ? -1 : 0;
+  static const char *const polname[] = {"", "normal", "reversed"};
+  size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
+  o->row = malloc((n ? n : 1) * sizeof *o->row);
+  o->status = malloc((n ? n : 1) * sizeof *o->status);
+  o->fit = malloc((nf ? nf : 1) * sizeof *o->fit);
+  if (!o->row || !o->status || !o->fit)
+    return -1;
+  for (size_t i = 0; i < n; i++) {
+    size_t r = i / (na * npol);
+    pair_status(&R[r], &C[i], o->status[i], sizeof o->status[i]);
+    int have = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
+    o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
+                                  polname[pols[i % npol]], o->status[i],
+                                  have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
+                                  R[r].ok ? R[r].im.pgv_mps : NAN};
+  }
+  for (size_t i = 0; i < nf; i++)
+    o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
+                                   aq_fragility_im_names[i % AQ_FRAGILITY_NIM], &fits[i]};
+  return 0;
+}
+
+static void rows_free(rows *o)
+{
+  free(o->row);
+  free(o->status);
+  free(o->fit);
 }
 
 /* The results file: root, arches, records, then the capacity group. */
 static int write_h5(const char *path, int argc, char **argv, char **recs, size_t nrec,
                     char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
-                    const int *pols, size_t npol, const aq_capacity *C,
-                    const aq_fragility *fits, const aq_scan_opts *so,
+                    const rows *o, size_t npair, const aq_scan_opts *so,
                     const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
                     long threads)
 {
-  static const char *const polname[] = {"", "normal", "reversed"};
-  size_t npair = nrec * na * npol, nfit = na * AQ_FRAGILITY_NIM;
-  size_t n = npair ? npair : 1, nf = nfit ? nfit : 1;
-  const char **names = malloc(4 * n * sizeof *names), **fnames = malloc(2 * nf * sizeof *fnames);
-  char (*status)[48] = malloc(n * sizeof *status);
-  int *valid = malloc(n * sizeof *valid);
-  double *pga = malloc(n * sizeof *pga), *pgv = malloc(n * sizeof *pgv);
-  char cmd[4096] = "";
+  char cmd[4096] = "", tmp[4200], created[64];
   for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
     k += snprintf(cmd + k, sizeof cmd - (size_t)k, "%s%s", i ? " " : "archquake ", argv[i]);
   aq_error e;
   aq_h5_writer *w = NULL;
-  int rc = -1, slot = -1;
-  if (!names || !fnames || !status || !valid || !pga || !pgv) {
-    fprintf(stderr, "archquake: %s: out of memory\n", path);
-    goto out;
-  }
-  for (size_t i = 0; i < npair; i++) {
-    size_t r = i / (na * npol), a = i / npol % na;
-    names[i] = recs[r];
-    names[n + i] = aq_arch_name(arches[a]);
-    names[2 * n + i] = polname[pols[i % npol]];
-    pair_status(&R[r], &C[i], status[i], sizeof status[i]);
-    names[3 * n + i] = status[i];
-    valid[i] = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
-    pga[i] = R[r].ok ? R[r].im.pga_g : NAN;
-    pgv[i] = R[r].ok ? R[r].im.pgv_mps : NAN;
-  }
-  for (size_t i = 0; i < nfit; i++) {
-    fnames[i] = aq_arch_name(arches[i / AQ_FRAGILITY_NIM]);
-    fnames[nf + i] = aq_fragility_im_names[i % AQ_FRAGILITY_NIM];
-  }
-  char tmp[4200], created[64];
   aq_h5_temp_name(path, tmp, sizeof tmp);
-  slot = aq_cleanup_add(tmp);
+  int slot = aq_cleanup_add(tmp);
   time_t t = time(NULL);
   struct tm tm;
   if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
@@ -274,9 +215,8 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                        R[r].status, NULL, 0, 0};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
-  aq_h5_capacity hc = {npair, names, names + n, names + 2 * n, names + 3 * n, C, valid,
-                       pga, pgv, nfit, fnames, fnames + nf, fits, so->resolution, so->tol,
-                       AQ_FRAGILITY_CI_DEFAULT};
+  aq_h5_capacity hc = {o->row, npair, o->fit, na * AQ_FRAGILITY_NIM, so->resolution,
+                       so->tol, AQ_FRAGILITY_CI_DEFAULT};
   if (s == AQ_OK)
     s = aq_h5_write_capacity(w, path, &hc, &e);
   if (s == AQ_OK) {
@@ -285,18 +225,9 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   }
   if (s != AQ_OK)
     aq_error_print(&e, stderr);
-  else
-    rc = 0;
-out:
   aq_h5_abort(w);
   aq_cleanup_remove(slot);
-  free(names);
-  free(fnames);
-  free(status);
-  free(valid);
-  free(pga);
-  free(pgv);
-  return rc;
+  return s == AQ_OK ? 0 : -1;
 }
 
 /* Open a temporary beside path (registered for cleanup). */
@@ -498,18 +429,22 @@ int aq_cmd_capacity(int argc, char **argv)
   FILE *ft = text ? tmp_open(text, tt, sizeof tt, &st) : stdout;
   FILE *ff = frag ? tmp_open(frag, tf, sizeof tf, &sf) : NULL;
   int ok = ft && (!frag || ff);
-  if (ok && write_rows(ft, recs, nrec, arches, na, R, pols, npol, C) != 0)
+  rows o = {NULL, NULL, NULL};
+  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0)
     ok = 0;
-  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0) {
+  if (ok && make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, fits) != 0) {
     fprintf(stderr, "archquake: out of memory\n");
     ok = 0;
   }
-  if (ok && ff && write_fragility(ff, arches, na, fits) != 0)
+  if (ok && aq_text_capacity(ft, o.row, njob) != 0)
+    ok = 0;
+  if (ok && ff && aq_text_fragility(ff, o.fit, na * AQ_FRAGILITY_NIM) != 0)
     ok = 0;
   if (ok && h5 &&
-      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, pols, npol, C,
-               fits, &so, &po, merge_tol_g, &dyn, threads) != 0)
+      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, njob, &so, &po,
+               merge_tol_g, &dyn, threads) != 0)
     ok = 0;
+  rows_free(&o);
   if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
     ok = 0;
   if (text && ft && tmp_commit(ft, tt, text, ok, st) != 0)

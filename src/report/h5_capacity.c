@@ -115,7 +115,7 @@ static int fill(const aq_h5_capacity *c, columns *k)
 {
   size_t n = c->npair ? c->npair : 1, niv = 0;
   for (size_t p = 0; p < c->npair; p++)
-    niv += c->valid[p] ? c->cap[p].scan.ninterval : 0;
+    niv += c->row[p].cap ? c->row[p].cap->scan.ninterval : 0;
   for (int j = 0; j < 6; j++)
     if (!(k->d[j] = malloc(n * sizeof(double))))
       return -1;
@@ -125,13 +125,13 @@ static int fill(const aq_h5_capacity *c, columns *k)
   if (!(k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double))))
     return -1;
   for (size_t p = 0; p < c->npair; p++) {
-    const aq_capacity *a = &c->cap[p];
-    int v = c->valid[p];
+    const aq_capacity *a = c->row[p].cap;
+    int v = a != NULL;
     double fc = v ? a->first_collapse_scale : NAN;
     k->d[0][p] = v ? a->move_scale : NAN;
     k->d[1][p] = fc;
-    k->d[2][p] = fc * c->pga_g[p];
-    k->d[3][p] = fc * c->pgv_mps[p];
+    k->d[2][p] = fc * c->row[p].pga_g;
+    k->d[3][p] = fc * c->row[p].pgv_mps;
     k->d[4][p] = v ? a->scale_max : NAN;
     k->d[5][p] = v ? a->lambda0 : NAN;
     k->i[0][p] = v ? a->resurrection : 0;
@@ -172,17 +172,38 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
                    malloc(nf * sizeof(double)), malloc(nf * sizeof(double))};
   int64_t *fn[2] = {malloc(nf * sizeof(int64_t)), malloc(nf * sizeof(int64_t))};
   aq_status st = AQ_OK;
+  const char **str = NULL;
   if (!fd[0] || !fd[1] || !fd[2] || !fd[3] || !fn[0] || !fn[1]) {
     st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
     goto out;
   }
+  str = malloc(4 * (c->npair + c->nfit + 1) * sizeof *str);
+  if (!str) {
+    st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
+    goto out;
+  }
   for (size_t i = 0; i < c->nfit; i++) {
-    fd[0][i] = c->fit[i].median;
-    fd[1][i] = c->fit[i].beta;
-    fd[2][i] = c->fit[i].median_lo;
-    fd[3][i] = c->fit[i].median_hi;
-    fn[0][i] = (int64_t)c->fit[i].n;
-    fn[1][i] = (int64_t)c->fit[i].ncensored;
+    const aq_fragility *q = c->fit[i].fit;
+    fd[0][i] = q->median;
+    fd[1][i] = q->beta;
+    fd[2][i] = q->median_lo;
+    fd[3][i] = q->median_hi;
+    fn[0][i] = (int64_t)q->n;
+    fn[1][i] = (int64_t)q->ncensored;
+  }
+  /* string columns: record arch polarity status (npair each), then arch im */
+  const size_t np = c->npair;
+  const char **col_s[6] = {str, str + np, str + 2 * np, str + 3 * np, str + 4 * np,
+                           str + 4 * np + c->nfit};
+  for (size_t i = 0; i < np; i++) {
+    col_s[0][i] = c->row[i].record;
+    col_s[1][i] = c->row[i].arch;
+    col_s[2][i] = c->row[i].polarity;
+    col_s[3][i] = c->row[i].status;
+  }
+  for (size_t i = 0; i < c->nfit; i++) {
+    col_s[4][i] = c->fit[i].arch;
+    col_s[5][i] = c->fit[i].im;
   }
   const char *what = "H5Gcreate2";
   errno = 0;
@@ -196,10 +217,10 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
              "median interval by profile likelihood") < 0)
     goto fail;
   what = "capacity columns";
-  if (ds_strings(g, "record", c->record, c->npair) < 0 ||
-      ds_strings(g, "arch", c->arch, c->npair) < 0 ||
-      ds_strings(g, "polarity", c->polarity, c->npair) < 0 ||
-      ds_strings(g, "status", c->status, c->npair) < 0)
+  if (ds_strings(g, "record", col_s[0], np) < 0 ||
+      ds_strings(g, "arch", col_s[1], np) < 0 ||
+      ds_strings(g, "polarity", col_s[2], np) < 0 ||
+      ds_strings(g, "status", col_s[3], np) < 0)
     goto fail;
   for (int j = 0; j < 6; j++)
     if (ds_write(g, dnames[j], H5T_NATIVE_DOUBLE, k.d[j], c->npair, 1) < 0)
@@ -213,8 +234,8 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   obj = "/capacity/fragility";
   what = "fragility columns";
   if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
-      ds_strings(gf, "arch", c->fit_arch, c->nfit) < 0 ||
-      ds_strings(gf, "im", c->fit_im, c->nfit) < 0 ||
+      ds_strings(gf, "arch", col_s[4], c->nfit) < 0 ||
+      ds_strings(gf, "im", col_s[5], c->nfit) < 0 ||
       ds_write(gf, "records", H5T_NATIVE_INT64, fn[0], c->nfit, 1) < 0 ||
       ds_write(gf, "censored", H5T_NATIVE_INT64, fn[1], c->nfit, 1) < 0 ||
       ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1) < 0 ||
@@ -243,6 +264,7 @@ fail:
   if (g >= 0)
     H5Gclose(g);
 out:
+  free(str);
   for (int j = 0; j < 4; j++)
     free(fd[j]);
   free(fn[0]);

@@ -13,22 +13,14 @@
 
 #include "../capacity/capacity.h"
 #include "h5.h"
+#include "text_capacity.h"
 
 typedef struct {
+  const aq_capacity_row *row;   /* one per (record, arch, polarity) */
   size_t npair;
-  const char *const *record;   /* npair record paths */
-  const char *const *arch;     /* arch names */
-  const char *const *polarity; /* "normal" | "reversed" */
-  const char *const *status;   /* "ok", "never_moves", "read:eio", ... */
-  const aq_capacity *cap;      /* npair results */
-  const int *valid;            /* 1 where cap[i] holds results (the record was read) */
-  const double *pga_g;         /* the record's PGA at scale 1, g (NAN if unread) */
-  const double *pgv_mps;       /* its PGV, m/s */
+  const aq_fragility_row *fit;  /* one per (arch, intensity measure) */
   size_t nfit;
-  const char *const *fit_arch; /* nfit arch names */
-  const char *const *fit_im;   /* intensity measure names */
-  const aq_fragility *fit;
-  double resolution, tol, ci;  /* the options used */
+  double resolution, tol, ci;   /* the options used */
 } aq_h5_capacity;
 
 aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
