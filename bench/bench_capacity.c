@@ -8,7 +8,9 @@
  *    - a brute-force scan that reaches tol without bisection (a step of tol:
  *      its runs are counted, its time is runs x capacity's time per run);
  *    - the share of capacity's runs spent on the scan (what the guarantee
- *      at resolution r costs) and on the bisections.
+ *      at resolution r costs) and on the bisections;
+ *    - a hunt by doubling then fill (resolution 1: Vamvatsikos & Cornell's
+ *      steps of a factor 2), its runs and the first collapse it finds.
  *    Times are medians of REPS repetitions.
  * 2. The suite: the 11 AT2 records of tests/data/records x the 5 shipped
  *    arches x both polarities with the binary at -j 2 (wall time), the
@@ -67,6 +69,8 @@ static double run_pair(const aq_capacity_job *job, aq_capacity *out)
   return aq_bench_now_s() - t0;
 }
 
+static char hunt_lines[3][400];
+
 static int per_pair(void)
 {
   printf("Runs and time per (record, arch, polarity normal), resolution 0.01, tol 1e-6\n"
@@ -85,8 +89,9 @@ static int per_pair(void)
       return -1;
     aq_capacity_job job = {&proc, proc.acc_mps2, arch, AQ_MODEL_WORKPATH, pairs[k].cor,
                            0, NAN, {0.01, 1e-6}};
-    aq_capacity_job fine = job;
+    aq_capacity_job fine = job, hunt = job;
     fine.scan.resolution = 0.001;
+    hunt.scan.resolution = 1.0;
     double t[REPS], tf[REPS];
     aq_capacity c, f;
     memset(&c, 0, sizeof c);
@@ -97,6 +102,9 @@ static int per_pair(void)
       t[r] = run_pair(&job, &c);
       tf[r] = r == 0 ? run_pair(&fine, &f) : tf[0];
     }
+    aq_capacity h;
+    memset(&h, 0, sizeof h);
+    run_pair(&hunt, &h);
     double tm = aq_bench_median(t, REPS), tfm = aq_bench_median(tf, REPS);
     double bftol = ceil(log(c.scale_max / c.move_scale) / log1p(1e-6));
     const char *base = strrchr(pairs[k].record, '/');
@@ -106,12 +114,24 @@ static int per_pair(void)
            c.scan.bisect_runs, tm, f.scan.runs, tfm,
            (double)f.scan.runs / (double)c.scan.runs, bftol, bftol / (double)c.scan.runs,
            c.scan.ninterval);
+    hunt_lines[k][0] = '\0';
+    snprintf(hunt_lines[k], sizeof hunt_lines[k],
+             "  %-26.26s %-9s cor %.1f: hunt x2 + fill %3zu runs, first collapse %.7g, "
+             "%zu interval(s); scan at 0.01: first collapse %.7g, %zu interval(s)",
+             base ? base + 1 : pairs[k].record, aq_arch_name(arch),
+             isnan(pairs[k].cor) ? 0.0 : pairs[k].cor, h.scan.runs,
+             h.first_collapse_scale, h.scan.ninterval, c.first_collapse_scale,
+             c.scan.ninterval);
+    aq_capacity_free(&h);
     aq_capacity_free(&c);
     aq_capacity_free(&f);
     aq_arch_free(arch);
     aq_processed_free(&proc);
     aq_record_free(&rec);
   }
+  printf("Hunt (steps of x2) and fill, against the scan:\n");
+  for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++)
+    printf("%s\n", hunt_lines[k]);
   return 0;
 }
 
