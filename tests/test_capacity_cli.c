@@ -301,6 +301,23 @@ AQ_TEST(capacity_cli_bad_input)
     aq_check(rc == 2 && strstr(err, name[i]) && !out[0], "%s: exit %d, %s", bad[i], rc,
              err);
   }
+  /* an output that names an input is refused before anything runs */
+  char arch_copy[600];
+  snprintf(arch_copy, sizeof arch_copy, "%s/a.cfg", dir);
+  char *cfg = aq_test_read_file(ARCH, NULL);
+  f = fopen(arch_copy, "w");
+  if (f && cfg)
+    fputs(cfg, f);
+  if (f)
+    fclose(f);
+  snprintf(args, sizeof args, "capacity " REC " --arch %s --fragility %s", arch_copy,
+           arch_copy);
+  rc = aq_test_run(args, out, BIG, err, sizeof err);
+  char *after = aq_test_read_file(arch_copy, NULL);
+  aq_check(rc == 2 && strstr(err, "--fragility") && cfg && after && strcmp(cfg, after) == 0,
+           "--fragility naming the arch file: exit %d, %s", rc, err);
+  free(cfg);
+  free(after);
   /* no partial output file after a failure to write */
   snprintf(args, sizeof args,
            "capacity " REC " --arch " ARCH " --resolution 0.2 --text %s/nodir/x.tsv", dir);

@@ -340,6 +340,11 @@ int aq_cmd_capacity(int argc, char **argv)
                 outs[i]);
         nerr++;
       }
+  if (optind < argc)
+    for (int i = 0; i < 3; i++)
+      nerr += aq_opt_output_is_input(i == 0 ? "-o" : i == 1 ? "--text" : "--fragility",
+                                     outs[i], argv + optind, (size_t)(argc - optind),
+                                     arch_paths, na);
   if (nerr) {
     free(arch_paths);
     return AQ_EXIT_USAGE;

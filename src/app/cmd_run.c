@@ -126,26 +126,6 @@ static int same_output(const char *a, const char *b)
          sa.st_ino == sb.st_ino;
 }
 
-/* An output path that names an existing input (a record or an arch file,
- * possibly under another spelling) would destroy it: report it (one line)
- * and return 1. */
-static int output_is_input(const char *opt, const char *out, char *const *records,
-                           size_t nrec, char *const *arches, size_t narch)
-{
-  struct stat so, si;
-  if (!out || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
-    return 0;
-  for (size_t i = 0; i < nrec + narch; i++) {
-    const char *in = i < nrec ? records[i] : arches[i - nrec];
-    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
-      fprintf(stderr, "archquake: %s: %s: expected a file other than the inputs, "
-                      "got the %s %s\n", out, opt, i < nrec ? "record" : "arch file", in);
-      return 1;
-    }
-  }
-  return 0;
-}
-
 int aq_cmd_run(int argc, char **argv)
 {
   struct option longopts[32] = {
@@ -267,8 +247,8 @@ int aq_cmd_run(int argc, char **argv)
   if (optind < argc) {
     char *const *recs = argv + optind;
     size_t nrec = (size_t)(argc - optind);
-    nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
-    nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
+    nerr += aq_opt_output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
+    nerr += aq_opt_output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }
   if (nerr) {
     free(arches);
