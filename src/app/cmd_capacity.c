@@ -321,8 +321,7 @@ int aq_cmd_capacity(int argc, char **argv)
   }
   aq_opt_signal_check(&po, &nerr);
   aq_error se;
-  if (aq_scan_check(&so, &se) == AQ_OK) {
-  } else if (strcmp(se.field, "tol") == 0) {
+  if (aq_scan_check(&so, &se) != AQ_OK && strcmp(se.field, "tol") == 0) {
     fprintf(stderr, "archquake: --tol: expected %g to --resolution (%g), got %g\n",
             AQ_SCAN_TOL_MIN, so.resolution, so.tol);
     nerr++;
@@ -388,8 +387,7 @@ int aq_cmd_capacity(int argc, char **argv)
     if (!R[r].ok)
       rc = AQ_EXIT_FAIL;
   }
-  size_t nrun = 0; /* jobs of records that were read */
-  aq_capacity_job *jp = jobs;
+  size_t nrun = 0; /* jobs of the records that were read; job k is pair slot[k] */
   size_t *slot = calloc(njob ? njob : 1, sizeof *slot);
   if (!slot) {
     rc = AQ_EXIT_FAIL;
@@ -399,7 +397,7 @@ int aq_cmd_capacity(int argc, char **argv)
     size_t r = i / (na * npol), a = i / npol % na, p = i % npol;
     if (!R[r].ok)
       continue;
-    jp[nrun] = (aq_capacity_job){&R[r].proc,
+    jobs[nrun] = (aq_capacity_job){&R[r].proc,
                                  pols[p] == AQ_POLARITY_REVERSED ? R[r].neg
                                                                  : R[r].proc.acc_mps2,
                                  arches[a], dyn.model, dyn.cor,
@@ -422,8 +420,9 @@ int aq_cmd_capacity(int argc, char **argv)
     if (R[i / (na * npol)].ok && C[i].status == AQ_CAPACITY_FAILED) {
       char msg[1200];
       aq_error_format(&C[i].err, msg, sizeof msg);
-      fprintf(stderr, "archquake: %s: arch %s: %s\n", recs[i / (na * npol)],
-              aq_arch_name(arches[i / npol % na]), msg);
+      fprintf(stderr, "archquake: %s: arch %s, polarity %s: %s\n", recs[i / (na * npol)],
+              aq_arch_name(arches[i / npol % na]),
+              pols[i % npol] == AQ_POLARITY_REVERSED ? "reversed" : "normal", msg);
       rc = AQ_EXIT_FAIL;
     }
 
