@@ -89,7 +89,7 @@ static void prepare(const char *path, const aq_read_opts *ro, const aq_signal_op
     r->have_proc = 1;
     s = aq_im_compute(&r->proc, &r->im, &e);
   }
-  if (s == AQ_OK && (pol & AQ_POLARITY_REVERSED)) {
+  if (s == AQ_OK && pol != AQ_POLARITY_NORMAL) {
     r->neg = malloc((r->proc.n ? r->proc.n : 1) * sizeof *r->neg);
     if (!r->neg)
       s = aq_error_set(&e, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
@@ -150,7 +150,6 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
                      const rec_item *R, const int *pols, size_t npol, const aq_capacity *C,
                      const aq_fragility *fits)
 {
-  static const char *const polname[] = {"", "normal", "reversed"};
   size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
   o->row = malloc((n ? n : 1) * sizeof *o->row);
   o->status = malloc((n ? n : 1) * sizeof *o->status);
@@ -162,7 +161,7 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     pair_status(&R[r], &C[i], o->status[i], sizeof o->status[i]);
     int have = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
-                                  polname[pols[i % npol]], o->status[i],
+                                  aq_opt_polarity_names[pols[i % npol]], o->status[i],
                                   have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
                                   R[r].ok ? R[r].im.pgv_mps : NAN};
   }
@@ -184,7 +183,7 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                     char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
                     const rows *o, size_t npair, const aq_scan_opts *so,
                     const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
-                    long threads)
+                    long threads, int pol)
 {
   char cmd[4096] = "", tmp[4200], created[64];
   for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
@@ -199,7 +198,7 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
     snprintf(created, sizeof created, "unknown");
   aq_h5_root root = {AQ_VERSION, cmd, created, po, merge_tol_g, "file", 0,
                      aq_opt_dyn_model_name(dyn->model), dyn->cor, NULL, 0, NAN, 0,
-                     threads};
+                     threads, aq_opt_polarity_names[pol]};
   aq_status s = aq_h5_open(path, &w, &e);
   if (s == AQ_OK)
     s = aq_h5_write_root(w, &root, &e);
@@ -331,6 +330,9 @@ int aq_cmd_capacity(int argc, char **argv)
     nerr++;
   }
   aq_opt_require("capacity", "--arch FILE", na > 0, &nerr);
+  aq_opt_distinct_files("arch file", arch_paths, na, &nerr);
+  if (optind < argc)
+    aq_opt_distinct_files("record", argv + optind, (size_t)(argc - optind), &nerr);
   const char *outs[3] = {h5, text, frag};
   for (int i = 0; i < 3; i++)
     for (int j = i + 1; j < 3; j++)
@@ -360,9 +362,9 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_arch **arches = calloc(na, sizeof *arches);
   int pols[2];
   size_t npol = 0;
-  if (pol & AQ_POLARITY_NORMAL)
+  if (pol != AQ_POLARITY_REVERSED)
     pols[npol++] = AQ_POLARITY_NORMAL;
-  if (pol & AQ_POLARITY_REVERSED)
+  if (pol != AQ_POLARITY_NORMAL)
     pols[npol++] = AQ_POLARITY_REVERSED;
   rec_item *R = calloc(nrec, sizeof *R);
   size_t njob = nrec * na * npol;
@@ -378,6 +380,10 @@ int aq_cmd_capacity(int argc, char **argv)
   for (size_t a = 0; a < na; a++)
     if (aq_arch_load(arch_paths[a], &arches[a], &se) != AQ_OK) {
       aq_error_print(&se, stderr);
+      rc = AQ_EXIT_USAGE;
+    } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(dyn.cor),
+                                   aq_arch_dynamics_of(arches[a])->impact ==
+                                       AQ_IMPACT_MOMENTUM)) {
       rc = AQ_EXIT_USAGE;
     }
   if (rc != AQ_EXIT_OK)
@@ -422,7 +428,7 @@ int aq_cmd_capacity(int argc, char **argv)
       aq_error_format(&C[i].err, msg, sizeof msg);
       fprintf(stderr, "archquake: %s: arch %s, polarity %s: %s\n", recs[i / (na * npol)],
               aq_arch_name(arches[i / npol % na]),
-              pols[i % npol] == AQ_POLARITY_REVERSED ? "reversed" : "normal", msg);
+              aq_opt_polarity_names[pols[i % npol]], msg);
       rc = AQ_EXIT_FAIL;
     }
 
@@ -446,7 +452,7 @@ int aq_cmd_capacity(int argc, char **argv)
     ok = 0;
   if (ok && h5 &&
       write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, njob, &so, &po,
-               merge_tol_g, &dyn, threads) != 0)
+               merge_tol_g, &dyn, threads, pol) != 0)
     ok = 0;
   rows_free(&o);
   if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
