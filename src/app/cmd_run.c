@@ -39,6 +39,7 @@ static const char usage_head[] =
     "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
     "                      (default: each arch's [dynamics] cor)\n"
     "  --history           write step-end histories to the HDF5 file (with -o)\n"
+    "  --store-records     write the processed records to the HDF5 file (with -o)\n"
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
@@ -67,6 +68,7 @@ enum {
   OPT_MODEL,
   OPT_COR,
   OPT_HISTORY,
+  OPT_STORE_RECORDS,
   OPT_HELP
 };
 
@@ -162,9 +164,10 @@ int aq_cmd_run(int argc, char **argv)
       {"model", required_argument, NULL, OPT_MODEL},
       {"cor", required_argument, NULL, OPT_COR},
       {"history", no_argument, NULL, OPT_HISTORY},
+      {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 14);
+  size_t nlong = aq_opt_signal_append(longopts, 15);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", NULL};
 
@@ -222,6 +225,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_HISTORY:
       cfg.history = 1;
       break;
+    case OPT_STORE_RECORDS:
+      cfg.store_records = 1;
+      break;
     case 'q':
       quiet = 1;
       break;
@@ -261,6 +267,11 @@ int aq_cmd_run(int argc, char **argv)
   if (cfg.history && !cfg.h5_path) {
     fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
                     "are written only to the results file)\n");
+    nerr++;
+  }
+  if (cfg.store_records && !cfg.h5_path) {
+    fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
+                    "records are written only to the results file)\n");
     nerr++;
   }
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {

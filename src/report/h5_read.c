@@ -1,0 +1,275 @@
+/* h5_read.c: reading a suite back from a results file (aq_h5_read_suite,
+ * see h5.h), for `archquake compare`.  Table members are read by name, so a
+ * file with more columns than this build knows reads alike. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <hdf5.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "h5.h"
+
+/* The root attributes compared as configuration, in the order shown. */
+static const char *const setting_names[] = {
+    "archquake_version", "archquake_build", "model",          "cor",
+    "detrend",           "filter",          "taper_frac",     "highpass_hz",
+    "highpass_order",    "lowpass_hz",      "merge_tol_g",    "units_override",
+    "dt_override_s",     "scale_mode",      "scale_to_pga_g"};
+enum { NSETTINGS = sizeof setting_names / sizeof setting_names[0] };
+
+void aq_h5_suite_free(aq_h5_suite *s)
+{
+  if (!s)
+    return;
+  free(s->runs);
+  free(s->records);
+  free(s->arches);
+  free(s->settings);
+  memset(s, 0, sizeof *s);
+}
+
+/* A fixed-length string type of size bytes, or < 0. */
+static hid_t str_type(size_t size)
+{
+  hid_t t = H5Tcopy(H5T_C_S1);
+  if (t >= 0 && (H5Tset_size(t, size) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0)) {
+    H5Tclose(t);
+    return -1;
+  }
+  return t;
+}
+
+/* Scalar attribute name of loc as text into buf[n] (strings as they are,
+ * floats as %.17g, integers in decimal).  Returns 0, or -1 if absent or not
+ * a scalar string or number. */
+static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
+{
+  if (H5Aexists(loc, name) <= 0)
+    return -1;
+  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  if (a < 0)
+    return -1;
+  int ok = -1;
+  hid_t t = H5Aget_type(a), s = H5Aget_space(a);
+  H5T_class_t cls = t >= 0 ? H5Tget_class(t) : H5T_NO_CLASS;
+  if (s >= 0 && H5Sget_simple_extent_npoints(s) == 1) {
+    if (cls == H5T_STRING && H5Tis_variable_str(t) == 0) {
+      size_t sz = H5Tget_size(t);
+      char *tmp = malloc(sz + 1);
+      hid_t m = tmp ? str_type(sz + 1) : -1;
+      if (m >= 0 && H5Aread(a, m, tmp) >= 0) {
+        snprintf(buf, n, "%s", tmp);
+        ok = 0;
+      }
+      if (m >= 0)
+        H5Tclose(m);
+      free(tmp);
+    } else if (cls == H5T_FLOAT) {
+      double v;
+      if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0) {
+        snprintf(buf, n, v != v ? "nan" : "%.17g", v);
+        ok = 0;
+      }
+    } else if (cls == H5T_INTEGER) {
+      int64_t v;
+      if (H5Aread(a, H5T_NATIVE_INT64, &v) >= 0) {
+        snprintf(buf, n, "%" PRId64, v);
+        ok = 0;
+      }
+    }
+  }
+  if (s >= 0)
+    H5Sclose(s);
+  if (t >= 0)
+    H5Tclose(t);
+  H5Aclose(a);
+  return ok;
+}
+
+/* Read every row of table name into a malloc'd array of rows of rowsize
+ * bytes, through the memory type mt.  Returns the number of rows, or -1. */
+static long read_table(hid_t f, const char *name, hid_t mt, size_t rowsize,
+                       void **out)
+{
+  *out = NULL;
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  long n = -1;
+  hid_t sp = H5Dget_space(d);
+  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  void *v = np >= 0 ? calloc((size_t)np ? (size_t)np : 1, rowsize) : NULL;
+  if (v && (np == 0 || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0)) {
+    n = (long)np;
+    *out = v;
+    v = NULL;
+  }
+  free(v);
+  if (sp >= 0)
+    H5Sclose(sp);
+  H5Dclose(d);
+  return n;
+}
+
+/* Insert a member into compound t; returns < 0 on failure. */
+static herr_t member(hid_t t, const char *name, aq_summary_kind kind,
+                     size_t offset, size_t size)
+{
+  if (kind == AQ_SF_DOUBLE)
+    return H5Tinsert(t, name, offset, H5T_NATIVE_DOUBLE);
+  if (kind == AQ_SF_INT)
+    return H5Tinsert(t, name, offset, H5T_NATIVE_INT64);
+  hid_t s = str_type(size);
+  if (s < 0)
+    return -1;
+  herr_t rc = H5Tinsert(t, name, offset, s);
+  H5Tclose(s);
+  return rc;
+}
+
+static hid_t run_type(void)
+{
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(aq_h5_run));
+  herr_t rc = t < 0 ? -1 : 0;
+  for (size_t i = 0; rc >= 0 && i < aq_summary_nfields; i++) {
+    const aq_summary_field *f = &aq_summary_fields[i];
+    rc = member(t, f->name, f->kind, offsetof(aq_h5_run, s) + f->offset, f->size);
+  }
+  if (rc >= 0)
+    rc = member(t, "record_index", AQ_SF_INT, offsetof(aq_h5_run, record_index), 8);
+  if (rc >= 0)
+    rc = member(t, "arch_index", AQ_SF_INT, offsetof(aq_h5_run, arch_index), 8);
+  if (rc >= 0)
+    rc = member(t, "scale_index", AQ_SF_INT, offsetof(aq_h5_run, scale_index), 8);
+  if (rc < 0 && t >= 0) {
+    H5Tclose(t);
+    t = -1;
+  }
+  return t;
+}
+
+static hid_t input_type(void)
+{
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(aq_h5_input));
+  if (t >= 0 && (member(t, "name", AQ_SF_STR, offsetof(aq_h5_input, name),
+                        sizeof(((aq_h5_input *)0)->name)) < 0 ||
+                 member(t, "sha256", AQ_SF_STR, offsetof(aq_h5_input, sha256),
+                        sizeof(((aq_h5_input *)0)->sha256)) < 0)) {
+    H5Tclose(t);
+    t = -1;
+  }
+  return t;
+}
+
+aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
+{
+  memset(out, 0, sizeof *out);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  htri_t is = H5Fis_hdf5(path);
+  if (is <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+      return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
+                          strerror(errno));
+    fclose(fp);
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                        "expected an HDF5 file, got something else");
+  }
+  aq_status st = AQ_OK;
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT), mt = -1, arches = -1;
+  if (f < 0) {
+    st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "HDF5: cannot open");
+    goto done;
+  }
+  char ver[64];
+  if (attr_text(f, "format_version", ver, sizeof ver) < 0 ||
+      strtol(ver, NULL, 10) < AQ_H5_FORMAT_VERSION) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "format_version",
+                      "expected an archquake results file of format_version %d, "
+                      "got %s (run the suite again with this archquake)",
+                      AQ_H5_FORMAT_VERSION,
+                      attr_text(f, "format_version", ver, sizeof ver) < 0 ? "none" : ver);
+    goto done;
+  }
+  out->settings = calloc(NSETTINGS, sizeof *out->settings);
+  if (!out->settings) {
+    st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    goto done;
+  }
+  for (size_t k = 0; k < NSETTINGS; k++) {
+    aq_h5_setting *s = &out->settings[out->nsettings];
+    if (attr_text(f, setting_names[k], s->value, sizeof s->value) == 0) {
+      snprintf(s->name, sizeof s->name, "%s", setting_names[k]);
+      out->nsettings++;
+    }
+  }
+  void *v;
+  long n;
+  mt = run_type();
+  if (mt < 0 || (n = read_table(f, "/summary", mt, sizeof(aq_h5_run), &v)) < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/summary",
+                      "expected the run table of a results file, got none readable");
+    goto done;
+  }
+  out->runs = v;
+  out->nruns = (size_t)n;
+  H5Tclose(mt);
+  mt = input_type();
+  if (mt < 0 || (n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v)) < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/records",
+                      "expected the record table of a results file, got none readable");
+    goto done;
+  }
+  out->records = v;
+  out->nrecords = (size_t)n;
+  arches = H5Gopen2(f, "/arches", H5P_DEFAULT);
+  H5G_info_t info;
+  if (arches < 0 || H5Gget_info(arches, &info) < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/arches",
+                      "expected the arch groups of a results file, got none readable");
+    goto done;
+  }
+  out->arches = calloc(info.nlinks ? info.nlinks : 1, sizeof *out->arches);
+  if (!out->arches) {
+    st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    goto done;
+  }
+  /* /arches/NNN: by name, zero-padded, is by index */
+  for (hsize_t k = 0; k < info.nlinks; k++) {
+    char name[64];
+    aq_h5_input *a = &out->arches[k];
+    hid_t g = -1;
+    if (H5Lget_name_by_idx(arches, ".", H5_INDEX_NAME, H5_ITER_INC, k, name,
+                           sizeof name, H5P_DEFAULT) >= 0)
+      g = H5Gopen2(arches, name, H5P_DEFAULT);
+    int ok = g >= 0 && attr_text(g, "name", a->name, sizeof a->name) == 0 &&
+             attr_text(g, "sha256", a->sha256, sizeof a->sha256) == 0;
+    if (g >= 0)
+      H5Gclose(g);
+    if (!ok) {
+      st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/arches",
+                        "expected attributes name and sha256 in arch group %llu, "
+                        "got none readable", (unsigned long long)k);
+      goto done;
+    }
+    out->narches++;
+  }
+done:
+  H5E_BEGIN_TRY
+  {
+    if (mt >= 0)
+      H5Tclose(mt);
+    if (arches >= 0)
+      H5Gclose(arches);
+    if (f >= 0)
+      H5Fclose(f);
+  }
+  H5E_END_TRY;
+  H5Eclear2(H5E_DEFAULT);
+  if (st != AQ_OK)
+    aq_h5_suite_free(out);
+  return st;
+}
