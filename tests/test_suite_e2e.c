@@ -616,3 +616,85 @@ AQ_TEST(suite_options_checked_before_any_record)
   aq_check(strstr(out, "Exit status") && strstr(out, "  3  ") && strstr(out, "  2  "),
            "exit statuses in --help");
 }
+
+/* ---- the FFTW wisdom cache ---------------------------------------------- */
+
+/* 1 if the cache file at path starts with its header line and the header's
+ * sha256 (checked by coreutils' sha256sum) is that of the rest. */
+static int wisdom_file_valid(const char *path)
+{
+  char cmd[1400], line[256] = "";
+  snprintf(cmd, sizeof cmd,
+           "head -n 1 '%s' | sed 's/^archquake-fftw-wisdom 1 sha256=//' | tr -d '\\n'; "
+           "echo ' '; tail -n +2 '%s' | sha256sum | cut -c1-64",
+           path, path);
+  FILE *p = popen(cmd, "r");
+  if (!p)
+    return 0;
+  char a[128] = "", b[128] = "";
+  if (fgets(line, sizeof line, p))
+    sscanf(line, "%127s", a);
+  if (fgets(line, sizeof line, p))
+    sscanf(line, "%127s", b);
+  pclose(p);
+  return strlen(a) == 64 && strcmp(a, b) == 0;
+}
+
+AQ_TEST(suite_fftw_wisdom_cache)
+{
+  char rel[512], dir[1024], wis[1100], args[2048], tsv[2][1100];
+  aq_test_tmpdir(rel, sizeof rel);
+  char *cwd = getcwd(NULL, 0); /* XDG_CACHE_HOME must be absolute */
+  snprintf(dir, sizeof dir, "%s/%s", cwd ? cwd : ".", rel);
+  free(cwd);
+  const char *old = getenv("XDG_CACHE_HOME");
+  char saved[1024] = "";
+  if (old)
+    snprintf(saved, sizeof saved, "%s", old);
+  setenv("XDG_CACHE_HOME", dir, 1);
+  snprintf(wis, sizeof wis, "%s/archquake/fftw-wisdom", dir);
+  static char err[8192];
+  /* 1: no cache yet; 2: from the cache; 3: a corrupt cache; 4: a foreign
+   * file (FFTW wisdom without archquake's header); 5: a directory there */
+  for (int k = 0; k < 5; k++) {
+    if (k == 2) {
+      FILE *f = fopen(wis, "r+b");
+      if (f) {
+        fseek(f, 150, SEEK_SET);
+        fputs("(garbage) #x0", f);
+        fclose(f);
+      }
+      aq_check(!wisdom_file_valid(wis), "the corrupted cache fails its digest");
+    } else if (k == 3) {
+      FILE *f = fopen(wis, "w");
+      if (f) {
+        fputs("(fftw-3.3.10 fftw_wisdom #x458a31c8 #x92381c4c #x4f974889 #xcd46f97e\n)\n", f);
+        fclose(f);
+      }
+    } else if (k == 4) {
+      unlink(wis);
+      mkdir(wis, 0700);
+    }
+    snprintf(tsv[k ? 1 : 0], sizeof tsv[0], "%s/run%d.tsv", dir, k);
+    snprintf(args, sizeof args, SUITE_RECORDS " " SUITE_ARCHES " -j 2 --text %s",
+             tsv[k ? 1 : 0]);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "run %d: exit %d: %s", k + 1, rc, err);
+    if (k < 4)
+      aq_check(wisdom_file_valid(wis), "run %d leaves a whole cache file", k + 1);
+    if (k > 0) {
+      size_t n0 = 0, n1 = 0;
+      char *a = aq_test_read_file(tsv[0], &n0), *b = aq_test_read_file(tsv[1], &n1);
+      aq_check(a && b && n0 == n1 && n0 > 500 && memcmp(a, b, n0) == 0,
+               "run %d: TSV byte-identical to the run without a cache", k + 1);
+      free(a);
+      free(b);
+    }
+  }
+  aq_check(count_files(dir, ".tmp") == 0 && count_files(dir, NULL) == 6,
+           "no temporary left (%d entries)", count_files(dir, NULL));
+  if (old)
+    setenv("XDG_CACHE_HOME", saved, 1);
+  else
+    unsetenv("XDG_CACHE_HOME");
+}

@@ -18,7 +18,7 @@
 #include "../arch/result.h"
 #include "../report/h5.h"
 #include "../report/report.h"
-#include "../report/sha256.h"
+#include "../io/sha256.h"
 #include "../report/text.h"
 #include "../signal/steps.h"
 #include "../units.h"

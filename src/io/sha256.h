@@ -6,8 +6,8 @@
  * lengths), aq_sha256_final.  The context holds no heap memory.  Nothing
  * prints; aq_sha256_file reports through aq_error.
  */
-#ifndef AQ_REPORT_SHA256_H
-#define AQ_REPORT_SHA256_H
+#ifndef AQ_IO_SHA256_H
+#define AQ_IO_SHA256_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,4 +1,4 @@
-/* test_report_sha256.c: SHA-256 against the FIPS 180 example vectors (NIST,
+/* test_io_sha256.c: SHA-256 against the FIPS 180 example vectors (NIST,
  * "SHA256.pdf" examples of FIPS 180-2 appendix B, and the empty string) and
  * against coreutils' sha256sum on the shipped records. */
 #define _POSIX_C_SOURCE 200809L
@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "report/sha256.h"
+#include "io/sha256.h"
 
 static const struct {
   const char *msg;
@@ -19,7 +19,7 @@ static const struct {
     {"", "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"},
 };
 
-AQ_TEST(report_sha256_fips_vectors)
+AQ_TEST(io_sha256_fips_vectors)
 {
   char hex[AQ_SHA256_HEX];
   for (size_t k = 0; k < sizeof vectors / sizeof vectors[0]; k++) {
@@ -66,7 +66,7 @@ AQ_TEST(report_sha256_fips_vectors)
   }
 }
 
-AQ_TEST(report_sha256_matches_sha256sum_on_records)
+AQ_TEST(io_sha256_matches_sha256sum_on_records)
 {
   static const char *const files[] = {
       "records/RSN1616_DUZCE_362-E.AT2", "records/CI.CLC..HNE.D.2019.187.031923.SAC",
