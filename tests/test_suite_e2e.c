@@ -698,3 +698,117 @@ AQ_TEST(suite_fftw_wisdom_cache)
   else
     unsetenv("XDG_CACHE_HOME");
 }
+
+/* ---- compare keyed by identity ------------------------------------------ */
+
+/* The rows of compare's output whose field column is field. */
+static int rows_with_field(const char *out, const char *field)
+{
+  char want[128];
+  snprintf(want, sizeof want, "\t%s\t", field);
+  int n = 0;
+  for (const char *p = out; (p = strstr(p, want)); p++)
+    n++;
+  return n;
+}
+
+AQ_TEST(suite_compare_by_identity)
+{
+  char rel[512], dir[1024], args[4096], h[6][1100];
+  aq_test_tmpdir(rel, sizeof rel);
+  char *cwd = getcwd(NULL, 0);
+  snprintf(dir, sizeof dir, "%s/%s", cwd ? cwd : ".", rel);
+  const char *names[6] = {"rel", "abs", "inside", "taper0", "edited", "ode"};
+  for (int k = 0; k < 6; k++)
+    snprintf(h[k], sizeof h[k], "%s/%s.h5", dir, names[k]);
+  /* an edited copy of the arch: one key changed, same name */
+  char cfg[1100];
+  snprintf(cfg, sizeof cfg, "%s/oppenheim.cfg", dir);
+  char *text = aq_test_read_file("arches/oppenheim.cfg", NULL);
+  char *p = text ? strstr(text, "thickness_m = 1.25") : NULL;
+  if (!aq_check(p != NULL, "arches/oppenheim.cfg has thickness_m = 1.25"))
+    return;
+  p[17] = '3'; /* 1.25 -> 1.23 */
+  FILE *f = fopen(cfg, "w");
+  if (f) {
+    fputs(text, f);
+    fclose(f);
+  }
+  free(text);
+  static char out[65536], err[8192];
+  const char *run[6] = {
+      "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
+      "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --arch "
+      "arches/thin.cfg --scale 1,2.5",
+      NULL, NULL,
+      "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
+      "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --arch "
+      "arches/thin.cfg --scale 1,2.5 --taper 0",
+      NULL,
+      "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
+      "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --arch "
+      "arches/thin.cfg --scale 1,2.5 --model ode"};
+  for (int k = 0; k < 6; k++) {
+    if (k == 1) /* absolute paths, the arches listed the other way round */
+      snprintf(args, sizeof args,
+               "%s/records/RSN1616_DUZCE_362-E.AT2 %s/records/RSN4843_CHUETSU_65006NS.AT2 "
+               "%s/records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/thin.cfg "
+               "--arch %s/arches/oppenheim.cfg --scale 2.5,1 -q -o %s",
+               cwd, cwd, cwd, cwd, h[k]);
+    else if (k == 2) /* from inside records/, in another order */
+      snprintf(args, sizeof args,
+               "--version >/dev/null && (cd records && %s/%s RSN6_IMPVALL.I_I-ELC180-hor1.AT2 "
+               "RSN1616_DUZCE_362-E.AT2 ./RSN4843_CHUETSU_65006NS.AT2 --arch "
+               "../arches/oppenheim.cfg --arch ../arches/thin.cfg --scale 1,2.5 -q -o %s)",
+               cwd, aq_test_bin(), h[k]);
+    else if (k == 4)
+      snprintf(args, sizeof args,
+               "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
+               "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch %s --arch arches/thin.cfg "
+               "--scale 1,2.5 -q -o %s",
+               cfg, h[k]);
+    else
+      snprintf(args, sizeof args, "%s -q -o %s", run[k], h[k]);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "%s: exit %d: %s", names[k], rc, err);
+  }
+  free(cwd);
+  /* spelt three ways, in other orders: equal */
+  for (int k = 1; k <= 2; k++) {
+    snprintf(args, sizeof args, "compare %s %s --rtol 0", h[0], h[k]);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 0 && strchr(out, '\n') == strrchr(out, '\n'),
+             "records/x, %s: exit %d, no rows: %s%s", names[k], rc, out, err);
+  }
+  /* --taper 0: its own configuration row, first, then values */
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[3]);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  const char *row1 = strchr(out, '\n');
+  aq_check(rc == 1 && row1 && strncmp(row1 + 1, "*\t*\t*\ttaper_frac\t0.05", 21) == 0,
+           "taper: exit %d, first row the setting: %s", rc, out);
+  aq_check(rows_with_field(out, "taper_frac") == 1 && rows_with_field(out, "pga_g") > 0,
+           "one taper_frac row, then value rows");
+  /* an edited .cfg: an arch row naming it; its runs are other runs */
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[4]);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "\n*\toppenheim\t*\tarch_sha256\t") != NULL &&
+               rows_with_field(out, "arch_sha256") == 1 &&
+               rows_with_field(out, "present") == 2 * 3 * 2,
+           "edited cfg: exit %d, one arch row, 12 runs unmatched: %s", rc, out);
+  /* another model: the setting, and model in every run; --ignore model
+   * compares the numbers, which agree to the ode's tolerance */
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[5]);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && rows_with_field(out, "model") == 1 + 3 * 2 * 2,
+           "ode: exit %d, a model setting row and one per run (%d)", rc,
+           rows_with_field(out, "model"));
+  snprintf(args, sizeof args, "compare %s %s --ignore model --rtol 1e-6 --atol 1e-9", h[0], h[5]);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && rows_with_field(out, "model") == 0,
+           "--ignore model: the numbers agree within 1e-6: exit %d: %s", rc, out);
+  snprintf(args, sizeof args, "compare %s %s --ignore model --rtol 0", h[0], h[5]);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && rows_with_field(out, "model") == 0 &&
+               rows_with_field(out, "peak_rotation_rad") > 0,
+           "--ignore model --rtol 0: the numbers were compared: %s", out);
+}
