@@ -19,7 +19,33 @@ static const struct {
     {"", "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"},
 };
 
+/* Both ways: the processor's SHA instructions where it has them, and the
+ * portable code. */
+static void fips_vectors(void);
+static void matches_sha256sum(void);
+
 AQ_TEST(io_sha256_fips_vectors)
+{
+  for (int portable = 0; portable < 2; portable++) {
+    aq_sha256_portable(portable);
+    aq_sha256_ctx c;
+    aq_sha256_init(&c);
+    aq_check(1, "%s code", c.accel ? "SHA-instruction" : "portable");
+    fips_vectors();
+  }
+  aq_sha256_portable(0);
+}
+
+AQ_TEST(io_sha256_matches_sha256sum_on_records)
+{
+  for (int portable = 0; portable < 2; portable++) {
+    aq_sha256_portable(portable);
+    matches_sha256sum();
+  }
+  aq_sha256_portable(0);
+}
+
+static void fips_vectors(void)
 {
   char hex[AQ_SHA256_HEX];
   for (size_t k = 0; k < sizeof vectors / sizeof vectors[0]; k++) {
@@ -66,7 +92,7 @@ AQ_TEST(io_sha256_fips_vectors)
   }
 }
 
-AQ_TEST(io_sha256_matches_sha256sum_on_records)
+static void matches_sha256sum(void)
 {
   static const char *const files[] = {
       "records/RSN1616_DUZCE_362-E.AT2", "records/CI.CLC..HNE.D.2019.187.031923.SAC",

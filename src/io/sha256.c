@@ -8,6 +8,13 @@
 #include <stdio.h>
 #include <string.h>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <cpuid.h>
+#include <immintrin.h>
+#include <pthread.h>
+#define AQ_SHA256_X86 1
+#endif
+
 /* K(0..63): the first 32 bits of the fractional parts of the cube roots of
  * the first 64 primes (4.2.2). */
 static const uint32_t K[64] = {
@@ -66,6 +73,94 @@ static void block(uint32_t h[8], const unsigned char *m)
   h[7] += hh;
 }
 
+/* ---- the x86 SHA extensions ---------------------------------------------
+ * The same compression function with the SHA-NI instructions, as the Intel
+ * SDM specifies them: SHA256RNDS2 does two rounds (4.1.2's T1, T2 and the
+ * rotation of a..h) on the state held as {a, b, e, f} and {c, d, g, h} with
+ * W(t) + K(t) for both; SHA256MSG1 and SHA256MSG2 do the message schedule
+ * of 6.2.2 step 1 four words at a time: MSG1 gives W(t-16) + sigma0(W(t-15))
+ * for four t, the caller adds W(t-7), and MSG2 adds sigma1(W(t-2)),
+ * including the two W(t-2) the same call produces.  About 8x faster than the
+ * portable code, which dominated writing a results file (every input is
+ * hashed).  Used when CPUID says the processor has them (and SSSE3, SSE4.1);
+ * the tests check both paths against the FIPS examples. */
+#ifdef AQ_SHA256_X86
+static int force_portable;
+static int sha_ni; /* set once by detect_sha_ni */
+static pthread_once_t sha_ni_once = PTHREAD_ONCE_INIT;
+
+/* CPUID is slow (a trap to the hypervisor in a virtual machine): asked once. */
+static void detect_sha_ni(void)
+{
+  unsigned a, b, c, d;
+  if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_SSSE3) || !(c & bit_SSE4_1))
+    return;
+  sha_ni = __get_cpuid_count(7, 0, &a, &b, &c, &d) && (b & (1u << 29)); /* SHA */
+}
+
+static int have_sha_ni(void)
+{
+  pthread_once(&sha_ni_once, detect_sha_ni);
+  return sha_ni && !force_portable;
+}
+
+__attribute__((target("sha,ssse3,sse4.1"))) static void blocks_ni(uint32_t h[8],
+                                                                   const unsigned char *m,
+                                                                   size_t nblocks)
+{
+  /* big-endian words: reverse the bytes of each 32-bit lane */
+  const __m128i bswap = _mm_set_epi64x(0x0c0d0e0f08090a0bLL, 0x0405060700010203LL);
+  __m128i abef = _mm_set_epi32((int)h[0], (int)h[1], (int)h[4], (int)h[5]);
+  __m128i cdgh = _mm_set_epi32((int)h[2], (int)h[3], (int)h[6], (int)h[7]);
+  for (; nblocks--; m += 64) {
+    __m128i abef0 = abef, cdgh0 = cdgh, w[4];
+    for (int i = 0; i < 16; i++) {
+      int k = i & 3; /* w[k] holds W(4i .. 4i+3) */
+      if (i < 4) {
+        w[k] = _mm_shuffle_epi8(_mm_loadu_si128((const __m128i *)(m + 16 * i)), bswap);
+      } else { /* W(t) from W(t-16), W(t-15), W(t-7), W(t-2) */
+        __m128i x = _mm_sha256msg1_epu32(w[k], w[(k + 1) & 3]);
+        x = _mm_add_epi32(x, _mm_alignr_epi8(w[(k + 3) & 3], w[(k + 2) & 3], 4));
+        w[k] = _mm_sha256msg2_epu32(x, w[(k + 3) & 3]);
+      }
+      __m128i wk = _mm_add_epi32(w[k], _mm_loadu_si128((const __m128i *)&K[4 * i]));
+      cdgh = _mm_sha256rnds2_epu32(cdgh, abef, wk); /* rounds 4i, 4i+1 */
+      wk = _mm_shuffle_epi32(wk, 0x0e);
+      abef = _mm_sha256rnds2_epu32(abef, cdgh, wk); /* rounds 4i+2, 4i+3 */
+    }
+    abef = _mm_add_epi32(abef, abef0);
+    cdgh = _mm_add_epi32(cdgh, cdgh0);
+  }
+  uint32_t x[4], y[4];
+  _mm_storeu_si128((__m128i *)x, abef);
+  _mm_storeu_si128((__m128i *)y, cdgh);
+  h[0] = x[3], h[1] = x[2], h[4] = x[1], h[5] = x[0];
+  h[2] = y[3], h[3] = y[2], h[6] = y[1], h[7] = y[0];
+}
+#endif
+
+void aq_sha256_portable(int on)
+{
+#ifdef AQ_SHA256_X86
+  force_portable = on;
+#else
+  (void)on;
+#endif
+}
+
+/* Process nblocks whole blocks with c's compression function. */
+static void blocks(aq_sha256_ctx *c, const unsigned char *m, size_t nblocks)
+{
+#ifdef AQ_SHA256_X86
+  if (c->accel) {
+    blocks_ni(c->h, m, nblocks);
+    return;
+  }
+#endif
+  for (; nblocks--; m += 64)
+    block(c->h, m);
+}
+
 void aq_sha256_init(aq_sha256_ctx *c)
 {
   static const uint32_t h0[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372,
@@ -74,6 +169,11 @@ void aq_sha256_init(aq_sha256_ctx *c)
   memcpy(c->h, h0, sizeof h0);
   c->nbytes = 0;
   c->nblk = 0;
+#ifdef AQ_SHA256_X86
+  c->accel = have_sha_ni();
+#else
+  c->accel = 0;
+#endif
 }
 
 void aq_sha256_update(aq_sha256_ctx *c, const void *data, size_t n)
@@ -88,11 +188,12 @@ void aq_sha256_update(aq_sha256_ctx *c, const void *data, size_t n)
     n -= k;
     if (c->nblk < 64)
       return;
-    block(c->h, c->blk);
+    blocks(c, c->blk, 1);
     c->nblk = 0;
   }
-  for (; n >= 64; p += 64, n -= 64)
-    block(c->h, p);
+  blocks(c, p, n / 64);
+  p += n / 64 * 64;
+  n %= 64;
   memcpy(c->blk, p, n);
   c->nblk = n;
 }
@@ -105,13 +206,13 @@ void aq_sha256_final(aq_sha256_ctx *c, unsigned char out[AQ_SHA256_BYTES])
   c->blk[c->nblk++] = 0x80;
   if (c->nblk > 56) {
     memset(c->blk + c->nblk, 0, 64 - c->nblk);
-    block(c->h, c->blk);
+    blocks(c, c->blk, 1);
     c->nblk = 0;
   }
   memset(c->blk + c->nblk, 0, 56 - c->nblk);
   for (int k = 0; k < 8; k++)
     c->blk[56 + k] = (unsigned char)(bits >> (56 - 8 * k));
-  block(c->h, c->blk);
+  blocks(c, c->blk, 1);
   for (int k = 0; k < 8; k++) {
     out[4 * k] = (unsigned char)(c->h[k] >> 24);
     out[4 * k + 1] = (unsigned char)(c->h[k] >> 16);

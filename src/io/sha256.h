@@ -22,12 +22,18 @@ typedef struct {
   uint64_t nbytes;       /* message length so far, bytes */
   unsigned char blk[64]; /* partial block */
   size_t nblk;           /* bytes in blk */
+  int accel;             /* 1: the processor's SHA instructions are used */
 } aq_sha256_ctx;
 
 void aq_sha256_init(aq_sha256_ctx *c);
 void aq_sha256_update(aq_sha256_ctx *c, const void *data, size_t n);
 /* Pad, finish and write the 32-byte digest to out. */
 void aq_sha256_final(aq_sha256_ctx *c, unsigned char out[AQ_SHA256_BYTES]);
+
+/* on = 1: contexts initialised from now on use the portable code even where
+ * the processor has SHA instructions (for tests and benchmarks; not
+ * thread-safe: set it before hashing starts). */
+void aq_sha256_portable(int on);
 
 /* Digest of data[0..n) as 64 lower-case hex digits into hex. */
 void aq_sha256_hex(const void *data, size_t n, char hex[AQ_SHA256_HEX]);
