@@ -812,3 +812,44 @@ AQ_TEST(suite_compare_by_identity)
                rows_with_field(out, "peak_rotation_rad") > 0,
            "--ignore model --rtol 0: the numbers were compared: %s", out);
 }
+
+/* ---- the documented h5py example ----------------------------------------- */
+
+AQ_TEST(suite_hdf5_layout_example_runs)
+{
+  char dir[512], args[2048], py[700], cmd[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  /* the example, as docs/hdf5-layout.md gives it */
+  char *doc = aq_test_read_file("docs/hdf5-layout.md", NULL);
+  char *start = doc ? strstr(doc, "```python\n") : NULL;
+  char *end = start ? strstr(start + 10, "```") : NULL;
+  if (!aq_check(start && end, "docs/hdf5-layout.md has a python example")) {
+    free(doc);
+    return;
+  }
+  snprintf(py, sizeof py, "%s/example.py", dir);
+  FILE *f = fopen(py, "w");
+  if (f) {
+    fwrite(start + 10, 1, (size_t)(end - start - 10), f);
+    fclose(f);
+  }
+  free(doc);
+  static char out[16384], err[8192];
+  snprintf(args, sizeof args,
+           "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 records/RSN1616_DUZCE_362-E.AT2 "
+           "--arch arches/thin.cfg --arch arches/search.cfg --scale 1,3 --history -q "
+           "-o %s/results.h5",
+           dir);
+  aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "suite: %s", err);
+  snprintf(cmd, sizeof cmd, "cd '%s' && /usr/bin/python3 example.py > out.txt 2>&1", dir);
+  int rc = system(cmd);
+  snprintf(py, sizeof py, "%s/out.txt", dir);
+  char *text = aq_test_read_file(py, NULL);
+  snprintf(out, sizeof out, "%s", text ? text : "");
+  free(text);
+  aq_check(rc == 0, "the example runs: %s", out);
+  aq_check(strstr(out, "archquake 0.1.0") && strstr(out, "collapse at") &&
+               strstr(out, "thin peak rotation rad") && strstr(out, "search peak rotation") &&
+               strstr(out, "primary joints") && strstr(out, "history of"),
+           "and prints what it says: %s", out);
+}
