@@ -848,6 +848,19 @@ AQ_TEST(suite_hdf5_layout_example_runs)
   snprintf(out, sizeof out, "%s", text ? text : "");
   free(text);
   aq_check(rc == 0, "the example runs: %s", out);
+  /* the build: the version, and the commit it was built from (make check
+   * builds from the checkout it runs in) */
+  char head[64] = "";
+  FILE *g = popen("git rev-parse --short HEAD 2>/dev/null", "r");
+  if (g) {
+    if (!fgets(head, sizeof head, g))
+      head[0] = '\0';
+    pclose(g);
+    head[strcspn(head, "\n")] = '\0';
+  }
+  char want[128];
+  snprintf(want, sizeof want, "archquake 0.1.0 (%s", head);
+  aq_check(head[0] == '\0' || strstr(out, want) != NULL, "build names commit %s", head);
   aq_check(strstr(out, "archquake 0.1.0") && strstr(out, "collapse at") &&
                strstr(out, "thin peak rotation rad") && strstr(out, "search peak rotation") &&
                strstr(out, "primary joints") && strstr(out, "history of"),
