@@ -359,6 +359,39 @@ AQ_TEST(report_compare_cli_files)
   snprintf(args, sizeof args, "compare %s %s/missing.h5", a, dir);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "missing file");
   aq_check(strstr(err, "missing.h5") != NULL, "names it: %s", err);
+  /* a file whose /summary lacks a column (written before it existed): the
+   * column reads as NaN, the rest compares; without a key column it is no
+   * results file */
+  char lack[600], nokey[600], cmd[2400];
+  snprintf(lack, sizeof lack, "%s/lack.h5", dir);
+  snprintf(nokey, sizeof nokey, "%s/nokey.h5", dir);
+  snprintf(cmd, sizeof cmd,
+           "/usr/bin/python3 -c \"import h5py, shutil, sys\n"
+           "for out, col in ((sys.argv[2], 'energy_dissipated_j'), (sys.argv[3], 'scale')):\n"
+           "  shutil.copy(sys.argv[1], out)\n"
+           "  with h5py.File(out, 'r+') as f:\n"
+           "    t = f['summary'][:]\n"
+           "    keep = [n for n in t.dtype.names if n != col]\n"
+           "    del f['summary']\n"
+           "    f['summary'] = t[keep]\n"
+           "\" '%s' '%s' '%s' 2>&1",
+           a, lack, nokey);
+  aq_check(system(cmd) == 0, "h5py rewrites the table without a column");
+  snprintf(args, sizeof args, "compare %s %s", a, lack);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 1, "a column missing");
+  size_t nrow = 0;
+  for (const char *p = out; (p = strchr(p, '\n')); p++)
+    nrow++;
+  aq_check(strstr(out, "\tenergy_dissipated_j\t") && nrow == 1 + NRUN,
+           "that column's rows only, one per run (NaN against a number): %s", out);
+  snprintf(args, sizeof args, "compare %s %s --ignore energy_dissipated_j", a, lack);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 0,
+           "the rest agrees: %s", out);
+  snprintf(args, sizeof args, "compare %s %s", a, nokey);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2 &&
+               strstr(err, "nokey.h5") && strstr(err, "/summary"),
+           "without the scale column: exit 2: %s", err);
+
   /* a results file of the first format (groups per run): named as such */
   char old[600];
   snprintf(old, sizeof old, "%s/format1.h5", dir);

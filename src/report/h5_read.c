@@ -5,6 +5,8 @@
 #include <errno.h>
 #include <hdf5.h>
 #include <inttypes.h>
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -129,25 +131,76 @@ static herr_t member(hid_t t, const char *name, aq_summary_kind kind,
   return rc;
 }
 
-static hid_t run_type(void)
+/* Read column name of table d (n rows) into rows of rowsize bytes at offset
+ * (a member of size bytes, of kind kind).  Returns 1 if read, 0 if the table
+ * has no such column, -1 on failure. */
+static int read_column(hid_t d, hid_t ftype, hsize_t n, const char *name,
+                       aq_summary_kind kind, size_t size, void *rows,
+                       size_t rowsize, size_t offset)
 {
-  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(aq_h5_run));
-  herr_t rc = t < 0 ? -1 : 0;
-  for (size_t i = 0; rc >= 0 && i < aq_summary_nfields; i++) {
-    const aq_summary_field *f = &aq_summary_fields[i];
-    rc = member(t, f->name, f->kind, offsetof(aq_h5_run, s) + f->offset, f->size);
+  if (H5Tget_member_index(ftype, name) < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return 0;
   }
-  if (rc >= 0)
-    rc = member(t, "record_index", AQ_SF_INT, offsetof(aq_h5_run, record_index), 8);
-  if (rc >= 0)
-    rc = member(t, "arch_index", AQ_SF_INT, offsetof(aq_h5_run, arch_index), 8);
-  if (rc >= 0)
-    rc = member(t, "scale_index", AQ_SF_INT, offsetof(aq_h5_run, scale_index), 8);
-  if (rc < 0 && t >= 0) {
+  int ok = -1;
+  unsigned char *col = malloc((n ? n : 1) * size);
+  hid_t t = H5Tcreate(H5T_COMPOUND, size);
+  if (col && t >= 0 && member(t, name, kind, 0, size) >= 0 &&
+      (n == 0 || H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, col) >= 0)) {
+    for (hsize_t i = 0; i < n; i++)
+      memcpy((unsigned char *)rows + i * rowsize + offset, col + i * size, size);
+    ok = 1;
+  }
+  if (t >= 0)
     H5Tclose(t);
-    t = -1;
+  free(col);
+  return ok;
+}
+
+/* The runs of /summary, column by column: a column this build knows that
+ * the file lacks (written before it existed) keeps the value a run without
+ * a result has (aq_summary_fill); columns this build does not know are
+ * left alone. */
+static long read_runs(hid_t f, aq_h5_run **out)
+{
+  *out = NULL;
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  hid_t ft = H5Dget_type(d), sp = H5Dget_space(d);
+  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  aq_h5_run *v = np >= 0 && ft >= 0 && H5Tget_class(ft) == H5T_COMPOUND
+                     ? calloc((size_t)np ? (size_t)np : 1, sizeof *v)
+                     : NULL;
+  int ok = v != NULL;
+  for (hssize_t i = 0; ok && i < np; i++)
+    aq_summary_fill(&v[i].s, "", "", "", NAN, NAN, "", NULL);
+  for (size_t i = 0; ok && i < aq_summary_nfields; i++) {
+    const aq_summary_field *fl = &aq_summary_fields[i];
+    int rc = read_column(d, ft, (hsize_t)np, fl->name, fl->kind, fl->size, v, sizeof *v,
+                         offsetof(aq_h5_run, s) + fl->offset);
+    ok = rc > 0 || (rc == 0 && !fl->key); /* a run's identity must be there */
   }
-  return t;
+  static const struct {
+    const char *name;
+    size_t offset;
+  } idx[3] = {{"record_index", offsetof(aq_h5_run, record_index)},
+              {"arch_index", offsetof(aq_h5_run, arch_index)},
+              {"scale_index", offsetof(aq_h5_run, scale_index)}};
+  for (int k = 0; ok && k < 3; k++)
+    ok = read_column(d, ft, (hsize_t)np, idx[k].name, AQ_SF_INT, sizeof(int64_t), v,
+                     sizeof *v, idx[k].offset) > 0;
+  if (ft >= 0)
+    H5Tclose(ft);
+  if (sp >= 0)
+    H5Sclose(sp);
+  H5Dclose(d);
+  if (!ok) {
+    free(v);
+    return -1;
+  }
+  *out = v;
+  return (long)np;
 }
 
 static hid_t input_type(void)
@@ -208,15 +261,15 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   }
   void *v;
   long n;
-  mt = run_type();
-  if (mt < 0 || (n = read_table(f, "/summary", mt, sizeof(aq_h5_run), &v)) < 0) {
+  aq_h5_run *runs;
+  if ((n = read_runs(f, &runs)) < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/summary",
-                      "expected the run table of a results file, got none readable");
+                      "expected the run table of a results file (with record, arch, "
+                      "scale and their indices), got none readable");
     goto done;
   }
-  out->runs = v;
+  out->runs = runs;
   out->nruns = (size_t)n;
-  H5Tclose(mt);
   mt = input_type();
   if (mt < 0 || (n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v)) < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/records",
