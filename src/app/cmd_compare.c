@@ -41,7 +41,8 @@ static const char usage[] =
     "Each difference is a TSV row on stdout: record arch scale field a b rel_diff.\n"
     "Configuration rows come first, with * for what they are not about (field\n"
     "= the setting, record_sha256 or arch_sha256); field \"present\" marks a run\n"
-    "found in only one file.  Records are named by file name.\n"
+    "found in only one file.  Records are named by file name.  A file of the\n"
+    "first format (no hashes) is read too: records and arches then match by name.\n"
     "Exit status: 0 all runs and settings agree (a different version alone is\n"
     "shown but agrees), 1 some differ, 2 bad options or a file that cannot be\n"
     "read as a results file.\n";

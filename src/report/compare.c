@@ -104,19 +104,32 @@ static const aq_h5_input *input_at(const aq_h5_input *v, size_t n, int64_t i)
   return i >= 0 && (uint64_t)i < n ? &v[i] : NULL;
 }
 
-static entry *sorted(const aq_h5_suite *S, const aq_compare_opts *o)
+/* 1 if an input of either file has no content hash (a file of the first
+ * format, or a record that could not be read): then inputs are matched by
+ * name in both, and their contents not compared. */
+static int some_unhashed(const aq_h5_input *a, size_t na, const aq_h5_input *b, size_t nb)
+{
+  for (size_t k = 0; k < na; k++)
+    if (!a[k].sha256[0])
+      return 1;
+  for (size_t k = 0; k < nb; k++)
+    if (!b[k].sha256[0])
+      return 1;
+  return 0;
+}
+
+static entry *sorted(const aq_h5_suite *S, int by_rec_name, int by_arch_name)
 {
   entry *e = malloc((S->nruns ? S->nruns : 1) * sizeof *e);
   if (!e)
     return NULL;
-  int by_rec_name = ignored(o, "record_sha256"), by_arch_name = ignored(o, "arch_sha256");
   for (size_t i = 0; i < S->nruns; i++) {
     const aq_h5_run *r = &S->runs[i];
     const aq_h5_input *rec = input_at(S->records, S->nrecords, r->record_index);
     const aq_h5_input *arch = input_at(S->arches, S->narches, r->arch_index);
     e[i].s = &r->s;
     e[i].record = rec && rec->name[0] ? rec->name : r->s.record;
-    e[i].rec_id = rec && rec->sha256[0] && !by_rec_name ? rec->sha256 : e[i].record;
+    e[i].rec_id = rec && !by_rec_name ? rec->sha256 : e[i].record;
     e[i].arch = r->s.arch;
     e[i].arch_id = arch && !by_arch_name ? arch->sha256 : "";
     e[i].index = i;
@@ -263,7 +276,11 @@ static size_t compare_pair(const entry *ea, const entry *eb,
 size_t aq_compare_suites(const aq_h5_suite *A, const aq_h5_suite *B,
                          const aq_compare_opts *o, aq_diff_fn fn, void *ctx)
 {
-  entry *ea = sorted(A, o), *eb = sorted(B, o);
+  int by_name[2] = {
+      ignored(o, "record_sha256") ||
+          some_unhashed(A->records, A->nrecords, B->records, B->nrecords),
+      ignored(o, "arch_sha256") || some_unhashed(A->arches, A->narches, B->arches, B->narches)};
+  entry *ea = sorted(A, by_name[0], by_name[1]), *eb = sorted(B, by_name[0], by_name[1]);
   if (!ea || !eb) {
     free(ea);
     free(eb);
@@ -271,7 +288,7 @@ size_t aq_compare_suites(const aq_h5_suite *A, const aq_h5_suite *B,
   }
   size_t nd = compare_settings(A, B, o, fn, ctx);
   for (int is_arch = 0; is_arch < 2; is_arch++) {
-    if (ignored(o, is_arch ? "arch_sha256" : "record_sha256"))
+    if (by_name[is_arch])
       continue;
     size_t k = is_arch ? compare_inputs(A->arches, A->narches, B->arches, B->narches, 1, fn, ctx)
                        : compare_inputs(A->records, A->nrecords, B->records, B->nrecords, 0,

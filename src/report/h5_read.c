@@ -131,6 +131,13 @@ static herr_t member(hid_t t, const char *name, aq_summary_kind kind,
   return rc;
 }
 
+/* 1 for the columns without which a run cannot be identified; a key column
+ * added later (a polarity) that an older file lacks takes its default. */
+static int required(const aq_summary_field *f)
+{
+  return !strcmp(f->name, "record") || !strcmp(f->name, "arch") || !strcmp(f->name, "scale");
+}
+
 /* Read column name of table d (n rows) into rows of rowsize bytes at offset
  * (a member of size bytes, of kind kind).  Returns 1 if read, 0 if the table
  * has no such column, -1 on failure. */
@@ -179,7 +186,7 @@ static long read_runs(hid_t f, aq_h5_run **out)
     const aq_summary_field *fl = &aq_summary_fields[i];
     int rc = read_column(d, ft, (hsize_t)np, fl->name, fl->kind, fl->size, v, sizeof *v,
                          offsetof(aq_h5_run, s) + fl->offset);
-    ok = rc > 0 || (rc == 0 && !fl->key); /* a run's identity must be there */
+    ok = rc > 0 || (rc == 0 && !required(fl));
   }
   static const struct {
     const char *name;
@@ -216,6 +223,120 @@ static hid_t input_type(void)
   return t;
 }
 
+/* ---- format 1: a group per run and per record, summaries as attributes */
+
+/* Scalar number attribute name of loc into *out (mtype); 0, or -1. */
+static int attr_num(hid_t loc, const char *name, hid_t mtype, void *out)
+{
+  if (H5Aexists(loc, name) <= 0)
+    return -1;
+  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+  int ok = a >= 0 && H5Aread(a, mtype, out) >= 0 ? 0 : -1;
+  if (a >= 0)
+    H5Aclose(a);
+  return ok;
+}
+
+/* The names of group path's members in name order (zero-padded indices:
+ * command-line order) into a malloc'd array of 64-byte names. */
+static long member_names(hid_t f, const char *path, char (**out)[64])
+{
+  *out = NULL;
+  hid_t g = H5Gopen2(f, path, H5P_DEFAULT);
+  H5G_info_t info;
+  if (g < 0 || H5Gget_info(g, &info) < 0) {
+    if (g >= 0)
+      H5Gclose(g);
+    return -1;
+  }
+  char(*v)[64] = calloc(info.nlinks ? info.nlinks : 1, sizeof *v);
+  long n = v ? (long)info.nlinks : -1;
+  for (hsize_t k = 0; v && k < info.nlinks; k++)
+    if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, v[k], sizeof v[k],
+                           H5P_DEFAULT) < 0)
+      n = -1;
+  H5Gclose(g);
+  if (n < 0)
+    free(v);
+  else
+    *out = v;
+  return n;
+}
+
+/* Runs of a format-1 file: the attributes of each /runs group. */
+static long read_runs_v1(hid_t f, aq_h5_run **out)
+{
+  *out = NULL;
+  char(*names)[64];
+  long n = member_names(f, "/runs", &names);
+  if (n < 0)
+    return -1;
+  aq_h5_run *v = calloc((size_t)n ? (size_t)n : 1, sizeof *v);
+  int ok = v != NULL;
+  for (long k = 0; ok && k < n; k++) {
+    char path[80];
+    snprintf(path, sizeof path, "/runs/%s", names[k]);
+    hid_t g = H5Gopen2(f, path, H5P_DEFAULT);
+    ok = g >= 0;
+    aq_h5_run *r = &v[k];
+    if (ok)
+      aq_summary_fill(&r->s, "", "", "", NAN, NAN, "", NULL);
+    for (size_t i = 0; ok && i < aq_summary_nfields; i++) {
+      const aq_summary_field *fl = &aq_summary_fields[i];
+      char *p = (char *)&r->s + fl->offset;
+      int rc = fl->kind == AQ_SF_STR      ? attr_text(g, fl->name, p, fl->size)
+               : fl->kind == AQ_SF_DOUBLE ? attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p)
+                                          : attr_num(g, fl->name, H5T_NATIVE_INT64, p);
+      ok = rc == 0 || (!required(fl) && H5Aexists(g, fl->name) == 0);
+    }
+    ok = ok && attr_num(g, "record_index", H5T_NATIVE_INT64, &r->record_index) == 0 &&
+         attr_num(g, "arch_index", H5T_NATIVE_INT64, &r->arch_index) == 0 &&
+         attr_num(g, "scale_index", H5T_NATIVE_INT64, &r->scale_index) == 0;
+    if (g >= 0)
+      H5Gclose(g);
+  }
+  free(names);
+  if (!ok) {
+    free(v);
+    return -1;
+  }
+  *out = v;
+  return n;
+}
+
+/* Records of a format-1 file: each /records group's name (its file name;
+ * the source's last part for a record that could not be read); no hash. */
+static long read_records_v1(hid_t f, aq_h5_input **out)
+{
+  *out = NULL;
+  char(*names)[64];
+  long n = member_names(f, "/records", &names);
+  if (n < 0)
+    return -1;
+  aq_h5_input *v = calloc((size_t)n ? (size_t)n : 1, sizeof *v);
+  int ok = v != NULL;
+  for (long k = 0; ok && k < n; k++) {
+    char path[80], src[AQ_SUMMARY_RECORD_MAX];
+    snprintf(path, sizeof path, "/records/%s", names[k]);
+    hid_t g = H5Gopen2(f, path, H5P_DEFAULT);
+    ok = g >= 0 && (attr_text(g, "name", v[k].name, sizeof v[k].name) == 0 ||
+                    attr_text(g, "source_file", src, sizeof src) == 0);
+    if (ok && !v[k].name[0]) {
+      const char *base = strrchr(src, '/');
+      snprintf(v[k].name, sizeof v[k].name, "%s", base ? base + 1 : src);
+    }
+    if (g >= 0)
+      H5Gclose(g);
+  }
+  free(names);
+  if (!ok) {
+    free(v);
+    return -1;
+  }
+  *out = v;
+  return n;
+}
+
 aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
 {
   memset(out, 0, sizeof *out);
@@ -238,13 +359,11 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
     goto done;
   }
   char ver[64];
-  if (attr_text(f, "format_version", ver, sizeof ver) < 0 ||
-      strtol(ver, NULL, 10) < AQ_H5_FORMAT_VERSION) {
+  long format = attr_text(f, "format_version", ver, sizeof ver) < 0 ? 0 : strtol(ver, NULL, 10);
+  if (format < 1 || format > AQ_H5_FORMAT_VERSION) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "format_version",
-                      "expected an archquake results file of format_version %d, "
-                      "got %s (run the suite again with this archquake)",
-                      AQ_H5_FORMAT_VERSION,
-                      attr_text(f, "format_version", ver, sizeof ver) < 0 ? "none" : ver);
+                      "expected an archquake results file of format_version 1 to %d, "
+                      "got %s", AQ_H5_FORMAT_VERSION, format ? ver : "none");
     goto done;
   }
   out->settings = calloc(NSETTINGS, sizeof *out->settings);
@@ -259,10 +378,10 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
       out->nsettings++;
     }
   }
-  void *v;
-  long n;
+  void *v = NULL;
+  long n = -1;
   aq_h5_run *runs;
-  if ((n = read_runs(f, &runs)) < 0) {
+  if ((n = format == 1 ? read_runs_v1(f, &runs) : read_runs(f, &runs)) < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/summary",
                       "expected the run table of a results file (with record, arch, "
                       "scale and their indices), got none readable");
@@ -271,7 +390,14 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   out->runs = runs;
   out->nruns = (size_t)n;
   mt = input_type();
-  if (mt < 0 || (n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v)) < 0) {
+  if (format == 1) {
+    aq_h5_input *recs;
+    n = read_records_v1(f, &recs);
+    v = recs;
+  } else if (mt >= 0) {
+    n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v);
+  }
+  if (mt < 0 || n < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/records",
                       "expected the record table of a results file, got none readable");
     goto done;
@@ -299,7 +425,7 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
                            sizeof name, H5P_DEFAULT) >= 0)
       g = H5Gopen2(arches, name, H5P_DEFAULT);
     int ok = g >= 0 && attr_text(g, "name", a->name, sizeof a->name) == 0 &&
-             attr_text(g, "sha256", a->sha256, sizeof a->sha256) == 0;
+             (attr_text(g, "sha256", a->sha256, sizeof a->sha256) == 0 || format == 1);
     if (g >= 0)
       H5Gclose(g);
     if (!ok) {
