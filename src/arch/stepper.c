@@ -1018,6 +1018,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
 {
   memset(res, 0, sizeof *res);
   res->collapse_time_s = NAN;
+  res->first_set = res->peak_set = -1;
   res->steps_total = steps->n;
   st->cache_p = NULL;
   st->rest_since_s = NAN;
@@ -1071,6 +1072,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         rest = 0;
         rest_since = NAN;
         set = k;
+        if (res->first_set < 0)
+          res->first_set = k;
         m = (aq_motion){0, 0, 1, 0, 0};
       }
       double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
@@ -1156,6 +1159,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     i++;
   }
   res->peak_rotation_rad = S.peak_s;
+  res->peak_set = smax[1] > smax[0] ? 1 : smax[0] > 0 ? 0 : -1; /* peak_s = max(smax) */
   /* |x| depends on s alone: its peak is that of the path over the range of
    * s each set covered (exact, whatever the model's sampling) */
   res->peak_displacement_m = 0;

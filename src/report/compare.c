@@ -166,8 +166,10 @@ static size_t compare_settings(const aq_h5_suite *a, const aq_h5_suite *b,
       if ((side == 1 && sy) || (sy && strcmp(sx->value, sy->value) == 0) ||
           ignored(o, sx->name))
         continue; /* the pair was seen from a's side */
-      /* the version and the build are shown, but do not make files differ */
-      int counts = strncmp(sx->name, "archquake_", 10) != 0;
+      /* the version and the build are shown, but do not make files differ;
+       * nor does a setting that one file does not state (written before
+       * it existed: its runs say what it did) */
+      int counts = strncmp(sx->name, "archquake_", 10) != 0 && sy != NULL;
       const char *va = side ? (sy ? sy->value : "") : sx->value;
       const char *vb = side ? sx->value : (sy ? sy->value : "");
       nd += config_row(NULL, NULL, sx->name, va, vb, counts, fn, ctx);
@@ -253,7 +255,9 @@ static size_t compare_pair(const entry *ea, const entry *eb,
       int64_t x = aq_summary_get_int(a, f), y = aq_summary_get_int(b, f);
       same = x == y;
       double m = fmax(fabs((double)x), fabs((double)y));
-      d.rel = m > 0 ? fabs((double)x - (double)y) / m : 0;
+      d.rel = x == AQ_SUMMARY_INT_NONE || y == AQ_SUMMARY_INT_NONE ? NAN
+              : m > 0                                              ? fabs((double)x - (double)y) / m
+                                                                   : 0;
       break;
     }
     case AQ_SF_DOUBLE: {

@@ -11,7 +11,9 @@
  * Before the runs, the configuration of the two files is compared (the
  * settings of aq_h5_suite: processing options, model, cor, version...;
  * and, for records and arches of one name, their content hashes): each
- * difference is an AQ_DIFF_CONFIG.  Then every other summary field of
+ * difference is an AQ_DIFF_CONFIG.  The version and build, and a setting
+ * that only one file states (the other was written before it existed), are
+ * shown but do not count.  Then every other summary field of
  * matched runs: numbers agree when
  *     |a - b| <= atol + rtol * max(|a|, |b|)
  * or both are NaN (a surviving arch's collapse time); counts (collapsed,

@@ -704,6 +704,7 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
   CK(attr_double(w, f, "scale_to_pga_g", r->scale_to_pga_g), "root attributes");
   CK(attr_int(w, f, "history", r->history ? 1 : 0), "root attributes");
   CK(attr_int(w, f, "store_records", r->store_records ? 1 : 0), "root attributes");
+  CK(attr_str(w, f, "polarity", r->polarity ? r->polarity : "normal"), "root attributes");
   CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
   return AQ_OK;
 fail:
@@ -874,7 +875,8 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   if (!h->time_s)
     return AQ_OK;
   char name[96];
-  snprintf(name, sizeof name, "/histories/%05zu_%03zu_%03zu", ri, ai, si);
+  snprintf(name, sizeof name, "/histories/%05zu_%03zu_%03zu%s", ri, ai, si,
+           strcmp(s->polarity, "reversed") == 0 ? "r" : "");
   obj = "/histories";
   CK(lazy_group(w, &w->g_histories, obj), "H5Gcreate");
   obj = name;

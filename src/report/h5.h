@@ -58,6 +58,7 @@ typedef struct {
   long threads;               /* -j */
   const char *build;          /* exact build: version and `git describe` */
   int store_records;          /* 1 with --store-records: processed waveforms */
+  const char *polarity;       /* --polarity: normal | reversed | both (NULL: normal) */
 } aq_h5_root;
 
 /* One arch as loaded. */
@@ -109,11 +110,11 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
 aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
                              const aq_h5_record *r, aq_error *err);
 
-/* Run (record ri, arch ai, scale si): the summary s as a row of /summary,
- * with the indices, res's counters, error (the run's one-line message or
- * NULL) and timing_run_s (its wall time); plus the histories of res, if it
- * holds any, as datasets of /histories/RRRRR_AAA_SSS (res may be NULL for a
- * failed run). */
+/* Run (record ri, arch ai, scale si, polarity s->polarity): the summary s as
+ * a row of /summary, with the indices, res's counters, error (the run's
+ * one-line message or NULL) and timing_run_s (its wall time); plus the
+ * histories of res, if it holds any, as datasets of /histories/RRRRR_AAA_SSS
+ * (with "r" appended for a reversed run; res may be NULL for a failed run). */
 aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
                           const aq_summary *s, const aq_result *res,
                           const char *error, double timing_run_s,
