@@ -263,35 +263,24 @@ static long member_names(hid_t f, const char *path, char (**out)[64])
   return n;
 }
 
-/* Runs of a format-1 file: the attributes of each /runs group. */
-static long read_runs_v1(hid_t f, aq_h5_run **out)
+/* One element per member group of path (in name order), filled by fill from
+ * the group: a malloc'd array of n elements of elsize bytes in *out.
+ * Returns n, or -1 (nothing allocated) when a group cannot be read. */
+static long read_groups(hid_t f, const char *path, size_t elsize,
+                        int (*fill)(hid_t g, void *elem), void **out)
 {
   *out = NULL;
   char(*names)[64];
-  long n = member_names(f, "/runs", &names);
+  long n = member_names(f, path, &names);
   if (n < 0)
     return -1;
-  aq_h5_run *v = calloc((size_t)n ? (size_t)n : 1, sizeof *v);
+  unsigned char *v = calloc((size_t)n ? (size_t)n : 1, elsize);
   int ok = v != NULL;
   for (long k = 0; ok && k < n; k++) {
-    char path[80];
-    snprintf(path, sizeof path, "/runs/%s", names[k]);
-    hid_t g = H5Gopen2(f, path, H5P_DEFAULT);
-    ok = g >= 0;
-    aq_h5_run *r = &v[k];
-    if (ok)
-      aq_summary_fill(&r->s, "", "", "", NAN, NAN, "", NULL);
-    for (size_t i = 0; ok && i < aq_summary_nfields; i++) {
-      const aq_summary_field *fl = &aq_summary_fields[i];
-      char *p = (char *)&r->s + fl->offset;
-      int rc = fl->kind == AQ_SF_STR      ? attr_text(g, fl->name, p, fl->size)
-               : fl->kind == AQ_SF_DOUBLE ? attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p)
-                                          : attr_num(g, fl->name, H5T_NATIVE_INT64, p);
-      ok = rc == 0 || (!required(fl) && H5Aexists(g, fl->name) == 0);
-    }
-    ok = ok && attr_num(g, "record_index", H5T_NATIVE_INT64, &r->record_index) == 0 &&
-         attr_num(g, "arch_index", H5T_NATIVE_INT64, &r->arch_index) == 0 &&
-         attr_num(g, "scale_index", H5T_NATIVE_INT64, &r->scale_index) == 0;
+    char obj[160];
+    snprintf(obj, sizeof obj, "%s/%s", path, names[k]);
+    hid_t g = H5Gopen2(f, obj, H5P_DEFAULT);
+    ok = g >= 0 && fill(g, v + (size_t)k * elsize) == 0;
     if (g >= 0)
       H5Gclose(g);
   }
@@ -304,37 +293,40 @@ static long read_runs_v1(hid_t f, aq_h5_run **out)
   return n;
 }
 
-/* Records of a format-1 file: each /records group's name (its file name;
- * the source's last part for a record that could not be read); no hash. */
-static long read_records_v1(hid_t f, aq_h5_input **out)
+/* A run of a format-1 file: its group's attributes. */
+static int fill_run_v1(hid_t g, void *elem)
 {
-  *out = NULL;
-  char(*names)[64];
-  long n = member_names(f, "/records", &names);
-  if (n < 0)
-    return -1;
-  aq_h5_input *v = calloc((size_t)n ? (size_t)n : 1, sizeof *v);
-  int ok = v != NULL;
-  for (long k = 0; ok && k < n; k++) {
-    char path[80], src[AQ_SUMMARY_RECORD_MAX];
-    snprintf(path, sizeof path, "/records/%s", names[k]);
-    hid_t g = H5Gopen2(f, path, H5P_DEFAULT);
-    ok = g >= 0 && (attr_text(g, "name", v[k].name, sizeof v[k].name) == 0 ||
-                    attr_text(g, "source_file", src, sizeof src) == 0);
-    if (ok && !v[k].name[0]) {
-      const char *base = strrchr(src, '/');
-      snprintf(v[k].name, sizeof v[k].name, "%s", base ? base + 1 : src);
-    }
-    if (g >= 0)
-      H5Gclose(g);
+  aq_h5_run *r = elem;
+  aq_summary_fill(&r->s, "", "", "", NAN, NAN, "", NULL);
+  for (size_t i = 0; i < aq_summary_nfields; i++) {
+    const aq_summary_field *fl = &aq_summary_fields[i];
+    char *p = (char *)&r->s + fl->offset;
+    int rc = fl->kind == AQ_SF_STR      ? attr_text(g, fl->name, p, fl->size)
+             : fl->kind == AQ_SF_DOUBLE ? attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p)
+                                        : attr_num(g, fl->name, H5T_NATIVE_INT64, p);
+    if (rc != 0 && (required(fl) || H5Aexists(g, fl->name) != 0))
+      return -1;
   }
-  free(names);
-  if (!ok) {
-    free(v);
+  return attr_num(g, "record_index", H5T_NATIVE_INT64, &r->record_index) == 0 &&
+                 attr_num(g, "arch_index", H5T_NATIVE_INT64, &r->arch_index) == 0 &&
+                 attr_num(g, "scale_index", H5T_NATIVE_INT64, &r->scale_index) == 0
+             ? 0
+             : -1;
+}
+
+/* A record of a format-1 file: its name (its file name; the source's last
+ * part for a record that could not be read); no hash. */
+static int fill_record_v1(hid_t g, void *elem)
+{
+  aq_h5_input *in = elem;
+  char src[AQ_SUMMARY_RECORD_MAX];
+  if (attr_text(g, "name", in->name, sizeof in->name) == 0)
+    return 0;
+  if (attr_text(g, "source_file", src, sizeof src) != 0)
     return -1;
-  }
-  *out = v;
-  return n;
+  const char *base = strrchr(src, '/');
+  snprintf(in->name, sizeof in->name, "%s", base ? base + 1 : src);
+  return 0;
 }
 
 aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
@@ -381,7 +373,14 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   void *v = NULL;
   long n = -1;
   aq_h5_run *runs;
-  if ((n = format == 1 ? read_runs_v1(f, &runs) : read_runs(f, &runs)) < 0) {
+  void *rv = NULL;
+  if (format == 1) {
+    n = read_groups(f, "/runs", sizeof *runs, fill_run_v1, &rv);
+    runs = rv;
+  } else {
+    n = read_runs(f, &runs);
+  }
+  if (n < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/summary",
                       "expected the run table of a results file (with record, arch, "
                       "scale and their indices), got none readable");
@@ -391,9 +390,7 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   out->nruns = (size_t)n;
   mt = input_type();
   if (format == 1) {
-    aq_h5_input *recs;
-    n = read_records_v1(f, &recs);
-    v = recs;
+    n = read_groups(f, "/records", sizeof(aq_h5_input), fill_record_v1, &v);
   } else if (mt >= 0) {
     n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v);
   }
