@@ -196,22 +196,35 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   struct tm tm;
   if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
     snprintf(created, sizeof created, "unknown");
-  aq_h5_root root = {AQ_VERSION, cmd, created, po, merge_tol_g, "file", 0,
-                     aq_opt_dyn_model_name(dyn->model), dyn->cor, NULL, 0, NAN, 0,
-                     threads, aq_opt_polarity_names[pol]};
+  aq_h5_root root = {.version = AQ_VERSION,
+                     .command_line = cmd,
+                     .created = created,
+                     .proc = po,
+                     .merge_tol_g = merge_tol_g,
+                     .units = "file",
+                     .model = aq_opt_dyn_model_name(dyn->model),
+                     .cor = dyn->cor,
+                     .scale_to_pga_g = NAN,
+                     .threads = threads,
+                     .build = aq_build_string(),
+                     .polarity = aq_opt_polarity_names[pol]};
   aq_status s = aq_h5_open(path, &w, &e);
   if (s == AQ_OK)
     s = aq_h5_write_root(w, &root, &e);
   for (size_t a = 0; s == AQ_OK && a < na; a++) {
-    aq_h5_arch ha = {aq_arch_name(arches[a]), arch_paths[a], aq_arch_config_text(arches[a]),
-                     aq_arch_dynamics_of(arches[a]),
-                     {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)}};
+    aq_h5_arch ha = {.name = aq_arch_name(arches[a]),
+                     .source_file = arch_paths[a],
+                     .config_text = aq_arch_config_text(arches[a]),
+                     .dyn = aq_arch_dynamics_of(arches[a]),
+                     .set = {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)}};
     s = aq_h5_write_arch(w, a, &ha, &e);
   }
   for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
-    aq_h5_record hr = {recs[r], R[r].have_rec ? &R[r].rec : NULL,
-                       R[r].have_proc ? &R[r].proc : NULL, R[r].ok ? &R[r].im : NULL,
-                       R[r].status, NULL, 0, 0};
+    aq_h5_record hr = {.source_file = recs[r],
+                       .rec = R[r].have_rec ? &R[r].rec : NULL,
+                       .proc = R[r].have_proc ? &R[r].proc : NULL,
+                       .im = R[r].ok ? &R[r].im : NULL,
+                       .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
   aq_h5_capacity hc = {o->row, npair, o->fit, na * AQ_FRAGILITY_NIM, so->resolution,

@@ -37,7 +37,9 @@ static const char usage_head[] =
     "  -j, --jobs N        worker threads (default: the number of cores); the\n"
     "                      results are the same for every N\n"
     AQ_OPT_DYN_USAGE
-    "  --history           write step-end histories to the HDF5 file (with -o)\n"
+    "  --history           write histories (step ends, turning points, impacts)\n"
+    "                      to the HDF5 file (with -o)\n"
+    "  --store-records     write the processed records to the HDF5 file (with -o)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -71,6 +73,7 @@ enum {
   OPT_SCALE,
   OPT_SCALE_PGA,
   OPT_HISTORY,
+  OPT_STORE_RECORDS,
   OPT_POLARITY,
   OPT_HELP
 };
@@ -146,10 +149,11 @@ int aq_cmd_run(int argc, char **argv)
       {"jobs", required_argument, NULL, 'j'},
       AQ_OPT_DYN_LONGOPTS,
       {"history", no_argument, NULL, OPT_HISTORY},
+      {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"polarity", required_argument, NULL, OPT_POLARITY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 15);
+  size_t nlong = aq_opt_signal_append(longopts, 16);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
 
   aq_suite_cfg cfg;
@@ -203,6 +207,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_HISTORY:
       cfg.history = 1;
       break;
+    case OPT_STORE_RECORDS:
+      cfg.store_records = 1;
+      break;
     case OPT_POLARITY:
       aq_opt_polarity(optarg, &cfg.polarity, &nerr);
       break;
@@ -246,6 +253,11 @@ int aq_cmd_run(int argc, char **argv)
   if (cfg.history && !cfg.h5_path) {
     fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
                     "are written only to the results file)\n");
+    nerr++;
+  }
+  if (cfg.store_records && !cfg.h5_path) {
+    fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
+                    "records are written only to the results file)\n");
     nerr++;
   }
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {

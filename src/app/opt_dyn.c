@@ -5,7 +5,8 @@
 
 #include "opt.h"
 
-static const char *const models[] = {"workpath", "ode", "paper", NULL};
+/* indexed by aq_model */
+static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
 void aq_opt_dyn_default(aq_dyn_opts *o)
 {
@@ -31,5 +32,5 @@ int aq_opt_dyn_handle(int id, const char *arg, aq_dyn_opts *o, int *nerr)
 
 const char *aq_opt_dyn_model_name(aq_model m)
 {
-  return (unsigned)m < 3 ? models[m] : "?";
+  return (unsigned)m < sizeof models / sizeof models[0] - 1 ? models[m] : "?";
 }

@@ -1,5 +1,5 @@
 /* opt_dyn.h: the dynamics options shared by the run and capacity commands:
- *   --model workpath|ode|paper   the dynamic model (default workpath)
+ *   --model workpath|ode|paper|workpath-quad   the dynamic model (default workpath)
  *   --cor C                      kinetic-energy ratio kept at an impact, 0..1
  *                                (default: each arch's own)
  * A command puts AQ_OPT_DYN_LONGOPTS into its getopt_long table, passes every
@@ -20,7 +20,8 @@ enum { AQ_OPT_DYN_MODEL = 1200, AQ_OPT_DYN_COR = 1201 };
       {"cor", required_argument, NULL, AQ_OPT_DYN_COR}
 
 #define AQ_OPT_DYN_USAGE                                                    \
-  "  --model M           workpath (default), ode (reference), paper\n"     \
+  "  --model M           workpath (default), ode (reference), paper,\n"    \
+  "                      workpath-quad\n"                                  \
   "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"   \
   "                      (default: each arch's [dynamics] cor)\n"
 
@@ -37,7 +38,7 @@ void aq_opt_dyn_default(aq_dyn_opts *o);
  * left unchanged then), 0 if it is not one of them. */
 int aq_opt_dyn_handle(int id, const char *arg, aq_dyn_opts *o, int *nerr);
 
-/* The name of a model ("workpath", "ode", "paper"). */
+/* The name of a model ("workpath", "ode", "paper", "workpath-quad"). */
 const char *aq_opt_dyn_model_name(aq_model m);
 
 #endif
