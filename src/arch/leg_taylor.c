@@ -366,7 +366,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
   double s = m->s < 0 ? 0 : (m->s > sc ? sc : m->s);
   int dir = m->dir >= 0 ? 1 : -1;
   if (tl_piece(w, p, s, dir, S))
-    return tl_fail(err, p, "no table piece", s);
+    return tl_fail(err, p, "no path piece", s);
   double mass = s == w->s_end ? w->m_end : PIECE_M(&w->pc, s);
   double v = dir * sqrt(2 * fmax(m->ke_j, 0) / mass);
   double t = 0;
@@ -389,10 +389,10 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     if (d == 0)
       d = sgn(tl_accel0(w, p, a, g, s));
     if (tl_piece(w, p, s, d, S))
-      return tl_fail(err, p, "no table piece", s);
+      return tl_fail(err, p, "no path piece", s);
     const aq_path_piece *pc = &w->pc;
     if ((d > 0 && s >= pc->s_hi && s < sc) || (d < 0 && s <= pc->s_lo && s > 0))
-      return tl_fail(err, p, "the table piece ahead ends where it starts", s);
+      return tl_fail(err, p, "the path piece ahead ends where it starts", s);
     double h = dt - t;
     tl_series ts;
     tl_build(pc, mt, g, a, s, v, w->tol, &h, &ts);

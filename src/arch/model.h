@@ -18,7 +18,8 @@
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
  *
  * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
- * tables over s in [0, s_c].  Search (search.c): the upper-bound mechanism.
+ * tables over s in [0, s_c] (eval, for the ode and workpath-quad) and
+ * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search (search.c): the upper-bound mechanism.
  *
  * Units: SI (m, kg, rad, N).  Nothing here prints; errors go to aq_error.
  */
