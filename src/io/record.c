@@ -528,6 +528,24 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   return AQ_OK;
 }
 
+aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
+                                     aq_error *err)
+{
+  if (!rec->vertical || (opts && opts->accept_vertical))
+    return AQ_OK;
+  char why[64];
+  if (isfinite(rec->dip_deg) && fabs(rec->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG)
+    snprintf(why, sizeof why, "dip %g deg", rec->dip_deg);
+  else
+    snprintf(why, sizeof why, "by its name");
+  return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
+                      "expected a horizontal component, got channel \"%s\", which "
+                      "the file identifies as vertical (%s); a vertical "
+                      "component is not horizontal excitation (give "
+                      "--accept-vertical to run it anyway)",
+                      rec->channel, why);
+}
+
 aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {

@@ -112,6 +112,12 @@ double aq_units_to_mps2(aq_units u);
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err);
 
+/* AQ_OK if rec may be run as horizontal excitation: it is not identified as
+ * vertical, or opts->accept_vertical.  Otherwise AQ_EUNSUPPORTED with err
+ * naming the record and its channel. */
+aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
+                                     aq_error *err);
+
 void aq_record_free(aq_record *rec);
 
 #endif
