@@ -272,16 +272,18 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
-  for (size_t k = 0; k < nl && k < 6; k++)
-    if (has_ci(line[k], len[k], "NPTS")) {
-      for (size_t j = 0; j < k; j++) {
-        if (has_ci(line[j], len[j], "VELOCITY"))
-          return AQ_FMT_PEER_VT2;
-        if (has_ci(line[j], len[j], "DISPLACEMENT"))
-          return AQ_FMT_PEER_DT2;
-      }
-      return AQ_FMT_AT2;
+  /* PEER: a line with NPTS and DT followed by values, after free text */
+  size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
+  int nt = 0;
+  if (aq_at2_sniff(buf, m, tb, te, &nt, AQ_SNIFF_LINES)) {
+    for (int j = 0; j < nt; j++) {
+      if (has_ci(s + tb[j], te[j] - tb[j], "VELOCITY"))
+        return AQ_FMT_PEER_VT2;
+      if (has_ci(s + tb[j], te[j] - tb[j], "DISPLACEMENT"))
+        return AQ_FMT_PEER_DT2;
     }
+    return AQ_FMT_AT2;
+  }
   return AQ_FMT_TEXT;
 }
 
@@ -345,7 +347,7 @@ const char *aq_format_describe(aq_format fmt)
 static int channel_says_vertical(const char *name)
 {
   static const char *const words[] = {"UD", "UP", "U", "Z", "V", "VERT",
-                                      "VERTICAL", "DOWN", "DU", NULL};
+                                      "VERTICAL", "DOWN", "DWN", "DU", NULL};
   const char *p = name;
   while (*p) {
     while (*p && !isalnum((unsigned char)*p))
