@@ -123,7 +123,7 @@ static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6, 
  * a single correctly rounded operation on two exact doubles, so the result
  * is the same double strtod gives.  Anything else is copied to a local
  * buffer and given to strtod. */
-static size_t parse_num(const char *s, size_t n, double *x)
+size_t aq_decimal_parse(const char *s, size_t n, double *x)
 {
   size_t i = 0;
   while (i < n && (s[i] == ' ' || s[i] == '\t'))
@@ -251,7 +251,7 @@ static int num_at(const char *s, size_t n, size_t i, double *x, size_t *end)
 {
   if (i >= n)
     return 0;
-  size_t used = parse_num(s + i, n - i, x);
+  size_t used = aq_decimal_parse(s + i, n - i, x);
   if (!used)
     return 0;
   size_t e = i + used;
@@ -551,7 +551,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     double x;
     size_t used;
     if (t[0] != 'e' && t[0] != 'E' && t[0] != '*') { /* the common case first */
-      used = parse_num(t, avail, &x);
+      used = aq_decimal_parse(t, avail, &x);
       if (used && (used == avail || is_sep(t[used])) && isfinite(x)) {
         acc[k++] = x;
         c.pos += used;
@@ -565,7 +565,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     if (((t[0] == 'e' || t[0] == 'E') && tl >= 3 && strncasecmp(t, "end", 3) == 0) ||
         t[0] == '*')
       break; /* "End Data" or "*** End Data ***" marker */
-    used = parse_num(t, tl, &x);
+    used = aq_decimal_parse(t, tl, &x);
     int bad = !used || !isfinite(x);
     if (!bad && used < tl) {
       char nx = t[used];
