@@ -51,22 +51,11 @@ typedef struct {
 } csv_cur;
 
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
+/* Next line [*b, *e) (without its end), or 0 at the end of the input. */
 static int next_line(csv_cur *c, size_t *b, size_t *e)
 {
-  if (c->pos >= c->n)
+  if (!aq_text_line_(c->s, c->n, &c->pos, b, e))
     return 0;
-  *b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
-  *e = c->pos;
-  if (c->pos < c->n && c->s[c->pos] == '\r') {
-    while (c->pos < c->n && c->s[c->pos] == '\r')
-      c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-  } else if (c->pos < c->n) {
-    c->pos++;
-  }
   c->line++;
   return 1;
 }

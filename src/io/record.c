@@ -148,6 +148,27 @@ void aq_record_free(aq_record *rec)
   memset(rec, 0, sizeof *rec);
 }
 
+int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
+{
+  size_t p = *pos;
+  if (p >= n)
+    return 0;
+  *b = p;
+  while (p < n && s[p] != '\n' && s[p] != '\r')
+    p++;
+  *e = p;
+  if (p < n && s[p] == '\r') {
+    while (p < n && s[p] == '\r')
+      p++;
+    if (p < n && s[p] == '\n')
+      p++;
+  } else if (p < n) {
+    p++;
+  }
+  *pos = p;
+  return 1;
+}
+
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
 {
   const char *p = name ? name : "";
