@@ -315,6 +315,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   aq_units pre_u = AQ_UNITS_FILE;
   long pre_line = -1;
   char pre_said[48] = "";
+  size_t seq_b = 0, seq_e = 0; /* a "#DataSequence:" list of column names */
+  long seq_line = -1;
   size_t hb = 0, he = 0; /* last non-numeric line before the data */
   long hline = -1;
   char sep = 0;
@@ -326,6 +328,23 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                           "expected rows of numbers (time, acceleration or "
                           "acceleration only), found none in %ld lines",
                           c.line);
+    if (b < e && s[b] == '#') { /* CWB: "#AmplitudeUnit: gal.", "#DataSequence: Time U(+); N(+)" */
+      const char *v;
+      if ((v = kv(s, b + 1, e, "AmplitudeUnit"))) {
+        char val[CSV_NAME_MAX];
+        copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
+        val[strcspn(val, " \t")] = '\0';
+        size_t l = strlen(val);
+        if (l > 0 && val[l - 1] == '.')
+          val[l - 1] = '\0';
+        int r = units_in(val, &pre_u);
+        pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
+        pre_line = c.line;
+        snprintf(pre_said, sizeof pre_said, "%.40s", val);
+      } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
+        seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
+      }
+    }
     trim_line(s, &b, &e);
     if (b == e)
       continue;
@@ -400,6 +419,18 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       have_names = 1;
       for (size_t i = 0; i < ncols; i++)
         copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+    }
+  }
+  if (!have_names && seq_line > 0) { /* "Time U(+); N(+); E(+)" */
+    span hf[MAXF];
+    size_t hnf = split(s, seq_b, seq_e, ' ', hf, MAXF);
+    if (hnf == ncols) {
+      have_names = 1;
+      hline = seq_line;
+      for (size_t i = 0; i < ncols; i++) {
+        copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+        names[i][strcspn(names[i], ";(")] = '\0';
+      }
     }
   }
 
