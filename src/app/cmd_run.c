@@ -41,6 +41,11 @@ static const char usage_head[] =
     "  --history           write histories (step ends, turning points, impacts)\n"
     "                      to the HDF5 file (with -o)\n"
     "  --store-records     write the processed records to the HDF5 file (with -o)\n"
+    "  --resume            continue an interrupted run of this same command (with\n"
+    "                      -o): every record done is kept in FILE.h5.journal\n"
+    "                      until the results file is complete; the outputs equal\n"
+    "                      an uninterrupted run's (not with --history or\n"
+    "                      --store-records)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -78,6 +83,7 @@ enum {
   OPT_HISTORY,
   OPT_STORE_RECORDS,
   OPT_POLARITY,
+  OPT_RESUME,
   OPT_HELP
 };
 
@@ -175,9 +181,10 @@ int aq_cmd_run(int argc, char **argv)
       {"history", no_argument, NULL, OPT_HISTORY},
       {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"polarity", required_argument, NULL, OPT_POLARITY},
+      {"resume", no_argument, NULL, OPT_RESUME},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 16);
+  size_t nlong = aq_opt_signal_append(longopts, 17);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
@@ -241,6 +248,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_POLARITY:
       aq_opt_polarity(optarg, &cfg.polarity, &nerr);
       break;
+    case OPT_RESUME:
+      cfg.resume = 1;
+      break;
     case 'q':
       quiet = 1;
       break;
@@ -286,6 +296,13 @@ int aq_cmd_run(int argc, char **argv)
   if (cfg.store_records && !cfg.h5_path) {
     fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
                     "records are written only to the results file)\n");
+    nerr++;
+  }
+  if (cfg.resume && (!cfg.h5_path || cfg.history || cfg.store_records)) {
+    fprintf(stderr, "archquake: --resume: expected -o FILE.h5 and neither --history nor "
+                    "--store-records, got %s (the journal beside the results file holds "
+                    "rows and record metadata, not datasets)\n",
+            !cfg.h5_path ? "no -o" : cfg.history ? "--history" : "--store-records");
     nerr++;
   }
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {
