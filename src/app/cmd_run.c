@@ -346,6 +346,11 @@ int aq_cmd_run(int argc, char **argv)
   cfg.progress = !quiet && isatty(STDERR_FILENO);
 
   aq_cleanup_install();
+  if (cfg.resume) { /* what a killed run could not remove */
+    aq_cleanup_stale(cfg.h5_path);
+    if (text_path)
+      aq_cleanup_stale(text_path);
+  }
   FILE *tf = NULL;
   char *tmp = NULL;
   int tslot = -1;

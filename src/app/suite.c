@@ -559,20 +559,19 @@ static void first_difference(const char *a, const char *b, char *buf, size_t n)
 }
 
 /* Start the journal of a suite writing to c->h5_path.  With --resume and a
- * journal of the same command, write its records again (diagnostics, rows,
- * results file) and set *done to their number.  Returns AQ_EXIT_OK, or the
- * exit status after printing one line. */
-static int journal_start(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
-                         aq_journal **J, size_t *done)
+ * journal of the same command, its entries (identity first) are checked and
+ * returned in *e (*ne of them) for journal_replay.  Returns AQ_EXIT_OK, or
+ * the exit status after printing one line. */
+static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t *ne)
 {
   const aq_suite_cfg *c = S->cfg;
   *J = NULL;
-  *done = 0;
+  *e = NULL;
+  *ne = 0;
   if (!c->h5_path || c->history || c->store_records)
     return AQ_EXIT_OK; /* datasets a journal does not hold */
   char *id = NULL, *path = malloc(strlen(c->h5_path) + 16);
-  aq_journal_entry *e = NULL;
-  size_t ne = 0, dropped = 0;
+  size_t dropped = 0;
   aq_error err;
   aq_error_clear(&err);
   int rc = AQ_EXIT_OK;
@@ -582,10 +581,10 @@ static int journal_start(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
     goto out;
   }
   aq_journal_name(c->h5_path, path, strlen(c->h5_path) + 16);
-  if (c->resume && aq_journal_open(path, J, &e, &ne, &dropped, &err) != AQ_OK) {
-    aq_error_print(&err, stderr);
-    fprintf(stderr, "archquake: %s: --resume: cannot use this journal; run without "
-                    "--resume to start over\n", path);
+  if (c->resume && aq_journal_open(path, J, e, ne, &dropped, &err) != AQ_OK) {
+    char msg[1200];
+    aq_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "archquake: %s (--resume: run without it to start over)\n", msg);
     rc = AQ_EXIT_USAGE;
     goto out;
   }
@@ -597,17 +596,18 @@ static int journal_start(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
     goto out;
   }
   char why[1200] = "";
-  if (e[0].n != strlen(id) + 1 || memcmp(e[0].data, id, e[0].n) != 0) {
+  if ((*e)[0].n != strlen(id) + 1 || memcmp((*e)[0].data, id, (*e)[0].n) != 0) {
     char diff[1000];
-    first_difference((const char *)e[0].data, id, diff, sizeof diff);
+    first_difference((const char *)(*e)[0].data, id, diff, sizeof diff);
     snprintf(why, sizeof why, "the journal is another command's: it %s", diff);
   }
   /* Check every entry before writing anything: the order, and that each
    * record's file is still the one that was run. */
-  for (size_t k = 1; !why[0] && k < ne; k++) {
+  for (size_t k = 1; !why[0] && k < *ne; k++) {
     rec_slot r;
+    memset(&r, 0, sizeof r);
     char sha[AQ_SHA256_HEX] = "";
-    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&e[k], S->nruns, &r) != 0 ||
+    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], S->nruns, &r) != 0 ||
         r.index != k - 1)
       snprintf(why, sizeof why, "entry %zu: expected record %zu of this suite, got "
                                 "something else", k, k - 1);
@@ -629,25 +629,31 @@ static int journal_start(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
   if (dropped)
     fprintf(stderr, "archquake: %s: dropped a torn last entry (%zu bytes): its record "
                     "runs again\n", path, dropped);
-  for (size_t k = 1; k < ne; k++) {
-    rec_slot r;
-    aq_suite_slot_decode(&e[k], S->nruns, &r);
-    aq_status ws = write_record(S, &r, h5, stats, &err);
-    slot_clear(S, &r);
-    if (ws != AQ_OK) {
-      aq_error_print(&err, stderr);
-      aq_journal_close(*J);
-      *J = NULL;
-      rc = AQ_EXIT_OUTPUT;
-      goto out;
-    }
-  }
-  *done = ne - 1;
 out:
-  aq_journal_entries_free(e, ne);
+  if (rc != AQ_EXIT_OK) {
+    aq_journal_entries_free(*e, *ne);
+    *e = NULL;
+    *ne = 0;
+  }
   free(id);
   free(path);
   return rc;
+}
+
+/* Write the records of journal entries e[1..ne) again, in order
+ * (diagnostics, rows, results file).  Returns AQ_OK or the output failure. */
+static aq_status journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
+                                const aq_journal_entry *e, size_t ne, aq_error *err)
+{
+  for (size_t k = 1; k < ne; k++) {
+    rec_slot r;
+    aq_suite_slot_decode(&e[k], S->nruns, &r); /* checked by journal_start */
+    aq_status ws = write_record(S, &r, h5, stats, err);
+    slot_clear(S, &r);
+    if (ws != AQ_OK)
+      return ws;
+  }
+  return AQ_OK;
 }
 
 /* A stepper for arch a with the suite's settings, or NULL (err filled). */
@@ -686,6 +692,7 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
   S.window = (size_t)nthreads * AQ_SUITE_WINDOW_PER_THREAD;
   int rc = AQ_EXIT_OK;
+  aq_status ws = AQ_OK;
   aq_journal *J = NULL; /* with -o: the records written so far */
   size_t done = 0;      /* records written from the journal (--resume) */
 
@@ -757,6 +764,14 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     rc = AQ_EXIT_OUTPUT;
     goto out;
   }
+  aq_journal_entry *jent = NULL;
+  size_t njent = 0;
+  rc = journal_start(&S, &J, &jent, &njent); /* a refused journal: before any output */
+  if (rc != AQ_EXIT_OK) {
+    aq_h5_abort(h5);
+    aq_cleanup_remove(h5_slot);
+    goto out;
+  }
   if (c->aligned) {
     size_t rw = 6, aw = 4;
     for (size_t i = 0; i < c->nrecords; i++)
@@ -777,12 +792,11 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
                  "cannot write: %s", strerror(errno));
     goto output_failed;
   }
-  rc = journal_start(&S, h5, &stats, &J, &done);
-  if (rc != AQ_EXIT_OK) {
-    aq_h5_abort(h5);
-    aq_cleanup_remove(h5_slot);
-    goto out;
-  }
+  ws = journal_replay(&S, h5, &stats, jent, njent, &oerr);
+  done = njent ? njent - 1 : 0;
+  aq_journal_entries_free(jent, njent);
+  if (ws != AQ_OK)
+    goto output_failed;
   S.next_claim = S.next_write = done;
   S.runs_done = done * S.nruns;
   stats.write_s += now_s() - tw;
@@ -815,7 +829,6 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 
   /* Write in record order as records finish. */
   size_t total = c->nrecords * S.nruns;
-  aq_status ws = AQ_OK;
   double last_progress = 0;
   for (size_t i = done; started > 0 && i < c->nrecords; i++) {
     rec_slot *r = &S.slots[i % S.window];
