@@ -629,6 +629,8 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
   if (dropped)
     fprintf(stderr, "archquake: %s: dropped a torn last entry (%zu bytes): its record "
                     "runs again\n", path, dropped);
+  fprintf(stderr, "archquake: %s: %zu of %zu records done before, continuing\n", path,
+          *ne - 1, c->nrecords);
 out:
   if (rc != AQ_EXIT_OK) {
     aq_journal_entries_free(*e, *ne);
