@@ -26,7 +26,8 @@ enum {
   RS_NREC = 60,   /* records in the suite (one unreadable among them) */
   RS_NRUNS = 6,   /* runs per record: 2 arches x 3 scales */
   RS_FIELDS = 18, /* TSV columns */
-  RS_KILLS = 20   /* SIGKILLs landing while the suite runs */
+  RS_KILLS = 20,  /* SIGKILLs landing while the suite runs */
+  RS_ROUNDS = 4   /* suites killed and resumed to completion, at most */
 };
 
 typedef struct {
@@ -156,17 +157,29 @@ static int rs_count_tmp(const rs_suite *s)
   return n;
 }
 
-/* The reference: the suite run once (exit 1: one record cannot be read). */
-static void rs_reference(const rs_suite *s)
+static double rs_now_ms(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
+}
+
+/* The reference: the suite run once (exit 1: one record cannot be read).
+ * Returns its wall time, ms (to spread the kills over a run, whatever the
+ * machine's speed). */
+static long rs_reference(const rs_suite *s)
 {
   char out[700], err[700], extra[800];
   rs_path(out, sizeof out, s, "ref.tsv");
   rs_path(err, sizeof err, s, "ref.err");
   snprintf(extra, sizeof extra, "-o %s/ref.h5", s->dir);
+  double t0 = rs_now_ms();
   int rc = rs_run(s, extra, out, err);
+  long ms = (long)(rs_now_ms() - t0);
   aq_check(rc == 1, "reference: exit 1 (one unreadable record), got %d", rc);
   aq_check(rs_whole_rows(out) == 1 + RS_NREC * RS_NRUNS, "reference: %d rows",
            1 + RS_NREC * RS_NRUNS);
+  return ms > 50 ? ms : 50;
 }
 
 /* out.tsv and out.h5 against the reference; journal and temporaries gone. */
@@ -195,71 +208,82 @@ AQ_TEST(suite_resume_after_random_kills)
 {
   rs_suite s;
   rs_setup(&s);
-  rs_reference(&s);
+  long ref_ms = rs_reference(&s);
   char out[700], err[700], h5[700], extra[800];
   rs_path(out, sizeof out, &s, "out.tsv");
   rs_path(err, sizeof err, &s, "out.err");
   rs_path(h5, sizeof h5, &s, "out.h5");
   snprintf(extra, sizeof extra, "-o %s --resume", h5);
   srand(20261123u);
-  int kills = 0, attempts = 0, finished = 0, progressed = 0, partial = 0, early = 0;
-  long rows_before = 0;
-  while (kills < RS_KILLS && attempts < 4 * RS_KILLS && !finished) {
-    attempts++;
-    pid_t pid = rs_spawn(&s, extra, out, err);
-    /* a random moment in the run (the whole suite takes about 1 s under
-     * the sanitizers): 10 to 200 ms in */
-    long delay_ms = 10 + rand() % 190, waited = 0;
-    int st = 0;
-    pid_t w = 0;
-    while (waited < delay_ms && (w = waitpid(pid, &st, WNOHANG)) == 0) {
-      rs_sleep_ms(2);
-      waited += 2;
+  int kills = 0, attempts = 0, rounds = 0, progressed = 0, partial = 0, early = 0;
+  /* rounds of kills, each resumed until the suite completes, until
+   * RS_KILLS kills have landed mid-run */
+  while (kills < RS_KILLS && rounds < RS_ROUNDS) {
+    rounds++;
+    int finished = 0;
+    long rows_before = 0;
+    while (!finished && attempts < 4 * RS_KILLS) {
+      attempts++;
+      pid_t pid = rs_spawn(&s, extra, out, err);
+      /* a random moment in the first eighth of a whole run's time (about
+       * 1 s under the sanitizers): each run does a little */
+      long delay_ms = 5 + rand() % (ref_ms / 8), waited = 0;
+      int st = 0;
+      pid_t w = 0;
+      while (waited < delay_ms && (w = waitpid(pid, &st, WNOHANG)) == 0) {
+        rs_sleep_ms(2);
+        waited += 2;
+      }
+      if (w == 0) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &st, 0);
+      }
+      if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL && rs_exists(h5)) {
+        /* killed after the results file was complete (while exiting): it
+         * must be the whole suite's; the TSV may lack the last rows */
+        static char cout[8192], cerr[8192];
+        char args[2000];
+        snprintf(args, sizeof args, "compare %s/ref.h5 %s", s.dir, h5);
+        early += aq_test_run(args, cout, sizeof cout, cerr, sizeof cerr) != 0;
+        unlink(h5);
+        int rc = rs_run(&s, extra, out, err); /* the journal is gone: all again */
+        aq_check(rc == 1, "run after completion: exit 1 as the reference, got %d", rc);
+        finished = 1;
+      } else if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) {
+        kills++;
+        long rows = rs_whole_rows(out);
+        partial += rows < 0;
+        long done = rs_done_before(err);
+        /* the records whose rows the previous killed run printed are kept
+         * (all but the one being written when it was killed) */
+        if (done >= 0 && rows_before > 1 && done < (rows_before - 1) / RS_NRUNS - 1)
+          aq_check(0, "kill %d: resumed at record %ld, but %ld rows were printed", kills,
+                   done, rows_before);
+        progressed += done > 0;
+        rows_before = rows;
+      } else {
+        finished = WIFEXITED(st);
+        aq_check(finished && WEXITSTATUS(st) == 1,
+                 "a run that was not killed exits 1, got status %d", st);
+      }
     }
-    if (w == 0) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &st, 0);
+    if (!finished) {
+      int rc = rs_run(&s, extra, out, err);
+      aq_check(rc == 1, "last --resume completes: exit 1 as the reference, got %d", rc);
     }
-    if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL && rs_exists(h5)) {
-      /* killed after the results file was complete (while exiting): it must
-       * be the whole suite's */
-      static char cout[8192], cerr[8192];
-      char args[2000];
-      snprintf(args, sizeof args, "compare %s/ref.h5 %s", s.dir, h5);
-      early += aq_test_run(args, cout, sizeof cout, cerr, sizeof cerr) != 0;
-      finished = 1;
-      unlink(h5); /* the final run below writes it again */
-    } else if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) {
-      kills++;
-      long rows = rs_whole_rows(out);
-      partial += rows < 0;
-      long done = rs_done_before(err);
-      /* the records whose rows the previous killed run printed are kept
-       * (all but the one being written when it was killed) */
-      if (done >= 0 && rows_before > 1 && done < (rows_before - 1) / RS_NRUNS - 1)
-        aq_check(0, "kill %d: resumed at record %ld, but %ld rows were printed", kills,
-                 done, rows_before);
-      progressed += done > 0;
-      rows_before = rows;
-    } else {
-      finished = WIFEXITED(st);
-      aq_check(finished && WEXITSTATUS(st) == 1, "a run that was not killed exits 1, got %d",
-               st);
-    }
+    char what[64];
+    snprintf(what, sizeof what, "round %d, after %d kills", rounds, kills);
+    rs_check_final(&s, what);
+    unlink(h5);
   }
   aq_check(partial == 0, "every killed run's stdout holds whole rows (%d did not)", partial);
   aq_check(early == 0, "a results file under the target name is the whole suite's (%d were "
                        "not)", early);
-  aq_check(kills >= RS_KILLS / 2, "at least %d kills landed mid-run: %d", RS_KILLS / 2, kills);
+  aq_check(kills >= RS_KILLS, "%d kills landed mid-run: %d", RS_KILLS, kills);
   aq_check(progressed >= 2, "resumed runs continued from earlier work (%d times)", progressed);
-  if (!finished || !rs_exists(h5)) {
-    int rc = rs_run(&s, extra, out, err);
-    aq_check(rc == 1, "last --resume completes: exit 1 as the reference, got %d", rc);
-  }
   if (getenv("AQ_TEST_VERBOSE"))
-    printf("  kill-and-resume: %d SIGKILLs in %d runs, %d resumed with work kept\n", kills,
-           attempts, progressed);
-  rs_check_final(&s, "after kills");
+    printf("  kill-and-resume: %d SIGKILLs in %d runs, %d rounds (whole run %ld ms), %d "
+           "resumed with work kept\n", kills, attempts, rounds, ref_ms, progressed);
 }
 
 /* Start the suite (extra options) and SIGINT it once `rows` rows are out. */
