@@ -199,11 +199,9 @@ aq_end aq_workpath_end(const aq_workpath *w);
  * function's max magnitude on [0, s_c]). */
 size_t aq_workpath_table_size(const aq_workpath *w);
 double aq_workpath_table_error(const aq_workpath *w);
-/* The Taylor leg's pieces (path.h aq_path_piece, Chebyshev fits of the
- * exact kinematics): their count and the largest accepted Chebyshev tail
- * relative to the functions' scales (workpath.c). */
+/* The number of the Taylor leg's pieces (path.h aq_path_piece, Chebyshev
+ * fits of the exact kinematics, workpath.c). */
 size_t aq_workpath_piece_count(const aq_workpath *w);
-double aq_workpath_piece_tail(const aq_workpath *w);
 /* Largest |eccentricity| of the line of thrust over the joints at s = 0
  * (aq_mech_thrust): <= 1 when the thrust stays within the arch, i.e. the
  * set is also statically admissible and lambda0 is the collapse multiplier

@@ -67,7 +67,6 @@ struct aq_workpath {
   double *pbp;        /* npc+1 breakpoints, rad */
   aq_path_piece *piece; /* npc pieces for path.h */
   size_t pcap;        /* allocated pieces */
-  double piece_tail;  /* largest accepted Chebyshev tail (relative) */
   size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
@@ -390,11 +389,10 @@ typedef struct {
   aq_workpath *w;
   double cosk[PN][PN]; /* cos(pi k (j + 1/2) / PN) */
   double tnode[PN];    /* Chebyshev points of the first kind on [-1, 1] */
-  double tail;         /* largest accepted tail */
   int failed, too_many;
 } piece_ctx;
 
-/* Chebyshev coefficients c of the five functions on [a, b], and their
+/* Chebyshev coefficients c of dx/ds, dy/ds and M on [a, b], and their
  * tail relative to the scales; -1 when the linkage fails. */
 static int piece_fit(piece_ctx *pc, double a, double b, double c[NPC_F][PN],
                      double *tail)
@@ -513,8 +511,6 @@ static void piece_refine(piece_ctx *pc, double a, double b, int depth,
       (tail > TABLE_STALL * parent_tail && tail < PIECE_ROUNDOFF)) {
     if (piece_append(pc->w, a, b, c) != 0)
       pc->failed = 1;
-    if (tail > pc->tail)
-      pc->tail = tail;
     return;
   }
   double m = a + 0.5 * (b - a);
@@ -535,7 +531,6 @@ static int build_pieces(aq_workpath *w)
       pc.cosk[k][j] = cos(pi * k * (j + 0.5) / PN);
   }
   piece_refine(&pc, 0.0, w->path.s_c_rad, 0, HUGE_VAL);
-  w->piece_tail = pc.tail;
   return pc.too_many ? -2 : pc.failed ? -1 : 0;
 }
 
@@ -746,7 +741,6 @@ const char *aq_workpath_reason(const aq_workpath *w) { return w->reason; }
 aq_end aq_workpath_end(const aq_workpath *w) { return w->end; }
 size_t aq_workpath_table_size(const aq_workpath *w) { return w->n; }
 size_t aq_workpath_piece_count(const aq_workpath *w) { return w->npc; }
-double aq_workpath_piece_tail(const aq_workpath *w) { return w->piece_tail; }
 double aq_workpath_table_error(const aq_workpath *w) { return w->tab_err; }
 double aq_workpath_thrust0(const aq_workpath *w) { return w->thrust0; }
 
