@@ -27,7 +27,7 @@ enum {
   RS_NRUNS = 6,   /* runs per record: 2 arches x 3 scales */
   RS_FIELDS = 18, /* TSV columns */
   RS_KILLS = 20,  /* SIGKILLs landing while the suite runs */
-  RS_ROUNDS = 4   /* suites killed and resumed to completion, at most */
+  RS_ROUNDS = 8   /* suites killed and resumed to completion, at most */
 };
 
 typedef struct {
@@ -247,13 +247,12 @@ AQ_TEST(suite_resume_after_random_kills)
        * work after it (a whole run is about 1 s under the sanitizers, a
        * good part of it start-up on a loaded machine): each run does a
        * little */
-      long delay_ms = 5 + rand() % (first_ms + (ref_ms - first_ms) / 8 + 1), waited = 0;
+      long delay_ms = 5 + rand() % (first_ms + (ref_ms - first_ms) / 8 + 1);
+      double t_spawn = rs_now_ms(); /* by the clock: a loaded machine oversleeps */
       int st = 0;
       pid_t w = 0;
-      while (waited < delay_ms && (w = waitpid(pid, &st, WNOHANG)) == 0) {
+      while (rs_now_ms() - t_spawn < (double)delay_ms && (w = waitpid(pid, &st, WNOHANG)) == 0)
         rs_sleep_ms(2);
-        waited += 2;
-      }
       if (w == 0) {
         kill(pid, SIGKILL);
         waitpid(pid, &st, 0);
