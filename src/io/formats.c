@@ -1,0 +1,40 @@
+/* formats.c: small helpers shared by the agency-format parsers (formats.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "formats.h"
+
+aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err)
+{
+  aq_raw_channel *c = realloc(raw->chan, (raw->nchan + 1) * sizeof *c);
+  if (!c) {
+    aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory for channel %zu",
+                 raw->nchan + 1);
+    return NULL;
+  }
+  raw->chan = c;
+  c += raw->nchan++;
+  memset(c, 0, sizeof *c);
+  c->azimuth_deg = NAN;
+  c->dip_deg = NAN;
+  c->vertical = -1;
+  return c;
+}
+
+int aq_zone_offset_(const char *s, size_t n, int *hours_east)
+{
+  static const struct {
+    const char *word;
+    int east_h;
+  } zones[] = {{"UTC", 0},  {"GMT", 0},  {"UT", 0},  {"PDT", -7}, {"PST", -8},
+               {"MDT", -6}, {"MST", -7}, {"CDT", -5}, {"CST", -6}, {"EDT", -4},
+               {"EST", -5}, {"JST", 9}};
+  for (size_t i = 0; i < sizeof zones / sizeof zones[0]; i++)
+    if (strlen(zones[i].word) == n && strncasecmp(s, zones[i].word, n) == 0) {
+      *hours_east = zones[i].east_h;
+      return 1;
+    }
+  return 0;
+}
