@@ -369,7 +369,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     char kind[64], filt[96];
     aq_copy_trim(kind, sizeof kind, first->p, kind_len);
     aq_copy_trim(filt, sizeof filt, text[11].p, ntext >= 12 ? text[11].len : 0);
-    snprintf(raw->processing, sizeof raw->processing, "%s%s%s", kind,
+    snprintf(raw->processing, sizeof raw->processing, "%.60s%s%.95s", kind,
              filt[0] ? "; " : "", filt);
   }
   free(iv);
