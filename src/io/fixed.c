@@ -224,3 +224,34 @@ int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
            tod_ms % 1000L);
   return 1;
 }
+
+int aq_iso_parse(const char *s, double *epoch_s)
+{
+  int y, mo, d, h = 0, mi = 0, used = 0;
+  double sec = 0;
+  if (sscanf(s, "%4d-%2d-%2d%n", &y, &mo, &d, &used) != 3)
+    return 0;
+  const char *t = s + used;
+  if (*t == 'T' || *t == ' ') {
+    if (sscanf(t + 1, "%2d:%2d:%lf", &h, &mi, &sec) < 2)
+      return 0;
+  }
+  if (y < 1 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 24 ||
+      mi < 0 || mi > 59 || !(sec >= 0 && sec < 61))
+    return 0;
+  *epoch_s = (double)days_from_civil(y, mo, d) * 86400.0 + h * 3600.0 + mi * 60.0 + sec;
+  return 1;
+}
+
+int aq_iso_from_ms(char *out, size_t cap, long long ms)
+{
+  long long days = ms >= 0 ? ms / 86400000LL : -((-ms + 86399999LL) / 86400000LL);
+  long long tod = ms - days * 86400000LL;
+  long y, m, d;
+  if (days < -100000 || days > 3000000)
+    return 0;
+  civil_from_days((long)days, &y, &m, &d);
+  snprintf(out, cap, "%04ld-%02ld-%02ldT%02lld:%02lld:%02lld.%03lldZ", y, m, d,
+           tod / 3600000LL, (tod / 60000LL) % 60, (tod / 1000LL) % 60, tod % 1000LL);
+  return 1;
+}

@@ -72,6 +72,15 @@ const char *aq_find_ci(const char *s, size_t n, const char *needle);
 int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
                 int minute, double sec);
 
+/* Seconds since 1970-01-01T00:00:00 UTC of "YYYY-MM-DD[Thh:mm[:ss.sss]][Z]"
+ * (the zone suffix is ignored: StationXML and miniSEED times are UTC).
+ * Returns 1, or 0 if s does not start with such a time. */
+int aq_iso_parse(const char *s, double *epoch_s);
+
+/* ISO-8601 UTC of ms milliseconds since 1970-01-01T00:00:00Z; 1, or 0 if
+ * out of range. */
+int aq_iso_from_ms(char *out, size_t cap, long long ms);
+
 /* Month and day of day-of-year jday in year: 1, or 0 if out of range. */
 int aq_month_day(int year, int jday, int *month, int *day);
 
