@@ -152,6 +152,54 @@ static aq_status join(const mseed_piece *pc, size_t a, size_t b, aq_raw_channel 
   return AQ_OK;
 }
 
+/* Bytes per sample of the encodings read; 0 for others. */
+static int sample_bytes(int encoding)
+{
+  switch (encoding) {
+  case DE_INT16: return 2;
+  case DE_INT32: return 4;
+  case DE_FLOAT32: return 4;
+  case DE_FLOAT64: return 8;
+  case DE_STEIM1:
+  case DE_STEIM2: return 1; /* compressed: at most the 64-byte frames present */
+  default: return 0;
+  }
+}
+
+/* Unpack the header of the record at rec (reclen bytes) into a copy in
+ * scratch and check that its payload lies inside the record before libmseed
+ * decodes it: libmseed 2 copies samplecnt x sample size bytes from the data
+ * offset without checking them against the record length. */
+static aq_status check_payload(const unsigned char *rec, int reclen, char *scratch,
+                               const char *name, long pos, aq_error *err)
+{
+  memcpy(scratch, rec, (size_t)reclen);
+  MSRecord *msr = NULL;
+  int rc = msr_parse(scratch, reclen, &msr, reclen, 0, 0);
+  if (rc != MS_NOERROR || !msr || !msr->fsdh) {
+    msr_free(&msr);
+    return aq_error_set(err, AQ_EFORMAT, name, -1, pos, "record header",
+                        "libmseed could not unpack this %d-byte record header (%s)", reclen,
+                        rc > 0 ? "record incomplete" : ms_errorstr(rc));
+  }
+  long off = msr->fsdh->data_offset;
+  int64_t cnt = msr->samplecnt;
+  int enc = msr->encoding, size = sample_bytes(enc);
+  msr_free(&msr);
+  if (cnt == 0)
+    return AQ_OK;
+  if (size == 0)
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, pos, "encoding",
+                        "expected integer, float or Steim1/2 samples, got encoding %d", enc);
+  if (off < MSEED_MIN_RECLEN || off >= reclen || cnt < 0 ||
+      (size > 1 && cnt * size > (int64_t)(reclen - off)))
+    return aq_error_set(err, AQ_EFORMAT, name, -1, pos, "data offset",
+                        "expected %lld samples of %d bytes from byte %ld inside the %d-byte "
+                        "record, they do not fit",
+                        (long long)cnt, size, off, reclen);
+  return AQ_OK;
+}
+
 aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
@@ -196,8 +244,11 @@ aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     }
     scratch = tmp;
-    memcpy(scratch, buf + pos, (size_t)reclen);
     MSRecord *msr = NULL;
+    s = check_payload(buf + pos, reclen, scratch, name, (long)pos, err);
+    if (s != AQ_OK)
+      break;
+    memcpy(scratch, buf + pos, (size_t)reclen);
     int rc = msr_parse(scratch, reclen, &msr, reclen, 1, 0);
     if (rc != MS_NOERROR || !msr) {
       s = aq_error_set(err, AQ_EFORMAT, name, -1, (long)pos, "record",
