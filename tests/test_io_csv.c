@@ -32,22 +32,39 @@ AQ_TEST(io_csv_jma_three_components)
   /* PROVENANCE: NS 0.3334 g, EW 0.2864 g, UD 0.2252 g; 30000 at 0.01 s, gal */
   static const double pga[3] = {0.3334, 0.2864, 0.2252};
   static const char *const comp[3] = {"NS", "EW", "UD"};
-  for (size_t col = 0; col <= 3; col++) {
-    aq_read_opts ro = {0};
-    ro.column = col; /* 0: default, the first column */
-    aq_record r;
-    aq_error e;
-    if (!aq_check(aq_record_read(REC_DIR "Q4149CF2.csv", &ro, &r, &e) == AQ_OK,
-                  "column %zu: %s", col, e.message))
-      continue;
-    size_t i = col ? col - 1 : 0;
-    aq_check(r.npts == 30000, "npts %zu", r.npts);
-    aq_check(r.dt_s == 0.01, "dt from SAMPLING RATE= 100Hz: %.17g", r.dt_s);
-    aq_check(strcmp(r.units_orig, "gal") == 0, "units %s", r.units_orig);
-    aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
-    aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
-    aq_record_free(&r);
-  }
+  for (size_t way = 0; way < 3; way++)
+    for (size_t i = 0; i < 3; i++) {
+      aq_read_opts ro = {0};
+      char path[256];
+      snprintf(path, sizeof path, REC_DIR "Q4149CF2.csv");
+      if (way == 0) /* --column N */
+        ro.column = i + 1;
+      else if (way == 1) /* FILE#CHANNEL */
+        snprintf(path, sizeof path, REC_DIR "Q4149CF2.csv#%s", comp[i]);
+      else { /* --component GLOB=CH */
+        snprintf(ro.components[0].glob, sizeof ro.components[0].glob, "*Q4149*");
+        snprintf(ro.components[0].channel, sizeof ro.components[0].channel, "%s", comp[i]);
+        ro.ncomponents = 1;
+      }
+      aq_record r;
+      aq_error e;
+      if (!aq_check(aq_record_read(path, &ro, &r, &e) == AQ_OK, "way %zu %s: %s", way,
+                    comp[i], e.message))
+        continue;
+      aq_check(r.npts == 30000, "npts %zu", r.npts);
+      aq_check(r.dt_s == 0.01, "dt from SAMPLING RATE= 100Hz: %.17g", r.dt_s);
+      aq_check(strcmp(r.units_orig, "gal") == 0, "units %s", r.units_orig);
+      aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
+      aq_check(r.vertical == (i == 2), "%s vertical %d", comp[i], r.vertical);
+      aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
+      aq_record_free(&r);
+    }
+  /* no channel named: refused, naming the three, never the first silently */
+  aq_record r;
+  aq_error e;
+  aq_check(aq_record_read(REC_DIR "Q4149CF2.csv", NULL, &r, &e) != AQ_OK &&
+               strstr(e.message, "NS, EW, UD") && strstr(e.message, "#"),
+           "three channels, none chosen: %s", e.message);
 }
 
 /* Parse text; check npts, dt, begin, units and that sample k equals
@@ -60,7 +77,7 @@ static void check_text(const char *what, const char *text, const aq_read_opts *r
   aq_error e;
   aq_error_clear(&e);
   char msg[1400];
-  aq_status s = aq_csv_parse((const unsigned char *)text, strlen(text), what, ro, &r, &e);
+  aq_status s = aq_record_parse((const unsigned char *)text, strlen(text), what, ro, &r, &e);
   aq_error_format(&e, msg, sizeof msg);
   if (!aq_check(s == AQ_OK, "%s: %s", what, msg))
     return;
@@ -115,10 +132,10 @@ AQ_TEST(io_csv_layouts)
              "STATION X\n SAMPLING RATE= 200Hz\n UNIT = gal(cm/s/s)\n NS\n0.02385\n"
              "-0.0771905\n1.0937E-01\n-3.14159e-4\n0.2718281\n",
              &none, v, 5, 0.005, 0, 0.01, "gal");
-  /* --units wins over the header */
-  check_text("units-override", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
+  /* a plain --units does not override units the header states */
+  check_text("units-stated-win", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
                                "0.06,-3.14159e-4\n0.08,0.2718281\n",
-             &gal, v, 5, 0.02, 0, 0.01, "gal");
+             &gal, v, 5, 0.02, 0, 9.80665, "g");
   /* a GLOB rule for this name */
   aq_read_opts rule = {0};
   snprintf(rule.rules[0].glob, sizeof rule.rules[0].glob, "*layout*");

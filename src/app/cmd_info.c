@@ -28,9 +28,9 @@ static const char usage_tail[] =
 
 int aq_cmd_info(int argc, char **argv)
 {
-  struct option longopts[4 + AQ_OPT_SIGNAL_NOPTS + 1] = {
+  struct option longopts[AQ_OPT_RECORD_NOPTS + 1 + AQ_OPT_SIGNAL_NOPTS + 1] = {
       AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
-  size_t nlong = aq_opt_signal_append(longopts, 4);
+  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 1);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   aq_signal_opts so;
   aq_signal_opts_default(&so);
@@ -67,7 +67,7 @@ int aq_cmd_info(int argc, char **argv)
   }
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
-         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\n");
+         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
   for (int i = optind; i < argc; i++) {
     aq_record rec;
     aq_error err;
@@ -89,13 +89,16 @@ int aq_cmd_info(int argc, char **argv)
       failed = 1;
       continue;
     }
+    if (rec.units_conflict[0])
+      fprintf(stderr, "archquake: %s: units: %s\n", rec.path, rec.units_conflict);
     char warn[256];
     if (aq_im_residual_warning(&im, warn, sizeof warn))
       fprintf(stderr, "archquake: %s: warning: %s\n", rec.path, warn);
-    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n",
+    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
            rec.path, rec.format, rec.npts, rec.dt_s,
            rec.dt_s * (double)rec.npts, rec.units_orig, im.pga_g, im.pgv_mps,
-           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps);
+           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec.channel,
+           rec.vertical ? "yes" : "no");
     aq_processed_free(&p);
     aq_record_free(&rec);
   }

@@ -164,7 +164,7 @@ int aq_cmd_run(int argc, char **argv)
       {"history", no_argument, NULL, OPT_HISTORY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 14);
+  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 11);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", NULL};
 

@@ -19,7 +19,8 @@ static int parse_units(const char *opt, const char *word, aq_units *u, int *nerr
   if (aq_units_parse(word, u))
     return 1;
   fprintf(stderr,
-          "archquake: %s: expected g, gal, cm/s2, m/s2, nm/s2, counts or file "
+          "archquake: %s: expected g, g/10, gal, cm/s2, mm/s2, m/s2, nm/s2, "
+          "counts or file "
           "(optionally after GLOB=), got \"%s\"\n",
           opt, word);
   (*nerr)++;
@@ -59,6 +60,39 @@ int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
     ro->nrules++;
     return 1;
   }
+  case AQ_OPT_RECORD_COMPONENT: {
+    const char *a = arg ? arg : "";
+    const char *eq = strrchr(a, '=');
+    size_t gl = eq ? (size_t)(eq - a) : 0;
+    if (!eq || gl == 0 || gl >= AQ_UNITS_GLOB_MAX || !eq[1] ||
+        strlen(eq + 1) >= sizeof ro->components[0].channel) {
+      fprintf(stderr,
+              "archquake: --component: expected GLOB=CHANNEL (pattern of 1 to %d "
+              "characters, channel of 1 to %zu), got \"%s\"\n",
+              AQ_UNITS_GLOB_MAX - 1, sizeof ro->components[0].channel - 1, a);
+      (*nerr)++;
+      return 1;
+    }
+    if (ro->ncomponents >= AQ_UNITS_RULES_MAX) {
+      fprintf(stderr, "archquake: --component: expected at most %d rules, got more "
+                      "(\"%s\")\n",
+              AQ_UNITS_RULES_MAX, a);
+      (*nerr)++;
+      return 1;
+    }
+    memcpy(ro->components[ro->ncomponents].glob, a, gl);
+    ro->components[ro->ncomponents].glob[gl] = '\0';
+    snprintf(ro->components[ro->ncomponents].channel,
+             sizeof ro->components[0].channel, "%s", eq + 1);
+    ro->ncomponents++;
+    return 1;
+  }
+  case AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE:
+    ro->accept_implausible = 1;
+    return 1;
+  case AQ_OPT_RECORD_ACCEPT_VERTICAL:
+    ro->accept_vertical = 1;
+    return 1;
   case AQ_OPT_RECORD_DT:
     aq_opt_double_gt("--dt", arg, 0, 3600, &ro->dt_s, nerr);
     return 1;

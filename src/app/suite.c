@@ -166,6 +166,9 @@ static int prepare_record(suite *S, rec_slot *r)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
   aq_status s = aq_record_read(path, &c->read, &r->rec, &r->err);
+  if (s == AQ_OK &&
+      (s = aq_record_check_horizontal(&r->rec, &c->read, &r->err)) != AQ_OK)
+    aq_record_free(&r->rec);
   double t1 = now_s();
   r->read_s = t1 - t0;
   if (s != AQ_OK) {
@@ -362,7 +365,7 @@ static void progress(suite *S, double t_start, size_t total, int final)
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const suite *S, const rec_slot *r)
 {
-  if (r->failed || r->warning[0])
+  if (r->failed || r->warning[0] || r->rec.units_conflict[0])
     return 1;
   for (size_t i = 0; r->runs && i < S->nruns; i++)
     if (r->runs[i].failed)
@@ -383,6 +386,8 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
   }
   if (r->warning[0])
     fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
+  if (r->rec.units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < S->nruns; i++) {

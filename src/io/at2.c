@@ -216,9 +216,10 @@ static int header_units(const char *s, size_t n, aq_units *u, char *what, size_t
 }
 
 aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
-  memset(rec, 0, sizeof *rec);
+  (void)opts; /* an AT2 file states everything it can */
+  memset(raw, 0, sizeof *raw);
   at2_cur c = {(const char *)buf, n, 0, 1};
   size_t lb[AT2_MAX_HEADER_LINES], le[AT2_MAX_HEADER_LINES];
   long npts_line = -1;
@@ -284,31 +285,26 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected a sample interval > 0 s, got \"%s\"", got);
   size_t npts = (size_t)npts_d;
 
-  /* Units: the text lines say "UNITS OF G"; --units overrides. */
-  aq_units u = AQ_UNITS_G;
-  char uword[32] = "";
+  /* Units: the text lines say "UNITS OF G"; an AT2 file is in g by its
+   * definition when they say nothing. */
+  char ustated[24] = "g", usaid[64] = "";
+  long uline = -1;
   for (int k = 0; k + 1 < nlines; k++) {
     aq_units hu;
+    char uword[32] = "";
     int r = header_units(c.s + lb[k], le[k] - lb[k], &hu, uword, sizeof uword);
     if (r == 1) {
-      u = hu;
+      snprintf(ustated, sizeof ustated, "%s", aq_units_name(hu));
+      uline = k + 1;
       break;
     }
-    if (r < 0 && aq_read_opts_units_for(opts, name) == AQ_UNITS_FILE)
-      return aq_error_set(err, AQ_EUNITS, name, k + 1, -1, "units",
-                          "expected acceleration units (G, CM/S/S, M/S/S), got "
-                          "\"%s\"; if the values are acceleration, say in what "
-                          "with --units g|gal|cm/s2|m/s2",
-                          uword);
+    if (r < 0) {
+      ustated[0] = '\0';
+      snprintf(usaid, sizeof usaid, "line %d: UNITS OF %s", k + 1, uword);
+      uline = k + 1;
+      break;
+    }
   }
-  aq_units ov = aq_read_opts_units_for(opts, name);
-  if (ov == AQ_UNITS_COUNTS)
-    return aq_error_set(err, AQ_EUNITS, name, -1, -1, "units",
-                        "--units counts needs a sensitivity, which an AT2 file "
-                        "does not carry: give g, gal, cm/s2, m/s2 or nm/s2");
-  if (ov != AQ_UNITS_FILE)
-    u = ov;
-  double factor = aq_units_to_mps2(u);
 
   /* Each value takes at least one character and one separator. */
   size_t room = (c.n - c.pos + 1) / 2;
@@ -384,15 +380,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
                           "expected a finite number, got \"%s\"", tokq);
     }
-    acc[k] = x * factor;
-    if (!isfinite(acc[k])) {
-      snprintf(field, sizeof field, "value %zu", k + 1);
-      quote(t, used < AT2_TOKEN_MAX ? used : AT2_TOKEN_MAX, tokq, sizeof tokq);
-      free(acc);
-      return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
-                          "expected a value that is finite in m/s2, got \"%s\" "
-                          "(overflows)", tokq);
-    }
+    acc[k] = x;
     k++;
     c.pos += used;
   }
@@ -403,17 +391,19 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                         "truncated or NPTS too large",
                         npts, npts_line, k);
   }
-  aq_status s = aq_record_set_names_(rec, name, err);
+  aq_status s = aq_raw_file_alloc(raw, 1, name, err);
   if (s != AQ_OK) {
     free(acc);
     return s;
   }
-  snprintf(rec->format, sizeof rec->format, "at2");
-  rec->npts = npts;
-  rec->dt_s = dt;
-  rec->begin_s = 0.0;
-  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(u));
-  rec->to_mps2 = factor;
-  rec->acc_mps2 = acc;
+  snprintf(raw->format, sizeof raw->format, "at2");
+  aq_raw_channel *ch = &raw->chan[0];
+  ch->npts = npts;
+  ch->dt_s = dt;
+  ch->begin_s = 0.0;
+  snprintf(ch->units, sizeof ch->units, "%s", ustated);
+  snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
+  ch->units_line = uline;
+  ch->values = acc;
   return AQ_OK;
 }
