@@ -13,7 +13,6 @@
 
 #include <stddef.h>
 
-#include "raw_tmp.h"
 #include "readers.h"
 
 /* COSMOS strong-motion format v1.20, V0/V1/V2, one or more channels. */
