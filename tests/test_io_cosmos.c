@@ -115,8 +115,22 @@ AQ_TEST(io_cosmos_bad_input)
                aq_test_msg_names(msg, COSMOS_SAMPLE, "\"-94.8x213\""),
            "bad value: %s", msg);
   /* not COSMOS at all */
-  aq_check(aq_test_raw_altered(aq_cosmos_parse, AGENCY_DIR "CE89146.V1", (size_t)-1, NULL,
-                               NULL, msg, sizeof msg) == AQ_EFORMAT &&
-               aq_test_msg_names(msg, "CE89146.V1", "Format v01.20"),
-           "CSMIP given to COSMOS: %s", msg);
+  aq_check(aq_test_raw_altered(aq_cosmos_parse, "tests/data/records/IELC180.AT2", (size_t)-1,
+                               NULL, NULL, msg, sizeof msg) == AQ_EFORMAT &&
+               aq_test_msg_names(msg, "IELC180.AT2:1", "Format v01.20"),
+           "AT2 given to COSMOS: %s", msg);
+}
+
+AQ_TEST(io_cosmos_cli_channels)
+{
+  char out[4096], errb[4096];
+  /* each channel of a multi-channel file is a record of its own */
+  int rc = aq_test_run("info '" COSMOS_V0 "#HNZ' " COSMOS_SAMPLE, out, sizeof out, errb,
+                       sizeof errb);
+  aq_check(rc == 0 && strstr(out, "v0c#HNZ\tcosmos\t20000\t0.005\t") &&
+               strstr(out, "\tHNZ\tyes") && strstr(out, "v1\tcosmos\t7000\t0.01\t"),
+           "exit %d: %s%s", rc, out, errb);
+  rc = aq_test_run("info " AGENCY_DIR "CE89146.V1#Up", out, sizeof out, errb, sizeof errb);
+  aq_check(rc == 0 && strstr(out, "#Up\tcsmip\t13200\t0.005\t") && strstr(out, "\tUp\tyes"),
+           "CSMIP vertical: exit %d: %s%s", rc, out, errb);
 }

@@ -258,3 +258,33 @@ AQ_TEST(io_mseed_stationxml_choices_and_refusals)
     free(x);
   }
 }
+
+/* The column `col` (0-based) of the second line of a TSV table, as a number. */
+static double tsv_field(const char *out, int col)
+{
+  const char *p = strchr(out, '\n');
+  for (int i = 0; p && i < col; i++)
+    p = strchr(p + 1, '\t');
+  return p ? atof(p + 1) : NAN;
+}
+
+AQ_TEST(io_mseed_cli_response_and_xml_among_records)
+{
+  char out[4096], errb[4096];
+  /* StationXML given among the records; PGA after info's baseline removal
+   * against the demeaned PGA in PROVENANCE */
+  int rc = aq_test_run("info " REC_DIR "CI.CLC.xml " REC_DIR "CI.CLC..HNE.mseed", out, sizeof out,
+                       errb, sizeof errb);
+  if (aq_check(rc == 0, "exit %d: %s", rc, errb))
+    aq_check_rel(tsv_field(out, 6), 0.3433, SAME_EVENT_REL, "pga_g of CI.CLC HNE: %s", out);
+  rc = aq_test_run("info --response " CE_XML " " CE_FILE("Z"), out, sizeof out, errb,
+                   sizeof errb);
+  if (aq_check(rc == 0, "exit %d: %s", rc, errb))
+    aq_check(strstr(out, "\tHNZ\tyes") != NULL, "HNZ marked vertical: %s", out);
+  /* the wrong station's StationXML: one line naming the XML and the channel */
+  rc = aq_test_run("info --response " REC_DIR "CI.CLC.xml " CE_FILE("E"), out, sizeof out, errb,
+                   sizeof errb);
+  aq_check(rc == 1 && strstr(errb, "CI.CLC.xml") && strstr(errb, "CE.58360..HNE") &&
+               strchr(errb, '\n') == errb + strlen(errb) - 1,
+           "wrong XML: exit %d: %s", rc, errb);
+}

@@ -403,6 +403,9 @@ aq_status aq_cosmos_parse(const unsigned char *buf, size_t n, const char *name,
       blank = ln.p[i] == ' ' || ln.p[i] == '\t';
     if (blank)
       continue;
+    if (raw->nchan == 0 && !aq_find_ci(ln.p, ln.len, "(Format v") &&
+        aq_find_ci(ln.p, ln.len, "accelerogram"))
+      return aq_csmip_parse(buf, n, name, opts, raw, err); /* the CSMIP variant */
     if (!aq_find_ci(ln.p, ln.len, "(Format v")) {
       s = bad_line(err, name, &ln, "text header",
                    raw->nchan ? "the next channel's \"... (Format v01.20 with N text lines)\""

@@ -15,7 +15,9 @@
 
 #include "readers.h"
 
-/* COSMOS strong-motion format v1.20, V0/V1/V2, one or more channels. */
+/* COSMOS strong-motion format v1.20, V0/V1/V2, one or more channels; a
+ * file whose first line names an ACCELEROGRAM without "(Format v" is handed
+ * to aq_csmip_parse (the CSMIP V1/V2 variant). */
 aq_status aq_cosmos_parse(const unsigned char *buf, size_t n, const char *name,
                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
@@ -36,6 +38,20 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
  * StationXML, see aq_stationxml_apply). */
 aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* aq_mseed_parse, then, if opts->response names a StationXML file, read it
+ * and aq_stationxml_apply() it (record.c dispatches miniSEED here). */
+aq_status aq_mseed_read_(const unsigned char *buf, size_t n, const char *name,
+                         const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Take the StationXML files out of the list of record paths paths[0..n):
+ * the first becomes ro->response (unless --response gave one), and the
+ * others are dropped as well (responses are looked up in the first only).
+ * Returns the number of paths left, in their order (n, untouched, when all
+ * are StationXML: then they are reported as not records).  A file is taken when
+ * its first bytes hold "<FDSNStationXML" (read with stdio; unreadable files
+ * stay in the list, for the reader to report). */
+size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro);
 
 /* One channel epoch of a StationXML file. */
 typedef struct {
