@@ -170,3 +170,34 @@ AQ_TEST(io_units_rules_last_match_wins)
   aq_check(aq_units_to_mps2(AQ_UNITS_G) == AQ_G0_MPS2 && aq_units_to_mps2(AQ_UNITS_GAL) == 0.01,
            "factors");
 }
+
+/* Every component of a multi-component file is a record of its own in the
+ * main job and in info, named FILE#CHANNEL; --component or FILE#CHANNEL
+ * chooses one.  PGA per PROVENANCE: NS 0.3334 g, EW 0.2864 g. */
+AQ_TEST(io_csv_multicomponent_cli)
+{
+  static char out[16384], err[4096];
+  int st = aq_test_run("info " REC_DIR "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tcsv\t30000") &&
+               strstr(out, "Q4149CF2.csv#EW\tcsv\t30000") &&
+               strstr(out, "Q4149CF2.csv#UD\tcsv\t30000") && strstr(out, "\tUD\tyes"),
+           "info: three records: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 --accept-vertical " REC_DIR
+                   "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tthick\tworkpath\t1\t0.333") &&
+               strstr(out, "Q4149CF2.csv#EW\tthick\tworkpath\t1\t0.286") &&
+               strstr(out, "Q4149CF2.csv#UD\t"),
+           "run: three rows: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 --component '*Q4149*=EW' " REC_DIR
+                   "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#EW\tthick\tworkpath\t1\t0.286") &&
+               !strstr(out, "#NS") && !strstr(out, "#UD"),
+           "run --component EW: one row: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 " REC_DIR "Q4149CF2.csv#NS", out,
+                   sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tthick") && !strstr(out, "#EW"),
+           "run FILE#NS: one row: exit %d: %s %s", st, out, err);
+  st = aq_test_run("info " REC_DIR "Q4149CF2.csv#XY", out, sizeof out, err, sizeof err);
+  aq_check(st == 1 && strstr(err, "NS, EW, UD") && strstr(err, "\"XY\""),
+           "unknown channel named: exit %d: %s", st, err);
+}

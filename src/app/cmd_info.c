@@ -70,11 +70,20 @@ int aq_cmd_info(int argc, char **argv)
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
          "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
-  for (int i = optind; i < argc; i++) {
+  char **names;
+  size_t nnames;
+  aq_error xerr;
+  if (aq_record_expand(argv + optind, (size_t)(argc - optind), &ro, &names, &nnames,
+                       &xerr) != AQ_OK) {
+    aq_error_print(&xerr, stderr);
+    aq_signal_ws_free(ws);
+    return AQ_EXIT_FAIL;
+  }
+  for (size_t i = 0; i < nnames; i++) { /* every channel a record (FILE#CH) */
     aq_record rec;
     aq_error err;
     aq_error_clear(&err);
-    if (aq_record_read(argv[i], &ro, &rec, &err) != AQ_OK) {
+    if (aq_record_read(names[i], &ro, &rec, &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       failed = 1;
       continue;
@@ -104,6 +113,7 @@ int aq_cmd_info(int argc, char **argv)
     aq_processed_free(&p);
     aq_record_free(&rec);
   }
+  aq_record_names_free(names, nnames);
   aq_signal_ws_free(ws);
   fflush(stdout);
   return failed ? AQ_EXIT_FAIL : AQ_EXIT_OK;

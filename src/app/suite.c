@@ -524,7 +524,7 @@ static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
   return st;
 }
 
-int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
+static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -743,5 +743,24 @@ out:
   aq_signal_ws_free(S.ws);
   if (stats_out)
     *stats_out = stats;
+  return rc;
+}
+
+/* Every channel of a multi-channel file is a record of its own (FILE#CH). */
+int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
+{
+  char **names;
+  size_t n;
+  aq_error err;
+  if (aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err) !=
+      AQ_OK) {
+    aq_error_print(&err, stderr);
+    return AQ_EXIT_FAIL;
+  }
+  aq_suite_cfg c = *cfg;
+  c.records = names;
+  c.nrecords = n;
+  int rc = suite_run(&c, stats);
+  aq_record_names_free(names, n);
   return rc;
 }

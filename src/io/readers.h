@@ -141,6 +141,12 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
 aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
+/* Does buf[0..n) hold an AT2 header: a line with NPTS and DT followed by a
+ * line of values (at2.c)?  Returns 1 and the non-blank text lines before it
+ * ([tb[i], te[i]) offsets, at most max_text, count in *ntext), else 0. */
+int aq_at2_sniff(const unsigned char *buf, size_t n, size_t *tb, size_t *te,
+                 int *ntext, int max_text);
+
 /* CSV / plain text (csv.c). */
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);

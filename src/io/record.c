@@ -276,16 +276,18 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
     if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
       return AQ_FMT_COSMOS;
-  for (size_t k = 0; k < nl && k < 6; k++)
-    if (has_ci(line[k], len[k], "NPTS")) {
-      for (size_t j = 0; j < k; j++) {
-        if (has_ci(line[j], len[j], "VELOCITY"))
-          return AQ_FMT_PEER_VT2;
-        if (has_ci(line[j], len[j], "DISPLACEMENT"))
-          return AQ_FMT_PEER_DT2;
-      }
-      return AQ_FMT_AT2;
+  /* PEER: a line with NPTS and DT followed by values, after free text */
+  size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
+  int nt = 0;
+  if (aq_at2_sniff(buf, m, tb, te, &nt, AQ_SNIFF_LINES)) {
+    for (int j = 0; j < nt; j++) {
+      if (has_ci(s + tb[j], te[j] - tb[j], "VELOCITY"))
+        return AQ_FMT_PEER_VT2;
+      if (has_ci(s + tb[j], te[j] - tb[j], "DISPLACEMENT"))
+        return AQ_FMT_PEER_DT2;
     }
+    return AQ_FMT_AT2;
+  }
   return AQ_FMT_TEXT;
 }
 
@@ -346,7 +348,7 @@ const char *aq_format_describe(aq_format fmt)
 static int channel_says_vertical(const char *name)
 {
   static const char *const words[] = {"UD", "UP", "U", "Z", "V", "VERT",
-                                      "VERTICAL", "DOWN", "DU", NULL};
+                                      "VERTICAL", "DOWN", "DWN", "DU", NULL};
   const char *p = name;
   while (*p) {
     while (*p && !isalnum((unsigned char)*p))
@@ -584,7 +586,7 @@ static aq_status select_channel(const aq_raw_file *raw, const char *want,
                                 const char *path, const aq_read_opts *opts,
                                 size_t *ichan, aq_error *err)
 {
-  if (!want && opts)
+  if (!want && opts && raw->nchan > 1) /* a rule chooses among several */
     for (size_t i = opts->ncomponents < AQ_UNITS_RULES_MAX ? opts->ncomponents
                                                            : AQ_UNITS_RULES_MAX;
          i-- > 0;)
@@ -649,28 +651,13 @@ aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
   return parse_one(buf, n, name, NULL, opts, rec, err);
 }
 
-aq_status aq_record_read(const char *path, const aq_read_opts *opts,
-                         aq_record *rec, aq_error *err)
+/* The bytes of the regular file at path (*buf malloc'd, caller frees). */
+static aq_status read_bytes(const char *path, unsigned char **buf, size_t *size,
+                            aq_error *err)
 {
-  memset(rec, 0, sizeof *rec);
   struct stat st;
-  if (!path || !*path)
-    return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
-                        "expected a record file name, got an empty string");
-  /* FILE#CHANNEL names one channel of a file (when no file has the whole
-   * name). */
-  char file[4096];
-  const char *want = NULL, *hash = strrchr(path, '#');
-  if (stat(path, &st) != 0 && hash && hash > path && hash[1] &&
-      (size_t)(hash - path) < sizeof file) {
-    memcpy(file, path, (size_t)(hash - path));
-    file[hash - path] = '\0';
-    if (stat(file, &st) == 0) {
-      want = hash + 1;
-      path = file;
-    }
-  }
-  if (!want && stat(path, &st) != 0)
+  *buf = NULL;
+  if (stat(path, &st) != 0)
     return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
                         strerror(errno));
   if (S_ISDIR(st.st_mode))
@@ -684,22 +671,135 @@ aq_status aq_record_read(const char *path, const aq_read_opts *opts,
   if (!f)
     return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
                         strerror(errno));
-  size_t size = (size_t)st.st_size;
-  unsigned char *buf = malloc(size ? size : 1);
-  if (!buf) {
+  size_t n = (size_t)st.st_size;
+  unsigned char *b = malloc(n ? n : 1);
+  if (!b) {
     fclose(f);
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL,
-                        "out of memory reading %zu bytes", size);
+                        "out of memory reading %zu bytes", n);
   }
-  size_t got = fread(buf, 1, size, f);
+  size_t got = fread(b, 1, n, f);
   int rerr = ferror(f);
   fclose(f);
-  if (rerr || got != size) {
-    free(buf);
+  if (rerr || got != n) {
+    free(b);
     return aq_error_set(err, AQ_EIO, path, -1, (long)got, NULL,
-                        "read error: expected %zu bytes, got %zu", size, got);
+                        "read error: expected %zu bytes, got %zu", n, got);
   }
-  aq_status s = parse_one(buf, size, path, want, opts, rec, err);
+  *buf = b;
+  *size = n;
+  return AQ_OK;
+}
+
+/* FILE#CHANNEL names one channel of a file when no file has the whole name:
+ * file (cap bytes) gets FILE and *want CHANNEL; otherwise *want is NULL and
+ * file is path. */
+static void split_channel(const char *path, char *file, size_t cap, const char **want)
+{
+  struct stat st;
+  const char *hash = strrchr(path, '#');
+  *want = NULL;
+  snprintf(file, cap, "%s", path);
+  if (stat(path, &st) == 0 || !hash || hash == path || !hash[1] ||
+      (size_t)(hash - path) >= cap)
+    return;
+  memcpy(file, path, (size_t)(hash - path));
+  file[hash - path] = '\0';
+  if (stat(file, &st) == 0)
+    *want = hash + 1;
+  else
+    snprintf(file, cap, "%s", path);
+}
+
+aq_status aq_record_read(const char *path, const aq_read_opts *opts,
+                         aq_record *rec, aq_error *err)
+{
+  memset(rec, 0, sizeof *rec);
+  if (!path || !*path)
+    return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
+                        "expected a record file name, got an empty string");
+  char file[4096];
+  const char *want;
+  split_channel(path, file, sizeof file, &want);
+  unsigned char *buf;
+  size_t size = 0;
+  aq_status s = read_bytes(file, &buf, &size, err);
+  if (s != AQ_OK)
+    return s;
+  s = parse_one(buf, size, file, want, opts, rec, err);
   free(buf);
   return s;
+}
+
+void aq_record_names_free(char **names, size_t n)
+{
+  for (size_t i = 0; names && i < n; i++)
+    free(names[i]);
+  free(names);
+}
+
+aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
+                           char ***out, size_t *nout, aq_error *err)
+{
+  size_t cap = n + 1, k = 0;
+  char **names = malloc(cap * sizeof *names);
+  *out = NULL;
+  *nout = 0;
+  if (!names)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  aq_status st = AQ_OK;
+  for (size_t i = 0; i < n && st == AQ_OK; i++) {
+    aq_raw_file raw;
+    memset(&raw, 0, sizeof raw);
+    char file[4096];
+    const char *want;
+    split_channel(paths[i], file, sizeof file, &want);
+    int chosen = want != NULL;
+    const char *rule_ch = NULL; /* the last --component rule matching */
+    for (size_t r = 0; !chosen && opts && r < opts->ncomponents && r < AQ_UNITS_RULES_MAX;
+         r++)
+      if (fnmatch(opts->components[r].glob, paths[i], 0) == 0)
+        rule_ch = opts->components[r].channel;
+    unsigned char *buf = NULL;
+    size_t size = 0;
+    aq_error ignored;
+    if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK &&
+        aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
+      memset(&raw, 0, sizeof raw); /* reported when it is read */
+    free(buf);
+    size_t add = raw.nchan > 1 && !rule_ch ? raw.nchan : 1;
+    if (k + add > cap) {
+      size_t ncap = 2 * cap + add;
+      char **g = realloc(names, ncap * sizeof *names);
+      if (!g) {
+        aq_raw_file_free(&raw);
+        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
+        break;
+      }
+      names = g;
+      cap = ncap;
+    }
+    for (size_t c = 0; c < add && st == AQ_OK; c++) {
+      char label[4200];
+      if (raw.nchan > 1 && rule_ch)
+        snprintf(label, sizeof label, "%s#%s", paths[i], rule_ch);
+      else if (raw.nchan > 1)
+        record_label(&raw, c, paths[i], label, sizeof label);
+
+      else
+        snprintf(label, sizeof label, "%s", paths[i]);
+      if (!(names[k] = strdup(label)))
+        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
+      else
+        k++;
+    }
+    aq_raw_file_free(&raw);
+  }
+  if (st != AQ_OK) {
+    aq_record_names_free(names, k);
+    return st;
+  }
+  *out = names;
+  *nout = k;
+  return AQ_OK;
 }

@@ -114,6 +114,15 @@ double aq_units_to_mps2(aq_units u);
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err);
 
+/* Record names for operands paths[0..n): a file of several channels, named
+ * without #CHANNEL and chosen by no --component rule, becomes one name per
+ * channel, "FILE#CHANNEL", in file order; any other operand is kept as given
+ * (an unreadable one is reported when it is read).  On AQ_OK *out holds
+ * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM. */
+aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
+                           char ***out, size_t *nout, aq_error *err);
+void aq_record_names_free(char **names, size_t n);
+
 /* AQ_OK if rec may be run as horizontal excitation: it is not identified as
  * vertical, or opts->accept_vertical.  Otherwise AQ_EUNSUPPORTED with err
  * naming the record and its channel. */
