@@ -314,14 +314,12 @@ const char *aq_format_describe(aq_format fmt)
   case AQ_FMT_COSMOS:
     return "COSMOS strong-motion format (or CSMIP V1/V2)";
   case AQ_FMT_SMC:
-    return "USGS SMC format, which is not supported: export it as CSV (time, "
-           "acceleration)";
+    return "USGS SMC format";
   case AQ_FMT_KNET:
     return "K-NET/KiK-net ASCII, which is not supported: export it as CSV "
            "(time, acceleration) in gal";
   case AQ_FMT_ESM:
-    return "ESM/ITACA ASCII, which is not supported: export it as CSV (time, "
-           "acceleration)";
+    return "ESM/ITACA ASCII";
   case AQ_FMT_XML:
     return "XML (StationXML or QuakeML metadata?), not a record";
   case AQ_FMT_HDF5:
@@ -566,6 +564,10 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_cosmos_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_MSEED:
     return aq_mseed_read_(buf, n, name, opts, raw, err);
+  case AQ_FMT_SMC:
+    return aq_smc_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_ESM:
+    return aq_esm_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
