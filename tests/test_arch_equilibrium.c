@@ -72,7 +72,7 @@ AQ_TEST(arch_equilibrium_vs_virtual_work)
   }
 }
 
-/* KCLC (Stockdale et al. 2018) case quoted in ERRATA.md: 27 voussoirs,
+/* KCLC (Stockdale et al. 2018) case (docs/method.md sec. 10): 27 voussoirs,
  * intrados radius 1.806 m, t/R_i = 0.1661, depth 0.25 m, 1530 kg/m^3,
  * vertical point load at joint 8, hinges 3i 8e 20i 27e, g = 9.81: collapse
  * load 2.751 kN (KCLC), 2.756 kN (virtual powers).  The embrace is not

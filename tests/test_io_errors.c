@@ -82,7 +82,6 @@ AQ_TEST(io_errors_files)
 AQ_TEST(io_errors_refused_formats)
 {
   expect_fail(REC_DIR "CI.CLC..HNE.mseed", 1, NEED("CI.CLC..HNE.mseed", "sensitivity", "--response"));
-  expect_fail(REC_DIR "AOM0081801241951.NS", 1, NEED("AOM0081801241951.NS", "K-NET", "not supported"));
   expect_fail(REC_DIR "RSN1616_DUZCE_362-E.VT2", 1, NEED("VT2", "velocity", "not acceleration"));
   expect_fail(REC_DIR "RSN4013_SANSIMEO_36258021.DT2", 1, NEED("DT2", "displacement", "not acceleration"));
   expect_fail(REC_DIR "CI.CLC.xml", 1, NEED("CI.CLC.xml", "XML", "not a record"));

@@ -121,18 +121,57 @@ void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
   (*nerr)++;
 }
 
+/* The word behind an unknown option, if it begins with '-' and names an
+ * existing file (the user meant to read it): a short option ch comes from
+ * argv[optind_after] (inside a cluster) or argv[optind_after - 1] (its last
+ * character); a long one (ch 0 or an id >= 128) from argv[optind_after - 1]. */
+static const char *dash_file(char **argv, int optind_after, int ch)
+{
+  struct stat sb;
+  int shortopt = ch > 0 && ch < 128;
+  for (int k = optind_after - 1; k <= optind_after && argv; k++) {
+    if (k < 1 || (k == optind_after && !shortopt))
+      continue;
+    const char *w = argv[k];
+    if (!w || w[0] != '-' || w[1] == '\0' || strcmp(w, "--") == 0)
+      continue;
+    if (shortopt && (w[1] == '-' || !strchr(w + 1, ch)))
+      continue;
+    if (stat(w, &sb) == 0 && !S_ISDIR(sb.st_mode))
+      return w;
+  }
+  return NULL;
+}
+
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr)
 {
-  const char *word = optind_after > 0 ? argv[optind_after - 1] : "?";
-  if (optopt_ && optopt_ < 128 && word[0] == '-' && word[1] != '-')
+  static const char *last_file; /* one line per such word, not per letter */
+  const char *file = dash_file(argv, optind_after, optopt_);
+  if (file) {
+    if (file != last_file) {
+      fprintf(stderr,
+              "archquake: %s: expected an option, got a file whose name "
+              "begins with '-': put it after '--' (archquake %s[OPTIONS] -- "
+              "%s) or write it as ./%s\n",
+              file, cmd, file, file);
+      (*nerr)++;
+    }
+    last_file = file;
+    return;
+  }
+  /* A short option (optopt_ a character) is named by itself: in a cluster
+   * such as -ab, argv[optind_after - 1] may be another word (the previous
+   * one, or an operand getopt has moved there).  A long option has no
+   * optopt_ (or an id >= 128) and is the word getopt just passed. */
+  if (optopt_ > 0 && optopt_ < 128)
     fprintf(stderr,
             "archquake: -%c: unknown option or missing value (see 'archquake %s--help')\n",
             optopt_, cmd);
   else
     fprintf(stderr,
             "archquake: %s: unknown option or missing value (see 'archquake %s--help')\n",
-            word, cmd);
+            optind_after > 0 ? argv[optind_after - 1] : "?", cmd);
   (*nerr)++;
 }
 

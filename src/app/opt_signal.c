@@ -21,10 +21,12 @@ const struct option aq_opt_signal_longopts[AQ_OPT_SIGNAL_NOPTS] = {
 };
 
 const char aq_opt_signal_usage[] =
-    "  --detrend D     remove mean (default), linear (least squares) or none\n"
+    "  --detrend D     remove the least-squares line (linear, default), the\n"
+    "                  mean (mean) or nothing (none)\n"
     "  --taper FRAC    Hann taper over FRAC of the record at each end, 0-0.5\n"
-    "                  (default 0.05)\n"
-    "  --highpass HZ   acausal Butterworth high-pass corner (default 0.05 Hz)\n"
+    "                  (default 0: only the zero pads' junctions are tapered)\n"
+    "  --highpass HZ   acausal Butterworth high-pass corner (default 0.03 Hz,\n"
+    "                  or 1/duration for a record shorter than 33.3 s)\n"
     "  --order N       Butterworth order, 1-20 (default 4)\n"
     "  --lowpass HZ    acausal Butterworth low-pass corner (default off)\n"
     "  --no-filter     no taper, pads or filter (detrend still applies)\n"
@@ -55,6 +57,7 @@ int aq_opt_signal_handle(int id, const char *arg, aq_signal_opts *o,
   case AQ_OPT_HIGHPASS:
     aq_opt_double_gt("--highpass", arg, 0, AQ_OPT_FREQ_MAX_HZ, &o->highpass_hz,
                      nerr);
+    o->highpass_auto = 0; /* an explicit corner is checked as given */
     return 1;
   case AQ_OPT_ORDER:
     l = o->order;

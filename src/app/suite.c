@@ -662,9 +662,12 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     }
     pthread_mutex_unlock(&S.lock);
     double t0 = now_s();
-    if (c->progress && has_diagnostics(&S, r))
-      progress(&S, t_start, total, 1); /* clear the line before diagnostics */
+    /* clear the line before diagnostics, and before rows on the terminal */
+    if (c->progress && (c->aligned || has_diagnostics(&S, r)))
+      progress(&S, t_start, total, 1);
     ws = write_record(&S, r, h5, &stats, &oerr);
+    if (c->progress && c->aligned && c->text)
+      fflush(c->text); /* the rows reach the terminal before the next line */
     stats.write_s += now_s() - t0;
     pthread_mutex_lock(&S.lock);
     slot_clear(&S, r);

@@ -1,4 +1,6 @@
 /* arch.c: the arch file (.cfg, INI read with libinih) and the arch object.
+ * The format, with units, defaults and an example per arch type, is
+ * documented in docs/arch-file.md.
  *
  * Sections and keys (all others are errors, as are duplicate keys):
  *   [arch]      name (optional, default: the file name without directory and
@@ -7,7 +9,7 @@
  *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
  *               (optional, default: the primary's joints, faces swapped);
  *               without [hinges] the primary comes from the search (search.c)
- *   [dynamics]  cor (0..1, kinetic-energy ratio, ERRATA item 7), impact
+ *   [dynamics]  cor (0..1, kinetic-energy ratio, docs/method.md sec. 7), impact
  *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
  * libinih calls the handler for each key as it reads the line; the reader
  * below feeds it line by line and counts lines, so every message names the

@@ -12,7 +12,7 @@
  * (voussoirs j1..j2-1) turns about H1 by q, body 3 (j3..j4-1) about H4, body
  * 2 (j2..j3-1) rides between; voussoirs outside [j1, j4) are fixed.  q is the
  * global counter-clockwise rotation of body 1 (radians); the closure is by
- * circle intersection on the branch continuous from q = 0 (ERRATA item 1).
+ * circle intersection on the branch continuous from q = 0 (docs/method.md sec. 1).
  *
  * Equilibrium (kinematics.c): the paper's eq. (3), the 9x9 balance of the
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.

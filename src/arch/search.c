@@ -2,8 +2,8 @@
  *
  * Every alternating four-hinge set (joints j1 < j2 < j3 < j4 in 0..n, faces
  * e i e i or i e i e) is a one-degree-of-freedom mechanism; its multiplier
- * lambda0 follows from the velocities at s = 0 alone (virtual work, ERRATA
- * item 5), computed in O(1) per set from prefix sums of the voussoirs' mass
+ * lambda0 follows from the velocities at s = 0 alone (virtual work, docs/method.md
+ * sec. 5), computed in O(1) per set from prefix sums of the voussoirs' mass
  * and first moments.  The sets whose hinges all open and whose lambda0 is
  * positive are ranked by lambda0; the lowest SEARCH_KEEP are kept and checked
  * in order with the full equilibrium (eq. (3): every hinge reaction

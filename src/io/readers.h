@@ -91,7 +91,7 @@ typedef enum {
   AQ_FMT_MSEED,              /* miniSEED 2 or 3: refused */
   AQ_FMT_COSMOS,             /* COSMOS V0/V1/V2: refused */
   AQ_FMT_SMC,                /* USGS SMC: refused */
-  AQ_FMT_KNET,               /* K-NET / KiK-net ASCII */
+  AQ_FMT_KNET,               /* K-NET / KiK-net ASCII (knet.c) */
   AQ_FMT_ESM,                /* ESM / ITACA ASCII: refused */
   AQ_FMT_XML,                /* XML (StationXML, QuakeML): refused */
   AQ_FMT_HDF5,               /* HDF5 (e.g. an archquake results file): refused */
@@ -146,6 +146,12 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
  * ([tb[i], te[i]) offsets, at most max_text, count in *ntext), else 0. */
 int aq_at2_sniff(const unsigned char *buf, size_t n, size_t *tb, size_t *te,
                  int *ntext, int max_text);
+
+/* K-NET / KiK-net ASCII (knet.c): counts with the scale factor as the
+ * sensitivity; channel NS/EW/UD (K-NET) or NS1..UD2 (KiK-net, 1 borehole, 2
+ * surface); reference = Record Time - 15 s, in UTC. */
+aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
+                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
 /* CSV / plain text (csv.c). */
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,

@@ -316,8 +316,7 @@ const char *aq_format_describe(aq_format fmt)
   case AQ_FMT_SMC:
     return "USGS SMC format";
   case AQ_FMT_KNET:
-    return "K-NET/KiK-net ASCII, which is not supported: export it as CSV "
-           "(time, acceleration) in gal";
+    return "K-NET/KiK-net ASCII";
   case AQ_FMT_ESM:
     return "ESM/ITACA ASCII";
   case AQ_FMT_XML:
@@ -568,12 +567,14 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_smc_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_ESM:
     return aq_esm_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_KNET:
+    return aq_knet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
   case AQ_FMT_UNKNOWN_BINARY:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "expected SAC, PEER AT2 or CSV, got %s",
+                        "expected SAC, PEER AT2, K-NET or CSV, got %s",
                         aq_format_describe(fmt));
   default:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
