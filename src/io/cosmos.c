@@ -388,41 +388,18 @@ fail:
   return s;
 }
 
+static int cosmos_starts(const aq_line *ln) { return aq_find_ci(ln->p, ln->len, "(Format v") != NULL; }
+
 aq_status aq_cosmos_parse(const unsigned char *buf, size_t n, const char *name,
                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
-  (void)opts;
-  memset(raw, 0, sizeof *raw);
   aq_lines c;
+  aq_line ln = {NULL, 0, 0};
   aq_lines_init(&c, buf, n);
-  aq_line ln;
-  aq_status s = AQ_OK;
-  while (aq_lines_next(&c, &ln)) {
-    int blank = 1;
-    for (size_t i = 0; i < ln.len && blank; i++)
-      blank = ln.p[i] == ' ' || ln.p[i] == '\t';
-    if (blank)
-      continue;
-    if (raw->nchan == 0 && !aq_find_ci(ln.p, ln.len, "(Format v") &&
-        aq_find_ci(ln.p, ln.len, "accelerogram"))
-      return aq_csmip_parse(buf, n, name, opts, raw, err); /* the CSMIP variant */
-    if (!aq_find_ci(ln.p, ln.len, "(Format v")) {
-      s = bad_line(err, name, &ln, "text header",
-                   raw->nchan ? "the next channel's \"... (Format v01.20 with N text lines)\""
-                              : "\"... (Format v01.20 with N text lines)\"");
-      break;
-    }
-    s = parse_channel(&c, &ln, name, raw, err);
-    if (s != AQ_OK)
-      break;
-  }
-  if (s == AQ_OK && raw->nchan == 0)
-    s = aq_error_set(err, AQ_EFORMAT, name, 1, -1, "text header",
-                     "expected a COSMOS channel, got an empty file");
-  if (s != AQ_OK) {
-    aq_raw_file_free(raw);
-    return s;
-  }
-  snprintf(raw->format, sizeof raw->format, "cosmos");
-  return AQ_OK;
+  while (aq_lines_next(&c, &ln) && aq_line_blank(&ln))
+    ;
+  if (c.line > 1 && !cosmos_starts(&ln) && aq_find_ci(ln.p, ln.len, "accelerogram"))
+    return aq_csmip_parse(buf, n, name, opts, raw, err); /* the CSMIP variant */
+  return aq_parse_channels_(buf, n, name, "cosmos", cosmos_starts,
+                            "\"... (Format v01.20 with N text lines)\"", parse_channel, raw, err);
 }

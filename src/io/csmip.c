@@ -31,14 +31,6 @@
 #define CSMIP_V2_FIELDS 8  /* V2 data: 8F10 when no format is stated */
 #define CSMIP_V2_WIDTH 10
 
-static int blank_line(const aq_line *ln)
-{
-  for (size_t i = 0; i < ln->len; i++)
-    if (ln->p[i] != ' ' && ln->p[i] != '\t')
-      return 0;
-  return 1;
-}
-
 static long leading_long(const char *p, const char *end)
 {
   while (p < end && *p == ' ')
@@ -272,7 +264,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       *c = peek;
       break;
     }
-    if (kind == 1 && !blank_line(&ln))
+    if (kind == 1 && !aq_line_blank(&ln))
       break; /* V1: nothing else belongs to this channel */
   }
   if (raw->nchan == 0) {
@@ -293,38 +285,16 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   return AQ_OK;
 }
 
+static int csmip_starts(const aq_line *ln)
+{
+  return aq_find_ci(ln->p, ln->len, "accelerogram") != NULL;
+}
+
 aq_status aq_csmip_parse(const unsigned char *buf, size_t n, const char *name,
                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  memset(raw, 0, sizeof *raw);
-  aq_lines c;
-  aq_lines_init(&c, buf, n);
-  aq_line ln;
-  aq_status s = AQ_OK;
-  while (aq_lines_next(&c, &ln)) {
-    if (blank_line(&ln))
-      continue;
-    if (!aq_find_ci(ln.p, ln.len, "accelerogram")) {
-      char got[64];
-      aq_copy_trim(got, sizeof got, ln.p, ln.len);
-      s = aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "text header",
-                       "expected a channel header naming an (UN)CORRECTED ACCELEROGRAM, "
-                       "got \"%s\"",
-                       got);
-      break;
-    }
-    s = parse_channel(&c, &ln, name, raw, err);
-    if (s != AQ_OK)
-      break;
-  }
-  if (s == AQ_OK && raw->nchan == 0)
-    s = aq_error_set(err, AQ_EFORMAT, name, 1, -1, "text header",
-                     "expected a CSMIP channel, got an empty file");
-  if (s != AQ_OK) {
-    aq_raw_file_free(raw);
-    return s;
-  }
-  snprintf(raw->format, sizeof raw->format, "csmip");
-  return AQ_OK;
+  return aq_parse_channels_(buf, n, name, "csmip", csmip_starts,
+                            "a channel header naming an (UN)CORRECTED ACCELEROGRAM",
+                            parse_channel, raw, err);
 }

@@ -28,6 +28,14 @@ int aq_lines_at_end(const aq_lines *c)
   return 1;
 }
 
+int aq_line_blank(const aq_line *ln)
+{
+  for (size_t i = 0; i < ln->len; i++)
+    if (ln->p[i] != ' ' && ln->p[i] != '\t')
+      return 0;
+  return 1;
+}
+
 int aq_lines_next(aq_lines *c, aq_line *out)
 {
   if (aq_lines_at_end(c))

@@ -14,13 +14,13 @@
 
 #include "../error.h"
 
-typedef struct {
+typedef struct aq_lines_s {
   const char *s;
   size_t n, pos;
   long line; /* 1-based number of the line that next() returns next */
 } aq_lines;
 
-typedef struct {
+typedef struct aq_line_s {
   const char *p; /* first character (into the buffer) */
   size_t len;    /* without the line end */
   long line;     /* 1-based line number */
@@ -31,6 +31,9 @@ void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n);
 /* The next line in *out; 0 at end of input.  Trailing DOS end-of-file bytes
  * (0x1A) and blank space after the last line count as end of input. */
 int aq_lines_next(aq_lines *c, aq_line *out);
+
+/* 1 if the line holds only blanks and tabs. */
+int aq_line_blank(const aq_line *ln);
 
 /* 1 if nothing but blanks, line ends and 0x1A remain. */
 int aq_lines_at_end(const aq_lines *c);

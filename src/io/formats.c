@@ -4,6 +4,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "fixed.h"
 #include "formats.h"
 
 aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err)
@@ -37,4 +38,38 @@ int aq_zone_offset_(const char *s, size_t n, int *hours_east)
       return 1;
     }
   return 0;
+}
+
+aq_status aq_parse_channels_(const unsigned char *buf, size_t n, const char *name,
+                             const char *format, int (*starts)(const aq_line *),
+                             const char *expected, aq_channel_parser_ parse, aq_raw_file *raw,
+                             aq_error *err)
+{
+  memset(raw, 0, sizeof *raw);
+  aq_lines c;
+  aq_lines_init(&c, buf, n);
+  aq_line ln;
+  aq_status s = AQ_OK;
+  while (s == AQ_OK && aq_lines_next(&c, &ln)) {
+    if (aq_line_blank(&ln))
+      continue;
+    if (!starts(&ln)) {
+      char got[64];
+      aq_copy_trim(got, sizeof got, ln.p, ln.len);
+      s = aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "text header",
+                       "expected %s%s, got \"%s\"", raw->nchan ? "the next channel's " : "",
+                       expected, got);
+      break;
+    }
+    s = parse(&c, &ln, name, raw, err);
+  }
+  if (s == AQ_OK && raw->nchan == 0)
+    s = aq_error_set(err, AQ_EFORMAT, name, 1, -1, "text header",
+                     "expected %s, got an empty file", expected);
+  if (s != AQ_OK) {
+    aq_raw_file_free(raw);
+    return s;
+  }
+  snprintf(raw->format, sizeof raw->format, "%s", format);
+  return AQ_OK;
 }

@@ -85,6 +85,21 @@ aq_status aq_stationxml_apply(const aq_response *resp, const char *xml_name,
  * dip NAN, vertical -1) to raw; NULL on allocation failure (err filled). */
 aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err);
 
+/* Shared by the multi-channel text parsers (cosmos.c, csmip.c): walk the
+ * channels of buf[0..n).  Blank lines between channels are skipped; every
+ * other line must start a channel (starts(line) != 0, else AQ_EFORMAT
+ * "expected <expected>, got ...") and parse(cursor after that line, the
+ * line, ...) reads the channel and appends it to raw.  No channel at all is
+ * an error; on failure raw is freed; on success raw->format = format. */
+struct aq_lines_s;
+struct aq_line_s;
+typedef aq_status (*aq_channel_parser_)(struct aq_lines_s *c, const struct aq_line_s *first,
+                                        const char *name, aq_raw_file *raw, aq_error *err);
+aq_status aq_parse_channels_(const unsigned char *buf, size_t n, const char *name,
+                             const char *format, int (*starts)(const struct aq_line_s *),
+                             const char *expected, aq_channel_parser_ parse, aq_raw_file *raw,
+                             aq_error *err);
+
 /* Shared: seconds east of UTC for a zone word ("UTC", "GMT", "PDT", "PST",
  * "JST", ...); 1 if known. */
 int aq_zone_offset_(const char *s, size_t n, int *hours_east);
