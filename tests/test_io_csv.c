@@ -201,3 +201,31 @@ AQ_TEST(io_csv_multicomponent_cli)
   aq_check(st == 1 && strstr(err, "NS, EW, UD") && strstr(err, "\"XY\""),
            "unknown channel named: exit %d: %s", st, err);
 }
+
+/* CWB text: '#' header lines state the units (#AmplitudeUnit: gal.) and
+ * name the columns (#DataSequence: Time U(+); N(+); E(+)); three records,
+ * U vertical.  PROVENANCE: 6000 at 0.02 s; PGA U 0.001220, N 0.002989,
+ * E 0.002866 g (header AmplitudeMAX 1.196, -2.931, -2.811 gal). */
+AQ_TEST(io_csv_cwb_three_components)
+{
+  static const char *const comp[3] = {"U", "N", "E"};
+  static const double peak_gal[3] = {1.196, 2.931, 2.811};
+  for (size_t i = 0; i < 3; i++) {
+    char path[256];
+    snprintf(path, sizeof path, REC_DIR "2-ECU.dat#%s", comp[i]);
+    aq_record r;
+    aq_error e;
+    if (!aq_check(aq_record_read(path, NULL, &r, &e) == AQ_OK, "%s: %s", comp[i], e.message))
+      continue;
+    aq_check(r.npts == 6000 && r.dt_s == 0.02, "%s: npts %zu dt %.17g", comp[i], r.npts,
+             r.dt_s);
+    aq_check(strcmp(r.units_stated, "gal") == 0, "%s: units %s", comp[i], r.units_stated);
+    aq_check(r.vertical == (i == 0), "%s: vertical %d", comp[i], r.vertical);
+    double m = 0;
+    for (size_t k = 0; k < r.npts; k++)
+      m = fmax(m, fabs(r.acc_mps2[k]));
+    aq_check_abs(m * 100.0, peak_gal[i], 1e-9, "%s: peak (gal, 3 decimals in the file)",
+                 comp[i]);
+    aq_record_free(&r);
+  }
+}

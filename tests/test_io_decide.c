@@ -238,3 +238,35 @@ AQ_TEST(io_decide_vertical_cli)
   aq_check(st == 1 && strstr(err, "Q4149CF2.csv#UD: channel") && strstr(err, "\"UD\""),
            "run refuses UD: exit %d: %s", st, err);
 }
+
+/* SAC orientation: CMPINC 0 (up) or 180 (down) is vertical whatever the
+ * channel code; 90 is horizontal (test.sac, IDEP undefined, read as m/s2). */
+AQ_TEST(io_decide_sac_cmpinc)
+{
+  FILE *f = fopen(REC_DIR "test.sac", "rb");
+  unsigned char b[1032];
+  size_t n = f ? fread(b, 1, sizeof b, f) : 0;
+  if (f)
+    fclose(f);
+  if (!aq_check(n == 1032, "test.sac read"))
+    return;
+  memcpy(b + 600, "HN3     ", 8); /* KCMPNM: not a Z code */
+  static const struct {
+    float cmpinc;
+    int vertical;
+  } c[] = {{0.0f, 1}, {180.0f, 1}, {90.0f, 0}, {-12345.0f, 0}};
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_MPS2;
+  ro.accept_implausible = 1;
+  for (size_t i = 0; i < 4; i++) {
+    memcpy(b + 4 * 58, &c[i].cmpinc, 4); /* CMPINC, float word 58; host little-endian */
+    aq_record r;
+    aq_error e;
+    if (aq_check(aq_record_parse(b, sizeof b, "inc.sac", &ro, &r, &e) == AQ_OK, "%s",
+                 e.message)) {
+      aq_check(r.vertical == c[i].vertical, "CMPINC %g: vertical %d", c[i].cmpinc,
+               r.vertical);
+      aq_record_free(&r);
+    }
+  }
+}

@@ -96,9 +96,70 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
     (*nerr)++;
     return;
   }
+  /* one value, one run: a repeated value would give two rows alike */
+  for (size_t i = 0; i < k; i++)
+    for (size_t j = i + 1; j < k; j++)
+      if (v[i] == v[j]) {
+        fprintf(stderr, "archquake: %s: expected distinct values, got %g twice in \"%s\"\n",
+                opt, v[i], arg);
+        (*nerr)++;
+        free(v);
+        return;
+      }
   free(*out);
   *out = v;
   *n = k;
+}
+
+const char *const aq_opt_polarity_names[] = {"normal", "reversed", "both", NULL};
+
+void aq_opt_polarity(const char *arg, int *out, int *nerr)
+{
+  aq_opt_choice("--polarity", arg, aq_opt_polarity_names, out, nerr);
+}
+
+void aq_opt_ode_rtol(int given, const char *model, int *nerr)
+{
+  if (given && strcmp(model, "ode") != 0) {
+    fprintf(stderr, "archquake: --ode-rtol: expected --model ode as well (the tolerance "
+                    "has no effect on other models), got --model %s\n", model);
+    (*nerr)++;
+  }
+}
+
+int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum)
+{
+  if (!cor_given || !momentum)
+    return 0;
+  fprintf(stderr, "archquake: %s: --cor: expected an arch whose impacts follow a cor, "
+                  "got impact = momentum (its velocity ratio comes from the geometry, a "
+                  "cor would have no effect)\n", arch_path);
+  return 1;
+}
+
+int aq_opt_same_file(const char *a, const char *b)
+{
+  struct stat sa, sb;
+  if (strcmp(a, b) == 0)
+    return 1;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
+void aq_opt_distinct_files(const char *what, char *const *paths, size_t n, int *nerr)
+{
+  for (size_t j = 1; j < n; j++)
+    for (size_t i = 0; i < j; i++)
+      if (aq_opt_same_file(paths[i], paths[j])) {
+        if (strcmp(paths[i], paths[j]) == 0)
+          fprintf(stderr, "archquake: %s: expected each %s once, got it twice\n", paths[j],
+                  what);
+        else
+          fprintf(stderr, "archquake: %s: expected each %s once, got the same file as %s\n",
+                  paths[j], what, paths[i]);
+        (*nerr)++;
+        break;
+      }
 }
 
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,

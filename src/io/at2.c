@@ -70,8 +70,9 @@ static void next_line(at2_cur *c, size_t *b, size_t *e)
 static const char *find_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
+  char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
   for (size_t i = 0; i + m <= n; i++)
-    if (strncasecmp(s + i, needle, m) == 0)
+    if ((char)(s[i] | 0x20) == c0 && strncasecmp(s + i, needle, m) == 0)
       return s + i;
   return NULL;
 }
@@ -122,7 +123,7 @@ static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6, 
  * a single correctly rounded operation on two exact doubles, so the result
  * is the same double strtod gives.  Anything else is copied to a local
  * buffer and given to strtod. */
-static size_t parse_num(const char *s, size_t n, double *x)
+size_t aq_decimal_parse(const char *s, size_t n, double *x)
 {
   size_t i = 0;
   while (i < n && (s[i] == ' ' || s[i] == '\t'))
@@ -235,8 +236,10 @@ static int is_alpha(char ch) { return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && 
 static long find_word(const char *s, size_t n, const char *kw)
 {
   size_t m = strlen(kw);
+  char k0 = kw[0], k0l = (char)(k0 | 0x20); /* kw's first letter, upper and lower */
   for (size_t i = 0; i + m <= n; i++)
-    if (strncasecmp(s + i, kw, m) == 0 && (i == 0 || !is_alpha(s[i - 1])) &&
+    if ((s[i] == k0 || s[i] == k0l) && strncasecmp(s + i, kw, m) == 0 &&
+        (i == 0 || !is_alpha(s[i - 1])) &&
         (i + m == n || !is_alpha(s[i + m])))
       return (long)i;
   return -1;
@@ -248,7 +251,7 @@ static int num_at(const char *s, size_t n, size_t i, double *x, size_t *end)
 {
   if (i >= n)
     return 0;
-  size_t used = parse_num(s + i, n - i, x);
+  size_t used = aq_decimal_parse(s + i, n - i, x);
   if (!used)
     return 0;
   size_t e = i + used;
@@ -545,6 +548,16 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     const char *t = c.s + c.pos;
     size_t avail = c.n - c.pos, tl = 0;
+    double x;
+    size_t used;
+    if (t[0] != 'e' && t[0] != 'E' && t[0] != '*') { /* the common case first */
+      used = aq_decimal_parse(t, avail, &x);
+      if (used && (used == avail || is_sep(t[used])) && isfinite(x)) {
+        acc[k++] = x;
+        c.pos += used;
+        continue;
+      }
+    }
     while (tl < avail && !is_sep(t[tl]))
       tl++;
     if (tl == 0)
@@ -552,8 +565,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     if (((t[0] == 'e' || t[0] == 'E') && tl >= 3 && strncasecmp(t, "end", 3) == 0) ||
         t[0] == '*')
       break; /* "End Data" or "*** End Data ***" marker */
-    double x;
-    size_t used = parse_num(t, tl, &x);
+    used = aq_decimal_parse(t, tl, &x);
     int bad = !used || !isfinite(x);
     if (!bad && used < tl) {
       char nx = t[used];

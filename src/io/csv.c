@@ -51,22 +51,11 @@ typedef struct {
 } csv_cur;
 
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
+/* Next line [*b, *e) (without its end), or 0 at the end of the input. */
 static int next_line(csv_cur *c, size_t *b, size_t *e)
 {
-  if (c->pos >= c->n)
+  if (!aq_text_line_(c->s, c->n, &c->pos, b, e))
     return 0;
-  *b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
-  *e = c->pos;
-  if (c->pos < c->n && c->s[c->pos] == '\r') {
-    while (c->pos < c->n && c->s[c->pos] == '\r')
-      c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-  } else if (c->pos < c->n) {
-    c->pos++;
-  }
   c->line++;
   return 1;
 }
@@ -149,6 +138,13 @@ static int field_num(const char *s, span f, int decimal_comma, double *x)
 {
   char tok[CSV_FIELD_MAX];
   size_t len = f.e - f.b;
+  if (!decimal_comma && len > 0 && s[f.b] != ' ' && s[f.b] != '\t') {
+    double v; /* plain decimals: the fast parser (same double as strtod) */
+    if (aq_decimal_parse(s + f.b, len, &v) == len) {
+      *x = v;
+      return isfinite(v) ? 1 : 2;
+    }
+  }
   if (len == 0 || len >= sizeof tok)
     return 0;
   for (size_t i = 0; i < len; i++) {
@@ -254,13 +250,40 @@ static const char *kv(const char *s, size_t b, size_t e, const char *key)
   return s + i;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of d[0..n) (Hoare's selection; d is reordered). */
+static double select_kth(double *d, size_t n, size_t k)
 {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
+  size_t lo = 0, hi = n - 1;
+  while (lo < hi) {
+    double pivot = d[lo + (hi - lo) / 2];
+    size_t i = lo, j = hi;
+    while (i <= j) {
+      while (d[i] < pivot)
+        i++;
+      while (d[j] > pivot)
+        j--;
+      if (i <= j) {
+        double t = d[i];
+        d[i] = d[j];
+        d[j] = t;
+        i++;
+        if (j == 0)
+          break;
+        j--;
+      }
+    }
+    if (k <= j)
+      hi = j;
+    else if (k >= i)
+      lo = i;
+    else
+      return d[k];
+  }
+  return d[k];
 }
 
-/* Median of the n - 1 steps of t (NaN if out of memory). */
+/* Median of the n - 1 steps of t (NaN if out of memory): the upper median,
+ * element (n - 1) / 2 of the sorted steps. */
 static double median_step(const double *t, size_t n)
 {
   double *d = malloc((n - 1) * sizeof *d);
@@ -268,8 +291,7 @@ static double median_step(const double *t, size_t n)
     return NAN;
   for (size_t i = 1; i < n; i++)
     d[i - 1] = t[i] - t[i - 1];
-  qsort(d, n - 1, sizeof *d, cmp_double);
-  double m = d[(n - 1) / 2];
+  double m = select_kth(d, n - 1, (n - 1) / 2);
   free(d);
   return m;
 }
@@ -293,6 +315,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   aq_units pre_u = AQ_UNITS_FILE;
   long pre_line = -1;
   char pre_said[48] = "";
+  size_t seq_b = 0, seq_e = 0; /* a "#DataSequence:" list of column names */
+  long seq_line = -1;
   size_t hb = 0, he = 0; /* last non-numeric line before the data */
   long hline = -1;
   char sep = 0;
@@ -304,6 +328,23 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                           "expected rows of numbers (time, acceleration or "
                           "acceleration only), found none in %ld lines",
                           c.line);
+    if (b < e && s[b] == '#') { /* CWB: "#AmplitudeUnit: gal.", "#DataSequence: Time U(+); N(+)" */
+      const char *v;
+      if ((v = kv(s, b + 1, e, "AmplitudeUnit"))) {
+        char val[CSV_NAME_MAX];
+        copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
+        val[strcspn(val, " \t")] = '\0';
+        size_t l = strlen(val);
+        if (l > 0 && val[l - 1] == '.')
+          val[l - 1] = '\0';
+        int r = units_in(val, &pre_u);
+        pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
+        pre_line = c.line;
+        snprintf(pre_said, sizeof pre_said, "%.40s", val);
+      } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
+        seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
+      }
+    }
     trim_line(s, &b, &e);
     if (b == e)
       continue;
@@ -378,6 +419,18 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       have_names = 1;
       for (size_t i = 0; i < ncols; i++)
         copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+    }
+  }
+  if (!have_names && seq_line > 0) { /* "Time U(+); N(+); E(+)" */
+    span hf[MAXF];
+    size_t hnf = split(s, seq_b, seq_e, ' ', hf, MAXF);
+    if (hnf == ncols) {
+      have_names = 1;
+      hline = seq_line;
+      for (size_t i = 0; i < ncols; i++) {
+        copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+        names[i][strcspn(names[i], ";(")] = '\0';
+      }
     }
   }
 

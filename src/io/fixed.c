@@ -7,6 +7,7 @@
 #include <strings.h>
 
 #include "fixed.h"
+#include "readers.h"
 
 #define FIELD_MAX 64 /* longest numeric field accepted, characters */
 
@@ -91,51 +92,6 @@ int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f)
   return 1;
 }
 
-/* Exact powers of ten as doubles (10^22 is the largest exactly representable). */
-static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-#define FAST_MANT_MAX 9007199254740992ULL /* 2^53: integers up to it are exact */
-
-/* The usual short decimal ("-94.84213", "-2.7715E+0") without strtod: when
- * the digits form an integer m <= 2^53 and the decimal exponent k is within
- * +-22, m and 10^|k| are exact doubles and one multiplication or division
- * rounds correctly (Clinger 1990), giving strtod's result.  Returns 1 with
- * *out set, 0 to leave the string to strtod (which also judges bad syntax). */
-static int fast_decimal(const char *s, size_t n, double *out)
-{
-  size_t i = 0;
-  int neg = 0, digits = 0, frac = 0;
-  unsigned long long m = 0;
-  if (i < n && (s[i] == '-' || s[i] == '+'))
-    neg = s[i++] == '-';
-  for (; i < n && s[i] >= '0' && s[i] <= '9'; i++, digits++)
-    m = m * 10 + (unsigned)(s[i] - '0');
-  if (i < n && s[i] == '.')
-    for (i++; i < n && s[i] >= '0' && s[i] <= '9'; i++, digits++, frac++)
-      m = m * 10 + (unsigned)(s[i] - '0');
-  if (digits == 0 || digits > 18 || m > FAST_MANT_MAX)
-    return 0;
-  int e = 0;
-  if (i < n && (s[i] == 'e' || s[i] == 'E')) {
-    int eneg = 0, ed = 0;
-    i++;
-    if (i < n && (s[i] == '-' || s[i] == '+'))
-      eneg = s[i++] == '-';
-    for (; i < n && s[i] >= '0' && s[i] <= '9' && ed < 4; i++, ed++)
-      e = e * 10 + (s[i] - '0');
-    if (ed == 0)
-      return 0;
-    e = eneg ? -e : e;
-  }
-  int k = e - frac;
-  if (i != n || k < -22 || k > 22)
-    return 0;
-  double v = k < 0 ? (double)m / pow10_exact[-k] : (double)m * pow10_exact[k];
-  *out = neg ? -v : v;
-  return 1;
-}
-
 int aq_field_double(const char *s, size_t n, double *out)
 {
   while (n > 0 && (*s == ' ' || *s == '\t')) {
@@ -144,23 +100,8 @@ int aq_field_double(const char *s, size_t n, double *out)
   }
   while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
     n--;
-  if (n == 0 || n >= FIELD_MAX)
-    return 0;
-  if (fast_decimal(s, n, out))
-    return 1;
-  char tmp[FIELD_MAX];
-  for (size_t i = 0; i < n; i++) {
-    char ch = s[i];
-    /* digits, sign, point, exponent only: no hex, inf or nan */
-    if (!isdigit((unsigned char)ch) && ch != '-' && ch != '+' && ch != '.' &&
-        ch != 'e' && ch != 'E')
-      return 0;
-    tmp[i] = ch;
-  }
-  tmp[n] = '\0';
-  char *end;
-  double v = strtod(tmp, &end);
-  if (end != tmp + n || !isfinite(v))
+  double v;
+  if (n == 0 || n >= FIELD_MAX || aq_decimal_parse(s, n, &v) != n || !isfinite(v))
     return 0;
   *out = v;
   return 1;

@@ -40,19 +40,10 @@ typedef struct {
 
 static void next_line(knet_cur *c, size_t *b, size_t *e)
 {
-  *b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
-  *e = c->pos;
-  if (c->pos < c->n && c->s[c->pos] == '\r') {
-    while (c->pos < c->n && c->s[c->pos] == '\r')
-      c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-  } else if (c->pos < c->n) {
-    c->pos++;
-  }
-  c->line++;
+  if (aq_text_line_(c->s, c->n, &c->pos, b, e))
+    c->line++;
+  else
+    *b = *e = c->pos;
 }
 
 /* Copy s[b..e) trimmed into out (printable only). */

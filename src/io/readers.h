@@ -157,6 +157,17 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
+/* A decimal number at s[0..n) (blanks skipped first; not NUL-terminated),
+ * with strtod's syntax less hexadecimal, nan and inf: the characters
+ * consumed (0 if none) and *x, the same double strtod gives (a Clinger fast
+ * path for <= 19 digits and |exponent| <= 22, strtod otherwise).  at2.c. */
+size_t aq_decimal_parse(const char *s, size_t n, double *x);
+
+/* Shared by the text readers (record.c): the line at *pos of s[0..n) as
+ * [*b, *e) without its end (LF, CRLF, CR, CR CR LF); *pos moves past the end.
+ * Returns 0 (nothing set) at the end of the input. */
+int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e);
+
 /* Shared by the readers (record.c): set rec->path to name and rec->name to
  * its last path component.  Returns AQ_OK or AQ_ENOMEM (err filled). */
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err);

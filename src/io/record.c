@@ -149,6 +149,27 @@ void aq_record_free(aq_record *rec)
   memset(rec, 0, sizeof *rec);
 }
 
+int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
+{
+  size_t p = *pos;
+  if (p >= n)
+    return 0;
+  *b = p;
+  while (p < n && s[p] != '\n' && s[p] != '\r')
+    p++;
+  *e = p;
+  if (p < n && s[p] == '\r') {
+    while (p < n && s[p] == '\r')
+      p++;
+    if (p < n && s[p] == '\n')
+      p++;
+  } else if (p < n) {
+    p++;
+  }
+  *pos = p;
+  return 1;
+}
+
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
 {
   const char *p = name ? name : "";
@@ -187,8 +208,9 @@ static int32_t get_i32(const unsigned char *p, int big)
 static int has_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
+  char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
   for (size_t i = 0; i + m <= n; i++)
-    if (strncasecmp(s + i, needle, m) == 0)
+    if ((char)(s[i] | 0x20) == c0 && strncasecmp(s + i, needle, m) == 0)
       return 1;
   return 0;
 }
@@ -463,7 +485,9 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
                           "expected a value that is finite in m/s2, got %g %s "
                           "(overflows)", ch->values[k], aq_units_name(used));
     }
-    maxabs = fmax(maxabs, fabs(ch->values[k]));
+    double a = fabs(ch->values[k]);
+    if (a > maxabs)
+      maxabs = a;
   }
 
   /* Plausibility: PGA in [AQ_PGA_MIN_G, AQ_PGA_MAX_G]. */
