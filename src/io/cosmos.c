@@ -227,10 +227,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     return s;
   }
   aq_raw_channel tmp;
-  memset(&tmp, 0, sizeof tmp);
-  tmp.azimuth_deg = NAN;
-  tmp.dip_deg = NAN;
-  tmp.vertical = -1;
+  aq_raw_channel_init_(&tmp);
   if (ntext >= 5)
     station_code(&text[4], &tmp);
   if (ntext >= 9)

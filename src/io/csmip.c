@@ -180,10 +180,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       return s;
   }
   aq_raw_channel tmp;
-  memset(&tmp, 0, sizeof tmp);
-  tmp.azimuth_deg = NAN;
-  tmp.dip_deg = NAN;
-  tmp.vertical = -1;
+  aq_raw_channel_init_(&tmp);
   for (size_t i = 0; i < ntext; i++) {
     const char *p = hdr[i].p, *end = p + hdr[i].len;
     while (p < end && *p == ' ')

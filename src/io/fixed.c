@@ -39,22 +39,12 @@ int aq_line_blank(const aq_line *ln)
 
 int aq_lines_next(aq_lines *c, aq_line *out)
 {
-  if (aq_lines_at_end(c))
+  size_t b, e;
+  if (aq_lines_at_end(c) || !aq_text_line_(c->s, c->n, &c->pos, &b, &e))
     return 0;
-  size_t b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
   out->p = c->s + b;
-  out->len = c->pos - b;
-  out->line = c->line;
-  if (c->pos < c->n) {
-    if (c->s[c->pos] == '\r')
-      while (c->pos < c->n && c->s[c->pos] == '\r')
-        c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-  }
-  c->line++;
+  out->len = e - b;
+  out->line = c->line++;
   return 1;
 }
 

@@ -17,11 +17,16 @@ aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error
   }
   raw->chan = c;
   c += raw->nchan++;
+  aq_raw_channel_init_(c);
+  return c;
+}
+
+void aq_raw_channel_init_(aq_raw_channel *c)
+{
   memset(c, 0, sizeof *c);
   c->azimuth_deg = NAN;
   c->dip_deg = NAN;
   c->vertical = -1;
-  return c;
 }
 
 int aq_zone_offset_(const char *s, size_t n, int *hours_east)

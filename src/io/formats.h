@@ -85,6 +85,9 @@ aq_status aq_stationxml_apply(const aq_response *resp, const char *xml_name,
  * dip NAN, vertical -1) to raw; NULL on allocation failure (err filled). */
 aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err);
 
+/* Shared: zero *c with azimuth and dip NAN and vertical -1 (not stated). */
+void aq_raw_channel_init_(aq_raw_channel *c);
+
 /* Shared by the multi-channel text parsers (cosmos.c, csmip.c): walk the
  * channels of buf[0..n).  Blank lines between channels are skipped; every
  * other line must start a channel (starts(line) != 0, else AQ_EFORMAT
