@@ -41,6 +41,7 @@ static const char usage_head[] =
     "                      (default: each arch's [dynamics] cor)\n"
     "  --history           write histories (step ends, turning points, impacts)\n"
     "                      to the HDF5 file (with -o)\n"
+    "  --store-records     write the processed records to the HDF5 file (with -o)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -76,6 +77,7 @@ enum {
   OPT_MODEL,
   OPT_COR,
   OPT_HISTORY,
+  OPT_STORE_RECORDS,
   OPT_POLARITY,
   OPT_HELP
 };
@@ -161,7 +163,7 @@ static int output_is_input(const char *opt, const char *out, char *const *record
 
 int aq_cmd_run(int argc, char **argv)
 {
-  struct option longopts[32] = {
+  struct option longopts[AQ_OPT_RECORD_NOPTS + 13 + AQ_OPT_SIGNAL_NOPTS + 1] = {
       AQ_OPT_RECORD_LONGOPTS,
       {"arch", required_argument, NULL, OPT_ARCH},
       {"output", required_argument, NULL, 'o'},
@@ -172,10 +174,11 @@ int aq_cmd_run(int argc, char **argv)
       {"model", required_argument, NULL, OPT_MODEL},
       {"cor", required_argument, NULL, OPT_COR},
       {"history", no_argument, NULL, OPT_HISTORY},
+      {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"polarity", required_argument, NULL, OPT_POLARITY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 12);
+  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 13);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
@@ -233,6 +236,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_HISTORY:
       cfg.history = 1;
       break;
+    case OPT_STORE_RECORDS:
+      cfg.store_records = 1;
+      break;
     case OPT_POLARITY:
       aq_opt_polarity(optarg, &cfg.polarity, &nerr);
       break;
@@ -278,6 +284,11 @@ int aq_cmd_run(int argc, char **argv)
   if (cfg.history && !cfg.h5_path) {
     fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
                     "are written only to the results file)\n");
+    nerr++;
+  }
+  if (cfg.store_records && !cfg.h5_path) {
+    fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
+                    "records are written only to the results file)\n");
     nerr++;
   }
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {
