@@ -383,6 +383,26 @@ AQ_TEST(io_at2_header_variants_any_layout)
   }
 }
 
+/* Free text that happens to end ", up to 25 Hz" names no component: not
+ * vertical. */
+AQ_TEST(io_at2_free_text_names_no_component)
+{
+  const char *t = "Converted for an example, 2006\n"
+                  "Band-passed by hand, 0.1 Hz, up to 25 Hz\n"
+                  "Another note\n"
+                  "ACCELERATION TIME SERIES IN UNITS OF G\n"
+                  "NPTS= 3, DT= .0100 SEC\n  .1  -.2  .3\n";
+  aq_record r;
+  aq_error e;
+  if (aq_check(aq_record_parse((const unsigned char *)t, strlen(t), "notes.AT2", NULL, &r,
+                               &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(r.vertical == 0 && r.channel[0] == '\0', "channel '%s' vertical %d", r.channel,
+             r.vertical);
+    aq_record_free(&r);
+  }
+}
+
 /* A file that only quotes an AT2 header inside another format is not AT2. */
 AQ_TEST(io_at2_quoted_header_is_not_at2)
 {

@@ -144,3 +144,16 @@ AQ_TEST(io_knet_bad_input)
   free(buf);
   free(src);
 }
+
+/* The main job runs a K-NET horizontal and refuses its U-D channel. */
+AQ_TEST(io_knet_cli)
+{
+  static char out[8192], err[4096];
+  int st = aq_test_run("--arch arches/thick.cfg --scale 1 " REC_DIR "AOM0170806140843.NS " REC_DIR
+                       "AOM0170806140843.UD",
+                       out, sizeof out, err, sizeof err);
+  aq_check(st == 1 && strstr(out, "AOM0170806140843.NS\tthick") &&
+               strstr(err, "AOM0170806140843.UD: channel") && strstr(err, "\"UD\"") &&
+               !strstr(err, ".NS:"),
+           "exit %d: %s %s", st, out, err);
+}

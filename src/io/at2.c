@@ -28,6 +28,7 @@
 
 #define AT2_MAX_HEADER_LINES 64 /* the NPTS line is looked for in lines 1..64 */
 #define AT2_TEXT_LINES 8        /* text lines before it kept for units, event */
+#define AT2_CHANNEL_MAX 6       /* a component name is short ("180", "UP", "HN1") */
 #define AT2_TOKEN_MAX 64       /* longest number token accepted, characters */
 
 typedef struct {
@@ -630,22 +631,32 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
   ch->values = acc;
   /* What the text states: the event line (PEER: "Event, date, station,
-   * component"), the component (its last field's first word: "180", "N",
-   * "UP"), the processing (filter corners on the NPTS or units line). */
-  if (h.ntext >= 2) {
-    size_t b = h.text_b[1], e = h.text_e[1];
-    trimmed(s, b, e, raw->event, sizeof raw->event);
-    const char *comma = NULL;
+   * component"), the component (PEER's three text lines: the second line's
+   * last field's first word, "180", "N", "UP"; else a "Component:" in any
+   * text line), the processing (filter corners on the NPTS or units line). */
+  if (h.ntext >= 2)
+    trimmed(s, h.text_b[1], h.text_e[1], raw->event, sizeof raw->event);
+  size_t cb = 0, ce = 0;
+  if (h.ntext == 3) {
+    size_t b = h.text_b[1], e = h.text_e[1], commas = 0;
     for (size_t i = b; i < e; i++)
       if (s[i] == ',')
-        comma = s + i;
-    if (comma) {
-      size_t cb = (size_t)(comma - s) + 1;
-      while (cb < e && s[cb] == ' ')
-        cb++;
-      size_t ce = cb;
-      while (ce < e && s[ce] != ' ' && s[ce] != '(' && s[ce] != '\t')
-        ce++;
+        commas++, cb = i + 1;
+    if (commas < 2)
+      cb = 0;
+  }
+  for (int k = 0; k < h.ntext && !cb; k++) {
+    const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "Component:");
+    if (f)
+      cb = (size_t)(f - s) + 10;
+  }
+  if (cb) {
+    while (cb < n && (s[cb] == ' ' || s[cb] == '\t'))
+      cb++;
+    ce = cb;
+    while (ce < n && (isalnum((unsigned char)s[ce]) || s[ce] == '-' || s[ce] == '.'))
+      ce++;
+    if (ce > cb && ce - cb <= AT2_CHANNEL_MAX) {
       trimmed(s, cb, ce, ch->channel, sizeof ch->channel);
       char *endp;
       double az = strtod(ch->channel, &endp);

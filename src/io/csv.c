@@ -60,6 +60,12 @@ static int next_line(csv_cur *c, size_t *b, size_t *e)
   return 1;
 }
 
+/* isspace() of the C locale, without the library call. */
+static int is_space(char c)
+{
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
 /* Strip a '#' comment and surrounding blanks. */
 static void trim_line(const char *s, size_t *b, size_t *e)
 {
@@ -68,9 +74,9 @@ static void trim_line(const char *s, size_t *b, size_t *e)
       *e = i;
       break;
     }
-  while (*b < *e && isspace((unsigned char)s[*b]))
+  while (*b < *e && is_space(s[*b]))
     (*b)++;
-  while (*e > *b && isspace((unsigned char)s[*e - 1]))
+  while (*e > *b && is_space(s[*e - 1]))
     (*e)--;
 }
 
@@ -112,9 +118,9 @@ static size_t split(const char *s, size_t b, size_t e, char sep, span *f, size_t
       if (i < e)
         i++;
     }
-    while (fb < fe && isspace((unsigned char)s[fb]))
+    while (fb < fe && is_space(s[fb]))
       fb++;
-    while (fe > fb && isspace((unsigned char)s[fe - 1]))
+    while (fe > fb && is_space(s[fe - 1]))
       fe--;
     if (fe - fb >= 2 && s[fb] == '"' && s[fe - 1] == '"')
       fb++, fe--;

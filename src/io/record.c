@@ -765,6 +765,8 @@ void aq_record_names_free(char **names, size_t n)
   free(names);
 }
 
+/* Formats that hold one channel per file (SAC, AT2, K-NET) are not parsed
+ * here; the others are, to list their channels. */
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err)
 {
@@ -790,9 +792,12 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
     unsigned char *buf = NULL;
     size_t size = 0;
     aq_error ignored;
-    if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK &&
-        aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
-      memset(&raw, 0, sizeof raw); /* reported when it is read */
+    if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
+      aq_format fmt = aq_record_detect(buf, size);
+      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      if (!single && aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
+        memset(&raw, 0, sizeof raw); /* reported when it is read */
+    }
     free(buf);
     size_t add = raw.nchan > 1 && !rule_ch ? raw.nchan : 1;
     if (k + add > cap) {
