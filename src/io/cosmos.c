@@ -107,12 +107,9 @@ static void station_code(const aq_line *ln, aq_raw_channel *ch)
   if (!p)
     return;
   p += 5;
-  const char *end = ln->p + ln->len;
-  while (p < end && *p == ' ')
-    p++;
+  size_t len = aq_next_word(&p, ln->p + ln->len, "");
   const char *b = p;
-  while (p < end && *p != ' ')
-    p++;
+  p += len;
   const char *dash = memchr(b, '-', (size_t)(p - b));
   if (dash) {
     aq_copy_trim(ch->network, sizeof ch->network, b, (size_t)(dash - b));
@@ -134,12 +131,8 @@ static void channel_name(const aq_line *ln, aq_raw_channel *ch)
   if (!p)
     return;
   p++;
-  while (p < end && *p == ' ')
-    p++;
-  const char *b = p;
-  while (p < end && *p != ' ' && *p != '(')
-    p++;
-  aq_copy_trim(ch->channel, sizeof ch->channel, b, (size_t)(p - b));
+  size_t len = aq_next_word(&p, end, "(");
+  aq_copy_trim(ch->channel, sizeof ch->channel, p, len);
 }
 
 /* A comment "RcrdId: NC.73177305.NP.1795.HNE.--": SEED channel and location. */

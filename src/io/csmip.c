@@ -118,14 +118,12 @@ static void channel_line(const aq_line *ln, aq_raw_channel *ch)
   if (!p)
     return;
   p++;
-  while (p < end && *p == ' ')
-    p++;
+  size_t len = aq_next_word(&p, end, "");
   const char *b = p;
-  while (p < end && *p != ' ')
-    p++;
-  aq_copy_trim(ch->channel, sizeof ch->channel, b, (size_t)(p - b));
+  p += len;
+  aq_copy_trim(ch->channel, sizeof ch->channel, b, len);
   double az;
-  if (aq_field_double(b, (size_t)(p - b), &az) && az >= 0 && az <= 360) {
+  if (aq_field_double(b, len, &az) && az >= 0 && az <= 360) {
     ch->azimuth_deg = az;
     ch->dip_deg = 0;
     ch->vertical = 0;
@@ -190,12 +188,8 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     const char *st = aq_find_ci(hdr[i].p, hdr[i].len, "station no.");
     if (st && !tmp.station[0]) {
       st += 11;
-      while (st < end && *st == ' ')
-        st++;
-      const char *b = st;
-      while (st < end && *st != ' ')
-        st++;
-      aq_copy_trim(tmp.station, sizeof tmp.station, b, (size_t)(st - b));
+      size_t len = aq_next_word(&st, end, "");
+      aq_copy_trim(tmp.station, sizeof tmp.station, st, len);
     }
     if (!tmp.reference[0])
       start_time(&hdr[i], tmp.reference, sizeof tmp.reference);

@@ -97,6 +97,18 @@ int aq_field_double(const char *s, size_t n, double *out)
   return 1;
 }
 
+size_t aq_next_word(const char **p, const char *end, const char *stops)
+{
+  const char *b = *p;
+  while (b < end && *b == ' ')
+    b++;
+  const char *e = b;
+  while (e < end && *e != ' ' && !strchr(stops, *e))
+    e++;
+  *p = b;
+  return (size_t)(e - b);
+}
+
 void aq_copy_trim(char *out, size_t cap, const char *s, size_t n)
 {
   while (n > 0 && isspace((unsigned char)*s)) {

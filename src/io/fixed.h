@@ -63,6 +63,10 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
                         double *out, const char *name, const char *what,
                         aq_error *err);
 
+/* The word at *p (before end) after blanks: *p moves to its start, the
+ * length returned ends at a blank, at end or at a character of stops. */
+size_t aq_next_word(const char **p, const char *end, const char *stops);
+
 /* Copy s[0..n) trimmed of blanks into out (NUL-terminated, truncated). */
 void aq_copy_trim(char *out, size_t cap, const char *s, size_t n);
 
