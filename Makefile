@@ -24,8 +24,9 @@ HDRS      := $(wildcard src/*.h src/*/*.h tests/*.h bench/*.h)
 REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
+MUT_OBJ  := $(LIB_SRC:%.c=build/mut/%.o) $(TEST_SRC:%.c=build/mut/%.o)
 
-.PHONY: all check bench install uninstall clean deps print-deps fuzz
+.PHONY: all check bench install uninstall clean deps print-deps fuzz mutate
 all: archquake
 
 archquake: build/rel/src/main.o $(REL_OBJ)
@@ -50,6 +51,22 @@ build/san/runner: $(TEST_OBJ) $(SAN_OBJ)
 check: build/san/runner build/san/archquake
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  AQ_BIN=build/san/archquake ./build/san/runner $(TESTS)
+
+# Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
+# (fast to rebuild and run); each mutant recompiles one file and relinks.
+build/mut/%.o: %.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(AQ_CFLAGS) -O1 -g -c -o $@ $<
+
+build/mut/runner: $(MUT_OBJ)
+	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+build/mut/archquake: build/mut/src/main.o $(filter build/mut/src/%,$(MUT_OBJ))
+	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+mutate: build/mut/runner build/mut/archquake
+	AQ_CFLAGS='$(AQ_CFLAGS)' AQ_LIBS='$(AQ_LIBS)' CC='$(CC)' LDFLAGS='$(LDFLAGS)' \
+	  python3 tests/mutate.py $(MUTANTS)
 
 BENCH_BIN := $(BENCH_SRC:bench/%.c=build/bench/%)
 build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
