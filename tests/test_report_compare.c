@@ -74,6 +74,12 @@ AQ_TEST(report_compare_tolerance_and_matching)
            d.field[0]);
   aq_check_rel(d.rel[0], 3e-7 / (1 + 3e-7), 1e-6, "relative difference");
   aq_check(aq_compare_runs(a, NRUN, b, NRUN, 1e-6, 0, NULL, NULL) == 0, "within 1e-6");
+  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 2e-7, 0, NULL, NULL) == 1, "beyond 2e-7");
+  /* the rule atol + rtol max(|a|, |b|), at literal numbers */
+  aq_check(aq_compare_close(100.0, 100.00015, 1e-6, 0) == 0, "1.5e-6 relative > rtol 1e-6");
+  aq_check(aq_compare_close(100.0, 100.00009, 1e-6, 0) == 1, "0.9e-6 relative <= 1e-6");
+  aq_check(aq_compare_close(100.0, 100.00019, 1e-6, 1e-4) == 1, "atol adds to rtol");
+  aq_check(aq_compare_close(100.0, 100.00021, 1e-6, 1e-4) == 0, "beyond atol + rtol");
   /* absolute tolerance: |diff| = 3e-7 * v */
   aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0, 4e-7 * v, NULL, NULL) == 0, "within atol");
   aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0, 2e-7 * v, NULL, NULL) == 1, "beyond atol");
@@ -222,4 +228,23 @@ AQ_TEST(report_compare_cli_files)
   snprintf(args, sizeof args, "compare %s records/elcentro_chopra.csv", a);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "not HDF5");
   aq_check(strstr(err, "expected an HDF5 file") != NULL, "says so: %s", err);
+}
+
+/* A survivor's collapse time is NaN in the summary, whatever the result
+ * struct holds (README: "collapse_time_s is nan for an arch that survives"). */
+AQ_TEST(report_summary_survivor_has_nan_collapse_time)
+{
+  aq_result r;
+  memset(&r, 0, sizeof r);
+  r.collapsed = 0;
+  r.collapse_time_s = 2.5;
+  r.energy_in_j = 7.25;
+  r.energy_dissipated_j = 3.5;
+  aq_summary s;
+  aq_summary_fill(&s, "rec", "arch", "workpath", 1.5, 0.3, "ok", &r);
+  aq_check(isnan(s.collapse_time_s), "survivor: nan, got %g", s.collapse_time_s);
+  aq_check(s.energy_in_j == 7.25 && s.energy_dissipated_j == 3.5, "energies copied");
+  r.collapsed = 1;
+  aq_summary_fill(&s, "rec", "arch", "workpath", 1.5, 0.3, "ok", &r);
+  aq_check(s.collapse_time_s == 2.5 && s.collapsed == 1, "collapse time kept");
 }

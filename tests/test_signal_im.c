@@ -247,3 +247,34 @@ AQ_TEST(signal_im_info_columns_as_read)
              "%s: arias, d5_95, cav present", name);
   }
 }
+
+/* CAV = int |a| dt of the linearly interpolated record: across a change of
+ * sign the interval is two triangles meeting at the zero crossing. */
+AQ_TEST(signal_im_cav_splits_at_zero_crossings)
+{
+  static const double a[] = {2.385, -1.1, -0.35, 0.7, 0.7};
+  const double dt = 0.02;
+  aq_processed p;
+  memset(&p, 0, sizeof p);
+  p.n = p.n_orig = 5;
+  p.dt_s = dt;
+  p.acc_mps2 = malloc(sizeof a);
+  if (!aq_check(p.acc_mps2 != NULL, "alloc"))
+    return;
+  memcpy(p.acc_mps2, a, sizeof a);
+  double want = 0;
+  for (int k = 0; k < 4; k++) {
+    double x = fabs(a[k]), y = fabs(a[k + 1]);
+    if (a[k] * a[k + 1] >= 0) {
+      want += 0.5 * (x + y) * dt; /* trapezoid */
+    } else {
+      double tz = dt * x / (x + y); /* the zero crossing */
+      want += 0.5 * x * tz + 0.5 * y * (dt - tz);
+    }
+  }
+  aq_im im;
+  aq_error e;
+  aq_check(aq_im_compute(&p, &im, &e) == AQ_OK, "im");
+  aq_check_rel(im.cav_mps, want, 1e-15, "CAV with two zero crossings");
+  free(p.acc_mps2);
+}
