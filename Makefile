@@ -1,5 +1,5 @@
 # archquake Makefile.  Overridable: CC CFLAGS LDFLAGS PREFIX DESTDIR.
-# Targets: all check bench install uninstall clean deps fuzz
+# Targets: all check ci bench install uninstall clean deps fuzz mutate
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 LDFLAGS ?=
@@ -26,7 +26,7 @@ SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 MUT_OBJ  := $(LIB_SRC:%.c=build/mut/%.o) $(TEST_SRC:%.c=build/mut/%.o)
 
-.PHONY: all check bench install uninstall clean deps print-deps fuzz mutate
+.PHONY: all check ci bench install uninstall clean deps print-deps fuzz mutate
 all: archquake
 
 archquake: build/rel/src/main.o $(REL_OBJ)
@@ -76,19 +76,42 @@ build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
 bench: archquake $(BENCH_BIN)
 	@for b in $(BENCH_BIN); do echo "== $$b"; ./$$b || exit 1; done
 
-# Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from records/.
+# Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from
+# fuzz/seeds, records/ and tests/data/records.  A crash, leak, timeout or
+# undefined behaviour stops that harness: its log is shown, the input that
+# did it is named (build/fuzz/crash-NAME/...) and the target fails.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
 build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS)
 	@mkdir -p $(dir $@)
 	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
 
 fuzz: $(FUZZ_BIN)
-	@for f in $(FUZZ_BIN); do \
-	  n=$$(basename $$f); mkdir -p build/fuzz/corpus-$$n; \
+	@fail=0; for f in $(FUZZ_BIN); do \
+	  n=$$(basename $$f); mkdir -p build/fuzz/corpus-$$n build/fuzz/crash-$$n; \
 	  echo "== $$n ($(FUZZ_SECONDS) s)"; \
-	  ./$$f -max_total_time=$(FUZZ_SECONDS) -max_len=200000 -timeout=10 \
-	    build/fuzz/corpus-$$n fuzz/seeds/$$n records tests/data/records 2>&1 | tail -n 3 || exit 1; \
-	done
+	  if ./$$f -max_total_time=$(FUZZ_SECONDS) -max_len=200000 -timeout=10 \
+	      -artifact_prefix=build/fuzz/crash-$$n/ \
+	      build/fuzz/corpus-$$n fuzz/seeds/$$n records tests/data/records \
+	      > build/fuzz/$$n.log 2>&1; then \
+	    grep -a '^Done ' build/fuzz/$$n.log || tail -n 1 build/fuzz/$$n.log; \
+	  else \
+	    tail -n 40 build/fuzz/$$n.log; \
+	    art=$$(sed -n 's/.*Test unit written to \([^ ]*\).*/\1/p' build/fuzz/$$n.log | tail -n 1); \
+	    echo "fuzz: $$n FAILED on input $${art:-(none written; see build/fuzz/$$n.log)}"; \
+	    fail=1; \
+	  fi; \
+	done; exit $$fail
+
+# CI (.ci/run) and the README's test command: the tests, then a short fuzz of
+# every reader (CI_FUZZ_SECONDS each); the last line is the tests'
+# "N passed, N failed".
+CI_FUZZ_SECONDS ?= 20
+ci:
+	@mkdir -p build
+	@$(MAKE) --no-print-directory check > build/ci-check.log 2>&1; rc=$$?; \
+	  cat build/ci-check.log; [ $$rc -eq 0 ] || exit $$rc; \
+	  $(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) || exit 1; \
+	  tail -n 1 build/ci-check.log
 
 install: archquake
 	install -d $(DESTDIR)$(PREFIX)/bin
