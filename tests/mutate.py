@@ -6,7 +6,7 @@ file, the exact source text it replaces (which must occur exactly once) and
 the replacement.  One at a time, the mutated file is compiled (from standard
 input, so the work tree is never changed) and linked with the other objects
 of build/mut (the tests without sanitizers, -O1), and the test runner runs
-until its first failed test.  A mutant is "killed" when the tests fail (or
+until its first failed test: first the mutated stage's tests, then all.  A mutant is "killed" when the tests fail (or
 time out, or the mutant does not compile), "SURVIVED" when they pass, and
 "stale" when its source text is no longer found once: a stale mutant fails
 the run, so the list follows the code.  A survivor fails the run too unless
@@ -27,6 +27,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MUT = os.path.join("build", "mut")
 LIST = os.path.join("tests", "mutants.txt")
+# Test-name prefixes run first for a mutant in each stage.
+STAGE_TESTS = [("src/arch/stepper.c", "dyn_"), ("src/arch/eom.c", "dyn_"),
+               ("src/io/", "io_"), ("src/signal/", "signal_"), ("src/arch/", "arch_"),
+               ("src/report/", "report_"), ("src/app/", "app_")]
 
 
 def parse_list(path):
@@ -92,6 +96,15 @@ def main():
     env = dict(os.environ, AQ_BIN=aqbin, AQ_TEST_STOP_FIRST="1")
     env.pop("AQ_TEST_VERBOSE", None)
     survived, unexplained, stale, t_start = [], [], [], time.time()
+    # the unmutated build must pass, or every mutant would look killed
+    base = subprocess.run([os.path.join(MUT, "runner")],
+                          env=dict(env, AQ_BIN=os.path.join(MUT, "archquake")),
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    if base.returncode != 0:
+        sys.stderr.write(base.stderr.decode(errors="replace")[-3000:])
+        sys.exit("mutate: the tests fail without any mutant (build/mut): fix them first")
+    print("unmutated: %s (%.0f s)" % (base.stdout.decode().strip().splitlines()[-1],
+                                      time.time() - t_start), flush=True)
     for mid, path, old, new, equiv in muts:
         t0 = time.time()
         try:
@@ -122,8 +135,16 @@ def main():
             print("%-28s %-26s killed (does not link)" % (mid, path), flush=True)
             continue
         try:
-            rp = subprocess.run([runner], env=env, stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, timeout=timeout)
+            # the mutated stage's own tests first (most mutants die there),
+            # then all of them
+            first = next((f for pre, f in STAGE_TESTS if path.startswith(pre)), None)
+            rp = None
+            if first:
+                rp = subprocess.run([runner, first], env=env, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, timeout=timeout)
+            if rp is None or rp.returncode == 0:
+                rp = subprocess.run([runner], env=env, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, timeout=timeout)
             if rp.returncode == 0:
                 verdict = "SURVIVED" + (" (equivalent: %s)" % equiv if equiv else "")
                 survived.append(mid)

@@ -65,8 +65,8 @@ int aq_check_rel_(double got, double want, double rel, const char *file,
   snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g > %.3g",
            got, want, want != 0 ? d / fabs(want) : d, rel);
   if (ok)
-    snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g", got,
-             want, want != 0 ? d / fabs(want) : d);
+    snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g <= %.3g", got,
+             want, want != 0 ? d / fabs(want) : d, rel);
   va_list ap;
   va_start(ap, fmt);
   report(ok, file, line, what, fmt, ap);

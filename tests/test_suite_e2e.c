@@ -199,14 +199,14 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
     read_attr_d(rg, "pga_g", &pga1);
     read_attr_d(rg, "highpass_hz", &hp);
     aq_check(npts == provenance[ri].npts, "%s npts %lld", rg_path, npts);
-    aq_check_rel(dt, provenance[ri].dt_s, 1e-12, "%s dt", rg_path);
+    aq_check_rel(dt, provenance[ri].dt_s, 1e-15, "%s dt", rg_path);
     aq_check(order == 4 && hp == 0.05, "default filter recorded: order %lld, %g Hz",
              order, hp);
     size_t nacc = 0;
     double *acc = read_ds(rg, "acceleration_m_s2", &nacc);
     aq_check(acc && nacc == (size_t)(npts + pad_front + pad_back),
              "processed length = npts + pads (%zu)", nacc);
-    aq_check_rel(strtod(c[idx[4]], NULL), (si ? 3.0 : 1.0) * pga1, 1e-12,
+    aq_check_rel(strtod(c[idx[4]], NULL), (si ? 3.0 : 1.0) * pga1, 1e-15,
                  "run pga_g = scale x record pga_g");
     H5Gclose(rg);
 
@@ -241,7 +241,7 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
                  t_end, tc);
       } else {
         aq_check(isnan(strtod(c[idx[7]], NULL)), "survivor: collapse time nan");
-        aq_check_abs(t_end, (double)(npts + pad_back) * dt, 1e-9 * (double)npts * dt,
+        aq_check_abs(t_end, (double)(npts + pad_back) * dt, 1e-15 * (double)npts * dt,
                      "%s ends at the end of the padded record", name);
       }
       moving_runs += peak > 0;
