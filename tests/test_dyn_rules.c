@@ -454,3 +454,46 @@ AQ_TEST(dyn_rules_arch_impacts_never_create_energy)
     aq_arch_free(arch);
   }
 }
+
+/* Rest under a constant acceleration below the threshold: after a small
+ * pulse a1, a step of a2 = -0.995 g b/h keeps the motion conservative on
+ * each set (potential a2 m x + g m y), so the k-th impact arrives with
+ * cor^(k-1) E', E' = (a2 - a1) m x(s1); the block rests at the first impact
+ * where cor^n E' <= rest_tol m g y(alpha), and a2, below g b/h, must not
+ * start it again within the step.  (A2 leaves a barrier of only about
+ * 1/2 m g R (0.005 sin alpha)^2 cos alpha on the primary set, so the pulse
+ * is small.) */
+AQ_TEST(dyn_rules_rest_holds_under_a_subthreshold_step)
+{
+  tb_block blk[2];
+  aq_path path[2];
+  tb_block_paths(blk, path, BLK_B, BLK_H, BLK_M, G_MPS2);
+  const double alpha = atan(BLK_B / BLK_H), R = hypot(BLK_B, BLK_H);
+  const double thr = G_MPS2 * BLK_B / BLK_H;
+  const double a1 = -1.3 * thr, a2 = -0.995 * thr, s1 = 6e-6;
+  const double cor = 0.5, rest_tol = 1e-6;
+  const double e_ref = BLK_M * G_MPS2 * (R - BLK_H);
+  double E, tp = pulse_to(&path[0], a1, s1, &E);
+  aq_path_point pt;
+  path[0].eval_exact(path[0].ctx, s1, &pt);
+  const double e1 = (a2 - a1) * BLK_M * pt.x_m;
+  /* the barrier of a2 on the primary set: max of a2 m x + g m y */
+  bal v = {&path[0], 0, a2};
+  double barrier = 0;
+  for (int k = 1; k <= 20000; k++)
+    barrier = fmax(barrier, -bal_ke(&v, alpha * k / 20000.0 * 0.01, NULL));
+  aq_check(e1 < 0.8 * barrier, "test design: E' %g J below the barrier %g J", e1, barrier);
+  size_t n = 1;
+  while (pow(cor, (double)n) * e1 > rest_tol * e_ref)
+    n++;
+  double t[2] = {0, tp}, dt[2] = {tp, 30}, acc[2] = {a1, a2};
+  for (int mdl = 0; mdl < 2; mdl++) {
+    aq_result r;
+    if (!run(&path[0], &path[1], (aq_model)mdl, 0, cor, rest_tol, t, dt, acc, 2, &r))
+      continue;
+    aq_check(!r.collapsed && r.impacts == n,
+             "model %d: rests after %zu impacts under 0.995 g b/h, got %zu", mdl, n,
+             r.impacts);
+    aq_result_free(&r);
+  }
+}

@@ -39,6 +39,7 @@ typedef struct {
   char field[8][32];
   aq_diff_kind kind[8];
   double rel[8];
+  double scale[8]; /* of the run the difference is about */
 } diffs;
 
 static void collect(void *ctx, const aq_diff *d)
@@ -48,6 +49,7 @@ static void collect(void *ctx, const aq_diff *d)
     snprintf(x->field[x->n], 32, "%s", d->field ? d->field->name : "-");
     x->kind[x->n] = d->kind;
     x->rel[x->n] = d->rel;
+    x->scale[x->n] = d->a ? d->a->scale : d->b->scale;
   }
   x->n++;
 }
@@ -247,4 +249,23 @@ AQ_TEST(report_summary_survivor_has_nan_collapse_time)
   r.collapsed = 1;
   aq_summary_fill(&s, "rec", "arch", "workpath", 1.5, 0.3, "ok", &r);
   aq_check(s.collapse_time_s == 2.5 && s.collapsed == 1, "collapse time kept");
+}
+
+/* Differences come in the order of the sorted keys (compare.h), a NaN scale
+ * (a record that failed) after every number. */
+AQ_TEST(report_compare_nan_scale_sorts_last)
+{
+  aq_summary a[3];
+  memset(a, 0, sizeof a);
+  for (int k = 0; k < 3; k++) {
+    snprintf(a[k].record, sizeof a[k].record, "records/x.AT2");
+    snprintf(a[k].arch, sizeof a[k].arch, "thin");
+  }
+  a[0].scale = NAN;
+  a[1].scale = 2.5;
+  a[2].scale = 0.75;
+  diffs d = {0};
+  aq_check(aq_compare_runs(a, 3, NULL, 0, 0, 0, collect, &d) == 3, "three runs only in a");
+  aq_check(d.n == 3 && d.scale[0] == 0.75 && d.scale[1] == 2.5 && isnan(d.scale[2]),
+           "order 0.75, 2.5, nan: got %g %g %g", d.scale[0], d.scale[1], d.scale[2]);
 }
