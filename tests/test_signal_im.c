@@ -125,7 +125,7 @@ static double rel_rms(const double *x, const double *ref, size_t n)
   return sqrt(num / den);
 }
 
-#define PEER_REL_RMS 1e-3 /* issue 3 */
+#define PEER_REL_RMS 2e-4 /* README quotes 1.7e-4 (measured 1.68e-4) */
 
 static const char *const peer_names[] = {"RSN1616_DUZCE_362-E",
                                         "RSN4843_CHUETSU_65006NS",
