@@ -2,10 +2,9 @@
  * (src/app); every stage lives in its own module:
  *   src/io -> src/signal -> src/arch -> src/report.
  *
- * archquake implements the work-path approach of
- *   G. L. Stockdale, V. Sarhosis, G. Milani, "Work-path approach seismic
- *   modelling of hinge-controlled masonry arches" (the paper in docs and
- *   ../shared/paper), with the corrections of its ERRATA.md.
+ * archquake implements the work-path approach of Stockdale, Sarhosis &
+ * Milani, with the departures from the printed formulas that docs/method.md
+ * gives (each with its reason).
  */
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
@@ -22,16 +21,55 @@ static const struct {
     {"compare", aq_cmd_compare},
 };
 
+static const char commands_usage[] =
+    "Commands (each has --help; 'archquake help COMMAND' too):\n"
+    "  archquake [OPTIONS] RECORD... --arch FILE   run records against arches\n"
+    "  archquake info [OPTIONS] RECORD...          describe records\n"
+    "  archquake mechanism --arch FILE             static analysis of an arch\n"
+    "  archquake pulse --arch FILE --accel-g A --duration S   one pulse\n"
+    "  archquake domain --arch FILE                half-cycle collapse domain\n"
+    "  archquake compare A.h5 B.h5                 regression check\n"
+    "  archquake --version                         the version\n";
+
+/* The main job's usage and the command list, on stdout. */
+static void usage(void)
+{
+  char prog[] = "archquake", help[] = "--help";
+  char *av[] = {prog, help, NULL};
+  fflush(stdout);
+  aq_cmd_run(2, av);
+  fputs(commands_usage, stdout);
+}
+
 int main(int argc, char **argv)
 {
   gsl_set_error_handler_off(); /* GSL's default handler aborts */
-  if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+  if (argc < 2) { /* nothing to run: the usage, and the status of a usage error */
+    usage();
+    return AQ_EXIT_USAGE;
+  }
+  if (strcmp(argv[1], "--version") == 0) {
     printf("archquake %s\n", AQ_VERSION);
     return AQ_EXIT_OK;
   }
-  if (argc >= 2)
+  int help = strcmp(argv[1], "help") == 0;
+  if (help && argc >= 3) { /* archquake help COMMAND = archquake COMMAND --help */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-      if (strcmp(argv[1], commands[i].name) == 0)
-        return commands[i].fn(argc - 1, argv + 1);
+      if (strcmp(argv[2], commands[i].name) == 0) {
+        char h[] = "--help";
+        char *av[] = {argv[2], h, NULL};
+        return commands[i].fn(2, av);
+      }
+    fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
+                    "domain, compare), got \"%s\"\n", argv[2]);
+    return AQ_EXIT_USAGE;
+  }
+  if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
+    usage();
+    return AQ_EXIT_OK;
+  }
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (strcmp(argv[1], commands[i].name) == 0)
+      return commands[i].fn(argc - 1, argv + 1);
   return aq_cmd_run(argc, argv);
 }

@@ -153,6 +153,27 @@ char *aq_test_read_file(const char *path, size_t *n)
   return b;
 }
 
+size_t aq_test_count_lines(const char *s)
+{
+  size_t n = 0;
+  for (; *s; s++)
+    n += *s == '\n';
+  return n;
+}
+
+int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den)
+{
+  size_t n = 0;
+  char *b = aq_test_read_file(from, &n);
+  FILE *f = b ? fopen(to, "wb") : NULL;
+  size_t len = den ? n / den * num + n % den * num / den : 0;
+  int ok = f && fwrite(b, 1, len, f) == len;
+  if (f)
+    ok &= fclose(f) == 0;
+  free(b);
+  return ok;
+}
+
 const char *aq_test_tmpdir(char *buf, size_t cap)
 {
   static unsigned counter;

@@ -72,15 +72,16 @@ AQ_TEST(arch_equilibrium_vs_virtual_work)
   }
 }
 
-/* KCLC (Stockdale et al. 2018) case quoted in ERRATA.md: 27 voussoirs,
+/* KCLC (Stockdale et al. 2018) case (docs/method.md sec. 10): 27 voussoirs,
  * intrados radius 1.806 m, t/R_i = 0.1661, depth 0.25 m, 1530 kg/m^3,
  * vertical point load at joint 8, hinges 3i 8e 20i 27e, g = 9.81: collapse
  * load 2.751 kN (KCLC), 2.756 kN (virtual powers).  The embrace and the
  * face the load acts on are not stated: this test CHOSE them (a semicircle,
  * the load at the extrados of joint 8) because that choice reproduces
- * 2.751 kN, so the case is fitted and checks consistency only.  The case
- * with every parameter stated is arch_search_minimum_thickness_semicircle
- * (test_arch_search.c). */
+ * 2.751 kN, so the case is fitted and checks consistency only.  The cases
+ * with every parameter stated are the minimum thickness of a semicircle
+ * (arch_standing_minimum_thickness_of_a_semicircle, test_arch_standing.c,
+ * and arch_search_minimum_thickness_semicircle, test_arch_search.c). */
 AQ_TEST(arch_kclc_point_load)
 {
   gsl_set_error_handler_off();

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "arch/model.h"
+#include "arch_lambda0.h"
 #include "check.h"
 #include "units.h"
 
@@ -16,39 +17,7 @@
  * at first order, lambda0 > 0, all hinge reactions compressive). */
 static int lambda0_by_equilibrium(const aq_geom *g, const aq_hinge_set *hs, double *l0)
 {
-  aq_mech m;
-  aq_mech_state st;
-  aq_equil eq;
-  aq_error e;
-  if (aq_mech_init(&m, g, hs, &e) != AQ_OK || aq_mech_eval(&m, 0.0, &st) != 0)
-    return 0;
-  int qs = hs->face[0] == 'i' ? 1 : -1;
-  double rate[4] = {1, st.phi[1][1] - 1, st.phi[2][1] - st.phi[1][1], -st.phi[2][1]};
-  for (int k = 0; k < 4; k++)
-    if (!((hs->face[k] == 'i' ? 1 : -1) * qs * rate[k] > 0))
-      return 0;
-  /* the multiplier of either direction of the horizontal load: the one
-   * that comes out positive is the mechanism's */
-  aq_live live = {AQ_LIVE_HORIZONTAL, 1, {0, 0}, 0, 9.80665};
-  if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
-    return 0;
-  if (eq.lambda < 0) {
-    live.act_sign = -1;
-    if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
-      return 0;
-  }
-  /* the direction must be the one the hinges open in: sum m dx/ds pushed by
-   * the inertial force, i.e. act_sign * q_sign * sum m dx/dq < 0 */
-  double wx = 0;
-  for (int b = 0; b < 3; b++)
-    wx += m.body[b].mass_kg * st.c[b][1].x;
-  if (!(live.act_sign * qs * wx < 0))
-    return 0;
-  for (int k = 0; k < 4; k++)
-    if (!(eq.normal[k] > 0))
-      return 0;
-  *l0 = eq.lambda;
-  return eq.lambda > 0;
+  return aq_test_lambda0_eq(g, hs, l0) && *l0 > 0;
 }
 
 static void random_set(unsigned *seed, size_t n, aq_hinge_set *hs)

@@ -14,7 +14,7 @@
 #include "units.h"
 
 /* Fig. 7 / eq. (14): with the torque terms the printed W_min to collapse
- * exceeds the potential energy m_T g y(s_c) (ERRATA item 5: it should
+ * exceeds the potential energy m_T g y(s_c) (docs/method.md sec. 5: it should
  * equal it). */
 AQ_TEST(dyn_paper_wmin_exceeds_pe)
 {

@@ -1,8 +1,8 @@
 /* test_dyn_rules.c: the stepper's event rules (impact, momentum rule, start,
  * rest, collapse time, peaks), each against a value the test computes apart
  * from the stepper: the energy balance KE(s) = -a m x(s) - g m y(s) of the
- * path (ERRATA item 5) evaluated here, times by GSL's adaptive quadrature of
- * int sqrt(M / 2KE) ds (ERRATA item 6), turning points by bisection on
+ * path (docs/dynamics.md) evaluated here, times by GSL's adaptive quadrature
+ * of int sqrt(M / 2KE) ds, turning points by bisection on
  * KE(s) = 0.  The work path and the ode share these rules, so comparing the
  * two models cannot check them; these tests do.
  *
@@ -149,7 +149,7 @@ static double free_swing(const aq_path *p, double e, double *sstar)
 static const double BLK_B = 0.217, BLK_H = 0.913, BLK_M = 1234.5;
 
 /* One impact, energy known in closed form: dissipated = (1 - cor) E with
- * cor the kinetic-energy ratio (eq. 26; ERRATA item 7); with the momentum
+ * cor the kinetic-energy ratio (eq. 26, docs/dynamics.md); with the momentum
  * rule, (1 - r^2) E with Housner's r = 1 - 3/2 sin^2 alpha. */
 AQ_TEST(dyn_rules_one_impact_keeps_cor_times_ke)
 {

@@ -38,7 +38,9 @@ static void expect_error(const aq_signal_opts *o, size_t n, double dt,
 AQ_TEST(signal_errors_bad_input)
 {
   aq_signal_opts o;
-  aq_signal_opts_default(&o); /* 0.05 Hz needs 20 s */
+  aq_signal_opts_default(&o);
+  o.highpass_hz = 0.05; /* as --highpass 0.05 sets it: needs 20 s */
+  o.highpass_auto = 0;
   expect_error(&o, 1000, 0.01, "--highpass", "at least 20 s");
   o.highpass_hz = 50; /* Nyquist of dt = 0.01 s */
   expect_error(&o, 1000, 0.01, "--highpass", "Nyquist frequency 50 Hz");
@@ -64,6 +66,7 @@ AQ_TEST(signal_errors_bad_input)
   /* --no-filter: no filter, so no record length or Nyquist limits */
   aq_signal_opts_default(&o);
   o.filter = 0;
+  o.detrend = AQ_DETREND_MEAN;
   o.highpass_hz = 400;
   aq_record r;
   memset(&r, 0, sizeof r);

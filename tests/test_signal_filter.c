@@ -96,7 +96,8 @@ AQ_TEST(signal_filter_gain_matches_butterworth)
 AQ_TEST(signal_filter_passes_band_sine)
 {
   /* 6.25 Hz at dt = 0.005 s: 32 samples a cycle, 250 whole cycles in 40 s,
-   * so the mean removal takes nothing from it; default filter (0.05 Hz).
+   * so the mean removal takes nothing from it; default filter (0.03 Hz).
+ * With --taper 0.05 (the default tapers only the pads' junctions).
    * What the filter takes is the tapered edges' low-frequency content
    * (~4e-7 A here; ~2e-5 A at 3.125 Hz, where the edges leak more). */
   const size_t n = 8000;
@@ -107,6 +108,8 @@ AQ_TEST(signal_filter_passes_band_sine)
     r.acc_mps2[i] = amp * sin(2 * AQ_PI * f0 * (double)i * dt + ph);
   aq_signal_opts o;
   aq_signal_opts_default(&o);
+  o.taper_frac = 0.05; /* --taper 0.05: the record starts mid-cycle */
+  o.detrend = AQ_DETREND_MEAN; /* a line fitted to a sine is not zero */
   aq_processed p;
   aq_error e;
   aq_check(aq_signal_process(&r, &o, NULL, &p, &e) == AQ_OK, "process: %s",
@@ -380,6 +383,7 @@ AQ_TEST(signal_taper_weights_through_the_filter)
   aq_signal_opts o;
   aq_signal_opts_default(&o);
   o.detrend = AQ_DETREND_NONE;
+  o.taper_frac = 0.05;
   aq_record r;
   aq_processed pm, pj;
   aq_error e;

@@ -20,4 +20,11 @@ int aq_cmd_pulse(int argc, char **argv);     /* archquake pulse */
 int aq_cmd_domain(int argc, char **argv);    /* archquake domain */
 int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
 
+/* With [hinges], warn on stderr (one line naming path and both sets) when
+ * the arch's minimum-lambda0 set is lower than its primary: that mechanism
+ * governs unless its joints are restrained; or, above the search's voussoir
+ * limit, that whether the arch stands was not checked (cmd_mechanism.c). */
+struct aq_arch;
+void aq_mechanism_warn_minimum(const char *path, const struct aq_arch *a);
+
 #endif

@@ -1,6 +1,6 @@
 /* cmd_compare.c: `archquake compare A.h5 B.h5 [--rtol R] [--atol A]`:
  * compare two results files run by run (report/compare.h).  Differences go
- * to stdout as TSV (record arch scale field a b rel_diff), one row each, and
+ * to stdout as TSV (record arch scale polarity field a b rel_diff), one row each, and
  * a one-line count to stderr. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
@@ -23,12 +23,13 @@
 static const char usage[] =
     "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A]\n"
     "Compare two results files (archquake ... -o FILE.h5) run by run, matched\n"
-    "by record, arch and scale.  Numbers agree when |a-b| <= A + R*max(|a|,|b|)\n"
+    "by record, arch, scale and polarity.  Numbers agree when |a-b| <= A + R*max(|a|,|b|)\n"
     "(NaN equals NaN); collapsed, impacts, model and status must be equal.\n"
     "  --rtol R   relative tolerance (default 1e-9)\n"
     "  --atol A   absolute tolerance in each field's units (default 0)\n"
     "  --help     this text\n"
-    "Each difference is a TSV row on stdout: record arch scale field a b rel_diff\n"
+    "Each difference is a TSV row on stdout: record arch scale polarity field\n"
+    "a b rel_diff\n"
     "(field \"present\" for a run found in only one file).\n"
     "Exit status: 0 all runs agree, 1 some differ, 2 bad options or a file\n"
     "that cannot be read as a results file.\n";
@@ -58,7 +59,8 @@ static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
     fputs(num, f);
     break;
   case AQ_SF_INT:
-    fprintf(f, "%" PRId64, aq_summary_get_int(s, fl));
+    aq_text_int(num, sizeof num, aq_summary_get_int(s, fl));
+    fputs(num, f);
     break;
   }
 }
@@ -72,7 +74,7 @@ static void on_diff(void *ctx, const aq_diff *d)
   put_cell(f, r->record);
   fputc('\t', f);
   put_cell(f, r->arch);
-  fprintf(f, "\t%s\t", num);
+  fprintf(f, "\t%s\t%s\t", num, r->polarity);
   if (d->kind == AQ_DIFF_VALUE) {
     fprintf(f, "%s\t", d->field->name);
     put_value(f, d->a, d->field);
@@ -138,7 +140,7 @@ int aq_cmd_compare(int argc, char **argv)
     return AQ_EXIT_USAGE;
   }
   sink s = {stdout};
-  printf("record\tarch\tscale\tfield\ta\tb\trel_diff\n");
+  printf("record\tarch\tscale\tpolarity\tfield\ta\tb\trel_diff\n");
   size_t nd = aq_compare_runs(run[0], n[0], run[1], n[1], rtol, atol, on_diff, &s);
   free(run[0]);
   free(run[1]);

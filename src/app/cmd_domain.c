@@ -20,18 +20,22 @@ static const char usage[] =
     "usage: archquake domain --arch FILE [OPTIONS]\n"
     "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
     "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
-    "the arch, by bisection.\n"
+    "the arch, by bisection (the direction is the set's own, so domain takes no\n"
+    "--polarity).\n"
     "  --arch FILE      the arch file (.cfg)\n"
     "  --ratios LIST    comma-separated r > 1 (default 1.05,1.1,1.2,1.5,2,3,4)\n"
-    "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default 0)\n"
+    "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default:\n"
+    "                   the arch file's [dynamics] cor; refused with impact\n"
+    "                   momentum, which the runs then follow)\n"
     "  --model M        workpath (default) | ode | paper\n"
-    "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
+    "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
     "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
     "  --max-duration S give up above this duration, s (default 100)\n"
     "  --help           this text\n"
     "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
     "  --max-duration)\n"
-    "Exit status: 0 success, 1 the arch or a run failed, 2 bad options.\n";
+    "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
+    "option the arch makes ineffective, as --cor with impact momentum).\n";
 
 static const char *const models[] = {"workpath", "ode", "paper", NULL};
 static const double FREE_TAIL_S = 30; /* free motion after the pulse */
@@ -66,9 +70,9 @@ int aq_cmd_domain(int argc, char **argv)
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
   const char *file = NULL;
-  double *ratios = NULL, cor = 0, rtol = 1e-10, tol = 1e-9, tmax = 100;
+  double *ratios = NULL, cor = NAN, rtol = 1e-10, tol = 1e-9, tmax = 100;
   size_t nr = 0;
-  int model = 0, nerr = 0, c;
+  int model = 0, nerr = 0, c, rtol_given = 0;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
@@ -87,6 +91,7 @@ int aq_cmd_domain(int argc, char **argv)
       break;
     case 'r':
       aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
+      rtol_given = 1;
       break;
     case 't':
       aq_opt_double_gt("--tol", optarg, 0, 1, &tol, &nerr);
@@ -104,6 +109,7 @@ int aq_cmd_domain(int argc, char **argv)
   }
   aq_opt_no_operands("domain", argc, argv, optind, &nerr);
   aq_opt_require("domain", "--arch FILE", file != NULL, &nerr);
+  aq_opt_ode_rtol(rtol_given, models[model], &nerr);
   for (size_t i = 0; i < nr; i++)
     if (!(ratios[i] <= 1000)) {
       fprintf(stderr, "archquake: --ratios: expected ratios in (1, 1000], "
@@ -135,13 +141,19 @@ int aq_cmd_domain(int argc, char **argv)
     aq_error_print(&err, stderr);
     goto out;
   }
+  const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
+  if (aq_opt_cor_momentum(file, !isnan(cor), dyn->impact == AQ_IMPACT_MOMENTUM)) {
+    status = AQ_EXIT_USAGE;
+    goto out;
+  }
   const aq_path *pp = aq_arch_path(arch, 0);
   st = aq_stepper_alloc(pp, aq_arch_path(arch, 1), (aq_model)model, &err);
   if (!st) {
     aq_error_print(&err, stderr);
     goto out;
   }
-  aq_stepper_set_cor(st, cor);
+  aq_stepper_set_cor(st, isnan(cor) ? dyn->cor : cor);
+  aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
   aq_stepper_set_ode_rtol(st, rtol);
   printf("ratio\taccel_g\tmin_duration_s\n");
   for (size_t i = 0; i < nr; i++) {

@@ -12,9 +12,15 @@
 #include "app.h"
 #include "opt.h"
 
+#define MIN_SET_TIE_REL 1e-9 /* relative: a lower lambda0 by less is the same mechanism */
+
 static const char usage[] =
     "usage: archquake mechanism --arch FILE [--table] [--points N]\n"
-    "The hinge sets of an arch: one TSV row per set (primary, reverse).\n"
+    "The hinge sets of an arch: one TSV row per set: primary, reverse, and\n"
+    "minimum, the admissible set of lowest lambda0 over every joint (the\n"
+    "primary itself without [hinges]; with [hinges] a lower one is warned of\n"
+    "on stderr: it governs unless its joints are restrained).  An arch whose\n"
+    "minimum lambda0 is <= 0 cannot stand and is refused (exit 1), naming the set.\n"
     "  --arch FILE   the arch file (.cfg)\n"
     "  --table       add, after a blank line, the work path of each admissible\n"
     "                set at N points over [0, q_c] (the data of the paper's Figs 4-7)\n"
@@ -47,6 +53,41 @@ static const char *end_name(aq_end e)
   default:
     return "none";
   }
+}
+
+/* One TSV row for the set of w. */
+static void print_set(const aq_workpath *w, int searched)
+{
+  const aq_path *p = aq_workpath_path(w);
+  const aq_mech *m = aq_workpath_mech(w);
+  char joints[64], faces[8];
+  aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
+  printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%.6g\t%d\t%s\n",
+         p->name, joints, faces, p->lambda0, p->s_c_rad, p->admissible, p->act_sign,
+         p->q_sign, p->mass_kg, p->impact_vel_ratio,
+         p->admissible ? end_name(aq_workpath_end(w)) : "-", aq_workpath_table_size(w),
+         aq_workpath_table_error(w), aq_workpath_thrust0(w), searched,
+         p->admissible ? "-" : aq_workpath_reason(w));
+}
+
+void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
+{
+  aq_hinge_set mhs;
+  double ml0, l0 = aq_arch_path(a, 0)->lambda0;
+  if (!aq_arch_minimum(a, &mhs, &ml0)) {
+    fprintf(stderr, "archquake: %s: warning: the minimum-lambda0 set was not searched "
+                    "(more than %d voussoirs): that the arch stands is not checked\n",
+            path, AQ_SEARCH_MAX_VOUSSOIRS);
+    return;
+  }
+  if (aq_arch_searched(a) || !(ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)))
+    return;
+  char set[64], prim[64];
+  aq_hinge_set_text(&mhs, set, sizeof set);
+  aq_hinge_set_text(&aq_workpath_mech(aq_arch_workpath(a, 0))->hs, prim, sizeof prim);
+  fprintf(stderr, "archquake: %s: warning: the admissible hinge set %s has lambda0 = "
+                  "%.6g, below the primary %s's %.6g: that mechanism governs unless "
+                  "its joints are restrained\n", path, set, ml0, prim, l0);
 }
 
 int aq_cmd_mechanism(int argc, char **argv)
@@ -94,20 +135,24 @@ int aq_cmd_mechanism(int argc, char **argv)
   }
   printf("set\tjoints\tfaces\tlambda0\tq_c_rad\tadmissible\tact_sign\tq_sign\tmass_kg\t"
          "impact_vel_ratio\tend\ttable_n\ttable_err\tthrust_ecc\tsearched\treason\n");
-  for (int s = 0; s < 2; s++) {
-    const aq_workpath *w = aq_arch_workpath(a, s);
-    const aq_path *p = aq_arch_path(a, s);
-    const aq_mech *m = aq_workpath_mech(w);
-    char joints[64], faces[8];
-    aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
-    printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%.6g\t%d\t%s\n",
-           p->name, joints, faces, p->lambda0, p->s_c_rad, p->admissible,
-           p->act_sign, p->q_sign, p->mass_kg, p->impact_vel_ratio,
-           p->admissible ? end_name(aq_workpath_end(w)) : "-",
-           aq_workpath_table_size(w), aq_workpath_table_error(w), aq_workpath_thrust0(w),
-           s == 0 && aq_arch_searched(a),
-           p->admissible ? "-" : aq_workpath_reason(w));
+  for (int s = 0; s < 2; s++)
+    print_set(aq_arch_workpath(a, s), s == 0 && aq_arch_searched(a));
+  /* the arch's own minimum-lambda0 set: it governs unless its joints are
+   * restrained, whatever [hinges] names */
+  aq_hinge_set mhs;
+  double ml0;
+  if (aq_arch_minimum(a, &mhs, &ml0)) {
+    aq_workpath *mw = NULL;
+    if (aq_workpath_build(aq_arch_geom(a), &mhs, aq_arch_path(a, 0)->g_mps2, "minimum",
+                          &mw, &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      aq_arch_free(a);
+      return AQ_EXIT_FAIL;
+    }
+    print_set(mw, aq_arch_searched(a));
+    aq_workpath_free(mw);
   }
+  aq_mechanism_warn_minimum(file, a);
   int rc = AQ_EXIT_OK;
   if (table) {
     printf("\nset\ts_rad\tq_rad\tlambda\tlambda_eq\tx_m\ty_m\tpe_j\tmgen_kgm2\tmin_normal_n"

@@ -22,7 +22,8 @@ static const char usage[] =
     "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
     "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n"
     "  --arch FILE      the arch file (.cfg)\n"
-    "  --accel-g A      pulse amplitude, g (signed, |A| <= 100)\n"
+    "  --accel-g A      pulse amplitude, g (signed, |A| <= 100: its sign is the\n"
+    "                   polarity, so pulse takes no --polarity)\n"
     "  --duration S     pulse duration, s (0 < S <= 3600)\n"
     "  --end S          stop at t = S (>= duration).  Default: run until rest\n"
     "                   or collapse: end_s is the first duration + k s\n"
@@ -35,16 +36,18 @@ static const char usage[] =
     "                   3600 s, and at most 5e6 steps of --dt)\n"
     "  --dt S           constant steps of at most S seconds (default 0.01)\n"
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1\n"
-    "                   (default: the arch file's [dynamics] cor)\n"
+    "                   (default: the arch file's [dynamics] cor; refused with\n"
+    "                   impact momentum, which uses none)\n"
     "  --impact RULE    cor | momentum (default: the arch file's)\n"
     "  --model M        workpath (default) | ode | paper\n"
-    "  --ode-rtol R     ode model tolerance (default 1e-10)\n"
+    "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
     "  --history FILE   write the step-end history as CSV\n"
     "  --help           this text\n"
     "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
     "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
-    "Exit status: 0 success, 1 the arch or the run failed, 2 bad options,\n"
+    "Exit status: 0 success, 1 the arch or the run failed, 2 bad options (or\n"
+    "an option the arch makes ineffective, as --cor with impact momentum),\n"
     "3 the history could not be written.\n";
 
 static const char *const models[] = {"workpath", "ode", "paper", NULL};
@@ -136,7 +139,7 @@ int aq_cmd_pulse(int argc, char **argv)
   const char *file = NULL, *hist = NULL;
   double acc_g = NAN, dur = NAN, end = NAN, cap = NAN, dt = 0.01, cor = NAN,
          rtol = 1e-10;
-  int model = 0, impact = -1, nerr = 0, c, acc_given = 0, dur_given = 0;
+  int model = 0, impact = -1, nerr = 0, c, acc_given = 0, dur_given = 0, rtol_given = 0;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
@@ -172,6 +175,7 @@ int aq_cmd_pulse(int argc, char **argv)
       break;
     case 'r':
       aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
+      rtol_given = 1;
       break;
     case 'H':
       hist = optarg;
@@ -205,6 +209,12 @@ int aq_cmd_pulse(int argc, char **argv)
             dur, cap);
     nerr++;
   }
+  aq_opt_ode_rtol(rtol_given, models[model], &nerr);
+  if (impact == AQ_IMPACT_MOMENTUM && !isnan(cor)) {
+    fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
+                    "momentum (a cor would have no effect)\n");
+    nerr++;
+  }
   if (hist && !*hist) {
     fprintf(stderr, "archquake: --history: expected a file name, got \"\"\n");
     nerr++;
@@ -236,6 +246,10 @@ int aq_cmd_pulse(int argc, char **argv)
     return AQ_EXIT_FAIL;
   }
   const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
+  if (impact < 0 && aq_opt_cor_momentum(file, !isnan(cor), dyn->impact == AQ_IMPACT_MOMENTUM)) {
+    aq_arch_free(arch);
+    return AQ_EXIT_USAGE;
+  }
   if (isnan(cor))
     cor = dyn->cor;
   if (impact < 0)

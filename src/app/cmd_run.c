@@ -39,6 +39,7 @@ static const char usage_head[] =
     "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
     "                      (default: each arch's [dynamics] cor)\n"
     "  --history           write step-end histories to the HDF5 file (with -o)\n"
+    AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
@@ -48,7 +49,13 @@ static const char usage_tail[] =
     "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
     "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
-    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives)\n"
+    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
+    "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
+    "  record drove first; nan if it never moved) peak_rotation_over_qc (peak\n"
+    "  rotation / q_c of the set it occurred in) pga_over_lambda0_g (pga_g over\n"
+    "  lambda0_first, or over the lower lambda0 if it never moved);\n"
+    "  a run whose status is not ok has every result column nan, collapsed\n"
+    "  included: no verdict)\n"
     "Exit status:\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -67,6 +74,7 @@ enum {
   OPT_MODEL,
   OPT_COR,
   OPT_HISTORY,
+  OPT_POLARITY,
   OPT_HELP
 };
 
@@ -162,9 +170,10 @@ int aq_cmd_run(int argc, char **argv)
       {"model", required_argument, NULL, OPT_MODEL},
       {"cor", required_argument, NULL, OPT_COR},
       {"history", no_argument, NULL, OPT_HISTORY},
+      {"polarity", required_argument, NULL, OPT_POLARITY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 14);
+  size_t nlong = aq_opt_signal_append(longopts, 15);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", NULL};
 
@@ -222,6 +231,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_HISTORY:
       cfg.history = 1;
       break;
+    case OPT_POLARITY:
+      aq_opt_polarity(optarg, &cfg.polarity, &nerr);
+      break;
     case 'q':
       quiet = 1;
       break;
@@ -254,6 +266,7 @@ int aq_cmd_run(int argc, char **argv)
     fprintf(stderr, "archquake: --arch: expected at least one arch file, got none\n");
     nerr++;
   }
+  aq_opt_distinct_files("arch file", arches, cfg.narches, &nerr);
   if (scales && !isnan(cfg.scale_to_pga_g)) {
     fprintf(stderr, "archquake: --scale, --scale-to-pga: expected one of them, got both\n");
     nerr++;
@@ -275,6 +288,7 @@ int aq_cmd_run(int argc, char **argv)
   if (optind < argc) {
     char *const *recs = argv + optind;
     size_t nrec = (size_t)(argc - optind);
+    aq_opt_distinct_files("record", recs, nrec, &nerr);
     nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
     nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }

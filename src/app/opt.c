@@ -96,9 +96,70 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
     (*nerr)++;
     return;
   }
+  /* one value, one run: a repeated value would give two rows alike */
+  for (size_t i = 0; i < k; i++)
+    for (size_t j = i + 1; j < k; j++)
+      if (v[i] == v[j]) {
+        fprintf(stderr, "archquake: %s: expected distinct values, got %g twice in \"%s\"\n",
+                opt, v[i], arg);
+        (*nerr)++;
+        free(v);
+        return;
+      }
   free(*out);
   *out = v;
   *n = k;
+}
+
+const char *const aq_opt_polarity_names[] = {"normal", "reversed", "both", NULL};
+
+void aq_opt_polarity(const char *arg, int *out, int *nerr)
+{
+  aq_opt_choice("--polarity", arg, aq_opt_polarity_names, out, nerr);
+}
+
+void aq_opt_ode_rtol(int given, const char *model, int *nerr)
+{
+  if (given && strcmp(model, "ode") != 0) {
+    fprintf(stderr, "archquake: --ode-rtol: expected --model ode as well (the tolerance "
+                    "has no effect on other models), got --model %s\n", model);
+    (*nerr)++;
+  }
+}
+
+int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum)
+{
+  if (!cor_given || !momentum)
+    return 0;
+  fprintf(stderr, "archquake: %s: --cor: expected an arch whose impacts follow a cor, "
+                  "got impact = momentum (its velocity ratio comes from the geometry, a "
+                  "cor would have no effect)\n", arch_path);
+  return 1;
+}
+
+int aq_opt_same_file(const char *a, const char *b)
+{
+  struct stat sa, sb;
+  if (strcmp(a, b) == 0)
+    return 1;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
+void aq_opt_distinct_files(const char *what, char *const *paths, size_t n, int *nerr)
+{
+  for (size_t j = 1; j < n; j++)
+    for (size_t i = 0; i < j; i++)
+      if (aq_opt_same_file(paths[i], paths[j])) {
+        if (strcmp(paths[i], paths[j]) == 0)
+          fprintf(stderr, "archquake: %s: expected each %s once, got it twice\n", paths[j],
+                  what);
+        else
+          fprintf(stderr, "archquake: %s: expected each %s once, got the same file as %s\n",
+                  paths[j], what, paths[i]);
+        (*nerr)++;
+        break;
+      }
 }
 
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
@@ -121,18 +182,57 @@ void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
   (*nerr)++;
 }
 
+/* The word behind an unknown option, if it begins with '-' and names an
+ * existing file (the user meant to read it): a short option ch comes from
+ * argv[optind_after] (inside a cluster) or argv[optind_after - 1] (its last
+ * character); a long one (ch 0 or an id >= 128) from argv[optind_after - 1]. */
+static const char *dash_file(char **argv, int optind_after, int ch)
+{
+  struct stat sb;
+  int shortopt = ch > 0 && ch < 128;
+  for (int k = optind_after - 1; k <= optind_after && argv; k++) {
+    if (k < 1 || (k == optind_after && !shortopt))
+      continue;
+    const char *w = argv[k];
+    if (!w || w[0] != '-' || w[1] == '\0' || strcmp(w, "--") == 0)
+      continue;
+    if (shortopt && (w[1] == '-' || !strchr(w + 1, ch)))
+      continue;
+    if (stat(w, &sb) == 0 && !S_ISDIR(sb.st_mode))
+      return w;
+  }
+  return NULL;
+}
+
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr)
 {
-  const char *word = optind_after > 0 ? argv[optind_after - 1] : "?";
-  if (optopt_ && optopt_ < 128 && word[0] == '-' && word[1] != '-')
+  static const char *last_file; /* one line per such word, not per letter */
+  const char *file = dash_file(argv, optind_after, optopt_);
+  if (file) {
+    if (file != last_file) {
+      fprintf(stderr,
+              "archquake: %s: expected an option, got a file whose name "
+              "begins with '-': put it after '--' (archquake %s[OPTIONS] -- "
+              "%s) or write it as ./%s\n",
+              file, cmd, file, file);
+      (*nerr)++;
+    }
+    last_file = file;
+    return;
+  }
+  /* A short option (optopt_ a character) is named by itself: in a cluster
+   * such as -ab, argv[optind_after - 1] may be another word (the previous
+   * one, or an operand getopt has moved there).  A long option has no
+   * optopt_ (or an id >= 128) and is the word getopt just passed. */
+  if (optopt_ > 0 && optopt_ < 128)
     fprintf(stderr,
             "archquake: -%c: unknown option or missing value (see 'archquake %s--help')\n",
             optopt_, cmd);
   else
     fprintf(stderr,
             "archquake: %s: unknown option or missing value (see 'archquake %s--help')\n",
-            word, cmd);
+            optind_after > 0 ? argv[optind_after - 1] : "?", cmd);
   (*nerr)++;
 }
 

@@ -17,10 +17,33 @@ void aq_opt_double_gt(const char *opt, const char *arg, double lo, double hi,
 /* An integer in [lo, hi]. */
 void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
                  int *nerr);
-/* A comma-separated list of finite numbers each > lo; *out is malloc'd
- * (caller frees), *n its length. */
+/* A comma-separated list of distinct finite numbers each > lo; *out is
+ * malloc'd (caller frees), *n its length. */
 void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
                  size_t *n, int *nerr);
+/* Options that cannot take effect are refused, never ignored:
+ * --ode-rtol given with a --model other than ode (one line, *nerr += 1). */
+void aq_opt_ode_rtol(int given, const char *model, int *nerr);
+/* --cor given for an arch whose [dynamics] impact (or --impact) is
+ * momentum: one line naming the arch file; returns 1 (refuse, exit 2). */
+int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
+/* --polarity normal|reversed|both: the sign of the records a command runs
+ * (the record as read, negated, or each record both ways, each row saying
+ * which).  Declared here once for every command that runs records. */
+enum { AQ_POLARITY_NORMAL = 0, AQ_POLARITY_REVERSED, AQ_POLARITY_BOTH };
+extern const char *const aq_opt_polarity_names[]; /* indexed by the enum, NULL-terminated */
+#define AQ_OPT_POLARITY_USAGE                                                        \
+  "  --polarity P        normal (the record as read, default), reversed (negated)\n" \
+  "                      or both (each record both ways; the polarity column\n"    \
+  "                      says which: a hinge-controlled arch's response depends\n"  \
+  "                      on the sign)\n"
+void aq_opt_polarity(const char *arg, int *out, int *nerr);
+/* 1 if paths a and b name the same file: the same string, or the same
+ * existing file however spelled (device and inode). */
+int aq_opt_same_file(const char *a, const char *b);
+/* Report (one line each, naming both spellings) every path among paths[0..n)
+ * that names the same file as an earlier one; what: "record", "arch file". */
+void aq_opt_distinct_files(const char *what, char *const *paths, size_t n, int *nerr);
 /* One of the words in choices (NULL-terminated); *out = its index. */
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
                    int *out, int *nerr);

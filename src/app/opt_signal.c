@@ -21,10 +21,12 @@ const struct option aq_opt_signal_longopts[AQ_OPT_SIGNAL_NOPTS] = {
 };
 
 const char aq_opt_signal_usage[] =
-    "  --detrend D     remove mean (default), linear (least squares) or none\n"
+    "  --detrend D     remove the least-squares line (linear, default), the\n"
+    "                  mean (mean) or nothing (none)\n"
     "  --taper FRAC    Hann taper over FRAC of the record at each end, 0-0.5\n"
-    "                  (default 0.05)\n"
-    "  --highpass HZ   acausal Butterworth high-pass corner (default 0.05 Hz)\n"
+    "                  (default 0: only the zero pads' junctions are tapered)\n"
+    "  --highpass HZ   acausal Butterworth high-pass corner (default 0.03 Hz,\n"
+    "                  or 1/duration for a record shorter than 33.3 s)\n"
     "  --order N       Butterworth order, 1-20 (default 4)\n"
     "  --lowpass HZ    acausal Butterworth low-pass corner (default off)\n"
     "  --no-filter     no taper, pads or filter (detrend still applies)\n"
@@ -55,6 +57,7 @@ int aq_opt_signal_handle(int id, const char *arg, aq_signal_opts *o,
   case AQ_OPT_HIGHPASS:
     aq_opt_double_gt("--highpass", arg, 0, AQ_OPT_FREQ_MAX_HZ, &o->highpass_hz,
                      nerr);
+    o->highpass_auto = 0; /* an explicit corner is checked as given */
     return 1;
   case AQ_OPT_ORDER:
     l = o->order;
@@ -72,8 +75,13 @@ int aq_opt_signal_handle(int id, const char *arg, aq_signal_opts *o,
     double g = 0;
     int before = *nerr;
     aq_opt_double("--merge-tol", arg, 0, 10, &g, nerr);
-    if (*nerr == before && merge_tol_g)
+    if (*nerr == before && !merge_tol_g) { /* refused, not ignored */
+      fprintf(stderr, "archquake: --merge-tol: expected it only where records are "
+                      "split into steps (the main job), got it here\n");
+      (*nerr)++;
+    } else if (*nerr == before) {
       *merge_tol_g = g;
+    }
     return 1;
   }
   default:
@@ -83,6 +91,22 @@ int aq_opt_signal_handle(int id, const char *arg, aq_signal_opts *o,
 
 void aq_opt_signal_check(const aq_signal_opts *o, int *nerr)
 {
+  /* --no-filter turns off the taper, the pads and the filter: options that
+   * set them (to other than their defaults) would be ignored, so refuse */
+  aq_signal_opts d;
+  aq_signal_opts_default(&d);
+  if (!o->filter) {
+    const char *given[4] = {o->taper_frac != d.taper_frac ? "--taper" : NULL,
+                            o->highpass_hz != d.highpass_hz ? "--highpass" : NULL,
+                            o->order != d.order ? "--order" : NULL,
+                            o->lowpass_hz != d.lowpass_hz ? "--lowpass" : NULL};
+    for (int k = 0; k < 4; k++)
+      if (given[k]) {
+        fprintf(stderr, "archquake: %s: expected no --no-filter with it (--no-filter "
+                        "applies no taper, pads or filter), got both\n", given[k]);
+        (*nerr)++;
+      }
+  }
   if (o->filter && o->lowpass_hz > 0 && !(o->lowpass_hz > o->highpass_hz)) {
     fprintf(stderr,
             "archquake: --lowpass: expected a corner above --highpass %g Hz, "

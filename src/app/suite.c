@@ -22,6 +22,7 @@
 #include "../units.h"
 #include "app.h"
 #include "cleanup.h"
+#include "opt.h"
 
 /* Records in flight per worker thread: enough that a worker finishing a
  * short record finds the next one while a long one is still running. */
@@ -90,7 +91,8 @@ typedef struct {
   int *arch_ok;             /* 0: its stepper cannot be made (reported once) */
   aq_error *arch_err;
   const char *model_name;
-  size_t nscale;            /* runs per arch per record */
+  size_t nscale;            /* runs per arch per record: factors x polarities */
+  size_t npol;              /* polarities per factor (2 with --polarity both) */
   size_t nruns;             /* per record: narch * nscale */
   aq_signal_ws *ws;
   pthread_mutex_t lock;
@@ -105,6 +107,20 @@ typedef struct {
 } suite;
 
 static const char *const model_names[] = {"workpath", "ode", "paper"};
+
+/* Run slot k of an arch: factor k / npol, the record negated (reversed)
+ * for the second slot of each factor with --polarity both, or for every
+ * slot with --polarity reversed. */
+static int slot_reversed(const suite *S, size_t k)
+{
+  return S->cfg->polarity == AQ_POLARITY_REVERSED ||
+         (S->cfg->polarity == AQ_POLARITY_BOTH && k % 2 == 1);
+}
+
+static const char *slot_polarity(const suite *S, size_t k)
+{
+  return slot_reversed(S, k) ? "reversed" : "normal";
+}
 
 static void slot_clear(suite *S, rec_slot *r)
 {
@@ -134,9 +150,10 @@ static void fail_runs(suite *S, rec_slot *r)
   for (size_t a = 0; a < c->narches; a++)
     for (size_t k = 0; k < S->nscale; k++) {
       run_slot *u = &r->runs[a * S->nscale + k];
-      double scale = c->scales ? c->scales[k] : NAN;
+      double scale = c->scales ? c->scales[k / S->npol] : NAN;
       aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
                       S->model_name, scale, NAN, r->status, NULL);
+      aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
     }
 }
 
@@ -207,10 +224,11 @@ static int prepare_record(suite *S, rec_slot *r)
   snprintf(r->status, sizeof r->status, "ok");
   const aq_processed *p = &r->proc;
   for (size_t k = 0; k < S->nscale; k++) {
-    double scale = c->scales ? c->scales[k] : c->scale_to_pga_g / r->im.pga_g;
+    double scale = c->scales ? c->scales[k / S->npol] : c->scale_to_pga_g / r->im.pga_g;
+    double sa = slot_reversed(S, k) ? -scale : scale; /* polarity: once per record */
     double amax = 0;
     for (size_t i = 0; i < p->n; i++) {
-      a[i] = scale * p->acc_mps2[i];
+      a[i] = sa * p->acc_mps2[i];
       amax = fmax(amax, fabs(a[i]));
     }
     r->scale[k] = scale;
@@ -262,6 +280,8 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[ai]),
                   S->model_name, r->scale[k], r->pga_g[k], status,
                   u->have_res ? &u->res : NULL);
+  aq_summary_normalise(&u->sum, slot_polarity(S, k), u->have_res ? &u->res : NULL,
+                       aq_arch_path(S->arches[ai], 0), aq_arch_path(S->arches[ai], 1));
   u->run_s = now_s() - t0;
 }
 
@@ -392,8 +412,9 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
       char msg[1200], num[64];
       aq_error_format(&u->err, msg, sizeof msg);
       aq_text_double(num, sizeof num, u->sum.scale);
-      fprintf(stderr, "archquake: %s: arch %s, scale %s: %s\n", path,
-              aq_arch_name(S->arches[ai]), num, msg);
+      fprintf(stderr, "archquake: %s: arch %s, scale %s%s: %s\n", path,
+              aq_arch_name(S->arches[ai]), num,
+              slot_reversed(S, i % S->nscale) ? " reversed" : "", msg);
     }
   }
   if (h5) {
@@ -429,7 +450,7 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
         aq_error_format(&u->err, msg, sizeof msg);
         em = msg;
       }
-      aq_status s = aq_h5_write_run(h5, r->index, i / S->nscale, i % S->nscale,
+      aq_status s = aq_h5_write_run(h5, r->index, i / S->nscale, i % S->nscale / S->npol,
                                     &u->sum, u->have_res ? &u->res : NULL, em,
                                     u->run_s, err);
       if (s != AQ_OK)
@@ -481,16 +502,20 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
                      S->model_name,
                      c->cor,
                      c->scales,
-                     S->nscale,
+                     S->nscale / S->npol,
                      c->scales ? NAN : c->scale_to_pga_g,
                      c->history,
-                     c->threads};
+                     c->threads,
+                     aq_opt_polarity_names[c->polarity]};
   s = aq_h5_write_root(w, &root, err);
   for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
+    /* the values the runs use: --cor over the file's; none with momentum */
+    aq_arch_dynamics used = *aq_arch_dynamics_of(S->arches[a]);
+    used.cor = used.impact == AQ_IMPACT_MOMENTUM ? NAN : isnan(c->cor) ? used.cor : c->cor;
     aq_h5_arch ha = {aq_arch_name(S->arches[a]),
                      c->arch_paths[a],
                      aq_arch_config_text(S->arches[a]),
-                     aq_arch_dynamics_of(S->arches[a]),
+                     &used,
                      {aq_arch_path(S->arches[a], 0), aq_arch_path(S->arches[a], 1)}};
     s = aq_h5_write_arch(w, a, &ha, err);
   }
@@ -532,7 +557,8 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   memset(&S, 0, sizeof S);
   S.cfg = c;
   S.model_name = model_names[c->model <= AQ_MODEL_PAPER ? c->model : 0];
-  S.nscale = c->scales ? c->nscale : 1;
+  S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
+  S.nscale = (c->scales ? c->nscale : 1) * S.npol;
   S.nruns = c->narches * S.nscale;
   long nthreads = c->threads < 1 ? 1 : c->threads;
   if ((size_t)nthreads > c->nrecords)
@@ -559,6 +585,22 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
       aq_error_print(&e, stderr);
       bad_arch = 1;
     }
+  }
+  /* One name, one arch: rows are labelled and compared by name.  An option
+   * that cannot act on an arch is refused, not ignored. */
+  for (size_t a = 0; !bad_arch && a < c->narches; a++) {
+    for (size_t b = 0; b < a; b++)
+      if (strcmp(aq_arch_name(S.arches[a]), aq_arch_name(S.arches[b])) == 0) {
+        fprintf(stderr, "archquake: %s: name: expected a name unlike the other arches', "
+                        "got \"%s\", the name of %s too\n",
+                c->arch_paths[a], aq_arch_name(S.arches[a]), c->arch_paths[b]);
+        bad_arch = 1;
+        break;
+      }
+    aq_mechanism_warn_minimum(c->arch_paths[a], S.arches[a]);
+    bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
+                                    aq_arch_dynamics_of(S.arches[a])->impact ==
+                                        AQ_IMPACT_MOMENTUM);
   }
   if (bad_arch) {
     rc = AQ_EXIT_USAGE;
@@ -657,9 +699,12 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     }
     pthread_mutex_unlock(&S.lock);
     double t0 = now_s();
-    if (c->progress && has_diagnostics(&S, r))
-      progress(&S, t_start, total, 1); /* clear the line before diagnostics */
+    /* clear the line before diagnostics, and before rows on the terminal */
+    if (c->progress && (c->aligned || has_diagnostics(&S, r)))
+      progress(&S, t_start, total, 1);
     ws = write_record(&S, r, h5, &stats, &oerr);
+    if (c->progress && c->aligned && c->text)
+      fflush(c->text); /* the rows reach the terminal before the next line */
     stats.write_s += now_s() - t0;
     pthread_mutex_lock(&S.lock);
     slot_clear(&S, r);

@@ -38,6 +38,7 @@ typedef struct {
   double scale_to_pga_g;   /* --scale-to-pga target, g (used when scales is NULL) */
   aq_model model;          /* --model */
   double cor;              /* --cor, or NAN for each arch's own */
+  int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */
   int history;             /* --history: keep and write step-end histories */
   long threads;            /* -j (>= 1) */
   int progress;            /* 1: progress line on stderr */

@@ -1,4 +1,6 @@
 /* arch.c: the arch file (.cfg, INI read with libinih) and the arch object.
+ * The format, with units, defaults and an example per arch type, is
+ * documented in docs/arch-file.md.
  *
  * Sections and keys (all others are errors, as are duplicate keys):
  *   [arch]      name (optional, default: the file name without directory and
@@ -7,7 +9,7 @@
  *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
  *               (optional, default: the primary's joints, faces swapped);
  *               without [hinges] the primary comes from the search (search.c)
- *   [dynamics]  cor (0..1, kinetic-energy ratio, ERRATA item 7), impact
+ *   [dynamics]  cor (0..1, kinetic-energy ratio, docs/method.md sec. 7), impact
  *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
  * libinih calls the handler for each key as it reads the line; the reader
  * below feeds it line by line and counts lines, so every message names the
@@ -37,6 +39,9 @@ struct aq_arch {
   aq_hinge_set hs[2];
   int searched;
   aq_workpath *wp[2];
+  aq_hinge_set min_hs;  /* the admissible set of lowest lambda0 (search.c) */
+  double min_lambda0;
+  int min_known;        /* 0: more voussoirs than the search takes */
 };
 
 enum {
@@ -272,6 +277,12 @@ void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
              hs->face[3]);
 }
 
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n)
+{
+  snprintf(buf, n, "%zu%c %zu%c %zu%c %zu%c", hs->joint[0], hs->face[0], hs->joint[1],
+           hs->face[1], hs->joint[2], hs->face[2], hs->joint[3], hs->face[3]);
+}
+
 static aq_hinge_set swap_faces(const aq_hinge_set *hs)
 {
   aq_hinge_set r = *hs;
@@ -289,12 +300,34 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   aq_status st = aq_geom_init(&a->geom, p, err);
   if (st != AQ_OK)
     return st;
+  /* The arch's minimum over every admissible set, whether or not [hinges]
+   * names one: an arch that some set turns into a mechanism under gravity
+   * alone (lambda0 <= 0) cannot stand, whichever set the file names. */
+  if (!primary || p->voussoirs <= AQ_SEARCH_MAX_VOUSSOIRS) {
+    aq_error e2;
+    aq_error_clear(&e2);
+    st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, NULL,
+                           &e2);
+    if (st != AQ_OK && !primary) {
+      if (err)
+        *err = e2;
+      return st;
+    }
+    a->min_known = st == AQ_OK;
+  }
+  if (a->min_known && !(a->min_lambda0 > 0)) {
+    char set[64];
+    aq_hinge_set_text(&a->min_hs, set, sizeof set);
+    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "arch",
+                        "expected an arch that stands under its own weight, got one "
+                        "that cannot: the admissible hinge set %s has lambda0 = %.4g "
+                        "<= 0 (gravity alone makes it a mechanism)",
+                        set, a->min_lambda0);
+  }
   if (primary) {
     a->hs[0] = *primary;
   } else {
-    st = aq_search_mechanism(&a->geom, a->dyn.g_mps2, &a->hs[0], NULL, err);
-    if (st != AQ_OK)
-      return st;
+    a->hs[0] = a->min_hs;
     a->searched = 1;
   }
   a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
@@ -499,3 +532,13 @@ const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
   return set == 0 || set == 1 ? a->wp[set] : NULL;
 }
 int aq_arch_searched(const aq_arch *a) { return a->searched; }
+int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
+{
+  if (!a->min_known)
+    return 0;
+  if (hs)
+    *hs = a->min_hs;
+  if (lambda0)
+    *lambda0 = a->min_lambda0;
+  return 1;
+}

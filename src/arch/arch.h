@@ -15,7 +15,7 @@ typedef enum { AQ_IMPACT_COR = 0, AQ_IMPACT_MOMENTUM } aq_impact;
 
 /* [dynamics] section */
 typedef struct {
-  double cor;       /* kinetic-energy ratio kept at an impact, 0..1 (ERRATA item 7) */
+  double cor;       /* kinetic-energy ratio kept at an impact, 0..1 (docs/method.md sec. 7) */
   aq_impact impact; /* cor | momentum */
   double g_mps2;    /* gravity, m/s^2 */
 } aq_arch_dynamics;

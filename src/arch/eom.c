@@ -4,7 +4,7 @@
  *
  *     M(s) s'' + 1/2 M'(s) s'^2 + g m_T dy/ds = -a_g m_T dx/ds
  *
- * (ERRATA.md items 4-5; derivation in eom.h and docs/dynamics.md).
+ * (docs/method.md sec. 4-5; derivation in eom.h and docs/dynamics.md).
  */
 #include "eom.h"
 

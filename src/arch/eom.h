@@ -7,7 +7,7 @@
  * the inertial field -a_g acting on every mass like a horizontal gravity.
  * Euler-Lagrange, d/dt (M sdot) - 1/2 M' sdot^2 + m_T (g y' + a_g x') = 0:
  *     M(s) s'' + 1/2 M'(s) s'^2 + g m_T dy/ds = -a_g m_T dx/ds        (EOM)
- * which is ERRATA.md items 4-5 in differential form; its first integral is
+ * which is docs/method.md sec. 4-5 in differential form; its first integral is
  * the energy balance KE(s) = KE1 - a_g m_T (x - x1) - g m_T (y - y1).
  *
  * A leg is the motion on one set within one constant-acceleration step until

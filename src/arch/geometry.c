@@ -7,8 +7,8 @@
  *             on the ray theta_m
  *   polar moment about the circle's centre  J_O = rho d a (r_e^4 - r_i^4) / 2
  *   centroidal inertia I = J_O - m r_c^2  (parallel axes).
- * Geometry conventions as in the KCLC (Stockdale et al. 2018, SoftwareX),
- * ERRATA.md, "Geometry conventions".
+ * Geometry conventions as in the KCLC (Stockdale et al. 2018, SoftwareX;
+ * docs/method.md sec. 10).
  */
 #include <math.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* kinematics.c: the exact four-bar H1-H2-H3-H4 and the paper's eq. (3).
  *
- * Closure (ERRATA item 1, replacing the paper's eq. (6)): H2' is H2 rotated
+ * Closure (docs/method.md sec. 1, replacing the paper's eq. (6)): H2' is H2 rotated
  * about H1 by q; H3' is the intersection of the circle of radius l23 about
  * H2' and the circle of radius l34 about H4, on the branch continuous from
  * q = 0 (the side of the line H2'H4 on which H3 lies; the branch can only

@@ -12,7 +12,7 @@
  * (voussoirs j1..j2-1) turns about H1 by q, body 3 (j3..j4-1) about H4, body
  * 2 (j2..j3-1) rides between; voussoirs outside [j1, j4) are fixed.  q is the
  * global counter-clockwise rotation of body 1 (radians); the closure is by
- * circle intersection on the branch continuous from q = 0 (ERRATA item 1).
+ * circle intersection on the branch continuous from q = 0 (docs/method.md sec. 1).
  *
  * Equilibrium (kinematics.c): the paper's eq. (3), the 9x9 balance of the
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
@@ -211,9 +211,19 @@ void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
 
 /* ---- search.c ------------------------------------------------------ */
 
-/* The alternating four-hinge set with the lowest positive admissible
- * lambda0 (upper-bound mechanism) over all joints.  AQ_EINADMISSIBLE if
- * none.  *nsets (if not NULL): sets enumerated. */
+#define AQ_SEARCH_MAX_VOUSSOIRS 150 /* 2 C(151,4) = 4.2e7 sets: about a second */
+
+/* The admissible alternating four-hinge set (every hinge opens, every hinge
+ * reaction compressive at s = 0) with the lowest lambda0 over all joints,
+ * lambda0 <= 0 included: *best and *lambda0 (if not NULL).  A minimum
+ * lambda0 <= 0 means the arch cannot stand.  AQ_EINADMISSIBLE if no set is
+ * admissible; AQ_EVALUE above SEARCH_MAX_VOUSSOIRS (150) voussoirs.
+ * *nsets (if not NULL): sets enumerated. */
+aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
+                            double *lambda0, size_t *nsets, aq_error *err);
+
+/* aq_search_minimum when its lambda0 is > 0 (the upper-bound mechanism);
+ * AQ_EINADMISSIBLE (field "hinges", naming the set) when it is <= 0. */
 aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
                               aq_hinge_set *best, size_t *nsets,
                               aq_error *err);
@@ -236,6 +246,15 @@ const aq_geom *aq_arch_geom(const aq_arch *a);
 const aq_workpath *aq_arch_workpath(const aq_arch *a, int set);
 /* 1 if the primary came from the search. */
 int aq_arch_searched(const aq_arch *a);
+
+/* The admissible set of lowest lambda0 over every joint (aq_search_minimum),
+ * found for every arch of at most AQ_SEARCH_MAX_VOUSSOIRS voussoirs: 1 and
+ * *hs, *lambda0 (either may be NULL); 0 when not searched (more voussoirs,
+ * with [hinges]).  An arch whose minimum is <= 0 is never built. */
+int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
+
+/* Format "0e 6i 12e 19i" (the arch file's syntax) into buf[n]. */
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n);
 
 /* Format "0,6,12,19" and "eiei". */
 void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,

@@ -21,8 +21,8 @@
  * eq. (19) gives there is dropped (section 3: "motion must be forward
  * facing").  This is where the printed method loses energy.
  *
- * Deliberate deviations, each minimal: the slopes are 2 A1 x + A2 (ERRATA
- * item 2, a typesetting error); the lever arms are measured from the moving
+ * Deliberate deviations, each minimal: the slopes are 2 A1 x + A2 (docs/method.md
+ * sec. 2, a typesetting error); the lever arms are measured from the moving
  * bodies' centroid (the contract gives no absolute centroid for the fixed
  * voussoirs); the first trapezoid of a leg that starts from KE = 0 uses the
  * integrand at its right end only (the printed method gives no rule).

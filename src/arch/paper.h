@@ -2,7 +2,7 @@
  * error only; never the default model).
  *
  * Per hinge set, sampled at alpha1 = 0, 0.1, 0.2 ... deg up to s_c:
- *   y(x) quadratic fit (eqs. 10-11, slope 2 A1 x + A2 per ERRATA item 2),
+ *   y(x) quadratic fit (eqs. 10-11, slope 2 A1 x + A2 per docs/method.md sec. 2),
  *   lever-arm angles theta_i(x) quadratic fits (eqs. 12-13, slope likewise),
  *   W_min(x) = int F dx + sum int tau_i dtheta_i (eq. 14, torque terms kept,
  *   trapezoid over the samples), quartic fit (eq. 16),

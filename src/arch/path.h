@@ -8,11 +8,11 @@
  * arch.
  *
  * For a constant ground acceleration a_g (m/s^2, along +x) the exact energy
- * balance (ERRATA item 5) from s1 is
+ * balance (docs/method.md sec. 5) from s1 is
  *     KE(s) = KE1 - a_g m_T (x(s) - x(s1)) - g m_T (y(s) - y(s1))
  * where (x, y) is the whole arch's centre of mass measured from its
  * undeformed position, and the kinetic energy is T = 1/2 M(s) sdot^2
- * (ERRATA item 4).  Motion along +s needs a_g * act_sign > lambda0 * g.
+ * (docs/method.md sec. 4).  Motion along +s needs a_g * act_sign > lambda0 * g.
  *
  * An aq_path does not own ctx; whoever made it (the arch) outlives it.
  */

@@ -25,6 +25,8 @@ typedef struct {
   double energy_in_j;          /* work done by the ground on the arch, J */
   double energy_dissipated_j;  /* lost at impacts, J */
   size_t impacts;              /* returns to the undeformed shape */
+  int first_set;               /* set the record drove first: 0 primary, 1 reverse, -1 none */
+  int peak_set;                /* set in which peak_rotation_rad occurred, -1 if it never moved */
   size_t reversals;            /* zero-velocity turning points */
   size_t steps_total;          /* steps in the input */
   size_t steps_moving;         /* steps integrated in motion (not skipped at rest) */

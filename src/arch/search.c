@@ -2,12 +2,15 @@
  *
  * Every alternating four-hinge set (joints j1 < j2 < j3 < j4 in 0..n, faces
  * e i e i or i e i e) is a one-degree-of-freedom mechanism; its multiplier
- * lambda0 follows from the velocities at s = 0 alone (virtual work, ERRATA
- * item 5), computed in O(1) per set from prefix sums of the voussoirs' mass
- * and first moments.  The sets whose hinges all open and whose lambda0 is
- * positive are ranked by lambda0; the lowest SEARCH_KEEP are kept and checked
- * in order with the full equilibrium (eq. (3): every hinge reaction
- * compressive); the first that passes is the upper-bound mechanism.  Ties
+ * lambda0 follows from the velocities at s = 0 alone (virtual work,
+ * docs/method.md sec. 5), computed in O(1) per set from prefix sums of the voussoirs' mass
+ * and first moments.  The sets whose hinges all open are ranked by lambda0,
+ * whatever its sign; the lowest SEARCH_KEEP are kept and checked in order
+ * with the full equilibrium (eq. (3): every hinge reaction compressive); the
+ * first that passes is the arch's minimum-lambda0 set.  A set with
+ * lambda0 <= 0 is kept too: gravity alone (or gravity and a load of the
+ * other sign) drives it, so the arch cannot stand, and the caller must know
+ * it rather than be handed the lowest positive set.  Ties
  * (lambda0 equal to TIE_REL, e.g. the mirror images of a symmetric arch) go
  * to the set enumerated first (e i e i before i e i e, then lowest joints).
  */
@@ -18,7 +21,6 @@
 #include "model.h"
 
 #define SEARCH_KEEP 256 /* candidates kept for the full admissibility check */
-#define SEARCH_MAX_VOUSSOIRS 150 /* 2 C(151,4) = 4.2e7 sets: about a second */
 #define TIE_REL 1e-12   /* lambda0 within this (relative) of another is a tie */
 
 /* a lower than b by more than a tie */
@@ -76,15 +78,15 @@ typedef struct {
   int pattern; /* 0: e i e i, 1: i e i e */
 } cand;
 
-aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
-                              aq_hinge_set *best, size_t *nsets, aq_error *err)
+aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
+                            double *lambda0, size_t *nsets, aq_error *err)
 {
   size_t n = g->p.voussoirs, count = 0, nk = 0;
-  if (n > SEARCH_MAX_VOUSSOIRS)
+  if (n > AQ_SEARCH_MAX_VOUSSOIRS)
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "voussoirs",
                         "expected at most %d voussoirs without [hinges] (the search "
                         "grows as voussoirs^4), got %zu",
-                        SEARCH_MAX_VOUSSOIRS, n);
+                        AQ_SEARCH_MAX_VOUSSOIRS, n);
   aq_vec2 *pt = malloc(2 * (n + 1) * sizeof *pt); /* [face][joint] */
   cand *keep = malloc(SEARCH_KEEP * sizeof *keep);
   if (!pt || !keep) {
@@ -111,7 +113,7 @@ aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
               P[k] = pt[(faces[pat][k] == 'i' ? n + 1 : 0) + j[k]];
             count++;
             double l0;
-            if (!lambda0_fast(g, j, P, open[0], open, &l0) || !(l0 > 0))
+            if (!lambda0_fast(g, j, P, open[0], open, &l0) || !isfinite(l0))
               continue;
             if (nk == SEARCH_KEEP && !lower(l0, keep[nk - 1].lambda0))
               continue;
@@ -154,6 +156,8 @@ aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
       ok &= eq.normal[k] > 0;
     if (ok) {
       *best = hs;
+      if (lambda0)
+        *lambda0 = keep[c].lambda0;
       st = AQ_OK;
       break;
     }
@@ -165,4 +169,21 @@ aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
                         "with the lowest lambda0, got none",
                         SEARCH_KEEP);
   return AQ_OK;
+}
+
+aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
+                              aq_hinge_set *best, size_t *nsets, aq_error *err)
+{
+  double l0;
+  aq_status st = aq_search_minimum(g, g_mps2, best, &l0, nsets, err);
+  if (st == AQ_OK && !(l0 > 0)) {
+    char set[64];
+    aq_hinge_set_text(best, set, sizeof set);
+    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
+                        "expected an arch that stands under its own weight, got "
+                        "one that cannot: the admissible hinge set %s has "
+                        "lambda0 = %.4g <= 0",
+                        set, l0);
+  }
+  return st;
 }

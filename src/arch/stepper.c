@@ -4,12 +4,12 @@
  * The method is that of
  *   G. L. Stockdale, V. Sarhosis, G. Milani, "Work-path approach seismic
  *   modelling of hinge-controlled masonry arches" (sections 2.6-3, Fig. 9),
- * with the corrections of ERRATA.md items 4-9: the exact energy balance
+ * with the corrections of docs/method.md sec. 4-9: the exact energy balance
  *     KE(s) = KE1 - a_g m_T (x(s) - x(s1)) - g m_T (y(s) - y(s1))  (eq. 19,
- *                                                    per ERRATA item 5)
+ *                                                    per docs/method.md sec. 5)
  * and the exact time integral
- *     t - t0 = int sqrt(M(s) / (2 KE(s))) ds       (eqs. 24-25, per ERRATA
- *                                                    items 4 and 6).
+ *     t - t0 = int sqrt(M(s) / (2 KE(s))) ds       (eqs. 24-25, per docs/method.md
+ *                                                    secs. 4 and 6).
  *
  * Work-path leg (wp_leg).  Along the direction of motion, sigma >= 0 is the
  * distance travelled from the leg's start.  The leg is cut into panels
@@ -37,14 +37,14 @@
  *   - start from rest on set k only when a_g * act_sign_k > lambda0_k g;
  *     quiet steps are skipped with aq_steps_next_outside;
  *   - impact at the return to s = 0: switch to the other set and keep
- *     cor * KE (cor is the kinetic-energy ratio, ERRATA item 7) or, with
+ *     cor * KE (cor is the kinetic-energy ratio, docs/method.md sec. 7) or, with
  *     the momentum rule, the velocity impact_vel_ratio * |sdot|;
  *   - the other set inadmissible: plastic stop, the arch rests at s = 0
- *     (ERRATA item 8: an inadmissible set is never integrated);
+ *     (docs/method.md sec. 8: an inadmissible set is never integrated);
  *   - rest: after an impact, KE <= rest_tol * E_ref (E_ref = m_T g y(s_c)
  *     of the primary set, the energy that collapses it) ends the motion;
  *     it restarts only when a step's acceleration activates a set;
- *   - collapse: s reaches s_c of the active set (ERRATA item 9); the time is
+ *   - collapse: s reaches s_c of the active set (docs/method.md sec. 9); the time is
  *     that of the exact crossing within the step.
  */
 #include "stepper.h"
@@ -163,7 +163,7 @@ static int wp_point(wp_ctx *c, double sigma, wp_pt *o)
   o->s = s;
   o->x = pt.x_m;
   o->y = pt.y_m;
-  /* eq. (19), per ERRATA item 5 */
+  /* eq. (19), per docs/method.md sec. 5 */
   o->ke = c->ke_a - c->mt * (c->a * (pt.x_m - c->xa) + c->g * (pt.y_m - c->ya));
   o->k1 = -c->dir * c->mt * (c->a * pt.dx_m + c->g * pt.dy_m);
   o->k2 = -c->mt * (c->a * pt.d2x_m + c->g * pt.d2y_m);
@@ -1018,6 +1018,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
 {
   memset(res, 0, sizeof *res);
   res->collapse_time_s = NAN;
+  res->first_set = res->peak_set = -1;
   res->steps_total = steps->n;
   st->cache_p = NULL;
   st->rest_since_s = NAN;
@@ -1071,6 +1072,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         rest = 0;
         rest_since = NAN;
         set = k;
+        if (res->first_set < 0)
+          res->first_set = k;
         m = (aq_motion){0, 0, 1, 0, 0};
       }
       double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
@@ -1156,6 +1159,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     i++;
   }
   res->peak_rotation_rad = S.peak_s;
+  res->peak_set = smax[1] > smax[0] ? 1 : smax[0] > 0 ? 0 : -1; /* peak_s = max(smax) */
   /* |x| depends on s alone: its peak is that of the path over the range of
    * s each set covered (exact, whatever the model's sampling) */
   res->peak_displacement_m = 0;

@@ -2,8 +2,8 @@
  * constant-acceleration steps (CVODE-like lifecycle: alloc, set options,
  * run, read counters from the result, free).
  *
- * Models: AQ_MODEL_WORKPATH (default: exact energy balance, ERRATA items
- * 4-9), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2; the
+ * Models: AQ_MODEL_WORKPATH (default: exact energy balance, docs/method.md
+ * sec. 4-9), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2; the
  * reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison only).
  * The stepper keeps pointers to the two paths (the arch outlives it).
  * One stepper per thread.  aq_stepper_free accepts NULL. */

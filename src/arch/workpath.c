@@ -4,13 +4,13 @@
  * an admissible set, every hinge).  Along s:
  *   x(s), y(s) = sum_b m_b (c_b(s) - c_b(0)) / m_T        (whole arch, m_T
  *                includes the fixed voussoirs, which do not move)
- *   M(s) = sum_b m_b |dc_b/ds|^2 + I_b (dphi_b/ds)^2        (ERRATA item 4)
+ *   M(s) = sum_b m_b |dc_b/ds|^2 + I_b (dphi_b/ds)^2        (docs/method.md sec. 4)
  *   lambda(s) = -act_sign (dy/ds) / (dx/ds)                  (virtual work,
- *                ERRATA item 5: sum m_i lambda g dx_i = g sum m_i dy_i)
+ *                docs/method.md sec. 5: sum m_i lambda g dx_i = g sum m_i dy_i)
  *   act_sign = -sign(dx/ds at 0): the inertial force -m a_g pushes along +s
  *                when a_g has the sign act_sign.
  *   s_c: the first s > 0 where dy/ds = 0 (lambda = 0: the unloaded potential
- *        energy peaks, ERRATA item 9), where the four-bar reaches its toggle,
+ *        energy peaks, docs/method.md sec. 9), where the four-bar reaches its toggle,
  *        or where a hinge would close again, whichever comes first (located
  *        by bisection to round-off after a scan in steps of SCAN_STEP_RAD).
  *

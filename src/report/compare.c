@@ -85,7 +85,9 @@ static size_t compare_pair(const aq_summary *a, const aq_summary *b,
       int64_t x = aq_summary_get_int(a, f), y = aq_summary_get_int(b, f);
       same = x == y;
       double m = fmax(fabs((double)x), fabs((double)y));
-      d.rel = m > 0 ? fabs((double)x - (double)y) / m : 0;
+      d.rel = x == AQ_SUMMARY_INT_NONE || y == AQ_SUMMARY_INT_NONE ? NAN
+              : m > 0                                              ? fabs((double)x - (double)y) / m
+                                                                   : 0;
       break;
     }
     case AQ_SF_DOUBLE: {
@@ -268,10 +270,13 @@ aq_status aq_h5_read_runs(const char *path, aq_summary **out, size_t *n,
       goto done;
     }
     aq_summary *s = &v[k];
+    aq_summary_fill(s, "", "", "", NAN, NAN, "", NULL); /* what an older file lacks */
     for (size_t i = 0; i < aq_summary_nfields; i++) {
       const aq_summary_field *fl = &aq_summary_fields[i];
       char *p = (char *)s + fl->offset;
       int rc = -1;
+      if (fl->optional && H5Aexists(g, fl->name) == 0)
+        continue;
       switch (fl->kind) {
       case AQ_SF_STR:
         rc = read_attr_str(g, fl->name, p, fl->size);

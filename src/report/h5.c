@@ -441,7 +441,8 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
     sp = -1;
     CK(attr_str(w, w->d_sum, "units",
                 "per member: scale 1, pga_g g, *_s s, *_rad rad, *_m m, *_j J, "
-                "collapsed and impacts counts"),
+                "collapsed and impacts counts (-1: failed run), lambda0_first g/g, "
+                "peak_rotation_over_qc 1, pga_over_lambda0_g 1"),
        "summary attributes");
   }
   *out = w;
@@ -530,6 +531,7 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
   }
   CK(attr_double(w, f, "scale_to_pga_g", r->scale_to_pga_g), "root attributes");
   CK(attr_int(w, f, "history", r->history ? 1 : 0), "root attributes");
+  CK(attr_str(w, f, "polarity", r->polarity ? r->polarity : "normal"), "root attributes");
   CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
   return AQ_OK;
 fail:
@@ -668,7 +670,8 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
 {
   aq_status st = AQ_OK;
   char obj[96], link[64];
-  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu", ri, ai, si);
+  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu%s", ri, ai, si,
+           strcmp(s->polarity, "reversed") == 0 ? "r" : "");
   hid_t g = -1;
   g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
   CK(g, "H5Gcreate");

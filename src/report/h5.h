@@ -49,6 +49,7 @@ typedef struct {
   double scale_to_pga_g;      /* --scale-to-pga target, g, or NAN */
   int history;                /* 1 with --history */
   long threads;               /* -j */
+  const char *polarity;       /* --polarity: normal | reversed | both (NULL: normal) */
 } aq_h5_root;
 
 /* One arch as loaded. */
@@ -95,7 +96,8 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
 aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
                              const aq_h5_record *r, aq_error *err);
 
-/* Run (record ri, arch ai, scale si): the summary s as attributes, plus the
+/* Run (record ri, arch ai, scale si, polarity s->polarity: a reversed run's
+ * group name ends in "r"): the summary s as attributes, plus the
  * histories of res if it holds any (res may be NULL for a failed run);
  * error is the run's one-line message or NULL; timing_run_s its wall time. */
 aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,

@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../arch/path.h"
 #include "../arch/result.h"
 #include "../error.h"
 
@@ -23,10 +24,15 @@
 #define AQ_SUMMARY_ARCH_MAX 128
 #define AQ_SUMMARY_MODEL_MAX 16
 #define AQ_SUMMARY_STATUS_MAX 48
+#define AQ_SUMMARY_POLARITY_MAX 16
+
+/* An integer result that a failed run did not compute (collapsed, impacts):
+ * the text writers show it as "nan", the HDF5 file stores it as is. */
+#define AQ_SUMMARY_INT_NONE (-1)
 
 /* One run's summary.  A run that failed (or whose record failed) has status
- * other than "ok", collapsed = 0, impacts = 0 and NAN for the numbers it
- * could not compute. */
+ * other than "ok" and no verdict: every result field (collapsed onwards) is
+ * NAN, or AQ_SUMMARY_INT_NONE for the integers. */
 typedef struct {
   char record[AQ_SUMMARY_RECORD_MAX]; /* record file as given on the command line */
   char arch[AQ_SUMMARY_ARCH_MAX];     /* arch name ([arch] name) */
@@ -34,14 +40,20 @@ typedef struct {
   double scale;                       /* factor applied to the processed record */
   double pga_g;                       /* PGA of the scaled processed record, g */
   char status[AQ_SUMMARY_STATUS_MAX]; /* "ok" or a short code such as "read:eformat" */
-  int64_t collapsed;                  /* 1 collapsed, 0 survived (or failed) */
+  int64_t collapsed;                  /* 1 collapsed, 0 survived, AQ_SUMMARY_INT_NONE failed */
   double collapse_time_s;             /* record time of collapse, s; NAN if it survived */
   double peak_rotation_rad;           /* max |q|, rad */
   double peak_displacement_m;         /* max |x - x0| of the arch's centroid, m */
   double max_kinetic_energy_j;        /* J */
-  int64_t impacts;                    /* returns to the undeformed shape */
+  int64_t impacts;                    /* returns to the undeformed shape (or _NONE) */
   double energy_in_j;                 /* work done by the ground, J */
   double energy_dissipated_j;         /* lost at impacts, J */
+  char polarity[AQ_SUMMARY_POLARITY_MAX]; /* "normal" (record as read) or "reversed" (negated) */
+  /* normalised results (NAN for a failed run) */
+  double lambda0_first;         /* lambda0 of the set the record drove first; NAN if it never moved */
+  double peak_rotation_over_qc; /* peak rotation / q_c of the set it occurred in (0 if never moved) */
+  double pga_over_lambda0_g;    /* pga_g / lambda0 of the set driven first (if none: the lower
+                                   admissible lambda0) */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -51,12 +63,15 @@ typedef struct {
   aq_summary_kind kind; /* AQ_SF_STR: char[size]; DOUBLE: double; INT: int64_t */
   size_t offset;        /* offsetof(aq_summary, field) */
   size_t size;          /* sizeof the field */
-  int key;              /* 1 for the fields that identify a run (record, arch, scale) */
+  int key;              /* 1 for the fields that identify a run (record, arch, scale, polarity) */
+  int optional;         /* 1: absent from files written before the field existed; read
+                           back as aq_summary_fill leaves it (polarity normal, NAN) */
 } aq_summary_field;
 
 /* The fields in column order (record arch model scale pga_g status collapsed
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
- * impacts energy_in_j energy_dissipated_j). */
+ * impacts energy_in_j energy_dissipated_j polarity lambda0_first
+ * peak_rotation_over_qc pga_over_lambda0_g). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
@@ -66,6 +81,12 @@ extern const size_t aq_summary_nfields;
 void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
                      const char *model, double scale, double pga_g,
                      const char *status, const aq_result *res);
+
+/* Set the polarity ("normal" or "reversed"; aq_summary_fill sets "normal")
+ * and the normalised fields of a run that has a result res, from the two
+ * hinge sets' paths of its arch (either may be NULL or inadmissible). */
+void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *res,
+                          const aq_path *primary, const aq_path *reverse);
 
 /* Short status code for a failure in a stage: "<stage>:<code>", e.g.
  * "read:eformat", "run:enumeric" (code = the aq_status name in lower case

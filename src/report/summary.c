@@ -8,7 +8,9 @@
 #include <string.h>
 
 #define AQ_SF(name, kind, key) \
-  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key}
+  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key, 0}
+#define AQ_SF_ADDED(name, kind, key) \
+  {#name, kind, offsetof(aq_summary, name), sizeof(((aq_summary *)0)->name), key, 1}
 
 const aq_summary_field aq_summary_fields[] = {
     AQ_SF(record, AQ_SF_STR, 1),
@@ -25,6 +27,10 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF(impacts, AQ_SF_INT, 0),
     AQ_SF(energy_in_j, AQ_SF_DOUBLE, 0),
     AQ_SF(energy_dissipated_j, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(polarity, AQ_SF_STR, 1),
+    AQ_SF_ADDED(lambda0_first, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -43,8 +49,12 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   copy_str(s->arch, sizeof s->arch, arch);
   copy_str(s->model, sizeof s->model, model);
   copy_str(s->status, sizeof s->status, status);
+  copy_str(s->polarity, sizeof s->polarity, "normal");
   s->scale = scale;
   s->pga_g = pga_g;
+  s->lambda0_first = NAN; /* aq_summary_normalise fills them */
+  s->peak_rotation_over_qc = NAN;
+  s->pga_over_lambda0_g = NAN;
   if (res) {
     s->collapsed = res->collapsed ? 1 : 0;
     s->collapse_time_s = res->collapsed ? res->collapse_time_s : NAN;
@@ -55,15 +65,39 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
     s->energy_in_j = res->energy_in_j;
     s->energy_dissipated_j = res->energy_dissipated_j;
   } else {
-    s->collapsed = 0;
+    s->collapsed = AQ_SUMMARY_INT_NONE; /* no verdict: not "survived" */
     s->collapse_time_s = NAN;
     s->peak_rotation_rad = NAN;
     s->peak_displacement_m = NAN;
     s->max_kinetic_energy_j = NAN;
-    s->impacts = 0;
+    s->impacts = AQ_SUMMARY_INT_NONE;
     s->energy_in_j = NAN;
     s->energy_dissipated_j = NAN;
   }
+}
+
+void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *res,
+                          const aq_path *primary, const aq_path *reverse)
+{
+  copy_str(s->polarity, sizeof s->polarity, polarity ? polarity : "normal");
+  if (!res)
+    return; /* a failed run: no verdict, the fields stay NAN */
+  const aq_path *set[2] = {primary, reverse};
+  for (int k = 0; k < 2; k++)
+    if (set[k] && !set[k]->admissible)
+      set[k] = NULL;
+  const aq_path *first = res->first_set >= 0 ? set[res->first_set] : NULL;
+  s->lambda0_first = first ? first->lambda0 : NAN;
+  const aq_path *peak = res->peak_set >= 0 ? set[res->peak_set] : NULL;
+  s->peak_rotation_over_qc = peak                          ? res->peak_rotation_rad / peak->s_c_rad
+                             : res->peak_rotation_rad == 0 ? 0
+                                                           : NAN;
+  /* the set driven first, else the one the record would have to drive */
+  double l0 = first ? first->lambda0 : NAN;
+  for (int k = 0; !first && k < 2; k++)
+    if (set[k] && !(set[k]->lambda0 >= l0))
+      l0 = set[k]->lambda0;
+  s->pga_over_lambda0_g = s->pga_g / l0;
 }
 
 void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)

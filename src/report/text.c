@@ -15,6 +15,14 @@ void aq_text_double(char *buf, size_t n, double x)
     snprintf(buf, n, "%.17g", x);
 }
 
+void aq_text_int(char *buf, size_t n, int64_t x)
+{
+  if (x == AQ_SUMMARY_INT_NONE)
+    snprintf(buf, n, "nan"); /* a failed run: no value, as for the doubles */
+  else
+    snprintf(buf, n, "%" PRId64, x);
+}
+
 static int put_str(FILE *f, const char *s)
 {
   for (; *s; s++) {
@@ -51,7 +59,8 @@ int aq_text_row(FILE *f, const aq_summary *s)
       rc = fputs(num, f) == EOF ? -1 : 0;
       break;
     case AQ_SF_INT:
-      rc = fprintf(f, "%" PRId64, aq_summary_get_int(s, fl)) < 0 ? -1 : 0;
+      aq_text_int(num, sizeof num, aq_summary_get_int(s, fl));
+      rc = fputs(num, f) == EOF ? -1 : 0;
       break;
     }
     if (rc || putc(i + 1 < aq_summary_nfields ? '\t' : '\n', f) == EOF)
@@ -122,7 +131,8 @@ int aq_text_row_aligned(FILE *f, const aq_text_layout *L, const aq_summary *s)
       break;
     }
     case AQ_SF_INT:
-      rc = fprintf(f, "%*" PRId64 "%s", L->width[i], aq_summary_get_int(s, fl), sep);
+      aq_text_int(cell, sizeof cell, aq_summary_get_int(s, fl));
+      rc = fprintf(f, "%*s%s", L->width[i], cell, sep);
       break;
     }
     if (rc < 0)

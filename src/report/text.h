@@ -7,12 +7,17 @@
 #ifndef AQ_REPORT_TEXT_H
 #define AQ_REPORT_TEXT_H
 
+#include <stdint.h>
 #include <stdio.h>
 
 #include "report.h"
 
 /* Format x as the text writer does into buf (n >= 32). */
 void aq_text_double(char *buf, size_t n, double x);
+
+/* Format an integer field as the text writer does (AQ_SUMMARY_INT_NONE as
+ * "nan") into buf (n >= 32). */
+void aq_text_int(char *buf, size_t n, int64_t x);
 
 /* Write the header row.  Returns 0, or -1 if the write failed (errno set). */
 int aq_text_header(FILE *f);

@@ -1,24 +1,30 @@
 /* baseline.c: baseline correction of an accelerogram (see signal.h):
- * detrend, Hann taper, zero pads, acausal Butterworth filter, scale.
+ * detrend, optional taper, zero pads with cosine junctions, acausal
+ * Butterworth filter, scale.
  *
  * Order of operations (docs/processing.md):
- *   1. detrend the original samples: remove the mean, or the least-squares
- *      line (gsl_fit_linear), or nothing;
- *   2. Hann (cosine) taper over taper_frac of the record at each end;
+ *   1. detrend the original samples: remove the least-squares line (closed
+ *      form; the default), or the mean, or nothing;
+ *   2. with --taper FRAC > 0 only: Hann (cosine) taper over FRAC of the
+ *      record at each end (default 0: the record itself is not tapered);
  *   3. zero pads: total 1.5 n / fc seconds (n = order, fc = high-pass corner;
  *      Converse & Brady 1992, Boore 2005 BSSA 95(2) 745-750), half before and
  *      half after the record, then more zeros after it up to a fast FFT size
  *      2^a 3^b 5^c; the pads stay in the processed record (pad_front marks the
  *      original first sample) so that velocity and displacement integrated
  *      from it are consistent with the filtered acceleration (Boore 2005);
- *   4. acausal Butterworth high-pass (and optional low-pass) as |H| applied
+ *   4. junctions: the pad samples next to the record take a half-cosine
+ *      from the record's end value down to 0 over AQ_JUNCTION_S (or 1/fl
+ *      with a low-pass; at most the pad), so the padded series has no step
+ *      for the filter to ring on, and no sample of the record is weighted
+ *      down;
+ *   5. acausal Butterworth high-pass (and optional low-pass) as |H| applied
  *      once in the frequency domain (filter.c);
- *   5. multiply by the scale factor.
- * With filter = 0 (--no-filter) steps 2-4 are skipped and there are no pads.
+ *   6. multiply by the scale factor.
+ * With filter = 0 (--no-filter) steps 2-5 are skipped and there are no pads.
  */
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_fit.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,14 +35,21 @@
 
 /* Converse & Brady (1992) / Boore (2005): total pad length = this * n / fc. */
 #define AQ_PAD_FACTOR 1.5
+/* Junction length, s: the half-cosine that joins each end of the record to
+ * its zero pad lasts this long, or one period of the low-pass corner if
+ * that is longer (a step would ring at the low-pass corner).  0.1 s changes
+ * the PGV of the shipped PEER records by at most 0.3 %; 1/fc (33 s) would
+ * add up to 24 % (IELC180 starts at -6.4 mg; docs/processing.md). */
+#define AQ_JUNCTION_S 0.1
 #define AQ_ORDER_MAX 64 /* beyond this the response is a brick wall anyway */
 
 void aq_signal_opts_default(aq_signal_opts *o)
 {
-  o->detrend = AQ_DETREND_MEAN;
-  o->taper_frac = 0.05;
+  o->detrend = AQ_DETREND_LINEAR;
+  o->taper_frac = 0;
   o->filter = 1;
-  o->highpass_hz = 0.05;
+  o->highpass_hz = AQ_HIGHPASS_DEFAULT_HZ;
+  o->highpass_auto = 1;
   o->order = 4;
   o->lowpass_hz = 0;
   o->scale = 1.0;
@@ -131,37 +144,31 @@ static aq_status check_opts(const aq_record *rec, const aq_signal_opts *o,
   return AQ_OK;
 }
 
+/* Remove the mean, or the least-squares line a + b i against the sample
+ * index (times scale out), or nothing.  The line in closed form, two passes,
+ * no allocation: with c = (n - 1)/2 (the mean index), b = sum (i - c) y_i /
+ * S with S = sum (i - c)^2 = n (n^2 - 1) / 12, and a + b i = mean + b (i - c). */
 static aq_status detrend(double *y, size_t n, aq_detrend how, const char *in,
                          aq_error *err)
 {
   if (how == AQ_DETREND_NONE)
     return AQ_OK;
-  if (how == AQ_DETREND_MEAN || n < 2) {
-    double mean = 0;
+  double mean = 0;
+  for (size_t i = 0; i < n; i++)
+    mean += y[i];
+  mean /= (double)n;
+  double b = 0, c = 0.5 * ((double)n - 1.0);
+  if (how == AQ_DETREND_LINEAR && n >= 2) {
+    double dn = (double)n, sxy = 0;
     for (size_t i = 0; i < n; i++)
-      mean += y[i];
-    mean /= (double)n;
-    for (size_t i = 0; i < n; i++)
-      y[i] -= mean;
-    return AQ_OK;
+      sxy += ((double)i - c) * (y[i] - mean);
+    b = sxy / (dn * (dn * dn - 1.0) / 12.0);
+    if (!isfinite(b))
+      return aq_error_set(err, AQ_ENUMERIC, in, -1, -1, "--detrend",
+                          "expected a finite least-squares slope, got %g", b);
   }
-  /* least-squares line against the sample index (times scale out) */
-  double *x = malloc(n * sizeof *x);
-  if (!x)
-    return aq_error_set(err, AQ_ENOMEM, in, -1, -1, "--detrend",
-                        "cannot allocate %zu samples", n);
   for (size_t i = 0; i < n; i++)
-    x[i] = (double)i;
-  double c0, c1, cov00, cov01, cov11, sumsq;
-  int gs = gsl_fit_linear(x, 1, y, 1, n, &c0, &c1, &cov00, &cov01, &cov11,
-                          &sumsq);
-  free(x);
-  if (gs != GSL_SUCCESS || !isfinite(c0) || !isfinite(c1))
-    return aq_error_set(err, AQ_ENUMERIC, in, -1, -1, "--detrend",
-                        "linear least-squares fit failed: %s",
-                        gsl_strerror(gs));
-  for (size_t i = 0; i < n; i++)
-    y[i] -= c0 + c1 * (double)i;
+    y[i] -= mean + b * ((double)i - c);
   return AQ_OK;
 }
 
@@ -179,11 +186,35 @@ static void taper(double *y, size_t n, double frac)
   }
 }
 
-aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
+/* Half-cosine junctions in the pads: the m pad samples before y[0] rise
+ * from 0 to y[0] as (1 - cos(pi k / m)) / 2 (k = 1..m counted from the far
+ * end), likewise after y[n-1]; the record's own samples are untouched. */
+static void junctions(double *y, size_t n, size_t m_front, size_t m_back)
+{
+  for (size_t k = 1; k <= m_front; k++)
+    y[-(ptrdiff_t)k] =
+        y[0] * 0.5 * (1.0 + cos(AQ_PI * (double)k / (double)(m_front + 1)));
+  for (size_t k = 1; k <= m_back; k++)
+    y[n - 1 + k] =
+        y[n - 1] * 0.5 * (1.0 + cos(AQ_PI * (double)k / (double)(m_back + 1)));
+}
+
+aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *opts,
                             aq_signal_ws *ws, aq_processed *out,
                             aq_error *err)
 {
   memset(out, 0, sizeof *out);
+  /* the default corner rises to 1/duration on a record shorter than its
+   * period (an explicit --highpass is checked as given) */
+  aq_signal_opts use = *opts;
+  const aq_signal_opts *o = &use;
+  double dur_s = (double)rec->npts * rec->dt_s;
+  if (use.filter && use.highpass_auto && dur_s > 0 && isfinite(dur_s) &&
+      use.highpass_hz > 0 && dur_s < 1.0 / use.highpass_hz) {
+    use.highpass_hz = 1.0 / dur_s;
+    while (dur_s < 1.0 / use.highpass_hz) /* at most a few ulps */
+      use.highpass_hz = nextafter(use.highpass_hz, INFINITY);
+  }
   aq_status st = check_opts(rec, o, err);
   if (st != AQ_OK)
     return st;
@@ -230,6 +261,12 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
   st = detrend(y, n, o->detrend, in, err);
   if (st == AQ_OK && o->filter) {
     taper(y, n, o->taper_frac);
+    double junction_s = AQ_JUNCTION_S;
+    if (o->lowpass_hz > 0 && 1.0 / o->lowpass_hz > junction_s)
+      junction_s = 1.0 / o->lowpass_hz;
+    size_t m = (size_t)ceil(junction_s / rec->dt_s);
+    size_t back = ntot - front - n;
+    junctions(y, n, m < front ? m : front, m < back ? m : back);
     st = aq_filter_apply(ws, a, ntot, rec->dt_s, o, o->scale, in, err);
   } else if (st == AQ_OK && o->scale != 1.0) {
     for (size_t i = 0; i < ntot; i++)

@@ -20,14 +20,22 @@ typedef enum { AQ_DETREND_MEAN = 0, AQ_DETREND_LINEAR, AQ_DETREND_NONE } aq_detr
 
 /* Processing options; aq_signal_opts_default() gives the documented defaults. */
 typedef struct {
-  aq_detrend detrend; /* --detrend (default mean) */
-  double taper_frac;  /* --taper: Hann taper length at each end / record length (default 0.05) */
-  int filter;         /* 0 with --no-filter (skips taper and filter) */
-  double highpass_hz; /* --highpass corner (default 0.05 Hz) */
+  aq_detrend detrend; /* --detrend (default linear) */
+  double taper_frac;  /* --taper: Hann taper length at each end / record length (default 0: none) */
+  int filter;         /* 0 with --no-filter (skips taper, pads and filter) */
+  double highpass_hz; /* --highpass corner (default AQ_HIGHPASS_DEFAULT_HZ) */
+  int highpass_auto;  /* 1 (default, cleared by --highpass): a record shorter
+                         than 1/highpass_hz gets the corner 1/duration instead
+                         of being refused */
   int order;          /* --order of the Butterworth high-pass (default 4) */
   double lowpass_hz;  /* --lowpass corner, 0 = off (default off) */
   double scale;       /* multiply the processed record by this (default 1) */
 } aq_signal_opts;
+
+/* The default high-pass corner, Hz: low enough to keep the long-period
+ * content that agencies keep (PEER's corners on the shipped records are
+ * 0.03-0.2 Hz; docs/processing.md). */
+#define AQ_HIGHPASS_DEFAULT_HZ 0.03
 
 void aq_signal_opts_default(aq_signal_opts *o);
 

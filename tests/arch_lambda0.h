@@ -1,0 +1,41 @@
+/* arch_lambda0.h: lambda0 of a hinge set by the 9x9 equilibrium (eq. (3)),
+ * a second way to get it besides the search's virtual work: the tests'
+ * brute-force references. */
+#ifndef AQ_TESTS_ARCH_LAMBDA0_H
+#define AQ_TESTS_ARCH_LAMBDA0_H
+
+#include "arch/model.h"
+
+/* lambda0 of hs by the 9x9 equilibrium, of either sign; 1 if every hinge
+ * opens at first order and every hinge reaction is compressive. */
+static inline int aq_test_lambda0_eq(const aq_geom *g, const aq_hinge_set *hs, double *l0)
+{
+  aq_mech m;
+  aq_mech_state st;
+  aq_equil eq;
+  aq_error e;
+  if (aq_mech_init(&m, g, hs, &e) != AQ_OK || aq_mech_eval(&m, 0.0, &st) != 0)
+    return 0;
+  int qs = hs->face[0] == 'i' ? 1 : -1;
+  double rate[4] = {1, st.phi[1][1] - 1, st.phi[2][1] - st.phi[1][1], -st.phi[2][1]};
+  for (int k = 0; k < 4; k++)
+    if (!((hs->face[k] == 'i' ? 1 : -1) * qs * rate[k] > 0))
+      return 0;
+  /* the horizontal load acts in the direction that does work on the
+   * mechanism as its hinges open: act_sign * q_sign * sum m dx/dq < 0 */
+  double wx = 0;
+  for (int b = 0; b < 3; b++)
+    wx += m.body[b].mass_kg * st.c[b][1].x;
+  if (wx == 0)
+    return 0;
+  aq_live live = {AQ_LIVE_HORIZONTAL, qs * wx > 0 ? -1 : 1, {0, 0}, 0, 9.80665};
+  if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
+    return 0;
+  for (int k = 0; k < 4; k++)
+    if (!(eq.normal[k] > 0))
+      return 0;
+  *l0 = eq.lambda;
+  return 1;
+}
+
+#endif
