@@ -14,12 +14,13 @@ its block says "equivalent: REASON" (listed in docs/testing.md).
 
 Usage: python3 tests/mutate.py [SUBSTRING]   (only mutants whose id contains it)
 Environment (set by the Makefile): CC, AQ_CFLAGS, AQ_LIBS, LDFLAGS;
-MUTATE_TIMEOUT (s per mutant's tests, default 300).
+MUTATE_TIMEOUT (s per run of the tests, default 120; a hang counts as killed).
 Prints one line per mutant, then "N mutants, K survived"; exit status 1 if
 a mutant not marked equivalent survived, or one is stale.
 """
 import os
 import shlex
+import signal
 import subprocess
 import sys
 import time
@@ -70,13 +71,27 @@ def parse_list(path):
     return muts
 
 
+def run_tests(cmd, env, timeout):
+    """Run the runner in its own process group; on timeout end the whole
+    group (a mutant may make a CLI the tests start loop for ever)."""
+    p = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        raise
+    return subprocess.CompletedProcess(cmd, p.returncode, out, err)
+
+
 def main():
     os.chdir(ROOT)
     cc = os.environ.get("CC", "cc")
     cflags = shlex.split(os.environ.get("AQ_CFLAGS", "-std=c11 -Isrc"))
     libs = shlex.split(os.environ.get("AQ_LIBS", "-lm"))
     ldflags = shlex.split(os.environ.get("LDFLAGS", ""))
-    timeout = float(os.environ.get("MUTATE_TIMEOUT", "300"))
+    timeout = float(os.environ.get("MUTATE_TIMEOUT", "120"))
     only = sys.argv[1] if len(sys.argv) > 1 else ""
     muts = [m for m in parse_list(LIST) if only in m[0]]
     lib_src = sorted(
@@ -140,11 +155,9 @@ def main():
             first = next((f for pre, f in STAGE_TESTS if path.startswith(pre)), None)
             rp = None
             if first:
-                rp = subprocess.run([runner, first], env=env, stdout=subprocess.PIPE,
-                                    stderr=subprocess.PIPE, timeout=timeout)
+                rp = run_tests([runner, first], env, timeout)
             if rp is None or rp.returncode == 0:
-                rp = subprocess.run([runner], env=env, stdout=subprocess.PIPE,
-                                    stderr=subprocess.PIPE, timeout=timeout)
+                rp = run_tests([runner], env, timeout)
             if rp.returncode == 0:
                 verdict = "SURVIVED" + (" (equivalent: %s)" % equiv if equiv else "")
                 survived.append(mid)

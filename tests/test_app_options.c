@@ -46,6 +46,7 @@ AQ_TEST(app_options_out_of_range_refused)
       {PULSE, "--max-end", "0"},        {"domain --arch arches/thin.cfg", "--ratios", "0.5"},
       {"domain --arch arches/thin.cfg", "--cor", "-1"},
       {"domain --arch arches/thin.cfg", "--tol", "0"},
+      {"domain --arch arches/thin.cfg", "--tol", "1e-300"}, /* would bisect for ever */
       {"domain --arch arches/thin.cfg", "--max-duration", "0"},
       {"mechanism --arch arches/thin.cfg", "--points", "1"},
       {"compare records/a.h5 records/b.h5", "--rtol", "1.5"},
