@@ -16,6 +16,10 @@
 #include "app.h"
 #include "opt.h"
 
+/* Smallest --tol, s: a finer bisection of durations of 0.01-100 s would reach
+ * the spacing of doubles, where hi - lo stops shrinking. */
+#define AQ_DOMAIN_TOL_MIN_S 1e-12
+
 static const char usage[] =
     "usage: archquake domain --arch FILE [OPTIONS]\n"
     "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
@@ -29,7 +33,7 @@ static const char usage[] =
     "                   momentum, which the runs then follow)\n"
     "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
-    "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
+    "  --tol S          bisection tolerance on the duration, s, 1e-12..1 (default 1e-9)\n"
     "  --max-duration S give up above this duration, s (default 100)\n"
     "  --help           this text\n"
     "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
@@ -94,7 +98,7 @@ int aq_cmd_domain(int argc, char **argv)
       rtol_given = 1;
       break;
     case 't':
-      aq_opt_double_gt("--tol", optarg, 0, 1, &tol, &nerr);
+      aq_opt_double("--tol", optarg, AQ_DOMAIN_TOL_MIN_S, 1, &tol, &nerr);
       break;
     case 'M':
       aq_opt_double_gt("--max-duration", optarg, 0, 3600, &tmax, &nerr);
