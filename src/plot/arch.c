@@ -87,15 +87,15 @@ static int draw(void *ctx, aq_error *err)
   size_t n = g->p.voussoirs;
   PLFLT x[2 * ARC_PTS + 1], y[2 * ARC_PTS + 1];
   double re = g->r_e_m, span = 2 * re;
-  double ylo = fmin(0, re * cos(0.5 * g->p.embrace_rad)) - 0.45 * re;
-  if (f->set >= 0)
-    ylo -= 0.1 * re;
+  /* from just below the arch's lowest point (its springings); the legend
+   * goes below the frame */
+  double ybot = fmin(g->r_i_m, g->r_e_m) * cos(0.5 * g->p.embrace_rad);
+  double ylo = ybot - 0.08 * (re - ybot);
   pladv(0);
   plschr(0, 0.9);
-  plvpor(0.1, 0.95, 0.1, 0.9);
-  plwind(-0.6 * span, 0.6 * span, ylo, re * 1.1);
-  plvpas(0.1, 0.95, 0.1, 0.9, 0); /* equal scales: the arch to scale */
-  plwind(-0.6 * span, 0.6 * span, ylo, re * 1.1);
+  double xlo = -0.6 * span, xhi = 0.6 * span, yhi = re * 1.1;
+  plvpas(0.1, 0.95, 0.33, 0.92, (yhi - ylo) / (xhi - xlo)); /* equal scales: to scale */
+  plwind(xlo, xhi, ylo, yhi);
   plcol0(AQ_PC_LIGHT);
   plbox("g", 0, 0, "g", 0, 0);
   plcol0(AQ_PC_FG);
@@ -169,7 +169,8 @@ static int draw(void *ctx, aq_error *err)
     sy[4] = "";
     nl = 5;
   }
-  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_BOTTOM, nl, t, c, st, sy);
+  plvpor(0.1, 0.95, 0.01, 0.21);
+  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP, nl, t, c, st, sy);
   return 0;
 }
 

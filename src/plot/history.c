@@ -127,7 +127,7 @@ static void panel(const hist *h, double y0, double y1, double lo, double hi,
                   int bottom, const char *ytitle)
 {
   double pad = 0.06 * (hi - lo);
-  plvpor(0.12, 0.70, y0, y1);
+  plvpor(0.12, 0.68, y0, y1);
   plwind(h->t0_s, h->t1_s, lo - pad, hi + pad);
   plcol0(AQ_PC_LIGHT);
   plbox("g", 0, 0, "g", 0, 0);
@@ -157,12 +157,11 @@ static int draw(void *ctx, aq_error *err)
   plschr(0, 0.85);
   plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
   const char *base = strrchr(r->record, '/');
-  snprintf(title, sizeof title, "%s on arch %s, scale %g%s (run %s)",
-           base ? base + 1 : r->record, r->arch, r->scale,
-           r->reversed ? ", reversed" : "", r->key);
-  plvpor(0.12, 0.70, 0.08, 0.93);
+  base = base ? base + 1 : r->record;
+  snprintf(title, sizeof title, "%.60s on arch %.40s: scale %g%s, run %s", base, r->arch,
+           r->scale, r->reversed ? " reversed" : "", r->key);
+  plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
   plmtex("t", 1.2, 0.5, 0.5, title);
-
   /* ground */
   double lo, hi;
   aq_plot_range(h->ag_g, r->na, &lo, &hi);
@@ -190,7 +189,7 @@ static int draw(void *ctx, aq_error *err)
   aq_plot_range(r->q_rad, r->n, &lo, &hi);
   double peak = fmax(fabs(lo), fabs(hi));
   /* +-q_c on the axis unless the rotation would be a flat line under them */
-  int qc_shown = peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
+  int qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
   for (int s = 0; s < 2 && qc_shown; s++) {
     lo = fmin(lo, -r->q_c_rad[s]);
     hi = fmax(hi, r->q_c_rad[s]);
@@ -212,10 +211,8 @@ static int draw(void *ctx, aq_error *err)
       free(zero);
     }
   }
-  snprintf(qcp, sizeof qcp, "±q#dc#u, primary (%.3g rad)%s", r->q_c_rad[0],
-           qc_shown ? "" : ", off scale");
-  snprintf(qcr, sizeof qcr, "±q#dc#u, reverse (%.3g rad)%s", r->q_c_rad[1],
-           qc_shown ? "" : ", off scale");
+  snprintf(qcp, sizeof qcp, "±q#dc#u, primary (%.3g rad)", r->q_c_rad[0]);
+  snprintf(qcr, sizeof qcr, "±q#dc#u, reverse (%.3g rad)", r->q_c_rad[1]);
   {
     char imp[64];
     snprintf(imp, sizeof imp, "impact (%zu)", h->nimp);
@@ -223,6 +220,12 @@ static int draw(void *ctx, aq_error *err)
     int c[] = {AQ_PC_FG, AQ_PC_BLUE, AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_RED};
     int st[] = {1, 2, 3, 0, 1};
     const char *sy[] = {"", "", "", "◆", ""};
+    if (!qc_shown) { /* the q_c entries say so instead of showing a line */
+      t[1] = r->q_c_rad[0] < r->q_c_rad[1] ? qcp : qcr;
+      t[2] = "(±q#dc#u off scale)";
+      c[1] = c[2] = AQ_PC_FG;
+      st[1] = st[2] = 0;
+    }
     aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT,
                    r->collapsed == 1 ? 5 : 4, t, c, st, sy);
   }

@@ -9,6 +9,7 @@
 
 #include "plot.h"
 
+static const size_t NAME_MAX_CHARS = 34; /* record names longer are cut */
 static const char *const AX_KEY = "peak rotation / q#dc#u (1)";
 
 typedef struct {
@@ -56,7 +57,7 @@ static int draw(void *ctx, aq_error *err)
   const map *m = ctx;
   pladv(0);
   plschr(0, 0.85);
-  plvpor(0.34, 0.80, 0.1, 0.9);
+  plvpor(0.34, 0.80, 0.14, 0.9);
   plwind(0, (double)m->narch, (double)m->nrec, 0);
   /* white (never moved) through yellow and orange to brown (about to
    * collapse); collapse itself is red, outside the scale */
@@ -85,13 +86,21 @@ static int draw(void *ctx, aq_error *err)
   plcol0(AQ_PC_FG);
   plbox("bc", 1, 0, "bc", 1, 0);
   for (size_t i = 0; i < m->nrec; i++)
-    plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, base(m->rec[i]));
+  {
+    char name[48];
+    const char *b = base(m->rec[i]);
+    if (strlen(b) > NAME_MAX_CHARS) /* keep the left margin: the start and "..." */
+      snprintf(name, sizeof name, "%.*s...", (int)NAME_MAX_CHARS - 3, b);
+    else
+      snprintf(name, sizeof name, "%s", b);
+    plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, name);
+  }
   for (size_t j = 0; j < m->narch; j++)
     plmtex("t", 0.8, (j + 0.5) / (double)m->narch, 0.5, m->arch[j]);
   char t[512];
-  snprintf(t, sizeof t, "%s: records (rows) against arches (columns), worst run over "
-           "scales and polarities; red: collapse", base(m->source));
+  snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
   plmtex("b", 1.6, 0.5, 0.5, t);
+  plmtex("b", 2.9, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");
   /* the colour key */
   PLFLT w, hgt, vals[11];
   for (int k = 0; k <= 10; k++)
