@@ -27,6 +27,7 @@ int main(void)
   snprintf(cmd, sizeof cmd,
            "./archquake tests/data/records/ARL360.at2 tests/data/records/IELC180.AT2 "
            "--arch arches/oppenheim.cfg --arch arches/thick.cfg --scale 5,10 --history "
+           "--store-records "
            "-o %s >/dev/null",
            h5);
   if (system(cmd) != 0)
@@ -34,11 +35,10 @@ int main(void)
   aq_error err;
   aq_plot_run run;
   aq_arch *arch = NULL;
-  aq_summary *runs = NULL;
-  size_t nruns = 0;
+  aq_h5_suite S;
   if (aq_plot_run_read(h5, "00000_000_001", &run, &err) != AQ_OK ||
       aq_arch_load("arches/oppenheim.cfg", &arch, &err) != AQ_OK ||
-      aq_h5_read_runs(h5, &runs, &nruns, &err) != AQ_OK) {
+      aq_h5_read_suite(h5, &S, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return 1;
   }
@@ -54,7 +54,7 @@ int main(void)
   aq_stepper_free(st);
   printf("plot: history of %zu samples (ground %zu), suite of %zu runs; "
          "domain computed in %.3f s (12 ratios, 1e-6 s), not in the times below\n",
-         run.n, run.na, nruns, domain_s);
+         run.n, run.na, S.nruns, domain_s);
   printf("%-8s %-4s %12s %10s %14s\n", "figure", "fmt", "median_s", "bytes", "ratio_to_arch");
   static const char *const figs[] = {"history", "arch", "domain", "suite"};
   static const char *const fmts[] = {"png", "svg", "pdf"};
@@ -69,7 +69,7 @@ int main(void)
                        : f == 1 ? aq_plot_arch(arch, 0.15, out, NULL, &t[r], &err)
                        : f == 2 ? aq_plot_domain("oppenheim", pp->lambda0, ratio, dur, NR, 100,
                                                  out, NULL, &t[r], &err)
-                                : aq_plot_suite(runs, nruns, h5, out, NULL, &t[r], &err);
+                                : aq_plot_suite(S.runs, S.nruns, h5, out, NULL, &t[r], &err);
         if (rc != AQ_OK) {
           aq_error_print(&err, stderr);
           return 1;
@@ -85,7 +85,7 @@ int main(void)
   }
   aq_plot_run_free(&run);
   aq_arch_free(arch);
-  free(runs);
+  aq_h5_suite_free(&S);
   remove(h5);
   rmdir(dir);
   return 0;

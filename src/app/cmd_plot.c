@@ -206,12 +206,14 @@ int aq_cmd_plot(int argc, char **argv)
     rc = plot_domain(&o, arch, &err);
     break;
   case FIG_SUITE: {
-    aq_summary *runs = NULL;
-    size_t n = 0;
-    if (aq_h5_read_runs(o.input, &runs, &n, &err) != AQ_OK ||
-        aq_plot_suite(runs, n, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+    aq_h5_suite S;
+    if (aq_h5_read_suite(o.input, &S, &err) != AQ_OK) {
       rc = fail(&err);
-    free(runs);
+      break;
+    }
+    if (aq_plot_suite(S.runs, S.nruns, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_h5_suite_free(&S);
     break;
   }
   }

@@ -70,6 +70,8 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
     if (k > 0) {
       double tm = 0.5 * (r->t_s[k - 1] + r->t_s[k]);
       w -= r->mass_kg * ground_at(r, tm) * (r->x_m[k] - r->x_m[k - 1]); /* sec. 5 */
+      if (!r->na) /* no ground in the file: no work */
+        w = NAN;
       double qa = r->q_rad[k - 1], qb = r->q_rad[k];
       if (qa != 0 && (qb == 0 || (qa > 0) != (qb > 0))) /* back through q = 0 */
         h->imp_t_s[h->nimp++] =
@@ -87,9 +89,9 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
   /* the time axis: the record without its zero pads, and any motion */
   h->t0_s = INFINITY;
   h->t1_s = -INFINITY;
-  if (r->n_orig > 0) {
+  if (r->n_orig > 0 && r->rec_dt_s > 0) {
     h->t0_s = 0;
-    h->t1_s = (double)r->n_orig * r->ag_dt_s;
+    h->t1_s = (double)r->n_orig * r->rec_dt_s;
   }
   for (size_t k = 0; k < n; k++)
     if (r->q_rad[k] != 0 || r->ke_j[k] != 0) {
@@ -171,7 +173,11 @@ static int draw(void *ctx, aq_error *err)
   }
   panel(h, 0.67, 0.93, lo, hi, 0, AX_GROUND);
   plcol0(AQ_PC_GREY);
-  plline((PLINT)r->na, h->ag_t_s, h->ag_g);
+  if (r->na)
+    plline((PLINT)r->na, h->ag_t_s, h->ag_g);
+  else
+    plptex(0.5 * (h->t0_s + h->t1_s), 0.5 * (lo + hi), 1, 0, 0.5,
+           "not stored: run with --store-records");
   for (int s = 0; s < 2; s++)
     for (int sg = -1; sg <= 1; sg += 2)
       hline(h->t0_s, h->t1_s, sg * r->lambda0[s] * gr, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
@@ -179,10 +185,9 @@ static int draw(void *ctx, aq_error *err)
   snprintf(l0p, sizeof l0p, "±#gl#d0#u g, primary (%.3g g)", r->lambda0[0] * gr);
   snprintf(l0r, sizeof l0r, "±#gl#d0#u g, reverse (%.3g g)", r->lambda0[1] * gr);
   {
-    const char *t[] = {"ground", l0p, l0r};
-    int c[] = {AQ_PC_GREY, AQ_PC_BLUE, AQ_PC_ORANGE}, st[] = {1, 2, 3};
-    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, 3, t,
-                   c, st, NULL);
+    const char *t[] = {l0p, l0r, "ground"};
+    int c[] = {AQ_PC_BLUE, AQ_PC_ORANGE, AQ_PC_GREY}, st[] = {2, 3, 1};
+    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, r->na ? 3 : 2, t, c, st, NULL);
   }
 
   /* rotation */
@@ -241,10 +246,10 @@ static int draw(void *ctx, aq_error *err)
   hi = fmax(hi, b);
   double unit = h->e_unit;
   panel(h, 0.09, 0.35, lo / unit, hi / unit, 1, unit > 1 ? AX_E_KJ : AX_E_J);
-  const double *e[3] = {h->w_j, r->pe_j, r->ke_j};
-  const int ec[3] = {AQ_PC_GREEN, AQ_PC_BLUE, AQ_PC_RED};
+  const double *e[3] = {r->pe_j, r->ke_j, h->w_j};
+  const int ec[3] = {AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN};
   PLFLT *y = malloc((r->n ? r->n : 1) * sizeof *y);
-  for (int j = 0; j < 3 && y; j++) {
+  for (int j = 0; j < (r->na ? 3 : 2) && y; j++) {
     for (size_t k = 0; k < r->n; k++)
       y[k] = e[j][k] / unit;
     plcol0(ec[j]);
@@ -252,10 +257,10 @@ static int draw(void *ctx, aq_error *err)
   }
   free(y);
   {
-    const char *t[] = {"kinetic", "potential", "work in"};
-    int c[] = {AQ_PC_RED, AQ_PC_BLUE, AQ_PC_GREEN}, st[] = {1, 1, 1};
-    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, 3, t,
-                   c, st, NULL);
+    const char *t[] = {"kinetic", "potential", r->na ? "work in" : "(work in: no ground)"};
+    int c[] = {AQ_PC_RED, AQ_PC_BLUE, r->na ? AQ_PC_GREEN : AQ_PC_FG};
+    int st[] = {1, 1, r->na ? 1 : 0};
+    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, 3, t, c, st, NULL);
   }
   return 0;
 }
@@ -281,7 +286,7 @@ static aq_status write_data(const hist *h, const char *data, aq_error *err)
   static const char *names[] = {"rotation_rad", "kinetic_energy_j",
                                 "potential_energy_j", "work_in_j"};
   const double *v[] = {r->q_rad, r->ke_j, r->pe_j, h->w_j};
-  for (size_t j = 0; j < 4; j++)
+  for (size_t j = 0; j < (r->na ? 4 : 3); j++)
     for (size_t i = 0; i < r->n; i++)
       fprintf(f, "%s,%.17g,%.17g\n", names[j], r->t_s[i], v[j][i]);
   for (size_t i = 0; i < h->nimp; i++)

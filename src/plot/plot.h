@@ -8,7 +8,7 @@
  * common.c renders (driver check, exit/abort handlers, temporary + rename)
  * and writes the plotted data (--data FILE.csv, also temporary + rename);
  * h5_read.c reads a run's histories (the verdicts come from
- * aq_h5_read_runs).
+ * aq_h5_read_suite).
  *
  * PLplot keeps global state: call these from one thread, after the inputs
  * are read.  Nothing here prints: failures fill aq_error and return a
@@ -22,7 +22,7 @@
 
 #include "../arch/arch.h"
 #include "../error.h"
-#include "../report/report.h"
+#include "../report/h5.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
 
@@ -43,15 +43,19 @@ typedef struct {
   double g_mps2;         /* the arch's gravity */
   size_t n;              /* history samples */
   double *t_s, *q_rad, *x_m, *ke_j, *pe_j; /* rotation (global sign), COM x, energies */
-  size_t na;             /* ground samples (processed record, scaled, signed) */
+  size_t na;             /* ground samples (processed record, scaled, signed);
+                            0 when the file does not hold it (format 2
+                            written without --store-records) */
   double *ag_mps2;       /* ground acceleration, m/s^2, zero-order hold */
   double ag_dt_s, ag_t0_s; /* sample interval and time of sample 0, s */
   long n_orig;           /* samples of the record without its pads (0: unknown) */
+  double rec_dt_s;       /* the record's sample interval, s (0: unknown) */
 } aq_plot_run;
 
-/* Read run `key` (NULL: the first run) of results file path.  Errors: no
- * such run (the message lists the first keys), a file without histories
- * (written without --history).  Free with aq_plot_run_free. */
+/* Read run `key` (NULL: the first run with histories) of results file
+ * path (format 1 or 2).  Errors: no such run (the message lists the first
+ * keys), a file or run without histories (written without --history).
+ * Free with aq_plot_run_free. */
 aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *run,
                            aq_error *err);
 void aq_plot_run_free(aq_plot_run *run);
@@ -103,7 +107,8 @@ void aq_plot_range(const double *x, size_t n, double *lo, double *hi);
 
 /* history.c: panels sharing the time axis (ground acceleration in g with
  * +-lambda0 g of both sets; rotation with +-q_c; KE, PE and work in);
- * impacts and collapse marked.  data: CSV target or NULL. */
+ * impacts and collapse marked.  Without the ground (run->na == 0) its
+ * panel says so and the work put in is left out.  data: CSV target or NULL. */
 aq_status aq_plot_history(const aq_plot_run *run, const char *target,
                           const char *data, double *draw_s, aq_error *err);
 
@@ -123,7 +128,7 @@ aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ra
 
 /* suite.c: record x arch map of the worst verdict over scales and
  * polarities (collapse, or peak rotation / q_c). */
-aq_status aq_plot_suite(const aq_summary *runs, size_t n, const char *source,
+aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
                         const char *target, const char *data, double *draw_s,
                         aq_error *err);
 

@@ -116,7 +116,7 @@ static int draw(void *ctx, aq_error *err)
   return 0;
 }
 
-aq_status aq_plot_suite(const aq_summary *runs, size_t n, const char *source,
+aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
                         const char *target, const char *data, double *draw_s,
                         aq_error *err)
 {
@@ -129,8 +129,8 @@ aq_status aq_plot_suite(const aq_summary *runs, size_t n, const char *source,
   aq_status rc = AQ_ENOMEM;
   if (m.rec && m.arch)
     for (size_t k = 0; k < n; k++) {
-      index_of(m.rec, &m.nrec, runs[k].record);
-      index_of(m.arch, &m.narch, runs[k].arch);
+      index_of(m.rec, &m.nrec, runs[k].s.record);
+      index_of(m.arch, &m.narch, runs[k].s.arch);
     }
   m.v = malloc((m.nrec * m.narch + 1) * sizeof *m.v);
   m.coll = calloc(m.nrec * m.narch + 1, sizeof *m.coll);
@@ -142,12 +142,12 @@ aq_status aq_plot_suite(const aq_summary *runs, size_t n, const char *source,
     m.v[k] = NAN;
   for (size_t k = 0; k < n; k++) {
     size_t nr = m.nrec, na = m.narch;
-    size_t i = index_of(m.rec, &nr, runs[k].record), j = index_of(m.arch, &na, runs[k].arch);
+    size_t i = index_of(m.rec, &nr, runs[k].s.record), j = index_of(m.arch, &na, runs[k].s.arch);
     size_t c = i * m.narch + j;
-    if (runs[k].collapsed == 1)
+    if (runs[k].s.collapsed == 1)
       m.coll[c] = 1;
-    if (runs[k].collapsed >= 0 && !(m.v[c] >= runs[k].peak_rotation_over_qc))
-      m.v[c] = runs[k].peak_rotation_over_qc;
+    if (runs[k].s.collapsed >= 0 && !(m.v[c] >= runs[k].s.peak_rotation_over_qc))
+      m.v[c] = runs[k].s.peak_rotation_over_qc;
   }
   /* rows of 0.45 in. at most, at least 5.5 in. high */
   int h = 230 + 48 * (int)m.nrec, w = 1000;
