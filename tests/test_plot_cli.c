@@ -482,6 +482,8 @@ AQ_TEST(plot_bad_input_one_line)
     int status;
   } cases[] = {
       {"plot history %s -o %s/x.png", nohist, "--history", 1},
+      {"plot history %s -o %s/x.png", "tests/data/results/format1-elcentro-thin.h5",
+       "/runs: expected histories", 1},
       {"plot history %s --run 00042_000_000 -o %s/x.png", h5, "00042_000_000", 2},
       {"plot history %s -o %s/x.jpg", h5, ".jpg", 2},
       {"plot history %s -o %s/no/such/dir/x.png", h5, "no/such/dir/x.png", 3},
@@ -511,4 +513,39 @@ AQ_TEST(plot_bad_input_one_line)
            "no drivers: one line naming the device (\"%s\")", e ? e : "");
   free(e);
   aq_check(files_in(dir) == 1, "nothing left but the results file (%zu files)", files_in(dir));
+}
+
+/* A reversed run (key ending in r) plots the negated, scaled record. */
+AQ_TEST(plot_history_reversed_ground)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  snprintf(args, sizeof args,
+           RECORD " --arch " ARCH " --scale 2.385 --polarity reversed --history --store-records -o %s",
+           h5);
+  aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "results: %s", err);
+  snprintf(out, sizeof out, "%s/r.pdf", dir);
+  snprintf(data, sizeof data, "%s/r.csv", dir);
+  snprintf(args, sizeof args, "plot history %s --run 00000_000_000r -o %s --data %s", h5, out,
+           data);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  size_t nw = 0;
+  double *w = f >= 0 ? dataset(f, "/waveforms/00000", &nw) : NULL;
+  double *v = malloc((nw + 1) * sizeof *v);
+  size_t ng = csv && v ? series(csv, "ground_accel_g", NULL, v, nw + 1) : 0, bad = 0;
+  const double G0 = 9.80665; /* standard gravity, m/s^2 */
+  for (size_t i = 0; i < ng && i < nw; i++)
+    bad += fabs(v[i] - (-2.385 * w[i] / G0)) > 1e-15 * (fabs(v[i]) + 1e-300) + 1e-300;
+  aq_check(ng == nw && nw > 0 && bad == 0,
+           "ground = -2.385 x the stored record / g0 at every sample (%zu of %zu, %zu off)", ng,
+           nw, bad);
+  free(v);
+  free(w);
+  free(csv);
+  if (f >= 0)
+    H5Fclose(f);
 }

@@ -115,7 +115,7 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
     st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "HDF5: cannot open");
     goto done;
   }
-  int v2 = H5Lexists(f, "/summary", H5P_DEFAULT) > 0; /* format 2: tables */
+  int v2 = H5Lexists(f, "/runs", H5P_DEFAULT) <= 0; /* format 1: a group per run */
   const char *hist = v2 ? "/histories" : "/runs";
   size_t with = 0, len = 0; /* runs with histories; the first few keys */
   for (size_t i = 0; i < S.nruns; i++) {
