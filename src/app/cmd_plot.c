@@ -12,6 +12,7 @@
 #include "../plot/plot.h"
 #include "../report/h5.h"
 #include "app.h"
+#include "cleanup.h"
 #include "opt.h"
 
 static const char usage[] =
@@ -182,6 +183,15 @@ int aq_cmd_plot(int argc, char **argv)
   aq_error_clear(&err);
   int rc = AQ_EXIT_OK;
   aq_arch *arch = NULL;
+  char tmp[2][1024]; /* a signal while drawing removes the temporaries */
+  int slot[2] = {-1, -1};
+  aq_cleanup_install();
+  aq_plot_temp_name(o.out, tmp[0], sizeof tmp[0]);
+  slot[0] = aq_cleanup_add(tmp[0]);
+  if (o.data) {
+    aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
+    slot[1] = aq_cleanup_add(tmp[1]);
+  }
   if (o.arch && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
     rc = fail(&err);
     goto out;
@@ -218,6 +228,8 @@ int aq_cmd_plot(int argc, char **argv)
   }
   }
 out:
+  aq_cleanup_remove(slot[0]);
+  aq_cleanup_remove(slot[1]);
   aq_arch_free(arch);
   free(o.ratios);
   return rc;

@@ -77,7 +77,7 @@ aq_status aq_plot_device(const char *target, const char **device, aq_error *err)
                       dot && (!slash || dot > slash) ? dot : "");
 }
 
-static void temp_name(const char *target, char *tmp, size_t cap)
+void aq_plot_temp_name(const char *target, char *tmp, size_t cap)
 {
   snprintf(tmp, cap, "%s.tmp.%ld", target, (long)getpid());
 }
@@ -110,7 +110,7 @@ aq_status aq_plot_render(const char *target, int width, int height,
   if (rc != AQ_OK)
     return rc;
   char tmp[1024];
-  temp_name(target, tmp, sizeof tmp);
+  aq_plot_temp_name(target, tmp, sizeof tmp);
   FILE *probe = fopen(tmp, "wb"); /* the target's directory must be writable */
   if (!probe)
     return aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
@@ -179,7 +179,7 @@ aq_status aq_plot_render(const char *target, int width, int height,
 
 FILE *aq_plot_csv_open(const char *target, char *tmp, size_t cap, aq_error *err)
 {
-  temp_name(target, tmp, cap);
+  aq_plot_temp_name(target, tmp, cap);
   FILE *f = fopen(tmp, "w");
   if (!f)
     aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s",

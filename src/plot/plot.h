@@ -82,6 +82,10 @@ aq_status aq_plot_render(const char *target, int width, int height,
                          aq_plot_draw_fn draw, void *ctx, double *draw_s,
                          aq_error *err);
 
+/* The temporary a figure or its data is written to before the rename
+ * ("<target>.tmp.<pid>"), into tmp[cap]: a signal handler can remove it. */
+void aq_plot_temp_name(const char *target, char *tmp, size_t cap);
+
 /* CSV of the plotted data: open a temporary beside target (tmp[cap]
  * receives its name), then close, check and rename it (or remove it on
  * failure: ok = 0).  Columns carry their units (`time_s`, `accel_g`). */
