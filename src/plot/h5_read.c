@@ -15,18 +15,6 @@
 #include "../report/h5.h"
 #include "plot.h"
 
-/* Scalar attribute name of loc as mtype into out; 0 or -1. */
-static int attr_scalar(hid_t loc, const char *name, hid_t mtype, void *out)
-{
-  if (H5Aexists(loc, name) <= 0)
-    return -1;
-  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-  int ok = a >= 0 && H5Aread(a, mtype, out) >= 0 ? 0 : -1;
-  if (a >= 0)
-    H5Aclose(a);
-  return ok;
-}
-
 /* 1-D double dataset path of f, malloc'd into *v, length *n; 0 or -1. */
 static int dataset(hid_t f, const char *path, double **v, size_t *n)
 {
@@ -179,8 +167,8 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
   if (H5Lexists(f, v2 ? "/waveforms" : "/records", H5P_DEFAULT) > 0 &&
       H5Oexists_by_name(f, obj, H5P_DEFAULT) > 0) {
     hid_t d = H5Dopen2(f, obj, H5P_DEFAULT);
-    int ok = d >= 0 && attr_scalar(d, "dt_s", H5T_NATIVE_DOUBLE, &r->ag_dt_s) == 0 &&
-             attr_scalar(d, "t0_s", H5T_NATIVE_DOUBLE, &r->ag_t0_s) == 0;
+    int ok = d >= 0 && aq_h5_attr_num(d, "dt_s", H5T_NATIVE_DOUBLE, &r->ag_dt_s) == 0 &&
+             aq_h5_attr_num(d, "t0_s", H5T_NATIVE_DOUBLE, &r->ag_t0_s) == 0;
     if (d >= 0)
       H5Dclose(d);
     if (!ok || dataset(f, obj, &r->ag_mps2, &r->na) < 0 || !(r->ag_dt_s > 0)) {
@@ -199,20 +187,20 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
     snprintf(obj, sizeof obj, "/records/%05lld", ri);
     hid_t g = H5Gopen2(f, obj, H5P_DEFAULT);
     if (g >= 0) {
-      attr_scalar(g, "n_orig", H5T_NATIVE_LONG, &r->n_orig); /* 0 if absent */
-      attr_scalar(g, "dt_s", H5T_NATIVE_DOUBLE, &r->rec_dt_s);
+      aq_h5_attr_num(g, "n_orig", H5T_NATIVE_LONG, &r->n_orig); /* 0 if absent */
+      aq_h5_attr_num(g, "dt_s", H5T_NATIVE_DOUBLE, &r->rec_dt_s);
       H5Gclose(g);
     }
   }
 
   snprintf(obj, sizeof obj, "/arches/%03lld", (long long)u->arch_index);
   if ((arc = H5Gopen2(f, obj, H5P_DEFAULT)) < 0 ||
-      attr_scalar(arc, "primary_lambda0", H5T_NATIVE_DOUBLE, &r->lambda0[0]) < 0 ||
-      attr_scalar(arc, "reverse_lambda0", H5T_NATIVE_DOUBLE, &r->lambda0[1]) < 0 ||
-      attr_scalar(arc, "primary_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[0]) < 0 ||
-      attr_scalar(arc, "reverse_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[1]) < 0 ||
-      attr_scalar(arc, "primary_mass_kg", H5T_NATIVE_DOUBLE, &r->mass_kg) < 0 ||
-      attr_scalar(arc, "g_m_s2", H5T_NATIVE_DOUBLE, &r->g_mps2) < 0) {
+      aq_h5_attr_num(arc, "primary_lambda0", H5T_NATIVE_DOUBLE, &r->lambda0[0]) < 0 ||
+      aq_h5_attr_num(arc, "reverse_lambda0", H5T_NATIVE_DOUBLE, &r->lambda0[1]) < 0 ||
+      aq_h5_attr_num(arc, "primary_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[0]) < 0 ||
+      aq_h5_attr_num(arc, "reverse_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[1]) < 0 ||
+      aq_h5_attr_num(arc, "primary_mass_kg", H5T_NATIVE_DOUBLE, &r->mass_kg) < 0 ||
+      aq_h5_attr_num(arc, "g_m_s2", H5T_NATIVE_DOUBLE, &r->g_mps2) < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, obj,
                       "expected the arch's lambda0, q_c_rad, mass_kg and g_m_s2, got none");
     goto done;
