@@ -191,6 +191,9 @@ static int prepare_record(suite *S, rec_slot *r)
       r->sha256[0] = '\0'; /* the reader says why it cannot be read */
   }
   aq_status s = aq_record_read(path, &c->read, &r->rec, &r->err);
+  if (s == AQ_OK &&
+      (s = aq_record_check_horizontal(&r->rec, &c->read, &r->err)) != AQ_OK)
+    aq_record_free(&r->rec);
   double t1 = now_s();
   r->read_s = t1 - t0;
   if (s != AQ_OK) {
@@ -390,7 +393,7 @@ static void progress(suite *S, double t_start, size_t total, int final)
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const suite *S, const rec_slot *r)
 {
-  if (r->failed || r->warning[0])
+  if (r->failed || r->warning[0] || r->rec.units_conflict[0])
     return 1;
   for (size_t i = 0; r->runs && i < S->nruns; i++)
     if (r->runs[i].failed)
@@ -411,6 +414,8 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
   }
   if (r->warning[0])
     fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
+  if (r->rec.units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < S->nruns; i++) {
@@ -566,7 +571,7 @@ static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
   return st;
 }
 
-int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
+static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -805,5 +810,24 @@ out:
   aq_signal_ws_free(S.ws);
   if (stats_out)
     *stats_out = stats;
+  return rc;
+}
+
+/* Every channel of a multi-channel file is a record of its own (FILE#CH). */
+int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
+{
+  char **names;
+  size_t n;
+  aq_error err;
+  if (aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err) !=
+      AQ_OK) {
+    aq_error_print(&err, stderr);
+    return AQ_EXIT_FAIL;
+  }
+  aq_suite_cfg c = *cfg;
+  c.records = names;
+  c.nrecords = n;
+  int rc = suite_run(&c, stats);
+  aq_record_names_free(names, n);
   return rc;
 }

@@ -174,4 +174,8 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err);
 int aq_h5_attr_num(int64_t loc, const char *name, int64_t mtype, void *out);
 void aq_h5_suite_free(aq_h5_suite *s);
 
+/* The open file's HDF5 id (between aq_h5_open and aq_h5_finish), for the
+ * writers of further groups (h5_capacity.c); an hid_t. */
+int64_t aq_h5_file_id(const aq_h5_writer *w);
+
 #endif
