@@ -549,3 +549,62 @@ AQ_TEST(plot_history_reversed_ground)
   if (f >= 0)
     H5Fclose(f);
 }
+
+/* The capacity figure's intervals are the capacity command's own TSV
+ * column collapse_intervals ("lo-hi;lo-hi", another output path). */
+AQ_TEST(plot_capacity_is_the_capacity_tsv)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/c.h5", dir);
+  enum { CAP = 1 << 15 };
+  char *tsv = malloc(CAP);
+  snprintf(args, sizeof args,
+           "capacity " RECORD " --arch " ARCH " --polarity both --resolution 0.1 -j 2 -o %s", h5);
+  int rc = aq_test_run(args, tsv, CAP, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  snprintf(out, sizeof out, "%s/c.svg", dir);
+  snprintf(data, sizeof data, "%s/c.csv", dir);
+  snprintf(args, sizeof args, "plot capacity %s --arch oppenheim -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(csv != NULL, "%s written", data)) {
+    free(tsv);
+    return;
+  }
+  check_axes(csv, 1, "capacity");
+  /* rebuild "lo-hi;lo-hi" per polarity from the CSV and find it in the TSV */
+  size_t found = 0;
+  for (int p = 0; p < 2; p++) {
+    const char *pol = p ? ",reversed," : ",normal,";
+    char want[4096] = "";
+    size_t len = 0;
+    for (const char *l = strstr(csv, pol); l; l = strstr(l + 1, pol)) {
+      double v[4];
+      const char *q = l + strlen(pol);
+      for (int k = 0; k < 4; k++) {
+        char *e;
+        v[k] = strtod(q, &e);
+        q = e + 1;
+      }
+      if (isnan(v[2]))
+        break;
+      len += (size_t)snprintf(want + len, sizeof want - len, "%s%.17g-%.17g", len ? ";" : "",
+                              v[2], v[3]);
+    }
+    /* the TSV prints %.17g too; inf as "inf" */
+    found += len > 0 && strstr(tsv, want) != NULL;
+    if (getenv("AQ_TEST_VERBOSE"))
+      fprintf(stderr, "%s: %s\n", pol, want);
+  }
+  aq_check(found == 2, "both polarities' intervals as the capacity TSV prints them (%zu)", found);
+  /* an arch the file does not hold: one line, no file */
+  snprintf(args, sizeof args, "plot capacity %s --arch nosuch -o %s/x.png", h5, dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "nosuch") && aq_test_count_lines(err) == 1,
+           "unknown arch: exit %d \"%s\"", rc, err);
+  free(csv);
+  free(tsv);
+}

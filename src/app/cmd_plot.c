@@ -32,6 +32,9 @@ static const char usage[] =
     "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
     "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
     "        and polarities: collapse, or peak rotation / q_c)\n"
+    "  capacity CAPACITY.h5 [--arch NAME]   the scales each record was scanned\n"
+    "        over with its collapse intervals (archquake capacity -o), one arch\n"
+    "        (default: the file's first)\n"
     "Options:\n"
     "  -o, --output FILE  the figure (.png .svg .pdf)\n"
     "  --data FILE.csv    also write the plotted data (columns carry units)\n"
@@ -39,13 +42,13 @@ static const char usage[] =
     "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 bad options,\n"
     "3 the figure or the data could not be written.\n";
 
-enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_N };
-static const char *const figures[] = {"history", "arch", "domain", "suite", NULL};
+enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_N };
+static const char *const figures[] = {"history", "arch", "domain", "suite", "capacity", NULL};
 /* Per figure: takes an input file, and which options it accepts. */
 static const struct {
   int input;
   const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor */
-} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}};
+} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "a"}};
 
 typedef struct {
   int fig;
@@ -99,7 +102,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
   aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
-  if (strchr(takes[o->fig].opts, 'a'))
+  if (strchr(takes[o->fig].opts, 'a') && o->fig != FIG_CAPACITY)
     aq_opt_require("plot", "--arch FILE", o->arch != NULL, &nerr);
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
@@ -121,7 +124,8 @@ static int fail(const aq_error *err)
   aq_error_print(err, stderr);
   return err->status == AQ_EIO ? AQ_EXIT_OUTPUT
          : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
-                 !strcmp(err->field, "--rotation")
+                 !strcmp(err->field, "--rotation") ||
+                 !strcmp(err->field, "--arch")
              ? AQ_EXIT_USAGE
              : AQ_EXIT_FAIL;
 }
@@ -192,7 +196,7 @@ int aq_cmd_plot(int argc, char **argv)
     aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
     slot[1] = aq_cleanup_add(tmp[1]);
   }
-  if (o.arch && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+  if (o.arch && o.fig != FIG_CAPACITY && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
     rc = fail(&err);
     goto out;
   }
@@ -224,6 +228,18 @@ int aq_cmd_plot(int argc, char **argv)
     if (aq_plot_suite(S.runs, S.nruns, o.input, o.out, o.data, NULL, &err) != AQ_OK)
       rc = fail(&err);
     aq_h5_suite_free(&S);
+    break;
+  }
+  case FIG_CAPACITY: {
+    aq_h5_capacity_table t;
+    int present = 0;
+    if (aq_h5_capacity_read(o.input, &t, &present, &err) != AQ_OK) {
+      rc = fail(&err);
+      break;
+    }
+    if (aq_plot_capacity(&t, o.arch, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_h5_capacity_table_free(&t);
     break;
   }
   }

@@ -5,6 +5,7 @@
  *   arch.c      the arch to scale, its hinge sets, a deformed mechanism
  *   domain.c    the half-cycle collapse domain
  *   suite.c     a record x arch map of the verdicts
+ *   capacity.c  the collapse intervals of `archquake capacity`
  * common.c renders (driver check, exit/abort handlers, temporary + rename)
  * and writes the plotted data (--data FILE.csv, also temporary + rename);
  * h5_read.c reads a run's histories (the verdicts come from
@@ -23,6 +24,7 @@
 #include "../arch/arch.h"
 #include "../error.h"
 #include "../report/h5.h"
+#include "../report/h5_capacity.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
 
@@ -135,5 +137,11 @@ aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ra
 aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
                         const char *target, const char *data, double *draw_s,
                         aq_error *err);
+
+/* capacity.c: for arch (NULL: the file's first), one row per (record,
+ * polarity): the scanned scales with the collapse intervals shaded. */
+aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch,
+                           const char *source, const char *target, const char *data,
+                           double *draw_s, aq_error *err);
 
 #endif
