@@ -56,12 +56,22 @@ int main(void)
          "domain computed in %.3f s (12 ratios, 1e-6 s), not in the times below\n",
          run.n, run.na, S.nruns, domain_s);
   printf("%-8s %-4s %12s %10s %14s\n", "figure", "fmt", "median_s", "bytes", "ratio_to_arch");
-  static const char *const figs[] = {"history", "arch", "domain", "suite"};
+  static const char *const figs[] = {"history", "arch", "domain", "suite", "capacity"};
+  aq_h5_capacity_table ct;
+  int present = 0;
+  snprintf(cmd, sizeof cmd,
+           "./archquake capacity tests/data/records/ARL360.at2 tests/data/records/IELC180.AT2 "
+           "--arch arches/oppenheim.cfg -o %s/c.h5 >/dev/null",
+           dir);
+  char ch5[300];
+  snprintf(ch5, sizeof ch5, "%s/c.h5", dir);
+  if (system(cmd) != 0 || aq_h5_capacity_read(ch5, &ct, &present, &err) != AQ_OK)
+    return 1;
   static const char *const fmts[] = {"png", "svg", "pdf"};
   for (size_t k = 0; k < 3; k++) {
-    double med[4];
-    long bytes[4];
-    for (size_t f = 0; f < 4; f++) {
+    double med[5];
+    long bytes[5];
+    for (size_t f = 0; f < 5; f++) {
       double t[REPS];
       snprintf(out, sizeof out, "%s/%s.%s", dir, figs[f], fmts[k]);
       for (int r = 0; r < REPS; r++) {
@@ -69,7 +79,8 @@ int main(void)
                        : f == 1 ? aq_plot_arch(arch, 0.15, out, NULL, &t[r], &err)
                        : f == 2 ? aq_plot_domain("oppenheim", pp->lambda0, ratio, dur, NR, 100,
                                                  out, NULL, &t[r], &err)
-                                : aq_plot_suite(S.runs, S.nruns, h5, out, NULL, &t[r], &err);
+                       : f == 3 ? aq_plot_suite(S.runs, S.nruns, h5, out, NULL, &t[r], &err)
+                                : aq_plot_capacity(&ct, NULL, ch5, out, NULL, &t[r], &err);
         if (rc != AQ_OK) {
           aq_error_print(&err, stderr);
           return 1;
@@ -79,13 +90,15 @@ int main(void)
       bytes[f] = size_of(out);
       remove(out);
     }
-    for (size_t f = 0; f < 4; f++)
+    for (size_t f = 0; f < 5; f++)
       printf("%-8s %-4s %12.4f %10ld %14.2f\n", figs[f], fmts[k], med[f], bytes[f],
              med[f] / med[1]);
   }
   aq_plot_run_free(&run);
   aq_arch_free(arch);
   aq_h5_suite_free(&S);
+  aq_h5_capacity_table_free(&ct);
+  remove(ch5);
   remove(h5);
   rmdir(dir);
   return 0;

@@ -600,6 +600,14 @@ AQ_TEST(plot_capacity_is_the_capacity_tsv)
       fprintf(stderr, "%s: %s\n", pol, want);
   }
   aq_check(found == 2, "both polarities' intervals as the capacity TSV prints them (%zu)", found);
+  static const char *const other[] = {"png", "pdf"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(out, sizeof out, "%s/c.%s", dir, other[k]);
+    snprintf(args, sizeof args, "plot capacity %s -o %s", h5, out);
+    rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+    valid(out);
+  }
   /* an arch the file does not hold: one line, no file */
   snprintf(args, sizeof args, "plot capacity %s --arch nosuch -o %s/x.png", h5, dir);
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
