@@ -7,7 +7,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 FUZZ_SECONDS ?= 60
 
-PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0
+PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
@@ -133,7 +133,7 @@ uninstall:
 # Debian packages the build, the tests and `make fuzz` need.
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
             libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            libmseed-dev libxml2-dev
+            libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)
