@@ -111,12 +111,48 @@ AQ_TEST(report_journal_frames_and_torn_tails)
   aq_journal_entries_free(e, ne);
   aq_check(aq_journal_remove(j, &err) == AQ_OK && access(path, F_OK) != 0, "removed");
 
-  /* no magic, or no whole identity: AQ_EFORMAT naming the file */
+  /* what a creation killed half-way leaves (empty, part of the magic, the
+   * magic and a torn identity): nothing was done, as if there were no
+   * journal */
+  static const char *const unfinished[] = {"", "AQJR", "AQJRNL01\x05", "AQJRNL01"};
+  for (size_t k = 0; k < sizeof unfinished / sizeof *unfinished; k++) {
+    f = fopen(path, "wb");
+    fputs(unfinished[k], f);
+    fclose(f);
+    j = NULL;
+    aq_check(aq_journal_open(path, &j, &e, &ne, &dropped, &err) == AQ_OK && !j && ne == 0,
+             "unfinished creation \"%s\": no journal", unfinished[k]);
+  }
+  /* a first record cut at every byte of the identity entry: the same */
+  int bad_cut = 0;
+  for (size_t cut = 0; cut < 8 + 8 + strlen(payload[0]) + 32; cut++) {
+    f = fopen(path, "wb");
+    fwrite(bytes, 1, cut, f);
+    fclose(f);
+    j = NULL;
+    bad_cut += aq_journal_open(path, &j, &e, &ne, &dropped, &err) != AQ_OK || j;
+    aq_journal_close(j);
+  }
+  aq_check(bad_cut == 0, "identity cut at every byte: no journal (%d failed)", bad_cut);
+
+  /* no magic, or a whole identity entry that is corrupt: AQ_EFORMAT naming
+   * the file */
+  static const char *const refused[] = {"AQJRNL02", "AQJRX", "not a journal"};
+  for (size_t k = 0; k < sizeof refused / sizeof *refused; k++) {
+    f = fopen(path, "wb");
+    fputs(refused[k], f);
+    fclose(f);
+    aq_check(aq_journal_open(path, &j, &e, &ne, &dropped, &err) == AQ_EFORMAT && !j &&
+                 strstr(err.input, "r.h5.journal"),
+             "no magic (\"%s\"): AQ_EFORMAT", refused[k]);
+  }
   f = fopen(path, "wb");
-  fputs("AQJRNL01\x05", f);
+  bytes[8 + 8] ^= 1; /* the identity's first payload byte */
+  fwrite(bytes, 1, 8 + 8 + strlen(payload[0]) + 32, f);
+  bytes[8 + 8] ^= 1;
   fclose(f);
   aq_check(aq_journal_open(path, &j, &e, &ne, &dropped, &err) == AQ_EFORMAT && !j &&
                strstr(err.input, "r.h5.journal"),
-           "torn identity: AQ_EFORMAT");
+           "corrupt identity: AQ_EFORMAT");
   free(bytes);
 }

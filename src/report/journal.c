@@ -202,6 +202,11 @@ aq_status aq_journal_open(const char *path, aq_journal **out,
   aq_status s = AQ_OK;
   aq_journal_entry *e = NULL;
   size_t ne = 0, cap = 0, off = AQ_JOURNAL_MAGIC_BYTES;
+  if (size < AQ_JOURNAL_MAGIC_BYTES && memcmp(buf, AQ_JOURNAL_MAGIC, size) == 0) {
+    free(buf); /* empty or part of the magic: see the torn identity below */
+    close(fd);
+    return AQ_OK;
+  }
   if (size < AQ_JOURNAL_MAGIC_BYTES ||
       memcmp(buf, AQ_JOURNAL_MAGIC, AQ_JOURNAL_MAGIC_BYTES) != 0) {
     s = aq_error_set(err, AQ_EFORMAT, path, -1, 0, "magic",
@@ -240,6 +245,14 @@ aq_status aq_journal_open(const char *path, aq_journal **out,
       memcpy(e[ne].data, buf + off + AQ_JOURNAL_LEN_BYTES, (size_t)len);
     ne++;
     off += AQ_JOURNAL_LEN_BYTES + (size_t)len + AQ_SHA256_BYTES;
+  }
+  if (ne == 0 && (size - off < AQ_JOURNAL_LEN_BYTES + AQ_SHA256_BYTES ||
+                  get_u64le(buf + off) > size - off - AQ_JOURNAL_LEN_BYTES - AQ_SHA256_BYTES)) {
+    /* the magic and a torn identity: its creator was killed before the
+     * journal held anything, as if there were none */
+    free(buf);
+    close(fd);
+    return AQ_OK;
   }
   if (ne == 0) {
     s = aq_error_set(err, AQ_EFORMAT, path, -1, (long)off, "identity",

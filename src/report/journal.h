@@ -47,8 +47,10 @@ aq_status aq_journal_create(const char *path, const void *identity, size_t n,
  * (*nentries of them, the identity first); a torn or corrupt tail is cut off
  * (its size in *dropped_bytes) and the journal is left open for appending in
  * *out.  A file that does not exist gives AQ_OK with *out NULL and no
- * entries; a file without the magic or without a whole identity entry
- * gives AQ_EFORMAT. */
+ * entries, and so does one that aq_journal_create left unfinished when it
+ * was killed (empty, part of the magic, or the magic and a torn identity
+ * entry: nothing was done yet); a file without the magic or with a corrupt
+ * identity entry gives AQ_EFORMAT. */
 aq_status aq_journal_open(const char *path, aq_journal **out,
                           aq_journal_entry **entries, size_t *nentries,
                           size_t *dropped_bytes, aq_error *err);
