@@ -115,6 +115,21 @@ static long rs_whole_rows(const char *path)
   return rows;
 }
 
+/* The size of the text file at path, and its last line's length and
+ * tabs (without its newline, if it has one), into buf[n]. */
+static void rs_tail(const char *path, char *buf, size_t n)
+{
+  size_t len = 0;
+  char *t = aq_test_read_file(path, &len);
+  int nl = t && len > 0 && t[len - 1] == '\n';
+  size_t end = len - (size_t)nl, start = end, tabs = 0;
+  while (t && start > 0 && t[start - 1] != '\n')
+    tabs += t[--start] == '\t';
+  snprintf(buf, n, "%zu bytes, the last line %zu bytes with %zu tabs, %s newline", len,
+           end - start, tabs, nl ? "with a" : "without");
+  free(t);
+}
+
 /* The "N of M records done before" count a resumed run printed, or -1. */
 static long rs_done_before(const char *errpath)
 {
@@ -229,6 +244,7 @@ AQ_TEST(suite_resume_after_random_kills)
   snprintf(extra, sizeof extra, "-o %s --resume", h5);
   srand(20261123u);
   int kills = 0, attempts = 0, rounds = 0, progressed = 0, partial = 0, early = 0;
+  char partial_tail[200] = "";
   /* rounds of kills, each resumed until the suite completes, until
    * RS_KILLS kills have landed mid-run */
   while (kills < RS_KILLS && rounds < RS_ROUNDS) {
@@ -271,7 +287,8 @@ AQ_TEST(suite_resume_after_random_kills)
       } else if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) {
         kills++;
         long rows = rs_exists(out) ? rs_whole_rows(out) : 0; /* none: killed before */
-        partial += rows < 0;
+        if (rows < 0 && partial++ == 0) /* what was left, for the report */
+          rs_tail(out, partial_tail, sizeof partial_tail);
         long done = rs_done_before(err);
         /* the journal only grows within a round: the records whose rows any
          * earlier killed run printed are kept (all but the one being
@@ -296,7 +313,8 @@ AQ_TEST(suite_resume_after_random_kills)
     rs_check_final(&s, what);
     unlink(h5);
   }
-  aq_check(partial == 0, "every killed run's stdout holds whole rows (%d did not)", partial);
+  aq_check(partial == 0, "every killed run's stdout holds whole rows (%d did not; the first "
+                         "ended: %s)", partial, partial_tail);
   aq_check(early == 0, "a results file under the target name is the whole suite's (%d were "
                        "not)", early);
   aq_check(kills >= RS_KILLS, "%d kills landed mid-run: %d", RS_KILLS, kills);
