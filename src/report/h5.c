@@ -670,8 +670,11 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
 {
   aq_status st = AQ_OK;
   char obj[96], link[64];
-  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu%s", ri, ai, si,
-           strcmp(s->polarity, "reversed") == 0 ? "r" : "");
+  char az[32] = ""; /* runs of one scale at several azimuths */
+  if (isfinite(s->azimuth_deg))
+    snprintf(az, sizeof az, "_az%.6g", s->azimuth_deg);
+  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu%s%s", ri, ai, si,
+           strcmp(s->polarity, "reversed") == 0 ? "r" : "", az);
   hid_t g = -1;
   g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
   CK(g, "H5Gcreate");

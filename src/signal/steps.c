@@ -60,9 +60,18 @@ static void steps_index(aq_steps *s)
   }
 }
 
-aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
-                                double t0_s, double merge_tol_mps2,
-                                aq_steps *out, aq_error *err)
+/* The sample i of a projection: s (c1 a1[i] + c2 a2[i]), or s c1 a1[i]
+ * without a2 (so that s = c1 = 1 gives a1[i] itself). */
+static inline double sample(const double *a1, double c1, const double *a2,
+                            double c2, double s, size_t i)
+{
+  return a2 ? s * (c1 * a1[i] + c2 * a2[i]) : s * (c1 * a1[i]);
+}
+
+static aq_status steps_build(const double *a1, double c1, const double *a2,
+                             double c2, double sc, size_t n, double dt_s,
+                             double t0_s, double merge_tol_mps2, aq_steps *out,
+                             double *peak_mps2, aq_error *err)
 {
   if (!(dt_s > 0) || !isfinite(dt_s))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "dt",
@@ -75,20 +84,23 @@ aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
   if (st != AQ_OK)
     return st;
   size_t k = 0;
+  double peak = 0;
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
-    double sum = a_mps2[i];
+    double first = sample(a1, c1, a2, c2, sc, i), sum = first;
+    peak = fmax(peak, fabs(first));
     if (merge_tol_mps2 > 0) {
       /* grow the run while every sample stays within tol of the run's first */
-      double lo = a_mps2[i], hi = a_mps2[i];
+      double lo = first, hi = first;
       while (j < n) {
-        double a = a_mps2[j];
+        double a = sample(a1, c1, a2, c2, sc, j);
         double nlo = a < lo ? a : lo, nhi = a > hi ? a : hi;
         if (nhi - nlo >= merge_tol_mps2)
           break;
         lo = nlo;
         hi = nhi;
         sum += a;
+        peak = fmax(peak, fabs(a));
         j++;
       }
     }
@@ -101,7 +113,26 @@ aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
   }
   out->n = k;
   steps_index(out);
+  if (peak_mps2)
+    *peak_mps2 = peak;
   return AQ_OK;
+}
+
+aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
+                                double t0_s, double merge_tol_mps2,
+                                aq_steps *out, aq_error *err)
+{
+  return steps_build(a_mps2, 1.0, NULL, 0.0, 1.0, n, dt_s, t0_s, merge_tol_mps2,
+                     out, NULL, err);
+}
+
+aq_status aq_steps_project(const double *a1_mps2, double c1, const double *a2_mps2,
+                           double c2, double scale, size_t n, double dt_s,
+                           double t0_s, double merge_tol_mps2, aq_steps *out,
+                           double *peak_mps2, aq_error *err)
+{
+  return steps_build(a1_mps2, c1, a2_mps2, c2, scale, n, dt_s, t0_s,
+                     merge_tol_mps2, out, peak_mps2, err);
 }
 
 aq_status aq_steps_from_list(const double *t_s, const double *dt_s,

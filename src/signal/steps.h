@@ -32,6 +32,18 @@ aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
                                 double t0_s, double merge_tol_mps2,
                                 aq_steps *out, aq_error *err);
 
+/* Steps of the projection scale (c1 a1[i] + c2 a2[i]) of two component
+ * records sampled alike (src/signal/project.h gives c1, c2 for an arch's
+ * azimuth), built as aq_steps_from_samples builds them from those samples:
+ * each component is processed once and projected here, per azimuth, with no
+ * intermediate array.  a2_mps2 may be NULL: the samples are then
+ * scale (c1 a1[i]), so c1 = scale = 1 gives the record itself, bit for bit.
+ * *peak_mps2 (if not NULL) receives max |sample|, m/s^2. */
+aq_status aq_steps_project(const double *a1_mps2, double c1, const double *a2_mps2,
+                           double c2, double scale, size_t n, double dt_s,
+                           double t0_s, double merge_tol_mps2, aq_steps *out,
+                           double *peak_mps2, aq_error *err);
+
 /* Build from explicit lists (synthetic pulses, tests).  Copies the arrays. */
 aq_status aq_steps_from_list(const double *t_s, const double *dt_s,
                              const double *a_mps2, size_t n, aq_steps *out,
