@@ -31,8 +31,9 @@
 #define AQ_PROJECT_T0_FRAC_DT 1e-3
 
 /* cos(angle_deg), with the angle first reduced to [0, 360) and the
- * half-turn taken out exactly: cos(d + 180) = -cos(d) bit for bit, so the
- * arch turned by 180 deg sees exactly the negated record. */
+ * half-turn taken out exactly: cos(d + 180) = -cos(d) bit for bit wherever
+ * d + 180 is exact (whole degrees, halves, quarters...), so the arch turned
+ * by 180 deg sees exactly the negated record. */
 double aq_project_cos_deg(double angle_deg);
 
 /* The coefficients of a_x = c[0] a1 + c[1] a2 at arch azimuth theta_deg for
