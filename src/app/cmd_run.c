@@ -341,6 +341,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.azimuths_deg = orient.azimuths_deg;
   cfg.nazimuth = orient.nazimuth;
   cfg.all_azimuths = orient.all_azimuths;
+  cfg.vertical = orient.vertical;
   cfg.arch_paths = arches;
   cfg.model = (aq_model)model;
   cfg.units_text = units_text[0] ? units_text : NULL;

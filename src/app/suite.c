@@ -91,6 +91,8 @@ typedef struct {
   aq_error *steps_err;
   const aq_orient_motion *motion; /* NULL: a plain in-plane record */
   comp_slot h2;       /* a motion's second horizontal component */
+  comp_slot v;        /* its vertical component (with --vertical) */
+  int run_v;          /* 1: the vertical is run */
   double phi_deg[2];  /* a motion's component azimuths, deg */
   size_t naz;         /* azimuths per (arch, scale): 1 for a plain record */
   size_t nruns;       /* narch * nscale * naz */
@@ -142,6 +144,8 @@ static void slot_clear(suite *S, rec_slot *r)
   aq_processed_free(&r->proc);
   aq_record_free(&r->h2.rec);
   aq_processed_free(&r->h2.proc);
+  aq_record_free(&r->v.rec);
+  aq_processed_free(&r->v.proc);
   if (r->runs)
     for (size_t k = 0; k < r->nruns; k++)
       if (r->runs[k].have_res)
@@ -222,17 +226,25 @@ static aq_status read_second(suite *S, rec_slot *r)
   aq_status s = read_component(S, m->path[1], &r->h2.rec, &r->h2.have_rec, &r->err);
   if (s != AQ_OK)
     return s;
-  const aq_record *both[2] = {&r->rec, &r->h2.rec};
+  r->run_v = m->path[2] && S->cfg->vertical;
+  if (r->run_v &&
+      (s = read_component(S, m->path[2], &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
+    return s;
+  const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
+  size_t nc = r->run_v ? 3 : 2;
   for (int j = 0; j < 2; j++)
     r->phi_deg[j] = isfinite(m->azimuth_deg[j]) ? m->azimuth_deg[j]
-                                                : aq_project_azimuth_of(both[j]);
+                                                : aq_project_azimuth_of(all[j]);
   s = aq_project_check_pair(m->label, r->phi_deg, &r->err);
   if (s == AQ_OK)
-    s = aq_project_check_aligned(both, 2, &r->err);
+    s = aq_project_check_aligned(all, nc, &r->err);
   if (s != AQ_OK)
     return s;
-  r->rec.npts = r->h2.rec.npts = aq_project_common_npts(both, 2);
-  if (m->path[2])
+  size_t npts = aq_project_common_npts(all, nc);
+  r->rec.npts = r->h2.rec.npts = npts;
+  if (r->run_v)
+    r->v.rec.npts = npts;
+  if (m->path[2] && !r->run_v)
     snprintf(r->warning, sizeof r->warning,
              "vertical component %s ignored (--vertical runs it)", m->path[2]);
   return AQ_OK;
@@ -249,9 +261,13 @@ static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t 
   double c[2] = {1.0, 0.0}, peak = 0;
   if (r->motion)
     aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
-  aq_status s = aq_steps_project(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
-                                 c[1], sa, p->n, p->dt_s, -(double)p->pad_front * p->dt_s,
-                                 S->cfg->merge_tol_g * AQ_G0_MPS2, out, &peak, err);
+  /* the vertical scales with the motion but keeps its sign: reversing the
+   * polarity turns the arch round, it does not turn gravity over */
+  aq_status s = aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
+                                   c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL,
+                                   r->scale[k], p->n, p->dt_s,
+                                   -(double)p->pad_front * p->dt_s,
+                                   S->cfg->merge_tol_g * AQ_G0_MPS2, out, &peak, err);
   *pga_g = peak / AQ_G0_MPS2;
   return s;
 }
@@ -300,8 +316,11 @@ static int prepare_record(suite *S, rec_slot *r)
   s = process_component(S, &r->rec, &r->proc, &r->have_proc, &r->err);
   if (s == AQ_OK && r->motion)
     s = process_component(S, &r->h2.rec, &r->h2.proc, &r->h2.have_proc, &r->err);
+  if (s == AQ_OK && r->run_v)
+    s = process_component(S, &r->v.rec, &r->v.proc, &r->v.have_proc, &r->err);
   if (s == AQ_OK && r->motion &&
-      (r->h2.proc.n != r->proc.n || r->h2.proc.pad_front != r->proc.pad_front))
+      (r->h2.proc.n != r->proc.n || r->h2.proc.pad_front != r->proc.pad_front ||
+       (r->run_v && (r->v.proc.n != r->proc.n || r->v.proc.pad_front != r->proc.pad_front))))
     s = aq_error_set(&r->err, AQ_EINTERNAL, path, -1, -1, NULL,
                      "the components' processed lengths differ (%zu, %zu samples)",
                      r->proc.n, r->h2.proc.n);

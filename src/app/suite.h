@@ -34,6 +34,7 @@ typedef struct {
   const double *azimuths_deg; /* the arch azimuths run for each motion, deg */
   size_t nazimuth;         /* their number (>= 1) */
   int all_azimuths;        /* 1: every azimuth's row in the TSV, else the worst */
+  int vertical;            /* --vertical: run a motion's vertical component */
   char **arch_paths;       /* --arch files */
   size_t narches;
   aq_read_opts read;       /* reader options */
