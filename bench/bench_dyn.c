@@ -4,13 +4,18 @@
  * Cases: arches/oppenheim.cfg under two rectangular pulses (0.01 s steps)
  * and under the records in records/ (read, baseline-corrected with the
  * default processing, scaled to a PGA of 2.5 and of 5 lambda0 g), COR 0.7.
- * Settings: the work path (default, and coarser/finer Chebyshev panels, and
- * records merged with --merge-tol), the ode model at several rtol, the
- * paper model.  Reference: ode at rtol 1e-12 on unmerged steps.
- * Reported per setting: the sum over cases of the median time per run, the
- * speed ratio to ode at 1e-8, path evaluations, the largest relative error
- * of the peak displacement, the largest error of the collapse time, and
- * how many cases disagree with the reference on collapse. */
+ * Settings: the work path (default: time-Taylor leg; a looser tolerance;
+ * records merged with --merge-tol), workpath-quad (Chebyshev panels, two
+ * settings), the ode model at several rtol, the paper model.  Reference:
+ * ode at rtol 1e-12 on unmerged steps.
+ * Reported per case: moving steps, impacts, the reference's and the default's
+ * median times, their ratio and the default's errors.  Per setting: the
+ * sum over cases of the median time per run, the speed ratio to the
+ * reference and to ode at 1e-8, the smallest per-case ratio to the
+ * reference, the cost per moving step, sub-steps and path evaluations,
+ * the largest relative error of the peak displacement, the largest error
+ * of the collapse time, and how many cases disagree with the reference on
+ * collapse. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
@@ -32,8 +37,9 @@ typedef struct {
   const char *name;
   aq_model model;
   double rtol;     /* ode */
-  int nodes;       /* workpath */
-  double wtol;     /* workpath */
+  int nodes;       /* workpath-quad */
+  double wtol;     /* workpath-quad */
+  double ttol;     /* workpath (Taylor); 0: default */
   double merge_g;  /* merge tolerance for record steps, g */
 } setting;
 
@@ -90,10 +96,12 @@ static int run(const aq_arch *a, const setting *S, const aq_steps *steps,
   aq_stepper_set_cor(st, 0.7);
   if (S->model == AQ_MODEL_ODE)
     aq_stepper_set_ode_rtol(st, S->rtol);
-  if (S->model == AQ_MODEL_WORKPATH) {
+  if (S->model == AQ_MODEL_WORKPATH_QUAD) {
     aq_stepper_set_wp_nodes(st, S->nodes);
     aq_stepper_set_wp_tol(st, S->wtol);
   }
+  if (S->model == AQ_MODEL_WORKPATH && S->ttol > 0)
+    aq_stepper_set_taylor_tol(st, S->ttol);
   double t0 = aq_bench_now_s();
   aq_status rc = aq_stepper_run(st, steps, r, &e);
   *sec = aq_bench_now_s() - t0;
@@ -199,21 +207,23 @@ int main(void)
   aq_signal_ws_free(ws);
 
   static const setting set[] = {
-      {"workpath (default: 12 nodes, tol 1e-12)", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0},
-      {"workpath 8 nodes, tol 1e-9", AQ_MODEL_WORKPATH, 0, 8, 1e-9, 0},
-      {"workpath 16 nodes, tol 1e-14", AQ_MODEL_WORKPATH, 0, 16, 1e-14, 0},
-      {"workpath default, --merge-tol 0.001 g", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0.001},
-      {"workpath default, --merge-tol 0.01 g", AQ_MODEL_WORKPATH, 0, 12, 1e-12, 0.01},
-      {"ode rtol 1e-6", AQ_MODEL_ODE, 1e-6, 0, 0, 0},
-      {"ode rtol 1e-8", AQ_MODEL_ODE, 1e-8, 0, 0, 0},
-      {"ode rtol 1e-10", AQ_MODEL_ODE, 1e-10, 0, 0, 0},
-      {"ode rtol 1e-12 (reference)", AQ_MODEL_ODE, 1e-12, 0, 0, 0},
-      {"paper (as printed)", AQ_MODEL_PAPER, 0, 0, 0, 0},
+      {"workpath (default: Taylor, tol 1.1e-16)", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0},
+      {"workpath Taylor tol 1e-13", AQ_MODEL_WORKPATH, 0, 0, 0, 1e-13, 0},
+      {"workpath default, --merge-tol 0.001 g", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0.001},
+      {"workpath default, --merge-tol 0.01 g", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0.01},
+      {"workpath-quad (12 nodes, tol 1e-12)", AQ_MODEL_WORKPATH_QUAD, 0, 12, 1e-12, 0, 0},
+      {"workpath-quad 8 nodes, tol 1e-9", AQ_MODEL_WORKPATH_QUAD, 0, 8, 1e-9, 0, 0},
+      {"ode rtol 1e-6", AQ_MODEL_ODE, 1e-6, 0, 0, 0, 0},
+      {"ode rtol 1e-8", AQ_MODEL_ODE, 1e-8, 0, 0, 0, 0},
+      {"ode rtol 1e-10", AQ_MODEL_ODE, 1e-10, 0, 0, 0, 0},
+      {"ode rtol 1e-12 (reference)", AQ_MODEL_ODE, 1e-12, 0, 0, 0, 0},
+      {"paper (as printed)", AQ_MODEL_PAPER, 0, 0, 0, 0, 0},
   };
-  enum { NS = sizeof set / sizeof set[0], REF = 8, ODE8 = 6 };
+  enum { NS = sizeof set / sizeof set[0], REF = 9, ODE8 = 7, QUAD = 4 };
   static double tmed[NS][MAX_CASES], peak[NS][MAX_CASES], tc[NS][MAX_CASES];
   static int coll[NS][MAX_CASES];
-  static size_t evals[NS][MAX_CASES];
+  static size_t evals[NS][MAX_CASES], moving[NS][MAX_CASES], subs[NS][MAX_CASES],
+      impacts[NS][MAX_CASES];
   for (size_t c = 0; c < nc; c++) {
     /* interleave the settings in each repetition: same machine state */
     double ts[NS][REPS];
@@ -227,6 +237,9 @@ int main(void)
         coll[k][c] = r.collapsed;
         tc[k][c] = r.collapse_time_s;
         evals[k][c] = r.evals;
+        moving[k][c] = r.steps_moving;
+        subs[k][c] = r.substeps;
+        impacts[k][c] = r.impacts;
         aq_result_free(&r);
       }
     for (size_t k = 0; k < NS; k++)
@@ -234,36 +247,54 @@ int main(void)
   }
   printf("Cases (%zu), reference = ode rtol 1e-12; COR 0.7; records scaled to "
          "PGA 2.5 and 5 lambda0 g:\n", nc);
-  for (size_t c = 0; c < nc; c++)
-    printf("  %-34s steps %6zu  ref: %-18s peak x %.6g m  ode-1e-12 %.3f ms  "
-           "workpath %.3f ms\n",
-           cs[c].name, cs[c].steps[0].n, coll[REF][c] ? "collapses" : "survives",
-           peak[REF][c], 1e3 * tmed[REF][c], 1e3 * tmed[0][c]);
-  double t8 = 0;
-  for (size_t c = 0; c < nc; c++)
+  printf("  %-32s %6s %6s %5s %-9s %10s %9s %7s %9s %9s %9s\n", "case", "steps",
+         "moving", "imp", "ref", "ode12_ms", "wp_ms", "x_ode12", "err_peak",
+         "err_tc_s", "quad_ms");
+  for (size_t c = 0; c < nc; c++) {
+    double ep = fabs(peak[0][c] / peak[REF][c] - 1);
+    double et = coll[0][c] && coll[REF][c] ? fabs(tc[0][c] - tc[REF][c]) : 0;
+    printf("  %-32s %6zu %6zu %5zu %-9s %10.3f %9.3f %7.1f %9.2g %9.2g %9.3f\n",
+           cs[c].name, cs[c].steps[0].n, moving[REF][c], impacts[0][c],
+           coll[REF][c] ? "collapses" : "survives", 1e3 * tmed[REF][c],
+           1e3 * tmed[0][c], tmed[REF][c] / tmed[0][c], ep, et,
+           1e3 * tmed[QUAD][c]);
+  }
+  double t8 = 0, t12 = 0;
+  for (size_t c = 0; c < nc; c++) {
     t8 += tmed[ODE8][c];
-  printf("\n%-42s %10s %8s %10s %12s %12s %8s\n", "setting", "time_ms",
-         "x_ode8", "evals", "err_peak_x", "err_tc_s", "flag_diff");
+    t12 += tmed[REF][c];
+  }
+  printf("\n%-40s %8s %7s %6s %7s %7s %8s %8s %10s %10s %4s\n", "setting", "time_ms",
+         "x_ode12", "x_ode8", "min_x12", "us/step", "substeps", "evals",
+         "err_peak_x", "err_tc_s", "flag");
   for (size_t k = 0; k < NS; k++) {
-    double tt = 0, ep = 0, et = 0;
-    size_t ev = 0;
+    double tt = 0, ep = 0, et = 0, rmin = INFINITY;
+    size_t ev = 0, mv = 0, sb = 0;
     int fd = 0;
     for (size_t c = 0; c < nc; c++) {
       tt += tmed[k][c];
       ev += evals[k][c];
+      mv += moving[k][c];
+      sb += subs[k][c];
+      rmin = fmin(rmin, tmed[REF][c] / tmed[k][c]);
       ep = fmax(ep, fabs(peak[k][c] / peak[REF][c] - 1));
       if (coll[k][c] != coll[REF][c])
         fd++;
       else if (coll[k][c])
         et = fmax(et, fabs(tc[k][c] - tc[REF][c]));
     }
-    printf("%-42s %10.3f %8.2f %10zu %12.3g %12.3g %8d\n", set[k].name,
-           1e3 * tt, t8 / tt, ev, ep, et, fd);
+    printf("%-40s %8.3f %7.2f %6.2f %7.2f %7.3f %8zu %8zu %10.3g %10.3g %4d\n",
+           set[k].name, 1e3 * tt, t12 / tt, t8 / tt, rmin,
+           mv ? 1e6 * tt / (double)mv : 0.0, sb, ev, ep, et, fd);
   }
-  printf("(time_ms: sum over cases of the median of %d runs; x_ode8: speed "
-         "relative to ode at 1e-8; err_peak_x: largest relative error of the "
-         "peak displacement; err_tc_s: largest collapse-time error where both "
-         "collapse; flag_diff: cases whose collapse flag differs)\n", REPS);
+  printf("(time_ms: sum over cases of the median of %d runs; x_ode12, x_ode8: "
+         "speed relative to ode at 1e-12 and 1e-8; min_x12: smallest per-case "
+         "ratio to ode 1e-12; us/step: time per moving step; substeps: "
+         "integrator steps (Taylor sub-steps, panels; 0 for the ode, whose "
+         "rk8pd steps GSL keeps); evals: path evaluations and table pieces "
+         "fetched; err_peak_x: largest relative error of the peak "
+         "displacement; err_tc_s: largest collapse-time error where both "
+         "collapse; flag: cases whose collapse flag differs)\n", REPS);
   for (size_t c = 0; c < nc; c++) {
     for (int k = 0; k < 3; k++)
       aq_steps_free(&cs[c].steps[k]);

@@ -12,6 +12,7 @@
 #include "arch/stepper.h"
 #include "arch_fixture.h"
 #include "check.h"
+#include "test_dyn_steps.h"
 #include "units.h"
 
 /* Run model mdl on explicit steps; history on. */
@@ -23,19 +24,7 @@ static int hrun(const aq_arch *a, aq_model mdl, double cor, int momentum,
   aq_steps s;
   if (aq_steps_from_list(t, dt, acc, n, &s, &e) != AQ_OK)
     return 0;
-  aq_stepper *st = aq_stepper_alloc(aq_arch_path(a, 0), aq_arch_path(a, 1),
-                                    mdl, &e);
-  int ok = st != NULL;
-  if (st) {
-    aq_stepper_set_cor(st, cor);
-    aq_stepper_set_impact(st, momentum);
-    aq_stepper_set_ode_rtol(st, 1e-12);
-    aq_stepper_set_history(st, 1);
-    ok = aq_stepper_run(st, &s, r, &e) == AQ_OK;
-  }
-  if (!ok)
-    aq_check(0, "run: %s", e.message);
-  aq_stepper_free(st);
+  int ok = tds_run(a, mdl, cor, momentum, 1e-12, 1, &s, r);
   aq_steps_free(&s);
   return ok;
 }
@@ -44,24 +33,11 @@ static int hrun(const aq_arch *a, aq_model mdl, double cor, int momentum,
 static int hpulse(const aq_arch *a, aq_model mdl, double cor, int momentum,
                   double acc, double dur, double end, double dt, aq_result *r)
 {
-  size_t n1 = (size_t)ceil(dur / dt - 1e-9), n2 = (size_t)ceil((end - dur) / dt - 1e-9);
-  n1 = n1 ? n1 : 1;
-  n2 = n2 ? n2 : 1;
-  size_t n = n1 + n2;
-  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d),
-         *ac = malloc(n * sizeof *ac);
-  for (size_t i = 0; i < n; i++) {
-    int first = i < n1;
-    double t0 = first ? 0 : dur, span = first ? dur : end - dur;
-    size_t k = first ? i : i - n1, m = first ? n1 : n2;
-    t[i] = t0 + span * k / m;
-    d[i] = t0 + span * (k + 1) / m - t[i];
-    ac[i] = first ? acc : 0;
-  }
-  int ok = hrun(a, mdl, cor, momentum, t, d, ac, n, r);
-  free(t);
-  free(d);
-  free(ac);
+  aq_steps s;
+  if (!tds_pulse(acc, dur, end, dt, &s))
+    return 0;
+  int ok = tds_run(a, mdl, cor, momentum, 1e-12, 1, &s, r);
+  aq_steps_free(&s);
   return ok;
 }
 
@@ -373,23 +349,14 @@ AQ_TEST(dyn_hard_random_steps)
     return;
   const aq_path *p0 = aq_arch_path(a, 0), *p1 = aq_arch_path(a, 1);
   unsigned long long x = 0x9e3779b97f4a7c15ULL;
-#define RNG() ((x = x * 6364136223846793005ULL + 1442695040888963407ULL), \
-               (double)(x >> 11) / 9007199254740992.0)
   enum { N = 300, RUNS = 12 };
   double t[N], d[N], acc[N];
   int agree = 0;
   for (int run = 0; run < RUNS; run++) {
-    double tt = 0, amp = 0.8 + 1.4 * RNG();
-    for (size_t i = 0; i < N; i++) {
-      t[i] = tt;
-      d[i] = 1e-4 + 0.08 * RNG() * RNG();
-      tt += d[i];
-      double u = 2 * RNG() - 1;
-      acc[i] = u * amp * (u < 0 ? p0->lambda0 * p0->g_mps2
-                                : p1->lambda0 * p1->g_mps2);
-    }
-    double cor = RNG();
-    int mom = RNG() < 0.3;
+    tds_random(&x, p0->lambda0 * p0->g_mps2, p1->lambda0 * p1->g_mps2, t, d,
+               acc, N);
+    double cor = tds_rng(&x);
+    int mom = tds_rng(&x) < 0.3;
     aq_result r[2];
     int ok = 1;
     for (int mdl = 0; mdl < 2; mdl++) {

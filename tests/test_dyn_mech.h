@@ -8,6 +8,9 @@
  *    M = m R^2 + m R^2 / 3 = 4/3 m R^2 (exact); collapse at s = alpha; it
  *    opens for a_g < -g tan(alpha) (act_sign = -1).  The reverse set is the
  *    mirror image.  Housner's impact rule: sdot ratio 1 - 1.5 sin^2 alpha.
+ *    Its pieces (for the work path's Taylor leg) are the closed forms'
+ *    Taylor polynomials of degree 5 on TB_BLOCK_PIECES equal pieces
+ *    (remainder (alpha / TB_BLOCK_PIECES)^6 / 720 of R: below 1e-16 m).
  * 2. A synthetic two-set mechanism with smooth, non-constant M(s) and
  *    curved x, y (no physics beyond the contract), asymmetric sets.
  */
@@ -52,6 +55,49 @@ static int tb_block_eval(const void *ctx, double s, aq_path_point *p)
   return 0;
 }
 
+enum { TB_BLOCK_PIECES = 256 };
+
+/* d^k/ds^k of sin(alpha - s) and cos(alpha - s) (k >= 0). */
+static double tb_dsin(double u, int k)
+{
+  static const double sg[4] = {1, -1, -1, 1};
+  return sg[k % 4] * (k % 2 ? cos(u) : sin(u));
+}
+static double tb_dcos(double u, int k)
+{
+  static const double sg[4] = {1, 1, -1, -1};
+  return sg[k % 4] * (k % 2 ? sin(u) : cos(u));
+}
+
+static int tb_block_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
+{
+  const tb_block *k = ctx;
+  if (!(s >= 0) || s > k->alpha)
+    return 1;
+  double w = k->alpha / TB_BLOCK_PIECES;
+  double fi = dir > 0 ? floor(s / w) : ceil(s / w) - 1;
+  if (dir > 0 && (fi + 1) * w <= s) /* s / w rounded down across a join */
+    fi++;
+  if (dir <= 0 && fi * w >= s)
+    fi--;
+  int i = fi < 0 ? 0 : (fi > TB_BLOCK_PIECES - 1 ? TB_BLOCK_PIECES - 1 : (int)fi);
+  double R = k->R, sd = k->side, u = k->alpha - i * w, fact = 1;
+  pc->s_lo = i * w;
+  pc->s_hi = i + 1 == TB_BLOCK_PIECES ? k->alpha : (i + 1) * w;
+  for (int j = 0; j < 6; j++) {
+    if (j > 0)
+      fact *= j;
+    pc->x[j] = -sd * R * tb_dsin(u, j) / fact;
+    pc->y[j] = R * tb_dcos(u, j) / fact;
+    pc->dx[j] = -sd * R * tb_dsin(u, j + 1) / fact;
+    pc->dy[j] = R * tb_dcos(u, j + 1) / fact;
+    pc->m[j] = j == 0 ? 4.0 / 3.0 * k->m * R * R : 0;
+  }
+  pc->x[0] += sd * k->b;
+  pc->y[0] -= k->h;
+  return 0;
+}
+
 /* Fill two paths for a block of half-width b, half-height h, mass m. */
 static void tb_block_paths(tb_block blk[2], aq_path path[2], double b,
                            double h, double m, double g)
@@ -67,6 +113,7 @@ static void tb_block_paths(tb_block blk[2], aq_path path[2], double b,
     path[k] = (aq_path){.name = k == 0 ? "primary" : "reverse",
                         .eval = tb_block_eval,
                         .eval_exact = tb_block_eval,
+                        .piece = tb_block_piece,
                         .ctx = &blk[k],
                         .mass_kg = m,
                         .g_mps2 = g,

@@ -27,7 +27,7 @@ static const char usage[] =
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default:\n"
     "                   the arch file's [dynamics] cor; refused with impact\n"
     "                   momentum, which the runs then follow)\n"
-    "  --model M        workpath (default) | ode | paper\n"
+    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
     "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
     "  --max-duration S give up above this duration, s (default 100)\n"
@@ -37,7 +37,7 @@ static const char usage[] =
     "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
     "option the arch makes ineffective, as --cor with impact momentum).\n";
 
-static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 static const double FREE_TAIL_S = 30; /* free motion after the pulse */
 
 /* 1 if a pulse of a_mps2 for dur_s collapses the arch, 0 if not, -1 on error. */

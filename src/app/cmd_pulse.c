@@ -1,6 +1,6 @@
 /* cmd_pulse.c: `archquake pulse --arch FILE --accel-g A --duration S ...`:
  * one arch under a rectangular ground-acceleration pulse; prints the run row
- * (TSV header + row) and optionally the step-end history as CSV. */
+ * (TSV header + row) and optionally the history as CSV. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <getopt.h>
@@ -39,9 +39,10 @@ static const char usage[] =
     "                   (default: the arch file's [dynamics] cor; refused with\n"
     "                   impact momentum, which uses none)\n"
     "  --impact RULE    cor | momentum (default: the arch file's)\n"
-    "  --model M        workpath (default) | ode | paper\n"
+    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
-    "  --history FILE   write the step-end history as CSV\n"
+    "  --history FILE   write the history as CSV (step ends, turning points,\n"
+    "                   impacts)\n"
     "  --help           this text\n"
     "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
@@ -50,7 +51,7 @@ static const char usage[] =
     "an option the arch makes ineffective, as --cor with impact momentum),\n"
     "3 the history could not be written.\n";
 
-static const char *const models[] = {"workpath", "ode", "paper", NULL};
+static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
 /* Default end: candidate ends are duration + k * REST_CHUNK_S. */
 static const double REST_CHUNK_S = 1.0;

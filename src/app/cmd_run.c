@@ -37,10 +37,11 @@ static const char usage_head[] =
     "  --scale-to-pga G    scale each processed record to a PGA of G g instead\n"
     "  -j, --jobs N        worker threads (default: the number of cores); the\n"
     "                      results are the same for every N\n"
-    "  --model M           workpath (default), ode (reference), paper\n"
+    "  --model M           workpath (default), ode (reference), paper, workpath-quad\n"
     "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
     "                      (default: each arch's [dynamics] cor)\n"
-    "  --history           write step-end histories to the HDF5 file (with -o)\n"
+    "  --history           write histories (step ends, turning points, impacts)\n"
+    "                      to the HDF5 file (with -o)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -180,7 +181,7 @@ int aq_cmd_run(int argc, char **argv)
       {"help", no_argument, NULL, OPT_HELP}};
   size_t nlong = aq_opt_signal_append(longopts, 20);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
-  static const char *const models[] = {"workpath", "ode", "paper", NULL};
+  static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);

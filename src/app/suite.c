@@ -122,7 +122,7 @@ typedef struct {
   aq_text_layout layout;    /* with cfg->aligned */
 } suite;
 
-static const char *const model_names[] = {"workpath", "ode", "paper"};
+static const char *const model_names[] = {"workpath", "ode", "paper", "workpath-quad"};
 
 /* Run slot k of an arch: factor k / npol, the record negated (reversed)
  * for the second slot of each factor with --polarity both, or for every
@@ -707,7 +707,7 @@ int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   suite S;
   memset(&S, 0, sizeof S);
   S.cfg = c;
-  S.model_name = model_names[c->model <= AQ_MODEL_PAPER ? c->model : 0];
+  S.model_name = model_names[c->model <= AQ_MODEL_WORKPATH_QUAD ? c->model : 0];
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
   S.nscale = (c->scales ? c->nscale : 1) * S.npol;
   S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */

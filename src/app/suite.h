@@ -46,7 +46,7 @@ typedef struct {
   aq_model model;          /* --model */
   double cor;              /* --cor, or NAN for each arch's own */
   int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */
-  int history;             /* --history: keep and write step-end histories */
+  int history;             /* --history: keep and write histories */
   long threads;            /* -j (>= 1) */
   int progress;            /* 1: progress line on stderr */
   const char *h5_path;     /* -o target, or NULL */

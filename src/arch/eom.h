@@ -49,6 +49,11 @@ typedef struct {
   double peak_s;    /* max s seen (turning points, ends), rad */
   double peak_ke_j; /* max KE seen, J */
   double peak_x_m;  /* max |x| seen, m */
+  size_t substeps;  /* integrator steps (Taylor sub-steps, panels, rk8pd steps) */
+  /* Optional (NULL: none): called at each turning point inside a leg with
+   * the time since the leg's start (s), s (rad) and x, y (m) there. */
+  void (*turn)(void *ctx, double t_s, double s, double x_m, double y_m);
+  void *turn_ctx;
 } aq_leg_stats;
 
 /* Evaluate p at s, with s clamped to [0, s_c] and the functions continued

@@ -47,10 +47,28 @@ typedef struct {
  * the nearer end; see docs/arch-model.md.) */
 typedef int (*aq_path_eval_fn)(const void *ctx, double s, aq_path_point *p);
 
+/* One piece of the tables: on [s_lo, s_hi] each tabled function is a
+ * quintic in u = s - s_lo (rad), power basis, coefficient k of u^k.  dx, dy
+ * are the tabled slopes (whose derivatives are d2x_m, d2y_m of a point), not
+ * the derivatives of x, y (they agree to the table error). */
+typedef struct {
+  double s_lo, s_hi;   /* rad */
+  double x[6], y[6];   /* x_m, y_m: m */
+  double dx[6], dy[6]; /* dx_m, dy_m: m/rad */
+  double m[6];         /* mgen_kgm2: kg m^2 */
+} aq_path_piece;
+
+/* The piece holding s: for dir > 0 the one with s_lo <= s < s_hi (the last
+ * at s = s_c), for dir <= 0 the one with s_lo < s <= s_hi (the first at
+ * s = 0).  0 on success, non-zero outside [0, s_c]. */
+typedef int (*aq_path_piece_fn)(const void *ctx, double s, int dir,
+                                aq_path_piece *pc);
+
 typedef struct {
   const char *name;          /* "primary" or "reverse" */
   aq_path_eval_fn eval;      /* fast evaluation (tables) */
   aq_path_eval_fn eval_exact;/* exact evaluation (closed-form kinematics) */
+  aq_path_piece_fn piece;    /* the tables' pieces as polynomials (NULL: none) */
   const void *ctx;
   double mass_kg;            /* m_T: whole arch (moving and fixed parts), kg */
   double g_mps2;             /* gravity used for this arch, m/s^2 */
@@ -64,6 +82,10 @@ typedef struct {
    * sdot on the other set| by the impulse-momentum balance about this set's
    * hinges (the multi-body Housner rule).  Used with impact = momentum. */
   double impact_vel_ratio;
+  /* |x_m| is non-decreasing in s on [0, x_mono_rad] (by the tables' slopes,
+   * sampled; 0 when unknown): the peak displacement up to any s there is
+   * |x(s)|. */
+  double x_mono_rad;
 } aq_path;
 
 #endif

@@ -8,8 +8,11 @@
 
 typedef struct {
   size_t n, cap;
-  double *time_s;             /* step-end times, s */
-  double *rotation_rad;       /* q at step end (global sign), rad */
+  /* One sample at each step end, and (default and workpath-quad models) one
+   * at each turning point inside a step (KE = 0, the true peak) and at each
+   * impact (q = 0, the KE before it); in time order. */
+  double *time_s;             /* sample times, s */
+  double *rotation_rad;       /* q at the sample (global sign), rad */
   double *displacement_m;     /* x of the whole arch's centroid from rest, m */
   double *kinetic_energy_j;   /* J */
   double *potential_energy_j; /* J, from the undeformed arch */
@@ -30,7 +33,8 @@ typedef struct {
   size_t reversals;            /* zero-velocity turning points */
   size_t steps_total;          /* steps in the input */
   size_t steps_moving;         /* steps integrated in motion (not skipped at rest) */
-  size_t evals;                /* path (or right-hand side) evaluations */
+  size_t evals;                /* path (or right-hand side) evaluations; table pieces fetched */
+  size_t substeps;             /* integrator steps: Taylor sub-steps, panels, rk8pd steps */
   aq_history history;          /* filled only when asked */
 } aq_result;
 

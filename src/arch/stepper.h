@@ -3,8 +3,12 @@
  * run, read counters from the result, free).
  *
  * Models: AQ_MODEL_WORKPATH (default: exact energy balance, docs/method.md
- * sec. 4-9), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2; the
- * reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison only).
+ * sec. 4-9, integrated as time-Taylor series on the tables' pieces),
+ * AQ_MODEL_WORKPATH_QUAD (the same balance by time quadrature; a second
+ * reference), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2;
+ * the reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison
+ * only).  Counters (steps, moving steps, sub-steps, path evaluations,
+ * impacts, reversals) are in the result.
  * The stepper keeps pointers to the two paths (the arch outlives it).
  * One stepper per thread.  aq_stepper_free accepts NULL. */
 #ifndef AQ_ARCH_STEPPER_H
@@ -15,7 +19,12 @@
 #include "path.h"
 #include "result.h"
 
-typedef enum { AQ_MODEL_WORKPATH = 0, AQ_MODEL_ODE, AQ_MODEL_PAPER } aq_model;
+typedef enum {
+  AQ_MODEL_WORKPATH = 0,  /* time-Taylor leg on the table pieces (leg_taylor.c) */
+  AQ_MODEL_ODE,           /* GSL rk8pd on the equation of motion (eom.c) */
+  AQ_MODEL_PAPER,         /* the paper's printed fits (paper.c) */
+  AQ_MODEL_WORKPATH_QUAD  /* time integral by Chebyshev panels (leg_quad.c) */
+} aq_model;
 
 typedef struct aq_stepper aq_stepper;
 
@@ -26,11 +35,16 @@ void aq_stepper_free(aq_stepper *st);
 void aq_stepper_set_cor(aq_stepper *st, double cor);           /* 0..1, KE ratio */
 void aq_stepper_set_impact(aq_stepper *st, int momentum);      /* 1: impulse-momentum rule */
 void aq_stepper_set_ode_rtol(aq_stepper *st, double rtol);     /* ode model tolerance */
-void aq_stepper_set_history(aq_stepper *st, int on);           /* keep step-end history */
+void aq_stepper_set_history(aq_stepper *st, int on);           /* keep a history (step ends, turning points, events) */
 /* Added for the dynamics validations and the bench (all optional): */
 void aq_stepper_set_exact_path(aq_stepper *st, int on); /* use eval_exact, not tables */
-void aq_stepper_set_wp_tol(aq_stepper *st, double tol);  /* workpath panel tolerance (relative, time) */
-void aq_stepper_set_wp_nodes(aq_stepper *st, int n);     /* workpath Chebyshev nodes per panel, 4..32 */
+void aq_stepper_set_wp_tol(aq_stepper *st, double tol);  /* workpath-quad panel tolerance (relative, time) */
+void aq_stepper_set_wp_nodes(aq_stepper *st, int n);     /* workpath-quad Chebyshev nodes per panel, 4..32 */
+void aq_stepper_set_taylor_tol(aq_stepper *st, double tol); /* workpath series tail / motion (default 1.1e-16) */
+/* Run with every step's acceleration multiplied by scale (default 1; any
+ * finite value: a negative scale reverses the polarity), without a scaled
+ * copy of the steps. */
+void aq_stepper_set_scale(aq_stepper *st, double scale);
 void aq_stepper_set_rest_tol(aq_stepper *st, double tol);/* rest: KE <= tol * m_T g y(s_c) after an impact */
 
 /* Run from rest at q = 0.  res is overwritten (free with aq_result_free).

@@ -63,6 +63,7 @@ struct aq_workpath {
   size_t n;           /* table intervals */
   double *bp;         /* n+1 breakpoints, rad */
   double *coef;       /* n * NF * 6 power-basis coefficients in t = (s - bp[i]) / h_i */
+  aq_path_piece *piece; /* n pieces for path.h (coefficients in u = s - bp[i]) */
   size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
@@ -188,6 +189,64 @@ static int eval_table(const void *ctx, double s, aq_path_point *p)
   table_all(w, s, f);
   fill_point(w, f, p);
   return 0;
+}
+
+/* The interval holding s for a direction (aq_path_piece_fn). */
+static size_t interval_of(const aq_workpath *w, double s, int dir)
+{
+  size_t lo = 0, hi = w->n;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (dir > 0 ? s < w->bp[mid] : s <= w->bp[mid])
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return lo;
+}
+
+static void piece_of(const aq_workpath *w, size_t i, aq_path_piece *pc)
+{
+  static const int fk[5] = {F_X, F_Y, F_DX, F_DY, F_M};
+  double *dst[5] = {pc->x, pc->y, pc->dx, pc->dy, pc->m};
+  double h = w->bp[i + 1] - w->bp[i], ih = 1.0 / h;
+  pc->s_lo = w->bp[i];
+  pc->s_hi = w->bp[i + 1];
+  for (int f = 0; f < 5; f++) {
+    const double *c = w->coef + (i * NF + (size_t)fk[f]) * 6;
+    double sc = 1; /* ih^k: coefficients in t = u / h become those in u */
+    for (int k = 0; k < 6; k++, sc *= ih)
+      dst[f][k] = c[k] * sc;
+  }
+}
+
+static int eval_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
+{
+  const aq_workpath *w = ctx;
+  if (clamp_s(w, &s) != 0)
+    return -1;
+  *pc = w->piece[interval_of(w, s, dir)];
+  return 0;
+}
+
+/* x_mono_rad (path.h): the first s where the tabled slope dx/ds, sampled
+ * at X_MONO_SAMPLES points per interval, leaves the sign it has at s = 0. */
+#define X_MONO_SAMPLES 8
+static double x_mono(const aq_workpath *w)
+{
+  double sgn = 0;
+  for (size_t i = 0; i < w->n; i++) {
+    const double *c = w->coef + (i * NF + (size_t)F_DX) * 6;
+    for (int j = 0; j <= X_MONO_SAMPLES; j++) {
+      double t = (double)j / X_MONO_SAMPLES;
+      double v = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+      if (sgn == 0)
+        sgn = v > 0 ? 1 : (v < 0 ? -1 : 0);
+      if (sgn == 0 || !(v * sgn > 0))
+        return w->bp[i];
+    }
+  }
+  return w->path.s_c_rad;
 }
 
 /* Quintic Hermite on one interval as power-basis coefficients in t. */
@@ -337,6 +396,13 @@ static int build_tables(aq_workpath *w)
     refine(&rc, i == 0 ? 0.0 : sc * (double)i / TABLE_N0, node[i],
            i + 1 == TABLE_N0 ? sc : sc * (double)(i + 1) / TABLE_N0, node[i + 1], 0, HUGE_VAL);
   w->tab_err = rc.err;
+  if (!rc.failed && w->n > 0) {
+    w->piece = malloc(w->n * sizeof *w->piece);
+    if (!w->piece)
+      return -1;
+    for (size_t i = 0; i < w->n; i++)
+      piece_of(w, i, &w->piece[i]);
+  }
   return rc.too_many ? -2 : rc.failed ? -1 : 0;
 }
 
@@ -400,6 +466,7 @@ void aq_workpath_free(aq_workpath *w)
   if (!w)
     return;
   free(w->coef);
+  free(w->piece);
   free(w->bp);
   free(w);
 }
@@ -426,6 +493,7 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
   p->name = w->name;
   p->eval = eval_table;
   p->eval_exact = eval_exact;
+  p->piece = eval_piece;
   p->ctx = w;
   p->mass_kg = g->mass_kg;
   p->g_mps2 = g_mps2;
@@ -508,6 +576,7 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL,
                         "out of memory (or the linkage failed) building tables");
   }
+  p->x_mono_rad = x_mono(w);
   *out = w;
   return AQ_OK;
 }

@@ -1,0 +1,419 @@
+/* leg_taylor.c: the default work-path leg (see leg.h, and eom.h for the
+ * leg contract): time-Taylor series of s(t) on the tables' pieces.
+ *
+ * Within one table piece (path.h aq_path_piece) the work term
+ *     P(s) = dKE/ds = -m_T (a_g dx/ds + g dy/ds)     (eq. (19) per
+ *                                            docs/method.md sec. 5, d/ds)
+ * and the generalised mass M(s) (docs/method.md sec. 4) are polynomials, so the
+ * kinetic energy KE(s) = KE0 + int_s0^s P is a polynomial too.  The energy
+ * balance 1/2 M(s) sdot^2 = KE(s), differentiated in time, gives
+ *     s'' = F'(s),   F = KE / M                                  (TL)
+ * (the Lagrangian equation of motion of eom.h with sdot^2 = 2 KE / M).  A
+ * sub-step from (s0, v0) shifts P and M to s0, integrates P into KE (with
+ * KE0 = 1/2 M(s0) v0^2), divides by M and differentiates: G(u) = F'(s0 + u)
+ * as a power series in u.  The series of s(t) - s0 = sum_k c_k t^k follows
+ * coefficient by coefficient from (TL):
+ *     c_{k+2} = [G(u(t))]_k / ((k+1)(k+2)),
+ * the composition G(u(t)) built from the powers of u(t), each coefficient
+ * needing only c_1..c_{k+1}.  The order grows until the last two terms at
+ * the wanted step (the time left in the record step) are below the
+ * tolerance relative to the sub-step's motion; past TL_MAX_ORDER the step
+ * is shortened instead.
+ *
+ * s(t) is smooth through turning points, so they need no special handling
+ * (one is located, by safeguarded Newton on sdot, only for the peaks, the
+ * count and the history).  Crossings of the piece's ends are roots of the
+ * series, located by safeguarded Newton: s = 0 closing is an impact, s = s_c
+ * opening is collapse, any other end continues on the next piece with the
+ * same s and sdot.
+ */
+#include "leg.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#define TL_MAX_ORDER 20                      /* s(t) series order at most */
+enum { TL_MIN_ORDER = 4 };                   /* tail test from this order */
+static const double TL_TOL_DEFAULT = 1.1e-16; /* tail / sub-step motion (unit round-off) */
+static const double TL_SHRINK = 0.5;         /* step from the tail's own estimate, times this */
+static const int TL_ROOT_ITER = 60;          /* safeguarded Newton iterations at most */
+static const double TL_ROOT_EPS = 8 * DBL_EPSILON; /* root located: last Newton step / sub-step */
+static const size_t TL_MAX_SUBSTEPS = 2000000; /* per leg; beyond: no progress */
+static const int TL_MAX_HALVINGS = 60;       /* of a sub-step with two turning points */
+
+struct aq_taylor {
+  double tol;
+  const aq_path *p; /* owner of the cached piece, or NULL */
+  aq_path_piece pc;
+};
+
+aq_taylor *aq_taylor_alloc(aq_error *err)
+{
+  aq_taylor *w = calloc(1, sizeof *w);
+  if (!w) {
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "workpath", "out of memory");
+    return NULL;
+  }
+  w->tol = TL_TOL_DEFAULT;
+  return w;
+}
+
+void aq_taylor_free(aq_taylor *w) { free(w); }
+
+void aq_taylor_set_tol(aq_taylor *w, double tol)
+{
+  if (isfinite(tol) && tol > 0)
+    w->tol = tol;
+}
+
+void aq_taylor_reset(aq_taylor *w) { w->p = NULL; }
+
+/* ------------------------------------------------------------------ */
+
+static double poly5(const double *c, double u)
+{
+  return c[0] + u * (c[1] + u * (c[2] + u * (c[3] + u * (c[4] + u * c[5]))));
+}
+
+/* c(u0 + u) in powers of u (degree 5), in place. */
+static void shift5(double *c, double u0)
+{
+  for (int k = 0; k < 5; k++)
+    for (int j = 4; j >= k; j--)
+      c[j] += u0 * c[j + 1];
+}
+
+/* sum_{k=0..n} q_k t^k. */
+static double horner(const double *q, int n, double t)
+{
+  double r = q[n];
+  for (int k = n - 1; k >= 0; k--)
+    r = r * t + q[k];
+  return r;
+}
+
+/* q(t) and q'(t) in one pass (two interleaved chains). */
+static double horner_d(const double *q, int n, double t, double *d)
+{
+  double r = q[n], r1 = 0;
+  for (int k = n - 1; k >= 0; k--) {
+    r1 = r1 * t + r;
+    r = r * t + q[k];
+  }
+  *d = r1;
+  return r;
+}
+
+/* A root of q (degree n) in (ta, tb], where fa = q(ta) and fb = q(tb)
+ * differ in sign or fb = 0, from the guess t0: Newton, kept inside the
+ * shrinking bracket. */
+static double poly_root(const double *q, int n, double ta, double tb,
+                        double fa, double fb, double t0)
+{
+  if (fb == 0)
+    return tb;
+  double lo = ta, hi = tb;
+  int neg_lo = fa < 0;
+  double t = t0;
+  if (!(t > lo && t < hi))
+    t = fa != fb ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
+  if (!(t > lo && t < hi))
+    t = 0.5 * (lo + hi);
+  for (int it = 0; it < TL_ROOT_ITER; it++) {
+    double d, f = horner_d(q, n, t, &d);
+    if (f == 0)
+      return t;
+    if ((f < 0) == neg_lo)
+      lo = t;
+    else
+      hi = t;
+    double tn = d != 0 ? t - f / d : NAN;
+    if (!(tn > lo && tn < hi))
+      tn = 0.5 * (lo + hi);
+    if (fabs(tn - t) <= TL_ROOT_EPS * tb || hi - lo <= TL_ROOT_EPS * tb)
+      return tn;
+    t = tn;
+  }
+  return hi;
+}
+
+/* The smallest positive root of b t + a t^2 = r (a quadratic model), or
+ * NAN. */
+static double quad_guess(double a, double b, double r)
+{
+  double disc = b * b + 4 * a * r;
+  if (!(disc >= 0))
+    return NAN;
+  double sq = sqrt(disc);
+  double t1 = 2 * r / (b + (b >= 0 ? sq : -sq)); /* stable form */
+  double t2 = a != 0 ? (-b + (b >= 0 ? -sq : sq)) / (2 * a) : NAN;
+  if (t1 > 0 && (!(t2 > 0) || t1 < t2))
+    return t1;
+  return t2 > 0 ? t2 : NAN;
+}
+
+/* The series of one sub-step: s(t) = s0 + sum_{k=1..n} c_k t^k. */
+typedef struct {
+  int n;
+  double c[TL_MAX_ORDER + 1];
+} tl_series;
+
+/* Build the series from (s0, v0) on piece pc under ground acceleration a
+ * for a wanted step *h; *h is shortened when TL_MAX_ORDER cannot reach the
+ * tolerance there. */
+static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
+                     double s0, double v0, double tol, double *h,
+                     tl_series *ts)
+{
+  enum { N = TL_MAX_ORDER };
+  double u0 = s0 - pc->s_lo;
+  double pp[6], mm[6];
+  for (int k = 0; k < 6; k++) {
+    pp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]); /* P(s) */
+    mm[k] = pc->m[k];
+  }
+  shift5(pp, u0);
+  shift5(mm, u0);
+  double K[N + 1] = {0}, Fz[N + 6] = {0}, G[N];
+  double *F = Fz + 5; /* F[-5..-1] = 0: the division below runs 5 terms */
+  K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
+  for (int k = 0; k < 6 && k + 1 <= N; k++)
+    K[k + 1] = pp[k] / (k + 1);
+  const double im0 = 1.0 / mm[0];
+  F[0] = K[0] * im0;
+  /* U[j][k]: coefficient k of u(t)^j, u(t) = s(t) - s0 */
+  double U[N + 1][N + 1];
+  double *c = ts->c;
+  c[0] = 0;
+  c[1] = v0;
+  double hp[N + 1]; /* powers of the wanted step */
+  hp[0] = 1;
+  for (int k = 1; k <= N; k++)
+    hp[k] = hp[k - 1] * *h;
+  int n = 1;
+  double scale = 0;
+  for (int k = 0; k + 2 <= N; k++) {
+    /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
+    double f = K[k + 1] - mm[1] * F[k] - mm[2] * F[k - 1] - mm[3] * F[k - 2] -
+               mm[4] * F[k - 3] - mm[5] * F[k - 4];
+    F[k + 1] = f * im0;
+    G[k] = (k + 1) * F[k + 1];
+    /* the powers of u at order k (c_1..c_k are known) */
+    U[1][k] = c[k];
+    double comp = k == 0 ? G[0] : G[1] * c[k];
+    for (int j = 2; j <= k; j++) {
+      const double *up = &U[j - 1][k - 1]; /* U[j-1][k-i] = up[1 - i] */
+      double sum = 0;
+      for (int i = 1; i <= k - j + 1; i++)
+        sum += c[i] * up[1 - i];
+      U[j][k] = sum;
+      comp += G[j] * sum;
+    }
+    c[k + 2] = comp / ((k + 1) * (k + 2));
+    n = k + 2;
+    if (n == 3) /* the sub-step's motion */
+      scale = fabs(c[1]) * hp[1] + fabs(c[2]) * hp[2] + fabs(c[3]) * hp[3];
+    if (n >= TL_MIN_ORDER &&
+        fabs(c[n]) * hp[n] + fabs(c[n - 1]) * hp[n - 1] <= tol * scale)
+      break;
+  }
+  if (n == N) {
+    /* not converged at *h: the step where the last two terms each reach
+     * the tolerance (Jorba and Zou's rule), shrunk for safety */
+    double hh = *h;
+    double h1 = fabs(c[n]) > 0 ? pow(tol * scale / fabs(c[n]), 1.0 / n) : hh;
+    double h2 = fabs(c[n - 1]) > 0 ? pow(tol * scale / fabs(c[n - 1]), 1.0 / (n - 1)) : hh;
+    double hn = TL_SHRINK * fmin(h1, h2);
+    if (hn < hh)
+      *h = hn;
+  }
+  ts->n = n;
+}
+
+static aq_status tl_fail(aq_error *err, const aq_path *p, const char *what,
+                         double s)
+{
+  return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, p->name,
+                      "workpath: %s at s = %.9g rad", what, s);
+}
+
+/* Make w->pc the piece of p holding s for the direction dir. */
+static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
+                    aq_leg_stats *S)
+{
+  const aq_path_piece *pc = &w->pc;
+  if (w->p == p && s >= pc->s_lo && s <= pc->s_hi &&
+      !(dir > 0 && s == pc->s_hi && pc->s_hi < p->s_c_rad) &&
+      !(dir <= 0 && s == pc->s_lo && pc->s_lo > 0))
+    return 0;
+  S->evals++;
+  if (p->piece(p->ctx, s, dir, &w->pc) != 0) {
+    w->p = NULL;
+    return -1;
+  }
+  w->p = p;
+  return 0;
+}
+
+/* s'' at rest (sdot = 0) on the cached piece: P / M. */
+static double tl_accel0(const aq_taylor *w, const aq_path *p, double a, double s)
+{
+  const aq_path_piece *pc = &w->pc;
+  double u = s - pc->s_lo;
+  return -p->mass_kg * (a * poly5(pc->dx, u) + p->g_mps2 * poly5(pc->dy, u)) /
+         poly5(pc->m, u);
+}
+
+static int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
+                        double dt, double *used, aq_leg_end *end,
+                        aq_leg_stats *S, aq_error *err)
+{
+  const double sc = p->s_c_rad, mt = p->mass_kg, g = p->g_mps2;
+  double s = m->s < 0 ? 0 : (m->s > sc ? sc : m->s);
+  int dir = m->dir >= 0 ? 1 : -1;
+  if (tl_piece(w, p, s, dir, S))
+    return tl_fail(err, p, "no table piece", s);
+  double mass = poly5(w->pc.m, s - w->pc.s_lo);
+  double v = dir * sqrt(2 * fmax(m->ke_j, 0) / mass);
+  double t = 0;
+  *end = AQ_LEG_TIME;
+  if (s <= 0 && v <= 0 && tl_accel0(w, p, a, s) <= 0) {
+    *used = 0;
+    *end = AQ_LEG_REST;
+    return AQ_OK;
+  }
+  if (s >= sc && v >= 0) {
+    *used = 0;
+    *end = AQ_LEG_COLLAPSE;
+    return AQ_OK;
+  }
+  for (size_t nst = 0; t < dt; nst++) {
+    if (nst > TL_MAX_SUBSTEPS)
+      return tl_fail(err, p, "no progress", s);
+    /* the piece ahead: by the velocity, or the acceleration at rest */
+    int d = sgn(v);
+    if (d == 0)
+      d = sgn(tl_accel0(w, p, a, s));
+    if (tl_piece(w, p, s, d, S))
+      return tl_fail(err, p, "no table piece", s);
+    const aq_path_piece *pc = &w->pc;
+    if ((d > 0 && s >= pc->s_hi && s < sc) || (d < 0 && s <= pc->s_lo && s > 0))
+      return tl_fail(err, p, "the table piece ahead ends where it starts", s);
+    double h = dt - t;
+    tl_series ts;
+    tl_build(pc, mt, g, a, s, v, w->tol, &h, &ts);
+    S->substeps++;
+    const int n = ts.n;
+    double dq[TL_MAX_ORDER + 1]; /* sdot(t) */
+    for (int k = 0; k < n; k++)
+      dq[k] = (k + 1) * ts.c[k + 1];
+    /* the start's direction (at rest: that of s''), and at most one
+     * turning point within the sub-step (else halve it) */
+    int s0 = v != 0 ? sgn(v) : sgn(ts.c[2]);
+    double vh = horner(dq, n - 1, h);
+    for (int it = 0; it < TL_MAX_HALVINGS && s0 != 0; it++) {
+      double vm = horner(dq, n - 1, 0.5 * h);
+      if (!(sgn(vm) == -s0 && sgn(vh) == s0))
+        break;
+      h *= 0.5;
+      vh = vm;
+    }
+    double seg[3] = {0, h, h};
+    int nseg = 1, turn = 0;
+    if (s0 != 0 && sgn(vh) == -s0) {
+      /* a turning point: located only when it may set a peak, cross a
+       * piece end before it (bound: sum |c_k| h^k), end the sub-step
+       * beyond a piece end (the crossing after it needs the split), or be
+       * sampled */
+      double bound = 0, tk = h;
+      for (int k = 1; k <= n; k++, tk *= h)
+        bound += fabs(ts.c[k]) * tk;
+      double sh = s + horner(ts.c, n, h);
+      turn = 1;
+      if (S->turn || (s0 > 0 && (s + bound > S->peak_s || s + bound > pc->s_hi)) ||
+          (s0 < 0 && s - bound < pc->s_lo) || sh > pc->s_hi || sh < pc->s_lo) {
+        seg[1] = poly_root(dq, n - 1, 0, h, dq[0], vh,
+                           ts.c[2] != 0 ? -ts.c[1] / (2 * ts.c[2]) : NAN);
+        nseg = 2;
+        turn = 2;
+      }
+    }
+    /* the first crossing of a piece end, segment by segment (s monotone in
+     * each) */
+    int cross = 0; /* +1 through s_hi, -1 through s_lo */
+    double tx = h;
+    double ua = 0; /* s - s0 at the segment's start */
+    for (int k = 0; k < nseg && !cross; k++) {
+      double ub = horner(ts.c, n, seg[k + 1]), sb = s + ub;
+      if (sb > pc->s_hi)
+        cross = 1;
+      else if (sb < pc->s_lo)
+        cross = -1;
+      if (cross) {
+        double q[TL_MAX_ORDER + 1];
+        for (int i = 0; i <= n; i++)
+          q[i] = ts.c[i];
+        q[0] = s - (cross > 0 ? pc->s_hi : pc->s_lo);
+        tx = poly_root(q, n, seg[k], seg[k + 1], q[0] + ua, q[0] + ub,
+                       k == 0 ? quad_guess(ts.c[2], ts.c[1], -q[0]) : NAN);
+        if (k == 0 && nseg == 2)
+          turn = 0; /* the turning point lies beyond the crossing */
+      }
+      ua = ub;
+    }
+    if (turn == 1 && (s > 0 || s + horner(ts.c, n, h) > 0)) {
+      S->reversals++;
+    } else if (turn == 2) {
+      double st = s + horner(ts.c, n, seg[1]);
+      if (st > 0) {
+        S->reversals++;
+        if (st > S->peak_s)
+          S->peak_s = fmin(st, sc);
+        if (S->turn) {
+          double u = st - pc->s_lo;
+          S->turn(S->turn_ctx, t + seg[1], st, poly5(pc->x, u), poly5(pc->y, u));
+        }
+      }
+    }
+    double vn, un = horner_d(ts.c, n, tx, &vn);
+    if (cross > 0) {
+      s = pc->s_hi;
+    } else if (cross < 0) {
+      s = pc->s_lo;
+    } else {
+      s += un;
+      s = s < pc->s_lo ? pc->s_lo : (s > pc->s_hi ? pc->s_hi : s);
+    }
+    v = vn;
+    t = cross || tx < dt - t ? t + tx : dt;
+    if (s > S->peak_s)
+      S->peak_s = s;
+    if (cross > 0 && s >= sc) {
+      *end = AQ_LEG_COLLAPSE;
+      if (!(v > 0))
+        v = 0;
+      break;
+    }
+    if (cross < 0 && s <= 0) {
+      *end = AQ_LEG_IMPACT;
+      if (!(v < 0))
+        v = -0.0;
+      break;
+    }
+  }
+  const aq_path_piece *pc = &w->pc;
+  double u = s - pc->s_lo;
+  *used = *end == AQ_LEG_TIME ? dt : t;
+  m->s = s;
+  m->ke_j = 0.5 * poly5(pc->m, u) * v * v;
+  if (v != 0)
+    m->dir = v > 0 ? 1 : -1;
+  m->x_m = poly5(pc->x, u);
+  m->y_m = poly5(pc->y, u);
+  if (m->ke_j > S->peak_ke_j)
+    S->peak_ke_j = m->ke_j;
+  return AQ_OK;
+}
