@@ -284,3 +284,55 @@ AQ_TEST(orient_refusals)
   aq_check(rc == 0 && strstr(err, "ignored") && strstr(err, a) && aq_test_count_lines(out) == 2,
            "V without --vertical ignored with a warning (%d): %s", rc, err);
 }
+
+/* The vertical through the command line: ignored without --vertical (the
+ * TSV byte-identical to the pair's), run with it, and a sample with
+ * g + a_v <= 0 stops the run with run:eliftoff naming the time. */
+AQ_TEST(orient_vertical_cli)
+{
+  char dir[512], v[700], lift[700], args[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(v, sizeof v, "%s/up.csv", dir);
+  snprintf(lift, sizeof lift, "%s/lift.csv", dir);
+  for (int k = 0; k < 2; k++) {
+    FILE *f = fopen(k ? lift : v, "w");
+    if (!aq_check(f != NULL, "write"))
+      return;
+    fputs("time,acc (m/s2)\n", f);
+    for (int i = 0; i < 5346; i++)
+      fprintf(f, "%.2f,%.17g\n", 0.01 * i,
+              k ? (i == 300 ? -1.5 * 9.80665 : 0.0) : 4.0 * sin(0.0385 * i));
+    fclose(f);
+  }
+  static char base[65536];
+  int rc = aq_test_run("--components " H1 "," H2 " --azimuth 30 --arch arches/thin.cfg "
+                       "--arch arches/oppenheim.cfg --scale 0.5,2.2" RAW,
+                       base, sizeof base, err, sizeof err);
+  snprintf(args, sizeof args, "--components " H1 "," H2 ",%s --azimuth 30 --arch "
+                              "arches/thin.cfg --arch arches/oppenheim.cfg --scale 0.5,2.2" RAW, v);
+  int rc2 = aq_test_run(args, out, sizeof out, err, sizeof err);
+  static const char *const skip_rec[] = {"record"};
+  int same = aq_test_count_lines(out) == 5;
+  char why[600] = "";
+  for (size_t r = 1; same && r <= 4; r++)
+    same = rows_equal(base, r, out, r, skip_rec, 1, why, sizeof why);
+  aq_check(rc == 0 && rc2 == 0 && same && strstr(err, "ignored") && strstr(err, v),
+           "V without --vertical: the pair's rows (%s), and a warning: %s", why, err);
+  char args_v[2100];
+  snprintf(args_v, sizeof args_v, "%s --vertical", args);
+  rc = aq_test_run(args_v, out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out2) == 5 && strcmp(out2, base) != 0 &&
+               !strstr(err, "ignored"),
+           "with --vertical: run, and other results (%d): %s", rc, err);
+  int differ = 0;
+  for (size_t r = 1; r <= 4; r++)
+    differ += cell_d(out2, r, "peak_rotation_rad") != cell_d(base, r, "peak_rotation_rad");
+  aq_check(differ >= 2, "the vertical changes the peaks of %d of 4 runs", differ);
+  snprintf(args, sizeof args, "--components " H1 "," H2 ",%s --vertical --azimuth 30 --arch "
+                              "arches/oppenheim.cfg --scale 0.9" RAW, lift);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  char st[64];
+  aq_check(rc == 1 && strcmp(cell(out, 1, col_of(out, "status"), st, sizeof st), "run:eliftoff") == 0 &&
+               strstr(err, "t = 3.000 s") && strstr(err, "leaves the ground"),
+           "lift-off: status %s, exit %d: %s", st, rc, err);
+}

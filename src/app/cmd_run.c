@@ -271,11 +271,6 @@ int aq_cmd_run(int argc, char **argv)
   }
   aq_opt_signal_check(&cfg.proc, &nerr);
   aq_opt_orient_check(&orient, &nerr);
-  if (orient.vertical) {
-    fprintf(stderr, "archquake: --vertical: expected nothing yet: the vertical "
-                    "component is not run by this version\n");
-    nerr++;
-  }
   if (optind >= argc && orient.nmotions == 0) {
     fprintf(stderr, "archquake: expected at least one RECORD or --components (see 'archquake --help')\n");
     nerr++;
