@@ -84,6 +84,38 @@ static int rows_equal(const char *a, size_t ra, const char *b, size_t rb,
   return 1;
 }
 
+/* Write a CSV record of n samples at dt_s (time, acceleration in m/s2),
+ * sample i being f(i, ctx); 1 on success. */
+static int write_series(const char *path, int n, double dt_s,
+                        double (*f)(int i, const void *ctx), const void *ctx)
+{
+  FILE *fp = fopen(path, "w");
+  if (!aq_check(fp != NULL, "write %s", path))
+    return 0;
+  fputs("time,acc (m/s2)\n", fp);
+  for (int i = 0; i < n; i++)
+    fprintf(fp, "%.3f,%.17g\n", dt_s * i, f(i, ctx));
+  return aq_check(fclose(fp) == 0, "close %s", path);
+}
+
+/* A rectangular pulse of *ctx m/s2 over samples 20..49. */
+static double pulse(int i, const void *ctx)
+{
+  return i >= 20 && i < 50 ? *(const double *)ctx : 0.0;
+}
+
+static double wave(int i, const void *ctx)
+{
+  return *(const double *)ctx * sin(0.0385 * i);
+}
+
+/* -1.5 g at sample 300, else 0. */
+static double lift_sample(int i, const void *ctx)
+{
+  (void)ctx;
+  return i == 300 ? -1.5 * 9.80665 : 0.0;
+}
+
 /* The test's own projection: cos of the angle reduced to [0, 360), the
  * half turn taken out (docs/dynamics.md states the rule). */
 static double own_cos_deg(double d)
@@ -179,15 +211,9 @@ AQ_TEST(orient_scan_finds_known_worst_and_is_deterministic)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(p1, sizeof p1, "%s/pulse-a.csv", dir);
   snprintf(p2, sizeof p2, "%s/pulse-b.csv", dir);
-  for (int k = 0; k < 2; k++) {
-    FILE *f = fopen(k ? p2 : p1, "w");
-    if (!aq_check(f != NULL, "write"))
-      return;
-    fputs("time,acc (m/s2)\n", f);
-    for (int i = 0; i < 600; i++)
-      fprintf(f, "%.2f,%.17g\n", 0.01 * i, i >= 20 && i < 50 ? 2.385 * sqrt(2.0) : 0.0);
-    fclose(f);
-  }
+  double amp = 2.385 * sqrt(2.0);
+  if (!write_series(p1, 600, 0.01, pulse, &amp))
+    return;
   /* the plain pulse of amplitude sqrt(2) A, both ways */
   snprintf(args, sizeof args, "%s --arch arches/thin.cfg --polarity both" RAW, p1);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
@@ -199,13 +225,9 @@ AQ_TEST(orient_scan_finds_known_worst_and_is_deterministic)
   double want = rev_worse ? 225 : 45;
   /* half the pulse: the components are A each, so the 45 deg projection is
    * sqrt(2) A */
-  for (int k = 0; k < 2; k++) {
-    FILE *f = fopen(k ? p2 : p1, "w");
-    fputs("time,acc (m/s2)\n", f);
-    for (int i = 0; i < 600; i++)
-      fprintf(f, "%.2f,%.17g\n", 0.01 * i, i >= 20 && i < 50 ? 2.385 : 0.0);
-    fclose(f);
-  }
+  amp = 2.385;
+  if (!write_series(p1, 600, 0.01, pulse, &amp) || !write_series(p2, 600, 0.01, pulse, &amp))
+    return;
   static char first[65536];
   for (int j = 1; j <= 3; j++) {
     snprintf(args, sizeof args, "--components %s,%s --azimuths 0,90 --azimuth all "
@@ -242,13 +264,9 @@ AQ_TEST(orient_refusals)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(a, sizeof a, "%s/a.csv", dir);
   snprintf(b, sizeof b, "%s/b.csv", dir);
-  for (int k = 0; k < 2; k++) {
-    FILE *f = fopen(k ? b : a, "w");
-    fputs("time,acc (m/s2)\n", f);
-    for (int i = 0; i < 300; i++)
-      fprintf(f, "%.3f,%.17g\n", (k ? 0.02 : 0.01) * i, 0.3 * sin(0.1 * i));
-    fclose(f);
-  }
+  double amp = 0.3;
+  if (!write_series(a, 300, 0.01, wave, &amp) || !write_series(b, 300, 0.02, wave, &amp))
+    return;
   snprintf(args, sizeof args, "--components %s,%s --arch arches/thin.cfg", a, b);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(err, "--azimuths") && strstr(err, "H1"),
@@ -294,16 +312,9 @@ AQ_TEST(orient_vertical_cli)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(v, sizeof v, "%s/up.csv", dir);
   snprintf(lift, sizeof lift, "%s/lift.csv", dir);
-  for (int k = 0; k < 2; k++) {
-    FILE *f = fopen(k ? lift : v, "w");
-    if (!aq_check(f != NULL, "write"))
-      return;
-    fputs("time,acc (m/s2)\n", f);
-    for (int i = 0; i < 5346; i++)
-      fprintf(f, "%.2f,%.17g\n", 0.01 * i,
-              k ? (i == 300 ? -1.5 * 9.80665 : 0.0) : 4.0 * sin(0.0385 * i));
-    fclose(f);
-  }
+  double amp = 4.0;
+  if (!write_series(v, 5346, 0.01, wave, &amp) || !write_series(lift, 5346, 0.01, lift_sample, NULL))
+    return;
   static char base[65536];
   int rc = aq_test_run("--components " H1 "," H2 " --azimuth 30 --arch arches/thin.cfg "
                        "--arch arches/oppenheim.cfg --scale 0.5,2.2" RAW,
