@@ -3,6 +3,7 @@
  * against --polarity reversed, the worst azimuth of a case built to have a
  * known one, -j, and the refusals. */
 #define _POSIX_C_SOURCE 200809L
+#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -207,7 +208,7 @@ AQ_TEST(orient_half_turn_is_reversed_polarity)
  * find that azimuth, the same for every -j. */
 AQ_TEST(orient_scan_finds_known_worst_and_is_deterministic)
 {
-  char dir[512], p1[700], p2[700], args[2048];
+  char dir[512], p1[700], p2[700], args[4096];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(p1, sizeof p1, "%s/pulse-a.csv", dir);
   snprintf(p2, sizeof p2, "%s/pulse-b.csv", dir);
@@ -256,6 +257,29 @@ AQ_TEST(orient_scan_finds_known_worst_and_is_deterministic)
   char why[600];
   aq_check(rows_equal(first, 1, out2, r, NULL, 0, why, sizeof why),
            "the worst row is row %zu of the scan: %s", r, why);
+  /* the results file keeps every azimuth's run, the TSV only the worst */
+  char h5[700];
+  snprintf(h5, sizeof h5, "%s/scan.h5", dir);
+  snprintf(args, sizeof args, "--components %s,%s --azimuths 0,90 --azimuth all:10 "
+                              "--arch arches/thin.cfg -o %s" RAW, p1, p2, h5);
+  rc = aq_test_run(args, out2, sizeof out2, err, sizeof err);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = rc == 0 ? H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT) : -1;
+  hid_t d = f >= 0 ? H5Dopen2(f, "/summary", H5P_DEFAULT) : -1;
+  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  hid_t t = d >= 0 ? H5Dget_type(d) : -1;
+  aq_check(n == 36 && t >= 0 && H5Tget_member_index(t, "azimuth_deg") >= 0 &&
+               aq_test_count_lines(out2) == 2,
+           "HDF5: 36 summary rows with azimuth_deg (%lld), TSV one row: %s", (long long)n, err);
+  if (t >= 0)
+    H5Tclose(t);
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (f >= 0)
+    H5Fclose(f);
 }
 
 AQ_TEST(orient_refusals)
