@@ -178,6 +178,19 @@ AQ_TEST(orient_projection_equals_own_csv)
     if (t == 0)
       aq_check(collapsed > 0 && collapsed < 4, "both verdicts among the rows (%d)", collapsed);
   }
+  /* --scale-to-pga scales a motion by the peak of its horizontal vector,
+   * the same at every azimuth */
+  double peak = 0;
+  for (size_t i = 0; ok && i < 5346; i++)
+    peak = fmax(peak, sqrt(r1.acc_mps2[i] * r1.acc_mps2[i] + r2.acc_mps2[i] * r2.acc_mps2[i]));
+  int rc = aq_test_run("--components " H1 "," H2 " --azimuth all:90 --all-azimuths "
+                       "--scale-to-pga 0.5 --arch arches/thin.cfg" RAW,
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out) == 5, "--scale-to-pga: 4 azimuths: %s", err);
+  for (size_t r = 1; r <= 4; r++)
+    aq_check_rel(cell_d(out, r, "scale"), 0.5 * 9.80665 / peak, 1e-15,
+                 "row %zu: scale %.17g = 0.5 g / the vector's peak %.17g m/s2", r,
+                 cell_d(out, r, "scale"), peak);
   aq_record_free(&r1);
   aq_record_free(&r2);
 }
