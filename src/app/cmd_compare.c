@@ -1,13 +1,15 @@
-/* cmd_compare.c: `archquake compare A.h5 B.h5 [--rtol R] [--atol A]`:
- * compare two results files run by run (report/compare.h).  Differences go
- * to stdout as TSV (record arch scale polarity field a b rel_diff), one row each, and
- * a one-line count to stderr. */
+/* cmd_compare.c: `archquake compare A.h5 B.h5 [--rtol R] [--atol A]
+ * [--ignore NAME]...`: compare two results files, configuration first, then
+ * run by run, matched by identity (report/compare.h).  Differences go to
+ * stdout as TSV (record arch scale polarity field a b rel_diff), one row
+ * each, and a one-line count to stderr. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../report/compare.h"
 #include "../report/h5.h"
@@ -21,18 +23,32 @@
 #define AQ_COMPARE_ATOL_DEFAULT 0.0
 
 static const char usage[] =
-    "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A]\n"
-    "Compare two results files (archquake ... -o FILE.h5) run by run, matched\n"
-    "by record, arch, scale and polarity.  Numbers agree when |a-b| <= A + R*max(|a|,|b|)\n"
-    "(NaN equals NaN); collapsed, impacts, model and status must be equal.\n"
-    "  --rtol R   relative tolerance (default 1e-9)\n"
-    "  --atol A   absolute tolerance in each field's units (default 0)\n"
-    "  --help     this text\n"
-    "Each difference is a TSV row on stdout: record arch scale polarity field\n"
-    "a b rel_diff\n"
-    "(field \"present\" for a run found in only one file).\n"
-    "Exit status: 0 all runs agree, 1 some differ, 2 bad options or a file\n"
-    "that cannot be read as a results file.\n";
+    "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A] [--ignore NAME]...\n"
+    "Compare two results files (archquake ... -o FILE.h5).  First their\n"
+    "configuration: processing options, model, cor, version (shown only), and\n"
+    "the content (sha256) of records and arches of one name.  Then run by run,\n"
+    "matched by identity: the record's content, the arch's name and .cfg\n"
+    "content, the scale and the polarity (however the files were spelt on the\n"
+    "command line).  Numbers agree when |a-b| <= A + R*max(|a|,|b|) (NaN equals\n"
+    "NaN); collapsed, impacts, model and status must be equal.\n"
+    "  --rtol R       relative tolerance (default 1e-9)\n"
+    "  --atol A       absolute tolerance in each field's units (default 0)\n"
+    "  --ignore NAME  leave out a setting or a field (repeatable, or a comma\n"
+    "                 list), e.g. --ignore model to compare two models' numbers;\n"
+    "                 record_sha256 / arch_sha256 match records by file name /\n"
+    "                 arches by name alone\n"
+    "  --help         this text\n"
+    "Each difference is a TSV row on stdout: record arch scale polarity field a b\n"
+    "rel_diff.  Configuration rows come first, with * for what they are not\n"
+    "about (field = the setting, record_sha256 or arch_sha256); field \"present\"\n"
+    "marks a run found in only one file.  Records are named by file name.  A file\n"
+    "of the first format (no hashes) is read too: records and arches then match\n"
+    "by name.\n"
+    "Exit status: 0 all runs and settings agree (a different version alone is\n"
+    "shown but agrees), 1 some differ, 2 bad options or a file that cannot be\n"
+    "read as a results file.\n";
+
+#define AQ_COMPARE_IGNORE_MAX 32
 
 typedef struct {
   FILE *out;
@@ -68,12 +84,23 @@ static void put_value(FILE *f, const aq_summary *s, const aq_summary_field *fl)
 static void on_diff(void *ctx, const aq_diff *d)
 {
   FILE *f = ((sink *)ctx)->out;
+  if (d->kind == AQ_DIFF_CONFIG) {
+    put_cell(f, d->record ? d->record : "*");
+    fputc('\t', f);
+    put_cell(f, d->arch ? d->arch : "*");
+    fprintf(f, "\t*\t*\t%s\t", d->name);
+    put_cell(f, d->va);
+    fputc('\t', f);
+    put_cell(f, d->vb);
+    fputs("\tnan\n", f);
+    return;
+  }
   const aq_summary *r = d->a ? d->a : d->b;
   char num[64], rel[64];
   aq_text_double(num, sizeof num, r->scale);
-  put_cell(f, r->record);
+  put_cell(f, d->record);
   fputc('\t', f);
-  put_cell(f, r->arch);
+  put_cell(f, d->arch);
   fprintf(f, "\t%s\t%s\t", num, r->polarity);
   if (d->kind == AQ_DIFF_VALUE) {
     fprintf(f, "%s\t", d->field->name);
@@ -93,10 +120,14 @@ int aq_cmd_compare(int argc, char **argv)
   static const struct option longopts[] = {
       {"rtol", required_argument, NULL, 'r'},
       {"atol", required_argument, NULL, 'a'},
+      {"ignore", required_argument, NULL, 'i'},
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
   double rtol = AQ_COMPARE_RTOL_DEFAULT, atol = AQ_COMPARE_ATOL_DEFAULT;
   int nerr = 0, c;
+  char ignore_buf[AQ_COMPARE_IGNORE_MAX][64];
+  const char *ignore[AQ_COMPARE_IGNORE_MAX];
+  size_t nignore = 0;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
@@ -106,6 +137,22 @@ int aq_cmd_compare(int argc, char **argv)
       break;
     case 'a':
       aq_opt_double("--atol", optarg, 0, HUGE_VAL, &atol, &nerr);
+      break;
+    case 'i':
+      for (const char *p = optarg; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof ignore_buf[0] || nignore == AQ_COMPARE_IGNORE_MAX) {
+          fprintf(stderr, "archquake: compare: --ignore: expected up to %d names of "
+                          "settings or fields, comma-separated, got \"%s\"\n",
+                  AQ_COMPARE_IGNORE_MAX, optarg);
+          nerr++;
+          break;
+        }
+        snprintf(ignore_buf[nignore], sizeof ignore_buf[0], "%.*s", (int)len, p);
+        ignore[nignore] = ignore_buf[nignore];
+        nignore++;
+        p += len + (p[len] == ',');
+      }
       break;
     case 'h':
       fputs(usage, stdout);
@@ -123,27 +170,29 @@ int aq_cmd_compare(int argc, char **argv)
   if (nerr)
     return AQ_EXIT_USAGE;
 
-  aq_summary *run[2] = {NULL, NULL};
-  size_t n[2] = {0, 0};
+  aq_h5_suite suite[2];
+  memset(suite, 0, sizeof suite);
   int bad = 0;
   for (int k = 0; k < 2; k++) {
     aq_error err;
     aq_error_clear(&err);
-    if (aq_h5_read_runs(argv[optind + k], &run[k], &n[k], &err) != AQ_OK) {
+    if (aq_h5_read_suite(argv[optind + k], &suite[k], &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       bad = 1;
     }
   }
   if (bad) {
-    free(run[0]);
-    free(run[1]);
+    aq_h5_suite_free(&suite[0]);
+    aq_h5_suite_free(&suite[1]);
     return AQ_EXIT_USAGE;
   }
   sink s = {stdout};
   printf("record\tarch\tscale\tpolarity\tfield\ta\tb\trel_diff\n");
-  size_t nd = aq_compare_runs(run[0], n[0], run[1], n[1], rtol, atol, on_diff, &s);
-  free(run[0]);
-  free(run[1]);
+  aq_compare_opts co = {rtol, atol, ignore, nignore};
+  size_t nd = aq_compare_suites(&suite[0], &suite[1], &co, on_diff, &s);
+  size_t n[2] = {suite[0].nruns, suite[1].nruns};
+  aq_h5_suite_free(&suite[0]);
+  aq_h5_suite_free(&suite[1]);
   if (fflush(stdout) != 0 || ferror(stdout)) {
     fprintf(stderr, "archquake: compare: cannot write the differences\n");
     return AQ_EXIT_USAGE;

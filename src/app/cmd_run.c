@@ -42,6 +42,7 @@ static const char usage_head[] =
     "                      (default: each arch's [dynamics] cor)\n"
     "  --history           write histories (step ends, turning points, impacts)\n"
     "                      to the HDF5 file (with -o)\n"
+    "  --store-records     write the processed records to the HDF5 file (with -o)\n"
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
@@ -79,6 +80,7 @@ enum {
   OPT_MODEL,
   OPT_COR,
   OPT_HISTORY,
+  OPT_STORE_RECORDS,
   OPT_POLARITY,
   OPT_HELP
 };
@@ -176,10 +178,11 @@ int aq_cmd_run(int argc, char **argv)
       {"model", required_argument, NULL, OPT_MODEL},
       {"cor", required_argument, NULL, OPT_COR},
       {"history", no_argument, NULL, OPT_HISTORY},
+      {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"polarity", required_argument, NULL, OPT_POLARITY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 20);
+  size_t nlong = aq_opt_signal_append(longopts, 21);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
@@ -242,6 +245,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_HISTORY:
       cfg.history = 1;
       break;
+    case OPT_STORE_RECORDS:
+      cfg.store_records = 1;
+      break;
     case OPT_POLARITY:
       aq_opt_polarity(optarg, &cfg.polarity, &nerr);
       break;
@@ -287,6 +293,11 @@ int aq_cmd_run(int argc, char **argv)
   if (cfg.history && !cfg.h5_path) {
     fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
                     "are written only to the results file)\n");
+    nerr++;
+  }
+  if (cfg.store_records && !cfg.h5_path) {
+    fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
+                    "records are written only to the results file)\n");
     nerr++;
   }
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {

@@ -14,7 +14,9 @@
 #include <time.h>
 
 #include "../arch/arch.h"
+#include "../arch/model.h"
 #include "../arch/result.h"
+#include "../io/sha256.h"
 #include "../report/h5.h"
 #include "../report/report.h"
 #include "../report/text.h"
@@ -83,6 +85,7 @@ typedef struct {
   aq_error err;
   char status[AQ_SUMMARY_STATUS_MAX];
   char warning[300];  /* residual warning, "" if none */
+  char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
   double read_s, process_s;
   double *scale;      /* nscale factors applied */
   double *pga_g;      /* PGA of each scaled record, g */
@@ -301,8 +304,13 @@ static int prepare_record(suite *S, rec_slot *r)
   for (size_t k = 0; k < S->nscale; k++)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
-  aq_status s = read_component(S, r->motion ? r->motion->path[0] : path, &r->rec,
-                               &r->have_rec, &r->err);
+  const char *first = r->motion ? r->motion->path[0] : path;
+  if (c->h5_path) { /* the file's identity in the results (compare keys on it) */
+    aq_error herr;
+    if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
+      r->sha256[0] = '\0'; /* the reader says why it cannot be read */
+  }
+  aq_status s = read_component(S, first, &r->rec, &r->have_rec, &r->err);
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
   double t1 = now_s();
@@ -558,6 +566,7 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
                        r->have_im ? &r->im : NULL,
                        r->status,
                        r->failed ? r->err.message : NULL,
+                       r->sha256,
                        r->read_s,
                        r->process_s};
     char full[1200];
@@ -657,17 +666,30 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
                      c->scales ? NAN : c->scale_to_pga_g,
                      c->history,
                      c->threads,
+                     aq_build_string(),
+                     c->store_records,
                      aq_opt_polarity_names[c->polarity]};
   s = aq_h5_write_root(w, &root, err);
   for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
+    const aq_arch *A = S->arches[a];
     /* the values the runs use: --cor over the file's; none with momentum */
-    aq_arch_dynamics used = *aq_arch_dynamics_of(S->arches[a]);
+    aq_arch_dynamics used = *aq_arch_dynamics_of(A);
     used.cor = used.impact == AQ_IMPACT_MOMENTUM ? NAN : isnan(c->cor) ? used.cor : c->cor;
-    aq_h5_arch ha = {aq_arch_name(S->arches[a]),
+    const char *cfg = aq_arch_config_text(A);
+    char sha[AQ_SHA256_HEX], joints[2][64], faces[2][8];
+    aq_sha256_hex(cfg, strlen(cfg), sha); /* the file's bytes, as read */
+    for (int k = 0; k < 2; k++)
+      aq_hinge_set_format(aq_arch_hinge_set(A, k), joints[k], sizeof joints[k],
+                          faces[k], sizeof faces[k]);
+    aq_h5_arch ha = {aq_arch_name(A),
                      c->arch_paths[a],
-                     aq_arch_config_text(S->arches[a]),
+                     cfg,
                      &used,
-                     {aq_arch_path(S->arches[a], 0), aq_arch_path(S->arches[a], 1)}};
+                     {aq_arch_path(A, 0), aq_arch_path(A, 1)},
+                     sha,
+                     aq_arch_searched(A),
+                     {joints[0], joints[1]},
+                     {faces[0], faces[1]}};
     s = aq_h5_write_arch(w, a, &ha, err);
   }
   if (s != AQ_OK) {

@@ -47,6 +47,7 @@ typedef struct {
   double cor;              /* --cor, or NAN for each arch's own */
   int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */
   int history;             /* --history: keep and write histories */
+  int store_records;       /* --store-records: write processed waveforms (with -o) */
   long threads;            /* -j (>= 1) */
   int progress;            /* 1: progress line on stderr */
   const char *h5_path;     /* -o target, or NULL */

@@ -532,6 +532,7 @@ const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
   return set == 0 || set == 1 ? a->wp[set] : NULL;
 }
 int aq_arch_searched(const aq_arch *a) { return a->searched; }
+const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
 {
   if (!a->min_known)

@@ -246,6 +246,8 @@ const aq_geom *aq_arch_geom(const aq_arch *a);
 const aq_workpath *aq_arch_workpath(const aq_arch *a, int set);
 /* 1 if the primary came from the search. */
 int aq_arch_searched(const aq_arch *a);
+/* The hinge set used for set 0 (primary) or 1 (reverse). */
+const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set);
 
 /* The admissible set of lowest lambda0 over every joint (aq_search_minimum),
  * found for every arch of at most AQ_SEARCH_MAX_VOUSSOIRS voussoirs: 1 and

@@ -1,15 +1,15 @@
-/* compare.c: matching and comparing run summaries (see compare.h), and
- * reading them back from a results file (aq_h5_read_runs, see h5.h). */
+/* compare.c: matching and comparing two suites (see compare.h), and
+ * reading a suite back from a results file (aq_h5_read_suite, see h5.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "compare.h"
 
 #include <errno.h>
 #include <hdf5.h>
+#include <inttypes.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include "h5.h"
 
 int aq_compare_close(double a, double b, double rtol, double atol)
 {
@@ -21,61 +21,231 @@ int aq_compare_close(double a, double b, double rtol, double atol)
   return fabs(a - b) <= atol + rtol * m;
 }
 
-/* ---- matching ----------------------------------------------------------- */
+static int ignored(const aq_compare_opts *o, const char *name)
+{
+  for (size_t k = 0; k < o->nignore; k++)
+    if (strcmp(o->ignore[k], name) == 0)
+      return 1;
+  return 0;
+}
+
+/* ---- identity of a run -------------------------------------------------- */
 
 typedef struct {
   const aq_summary *s;
+  const char *record; /* display: the record's file name */
+  const char *rec_id; /* sha256 of the record (its name if ignored or unknown) */
+  const char *arch;   /* arch name */
+  const char *arch_id;/* sha256 of its .cfg ("" if ignored) */
   size_t index;
 } entry;
 
-static int cmp_scale(double x, double y)
+/* The key fields of the summary that are compared as values of the key:
+ * all but the record's path and the arch's name, which the identities
+ * replace. */
+static int key_field(const aq_summary_field *f)
+{
+  return f->key && strcmp(f->name, "record") != 0 && strcmp(f->name, "arch") != 0;
+}
+
+static int cmp_double(double x, double y)
 {
   if (isnan(x) || isnan(y))
     return isnan(x) - isnan(y); /* NaN after every number */
   return (x > y) - (x < y);
 }
 
-static int cmp_key(const aq_summary *x, const aq_summary *y)
+/* Order of two key fields' values; with tol (a tolerance), doubles that
+ * agree within it are equal. */
+static int cmp_field(const aq_summary *x, const aq_summary *y,
+                     const aq_summary_field *f, const aq_compare_opts *tol)
 {
-  int c = strcmp(x->record, y->record);
+  switch (f->kind) {
+  case AQ_SF_STR:
+    return strcmp(aq_summary_get_str(x, f), aq_summary_get_str(y, f));
+  case AQ_SF_INT: {
+    int64_t a = aq_summary_get_int(x, f), b = aq_summary_get_int(y, f);
+    return (a > b) - (a < b);
+  }
+  case AQ_SF_DOUBLE: {
+    double a = aq_summary_get_double(x, f), b = aq_summary_get_double(y, f);
+    if (tol && aq_compare_close(a, b, tol->rtol, tol->atol))
+      return 0;
+    return cmp_double(a, b);
+  }
+  }
+  return 0;
+}
+
+static int cmp_key(const entry *a, const entry *b, const aq_compare_opts *tol)
+{
+  int c = strcmp(a->rec_id, b->rec_id);
   if (c == 0)
-    c = strcmp(x->arch, y->arch);
+    c = strcmp(a->arch, b->arch);
+  if (c == 0)
+    c = strcmp(a->arch_id, b->arch_id);
+  for (size_t i = 0; c == 0 && i < aq_summary_nfields; i++)
+    if (key_field(&aq_summary_fields[i]))
+      c = cmp_field(a->s, b->s, &aq_summary_fields[i], tol);
   return c;
 }
 
 static int cmp_entry(const void *pa, const void *pb)
 {
   const entry *a = pa, *b = pb;
-  int c = cmp_key(a->s, b->s);
-  if (c == 0)
-    c = cmp_scale(a->s->scale, b->s->scale);
+  int c = cmp_key(a, b, NULL);
   if (c == 0)
     c = (a->index > b->index) - (a->index < b->index);
   return c;
 }
 
-static entry *sorted(const aq_summary *s, size_t n)
+static const aq_h5_input *input_at(const aq_h5_input *v, size_t n, int64_t i)
 {
-  entry *e = malloc((n ? n : 1) * sizeof *e);
+  return i >= 0 && (uint64_t)i < n ? &v[i] : NULL;
+}
+
+/* 1 if an input of either file has no content hash (a file of the first
+ * format, or a record that could not be read): then inputs are matched by
+ * name in both, and their contents not compared. */
+static int some_unhashed(const aq_h5_input *a, size_t na, const aq_h5_input *b, size_t nb)
+{
+  for (size_t k = 0; k < na; k++)
+    if (!a[k].sha256[0])
+      return 1;
+  for (size_t k = 0; k < nb; k++)
+    if (!b[k].sha256[0])
+      return 1;
+  return 0;
+}
+
+static entry *sorted(const aq_h5_suite *S, int by_rec_name, int by_arch_name)
+{
+  entry *e = malloc((S->nruns ? S->nruns : 1) * sizeof *e);
   if (!e)
     return NULL;
-  for (size_t i = 0; i < n; i++) {
-    e[i].s = &s[i];
+  for (size_t i = 0; i < S->nruns; i++) {
+    const aq_h5_run *r = &S->runs[i];
+    const aq_h5_input *rec = input_at(S->records, S->nrecords, r->record_index);
+    const aq_h5_input *arch = input_at(S->arches, S->narches, r->arch_index);
+    e[i].s = &r->s;
+    e[i].record = rec && rec->name[0] ? rec->name : r->s.record;
+    e[i].rec_id = rec && !by_rec_name ? rec->sha256 : e[i].record;
+    e[i].arch = r->s.arch;
+    e[i].arch_id = arch && !by_arch_name ? arch->sha256 : "";
     e[i].index = i;
   }
-  qsort(e, n, sizeof *e, cmp_entry);
+  qsort(e, S->nruns, sizeof *e, cmp_entry);
   return e;
 }
 
-static size_t compare_pair(const aq_summary *a, const aq_summary *b,
-                           double rtol, double atol, aq_diff_fn fn, void *ctx)
+/* ---- configuration ------------------------------------------------------ */
+
+static size_t config_row(const char *record, const char *arch, const char *name,
+                         const char *va, const char *vb, int counts,
+                         aq_diff_fn fn, void *ctx)
 {
+  aq_diff d = {AQ_DIFF_CONFIG, NULL, NULL, record, arch, NULL, NAN, name, va, vb, counts};
+  if (fn)
+    fn(ctx, &d);
+  return counts ? 1 : 0;
+}
+
+/* Settings present in one file only, or with other values. */
+static size_t compare_settings(const aq_h5_suite *a, const aq_h5_suite *b,
+                               const aq_compare_opts *o, aq_diff_fn fn, void *ctx)
+{
+  size_t nd = 0;
+  for (int side = 0; side < 2; side++) {
+    const aq_h5_suite *x = side ? b : a, *y = side ? a : b;
+    for (size_t i = 0; i < x->nsettings; i++) {
+      const aq_h5_setting *sx = &x->settings[i];
+      const aq_h5_setting *sy = NULL;
+      for (size_t j = 0; j < y->nsettings && !sy; j++)
+        if (strcmp(y->settings[j].name, sx->name) == 0)
+          sy = &y->settings[j];
+      if ((side == 1 && sy) || (sy && strcmp(sx->value, sy->value) == 0) ||
+          ignored(o, sx->name))
+        continue; /* the pair was seen from a's side */
+      /* the version and the build are shown, but do not make files differ;
+       * nor does a setting that one file does not state (written before
+       * it existed: its runs say what it did) */
+      int counts = strncmp(sx->name, "archquake_", 10) != 0 && sy != NULL;
+      const char *va = side ? (sy ? sy->value : "") : sx->value;
+      const char *vb = side ? sx->value : (sy ? sy->value : "");
+      nd += config_row(NULL, NULL, sx->name, va, vb, counts, fn, ctx);
+    }
+  }
+  return nd;
+}
+
+static int has_input(const aq_h5_input *v, size_t n, const char *name,
+                     const char *sha)
+{
+  for (size_t k = 0; k < n; k++)
+    if (strcmp(v[k].name, name) == 0 && strcmp(v[k].sha256, sha) == 0)
+      return 1;
+  return 0;
+}
+
+/* The distinct contents of the inputs of x named name that y has no input
+ * of that name and content for, into out (at most nx); returns their number. */
+static size_t contents_only(const aq_h5_input *x, size_t nx, const aq_h5_input *y,
+                            size_t ny, const char *name, const char **out)
+{
+  size_t n = 0;
+  for (size_t k = 0; k < nx; k++) {
+    if (strcmp(x[k].name, name) != 0 || has_input(y, ny, name, x[k].sha256) ||
+        has_input(x, k, name, x[k].sha256))
+      continue;
+    out[n++] = x[k].sha256;
+  }
+  return n;
+}
+
+/* Inputs of one name whose contents differ between the files: the contents
+ * of a not in b are paired, in order, with those of b not in a.  Returns the
+ * number of rows, or (size_t)-1 when out of memory. */
+static size_t compare_inputs(const aq_h5_input *a, size_t na, const aq_h5_input *b,
+                             size_t nb, int is_arch, aq_diff_fn fn, void *ctx)
+{
+  size_t nd = 0;
+  const char **la = malloc((na ? na : 1) * sizeof *la);
+  const char **lb = malloc((nb ? nb : 1) * sizeof *lb);
+  if (!la || !lb) {
+    free(la);
+    free(lb);
+    return (size_t)-1;
+  }
+  for (size_t i = 0; i < na; i++) {
+    int seen = 0;
+    for (size_t k = 0; k < i && !seen; k++)
+      seen = strcmp(a[k].name, a[i].name) == 0;
+    if (seen)
+      continue;
+    size_t ka = contents_only(a, na, b, nb, a[i].name, la);
+    size_t kb = contents_only(b, nb, a, na, a[i].name, lb);
+    for (size_t k = 0; k < ka && k < kb; k++)
+      nd += config_row(is_arch ? NULL : a[i].name, is_arch ? a[i].name : NULL,
+                       is_arch ? "arch_sha256" : "record_sha256", la[k], lb[k], 1,
+                       fn, ctx);
+  }
+  free(la);
+  free(lb);
+  return nd;
+}
+
+/* ---- runs ------------------------------------------------------------------ */
+
+static size_t compare_pair(const entry *ea, const entry *eb,
+                           const aq_compare_opts *o, aq_diff_fn fn, void *ctx)
+{
+  const aq_summary *a = ea->s, *b = eb->s;
   size_t nd = 0;
   for (size_t i = 0; i < aq_summary_nfields; i++) {
     const aq_summary_field *f = &aq_summary_fields[i];
-    if (f->key)
+    if (f->key || ignored(o, f->name))
       continue;
-    aq_diff d = {AQ_DIFF_VALUE, a, b, f, NAN};
+    aq_diff d = {AQ_DIFF_VALUE, a, b, ea->record, ea->arch, f, NAN, NULL, NULL, NULL, 1};
     int same = 1;
     switch (f->kind) {
     case AQ_SF_STR:
@@ -92,7 +262,7 @@ static size_t compare_pair(const aq_summary *a, const aq_summary *b,
     }
     case AQ_SF_DOUBLE: {
       double x = aq_summary_get_double(a, f), y = aq_summary_get_double(b, f);
-      same = aq_compare_close(x, y, rtol, atol);
+      same = aq_compare_close(x, y, o->rtol, o->atol);
       double m = fmax(fabs(x), fabs(y));
       d.rel = isnan(x) || isnan(y) ? NAN : m > 0 ? fabs(x - y) / m : 0;
       break;
@@ -107,36 +277,45 @@ static size_t compare_pair(const aq_summary *a, const aq_summary *b,
   return nd;
 }
 
-size_t aq_compare_runs(const aq_summary *a, size_t na, const aq_summary *b,
-                       size_t nb, double rtol, double atol, aq_diff_fn fn,
-                       void *ctx)
+size_t aq_compare_suites(const aq_h5_suite *A, const aq_h5_suite *B,
+                         const aq_compare_opts *o, aq_diff_fn fn, void *ctx)
 {
-  entry *ea = sorted(a, na), *eb = sorted(b, nb);
+  int by_name[2] = {
+      ignored(o, "record_sha256") ||
+          some_unhashed(A->records, A->nrecords, B->records, B->nrecords),
+      ignored(o, "arch_sha256") || some_unhashed(A->arches, A->narches, B->arches, B->narches)};
+  entry *ea = sorted(A, by_name[0], by_name[1]), *eb = sorted(B, by_name[0], by_name[1]);
   if (!ea || !eb) {
     free(ea);
     free(eb);
     return (size_t)-1;
   }
-  size_t i = 0, j = 0, nd = 0;
-  while (i < na || j < nb) {
-    int c;
-    if (i == na)
-      c = 1;
-    else if (j == nb)
-      c = -1;
-    else {
-      c = cmp_key(ea[i].s, eb[j].s);
-      if (c == 0 &&
-          !aq_compare_close(ea[i].s->scale, eb[j].s->scale, rtol, atol))
-        c = cmp_scale(ea[i].s->scale, eb[j].s->scale);
+  size_t nd = compare_settings(A, B, o, fn, ctx);
+  for (int is_arch = 0; is_arch < 2; is_arch++) {
+    if (by_name[is_arch])
+      continue;
+    size_t k = is_arch ? compare_inputs(A->arches, A->narches, B->arches, B->narches, 1, fn, ctx)
+                       : compare_inputs(A->records, A->nrecords, B->records, B->nrecords, 0,
+                                        fn, ctx);
+    if (k == (size_t)-1) {
+      free(ea);
+      free(eb);
+      return k;
     }
+    nd += k;
+  }
+  size_t i = 0, j = 0, na = A->nruns, nb = B->nruns;
+  while (i < na || j < nb) {
+    int c = i == na ? 1 : j == nb ? -1 : cmp_key(&ea[i], &eb[j], o);
     if (c == 0) {
-      nd += compare_pair(ea[i].s, eb[j].s, rtol, atol, fn, ctx);
+      nd += compare_pair(&ea[i], &eb[j], o, fn, ctx);
       i++;
       j++;
     } else {
+      const entry *e = c < 0 ? &ea[i] : &eb[j];
       aq_diff d = {c < 0 ? AQ_DIFF_ONLY_A : AQ_DIFF_ONLY_B,
-                   c < 0 ? ea[i].s : NULL, c < 0 ? NULL : eb[j].s, NULL, NAN};
+                   c < 0 ? e->s : NULL, c < 0 ? NULL : e->s, e->record, e->arch,
+                   NULL, NAN, NULL, NULL, NULL, 1};
       nd++;
       if (fn)
         fn(ctx, &d);
@@ -149,171 +328,4 @@ size_t aq_compare_runs(const aq_summary *a, size_t na, const aq_summary *b,
   free(ea);
   free(eb);
   return nd;
-}
-
-/* ---- reading a results file --------------------------------------------- */
-
-/* Read string attribute name of loc into buf[n] (fixed or variable length).
- * Returns 0 or -1. */
-static int read_attr_str(hid_t loc, const char *name, char *buf, size_t n)
-{
-  int ok = -1;
-  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-  if (a < 0)
-    return -1;
-  hid_t t = H5Aget_type(a);
-  if (t >= 0 && H5Tget_class(t) == H5T_STRING) {
-    htri_t var = H5Tis_variable_str(t);
-    if (var > 0) {
-      hid_t m = H5Tcopy(H5T_C_S1);
-      char *p = NULL;
-      if (m >= 0 && H5Tset_size(m, H5T_VARIABLE) >= 0 &&
-          H5Aread(a, m, &p) >= 0) {
-        snprintf(buf, n, "%s", p ? p : "");
-        H5free_memory(p);
-        ok = 0;
-      }
-      if (m >= 0)
-        H5Tclose(m);
-    } else if (var == 0) {
-      size_t sz = H5Tget_size(t);
-      char *tmp = sz ? malloc(sz + 1) : NULL;
-      hid_t m = H5Tcopy(H5T_C_S1);
-      if (tmp && m >= 0 && H5Tset_size(m, sz) >= 0 &&
-          H5Tset_strpad(m, H5T_STR_NULLPAD) >= 0 && H5Aread(a, m, tmp) >= 0) {
-        tmp[sz] = '\0';
-        snprintf(buf, n, "%s", tmp);
-        ok = 0;
-      }
-      if (m >= 0)
-        H5Tclose(m);
-      free(tmp);
-    }
-  }
-  if (t >= 0)
-    H5Tclose(t);
-  H5Aclose(a);
-  return ok;
-}
-
-static int read_attr_num(hid_t loc, const char *name, hid_t mtype, void *out)
-{
-  hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-  if (a < 0)
-    return -1;
-  int ok = -1;
-  hid_t s = H5Aget_space(a);
-  if (s >= 0 && H5Sget_simple_extent_npoints(s) == 1 &&
-      H5Aread(a, mtype, out) >= 0)
-    ok = 0;
-  if (s >= 0)
-    H5Sclose(s);
-  H5Aclose(a);
-  return ok;
-}
-
-aq_status aq_h5_read_runs(const char *path, aq_summary **out, size_t *n,
-                          aq_error *err)
-{
-  *out = NULL;
-  *n = 0;
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  aq_status st = AQ_OK;
-  hid_t f = -1, runs = -1;
-  aq_summary *v = NULL;
-  htri_t is = H5Fis_hdf5(path);
-  if (is <= 0) {
-    H5Eclear2(H5E_DEFAULT);
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-      return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                          "cannot open: %s", strerror(errno));
-    fclose(fp);
-    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
-                        "expected an HDF5 file, got something else");
-  }
-  f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) {
-    st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "HDF5: cannot open");
-    goto done;
-  }
-  runs = H5Gopen2(f, "/runs", H5P_DEFAULT);
-  if (runs < 0) {
-    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/runs",
-                      "expected an archquake results file (group /runs), "
-                      "got none");
-    goto done;
-  }
-  H5G_info_t info;
-  if (H5Gget_info(runs, &info) < 0) {
-    st = aq_error_set(err, AQ_EIO, path, -1, -1, "/runs", "HDF5: H5Gget_info failed");
-    goto done;
-  }
-  v = calloc(info.nlinks ? info.nlinks : 1, sizeof *v);
-  if (!v) {
-    st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-    goto done;
-  }
-  for (hsize_t k = 0; k < info.nlinks; k++) {
-    char name[256], obj[300];
-    if (H5Lget_name_by_idx(runs, ".", H5_INDEX_NAME, H5_ITER_INC, k, name,
-                           sizeof name, H5P_DEFAULT) < 0) {
-      st = aq_error_set(err, AQ_EIO, path, -1, -1, "/runs",
-                        "HDF5: cannot read link %llu", (unsigned long long)k);
-      goto done;
-    }
-    snprintf(obj, sizeof obj, "/runs/%s", name);
-    hid_t g = H5Gopen2(runs, name, H5P_DEFAULT);
-    if (g < 0) {
-      st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, obj,
-                        "expected a run group, got something else");
-      goto done;
-    }
-    aq_summary *s = &v[k];
-    aq_summary_fill(s, "", "", "", NAN, NAN, "", NULL); /* what an older file lacks */
-    for (size_t i = 0; i < aq_summary_nfields; i++) {
-      const aq_summary_field *fl = &aq_summary_fields[i];
-      char *p = (char *)s + fl->offset;
-      int rc = -1;
-      if (fl->optional && H5Aexists(g, fl->name) == 0)
-        continue;
-      switch (fl->kind) {
-      case AQ_SF_STR:
-        rc = read_attr_str(g, fl->name, p, fl->size);
-        break;
-      case AQ_SF_DOUBLE:
-        rc = read_attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p);
-        break;
-      case AQ_SF_INT:
-        rc = read_attr_num(g, fl->name, H5T_NATIVE_INT64, p);
-        break;
-      }
-      if (rc < 0) {
-        H5Gclose(g);
-        H5Eclear2(H5E_DEFAULT);
-        st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, obj,
-                          "expected attribute %s (%s), got none readable",
-                          fl->name,
-                          fl->kind == AQ_SF_STR      ? "string"
-                          : fl->kind == AQ_SF_DOUBLE ? "number"
-                                                     : "integer");
-        goto done;
-      }
-    }
-    H5Gclose(g);
-  }
-  *out = v;
-  *n = info.nlinks;
-  v = NULL;
-done:
-  free(v);
-  H5E_BEGIN_TRY
-  {
-    if (runs >= 0)
-      H5Gclose(runs);
-    if (f >= 0)
-      H5Fclose(f);
-  }
-  H5E_END_TRY;
-  return st;
 }

@@ -15,30 +15,115 @@
 #include <unistd.h>
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
-#define AQ_H5_COMPACT_ATTRS 96  /* attributes per group kept compact */
-/* Link estimates of the record, arch and run groups (H5Pset_est_link_info):
- * at most 6 datasets each, sized generously so that the header starts
- * large enough for most of the group's attributes (see aq_h5_open). */
-#define AQ_H5_EST_LINKS 8
-#define AQ_H5_EST_LINK_NAME 150
+#define AQ_H5_RECORDS_CHUNK 64  /* rows per chunk of /records */
 /* Dataset bytes written between two background syncs (see sync_hint). */
 #define AQ_H5_SYNC_BYTES ((size_t)8 << 20)
+
+/* ---- the two tables --------------------------------------------------------
+ * A column of a compound table: member name, kind, place in the row struct,
+ * and units (the attribute units_<name> of the table; "" for strings). */
+typedef struct {
+  const char *name;
+  aq_summary_kind kind;
+  size_t offset, size;
+  const char *units;
+} h5_col;
+
+/* A row of /summary: the run's summary (every field of aq_summary_fields, so
+ * a field added there is a column here), then what only the file keeps. */
+typedef struct {
+  aq_summary s;
+  int64_t record_index, arch_index, scale_index; /* rows of /records, groups of /arches, --scale */
+  int64_t reversals, steps_total, steps_moving, path_evaluations; /* stepper counters */
+  double timing_run_s;
+  char error[AQ_H5_ERROR_MAX];
+} run_row;
+
+#define RUN_COL(f, kind, units) \
+  {#f, kind, offsetof(run_row, f), sizeof(((run_row *)0)->f), units}
+static const h5_col run_extra_cols[] = {
+    RUN_COL(record_index, AQ_SF_INT, "1"),    RUN_COL(arch_index, AQ_SF_INT, "1"),
+    RUN_COL(scale_index, AQ_SF_INT, "1"),     RUN_COL(reversals, AQ_SF_INT, "1"),
+    RUN_COL(steps_total, AQ_SF_INT, "1"),     RUN_COL(steps_moving, AQ_SF_INT, "1"),
+    RUN_COL(path_evaluations, AQ_SF_INT, "1"), RUN_COL(timing_run_s, AQ_SF_DOUBLE, "s"),
+    RUN_COL(error, AQ_SF_STR, ""),
+};
+enum { N_RUN_EXTRA = sizeof run_extra_cols / sizeof run_extra_cols[0] };
+
+/* A row of /records.  A new metadata field of aq_record is one member here,
+ * one line in record_cols and one in record_fill. */
+typedef struct {
+  char source_file[AQ_SUMMARY_RECORD_MAX]; /* path as given */
+  char name[AQ_SUMMARY_RECORD_MAX];        /* file name without directories */
+  char sha256[65];                         /* of the file's bytes */
+  char status[AQ_SUMMARY_STATUS_MAX];
+  char error[AQ_H5_ERROR_MAX];
+  /* as read */
+  char format[16];
+  char units_orig[24];
+  double to_m_s2;
+  int64_t npts;
+  double dt_s, begin_s;
+  char reference_time[40];
+  char network[16], station[16], location[16], channel[16];
+  /* processing used */
+  char detrend[8];
+  int64_t filter;
+  double taper_frac, highpass_hz;
+  int64_t highpass_order;
+  double lowpass_hz;
+  int64_t pad_front, pad_back, n_orig;
+  /* intensity measures of the processed, unscaled record */
+  double pga_g, pgv_m_s, pgd_m, arias_m_s, d5_95_s, cav_m_s, v_end_m_s, d_end_m;
+  double timing_read_s, timing_process_s;
+  char waveform[40]; /* path of its /waveforms dataset, "" if not stored */
+} record_row;
+
+#define REC_COL(f, kind, units) \
+  {#f, kind, offsetof(record_row, f), sizeof(((record_row *)0)->f), units}
+static const h5_col record_cols[] = {
+    REC_COL(source_file, AQ_SF_STR, ""), REC_COL(name, AQ_SF_STR, ""),
+    REC_COL(sha256, AQ_SF_STR, ""),      REC_COL(status, AQ_SF_STR, ""),
+    REC_COL(error, AQ_SF_STR, ""),       REC_COL(format, AQ_SF_STR, ""),
+    REC_COL(units_orig, AQ_SF_STR, ""),  REC_COL(to_m_s2, AQ_SF_DOUBLE, "m/s^2 per file unit"),
+    REC_COL(npts, AQ_SF_INT, "1"),       REC_COL(dt_s, AQ_SF_DOUBLE, "s"),
+    REC_COL(begin_s, AQ_SF_DOUBLE, "s"), REC_COL(reference_time, AQ_SF_STR, ""),
+    REC_COL(network, AQ_SF_STR, ""),     REC_COL(station, AQ_SF_STR, ""),
+    REC_COL(location, AQ_SF_STR, ""),    REC_COL(channel, AQ_SF_STR, ""),
+    REC_COL(detrend, AQ_SF_STR, ""),     REC_COL(filter, AQ_SF_INT, "1"),
+    REC_COL(taper_frac, AQ_SF_DOUBLE, "1"), REC_COL(highpass_hz, AQ_SF_DOUBLE, "Hz"),
+    REC_COL(highpass_order, AQ_SF_INT, "1"), REC_COL(lowpass_hz, AQ_SF_DOUBLE, "Hz"),
+    REC_COL(pad_front, AQ_SF_INT, "1"),  REC_COL(pad_back, AQ_SF_INT, "1"),
+    REC_COL(n_orig, AQ_SF_INT, "1"),     REC_COL(pga_g, AQ_SF_DOUBLE, "g"),
+    REC_COL(pgv_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(pgd_m, AQ_SF_DOUBLE, "m"),
+    REC_COL(arias_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(d5_95_s, AQ_SF_DOUBLE, "s"),
+    REC_COL(cav_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(v_end_m_s, AQ_SF_DOUBLE, "m/s"),
+    REC_COL(d_end_m, AQ_SF_DOUBLE, "m"), REC_COL(timing_read_s, AQ_SF_DOUBLE, "s"),
+    REC_COL(timing_process_s, AQ_SF_DOUBLE, "s"), REC_COL(waveform, AQ_SF_STR, ""),
+};
+enum { N_RECORD_COLS = sizeof record_cols / sizeof record_cols[0] };
+
+/* An extensible 1-D compound dataset filled a chunk of rows at a time, so
+ * the writer's memory does not grow with the suite. */
+typedef struct {
+  hid_t d, mt, ft;   /* dataset, memory and packed file types */
+  unsigned char *buf;/* cap rows of rowsize bytes */
+  size_t rowsize, cap, nbuf;
+  hsize_t nrows;     /* rows already in the dataset */
+} h5_table;
 
 struct aq_h5_writer {
   char *target;
   char *tmp;
   hid_t file;
-  hid_t g_records, g_arches, g_runs;
-  /* /summary grows by AQ_H5_SUMMARY_CHUNK rows at a time, so the writer's
-   * memory does not grow with the number of runs */
-  hid_t d_sum, mt_sum, ft_sum;
-  hid_t gcpl; /* record, arch and run groups: attributes kept compact */
+  hid_t g_arches, g_waveforms, g_histories; /* the last two made when first needed */
+  h5_table runs, records;
+  h5_col *run_cols; /* aq_summary_fields then run_extra_cols */
+  size_t n_run_cols;
+  int store_records;
   /* Reused by every attribute (H5Acreate2 copies them): the scalar
    * dataspace, and a string type whose size is set per attribute. */
   hid_t sp_scalar, t_str;
-  aq_summary buf[AQ_H5_SUMMARY_CHUNK];
-  size_t nbuf;   /* rows in buf */
-  hsize_t nrows; /* rows already in the dataset */
   /* Background sync (see sync_hint): a descriptor of the temporary opened
    * before anything was written to it (the final fsync uses it too), the
    * dataset bytes written since the last request, and the syncing thread. */
@@ -266,10 +351,133 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
                     units, 0, NULL, NULL);
 }
 
-/* ---- lifecycle ---------------------------------------------------------- */
+/* ---- tables ------------------------------------------------------------- */
 
-static hid_t summary_type(hid_t *file);
-static herr_t summary_flush(aq_h5_writer *w);
+/* The compound type of the columns (memory layout, rows of rowsize bytes);
+ * *file gets the packed copy for the file.  Returns the memory type or < 0. */
+static hid_t table_type(const h5_col *cols, size_t ncols, size_t rowsize,
+                        hid_t *file)
+{
+  hid_t t = H5Tcreate(H5T_COMPOUND, rowsize);
+  if (t < 0)
+    return -1;
+  for (size_t i = 0; i < ncols; i++) {
+    const h5_col *c = &cols[i];
+    herr_t rc = -1;
+    switch (c->kind) {
+    case AQ_SF_STR: {
+      hid_t m = str_type(c->size);
+      if (m >= 0) {
+        rc = H5Tinsert(t, c->name, c->offset, m);
+        if (H5Tclose(m) < 0)
+          rc = -1;
+      }
+      break;
+    }
+    case AQ_SF_DOUBLE:
+      rc = H5Tinsert(t, c->name, c->offset, H5T_NATIVE_DOUBLE);
+      break;
+    case AQ_SF_INT:
+      rc = H5Tinsert(t, c->name, c->offset, H5T_NATIVE_INT64);
+      break;
+    }
+    if (rc < 0) {
+      H5Tclose(t);
+      return -1;
+    }
+  }
+  *file = H5Tcopy(t);
+  if (*file < 0 || H5Tpack(*file) < 0) {
+    if (*file >= 0)
+      H5Tclose(*file);
+    H5Tclose(t);
+    return -1;
+  }
+  return t;
+}
+
+/* Create the empty, extensible table name with one units_<column>
+ * attribute per column. */
+static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
+                         const h5_col *cols, size_t ncols, size_t rowsize,
+                         size_t chunk)
+{
+  T->rowsize = rowsize;
+  T->cap = chunk;
+  T->buf = calloc(chunk, rowsize);
+  if (!T->buf)
+    return -1;
+  T->mt = table_type(cols, ncols, rowsize, &T->ft);
+  if (T->mt < 0)
+    return -1;
+  hsize_t dim = 0, maxdim = H5S_UNLIMITED, ch = chunk;
+  hid_t sp = H5Screate_simple(1, &dim, &maxdim);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  herr_t rc = sp < 0 || dcpl < 0 ? -1 : H5Pset_chunk(dcpl, 1, &ch);
+  if (rc >= 0) {
+    T->d = H5Dcreate2(w->file, name, T->ft, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    rc = T->d < 0 ? -1 : 0;
+  }
+  for (size_t i = 0; rc >= 0 && i < ncols; i++) {
+    char an[96];
+    snprintf(an, sizeof an, "units_%s", cols[i].name);
+    rc = attr_str(w, T->d, an, cols[i].units);
+  }
+  if (dcpl >= 0 && H5Pclose(dcpl) < 0)
+    rc = -1;
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* Append the buffered rows to the table.  Returns < 0 on failure. */
+static herr_t table_flush(aq_h5_writer *w, h5_table *T)
+{
+  if (T->nbuf == 0)
+    return 0;
+  hsize_t start = T->nrows, count = T->nbuf, size = T->nrows + T->nbuf;
+  if (H5Dset_extent(T->d, &size) < 0)
+    return -1;
+  hid_t fs = H5Dget_space(T->d);
+  if (fs < 0)
+    return -1;
+  hid_t ms = H5Screate_simple(1, &count, NULL);
+  herr_t rc = -1;
+  if (ms >= 0 &&
+      H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
+    rc = H5Dwrite(T->d, T->mt, ms, fs, H5P_DEFAULT, T->buf);
+  if (ms >= 0 && H5Sclose(ms) < 0)
+    rc = -1;
+  if (H5Sclose(fs) < 0)
+    rc = -1;
+  if (rc >= 0) {
+    sync_hint(w, T->nbuf * T->rowsize);
+    T->nrows += T->nbuf;
+    T->nbuf = 0;
+    memset(T->buf, 0, T->cap * T->rowsize);
+  }
+  return rc;
+}
+
+/* The next row of the table's buffer (zeroed), or NULL if the flush that
+ * made room failed. */
+static void *table_row(aq_h5_writer *w, h5_table *T)
+{
+  if (T->nbuf == T->cap && table_flush(w, T) < 0)
+    return NULL;
+  return T->buf + T->rowsize * T->nbuf++;
+}
+
+static void table_close_quietly(h5_table *T)
+{
+  if (T->mt >= 0)
+    H5Tclose(T->mt);
+  if (T->ft >= 0)
+    H5Tclose(T->ft);
+  T->mt = T->ft = -1;
+}
+
+/* ---- lifecycle ---------------------------------------------------------- */
 
 static void writer_free(aq_h5_writer *w)
 {
@@ -280,14 +488,17 @@ static void writer_free(aq_h5_writer *w)
     close(w->sync_fd);
   H5E_BEGIN_TRY
   {
-    if (w->gcpl >= 0)
-      H5Pclose(w->gcpl);
+    table_close_quietly(&w->runs);
+    table_close_quietly(&w->records);
     if (w->sp_scalar >= 0)
       H5Sclose(w->sp_scalar);
     if (w->t_str >= 0)
       H5Tclose(w->t_str);
   }
   H5E_END_TRY;
+  free(w->runs.buf);
+  free(w->records.buf);
+  free(w->run_cols);
   free(w->target);
   free(w->tmp);
   free(w);
@@ -302,19 +513,9 @@ static void close_quietly(aq_h5_writer *w)
 {
   H5E_BEGIN_TRY
   {
-    if (w->mt_sum >= 0)
-      H5Tclose(w->mt_sum);
-    if (w->ft_sum >= 0)
-      H5Tclose(w->ft_sum);
+    table_close_quietly(&w->runs);
+    table_close_quietly(&w->records);
     if (w->file >= 0 && H5Fflush(w->file, H5F_SCOPE_LOCAL) >= 0) {
-      if (w->d_sum >= 0)
-        H5Dclose(w->d_sum);
-      if (w->g_runs >= 0)
-        H5Gclose(w->g_runs);
-      if (w->g_arches >= 0)
-        H5Gclose(w->g_arches);
-      if (w->g_records >= 0)
-        H5Gclose(w->g_records);
       /* close every object still open in the file, then the file */
       ssize_t n = H5Fget_obj_count(w->file, H5F_OBJ_ALL & ~H5F_OBJ_FILE);
       if (n > 0) {
@@ -331,8 +532,8 @@ static void close_quietly(aq_h5_writer *w)
     }
   }
   H5E_END_TRY;
-  w->g_runs = w->g_arches = w->g_records = w->file = -1;
-  w->d_sum = w->mt_sum = w->ft_sum = -1;
+  w->g_arches = w->g_waveforms = w->g_histories = w->file = -1;
+  w->runs.d = w->records.d = -1;
 }
 
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
@@ -345,17 +546,26 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   aq_h5_writer *w = calloc(1, sizeof *w);
   if (!w)
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
-  w->file = w->g_records = w->g_arches = w->g_runs = -1;
-  w->d_sum = w->mt_sum = w->ft_sum = w->gcpl = -1;
+  w->file = w->g_arches = w->g_waveforms = w->g_histories = -1;
+  w->runs.d = w->runs.mt = w->runs.ft = -1;
+  w->records.d = w->records.mt = w->records.ft = -1;
   w->sp_scalar = w->t_str = -1;
   w->sync_fd = -1;
   size_t len = strlen(target) + 40;
   w->target = strdup(target);
   w->tmp = malloc(len);
-  if (!w->target || !w->tmp) {
+  w->n_run_cols = aq_summary_nfields + N_RUN_EXTRA;
+  w->run_cols = calloc(w->n_run_cols, sizeof *w->run_cols);
+  if (!w->target || !w->tmp || !w->run_cols) {
     writer_free(w);
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   }
+  for (size_t i = 0; i < aq_summary_nfields; i++) {
+    const aq_summary_field *f = &aq_summary_fields[i];
+    w->run_cols[i] = (h5_col){f->name, f->kind, offsetof(run_row, s) + f->offset,
+                              f->size, aq_summary_units(f)};
+  }
+  memcpy(w->run_cols + aq_summary_nfields, run_extra_cols, sizeof run_extra_cols);
   aq_h5_temp_name(target, w->tmp, len);
   struct stat sb;
   if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode)) {
@@ -379,81 +589,40 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   sync_start(w);
   aq_status st = AQ_OK;
   const char *obj = "/";
-  hid_t sp = -1, dcpl = -1;
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   CK(fapl, "H5Pcreate");
   /* 1.8 object format: attributes larger than 64 KiB (long command lines,
    * arch configurations) go to dense storage instead of failing. */
   CK(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST),
      "H5Pset_libver_bounds");
-  /* Every record, arch and run object leaves the metadata cache when it is
-   * closed (written once, never reopened): the cache then holds only the
-   * open top-level groups and /summary, instead of growing by ~30 KiB per
-   * record and run until HDF5 starts evicting.  This halves the writer's
-   * time per object (no heap growth, no page faults on it, no cache
-   * bookkeeping for thousands of entries) and its memory. */
+  /* Waveform and history objects leave the metadata cache when closed
+   * (written once, never reopened), so the cache holds only the open
+   * tables and groups. */
   CK(H5Pset_evict_on_close(fapl, 1), "H5Pset_evict_on_close");
   w->file = H5Fcreate(w->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   CK(w->file, "H5Fcreate");
   CK(H5Pclose(fapl), "H5Pclose");
   fapl = -1;
-  /* Up to AQ_H5_COMPACT_ATTRS attributes stay in the object header (the
-   * 1.8 format otherwise moves more than 8 to a heap and a B-tree, which
-   * costs the writer several times more per attribute). */
   w->sp_scalar = H5Screate(H5S_SCALAR);
   CK(w->sp_scalar, "H5Screate");
   w->t_str = str_type(1);
   CK(w->t_str, "H5Tcopy");
-  w->gcpl = H5Pcreate(H5P_GROUP_CREATE);
-  CK(w->gcpl, "H5Pcreate");
-  CK(H5Pset_attr_phase_change(w->gcpl, AQ_H5_COMPACT_ATTRS, AQ_H5_COMPACT_ATTRS - 8),
-     "H5Pset_attr_phase_change");
-  /* The object header of a new group is sized from these estimates; the
-   * space the links do not take holds the first attributes, which would
-   * otherwise grow the header step by step (a third of the time spent per
-   * attribute).  The file stays the same size to within a few KiB. */
-  CK(H5Pset_est_link_info(w->gcpl, AQ_H5_EST_LINKS, AQ_H5_EST_LINK_NAME),
-     "H5Pset_est_link_info");
-  obj = "/records";
-  w->g_records = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  CK(w->g_records, "H5Gcreate");
   obj = "/arches";
   w->g_arches = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(w->g_arches, "H5Gcreate");
-  obj = "/runs";
-  w->g_runs = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  CK(w->g_runs, "H5Gcreate");
+  obj = "/records";
+  CK(table_open(w, &w->records, obj, record_cols, N_RECORD_COLS,
+                sizeof(record_row), AQ_H5_RECORDS_CHUNK),
+     "table");
   obj = "/summary";
-  w->mt_sum = summary_type(&w->ft_sum);
-  CK(w->mt_sum, "summary type");
-  {
-    hsize_t dim = 0, maxdim = H5S_UNLIMITED, chunk = AQ_H5_SUMMARY_CHUNK;
-    sp = H5Screate_simple(1, &dim, &maxdim);
-    CK(sp, "H5Screate");
-    dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    CK(dcpl, "H5Pcreate");
-    CK(H5Pset_chunk(dcpl, 1, &chunk), "H5Pset_chunk");
-    w->d_sum = H5Dcreate2(w->file, obj, w->ft_sum, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-    CK(w->d_sum, "H5Dcreate");
-    CK(H5Pclose(dcpl), "H5Pclose");
-    dcpl = -1;
-    CK(H5Sclose(sp), "H5Sclose");
-    sp = -1;
-    CK(attr_str(w, w->d_sum, "units",
-                "per member: scale 1, pga_g g, *_s s, *_rad rad, *_m m, *_j J, "
-                "collapsed and impacts counts (-1: failed run), lambda0_first g/g, "
-                "peak_rotation_over_qc 1, pga_over_lambda0_g 1"),
-       "summary attributes");
-  }
+  CK(table_open(w, &w->runs, obj, w->run_cols, w->n_run_cols, sizeof(run_row),
+                AQ_H5_SUMMARY_CHUNK),
+     "table");
   *out = w;
   return AQ_OK;
 fail:
   if (fapl >= 0)
     H5Pclose(fapl);
-  if (dcpl >= 0)
-    H5Pclose(dcpl);
-  if (sp >= 0)
-    H5Sclose(sp);
   aq_h5_abort(w);
   return st;
 }
@@ -491,7 +660,7 @@ static const char *detrend_name(aq_detrend d)
   return "unknown";
 }
 
-/* Processing parameters (requested at the root, used per record). */
+/* Processing parameters requested (root attributes). */
 static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
 {
   if (attr_str(w, loc, "detrend", detrend_name(p->detrend)) < 0 ||
@@ -510,7 +679,10 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
   aq_status st = AQ_OK;
   const char *obj = "/";
   hid_t f = w->file;
+  w->store_records = r->store_records;
   CK(attr_str(w, f, "archquake_version", r->version), "root attributes");
+  CK(attr_str(w, f, "archquake_build", r->build ? r->build : r->version),
+     "root attributes");
   CK(attr_int(w, f, "format_version", AQ_H5_FORMAT_VERSION), "root attributes");
   CK(attr_str(w, f, "command_line", r->command_line), "root attributes");
   CK(attr_str(w, f, "created", r->created), "root attributes");
@@ -531,6 +703,7 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
   }
   CK(attr_double(w, f, "scale_to_pga_g", r->scale_to_pga_g), "root attributes");
   CK(attr_int(w, f, "history", r->history ? 1 : 0), "root attributes");
+  CK(attr_int(w, f, "store_records", r->store_records ? 1 : 0), "root attributes");
   CK(attr_str(w, f, "polarity", r->polarity ? r->polarity : "normal"), "root attributes");
   CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
   return AQ_OK;
@@ -549,11 +722,13 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
   aq_status st = AQ_OK;
   char obj[64];
   snprintf(obj, sizeof obj, "/arches/%03zu", index);
-  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(attr_str(w, g, "name", a->name), "arch attributes");
   CK(attr_str(w, g, "source_file", a->source_file), "arch attributes");
+  CK(attr_str(w, g, "sha256", a->sha256), "arch attributes");
   CK(attr_str(w, g, "config", a->config_text), "arch attributes");
+  CK(attr_int(w, g, "searched", a->searched ? 1 : 0), "arch attributes");
   if (a->dyn) {
     CK(attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
     CK(attr_str(w, g, "impact", impact_name(a->dyn->impact)), "arch attributes");
@@ -563,6 +738,14 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
   for (int k = 0; k < 2; k++) {
     const aq_path *p = a->set[k];
     char nm[64];
+    snprintf(nm, sizeof nm, "%s_joints", set_name[k]);
+    CK(attr_str(w, g, nm, a->joints[k]), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_faces", set_name[k]);
+    CK(attr_str(w, g, nm, a->faces[k]), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_act_sign", set_name[k]);
+    CK(attr_int(w, g, nm, p ? p->act_sign : 0), "arch attributes");
+    snprintf(nm, sizeof nm, "%s_q_sign", set_name[k]);
+    CK(attr_int(w, g, nm, p ? p->q_sign : 0), "arch attributes");
     snprintf(nm, sizeof nm, "%s_admissible", set_name[k]);
     CK(attr_int(w, g, nm, p && p->admissible ? 1 : 0), "arch attributes");
     snprintf(nm, sizeof nm, "%s_lambda0", set_name[k]);
@@ -580,87 +763,90 @@ fail:
   return st;
 }
 
+#define COPY(dst, src) snprintf((dst), sizeof(dst), "%s", (src) ? (src) : "")
+
+/* The group under the root named name, made when first needed. */
+static hid_t lazy_group(aq_h5_writer *w, hid_t *g, const char *name)
+{
+  if (*g < 0)
+    *g = H5Gcreate2(w->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  return *g;
+}
+
 aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
                              const aq_h5_record *r, aq_error *err)
 {
   aq_status st = AQ_OK;
-  char obj[64];
-  snprintf(obj, sizeof obj, "/records/%05zu", index);
-  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
-  CK(g, "H5Gcreate");
-  CK(attr_str(w, g, "source_file", r->source_file), "record attributes");
-  CK(attr_str(w, g, "status", r->status ? r->status : "ok"), "record attributes");
-  if (r->error)
-    CK(attr_str(w, g, "error", r->error), "record attributes");
+  const char *obj = "/records";
+  record_row *row = table_row(w, &w->records);
+  CK(row ? 0 : -1, "rows");
+  COPY(row->source_file, r->source_file);
+  COPY(row->sha256, r->sha256);
+  COPY(row->status, r->status ? r->status : "ok");
+  COPY(row->error, r->error);
+  const char *base = r->source_file ? strrchr(r->source_file, '/') : NULL;
+  COPY(row->name, base ? base + 1 : r->source_file);
+  row->to_m_s2 = row->dt_s = row->begin_s = NAN;
+  row->taper_frac = row->highpass_hz = row->lowpass_hz = NAN;
+  row->pga_g = row->pgv_m_s = row->pgd_m = row->arias_m_s = NAN;
+  row->d5_95_s = row->cav_m_s = row->v_end_m_s = row->d_end_m = NAN;
   if (r->rec) {
     const aq_record *rec = r->rec;
-    CK(attr_str(w, g, "name", rec->name), "record attributes");
-    CK(attr_str(w, g, "format", rec->format), "record attributes");
-    CK(attr_str(w, g, "units_orig", rec->units_orig), "record attributes");
-    CK(attr_double(w, g, "to_m_s2", rec->to_mps2), "record attributes");
-    CK(attr_int(w, g, "npts", (int64_t)rec->npts), "record attributes");
-    CK(attr_double(w, g, "dt_s", rec->dt_s), "record attributes");
-    CK(attr_double(w, g, "begin_s", rec->begin_s), "record attributes");
-    CK(attr_str(w, g, "reference_time", rec->reference), "record attributes");
-    CK(attr_str(w, g, "network", rec->network), "record attributes");
-    CK(attr_str(w, g, "station", rec->station), "record attributes");
-    CK(attr_str(w, g, "location", rec->location), "record attributes");
-    CK(attr_str(w, g, "channel", rec->channel), "record attributes");
+    COPY(row->name, rec->name);
+    COPY(row->format, rec->format);
+    COPY(row->units_orig, rec->units_orig);
+    row->to_m_s2 = rec->to_mps2;
+    row->npts = (int64_t)rec->npts;
+    row->dt_s = rec->dt_s;
+    row->begin_s = rec->begin_s;
+    COPY(row->reference_time, rec->reference);
+    COPY(row->network, rec->network);
+    COPY(row->station, rec->station);
+    COPY(row->location, rec->location);
+    COPY(row->channel, rec->channel);
   }
   if (r->proc) {
     const aq_processed *p = r->proc;
-    CK(write_proc(w, g, &p->used), "record attributes");
-    CK(attr_int(w, g, "pad_front", (int64_t)p->pad_front), "record attributes");
-    CK(attr_int(w, g, "pad_back", (int64_t)p->pad_back), "record attributes");
-    CK(attr_int(w, g, "n_orig", (int64_t)p->n_orig), "record attributes");
-    static const char *const time_attr[2] = {"dt_s", "t0_s"};
-    const double time_val[2] = {p->dt_s, -(double)p->pad_front * p->dt_s};
-    CK(dataset_1d(w, g, "acceleration_m_s2", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                  p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val),
-       "acceleration_m_s2");
+    const aq_signal_opts *u = &p->used;
+    COPY(row->detrend, detrend_name(u->detrend));
+    row->filter = u->filter ? 1 : 0;
+    row->taper_frac = u->filter ? u->taper_frac : 0.0;
+    row->highpass_hz = u->filter ? u->highpass_hz : NAN;
+    row->highpass_order = u->filter ? u->order : 0;
+    row->lowpass_hz = u->filter && u->lowpass_hz > 0 ? u->lowpass_hz : NAN;
+    row->pad_front = (int64_t)p->pad_front;
+    row->pad_back = (int64_t)p->pad_back;
+    row->n_orig = (int64_t)p->n_orig;
+    if (w->store_records) {
+      char name[32];
+      snprintf(name, sizeof name, "/waveforms/%05zu", index);
+      static const char *const time_attr[2] = {"dt_s", "t0_s"};
+      const double time_val[2] = {p->dt_s, -(double)p->pad_front * p->dt_s};
+      obj = "/waveforms";
+      CK(lazy_group(w, &w->g_waveforms, obj), "H5Gcreate");
+      obj = "acceleration";
+      CK(dataset_1d(w, w->file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                    p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val),
+         name);
+      snprintf(row->waveform, sizeof row->waveform, "%s", name);
+    }
   }
   if (r->im) {
     const aq_im *m = r->im;
-    CK(attr_double(w, g, "pga_g", m->pga_g), "record attributes");
-    CK(attr_double(w, g, "pgv_m_s", m->pgv_mps), "record attributes");
-    CK(attr_double(w, g, "pgd_m", m->pgd_m), "record attributes");
-    CK(attr_double(w, g, "arias_m_s", m->arias_mps), "record attributes");
-    CK(attr_double(w, g, "d5_95_s", m->d5_95_s), "record attributes");
-    CK(attr_double(w, g, "cav_m_s", m->cav_mps), "record attributes");
-    CK(attr_double(w, g, "v_end_m_s", m->v_end_mps), "record attributes");
-    CK(attr_double(w, g, "d_end_m", m->d_end_m), "record attributes");
+    row->pga_g = m->pga_g;
+    row->pgv_m_s = m->pgv_mps;
+    row->pgd_m = m->pgd_m;
+    row->arias_m_s = m->arias_mps;
+    row->d5_95_s = m->d5_95_s;
+    row->cav_m_s = m->cav_mps;
+    row->v_end_m_s = m->v_end_mps;
+    row->d_end_m = m->d_end_m;
   }
-  CK(attr_double(w, g, "timing_read_s", r->timing_read_s), "record attributes");
-  CK(attr_double(w, g, "timing_process_s", r->timing_process_s),
-     "record attributes");
-  CK(H5Gclose(g), "H5Gclose");
+  row->timing_read_s = r->timing_read_s;
+  row->timing_process_s = r->timing_process_s;
   return AQ_OK;
 fail:
-  if (g >= 0)
-    H5E_BEGIN_TRY { H5Gclose(g); } H5E_END_TRY;
   return st;
-}
-
-static herr_t write_summary_attrs(aq_h5_writer *w, hid_t g, const aq_summary *s)
-{
-  for (size_t i = 0; i < aq_summary_nfields; i++) {
-    const aq_summary_field *f = &aq_summary_fields[i];
-    herr_t rc = 0;
-    switch (f->kind) {
-    case AQ_SF_STR:
-      rc = attr_str(w, g, f->name, aq_summary_get_str(s, f));
-      break;
-    case AQ_SF_DOUBLE:
-      rc = attr_double(w, g, f->name, aq_summary_get_double(s, f));
-      break;
-    case AQ_SF_INT:
-      rc = attr_int(w, g, f->name, aq_summary_get_int(s, f));
-      break;
-    }
-    if (rc < 0)
-      return -1;
-  }
-  return 0;
 }
 
 aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
@@ -669,56 +855,49 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
                           aq_error *err)
 {
   aq_status st = AQ_OK;
-  char obj[96], link[64];
-  char az[32] = ""; /* runs of one scale at several azimuths */
+  const char *obj = "/summary";
+  hid_t g = -1;
+  run_row *row = table_row(w, &w->runs);
+  CK(row ? 0 : -1, "rows");
+  row->s = *s;
+  row->record_index = (int64_t)ri;
+  row->arch_index = (int64_t)ai;
+  row->scale_index = (int64_t)si;
+  row->timing_run_s = timing_run_s;
+  COPY(row->error, error);
+  if (!res)
+    return AQ_OK;
+  row->reversals = (int64_t)res->reversals;
+  row->steps_total = (int64_t)res->steps_total;
+  row->steps_moving = (int64_t)res->steps_moving;
+  row->path_evaluations = (int64_t)res->evals;
+  const aq_history *h = &res->history;
+  if (!h->time_s)
+    return AQ_OK;
+  char name[128], az[32] = ""; /* runs of one scale at several azimuths */
   if (isfinite(s->azimuth_deg))
     snprintf(az, sizeof az, "_az%.6g", s->azimuth_deg);
-  snprintf(obj, sizeof obj, "/runs/%05zu_%03zu_%03zu%s%s", ri, ai, si,
+  snprintf(name, sizeof name, "/histories/%05zu_%03zu_%03zu%s%s", ri, ai, si,
            strcmp(s->polarity, "reversed") == 0 ? "r" : "", az);
-  hid_t g = -1;
-  g = H5Gcreate2(w->file, obj, H5P_DEFAULT, w->gcpl, H5P_DEFAULT);
+  obj = "/histories";
+  CK(lazy_group(w, &w->g_histories, obj), "H5Gcreate");
+  obj = name;
+  g = H5Gcreate2(w->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(g, "H5Gcreate");
-  CK(write_summary_attrs(w, g, s), "run attributes");
-  CK(attr_int(w, g, "record_index", (int64_t)ri), "run attributes");
-  CK(attr_int(w, g, "arch_index", (int64_t)ai), "run attributes");
-  CK(attr_int(w, g, "scale_index", (int64_t)si), "run attributes");
-  snprintf(link, sizeof link, "/records/%05zu", ri);
-  CK(attr_str(w, g, "record_group", link), "run attributes");
-  snprintf(link, sizeof link, "/arches/%03zu", ai);
-  CK(attr_str(w, g, "arch_group", link), "run attributes");
-  if (error)
-    CK(attr_str(w, g, "error", error), "run attributes");
-  if (res) {
-    CK(attr_int(w, g, "reversals", (int64_t)res->reversals), "run attributes");
-    CK(attr_int(w, g, "steps_total", (int64_t)res->steps_total), "run attributes");
-    CK(attr_int(w, g, "steps_moving", (int64_t)res->steps_moving),
-       "run attributes");
-    CK(attr_int(w, g, "path_evaluations", (int64_t)res->evals), "run attributes");
-    const aq_history *h = &res->history;
-    if (h->time_s) {
-      CK(dataset_doubles(w, g, "time_s", h->time_s, h->n, "s"), "time_s");
-      CK(dataset_doubles(w, g, "rotation_rad", h->rotation_rad, h->n, "rad"),
-         "rotation_rad");
-      CK(dataset_doubles(w, g, "displacement_m", h->displacement_m, h->n, "m"),
-         "displacement_m");
-      CK(dataset_doubles(w, g, "kinetic_energy_j", h->kinetic_energy_j, h->n, "J"),
-         "kinetic_energy_j");
-      CK(dataset_doubles(w, g, "potential_energy_j", h->potential_energy_j, h->n,
-                         "J"),
-         "potential_energy_j");
-      if (h->set)
-        CK(dataset_1d(w, g, "hinge_set", H5T_STD_I32LE, H5T_NATIVE_INT, h->set,
-                      h->n, "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL,
-                      NULL),
-           "hinge_set");
-    }
-  }
-  CK(attr_double(w, g, "timing_run_s", timing_run_s), "run attributes");
+  CK(dataset_doubles(w, g, "time_s", h->time_s, h->n, "s"), "time_s");
+  CK(dataset_doubles(w, g, "rotation_rad", h->rotation_rad, h->n, "rad"),
+     "rotation_rad");
+  CK(dataset_doubles(w, g, "displacement_m", h->displacement_m, h->n, "m"),
+     "displacement_m");
+  CK(dataset_doubles(w, g, "kinetic_energy_j", h->kinetic_energy_j, h->n, "J"),
+     "kinetic_energy_j");
+  CK(dataset_doubles(w, g, "potential_energy_j", h->potential_energy_j, h->n, "J"),
+     "potential_energy_j");
+  if (h->set)
+    CK(dataset_1d(w, g, "hinge_set", H5T_STD_I32LE, H5T_NATIVE_INT, h->set, h->n,
+                  "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL),
+       "hinge_set");
   CK(H5Gclose(g), "H5Gclose");
-  g = -1;
-  w->buf[w->nbuf++] = *s;
-  if (w->nbuf == AQ_H5_SUMMARY_CHUNK)
-    CK(summary_flush(w), "/summary rows");
   return AQ_OK;
 fail:
   if (g >= 0)
@@ -726,72 +905,22 @@ fail:
   return st;
 }
 
-/* The compound type of aq_summary (memory layout); *file gets the packed
- * copy for the file.  Returns the memory type or < 0. */
-static hid_t summary_type(hid_t *file)
+/* Flush and close a table. */
+static herr_t table_close(aq_h5_writer *w, h5_table *T)
 {
-  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(aq_summary));
-  if (t < 0)
-    return -1;
-  for (size_t i = 0; i < aq_summary_nfields; i++) {
-    const aq_summary_field *f = &aq_summary_fields[i];
-    hid_t m = -1;
-    herr_t rc = -1;
-    switch (f->kind) {
-    case AQ_SF_STR:
-      m = str_type(f->size);
-      if (m >= 0) {
-        rc = H5Tinsert(t, f->name, f->offset, m);
-        if (H5Tclose(m) < 0)
-          rc = -1;
-      }
-      break;
-    case AQ_SF_DOUBLE:
-      rc = H5Tinsert(t, f->name, f->offset, H5T_NATIVE_DOUBLE);
-      break;
-    case AQ_SF_INT:
-      rc = H5Tinsert(t, f->name, f->offset, H5T_NATIVE_INT64);
-      break;
-    }
-    if (rc < 0) {
-      H5Tclose(t);
-      return -1;
-    }
-  }
-  *file = H5Tcopy(t);
-  if (*file < 0 || H5Tpack(*file) < 0) {
-    if (*file >= 0)
-      H5Tclose(*file);
-    H5Tclose(t);
-    return -1;
-  }
-  return t;
-}
-
-/* Append the buffered rows to /summary.  Returns < 0 on failure. */
-static herr_t summary_flush(aq_h5_writer *w)
-{
-  if (w->nbuf == 0)
-    return 0;
-  hsize_t start = w->nrows, count = w->nbuf, size = w->nrows + w->nbuf;
-  if (H5Dset_extent(w->d_sum, &size) < 0)
-    return -1;
-  hid_t fs = H5Dget_space(w->d_sum);
-  if (fs < 0)
-    return -1;
-  hid_t ms = H5Screate_simple(1, &count, NULL);
-  herr_t rc = -1;
-  if (ms >= 0 &&
-      H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
-    rc = H5Dwrite(w->d_sum, w->mt_sum, ms, fs, H5P_DEFAULT, w->buf);
-  if (ms >= 0 && H5Sclose(ms) < 0)
+  herr_t rc = table_flush(w, T);
+  if (rc >= 0 && H5Dclose(T->d) < 0)
     rc = -1;
-  if (H5Sclose(fs) < 0)
+  if (rc >= 0)
+    T->d = -1;
+  if (rc >= 0 && H5Tclose(T->mt) < 0)
     rc = -1;
-  if (rc >= 0) {
-    w->nrows += w->nbuf;
-    w->nbuf = 0;
-  }
+  if (rc >= 0)
+    T->mt = -1;
+  if (rc >= 0 && H5Tclose(T->ft) < 0)
+    rc = -1;
+  if (rc >= 0)
+    T->ft = -1;
   return rc;
 }
 
@@ -799,13 +928,9 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
 {
   aq_status st = AQ_OK;
   const char *obj = "/summary";
-  CK(summary_flush(w), "/summary rows");
-  CK(H5Dclose(w->d_sum), "H5Dclose");
-  w->d_sum = -1;
-  CK(H5Tclose(w->mt_sum), "H5Tclose");
-  w->mt_sum = -1;
-  CK(H5Tclose(w->ft_sum), "H5Tclose");
-  w->ft_sum = -1;
+  CK(table_close(w, &w->runs), "rows");
+  obj = "/records";
+  CK(table_close(w, &w->records), "rows");
   obj = "/";
   if (t) {
     CK(attr_double(w, w->file, "timing_wall_s", t->wall_s), "root attributes");
@@ -815,12 +940,14 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
     CK(attr_double(w, w->file, "timing_run_s", t->run_s), "root attributes");
     CK(attr_double(w, w->file, "timing_write_s", t->write_s), "root attributes");
   }
-  CK(H5Gclose(w->g_runs), "H5Gclose");
-  w->g_runs = -1;
   CK(H5Gclose(w->g_arches), "H5Gclose");
   w->g_arches = -1;
-  CK(H5Gclose(w->g_records), "H5Gclose");
-  w->g_records = -1;
+  if (w->g_waveforms >= 0)
+    CK(H5Gclose(w->g_waveforms), "H5Gclose");
+  w->g_waveforms = -1;
+  if (w->g_histories >= 0)
+    CK(H5Gclose(w->g_histories), "H5Gclose");
+  w->g_histories = -1;
   {
     /* Flush first: a file that cannot be flushed is abandoned, never
      * closed (see close_quietly). */

@@ -15,6 +15,12 @@
  * then per record aq_h5_write_record followed by its runs (aq_h5_write_run),
  * then aq_h5_finish (or aq_h5_abort at any point).  The writer copies what it
  * needs; callers keep ownership of everything they pass.
+ *
+ * Records and runs are rows of two compound tables (/records, /summary),
+ * buffered and appended a chunk at a time: no object is made per record or
+ * run.  Datasets are made only for what is asked: a record's processed
+ * waveform (aq_h5_root.store_records) and a run's histories (a result that
+ * holds them).
  */
 #ifndef AQ_REPORT_H5_H
 #define AQ_REPORT_H5_H
@@ -29,7 +35,8 @@
 #include "../signal/signal.h"
 #include "report.h"
 
-#define AQ_H5_FORMAT_VERSION 1 /* root attribute format_version */
+#define AQ_H5_FORMAT_VERSION 2 /* root attribute format_version */
+#define AQ_H5_ERROR_MAX 400    /* bytes kept of a run's or record's error message */
 
 typedef struct aq_h5_writer aq_h5_writer;
 
@@ -49,6 +56,8 @@ typedef struct {
   double scale_to_pga_g;      /* --scale-to-pga target, g, or NAN */
   int history;                /* 1 with --history */
   long threads;               /* -j */
+  const char *build;          /* exact build: version and `git describe` */
+  int store_records;          /* 1 with --store-records: processed waveforms */
   const char *polarity;       /* --polarity: normal | reversed | both (NULL: normal) */
 } aq_h5_root;
 
@@ -59,6 +68,10 @@ typedef struct {
   const char *config_text;         /* the .cfg exactly as read */
   const aq_arch_dynamics *dyn;     /* [dynamics] */
   const aq_path *set[2];           /* primary, reverse (either may be NULL) */
+  const char *sha256;              /* hex digest of the .cfg file, or NULL */
+  int searched;                    /* 1: the primary set came from the search */
+  /* Hinge sets as used: joints "0,6,12,19" and faces "eiei" (NULL: unknown) */
+  const char *joints[2], *faces[2];
 } aq_h5_arch;
 
 /* One record: what was read, how it was processed and what it measures.
@@ -71,6 +84,7 @@ typedef struct {
   const aq_im *im;           /* its intensity measures, or NULL */
   const char *status;        /* "ok" or a short code ("read:eformat") */
   const char *error;         /* one-line message, or NULL */
+  const char *sha256;        /* hex digest of the file, or NULL */
   double timing_read_s;      /* wall time reading, s (timing: not deterministic) */
   double timing_process_s;   /* wall time processing, s */
 } aq_h5_record;
@@ -96,10 +110,11 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
 aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
                              const aq_h5_record *r, aq_error *err);
 
-/* Run (record ri, arch ai, scale si, polarity s->polarity: a reversed run's
- * group name ends in "r"): the summary s as attributes, plus the
- * histories of res if it holds any (res may be NULL for a failed run);
- * error is the run's one-line message or NULL; timing_run_s its wall time. */
+/* Run (record ri, arch ai, scale si, polarity s->polarity): the summary s as
+ * a row of /summary, with the indices, res's counters, error (the run's
+ * one-line message or NULL) and timing_run_s (its wall time); plus the
+ * histories of res, if it holds any, as datasets of /histories/RRRRR_AAA_SSS
+ * (with "r" appended for a reversed run; res may be NULL for a failed run). */
 aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
                           const aq_summary *s, const aq_result *res,
                           const char *error, double timing_run_s,
@@ -117,9 +132,40 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err);
 /* Give up: close what is open, remove the temporary, free w (NULL is fine). */
 void aq_h5_abort(aq_h5_writer *w);
 
-/* Reading back (compare.c): every run group's summary attributes, in file
- * order.  *out is malloc'd (caller frees), *n its length. */
-aq_status aq_h5_read_runs(const char *path, aq_summary **out, size_t *n,
-                          aq_error *err);
+/* Reading back (compare.c). */
+
+/* A run as read back: its summary and what identifies its inputs. */
+typedef struct {
+  aq_summary s;
+  int64_t record_index, arch_index, scale_index;
+} aq_h5_run;
+
+/* A record or an arch as read back: its short name (a record's file name
+ * without directories, an arch's [arch] name) and content digest. */
+typedef struct {
+  char name[AQ_SUMMARY_RECORD_MAX];
+  char sha256[65];
+} aq_h5_input;
+
+/* One configuration value of a file's root (processing options, model, cor,
+ * version...), as text (numbers as %.17g). */
+typedef struct {
+  char name[48];
+  char value[256];
+} aq_h5_setting;
+
+typedef struct {
+  aq_h5_run *runs;
+  size_t nruns;
+  aq_h5_input *records, *arches;
+  size_t nrecords, narches;
+  aq_h5_setting *settings;
+  size_t nsettings;
+} aq_h5_suite;
+
+/* Read the runs, the inputs and the root settings of a results file
+ * (format_version 2).  *out is filled (free with aq_h5_suite_free). */
+aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err);
+void aq_h5_suite_free(aq_h5_suite *s);
 
 #endif

@@ -1,9 +1,8 @@
 /* report.h: the results of a suite as the report writers see them
  * (src/report).  One run = (record, arch, scale); its summary is one
  * aq_summary, a plain struct with fixed-size strings, which is at once a text
- * row (text.c), the attributes of the run's HDF5 group and a row of the
- * HDF5 summary table (h5.c), and what `archquake compare` matches and
- * compares (compare.c).  The field table aq_summary_fields[] lists the
+ * row (text.c), a row of the HDF5 summary table (h5.c), and what
+ * `archquake compare` matches and compares (compare.c).  The field table aq_summary_fields[] lists the
  * summary's fields in column order; every writer and the reader use it, so a
  * name is the same everywhere.
  *
@@ -100,6 +99,12 @@ void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st);
  * given), then a collapse (the earliest), then the largest peak rotation /
  * q_c; ties go to the first.  Returns its index (0 for n = 0). */
 size_t aq_summary_worst(const aq_summary *const *rows, size_t n);
+
+/* Units of a field, from its name's suffix as the naming rule gives them:
+ * "s", "rad", "m", "J", "g", "deg" for *_s, *_rad, *_m, *_j, *_g, *_deg; "" for strings;
+ * "1" for a ratio (*_over_*) and every other number (scale, counts,
+ * lambda0).  Never NULL. */
+const char *aq_summary_units(const aq_summary_field *f);
 
 /* Field value access by table entry. */
 double aq_summary_get_double(const aq_summary *s, const aq_summary_field *f);

@@ -124,6 +124,25 @@ void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)
     snprintf(buf, n, "%s:%s", stage ? stage : "run", low);
 }
 
+const char *aq_summary_units(const aq_summary_field *f)
+{
+  static const struct {
+    const char *suffix, *units;
+  } rule[] = {{"_s", "s"}, {"_rad", "rad"}, {"_m", "m"}, {"_j", "J"}, {"_g", "g"},
+               {"_deg", "deg"}};
+  if (f->kind == AQ_SF_STR)
+    return "";
+  if (strstr(f->name, "_over_")) /* a ratio (pga_over_lambda0_g: PGA / (lambda0 g)) */
+    return "1";
+  size_t n = strlen(f->name);
+  for (size_t k = 0; k < sizeof rule / sizeof rule[0]; k++) {
+    size_t m = strlen(rule[k].suffix);
+    if (n > m && strcmp(f->name + n - m, rule[k].suffix) == 0)
+      return rule[k].units;
+  }
+  return "1";
+}
+
 double aq_summary_get_double(const aq_summary *s, const aq_summary_field *f)
 {
   double x;

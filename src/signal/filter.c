@@ -13,18 +13,139 @@
  * (the thread-safe part of FFTW's API) on the caller's per-record array,
  * aligned to 64 bytes by posix_memalign (aq_filter_alloc): no buffer is
  * shared between threads, and free() releases the array.
+ *
+ * Wisdom: planning costs tens of ms per transform length even with
+ * FFTW_ESTIMATE, which dominated small suites.  The plans' wisdom is kept
+ * between runs in $XDG_CACHE_HOME/archquake/fftw-wisdom (or
+ * ~/.cache/archquake/fftw-wisdom), loaded before the first plan of the
+ * process and written back, when it grew, by aq_signal_ws_free: under a
+ * temporary name, then renamed, so a reader never sees half a file.  The
+ * file starts with a line "archquake-fftw-wisdom 1 sha256=HEX" over the rest;
+ * a file that does not (foreign, truncated, corrupt) is ignored and, at the
+ * end, replaced; FFTW itself rejects wisdom of another FFTW build and
+ * restores its own when an import fails.  Only ESTIMATE wisdom is ever
+ * written there, and an ESTIMATE plan made from it is the plan that
+ * ESTIMATE would choose anyway: results are bit-identical with or without
+ * the cache (the suite tests check it).  The cache is optional: when it
+ * cannot be read or written nothing is reported and planning happens as
+ * before.
  */
 #include "filter.h"
 
+#include <fcntl.h>
 #include <fftw3.h>
 #include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "../io/sha256.h"
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
 static pthread_mutex_t aq_fftw_planner_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* ---- wisdom cache (all under aq_fftw_planner_lock) ---------------------- */
+
+#define AQ_WISDOM_MAGIC "archquake-fftw-wisdom 1 sha256="
+#define AQ_WISDOM_MAX_BYTES ((size_t)4 << 20) /* a larger file is not ours */
+
+static int wisdom_loaded;  /* the cache was looked at (once per process) */
+static int wisdom_planned; /* a plan was made since it was loaded or saved */
+static char *wisdom_text;  /* the wisdom as loaded or last saved, or NULL */
+
+/* The cache file's directory and name into dir[n], file[n]; 0 if there is
+ * no home for it. */
+static int wisdom_path(char *dir, char *file, size_t n)
+{
+  const char *x = getenv("XDG_CACHE_HOME"), *h = getenv("HOME");
+  int len;
+  if (x && x[0] == '/')
+    len = snprintf(dir, n, "%s/archquake", x);
+  else if (h && h[0] == '/')
+    len = snprintf(dir, n, "%s/.cache/archquake", h);
+  else
+    return 0;
+  if (len < 0 || (size_t)len + 20 >= n)
+    return 0;
+  snprintf(file, n, "%s/fftw-wisdom", dir);
+  return 1;
+}
+
+/* Import the cache file's wisdom if the file is whole and ours. */
+static void wisdom_load(void)
+{
+  if (wisdom_loaded)
+    return;
+  wisdom_loaded = 1;
+  char dir[PATH_MAX], file[PATH_MAX];
+  if (!wisdom_path(dir, file, sizeof dir))
+    return;
+  FILE *f = fopen(file, "rb");
+  if (!f)
+    return;
+  char *buf = malloc(AQ_WISDOM_MAX_BYTES + 1);
+  size_t n = buf ? fread(buf, 1, AQ_WISDOM_MAX_BYTES + 1, f) : 0;
+  fclose(f);
+  size_t head = strlen(AQ_WISDOM_MAGIC) + 64 + 1; /* magic, digest, newline */
+  if (!buf || n > AQ_WISDOM_MAX_BYTES || n <= head ||
+      memcmp(buf, AQ_WISDOM_MAGIC, strlen(AQ_WISDOM_MAGIC)) != 0 || buf[head - 1] != '\n') {
+    free(buf);
+    return;
+  }
+  buf[n] = '\0';
+  char hex[AQ_SHA256_HEX];
+  aq_sha256_hex(buf + head, n - head, hex);
+  if (memcmp(hex, buf + strlen(AQ_WISDOM_MAGIC), 64) != 0 ||
+      strlen(buf + head) != n - head || !fftw_import_wisdom_from_string(buf + head)) {
+    free(buf);
+    return;
+  }
+  wisdom_text = strdup(buf + head);
+  free(buf);
+}
+
+/* Write the process's wisdom to the cache if it differs from the file's. */
+static void wisdom_save(void)
+{
+  if (!wisdom_planned)
+    return;
+  wisdom_planned = 0;
+  char dir[PATH_MAX], file[PATH_MAX], tmp[PATH_MAX + 32];
+  char *w = fftw_export_wisdom_to_string();
+  if (!w || !wisdom_path(dir, file, sizeof dir) ||
+      (wisdom_text && strcmp(w, wisdom_text) == 0)) {
+    fftw_free(w);
+    return;
+  }
+  char *slash = strrchr(dir, '/');
+  if (slash && slash != dir) { /* ~/.cache or $XDG_CACHE_HOME, then ours */
+    *slash = '\0';
+    mkdir(dir, 0700);
+    *slash = '/';
+  }
+  mkdir(dir, 0700);
+  snprintf(tmp, sizeof tmp, "%s.tmp.%ld", file, (long)getpid());
+  char hex[AQ_SHA256_HEX];
+  size_t len = strlen(w);
+  aq_sha256_hex(w, len, hex);
+  FILE *f = fopen(tmp, "wb");
+  int ok = f && fprintf(f, "%s%s\n", AQ_WISDOM_MAGIC, hex) > 0 &&
+           fwrite(w, 1, len, f) == len;
+  if (f && fclose(f) != 0)
+    ok = 0;
+  if (ok && rename(tmp, file) == 0) {
+    free(wisdom_text);
+    wisdom_text = strdup(w); /* NULL: the next save compares with nothing */
+  } else if (f) {
+    unlink(tmp);
+  }
+  fftw_free(w);
+}
 
 typedef struct {
   size_t n;       /* transform length */
@@ -51,6 +172,7 @@ void aq_signal_ws_free(aq_signal_ws *ws)
     fftw_destroy_plan(ws->plans[i].r2c);
     fftw_destroy_plan(ws->plans[i].c2r);
   }
+  wisdom_save();
   pthread_mutex_unlock(&aq_fftw_planner_lock);
   free(ws->plans);
   free(ws);
@@ -74,6 +196,8 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
   /* plan in place on a scratch array aligned as fftw_malloc aligns: every
    * array later passed to the new-array execute calls is aligned alike
    * (aq_filter_alloc) and also in place */
+  wisdom_load();
+  wisdom_planned = 1;
   double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
   fftw_plan r2c = NULL, c2r = NULL;
   if (x) {
