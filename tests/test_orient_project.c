@@ -47,11 +47,13 @@ AQ_TEST(orient_pair_checks)
       {"RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 180}, {"RSN6_IMPVALL.I_I-ELC270-hor2.AT2", 270},
       {"RSN763_LOMAP_GIL067.AT2", 67},         {"RSN763_LOMAP_GIL337.AT2", 337},
       {"RSN77_SFERN_PUL164-hor1.AT2", 164},    {"kocaeli.csv", NAN},
-      {"RSN4013_SANSIMEO_36258021.AT2", NAN},  {"ABC999.AT2", NAN}};
+      {"RSN4013_SANSIMEO_36258021.AT2", NAN},  {"ABC999.AT2", NAN},
+      {"run090.csv", NAN}};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
     aq_record r;
     memset(&r, 0, sizeof r);
     r.name = (char *)names[i].name;
+    snprintf(r.format, sizeof r.format, "%s", strstr(names[i].name, ".csv") ? "csv" : "at2");
     double az = aq_project_azimuth_of(&r);
     aq_check((isnan(az) && isnan(names[i].az)) || az == names[i].az, "%s: %g deg",
              names[i].name, az);
