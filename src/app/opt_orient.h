@@ -52,7 +52,8 @@ enum {
   "                      largest peak_rotation_over_qc; the HDF5 file has all\n" \
   "  --all-azimuths      with --azimuth all: every azimuth's row in the TSV\n"   \
   "  --vertical          run the vertical component V too (without it a V is\n" \
-  "                      ignored, with a warning)\n"
+  "                      ignored, with a warning); a step with g + a_v <= 0\n" \
+  "                      stops the run: status run:eliftoff\n"
 
 /* The default step of --azimuth all, deg. */
 #define AQ_OPT_ORIENT_STEP_DEFAULT_DEG 5.0
