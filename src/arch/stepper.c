@@ -494,7 +494,9 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
                  " at t = %.3f s", steps->t_s[i] + t_in);
         goto fail;
       }
-      e_in += -st->path[set]->mass_kg * (a * (m.x_m - x0) + av * (m.y_m - y0));
+      e_in += -a * st->path[set]->mass_kg * (m.x_m - x0);
+      if (avs) /* the vertical ground motion's work */
+        e_in += -av * st->path[set]->mass_kg * (m.y_m - y0);
       if (m.ke_j > S.peak_ke_j)
         S.peak_ke_j = m.ke_j;
       if (fabs(m.x_m) > S.peak_x_m)
