@@ -18,7 +18,7 @@ static const struct {
 } commands[] = {
     {"info", aq_cmd_info},       {"mechanism", aq_cmd_mechanism},
     {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
-    {"compare", aq_cmd_compare},
+    {"compare", aq_cmd_compare},   {"capacity", aq_cmd_capacity},
 };
 
 static const char commands_usage[] =

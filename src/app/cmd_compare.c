@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "../report/compare.h"
+#include "../report/h5_capacity.h"
 #include "../report/h5.h"
 #include "../report/text.h"
 #include "app.h"
@@ -115,6 +116,54 @@ static void on_diff(void *ctx, const aq_diff *d)
   }
 }
 
+/* A capacity difference as a row: scale nan (a capacity row is about every
+ * scale), the field prefixed "capacity/". */
+static void on_capacity_diff(void *ctx, const aq_h5_capacity_diff *d)
+{
+  FILE *f = ctx;
+  const aq_h5_capacity_row *r = d->a ? d->a : d->b;
+  char rel[64];
+  put_cell(f, r->record);
+  fputc('\t', f);
+  put_cell(f, r->arch);
+  fprintf(f, "\tnan\t%s\t", r->polarity);
+  if (d->field) {
+    aq_text_double(rel, sizeof rel, d->rel);
+    fprintf(f, "capacity/%s\t%s\t%s\t%s\n", d->field, d->a_text, d->b_text, rel);
+  } else {
+    fprintf(f, "capacity/present\t%s\t%s\tnan\n", d->a ? "yes" : "no",
+            d->b ? "yes" : "no");
+  }
+}
+
+/* The capacity groups of a and b (docs/capacity.md): the number of
+ * differences (a group in one file only counts one), or (size_t)-2 when a
+ * group cannot be read (reported). */
+static size_t compare_capacity(const char *a, const char *b, double rtol, double atol)
+{
+  aq_h5_capacity_table t[2];
+  int present[2] = {0, 0};
+  aq_error err;
+  size_t nd = 0;
+  for (int k = 0; k < 2; k++)
+    if (aq_h5_capacity_read(k ? b : a, &t[k], &present[k], &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      if (k)
+        aq_h5_capacity_table_free(&t[0]);
+      return (size_t)-2;
+    }
+  if (present[0] != present[1]) {
+    printf("capacity\t-\tnan\t-\tcapacity/present\t%s\t%s\tnan\n", present[0] ? "yes" : "no",
+           present[1] ? "yes" : "no");
+    nd = 1;
+  } else if (present[0]) {
+    nd = aq_h5_capacity_compare(&t[0], &t[1], rtol, atol, on_capacity_diff, stdout);
+  }
+  aq_h5_capacity_table_free(&t[0]);
+  aq_h5_capacity_table_free(&t[1]);
+  return nd;
+}
+
 int aq_cmd_compare(int argc, char **argv)
 {
   static const struct option longopts[] = {
@@ -193,6 +242,11 @@ int aq_cmd_compare(int argc, char **argv)
   size_t n[2] = {suite[0].nruns, suite[1].nruns};
   aq_h5_suite_free(&suite[0]);
   aq_h5_suite_free(&suite[1]);
+  size_t ncd = compare_capacity(argv[optind], argv[optind + 1], rtol, atol);
+  if (ncd == (size_t)-2)
+    return AQ_EXIT_USAGE;
+  if (nd != (size_t)-1)
+    nd += ncd;
   if (fflush(stdout) != 0 || ferror(stdout)) {
     fprintf(stderr, "archquake: compare: cannot write the differences\n");
     return AQ_EXIT_USAGE;

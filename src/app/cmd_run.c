@@ -17,6 +17,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_dyn.h"
 #include "opt_orient.h"
 #include "opt_record.h"
 #include "opt_signal.h"
@@ -37,9 +38,7 @@ static const char usage_head[] =
     "  --scale-to-pga G    scale each processed record to a PGA of G g instead\n"
     "  -j, --jobs N        worker threads (default: the number of cores); the\n"
     "                      results are the same for every N\n"
-    "  --model M           workpath (default), ode (reference), paper, workpath-quad\n"
-    "  --cor C             kinetic-energy ratio kept at an impact, 0..1\n"
-    "                      (default: each arch's [dynamics] cor)\n"
+    AQ_OPT_DYN_USAGE
     "  --history           write histories (step ends, turning points, impacts)\n"
     "                      to the HDF5 file (with -o)\n"
     "  --store-records     write the processed records to the HDF5 file (with -o)\n"
@@ -77,8 +76,6 @@ enum {
   OPT_TEXT,
   OPT_SCALE,
   OPT_SCALE_PGA,
-  OPT_MODEL,
-  OPT_COR,
   OPT_HISTORY,
   OPT_STORE_RECORDS,
   OPT_POLARITY,
@@ -144,26 +141,6 @@ static int same_output(const char *a, const char *b)
          sa.st_ino == sb.st_ino;
 }
 
-/* An output path that names an existing input (a record or an arch file,
- * possibly under another spelling) would destroy it: report it (one line)
- * and return 1. */
-static int output_is_input(const char *opt, const char *out, char *const *records,
-                           size_t nrec, char *const *arches, size_t narch)
-{
-  struct stat so, si;
-  if (!out || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
-    return 0;
-  for (size_t i = 0; i < nrec + narch; i++) {
-    const char *in = i < nrec ? records[i] : arches[i - nrec];
-    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
-      fprintf(stderr, "archquake: %s: %s: expected a file other than the inputs, "
-                      "got the %s %s\n", out, opt, i < nrec ? "record" : "arch file", in);
-      return 1;
-    }
-  }
-  return 0;
-}
-
 int aq_cmd_run(int argc, char **argv)
 {
   struct option longopts[40] = {
@@ -175,8 +152,7 @@ int aq_cmd_run(int argc, char **argv)
       {"scale", required_argument, NULL, OPT_SCALE},
       {"scale-to-pga", required_argument, NULL, OPT_SCALE_PGA},
       {"jobs", required_argument, NULL, 'j'},
-      {"model", required_argument, NULL, OPT_MODEL},
-      {"cor", required_argument, NULL, OPT_COR},
+      AQ_OPT_DYN_LONGOPTS,
       {"history", no_argument, NULL, OPT_HISTORY},
       {"store-records", no_argument, NULL, OPT_STORE_RECORDS},
       {"polarity", required_argument, NULL, OPT_POLARITY},
@@ -184,7 +160,6 @@ int aq_cmd_run(int argc, char **argv)
       {"help", no_argument, NULL, OPT_HELP}};
   size_t nlong = aq_opt_signal_append(longopts, 21);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
-  static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
 
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
@@ -200,7 +175,9 @@ int aq_cmd_run(int argc, char **argv)
   static const double one = 1.0;
   double *scales = NULL;
   size_t nscale = 0;
-  int quiet = 0, model = 0, nerr = 0, c;
+  int quiet = 0, nerr = 0, c;
+  aq_dyn_opts dyn;
+  aq_opt_dyn_default(&dyn);
   const char *text_path = NULL;
   char **arches = calloc((size_t)argc + 1, sizeof *arches);
   char units_text[1024] = "";
@@ -215,6 +192,7 @@ int aq_cmd_run(int argc, char **argv)
   optind = 1;
   while ((c = getopt_long(argc, argv, ":o:j:q", longopts, NULL)) != -1) {
     if (aq_opt_signal_handle(c, optarg, &cfg.proc, &cfg.merge_tol_g, &nerr) ||
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr) ||
         aq_opt_orient_handle(c, optarg, &orient, &nerr))
       continue;
     switch (c) {
@@ -235,12 +213,6 @@ int aq_cmd_run(int argc, char **argv)
       break;
     case 'j':
       aq_opt_long("-j", optarg, 1, AQ_RUN_MAX_THREADS, &cfg.threads, &nerr);
-      break;
-    case OPT_MODEL:
-      aq_opt_choice("--model", optarg, models, &model, &nerr);
-      break;
-    case OPT_COR:
-      aq_opt_double("--cor", optarg, 0, 1, &cfg.cor, &nerr);
       break;
     case OPT_HISTORY:
       cfg.history = 1;
@@ -313,8 +285,8 @@ int aq_cmd_run(int argc, char **argv)
     char *const *recs = argv + optind;
     size_t nrec = (size_t)(argc - optind);
     aq_opt_distinct_files("record", recs, nrec, &nerr);
-    nerr += output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
-    nerr += output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
+    nerr += aq_opt_output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
+    nerr += aq_opt_output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }
   /* the rows' record column: each RECORD, then each motion's label */
   size_t nplain = optind < argc ? (size_t)(argc - optind) : 0;
@@ -350,7 +322,8 @@ int aq_cmd_run(int argc, char **argv)
   cfg.all_azimuths = orient.all_azimuths;
   cfg.vertical = orient.vertical;
   cfg.arch_paths = arches;
-  cfg.model = (aq_model)model;
+  cfg.model = dyn.model;
+  cfg.cor = dyn.cor;
   cfg.units_text = units_text[0] ? units_text : NULL;
   if (isnan(cfg.scale_to_pga_g)) {
     cfg.scales = scales ? scales : &one;

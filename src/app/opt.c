@@ -266,3 +266,23 @@ int aq_opt_output_special(const char *opt, const char *path)
                                                      : "special file");
   return 1;
 }
+
+/* An output path that names an existing input (a record or an arch file,
+ * possibly under another spelling) would destroy it: report it (one line)
+ * and return 1. */
+int aq_opt_output_is_input(const char *opt, const char *out, char *const *records,
+                           size_t nrec, char *const *arches, size_t narch)
+{
+  struct stat so, si;
+  if (!out || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
+    return 0;
+  for (size_t i = 0; i < nrec + narch; i++) {
+    const char *in = i < nrec ? records[i] : arches[i - nrec];
+    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
+      fprintf(stderr, "archquake: %s: %s: expected a file other than the inputs, "
+                      "got the %s %s\n", out, opt, i < nrec ? "record" : "arch file", in);
+      return 1;
+    }
+  }
+  return 0;
+}

@@ -58,6 +58,11 @@ void aq_opt_require(const char *cmd, const char *what, int given, int *nerr);
  * return 1; 0 for a regular file, a directory (reported by the caller), a
  * missing path or NULL. */
 int aq_opt_output_special(const char *opt, const char *path);
+/* An output path out that names an existing input (one of the nrec
+ * records or narch arch files, possibly under another spelling) would
+ * destroy it: report it in one line naming opt and return 1; else 0. */
+int aq_opt_output_is_input(const char *opt, const char *out, char *const *records,
+                           size_t nrec, char *const *arches, size_t narch);
 /* Report the option getopt_long rejected (argv[optind-1], optopt). */
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr);

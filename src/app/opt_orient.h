@@ -20,9 +20,9 @@
 #include <getopt.h>
 #include <stddef.h>
 
-/* Option ids (the range 1200-1299 belongs to the orientation options). */
+/* Option ids (the range 1300-1399 belongs to the orientation options). */
 enum {
-  AQ_OPT_ORIENT_COMPONENTS = 1200,
+  AQ_OPT_ORIENT_COMPONENTS = 1300,
   AQ_OPT_ORIENT_AZIMUTHS,
   AQ_OPT_ORIENT_AZIMUTH,
   AQ_OPT_ORIENT_ALL_AZIMUTHS,

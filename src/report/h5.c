@@ -997,3 +997,8 @@ fail:
   aq_h5_abort(w);
   return st;
 }
+
+int64_t aq_h5_file_id(const aq_h5_writer *w)
+{
+  return (int64_t)w->file;
+}

@@ -26,6 +26,7 @@
 #define AQ_REPORT_H5_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "../arch/arch.h"
 #include "../arch/path.h"
@@ -167,5 +168,9 @@ typedef struct {
  * (format_version 2).  *out is filled (free with aq_h5_suite_free). */
 aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err);
 void aq_h5_suite_free(aq_h5_suite *s);
+
+/* The open file's HDF5 id (between aq_h5_open and aq_h5_finish), for the
+ * writers of further groups (h5_capacity.c); an hid_t. */
+int64_t aq_h5_file_id(const aq_h5_writer *w);
 
 #endif

@@ -1,0 +1,212 @@
+/* bench_capacity.c: the cost of `archquake capacity` (make bench; never in
+ * make check).
+ *
+ * 1. Runs and time per (record, arch, polarity) for three pairs with
+ *    resurrection or a plain collapse, side by side in one process:
+ *    - capacity: scan at ratio 1 + r (r = 0.01) and bisection to tol 1e-6;
+ *    - the brute force the tests use: scan at r / 10, then bisection;
+ *    - a brute-force scan that reaches tol without bisection (a step of tol:
+ *      its runs are counted, its time is runs x capacity's time per run);
+ *    - the share of capacity's runs spent on the scan (what the guarantee
+ *      at resolution r costs) and on the bisections;
+ *    - a hunt by doubling then fill (resolution 1: Vamvatsikos & Cornell's
+ *      steps of a factor 2), its runs and the first collapse it finds.
+ *    Times are medians of REPS repetitions.
+ * 2. The suite: the 11 AT2 records of tests/data/records x the 5 shipped
+ *    arches x both polarities with the binary at -j 2 (wall time), the
+ *    pairs with resurrection, runs per pair, and the fragility table. */
+#define _POSIX_C_SOURCE 200809L
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/arch.h"
+#include "bench.h"
+#include "capacity/capacity.h"
+#include "io/record.h"
+#include "signal/signal.h"
+
+#define REPS 3
+
+typedef struct {
+  const char *record, *arch;
+  double cor; /* NAN: the arch's own */
+} pair;
+
+static const pair pairs[] = {
+    {"tests/data/records/RSN77_SFERN_PUL164-hor1.AT2", "arches/oppenheim.cfg", 0.5},
+    {"tests/data/records/RSN77_SFERN_PUL164-hor1.AT2", "arches/oppenheim.cfg", NAN},
+    {"tests/data/records/IELC180.AT2", "arches/thin.cfg", NAN},
+};
+
+static int load(const pair *p, aq_record *rec, aq_processed *proc, aq_arch **arch)
+{
+  aq_error e;
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts so;
+  aq_signal_opts_default(&so);
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  int ok = ws && aq_record_read(p->record, &ro, rec, &e) == AQ_OK &&
+           aq_signal_process(rec, &so, ws, proc, &e) == AQ_OK &&
+           aq_arch_load(p->arch, arch, &e) == AQ_OK;
+  aq_signal_ws_free(ws);
+  if (!ok)
+    aq_error_print(&e, stderr);
+  return ok ? 0 : -1;
+}
+
+static double run_pair(const aq_capacity_job *job, aq_capacity *out)
+{
+  aq_error e;
+  double t0 = aq_bench_now_s();
+  if (aq_capacity_pair(job, out, &e) != AQ_OK || out->status == AQ_CAPACITY_FAILED) {
+    fprintf(stderr, "bench_capacity: pair failed\n");
+    return NAN;
+  }
+  return aq_bench_now_s() - t0;
+}
+
+static char hunt_lines[3][400];
+
+static int per_pair(void)
+{
+  printf("Runs and time per (record, arch, polarity normal), resolution 0.01, tol 1e-6\n"
+         "(times: medians of %d; brute@tol: runs counted, time = runs x capacity's "
+         "time per run)\n", REPS);
+  printf("%-26s %-9s %4s %6s %6s %6s %9s %9s %9s %9s %11s %9s %9s\n", "record", "arch",
+         "cor", "runs", "grid", "bisect", "time_s", "bf10_runs", "bf10_s", "ratio_runs",
+         "bftol_runs", "ratio", "intervals");
+  for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++) {
+    aq_record rec;
+    aq_processed proc;
+    aq_arch *arch = NULL;
+    memset(&rec, 0, sizeof rec);
+    memset(&proc, 0, sizeof proc);
+    if (load(&pairs[k], &rec, &proc, &arch) != 0)
+      return -1;
+    aq_capacity_job job = {&proc, proc.acc_mps2, arch, AQ_MODEL_WORKPATH, pairs[k].cor,
+                           0, NAN, {0.01, 1e-6}};
+    aq_capacity_job fine = job, hunt = job;
+    fine.scan.resolution = 0.001;
+    hunt.scan.resolution = 1.0;
+    double t[REPS], tf[REPS];
+    aq_capacity c, f;
+    memset(&c, 0, sizeof c);
+    memset(&f, 0, sizeof f);
+    for (int r = 0; r < REPS; r++) { /* alternate, side by side */
+      aq_capacity_free(&c);
+      aq_capacity_free(&f);
+      t[r] = run_pair(&job, &c);
+      tf[r] = r == 0 ? run_pair(&fine, &f) : tf[0];
+    }
+    aq_capacity h;
+    memset(&h, 0, sizeof h);
+    run_pair(&hunt, &h);
+    double tm = aq_bench_median(t, REPS), tfm = aq_bench_median(tf, REPS);
+    double bftol = ceil(log(c.scale_max / c.move_scale) / log1p(1e-6));
+    const char *base = strrchr(pairs[k].record, '/');
+    printf("%-26.26s %-9s %4.1f %6zu %6zu %6zu %9.3f %9zu %9.3f %9.1f %11.0f %9.0f %9zu\n",
+           base ? base + 1 : pairs[k].record, aq_arch_name(arch),
+           isnan(pairs[k].cor) ? 0.0 : pairs[k].cor, c.scan.runs, c.scan.grid_runs,
+           c.scan.bisect_runs, tm, f.scan.runs, tfm,
+           (double)f.scan.runs / (double)c.scan.runs, bftol, bftol / (double)c.scan.runs,
+           c.scan.ninterval);
+    hunt_lines[k][0] = '\0';
+    snprintf(hunt_lines[k], sizeof hunt_lines[k],
+             "  %-26.26s %-9s cor %.1f: hunt x2 + fill %3zu runs, first collapse %.7g, "
+             "%zu interval(s); scan at 0.01: first collapse %.7g, %zu interval(s)",
+             base ? base + 1 : pairs[k].record, aq_arch_name(arch),
+             isnan(pairs[k].cor) ? 0.0 : pairs[k].cor, h.scan.runs,
+             h.first_collapse_scale, h.scan.ninterval, c.first_collapse_scale,
+             c.scan.ninterval);
+    aq_capacity_free(&h);
+    aq_capacity_free(&c);
+    aq_capacity_free(&f);
+    aq_arch_free(arch);
+    aq_processed_free(&proc);
+    aq_record_free(&rec);
+  }
+  printf("Hunt (steps of x2) and fill, against the scan:\n");
+  for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++)
+    printf("%s\n", hunt_lines[k]);
+  return 0;
+}
+
+static int suite(void)
+{
+  const char *cmd =
+      "./archquake capacity tests/data/records/*.AT2 --arch arches/oppenheim.cfg "
+      "--arch arches/thin.cfg --arch arches/thick.cfg --arch arches/segmental.cfg "
+      "--arch arches/search.cfg -j 2 --text build/bench/capacity.tsv "
+      "--fragility build/bench/capacity_fragility.tsv 2>build/bench/capacity.err";
+  double t0 = aq_bench_now_s();
+  int rc = system(cmd);
+  double wall = aq_bench_now_s() - t0;
+  FILE *f = fopen("build/bench/capacity.tsv", "r");
+  if (!f) {
+    fprintf(stderr, "bench_capacity: the suite wrote no table (exit %d)\n", rc);
+    return -1;
+  }
+  char line[1 << 16];
+  size_t n = 0, res = 0, failed = 0, runs = 0;
+  double *rv = malloc(1024 * sizeof *rv);
+  /* pairs (record, arch) with resurrection in either polarity */
+  char last[1024] = "";
+  int last_res = 0;
+  size_t res_pairs = 0;
+  while (rv && fgets(line, sizeof line, f)) {
+    if (strncmp(line, "record\t", 7) == 0)
+      continue;
+    char *c[12];
+    size_t k = 0;
+    for (char *p = strtok(line, "\t\n"); p && k < 12; p = strtok(NULL, "\t\n"))
+      c[k++] = p;
+    if (k < 12)
+      continue;
+    char key[1024];
+    snprintf(key, sizeof key, "%s|%s", c[0], c[1]);
+    if (strcmp(key, last) != 0) {
+      res_pairs += last_res;
+      last_res = 0;
+      snprintf(last, sizeof last, "%s", key);
+    }
+    int r = atoi(c[9]);
+    last_res |= r;
+    res += r;
+    failed += strcmp(c[3], "ok") != 0 && strcmp(c[3], "never_moves") != 0;
+    if (n < 1024)
+      rv[n] = atof(c[10]);
+    runs += (size_t)atol(c[10]);
+    n++;
+  }
+  res_pairs += last_res;
+  fclose(f);
+  double med = rv && n ? aq_bench_median(rv, n < 1024 ? n : 1024) : NAN;
+  free(rv);
+  printf("\nSuite: 11 AT2 records x 5 shipped arches x both polarities, -j 2: exit %d\n",
+         rc);
+  printf("  wall %.1f s for %zu (record, arch, polarity) rows, %zu runs (%.2f ms per run, "
+         "%.2f s per pair)\n", wall, n, runs, 1e3 * wall / (double)runs,
+         wall / (double)n);
+  printf("  runs per pair: median %.0f; rows with resurrection %zu; (record, arch) pairs "
+         "with resurrection in either polarity %zu of %zu; failed rows %zu "
+         "(build/bench/capacity.err)\n", med, res, res_pairs, n / 2, failed);
+  printf("\nFragility (build/bench/capacity_fragility.tsv):\n");
+  f = fopen("build/bench/capacity_fragility.tsv", "r");
+  while (f && fgets(line, sizeof line, f))
+    fputs(line, stdout);
+  if (f)
+    fclose(f);
+  return 0;
+}
+
+int main(void)
+{
+  gsl_set_error_handler_off();
+  if (per_pair() != 0)
+    return 1;
+  return suite() == 0 ? 0 : 1;
+}

@@ -1,0 +1,499 @@
+/* cmd_capacity.c: `archquake capacity RECORD... --arch FILE [--arch FILE]`:
+ * the collapse capacity of every (record, arch, polarity) and the lognormal
+ * fragility of each arch (src/capacity; docs/capacity.md).  Options are
+ * checked before any record is read; records are read and processed once,
+ * the pairs run on -j threads, and the rows are written in (record, arch,
+ * polarity) order, so the output is the same for every -j.  Outputs go to a
+ * temporary beside each target, renamed once complete. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../capacity/capacity.h"
+#include "../report/h5_capacity.h"
+#include "../report/report.h"
+#include "../report/text_capacity.h"
+#include "../units.h"
+#include "app.h"
+#include "cleanup.h"
+#include "opt.h"
+#include "opt_dyn.h"
+#include "opt_record.h"
+#include "opt_signal.h"
+
+#define AQ_CAP_MAX_THREADS 1024
+
+static const char usage_head[] =
+    "usage: archquake capacity RECORD... --arch FILE [--arch FILE ...] [OPTIONS]\n"
+    "For each record, arch and polarity, every scale factor at which the arch's\n"
+    "verdict (collapse or not) changes, from the scale at which it first moves\n"
+    "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
+    "polarity) on stdout.\n"
+    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  -o, --output FILE.h5  write the results to a `capacity` group\n"
+    "  --text FILE         write the TSV to FILE instead of stdout\n"
+    "  --fragility FILE    lognormal fragility fits, one row per (arch, IM)\n"
+    "  --polarity P        normal, reversed or both (default; the worse governs)\n"
+    "  --scale-max S       highest scale (default: PGA = 20 lambda0 g)\n"
+    "  --resolution R      relative scan step: no window of either verdict wider\n"
+    "                      than R is missed (default 0.01; 1e-4 to 1)\n"
+    "  --tol T             relative tolerance of each change (default 1e-6;\n"
+    "                      1e-12 to R)\n"
+    "  -j, --jobs N        worker threads (default: the number of cores)\n"
+    AQ_OPT_DYN_USAGE
+    "  --help              this text\n"
+    "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
+static const char usage_tail[] =
+    "Columns: record arch polarity status move_scale first_collapse_scale\n"
+    "  first_collapse_pga_g first_collapse_pgv_m_s collapse_intervals\n"
+    "  resurrection runs scale_max  (status: ok, never_moves, read:CODE,\n"
+    "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
+    "  collapse holds at the cap)\n"
+    "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
+    "ran), 2 bad options or arch file, 3 an output could not be written.\n";
+
+enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
+       OPT_HELP };
+
+/* A record as read and processed (or the stage where it failed). */
+typedef struct {
+  aq_record rec;
+  aq_processed proc;
+  aq_im im;
+  double *neg; /* the processed record negated (reversed polarity), or NULL */
+  char status[48];
+  int ok, have_rec, have_proc;
+} rec_item;
+
+static void prepare(const char *path, const aq_read_opts *ro, const aq_signal_opts *po,
+                    aq_signal_ws *ws, int pol, rec_item *r)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  const char *stage = "read";
+  aq_status s = aq_record_read(path, ro, &r->rec, &e);
+  if (s == AQ_OK) {
+    r->have_rec = 1;
+    stage = "process";
+    aq_signal_opts o = *po;
+    o.scale = 1.0;
+    s = aq_signal_process(&r->rec, &o, ws, &r->proc, &e);
+  }
+  if (s == AQ_OK) {
+    r->have_proc = 1;
+    s = aq_im_compute(&r->proc, &r->im, &e);
+  }
+  if (s == AQ_OK && pol != AQ_POLARITY_NORMAL) {
+    r->neg = malloc((r->proc.n ? r->proc.n : 1) * sizeof *r->neg);
+    if (!r->neg)
+      s = aq_error_set(&e, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    else /* reversed polarity: the processed record's accelerations negated once */
+      for (size_t i = 0; i < r->proc.n; i++)
+        r->neg[i] = -r->proc.acc_mps2[i];
+  }
+  aq_summary_status(r->status, sizeof r->status, stage, s);
+  r->ok = s == AQ_OK;
+  if (!r->ok)
+    aq_error_print(&e, stderr);
+}
+
+/* The status cell of pair c of record r. */
+static void pair_status(const rec_item *r, const aq_capacity *c, char *st, size_t n)
+{
+  if (!r->ok)
+    snprintf(st, n, "%s", r->status);
+  else if (c->status == AQ_CAPACITY_FAILED)
+    aq_summary_status(st, n, "run", c->run_status);
+  else
+    snprintf(st, n, "%s", c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
+}
+
+/* Per arch: the fits of every IM over the records that were read (stderr
+ * gets the reason of a fit that fails; its row stays nan). */
+static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
+                   const aq_capacity *C, aq_fragility *fits)
+{
+  const aq_im **im = malloc((nrec ? nrec : 1) * sizeof *im);
+  if (!im)
+    return -1;
+  for (size_t r = 0; r < nrec; r++)
+    im[r] = R[r].ok ? &R[r].im : NULL;
+  int rc = 0;
+  for (size_t a = 0; a < na && rc == 0; a++) {
+    aq_error e;
+    aq_status s = aq_fragility_fit_records(C + a * npol, nrec, na * npol, npol, im,
+                                           AQ_FRAGILITY_CI_DEFAULT,
+                                           fits + a * AQ_FRAGILITY_NIM, &e);
+    if (s == AQ_ENOMEM)
+      rc = -1;
+    else if (s != AQ_OK)
+      aq_error_print(&e, stderr);
+  }
+  free(im);
+  return rc;
+}
+
+/* The report rows: one per (record, arch, polarity), one per (arch, IM). */
+typedef struct {
+  aq_capacity_row *row;
+  char (*status)[48];
+  aq_fragility_row *fit;
+} rows;
+
+static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t na,
+                     const rec_item *R, const int *pols, size_t npol, const aq_capacity *C,
+                     const aq_fragility *fits)
+{
+  size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
+  o->row = malloc((n ? n : 1) * sizeof *o->row);
+  o->status = malloc((n ? n : 1) * sizeof *o->status);
+  o->fit = malloc((nf ? nf : 1) * sizeof *o->fit);
+  if (!o->row || !o->status || !o->fit)
+    return -1;
+  for (size_t i = 0; i < n; i++) {
+    size_t r = i / (na * npol);
+    pair_status(&R[r], &C[i], o->status[i], sizeof o->status[i]);
+    int have = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
+    o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
+                                  aq_opt_polarity_names[pols[i % npol]], o->status[i],
+                                  have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
+                                  R[r].ok ? R[r].im.pgv_mps : NAN};
+  }
+  for (size_t i = 0; i < nf; i++)
+    o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
+                                   aq_fragility_im_names[i % AQ_FRAGILITY_NIM], &fits[i]};
+  return 0;
+}
+
+static void rows_free(rows *o)
+{
+  free(o->row);
+  free(o->status);
+  free(o->fit);
+}
+
+/* The results file: root, arches, records, then the capacity group. */
+static int write_h5(const char *path, int argc, char **argv, char **recs, size_t nrec,
+                    char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
+                    const rows *o, size_t npair, const aq_scan_opts *so,
+                    const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
+                    long threads, int pol)
+{
+  char cmd[4096] = "", tmp[4200], created[64];
+  for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
+    k += snprintf(cmd + k, sizeof cmd - (size_t)k, "%s%s", i ? " " : "archquake ", argv[i]);
+  aq_error e;
+  aq_h5_writer *w = NULL;
+  aq_h5_temp_name(path, tmp, sizeof tmp);
+  int slot = aq_cleanup_add(tmp);
+  time_t t = time(NULL);
+  struct tm tm;
+  if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
+    snprintf(created, sizeof created, "unknown");
+  aq_h5_root root = {.version = AQ_VERSION,
+                     .command_line = cmd,
+                     .created = created,
+                     .proc = po,
+                     .merge_tol_g = merge_tol_g,
+                     .units = "file",
+                     .model = aq_opt_dyn_model_name(dyn->model),
+                     .cor = dyn->cor,
+                     .scale_to_pga_g = NAN,
+                     .threads = threads,
+                     .build = aq_build_string(),
+                     .polarity = aq_opt_polarity_names[pol]};
+  aq_status s = aq_h5_open(path, &w, &e);
+  if (s == AQ_OK)
+    s = aq_h5_write_root(w, &root, &e);
+  for (size_t a = 0; s == AQ_OK && a < na; a++) {
+    aq_h5_arch ha = {.name = aq_arch_name(arches[a]),
+                     .source_file = arch_paths[a],
+                     .config_text = aq_arch_config_text(arches[a]),
+                     .dyn = aq_arch_dynamics_of(arches[a]),
+                     .set = {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)}};
+    s = aq_h5_write_arch(w, a, &ha, &e);
+  }
+  for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
+    aq_h5_record hr = {.source_file = recs[r],
+                       .rec = R[r].have_rec ? &R[r].rec : NULL,
+                       .proc = R[r].have_proc ? &R[r].proc : NULL,
+                       .im = R[r].ok ? &R[r].im : NULL,
+                       .status = R[r].status};
+    s = aq_h5_write_record(w, r, &hr, &e);
+  }
+  aq_h5_capacity hc = {o->row, npair, o->fit, na * AQ_FRAGILITY_NIM, so->resolution,
+                       so->tol, AQ_FRAGILITY_CI_DEFAULT};
+  if (s == AQ_OK)
+    s = aq_h5_write_capacity(w, path, &hc, &e);
+  if (s == AQ_OK) {
+    s = aq_h5_finish(w, NULL, &e);
+    w = NULL;
+  }
+  if (s != AQ_OK)
+    aq_error_print(&e, stderr);
+  aq_h5_abort(w);
+  aq_cleanup_remove(slot);
+  return s == AQ_OK ? 0 : -1;
+}
+
+/* Open a temporary beside path (registered for cleanup). */
+static FILE *tmp_open(const char *path, char *tmp, size_t n, int *slot)
+{
+  snprintf(tmp, n, "%s.tmp.%ld", path, (long)getpid());
+  FILE *f = fopen(tmp, "wx");
+  if (!f)
+    fprintf(stderr, "archquake: %s: cannot create the output (temporary %s): %s\n",
+            path, tmp, strerror(errno));
+  else
+    *slot = aq_cleanup_add(tmp);
+  return f;
+}
+
+/* Close f and rename tmp onto path if ok; remove it otherwise.  0 or -1. */
+static int tmp_commit(FILE *f, const char *tmp, const char *path, int ok, int slot)
+{
+  if (fclose(f) != 0 || (ok && rename(tmp, path) != 0)) {
+    if (ok)
+      fprintf(stderr, "archquake: %s: cannot write the output: %s\n", path,
+              strerror(errno));
+    ok = 0;
+  }
+  if (!ok)
+    unlink(tmp);
+  aq_cleanup_remove(slot);
+  return ok ? 0 : -1;
+}
+
+int aq_cmd_capacity(int argc, char **argv)
+{
+  struct option lo[40] = {
+      AQ_OPT_RECORD_LONGOPTS,
+      {"arch", required_argument, NULL, OPT_ARCH},
+      {"output", required_argument, NULL, 'o'},
+      {"text", required_argument, NULL, OPT_TEXT},
+      {"fragility", required_argument, NULL, OPT_FRAG},
+      {"polarity", required_argument, NULL, OPT_POL},
+      {"scale-max", required_argument, NULL, OPT_SMAX},
+      {"resolution", required_argument, NULL, OPT_RES},
+      {"tol", required_argument, NULL, OPT_TOL},
+      {"jobs", required_argument, NULL, 'j'},
+      AQ_OPT_DYN_LONGOPTS,
+      {"help", no_argument, NULL, OPT_HELP}};
+  size_t nl = aq_opt_signal_append(lo, 15);
+  lo[nl] = (struct option){NULL, 0, NULL, 0};
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts po;
+  aq_signal_opts_default(&po);
+  double merge_tol_g = 0, smax = NAN;
+  aq_dyn_opts dyn;
+  aq_opt_dyn_default(&dyn);
+  aq_scan_opts so = {AQ_SCAN_RESOLUTION_DEFAULT, AQ_SCAN_TOL_DEFAULT};
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN), threads = ncpu >= 1 ? ncpu : 1;
+  int pol = AQ_POLARITY_BOTH, nerr = 0, c;
+  const char *h5 = NULL, *text = NULL, *frag = NULL;
+  char **arch_paths = calloc((size_t)argc + 1, sizeof *arch_paths);
+  size_t na = 0;
+  if (!arch_paths)
+    return AQ_EXIT_FAIL;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":o:j:", lo, NULL)) != -1) {
+    if (aq_opt_signal_handle(c, optarg, &po, &merge_tol_g, &nerr) ||
+        aq_opt_record_handle(c, optarg, &ro, &nerr) ||
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
+      continue;
+    switch (c) {
+    case OPT_ARCH: arch_paths[na++] = optarg; break;
+    case 'o': h5 = optarg; break;
+    case OPT_TEXT: text = optarg; break;
+    case OPT_FRAG: frag = optarg; break;
+    case OPT_POL: aq_opt_polarity(optarg, &pol, &nerr); break;
+    case OPT_SMAX: aq_opt_double_gt("--scale-max", optarg, 0, 1e6, &smax, &nerr); break;
+    case OPT_RES:
+      aq_opt_double("--resolution", optarg, AQ_SCAN_RESOLUTION_MIN,
+                    AQ_SCAN_RESOLUTION_MAX, &so.resolution, &nerr);
+      break;
+    case OPT_TOL: aq_opt_double("--tol", optarg, AQ_SCAN_TOL_MIN, 1, &so.tol, &nerr); break;
+    case 'j': aq_opt_long("-j", optarg, 1, AQ_CAP_MAX_THREADS, &threads, &nerr); break;
+    case OPT_HELP:
+      fputs(usage_head, stdout);
+      fputs(aq_opt_signal_usage, stdout);
+      fputs(usage_tail, stdout);
+      free(arch_paths);
+      return AQ_EXIT_OK;
+    default: aq_opt_unknown("capacity", argv, optind, optopt, &nerr);
+    }
+  }
+  aq_opt_signal_check(&po, &nerr);
+  aq_error se;
+  if (aq_scan_check(&so, &se) != AQ_OK && strcmp(se.field, "tol") == 0) {
+    fprintf(stderr, "archquake: --tol: expected %g to --resolution (%g), got %g\n",
+            AQ_SCAN_TOL_MIN, so.resolution, so.tol);
+    nerr++;
+  }
+  if (optind >= argc) {
+    fprintf(stderr, "archquake: capacity: expected at least one RECORD\n");
+    nerr++;
+  }
+  aq_opt_require("capacity", "--arch FILE", na > 0, &nerr);
+  aq_opt_distinct_files("arch file", arch_paths, na, &nerr);
+  if (optind < argc)
+    aq_opt_distinct_files("record", argv + optind, (size_t)(argc - optind), &nerr);
+  const char *outs[3] = {h5, text, frag};
+  for (int i = 0; i < 3; i++)
+    for (int j = i + 1; j < 3; j++)
+      if (outs[i] && outs[j] && strcmp(outs[i], outs[j]) == 0) {
+        fprintf(stderr, "archquake: %s: expected different output files, got it twice\n",
+                outs[i]);
+        nerr++;
+      }
+  if (optind < argc)
+    for (int i = 0; i < 3; i++)
+      nerr += aq_opt_output_is_input(i == 0 ? "-o" : i == 1 ? "--text" : "--fragility",
+                                     outs[i], argv + optind, (size_t)(argc - optind),
+                                     arch_paths, na);
+  if (nerr) {
+    free(arch_paths);
+    return AQ_EXIT_USAGE;
+  }
+  if (aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
+      aq_opt_output_special("--fragility", frag)) {
+    free(arch_paths);
+    return AQ_EXIT_OUTPUT;
+  }
+
+  int rc = AQ_EXIT_OK;
+  char **recs = argv + optind;
+  size_t nrec = (size_t)(argc - optind);
+  aq_arch **arches = calloc(na, sizeof *arches);
+  int pols[2];
+  size_t npol = 0;
+  if (pol != AQ_POLARITY_REVERSED)
+    pols[npol++] = AQ_POLARITY_NORMAL;
+  if (pol != AQ_POLARITY_NORMAL)
+    pols[npol++] = AQ_POLARITY_REVERSED;
+  rec_item *R = calloc(nrec, sizeof *R);
+  size_t njob = nrec * na * npol;
+  aq_capacity_job *jobs = calloc(njob ? njob : 1, sizeof *jobs);
+  aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
+  aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  if (!arches || !R || !jobs || !C || !fits || !ws) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t a = 0; a < na; a++)
+    if (aq_arch_load(arch_paths[a], &arches[a], &se) != AQ_OK) {
+      aq_error_print(&se, stderr);
+      rc = AQ_EXIT_USAGE;
+    } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(dyn.cor),
+                                   aq_arch_dynamics_of(arches[a])->impact ==
+                                       AQ_IMPACT_MOMENTUM)) {
+      rc = AQ_EXIT_USAGE;
+    }
+  if (rc != AQ_EXIT_OK)
+    goto done;
+  for (size_t r = 0; r < nrec; r++) {
+    prepare(recs[r], &ro, &po, ws, pol, &R[r]);
+    if (!R[r].ok)
+      rc = AQ_EXIT_FAIL;
+  }
+  size_t nrun = 0; /* jobs of the records that were read; job k is pair slot[k] */
+  size_t *slot = calloc(njob ? njob : 1, sizeof *slot);
+  if (!slot) {
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t i = 0; i < njob; i++) {
+    size_t r = i / (na * npol), a = i / npol % na, p = i % npol;
+    if (!R[r].ok)
+      continue;
+    jobs[nrun] = (aq_capacity_job){&R[r].proc,
+                                 pols[p] == AQ_POLARITY_REVERSED ? R[r].neg
+                                                                 : R[r].proc.acc_mps2,
+                                 arches[a], dyn.model, dyn.cor,
+                                 merge_tol_g * AQ_G0_MPS2, smax, so};
+    slot[nrun++] = i;
+  }
+  aq_capacity *tmpC = calloc(nrun ? nrun : 1, sizeof *tmpC);
+  if (!tmpC || aq_capacity_run_all(jobs, nrun, threads, tmpC, &se) != AQ_OK) {
+    fprintf(stderr, "archquake: out of memory\n");
+    free(tmpC);
+    free(slot);
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t k = 0; k < nrun; k++)
+    C[slot[k]] = tmpC[k];
+  free(tmpC);
+  free(slot);
+  for (size_t i = 0; i < njob; i++)
+    if (R[i / (na * npol)].ok && C[i].status == AQ_CAPACITY_FAILED) {
+      char msg[1200];
+      aq_error_format(&C[i].err, msg, sizeof msg);
+      fprintf(stderr, "archquake: %s: arch %s, polarity %s: %s\n", recs[i / (na * npol)],
+              aq_arch_name(arches[i / npol % na]),
+              aq_opt_polarity_names[pols[i % npol]], msg);
+      rc = AQ_EXIT_FAIL;
+    }
+
+  /* outputs: every temporary is complete before any is renamed */
+  aq_cleanup_install();
+  char tt[4096], tf[4096];
+  int st = -1, sf = -1;
+  FILE *ft = text ? tmp_open(text, tt, sizeof tt, &st) : stdout;
+  FILE *ff = frag ? tmp_open(frag, tf, sizeof tf, &sf) : NULL;
+  int ok = ft && (!frag || ff);
+  rows o = {NULL, NULL, NULL};
+  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0)
+    ok = 0;
+  if (ok && make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, fits) != 0) {
+    fprintf(stderr, "archquake: out of memory\n");
+    ok = 0;
+  }
+  if (ok && aq_text_capacity(ft, o.row, njob) != 0)
+    ok = 0;
+  if (ok && ff && aq_text_fragility(ff, o.fit, na * AQ_FRAGILITY_NIM) != 0)
+    ok = 0;
+  if (ok && h5 &&
+      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, njob, &so, &po,
+               merge_tol_g, &dyn, threads, pol) != 0)
+    ok = 0;
+  rows_free(&o);
+  if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
+    ok = 0;
+  if (text && ft && tmp_commit(ft, tt, text, ok, st) != 0)
+    ok = 0;
+  if (!text && (fflush(stdout) != 0 || ferror(stdout)))
+    ok = 0;
+  if (!ok)
+    rc = AQ_EXIT_OUTPUT;
+done:
+  for (size_t i = 0; i < njob && C; i++)
+    aq_capacity_free(&C[i]);
+  for (size_t r = 0; r < nrec && R; r++) {
+    if (R[r].have_rec)
+      aq_record_free(&R[r].rec);
+    if (R[r].have_proc)
+      aq_processed_free(&R[r].proc);
+    free(R[r].neg);
+  }
+  for (size_t a = 0; a < na && arches; a++)
+    aq_arch_free(arches[a]);
+  aq_signal_ws_free(ws);
+  free(arches);
+  free(R);
+  free(jobs);
+  free(C);
+  free(fits);
+  free(arch_paths);
+  return rc;
+}

@@ -1,0 +1,174 @@
+/* capacity.c: the collapse capacity of one (processed record, arch,
+ * polarity): the exact scale below which the arch never moves, then the
+ * scan of scan.c with one dynamic run per verdict (a collapsing run stops
+ * at its collapse: the stepper ends there); and a pool of threads over many
+ * such jobs.  Each job makes its own stepper, so a result depends on its
+ * job alone, not on the thread that ran it. */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "capacity.h"
+
+void aq_capacity_free(aq_capacity *c)
+{
+  if (c)
+    aq_scan_result_free(&c->scan);
+}
+
+double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
+                              size_t n, double *lambda0)
+{
+  double best = INFINITY, l0 = INFINITY;
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = aq_arch_path(arch, k);
+    if (!p || !p->admissible)
+      continue;
+    l0 = fmin(l0, p->lambda0);
+    double drive = 0; /* max of act_sign a over the samples, m/s^2 */
+    for (size_t i = 0; i < n; i++)
+      drive = fmax(drive, p->act_sign * acc_mps2[i]);
+    if (drive > 0) /* motion needs act_sign a > lambda0 g (stepper.c) */
+      best = fmin(best, p->lambda0 * p->g_mps2 / drive);
+  }
+  if (lambda0)
+    *lambda0 = l0;
+  return best;
+}
+
+typedef struct {
+  const aq_capacity_job *job;
+  aq_stepper *st;
+  double *buf; /* proc->n scaled samples */
+} run_ctx;
+
+/* One run at scale: steps as the main job makes them (the processed record
+ * times the scale, split with --merge-tol), then the stepper. */
+static aq_status run_at(void *vctx, double scale, int *collapsed, aq_error *err)
+{
+  run_ctx *c = vctx;
+  const aq_processed *p = c->job->proc;
+  for (size_t i = 0; i < p->n; i++)
+    c->buf[i] = scale * c->job->acc_mps2[i];
+  aq_steps steps;
+  aq_status s = aq_steps_from_samples(c->buf, p->n, p->dt_s,
+                                      -(double)p->pad_front * p->dt_s,
+                                      c->job->merge_tol_mps2, &steps, err);
+  if (s != AQ_OK)
+    return s;
+  aq_result res;
+  s = aq_stepper_run(c->st, &steps, &res, err);
+  aq_steps_free(&steps);
+  if (s != AQ_OK) {
+    size_t len = strlen(err->message);
+    snprintf(err->message + len, sizeof err->message - len, " (scale %.9g)", scale);
+    return s;
+  }
+  *collapsed = res.collapsed;
+  aq_result_free(&res);
+  return AQ_OK;
+}
+
+aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
+                           aq_error *err)
+{
+  memset(out, 0, sizeof *out);
+  out->first_collapse_scale = NAN;
+  const aq_processed *p = job->proc;
+  out->move_scale = aq_capacity_move_scale(job->arch, job->acc_mps2, p->n,
+                                           &out->lambda0);
+  double amax = 0; /* PGA, m/s^2 */
+  for (size_t i = 0; i < p->n; i++)
+    amax = fmax(amax, fabs(job->acc_mps2[i]));
+  out->scale_max = !isnan(job->scale_max)
+                       ? job->scale_max
+                       : amax > 0 ? AQ_CAPACITY_CAP_LAMBDA0 * out->lambda0 *
+                                        AQ_G0_MPS2 / amax
+                                  : INFINITY;
+  if (!(out->move_scale < out->scale_max)) {
+    out->status = AQ_CAPACITY_NEVER_MOVES;
+    return AQ_OK;
+  }
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(job->arch, 0),
+                                    aq_arch_path(job->arch, 1), job->model, err);
+  if (!st)
+    return err->status;
+  const aq_arch_dynamics *d = aq_arch_dynamics_of(job->arch);
+  aq_stepper_set_cor(st, isnan(job->cor) ? d->cor : job->cor);
+  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
+  run_ctx c = {job, st, malloc((p->n ? p->n : 1) * sizeof(double))};
+  if (!c.buf) {
+    aq_stepper_free(st);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
+  }
+  aq_status s = aq_scan_run(out->move_scale, out->scale_max, &job->scan, run_at,
+                            &c, &out->scan, &out->err);
+  free(c.buf);
+  aq_stepper_free(st);
+  if (s == AQ_ENOMEM)
+    return aq_error_set(err, s, NULL, -1, -1, "capacity", "out of memory");
+  if (s != AQ_OK) {
+    out->status = AQ_CAPACITY_FAILED;
+    out->run_status = s;
+    return AQ_OK;
+  }
+  const aq_scan_result *r = &out->scan;
+  if (r->ninterval) {
+    out->first_collapse_scale = r->interval[0].lo;
+    out->resurrection = r->ninterval > 1 || isfinite(r->interval[0].hi);
+  }
+  return AQ_OK;
+}
+
+/* ---- the pool ------------------------------------------------------------ */
+
+typedef struct {
+  const aq_capacity_job *jobs;
+  size_t njob, next;
+  aq_capacity *out;
+  pthread_mutex_t lock;
+} pool;
+
+static void *worker(void *arg)
+{
+  pool *P = arg;
+  for (;;) {
+    pthread_mutex_lock(&P->lock);
+    size_t i = P->next < P->njob ? P->next++ : P->njob;
+    pthread_mutex_unlock(&P->lock);
+    if (i >= P->njob)
+      return NULL;
+    aq_error e;
+    aq_error_clear(&e);
+    aq_status s = aq_capacity_pair(&P->jobs[i], &P->out[i], &e);
+    if (s != AQ_OK) {
+      aq_capacity_free(&P->out[i]);
+      P->out[i].status = AQ_CAPACITY_FAILED;
+      P->out[i].run_status = s;
+      P->out[i].err = e;
+    }
+  }
+}
+
+aq_status aq_capacity_run_all(const aq_capacity_job *jobs, size_t njob,
+                              long threads, aq_capacity *out, aq_error *err)
+{
+  pool P = {jobs, njob, 0, out, PTHREAD_MUTEX_INITIALIZER};
+  size_t nt = threads < 1 ? 1 : (size_t)threads;
+  if (nt > njob)
+    nt = njob ? njob : 1;
+  pthread_t *tid = calloc(nt, sizeof *tid);
+  if (!tid)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "threads", "out of memory");
+  size_t started = 0;
+  for (; started + 1 < nt; started++)
+    if (pthread_create(&tid[started], NULL, worker, &P) != 0)
+      break;
+  worker(&P); /* the calling thread works too */
+  for (size_t t = 0; t < started; t++)
+    pthread_join(tid[t], NULL);
+  free(tid);
+  return AQ_OK;
+}

@@ -1,0 +1,496 @@
+/* h5_capacity.c: the `capacity` group of a results file: one row per
+ * (record, arch, polarity) in column datasets, the collapse intervals as one
+ * (n x 2) dataset indexed by interval_start / interval_count, and the
+ * fragility fits in `capacity/fragility`.  Every HDF5 call is checked. */
+#include <errno.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compare.h"
+#include "h5_capacity.h"
+#include "text.h"
+
+/* n variable-length strings as a 1-D dataset. */
+static herr_t ds_strings(hid_t g, const char *name, const char *const *v, size_t n)
+{
+  hsize_t dim = n;
+  hid_t t = H5Tcopy(H5T_C_S1);
+  if (t < 0)
+    return -1;
+  hid_t sp = H5Screate_simple(1, &dim, NULL);
+  herr_t rc = -1;
+  if (sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0) {
+    hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (d >= 0) {
+      rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
+      if (H5Dclose(d) < 0)
+        rc = -1;
+    }
+  }
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (H5Tclose(t) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* A dataset of n rows x cols of type t from buf. */
+static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
+                       size_t cols)
+{
+  hsize_t dim[2] = {n, cols};
+  hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
+  if (sp < 0)
+    return -1;
+  herr_t rc = -1;
+  hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (d >= 0) {
+    rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
+    if (H5Dclose(d) < 0)
+      rc = -1;
+  }
+  if (H5Sclose(sp) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t attr_d(hid_t g, const char *name, double v)
+{
+  hid_t sp = H5Screate(H5S_SCALAR);
+  if (sp < 0)
+    return -1;
+  herr_t rc = -1;
+  hid_t a = H5Acreate2(g, name, H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0) {
+    rc = H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
+    if (H5Aclose(a) < 0)
+      rc = -1;
+  }
+  if (H5Sclose(sp) < 0)
+    rc = -1;
+  return rc;
+}
+
+static herr_t attr_s(hid_t g, const char *name, const char *v)
+{
+  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
+  herr_t rc = -1;
+  if (t >= 0 && sp >= 0 && H5Tset_size(t, strlen(v) + 1) >= 0) {
+    hid_t a = H5Acreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
+    if (a >= 0) {
+      rc = H5Awrite(a, t, v);
+      if (H5Aclose(a) < 0)
+        rc = -1;
+    }
+  }
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* Per-pair and per-fit numeric columns, filled from c. */
+typedef struct {
+  double *d[6];  /* move_scale first_collapse_scale first_collapse_pga_g
+                    first_collapse_pgv_m_s scale_max lambda0 */
+  int64_t *i[4]; /* resurrection runs interval_start interval_count */
+  double *iv;    /* intervals, 2 per row */
+  size_t niv;
+} columns;
+
+const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
+    "move_scale", "first_collapse_scale", "first_collapse_pga_g",
+    "first_collapse_pgv_m_s", "scale_max", "lambda0"};
+const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT] = {
+    "resurrection", "runs", "interval_start", "interval_count"};
+#define dnames aq_h5_capacity_double_names
+#define inames aq_h5_capacity_int_names
+
+static int fill(const aq_h5_capacity *c, columns *k)
+{
+  size_t n = c->npair ? c->npair : 1, niv = 0;
+  for (size_t p = 0; p < c->npair; p++)
+    niv += c->row[p].cap ? c->row[p].cap->scan.ninterval : 0;
+  for (int j = 0; j < 6; j++)
+    if (!(k->d[j] = malloc(n * sizeof(double))))
+      return -1;
+  for (int j = 0; j < 4; j++)
+    if (!(k->i[j] = malloc(n * sizeof(int64_t))))
+      return -1;
+  if (!(k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double))))
+    return -1;
+  for (size_t p = 0; p < c->npair; p++) {
+    const aq_capacity *a = c->row[p].cap;
+    int v = a != NULL;
+    double fc = v ? a->first_collapse_scale : NAN;
+    k->d[0][p] = v ? a->move_scale : NAN;
+    k->d[1][p] = fc;
+    k->d[2][p] = fc * c->row[p].pga_g;
+    k->d[3][p] = fc * c->row[p].pgv_mps;
+    k->d[4][p] = v ? a->scale_max : NAN;
+    k->d[5][p] = v ? a->lambda0 : NAN;
+    k->i[0][p] = v ? a->resurrection : 0;
+    k->i[1][p] = v ? (int64_t)a->scan.runs : 0;
+    k->i[2][p] = (int64_t)k->niv;
+    k->i[3][p] = v ? (int64_t)a->scan.ninterval : 0;
+    for (size_t q = 0; v && q < a->scan.ninterval; q++) {
+      k->iv[2 * k->niv] = a->scan.interval[q].lo;
+      k->iv[2 * k->niv + 1] = a->scan.interval[q].hi;
+      k->niv++;
+    }
+  }
+  return 0;
+}
+
+static void columns_free(columns *k)
+{
+  for (int j = 0; j < 6; j++)
+    free(k->d[j]);
+  for (int j = 0; j < 4; j++)
+    free(k->i[j]);
+  free(k->iv);
+}
+
+aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
+                               const aq_h5_capacity *c, aq_error *err)
+{
+  hid_t file = (hid_t)aq_h5_file_id(w), g = -1, gf = -1;
+  columns k;
+  memset(&k, 0, sizeof k);
+  const char *obj = "/capacity";
+  if (fill(c, &k) != 0) {
+    columns_free(&k);
+    return aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
+  }
+  size_t nf = c->nfit ? c->nfit : 1;
+  double *fd[4] = {malloc(nf * sizeof(double)), malloc(nf * sizeof(double)),
+                   malloc(nf * sizeof(double)), malloc(nf * sizeof(double))};
+  int64_t *fn[2] = {malloc(nf * sizeof(int64_t)), malloc(nf * sizeof(int64_t))};
+  aq_status st = AQ_OK;
+  const char **str = NULL;
+  if (!fd[0] || !fd[1] || !fd[2] || !fd[3] || !fn[0] || !fn[1]) {
+    st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
+    goto out;
+  }
+  str = malloc(4 * (c->npair + c->nfit + 1) * sizeof *str);
+  if (!str) {
+    st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
+    goto out;
+  }
+  for (size_t i = 0; i < c->nfit; i++) {
+    const aq_fragility *q = c->fit[i].fit;
+    fd[0][i] = q->median;
+    fd[1][i] = q->beta;
+    fd[2][i] = q->median_lo;
+    fd[3][i] = q->median_hi;
+    fn[0][i] = (int64_t)q->n;
+    fn[1][i] = (int64_t)q->ncensored;
+  }
+  /* string columns: record arch polarity status (npair each), then arch im */
+  const size_t np = c->npair;
+  const char **col_s[6] = {str, str + np, str + 2 * np, str + 3 * np, str + 4 * np,
+                           str + 4 * np + c->nfit};
+  for (size_t i = 0; i < np; i++) {
+    col_s[0][i] = c->row[i].record;
+    col_s[1][i] = c->row[i].arch;
+    col_s[2][i] = c->row[i].polarity;
+    col_s[3][i] = c->row[i].status;
+  }
+  for (size_t i = 0; i < c->nfit; i++) {
+    col_s[4][i] = c->fit[i].arch;
+    col_s[5][i] = c->fit[i].im;
+  }
+  const char *what = "H5Gcreate2";
+  errno = 0;
+  if ((g = H5Gcreate2(file, "capacity", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0)
+    goto fail;
+  what = "capacity attributes";
+  if (attr_d(g, "resolution", c->resolution) < 0 || attr_d(g, "tol", c->tol) < 0 ||
+      attr_d(g, "fragility_ci", c->ci) < 0 ||
+      attr_s(g, "fragility_method",
+             "lognormal maximum likelihood, right-censored at each record's cap; "
+             "median interval by profile likelihood") < 0)
+    goto fail;
+  what = "capacity columns";
+  if (ds_strings(g, "record", col_s[0], np) < 0 ||
+      ds_strings(g, "arch", col_s[1], np) < 0 ||
+      ds_strings(g, "polarity", col_s[2], np) < 0 ||
+      ds_strings(g, "status", col_s[3], np) < 0)
+    goto fail;
+  for (int j = 0; j < 6; j++)
+    if (ds_write(g, dnames[j], H5T_NATIVE_DOUBLE, k.d[j], c->npair, 1) < 0)
+      goto fail;
+  for (int j = 0; j < 4; j++)
+    if (ds_write(g, inames[j], H5T_NATIVE_INT64, k.i[j], c->npair, 1) < 0)
+      goto fail;
+  what = "capacity/intervals";
+  if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2) < 0)
+    goto fail;
+  obj = "/capacity/fragility";
+  what = "fragility columns";
+  if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
+      ds_strings(gf, "arch", col_s[4], c->nfit) < 0 ||
+      ds_strings(gf, "im", col_s[5], c->nfit) < 0 ||
+      ds_write(gf, "records", H5T_NATIVE_INT64, fn[0], c->nfit, 1) < 0 ||
+      ds_write(gf, "censored", H5T_NATIVE_INT64, fn[1], c->nfit, 1) < 0 ||
+      ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1) < 0 ||
+      ds_write(gf, "beta", H5T_NATIVE_DOUBLE, fd[1], c->nfit, 1) < 0 ||
+      ds_write(gf, "median_lo", H5T_NATIVE_DOUBLE, fd[2], c->nfit, 1) < 0 ||
+      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1) < 0)
+    goto fail;
+  what = "H5Gclose";
+  if (H5Gclose(gf) < 0) {
+    gf = -1;
+    goto fail;
+  }
+  gf = -1;
+  if (H5Gclose(g) < 0) {
+    g = -1;
+    goto fail;
+  }
+  g = -1;
+  goto out;
+fail:
+  st = aq_error_set(err, AQ_EIO, target, -1, -1, obj, "HDF5: %s failed%s%s", what,
+                    errno ? ": " : "", errno ? strerror(errno) : "");
+  H5Eclear2(H5E_DEFAULT);
+  if (gf >= 0)
+    H5Gclose(gf);
+  if (g >= 0)
+    H5Gclose(g);
+out:
+  free(str);
+  for (int j = 0; j < 4; j++)
+    free(fd[j]);
+  free(fn[0]);
+  free(fn[1]);
+  columns_free(&k);
+  return st;
+}
+
+/* ---- reading back ---------------------------------------------------------- */
+
+void aq_h5_capacity_table_free(aq_h5_capacity_table *t)
+{
+  if (!t)
+    return;
+  free(t->row);
+  free(t->interval);
+  memset(t, 0, sizeof *t);
+}
+
+/* Read the 1-D (or n x 2) dataset name of g into buf (n values of type t). */
+static herr_t ds_read(hid_t g, const char *name, hid_t t, void *buf, hsize_t n,
+                      hsize_t cols)
+{
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  int nd = sp >= 0 ? H5Sget_simple_extent_dims(sp, dims, NULL) : -1;
+  herr_t rc = -1;
+  if (nd >= 1 && dims[0] == n && (cols == 1 ? nd == 1 : nd == 2 && dims[1] == cols))
+    rc = n ? H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (H5Dclose(d) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* A column of n variable-length strings into the rows at offset off, size cap. */
+static herr_t ds_read_strings(hid_t g, const char *name, aq_h5_capacity_row *rows,
+                              size_t n, size_t off, size_t cap)
+{
+  char **v = calloc(n ? n : 1, sizeof *v);
+  hid_t t = H5Tcopy(H5T_C_S1);
+  herr_t rc = -1;
+  if (v && t >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0 &&
+      ds_read(g, name, t, v, n, 1) >= 0) {
+    rc = 0;
+    for (size_t i = 0; i < n; i++)
+      snprintf((char *)&rows[i] + off, cap, "%s", v[i] ? v[i] : "");
+    hsize_t dim = n;
+    hid_t sp = H5Screate_simple(1, &dim, NULL);
+    if (n && sp >= 0)
+      H5Dvlen_reclaim(t, sp, H5P_DEFAULT, v);
+    if (sp >= 0)
+      H5Sclose(sp);
+  }
+  if (t >= 0)
+    H5Tclose(t);
+  free(v);
+  return rc;
+}
+
+aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
+                              aq_error *err)
+{
+  memset(t, 0, sizeof *t);
+  *present = 0;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected a readable HDF5 results file");
+  aq_status st = AQ_OK;
+  if (H5Lexists(f, "capacity", H5P_DEFAULT) <= 0) {
+    H5Fclose(f);
+    return AQ_OK;
+  }
+  *present = 1;
+  hid_t g = H5Gopen2(f, "capacity", H5P_DEFAULT), d = -1, sp = -1;
+  hsize_t n = 0, ni[2] = {0, 0};
+  const char *what = "record";
+  if (g < 0 || (d = H5Dopen2(g, "record", H5P_DEFAULT)) < 0 ||
+      (sp = H5Dget_space(d)) < 0 || H5Sget_simple_extent_dims(sp, &n, NULL) != 1)
+    goto bad;
+  H5Sclose(sp);
+  H5Dclose(d);
+  sp = d = -1;
+  what = "intervals";
+  if ((d = H5Dopen2(g, "intervals", H5P_DEFAULT)) < 0 || (sp = H5Dget_space(d)) < 0 ||
+      H5Sget_simple_extent_dims(sp, ni, NULL) != 2 || ni[1] != 2)
+    goto bad;
+  H5Sclose(sp);
+  H5Dclose(d);
+  sp = d = -1;
+  t->row = calloc(n ? n : 1, sizeof *t->row);
+  t->interval = malloc((ni[0] ? ni[0] : 1) * 2 * sizeof(double));
+  double *col = malloc((n ? n : 1) * sizeof *col);
+  int64_t *icol = malloc((n ? n : 1) * sizeof *icol);
+  if (!t->row || !t->interval || !col || !icol) {
+    free(col);
+    free(icol);
+    H5Gclose(g);
+    H5Fclose(f);
+    aq_h5_capacity_table_free(t);
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, "capacity", "out of memory");
+  }
+  t->n = (size_t)n;
+  t->ninterval = (size_t)ni[0];
+  int ok = 1;
+  what = "record, arch, polarity, status";
+  ok = ok && ds_read_strings(g, "record", t->row, t->n, offsetof(aq_h5_capacity_row, record),
+                             sizeof t->row->record) >= 0;
+  ok = ok && ds_read_strings(g, "arch", t->row, t->n, offsetof(aq_h5_capacity_row, arch),
+                             sizeof t->row->arch) >= 0;
+  ok = ok && ds_read_strings(g, "polarity", t->row, t->n,
+                             offsetof(aq_h5_capacity_row, polarity),
+                             sizeof t->row->polarity) >= 0;
+  ok = ok && ds_read_strings(g, "status", t->row, t->n, offsetof(aq_h5_capacity_row, status),
+                             sizeof t->row->status) >= 0;
+  for (int j = 0; ok && j < AQ_H5_CAP_NDOUBLE; j++) {
+    what = dnames[j];
+    ok = ds_read(g, dnames[j], H5T_NATIVE_DOUBLE, col, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->n; i++)
+      t->row[i].d[j] = col[i];
+  }
+  for (int j = 0; ok && j < AQ_H5_CAP_NINT; j++) {
+    what = inames[j];
+    ok = ds_read(g, inames[j], H5T_NATIVE_INT64, icol, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->n; i++)
+      t->row[i].i[j] = icol[i];
+  }
+  what = "intervals";
+  ok = ok && ds_read(g, "intervals", H5T_NATIVE_DOUBLE, t->interval, ni[0], 2) >= 0;
+  for (size_t i = 0; ok && i < t->n; i++) /* interval rows within the dataset */
+    ok = t->row[i].i[2] >= 0 && t->row[i].i[3] >= 0 &&
+         (uint64_t)(t->row[i].i[2] + t->row[i].i[3]) <= (uint64_t)t->ninterval;
+  free(col);
+  free(icol);
+  H5Gclose(g);
+  H5Fclose(f);
+  H5Eclear2(H5E_DEFAULT);
+  if (!ok) {
+    aq_h5_capacity_table_free(t);
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/capacity",
+                        "expected the capacity datasets (docs/capacity.md), "
+                        "could not read %s", what);
+  }
+  return st;
+bad:
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (g >= 0)
+    H5Gclose(g);
+  H5Fclose(f);
+  H5Eclear2(H5E_DEFAULT);
+  return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/capacity",
+                      "expected a one-dimensional %s dataset", what);
+}
+
+static int same_key(const aq_h5_capacity_row *x, const aq_h5_capacity_row *y)
+{
+  return strcmp(x->record, y->record) == 0 && strcmp(x->arch, y->arch) == 0 &&
+         strcmp(x->polarity, y->polarity) == 0;
+}
+
+static size_t emit(aq_h5_capacity_diff_fn fn, void *ctx, const aq_h5_capacity_row *a,
+                   const aq_h5_capacity_row *b, const char *field, double va, double vb,
+                   const char *sa, const char *sb)
+{
+  aq_h5_capacity_diff d = {a, b, field, "", "", NAN};
+  if (sa) {
+    snprintf(d.a_text, sizeof d.a_text, "%s", sa);
+    snprintf(d.b_text, sizeof d.b_text, "%s", sb);
+  } else if (field) {
+    aq_text_double(d.a_text, sizeof d.a_text, va);
+    aq_text_double(d.b_text, sizeof d.b_text, vb);
+    double m = fmax(fabs(va), fabs(vb));
+    d.rel = m > 0 ? fabs(va - vb) / m : 0;
+  }
+  if (fn)
+    fn(ctx, &d);
+  return 1;
+}
+
+size_t aq_h5_capacity_compare(const aq_h5_capacity_table *a,
+                              const aq_h5_capacity_table *b, double rtol, double atol,
+                              aq_h5_capacity_diff_fn fn, void *ctx)
+{
+  size_t nd = 0, j = 0;
+  for (size_t i = 0; i < a->n; i++) {
+    const aq_h5_capacity_row *x = &a->row[i];
+    size_t k = j;
+    while (k < b->n && !same_key(x, &b->row[k]))
+      k++;
+    if (k == b->n) {
+      nd += emit(fn, ctx, x, NULL, NULL, 0, 0, NULL, NULL);
+      continue;
+    }
+    for (; j < k; j++) /* rows of b skipped over: in b only */
+      nd += emit(fn, ctx, NULL, &b->row[j], NULL, 0, 0, NULL, NULL);
+    const aq_h5_capacity_row *y = &b->row[j++];
+    if (strcmp(x->status, y->status) != 0)
+      nd += emit(fn, ctx, x, y, "status", 0, 0, x->status, y->status);
+    for (int c = 0; c < AQ_H5_CAP_NDOUBLE; c++)
+      if (!aq_compare_close(x->d[c], y->d[c], rtol, atol))
+        nd += emit(fn, ctx, x, y, dnames[c], x->d[c], y->d[c], NULL, NULL);
+    for (int c = 0; c < AQ_H5_CAP_NINT; c++)
+      if (c != 2 && x->i[c] != y->i[c]) /* interval_start depends on earlier rows */
+        nd += emit(fn, ctx, x, y, inames[c], (double)x->i[c], (double)y->i[c], NULL,
+                   NULL);
+    if (x->i[3] != y->i[3])
+      continue;
+    for (int64_t q = 0; q < x->i[3]; q++)
+      for (int e = 0; e < 2; e++) {
+        double va = a->interval[2 * (x->i[2] + q) + e], vb = b->interval[2 * (y->i[2] + q) + e];
+        char name[48];
+        snprintf(name, sizeof name, "interval_%s[%lld]", e ? "hi" : "lo", (long long)q);
+        if (!aq_compare_close(va, vb, rtol, atol))
+          nd += emit(fn, ctx, x, y, name, va, vb, NULL, NULL);
+      }
+  }
+  for (; j < b->n; j++)
+    nd += emit(fn, ctx, NULL, &b->row[j], NULL, 0, 0, NULL, NULL);
+  return nd;
+}

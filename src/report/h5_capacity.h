@@ -1,0 +1,76 @@
+/* h5_capacity.h: the `capacity` group of a results file (layout in
+ * docs/capacity.md): per (record, arch, polarity) the results of
+ * src/capacity with their collapse intervals, and the fragility fits.
+ * Written into a file opened by aq_h5_open (after aq_h5_write_root), before
+ * aq_h5_finish, which renames it onto the target; so the file appears
+ * complete or not at all.  Reports through aq_error; the caller keeps
+ * ownership of everything passed. */
+#ifndef AQ_REPORT_H5_CAPACITY_H
+#define AQ_REPORT_H5_CAPACITY_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../capacity/capacity.h"
+#include "h5.h"
+#include "text_capacity.h"
+
+typedef struct {
+  const aq_capacity_row *row;   /* one per (record, arch, polarity) */
+  size_t npair;
+  const aq_fragility_row *fit;  /* one per (arch, intensity measure) */
+  size_t nfit;
+  double resolution, tol, ci;   /* the options used */
+} aq_h5_capacity;
+
+aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
+                               const aq_h5_capacity *c, aq_error *err);
+
+/* ---- reading back and comparing (archquake compare) ---------------------- */
+
+enum { AQ_H5_CAP_NDOUBLE = 6, AQ_H5_CAP_NINT = 4 };
+/* Names of the numeric columns, in the order of aq_h5_capacity_row. */
+extern const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE];
+extern const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT];
+
+typedef struct {
+  char record[512], arch[128], polarity[16], status[48];
+  double d[AQ_H5_CAP_NDOUBLE]; /* move_scale first_collapse_scale first_collapse_pga_g
+                                  first_collapse_pgv_m_s scale_max lambda0 */
+  int64_t i[AQ_H5_CAP_NINT];   /* resurrection runs interval_start interval_count */
+} aq_h5_capacity_row;
+
+typedef struct {
+  size_t n;
+  aq_h5_capacity_row *row; /* malloc'd */
+  size_t ninterval;
+  double *interval;        /* 2 per interval (lo, hi), malloc'd */
+} aq_h5_capacity_table;
+
+/* Read the capacity group of the results file at path into *t (free with
+ * aq_h5_capacity_table_free).  Returns AQ_OK, with t->n = 0 and
+ * *present = 0 when the file has no capacity group; AQ_EFORMAT/AQ_EIO (err
+ * filled) when it cannot be read. */
+aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
+                              aq_error *err);
+void aq_h5_capacity_table_free(aq_h5_capacity_table *t);
+
+/* One difference between two capacity tables: rows are matched by (record,
+ * arch, polarity) in order; numbers agree as aq_compare_close; status and
+ * the integer columns exactly; intervals pairwise (field "interval_lo[k]"
+ * or "interval_hi[k]").  a or b NULL: the row is in one table only. */
+typedef struct {
+  const aq_h5_capacity_row *a, *b;
+  const char *field; /* NULL for a row in one table only */
+  char a_text[40], b_text[40];
+  double rel;
+} aq_h5_capacity_diff;
+
+typedef void (*aq_h5_capacity_diff_fn)(void *ctx, const aq_h5_capacity_diff *d);
+
+/* Returns the number of differences (fn, which may be NULL, gets each). */
+size_t aq_h5_capacity_compare(const aq_h5_capacity_table *a,
+                              const aq_h5_capacity_table *b, double rtol, double atol,
+                              aq_h5_capacity_diff_fn fn, void *ctx);
+
+#endif
