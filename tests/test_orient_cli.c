@@ -320,6 +320,13 @@ AQ_TEST(orient_refusals)
   aq_check(col_of(out, "status") >= 0 &&
                strncmp(cell(out, 1, col_of(out, "status"), st, sizeof st), "read:", 5) == 0,
            "its row has no verdict: %s", st);
+  snprintf(args, sizeof args, "--components %s,%s --azimuths 0,90 --arch arches/thin.cfg "
+                              "--text %s", a, b, b);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  char *kept = aq_test_read_file(b, NULL);
+  aq_check(rc == 2 && strstr(err, "inputs") && kept && strncmp(kept, "time,", 5) == 0,
+           "--text onto a component refused, the file kept (%d): %s", rc, err);
+  free(kept);
   rc = aq_test_run("--components " H1 "," H2 " --all-azimuths --arch arches/thin.cfg", out,
                    sizeof out, err, sizeof err);
   aq_check(rc == 2 && strstr(err, "--all-azimuths"), "--all-azimuths alone (%d): %s", rc, err);

@@ -288,6 +288,12 @@ int aq_cmd_run(int argc, char **argv)
     nerr += aq_opt_output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
     nerr += aq_opt_output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }
+  for (size_t i = 0; i < orient.nmotions; i++) { /* nor a motion's component */
+    aq_orient_motion *m = &orient.motions[i];
+    size_t nc = m->path[2] ? 3 : 2;
+    nerr += aq_opt_output_is_input("-o", cfg.h5_path, m->path, nc, arches, 0);
+    nerr += aq_opt_output_is_input("--text", text_path, m->path, nc, arches, 0);
+  }
   /* the rows' record column: each RECORD, then each motion's label */
   size_t nplain = optind < argc ? (size_t)(argc - optind) : 0;
   size_t nall = nplain + orient.nmotions;
