@@ -1,9 +1,9 @@
 /* bench_io.c: median time to read a 20 000-sample record with
- * aq_record_read (AT2 and SAC), beside the floor: merely reading the same
+ * aq_record_read (AT2, SAC and CSV), beside the floor: merely reading the same
  * file's bytes into memory.  The records are made here from real data:
  * CHY028-N.AT2 (18 000 values, Chi-Chi 1999) extended to 20 000 values by
  * repeating its first 2 000 value tokens, and a little-endian SAC file
- * holding the same samples (float32, g). */
+ * holding the same samples (float32, g), and a CSV "t,acc_g" of them. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -124,6 +124,18 @@ static int make_sac(const char *out, const aq_record *r)
   return (fclose(f) == 0) && ok;
 }
 
+/* The same samples as CSV: "t,acc_g" and one row per sample. */
+static int make_csv(const char *out, const aq_record *r)
+{
+  FILE *f = fopen(out, "wb");
+  if (!f)
+    return 0;
+  fprintf(f, "t,acc_g\n");
+  for (size_t k = 0; k < r->npts; k++)
+    fprintf(f, "%.3f,%.7E\n", (double)k * r->dt_s, r->acc_mps2[k] / r->to_mps2);
+  return fclose(f) == 0;
+}
+
 /* Median seconds of REPS runs of fn(path). */
 static double time_median(int (*fn)(const char *, const aq_read_opts *), const char *path,
                           const aq_read_opts *ro)
@@ -162,7 +174,8 @@ int main(void)
 {
   mkdir("build", 0777);
   mkdir("build/bench", 0777);
-  const char *at2 = "build/bench/chy028-20000.AT2", *sac = "build/bench/chy028-20000.sac";
+  const char *at2 = "build/bench/chy028-20000.AT2", *sac = "build/bench/chy028-20000.sac",
+             *csv = "build/bench/chy028-20000.csv";
   aq_read_opts g = {0};
   g.units = AQ_UNITS_G;
   aq_record r;
@@ -171,15 +184,15 @@ int main(void)
     fprintf(stderr, "bench_io: cannot make %s: %s\n", at2, e.message);
     return 1;
   }
-  int ok = make_sac(sac, &r);
+  int ok = make_sac(sac, &r) && make_csv(csv, &r);
   aq_record_free(&r);
   if (!ok) {
     fprintf(stderr, "bench_io: cannot write %s\n", sac);
     return 1;
   }
   printf("reader\tnpts\tfile_bytes\tread_median_us\tfloor_median_us\tratio\n");
-  const char *paths[2] = {at2, sac}, *names[2] = {"at2", "sac"};
-  for (int i = 0; i < 2; i++) {
+  const char *paths[3] = {at2, sac, csv}, *names[3] = {"at2", "sac", "csv"};
+  for (int i = 0; i < 3; i++) {
     struct stat st;
     stat(paths[i], &st);
     /* interleave: floor, reader, floor, reader ... (same cache state) */

@@ -3,6 +3,7 @@
  * independent script), the same record as AT2 and as CSV text derived from
  * it, and the header variants written out here as text. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,7 +184,7 @@ static void check_variant(const char *what, const char *text, double dt_want)
   aq_record r;
   aq_error e;
   aq_error_clear(&e);
-  aq_status s = aq_at2_parse((const unsigned char *)text, strlen(text), what, NULL,
+  aq_status s = aq_record_parse((const unsigned char *)text, strlen(text), what, NULL,
                              &r, &e);
   char msg[1400];
   aq_error_format(&e, msg, sizeof msg);
@@ -276,11 +277,12 @@ AQ_TEST(io_at2_numbers_equal_strtod)
   }
   fclose(fa);
   fclose(fc);
-  aq_read_opts ro = {0};
+  aq_read_opts ro = {0}, ra = {0};
   ro.dt_s = 0.005;
+  ro.accept_implausible = ra.accept_implausible = 1; /* exponents up to 1e40 */
   aq_record a, c;
   aq_error e;
-  int ok = aq_check(aq_record_read(at2, NULL, &a, &e) == AQ_OK, "at2: %s", e.message);
+  int ok = aq_check(aq_record_read(at2, &ra, &a, &e) == AQ_OK, "at2: %s", e.message);
   ok &= aq_check(aq_record_read(csv, &ro, &c, &e) == AQ_OK, "csv: %s", e.message);
   if (ok && aq_check(a.npts == N && c.npts == N, "npts %zu %zu", a.npts, c.npts)) {
     size_t diff = 0;
@@ -290,4 +292,189 @@ AQ_TEST(io_at2_numbers_equal_strtod)
   }
   aq_record_free(&a);
   aq_record_free(&c);
+}
+
+/* Issue 14's AT2 variants: keywords in any order, case and place, numbers
+ * before or after them, free text quoting numbers (even another NPTS) before
+ * the real header, CR CR LF / CR line ends without a final newline, values
+ * glued to "*** End Data ***". */
+AQ_TEST(io_at2_header_variants_any_layout)
+{
+  char buf[3000];
+  const char *h3 = "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                   "Test, 1/2/2003, Station, 123\n"
+                   "ACCELERATION TIME SERIES IN UNITS OF G\n";
+  const char *vals = "  -.2385417E-02   .7731905E-03   1.0937E-01  -3.14159E-04   .2718281E+00\n"
+                     "  -.1414213E-01\n";
+  static const struct {
+    const char *what, *line;
+    double dt;
+  } v[] = {
+      {"dt-first", "DT= .0050 SEC, NPTS= 6", 0.005},
+      {"lower-no-comma", "dt=0.0125 npts=6", 0.0125},
+      {"no-equals", "NPTS 6 DT 0.02", 0.02},
+      {"colons", "Npts: 6   Dt: 0.004 sec", 0.004},
+      {"numbers-before-each", "6 NPTS, 0.0050 DT", 0.005},
+      {"pair-after", "NPTS, DT: 6 0.0100", 0.01},
+      {"pair-before-lower", "   6   .0100   npts, dt", 0.01},
+  };
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+    snprintf(buf, sizeof buf, "%s%s\n%s", h3, v[i].line, vals);
+    check_variant(v[i].what, buf, v[i].dt);
+  }
+  /* NGA-East layout: more text lines, the channel code on one of them */
+  snprintf(buf, sizeof buf,
+           "PEER NGA-East STRONG MOTION DATABASE RECORD\n"
+           "Event: 2011-08-23 Mineral, Virginia, M5.74\n"
+           "Station: US.CBN, Component: HN1\n"
+           "ACCELERATION TIME SERIES IN UNITS OF G\n"
+           "NPTS=      6, DT=   .0050 SEC\n%s", vals);
+  check_variant("nga-east", buf, 0.005);
+  /* seven free-text lines quoting numbers and another NPTS, then the real
+   * header (OpenSees example copies) */
+  snprintf(buf, sizeof buf,
+           "Converted for OpenSees example 3.2, 2006\n"
+           "Source record: 4000 points at 0.01 s, scaled by 1.5\n"
+           "Original header said NPTS= 4000, DT= .0100 SEC\n"
+           "4000  .0100\n"
+           "End of notes\n"
+           "PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.\n"
+           "IMPERIAL VALLEY 5/19/40 0439, EL CENTRO ARRAY #9, 180 (USGS STATION 117)\n"
+           "ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.2 Hz LP=15.0 Hz\n"
+           "12 34 56\n"
+           "NPTS=      6, DT= .00500 SEC\n%s", vals);
+  check_variant("seven-text-lines-quoting-npts", buf, 0.005);
+  /* CR CR LF, no final newline, last value glued to *** End Data *** */
+  snprintf(buf, sizeof buf,
+           "PEER NGA STRONG MOTION DATABASE RECORD\r\r\nA, 1/2/2003, B, 90\r\r\n"
+           "ACCELERATION TIME SERIES IN UNITS OF G\r\r\nNPTS=      6, DT=   .0050 SEC\r\r\n"
+           "  -.2385417E-02   .7731905E-03   1.0937E-01  -3.14159E-04   .2718281E+00\r\r\n"
+           "  -.1414213E-01*** End Data ***");
+  check_variant("cr-cr-lf-glued-stars", buf, 0.005);
+  /* CR only, no final newline, no end marker, values touching */
+  snprintf(buf, sizeof buf,
+           "A\rB\rACCELERATION TIME SERIES IN UNITS OF G\rNPTS=6,DT=.005\r"
+           "-.2385417E-02.7731905E-03 1.0937E-01-3.14159E-04 .2718281E+00-.1414213E-01");
+  check_variant("cr-touching-no-newline", buf, 0.005);
+  /* *** End Data *** on its own line, CRLF */
+  snprintf(buf, sizeof buf,
+           "A\r\nB, 1/2/2003, C, UP\r\nACCELERATION TIME SERIES IN UNITS OF G\r\n"
+           "NPTS= 6, DT= .005 SEC\r\n%s*** End Data ***\r\n", vals);
+  check_variant("crlf-stars-own-line", buf, 0.005);
+
+  /* what the header states */
+  aq_record r;
+  aq_error e;
+  snprintf(buf, sizeof buf,
+           "PEER NGA STRONG MOTION DATABASE RECORD\nImperial Valley-02, 5/19/1940, "
+           "El Centro Array #9, UP\nACCELERATION TIME SERIES IN UNITS OF G\n"
+           "NPTS=      6, DT=   .0050 SEC,  -5 POLE @ .03000 HZ\n%s", vals);
+  aq_read_opts acc = {0};
+  acc.accept_vertical = 1;
+  if (aq_check(aq_record_parse((const unsigned char *)buf, strlen(buf), "up.AT2", &acc, &r,
+                               &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(strcmp(r.channel, "UP") == 0 && r.vertical == 1, "channel %s vertical %d",
+             r.channel, r.vertical);
+    aq_check(strstr(r.event, "Imperial Valley-02") != NULL, "event %s", r.event);
+    aq_check(strstr(r.processing, "POLE @ .03000 HZ") != NULL, "processing %s",
+             r.processing);
+    aq_record_free(&r);
+  }
+}
+
+/* Free text that happens to end ", up to 25 Hz" names no component: not
+ * vertical. */
+AQ_TEST(io_at2_free_text_names_no_component)
+{
+  const char *t = "Converted for an example, 2006\n"
+                  "Band-passed by hand, 0.1 Hz, up to 25 Hz\n"
+                  "Another note\n"
+                  "ACCELERATION TIME SERIES IN UNITS OF G\n"
+                  "NPTS= 3, DT= .0100 SEC\n  .1  -.2  .3\n";
+  aq_record r;
+  aq_error e;
+  if (aq_check(aq_record_parse((const unsigned char *)t, strlen(t), "notes.AT2", NULL, &r,
+                               &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(r.vertical == 0 && r.channel[0] == '\0', "channel '%s' vertical %d", r.channel,
+             r.vertical);
+    aq_record_free(&r);
+  }
+}
+
+/* A file that only quotes an AT2 header inside another format is not AT2. */
+AQ_TEST(io_at2_quoted_header_is_not_at2)
+{
+  const char *csv = "# converted from RSN6: NPTS= 3, DT= .0100 SEC\n"
+                    "t,acc_g\n0,0.01\n0.01,-0.02\n0.02,0.03\n";
+  const char *csv2 = "# NPTS= 3, DT= .0100 SEC\n0,0.01\n0.01,-0.02\n0.02,0.03\n";
+  const char *cosmos = "Corrected acceleration (Format v01.20 with 13 text lines) Src\n"
+                       "NPTS= 3, DT= .0100 SEC\n  .1  .2  .3\n";
+  const char *at2 = "X\nY\nNPTS= 3, DT= .0100 SEC\n  .1  .2  .3\n";
+  aq_check(aq_record_detect((const unsigned char *)csv, strlen(csv)) == AQ_FMT_TEXT,
+           "CSV with a header comment quoting NPTS");
+  aq_check(aq_record_detect((const unsigned char *)csv2, strlen(csv2)) == AQ_FMT_TEXT,
+           "CSV whose comment quotes NPTS right before data");
+  aq_check(aq_record_detect((const unsigned char *)cosmos, strlen(cosmos)) == AQ_FMT_COSMOS,
+           "COSMOS quoting an AT2 header");
+  aq_check(aq_record_detect((const unsigned char *)at2, strlen(at2)) == AQ_FMT_AT2,
+           "the bare AT2");
+  aq_record r;
+  aq_error e;
+  if (aq_check(aq_record_parse((const unsigned char *)csv, strlen(csv), "q.csv", NULL, &r,
+                               &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(strcmp(r.format, "csv") == 0 && r.npts == 3, "format %s npts %zu", r.format,
+             r.npts);
+    aq_record_free(&r);
+  }
+}
+
+/* The fast decimal parser (AT2 values, CSV fields) gives the very double
+ * strtod gives, on many random decimals: 1 to 25 digits, the point anywhere
+ * or absent, leading zeros, exponents from -330 to +330 (subnormals,
+ * overflow), signs, upper and lower e. */
+AQ_TEST(io_decimal_parse_equals_strtod)
+{
+  uint64_t x = 0x2385417ULL;
+  size_t bad = 0, fast_ok = 0;
+  enum { N = 300000 };
+  for (int i = 0; i < N; i++) {
+    char tok[80];
+    size_t p = 0;
+    x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    uint64_t r = x >> 11;
+    if (r & 1)
+      tok[p++] = (r & 2) ? '-' : '+';
+    int lead0 = (int)((r >> 2) % 4);
+    for (int k = 0; k < lead0 && (r >> 4) % 3 == 0; k++)
+      tok[p++] = '0';
+    int nd = 1 + (int)((r >> 6) % 25), dot = (int)((r >> 11) % (uint64_t)(nd + 2)) - 1;
+    uint64_t y = x ^ (x >> 29);
+    for (int k = 0; k < nd; k++) {
+      if (k == dot)
+        tok[p++] = '.';
+      y = y * 2862933555777941757ULL + 3037000493ULL;
+      tok[p++] = (char)('0' + (y >> 60) % 10);
+    }
+    if ((r >> 16) % 3 != 0) {
+      int ex = (int)((r >> 18) % 661) - 330;
+      if ((r >> 28) % 4 != 0)
+        ex = ex % 25; /* mostly small exponents: the fast path */
+      p += (size_t)snprintf(tok + p, sizeof tok - p, "%c%d", (r >> 30) & 1 ? 'E' : 'e', ex);
+    }
+    tok[p] = '\0';
+    double a, b = strtod(tok, NULL);
+    size_t used = aq_decimal_parse(tok, p, &a);
+    if (used != p || memcmp(&a, &b, sizeof a) != 0) {
+      if (bad++ < 5)
+        aq_check(0, "\"%s\": %.17g (used %zu of %zu), strtod %.17g", tok, a, used, p, b);
+    } else {
+      fast_ok++;
+    }
+  }
+  aq_check(bad == 0, "%zu of %d decimals differ from strtod", bad, N);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  decimal parser: %zu of %d equal to strtod\n", fast_ok, N);
 }

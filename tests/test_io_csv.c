@@ -32,22 +32,39 @@ AQ_TEST(io_csv_jma_three_components)
   /* PROVENANCE: NS 0.3334 g, EW 0.2864 g, UD 0.2252 g; 30000 at 0.01 s, gal */
   static const double pga[3] = {0.3334, 0.2864, 0.2252};
   static const char *const comp[3] = {"NS", "EW", "UD"};
-  for (size_t col = 0; col <= 3; col++) {
-    aq_read_opts ro = {0};
-    ro.column = col; /* 0: default, the first column */
-    aq_record r;
-    aq_error e;
-    if (!aq_check(aq_record_read(REC_DIR "Q4149CF2.csv", &ro, &r, &e) == AQ_OK,
-                  "column %zu: %s", col, e.message))
-      continue;
-    size_t i = col ? col - 1 : 0;
-    aq_check(r.npts == 30000, "npts %zu", r.npts);
-    aq_check(r.dt_s == 0.01, "dt from SAMPLING RATE= 100Hz: %.17g", r.dt_s);
-    aq_check(strcmp(r.units_orig, "gal") == 0, "units %s", r.units_orig);
-    aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
-    aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
-    aq_record_free(&r);
-  }
+  for (size_t way = 0; way < 3; way++)
+    for (size_t i = 0; i < 3; i++) {
+      aq_read_opts ro = {0};
+      char path[256];
+      snprintf(path, sizeof path, REC_DIR "Q4149CF2.csv");
+      if (way == 0) /* --column N */
+        ro.column = i + 1;
+      else if (way == 1) /* FILE#CHANNEL */
+        snprintf(path, sizeof path, REC_DIR "Q4149CF2.csv#%s", comp[i]);
+      else { /* --component GLOB=CH */
+        snprintf(ro.components[0].glob, sizeof ro.components[0].glob, "*Q4149*");
+        snprintf(ro.components[0].channel, sizeof ro.components[0].channel, "%s", comp[i]);
+        ro.ncomponents = 1;
+      }
+      aq_record r;
+      aq_error e;
+      if (!aq_check(aq_record_read(path, &ro, &r, &e) == AQ_OK, "way %zu %s: %s", way,
+                    comp[i], e.message))
+        continue;
+      aq_check(r.npts == 30000, "npts %zu", r.npts);
+      aq_check(r.dt_s == 0.01, "dt from SAMPLING RATE= 100Hz: %.17g", r.dt_s);
+      aq_check(strcmp(r.units_orig, "gal") == 0, "units %s", r.units_orig);
+      aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
+      aq_check(r.vertical == (i == 2), "%s vertical %d", comp[i], r.vertical);
+      aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
+      aq_record_free(&r);
+    }
+  /* no channel named: refused, naming the three, never the first silently */
+  aq_record r;
+  aq_error e;
+  aq_check(aq_record_read(REC_DIR "Q4149CF2.csv", NULL, &r, &e) != AQ_OK &&
+               strstr(e.message, "NS, EW, UD") && strstr(e.message, "#"),
+           "three channels, none chosen: %s", e.message);
 }
 
 /* Parse text; check npts, dt, begin, units and that sample k equals
@@ -60,7 +77,7 @@ static void check_text(const char *what, const char *text, const aq_read_opts *r
   aq_error e;
   aq_error_clear(&e);
   char msg[1400];
-  aq_status s = aq_csv_parse((const unsigned char *)text, strlen(text), what, ro, &r, &e);
+  aq_status s = aq_record_parse((const unsigned char *)text, strlen(text), what, ro, &r, &e);
   aq_error_format(&e, msg, sizeof msg);
   if (!aq_check(s == AQ_OK, "%s: %s", what, msg))
     return;
@@ -115,10 +132,10 @@ AQ_TEST(io_csv_layouts)
              "STATION X\n SAMPLING RATE= 200Hz\n UNIT = gal(cm/s/s)\n NS\n0.02385\n"
              "-0.0771905\n1.0937E-01\n-3.14159e-4\n0.2718281\n",
              &none, v, 5, 0.005, 0, 0.01, "gal");
-  /* --units wins over the header */
-  check_text("units-override", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
+  /* a plain --units does not override units the header states */
+  check_text("units-stated-win", "time,acc (g)\n0,0.02385\n0.02,-0.0771905\n0.04,1.0937E-01\n"
                                "0.06,-3.14159e-4\n0.08,0.2718281\n",
-             &gal, v, 5, 0.02, 0, 0.01, "gal");
+             &gal, v, 5, 0.02, 0, 9.80665, "g");
   /* a GLOB rule for this name */
   aq_read_opts rule = {0};
   snprintf(rule.rules[0].glob, sizeof rule.rules[0].glob, "*layout*");
@@ -152,4 +169,63 @@ AQ_TEST(io_units_rules_last_match_wins)
   aq_check(!aq_units_parse("cm/s", &u), "cm/s is not acceleration");
   aq_check(aq_units_to_mps2(AQ_UNITS_G) == AQ_G0_MPS2 && aq_units_to_mps2(AQ_UNITS_GAL) == 0.01,
            "factors");
+}
+
+/* Every component of a multi-component file is a record of its own in the
+ * main job and in info, named FILE#CHANNEL; --component or FILE#CHANNEL
+ * chooses one.  PGA per PROVENANCE: NS 0.3334 g, EW 0.2864 g. */
+AQ_TEST(io_csv_multicomponent_cli)
+{
+  static char out[16384], err[4096];
+  int st = aq_test_run("info " REC_DIR "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tcsv\t30000") &&
+               strstr(out, "Q4149CF2.csv#EW\tcsv\t30000") &&
+               strstr(out, "Q4149CF2.csv#UD\tcsv\t30000") && strstr(out, "\tUD\tyes"),
+           "info: three records: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 --accept-vertical " REC_DIR
+                   "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tthick\tworkpath\t1\t0.333") &&
+               strstr(out, "Q4149CF2.csv#EW\tthick\tworkpath\t1\t0.286") &&
+               strstr(out, "Q4149CF2.csv#UD\t"),
+           "run: three rows: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 --component '*Q4149*=EW' " REC_DIR
+                   "Q4149CF2.csv", out, sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#EW\tthick\tworkpath\t1\t0.286") &&
+               !strstr(out, "#NS") && !strstr(out, "#UD"),
+           "run --component EW: one row: exit %d: %s %s", st, out, err);
+  st = aq_test_run("--arch arches/thick.cfg --scale 1 " REC_DIR "Q4149CF2.csv#NS", out,
+                   sizeof out, err, sizeof err);
+  aq_check(st == 0 && strstr(out, "Q4149CF2.csv#NS\tthick") && !strstr(out, "#EW"),
+           "run FILE#NS: one row: exit %d: %s %s", st, out, err);
+  st = aq_test_run("info " REC_DIR "Q4149CF2.csv#XY", out, sizeof out, err, sizeof err);
+  aq_check(st == 1 && strstr(err, "NS, EW, UD") && strstr(err, "\"XY\""),
+           "unknown channel named: exit %d: %s", st, err);
+}
+
+/* CWB text: '#' header lines state the units (#AmplitudeUnit: gal.) and
+ * name the columns (#DataSequence: Time U(+); N(+); E(+)); three records,
+ * U vertical.  PROVENANCE: 6000 at 0.02 s; PGA U 0.001220, N 0.002989,
+ * E 0.002866 g (header AmplitudeMAX 1.196, -2.931, -2.811 gal). */
+AQ_TEST(io_csv_cwb_three_components)
+{
+  static const char *const comp[3] = {"U", "N", "E"};
+  static const double peak_gal[3] = {1.196, 2.931, 2.811};
+  for (size_t i = 0; i < 3; i++) {
+    char path[256];
+    snprintf(path, sizeof path, REC_DIR "2-ECU.dat#%s", comp[i]);
+    aq_record r;
+    aq_error e;
+    if (!aq_check(aq_record_read(path, NULL, &r, &e) == AQ_OK, "%s: %s", comp[i], e.message))
+      continue;
+    aq_check(r.npts == 6000 && r.dt_s == 0.02, "%s: npts %zu dt %.17g", comp[i], r.npts,
+             r.dt_s);
+    aq_check(strcmp(r.units_stated, "gal") == 0, "%s: units %s", comp[i], r.units_stated);
+    aq_check(r.vertical == (i == 0), "%s: vertical %d", comp[i], r.vertical);
+    double m = 0;
+    for (size_t k = 0; k < r.npts; k++)
+      m = fmax(m, fabs(r.acc_mps2[k]));
+    aq_check_abs(m * 100.0, peak_gal[i], 1e-9, "%s: peak (gal, 3 decimals in the file)",
+                 comp[i]);
+    aq_record_free(&r);
+  }
 }

@@ -53,11 +53,18 @@ AQ_TEST(orient_pair_checks)
     aq_record r;
     memset(&r, 0, sizeof r);
     r.name = (char *)names[i].name;
+    r.azimuth_deg = NAN;
     snprintf(r.format, sizeof r.format, "%s", strstr(names[i].name, ".csv") ? "csv" : "at2");
     double az = aq_project_azimuth_of(&r);
     aq_check((isnan(az) && isnan(names[i].az)) || az == names[i].az, "%s: %g deg",
              names[i].name, az);
   }
+  aq_record hdr;
+  memset(&hdr, 0, sizeof hdr);
+  hdr.name = "RSN6_IMPVALL.I_I-ELC180-hor1.AT2";
+  snprintf(hdr.format, sizeof hdr.format, "at2");
+  hdr.azimuth_deg = 90; /* the header wins over the name */
+  aq_check(aq_project_azimuth_of(&hdr) == 90, "header azimuth first");
   aq_record a, b;
   memset(&a, 0, sizeof a);
   memset(&b, 0, sizeof b);

@@ -129,14 +129,14 @@ AQ_TEST(signal_errors_cli_per_record)
                !strstr(out, "IELC180"),
            "short record refused, the other processed: exit %d, %s", st, err);
   /* the raw Ridgecrest vertical carries +1 g: as read it drifts away */
-  st = aq_test_run("info --units g --no-filter --detrend none "
+  st = aq_test_run("info --units '*CJ.T001230*=g' --no-filter --detrend none "
                    "tests/data/records/20190706031952.CJ.T001230.HNZ.sac",
                    out, sizeof out, err, sizeof err);
   aq_check(st == 0 && strstr(err, "HNZ.sac: warning: residual velocity") &&
                strchr(out, '\n') != strrchr(out, '\n'),
            "residuals warned, not failed: exit %d, %s", st, err);
-  st = aq_test_run("info --units g "
+  st = aq_test_run("info --units '*CJ.T001230*=g' "
                    "tests/data/records/20190706031952.CJ.T001230.HNZ.sac",
                    out, sizeof out, err, sizeof err);
-  aq_check(st == 0 && err[0] == '\0', "processed: no warning: %s", err);
+  aq_check(st == 0 && !strstr(err, "residual"), "processed: no warning: %s", err);
 }

@@ -285,7 +285,10 @@ int aq_cmd_capacity(int argc, char **argv)
       {"jobs", required_argument, NULL, 'j'},
       AQ_OPT_DYN_LONGOPTS,
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nl = aq_opt_signal_append(lo, 15);
+  size_t nl = 0; /* the entries above (the rest of the table is zero) */
+  while (lo[nl].name)
+    nl++;
+  nl = aq_opt_signal_append(lo, nl);
   lo[nl] = (struct option){NULL, 0, NULL, 0};
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);

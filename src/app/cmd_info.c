@@ -28,9 +28,9 @@ static const char usage_tail[] =
 
 int aq_cmd_info(int argc, char **argv)
 {
-  struct option longopts[4 + AQ_OPT_SIGNAL_NOPTS + 1] = {
+  struct option longopts[AQ_OPT_RECORD_NOPTS + 1 + AQ_OPT_SIGNAL_NOPTS + 1] = {
       AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
-  size_t nlong = aq_opt_signal_append(longopts, 4);
+  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 1);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
   aq_signal_opts so;
   aq_signal_opts_default(&so);
@@ -67,12 +67,21 @@ int aq_cmd_info(int argc, char **argv)
   }
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
-         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\n");
-  for (int i = optind; i < argc; i++) {
+         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
+  char **names;
+  size_t nnames;
+  aq_error xerr;
+  if (aq_record_expand(argv + optind, (size_t)(argc - optind), &ro, &names, &nnames,
+                       &xerr) != AQ_OK) {
+    aq_error_print(&xerr, stderr);
+    aq_signal_ws_free(ws);
+    return AQ_EXIT_FAIL;
+  }
+  for (size_t i = 0; i < nnames; i++) { /* every channel a record (FILE#CH) */
     aq_record rec;
     aq_error err;
     aq_error_clear(&err);
-    if (aq_record_read(argv[i], &ro, &rec, &err) != AQ_OK) {
+    if (aq_record_read(names[i], &ro, &rec, &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       failed = 1;
       continue;
@@ -89,16 +98,20 @@ int aq_cmd_info(int argc, char **argv)
       failed = 1;
       continue;
     }
+    if (rec.units_conflict[0])
+      fprintf(stderr, "archquake: %s: units: %s\n", rec.path, rec.units_conflict);
     char warn[256];
     if (aq_im_residual_warning(&im, warn, sizeof warn))
       fprintf(stderr, "archquake: %s: warning: %s\n", rec.path, warn);
-    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n",
+    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
            rec.path, rec.format, rec.npts, rec.dt_s,
            rec.dt_s * (double)rec.npts, rec.units_orig, im.pga_g, im.pgv_mps,
-           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps);
+           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec.channel,
+           rec.vertical ? "yes" : "no");
     aq_processed_free(&p);
     aq_record_free(&rec);
   }
+  aq_record_names_free(names, nnames);
   aq_signal_ws_free(ws);
   fflush(stdout);
   return failed ? AQ_EXIT_FAIL : AQ_EXIT_OK;

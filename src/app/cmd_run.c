@@ -158,7 +158,10 @@ int aq_cmd_run(int argc, char **argv)
       {"polarity", required_argument, NULL, OPT_POLARITY},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = aq_opt_signal_append(longopts, 21);
+  size_t nlong = 0; /* the entries above (the rest of the table is zero) */
+  while (longopts[nlong].name)
+    nlong++;
+  nlong = aq_opt_signal_append(longopts, nlong);
   longopts[nlong] = (struct option){NULL, 0, NULL, 0};
 
   aq_suite_cfg cfg;

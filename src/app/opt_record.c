@@ -19,46 +19,75 @@ static int parse_units(const char *opt, const char *word, aq_units *u, int *nerr
   if (aq_units_parse(word, u))
     return 1;
   fprintf(stderr,
-          "archquake: %s: expected g, gal, cm/s2, m/s2, nm/s2, counts or file "
+          "archquake: %s: expected g, g/10, gal, cm/s2, mm/s2, m/s2, nm/s2, "
+          "counts or file "
           "(optionally after GLOB=), got \"%s\"\n",
           opt, word);
   (*nerr)++;
   return 0;
 }
 
+/* A GLOB=VALUE rule a for option opt (value of 1 to vmax - 1 characters,
+ * at most AQ_UNITS_RULES_MAX rules, nrules so far): copies GLOB into glob and
+ * returns VALUE, or reports one line, counts it in *nerr and returns NULL. */
+static const char *glob_rule(const char *opt, const char *a, const char *what,
+                             size_t vmax, size_t nrules, char *glob, int *nerr)
+{
+  const char *eq = strrchr(a, '=');
+  size_t gl = eq ? (size_t)(eq - a) : 0;
+  if (!eq || gl == 0 || gl >= AQ_UNITS_GLOB_MAX || !eq[1] || strlen(eq + 1) >= vmax) {
+    fprintf(stderr,
+            "archquake: %s: expected GLOB=%s (a pattern of 1 to %d characters, "
+            "a value of 1 to %zu), got \"%s\"\n",
+            opt, what, AQ_UNITS_GLOB_MAX - 1, vmax - 1, a);
+    (*nerr)++;
+    return NULL;
+  }
+  if (nrules >= AQ_UNITS_RULES_MAX) {
+    fprintf(stderr, "archquake: %s: expected at most %d GLOB=%s rules, got more (\"%s\")\n",
+            opt, AQ_UNITS_RULES_MAX, what, a);
+    (*nerr)++;
+    return NULL;
+  }
+  memcpy(glob, a, gl);
+  glob[gl] = '\0';
+  return eq + 1;
+}
+
 int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
 {
+  const char *a = arg ? arg : "", *v;
   switch (id) {
   case AQ_OPT_RECORD_UNITS: {
-    const char *a = arg ? arg : "";
-    const char *eq = strrchr(a, '=');
     aq_units u;
-    if (!eq)
+    if (!strchr(a, '='))
       return parse_units("--units", a, &ro->units, nerr), 1;
-    size_t gl = (size_t)(eq - a);
-    if (gl == 0 || gl >= AQ_UNITS_GLOB_MAX) {
-      fprintf(stderr,
-              "archquake: --units: expected GLOB=U with a pattern of 1 to %d "
-              "characters, got \"%s\"\n",
-              AQ_UNITS_GLOB_MAX - 1, a);
-      (*nerr)++;
-      return 1;
+    aq_units_rule *r = &ro->rules[ro->nrules < AQ_UNITS_RULES_MAX ? ro->nrules : 0];
+    char glob[AQ_UNITS_GLOB_MAX];
+    if ((v = glob_rule("--units", a, "U", 32, ro->nrules, glob, nerr)) &&
+        parse_units("--units", v, &u, nerr)) {
+      memcpy(r->glob, glob, sizeof glob);
+      r->units = u;
+      ro->nrules++;
     }
-    if (ro->nrules >= AQ_UNITS_RULES_MAX) {
-      fprintf(stderr, "archquake: --units: expected at most %d GLOB=U rules, got "
-                      "more (\"%s\")\n",
-              AQ_UNITS_RULES_MAX, a);
-      (*nerr)++;
-      return 1;
-    }
-    if (!parse_units("--units", eq + 1, &u, nerr))
-      return 1;
-    memcpy(ro->rules[ro->nrules].glob, a, gl);
-    ro->rules[ro->nrules].glob[gl] = '\0';
-    ro->rules[ro->nrules].units = u;
-    ro->nrules++;
     return 1;
   }
+  case AQ_OPT_RECORD_COMPONENT: {
+    char glob[AQ_UNITS_GLOB_MAX];
+    size_t cap = sizeof ro->components[0].channel;
+    if ((v = glob_rule("--component", a, "CHANNEL", cap, ro->ncomponents, glob, nerr))) {
+      memcpy(ro->components[ro->ncomponents].glob, glob, sizeof glob);
+      snprintf(ro->components[ro->ncomponents].channel, cap, "%s", v);
+      ro->ncomponents++;
+    }
+    return 1;
+  }
+  case AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE:
+    ro->accept_implausible = 1;
+    return 1;
+  case AQ_OPT_RECORD_ACCEPT_VERTICAL:
+    ro->accept_vertical = 1;
+    return 1;
   case AQ_OPT_RECORD_DT:
     aq_opt_double_gt("--dt", arg, 0, 3600, &ro->dt_s, nerr);
     return 1;

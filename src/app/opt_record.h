@@ -7,6 +7,9 @@
  *                      last matching rule wins, rules win over plain --units
  *   --dt S             sample interval (s) of text records without a time column
  *   --column N         1-based column of a text record to read as acceleration
+ *   --component GLOB=CH  read channel CH of multi-channel files matching GLOB
+ *   --accept-implausible  keep a record whose PGA is outside 1e-5..10 g
+ *   --accept-vertical  run channels the file identifies as vertical
  * A command puts AQ_OPT_RECORD_LONGOPTS into its getopt_long table, passes
  * every option id to aq_opt_record_handle(), and appends AQ_OPT_RECORD_USAGE
  * to its usage text.  The options fill an aq_read_opts (no heap memory).
@@ -22,25 +25,38 @@
 enum {
   AQ_OPT_RECORD_UNITS = 1000,
   AQ_OPT_RECORD_DT = 1001,
-  AQ_OPT_RECORD_COLUMN = 1002
+  AQ_OPT_RECORD_COLUMN = 1002,
+  AQ_OPT_RECORD_COMPONENT = 1003,
+  AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE = 1004,
+  AQ_OPT_RECORD_ACCEPT_VERTICAL = 1005
 };
 
-#define AQ_OPT_RECORD_LONGOPTS                                  \
-  {"units", required_argument, NULL, AQ_OPT_RECORD_UNITS},      \
-      {"dt", required_argument, NULL, AQ_OPT_RECORD_DT},        \
-      {"column", required_argument, NULL, AQ_OPT_RECORD_COLUMN}
+/* The number of entries in AQ_OPT_RECORD_LONGOPTS. */
+#define AQ_OPT_RECORD_NOPTS 6
+#define AQ_OPT_RECORD_LONGOPTS                                                 \
+  {"units", required_argument, NULL, AQ_OPT_RECORD_UNITS},                     \
+      {"dt", required_argument, NULL, AQ_OPT_RECORD_DT},                       \
+      {"column", required_argument, NULL, AQ_OPT_RECORD_COLUMN},               \
+      {"component", required_argument, NULL, AQ_OPT_RECORD_COMPONENT},         \
+      {"accept-implausible", no_argument, NULL, AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE}, \
+      {"accept-vertical", no_argument, NULL, AQ_OPT_RECORD_ACCEPT_VERTICAL}
 
 /* The same entries as a NULL-terminated table. */
 extern const struct option aq_opt_record_longopts[];
 
 #define AQ_OPT_RECORD_USAGE                                                     \
-  "  --units U       read the records' values as U: g, gal, cm/s2, m/s2,\n"    \
-  "                  nm/s2 or counts (SAC: divided by SCALE, counts per m/s2)\n" \
-  "  --units GLOB=U  the same for records whose path matches GLOB, e.g.\n"      \
-  "                  --units '*.SAC=counts' (repeatable; the last matching\n"   \
-  "                  rule wins, and rules win over --units U)\n"                \
+  "  --units U       values of records that state no units are U: g, g/10,\n"  \
+  "                  gal, cm/s2, mm/s2, m/s2, nm/s2 or counts (divided by the\n" \
+  "                  sensitivity the file states, e.g. SAC SCALE)\n"            \
+  "  --units GLOB=U  records whose path matches GLOB are read as U, even over\n" \
+  "                  units the file states (reported), e.g. '*.SAC=counts'\n"  \
+  "                  (repeatable; the last matching rule wins)\n"              \
   "  --dt S          sample interval (s) of text records without time column\n"  \
-  "  --column N      column N (1-based) of a text record is the acceleration\n"
+  "  --column N      column N (1-based) of a text record is the acceleration\n" \
+  "  --component GLOB=CH  channel CH of multi-channel files matching GLOB\n"   \
+  "                  (or name one record as FILE#CH)\n"                       \
+  "  --accept-implausible  keep records whose PGA is outside 1e-5..10 g\n"     \
+  "  --accept-vertical  run channels the file identifies as vertical\n"
 
 /* Handle option id with argument arg: returns 1 if id is a reader option
  * (a bad value is reported on stderr as one line and counted in *nerr; ro

@@ -197,11 +197,15 @@ static void fail_runs(suite *S, rec_slot *r)
   }
 }
 
-/* Read one component record (*have_rec set on success). */
-static aq_status read_component(suite *S, const char *path, aq_record *rec,
-                                int *have_rec, aq_error *err)
+/* Read one component record (*have_rec set on success); a horizontal one
+ * must not be identified as vertical (aq_record_check_horizontal). */
+static aq_status read_component(suite *S, const char *path, int horizontal,
+                                aq_record *rec, int *have_rec, aq_error *err)
 {
   aq_status s = aq_record_read(path, &S->cfg->read, rec, err);
+  if (s == AQ_OK && horizontal &&
+      (s = aq_record_check_horizontal(rec, &S->cfg->read, err)) != AQ_OK)
+    aq_record_free(rec);
   *have_rec = s == AQ_OK;
   return s;
 }
@@ -226,12 +230,12 @@ static aq_status process_component(suite *S, aq_record *rec, aq_processed *proc,
 static aq_status read_second(suite *S, rec_slot *r)
 {
   const aq_orient_motion *m = r->motion;
-  aq_status s = read_component(S, m->path[1], &r->h2.rec, &r->h2.have_rec, &r->err);
+  aq_status s = read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, &r->err);
   if (s != AQ_OK)
     return s;
   r->run_v = m->path[2] && S->cfg->vertical;
   if (r->run_v &&
-      (s = read_component(S, m->path[2], &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
+      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
     return s;
   const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
   size_t nc = r->run_v ? 3 : 2;
@@ -310,7 +314,7 @@ static int prepare_record(suite *S, rec_slot *r)
     if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
       r->sha256[0] = '\0'; /* the reader says why it cannot be read */
   }
-  aq_status s = read_component(S, first, &r->rec, &r->have_rec, &r->err);
+  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
   double t1 = now_s();
@@ -521,7 +525,7 @@ static void progress(suite *S, double t_start, size_t total, int final)
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const rec_slot *r)
 {
-  if (r->failed || r->warning[0])
+  if (r->failed || r->warning[0] || r->rec.units_conflict[0])
     return 1;
   for (size_t i = 0; r->runs && i < r->nruns; i++)
     if (r->runs[i].failed)
@@ -542,6 +546,8 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
   }
   if (r->warning[0])
     fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
+  if (r->rec.units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < r->nruns; i++) {
@@ -717,7 +723,7 @@ static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
   return st;
 }
 
-int aq_suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
+static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
 #if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
@@ -958,5 +964,67 @@ out:
   aq_signal_ws_free(S.ws);
   if (stats_out)
     *stats_out = stats;
+  return rc;
+}
+
+/* Every channel of a multi-channel file is a record of its own (FILE#CH). */
+int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
+{
+  char **names = NULL;
+  size_t n = 0;
+  aq_error err;
+  const aq_orient_motion **mo = NULL;
+  aq_status st = AQ_OK;
+  if (!cfg->motions) {
+    st = aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err);
+  } else { /* plain records expanded one by one, motions kept beside them */
+    for (size_t i = 0; st == AQ_OK && i < cfg->nrecords; i++) {
+      char **one = NULL;
+      size_t k = 1;
+      if (cfg->motions[i]) {
+        one = malloc(sizeof *one);
+        if (one && !(one[0] = strdup(cfg->records[i]))) {
+          free(one);
+          one = NULL;
+        }
+        st = one ? AQ_OK : aq_error_set(&err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+      } else {
+        st = aq_record_expand(cfg->records + i, 1, &cfg->read, &one, &k, &err);
+      }
+      char **nn = st == AQ_OK ? realloc(names, (n + k) * sizeof *nn) : NULL;
+      const aq_orient_motion **nm = nn ? realloc(mo, (n + k) * sizeof *nm) : NULL;
+      if (nn)
+        names = nn;
+      if (nm)
+        mo = nm;
+      if (st == AQ_OK && (!nn || !nm)) {
+        aq_record_names_free(one, k);
+        st = aq_error_set(&err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+        break;
+      }
+      for (size_t j = 0; st == AQ_OK && j < k; j++) {
+        names[n + j] = one[j];
+        mo[n + j] = cfg->motions[i];
+      }
+      if (st == AQ_OK) {
+        free(one);
+        n += k;
+      }
+    }
+  }
+  if (st != AQ_OK) {
+    aq_error_print(&err, stderr);
+    aq_record_names_free(names, n);
+    free(mo);
+    return AQ_EXIT_FAIL;
+  }
+  aq_suite_cfg c = *cfg;
+  c.records = names;
+  c.nrecords = n;
+  if (cfg->motions)
+    c.motions = mo;
+  int rc = suite_run(&c, stats);
+  aq_record_names_free(names, n);
+  free(mo);
   return rc;
 }

@@ -26,7 +26,9 @@
 #include "../units.h"
 #include "readers.h"
 
-#define AT2_MAX_HEADER_LINES 6 /* the NPTS line is looked for in lines 1..6 */
+#define AT2_MAX_HEADER_LINES 64 /* the NPTS line is looked for in lines 1..64 */
+#define AT2_TEXT_LINES 8        /* text lines before it kept for units, event */
+#define AT2_CHANNEL_MAX 6       /* a component name is short ("180", "UP", "HN1") */
 #define AT2_TOKEN_MAX 64       /* longest number token accepted, characters */
 
 typedef struct {
@@ -69,8 +71,9 @@ static void next_line(at2_cur *c, size_t *b, size_t *e)
 static const char *find_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
+  char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
   for (size_t i = 0; i + m <= n; i++)
-    if (strncasecmp(s + i, needle, m) == 0)
+    if ((char)(s[i] | 0x20) == c0 && strncasecmp(s + i, needle, m) == 0)
       return s + i;
   return NULL;
 }
@@ -89,6 +92,16 @@ static int is_digit(char c) { return c >= '0' && c <= '9'; }
 static int is_numchar(char c)
 {
   return is_digit(c) || c == '.' || c == '+' || c == '-' || c == 'e' || c == 'E';
+}
+
+/* Fixed-width fields may touch: after a value with an exponent, a point
+ * starts the next value (".2385417E-02.7731905E-03"). */
+static int has_exp(const char *t, size_t used)
+{
+  for (size_t i = 0; i < used; i++)
+    if (t[i] == 'e' || t[i] == 'E')
+      return 1;
+  return 0;
 }
 
 static int is_sep(char c)
@@ -111,7 +124,7 @@ static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6, 
  * a single correctly rounded operation on two exact doubles, so the result
  * is the same double strtod gives.  Anything else is copied to a local
  * buffer and given to strtod. */
-static size_t parse_num(const char *s, size_t n, double *x)
+size_t aq_decimal_parse(const char *s, size_t n, double *x)
 {
   size_t i = 0;
   while (i < n && (s[i] == ' ' || s[i] == '\t'))
@@ -215,67 +228,272 @@ static int header_units(const char *s, size_t n, aq_units *u, char *what, size_t
   return -1;
 }
 
-aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
-{
-  memset(rec, 0, sizeof *rec);
-  at2_cur c = {(const char *)buf, n, 0, 1};
-  size_t lb[AT2_MAX_HEADER_LINES], le[AT2_MAX_HEADER_LINES];
-  long npts_line = -1;
-  int nlines = 0;
-  while (nlines < AT2_MAX_HEADER_LINES && c.pos < c.n) {
-    long this_line = c.line;
-    next_line(&c, &lb[nlines], &le[nlines]);
-    nlines++;
-    if (find_ci(c.s + lb[nlines - 1], le[nlines - 1] - lb[nlines - 1], "NPTS")) {
-      npts_line = this_line;
-      break;
-    }
-  }
-  if (npts_line < 0)
-    return aq_error_set(err, AQ_EFORMAT, name, -1, -1, "NPTS",
-                        "expected a line with NPTS and DT among the first %d "
-                        "lines, found none",
-                        AT2_MAX_HEADER_LINES);
-  const char *hl = c.s + lb[nlines - 1];
-  size_t hn = le[nlines - 1] - lb[nlines - 1];
-  char got[80];
-  quote(hl, hn, got, sizeof got);
+/* ---- the NPTS/DT line ------------------------------------------------- */
 
-  /* NPTS and DT. */
-  double npts_d = -1, dt = -1;
-  const char *pn = find_ci(hl, hn, "NPTS");
-  const char *q = pn + 4;
-  while (q < hl + hn && (*q == ' ' || *q == '\t'))
-    q++;
-  if (q < hl + hn && (*q == '=' || *q == ':')) {
-    size_t used = parse_num(q + 1, (size_t)(hl + hn - q - 1), &npts_d);
-    const char *after = q + 1 + used;
-    if (!used || (after < hl + hn && (isalnum((unsigned char)*after) || *after == '.')))
-      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
-                          "expected NPTS= a positive integer, got \"%s\"", got);
-    const char *pd = NULL;
-    for (const char *r = q + 1 + used; r + 2 <= hl + hn; r++)
-      if ((r[0] == 'D' || r[0] == 'd') && (r[1] == 'T' || r[1] == 't')) {
-        const char *t = r + 2;
-        while (t < hl + hn && (*t == ' ' || *t == '\t'))
-          t++;
-        if (t < hl + hn && (*t == '=' || *t == ':')) {
-          pd = t + 1;
+static int is_alpha(char ch) { return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z'); }
+
+/* Keyword kw as a word (no letter on either side) in s[0..n), case-
+ * insensitive: its offset, or -1. */
+static long find_word(const char *s, size_t n, const char *kw)
+{
+  size_t m = strlen(kw);
+  char k0 = kw[0], k0l = (char)(k0 | 0x20); /* kw's first letter, upper and lower */
+  for (size_t i = 0; i + m <= n; i++)
+    if ((s[i] == k0 || s[i] == k0l) && strncasecmp(s + i, kw, m) == 0 &&
+        (i == 0 || !is_alpha(s[i - 1])) &&
+        (i + m == n || !is_alpha(s[i + m])))
+      return (long)i;
+  return -1;
+}
+
+/* A number token starting at s[i] and ending at a separator (blank, comma,
+ * ';', end of line): 1 with *x and *end, else 0. */
+static int num_at(const char *s, size_t n, size_t i, double *x, size_t *end)
+{
+  if (i >= n)
+    return 0;
+  size_t used = aq_decimal_parse(s + i, n - i, x);
+  if (!used)
+    return 0;
+  size_t e = i + used;
+  if (e < n && !(s[e] == ' ' || s[e] == '\t' || s[e] == ',' || s[e] == ';'))
+    return 0;
+  *end = e;
+  return 1;
+}
+
+/* The number just after keyword end ke (blanks, '=' or ':' between). */
+static int num_after(const char *s, size_t n, size_t ke, double *x, size_t *end)
+{
+  size_t i = ke;
+  while (i < n && (s[i] == ' ' || s[i] == '\t' || s[i] == '=' || s[i] == ':'))
+    i++;
+  return num_at(s, n, i, x, end);
+}
+
+/* The number token ending just before offset kb (blanks and commas between). */
+static int num_before(const char *s, size_t kb, double *x, size_t *start)
+{
+  size_t e = kb;
+  while (e > 0 && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == ','))
+    e--;
+  size_t b = e;
+  while (b > 0 && is_numchar(s[b - 1]))
+    b--;
+  size_t end;
+  if (b == e || !num_at(s, e, b, x, &end) || end != e)
+    return 0;
+  *start = b;
+  return 1;
+}
+
+/* Parse an NPTS/DT line s[0..n): NPTS and DT as words in either order, each
+ * with its number after it ("NPTS= 4000, DT= .01 SEC", "dt: 0.01 npts 4000")
+ * or before it ("4000 NPTS, .01 DT"), or the pair "NPTS, DT" after or before
+ * two numbers ("4000 0.0100 NPTS, DT").  Returns 1 (*npts, *dt, *tail the
+ * offset after the last thing used), 0 if the line has no NPTS word, -1 if
+ * NPTS lacks its number, -2 if DT or its number is missing. */
+static int npts_line(const char *s, size_t n, double *npts, double *dt, size_t *tail)
+{
+  long kn = find_word(s, n, "NPTS"), kd = find_word(s, n, "DT");
+  if (kn < 0)
+    return 0;
+  if (kd < 0)
+    return -2;
+  size_t k1 = (size_t)(kn < kd ? kn : kd), k2 = (size_t)(kn < kd ? kd : kn);
+  size_t e1 = k1 + (kn < kd ? 4 : 2), e2 = k2 + (kn < kd ? 2 : 4);
+  double v[2];
+  size_t end = 0;
+  int ok = 0;
+  /* adjacent keywords ("NPTS, DT"): the pair of numbers after or before */
+  size_t i = e1;
+  while (i < k2 && (s[i] == ' ' || s[i] == '\t' || s[i] == ',' || s[i] == '/' ||
+                    s[i] == '&'))
+    i++;
+  if (i == k2) {
+    size_t e, j;
+    if (num_after(s, n, e2, &v[0], &e)) {
+      j = e;
+      while (j < n && (s[j] == ' ' || s[j] == '\t' || s[j] == ','))
+        j++;
+      ok = num_at(s, n, j, &v[1], &end);
+    }
+    size_t b1, b0;
+    if (!ok && num_before(s, k1, &v[1], &b1) && num_before(s, b1, &v[0], &b0)) {
+      ok = 1;
+      end = e2;
+    }
+  } else {
+    size_t e, b;
+    int g1 = num_after(s, k2, e1, &v[0], &e) || num_before(s, k1, &v[0], &b);
+    int g2 = num_after(s, n, e2, &v[1], &end);
+    if (!g2 && num_before(s, k2, &v[1], &b)) {
+      g2 = 1;
+      end = e2;
+    }
+    ok = g1 && g2;
+    if (!ok) /* which keyword lacks its number */
+      return (kn < kd ? !g1 : !g2) ? -1 : -2;
+  }
+  if (!ok)
+    return -1;
+  *npts = kn < kd ? v[0] : v[1];
+  *dt = kn < kd ? v[1] : v[0];
+  *tail = end;
+  return 1;
+}
+
+/* A line that starts like values: its first non-blank character is a
+ * digit, a point or a sign, and it has a digit. */
+static int data_line(const char *s, size_t n)
+{
+  size_t i = 0;
+  while (i < n && (s[i] == ' ' || s[i] == '\t'))
+    i++;
+  if (i >= n || !(is_digit(s[i]) || s[i] == '.' || s[i] == '-' || s[i] == '+'))
+    return 0;
+  for (; i < n; i++)
+    if (is_digit(s[i]))
+      return 1;
+  return 0;
+}
+
+/* Find the header: the last line with an NPTS/DT pair that is followed
+ * (after blank lines) by a line of values, among the first
+ * AT2_MAX_HEADER_LINES (up to an end marker).  Lines before it are free text
+ * (they may quote other numbers, even other NPTS lines).  On success fills *h (pos after the NPTS line)
+ * and returns 1; returns 0 if none, with *bad_line the last line that had an
+ * NPTS word but not its numbers (or -1). */
+typedef struct {
+  size_t line_b, line_e; /* the NPTS line */
+  long line;             /* its number */
+  size_t data_pos;       /* start of the values */
+  long data_line;        /* their first line */
+  double npts, dt;
+  size_t tail;           /* offset in the NPTS line after DT */
+  size_t text_b[AT2_TEXT_LINES], text_e[AT2_TEXT_LINES];
+  int ntext;             /* non-blank text lines before it (at most AT2_TEXT_LINES) */
+} at2_header;
+
+static int find_header(const char *s, size_t n, at2_header *h, long *bad_line,
+                       size_t *bad_b, size_t *bad_e, int *bad_kind)
+{
+  at2_cur c = {s, n, 0, 1};
+  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0)
+    c.pos = 3;
+  *bad_line = -1;
+  h->ntext = 0;
+  int found = 0, ntext = 0;
+  for (int k = 0; k < AT2_MAX_HEADER_LINES && c.pos < c.n; k++) {
+    long ln = c.line;
+    size_t b, e;
+    next_line(&c, &b, &e);
+    double np = 0, dt = 0;
+    size_t tail = 0;
+    size_t fb = b;
+    while (fb < e && (s[fb] == ' ' || s[fb] == '\t'))
+      fb++;
+    /* a commented line ('#', '%', '!') of another format is never the header */
+    int r = fb < e && (s[fb] == '#' || s[fb] == '%' || s[fb] == '!')
+                ? 0
+                : npts_line(s + b, e - b, &np, &dt, &tail);
+    if (r != 0) {
+      at2_cur d = c; /* the next non-blank line */
+      size_t db = d.pos, de = d.pos;
+      long dl = d.line;
+      while (d.pos < d.n) {
+        dl = d.line;
+        next_line(&d, &db, &de);
+        size_t i = db;
+        while (i < de && (s[i] == ' ' || s[i] == '\t'))
+          i++;
+        if (i < de)
           break;
+      }
+      if (data_line(s + db, de - db)) {
+        /* the last such line is the header (earlier ones are quoted) */
+        found = r > 0;
+        if (r > 0) {
+          h->line_b = b, h->line_e = e, h->line = ln;
+          h->data_pos = db, h->data_line = dl;
+          h->npts = np, h->dt = dt, h->tail = tail;
+          h->ntext = ntext;
+          *bad_line = -1;
+        } else { /* the header by its place, but malformed */
+          *bad_line = ln, *bad_b = b, *bad_e = e, *bad_kind = r;
         }
       }
-    if (!pd || !parse_num(pd, (size_t)(hl + hn - pd), &dt))
-      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "DT",
-                          "expected DT= the sample interval in s, got \"%s\"", got);
-  } else { /* NGA-West1: "4000   0.0100   NPTS, DT" */
-    size_t used = parse_num(hl, (size_t)(pn - hl), &npts_d);
-    size_t used2 = used ? parse_num(hl + used, (size_t)(pn - hl) - used, &dt) : 0;
-    if (!used || !used2)
-      return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
-                          "expected \"NPTS= N, DT= S\" or \"N S NPTS, DT\", got \"%s\"",
-                          got);
+    } else if ((found || *bad_line > 0) && fb < e &&
+               (s[fb] == '*' || find_ci(s + fb, e - fb, "end data") == s + fb ||
+                find_ci(s + fb, e - fb, "end of data") == s + fb)) {
+      break; /* an end marker: the data is over */
+    }
+    if (fb < e && ntext < AT2_TEXT_LINES) {
+      h->text_b[ntext] = b, h->text_e[ntext] = e;
+      ntext++;
+    }
   }
+  return found;
+}
+
+int aq_at2_sniff(const unsigned char *buf, size_t n, size_t *text_lines_b,
+                 size_t *text_lines_e, int *ntext, int max_text)
+{
+  at2_header h;
+  long bl;
+  size_t bb, be;
+  int bk;
+  if (!find_header((const char *)buf, n, &h, &bl, &bb, &be, &bk)) {
+    *ntext = 0;
+    return bl > 0; /* a malformed header is still AT2: the parser says why */
+  }
+  int m = h.ntext < max_text ? h.ntext : max_text;
+  for (int i = 0; i < m; i++)
+    text_lines_b[i] = h.text_b[i], text_lines_e[i] = h.text_e[i];
+  *ntext = m;
+  return 1;
+}
+
+/* Copy s[b..e) trimmed of blanks into out. */
+static void trimmed(const char *s, size_t b, size_t e, char *out, size_t cap)
+{
+  while (b < e && (s[b] == ' ' || s[b] == '\t' || s[b] == ','))
+    b++;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == ','))
+    e--;
+  quote(s + b, e - b, out, cap);
+}
+
+aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  (void)opts; /* an AT2 file states everything it can */
+  memset(raw, 0, sizeof *raw);
+  const char *s = (const char *)buf;
+  at2_header h;
+  long bad_line;
+  size_t bad_b = 0, bad_e = 0;
+  int bad_kind = -1;
+  char got[80];
+  if (!find_header(s, n, &h, &bad_line, &bad_b, &bad_e, &bad_kind)) {
+    if (bad_line > 0) {
+      quote(s + bad_b, bad_e - bad_b, got, sizeof got);
+      if (bad_kind == -2)
+        return aq_error_set(err, AQ_EFORMAT, name, bad_line, -1, "DT",
+                            "expected DT= the sample interval in s, got \"%s\"", got);
+      return aq_error_set(err, AQ_EFORMAT, name, bad_line, -1, "NPTS",
+                          "expected NPTS= a positive integer (\"NPTS= N, DT= S\" or "
+                          "\"N S NPTS, DT\"), got \"%s\"",
+                          got);
+    }
+    return aq_error_set(err, AQ_EFORMAT, name, -1, -1, "NPTS",
+                        "expected a line with NPTS and DT followed by the values "
+                        "among the first %d lines, found none",
+                        AT2_MAX_HEADER_LINES);
+  }
+  long npts_line = h.line;
+  quote(s + h.line_b, h.line_e - h.line_b, got, sizeof got);
+  double npts_d = h.npts, dt = h.dt;
   if (!(npts_d >= 1) || npts_d != floor(npts_d) || npts_d > 1e12)
     return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
                         "expected a positive integer, got \"%s\"", got);
@@ -283,32 +501,26 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "DT",
                         "expected a sample interval > 0 s, got \"%s\"", got);
   size_t npts = (size_t)npts_d;
+  at2_cur c = {s, n, h.data_pos, h.data_line};
 
-  /* Units: the text lines say "UNITS OF G"; --units overrides. */
-  aq_units u = AQ_UNITS_G;
-  char uword[32] = "";
-  for (int k = 0; k + 1 < nlines; k++) {
+  /* Units: the text lines say "UNITS OF G"; an AT2 file is in g by its
+   * definition when they say nothing. */
+  char ustated[24] = "g", usaid[64] = "";
+  for (int k = 0; k < h.ntext; k++) {
     aq_units hu;
-    int r = header_units(c.s + lb[k], le[k] - lb[k], &hu, uword, sizeof uword);
+    char uword[32] = "";
+    int r = header_units(s + h.text_b[k], h.text_e[k] - h.text_b[k], &hu, uword,
+                         sizeof uword);
     if (r == 1) {
-      u = hu;
+      snprintf(ustated, sizeof ustated, "%s", aq_units_name(hu));
       break;
     }
-    if (r < 0 && aq_read_opts_units_for(opts, name) == AQ_UNITS_FILE)
-      return aq_error_set(err, AQ_EUNITS, name, k + 1, -1, "units",
-                          "expected acceleration units (G, CM/S/S, M/S/S), got "
-                          "\"%s\"; if the values are acceleration, say in what "
-                          "with --units g|gal|cm/s2|m/s2",
-                          uword);
+    if (r < 0) {
+      ustated[0] = '\0';
+      snprintf(usaid, sizeof usaid, "UNITS OF %s", uword);
+      break;
+    }
   }
-  aq_units ov = aq_read_opts_units_for(opts, name);
-  if (ov == AQ_UNITS_COUNTS)
-    return aq_error_set(err, AQ_EUNITS, name, -1, -1, "units",
-                        "--units counts needs a sensitivity, which an AT2 file "
-                        "does not carry: give g, gal, cm/s2, m/s2 or nm/s2");
-  if (ov != AQ_UNITS_FILE)
-    u = ov;
-  double factor = aq_units_to_mps2(u);
 
   /* Each value takes at least one character and one separator. */
   size_t room = (c.n - c.pos + 1) / 2;
@@ -337,18 +549,28 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     const char *t = c.s + c.pos;
     size_t avail = c.n - c.pos, tl = 0;
+    double x;
+    size_t used;
+    if (t[0] != 'e' && t[0] != 'E' && t[0] != '*') { /* the common case first */
+      used = aq_decimal_parse(t, avail, &x);
+      if (used && (used == avail || is_sep(t[used])) && isfinite(x)) {
+        acc[k++] = x;
+        c.pos += used;
+        continue;
+      }
+    }
     while (tl < avail && !is_sep(t[tl]))
       tl++;
     if (tl == 0)
       tl = 1; /* a NUL byte */
-    if ((t[0] == 'e' || t[0] == 'E') && tl >= 3 && strncasecmp(t, "end", 3) == 0)
-      break; /* "End Data" marker */
-    double x;
-    size_t used = parse_num(t, tl, &x);
+    if (((t[0] == 'e' || t[0] == 'E') && tl >= 3 && strncasecmp(t, "end", 3) == 0) ||
+        t[0] == '*')
+      break; /* "End Data" or "*** End Data ***" marker */
+    used = aq_decimal_parse(t, tl, &x);
     int bad = !used || !isfinite(x);
     if (!bad && used < tl) {
       char nx = t[used];
-      bad = !(nx == '-' || nx == '+' ||
+      bad = !(nx == '-' || nx == '+' || nx == '*' || (nx == '.' && has_exp(t, used)) ||
               (tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0));
     }
     if (bad) { /* the message's parts, only on the error path */
@@ -366,8 +588,8 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     }
     if (used < tl) {
       char nx = t[used];
-      int glued_value = nx == '-' || nx == '+';
-      int glued_end = tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0;
+      int glued_value = nx == '-' || nx == '+' || (nx == '.' && has_exp(t, used));
+      int glued_end = nx == '*' || (tl - used >= 3 && strncasecmp(t + used, "end", 3) == 0);
       if (!glued_value && !glued_end) {
         free(acc);
         if (c.pos + tl == c.n) /* cut off in the middle of a value */
@@ -384,15 +606,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
                           "expected a finite number, got \"%s\"", tokq);
     }
-    acc[k] = x * factor;
-    if (!isfinite(acc[k])) {
-      snprintf(field, sizeof field, "value %zu", k + 1);
-      quote(t, used < AT2_TOKEN_MAX ? used : AT2_TOKEN_MAX, tokq, sizeof tokq);
-      free(acc);
-      return aq_error_set(err, AQ_EVALUE, name, c.line, -1, field,
-                          "expected a value that is finite in m/s2, got \"%s\" "
-                          "(overflows)", tokq);
-    }
+    acc[k] = x;
     k++;
     c.pos += used;
   }
@@ -403,17 +617,66 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                         "truncated or NPTS too large",
                         npts, npts_line, k);
   }
-  aq_status s = aq_record_set_names_(rec, name, err);
-  if (s != AQ_OK) {
+  aq_status st = aq_raw_file_alloc(raw, 1, name, err);
+  if (st != AQ_OK) {
     free(acc);
-    return s;
+    return st;
   }
-  snprintf(rec->format, sizeof rec->format, "at2");
-  rec->npts = npts;
-  rec->dt_s = dt;
-  rec->begin_s = 0.0;
-  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(u));
-  rec->to_mps2 = factor;
-  rec->acc_mps2 = acc;
+  snprintf(raw->format, sizeof raw->format, "at2");
+  aq_raw_channel *ch = &raw->chan[0];
+  ch->npts = npts;
+  ch->dt_s = dt;
+  ch->begin_s = 0.0;
+  snprintf(ch->units, sizeof ch->units, "%s", ustated);
+  snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
+  ch->values = acc;
+  /* What the text states: the event line (PEER: "Event, date, station,
+   * component"), the component (PEER's three text lines: the second line's
+   * last field's first word, "180", "N", "UP"; else a "Component:" in any
+   * text line), the processing (filter corners on the NPTS or units line). */
+  if (h.ntext >= 2)
+    trimmed(s, h.text_b[1], h.text_e[1], raw->event, sizeof raw->event);
+  size_t cb = 0, ce = 0;
+  if (h.ntext == 3) {
+    size_t b = h.text_b[1], e = h.text_e[1], commas = 0;
+    for (size_t i = b; i < e; i++)
+      if (s[i] == ',')
+        commas++, cb = i + 1;
+    if (commas < 2)
+      cb = 0;
+  }
+  for (int k = 0; k < h.ntext && !cb; k++) {
+    const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "Component:");
+    if (f)
+      cb = (size_t)(f - s) + 10;
+  }
+  if (cb) {
+    while (cb < n && (s[cb] == ' ' || s[cb] == '\t'))
+      cb++;
+    ce = cb;
+    while (ce < n && (isalnum((unsigned char)s[ce]) || s[ce] == '-' || s[ce] == '.'))
+      ce++;
+    if (ce > cb && ce - cb <= AT2_CHANNEL_MAX) {
+      trimmed(s, cb, ce, ch->channel, sizeof ch->channel);
+      char *endp;
+      double az = strtod(ch->channel, &endp);
+      if (ch->channel[0] && !*endp && az >= 0 && az <= 360)
+        ch->azimuth_deg = az;
+    }
+  }
+  size_t tb = h.line_b + h.tail, te = h.line_e;
+  while (tb < te && (s[tb] == ' ' || s[tb] == ',' || s[tb] == '\t'))
+    tb++;
+  if (te - tb >= 3 && strncasecmp(s + tb, "SEC", 3) == 0)
+    tb += 3;
+  char tailtxt[120];
+  trimmed(s, tb, te, tailtxt, sizeof tailtxt);
+  for (int k = 0; k < h.ntext && !raw->processing[0]; k++) {
+    const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "FILTER");
+    if (f)
+      trimmed(s, (size_t)(f - s), h.text_e[k], raw->processing, sizeof raw->processing);
+  }
+  if (!raw->processing[0] && tailtxt[0])
+    snprintf(raw->processing, sizeof raw->processing, "%s", tailtxt);
   return AQ_OK;
 }

@@ -17,8 +17,12 @@
  * t_0 + k dt, dt = (t_last - t_0) / (n - 1); they need not start at 0
  * (begin_s = t_0).
  *
- * Units: --units, else those of the column name ("acc (g)", "acc_g",
- * "a [cm/s2]"), else the preamble's UNIT line, else the record is refused.
+ * Channels: --column N alone, else every named column that is not time and
+ * does not name units other than acceleration ("NS,EW,UD": three channels),
+ * else the first column that is not time.
+ *
+ * Units stated: those of the column name ("acc (g)", "acc_g", "a [cm/s2]"),
+ * else the preamble's UNIT line, else none (record.c decides).
  */
 #include <ctype.h>
 #include <errno.h>
@@ -47,24 +51,19 @@ typedef struct {
 } csv_cur;
 
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
+/* Next line [*b, *e) (without its end), or 0 at the end of the input. */
 static int next_line(csv_cur *c, size_t *b, size_t *e)
 {
-  if (c->pos >= c->n)
+  if (!aq_text_line_(c->s, c->n, &c->pos, b, e))
     return 0;
-  *b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
-  *e = c->pos;
-  if (c->pos < c->n && c->s[c->pos] == '\r') {
-    while (c->pos < c->n && c->s[c->pos] == '\r')
-      c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-  } else if (c->pos < c->n) {
-    c->pos++;
-  }
   c->line++;
   return 1;
+}
+
+/* isspace() of the C locale, without the library call. */
+static int is_space(char c)
+{
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
 
 /* Strip a '#' comment and surrounding blanks. */
@@ -75,9 +74,9 @@ static void trim_line(const char *s, size_t *b, size_t *e)
       *e = i;
       break;
     }
-  while (*b < *e && isspace((unsigned char)s[*b]))
+  while (*b < *e && is_space(s[*b]))
     (*b)++;
-  while (*e > *b && isspace((unsigned char)s[*e - 1]))
+  while (*e > *b && is_space(s[*e - 1]))
     (*e)--;
 }
 
@@ -119,9 +118,9 @@ static size_t split(const char *s, size_t b, size_t e, char sep, span *f, size_t
       if (i < e)
         i++;
     }
-    while (fb < fe && isspace((unsigned char)s[fb]))
+    while (fb < fe && is_space(s[fb]))
       fb++;
-    while (fe > fb && isspace((unsigned char)s[fe - 1]))
+    while (fe > fb && is_space(s[fe - 1]))
       fe--;
     if (fe - fb >= 2 && s[fb] == '"' && s[fe - 1] == '"')
       fb++, fe--;
@@ -145,6 +144,13 @@ static int field_num(const char *s, span f, int decimal_comma, double *x)
 {
   char tok[CSV_FIELD_MAX];
   size_t len = f.e - f.b;
+  if (!decimal_comma && len > 0 && s[f.b] != ' ' && s[f.b] != '\t') {
+    double v; /* plain decimals: the fast parser (same double as strtod) */
+    if (aq_decimal_parse(s + f.b, len, &v) == len) {
+      *x = v;
+      return isfinite(v) ? 1 : 2;
+    }
+  }
   if (len == 0 || len >= sizeof tok)
     return 0;
   for (size_t i = 0; i < len; i++) {
@@ -250,13 +256,40 @@ static const char *kv(const char *s, size_t b, size_t e, const char *key)
   return s + i;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of d[0..n) (Hoare's selection; d is reordered). */
+static double select_kth(double *d, size_t n, size_t k)
 {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
+  size_t lo = 0, hi = n - 1;
+  while (lo < hi) {
+    double pivot = d[lo + (hi - lo) / 2];
+    size_t i = lo, j = hi;
+    while (i <= j) {
+      while (d[i] < pivot)
+        i++;
+      while (d[j] > pivot)
+        j--;
+      if (i <= j) {
+        double t = d[i];
+        d[i] = d[j];
+        d[j] = t;
+        i++;
+        if (j == 0)
+          break;
+        j--;
+      }
+    }
+    if (k <= j)
+      hi = j;
+    else if (k >= i)
+      lo = i;
+    else
+      return d[k];
+  }
+  return d[k];
 }
 
-/* Median of the n - 1 steps of t (NaN if out of memory). */
+/* Median of the n - 1 steps of t (NaN if out of memory): the upper median,
+ * element (n - 1) / 2 of the sorted steps. */
 static double median_step(const double *t, size_t n)
 {
   double *d = malloc((n - 1) * sizeof *d);
@@ -264,16 +297,15 @@ static double median_step(const double *t, size_t n)
     return NAN;
   for (size_t i = 1; i < n; i++)
     d[i - 1] = t[i] - t[i - 1];
-  qsort(d, n - 1, sizeof *d, cmp_double);
-  double m = d[(n - 1) / 2];
+  double m = select_kth(d, n - 1, (n - 1) / 2);
   free(d);
   return m;
 }
 
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
-  memset(rec, 0, sizeof *rec);
+  memset(raw, 0, sizeof *raw);
   csv_cur c = {(const char *)buf, n, 0, 0};
   const char *s = c.s;
   if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte-order mark */
@@ -285,8 +317,12 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
 
   /* Preamble. */
   double pre_dt = 0;
-  int pre_units = 0;
+  int pre_units = 0; /* 1 acceleration units stated, -1 other units */
   aq_units pre_u = AQ_UNITS_FILE;
+  long pre_line = -1;
+  char pre_said[48] = "";
+  size_t seq_b = 0, seq_e = 0; /* a "#DataSequence:" list of column names */
+  long seq_line = -1;
   size_t hb = 0, he = 0; /* last non-numeric line before the data */
   long hline = -1;
   char sep = 0;
@@ -298,6 +334,23 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                           "expected rows of numbers (time, acceleration or "
                           "acceleration only), found none in %ld lines",
                           c.line);
+    if (b < e && s[b] == '#') { /* CWB: "#AmplitudeUnit: gal.", "#DataSequence: Time U(+); N(+)" */
+      const char *v;
+      if ((v = kv(s, b + 1, e, "AmplitudeUnit"))) {
+        char val[CSV_NAME_MAX];
+        copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
+        val[strcspn(val, " \t")] = '\0';
+        size_t l = strlen(val);
+        if (l > 0 && val[l - 1] == '.')
+          val[l - 1] = '\0';
+        int r = units_in(val, &pre_u);
+        pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
+        pre_line = c.line;
+        snprintf(pre_said, sizeof pre_said, "%.40s", val);
+      } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
+        seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
+      }
+    }
     trim_line(s, &b, &e);
     if (b == e)
       continue;
@@ -339,12 +392,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     } else if ((v = kv(s, b, e, "UNITS")) || (v = kv(s, b, e, "UNIT"))) {
       copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
       int r = units_in(val, &pre_u);
-      if (r < 0 && aq_read_opts_units_for(opts, name) == AQ_UNITS_FILE)
-        return aq_error_set(err, AQ_EUNITS, name, c.line, -1, "UNIT",
-                            "expected acceleration units (g, gal, cm/s2, m/s2), "
-                            "got \"%s\"",
-                            val);
-      pre_units = r > 0;
+      pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
+      pre_line = c.line;
+      snprintf(pre_said, sizeof pre_said, "%.40s", val);
     } else {
       hb = b, he = e, hline = c.line; /* may name the columns */
     }
@@ -377,6 +427,18 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
         copy_field(s, hf[i], names[i], CSV_NAME_MAX);
     }
   }
+  if (!have_names && seq_line > 0) { /* "Time U(+); N(+); E(+)" */
+    span hf[MAXF];
+    size_t hnf = split(s, seq_b, seq_e, ' ', hf, MAXF);
+    if (hnf == ncols) {
+      have_names = 1;
+      hline = seq_line;
+      for (size_t i = 0; i < ncols; i++) {
+        copy_field(s, hf[i], names[i], CSV_NAME_MAX);
+        names[i][strcspn(names[i], ";(")] = '\0';
+      }
+    }
+  }
 
   /* Which column is time, which is acceleration. */
   double dt_known = opts && opts->dt_s > 0 ? opts->dt_s : pre_dt;
@@ -390,7 +452,10 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   } else if (ncols >= 2 && !(dt_known > 0)) {
     tcol = 0;
   }
-  size_t acol;
+  /* The acceleration columns (channels): --column N, else every named
+   * column that is not time and does not name other units, else the first
+   * column that is not time. */
+  size_t chcol[MAXF], nch = 0;
   if (opts && opts->column > 0) {
     if (opts->column > ncols)
       return aq_error_set(err, AQ_EOPTION, name, first_line, -1, "--column",
@@ -399,61 +464,51 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EOPTION, name, first_line, -1, "--column",
                           "expected an acceleration column, got %zu (the time)",
                           opts->column);
-    acol = opts->column - 1;
+    chcol[nch++] = opts->column - 1;
   } else {
-    acol = tcol == 0 ? 1 : 0;
-    if (acol >= ncols)
-      return aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
-                          "expected an acceleration column beside the time, "
-                          "got %zu column",
-                          ncols);
+    if (have_names)
+      for (size_t i = 0; i < ncols; i++) {
+        aq_units cu;
+        if ((long)i != tcol && units_in(names[i], &cu) >= 0)
+          chcol[nch++] = i;
+      }
+    if (nch == 0) {
+      chcol[nch++] = tcol == 0 ? 1 : 0;
+      if (chcol[0] >= ncols)
+        return aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
+                            "expected an acceleration column beside the time, "
+                            "got %zu column",
+                            ncols);
+    }
   }
   if (tcol < 0 && !(dt_known > 0))
     return aq_error_set(err, AQ_EFORMAT, name, first_line, -1, "dt",
                         "no time column and no sample interval: give --dt S "
                         "(or a time column, or a \"SAMPLING RATE= N Hz\" line)");
-
-  /* Units. */
-  aq_units u = aq_read_opts_units_for(opts, name);
-  if (u == AQ_UNITS_COUNTS)
-    return aq_error_set(err, AQ_EUNITS, name, -1, -1, "units",
-                        "--units counts needs a sensitivity, which a text record "
-                        "does not carry: give g, gal, cm/s2, m/s2 or nm/s2");
-  if (u == AQ_UNITS_FILE && have_names) {
-    aq_units cu;
-    int r = units_in(names[acol], &cu);
-    if (r < 0)
-      return aq_error_set(err, AQ_EUNITS, name, hline, -1, names[acol],
-                          "expected acceleration units (g, gal, cm/s2, m/s2), "
-                          "got a column of velocity, displacement or time; if it "
-                          "is acceleration, say in what with --units");
-    if (r > 0)
-      u = cu;
-  }
-  if (u == AQ_UNITS_FILE && pre_units)
-    u = pre_u;
-  if (u == AQ_UNITS_FILE)
-    return aq_error_set(err, AQ_EUNITS, name, have_names ? hline : first_line, -1,
-                        "units",
-                        "expected the units in a header (e.g. \"time,acc (g)\", "
-                        "\"t,acc_g\" or \"UNIT = gal\"), found none; say which "
-                        "with --units g|gal|cm/s2|m/s2|nm/s2 (or --units "
-                        "'GLOB=U')");
-  double factor = aq_units_to_mps2(u);
+  int chof[MAXF]; /* column -> channel index, or -1 */
+  for (size_t i = 0; i < MAXF; i++)
+    chof[i] = -1;
+  for (size_t j = 0; j < nch; j++)
+    chof[chcol[j]] = (int)j;
 
   /* Rows: at most one per line end left, plus one. */
   size_t cap = 2;
   for (size_t i = first_b; i < n; i++)
     cap += s[i] == '\n' || s[i] == '\r';
-  double *acc = malloc(cap * sizeof *acc);
+  aq_status st = aq_raw_file_alloc(raw, nch, name, err);
+  if (st != AQ_OK)
+    return st;
+  int nomem = 0;
+  for (size_t j = 0; j < nch; j++)
+    nomem |= !(raw->chan[j].values = malloc(cap * sizeof(double)));
   double *tt = tcol >= 0 ? malloc(cap * sizeof *tt) : NULL;
   long *lines = tcol >= 0 ? malloc(cap * sizeof *lines) : NULL;
-  if (!acc || (tcol >= 0 && (!tt || !lines))) {
-    free(acc), free(tt), free(lines);
+  if (nomem || (tcol >= 0 && (!tt || !lines))) {
+    free(tt), free(lines);
+    aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
   }
   size_t k = 0;
-  aq_status st = AQ_OK;
   b = first_b, e = first_e;
   long line = first_line;
   for (;;) {
@@ -466,11 +521,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
     for (size_t i = 0; i < nf && st == AQ_OK; i++) {
       int r = field_num(s, f[i], dcomma, &x);
-      if (r == 1 && i == acol && !isfinite(x * factor))
-        r = 3; /* overflows in m/s2 */
       if (r == 1) {
-        if (i == acol)
-          acc[k] = x * factor;
+        if (chof[i] >= 0)
+          raw->chan[chof[i]].values[k] = x;
         if ((long)i == tcol)
           tt[k] = x;
         continue;
@@ -481,12 +534,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       else
         snprintf(fld, sizeof fld, "column %zu", i + 1);
       copy_field(s, f[i], got, sizeof got);
-      if (r == 3)
-        st = aq_error_set(err, AQ_EVALUE, name, line, -1, fld,
-                          "expected a value that is finite in m/s2, got \"%s\" "
-                          "(overflows)", got);
-      else
-        st = aq_error_set(err, r == 2 ? AQ_EVALUE : AQ_EFORMAT, name, line, -1, fld,
+      st = aq_error_set(err, r == 2 ? AQ_EVALUE : AQ_EFORMAT, name, line, -1, fld,
                           "expected a %snumber, got \"%s\"", r == 2 ? "finite " : "",
                           got);
     }
@@ -558,21 +606,34 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   if (st == AQ_OK && k == 0)
     st = aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
                       "expected at least one row of numbers, got none");
-  if (st == AQ_OK)
-    st = aq_record_set_names_(rec, name, err);
   if (st != AQ_OK) {
-    free(acc);
-    memset(rec, 0, sizeof *rec);
+    aq_raw_file_free(raw);
     return st;
   }
-  snprintf(rec->format, sizeof rec->format, "csv");
-  rec->npts = k;
-  rec->dt_s = dt;
-  rec->begin_s = begin;
-  if (have_names)
-    snprintf(rec->channel, sizeof rec->channel, "%.15s", names[acol]);
-  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(u));
-  rec->to_mps2 = factor;
-  rec->acc_mps2 = acc;
+  snprintf(raw->format, sizeof raw->format, "csv");
+  for (size_t j = 0; j < nch; j++) {
+    aq_raw_channel *ch = &raw->chan[j];
+    size_t col = chcol[j];
+    ch->npts = k;
+    ch->dt_s = dt;
+    ch->begin_s = begin;
+    aq_units cu;
+    int r = have_names ? units_in(names[col], &cu) : 0;
+    if (have_names)
+      snprintf(ch->channel, sizeof ch->channel, "%.15s", names[col]);
+    if (r > 0) {
+      snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(cu));
+      ch->units_line = hline;
+    } else if (r < 0) {
+      snprintf(ch->units_said, sizeof ch->units_said, "line %ld: column \"%.40s\"",
+               hline, names[col]);
+    } else if (pre_units > 0) {
+      snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(pre_u));
+      ch->units_line = pre_line;
+    } else if (pre_units < 0) {
+      snprintf(ch->units_said, sizeof ch->units_said, "line %ld: UNIT = %s",
+               pre_line, pre_said);
+    }
+  }
   return AQ_OK;
 }

@@ -2,7 +2,9 @@
  * and the units helpers shared by the readers (see record.h, readers.h). */
 #include "record.h"
 
+#include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <fnmatch.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -29,6 +31,9 @@ static const struct {
     {"m/s**2", AQ_UNITS_MPS2},   {"mps2", AQ_UNITS_MPS2},
     {"nm/s2", AQ_UNITS_NMPS2},   {"nm/s^2", AQ_UNITS_NMPS2},
     {"nm/s/s", AQ_UNITS_NMPS2},  {"counts", AQ_UNITS_COUNTS},
+    {"g/10", AQ_UNITS_G10},      {"mm/s2", AQ_UNITS_MMPS2},
+    {"mm/s^2", AQ_UNITS_MMPS2},  {"mm/s/s", AQ_UNITS_MMPS2},
+    {"mm/sec2", AQ_UNITS_MMPS2}, {"mm/sec/sec", AQ_UNITS_MMPS2},
 };
 
 int aq_units_parse(const char *s, aq_units *out)
@@ -58,6 +63,10 @@ const char *aq_units_name(aq_units u)
     return "nm/s2";
   case AQ_UNITS_COUNTS:
     return "counts";
+  case AQ_UNITS_G10:
+    return "g/10";
+  case AQ_UNITS_MMPS2:
+    return "mm/s2";
   }
   return "?";
 }
@@ -73,6 +82,10 @@ double aq_units_to_mps2(aq_units u)
     return 1.0;
   case AQ_UNITS_NMPS2:
     return 1e-9;
+  case AQ_UNITS_G10:
+    return AQ_G0_MPS2 / 10.0;
+  case AQ_UNITS_MMPS2:
+    return 1e-3;
   case AQ_UNITS_FILE:
   case AQ_UNITS_COUNTS:
     break;
@@ -80,18 +93,50 @@ double aq_units_to_mps2(aq_units u)
   return 0.0;
 }
 
-aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path)
+const aq_units_rule *aq_read_opts_rule_for(const aq_read_opts *opts, const char *path)
 {
-  if (!opts)
-    return AQ_UNITS_FILE;
+  if (!opts || !path)
+    return NULL;
   size_t n = opts->nrules < AQ_UNITS_RULES_MAX ? opts->nrules : AQ_UNITS_RULES_MAX;
   for (size_t i = n; i-- > 0;)
-    if (path && fnmatch(opts->rules[i].glob, path, 0) == 0)
-      return opts->rules[i].units;
-  return opts->units;
+    if (fnmatch(opts->rules[i].glob, path, 0) == 0)
+      return &opts->rules[i];
+  return NULL;
+}
+
+aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path)
+{
+  const aq_units_rule *r = aq_read_opts_rule_for(opts, path);
+  return r ? r->units : opts ? opts->units : AQ_UNITS_FILE;
 }
 
 /* ---- records ---------------------------------------------------------- */
+
+void aq_raw_file_free(aq_raw_file *raw)
+{
+  if (!raw)
+    return;
+  for (size_t i = 0; raw->chan && i < raw->nchan; i++)
+    free(raw->chan[i].values);
+  free(raw->chan);
+  memset(raw, 0, sizeof *raw);
+}
+
+aq_status aq_raw_file_alloc(aq_raw_file *raw, size_t nchan, const char *name,
+                            aq_error *err)
+{
+  raw->chan = calloc(nchan ? nchan : 1, sizeof *raw->chan);
+  if (!raw->chan)
+    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+  raw->nchan = nchan;
+  for (size_t i = 0; i < nchan; i++) {
+    raw->chan[i].azimuth_deg = NAN;
+    raw->chan[i].dip_deg = NAN;
+    raw->chan[i].vertical = -1;
+    raw->chan[i].units_line = -1;
+  }
+  return AQ_OK;
+}
 
 void aq_record_free(aq_record *rec)
 {
@@ -101,6 +146,27 @@ void aq_record_free(aq_record *rec)
   free(rec->name);
   free(rec->acc_mps2);
   memset(rec, 0, sizeof *rec);
+}
+
+int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
+{
+  size_t p = *pos;
+  if (p >= n)
+    return 0;
+  *b = p;
+  while (p < n && s[p] != '\n' && s[p] != '\r')
+    p++;
+  *e = p;
+  if (p < n && s[p] == '\r') {
+    while (p < n && s[p] == '\r')
+      p++;
+    if (p < n && s[p] == '\n')
+      p++;
+  } else if (p < n) {
+    p++;
+  }
+  *pos = p;
+  return 1;
 }
 
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
@@ -141,8 +207,9 @@ static int32_t get_i32(const unsigned char *p, int big)
 static int has_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
+  char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
   for (size_t i = 0; i + m <= n; i++)
-    if (strncasecmp(s + i, needle, m) == 0)
+    if ((char)(s[i] | 0x20) == c0 && strncasecmp(s + i, needle, m) == 0)
       return 1;
   return 0;
 }
@@ -227,16 +294,18 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
-  for (size_t k = 0; k < nl && k < 6; k++)
-    if (has_ci(line[k], len[k], "NPTS")) {
-      for (size_t j = 0; j < k; j++) {
-        if (has_ci(line[j], len[j], "VELOCITY"))
-          return AQ_FMT_PEER_VT2;
-        if (has_ci(line[j], len[j], "DISPLACEMENT"))
-          return AQ_FMT_PEER_DT2;
-      }
-      return AQ_FMT_AT2;
+  /* PEER: a line with NPTS and DT followed by values, after free text */
+  size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
+  int nt = 0;
+  if (aq_at2_sniff(buf, m, tb, te, &nt, AQ_SNIFF_LINES)) {
+    for (int j = 0; j < nt; j++) {
+      if (has_ci(s + tb[j], te[j] - tb[j], "VELOCITY"))
+        return AQ_FMT_PEER_VT2;
+      if (has_ci(s + tb[j], te[j] - tb[j], "DISPLACEMENT"))
+        return AQ_FMT_PEER_DT2;
     }
+    return AQ_FMT_AT2;
+  }
   return AQ_FMT_TEXT;
 }
 
@@ -269,8 +338,7 @@ const char *aq_format_describe(aq_format fmt)
     return "USGS SMC format, which is not supported: export it as CSV (time, "
            "acceleration)";
   case AQ_FMT_KNET:
-    return "K-NET/KiK-net ASCII, which is not supported: export it as CSV "
-           "(time, acceleration) in gal";
+    return "K-NET/KiK-net ASCII";
   case AQ_FMT_ESM:
     return "ESM/ITACA ASCII, which is not supported: export it as CSV (time, "
            "acceleration)";
@@ -287,25 +355,242 @@ const char *aq_format_describe(aq_format fmt)
   return "?";
 }
 
-aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, aq_record *rec,
-                          aq_error *err)
+/* ---- deciding -------------------------------------------------------- */
+
+/* A dip this far or farther from horizontal, deg, is vertical (SAC CMPINC 0
+ * or 180 is dip -90 or +90; a tilted sensor of a few degrees stays what it
+ * was meant to be). */
+#define AQ_VERTICAL_DIP_MIN_DEG 45.0
+
+/* Does a channel name say vertical?  Its words (split at anything not a
+ * letter or digit, trailing digits dropped: KiK-net "UD2") UD, UP, U, Z, V,
+ * VERT, VERTICAL, DOWN, or a SEED code of three letters ending in Z. */
+static int channel_says_vertical(const char *name)
+{
+  static const char *const words[] = {"UD", "UP", "U", "Z", "V", "VERT",
+                                      "VERTICAL", "DOWN", "DWN", "DU", NULL};
+  const char *p = name;
+  while (*p) {
+    while (*p && !isalnum((unsigned char)*p))
+      p++;
+    const char *b = p;
+    while (*p && isalnum((unsigned char)*p))
+      p++;
+    size_t len = (size_t)(p - b);
+    size_t alpha = len;
+    while (alpha > 0 && isdigit((unsigned char)b[alpha - 1]))
+      alpha--;
+    if (alpha == 0)
+      continue;
+    for (int i = 0; words[i]; i++)
+      if (strlen(words[i]) == alpha && strncasecmp(b, words[i], alpha) == 0)
+        return 1;
+    if (len == 3 && alpha == 3 && isalpha((unsigned char)b[0]) &&
+        isalpha((unsigned char)b[1]) && (b[2] == 'Z' || b[2] == 'z'))
+      return 1;
+  }
+  return 0;
+}
+
+/* "path" or "path#CHANNEL" (the channel's name, or its 1-based number when
+ * it has none) into out. */
+static void record_label(const aq_raw_file *raw, size_t ichan, const char *path,
+                         char *out, size_t cap)
+{
+  if (raw->nchan <= 1)
+    snprintf(out, cap, "%s", path);
+  else if (raw->chan[ichan].channel[0])
+    snprintf(out, cap, "%s#%s", path, raw->chan[ichan].channel);
+  else
+    snprintf(out, cap, "%s#%zu", path, ichan + 1);
+}
+
+/* The units words offered in messages, and tried for a plausible PGA. */
+static const aq_units plausible_try[] = {AQ_UNITS_G,     AQ_UNITS_G10,
+                                         AQ_UNITS_GAL,   AQ_UNITS_MMPS2,
+                                         AQ_UNITS_MPS2,  AQ_UNITS_NMPS2};
+
+aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *path,
+                           const aq_read_opts *opts, aq_record *rec, aq_error *err)
 {
   memset(rec, 0, sizeof *rec);
+  rec->azimuth_deg = rec->dip_deg = NAN;
+  if (!raw || ichan >= raw->nchan || !raw->chan)
+    return aq_error_set(err, AQ_EINTERNAL, path, -1, -1, NULL,
+                        "channel %zu of %zu", ichan + 1, raw ? raw->nchan : 0);
+  const aq_raw_channel *ch = &raw->chan[ichan];
+  char label[AQ_UNITS_GLOB_MAX + 24];
+  record_label(raw, ichan, path ? path : "", label, sizeof label);
+  if (ch->npts == 0 || !ch->values)
+    return aq_error_set(err, AQ_EFORMAT, label, -1, -1, NULL,
+                        "expected at least one sample, got none");
+  if (!(ch->dt_s > 0) || !isfinite(ch->dt_s))
+    return aq_error_set(err, AQ_EFORMAT, label, -1, -1, "dt",
+                        "expected a sample interval > 0 s, got %g", ch->dt_s);
+
+  /* Units: a rule naming the file, else the file's own, else --units. */
+  aq_units stated = AQ_UNITS_FILE, used;
+  int has_stated = ch->units[0] && aq_units_parse(ch->units, &stated);
+  const aq_units_rule *rule = aq_read_opts_rule_for(opts, path);
+  aq_units global = opts ? opts->units : AQ_UNITS_FILE;
+  const char *how; /* for the plausibility message */
+  if (rule && rule->units != AQ_UNITS_FILE) {
+    used = rule->units;
+    how = "by --units rule";
+    if (has_stated && stated != used)
+      snprintf(rec->units_conflict, sizeof rec->units_conflict,
+               "the file states %s, the rule --units '%.120s=%s' reads it as %s",
+               aq_units_name(stated), rule->glob, aq_units_name(used),
+               aq_units_name(used));
+  } else if (has_stated) {
+    used = stated;
+    how = "as the file states";
+  } else if (global != AQ_UNITS_FILE && !rule) {
+    used = global;
+    how = "by --units";
+  } else {
+    const char *said = ch->units_said[0] ? ch->units_said : ch->units;
+    return aq_error_set(err, AQ_EUNITS, label, -1, -1, "units",
+                        "expected acceleration units stated in the file, %s%s%s; "
+                        "if the values are ground acceleration, say in what with "
+                        "--units g|g/10|gal|cm/s2|mm/s2|m/s2|nm/s2|counts (or "
+                        "--units 'GLOB=U')",
+                        said[0] ? "got \"" : "found none", said,
+                        said[0] ? "\"" : "");
+  }
+  double factor;
+  if (used == AQ_UNITS_COUNTS) {
+    if (!(ch->counts_per_mps2 > 0) || !isfinite(ch->counts_per_mps2))
+      return aq_error_set(err, AQ_EUNITS, label, -1, -1, "sensitivity",
+                          "counts need the sensitivity in counts per m/s2 "
+                          "stated in the file (SAC SCALE, as mseed2sac -M writes "
+                          "it; K-NET scale factor; ...), found none");
+    factor = 1.0 / ch->counts_per_mps2;
+  } else {
+    factor = aq_units_to_mps2(used);
+  }
+
+  double *acc = malloc(ch->npts * sizeof *acc);
+  if (!acc)
+    return aq_error_set(err, AQ_ENOMEM, label, -1, -1, NULL,
+                        "out of memory for %zu samples", ch->npts);
+  double maxabs = 0;
+  for (size_t k = 0; k < ch->npts; k++) {
+    acc[k] = ch->values[k] * factor;
+    if (!isfinite(acc[k])) {
+      free(acc);
+      char fld[40];
+      snprintf(fld, sizeof fld, "value %zu", k + 1);
+      return aq_error_set(err, AQ_EVALUE, label, -1, -1, fld,
+                          "expected a value that is finite in m/s2, got %g %s "
+                          "(overflows)", ch->values[k], aq_units_name(used));
+    }
+    double a = fabs(ch->values[k]);
+    if (a > maxabs)
+      maxabs = a;
+  }
+
+  /* Plausibility: PGA in [AQ_PGA_MIN_G, AQ_PGA_MAX_G]. */
+  double pga_g = maxabs * factor / AQ_G0_MPS2;
+  if (!(pga_g >= AQ_PGA_MIN_G && pga_g <= AQ_PGA_MAX_G) &&
+      !(opts && opts->accept_implausible)) {
+    char alt[160] = "";
+    size_t len = 0;
+    for (size_t i = 0; i < sizeof plausible_try / sizeof plausible_try[0]; i++) {
+      double p = maxabs * aq_units_to_mps2(plausible_try[i]) / AQ_G0_MPS2;
+      if (p >= AQ_PGA_MIN_G && p <= AQ_PGA_MAX_G && len + 24 < sizeof alt)
+        len += (size_t)snprintf(alt + len, sizeof alt - len, "%s%s (%.3g g)",
+                                len ? ", " : "", aq_units_name(plausible_try[i]), p);
+    }
+    free(acc);
+    char hint[AQ_UNITS_GLOB_MAX + 200];
+    if (!alt[0])
+      snprintf(hint, sizeof hint, "no units make it plausible%s",
+               used == AQ_UNITS_COUNTS ? " (check the sensitivity)" : "");
+    else
+      snprintf(hint, sizeof hint, "plausible in %s: say which with --units %s%s%sU%s",
+               alt, has_stated ? "'" : "", has_stated ? path : "",
+               has_stated ? "=" : "", has_stated ? "'" : "");
+    return aq_error_set(err, AQ_EUNITS, label, -1, -1, "units",
+                        "PGA %.3g g with the values in %s (%s) is implausible "
+                        "(expected %g to %g g); %s; or keep it with "
+                        "--accept-implausible",
+                        pga_g, aq_units_name(used), how, AQ_PGA_MIN_G, AQ_PGA_MAX_G,
+                        hint);
+  }
+
+  /* Vertical: what the file states, else its dip, else the channel name. */
+  int vert = ch->vertical;
+  if (vert < 0)
+    vert = (isfinite(ch->dip_deg) && fabs(ch->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG) ||
+           channel_says_vertical(ch->channel);
+
+  aq_status s = aq_record_set_names_(rec, label, err);
+  if (s != AQ_OK) {
+    free(acc);
+    return s;
+  }
+  snprintf(rec->format, sizeof rec->format, "%s", raw->format);
+  rec->npts = ch->npts;
+  rec->dt_s = ch->dt_s;
+  rec->begin_s = ch->begin_s;
+  snprintf(rec->reference, sizeof rec->reference, "%s", ch->reference);
+  snprintf(rec->network, sizeof rec->network, "%s", ch->network);
+  snprintf(rec->station, sizeof rec->station, "%s", ch->station);
+  snprintf(rec->location, sizeof rec->location, "%s", ch->location);
+  snprintf(rec->channel, sizeof rec->channel, "%s", ch->channel);
+  snprintf(rec->event, sizeof rec->event, "%s", raw->event);
+  snprintf(rec->processing, sizeof rec->processing, "%s", raw->processing);
+  if (has_stated)
+    snprintf(rec->units_stated, sizeof rec->units_stated, "%s", aq_units_name(stated));
+  snprintf(rec->units_used, sizeof rec->units_used, "%s", aq_units_name(used));
+  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(used));
+  rec->azimuth_deg = ch->azimuth_deg;
+  rec->dip_deg = ch->dip_deg;
+  rec->vertical = vert;
+  rec->to_mps2 = factor;
+  rec->acc_mps2 = acc;
+  return AQ_OK;
+}
+
+aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
+                                     aq_error *err)
+{
+  if (!rec->vertical || (opts && opts->accept_vertical))
+    return AQ_OK;
+  char why[64];
+  if (isfinite(rec->dip_deg) && fabs(rec->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG)
+    snprintf(why, sizeof why, "dip %g deg", rec->dip_deg);
+  else
+    snprintf(why, sizeof why, "by its name");
+  return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
+                      "expected a horizontal component, got channel \"%s\", which "
+                      "the file identifies as vertical (%s); a vertical "
+                      "component is not horizontal excitation (give "
+                      "--accept-vertical to run it anyway)",
+                      rec->channel, why);
+}
+
+aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  memset(raw, 0, sizeof *raw);
   aq_format fmt = aq_record_detect(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
-    return aq_sac_parse(buf, n, name, opts, rec, err);
+    return aq_sac_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_AT2:
-    return aq_at2_parse(buf, n, name, opts, rec, err);
+    return aq_at2_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_TEXT:
-    return aq_csv_parse(buf, n, name, opts, rec, err);
+    return aq_csv_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_KNET:
+    return aq_knet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
   case AQ_FMT_UNKNOWN_BINARY:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "expected SAC, PEER AT2 or CSV, got %s",
+                        "expected SAC, PEER AT2, K-NET or CSV, got %s",
                         aq_format_describe(fmt));
   default:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
@@ -313,14 +598,84 @@ aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
   }
 }
 
-aq_status aq_record_read(const char *path, const aq_read_opts *opts,
-                         aq_record *rec, aq_error *err)
+/* The channel of raw that want names (exact, then case-insensitive, then a
+ * 1-based number), or that a --component rule matching path names, or the
+ * only one.  Returns AQ_OK with *ichan, or an error naming the channels. */
+static aq_status select_channel(const aq_raw_file *raw, const char *want,
+                                const char *path, const aq_read_opts *opts,
+                                size_t *ichan, aq_error *err)
+{
+  if (!want && opts && raw->nchan > 1) /* a rule chooses among several */
+    for (size_t i = opts->ncomponents < AQ_UNITS_RULES_MAX ? opts->ncomponents
+                                                           : AQ_UNITS_RULES_MAX;
+         i-- > 0;)
+      if (fnmatch(opts->components[i].glob, path, 0) == 0) {
+        want = opts->components[i].channel;
+        break;
+      }
+  char list[200] = "";
+  size_t len = 0;
+  for (size_t i = 0; i < raw->nchan && len + 20 < sizeof list; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "",
+                            raw->chan[i].channel[0] ? raw->chan[i].channel : "(unnamed)");
+  if (!want) {
+    if (raw->nchan == 1) {
+      *ichan = 0;
+      return AQ_OK;
+    }
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "channel",
+                        "expected one channel, the file holds %zu (%s): name one as "
+                        "FILE#CHANNEL or with --component 'GLOB=CHANNEL'",
+                        raw->nchan, list);
+  }
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t i = 0; i < raw->nchan; i++)
+      if (pass ? strcasecmp(raw->chan[i].channel, want) == 0
+               : strcmp(raw->chan[i].channel, want) == 0) {
+        *ichan = i;
+        return AQ_OK;
+      }
+  char *end;
+  long k = strtol(want, &end, 10);
+  if (*want && !*end && k >= 1 && (size_t)k <= raw->nchan) {
+    *ichan = (size_t)k - 1;
+    return AQ_OK;
+  }
+  return aq_error_set(err, AQ_EOPTION, path, -1, -1, "channel",
+                      "expected one of the file's channels (%s), got \"%s\"", list,
+                      want);
+}
+
+/* Parse and decide channel want (NULL: the only one or a --component rule's). */
+static aq_status parse_one(const unsigned char *buf, size_t n, const char *path,
+                           const char *want, const aq_read_opts *opts,
+                           aq_record *rec, aq_error *err)
+{
+  aq_raw_file raw;
+  aq_status s = aq_raw_parse(buf, n, path, opts, &raw, err);
+  size_t ichan = 0;
+  if (s == AQ_OK)
+    s = select_channel(&raw, want, path, opts, &ichan, err);
+  if (s == AQ_OK)
+    s = aq_record_decide(&raw, ichan, path, opts, rec, err);
+  aq_raw_file_free(&raw);
+  return s;
+}
+
+aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, aq_record *rec,
+                          aq_error *err)
 {
   memset(rec, 0, sizeof *rec);
+  return parse_one(buf, n, name, NULL, opts, rec, err);
+}
+
+/* The bytes of the regular file at path (*buf malloc'd, caller frees). */
+static aq_status read_bytes(const char *path, unsigned char **buf, size_t *size,
+                            aq_error *err)
+{
   struct stat st;
-  if (!path || !*path)
-    return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
-                        "expected a record file name, got an empty string");
+  *buf = NULL;
   if (stat(path, &st) != 0)
     return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
                         strerror(errno));
@@ -335,22 +690,140 @@ aq_status aq_record_read(const char *path, const aq_read_opts *opts,
   if (!f)
     return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
                         strerror(errno));
-  size_t size = (size_t)st.st_size;
-  unsigned char *buf = malloc(size ? size : 1);
-  if (!buf) {
+  size_t n = (size_t)st.st_size;
+  unsigned char *b = malloc(n ? n : 1);
+  if (!b) {
     fclose(f);
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL,
-                        "out of memory reading %zu bytes", size);
+                        "out of memory reading %zu bytes", n);
   }
-  size_t got = fread(buf, 1, size, f);
+  size_t got = fread(b, 1, n, f);
   int rerr = ferror(f);
   fclose(f);
-  if (rerr || got != size) {
-    free(buf);
+  if (rerr || got != n) {
+    free(b);
     return aq_error_set(err, AQ_EIO, path, -1, (long)got, NULL,
-                        "read error: expected %zu bytes, got %zu", size, got);
+                        "read error: expected %zu bytes, got %zu", n, got);
   }
-  aq_status s = aq_record_parse(buf, size, path, opts, rec, err);
+  *buf = b;
+  *size = n;
+  return AQ_OK;
+}
+
+/* FILE#CHANNEL names one channel of a file when no file has the whole name:
+ * file (cap bytes) gets FILE and *want CHANNEL; otherwise *want is NULL and
+ * file is path. */
+static void split_channel(const char *path, char *file, size_t cap, const char **want)
+{
+  struct stat st;
+  const char *hash = strrchr(path, '#');
+  *want = NULL;
+  snprintf(file, cap, "%s", path);
+  if (stat(path, &st) == 0 || !hash || hash == path || !hash[1] ||
+      (size_t)(hash - path) >= cap)
+    return;
+  memcpy(file, path, (size_t)(hash - path));
+  file[hash - path] = '\0';
+  if (stat(file, &st) == 0)
+    *want = hash + 1;
+  else
+    snprintf(file, cap, "%s", path);
+}
+
+aq_status aq_record_read(const char *path, const aq_read_opts *opts,
+                         aq_record *rec, aq_error *err)
+{
+  memset(rec, 0, sizeof *rec);
+  if (!path || !*path)
+    return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
+                        "expected a record file name, got an empty string");
+  char file[4096];
+  const char *want;
+  split_channel(path, file, sizeof file, &want);
+  unsigned char *buf;
+  size_t size = 0;
+  aq_status s = read_bytes(file, &buf, &size, err);
+  if (s != AQ_OK)
+    return s;
+  s = parse_one(buf, size, file, want, opts, rec, err);
   free(buf);
   return s;
+}
+
+void aq_record_names_free(char **names, size_t n)
+{
+  for (size_t i = 0; names && i < n; i++)
+    free(names[i]);
+  free(names);
+}
+
+/* Formats that hold one channel per file (SAC, AT2, K-NET) are not parsed
+ * here; the others are, to list their channels. */
+aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
+                           char ***out, size_t *nout, aq_error *err)
+{
+  size_t cap = n + 1, k = 0;
+  char **names = malloc(cap * sizeof *names);
+  *out = NULL;
+  *nout = 0;
+  if (!names)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  aq_status st = AQ_OK;
+  for (size_t i = 0; i < n && st == AQ_OK; i++) {
+    aq_raw_file raw;
+    memset(&raw, 0, sizeof raw);
+    char file[4096];
+    const char *want;
+    split_channel(paths[i], file, sizeof file, &want);
+    int chosen = want != NULL;
+    const char *rule_ch = NULL; /* the last --component rule matching */
+    for (size_t r = 0; !chosen && opts && r < opts->ncomponents && r < AQ_UNITS_RULES_MAX;
+         r++)
+      if (fnmatch(opts->components[r].glob, paths[i], 0) == 0)
+        rule_ch = opts->components[r].channel;
+    unsigned char *buf = NULL;
+    size_t size = 0;
+    aq_error ignored;
+    if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
+      aq_format fmt = aq_record_detect(buf, size);
+      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      if (!single && aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
+        memset(&raw, 0, sizeof raw); /* reported when it is read */
+    }
+    free(buf);
+    size_t add = raw.nchan > 1 && !rule_ch ? raw.nchan : 1;
+    if (k + add > cap) {
+      size_t ncap = 2 * cap + add;
+      char **g = realloc(names, ncap * sizeof *names);
+      if (!g) {
+        aq_raw_file_free(&raw);
+        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
+        break;
+      }
+      names = g;
+      cap = ncap;
+    }
+    for (size_t c = 0; c < add && st == AQ_OK; c++) {
+      char label[4200];
+      if (raw.nchan > 1 && rule_ch)
+        snprintf(label, sizeof label, "%s#%s", paths[i], rule_ch);
+      else if (raw.nchan > 1)
+        record_label(&raw, c, paths[i], label, sizeof label);
+
+      else
+        snprintf(label, sizeof label, "%s", paths[i]);
+      if (!(names[k] = strdup(label)))
+        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
+      else
+        k++;
+    }
+    aq_raw_file_free(&raw);
+  }
+  if (st != AQ_OK) {
+    aq_record_names_free(names, k);
+    return st;
+  }
+  *out = names;
+  *nout = k;
+  return AQ_OK;
 }

@@ -1,7 +1,8 @@
 /* record.h: the in-memory accelerogram, and the reader entry point.
  *
- * Every reader (sac.c, at2.c, csv.c) produces an aq_record: evenly sampled
- * ground acceleration in m/s^2, dt in s.  The record owns its arrays and
+ * Every reader (sac.c, at2.c, csv.c, ...; see readers.h) reports what a file
+ * states, and aq_record_decide() (record.c) makes an aq_record of it: evenly
+ * sampled ground acceleration in m/s^2, dt in s.  The record owns its arrays and
  * strings; aq_record_free() releases them (NULL and zeroed records are fine).
  * Readers report through aq_error and never print.
  */
@@ -21,10 +22,26 @@ typedef struct {
   double begin_s;       /* time of sample 0 relative to the reference time, s (SAC B; 0 if unknown) */
   char reference[40];   /* ISO-8601 UTC reference time ("" if unknown) */
   char network[16], station[16], location[16], channel[16]; /* "" if unknown */
-  char units_orig[24];  /* units of the file's values: "g", "gal", "m/s2", "nm/s2", "counts", ... */
+  char units_orig[24];  /* units of the file's values as used (= units_used) */
   double to_mps2;       /* factor applied to the file's values to get m/s^2 */
   double *acc_mps2;     /* npts samples of ground acceleration, m/s^2 */
+  /* Decided by aq_record_decide (readers.h): */
+  double azimuth_deg;   /* direction of positive motion, deg from north; NAN if unknown */
+  double dip_deg;       /* SEED: 0 horizontal, -90 up, +90 down; NAN if unknown */
+  int vertical;         /* 1: the file identifies the channel as vertical */
+  char event[96];       /* event as the file states it, "" if none */
+  char processing[160]; /* the agency's processing as stated, "" if none */
+  char units_stated[24];/* units the file states ("" if none) */
+  char units_used[24];  /* units applied (canonical name, e.g. "gal") */
+  char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
 } aq_record;
+
+/* Plausible peak ground acceleration after conversion, g: a record outside
+ * [AQ_PGA_MIN_G, AQ_PGA_MAX_G] is refused unless accept_implausible (the
+ * strongest records ever measured are ~4 g; 1e-5 g is below the noise of
+ * strong-motion accelerometers). */
+#define AQ_PGA_MAX_G 10.0
+#define AQ_PGA_MIN_G 1e-5
 
 /* Units override (--units).  AQ_UNITS_FILE: take the units from the file. */
 typedef enum {
@@ -33,7 +50,9 @@ typedef enum {
   AQ_UNITS_GAL,   /* = cm/s^2 */
   AQ_UNITS_MPS2,
   AQ_UNITS_NMPS2,
-  AQ_UNITS_COUNTS /* divided by the sensitivity (SAC SCALE, counts per m/s^2) */
+  AQ_UNITS_COUNTS, /* divided by the sensitivity (SAC SCALE, counts per m/s^2) */
+  AQ_UNITS_G10,   /* tenths of g (some agency formats) */
+  AQ_UNITS_MMPS2  /* mm/s^2 */
 } aq_units;
 
 /* A per-file units rule (--units GLOB=U): records whose path as given
@@ -56,6 +75,14 @@ typedef struct {
                      column that is not time */
   size_t nrules;  /* number of --units GLOB=U rules in rules[] */
   aq_units_rule rules[AQ_UNITS_RULES_MAX]; /* the last matching rule wins */
+  int accept_implausible; /* --accept-implausible: keep a PGA outside
+                             [AQ_PGA_MIN_G, AQ_PGA_MAX_G] */
+  int accept_vertical;    /* --accept-vertical: run vertical channels */
+  size_t ncomponents;     /* number of --component GLOB=CH rules */
+  struct {
+    char glob[AQ_UNITS_GLOB_MAX];
+    char channel[16];
+  } components[AQ_UNITS_RULES_MAX]; /* --component GLOB=CH: the last matching wins */
 } aq_read_opts;
 
 /* The units override that applies to path: the last rule whose glob matches
@@ -63,8 +90,12 @@ typedef struct {
  * NULL (AQ_UNITS_FILE). */
 aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path);
 
+/* The --units GLOB=U rule matching path (the last one), or NULL. */
+const aq_units_rule *aq_read_opts_rule_for(const aq_read_opts *opts, const char *path);
+
 /* Parse a units word: g, gal, cm/s2 (also cm/s^2, cm/s/s, cm/sec2, cmps2),
- * m/s2 (m/s^2, m/s/s, mps2), nm/s2 (nm/s^2), counts; case-insensitive.
+ * m/s2 (m/s^2, m/s/s, mps2), mm/s2, nm/s2 (nm/s^2), g/10, counts;
+ * case-insensitive.
  * Returns 1 and sets *out on success, 0 if s is not one of them. */
 int aq_units_parse(const char *s, aq_units *out);
 
@@ -80,6 +111,21 @@ double aq_units_to_mps2(aq_units u);
  * on failure *rec is left empty and err says where and why. */
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err);
+
+/* Record names for operands paths[0..n): a file of several channels, named
+ * without #CHANNEL and chosen by no --component rule, becomes one name per
+ * channel, "FILE#CHANNEL", in file order; any other operand is kept as given
+ * (an unreadable one is reported when it is read).  On AQ_OK *out holds
+ * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM. */
+aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
+                           char ***out, size_t *nout, aq_error *err);
+void aq_record_names_free(char **names, size_t n);
+
+/* AQ_OK if rec may be run as horizontal excitation: it is not identified as
+ * vertical, or opts->accept_vertical.  Otherwise AQ_EUNSUPPORTED with err
+ * naming the record and its channel. */
+aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
+                                     aq_error *err);
 
 void aq_record_free(aq_record *rec);
 

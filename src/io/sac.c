@@ -21,7 +21,7 @@
 #define SAC_IUNDEF (-12345)
 
 /* Float words. */
-enum { W_DELTA = 0, W_SCALE = 3, W_B = 5 };
+enum { W_DELTA = 0, W_SCALE = 3, W_B = 5, W_CMPAZ = 57, W_CMPINC = 58 };
 /* Integer words (word numbers, byte = 4 * word). */
 enum {
   W_NZYEAR = 70, W_NZJDAY, W_NZHOUR, W_NZMIN, W_NZSEC, W_NZMSEC, W_NVHDR,
@@ -31,13 +31,7 @@ enum {
 enum { SAC_ITIME = 1, SAC_IUNKN = 5, SAC_IDISP = 6, SAC_IVEL = 7, SAC_IACC = 8,
        SAC_IVOLTS = 50 };
 /* String byte offsets. */
-enum { K_STNM = 440, K_HOLE = 464, K_CMPNM = 600, K_NETWK = 608 };
-
-/* IDEP = IACC promises nm/s^2.  Real strong-motion records exceed this many
- * nm/s^2 (1e-7 g, below any accelerometer's noise floor); a file whose
- * largest |value| is smaller holds g or m/s^2 despite its IDEP, and is
- * refused unless --units says what it holds. */
-#define SAC_IACC_MIN_PLAUSIBLE_NMPS2 1000.0
+enum { K_STNM = 440, K_EVNM = 448, K_HOLE = 464, K_CMPNM = 600, K_NETWK = 608 };
 
 /* DELTA is float32: the intended decimal step is recovered as the shortest
  * decimal with at most this many significant digits that rounds to the same
@@ -163,9 +157,10 @@ static void sac_reference(const sac_hdr *h, char *out, size_t cap)
 }
 
 aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_record *rec, aq_error *err)
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
-  memset(rec, 0, sizeof *rec);
+  (void)opts; /* a SAC file states everything it can */
+  memset(raw, 0, sizeof *raw);
   if (n < SAC_HEADER_BYTES)
     return aq_error_set(err, AQ_EFORMAT, name, -1, (long)n, "header",
                         "expected a %d-byte SAC header, got only %zu bytes",
@@ -222,78 +217,57 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
   if (!isfinite(b) || b == SAC_UNDEF)
     b = 0.0;
 
-  /* Units. */
-  aq_units u = aq_read_opts_units_for(opts, name);
-  int32_t idep = hi(&h, W_IDEP);
-  double factor;
-  const char *uname;
-  if (u == AQ_UNITS_COUNTS) {
-    double scale = hf(&h, W_SCALE);
-    if (!isfinite(scale) || !(scale > 0) || scale == SAC_UNDEF)
-      return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_SCALE, "header SCALE",
-                          "--units counts needs the sensitivity in counts per "
-                          "m/s2 in SCALE (as mseed2sac -M writes it), got %s",
-                          scale == SAC_UNDEF ? "undefined (-12345)" : "a value <= 0");
-    factor = 1.0 / scale;
-    uname = "counts";
-  } else if (u != AQ_UNITS_FILE) {
-    factor = aq_units_to_mps2(u);
-    uname = aq_units_name(u);
-  } else if (idep == SAC_IACC) {
-    factor = 1e-9; /* SAC: IACC is nm/s^2 */
-    uname = "nm/s2";
-  } else {
-    return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_IDEP, "header IDEP",
-                        "expected IACC (acceleration, nm/s2), got %s; if the "
-                        "values are ground acceleration, say in what with "
-                        "--units g|gal|cm/s2|m/s2|nm/s2|counts (or --units "
-                        "'GLOB=U')",
-                        idep_name(idep));
-  }
-
-  double *acc = malloc((size_t)npts * sizeof *acc);
-  if (!acc)
+  aq_status s = aq_raw_file_alloc(raw, 1, name, err);
+  if (s != AQ_OK)
+    return s;
+  aq_raw_channel *ch = &raw->chan[0];
+  double *v = malloc((size_t)npts * sizeof *v);
+  if (!v) {
+    aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL,
                         "out of memory for %ld samples", (long)npts);
-  double maxabs = 0.0;
+  }
   for (size_t k = 0; k < (size_t)npts; k++) {
     size_t off = SAC_HEADER_BYTES + 4 * k;
-    float v = rd_f32(buf + off, h.big);
-    if (!isfinite(v)) {
-      free(acc);
+    float x = rd_f32(buf + off, h.big);
+    if (!isfinite(x)) {
+      free(v);
+      aq_raw_file_free(raw);
       return aq_error_set(err, AQ_EVALUE, name, -1, (long)off, "sample",
                           "expected a finite number at sample %zu, got %s", k,
-                          isnan(v) ? "NaN" : "Inf");
+                          isnan(x) ? "NaN" : "Inf");
     }
-    maxabs = fmax(maxabs, fabs((double)v));
-    acc[k] = (double)v * factor;
+    v[k] = (double)x;
   }
-  if (u == AQ_UNITS_FILE && maxabs < SAC_IACC_MIN_PLAUSIBLE_NMPS2) {
-    free(acc);
-    return aq_error_set(err, AQ_EUNITS, name, -1, 4L * W_IDEP, "header IDEP",
-                        "IACC says nm/s2, but the largest |value| is %g "
-                        "(%.3g g): the values look like g or m/s2; say which "
-                        "with --units g|gal|cm/s2|m/s2|nm/s2|counts (or --units "
-                        "'GLOB=U')",
-                        maxabs, maxabs * 1e-9 / AQ_G0_MPS2);
-  }
+  ch->values = v;
+  ch->npts = (size_t)npts;
+  ch->dt_s = delta;
+  ch->begin_s = b;
+  snprintf(raw->format, sizeof raw->format, "%s", h.big ? "sac-be" : "sac-le");
+  sac_reference(&h, ch->reference, sizeof ch->reference);
+  hstr(&h, K_NETWK, 8, ch->network, sizeof ch->network);
+  hstr(&h, K_STNM, 8, ch->station, sizeof ch->station);
+  hstr(&h, K_HOLE, 8, ch->location, sizeof ch->location);
+  hstr(&h, K_CMPNM, 8, ch->channel, sizeof ch->channel);
+  hstr(&h, K_EVNM, 16, raw->event, sizeof raw->event);
 
-  aq_status s = aq_record_set_names_(rec, name, err);
-  if (s != AQ_OK) {
-    free(acc);
-    return s;
-  }
-  snprintf(rec->format, sizeof rec->format, "%s", h.big ? "sac-be" : "sac-le");
-  rec->npts = (size_t)npts;
-  rec->dt_s = delta;
-  rec->begin_s = b;
-  sac_reference(&h, rec->reference, sizeof rec->reference);
-  hstr(&h, K_NETWK, 8, rec->network, sizeof rec->network);
-  hstr(&h, K_STNM, 8, rec->station, sizeof rec->station);
-  hstr(&h, K_HOLE, 8, rec->location, sizeof rec->location);
-  hstr(&h, K_CMPNM, 8, rec->channel, sizeof rec->channel);
-  snprintf(rec->units_orig, sizeof rec->units_orig, "%s", uname);
-  rec->to_mps2 = factor;
-  rec->acc_mps2 = acc;
+  /* Units: IDEP = IACC states nm/s^2; SCALE is the sensitivity that
+   * mseed2sac -M writes (counts per m/s^2), used when the values are counts. */
+  int32_t idep = hi(&h, W_IDEP);
+  if (idep == SAC_IACC)
+    snprintf(ch->units, sizeof ch->units, "nm/s2");
+  else
+    snprintf(ch->units_said, sizeof ch->units_said, "header IDEP: %s",
+             idep_name(idep));
+  double scale = hf(&h, W_SCALE);
+  if (isfinite(scale) && scale > 0 && scale != SAC_UNDEF)
+    ch->counts_per_mps2 = scale;
+
+  /* Orientation: CMPAZ (deg from north), CMPINC (deg from vertical up). */
+  double az = hf(&h, W_CMPAZ), inc = hf(&h, W_CMPINC);
+  if (isfinite(az) && az != SAC_UNDEF)
+    ch->azimuth_deg = az;
+  if (isfinite(inc) && inc != SAC_UNDEF && inc >= 0 && inc <= 180)
+    ch->dip_deg = inc - 90.0; /* SEED dip: CMPINC 0 (up) is -90 */
   return AQ_OK;
 }

@@ -49,6 +49,8 @@ aq_status aq_project_check_pair(const char *label, const double phi_deg[2],
 
 double aq_project_azimuth_of(const aq_record *rec)
 {
+  if (isfinite(rec->azimuth_deg))
+    return rec->azimuth_deg; /* the header's (PEER angle, SAC CMPAZ, ...) */
   if (strcmp(rec->format, "at2") != 0)
     return NAN; /* the naming rule is PEER's */
   const char *s = rec->name ? rec->name : "";

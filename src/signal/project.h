@@ -48,9 +48,10 @@ aq_status aq_project_check_pair(const char *label, const double phi_deg[2],
                                 aq_error *err);
 
 /* The direction of positive motion stated for rec, deg from north, or NAN:
- * PEER NGA AT2 file names carry it after the station code (..._GIL067.AT2,
- * ...-ELC180-hor1.AT2: three letters then three digits, 0-360); other
- * formats' names say nothing. */
+ * the header's (rec->azimuth_deg: PEER's component angle, SAC CMPAZ, the
+ * agency formats' direction fields), else for a PEER NGA AT2 file its name's
+ * (after the station code: ..._GIL067.AT2, ...-ELC180-hor1.AT2: three
+ * letters then three digits, 0-360); other formats' names say nothing. */
 double aq_project_azimuth_of(const aq_record *rec);
 
 /* AQ_OK if the n records share dt (within AQ_PROJECT_DT_REL_TOL) and start
