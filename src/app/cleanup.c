@@ -3,9 +3,14 @@
 #define _POSIX_C_SOURCE 200809L
 #include "cleanup.h"
 
+#include <dirent.h>
+#include <errno.h>
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #define AQ_CLEANUP_SLOTS 8
@@ -54,4 +59,36 @@ void aq_cleanup_remove(int slot)
 {
   if (slot >= 0 && slot < AQ_CLEANUP_SLOTS)
     slot_used[slot] = 0;
+}
+
+int aq_cleanup_stale(const char *target)
+{
+  const char *slash = strrchr(target, '/');
+  const char *base = slash ? slash + 1 : target;
+  char dir[AQ_CLEANUP_PATH_MAX];
+  snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - target) + 1 : 1,
+           slash ? target : ".");
+  DIR *d = opendir(dir);
+  if (!d)
+    return 0;
+  int removed = 0;
+  size_t nb = strlen(base);
+  struct dirent *de;
+  while ((de = readdir(d)) != NULL) {
+    const char *n = de->d_name;
+    if (strncmp(n, base, nb) != 0 || strncmp(n + nb, ".tmp.", 5) != 0)
+      continue;
+    char *end;
+    errno = 0;
+    long pid = strtol(n + nb + 5, &end, 10);
+    if (*end != '\0' || end == n + nb + 5 || errno || pid <= 0 || pid == (long)getpid())
+      continue;
+    if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+      continue; /* its writer may still be running */
+    char path[2 * AQ_CLEANUP_PATH_MAX];
+    snprintf(path, sizeof path, "%s%s%s", slash ? "" : "./", slash ? dir : "", n);
+    removed += unlink(path) == 0;
+  }
+  closedir(d);
+  return removed;
 }

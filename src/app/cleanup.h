@@ -17,4 +17,9 @@ int aq_cleanup_add(const char *path);
 /* Forget slot (after the file was renamed or removed); -1 is ignored. */
 void aq_cleanup_remove(int slot);
 
+/* Remove the temporaries "<target>.tmp.<pid>" that a process killed
+ * outright (kill -9, a crash) left beside target: those whose pid no longer
+ * exists.  Returns how many were removed. */
+int aq_cleanup_stale(const char *target);
+
 #endif

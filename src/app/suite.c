@@ -26,6 +26,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "suite_slot.h"
 
 /* Records in flight per worker thread: enough that a worker finishing a
  * short record finds the next one while a long one is still running. */
@@ -53,56 +54,6 @@ static double now_s(void)
  * record is prepared when no run is waiting.  A record with many arches or
  * factors thus spreads over every thread. */
 
-typedef struct {
-  aq_summary sum;
-  aq_result res;
-  int have_res;
-  aq_error err;  /* when the run failed */
-  int failed;
-  double run_s;
-} run_slot;
-
-/* The second horizontal component of a ground motion (the first is the
- * record slot's own rec and proc). */
-typedef struct {
-  aq_record rec;
-  aq_processed proc;
-  int have_rec, have_proc;
-} comp_slot;
-
-enum { SLOT_FREE = 0, SLOT_PREPARING, SLOT_READY, SLOT_DONE };
-
-typedef struct {
-  int state;
-  size_t index;       /* record index */
-  aq_record rec;      /* metadata (samples freed once processed) */
-  int have_rec;
-  aq_processed proc;
-  int have_proc;
-  aq_im im;
-  int have_im;
-  int failed;         /* record-level failure (read or process) */
-  aq_error err;
-  char status[AQ_SUMMARY_STATUS_MAX];
-  char warning[300];  /* residual warning, "" if none */
-  char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
-  double read_s, process_s;
-  double *scale;      /* nscale factors applied */
-  double *pga_g;      /* PGA of each scaled record, g */
-  aq_steps *steps;    /* nscale step lists */
-  aq_status *steps_st;/* status of each step list */
-  aq_error *steps_err;
-  const aq_orient_motion *motion; /* NULL: a plain in-plane record */
-  comp_slot h2;       /* a motion's second horizontal component */
-  comp_slot v;        /* its vertical component (with --vertical) */
-  int run_v;          /* 1: the vertical is run */
-  double phi_deg[2];  /* a motion's component azimuths, deg */
-  size_t naz;         /* azimuths per (arch, scale): 1 for a plain record */
-  size_t nruns;       /* narch * nscale * naz */
-  run_slot *runs;     /* nruns, arch-major, then scale, then azimuth */
-  size_t next_run;    /* next run to hand out (READY) */
-  size_t runs_done;
-} rec_slot;
 
 typedef struct {
   const aq_suite_cfg *cfg;
@@ -123,6 +74,9 @@ typedef struct {
   size_t runs_done;         /* for the progress line */
   double read_s, process_s, run_s;
   aq_text_layout layout;    /* with cfg->aligned */
+  FILE *line;               /* a row is formatted here first (text_row) */
+  char *line_buf;
+  size_t line_cap;
 } suite;
 
 static const char *const model_names[] = {"workpath", "ode", "paper", "workpath-quad"};
@@ -179,6 +133,23 @@ static void run_index(const suite *S, const rec_slot *r, size_t i, size_t *ai,
 static double run_azimuth(const suite *S, const rec_slot *r, size_t z)
 {
   return r->motion ? S->cfg->azimuths_deg[z] : NAN;
+}
+
+/* Record i's motion (or NULL), azimuths per (arch, scale) and runs, set
+ * in r (before it is prepared or decoded from the journal). */
+static void slot_orient(const suite *S, size_t i, rec_slot *r)
+{
+  const aq_suite_cfg *c = S->cfg;
+  r->motion = c->motions ? c->motions[i] : NULL;
+  r->naz = r->motion ? c->nazimuth : 1;
+  r->nruns = S->nruns * r->naz;
+}
+
+/* The file whose hash identifies record i: the record, or a motion's H1. */
+static const char *record_file(const suite *S, size_t i)
+{
+  const aq_suite_cfg *c = S->cfg;
+  return c->motions && c->motions[i] ? c->motions[i]->path[0] : c->records[i];
 }
 
 /* Every run of a record that failed before any run: status, NAN values. */
@@ -287,9 +258,7 @@ static int prepare_record(suite *S, rec_slot *r)
 {
   const aq_suite_cfg *c = S->cfg;
   const char *path = c->records[r->index];
-  r->motion = c->motions ? c->motions[r->index] : NULL;
-  r->naz = r->motion ? c->nazimuth : 1;
-  r->nruns = c->narches * S->nscale * r->naz;
+  slot_orient(S, r->index, r);
   r->runs = calloc(r->nruns ? r->nruns : 1, sizeof *r->runs);
   r->scale = calloc(S->nscale, sizeof *r->scale);
   r->pga_g = calloc(S->nscale, sizeof *r->pga_g);
@@ -308,7 +277,7 @@ static int prepare_record(suite *S, rec_slot *r)
   for (size_t k = 0; k < S->nscale; k++)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
-  const char *first = r->motion ? r->motion->path[0] : path;
+  const char *first = record_file(S, r->index);
   if (c->h5_path) { /* the file's identity in the results (compare keys on it) */
     aq_error herr;
     if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
@@ -522,6 +491,25 @@ static void progress(suite *S, double t_start, size_t total, int final)
   fflush(stderr);
 }
 
+/* One row to the text output with one write(2): formatted aside, then put
+ * into the (empty) stdio buffer and flushed, so that an interrupted run
+ * leaves only whole rows. */
+static int text_row(suite *S, const aq_summary *s)
+{
+  FILE *m = S->line;
+  if (fseeko(m, 0, SEEK_SET) != 0 ||
+      (S->cfg->aligned ? aq_text_row_aligned(m, &S->layout, s) : aq_text_row(m, s)) != 0 ||
+      fflush(m) != 0)
+    return -1;
+  off_t n = ftello(m);
+  if (n < 0)
+    return -1;
+  return fwrite(S->line_buf, 1, (size_t)n, S->cfg->text) == (size_t)n &&
+                 fflush(S->cfg->text) == 0
+             ? 0
+             : -1;
+}
+
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const rec_slot *r)
 {
@@ -600,9 +588,7 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
       worst = aq_summary_worst(group, r->naz);
     }
     int shown = c->all_azimuths || z == worst;
-    if (shown && c->text &&
-        (c->aligned ? aq_text_row_aligned(c->text, &S->layout, &u->sum)
-                    : aq_text_row(c->text, &u->sum)) != 0) {
+    if (shown && c->text && text_row(S, &u->sum) != 0) {
       free(group);
       return aq_error_set(err, AQ_EIO, "text output", -1, -1, NULL,
                           "cannot write a row: %s", strerror(errno));
@@ -708,6 +694,131 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
   return AQ_OK;
 }
 
+/* ---- the journal (--resume) -------------------------------------------- */
+
+/* The first line where identities a (the journal's) and b (this
+ * command's) differ, into buf[n] as 'has "..." where this command has
+ * "..."'. */
+static void first_difference(const char *a, const char *b, char *buf, size_t n)
+{
+  while (*a && *b) {
+    size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
+    if (la != lb || memcmp(a, b, la) != 0) {
+      snprintf(buf, n, "has \"%.*s\" where this command has \"%.*s\"", (int)la, a,
+               (int)lb, b);
+      return;
+    }
+    a += la + (a[la] != '\0');
+    b += lb + (b[lb] != '\0');
+  }
+  snprintf(buf, n, "has %s lines than this command's identity", *a ? "more" : "fewer");
+}
+
+/* Start the journal of a suite writing to c->h5_path.  With --resume and a
+ * journal of the same command, its entries (identity first) are checked and
+ * returned in *e (*ne of them) for journal_replay.  Returns AQ_EXIT_OK, or
+ * the exit status after printing one line. */
+static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t *ne)
+{
+  const aq_suite_cfg *c = S->cfg;
+  *J = NULL;
+  *e = NULL;
+  *ne = 0;
+  if (!c->h5_path || c->history || c->store_records)
+    return AQ_EXIT_OK; /* datasets a journal does not hold */
+  char *id = NULL, *path = malloc(strlen(c->h5_path) + 16);
+  size_t dropped = 0;
+  aq_error err;
+  aq_error_clear(&err);
+  int rc = AQ_EXIT_OK;
+  if (!path || aq_suite_identity(c, S->arches, &id) != 0) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto out;
+  }
+  aq_journal_name(c->h5_path, path, strlen(c->h5_path) + 16);
+  if (c->resume && aq_journal_open(path, J, e, ne, &dropped, &err) != AQ_OK) {
+    char msg[1200];
+    aq_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "archquake: %s (--resume: run without it to start over)\n", msg);
+    rc = AQ_EXIT_USAGE;
+    goto out;
+  }
+  if (!*J) {
+    if (aq_journal_create(path, id, strlen(id) + 1, J, &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      rc = AQ_EXIT_OUTPUT;
+    }
+    goto out;
+  }
+  char why[1200] = "";
+  if ((*e)[0].n != strlen(id) + 1 || memcmp((*e)[0].data, id, (*e)[0].n) != 0) {
+    char diff[1000];
+    first_difference((const char *)(*e)[0].data, id, diff, sizeof diff);
+    snprintf(why, sizeof why, "the journal is another command's: it %s", diff);
+  }
+  /* Check every entry before writing anything: the order, and that each
+   * record's file is still the one that was run. */
+  for (size_t k = 1; !why[0] && k < *ne; k++) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    char sha[AQ_SHA256_HEX] = "";
+    if (k - 1 < c->nrecords)
+      slot_orient(S, k - 1, &r);
+    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], r.nruns, &r) != 0 ||
+        r.index != k - 1)
+      snprintf(why, sizeof why, "entry %zu: expected record %zu of this suite, got "
+                                "something else", k, k - 1);
+    else if (r.sha256[0] && (aq_sha256_file(record_file(S, k - 1), sha, &err) != AQ_OK ||
+                             strcmp(sha, r.sha256) != 0))
+      snprintf(why, sizeof why, "the record %s changed since the journal was written "
+                                "(sha256 %s, journal %s)", c->records[k - 1],
+               sha[0] ? sha : "unreadable", r.sha256);
+    slot_clear(S, &r);
+  }
+  if (why[0]) {
+    fprintf(stderr, "archquake: %s: --resume: %s; run without --resume to start over\n",
+            path, why);
+    aq_journal_close(*J);
+    *J = NULL;
+    rc = AQ_EXIT_USAGE;
+    goto out;
+  }
+  if (dropped)
+    fprintf(stderr, "archquake: %s: dropped a torn last entry (%zu bytes): its record "
+                    "runs again\n", path, dropped);
+  fprintf(stderr, "archquake: %s: %zu of %zu records done before, continuing\n", path,
+          *ne - 1, c->nrecords);
+out:
+  if (rc != AQ_EXIT_OK) {
+    aq_journal_entries_free(*e, *ne);
+    *e = NULL;
+    *ne = 0;
+  }
+  free(id);
+  free(path);
+  return rc;
+}
+
+/* Write the records of journal entries e[1..ne) again, in order
+ * (diagnostics, rows, results file).  Returns AQ_OK or the output failure. */
+static aq_status journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
+                                const aq_journal_entry *e, size_t ne, aq_error *err)
+{
+  for (size_t k = 1; k < ne; k++) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    slot_orient(S, k - 1, &r);
+    aq_suite_slot_decode(&e[k], r.nruns, &r); /* checked by journal_start */
+    slot_orient(S, k - 1, &r);
+    aq_status ws = write_record(S, &r, h5, stats, err);
+    slot_clear(S, &r);
+    if (ws != AQ_OK)
+      return ws;
+  }
+  return AQ_OK;
+}
+
 /* A stepper for arch a with the suite's settings, or NULL (err filled). */
 static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
 {
@@ -744,6 +855,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
   S.window = (size_t)nthreads * AQ_SUITE_WINDOW_PER_THREAD;
   int rc = AQ_EXIT_OK;
+  aq_status ws = AQ_OK;
+  aq_journal *J = NULL; /* with -o: the records written so far */
+  size_t done = 0;      /* records written from the journal (--resume) */
 
   /* Arches: loaded once, every bad one reported; nothing runs if any is. */
   S.arches = calloc(c->narches ? c->narches : 1, sizeof *S.arches);
@@ -751,7 +865,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   S.arch_err = calloc(c->narches ? c->narches : 1, sizeof *S.arch_err);
   S.slots = calloc(S.window, sizeof *S.slots);
   S.ws = aq_signal_ws_alloc();
-  if (!S.arches || !S.arch_ok || !S.arch_err || !S.slots || !S.ws) {
+  S.line = c->text ? open_memstream(&S.line_buf, &S.line_cap) : NULL;
+  if (!S.arches || !S.arch_ok || !S.arch_err || !S.slots || !S.ws || (c->text && !S.line)) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto out;
@@ -812,6 +927,14 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     rc = AQ_EXIT_OUTPUT;
     goto out;
   }
+  aq_journal_entry *jent = NULL;
+  size_t njent = 0;
+  rc = journal_start(&S, &J, &jent, &njent); /* a refused journal: before any output */
+  if (rc != AQ_EXIT_OK) {
+    aq_h5_abort(h5);
+    aq_cleanup_remove(h5_slot);
+    goto out;
+  }
   if (c->aligned) {
     size_t rw = 6, aw = 4;
     for (size_t i = 0; i < c->nrecords; i++)
@@ -827,6 +950,19 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
                  "cannot write: %s", strerror(errno));
     goto output_failed;
   }
+  if (c->text && fflush(c->text) != 0) { /* rows start in an empty buffer */
+    aq_error_set(&oerr, AQ_EIO, "text output", -1, -1, NULL,
+                 "cannot write: %s", strerror(errno));
+    goto output_failed;
+  }
+  ws = journal_replay(&S, h5, &stats, jent, njent, &oerr);
+  done = njent ? njent - 1 : 0;
+  aq_journal_entries_free(jent, njent);
+  if (ws != AQ_OK)
+    goto output_failed;
+  S.next_claim = S.next_write = done;
+  for (size_t i = 0; i < done; i++)
+    S.runs_done += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
   stats.write_s += now_s() - tw;
 
   /* Workers, each with its own steppers. */
@@ -859,9 +995,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   size_t total = 0;
   for (size_t i = 0; i < c->nrecords; i++)
     total += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
-  aq_status ws = AQ_OK;
   double last_progress = 0;
-  for (size_t i = 0; started > 0 && i < c->nrecords; i++) {
+  for (size_t i = done; started > 0 && i < c->nrecords; i++) {
     rec_slot *r = &S.slots[i % S.window];
     pthread_mutex_lock(&S.lock);
     while (!(r->state == SLOT_DONE && r->index == i)) {
@@ -884,6 +1019,13 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
     ws = write_record(&S, r, h5, &stats, &oerr);
+    if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
+      aq_jbuf jb = {0};
+      aq_suite_slot_encode(r, r->nruns, &jb);
+      ws = jb.oom ? aq_error_set(&oerr, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory")
+                  : aq_journal_append(J, jb.data, jb.n, &oerr);
+      free(jb.data);
+    }
     if (c->progress && c->aligned && c->text)
       fflush(c->text); /* the rows reach the terminal before the next line */
     stats.write_s += now_s() - t0;
@@ -943,6 +1085,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     rc = AQ_EXIT_OUTPUT;
     goto out;
   }
+  if (J && aq_journal_remove(J, &oerr) != AQ_OK)
+    aq_error_print(&oerr, stderr); /* the results are complete all the same */
+  J = NULL;
   if (rc == AQ_EXIT_OK && (stats.runs_failed || stats.records_failed))
     rc = AQ_EXIT_FAIL;
   goto out;
@@ -953,6 +1098,10 @@ output_failed:
   aq_cleanup_remove(h5_slot);
   rc = AQ_EXIT_OUTPUT;
 out:
+  aq_journal_close(J); /* kept: --resume continues from it */
+  if (S.line)
+    fclose(S.line);
+  free(S.line_buf);
   stats.wall_s = now_s() - t_start;
   if (S.arches)
     for (size_t a = 0; a < c->narches; a++)

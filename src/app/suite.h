@@ -14,6 +14,16 @@
  * app code.  The HDF5 temporary is registered with cleanup.h while it
  * exists, so SIGINT/SIGTERM remove it.  The caller owns everything in
  * aq_suite_cfg.
+ *
+ * With -o (and neither --history nor --store-records) each record written
+ * is also appended to a journal beside the target ("<target>.journal",
+ * report/journal.h), removed once the results file is complete.  With
+ * cfg.resume an existing journal of the same command (same build, options,
+ * arches and records, checked line by line) is read back first: its
+ * records are written again, in order, from the journal (rows, results
+ * file, diagnostics) and the suite continues with the next one, so the
+ * outputs equal an uninterrupted run's.  Text rows are written one row per
+ * write(2), so an interrupted run leaves only whole rows.
  */
 #ifndef AQ_APP_SUITE_H
 #define AQ_APP_SUITE_H
@@ -51,6 +61,7 @@ typedef struct {
   long threads;            /* -j (>= 1) */
   int progress;            /* 1: progress line on stderr */
   const char *h5_path;     /* -o target, or NULL */
+  int resume;              /* --resume: continue from h5_path's journal */
   FILE *text;              /* TSV rows go here (NULL: none) */
   int aligned;             /* 1: an aligned table instead of TSV (a terminal) */
   const char *command_line;/* for the results file */

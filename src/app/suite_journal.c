@@ -1,0 +1,181 @@
+/* suite_journal.c: a finished record as a journal entry, and the identity
+ * of a suite, for --resume (see suite_slot.h and report/journal.h).
+ *
+ * Structs are stored as their bytes: the identity names the exact build, so
+ * a journal is read back only by the build that wrote it. */
+#define _POSIX_C_SOURCE 200809L
+#include "suite_slot.h"
+
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "opt.h"
+
+enum { F_FAILED = 1, F_REC = 2, F_PROC = 4, F_IM = 8, F_RUNS = 16 };
+enum { R_RES = 1, R_FAILED = 2 };
+
+void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_jbuf *b)
+{
+  uint64_t index = r->index;
+  unsigned char f = (unsigned char)((r->failed ? F_FAILED : 0) | (r->have_rec ? F_REC : 0) |
+                                    (r->have_proc ? F_PROC : 0) | (r->have_im ? F_IM : 0) |
+                                    (r->runs ? F_RUNS : 0));
+  aq_jbuf_put(b, &index, sizeof index);
+  aq_jbuf_put(b, &f, 1);
+  if (r->failed)
+    aq_jbuf_put(b, &r->err, sizeof r->err);
+  aq_jbuf_put_str(b, r->status);
+  aq_jbuf_put_str(b, r->warning);
+  aq_jbuf_put_str(b, r->sha256);
+  aq_jbuf_put(b, &r->read_s, sizeof r->read_s);
+  aq_jbuf_put(b, &r->process_s, sizeof r->process_s);
+  if (r->have_rec) {
+    aq_record m = r->rec; /* metadata: the strings follow, no samples */
+    m.path = m.name = NULL;
+    m.acc_mps2 = NULL;
+    aq_jbuf_put(b, &m, sizeof m);
+    aq_jbuf_put_str(b, r->rec.path);
+    aq_jbuf_put_str(b, r->rec.name);
+  }
+  if (r->have_proc) {
+    aq_processed p = r->proc;
+    p.acc_mps2 = NULL;
+    aq_jbuf_put(b, &p, sizeof p);
+  }
+  if (r->have_im)
+    aq_jbuf_put(b, &r->im, sizeof r->im);
+  for (size_t i = 0; r->runs && i < nruns; i++) {
+    const run_slot *u = &r->runs[i];
+    unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0));
+    aq_jbuf_put(b, &u->sum, sizeof u->sum);
+    aq_jbuf_put(b, &g, 1);
+    if (u->have_res) {
+      aq_result res = u->res;
+      memset(&res.history, 0, sizeof res.history);
+      aq_jbuf_put(b, &res, sizeof res);
+    }
+    if (u->failed)
+      aq_jbuf_put(b, &u->err, sizeof u->err);
+    aq_jbuf_put(b, &u->run_s, sizeof u->run_s);
+  }
+}
+
+int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
+{
+  memset(r, 0, sizeof *r);
+  aq_jread_ctx c = {e->data, e->n, 0, 0};
+  uint64_t index;
+  unsigned char f;
+  aq_jread(&c, &index, sizeof index);
+  aq_jread(&c, &f, 1);
+  r->index = (size_t)index;
+  r->failed = (f & F_FAILED) != 0;
+  if (r->failed)
+    aq_jread(&c, &r->err, sizeof r->err);
+  aq_jread_str(&c, r->status, sizeof r->status, NULL);
+  aq_jread_str(&c, r->warning, sizeof r->warning, NULL);
+  aq_jread_str(&c, r->sha256, sizeof r->sha256, NULL);
+  aq_jread(&c, &r->read_s, sizeof r->read_s);
+  aq_jread(&c, &r->process_s, sizeof r->process_s);
+  if ((f & F_REC) && aq_jread(&c, &r->rec, sizeof r->rec) == 0) {
+    r->rec.path = r->rec.name = NULL;
+    r->rec.acc_mps2 = NULL;
+    r->have_rec = 1; /* aq_record_free frees what was read */
+    aq_jread_str(&c, NULL, 0, &r->rec.path);
+    aq_jread_str(&c, NULL, 0, &r->rec.name);
+  }
+  if ((f & F_PROC) && aq_jread(&c, &r->proc, sizeof r->proc) == 0) {
+    r->proc.acc_mps2 = NULL;
+    r->have_proc = 1;
+  }
+  if (f & F_IM)
+    r->have_im = aq_jread(&c, &r->im, sizeof r->im) == 0;
+  if ((f & F_RUNS) && !c.bad && !(r->runs = calloc(nruns ? nruns : 1, sizeof *r->runs)))
+    return -1;
+  for (size_t i = 0; r->runs && i < nruns && !c.bad; i++) {
+    run_slot *u = &r->runs[i];
+    unsigned char g = 0;
+    aq_jread(&c, &u->sum, sizeof u->sum);
+    aq_jread(&c, &g, 1);
+    if ((g & R_RES) && aq_jread(&c, &u->res, sizeof u->res) == 0) {
+      memset(&u->res.history, 0, sizeof u->res.history);
+      u->have_res = 1;
+    }
+    u->failed = (g & R_FAILED) != 0;
+    if (u->failed)
+      aq_jread(&c, &u->err, sizeof u->err);
+    aq_jread(&c, &u->run_s, sizeof u->run_s);
+  }
+  r->runs_done = r->runs ? nruns : 0;
+  r->state = SLOT_DONE;
+  return c.bad || c.off != c.n ? -1 : 0;
+}
+
+static void line(aq_jbuf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static void line(aq_jbuf *b, const char *fmt, ...)
+{
+  char buf[2048];
+  va_list ap;
+  va_start(ap, fmt);
+  int k = vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  if (k < 0 || (size_t)k >= sizeof buf - 1) {
+    b->oom = 1; /* a line that does not fit cannot identify */
+    return;
+  }
+  buf[k] = '\n';
+  aq_jbuf_put(b, buf, (size_t)k + 1);
+}
+
+int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
+{
+  aq_jbuf b = {0};
+  const aq_signal_opts *p = &c->proc;
+  /* floating-point values in %a: exact, so equal text means equal numbers */
+  line(&b, "archquake journal for %s", aq_build_string());
+  line(&b, "model=%d cor=%a polarity=%s", (int)c->model, c->cor,
+       aq_opt_polarity_names[c->polarity]);
+  line(&b, "detrend=%d taper=%a filter=%d highpass=%a highpass_auto=%d order=%d lowpass=%a",
+       (int)p->detrend, p->taper_frac, p->filter, p->highpass_hz, p->highpass_auto,
+       p->order, p->lowpass_hz);
+  line(&b, "merge_tol_g=%a scale_to_pga_g=%a", c->merge_tol_g,
+       c->scales ? 0.0 : c->scale_to_pga_g);
+  for (size_t k = 0; c->scales && k < c->nscale; k++)
+    line(&b, "scale=%a", c->scales[k]);
+  line(&b, "units=%d dt=%a column=%zu", (int)c->read.units, c->read.dt_s, c->read.column);
+  for (size_t k = 0; k < c->read.nrules; k++)
+    line(&b, "units_rule=%d %s", (int)c->read.rules[k].units, c->read.rules[k].glob);
+  line(&b, "history=%d store_records=%d", c->history, c->store_records);
+  line(&b, "vertical=%d all_azimuths=%d", c->vertical, c->all_azimuths);
+  for (size_t k = 0; c->motions && k < c->nazimuth; k++)
+    line(&b, "azimuth=%a", c->azimuths_deg[k]);
+  for (size_t i = 0; c->motions && i < c->nrecords; i++)
+    if (c->motions[i])
+      line(&b, "motion=%zu azimuths=%a,%a", i, c->motions[i]->azimuth_deg[0],
+           c->motions[i]->azimuth_deg[1]);
+  for (size_t a = 0; a < c->narches; a++) {
+    const char *cfg = aq_arch_config_text(arches[a]);
+    char sha[AQ_SHA256_HEX];
+    aq_sha256_hex(cfg, strlen(cfg), sha);
+    line(&b, "arch=%s sha256=%s", c->arch_paths[a], sha);
+  }
+  line(&b, "records=%zu", c->nrecords);
+  for (size_t i = 0; i < c->nrecords; i++)
+    line(&b, "record=%s", c->records[i]);
+  aq_jbuf_put(&b, "", 1);
+  if (b.oom) {
+    free(b.data);
+    return -1;
+  }
+  *out = (char *)b.data;
+  return 0;
+}

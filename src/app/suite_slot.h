@@ -1,0 +1,86 @@
+/* suite_slot.h: a record in flight in the suite (suite.c), and its
+ * encoding as a journal entry (suite_journal.c) so that --resume can write
+ * it again without running it.  Private to src/app. */
+#ifndef AQ_APP_SUITE_SLOT_H
+#define AQ_APP_SUITE_SLOT_H
+
+#include <stddef.h>
+
+#include "../arch/arch.h"
+#include "../arch/result.h"
+#include "../error.h"
+#include "../io/record.h"
+#include "../io/sha256.h"
+#include "../report/journal.h"
+#include "../report/report.h"
+#include "../signal/signal.h"
+#include "../signal/steps.h"
+#include "suite.h"
+
+typedef struct {
+  aq_summary sum;
+  aq_result res;
+  int have_res;
+  aq_error err;  /* when the run failed */
+  int failed;
+  double run_s;
+} run_slot;
+
+/* The second horizontal or the vertical component of a ground motion (the
+ * first is the record slot's own rec and proc). */
+typedef struct {
+  aq_record rec;
+  aq_processed proc;
+  int have_rec, have_proc;
+} comp_slot;
+
+enum { SLOT_FREE = 0, SLOT_PREPARING, SLOT_READY, SLOT_DONE };
+
+typedef struct {
+  int state;
+  size_t index;       /* record index */
+  aq_record rec;      /* metadata (samples freed once processed) */
+  int have_rec;
+  aq_processed proc;
+  int have_proc;
+  aq_im im;
+  int have_im;
+  int failed;         /* record-level failure (read or process) */
+  aq_error err;
+  char status[AQ_SUMMARY_STATUS_MAX];
+  char warning[300];  /* residual warning, "" if none */
+  char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
+  double read_s, process_s;
+  double *scale;      /* nscale factors applied */
+  double *pga_g;      /* PGA of each scaled record, g */
+  aq_steps *steps;    /* nscale step lists */
+  aq_status *steps_st;/* status of each step list */
+  aq_error *steps_err;
+  const aq_orient_motion *motion; /* NULL: a plain in-plane record */
+  comp_slot h2;       /* a motion's second horizontal component */
+  comp_slot v;        /* its vertical component (with --vertical) */
+  int run_v;          /* 1: the vertical is run */
+  double phi_deg[2];  /* a motion's component azimuths, deg */
+  size_t naz;         /* azimuths per (arch, scale): 1 for a plain record */
+  size_t nruns;       /* narch * nscale * naz */
+  run_slot *runs;     /* nruns, arch-major, then scale, then azimuth */
+  size_t next_run;    /* next run to hand out (READY) */
+  size_t runs_done;
+} rec_slot;
+
+/* Encode the finished record r (nruns runs) as a journal payload into *b
+ * (what writing it needs: metadata, intensity measures, status, messages,
+ * summaries and counters; not the samples, steps or histories). */
+void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_jbuf *b);
+
+/* Decode a payload into r (zeroed first; free with the suite's slot_clear).
+ * Returns 0, or -1 if the payload is not a record of nruns runs. */
+int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r);
+
+/* The identity of the suite c with its loaded arches, as text lines
+ * ("key=value\n": the build, every option that affects the numbers, each
+ * arch's path and sha256, each record's path) into *out (malloc'd).
+ * Returns 0, or -1 out of memory. */
+int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out);
+
+#endif

@@ -1,0 +1,421 @@
+/* test_suite_resume.c: an interrupted suite loses nothing (--resume).
+ *
+ * The reference is the same suite run once without interruption.  A suite
+ * killed (SIGKILL at random moments, SIGINT) and resumed until it completes
+ * must give a TSV byte-identical to the reference and a results file that
+ * `archquake compare` finds equal (exit 0); every killed run's stdout holds
+ * whole rows only; no file appears under the target name before the end;
+ * each resumed run continues at least from the records whose rows the
+ * killed run had printed.  A journal of another command, of a changed record,
+ * or with a bad magic is refused in one line; a torn or corrupt last entry is
+ * dropped and its record runs again. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check.h"
+
+enum {
+  RS_NREC = 60,   /* records in the suite (one unreadable among them) */
+  RS_NRUNS = 6,   /* runs per record: 2 arches x 3 scales */
+  RS_FIELDS = 19, /* TSV columns (azimuth_deg the last) */
+  RS_KILLS = 20,  /* SIGKILLs landing while the suite runs */
+  RS_ROUNDS = 4   /* suites killed and resumed to completion, at most */
+};
+
+typedef struct {
+  char dir[512];
+  char records[16384]; /* the record paths, space-separated */
+  char cmd[20000];     /* the suite's command line (no redirections) */
+} rs_suite;
+
+/* The suite: RS_NREC distinct files (copies of one record, and a
+ * truncated AT2 that cannot be read), two arches, three scales: about a
+ * second under the sanitizers, long enough to be killed many times. */
+static void rs_setup(rs_suite *s)
+{
+  aq_test_tmpdir(s->dir, sizeof s->dir);
+  size_t k = 0;
+  for (int i = 0; i < RS_NREC; i++) {
+    char path[700];
+    if (i == RS_NREC / 3) {
+      snprintf(path, sizeof path, "%s/rec%02d.AT2", s->dir, i);
+      aq_test_copy_prefix("records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", path, 1, 3);
+    } else {
+      snprintf(path, sizeof path, "%s/rec%02d.csv", s->dir, i);
+      aq_test_copy_prefix("tests/data/records/kocaeli.csv", path, 1, 1);
+    }
+    k += (size_t)snprintf(s->records + k, sizeof s->records - k, "%s%s", k ? " " : "", path);
+  }
+  snprintf(s->cmd, sizeof s->cmd,
+           "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg --scale 0.3,0.6,1 -j 2",
+           s->records);
+}
+
+/* Start `BIN cmd extra > out 2> err` in the background. */
+static pid_t rs_spawn(const rs_suite *s, const char *extra, const char *out, const char *err)
+{
+  static char sh[24000];
+  snprintf(sh, sizeof sh, "exec %s %s %s >'%s' 2>'%s'", aq_test_bin(), s->cmd, extra, out,
+           err);
+  pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", sh, (char *)NULL);
+    _exit(127);
+  }
+  return pid;
+}
+
+/* Run to the end; the exit status, or -1. */
+static int rs_run(const rs_suite *s, const char *extra, const char *out, const char *err)
+{
+  int st = 0;
+  pid_t pid = rs_spawn(s, extra, out, err);
+  if (pid < 0 || waitpid(pid, &st, 0) != pid || !WIFEXITED(st))
+    return -1;
+  return WEXITSTATUS(st);
+}
+
+static void rs_path(char *buf, size_t n, const rs_suite *s, const char *name)
+{
+  snprintf(buf, n, "%s/%s", s->dir, name);
+}
+
+/* Rows in the text file at path if it holds whole TSV rows only (every
+ * line ends in a newline and has RS_FIELDS cells), else -1. */
+static long rs_whole_rows(const char *path)
+{
+  size_t n = 0;
+  char *t = aq_test_read_file(path, &n);
+  if (!t)
+    return -1;
+  long rows = 0;
+  size_t tabs = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (t[i] == '\t')
+      tabs++;
+    else if (t[i] == '\n') {
+      if (tabs != RS_FIELDS - 1)
+        rows = -1;
+      if (rows >= 0)
+        rows++;
+      tabs = 0;
+    }
+  }
+  if (n > 0 && t[n - 1] != '\n')
+    rows = -1;
+  free(t);
+  return rows;
+}
+
+/* The "N of M records done before" count a resumed run printed, or -1. */
+static long rs_done_before(const char *errpath)
+{
+  char *e = aq_test_read_file(errpath, NULL);
+  const char *p = e ? strstr(e, " records done before") : NULL;
+  long n = -1;
+  if (p) {
+    while (p > e && p[-1] != ':')
+      p--;
+    n = strtol(p, NULL, 10);
+  }
+  free(e);
+  return n;
+}
+
+static int rs_exists(const char *path)
+{
+  struct stat sb;
+  return stat(path, &sb) == 0;
+}
+
+static int rs_same_files(const char *a, const char *b)
+{
+  size_t na = 0, nb = 0;
+  char *x = aq_test_read_file(a, &na), *y = aq_test_read_file(b, &nb);
+  int same = x && y && na == nb && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  return same;
+}
+
+static int rs_count_tmp(const rs_suite *s)
+{
+  DIR *d = opendir(s->dir);
+  int n = 0;
+  for (struct dirent *e; d && (e = readdir(d));)
+    n += strstr(e->d_name, ".tmp.") != NULL;
+  if (d)
+    closedir(d);
+  return n;
+}
+
+static double rs_now_ms(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
+}
+
+/* The reference: the suite run once (exit 1: one record cannot be read).
+ * Returns its wall time, ms (to spread the kills over a run, whatever the
+ * machine's speed). */
+static long rs_reference(const rs_suite *s)
+{
+  char out[700], err[700], extra[800];
+  rs_path(out, sizeof out, s, "ref.tsv");
+  rs_path(err, sizeof err, s, "ref.err");
+  snprintf(extra, sizeof extra, "-o %s/ref.h5", s->dir);
+  double t0 = rs_now_ms();
+  int rc = rs_run(s, extra, out, err);
+  long ms = (long)(rs_now_ms() - t0);
+  aq_check(rc == 1, "reference: exit 1 (one unreadable record), got %d", rc);
+  aq_check(rs_whole_rows(out) == 1 + RS_NREC * RS_NRUNS, "reference: %d rows",
+           1 + RS_NREC * RS_NRUNS);
+  return ms > 50 ? ms : 50;
+}
+
+/* out.tsv and out.h5 against the reference; journal and temporaries gone. */
+static void rs_check_final(const rs_suite *s, const char *what)
+{
+  char out[700], ref[700], args[2000], j[700];
+  static char cout[8192], cerr[8192];
+  rs_path(out, sizeof out, s, "out.tsv");
+  rs_path(ref, sizeof ref, s, "ref.tsv");
+  aq_check(rs_same_files(out, ref), "%s: TSV byte-identical to the uninterrupted run's", what);
+  snprintf(args, sizeof args, "compare %s/ref.h5 %s/out.h5", s->dir, s->dir);
+  int rc = aq_test_run(args, cout, sizeof cout, cerr, sizeof cerr);
+  aq_check(rc == 0, "%s: compare exits 0, got %d: %s%s", what, rc, cout, cerr);
+  rs_path(j, sizeof j, s, "out.h5.journal");
+  aq_check(!rs_exists(j), "%s: journal removed on success", what);
+  aq_check(rs_count_tmp(s) == 0, "%s: no temporary left", what);
+}
+
+static void rs_sleep_ms(long ms)
+{
+  struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+  nanosleep(&ts, NULL);
+}
+
+AQ_TEST(suite_resume_after_random_kills)
+{
+  rs_suite s;
+  rs_setup(&s);
+  long ref_ms = rs_reference(&s);
+  char out[700], err[700], h5[700], extra[800];
+  rs_path(out, sizeof out, &s, "out.tsv");
+  rs_path(err, sizeof err, &s, "out.err");
+  rs_path(h5, sizeof h5, &s, "out.h5");
+  snprintf(extra, sizeof extra, "-o %s --resume", h5);
+  srand(20261123u);
+  int kills = 0, attempts = 0, rounds = 0, progressed = 0, partial = 0, early = 0;
+  /* rounds of kills, each resumed until the suite completes, until
+   * RS_KILLS kills have landed mid-run */
+  while (kills < RS_KILLS && rounds < RS_ROUNDS) {
+    rounds++;
+    int finished = 0;
+    long rows_before = 0;
+    while (!finished && attempts < 4 * RS_KILLS) {
+      attempts++;
+      pid_t pid = rs_spawn(&s, extra, out, err);
+      /* a random moment in the first eighth of a whole run's time (about
+       * 1 s under the sanitizers): each run does a little */
+      long delay_ms = 5 + rand() % (ref_ms / 8), waited = 0;
+      int st = 0;
+      pid_t w = 0;
+      while (waited < delay_ms && (w = waitpid(pid, &st, WNOHANG)) == 0) {
+        rs_sleep_ms(2);
+        waited += 2;
+      }
+      if (w == 0) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &st, 0);
+      }
+      if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL && rs_exists(h5)) {
+        /* killed after the results file was complete (while exiting): it
+         * must be the whole suite's; the TSV may lack the last rows */
+        static char cout[8192], cerr[8192];
+        char args[2000];
+        snprintf(args, sizeof args, "compare %s/ref.h5 %s", s.dir, h5);
+        early += aq_test_run(args, cout, sizeof cout, cerr, sizeof cerr) != 0;
+        unlink(h5);
+        int rc = rs_run(&s, extra, out, err); /* the journal is gone: all again */
+        aq_check(rc == 1, "run after completion: exit 1 as the reference, got %d", rc);
+        finished = 1;
+      } else if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) {
+        kills++;
+        long rows = rs_whole_rows(out);
+        partial += rows < 0;
+        long done = rs_done_before(err);
+        /* the records whose rows the previous killed run printed are kept
+         * (all but the one being written when it was killed) */
+        if (done >= 0 && rows_before > 1 && done < (rows_before - 1) / RS_NRUNS - 1)
+          aq_check(0, "kill %d: resumed at record %ld, but %ld rows were printed", kills,
+                   done, rows_before);
+        progressed += done > 0;
+        rows_before = rows;
+      } else {
+        finished = WIFEXITED(st);
+        aq_check(finished && WEXITSTATUS(st) == 1,
+                 "a run that was not killed exits 1, got status %d", st);
+      }
+    }
+    if (!finished) {
+      int rc = rs_run(&s, extra, out, err);
+      aq_check(rc == 1, "last --resume completes: exit 1 as the reference, got %d", rc);
+    }
+    char what[64];
+    snprintf(what, sizeof what, "round %d, after %d kills", rounds, kills);
+    rs_check_final(&s, what);
+    unlink(h5);
+  }
+  aq_check(partial == 0, "every killed run's stdout holds whole rows (%d did not)", partial);
+  aq_check(early == 0, "a results file under the target name is the whole suite's (%d were "
+                       "not)", early);
+  aq_check(kills >= RS_KILLS, "%d kills landed mid-run: %d", RS_KILLS, kills);
+  aq_check(progressed >= 2, "resumed runs continued from earlier work (%d times)", progressed);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  kill-and-resume: %d SIGKILLs in %d runs, %d rounds (whole run %ld ms), %d "
+           "resumed with work kept\n", kills, attempts, rounds, ref_ms, progressed);
+}
+
+/* Start the suite (extra options) and SIGINT it once `rows` rows are out. */
+static int rs_interrupt(const rs_suite *s, const char *extra, long rows)
+{
+  char out[700], err[700];
+  rs_path(out, sizeof out, s, "out.tsv");
+  rs_path(err, sizeof err, s, "out.err");
+  pid_t pid = rs_spawn(s, extra, out, err);
+  int st = 0, i;
+  for (i = 0; i < 5000 && waitpid(pid, &st, WNOHANG) == 0; i++) {
+    long r = rs_whole_rows(out);
+    if (r >= rows)
+      break;
+    rs_sleep_ms(1);
+  }
+  kill(pid, SIGINT);
+  waitpid(pid, &st, 0);
+  return WIFSIGNALED(st) && WTERMSIG(st) == SIGINT;
+}
+
+AQ_TEST(suite_resume_after_sigint_and_bad_journals)
+{
+  rs_suite s;
+  rs_setup(&s);
+  rs_reference(&s);
+  char out[700], err[700], h5[700], j[700], extra[800], other[900];
+  rs_path(out, sizeof out, &s, "out.tsv");
+  rs_path(err, sizeof err, &s, "out.err");
+  rs_path(h5, sizeof h5, &s, "out.h5");
+  rs_path(j, sizeof j, &s, "out.h5.journal");
+  snprintf(extra, sizeof extra, "-o %s", h5);
+
+  /* SIGINT a plain run (no --resume) mid-way: the journal stays, nothing else */
+  aq_check(rs_interrupt(&s, extra, 1 + 4 * RS_NRUNS), "ended by SIGINT");
+  aq_check(rs_whole_rows(out) >= 1 + 4 * RS_NRUNS, "whole rows on stdout");
+  aq_check(!rs_exists(h5) && rs_count_tmp(&s) == 0, "no results file, no temporary");
+  aq_check(rs_exists(j), "the journal is kept");
+  size_t jn = 0;
+  char *jsaved = aq_test_read_file(j, &jn);
+
+  /* another command: one line naming what differs; nothing written */
+  snprintf(other, sizeof other, "-o %s --resume --cor 0.7", h5);
+  int rc = rs_run(&s, other, out, err);
+  char *e = aq_test_read_file(err, NULL);
+  aq_check(rc == 2, "another command's journal: exit 2, got %d", rc);
+  aq_check(e && strstr(e, "out.h5.journal") && strstr(e, "another command") &&
+               strstr(e, "cor=") && aq_test_count_lines(e) == 1,
+           "one clear line: %s", e ? e : "");
+  free(e);
+  aq_check(rs_whole_rows(out) == 0 && !rs_exists(h5), "nothing written");
+  char *jnow = aq_test_read_file(j, NULL);
+  aq_check(jnow && jsaved && memcmp(jnow, jsaved, jn) == 0, "the journal is untouched");
+  free(jnow);
+
+  /* a record changed in place since it was run: refused, naming it */
+  char rec[700], keep[700];
+  snprintf(rec, sizeof rec, "%s/rec01.csv", s.dir);
+  snprintf(keep, sizeof keep, "%s/keep.csv", s.dir);
+  aq_test_copy_prefix(rec, keep, 1, 1);
+  FILE *f = fopen(rec, "a");
+  if (f) {
+    fputs("31.2,0.001\n", f);
+    fclose(f);
+  }
+  snprintf(other, sizeof other, "-o %s --resume", h5);
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 2 && e && strstr(e, "rec01.csv changed"), "changed record refused: %d %s",
+           rc, e ? e : "");
+  free(e);
+  aq_test_copy_prefix(keep, rec, 1, 1);
+  unlink(keep);
+
+  /* the last entry corrupt (a flipped byte in its checksum): dropped */
+  f = fopen(j, "r+b");
+  if (f) {
+    fseek(f, -1, SEEK_END);
+    int c = fgetc(f);
+    fseek(f, -1, SEEK_END);
+    fputc(c ^ 0x5a, f);
+    fclose(f);
+  }
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 1 && e && strstr(e, "dropped a torn last entry"),
+           "corrupt last entry dropped: exit %d: %s", rc, e ? e : "");
+  free(e);
+  rs_check_final(&s, "corrupt last entry");
+
+  /* the journal as SIGINT left it, plus a torn frame (a length promising
+   * more bytes than follow): dropped, the rest kept */
+  unlink(h5);
+  f = fopen(j, "wb");
+  if (f && jsaved) {
+    fwrite(jsaved, 1, jn, f);
+    static const unsigned char torn[12] = {0xf4, 0x01, 0, 0, 0, 0, 0, 0, 'a', 'q', 'x', 'y'};
+    fwrite(torn, 1, sizeof torn, f);
+  }
+  if (f)
+    fclose(f);
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 1 && e && strstr(e, "(12 bytes)") && rs_done_before(err) >= 3,
+           "torn frame dropped, earlier records kept: exit %d: %s", rc, e ? e : "");
+  free(e);
+  rs_check_final(&s, "torn frame");
+
+  /* not a journal at all: refused in one line */
+  unlink(h5);
+  f = fopen(j, "wb");
+  if (f) {
+    fputs("yesterday's notes\n", f);
+    fclose(f);
+  }
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 2 && e && strstr(e, "out.h5.journal") && strstr(e, "magic") &&
+               aq_test_count_lines(e) == 1,
+           "bad magic refused in one line: exit %d: %s", rc, e ? e : "");
+  free(e);
+  unlink(j);
+  free(jsaved);
+
+  /* --resume needs -o and no datasets */
+  static char cout[4096], cerr[4096];
+  rc = aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --resume", cout,
+                   sizeof cout, cerr, sizeof cerr);
+  aq_check(rc == 2 && strstr(cerr, "--resume") && strstr(cerr, "no -o"),
+           "--resume without -o refused: %s", cerr);
+  snprintf(other, sizeof other,
+           "records/elcentro_chopra.csv --arch arches/thin.cfg --resume --history -o %s", h5);
+  rc = aq_test_run(other, cout, sizeof cout, cerr, sizeof cerr);
+  aq_check(rc == 2 && strstr(cerr, "--history"), "--resume with --history refused: %s", cerr);
+}
