@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/opt_arch.h"
 
 static const struct {
   const char *name;
@@ -29,6 +30,7 @@ static const char commands_usage[] =
     "  archquake pulse --arch FILE --accel-g A --duration S   one pulse\n"
     "  archquake domain --arch FILE                half-cycle collapse domain\n"
     "  archquake compare A.h5 B.h5                 regression check\n"
+    "  archquake capacity RECORD... --arch FILE    collapse scales, fragility\n"
     "  archquake --version                         the version\n";
 
 /* The main job's usage and the command list, on stdout. */
@@ -39,6 +41,7 @@ static void usage(void)
   fflush(stdout);
   aq_cmd_run(2, av);
   fputs(commands_usage, stdout);
+  aq_opt_arch_usage(stdout);
 }
 
 int main(int argc, char **argv)
@@ -61,7 +64,7 @@ int main(int argc, char **argv)
         return commands[i].fn(2, av);
       }
     fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
-                    "domain, compare), got \"%s\"\n", argv[2]);
+                    "domain, compare, capacity), got \"%s\"\n", argv[2]);
     return AQ_EXIT_USAGE;
   }
   if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
