@@ -84,6 +84,9 @@ static int tb_block_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
   double R = k->R, sd = k->side, u = k->alpha - i * w, fact = 1;
   pc->s_lo = i * w;
   pc->s_hi = i + 1 == TB_BLOCK_PIECES ? k->alpha : (i + 1) * w;
+  pc->s_ref = pc->s_lo;
+  pc->iscale = 1;
+  pc->deg = 5;
   for (int j = 0; j < 6; j++) {
     if (j > 0)
       fact *= j;
@@ -93,6 +96,7 @@ static int tb_block_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
     pc->dy[j] = R * tb_dcos(u, j + 1) / fact;
     pc->m[j] = j == 0 ? 4.0 / 3.0 * k->m * R * R : 0;
   }
+  pc->x[6] = pc->y[6] = 0; /* x, y: degree deg + 1 */
   pc->x[0] += sd * k->b;
   pc->y[0] -= k->h;
   return 0;
