@@ -108,7 +108,7 @@ DOC_FILES  := README.md $(wildcard docs/*.md)
 install: $(INSTALL_BIN) build/archquake.1
 	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR) $(MAN1DIR)
 	install -m 755 $(INSTALL_BIN) $(BINDIR)/archquake
-	-test -f archquake-mpi && install -m 755 archquake-mpi $(BINDIR)/archquake-mpi
+	if test -f archquake-mpi; then install -m 755 archquake-mpi $(BINDIR)/archquake-mpi; fi
 	install -m 644 $(ARCH_FILES) $(ARCHDIR)
 	install -m 644 $(DOC_FILES) $(DOCDIR)
 	install -m 644 build/archquake.1 $(MAN1DIR)/archquake.1
