@@ -30,6 +30,7 @@ for c in $commands; do
 done
 
 printf '.TH ARCHQUAKE 1 "" "%s" "User Commands"\n' "$version"
+printf '.nh\n'
 printf '.SH NAME\n'
 printf 'archquake \\- screen masonry arches against earthquake records (work-path method)\n'
 printf '.SH SYNOPSIS\n.nf\n'
