@@ -19,7 +19,8 @@ static const struct {
 } commands[] = {
     {"info", aq_cmd_info},       {"mechanism", aq_cmd_mechanism},
     {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
-    {"compare", aq_cmd_compare},   {"capacity", aq_cmd_capacity},
+    {"compare", aq_cmd_compare}, {"plot", aq_cmd_plot},
+    {"capacity", aq_cmd_capacity},
 };
 
 static const char commands_usage[] =
@@ -31,6 +32,7 @@ static const char commands_usage[] =
     "  archquake domain --arch FILE                half-cycle collapse domain\n"
     "  archquake compare A.h5 B.h5                 regression check\n"
     "  archquake capacity RECORD... --arch FILE    collapse scales, fragility\n"
+    "  archquake plot FIGURE ... -o FILE           figures (history arch domain suite capacity)\n"
     "  archquake --version                         the version\n";
 
 /* The main job's usage and the command list, on stdout. */
@@ -64,7 +66,7 @@ int main(int argc, char **argv)
         return commands[i].fn(2, av);
       }
     fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
-                    "domain, compare, capacity), got \"%s\"\n", argv[2]);
+                    "domain, compare, plot, capacity), got \"%s\"\n", argv[2]);
     return AQ_EXIT_USAGE;
   }
   if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {

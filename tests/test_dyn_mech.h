@@ -34,8 +34,10 @@ static int tb_block_eval(const void *ctx, double s, aq_path_point *p)
     return 1;
   double R = k->R, u = k->alpha - s, sd = k->side;
   memset(p, 0, sizeof *p);
-  p->x_m = sd * (k->b - R * sin(u));
-  p->y_m = R * cos(u) - k->h;
+  /* b - R sin(alpha - s) and R cos(alpha - s) - h without cancellation */
+  double sh = sin(0.5 * s), hv = 2 * sh * sh; /* 1 - cos s */
+  p->x_m = sd * (k->b * hv + k->h * sin(s));
+  p->y_m = k->b * sin(s) - k->h * hv;
   p->dx_m = sd * R * cos(u);
   p->dy_m = R * sin(u);
   p->d2x_m = sd * R * sin(u);

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "../arch/stepper.h"
+#include "../io/formats.h"
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
@@ -252,6 +253,8 @@ int aq_cmd_run(int argc, char **argv)
     }
   }
   aq_opt_signal_check(&cfg.proc, &nerr);
+  argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind),
+                                                    &cfg.read);
   if (optind >= argc) {
     fprintf(stderr, "archquake: expected at least one RECORD (see 'archquake --help')\n");
     nerr++;
