@@ -24,6 +24,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_dyn.h"
 #include "opt_record.h"
 #include "opt_signal.h"
@@ -36,7 +37,8 @@ static const char usage_head[] =
     "verdict (collapse or not) changes, from the scale at which it first moves\n"
     "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
     "polarity) on stdout.\n"
-    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  --arch FILE         an arch (.cfg), or an installed arch by name\n"
+    "                      (oppenheim); repeatable\n"
     "  -o, --output FILE.h5  write the results to a `capacity` group\n"
     "  --text FILE         write the TSV to FILE instead of stdout\n"
     "  --fragility FILE    lognormal fragility fits, one row per (arch, IM)\n"
@@ -164,7 +166,8 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
                                   aq_opt_polarity_names[pols[i % npol]], o->status[i],
                                   have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
-                                  R[r].ok ? R[r].im.pgv_mps : NAN};
+                                  R[r].ok ? R[r].im.pgv_mps : NAN,
+                                  R[r].ok ? &R[r].im : NULL};
   }
   for (size_t i = 0; i < nf; i++)
     o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
@@ -314,7 +317,7 @@ int aq_cmd_capacity(int argc, char **argv)
         aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
       continue;
     switch (c) {
-    case OPT_ARCH: arch_paths[na++] = optarg; break;
+    case OPT_ARCH: arch_paths[na++] = aq_opt_arch(optarg, &nerr); break;
     case 'o': h5 = optarg; break;
     case OPT_TEXT: text = optarg; break;
     case OPT_FRAG: frag = optarg; break;
