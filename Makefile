@@ -1,5 +1,5 @@
 # archquake Makefile.  Overridable: CC CFLAGS LDFLAGS PREFIX DESTDIR.
-# Targets: all check bench install uninstall clean deps fuzz
+# Targets: all check bench install uninstall clean deps fuzz mpi check-mpi
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 LDFLAGS ?=
@@ -15,7 +15,7 @@ AQ_LIBS    = $(PKG_LIBS) -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
-LIB_SRC   := $(filter-out src/main.c,$(LIB_SRC))
+LIB_SRC   := $(filter-out src/main.c src/app/mpi.c,$(LIB_SRC))
 TEST_SRC  := $(sort $(wildcard tests/*.c))
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 FUZZ_SRC  := $(sort $(wildcard fuzz/fuzz_*.c))
@@ -25,7 +25,7 @@ REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all check bench install uninstall clean deps print-deps fuzz FORCE
+.PHONY: all check bench install uninstall clean deps print-deps fuzz mpi check-mpi FORCE
 all: archquake
 
 # The exact build, embedded in results files (src/app/version.c): `git
@@ -61,6 +61,24 @@ check: build/san/runner build/san/archquake
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  AQ_BIN=build/san/archquake ./build/san/runner $(TESTS)
 
+# archquake-mpi (src/app/mpi.c): the main job over Open MPI ranks; rank 0
+# alone writes, with the serial HDF5 library.  Only `make mpi` needs MPI.
+MPICC ?= mpicc
+mpi: archquake-mpi
+build/mpi/main.o: src/main.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(AQ_CFLAGS) $(CFLAGS) -DAQ_MAIN=aq_main_serial -c -o $@ $<
+build/mpi/mpi.o: src/app/mpi.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
+archquake-mpi: build/mpi/mpi.o build/mpi/main.o $(REL_OBJ)
+	$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+# The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3
+# ranks, a failing record, --resume, a killed follower.
+check-mpi: archquake archquake-mpi
+	AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi sh tests/mpi.sh
+
 BENCH_BIN := $(BENCH_SRC:bench/%.c=build/bench/%)
 build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
 	@mkdir -p $(dir $@)
@@ -68,6 +86,8 @@ build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
 
 bench: archquake $(BENCH_BIN)
 	@for b in $(BENCH_BIN); do echo "== $$b"; ./$$b || exit 1; done
+	@if command -v $(MPICC) >/dev/null 2>&1; then $(MAKE) -s mpi && sh bench/mpi.sh; \
+	 else echo "== bench/mpi.sh: skipped ($(MPICC) not found: make deps-dev)"; fi
 
 # Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from records/.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
@@ -92,7 +112,8 @@ uninstall:
 
 # Debian packages the build, the tests and `make fuzz` need.
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
-            libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev
+            libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
+            libopenmpi-dev openmpi-bin
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)
@@ -101,4 +122,4 @@ print-deps:
 	@echo $(DEB_PKGS)
 
 clean:
-	rm -rf build archquake
+	rm -rf build archquake archquake-mpi

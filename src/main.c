@@ -41,7 +41,13 @@ static void usage(void)
   fputs(commands_usage, stdout);
 }
 
-int main(int argc, char **argv)
+/* archquake-mpi builds this file as aq_main_serial, called by its own main
+ * (src/app/mpi.c). */
+#ifndef AQ_MAIN
+#define AQ_MAIN main
+#endif
+int AQ_MAIN(int argc, char **argv);
+int AQ_MAIN(int argc, char **argv)
 {
   gsl_set_error_handler_off(); /* GSL's default handler aborts */
   if (argc < 2) { /* nothing to run: the usage, and the status of a usage error */
