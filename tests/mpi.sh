@@ -50,8 +50,16 @@ for n in 1 2 3; do
   check "$(grep -c 'PROVENANCE.md' "$T/m$n.err")" 1 "N=$n the unreadable record reported once"
 done
 
+# What cannot travel between ranks is refused before anything runs.
+# shellcheck disable=SC2086
+$MPIRUN -n 2 "$MPIBIN" $R/ARL360.at2 --arch arches/oppenheim.cfg --history -o "$T/hist.h5" \
+  >/dev/null 2>"$T/hist.err"
+check $? 2 "--history at N=2: a usage error"
+check "$(grep -c 'expected one rank' "$T/hist.err")" 1 "--history at N=2: one line saying why"
+check "$(ls "$T" | grep -c '^hist')" 1 "--history at N=2: no results file (only its stderr)"
+
 # A follower killed mid-run: 280 records (copies: a suite runs each file
-# once), rank 1 killed after a second.
+# once), rank 1 killed once some are done.
 mkdir "$T/recs"
 i=0
 LONG=""
@@ -63,11 +71,19 @@ while [ $i -lt 40 ]; do
   done
   i=$((i + 1))
 done
-KARGS="--arch arches/oppenheim.cfg --scale 0.5,1"
+KARGS="--arch arches/oppenheim.cfg --scale 1,3 --model ode"
 # shellcheck disable=SC2086
 $MPIRUN -n 3 "$MPIBIN" $LONG $KARGS -o "$T/k.h5" --text "$T/k.tsv" 2>"$T/k.err" &
 mp=$!
-sleep 1
+# kill once the journal holds a record beyond its identity entry
+j0=0
+waited=0
+while kill -0 $mp 2>/dev/null && [ $waited -lt $((HANG_S * 20)) ]; do
+  j=$(stat -c %s "$T/k.h5.journal" 2>/dev/null || echo 0)
+  if [ "$j0" -eq 0 ]; then j0=$j; elif [ "$j" -gt "$j0" ]; then break; fi
+  sleep 0.05
+  waited=$((waited + 1))
+done
 victim=""
 for p in $(pgrep -P $mp); do
   if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then

@@ -1063,6 +1063,12 @@ out:
 /* Every channel of a multi-channel file is a record of its own (FILE#CH). */
 int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
 {
+  if (remote && (remote->fetch || remote->follower) && (cfg->history || cfg->store_records)) {
+    fprintf(stderr, "archquake: %s: expected one rank (mpirun -n 1) with it, got several: "
+                    "results travel between ranks without histories or waveforms\n",
+            cfg->history ? "--history" : "--store-records");
+    return AQ_EXIT_USAGE;
+  }
   char **names;
   size_t n;
   aq_error err;
