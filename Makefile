@@ -1,5 +1,5 @@
 # archquake Makefile.  Overridable: CC CFLAGS LDFLAGS PREFIX DESTDIR.
-# Targets: all check bench install uninstall clean deps fuzz mpi check-mpi
+# Targets: all check ci bench install uninstall clean deps fuzz mutate mpi check-mpi
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 LDFLAGS ?=
@@ -7,7 +7,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 FUZZ_SECONDS ?= 60
 
-PKGS      := gsl fftw3 hdf5 inih
+PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
@@ -24,8 +24,9 @@ HDRS      := $(wildcard src/*.h src/*/*.h tests/*.h bench/*.h)
 REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
+MUT_OBJ  := $(LIB_SRC:%.c=build/mut/%.o) $(TEST_SRC:%.c=build/mut/%.o)
 
-.PHONY: all check bench install uninstall clean deps print-deps fuzz mpi check-mpi FORCE
+.PHONY: all check ci bench install uninstall clean deps print-deps fuzz mutate mpi check-mpi FORCE
 all: archquake
 
 # The exact build, embedded in results files (src/app/version.c): `git
@@ -36,7 +37,7 @@ build/describe.h: FORCE
 	@mkdir -p build
 	@printf '#define AQ_BUILD_SUFFIX "%s"\n' '$(if $(AQ_DESCRIBE), ($(AQ_DESCRIBE)))' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-build/rel/src/app/version.o build/san/src/app/version.o: build/describe.h
+build/rel/src/app/version.o build/san/src/app/version.o build/mut/src/app/version.o: build/describe.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -79,6 +80,22 @@ archquake-mpi: build/mpi/mpi.o build/mpi/main.o $(REL_OBJ)
 check-mpi: archquake archquake-mpi
 	AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi sh tests/mpi.sh
 
+# Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
+# (fast to rebuild and run); each mutant recompiles one file and relinks.
+build/mut/%.o: %.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(AQ_CFLAGS) -O1 -g -c -o $@ $<
+
+build/mut/runner: $(MUT_OBJ)
+	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+build/mut/archquake: build/mut/src/main.o $(filter build/mut/src/%,$(MUT_OBJ))
+	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+mutate: build/mut/runner build/mut/archquake
+	AQ_CFLAGS='$(AQ_CFLAGS)' AQ_LIBS='$(AQ_LIBS)' CC='$(CC)' LDFLAGS='$(LDFLAGS)' \
+	  python3 tests/mutate.py $(MUTANTS)
+
 BENCH_BIN := $(BENCH_SRC:bench/%.c=build/bench/%)
 build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
 	@mkdir -p $(dir $@)
@@ -89,19 +106,42 @@ bench: archquake $(BENCH_BIN)
 	@if command -v $(MPICC) >/dev/null 2>&1; then $(MAKE) -s mpi && sh bench/mpi.sh; \
 	 else echo "== bench/mpi.sh: skipped ($(MPICC) not found: make deps-dev)"; fi
 
-# Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from records/.
+# Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from
+# fuzz/seeds, records/ and tests/data/records.  A crash, leak, timeout or
+# undefined behaviour stops that harness: its log is shown, the input that
+# did it is named (build/fuzz/crash-NAME/...) and the target fails.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
 build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS) build/describe.h
 	@mkdir -p $(dir $@)
 	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
 
 fuzz: $(FUZZ_BIN)
-	@for f in $(FUZZ_BIN); do \
-	  n=$$(basename $$f); mkdir -p build/fuzz/corpus-$$n; \
+	@fail=0; for f in $(FUZZ_BIN); do \
+	  n=$$(basename $$f); mkdir -p build/fuzz/corpus-$$n build/fuzz/crash-$$n; \
 	  echo "== $$n ($(FUZZ_SECONDS) s)"; \
-	  ./$$f -max_total_time=$(FUZZ_SECONDS) -max_len=200000 -timeout=10 \
-	    build/fuzz/corpus-$$n fuzz/seeds/$$n records tests/data/records 2>&1 | tail -n 3 || exit 1; \
-	done
+	  if ./$$f -max_total_time=$(FUZZ_SECONDS) -max_len=200000 -timeout=10 \
+	      -artifact_prefix=build/fuzz/crash-$$n/ \
+	      build/fuzz/corpus-$$n fuzz/seeds/$$n records tests/data/records \
+	      > build/fuzz/$$n.log 2>&1; then \
+	    grep -a '^Done ' build/fuzz/$$n.log || tail -n 1 build/fuzz/$$n.log; \
+	  else \
+	    tail -n 40 build/fuzz/$$n.log; \
+	    art=$$(sed -n 's/.*Test unit written to \([^ ]*\).*/\1/p' build/fuzz/$$n.log | tail -n 1); \
+	    echo "fuzz: $$n FAILED on input $${art:-(none written; see build/fuzz/$$n.log)}"; \
+	    fail=1; \
+	  fi; \
+	done; exit $$fail
+
+# CI (.ci/run) and the README's test command: the tests, then a short fuzz of
+# every reader (CI_FUZZ_SECONDS each); the last line is the tests'
+# "N passed, N failed".
+CI_FUZZ_SECONDS ?= 20
+ci:
+	@mkdir -p build
+	@$(MAKE) --no-print-directory check > build/ci-check.log 2>&1; rc=$$?; \
+	  cat build/ci-check.log; [ $$rc -eq 0 ] || exit $$rc; \
+	  $(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) || exit 1; \
+	  tail -n 1 build/ci-check.log
 
 install: archquake
 	install -d $(DESTDIR)$(PREFIX)/bin
@@ -113,6 +153,7 @@ uninstall:
 # Debian packages the build, the tests and `make fuzz` need.
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
             libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
+            libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo \
             libopenmpi-dev openmpi-bin
 deps:
 	apt-get update

@@ -1,5 +1,5 @@
 /* bench_arch.c: building an arch (geometry, both work paths with their
- * tables) at 20 and 60 voussoirs, with given hinges and with the mechanism
+ * tables and the Taylor leg's pieces) at 20 and 60 voussoirs, with given hinges and with the mechanism
  * search, and the cost of one path evaluation (tables vs exact). */
 #include <stdio.h>
 
@@ -9,7 +9,8 @@
 
 #define REPS 21
 
-static double build_ms(size_t nv, int search, size_t *table_n, double *table_err)
+static double build_ms(size_t nv, int search, size_t *table_n, double *table_err,
+                       size_t *piece_n)
 {
   double t[REPS];
   aq_arch_params p = {5.0, 1.25, AQ_PI, nv, 2000.0, 1.0};
@@ -29,6 +30,8 @@ static double build_ms(size_t nv, int search, size_t *table_n, double *table_err
       table_n[1] = aq_workpath_table_size(aq_arch_workpath(a, 1));
       table_err[0] = aq_workpath_table_error(aq_arch_workpath(a, 0));
       table_err[1] = aq_workpath_table_error(aq_arch_workpath(a, 1));
+      piece_n[0] = aq_workpath_piece_count(aq_arch_workpath(a, 0));
+      piece_n[1] = aq_workpath_piece_count(aq_arch_workpath(a, 1));
     }
     aq_arch_free(a);
   }
@@ -56,16 +59,17 @@ static double search_ms(size_t nv, size_t *nsets)
 int main(void)
 {
   printf("voussoirs\thinges\tbuild_ms\tsearch_ms\tsets\ttable_n_primary\ttable_n_reverse\t"
-         "table_err_primary\ttable_err_reverse\n");
+         "table_err_primary\ttable_err_reverse\tpieces_primary\tpieces_reverse\n");
   static const size_t nvs[] = {20, 60};
   for (int k = 0; k < 2; k++) {
     for (int search = 0; search < 2; search++) {
-      size_t tn[2] = {0, 0}, nsets = 0;
+      size_t tn[2] = {0, 0}, pn[2] = {0, 0}, nsets = 0;
       double te[2] = {0, 0};
-      double b = build_ms(nvs[k], search, tn, te);
+      double b = build_ms(nvs[k], search, tn, te, pn);
       double s = search ? search_ms(nvs[k], &nsets) : 0;
-      printf("%zu\t%s\t%.3f\t%.3f\t%zu\t%zu\t%zu\t%.2g\t%.2g\n", nvs[k],
-             search ? "search" : "given", b, s, nsets, tn[0], tn[1], te[0], te[1]);
+      printf("%zu\t%s\t%.3f\t%.3f\t%zu\t%zu\t%zu\t%.2g\t%.2g\t%zu\t%zu\n", nvs[k],
+             search ? "search" : "given", b, s, nsets, tn[0], tn[1], te[0], te[1],
+             pn[0], pn[1]);
     }
   }
   /* one evaluation: tables vs exact, oppenheim primary */

@@ -31,7 +31,7 @@
 #include "signal/signal.h"
 #include "units.h"
 
-enum { MAX_CASES = 24, REPS = 5 };
+enum { MAX_CASES = 24, REPS = 15 };
 
 typedef struct {
   const char *name;

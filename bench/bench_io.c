@@ -1,6 +1,8 @@
 /* bench_io.c: median time to read a 20 000-sample record with
  * aq_record_read (AT2, SAC and CSV), beside the floor: merely reading the same
- * file's bytes into memory.  The records are made here from real data:
+ * file's bytes into memory; then each agency-format reader (COSMOS, CSMIP,
+ * SMC, ESM, miniSEED) parsing a shipped file, against the same floor.  The
+ * records are made here from real data:
  * CHY028-N.AT2 (18 000 values, Chi-Chi 1999) extended to 20 000 values by
  * repeating its first 2 000 value tokens, and a little-endian SAC file
  * holding the same samples (float32, g), and a CSV "t,acc_g" of them. */
@@ -170,6 +172,60 @@ static int reader(const char *path, const aq_read_opts *ro)
   return ok;
 }
 
+/* An agency-format file parsed from its bytes by the dispatcher (what the
+ * reader states, before the units decision). */
+static int raw_reader(const char *path, const aq_read_opts *ro)
+{
+  size_t n;
+  unsigned char *b = slurp(path, &n);
+  if (!b)
+    return 0;
+  aq_raw_file raw;
+  aq_error e;
+  int ok = aq_raw_parse(b, n, path, ro, &raw, &e) == AQ_OK;
+  aq_raw_file_free(&raw);
+  free(b);
+  return ok;
+}
+
+/* The agency-format readers on shipped files (tests/data/records/agency). */
+static void bench_agency(void)
+{
+  static const struct {
+    const char *name, *path;
+  } f[] = {
+      {"cosmos-v2", "tests/data/records/agency/Cosmos12TimeSeriesTest.v1"},
+      {"cosmos-v0", "tests/data/records/agency/NP1795-n.305.v0c"},
+      {"csmip-v1", "tests/data/records/agency/CE89146.V1"},
+      {"csmip-v2", "tests/data/records/agency/ce36456p_CE36456.V2"},
+      {"smc", "tests/data/records/agency/0165b_a.smc"},
+      {"esm", "tests/data/records/agency/HL.DLFA..HNE.D.20190728.160908.C.ACC.ASC"},
+      {"mseed", "tests/data/records/agency/"
+                "CE.58360..HNE__20191015T053312Z__20191015T054042Z.mseed"},
+  };
+  for (size_t i = 0; i < sizeof f / sizeof f[0]; i++) {
+    struct stat st;
+    size_t n, npts = 0;
+    unsigned char *b = slurp(f[i].path, &n);
+    aq_raw_file raw;
+    aq_error e;
+    if (!b || stat(f[i].path, &st) != 0 || aq_raw_parse(b, n, f[i].path, NULL, &raw, &e)) {
+      fprintf(stderr, "bench_io: cannot parse %s\n", f[i].path);
+      exit(1);
+    }
+    for (size_t c = 0; c < raw.nchan; c++)
+      npts += raw.chan[c].npts;
+    aq_raw_file_free(&raw);
+    free(b);
+    double fl = time_median(floor_read, f[i].path, NULL);
+    double rd = time_median(raw_reader, f[i].path, NULL);
+    double fl2 = time_median(floor_read, f[i].path, NULL);
+    double fm = fl < fl2 ? fl : fl2;
+    printf("%s\t%zu\t%lld\t%.1f\t%.1f\t%.1f\n", f[i].name, npts, (long long)st.st_size,
+           1e6 * rd, 1e6 * fm, rd / fm);
+  }
+}
+
 int main(void)
 {
   mkdir("build", 0777);
@@ -203,5 +259,6 @@ int main(void)
     printf("%s\t%d\t%lld\t%.1f\t%.1f\t%.1f\n", names[i], NPTS, (long long)st.st_size,
            1e6 * rd, 1e6 * fm, rd / fm);
   }
+  bench_agency();
   return 0;
 }

@@ -24,7 +24,8 @@
   X(AQ_EGEOMETRY, 8, "impossible geometry")                                \
   X(AQ_EINADMISSIBLE, 9, "inadmissible mechanism")                         \
   X(AQ_ENUMERIC, 10, "numerical failure")                                  \
-  X(AQ_EINTERNAL, 11, "internal error")
+  X(AQ_EINTERNAL, 11, "internal error")                                    \
+  X(AQ_ELIFTOFF, 12, "the arch leaves the ground (g + vertical acceleration <= 0)")
 
 typedef enum {
 #define AQ_X_ENUM(name, code, text) name = code,

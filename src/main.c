@@ -18,7 +18,8 @@ static const struct {
 } commands[] = {
     {"info", aq_cmd_info},       {"mechanism", aq_cmd_mechanism},
     {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
-    {"compare", aq_cmd_compare},   {"capacity", aq_cmd_capacity},
+    {"compare", aq_cmd_compare}, {"plot", aq_cmd_plot},
+    {"capacity", aq_cmd_capacity},
 };
 
 static const char commands_usage[] =
@@ -29,6 +30,8 @@ static const char commands_usage[] =
     "  archquake pulse --arch FILE --accel-g A --duration S   one pulse\n"
     "  archquake domain --arch FILE                half-cycle collapse domain\n"
     "  archquake compare A.h5 B.h5                 regression check\n"
+    "  archquake capacity RECORD... --arch FILE    collapse scales, fragility\n"
+    "  archquake plot FIGURE ... -o FILE           figures (history arch domain suite capacity)\n"
     "  archquake --version                         the version\n";
 
 /* The main job's usage and the command list, on stdout. */
@@ -39,6 +42,16 @@ static void usage(void)
   fflush(stdout);
   aq_cmd_run(2, av);
   fputs(commands_usage, stdout);
+}
+
+/* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
+int aq_main_is_command(const char *name);
+int aq_main_is_command(const char *name)
+{
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (strcmp(name, commands[i].name) == 0)
+      return 1;
+  return 0;
 }
 
 /* archquake-mpi builds this file as aq_main_serial, called by its own main
@@ -67,7 +80,7 @@ int AQ_MAIN(int argc, char **argv)
         return commands[i].fn(2, av);
       }
     fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
-                    "domain, compare), got \"%s\"\n", argv[2]);
+                    "domain, compare, plot, capacity), got \"%s\"\n", argv[2]);
     return AQ_EXIT_USAGE;
   }
   if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {

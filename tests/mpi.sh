@@ -50,6 +50,19 @@ for n in 1 2 3; do
   check "$(grep -c 'PROVENANCE.md' "$T/m$n.err")" 1 "N=$n the unreadable record reported once"
 done
 
+# A two-component motion run at every 30th azimuth, between plain records.
+OARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL337.AT2
+       $R/IELC180.AT2 --azimuth all:30 --arch arches/oppenheim.cfg --scale 1,2"
+# shellcheck disable=SC2086
+"$BIN" -j 1 $OARGS -o "$T/oref.h5" >"$T/oref.tsv" 2>/dev/null
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
+check $? 0 "motion, N=3: exit status"
+if cmp -s "$T/oref.tsv" "$T/o3.tsv"; then ok "motion, N=3: TSV byte-identical"; else
+  bad "motion, N=3: TSV differs from archquake -j 1's"; fi
+"$BIN" compare "$T/oref.h5" "$T/o3.h5" >/dev/null 2>&1
+check $? 0 "motion, N=3: compare with archquake -j 1's results file"
+
 # What cannot travel between ranks is refused before anything runs.
 # shellcheck disable=SC2086
 $MPIRUN -n 2 "$MPIBIN" $R/ARL360.at2 --arch arches/oppenheim.cfg --history -o "$T/hist.h5" \

@@ -1,5 +1,6 @@
 /* runner.c: runs every registered test (or those whose names contain
- * argv[1]); last line "N passed, N failed"; exit 1 if any failed. */
+ * argv[1]); last line "N passed, N failed"; exit 1 if any failed.
+ * AQ_TEST_STOP_FIRST set: stop after the first failed test (make mutate). */
 #include "check.h"
 
 #include <math.h>
@@ -64,8 +65,8 @@ int aq_check_rel_(double got, double want, double rel, const char *file,
   snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g > %.3g",
            got, want, want != 0 ? d / fabs(want) : d, rel);
   if (ok)
-    snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g", got,
-             want, want != 0 ? d / fabs(want) : d);
+    snprintf(what, sizeof what, "got %.17g, want %.17g, rel err %.3g <= %.3g", got,
+             want, want != 0 ? d / fabs(want) : d, rel);
   va_list ap;
   va_start(ap, fmt);
   report(ok, file, line, what, fmt, ap);
@@ -190,6 +191,7 @@ const char *aq_test_tmpdir(char *buf, size_t cap)
 int main(int argc, char **argv)
 {
   verbose = getenv("AQ_TEST_VERBOSE") != NULL;
+  const int stop_first = getenv("AQ_TEST_STOP_FIRST") != NULL;
   size_t passed = 0, failed = 0;
   for (size_t i = 0; i < ntests; i++) {
     if (argc > 1 && !strstr(tests[i].name, argv[1]))
@@ -201,6 +203,10 @@ int main(int argc, char **argv)
       failed++;
       fprintf(stderr, "FAIL %s (%zu checks failed)\n", tests[i].name,
               checks_failed_in_test);
+      if (stop_first) {
+        fflush(stderr);
+        break;
+      }
     } else {
       passed++;
       if (verbose)

@@ -12,7 +12,7 @@
 #include "units.h"
 
 #define FD_STEP_RAD 1e-5      /* central differences */
-#define FD_REL_TOL 2e-8       /* O(h^2) truncation + round-off/h, relative to scale */
+#define FD_REL_TOL 5e-9       /* O(h^2) truncation + round-off/h, relative to scale */
 #define CLOSURE_TOL_REL 1e-14 /* closure residual relative to the radius */
 #define TABLE_TOL_REL 1e-10   /* tables against exact, relative to the scale */
 
@@ -81,7 +81,7 @@ AQ_TEST(arch_kinematics_derivatives_vs_fd)
       for (int b = 0; b < 3; b++)
         mg += c.body[b].mass_kg * (c.body[b].dx_m * c.body[b].dx_m + c.body[b].dy_m * c.body[b].dy_m) +
               c.body[b].inertia_kgm2 * c.body[b].dphi * c.body[b].dphi;
-      aq_check_rel(c.mgen_kgm2, mg, 1e-13, "M(s) = sum m|dc/ds|^2 + I dphi^2");
+      aq_check_rel(c.mgen_kgm2, mg, 1e-15, "M(s) = sum m|dc/ds|^2 + I dphi^2");
       aq_check_rel(c.lambda, -p->act_sign * c.dy_m / c.dx_m, 1e-15, "lambda by virtual work");
     }
     aq_arch_free(a);
@@ -217,7 +217,7 @@ AQ_TEST(arch_tables_vs_exact)
       /* ends */
       aq_path_point z;
       aq_check(p->eval(p->ctx, 0.0, &z) == 0 && z.x_m == 0 && z.y_m == 0, "s = 0: undeformed");
-      aq_check_rel(z.lambda, p->lambda0, 1e-10, "lambda(0) = lambda0");
+      aq_check_rel(z.lambda, p->lambda0, 1e-15, "lambda(0) = lambda0");
       aq_check(p->eval(p->ctx, p->s_c_rad, &z) == 0, "s_c evaluates");
       aq_check(p->eval(p->ctx, -1e-3, &z) != 0 && p->eval(p->ctx, 1.01 * p->s_c_rad, &z) != 0 &&
                    p->eval_exact(p->ctx, 1.01 * p->s_c_rad, &z) != 0,
@@ -274,7 +274,7 @@ AQ_TEST(arch_potential_energy_by_voussoir)
           aq_vec2 c1 = carry(&pt, m->body, b, g->vous[v].c);
           pe += g->vous[v].mass_kg * gg * (c1.y - g->vous[v].c.y);
         }
-      aq_check_rel(pe, p->mass_kg * gg * pt.y_m, 1e-12, "set %d PE at step %d", set, i);
+      aq_check_rel(pe, p->mass_kg * gg * pt.y_m, 5e-14, "set %d PE at step %d", set, i);
     }
   }
   aq_arch_free(a);

@@ -97,8 +97,8 @@ static double min_duration(aq_stepper *st, double a, double tol)
 
 /* Section 4.2: COR = 1, 0.55 g for 0.5 s opening the primary set, then 20 s
  * of free motion at 0.02 s steps.  Total mechanical energy KE + m g y must
- * stay constant: the work path to round-off (1e-9 per cycle is the issue's
- * bound; the paper lost 0.4 % per cycle), the ode model to its tolerance. */
+ * stay constant: the work path to round-off (README quotes 3e-15 per cycle;
+ * the paper lost 0.4 % per cycle), the ode model to its tolerance. */
 AQ_TEST(dyn_arch_energy_conservation_oppenheim)
 {
   aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
@@ -124,10 +124,11 @@ AQ_TEST(dyn_arch_energy_conservation_oppenheim)
     aq_check(!r.collapsed && r.impacts >= 10, "%s: rocks without collapse: "
              "%zu impacts, %.1f cycles in 20 s", mdl ? "ode" : "workpath",
              r.impacts, cycles);
-    aq_check(dmax / fmax(cycles, 1) <= (mdl ? 1e-9 : 1e-12),
+    /* measured 3.2e-15 (workpath) and 1.3e-14 (ode) per cycle */
+    aq_check(dmax / fmax(cycles, 1) <= (mdl ? 5e-13 : 1e-13),
              "%s: energy drift %.3g relative over %.1f cycles (%.3g per cycle)",
              mdl ? "ode" : "workpath", dmax, cycles, dmax / fmax(cycles, 1));
-    aq_check_rel(r.energy_in_j - r.energy_dissipated_j, e0, 1e-9,
+    aq_check_rel(r.energy_in_j - r.energy_dissipated_j, e0, 2e-13,
                  "energy in - dissipated = energy after the pulse");
     aq_result_free(&r);
     aq_stepper_free(st);
@@ -158,7 +159,7 @@ AQ_TEST(dyn_arch_domain_workpath_vs_ode)
       break;
     rows++;
     aq_check(r1 == r2 && a1 == a2, "same ratio row");
-    aq_check_rel(t1, t2, 1e-6, "r = %g: workpath vs ode min duration", r1);
+    aq_check_rel(t1, t2, 1e-15, "r = %g: workpath vs ode min duration", r1);
     aq_check(t1 < prev, "duration decreases with r (%g: %g)", r1, t1);
     prev = t1;
     l1 = strchr(l1 + 1, '\n');
@@ -224,7 +225,7 @@ AQ_TEST(dyn_arch_domain_near_threshold)
            T[1], T[2]);
   aq_check_rel(T[2] - T[1], log(10) / pp, 0.02,
                "decade increment vs ln(10)/p (p = %.6g rad/s)", pp);
-  aq_check_rel(T[1] - T[0], log(10) / pp, 0.05, "previous decade");
+  aq_check_rel(T[1] - T[0], log(10) / pp, 0.005, "previous decade");
   aq_stepper_free(st);
   aq_arch_free(a);
 }
@@ -266,10 +267,13 @@ AQ_TEST(dyn_arch_marginal_collapse)
 }
 
 /* A constant pulse and the free swing after it, step by step (0.01 s): the
- * work path follows the ode model at rtol 1e-12 (an independent
- * integration of the equation of motion) to round-off at every step end.
- * Eq. (19) taken literally, x(s) - x(s1) of table values each ~1e-15 m,
- * drifted steadily: 4.7e-12 rad apart over this run, now 2.5e-16. */
+ * work path follows the ode model at rtol 1e-12 on the exact kinematics
+ * (an independent integration of the equation of motion) to round-off at
+ * every step end: 1.0e-15 rad apart.  (The work path's pieces fit the exact
+ * kinematics, not the ode's Hermite tables, whose 4e-12 table error puts
+ * the two 1.1e-14 rad apart.)  Eq. (19) taken literally, x(s) - x(s1) of
+ * table values each ~1e-15 m, drifted steadily: 4.7e-12 rad apart over
+ * this run. */
 AQ_TEST(dyn_arch_pulse_no_drift)
 {
   aq_arch *a = aq_test_arch_load("arches/oppenheim.cfg");
@@ -281,6 +285,8 @@ AQ_TEST(dyn_arch_pulse_no_drift)
   int ok = 1;
   for (int k = 0; k < 2; k++) {
     aq_stepper *st = stepper(a, k ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH, 0.7, 1e-12);
+    if (st && k)
+      aq_stepper_set_exact_path(st, 1);
     ok &= st && run_pulse(st, acc, 0.4371, 1.6, 0.01, 1, &r[k]);
     aq_stepper_free(st);
   }
@@ -302,7 +308,7 @@ AQ_TEST(dyn_arch_pulse_no_drift)
     aq_check(r[0].impacts == r[1].impacts && r[0].reversals >= 1 && n > 150,
              "same motion: %zu impacts, %zu reversals", r[0].impacts,
              r[0].reversals);
-    aq_check(dq <= 1e-15, "step ends agree to %.3g rad (peak %.3g rad)", dq, qmax);
+    aq_check(dq <= 3e-15, "step ends agree to %.3g rad (peak %.3g rad)", dq, qmax);
     aq_result_free(&r[0]);
     aq_result_free(&r[1]);
   }

@@ -54,8 +54,8 @@ AQ_TEST(dyn_cli_pulse_row_and_models)
                    "--duration 0.43 --end 4 --cor 0.6 --model ode --ode-rtol 1e-12",
                    out, sizeof out, err, sizeof err);
   aq_check(rc == 0, "ode exit 0");
-  aq_check_rel(q_wp, field(out, 6), 1e-8, "peak rotation: workpath vs ode");
-  aq_check_rel(x_wp, field(out, 7), 1e-8, "peak displacement: workpath vs ode");
+  aq_check_rel(q_wp, field(out, 6), 1e-15, "peak rotation: workpath vs ode");
+  aq_check_rel(x_wp, field(out, 7), 1e-15, "peak displacement: workpath vs ode");
   aq_check(imp_wp == field(out, 9) && imp_wp >= 2, "same impacts (%g)", imp_wp);
 }
 
@@ -122,7 +122,7 @@ AQ_TEST(dyn_cli_pulse_history)
   fclose(f);
   aq_check(rows == 125, "one row per 0.02 s step: %d", rows);
   aq_check(extra > 0, "rows at turning points and impacts too: %d", extra);
-  aq_check_abs(t, 2.5, 1e-12, "last row at --end");
+  aq_check_abs(t, 2.5, 5e-15, "last row at --end");
   aq_check(emax < 1e-9, "COR 1: KE + PE constant in the file (%.3g)", emax);
 }
 
@@ -194,7 +194,7 @@ AQ_TEST(dyn_cli_pulse_default_end_rests)
   aq_check(rc == 0, "long run exit 0: %s", err);
   for (int k = 6; k <= 12; k++)
     if (k != 10 && k != 11)
-      aq_check_rel(field(out, k), field(out2, k), 1e-12, "column %d as --end 40", k);
+      aq_check_rel(field(out, k), field(out2, k), 1e-15, "column %d as --end 40", k);
   aq_check(field(out, 9) == field(out2, 9), "impacts as --end 40");
   /* the first step end at rest after the last one in motion */
   FILE *f = fopen(path, "r");
@@ -213,7 +213,7 @@ AQ_TEST(dyn_cli_pulse_default_end_rests)
   fclose(f);
   aq_check(t_rest > dur && prev == -1, "the long run rests at %g", t_rest);
   double k = end - dur;
-  aq_check_abs(k, round(k), 1e-9, "end_s = duration + whole seconds (%g)", end);
+  aq_check_abs(k, round(k), 1e-15, "end_s = duration + whole seconds (%g)", end);
   aq_check(end >= t_rest - dt && end - 1 < t_rest,
            "end_s %g: the first duration + k s at rest (rest in (%g, %g])", end,
            t_rest - dt, t_rest);

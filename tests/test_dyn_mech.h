@@ -34,8 +34,10 @@ static int tb_block_eval(const void *ctx, double s, aq_path_point *p)
     return 1;
   double R = k->R, u = k->alpha - s, sd = k->side;
   memset(p, 0, sizeof *p);
-  p->x_m = sd * (k->b - R * sin(u));
-  p->y_m = R * cos(u) - k->h;
+  /* b - R sin(alpha - s) and R cos(alpha - s) - h without cancellation */
+  double sh = sin(0.5 * s), hv = 2 * sh * sh; /* 1 - cos s */
+  p->x_m = sd * (k->b * hv + k->h * sin(s));
+  p->y_m = k->b * sin(s) - k->h * hv;
   p->dx_m = sd * R * cos(u);
   p->dy_m = R * sin(u);
   p->d2x_m = sd * R * sin(u);
@@ -84,6 +86,9 @@ static int tb_block_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
   double R = k->R, sd = k->side, u = k->alpha - i * w, fact = 1;
   pc->s_lo = i * w;
   pc->s_hi = i + 1 == TB_BLOCK_PIECES ? k->alpha : (i + 1) * w;
+  pc->s_ref = pc->s_lo;
+  pc->iscale = 1;
+  pc->deg = 5;
   for (int j = 0; j < 6; j++) {
     if (j > 0)
       fact *= j;
@@ -93,6 +98,7 @@ static int tb_block_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
     pc->dy[j] = R * tb_dcos(u, j + 1) / fact;
     pc->m[j] = j == 0 ? 4.0 / 3.0 * k->m * R * R : 0;
   }
+  pc->x[6] = pc->y[6] = 0; /* x, y: degree deg + 1 */
   pc->x[0] += sd * k->b;
   pc->y[0] -= k->h;
   return 0;

@@ -1,5 +1,5 @@
 /* test_dyn_taylor.c: the default work-path leg (time-Taylor series on the
- * table pieces, leg_taylor.c) against the ode model at a tight tolerance
+ * path's pieces, leg_taylor.c) against the ode model at a tight tolerance
  * (an independent integration of the equation of motion) and against the
  * quadrature leg (workpath-quad) on the hard cases; the stepper's scale
  * against a scaled copy of the steps; history samples at turning points.

@@ -17,7 +17,7 @@
 /* PROVENANCE.md prints PGA to 4 decimals of g. */
 #define PROV_PGA_ABS_G 0.5e-4
 /* dt from the header text is exact decimal: only binary rounding remains. */
-#define DT_REL 1e-12
+#define DT_REL 1e-15 /* dt read exactly (measured 0) */
 /* A sample is strtod of the text times g0: the same double up to the one
  * rounding of the product. */
 #define SAMPLE_REL 1e-15

@@ -14,8 +14,8 @@
 #define REC_DIR "tests/data/records/"
 #define PROV_PGA_ABS_G 0.5e-4 /* PROVENANCE.md prints 4 decimals of g */
 /* dt and the first time come from decimal text: binary rounding only */
-#define TIME_REL 1e-12
-#define TIME_ABS_S 1e-12
+#define TIME_REL 1e-15 /* measured 0 */
+#define TIME_ABS_S 1e-14 /* a few ulps of the times (measured 0) */
 /* a sample is strtod of the text times the units factor: one rounding */
 #define SAMPLE_REL 1e-15
 

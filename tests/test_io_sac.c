@@ -5,6 +5,7 @@
  * byte swapper here, and Debian's mseed2sac converting miniSEED at test time
  * (both byte orders), checked against mseed2sac's own text (alpha) output. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -375,4 +376,59 @@ AQ_TEST(io_sac_version7_footer)
   aq_check(aq_record_parse(b, 1032, "v7-nofooter.sac", &ro, &r, &e) == AQ_EFORMAT &&
                strstr(e.message, "version-7 footer"),
            "v7 without footer: %s", e.message);
+}
+
+#define CSN_HNE REC_DIR "20190706031952.CJ.T001230.HNE.sac"
+/* gmprocess's test_sac_csn: max|data| * 980.665 = 42.54516983 cm/s^2, the
+ * data in g (tests/data/records/PROVENANCE.md) */
+static const double CSN_HNE_MAX_CM_S2 = 42.54516983;
+/* The copy stores each sample * 9.80665e9 as float32: 2^-24 relative, plus
+ * the reference's 10 digits */
+static const double NM_COPY_REL = 2e-7;
+
+/* The CSN record (IDEP = IACC, values in g) rewritten in nm/s^2, as SAC's
+ * IACC promises: read with the file's units and with --units nm/s2, its
+ * peak is 42.54516983 cm/s^2 = 0.4254516983 m/s^2 (0.0434 g), not 1000
+ * times more or less. */
+AQ_TEST(io_units_sac_iacc_is_nm_per_s2)
+{
+  size_t n;
+  unsigned char *b = (unsigned char *)aq_test_read_file(CSN_HNE, &n);
+  if (!aq_check(b && n >= 632 + 4 * 15001, "read %s", CSN_HNE)) {
+    free(b);
+    return;
+  }
+  for (size_t k = 0; k < 15001; k++) { /* little-endian float32 samples */
+    unsigned char *p = b + 632 + 4 * k;
+    uint32_t u = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+                 (uint32_t)p[3] << 24;
+    float f;
+    memcpy(&f, &u, 4);
+    f = (float)((double)f * 9.80665e9); /* g -> nm/s^2 */
+    memcpy(&u, &f, 4);
+    for (int i = 0; i < 4; i++)
+      p[i] = (unsigned char)(u >> (8 * i));
+  }
+  char d[512], path[700];
+  aq_test_tmpdir(d, sizeof d);
+  snprintf(path, sizeof path, "%s/csn-nm.sac", d);
+  FILE *f = fopen(path, "wb");
+  aq_check(f && fwrite(b, 1, n, f) == n && fclose(f) == 0, "write %s", path);
+  free(b);
+  for (int how = 0; how < 2; how++) {
+    aq_read_opts ro;
+    memset(&ro, 0, sizeof ro);
+    ro.units = how ? AQ_UNITS_NMPS2 : AQ_UNITS_FILE;
+    aq_record r;
+    aq_error e;
+    aq_error_clear(&e);
+    if (!aq_check(aq_record_read(path, &ro, &r, &e) == AQ_OK, "read (%s): %s",
+                  how ? "--units nm/s2" : "file units", e.message))
+      continue;
+    aq_check_rel(max_abs(&r), CSN_HNE_MAX_CM_S2 / 100, NM_COPY_REL,
+                 "%s: max|a| m/s2 = gmprocess's cm/s2 / 100", how ? "--units nm/s2" : "IACC");
+    aq_check_rel(max_abs(&r) / 9.80665, CSN_HNE_MAX_CM_S2 / 980.665, NM_COPY_REL,
+                 "max|a| in g");
+    aq_record_free(&r);
+  }
 }

@@ -40,6 +40,7 @@ typedef struct {
   char field[8][32];
   aq_diff_kind kind[8];
   double rel[8];
+  double scale[8]; /* of the run the difference is about (NAN: none) */
 } diffs;
 
 static void collect(void *ctx, const aq_diff *d)
@@ -50,6 +51,7 @@ static void collect(void *ctx, const aq_diff *d)
              d->field ? d->field->name : d->name ? d->name : "-");
     x->kind[x->n] = d->kind;
     x->rel[x->n] = d->rel;
+    x->scale[x->n] = d->a ? d->a->scale : d->b ? d->b->scale : NAN;
   }
   x->n++;
 }
@@ -121,8 +123,14 @@ AQ_TEST(report_compare_tolerance_and_matching)
   aq_check(cmp(a, NRUN, b, NRUN, 1e-7, 0, &d) == 1, "one difference");
   aq_check(strcmp(d.field[0], "peak_displacement_m") == 0, "names the field: %s",
            d.field[0]);
-  aq_check_rel(d.rel[0], 3e-7 / (1 + 3e-7), 1e-6, "relative difference");
+  aq_check_rel(d.rel[0], 3e-7 / (1 + 3e-7), 2e-9, "relative difference");
   aq_check(cmp(a, NRUN, b, NRUN, 1e-6, 0, NULL) == 0, "within 1e-6");
+  aq_check(cmp(a, NRUN, b, NRUN, 2e-7, 0, NULL) == 1, "beyond 2e-7");
+  /* the rule atol + rtol max(|a|, |b|), at literal numbers */
+  aq_check(aq_compare_close(100.0, 100.00015, 1e-6, 0) == 0, "1.5e-6 relative > rtol 1e-6");
+  aq_check(aq_compare_close(100.0, 100.00009, 1e-6, 0) == 1, "0.9e-6 relative <= 1e-6");
+  aq_check(aq_compare_close(100.0, 100.00019, 1e-6, 1e-4) == 1, "atol adds to rtol");
+  aq_check(aq_compare_close(100.0, 100.00021, 1e-6, 1e-4) == 0, "beyond atol + rtol");
   /* absolute tolerance: |diff| = 3e-7 * v */
   aq_check(cmp(a, NRUN, b, NRUN, 0, 4e-7 * v, NULL) == 0, "within atol");
   aq_check(cmp(a, NRUN, b, NRUN, 0, 2e-7 * v, NULL) == 1, "beyond atol");
@@ -456,4 +464,48 @@ AQ_TEST(report_compare_reads_format1)
   aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\t*\tdetrend\tmean\tlinear\t") &&
                strstr(out, "\n*\t*\t*\t*\ttaper_frac\t"),
            "today's defaults: runs matched, the settings named: exit %d: %s", rc, out);
+}
+
+/* A survivor's collapse time is NaN in the summary, whatever the result
+ * struct holds (README: "collapse_time_s is nan for an arch that survives"). */
+AQ_TEST(report_summary_survivor_has_nan_collapse_time)
+{
+  aq_result r;
+  memset(&r, 0, sizeof r);
+  r.collapsed = 0;
+  r.collapse_time_s = 2.5;
+  r.energy_in_j = 7.25;
+  r.energy_dissipated_j = 3.5;
+  aq_summary s;
+  aq_summary_fill(&s, "rec", "arch", "workpath", 1.5, 0.3, "ok", &r);
+  aq_check(isnan(s.collapse_time_s), "survivor: nan, got %g", s.collapse_time_s);
+  aq_check(s.energy_in_j == 7.25 && s.energy_dissipated_j == 3.5, "energies copied");
+  r.collapsed = 1;
+  aq_summary_fill(&s, "rec", "arch", "workpath", 1.5, 0.3, "ok", &r);
+  aq_check(s.collapse_time_s == 2.5 && s.collapsed == 1, "collapse time kept");
+}
+
+/* Runs come in the order of the sorted keys (compare.h), a NaN scale (a
+ * record that failed) after every number. */
+AQ_TEST(report_compare_nan_scale_sorts_last)
+{
+  aq_summary a[3];
+  memset(a, 0, sizeof a);
+  for (int k = 0; k < 3; k++) {
+    snprintf(a[k].record, sizeof a[k].record, "records/b.AT2");
+    snprintf(a[k].arch, sizeof a[k].arch, "thin");
+  }
+  a[0].scale = NAN;
+  a[1].scale = 2.5;
+  a[2].scale = 0.75;
+  static mem_suite ma, mb;
+  make_suite(&ma, a, 3, shas);
+  make_suite(&mb, a, 0, shas);
+  for (int k = 0; k < 3; k++) /* one record, one arch */
+    ma.runs[k].record_index = 0;
+  aq_compare_opts o = {0, 0, NULL, 0};
+  diffs d = {0};
+  aq_check(aq_compare_suites(&ma.S, &mb.S, &o, collect, &d) == 3, "three runs only in a");
+  aq_check(d.n == 3 && d.scale[0] == 0.75 && d.scale[1] == 2.5 && isnan(d.scale[2]),
+           "order 0.75, 2.5, nan: got %g %g %g", d.scale[0], d.scale[1], d.scale[2]);
 }

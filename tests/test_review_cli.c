@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 
@@ -42,9 +43,16 @@ AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
   aq_check(aq_test_count_lines(err) == 1 && strstr(err, "barely.cfg") && strstr(err, "cannot") &&
                strstr(err, "hinge set 0e 6i 16e 27i"),
            "one line naming the file and the set: %s", err);
-  snprintf(args, sizeof args, "%s --arch %s", REVIEW_RECORD, cfg);
+  char h5[700], txt[700];
+  snprintf(h5, sizeof h5, "%s/out.h5", dir);
+  snprintf(txt, sizeof txt, "%s/out.tsv", dir);
+  snprintf(args, sizeof args, "%s --arch %s -o %s --text %s", REVIEW_RECORD, cfg, h5, txt);
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 2, "run: exit %d (want 2, an arch that cannot be loaded): %s", rc, err);
+  aq_check(aq_test_count_lines(err) == 1 && strstr(err, "barely.cfg") &&
+               strstr(err, "hinge set 0e 6i 16e 27i"),
+           "run: one line naming the file and the set: %s", err);
+  aq_check(access(h5, F_OK) != 0 && access(txt, F_OK) != 0, "run: no output file left");
 }
 
 /* An existing output that is not a regular file (here a FIFO; /dev/null

@@ -30,7 +30,7 @@ static double frac_arias(double tau, double w, double T)
  * interpolation of |sin| errs by ~ (w dt)^2 / 12 = 2e-5 relative; peaks of
  * v and d sampled on the grid err by ~ (w dt)^2 / 8; D5-95's interpolation
  * errs by ~ dt (w dt)^2. */
-#define IM_ARIAS_REL 1e-10
+#define IM_ARIAS_REL 1e-13 /* measured 2.2e-15 */
 #define IM_CAV_REL 5e-5
 #define IM_PEAK_REL 1e-4
 #define IM_D595_ABS_S 1e-5
@@ -64,7 +64,7 @@ AQ_TEST(signal_im_windowed_sine_closed_forms)
   }
   double d595 = T - 2 * 0.5 * (lo + hi);
 
-  aq_check_rel(im.pga_g, A / AQ_G0_MPS2, 1e-12, "PGA (the peak is on the grid)");
+  aq_check_rel(im.pga_g, A / AQ_G0_MPS2, 1e-15, "PGA (the peak is on the grid)");
   aq_check_rel(im.arias_mps, AQ_PI / (2 * AQ_G0_MPS2) * A * A * T / 2,
                IM_ARIAS_REL, "Arias intensity");
   aq_check_rel(im.cav_mps, 2 * A * ncyc / (AQ_PI * f), IM_CAV_REL, "CAV");
@@ -72,7 +72,8 @@ AQ_TEST(signal_im_windowed_sine_closed_forms)
   aq_check_rel(im.pgv_mps, 2 * A / w, IM_PEAK_REL, "PGV");
   aq_check_rel(im.pgd_m, A * T / w, IM_PEAK_REL, "PGD");
   aq_check_rel(im.d_end_m, A * T / w, IM_PEAK_REL, "residual displacement");
-  aq_check_abs(im.v_end_mps, 0, IM_PEAK_REL * 2 * A / w, "residual velocity");
+  /* the sine ends at a whole cycle: round-off only (measured 1.3e-17 of 2A/w) */
+  aq_check_abs(im.v_end_mps, 0, 1e-15 * 2 * A / w, "residual velocity");
   aq_check(im.residual_warn == AQ_IM_WARN_DEND, "warns of the displacement "
            "only: %d", im.residual_warn);
   free(p.acc_mps2);
@@ -124,7 +125,7 @@ static double rel_rms(const double *x, const double *ref, size_t n)
   return sqrt(num / den);
 }
 
-#define PEER_REL_RMS 1e-3 /* issue 3 */
+#define PEER_REL_RMS 2e-4 /* README quotes 1.7e-4 (measured 1.68e-4) */
 
 static const char *const peer_names[] = {"RSN1616_DUZCE_362-E",
                                         "RSN4843_CHUETSU_65006NS",
@@ -246,4 +247,35 @@ AQ_TEST(signal_im_info_columns_as_read)
                  tsv_value(out, "cav_m_s") > 0,
              "%s: arias, d5_95, cav present", name);
   }
+}
+
+/* CAV = int |a| dt of the linearly interpolated record: across a change of
+ * sign the interval is two triangles meeting at the zero crossing. */
+AQ_TEST(signal_im_cav_splits_at_zero_crossings)
+{
+  static const double a[] = {2.385, -1.1, -0.35, 0.7, 0.7};
+  const double dt = 0.02;
+  aq_processed p;
+  memset(&p, 0, sizeof p);
+  p.n = p.n_orig = 5;
+  p.dt_s = dt;
+  p.acc_mps2 = malloc(sizeof a);
+  if (!aq_check(p.acc_mps2 != NULL, "alloc"))
+    return;
+  memcpy(p.acc_mps2, a, sizeof a);
+  double want = 0;
+  for (int k = 0; k < 4; k++) {
+    double x = fabs(a[k]), y = fabs(a[k + 1]);
+    if (a[k] * a[k + 1] >= 0) {
+      want += 0.5 * (x + y) * dt; /* trapezoid */
+    } else {
+      double tz = dt * x / (x + y); /* the zero crossing */
+      want += 0.5 * x * tz + 0.5 * y * (dt - tz);
+    }
+  }
+  aq_im im;
+  aq_error e;
+  aq_check(aq_im_compute(&p, &im, &e) == AQ_OK, "im");
+  aq_check_rel(im.cav_mps, want, 1e-15, "CAV with two zero crossings");
+  free(p.acc_mps2);
 }

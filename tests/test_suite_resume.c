@@ -25,7 +25,7 @@
 enum {
   RS_NREC = 60,   /* records in the suite (one unreadable among them) */
   RS_NRUNS = 6,   /* runs per record: 2 arches x 3 scales */
-  RS_FIELDS = 18, /* TSV columns */
+  RS_FIELDS = 19, /* TSV columns (azimuth_deg the last) */
   RS_KILLS = 20,  /* SIGKILLs landing while the suite runs */
   RS_ROUNDS = 4   /* suites killed and resumed to completion, at most */
 };

@@ -23,6 +23,7 @@ int aq_cmd_mechanism(int argc, char **argv); /* archquake mechanism */
 int aq_cmd_pulse(int argc, char **argv);     /* archquake pulse */
 int aq_cmd_domain(int argc, char **argv);    /* archquake domain */
 int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
+int aq_cmd_plot(int argc, char **argv);      /* archquake plot */
 int aq_cmd_capacity(int argc, char **argv);  /* archquake capacity */
 
 /* With [hinges], warn on stderr (one line naming path and both sets) when

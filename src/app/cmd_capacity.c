@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "../capacity/capacity.h"
+#include "../io/formats.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text_capacity.h"
@@ -341,6 +342,7 @@ int aq_cmd_capacity(int argc, char **argv)
             AQ_SCAN_TOL_MIN, so.resolution, so.tol);
     nerr++;
   }
+  argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
   if (optind >= argc) {
     fprintf(stderr, "archquake: capacity: expected at least one RECORD\n");
     nerr++;

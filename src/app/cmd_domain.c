@@ -1,8 +1,6 @@
 /* cmd_domain.c: `archquake domain --arch FILE [--ratios LIST] ...`: the
- * half-cycle collapse domain of the paper's section 4.1.  For each ratio r
- * the shortest rectangular pulse of r lambda0 g, in the direction that opens
- * the primary set, that collapses the arch, by bisection to --tol seconds
- * (not the paper's 0.02 s stepping). */
+ * half-cycle collapse domain of the paper's section 4.1, computed by
+ * aq_domain_min_duration (src/arch/domain.c) for each ratio. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
 #include <math.h>
@@ -11,10 +9,15 @@
 #include <string.h>
 
 #include "../arch/arch.h"
+#include "../arch/domain.h"
 #include "../arch/stepper.h"
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+
+/* Smallest --tol, s: a finer bisection of durations of 0.01-100 s would reach
+ * the spacing of doubles, where hi - lo stops shrinking. */
+#define AQ_DOMAIN_TOL_MIN_S 1e-12
 
 static const char usage[] =
     "usage: archquake domain --arch FILE [OPTIONS]\n"
@@ -29,7 +32,7 @@ static const char usage[] =
     "                   momentum, which the runs then follow)\n"
     "  --model M        workpath (default) | ode | paper | workpath-quad\n"
     "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
-    "  --tol S          bisection tolerance on the duration, s (default 1e-9)\n"
+    "  --tol S          bisection tolerance on the duration, s, 1e-12..1 (default 1e-9)\n"
     "  --max-duration S give up above this duration, s (default 100)\n"
     "  --help           this text\n"
     "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
@@ -38,24 +41,6 @@ static const char usage[] =
     "option the arch makes ineffective, as --cor with impact momentum).\n";
 
 static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
-static const double FREE_TAIL_S = 30; /* free motion after the pulse */
-
-/* 1 if a pulse of a_mps2 for dur_s collapses the arch, 0 if not, -1 on error. */
-static int collapses(aq_stepper *st, double a_mps2, double dur_s, aq_error *err)
-{
-  double t[2] = {0, dur_s}, dt[2] = {dur_s, FREE_TAIL_S}, a[2] = {a_mps2, 0};
-  aq_steps s;
-  if (aq_steps_from_list(t, dt, a, 2, &s, err) != AQ_OK)
-    return -1;
-  aq_result r;
-  aq_status rc = aq_stepper_run(st, &s, &r, err);
-  aq_steps_free(&s);
-  if (rc != AQ_OK)
-    return -1;
-  int c = r.collapsed;
-  aq_result_free(&r);
-  return c;
-}
 
 int aq_cmd_domain(int argc, char **argv)
 {
@@ -94,7 +79,7 @@ int aq_cmd_domain(int argc, char **argv)
       rtol_given = 1;
       break;
     case 't':
-      aq_opt_double_gt("--tol", optarg, 0, 1, &tol, &nerr);
+      aq_opt_double("--tol", optarg, AQ_DOMAIN_TOL_MIN_S, 1, &tol, &nerr);
       break;
     case 'M':
       aq_opt_double_gt("--max-duration", optarg, 0, 3600, &tmax, &nerr);
@@ -157,29 +142,13 @@ int aq_cmd_domain(int argc, char **argv)
   aq_stepper_set_ode_rtol(st, rtol);
   printf("ratio\taccel_g\tmin_duration_s\n");
   for (size_t i = 0; i < nr; i++) {
-    double a = pp->act_sign * ratios[i] * pp->lambda0 * pp->g_mps2;
-    double lo = 0, hi = 0.01;
-    int ch;
-    while ((ch = collapses(st, a, hi, &err)) == 0 && hi < tmax) {
-      lo = hi;
-      hi = fmin(2 * hi, tmax);
-    }
-    if (ch < 0)
+    double a, dur;
+    if (aq_domain_min_duration(st, pp, ratios[i], tol, tmax, &a, &dur, &err) != AQ_OK)
       goto runfail;
-    if (ch == 0) {
+    if (isinf(dur))
       printf("%.9g\t%.9g\tinf\n", ratios[i], a / AQ_G0_MPS2);
-      continue;
-    }
-    while (hi - lo > tol) {
-      double mid = 0.5 * (lo + hi);
-      if ((ch = collapses(st, a, mid, &err)) < 0)
-        goto runfail;
-      if (ch)
-        hi = mid;
-      else
-        lo = mid;
-    }
-    printf("%.9g\t%.9g\t%.12g\n", ratios[i], a / AQ_G0_MPS2, hi);
+    else
+      printf("%.9g\t%.9g\t%.12g\n", ratios[i], a / AQ_G0_MPS2, dur);
   }
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
   goto out;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../io/formats.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "../units.h"
@@ -52,6 +53,7 @@ int aq_cmd_info(int argc, char **argv)
         aq_opt_unknown("info ", argv, optind, optopt, &nerr);
     }
   }
+  argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
   if (optind >= argc) {
     fprintf(stderr, "archquake: info: expected at least one RECORD\n");
     nerr++;

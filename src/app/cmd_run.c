@@ -14,10 +14,12 @@
 #include <unistd.h>
 
 #include "../arch/stepper.h"
+#include "../io/formats.h"
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
 #include "opt_dyn.h"
+#include "opt_orient.h"
 #include "opt_record.h"
 #include "opt_signal.h"
 #include "suite.h"
@@ -26,6 +28,7 @@
 
 static const char usage_head[] =
     "usage: archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]\n"
+    "       archquake [OPTIONS] --components H1,H2[,V] ... --arch FILE ...\n"
     "Run every record against every arch (and every scale factor): each record\n"
     "is read and processed once.  One TSV row per run on stdout.\n"
     "  --arch FILE         an arch (.cfg); repeatable\n"
@@ -48,7 +51,8 @@ static const char usage_head[] =
     AQ_OPT_POLARITY_USAGE
     "  -q, --quiet         no progress line (it is shown only on a terminal)\n"
     "  --help              this text;  --version: the version\n"
-    "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
+    "Reading:\n" AQ_OPT_RECORD_USAGE "Orientation:\n" AQ_OPT_ORIENT_USAGE
+    "Processing:\n";
 static const char usage_tail[] =
     "Output: TSV, one row per run (on a terminal: an aligned table with 6\n"
     "significant digits; pipe or redirect it, or use --text, for the TSV).\n"
@@ -61,7 +65,8 @@ static const char usage_tail[] =
     "  rotation / q_c of the set it occurred in) pga_over_lambda0_g (pga_g over\n"
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
-    "  included: no verdict)\n"
+    "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
+    "  --components motion, nan for a RECORD)\n"
     "Exit status:\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -145,8 +150,9 @@ static int same_output(const char *a, const char *b)
 
 int aq_cmd_run(int argc, char **argv)
 {
-  struct option longopts[32] = {
+  struct option longopts[40] = {
       AQ_OPT_RECORD_LONGOPTS,
+      AQ_OPT_ORIENT_LONGOPTS,
       {"arch", required_argument, NULL, OPT_ARCH},
       {"output", required_argument, NULL, 'o'},
       {"text", required_argument, NULL, OPT_TEXT},
@@ -168,6 +174,10 @@ int aq_cmd_run(int argc, char **argv)
 
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
+  aq_orient_opts orient;
+  aq_opt_orient_init(&orient);
+  char **labels = NULL;
+  const aq_orient_motion **motions = NULL;
   aq_signal_opts_default(&cfg.proc);
   cfg.cor = NAN;
   cfg.scale_to_pga_g = NAN;
@@ -193,7 +203,8 @@ int aq_cmd_run(int argc, char **argv)
   optind = 1;
   while ((c = getopt_long(argc, argv, ":o:j:q", longopts, NULL)) != -1) {
     if (aq_opt_signal_handle(c, optarg, &cfg.proc, &cfg.merge_tol_g, &nerr) ||
-        aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr) ||
+        aq_opt_orient_handle(c, optarg, &orient, &nerr))
       continue;
     switch (c) {
     case OPT_ARCH:
@@ -236,6 +247,7 @@ int aq_cmd_run(int argc, char **argv)
       free(arches);
       free(scales);
       free(cmdline);
+      aq_opt_orient_free(&orient);
       return AQ_EXIT_OK;
     default:
       if (aq_opt_record_handle(c, optarg, &cfg.read, &nerr)) {
@@ -250,8 +262,11 @@ int aq_cmd_run(int argc, char **argv)
     }
   }
   aq_opt_signal_check(&cfg.proc, &nerr);
-  if (optind >= argc) {
-    fprintf(stderr, "archquake: expected at least one RECORD (see 'archquake --help')\n");
+  argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind),
+                                                    &cfg.read);
+  aq_opt_orient_check(&orient, &nerr);
+  if (optind >= argc && orient.nmotions == 0) {
+    fprintf(stderr, "archquake: expected at least one RECORD or --components (see 'archquake --help')\n");
     nerr++;
   }
   if (cfg.narches == 0) {
@@ -296,21 +311,45 @@ int aq_cmd_run(int argc, char **argv)
     nerr += aq_opt_output_is_input("-o", cfg.h5_path, recs, nrec, arches, cfg.narches);
     nerr += aq_opt_output_is_input("--text", text_path, recs, nrec, arches, cfg.narches);
   }
-  if (nerr) {
-    free(arches);
-    free(scales);
-    free(cmdline);
-    return AQ_EXIT_USAGE;
+  for (size_t i = 0; i < orient.nmotions; i++) { /* nor a motion's component */
+    aq_orient_motion *m = &orient.motions[i];
+    size_t nc = m->path[2] ? 3 : 2;
+    nerr += aq_opt_output_is_input("-o", cfg.h5_path, m->path, nc, arches, 0);
+    nerr += aq_opt_output_is_input("--text", text_path, m->path, nc, arches, 0);
   }
-  if (aq_opt_output_special("-o", cfg.h5_path) + aq_opt_output_special("--text", text_path)) {
+  /* the rows' record column: each RECORD, then each motion's label */
+  size_t nplain = optind < argc ? (size_t)(argc - optind) : 0;
+  size_t nall = nplain + orient.nmotions;
+  if (!nerr && orient.nmotions) {
+    labels = calloc(nall, sizeof *labels);
+    motions = calloc(nall, sizeof *motions);
+    if (!labels || !motions) {
+      fprintf(stderr, "archquake: out of memory\n");
+      nerr++;
+    }
+    for (size_t i = 0; !nerr && i < nall; i++) {
+      labels[i] = i < nplain ? argv[optind + (int)i] : orient.motions[i - nplain].label;
+      motions[i] = i < nplain ? NULL : &orient.motions[i - nplain];
+    }
+  }
+  if (nerr || aq_opt_output_special("-o", cfg.h5_path) +
+                  aq_opt_output_special("--text", text_path)) {
     free(arches);
     free(scales);
     free(cmdline);
-    return AQ_EXIT_OUTPUT;
+    free(labels);
+    free(motions);
+    aq_opt_orient_free(&orient);
+    return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
 
-  cfg.records = argv + optind;
-  cfg.nrecords = (size_t)(argc - optind);
+  cfg.records = labels ? labels : argv + optind;
+  cfg.nrecords = nall;
+  cfg.motions = motions;
+  cfg.azimuths_deg = orient.azimuths_deg;
+  cfg.nazimuth = orient.nazimuth;
+  cfg.all_azimuths = orient.all_azimuths;
+  cfg.vertical = orient.vertical;
   cfg.arch_paths = arches;
   cfg.model = dyn.model;
   cfg.cor = dyn.cor;
@@ -339,6 +378,9 @@ int aq_cmd_run(int argc, char **argv)
     free(cmdline);
     free(arches);
     free(scales);
+    free(labels);
+    free(motions);
+    aq_opt_orient_free(&orient);
     return AQ_EXIT_OUTPUT;
   }
   if (text_path) {
@@ -355,6 +397,9 @@ int aq_cmd_run(int argc, char **argv)
       free(cmdline);
       free(arches);
       free(scales);
+      free(labels);
+      free(motions);
+      aq_opt_orient_free(&orient);
       return AQ_EXIT_OUTPUT;
     }
     tslot = aq_cleanup_add(tmp);
@@ -390,5 +435,8 @@ int aq_cmd_run(int argc, char **argv)
   free(cmdline);
   free(arches);
   free(scales);
+  free(labels);
+  free(motions);
+  aq_opt_orient_free(&orient);
   return rc;
 }

@@ -36,6 +36,7 @@
 #include "suite.h"
 
 int aq_main_serial(int argc, char **argv); /* src/main.c */
+int aq_main_is_command(const char *name);
 
 /* Records queued at each follower: it finds the next one waiting when it
  * sends a result back. */
@@ -264,13 +265,11 @@ static int send_result(void *ctx, const void *data, size_t n)
 
 /* ---- entry -------------------------------------------------------------- */
 
-/* 1 if argv is the main job (not another command, help or the version). */
+/* 1 if argv is the main job (not a command, help or the version). */
 static int is_main_job(int argc, char **argv)
 {
-  static const char *const other[] = {"info",    "mechanism", "pulse", "domain",
-                                      "compare", "capacity",  "help",  "-h",
-                                      "--help",  "--version"};
-  if (argc < 2)
+  static const char *const other[] = {"help", "-h", "--help", "--version"};
+  if (argc < 2 || aq_main_is_command(argv[1]))
     return 0;
   for (size_t k = 0; k < sizeof other / sizeof other[0]; k++)
     if (strcmp(argv[1], other[k]) == 0)

@@ -88,6 +88,16 @@ int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
   case AQ_OPT_RECORD_ACCEPT_VERTICAL:
     ro->accept_vertical = 1;
     return 1;
+  case AQ_OPT_RECORD_RESPONSE:
+    if (!arg || !arg[0] || strlen(arg) >= sizeof ro->response) {
+      fprintf(stderr, "archquake: --response: expected a StationXML file name of 1 to "
+                      "%zu characters, got \"%s\"\n",
+              sizeof ro->response - 1, arg ? arg : "");
+      (*nerr)++;
+      return 1;
+    }
+    snprintf(ro->response, sizeof ro->response, "%s", arg);
+    return 1;
   case AQ_OPT_RECORD_DT:
     aq_opt_double_gt("--dt", arg, 0, 3600, &ro->dt_s, nerr);
     return 1;

@@ -10,6 +10,7 @@
  *   --component GLOB=CH  read channel CH of multi-channel files matching GLOB
  *   --accept-implausible  keep a record whose PGA is outside 1e-5..10 g
  *   --accept-vertical  run channels the file identifies as vertical
+ *   --response FILE.xml  StationXML with the sensitivity of miniSEED records
  * A command puts AQ_OPT_RECORD_LONGOPTS into its getopt_long table, passes
  * every option id to aq_opt_record_handle(), and appends AQ_OPT_RECORD_USAGE
  * to its usage text.  The options fill an aq_read_opts (no heap memory).
@@ -28,18 +29,20 @@ enum {
   AQ_OPT_RECORD_COLUMN = 1002,
   AQ_OPT_RECORD_COMPONENT = 1003,
   AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE = 1004,
-  AQ_OPT_RECORD_ACCEPT_VERTICAL = 1005
+  AQ_OPT_RECORD_ACCEPT_VERTICAL = 1005,
+  AQ_OPT_RECORD_RESPONSE = 1006
 };
 
 /* The number of entries in AQ_OPT_RECORD_LONGOPTS. */
-#define AQ_OPT_RECORD_NOPTS 6
+#define AQ_OPT_RECORD_NOPTS 7
 #define AQ_OPT_RECORD_LONGOPTS                                                 \
   {"units", required_argument, NULL, AQ_OPT_RECORD_UNITS},                     \
       {"dt", required_argument, NULL, AQ_OPT_RECORD_DT},                       \
       {"column", required_argument, NULL, AQ_OPT_RECORD_COLUMN},               \
       {"component", required_argument, NULL, AQ_OPT_RECORD_COMPONENT},         \
       {"accept-implausible", no_argument, NULL, AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE}, \
-      {"accept-vertical", no_argument, NULL, AQ_OPT_RECORD_ACCEPT_VERTICAL}
+      {"accept-vertical", no_argument, NULL, AQ_OPT_RECORD_ACCEPT_VERTICAL}, \
+      {"response", required_argument, NULL, AQ_OPT_RECORD_RESPONSE}
 
 /* The same entries as a NULL-terminated table. */
 extern const struct option aq_opt_record_longopts[];
@@ -56,7 +59,9 @@ extern const struct option aq_opt_record_longopts[];
   "  --component GLOB=CH  channel CH of multi-channel files matching GLOB\n"   \
   "                  (or name one record as FILE#CH)\n"                       \
   "  --accept-implausible  keep records whose PGA is outside 1e-5..10 g\n"     \
-  "  --accept-vertical  run channels the file identifies as vertical\n"
+  "  --accept-vertical  run channels the file identifies as vertical\n"      \
+  "  --response FILE.xml  StationXML giving the sensitivity of miniSEED\n"    \
+  "                  records (a StationXML given as a RECORD does the same)\n"
 
 /* Handle option id with argument arg: returns 1 if id is a reader option
  * (a bad value is reported on stderr as one line and counted in *nerr; ro

@@ -20,6 +20,7 @@
 #include "../report/h5.h"
 #include "../report/report.h"
 #include "../report/text.h"
+#include "../signal/project.h"
 #include "../signal/steps.h"
 #include "../units.h"
 #include "app.h"
@@ -98,8 +99,12 @@ static void slot_clear(suite *S, rec_slot *r)
 {
   aq_record_free(&r->rec);
   aq_processed_free(&r->proc);
+  aq_record_free(&r->h2.rec);
+  aq_processed_free(&r->h2.proc);
+  aq_record_free(&r->v.rec);
+  aq_processed_free(&r->v.proc);
   if (r->runs)
-    for (size_t k = 0; k < S->nruns; k++)
+    for (size_t k = 0; k < r->nruns; k++)
       if (r->runs[k].have_res)
         aq_result_free(&r->runs[k].res);
   if (r->steps)
@@ -115,28 +120,146 @@ static void slot_clear(suite *S, rec_slot *r)
   memset(r, 0, sizeof *r);
 }
 
+/* Run i of record r: arch *ai, scale slot *k, azimuth *z. */
+static void run_index(const suite *S, const rec_slot *r, size_t i, size_t *ai,
+                      size_t *k, size_t *z)
+{
+  *ai = i / (S->nscale * r->naz);
+  *k = i / r->naz % S->nscale;
+  *z = i % r->naz;
+}
+
+/* The arch azimuth of run slot z of r, deg (NAN for a plain record). */
+static double run_azimuth(const suite *S, const rec_slot *r, size_t z)
+{
+  return r->motion ? S->cfg->azimuths_deg[z] : NAN;
+}
+
+/* Record i's motion (or NULL), azimuths per (arch, scale) and runs, set
+ * in r (before it is prepared or decoded from the journal). */
+static void slot_orient(const suite *S, size_t i, rec_slot *r)
+{
+  const aq_suite_cfg *c = S->cfg;
+  r->motion = c->motions ? c->motions[i] : NULL;
+  r->naz = r->motion ? c->nazimuth : 1;
+  r->nruns = S->nruns * r->naz;
+}
+
+/* The file whose hash identifies record i: the record, or a motion's H1. */
+static const char *record_file(const suite *S, size_t i)
+{
+  const aq_suite_cfg *c = S->cfg;
+  return c->motions && c->motions[i] ? c->motions[i]->path[0] : c->records[i];
+}
+
 /* Every run of a record that failed before any run: status, NAN values. */
 static void fail_runs(suite *S, rec_slot *r)
 {
   const aq_suite_cfg *c = S->cfg;
-  for (size_t a = 0; a < c->narches; a++)
-    for (size_t k = 0; k < S->nscale; k++) {
-      run_slot *u = &r->runs[a * S->nscale + k];
-      double scale = c->scales ? c->scales[k / S->npol] : NAN;
-      aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
-                      S->model_name, scale, NAN, r->status, NULL);
-      aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
-    }
+  for (size_t i = 0; i < r->nruns; i++) {
+    size_t a, k, z;
+    run_index(S, r, i, &a, &k, &z);
+    run_slot *u = &r->runs[i];
+    double scale = c->scales ? c->scales[k / S->npol] : NAN;
+    aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
+                    S->model_name, scale, NAN, r->status, NULL);
+    aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
+    u->sum.azimuth_deg = run_azimuth(S, r, z);
+  }
 }
 
-/* Read, process and measure record r->index, then scale it by each factor
- * and split each into steps.  Returns 1 if its runs can go ahead, 0 if the
- * record failed (its runs are filled as failed). */
+/* Read one component record (*have_rec set on success); a horizontal one
+ * must not be identified as vertical (aq_record_check_horizontal). */
+static aq_status read_component(suite *S, const char *path, int horizontal,
+                                aq_record *rec, int *have_rec, aq_error *err)
+{
+  aq_status s = aq_record_read(path, &S->cfg->read, rec, err);
+  if (s == AQ_OK && horizontal &&
+      (s = aq_record_check_horizontal(rec, &S->cfg->read, err)) != AQ_OK)
+    aq_record_free(rec);
+  *have_rec = s == AQ_OK;
+  return s;
+}
+
+/* Process a component read (its samples freed once processed; *have_proc
+ * set on success). */
+static aq_status process_component(suite *S, aq_record *rec, aq_processed *proc,
+                                   int *have_proc, aq_error *err)
+{
+  aq_signal_opts po = S->cfg->proc;
+  po.scale = 1.0;
+  aq_status s = aq_signal_process(rec, &po, S->ws, proc, err);
+  *have_proc = s == AQ_OK;
+  free(rec->acc_mps2); /* the processed copy is all that is needed now */
+  rec->acc_mps2 = NULL;
+  return s;
+}
+
+/* A motion's second component read beside the first (r->rec): azimuths
+ * from --azimuths or the files, orthogonal, aligned, cut to the samples
+ * both have; a vertical given without --vertical noted in r->warning. */
+static aq_status read_second(suite *S, rec_slot *r)
+{
+  const aq_orient_motion *m = r->motion;
+  aq_status s = read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, &r->err);
+  if (s != AQ_OK)
+    return s;
+  r->run_v = m->path[2] && S->cfg->vertical;
+  if (r->run_v &&
+      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
+    return s;
+  const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
+  size_t nc = r->run_v ? 3 : 2;
+  for (int j = 0; j < 2; j++)
+    r->phi_deg[j] = isfinite(m->azimuth_deg[j]) ? m->azimuth_deg[j]
+                                                : aq_project_azimuth_of(all[j]);
+  s = aq_project_check_pair(m->label, r->phi_deg, &r->err);
+  if (s == AQ_OK)
+    s = aq_project_check_aligned(all, nc, &r->err);
+  if (s != AQ_OK)
+    return s;
+  size_t npts = aq_project_common_npts(all, nc);
+  r->rec.npts = r->h2.rec.npts = npts;
+  if (r->run_v)
+    r->v.rec.npts = npts;
+  if (m->path[2] && !r->run_v)
+    snprintf(r->warning, sizeof r->warning,
+             "vertical component %s ignored (--vertical runs it)", m->path[2]);
+  return AQ_OK;
+}
+
+/* Steps of run slot (k, z) of prepared record r: the processed record, or
+ * the motion's projection at azimuth z, scaled by r->scale[k] and negated
+ * for a reversed slot; *pga_g the PGA of what the arch feels. */
+static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t z,
+                            aq_steps *out, double *pga_g, aq_error *err)
+{
+  const aq_processed *p = &r->proc;
+  double sa = slot_reversed(S, k) ? -r->scale[k] : r->scale[k]; /* polarity */
+  double c[2] = {1.0, 0.0}, peak = 0;
+  if (r->motion)
+    aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
+  /* the vertical scales with the motion but keeps its sign: reversing the
+   * polarity turns the arch round, it does not turn gravity over */
+  aq_status s = aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
+                                   c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL,
+                                   r->scale[k], p->n, p->dt_s,
+                                   -(double)p->pad_front * p->dt_s,
+                                   S->cfg->merge_tol_g * AQ_G0_MPS2, out, &peak, err);
+  *pga_g = peak / AQ_G0_MPS2;
+  return s;
+}
+
+/* Read, process and measure record r->index (both components of a motion),
+ * then, for a single azimuth, scale it by each factor and split each into
+ * steps (with several azimuths each run makes its own).  Returns 1 if its
+ * runs can go ahead, 0 if the record failed (its runs are filled as failed). */
 static int prepare_record(suite *S, rec_slot *r)
 {
   const aq_suite_cfg *c = S->cfg;
   const char *path = c->records[r->index];
-  r->runs = calloc(S->nruns, sizeof *r->runs);
+  slot_orient(S, r->index, r);
+  r->runs = calloc(r->nruns ? r->nruns : 1, sizeof *r->runs);
   r->scale = calloc(S->nscale, sizeof *r->scale);
   r->pga_g = calloc(S->nscale, sizeof *r->pga_g);
   r->steps = calloc(S->nscale, sizeof *r->steps);
@@ -154,15 +277,15 @@ static int prepare_record(suite *S, rec_slot *r)
   for (size_t k = 0; k < S->nscale; k++)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
+  const char *first = record_file(S, r->index);
   if (c->h5_path) { /* the file's identity in the results (compare keys on it) */
     aq_error herr;
-    if (aq_sha256_file(path, r->sha256, &herr) != AQ_OK)
+    if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
       r->sha256[0] = '\0'; /* the reader says why it cannot be read */
   }
-  aq_status s = aq_record_read(path, &c->read, &r->rec, &r->err);
-  if (s == AQ_OK &&
-      (s = aq_record_check_horizontal(&r->rec, &c->read, &r->err)) != AQ_OK)
-    aq_record_free(&r->rec);
+  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
+  if (s == AQ_OK && r->motion)
+    s = read_second(S, r);
   double t1 = now_s();
   r->read_s = t1 - t0;
   if (s != AQ_OK) {
@@ -171,71 +294,77 @@ static int prepare_record(suite *S, rec_slot *r)
     fail_runs(S, r);
     return 0;
   }
-  r->have_rec = 1;
-  aq_signal_opts po = c->proc;
-  po.scale = 1.0;
-  s = aq_signal_process(&r->rec, &po, S->ws, &r->proc, &r->err);
-  if (s == AQ_OK) {
-    r->have_proc = 1;
+  s = process_component(S, &r->rec, &r->proc, &r->have_proc, &r->err);
+  if (s == AQ_OK && r->motion)
+    s = process_component(S, &r->h2.rec, &r->h2.proc, &r->h2.have_proc, &r->err);
+  if (s == AQ_OK && r->run_v)
+    s = process_component(S, &r->v.rec, &r->v.proc, &r->v.have_proc, &r->err);
+  if (s == AQ_OK && r->motion &&
+      (r->h2.proc.n != r->proc.n || r->h2.proc.pad_front != r->proc.pad_front ||
+       (r->run_v && (r->v.proc.n != r->proc.n || r->v.proc.pad_front != r->proc.pad_front))))
+    s = aq_error_set(&r->err, AQ_EINTERNAL, path, -1, -1, NULL,
+                     "the components' processed lengths differ (%zu, %zu samples)",
+                     r->proc.n, r->h2.proc.n);
+  if (s == AQ_OK)
     s = aq_im_compute(&r->proc, &r->im, &r->err);
-  }
   if (s == AQ_OK) {
     r->have_im = 1;
-    aq_im_residual_warning(&r->im, r->warning, sizeof r->warning);
+    if (!r->warning[0])
+      aq_im_residual_warning(&r->im, r->warning, sizeof r->warning);
   }
-  free(r->rec.acc_mps2); /* the processed copy is all that is needed now */
-  r->rec.acc_mps2 = NULL;
-  if (s == AQ_OK && !c->scales && !(r->im.pga_g > 0)) {
+  /* --scale-to-pga: a motion's PGA is the peak of its horizontal vector,
+   * the same at every azimuth */
+  double pga_g = r->im.pga_g;
+  if (s == AQ_OK && r->motion)
+    pga_g = aq_project_peak_horizontal(r->proc.acc_mps2, r->h2.proc.acc_mps2,
+                                       r->proc.n) / AQ_G0_MPS2;
+  if (s == AQ_OK && !c->scales && !(pga_g > 0)) {
     s = aq_error_set(&r->err, AQ_EVALUE, path, -1, -1, "--scale-to-pga",
-                     "expected a record with PGA > 0 to scale, got PGA %g g",
-                     r->im.pga_g);
+                     "expected a record with PGA > 0 to scale, got PGA %g g", pga_g);
   }
-  double *a = NULL;
-  if (s == AQ_OK && !(a = malloc((r->proc.n ? r->proc.n : 1) * sizeof *a)))
-    s = aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
   if (s != AQ_OK) {
     r->process_s = now_s() - t1;
     r->failed = 1;
     aq_summary_status(r->status, sizeof r->status, "process", s);
     fail_runs(S, r);
-    free(a);
     return 0;
   }
   snprintf(r->status, sizeof r->status, "ok");
-  const aq_processed *p = &r->proc;
   for (size_t k = 0; k < S->nscale; k++) {
-    double scale = c->scales ? c->scales[k / S->npol] : c->scale_to_pga_g / r->im.pga_g;
-    double sa = slot_reversed(S, k) ? -scale : scale; /* polarity: once per record */
-    double amax = 0;
-    for (size_t i = 0; i < p->n; i++) {
-      a[i] = sa * p->acc_mps2[i];
-      amax = fmax(amax, fabs(a[i]));
-    }
-    r->scale[k] = scale;
-    r->pga_g[k] = amax / AQ_G0_MPS2;
+    r->scale[k] = c->scales ? c->scales[k / S->npol] : c->scale_to_pga_g / pga_g;
     aq_error_clear(&r->steps_err[k]);
-    r->steps_st[k] = aq_steps_from_samples(a, p->n, p->dt_s,
-                                           -(double)p->pad_front * p->dt_s,
-                                           c->merge_tol_g * AQ_G0_MPS2,
-                                           &r->steps[k], &r->steps_err[k]);
+    if (r->naz == 1)
+      r->steps_st[k] = make_steps(S, r, k, 0, &r->steps[k], &r->pga_g[k],
+                                  &r->steps_err[k]);
   }
-  free(a);
   r->process_s = now_s() - t1;
   return 1;
 }
 
-/* Run i (arch i / nscale, scale i % nscale) of prepared record r with this
- * thread's steppers (st[a] NULL when arch a cannot run). */
+/* Run i of prepared record r with this thread's steppers (st[a] NULL when
+ * arch a cannot run). */
 static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
 {
   const aq_suite_cfg *c = S->cfg;
-  size_t ai = i / S->nscale, k = i % S->nscale;
+  size_t ai, k, z;
+  run_index(S, r, i, &ai, &k, &z);
   run_slot *u = &r->runs[i];
   double t0 = now_s();
+  aq_steps own;
+  const aq_steps *steps = &r->steps[k];
   aq_status rs = r->steps_st[k];
+  double pga_g = r->pga_g[k];
+  int have_own = 0;
+  if (r->naz > 1) { /* projected for this run: one list per azimuth at a time */
+    aq_error_clear(&u->err);
+    rs = make_steps(S, r, k, z, &own, &pga_g, &u->err);
+    have_own = rs == AQ_OK;
+    steps = &own;
+  } else if (rs != AQ_OK) {
+    u->err = r->steps_err[k];
+  }
   const char *stage = "run";
   if (rs != AQ_OK) {
-    u->err = r->steps_err[k];
     stage = "process";
   } else if (!st[ai]) {
     rs = S->arch_err[ai].status != AQ_OK ? S->arch_err[ai].status : AQ_EINTERNAL;
@@ -247,9 +376,11 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
     /* aq_stepper_run starts every run afresh (the ode model's step size
      * included), so results do not depend on which runs a thread did before:
      * the -j tests check it. */
-    rs = aq_stepper_run(st[ai], &r->steps[k], &u->res, &u->err);
+    rs = aq_stepper_run(st[ai], steps, &u->res, &u->err);
     u->have_res = 1;
   }
+  if (have_own)
+    aq_steps_free(&own);
   char status[AQ_SUMMARY_STATUS_MAX];
   aq_summary_status(status, sizeof status, stage, rs);
   u->failed = rs != AQ_OK;
@@ -258,10 +389,11 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
     u->have_res = 0;
   }
   aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[ai]),
-                  S->model_name, r->scale[k], r->pga_g[k], status,
+                  S->model_name, r->scale[k], pga_g, status,
                   u->have_res ? &u->res : NULL);
   aq_summary_normalise(&u->sum, slot_polarity(S, k), u->have_res ? &u->res : NULL,
                        aq_arch_path(S->arches[ai], 0), aq_arch_path(S->arches[ai], 1));
+  u->sum.azimuth_deg = run_azimuth(S, r, z);
   u->run_s = now_s() - t0;
 }
 
@@ -285,7 +417,7 @@ static void *worker(void *arg)
     rec_slot *r = NULL;
     for (size_t idx = S->next_write; idx < S->next_claim && !r; idx++) {
       rec_slot *x = &S->slots[idx % S->window];
-      if (x->state == SLOT_READY && x->next_run < S->nruns)
+      if (x->state == SLOT_READY && x->next_run < x->nruns)
         r = x;
     }
     if (r) {
@@ -295,7 +427,7 @@ static void *worker(void *arg)
       pthread_mutex_lock(&S->lock);
       S->run_s += r->runs[i].run_s;
       S->runs_done++;
-      if (++r->runs_done == S->nruns) {
+      if (++r->runs_done == r->nruns) {
         r->state = SLOT_DONE;
         pthread_cond_broadcast(&S->cond);
       }
@@ -312,10 +444,10 @@ static void *worker(void *arg)
       pthread_mutex_lock(&S->lock);
       S->read_s += r->read_s;
       S->process_s += r->process_s;
-      if (ok && S->nruns > 0) {
+      if (ok && r->nruns > 0) {
         r->state = SLOT_READY;
       } else {
-        S->runs_done += r->runs ? S->nruns : 0;
+        S->runs_done += r->runs ? r->nruns : 0;
         r->state = SLOT_DONE;
       }
       pthread_cond_broadcast(&S->cond);
@@ -327,7 +459,7 @@ static void *worker(void *arg)
       for (size_t idx = S->next_write; idx < S->next_claim; idx++) {
         rec_slot *x = &S->slots[idx % S->window];
         pending |= x->state == SLOT_PREPARING ||
-                   (x->state == SLOT_READY && x->next_run < S->nruns);
+                   (x->state == SLOT_READY && x->next_run < x->nruns);
       }
       if (!pending)
         break;
@@ -379,11 +511,11 @@ static int text_row(suite *S, const aq_summary *s)
 }
 
 /* 1 if writing r prints something on stderr. */
-static int has_diagnostics(const suite *S, const rec_slot *r)
+static int has_diagnostics(const rec_slot *r)
 {
   if (r->failed || r->warning[0] || r->rec.units_conflict[0])
     return 1;
-  for (size_t i = 0; r->runs && i < S->nruns; i++)
+  for (size_t i = 0; r->runs && i < r->nruns; i++)
     if (r->runs[i].failed)
       return 1;
   return 0;
@@ -406,16 +538,19 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
   if (!r->runs)
     return AQ_OK;
-  for (size_t i = 0; i < S->nruns; i++) {
+  for (size_t i = 0; i < r->nruns; i++) {
     run_slot *u = &r->runs[i];
-    size_t ai = i / S->nscale;
+    size_t ai, k, z;
+    run_index(S, r, i, &ai, &k, &z);
     if (u->failed && !r->failed && S->arch_ok[ai]) {
-      char msg[1200], num[64];
+      char msg[1200], num[64], az[64] = "";
       aq_error_format(&u->err, msg, sizeof msg);
       aq_text_double(num, sizeof num, u->sum.scale);
-      fprintf(stderr, "archquake: %s: arch %s, scale %s%s: %s\n", path,
-              aq_arch_name(S->arches[ai]), num,
-              slot_reversed(S, i % S->nscale) ? " reversed" : "", msg);
+      if (r->motion)
+        snprintf(az, sizeof az, ", azimuth %g deg", u->sum.azimuth_deg);
+      fprintf(stderr, "archquake: %s: arch %s, scale %s%s%s: %s\n", path,
+              aq_arch_name(S->arches[ai]), num, slot_reversed(S, k) ? " reversed" : "",
+              az, msg);
     }
   }
   if (h5) {
@@ -437,13 +572,27 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     if (s != AQ_OK)
       return s;
   }
-  for (size_t i = 0; i < S->nruns; i++) {
+  const aq_summary **group = malloc(r->naz * sizeof *group);
+  if (!group)
+    return aq_error_set(err, AQ_ENOMEM, "text output", -1, -1, NULL, "out of memory");
+  size_t worst = 0;
+  for (size_t i = 0; i < r->nruns; i++) {
     run_slot *u = &r->runs[i];
+    size_t ai, k, z;
+    run_index(S, r, i, &ai, &k, &z);
     stats->runs++;
     stats->runs_failed += u->failed || r->failed;
-    if (c->text && text_row(S, &u->sum) != 0)
+    if (z == 0) { /* the worst azimuth of this (arch, scale) */
+      for (size_t j = 0; j < r->naz; j++)
+        group[j] = &r->runs[i + j].sum;
+      worst = aq_summary_worst(group, r->naz);
+    }
+    int shown = c->all_azimuths || z == worst;
+    if (shown && c->text && text_row(S, &u->sum) != 0) {
+      free(group);
       return aq_error_set(err, AQ_EIO, "text output", -1, -1, NULL,
                           "cannot write a row: %s", strerror(errno));
+    }
     if (h5) {
       char msg[1200];
       const char *em = NULL;
@@ -451,13 +600,15 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
         aq_error_format(&u->err, msg, sizeof msg);
         em = msg;
       }
-      aq_status s = aq_h5_write_run(h5, r->index, i / S->nscale, i % S->nscale / S->npol,
-                                    &u->sum, u->have_res ? &u->res : NULL, em,
-                                    u->run_s, err);
-      if (s != AQ_OK)
+      aq_status s = aq_h5_write_run(h5, r->index, ai, k / S->npol, &u->sum,
+                                    u->have_res ? &u->res : NULL, em, u->run_s, err);
+      if (s != AQ_OK) {
+        free(group);
         return s;
+      }
     }
   }
+  free(group);
   return AQ_OK;
 }
 
@@ -612,11 +763,13 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
     rec_slot r;
     memset(&r, 0, sizeof r);
     char sha[AQ_SHA256_HEX] = "";
-    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], S->nruns, &r) != 0 ||
+    if (k - 1 < c->nrecords)
+      slot_orient(S, k - 1, &r);
+    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], r.nruns, &r) != 0 ||
         r.index != k - 1)
       snprintf(why, sizeof why, "entry %zu: expected record %zu of this suite, got "
                                 "something else", k, k - 1);
-    else if (r.sha256[0] && (aq_sha256_file(c->records[k - 1], sha, &err) != AQ_OK ||
+    else if (r.sha256[0] && (aq_sha256_file(record_file(S, k - 1), sha, &err) != AQ_OK ||
                              strcmp(sha, r.sha256) != 0))
       snprintf(why, sizeof why, "the record %s changed since the journal was written "
                                 "(sha256 %s, journal %s)", c->records[k - 1],
@@ -654,7 +807,10 @@ static aq_status journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stat
 {
   for (size_t k = 1; k < ne; k++) {
     rec_slot r;
-    aq_suite_slot_decode(&e[k], S->nruns, &r); /* checked by journal_start */
+    memset(&r, 0, sizeof r);
+    slot_orient(S, k - 1, &r);
+    aq_suite_slot_decode(&e[k], r.nruns, &r); /* checked by journal_start */
+    slot_orient(S, k - 1, &r);
     aq_status ws = write_record(S, &r, h5, stats, err);
     slot_clear(S, &r);
     if (ws != AQ_OK)
@@ -716,13 +872,15 @@ static int follow(suite *S)
     rec_slot r;
     memset(&r, 0, sizeof r);
     r.index = i;
-    if (i >= c->nrecords)
+    if (i >= c->nrecords) {
       snprintf(r.status, sizeof r.status, "lost"); /* not this suite's: the leader refuses it */
-    else if (prepare_record(S, &r))
-      for (size_t k = 0; k < S->nruns; k++)
-        run_one(S, &r, k, st);
+    } else {
+      if (prepare_record(S, &r))
+        for (size_t k = 0; k < r.nruns; k++)
+          run_one(S, &r, k, st);
+    }
     aq_jbuf jb = {0};
-    aq_suite_slot_encode(&r, S->nruns, &jb);
+    aq_suite_slot_encode(&r, r.nruns, &jb);
     slot_clear(S, &r);
     if (jb.oom || remote->send(remote->ctx, jb.data, jb.n) != 0)
       rc = AQ_EXIT_FAIL;
@@ -746,14 +904,18 @@ static aq_status lead(suite *S, aq_h5_writer *h5, aq_journal *J, size_t done,
       return AQ_EIO;
     rec_slot r;
     aq_status ws = AQ_OK;
-    if (aq_suite_slot_decode(&e, S->nruns, &r) != 0 || r.index != i)
+    memset(&r, 0, sizeof r);
+    slot_orient(S, i, &r);
+    int bad = aq_suite_slot_decode(&e, r.nruns, &r) != 0 || r.index != i;
+    slot_orient(S, i, &r); /* decoding cleared it */
+    if (bad)
       ws = aq_error_set(err, AQ_EFORMAT, c->records[i], -1, -1, NULL,
                         "expected the results of record %zu from a follower, got a "
                         "malformed message of %zu bytes", i, e.n);
     if (ws == AQ_OK) {
       S->read_s += r.read_s;
       S->process_s += r.process_s;
-      for (size_t k = 0; r.runs && k < S->nruns; k++)
+      for (size_t k = 0; r.runs && k < r.nruns; k++)
         S->run_s += r.runs[k].run_s;
       ws = write_record(S, &r, h5, stats, err);
     }
@@ -782,7 +944,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   S.model_name = model_names[c->model <= AQ_MODEL_WORKPATH_QUAD ? c->model : 0];
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
   S.nscale = (c->scales ? c->nscale : 1) * S.npol;
-  S.nruns = c->narches * S.nscale;
+  S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */
   long nthreads = c->threads < 1 ? 1 : c->threads;
   if ((size_t)nthreads > c->nrecords)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
@@ -900,7 +1062,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   if (ws != AQ_OK)
     goto output_failed;
   S.next_claim = S.next_write = done;
-  S.runs_done = done * S.nruns;
+  for (size_t i = 0; i < done; i++)
+    S.runs_done += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
   stats.write_s += now_s() - tw;
 
   if (remote && remote->fetch) {
@@ -937,7 +1100,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   }
 
   /* Write in record order as records finish. */
-  size_t total = c->nrecords * S.nruns;
+  size_t total = 0;
+  for (size_t i = 0; i < c->nrecords; i++)
+    total += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
   double last_progress = 0;
   for (size_t i = done; started > 0 && i < c->nrecords; i++) {
     rec_slot *r = &S.slots[i % S.window];
@@ -959,12 +1124,12 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     pthread_mutex_unlock(&S.lock);
     double t0 = now_s();
     /* clear the line before diagnostics, and before rows on the terminal */
-    if (c->progress && (c->aligned || has_diagnostics(&S, r)))
+    if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
       aq_jbuf jb = {0};
-      aq_suite_slot_encode(r, S.nruns, &jb);
+      aq_suite_slot_encode(r, r->nruns, &jb);
       ws = jb.oom ? aq_error_set(&oerr, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory")
                   : aq_journal_append(J, jb.data, jb.n, &oerr);
       free(jb.data);
@@ -1069,18 +1234,61 @@ int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
             cfg->history ? "--history" : "--store-records");
     return AQ_EXIT_USAGE;
   }
-  char **names;
-  size_t n;
+  char **names = NULL;
+  size_t n = 0;
   aq_error err;
-  if (aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err) !=
-      AQ_OK) {
+  const aq_orient_motion **mo = NULL;
+  aq_status st = AQ_OK;
+  if (!cfg->motions) {
+    st = aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err);
+  } else { /* plain records expanded one by one, motions kept beside them */
+    for (size_t i = 0; st == AQ_OK && i < cfg->nrecords; i++) {
+      char **one = NULL;
+      size_t k = 1;
+      if (cfg->motions[i]) {
+        one = malloc(sizeof *one);
+        if (one && !(one[0] = strdup(cfg->records[i]))) {
+          free(one);
+          one = NULL;
+        }
+        st = one ? AQ_OK : aq_error_set(&err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+      } else {
+        st = aq_record_expand(cfg->records + i, 1, &cfg->read, &one, &k, &err);
+      }
+      char **nn = st == AQ_OK ? realloc(names, (n + k) * sizeof *nn) : NULL;
+      const aq_orient_motion **nm = nn ? realloc(mo, (n + k) * sizeof *nm) : NULL;
+      if (nn)
+        names = nn;
+      if (nm)
+        mo = nm;
+      if (st == AQ_OK && (!nn || !nm)) {
+        aq_record_names_free(one, k);
+        st = aq_error_set(&err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+        break;
+      }
+      for (size_t j = 0; st == AQ_OK && j < k; j++) {
+        names[n + j] = one[j];
+        mo[n + j] = cfg->motions[i];
+      }
+      if (st == AQ_OK) {
+        free(one);
+        n += k;
+      }
+    }
+  }
+  if (st != AQ_OK) {
     aq_error_print(&err, stderr);
+    aq_record_names_free(names, n);
+    free(mo);
     return AQ_EXIT_FAIL;
   }
   aq_suite_cfg c = *cfg;
   c.records = names;
   c.nrecords = n;
+  if (cfg->motions)
+    c.motions = mo;
   int rc = suite_run(&c, stats);
   aq_record_names_free(names, n);
+  free(mo);
   return rc;
 }

@@ -35,10 +35,17 @@
 #include "../error.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
+#include "opt_orient.h"
 
 typedef struct {
-  char **records;          /* record paths as given */
+  char **records;          /* record paths as given, or a motion's label */
   size_t nrecords;
+  const aq_orient_motion *const *motions; /* NULL, or per record: NULL (a plain
+                              in-plane record) or its --components */
+  const double *azimuths_deg; /* the arch azimuths run for each motion, deg */
+  size_t nazimuth;         /* their number (>= 1) */
+  int all_azimuths;        /* 1: every azimuth's row in the TSV, else the worst */
+  int vertical;            /* --vertical: run a motion's vertical component */
   char **arch_paths;       /* --arch files */
   size_t narches;
   aq_read_opts read;       /* reader options */

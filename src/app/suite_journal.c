@@ -155,6 +155,13 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
   for (size_t k = 0; k < c->read.nrules; k++)
     line(&b, "units_rule=%d %s", (int)c->read.rules[k].units, c->read.rules[k].glob);
   line(&b, "history=%d store_records=%d", c->history, c->store_records);
+  line(&b, "vertical=%d all_azimuths=%d", c->vertical, c->all_azimuths);
+  for (size_t k = 0; c->motions && k < c->nazimuth; k++)
+    line(&b, "azimuth=%a", c->azimuths_deg[k]);
+  for (size_t i = 0; c->motions && i < c->nrecords; i++)
+    if (c->motions[i])
+      line(&b, "motion=%zu azimuths=%a,%a", i, c->motions[i]->azimuth_deg[0],
+           c->motions[i]->azimuth_deg[1]);
   for (size_t a = 0; a < c->narches; a++) {
     const char *cfg = aq_arch_config_text(arches[a]);
     char sha[AQ_SHA256_HEX];

@@ -26,6 +26,14 @@ typedef struct {
   double run_s;
 } run_slot;
 
+/* The second horizontal or the vertical component of a ground motion (the
+ * first is the record slot's own rec and proc). */
+typedef struct {
+  aq_record rec;
+  aq_processed proc;
+  int have_rec, have_proc;
+} comp_slot;
+
 enum { SLOT_FREE = 0, SLOT_PREPARING, SLOT_READY, SLOT_DONE };
 
 typedef struct {
@@ -48,7 +56,14 @@ typedef struct {
   aq_steps *steps;    /* nscale step lists */
   aq_status *steps_st;/* status of each step list */
   aq_error *steps_err;
-  run_slot *runs;     /* narch * nscale, arch-major */
+  const aq_orient_motion *motion; /* NULL: a plain in-plane record */
+  comp_slot h2;       /* a motion's second horizontal component */
+  comp_slot v;        /* its vertical component (with --vertical) */
+  int run_v;          /* 1: the vertical is run */
+  double phi_deg[2];  /* a motion's component azimuths, deg */
+  size_t naz;         /* azimuths per (arch, scale): 1 for a plain record */
+  size_t nruns;       /* narch * nscale * naz */
+  run_slot *runs;     /* nruns, arch-major, then scale, then azimuth */
   size_t next_run;    /* next run to hand out (READY) */
   size_t runs_done;
 } rec_slot;

@@ -1,7 +1,9 @@
 /* leg_taylor.c: the default work-path leg (see leg.h, and eom.h for the
- * leg contract): time-Taylor series of s(t) on the tables' pieces.
+ * leg contract): time-Taylor series of s(t) on the path's polynomial
+ * pieces (path.h aq_path_piece: for an arch, Chebyshev fits of the exact
+ * kinematics, workpath.c).
  *
- * Within one table piece (path.h aq_path_piece) the work term
+ * Within one piece the work term
  *     P(s) = dKE/ds = -m_T (a_g dx/ds + g dy/ds)     (eq. (19) per
  *                                            docs/method.md sec. 5, d/ds)
  * and the generalised mass M(s) (docs/method.md sec. 4) are polynomials, so the
@@ -25,7 +27,8 @@
  * count and the history).  Crossings of the piece's ends are roots of the
  * series, located by safeguarded Newton: s = 0 closing is an impact, s = s_c
  * opening is collapse, any other end continues on the next piece with the
- * same s and sdot.
+ * same s and sdot.  Gravity g is the leg's parameter (tl_build,
+ * tl_accel0), read from the path once per leg.
  */
 #include "leg.h"
 
@@ -46,6 +49,8 @@ struct aq_taylor {
   double tol;
   const aq_path *p; /* owner of the cached piece, or NULL */
   aq_path_piece pc;
+  /* M at the last leg's end (on the cached piece): the next leg starts there */
+  double s_end, m_end;
 };
 
 aq_taylor *aq_taylor_alloc(aq_error *err)
@@ -56,6 +61,7 @@ aq_taylor *aq_taylor_alloc(aq_error *err)
     return NULL;
   }
   w->tol = TL_TOL_DEFAULT;
+  w->s_end = NAN;
   return w;
 }
 
@@ -67,22 +73,55 @@ void aq_taylor_set_tol(aq_taylor *w, double tol)
     w->tol = tol;
 }
 
-void aq_taylor_reset(aq_taylor *w) { w->p = NULL; }
+void aq_taylor_reset(aq_taylor *w)
+{
+  w->p = NULL;
+  w->s_end = NAN;
+}
 
 /* ------------------------------------------------------------------ */
 
-static double poly5(const double *c, double u)
+/* Function c of piece pc (one of its coefficient arrays, degree n) at s. */
+static double piece_val(const aq_path_piece *pc, const double *c, int n, double s)
 {
-  return c[0] + u * (c[1] + u * (c[2] + u * (c[3] + u * (c[4] + u * c[5]))));
+  double t = (s - pc->s_ref) * pc->iscale, r = c[n];
+  for (int k = n - 1; k >= 0; k--)
+    r = r * t + c[k];
+  return r;
 }
 
-/* c(u0 + u) in powers of u (degree 5), in place. */
-static void shift5(double *c, double u0)
+/* M (degree deg) and the work term's slopes at s. */
+#define PIECE_M(pc, s) piece_val((pc), (pc)->m, (pc)->deg, (s))
+#define PIECE_DX(pc, s) piece_val((pc), (pc)->dx, (pc)->deg, (s))
+#define PIECE_DY(pc, s) piece_val((pc), (pc)->dy, (pc)->deg, (s))
+/* x, y: degree deg + 1 */
+#define PIECE_X(pc, s) piece_val((pc), (pc)->x, (pc)->deg + 1, (s))
+#define PIECE_Y(pc, s) piece_val((pc), (pc)->y, (pc)->deg + 1, (s))
+
+/* M, x and y at s in one pass (three independent Horner chains, each
+ * rounded as piece_val rounds it). */
+static void piece_mxy(const aq_path_piece *pc, double s, double *mv, double *xv,
+                      double *yv)
 {
-  for (int k = 0; k < 5; k++)
-    for (int j = 4; j >= k; j--)
-      c[j] += u0 * c[j + 1];
+  const int n = pc->deg;
+  double t = (s - pc->s_ref) * pc->iscale;
+  double rm = pc->m[n], rx = pc->x[n + 1] * t + pc->x[n],
+         ry = pc->y[n + 1] * t + pc->y[n];
+  for (int k = n - 1; k >= 0; k--) {
+    rm = rm * t + pc->m[k];
+    rx = rx * t + pc->x[k];
+    ry = ry * t + pc->y[k];
+  }
+  *mv = rm;
+  *xv = rx;
+  *yv = ry;
 }
+
+/* 1 / k for the integral of P (no division in the loop). */
+static const double TL_INV[TL_MAX_ORDER + 1] = {
+    0,        1,        1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5,  1.0 / 6,
+    1.0 / 7,  1.0 / 8,  1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12, 1.0 / 13,
+    1.0 / 14, 1.0 / 15, 1.0 / 16, 1.0 / 17, 1.0 / 18, 1.0 / 19, 1.0 / 20};
 
 /* sum_{k=0..n} q_k t^k. */
 static double horner(const double *q, int n, double t)
@@ -153,6 +192,28 @@ static double quad_guess(double a, double b, double r)
   return t2 > 0 ? t2 : NAN;
 }
 
+/* sum_i w_{j+i} q_i for the work term (wp) and M (wm), i = 0..d-j: the
+ * Taylor coefficient j of a shifted polynomial (tl_build), two chains. */
+static void tl_shift_j(const double *wp, const double *wm, const double *q,
+                       int d, int j, double *pj, double *mj)
+{
+  double sp0 = 0, sp1 = 0, sm0 = 0, sm1 = 0;
+  const double *a = wp + j, *b = wm + j;
+  int n = d - j, i = 0;
+  for (; i < n; i += 2) {
+    sp0 += a[i] * q[i];
+    sm0 += b[i] * q[i];
+    sp1 += a[i + 1] * q[i + 1];
+    sm1 += b[i + 1] * q[i + 1];
+  }
+  if (i == n) {
+    sp0 += a[i] * q[i];
+    sm0 += b[i] * q[i];
+  }
+  *pj = sp0 + sp1;
+  *mj = sm0 + sm1;
+}
+
 /* The series of one sub-step: s(t) = s0 + sum_{k=1..n} c_k t^k. */
 typedef struct {
   int n;
@@ -166,20 +227,35 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
                      double s0, double v0, double tol, double *h,
                      tl_series *ts)
 {
-  enum { N = TL_MAX_ORDER };
-  double u0 = s0 - pc->s_lo;
-  double pp[6], mm[6];
-  for (int k = 0; k < 6; k++) {
-    pp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]); /* P(s) */
-    mm[k] = pc->m[k];
+  enum { N = TL_MAX_ORDER, D = AQ_PIECE_MAX_DEG };
+  const int d = pc->deg;
+  /* P and M shifted to s0, in powers of u = s - s0 (Taylor coefficients
+   * at t0 of the piece's polynomials in t, t0 in [0, 1]):
+   *   [u^j] = iscale^j / j! sum_i (c_{j+i} (j+i)!) (t0^i / i!)
+   * (independent sums, not a chain of Horner shifts, and only as far as
+   * the order needs) */
+  const double t0 = (s0 - pc->s_ref) * pc->iscale;
+  double wp[D + 1], wm[D + 1], q[D + 1];
+  double fk = 1, qi = 1;
+  for (int k = 0; k <= d; k++) {
+    if (k > 0) {
+      fk *= k;
+      qi *= t0 * TL_INV[k];
+    }
+    wp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]) * fk; /* P(s) */
+    wm[k] = pc->m[k] * fk;
+    q[k] = qi;
   }
-  shift5(pp, u0);
-  shift5(mm, u0);
-  double K[N + 1] = {0}, Fz[N + 6] = {0}, G[N];
-  double *F = Fz + 5; /* F[-5..-1] = 0: the division below runs 5 terms */
+  /* coefficients taken as the order needs them (the series usually stops
+   * near order 10, before the piece's degree) */
+  double mm[D + 2], sj = 1; /* sj = iscale^j / j! for the next j */
+  double K[N + 1], F[N + 1], G[N];
+  double pj, mj;
+  tl_shift_j(wp, wm, q, d, 0, &pj, &mj);
+  mm[0] = mj;
+  K[1] = pj;
+  int jm = 1; /* P and M known up to u^(jm - 1) */
   K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
-  for (int k = 0; k < 6 && k + 1 <= N; k++)
-    K[k + 1] = pp[k] / (k + 1);
   const double im0 = 1.0 / mm[0];
   F[0] = K[0] * im0;
   /* U[j][k]: coefficient k of u(t)^j, u(t) = s(t) - s0 */
@@ -194,9 +270,23 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
   int n = 1;
   double scale = 0;
   for (int k = 0; k + 2 <= N; k++) {
+    /* P's u^k (into K_{k+1}) and M's u^(k+1) */
+    if (jm <= k + 1) {
+      if (jm <= d) {
+        sj *= pc->iscale * TL_INV[jm];
+        tl_shift_j(wp, wm, q, d, jm, &pj, &mj);
+        K[jm + 1] = pj * sj * TL_INV[jm + 1];
+        mm[jm] = mj * sj;
+      } else {
+        K[jm + 1] = 0;
+        mm[jm] = 0;
+      }
+      jm++;
+    }
     /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
-    double f = K[k + 1] - mm[1] * F[k] - mm[2] * F[k - 1] - mm[3] * F[k - 2] -
-               mm[4] * F[k - 3] - mm[5] * F[k - 4];
+    double f = K[k + 1];
+    for (int j = 1, jn = d < k + 1 ? d : k + 1; j <= jn; j++)
+      f -= mm[j] * F[k + 1 - j];
     F[k + 1] = f * im0;
     G[k] = (k + 1) * F[k + 1];
     /* the powers of u at order k (c_1..c_k are known) */
@@ -210,7 +300,7 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
       U[j][k] = sum;
       comp += G[j] * sum;
     }
-    c[k + 2] = comp / ((k + 1) * (k + 2));
+    c[k + 2] = comp * TL_INV[k + 1] * TL_INV[k + 2];
     n = k + 2;
     if (n == 3) /* the sub-step's motion */
       scale = fabs(c[1]) * hp[1] + fabs(c[2]) * hp[2] + fabs(c[3]) * hp[3];
@@ -248,6 +338,7 @@ static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
       !(dir <= 0 && s == pc->s_lo && pc->s_lo > 0))
     return 0;
   S->evals++;
+  w->s_end = NAN; /* M at the last end was on another piece */
   if (p->piece(p->ctx, s, dir, &w->pc) != 0) {
     w->p = NULL;
     return -1;
@@ -257,12 +348,12 @@ static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
 }
 
 /* s'' at rest (sdot = 0) on the cached piece: P / M. */
-static double tl_accel0(const aq_taylor *w, const aq_path *p, double a, double s)
+static double tl_accel0(const aq_taylor *w, const aq_path *p, double a, double g,
+                        double s)
 {
   const aq_path_piece *pc = &w->pc;
-  double u = s - pc->s_lo;
-  return -p->mass_kg * (a * poly5(pc->dx, u) + p->g_mps2 * poly5(pc->dy, u)) /
-         poly5(pc->m, u);
+  return -p->mass_kg * (a * PIECE_DX(pc, s) + g * PIECE_DY(pc, s)) /
+         PIECE_M(pc, s);
 }
 
 static int sgn(double x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
@@ -275,12 +366,12 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
   double s = m->s < 0 ? 0 : (m->s > sc ? sc : m->s);
   int dir = m->dir >= 0 ? 1 : -1;
   if (tl_piece(w, p, s, dir, S))
-    return tl_fail(err, p, "no table piece", s);
-  double mass = poly5(w->pc.m, s - w->pc.s_lo);
+    return tl_fail(err, p, "no path piece", s);
+  double mass = s == w->s_end ? w->m_end : PIECE_M(&w->pc, s);
   double v = dir * sqrt(2 * fmax(m->ke_j, 0) / mass);
   double t = 0;
   *end = AQ_LEG_TIME;
-  if (s <= 0 && v <= 0 && tl_accel0(w, p, a, s) <= 0) {
+  if (s <= 0 && v <= 0 && tl_accel0(w, p, a, g, s) <= 0) {
     *used = 0;
     *end = AQ_LEG_REST;
     return AQ_OK;
@@ -296,12 +387,12 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     /* the piece ahead: by the velocity, or the acceleration at rest */
     int d = sgn(v);
     if (d == 0)
-      d = sgn(tl_accel0(w, p, a, s));
+      d = sgn(tl_accel0(w, p, a, g, s));
     if (tl_piece(w, p, s, d, S))
-      return tl_fail(err, p, "no table piece", s);
+      return tl_fail(err, p, "no path piece", s);
     const aq_path_piece *pc = &w->pc;
     if ((d > 0 && s >= pc->s_hi && s < sc) || (d < 0 && s <= pc->s_lo && s > 0))
-      return tl_fail(err, p, "the table piece ahead ends where it starts", s);
+      return tl_fail(err, p, "the path piece ahead ends where it starts", s);
     double h = dt - t;
     tl_series ts;
     tl_build(pc, mt, g, a, s, v, w->tol, &h, &ts);
@@ -373,8 +464,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         if (st > S->peak_s)
           S->peak_s = fmin(st, sc);
         if (S->turn) {
-          double u = st - pc->s_lo;
-          S->turn(S->turn_ctx, t + seg[1], st, poly5(pc->x, u), poly5(pc->y, u));
+          S->turn(S->turn_ctx, t + seg[1], st, PIECE_X(pc, st),
+                  PIECE_Y(pc, st));
         }
       }
     }
@@ -405,14 +496,15 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     }
   }
   const aq_path_piece *pc = &w->pc;
-  double u = s - pc->s_lo;
   *used = *end == AQ_LEG_TIME ? dt : t;
+  double mass_end;
+  piece_mxy(pc, s, &mass_end, &m->x_m, &m->y_m);
+  w->s_end = s;
+  w->m_end = mass_end;
   m->s = s;
-  m->ke_j = 0.5 * poly5(pc->m, u) * v * v;
+  m->ke_j = 0.5 * mass_end * v * v;
   if (v != 0)
     m->dir = v > 0 ? 1 : -1;
-  m->x_m = poly5(pc->x, u);
-  m->y_m = poly5(pc->y, u);
   if (m->ke_j > S->peak_ke_j)
     S->peak_ke_j = m->ke_j;
   return AQ_OK;

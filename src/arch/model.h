@@ -18,7 +18,8 @@
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
  *
  * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
- * tables over s in [0, s_c].  Search (search.c): the upper-bound mechanism.
+ * tables over s in [0, s_c] (eval, for the ode and workpath-quad) and
+ * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search (search.c): the upper-bound mechanism.
  *
  * Units: SI (m, kg, rad, N).  Nothing here prints; errors go to aq_error.
  */
@@ -198,6 +199,9 @@ aq_end aq_workpath_end(const aq_workpath *w);
  * function's max magnitude on [0, s_c]). */
 size_t aq_workpath_table_size(const aq_workpath *w);
 double aq_workpath_table_error(const aq_workpath *w);
+/* The number of the Taylor leg's pieces (path.h aq_path_piece, Chebyshev
+ * fits of the exact kinematics, workpath.c). */
+size_t aq_workpath_piece_count(const aq_workpath *w);
 /* Largest |eccentricity| of the line of thrust over the joints at s = 0
  * (aq_mech_thrust): <= 1 when the thrust stays within the arch, i.e. the
  * set is also statically admissible and lambda0 is the collapse multiplier

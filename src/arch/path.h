@@ -47,15 +47,23 @@ typedef struct {
  * the nearer end; see docs/arch-model.md.) */
 typedef int (*aq_path_eval_fn)(const void *ctx, double s, aq_path_point *p);
 
-/* One piece of the tables: on [s_lo, s_hi] each tabled function is a
- * quintic in u = s - s_lo (rad), power basis, coefficient k of u^k.  dx, dy
- * are the tabled slopes (whose derivatives are d2x_m, d2y_m of a point), not
- * the derivatives of x, y (they agree to the table error). */
+/* One polynomial piece of the path, for the Taylor leg: on [s_lo, s_hi]
+ * dx, dy and m are polynomials of degree deg, x and y of degree deg + 1,
+ * in the scaled variable t = (s - s_ref) * iscale, power basis, coefficient
+ * k of t^k.  (The arch's pieces are Chebyshev interpolants of the exact
+ * kinematics with s_ref = s_lo and iscale = 1 / (s_hi - s_lo), t in [0, 1];
+ * a piece may as well be a Taylor polynomial about s_ref = s_lo with
+ * iscale = 1.)  dx, dy are fitted to the exact slopes; x, y are their
+ * integrals (workpath.c) or fitted apart, agreeing to the fit's error. */
+#define AQ_PIECE_MAX_DEG 20
 typedef struct {
   double s_lo, s_hi;   /* rad */
-  double x[6], y[6];   /* x_m, y_m: m */
-  double dx[6], dy[6]; /* dx_m, dy_m: m/rad */
-  double m[6];         /* mgen_kgm2: kg m^2 */
+  double s_ref;        /* rad */
+  double iscale;       /* 1/rad */
+  int deg;             /* of dx, dy, m (x, y: deg + 1); deg < AQ_PIECE_MAX_DEG */
+  double x[AQ_PIECE_MAX_DEG + 1], y[AQ_PIECE_MAX_DEG + 1];   /* x_m, y_m: m */
+  double dx[AQ_PIECE_MAX_DEG + 1], dy[AQ_PIECE_MAX_DEG + 1]; /* dx_m, dy_m: m/rad */
+  double m[AQ_PIECE_MAX_DEG + 1];                            /* mgen_kgm2: kg m^2 */
 } aq_path_piece;
 
 /* The piece holding s: for dir > 0 the one with s_lo <= s < s_hi (the last
@@ -68,7 +76,7 @@ typedef struct {
   const char *name;          /* "primary" or "reverse" */
   aq_path_eval_fn eval;      /* fast evaluation (tables) */
   aq_path_eval_fn eval_exact;/* exact evaluation (closed-form kinematics) */
-  aq_path_piece_fn piece;    /* the tables' pieces as polynomials (NULL: none) */
+  aq_path_piece_fn piece;    /* polynomial pieces for the Taylor leg (NULL: none) */
   const void *ctx;
   double mass_kg;            /* m_T: whole arch (moving and fixed parts), kg */
   double g_mps2;             /* gravity used for this arch, m/s^2 */

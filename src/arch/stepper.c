@@ -18,6 +18,10 @@
  *
  * Rules (docs/dynamics.md):
  *   - start from rest on set k only when a_g * act_sign_k > lambda0_k g;
+ *   - a vertical ground acceleration a_v (steps' av_mps2, positive up)
+ *     replaces g by g + a_v for its step, in the balance, the threshold and
+ *     every leg (each leg gets a copy of the set's path with that g); a
+ *     step with g + a_v <= 0 ends the run with AQ_ELIFTOFF;
  *     quiet steps are skipped with aq_steps_next_outside;
  *   - impact at the return to s = 0: switch to the other set and keep
  *     cor * KE (cor is the kinetic-energy ratio, docs/method.md sec. 7) or, with
@@ -61,6 +65,7 @@ struct aq_stepper {
   aq_paper *paper;
   aq_taylor *taylor; /* default model (paths with pieces, tables) */
   aq_quad *quad;     /* workpath-quad, and the default's fallback */
+  aq_path pv[2];     /* the sets' paths with g replaced by the step's g + a_v */
 };
 
 
@@ -99,6 +104,9 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
   }
   st->path[0] = primary;
   st->path[1] = path_usable(reverse) ? reverse : NULL;
+  st->pv[0] = *primary;
+  if (st->path[1])
+    st->pv[1] = *reverse;
   st->model = model;
   st->ode_rtol = 1e-10;
   st->scale = 1;
@@ -287,8 +295,9 @@ static double path_peak_x(const aq_path *p, int exact, double smax,
   return fmax(best, fmax(fc, fd));
 }
 
-/* The set that a_mps2 would open from rest, or -1. */
-static int activated(const aq_stepper *st, double a)
+/* The set that a_mps2 would open from rest under vertical acceleration
+ * av_mps2 (positive up), or -1. */
+static int activated(const aq_stepper *st, double a, double av)
 {
   int best = -1;
   double excess = 0;
@@ -296,7 +305,7 @@ static int activated(const aq_stepper *st, double a)
     const aq_path *p = st->path[k];
     if (!p)
       continue;
-    double e = a * p->act_sign - p->lambda0 * p->g_mps2;
+    double e = a * p->act_sign - p->lambda0 * (p->g_mps2 + av); /* docs/dynamics.md */
     if (e > 0 && e > excess) {
       excess = e;
       best = k;
@@ -305,17 +314,17 @@ static int activated(const aq_stepper *st, double a)
   return best;
 }
 
-static aq_status leg(aq_stepper *st, int set, double a, aq_motion *m,
-                     double dt, double *used, aq_leg_end *end,
+/* A leg on set's path p (the set's own, or its copy with g + a_v). */
+static aq_status leg(aq_stepper *st, int set, const aq_path *p, double a,
+                     aq_motion *m, double dt, double *used, aq_leg_end *end,
                      aq_leg_stats *S, aq_error *err)
 {
   switch (st->model) {
   case AQ_MODEL_ODE:
-    return aq_eom_leg(st->eom, st->path[set], a, m, dt, used, end, S, err);
+    return aq_eom_leg(st->eom, p, a, m, dt, used, end, S, err);
   case AQ_MODEL_PAPER:
     return aq_paper_leg(st->paper, set, a, m, dt, used, end, S, err);
   default: {
-    const aq_path *p = st->path[set];
     if (st->taylor && p->piece && !st->exact)
       return aq_taylor_leg(st->taylor, p, a, m, dt, used, end, S, err);
     return aq_quad_leg(st->quad, p, a, m, dt, used, end, S, err);
@@ -375,12 +384,36 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     S.turn = hist_turn;
     S.turn_ctx = &hc;
   }
+  /* Vertical acceleration (scaled with the motion, never negated): the run
+   * ends before the first step with g + a_v <= 0 (n_end), and the quiet
+   * band uses the lowest g + a_v before it. */
+  const double *avs = steps->av_mps2, vscale = fabs(st->scale);
+  size_t n_end = steps->n;
+  double av_min = 0, g_min = st->path[0]->g_mps2;
+  for (int k = 1; k < 2; k++)
+    if (st->path[k])
+      g_min = fmin(g_min, st->path[k]->g_mps2);
+  if (avs && st->model == AQ_MODEL_PAPER) {
+    aq_error_set(err, AQ_EUNSUPPORTED, NULL, -1, -1, "model",
+                 "expected workpath, workpath-quad or ode with a vertical "
+                 "acceleration, got paper (its fits assume g)");
+    aq_result_free(res);
+    return AQ_EUNSUPPORTED;
+  }
+  for (size_t k = 0; avs && k < steps->n; k++) {
+    double av = vscale * avs[k];
+    if (!(g_min + av > 0)) {
+      n_end = k;
+      break;
+    }
+    av_min = k == 0 ? av : fmin(av_min, av);
+  }
   double lo = -INFINITY, hi = INFINITY; /* quiet band at rest */
   for (int k = 0; k < 2; k++) {
     const aq_path *p = st->path[k];
     if (!p)
       continue;
-    double thr = p->lambda0 * p->g_mps2;
+    double thr = p->lambda0 * (p->g_mps2 + av_min);
     if (p->act_sign > 0)
       hi = fmin(hi, thr);
     else
@@ -402,7 +435,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   aq_status rc = AQ_OK;
   double e_in = 0;
   size_t i = 0;
-  while (i < steps->n) {
+  while (i < n_end) {
     if (rest) {
       size_t j = aq_steps_next_outside(steps, i, blo, bhi);
       if (st->history)
@@ -411,10 +444,15 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
                               0, 0, 0, 0, -1)) != AQ_OK)
             goto nomem;
       i = j;
-      if (i >= steps->n)
+      if (i >= n_end)
         break;
     }
     const double a = scale * steps->a_mps2[i], dt = steps->dt_s[i];
+    const double av = avs ? vscale * avs[i] : 0;
+    if (avs)
+      for (int k = 0; k < 2; k++)
+        if (st->path[k])
+          st->pv[k].g_mps2 = st->path[k]->g_mps2 + av; /* docs/dynamics.md */
     double t_in = 0; /* time used within step i */
     res->steps_moving++;
     for (size_t nev = 0; t_in < dt; nev++) {
@@ -425,7 +463,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         goto fail;
       }
       if (rest) {
-        int k = activated(st, a);
+        int k = activated(st, a, av);
         if (k < 0)
           break;
         rest = 0;
@@ -435,14 +473,15 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
           res->first_set = k;
         m = (aq_motion){0, 0, 1, 0, 0};
       }
-      double used = 0, x0 = m.x_m, peak_s_all = S.peak_s;
+      double used = 0, x0 = m.x_m, y0 = m.y_m, peak_s_all = S.peak_s;
       aq_leg_end end = AQ_LEG_TIME;
       /* legs locate only turning points above the set's largest s so far */
       S.peak_s = fmax(m.s, smax[set]);
       hc.p = st->path[set];
       hc.set = set;
       hc.t0_s = steps->t_s[i] + t_in;
-      rc = leg(st, set, a, &m, dt - t_in, &used, &end, &S, err);
+      rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
+               &end, &S, err);
       if (hc.rc != AQ_OK)
         goto nomem;
       if (end == AQ_LEG_COLLAPSE)
@@ -456,6 +495,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         goto fail;
       }
       e_in += -a * st->path[set]->mass_kg * (m.x_m - x0);
+      if (avs) /* the vertical ground motion's work */
+        e_in += -av * st->path[set]->mass_kg * (m.y_m - y0);
       if (m.ke_j > S.peak_ke_j)
         S.peak_ke_j = m.ke_j;
       if (fabs(m.x_m) > S.peak_x_m)
@@ -471,7 +512,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         rest = 1;
         rest_since = steps->t_s[i] + t_in;
         m = (aq_motion){0, 0, 1, 0, 0};
-        if (activated(st, a) == set || activated(st, a) < 0)
+        if (activated(st, a, av) == set || activated(st, a, av) < 0)
           break; /* nothing moves it within this step */
         continue;
       }
@@ -526,6 +567,14 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     if (res->collapsed)
       break;
     i++;
+  }
+  if (n_end < steps->n && !res->collapsed) {
+    double av = vscale * avs[n_end];
+    rc = aq_error_set(err, AQ_ELIFTOFF, NULL, -1, -1, "vertical",
+                      "at t = %.3f s: g + a_v = %.6g m/s^2 (a_v = %.6g m/s^2): "
+                      "the arch leaves the ground, which the model does not cover",
+                      steps->t_s[n_end], g_min + av, av);
+    goto fail;
   }
   res->peak_rotation_rad = S.peak_s;
   res->peak_set = smax[1] > smax[0] ? 1 : smax[0] > 0 ? 0 : -1; /* peak_s = max(smax) */

@@ -3,7 +3,7 @@
  * run, read counters from the result, free).
  *
  * Models: AQ_MODEL_WORKPATH (default: exact energy balance, docs/method.md
- * sec. 4-9, integrated as time-Taylor series on the tables' pieces),
+ * sec. 4-9, integrated as time-Taylor series on the path's pieces),
  * AQ_MODEL_WORKPATH_QUAD (the same balance by time quadrature; a second
  * reference), AQ_MODEL_ODE (Lagrangian equation of motion with GSL odeiv2;
  * the reference), AQ_MODEL_PAPER (the paper's printed fits; for comparison
@@ -20,7 +20,7 @@
 #include "result.h"
 
 typedef enum {
-  AQ_MODEL_WORKPATH = 0,  /* time-Taylor leg on the table pieces (leg_taylor.c) */
+  AQ_MODEL_WORKPATH = 0,  /* time-Taylor leg on the path's pieces (leg_taylor.c) */
   AQ_MODEL_ODE,           /* GSL rk8pd on the equation of motion (eom.c) */
   AQ_MODEL_PAPER,         /* the paper's printed fits (paper.c) */
   AQ_MODEL_WORKPATH_QUAD  /* time integral by Chebyshev panels (leg_quad.c) */

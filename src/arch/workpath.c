@@ -63,7 +63,10 @@ struct aq_workpath {
   size_t n;           /* table intervals */
   double *bp;         /* n+1 breakpoints, rad */
   double *coef;       /* n * NF * 6 power-basis coefficients in t = (s - bp[i]) / h_i */
-  aq_path_piece *piece; /* n pieces for path.h (coefficients in u = s - bp[i]) */
+  size_t npc;         /* the Taylor leg's pieces (Chebyshev fits) */
+  double *pbp;        /* npc+1 breakpoints, rad */
+  aq_path_piece *piece; /* npc pieces for path.h */
+  size_t pcap;        /* allocated pieces */
   size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
@@ -191,41 +194,20 @@ static int eval_table(const void *ctx, double s, aq_path_point *p)
   return 0;
 }
 
-/* The interval holding s for a direction (aq_path_piece_fn). */
-static size_t interval_of(const aq_workpath *w, double s, int dir)
-{
-  size_t lo = 0, hi = w->n;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (dir > 0 ? s < w->bp[mid] : s <= w->bp[mid])
-      hi = mid;
-    else
-      lo = mid;
-  }
-  return lo;
-}
-
-static void piece_of(const aq_workpath *w, size_t i, aq_path_piece *pc)
-{
-  static const int fk[5] = {F_X, F_Y, F_DX, F_DY, F_M};
-  double *dst[5] = {pc->x, pc->y, pc->dx, pc->dy, pc->m};
-  double h = w->bp[i + 1] - w->bp[i], ih = 1.0 / h;
-  pc->s_lo = w->bp[i];
-  pc->s_hi = w->bp[i + 1];
-  for (int f = 0; f < 5; f++) {
-    const double *c = w->coef + (i * NF + (size_t)fk[f]) * 6;
-    double sc = 1; /* ih^k: coefficients in t = u / h become those in u */
-    for (int k = 0; k < 6; k++, sc *= ih)
-      dst[f][k] = c[k] * sc;
-  }
-}
-
 static int eval_piece(const void *ctx, double s, int dir, aq_path_piece *pc)
 {
   const aq_workpath *w = ctx;
   if (clamp_s(w, &s) != 0)
     return -1;
-  *pc = w->piece[interval_of(w, s, dir)];
+  size_t lo = 0, hi = w->npc; /* the piece holding s for dir (binary search) */
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (dir > 0 ? s < w->pbp[mid] : s <= w->pbp[mid])
+      hi = mid;
+    else
+      lo = mid;
+  }
+  *pc = w->piece[lo];
   return 0;
 }
 
@@ -376,6 +358,182 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
   refine(rc, sm, fm, s1, f1, depth + 1, err);
 }
 
+/* ---- The Taylor leg's pieces ----
+ * Away from a toggle the kinematics are analytic in s, so dx/ds, dy/ds and
+ * M are fitted on intervals as wide as their Chebyshev series allow, by
+ * interpolation of degree PIECE_DEG at the Chebyshev points of the first
+ * kind from the exact evaluation (exact_f; the Hermite tables above are not
+ * used, so the ode and workpath-quad references stay as they are).  An
+ * interval is accepted when the last three Chebyshev coefficients of each
+ * function are below PIECE_TAIL_TOL relative to its scale (dx/ds and dy/ds
+ * together, and M: their largest magnitude on the interval), or when
+ * halving stopped halving a tail already at round-off; else it is halved.
+ * Each fit is converted to the power basis in t = (s - s_lo) / (s_hi - s_lo)
+ * in [0, 1] (the monomial coefficients of a fast-decaying Chebyshev series
+ * stay of the size of the function), its constant term set to the exact
+ * value at s_lo (a change of the fit's own error): near the threshold the
+ * start from rest at s = 0 depends on a dx + g dy at s = 0, which nearly
+ * cancel, so those values are exact there.  x and y are the integrals of the
+ * fitted slopes from their exact values at s_lo (degree PIECE_DEG + 1), so
+ * that the potential energy m_T g y(s) is that of the work integral the leg
+ * uses (the energy balance holds to round-off of y, not of the arch's
+ * coordinates, even for tiny rocking near s = 0). */
+#define PIECE_DEG 14            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
+#define PIECE_TAIL_TOL 2e-15    /* Chebyshev tail / scale (about ten unit round-offs) */
+#define PIECE_ROUNDOFF 1e-11    /* a tail that halving no longer halves and is below this: round-off */
+#define PIECE_MAX_DEPTH 40      /* halvings of [0, s_c] at most */
+enum { PC_DX = 0, PC_DY, PC_M, NPC_F, PN = PIECE_DEG + 1 };
+_Static_assert(PIECE_DEG < AQ_PIECE_MAX_DEG, "x, y need degree PIECE_DEG + 1");
+
+typedef struct {
+  aq_workpath *w;
+  double cosk[PN][PN]; /* cos(pi k (j + 1/2) / PN) */
+  double tnode[PN];    /* Chebyshev points of the first kind on [-1, 1] */
+  int failed, too_many;
+} piece_ctx;
+
+/* Chebyshev coefficients c of dx/ds, dy/ds and M on [a, b], and their
+ * tail relative to the scales; -1 when the linkage fails. */
+static int piece_fit(piece_ctx *pc, double a, double b, double c[NPC_F][PN],
+                     double *tail)
+{
+  double v[PN][NPC_F], mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  double sdxy = 0, sm = 0;
+  for (int j = 0; j < PN; j++) {
+    double f[NF][3];
+    if (exact_f(pc->w, mid + half * pc->tnode[j], f, NULL) != 0)
+      return -1;
+    v[j][PC_DX] = f[F_DX][0];
+    v[j][PC_DY] = f[F_DY][0];
+    v[j][PC_M] = f[F_M][0];
+    sdxy = fmax(sdxy, fmax(fabs(v[j][PC_DX]), fabs(v[j][PC_DY])));
+    sm = fmax(sm, fabs(v[j][PC_M]));
+  }
+  const double scale[NPC_F] = {sdxy, sdxy, sm};
+  *tail = 0;
+  for (int f = 0; f < NPC_F; f++) {
+    for (int k = 0; k < PN; k++) {
+      double sum = 0;
+      for (int j = 0; j < PN; j++)
+        sum += v[j][f] * pc->cosk[k][j];
+      c[f][k] = (k == 0 ? 1.0 : 2.0) * sum / PN;
+    }
+    for (int k = PN - 3; k < PN; k++) {
+      double e = fabs(c[f][k]) / (scale[f] > 0 ? scale[f] : 1);
+      if (!(e <= *tail)) /* NaN propagates as a failed fit */
+        *tail = isnan(e) ? HUGE_VAL : e;
+    }
+  }
+  return 0;
+}
+
+/* Append the piece [a, b] from its Chebyshev coefficients; -1 on failure. */
+static int piece_append(aq_workpath *w, double a, double b, double c[NPC_F][PN])
+{
+  double fa[NF][3];
+  if (exact_f(w, a, fa, NULL) != 0)
+    return -1;
+  if (w->npc == w->pcap) {
+    size_t cap = w->pcap ? 2 * w->pcap : 16;
+    double *bp = realloc(w->pbp, (cap + 1) * sizeof *bp);
+    if (!bp)
+      return -1;
+    w->pbp = bp;
+    aq_path_piece *pp = realloc(w->piece, cap * sizeof *pp);
+    if (!pp)
+      return -1;
+    w->piece = pp;
+    w->pcap = cap;
+  }
+  aq_path_piece *pc = &w->piece[w->npc];
+  memset(pc, 0, sizeof *pc);
+  pc->s_lo = a;
+  pc->s_hi = b;
+  pc->s_ref = a;
+  pc->iscale = 1.0 / (b - a);
+  pc->deg = PIECE_DEG;
+  double *dst[NPC_F] = {pc->dx, pc->dy, pc->m};
+  const double exact_a[NPC_F] = {fa[F_DX][0], fa[F_DY][0], fa[F_M][0]};
+  for (int f = 0; f < NPC_F; f++) {
+    /* sum c_k T_k(tau) in powers of tau: T_{k+1} = 2 tau T_k - T_{k-1} */
+    double tp[PN] = {1}, tc[PN] = {0, 1};
+    double *d = dst[f];
+    d[0] = c[f][0];
+    d[1] = c[f][1];
+    for (int k = 2; k < PN; k++) {
+      double tn[PN];
+      tn[0] = -tp[0];
+      for (int i = 1; i < PN; i++)
+        tn[i] = 2 * tc[i - 1] - tp[i];
+      for (int i = 0; i < PN; i++) {
+        tp[i] = tc[i];
+        tc[i] = tn[i];
+        d[i] += c[f][k] * tn[i];
+      }
+    }
+    /* tau = 2 t - 1: shift to tau = -1, then scale by 2^k */
+    for (int k = 0; k < PIECE_DEG; k++)
+      for (int j = PIECE_DEG - 1; j >= k; j--)
+        d[j] -= d[j + 1];
+    for (int k = 1, p2 = 2; k < PN; k++, p2 *= 2)
+      d[k] *= p2;
+    d[0] = exact_a[f];
+  }
+  /* x, y: the integrals of the slopes (ds = (b - a) dt) from s_lo */
+  const double *slope[2] = {pc->dx, pc->dy};
+  double *val[2] = {pc->x, pc->y};
+  val[0][0] = fa[F_X][0];
+  val[1][0] = fa[F_Y][0];
+  for (int f = 0; f < 2; f++)
+    for (int k = 0; k < PN; k++)
+      val[f][k + 1] = (b - a) * slope[f][k] / (k + 1);
+  w->pbp[w->npc] = a;
+  w->pbp[w->npc + 1] = b;
+  w->npc++;
+  return 0;
+}
+
+static void piece_refine(piece_ctx *pc, double a, double b, int depth,
+                         double parent_tail)
+{
+  if (pc->failed)
+    return;
+  if (pc->w->npc >= TABLE_MAX_INTERVALS) {
+    pc->failed = pc->too_many = 1;
+    return;
+  }
+  double c[NPC_F][PN], tail;
+  if (piece_fit(pc, a, b, c, &tail) != 0) {
+    pc->failed = 1;
+    return;
+  }
+  if (tail <= PIECE_TAIL_TOL || depth >= PIECE_MAX_DEPTH ||
+      (tail > TABLE_STALL * parent_tail && tail < PIECE_ROUNDOFF)) {
+    if (piece_append(pc->w, a, b, c) != 0)
+      pc->failed = 1;
+    return;
+  }
+  double m = a + 0.5 * (b - a);
+  piece_refine(pc, a, m, depth + 1, tail);
+  piece_refine(pc, m, b, depth + 1, tail);
+}
+
+/* The pieces over [0, s_c]; 0, -1 on failure, -2 when too many. */
+static int build_pieces(aq_workpath *w)
+{
+  piece_ctx pc;
+  const double pi = acos(-1.0);
+  memset(&pc, 0, sizeof pc);
+  pc.w = w;
+  for (int j = 0; j < PN; j++) {
+    pc.tnode[j] = cos(pi * (j + 0.5) / PN);
+    for (int k = 0; k < PN; k++)
+      pc.cosk[k][j] = cos(pi * k * (j + 0.5) / PN);
+  }
+  piece_refine(&pc, 0.0, w->path.s_c_rad, 0, HUGE_VAL);
+  return pc.too_many ? -2 : pc.failed ? -1 : 0;
+}
+
 /* Tables over [0, s_c]: TABLE_N0 equal intervals, each refined by halving
  * where needed (refine), so that the grid is fine only where the path
  * varies fast (near a toggle).  -1 on failure (memory, or the linkage), -2
@@ -396,14 +554,9 @@ static int build_tables(aq_workpath *w)
     refine(&rc, i == 0 ? 0.0 : sc * (double)i / TABLE_N0, node[i],
            i + 1 == TABLE_N0 ? sc : sc * (double)(i + 1) / TABLE_N0, node[i + 1], 0, HUGE_VAL);
   w->tab_err = rc.err;
-  if (!rc.failed && w->n > 0) {
-    w->piece = malloc(w->n * sizeof *w->piece);
-    if (!w->piece)
-      return -1;
-    for (size_t i = 0; i < w->n; i++)
-      piece_of(w, i, &w->piece[i]);
-  }
-  return rc.too_many ? -2 : rc.failed ? -1 : 0;
+  if (rc.too_many || rc.failed)
+    return rc.too_many ? -2 : -1;
+  return build_pieces(w);
 }
 
 static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
@@ -467,6 +620,7 @@ void aq_workpath_free(aq_workpath *w)
     return;
   free(w->coef);
   free(w->piece);
+  free(w->pbp);
   free(w->bp);
   free(w);
 }
@@ -586,6 +740,7 @@ const aq_mech *aq_workpath_mech(const aq_workpath *w) { return &w->mech; }
 const char *aq_workpath_reason(const aq_workpath *w) { return w->reason; }
 aq_end aq_workpath_end(const aq_workpath *w) { return w->end; }
 size_t aq_workpath_table_size(const aq_workpath *w) { return w->n; }
+size_t aq_workpath_piece_count(const aq_workpath *w) { return w->npc; }
 double aq_workpath_table_error(const aq_workpath *w) { return w->tab_err; }
 double aq_workpath_thrust0(const aq_workpath *w) { return w->thrust0; }
 

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "../units.h"
+#include "formats.h"
 #include "readers.h"
 
 /* ---- units ------------------------------------------------------------ */
@@ -294,6 +295,9 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
+  for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
+    if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
+      return AQ_FMT_COSMOS;
   /* PEER: a line with NPTS and DT followed by values, after free text */
   size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
   int nt = 0;
@@ -328,20 +332,15 @@ const char *aq_format_describe(aq_format fmt)
     return "a PEER displacement time series (.DT2), not acceleration: read the "
            ".AT2 of the same record";
   case AQ_FMT_MSEED:
-    return "miniSEED, which is not supported: convert it with mseed2sac -M "
-           "'NET,STA,LOC,CHA,...,SENSITIVITY,...' and read the SAC file with "
-           "--units counts";
+    return "miniSEED";
   case AQ_FMT_COSMOS:
-    return "COSMOS strong-motion format, which is not supported: export it as "
-           "CSV (time, acceleration)";
+    return "COSMOS strong-motion format (or CSMIP V1/V2)";
   case AQ_FMT_SMC:
-    return "USGS SMC format, which is not supported: export it as CSV (time, "
-           "acceleration)";
+    return "USGS SMC format";
   case AQ_FMT_KNET:
     return "K-NET/KiK-net ASCII";
   case AQ_FMT_ESM:
-    return "ESM/ITACA ASCII, which is not supported: export it as CSV (time, "
-           "acceleration)";
+    return "ESM/ITACA ASCII";
   case AQ_FMT_XML:
     return "XML (StationXML or QuakeML metadata?), not a record";
   case AQ_FMT_HDF5:
@@ -460,11 +459,12 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   }
   double factor;
   if (used == AQ_UNITS_COUNTS) {
-    if (!(ch->counts_per_mps2 > 0) || !isfinite(ch->counts_per_mps2))
+    if (ch->counts_per_mps2 == 0 || !isfinite(ch->counts_per_mps2)) /* < 0: reversed polarity */
       return aq_error_set(err, AQ_EUNITS, label, -1, -1, "sensitivity",
                           "counts need the sensitivity in counts per m/s2 "
                           "stated in the file (SAC SCALE, as mseed2sac -M writes "
-                          "it; K-NET scale factor; ...), found none");
+                          "it; K-NET scale factor; StationXML by --response for "
+                          "miniSEED; ...), found none");
     factor = 1.0 / ch->counts_per_mps2;
   } else {
     factor = aq_units_to_mps2(used);
@@ -583,6 +583,14 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_at2_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_TEXT:
     return aq_csv_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_COSMOS:
+    return aq_cosmos_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_MSEED:
+    return aq_mseed_read_(buf, n, name, opts, raw, err);
+  case AQ_FMT_SMC:
+    return aq_smc_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_ESM:
+    return aq_esm_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_KNET:
     return aq_knet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:

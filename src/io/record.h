@@ -83,6 +83,8 @@ typedef struct {
     char glob[AQ_UNITS_GLOB_MAX];
     char channel[16];
   } components[AQ_UNITS_RULES_MAX]; /* --component GLOB=CH: the last matching wins */
+  char response[AQ_UNITS_GLOB_MAX]; /* --response FILE.xml: StationXML giving the
+                                       sensitivity of miniSEED counts; "" none */
 } aq_read_opts;
 
 /* The units override that applies to path: the last rule whose glob matches

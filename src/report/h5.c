@@ -874,9 +874,11 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   const aq_history *h = &res->history;
   if (!h->time_s)
     return AQ_OK;
-  char name[96];
-  snprintf(name, sizeof name, "/histories/%05zu_%03zu_%03zu%s", ri, ai, si,
-           strcmp(s->polarity, "reversed") == 0 ? "r" : "");
+  char name[128], az[32] = ""; /* runs of one scale at several azimuths */
+  if (isfinite(s->azimuth_deg))
+    snprintf(az, sizeof az, "_az%.6g", s->azimuth_deg);
+  snprintf(name, sizeof name, "/histories/%05zu_%03zu_%03zu%s%s", ri, ai, si,
+           strcmp(s->polarity, "reversed") == 0 ? "r" : "", az);
   obj = "/histories";
   CK(lazy_group(w, &w->g_histories, obj), "H5Gcreate");
   obj = name;

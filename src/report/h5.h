@@ -167,6 +167,11 @@ typedef struct {
 /* Read the runs, the inputs and the root settings of a results file
  * (format_version 2).  *out is filled (free with aq_h5_suite_free). */
 aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err);
+
+/* Scalar number attribute name of loc into *out, as memory type mtype
+ * (both hid_t, an int64_t); 0, or -1 if absent or unreadable.  Prints nothing (HDF5's
+ * automatic error printing is off in the readers). */
+int aq_h5_attr_num(int64_t loc, const char *name, int64_t mtype, void *out);
 void aq_h5_suite_free(aq_h5_suite *s);
 
 /* The open file's HDF5 id (between aq_h5_open and aq_h5_finish), for the

@@ -225,8 +225,7 @@ static hid_t input_type(void)
 
 /* ---- format 1: a group per run and per record, summaries as attributes */
 
-/* Scalar number attribute name of loc into *out (mtype); 0, or -1. */
-static int attr_num(hid_t loc, const char *name, hid_t mtype, void *out)
+int aq_h5_attr_num(hid_t loc, const char *name, hid_t mtype, void *out)
 {
   if (H5Aexists(loc, name) <= 0)
     return -1;
@@ -302,14 +301,14 @@ static int fill_run_v1(hid_t g, void *elem)
     const aq_summary_field *fl = &aq_summary_fields[i];
     char *p = (char *)&r->s + fl->offset;
     int rc = fl->kind == AQ_SF_STR      ? attr_text(g, fl->name, p, fl->size)
-             : fl->kind == AQ_SF_DOUBLE ? attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p)
-                                        : attr_num(g, fl->name, H5T_NATIVE_INT64, p);
+             : fl->kind == AQ_SF_DOUBLE ? aq_h5_attr_num(g, fl->name, H5T_NATIVE_DOUBLE, p)
+                                        : aq_h5_attr_num(g, fl->name, H5T_NATIVE_INT64, p);
     if (rc != 0 && (required(fl) || H5Aexists(g, fl->name) != 0))
       return -1;
   }
-  return attr_num(g, "record_index", H5T_NATIVE_INT64, &r->record_index) == 0 &&
-                 attr_num(g, "arch_index", H5T_NATIVE_INT64, &r->arch_index) == 0 &&
-                 attr_num(g, "scale_index", H5T_NATIVE_INT64, &r->scale_index) == 0
+  return aq_h5_attr_num(g, "record_index", H5T_NATIVE_INT64, &r->record_index) == 0 &&
+                 aq_h5_attr_num(g, "arch_index", H5T_NATIVE_INT64, &r->arch_index) == 0 &&
+                 aq_h5_attr_num(g, "scale_index", H5T_NATIVE_INT64, &r->scale_index) == 0
              ? 0
              : -1;
 }

@@ -53,6 +53,8 @@ typedef struct {
   double peak_rotation_over_qc; /* peak rotation / q_c of the set it occurred in (0 if never moved) */
   double pga_over_lambda0_g;    /* pga_g / lambda0 of the set driven first (if none: the lower
                                    admissible lambda0) */
+  double azimuth_deg;           /* the arch's +x azimuth, deg from north, for a ground
+                                   motion given as components; NAN for one in-plane record */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -70,7 +72,7 @@ typedef struct {
 /* The fields in column order (record arch model scale pga_g status collapsed
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
- * peak_rotation_over_qc pga_over_lambda0_g). */
+ * peak_rotation_over_qc pga_over_lambda0_g azimuth_deg). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
@@ -92,8 +94,14 @@ void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *
  * without "AQ_"); buf receives it (NUL-terminated, truncated to n). */
 void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st);
 
+/* The worst of n runs of one (ground motion, arch, scale) at different
+ * azimuths, as a screening verdict: a failed run first (no verdict can be
+ * given), then a collapse (the earliest), then the largest peak rotation /
+ * q_c; ties go to the first.  Returns its index (0 for n = 0). */
+size_t aq_summary_worst(const aq_summary *const *rows, size_t n);
+
 /* Units of a field, from its name's suffix as the naming rule gives them:
- * "s", "rad", "m", "J", "g" for *_s, *_rad, *_m, *_j, *_g; "" for strings;
+ * "s", "rad", "m", "J", "g", "deg" for *_s, *_rad, *_m, *_j, *_g, *_deg; "" for strings;
  * "1" for a ratio (*_over_*) and every other number (scale, counts,
  * lambda0).  Never NULL. */
 const char *aq_summary_units(const aq_summary_field *f);

@@ -31,6 +31,7 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(lambda0_first, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(azimuth_deg, AQ_SF_DOUBLE, 1),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -55,6 +56,7 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->lambda0_first = NAN; /* aq_summary_normalise fills them */
   s->peak_rotation_over_qc = NAN;
   s->pga_over_lambda0_g = NAN;
+  s->azimuth_deg = NAN;
   if (res) {
     s->collapsed = res->collapsed ? 1 : 0;
     s->collapse_time_s = res->collapsed ? res->collapse_time_s : NAN;
@@ -126,7 +128,8 @@ const char *aq_summary_units(const aq_summary_field *f)
 {
   static const struct {
     const char *suffix, *units;
-  } rule[] = {{"_s", "s"}, {"_rad", "rad"}, {"_m", "m"}, {"_j", "J"}, {"_g", "g"}};
+  } rule[] = {{"_s", "s"}, {"_rad", "rad"}, {"_m", "m"}, {"_j", "J"}, {"_g", "g"},
+               {"_deg", "deg"}};
   if (f->kind == AQ_SF_STR)
     return "";
   if (strstr(f->name, "_over_")) /* a ratio (pga_over_lambda0_g: PGA / (lambda0 g)) */
@@ -157,4 +160,26 @@ int64_t aq_summary_get_int(const aq_summary *s, const aq_summary_field *f)
 const char *aq_summary_get_str(const aq_summary *s, const aq_summary_field *f)
 {
   return (const char *)s + f->offset;
+}
+
+/* 1 if run a is worse than run b (see aq_summary_worst). */
+static int worse(const aq_summary *a, const aq_summary *b)
+{
+  int fa = strcmp(a->status, "ok") != 0, fb = strcmp(b->status, "ok") != 0;
+  if (fa || fb)
+    return fa && !fb;
+  if (a->collapsed != b->collapsed)
+    return a->collapsed > b->collapsed;
+  if (a->collapsed == 1 && a->collapse_time_s != b->collapse_time_s)
+    return a->collapse_time_s < b->collapse_time_s;
+  return a->peak_rotation_over_qc > b->peak_rotation_over_qc;
+}
+
+size_t aq_summary_worst(const aq_summary *const *rows, size_t n)
+{
+  size_t w = 0;
+  for (size_t i = 1; i < n; i++)
+    if (worse(rows[i], rows[w]))
+      w = i;
+  return w;
 }

@@ -16,6 +16,7 @@ void aq_steps_free(aq_steps *s)
   free(s->a_mps2);
   free(s->block_min_mps2);
   free(s->block_max_mps2);
+  free(s->av_mps2);
   memset(s, 0, sizeof *s);
 }
 
@@ -60,9 +61,19 @@ static void steps_index(aq_steps *s)
   }
 }
 
-aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
-                                double t0_s, double merge_tol_mps2,
-                                aq_steps *out, aq_error *err)
+/* The sample i of a projection: s (c1 a1[i] + c2 a2[i]), or s c1 a1[i]
+ * without a2 (so that s = c1 = 1 gives a1[i] itself). */
+static inline double sample(const double *a1, double c1, const double *a2,
+                            double c2, double s, size_t i)
+{
+  return a2 ? s * (c1 * a1[i] + c2 * a2[i]) : s * (c1 * a1[i]);
+}
+
+static aq_status steps_build(const double *a1, double c1, const double *a2,
+                             double c2, double sc, const double *v, double sv,
+                             size_t n, double dt_s, double t0_s,
+                             double merge_tol_mps2, aq_steps *out,
+                             double *peak_mps2, aq_error *err)
 {
   if (!(dt_s > 0) || !isfinite(dt_s))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "dt",
@@ -74,24 +85,39 @@ aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
   aq_status st = steps_alloc(out, n, err);
   if (st != AQ_OK)
     return st;
+  if (v && !(out->av_mps2 = malloc((n ? n : 1) * sizeof *out->av_mps2))) {
+    aq_steps_free(out);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "steps",
+                        "cannot allocate %zu steps", n);
+  }
   size_t k = 0;
+  double peak = 0;
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
-    double sum = a_mps2[i];
+    double first = sample(a1, c1, a2, c2, sc, i), sum = first;
+    double vfirst = v ? sv * v[i] : 0, vsum = vfirst;
+    peak = fmax(peak, fabs(first));
     if (merge_tol_mps2 > 0) {
       /* grow the run while every sample stays within tol of the run's first */
-      double lo = a_mps2[i], hi = a_mps2[i];
+      double lo = first, hi = first, vlo = vfirst, vhi = vfirst;
       while (j < n) {
-        double a = a_mps2[j];
+        double a = sample(a1, c1, a2, c2, sc, j), b = v ? sv * v[j] : 0;
         double nlo = a < lo ? a : lo, nhi = a > hi ? a : hi;
-        if (nhi - nlo >= merge_tol_mps2)
+        double nvlo = b < vlo ? b : vlo, nvhi = b > vhi ? b : vhi;
+        if (nhi - nlo >= merge_tol_mps2 || nvhi - nvlo >= merge_tol_mps2)
           break;
         lo = nlo;
         hi = nhi;
+        vlo = nvlo;
+        vhi = nvhi;
         sum += a;
+        vsum += b;
+        peak = fmax(peak, fabs(a));
         j++;
       }
     }
+    if (v)
+      out->av_mps2[k] = vsum / (double)(j - i);
     /* index arithmetic from t0 keeps times free of accumulated round-off */
     out->t_s[k] = t0_s + (double)i * dt_s;
     out->dt_s[k] = (double)(j - i) * dt_s;
@@ -101,6 +127,53 @@ aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
   }
   out->n = k;
   steps_index(out);
+  if (peak_mps2)
+    *peak_mps2 = peak;
+  return AQ_OK;
+}
+
+aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
+                                double t0_s, double merge_tol_mps2,
+                                aq_steps *out, aq_error *err)
+{
+  return steps_build(a_mps2, 1.0, NULL, 0.0, 1.0, NULL, 0.0, n, dt_s, t0_s,
+                     merge_tol_mps2, out, NULL, err);
+}
+
+aq_status aq_steps_project(const double *a1_mps2, double c1, const double *a2_mps2,
+                           double c2, double scale, size_t n, double dt_s,
+                           double t0_s, double merge_tol_mps2, aq_steps *out,
+                           double *peak_mps2, aq_error *err)
+{
+  return steps_build(a1_mps2, c1, a2_mps2, c2, scale, NULL, 0.0, n, dt_s, t0_s,
+                     merge_tol_mps2, out, peak_mps2, err);
+}
+
+aq_status aq_steps_project_v(const double *a1_mps2, double c1, const double *a2_mps2,
+                             double c2, double scale, const double *av_mps2,
+                             double vscale, size_t n, double dt_s, double t0_s,
+                             double merge_tol_mps2, aq_steps *out,
+                             double *peak_mps2, aq_error *err)
+{
+  return steps_build(a1_mps2, c1, a2_mps2, c2, scale, av_mps2, vscale, n, dt_s,
+                     t0_s, merge_tol_mps2, out, peak_mps2, err);
+}
+
+aq_status aq_steps_set_vertical(aq_steps *s, const double *av_mps2, aq_error *err)
+{
+  for (size_t i = 0; i < s->n; i++)
+    if (!isfinite(av_mps2[i]))
+      return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "step",
+                          "step %zu: expected a finite vertical acceleration, got %g",
+                          i, av_mps2[i]);
+  double *v = malloc((s->n ? s->n : 1) * sizeof *v);
+  if (!v)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "steps",
+                        "cannot allocate %zu steps", s->n);
+  if (s->n)
+    memcpy(v, av_mps2, s->n * sizeof *v);
+  free(s->av_mps2);
+  s->av_mps2 = v;
   return AQ_OK;
 }
 

@@ -1,6 +1,7 @@
 /* steps.h: the constant-acceleration steps the arch stepper consumes.
  *
- * A step is (start time, duration, constant ground acceleration along +x).
+ * A step is (start time, duration, constant ground acceleration along +x,
+ * and optionally constant vertical ground acceleration, positive up).
  * Times are s relative to the original record's first sample (steps in the
  * front pad have negative times).  The block min/max arrays let the stepper
  * skip quiet stretches cheaply (aq_steps_next_outside).  aq_steps owns its
@@ -22,6 +23,8 @@ typedef struct {
   size_t nblock;    /* number of blocks */
   double *block_min_mps2; /* min a over each block */
   double *block_max_mps2; /* max a over each block */
+  double *av_mps2;  /* vertical ground acceleration during step i, m/s^2,
+                       positive up; NULL: none (0), the horizontal-only case */
 } aq_steps;
 
 /* Build steps from n samples at dt_s (zero-order hold: sample i holds over
@@ -31,6 +34,32 @@ typedef struct {
 aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
                                 double t0_s, double merge_tol_mps2,
                                 aq_steps *out, aq_error *err);
+
+/* Steps of the projection scale (c1 a1[i] + c2 a2[i]) of two component
+ * records sampled alike (src/signal/project.h gives c1, c2 for an arch's
+ * azimuth), built as aq_steps_from_samples builds them from those samples:
+ * each component is processed once and projected here, per azimuth, with no
+ * intermediate array.  a2_mps2 may be NULL: the samples are then
+ * scale (c1 a1[i]), so c1 = scale = 1 gives the record itself, bit for bit.
+ * *peak_mps2 (if not NULL) receives max |sample|, m/s^2. */
+aq_status aq_steps_project(const double *a1_mps2, double c1, const double *a2_mps2,
+                           double c2, double scale, size_t n, double dt_s,
+                           double t0_s, double merge_tol_mps2, aq_steps *out,
+                           double *peak_mps2, aq_error *err);
+
+/* As aq_steps_project, with the vertical component: av_mps2[i] (positive
+ * up) times vscale becomes each step's av_mps2 (a merged run also keeps its
+ * vertical samples within merge_tol_mps2 and takes their mean).  av_mps2
+ * NULL: as aq_steps_project (no vertical array). */
+aq_status aq_steps_project_v(const double *a1_mps2, double c1, const double *a2_mps2,
+                             double c2, double scale, const double *av_mps2,
+                             double vscale, size_t n, double dt_s, double t0_s,
+                             double merge_tol_mps2, aq_steps *out,
+                             double *peak_mps2, aq_error *err);
+
+/* Give s a vertical acceleration per step (copies av_mps2[0..s->n), m/s^2,
+ * positive up).  AQ_EVALUE for a value that is not finite, AQ_ENOMEM. */
+aq_status aq_steps_set_vertical(aq_steps *s, const double *av_mps2, aq_error *err);
 
 /* Build from explicit lists (synthetic pulses, tests).  Copies the arrays. */
 aq_status aq_steps_from_list(const double *t_s, const double *dt_s,

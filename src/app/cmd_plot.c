@@ -1,0 +1,252 @@
+/* cmd_plot.c: `archquake plot FIGURE ... -o FILE`: parse and check the
+ * options, read the inputs, then draw with the plot stage (src/plot) in
+ * this one thread.  Figures: history, arch, domain, suite. */
+#define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../arch/domain.h"
+#include "../plot/plot.h"
+#include "../report/h5.h"
+#include "app.h"
+#include "cleanup.h"
+#include "opt.h"
+
+static const char usage[] =
+    "usage: archquake plot FIGURE [INPUT] [OPTIONS] -o FILE\n"
+    "Draw a figure with PLplot; the format is FILE's extension: .png, .svg or\n"
+    ".pdf (cairo drivers).  No partial file is ever left under FILE.\n"
+    "Figures:\n"
+    "  history RESULTS.h5 [--run KEY]   one run of a results file written with\n"
+    "        --history: ground acceleration (g) with +-lambda0 g, rotation (rad)\n"
+    "        with +-q_c, kinetic and potential energy and the work put in (J);\n"
+    "        impacts and collapse marked.  KEY: a group under /runs, e.g.\n"
+    "        00000_000_000 (default: the first run)\n"
+    "  arch --arch FILE [--rotation RAD]   the arch to scale, its voussoirs and\n"
+    "        both hinge sets; with --rotation the mechanism deformed at that\n"
+    "        rotation of body 1 (> 0 primary set, < 0 reverse set, |RAD| <= q_c)\n"
+    "  domain --arch FILE [--ratios LIST] [--cor C]   the half-cycle collapse\n"
+    "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
+    "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
+    "        and polarities: collapse, or peak rotation / q_c)\n"
+    "  capacity CAPACITY.h5 [--arch NAME]   the scales each record was scanned\n"
+    "        over with its collapse intervals (archquake capacity -o), one arch\n"
+    "        (default: the file's first)\n"
+    "Options:\n"
+    "  -o, --output FILE  the figure (.png .svg .pdf)\n"
+    "  --data FILE.csv    also write the plotted data (columns carry units)\n"
+    "  --help             this text\n"
+    "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 bad options,\n"
+    "3 the figure or the data could not be written.\n";
+
+enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_N };
+static const char *const figures[] = {"history", "arch", "domain", "suite", "capacity", NULL};
+/* Per figure: takes an input file, and which options it accepts. */
+static const struct {
+  int input;
+  const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor */
+} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "a"}};
+
+typedef struct {
+  int fig;
+  const char *input, *out, *data, *run, *arch;
+  double rotation_rad, cor;
+  double *ratios;
+  size_t nr;
+} plot_opts;
+
+static int parse(int argc, char **argv, plot_opts *o)
+{
+  static const struct option longopts[] = {
+      {"output", required_argument, NULL, 'o'}, {"data", required_argument, NULL, 'd'},
+      {"run", required_argument, NULL, 'r'},    {"arch", required_argument, NULL, 'a'},
+      {"rotation", required_argument, NULL, 'R'}, {"ratios", required_argument, NULL, 't'},
+      {"cor", required_argument, NULL, 'c'},    {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
+  int nerr = 0, c;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, ":o:", longopts, NULL)) != -1) {
+    if (c == 'h') {
+      fputs(usage, stdout);
+      return -1;
+    }
+    if (strchr("rRatc", c) && !strchr(takes[o->fig].opts, c)) {
+      fprintf(stderr, "archquake: plot %s: %s: not an option of this figure\n",
+              figures[o->fig], argv[optind - 1]);
+      nerr++;
+      continue;
+    }
+    switch (c) {
+    case 'o': o->out = optarg; break;
+    case 'd': o->data = optarg; break;
+    case 'r': o->run = optarg; break;
+    case 'a': o->arch = optarg; break;
+    case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
+    case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;
+    case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
+    default: aq_opt_unknown("plot ", argv, optind, optopt, &nerr);
+    }
+  }
+  if (takes[o->fig].input) {
+    if (optind < argc)
+      o->input = argv[optind++];
+    else {
+      fprintf(stderr, "archquake: plot %s: expected a results file (.h5), got none\n",
+              figures[o->fig]);
+      nerr++;
+    }
+  }
+  aq_opt_no_operands("plot", argc, argv, optind, &nerr);
+  aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
+  if (strchr(takes[o->fig].opts, 'a') && o->fig != FIG_CAPACITY)
+    aq_opt_require("plot", "--arch FILE", o->arch != NULL, &nerr);
+  aq_error err;
+  if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    nerr++;
+  }
+  if (aq_opt_output_special("-o", o->out) || aq_opt_output_special("--data", o->data))
+    nerr++;
+  if (o->out && o->data && aq_opt_same_file(o->out, o->data)) {
+    fprintf(stderr, "archquake: --data: expected a file other than -o, got \"%s\"\n",
+            o->data);
+    nerr++;
+  }
+  return nerr ? 1 : 0;
+}
+
+static int fail(const aq_error *err)
+{
+  aq_error_print(err, stderr);
+  return err->status == AQ_EIO ? AQ_EXIT_OUTPUT
+         : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
+                 !strcmp(err->field, "--rotation") ||
+                 !strcmp(err->field, "--arch")
+             ? AQ_EXIT_USAGE
+             : AQ_EXIT_FAIL;
+}
+
+static int plot_domain(const plot_opts *o, const aq_arch *arch, aq_error *err)
+{
+  static const double def[] = {1.02, 1.05, 1.1, 1.2, 1.35, 1.5, 1.75, 2, 2.5, 3, 4, 5};
+  const double TOL_S = 1e-6, TMAX_S = 100; /* bisection tolerance, search limit */
+  const double *ratio = o->nr ? o->ratios : def;
+  size_t n = o->nr ? o->nr : sizeof def / sizeof def[0];
+  const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
+  if (aq_opt_cor_momentum(o->arch, !isnan(o->cor), dyn->impact == AQ_IMPACT_MOMENTUM))
+    return AQ_EXIT_USAGE;
+  const aq_path *pp = aq_arch_path(arch, 0);
+  double *dur = malloc(n * sizeof *dur);
+  aq_stepper *st = aq_stepper_alloc(pp, aq_arch_path(arch, 1), AQ_MODEL_WORKPATH, err);
+  int rc = AQ_EXIT_OK;
+  if (!dur || !st) {
+    rc = dur ? fail(err) : AQ_EXIT_FAIL;
+    goto out;
+  }
+  aq_stepper_set_cor(st, isnan(o->cor) ? dyn->cor : o->cor);
+  aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
+  for (size_t i = 0; i < n; i++) {
+    double a;
+    if (aq_domain_min_duration(st, pp, ratio[i], TOL_S, TMAX_S, &a, &dur[i], err) != AQ_OK) {
+      snprintf(err->input, sizeof err->input, "%s", o->arch);
+      rc = fail(err);
+      goto out;
+    }
+  }
+  if (aq_plot_domain(aq_arch_name(arch), pp->lambda0, ratio, dur, n, TMAX_S, o->out,
+                     o->data, NULL, err) != AQ_OK)
+    rc = fail(err);
+out:
+  aq_stepper_free(st);
+  free(dur);
+  return rc;
+}
+
+int aq_cmd_plot(int argc, char **argv)
+{
+  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(usage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? AQ_EXIT_USAGE : AQ_EXIT_OK;
+  }
+  plot_opts o = {.rotation_rad = 0, .cor = NAN};
+  int fig = -1, nerr = 0;
+  aq_opt_choice("plot", argv[1], figures, &fig, &nerr);
+  if (nerr)
+    return AQ_EXIT_USAGE;
+  o.fig = fig;
+  int p = parse(argc - 1, argv + 1, &o);
+  if (p) {
+    free(o.ratios);
+    return p < 0 ? AQ_EXIT_OK : AQ_EXIT_USAGE;
+  }
+  aq_error err;
+  aq_error_clear(&err);
+  int rc = AQ_EXIT_OK;
+  aq_arch *arch = NULL;
+  char tmp[2][1024]; /* a signal while drawing removes the temporaries */
+  int slot[2] = {-1, -1};
+  aq_cleanup_install();
+  aq_plot_temp_name(o.out, tmp[0], sizeof tmp[0]);
+  slot[0] = aq_cleanup_add(tmp[0]);
+  if (o.data) {
+    aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
+    slot[1] = aq_cleanup_add(tmp[1]);
+  }
+  if (o.arch && o.fig != FIG_CAPACITY && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+    rc = fail(&err);
+    goto out;
+  }
+  switch (o.fig) {
+  case FIG_HISTORY: {
+    aq_plot_run run;
+    if (aq_plot_run_read(o.input, o.run, &run, &err) != AQ_OK) {
+      rc = fail(&err);
+      break;
+    }
+    if (aq_plot_history(&run, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_plot_run_free(&run);
+    break;
+  }
+  case FIG_ARCH:
+    if (aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    break;
+  case FIG_DOMAIN:
+    rc = plot_domain(&o, arch, &err);
+    break;
+  case FIG_SUITE: {
+    aq_h5_suite S;
+    if (aq_h5_read_suite(o.input, &S, &err) != AQ_OK) {
+      rc = fail(&err);
+      break;
+    }
+    if (aq_plot_suite(S.runs, S.nruns, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_h5_suite_free(&S);
+    break;
+  }
+  case FIG_CAPACITY: {
+    aq_h5_capacity_table t;
+    int present = 0;
+    if (aq_h5_capacity_read(o.input, &t, &present, &err) != AQ_OK) {
+      rc = fail(&err);
+      break;
+    }
+    if (aq_plot_capacity(&t, o.arch, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_h5_capacity_table_free(&t);
+    break;
+  }
+  }
+out:
+  aq_cleanup_remove(slot[0]);
+  aq_cleanup_remove(slot[1]);
+  aq_arch_free(arch);
+  free(o.ratios);
+  return rc;
+}

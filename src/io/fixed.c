@@ -1,0 +1,255 @@
+/* fixed.c: line cursor and fixed-width Fortran fields (see fixed.h). */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "fixed.h"
+#include "readers.h"
+
+#define FIELD_MAX 64 /* longest numeric field accepted, characters */
+
+void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n)
+{
+  c->s = (const char *)buf;
+  c->n = n;
+  c->pos = 0;
+  c->line = 1;
+}
+
+int aq_lines_at_end(const aq_lines *c)
+{
+  for (size_t i = c->pos; i < c->n; i++) {
+    char ch = c->s[i];
+    if (ch != ' ' && ch != '\t' && ch != '\r' && ch != '\n' && ch != 0x1A)
+      return 0;
+  }
+  return 1;
+}
+
+int aq_line_blank(const aq_line *ln)
+{
+  for (size_t i = 0; i < ln->len; i++)
+    if (ln->p[i] != ' ' && ln->p[i] != '\t')
+      return 0;
+  return 1;
+}
+
+int aq_lines_next(aq_lines *c, aq_line *out)
+{
+  size_t b, e;
+  if (aq_lines_at_end(c) || !aq_text_line_(c->s, c->n, &c->pos, &b, &e))
+    return 0;
+  out->p = c->s + b;
+  out->len = e - b;
+  out->line = c->line++;
+  return 1;
+}
+
+int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f)
+{
+  const char *open = memchr(s, '(', n);
+  if (!open)
+    return 0;
+  size_t i = (size_t)(open - s) + 1;
+  while (i < n && s[i] == ' ')
+    i++;
+  long per = 0, w = 0;
+  int nd = 0;
+  while (i < n && isdigit((unsigned char)s[i]) && nd < 4) {
+    per = per * 10 + (s[i++] - '0');
+    nd++;
+  }
+  if (nd == 0)
+    per = 1;
+  if (i >= n)
+    return 0;
+  char k = (char)toupper((unsigned char)s[i++]);
+  if (k != 'I' && k != 'F' && k != 'E')
+    return 0;
+  nd = 0;
+  while (i < n && isdigit((unsigned char)s[i]) && nd < 4) {
+    w = w * 10 + (s[i++] - '0');
+    nd++;
+  }
+  if (per < 1 || w < 1 || w > FIELD_MAX)
+    return 0;
+  f->per_line = (int)per;
+  f->width = (int)w;
+  f->kind = k;
+  return 1;
+}
+
+int aq_field_double(const char *s, size_t n, double *out)
+{
+  while (n > 0 && (*s == ' ' || *s == '\t')) {
+    s++;
+    n--;
+  }
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+    n--;
+  double v;
+  if (n == 0 || n >= FIELD_MAX || aq_decimal_parse(s, n, &v) != n || !isfinite(v))
+    return 0;
+  *out = v;
+  return 1;
+}
+
+size_t aq_next_word(const char **p, const char *end, const char *stops)
+{
+  const char *b = *p;
+  while (b < end && *b == ' ')
+    b++;
+  const char *e = b;
+  while (e < end && *e != ' ' && !strchr(stops, *e))
+    e++;
+  *p = b;
+  return (size_t)(e - b);
+}
+
+void aq_copy_trim(char *out, size_t cap, const char *s, size_t n)
+{
+  while (n > 0 && isspace((unsigned char)*s)) {
+    s++;
+    n--;
+  }
+  while (n > 0 && isspace((unsigned char)s[n - 1]))
+    n--;
+  if (cap == 0)
+    return;
+  size_t k = 0;
+  for (size_t i = 0; i < n && k + 1 < cap; i++)
+    out[k++] = isprint((unsigned char)s[i]) ? s[i] : '?';
+  out[k] = '\0';
+}
+
+const char *aq_find_ci(const char *s, size_t n, const char *needle)
+{
+  size_t m = strlen(needle);
+  for (size_t i = 0; i + m <= n; i++)
+    if (strncasecmp(s + i, needle, m) == 0)
+      return s + i;
+  return NULL;
+}
+
+aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
+                        double *out, const char *name, const char *what,
+                        aq_error *err)
+{
+  size_t k = 0;
+  size_t w = (size_t)f->width;
+  while (k < count) {
+    aq_line ln;
+    if (!aq_lines_next(c, &ln))
+      return aq_error_set(err, AQ_EFORMAT, name, c->line, -1, what,
+                          "expected %zu values, the file ends after %zu", count, k);
+    size_t nf = count - k < (size_t)f->per_line ? count - k : (size_t)f->per_line;
+    for (size_t j = 0; j < nf; j++, k++) {
+      size_t b = j * w;
+      if (b >= ln.len)
+        return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, what,
+                            "value %zu: expected %zu values of %zu columns on this "
+                            "line, got a line of %zu characters",
+                            k + 1, nf, w, ln.len);
+      size_t e = b + w < ln.len ? b + w : ln.len;
+      if (!aq_field_double(ln.p + b, e - b, &out[k])) {
+        char got[FIELD_MAX + 1];
+        aq_copy_trim(got, sizeof got, ln.p + b, e - b);
+        return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, what,
+                            "value %zu (columns %zu-%zu): expected a number, got \"%s\"",
+                            k + 1, b + 1, e, got);
+      }
+    }
+  }
+  return AQ_OK;
+}
+
+/* Days since 1970-01-01 of a proleptic Gregorian date (Howard Hinnant's
+ * days_from_civil algorithm). */
+static long days_from_civil(long y, long m, long d)
+{
+  y -= m <= 2;
+  long era = (y >= 0 ? y : y - 399) / 400;
+  long yoe = y - era * 400;
+  long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + doe - 719468;
+}
+
+static void civil_from_days(long z, long *y, long *m, long *d)
+{
+  z += 719468;
+  long era = (z >= 0 ? z : z - 146096) / 146097;
+  long doe = z - era * 146097;
+  long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  long mp = (5 * doy + 2) / 153;
+  *d = doy - (153 * mp + 2) / 5 + 1;
+  *m = mp + (mp < 10 ? 3 : -9);
+  *y = yoe + era * 400 + (*m <= 2);
+}
+
+int aq_month_day(int year, int jday, int *month, int *day)
+{
+  if (year < 1800 || year > 2200 || jday < 1 || jday > 366)
+    return 0;
+  long y, m, d;
+  civil_from_days(days_from_civil(year, 1, 1) + jday - 1, &y, &m, &d);
+  if (y != year)
+    return 0;
+  *month = (int)m;
+  *day = (int)d;
+  return 1;
+}
+
+int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
+                int minute, double sec)
+{
+  if (year < 1800 || year > 2200 || month < 1 || month > 12 || day < 1 || day > 31 ||
+      hour < 0 || hour > 48 || minute < 0 || minute > 59 || !(sec >= 0 && sec < 61))
+    return 0;
+  long ms = lround(sec * 1000.0);
+  long days = days_from_civil(year, month, day);
+  long tod_ms = ((long)hour * 60 + minute) * 60000L + ms;
+  days += tod_ms / 86400000L;
+  tod_ms %= 86400000L;
+  long y, m, d;
+  civil_from_days(days, &y, &m, &d);
+  snprintf(out, cap, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.%03ldZ", y, m, d,
+           tod_ms / 3600000L, (tod_ms / 60000L) % 60, (tod_ms / 1000L) % 60,
+           tod_ms % 1000L);
+  return 1;
+}
+
+int aq_iso_parse(const char *s, double *epoch_s)
+{
+  int y, mo, d, h = 0, mi = 0, used = 0;
+  double sec = 0;
+  if (sscanf(s, "%4d-%2d-%2d%n", &y, &mo, &d, &used) != 3)
+    return 0;
+  const char *t = s + used;
+  if (*t == 'T' || *t == ' ') {
+    if (sscanf(t + 1, "%2d:%2d:%lf", &h, &mi, &sec) < 2)
+      return 0;
+  }
+  if (y < 1 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 24 ||
+      mi < 0 || mi > 59 || !(sec >= 0 && sec < 61))
+    return 0;
+  *epoch_s = (double)days_from_civil(y, mo, d) * 86400.0 + h * 3600.0 + mi * 60.0 + sec;
+  return 1;
+}
+
+int aq_iso_from_ms(char *out, size_t cap, long long ms)
+{
+  long long days = ms >= 0 ? ms / 86400000LL : -((-ms + 86399999LL) / 86400000LL);
+  long long tod = ms - days * 86400000LL;
+  long y, m, d;
+  if (days < -100000 || days > 3000000)
+    return 0;
+  civil_from_days((long)days, &y, &m, &d);
+  snprintf(out, cap, "%04ld-%02ld-%02ldT%02lld:%02lld:%02lld.%03lldZ", y, m, d,
+           tod / 3600000LL, (tod / 60000LL) % 60, (tod / 1000LL) % 60, tod % 1000LL);
+  return 1;
+}

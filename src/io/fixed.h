@@ -1,0 +1,94 @@
+/* fixed.h: line cursor and Fortran fixed-width fields for the agency text
+ * readers (cosmos.c, csmip.c, smc.c, esm.c).
+ *
+ * The cursor walks buf[0..n) line by line (LF, CRLF, CR CR LF or CR ends;
+ * no final newline needed) without copying; lines point into buf and are
+ * not NUL-terminated.  Fields are read by column width, never by splitting
+ * on blanks, because agencies glue fields (`-94.84213-120.18770`).  Nothing
+ * here allocates or prints; failures fill aq_error with the line and field.
+ */
+#ifndef AQ_IO_FIXED_H
+#define AQ_IO_FIXED_H
+
+#include <stddef.h>
+
+#include "../error.h"
+
+typedef struct aq_lines_s {
+  const char *s;
+  size_t n, pos;
+  long line; /* 1-based number of the line that next() returns next */
+} aq_lines;
+
+typedef struct aq_line_s {
+  const char *p; /* first character (into the buffer) */
+  size_t len;    /* without the line end */
+  long line;     /* 1-based line number */
+} aq_line;
+
+void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n);
+
+/* The next line in *out; 0 at end of input.  Trailing DOS end-of-file bytes
+ * (0x1A) and blank space after the last line count as end of input. */
+int aq_lines_next(aq_lines *c, aq_line *out);
+
+/* 1 if the line holds only blanks and tabs. */
+int aq_line_blank(const aq_line *ln);
+
+/* 1 if nothing but blanks, line ends and 0x1A remain. */
+int aq_lines_at_end(const aq_lines *c);
+
+/* A Fortran edit descriptor "nIw", "nFw.d", "nEw.d" (case-insensitive,
+ * e.g. inside "(8F10.5)"): per-line count and field width. */
+typedef struct {
+  int per_line; /* fields per line, >= 1 */
+  int width;    /* characters per field, >= 1 */
+  char kind;    /* 'I', 'F' or 'E' */
+} aq_fortran_fmt;
+
+/* Find the first "(...)" in s[0..n) and parse the descriptor inside it.
+ * Returns 1 on success, 0 if there is none that parses. */
+int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f);
+
+/* Parse the number in s[0..n) (blanks around it allowed).  Returns 1 on
+ * success, 0 if blank or not entirely a finite number. */
+int aq_field_double(const char *s, size_t n, double *out);
+
+/* Read count numbers laid out f->per_line to a line, f->width columns each
+ * (the last line may hold fewer), from the next lines of c into out[].
+ * what names the block for messages ("integer header", "data of channel 2").
+ * A short line, a blank or non-numeric field is an AQ_EFORMAT naming the
+ * line, the field's 1-based index in the block and what was found. */
+aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
+                        double *out, const char *name, const char *what,
+                        aq_error *err);
+
+/* The word at *p (before end) after blanks: *p moves to its start, the
+ * length returned ends at a blank, at end or at a character of stops. */
+size_t aq_next_word(const char **p, const char *end, const char *stops);
+
+/* Copy s[0..n) trimmed of blanks into out (NUL-terminated, truncated). */
+void aq_copy_trim(char *out, size_t cap, const char *s, size_t n);
+
+/* Case-insensitive search for needle in s[0..n); NULL if absent. */
+const char *aq_find_ci(const char *s, size_t n, const char *needle);
+
+/* ISO-8601 "YYYY-MM-DDThh:mm:ss.sssZ" from a calendar date and time of day
+ * (sec may carry a fraction; hour may exceed 23 after a zone shift, which
+ * rolls the day over).  Returns 1, or 0 if a value is out of range. */
+int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
+                int minute, double sec);
+
+/* Seconds since 1970-01-01T00:00:00 UTC of "YYYY-MM-DD[Thh:mm[:ss.sss]][Z]"
+ * (the zone suffix is ignored: StationXML and miniSEED times are UTC).
+ * Returns 1, or 0 if s does not start with such a time. */
+int aq_iso_parse(const char *s, double *epoch_s);
+
+/* ISO-8601 UTC of ms milliseconds since 1970-01-01T00:00:00Z; 1, or 0 if
+ * out of range. */
+int aq_iso_from_ms(char *out, size_t cap, long long ms);
+
+/* Month and day of day-of-year jday in year: 1, or 0 if out of range. */
+int aq_month_day(int year, int jday, int *month, int *day);
+
+#endif

@@ -1,0 +1,141 @@
+/* smc.c: USGS SMC strong-motion text format (formats.h).
+ *
+ * Layout: 11 text lines (line 1 "2 CORRECTED ACCELEROGRAM": the leading
+ * number is the data type, 1 uncorrected and 2 corrected acceleration,
+ * 3 velocity, 4 displacement; line 3 the station code; line 4 the event;
+ * line 6 "station = ... component= 90"), 48 integers (8I10, 6 lines),
+ * 50 reals (5E15.7, 10 lines), integer #16 comment lines starting "|", then
+ * integer #17 values, 8 per line in E10.4 whose fields touch
+ * (`-2.7715E+0-1.1578E-1`).  Acceleration is in cm/s^2.
+ * Header positions used (1-based): integers #2-#7 start year, day of year,
+ * hour, minute, second, millisecond; #13 angle from vertical (0 up, 180
+ * down, 90 horizontal); #14 azimuth; #16 comment lines; #17 npts.  Real #2
+ * samples per second: without it the samples are (time, value) pairs of
+ * uneven sampling, which are refused.  Null values: -32768 and 1.7E+38.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fixed.h"
+#include "formats.h"
+
+#define SMC_TEXT_LINES 11
+#define SMC_INTS 48
+#define SMC_REALS 50
+#define SMC_INT_NULL -32768
+#define SMC_REAL_NULL_MIN 1e38 /* 1.7E+38 (and anything as large) is null */
+
+static aq_status smc_bad(aq_error *err, const char *name, long line, const char *field,
+                         const char *fmt, double got)
+{
+  return aq_error_set(err, AQ_EFORMAT, name, line, -1, field, fmt, got);
+}
+
+aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  (void)opts;
+  memset(raw, 0, sizeof *raw);
+  aq_lines c;
+  aq_lines_init(&c, buf, n);
+  aq_line text[SMC_TEXT_LINES];
+  for (int i = 0; i < SMC_TEXT_LINES; i++)
+    if (!aq_lines_next(&c, &text[i]))
+      return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "text header",
+                          "expected %d text lines, the file ends after %d", SMC_TEXT_LINES, i);
+  double type;
+  if (text[0].len < 2 || text[0].p[1] != ' ' || !aq_field_double(text[0].p, 1, &type) ||
+      (!aq_find_ci(text[0].p, text[0].len, "ACCELEROGRAM") &&
+       !aq_find_ci(text[0].p, text[0].len, "VELOCITY") &&
+       !aq_find_ci(text[0].p, text[0].len, "DISPLACEMENT"))) {
+    char got[64];
+    aq_copy_trim(got, sizeof got, text[0].p, text[0].len);
+    return aq_error_set(err, AQ_EFORMAT, name, 1, -1, "data type",
+                        "expected \"N (UN)CORRECTED ACCELEROGRAM\", got \"%s\"", got);
+  }
+  if (type < 1 || type > 4) {
+    char got[64];
+    aq_copy_trim(got, sizeof got, text[0].p, text[0].len);
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, 1, -1, "data type",
+                        "expected a time series (1 to 4), got \"%s\"", got);
+  }
+  double iv[SMC_INTS], rv[SMC_REALS];
+  aq_fortran_fmt fi = {8, 10, 'I'}, fr = {5, 15, 'E'}, fd = {8, 10, 'E'};
+  aq_status s = aq_fixed_read(&c, SMC_INTS, &fi, iv, name, "integer header (8I10)", err);
+  if (s != AQ_OK)
+    return s;
+  long real_line = c.line;
+  s = aq_fixed_read(&c, SMC_REALS, &fr, rv, name, "real header (5E15.7)", err);
+  if (s != AQ_OK)
+    return s;
+  double ncomment = iv[15], npts = iv[16], rate = rv[1];
+  if (ncomment < 0 || ncomment > (double)n)
+    return smc_bad(err, name, real_line - 5, "integer header #16 (comment lines)",
+                   "expected >= 0, got %g", ncomment);
+  if (rate >= SMC_REAL_NULL_MIN)
+    return aq_error_set(err, AQ_EUNSUPPORTED, name, real_line, -1,
+                        "real header #2 (samples per second)",
+                        "not stated: the file holds unevenly sampled (time, value) pairs, "
+                        "which are not resampled; resample them first");
+  if (!(rate > 0))
+    return smc_bad(err, name, real_line, "real header #2 (samples per second)",
+                   "expected > 0, got %g", rate);
+  if (!(npts >= 1) || npts > (double)(c.n - c.pos) / fd.width + 1)
+    return smc_bad(err, name, real_line - 5, "integer header #17 (npts)",
+                   "expected 1 to the number of 10-column values the file can hold, got %g",
+                   npts);
+  for (double i = 0; i < ncomment; i++) {
+    aq_line ln;
+    if (!aq_lines_next(&c, &ln))
+      return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "comments",
+                          "expected %g comment lines, the file ends after %g", ncomment, i);
+  }
+  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  if (!ch)
+    return AQ_ENOMEM;
+  ch->npts = (size_t)npts;
+  ch->dt_s = 1.0 / rate;
+  ch->values = malloc(ch->npts * sizeof *ch->values);
+  if (!ch->values) {
+    aq_raw_file_free(raw);
+    return aq_error_set(err, AQ_ENOMEM, name, c.line, -1, "data", "out of memory");
+  }
+  s = aq_fixed_read(&c, ch->npts, &fd, ch->values, name, "data (8E10.4)", err);
+  if (s != AQ_OK) {
+    aq_raw_file_free(raw);
+    return s;
+  }
+  static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
+  snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
+  double from_vertical = iv[12], az = iv[13];
+  if (from_vertical == 0 || from_vertical == 180) {
+    ch->dip_deg = from_vertical == 0 ? -90 : 90;
+    ch->vertical = 1;
+  } else if (from_vertical == 90) {
+    ch->dip_deg = 0;
+    ch->vertical = 0;
+    if (az != SMC_INT_NULL && az >= 0 && az <= 360)
+      ch->azimuth_deg = az;
+  }
+  const char *comp = aq_find_ci(text[5].p, text[5].len, "component=");
+  if (comp) {
+    comp += 10;
+    aq_copy_trim(ch->channel, sizeof ch->channel, comp,
+                 (size_t)(text[5].p + text[5].len - comp));
+  }
+  aq_copy_trim(ch->station, sizeof ch->station, text[2].p, text[2].len);
+  int year = (int)iv[1], jday = (int)iv[2], mon, day;
+  double sec = iv[5] == SMC_INT_NULL ? 0 : iv[5];
+  if (iv[6] != SMC_INT_NULL)
+    sec += iv[6] * 1e-3;
+  if (!aq_month_day(year, jday, &mon, &day) ||
+      !aq_iso_time(ch->reference, sizeof ch->reference, year, mon, day, (int)iv[3], (int)iv[4],
+                   sec))
+    ch->reference[0] = '\0';
+  aq_copy_trim(raw->event, sizeof raw->event, text[3].p, text[3].len);
+  aq_copy_trim(raw->processing, sizeof raw->processing, text[0].p + 2, text[0].len - 2);
+  snprintf(raw->format, sizeof raw->format, "smc");
+  return AQ_OK;
+}

@@ -1,0 +1,311 @@
+/* history.c: one run's response, three panels sharing the time axis:
+ * ground acceleration (g) with +-lambda0 g of both sets, rotation of body 1
+ * (rad) with +-q_c of both sets, and kinetic energy, potential energy and
+ * the work done by the ground (J).  Impacts (returns to q = 0) are marked on
+ * the rotation panel, the collapse across all three.
+ *
+ * The work put in is not stored as a history; it is accumulated over the
+ * samples from the energy balance of docs/method.md sec. 5: over an
+ * interval in which the ground acceleration a_g is constant (zero-order
+ * hold of the record's samples, as the run's steps),
+ *     dW = -m_T a_g dx,
+ * x being the whole arch's centroid displacement.  Its last value is the
+ * run's energy_in_j when the run kept one step per sample (tested). */
+#include <math.h>
+#include <plplot.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "plot.h"
+
+typedef struct {
+  const aq_plot_run *run;
+  double *w_j;          /* work in at each sample, J */
+  double *imp_t_s;      /* impact times, s */
+  size_t nimp;
+  double *ag_t_s, *ag_g; /* ground: times, s, and g */
+  double t0_s, t1_s;    /* time axis */
+  double e_unit;        /* 1: energies in J, 1e3: in kJ */
+} hist;
+
+/* Below this fraction of the smaller q_c, the rotation axis leaves +-q_c
+ * out (named "off scale" in the legend) so that the response can be seen. */
+static const double QC_SHOWN_FRAC = 0.4;
+static const double KJ_ABOVE_J = 1e4; /* energies above this drawn in kJ */
+
+/* Axis titles (also written to the CSV, so that tests can read them). */
+static const char *const AX_TIME = "time in the record (s)", *const AX_GROUND = "ground (g)",
+                         *const AX_ROT = "rotation (rad)", *const AX_E_J = "energy (J)",
+                         *const AX_E_KJ = "energy (kJ)";
+
+/* Ground acceleration held from sample i over [t0 + i dt, t0 + (i+1) dt). */
+static double ground_at(const aq_plot_run *r, double t_s)
+{
+  double k = floor((t_s - r->ag_t0_s) / r->ag_dt_s);
+  if (!(k >= 0) || k >= (double)r->na)
+    return 0;
+  return r->ag_mps2[(size_t)k];
+}
+
+static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
+{
+  memset(h, 0, sizeof *h);
+  h->run = r;
+  size_t n = r->n;
+  h->w_j = malloc((n ? n : 1) * sizeof *h->w_j);
+  h->imp_t_s = malloc((n ? n : 1) * sizeof *h->imp_t_s);
+  h->ag_t_s = malloc((r->na ? r->na : 1) * sizeof *h->ag_t_s);
+  h->ag_g = malloc((r->na ? r->na : 1) * sizeof *h->ag_g);
+  if (!h->w_j || !h->imp_t_s || !h->ag_t_s || !h->ag_g) {
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "history", "out of memory");
+    return -1;
+  }
+  for (size_t i = 0; i < r->na; i++) {
+    h->ag_t_s[i] = r->ag_t0_s + (double)i * r->ag_dt_s;
+    h->ag_g[i] = r->ag_mps2[i] / AQ_G0_MPS2;
+  }
+  double w = 0;
+  for (size_t k = 0; k < n; k++) {
+    if (k > 0) {
+      double tm = 0.5 * (r->t_s[k - 1] + r->t_s[k]);
+      w -= r->mass_kg * ground_at(r, tm) * (r->x_m[k] - r->x_m[k - 1]); /* sec. 5 */
+      if (!r->na) /* no ground in the file: no work */
+        w = NAN;
+      double qa = r->q_rad[k - 1], qb = r->q_rad[k];
+      if (qa != 0 && (qb == 0 || (qa > 0) != (qb > 0))) /* back through q = 0 */
+        h->imp_t_s[h->nimp++] =
+            r->t_s[k - 1] + (r->t_s[k] - r->t_s[k - 1]) * qa / (qa - qb);
+    }
+    h->w_j[k] = w;
+  }
+  double lo, hi, e_hi = 0;
+  aq_plot_range(h->w_j, n, &lo, &hi);
+  e_hi = hi;
+  aq_plot_range(r->ke_j, n, &lo, &hi);
+  e_hi = fmax(e_hi, hi);
+  aq_plot_range(r->pe_j, n, &lo, &hi);
+  h->e_unit = fmax(e_hi, hi) > KJ_ABOVE_J ? 1e3 : 1; /* J or kJ on the axis */
+  /* the time axis: the record without its zero pads, and any motion */
+  h->t0_s = INFINITY;
+  h->t1_s = -INFINITY;
+  if (r->n_orig > 0 && r->rec_dt_s > 0) {
+    h->t0_s = 0;
+    h->t1_s = (double)r->n_orig * r->rec_dt_s;
+  }
+  for (size_t k = 0; k < n; k++)
+    if (r->q_rad[k] != 0 || r->ke_j[k] != 0) {
+      h->t0_s = fmin(h->t0_s, r->t_s[k]);
+      h->t1_s = fmax(h->t1_s, r->t_s[k]);
+    }
+  if (r->collapsed == 1 && isfinite(r->collapse_time_s))
+    h->t1_s = fmax(h->t1_s, r->collapse_time_s);
+  if (!(h->t0_s < h->t1_s)) {
+    h->t0_s = n ? r->t_s[0] : 0;
+    h->t1_s = n && r->t_s[n - 1] > h->t0_s ? r->t_s[n - 1] : h->t0_s + 1;
+  }
+  return 0;
+}
+
+static void release(hist *h)
+{
+  free(h->w_j);
+  free(h->imp_t_s);
+  free(h->ag_t_s);
+  free(h->ag_g);
+}
+
+static void hline(double t0, double t1, double y, int color, int style)
+{
+  PLFLT x[2] = {t0, t1}, yy[2] = {y, y};
+  plcol0(color);
+  pllsty(style);
+  plline(2, x, yy);
+  pllsty(1);
+}
+
+/* One panel: viewport [y0, y1] of the page, box, y title. */
+static void panel(const hist *h, double y0, double y1, double lo, double hi,
+                  int bottom, const char *ytitle)
+{
+  double pad = 0.06 * (hi - lo);
+  plvpor(0.12, 0.68, y0, y1);
+  plwind(h->t0_s, h->t1_s, lo - pad, hi + pad);
+  plcol0(AQ_PC_LIGHT);
+  plbox("g", 0, 0, "g", 0, 0);
+  plcol0(AQ_PC_FG);
+  plbox(bottom ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
+  plmtex("l", 5.6, 0.5, 0.5, ytitle);
+  if (bottom)
+    plmtex("b", 3.2, 0.5, 0.5, AX_TIME);
+  if (h->run->collapsed == 1 && isfinite(h->run->collapse_time_s)) {
+    PLFLT x[2] = {h->run->collapse_time_s, h->run->collapse_time_s};
+    PLFLT y[2] = {lo - pad, hi + pad};
+    plcol0(AQ_PC_RED);
+    plwidth(2);
+    plline(2, x, y);
+    plwidth(1);
+  }
+}
+
+static int draw(void *ctx, aq_error *err)
+{
+  (void)err;
+  const hist *h = ctx;
+  const aq_plot_run *r = h->run;
+  const double gr = r->g_mps2 / AQ_G0_MPS2; /* lambda0 g in units of g0 */
+  char title[512], l0p[64], l0r[64], qcp[64], qcr[64];
+  pladv(0);
+  plschr(0, 0.85);
+  plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
+  const char *base = strrchr(r->record, '/');
+  base = base ? base + 1 : r->record;
+  snprintf(title, sizeof title, "%.60s on arch %.40s: scale %g%s, run %s", base, r->arch,
+           r->scale, r->reversed ? " reversed" : "", r->key);
+  plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
+  plmtex("t", 1.2, 0.5, 0.5, title);
+  /* ground */
+  double lo, hi;
+  aq_plot_range(h->ag_g, r->na, &lo, &hi);
+  for (int s = 0; s < 2; s++) {
+    lo = fmin(lo, -r->lambda0[s] * gr);
+    hi = fmax(hi, r->lambda0[s] * gr);
+  }
+  panel(h, 0.67, 0.93, lo, hi, 0, AX_GROUND);
+  plcol0(AQ_PC_GREY);
+  if (r->na)
+    plline((PLINT)r->na, h->ag_t_s, h->ag_g);
+  else
+    plptex(0.5 * (h->t0_s + h->t1_s), 0.5 * (lo + hi), 1, 0, 0.5,
+           "not stored: run with --store-records");
+  for (int s = 0; s < 2; s++)
+    for (int sg = -1; sg <= 1; sg += 2)
+      hline(h->t0_s, h->t1_s, sg * r->lambda0[s] * gr, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
+            s ? 3 : 2);
+  snprintf(l0p, sizeof l0p, "±#gl#d0#u g, primary (%.3g g)", r->lambda0[0] * gr);
+  snprintf(l0r, sizeof l0r, "±#gl#d0#u g, reverse (%.3g g)", r->lambda0[1] * gr);
+  {
+    const char *t[] = {l0p, l0r, "ground"};
+    int c[] = {AQ_PC_BLUE, AQ_PC_ORANGE, AQ_PC_GREY}, st[] = {2, 3, 1};
+    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, r->na ? 3 : 2, t, c, st, NULL);
+  }
+
+  /* rotation */
+  aq_plot_range(r->q_rad, r->n, &lo, &hi);
+  double peak = fmax(fabs(lo), fabs(hi));
+  /* +-q_c on the axis unless the rotation would be a flat line under them */
+  int qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
+  for (int s = 0; s < 2 && qc_shown; s++) {
+    lo = fmin(lo, -r->q_c_rad[s]);
+    hi = fmax(hi, r->q_c_rad[s]);
+  }
+  panel(h, 0.38, 0.64, lo, hi, 0, AX_ROT);
+  for (int s = 0; s < 2 && qc_shown; s++)
+    for (int sg = -1; sg <= 1; sg += 2)
+      hline(h->t0_s, h->t1_s, sg * r->q_c_rad[s], s ? AQ_PC_ORANGE : AQ_PC_BLUE,
+            s ? 3 : 2);
+  plcol0(AQ_PC_FG);
+  plline((PLINT)r->n, r->t_s, r->q_rad);
+  if (h->nimp) {
+    double *zero = calloc(h->nimp, sizeof *zero);
+    if (zero) {
+      plcol0(AQ_PC_GREEN);
+      plschr(0, 0.6);
+      plstring((PLINT)h->nimp, h->imp_t_s, zero, "◆");
+      plschr(0, 0.85);
+      free(zero);
+    }
+  }
+  snprintf(qcp, sizeof qcp, "±q#dc#u, primary (%.3g rad)", r->q_c_rad[0]);
+  snprintf(qcr, sizeof qcr, "±q#dc#u, reverse (%.3g rad)", r->q_c_rad[1]);
+  {
+    char imp[64];
+    snprintf(imp, sizeof imp, "impact (%zu)", h->nimp);
+    const char *t[] = {"rotation", qcp, qcr, imp, "collapse"};
+    int c[] = {AQ_PC_FG, AQ_PC_BLUE, AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_RED};
+    int st[] = {1, 2, 3, 0, 1};
+    const char *sy[] = {"", "", "", "◆", ""};
+    if (!qc_shown) { /* the q_c entries say so instead of showing a line */
+      t[1] = r->q_c_rad[0] < r->q_c_rad[1] ? qcp : qcr;
+      t[2] = "(±q#dc#u off scale)";
+      c[1] = c[2] = AQ_PC_FG;
+      st[1] = st[2] = 0;
+    }
+    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT,
+                   r->collapsed == 1 ? 5 : 4, t, c, st, sy);
+  }
+
+  /* energies */
+  aq_plot_range(r->ke_j, r->n, &lo, &hi);
+  double a, b;
+  aq_plot_range(r->pe_j, r->n, &a, &b);
+  lo = fmin(lo, a);
+  hi = fmax(hi, b);
+  aq_plot_range(h->w_j, r->n, &a, &b);
+  lo = fmin(fmin(lo, a), 0);
+  hi = fmax(hi, b);
+  double unit = h->e_unit;
+  panel(h, 0.09, 0.35, lo / unit, hi / unit, 1, unit > 1 ? AX_E_KJ : AX_E_J);
+  const double *e[3] = {r->pe_j, r->ke_j, h->w_j};
+  const int ec[3] = {AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN};
+  PLFLT *y = malloc((r->n ? r->n : 1) * sizeof *y);
+  for (int j = 0; j < (r->na ? 3 : 2) && y; j++) {
+    for (size_t k = 0; k < r->n; k++)
+      y[k] = e[j][k] / unit;
+    plcol0(ec[j]);
+    plline((PLINT)r->n, r->t_s, y);
+  }
+  free(y);
+  {
+    const char *t[] = {"kinetic", "potential", r->na ? "work in" : "(work in: no ground)"};
+    int c[] = {AQ_PC_RED, AQ_PC_BLUE, r->na ? AQ_PC_GREEN : AQ_PC_FG};
+    int st[] = {1, 1, r->na ? 1 : 0};
+    aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, 3, t, c, st, NULL);
+  }
+  return 0;
+}
+
+/* Long format: series,time_s,value (the series name carries the unit). */
+static aq_status write_data(const hist *h, const char *data, aq_error *err)
+{
+  char tmp[1024];
+  FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+  if (!f)
+    return err->status;
+  const aq_plot_run *r = h->run;
+  aq_plot_csv_axes(f, 4, (const char *[]){AX_TIME, AX_GROUND, AX_ROT,
+                                          h->e_unit > 1 ? AX_E_KJ : AX_E_J});
+  fprintf(f, "series,time_s,value\n");
+  for (size_t i = 0; i < r->na; i++)
+    fprintf(f, "ground_accel_g,%.17g,%.17g\n", h->ag_t_s[i], h->ag_g[i]);
+  for (int s = 0; s < 2; s++) {
+    fprintf(f, "%s_lambda0_g,nan,%.17g\n", s ? "reverse" : "primary",
+            r->lambda0[s] * r->g_mps2 / AQ_G0_MPS2);
+    fprintf(f, "%s_q_c_rad,nan,%.17g\n", s ? "reverse" : "primary", r->q_c_rad[s]);
+  }
+  static const char *names[] = {"rotation_rad", "kinetic_energy_j",
+                                "potential_energy_j", "work_in_j"};
+  const double *v[] = {r->q_rad, r->ke_j, r->pe_j, h->w_j};
+  for (size_t j = 0; j < (r->na ? 4 : 3); j++)
+    for (size_t i = 0; i < r->n; i++)
+      fprintf(f, "%s,%.17g,%.17g\n", names[j], r->t_s[i], v[j][i]);
+  for (size_t i = 0; i < h->nimp; i++)
+    fprintf(f, "impact,%.17g,0\n", h->imp_t_s[i]);
+  if (r->collapsed == 1)
+    fprintf(f, "collapse,%.17g,1\n", r->collapse_time_s);
+  return aq_plot_csv_close(f, tmp, data, 1, err);
+}
+
+aq_status aq_plot_history(const aq_plot_run *run, const char *target,
+                          const char *data, double *draw_s, aq_error *err)
+{
+  hist h;
+  aq_status rc = AQ_ENOMEM;
+  if (prepare(&h, run, err) == 0) {
+    rc = aq_plot_render(target, 1100, 850, draw, &h, draw_s, err);
+    if (rc == AQ_OK && data)
+      rc = write_data(&h, data, err);
+  }
+  release(&h);
+  return rc;
+}

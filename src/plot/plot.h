@@ -1,0 +1,147 @@
+/* plot.h: figures from archquake's results, drawn with PLplot (cairo
+ * drivers pngcairo, svgcairo, pdfcairo; the format is the target's
+ * extension).  One figure per file:
+ *   history.c   one run's ground acceleration, rotation and energies
+ *   arch.c      the arch to scale, its hinge sets, a deformed mechanism
+ *   domain.c    the half-cycle collapse domain
+ *   suite.c     a record x arch map of the verdicts
+ *   capacity.c  the collapse intervals of `archquake capacity`
+ * common.c renders (driver check, exit/abort handlers, temporary + rename)
+ * and writes the plotted data (--data FILE.csv, also temporary + rename);
+ * h5_read.c reads a run's histories (the verdicts come from
+ * aq_h5_read_suite).
+ *
+ * PLplot keeps global state: call these from one thread, after the inputs
+ * are read.  Nothing here prints: failures fill aq_error and return a
+ * status, and leave no file under the target's name.  SI units inside;
+ * g and degrees only in axis titles and CSV columns named so. */
+#ifndef AQ_PLOT_PLOT_H
+#define AQ_PLOT_PLOT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "../arch/arch.h"
+#include "../error.h"
+#include "../report/h5.h"
+#include "../report/h5_capacity.h"
+
+/* ---- h5_read.c: what the figures take from a results file ------------ */
+
+/* One run with its histories (sample times in record time, s). */
+typedef struct {
+  char key[64];          /* run key: "00000_000_000", "r" appended when reversed */
+  char record[256];      /* record file as given */
+  char arch[128];        /* arch name */
+  double scale;          /* factor applied to the processed record */
+  int reversed;          /* 1: the record negated (polarity reversed) */
+  int collapsed;         /* 1, 0, -1 (failed run) */
+  double collapse_time_s;/* NaN if it survived */
+  long impacts;          /* the run's impact count */
+  double energy_in_j;    /* the run's work done by the ground, J */
+  double lambda0[2];     /* primary, reverse: static collapse multipliers */
+  double q_c_rad[2];     /* collapse rotations, rad */
+  double mass_kg;        /* whole arch */
+  double g_mps2;         /* the arch's gravity */
+  size_t n;              /* history samples */
+  double *t_s, *q_rad, *x_m, *ke_j, *pe_j; /* rotation (global sign), COM x, energies */
+  size_t na;             /* ground samples (processed record, scaled, signed);
+                            0 when the file does not hold it (format 2
+                            written without --store-records) */
+  double *ag_mps2;       /* ground acceleration, m/s^2, zero-order hold */
+  double ag_dt_s, ag_t0_s; /* sample interval and time of sample 0, s */
+  long n_orig;           /* samples of the record without its pads (0: unknown) */
+  double rec_dt_s;       /* the record's sample interval, s (0: unknown) */
+} aq_plot_run;
+
+/* Read run `key` (NULL: the first run with histories) of results file
+ * path (format 1 or 2).  Errors: no such run (the message lists the first
+ * keys), a file or run without histories (written without --history).
+ * Free with aq_plot_run_free. */
+aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *run,
+                           aq_error *err);
+void aq_plot_run_free(aq_plot_run *run);
+
+/* ---- common.c ------------------------------------------------------ */
+
+/* Draws one figure between plinit and plend; returns 0, or non-zero after
+ * filling err (the render then fails). */
+typedef int (*aq_plot_draw_fn)(void *ctx, aq_error *err);
+
+/* The cairo device for target's extension (.png .svg .pdf, any case):
+ * AQ_EOPTION naming the extension if it is none of these, AQ_EUNSUPPORTED
+ * if PLplot has no such device.  device may be NULL. */
+aq_status aq_plot_device(const char *target, const char **device, aq_error *err);
+
+/* Render draw(ctx) to target, width x height (pixels for PNG; points at
+ * 72/in for SVG and PDF keep the same proportions): the device is checked
+ * to exist first; the figure is written to a temporary beside the target
+ * and renamed onto it when PLplot finished without error.  PLplot's exit
+ * and abort handlers are replaced for the duration, so a PLplot error
+ * returns AQ_EIO with its message instead of exiting.  *draw_s (if not
+ * NULL): wall time of plinit to plend, s. */
+aq_status aq_plot_render(const char *target, int width, int height,
+                         aq_plot_draw_fn draw, void *ctx, double *draw_s,
+                         aq_error *err);
+
+/* The temporary a figure or its data is written to before the rename
+ * ("<target>.tmp.<pid>"), into tmp[cap]: a signal handler can remove it. */
+void aq_plot_temp_name(const char *target, char *tmp, size_t cap);
+
+/* CSV of the plotted data: open a temporary beside target (tmp[cap]
+ * receives its name), then close, check and rename it (or remove it on
+ * failure: ok = 0).  Columns carry their units (`time_s`, `accel_g`). */
+FILE *aq_plot_csv_open(const char *target, char *tmp, size_t cap, aq_error *err);
+aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok,
+                            aq_error *err);
+
+/* "# axis: TITLE" for each of the figure's n axis titles (PLplot escapes
+ * as drawn), before the CSV's header; readers skip them (pandas: comment='#'). */
+void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);
+
+/* Drawing helpers (between plinit and plend). */
+enum { AQ_PC_BG = 0, AQ_PC_FG, AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN,
+       AQ_PC_ORANGE, AQ_PC_GREY, AQ_PC_SHADE, AQ_PC_PURPLE, AQ_PC_LIGHT };
+/* A legend in the viewport's corner position (PL_POSITION_*): n entries of
+ * lines (style >= 1, 0: none) and/or symbols (sym NULL or "": none). */
+void aq_plot_legend(int position, size_t n, const char *const *text,
+                    const int *color, const int *style, const char *const *sym);
+/* Min and max of the finite values of x[n] into *lo, *hi (widened when equal). */
+void aq_plot_range(const double *x, size_t n, double *lo, double *hi);
+
+/* ---- the figures ------------------------------------------------------ */
+
+/* history.c: panels sharing the time axis (ground acceleration in g with
+ * +-lambda0 g of both sets; rotation with +-q_c; KE, PE and work in);
+ * impacts and collapse marked.  Without the ground (run->na == 0) its
+ * panel says so and the work put in is left out.  data: CSV target or NULL. */
+aq_status aq_plot_history(const aq_plot_run *run, const char *target,
+                          const char *data, double *draw_s, aq_error *err);
+
+/* arch.c: the arch to scale, voussoirs and both hinge sets; with
+ * rotation_rad != 0 the mechanism deformed at that rotation of body 1 about
+ * H1 (> 0: primary set, < 0: reverse set, |rotation| <= the set's q_c). */
+aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *target,
+                       const char *data, double *draw_s, aq_error *err);
+
+/* domain.c: duration (s) against ratio for the n ratios, with the shortest
+ * collapsing durations dur_s[] (INFINITY: none up to the search limit)
+ * already computed (aq_domain_min_duration); lambda0 for the title. */
+aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ratio,
+                         const double *dur_s, size_t n, double tmax_s,
+                         const char *target, const char *data, double *draw_s,
+                         aq_error *err);
+
+/* suite.c: record x arch map of the worst verdict over scales and
+ * polarities (collapse, or peak rotation / q_c). */
+aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
+                        const char *target, const char *data, double *draw_s,
+                        aq_error *err);
+
+/* capacity.c: for arch (NULL: the file's first), one row per (record,
+ * polarity): the scanned scales with the collapse intervals shaded. */
+aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch,
+                           const char *source, const char *target, const char *data,
+                           double *draw_s, aq_error *err);
+
+#endif

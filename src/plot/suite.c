@@ -1,0 +1,179 @@
+/* suite.c: a record x arch map of the verdicts of a results file, for
+ * screening at a glance: each cell is the worst run of that record and
+ * arch over scales and polarities: a collapse, or the peak rotation over
+ * the collapse rotation q_c of its set (0 never moved, 1 collapse). */
+#include <math.h>
+#include <plplot.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "plot.h"
+
+static const size_t NAME_MAX_CHARS = 34; /* record names longer are cut */
+static const char *const AX_KEY = "peak rotation / q#dc#u (1)";
+
+typedef struct {
+  const char *source;
+  size_t nrec, narch;
+  const char **rec, **arch; /* names, first appearance order */
+  double *v;                /* nrec x narch: peak/q_c, 1 + collapse, NaN failed or none */
+  int *coll;                /* nrec x narch: 1 some run collapsed */
+} map;
+
+static size_t index_of(const char **names, size_t *n, const char *s)
+{
+  for (size_t i = 0; i < *n; i++)
+    if (strcmp(names[i], s) == 0)
+      return i;
+  names[*n] = s;
+  return (*n)++;
+}
+
+static const char *base(const char *p)
+{
+  const char *b = strrchr(p, '/');
+  return b ? b + 1 : p;
+}
+
+/* A CSV field and its comma, quoted when it holds a comma or a quote. */
+static void csv_text(FILE *f, const char *s)
+{
+  if (!strpbrk(s, ",\"\n")) {
+    fprintf(f, "%s,", s);
+    return;
+  }
+  fputc('"', f);
+  for (; *s; s++) {
+    if (*s == '"')
+      fputc('"', f);
+    fputc(*s, f);
+  }
+  fputs("\",", f);
+}
+
+static int draw(void *ctx, aq_error *err)
+{
+  (void)err;
+  const map *m = ctx;
+  pladv(0);
+  plschr(0, 0.85);
+  plvpor(0.34, 0.80, 0.14, 0.9);
+  plwind(0, (double)m->narch, (double)m->nrec, 0);
+  /* white (never moved) through yellow and orange to brown (about to
+   * collapse); collapse itself is red, outside the scale */
+  PLFLT cpos[4] = {0, 0.1, 0.5, 1}, rr[4] = {1, 1, 0.95, 0.55};
+  PLFLT gg[4] = {1, 0.93, 0.6, 0.3}, bb[4] = {1, 0.6, 0.2, 0.1};
+  plscmap1l(1, 4, cpos, rr, gg, bb, NULL);
+  for (size_t i = 0; i < m->nrec; i++)
+    for (size_t j = 0; j < m->narch; j++) {
+      double v = m->v[i * m->narch + j];
+      PLFLT x[4] = {j, j + 1, j + 1, j}, y[4] = {i, i, i + 1, i + 1};
+      char lab[32];
+      if (m->coll[i * m->narch + j]) {
+        plcol0(AQ_PC_RED);
+        snprintf(lab, sizeof lab, "collapse");
+      } else if (isnan(v)) {
+        plcol0(AQ_PC_LIGHT);
+        snprintf(lab, sizeof lab, "failed");
+      } else {
+        plcol1(fmin(fmax(v, 0), 1));
+        snprintf(lab, sizeof lab, "%.3f", v);
+      }
+      plfill(4, x, y);
+      plcol0(m->coll[i * m->narch + j] ? AQ_PC_BG : AQ_PC_FG);
+      plptex(j + 0.5, i + 0.5, 1, 0, 0.5, lab);
+    }
+  plcol0(AQ_PC_FG);
+  plbox("bc", 1, 0, "bc", 1, 0);
+  for (size_t i = 0; i < m->nrec; i++)
+  {
+    char name[48];
+    const char *b = base(m->rec[i]);
+    if (strlen(b) > NAME_MAX_CHARS) /* keep the left margin: the start and "..." */
+      snprintf(name, sizeof name, "%.*s...", (int)NAME_MAX_CHARS - 3, b);
+    else
+      snprintf(name, sizeof name, "%s", b);
+    plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, name);
+  }
+  for (size_t j = 0; j < m->narch; j++)
+    plmtex("t", 0.8, (j + 0.5) / (double)m->narch, 0.5, m->arch[j]);
+  char t[512];
+  snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
+  plmtex("b", 1.6, 0.5, 0.5, t);
+  plmtex("b", 2.9, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");
+  /* the colour key */
+  PLFLT w, hgt, vals[11];
+  for (int k = 0; k <= 10; k++)
+    vals[k] = 0.1 * k;
+  const PLFLT *vv[1] = {vals};
+  PLINT nv[1] = {11}, lopt[1] = {PL_COLORBAR_LABEL_RIGHT}, sub[1] = {0};
+  PLFLT ticks[1] = {0.2};
+  const char *labels[1] = {AX_KEY};
+  const char *axis[1] = {"bcvtm"};
+  plcolorbar(&w, &hgt, PL_COLORBAR_SHADE | PL_COLORBAR_SHADE_LABEL,
+             PL_POSITION_RIGHT | PL_POSITION_OUTSIDE, 0.02, 0, 0.025, 0.8, AQ_PC_BG,
+             AQ_PC_FG, 1, 0, 0, 0, 0, 1, lopt, labels, 1, axis, ticks, sub, nv, vv);
+  return 0;
+}
+
+aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
+                        const char *target, const char *data, double *draw_s,
+                        aq_error *err)
+{
+  if (n == 0)
+    return aq_error_set(err, AQ_EFORMAT, source, -1, -1, "/runs",
+                        "expected at least one run, got none");
+  map m = {source, 0, 0, NULL, NULL, NULL, NULL};
+  m.rec = malloc(n * sizeof *m.rec);
+  m.arch = malloc(n * sizeof *m.arch);
+  aq_status rc = AQ_ENOMEM;
+  if (m.rec && m.arch)
+    for (size_t k = 0; k < n; k++) {
+      index_of(m.rec, &m.nrec, runs[k].s.record);
+      index_of(m.arch, &m.narch, runs[k].s.arch);
+    }
+  m.v = malloc((m.nrec * m.narch + 1) * sizeof *m.v);
+  m.coll = calloc(m.nrec * m.narch + 1, sizeof *m.coll);
+  if (!m.rec || !m.arch || !m.v || !m.coll) {
+    aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
+    goto out;
+  }
+  for (size_t k = 0; k < m.nrec * m.narch; k++)
+    m.v[k] = NAN;
+  for (size_t k = 0; k < n; k++) {
+    size_t nr = m.nrec, na = m.narch;
+    size_t i = index_of(m.rec, &nr, runs[k].s.record), j = index_of(m.arch, &na, runs[k].s.arch);
+    size_t c = i * m.narch + j;
+    if (runs[k].s.collapsed == 1)
+      m.coll[c] = 1;
+    if (runs[k].s.collapsed >= 0 && !(m.v[c] >= runs[k].s.peak_rotation_over_qc))
+      m.v[c] = runs[k].s.peak_rotation_over_qc;
+  }
+  /* rows of 0.45 in. at most, at least 5.5 in. high */
+  int h = 230 + 48 * (int)m.nrec, w = 1000;
+  rc = aq_plot_render(target, w, h < 560 ? 560 : h, draw, &m, draw_s, err);
+  if (rc == AQ_OK && data) {
+    char tmp[1024];
+    FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+    if (!f) {
+      rc = err->status;
+      goto out;
+    }
+    aq_plot_csv_axes(f, 1, (const char *[]){AX_KEY});
+    fprintf(f, "record,arch,collapsed,peak_rotation_over_qc\n");
+    for (size_t i = 0; i < m.nrec; i++)
+      for (size_t j = 0; j < m.narch; j++)
+      {
+        csv_text(f, m.rec[i]);
+        csv_text(f, m.arch[j]);
+        fprintf(f, "%d,%.17g\n", m.coll[i * m.narch + j], m.v[i * m.narch + j]);
+      }
+    rc = aq_plot_csv_close(f, tmp, data, 1, err);
+  }
+out:
+  free(m.rec);
+  free(m.arch);
+  free(m.v);
+  free(m.coll);
+  return rc;
+}

@@ -1,0 +1,64 @@
+/* test_io_fixed.c: the fixed-width field reader (io/fixed.h) against the C
+ * library's strtod, bit for bit, on the number shapes agencies write and on
+ * a stream of pseudo-random decimals; and its refusals. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "io/fixed.h"
+
+static int same_as_strtod(const char *t)
+{
+  double a = 0, b = strtod(t, NULL);
+  if (!aq_field_double(t, strlen(t), &a))
+    return 0;
+  return memcmp(&a, &b, sizeof a) == 0;
+}
+
+AQ_TEST(io_fixed_numbers_match_strtod)
+{
+  static const char *const shapes[] = {
+      "-94.84213", "-120.18770", ".000010",   "-.045290",      "5.0000000",  "-999.00000",
+      "-2.7715E+0", "-1.1578E-1", "0.1700000E+39", "-0.000000", "985881",     "-2378638",
+      "0.3",        "152378.61058", "1.5237861058e-4", "123.4500000", "9007199254740993",
+      "1e-30",      "+7.25",      "0.1234567890123456789"};
+  for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++)
+    aq_check(same_as_strtod(shapes[i]), "\"%s\" as strtod reads it", shapes[i]);
+  /* pseudo-random decimals: sign, 1-17 digits, a point, an exponent */
+  unsigned x = 2385u;
+  int bad = 0;
+  for (int k = 0; k < 20000; k++) {
+    char t[48];
+    size_t n = 0;
+    x = x * 1103515245u + 12345u;
+    if (x & 0x10000u)
+      t[n++] = '-';
+    int nd = 1 + (int)((x >> 17) % 17), point = (int)((x >> 22) % (unsigned)(nd + 1));
+    for (int d = 0; d < nd; d++) {
+      if (d == point)
+        t[n++] = '.';
+      x = x * 1103515245u + 12345u;
+      t[n++] = (char)('0' + (x >> 16) % 10);
+    }
+    x = x * 1103515245u + 12345u;
+    if (x & 0x40000u)
+      n += (size_t)snprintf(t + n, sizeof t - n, "E%+d", (int)((x >> 19) % 61) - 30);
+    t[n] = '\0';
+    bad += !same_as_strtod(t);
+  }
+  aq_check(bad == 0, "%d of 20000 random decimals differ from strtod", bad);
+}
+
+AQ_TEST(io_fixed_refusals)
+{
+  static const char *const bad[] = {"", "  ", "-", ".", "1e", "1.5x", "0x10", "inf", "nan",
+                                    "1e999", "--1", "1 2"};
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    double v;
+    aq_check(!aq_field_double(bad[i], strlen(bad[i]), &v), "\"%s\" refused", bad[i]);
+  }
+  double v;
+  aq_check(aq_field_double("  -1.5  ", 8, &v) && v == -1.5, "blanks around");
+}

@@ -1,0 +1,618 @@
+/* test_plot_cli.c: `archquake plot`: every figure in every format is a
+ * valid PNG (signature, IHDR), SVG (parsed as XML by python3) or PDF
+ * (header, %%EOF); the axis titles carry units; the plotted data (--data)
+ * equal the values in the results file, read here with the HDF5 library,
+ * or outside references (the arch file's radii, rigid-body motion, the
+ * `domain` command, the main job's TSV); bad input is one line and leaves
+ * no file. */
+#include <dirent.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+
+#define RECORD "tests/data/records/ARL360.at2"
+#define ARCH "arches/oppenheim.cfg"
+
+/* The results file of ARL360 x oppenheim at scales 5 (survives, 29
+ * impacts) and 10 (collapses after 13), with histories and the processed
+ * record; made once per runner. */
+static const char *results(void)
+{
+  static char path[600];
+  if (path[0])
+    return path;
+  char dir[512], args[1400], err[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/hist.h5", dir);
+  snprintf(args, sizeof args,
+           RECORD " --arch " ARCH " --scale 5,10 --history --store-records -o %s", path);
+  if (aq_test_run(args, NULL, 0, err, sizeof err) != 0)
+    fprintf(stderr, "test_plot_cli: cannot make %s: %s\n", path, err);
+  return path;
+}
+
+/* Values of series name (first column) of a history CSV, the time column
+ * into t (may be NULL); returns the count (at most cap). */
+static size_t series(const char *csv, const char *name, double *t, double *v, size_t cap)
+{
+  size_t n = 0, len = strlen(name);
+  for (const char *p = csv; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL)
+    if (strncmp(p, name, len) == 0 && p[len] == ',' && n < cap) {
+      char *e;
+      double a = strtod(p + len + 1, &e);
+      double b = strtod(e + 1, NULL);
+      if (t)
+        t[n] = a;
+      v[n++] = b;
+    }
+  return n;
+}
+
+static double *dataset(hid_t f, const char *name, size_t *n)
+{
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  hid_t s = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
+  double *v = np > 0 ? malloc((size_t)np * sizeof *v) : NULL;
+  if (v && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0) {
+    free(v);
+    v = NULL;
+  }
+  *n = v ? (size_t)np : 0;
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  return v;
+}
+
+/* Column name (a number) of row `row` of /summary. */
+static double summary(hid_t f, size_t row, const char *name)
+{
+  double v = NAN, *all = NULL;
+  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
+  hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
+  if (np > (hssize_t)row && H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE) >= 0 &&
+      (all = malloc((size_t)np * sizeof *all)) &&
+      H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0)
+    v = all[row];
+  free(all);
+  H5Tclose(t);
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  return v;
+}
+
+static double attr(hid_t f, const char *obj, const char *name)
+{
+  double v = NAN;
+  hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0) {
+    H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+  }
+  return v;
+}
+
+static unsigned long be32(const unsigned char *p)
+{
+  return (unsigned long)p[0] << 24 | (unsigned long)p[1] << 16 | (unsigned long)p[2] << 8 | p[3];
+}
+
+/* 1 if path is a valid file of its extension's format. */
+static int valid(const char *path)
+{
+  size_t n = 0;
+  unsigned char *b = (unsigned char *)aq_test_read_file(path, &n);
+  int ok = 0;
+  const char *ext = strrchr(path, '.');
+  if (b && !strcmp(ext, ".png")) {
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned long w = n >= 24 ? be32(b + 16) : 0, h = n >= 24 ? be32(b + 20) : 0;
+    ok = n > 33 && !memcmp(b, sig, 8) && be32(b + 8) == 13 && !memcmp(b + 12, "IHDR", 4) &&
+         w >= 400 && w <= 4000 && h >= 300 && h <= 4000;
+    aq_check(ok, "%s: PNG signature and IHDR (%lu x %lu px)", path, w, h);
+  } else if (b && !strcmp(ext, ".svg")) {
+    char cmd[800];
+    snprintf(cmd, sizeof cmd,
+             "python3 -c 'import sys, xml.etree.ElementTree as E; "
+             "r = E.parse(sys.argv[1]).getroot(); sys.exit(not r.tag.endswith(\"svg\"))' '%s'",
+             path);
+    ok = system(cmd) == 0;
+    aq_check(ok, "%s: parses as XML with an <svg> root (%zu bytes)", path, n);
+  } else if (b && !strcmp(ext, ".pdf")) {
+    size_t tail = n > 64 ? n - 64 : 0;
+    int eof = 0;
+    for (size_t i = tail; i + 5 <= n; i++)
+      eof |= !memcmp(b + i, "%%EOF", 5);
+    ok = n > 100 && !memcmp(b, "%PDF-", 5) && eof;
+    aq_check(ok, "%s: %%PDF- header and %%%%EOF trailer (%zu bytes)", path, n);
+  } else
+    aq_check(0, "%s: not written", path);
+  free(b);
+  return ok;
+}
+
+/* Files in dir other than the test's stdout/stderr. */
+static size_t files_in(const char *dir)
+{
+  size_t n = 0;
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  while (d && (e = readdir(d)))
+    n += e->d_name[0] != '.' && strcmp(e->d_name, "stdout") && strcmp(e->d_name, "stderr");
+  if (d)
+    closedir(d);
+  return n;
+}
+
+AQ_TEST(plot_every_figure_every_format)
+{
+  const char *h5 = results();
+  char dir[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  static const char *const fmt[] = {"png", "svg", "pdf"};
+  char figs[4][700];
+  snprintf(figs[0], sizeof figs[0], "plot history %s --run 00000_000_001", h5);
+  snprintf(figs[1], sizeof figs[1], "plot arch --arch " ARCH " --rotation 0.1");
+  snprintf(figs[2], sizeof figs[2], "plot domain --arch " ARCH " --ratios 1.5,3");
+  snprintf(figs[3], sizeof figs[3], "plot suite %s", h5);
+  size_t made = 0;
+  for (size_t i = 0; i < 4; i++)
+    for (size_t k = 0; k < 3; k++) {
+      char out[600], args[1500], err[1024];
+      snprintf(out, sizeof out, "%s/fig%zu.%s", dir, i, fmt[k]);
+      snprintf(args, sizeof args, "%s -o %s", figs[i], out);
+      int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+      aq_check(rc == 0 && err[0] == '\0', "%s: exit %d, stderr \"%s\"", args, rc, err);
+      made += valid(out);
+    }
+  aq_check(made == 12 && files_in(dir) == 12, "12 figures, no other file (%zu valid, %zu files)",
+           made, files_in(dir));
+}
+
+/* Every "# axis:" line of the CSV ends with a unit in parentheses. */
+static void check_axes(const char *csv, size_t want, const char *what)
+{
+  size_t n = 0, with_unit = 0;
+  for (const char *p = strstr(csv, "# axis: "); p; p = strstr(p + 1, "# axis: ")) {
+    const char *nl = strchr(p, '\n');
+    n++;
+    with_unit += nl && nl - p > 3 && nl[-1] == ')' && memchr(p, '(', (size_t)(nl - p));
+  }
+  aq_check(n == want && with_unit == want, "%s: %zu axis titles, %zu with a unit (want %zu)",
+           what, n, with_unit, want);
+}
+
+AQ_TEST(plot_history_data_are_the_results)
+{
+  const char *h5 = results();
+  char dir[512], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  aq_check(f >= 0, "open %s", h5);
+  if (f < 0)
+    return;
+  enum { CAP = 200000 };
+  double *t = malloc(CAP * sizeof *t), *v = malloc(CAP * sizeof *v);
+  for (int run = 0; run < 2; run++) {
+    char obj[64], path[128];
+    snprintf(obj, sizeof obj, "/histories/00000_000_00%d", run);
+    snprintf(out, sizeof out, "%s/h%d.png", dir, run);
+    snprintf(data, sizeof data, "%s/h%d.csv", dir, run);
+    snprintf(args, sizeof args, "plot history %s --run 00000_000_00%d -o %s --data %s", h5,
+             run, out, data);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "%s: exit %d, %s", args, rc, err);
+    char *csv = aq_test_read_file(data, NULL);
+    aq_check(csv != NULL, "%s written", data);
+    if (!csv)
+      continue;
+    check_axes(csv, 4, "history");
+    /* the histories, sample by sample */
+    static const char *const names[] = {"rotation_rad", "kinetic_energy_j", "potential_energy_j"};
+    size_t nt = 0;
+    snprintf(path, sizeof path, "%s/time_s", obj);
+    double *ts = dataset(f, path, &nt);
+    for (size_t j = 0; j < 3; j++) {
+      size_t nd = 0, differ = 0;
+      snprintf(path, sizeof path, "%s/%s", obj, names[j]);
+      double *d = dataset(f, path, &nd);
+      size_t nc = series(csv, names[j], t, v, CAP);
+      for (size_t i = 0; i < nc && i < nd && ts; i++)
+        differ += v[i] != d[i] || t[i] != ts[i];
+      aq_check(d && nc == nd && nd == nt && differ == 0,
+               "%s %s: %zu plotted samples equal to the file's %zu (%zu differ)", obj, names[j],
+               nc, nd, differ);
+      free(d);
+    }
+    free(ts);
+    /* the ground: its peak is the run's PGA (the suite's own measure) */
+    size_t ng = series(csv, "ground_accel_g", NULL, v, CAP);
+    double peak = 0;
+    for (size_t i = 0; i < ng; i++)
+      peak = fmax(peak, fabs(v[i]));
+    aq_check_rel(peak, summary(f, (size_t)run, "pga_g"), 1e-12, "%s: peak plotted ground = pga_g", obj);
+    /* work in: accumulated from the displacement, ends at the run's energy_in_j */
+    size_t nw = series(csv, "work_in_j", NULL, v, CAP);
+    aq_check(nw > 0, "%s: work_in_j plotted", obj);
+    if (nw)
+      aq_check_rel(v[nw - 1], summary(f, (size_t)run, "energy_in_j"), 1e-9,
+                   "%s: last work in = energy_in_j", obj);
+    double lam = attr(f, "/arches/000", "primary_lambda0");
+    aq_check(series(csv, "primary_lambda0_g", NULL, v, CAP) == 1 && v[0] == lam,
+             "%s: lambda0 line at the file's primary_lambda0 %.6g g", obj, lam);
+    /* every impact marked: the histories sample each impact (q = 0) */
+    size_t ni = series(csv, "impact", NULL, v, CAP);
+    aq_check_abs((double)ni, summary(f, (size_t)run, "impacts"), 0, "%s: impact marks = impacts", obj);
+    if (run == 0) {
+      aq_check(series(csv, "collapse", NULL, v, CAP) == 0, "%s: no collapse mark", obj);
+    } else {
+      aq_check(series(csv, "collapse", t, v, CAP) == 1 &&
+                   t[0] == summary(f, (size_t)run, "collapse_time_s") && summary(f, (size_t)run, "collapsed") == 1,
+               "%s: collapse marked at collapse_time_s", obj);
+    }
+    free(csv);
+  }
+  free(t);
+  free(v);
+  H5Fclose(f);
+}
+
+/* Without --store-records the file holds no ground motion: the figure is
+ * drawn without it, and without the work put in. */
+AQ_TEST(plot_history_without_the_ground)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/h.h5", dir);
+  snprintf(args, sizeof args, RECORD " --arch " ARCH " --scale 10 --history -o %s", h5);
+  aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "results: %s", err);
+  snprintf(out, sizeof out, "%s/h.png", dir);
+  snprintf(data, sizeof data, "%s/h.csv", dir);
+  snprintf(args, sizeof args, "plot history %s -o %s --data %s", h5, out, data);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  char *csv = aq_test_read_file(data, NULL);
+  double v[4];
+  aq_check(csv && series(csv, "ground_accel_g", NULL, v, 4) == 0 &&
+               series(csv, "work_in_j", NULL, v, 4) == 0 &&
+               series(csv, "rotation_rad", NULL, v, 4) == 4,
+           "no ground, no work in, the rotation plotted");
+  free(csv);
+}
+
+/* Rows "series,index,x,y" of an arch CSV into x, y; returns the count. */
+static size_t points(const char *csv, const char *name, double *x, double *y, size_t cap)
+{
+  size_t n = 0, len = strlen(name);
+  for (const char *p = csv; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL)
+    if (strncmp(p, name, len) == 0 && p[len] == ',' && n < cap) {
+      char *e;
+      strtol(p + len + 1, &e, 10);
+      x[n] = strtod(e + 1, &e);
+      y[n++] = strtod(e + 1, NULL);
+    }
+  return n;
+}
+
+AQ_TEST(plot_arch_to_scale_and_rigid)
+{
+  char dir[512], out[600], data[600], args[1400], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(out, sizeof out, "%s/a.svg", dir);
+  snprintf(data, sizeof data, "%s/a.csv", dir);
+  const double rot = 0.1234;
+  snprintf(args, sizeof args, "plot arch --arch " ARCH " --rotation %.4f -o %s --data %s", rot,
+           out, data);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d, %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(csv != NULL, "%s written", data))
+    return;
+  check_axes(csv, 2, "arch");
+  enum { CAP = 200 };
+  double x[CAP], y[CAP], dx[CAP], dy[CAP];
+  /* oppenheim.cfg: radius_m 5.0, thickness_m 1.25, 20 voussoirs, 180 deg */
+  const double r_e = 5.0 + 0.625, r_i = 5.0 - 0.625, TOL_M = 1e-12;
+  size_t n = points(csv, "corner", x, y, CAP), bad = 0;
+  for (size_t i = 0; i < n; i++) {
+    double r = hypot(x[i], y[i]), want = (i % 4 < 2) ? r_e : r_i;
+    bad += fabs(r - want) > TOL_M;
+  }
+  aq_check(n == 80 && bad == 0, "80 corners on the arch file's radii (%zu, %zu off)", n, bad);
+  aq_check_abs(atan2(y[0], x[0]), 0, TOL_M, "first joint at the springing, 0 rad");
+  const double PI = 3.14159265358979323846;
+  aq_check_abs(atan2(y[79], x[79]), 19 * PI / 20, 1e-12, "joint 19 at 19 pi/20");
+  /* deformed: every voussoir moves rigidly (its corner distances kept) */
+  size_t nd = points(csv, "deformed_corner", dx, dy, CAP);
+  double worst = 0;
+  for (size_t k = 0; k + 3 < nd && k + 3 < n; k += 4)
+    for (int a = 0; a < 4; a++)
+      for (int b = a + 1; b < 4; b++)
+        worst = fmax(worst, fabs(hypot(dx[k + a] - dx[k + b], dy[k + a] - dy[k + b]) -
+                                 hypot(x[k + a] - x[k + b], y[k + a] - y[k + b])));
+  aq_check(nd == 80 && worst < TOL_M, "deformed voussoirs rigid (worst %.3g m)", worst);
+  /* hinges: H1, H4 fixed; H2 turned about H1 by the rotation */
+  double hx[4], hy[4], gx[4], gy[4];
+  size_t nh = points(csv, "primary_hinge_e", hx, hy, 4);
+  nh += points(csv, "primary_hinge_i", hx + nh, hy + nh, 4 - nh);
+  size_t ng = points(csv, "deformed_hinge_e", gx, gy, 4);
+  ng += points(csv, "deformed_hinge_i", gx + ng, gy + ng, 4 - ng);
+  /* primary = 0e 6i 12e 19i: rows e (0, 12) then i (6, 19) */
+  if (aq_check(nh == 4 && ng == 4, "4 hinges, 4 deformed")) {
+    aq_check(hx[0] == gx[0] && hy[0] == gy[0] && hx[3] == gx[3] && hy[3] == gy[3],
+             "H1 and H4 do not move");
+    double a0 = atan2(hy[2] - hy[0], hx[2] - hx[0]), a1 = atan2(gy[2] - gy[0], gx[2] - gx[0]);
+    aq_check_abs(fabs(a1 - a0), rot, 1e-12, "H2 turned about H1 by |q|");
+    aq_check_abs(hypot(gx[2] - gx[0], gy[2] - gy[0]), hypot(hx[2] - hx[0], hy[2] - hy[0]),
+                 TOL_M, "|H1H2| kept");
+    /* the deformed voussoirs on either side of each hinge still touch at it:
+     * joints 6 (i), 12 (e), 19 (i); corners ext k, ext k+1, int k+1, int k */
+    static const struct { size_t joint, h; int ext; } hj[] = {{6, 2, 0}, {12, 1, 1}, {19, 3, 0}};
+    double gap = 0;
+    for (size_t i = 0; i < 3 && nd == 80; i++) {
+      size_t before = 4 * (hj[i].joint - 1) + (hj[i].ext ? 1 : 2);
+      size_t after = 4 * hj[i].joint + (hj[i].ext ? 0 : 3);
+      gap = fmax(gap, hypot(dx[before] - gx[hj[i].h], dy[before] - gy[hj[i].h]));
+      gap = fmax(gap, hypot(dx[after] - gx[hj[i].h], dy[after] - gy[hj[i].h]));
+    }
+    aq_check(gap < TOL_M, "deformed voussoirs meet at the deformed hinges (%.3g m)", gap);
+  }
+  free(csv);
+  /* beyond q_c: refused, nothing written */
+  snprintf(out, sizeof out, "%s/b.png", dir);
+  snprintf(args, sizeof args, "plot arch --arch " ARCH " --rotation 0.5 -o %s", out);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "--rotation") && aq_test_count_lines(err) == 1 &&
+               !aq_test_read_file(out, NULL),
+           "rotation beyond q_c: exit %d, \"%s\"", rc, err);
+}
+
+AQ_TEST(plot_domain_is_the_domain_command)
+{
+  char dir[512], out[600], data[600], args[1400], err[1024], tsv[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(out, sizeof out, "%s/d.pdf", dir);
+  snprintf(data, sizeof data, "%s/d.csv", dir);
+  snprintf(args, sizeof args, "plot domain --arch " ARCH " --ratios 1.2,2,4 -o %s --data %s",
+           out, data);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d, %s", args, rc, err);
+  rc = aq_test_run("domain --arch " ARCH " --ratios 1.2,2,4", tsv, sizeof tsv, err, sizeof err);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(rc == 0 && csv, "domain and the plot's data"))
+    return;
+  check_axes(csv, 2, "domain");
+  const char *p = strstr(csv, "ratio,min_duration_s\n"), *q = strchr(tsv, '\n');
+  for (int i = 0; i < 3 && p && q; i++) {
+    p = strchr(p, '\n') + 1;
+    q++;
+    double r1 = strtod(p, NULL), d1 = strtod(strchr(p, ',') + 1, NULL);
+    char *e;
+    double r2 = strtod(q, &e);
+    strtod(e, &e);
+    double d2 = strtod(e, NULL);
+    /* the plot bisects to 1e-6 s, the command to 1e-9 s */
+    aq_check(r1 == r2, "ratio %g", r1);
+    aq_check_abs(d1, d2, 2e-6, "ratio %g: plotted shortest pulse = domain's", r1);
+    q = strchr(q, '\n');
+  }
+  free(csv);
+}
+
+AQ_TEST(plot_suite_is_the_worst_run)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/s.h5", dir);
+  enum { TSV_CAP = 1 << 16 };
+  char *tsv = malloc(TSV_CAP);
+  snprintf(args, sizeof args,
+           RECORD " tests/data/records/RSN77_SFERN_PUL164-hor1.AT2 --arch " ARCH
+                  " --arch arches/thick.cfg --scale 2,3 --polarity both -o %s",
+           h5);
+  int rc = aq_test_run(args, tsv, TSV_CAP, err, sizeof err);
+  aq_check(rc == 0, "suite: exit %d %s", rc, err);
+  snprintf(out, sizeof out, "%s/s.png", dir);
+  snprintf(data, sizeof data, "%s/s.csv", dir);
+  snprintf(args, sizeof args, "plot suite %s -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(csv != NULL, "%s written", data)) {
+    free(tsv);
+    return;
+  }
+  check_axes(csv, 1, "suite");
+  /* from the TSV: columns record arch ... collapsed(7) ... peak_rotation_over_qc(17) */
+  size_t cells = 0, agree = 0, collapses = 0;
+  for (const char *c = strstr(csv, "record,arch,"); c && (c = strchr(c, '\n')) && c[1];) {
+    c++;
+    char rec[300], arch[64];
+    int coll;
+    double v;
+    if (sscanf(c, "%299[^,],%63[^,],%d,%lf", rec, arch, &coll, &v) != 4)
+      break;
+    cells++;
+    double worst = -1;
+    int any = 0;
+    for (const char *l = strchr(tsv, '\n'); l && l[1]; l = strchr(l + 1, '\n')) {
+      char r2[300], a2[64];
+      if (sscanf(l + 1, "%299[^\t]\t%63[^\t]", r2, a2) != 2 || strcmp(r2, rec) || strcmp(a2, arch))
+        continue;
+      const char *fld = l + 1;
+      double col[18];
+      for (int k = 0; k < 18 && fld; k++) {
+        col[k] = strtod(fld, NULL);
+        fld = strchr(fld, '\t');
+        fld = fld ? fld + 1 : NULL;
+      }
+      any |= col[6] == 1;
+      worst = fmax(worst, col[16]);
+    }
+    collapses += coll;
+    agree += coll == any && v == worst;
+  }
+  aq_check(cells == 4 && agree == 4 && collapses >= 1,
+           "4 cells, each the worst run of the TSV (%zu cells, %zu agree, %zu collapse)", cells,
+           agree, collapses);
+  free(csv);
+  free(tsv);
+}
+
+AQ_TEST(plot_bad_input_one_line)
+{
+  const char *h5 = results();
+  char dir[512], nohist[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(nohist, sizeof nohist, "%s/nohist.h5", dir);
+  snprintf(args, sizeof args, RECORD " --arch " ARCH " -o %s", nohist);
+  aq_check(aq_test_run(args, NULL, 0, NULL, 0) == 0, "results without histories");
+  struct {
+    const char *args_fmt, *arg, *want;
+    int status;
+  } cases[] = {
+      {"plot history %s -o %s/x.png", nohist, "--history", 1},
+      {"plot history %s -o %s/x.png", "tests/data/results/format1-elcentro-thin.h5",
+       "/runs: expected histories", 1},
+      {"plot history %s --run 00042_000_000 -o %s/x.png", h5, "00042_000_000", 2},
+      {"plot history %s -o %s/x.jpg", h5, ".jpg", 2},
+      {"plot history %s -o %s/no/such/dir/x.png", h5, "no/such/dir/x.png", 3},
+      {"plot suite %s -o %s/x.png", "tests/data/records/ARL360.at2", "ARL360.at2", 1},
+      {"plot arch %s --arch " ARCH " -o %s/x.png", "--run=1", "not an option of this figure", 2},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char a[1200];
+    snprintf(a, sizeof a, cases[i].args_fmt, cases[i].arg, dir);
+    int rc = aq_test_run(a, NULL, 0, err, sizeof err);
+    aq_check(rc == cases[i].status && aq_test_count_lines(err) == 1 &&
+                 strstr(err, cases[i].want) && !strncmp(err, "archquake: ", 11),
+             "%s: exit %d (want %d), \"%s\"", a, rc, cases[i].status, err);
+  }
+  /* no cairo device: refused before anything is read or written */
+  char cmd[2000], dev[600];
+  snprintf(dev, sizeof dev, "%s/x.png", dir);
+  remove(dev);
+  snprintf(cmd, sizeof cmd, "PLPLOT_DRV_DIR=%s/none %s plot arch --arch " ARCH " -o %s 2>%s/e",
+           dir, aq_test_bin(), dev, dir);
+  int st = system(cmd);
+  char epath[600];
+  snprintf(epath, sizeof epath, "%s/e", dir);
+  char *e = aq_test_read_file(epath, NULL);
+  remove(epath);
+  aq_check(st != 0 && e && aq_test_count_lines(e) == 1 && strstr(e, "pngcairo"),
+           "no drivers: one line naming the device (\"%s\")", e ? e : "");
+  free(e);
+  aq_check(files_in(dir) == 1, "nothing left but the results file (%zu files)", files_in(dir));
+}
+
+/* A reversed run (key ending in r) plots the negated, scaled record. */
+AQ_TEST(plot_history_reversed_ground)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  snprintf(args, sizeof args,
+           RECORD " --arch " ARCH " --scale 2.385 --polarity reversed --history --store-records -o %s",
+           h5);
+  aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "results: %s", err);
+  snprintf(out, sizeof out, "%s/r.pdf", dir);
+  snprintf(data, sizeof data, "%s/r.csv", dir);
+  snprintf(args, sizeof args, "plot history %s --run 00000_000_000r -o %s --data %s", h5, out,
+           data);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  size_t nw = 0;
+  double *w = f >= 0 ? dataset(f, "/waveforms/00000", &nw) : NULL;
+  double *v = malloc((nw + 1) * sizeof *v);
+  size_t ng = csv && v ? series(csv, "ground_accel_g", NULL, v, nw + 1) : 0, bad = 0;
+  const double G0 = 9.80665; /* standard gravity, m/s^2 */
+  for (size_t i = 0; i < ng && i < nw; i++)
+    bad += fabs(v[i] - (-2.385 * w[i] / G0)) > 1e-15 * (fabs(v[i]) + 1e-300) + 1e-300;
+  aq_check(ng == nw && nw > 0 && bad == 0,
+           "ground = -2.385 x the stored record / g0 at every sample (%zu of %zu, %zu off)", ng,
+           nw, bad);
+  free(v);
+  free(w);
+  free(csv);
+  if (f >= 0)
+    H5Fclose(f);
+}
+
+/* The capacity figure's intervals are the capacity command's own TSV
+ * column collapse_intervals ("lo-hi;lo-hi", another output path). */
+AQ_TEST(plot_capacity_is_the_capacity_tsv)
+{
+  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/c.h5", dir);
+  enum { CAP = 1 << 15 };
+  char *tsv = malloc(CAP);
+  snprintf(args, sizeof args,
+           "capacity " RECORD " --arch " ARCH " --polarity both --resolution 0.1 -j 2 -o %s", h5);
+  int rc = aq_test_run(args, tsv, CAP, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  snprintf(out, sizeof out, "%s/c.svg", dir);
+  snprintf(data, sizeof data, "%s/c.csv", dir);
+  snprintf(args, sizeof args, "plot capacity %s --arch oppenheim -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(csv != NULL, "%s written", data)) {
+    free(tsv);
+    return;
+  }
+  check_axes(csv, 1, "capacity");
+  /* rebuild "lo-hi;lo-hi" per polarity from the CSV and find it in the TSV */
+  size_t found = 0;
+  for (int p = 0; p < 2; p++) {
+    const char *pol = p ? ",reversed," : ",normal,";
+    char want[4096] = "";
+    size_t len = 0;
+    for (const char *l = strstr(csv, pol); l; l = strstr(l + 1, pol)) {
+      double v[4];
+      const char *q = l + strlen(pol);
+      for (int k = 0; k < 4; k++) {
+        char *e;
+        v[k] = strtod(q, &e);
+        q = e + 1;
+      }
+      if (isnan(v[2]))
+        break;
+      len += (size_t)snprintf(want + len, sizeof want - len, "%s%.17g-%.17g", len ? ";" : "",
+                              v[2], v[3]);
+    }
+    /* the TSV prints %.17g too; inf as "inf" */
+    found += len > 0 && strstr(tsv, want) != NULL;
+    if (getenv("AQ_TEST_VERBOSE"))
+      fprintf(stderr, "%s: %s\n", pol, want);
+  }
+  aq_check(found == 2, "both polarities' intervals as the capacity TSV prints them (%zu)", found);
+  static const char *const other[] = {"png", "pdf"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(out, sizeof out, "%s/c.%s", dir, other[k]);
+    snprintf(args, sizeof args, "plot capacity %s -o %s", h5, out);
+    rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+    valid(out);
+  }
+  /* an arch the file does not hold: one line, no file */
+  snprintf(args, sizeof args, "plot capacity %s --arch nosuch -o %s/x.png", h5, dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "nosuch") && aq_test_count_lines(err) == 1,
+           "unknown arch: exit %d \"%s\"", rc, err);
+  free(csv);
+  free(tsv);
+}
