@@ -164,7 +164,8 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
                                   aq_opt_polarity_names[pols[i % npol]], o->status[i],
                                   have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
-                                  R[r].ok ? R[r].im.pgv_mps : NAN};
+                                  R[r].ok ? R[r].im.pgv_mps : NAN,
+                                  R[r].ok ? &R[r].im : NULL};
   }
   for (size_t i = 0; i < nf; i++)
     o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
