@@ -128,6 +128,30 @@ static double own_cos_deg(double d)
                     : cos(d * (3.14159265358979323846 / 180.0));
 }
 
+/* Read the pair H1, H2 (PEER: 5372 and 5346 samples); 1 on success (free
+ * both in any case). */
+static int read_pair(aq_record *r1, aq_record *r2)
+{
+  aq_error e;
+  memset(r1, 0, sizeof *r1);
+  memset(r2, 0, sizeof *r2);
+  int ok = aq_record_read(H1, NULL, r1, &e) == AQ_OK && aq_record_read(H2, NULL, r2, &e) == AQ_OK;
+  return aq_check(ok && r1->npts == 5372 && r2->npts == 5346, "PEER: 5372 and 5346 samples");
+}
+
+/* A CSV of c1 a1 + c2 a2 over the 5346 samples both have; 1 on success. */
+static int write_projection(const char *csv, double c1, double c2, const aq_record *r1,
+                            const aq_record *r2)
+{
+  FILE *f = fopen(csv, "w");
+  if (!aq_check(f != NULL, "write %s", csv))
+    return 0;
+  fputs("time,acc (m/s2)\n", f);
+  for (size_t i = 0; i < 5346; i++)
+    fprintf(f, "%.2f,%.17g\n", 0.01 * (double)i, c1 * r1->acc_mps2[i] + c2 * r2->acc_mps2[i]);
+  return aq_check(fclose(f) == 0, "close %s", csv);
+}
+
 /* The main job on a CSV of a1 cos(theta - 180) + a2 cos(theta - 270), written
  * here from the two records, equals --components at --azimuth theta to the
  * last digit (processing off: filtering a sum is not bit for bit the sum of
@@ -137,11 +161,7 @@ AQ_TEST(orient_projection_equals_own_csv)
   char dir[512], csv[700], args[2048];
   aq_test_tmpdir(dir, sizeof dir);
   aq_record r1, r2;
-  aq_error e;
-  memset(&r1, 0, sizeof r1);
-  memset(&r2, 0, sizeof r2);
-  int ok = aq_record_read(H1, NULL, &r1, &e) == AQ_OK && aq_record_read(H2, NULL, &r2, &e) == AQ_OK;
-  aq_check(ok && r1.npts == 5372 && r2.npts == 5346, "PEER: 5372 and 5346 samples");
+  int ok = read_pair(&r1, &r2);
   static const double thetas[] = {30, 247.5};
   for (size_t t = 0; ok && t < 2; t++) {
     double th = thetas[t], c1 = own_cos_deg(th - 180), c2 = own_cos_deg(th - 270);
@@ -149,13 +169,8 @@ AQ_TEST(orient_projection_equals_own_csv)
                  fabs(c2 - cos((th - 270) * 3.14159265358979323846 / 180)) < 1e-15,
              "own rule = plain cos at %g deg", th);
     snprintf(csv, sizeof csv, "%s/elc-%g.csv", dir, th);
-    FILE *f = fopen(csv, "w");
-    if (!aq_check(f != NULL, "write %s", csv))
+    if (!write_projection(csv, c1, c2, &r1, &r2))
       break;
-    fputs("time,acc (m/s2)\n", f);
-    for (size_t i = 0; i < 5346; i++) /* the samples both have */
-      fprintf(f, "%.2f,%.17g\n", 0.01 * (double)i, c1 * r1.acc_mps2[i] + c2 * r2.acc_mps2[i]);
-    fclose(f);
     snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
                                 "--scale 0.5,2.2 -j 2" RAW, csv);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
@@ -403,22 +418,13 @@ AQ_TEST(orient_capacity_equals_own_csv)
   char dir[512], csv[700], args[2048];
   aq_test_tmpdir(dir, sizeof dir);
   aq_record r1, r2;
-  aq_error e;
-  memset(&r1, 0, sizeof r1);
-  memset(&r2, 0, sizeof r2);
-  int ok = aq_record_read(H1, NULL, &r1, &e) == AQ_OK && aq_record_read(H2, NULL, &r2, &e) == AQ_OK;
-  aq_check(ok, "read the pair");
+  int ok = read_pair(&r1, &r2);
   static const double thetas[] = {30, 247.5};
   for (size_t t = 0; ok && t < 2; t++) {
     double th = thetas[t], c1 = own_cos_deg(th - 180), c2 = own_cos_deg(th - 270);
     snprintf(csv, sizeof csv, "%s/cap-%g.csv", dir, th);
-    FILE *f = fopen(csv, "w");
-    if (!aq_check(f != NULL, "write %s", csv))
+    if (!write_projection(csv, c1, c2, &r1, &r2))
       break;
-    fputs("time,acc (m/s2)\n", f);
-    for (size_t i = 0; i < 5346; i++)
-      fprintf(f, "%.2f,%.17g\n", 0.01 * (double)i, c1 * r1.acc_mps2[i] + c2 * r2.acc_mps2[i]);
-    fclose(f);
     snprintf(args, sizeof args, "capacity %s --arch arches/thin.cfg -j 2" CAP_RES RAW, csv);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
     snprintf(args, sizeof args, "capacity --components " H1 "," H2 " --azimuth %g --arch "

@@ -11,7 +11,10 @@
  *   verdict comes from a callback, so the scan knows no physics.
  * capacity.c: the verdict of one (processed record, arch, polarity) at a
  *   scale (one dynamic run with the stepper), the exact scale at which the
- *   arch first moves, and a thread pool over many such pairs.
+ *   arch first moves (with a vertical too), the worst of a scan over
+ *   azimuths, and a thread pool over many such pairs.
+ * input.c: a subject read and processed once: a record, or a ground motion
+ *   of two horizontal components (and the vertical) projected per azimuth.
  * fragility.c: lognormal fit by maximum likelihood with right-censoring
  *   (Baker 2015, Earthquake Spectra 31(1), eq. 7, with the censored terms
  *   of his eq. 11 form) and a profile-likelihood confidence interval of the
