@@ -574,7 +574,7 @@ AQ_TEST(plot_capacity_is_the_capacity_tsv)
     free(tsv);
     return;
   }
-  check_axes(csv, 1, "capacity");
+  check_axes(csv, 3, "capacity");
   /* rebuild "lo-hi;lo-hi" per polarity from the CSV and find it in the TSV */
   size_t found = 0;
   for (int p = 0; p < 2; p++) {
@@ -615,4 +615,144 @@ AQ_TEST(plot_capacity_is_the_capacity_tsv)
            "unknown arch: exit %d \"%s\"", rc, err);
   free(csv);
   free(tsv);
+}
+
+/* Standard normal CDF from the C library's erf (not the plot's erfc form). */
+static double normal_cdf(double z)
+{
+  return 0.5 * (1 + erf(z / sqrt(2)));
+}
+
+/* The fragility panel of the capacity figure: its CDFs are the fit stored
+ * in /capacity/fragility (read here with HDF5) evaluated here; its
+ * empirical fractions are i/n of the capacity TSV's first_collapse_pga_g
+ * (the lower polarity of each record); the records without collapse up to
+ * the cap (never_moves at --scale-max 12) are the censored ones. */
+AQ_TEST(plot_capacity_fragility_is_the_fit)
+{
+  static const char *const recs[] = {
+      "ARL360.at2", "IELC180.AT2", "CHY028-N.AT2", "RSN1616_DUZCE_362-E.AT2",
+      "RSN4013_SANSIMEO_36258021.AT2", "RSN4843_CHUETSU_65006NS.AT2"};
+  enum { NREC = 6, CAP = 1 << 15 };
+  const double TOL_P = 1e-12;  /* CDF values: a few ulps of erf/erfc */
+  const double TOL_REL = 1e-12; /* IM: scale x PGA rounded two ways */
+  char dir[512], h5[600], out[600], data[600], args[4000], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/f.h5", dir);
+  size_t len = (size_t)snprintf(args, sizeof args, "capacity");
+  for (int r = 0; r < NREC; r++)
+    len += (size_t)snprintf(args + len, sizeof args - len, " tests/data/records/%s", recs[r]);
+  snprintf(args + len, sizeof args - len,
+           " --arch " ARCH " --polarity both --resolution 0.1 --scale-max 12 -j 2 -o %s", h5);
+  char *tsv = malloc(CAP);
+  int rc = aq_test_run(args, tsv, CAP, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  /* the TSV: per record the lowest first_collapse_pga_g (column 7) */
+  double low[NREC];
+  for (int r = 0; r < NREC; r++)
+    low[r] = INFINITY;
+  for (const char *l = strchr(tsv, '\n'); l && l[1]; l = strchr(l + 1, '\n')) {
+    const char *p = l + 1;
+    for (int r = 0; r < NREC; r++)
+      if (strstr(p, recs[r]) && strstr(p, recs[r]) < strchr(p, '\t')) {
+        const char *q = p;
+        for (int c = 0; c < 6 && q; c++)
+          q = strchr(q, '\t') ? strchr(q, '\t') + 1 : NULL;
+        double v = q ? strtod(q, NULL) : NAN;
+        if (!isnan(v))
+          low[r] = fmin(low[r], v);
+      }
+  }
+  double want[NREC];
+  size_t ncol = 0;
+  for (int r = 0; r < NREC; r++)
+    if (isfinite(low[r]))
+      want[ncol++] = low[r];
+  for (size_t i = 1; i < ncol; i++) /* insertion sort */
+    for (size_t j = i; j > 0 && want[j - 1] > want[j]; j--) {
+      double t = want[j];
+      want[j] = want[j - 1];
+      want[j - 1] = t;
+    }
+  /* the fit (one arch: the first AQ_FRAGILITY_NIM rows, pga_g first) */
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  size_t n1 = 0, n2 = 0, n3 = 0, n4 = 0;
+  double *med = f >= 0 ? dataset(f, "/capacity/fragility/median", &n1) : NULL;
+  double *beta = f >= 0 ? dataset(f, "/capacity/fragility/beta", &n2) : NULL;
+  double *mlo = f >= 0 ? dataset(f, "/capacity/fragility/median_lo", &n3) : NULL;
+  double *mhi = f >= 0 ? dataset(f, "/capacity/fragility/median_hi", &n4) : NULL;
+  if (f >= 0)
+    H5Fclose(f);
+  int have = med && beta && mlo && mhi && n1 > 0 && n2 > 0 && n3 > 0 && n4 > 0;
+  aq_check(have && isfinite(med[0]) && beta[0] > 0, "a PGA fit in %s", h5);
+  snprintf(out, sizeof out, "%s/f.png", dir);
+  snprintf(data, sizeof data, "%s/f.csv", dir);
+  snprintf(args, sizeof args, "plot capacity %s --arch oppenheim --im pga_g -o %s --data %s",
+           h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  char *csv = aq_test_read_file(data, NULL);
+  if (!aq_check(csv != NULL && have, "%s written", data)) {
+    free(csv), free(tsv), free(med), free(beta), free(mlo), free(mhi);
+    return;
+  }
+  check_axes(csv, 3, "capacity with fragility");
+  aq_check(strstr(csv, "im=pga_g ") != NULL && strstr(csv, "\nseries,pga_g,probability\n"),
+           "the fragility section names its IM");
+  static const char *const name[3] = {"\nfit,", "\nfit_median_lo,", "\nfit_median_hi,"};
+  const double m3[3] = {med[0], mlo[0], mhi[0]};
+  for (int k = 0; k < 3; k++) {
+    size_t n = 0, bad = 0;
+    double worst = 0;
+    for (const char *p = strstr(csv, name[k]); p; p = strstr(p + 1, name[k])) {
+      char *e;
+      double x = strtod(p + strlen(name[k]), &e), y = strtod(e + 1, NULL);
+      double d = fabs(y - normal_cdf(log(x / m3[k]) / beta[0]));
+      worst = fmax(worst, d);
+      bad += !(d <= TOL_P);
+      n++;
+    }
+    if (getenv("AQ_TEST_VERBOSE"))
+      fprintf(stderr, "%s worst |p - Phi| %.3g over %zu points\n", name[k] + 1, worst, n);
+    aq_check(n > 100 && bad == 0, "%s= Phi(ln(x/m)/beta) at %zu points (%zu off, worst %.3g)",
+             name[k] + 1, n, bad, worst);
+  }
+  size_t ne = 0, bad = 0, ncen = 0;
+  for (const char *p = strstr(csv, "\nempirical,"); p; p = strstr(p + 1, "\nempirical,")) {
+    char *e;
+    double x = strtod(p + 11, &e), y = strtod(e + 1, NULL);
+    bad += ne >= ncol || fabs(x - want[ne]) > TOL_REL * want[ne] ||
+           fabs(y - (ne + 1) / (double)NREC) > TOL_P;
+    if (getenv("AQ_TEST_VERBOSE") && ne < ncol)
+      fprintf(stderr, "empirical %.17g %.17g (TSV %.17g, %zu/%d)\n", x, y, want[ne], ne + 1,
+              NREC);
+    ne++;
+  }
+  for (const char *p = strstr(csv, "\ncensored,"); p; p = strstr(p + 1, "\ncensored,"))
+    ncen++;
+  aq_check(ne == ncol && ncol >= 2 && bad == 0,
+           "empirical points = sorted first collapses of the TSV at i/%d (%zu of %zu, %zu off)",
+           NREC, ne, ncol, bad);
+  aq_check(ncen == NREC - ncol && ncen > 0, "censored records %zu, the TSV's %zu", ncen,
+           NREC - ncol);
+  static const char *const other[] = {"svg", "pdf"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(out, sizeof out, "%s/f.%s", dir, other[k]);
+    snprintf(args, sizeof args, "plot capacity %s --im pgv_m_s -o %s", h5, out);
+    rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+    valid(out);
+  }
+  /* an IM the fit does not store: one line, no file */
+  snprintf(out, sizeof out, "%s/y.png", dir);
+  snprintf(args, sizeof args, "plot capacity %s --im sa_g -o %s", h5, out);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  FILE *g = fopen(out, "rb");
+  aq_check(rc == 2 && strstr(err, "--im") && strstr(err, "sa_g") &&
+               aq_test_count_lines(err) == 1 && g == NULL,
+           "unknown IM: exit %d \"%s\"", rc, err);
+  if (g)
+    fclose(g);
+  free(csv), free(tsv), free(med), free(beta), free(mlo), free(mhi);
 }

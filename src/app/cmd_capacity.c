@@ -161,7 +161,7 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
                                   aq_opt_polarity_names[pols[i % npol]], o->status[i],
                                   have ? cw : NULL, im ? im->pga_g : NAN,
-                                  im ? im->pgv_mps : NAN, or->nmotions > 0,
+                                  im ? im->pgv_mps : NAN, im, or->nmotions > 0,
                                   R[r].in.motion ? or->azimuths_deg[w] : NAN, lo, hi};
   }
   for (size_t i = 0; i < nf; i++)

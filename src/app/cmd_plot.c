@@ -32,9 +32,12 @@ static const char usage[] =
     "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
     "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
     "        and polarities: collapse, or peak rotation / q_c)\n"
-    "  capacity CAPACITY.h5 [--arch NAME]   the scales each record was scanned\n"
-    "        over with its collapse intervals (archquake capacity -o), one arch\n"
-    "        (default: the file's first)\n"
+    "  capacity CAPACITY.h5 [--arch NAME] [--im IM]   the scales each record was\n"
+    "        scanned over with its collapse intervals (archquake capacity -o), one\n"
+    "        arch (default: the file's first); below, the lognormal fragility of\n"
+    "        IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s, pga_lambda0; default\n"
+    "        pga_g) over the empirical fraction of first collapses, censored\n"
+    "        records at their cap, and the band of the median's interval\n"
     "Options:\n"
     "  -o, --output FILE  the figure (.png .svg .pdf)\n"
     "  --data FILE.csv    also write the plotted data (columns carry units)\n"
@@ -48,11 +51,11 @@ static const char *const figures[] = {"history", "arch", "domain", "suite", "cap
 static const struct {
   int input;
   const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor */
-} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "a"}};
+} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "ai"}};
 
 typedef struct {
   int fig;
-  const char *input, *out, *data, *run, *arch;
+  const char *input, *out, *data, *run, *arch, *im;
   double rotation_rad, cor;
   double *ratios;
   size_t nr;
@@ -65,6 +68,7 @@ static int parse(int argc, char **argv, plot_opts *o)
       {"run", required_argument, NULL, 'r'},    {"arch", required_argument, NULL, 'a'},
       {"rotation", required_argument, NULL, 'R'}, {"ratios", required_argument, NULL, 't'},
       {"cor", required_argument, NULL, 'c'},    {"help", no_argument, NULL, 'h'},
+      {"im", required_argument, NULL, 'i'},
       {NULL, 0, NULL, 0}};
   int nerr = 0, c;
   opterr = 0;
@@ -74,7 +78,7 @@ static int parse(int argc, char **argv, plot_opts *o)
       fputs(usage, stdout);
       return -1;
     }
-    if (strchr("rRatc", c) && !strchr(takes[o->fig].opts, c)) {
+    if (strchr("rRatci", c) && !strchr(takes[o->fig].opts, c)) {
       fprintf(stderr, "archquake: plot %s: %s: not an option of this figure\n",
               figures[o->fig], argv[optind - 1]);
       nerr++;
@@ -85,6 +89,7 @@ static int parse(int argc, char **argv, plot_opts *o)
     case 'd': o->data = optarg; break;
     case 'r': o->run = optarg; break;
     case 'a': o->arch = optarg; break;
+    case 'i': o->im = optarg; break;
     case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
     case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;
     case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
@@ -125,7 +130,7 @@ static int fail(const aq_error *err)
   return err->status == AQ_EIO ? AQ_EXIT_OUTPUT
          : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
                  !strcmp(err->field, "--rotation") ||
-                 !strcmp(err->field, "--arch")
+                 !strcmp(err->field, "--arch") || !strcmp(err->field, "--im")
              ? AQ_EXIT_USAGE
              : AQ_EXIT_FAIL;
 }
@@ -237,7 +242,7 @@ int aq_cmd_plot(int argc, char **argv)
       rc = fail(&err);
       break;
     }
-    if (aq_plot_capacity(&t, o.arch, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+    if (aq_plot_capacity(&t, o.arch, o.im, o.input, o.out, o.data, NULL, &err) != AQ_OK)
       rc = fail(&err);
     aq_h5_capacity_table_free(&t);
     break;

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fixed.h"
 #include "readers.h"
 
 #define KNET_HEADER_LINES 17
@@ -68,16 +69,6 @@ static const char *const knet_keys[KNET_HEADER_LINES] = {
 enum { K_ORIGIN, K_LAT, K_LON, K_DEPTH, K_MAG, K_STATION, K_SLAT, K_SLON, K_SHEIGHT,
        K_RECORD, K_FREQ, K_DURATION, K_DIR, K_SCALE, K_MAXACC, K_LASTCORR, K_MEMO };
 
-static long days_from_civil(long y, long m, long d)
-{
-  y -= m <= 2;
-  long era = (y >= 0 ? y : y - 399) / 400;
-  long yoe = y - era * 400;
-  long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-  long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + doe - 719468;
-}
-
 /* "YYYY/MM/DD hh:mm:ss" (JST) minus shift_s -> ISO-8601 UTC; 0 if malformed. */
 static int jst_to_utc(const char *v, double shift_s, char *out, size_t cap)
 {
@@ -87,25 +78,13 @@ static int jst_to_utc(const char *v, double shift_s, char *out, size_t cap)
       y < 1900 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 23 ||
       mi < 0 || mi > 59 || sec < 0 || sec > 60)
     return 0;
-  long long t = (long long)days_from_civil(y, mo, d) * 86400 + h * 3600 + mi * 60 + sec;
-  t -= KNET_JST_OFFSET_S + (long long)shift_s;
-  long long days = t >= 0 ? t / 86400 : -((-t + 86399) / 86400);
-  long rem = (long)(t - days * 86400);
-  /* civil from days */
-  long z = (long)days + 719468, era = (z >= 0 ? z : z - 146096) / 146097;
-  long doe = z - era * 146097;
-  long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  long yy = yoe + era * 400, doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  long mp = (5 * doy + 2) / 153, dd = doy - (153 * mp + 2) / 5 + 1;
-  long mm = mp < 10 ? mp + 3 : mp - 9;
-  yy += mm <= 2;
-  char tmp[96];
-  snprintf(tmp, sizeof tmp, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.000Z", yy, mm, dd,
-           rem / 3600, rem / 60 % 60, rem % 60);
-  size_t l = strlen(tmp) < cap ? strlen(tmp) : cap - 1;
-  memcpy(out, tmp, l);
-  out[l] = '\0';
-  return 1;
+  char iso[40];
+  double t_s;
+  snprintf(iso, sizeof iso, "%04d-%02d-%02dT%02d:%02d:%02d", y, mo, d, h, mi, sec);
+  if (!aq_iso_parse(iso, &t_s))
+    return 0;
+  t_s -= KNET_JST_OFFSET_S + shift_s;
+  return aq_iso_from_ms(out, cap, (long long)llround(t_s * 1000.0));
 }
 
 aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,

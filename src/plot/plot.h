@@ -5,7 +5,7 @@
  *   arch.c      the arch to scale, its hinge sets, a deformed mechanism
  *   domain.c    the half-cycle collapse domain
  *   suite.c     a record x arch map of the verdicts
- *   capacity.c  the collapse intervals of `archquake capacity`
+ *   capacity.c  the collapse intervals and fragility of `archquake capacity`
  * common.c renders (driver check, exit/abort handlers, temporary + rename)
  * and writes the plotted data (--data FILE.csv, also temporary + rename);
  * h5_read.c reads a run's histories (the verdicts come from
@@ -139,8 +139,11 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
                         aq_error *err);
 
 /* capacity.c: for arch (NULL: the file's first), one row per (record,
- * polarity): the scanned scales with the collapse intervals shaded. */
-aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch,
+ * polarity): the scanned scales with the collapse intervals shaded; below,
+ * the arch's lognormal fragility in IM im (NULL: pga_g) with the band of
+ * its median's interval, over the empirical fraction of first collapses
+ * (the worse polarity of each record) and the censored records at their cap. */
+aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch, const char *im,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
 

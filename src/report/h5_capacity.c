@@ -101,6 +101,7 @@ typedef struct {
   int64_t *i[4]; /* resurrection runs interval_start interval_count */
   double *iv;    /* intervals, 2 per row */
   size_t niv;
+  double *im[2]; /* npair x AQ_FRAGILITY_NIM: the IMs at first collapse, at the cap */
 } columns;
 
 const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
@@ -124,6 +125,9 @@ static int fill(const aq_h5_capacity *c, columns *k)
       return -1;
   if (!(k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double))))
     return -1;
+  for (int j = 0; j < 2; j++)
+    if (!(k->im[j] = malloc(n * AQ_FRAGILITY_NIM * sizeof(double))))
+      return -1;
   for (size_t p = 0; p < c->npair; p++) {
     const aq_capacity *a = c->row[p].cap;
     int v = a != NULL;
@@ -138,6 +142,13 @@ static int fill(const aq_h5_capacity *c, columns *k)
     k->i[1][p] = v ? (int64_t)a->scan.runs : 0;
     k->i[2][p] = (int64_t)k->niv;
     k->i[3][p] = v ? (int64_t)a->scan.ninterval : 0;
+    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) { /* what the fits were given */
+      int w = v && c->row[p].im;
+      k->im[0][p * AQ_FRAGILITY_NIM + m] =
+          w && !isnan(fc) ? aq_fragility_im_at(c->row[p].im, a->lambda0, m, fc) : NAN;
+      k->im[1][p * AQ_FRAGILITY_NIM + m] =
+          w ? aq_fragility_im_at(c->row[p].im, a->lambda0, m, a->scale_max) : NAN;
+    }
     for (size_t q = 0; v && q < a->scan.ninterval; q++) {
       k->iv[2 * k->niv] = a->scan.interval[q].lo;
       k->iv[2 * k->niv + 1] = a->scan.interval[q].hi;
@@ -154,6 +165,8 @@ static void columns_free(columns *k)
   for (int j = 0; j < 4; j++)
     free(k->i[j]);
   free(k->iv);
+  free(k->im[0]);
+  free(k->im[1]);
 }
 
 aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
@@ -231,6 +244,11 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   what = "capacity/intervals";
   if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2) < 0)
     goto fail;
+  what = "capacity/im_first_collapse, im_cap";
+  if (ds_write(g, "im_first_collapse", H5T_NATIVE_DOUBLE, k.im[0], c->npair,
+               AQ_FRAGILITY_NIM) < 0 ||
+      ds_write(g, "im_cap", H5T_NATIVE_DOUBLE, k.im[1], c->npair, AQ_FRAGILITY_NIM) < 0)
+    goto fail;
   obj = "/capacity/fragility";
   what = "fragility columns";
   if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
@@ -281,6 +299,7 @@ void aq_h5_capacity_table_free(aq_h5_capacity_table *t)
     return;
   free(t->row);
   free(t->interval);
+  free(t->fit);
   memset(t, 0, sizeof *t);
 }
 
@@ -304,8 +323,9 @@ static herr_t ds_read(hid_t g, const char *name, hid_t t, void *buf, hsize_t n,
   return rc;
 }
 
-/* A column of n variable-length strings into the rows at offset off, size cap. */
-static herr_t ds_read_strings(hid_t g, const char *name, aq_h5_capacity_row *rows,
+/* A column of n variable-length strings into the records at base (stride
+ * bytes apart) at offset off, size cap. */
+static herr_t ds_read_strings(hid_t g, const char *name, void *base, size_t stride,
                               size_t n, size_t off, size_t cap)
 {
   char **v = calloc(n ? n : 1, sizeof *v);
@@ -315,7 +335,7 @@ static herr_t ds_read_strings(hid_t g, const char *name, aq_h5_capacity_row *row
       ds_read(g, name, t, v, n, 1) >= 0) {
     rc = 0;
     for (size_t i = 0; i < n; i++)
-      snprintf((char *)&rows[i] + off, cap, "%s", v[i] ? v[i] : "");
+      snprintf((char *)base + i * stride + off, cap, "%s", v[i] ? v[i] : "");
     hsize_t dim = n;
     hid_t sp = H5Screate_simple(1, &dim, NULL);
     if (n && sp >= 0)
@@ -327,6 +347,73 @@ static herr_t ds_read_strings(hid_t g, const char *name, aq_h5_capacity_row *row
     H5Tclose(t);
   free(v);
   return rc;
+}
+
+/* The IMs at first collapse and at the cap (NAN when absent: older files). */
+static int read_im(hid_t g, aq_h5_capacity_table *t, const char **what)
+{
+  static const char *const name[2] = {"im_first_collapse", "im_cap"};
+  size_t n = t->n, m = AQ_FRAGILITY_NIM;
+  double *v = malloc((n ? n : 1) * m * sizeof *v);
+  if (!v)
+    return -1;
+  int rc = 0;
+  for (int k = 0; k < 2 && rc == 0; k++) {
+    int have = H5Lexists(g, name[k], H5P_DEFAULT) > 0;
+    *what = name[k];
+    if (have && ds_read(g, name[k], H5T_NATIVE_DOUBLE, v, n, m) < 0)
+      rc = -1;
+    for (size_t i = 0; rc == 0 && i < n; i++)
+      for (size_t j = 0; j < m; j++)
+        (k ? t->row[i].im_cap : t->row[i].im_first)[j] = have ? v[i * m + j] : NAN;
+  }
+  free(v);
+  return rc;
+}
+
+/* capacity/fragility, when present. */
+static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
+{
+  *what = "fragility";
+  if (H5Lexists(g, "fragility", H5P_DEFAULT) <= 0)
+    return 0;
+  hid_t gf = H5Gopen2(g, "fragility", H5P_DEFAULT), d = -1, sp = -1;
+  hsize_t n = 0;
+  int ok = gf >= 0 && (d = H5Dopen2(gf, "arch", H5P_DEFAULT)) >= 0 &&
+           (sp = H5Dget_space(d)) >= 0 && H5Sget_simple_extent_dims(sp, &n, NULL) == 1;
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  double *v = malloc((n ? n : 1) * sizeof *v);
+  int64_t *iv = malloc((n ? n : 1) * sizeof *iv);
+  ok = ok && v && iv && (t->fit = calloc(n ? n : 1, sizeof *t->fit)) != NULL;
+  if (ok)
+    t->nfit = (size_t)n;
+  const size_t sz = sizeof *t->fit;
+  ok = ok && ds_read_strings(gf, "arch", t->fit, sz, t->nfit,
+                             offsetof(aq_h5_fragility_fit, arch), sizeof t->fit->arch) >= 0;
+  ok = ok && ds_read_strings(gf, "im", t->fit, sz, t->nfit, offsetof(aq_h5_fragility_fit, im),
+                             sizeof t->fit->im) >= 0;
+  static const char *const dn[4] = {"median", "beta", "median_lo", "median_hi"};
+  for (int j = 0; ok && j < 4; j++) {
+    ok = ds_read(gf, dn[j], H5T_NATIVE_DOUBLE, v, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->nfit; i++)
+      *(j == 0   ? &t->fit[i].median
+        : j == 1 ? &t->fit[i].beta
+        : j == 2 ? &t->fit[i].median_lo
+                 : &t->fit[i].median_hi) = v[i];
+  }
+  for (int j = 0; ok && j < 2; j++) {
+    ok = ds_read(gf, j ? "censored" : "records", H5T_NATIVE_INT64, iv, n, 1) >= 0;
+    for (size_t i = 0; ok && i < t->nfit; i++)
+      *(j ? &t->fit[i].censored : &t->fit[i].records) = iv[i];
+  }
+  free(v);
+  free(iv);
+  if (gf >= 0)
+    H5Gclose(gf);
+  return ok ? 0 : -1;
 }
 
 aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
@@ -377,14 +464,14 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
   t->ninterval = (size_t)ni[0];
   int ok = 1;
   what = "record, arch, polarity, status";
-  ok = ok && ds_read_strings(g, "record", t->row, t->n, offsetof(aq_h5_capacity_row, record),
+  ok = ok && ds_read_strings(g, "record", t->row, sizeof *t->row, t->n, offsetof(aq_h5_capacity_row, record),
                              sizeof t->row->record) >= 0;
-  ok = ok && ds_read_strings(g, "arch", t->row, t->n, offsetof(aq_h5_capacity_row, arch),
+  ok = ok && ds_read_strings(g, "arch", t->row, sizeof *t->row, t->n, offsetof(aq_h5_capacity_row, arch),
                              sizeof t->row->arch) >= 0;
-  ok = ok && ds_read_strings(g, "polarity", t->row, t->n,
+  ok = ok && ds_read_strings(g, "polarity", t->row, sizeof *t->row, t->n,
                              offsetof(aq_h5_capacity_row, polarity),
                              sizeof t->row->polarity) >= 0;
-  ok = ok && ds_read_strings(g, "status", t->row, t->n, offsetof(aq_h5_capacity_row, status),
+  ok = ok && ds_read_strings(g, "status", t->row, sizeof *t->row, t->n, offsetof(aq_h5_capacity_row, status),
                              sizeof t->row->status) >= 0;
   for (int j = 0; ok && j < AQ_H5_CAP_NDOUBLE; j++) {
     what = dnames[j];
@@ -403,6 +490,8 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
   for (size_t i = 0; ok && i < t->n; i++) /* interval rows within the dataset */
     ok = t->row[i].i[2] >= 0 && t->row[i].i[3] >= 0 &&
          (uint64_t)(t->row[i].i[2] + t->row[i].i[3]) <= (uint64_t)t->ninterval;
+  if (ok)
+    ok = read_im(g, t, &what) == 0 && read_fits(g, t, &what) == 0;
   free(col);
   free(icol);
   H5Gclose(g);

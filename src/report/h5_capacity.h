@@ -38,13 +38,25 @@ typedef struct {
   double d[AQ_H5_CAP_NDOUBLE]; /* move_scale first_collapse_scale first_collapse_pga_g
                                   first_collapse_pgv_m_s scale_max lambda0 */
   int64_t i[AQ_H5_CAP_NINT];   /* resurrection runs interval_start interval_count */
+  /* the fragility IMs (aq_fragility_im_names) at first collapse (NAN: none)
+     and at the cap; NAN when the file does not hold them */
+  double im_first[AQ_FRAGILITY_NIM], im_cap[AQ_FRAGILITY_NIM];
 } aq_h5_capacity_row;
+
+/* One fit of capacity/fragility. */
+typedef struct {
+  char arch[128], im[32];
+  double median, beta, median_lo, median_hi;
+  int64_t records, censored;
+} aq_h5_fragility_fit;
 
 typedef struct {
   size_t n;
   aq_h5_capacity_row *row; /* malloc'd */
   size_t ninterval;
   double *interval;        /* 2 per interval (lo, hi), malloc'd */
+  size_t nfit;
+  aq_h5_fragility_fit *fit; /* malloc'd; none when the file has no fits */
 } aq_h5_capacity_table;
 
 /* Read the capacity group of the results file at path into *t (free with

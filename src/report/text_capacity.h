@@ -17,6 +17,8 @@ typedef struct {
   const char *status;    /* "ok", "never_moves", "read:eio", "run:enumeric", ... */
   const aq_capacity *cap;/* the results, or NULL when there are none */
   double pga_g, pgv_mps; /* the record's PGA (g) and PGV (m/s) at scale 1 */
+  const aq_im *im;       /* its measures at scale 1 (NULL: unread) for the
+                            fragility IMs of first collapse and cap */
   int oriented;          /* 1: three more columns (the same for every row) */
   double azimuth_deg;    /* the arch azimuth of the row (NAN: a plain record) */
   double fcs_min, fcs_max; /* first_collapse_scale's range over the azimuths */
