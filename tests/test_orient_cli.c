@@ -416,14 +416,12 @@ AQ_TEST(orient_vertical_cli)
 AQ_TEST(orient_capacity_equals_own_csv)
 {
   char dir[512], csv[700], args[2048];
-  aq_test_tmpdir(dir, sizeof dir);
   aq_record r1, r2;
   int ok = read_pair(&r1, &r2);
-  static const double thetas[] = {30, 247.5};
-  for (size_t t = 0; ok && t < 2; t++) {
-    double th = thetas[t], c1 = own_cos_deg(th - 180), c2 = own_cos_deg(th - 270);
+  aq_test_tmpdir(dir, sizeof dir);
+  for (double th = 30; ok && th < 360; th += 217.5) { /* 30 and 247.5 deg */
     snprintf(csv, sizeof csv, "%s/cap-%g.csv", dir, th);
-    if (!write_projection(csv, c1, c2, &r1, &r2))
+    if (!write_projection(csv, own_cos_deg(th - 180), own_cos_deg(th - 270), &r1, &r2))
       break;
     snprintf(args, sizeof args, "capacity %s --arch arches/thin.cfg -j 2" CAP_RES RAW, csv);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
