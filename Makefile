@@ -1,5 +1,5 @@
 # archquake Makefile.  Overridable: CC CFLAGS LDFLAGS PREFIX DESTDIR.
-# Targets: all check ci bench install uninstall clean deps fuzz mutate
+# Targets: all check ci bench install uninstall clean deps deps-dev fuzz mutate
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 LDFLAGS ?=
@@ -26,8 +26,8 @@ SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 MUT_OBJ  := $(LIB_SRC:%.c=build/mut/%.o) $(TEST_SRC:%.c=build/mut/%.o)
 
-.PHONY: all check ci bench install uninstall clean deps print-deps fuzz mutate FORCE
-all: archquake
+.PHONY: all check ci bench install uninstall clean deps deps-dev print-deps print-deps-dev fuzz mutate FORCE
+all: archquake build/archquake.1
 
 # The exact build, embedded in results files (src/app/version.c): `git
 # describe`, or the version alone outside a git checkout.  The header is
@@ -38,6 +38,14 @@ build/describe.h: FORCE
 	@printf '#define AQ_BUILD_SUFFIX "%s"\n' '$(if $(AQ_DESCRIBE), ($(AQ_DESCRIBE)))' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
 build/rel/src/app/version.o build/san/src/app/version.o build/mut/src/app/version.o: build/describe.h
+
+# Where installed arches are looked for (src/app/opt_arch.c), from PREFIX;
+# rewritten only when PREFIX changes.
+build/datadir.h: FORCE
+	@mkdir -p build
+	@printf '#define AQ_DATADIR "%s"\n' '$(PREFIX)/share/archquake' > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+build/rel/src/app/opt_arch.o build/san/src/app/opt_arch.o build/mut/src/app/opt_arch.o: build/datadir.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -91,7 +99,7 @@ bench: archquake $(BENCH_BIN)
 # undefined behaviour stops that harness: its log is shown, the input that
 # did it is named (build/fuzz/crash-NAME/...) and the target fails.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
-build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS) build/describe.h
+build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS) build/describe.h build/datadir.h
 	@mkdir -p $(dir $@)
 	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
 
@@ -123,23 +131,54 @@ ci:
 	  $(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) || exit 1; \
 	  tail -n 1 build/ci-check.log
 
-install: archquake
-	install -d $(DESTDIR)$(PREFIX)/bin
-	install -m 755 archquake $(DESTDIR)$(PREFIX)/bin/archquake
+# The man page is written from the binary's own --help texts (tools/man.sh),
+# so the two cannot drift apart.  INSTALL_BIN: the binary installed and
+# read for the page (the tests install the sanitized one).
+INSTALL_BIN ?= archquake
+build/archquake.1: $(INSTALL_BIN) tools/man.sh
+	@mkdir -p build
+	sh tools/man.sh $(INSTALL_BIN) > $@.new && mv -f $@.new $@
+
+BINDIR  = $(DESTDIR)$(PREFIX)/bin
+ARCHDIR = $(DESTDIR)$(PREFIX)/share/archquake/arches
+DOCDIR  = $(DESTDIR)$(PREFIX)/share/doc/archquake
+MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
+ARCH_FILES := $(wildcard arches/*.cfg)
+DOC_FILES  := README.md $(wildcard docs/*.md)
+install: $(INSTALL_BIN) build/archquake.1
+	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR) $(MAN1DIR)
+	install -m 755 $(INSTALL_BIN) $(BINDIR)/archquake
+	if test -f archquake-mpi; then install -m 755 archquake-mpi $(BINDIR)/archquake-mpi; fi
+	install -m 644 $(ARCH_FILES) $(ARCHDIR)
+	install -m 644 $(DOC_FILES) $(DOCDIR)
+	install -m 644 build/archquake.1 $(MAN1DIR)/archquake.1
 
 uninstall:
-	rm -f $(DESTDIR)$(PREFIX)/bin/archquake
+	rm -f $(BINDIR)/archquake $(BINDIR)/archquake-mpi $(MAN1DIR)/archquake.1
+	rm -f $(addprefix $(ARCHDIR)/,$(notdir $(ARCH_FILES)))
+	rm -f $(addprefix $(DOCDIR)/,$(notdir $(DOC_FILES)))
+	-rmdir $(ARCHDIR) $(DESTDIR)$(PREFIX)/share/archquake $(DOCDIR) 2>/dev/null
 
-# Debian packages the build, the tests and `make fuzz` need.
+# Debian packages: DEB_PKGS builds and runs archquake (`make deps`);
+# DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
+# (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev \
-            libinih-dev hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo
+            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo
+DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
+            openmpi-bin libopenmpi-dev man-db
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)
 
+deps-dev:
+	apt-get update
+	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_DEV_PKGS)
+
 print-deps:
 	@echo $(DEB_PKGS)
+
+print-deps-dev:
+	@echo $(DEB_DEV_PKGS)
 
 clean:
 	rm -rf build archquake

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/opt_arch.h"
 
 static const struct {
   const char *name;
@@ -42,6 +43,7 @@ static void usage(void)
   fflush(stdout);
   aq_cmd_run(2, av);
   fputs(commands_usage, stdout);
+  aq_opt_arch_usage(stdout);
 }
 
 int main(int argc, char **argv)

@@ -24,6 +24,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_dyn.h"
 #include "opt_orient.h"
 #include "opt_record.h"
@@ -37,7 +38,8 @@ static const char usage_head[] =
     "verdict (collapse or not) changes, from the scale at which it first moves\n"
     "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
     "polarity) on stdout.\n"
-    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  --arch FILE         an arch (.cfg), or an installed arch by name\n"
+    "                      (oppenheim); repeatable\n"
     "  -o, --output FILE.h5  write the results to a `capacity` group\n"
     "  --text FILE         write the TSV to FILE instead of stdout\n"
     "  --fragility FILE    lognormal fragility fits, one row per (arch, IM)\n"
@@ -316,7 +318,7 @@ int aq_cmd_capacity(int argc, char **argv)
         aq_opt_orient_handle(c, optarg, &orient, &nerr))
       continue;
     switch (c) {
-    case OPT_ARCH: arch_paths[na++] = optarg; break;
+    case OPT_ARCH: arch_paths[na++] = aq_opt_arch(optarg, &nerr); break;
     case 'o': h5 = optarg; break;
     case OPT_TEXT: text = optarg; break;
     case OPT_FRAG: frag = optarg; break;

@@ -14,6 +14,7 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_arch.h"
 
 /* Smallest --tol, s: a finer bisection of durations of 0.01-100 s would reach
  * the spacing of doubles, where hi - lo stops shrinking. */
@@ -25,7 +26,7 @@ static const char usage[] =
     "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
     "the arch, by bisection (the direction is the set's own, so domain takes no\n"
     "--polarity).\n"
-    "  --arch FILE      the arch file (.cfg)\n"
+    "  --arch FILE      the arch file (.cfg), or an installed arch by name\n"
     "  --ratios LIST    comma-separated r > 1 (default 1.05,1.1,1.2,1.5,2,3,4)\n"
     "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default:\n"
     "                   the arch file's [dynamics] cor; refused with impact\n"
@@ -63,7 +64,7 @@ int aq_cmd_domain(int argc, char **argv)
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
     switch (c) {
     case 'a':
-      file = optarg;
+      file = aq_opt_arch(optarg, &nerr);
       break;
     case 'R':
       aq_opt_list("--ratios", optarg, 1, &ratios, &nr, &nerr);

@@ -11,6 +11,7 @@
 #include "../arch/model.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_arch.h"
 
 #define MIN_SET_TIE_REL 1e-9 /* relative: a lower lambda0 by less is the same mechanism */
 
@@ -21,7 +22,7 @@ static const char usage[] =
     "primary itself without [hinges]; with [hinges] a lower one is warned of\n"
     "on stderr: it governs unless its joints are restrained).  An arch whose\n"
     "minimum lambda0 is <= 0 cannot stand and is refused (exit 1), naming the set.\n"
-    "  --arch FILE   the arch file (.cfg)\n"
+    "  --arch FILE   the arch file (.cfg), or an installed arch by name\n"
     "  --table       add, after a blank line, the work path of each admissible\n"
     "                set at N points over [0, q_c] (the data of the paper's Figs 4-7)\n"
     "  --points N    rows per set in --table (2..100000, default 101)\n"
@@ -106,7 +107,7 @@ int aq_cmd_mechanism(int argc, char **argv)
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
     switch (c) {
     case 'a':
-      file = optarg;
+      file = aq_opt_arch(optarg, &nerr);
       break;
     case 't':
       table = 1;

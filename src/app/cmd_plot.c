@@ -14,6 +14,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 
 static const char usage[] =
     "usage: archquake plot FIGURE [INPUT] [OPTIONS] -o FILE\n"
@@ -88,7 +89,7 @@ static int parse(int argc, char **argv, plot_opts *o)
     case 'o': o->out = optarg; break;
     case 'd': o->data = optarg; break;
     case 'r': o->run = optarg; break;
-    case 'a': o->arch = optarg; break;
+    case 'a': o->arch = o->fig == FIG_CAPACITY ? optarg : aq_opt_arch(optarg, &nerr); break;
     case 'i': o->im = optarg; break;
     case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
     case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;

@@ -16,12 +16,13 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_arch.h"
 
 static const char usage[] =
     "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
     "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
     "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n"
-    "  --arch FILE      the arch file (.cfg)\n"
+    "  --arch FILE      the arch file (.cfg), or an installed arch by name\n"
     "  --accel-g A      pulse amplitude, g (signed, |A| <= 100: its sign is the\n"
     "                   polarity, so pulse takes no --polarity)\n"
     "  --duration S     pulse duration, s (0 < S <= 3600)\n"
@@ -146,7 +147,7 @@ int aq_cmd_pulse(int argc, char **argv)
   while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
     switch (c) {
     case 'a':
-      file = optarg;
+      file = aq_opt_arch(optarg, &nerr);
       break;
     case 'A':
       aq_opt_double("--accel-g", optarg, -100, 100, &acc_g, &nerr);

@@ -18,6 +18,7 @@
 #include "app.h"
 #include "cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_dyn.h"
 #include "opt_orient.h"
 #include "opt_record.h"
@@ -31,7 +32,8 @@ static const char usage_head[] =
     "       archquake [OPTIONS] --components H1,H2[,V] ... --arch FILE ...\n"
     "Run every record against every arch (and every scale factor): each record\n"
     "is read and processed once.  One TSV row per run on stdout.\n"
-    "  --arch FILE         an arch (.cfg); repeatable\n"
+    "  --arch FILE         an arch (.cfg), or an installed arch by name\n"
+    "                      (oppenheim); repeatable\n"
     "  -o, --output FILE.h5  write the HDF5 results file (docs/hdf5-layout.md)\n"
     "  --text FILE         write the TSV to FILE instead of stdout\n"
     "  --scale LIST        run each record scaled by each factor, e.g. 0.5,1,2\n"
@@ -208,7 +210,7 @@ int aq_cmd_run(int argc, char **argv)
       continue;
     switch (c) {
     case OPT_ARCH:
-      arches[cfg.narches++] = optarg;
+      arches[cfg.narches++] = aq_opt_arch(optarg, &nerr);
       break;
     case 'o':
       cfg.h5_path = optarg;
