@@ -1,5 +1,5 @@
 # archquake Makefile.  Overridable: CC CFLAGS LDFLAGS PREFIX DESTDIR.
-# Targets: all check ci bench install uninstall clean deps deps-dev fuzz mutate
+# Targets: all check ci bench install uninstall clean deps deps-dev fuzz mutate mpi check-mpi
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 LDFLAGS ?=
@@ -15,7 +15,7 @@ AQ_LIBS    = $(PKG_LIBS) -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
-LIB_SRC   := $(filter-out src/main.c,$(LIB_SRC))
+LIB_SRC   := $(filter-out src/main.c src/app/mpi.c,$(LIB_SRC))
 TEST_SRC  := $(sort $(wildcard tests/*.c))
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 FUZZ_SRC  := $(sort $(wildcard fuzz/fuzz_*.c))
@@ -26,7 +26,7 @@ SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 MUT_OBJ  := $(LIB_SRC:%.c=build/mut/%.o) $(TEST_SRC:%.c=build/mut/%.o)
 
-.PHONY: all check ci bench install uninstall clean deps deps-dev print-deps print-deps-dev fuzz mutate FORCE
+.PHONY: all check ci bench install uninstall clean deps deps-dev print-deps print-deps-dev fuzz mutate mpi check-mpi FORCE
 all: archquake build/archquake.1
 
 # The exact build, embedded in results files (src/app/version.c): `git
@@ -70,6 +70,24 @@ check: build/san/runner build/san/archquake
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  AQ_BIN=build/san/archquake ./build/san/runner $(TESTS)
 
+# archquake-mpi (src/app/mpi.c): the main job over Open MPI ranks; rank 0
+# alone writes, with the serial HDF5 library.  Only `make mpi` needs MPI.
+MPICC ?= mpicc
+mpi: archquake-mpi
+build/mpi/main.o: src/main.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(CC) $(AQ_CFLAGS) $(CFLAGS) -DAQ_MAIN=aq_main_serial -c -o $@ $<
+build/mpi/mpi.o: src/app/mpi.c $(HDRS)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
+archquake-mpi: build/mpi/mpi.o build/mpi/main.o $(REL_OBJ)
+	$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
+
+# The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3
+# ranks, a failing record, --resume, a killed follower.
+check-mpi: archquake archquake-mpi
+	AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi sh tests/mpi.sh
+
 # Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
 # (fast to rebuild and run); each mutant recompiles one file and relinks.
 build/mut/%.o: %.c $(HDRS)
@@ -93,6 +111,8 @@ build/bench/%: bench/%.c bench/bench.h $(REL_OBJ)
 
 bench: archquake $(BENCH_BIN)
 	@for b in $(BENCH_BIN); do echo "== $$b"; ./$$b || exit 1; done
+	@if command -v $(MPICC) >/dev/null 2>&1; then $(MAKE) -s mpi && sh bench/mpi.sh; \
+	 else echo "== bench/mpi.sh: skipped ($(MPICC) not found: make deps-dev)"; fi
 
 # Fuzz every reader with libFuzzer for FUZZ_SECONDS each, seeded from
 # fuzz/seeds, records/ and tests/data/records.  A crash, leak, timeout or
@@ -120,16 +140,20 @@ fuzz: $(FUZZ_BIN)
 	  fi; \
 	done; exit $$fail
 
-# CI (.ci/run) and the README's test command: the tests, then a short fuzz of
-# every reader (CI_FUZZ_SECONDS each); the last line is the tests'
-# "N passed, N failed".
+# CI (.ci/run) and the README's test command: the tests, a short fuzz of
+# every reader (CI_FUZZ_SECONDS each), then the MPI tests (make check-mpi);
+# the last line adds the two suites' "N passed, N failed".
 CI_FUZZ_SECONDS ?= 20
 ci:
 	@mkdir -p build
 	@$(MAKE) --no-print-directory check > build/ci-check.log 2>&1; rc=$$?; \
 	  cat build/ci-check.log; [ $$rc -eq 0 ] || exit $$rc; \
 	  $(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS) || exit 1; \
-	  tail -n 1 build/ci-check.log
+	  $(MAKE) --no-print-directory -j2 mpi > build/ci-mpi-build.log 2>&1 || { cat build/ci-mpi-build.log; exit 1; }; \
+	  $(MAKE) --no-print-directory check-mpi > build/ci-mpi.log 2>&1; rc=$$?; \
+	  cat build/ci-mpi.log; [ $$rc -eq 0 ] || exit $$rc; \
+	  tail -n 1 build/ci-check.log build/ci-mpi.log | \
+	    awk '/passed,/ { p += $$1; f += $$3 } END { printf "%d passed, %d failed\n", p, f }'
 
 # The man page is written from the binary's own --help texts (tools/man.sh),
 # so the two cannot drift apart.  INSTALL_BIN: the binary installed and
@@ -181,4 +205,4 @@ print-deps-dev:
 	@echo $(DEB_DEV_PKGS)
 
 clean:
-	rm -rf build archquake
+	rm -rf build archquake archquake-mpi

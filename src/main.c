@@ -46,7 +46,23 @@ static void usage(void)
   aq_opt_arch_usage(stdout);
 }
 
-int main(int argc, char **argv)
+/* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
+int aq_main_is_command(const char *name);
+int aq_main_is_command(const char *name)
+{
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (strcmp(name, commands[i].name) == 0)
+      return 1;
+  return 0;
+}
+
+/* archquake-mpi builds this file as aq_main_serial, called by its own main
+ * (src/app/mpi.c). */
+#ifndef AQ_MAIN
+#define AQ_MAIN main
+#endif
+int AQ_MAIN(int argc, char **argv);
+int AQ_MAIN(int argc, char **argv)
 {
   gsl_set_error_handler_off(); /* GSL's default handler aborts */
   if (argc < 2) { /* nothing to run: the usage, and the status of a usage error */

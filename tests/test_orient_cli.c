@@ -128,6 +128,30 @@ static double own_cos_deg(double d)
                     : cos(d * (3.14159265358979323846 / 180.0));
 }
 
+/* Read the pair H1, H2 (PEER: 5372 and 5346 samples); 1 on success (free
+ * both in any case). */
+static int read_pair(aq_record *r1, aq_record *r2)
+{
+  aq_error e;
+  memset(r1, 0, sizeof *r1);
+  memset(r2, 0, sizeof *r2);
+  int ok = aq_record_read(H1, NULL, r1, &e) == AQ_OK && aq_record_read(H2, NULL, r2, &e) == AQ_OK;
+  return aq_check(ok && r1->npts == 5372 && r2->npts == 5346, "PEER: 5372 and 5346 samples");
+}
+
+/* A CSV of c1 a1 + c2 a2 over the 5346 samples both have; 1 on success. */
+static int write_projection(const char *csv, double c1, double c2, const aq_record *r1,
+                            const aq_record *r2)
+{
+  FILE *f = fopen(csv, "w");
+  if (!aq_check(f != NULL, "write %s", csv))
+    return 0;
+  fputs("time,acc (m/s2)\n", f);
+  for (size_t i = 0; i < 5346; i++)
+    fprintf(f, "%.2f,%.17g\n", 0.01 * (double)i, c1 * r1->acc_mps2[i] + c2 * r2->acc_mps2[i]);
+  return aq_check(fclose(f) == 0, "close %s", csv);
+}
+
 /* The main job on a CSV of a1 cos(theta - 180) + a2 cos(theta - 270), written
  * here from the two records, equals --components at --azimuth theta to the
  * last digit (processing off: filtering a sum is not bit for bit the sum of
@@ -137,11 +161,7 @@ AQ_TEST(orient_projection_equals_own_csv)
   char dir[512], csv[700], args[2048];
   aq_test_tmpdir(dir, sizeof dir);
   aq_record r1, r2;
-  aq_error e;
-  memset(&r1, 0, sizeof r1);
-  memset(&r2, 0, sizeof r2);
-  int ok = aq_record_read(H1, NULL, &r1, &e) == AQ_OK && aq_record_read(H2, NULL, &r2, &e) == AQ_OK;
-  aq_check(ok && r1.npts == 5372 && r2.npts == 5346, "PEER: 5372 and 5346 samples");
+  int ok = read_pair(&r1, &r2);
   static const double thetas[] = {30, 247.5};
   for (size_t t = 0; ok && t < 2; t++) {
     double th = thetas[t], c1 = own_cos_deg(th - 180), c2 = own_cos_deg(th - 270);
@@ -149,13 +169,8 @@ AQ_TEST(orient_projection_equals_own_csv)
                  fabs(c2 - cos((th - 270) * 3.14159265358979323846 / 180)) < 1e-15,
              "own rule = plain cos at %g deg", th);
     snprintf(csv, sizeof csv, "%s/elc-%g.csv", dir, th);
-    FILE *f = fopen(csv, "w");
-    if (!aq_check(f != NULL, "write %s", csv))
+    if (!write_projection(csv, c1, c2, &r1, &r2))
       break;
-    fputs("time,acc (m/s2)\n", f);
-    for (size_t i = 0; i < 5346; i++) /* the samples both have */
-      fprintf(f, "%.2f,%.17g\n", 0.01 * (double)i, c1 * r1.acc_mps2[i] + c2 * r2.acc_mps2[i]);
-    fclose(f);
     snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
                                 "--scale 0.5,2.2 -j 2" RAW, csv);
     int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
@@ -390,4 +405,111 @@ AQ_TEST(orient_vertical_cli)
   aq_check(rc == 1 && strcmp(cell(out, 1, col_of(out, "status"), st, sizeof st), "run:eliftoff") == 0 &&
                strstr(err, "t = 3.000 s") && strstr(err, "leaves the ground"),
            "lift-off: status %s, exit %d: %s", st, rc, err);
+}
+
+/* ---- archquake capacity with ground motions ------------------------------- */
+
+#define CAP_RES " --resolution 0.05 --tol 1e-5"
+
+/* capacity --components at --azimuth theta equals capacity on a CSV of the
+ * test's own projection, in every column of the record's table. */
+AQ_TEST(orient_capacity_equals_own_csv)
+{
+  char dir[512], csv[700], args[2048];
+  aq_record r1, r2;
+  int ok = read_pair(&r1, &r2);
+  aq_test_tmpdir(dir, sizeof dir);
+  for (double th = 30; ok && th < 360; th += 217.5) { /* 30 and 247.5 deg */
+    snprintf(csv, sizeof csv, "%s/cap-%g.csv", dir, th);
+    if (!write_projection(csv, own_cos_deg(th - 180), own_cos_deg(th - 270), &r1, &r2))
+      break;
+    snprintf(args, sizeof args, "capacity %s --arch arches/thin.cfg -j 2" CAP_RES RAW, csv);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    snprintf(args, sizeof args, "capacity --components " H1 "," H2 " --azimuth %g --arch "
+                                "arches/thin.cfg -j 2" CAP_RES RAW, th);
+    int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
+    aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 3 &&
+                 aq_test_count_lines(out2) == 3,
+             "%g deg: 2 rows each (%d %d): %s", th, rc, rc2, err);
+    static const char *const skip[] = {"record"};
+    for (size_t r = 1; r <= 2; r++) {
+      char why[600];
+      aq_check(rows_equal(out, r, out2, r, skip, 1, why, sizeof why),
+               "%g deg row %zu: capacity on the CSV = --components: %s", th, r, why);
+    }
+    double fc = cell_d(out2, 1, "first_collapse_scale");
+    aq_check(fc > 0 && cell_d(out2, 1, "azimuth_deg") == th &&
+                 cell_d(out2, 1, "first_collapse_scale_min") == fc &&
+                 cell_d(out2, 1, "first_collapse_scale_max") == fc,
+             "%g deg: first collapse %.17g, one azimuth: its own range", th, fc);
+  }
+  aq_record_free(&r1);
+  aq_record_free(&r2);
+}
+
+/* --azimuth all:STEP: each row is the azimuth of the lowest first collapse
+ * among separate --azimuth runs, with their range (reversed polarity: its
+ * worst azimuth is not the scan's first). */
+AQ_TEST(orient_capacity_scan_is_min_of_single_runs)
+{
+  char args[1024];
+  int rc = aq_test_run("capacity --components " H1 "," H2 " --azimuth all:60 --polarity "
+                       "reversed --arch arches/thin.cfg -j 2" CAP_RES RAW,
+                       out2, sizeof out2, err, sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out2) == 2, "scan: one row (%d): %s", rc, err);
+  double lo = INFINITY, hi = -INFINITY, at = NAN;
+  for (int z = 0; z < 6; z++) {
+    snprintf(args, sizeof args, "capacity --components " H1 "," H2 " --azimuth %d --polarity "
+                                "reversed --arch arches/thin.cfg -j 2" CAP_RES RAW, 60 * z);
+    rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    double f = cell_d(out, 1, "first_collapse_scale");
+    aq_check(rc == 0 && f > 0, "%d deg: first collapse %.17g: %s", 60 * z, f, err);
+    if (f < lo) {
+      lo = f;
+      at = 60 * z;
+    }
+    hi = fmax(hi, f);
+  }
+  if (getenv("AQ_TEST_VERBOSE"))
+    fprintf(stderr, "  first collapse over 0..300 deg: %.6g (at %g deg) to %.6g\n", lo, at, hi);
+  aq_check(lo < hi, "the azimuth matters: %.17g to %.17g", lo, hi);
+  aq_check(cell_d(out2, 1, "first_collapse_scale") == lo &&
+               cell_d(out2, 1, "azimuth_deg") == at &&
+               cell_d(out2, 1, "first_collapse_scale_min") == lo &&
+               cell_d(out2, 1, "first_collapse_scale_max") == hi,
+           "worst row %.17g at %g deg = min of the runs %.17g at %g; max %.17g = %.17g",
+           cell_d(out2, 1, "first_collapse_scale"), cell_d(out2, 1, "azimuth_deg"), lo, at,
+           cell_d(out2, 1, "first_collapse_scale_max"), hi);
+}
+
+/* A constant vertical c (scaled with the motion) moves the threshold to
+ * lambda0 (g + s c): the move scale s_v = s_0 (1 + s_v c / g). */
+AQ_TEST(orient_capacity_constant_vertical)
+{
+  char dir[512], v[700], args[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(v, sizeof v, "%s/const.csv", dir);
+  double c = 1.5;
+  FILE *f = fopen(v, "w");
+  if (!aq_check(f != NULL, "write %s", v))
+    return;
+  fputs("time,acc (m/s2)\n", f);
+  for (int i = 0; i < 5346; i++)
+    fprintf(f, "%.2f,%.17g\n", 0.01 * i, c);
+  fclose(f);
+  int rc = aq_test_run("capacity --components " H1 "," H2 " --azimuth 30 --polarity normal "
+                       "--arch arches/thin.cfg" CAP_RES RAW, out, sizeof out, err, sizeof err);
+  snprintf(args, sizeof args, "capacity --components " H1 "," H2 ",%s --vertical --azimuth 30 "
+                              "--polarity normal --arch arches/thin.cfg" CAP_RES RAW, v);
+  int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
+  double s0 = cell_d(out, 1, "move_scale"), sv = cell_d(out2, 1, "move_scale");
+  aq_check(rc == 0 && rc2 == 0 && s0 > 0 && sv > s0, "move scales %.17g, %.17g: %s", s0, sv, err);
+  aq_check_rel(sv / s0, 1 + sv * c / 9.80665, 1e-13, "s_v / s_0 = %.17g, 1 + s_v c / g = %.17g",
+               sv / s0, 1 + sv * c / 9.80665);
+  rc = aq_test_run("capacity --components " H1 "," H2 " --azimuth all --all-azimuths --arch "
+                   "arches/thin.cfg", out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "--all-azimuths"), "--all-azimuths refused: %s", err);
+  rc = aq_test_run("capacity --components " H1 "," H2 " -o x.h5 --arch arches/thin.cfg", out,
+                   sizeof out, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "-o"), "-o with --components refused: %s", err);
 }

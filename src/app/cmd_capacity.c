@@ -26,13 +26,14 @@
 #include "opt.h"
 #include "opt_arch.h"
 #include "opt_dyn.h"
+#include "opt_orient.h"
 #include "opt_record.h"
 #include "opt_signal.h"
 
 #define AQ_CAP_MAX_THREADS 1024
 
 static const char usage_head[] =
-    "usage: archquake capacity RECORD... --arch FILE [--arch FILE ...] [OPTIONS]\n"
+    "usage: archquake capacity RECORD|--components H1,H2[,V]... --arch FILE [--arch FILE ...] [OPTIONS]\n"
     "For each record, arch and polarity, every scale factor at which the arch's\n"
     "verdict (collapse or not) changes, from the scale at which it first moves\n"
     "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
@@ -50,12 +51,17 @@ static const char usage_head[] =
     "                      1e-12 to R)\n"
     "  -j, --jobs N        worker threads (default: the number of cores)\n"
     AQ_OPT_DYN_USAGE
+    "Orientation (--azimuth all: each row is the worst azimuth, lowest\n"
+    "first_collapse_scale, no collapse last; -o and --fragility take plain\n"
+    "RECORDs only):\n" AQ_OPT_ORIENT_USAGE
     "  --help              this text\n"
     "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
 static const char usage_tail[] =
     "Columns: record arch polarity status move_scale first_collapse_scale\n"
     "  first_collapse_pga_g first_collapse_pgv_m_s collapse_intervals\n"
-    "  resurrection runs scale_max  (status: ok, never_moves, read:CODE,\n"
+    "  resurrection runs scale_max, with --components also azimuth_deg\n"
+    "  first_collapse_scale_min first_collapse_scale_max (the range over the\n"
+    "  azimuths where it collapses)  (status: ok, never_moves, read:CODE,\n"
     "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
     "  collapse holds at the cap)\n"
     "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
@@ -64,46 +70,30 @@ static const char usage_tail[] =
 enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
        OPT_HELP };
 
-/* A record as read and processed (or the stage where it failed). */
+/* A subject (record or ground motion) as read, processed and projected (or
+ * the stage where it failed). */
 typedef struct {
-  aq_record rec;
-  aq_processed proc;
-  aq_im im;
-  double *neg; /* the processed record negated (reversed polarity), or NULL */
+  aq_capacity_input in;
   char status[48];
-  int ok, have_rec, have_proc;
+  int ok;
 } rec_item;
 
-static void prepare(const char *path, const aq_read_opts *ro, const aq_signal_opts *po,
-                    aq_signal_ws *ws, int pol, rec_item *r)
+static void prepare(const char *const path[3], const double phi_deg[2],
+                    const aq_orient_opts *or, const aq_read_opts *ro,
+                    const aq_signal_opts *po, aq_signal_ws *ws, int pol, rec_item *r)
 {
   aq_error e;
   aq_error_clear(&e);
-  const char *stage = "read";
-  aq_status s = aq_record_read(path, ro, &r->rec, &e);
-  if (s == AQ_OK) {
-    r->have_rec = 1;
-    stage = "process";
-    aq_signal_opts o = *po;
-    o.scale = 1.0;
-    s = aq_signal_process(&r->rec, &o, ws, &r->proc, &e);
-  }
-  if (s == AQ_OK) {
-    r->have_proc = 1;
-    s = aq_im_compute(&r->proc, &r->im, &e);
-  }
-  if (s == AQ_OK && pol != AQ_POLARITY_NORMAL) {
-    r->neg = malloc((r->proc.n ? r->proc.n : 1) * sizeof *r->neg);
-    if (!r->neg)
-      s = aq_error_set(&e, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-    else /* reversed polarity: the processed record's accelerations negated once */
-      for (size_t i = 0; i < r->proc.n; i++)
-        r->neg[i] = -r->proc.acc_mps2[i];
-  }
-  aq_summary_status(r->status, sizeof r->status, stage, s);
+  aq_status s = aq_capacity_input_prepare(&r->in, path, or->vertical, phi_deg, ro, po, ws,
+                                          or->azimuths_deg, or->nazimuth,
+                                          pol != AQ_POLARITY_NORMAL, &e);
+  aq_summary_status(r->status, sizeof r->status, r->in.stage ? r->in.stage : "read", s);
   r->ok = s == AQ_OK;
   if (!r->ok)
     aq_error_print(&e, stderr);
+  else if (path[1] && path[2] && !or->vertical)
+    fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
+            path[2]);
 }
 
 /* The status cell of pair c of record r. */
@@ -126,7 +116,7 @@ static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
   if (!im)
     return -1;
   for (size_t r = 0; r < nrec; r++)
-    im[r] = R[r].ok ? &R[r].im : NULL;
+    im[r] = R[r].ok ? &R[r].in.im[0] : NULL;
   int rc = 0;
   for (size_t a = 0; a < na && rc == 0; a++) {
     aq_error e;
@@ -149,9 +139,11 @@ typedef struct {
   aq_fragility_row *fit;
 } rows;
 
+/* Row i of (subject, arch, polarity) is the worst of its nz azimuths'
+ * results C[i * nz ...] (nz = 1 without --azimuth all). */
 static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t na,
                      const rec_item *R, const int *pols, size_t npol, const aq_capacity *C,
-                     const aq_fragility *fits)
+                     size_t nz, const aq_orient_opts *or, const aq_fragility *fits)
 {
   size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
   o->row = malloc((n ? n : 1) * sizeof *o->row);
@@ -160,14 +152,19 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
   if (!o->row || !o->status || !o->fit)
     return -1;
   for (size_t i = 0; i < n; i++) {
-    size_t r = i / (na * npol);
-    pair_status(&R[r], &C[i], o->status[i], sizeof o->status[i]);
-    int have = R[r].ok && C[i].status != AQ_CAPACITY_FAILED;
+    size_t r = i / (na * npol), w = 0;
+    double lo = NAN, hi = NAN;
+    if (R[r].ok)
+      w = aq_capacity_worst(C + i * nz, R[r].in.naz, &lo, &hi);
+    const aq_capacity *cw = &C[i * nz + w];
+    const aq_im *im = R[r].ok ? &R[r].in.im[w] : NULL;
+    pair_status(&R[r], cw, o->status[i], sizeof o->status[i]);
+    int have = R[r].ok && cw->status != AQ_CAPACITY_FAILED;
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
                                   aq_opt_polarity_names[pols[i % npol]], o->status[i],
-                                  have ? &C[i] : NULL, R[r].ok ? R[r].im.pga_g : NAN,
-                                  R[r].ok ? R[r].im.pgv_mps : NAN,
-                                  R[r].ok ? &R[r].im : NULL};
+                                  have ? cw : NULL, im ? im->pga_g : NAN,
+                                  im ? im->pgv_mps : NAN, im, or->nmotions > 0,
+                                  R[r].in.motion ? or->azimuths_deg[w] : NAN, lo, hi};
   }
   for (size_t i = 0; i < nf; i++)
     o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
@@ -225,9 +222,9 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   }
   for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
     aq_h5_record hr = {.source_file = recs[r],
-                       .rec = R[r].have_rec ? &R[r].rec : NULL,
-                       .proc = R[r].have_proc ? &R[r].proc : NULL,
-                       .im = R[r].ok ? &R[r].im : NULL,
+                       .rec = R[r].in.have_rec[0] ? &R[r].in.rec[0] : NULL,
+                       .proc = R[r].in.have_proc[0] ? &R[r].in.proc[0] : NULL,
+                       .im = R[r].ok ? &R[r].in.im[0] : NULL,
                        .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
@@ -288,12 +285,15 @@ int aq_cmd_capacity(int argc, char **argv)
       {"tol", required_argument, NULL, OPT_TOL},
       {"jobs", required_argument, NULL, 'j'},
       AQ_OPT_DYN_LONGOPTS,
+      AQ_OPT_ORIENT_LONGOPTS,
       {"help", no_argument, NULL, OPT_HELP}};
   size_t nl = 0; /* the entries above (the rest of the table is zero) */
   while (lo[nl].name)
     nl++;
   nl = aq_opt_signal_append(lo, nl);
   lo[nl] = (struct option){NULL, 0, NULL, 0};
+  aq_orient_opts orient;
+  aq_opt_orient_init(&orient);
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
   aq_signal_opts po;
@@ -314,7 +314,8 @@ int aq_cmd_capacity(int argc, char **argv)
   while ((c = getopt_long(argc, argv, ":o:j:", lo, NULL)) != -1) {
     if (aq_opt_signal_handle(c, optarg, &po, &merge_tol_g, &nerr) ||
         aq_opt_record_handle(c, optarg, &ro, &nerr) ||
-        aq_opt_dyn_handle(c, optarg, &dyn, &nerr))
+        aq_opt_dyn_handle(c, optarg, &dyn, &nerr) ||
+        aq_opt_orient_handle(c, optarg, &orient, &nerr))
       continue;
     switch (c) {
     case OPT_ARCH: arch_paths[na++] = aq_opt_arch(optarg, &nerr); break;
@@ -334,11 +335,26 @@ int aq_cmd_capacity(int argc, char **argv)
       fputs(aq_opt_signal_usage, stdout);
       fputs(usage_tail, stdout);
       free(arch_paths);
+      aq_opt_orient_free(&orient);
       return AQ_EXIT_OK;
     default: aq_opt_unknown("capacity", argv, optind, optopt, &nerr);
     }
   }
   aq_opt_signal_check(&po, &nerr);
+  aq_opt_orient_check(&orient, &nerr);
+  if (orient.all_azimuths) {
+    fprintf(stderr, "archquake: --all-azimuths: expected without capacity (its rows are "
+                    "the worst azimuth with the range over the azimuths; --azimuth DEG "
+                    "gives one azimuth's)\n");
+    nerr++;
+  }
+  for (int i = 0; i < 2 && orient.nmotions; i++)
+    if (i ? frag != NULL : h5 != NULL) {
+      fprintf(stderr, "archquake: %s: expected plain RECORDs only, got --components (the "
+                      "results file and fragility fits of ground motions are not "
+                      "implemented)\n", i ? "--fragility" : "-o");
+      nerr++;
+    }
   aq_error se;
   if (aq_scan_check(&so, &se) != AQ_OK && strcmp(se.field, "tol") == 0) {
     fprintf(stderr, "archquake: --tol: expected %g to --resolution (%g), got %g\n",
@@ -346,8 +362,8 @@ int aq_cmd_capacity(int argc, char **argv)
     nerr++;
   }
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
-  if (optind >= argc) {
-    fprintf(stderr, "archquake: capacity: expected at least one RECORD\n");
+  if (optind >= argc && orient.nmotions == 0) {
+    fprintf(stderr, "archquake: capacity: expected at least one RECORD or --components\n");
     nerr++;
   }
   aq_opt_require("capacity", "--arch FILE", na > 0, &nerr);
@@ -367,19 +383,40 @@ int aq_cmd_capacity(int argc, char **argv)
       nerr += aq_opt_output_is_input(i == 0 ? "-o" : i == 1 ? "--text" : "--fragility",
                                      outs[i], argv + optind, (size_t)(argc - optind),
                                      arch_paths, na);
-  if (nerr) {
-    free(arch_paths);
-    return AQ_EXIT_USAGE;
+  char **recs = NULL;
+  const char *(*paths)[3] = NULL;
+  double(*phi)[2] = NULL;
+  size_t nplain = (size_t)(argc - optind), nrec = nplain + orient.nmotions;
+  if (!nerr) { /* subjects: each RECORD, then each motion */
+    recs = calloc(nrec ? nrec : 1, sizeof *recs);
+    paths = calloc(nrec ? nrec : 1, sizeof *paths);
+    phi = calloc(nrec ? nrec : 1, sizeof *phi);
+    if (!recs || !paths || !phi) {
+      fprintf(stderr, "archquake: out of memory\n");
+      nerr++;
+    }
+    for (size_t i = 0; !nerr && i < nrec; i++) {
+      const aq_orient_motion *m = i < nplain ? NULL : &orient.motions[i - nplain];
+      recs[i] = m ? m->label : argv[optind + (int)i];
+      paths[i][0] = m ? m->path[0] : recs[i];
+      paths[i][1] = m ? m->path[1] : NULL;
+      paths[i][2] = m ? m->path[2] : NULL;
+      phi[i][0] = m ? m->azimuth_deg[0] : NAN;
+      phi[i][1] = m ? m->azimuth_deg[1] : NAN;
+    }
   }
-  if (aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
-      aq_opt_output_special("--fragility", frag)) {
+  if (nerr || aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
+                  aq_opt_output_special("--fragility", frag)) {
     free(arch_paths);
-    return AQ_EXIT_OUTPUT;
+    free(recs);
+    free(paths);
+    free(phi);
+    aq_opt_orient_free(&orient);
+    return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
 
   int rc = AQ_EXIT_OK;
-  char **recs = argv + optind;
-  size_t nrec = (size_t)(argc - optind);
+  size_t nz = orient.nmotions ? orient.nazimuth : 1; /* result slots per row */
   aq_arch **arches = calloc(na, sizeof *arches);
   int pols[2];
   size_t npol = 0;
@@ -388,7 +425,7 @@ int aq_cmd_capacity(int argc, char **argv)
   if (pol != AQ_POLARITY_NORMAL)
     pols[npol++] = AQ_POLARITY_REVERSED;
   rec_item *R = calloc(nrec, sizeof *R);
-  size_t njob = nrec * na * npol;
+  size_t nrow = nrec * na * npol, njob = nrow * nz;
   aq_capacity_job *jobs = calloc(njob ? njob : 1, sizeof *jobs);
   aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
   aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
@@ -410,7 +447,7 @@ int aq_cmd_capacity(int argc, char **argv)
   if (rc != AQ_EXIT_OK)
     goto done;
   for (size_t r = 0; r < nrec; r++) {
-    prepare(recs[r], &ro, &po, ws, pol, &R[r]);
+    prepare(paths[r], phi[r], &orient, &ro, &po, ws, pol, &R[r]);
     if (!R[r].ok)
       rc = AQ_EXIT_FAIL;
   }
@@ -421,14 +458,16 @@ int aq_cmd_capacity(int argc, char **argv)
     goto done;
   }
   for (size_t i = 0; i < njob; i++) {
-    size_t r = i / (na * npol), a = i / npol % na, p = i % npol;
-    if (!R[r].ok)
+    size_t j = i / nz, z = i % nz, r = j / (na * npol), a = j / npol % na, p = j % npol;
+    if (!R[r].ok || z >= R[r].in.naz)
       continue;
-    jobs[nrun] = (aq_capacity_job){&R[r].proc,
-                                 pols[p] == AQ_POLARITY_REVERSED ? R[r].neg
-                                                                 : R[r].proc.acc_mps2,
+    const aq_capacity_input *in = &R[r].in;
+    size_t m = aq_capacity_input_n(in) ? aq_capacity_input_n(in) : 1;
+    jobs[nrun] = (aq_capacity_job){&in->proc[0],
+                                 (pols[p] == AQ_POLARITY_REVERSED ? in->neg : in->acc) + z * m,
                                  arches[a], dyn.model, dyn.cor,
-                                 merge_tol_g * AQ_G0_MPS2, smax, so};
+                                 merge_tol_g * AQ_G0_MPS2, smax, so,
+                                 in->run_v ? in->proc[2].acc_mps2 : NULL};
     slot[nrun++] = i;
   }
   aq_capacity *tmpC = calloc(nrun ? nrun : 1, sizeof *tmpC);
@@ -443,15 +482,19 @@ int aq_cmd_capacity(int argc, char **argv)
     C[slot[k]] = tmpC[k];
   free(tmpC);
   free(slot);
-  for (size_t i = 0; i < njob; i++)
-    if (R[i / (na * npol)].ok && C[i].status == AQ_CAPACITY_FAILED) {
-      char msg[1200];
+  for (size_t i = 0; i < njob; i++) {
+    size_t j = i / nz, r = j / (na * npol);
+    if (R[r].ok && i % nz < R[r].in.naz && C[i].status == AQ_CAPACITY_FAILED) {
+      char msg[1200], az[64] = "";
       aq_error_format(&C[i].err, msg, sizeof msg);
-      fprintf(stderr, "archquake: %s: arch %s, polarity %s: %s\n", recs[i / (na * npol)],
-              aq_arch_name(arches[i / npol % na]),
-              aq_opt_polarity_names[pols[i % npol]], msg);
+      if (R[r].in.motion)
+        snprintf(az, sizeof az, ", azimuth %g deg", orient.azimuths_deg[i % nz]);
+      fprintf(stderr, "archquake: %s: arch %s, polarity %s%s: %s\n", recs[r],
+              aq_arch_name(arches[j / npol % na]), aq_opt_polarity_names[pols[j % npol]],
+              az, msg);
       rc = AQ_EXIT_FAIL;
     }
+  }
 
   /* outputs: every temporary is complete before any is renamed */
   aq_cleanup_install();
@@ -463,16 +506,16 @@ int aq_cmd_capacity(int argc, char **argv)
   rows o = {NULL, NULL, NULL};
   if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0)
     ok = 0;
-  if (ok && make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, fits) != 0) {
+  if (ok && make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, nz, &orient, fits) != 0) {
     fprintf(stderr, "archquake: out of memory\n");
     ok = 0;
   }
-  if (ok && aq_text_capacity(ft, o.row, njob) != 0)
+  if (ok && aq_text_capacity(ft, o.row, nrow) != 0)
     ok = 0;
   if (ok && ff && aq_text_fragility(ff, o.fit, na * AQ_FRAGILITY_NIM) != 0)
     ok = 0;
   if (ok && h5 &&
-      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, njob, &so, &po,
+      write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, nrow, &so, &po,
                merge_tol_g, &dyn, threads, pol) != 0)
     ok = 0;
   rows_free(&o);
@@ -487,13 +530,8 @@ int aq_cmd_capacity(int argc, char **argv)
 done:
   for (size_t i = 0; i < njob && C; i++)
     aq_capacity_free(&C[i]);
-  for (size_t r = 0; r < nrec && R; r++) {
-    if (R[r].have_rec)
-      aq_record_free(&R[r].rec);
-    if (R[r].have_proc)
-      aq_processed_free(&R[r].proc);
-    free(R[r].neg);
-  }
+  for (size_t r = 0; r < nrec && R; r++)
+    aq_capacity_input_free(&R[r].in);
   for (size_t a = 0; a < na && arches; a++)
     aq_arch_free(arches[a]);
   aq_signal_ws_free(ws);
@@ -503,5 +541,9 @@ done:
   free(C);
   free(fits);
   free(arch_paths);
+  free(recs);
+  free(paths);
+  free(phi);
+  aq_opt_orient_free(&orient);
   return rc;
 }

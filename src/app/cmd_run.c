@@ -360,10 +360,12 @@ int aq_cmd_run(int argc, char **argv)
     cfg.scales = scales ? scales : &one;
     cfg.nscale = scales ? nscale : 1;
   }
-  cfg.progress = !quiet && isatty(STDERR_FILENO);
+  cfg.progress = !quiet && isatty(STDERR_FILENO) && !aq_suite_is_remote();
 
   aq_cleanup_install();
-  if (cfg.resume) { /* what a killed run could not remove */
+  if (aq_suite_is_follower()) /* archquake-mpi: rank 0 alone writes */
+    text_path = NULL;
+  if (cfg.resume && !aq_suite_is_follower()) { /* what a killed run could not remove */
     aq_cleanup_stale(cfg.h5_path);
     if (text_path)
       aq_cleanup_stale(text_path);
@@ -405,7 +407,8 @@ int aq_cmd_run(int argc, char **argv)
     tslot = aq_cleanup_add(tmp);
   }
   cfg.text = tf ? tf : stdout;
-  cfg.aligned = !tf && isatty(STDOUT_FILENO); /* TSV for files and pipes */
+  /* TSV for files and pipes */
+  cfg.aligned = !tf && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
   int rc = aq_suite_run(&cfg, NULL);
 

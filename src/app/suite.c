@@ -834,6 +834,101 @@ static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
   return st;
 }
 
+/* ---- other processes (aq_suite_remote) ---------------------------------- */
+
+static const aq_suite_remote *remote;
+
+void aq_suite_set_remote(const aq_suite_remote *r)
+{
+  remote = r;
+}
+
+int aq_suite_is_follower(void)
+{
+  return remote && remote->follower;
+}
+
+int aq_suite_is_remote(void)
+{
+  return remote != NULL;
+}
+
+/* Follower: run each record the leader hands out (every arch, scale and
+ * polarity of it, here) and send it back encoded.  Returns the exit status. */
+static int follow(suite *S)
+{
+  const aq_suite_cfg *c = S->cfg;
+  aq_stepper **st = calloc(c->narches ? c->narches : 1, sizeof *st);
+  if (!st)
+    return AQ_EXIT_FAIL;
+  for (size_t a = 0; a < c->narches; a++)
+    if (S->arch_ok[a]) {
+      aq_error e;
+      st[a] = make_stepper(S, a, &e);
+    }
+  int rc = AQ_EXIT_OK;
+  size_t i;
+  while (rc == AQ_EXIT_OK && remote->next(remote->ctx, &i) == 0) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    r.index = i;
+    if (i >= c->nrecords) {
+      snprintf(r.status, sizeof r.status, "lost"); /* not this suite's: the leader refuses it */
+    } else {
+      if (prepare_record(S, &r))
+        for (size_t k = 0; k < r.nruns; k++)
+          run_one(S, &r, k, st);
+    }
+    aq_jbuf jb = {0};
+    aq_suite_slot_encode(&r, r.nruns, &jb);
+    slot_clear(S, &r);
+    if (jb.oom || remote->send(remote->ctx, jb.data, jb.n) != 0)
+      rc = AQ_EXIT_FAIL;
+    free(jb.data);
+  }
+  for (size_t a = 0; a < c->narches; a++)
+    aq_stepper_free(st[a]);
+  free(st);
+  return rc;
+}
+
+/* Leader: write records done..nrecords as followers return them, in order,
+ * and journal each payload as it came.  Returns AQ_OK or the failure. */
+static aq_status lead(suite *S, aq_h5_writer *h5, aq_journal *J, size_t done,
+                      aq_suite_stats *stats, aq_error *err)
+{
+  const aq_suite_cfg *c = S->cfg;
+  for (size_t i = done; i < c->nrecords; i++) {
+    aq_journal_entry e = {NULL, 0};
+    if (remote->fetch(remote->ctx, i, c->nrecords, &e.data, &e.n, err) != 0)
+      return AQ_EIO;
+    rec_slot r;
+    aq_status ws = AQ_OK;
+    memset(&r, 0, sizeof r);
+    slot_orient(S, i, &r);
+    int bad = aq_suite_slot_decode(&e, r.nruns, &r) != 0 || r.index != i;
+    slot_orient(S, i, &r); /* decoding cleared it */
+    if (bad)
+      ws = aq_error_set(err, AQ_EFORMAT, c->records[i], -1, -1, NULL,
+                        "expected the results of record %zu from a follower, got a "
+                        "malformed message of %zu bytes", i, e.n);
+    if (ws == AQ_OK) {
+      S->read_s += r.read_s;
+      S->process_s += r.process_s;
+      for (size_t k = 0; r.runs && k < r.nruns; k++)
+        S->run_s += r.runs[k].run_s;
+      ws = write_record(S, &r, h5, stats, err);
+    }
+    if (ws == AQ_OK && J)
+      ws = aq_journal_append(J, e.data, e.n, err);
+    slot_clear(S, &r);
+    free(e.data);
+    if (ws != AQ_OK)
+      return ws;
+  }
+  return AQ_OK;
+}
+
 static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
@@ -916,6 +1011,12 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     aq_stepper_free(st);
   }
 
+  if (remote && remote->follower) {
+    int frc = follow(&S);
+    rc = frc != AQ_EXIT_OK ? frc : rc;
+    goto out;
+  }
+
   /* Output before any record is read: an unwritable target fails now. */
   aq_h5_writer *h5 = NULL;
   int h5_slot = -1;
@@ -964,6 +1065,13 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   for (size_t i = 0; i < done; i++)
     S.runs_done += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
   stats.write_s += now_s() - tw;
+
+  if (remote && remote->fetch) {
+    ws = lead(&S, h5, J, done, &stats, &oerr);
+    if (ws != AQ_OK)
+      goto output_failed;
+    goto written;
+  }
 
   /* Workers, each with its own steppers. */
   pthread_mutex_init(&S.lock, NULL);
@@ -1063,6 +1171,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     goto out;
   }
 
+written:
   stats.read_s = S.read_s;
   stats.process_s = S.process_s;
   stats.run_s = S.run_s;
@@ -1119,6 +1228,12 @@ out:
 /* Every channel of a multi-channel file is a record of its own (FILE#CH). */
 int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
 {
+  if (remote && (remote->fetch || remote->follower) && (cfg->history || cfg->store_records)) {
+    fprintf(stderr, "archquake: %s: expected one rank (mpirun -n 1) with it, got several: "
+                    "results travel between ranks without histories or waveforms\n",
+            cfg->history ? "--history" : "--store-records");
+    return AQ_EXIT_USAGE;
+  }
   char **names = NULL;
   size_t n = 0;
   aq_error err;

@@ -32,6 +32,7 @@
 #include <stdio.h>
 
 #include "../arch/stepper.h"
+#include "../error.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "opt_orient.h"
@@ -76,6 +77,32 @@ typedef struct {
   size_t records_failed; /* records that could not be read or processed */
   double wall_s, read_s, process_s, run_s, write_s;
 } aq_suite_stats;
+
+/* Running records in other processes (src/app/mpi.c, archquake-mpi): a
+ * leader writes what followers computed, in record order, exactly as it
+ * would write its own; messages are journal payloads (suite_slot.h).
+ * Callbacks return 0, or -1 with err filled (leader) when the exchange
+ * failed. */
+typedef struct aq_suite_remote {
+  void *ctx;
+  int follower; /* 1: run records the leader hands out; write nothing */
+  /* leader: NULL to run the records here; else the payload of record i (records start..nrecords are asked
+   * for in order; blocks until it arrives); *data malloc'd */
+  int (*fetch)(void *ctx, size_t i, size_t nrecords, unsigned char **data, size_t *n,
+               aq_error *err);
+  /* follower: the next record to run into *i; 1 when none is left */
+  int (*next)(void *ctx, size_t *i);
+  /* follower: send a finished record's payload */
+  int (*send)(void *ctx, const void *data, size_t n);
+} aq_suite_remote;
+
+/* Every later aq_suite_run leads or follows through r (NULL: runs here). */
+void aq_suite_set_remote(const aq_suite_remote *r);
+/* 1 if this process is a follower (it must create no output). */
+int aq_suite_is_follower(void);
+/* 1 under archquake-mpi (any rank): mpirun's pseudo-terminals are not the
+ * user's, so output is TSV and there is no progress line. */
+int aq_suite_is_remote(void);
 
 /* Run the suite; returns the exit status (app.h): 0 all ran, 1 some record
  * or run failed (each reported on stderr), 2 an arch could not be loaded

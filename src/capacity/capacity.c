@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../signal/steps.h"
 #include "../units.h"
 #include "capacity.h"
 
@@ -21,6 +22,12 @@ void aq_capacity_free(aq_capacity *c)
 double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
                               size_t n, double *lambda0)
 {
+  return aq_capacity_move_scale_v(arch, acc_mps2, NULL, n, lambda0);
+}
+
+double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
+                                const double *av_mps2, size_t n, double *lambda0)
+{
   double best = INFINITY, l0 = INFINITY;
   for (int k = 0; k < 2; k++) {
     const aq_path *p = aq_arch_path(arch, k);
@@ -28,9 +35,10 @@ double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
       continue;
     l0 = fmin(l0, p->lambda0);
     double drive = 0; /* max of act_sign a over the samples, m/s^2 */
-    for (size_t i = 0; i < n; i++)
-      drive = fmax(drive, p->act_sign * acc_mps2[i]);
-    if (drive > 0) /* motion needs act_sign a > lambda0 g (stepper.c) */
+    for (size_t i = 0; i < n; i++) /* s act_sign a > lambda0 (g + s a_v) */
+      drive = fmax(drive, p->act_sign * acc_mps2[i] -
+                              (av_mps2 ? p->lambda0 * av_mps2[i] : 0.0));
+    if (drive > 0) /* motion needs act_sign a > lambda0 (g + a_v) (stepper.c) */
       best = fmin(best, p->lambda0 * p->g_mps2 / drive);
   }
   if (lambda0)
@@ -50,12 +58,19 @@ static aq_status run_at(void *vctx, double scale, int *collapsed, aq_error *err)
 {
   run_ctx *c = vctx;
   const aq_processed *p = c->job->proc;
-  for (size_t i = 0; i < p->n; i++)
-    c->buf[i] = scale * c->job->acc_mps2[i];
   aq_steps steps;
-  aq_status s = aq_steps_from_samples(c->buf, p->n, p->dt_s,
-                                      -(double)p->pad_front * p->dt_s,
-                                      c->job->merge_tol_mps2, &steps, err);
+  aq_status s;
+  if (c->job->av_mps2) { /* the vertical scales with the motion */
+    double peak;
+    s = aq_steps_project_v(c->job->acc_mps2, 1.0, NULL, 0.0, scale, c->job->av_mps2,
+                           scale, p->n, p->dt_s, -(double)p->pad_front * p->dt_s,
+                           c->job->merge_tol_mps2, &steps, &peak, err);
+  } else {
+    for (size_t i = 0; i < p->n; i++)
+      c->buf[i] = scale * c->job->acc_mps2[i];
+    s = aq_steps_from_samples(c->buf, p->n, p->dt_s, -(double)p->pad_front * p->dt_s,
+                              c->job->merge_tol_mps2, &steps, err);
+  }
   if (s != AQ_OK)
     return s;
   aq_result res;
@@ -77,8 +92,8 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
   memset(out, 0, sizeof *out);
   out->first_collapse_scale = NAN;
   const aq_processed *p = job->proc;
-  out->move_scale = aq_capacity_move_scale(job->arch, job->acc_mps2, p->n,
-                                           &out->lambda0);
+  out->move_scale = aq_capacity_move_scale_v(job->arch, job->acc_mps2, job->av_mps2,
+                                             p->n, &out->lambda0);
   double amax = 0; /* PGA, m/s^2 */
   for (size_t i = 0; i < p->n; i++)
     amax = fmax(amax, fabs(job->acc_mps2[i]));
@@ -120,6 +135,28 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
     out->resurrection = r->ninterval > 1 || isfinite(r->interval[0].hi);
   }
   return AQ_OK;
+}
+
+size_t aq_capacity_worst(const aq_capacity *c, size_t n, double *fcs_min,
+                         double *fcs_max)
+{
+  size_t w = 0;
+  double lo = NAN, hi = NAN;
+  for (size_t z = 0; z < n; z++) {
+    double f = c[z].first_collapse_scale;
+    if (c[z].status != AQ_CAPACITY_FAILED && !isnan(f)) {
+      lo = isnan(lo) ? f : fmin(lo, f);
+      hi = isnan(hi) ? f : fmax(hi, f);
+    }
+    if (c[w].status == AQ_CAPACITY_FAILED)
+      continue;
+    if (c[z].status == AQ_CAPACITY_FAILED ||
+        (!isnan(f) && (isnan(c[w].first_collapse_scale) || f < c[w].first_collapse_scale)))
+      w = z;
+  }
+  *fcs_min = lo;
+  *fcs_max = hi;
+  return w;
 }
 
 /* ---- the pool ------------------------------------------------------------ */

@@ -28,7 +28,10 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
     return -1;
   fputs("record\tarch\tpolarity\tstatus\tmove_scale\tfirst_collapse_scale\t"
         "first_collapse_pga_g\tfirst_collapse_pgv_m_s\tcollapse_intervals\t"
-        "resurrection\truns\tscale_max\n", f);
+        "resurrection\truns\tscale_max", f);
+  int ori = n && rows[0].oriented;
+  fputs(ori ? "\tazimuth_deg\tfirst_collapse_scale_min\tfirst_collapse_scale_max\n"
+            : "\n", f);
   for (size_t i = 0; i < n; i++) {
     const aq_capacity_row *r = &rows[i];
     const aq_capacity *c = r->cap;
@@ -43,9 +46,17 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
       aq_text_capacity_intervals(&c->scan, iv, cap);
     else
       snprintf(iv, cap, "-");
-    fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s\n", r->record, r->arch,
+    fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s", r->record, r->arch,
             r->polarity, r->status, v[0], v[1], v[2], v[3], iv, c ? c->resurrection : 0,
             c ? c->scan.runs : 0, v[4]);
+    if (ori) {
+      char w[3][40];
+      aq_text_double(w[0], sizeof w[0], r->azimuth_deg);
+      aq_text_double(w[1], sizeof w[1], r->fcs_min);
+      aq_text_double(w[2], sizeof w[2], r->fcs_max);
+      fprintf(f, "\t%s\t%s\t%s", w[0], w[1], w[2]);
+    }
+    fputc('\n', f);
   }
   free(iv);
   return ferror(f) ? -1 : 0;

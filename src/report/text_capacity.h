@@ -19,6 +19,9 @@ typedef struct {
   double pga_g, pgv_mps; /* the record's PGA (g) and PGV (m/s) at scale 1 */
   const aq_im *im;       /* its measures at scale 1 (NULL: unread) for the
                             fragility IMs of first collapse and cap */
+  int oriented;          /* 1: three more columns (the same for every row) */
+  double azimuth_deg;    /* the arch azimuth of the row (NAN: a plain record) */
+  double fcs_min, fcs_max; /* first_collapse_scale's range over the azimuths */
 } aq_capacity_row;
 
 /* One fit of one arch and intensity measure. */
@@ -27,6 +30,8 @@ typedef struct {
   const aq_fragility *fit;
 } aq_fragility_row;
 
+/* With rows[0].oriented the columns azimuth_deg, first_collapse_scale_min
+ * and first_collapse_scale_max follow scale_max. */
 int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n);
 int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n);
 

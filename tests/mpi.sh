@@ -1,0 +1,139 @@
+#!/bin/sh
+# tests/mpi.sh: archquake-mpi against archquake -j 1 (make check-mpi).
+#
+# The reference is the serial program on the same arguments: every rank
+# count must give the same TSV bytes and a results file that `archquake
+# compare` finds equal.  Then a follower is killed mid-run: the job must
+# end (no hang) with a non-zero status and no results file, and --resume
+# must finish it with the reference's outputs.  Last line: "N passed, N
+# failed", like the runner's.  AQ_TEST_VERBOSE=1 prints the measured values.
+set -u
+BIN=${AQ_BIN:-./archquake}
+MPIBIN=${AQ_MPI_BIN:-./archquake-mpi}
+MPIRUN="mpirun --oversubscribe --allow-run-as-root"
+# a run that takes longer than this has hung (the suites below take seconds)
+HANG_S=120
+R=tests/data/records
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); [ -n "${AQ_TEST_VERBOSE:-}" ] && echo "ok: $1"; return 0; }
+bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
+check() { if [ "$1" = "$2" ]; then ok "$3 ($1)"; else bad "$3: expected $2, got $1"; fi; }
+
+if [ ! -x "$MPIBIN" ]; then
+  echo "note: $MPIBIN not built (make mpi): MPI tests skipped"
+  echo "0 passed, 0 failed"
+  exit 0
+fi
+
+# Six records of different lengths, one that cannot be read (a text file),
+# two arches, two factors, both polarities: 48 rows.
+RECS="$R/ARL360.at2 $R/CHY028-N.AT2 $R/PROVENANCE.md $R/IELC180.AT2 $R/TCU052-N.AT2
+      $R/RSN1616_DUZCE_362-E.AT2 $R/RSN4013_SANSIMEO_36258021.AT2"
+ARGS="--arch arches/oppenheim.cfg --arch arches/thin.cfg --scale 0.5,1 --polarity both"
+# shellcheck disable=SC2086
+"$BIN" -j 1 $RECS $ARGS -o "$T/ref.h5" >"$T/ref.tsv" 2>"$T/ref.err"
+check $? 1 "archquake -j 1 exit status with an unreadable record"
+check "$(wc -l <"$T/ref.tsv" | tr -d ' ')" 57 "reference rows + header (7 records x 8 runs)"
+
+for n in 1 2 3; do
+  # shellcheck disable=SC2086
+  $MPIRUN -n $n "$MPIBIN" $RECS $ARGS -o "$T/m$n.h5" >"$T/m$n.tsv" 2>"$T/m$n.err"
+  check $? 1 "N=$n exit status (the unreadable record fails, the others go on)"
+  if cmp -s "$T/ref.tsv" "$T/m$n.tsv"; then ok "N=$n TSV byte-identical"; else
+    bad "N=$n TSV differs from archquake -j 1's: $(cmp "$T/ref.tsv" "$T/m$n.tsv" 2>&1)"; fi
+  "$BIN" compare "$T/ref.h5" "$T/m$n.h5" >"$T/c$n.out" 2>&1
+  check $? 0 "N=$n compare with archquake -j 1's results file"
+  check "$(grep -c 'PROVENANCE.md' "$T/m$n.err")" 1 "N=$n the unreadable record reported once"
+done
+
+# A two-component motion run at every 30th azimuth, between plain records.
+OARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL337.AT2
+       $R/IELC180.AT2 --azimuth all:30 --arch arches/oppenheim.cfg --scale 1,2"
+# shellcheck disable=SC2086
+"$BIN" -j 1 $OARGS -o "$T/oref.h5" >"$T/oref.tsv" 2>/dev/null
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
+check $? 0 "motion, N=3: exit status"
+if cmp -s "$T/oref.tsv" "$T/o3.tsv"; then ok "motion, N=3: TSV byte-identical"; else
+  bad "motion, N=3: TSV differs from archquake -j 1's"; fi
+"$BIN" compare "$T/oref.h5" "$T/o3.h5" >/dev/null 2>&1
+check $? 0 "motion, N=3: compare with archquake -j 1's results file"
+
+# What cannot travel between ranks is refused before anything runs.
+# shellcheck disable=SC2086
+$MPIRUN -n 2 "$MPIBIN" $R/ARL360.at2 --arch arches/oppenheim.cfg --history -o "$T/hist.h5" \
+  >/dev/null 2>"$T/hist.err"
+check $? 2 "--history at N=2: a usage error"
+check "$(grep -c 'expected one rank' "$T/hist.err")" 1 "--history at N=2: one line saying why"
+check "$(ls "$T" | grep -c '^hist')" 1 "--history at N=2: no results file (only its stderr)"
+
+# A follower killed mid-run: 280 records (copies: a suite runs each file
+# once), rank 1 killed once some are done.
+mkdir "$T/recs"
+i=0
+LONG=""
+while [ $i -lt 40 ]; do
+  for f in ARL360.at2 CHY028-N.AT2 IELC180.AT2 TCU052-N.AT2 RSN1616_DUZCE_362-E.AT2 \
+           RSN4013_SANSIMEO_36258021.AT2 RSN763_LOMAP_GIL067.AT2; do
+    cp "$R/$f" "$T/recs/$i-$f"
+    LONG="$LONG $T/recs/$i-$f"
+  done
+  i=$((i + 1))
+done
+KARGS="--arch arches/oppenheim.cfg --scale 1,3 --model ode"
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" $LONG $KARGS -o "$T/k.h5" --text "$T/k.tsv" 2>"$T/k.err" &
+mp=$!
+# kill once the journal holds a record beyond its identity entry
+j0=0
+waited=0
+while kill -0 $mp 2>/dev/null && [ $waited -lt $((HANG_S * 20)) ]; do
+  j=$(stat -c %s "$T/k.h5.journal" 2>/dev/null || echo 0)
+  if [ "$j0" -eq 0 ]; then j0=$j; elif [ "$j" -gt "$j0" ]; then break; fi
+  sleep 0.05
+  waited=$((waited + 1))
+done
+victim=""
+for p in $(pgrep -P $mp); do
+  if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
+    victim=$p
+  fi
+done
+if [ -n "$victim" ]; then kill -KILL "$victim"; ok "found rank 1 (pid $victim)"; else
+  bad "rank 1 not found among mpirun's children"; fi
+waited=0
+while kill -0 $mp 2>/dev/null && [ $waited -lt $HANG_S ]; do sleep 1; waited=$((waited + 1)); done
+if kill -0 $mp 2>/dev/null; then
+  bad "the job still runs $HANG_S s after a follower was killed"
+  kill -KILL $mp
+fi
+wait $mp
+st=$?
+if [ $st -ne 0 ]; then ok "killed follower: exit status $st after ${waited} s"; else
+  bad "killed follower: expected a non-zero exit status, got 0"; fi
+check "$(ls "$T" | grep -c '^k\.\(h5\|tsv\)$')" 0 "killed follower: no results or text file"
+check "$(ls "$T" | grep -c '^k\.h5\.journal$')" 1 "killed follower: the journal kept for --resume"
+[ -n "${AQ_TEST_VERBOSE:-}" ] && sed 's/^/  stderr: /' "$T/k.err"
+check "$(ls "$T" | grep -c '^k\..*tmp')" 0 "killed follower: no temporaries left"
+
+# --resume finishes it: the outputs of one uninterrupted serial run.
+# shellcheck disable=SC2086
+"$BIN" -j 1 $LONG $KARGS -o "$T/kref.h5" --text "$T/kref.tsv" 2>/dev/null
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" $LONG $KARGS -o "$T/k.h5" --text "$T/k.tsv" --resume 2>"$T/r.err"
+check $? 0 "--resume under MPI exit status"
+before=$(sed -n 's/.*: \([0-9]*\) of 280 records done before.*/\1/p' "$T/r.err")
+if [ "${before:-0}" -gt 0 ]; then ok "--resume continued after $before journaled records"; else
+  bad "--resume: expected records done before the kill, got '${before}'"; fi
+if cmp -s "$T/kref.tsv" "$T/k.tsv"; then ok "--resume TSV byte-identical"; else
+  bad "--resume TSV differs from archquake -j 1's"; fi
+"$BIN" compare "$T/kref.h5" "$T/k.h5" >/dev/null 2>&1
+check $? 0 "--resume compare with archquake -j 1's results file"
+check "$(ls "$T" | grep -c '^k\.h5\.journal')" 0 "--resume removed the journal"
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
