@@ -312,7 +312,7 @@ AQ_TEST(orient_scan_finds_known_worst_and_is_deterministic)
 
 AQ_TEST(orient_refusals)
 {
-  char dir[512], a[700], b[700], args[2048];
+  char dir[512], a[700], b[700], args[4096];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(a, sizeof a, "%s/a.csv", dir);
   snprintf(b, sizeof b, "%s/b.csv", dir);

@@ -270,7 +270,7 @@ AQ_TEST(plot_history_data_are_the_results)
  * drawn without it, and without the work put in. */
 AQ_TEST(plot_history_without_the_ground)
 {
-  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/h.h5", dir);
   snprintf(args, sizeof args, RECORD " --arch " ARCH " --scale 10 --history -o %s", h5);
@@ -411,7 +411,7 @@ AQ_TEST(plot_domain_is_the_domain_command)
 
 AQ_TEST(plot_suite_is_the_worst_run)
 {
-  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/s.h5", dir);
   enum { TSV_CAP = 1 << 16 };
@@ -518,7 +518,7 @@ AQ_TEST(plot_bad_input_one_line)
 /* A reversed run (key ending in r) plots the negated, scaled record. */
 AQ_TEST(plot_history_reversed_ground)
 {
-  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
   snprintf(args, sizeof args,
@@ -554,7 +554,7 @@ AQ_TEST(plot_history_reversed_ground)
  * column collapse_intervals ("lo-hi;lo-hi", another output path). */
 AQ_TEST(plot_capacity_is_the_capacity_tsv)
 {
-  char dir[512], h5[600], out[600], data[600], args[1600], err[1024];
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/c.h5", dir);
   enum { CAP = 1 << 15 };
