@@ -287,11 +287,7 @@ int aq_cmd_capacity(int argc, char **argv)
       AQ_OPT_DYN_LONGOPTS,
       AQ_OPT_ORIENT_LONGOPTS,
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nl = 0; /* the entries above (the rest of the table is zero) */
-  while (lo[nl].name)
-    nl++;
-  nl = aq_opt_signal_append(lo, nl);
-  lo[nl] = (struct option){NULL, 0, NULL, 0};
+  aq_opt_signal_append(lo);
   aq_orient_opts orient;
   aq_opt_orient_init(&orient);
   aq_read_opts ro;

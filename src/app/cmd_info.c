@@ -31,8 +31,7 @@ int aq_cmd_info(int argc, char **argv)
 {
   struct option longopts[AQ_OPT_RECORD_NOPTS + 1 + AQ_OPT_SIGNAL_NOPTS + 1] = {
       AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
-  size_t nlong = aq_opt_signal_append(longopts, AQ_OPT_RECORD_NOPTS + 1);
-  longopts[nlong] = (struct option){NULL, 0, NULL, 0};
+  aq_opt_signal_append(longopts);
   aq_signal_opts so;
   aq_signal_opts_default(&so);
   aq_read_opts ro = {0};

@@ -168,11 +168,7 @@ int aq_cmd_run(int argc, char **argv)
       {"resume", no_argument, NULL, OPT_RESUME},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, OPT_HELP}};
-  size_t nlong = 0; /* the entries above (the rest of the table is zero) */
-  while (longopts[nlong].name)
-    nlong++;
-  nlong = aq_opt_signal_append(longopts, nlong);
-  longopts[nlong] = (struct option){NULL, 0, NULL, 0};
+  aq_opt_signal_append(longopts);
 
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);

@@ -33,10 +33,13 @@ const char aq_opt_signal_usage[] =
     "  --merge-tol G   merge consecutive samples differing by less than G (g)\n"
     "                  into one constant-acceleration step (default 0: none)\n";
 
-size_t aq_opt_signal_append(struct option *dst, size_t at)
+void aq_opt_signal_append(struct option *dst)
 {
+  size_t at = 0;
+  while (dst[at].name)
+    at++;
   memcpy(dst + at, aq_opt_signal_longopts, sizeof aq_opt_signal_longopts);
-  return at + AQ_OPT_SIGNAL_NOPTS;
+  dst[at + AQ_OPT_SIGNAL_NOPTS] = (struct option){NULL, 0, NULL, 0};
 }
 
 int aq_opt_signal_handle(int id, const char *arg, aq_signal_opts *o,

@@ -37,10 +37,11 @@ extern const struct option aq_opt_signal_longopts[AQ_OPT_SIGNAL_NOPTS];
 /* Usage lines for the options above (each ends in '\n'). */
 extern const char aq_opt_signal_usage[];
 
-/* Copy the signal options into dst at index at (dst has room for at least
- * at + AQ_OPT_SIGNAL_NOPTS entries) and return the new count; the caller
- * writes the terminating {0} entry. */
-size_t aq_opt_signal_append(struct option *dst, size_t at);
+/* Append the signal options after the last entry of dst (the first whose
+ * name is NULL: a command's table is declared larger than its own entries,
+ * the rest zero) and terminate it with a {0} entry.  dst has room for its
+ * entries + AQ_OPT_SIGNAL_NOPTS + 1. */
+void aq_opt_signal_append(struct option *dst);
 
 /* Handle option id with argument arg (getopt's optarg).  Returns 1 if id is
  * one of the signal options (its value stored in *o or *merge_tol_g, or an
