@@ -186,12 +186,23 @@ static int is_alpha(char ch) { return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && 
 static long find_word(const char *s, size_t n, const char *kw)
 {
   size_t m = strlen(kw);
+  if (m > n)
+    return -1;
   char k0 = kw[0], k0l = (char)(k0 | 0x20); /* kw's first letter, upper and lower */
-  for (size_t i = 0; i + m <= n; i++)
-    if ((s[i] == k0 || s[i] == k0l) && strncasecmp(s + i, kw, m) == 0 &&
-        (i == 0 || !is_alpha(s[i - 1])) &&
+  size_t last = n - m;                        /* the last place kw can start */
+  /* candidates: the next k0 and the next k0l (memchr: most lines have neither) */
+  const char *u = memchr(s, k0, last + 1), *l = memchr(s, k0l, last + 1);
+  while (u || l) {
+    const char *c = !l || (u && u < l) ? u : l;
+    size_t i = (size_t)(c - s);
+    if (strncasecmp(s + i, kw, m) == 0 && (i == 0 || !is_alpha(s[i - 1])) &&
         (i + m == n || !is_alpha(s[i + m])))
       return (long)i;
+    if (c == u)
+      u = i < last ? memchr(s + i + 1, k0, last - i) : NULL;
+    else
+      l = i < last ? memchr(s + i + 1, k0l, last - i) : NULL;
+  }
   return -1;
 }
 

@@ -181,12 +181,11 @@ static void copy_field(const char *s, span f, char *out, size_t cap)
   out[k] = '\0';
 }
 
-/* The rows' arrays: each channel's values (in raw), the times and the
- * rows' line numbers (when there is a time column), cap rows each. */
+/* The rows' arrays: each channel's values (in raw) and the times (when
+ * there is a time column), cap rows each. */
 typedef struct {
   aq_raw_file *raw;
   double *tt;
-  long *lines;
   size_t cap;
 } csv_rows;
 
@@ -203,10 +202,6 @@ static int rows_grow(csv_rows *r, size_t cap, int with_time)
     if (!t)
       return 0;
     r->tt = t;
-    long *l = realloc(r->lines, cap * sizeof *l);
-    if (!l)
-      return 0;
-    r->lines = l;
   }
   r->cap = cap;
   return 1;
@@ -215,9 +210,24 @@ static int rows_grow(csv_rows *r, size_t cap, int with_time)
 static void rows_free_time(csv_rows *r)
 {
   free(r->tt);
-  free(r->lines);
   r->tt = NULL;
-  r->lines = NULL;
+}
+
+/* The line of row idx (0-based), the rows counted as the reading counts
+ * them: the lines that are not blank once a '#' comment is cut, from the
+ * first row's line (line0, starting at pos) on; -1 if there are fewer.
+ * Only for messages: the rows' lines are not kept while reading. */
+static long row_line(const char *s, size_t n, size_t pos, long line0, size_t idx)
+{
+  long line = line0 - 1;
+  size_t b, e, row = 0;
+  while (aq_text_line_(s, n, &pos, &b, &e)) {
+    line++;
+    trim_line(s, &b, &e);
+    if (b < e && row++ == idx)
+      return line;
+  }
+  return -1;
 }
 
 /* What a plain row is: ncols numbers separated by sep (' ': runs of blanks
@@ -281,8 +291,6 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
       q++;
     }
     c->line++;
-    if (rows->lines)
-      rows->lines[k] = c->line;
     k++;
     p = q;
   }
@@ -450,7 +458,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   char sep = 0;
   int dcomma = 0;
   size_t ncols = 0;
+  size_t first_pos = 0; /* where the first row's line starts */
   for (;;) {
+    first_pos = c.pos;
     if (!next_line(&c, &b, &e))
       return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                           "expected rows of numbers (time, acceleration or "
@@ -615,7 +625,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
 
   /* Rows: as many as the rest holds at the first row's length, plus a
    * quarter; the arrays grow if more come. */
-  csv_rows rows = {raw, NULL, NULL, 0};
+  csv_rows rows = {raw, NULL, 0};
   size_t row_bytes = first_e - first_b + 1;
   size_t cap = (n - first_b) / row_bytes + (n - first_b) / row_bytes / 4 + 16;
   aq_status st = aq_raw_file_alloc(raw, nch, name, err);
@@ -636,7 +646,6 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     }
     double *tt = rows.tt;
-    long *lines = rows.lines;
     size_t nf = split(s, b, e, sep, f, MAXF);
     if (nf != ncols) {
       st = aq_error_set(err, AQ_EFORMAT, name, line, -1, NULL,
@@ -665,8 +674,6 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
     if (st != AQ_OK)
       break;
-    if (lines)
-      lines[k] = line;
     k++;
     if (!dcomma) /* the rows that follow, while they are plain */
       k = plain_rows(&c, &pr, &rows, k);
@@ -683,7 +690,6 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     line = c.line;
   }
   double *tt = rows.tt;
-  long *lines = rows.lines;
 
   double dt = dt_known, begin = 0;
   if (st == AQ_OK && tcol >= 0) {
@@ -697,7 +703,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       dt = strtod(txt, NULL);
       begin = tt[0];
       if (!(dt > 0) || !isfinite(dt)) {
-        st = aq_error_set(err, AQ_EFORMAT, name, lines[k - 1], -1, "time",
+        st = aq_error_set(err, AQ_EFORMAT, name,
+                          row_line(s, n, first_pos, first_line, k - 1), -1, "time",
                           "expected increasing times, got %.9g after %.9g at "
                           "line %ld",
                           tt[k - 1], tt[0], first_line);
@@ -716,14 +723,14 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
         for (size_t i = 1; i < k && st == AQ_OK && !even; i++)
           if (fabs(tt[i] - tt[i - 1] - med) > CSV_TIME_TOL_REL * med)
             st = aq_error_set(
-                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (step %.9g s within %g %%), got a "
                 "step of %.9g s from %.15g to %.15g",
                 med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
         for (size_t i = 1; i < k && st == AQ_OK; i++)
           if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
             st = aq_error_set(
-                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (%.15g + k * %.9g s, within %g %% of "
                 "the step), got %.15g for sample %zu",
                 tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
@@ -733,7 +740,6 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
   }
   free(tt);
-  free(lines);
   if (st == AQ_OK && k == 0)
     st = aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
                       "expected at least one row of numbers, got none");
