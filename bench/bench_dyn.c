@@ -218,7 +218,7 @@ int main(void)
   aq_signal_ws_free(ws);
 
   static const setting set[] = {
-      {"workpath (default: Taylor, tol 1e-14)", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0, 0},
+      {"workpath (default: Taylor)", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0, 0},
       {"workpath Taylor tol 1.1e-16", AQ_MODEL_WORKPATH, 0, 0, 0, 1.1e-16, 0, 0},
       {"workpath default, --merge-tol 0.001 g", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0.001, 0},
       {"workpath default, --merge-tol 0.01 g", AQ_MODEL_WORKPATH, 0, 0, 0, 0, 0.01, 0},
@@ -293,7 +293,8 @@ int main(void)
     printf("  %-32s %6zu %6zu %5zu %-9s %10.3f %9.3f %7.1f %9.2g %9.2g %9.2g %9.3f\n",
            cs[c].name, cs[c].steps[0].n, moving[REF][c], impacts[0][c],
            coll[REF][c] ? "collapses" : "survives", 1e3 * tmed[REF][c],
-           1e3 * tmed[0][c], tmed[REF][c] / tmed[0][c], ep, et, thi[c] - tlo[c],
+           1e3 * tmed[0][c], tmed[REF][c] / tmed[0][c], ep, et,
+           coll[REF][c] ? thi[c] - tlo[c] : 0.0,
            1e3 * tmed[QUAD][c]);
   }
   double t8 = 0, t12 = 0;
