@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "../io/sha256.h"
@@ -19,7 +20,17 @@
 struct aq_journal {
   int fd;
   char *path;
+  double sync_period_s; /* 0: every append is synced */
+  double last_sync_s;   /* CLOCK_MONOTONIC time of the last sync */
+  int unsynced;         /* entries written since the last sync */
 };
+
+static double monotonic_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 void aq_journal_name(const char *target, char *buf, size_t n)
 {
@@ -92,6 +103,9 @@ static aq_journal *journal_new(int fd, const char *path)
   }
   j->fd = fd;
   j->path = p;
+  j->sync_period_s = 0;
+  j->last_sync_s = monotonic_s();
+  j->unsynced = 0;
   return j;
 }
 
@@ -114,9 +128,21 @@ aq_status aq_journal_append(aq_journal *j, const void *data, size_t n, aq_error 
   free(frame);
   if (rc != 0)
     return sys_fail(err, j->path, "append to");
+  double t = j->sync_period_s > 0 ? monotonic_s() : 0;
+  if (j->sync_period_s > 0 && t - j->last_sync_s < j->sync_period_s) {
+    j->unsynced = 1; /* in the page cache: it survives a kill, not a crash */
+    return AQ_OK;
+  }
   if (fdatasync(j->fd) != 0)
     return sys_fail(err, j->path, "sync");
+  j->last_sync_s = t;
+  j->unsynced = 0;
   return AQ_OK;
+}
+
+void aq_journal_set_sync_period(aq_journal *j, double period_s)
+{
+  j->sync_period_s = period_s > 0 ? period_s : 0;
 }
 
 aq_status aq_journal_create(const char *path, const void *identity, size_t n,
@@ -288,6 +314,8 @@ void aq_journal_close(aq_journal *j)
 {
   if (!j)
     return;
+  if (j->unsynced)
+    fdatasync(j->fd); /* kept for --resume: best effort, as a crash would be */
   close(j->fd);
   free(j->path);
   free(j);
