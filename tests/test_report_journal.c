@@ -20,7 +20,7 @@ static void write_journal(const char *path)
 {
   aq_journal *j = NULL;
   aq_error err;
-  aq_check(aq_journal_create(path, payload[0], strlen(payload[0]), &j, &err) == AQ_OK,
+  aq_check(aq_journal_create(path, payload[0], strlen(payload[0]), 0.0, &j, &err) == AQ_OK,
            "created");
   for (int k = 1; j && k < 3; k++)
     aq_check(aq_journal_append(j, payload[k], strlen(payload[k]), &err) == AQ_OK,
@@ -157,9 +157,10 @@ AQ_TEST(report_journal_frames_and_torn_tails)
   free(bytes);
 }
 
-/* With a sync period, appends that do not sync still reach the file at once
- * (a killed suite keeps them): each is read back whole by a second open of
- * the journal while the first is still open, before any close. */
+/* With a sync period, the creation and appends that do not sync still reach
+ * the file at once (a killed suite keeps them): each is read back whole by a
+ * second open of the journal while the first is still open, before any
+ * close. */
 AQ_TEST(report_journal_sync_period_keeps_every_entry)
 {
   char dir[512], path[700];
@@ -167,11 +168,11 @@ AQ_TEST(report_journal_sync_period_keeps_every_entry)
   snprintf(path, sizeof path, "%s/p.h5.journal", dir);
   aq_journal *j = NULL;
   aq_error err;
-  aq_check(aq_journal_create(path, payload[0], strlen(payload[0]), &j, &err) == AQ_OK,
+  aq_check(aq_journal_create(path, payload[0], strlen(payload[0]), 3600.0, &j, &err) == AQ_OK,
            "created");
   if (!j)
     return;
-  aq_journal_set_sync_period(j, 3600.0); /* no append within the test syncs */
+  /* no append within the test syncs, nor the creation */
   for (int k = 1; k < 3; k++) {
     aq_check(aq_journal_append(j, payload[k], strlen(payload[k]), &err) == AQ_OK,
              "appended %d", k);

@@ -779,7 +779,7 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
     goto out;
   }
   if (!*J) {
-    if (aq_journal_create(path, id, strlen(id) + 1, J, &err) != AQ_OK) {
+    if (aq_journal_create(path, id, strlen(id) + 1, AQ_SUITE_JOURNAL_SYNC_S, J, &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       rc = AQ_EXIT_OUTPUT;
     }

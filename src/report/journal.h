@@ -43,9 +43,12 @@ typedef struct {
 void aq_journal_name(const char *target, char *buf, size_t n);
 
 /* Create (or replace) the journal at path holding only the identity entry,
- * synced with its directory.  *out is the journal, open for appending. */
+ * with aq_journal_set_sync_period(sync_period_s): with 0, synced with its
+ * directory before the call returns; with a period, both are synced by the
+ * first sync (a journal lost to a crash before it is as good as none: the
+ * suite starts over).  *out is the journal, open for appending. */
 aq_status aq_journal_create(const char *path, const void *identity, size_t n,
-                            aq_journal **out, aq_error *err);
+                            double sync_period_s, aq_journal **out, aq_error *err);
 
 /* Open an existing journal: every whole entry is returned in *entries
  * (*nentries of them, the identity first); a torn or corrupt tail is cut off

@@ -153,9 +153,25 @@ typedef struct {
   fftw_plan c2r;  /* n/2+1 complex -> n reals (destroys its input) */
 } plan_pair;
 
+/* The plans of the process, one pair per length, kept from the first
+ * record of that length to the end of the process (under
+ * aq_fftw_planner_lock): re-planning a length even from in-memory wisdom
+ * costs 0.5-1 ms, which every suite of a process (a capacity search, the
+ * bench) paid again per length when each workspace had plans of its own.
+ * Blocks of AQ_PLAN_BLOCK pairs that never move, so that a pair found
+ * under the lock stays valid after it is released.  They are reachable
+ * until exit, as FFTW's own planner state is. */
+#define AQ_PLAN_BLOCK 64
+typedef struct plan_block {
+  plan_pair pair[AQ_PLAN_BLOCK];
+  size_t n;                 /* pairs used */
+  struct plan_block *next;
+} plan_block;
+static plan_block *aq_plans;
+
+/* A workspace is a handle on the process's plan cache (see signal.h). */
 struct aq_signal_ws {
-  plan_pair *plans; /* cache, guarded by aq_fftw_planner_lock */
-  size_t nplans, cap;
+  int unused;
 };
 
 aq_signal_ws *aq_signal_ws_alloc(void)
@@ -168,13 +184,8 @@ void aq_signal_ws_free(aq_signal_ws *ws)
   if (!ws)
     return;
   pthread_mutex_lock(&aq_fftw_planner_lock);
-  for (size_t i = 0; i < ws->nplans; i++) {
-    fftw_destroy_plan(ws->plans[i].r2c);
-    fftw_destroy_plan(ws->plans[i].c2r);
-  }
   wisdom_save();
   pthread_mutex_unlock(&aq_fftw_planner_lock);
-  free(ws->plans);
   free(ws);
 }
 
@@ -182,16 +193,17 @@ void aq_signal_ws_free(aq_signal_ws *ws)
  * lock. */
 static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
 {
-  for (size_t i = 0; i < ws->nplans; i++)
-    if (ws->plans[i].n == n)
-      return &ws->plans[i];
-  if (ws->nplans == ws->cap) {
-    size_t cap = ws->cap ? 2 * ws->cap : 8;
-    plan_pair *p = realloc(ws->plans, cap * sizeof *p);
-    if (!p)
+  (void)ws;
+  for (plan_block *b = aq_plans; b; b = b->next)
+    for (size_t i = 0; i < b->n; i++)
+      if (b->pair[i].n == n)
+        return &b->pair[i];
+  if (!aq_plans || aq_plans->n == AQ_PLAN_BLOCK) {
+    plan_block *b = calloc(1, sizeof *b);
+    if (!b)
       return NULL;
-    ws->plans = p;
-    ws->cap = cap;
+    b->next = aq_plans;
+    aq_plans = b;
   }
   /* plan in place on a scratch array aligned as fftw_malloc aligns: every
    * array later passed to the new-array execute calls is aligned alike
@@ -212,7 +224,7 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
       fftw_destroy_plan(c2r);
     return NULL;
   }
-  plan_pair *pp = &ws->plans[ws->nplans++];
+  plan_pair *pp = &aq_plans->pair[aq_plans->n++];
   pp->n = n;
   pp->r2c = r2c;
   pp->c2r = c2r;

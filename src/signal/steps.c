@@ -96,7 +96,7 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
     size_t j = i + 1;
     double first = sample(a1, c1, a2, c2, sc, i), sum = first;
     double vfirst = v ? sv * v[i] : 0, vsum = vfirst;
-    peak = fmax(peak, fabs(first));
+    peak = fabs(first) > peak ? fabs(first) : peak; /* finite: as fmax, inline */
     if (merge_tol_mps2 > 0) {
       /* grow the run while every sample stays within tol of the run's first */
       double lo = first, hi = first, vlo = vfirst, vhi = vfirst;
@@ -112,7 +112,7 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
         vhi = nvhi;
         sum += a;
         vsum += b;
-        peak = fmax(peak, fabs(a));
+        peak = fabs(a) > peak ? fabs(a) : peak;
         j++;
       }
     }
