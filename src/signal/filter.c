@@ -45,6 +45,7 @@
 #include <unistd.h>
 
 #include "../io/sha256.h"
+#include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
 static pthread_mutex_t aq_fftw_planner_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -147,6 +148,40 @@ static void wisdom_save(void)
   fftw_free(w);
 }
 
+/* ---- built-in wisdom (under aq_fftw_planner_lock) -------------------------
+ * FFTW_ESTIMATE's first plan of a length costs 5-25 ms of planner search
+ * (a cold 5-record suite spent 60 % of its time there), although the plan
+ * it chooses is fixed for a given FFTW build.  The build plans every
+ * length aq_signal_fft_size can give between 2^10 and 2^20 once, in
+ * tools/fftw_wisdom.c, and keeps each length's wisdom apart; before
+ * planning a length, its wisdom is imported (a few hundred bytes, about
+ * 0.1 ms) and FFTW rebuilds the plan ESTIMATE chose without searching: the
+ * same plan, so the same bits.  Wisdom of another FFTW build is skipped
+ * (version check here, configuration hash in FFTW), and the length is
+ * planned as before.  AQ_FFTW_NO_BUILTIN_WISDOM (set, non-empty) turns it
+ * off, so that tests can compare the results with and without it. */
+
+static void builtin_wisdom(size_t n)
+{
+  static int off = -1;
+  if (off < 0) {
+    const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
+    off = (e && e[0]) || strcmp(fftw_version, AQ_FFTW_WISDOM_VERSION) != 0;
+  }
+  size_t lo = 0, hi = sizeof aq_fftw_wisdom / sizeof aq_fftw_wisdom[0];
+  while (!off && lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if ((size_t)aq_fftw_wisdom[mid].n == n) {
+      fftw_import_wisdom_from_string(aq_fftw_wisdom[mid].wisdom); /* 0: planned as before */
+      return;
+    }
+    if ((size_t)aq_fftw_wisdom[mid].n < n)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+}
+
 typedef struct {
   size_t n;       /* transform length */
   fftw_plan r2c;  /* n reals -> n/2+1 complex */
@@ -209,6 +244,7 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
    * array later passed to the new-array execute calls is aligned alike
    * (aq_filter_alloc) and also in place */
   wisdom_load();
+  builtin_wisdom(n);
   wisdom_planned = 1;
   double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
   fftw_plan r2c = NULL, c2r = NULL;

@@ -79,8 +79,8 @@ aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
     a2 += h * sq;
     /* |a| along the linear interpolant: two triangles split at a zero
      * crossing.  Both computed, one selected without a branch (the sign of
-     * a0 a1 is as good as random in the pads: mispredictions cost a fifth
-     * of this loop); 0/0 when both are zero is computed, never selected. */
+     * a0 a1 changes every few samples, too often to predict); 0/0 when
+     * both are zero is computed, never selected. */
     double same = h * ab, cross = h * sq / ab;
     cav += a0 * a1 >= 0 ? same : cross;
     double fa = fabs(a1), fv = fabs(v), fd = fabs(d);
