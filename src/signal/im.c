@@ -75,14 +75,13 @@ aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
     double vn = v + h * (a0 + a1);
     d += h * (v + vn);
     v = vn;
-    double sq = a0 * a0 + a1 * a1, ab = fabs(a0) + fabs(a1);
-    a2 += h * sq;
-    /* |a| along the linear interpolant: two triangles split at a zero
-     * crossing.  Both computed, one selected without a branch (the sign of
-     * a0 a1 changes every few samples, too often to predict); 0/0 when
-     * both are zero is computed, never selected. */
-    double same = h * ab, cross = h * sq / ab;
-    cav += a0 * a1 >= 0 ? same : cross;
+    a2 += h * (a0 * a0 + a1 * a1);
+    if (a0 * a1 >= 0) {
+      cav += h * (fabs(a0) + fabs(a1));
+    } else {
+      /* |a| along the linear interpolant: two triangles split at the zero */
+      cav += h * (a0 * a0 + a1 * a1) / (fabs(a0) + fabs(a1));
+    }
     double fa = fabs(a1), fv = fabs(v), fd = fabs(d);
     pga = fa > pga ? fa : pga;
     pgv = fv > pgv ? fv : pgv;
