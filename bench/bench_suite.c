@@ -226,9 +226,13 @@ static void strong_suite(aq_suite_cfg *base, const char *h5)
     memcpy(v, rate[m], sizeof v);
     printf("  %-9s %8.1f runs/s  [%.1f, %.1f]  ", m ? "ode:" : "workpath:",
            aq_bench_median(v, REPS), minv(rate[m], REPS), maxv(rate[m], REPS));
+    double rest[REPS];
+    for (int k = 0; k < REPS; k++)
+      rest[k] = 1 - share[m][0][k] - share[m][1][k] - share[m][2][k] - share[m][3][k];
     for (int p = 0; p < 4; p++)
       printf(" %s %.0f%%", phase[p], 100 * aq_bench_median(share[m][p], REPS));
-    printf("\n");
+    /* arches loaded, steppers made, threads started and joined */
+    printf(" other %.0f%%\n", 100 * aq_bench_median(rest, REPS));
   }
   print_ratio("workpath / ode:", r, REPS);
 }
