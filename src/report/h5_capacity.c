@@ -376,6 +376,7 @@ void aq_h5_capacity_table_free(aq_h5_capacity_table *t)
   free(t->row);
   free(t->interval);
   free(t->fit);
+  free(t->point);
   memset(t, 0, sizeof *t);
 }
 
@@ -492,6 +493,48 @@ static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
   return ok ? 0 : -1;
 }
 
+/* capacity/scan_points, when present: rows by pair (each < t->n, not
+ * decreasing) then by scale. */
+static int read_points(hid_t g, aq_h5_capacity_table *t, const char **what)
+{
+  *what = "scan_points";
+  if (H5Lexists(g, "scan_points", H5P_DEFAULT) <= 0)
+    return 0;
+  hid_t d = H5Dopen2(g, "scan_points", H5P_DEFAULT), sp = -1, mt = point_type();
+  hsize_t n = 0;
+  int ok = d >= 0 && mt >= 0 && (sp = H5Dget_space(d)) >= 0 &&
+           H5Sget_simple_extent_dims(sp, &n, NULL) == 1;
+  h5_point *v = ok ? malloc((n ? n : 1) * sizeof *v) : NULL;
+  ok = ok && v && (t->point = malloc((n ? n : 1) * sizeof *t->point)) != NULL;
+  ok = ok && (n == 0 || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
+  for (size_t i = 0; ok && i < n; i++) {
+    const h5_point *q = &v[i];
+    ok = q->pair >= 0 && (uint64_t)q->pair < t->n &&
+         (i == 0 || q->pair > v[i - 1].pair ||
+          (q->pair == v[i - 1].pair && !(q->scale < v[i - 1].scale)));
+    if (!ok)
+      break;
+    aq_h5_capacity_row *r = &t->row[q->pair];
+    if (r->point_count++ == 0)
+      r->point_start = i;
+    t->point[i] = (aq_capacity_point){q->scale, q->peak_rotation_rad,
+                                      q->peak_rotation_over_qc, q->collapse_time_s,
+                                      q->collapsed != 0};
+  }
+  if (ok) {
+    t->npoint = (size_t)n;
+    t->have_points = 1;
+  }
+  free(v);
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (mt >= 0)
+    H5Tclose(mt);
+  return ok ? 0 : -1;
+}
+
 aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
                               aq_error *err)
 {
@@ -567,7 +610,8 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
     ok = t->row[i].i[2] >= 0 && t->row[i].i[3] >= 0 &&
          (uint64_t)(t->row[i].i[2] + t->row[i].i[3]) <= (uint64_t)t->ninterval;
   if (ok)
-    ok = read_im(g, t, &what) == 0 && read_fits(g, t, &what) == 0;
+    ok = read_im(g, t, &what) == 0 && read_fits(g, t, &what) == 0 &&
+         read_points(g, t, &what) == 0;
   free(col);
   free(icol);
   H5Gclose(g);
