@@ -51,6 +51,7 @@ typedef struct {
   int *color;   /* n: colour of each line (by record) */
   size_t *rec;  /* n: each line's record (0-based, in the file's order) */
   size_t nrec;
+  int have_pol[2]; /* a normal, a reversed line among them */
   frag f;
   int logy;     /* 1: y on a log10 axis */
   double ylo, yhi, xhi; /* axis ranges (y in its unit, not log) */
@@ -215,7 +216,7 @@ static void draw_fragility(const cap *c)
              c->arch, q->median, q->beta, f->n, f->n - f->ncol);
   else
     snprintf(title, sizeof title, "fragility of arch %.100s: %s (%zu records, %zu censored)",
-             c->arch, q ? "not fitted (fewer than two collapse values)" : "no fit in the file",
+             c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
              f->n, f->n - f->ncol);
   plmtex("t", 1.2, 0.5, 0.5, title);
   const char *tx[] = {"lognormal fit", "median's confidence interval",
@@ -423,12 +424,12 @@ static int draw(void *ctx, aq_error *err)
     col[ne] = AQ_PC_BG;
     st[ne++] = 0;
   }
-  tx[ne] = "normal (filled strip)";
-  col[ne] = AQ_PC_FG;
-  st[ne++] = 1;
-  tx[ne] = "reversed (hatched strip)";
-  col[ne] = AQ_PC_FG;
-  st[ne++] = 2;
+  for (int k = 0; k < 2; k++)
+    if (c->have_pol[k]) {
+      tx[ne] = k ? "reversed (hatched strip)" : "normal (filled strip)";
+      col[ne] = AQ_PC_FG;
+      st[ne++] = k ? 2 : 1;
+    }
   if (!c->o->x_rad) {
     tx[ne] = "q#dc#u: collapse";
     col[ne] = AQ_PC_GREY;
@@ -527,6 +528,7 @@ static aq_status lines_build(cap *c, const char *source, aq_error *err)
     c->pga[c->n] = row_pga(r);
     c->color[c->n] = LINE_COLOR[nrec % NCOLOR];
     c->rec[c->n] = nrec;
+    c->have_pol[reversed(r)] = 1;
     c->row[c->n++] = k;
     if (c->o->y_pga && r->point_count && isnan(c->pga[c->n - 1]))
       return aq_error_set(err, AQ_EVALUE, source, -1, -1, "--y",
@@ -569,8 +571,8 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
     rc = aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   if (rc == AQ_OK) {
     ranges(&c);
-    size_t ne = (c.nrec <= AQ_PLOT_LEGEND_MAX - 4 ? c.nrec : AQ_PLOT_LEGEND_MAX - 3) + 2 +
-                !o->x_rad;
+    size_t ne = (c.nrec <= AQ_PLOT_LEGEND_MAX - 4 ? c.nrec : AQ_PLOT_LEGEND_MAX - 3) +
+                (size_t)(c.have_pol[0] + c.have_pol[1]) + !o->x_rad;
     size_t rows = (ne + LEGEND_COLUMNS - 1) / LEGEND_COLUMNS;
     const double top_px = 560, frag_px = 500; /* top axes and its margins, fragility */
     c.legend_px = 26.0 * (double)rows + 12;
