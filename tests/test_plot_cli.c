@@ -70,11 +70,11 @@ static double *dataset(hid_t f, const char *name, size_t *n)
   return v;
 }
 
-/* Column name (a number) of row `row` of /summary. */
-static double summary(hid_t f, size_t row, const char *name)
+/* Column name (a number) of row `row` of the compound table obj. */
+static double table_value(hid_t f, const char *obj, size_t row, const char *name)
 {
   double v = NAN, *all = NULL;
-  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
+  hid_t d = H5Dopen2(f, obj, H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
   hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
   hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
   if (np > (hssize_t)row && H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE) >= 0 &&
@@ -88,6 +88,12 @@ static double summary(hid_t f, size_t row, const char *name)
   if (d >= 0)
     H5Dclose(d);
   return v;
+}
+
+/* Column name (a number) of row `row` of /summary. */
+static double summary(hid_t f, size_t row, const char *name)
+{
+  return table_value(f, "/summary", row, name);
 }
 
 static double attr(hid_t f, const char *obj, const char *name)
@@ -811,26 +817,6 @@ static const char *cap_string(hid_t f, const char *name, size_t i, char *buf, si
   if (d >= 0)
     H5Dclose(d);
   return buf;
-}
-
-/* Column name (a number) of row `row` of the compound table obj. */
-static double table_value(hid_t f, const char *obj, size_t row, const char *name)
-{
-  double v = NAN, *all = NULL;
-  hid_t d = H5Dopen2(f, obj, H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
-  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
-  hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
-  if (np > (hssize_t)row && H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE) >= 0 &&
-      (all = malloc((size_t)np * sizeof *all)) &&
-      H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0)
-    v = all[row];
-  free(all);
-  H5Tclose(t);
-  if (s >= 0)
-    H5Sclose(s);
-  if (d >= 0)
-    H5Dclose(d);
-  return v;
 }
 
 static int same_double(double a, double b)
