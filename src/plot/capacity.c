@@ -52,6 +52,7 @@ typedef struct {
   size_t *rec;  /* n: each line's record (0-based, in the file's order) */
   size_t nrec;
   int have_pol[2]; /* a normal, a reversed line among them */
+  PLFLT *bx, *by;  /* room for the longest line's points */
   frag f;
   int logy;     /* 1: y on a log10 axis */
   double ylo, yhi, xhi; /* axis ranges (y in its unit, not log) */
@@ -287,11 +288,8 @@ static void ranges(cap *c)
 static void draw_lines(const cap *c)
 {
   const aq_h5_capacity_table *t = c->t;
-  size_t m = 0;
-  for (size_t k = 0; k < c->n; k++)
-    m = m > t->row[c->row[k]].point_count ? m : t->row[c->row[k]].point_count;
-  PLFLT *x = malloc((m ? m : 1) * sizeof *x), *y = malloc((m ? m : 1) * sizeof *y);
-  for (size_t k = 0; x && y && k < c->n; k++) {
+  PLFLT *x = c->bx, *y = c->by;
+  for (size_t k = 0; k < c->n; k++) {
     const aq_h5_capacity_row *r = &t->row[c->row[k]];
     size_t np = 0;
     for (size_t i = 0; i < r->point_count; i++) {
@@ -312,8 +310,6 @@ static void draw_lines(const cap *c)
     plwidth(1);
     pllsty(1);
   }
-  free(x);
-  free(y);
 }
 
 /* The strips: a column per record [r, r + 1], split between its lines
@@ -536,6 +532,13 @@ static aq_status lines_build(cap *c, const char *source, aq_error *err)
                           "(plot the scale: --y scale)", r->record);
   }
   c->nrec = c->n ? nrec + 1 : 0;
+  size_t m = 1;
+  for (size_t k = 0; k < c->n; k++)
+    m = m > t->row[c->row[k]].point_count ? m : t->row[c->row[k]].point_count;
+  c->bx = malloc(m * sizeof *c->bx);
+  c->by = malloc(m * sizeof *c->by);
+  if (!c->bx || !c->by)
+    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   if (c->n == 0)
     return aq_error_set(err, AQ_EVALUE, source, -1, -1, "--arch",
                         "expected an arch of the file such as \"%s\", got \"%s\"",
@@ -595,6 +598,8 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
   free(c.pga);
   free(c.color);
   free(c.rec);
+  free(c.bx);
+  free(c.by);
   free(c.f.x);
   return rc;
 }
