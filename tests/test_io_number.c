@@ -222,6 +222,16 @@ AQ_TEST(io_number_refusals_and_stops)
       aq_check(v == 2.385, "\"%s\": value untouched", c[i].tok);
     free(b);
   }
+  /* more than 19 digits and longer than the strtod buffer: its first 63 characters */
+  {
+    char longnum[71];
+    for (int i = 0; i < 70; i++)
+      longnum[i] = (char)('1' + i % 9);
+    longnum[70] = '\0';
+    double v = 0;
+    aq_check(aq_number_parse(longnum, 70, 0, &v) == AQ_NUMBER_TOKEN_MAX - 1,
+             "70 digits: takes %d", AQ_NUMBER_TOKEN_MAX - 1);
+  }
   /* the buffer ends mid-number: only what is inside counts */
   double v = 0;
   aq_check(aq_number_parse("123456e-3", 4, 0, &v) == 4 && v == 1234.0, "cut at 4: %g", v);

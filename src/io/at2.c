@@ -76,6 +76,13 @@ static const char *find_ci(const char *s, size_t n, const char *needle)
   return NULL;
 }
 
+/* 1 if s[0..n) starts with needle, case-insensitive. */
+static int starts_ci(const char *s, size_t n, const char *needle)
+{
+  size_t m = strlen(needle);
+  return n >= m && strncasecmp(s, needle, m) == 0;
+}
+
 /* Copy s[0..n) into out (NUL-terminated, truncated to cap-1), for messages. */
 static void quote(const char *s, size_t n, char *out, size_t cap)
 {
@@ -384,8 +391,8 @@ static int find_header(const char *s, size_t n, at2_header *h, long *bad_line,
         }
       }
     } else if ((found || *bad_line > 0) && fb < e &&
-               (s[fb] == '*' || find_ci(s + fb, e - fb, "end data") == s + fb ||
-                find_ci(s + fb, e - fb, "end of data") == s + fb)) {
+               (s[fb] == '*' || starts_ci(s + fb, e - fb, "end data") ||
+                starts_ci(s + fb, e - fb, "end of data"))) {
       break; /* an end marker: the data is over */
     }
     if (fb < e && ntext < AT2_TEXT_LINES) {

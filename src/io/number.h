@@ -11,7 +11,9 @@
  * doubles, so one IEEE multiply or divide gives the correctly rounded result
  * (Clinger, "How to read floating point numbers accurately", PLDI 1990).
  * Anything else is copied (at most AQ_NUMBER_TOKEN_MAX - 1 characters) to a
- * NUL-terminated buffer and given to strtod under the "C" numeric locale.
+ * NUL-terminated buffer and given to strtod under the "C" numeric locale; a
+ * longer number of that kind is read from its first 63 characters only, and
+ * the characters left make the readers refuse the token.
  * No allocation; thread-safe. */
 #ifndef AQ_IO_NUMBER_H
 #define AQ_IO_NUMBER_H
