@@ -23,6 +23,27 @@ ok() { pass=$((pass + 1)); [ -n "${AQ_TEST_VERBOSE:-}" ] && echo "ok: $1"; retur
 bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
 check() { if [ "$1" = "$2" ]; then ok "$3 ($1)"; else bad "$3: expected $2, got $1"; fi; }
 
+# Kill rank 1 of the mpirun whose pid is $1 (found by its environment).
+kill_rank1() {
+  victim=""
+  for p in $(pgrep -P "$1"); do
+    if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
+      victim=$p
+    fi
+  done
+  if [ -n "$victim" ]; then kill -KILL "$victim"; ok "found rank 1 (pid $victim)"; else
+    bad "rank 1 not found among mpirun's children"; fi
+}
+# Wait for mpirun $1 to end, HANG_S at most (then kill it); seconds in $waited.
+wait_end() {
+  waited=0
+  while kill -0 "$1" 2>/dev/null && [ $waited -lt $HANG_S ]; do sleep 1; waited=$((waited + 1)); done
+  if kill -0 "$1" 2>/dev/null; then
+    bad "the job still runs $HANG_S s after a follower was killed"
+    kill -KILL "$1"
+  fi
+}
+
 if [ ! -x "$MPIBIN" ]; then
   echo "note: $MPIBIN not built (make mpi): MPI tests skipped"
   echo "0 passed, 0 failed"
@@ -71,6 +92,46 @@ check $? 2 "--history at N=2: a usage error"
 check "$(grep -c 'expected one rank' "$T/hist.err")" 1 "--history at N=2: one line saying why"
 check "$(ls "$T" | grep -c '^hist')" 1 "--history at N=2: no results file (only its stderr)"
 
+# capacity: (record, arch) tasks handed out by rank 0, each follower reading
+# and processing its records itself; -j 2 gives each rank two threads.
+CRECS="$R/ARL360.at2 $R/CHY028-N.AT2 $R/PROVENANCE.md $R/IELC180.AT2 $R/TCU052-N.AT2"
+CARGS="--arch arches/oppenheim.cfg --arch arches/thin.cfg --resolution 0.05"
+# shellcheck disable=SC2086
+"$BIN" capacity -j 1 $CRECS $CARGS -o "$T/cref.h5" --fragility "$T/cfref.tsv" \
+  >"$T/cref.tsv" 2>/dev/null
+check $? 1 "capacity -j 1 exit status with an unreadable record"
+check "$(wc -l <"$T/cref.tsv" | tr -d ' ')" 21 "capacity reference rows + header (5 records x 4)"
+for nj in "1 1" "2 1" "3 1" "2 2" "3 2"; do
+  set -- $nj
+  # shellcheck disable=SC2086
+  $MPIRUN -n $1 "$MPIBIN" capacity -j $2 $CRECS $CARGS -o "$T/c$1$2.h5" \
+    --fragility "$T/cf$1$2.tsv" >"$T/c$1$2.tsv" 2>"$T/c$1$2.err"
+  check $? 1 "capacity N=$1 -j $2 exit status (the unreadable record fails, the others go on)"
+  if cmp -s "$T/cref.tsv" "$T/c$1$2.tsv" && cmp -s "$T/cfref.tsv" "$T/cf$1$2.tsv"; then
+    ok "capacity N=$1 -j $2 TSV and fragility byte-identical"; else
+    bad "capacity N=$1 -j $2 TSV or fragility differs from archquake -j 1's"; fi
+  "$BIN" compare "$T/cref.h5" "$T/c$1$2.h5" >/dev/null 2>&1
+  check $? 0 "capacity N=$1 -j $2 compare with archquake -j 1's results file"
+  check "$(grep -c 'PROVENANCE.md' "$T/c$1$2.err")" 1 "capacity N=$1 -j $2 the unreadable record reported once"
+done
+# the comparison sees a difference in the capacity group (a finer scan)
+# shellcheck disable=SC2086
+"$BIN" capacity -j 2 $R/ARL360.at2 $R/CHY028-N.AT2 $R/IELC180.AT2 $R/TCU052-N.AT2 \
+  --arch arches/oppenheim.cfg --arch arches/thin.cfg -o "$T/cfine.h5" >/dev/null 2>&1
+"$BIN" compare "$T/cref.h5" "$T/cfine.h5" >/dev/null 2>&1
+check $? 1 "capacity: compare tells another scan's results file apart"
+
+# capacity of a two-component motion at every 30th azimuth, between records
+COARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL337.AT2
+        $R/IELC180.AT2 --azimuth all:30 --arch arches/oppenheim.cfg --resolution 0.1"
+# shellcheck disable=SC2086
+"$BIN" capacity -j 1 $COARGS >"$T/coref.tsv" 2>/dev/null
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" capacity -j 2 $COARGS >"$T/co3.tsv" 2>/dev/null
+check $? 0 "capacity, motion, N=3 -j 2: exit status"
+if cmp -s "$T/coref.tsv" "$T/co3.tsv"; then ok "capacity, motion, N=3 -j 2: TSV byte-identical"; else
+  bad "capacity, motion, N=3 -j 2: TSV differs from archquake -j 1's"; fi
+
 # A follower killed mid-run: 280 records (copies: a suite runs each file
 # once), rank 1 killed once some are done.
 mkdir "$T/recs"
@@ -97,20 +158,8 @@ while kill -0 $mp 2>/dev/null && [ $waited -lt $((HANG_S * 20)) ]; do
   sleep 0.05
   waited=$((waited + 1))
 done
-victim=""
-for p in $(pgrep -P $mp); do
-  if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
-    victim=$p
-  fi
-done
-if [ -n "$victim" ]; then kill -KILL "$victim"; ok "found rank 1 (pid $victim)"; else
-  bad "rank 1 not found among mpirun's children"; fi
-waited=0
-while kill -0 $mp 2>/dev/null && [ $waited -lt $HANG_S ]; do sleep 1; waited=$((waited + 1)); done
-if kill -0 $mp 2>/dev/null; then
-  bad "the job still runs $HANG_S s after a follower was killed"
-  kill -KILL $mp
-fi
+kill_rank1 $mp
+wait_end $mp
 wait $mp
 st=$?
 if [ $st -ne 0 ]; then ok "killed follower: exit status $st after ${waited} s"; else
@@ -134,6 +183,23 @@ if cmp -s "$T/kref.tsv" "$T/k.tsv"; then ok "--resume TSV byte-identical"; else
 "$BIN" compare "$T/kref.h5" "$T/k.h5" >/dev/null 2>&1
 check $? 0 "--resume compare with archquake -j 1's results file"
 check "$(ls "$T" | grep -c '^k\.h5\.journal')" 0 "--resume removed the journal"
+
+# capacity with a follower killed mid-run: 84 records x 2 polarities of
+# tasks, seconds of work; nothing is written before the end.
+CLONG=$(echo $LONG | tr ' ' '\n' | head -n 84 | tr '\n' ' ')
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" capacity -j 1 $CLONG --arch arches/oppenheim.cfg -o "$T/ck.h5" \
+  --text "$T/ck.tsv" --fragility "$T/ckf.tsv" 2>"$T/ck.err" &
+mp=$!
+sleep 2 # the followers are running tasks (the run takes several times longer)
+kill_rank1 $mp
+wait_end $mp
+wait $mp
+st=$?
+if [ $st -ne 0 ]; then ok "capacity, killed follower: exit status $st after ${waited} s"; else
+  bad "capacity, killed follower: expected a non-zero exit status, got 0"; fi
+check "$(ls "$T" | grep -c '^ck')" 1 "capacity, killed follower: no output or temporary (only its stderr)"
+[ -n "${AQ_TEST_VERBOSE:-}" ] && sed 's/^/  stderr: /' "$T/ck.err"
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
