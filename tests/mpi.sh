@@ -2,10 +2,11 @@
 # tests/mpi.sh: archquake-mpi against archquake -j 1 (make check-mpi).
 #
 # The reference is the serial program on the same arguments: every rank
-# count must give the same TSV bytes and a results file that `archquake
-# compare` finds equal.  Then a follower is killed mid-run: the job must
-# end (no hang) with a non-zero status and no results file, and --resume
-# must finish it with the reference's outputs.  Last line: "N passed, N
+# count, with one or two threads per rank, must give the same TSV bytes and
+# a results file that `archquake compare` finds equal, for the main job
+# and for capacity.  Then a follower is killed mid-run: the job must end
+# (no hang) with a non-zero status and no results file, and --resume must
+# finish the main job with the reference's outputs.  Last line: "N passed, N
 # failed", like the runner's.  AQ_TEST_VERBOSE=1 prints the measured values.
 set -u
 BIN=${AQ_BIN:-./archquake}
@@ -60,15 +61,18 @@ ARGS="--arch arches/oppenheim.cfg --arch arches/thin.cfg --scale 0.5,1 --polarit
 check $? 1 "archquake -j 1 exit status with an unreadable record"
 check "$(wc -l <"$T/ref.tsv" | tr -d ' ')" 57 "reference rows + header (7 records x 8 runs)"
 
-for n in 1 2 3; do
+# (record, arch) tasks; -j 2 gives every rank two threads
+for nj in "1 1" "2 1" "3 1" "2 2" "3 2"; do
+  set -- $nj
+  n="$1 -j $2"
   # shellcheck disable=SC2086
-  $MPIRUN -n $n "$MPIBIN" $RECS $ARGS -o "$T/m$n.h5" >"$T/m$n.tsv" 2>"$T/m$n.err"
+  $MPIRUN -n $1 "$MPIBIN" -j $2 $RECS $ARGS -o "$T/m$1$2.h5" >"$T/m$1$2.tsv" 2>"$T/m$1$2.err"
   check $? 1 "N=$n exit status (the unreadable record fails, the others go on)"
-  if cmp -s "$T/ref.tsv" "$T/m$n.tsv"; then ok "N=$n TSV byte-identical"; else
-    bad "N=$n TSV differs from archquake -j 1's: $(cmp "$T/ref.tsv" "$T/m$n.tsv" 2>&1)"; fi
-  "$BIN" compare "$T/ref.h5" "$T/m$n.h5" >"$T/c$n.out" 2>&1
+  if cmp -s "$T/ref.tsv" "$T/m$1$2.tsv"; then ok "N=$n TSV byte-identical"; else
+    bad "N=$n TSV differs from archquake -j 1's: $(cmp "$T/ref.tsv" "$T/m$1$2.tsv" 2>&1)"; fi
+  "$BIN" compare "$T/ref.h5" "$T/m$1$2.h5" >/dev/null 2>&1
   check $? 0 "N=$n compare with archquake -j 1's results file"
-  check "$(grep -c 'PROVENANCE.md' "$T/m$n.err")" 1 "N=$n the unreadable record reported once"
+  check "$(grep -c 'PROVENANCE.md' "$T/m$1$2.err")" 1 "N=$n the unreadable record reported once"
 done
 
 # A two-component motion run at every 30th azimuth, between plain records.
@@ -77,7 +81,7 @@ OARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL
 # shellcheck disable=SC2086
 "$BIN" -j 1 $OARGS -o "$T/oref.h5" >"$T/oref.tsv" 2>/dev/null
 # shellcheck disable=SC2086
-$MPIRUN -n 3 "$MPIBIN" $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
+$MPIRUN -n 3 "$MPIBIN" -j 2 $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
 check $? 0 "motion, N=3: exit status"
 if cmp -s "$T/oref.tsv" "$T/o3.tsv"; then ok "motion, N=3: TSV byte-identical"; else
   bad "motion, N=3: TSV differs from archquake -j 1's"; fi

@@ -12,18 +12,6 @@
 #include "capacity_tasks.h"
 #include "opt.h"
 
-static const aq_farm *farm_hook;
-
-void aq_farm_set(const aq_farm *f)
-{
-  farm_hook = f;
-}
-
-int aq_farm_is_follower(void)
-{
-  return farm_hook && farm_hook->follower;
-}
-
 void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it)
 {
   aq_error_clear(&it->err);
@@ -222,6 +210,7 @@ static int task_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq
 
 int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threads)
 {
+  const aq_farm *farm_hook = aq_farm_get();
   if (!farm_hook || !farm_hook->farm)
     return run_here(S, R, C, threads);
   tasks X = {.S = S, .R = R, .C = C, .lazy = farm_hook->follower,
@@ -244,7 +233,7 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
       if (R[t / S->na].ok)
         todo[ntodo++] = t;
   }
-  aq_farm_tasks T = {ntask, threads, task_run, task_take, &X};
+  aq_farm_tasks T = {ntask, threads, S->na, 0, task_run, task_take, &X};
   aq_error e;
   aq_error_clear(&e);
   if (rc != 0)

@@ -15,39 +15,8 @@
 
 #include "../capacity/capacity.h"
 #include "../error.h"
+#include "farm.h"
 #include "opt_orient.h"
-
-/* ---- farming tasks out (set by archquake-mpi) ----------------------------- */
-
-typedef struct {
-  size_t ntask; /* task ids are < ntask */
-  long threads; /* tasks a process runs at once (-j, the same on every rank) */
-  /* Run task t on this process and give its result as a message (*msg
-   * malloc'd, *n bytes).  Returns 0, or -1 out of memory.  Called on worker
-   * threads, concurrently. */
-  int (*run)(void *ctx, size_t t, unsigned char **msg, size_t *n);
-  /* Leader: take task t's result (its own or a follower's).  Returns 0, or
-   * -1 with err filled when the message is malformed.  Called on one
-   * thread at a time. */
-  int (*take)(void *ctx, size_t t, const unsigned char *msg, size_t n, aq_error *err);
-  void *ctx;
-} aq_farm_tasks;
-
-typedef struct {
-  void *ctx;
-  int follower; /* 1: run what the leader hands out; write nothing */
-  /* Leader: run the ntodo tasks todo[] here and on the followers, every
-   * result given to T->take, then stop the followers; follower: run the
-   * tasks the leader hands out until it stops them.  Returns 0, or -1 with
-   * err filled when the exchange failed (then nothing may be written). */
-  int (*farm)(void *ctx, const aq_farm_tasks *T, const size_t *todo, size_t ntodo,
-              aq_error *err);
-} aq_farm;
-
-/* Every later aq_cap_run farms through f (NULL: runs here). */
-void aq_farm_set(const aq_farm *f);
-/* 1 if this process is a follower (it must create no output). */
-int aq_farm_is_follower(void);
 
 /* ---- the capacity tasks ------------------------------------------------- */
 
