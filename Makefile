@@ -37,7 +37,7 @@ build/describe.h: FORCE
 	@mkdir -p build
 	@printf '#define AQ_BUILD_SUFFIX "%s"\n' '$(if $(AQ_DESCRIBE), ($(AQ_DESCRIBE)))' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-build/rel/src/app/version.o build/san/src/app/version.o build/mut/src/app/version.o: build/describe.h
+build/rel/src/app/version.o build/san/src/app/version.o build/mut/src/app/version.o build/fz/src/app/version.o: build/describe.h
 
 # Where installed arches are looked for (src/app/opt_arch.c), from PREFIX;
 # rewritten only when PREFIX changes.
@@ -45,7 +45,7 @@ build/datadir.h: FORCE
 	@mkdir -p build
 	@printf '#define AQ_DATADIR "%s"\n' '$(PREFIX)/share/archquake' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-build/rel/src/app/opt_arch.o build/san/src/app/opt_arch.o build/mut/src/app/opt_arch.o: build/datadir.h
+build/rel/src/app/opt_arch.o build/san/src/app/opt_arch.o build/mut/src/app/opt_arch.o build/fz/src/app/opt_arch.o: build/datadir.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -119,9 +119,17 @@ bench: archquake $(BENCH_BIN)
 # undefined behaviour stops that harness: its log is shown, the input that
 # did it is named (build/fuzz/crash-NAME/...) and the target fails.
 FUZZ_BIN := $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
-build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(LIB_SRC) $(HDRS) build/describe.h build/datadir.h
+# The library is compiled once for every harness (instrumented for
+# coverage, not linked with libFuzzer's main); each harness links it.
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined
+FUZZ_OBJ := $(LIB_SRC:%.c=build/fz/%.o)
+.SECONDARY: $(FUZZ_OBJ)
+build/fz/%.o: %.c $(HDRS)
 	@mkdir -p $(dir $@)
-	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -o $@ $< $(LIB_SRC) $(AQ_LIBS)
+	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c -o $@ $<
+build/fuzz/%: fuzz/%.c fuzz/fuzz_common.h $(FUZZ_OBJ) $(HDRS)
+	@mkdir -p $(dir $@)
+	clang $(AQ_CFLAGS) -O1 -g -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $< $(FUZZ_OBJ) $(AQ_LIBS)
 
 fuzz: $(FUZZ_BIN)
 	@fail=0; for f in $(FUZZ_BIN); do \

@@ -70,11 +70,11 @@ static double *dataset(hid_t f, const char *name, size_t *n)
   return v;
 }
 
-/* Column name (a number) of row `row` of /summary. */
-static double summary(hid_t f, size_t row, const char *name)
+/* Column name (a number) of row `row` of the compound table obj. */
+static double table_value(hid_t f, const char *obj, size_t row, const char *name)
 {
   double v = NAN, *all = NULL;
-  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
+  hid_t d = H5Dopen2(f, obj, H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
   hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
   hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
   if (np > (hssize_t)row && H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE) >= 0 &&
@@ -88,6 +88,12 @@ static double summary(hid_t f, size_t row, const char *name)
   if (d >= 0)
     H5Dclose(d);
   return v;
+}
+
+/* Column name (a number) of row `row` of /summary. */
+static double summary(hid_t f, size_t row, const char *name)
+{
+  return table_value(f, "/summary", row, name);
 }
 
 static double attr(hid_t f, const char *obj, const char *name)
@@ -574,14 +580,17 @@ AQ_TEST(plot_capacity_is_the_capacity_tsv)
     free(tsv);
     return;
   }
-  check_axes(csv, 3, "capacity");
-  /* rebuild "lo-hi;lo-hi" per polarity from the CSV and find it in the TSV */
+  check_axes(csv, 4, "capacity");
+  /* rebuild "lo-hi;lo-hi" per polarity from the CSV's intervals and find it
+     in the TSV */
   size_t found = 0;
-  for (int p = 0; p < 2; p++) {
+  const char *ivs = strstr(csv, "\nrecord,polarity,move_scale,");
+  aq_check(ivs != NULL, "the intervals' section");
+  for (int p = 0; p < 2 && ivs; p++) {
     const char *pol = p ? ",reversed," : ",normal,";
     char want[4096] = "";
     size_t len = 0;
-    for (const char *l = strstr(csv, pol); l; l = strstr(l + 1, pol)) {
+    for (const char *l = strstr(ivs, pol); l; l = strstr(l + 1, pol)) {
       double v[4];
       const char *q = l + strlen(pol);
       for (int k = 0; k < 4; k++) {
@@ -697,7 +706,7 @@ AQ_TEST(plot_capacity_fragility_is_the_fit)
     free(csv), free(tsv), free(med), free(beta), free(mlo), free(mhi);
     return;
   }
-  check_axes(csv, 3, "capacity with fragility");
+  check_axes(csv, 4, "capacity with fragility");
   aq_check(strstr(csv, "im=pga_g ") != NULL && strstr(csv, "\nseries,pga_g,probability\n"),
            "the fragility section names its IM");
   static const char *const name[3] = {"\nfit,", "\nfit_median_lo,", "\nfit_median_hi,"};
@@ -755,4 +764,249 @@ AQ_TEST(plot_capacity_fragility_is_the_fit)
   if (g)
     fclose(g);
   free(csv), free(tsv), free(med), free(beta), free(mlo), free(mhi);
+}
+
+/* ---- the capacity figure's lines -------------------------------------- */
+
+typedef struct {
+  int64_t pair, collapsed;
+  double scale, peak_rad, peak_qc, t_s;
+} cap_point;
+
+/* capacity/scan_points, read with our own compound type; count or -1. */
+static long cap_points(hid_t f, cap_point *p, size_t cap)
+{
+  hid_t d = H5Dopen2(f, "/capacity/scan_points", H5P_DEFAULT);
+  hid_t s = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t n = s >= 0 ? H5Sget_simple_extent_npoints(s) : -1;
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(cap_point));
+  H5Tinsert(t, "pair", HOFFSET(cap_point, pair), H5T_NATIVE_INT64);
+  H5Tinsert(t, "collapsed", HOFFSET(cap_point, collapsed), H5T_NATIVE_INT64);
+  H5Tinsert(t, "scale", HOFFSET(cap_point, scale), H5T_NATIVE_DOUBLE);
+  H5Tinsert(t, "peak_rotation_rad", HOFFSET(cap_point, peak_rad), H5T_NATIVE_DOUBLE);
+  H5Tinsert(t, "peak_rotation_over_qc", HOFFSET(cap_point, peak_qc), H5T_NATIVE_DOUBLE);
+  H5Tinsert(t, "collapse_time_s", HOFFSET(cap_point, t_s), H5T_NATIVE_DOUBLE);
+  long rc = n >= 0 && (size_t)n <= cap && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, p) >= 0
+                ? (long)n
+                : -1;
+  H5Tclose(t);
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  return rc;
+}
+
+/* Strings dataset name (variable length) of f: entry i into buf. */
+static const char *cap_string(hid_t f, const char *name, size_t i, char *buf, size_t n)
+{
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
+  char **v = np > 0 ? calloc((size_t)np, sizeof *v) : NULL;
+  buf[0] = '\0';
+  if (v && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0 && i < (size_t)np) {
+    snprintf(buf, n, "%s", v[i]);
+    H5Dvlen_reclaim(t, s, H5P_DEFAULT, v);
+  }
+  free(v);
+  H5Tclose(t);
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  return buf;
+}
+
+static int same_double(double a, double b)
+{
+  return a == b || (isnan(a) && isnan(b));
+}
+
+/* Split a CSV line at commas into f[0..n-1] (in place); the count. */
+static int csv_fields(char *line, char **f, int n)
+{
+  int k = 0;
+  for (char *p = line; p && k < n; k++) {
+    f[k] = p;
+    p = strchr(p, ',');
+    if (p)
+      *p++ = '\0';
+  }
+  return k;
+}
+
+/* San Fernando (RSN77) on the oppenheim arch with COR 0.5 collapses from a
+ * scale of 1.94, survives from 3.67 to 3.75 and collapses again
+ * (test_capacity_cli.c); IELC180 is the second record.  The figure's lines
+ * are the file's scan_points, read here with HDF5, row for row; its PGA
+ * axis is the scale times the /records table's pga_g; its shaded intervals
+ * the file's intervals; RSN77 shows one below a survived point. */
+AQ_TEST(plot_capacity_lines_are_the_scan_points)
+{
+  enum { MAXP = 8192, LINE = 512 };
+  /* pga_g = scale x PGA at scale 1, which the figure takes as im_cap /
+     scale_max: two roundings apart (measured 0) */
+  const double TOL_PGA_REL = 1e-15;
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/l.h5", dir);
+  snprintf(args, sizeof args,
+           "capacity tests/data/records/RSN77_SFERN_PUL164-hor1.AT2 "
+           "tests/data/records/IELC180.AT2 --arch " ARCH " --cor 0.5 --detrend mean "
+           "--taper 0.05 --highpass 0.05 --scale-max 4 -j 2 -o %s", h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  cap_point *p = malloc(MAXP * sizeof *p);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  long np = f >= 0 && p ? cap_points(f, p, MAXP) : -1;
+  if (!aq_check(np > 100, "%s: %ld scan points", h5, np)) {
+    if (f >= 0)
+      H5Fclose(f);
+    free(p);
+    return;
+  }
+  size_t nin = 0, nint = 0;
+  double *iv = dataset(f, "/capacity/intervals", &nin);
+  double *ist = dataset(f, "/capacity/interval_start", &nint);
+  double *icn = dataset(f, "/capacity/interval_count", &nint);
+  for (int y = 0; y < 2; y++) {
+    const char *ext = y ? "svg" : "png";
+    snprintf(out, sizeof out, "%s/l%d.%s", dir, y, ext);
+    snprintf(data, sizeof data, "%s/l%d.csv", dir, y);
+    snprintf(args, sizeof args, "plot capacity %s %s -o %s --data %s", h5,
+             y ? "--y pga --x rad" : "", out, data);
+    rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+    valid(out);
+    char *csv = aq_test_read_file(data, NULL);
+    if (!aq_check(csv != NULL, "%s written", data))
+      continue;
+    check_axes(csv, 4, "capacity lines");
+    aq_check(strstr(csv, y ? "# axis: PGA of the scaled record (g)\n"
+                           : "# axis: scale factor on the processed record (1)\n") &&
+                 strstr(csv, y ? "# axis: peak rotation (rad)\n"
+                               : "# axis: peak rotation / q#dc#u (1)\n"),
+             "axes as asked (--y %s)", y ? "pga" : "scale");
+    /* the points' section, row for row against scan_points */
+    const char *hdr = "record,polarity,legend_no,scale,pga_g,peak_rotation_rad,"
+                      "peak_rotation_over_qc,collapsed,collapse_time_s\n";
+    char *sec = strstr(csv, hdr), *l = sec ? sec + strlen(hdr) : NULL;
+    long row = 0;
+    size_t bad = 0, bad_pga = 0;
+    double worst_pga = 0;
+    char rec[LINE], pol[32];
+    while (l && *l && *l != '\n') {
+      char *nl = strchr(l, '\n'), *fl[9];
+      if (nl)
+        *nl = '\0';
+      int nf = csv_fields(l, fl, 9);
+      if (row >= np || nf != 9) {
+        bad++;
+        break;
+      }
+      const cap_point *q = &p[row];
+      size_t pr = (size_t)q->pair;
+      cap_string(f, "/capacity/record", pr, rec, sizeof rec);
+      cap_string(f, "/capacity/polarity", pr, pol, sizeof pol);
+      double pga1 = table_value(f, "/records", pr / 2, "pga_g"); /* 2 polarities */
+      double pga = strtod(fl[4], NULL);
+      bad += strcmp(fl[0], rec) != 0 || strcmp(fl[1], pol) != 0 ||
+             strtod(fl[3], NULL) != q->scale || strtod(fl[5], NULL) != q->peak_rad ||
+             strtod(fl[6], NULL) != q->peak_qc || atoi(fl[7]) != q->collapsed ||
+             !same_double(strtod(fl[8], NULL), q->t_s);
+      double d = fabs(pga - q->scale * pga1) / (q->scale * pga1);
+      worst_pga = fmax(worst_pga, d);
+      bad_pga += !(d <= TOL_PGA_REL);
+      row++;
+      l = nl ? nl + 1 : NULL;
+    }
+    aq_check(row == np && bad == 0,
+             "--data rows = capacity/scan_points (%ld of %ld rows, %zu differ)", row, np, bad);
+    aq_check(bad_pga == 0, "pga_g = scale x /records pga_g (worst relative %.3g)", worst_pga);
+    /* the shaded intervals: the file's, and one below a survived point */
+    const char *ih = "record,polarity,move_scale,scale_max,collapse_lo,collapse_hi,legend_no,"
+                     "record_pga_g\n";
+    char *is = l ? strstr(l, ih) : NULL;
+    l = is ? is + strlen(ih) : NULL;
+    size_t nshade = 0, bad_iv = 0, below_survivor = 0;
+    for (size_t pr = 0; l && *l && *l != '\n' && pr < nint; pr++) {
+      for (int64_t j = 0; j < (int64_t)fmax(icn[pr], 1) && l && *l != '\n'; j++) {
+        char *nl = strchr(l, '\n'), *fl[8];
+        if (nl)
+          *nl = '\0';
+        csv_fields(l, fl, 8);
+        double lo = strtod(fl[4], NULL), hi = strtod(fl[5], NULL);
+        if (icn[pr] > 0) {
+          size_t q = (size_t)ist[pr] + (size_t)j;
+          bad_iv += 2 * q + 1 >= nin || lo != iv[2 * q] || hi != iv[2 * q + 1];
+          nshade++;
+          for (long k = 0; isfinite(hi) && k < np; k++)
+            if ((size_t)p[k].pair == pr && !p[k].collapsed && p[k].scale > hi) {
+              below_survivor++;
+              break;
+            }
+        } else
+          bad_iv += !isnan(lo);
+        l = nl ? nl + 1 : NULL;
+      }
+    }
+    aq_check(nshade >= 3 && bad_iv == 0, "%zu shaded intervals = capacity/intervals (%zu "
+             "differ)", nshade, bad_iv);
+    aq_check(below_survivor >= 1, "%zu shaded intervals lie below a survived point",
+             below_survivor);
+    free(csv);
+  }
+  free(iv);
+  free(ist);
+  free(icn);
+  H5Fclose(f);
+  free(p);
+  /* the PDF; and a bad --x: one line, no file */
+  snprintf(out, sizeof out, "%s/l.pdf", dir);
+  snprintf(args, sizeof args, "plot capacity %s --x deg -o %s", h5, out);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  FILE *g = fopen(out, "rb");
+  aq_check(rc == 2 && strstr(err, "--x") && aq_test_count_lines(err) == 1 && !g,
+           "--x deg: exit %d \"%s\"", rc, err);
+  if (g)
+    fclose(g);
+  snprintf(args, sizeof args, "plot capacity %s --x qc --y scale -o %s", h5, out);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  snprintf(args, sizeof args, "plot suite %s --y pga -o %s/s.png", h5, dir);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, "--y") && aq_test_count_lines(err) == 1,
+           "--y on another figure: exit %d \"%s\"", rc, err);
+}
+
+/* A capacity file written before scan_points: the figure is drawn (the
+ * strips and the fragility) with no lines, and says so in its data. */
+AQ_TEST(plot_capacity_without_scan_points)
+{
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/old.h5", dir);
+  snprintf(args, sizeof args,
+           "capacity " RECORD " --arch " ARCH " --resolution 0.1 -j 2 -o %s", h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  hid_t f = H5Fopen(h5, H5F_ACC_RDWR, H5P_DEFAULT);
+  aq_check(f >= 0 && H5Ldelete(f, "/capacity/scan_points", H5P_DEFAULT) >= 0,
+           "scan_points removed");
+  if (f >= 0)
+    H5Fclose(f);
+  snprintf(out, sizeof out, "%s/old.png", dir);
+  snprintf(data, sizeof data, "%s/old.csv", dir);
+  snprintf(args, sizeof args, "plot capacity %s -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  valid(out);
+  char *csv = aq_test_read_file(data, NULL);
+  const char *hdr = "collapse_time_s\n";
+  const char *after = csv ? strstr(csv, hdr) : NULL;
+  aq_check(after && after[strlen(hdr)] == '\n', "no point rows");
+  free(csv);
 }

@@ -1,6 +1,6 @@
 /* cmd_plot.c: `archquake plot FIGURE ... -o FILE`: parse and check the
  * options, read the inputs, then draw with the plot stage (src/plot) in
- * this one thread.  Figures: history, arch, domain, suite. */
+ * this one thread.  Figures: history, arch, domain, suite, capacity. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
 #include <math.h>
@@ -26,19 +26,25 @@ static const char usage[] =
     "        with +-q_c, kinetic and potential energy and the work put in (J);\n"
     "        impacts and collapse marked.  KEY: a group under /runs, e.g.\n"
     "        00000_000_000 (default: the first run)\n"
-    "  arch --arch FILE [--rotation RAD]   the arch to scale, its voussoirs and\n"
+    "  arch --arch ARCH [--rotation RAD]   the arch to scale, its voussoirs and\n"
     "        both hinge sets; with --rotation the mechanism deformed at that\n"
     "        rotation of body 1 (> 0 primary set, < 0 reverse set, |RAD| <= q_c)\n"
-    "  domain --arch FILE [--ratios LIST] [--cor C]   the half-cycle collapse\n"
+    "  domain --arch ARCH [--ratios LIST] [--cor C]   the half-cycle collapse\n"
     "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
     "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
     "        and polarities: collapse, or peak rotation / q_c)\n"
-    "  capacity CAPACITY.h5 [--arch NAME] [--im IM]   the scales each record was\n"
-    "        scanned over with its collapse intervals (archquake capacity -o), one\n"
-    "        arch (default: the file's first); below, the lognormal fragility of\n"
-    "        IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s, pga_lambda0; default\n"
-    "        pga_g) over the empirical fraction of first collapses, censored\n"
-    "        records at their cap, and the band of the median's interval\n"
+    "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
+    "        a file of archquake capacity -o, one arch (default: the file's\n"
+    "        first): one line per record and polarity through every scanned\n"
+    "        scale, the scale factor (--y pga: the PGA in g) against the run's\n"
+    "        peak rotation (--x qc: over q_c, the default; --x rad: in rad),\n"
+    "        beside a strip per record with the collapse intervals of each\n"
+    "        polarity shaded; below,\n"
+    "        the lognormal fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s,\n"
+    "        cav_m_s, pga_lambda0; default pga_g) over the empirical fraction of\n"
+    "        first collapses, censored records at their cap, and the band of\n"
+    "        the median's interval\n"
+    "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n"
     "Options:\n"
     "  -o, --output FILE  the figure (.png .svg .pdf)\n"
     "  --data FILE.csv    also write the plotted data (columns carry units)\n"
@@ -51,12 +57,17 @@ static const char *const figures[] = {"history", "arch", "domain", "suite", "cap
 /* Per figure: takes an input file, and which options it accepts. */
 static const struct {
   int input;
-  const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor */
-} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "ai"}};
+  const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor,
+                       i im, x x axis, y y axis */
+} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "aixy"}};
+
+static const char *const x_axes[] = {"qc", "rad", NULL};
+static const char *const y_axes[] = {"scale", "pga", NULL};
 
 typedef struct {
   int fig;
   const char *input, *out, *data, *run, *arch, *im;
+  int x_rad, y_pga; /* capacity: index in x_axes, y_axes */
   double rotation_rad, cor;
   double *ratios;
   size_t nr;
@@ -69,7 +80,8 @@ static int parse(int argc, char **argv, plot_opts *o)
       {"run", required_argument, NULL, 'r'},    {"arch", required_argument, NULL, 'a'},
       {"rotation", required_argument, NULL, 'R'}, {"ratios", required_argument, NULL, 't'},
       {"cor", required_argument, NULL, 'c'},    {"help", no_argument, NULL, 'h'},
-      {"im", required_argument, NULL, 'i'},
+      {"im", required_argument, NULL, 'i'},     {"x", required_argument, NULL, 'x'},
+      {"y", required_argument, NULL, 'y'},
       {NULL, 0, NULL, 0}};
   int nerr = 0, c;
   opterr = 0;
@@ -79,9 +91,13 @@ static int parse(int argc, char **argv, plot_opts *o)
       fputs(usage, stdout);
       return -1;
     }
-    if (strchr("rRatci", c) && !strchr(takes[o->fig].opts, c)) {
-      fprintf(stderr, "archquake: plot %s: %s: not an option of this figure\n",
-              figures[o->fig], argv[optind - 1]);
+    if (strchr("rRatcixy", c) && !strchr(takes[o->fig].opts, c)) {
+      const char *name = "?";
+      for (size_t k = 0; longopts[k].name; k++)
+        if (longopts[k].val == c)
+          name = longopts[k].name;
+      fprintf(stderr, "archquake: plot %s: --%s: not an option of this figure\n",
+              figures[o->fig], name);
       nerr++;
       continue;
     }
@@ -91,6 +107,8 @@ static int parse(int argc, char **argv, plot_opts *o)
     case 'r': o->run = optarg; break;
     case 'a': o->arch = o->fig == FIG_CAPACITY ? optarg : aq_opt_arch(optarg, &nerr); break;
     case 'i': o->im = optarg; break;
+    case 'x': aq_opt_choice("--x", optarg, x_axes, &o->x_rad, &nerr); break;
+    case 'y': aq_opt_choice("--y", optarg, y_axes, &o->y_pga, &nerr); break;
     case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
     case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;
     case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
@@ -109,7 +127,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
   aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
   if (strchr(takes[o->fig].opts, 'a') && o->fig != FIG_CAPACITY)
-    aq_opt_require("plot", "--arch FILE", o->arch != NULL, &nerr);
+    aq_opt_require("plot", "--arch ARCH", o->arch != NULL, &nerr);
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
@@ -131,7 +149,8 @@ static int fail(const aq_error *err)
   return err->status == AQ_EIO ? AQ_EXIT_OUTPUT
          : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
                  !strcmp(err->field, "--rotation") ||
-                 !strcmp(err->field, "--arch") || !strcmp(err->field, "--im")
+                 !strcmp(err->field, "--arch") || !strcmp(err->field, "--im") ||
+                 !strcmp(err->field, "--y")
              ? AQ_EXIT_USAGE
              : AQ_EXIT_FAIL;
 }
@@ -243,7 +262,8 @@ int aq_cmd_plot(int argc, char **argv)
       rc = fail(&err);
       break;
     }
-    if (aq_plot_capacity(&t, o.arch, o.im, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+    aq_plot_capacity_opts co = {o.arch, o.im, o.x_rad, o.y_pga};
+    if (aq_plot_capacity(&t, &co, o.input, o.out, o.data, NULL, &err) != AQ_OK)
       rc = fail(&err);
     aq_h5_capacity_table_free(&t);
     break;

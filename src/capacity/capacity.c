@@ -17,8 +17,12 @@
 
 void aq_capacity_free(aq_capacity *c)
 {
-  if (c)
-    aq_scan_result_free(&c->scan);
+  if (!c)
+    return;
+  aq_scan_result_free(&c->scan);
+  free(c->point);
+  c->point = NULL;
+  c->npoint = 0;
 }
 
 double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
@@ -51,8 +55,40 @@ double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
 typedef struct {
   const aq_capacity_job *job;
   aq_stepper *st;
-  double *buf; /* proc->n scaled samples */
+  double *buf;      /* proc->n scaled samples */
+  aq_capacity *out; /* gets a point per run */
+  size_t cap;       /* points allocated */
 } run_ctx;
+
+/* Record the run at scale in c->out's points. */
+static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_error *err)
+{
+  aq_capacity *o = c->out;
+  if (o->npoint == c->cap) {
+    size_t nc = c->cap ? 2 * c->cap : 64;
+    aq_capacity_point *p = realloc(o->point, nc * sizeof *p);
+    if (!p)
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
+    o->point = p;
+    c->cap = nc;
+  }
+  /* peak over the collapse rotation of the set it peaked in, as the main
+     job's summary (peak_rotation_over_qc) */
+  const aq_path *ps = res->peak_set >= 0 ? aq_arch_path(c->job->arch, res->peak_set) : NULL;
+  double over = ps && ps->admissible ? res->peak_rotation_rad / ps->s_c_rad
+                : res->peak_rotation_rad == 0 ? 0
+                                              : NAN;
+  o->point[o->npoint++] = (aq_capacity_point){
+      scale, res->peak_rotation_rad, over,
+      res->collapsed ? res->collapse_time_s : NAN, res->collapsed ? 1 : 0};
+  return AQ_OK;
+}
+
+static int by_scale(const void *a, const void *b)
+{
+  double x = ((const aq_capacity_point *)a)->scale, y = ((const aq_capacity_point *)b)->scale;
+  return (x > y) - (x < y);
+}
 
 /* One run at scale: steps as the main job makes them (the processed record
  * times the scale, split with --merge-tol), then the stepper. */
@@ -84,8 +120,9 @@ static aq_status run_at(void *vctx, double scale, int *collapsed, aq_error *err)
     return s;
   }
   *collapsed = res.collapsed;
+  s = add_point(c, scale, &res, err);
   aq_result_free(&res);
-  return AQ_OK;
+  return s;
 }
 
 aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
@@ -115,7 +152,7 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
   const aq_arch_dynamics *d = aq_arch_dynamics_of(job->arch);
   aq_stepper_set_cor(st, isnan(job->cor) ? d->cor : job->cor);
   aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
-  run_ctx c = {job, st, malloc((p->n ? p->n : 1) * sizeof(double))};
+  run_ctx c = {job, st, malloc((p->n ? p->n : 1) * sizeof(double)), out, 0};
   if (!c.buf) {
     aq_stepper_free(st);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
@@ -124,6 +161,8 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
                             &c, &out->scan, &out->err);
   free(c.buf);
   aq_stepper_free(st);
+  if (out->npoint) /* grid and bisection runs interleave */
+    qsort(out->point, out->npoint, sizeof *out->point, by_scale);
   if (s == AQ_ENOMEM)
     return aq_error_set(err, s, NULL, -1, -1, "capacity", "out of memory");
   if (s != AQ_OK) {

@@ -22,7 +22,9 @@
  *
  * Scales are dimensionless factors on the processed record; intensities
  * are SI (m/s, m, m/s^2) except where named _g.  Results own their
- * interval arrays (aq_scan_result_free, aq_capacity_free; NULL-safe).
+ * interval and point arrays (aq_scan_result_free, aq_capacity_free;
+ * NULL-safe): an aq_capacity holds every scale the scan ran, with the
+ * run's peak rotation and verdict (aq_capacity_point).
  * Nothing here prints: errors fill an aq_error.
  */
 #ifndef AQ_CAPACITY_H
@@ -110,6 +112,16 @@ typedef enum {
   AQ_CAPACITY_FAILED       /* a run failed (err) */
 } aq_capacity_status;
 
+/* One run of the scan: a scale the search evaluated and what the run gave.
+ * Plain data (no pointers), so a result's points can be sent as bytes. */
+typedef struct {
+  double scale;                 /* factor on the processed record */
+  double peak_rotation_rad;     /* the run's max |q|, rad */
+  double peak_rotation_over_qc; /* peak over q_c of the set it peaked in (0: never moved) */
+  double collapse_time_s;       /* s in record time; NAN if it survived */
+  int collapsed;                /* 1 or 0 */
+} aq_capacity_point;
+
 typedef struct {
   aq_capacity_status status;
   aq_status run_status;        /* AQ_OK, or the failed run's code */
@@ -120,6 +132,8 @@ typedef struct {
   double first_collapse_scale; /* interval[0].lo, or NAN */
   int resurrection;            /* 1: survives some scale above its first collapse */
   aq_scan_result scan;
+  size_t npoint;               /* = scan.runs (fewer only after a failed run) */
+  aq_capacity_point *point;    /* malloc'd, by increasing scale; NULL when none */
 } aq_capacity;
 
 /* The scale at or below which no step of acc (n samples) opens either set

@@ -1,23 +1,29 @@
-/* capacity.c: the capacity results of one arch (`archquake capacity`): for
- * each (record, polarity), the scale factors it was scanned over (from the
- * scale below which the arch never moves to the cap), the collapse
- * intervals shaded, so that a resurrection (survival above a first
- * collapse) shows as a gap in the red.  Below, the fitted lognormal
- * fragility Phi(ln(x/median)/beta) in one IM, the band between the CDFs of
- * the median's interval ends, and the data it was fitted to, rebuilt as
+/* capacity.c: the capacity results of one arch (`archquake capacity`).
+ * Top: one line per (record, polarity) through every scale the capacity
+ * search ran (capacity/scan_points), ordered by scale: the scale factor
+ * (or the PGA of the scaled record, g) against the run's peak rotation
+ * (over q_c, or rad), so that a collapse runs out to q_c and a
+ * resurrection (survival above a collapse) comes back; beside it, one strip
+ * per line sharing the y axis: the range scanned (grey, from the scale
+ * below which the arch never moves to the cap) with the collapse intervals
+ * shaded in the line's colour.  Below, the fitted lognormal fragility
+ * Phi(ln(x/median)/beta) in one IM, the band between the CDFs of the
+ * median's interval ends, and the data it was fitted to, rebuilt as
  * aq_fragility_fit_records builds them: per record the lowest first
  * collapse of its polarities, at i/n (n records), or censored at its cap
- * (open circles).  Peak rotation against scale is not drawn: capacity does
- * not store it. */
+ * (open circles). */
 #include <math.h>
 #include <plplot.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "plot.h"
 
 static const char *const AX_SCALE = "scale factor on the processed record (1)";
-
+static const char *const AX_PGA = "PGA of the scaled record (g)";
+static const char *const AX_QC = "peak rotation / q#dc#u (1)";
+static const char *const AX_RAD = "peak rotation (rad)";
 static const char *const AX_PROB = "probability of collapse (1)";
 /* axis titles of the IMs of aq_fragility_im_names */
 static const char *const AX_IM[AQ_FRAGILITY_NIM] = {
@@ -37,14 +43,31 @@ typedef struct {
 
 typedef struct {
   const aq_h5_capacity_table *t;
+  const aq_plot_capacity_opts *o;
   const char *arch;
-  size_t *row; /* rows of this arch */
+  size_t *row;  /* rows of this arch: one line each */
   size_t n;
+  double *pga;  /* n: each line's PGA at scale 1 (g; NAN unknown) */
+  int *color;   /* n: colour of each line (by record) */
+  size_t *rec;  /* n: each line's record (0-based, in the file's order) */
+  size_t nrec;
+  int have_pol[2]; /* a normal, a reversed line among them */
+  PLFLT *bx, *by;  /* room for the longest line's points */
   frag f;
+  int logy;     /* 1: y on a log10 axis */
+  double ylo, yhi, xhi; /* axis ranges (y in its unit, not log) */
   double split; /* page fraction of the fragility panel (bottom) */
+  double page_px, legend_px; /* page height, the top legend's height (px) */
 } cap;
 
-enum { D_MOVE = 0, D_FIRST = 1, D_SMAX = 4, I_START = 2, I_COUNT = 3, I_RES = 0 };
+enum { D_MOVE = 0, D_FIRST = 1, D_PGA = 2, D_SMAX = 4, I_START = 2, I_COUNT = 3 };
+
+/* Colours of the lines, one per record, cycled. */
+static const int LINE_COLOR[] = {AQ_PC_BLUE,   AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_RED,
+                                 AQ_PC_PURPLE, AQ_PC_TEAL,   AQ_PC_BROWN, AQ_PC_PINK,
+                                 AQ_PC_OLIVE,  AQ_PC_NAVY};
+enum { NCOLOR = sizeof LINE_COLOR / sizeof LINE_COLOR[0] };
+enum { LEGEND_COLUMNS = 2 };
 
 static const char *base(const char *p)
 {
@@ -140,12 +163,6 @@ static int frag_build(cap *c, int m)
   return 0;
 }
 
-/* y in the top panel's own [0, 1] to the page. */
-static double top_y(const cap *c, double y)
-{
-  return c->split + y * (1 - c->split);
-}
-
 static void draw_fragility(const cap *c)
 {
   const frag *f = &c->f;
@@ -200,7 +217,7 @@ static void draw_fragility(const cap *c)
              c->arch, q->median, q->beta, f->n, f->n - f->ncol);
   else
     snprintf(title, sizeof title, "fragility of arch %.100s: %s (%zu records, %zu censored)",
-             c->arch, q ? "not fitted (fewer than two collapse values)" : "no fit in the file",
+             c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
              f->n, f->n - f->ncol);
   plmtex("t", 1.2, 0.5, 0.5, title);
   const char *tx[] = {"lognormal fit", "median's confidence interval",
@@ -211,53 +228,212 @@ static void draw_fragility(const cap *c)
                  sym);
 }
 
+static int reversed(const aq_h5_capacity_row *r)
+{
+  return strcmp(r->polarity, "reversed") == 0;
+}
+
+/* Line k's y of scale s (scale, or PGA in g), and on the drawn axis. */
+static double y_of(const cap *c, size_t k, double s)
+{
+  return c->o->y_pga ? s * c->pga[k] : s;
+}
+static double axis_y(const cap *c, double y)
+{
+  return c->logy ? log10(y) : y;
+}
+
+/* The x plotted for a scanned point. */
+static double x_of(const cap *c, const aq_capacity_point *p)
+{
+  return c->o->x_rad ? p->peak_rotation_rad : p->peak_rotation_over_qc;
+}
+
+/* y and x ranges over the lines (scanned points, move scale to cap). */
+static void ranges(cap *c)
+{
+  const aq_h5_capacity_table *t = c->t;
+  double lo = INFINITY, hi = 0, xhi = c->o->x_rad ? 0 : 1;
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    double v[2] = {y_of(c, k, r->d[D_MOVE]), y_of(c, k, r->d[D_SMAX])};
+    for (int j = 0; j < 2; j++)
+      if (v[j] > 0 && isfinite(v[j])) {
+        lo = fmin(lo, v[j]);
+        hi = fmax(hi, v[j]);
+      }
+    for (size_t i = 0; i < r->point_count; i++) {
+      const aq_capacity_point *p = &t->point[r->point_start + i];
+      double y = y_of(c, k, p->scale), x = x_of(c, p);
+      if (y > 0 && isfinite(y)) {
+        lo = fmin(lo, y);
+        hi = fmax(hi, y);
+      }
+      if (isfinite(x))
+        xhi = fmax(xhi, x);
+    }
+  }
+  if (!(lo < hi)) {
+    lo = hi > 0 ? hi / 2 : 0.5;
+    hi = lo * 4;
+  }
+  /* log10 when the range holds two powers of ten (PLplot labels decades) */
+  c->logy = ceil(log10(lo / 1.05)) < floor(log10(hi * 1.05));
+  c->ylo = c->logy ? lo / 1.05 : 0;
+  c->yhi = hi * (c->logy ? 1.05 : 1.03);
+  c->xhi = (xhi > 0 ? xhi : 1) * 1.04;
+}
+
+/* The lines: each line's points ordered by scale (as stored). */
+static void draw_lines(const cap *c)
+{
+  const aq_h5_capacity_table *t = c->t;
+  PLFLT *x = c->bx, *y = c->by;
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    size_t np = 0;
+    for (size_t i = 0; i < r->point_count; i++) {
+      const aq_capacity_point *p = &t->point[r->point_start + i];
+      double yy = y_of(c, k, p->scale);
+      if (isfinite(x_of(c, p)) && yy > 0) {
+        x[np] = x_of(c, p);
+        y[np++] = axis_y(c, yy);
+      }
+    }
+    plcol0(c->color[k]);
+    pllsty(reversed(r) ? 2 : 1);
+    plwidth(1.5);
+    if (np > 1)
+      plline((PLINT)np, x, y);
+    else if (np == 1)
+      plstring(1, x, y, "•");
+    plwidth(1);
+    pllsty(1);
+  }
+}
+
+/* The strips: a column per record [r, r + 1], split between its lines
+ * (polarities): the scanned range (grey) and the collapse intervals shaded
+ * in the record's colour (hatched for a reversed polarity). */
+static void draw_strips(const cap *c)
+{
+  const aq_h5_capacity_table *t = c->t;
+  for (size_t k0 = 0, k1; k0 < c->n; k0 = k1) {
+    for (k1 = k0; k1 < c->n && c->rec[k1] == c->rec[k0];)
+      k1++;
+    double w = 0.84 / (double)(k1 - k0), x0 = (double)c->rec[k0] + 0.08;
+    for (size_t k = k0; k < k1; k++, x0 += w) {
+      const aq_h5_capacity_row *r = &t->row[c->row[k]];
+      double smax = r->d[D_SMAX], move = isfinite(r->d[D_MOVE]) ? r->d[D_MOVE] : 0;
+      double y0 = fmax(y_of(c, k, fmin(move, smax)), c->ylo), y1 = y_of(c, k, smax);
+      if (y1 > 0 && isfinite(y1) && y1 > y0) {
+        PLFLT gx[2] = {x0 + w / 2, x0 + w / 2}, gy[2] = {axis_y(c, y0), axis_y(c, y1)};
+        plcol0(AQ_PC_GREY);
+        plwidth(2);
+        plline(2, gx, gy);
+        plwidth(1);
+      }
+      for (int64_t j = 0; j < r->i[I_COUNT]; j++) {
+        size_t q = (size_t)(r->i[I_START] + j);
+        if (q >= t->ninterval)
+          break;
+        double a = y_of(c, k, t->interval[2 * q]);
+        double b = y_of(c, k, fmin(t->interval[2 * q + 1], smax));
+        if (!(a > 0 && b >= a))
+          continue;
+        PLFLT fx[5] = {x0 + 0.06 * w, x0 + 0.94 * w, x0 + 0.94 * w, x0 + 0.06 * w, 0};
+        PLFLT fy[5] = {axis_y(c, a), axis_y(c, a), axis_y(c, b), axis_y(c, b), 0};
+        fx[4] = fx[0], fy[4] = fy[0];
+        plcol0(c->color[k]);
+        plpsty(reversed(r) ? 3 : 0); /* 3: hatched at 45 degrees */
+        plfill(4, fx, fy);
+        plpsty(0);
+        plline(5, fx, fy);
+      }
+    }
+    char lab[24];
+    snprintf(lab, sizeof lab, "%zu", c->rec[k0] + 1);
+    plcol0(AQ_PC_FG);
+    plmtex("b", 1.2, (c->rec[k0] + 0.5) / (double)c->nrec, 0.5, lab);
+  }
+}
+
 static int draw(void *ctx, aq_error *err)
 {
   (void)err;
   const cap *c = ctx;
   const aq_h5_capacity_table *t = c->t;
-  double hi = 0;
-  for (size_t k = 0; k < c->n; k++)
-    hi = fmax(hi, t->row[c->row[k]].d[D_SMAX]);
-  if (!(hi > 0))
-    hi = 1;
+  const double H = c->page_px;
+  const double ax0 = 0.11, ax1 = 0.74, sx0 = 0.78, sx1 = 0.96; /* main, strips */
+  /* top panel, from the top: title 40 px, axes, tick labels and axis title
+     78 px, the legend, 20 px */
+  const double vy1 = 1 - 40 / H, vy0 = c->split + (c->legend_px + 98) / H;
+  const char *yt = c->o->y_pga ? AX_PGA : AX_SCALE, *xt = c->o->x_rad ? AX_RAD : AX_QC;
   pladv(0);
   plschr(0, 0.85);
-  plvpor(0.45, 0.95, top_y(c, 0.22), top_y(c, 0.9));
-  plwind(0, hi * 1.02, (double)c->n, 0);
-  for (size_t k = 0; k < c->n; k++) {
-    const aq_h5_capacity_row *r = &t->row[c->row[k]];
-    double y = k + 0.5, lo = isfinite(r->d[D_MOVE]) ? r->d[D_MOVE] : 0;
-    PLFLT x[2] = {fmin(lo, r->d[D_SMAX]), r->d[D_SMAX]}, yy[2] = {y, y};
+  /* main panel */
+  plvpor(ax0, ax1, vy0, vy1);
+  plwind(0, c->xhi, axis_y(c, c->ylo), axis_y(c, c->yhi));
+  if (!c->o->x_rad) { /* the collapse rotation */
+    PLFLT qx[2] = {1, 1}, qy[2] = {axis_y(c, c->ylo), axis_y(c, c->yhi)};
     plcol0(AQ_PC_GREY);
-    plwidth(2);
-    plline(2, x, yy);
-    plwidth(1);
-    for (int64_t j = 0; j < r->i[I_COUNT]; j++) {
-      size_t q = (size_t)(r->i[I_START] + j);
-      if (q >= t->ninterval)
-        break;
-      double a = t->interval[2 * q], b = fmin(t->interval[2 * q + 1], r->d[D_SMAX]);
-      PLFLT fx[4] = {a, b, b, a}, fy[4] = {y - 0.3, y - 0.3, y + 0.3, y + 0.3};
-      plcol0(AQ_PC_RED);
-      plfill(4, fx, fy);
-    }
-    char lab[300];
-    snprintf(lab, sizeof lab, "%.28s%s", base(r->record),
-             strcmp(r->polarity, "reversed") == 0 ? " (rev.)" : "");
-    plcol0(AQ_PC_FG);
-    plmtex("lv", 0.8, 1 - y / (double)c->n, 1, lab);
+    pllsty(3);
+    plline(2, qx, qy);
+    pllsty(1);
   }
+  draw_lines(c);
   plcol0(AQ_PC_FG);
-  plbox("bcnst", 0, 0, "bc", 0, 0);
-  plmtex("b", 3.2, 0.5, 0.5, AX_SCALE);
+  plbox("bcnst", 0, 0, c->logy ? "bcnstvlf" : "bcnstv", 0, 0);
+  plmtex("b", 3.0, 0.5, 0.5, xt);
+  plmtex("l", 4.2, 0.5, 0.5, yt);
   char title[256];
-  snprintf(title, sizeof title, "collapse capacity of arch %s", c->arch);
-  plmtex("t", 1.5, 0.5, 0.5, title);
-  plvpor(0.45, 0.95, top_y(c, 0.01), top_y(c, 0.1));
-  const char *tx[] = {"scanned (arch moves)", "collapse"};
-  int col[] = {AQ_PC_GREY, AQ_PC_RED}, st[] = {1, -1};
-  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP, 2, tx, col, st, NULL);
+  snprintf(title, sizeof title, "arch %.100s: the runs of the capacity scan", c->arch);
+  plmtex("t", 1.2, 0.5, 0.5, title);
+  if (!t->have_points)
+    plmtex("t", -2.0, 0.5, 0.5, "(no scanned points in this file: written before "
+                                "capacity/scan_points)");
+  /* strips */
+  plvpor(sx0, sx1, vy0, vy1);
+  plwind(0, (double)c->nrec, axis_y(c, c->ylo), axis_y(c, c->yhi));
+  draw_strips(c);
+  plcol0(AQ_PC_FG);
+  plbox("bc", 0, 0, c->logy ? "bcstl" : "bcst", 0, 0);
+  plmtex("t", 1.2, 0.5, 0.5, "collapse");
+  plmtex("b", 3.0, 0.5, 0.5, "record (legend)");
+  /* legend under both: one entry per record, then the polarities and q_c */
+  const char *tx[AQ_PLOT_LEGEND_MAX];
+  char buf[AQ_PLOT_LEGEND_MAX][64];
+  int col[AQ_PLOT_LEGEND_MAX], st[AQ_PLOT_LEGEND_MAX];
+  size_t ne = 0;
+  for (size_t k = 0; k < c->n && ne + 4 < AQ_PLOT_LEGEND_MAX; k++) {
+    if (k && c->rec[k] == c->rec[k - 1])
+      continue;
+    snprintf(buf[ne], sizeof buf[ne], "%zu  %.28s", c->rec[k] + 1,
+             base(t->row[c->row[k]].record));
+    tx[ne] = buf[ne];
+    col[ne] = c->color[k];
+    st[ne++] = 1;
+  }
+  if (ne < c->nrec) {
+    snprintf(buf[ne], sizeof buf[ne], "... %zu more records", c->nrec - ne);
+    tx[ne] = buf[ne];
+    col[ne] = AQ_PC_BG;
+    st[ne++] = 0;
+  }
+  for (int k = 0; k < 2; k++)
+    if (c->have_pol[k]) {
+      tx[ne] = k ? "reversed (hatched strip)" : "normal (filled strip)";
+      col[ne] = AQ_PC_FG;
+      st[ne++] = k ? 2 : 1;
+    }
+  if (!c->o->x_rad) {
+    tx[ne] = "q#dc#u: collapse";
+    col[ne] = AQ_PC_GREY;
+    st[ne++] = 3;
+  }
+  plvpor(0.02, 0.98, vy0, vy1); /* the legend centred on the page */
+  aq_plot_legend_at(PL_POSITION_OUTSIDE | PL_POSITION_BOTTOM, 0, 78 / ((vy1 - vy0) * H),
+                    LEGEND_COLUMNS, ne, tx, col, st, NULL);
   draw_fragility(c);
   return 0;
 }
@@ -284,43 +460,128 @@ static void frag_csv(FILE *f, const cap *c)
     fprintf(f, "censored,%.17g,%.17g\n", g->x[i], g->ncol / (double)g->n);
 }
 
-aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch, const char *im,
+/* The top panel's data: the lines' points, then the shaded intervals. */
+static void lines_csv(FILE *f, const cap *c)
+{
+  const aq_h5_capacity_table *t = c->t;
+  const char *ax[2] = {c->o->x_rad ? AX_RAD : AX_QC, c->o->y_pga ? AX_PGA : AX_SCALE};
+  aq_plot_csv_axes(f, 2, ax);
+  fprintf(f, "record,polarity,legend_no,scale,pga_g,peak_rotation_rad,peak_rotation_over_qc,"
+             "collapsed,collapse_time_s\n");
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    for (size_t i = 0; i < r->point_count; i++) {
+      const aq_capacity_point *p = &t->point[r->point_start + i];
+      fprintf(f, "%s,%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->record, r->polarity,
+              c->rec[k] + 1, p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
+              p->peak_rotation_over_qc, p->collapsed, p->collapse_time_s);
+    }
+  }
+  fprintf(f, "\n# collapse intervals (shaded; scale factors; record_pga_g: the record's "
+             "PGA at scale 1)\n");
+  fprintf(f, "record,polarity,move_scale,scale_max,collapse_lo,collapse_hi,legend_no,"
+             "record_pga_g\n");
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    int64_t m = r->i[I_COUNT];
+    for (int64_t j = 0; j < (m ? m : 1); j++) {
+      size_t q = (size_t)(r->i[I_START] + j);
+      double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
+      double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
+      fprintf(f, "%s,%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->record, r->polarity,
+              r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
+    }
+  }
+}
+
+/* The record's PGA at scale 1 (g) from a row: the IM at the cap over the
+ * cap, else the first collapse's PGA over its scale; NAN if neither. */
+static double row_pga(const aq_h5_capacity_row *r)
+{
+  double p = r->im_cap[0] / r->d[D_SMAX]; /* im 0: pga_g */
+  if (!(p > 0 && isfinite(p)))
+    p = r->d[D_PGA] / r->d[D_FIRST];
+  return p > 0 && isfinite(p) ? p : NAN;
+}
+
+/* The lines of c->arch: rows, colours (one per record), PGAs. */
+static aq_status lines_build(cap *c, const char *source, aq_error *err)
+{
+  const aq_h5_capacity_table *t = c->t;
+  c->row = malloc(t->n * sizeof *c->row);
+  c->pga = malloc(t->n * sizeof *c->pga);
+  c->color = malloc(t->n * sizeof *c->color);
+  c->rec = malloc(t->n * sizeof *c->rec);
+  if (!c->row || !c->pga || !c->color || !c->rec)
+    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
+  size_t nrec = 0;
+  for (size_t k = 0; k < t->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[k];
+    if (strcmp(r->arch, c->arch) != 0)
+      continue;
+    if (c->n && strcmp(t->row[c->row[c->n - 1]].record, r->record) != 0)
+      nrec++;
+    c->pga[c->n] = row_pga(r);
+    c->color[c->n] = LINE_COLOR[nrec % NCOLOR];
+    c->rec[c->n] = nrec;
+    c->have_pol[reversed(r)] = 1;
+    c->row[c->n++] = k;
+    if (c->o->y_pga && r->point_count && isnan(c->pga[c->n - 1]))
+      return aq_error_set(err, AQ_EVALUE, source, -1, -1, "--y",
+                          "expected the PGA of record %s (capacity/im_cap), got none "
+                          "(plot the scale: --y scale)", r->record);
+  }
+  c->nrec = c->n ? nrec + 1 : 0;
+  size_t m = 1;
+  for (size_t k = 0; k < c->n; k++)
+    m = m > t->row[c->row[k]].point_count ? m : t->row[c->row[k]].point_count;
+  c->bx = malloc(m * sizeof *c->bx);
+  c->by = malloc(m * sizeof *c->by);
+  if (!c->bx || !c->by)
+    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
+  if (c->n == 0)
+    return aq_error_set(err, AQ_EVALUE, source, -1, -1, "--arch",
+                        "expected an arch of the file such as \"%s\", got \"%s\"",
+                        t->row[0].arch, c->arch);
+  return AQ_OK;
+}
+
+aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity_opts *o,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err)
 {
-  cap c = {t, arch, NULL, 0, {0}, 0};
+  cap c;
+  memset(&c, 0, sizeof c);
+  c.t = t;
+  c.o = o;
+  c.arch = o->arch;
   int m = 0;
-  if (im) {
-    for (m = 0; m < AQ_FRAGILITY_NIM && strcmp(aq_fragility_im_names[m], im) != 0; m++)
+  if (o->im) {
+    for (m = 0; m < AQ_FRAGILITY_NIM && strcmp(aq_fragility_im_names[m], o->im) != 0; m++)
       ;
     if (m == AQ_FRAGILITY_NIM)
       return aq_error_set(err, AQ_EOPTION, source, -1, -1, "--im",
                           "expected one of pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s, "
-                          "pga_lambda0, got \"%s\"", im);
+                          "pga_lambda0, got \"%s\"", o->im);
   }
   if (t->n == 0)
     return aq_error_set(err, AQ_EFORMAT, source, -1, -1, "capacity",
                         "expected a capacity results file (archquake capacity -o), got none");
   if (!c.arch)
     c.arch = t->row[0].arch;
-  c.row = malloc(t->n * sizeof *c.row);
-  if (!c.row)
-    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
-  for (size_t k = 0; k < t->n; k++)
-    if (strcmp(t->row[k].arch, c.arch) == 0)
-      c.row[c.n++] = k;
-  aq_status rc;
-  if (c.n == 0)
-    rc = aq_error_set(err, AQ_EVALUE, source, -1, -1, "--arch",
-                      "expected an arch of the file such as \"%s\", got \"%s\"",
-                      t->row[0].arch, c.arch);
-  else if (frag_build(&c, m) != 0)
+  aq_status rc = lines_build(&c, source, err);
+  if (rc == AQ_OK && frag_build(&c, m) != 0)
     rc = aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
-  else {
-    int h = 200 + 40 * (int)c.n, h2 = 500;
-    h = h < 500 ? 500 : h;
-    c.split = h2 / (double)(h + h2);
-    rc = aq_plot_render(target, 1000, h + h2, draw, &c, draw_s, err);
+  if (rc == AQ_OK) {
+    ranges(&c);
+    size_t ne = (c.nrec <= AQ_PLOT_LEGEND_MAX - 4 ? c.nrec : AQ_PLOT_LEGEND_MAX - 3) +
+                (size_t)(c.have_pol[0] + c.have_pol[1]) + !o->x_rad;
+    size_t rows = (ne + LEGEND_COLUMNS - 1) / LEGEND_COLUMNS;
+    const double top_px = 560, frag_px = 500; /* top axes and its margins, fragility */
+    c.legend_px = 26.0 * (double)rows + 12;
+    c.page_px = top_px + c.legend_px + frag_px;
+    c.split = frag_px / c.page_px;
+    rc = aq_plot_render(target, 1000, (int)c.page_px, draw, &c, draw_s, err);
   }
   if (rc == AQ_OK && data) {
     char tmp[1024];
@@ -328,24 +589,17 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch, cons
     if (!f)
       rc = err->status;
     else {
-      aq_plot_csv_axes(f, 1, &AX_SCALE);
-      fprintf(f, "record,polarity,move_scale,scale_max,collapse_lo,collapse_hi\n");
-      for (size_t k = 0; k < c.n; k++) {
-        const aq_h5_capacity_row *r = &t->row[c.row[k]];
-        int64_t m = r->i[I_COUNT];
-        for (int64_t j = 0; j < (m ? m : 1); j++) {
-          size_t q = (size_t)(r->i[I_START] + j);
-          double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
-          double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
-          fprintf(f, "%s,%s,%.17g,%.17g,%.17g,%.17g\n", r->record, r->polarity,
-                  r->d[D_MOVE], r->d[D_SMAX], a, b);
-        }
-      }
+      lines_csv(f, &c);
       frag_csv(f, &c);
       rc = aq_plot_csv_close(f, tmp, data, 1, err);
     }
   }
   free(c.row);
+  free(c.pga);
+  free(c.color);
+  free(c.rec);
+  free(c.bx);
+  free(c.by);
   free(c.f.x);
   return rc;
 }

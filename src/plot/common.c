@@ -94,7 +94,8 @@ static void palette(void)
 {
   static const int rgb[][3] = {
       {255, 255, 255}, {0, 0, 0},     {31, 91, 180},  {200, 30, 30},  {30, 140, 60},
-      {230, 120, 0},   {120, 120, 120}, {255, 205, 205}, {130, 50, 160}, {225, 225, 225}};
+      {230, 120, 0},   {120, 120, 120}, {255, 205, 205}, {130, 50, 160}, {225, 225, 225},
+      {0, 150, 150},   {140, 80, 30},  {215, 70, 160},  {120, 120, 0},  {20, 30, 110}};
   int n = (int)(sizeof rgb / sizeof rgb[0]);
   plscmap0n(16);
   for (int i = 0; i < n; i++)
@@ -212,7 +213,14 @@ void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles)
 void aq_plot_legend(int position, size_t n, const char *const *text,
                     const int *color, const int *style, const char *const *sym)
 {
-  enum { MAX_ENTRIES = 12 };
+  aq_plot_legend_at(position, 0.01, 0.02, 1, n, text, color, style, sym);
+}
+
+void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
+                       const char *const *text, const int *color, const int *style,
+                       const char *const *sym)
+{
+  enum { MAX_ENTRIES = AQ_PLOT_LEGEND_MAX };
   PLINT opt[MAX_ENTRIES], col[MAX_ENTRIES], sty[MAX_ENTRIES], box[MAX_ENTRIES] = {0};
   PLINT pat[MAX_ENTRIES] = {0}, tcol[MAX_ENTRIES], symn[MAX_ENTRIES];
   PLFLT w[MAX_ENTRIES], bs[MAX_ENTRIES] = {0}, blw[MAX_ENTRIES] = {0},
@@ -239,8 +247,10 @@ void aq_plot_legend(int position, size_t n, const char *const *text,
     bs[i] = 0.8;
   }
   PLFLT lw, lh;
-  pllegend(&lw, &lh, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, position,
-           0.01, 0.02, 0.06, AQ_PC_BG, AQ_PC_FG, 1, 0, 0, (PLINT)n, opt, 0.6, 0.7,
+  PLINT ncol = ncolumn > 1 ? ncolumn : 1, nrow = ((PLINT)n + ncol - 1) / ncol;
+  pllegend(&lw, &lh, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX |
+                         (ncol > 1 ? PL_LEGEND_ROW_MAJOR : 0),
+           position, x, y, 0.06, AQ_PC_BG, AQ_PC_FG, 1, nrow, ncol, (PLINT)n, opt, 0.6, 0.7,
            1.7, 0.0, tcol, text, box, pat, bs,
            blw, col, sty, w, col, ss, symn, sy);
 }

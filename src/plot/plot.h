@@ -101,11 +101,18 @@ void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);
 
 /* Drawing helpers (between plinit and plend). */
 enum { AQ_PC_BG = 0, AQ_PC_FG, AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN,
-       AQ_PC_ORANGE, AQ_PC_GREY, AQ_PC_SHADE, AQ_PC_PURPLE, AQ_PC_LIGHT };
+       AQ_PC_ORANGE, AQ_PC_GREY, AQ_PC_SHADE, AQ_PC_PURPLE, AQ_PC_LIGHT,
+       AQ_PC_TEAL, AQ_PC_BROWN, AQ_PC_PINK, AQ_PC_OLIVE, AQ_PC_NAVY };
 /* A legend in the viewport's corner position (PL_POSITION_*): n entries of
  * lines (style >= 1, 0: none) and/or symbols (sym NULL or "": none). */
 void aq_plot_legend(int position, size_t n, const char *const *text,
                     const int *color, const int *style, const char *const *sym);
+/* The same at offset (x, y) (fractions of the viewport) from position, in
+ * ncolumn columns filled by rows; at most AQ_PLOT_LEGEND_MAX entries. */
+enum { AQ_PLOT_LEGEND_MAX = 40 };
+void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
+                       const char *const *text, const int *color, const int *style,
+                       const char *const *sym);
 /* Min and max of the finite values of x[n] into *lo, *hi (widened when equal). */
 void aq_plot_range(const double *x, size_t n, double *lo, double *hi);
 
@@ -138,12 +145,21 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
                         const char *target, const char *data, double *draw_s,
                         aq_error *err);
 
-/* capacity.c: for arch (NULL: the file's first), one row per (record,
- * polarity): the scanned scales with the collapse intervals shaded; below,
- * the arch's lognormal fragility in IM im (NULL: pga_g) with the band of
- * its median's interval, over the empirical fraction of first collapses
- * (the worse polarity of each record) and the censored records at their cap. */
-aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const char *arch, const char *im,
+/* capacity.c: for arch (NULL: the file's first), one line per (record,
+ * polarity) through its scanned scales ordered by scale: scale factor (or
+ * PGA, g) against the run's peak rotation (over q_c, or rad), beside a
+ * strip per line with its collapse intervals shaded; below, the arch's
+ * lognormal fragility in IM im (NULL: pga_g) with the band of its median's
+ * interval, over the empirical fraction of first collapses (the worse
+ * polarity of each record) and the censored records at their cap. */
+typedef struct {
+  const char *arch; /* NULL: the file's first */
+  const char *im;   /* fragility IM (aq_fragility_im_names); NULL: pga_g */
+  int x_rad;        /* x: 1 peak rotation (rad), 0 peak rotation / q_c */
+  int y_pga;        /* y: 1 PGA (g) of the scaled record, 0 the scale factor */
+} aq_plot_capacity_opts;
+
+aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity_opts *o,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
 

@@ -94,6 +94,79 @@ static herr_t attr_s(hid_t g, const char *name, const char *v)
   return rc;
 }
 
+/* capacity/scan_points: one row per run of the scans, by pair then scale.
+ * The fields with their units (a units_<field> attribute each). */
+typedef struct {
+  int64_t pair;
+  double scale, peak_rotation_rad, peak_rotation_over_qc;
+  int64_t collapsed;
+  double collapse_time_s;
+} h5_point;
+
+static const struct {
+  const char *name, *units;
+  size_t offset;
+  int is_int;
+} point_fields[] = {
+    {"pair", "1", offsetof(h5_point, pair), 1},
+    {"scale", "1", offsetof(h5_point, scale), 0},
+    {"peak_rotation_rad", "rad", offsetof(h5_point, peak_rotation_rad), 0},
+    {"peak_rotation_over_qc", "1", offsetof(h5_point, peak_rotation_over_qc), 0},
+    {"collapsed", "1", offsetof(h5_point, collapsed), 1},
+    {"collapse_time_s", "s", offsetof(h5_point, collapse_time_s), 0}};
+enum { NPOINT_FIELDS = sizeof point_fields / sizeof point_fields[0] };
+
+/* The compound type of h5_point (memory layout), or < 0. */
+static hid_t point_type(void)
+{
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(h5_point));
+  for (size_t i = 0; t >= 0 && i < NPOINT_FIELDS; i++)
+    if (H5Tinsert(t, point_fields[i].name, point_fields[i].offset,
+                  point_fields[i].is_int ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE) < 0) {
+      H5Tclose(t);
+      t = -1;
+    }
+  return t;
+}
+
+/* capacity/scan_points from the pairs' aq_capacity points. */
+static herr_t write_points(hid_t g, const aq_h5_capacity *c)
+{
+  size_t n = 0;
+  for (size_t p = 0; p < c->npair; p++)
+    n += c->row[p].cap ? c->row[p].cap->npoint : 0;
+  h5_point *v = malloc((n ? n : 1) * sizeof *v);
+  hid_t t = point_type(), ft = t >= 0 ? H5Tcopy(t) : -1;
+  herr_t rc = v && ft >= 0 && H5Tpack(ft) >= 0 ? 0 : -1;
+  for (size_t p = 0, k = 0; rc == 0 && p < c->npair; p++)
+    for (size_t q = 0; c->row[p].cap && q < c->row[p].cap->npoint; q++) {
+      const aq_capacity_point *a = &c->row[p].cap->point[q];
+      v[k++] = (h5_point){(int64_t)p, a->scale, a->peak_rotation_rad,
+                          a->peak_rotation_over_qc, a->collapsed, a->collapse_time_s};
+    }
+  hsize_t dim = n;
+  hid_t sp = rc == 0 ? H5Screate_simple(1, &dim, NULL) : -1;
+  hid_t d = sp >= 0 ? H5Dcreate2(g, "scan_points", ft, sp, H5P_DEFAULT, H5P_DEFAULT,
+                                 H5P_DEFAULT)
+                    : -1;
+  rc = d < 0 ? -1 : n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
+  for (size_t i = 0; rc >= 0 && i < NPOINT_FIELDS; i++) {
+    char an[64];
+    snprintf(an, sizeof an, "units_%s", point_fields[i].name);
+    rc = attr_s(d, an, point_fields[i].units);
+  }
+  if (d >= 0 && H5Dclose(d) < 0)
+    rc = -1;
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (ft >= 0 && H5Tclose(ft) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  free(v);
+  return rc;
+}
+
 /* Per-pair and per-fit numeric columns, filled from c. */
 typedef struct {
   double *d[6];  /* move_scale first_collapse_scale first_collapse_pga_g
@@ -249,6 +322,9 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
                AQ_FRAGILITY_NIM) < 0 ||
       ds_write(g, "im_cap", H5T_NATIVE_DOUBLE, k.im[1], c->npair, AQ_FRAGILITY_NIM) < 0)
     goto fail;
+  what = "capacity/scan_points";
+  if (write_points(g, c) < 0)
+    goto fail;
   obj = "/capacity/fragility";
   what = "fragility columns";
   if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
@@ -300,6 +376,7 @@ void aq_h5_capacity_table_free(aq_h5_capacity_table *t)
   free(t->row);
   free(t->interval);
   free(t->fit);
+  free(t->point);
   memset(t, 0, sizeof *t);
 }
 
@@ -416,6 +493,48 @@ static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
   return ok ? 0 : -1;
 }
 
+/* capacity/scan_points, when present: rows by pair (each < t->n, not
+ * decreasing) then by scale. */
+static int read_points(hid_t g, aq_h5_capacity_table *t, const char **what)
+{
+  *what = "scan_points";
+  if (H5Lexists(g, "scan_points", H5P_DEFAULT) <= 0)
+    return 0;
+  hid_t d = H5Dopen2(g, "scan_points", H5P_DEFAULT), sp = -1, mt = point_type();
+  hsize_t n = 0;
+  int ok = d >= 0 && mt >= 0 && (sp = H5Dget_space(d)) >= 0 &&
+           H5Sget_simple_extent_dims(sp, &n, NULL) == 1;
+  h5_point *v = ok ? malloc((n ? n : 1) * sizeof *v) : NULL;
+  ok = ok && v && (t->point = malloc((n ? n : 1) * sizeof *t->point)) != NULL;
+  ok = ok && (n == 0 || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
+  for (size_t i = 0; ok && i < n; i++) {
+    const h5_point *q = &v[i];
+    ok = q->pair >= 0 && (uint64_t)q->pair < t->n &&
+         (i == 0 || q->pair > v[i - 1].pair ||
+          (q->pair == v[i - 1].pair && !(q->scale < v[i - 1].scale)));
+    if (!ok)
+      break;
+    aq_h5_capacity_row *r = &t->row[q->pair];
+    if (r->point_count++ == 0)
+      r->point_start = i;
+    t->point[i] = (aq_capacity_point){q->scale, q->peak_rotation_rad,
+                                      q->peak_rotation_over_qc, q->collapse_time_s,
+                                      q->collapsed != 0};
+  }
+  if (ok) {
+    t->npoint = (size_t)n;
+    t->have_points = 1;
+  }
+  free(v);
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (mt >= 0)
+    H5Tclose(mt);
+  return ok ? 0 : -1;
+}
+
 aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
                               aq_error *err)
 {
@@ -491,7 +610,8 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
     ok = t->row[i].i[2] >= 0 && t->row[i].i[3] >= 0 &&
          (uint64_t)(t->row[i].i[2] + t->row[i].i[3]) <= (uint64_t)t->ninterval;
   if (ok)
-    ok = read_im(g, t, &what) == 0 && read_fits(g, t, &what) == 0;
+    ok = read_im(g, t, &what) == 0 && read_fits(g, t, &what) == 0 &&
+         read_points(g, t, &what) == 0;
   free(col);
   free(icol);
   H5Gclose(g);

@@ -41,6 +41,7 @@ typedef struct {
   /* the fragility IMs (aq_fragility_im_names) at first collapse (NAN: none)
      and at the cap; NAN when the file does not hold them */
   double im_first[AQ_FRAGILITY_NIM], im_cap[AQ_FRAGILITY_NIM];
+  size_t point_start, point_count; /* its rows of the table's point[] */
 } aq_h5_capacity_row;
 
 /* One fit of capacity/fragility. */
@@ -57,10 +58,14 @@ typedef struct {
   double *interval;        /* 2 per interval (lo, hi), malloc'd */
   size_t nfit;
   aq_h5_fragility_fit *fit; /* malloc'd; none when the file has no fits */
+  int have_points;          /* 1: the file holds capacity/scan_points */
+  size_t npoint;
+  aq_capacity_point *point; /* malloc'd: every scanned scale, by row then scale */
 } aq_h5_capacity_table;
 
 /* Read the capacity group of the results file at path into *t (free with
- * aq_h5_capacity_table_free).  Returns AQ_OK, with t->n = 0 and
+ * aq_h5_capacity_table_free); a file written before scan_points reads with
+ * have_points = 0 and no points.  Returns AQ_OK, with t->n = 0 and
  * *present = 0 when the file has no capacity group; AQ_EFORMAT/AQ_EIO (err
  * filled) when it cannot be read. */
 aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *present,
