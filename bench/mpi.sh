@@ -4,8 +4,9 @@
 #
 # Each case runs REPS times at each N, interleaved (N=1, 2, 3, 1, 2, 3...)
 # so that the machine's load falls on all alike; medians of the wall time,
-# work per second, and each N's ratio to N=1.  Every rank runs -j 1 (one
-# worker thread; rank 0's main thread only polls and sleeps).  mpirun's own
+# work per second, and each N's ratio to N=1.  Every rank runs -j 1: one
+# worker thread each, rank 0's included (its main thread only exchanges
+# messages and sleeps), so N = 3 puts three workers on 2 cores.  mpirun's own
 # start (the `--version` row: MPI and the libraries loading in every rank)
 # is inside every figure.  AQ_MPI_BIN_BEFORE=path adds the main job of
 # another build (e.g. the previous one) to the same interleaved run, for a

@@ -61,72 +61,82 @@ static int same_file(const char *a, const char *b)
   return same;
 }
 
+/* A temporary directory with the paths of both runs' outputs: p[0] and
+ * p[1] the TSVs (plain, farmed), p[2] and p[3] the second output (ext). */
+typedef struct {
+  char dir[32];
+  char p[4][64];
+} outs;
+
+static int outs_make(outs *o, const char *ext)
+{
+  char dir[] = "/tmp/aq_farm_XXXXXX";
+  if (!aq_check(mkdtemp(dir) != NULL, "temporary directory"))
+    return -1;
+  snprintf(o->dir, sizeof o->dir, "%s", dir);
+  for (int k = 0; k < 4; k++)
+    snprintf(o->p[k], sizeof o->p[k], "%s/%c.%s", dir, "abab"[k], k < 2 ? "tsv" : ext);
+  return 0;
+}
+
+static void outs_remove(const outs *o)
+{
+  for (int k = 0; k < 4; k++)
+    unlink(o->p[k]);
+  rmdir(o->dir);
+}
+
+/* cmd on args (n of them) then --text p[k] opt p[k + 2], plain (k = 0)
+ * and farmed (k = 1); both exit statuses must be 0, with 6 tasks farmed. */
+static void run_both(int (*cmd)(int, char **), const char *const *args, size_t n,
+                     const char *opt, const outs *o)
+{
+  int rc[2];
+  fake_tasks = 0;
+  for (int k = 0; k < 2; k++) {
+    const char *a[32];
+    for (size_t i = 0; i < n && i < 27; i++)
+      a[i] = args[i];
+    size_t m = n < 27 ? n : 27;
+    a[m] = "--text";
+    a[m + 1] = o->p[k];
+    a[m + 2] = opt;
+    a[m + 3] = o->p[k + 2];
+    a[m + 4] = NULL;
+    rc[k] = run_cmd(cmd, a, k);
+  }
+  aq_check(rc[0] == 0 && rc[1] == 0, "exit status: %d plain, %d farmed", rc[0], rc[1]);
+  aq_check(fake_tasks == 6, "tasks: one per (record, arch): %zu", fake_tasks);
+  aq_check(same_file(o->p[0], o->p[1]), "TSV byte-identical");
+}
+
 AQ_TEST(farm_main_job_equals_the_suite)
 {
-  char dir[] = "/tmp/aq_farm_XXXXXX", t1[64], t2[64], h1[64], h2[64];
-  if (!aq_check(mkdtemp(dir) != NULL, "temporary directory"))
+  outs o;
+  if (outs_make(&o, "h5") != 0)
     return;
-  snprintf(t1, sizeof t1, "%s/a.tsv", dir);
-  snprintf(t2, sizeof t2, "%s/b.tsv", dir);
-  snprintf(h1, sizeof h1, "%s/a.h5", dir);
-  snprintf(h2, sizeof h2, "%s/b.h5", dir);
-  const char *common[] = {"tests/data/records/ARL360.at2", "tests/data/records/CHY028-N.AT2",
-                          "tests/data/records/IELC180.AT2", "--arch", "arches/oppenheim.cfg",
-                          "--arch", "arches/thin.cfg", "--scale", "0.5,2.385",
-                          "--polarity", "both", "-j", "2", "-q"};
-  const char *a1[24] = {"archquake"}, *a2[24] = {"archquake"};
-  size_t nc = sizeof common / sizeof common[0];
-  for (size_t i = 0; i < nc; i++)
-    a1[i + 1] = a2[i + 1] = common[i];
-  const char *o1[] = {"--text", t1, "-o", h1}, *o2[] = {"--text", t2, "-o", h2};
-  for (size_t i = 0; i < 4; i++) {
-    a1[nc + 1 + i] = o1[i];
-    a2[nc + 1 + i] = o2[i];
-  }
-  fake_tasks = 0;
-  int r1 = run_cmd(aq_cmd_run, a1, 0), r2 = run_cmd(aq_cmd_run, a2, 1);
-  aq_check(r1 == 0 && r2 == 0, "exit status: %d plain, %d farmed", r1, r2);
-  aq_check(fake_tasks == 6, "tasks: one per (record, arch): %zu", fake_tasks);
-  aq_check(same_file(t1, t2), "TSV byte-identical");
+  const char *args[] = {"archquake", "tests/data/records/ARL360.at2",
+                        "tests/data/records/CHY028-N.AT2", "tests/data/records/IELC180.AT2",
+                        "--arch", "arches/oppenheim.cfg", "--arch", "arches/thin.cfg",
+                        "--scale", "0.5,2.385", "--polarity", "both", "-j", "2", "-q"};
+  run_both(aq_cmd_run, args, sizeof args / sizeof args[0], "-o", &o);
   char cmp[200], out[4096], err[4096];
-  snprintf(cmp, sizeof cmp, "compare %s %s", h1, h2);
+  snprintf(cmp, sizeof cmp, "compare %s %s", o.p[2], o.p[3]);
   int rc = aq_test_run(cmp, out, sizeof out, err, sizeof err);
   aq_check(rc == 0, "compare finds the results files equal (%d): %s", rc, err);
-  unlink(t1);
-  unlink(t2);
-  unlink(h1);
-  unlink(h2);
-  rmdir(dir);
+  outs_remove(&o);
 }
 
 AQ_TEST(farm_capacity_equals_the_command)
 {
-  char dir[] = "/tmp/aq_farm_XXXXXX", t1[64], t2[64], f1[64], f2[64];
-  if (!aq_check(mkdtemp(dir) != NULL, "temporary directory"))
+  outs o;
+  if (outs_make(&o, "frag") != 0)
     return;
-  snprintf(t1, sizeof t1, "%s/a.tsv", dir);
-  snprintf(t2, sizeof t2, "%s/b.tsv", dir);
-  snprintf(f1, sizeof f1, "%s/a.frag", dir);
-  snprintf(f2, sizeof f2, "%s/b.frag", dir);
-  const char *a1[] = {"capacity", "tests/data/records/ARL360.at2",
-                      "tests/data/records/CHY028-N.AT2", "tests/data/records/IELC180.AT2",
-                      "--arch", "arches/oppenheim.cfg", "--arch", "arches/thin.cfg",
-                      "--resolution", "0.1", "-j", "2", "--text", t1, "--fragility", f1,
-                      NULL};
-  const char *a2[] = {"capacity", "tests/data/records/ARL360.at2",
-                      "tests/data/records/CHY028-N.AT2", "tests/data/records/IELC180.AT2",
-                      "--arch", "arches/oppenheim.cfg", "--arch", "arches/thin.cfg",
-                      "--resolution", "0.1", "-j", "2", "--text", t2, "--fragility", f2,
-                      NULL};
-  fake_tasks = 0;
-  int r1 = run_cmd(aq_cmd_capacity, a1, 0), r2 = run_cmd(aq_cmd_capacity, a2, 1);
-  aq_check(r1 == 0 && r2 == 0, "exit status: %d plain, %d farmed", r1, r2);
-  aq_check(fake_tasks == 6, "tasks: one per (record, arch): %zu", fake_tasks);
-  aq_check(same_file(t1, t2), "TSV byte-identical");
-  aq_check(same_file(f1, f2), "fragility byte-identical");
-  unlink(t1);
-  unlink(t2);
-  unlink(f1);
-  unlink(f2);
-  rmdir(dir);
+  const char *args[] = {"capacity", "tests/data/records/ARL360.at2",
+                        "tests/data/records/CHY028-N.AT2", "tests/data/records/IELC180.AT2",
+                        "--arch", "arches/oppenheim.cfg", "--arch", "arches/thin.cfg",
+                        "--resolution", "0.1", "-j", "2"};
+  run_both(aq_cmd_capacity, args, sizeof args / sizeof args[0], "--fragility", &o);
+  aq_check(same_file(o.p[2], o.p[3]), "fragility byte-identical");
+  outs_remove(&o);
 }

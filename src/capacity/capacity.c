@@ -249,6 +249,15 @@ static size_t encode(const aq_capacity *c, unsigned char *buf)
     put_f64(&w, c->scan.interval[k].lo);
     put_f64(&w, c->scan.interval[k].hi);
   }
+  put_i64(&w, (int64_t)c->npoint);
+  for (size_t k = 0; k < c->npoint; k++) {
+    const aq_capacity_point *q = &c->point[k];
+    put_f64(&w, q->scale);
+    put_f64(&w, q->peak_rotation_rad);
+    put_f64(&w, q->peak_rotation_over_qc);
+    put_f64(&w, q->collapse_time_s);
+    put_i64(&w, q->collapsed);
+  }
   return w.n;
 }
 
@@ -363,6 +372,23 @@ aq_status aq_capacity_decode(const unsigned char *buf, size_t n, size_t *used,
     for (size_t k = 0; k < ni; k++) {
       out->scan.interval[k].lo = get_f64(&r, "interval");
       out->scan.interval[k].hi = get_f64(&r, "interval");
+    }
+  }
+  size_t np = get_count(&r, 5 * sizeof(int64_t), "npoint");
+  if (!r.bad && np) {
+    out->point = malloc(np * sizeof *out->point);
+    if (!out->point) {
+      aq_capacity_free(out);
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
+    }
+    out->npoint = np;
+    for (size_t k = 0; k < np; k++) {
+      aq_capacity_point *q = &out->point[k];
+      q->scale = get_f64(&r, "point");
+      q->peak_rotation_rad = get_f64(&r, "point");
+      q->peak_rotation_over_qc = get_f64(&r, "point");
+      q->collapse_time_s = get_f64(&r, "point");
+      q->collapsed = get_int(&r, 0, 1, "point collapsed");
     }
   }
   if (r.bad) {

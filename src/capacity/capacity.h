@@ -181,8 +181,8 @@ aq_status aq_capacity_run_tasks(size_t ntask, long threads, aq_capacity_task_fn 
 
 /* A result as bytes, to travel between processes of one job (native byte
  * order: the ranks share a machine type): every field of c, the error
- * record and the intervals included, so the decoded copy is equal bit for
- * bit.  aq_capacity_encode writes aq_capacity_encoded_size(c) bytes to buf
+ * record, the intervals and the scan's points included, so the decoded
+ * copy is equal bit for bit.  aq_capacity_encode writes aq_capacity_encoded_size(c) bytes to buf
  * and returns that size.  aq_capacity_decode reads one result from buf
  * (n bytes; *used gets its size) into *out (free with aq_capacity_free);
  * returns AQ_OK, AQ_EFORMAT (err: the byte offset and the field that ends
