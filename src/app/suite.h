@@ -54,6 +54,9 @@ typedef struct {
   const double *scales;    /* --scale factors, or NULL with --scale-to-pga */
   size_t nscale;           /* their number */
   double scale_to_pga_g;   /* --scale-to-pga target, g (used when scales is NULL) */
+  double scale_to_lambda0; /* --scale-to-lambda0 K (> 0, scales NULL): each run's
+                            * record scaled to a PGA of K lambda0 g of its arch
+                            * (lambda0 the smaller of its hinge sets'); else 0 */
   aq_model model;          /* --model */
   double cor;              /* --cor, or NAN for each arch's own */
   int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */

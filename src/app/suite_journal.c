@@ -149,6 +149,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
        p->order, p->lowpass_hz);
   line(&b, "merge_tol_g=%a scale_to_pga_g=%a", c->merge_tol_g,
        c->scales ? 0.0 : c->scale_to_pga_g);
+  if (!c->scales && c->scale_to_lambda0 > 0)
+    line(&b, "scale_to_lambda0=%a", c->scale_to_lambda0);
   for (size_t k = 0; c->scales && k < c->nscale; k++)
     line(&b, "scale=%a", c->scales[k]);
   line(&b, "units=%d dt=%a column=%zu", (int)c->read.units, c->read.dt_s, c->read.column);

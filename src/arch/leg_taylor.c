@@ -10,10 +10,16 @@
  * kinetic energy KE(s) = KE0 + int_s0^s P is a polynomial too.  The energy
  * balance 1/2 M(s) sdot^2 = KE(s), differentiated in time, gives
  *     s'' = F'(s),   F = KE / M                                  (TL)
- * (the Lagrangian equation of motion of eom.h with sdot^2 = 2 KE / M).  A
- * sub-step from (s0, v0) shifts P and M to s0, integrates P into KE (with
- * KE0 = 1/2 M(s0) v0^2), divides by M and differentiates: G(u) = F'(s0 + u)
- * as a power series in u.  The series of s(t) - s0 = sum_k c_k t^k follows
+ * (the Lagrangian equation of motion of eom.h with sdot^2 = 2 KE / M).
+ * With KE = C - m_T (a xr + g yr) (xr, yr: x, y from the piece's start; C
+ * is constant along the piece within a leg) the right side is
+ *     F' = C R' - m_T (a (xr R)' + g (yr R)'),   R = 1/M,
+ * a combination of the piece's three fitted functions gc, ga, gb (path.h),
+ * so a sub-step from (s0, v0) takes C = 1/2 M(s0) v0^2 + m_T (a xr(s0) +
+ * g yr(s0)), combines the three and shifts the one polynomial to s0:
+ * G(u) = F'(s0 + u) as a power series in u, with no division.  (Pieces
+ * without them, has_g = 0: shift P and M, integrate P into KE, divide by M
+ * and differentiate.)  The series of s(t) - s0 = sum_k c_k t^k follows
  * coefficient by coefficient from (TL):
  *     c_{k+2} = [G(u(t))]_k / ((k+1)(k+2)),
  * the composition G(u(t)) built from the powers of u(t), each coefficient
@@ -38,19 +44,32 @@
 
 #define TL_MAX_ORDER 20                      /* s(t) series order at most */
 enum { TL_MIN_ORDER = 4 };                   /* tail test from this order */
-static const double TL_TOL_DEFAULT = 1.1e-16; /* tail / sub-step motion (unit round-off) */
+/* The last two terms bound the truncated tail loosely: the next term is
+ * typically 0.02-0.07 of the last (geometric mean of the ratio at
+ * acceptance on the bench's records), so 1e-14 leaves a tail of about one
+ * unit round-off of the sub-step's motion.  (1.1e-16 costs 15-25 % more
+ * and moves peaks and collapse times by < 3e-13 relative.) */
+static const double TL_TOL_DEFAULT = 1e-14; /* last two terms / sub-step motion */
 static const double TL_SHRINK = 0.5;         /* step from the tail's own estimate, times this */
 static const int TL_ROOT_ITER = 60;          /* safeguarded Newton iterations at most */
 static const double TL_ROOT_EPS = 8 * DBL_EPSILON; /* root located: last Newton step / sub-step */
 static const size_t TL_MAX_SUBSTEPS = 2000000; /* per leg; beyond: no progress */
 static const int TL_MAX_HALVINGS = 60;       /* of a sub-step with two turning points */
 
+/* M's coefficients times k! (the shift's weights, tl_build; the work
+ * term's are scaled after their sum, where a dx and g dy nearly cancel). */
+typedef struct {
+  double m[AQ_PIECE_MAX_DEG + 1];
+} tl_fact;
+
 struct aq_taylor {
   double tol;
   const aq_path *p; /* owner of the cached piece, or NULL */
   aq_path_piece pc;
-  /* M at the last leg's end (on the cached piece): the next leg starts there */
-  double s_end, m_end;
+  tl_fact pf;       /* pc's weights */
+  /* M and x - x(s_lo), y - y(s_lo) at the last leg's end (on the cached
+   * piece): the next leg starts there */
+  double s_end, m_end, xr_end, yr_end;
 };
 
 aq_taylor *aq_taylor_alloc(aq_error *err)
@@ -220,75 +239,119 @@ typedef struct {
   double c[TL_MAX_ORDER + 1];
 } tl_series;
 
+/* k! */
+static const double TL_FACT[AQ_PIECE_MAX_DEG + 1] = {
+    1, 1, 2, 6, 24, 120, 720, 5040, 40320, 362880, 3628800, 39916800,
+    479001600, 6227020800.0, 87178291200.0, 1307674368000.0,
+    20922789888000.0, 355687428096000.0, 6402373705728000.0,
+    121645100408832000.0, 2432902008176640000.0};
+
+static void tl_fact_make(const aq_path_piece *pc, tl_fact *pf)
+{
+  for (int k = 0; k <= pc->deg; k++)
+    pf->m[k] = pc->m[k] * TL_FACT[k];
+}
+
+/* sum_i w_{j+i} q_i, i = 0..d-j (tl_shift_j for one polynomial). */
+static double tl_shift1(const double *w, const double *q, int d, int j)
+{
+  double s0 = 0, s1 = 0;
+  const double *a = w + j;
+  int n = d - j, i = 0;
+  for (; i < n; i += 2) {
+    s0 += a[i] * q[i];
+    s1 += a[i + 1] * q[i + 1];
+  }
+  if (i == n)
+    s0 += a[i] * q[i];
+  return s0 + s1;
+}
+
 /* Build the series from (s0, v0) on piece pc under ground acceleration a
  * for a wanted step *h; *h is shortened when TL_MAX_ORDER cannot reach the
- * tolerance there. */
-static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
-                     double s0, double v0, double tol, double *h,
-                     tl_series *ts)
+ * tolerance there.  e0: with the acceleration's pieces (pc->has_g), the
+ * energy C of path.h, KE(s0) + m_T (a xr(s0) + g yr(s0)) (J). */
+static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
+                     double g, double a, double s0, double v0, double e0,
+                     double tol, double *h, tl_series *ts)
 {
   enum { N = TL_MAX_ORDER, D = AQ_PIECE_MAX_DEG };
-  const int d = pc->deg;
-  /* P and M shifted to s0, in powers of u = s - s0 (Taylor coefficients
-   * at t0 of the piece's polynomials in t, t0 in [0, 1]):
+  const int d = pc->deg, has_g = pc->has_g;
+  /* The piece's polynomials shifted to s0, in powers of u = s - s0 (Taylor
+   * coefficients at t0 of the piece's polynomials in t, t0 in [0, 1]):
    *   [u^j] = iscale^j / j! sum_i (c_{j+i} (j+i)!) (t0^i / i!)
    * (independent sums, not a chain of Horner shifts, and only as far as
-   * the order needs) */
+   * the order needs).  With has_g one polynomial, s'' = G(u) (path.h);
+   * else the work term P and M, KE = KE0 + int P, and G = (KE / M)'. */
   const double t0 = (s0 - pc->s_ref) * pc->iscale;
-  double wp[D + 1], wm[D + 1], q[D + 1];
-  double fk = 1, qi = 1;
-  for (int k = 0; k <= d; k++) {
-    if (k > 0) {
-      fk *= k;
+  double wp[D + 1], q[D + 1];
+  const double *wm = pf->m;
+  double qi = 1;
+  q[0] = 1;
+  if (has_g) {
+    wp[0] = e0 * pc->gc[0] - mt * (a * pc->ga[0] + g * pc->gb[0]); /* s'' */
+    for (int k = 1; k <= d; k++) {
       qi *= t0 * TL_INV[k];
+      q[k] = qi;
+      wp[k] = (e0 * pc->gc[k] - mt * (a * pc->ga[k] + g * pc->gb[k])) * TL_FACT[k];
     }
-    wp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]) * fk; /* P(s) */
-    wm[k] = pc->m[k] * fk;
-    q[k] = qi;
+  } else {
+    wp[0] = -mt * (a * pc->dx[0] + g * pc->dy[0]); /* P(s) */
+    for (int k = 1; k <= d; k++) {
+      qi *= t0 * TL_INV[k];
+      q[k] = qi;
+      wp[k] = -mt * (a * pc->dx[k] + g * pc->dy[k]) * TL_FACT[k];
+    }
   }
   /* coefficients taken as the order needs them (the series usually stops
    * near order 10, before the piece's degree) */
   double mm[D + 2], sj = 1; /* sj = iscale^j / j! for the next j */
   double K[N + 1], F[N + 1], G[N];
-  double pj, mj;
-  tl_shift_j(wp, wm, q, d, 0, &pj, &mj);
-  mm[0] = mj;
-  K[1] = pj;
+  double pj, mj, im0 = 0;
   int jm = 1; /* P and M known up to u^(jm - 1) */
-  K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
-  const double im0 = 1.0 / mm[0];
-  F[0] = K[0] * im0;
+  if (!has_g) {
+    tl_shift_j(wp, wm, q, d, 0, &pj, &mj);
+    mm[0] = mj;
+    K[1] = pj;
+    K[0] = 0.5 * mm[0] * v0 * v0; /* KE0 */
+    im0 = 1.0 / mm[0];
+    F[0] = K[0] * im0;
+  }
   /* U[j][k]: coefficient k of u(t)^j, u(t) = s(t) - s0 */
   double U[N + 1][N + 1];
   double *c = ts->c;
   c[0] = 0;
   c[1] = v0;
-  double hp[N + 1]; /* powers of the wanted step */
-  hp[0] = 1;
-  for (int k = 1; k <= N; k++)
-    hp[k] = hp[k - 1] * *h;
+  const double hh = *h;
+  double hn1 = hh, hn = hh; /* h^(n-1), h^n for the order n reached */
   int n = 1;
   double scale = 0;
   for (int k = 0; k + 2 <= N; k++) {
-    /* P's u^k (into K_{k+1}) and M's u^(k+1) */
-    if (jm <= k + 1) {
-      if (jm <= d) {
-        sj *= pc->iscale * TL_INV[jm];
-        tl_shift_j(wp, wm, q, d, jm, &pj, &mj);
-        K[jm + 1] = pj * sj * TL_INV[jm + 1];
-        mm[jm] = mj * sj;
-      } else {
-        K[jm + 1] = 0;
-        mm[jm] = 0;
+    if (has_g) {
+      if (k > 0)
+        sj *= pc->iscale * TL_INV[k];
+      G[k] = k <= d ? sj * tl_shift1(wp, q, d, k) : 0;
+    } else {
+      /* P's u^k (into K_{k+1}) and M's u^(k+1) */
+      if (jm <= k + 1) {
+        if (jm <= d) {
+          sj *= pc->iscale * TL_INV[jm];
+          tl_shift_j(wp, wm, q, d, jm, &pj, &mj);
+          K[jm + 1] = pj * sj * TL_INV[jm + 1];
+          mm[jm] = mj * sj;
+        } else {
+          K[jm + 1] = 0;
+          mm[jm] = 0;
+        }
+        jm++;
       }
-      jm++;
+      /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
+      double f = K[k + 1];
+      for (int j = 1, jn = d < k + 1 ? d : k + 1; j <= jn; j++)
+        f -= mm[j] * F[k + 1 - j];
+      F[k + 1] = f * im0;
+      G[k] = (k + 1) * F[k + 1];
     }
-    /* F_{k+1} = (K_{k+1} - sum_j m_j F_{k+1-j}) / m_0 */
-    double f = K[k + 1];
-    for (int j = 1, jn = d < k + 1 ? d : k + 1; j <= jn; j++)
-      f -= mm[j] * F[k + 1 - j];
-    F[k + 1] = f * im0;
-    G[k] = (k + 1) * F[k + 1];
     /* the powers of u at order k (c_1..c_k are known) */
     U[1][k] = c[k];
     double comp = k == 0 ? G[0] : G[1] * c[k];
@@ -302,16 +365,17 @@ static void tl_build(const aq_path_piece *pc, double mt, double g, double a,
     }
     c[k + 2] = comp * TL_INV[k + 1] * TL_INV[k + 2];
     n = k + 2;
+    hn1 = hn;
+    hn *= hh;
     if (n == 3) /* the sub-step's motion */
-      scale = fabs(c[1]) * hp[1] + fabs(c[2]) * hp[2] + fabs(c[3]) * hp[3];
+      scale = fabs(c[1]) * hh + fabs(c[2]) * hn1 + fabs(c[3]) * hn;
     if (n >= TL_MIN_ORDER &&
-        fabs(c[n]) * hp[n] + fabs(c[n - 1]) * hp[n - 1] <= tol * scale)
+        fabs(c[n]) * hn + fabs(c[n - 1]) * hn1 <= tol * scale)
       break;
   }
   if (n == N) {
     /* not converged at *h: the step where the last two terms each reach
      * the tolerance (Jorba and Zou's rule), shrunk for safety */
-    double hh = *h;
     double h1 = fabs(c[n]) > 0 ? pow(tol * scale / fabs(c[n]), 1.0 / n) : hh;
     double h2 = fabs(c[n - 1]) > 0 ? pow(tol * scale / fabs(c[n - 1]), 1.0 / (n - 1)) : hh;
     double hn = TL_SHRINK * fmin(h1, h2);
@@ -344,6 +408,7 @@ static int tl_piece(aq_taylor *w, const aq_path *p, double s, int dir,
     return -1;
   }
   w->p = p;
+  tl_fact_make(&w->pc, &w->pf);
   return 0;
 }
 
@@ -362,7 +427,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
                         double dt, double *used, aq_leg_end *end,
                         aq_leg_stats *S, aq_error *err)
 {
-  const double sc = p->s_c_rad, mt = p->mass_kg, g = p->g_mps2;
+  const double sc = p->s_c_rad, g = p->g_mps2;
   double s = m->s < 0 ? 0 : (m->s > sc ? sc : m->s);
   int dir = m->dir >= 0 ? 1 : -1;
   if (tl_piece(w, p, s, dir, S))
@@ -394,8 +459,22 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     if ((d > 0 && s >= pc->s_hi && s < sc) || (d < 0 && s <= pc->s_lo && s > 0))
       return tl_fail(err, p, "the path piece ahead ends where it starts", s);
     double h = dt - t;
+    double e0 = 0; /* path.h C, for pieces with the acceleration's pieces */
+    if (pc->has_g) {
+      double ms, xr, yr;
+      if (s == w->s_end) {
+        ms = w->m_end;
+        xr = w->xr_end;
+        yr = w->yr_end;
+      } else {
+        piece_mxy(pc, s, &ms, &xr, &yr);
+        xr -= pc->x[0];
+        yr -= pc->y[0];
+      }
+      e0 = 0.5 * ms * v * v + p->mass_kg * (a * xr + g * yr);
+    }
     tl_series ts;
-    tl_build(pc, mt, g, a, s, v, w->tol, &h, &ts);
+    tl_build(pc, &w->pf, p->mass_kg, g, a, s, v, e0, w->tol, &h, &ts);
     S->substeps++;
     const int n = ts.n;
     double dq[TL_MAX_ORDER + 1]; /* sdot(t) */
@@ -404,14 +483,18 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     /* the start's direction (at rest: that of s''), and at most one
      * turning point within the sub-step (else halve it) */
     int s0 = v != 0 ? sgn(v) : sgn(ts.c[2]);
-    double vh = horner(dq, n - 1, h);
-    for (int it = 0; it < TL_MAX_HALVINGS && s0 != 0; it++) {
+    double vh, uh = horner_d(ts.c, n, h, &vh); /* s - s0 and sdot at h */
+    int halved = 0;
+    for (int it = 0; it < TL_MAX_HALVINGS && s0 != 0 && sgn(vh) == s0; it++) {
       double vm = horner(dq, n - 1, 0.5 * h);
-      if (!(sgn(vm) == -s0 && sgn(vh) == s0))
+      if (sgn(vm) != -s0)
         break;
       h *= 0.5;
       vh = vm;
+      halved = 1;
     }
+    if (halved)
+      uh = horner(ts.c, n, h);
     double seg[3] = {0, h, h};
     int nseg = 1, turn = 0;
     if (s0 != 0 && sgn(vh) == -s0) {
@@ -422,7 +505,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
       double bound = 0, tk = h;
       for (int k = 1; k <= n; k++, tk *= h)
         bound += fabs(ts.c[k]) * tk;
-      double sh = s + horner(ts.c, n, h);
+      double sh = s + uh;
       turn = 1;
       if (S->turn || (s0 > 0 && (s + bound > S->peak_s || s + bound > pc->s_hi)) ||
           (s0 < 0 && s - bound < pc->s_lo) || sh > pc->s_hi || sh < pc->s_lo) {
@@ -438,7 +521,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
     double tx = h;
     double ua = 0; /* s - s0 at the segment's start */
     for (int k = 0; k < nseg && !cross; k++) {
-      double ub = horner(ts.c, n, seg[k + 1]), sb = s + ub;
+      double ub = seg[k + 1] == h ? uh : horner(ts.c, n, seg[k + 1]), sb = s + ub;
       if (sb > pc->s_hi)
         cross = 1;
       else if (sb < pc->s_lo)
@@ -455,7 +538,7 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
       }
       ua = ub;
     }
-    if (turn == 1 && (s > 0 || s + horner(ts.c, n, h) > 0)) {
+    if (turn == 1 && (s > 0 || s + uh > 0)) {
       S->reversals++;
     } else if (turn == 2) {
       double st = s + horner(ts.c, n, seg[1]);
@@ -469,7 +552,9 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
         }
       }
     }
-    double vn, un = horner_d(ts.c, n, tx, &vn);
+    double vn = vh, un = uh;
+    if (tx != h)
+      un = horner_d(ts.c, n, tx, &vn);
     if (cross > 0) {
       s = pc->s_hi;
     } else if (cross < 0) {
@@ -501,6 +586,8 @@ aq_status aq_taylor_leg(aq_taylor *w, const aq_path *p, double a, aq_motion *m,
   piece_mxy(pc, s, &mass_end, &m->x_m, &m->y_m);
   w->s_end = s;
   w->m_end = mass_end;
+  w->xr_end = m->x_m - pc->x[0];
+  w->yr_end = m->y_m - pc->y[0];
   m->s = s;
   m->ke_j = 0.5 * mass_end * v * v;
   if (v != 0)

@@ -54,7 +54,15 @@ typedef int (*aq_path_eval_fn)(const void *ctx, double s, aq_path_point *p);
  * kinematics with s_ref = s_lo and iscale = 1 / (s_hi - s_lo), t in [0, 1];
  * a piece may as well be a Taylor polynomial about s_ref = s_lo with
  * iscale = 1.)  dx, dy are fitted to the exact slopes; x, y are their
- * integrals (workpath.c) or fitted apart, agreeing to the fit's error. */
+ * integrals (workpath.c) or fitted apart, agreeing to the fit's error.
+ *
+ * Optionally (has_g != 0) the pieces of the Taylor leg's acceleration,
+ * degree deg in t as well: with R = 1/M, xr = x - x(s_lo), yr = y - y(s_lo),
+ *     gc = R' = -M'/M^2,   ga = (xr R)',   gb = (yr R)'   (' = d/ds)
+ * so that for a ground acceleration a, gravity g and kinetic energy
+ * KE = C - m_T (a xr + g yr) the equation of motion is
+ *     s'' = (KE/M)' = C gc - m_T (a ga + g gb)      (docs/method.md sec. 4-5)
+ * without a division (leg_taylor.c). */
 #define AQ_PIECE_MAX_DEG 20
 typedef struct {
   double s_lo, s_hi;   /* rad */
@@ -64,6 +72,9 @@ typedef struct {
   double x[AQ_PIECE_MAX_DEG + 1], y[AQ_PIECE_MAX_DEG + 1];   /* x_m, y_m: m */
   double dx[AQ_PIECE_MAX_DEG + 1], dy[AQ_PIECE_MAX_DEG + 1]; /* dx_m, dy_m: m/rad */
   double m[AQ_PIECE_MAX_DEG + 1];                            /* mgen_kgm2: kg m^2 */
+  int has_g;           /* gc, ga, gb are set */
+  double gc[AQ_PIECE_MAX_DEG + 1];                           /* 1/(kg m^2 rad) */
+  double ga[AQ_PIECE_MAX_DEG + 1], gb[AQ_PIECE_MAX_DEG + 1]; /* m/(kg m^2 rad) */
 } aq_path_piece;
 
 /* The piece holding s: for dir > 0 the one with s_lo <= s < s_hi (the last

@@ -40,7 +40,7 @@ void aq_stepper_set_history(aq_stepper *st, int on);           /* keep a history
 void aq_stepper_set_exact_path(aq_stepper *st, int on); /* use eval_exact, not tables */
 void aq_stepper_set_wp_tol(aq_stepper *st, double tol);  /* workpath-quad panel tolerance (relative, time) */
 void aq_stepper_set_wp_nodes(aq_stepper *st, int n);     /* workpath-quad Chebyshev nodes per panel, 4..32 */
-void aq_stepper_set_taylor_tol(aq_stepper *st, double tol); /* workpath series tail / motion (default 1.1e-16) */
+void aq_stepper_set_taylor_tol(aq_stepper *st, double tol); /* workpath series tail / motion (default 1e-14) */
 /* Run with every step's acceleration multiplied by scale (default 1; any
  * finite value: a negative scale reverses the polarity), without a scaled
  * copy of the steps. */

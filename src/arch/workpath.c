@@ -377,12 +377,17 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
  * fitted slopes from their exact values at s_lo (degree PIECE_DEG + 1), so
  * that the potential energy m_T g y(s) is that of the work integral the leg
  * uses (the energy balance holds to round-off of y, not of the arch's
- * coordinates, even for tiny rocking near s = 0). */
+ * coordinates, even for tiny rocking near s = 0).  The acceleration's
+ * pieces gc = R', ga = (xr R)', gb = (yr R)' (path.h; R = 1/M, xr, yr the
+ * displacements from s_lo) are fitted alike from the exact M, M', x, y and
+ * slopes, with their constant terms exact at s_lo, and share the test of
+ * the tails (gc alone, ga and gb together), so that the leg needs no
+ * division by M. */
 #define PIECE_DEG 14            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
 #define PIECE_TAIL_TOL 2e-15    /* Chebyshev tail / scale (about ten unit round-offs) */
 #define PIECE_ROUNDOFF 1e-11    /* a tail that halving no longer halves and is below this: round-off */
 #define PIECE_MAX_DEPTH 40      /* halvings of [0, s_c] at most */
-enum { PC_DX = 0, PC_DY, PC_M, NPC_F, PN = PIECE_DEG + 1 };
+enum { PC_DX = 0, PC_DY, PC_M, PC_GC, PC_GA, PC_GB, NPC_F, PN = PIECE_DEG + 1 };
 _Static_assert(PIECE_DEG < AQ_PIECE_MAX_DEG, "x, y need degree PIECE_DEG + 1");
 
 typedef struct {
@@ -392,24 +397,41 @@ typedef struct {
   int failed, too_many;
 } piece_ctx;
 
-/* Chebyshev coefficients c of dx/ds, dy/ds and M on [a, b], and their
- * tail relative to the scales; -1 when the linkage fails. */
+/* The fitted functions at one s from the exact values f there and fa at
+ * the piece's start (path.h aq_path_piece: gc, ga, gb). */
+static void piece_g(const double f[NF][3], const double fa[NF][3], double v[NPC_F])
+{
+  double r = 1 / f[F_M][0], rp = -f[F_M][1] * r * r; /* R = 1/M, R' */
+  v[PC_DX] = f[F_DX][0];
+  v[PC_DY] = f[F_DY][0];
+  v[PC_M] = f[F_M][0];
+  v[PC_GC] = rp;
+  v[PC_GA] = f[F_DX][0] * r + (f[F_X][0] - fa[F_X][0]) * rp;
+  v[PC_GB] = f[F_DY][0] * r + (f[F_Y][0] - fa[F_Y][0]) * rp;
+}
+
+/* Chebyshev coefficients c of dx/ds, dy/ds, M and the acceleration's
+ * pieces gc, ga, gb (path.h) on [a, b], and their tail relative to the
+ * scales (dx/ds and dy/ds together, M, gc, ga and gb together: their
+ * largest magnitudes on the interval); -1 when the linkage fails. */
 static int piece_fit(piece_ctx *pc, double a, double b, double c[NPC_F][PN],
                      double *tail)
 {
   double v[PN][NPC_F], mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  double sdxy = 0, sm = 0;
+  double sdxy = 0, sm = 0, sgc = 0, sgab = 0, fa[NF][3];
+  if (exact_f(pc->w, a, fa, NULL) != 0)
+    return -1;
   for (int j = 0; j < PN; j++) {
     double f[NF][3];
     if (exact_f(pc->w, mid + half * pc->tnode[j], f, NULL) != 0)
       return -1;
-    v[j][PC_DX] = f[F_DX][0];
-    v[j][PC_DY] = f[F_DY][0];
-    v[j][PC_M] = f[F_M][0];
+    piece_g(f, fa, v[j]);
     sdxy = fmax(sdxy, fmax(fabs(v[j][PC_DX]), fabs(v[j][PC_DY])));
     sm = fmax(sm, fabs(v[j][PC_M]));
+    sgc = fmax(sgc, fabs(v[j][PC_GC]));
+    sgab = fmax(sgab, fmax(fabs(v[j][PC_GA]), fabs(v[j][PC_GB])));
   }
-  const double scale[NPC_F] = {sdxy, sdxy, sm};
+  const double scale[NPC_F] = {sdxy, sdxy, sm, sgc, sgab, sgab};
   *tail = 0;
   for (int f = 0; f < NPC_F; f++) {
     for (int k = 0; k < PN; k++) {
@@ -452,8 +474,10 @@ static int piece_append(aq_workpath *w, double a, double b, double c[NPC_F][PN])
   pc->s_ref = a;
   pc->iscale = 1.0 / (b - a);
   pc->deg = PIECE_DEG;
-  double *dst[NPC_F] = {pc->dx, pc->dy, pc->m};
-  const double exact_a[NPC_F] = {fa[F_DX][0], fa[F_DY][0], fa[F_M][0]};
+  double *dst[NPC_F] = {pc->dx, pc->dy, pc->m, pc->gc, pc->ga, pc->gb};
+  double exact_a[NPC_F];
+  piece_g(fa, fa, exact_a);
+  pc->has_g = 1;
   for (int f = 0; f < NPC_F; f++) {
     /* sum c_k T_k(tau) in powers of tau: T_{k+1} = 2 tau T_k - T_{k-1} */
     double tp[PN] = {1}, tc[PN] = {0, 1};

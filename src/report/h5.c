@@ -699,8 +699,11 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
     CK(attr_str(w, f, "scale_mode", "list"), "root attributes");
     CK(attr_doubles(f, "scales", r->scales, r->nscale), "root attributes");
   } else {
-    CK(attr_str(w, f, "scale_mode", "pga"), "root attributes");
+    CK(attr_str(w, f, "scale_mode", r->scale_to_lambda0 > 0 ? "lambda0" : "pga"),
+       "root attributes");
   }
+  CK(attr_double(w, f, "scale_to_lambda0", r->scale_to_lambda0 > 0 ? r->scale_to_lambda0 : NAN),
+     "root attributes");
   CK(attr_double(w, f, "scale_to_pga_g", r->scale_to_pga_g), "root attributes");
   CK(attr_int(w, f, "history", r->history ? 1 : 0), "root attributes");
   CK(attr_int(w, f, "store_records", r->store_records ? 1 : 0), "root attributes");

@@ -60,6 +60,7 @@ typedef struct {
   const char *build;          /* exact build: version and `git describe` */
   int store_records;          /* 1 with --store-records: processed waveforms */
   const char *polarity;       /* --polarity: normal | reversed | both (NULL: normal) */
+  double scale_to_lambda0;    /* --scale-to-lambda0 K (scale_mode lambda0), or NAN */
 } aq_h5_root;
 
 /* One arch as loaded. */

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "../io/sha256.h"
@@ -19,7 +20,18 @@
 struct aq_journal {
   int fd;
   char *path;
+  double sync_period_s; /* 0: every append is synced */
+  double last_sync_s;   /* CLOCK_MONOTONIC time of the last sync */
+  int unsynced;         /* entries written since the last sync */
+  int dir_unsynced;     /* the directory is to be synced with the next sync */
 };
+
+static double monotonic_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 void aq_journal_name(const char *target, char *buf, size_t n)
 {
@@ -92,7 +104,25 @@ static aq_journal *journal_new(int fd, const char *path)
   }
   j->fd = fd;
   j->path = p;
+  j->sync_period_s = 0;
+  j->last_sync_s = monotonic_s();
+  j->unsynced = 0;
+  j->dir_unsynced = 0;
   return j;
+}
+
+/* Sync the entries written (and the directory, once, after a deferred
+ * create). */
+static aq_status journal_sync(aq_journal *j, aq_error *err)
+{
+  if (fdatasync(j->fd) != 0)
+    return sys_fail(err, j->path, "sync");
+  if (j->dir_unsynced)
+    sync_dir(j->path);
+  j->dir_unsynced = 0;
+  j->unsynced = 0;
+  j->last_sync_s = monotonic_s();
+  return AQ_OK;
 }
 
 aq_status aq_journal_append(aq_journal *j, const void *data, size_t n, aq_error *err)
@@ -114,13 +144,20 @@ aq_status aq_journal_append(aq_journal *j, const void *data, size_t n, aq_error 
   free(frame);
   if (rc != 0)
     return sys_fail(err, j->path, "append to");
-  if (fdatasync(j->fd) != 0)
-    return sys_fail(err, j->path, "sync");
-  return AQ_OK;
+  if (j->sync_period_s > 0 && monotonic_s() - j->last_sync_s < j->sync_period_s) {
+    j->unsynced = 1; /* in the page cache: it survives a kill, not a crash */
+    return AQ_OK;
+  }
+  return journal_sync(j, err);
+}
+
+void aq_journal_set_sync_period(aq_journal *j, double period_s)
+{
+  j->sync_period_s = period_s > 0 ? period_s : 0;
 }
 
 aq_status aq_journal_create(const char *path, const void *identity, size_t n,
-                            aq_journal **out, aq_error *err)
+                            double sync_period_s, aq_journal **out, aq_error *err)
 {
   *out = NULL;
   int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -132,6 +169,8 @@ aq_status aq_journal_create(const char *path, const void *identity, size_t n,
     unlink(path);
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
   }
+  aq_journal_set_sync_period(j, sync_period_s);
+  j->dir_unsynced = 1;
   aq_status s = AQ_OK;
   if (write_all(fd, AQ_JOURNAL_MAGIC, AQ_JOURNAL_MAGIC_BYTES) != 0)
     s = sys_fail(err, path, "write");
@@ -141,7 +180,6 @@ aq_status aq_journal_create(const char *path, const void *identity, size_t n,
     aq_journal_remove(j, NULL);
     return s;
   }
-  sync_dir(path);
   *out = j;
   return AQ_OK;
 }
@@ -288,6 +326,8 @@ void aq_journal_close(aq_journal *j)
 {
   if (!j)
     return;
+  if (j->unsynced)
+    journal_sync(j, NULL); /* kept for --resume: best effort, as after a crash */
   close(j->fd);
   free(j->path);
   free(j);
@@ -300,6 +340,7 @@ aq_status aq_journal_remove(aq_journal *j, aq_error *err)
   aq_status s = AQ_OK;
   if (unlink(j->path) != 0 && errno != ENOENT)
     s = sys_fail(err, j->path, "remove");
+  j->unsynced = 0; /* nothing left to keep */
   aq_journal_close(j);
   return s;
 }

@@ -6,7 +6,11 @@
  * "AQJRNL01" followed by entries, each
  *     u64 length (little-endian) | payload (length bytes) | SHA-256 of both
  * written with one write loop and synced (fdatasync) before the call
- * returns.  Entry 0 is the identity of the command that wrote it (the
+ * returns, or, with aq_journal_set_sync_period, at most once per period
+ * (an entry written is in the journal for any later reader at once, and
+ * survives a kill of the process; only an operating-system crash or a power
+ * failure can lose the entries written since the last sync, whose work is
+ * then done again).  Entry 0 is the identity of the command that wrote it (the
  * caller's bytes; archquake writes text lines); every other entry is one
  * unit of completed work in the caller's own encoding.  A torn or corrupt
  * entry (kill -9 mid-write, a bad sector) fails its length or checksum test:
@@ -39,9 +43,12 @@ typedef struct {
 void aq_journal_name(const char *target, char *buf, size_t n);
 
 /* Create (or replace) the journal at path holding only the identity entry,
- * synced with its directory.  *out is the journal, open for appending. */
+ * with aq_journal_set_sync_period(sync_period_s): with 0, synced with its
+ * directory before the call returns; with a period, both are synced by the
+ * first sync (a journal lost to a crash before it is as good as none: the
+ * suite starts over).  *out is the journal, open for appending. */
 aq_status aq_journal_create(const char *path, const void *identity, size_t n,
-                            aq_journal **out, aq_error *err);
+                            double sync_period_s, aq_journal **out, aq_error *err);
 
 /* Open an existing journal: every whole entry is returned in *entries
  * (*nentries of them, the identity first); a torn or corrupt tail is cut off
@@ -59,6 +66,11 @@ aq_status aq_journal_open(const char *path, aq_journal **out,
  * holds at most a torn entry, which the next open drops. */
 aq_status aq_journal_append(aq_journal *j, const void *data, size_t n,
                             aq_error *err);
+
+/* Sync on an append only if period_s (s, > 0) has passed since the last
+ * sync (0: every append, the default).  An append that syncs covers every
+ * entry before it; aq_journal_close syncs what is left. */
+void aq_journal_set_sync_period(aq_journal *j, double period_s);
 
 /* Close, keeping the file (NULL is fine). */
 void aq_journal_close(aq_journal *j);

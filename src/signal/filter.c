@@ -45,6 +45,7 @@
 #include <unistd.h>
 
 #include "../io/sha256.h"
+#include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
 static pthread_mutex_t aq_fftw_planner_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -147,15 +148,65 @@ static void wisdom_save(void)
   fftw_free(w);
 }
 
+/* ---- built-in wisdom (under aq_fftw_planner_lock) -------------------------
+ * FFTW_ESTIMATE's first plan of a length costs 5-25 ms of planner search
+ * (a cold 5-record suite spent 60 % of its time there), although the plan
+ * it chooses is fixed for a given FFTW build.  The build plans every
+ * length aq_signal_fft_size can give between 2^10 and 2^20 once, in
+ * tools/fftw_wisdom.c, and keeps each length's wisdom apart; before
+ * planning a length, its wisdom is imported (a few hundred bytes, about
+ * 0.1 ms) and FFTW rebuilds the plan ESTIMATE chose without searching: the
+ * same plan, so the same bits.  Wisdom of another FFTW build is skipped
+ * (version check here, configuration hash in FFTW), and the length is
+ * planned as before.  AQ_FFTW_NO_BUILTIN_WISDOM (set, non-empty) turns it
+ * off, so that tests can compare the results with and without it. */
+
+static void builtin_wisdom(size_t n)
+{
+  static int off = -1;
+  if (off < 0) {
+    const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
+    off = (e && e[0]) || strcmp(fftw_version, AQ_FFTW_WISDOM_VERSION) != 0;
+  }
+  size_t lo = 0, hi = sizeof aq_fftw_wisdom / sizeof aq_fftw_wisdom[0];
+  while (!off && lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if ((size_t)aq_fftw_wisdom[mid].n == n) {
+      fftw_import_wisdom_from_string(aq_fftw_wisdom[mid].wisdom); /* 0: planned as before */
+      return;
+    }
+    if ((size_t)aq_fftw_wisdom[mid].n < n)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+}
+
 typedef struct {
   size_t n;       /* transform length */
   fftw_plan r2c;  /* n reals -> n/2+1 complex */
   fftw_plan c2r;  /* n/2+1 complex -> n reals (destroys its input) */
 } plan_pair;
 
+/* The plans of the process, one pair per length, kept from the first
+ * record of that length to the end of the process (under
+ * aq_fftw_planner_lock): re-planning a length even from in-memory wisdom
+ * costs 0.5-1 ms, which every suite of a process (a capacity search, the
+ * bench) paid again per length when each workspace had plans of its own.
+ * Blocks of AQ_PLAN_BLOCK pairs that never move, so that a pair found
+ * under the lock stays valid after it is released.  They are reachable
+ * until exit, as FFTW's own planner state is. */
+#define AQ_PLAN_BLOCK 64
+typedef struct plan_block {
+  plan_pair pair[AQ_PLAN_BLOCK];
+  size_t n;                 /* pairs used */
+  struct plan_block *next;
+} plan_block;
+static plan_block *aq_plans;
+
+/* A workspace is a handle on the process's plan cache (see signal.h). */
 struct aq_signal_ws {
-  plan_pair *plans; /* cache, guarded by aq_fftw_planner_lock */
-  size_t nplans, cap;
+  int unused;
 };
 
 aq_signal_ws *aq_signal_ws_alloc(void)
@@ -168,13 +219,8 @@ void aq_signal_ws_free(aq_signal_ws *ws)
   if (!ws)
     return;
   pthread_mutex_lock(&aq_fftw_planner_lock);
-  for (size_t i = 0; i < ws->nplans; i++) {
-    fftw_destroy_plan(ws->plans[i].r2c);
-    fftw_destroy_plan(ws->plans[i].c2r);
-  }
   wisdom_save();
   pthread_mutex_unlock(&aq_fftw_planner_lock);
-  free(ws->plans);
   free(ws);
 }
 
@@ -182,21 +228,23 @@ void aq_signal_ws_free(aq_signal_ws *ws)
  * lock. */
 static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
 {
-  for (size_t i = 0; i < ws->nplans; i++)
-    if (ws->plans[i].n == n)
-      return &ws->plans[i];
-  if (ws->nplans == ws->cap) {
-    size_t cap = ws->cap ? 2 * ws->cap : 8;
-    plan_pair *p = realloc(ws->plans, cap * sizeof *p);
-    if (!p)
+  (void)ws;
+  for (plan_block *b = aq_plans; b; b = b->next)
+    for (size_t i = 0; i < b->n; i++)
+      if (b->pair[i].n == n)
+        return &b->pair[i];
+  if (!aq_plans || aq_plans->n == AQ_PLAN_BLOCK) {
+    plan_block *b = calloc(1, sizeof *b);
+    if (!b)
       return NULL;
-    ws->plans = p;
-    ws->cap = cap;
+    b->next = aq_plans;
+    aq_plans = b;
   }
   /* plan in place on a scratch array aligned as fftw_malloc aligns: every
    * array later passed to the new-array execute calls is aligned alike
    * (aq_filter_alloc) and also in place */
   wisdom_load();
+  builtin_wisdom(n);
   wisdom_planned = 1;
   double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
   fftw_plan r2c = NULL, c2r = NULL;
@@ -212,7 +260,7 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
       fftw_destroy_plan(c2r);
     return NULL;
   }
-  plan_pair *pp = &ws->plans[ws->nplans++];
+  plan_pair *pp = &aq_plans->pair[aq_plans->n++];
   pp->n = n;
   pp->r2c = r2c;
   pp->c2r = c2r;

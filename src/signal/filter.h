@@ -26,7 +26,7 @@ double *aq_filter_alloc(size_t n);
  * in-place c2r transform.  Plans come from ws (made once per n, under a
  * process-wide lock: FFTW's planner is not thread-safe); the transforms run
  * on x alone through fftw_execute_dft_r2c/c2r, so several threads may share
- * ws.  ws NULL: plans made for this call and destroyed after it.  Errors:
+ * ws.  ws NULL: a workspace of this call's own (the plans stay cached).  Errors:
  * AQ_ENOMEM, AQ_EINTERNAL (FFTW gave no plan), AQ_EVALUE (n outside
  * [2, INT_MAX]); x is then unchanged or garbage (the caller discards it). */
 aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,

@@ -4,8 +4,10 @@
  * except pga_g) and aq_steps (see steps.h).
  *
  * Ownership: aq_processed owns its array (aq_processed_free).  The filter
- * workspace (aq_signal_ws) holds FFTW plans made once per transform size and
- * is shared read-only between threads once made; aq_signal_ws_free frees it.
+ * workspace (aq_signal_ws) is a handle on the process's FFTW plans, made
+ * once per transform size and kept until exit (shared read-only between
+ * threads once made); aq_signal_ws_free frees the handle and saves the
+ * planner's wisdom (filter.c).
  */
 #ifndef AQ_SIGNAL_H
 #define AQ_SIGNAL_H
@@ -71,8 +73,9 @@ enum { AQ_IM_WARN_VEND = 1, AQ_IM_WARN_DEND = 2 };
 
 void aq_processed_free(aq_processed *p);
 
-/* Workspace: FFTW plans cached per transform size (made under a lock, then
- * reused; safe to share between threads).  Free accepts NULL. */
+/* Workspace: a handle on the FFTW plans cached per transform size for the
+ * whole process (made under a lock, then reused; safe to share between
+ * threads).  Free accepts NULL. */
 typedef struct aq_signal_ws aq_signal_ws;
 aq_signal_ws *aq_signal_ws_alloc(void);
 void aq_signal_ws_free(aq_signal_ws *ws);

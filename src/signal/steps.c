@@ -92,11 +92,25 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
   }
   size_t k = 0;
   double peak = 0;
-  for (size_t i = 0; i < n;) {
+  if (merge_tol_mps2 == 0) {
+    /* one step per sample (the default): the loop below with j = i + 1,
+     * whose divisions by 1 and products by 1 are exact, without them */
+    for (size_t i = 0; i < n; i++) {
+      double a = sample(a1, c1, a2, c2, sc, i), fa = fabs(a);
+      peak = fa > peak ? fa : peak;
+      out->t_s[i] = t0_s + (double)i * dt_s;
+      out->dt_s[i] = dt_s;
+      out->a_mps2[i] = a;
+      if (v)
+        out->av_mps2[i] = sv * v[i];
+    }
+    k = n;
+  }
+  for (size_t i = k; i < n;) {
     size_t j = i + 1;
     double first = sample(a1, c1, a2, c2, sc, i), sum = first;
     double vfirst = v ? sv * v[i] : 0, vsum = vfirst;
-    peak = fmax(peak, fabs(first));
+    peak = fabs(first) > peak ? fabs(first) : peak; /* finite: as fmax, inline */
     if (merge_tol_mps2 > 0) {
       /* grow the run while every sample stays within tol of the run's first */
       double lo = first, hi = first, vlo = vfirst, vhi = vfirst;
@@ -112,7 +126,7 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
         vhi = nvhi;
         sum += a;
         vsum += b;
-        peak = fmax(peak, fabs(a));
+        peak = fabs(a) > peak ? fabs(a) : peak;
         j++;
       }
     }
