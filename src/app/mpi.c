@@ -5,8 +5,10 @@
  * rank parses them the same way and runs the command up to its tasks
  * (farm.h): a (record, arch) of the main job, a (subject, arch) of
  * capacity, every factor, polarity and azimuth of it.  Rank 0 leads: it
- * hands each follower at most one task per thread of its (-j, the same on
- * every rank), runs tasks on its own -j threads between messages, and
+ * keeps one task per thread of each follower (-j, the same on every rank)
+ * and AQ_MPI_QUEUED_EXTRA more at it, giving a rank the next task of the
+ * record it last had when it can (pick), runs tasks on its own -j threads
+ * between messages, and
  * takes every result on its main thread; the command then writes them as
  * archquake does (the main job in record order as records complete, with
  * its journal and --resume; capacity at the end), so the outputs are those
@@ -25,6 +27,8 @@
  * fails the outputs (no partial file) and aborts the job.  A rank that
  * dies makes mpirun end the others with SIGTERM, which removes rank 0's
  * temporaries (cleanup.h); the main job's journal stays for --resume.
+ * (Rank 0 itself killed with SIGKILL leaves its temporaries, as archquake
+ * does; --resume removes them.)
  *
  * Followers write nothing: their stdout and stderr go to /dev/null (rank 0
  * reports every record's problems); only this file's own messages about
