@@ -258,7 +258,7 @@ static int write_runs(const char *path, const aq_summary *s, size_t n)
   aq_signal_opts o;
   aq_signal_opts_default(&o);
   aq_h5_root root = {"0", "test", "2026-11-22T00:00:00Z", &o, 0, "file", 0,
-                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 0, "normal"};
+                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 0, "normal", NAN};
   if (aq_h5_write_root(w, &root, &err) != AQ_OK)
     goto fail;
   for (size_t k = 0; k < 2; k++) {

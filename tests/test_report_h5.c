@@ -137,7 +137,7 @@ static aq_status write_fixture_to(aq_h5_writer *w, fixture *fx, aq_error *err)
   static const double scales[2] = {0.5, 1.25};
   aq_h5_root root = {"9.9.9", "archquake records/synthetic.AT2 --arch a.cfg -o x.h5",
                      "2026-11-22T14:00:00Z", &req, 0.001, "file", 0, "workpath",
-                     NAN, scales, 2, NAN, 1, 2, "9.9.9 (v9.9.9-3-gabcdef1)", 1, "normal"};
+                     NAN, scales, 2, NAN, 1, 2, "9.9.9 (v9.9.9-3-gabcdef1)", 1, "normal", NAN};
   if ((st = aq_h5_write_root(w, &root, err)) != AQ_OK)
     return st;
   for (size_t a = 0; a < 2; a++) {
@@ -538,7 +538,7 @@ static aq_status write_big(const char *target, aq_error *err)
     return st;
   }
   aq_h5_root root = {"9.9.9", "big", "2026-11-22T14:00:00Z", &fx.proc.used, 0, "file", 0,
-                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 1 /* store_records */, "normal"};
+                     "workpath", NAN, NULL, 1, 0.3, 0, 1, NULL, 1 /* store_records */, "normal", NAN};
   st = aq_h5_write_root(w, &root, err);
   for (size_t k = 0; k < NBIG && st == AQ_OK; k++) {
     for (size_t i = 0; i < NBIG_N; i++)
