@@ -509,6 +509,39 @@ AQ_TEST(capacity_cli_compare_handles_the_capacity_group)
   rc = aq_test_run(args, out, BIG, err, sizeof err);
   aq_check(rc == 1 && strstr(out, "\tnormal\tcapacity/first_collapse_scale\t"),
            "another cor: exit %d\n%s", rc, out);
+  /* one scanned run's peak rotation changed by 1e-6 in h[1] (the HDF5 API
+     alone, a one-field compound): compare names that point */
+  int nudged = 0;
+  hid_t f = H5Fopen(h[1], H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t d = f >= 0 ? H5Dopen2(f, "/capacity/scan_points", H5P_DEFAULT) : -1;
+  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  hid_t mt = H5Tcreate(H5T_COMPOUND, sizeof(double));
+  H5Tinsert(mt, "peak_rotation_rad", 0, H5T_NATIVE_DOUBLE);
+  double *pk = np > 0 ? malloc((size_t)np * sizeof *pk) : NULL;
+  if (pk && H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, pk) >= 0) {
+    hssize_t q = 0;
+    while (q < np && !(pk[q] > 0))
+      q++;
+    if (q < np) {
+      pk[q] *= 1 + 1e-6;
+      nudged = H5Dwrite(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, pk) >= 0;
+    }
+  }
+  free(pk);
+  H5Tclose(mt);
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (d >= 0)
+    H5Dclose(d);
+  if (f >= 0)
+    H5Fclose(f);
+  aq_check(nudged, "scan_points of %s nudged", h[1]);
+  snprintf(args, sizeof args, "compare %s %s", h[0], h[1]);
+  rc = aq_test_run(args, out, BIG, err, sizeof err);
+  aq_check(rc == 1 && strstr(out, "capacity/scan_point[") &&
+               strstr(out, "].peak_rotation_rad\t") && aq_test_count_lines(out) == 2,
+           "one scan point differs: exit %d\n%s", rc, out);
   /* a main-job file has no capacity group: reported as one difference */
   snprintf(args, sizeof args, REC " --arch " ARCH " -o %s/run.h5", dir);
   aq_check(aq_test_run(args, out, BIG, NULL, 0) == 0, "main job");

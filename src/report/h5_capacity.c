@@ -662,6 +662,36 @@ static size_t emit(aq_h5_capacity_diff_fn fn, void *ctx, const aq_h5_capacity_ro
   return 1;
 }
 
+/* The scan points of two matched rows (capacity/scan_points): the count
+ * exactly, then each run's scale, peak rotation, peak / q_c and collapse
+ * time as numbers, its verdict exactly (field "scan_point[k].NAME"). */
+static size_t compare_points(const aq_h5_capacity_table *a, const aq_h5_capacity_row *x,
+                             const aq_h5_capacity_table *b, const aq_h5_capacity_row *y,
+                             double rtol, double atol, aq_h5_capacity_diff_fn fn, void *ctx)
+{
+  if (x->point_count != y->point_count)
+    return emit(fn, ctx, x, y, "scan_points", (double)x->point_count,
+                (double)y->point_count, NULL, NULL);
+  static const char *const names[] = {"scale", "peak_rotation_rad", "peak_rotation_over_qc",
+                                      "collapse_time_s", "collapsed"};
+  size_t nd = 0;
+  for (size_t q = 0; q < x->point_count; q++) {
+    const aq_capacity_point *pa = &a->point[x->point_start + q], *pb = &b->point[y->point_start + q];
+    double va[5] = {pa->scale, pa->peak_rotation_rad, pa->peak_rotation_over_qc,
+                    pa->collapse_time_s, pa->collapsed};
+    double vb[5] = {pb->scale, pb->peak_rotation_rad, pb->peak_rotation_over_qc,
+                    pb->collapse_time_s, pb->collapsed};
+    for (int c = 0; c < 5; c++) {
+      if (c == 4 ? va[c] == vb[c] : aq_compare_close(va[c], vb[c], rtol, atol))
+        continue;
+      char name[64];
+      snprintf(name, sizeof name, "scan_point[%zu].%s", q, names[c]);
+      nd += emit(fn, ctx, x, y, name, va[c], vb[c], NULL, NULL);
+    }
+  }
+  return nd;
+}
+
 size_t aq_h5_capacity_compare(const aq_h5_capacity_table *a,
                               const aq_h5_capacity_table *b, double rtol, double atol,
                               aq_h5_capacity_diff_fn fn, void *ctx)
@@ -688,16 +718,18 @@ size_t aq_h5_capacity_compare(const aq_h5_capacity_table *a,
       if (c != 2 && x->i[c] != y->i[c]) /* interval_start depends on earlier rows */
         nd += emit(fn, ctx, x, y, inames[c], (double)x->i[c], (double)y->i[c], NULL,
                    NULL);
-    if (x->i[3] != y->i[3])
-      continue;
-    for (int64_t q = 0; q < x->i[3]; q++)
-      for (int e = 0; e < 2; e++) {
-        double va = a->interval[2 * (x->i[2] + q) + e], vb = b->interval[2 * (y->i[2] + q) + e];
-        char name[48];
-        snprintf(name, sizeof name, "interval_%s[%lld]", e ? "hi" : "lo", (long long)q);
-        if (!aq_compare_close(va, vb, rtol, atol))
-          nd += emit(fn, ctx, x, y, name, va, vb, NULL, NULL);
-      }
+    if (x->i[3] == y->i[3])
+      for (int64_t q = 0; q < x->i[3]; q++)
+        for (int e = 0; e < 2; e++) {
+          double va = a->interval[2 * (x->i[2] + q) + e],
+                 vb = b->interval[2 * (y->i[2] + q) + e];
+          char name[48];
+          snprintf(name, sizeof name, "interval_%s[%lld]", e ? "hi" : "lo", (long long)q);
+          if (!aq_compare_close(va, vb, rtol, atol))
+            nd += emit(fn, ctx, x, y, name, va, vb, NULL, NULL);
+        }
+    if (a->have_points && b->have_points)
+      nd += compare_points(a, x, b, y, rtol, atol, fn, ctx);
   }
   for (; j < b->n; j++)
     nd += emit(fn, ctx, NULL, &b->row[j], NULL, 0, 0, NULL, NULL);

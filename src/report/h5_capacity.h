@@ -75,7 +75,9 @@ void aq_h5_capacity_table_free(aq_h5_capacity_table *t);
 /* One difference between two capacity tables: rows are matched by (record,
  * arch, polarity) in order; numbers agree as aq_compare_close; status and
  * the integer columns exactly; intervals pairwise (field "interval_lo[k]"
- * or "interval_hi[k]").  a or b NULL: the row is in one table only. */
+ * or "interval_hi[k]"); when both files hold capacity/scan_points, each
+ * row's points pairwise ("scan_points" for a different count, else
+ * "scan_point[k].FIELD").  a or b NULL: the row is in one table only. */
 typedef struct {
   const aq_h5_capacity_row *a, *b;
   const char *field; /* NULL for a row in one table only */
