@@ -15,9 +15,7 @@
  */
 #include <ctype.h>
 #include <errno.h>
-#include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -78,6 +76,13 @@ static const char *find_ci(const char *s, size_t n, const char *needle)
   return NULL;
 }
 
+/* 1 if s[0..n) starts with needle, case-insensitive. */
+static int starts_ci(const char *s, size_t n, const char *needle)
+{
+  size_t m = strlen(needle);
+  return n >= m && strncasecmp(s, needle, m) == 0;
+}
+
 /* Copy s[0..n) into out (NUL-terminated, truncated to cap-1), for messages. */
 static void quote(const char *s, size_t n, char *out, size_t cap)
 {
@@ -110,96 +115,47 @@ static int is_sep(char c)
          c == '\v' || c == '\0';
 }
 
-/* Exact powers of ten representable in a double. */
-static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-#define AT2_FAST_MANTISSA_MAX 9007199254740992ULL /* 2^53 */
+/* Bytes between values: 1 a blank or comma, 2 a line end; 0 otherwise. */
+static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['\f'] = 1,
+                                            ['\v'] = 1, ['\n'] = 2, ['\r'] = 2};
 
-/* Parse a number starting at s[0..n) (blanks skipped first); the input is
- * not NUL-terminated.  Returns the characters consumed (0 if none), with
- * strtod's syntax (hexadecimal forms, nan and inf excluded).
- * Fast path (Clinger 1990): a decimal with at most 19 significant digits,
- * mantissa m <= 2^53 and decimal exponent |e| <= 22 is m * 10^e or m / 10^-e,
- * a single correctly rounded operation on two exact doubles, so the result
- * is the same double strtod gives.  Anything else is copied to a local
- * buffer and given to strtod. */
-size_t aq_decimal_parse(const char *s, size_t n, double *x)
+/* The values from c->pos on that are plain finite numbers, each ended by a
+ * separator (is_sep) or the end of the input, into acc[k..npts): returns the
+ * new k.  Stops with c at the first token that is anything else (a glued
+ * value, an end marker, a bad token: the careful loop takes it) or at the
+ * end of the input.  The common case, in one pass over the bytes. */
+static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
 {
-  size_t i = 0;
-  while (i < n && (s[i] == ' ' || s[i] == '\t'))
-    i++;
-#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
-  {
-    size_t j = i;
-    int neg = 0, nd = 0, anyd = 0, slow = 0;
-    long frac = 0;
-    uint64_t m = 0;
-    if (j < n && (s[j] == '+' || s[j] == '-'))
-      neg = s[j++] == '-';
-    for (int part = 0; part < 2; part++) {
-      while (j < n && is_digit(s[j])) {
-        int d = s[j++] - '0';
-        anyd = 1;
-        if (part)
-          frac++;
-        if (m == 0 && d == 0)
-          continue; /* leading zeros are not significant */
-        if (nd >= 19) {
-          slow = 1;
-          continue;
-        }
-        m = m * 10 + (uint64_t)d;
-        nd++;
+  const char *s = c->s, *p = s + c->pos, *end = s + c->n;
+  long line = c->line;
+  while (k < npts) {
+    for (;;) { /* separators, as the careful loop skips them */
+      while (p < end && sep_kind[(unsigned char)*p] == 1)
+        p++;
+      if (p >= end || sep_kind[(unsigned char)*p] != 2)
+        break;
+      if (*p == '\r') { /* CR, CR LF, CR CR LF: one line end (skip_eol) */
+        while (p < end && *p == '\r')
+          p++;
+        if (p < end && *p == '\n')
+          p++;
+      } else {
+        p++;
       }
-      if (part == 0) {
-        if (j < n && s[j] == '.')
-          j++;
-        else
-          break;
-      }
+      line++;
     }
-    if (anyd && !slow) {
-      long e = 0;
-      if (j < n && (s[j] == 'e' || s[j] == 'E')) {
-        size_t k = j + 1;
-        int eneg = 0, ed = 0;
-        if (k < n && (s[k] == '+' || s[k] == '-'))
-          eneg = s[k++] == '-';
-        while (k < n && is_digit(s[k]) && ed < 6)
-          e = e * 10 + (s[k++] - '0'), ed++;
-        if (k < n && is_digit(s[k]))
-          slow = 1; /* a huge exponent: strtod decides */
-        if (ed) {
-          j = k;
-          e = eneg ? -e : e;
-        } else {
-          e = 0; /* "1.5e" is 1.5 followed by "e" */
-        }
-      }
-      e -= frac;
-      if (!slow && m <= AT2_FAST_MANTISSA_MAX && e >= -22 && e <= 22) {
-        double v = (double)m;
-        v = e < 0 ? v / pow10_exact[-e] : v * pow10_exact[e];
-        *x = neg ? -v : v;
-        return j;
-      }
-    }
+    if (p >= end)
+      break;
+    double x;
+    size_t used = aq_number_parse_finite(p, (size_t)(end - p), 0, &x);
+    if (!used || (p + used < end && !is_sep(p[used])))
+      break;
+    acc[k++] = x;
+    p += used;
   }
-#endif
-  char tok[AT2_TOKEN_MAX];
-  size_t k = 0;
-  while (i + k < n && k + 1 < sizeof tok && is_numchar(s[i + k]))
-    tok[k] = s[i + k], k++;
-  tok[k] = '\0';
-  if (k == 0)
-    return 0;
-  char *end;
-  errno = 0;
-  *x = strtod(tok, &end);
-  if (end == tok)
-    return 0;
-  return i + (size_t)(end - tok);
+  c->pos = (size_t)(p - s);
+  c->line = line;
+  return k;
 }
 
 /* "UNITS OF X" in the text lines: X as acceleration units.  Returns 1 with
@@ -237,12 +193,23 @@ static int is_alpha(char ch) { return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && 
 static long find_word(const char *s, size_t n, const char *kw)
 {
   size_t m = strlen(kw);
+  if (m > n)
+    return -1;
   char k0 = kw[0], k0l = (char)(k0 | 0x20); /* kw's first letter, upper and lower */
-  for (size_t i = 0; i + m <= n; i++)
-    if ((s[i] == k0 || s[i] == k0l) && strncasecmp(s + i, kw, m) == 0 &&
-        (i == 0 || !is_alpha(s[i - 1])) &&
+  size_t last = n - m;                        /* the last place kw can start */
+  /* candidates: the next k0 and the next k0l (memchr: most lines have neither) */
+  const char *u = memchr(s, k0, last + 1), *l = memchr(s, k0l, last + 1);
+  while (u || l) {
+    const char *c = !l || (u && u < l) ? u : l;
+    size_t i = (size_t)(c - s);
+    if (strncasecmp(s + i, kw, m) == 0 && (i == 0 || !is_alpha(s[i - 1])) &&
         (i + m == n || !is_alpha(s[i + m])))
       return (long)i;
+    if (c == u)
+      u = i < last ? memchr(s + i + 1, k0, last - i) : NULL;
+    else
+      l = i < last ? memchr(s + i + 1, k0l, last - i) : NULL;
+  }
   return -1;
 }
 
@@ -424,8 +391,8 @@ static int find_header(const char *s, size_t n, at2_header *h, long *bad_line,
         }
       }
     } else if ((found || *bad_line > 0) && fb < e &&
-               (s[fb] == '*' || find_ci(s + fb, e - fb, "end data") == s + fb ||
-                find_ci(s + fb, e - fb, "end of data") == s + fb)) {
+               (s[fb] == '*' || starts_ci(s + fb, e - fb, "end data") ||
+                starts_ci(s + fb, e - fb, "end of data"))) {
       break; /* an end marker: the data is over */
     }
     if (fb < e && ntext < AT2_TEXT_LINES) {
@@ -537,6 +504,9 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   size_t k = 0;
   char field[40], tokq[AT2_TOKEN_MAX + 8];
   while (k < npts) {
+    k = plain_values(&c, acc, k, npts);
+    if (k >= npts)
+      break;
     /* separators */
     while (c.pos < c.n) {
       char ch = c.s[c.pos];

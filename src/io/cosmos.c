@@ -276,7 +276,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
                      "real header #62 (sampling interval, ms)", "expected > 0, got %g", dt_ms);
     goto fail;
   }
-  int code = (int)iv[2];
+  int code = aq_header_int(iv[2]);
   {
     /* the data line's "(NN)" code wins over integer #3 when both are given */
     const char *u = aq_find_ci(ln.p, ln.len, "units=");
@@ -319,8 +319,9 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     }
   }
   {
-    int year = (int)iv[39], jday = (int)iv[40], mon = (int)iv[41], day = (int)iv[42];
-    int hour = (int)iv[43], min = (int)iv[44];
+    int year = aq_header_int(iv[39]), jday = aq_header_int(iv[40]);
+    int mon = aq_header_int(iv[41]), day = aq_header_int(iv[42]);
+    int hour = aq_header_int(iv[43]), min = aq_header_int(iv[44]);
     double sec = rv[29];
     if ((mon < 1 || day < 1) && !aq_month_day(year, jday, &mon, &day))
       mon = 0;

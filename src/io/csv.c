@@ -181,6 +181,123 @@ static void copy_field(const char *s, span f, char *out, size_t cap)
   out[k] = '\0';
 }
 
+/* The rows' arrays: each channel's values (in raw) and the times (when
+ * there is a time column), cap rows each. */
+typedef struct {
+  aq_raw_file *raw;
+  double *tt;
+  size_t cap;
+} csv_rows;
+
+static int rows_grow(csv_rows *r, size_t cap, int with_time)
+{
+  for (size_t j = 0; j < r->raw->nchan; j++) {
+    double *v = realloc(r->raw->chan[j].values, cap * sizeof *v);
+    if (!v)
+      return 0;
+    r->raw->chan[j].values = v;
+  }
+  if (with_time) {
+    double *t = realloc(r->tt, cap * sizeof *t);
+    if (!t)
+      return 0;
+    r->tt = t;
+  }
+  r->cap = cap;
+  return 1;
+}
+
+static void rows_free_time(csv_rows *r)
+{
+  free(r->tt);
+  r->tt = NULL;
+}
+
+/* The line of row idx (0-based), the rows counted as the reading counts
+ * them: the lines that are not blank once a '#' comment is cut, from the
+ * first row's line (line0, starting at pos) on; -1 if there are fewer.
+ * Only for messages: the rows' lines are not kept while reading. */
+static long row_line(const char *s, size_t n, size_t pos, long line0, size_t idx)
+{
+  long line = line0 - 1;
+  size_t b, e, row = 0;
+  while (aq_text_line_(s, n, &pos, &b, &e)) {
+    line++;
+    trim_line(s, &b, &e);
+    if (b < e && row++ == idx)
+      return line;
+  }
+  return -1;
+}
+
+/* What a plain row is: ncols numbers separated by sep (' ': runs of blanks
+ * and tabs), column tcol the time (or -1), chof[i] the channel of column i
+ * (or -1). */
+typedef struct {
+  size_t ncols;
+  char sep;
+  long tcol;
+  const int *chof;
+} plain_row;
+
+/* The rows from c->pos on that are plain: ncols finite plain decimals, with
+ * blanks (and tabs, unless sep is the tab) around them, separated by sep, and a line end (LF, CRLF,
+ * CR, CR CR LF, or the end of the input) after the last; into the arrays
+ * from row k on.  Returns the new k, with c after the last row taken; any
+ * other line (blank, a comment, quotes, a bad or missing field) is left to
+ * the general reading, which reads it exactly as before. */
+static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t k)
+{
+  const char *s = c->s, *end = s + c->n;
+  const char *p = s + c->pos;
+  while (p < end && k < rows->cap) {
+    const char *q = p;
+    size_t i = 0;
+    for (; i < pr->ncols; i++) {
+      const char *fb = q;
+      while (q < end && (*q == ' ' || (*q == '\t' && pr->sep != '\t')))
+        q++;
+      if (i > 0 && pr->sep == ' ' && q == fb)
+        break; /* blank-separated fields need a blank between */
+      double x;
+      size_t used = aq_number_parse_finite(q, (size_t)(end - q), 0, &x);
+      if (!used)
+        break;
+      q += used;
+      while (q < end && (*q == ' ' || (*q == '\t' && pr->sep != '\t')))
+        q++;
+      if (i + 1 < pr->ncols) {
+        if (pr->sep != ' ') {
+          if (q >= end || *q != pr->sep)
+            break;
+          q++;
+        }
+      } else if (q < end && *q != '\n' && *q != '\r') {
+        break;
+      }
+      if (pr->chof[i] >= 0)
+        rows->raw->chan[pr->chof[i]].values[k] = x;
+      if ((long)i == pr->tcol)
+        rows->tt[k] = x;
+    }
+    if (i < pr->ncols)
+      break; /* not plain: values written to row k are overwritten later */
+    if (q < end && *q == '\r') { /* the line end, as aq_text_line_ takes it */
+      while (q < end && *q == '\r')
+        q++;
+      if (q < end && *q == '\n')
+        q++;
+    } else if (q < end) {
+      q++;
+    }
+    c->line++;
+    k++;
+    p = q;
+  }
+  c->pos = (size_t)(p - s);
+  return k;
+}
+
 /* Units named in a piece of text: 1 acceleration (*u set), -1 units that are
  * not acceleration (velocity, displacement, time), 0 none recognised. */
 static int units_in(const char *text, aq_units *u)
@@ -288,6 +405,19 @@ static double select_kth(double *d, size_t n, size_t k)
   return d[k];
 }
 
+/* The smallest and largest of the n - 1 steps of t, in one pass. */
+static void step_range(const double *t, size_t n, double *lo, double *hi)
+{
+  double a = INFINITY, b = -INFINITY;
+  for (size_t i = 1; i < n; i++) {
+    double d = t[i] - t[i - 1];
+    a = d < a ? d : a;
+    b = d > b ? d : b;
+  }
+  *lo = a;
+  *hi = b;
+}
+
 /* Median of the n - 1 steps of t (NaN if out of memory): the upper median,
  * element (n - 1) / 2 of the sorted steps. */
 static double median_step(const double *t, size_t n)
@@ -328,7 +458,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   char sep = 0;
   int dcomma = 0;
   size_t ncols = 0;
+  size_t first_pos = 0; /* where the first row's line starts */
   for (;;) {
+    first_pos = c.pos;
     if (!next_line(&c, &b, &e))
       return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                           "expected rows of numbers (time, acceleration or "
@@ -491,27 +623,29 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   for (size_t j = 0; j < nch; j++)
     chof[chcol[j]] = (int)j;
 
-  /* Rows: at most one per line end left, plus one. */
-  size_t cap = 2;
-  for (size_t i = first_b; i < n; i++)
-    cap += s[i] == '\n' || s[i] == '\r';
+  /* Rows: as many as the rest holds at the first row's length, plus a
+   * quarter; the arrays grow if more come. */
+  csv_rows rows = {raw, NULL, 0};
+  size_t row_bytes = first_e - first_b + 1;
+  size_t cap = (n - first_b) / row_bytes + (n - first_b) / row_bytes / 4 + 16;
   aq_status st = aq_raw_file_alloc(raw, nch, name, err);
   if (st != AQ_OK)
     return st;
-  int nomem = 0;
-  for (size_t j = 0; j < nch; j++)
-    nomem |= !(raw->chan[j].values = malloc(cap * sizeof(double)));
-  double *tt = tcol >= 0 ? malloc(cap * sizeof *tt) : NULL;
-  long *lines = tcol >= 0 ? malloc(cap * sizeof *lines) : NULL;
-  if (nomem || (tcol >= 0 && (!tt || !lines))) {
-    free(tt), free(lines);
+  if (!rows_grow(&rows, cap, tcol >= 0)) {
+    rows_free_time(&rows);
     aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
   }
   size_t k = 0;
   b = first_b, e = first_e;
   long line = first_line;
+  const plain_row pr = {ncols, sep, tcol, chof};
   for (;;) {
+    if (k >= rows.cap && !rows_grow(&rows, 2 * rows.cap, tcol >= 0)) {
+      st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+      break;
+    }
+    double *tt = rows.tt;
     size_t nf = split(s, b, e, sep, f, MAXF);
     if (nf != ncols) {
       st = aq_error_set(err, AQ_EFORMAT, name, line, -1, NULL,
@@ -540,9 +674,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
     if (st != AQ_OK)
       break;
-    if (lines)
-      lines[k] = line;
     k++;
+    if (!dcomma) /* the rows that follow, while they are plain */
+      k = plain_rows(&c, &pr, &rows, k);
     int more = 0;
     while (next_line(&c, &b, &e)) {
       trim_line(s, &b, &e);
@@ -554,11 +688,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     if (!more)
       break;
     line = c.line;
-    if (k >= cap) { /* cannot happen: cap counts line ends */
-      st = aq_error_set(err, AQ_EINTERNAL, name, line, -1, NULL, "row count");
-      break;
-    }
   }
+  double *tt = rows.tt;
 
   double dt = dt_known, begin = 0;
   if (st == AQ_OK && tcol >= 0) {
@@ -572,27 +703,34 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
       dt = strtod(txt, NULL);
       begin = tt[0];
       if (!(dt > 0) || !isfinite(dt)) {
-        st = aq_error_set(err, AQ_EFORMAT, name, lines[k - 1], -1, "time",
+        st = aq_error_set(err, AQ_EFORMAT, name,
+                          row_line(s, n, first_pos, first_line, k - 1), -1, "time",
                           "expected increasing times, got %.9g after %.9g at "
                           "line %ld",
                           tt[k - 1], tt[0], first_line);
       } else {
         /* a step that is off (a missing or repeated row) is named at its
          * line; then a slow drift of the times is caught cumulatively */
-        double med = median_step(tt, k);
+        double lo, hi;
+        step_range(tt, k, &lo, &hi);
+        /* The median step lies in [lo, hi]: when hi - lo <= tol * lo, no
+         * step is farther than tol * median from it (the differences of
+         * steps so close are exact), and the median is not needed. */
+        int even = lo > 0 && hi - lo <= CSV_TIME_TOL_REL * lo;
+        double med = even ? lo : median_step(tt, k);
         if (isnan(med))
           st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-        for (size_t i = 1; i < k && st == AQ_OK; i++)
+        for (size_t i = 1; i < k && st == AQ_OK && !even; i++)
           if (fabs(tt[i] - tt[i - 1] - med) > CSV_TIME_TOL_REL * med)
             st = aq_error_set(
-                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (step %.9g s within %g %%), got a "
                 "step of %.9g s from %.15g to %.15g",
                 med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
         for (size_t i = 1; i < k && st == AQ_OK; i++)
           if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
             st = aq_error_set(
-                err, AQ_EFORMAT, name, lines[i], -1, "time",
+                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (%.15g + k * %.9g s, within %g %% of "
                 "the step), got %.15g for sample %zu",
                 tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
@@ -602,7 +740,6 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
   }
   free(tt);
-  free(lines);
   if (st == AQ_OK && k == 0)
     st = aq_error_set(err, AQ_EFORMAT, name, first_line, -1, NULL,
                       "expected at least one row of numbers, got none");

@@ -52,6 +52,12 @@ static double key_number(const esm_key *k, int *ok)
   return v;
 }
 
+/* isspace() of the "C" locale, without the library call per byte. */
+static int is_c_space(char c)
+{
+  return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+}
+
 aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
@@ -127,10 +133,10 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
   while (got < ch->npts && aq_lines_next(&c, &ln)) {
     size_t i = 0;
     while (i < ln.len) {
-      while (i < ln.len && isspace((unsigned char)ln.p[i]))
+      while (i < ln.len && is_c_space(ln.p[i]))
         i++;
       size_t b = i;
-      while (i < ln.len && !isspace((unsigned char)ln.p[i]))
+      while (i < ln.len && !is_c_space(ln.p[i]))
         i++;
       if (i == b)
         break;

@@ -91,10 +91,15 @@ int aq_field_double(const char *s, size_t n, double *out)
   while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
     n--;
   double v;
-  if (n == 0 || n >= FIELD_MAX || aq_decimal_parse(s, n, &v) != n || !isfinite(v))
+  if (n == 0 || n >= FIELD_MAX || aq_number_parse_finite(s, n, 0, &v) != n)
     return 0;
   *out = v;
   return 1;
+}
+
+int aq_header_int(double v)
+{
+  return v >= -1e9 && v <= 1e9 ? (int)v : -1;
 }
 
 size_t aq_next_word(const char **p, const char *end, const char *stops)

@@ -54,6 +54,10 @@ int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f);
  * success, 0 if blank or not entirely a finite number. */
 int aq_field_double(const char *s, size_t n, double *out);
 
+/* An integer header word read as a double, as int; -1 when it does not fit
+ * one (a "1e30" in an integer field): then no date or code is taken. */
+int aq_header_int(double v);
+
 /* Read count numbers laid out f->per_line to a line, f->width columns each
  * (the last line may hold fewer), from the next lines of c into out[].
  * what names the block for messages ("integer header", "data of channel 2").

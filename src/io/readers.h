@@ -25,6 +25,7 @@
 
 #include <stddef.h>
 
+#include "number.h"
 #include "record.h"
 
 /* One channel (component) as the file states it.  Values are as stored, not
@@ -157,11 +158,7 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
-/* A decimal number at s[0..n) (blanks skipped first; not NUL-terminated),
- * with strtod's syntax less hexadecimal, nan and inf: the characters
- * consumed (0 if none) and *x, the same double strtod gives (a Clinger fast
- * path for <= 19 digits and |exponent| <= 22, strtod otherwise).  at2.c. */
-size_t aq_decimal_parse(const char *s, size_t n, double *x);
+/* aq_decimal_parse, aq_number_parse: the decimal parser, number.h. */
 
 /* Shared by the text readers (record.c): the line at *pos of s[0..n) as
  * [*b, *e) without its end (LF, CRLF, CR, CR CR LF); *pos moves past the end.

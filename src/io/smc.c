@@ -126,13 +126,13 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
                  (size_t)(text[5].p + text[5].len - comp));
   }
   aq_copy_trim(ch->station, sizeof ch->station, text[2].p, text[2].len);
-  int year = (int)iv[1], jday = (int)iv[2], mon, day;
+  int year = aq_header_int(iv[1]), jday = aq_header_int(iv[2]), mon, day;
   double sec = iv[5] == SMC_INT_NULL ? 0 : iv[5];
   if (iv[6] != SMC_INT_NULL)
     sec += iv[6] * 1e-3;
   if (!aq_month_day(year, jday, &mon, &day) ||
-      !aq_iso_time(ch->reference, sizeof ch->reference, year, mon, day, (int)iv[3], (int)iv[4],
-                   sec))
+      !aq_iso_time(ch->reference, sizeof ch->reference, year, mon, day, aq_header_int(iv[3]),
+                   aq_header_int(iv[4]), sec))
     ch->reference[0] = '\0';
   aq_copy_trim(raw->event, sizeof raw->event, text[3].p, text[3].len);
   aq_copy_trim(raw->processing, sizeof raw->processing, text[0].p + 2, text[0].len - 2);

@@ -1,0 +1,167 @@
+/* number.c: the decimal number parser of the text readers (see number.h).
+ *
+ * Fast path (Clinger, "How to read floating point numbers accurately",
+ * PLDI 1990): the significant digits d1..dk (k <= 19) form an exact integer
+ * m; the value is m * 10^e.  When m <= 2^53 and |e| <= 22, both m and 10^|e|
+ * are exact doubles, so m * 10^e (e >= 0) or m / 10^-e (e < 0) is a single
+ * IEEE operation and hence correctly rounded: the double strtod gives.
+ * Multiplying by the inexact 1e-k instead would round twice.
+ * (Reading eight digits at a time as one 64-bit word measured slower here
+ * than this plain loop on the seven- and eight-digit values agencies write.)
+ */
+#include "number.h"
+
+#include <float.h>
+#include <locale.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#define FAST_MANTISSA_MAX 9007199254740992ULL /* 2^53: larger m may be inexact */
+#define FAST_DIGITS_MAX 19                    /* 10^19 - 1 < 2^64 */
+#define FAST_POW10_MAX 22                     /* 10^22 is the largest exact power */
+#define EXPONENT_CAP 100000                   /* beyond any double: strtod decides */
+
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+#define FAST_PATH 1
+#else
+#define FAST_PATH 0 /* extended precision would round twice */
+#endif
+
+/* Exact powers of ten representable in a double. */
+static const double pow10_exact[FAST_POW10_MAX + 1] = {
+    1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+#if FAST_PATH
+/* A run of digits at *pp: m = m * 10^len + run; *nd += len.  Returns 0 when
+ * the digits pass FAST_DIGITS_MAX (m may have wrapped: strtod decides). */
+static inline int digit_run(const char **pp, const char *end, uint64_t *m, int *nd)
+{
+  const char *p = *pp, *b = p;
+  uint64_t v = *m;
+  while (p < end && (unsigned char)(*p - '0') < 10)
+    v = v * 10 + (uint64_t)(*p++ - '0');
+  *nd += (int)(p - b);
+  *m = v;
+  *pp = p;
+  return *nd <= FAST_DIGITS_MAX;
+}
+#endif
+
+static int is_exp_letter(char c, unsigned flags)
+{
+  return c == 'e' || c == 'E' || ((flags & AQ_NUMBER_FORTRAN_D) && (c == 'd' || c == 'D'));
+}
+
+/* ---- the strtod path ------------------------------------------------- */
+
+static locale_t c_numeric;
+static pthread_once_t c_numeric_once = PTHREAD_ONCE_INIT;
+static void c_numeric_init(void) { c_numeric = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0); }
+
+static size_t parse_strtod(const char *s, size_t n, unsigned flags, double *x, int finite)
+{
+  char tok[AQ_NUMBER_TOKEN_MAX];
+  size_t k = 0;
+  while (k < n && k + 1 < sizeof tok) {
+    char c = s[k];
+    if ((c >= '0' && c <= '9') || c == '.' || c == '+' || c == '-')
+      tok[k++] = c;
+    else if (is_exp_letter(c, flags))
+      tok[k++] = 'e';
+    else
+      break;
+  }
+  tok[k] = '\0';
+  if (k == 0)
+    return 0;
+  /* strtod reads the current locale's decimal point: read in "C" */
+  pthread_once(&c_numeric_once, c_numeric_init);
+  locale_t old = c_numeric ? uselocale(c_numeric) : (locale_t)0;
+  char *end;
+  double v = strtod(tok, &end);
+  if (c_numeric)
+    uselocale(old);
+  if (end == tok || (finite && !isfinite(v)))
+    return 0;
+  *x = v;
+  return (size_t)(end - tok);
+}
+
+/* aq_number_parse; with finite set, a value that is not finite takes 0.
+ * The fast path's values are always finite: only strtod's are tested, so
+ * the caller's next step does not wait for the division. */
+static inline size_t parse(const char *s, size_t n, unsigned flags, double *x, int finite)
+{
+#if FAST_PATH
+  const char *p = s, *end = s + n;
+  int neg = 0;
+  if (p < end && (*p == '-' || *p == '+'))
+    neg = *p++ == '-';
+  uint64_t m = 0;
+  int nd = 0;
+  const char *ib = p;
+  if (!digit_run(&p, end, &m, &nd))
+    return parse_strtod(s, n, flags, x, finite);
+  long frac = 0, digits = p - ib;
+  if (p < end && *p == '.') {
+    const char *fb = ++p;
+    if (!digit_run(&p, end, &m, &nd))
+      return parse_strtod(s, n, flags, x, finite);
+    frac = p - fb;
+    digits += frac;
+  }
+  if (digits == 0)
+    return 0; /* no digit: not a number ("-", ".", "+.e5", "inf") */
+  long e = 0;
+  if (p < end && is_exp_letter(*p, flags)) {
+    const char *q = p + 1;
+    int eneg = 0;
+    if (q < end && (*q == '-' || *q == '+'))
+      eneg = *q++ == '-';
+    const char *eb = q;
+    while (q < end && *q >= '0' && *q <= '9') {
+      if (e < EXPONENT_CAP)
+        e = e * 10 + (*q - '0');
+      q++;
+    }
+    if (q > eb) { /* "1.5e" is 1.5 followed by "e" */
+      p = q;
+      e = eneg ? -e : e;
+    } else {
+      e = 0;
+    }
+  }
+  e -= frac;
+  if (m <= FAST_MANTISSA_MAX && e >= -FAST_POW10_MAX && e <= FAST_POW10_MAX) {
+    double v = (double)m;
+    v = e < 0 ? v / pow10_exact[-e] : v * pow10_exact[e]; /* one rounding */
+    *x = neg ? -v : v;
+    return (size_t)(p - s);
+  }
+#else
+  (void)pow10_exact;
+#endif
+  return parse_strtod(s, n, flags, x, finite);
+}
+
+size_t aq_number_parse(const char *s, size_t n, unsigned flags, double *x)
+{
+  return parse(s, n, flags, x, 0);
+}
+
+size_t aq_number_parse_finite(const char *s, size_t n, unsigned flags, double *x)
+{
+  return parse(s, n, flags, x, 1);
+}
+
+size_t aq_decimal_parse(const char *s, size_t n, double *x)
+{
+  size_t i = 0;
+  while (i < n && (s[i] == ' ' || s[i] == '\t'))
+    i++;
+  size_t used = aq_number_parse(s + i, n - i, 0, x);
+  return used ? i + used : 0;
+}
