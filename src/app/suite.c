@@ -278,6 +278,20 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
   return r->unit && isfinite(sa) && (!r->run_v || fabs(sa) == scale);
 }
 
+/* The record file's identity in the results (compare keys on it), when
+ * prepare_record asked for it: hashed by the thread that writes the record
+ * (or sends it to the leader), so that with -o the hash overlaps the
+ * workers' reading and processing of the next records. */
+static void record_sha256(const suite *S, rec_slot *r)
+{
+  if (!r->want_sha)
+    return;
+  r->want_sha = 0;
+  aq_error herr;
+  if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
+    r->sha256[0] = '\0'; /* the reader says why it cannot be read */
+}
+
 /* Read, process and measure record r->index (both components of a motion),
  * then, for a single azimuth, scale it by each factor and split each into
  * steps (with several azimuths each run makes its own).  Returns 1 if its
@@ -306,11 +320,7 @@ static int prepare_record(suite *S, rec_slot *r)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
   const char *first = record_file(S, r->index);
-  if (c->h5_path) { /* the file's identity in the results (compare keys on it) */
-    aq_error herr;
-    if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
-      r->sha256[0] = '\0'; /* the reader says why it cannot be read */
-  }
+  r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
   aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
@@ -958,6 +968,7 @@ static int follow(suite *S)
         for (size_t k = 0; k < r.nruns; k++)
           run_one(S, &r, k, st);
     }
+    record_sha256(S, &r);
     aq_jbuf jb = {0};
     aq_suite_slot_encode(&r, r.nruns, &jb);
     slot_clear(S, &r);
@@ -1208,6 +1219,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     /* clear the line before diagnostics, and before rows on the terminal */
     if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
+    record_sha256(&S, r);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
       aq_jbuf jb = {0};

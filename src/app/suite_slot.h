@@ -50,6 +50,7 @@ typedef struct {
   char status[AQ_SUMMARY_STATUS_MAX];
   char warning[300];  /* residual warning, "" if none */
   char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
+  int want_sha;       /* 1: sha256 still to be computed (suite.c, record_sha256) */
   double read_s, process_s;
   double *scale;      /* nscale factors applied */
   double *pga_g;      /* PGA of each scaled record, g */
