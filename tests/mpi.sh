@@ -2,10 +2,11 @@
 # tests/mpi.sh: archquake-mpi against archquake -j 1 (make check-mpi).
 #
 # The reference is the serial program on the same arguments: every rank
-# count must give the same TSV bytes and a results file that `archquake
-# compare` finds equal.  Then a follower is killed mid-run: the job must
-# end (no hang) with a non-zero status and no results file, and --resume
-# must finish it with the reference's outputs.  Last line: "N passed, N
+# count, with one or two threads per rank, must give the same TSV bytes and
+# a results file that `archquake compare` finds equal, for the main job
+# and for capacity.  Then a follower is killed mid-run: the job must end
+# (no hang) with a non-zero status and no results file, and --resume must
+# finish the main job with the reference's outputs.  Last line: "N passed, N
 # failed", like the runner's.  AQ_TEST_VERBOSE=1 prints the measured values.
 set -u
 BIN=${AQ_BIN:-./archquake}
@@ -23,6 +24,41 @@ ok() { pass=$((pass + 1)); [ -n "${AQ_TEST_VERBOSE:-}" ] && echo "ok: $1"; retur
 bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
 check() { if [ "$1" = "$2" ]; then ok "$3 ($1)"; else bad "$3: expected $2, got $1"; fi; }
 
+# Kill rank 1 of the mpirun whose pid is $1 (found by its environment).
+kill_rank1() {
+  victim=""
+  for p in $(pgrep -P "$1"); do
+    if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
+      victim=$p
+    fi
+  done
+  if [ -n "$victim" ]; then kill -KILL "$victim"; ok "found rank 1 (pid $victim)"; else
+    bad "rank 1 not found among mpirun's children"; fi
+}
+# Wait for mpirun $1 to end, HANG_S at most (then kill it); seconds in $waited.
+wait_end() {
+  waited=0
+  while kill -0 "$1" 2>/dev/null && [ $waited -lt $HANG_S ]; do sleep 1; waited=$((waited + 1)); done
+  if kill -0 "$1" 2>/dev/null; then
+    bad "the job still runs $HANG_S s after a follower was killed"
+    kill -KILL "$1"
+  fi
+}
+
+H5DIFF=$(command -v h5diff || true)
+[ -z "$H5DIFF" ] && echo "note: h5diff not found (make deps-dev): scan_points not compared"
+
+# Kill rank 1 of mpirun $mp, wait for the job to end and check its status
+# is not 0 ($1 names the case).
+killed_ends() {
+  kill_rank1 $mp
+  wait_end $mp
+  wait $mp
+  st=$?
+  if [ $st -ne 0 ]; then ok "$1: exit status $st after ${waited} s"; else
+    bad "$1: expected a non-zero exit status, got 0"; fi
+}
+
 if [ ! -x "$MPIBIN" ]; then
   echo "note: $MPIBIN not built (make mpi): MPI tests skipped"
   echo "0 passed, 0 failed"
@@ -39,15 +75,18 @@ ARGS="--arch arches/oppenheim.cfg --arch arches/thin.cfg --scale 0.5,1 --polarit
 check $? 1 "archquake -j 1 exit status with an unreadable record"
 check "$(wc -l <"$T/ref.tsv" | tr -d ' ')" 57 "reference rows + header (7 records x 8 runs)"
 
-for n in 1 2 3; do
+# (record, arch) tasks; -j 2 gives every rank two threads
+for nj in "1 1" "2 1" "3 1" "2 2" "3 2"; do
+  set -- $nj
+  n="$1 -j $2"
   # shellcheck disable=SC2086
-  $MPIRUN -n $n "$MPIBIN" $RECS $ARGS -o "$T/m$n.h5" >"$T/m$n.tsv" 2>"$T/m$n.err"
+  $MPIRUN -n $1 "$MPIBIN" -j $2 $RECS $ARGS -o "$T/m$1$2.h5" >"$T/m$1$2.tsv" 2>"$T/m$1$2.err"
   check $? 1 "N=$n exit status (the unreadable record fails, the others go on)"
-  if cmp -s "$T/ref.tsv" "$T/m$n.tsv"; then ok "N=$n TSV byte-identical"; else
-    bad "N=$n TSV differs from archquake -j 1's: $(cmp "$T/ref.tsv" "$T/m$n.tsv" 2>&1)"; fi
-  "$BIN" compare "$T/ref.h5" "$T/m$n.h5" >"$T/c$n.out" 2>&1
+  if cmp -s "$T/ref.tsv" "$T/m$1$2.tsv"; then ok "N=$n TSV byte-identical"; else
+    bad "N=$n TSV differs from archquake -j 1's: $(cmp "$T/ref.tsv" "$T/m$1$2.tsv" 2>&1)"; fi
+  "$BIN" compare "$T/ref.h5" "$T/m$1$2.h5" >/dev/null 2>&1
   check $? 0 "N=$n compare with archquake -j 1's results file"
-  check "$(grep -c 'PROVENANCE.md' "$T/m$n.err")" 1 "N=$n the unreadable record reported once"
+  check "$(grep -c 'PROVENANCE.md' "$T/m$1$2.err")" 1 "N=$n the unreadable record reported once"
 done
 
 # A two-component motion run at every 30th azimuth, between plain records.
@@ -56,7 +95,7 @@ OARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL
 # shellcheck disable=SC2086
 "$BIN" -j 1 $OARGS -o "$T/oref.h5" >"$T/oref.tsv" 2>/dev/null
 # shellcheck disable=SC2086
-$MPIRUN -n 3 "$MPIBIN" $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
+$MPIRUN -n 3 "$MPIBIN" -j 2 $OARGS -o "$T/o3.h5" >"$T/o3.tsv" 2>/dev/null
 check $? 0 "motion, N=3: exit status"
 if cmp -s "$T/oref.tsv" "$T/o3.tsv"; then ok "motion, N=3: TSV byte-identical"; else
   bad "motion, N=3: TSV differs from archquake -j 1's"; fi
@@ -70,6 +109,50 @@ $MPIRUN -n 2 "$MPIBIN" $R/ARL360.at2 --arch arches/oppenheim.cfg --history -o "$
 check $? 2 "--history at N=2: a usage error"
 check "$(grep -c 'expected one rank' "$T/hist.err")" 1 "--history at N=2: one line saying why"
 check "$(ls "$T" | grep -c '^hist')" 1 "--history at N=2: no results file (only its stderr)"
+
+# capacity: (record, arch) tasks handed out by rank 0, each follower reading
+# and processing its records itself; -j 2 gives each rank two threads.
+CRECS="$R/ARL360.at2 $R/CHY028-N.AT2 $R/PROVENANCE.md $R/IELC180.AT2 $R/TCU052-N.AT2"
+CARGS="--arch arches/oppenheim.cfg --arch arches/thin.cfg --resolution 0.05"
+# shellcheck disable=SC2086
+"$BIN" capacity -j 1 $CRECS $CARGS -o "$T/cref.h5" --fragility "$T/cfref.tsv" \
+  >"$T/cref.tsv" 2>/dev/null
+check $? 1 "capacity -j 1 exit status with an unreadable record"
+check "$(wc -l <"$T/cref.tsv" | tr -d ' ')" 21 "capacity reference rows + header (5 records x 4)"
+for nj in "1 1" "2 1" "3 1" "2 2" "3 2"; do
+  set -- $nj
+  # shellcheck disable=SC2086
+  $MPIRUN -n $1 "$MPIBIN" capacity -j $2 $CRECS $CARGS -o "$T/c$1$2.h5" \
+    --fragility "$T/cf$1$2.tsv" >"$T/c$1$2.tsv" 2>"$T/c$1$2.err"
+  check $? 1 "capacity N=$1 -j $2 exit status (the unreadable record fails, the others go on)"
+  if cmp -s "$T/cref.tsv" "$T/c$1$2.tsv" && cmp -s "$T/cfref.tsv" "$T/cf$1$2.tsv"; then
+    ok "capacity N=$1 -j $2 TSV and fragility byte-identical"; else
+    bad "capacity N=$1 -j $2 TSV or fragility differs from archquake -j 1's"; fi
+  "$BIN" compare "$T/cref.h5" "$T/c$1$2.h5" >/dev/null 2>&1
+  check $? 0 "capacity N=$1 -j $2 compare with archquake -j 1's results file"
+  if [ -n "$H5DIFF" ]; then # every scanned scale's run, value for value
+    "$H5DIFF" -q "$T/cref.h5" "$T/c$1$2.h5" /capacity/scan_points >/dev/null 2>&1
+    check $? 0 "capacity N=$1 -j $2 h5diff of capacity/scan_points"
+  fi
+  check "$(grep -c 'PROVENANCE.md' "$T/c$1$2.err")" 1 "capacity N=$1 -j $2 the unreadable record reported once"
+done
+# the comparison sees a difference in the capacity group (a finer scan)
+# shellcheck disable=SC2086
+"$BIN" capacity -j 2 $R/ARL360.at2 $R/CHY028-N.AT2 $R/IELC180.AT2 $R/TCU052-N.AT2 \
+  --arch arches/oppenheim.cfg --arch arches/thin.cfg -o "$T/cfine.h5" >/dev/null 2>&1
+"$BIN" compare "$T/cref.h5" "$T/cfine.h5" >/dev/null 2>&1
+check $? 1 "capacity: compare tells another scan's results file apart"
+
+# capacity of a two-component motion at every 30th azimuth, between records
+COARGS="$R/ARL360.at2 --components $R/RSN763_LOMAP_GIL067.AT2,$R/RSN763_LOMAP_GIL337.AT2
+        $R/IELC180.AT2 --azimuth all:30 --arch arches/oppenheim.cfg --resolution 0.1"
+# shellcheck disable=SC2086
+"$BIN" capacity -j 1 $COARGS >"$T/coref.tsv" 2>/dev/null
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" capacity -j 2 $COARGS >"$T/co3.tsv" 2>/dev/null
+check $? 0 "capacity, motion, N=3 -j 2: exit status"
+if cmp -s "$T/coref.tsv" "$T/co3.tsv"; then ok "capacity, motion, N=3 -j 2: TSV byte-identical"; else
+  bad "capacity, motion, N=3 -j 2: TSV differs from archquake -j 1's"; fi
 
 # A follower killed mid-run: 280 records (copies: a suite runs each file
 # once), rank 1 killed once some are done.
@@ -97,24 +180,7 @@ while kill -0 $mp 2>/dev/null && [ $waited -lt $((HANG_S * 20)) ]; do
   sleep 0.05
   waited=$((waited + 1))
 done
-victim=""
-for p in $(pgrep -P $mp); do
-  if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
-    victim=$p
-  fi
-done
-if [ -n "$victim" ]; then kill -KILL "$victim"; ok "found rank 1 (pid $victim)"; else
-  bad "rank 1 not found among mpirun's children"; fi
-waited=0
-while kill -0 $mp 2>/dev/null && [ $waited -lt $HANG_S ]; do sleep 1; waited=$((waited + 1)); done
-if kill -0 $mp 2>/dev/null; then
-  bad "the job still runs $HANG_S s after a follower was killed"
-  kill -KILL $mp
-fi
-wait $mp
-st=$?
-if [ $st -ne 0 ]; then ok "killed follower: exit status $st after ${waited} s"; else
-  bad "killed follower: expected a non-zero exit status, got 0"; fi
+killed_ends "killed follower"
 check "$(ls "$T" | grep -c '^k\.\(h5\|tsv\)$')" 0 "killed follower: no results or text file"
 check "$(ls "$T" | grep -c '^k\.h5\.journal$')" 1 "killed follower: the journal kept for --resume"
 [ -n "${AQ_TEST_VERBOSE:-}" ] && sed 's/^/  stderr: /' "$T/k.err"
@@ -134,6 +200,18 @@ if cmp -s "$T/kref.tsv" "$T/k.tsv"; then ok "--resume TSV byte-identical"; else
 "$BIN" compare "$T/kref.h5" "$T/k.h5" >/dev/null 2>&1
 check $? 0 "--resume compare with archquake -j 1's results file"
 check "$(ls "$T" | grep -c '^k\.h5\.journal')" 0 "--resume removed the journal"
+
+# capacity with a follower killed mid-run: 84 records x 2 polarities of
+# tasks, seconds of work; nothing is written before the end.
+CLONG=$(echo $LONG | tr ' ' '\n' | head -n 84 | tr '\n' ' ')
+# shellcheck disable=SC2086
+$MPIRUN -n 3 "$MPIBIN" capacity -j 1 $CLONG --arch arches/oppenheim.cfg -o "$T/ck.h5" \
+  --text "$T/ck.tsv" --fragility "$T/ckf.tsv" 2>"$T/ck.err" &
+mp=$!
+sleep 2 # the followers are running tasks (the run takes several times longer)
+killed_ends "capacity, killed follower"
+check "$(ls "$T" | grep -c '^ck')" 1 "capacity, killed follower: no output or temporary (only its stderr)"
+[ -n "${AQ_TEST_VERBOSE:-}" ] && sed 's/^/  stderr: /' "$T/ck.err"
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -22,6 +22,7 @@
 #include "../report/text_capacity.h"
 #include "../units.h"
 #include "app.h"
+#include "capacity_tasks.h"
 #include "cleanup.h"
 #include "opt.h"
 #include "opt_arch.h"
@@ -70,34 +71,8 @@ static const char usage_tail[] =
 enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
        OPT_HELP };
 
-/* A subject (record or ground motion) as read, processed and projected (or
- * the stage where it failed). */
-typedef struct {
-  aq_capacity_input in;
-  char status[48];
-  int ok;
-} rec_item;
-
-static void prepare(const char *const path[3], const double phi_deg[2],
-                    const aq_orient_opts *or, const aq_read_opts *ro,
-                    const aq_signal_opts *po, aq_signal_ws *ws, int pol, rec_item *r)
-{
-  aq_error e;
-  aq_error_clear(&e);
-  aq_status s = aq_capacity_input_prepare(&r->in, path, or->vertical, phi_deg, ro, po, ws,
-                                          or->azimuths_deg, or->nazimuth,
-                                          pol != AQ_POLARITY_NORMAL, &e);
-  aq_summary_status(r->status, sizeof r->status, r->in.stage ? r->in.stage : "read", s);
-  r->ok = s == AQ_OK;
-  if (!r->ok)
-    aq_error_print(&e, stderr);
-  else if (path[1] && path[2] && !or->vertical)
-    fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
-            path[2]);
-}
-
 /* The status cell of pair c of record r. */
-static void pair_status(const rec_item *r, const aq_capacity *c, char *st, size_t n)
+static void pair_status(const aq_cap_item *r, const aq_capacity *c, char *st, size_t n)
 {
   if (!r->ok)
     snprintf(st, n, "%s", r->status);
@@ -109,7 +84,7 @@ static void pair_status(const rec_item *r, const aq_capacity *c, char *st, size_
 
 /* Per arch: the fits of every IM over the records that were read (stderr
  * gets the reason of a fit that fails; its row stays nan). */
-static int fit_all(size_t nrec, size_t na, const rec_item *R, size_t npol,
+static int fit_all(size_t nrec, size_t na, const aq_cap_item *R, size_t npol,
                    const aq_capacity *C, aq_fragility *fits)
 {
   const aq_im **im = malloc((nrec ? nrec : 1) * sizeof *im);
@@ -142,7 +117,7 @@ typedef struct {
 /* Row i of (subject, arch, polarity) is the worst of its nz azimuths'
  * results C[i * nz ...] (nz = 1 without --azimuth all). */
 static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t na,
-                     const rec_item *R, const int *pols, size_t npol, const aq_capacity *C,
+                     const aq_cap_item *R, const int *pols, size_t npol, const aq_capacity *C,
                      size_t nz, const aq_orient_opts *or, const aq_fragility *fits)
 {
   size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
@@ -181,7 +156,7 @@ static void rows_free(rows *o)
 
 /* The results file: root, arches, records, then the capacity group. */
 static int write_h5(const char *path, int argc, char **argv, char **recs, size_t nrec,
-                    char **arch_paths, aq_arch **arches, size_t na, const rec_item *R,
+                    char **arch_paths, aq_arch **arches, size_t na, const aq_cap_item *R,
                     const rows *o, size_t npair, const aq_scan_opts *so,
                     const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
                     long threads, int pol)
@@ -420,13 +395,12 @@ int aq_cmd_capacity(int argc, char **argv)
     pols[npol++] = AQ_POLARITY_NORMAL;
   if (pol != AQ_POLARITY_NORMAL)
     pols[npol++] = AQ_POLARITY_REVERSED;
-  rec_item *R = calloc(nrec, sizeof *R);
+  aq_cap_item *R = calloc(nrec, sizeof *R);
   size_t nrow = nrec * na * npol, njob = nrow * nz;
-  aq_capacity_job *jobs = calloc(njob ? njob : 1, sizeof *jobs);
   aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
   aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
   aq_signal_ws *ws = aq_signal_ws_alloc();
-  if (!arches || !R || !jobs || !C || !fits || !ws) {
+  if (!arches || !R || !C || !fits || !ws) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto done;
@@ -442,42 +416,22 @@ int aq_cmd_capacity(int argc, char **argv)
     }
   if (rc != AQ_EXIT_OK)
     goto done;
+  aq_cap_setup S = {nrec, (const char *const (*)[3])paths, (const double (*)[2])phi,
+                     &orient, &ro, &po, pol, pols, npol, nz, arches, na, dyn.model,
+                     dyn.cor, merge_tol_g * AQ_G0_MPS2, smax, so};
+  if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
+    rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
+    goto done;
+  }
   for (size_t r = 0; r < nrec; r++) {
-    prepare(paths[r], phi[r], &orient, &ro, &po, ws, pol, &R[r]);
+    aq_cap_prepare(&S, r, ws, &R[r]);
     if (!R[r].ok)
       rc = AQ_EXIT_FAIL;
   }
-  size_t nrun = 0; /* jobs of the records that were read; job k is pair slot[k] */
-  size_t *slot = calloc(njob ? njob : 1, sizeof *slot);
-  if (!slot) {
+  if (aq_cap_run(&S, R, C, threads) != 0) {
     rc = AQ_EXIT_FAIL;
     goto done;
   }
-  for (size_t i = 0; i < njob; i++) {
-    size_t j = i / nz, z = i % nz, r = j / (na * npol), a = j / npol % na, p = j % npol;
-    if (!R[r].ok || z >= R[r].in.naz)
-      continue;
-    const aq_capacity_input *in = &R[r].in;
-    size_t m = aq_capacity_input_n(in) ? aq_capacity_input_n(in) : 1;
-    jobs[nrun] = (aq_capacity_job){&in->proc[0],
-                                 (pols[p] == AQ_POLARITY_REVERSED ? in->neg : in->acc) + z * m,
-                                 arches[a], dyn.model, dyn.cor,
-                                 merge_tol_g * AQ_G0_MPS2, smax, so,
-                                 in->run_v ? in->proc[2].acc_mps2 : NULL};
-    slot[nrun++] = i;
-  }
-  aq_capacity *tmpC = calloc(nrun ? nrun : 1, sizeof *tmpC);
-  if (!tmpC || aq_capacity_run_all(jobs, nrun, threads, tmpC, &se) != AQ_OK) {
-    fprintf(stderr, "archquake: out of memory\n");
-    free(tmpC);
-    free(slot);
-    rc = AQ_EXIT_FAIL;
-    goto done;
-  }
-  for (size_t k = 0; k < nrun; k++)
-    C[slot[k]] = tmpC[k];
-  free(tmpC);
-  free(slot);
   for (size_t i = 0; i < njob; i++) {
     size_t j = i / nz, r = j / (na * npol);
     if (R[r].ok && i % nz < R[r].in.naz && C[i].status == AQ_CAPACITY_FAILED) {
@@ -533,7 +487,6 @@ done:
   aq_signal_ws_free(ws);
   free(arches);
   free(R);
-  free(jobs);
   free(C);
   free(fits);
   free(arch_paths);

@@ -81,28 +81,11 @@ typedef struct {
   double wall_s, read_s, process_s, run_s, write_s;
 } aq_suite_stats;
 
-/* Running records in other processes (src/app/mpi.c, archquake-mpi): a
- * leader writes what followers computed, in record order, exactly as it
- * would write its own; messages are journal payloads (suite_slot.h).
- * Callbacks return 0, or -1 with err filled (leader) when the exchange
- * failed. */
-typedef struct aq_suite_remote {
-  void *ctx;
-  int follower; /* 1: run records the leader hands out; write nothing */
-  /* leader: NULL to run the records here; else the payload of record i (records start..nrecords are asked
-   * for in order; blocks until it arrives); *data malloc'd */
-  int (*fetch)(void *ctx, size_t i, size_t nrecords, unsigned char **data, size_t *n,
-               aq_error *err);
-  /* follower: the next record to run into *i; 1 when none is left */
-  int (*next)(void *ctx, size_t *i);
-  /* follower: send a finished record's payload */
-  int (*send)(void *ctx, const void *data, size_t n);
-} aq_suite_remote;
-
-/* Every later aq_suite_run leads or follows through r (NULL: runs here). */
-void aq_suite_set_remote(const aq_suite_remote *r);
 /* 1 if this process is a follower (it must create no output). */
 int aq_suite_is_follower(void);
+/* Under archquake-mpi with several ranks (farm.h), rank 0 hands out a
+ * task per (record, arch) to the followers and its own threads, and
+ * writes each record, in order, once all its arches are in. */
 /* 1 under archquake-mpi (any rank): mpirun's pseudo-terminals are not the
  * user's, so output is TSV and there is no progress line. */
 int aq_suite_is_remote(void);

@@ -1,0 +1,257 @@
+/* capacity_tasks.c: the capacity command's (subject, arch) tasks, run here
+ * or farmed out (capacity_tasks.h). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../io/formats.h"
+#include "../report/report.h"
+#include "capacity_tasks.h"
+#include "opt.h"
+
+void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it)
+{
+  aq_error_clear(&it->err);
+  const aq_orient_opts *or = S->orient;
+  aq_status s = aq_capacity_input_prepare(&it->in, S->paths[r], or->vertical, S->phi_deg[r],
+                                          S->ro, S->po, ws, or->azimuths_deg, or->nazimuth,
+                                          S->polarity != AQ_POLARITY_NORMAL, &it->err);
+  aq_summary_status(it->status, sizeof it->status, it->in.stage ? it->in.stage : "read", s);
+  it->ok = s == AQ_OK;
+  if (!it->ok)
+    aq_error_print(&it->err, stderr);
+  else if (S->paths[r][1] && S->paths[r][2] && !or->vertical)
+    fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
+            S->paths[r][2]);
+}
+
+/* Job z of polarity p of subject it with arch a. */
+static aq_capacity_job job_of(const aq_cap_setup *S, const aq_cap_item *it, size_t a,
+                              size_t p, size_t z)
+{
+  const aq_capacity_input *in = &it->in;
+  size_t m = aq_capacity_input_n(in) ? aq_capacity_input_n(in) : 1;
+  return (aq_capacity_job){&in->proc[0],
+                           (S->pols[p] == AQ_POLARITY_REVERSED ? in->neg : in->acc) + z * m,
+                           S->arches[a], S->model, S->cor, S->merge_tol_mps2, S->scale_max,
+                           S->scan, in->run_v ? in->proc[2].acc_mps2 : NULL};
+}
+
+/* ---- here: one pool over every (subject, arch, polarity, azimuth) -------- */
+
+static int run_here(const aq_cap_setup *S, const aq_cap_item *R, aq_capacity *C,
+                    long threads)
+{
+  size_t nout = S->npol * S->nz, njob = S->nrec * S->na * nout, nrun = 0;
+  aq_capacity_job *jobs = calloc(njob ? njob : 1, sizeof *jobs);
+  size_t *slot = calloc(njob ? njob : 1, sizeof *slot);
+  aq_capacity *out = calloc(njob ? njob : 1, sizeof *out);
+  aq_error e;
+  int rc = jobs && slot && out ? 0 : -1;
+  for (size_t i = 0; rc == 0 && i < njob; i++) {
+    size_t t = i / nout, r = t / S->na, p = i % nout / S->nz, z = i % S->nz;
+    if (!R[r].ok || z >= R[r].in.naz)
+      continue;
+    jobs[nrun] = job_of(S, &R[r], t % S->na, p, z);
+    slot[nrun++] = i;
+  }
+  if (rc == 0 && aq_capacity_run_all(jobs, nrun, threads, out, &e) != AQ_OK)
+    rc = -1;
+  for (size_t k = 0; rc == 0 && k < nrun; k++)
+    C[slot[k]] = out[k];
+  if (rc != 0)
+    fprintf(stderr, "archquake: out of memory\n");
+  free(jobs);
+  free(slot);
+  free(out);
+  return rc;
+}
+
+/* ---- tasks: a (subject, arch) with its subject prepared where it runs ---- */
+
+/* Subjects a follower keeps prepared beyond those in use, for the next
+ * tasks of the same subject. */
+#define AQ_CAP_KEEP_EXTRA 2
+
+typedef struct {
+  const aq_cap_setup *S;
+  aq_cap_item *R;
+  aq_capacity *C;
+  int lazy;             /* a follower: prepare subjects as tasks come */
+  pthread_mutex_t lock; /* guards state, users, used, nready */
+  pthread_cond_t cond;
+  pthread_mutex_t prep; /* one subject prepared at a time (ws, FFTW plans) */
+  aq_signal_ws *ws;
+  unsigned char *state; /* per subject: 0 not prepared, 1 preparing, 2 ready */
+  size_t *users;        /* tasks using it now */
+  size_t *used;         /* tick of its last use */
+  size_t tick, nready, keep;
+} tasks;
+
+enum { SUBJ_NONE = 0, SUBJ_PREPARING, SUBJ_READY };
+
+/* Drop the least recently used ready subject nobody uses (lock held). */
+static void evict_one(tasks *X)
+{
+  size_t best = X->S->nrec;
+  for (size_t r = 0; r < X->S->nrec; r++)
+    if (X->state[r] == SUBJ_READY && X->users[r] == 0 &&
+        (best == X->S->nrec || X->used[r] < X->used[best]))
+      best = r;
+  if (best == X->S->nrec)
+    return;
+  aq_capacity_input_free(&X->R[best].in);
+  memset(&X->R[best], 0, sizeof X->R[best]);
+  X->state[best] = SUBJ_NONE;
+  X->nready--;
+}
+
+static const aq_cap_item *acquire(tasks *X, size_t r)
+{
+  if (!X->lazy)
+    return &X->R[r];
+  pthread_mutex_lock(&X->lock);
+  while (X->state[r] == SUBJ_PREPARING)
+    pthread_cond_wait(&X->cond, &X->lock);
+  if (X->state[r] == SUBJ_NONE) {
+    while (X->nready >= X->keep && X->nready > 0) {
+      size_t before = X->nready;
+      evict_one(X);
+      if (X->nready == before)
+        break; /* all in use */
+    }
+    X->state[r] = SUBJ_PREPARING;
+    pthread_mutex_unlock(&X->lock);
+    pthread_mutex_lock(&X->prep);
+    aq_cap_prepare(X->S, r, X->ws, &X->R[r]);
+    pthread_mutex_unlock(&X->prep);
+    pthread_mutex_lock(&X->lock);
+    X->state[r] = SUBJ_READY;
+    X->nready++;
+    pthread_cond_broadcast(&X->cond);
+  }
+  X->users[r]++;
+  pthread_mutex_unlock(&X->lock);
+  return &X->R[r];
+}
+
+static void release(tasks *X, size_t r)
+{
+  if (!X->lazy)
+    return;
+  pthread_mutex_lock(&X->lock);
+  X->users[r]--;
+  X->used[r] = ++X->tick;
+  pthread_mutex_unlock(&X->lock);
+}
+
+/* Task t into out[npol nz] (zeroed). */
+static void run_task(tasks *X, size_t t, aq_capacity *out)
+{
+  const aq_cap_setup *S = X->S;
+  size_t r = t / S->na, a = t % S->na;
+  const aq_cap_item *it = acquire(X, r);
+  for (size_t p = 0; p < S->npol; p++)
+    for (size_t z = 0; z < S->nz; z++) {
+      aq_capacity *o = &out[p * S->nz + z];
+      if (!it->ok) { /* read here by the leader, but not on this process */
+        o->status = AQ_CAPACITY_FAILED;
+        o->run_status = it->err.status;
+        o->err = it->err;
+      } else if (z < it->in.naz) {
+        aq_capacity_job job = job_of(S, it, a, p, z);
+        aq_capacity_run_jobs(&job, 1, o);
+      }
+    }
+  release(X, r);
+}
+
+static int task_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
+{
+  tasks *X = ctx;
+  size_t nout = X->S->npol * X->S->nz, len = 0;
+  aq_capacity *out = calloc(nout, sizeof *out);
+  if (!out)
+    return -1;
+  run_task(X, t, out);
+  for (size_t k = 0; k < nout; k++)
+    len += aq_capacity_encoded_size(&out[k]);
+  *msg = malloc(len ? len : 1);
+  *n = len;
+  for (size_t k = 0, at = 0; *msg && k < nout; k++)
+    at += aq_capacity_encode(&out[k], *msg + at);
+  for (size_t k = 0; k < nout; k++)
+    aq_capacity_free(&out[k]);
+  free(out);
+  return *msg ? 0 : -1;
+}
+
+static int task_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq_error *err)
+{
+  tasks *X = ctx;
+  size_t nout = X->S->npol * X->S->nz, at = 0;
+  aq_capacity *o = X->C + t * nout;
+  for (size_t k = 0; k < nout; k++) {
+    size_t used = 0;
+    aq_capacity_free(&o[k]);
+    if (aq_capacity_decode(msg + at, n - at, &used, &o[k], err) != AQ_OK)
+      return -1;
+    at += used;
+  }
+  if (at != n)
+    return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)at, NULL,
+                        "expected %zu capacity results of task %zu in %zu bytes, got "
+                        "bytes left over", nout, t, n), -1;
+  return 0;
+}
+
+int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threads)
+{
+  const aq_farm *farm_hook = aq_farm_get();
+  if (!farm_hook || !farm_hook->farm)
+    return run_here(S, R, C, threads);
+  tasks X = {.S = S, .R = R, .C = C, .lazy = farm_hook->follower,
+             .keep = (size_t)(threads > 0 ? threads : 1) + AQ_CAP_KEEP_EXTRA};
+  pthread_mutex_init(&X.lock, NULL);
+  pthread_mutex_init(&X.prep, NULL);
+  pthread_cond_init(&X.cond, NULL);
+  size_t ntask = S->nrec * S->na, ntodo = 0;
+  size_t *todo = calloc(ntask ? ntask : 1, sizeof *todo);
+  int rc = todo ? 0 : -1;
+  if (X.lazy) {
+    X.ws = aq_signal_ws_alloc();
+    X.state = calloc(S->nrec ? S->nrec : 1, 1);
+    X.users = calloc(S->nrec ? S->nrec : 1, sizeof *X.users);
+    X.used = calloc(S->nrec ? S->nrec : 1, sizeof *X.used);
+    if (!X.ws || !X.state || !X.users || !X.used)
+      rc = -1;
+  } else {
+    for (size_t t = 0; t < ntask; t++)
+      if (R[t / S->na].ok)
+        todo[ntodo++] = t;
+  }
+  aq_farm_tasks T = {ntask, threads, S->na, 0, task_run, task_take, &X};
+  aq_error e;
+  aq_error_clear(&e);
+  if (rc != 0)
+    fprintf(stderr, "archquake: out of memory\n");
+  else if (farm_hook->farm(farm_hook->ctx, &T, todo, ntodo, &e) != 0) {
+    aq_error_print(&e, stderr);
+    rc = -1;
+  }
+  if (X.lazy)
+    for (size_t r = 0; r < S->nrec; r++)
+      aq_capacity_input_free(&R[r].in);
+  aq_signal_ws_free(X.ws);
+  free(X.state);
+  free(X.users);
+  free(X.used);
+  free(todo);
+  pthread_mutex_destroy(&X.lock);
+  pthread_mutex_destroy(&X.prep);
+  pthread_cond_destroy(&X.cond);
+  return rc;
+}

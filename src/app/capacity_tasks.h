@@ -1,0 +1,66 @@
+/* capacity_tasks.h: the capacity command's work as tasks, one per (subject,
+ * arch) with every polarity and azimuth of it, run here on threads or
+ * farmed out to other processes (archquake-mpi, src/app/mpi.c).
+ *
+ * A process that runs a task reads and processes its subject itself, once:
+ * the leader (or archquake) prepares every subject before any task runs,
+ * for its outputs; a follower prepares a subject when a task of it comes
+ * and keeps the last few for the next tasks of the same subject.  Results
+ * travel as aq_capacity_encode's bytes, so the leader's copy is bit for bit
+ * the follower's.  The caller owns every array it passes in. */
+#ifndef AQ_APP_CAPACITY_TASKS_H
+#define AQ_APP_CAPACITY_TASKS_H
+
+#include <stddef.h>
+
+#include "../capacity/capacity.h"
+#include "../error.h"
+#include "farm.h"
+#include "opt_orient.h"
+
+/* ---- the capacity tasks ------------------------------------------------- */
+
+/* A subject (record or ground motion) as read, processed and projected, or
+ * the stage where it failed (status, err). */
+typedef struct {
+  aq_capacity_input in;
+  char status[48];
+  int ok;
+  aq_error err;
+} aq_cap_item;
+
+/* What every task shares, read-only. */
+typedef struct {
+  size_t nrec;
+  const char *const (*paths)[3]; /* per subject: its files (read by aq_cap_prepare) */
+  const double (*phi_deg)[2];    /* per subject: its components' azimuths, or NAN */
+  const aq_orient_opts *orient;
+  const aq_read_opts *ro;
+  const aq_signal_opts *po;
+  int polarity;                  /* --polarity (opt.h) */
+  const int *pols;               /* the npol polarities run */
+  size_t npol;
+  size_t nz;                     /* result slots per (subject, arch, polarity) */
+  aq_arch *const *arches;
+  size_t na;
+  aq_model model;
+  double cor;                    /* --cor, or NAN */
+  double merge_tol_mps2;
+  double scale_max;              /* --scale-max, or NAN */
+  aq_scan_opts scan;
+} aq_cap_setup;
+
+/* Read, process and project subject r into *it (errors printed on stderr,
+ * one line, and kept in it->err). */
+void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it);
+
+/* Leader or archquake: with R[0..nrec) prepared, run the tasks of every
+ * subject that was read, on threads threads here or farmed out, into
+ * C[((r na + a) npol + p) nz + z] (zeroed by the caller; slots of azimuths a
+ * subject lacks stay zero).  Follower: run the tasks handed out, preparing
+ * their subjects into R (nrec zeroed items; freed again here) as they come;
+ * C is NULL.  Returns 0, or -1 (a line on stderr): out of memory or the
+ * exchange failed, and nothing may be written. */
+int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threads);
+
+#endif
