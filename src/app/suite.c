@@ -118,6 +118,8 @@ static void slot_clear(suite *S, rec_slot *r)
     for (size_t k = 0; k < S->nscale; k++)
       if (r->steps_st[k] == AQ_OK)
         aq_steps_free(&r->steps[k]);
+  if (r->unit && r->unit_st == AQ_OK)
+    aq_steps_free(&r->unit_steps);
   free(r->runs);
   free(r->scale);
   free(r->pga_g);
@@ -235,26 +237,60 @@ static aq_status read_second(suite *S, rec_slot *r)
   return AQ_OK;
 }
 
-/* Steps of run slot (k, z) of prepared record r: the processed record, or
- * the motion's projection at azimuth z, scaled by r->scale[k] and negated
- * for a reversed slot; *pga_g the PGA of what the arch feels. */
+/* Steps of prepared record r at azimuth z: the processed record, or the
+ * motion's projection there, times sa (the vertical times sv); *peak_mps2
+ * the peak |a| of what the arch feels. */
+static aq_status steps_at(const suite *S, const rec_slot *r, size_t z, double sa, double sv,
+                          aq_steps *out, double *peak_mps2, aq_error *err)
+{
+  const aq_processed *p = &r->proc;
+  double c[2] = {1.0, 0.0};
+  *peak_mps2 = 0;
+  if (r->motion)
+    aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
+  return aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
+                            c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL, sv, p->n,
+                            p->dt_s, -(double)p->pad_front * p->dt_s,
+                            S->cfg->merge_tol_g * AQ_G0_MPS2, out, peak_mps2, err);
+}
+
+/* Steps of run slot (k, z) of prepared record r, scaled by scale and
+ * negated for a reversed slot; *pga_g the PGA of what the arch feels. */
 static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t z,
                             double scale, aq_steps *out, double *pga_g, aq_error *err)
 {
-  const aq_processed *p = &r->proc;
   double sa = slot_reversed(S, k) ? -scale : scale; /* polarity */
-  double c[2] = {1.0, 0.0}, peak = 0;
-  if (r->motion)
-    aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
+  double peak = 0;
   /* the vertical scales with the motion but keeps its sign: reversing the
    * polarity turns the arch round, it does not turn gravity over */
-  aq_status s = aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
-                                   c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL,
-                                   scale, p->n, p->dt_s,
-                                   -(double)p->pad_front * p->dt_s,
-                                   S->cfg->merge_tol_g * AQ_G0_MPS2, out, &peak, err);
+  aq_status s = steps_at(S, r, z, sa, scale, out, &peak, err);
   *pga_g = peak / AQ_G0_MPS2;
   return s;
+}
+
+/* Whether a run at factor sa (polarity included, vertical at |sa|) may use
+ * the record's steps at factor 1 with sa given to the stepper: without
+ * merging, a step is one sample, sa (1 x) = sa x exactly, the stepper forms
+ * the same product (aq_stepper_set_scale) and the vertical's factor is
+ * |sa|; and the peak |a| of the scaled steps is |sa| times the unit peak
+ * exactly (rounding is monotonic). */
+static int unit_fits(const rec_slot *r, double sa, double scale)
+{
+  return r->unit && isfinite(sa) && (!r->run_v || fabs(sa) == scale);
+}
+
+/* The record file's identity in the results (compare keys on it), when
+ * prepare_record asked for it: hashed by the thread that writes the record
+ * (or sends it to the leader), so that with -o the hash overlaps the
+ * workers' reading and processing of the next records. */
+static void record_sha256(const suite *S, rec_slot *r)
+{
+  if (!r->want_sha)
+    return;
+  r->want_sha = 0;
+  aq_error herr;
+  if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
+    r->sha256[0] = '\0'; /* the reader says why it cannot be read */
 }
 
 /* Read, process and measure record r->index (both components of a motion),
@@ -285,11 +321,7 @@ static int prepare_record(suite *S, rec_slot *r)
     r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
   double t0 = now_s();
   const char *first = record_file(S, r->index);
-  if (c->h5_path) { /* the file's identity in the results (compare keys on it) */
-    aq_error herr;
-    if (aq_sha256_file(first, r->sha256, &herr) != AQ_OK)
-      r->sha256[0] = '\0'; /* the reader says why it cannot be read */
-  }
+  r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
   aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
@@ -345,7 +377,15 @@ static int prepare_record(suite *S, rec_slot *r)
                   : c->scale_to_lambda0 > 0 ? 1.0 / pga_g
                                             : c->scale_to_pga_g / pga_g;
     aq_error_clear(&r->steps_err[k]);
-    if (r->naz == 1 && !(c->scale_to_lambda0 > 0))
+  }
+  /* one list at factor 1 for the runs that fit (unit_fits), made once
+   * instead of a scaled list per factor or per run */
+  r->unit = r->naz == 1 && c->merge_tol_g == 0;
+  if (r->unit)
+    r->unit_st = steps_at(S, r, 0, 1.0, 1.0, &r->unit_steps, &r->unit_peak_mps2, &r->unit_err);
+  for (size_t k = 0; k < S->nscale; k++) {
+    double sa = slot_reversed(S, k) ? -r->scale[k] : r->scale[k];
+    if (r->naz == 1 && !(c->scale_to_lambda0 > 0) && !unit_fits(r, sa, r->scale[k]))
       r->steps_st[k] = make_steps(S, r, k, 0, r->scale[k], &r->steps[k], &r->pga_g[k],
                                   &r->steps_err[k]);
   }
@@ -379,15 +419,24 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   const aq_steps *steps = &r->steps[k];
   aq_status rs = r->steps_st[k];
   double pga_g = r->pga_g[k], scale = r->scale[k];
-  int have_own = 0, per_arch = c->scale_to_lambda0 > 0;
+  int have_own = 0, unit = 0, per_arch = c->scale_to_lambda0 > 0;
   if (per_arch) /* lambda0 g: the arch's static collapse acceleration */
     scale = c->scale_to_lambda0 * S->lambda0[ai] * r->scale[k];
+  double sa = slot_reversed(S, k) ? -scale : scale; /* polarity */
   if (per_arch && !st[ai]) {
     rs = AQ_OK; /* the arch's own failure is reported below */
   } else if (per_arch && !(scale > 0)) {
     rs = aq_error_set(&u->err, AQ_EVALUE, c->arch_paths[ai], -1, -1, "--scale-to-lambda0",
                       "expected an arch with a static collapse multiplier lambda0 > 0, "
                       "got %g", S->lambda0[ai]);
+  } else if (unit_fits(r, sa, scale)) {
+    /* the record at factor 1, sa given to the stepper: the same run */
+    unit = 1;
+    steps = &r->unit_steps;
+    rs = r->unit_st;
+    pga_g = rs == AQ_OK ? fabs(sa) * r->unit_peak_mps2 / AQ_G0_MPS2 : 0;
+    if (rs != AQ_OK)
+      u->err = r->unit_err;
   } else if (r->naz > 1 || per_arch) {
     /* made for this run: one list per azimuth (or arch) at a time */
     aq_error_clear(&u->err);
@@ -410,7 +459,11 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
     /* aq_stepper_run starts every run afresh (the ode model's step size
      * included), so results do not depend on which runs a thread did before:
      * the -j tests check it. */
+    if (unit)
+      aq_stepper_set_scale(st[ai], sa);
     rs = aq_stepper_run(st[ai], steps, &u->res, &u->err);
+    if (unit)
+      aq_stepper_set_scale(st[ai], 1.0);
     u->have_res = 1;
   }
   if (have_own)
@@ -932,6 +985,7 @@ static rec_slot *farm_acquire(farm_ctx *X, size_t i)
       X->users[lru] = 1;
       pthread_mutex_unlock(&X->lock);
       prepare_record(X->S, r);
+      record_sha256(X->S, r); /* before the slot is shared */
       pthread_mutex_lock(&X->lock);
       r->state = SLOT_READY;
       pthread_cond_broadcast(&X->cond);
@@ -1306,6 +1360,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     /* clear the line before diagnostics, and before rows on the terminal */
     if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
+    record_sha256(&S, r);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
       aq_jbuf jb = {0};

@@ -50,12 +50,19 @@ typedef struct {
   char status[AQ_SUMMARY_STATUS_MAX];
   char warning[300];  /* residual warning, "" if none */
   char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
+  int want_sha;       /* 1: sha256 still to be computed (suite.c, record_sha256) */
   double read_s, process_s;
   double *scale;      /* nscale factors applied */
   double *pga_g;      /* PGA of each scaled record, g */
   aq_steps *steps;    /* nscale step lists */
   aq_status *steps_st;/* status of each step list */
   aq_error *steps_err;
+  int unit;           /* 1: unit_steps made (without merging, one azimuth) */
+  aq_steps unit_steps;/* the record at factor 1: runs that fit give their
+                       * factor to the stepper (suite.c, unit_fits) */
+  aq_status unit_st;
+  aq_error unit_err;
+  double unit_peak_mps2; /* peak |a| of unit_steps */
   const aq_orient_motion *motion; /* NULL: a plain in-plane record */
   comp_slot h2;       /* a motion's second horizontal component */
   comp_slot v;        /* its vertical component (with --vertical) */
