@@ -221,6 +221,18 @@ AQ_TEST(cli_unknown_option_named_as_typed)
                    err, sizeof err);
   aq_check(rc == 2 && strstr(err, "archquake: --bogus: unknown"),
            "--bogus: exit %d, %s", rc, err);
+  /* every command points to its own help, a command that works as typed */
+  static const char *const cmds[] = {"",       "capacity ", "compare ", "domain ",
+                                     "info ",  "mechanism ", "pulse "};
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    char args[64], want[80];
+    snprintf(args, sizeof args, "%s--bogus", cmds[k]);
+    snprintf(want, sizeof want, "(see 'archquake %s--help')", cmds[k]);
+    rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && strstr(err, want), "%s: exit %d, %s", args, rc, err);
+    snprintf(args, sizeof args, "%s--help", cmds[k]);
+    aq_check(aq_test_run(args, out, sizeof out, err, sizeof err) == 0, "%s", args);
+  }
 }
 
 AQ_TEST(cli_file_named_like_an_option_gets_a_hint)

@@ -207,7 +207,7 @@ int aq_cmd_compare(int argc, char **argv)
       fputs(usage, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("compare ", argv, optind, optopt, &nerr);
+      aq_opt_unknown("compare", argv, optind, optopt, &nerr);
     }
   }
   if (argc - optind != 2) {

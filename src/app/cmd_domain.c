@@ -90,7 +90,7 @@ int aq_cmd_domain(int argc, char **argv)
       fputs(usage, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("domain ", argv, optind, optopt, &nerr);
+      aq_opt_unknown("domain", argv, optind, optopt, &nerr);
     }
   }
   aq_opt_no_operands("domain", argc, argv, optind, &nerr);

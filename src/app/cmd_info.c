@@ -49,7 +49,7 @@ int aq_cmd_info(int argc, char **argv)
       return AQ_EXIT_OK;
     default:
       if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
-        aq_opt_unknown("info ", argv, optind, optopt, &nerr);
+        aq_opt_unknown("info", argv, optind, optopt, &nerr);
     }
   }
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);

@@ -119,7 +119,7 @@ int aq_cmd_mechanism(int argc, char **argv)
       fputs(usage, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("mechanism ", argv, optind, optopt, &nerr);
+      aq_opt_unknown("mechanism", argv, optind, optopt, &nerr);
     }
   }
   aq_opt_no_operands("mechanism", argc, argv, optind, &nerr);

@@ -186,7 +186,7 @@ int aq_cmd_pulse(int argc, char **argv)
       fputs(usage, stdout);
       return AQ_EXIT_OK;
     default:
-      aq_opt_unknown("pulse ", argv, optind, optopt, &nerr);
+      aq_opt_unknown("pulse", argv, optind, optopt, &nerr);
     }
   }
   aq_opt_no_operands("pulse", argc, argv, optind, &nerr);

@@ -219,14 +219,15 @@ void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr)
 {
   static const char *last_file; /* one line per such word, not per letter */
+  const char *sep = cmd[0] ? " " : ""; /* "archquake --help", "archquake plot --help" */
   const char *file = dash_file(argv, optind_after, optopt_);
   if (file) {
     if (file != last_file) {
       fprintf(stderr,
               "archquake: %s: expected an option, got a file whose name "
-              "begins with '-': put it after '--' (archquake %s[OPTIONS] -- "
+              "begins with '-': put it after '--' (archquake %s%s[OPTIONS] -- "
               "%s) or write it as ./%s\n",
-              file, cmd, file, file);
+              file, cmd, sep, file, file);
       (*nerr)++;
     }
     last_file = file;
@@ -238,12 +239,12 @@ void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
    * optopt_ (or an id >= 128) and is the word getopt just passed. */
   if (optopt_ > 0 && optopt_ < 128)
     fprintf(stderr,
-            "archquake: -%c: unknown option or missing value (see 'archquake %s--help')\n",
-            optopt_, cmd);
+            "archquake: -%c: unknown option or missing value (see 'archquake %s%s--help')\n",
+            optopt_, cmd, sep);
   else
     fprintf(stderr,
-            "archquake: %s: unknown option or missing value (see 'archquake %s--help')\n",
-            optind_after > 0 ? argv[optind_after - 1] : "?", cmd);
+            "archquake: %s: unknown option or missing value (see 'archquake %s%s--help')\n",
+            optind_after > 0 ? argv[optind_after - 1] : "?", cmd, sep);
   (*nerr)++;
 }
 
