@@ -103,6 +103,16 @@ aq_status aq_parse_channels_(const unsigned char *buf, size_t n, const char *nam
                              const char *expected, aq_channel_parser_ parse, aq_raw_file *raw,
                              aq_error *err);
 
+/* RENADIC (Universidad de Chile) V1: CSMIP-like headers, then (time, value)
+ * pairs; dt from the even time column; units "g/10". */
+aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
+                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does buf[0..n) start like a RENADIC V1 channel: a first line naming an
+ * ACCELEROGRAM and, after the 13 text and 14 numeric header lines, two lines
+ * of (time, value) pairs in 10F7 whose six times step evenly?  1 or 0. */
+int aq_renadic_sniff(const unsigned char *buf, size_t n);
+
 /* Shared: seconds east of UTC for a zone word ("UTC", "GMT", "PDT", "PST",
  * "JST", ...); 1 if known. */
 int aq_zone_offset_(const char *s, size_t n, int *hours_east);

@@ -319,6 +319,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
+  if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
+    return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
     if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
       return AQ_FMT_COSMOS;
@@ -374,6 +376,8 @@ const char *aq_format_describe(aq_format fmt)
            "decompress it first";
   case AQ_FMT_EMPTY:
     return "an empty file (0 bytes)";
+  case AQ_FMT_RENADIC:
+    return "RENADIC (Chile) V1";
   }
   return "?";
 }
@@ -617,6 +621,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_esm_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_KNET:
     return aq_knet_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_RENADIC:
+    return aq_renadic_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
