@@ -160,6 +160,9 @@ AQ_TEST(io_renadic_bad_input)
   expect_bad((size_t)-1, "/&  ----------  END OF DATA FOR CHANNEL 1",
              "    ----------  END OF DATA FOR CHANNEL 1", ":1428:", "end of data",
              "END OF DATA FOR CHANNEL 1", "missing END OF DATA marker");
+  expect_bad((size_t)-1, "/&  ----------  END OF DATA FOR CHANNEL 1",
+             "/&  ----------  MORE DATA FOR CHANNEL 1", ":1428:", "end of data",
+             "MORE DATA", "end line without END OF DATA");
   size_t end3 = offset_of("/&  ----------  END OF DATA FOR CHANNEL 3");
   expect_bad(end3, NULL, NULL, ":", "end of data", "end of the file", "file ends before END");
   expect_bad((size_t)-1, "NO. OF POINTS =   7000", "NO. OF POINTS =   7x00", ":11:",
