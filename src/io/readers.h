@@ -97,7 +97,8 @@ typedef enum {
   AQ_FMT_XML,                /* XML (StationXML, QuakeML): refused */
   AQ_FMT_HDF5,               /* HDF5 (e.g. an archquake results file): refused */
   AQ_FMT_GZIP,               /* gzip/zip compressed: refused */
-  AQ_FMT_EMPTY               /* zero bytes */
+  AQ_FMT_EMPTY,              /* zero bytes */
+  AQ_FMT_GEONET              /* GeoNet V1A/V2A (geonet.c) */
 } aq_format;
 
 /* Classify buf[0..n) by content only.  Never fails. */
