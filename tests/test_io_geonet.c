@@ -220,3 +220,32 @@ AQ_TEST(io_geonet_bad_input)
                aq_test_msg_names(msg, WTMC ":10", "Number of points"),
            "npts disagreeing: %s", msg);
 }
+
+/* As a user sees it: archquake on a damaged copy says one line naming the
+ * file, the line and the field, and exits 1. */
+AQ_TEST(io_geonet_cli_damaged)
+{
+  size_t n;
+  char *buf = aq_test_read_file(WTMC, &n);
+  if (!aq_check(buf != NULL, "read %s", WTMC))
+    return;
+  char d[512], p[700], args[800];
+  aq_test_tmpdir(d, sizeof d);
+  snprintf(p, sizeof p, "%s/cut.V2A", d);
+  FILE *f = fopen(p, "wb");
+  if (aq_check(f != NULL, "write %s", p)) {
+    fwrite(buf, 1, 1330, f); /* inside line 22, the real header */
+    fclose(f);
+    static char out[4096], err[4096];
+    snprintf(args, sizeof args, "info %s", p);
+    int st = aq_test_run(args, out, sizeof out, err, sizeof err);
+    char *nl = strchr(err, '\n');
+    aq_check(st == 1 && strstr(err, "cut.V2A:22: real header (10F8)") && nl && !nl[1],
+             "info on a truncated file: exit %d: %s", st, err);
+    snprintf(args, sizeof args, "--arch arches/oppenheim.cfg %s", p);
+    st = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(st == 1 && strstr(err, "cut.V2A:22: real header (10F8)"),
+             "run on a truncated file: exit %d: %s", st, err);
+  }
+  free(buf);
+}
