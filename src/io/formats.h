@@ -81,6 +81,10 @@ void aq_response_free(aq_response *resp);
 aq_status aq_stationxml_apply(const aq_response *resp, const char *xml_name,
                               aq_raw_file *raw, const char *name, aq_error *err);
 
+/* GeoNet (New Zealand) V1A/V2A: the acceleration of every component, mm/s^2. */
+aq_status aq_geonet_parse(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
 /* Shared by the parsers (formats.c): append a zeroed channel (azimuth and
  * dip NAN, vertical -1) to raw; NULL on allocation failure (err filled). */
 aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err);

@@ -98,6 +98,7 @@ typedef enum {
   AQ_FMT_HDF5,               /* HDF5 (e.g. an archquake results file): refused */
   AQ_FMT_GZIP,               /* gzip/zip compressed: refused */
   AQ_FMT_EMPTY,              /* zero bytes */
+  AQ_FMT_GEONET,             /* GeoNet V1A/V2A (geonet.c) */
   AQ_FMT_RENADIC             /* RENADIC (Chile) V1 (renadic.c) */
 } aq_format;
 

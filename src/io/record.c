@@ -309,6 +309,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
     return AQ_FMT_TEXT;
   if (starts_ci(line[0], len[0], "Origin Time"))
     return AQ_FMT_KNET;
+  if (has_ci(line[0], len[0], "accelerogram") && has_ci(line[0], len[0], "GNS Science"))
+    return AQ_FMT_GEONET;
   for (size_t k = 0; k < nl; k++)
     if (starts_ci(line[k], len[k], "EVENT_NAME:") ||
         starts_ci(line[k], len[k], "EVENT_ID:") ||
@@ -376,6 +378,8 @@ const char *aq_format_describe(aq_format fmt)
            "decompress it first";
   case AQ_FMT_EMPTY:
     return "an empty file (0 bytes)";
+  case AQ_FMT_GEONET:
+    return "GeoNet V1A/V2A";
   case AQ_FMT_RENADIC:
     return "RENADIC (Chile) V1";
   }
@@ -621,6 +625,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_esm_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_KNET:
     return aq_knet_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_GEONET:
+    return aq_geonet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_RENADIC:
     return aq_renadic_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
