@@ -365,13 +365,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   }
   free(iv);
   free(rv);
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
-  if (!ch) {
-    free(tmp.values);
-    return AQ_ENOMEM;
-  }
-  *ch = tmp;
-  return AQ_OK;
+  return aq_raw_append_channel_(raw, &tmp, name, err);
 fail:
   free(tmp.values);
   free(iv);

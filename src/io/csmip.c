@@ -267,25 +267,14 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
         break;
       }
   }
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
-  if (!ch) {
-    free(tmp.values);
-    return AQ_ENOMEM;
-  }
-  *ch = tmp;
-  return AQ_OK;
-}
-
-static int csmip_starts(const aq_line *ln)
-{
-  return aq_find_ci(ln->p, ln->len, "accelerogram") != NULL;
+  return aq_raw_append_channel_(raw, &tmp, name, err);
 }
 
 aq_status aq_csmip_parse(const unsigned char *buf, size_t n, const char *name,
                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  return aq_parse_channels_(buf, n, name, "csmip", csmip_starts,
+  return aq_parse_channels_(buf, n, name, "csmip", aq_line_names_accelerogram_,
                             "a channel header naming an (UN)CORRECTED ACCELEROGRAM",
                             parse_channel, raw, err);
 }

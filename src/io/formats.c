@@ -21,6 +21,24 @@ aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error
   return c;
 }
 
+aq_status aq_raw_append_channel_(aq_raw_file *raw, aq_raw_channel *c, const char *name,
+                                 aq_error *err)
+{
+  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  if (!ch) {
+    free(c->values);
+    c->values = NULL;
+    return AQ_ENOMEM;
+  }
+  *ch = *c;
+  return AQ_OK;
+}
+
+int aq_line_names_accelerogram_(const aq_line *ln)
+{
+  return aq_find_ci(ln->p, ln->len, "accelerogram") != NULL;
+}
+
 void aq_raw_channel_init_(aq_raw_channel *c)
 {
   memset(c, 0, sizeof *c);

@@ -89,6 +89,11 @@ aq_status aq_geonet_parse(const unsigned char *buf, size_t n, const char *name,
  * dip NAN, vertical -1) to raw; NULL on allocation failure (err filled). */
 aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err);
 
+/* Shared: append *c (its values owned by raw from then on) to raw; on
+ * allocation failure free c->values and return AQ_ENOMEM (err filled). */
+aq_status aq_raw_append_channel_(aq_raw_file *raw, aq_raw_channel *c, const char *name,
+                                 aq_error *err);
+
 /* Shared: zero *c with azimuth and dip NAN and vertical -1 (not stated). */
 void aq_raw_channel_init_(aq_raw_channel *c);
 
@@ -116,6 +121,10 @@ aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
  * ACCELEROGRAM and, after the 13 text and 14 numeric header lines, two lines
  * of (time, value) pairs in 10F7 whose six times step evenly?  1 or 0. */
 int aq_renadic_sniff(const unsigned char *buf, size_t n);
+
+/* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
+ * case), the start of a channel's text header. */
+int aq_line_names_accelerogram_(const struct aq_line_s *ln);
 
 /* Shared: seconds east of UTC for a zone word ("UTC", "GMT", "PDT", "PST",
  * "JST", ...); 1 if known. */

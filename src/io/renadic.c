@@ -291,25 +291,14 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     aq_copy_trim(raw->processing, sizeof raw->processing, first->p, first->len);
     aq_copy_trim(raw->event, sizeof raw->event, hdr[1].p, hdr[1].len);
   }
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
-  if (!ch) {
-    free(tmp.values);
-    return AQ_ENOMEM;
-  }
-  *ch = tmp;
-  return AQ_OK;
-}
-
-static int renadic_starts(const aq_line *ln)
-{
-  return aq_find_ci(ln->p, ln->len, "ACCELEROGRAM") != NULL;
+  return aq_raw_append_channel_(raw, &tmp, name, err);
 }
 
 aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
                            const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  return aq_parse_channels_(buf, n, name, "renadic", renadic_starts,
+  return aq_parse_channels_(buf, n, name, "renadic", aq_line_names_accelerogram_,
                             "a channel header naming an UNCORRECTED ACCELEROGRAM",
                             parse_channel, raw, err);
 }
