@@ -634,7 +634,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected a record, got an empty file (0 bytes)");
   case AQ_FMT_UNKNOWN_BINARY:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "expected SAC, PEER AT2, K-NET or CSV, got %s",
+                        "expected a record: SAC or miniSEED (binary), or text "
+                        "(docs/agency-formats.md), got %s",
                         aq_format_describe(fmt));
   default:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
