@@ -57,6 +57,10 @@ AQ_TEST(io_csv_jma_three_components)
       aq_check(strcmp(r.channel, comp[i]) == 0, "channel %s", r.channel);
       aq_check(r.vertical == (i == 2), "%s vertical %d", comp[i], r.vertical);
       aq_check_abs(max_abs_g(&r), pga[i], PROV_PGA_ABS_G, "%s PGA (g)", comp[i]);
+      /* "INITIAL TIME = 2016 04 14 21 26 20" is JST (UTC+9): the foreshock
+         of 2016-04-14 21:26 JST = 12:26 UTC (PROVENANCE) */
+      aq_check(strcmp(r.reference, "2016-04-14T12:26:20.000Z") == 0 && r.begin_s == 0,
+               "%s start %s + %g s", comp[i], r.reference, r.begin_s);
       aq_record_free(&r);
     }
   /* no channel named: refused, naming the three, never the first silently */
@@ -206,6 +210,36 @@ AQ_TEST(io_csv_multicomponent_cli)
  * name the columns (#DataSequence: Time U(+); N(+); E(+)); three records,
  * U vertical.  PROVENANCE: 6000 at 0.02 s; PGA U 0.001220, N 0.002989,
  * E 0.002866 g (header AmplitudeMAX 1.196, -2.931, -2.811 gal). */
+/* Start times written here: a zone behind UTC rolls the day forward, one
+ * ahead rolls it back across a year, a time that does not parse is unknown
+ * (""), never a guess. */
+AQ_TEST(io_csv_start_times)
+{
+  static const struct {
+    const char *head, *want;
+  } c[] = {
+      {"#StartTime(GMT-05): 2020/12/31-22:15:01.250\n", "2021-01-01T03:15:01.250Z"},
+      {"#StartTime(GMT+08): 2021/01/01-03:00:00.000\n", "2020-12-31T19:00:00.000Z"},
+      {"INITIAL TIME = 2011 03 11 14 46 18\n", "2011-03-11T05:46:18.000Z"},
+      {"INITIAL TIME = 2011 13 11 14 46 18\n", ""},
+      {"INITIAL TIME = 2011 03 11 14 46\n", ""},
+      {"#StartTime(GMT+08): 2018/02/06 23:50:29\n", ""}};
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    char text[256];
+    snprintf(text, sizeof text, "%sSAMPLING RATE= 100Hz\nUNIT = gal\nNS\n1.5\n-2.5\n0.5\n",
+             c[i].head);
+    aq_raw_file raw;
+    aq_error e;
+    if (!aq_check(aq_raw_parse((const unsigned char *)text, strlen(text), "t.csv", NULL, &raw,
+                               &e) == AQ_OK,
+                  "%zu: %s", i, e.message))
+      continue;
+    aq_check(raw.nchan == 1 && strcmp(raw.chan[0].reference, c[i].want) == 0,
+             "%zu: start \"%s\", expected \"%s\"", i, raw.chan[0].reference, c[i].want);
+    aq_raw_file_free(&raw);
+  }
+}
+
 AQ_TEST(io_csv_cwb_three_components)
 {
   static const char *const comp[3] = {"U", "N", "E"};
@@ -226,6 +260,10 @@ AQ_TEST(io_csv_cwb_three_components)
       m = fmax(m, fabs(r.acc_mps2[k]));
     aq_check_abs(m * 100.0, peak_gal[i], 1e-9, "%s: peak (gal, 3 decimals in the file)",
                  comp[i]);
+    /* "#StartTime(GMT+08): 2018/02/06-23:50:29.000": 8 h ahead of UTC, 13 s
+       before the origin at 15:50:42 UTC (PROVENANCE) */
+    aq_check(strcmp(r.reference, "2018-02-06T15:50:29.000Z") == 0 && r.begin_s == 0,
+             "%s: start %s + %g s", comp[i], r.reference, r.begin_s);
     aq_record_free(&r);
   }
 }

@@ -23,6 +23,11 @@
  *
  * Units stated: those of the column name ("acc (g)", "acc_g", "a [cm/s2]"),
  * else the preamble's UNIT line, else none (record.c decides).
+ *
+ * Start: JMA's "INITIAL TIME = 2016 04 14 21 26 20" (Japan Standard Time,
+ * UTC+9) and CWB's "#StartTime(GMT+08): 2018/02/06-23:50:29.000" (the zone
+ * stated) are the time of the first row, reported in UTC (begin_s 0); a
+ * time that does not parse is reported as unknown ("").
  */
 #include <ctype.h>
 #include <errno.h>
@@ -32,6 +37,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "fixed.h"
 #include "readers.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
@@ -352,6 +358,60 @@ static int is_time_name(const char *name)
          strcmp(base, "temps") == 0;
 }
 
+#define CSV_JST_OFFSET_H 9.0 /* JMA's times: Japan Standard Time, UTC+9 h */
+
+/* A local calendar time offset_h hours ahead of UTC -> ISO-8601 UTC in out
+ * (ms precision); 1, or 0 if a field is out of range. */
+static int local_to_utc(int y, int mo, int d, int h, int mi, double sec, double offset_h,
+                        char *out, size_t cap)
+{
+  if (y < 1900 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 23 ||
+      mi < 0 || mi > 59 || !(sec >= 0 && sec < 61) || !(fabs(offset_h) <= 14))
+    return 0;
+  char iso[40];
+  double t_s;
+  snprintf(iso, sizeof iso, "%04d-%02d-%02dT%02d:%02d:00", y, mo, d, h, mi);
+  if (!aq_iso_parse(iso, &t_s))
+    return 0;
+  t_s += sec - offset_h * 3600.0;
+  return aq_iso_from_ms(out, cap, llround(t_s * 1000.0));
+}
+
+/* JMA: "INITIAL TIME = YYYY MM DD hh mm ss" (JST) in [v, e). */
+static int jma_start(const char *v, const char *e, char *out, size_t cap)
+{
+  char tmp[64];
+  size_t l = (size_t)(e - v) < sizeof tmp - 1 ? (size_t)(e - v) : sizeof tmp - 1;
+  memcpy(tmp, v, l);
+  tmp[l] = '\0';
+  int y, mo, d, h, mi, sec, used = 0;
+  if (sscanf(tmp, "%d %d %d %d %d %d%n", &y, &mo, &d, &h, &mi, &sec, &used) != 6 ||
+      tmp[used + strspn(tmp + used, " \t")] != '\0')
+    return 0;
+  return local_to_utc(y, mo, d, h, mi, sec, CSV_JST_OFFSET_H, out, cap);
+}
+
+/* CWB: "#StartTime(GMT+08): YYYY/MM/DD-hh:mm:ss.sss" in s[b..e) (after '#'). */
+static int cwb_start(const char *s, size_t b, size_t e, char *out, size_t cap)
+{
+  static const char key[] = "StartTime(GMT";
+  size_t m = sizeof key - 1;
+  if (e - b < m || strncasecmp(s + b, key, m) != 0)
+    return 0;
+  char tmp[80];
+  size_t l = e - b - m < sizeof tmp - 1 ? e - b - m : sizeof tmp - 1;
+  memcpy(tmp, s + b + m, l);
+  tmp[l] = '\0';
+  char sign;
+  int oh, y, mo, d, h, mi, used = 0;
+  double sec;
+  if (sscanf(tmp, "%c%d): %d/%d/%d-%d:%d:%lf%n", &sign, &oh, &y, &mo, &d, &h, &mi, &sec,
+             &used) != 8 ||
+      (sign != '+' && sign != '-') || tmp[used + strspn(tmp + used, " \t")] != '\0')
+    return 0;
+  return local_to_utc(y, mo, d, h, mi, sec, sign == '-' ? -oh : oh, out, cap);
+}
+
 /* "KEY = value" or "KEY: value" in a preamble line: returns the value's
  * start (in s) if the line's key starts with key (case-insensitive). */
 static const char *kv(const char *s, size_t b, size_t e, const char *key)
@@ -451,6 +511,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   aq_units pre_u = AQ_UNITS_FILE;
   long pre_line = -1;
   char pre_said[48] = "";
+  char start[40] = "";         /* the first row's time, ISO-8601 UTC, if stated */
   size_t seq_b = 0, seq_e = 0; /* a "#DataSequence:" list of column names */
   long seq_line = -1;
   size_t hb = 0, he = 0; /* last non-numeric line before the data */
@@ -481,6 +542,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
         snprintf(pre_said, sizeof pre_said, "%.40s", val);
       } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
         seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
+      } else {
+        cwb_start(s, b + 1, e, start, sizeof start);
       }
     }
     trim_line(s, &b, &e);
@@ -521,6 +584,9 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
         return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "DT",
                             "expected a sample interval > 0 s, got \"%s\"", tmp);
       pre_dt = d;
+    } else if ((v = kv(s, b, e, "INITIAL TIME"))) {
+      if (!jma_start(v, s + e, start, sizeof start))
+        start[0] = '\0';
     } else if ((v = kv(s, b, e, "UNITS")) || (v = kv(s, b, e, "UNIT"))) {
       copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
       int r = units_in(val, &pre_u);
@@ -753,7 +819,8 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     size_t col = chcol[j];
     ch->npts = k;
     ch->dt_s = dt;
-    ch->begin_s = begin;
+    ch->begin_s = start[0] ? 0 : begin; /* a stated start is the first row's time */
+    snprintf(ch->reference, sizeof ch->reference, "%s", start);
     aq_units cu;
     int r = have_names ? units_in(names[col], &cu) : 0;
     if (have_names)
