@@ -179,6 +179,31 @@ AQ_TEST(io_mseed_gaps_overlaps_truncation)
     aq_check(same, "merged overlap equals the file (npts %zu)", r.chan[0].npts);
     aq_raw_file_free(&r);
   }
+  /* record 2 again, its start one sample later (BTIME ticks, bytes 28-29,
+     big-endian, + 50 x 0.1 ms = 5 ms = dt): it overlaps record 2 with its
+     values shifted by a sample, which differ: refused, naming the overlap */
+  size_t nb;
+  unsigned char *ce = (unsigned char *)aq_test_read_file(CE_FILE("E"), &nb);
+  if (aq_check(ce && nb == 4 * MSEED_RECLEN, "read HNE")) {
+    unsigned char *out = malloc(5 * MSEED_RECLEN);
+    static const int ord[5] = {0, 1, 1, 2, 3};
+    for (size_t i = 0; out && i < 5; i++)
+      memcpy(out + i * MSEED_RECLEN, ce + (size_t)ord[i] * MSEED_RECLEN, MSEED_RECLEN);
+    if (out) {
+      unsigned char *t = out + 2 * MSEED_RECLEN + 28;
+      unsigned ticks = (unsigned)t[0] << 8 | t[1];
+      aq_check(ticks == 4700, "record 2 starts at 05:33:46.4700 (ticks %u)", ticks);
+      ticks += 50;
+      t[0] = (unsigned char)(ticks >> 8), t[1] = (unsigned char)ticks;
+      aq_check(aq_test_raw_parse_buf(aq_mseed_parse, (char *)out, 5 * MSEED_RECLEN,
+                                     CE_FILE("E"), &r, msg, sizeof msg) == AQ_EFORMAT &&
+                   aq_test_msg_names(msg, CE_FILE("E"), "overlap of") &&
+                   strstr(msg, "values differ"),
+               "disagreeing overlap: %s", msg);
+      free(out);
+    }
+  }
+  free(ce);
   /* truncated inside record 3 */
   aq_check(aq_test_raw_altered(aq_mseed_parse, CE_FILE("E"), 2 * MSEED_RECLEN + 1000, NULL, NULL,
                                msg, sizeof msg) == AQ_EFORMAT &&
