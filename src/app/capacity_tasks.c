@@ -12,7 +12,10 @@
 #include "capacity_tasks.h"
 #include "opt.h"
 
-void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it)
+/* aq_cap_prepare, its lines on stderr only when loud (a follower prepares
+ * quietly: the leader reports each subject once, when it prepares it). */
+static void prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it,
+                    int loud)
 {
   aq_error_clear(&it->err);
   const aq_orient_opts *or = S->orient;
@@ -21,11 +24,16 @@ void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
                                           S->polarity != AQ_POLARITY_NORMAL, &it->err);
   aq_summary_status(it->status, sizeof it->status, it->in.stage ? it->in.stage : "read", s);
   it->ok = s == AQ_OK;
-  if (!it->ok)
+  if (loud && !it->ok)
     aq_error_print(&it->err, stderr);
-  else if (S->paths[r][1] && S->paths[r][2] && !or->vertical)
+  else if (loud && S->paths[r][1] && S->paths[r][2] && !or->vertical)
     fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
             S->paths[r][2]);
+}
+
+void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it)
+{
+  prepare(S, r, ws, it, 1);
 }
 
 /* Job z of polarity p of subject it with arch a. */
@@ -80,7 +88,8 @@ typedef struct {
   const aq_cap_setup *S;
   aq_cap_item *R;
   aq_capacity *C;
-  int lazy;             /* a follower: prepare subjects as tasks come */
+  int lazy;             /* farmed: prepare subjects as tasks (or results) come */
+  int leader;           /* keep every subject prepared (for the outputs), report it */
   pthread_mutex_t lock; /* guards state, users, used, nready */
   pthread_cond_t cond;
   pthread_mutex_t prep; /* one subject prepared at a time (ws, FFTW plans) */
@@ -126,7 +135,7 @@ static const aq_cap_item *acquire(tasks *X, size_t r)
     X->state[r] = SUBJ_PREPARING;
     pthread_mutex_unlock(&X->lock);
     pthread_mutex_lock(&X->prep);
-    aq_cap_prepare(X->S, r, X->ws, &X->R[r]);
+    prepare(X->S, r, X->ws, &X->R[r], X->leader);
     pthread_mutex_unlock(&X->prep);
     pthread_mutex_lock(&X->lock);
     X->state[r] = SUBJ_READY;
@@ -157,7 +166,7 @@ static void run_task(tasks *X, size_t t, aq_capacity *out)
   for (size_t p = 0; p < S->npol; p++)
     for (size_t z = 0; z < S->nz; z++) {
       aq_capacity *o = &out[p * S->nz + z];
-      if (!it->ok) { /* read here by the leader, but not on this process */
+      if (!it->ok) { /* not read here (the leader reports it, or has read it) */
         o->status = AQ_CAPACITY_FAILED;
         o->run_status = it->err.status;
         o->err = it->err;
@@ -189,11 +198,21 @@ static int task_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
   return *msg ? 0 : -1;
 }
 
+/* Leader: subject r prepared here, when the first result of it comes
+ * before any task of it ran here (its rows, fits and /records need it). */
+static const aq_cap_item *ensure(tasks *X, size_t r)
+{
+  const aq_cap_item *it = acquire(X, r);
+  release(X, r);
+  return it;
+}
+
 static int task_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq_error *err)
 {
   tasks *X = ctx;
   size_t nout = X->S->npol * X->S->nz, at = 0;
   aq_capacity *o = X->C + t * nout;
+  const aq_cap_item *it = ensure(X, t / X->S->na);
   for (size_t k = 0; k < nout; k++) {
     size_t used = 0;
     aq_capacity_free(&o[k]);
@@ -205,34 +224,44 @@ static int task_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq
     return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)at, NULL,
                         "expected %zu capacity results of task %zu in %zu bytes, got "
                         "bytes left over", nout, t, n), -1;
+  for (size_t k = 0; !it->ok && k < nout; k++) { /* unread here: no results (its status) */
+    aq_capacity_free(&o[k]);
+    memset(&o[k], 0, sizeof o[k]);
+  }
   return 0;
 }
 
 int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threads)
 {
   const aq_farm *farm_hook = aq_farm_get();
-  if (!farm_hook || !farm_hook->farm)
+  if (!farm_hook || !farm_hook->farm) {
+    aq_signal_ws *ws = aq_signal_ws_alloc();
+    if (!ws)
+      return fprintf(stderr, "archquake: out of memory\n"), -1;
+    for (size_t r = 0; r < S->nrec; r++)
+      aq_cap_prepare(S, r, ws, &R[r]);
+    aq_signal_ws_free(ws);
     return run_here(S, R, C, threads);
-  tasks X = {.S = S, .R = R, .C = C, .lazy = farm_hook->follower,
-             .keep = (size_t)(threads > 0 ? threads : 1) + AQ_CAP_KEEP_EXTRA};
+  }
+  /* farmed: every task goes out at once; each process prepares a subject
+   * when it runs a task of it, the leader also when a result of it comes
+   * first (as the main job's farm, suite.c) */
+  int leader = !farm_hook->follower;
+  tasks X = {.S = S, .R = R, .C = C, .lazy = 1, .leader = leader,
+             .keep = leader ? (size_t)-1
+                            : (size_t)(threads > 0 ? threads : 1) + AQ_CAP_KEEP_EXTRA};
   pthread_mutex_init(&X.lock, NULL);
   pthread_mutex_init(&X.prep, NULL);
   pthread_cond_init(&X.cond, NULL);
-  size_t ntask = S->nrec * S->na, ntodo = 0;
+  size_t ntask = S->nrec * S->na, ntodo = leader ? ntask : 0;
   size_t *todo = calloc(ntask ? ntask : 1, sizeof *todo);
-  int rc = todo ? 0 : -1;
-  if (X.lazy) {
-    X.ws = aq_signal_ws_alloc();
-    X.state = calloc(S->nrec ? S->nrec : 1, 1);
-    X.users = calloc(S->nrec ? S->nrec : 1, sizeof *X.users);
-    X.used = calloc(S->nrec ? S->nrec : 1, sizeof *X.used);
-    if (!X.ws || !X.state || !X.users || !X.used)
-      rc = -1;
-  } else {
-    for (size_t t = 0; t < ntask; t++)
-      if (R[t / S->na].ok)
-        todo[ntodo++] = t;
-  }
+  X.ws = aq_signal_ws_alloc();
+  X.state = calloc(S->nrec ? S->nrec : 1, 1);
+  X.users = calloc(S->nrec ? S->nrec : 1, sizeof *X.users);
+  X.used = calloc(S->nrec ? S->nrec : 1, sizeof *X.used);
+  int rc = todo && X.ws && X.state && X.users && X.used ? 0 : -1;
+  for (size_t t = 0; rc == 0 && t < ntodo; t++)
+    todo[t] = t;
   aq_farm_tasks T = {ntask, threads, S->na, 0, task_run, task_take, &X};
   aq_error e;
   aq_error_clear(&e);
@@ -242,7 +271,9 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
     aq_error_print(&e, stderr);
     rc = -1;
   }
-  if (X.lazy)
+  for (size_t r = 0; rc == 0 && leader && r < S->nrec; r++)
+    ensure(&X, r); /* every subject, for the outputs (none left without arches) */
+  if (!leader)
     for (size_t r = 0; r < S->nrec; r++)
       aq_capacity_input_free(&R[r].in);
   aq_signal_ws_free(X.ws);

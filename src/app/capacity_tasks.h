@@ -3,9 +3,11 @@
  * farmed out to other processes (archquake-mpi, src/app/mpi.c).
  *
  * A process that runs a task reads and processes its subject itself, once:
- * the leader (or archquake) prepares every subject before any task runs,
- * for its outputs; a follower prepares a subject when a task of it comes
- * and keeps the last few for the next tasks of the same subject.  Results
+ * archquake prepares every subject before the tasks run; farmed, every
+ * task goes out at once, the leader prepares a subject when it runs a task
+ * of it or the first result of it comes (and keeps it, for its outputs),
+ * and a follower prepares one when a task of it comes and keeps the last
+ * few for the next tasks of the same subject.  Results
  * travel as aq_capacity_encode's bytes, so the leader's copy is bit for bit
  * the follower's.  The caller owns every array it passes in. */
 #ifndef AQ_APP_CAPACITY_TASKS_H
@@ -54,8 +56,9 @@ typedef struct {
  * one line, and kept in it->err). */
 void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it);
 
-/* Leader or archquake: with R[0..nrec) prepared, run the tasks of every
- * subject that was read, on threads threads here or farmed out, into
+/* Leader or archquake: prepare R[0..nrec) (nrec zeroed items; the caller
+ * frees them) and run the tasks of every subject that was read, on
+ * threads threads here or farmed out, into
  * C[((r na + a) npol + p) nz + z] (zeroed by the caller; slots of azimuths a
  * subject lacks stay zero).  Follower: run the tasks handed out, preparing
  * their subjects into R (nrec zeroed items; freed again here) as they come;

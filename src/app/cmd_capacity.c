@@ -399,8 +399,7 @@ int aq_cmd_capacity(int argc, char **argv)
   size_t nrow = nrec * na * npol, njob = nrow * nz;
   aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
   aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
-  aq_signal_ws *ws = aq_signal_ws_alloc();
-  if (!arches || !R || !C || !fits || !ws) {
+  if (!arches || !R || !C || !fits) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto done;
@@ -423,15 +422,13 @@ int aq_cmd_capacity(int argc, char **argv)
     rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
     goto done;
   }
-  for (size_t r = 0; r < nrec; r++) {
-    aq_cap_prepare(&S, r, ws, &R[r]);
-    if (!R[r].ok)
-      rc = AQ_EXIT_FAIL;
-  }
-  if (aq_cap_run(&S, R, C, threads) != 0) {
+  if (aq_cap_run(&S, R, C, threads) != 0) { /* prepares R[0..nrec) */
     rc = AQ_EXIT_FAIL;
     goto done;
   }
+  for (size_t r = 0; r < nrec; r++)
+    if (!R[r].ok)
+      rc = AQ_EXIT_FAIL;
   for (size_t i = 0; i < njob; i++) {
     size_t j = i / nz, r = j / (na * npol);
     if (R[r].ok && i % nz < R[r].in.naz && C[i].status == AQ_CAPACITY_FAILED) {
@@ -484,7 +481,6 @@ done:
     aq_capacity_input_free(&R[r].in);
   for (size_t a = 0; a < na && arches; a++)
     aq_arch_free(arches[a]);
-  aq_signal_ws_free(ws);
   free(arches);
   free(R);
   free(C);

@@ -69,6 +69,7 @@ typedef struct {
   int rank, size;
   int broken;      /* an MPI call failed */
   FILE *diag;      /* a follower's own messages (its stderr is /dev/null) */
+  double t_init;   /* MPI_Wtime after MPI_Init (AQ_MPI_DEBUG_FIRST_TASK) */
   int stopped;     /* follower: rank 0 said stop */
   int stopped_all; /* leader: the followers were told to stop */
 } mpi_ctx;
@@ -176,6 +177,7 @@ typedef struct {
   size_t *ring;         /* follower: tasks received, not started */
   size_t nring, head, count;
   int stop;             /* no more tasks will come */
+  int sent_any;         /* leader: a task went to a follower */
   int oom;              /* a task could not run (out of memory) */
   done_msg *done, **done_tail; /* results of this rank's threads, in order */
 } farm_state;
@@ -348,6 +350,12 @@ static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid,
         uint64_t t64 = F->todo[k];
         if ((e = MPI_Send(&t64, 1, MPI_UINT64_T, r, TAG_TASK, MPI_COMM_WORLD)) != MPI_SUCCESS)
           rc = mpi_fail(C, err, e, "cannot hand a task to", r);
+        if (rc == 0 && !F->sent_any) { /* a debug timing, on request */
+          F->sent_any = 1;
+          if (getenv("AQ_MPI_DEBUG_FIRST_TASK"))
+            fprintf(stderr, "archquake-mpi: first task handed out %.6f s after MPI_Init\n",
+                    MPI_Wtime() - C->t_init);
+        }
         owner[F->todo[k]] = r;
         queued[r]++;
         active = 1;
@@ -538,6 +546,7 @@ int main(int argc, char **argv)
   mpi_ctx C;
   memset(&C, 0, sizeof C);
   C.diag = stderr;
+  C.t_init = MPI_Wtime();
   MPI_Comm_rank(MPI_COMM_WORLD, &C.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &C.size);
   /* the main job and capacity farm their tasks out when there are followers */
