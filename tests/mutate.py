@@ -99,6 +99,8 @@ def main():
         for d in ["src"] + [os.path.join("src", x) for x in os.listdir("src")]
         if os.path.isdir(d)
         for f in os.listdir(d) if f.endswith(".c"))
+    # as the Makefile's LIB_SRC: the MPI driver is built only by `make mpi`
+    lib_src = [c for c in lib_src if c != os.path.join("src", "app", "mpi.c")]
     test_src = sorted(os.path.join("tests", f) for f in os.listdir("tests")
                       if f.startswith("test_") and f.endswith(".c") or f == "runner.c")
     obj = lambda c: os.path.join(MUT, c[:-2] + ".o")

@@ -62,3 +62,30 @@ AQ_TEST(io_fixed_refusals)
   double v;
   aq_check(aq_field_double("  -1.5  ", 8, &v) && v == -1.5, "blanks around");
 }
+
+/* Local times to UTC (aq_iso_time_local): zones east and west of UTC, day,
+ * month and year rolled back and over; the expected UTC written out by hand. */
+AQ_TEST(io_fixed_local_time_to_utc)
+{
+  static const struct {
+    int y, mo, d, h, mi;
+    double s;
+    int east;
+    const char *want; /* NULL: refused */
+  } c[] = {
+      {2016, 4, 14, 21, 26, 20, 9, "2016-04-14T12:26:20.000Z"},   /* JST */
+      {2021, 1, 1, 3, 0, 0, 8, "2020-12-31T19:00:00.000Z"},       /* back a year */
+      {2020, 12, 31, 22, 15, 1.25, -5, "2021-01-01T03:15:01.250Z"}, /* over a year */
+      {2016, 3, 1, 2, 0, 0, 9, "2016-02-29T17:00:00.000Z"},       /* leap day */
+      {1994, 1, 17, 4, 30, 55.39, -8, "1994-01-17T12:30:55.390Z"}, /* PST */
+      {2016, 4, 14, 25, 0, 0, 9, NULL},
+      {2016, 4, 14, 21, 0, 0, 15, NULL},
+      {2016, 4, 14, -1, 0, 0, 0, NULL}};
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    char out[40] = "";
+    int ok = aq_iso_time_local(out, sizeof out, c[i].y, c[i].mo, c[i].d, c[i].h, c[i].mi,
+                               c[i].s, c[i].east);
+    aq_check(c[i].want ? ok && strcmp(out, c[i].want) == 0 : !ok, "%zu: %d \"%s\"", i, ok,
+             out);
+  }
+}

@@ -106,7 +106,7 @@ static void start_time(const aq_line *ln, char *out, size_t cap)
     return;
   if (y < 100)
     y += y < 50 ? 2000 : 1900;
-  if (!aq_iso_time(out, cap, y, mo, d, h - east, mi, s))
+  if (!aq_iso_time_local(out, cap, y, mo, d, h, mi, s, east))
     out[0] = '\0';
 }
 

@@ -358,24 +358,7 @@ static int is_time_name(const char *name)
          strcmp(base, "temps") == 0;
 }
 
-#define CSV_JST_OFFSET_H 9.0 /* JMA's times: Japan Standard Time, UTC+9 h */
-
-/* A local calendar time offset_h hours ahead of UTC -> ISO-8601 UTC in out
- * (ms precision); 1, or 0 if a field is out of range. */
-static int local_to_utc(int y, int mo, int d, int h, int mi, double sec, double offset_h,
-                        char *out, size_t cap)
-{
-  if (y < 1900 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 23 ||
-      mi < 0 || mi > 59 || !(sec >= 0 && sec < 61) || !(fabs(offset_h) <= 14))
-    return 0;
-  char iso[40];
-  double t_s;
-  snprintf(iso, sizeof iso, "%04d-%02d-%02dT%02d:%02d:00", y, mo, d, h, mi);
-  if (!aq_iso_parse(iso, &t_s))
-    return 0;
-  t_s += sec - offset_h * 3600.0;
-  return aq_iso_from_ms(out, cap, llround(t_s * 1000.0));
-}
+#define CSV_JST_OFFSET_H 9 /* JMA's times: Japan Standard Time, UTC+9 h */
 
 /* JMA: "INITIAL TIME = YYYY MM DD hh mm ss" (JST) in [v, e). */
 static int jma_start(const char *v, const char *e, char *out, size_t cap)
@@ -388,7 +371,7 @@ static int jma_start(const char *v, const char *e, char *out, size_t cap)
   if (sscanf(tmp, "%d %d %d %d %d %d%n", &y, &mo, &d, &h, &mi, &sec, &used) != 6 ||
       tmp[used + strspn(tmp + used, " \t")] != '\0')
     return 0;
-  return local_to_utc(y, mo, d, h, mi, sec, CSV_JST_OFFSET_H, out, cap);
+  return aq_iso_time_local(out, cap, y, mo, d, h, mi, sec, CSV_JST_OFFSET_H);
 }
 
 /* CWB: "#StartTime(GMT+08): YYYY/MM/DD-hh:mm:ss.sss" in s[b..e) (after '#'). */
@@ -409,7 +392,7 @@ static int cwb_start(const char *s, size_t b, size_t e, char *out, size_t cap)
              &used) != 8 ||
       (sign != '+' && sign != '-') || tmp[used + strspn(tmp + used, " \t")] != '\0')
     return 0;
-  return local_to_utc(y, mo, d, h, mi, sec, sign == '-' ? -oh : oh, out, cap);
+  return aq_iso_time_local(out, cap, y, mo, d, h, mi, sec, sign == '-' ? -oh : oh);
 }
 
 /* "KEY = value" or "KEY: value" in a preamble line: returns the value's

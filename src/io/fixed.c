@@ -209,22 +209,45 @@ int aq_month_day(int year, int jday, int *month, int *day)
   return 1;
 }
 
-int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
-                int minute, double sec)
+/* ISO-8601 of a date and a time of day in ms that may fall outside the day
+ * (negative: days before; beyond 24 h: days after). */
+static void iso_from_day_ms(char *out, size_t cap, int year, int month, int day, long tod_ms)
 {
-  if (year < 1800 || year > 2200 || month < 1 || month > 12 || day < 1 || day > 31 ||
-      hour < 0 || hour > 48 || minute < 0 || minute > 59 || !(sec >= 0 && sec < 61))
-    return 0;
-  long ms = lround(sec * 1000.0);
   long days = days_from_civil(year, month, day);
-  long tod_ms = ((long)hour * 60 + minute) * 60000L + ms;
-  days += tod_ms / 86400000L;
-  tod_ms %= 86400000L;
+  long shift = tod_ms >= 0 ? tod_ms / 86400000L : -((-tod_ms + 86399999L) / 86400000L);
+  days += shift;
+  tod_ms -= shift * 86400000L;
   long y, m, d;
   civil_from_days(days, &y, &m, &d);
   snprintf(out, cap, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.%03ldZ", y, m, d,
            tod_ms / 3600000L, (tod_ms / 60000L) % 60, (tod_ms / 1000L) % 60,
            tod_ms % 1000L);
+}
+
+static int date_ok(int year, int month, int day, int minute, double sec)
+{
+  return year >= 1800 && year <= 2200 && month >= 1 && month <= 12 && day >= 1 &&
+         day <= 31 && minute >= 0 && minute <= 59 && sec >= 0 && sec < 61;
+}
+
+int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
+                int minute, double sec)
+{
+  if (!date_ok(year, month, day, minute, sec) || hour < 0 || hour > 48)
+    return 0;
+  iso_from_day_ms(out, cap, year, month, day,
+                  ((long)hour * 60 + minute) * 60000L + lround(sec * 1000.0));
+  return 1;
+}
+
+int aq_iso_time_local(char *out, size_t cap, int year, int month, int day, int hour,
+                      int minute, double sec, int east_h)
+{
+  if (!date_ok(year, month, day, minute, sec) || hour < 0 || hour > 24 || east_h < -14 ||
+      east_h > 14)
+    return 0;
+  iso_from_day_ms(out, cap, year, month, day,
+                  ((long)(hour - east_h) * 60 + minute) * 60000L + lround(sec * 1000.0));
   return 1;
 }
 

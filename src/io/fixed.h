@@ -78,10 +78,16 @@ void aq_copy_trim(char *out, size_t cap, const char *s, size_t n);
 const char *aq_find_ci(const char *s, size_t n, const char *needle);
 
 /* ISO-8601 "YYYY-MM-DDThh:mm:ss.sssZ" from a calendar date and time of day
- * (sec may carry a fraction; hour may exceed 23 after a zone shift, which
- * rolls the day over).  Returns 1, or 0 if a value is out of range. */
+ * in UTC (sec may carry a fraction; hour may exceed 23, which rolls the day
+ * over).  Returns 1, or 0 if a value is out of range. */
 int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
                 int minute, double sec);
+
+/* The same from a local time in a zone east_h whole hours east of UTC
+ * (JST 9, PDT -7): UTC is local minus east_h, rolling the day back or over.
+ * Returns 1, or 0 if a value is out of range (|east_h| <= 14). */
+int aq_iso_time_local(char *out, size_t cap, int year, int month, int day, int hour,
+                      int minute, double sec, int east_h);
 
 /* Seconds since 1970-01-01T00:00:00 UTC of "YYYY-MM-DD[Thh:mm[:ss.sss]][Z]"
  * (the zone suffix is ignored: StationXML and miniSEED times are UTC).

@@ -151,7 +151,7 @@ static void start_time(const aq_line *ln, char *out, size_t cap)
   if (sscanf(tmp, "%d/%d/%d %d:%d:%lf (%7[A-Za-z])", &mo, &d, &y, &h, &mi, &s, zone) != 7 ||
       !aq_zone_offset_(zone, strlen(zone), &east))
     return;
-  if (!aq_iso_time(out, cap, y, mo, d, h - east, mi, s))
+  if (!aq_iso_time_local(out, cap, y, mo, d, h, mi, s, east))
     out[0] = '\0';
 }
 
