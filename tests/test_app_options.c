@@ -29,6 +29,8 @@ AQ_TEST(app_options_out_of_range_refused)
   } cs[] = {
       {RUN, "--scale-to-pga", "-0.3"},  {RUN, "--scale-to-pga", "0"},
       {RUN, "--scale-to-pga", "100.5"}, {RUN, "--scale-to-pga", "0.3g"},
+      {RUN, "--scale-to-lambda0", "0"}, {RUN, "--scale-to-lambda0", "-2.5"},
+      {RUN, "--scale-to-lambda0", "nan"}, {RUN, "--scale-to-lambda0", "100.5"},
       {RUN, "--scale", "-1"},           {RUN, "--scale", "0"},
       {RUN, "--scale", "1,x"},          {RUN, "--cor", "-0.1"},
       {RUN, "--cor", "1.01"},           {RUN, "--cor", "0.5x"},
