@@ -22,7 +22,9 @@
 #include <strings.h>
 
 #include "../units.h"
+#include "number.h"
 #include "readers.h"
+#include "swar.h"
 
 #define AT2_MAX_HEADER_LINES 64 /* the NPTS line is looked for in lines 1..64 */
 #define AT2_TEXT_LINES 8        /* text lines before it kept for units, event */
@@ -119,6 +121,53 @@ static int is_sep(char c)
 static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['\f'] = 1,
                                             ['\v'] = 1, ['\n'] = 2, ['\r'] = 2};
 
+/* PEER's fixed fields.  NGA-West2 writes the values five a line in
+ * 15-character fields, "   .7273025E-06" or "  -.6521952E-06": two blanks,
+ * a blank or a minus, a point, seven digits, E, the exponent's sign and two
+ * digits.  Read whole, such a field needs no search for where its number
+ * starts or ends, and no loop: the next field starts 15 bytes on whatever
+ * the sign was. */
+#define PEER_FIELD_W 15
+
+/* The PEER field at p, with the separator after it (a blank or a line end,
+ * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
+ * caller has) are anything else, or the value is one strtod must read. */
+static int peer_field(const char *p, double *x)
+{
+  uint64_t a = aq_swar_load(p), b = aq_swar_load(p + 8);
+  /* a: ' ', ' ', ' ' or '-', '.', digits 1-4; b: digits 5-7, 'E', sign,
+   * two digits, the separator */
+  unsigned sign = aq_swar_byte(a, 2), esign = aq_swar_byte(b, 4), sep = aq_swar_byte(b, 7);
+  if ((a & 0xFF00FFFFULL) != ('.' << 24 | ' ' << 8 | ' ') || (sign != ' ' && sign != '-') ||
+      (aq_swar_byte(b, 3) | 0x20) != 'e' || (esign != '-' && esign != '+') ||
+      (sep != ' ' && sep != '\n' && sep != '\r'))
+    return 0;
+  /* the seven mantissa digits as bytes 0-6 of one word (byte 7: the 'E'),
+   * and the exponent digits at bytes 5-6 of b */
+  uint64_t mant = (a >> 32) | (b << 32);
+  if ((aq_swar_nondigits(mant) & 0x0080808080808080ULL) ||
+      (aq_swar_nondigits(b) & 0x0080800000000000ULL))
+    return 0;
+  int ex = (int)(aq_swar_byte(b, 5) & 0x0F) * 10 + (int)(aq_swar_byte(b, 6) & 0x0F);
+  /* value = 0.d1..d7 * 10^ex = d1..d7 * 10^(ex - 7) */
+  return aq_number_exact(aq_swar_digits(mant, 7), (esign == '-' ? -ex : ex) - 7, sign == '-',
+                         x);
+}
+
+/* Past the line end at p (LF, CR, CR LF, CR CR LF: one line, as skip_eol
+ * takes it). */
+static const char *line_end(const char *p, const char *end)
+{
+  if (*p == '\r') {
+    while (p < end && *p == '\r')
+      p++;
+    if (p < end && *p == '\n')
+      p++;
+    return p;
+  }
+  return p + 1;
+}
+
 /* The values from c->pos on that are plain finite numbers, each ended by a
  * separator (is_sep) or the end of the input, into acc[k..npts): returns the
  * new k.  Stops with c at the first token that is anything else (a glued
@@ -129,19 +178,22 @@ static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
   const char *s = c->s, *p = s + c->pos, *end = s + c->n;
   long line = c->line;
   while (k < npts) {
+    if (end - p > PEER_FIELD_W && peer_field(p, &acc[k])) {
+      k++;
+      p += PEER_FIELD_W;
+      continue;
+    }
+    if (p < end && sep_kind[(unsigned char)*p] == 2) { /* a field may follow */
+      p = line_end(p, end);
+      line++;
+      continue;
+    }
     for (;;) { /* separators, as the careful loop skips them */
       while (p < end && sep_kind[(unsigned char)*p] == 1)
         p++;
       if (p >= end || sep_kind[(unsigned char)*p] != 2)
         break;
-      if (*p == '\r') { /* CR, CR LF, CR CR LF: one line end (skip_eol) */
-        while (p < end && *p == '\r')
-          p++;
-        if (p < end && *p == '\n')
-          p++;
-      } else {
-        p++;
-      }
+      p = line_end(p, end);
       line++;
     }
     if (p >= end)

@@ -18,19 +18,12 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#define FAST_MANTISSA_MAX 9007199254740992ULL /* 2^53: larger m may be inexact */
-#define FAST_DIGITS_MAX 19                    /* 10^19 - 1 < 2^64 */
-#define FAST_POW10_MAX 22                     /* 10^22 is the largest exact power */
-#define EXPONENT_CAP 100000                   /* beyond any double: strtod decides */
+#define FAST_DIGITS_MAX 19 /* 10^19 - 1 < 2^64 */
+#define EXPONENT_CAP 100000 /* beyond any double: strtod decides */
+#define FAST_PATH AQ_NUMBER_EXACT_OK
 
-#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
-#define FAST_PATH 1
-#else
-#define FAST_PATH 0 /* extended precision would round twice */
-#endif
-
-/* Exact powers of ten representable in a double. */
-static const double pow10_exact[FAST_POW10_MAX + 1] = {
+/* Exact powers of ten representable in a double (aq_number_exact). */
+const double aq_number_pow10_exact_[AQ_NUMBER_EXACT_POW_MAX + 1] = {
     1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
@@ -135,14 +128,9 @@ static inline size_t parse(const char *s, size_t n, unsigned flags, double *x, i
     }
   }
   e -= frac;
-  if (m <= FAST_MANTISSA_MAX && e >= -FAST_POW10_MAX && e <= FAST_POW10_MAX) {
-    double v = (double)m;
-    v = e < 0 ? v / pow10_exact[-e] : v * pow10_exact[e]; /* one rounding */
-    *x = neg ? -v : v;
+  if (e >= -AQ_NUMBER_EXACT_POW_MAX && e <= AQ_NUMBER_EXACT_POW_MAX &&
+      aq_number_exact(m, (int)e, neg, x)) /* m <= 2^53 and one rounding */
     return (size_t)(p - s);
-  }
-#else
-  (void)pow10_exact;
 #endif
   return parse_strtod(s, n, flags, x, finite);
 }

@@ -18,7 +18,10 @@
 #ifndef AQ_IO_NUMBER_H
 #define AQ_IO_NUMBER_H
 
+#include <float.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #define AQ_NUMBER_TOKEN_MAX 64 /* longest token the strtod path sees, with its NUL */
 
@@ -40,5 +43,39 @@ size_t aq_number_parse_finite(const char *s, size_t n, unsigned flags, double *x
 /* The same as aq_number_parse after skipping blanks (spaces, tabs) at s; the count includes
  * them.  flags 0: no D exponent. */
 size_t aq_decimal_parse(const char *s, size_t n, double *x);
+
+/* ---- for the readers' fixed-width fast paths ---- */
+
+/* 1 where m * 10^e below is one IEEE operation on exact doubles: double
+ * arithmetic without extended precision (FLT_EVAL_METHOD 0). */
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+#define AQ_NUMBER_EXACT_OK 1
+#else
+#define AQ_NUMBER_EXACT_OK 0
+#endif
+#define AQ_NUMBER_EXACT_POW_MAX 22 /* 10^22: the largest exact power of ten */
+
+extern const double aq_number_pow10_exact_[AQ_NUMBER_EXACT_POW_MAX + 1];
+
+/* The decimal m * 10^e (m <= 2^53), correctly rounded, as strtod reads it:
+ * m and 10^|e| are exact doubles when |e| <= 22, so one multiply or divide
+ * rounds once (Clinger's fast path).  Returns 1 with *x (negated when neg),
+ * or 0 when e is out of that range or the arithmetic may round twice (the
+ * caller then reads the text with aq_number_parse). */
+static inline int aq_number_exact(uint64_t m, int e, int neg, double *x)
+{
+  if (!AQ_NUMBER_EXACT_OK || m > (1ULL << 53) || e < -AQ_NUMBER_EXACT_POW_MAX ||
+      e > AQ_NUMBER_EXACT_POW_MAX)
+    return 0;
+  double v = (double)m;
+  v = e < 0 ? v / aq_number_pow10_exact_[-e] : v * aq_number_pow10_exact_[e];
+  /* the sign as a bit, not a branch: signs of successive values are
+   * random, a branch on them would be mispredicted half the time */
+  uint64_t bits;
+  memcpy(&bits, &v, sizeof bits);
+  bits ^= (uint64_t)(neg != 0) << 63;
+  memcpy(x, &bits, sizeof bits);
+  return 1;
+}
 
 #endif
