@@ -26,6 +26,10 @@
 #include "readers.h"
 #include "swar.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #define AT2_MAX_HEADER_LINES 64 /* the NPTS line is looked for in lines 1..64 */
 #define AT2_TEXT_LINES 8        /* text lines before it kept for units, event */
 #define AT2_CHANNEL_MAX 6       /* a component name is short ("180", "UP", "HN1") */
@@ -62,8 +66,7 @@ static int skip_eol(at2_cur *c)
 static void next_line(at2_cur *c, size_t *b, size_t *e)
 {
   *b = c->pos;
-  while (c->pos < c->n && c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
-    c->pos++;
+  c->pos = aq_swar_line_end(c->s, c->pos, c->n);
   *e = c->pos;
   skip_eol(c);
 }
@@ -129,6 +132,50 @@ static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['
  * the sign was. */
 #define PEER_FIELD_W 15
 
+#if defined(__SSE2__) /* every x86-64 CPU; elsewhere the 64-bit word version */
+/* The PEER field at p, with the separator after it (a blank or a line end,
+ * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
+ * caller has) are anything else, or the value is one strtod must read.
+ * One 16-byte vector holds the field and its separator. */
+static int peer_field(const char *p, double *x)
+{
+  /* position by position: where the digits are, and the bytes allowed
+   * elsewhere (one of three patterns; their digit places are unused) */
+  static const char digit_at[16] = {0, 0, 0, 0, -1, -1, -1, -1, -1, -1, -1, 0, 0, -1, -1, 0};
+  static const char pat_a[16] = "   .0000000E-00 ", pat_b[16] = "  -.0000000e+00\n",
+                    pat_c[16] = "  -.0000000e+00\r";
+  const __m128i v = _mm_loadu_si128((const __m128i *)p);
+  const __m128i digits = _mm_loadu_si128((const __m128i *)digit_at);
+  /* v - '0' is 0..9, unsigned, exactly at the digits: min(d, 9) == d */
+  const __m128i d = _mm_sub_epi8(v, _mm_set1_epi8('0'));
+  const __m128i is_digit = _mm_cmpeq_epi8(_mm_min_epu8(d, _mm_set1_epi8(9)), d);
+  const __m128i fixed =
+      _mm_or_si128(_mm_cmpeq_epi8(v, _mm_loadu_si128((const __m128i *)pat_a)),
+                   _mm_or_si128(_mm_cmpeq_epi8(v, _mm_loadu_si128((const __m128i *)pat_b)),
+                                _mm_cmpeq_epi8(v, _mm_loadu_si128((const __m128i *)pat_c))));
+  const __m128i good = _mm_or_si128(_mm_and_si128(digits, is_digit), _mm_andnot_si128(digits, fixed));
+  if (_mm_movemask_epi8(good) != 0xFFFF)
+    return 0;
+  /* The digit values as 16-bit lanes times their place values, summed in
+   * pairs (pmaddwd): bytes 4-7 give 1000 d4 + 100 d5 and 10 d6 + d7,
+   * bytes 8-10 give 100 d8 + 10 d9 and d10, bytes 13-14 give 10 d13 and
+   * d14; every other byte has weight 0. */
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i lo = _mm_madd_epi16(_mm_unpacklo_epi8(d, zero),
+                                    _mm_setr_epi16(0, 0, 0, 0, 1000, 100, 10, 1));
+  const __m128i hi = _mm_madd_epi16(_mm_unpackhi_epi8(d, zero),
+                                    _mm_setr_epi16(100, 10, 1, 0, 0, 10, 1, 0));
+  /* add each 32-bit lane to the one above it: lo lane 2 = d4..d7, hi lane 0
+   * = d8..d10, hi lane 2 = the exponent */
+  const __m128i lo2 = _mm_add_epi32(lo, _mm_srli_si128(lo, 4));
+  const __m128i hi2 = _mm_add_epi32(hi, _mm_srli_si128(hi, 4));
+  uint64_t m = (uint64_t)_mm_cvtsi128_si32(_mm_srli_si128(lo2, 8)) * 1000 +
+               (uint64_t)_mm_cvtsi128_si32(hi2);
+  int ex = _mm_cvtsi128_si32(_mm_srli_si128(hi2, 8));
+  /* value = 0.d4..d10 * 10^ex = d4..d10 * 10^(ex - 7) */
+  return aq_number_exact(m, (p[12] == '-' ? -ex : ex) - 7, p[2] == '-', x);
+}
+#else
 /* The PEER field at p, with the separator after it (a blank or a line end,
  * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
  * caller has) are anything else, or the value is one strtod must read. */
@@ -153,6 +200,7 @@ static int peer_field(const char *p, double *x)
   return aq_number_exact(aq_swar_digits(mant, 7), (esign == '-' ? -ex : ex) - 7, sign == '-',
                          x);
 }
+#endif
 
 /* Past the line end at p (LF, CR, CR LF, CR CR LF: one line, as skip_eol
  * takes it). */
@@ -314,9 +362,10 @@ static int num_before(const char *s, size_t kb, double *x, size_t *start)
  * NPTS lacks its number, -2 if DT or its number is missing. */
 static int npts_line(const char *s, size_t n, double *npts, double *dt, size_t *tail)
 {
-  long kn = find_word(s, n, "NPTS"), kd = find_word(s, n, "DT");
+  long kn = find_word(s, n, "NPTS");
   if (kn < 0)
     return 0;
+  long kd = find_word(s, n, "DT");
   if (kd < 0)
     return -2;
   size_t k1 = (size_t)(kn < kd ? kn : kd), k2 = (size_t)(kn < kd ? kd : kn);
@@ -443,8 +492,8 @@ static int find_header(const char *s, size_t n, at2_header *h, long *bad_line,
         }
       }
     } else if ((found || *bad_line > 0) && fb < e &&
-               (s[fb] == '*' || starts_ci(s + fb, e - fb, "end data") ||
-                starts_ci(s + fb, e - fb, "end of data"))) {
+               (s[fb] == '*' || ((s[fb] | 0x20) == 'e' && (starts_ci(s + fb, e - fb, "end data") ||
+                                                            starts_ci(s + fb, e - fb, "end of data"))))) {
       break; /* an end marker: the data is over */
     }
     if (fb < e && ntext < AT2_TEXT_LINES) {

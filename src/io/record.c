@@ -16,6 +16,7 @@
 #include "../units.h"
 #include "formats.h"
 #include "readers.h"
+#include "swar.h"
 
 /* ---- units ------------------------------------------------------------ */
 
@@ -273,6 +274,10 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
    * (bytes >= 0x80 are allowed: Shift-JIS, Latin-1, UTF-8 in headers). */
   size_t m = n < AQ_SNIFF_BYTES ? n : AQ_SNIFF_BYTES, ctrl = 0;
   for (size_t i = 0; i < m; i++) {
+    if (m - i >= 8 && !aq_swar_below(aq_swar_load((const char *)buf + i), 0x20)) {
+      i += 7; /* eight bytes of plain text at once */
+      continue;
+    }
     unsigned char c = buf[i];
     if (c == 0)
       return AQ_FMT_UNKNOWN_BINARY;

@@ -59,4 +59,45 @@ static inline uint64_t aq_swar_digits(uint64_t w, unsigned k)
   return (d * 10000 + (d >> 32)) & 0xFFFFFFFFULL;
 }
 
+/* The index (0..7) of the lowest byte of mask that has its high bit set;
+ * mask != 0. */
+static inline unsigned aq_swar_first(uint64_t mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return (unsigned)__builtin_ctzll(mask) / 8;
+#else
+  unsigned i = 0;
+  while (!(mask & (0x80ULL << (8 * i))))
+    i++;
+  return i;
+#endif
+}
+
+/* Nonzero if some byte of w is below n (n <= 0x80), and then the lowest
+ * byte with its high bit set in the result is the first such byte.
+ * w - n in every byte borrows exactly from the bytes below n (and the
+ * borrow may spill into higher bytes only above one of them); & ~w drops
+ * the bytes whose own high bit was set. */
+static inline uint64_t aq_swar_below(uint64_t w, unsigned n)
+{
+  return (w - n * AQ_SWAR_ONES) & ~w & (0x80 * AQ_SWAR_ONES);
+}
+
+/* The offset of the first LF or CR in s[i..n), or n: eight bytes at a time
+ * (a byte equal to c is a zero byte of w ^ c, found by aq_swar_below(., 1)),
+ * the last few one at a time. */
+static inline size_t aq_swar_line_end(const char *s, size_t i, size_t n)
+{
+  for (; n - i >= 8; i += 8) {
+    uint64_t w = aq_swar_load(s + i);
+    uint64_t hit = aq_swar_below(w ^ ('\n' * AQ_SWAR_ONES), 1) |
+                   aq_swar_below(w ^ ('\r' * AQ_SWAR_ONES), 1);
+    if (hit)
+      return i + aq_swar_first(hit);
+  }
+  while (i < n && s[i] != '\n' && s[i] != '\r')
+    i++;
+  return i;
+}
+
 #endif
