@@ -20,6 +20,7 @@
 
 #include "check.h"
 #include "io/formats.h"
+#include "io/number.h"
 
 #define AT2_HEAD "PEER TEST\nRANDOM FIELDS\nACCELERATION TIME SERIES IN UNITS OF G\n"
 #define TOKEN_MAX 64 /* longer tokens: the reference refuses them */
@@ -287,4 +288,120 @@ AQ_TEST(io_at2_fields_cut_anywhere)
     }
   }
   aq_check(bad == 0, "%zu of %zu cut files differ", bad, cases);
+}
+
+/* ---- column shapes (number.h: aq_number_parse_shaped) ------------------ */
+
+/* strtod's reading of t (NUL-terminated) as aq_number_parse_finite reads:
+ * D and d as e when flags ask it, a number that is not finite refused:
+ * the characters taken (0: none) and *x. */
+static size_t reference_number(const char *t, unsigned flags, double *x)
+{
+  char c[TOKEN_MAX + 40];
+  size_t n = strlen(t);
+  if (n >= sizeof c || is_blank(t[0])) /* a number starts at once: no blanks skipped */
+    return 0;
+  for (size_t i = 0; i <= n; i++)
+    c[i] = (flags & AQ_NUMBER_FORTRAN_D) && (t[i] == 'd' || t[i] == 'D') ? 'e' : t[i];
+  char *e;
+  *x = strtod(c, &e);
+  return e == c || !isfinite(*x) ? 0 : (size_t)(e - c);
+}
+
+/* One layout of a column: digits before and after the point (the point
+ * always there: a shape needs one, or an exponent), exponent letter and
+ * digits (0: none), whether the exponent has a sign. */
+typedef struct {
+  int int_digits, frac_digits, exp_digits, exp_sign;
+  char letter;
+} layout;
+
+static layout random_layout(uint64_t *x)
+{
+  uint64_t r = rng(x);
+  layout l;
+  l.int_digits = (int)(r % 8);                     /* 0..7 */
+  l.frac_digits = (int)((r >> 3) % 9);              /* 0..8 */
+  if (l.int_digits + l.frac_digits == 0)
+    l.frac_digits = 1;
+  l.exp_digits = (r >> 7) % 3 ? (int)((r >> 9) % 4) : 0; /* 0..3 */
+  l.exp_sign = (int)((r >> 11) % 4 != 0);
+  l.letter = "eEdD"[(r >> 13) % 4];
+  if ((r >> 15) % 16 == 0) /* now and then longer than a shape covers */
+    l.frac_digits = 12 + (int)((r >> 19) % 8);
+  return l;
+}
+
+/* A number of layout l: random digits, sign and exponent sign. */
+static void layout_number(uint64_t *x, const layout *l, char *t, size_t cap)
+{
+  uint64_t r = rng(x), y = rng(x);
+  size_t p = 0;
+  if (r % 3 == 0)
+    t[p++] = r % 2 ? '-' : '+';
+  for (int i = 0; i < l->int_digits + l->frac_digits + 1 && p + 8 < cap; i++) {
+    if (i == l->int_digits) {
+      t[p++] = '.';
+      continue;
+    }
+    t[p++] = (char)('0' + y % 10);
+    y = y / 10 ? y / 10 : rng(x);
+  }
+  if (l->exp_digits) {
+    t[p++] = l->letter;
+    if (l->exp_sign)
+      t[p++] = (r >> 5) % 2 ? '-' : '+';
+    for (int i = 0; i < l->exp_digits; i++)
+      t[p++] = (char)('0' + (r >> (8 + 4 * i)) % 10);
+  }
+  t[p] = '\0';
+}
+
+/* A column of numbers of a few layouts, each number followed by a random
+ * tail (what comes after a number in a file: separators, line ends, the
+ * next number, letters, points, exponent letters), read one after another
+ * with one shape; each number also with one character replaced by a letter,
+ * point, sign or blank, and cut by the end of its buffer.  Every reading
+ * must take the characters strtod takes and give its double bit for bit. */
+AQ_TEST(io_number_shapes_equal_strtod)
+{
+  static const char tails[] = "0123456789.,; \t\n\reEdD+-Z";
+  static const char repl[] = "Z.+- e,5";
+  uint64_t x = 0xC0FFEE2385417ULL;
+  size_t cases = 0, bad = 0;
+  for (int col = 0; col < 400 && bad < 8; col++) {
+    aq_number_shape sh = {0};
+    unsigned flags = col % 3 == 0 ? AQ_NUMBER_FORTRAN_D : 0;
+    layout l = random_layout(&x), other = random_layout(&x);
+    for (int row = 0; row < 200 && bad < 8; row++) {
+      char t[TOKEN_MAX + 40];
+      uint64_t r = rng(&x);
+      layout_number(&x, r % 10 ? &l : &other, t, TOKEN_MAX);
+      size_t len = strlen(t);
+      if (r % 7 == 0 && len > 0) /* one character replaced */
+        t[(r >> 8) % len] = repl[(r >> 16) % (sizeof repl - 1)];
+      size_t tail = (r >> 24) % 5 == 0 ? (r >> 28) % 4 : 17 + (r >> 28) % 8; /* cut, or room */
+      for (size_t i = 0; i < tail; i++)
+        t[len + i] = tails[rng(&x) % (sizeof tails - 1)];
+      t[len + tail] = '\0';
+      size_t n = len + tail;
+      char *b = malloc(n ? n : 1); /* exactly the bytes: a read past them is caught */
+      if (!b)
+        return;
+      memcpy(b, t, n);
+      double got = -2.385, want = 0;
+      size_t used = aq_number_parse_shaped(&sh, b, n, flags, &got);
+      size_t want_used = reference_number(t, flags, &want);
+      cases++;
+      if (used != want_used || (used && memcmp(&got, &want, sizeof got) != 0)) {
+        bad++;
+        aq_check(0, "\"%s\" (%zu bytes, flags %u): %.17g taking %zu, strtod %.17g taking %zu", t, n,
+                 flags, got, used, want, want_used);
+      }
+      free(b);
+    }
+  }
+  aq_check(bad == 0, "%zu of %zu numbers read through a shape differ from strtod", bad, cases);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  shapes: %zu numbers read through column shapes, %zu differ\n", cases, bad);
 }

@@ -26,7 +26,7 @@
 #include "readers.h"
 #include "swar.h"
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
 #endif
 
@@ -132,7 +132,8 @@ static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['
  * the sign was. */
 #define PEER_FIELD_W 15
 
-#if defined(__SSE2__) /* every x86-64 CPU; elsewhere the 64-bit word version */
+#if defined(__SSE2__) && !defined(AQ_NO_SIMD) /* every x86-64 CPU; elsewhere (or built
+                                                 * with -DAQ_NO_SIMD) 64-bit words */
 /* The PEER field at p, with the separator after it (a blank or a line end,
  * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
  * caller has) are anything else, or the value is one strtod must read.

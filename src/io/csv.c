@@ -38,6 +38,7 @@
 #include <strings.h>
 
 #include "fixed.h"
+#include "number.h"
 #include "readers.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
@@ -244,6 +245,7 @@ typedef struct {
   char sep;
   long tcol;
   const int *chof;
+  aq_number_shape *shape; /* each column's (number.h) */
 } plain_row;
 
 /* The rows from c->pos on that are plain: ncols finite plain decimals, with
@@ -266,7 +268,7 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
       if (i > 0 && pr->sep == ' ' && q == fb)
         break; /* blank-separated fields need a blank between */
       double x;
-      size_t used = aq_number_parse_finite(q, (size_t)(end - q), 0, &x);
+      size_t used = aq_number_parse_shaped(&pr->shape[i], q, (size_t)(end - q), 0, &x);
       if (!used)
         break;
       q += used;
@@ -676,7 +678,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
    * quarter; the arrays grow if more come. */
   csv_rows rows = {raw, NULL, 0};
   size_t row_bytes = first_e - first_b + 1;
-  size_t cap = (n - first_b) / row_bytes + (n - first_b) / row_bytes / 4 + 16;
+  size_t cap = (n - first_b) / row_bytes + (n - first_b) / row_bytes / 16 + 16;
   aq_status st = aq_raw_file_alloc(raw, nch, name, err);
   if (st != AQ_OK)
     return st;
@@ -688,7 +690,10 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   size_t k = 0;
   b = first_b, e = first_e;
   long line = first_line;
-  const plain_row pr = {ncols, sep, tcol, chof};
+  aq_number_shape shape[MAXF];
+  for (size_t i = 0; i < ncols; i++)
+    shape[i].len = 0, shape[i].misses = 0;
+  const plain_row pr = {ncols, sep, tcol, chof, shape};
   for (;;) {
     if (k >= rows.cap && !rows_grow(&rows, 2 * rows.cap, tcol >= 0)) {
       st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");

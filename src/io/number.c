@@ -153,3 +153,112 @@ size_t aq_decimal_parse(const char *s, size_t n, double *x)
   size_t used = aq_number_parse(s + i, n - i, 0, x);
   return used ? i + used : 0;
 }
+
+/* ---- shapes (number.h) -------------------------------------------------- */
+
+static const uint64_t pow10_u64[AQ_NUMBER_SHAPE_MAX + 1] = {
+    1ULL,          10ULL,          100ULL,          1000ULL,
+    10000ULL,      100000ULL,      1000000ULL,      10000000ULL,
+    100000000ULL,  1000000000ULL,  10000000000ULL,  100000000000ULL,
+    1000000000000ULL, 10000000000000ULL, 100000000000000ULL, 1000000000000000ULL};
+
+
+/* The layout of the number t[0..len) (its sign left out), read with flags:
+ * digits, maybe a point and digits, maybe an exponent letter, sign and one
+ * to three digits.  Returns 1 with *sh filled, or 0 (sh->len 0) when the
+ * number is longer than a shape covers or laid out otherwise. */
+static int shape_learn(aq_number_shape *sh, const char *t, size_t len, unsigned flags)
+{
+  unsigned misses = sh->misses;
+  memset(sh, 0, sizeof *sh);
+  sh->misses = misses;
+  if (len == 0 || len > AQ_NUMBER_SHAPE_MAX)
+    return 0;
+  size_t i = 0;
+  while (i < len && aq_number_is_digit_(t[i]))
+    i++;
+  size_t int_digits = i, frac = 0;
+  if (i < len && t[i] == '.') {
+    sh->has_point = 1;
+    while (++i < len && aq_number_is_digit_(t[i]))
+      frac++;
+  }
+  size_t mant_end = i, ndig = int_digits + frac;
+  if (ndig == 0)
+    return 0;
+  if (i < len) { /* the exponent: letter, sign, digits */
+    if (!aq_number_is_exp_letter_(t[i], flags))
+      return 0;
+    sh->has_exp = 1;
+    sh->fixed[i] = 0xFF;
+    sh->plus[i] = sh->minus[i] = (unsigned char)t[i];
+    if (++i < len && (t[i] == '+' || t[i] == '-')) {
+      sh->exp_sign_at = (unsigned char)i;
+      sh->fixed[i] = 0xFF;
+      sh->plus[i] = '+';
+      sh->minus[i] = '-';
+      i++;
+    }
+    sh->exp_at = (unsigned char)i;
+    sh->exp_digits = (unsigned char)(len - i);
+    if (sh->exp_digits < 1 || sh->exp_digits > 3)
+      return 0;
+    for (; i < len; i++) {
+      if (!aq_number_is_digit_(t[i]))
+        return 0;
+      sh->digit[i] = 0xFF;
+    }
+  }
+  /* The mantissa's digits: place q from ndig - 1 down to 0.  A 4-byte block
+   * holds at most four of them (a point may sit between), so within a block
+   * a digit's weight is 10^(q - the block's lowest place) <= 1000. */
+  size_t q = ndig;
+  for (size_t j = 0; j < mant_end; j++) {
+    if (t[j] == '.') {
+      sh->fixed[j] = 0xFF;
+      sh->plus[j] = sh->minus[j] = '.';
+      continue;
+    }
+    q--;
+    sh->digit[j] = sh->mant[j] = 0xFF;
+    sh->block_scale[j / 4] = pow10_u64[q]; /* the block's last digit sets it */
+  }
+  q = ndig;
+  for (size_t j = 0; j < mant_end; j++)
+    if (t[j] != '.') {
+      q--;
+      uint64_t w = pow10_u64[q] / sh->block_scale[j / 4];
+      sh->weight[j] = (short)w;
+    }
+  sh->frac = (unsigned char)frac;
+  sh->flags = (unsigned char)flags;
+  sh->want = (1u << len) - 1;
+  sh->len = (unsigned char)len;
+  return 1;
+}
+
+/* After a number that did not fit: learn its shape at the 1st, 2nd, 4th,
+ * 8th ... miss in a row, so a column whose layout changes every row costs
+ * few relearnings. */
+static int learn_now(aq_number_shape *sh)
+{
+  unsigned k = ++sh->misses;
+  return (k & (k - 1)) == 0;
+}
+
+size_t aq_number_parse_unshaped_(aq_number_shape *sh, const char *s, size_t n, unsigned flags,
+                                 double *x)
+{
+  size_t used = aq_number_parse_finite(s, n, flags, x);
+#if AQ_NUMBER_SHAPES
+  if (used && learn_now(sh)) {
+    size_t off = s[0] == '-' || s[0] == '+';
+    shape_learn(sh, s + off, used - off, flags);
+  }
+#else
+  (void)sh;
+  (void)learn_now;
+  (void)shape_learn;
+#endif
+  return used;
+}

@@ -446,8 +446,12 @@ static const aq_units plausible_try[] = {AQ_UNITS_G,     AQ_UNITS_G10,
                                          AQ_UNITS_GAL,   AQ_UNITS_MMPS2,
                                          AQ_UNITS_MPS2,  AQ_UNITS_NMPS2};
 
-aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *path,
-                           const aq_read_opts *opts, aq_record *rec, aq_error *err)
+/* aq_record_decide; with in_place (the channel's own values, which the
+ * caller gives up on success), the samples are scaled there instead of in a
+ * new array. */
+static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
+                        const aq_read_opts *opts, aq_record *rec, aq_error *err,
+                        double *in_place)
 {
   memset(rec, 0, sizeof *rec);
   rec->azimuth_deg = rec->dip_deg = NAN;
@@ -507,24 +511,26 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
     factor = aq_units_to_mps2(used);
   }
 
-  double *acc = malloc(ch->npts * sizeof *acc);
+  double *acc = in_place ? in_place : malloc(ch->npts * sizeof *acc);
   if (!acc)
     return aq_error_set(err, AQ_ENOMEM, label, -1, -1, NULL,
                         "out of memory for %zu samples", ch->npts);
   double maxabs = 0;
   for (size_t k = 0; k < ch->npts; k++) {
-    acc[k] = ch->values[k] * factor;
-    if (!isfinite(acc[k])) {
-      free(acc);
+    double a = ch->values[k] * factor;
+    if (!isfinite(a)) {
+      if (!in_place)
+        free(acc);
       char fld[40];
       snprintf(fld, sizeof fld, "value %zu", k + 1);
       return aq_error_set(err, AQ_EVALUE, label, -1, -1, fld,
                           "expected a value that is finite in m/s2, got %g %s "
                           "(overflows)", ch->values[k], aq_units_name(used));
     }
-    double a = fabs(ch->values[k]);
-    if (a > maxabs)
-      maxabs = a;
+    double v = fabs(ch->values[k]);
+    if (v > maxabs)
+      maxabs = v;
+    acc[k] = a;
   }
 
   /* Plausibility: PGA in [AQ_PGA_MIN_G, AQ_PGA_MAX_G]. */
@@ -539,7 +545,8 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
         len += (size_t)snprintf(alt + len, sizeof alt - len, "%s%s (%.3g g)",
                                 len ? ", " : "", aq_units_name(plausible_try[i]), p);
     }
-    free(acc);
+    if (!in_place)
+      free(acc);
     char hint[AQ_UNITS_GLOB_MAX + 200];
     if (!alt[0])
       snprintf(hint, sizeof hint, "no units make it plausible%s",
@@ -564,7 +571,8 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
 
   aq_status s = aq_record_set_names_(rec, label, err);
   if (s != AQ_OK) {
-    free(acc);
+    if (!in_place)
+      free(acc);
     return s;
   }
   snprintf(rec->format, sizeof rec->format, "%s", raw->format);
@@ -588,6 +596,12 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   rec->to_mps2 = factor;
   rec->acc_mps2 = acc;
   return AQ_OK;
+}
+
+aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *path,
+                           const aq_read_opts *opts, aq_record *rec, aq_error *err)
+{
+  return decide(raw, ichan, path, opts, rec, err, NULL);
 }
 
 aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
@@ -706,8 +720,11 @@ static aq_status parse_one(const unsigned char *buf, size_t n, const char *path,
   size_t ichan = 0;
   if (s == AQ_OK)
     s = select_channel(&raw, want, path, opts, &ichan, err);
-  if (s == AQ_OK)
-    s = aq_record_decide(&raw, ichan, path, opts, rec, err);
+  if (s == AQ_OK) { /* the samples are scaled where the reader put them */
+    s = decide(&raw, ichan, path, opts, rec, err, raw.chan[ichan].values);
+    if (s == AQ_OK)
+      raw.chan[ichan].values = NULL; /* rec->acc_mps2 now */
+  }
   aq_raw_file_free(&raw);
   return s;
 }
