@@ -50,6 +50,7 @@
 #define CSV_DT_SIG_DIGITS 9
 #define CSV_FIELD_MAX 128 /* characters kept of one field */
 #define CSV_NAME_MAX 64   /* characters kept of a column name */
+#define CSV_COLS_MAX 64   /* columns a file may have */
 
 typedef struct {
   const char *s;
@@ -258,6 +259,11 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
 {
   const char *s = c->s, *end = s + c->n;
   const char *p = s + c->pos;
+  double *dst[CSV_COLS_MAX]; /* where each column's values go (NULL: nowhere) */
+  for (size_t i = 0; i < pr->ncols; i++)
+    dst[i] = pr->chof[i] >= 0 ? rows->raw->chan[pr->chof[i]].values
+             : (long)i == pr->tcol ? rows->tt
+                                   : NULL;
   while (p < end && k < rows->cap) {
     const char *q = p;
     size_t i = 0;
@@ -283,10 +289,8 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
       } else if (q < end && *q != '\n' && *q != '\r') {
         break;
       }
-      if (pr->chof[i] >= 0)
-        rows->raw->chan[pr->chof[i]].values[k] = x;
-      if ((long)i == pr->tcol)
-        rows->tt[k] = x;
+      if (dst[i])
+        dst[i][k] = x;
     }
     if (i < pr->ncols)
       break; /* not plain: values written to row k are overwritten later */
@@ -486,7 +490,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
   if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte-order mark */
     c.pos = 3;
   size_t b, e;
-  enum { MAXF = 64 };
+  enum { MAXF = CSV_COLS_MAX };
   span f[MAXF];
   double x;
 

@@ -183,7 +183,8 @@ static inline size_t aq_number_parse_shaped(aq_number_shape *shape, const char *
   if (shape->len && n > AQ_NUMBER_SHAPE_WINDOW && flags == shape->flags) {
     size_t off = s[0] == '-' || s[0] == '+';
     if (n - off >= AQ_NUMBER_SHAPE_WINDOW && aq_number_shape_read_(shape, s, off, x)) {
-      shape->misses = 0;
+      if (shape->misses) /* (a store only when it changes) */
+        shape->misses = 0;
       return off + shape->len;
     }
   }
