@@ -220,12 +220,25 @@ static void draw_fragility(const cap *c)
              c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
              f->n, f->n - f->ncol);
   plmtex("t", 1.2, 0.5, 0.5, title);
-  const char *tx[] = {"lognormal fit", "median's confidence interval",
-                      "first collapses (i/n)", "censored at the cap"};
-  int col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG}, st[] = {1, -1, 0, 0};
-  const char *sym[] = {"", "", "●", "○"};
-  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 4, tx, col, st,
-                 sym);
+  /* a legend entry only for what is drawn */
+  const char *all_tx[] = {"lognormal fit", "median's confidence interval",
+                          "first collapses (i/n)", "censored at the cap"};
+  const int all_col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG},
+            all_st[] = {1, -1, 0, 0};
+  const char *all_sym[] = {"", "", "●", "○"};
+  const int drawn[] = {fitted, band, f->ncol > 0, f->n > f->ncol};
+  const char *tx[4], *sym[4];
+  int col[4], st[4], k = 0;
+  for (int i = 0; i < 4; i++)
+    if (drawn[i]) {
+      tx[k] = all_tx[i];
+      sym[k] = all_sym[i];
+      col[k] = all_col[i];
+      st[k++] = all_st[i];
+    }
+  if (k > 0)
+    aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, k, tx, col, st,
+                   sym);
 }
 
 static int reversed(const aq_h5_capacity_row *r)
