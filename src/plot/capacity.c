@@ -485,8 +485,9 @@ static void lines_csv(FILE *f, const cap *c)
     const aq_h5_capacity_row *r = &t->row[c->row[k]];
     for (size_t i = 0; i < r->point_count; i++) {
       const aq_capacity_point *p = &t->point[r->point_start + i];
-      fprintf(f, "%s,%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->record, r->polarity,
-              c->rec[k] + 1, p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
+      aq_plot_csv_text(f, r->record);
+      fprintf(f, "%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->polarity, c->rec[k] + 1,
+              p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
               p->peak_rotation_over_qc, p->collapsed, p->collapse_time_s);
     }
   }
@@ -501,8 +502,8 @@ static void lines_csv(FILE *f, const cap *c)
       size_t q = (size_t)(r->i[I_START] + j);
       double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
       double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
-      fprintf(f, "%s,%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->record, r->polarity,
-              r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
+      aq_plot_csv_text(f, r->record);
+      fprintf(f, "%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->polarity, r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
     }
   }
 }
