@@ -29,9 +29,24 @@
 #include "opt.h"
 #include "suite_slot.h"
 
-/* Records in flight per worker thread: enough that a worker finishing a
- * short record finds the next one while a long one is still running. */
+/* Records in flight per worker thread: at least enough that a worker
+ * finishing a short record finds the next one while a long one is still
+ * running.  A record whose runs are all done keeps only what writing it
+ * needs (slot_shed), a few KB, so the window widens to
+ * AQ_SUITE_WINDOW_MAX_PER_THREAD while the finished records it may hold
+ * stay within AQ_SUITE_WINDOW_BYTES: with 2 per thread, a worker done with
+ * the short records behind a long one (1.6 ms against 0.3-0.6 ms in the
+ * quiet bench suite) waited for it, and for the writer, 70 times per 200
+ * records at -j 2 (15-35 % of its time).  With --history or --store-records
+ * a finished record keeps arrays of unbounded size: the window stays at the
+ * minimum. */
 #define AQ_SUITE_WINDOW_PER_THREAD 2
+#define AQ_SUITE_WINDOW_MAX_PER_THREAD 16
+#define AQ_SUITE_WINDOW_BYTES (64L << 20)
+/* With -o the writer hashes each record file (record_sha256) from the bytes
+ * its reader read, kept in the window up to this total (a larger file is
+ * read again to hash it): reading it again cost 15 % of the hash. */
+#define AQ_SUITE_KEEP_BYTES (64L << 20)
 /* Blocks up to this size come from the heap, not from mmap: every record
  * allocates and frees arrays of 10^4-10^5 doubles, and fresh mmaps cost a
  * page fault per page each time (a quarter of the suite's CPU time). */
@@ -73,13 +88,17 @@ typedef struct {
   size_t nruns;             /* per record: narch * nscale */
   aq_signal_ws *ws;
   pthread_mutex_t lock;
-  pthread_cond_t cond;      /* a slot changed state or was freed */
+  pthread_cond_t cond;      /* for the workers: a slot was freed, a record
+                             * has runs for any thread, or the end is near */
+  pthread_cond_t wcond;     /* for the writer: the next record is done */
   rec_slot *slots;
   size_t window;
+  size_t keep_max;          /* a record file's bytes kept up to this size */
   size_t next_claim, next_write;
   int stop;                 /* the writer gave up: workers stop claiming */
   size_t runs_done;         /* for the progress line */
   double read_s, process_s, run_s;
+  double wait_s;            /* the workers', waiting for work or room */
   aq_text_layout layout;    /* with cfg->aligned */
   FILE *line;               /* a row is formatted here first (text_row) */
   char *line_buf;
@@ -126,7 +145,36 @@ static void slot_clear(suite *S, rec_slot *r)
   free(r->steps);
   free(r->steps_st);
   free(r->steps_err);
+  free(r->bytes);
   memset(r, 0, sizeof *r);
+}
+
+/* Free what record r's runs needed and writing it does not (the processed
+ * samples, unless --store-records writes them, and the step lists): a
+ * finished record waiting for the writer holds its metadata, measures and
+ * run results only.  Called by the thread that finished its last run. */
+static void slot_shed(suite *S, rec_slot *r)
+{
+  if (!S->cfg->store_records) {
+    free(r->proc.acc_mps2);
+    r->proc.acc_mps2 = NULL; /* the metadata stays: the writer needs it */
+  }
+  aq_processed_free(&r->h2.proc);
+  aq_processed_free(&r->v.proc);
+  r->h2.have_proc = r->v.have_proc = 0;
+  if (r->steps)
+    for (size_t k = 0; k < S->nscale; k++)
+      if (r->steps_st[k] == AQ_OK)
+        aq_steps_free(&r->steps[k]);
+  if (r->unit && r->unit_st == AQ_OK)
+    aq_steps_free(&r->unit_steps);
+  r->unit = 0;
+  free(r->steps);
+  free(r->steps_st);
+  free(r->steps_err);
+  r->steps = NULL;
+  r->steps_st = NULL;
+  r->steps_err = NULL;
 }
 
 /* Run i of record r: arch *ai, scale slot *k, azimuth *z. */
@@ -178,11 +226,14 @@ static void fail_runs(suite *S, rec_slot *r)
 }
 
 /* Read one component record (*have_rec set on success); a horizontal one
- * must not be identified as vertical (aq_record_check_horizontal). */
+ * must not be identified as vertical (aq_record_check_horizontal).  With
+ * bytes, the file's bytes as aq_record_read_keep gives them. */
 static aq_status read_component(suite *S, const char *path, int horizontal,
-                                aq_record *rec, int *have_rec, aq_error *err)
+                                aq_record *rec, int *have_rec, unsigned char **bytes,
+                                size_t *nbytes, aq_error *err)
 {
-  aq_status s = aq_record_read(path, &S->cfg->read, rec, err);
+  aq_status s = bytes ? aq_record_read_keep(path, &S->cfg->read, rec, bytes, nbytes, err)
+                      : aq_record_read(path, &S->cfg->read, rec, err);
   if (s == AQ_OK && horizontal &&
       (s = aq_record_check_horizontal(rec, &S->cfg->read, err)) != AQ_OK)
     aq_record_free(rec);
@@ -210,12 +261,14 @@ static aq_status process_component(suite *S, aq_record *rec, aq_processed *proc,
 static aq_status read_second(suite *S, rec_slot *r)
 {
   const aq_orient_motion *m = r->motion;
-  aq_status s = read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, &r->err);
+  aq_status s =
+      read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, NULL, NULL, &r->err);
   if (s != AQ_OK)
     return s;
   r->run_v = m->path[2] && S->cfg->vertical;
   if (r->run_v &&
-      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
+      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, NULL, NULL,
+                          &r->err)) != AQ_OK)
     return s;
   const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
   size_t nc = r->run_v ? 3 : 2;
@@ -282,15 +335,20 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
 /* The record file's identity in the results (compare keys on it), when
  * prepare_record asked for it: hashed by the thread that writes the record
  * (or sends it to the leader), so that with -o the hash overlaps the
- * workers' reading and processing of the next records. */
+ * workers' reading and processing of the next records; from the bytes the
+ * reader read when they were kept, else from the file. */
 static void record_sha256(const suite *S, rec_slot *r)
 {
   if (!r->want_sha)
     return;
   r->want_sha = 0;
   aq_error herr;
-  if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
+  if (r->bytes)
+    aq_sha256_hex(r->bytes, r->nbytes, r->sha256);
+  else if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
     r->sha256[0] = '\0'; /* the reader says why it cannot be read */
+  free(r->bytes);
+  r->bytes = NULL;
 }
 
 /* Read, process and measure record r->index (both components of a motion),
@@ -322,7 +380,12 @@ static int prepare_record(suite *S, rec_slot *r)
   double t0 = now_s();
   const char *first = record_file(S, r->index);
   r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
-  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
+  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec,
+                               r->want_sha ? &r->bytes : NULL, &r->nbytes, &r->err);
+  if (r->bytes && r->nbytes > S->keep_max) { /* record_sha256 reads it again */
+    free(r->bytes);
+    r->bytes = NULL;
+  }
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
   double t1 = now_s();
@@ -491,6 +554,18 @@ typedef struct {
   aq_stepper **st; /* one per arch, this thread's own */
 } worker_arg;
 
+/* Record r is done (S->lock held): the writer is woken if r is the one it
+ * waits for, the workers only once every record is claimed (then they wait
+ * for the last records to finish before they stop). */
+static void slot_done(suite *S, rec_slot *r)
+{
+  r->state = SLOT_DONE;
+  if (r->index == S->next_write)
+    pthread_cond_signal(&S->wcond);
+  if (S->next_claim >= S->cfg->nrecords)
+    pthread_cond_broadcast(&S->cond);
+}
+
 static void *worker(void *arg)
 {
   worker_arg *w = arg;
@@ -514,9 +589,11 @@ static void *worker(void *arg)
       pthread_mutex_lock(&S->lock);
       S->run_s += r->runs[i].run_s;
       S->runs_done++;
-      if (++r->runs_done == r->nruns) {
-        r->state = SLOT_DONE;
-        pthread_cond_broadcast(&S->cond);
+      if (++r->runs_done == r->nruns) { /* the last: nobody else uses r now */
+        pthread_mutex_unlock(&S->lock);
+        slot_shed(S, r);
+        pthread_mutex_lock(&S->lock);
+        slot_done(S, r);
       }
       continue;
     }
@@ -533,11 +610,15 @@ static void *worker(void *arg)
       S->process_s += r->process_s;
       if (ok && r->nruns > 0) {
         r->state = SLOT_READY;
+        if (r->nruns > 1) /* runs for the other threads too */
+          pthread_cond_broadcast(&S->cond);
       } else {
         S->runs_done += r->runs ? r->nruns : 0;
-        r->state = SLOT_DONE;
+        pthread_mutex_unlock(&S->lock);
+        slot_shed(S, r);
+        pthread_mutex_lock(&S->lock);
+        slot_done(S, r);
       }
-      pthread_cond_broadcast(&S->cond);
       continue;
     }
     /* 3. nothing left to hand out, or wait for the writer or a record */
@@ -551,7 +632,9 @@ static void *worker(void *arg)
       if (!pending)
         break;
     }
+    double t0 = now_s();
     pthread_cond_wait(&S->cond, &S->lock);
+    S->wait_s += now_s() - t0;
   }
   pthread_mutex_unlock(&S->lock);
   return NULL;
@@ -1159,6 +1242,24 @@ static aq_status farm_suite(suite *S, aq_h5_writer *h5, aq_journal *J, size_t do
   return ws;
 }
 
+/* Records in flight for nthreads workers (see AQ_SUITE_WINDOW_PER_THREAD). */
+static size_t suite_window(const suite *S, size_t nthreads)
+{
+  const aq_suite_cfg *c = S->cfg;
+  size_t per = AQ_SUITE_WINDOW_PER_THREAD;
+  if (c->history || c->store_records)
+    return nthreads * per;
+  size_t naz = 1; /* a finished record: its slot and its runs */
+  for (size_t i = 0; c->motions && i < c->nrecords; i++)
+    if (c->motions[i] && c->nazimuth > naz)
+      naz = c->nazimuth;
+  double bytes = (double)sizeof(rec_slot) + (double)(S->nruns * naz) * sizeof(run_slot);
+  while (per < AQ_SUITE_WINDOW_MAX_PER_THREAD &&
+         (double)(nthreads * (per + 1)) * bytes <= (double)AQ_SUITE_WINDOW_BYTES)
+    per++;
+  return nthreads * per;
+}
+
 static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
@@ -1178,7 +1279,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   long nthreads = c->threads < 1 ? 1 : c->threads;
   if ((size_t)nthreads > c->nrecords)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
-  S.window = (size_t)nthreads * AQ_SUITE_WINDOW_PER_THREAD;
+  S.window = suite_window(&S, (size_t)nthreads);
+  S.keep_max = (size_t)AQ_SUITE_KEEP_BYTES / S.window;
   int rc = AQ_EXIT_OK;
   aq_status ws = AQ_OK;
   aq_journal *J = NULL; /* with -o: the records written so far */
@@ -1310,6 +1412,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   /* Workers, each with its own steppers. */
   pthread_mutex_init(&S.lock, NULL);
   pthread_cond_init(&S.cond, NULL);
+  pthread_cond_init(&S.wcond, NULL);
   pthread_t *tid = calloc((size_t)nthreads, sizeof *tid);
   worker_arg *wa = calloc((size_t)nthreads, sizeof *wa);
   long started = 0;
@@ -1349,7 +1452,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
         ts.tv_sec++;
         ts.tv_nsec -= 1000000000L;
       }
-      pthread_cond_timedwait(&S.cond, &S.lock, &ts);
+      pthread_cond_timedwait(&S.wcond, &S.lock, &ts);
       if (c->progress && now_s() - last_progress >= AQ_SUITE_PROGRESS_PERIOD_S) {
         progress(&S, t_start, total, 0);
         last_progress = now_s();
@@ -1377,7 +1480,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     S.next_write = i + 1;
     if (ws != AQ_OK)
       S.stop = 1;
-    pthread_cond_broadcast(&S.cond);
+    pthread_cond_broadcast(&S.cond); /* room in the window */
     pthread_mutex_unlock(&S.lock);
     if (ws != AQ_OK)
       break;
@@ -1394,6 +1497,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   for (size_t k = 0; k < S.window; k++)
     slot_clear(&S, &S.slots[k]);
   pthread_cond_destroy(&S.cond);
+  pthread_cond_destroy(&S.wcond);
   pthread_mutex_destroy(&S.lock);
   if (c->progress)
     progress(&S, t_start, total, 1);
@@ -1410,6 +1514,7 @@ written:
   stats.read_s = S.read_s;
   stats.process_s = S.process_s;
   stats.run_s = S.run_s;
+  stats.wait_s = S.wait_s;
   if (h5) {
     double t0 = now_s();
     aq_h5_timing tm = {now_s() - t_start, S.read_s, S.process_s, S.run_s,
