@@ -336,9 +336,19 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
  * prepare_record asked for it: hashed by the thread that writes the record
  * (or sends it to the leader), so that with -o the hash overlaps the
  * workers' reading and processing of the next records; from the bytes the
- * reader read when they were kept, else from the file. */
-static void record_sha256(const suite *S, rec_slot *r)
+ * reader read when they were kept, else from the file.  next, if not NULL,
+ * is the next record, done too: when both have their bytes they are hashed
+ * together (aq_sha256_hex2, 0.6 of the time of one after the other). */
+static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
 {
+  if (next && r->want_sha && r->bytes && next->want_sha && next->bytes) {
+    aq_sha256_hex2(r->bytes, r->nbytes, r->sha256, next->bytes, next->nbytes, next->sha256);
+    r->want_sha = next->want_sha = 0;
+    free(r->bytes);
+    free(next->bytes);
+    r->bytes = next->bytes = NULL;
+    return;
+  }
   if (!r->want_sha)
     return;
   r->want_sha = 0;
@@ -1068,7 +1078,7 @@ static rec_slot *farm_acquire(farm_ctx *X, size_t i)
       X->users[lru] = 1;
       pthread_mutex_unlock(&X->lock);
       prepare_record(X->S, r);
-      record_sha256(X->S, r); /* before the slot is shared */
+      record_sha256(X->S, r, NULL); /* before the slot is shared */
       pthread_mutex_lock(&X->lock);
       r->state = SLOT_READY;
       pthread_cond_broadcast(&X->cond);
@@ -1458,12 +1468,15 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
         last_progress = now_s();
       }
     }
+    rec_slot *next = &S.slots[(i + 1) % S.window]; /* the window holds 2 or more */
+    if (!(i + 1 < c->nrecords && next->state == SLOT_DONE && next->index == i + 1))
+      next = NULL; /* not done yet: no worker touches a record once it is */
     pthread_mutex_unlock(&S.lock);
     double t0 = now_s();
     /* clear the line before diagnostics, and before rows on the terminal */
     if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
-    record_sha256(&S, r);
+    record_sha256(&S, r, next);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
       aq_jbuf jb = {0};
