@@ -181,8 +181,11 @@ AQ_TEST(io_decide_vertical)
                    AQ_OK,
                "%s", e.message)) {
     aq_check(r.vertical == 1 && strcmp(r.channel, "HNZ") == 0, "HNZ vertical %d", r.vertical);
+    /* SAC CMPINC 0: the dip says it, not the name */
     aq_check(aq_record_check_horizontal(&r, &ro, &e) == AQ_EUNSUPPORTED &&
-                 strstr(e.message, "HNZ") && strstr(e.message, "--accept-vertical"),
+                 strstr(e.message, "HNZ") && strstr(e.message, "--accept-vertical") &&
+                 strstr(e.message, "by its dip, -90 deg") &&
+                 r.vertical_by == AQ_VERTICAL_BY_DIP,
              "refused: %s", e.message);
     ro.accept_vertical = 1;
     aq_check(aq_record_check_horizontal(&r, &ro, &e) == AQ_OK, "accepted");
@@ -208,8 +211,39 @@ AQ_TEST(io_decide_vertical)
     if (aq_check(parse(text, "col.csv", NULL, &r, &e) == AQ_OK, "%s: %s", c[i].header,
                  e.message)) {
       aq_check(r.vertical == c[i].vertical, "%s: vertical %d", c[i].header, r.vertical);
+      /* a CSV column states no orientation: only its name can say vertical */
+      aq_check(r.vertical_by == (c[i].vertical ? AQ_VERTICAL_BY_NAME : AQ_VERTICAL_BY_NONE),
+               "%s: vertical_by %d", c[i].header, r.vertical_by);
+      if (c[i].vertical)
+        aq_check(aq_record_check_horizontal(&r, NULL, &e) == AQ_EUNSUPPORTED &&
+                     strstr(e.message, "by its channel name"),
+                 "%s: %s", c[i].header, e.message);
       aq_record_free(&r);
     }
+  }
+}
+
+/* K-NET states the direction (Dir. UD): refused "as the file states"; the
+ * EW file of the same station runs. */
+AQ_TEST(io_decide_vertical_stated)
+{
+  aq_record r;
+  aq_error e;
+  if (aq_check(aq_record_read(REC_DIR "AOM0170806140843.UD", NULL, &r, &e) == AQ_OK, "%s",
+               e.message)) {
+    aq_check(r.vertical == 1 && r.vertical_by == AQ_VERTICAL_BY_STATED, "UD: %d by %d",
+             r.vertical, r.vertical_by);
+    aq_check(aq_record_check_horizontal(&r, NULL, &e) == AQ_EUNSUPPORTED &&
+                 strstr(e.message, "as the file states"),
+             "UD refused: %s", e.message);
+    aq_record_free(&r);
+  }
+  if (aq_check(aq_record_read(REC_DIR "AOM0170806140843.EW", NULL, &r, &e) == AQ_OK, "%s",
+               e.message)) {
+    aq_check(r.vertical == 0 && r.vertical_by == AQ_VERTICAL_BY_NONE, "EW: %d by %d",
+             r.vertical, r.vertical_by);
+    aq_check(aq_record_check_horizontal(&r, NULL, &e) == AQ_OK, "EW runs");
+    aq_record_free(&r);
   }
 }
 

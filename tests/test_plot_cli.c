@@ -1010,3 +1010,36 @@ AQ_TEST(plot_capacity_without_scan_points)
   aq_check(after && after[strlen(hdr)] == '\n', "no point rows");
   free(csv);
 }
+
+/* A record whose name holds a comma and a quote: its --data rows quote it
+ * (RFC 4180, the inner quote doubled), so a CSV reader sees one field. */
+AQ_TEST(plot_capacity_data_quotes_record_names)
+{
+  char dir[512], rec[600], h5[600], out[600], data[600], args[2048], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(rec, sizeof rec, "%s/north,\"south\".at2", dir);
+  size_t n = 0;
+  char *bytes = aq_test_read_file(RECORD, &n);
+  FILE *f = bytes ? fopen(rec, "wb") : NULL;
+  aq_check(f && fwrite(bytes, 1, n, f) == n, "copy %s to %s", RECORD, rec);
+  if (f)
+    fclose(f);
+  free(bytes);
+  snprintf(h5, sizeof h5, "%s/q.h5", dir);
+  snprintf(args, sizeof args, "capacity '%s' --arch " ARCH " --resolution 0.1 -o %s", rec, h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "capacity: exit %d %s", rc, err);
+  snprintf(out, sizeof out, "%s/q.png", dir);
+  snprintf(data, sizeof data, "%s/q.csv", dir);
+  snprintf(args, sizeof args, "plot capacity %s -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL), want[700];
+  snprintf(want, sizeof want, "\n\"%s/north,\"\"south\"\".at2\",normal,", dir);
+  size_t rows = 0;
+  for (const char *p = csv ? strstr(csv, want) : NULL; p; p = strstr(p + 1, want))
+    rows++;
+  /* every point row and the interval rows: at least the scan's points */
+  aq_check(rows >= 10, "%zu rows quote the name as %s", rows, want + 1);
+  free(csv);
+}

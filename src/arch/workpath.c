@@ -413,12 +413,13 @@ static void piece_g(const double f[NF][3], const double fa[NF][3], double v[NPC_
 /* Chebyshev coefficients c of dx/ds, dy/ds, M and the acceleration's
  * pieces gc, ga, gb (path.h) on [a, b], and their tail relative to the
  * scales (dx/ds and dy/ds together, M, gc, ga and gb together: their
- * largest magnitudes on the interval); -1 when the linkage fails. */
+ * largest magnitudes on the interval); fa the exact values at a (for
+ * piece_append); -1 when the linkage fails. */
 static int piece_fit(piece_ctx *pc, double a, double b, double c[NPC_F][PN],
-                     double *tail)
+                     double *tail, double fa[NF][3])
 {
   double v[PN][NPC_F], mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  double sdxy = 0, sm = 0, sgc = 0, sgab = 0, fa[NF][3];
+  double sdxy = 0, sm = 0, sgc = 0, sgab = 0;
   if (exact_f(pc->w, a, fa, NULL) != 0)
     return -1;
   for (int j = 0; j < PN; j++) {
@@ -449,12 +450,11 @@ static int piece_fit(piece_ctx *pc, double a, double b, double c[NPC_F][PN],
   return 0;
 }
 
-/* Append the piece [a, b] from its Chebyshev coefficients; -1 on failure. */
-static int piece_append(aq_workpath *w, double a, double b, double c[NPC_F][PN])
+/* Append the piece [a, b] from its Chebyshev coefficients and the exact
+ * values fa at a; -1 on failure. */
+static int piece_append(aq_workpath *w, double a, double b, double c[NPC_F][PN],
+                        const double fa[NF][3])
 {
-  double fa[NF][3];
-  if (exact_f(w, a, fa, NULL) != 0)
-    return -1;
   if (w->npc == w->pcap) {
     size_t cap = w->pcap ? 2 * w->pcap : 16;
     double *bp = realloc(w->pbp, (cap + 1) * sizeof *bp);
@@ -526,14 +526,14 @@ static void piece_refine(piece_ctx *pc, double a, double b, int depth,
     pc->failed = pc->too_many = 1;
     return;
   }
-  double c[NPC_F][PN], tail;
-  if (piece_fit(pc, a, b, c, &tail) != 0) {
+  double c[NPC_F][PN], tail, fa[NF][3];
+  if (piece_fit(pc, a, b, c, &tail, fa) != 0) {
     pc->failed = 1;
     return;
   }
   if (tail <= PIECE_TAIL_TOL || depth >= PIECE_MAX_DEPTH ||
       (tail > TABLE_STALL * parent_tail && tail < PIECE_ROUNDOFF)) {
-    if (piece_append(pc->w, a, b, c) != 0)
+    if (piece_append(pc->w, a, b, c, fa) != 0)
       pc->failed = 1;
     return;
   }

@@ -552,10 +552,15 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   }
 
   /* Vertical: what the file states, else its dip, else the channel name. */
-  int vert = ch->vertical;
-  if (vert < 0)
-    vert = (isfinite(ch->dip_deg) && fabs(ch->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG) ||
-           channel_says_vertical(ch->channel);
+  aq_vertical_by by = AQ_VERTICAL_BY_NONE;
+  if (ch->vertical > 0)
+    by = AQ_VERTICAL_BY_STATED;
+  else if (ch->vertical < 0 && isfinite(ch->dip_deg) &&
+           fabs(ch->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG)
+    by = AQ_VERTICAL_BY_DIP;
+  else if (ch->vertical < 0 && channel_says_vertical(ch->channel))
+    by = AQ_VERTICAL_BY_NAME;
+  int vert = by != AQ_VERTICAL_BY_NONE;
 
   aq_status s = aq_record_set_names_(rec, label, err);
   if (s != AQ_OK) {
@@ -580,6 +585,7 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   rec->azimuth_deg = ch->azimuth_deg;
   rec->dip_deg = ch->dip_deg;
   rec->vertical = vert;
+  rec->vertical_by = (int)by;
   rec->to_mps2 = factor;
   rec->acc_mps2 = acc;
   return AQ_OK;
@@ -591,10 +597,12 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
   char why[64];
-  if (isfinite(rec->dip_deg) && fabs(rec->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG)
-    snprintf(why, sizeof why, "dip %g deg", rec->dip_deg);
+  if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
+    snprintf(why, sizeof why, "by its dip, %g deg", rec->dip_deg);
+  else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
+    snprintf(why, sizeof why, "by its channel name");
   else
-    snprintf(why, sizeof why, "by its name");
+    snprintf(why, sizeof why, "as the file states");
   return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
                       "expected a horizontal component, got channel \"%s\", which "
                       "the file identifies as vertical (%s); a vertical "

@@ -13,6 +13,14 @@
 
 #include "../error.h"
 
+/* How aq_record_decide knew a channel is vertical (aq_record.vertical_by). */
+typedef enum {
+  AQ_VERTICAL_BY_NONE = 0, /* not vertical */
+  AQ_VERTICAL_BY_STATED,   /* the file states it (orientation code, direction word) */
+  AQ_VERTICAL_BY_DIP,      /* its dip or incidence angle */
+  AQ_VERTICAL_BY_NAME      /* its channel or column name (Z, UD, Up, vert, ...) */
+} aq_vertical_by;
+
 typedef struct {
   char *path;           /* file as given on the command line */
   char *name;           /* short name: file name without directories */
@@ -29,6 +37,7 @@ typedef struct {
   double azimuth_deg;   /* direction of positive motion, deg from north; NAN if unknown */
   double dip_deg;       /* SEED: 0 horizontal, -90 up, +90 down; NAN if unknown */
   int vertical;         /* 1: the file identifies the channel as vertical */
+  int vertical_by;      /* how (aq_vertical_by): stated, dip or channel name; 0 if not */
   char event[96];       /* event as the file states it, "" if none */
   char processing[160]; /* the agency's processing as stated, "" if none */
   char units_stated[24];/* units the file states ("" if none) */

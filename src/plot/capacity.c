@@ -220,12 +220,25 @@ static void draw_fragility(const cap *c)
              c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
              f->n, f->n - f->ncol);
   plmtex("t", 1.2, 0.5, 0.5, title);
-  const char *tx[] = {"lognormal fit", "median's confidence interval",
-                      "first collapses (i/n)", "censored at the cap"};
-  int col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG}, st[] = {1, -1, 0, 0};
-  const char *sym[] = {"", "", "●", "○"};
-  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, 4, tx, col, st,
-                 sym);
+  /* a legend entry only for what is drawn */
+  const char *all_tx[] = {"lognormal fit", "median's confidence interval",
+                          "first collapses (i/n)", "censored at the cap"};
+  const int all_col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG},
+            all_st[] = {1, -1, 0, 0};
+  const char *all_sym[] = {"", "", "●", "○"};
+  const int drawn[] = {fitted, band, f->ncol > 0, f->n > f->ncol};
+  const char *tx[4], *sym[4];
+  int col[4], st[4], k = 0;
+  for (int i = 0; i < 4; i++)
+    if (drawn[i]) {
+      tx[k] = all_tx[i];
+      sym[k] = all_sym[i];
+      col[k] = all_col[i];
+      st[k++] = all_st[i];
+    }
+  if (k > 0)
+    aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, k, tx, col, st,
+                   sym);
 }
 
 static int reversed(const aq_h5_capacity_row *r)
@@ -472,8 +485,9 @@ static void lines_csv(FILE *f, const cap *c)
     const aq_h5_capacity_row *r = &t->row[c->row[k]];
     for (size_t i = 0; i < r->point_count; i++) {
       const aq_capacity_point *p = &t->point[r->point_start + i];
-      fprintf(f, "%s,%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->record, r->polarity,
-              c->rec[k] + 1, p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
+      aq_plot_csv_text(f, r->record);
+      fprintf(f, "%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->polarity, c->rec[k] + 1,
+              p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
               p->peak_rotation_over_qc, p->collapsed, p->collapse_time_s);
     }
   }
@@ -488,8 +502,8 @@ static void lines_csv(FILE *f, const cap *c)
       size_t q = (size_t)(r->i[I_START] + j);
       double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
       double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
-      fprintf(f, "%s,%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->record, r->polarity,
-              r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
+      aq_plot_csv_text(f, r->record);
+      fprintf(f, "%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->polarity, r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
     }
   }
 }

@@ -204,6 +204,21 @@ aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok
   return AQ_OK;
 }
 
+void aq_plot_csv_text(FILE *f, const char *s)
+{
+  if (!strpbrk(s, ",\"\n\r")) {
+    fprintf(f, "%s,", s);
+    return;
+  }
+  fputc('"', f);
+  for (; *s; s++) {
+    if (*s == '"')
+      fputc('"', f);
+    fputc(*s, f);
+  }
+  fputs("\",", f);
+}
+
 void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles)
 {
   for (size_t i = 0; i < n; i++)

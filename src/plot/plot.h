@@ -95,6 +95,10 @@ FILE *aq_plot_csv_open(const char *target, char *tmp, size_t cap, aq_error *err)
 aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok,
                             aq_error *err);
 
+/* A text field of a --data CSV and its comma, quoted (RFC 4180: inner
+ * quotes doubled) when it holds a comma, a quote or a line break. */
+void aq_plot_csv_text(FILE *f, const char *s);
+
 /* "# axis: TITLE" for each of the figure's n axis titles (PLplot escapes
  * as drawn), before the CSV's header; readers skip them (pandas: comment='#'). */
 void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);

@@ -35,22 +35,6 @@ static const char *base(const char *p)
   return b ? b + 1 : p;
 }
 
-/* A CSV field and its comma, quoted when it holds a comma or a quote. */
-static void csv_text(FILE *f, const char *s)
-{
-  if (!strpbrk(s, ",\"\n")) {
-    fprintf(f, "%s,", s);
-    return;
-  }
-  fputc('"', f);
-  for (; *s; s++) {
-    if (*s == '"')
-      fputc('"', f);
-    fputc(*s, f);
-  }
-  fputs("\",", f);
-}
-
 static int draw(void *ctx, aq_error *err)
 {
   (void)err;
@@ -164,8 +148,8 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
     for (size_t i = 0; i < m.nrec; i++)
       for (size_t j = 0; j < m.narch; j++)
       {
-        csv_text(f, m.rec[i]);
-        csv_text(f, m.arch[j]);
+        aq_plot_csv_text(f, m.rec[i]);
+        aq_plot_csv_text(f, m.arch[j]);
         fprintf(f, "%d,%.17g\n", m.coll[i * m.narch + j], m.v[i * m.narch + j]);
       }
     rc = aq_plot_csv_close(f, tmp, data, 1, err);
