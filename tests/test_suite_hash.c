@@ -1,10 +1,14 @@
-/* test_suite_hash.c: the sha256 a suite stores per record (-o) is that of
- * the record file's bytes, as coreutils' sha256sum computes it, for records
- * of several formats, at -j 1 and -j 3, without --history (the widened
- * window, the writer hashing the bytes the reader kept) and with it (the
- * narrow window); a record file larger than the bytes a suite keeps per
- * record (read again to hash it) and one that cannot be parsed (hashed all
- * the same) among them.  Text rows and results identical across -j. */
+/* test_suite_hash.c: what the suite's threads share out.
+ *
+ * The sha256 a suite stores per record (-o) is that of the record file's
+ * bytes, as coreutils' sha256sum computes it, for records of several
+ * formats, at -j 1 and -j 3, without --history (the widened window, the
+ * writer hashing the bytes the reader kept, two records at once) and with
+ * it (the narrow window); a record file larger than the bytes a suite keeps
+ * per record (read again to hash it) and one that cannot be parsed (hashed
+ * all the same) among them.  Text rows and results identical across -j.
+ * An output that cannot be opened while the workers start fails cleanly.
+ * Records named on several threads come in the operands' order. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -161,4 +165,52 @@ AQ_TEST(suite_output_failure_while_workers_start)
   char cmd[1200];
   snprintf(cmd, sizeof cmd, "ls '%s' | grep -q 'out.h5.tmp'", dir);
   aq_check(system(cmd) != 0, "no temporary left");
+}
+
+/* The records of a suite are named on several threads at -j 3 (each file
+ * read, a multi-channel one parsed for its channels): the same records in
+ * the same order as at -j 1, the operands' order with each file's channels
+ * in file order (2-ECU.dat: U, N, E, its "#DataSequence: Time U(+); N(+);
+ * E(+)" line). */
+AQ_TEST(suite_records_named_in_order_on_threads)
+{
+  char dir[512], list[16384] = "";
+  aq_test_tmpdir(dir, sizeof dir);
+  static char want[65536];
+  size_t len = 0, wl = 0;
+  for (int i = 0; i < 30; i++) {
+    char path[700];
+    static const char *const src[3] = {"records/elcentro_chopra.csv",
+                                       "tests/data/records/2-ECU.dat",
+                                       "records/RSN1616_DUZCE_362-E.AT2"};
+    static const char *const ext[3] = {"csv", "dat", "AT2"};
+    snprintf(path, sizeof path, "%s/r%02d.%s", dir, i, ext[i % 3]);
+    aq_test_copy_prefix(src[i % 3], path, 1, 1);
+    len += (size_t)snprintf(list + len, sizeof list - len, "'%s' ", path);
+    if (i % 3 == 1)
+      for (int c = 0; c < 3; c++)
+        wl += (size_t)snprintf(want + wl, sizeof want - wl, "%s#%c\n", path, "UNE"[c]);
+    else
+      wl += (size_t)snprintf(want + wl, sizeof want - wl, "%s\n", path);
+  }
+  static char out[2][262144], err[65536];
+  for (int j = 0; j < 2; j++) {
+    char args[20000];
+    snprintf(args, sizeof args, "%s --arch arches/oppenheim.cfg -j %d", list, j ? 3 : 1);
+    int rc = aq_test_run(args, out[j], sizeof out[j], err, sizeof err);
+    /* 1: the vertical channels are refused, the others run */
+    aq_check(rc == 1, "-j %d: exit %d: %.300s", j ? 3 : 1, rc, err);
+    static char got[65536];
+    size_t gl = 0;
+    for (const char *p = strchr(out[j], '\n'); p && p[1]; p = strchr(p + 1, '\n')) {
+      size_t n = strcspn(p + 1, "\t\n");
+      gl += (size_t)snprintf(got + gl, sizeof got - gl, "%.*s\n", (int)n, p + 1);
+    }
+    if (getenv("AQ_TEST_VERBOSE"))
+      printf("-j %d records:\n%s", j ? 3 : 1, got);
+    aq_check(strcmp(got, want) == 0, "-j %d: the records in order:\n%s\nwant:\n%s", j ? 3 : 1,
+             got, want);
+  }
+  aq_check(strcmp(out[0], out[1]) == 0 && strlen(out[0]) > 1000,
+           "text identical at -j 1 and -j 3");
 }
