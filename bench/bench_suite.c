@@ -7,7 +7,9 @@
  *    repetition and reported as median [min, max], since the machine is
  *    shared: -o / no -o at each -j, and -j 2 / -j 1 with and without -o.
  *    Also the share of time spent reading, processing, stepping and
- *    writing, from the suite's own per-phase timers.
+ *    writing, from the suite's own per-phase timers, and the workers' time
+ *    waiting for work (the window full behind a slow record or the writer,
+ *    or the last records).
  * 2. Strong shaking: the records in records/ and seven more PEER records
  *    of tests/data/records scaled to 2.5 lambda0 g of each arch
  *    (--scale-to-lambda0) on two arches (oppenheim, thick) in one suite,
@@ -17,7 +19,8 @@
  *    left, and with neither (every plan searched by FFTW); the differences
  *    from the cached run are the planning times.
  * 4. Results-file size per record for 10 x 200 records (with and without
- *    --store-records). */
+ *    --store-records).
+ * `bench_suite quiet` runs the first only. */
 #define _POSIX_C_SOURCE 200809L
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -94,7 +97,7 @@ static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
   aq_suite_stats st;
   run_suite(cfg, &st); /* untimed: page cache, FFTW plans, heap */
   /* [with -o][-j - 1] */
-  double rate[2][2][REPS], share[2][2][4][REPS], cpu_rate[2][2][REPS];
+  double rate[2][2][REPS], share[2][2][5][REPS], cpu_rate[2][2][REPS];
   for (int rep = 0; rep < REPS; rep++)
     for (int k = 0; k < 4; k++) {
       int o = (k + rep) % 2, j = k / 2; /* alternate which goes first */
@@ -108,10 +111,11 @@ static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
       share[o][j][1][rep] = st.process_s / wall;
       share[o][j][2][rep] = st.run_s / wall;
       share[o][j][3][rep] = st.write_s / wall;
+      share[o][j][4][rep] = st.wait_s / wall;
     }
   printf("Quiet suite: %zu runs (records/ x %d, oppenheim, scale 2), median of %d:\n",
          st.runs, COPIES, REPS);
-  static const char *const phase[4] = {"read", "process", "step", "write"};
+  static const char *const phase[5] = {"read", "process", "step", "write", "wait"};
   for (int o = 1; o >= 0; o--)
     for (int j = 0; j < 2; j++) {
       double r[REPS];
@@ -119,7 +123,7 @@ static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
       printf("  %-9s -j %d: %8.1f runs/s  [%.1f, %.1f]  ", o ? "TSV + -o" : "TSV only",
              j + 1, aq_bench_median(r, REPS), minv(rate[o][j], REPS),
              maxv(rate[o][j], REPS));
-      for (int p = 0; p < 4; p++)
+      for (int p = 0; p < 5; p++)
         printf(" %s %.0f%%", phase[p], 100 * aq_bench_median(share[o][j][p], REPS));
       printf("\n");
     }
@@ -303,8 +307,10 @@ static void file_size(aq_suite_cfg *base, const char *h5)
   }
 }
 
-int main(void)
+/* With the argument "quiet", only the quiet suite (1.) runs. */
+int main(int argc, char **argv)
 {
+  int quiet_only = argc > 1 && strcmp(argv[1], "quiet") == 0;
   gsl_set_error_handler_off();
   char *recs[NSAMPLE * COPIES];
   for (size_t i = 0; i < NSAMPLE * COPIES; i++)
@@ -335,12 +341,14 @@ int main(void)
   cfg.command_line = "bench_suite";
   if (nerr)
     return 1;
-  printf("Phase shares are phase time / wall time (read, process and step summed\n"
-         "over worker threads, write on the writer thread).\n");
+  printf("Phase shares are phase time / wall time (read, process, step and wait\n"
+         "summed over worker threads, write on the writer thread).\n");
   quiet_suite(&cfg, h5);
-  strong_suite(&cfg, h5);
-  planning();
-  file_size(&cfg, h5);
+  if (!quiet_only) {
+    strong_suite(&cfg, h5);
+    planning();
+    file_size(&cfg, h5);
+  }
   unlink(h5);
   fclose(text);
   return 0;

@@ -23,6 +23,7 @@ static const struct {
  * portable code. */
 static void fips_vectors(void);
 static void matches_sha256sum(void);
+static void two_at_once(void);
 
 AQ_TEST(io_sha256_fips_vectors)
 {
@@ -32,6 +33,57 @@ AQ_TEST(io_sha256_fips_vectors)
     aq_sha256_init(&c);
     aq_check(1, "%s code", c.accel ? "SHA-instruction" : "portable");
     fips_vectors();
+  }
+  aq_sha256_portable(0);
+}
+
+/* Two messages hashed together (aq_sha256_hex2): the 10^6 'a' of FIPS 180
+ * beside each example vector and beside messages of lengths around the
+ * block and padding boundaries, both orders; each digest the published one,
+ * or aq_sha256_hex's of the same bytes. */
+static void two_at_once(void)
+{
+  static const char want_a[] = /* FIPS 180-2, B.3 */
+      "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0";
+  char *a = malloc(1000000), *b = malloc(5000);
+  if (!aq_check(a && b, "memory")) {
+    free(a);
+    free(b);
+    return;
+  }
+  memset(a, 'a', 1000000);
+  for (size_t i = 0; i < 5000; i++)
+    b[i] = (char)(i * 131 + 7);
+  char ha[AQ_SHA256_HEX], hb[AQ_SHA256_HEX], ref[AQ_SHA256_HEX];
+  for (size_t k = 0; k < sizeof vectors / sizeof vectors[0]; k++) {
+    size_t n = strlen(vectors[k].msg);
+    aq_sha256_hex2(a, 1000000, ha, vectors[k].msg, n, hb);
+    aq_check(strcmp(ha, want_a) == 0 && strcmp(hb, vectors[k].hex) == 0,
+             "10^6 'a' with \"%s\": %s and %s", vectors[k].msg, ha, hb);
+    aq_sha256_hex2(vectors[k].msg, n, hb, a, 1000000, ha);
+    aq_check(strcmp(ha, want_a) == 0 && strcmp(hb, vectors[k].hex) == 0,
+             "\"%s\" with 10^6 'a': %s and %s", vectors[k].msg, hb, ha);
+  }
+  static const size_t len[] = {0, 1, 55, 56, 63, 64, 65, 119, 120, 127, 128, 129, 1000, 4999};
+  for (size_t i = 0; i < sizeof len / sizeof len[0]; i++)
+    for (size_t j = 0; j < sizeof len / sizeof len[0]; j++) {
+      char hx[AQ_SHA256_HEX], hy[AQ_SHA256_HEX], rx[AQ_SHA256_HEX];
+      aq_sha256_hex2(b, len[i], hx, b + 1, len[j], hy);
+      aq_sha256_hex(b, len[i], rx);
+      aq_sha256_hex(b + 1, len[j], ref);
+      aq_check(strcmp(hx, rx) == 0 && strcmp(hy, ref) == 0,
+               "%zu and %zu bytes together: %s %s, one by one %s %s", len[i], len[j], hx,
+               hy, rx, ref);
+    }
+  free(a);
+  free(b);
+}
+
+AQ_TEST(io_sha256_two_messages_at_once)
+{
+  for (int portable = 0; portable < 2; portable++) {
+    aq_sha256_portable(portable);
+    two_at_once();
   }
   aq_sha256_portable(0);
 }

@@ -29,9 +29,24 @@
 #include "opt.h"
 #include "suite_slot.h"
 
-/* Records in flight per worker thread: enough that a worker finishing a
- * short record finds the next one while a long one is still running. */
+/* Records in flight per worker thread: at least enough that a worker
+ * finishing a short record finds the next one while a long one is still
+ * running.  A record whose runs are all done keeps only what writing it
+ * needs (slot_shed), a few KB, so the window widens to
+ * AQ_SUITE_WINDOW_MAX_PER_THREAD while the finished records it may hold
+ * stay within AQ_SUITE_WINDOW_BYTES: with 2 per thread, a worker done with
+ * the short records behind a long one (1.6 ms against 0.3-0.6 ms in the
+ * quiet bench suite) waited for it, and for the writer, 70 times per 200
+ * records at -j 2 (15-35 % of its time).  With --history or --store-records
+ * a finished record keeps arrays of unbounded size: the window stays at the
+ * minimum. */
 #define AQ_SUITE_WINDOW_PER_THREAD 2
+#define AQ_SUITE_WINDOW_MAX_PER_THREAD 16
+#define AQ_SUITE_WINDOW_BYTES (64L << 20)
+/* With -o the writer hashes each record file (record_sha256) from the bytes
+ * its reader read, kept in the window up to this total (a larger file is
+ * read again to hash it): reading it again cost 15 % of the hash. */
+#define AQ_SUITE_KEEP_BYTES (64L << 20)
 /* Blocks up to this size come from the heap, not from mmap: every record
  * allocates and frees arrays of 10^4-10^5 doubles, and fresh mmaps cost a
  * page fault per page each time (a quarter of the suite's CPU time). */
@@ -73,13 +88,17 @@ typedef struct {
   size_t nruns;             /* per record: narch * nscale */
   aq_signal_ws *ws;
   pthread_mutex_t lock;
-  pthread_cond_t cond;      /* a slot changed state or was freed */
+  pthread_cond_t cond;      /* for the workers: a slot was freed, a record
+                             * has runs for any thread, or the end is near */
+  pthread_cond_t wcond;     /* for the writer: the next record is done */
   rec_slot *slots;
   size_t window;
+  size_t keep_max;          /* a record file's bytes kept up to this size */
   size_t next_claim, next_write;
   int stop;                 /* the writer gave up: workers stop claiming */
   size_t runs_done;         /* for the progress line */
   double read_s, process_s, run_s;
+  double wait_s;            /* the workers', waiting for work or room */
   aq_text_layout layout;    /* with cfg->aligned */
   FILE *line;               /* a row is formatted here first (text_row) */
   char *line_buf;
@@ -102,30 +121,49 @@ static const char *slot_polarity(const suite *S, size_t k)
   return slot_reversed(S, k) ? "reversed" : "normal";
 }
 
-static void slot_clear(suite *S, rec_slot *r)
+/* Free what record r's runs needed and writing it does not (the processed
+ * samples, unless --store-records writes them, and the step lists): a
+ * finished record waiting for the writer holds its metadata, measures and
+ * run results only.  Called by the thread that finished its last run. */
+static void slot_shed(suite *S, rec_slot *r)
 {
-  aq_record_free(&r->rec);
-  aq_processed_free(&r->proc);
-  aq_record_free(&r->h2.rec);
+  if (!S->cfg->store_records) {
+    free(r->proc.acc_mps2);
+    r->proc.acc_mps2 = NULL; /* the metadata stays: the writer needs it */
+  }
   aq_processed_free(&r->h2.proc);
-  aq_record_free(&r->v.rec);
   aq_processed_free(&r->v.proc);
-  if (r->runs)
-    for (size_t k = 0; k < r->nruns; k++)
-      if (r->runs[k].have_res)
-        aq_result_free(&r->runs[k].res);
-  if (r->steps)
+  r->h2.have_proc = r->v.have_proc = 0;
+  if (r->steps && r->steps_st) /* (both, unless prepare_record ran out of memory) */
     for (size_t k = 0; k < S->nscale; k++)
       if (r->steps_st[k] == AQ_OK)
         aq_steps_free(&r->steps[k]);
   if (r->unit && r->unit_st == AQ_OK)
     aq_steps_free(&r->unit_steps);
-  free(r->runs);
-  free(r->scale);
-  free(r->pga_g);
+  r->unit = 0;
   free(r->steps);
   free(r->steps_st);
   free(r->steps_err);
+  r->steps = NULL;
+  r->steps_st = NULL;
+  r->steps_err = NULL;
+}
+
+static void slot_clear(suite *S, rec_slot *r)
+{
+  slot_shed(S, r);
+  aq_record_free(&r->rec);
+  aq_processed_free(&r->proc);
+  aq_record_free(&r->h2.rec);
+  aq_record_free(&r->v.rec);
+  if (r->runs)
+    for (size_t k = 0; k < r->nruns; k++)
+      if (r->runs[k].have_res)
+        aq_result_free(&r->runs[k].res);
+  free(r->runs);
+  free(r->scale);
+  free(r->pga_g);
+  free(r->bytes);
   memset(r, 0, sizeof *r);
 }
 
@@ -178,11 +216,14 @@ static void fail_runs(suite *S, rec_slot *r)
 }
 
 /* Read one component record (*have_rec set on success); a horizontal one
- * must not be identified as vertical (aq_record_check_horizontal). */
+ * must not be identified as vertical (aq_record_check_horizontal).  With
+ * bytes, the file's bytes as aq_record_read_keep gives them. */
 static aq_status read_component(suite *S, const char *path, int horizontal,
-                                aq_record *rec, int *have_rec, aq_error *err)
+                                aq_record *rec, int *have_rec, unsigned char **bytes,
+                                size_t *nbytes, aq_error *err)
 {
-  aq_status s = aq_record_read(path, &S->cfg->read, rec, err);
+  aq_status s = bytes ? aq_record_read_keep(path, &S->cfg->read, rec, bytes, nbytes, err)
+                      : aq_record_read(path, &S->cfg->read, rec, err);
   if (s == AQ_OK && horizontal &&
       (s = aq_record_check_horizontal(rec, &S->cfg->read, err)) != AQ_OK)
     aq_record_free(rec);
@@ -210,12 +251,14 @@ static aq_status process_component(suite *S, aq_record *rec, aq_processed *proc,
 static aq_status read_second(suite *S, rec_slot *r)
 {
   const aq_orient_motion *m = r->motion;
-  aq_status s = read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, &r->err);
+  aq_status s =
+      read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, NULL, NULL, &r->err);
   if (s != AQ_OK)
     return s;
   r->run_v = m->path[2] && S->cfg->vertical;
   if (r->run_v &&
-      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, &r->err)) != AQ_OK)
+      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, NULL, NULL,
+                          &r->err)) != AQ_OK)
     return s;
   const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
   size_t nc = r->run_v ? 3 : 2;
@@ -282,15 +325,30 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
 /* The record file's identity in the results (compare keys on it), when
  * prepare_record asked for it: hashed by the thread that writes the record
  * (or sends it to the leader), so that with -o the hash overlaps the
- * workers' reading and processing of the next records. */
-static void record_sha256(const suite *S, rec_slot *r)
+ * workers' reading and processing of the next records; from the bytes the
+ * reader read when they were kept, else from the file.  next, if not NULL,
+ * is the next record, done too: when both have their bytes they are hashed
+ * together (aq_sha256_hex2, 0.6 of the time of one after the other). */
+static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
 {
+  if (next && r->want_sha && r->bytes && next->want_sha && next->bytes) {
+    aq_sha256_hex2(r->bytes, r->nbytes, r->sha256, next->bytes, next->nbytes, next->sha256);
+    r->want_sha = next->want_sha = 0;
+    free(r->bytes);
+    free(next->bytes);
+    r->bytes = next->bytes = NULL;
+    return;
+  }
   if (!r->want_sha)
     return;
   r->want_sha = 0;
   aq_error herr;
-  if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
+  if (r->bytes)
+    aq_sha256_hex(r->bytes, r->nbytes, r->sha256);
+  else if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
     r->sha256[0] = '\0'; /* the reader says why it cannot be read */
+  free(r->bytes);
+  r->bytes = NULL;
 }
 
 /* Read, process and measure record r->index (both components of a motion),
@@ -322,7 +380,12 @@ static int prepare_record(suite *S, rec_slot *r)
   double t0 = now_s();
   const char *first = record_file(S, r->index);
   r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
-  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec, &r->err);
+  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec,
+                               r->want_sha ? &r->bytes : NULL, &r->nbytes, &r->err);
+  if (r->bytes && r->nbytes > S->keep_max) { /* record_sha256 reads it again */
+    free(r->bytes);
+    r->bytes = NULL;
+  }
   if (s == AQ_OK && r->motion)
     s = read_second(S, r);
   double t1 = now_s();
@@ -491,6 +554,18 @@ typedef struct {
   aq_stepper **st; /* one per arch, this thread's own */
 } worker_arg;
 
+/* Record r is done (S->lock held): the writer is woken if r is the one it
+ * waits for, the workers only once every record is claimed (then they wait
+ * for the last records to finish before they stop). */
+static void slot_done(suite *S, rec_slot *r)
+{
+  r->state = SLOT_DONE;
+  if (r->index == S->next_write)
+    pthread_cond_signal(&S->wcond);
+  if (S->next_claim >= S->cfg->nrecords)
+    pthread_cond_broadcast(&S->cond);
+}
+
 static void *worker(void *arg)
 {
   worker_arg *w = arg;
@@ -514,9 +589,11 @@ static void *worker(void *arg)
       pthread_mutex_lock(&S->lock);
       S->run_s += r->runs[i].run_s;
       S->runs_done++;
-      if (++r->runs_done == r->nruns) {
-        r->state = SLOT_DONE;
-        pthread_cond_broadcast(&S->cond);
+      if (++r->runs_done == r->nruns) { /* the last: nobody else uses r now */
+        pthread_mutex_unlock(&S->lock);
+        slot_shed(S, r);
+        pthread_mutex_lock(&S->lock);
+        slot_done(S, r);
       }
       continue;
     }
@@ -533,11 +610,15 @@ static void *worker(void *arg)
       S->process_s += r->process_s;
       if (ok && r->nruns > 0) {
         r->state = SLOT_READY;
+        if (r->nruns > 1) /* runs for the other threads too */
+          pthread_cond_broadcast(&S->cond);
       } else {
         S->runs_done += r->runs ? r->nruns : 0;
-        r->state = SLOT_DONE;
+        pthread_mutex_unlock(&S->lock);
+        slot_shed(S, r);
+        pthread_mutex_lock(&S->lock);
+        slot_done(S, r);
       }
-      pthread_cond_broadcast(&S->cond);
       continue;
     }
     /* 3. nothing left to hand out, or wait for the writer or a record */
@@ -551,7 +632,9 @@ static void *worker(void *arg)
       if (!pending)
         break;
     }
+    double t0 = now_s();
     pthread_cond_wait(&S->cond, &S->lock);
+    S->wait_s += now_s() - t0;
   }
   pthread_mutex_unlock(&S->lock);
   return NULL;
@@ -985,7 +1068,7 @@ static rec_slot *farm_acquire(farm_ctx *X, size_t i)
       X->users[lru] = 1;
       pthread_mutex_unlock(&X->lock);
       prepare_record(X->S, r);
-      record_sha256(X->S, r); /* before the slot is shared */
+      record_sha256(X->S, r, NULL); /* before the slot is shared */
       pthread_mutex_lock(&X->lock);
       r->state = SLOT_READY;
       pthread_cond_broadcast(&X->cond);
@@ -1159,6 +1242,78 @@ static aq_status farm_suite(suite *S, aq_h5_writer *h5, aq_journal *J, size_t do
   return ws;
 }
 
+/* The worker threads of S, each with its own steppers. */
+typedef struct {
+  long n, started;
+  pthread_t *tid;
+  worker_arg *wa;
+} workers;
+
+/* Start up to W->n workers (W->started of them ran). */
+static void workers_start(suite *S, workers *W)
+{
+  const aq_suite_cfg *c = S->cfg;
+  W->tid = calloc((size_t)W->n, sizeof *W->tid);
+  W->wa = calloc((size_t)W->n, sizeof *W->wa);
+  for (long t = 0; W->tid && W->wa && t < W->n; t++) {
+    worker_arg *a = &W->wa[t];
+    a->S = S;
+    a->st = calloc(c->narches ? c->narches : 1, sizeof *a->st);
+    if (!a->st)
+      break;
+    for (size_t k = 0; k < c->narches; k++)
+      if (S->arch_ok[k]) {
+        aq_error e;
+        a->st[k] = make_stepper(S, k, &e);
+      }
+    if (pthread_create(&W->tid[t], NULL, worker, a) != 0)
+      break;
+    W->started++;
+  }
+}
+
+/* Wait for the workers to finish (told to stop first with stop) and free
+ * them; nothing happens if none was started. */
+static void workers_join(suite *S, workers *W, int stop)
+{
+  if (stop && W->started > 0) {
+    pthread_mutex_lock(&S->lock);
+    S->stop = 1;
+    pthread_cond_broadcast(&S->cond);
+    pthread_mutex_unlock(&S->lock);
+  }
+  for (long t = 0; t < W->started; t++)
+    pthread_join(W->tid[t], NULL);
+  for (long t = 0; W->wa && t < W->n; t++) {
+    for (size_t a = 0; W->wa[t].st && a < S->cfg->narches; a++)
+      aq_stepper_free(W->wa[t].st[a]);
+    free(W->wa[t].st);
+  }
+  free(W->tid);
+  free(W->wa);
+  W->tid = NULL;
+  W->wa = NULL;
+  W->started = 0;
+}
+
+/* Records in flight for nthreads workers (see AQ_SUITE_WINDOW_PER_THREAD). */
+static size_t suite_window(const suite *S, size_t nthreads)
+{
+  const aq_suite_cfg *c = S->cfg;
+  size_t per = AQ_SUITE_WINDOW_PER_THREAD;
+  if (c->history || c->store_records)
+    return nthreads * per;
+  size_t naz = 1; /* a finished record: its slot and its runs */
+  for (size_t i = 0; c->motions && i < c->nrecords; i++)
+    if (c->motions[i] && c->nazimuth > naz)
+      naz = c->nazimuth;
+  double bytes = (double)sizeof(rec_slot) + (double)(S->nruns * naz) * sizeof(run_slot);
+  while (per < AQ_SUITE_WINDOW_MAX_PER_THREAD &&
+         (double)(nthreads * (per + 1)) * bytes <= (double)AQ_SUITE_WINDOW_BYTES)
+    per++;
+  return nthreads * per;
+}
+
 static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
@@ -1170,6 +1325,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   memset(&stats, 0, sizeof stats);
   suite S;
   memset(&S, 0, sizeof S);
+  pthread_mutex_init(&S.lock, NULL);
+  pthread_cond_init(&S.cond, NULL);
+  pthread_cond_init(&S.wcond, NULL);
   S.cfg = c;
   S.model_name = model_names[c->model <= AQ_MODEL_WORKPATH_QUAD ? c->model : 0];
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
@@ -1178,7 +1336,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   long nthreads = c->threads < 1 ? 1 : c->threads;
   if ((size_t)nthreads > c->nrecords)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
-  S.window = (size_t)nthreads * AQ_SUITE_WINDOW_PER_THREAD;
+  S.window = suite_window(&S, (size_t)nthreads);
+  workers W = {nthreads, 0, NULL, NULL};
+  S.keep_max = (size_t)AQ_SUITE_KEEP_BYTES / S.window;
   int rc = AQ_EXIT_OK;
   aq_status ws = AQ_OK;
   aq_journal *J = NULL; /* with -o: the records written so far */
@@ -1251,7 +1411,14 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     goto out;
   }
 
-  /* Output before any record is read: an unwritable target fails now. */
+  /* Without --resume (no records to read back first) and outside a farm,
+   * the workers start on the first records while the outputs are opened:
+   * with -o that takes 1.5-2 ms (the HDF5 file's root, tables and arches),
+   * 2 % of a 200-record quiet suite, when nothing else ran.  An unwritable
+   * target still fails before any record is reported or written. */
+  int early = !c->resume && !(aq_farm_get() && aq_farm_get()->farm);
+  if (early)
+    workers_start(&S, &W);
   aq_h5_writer *h5 = NULL;
   int h5_slot = -1;
   aq_error oerr;
@@ -1295,9 +1462,11 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   aq_journal_entries_free(jent, njent);
   if (ws != AQ_OK)
     goto output_failed;
-  S.next_claim = S.next_write = done;
-  for (size_t i = 0; i < done; i++)
-    S.runs_done += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
+  if (!early) { /* (early: no journal was read back, done = 0) */
+    S.next_claim = S.next_write = done;
+    for (size_t i = 0; i < done; i++)
+      S.runs_done += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
+  }
   stats.write_s += now_s() - tw;
 
   if (aq_farm_get() && aq_farm_get()->farm) {
@@ -1307,26 +1476,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     goto written;
   }
 
-  /* Workers, each with its own steppers. */
-  pthread_mutex_init(&S.lock, NULL);
-  pthread_cond_init(&S.cond, NULL);
-  pthread_t *tid = calloc((size_t)nthreads, sizeof *tid);
-  worker_arg *wa = calloc((size_t)nthreads, sizeof *wa);
-  long started = 0;
-  for (long t = 0; tid && wa && t < nthreads; t++) {
-    wa[t].S = &S;
-    wa[t].st = calloc(c->narches ? c->narches : 1, sizeof *wa[t].st);
-    if (!wa[t].st)
-      break;
-    for (size_t a = 0; a < c->narches; a++)
-      if (S.arch_ok[a]) {
-        aq_error e;
-        wa[t].st[a] = make_stepper(&S, a, &e);
-      }
-    if (pthread_create(&tid[t], NULL, worker, &wa[t]) != 0)
-      break;
-    started++;
-  }
+  if (!early)
+    workers_start(&S, &W);
+  long started = W.started;
   if (started == 0) {
     aq_error_set(&oerr, AQ_ENOMEM, "", -1, -1, NULL, "cannot start a worker thread");
     fprintf(stderr, "archquake: cannot start a worker thread\n");
@@ -1349,18 +1501,21 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
         ts.tv_sec++;
         ts.tv_nsec -= 1000000000L;
       }
-      pthread_cond_timedwait(&S.cond, &S.lock, &ts);
+      pthread_cond_timedwait(&S.wcond, &S.lock, &ts);
       if (c->progress && now_s() - last_progress >= AQ_SUITE_PROGRESS_PERIOD_S) {
         progress(&S, t_start, total, 0);
         last_progress = now_s();
       }
     }
+    rec_slot *next = &S.slots[(i + 1) % S.window]; /* the window holds 2 or more */
+    if (!(i + 1 < c->nrecords && next->state == SLOT_DONE && next->index == i + 1))
+      next = NULL; /* not done yet: no worker touches a record once it is */
     pthread_mutex_unlock(&S.lock);
     double t0 = now_s();
     /* clear the line before diagnostics, and before rows on the terminal */
     if (c->progress && (c->aligned || has_diagnostics(r)))
       progress(&S, t_start, total, 1);
-    record_sha256(&S, r);
+    record_sha256(&S, r, next);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
       aq_jbuf jb = {0};
@@ -1377,24 +1532,14 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     S.next_write = i + 1;
     if (ws != AQ_OK)
       S.stop = 1;
-    pthread_cond_broadcast(&S.cond);
+    pthread_cond_broadcast(&S.cond); /* room in the window */
     pthread_mutex_unlock(&S.lock);
     if (ws != AQ_OK)
       break;
   }
-  for (long t = 0; t < started; t++)
-    pthread_join(tid[t], NULL);
-  for (long t = 0; wa && t < nthreads; t++) {
-    for (size_t a = 0; wa[t].st && a < c->narches; a++)
-      aq_stepper_free(wa[t].st[a]);
-    free(wa[t].st);
-  }
-  free(tid);
-  free(wa);
+  workers_join(&S, &W, 0);
   for (size_t k = 0; k < S.window; k++)
     slot_clear(&S, &S.slots[k]);
-  pthread_cond_destroy(&S.cond);
-  pthread_mutex_destroy(&S.lock);
   if (c->progress)
     progress(&S, t_start, total, 1);
   if (ws != AQ_OK)
@@ -1410,6 +1555,7 @@ written:
   stats.read_s = S.read_s;
   stats.process_s = S.process_s;
   stats.run_s = S.run_s;
+  stats.wait_s = S.wait_s;
   if (h5) {
     double t0 = now_s();
     aq_h5_timing tm = {now_s() - t_start, S.read_s, S.process_s, S.run_s,
@@ -1442,6 +1588,12 @@ output_failed:
   aq_cleanup_remove(h5_slot);
   rc = AQ_EXIT_OUTPUT;
 out:
+  workers_join(&S, &W, 1); /* the outputs failed: stopped before any record */
+  for (size_t k = 0; S.slots && k < S.window; k++)
+    slot_clear(&S, &S.slots[k]);
+  pthread_cond_destroy(&S.cond);
+  pthread_cond_destroy(&S.wcond);
+  pthread_mutex_destroy(&S.lock);
   aq_journal_close(J); /* kept: --resume continues from it */
   if (S.line)
     fclose(S.line);
@@ -1461,6 +1613,85 @@ out:
   return rc;
 }
 
+/* Naming the records reads every file of the suite (and parses those that
+ * may hold several channels): 6 ms for the 200 files of the quiet bench
+ * suite, before any record ran.  With several threads, each names a
+ * contiguous part of at least this many operands. */
+#define AQ_SUITE_EXPAND_MIN_PER_THREAD 8
+
+typedef struct {
+  char *const *paths;
+  size_t n;
+  const aq_read_opts *opts;
+  char **names;
+  size_t nnames;
+  aq_status st;
+  aq_error err;
+} expand_part;
+
+static void *expand_main(void *arg)
+{
+  expand_part *p = arg;
+  p->st = aq_record_expand(p->paths, p->n, p->opts, &p->names, &p->nnames, &p->err);
+  return NULL;
+}
+
+/* aq_record_expand of paths[0..n), on up to nthreads threads: the same
+ * names in the same order. */
+static aq_status expand_records(char *const *paths, size_t n, const aq_read_opts *opts,
+                                long nthreads, char ***out, size_t *nout, aq_error *err)
+{
+  size_t T = nthreads > 1 ? (size_t)nthreads : 1;
+  if (T > n / AQ_SUITE_EXPAND_MIN_PER_THREAD)
+    T = n / AQ_SUITE_EXPAND_MIN_PER_THREAD;
+  expand_part *p = T > 1 ? calloc(T, sizeof *p) : NULL;
+  pthread_t *tid = p ? calloc(T, sizeof *tid) : NULL;
+  if (!tid) {
+    free(p);
+    return aq_record_expand(paths, n, opts, out, nout, err);
+  }
+  int *started = calloc(T, sizeof *started);
+  for (size_t k = 0; k < T; k++) {
+    p[k] = (expand_part){paths + n * k / T, n * (k + 1) / T - n * k / T, opts, NULL, 0,
+                         AQ_OK, {0}};
+    if (k > 0 && started)
+      started[k] = pthread_create(&tid[k], NULL, expand_main, &p[k]) == 0;
+  }
+  for (size_t k = 0; k < T; k++) /* this thread: part 0, and any not started */
+    if (!started || !started[k])
+      expand_main(&p[k]);
+  size_t total = 0;
+  aq_status st = AQ_OK;
+  for (size_t k = 0; k < T; k++) {
+    if (started && started[k])
+      pthread_join(tid[k], NULL);
+    if (st == AQ_OK && p[k].st != AQ_OK) {
+      st = p[k].st;
+      *err = p[k].err;
+    }
+    total += p[k].nnames;
+  }
+  char **names = st == AQ_OK ? malloc((total ? total : 1) * sizeof *names) : NULL;
+  if (st == AQ_OK && !names)
+    st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  size_t m = 0;
+  for (size_t k = 0; k < T; k++) {
+    if (names) { /* the names move; their array goes */
+      memcpy(names + m, p[k].names, p[k].nnames * sizeof *names);
+      free(p[k].names);
+    } else {
+      aq_record_names_free(p[k].names, p[k].nnames);
+    }
+    m += p[k].nnames;
+  }
+  free(started);
+  free(tid);
+  free(p);
+  *out = names;
+  *nout = names ? total : 0;
+  return st;
+}
+
 /* Every channel of a multi-channel file is a record of its own (FILE#CH). */
 int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
 {
@@ -1476,7 +1707,8 @@ int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
   const aq_orient_motion **mo = NULL;
   aq_status st = AQ_OK;
   if (!cfg->motions) {
-    st = aq_record_expand(cfg->records, cfg->nrecords, &cfg->read, &names, &n, &err);
+    st = expand_records(cfg->records, cfg->nrecords, &cfg->read, cfg->threads, &names, &n,
+                        &err);
   } else { /* plain records expanded one by one, motions kept beside them */
     for (size_t i = 0; st == AQ_OK && i < cfg->nrecords; i++) {
       char **one = NULL;

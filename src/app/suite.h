@@ -4,8 +4,9 @@
  * each factor and split into steps once per factor; its runs (every arch x
  * every factor) are then handed to whichever threads are free, each with its
  * own steppers (one per arch per thread); the arches are loaded once and
- * shared read-only.  At most `window` (2 x threads) records are in flight (read but
- * not yet written), so memory stays bounded whatever the number of records.
+ * shared read-only.  At most `window` (2 to 16 x threads, suite.c) records are in flight
+ * (read but not yet written), so memory stays bounded whatever the number
+ * of records.
  * One writer (the calling thread) writes text rows, HDF5 groups and
  * diagnostics in (record, arch, scale) order, never in completion order, so
  * the output is the same for every number of threads.
@@ -79,6 +80,9 @@ typedef struct {
   size_t runs_failed;    /* rows whose status is not ok */
   size_t records_failed; /* records that could not be read or processed */
   double wall_s, read_s, process_s, run_s, write_s;
+  double wait_s;         /* worker threads' time waiting for a record to
+                          * prepare or run (room in the window, the last
+                          * records), summed */
 } aq_suite_stats;
 
 /* 1 if this process is a follower (it must create no output). */

@@ -51,6 +51,8 @@ typedef struct {
   char warning[300];  /* residual warning, "" if none */
   char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
   int want_sha;       /* 1: sha256 still to be computed (suite.c, record_sha256) */
+  unsigned char *bytes; /* the file's bytes as read, kept for that (or NULL) */
+  size_t nbytes;
   double read_s, process_s;
   double *scale;      /* nscale factors applied */
   double *pga_g;      /* PGA of each scaled record, g */

