@@ -12,6 +12,9 @@
  * used.  faults_per_read: minor page faults per read, pages the allocator
  * took anew from the kernel (after giving its heap back on a free); each
  * costs the reader time that the floor, whose one buffer stays, does not.
+ * Both run under archquake's allocator policy (aq_app_heap_policy, which
+ * main() sets before any command), as every record archquake reads is read:
+ * a record's arrays stay in the heap between reads.
  *
  * The records are made here from real data:
  * CHY028-N.AT2 (18 000 values, Chi-Chi 1999) extended to 20 000 values by
@@ -24,6 +27,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 
+#include "app/app.h"
 #include "bench.h"
 #include "io/readers.h"
 #include "io/record.h"
@@ -257,6 +261,7 @@ static void bench_agency(void)
 
 int main(void)
 {
+  aq_app_heap_policy(); /* as archquake's main() sets it */
   mkdir("build", 0777);
   mkdir("build/bench", 0777);
   const char *at2 = "build/bench/chy028-20000.AT2", *sac = "build/bench/chy028-20000.sac",
@@ -275,7 +280,8 @@ int main(void)
     fprintf(stderr, "bench_io: cannot write %s\n", sac);
     return 1;
   }
-  printf("# floor = stat + open + malloc + one fread of the whole file + close + free\n");
+  printf("# floor = stat + open + malloc + one fread of the whole file + close + free;\n"
+         "# floor and readers under archquake's allocator policy (aq_app_heap_policy)\n");
   printf("reader\tnpts\tfile_bytes\tread_median_us\tfloor_median_us\tratio\tns_per_value\t"
          "faults_per_read\n");
   const char *paths[3] = {at2, sac, csv}, *names[3] = {"at2", "sac", "csv"};

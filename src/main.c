@@ -65,6 +65,7 @@ int AQ_MAIN(int argc, char **argv);
 int AQ_MAIN(int argc, char **argv)
 {
   gsl_set_error_handler_off(); /* GSL's default handler aborts */
+  aq_app_heap_policy();        /* records' arrays stay in the heap */
   if (argc < 2) { /* nothing to run: the usage, and the status of a usage error */
     usage();
     return AQ_EXIT_USAGE;

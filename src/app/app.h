@@ -17,6 +17,12 @@ const char *aq_build_string(void);
 
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
 
+/* The allocator policy of every command (heap.c): blocks of a record's
+ * size are kept in the heap between records instead of being mapped and
+ * handed back to the kernel each time.  main() sets it first; the suite
+ * sets it too, for library callers.  Process-wide: idempotent. */
+void aq_app_heap_policy(void);
+
 int aq_cmd_run(int argc, char **argv);       /* archquake [OPTIONS] RECORD... --arch FILE */
 int aq_cmd_info(int argc, char **argv);      /* archquake info */
 int aq_cmd_mechanism(int argc, char **argv); /* archquake mechanism */

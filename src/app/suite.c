@@ -5,7 +5,6 @@
 
 #include <errno.h>
 #if defined(__GLIBC__) || defined(__linux__)
-#include <malloc.h>
 #endif
 #include <math.h>
 #include <pthread.h>
@@ -47,10 +46,6 @@
  * its reader read, kept in the window up to this total (a larger file is
  * read again to hash it): reading it again cost 15 % of the hash. */
 #define AQ_SUITE_KEEP_BYTES (64L << 20)
-/* Blocks up to this size come from the heap, not from mmap: every record
- * allocates and frees arrays of 10^4-10^5 doubles, and fresh mmaps cost a
- * page fault per page each time (a quarter of the suite's CPU time). */
-#define AQ_SUITE_MMAP_THRESHOLD_BYTES (256L << 20)
 /* The journal (-o) is synced at most this often, s: a sync per record
  * (about 0.1-1 ms on a disk) bounded -o throughput on quiet suites.  A
  * killed suite loses nothing; an operating-system crash, at most the
@@ -1317,10 +1312,7 @@ static size_t suite_window(const suite *S, size_t nthreads)
 static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 {
   double t_start = now_s();
-#if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
-  mallopt(M_MMAP_THRESHOLD, (int)AQ_SUITE_MMAP_THRESHOLD_BYTES);
-  mallopt(M_TRIM_THRESHOLD, (int)(2 * AQ_SUITE_MMAP_THRESHOLD_BYTES));
-#endif
+  aq_app_heap_policy(); /* records' arrays stay in the heap (heap.c) */
   aq_suite_stats stats;
   memset(&stats, 0, sizeof stats);
   suite S;
