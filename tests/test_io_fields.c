@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "io/at2_fields.h"
 #include "io/formats.h"
 #include "io/number.h"
 
@@ -156,6 +157,22 @@ static int agree(const char *what, const char *text, size_t n, size_t data, long
   return ok;
 }
 
+/* ---- both kernels ------------------------------------------------------ */
+
+/* Test name_ once with the AVX2 kernel (at2_fields.c; where the CPU has it)
+ * and once with the one-field reading alone, which every other CPU uses. */
+#define BOTH_KERNELS(name)                                                                      \
+  AQ_TEST(name)                                                                                 \
+  {                                                                                             \
+    for (int avx2 = 1; avx2 >= 0; avx2--) {                                                     \
+      aq_at2_fields_force_(avx2);                                                               \
+      if (getenv("AQ_TEST_VERBOSE"))                                                            \
+        printf("  " #name ": %s\n", aq_at2_fields_avx2() ? "AVX2 kernel" : "one-field kernel"); \
+      name##_();                                                                                \
+    }                                                                                           \
+    aq_at2_fields_force_(-1);                                                                   \
+  }
+
 /* ---- writing fields ---------------------------------------------------- */
 
 /* Boundary values and shapes the fast path must leave to strtod, or read
@@ -206,7 +223,7 @@ static size_t random_at2(uint64_t *x, size_t npts, int crlf, int hard, char *buf
   return n;
 }
 
-AQ_TEST(io_at2_fields_equal_strtod)
+static void io_at2_fields_equal_strtod_(void)
 {
   enum { NPTS = 6000, FILES = 4 };
   size_t cap = NPTS * 20 + 200;
@@ -231,11 +248,12 @@ AQ_TEST(io_at2_fields_equal_strtod)
            ok ? "yes" : "no");
   free(buf);
 }
+BOTH_KERNELS(io_at2_fields_equal_strtod)
 
 /* Every byte of the second and third lines of values replaced in turn by
  * each of a set of characters: what the reader makes of it must be what
  * strtod makes of the tokens. */
-AQ_TEST(io_at2_fields_each_byte_replaced)
+static void io_at2_fields_each_byte_replaced_(void)
 {
   static const char repl[] = {'Z', ':', '/', '0', '7', '9', 'e', 'E', ' ', '\t', ',', '\0'};
   enum { NPTS = 15 };
@@ -268,10 +286,11 @@ AQ_TEST(io_at2_fields_each_byte_replaced)
     printf("  fields: %zu single-byte changes, %zu differ\n", cases, bad);
   free(t);
 }
+BOTH_KERNELS(io_at2_fields_each_byte_replaced)
 
 /* The file cut at every byte of its values: a cut inside the last value
  * reads what is left of it as strtod would, or refuses the file. */
-AQ_TEST(io_at2_fields_cut_anywhere)
+static void io_at2_fields_cut_anywhere_(void)
 {
   enum { NPTS = 12 };
   char base[2000];
@@ -288,6 +307,123 @@ AQ_TEST(io_at2_fields_cut_anywhere)
     }
   }
   aq_check(bad == 0, "%zu of %zu cut files differ", bad, cases);
+}
+BOTH_KERNELS(io_at2_fields_cut_anywhere)
+
+/* Random PEER fields (one in eight a hard token), lines of 1 to 5 of them
+ * in a random order, LF, CR LF or CR line ends, the values starting at
+ * every offset 0..31 from the buffer's start (the header's first line made
+ * longer): four fields at a time meet every alignment, line ends between
+ * any two lanes, and the last bytes of the buffer. */
+static void io_at2_fields_alignment_and_lines_(void)
+{
+  enum { NPTS = 37, SHIFTS = 32 };
+  static const char *const eols[] = {"\n", "\r\n", "\r"};
+  char buf[4000];
+  uint64_t x = 0x9E3779B97F4A7C15ULL;
+  size_t cases = 0, bad = 0;
+  for (int shift = 0; shift < SHIFTS; shift++)
+    for (int e = 0; e < 3; e++)
+      for (int layout = 0; layout < 3; layout++) {
+        const char *eol = eols[e];
+        size_t n = (size_t)snprintf(buf, sizeof buf, "PEER TEST%*s\nRANDOM FIELDS%s", shift, "",
+                                    eol);
+        n += (size_t)snprintf(buf + n, sizeof buf - n,
+                              "ACCELERATION TIME SERIES IN UNITS OF G%sNPTS= %d, DT= .0050 SEC%s",
+                              eol, NPTS, eol);
+        size_t data = n;
+        int on_line = 0, line_len = 1 + (int)(rng(&x) % 5);
+        for (int k = 0; k < NPTS; k++) {
+          char f[40];
+          random_field(&x, f, sizeof f, layout == 2);
+          n += (size_t)snprintf(buf + n, sizeof buf - n, "%s", f);
+          if (++on_line == line_len || k + 1 == NPTS) {
+            n += (size_t)snprintf(buf + n, sizeof buf - n, "%s", eol);
+            on_line = 0;
+            line_len = layout == 0 ? 5 : 1 + (int)(rng(&x) % 5);
+          }
+        }
+        if (layout == 1 && (shift & 1)) /* no line end after the last value */
+          n -= strlen(eol);
+        char what[80];
+        snprintf(what, sizeof what, "offset %d, line end %d, layout %d", shift, e, layout);
+        cases++;
+        bad += !agree(what, buf, n, data, 5, NPTS);
+      }
+  aq_check(bad == 0, "%zu of %zu files differ", bad, cases);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  fields: %zu files at every alignment and line length, %zu differ\n", cases, bad);
+}
+BOTH_KERNELS(io_at2_fields_alignment_and_lines)
+
+/* Each of the 16 bytes the kernels read for a field (its 15 and the next
+ * one) of fields 2 to 14 (groups of four lanes: fields 2-5, 6-9, 10-13
+ * after the first, read alone, which stays intact: a first line of values
+ * that does not start like one is the header's matter) replaced in turn by a byte of another class
+ * or of the same class: neighbours of the digits, signs, points, exponent
+ * letters, blanks, a line end, a NUL, and a digit with its high bit set. */
+static void io_at2_fields_bad_byte_each_lane_(void)
+{
+  static const char repl[] = {'/', ':', '0', '5', '9', '+', '-', '.', 'e', 'E', 'D',
+                              ' ', '\t', ',', '\n', '\0', (char)0xB5, 'Z'};
+  enum { NPTS = 15 };
+  char base[2000], t[2000];
+  uint64_t x = 0x2385417ABCDEFULL;
+  size_t data;
+  long dl;
+  size_t n = random_at2(&x, NPTS, 0, 0, base, sizeof base, &data, &dl);
+  size_t cases = 0, bad = 0;
+  if (!aq_check(n - data == 3 * 76, "base file"))
+    return;
+  for (int f = 1; f < 14 && bad < 6; f++) {
+    size_t at = data + (size_t)f * 15 + (size_t)(f / 5); /* a line end after each 5 */
+    for (size_t i = 0; i < 16; i++)
+      for (size_t c = 0; c < sizeof repl && bad < 6; c++) {
+        if (base[at + i] == repl[c])
+          continue;
+        memcpy(t, base, n);
+        t[at + i] = repl[c];
+        char what[64];
+        snprintf(what, sizeof what, "field %d byte %zu as 0x%02x", f + 1, i,
+                 (unsigned char)repl[c]);
+        cases++;
+        bad += !agree(what, t, n, data, dl, NPTS);
+      }
+  }
+  aq_check(bad == 0, "%zu of %zu changed bytes differ", bad, cases);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  fields: %zu bytes changed in every lane, %zu differ\n", cases, bad);
+}
+BOTH_KERNELS(io_at2_fields_bad_byte_each_lane)
+
+/* The switch: AQ_NO_AVX2 set turns the AVX2 kernel off, "0" or unset leaves
+ * it to the CPU; the test hook overrides the environment. */
+AQ_TEST(io_at2_fields_switch)
+{
+  const char *was = getenv("AQ_NO_AVX2");
+  char keep[32] = "";
+  if (was)
+    snprintf(keep, sizeof keep, "%s", was);
+  aq_at2_fields_force_(-1);
+  setenv("AQ_NO_AVX2", "1", 1);
+  aq_check(aq_at2_fields_avx2() == 0, "AQ_NO_AVX2=1: the AVX2 kernel is off");
+  aq_at2_fields_force_(1);
+  int cpu = aq_at2_fields_avx2(); /* 1 exactly where the CPU has it */
+#if defined(__x86_64__)
+  aq_check(cpu == !!__builtin_cpu_supports("avx2"), "forced on: on where the CPU has AVX2 (%d)",
+           cpu);
+#else
+  aq_check(cpu == 0, "not x86-64: never the AVX2 kernel");
+#endif
+  aq_at2_fields_force_(-1);
+  setenv("AQ_NO_AVX2", "0", 1);
+  aq_check(aq_at2_fields_avx2() == cpu, "AQ_NO_AVX2=0: as the CPU says");
+  unsetenv("AQ_NO_AVX2");
+  aq_check(aq_at2_fields_avx2() == cpu, "AQ_NO_AVX2 unset: as the CPU says");
+  if (was)
+    setenv("AQ_NO_AVX2", keep, 1);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("  fields: AVX2 kernel available here: %s\n", cpu ? "yes" : "no");
 }
 
 /* ---- column shapes (number.h: aq_number_parse_shaped) ------------------ */

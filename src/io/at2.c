@@ -22,6 +22,7 @@
 #include <strings.h>
 
 #include "../units.h"
+#include "at2_fields.h"
 #include "number.h"
 #include "readers.h"
 #include "swar.h"
@@ -130,7 +131,7 @@ static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['
  * digits.  Read whole, such a field needs no search for where its number
  * starts or ends, and no loop: the next field starts 15 bytes on whatever
  * the sign was. */
-#define PEER_FIELD_W 15
+#define PEER_FIELD_W AQ_AT2_FIELD_W
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD) /* every x86-64 CPU; elsewhere (or built
                                                  * with -DAQ_NO_SIMD) 64-bit words */
@@ -203,37 +204,31 @@ static int peer_field(const char *p, double *x)
 }
 #endif
 
-/* Past the line end at p (LF, CR, CR LF, CR CR LF: one line, as skip_eol
- * takes it). */
-static const char *line_end(const char *p, const char *end)
-{
-  if (*p == '\r') {
-    while (p < end && *p == '\r')
-      p++;
-    if (p < end && *p == '\n')
-      p++;
-    return p;
-  }
-  return p + 1;
-}
-
 /* The values from c->pos on that are plain finite numbers, each ended by a
  * separator (is_sep) or the end of the input, into acc[k..npts): returns the
  * new k.  Stops with c at the first token that is anything else (a glued
  * value, an end marker, a bad token: the careful loop takes it) or at the
  * end of the input.  The common case, in one pass over the bytes. */
-static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
+static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts, int avx2)
 {
   const char *s = c->s, *p = s + c->pos, *end = s + c->n;
   long line = c->line;
+  int peer = 0; /* the last value was a PEER field: four at a time may follow */
   while (k < npts) {
+    if (peer && avx2) {
+      k = aq_at2_fields4(&p, end, &line, acc, k, npts);
+      if (k >= npts)
+        break;
+    }
     if (end - p > PEER_FIELD_W && peer_field(p, &acc[k])) {
       k++;
       p += PEER_FIELD_W;
+      peer = 1;
       continue;
     }
+    peer = 0;
     if (p < end && sep_kind[(unsigned char)*p] == 2) { /* a field may follow */
-      p = line_end(p, end);
+      p = aq_at2_line_end(p, end);
       line++;
       continue;
     }
@@ -242,7 +237,7 @@ static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
         p++;
       if (p >= end || sep_kind[(unsigned char)*p] != 2)
         break;
-      p = line_end(p, end);
+      p = aq_at2_line_end(p, end);
       line++;
     }
     if (p >= end)
@@ -605,8 +600,9 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
 
   size_t k = 0;
   char field[40], tokq[AT2_TOKEN_MAX + 8];
+  int avx2 = aq_at2_fields_avx2();
   while (k < npts) {
-    k = plain_values(&c, acc, k, npts);
+    k = plain_values(&c, acc, k, npts, avx2);
     if (k >= npts)
       break;
     /* separators */

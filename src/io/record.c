@@ -4,6 +4,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <fnmatch.h>
 #include <stdint.h>
@@ -17,6 +18,10 @@
 #include "formats.h"
 #include "readers.h"
 #include "swar.h"
+
+#if defined(__SSE2__) && !defined(AQ_NO_SIMD)
+#include <emmintrin.h>
+#endif
 
 /* ---- units ------------------------------------------------------------ */
 
@@ -446,6 +451,52 @@ static const aq_units plausible_try[] = {AQ_UNITS_G,     AQ_UNITS_G10,
                                          AQ_UNITS_GAL,   AQ_UNITS_MMPS2,
                                          AQ_UNITS_MPS2,  AQ_UNITS_NMPS2};
 
+/* acc[k] = v[k] * factor and *maxabs = the largest |v[k]| (from its value on
+ * entry) for k = 0, 1, ... while the products are finite: returns the first
+ * k whose product is not (or n), which the caller reads again one sample
+ * at a time, acc[k] not yet written.  v and acc may be the same array (a
+ * sample is read before its product is stored).  Two samples a vector:
+ * the same products and the same maximum (max is exact, in any order) as
+ * the one-at-a-time loop, without its branches per sample. */
+static size_t scale_samples(const double *v, double *acc, size_t n, double factor,
+                            double *maxabs)
+{
+  size_t k = 0;
+#if defined(__SSE2__) && !defined(AQ_NO_SIMD)
+  const __m128d f = _mm_set1_pd(factor), big = _mm_set1_pd(DBL_MAX),
+                abs = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
+  __m128d mx = _mm_set1_pd(*maxabs);
+  for (; n - k >= 4; k += 4) {
+    __m128d v0 = _mm_loadu_pd(v + k), v1 = _mm_loadu_pd(v + k + 2);
+    __m128d a0 = _mm_mul_pd(v0, f), a1 = _mm_mul_pd(v1, f);
+    /* finite: |a| <= DBL_MAX (false for a NaN) */
+    __m128d fin = _mm_and_pd(_mm_cmple_pd(_mm_and_pd(a0, abs), big),
+                             _mm_cmple_pd(_mm_and_pd(a1, abs), big));
+    if (_mm_movemask_pd(fin) != 3)
+      break;
+    /* maxpd(x, mx) is x > mx ? x : mx, the scalar loop's choice */
+    mx = _mm_max_pd(_mm_max_pd(_mm_and_pd(v0, abs), mx), _mm_and_pd(v1, abs));
+    _mm_storeu_pd(acc + k, a0);
+    _mm_storeu_pd(acc + k + 2, a1);
+  }
+  double m2[2];
+  _mm_storeu_pd(m2, mx);
+  *maxabs = m2[0] > m2[1] ? m2[0] : m2[1];
+#endif
+  double m = *maxabs;
+  for (; k < n; k++) {
+    double a = v[k] * factor;
+    if (!isfinite(a))
+      break;
+    double x = fabs(v[k]);
+    if (x > m)
+      m = x;
+    acc[k] = a;
+  }
+  *maxabs = m;
+  return k;
+}
+
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
@@ -516,7 +567,8 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     return aq_error_set(err, AQ_ENOMEM, label, -1, -1, NULL,
                         "out of memory for %zu samples", ch->npts);
   double maxabs = 0;
-  for (size_t k = 0; k < ch->npts; k++) {
+  for (size_t k = scale_samples(ch->values, acc, ch->npts, factor, &maxabs); k < ch->npts;
+       k++) {
     double a = ch->values[k] * factor;
     if (!isfinite(a)) {
       if (!in_place)
