@@ -75,12 +75,24 @@ static const double pow_by_exp[200] = {
 
 #define AVX2 __attribute__((target("avx2")))
 
-/* The next field at q (a line end before it taken, *line counted). */
-static inline const char *field_at(const char *q, const char *end, long *line)
+/* Bytes a group of four fields may span from where it is looked for: a
+ * line end of at most two bytes before each field, 4 x 15 characters and
+ * the last one's next byte. */
+#define GROUP_SPAN (4 * (2 + AQ_AT2_FIELD_W) + 1)
+
+/* The next field at q (one line end before it taken, *line counted): LF,
+ * CR LF or a CR alone; a line end of other bytes (CR CR LF) leaves q at
+ * its second byte, which no field starts with.  q[0..1] are inside the
+ * buffer. */
+static inline const char *field_at(const char *q, long *line)
 {
-  if (q < end && (*q == '\n' || *q == '\r')) {
-    q = aq_at2_line_end(q, end);
+  if (*q == '\n') {
     (*line)++;
+    return q + 1;
+  }
+  if (*q == '\r') {
+    (*line)++;
+    return q + 1 + (q[1] == '\n');
   }
   return q;
 }
@@ -90,44 +102,47 @@ static inline const char *field_at(const char *q, const char *end, long *line)
   _mm256_setr_epi8(b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b0, b1, \
                    b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15)
 
-/* The fields at a and b, checked: 0 if a byte is out of place, else 1 and
- * *t per 128-bit lane the 32-bit values [s, h, m, j]: s 4 for a minus sign
- * (else 0), h the first four digits, m the seven-digit mantissa, j the
- * exponent's index into pow_by_exp. */
-static inline AVX2 int two_fields(const char *a, const char *b, __m256i *t)
+/* The 16 bytes at a and at b in one register. */
+static inline AVX2 __m256i load_two(const char *a, const char *b)
 {
-  const __m256i v = _mm256_inserti128_si256(
-      _mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)a)),
-      _mm_loadu_si128((const __m128i *)b), 1);
-  /* where the digits are; elsewhere the byte is one of three patterns' */
+  return _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128((const __m128i *)a)),
+                                 _mm_loadu_si128((const __m128i *)b), 1);
+}
+
+/* All ones in each byte of v (two fields) that is where it belongs: a
+ * digit where digit_at says, elsewhere the byte of one of three patterns;
+ * d = v - '0'. */
+static inline AVX2 __m256i in_place(__m256i v, __m256i d)
+{
   const __m256i digit_at = LANES(0, 0, 0, 0, -1, -1, -1, -1, -1, -1, -1, 0, 0, -1, -1, 0);
   const __m256i pat_a = LANES(' ', ' ', ' ', '.', 0, 0, 0, 0, 0, 0, 0, 'E', '-', 0, 0, ' ');
   const __m256i pat_b = LANES(' ', ' ', '-', '.', 0, 0, 0, 0, 0, 0, 0, 'e', '+', 0, 0, '\n');
   const __m256i pat_c = LANES(' ', ' ', '-', '.', 0, 0, 0, 0, 0, 0, 0, 'e', '+', 0, 0, '\r');
   /* v - '0' is 0..9, unsigned, exactly at the digits: min(d, 9) == d */
-  const __m256i d = _mm256_sub_epi8(v, _mm256_set1_epi8('0'));
   const __m256i is_digit = _mm256_cmpeq_epi8(_mm256_min_epu8(d, _mm256_set1_epi8(9)), d);
   const __m256i fixed = _mm256_or_si256(
       _mm256_cmpeq_epi8(v, pat_a),
       _mm256_or_si256(_mm256_cmpeq_epi8(v, pat_b), _mm256_cmpeq_epi8(v, pat_c)));
-  if (_mm256_movemask_epi8(_mm256_blendv_epi8(fixed, is_digit, digit_at)) != -1)
-    return 0;
+  return _mm256_blendv_epi8(fixed, is_digit, digit_at);
+}
+
+/* Two checked fields (v, d = v - '0') as 32-bit lanes per 128-bit half:
+ * [s, h, b, j]: s 4 for a minus sign (else 0), h the first four digits, b
+ * the last three, j the exponent's index into pow_by_exp. */
+static inline AVX2 __m256i two_fields(__m256i v, __m256i d)
+{
   /* the digits' values, and 4 at the two signs when they are '-' (bit 2
    * of '-' 0x2D; clear in ' ' 0x20 and '+' 0x2B) */
+  const __m256i digit_at = LANES(0, 0, 0, 0, -1, -1, -1, -1, -1, -1, -1, 0, 0, -1, -1, 0);
   const __m256i sign_at = LANES(0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0);
   const __m256i x =
       _mm256_or_si256(_mm256_and_si256(d, digit_at), _mm256_and_si256(v, sign_at));
   /* byte pairs times their weights into 16-bit lanes: [0, s, d4d5, d6d7,
    * d8d9, d10, 100 (exponent '-') + 10 d13, d14] */
   const __m256i w8 = LANES(0, 0, 1, 0, 10, 1, 10, 1, 10, 1, 1, 0, 25, 10, 1, 0);
-  const __m256i p16 = _mm256_maddubs_epi16(x, w8);
-  /* pairs of those into 32-bit lanes: [s, h = d4..d7, d8..d10, j] */
+  /* pairs of those into 32-bit lanes: [s, h = d4..d7, b = d8..d10, j] */
   const __m256i w16 = _mm256_setr_epi16(0, 1, 100, 1, 10, 1, 1, 1, 0, 1, 100, 1, 10, 1, 1, 1);
-  const __m256i q = _mm256_madd_epi16(p16, w16);
-  /* lane 2 += 1000 h: the seven digits (at most 9 999 999) */
-  const __m256i h1000 = _mm256_mullo_epi32(q, _mm256_setr_epi32(0, 1000, 0, 0, 0, 1000, 0, 0));
-  *t = _mm256_add_epi32(q, _mm256_bslli_epi128(h1000, 4));
-  return 1;
+  return _mm256_madd_epi16(_mm256_maddubs_epi16(x, w8), w16);
 }
 
 size_t aq_at2_fields4(const char **pp, const char *end, long *line, double *acc, size_t k,
@@ -138,35 +153,29 @@ size_t aq_at2_fields4(const char **pp, const char *end, long *line, double *acc,
 {
   const char *p = *pp;
   long ln = *line;
-  /* lanes [s or h1, s or h2, s or h3, s or h4, 1..4 in order]: see below */
-  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7), zero = _mm256_set1_epi8('0');
   const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
-  while (npts - k >= 4) {
+  while (npts - k >= 4 && end - p >= GROUP_SPAN) {
     long l = ln;
-    /* each field's 16 bytes inside the buffer */
-    const char *q0 = field_at(p, end, &l);
-    if (end - q0 <= AQ_AT2_FIELD_W)
+    const char *q0 = field_at(p, &l);
+    const char *q1 = field_at(q0 + AQ_AT2_FIELD_W, &l);
+    const char *q2 = field_at(q1 + AQ_AT2_FIELD_W, &l);
+    const char *q3 = field_at(q2 + AQ_AT2_FIELD_W, &l);
+    const __m256i v01 = load_two(q0, q1), v23 = load_two(q2, q3);
+    const __m256i d01 = _mm256_sub_epi8(v01, zero), d23 = _mm256_sub_epi8(v23, zero);
+    if (_mm256_movemask_epi8(_mm256_and_si256(in_place(v01, d01), in_place(v23, d23))) != -1)
       break;
-    const char *q1 = field_at(q0 + AQ_AT2_FIELD_W, end, &l);
-    if (end - q1 <= AQ_AT2_FIELD_W)
-      break;
-    const char *q2 = field_at(q1 + AQ_AT2_FIELD_W, end, &l);
-    if (end - q2 <= AQ_AT2_FIELD_W)
-      break;
-    const char *q3 = field_at(q2 + AQ_AT2_FIELD_W, end, &l);
-    if (end - q3 <= AQ_AT2_FIELD_W)
-      break;
-    __m256i t01, t23;
-    int ok = two_fields(q0, q1, &t01);
-    ok &= two_fields(q2, q3, &t23);
-    if (!ok)
-      break;
-    /* [s0 s2 h0 h2 | s1 s3 h1 h3] and [m0 m2 j0 j2 | m1 m3 j1 j3], put in
-     * field order: [s0 s1 s2 s3 h..] and [m0 m1 m2 m3 j0 j1 j2 j3] */
+    const __m256i t01 = two_fields(v01, d01), t23 = two_fields(v23, d23);
+    /* [s0 s2 h0 h2 | s1 s3 h1 h3] and [b0 b2 j0 j2 | b1 b3 j1 j3], put in
+     * field order: [s0 s1 s2 s3 h0 h1 h2 h3] and [b0 b1 b2 b3 j0 j1 j2 j3] */
     const __m256i sh = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(t01, t23), order);
-    const __m256i mj = _mm256_permutevar8x32_epi32(_mm256_unpackhi_epi32(t01, t23), order);
-    const __m256d m = _mm256_cvtepi32_pd(_mm256_castsi256_si128(mj));
-    const __m256d pw = _mm256_i32gather_pd(pow_by_exp, _mm256_extracti128_si256(mj, 1), 8);
+    const __m256i bj = _mm256_permutevar8x32_epi32(_mm256_unpackhi_epi32(t01, t23), order);
+    /* the seven digits, 1000 h + b (at most 9 999 999), exact as doubles */
+    const __m128i m7 = _mm_add_epi32(
+        _mm_mullo_epi32(_mm256_extracti128_si256(sh, 1), _mm_set1_epi32(1000)),
+        _mm256_castsi256_si128(bj));
+    const __m256d m = _mm256_cvtepi32_pd(m7);
+    const __m256d pw = _mm256_i32gather_pd(pow_by_exp, _mm256_extracti128_si256(bj, 1), 8);
     const __m256d pa = _mm256_and_pd(pw, magnitude);
     /* m * 10^e or m / 10^e: one rounding either way (aq_number_exact) */
     __m256d x = _mm256_blendv_pd(_mm256_mul_pd(m, pa), _mm256_div_pd(m, pa), pw);
