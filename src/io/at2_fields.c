@@ -50,28 +50,17 @@ int aq_at2_fields_avx2(void)
  * its two digits: the value is m * 10^(+-E - 7) for the seven digits m.
  * Sign bit clear: multiply m by the entry; set: divide by its magnitude;
  * NaN: the power is not exact (|+-E - 7| > 22), the field is the caller's. */
+#define NAN10 NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN
 static const double pow_by_exp[200] = {
+    /* E+00..E+29 */
     -1e7, -1e6, -1e5, -1e4, -1e3, -1e2, -1e1, 1e0, 1e1, 1e2,
     1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12,
     1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
+    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, /* E+30..E+99 */
+    /* E-00..E-15 */
     -1e7, -1e8, -1e9, -1e10, -1e11, -1e12, -1e13, -1e14, -1e15, -1e16,
-    -1e17, -1e18, -1e19, -1e20, -1e21, -1e22, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-    NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
-};
+    -1e17, -1e18, -1e19, -1e20, -1e21, -1e22, NAN, NAN, NAN, NAN, /* E-16..E-19 */
+    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10}; /* E-20..E-99 */
 
 #define AVX2 __attribute__((target("avx2")))
 
