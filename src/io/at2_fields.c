@@ -46,21 +46,21 @@ int aq_at2_fields_avx2(void)
 }
 
 #if AT2_AVX2
-/* The power of ten for a field's exponent, by index 100 * (sign is '-') +
+/* The power of ten for a field's exponent, by index 100 * (sign is '+') +
  * its two digits: the value is m * 10^(+-E - 7) for the seven digits m.
  * Sign bit clear: multiply m by the entry; set: divide by its magnitude;
  * NaN: the power is not exact (|+-E - 7| > 22), the field is the caller's. */
 #define NAN10 NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN
 static const double pow_by_exp[200] = {
+    /* E-00..E-15 */
+    -1e7, -1e8, -1e9, -1e10, -1e11, -1e12, -1e13, -1e14, -1e15, -1e16,
+    -1e17, -1e18, -1e19, -1e20, -1e21, -1e22, NAN, NAN, NAN, NAN, /* E-16..E-19 */
+    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, /* E-20..E-99 */
     /* E+00..E+29 */
     -1e7, -1e6, -1e5, -1e4, -1e3, -1e2, -1e1, 1e0, 1e1, 1e2,
     1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12,
     1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, /* E+30..E+99 */
-    /* E-00..E-15 */
-    -1e7, -1e8, -1e9, -1e10, -1e11, -1e12, -1e13, -1e14, -1e15, -1e16,
-    -1e17, -1e18, -1e19, -1e20, -1e21, -1e22, NAN, NAN, NAN, NAN, /* E-16..E-19 */
-    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10}; /* E-20..E-99 */
+    NAN10, NAN10, NAN10, NAN10, NAN10, NAN10, NAN10}; /* E+30..E+99 */
 
 #define AVX2 __attribute__((target("avx2")))
 
@@ -98,40 +98,40 @@ static inline AVX2 __m256i load_two(const char *a, const char *b)
                                  _mm_loadu_si128((const __m128i *)b), 1);
 }
 
-/* All ones in each byte of v (two fields) that is where it belongs: a
- * digit where digit_at says, elsewhere the byte of one of three patterns;
- * d = v - '0'. */
-static inline AVX2 __m256i in_place(__m256i v, __m256i d)
+/* A field's bytes XOR what they are in "   .0000000E-00" and a blank:
+ * the digits' values at the digits, 0 at the other bytes, or one of the
+ * differences below for the other bytes allowed there. */
+#define FIELD_XOR LANES(' ', ' ', ' ', '.', '0', '0', '0', '0', '0', '0', '0', 'E', '-', '0', '0', ' ')
+
+/* All ones in each byte of t = v ^ FIELD_XOR (two fields) that is in its
+ * place: at most 9 at a digit, else 0 or ' ' ^ '-' at the sign, 'E' ^ 'e'
+ * at the exponent letter, '-' ^ '+' at its sign, ' ' ^ LF or ' ' ^ CR
+ * after the field. */
+static inline AVX2 __m256i in_place(__m256i t)
 {
-  const __m256i digit_at = LANES(0, 0, 0, 0, -1, -1, -1, -1, -1, -1, -1, 0, 0, -1, -1, 0);
-  const __m256i pat_a = LANES(' ', ' ', ' ', '.', 0, 0, 0, 0, 0, 0, 0, 'E', '-', 0, 0, ' ');
-  const __m256i pat_b = LANES(' ', ' ', '-', '.', 0, 0, 0, 0, 0, 0, 0, 'e', '+', 0, 0, '\n');
-  const __m256i pat_c = LANES(' ', ' ', '-', '.', 0, 0, 0, 0, 0, 0, 0, 'e', '+', 0, 0, '\r');
-  /* v - '0' is 0..9, unsigned, exactly at the digits: min(d, 9) == d */
-  const __m256i is_digit = _mm256_cmpeq_epi8(_mm256_min_epu8(d, _mm256_set1_epi8(9)), d);
-  const __m256i fixed = _mm256_or_si256(
-      _mm256_cmpeq_epi8(v, pat_a),
-      _mm256_or_si256(_mm256_cmpeq_epi8(v, pat_b), _mm256_cmpeq_epi8(v, pat_c)));
-  return _mm256_blendv_epi8(fixed, is_digit, digit_at);
+  const __m256i most = LANES(0, 0, 0, 0, 9, 9, 9, 9, 9, 9, 9, 0, 0, 9, 9, 0);
+  const __m256i alt_a = LANES(0, 0, ' ' ^ '-', 0, 0, 0, 0, 0, 0, 0, 0, 'E' ^ 'e', '-' ^ '+', 0, 0,
+                              ' ' ^ '\n');
+  const __m256i alt_b = LANES(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, ' ' ^ '\r');
+  return _mm256_or_si256(
+      _mm256_cmpeq_epi8(_mm256_min_epu8(t, most), t),
+      _mm256_or_si256(_mm256_cmpeq_epi8(t, alt_a), _mm256_cmpeq_epi8(t, alt_b)));
 }
 
-/* Two checked fields (v, d = v - '0') as 32-bit lanes per 128-bit half:
+/* Two checked fields (t = v ^ FIELD_XOR) as 32-bit lanes per 128-bit half:
  * [s, h, b, j]: s 4 for a minus sign (else 0), h the first four digits, b
  * the last three, j the exponent's index into pow_by_exp. */
-static inline AVX2 __m256i two_fields(__m256i v, __m256i d)
+static inline AVX2 __m256i two_fields(__m256i t)
 {
-  /* the digits' values, and 4 at the two signs when they are '-' (bit 2
-   * of '-' 0x2D; clear in ' ' 0x20 and '+' 0x2B) */
-  const __m256i digit_at = LANES(0, 0, 0, 0, -1, -1, -1, -1, -1, -1, -1, 0, 0, -1, -1, 0);
-  const __m256i sign_at = LANES(0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0);
-  const __m256i x =
-      _mm256_or_si256(_mm256_and_si256(d, digit_at), _mm256_and_si256(v, sign_at));
+  /* the digits, and 4 at the sign when it is '-' (' ' ^ '-' is 0x0D) and
+   * at the exponent's when it is '+' ('-' ^ '+' is 0x06) */
+  const __m256i keep = LANES(0, 0, 4, 0, 15, 15, 15, 15, 15, 15, 15, 0, 4, 15, 15, 0);
   /* byte pairs times their weights into 16-bit lanes: [0, s, d4d5, d6d7,
-   * d8d9, d10, 100 (exponent '-') + 10 d13, d14] */
+   * d8d9, d10, 100 (exponent '+') + 10 d13, d14] */
   const __m256i w8 = LANES(0, 0, 1, 0, 10, 1, 10, 1, 10, 1, 1, 0, 25, 10, 1, 0);
   /* pairs of those into 32-bit lanes: [s, h = d4..d7, b = d8..d10, j] */
   const __m256i w16 = _mm256_setr_epi16(0, 1, 100, 1, 10, 1, 1, 1, 0, 1, 100, 1, 10, 1, 1, 1);
-  return _mm256_madd_epi16(_mm256_maddubs_epi16(x, w8), w16);
+  return _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(t, keep), w8), w16);
 }
 
 size_t aq_at2_fields4(const char **pp, const char *end, long *line, double *acc, size_t k,
@@ -142,7 +142,7 @@ size_t aq_at2_fields4(const char **pp, const char *end, long *line, double *acc,
 {
   const char *p = *pp;
   long ln = *line;
-  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7), zero = _mm256_set1_epi8('0');
+  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7), pat = FIELD_XOR;
   const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
   while (npts - k >= 4 && end - p >= GROUP_SPAN) {
     long l = ln;
@@ -150,11 +150,11 @@ size_t aq_at2_fields4(const char **pp, const char *end, long *line, double *acc,
     const char *q1 = field_at(q0 + AQ_AT2_FIELD_W, &l);
     const char *q2 = field_at(q1 + AQ_AT2_FIELD_W, &l);
     const char *q3 = field_at(q2 + AQ_AT2_FIELD_W, &l);
-    const __m256i v01 = load_two(q0, q1), v23 = load_two(q2, q3);
-    const __m256i d01 = _mm256_sub_epi8(v01, zero), d23 = _mm256_sub_epi8(v23, zero);
-    if (_mm256_movemask_epi8(_mm256_and_si256(in_place(v01, d01), in_place(v23, d23))) != -1)
+    const __m256i x01 = _mm256_xor_si256(load_two(q0, q1), pat),
+                  x23 = _mm256_xor_si256(load_two(q2, q3), pat);
+    if (_mm256_movemask_epi8(_mm256_and_si256(in_place(x01), in_place(x23))) != -1)
       break;
-    const __m256i t01 = two_fields(v01, d01), t23 = two_fields(v23, d23);
+    const __m256i t01 = two_fields(x01), t23 = two_fields(x23);
     /* [s0 s2 h0 h2 | s1 s3 h1 h3] and [b0 b2 j0 j2 | b1 b3 j1 j3], put in
      * field order: [s0 s1 s2 s3 h0 h1 h2 h3] and [b0 b1 b2 b3 j0 j1 j2 j3] */
     const __m256i sh = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(t01, t23), order);
