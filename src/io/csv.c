@@ -255,49 +255,56 @@ typedef struct {
  * from row k on.  Returns the new k, with c after the last row taken; any
  * other line (blank, a comment, quotes, a bad or missing field) is left to
  * the general reading, which reads it exactly as before. */
-#if AQ_NUMBER_SHAPES
-/* The bytes a shaped read needs from a field's start: a sign, the 16 the
- * shape's load reads (which hold the byte after the number, len <= 15), and
- * one more for a CR's LF. */
-#define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW + 1)
+/* The bytes a shaped read needs from a field's start: a sign and the 16 the
+ * shape's load reads (which hold the byte after the number, len <= 15). */
+#define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
 
-/* The rows from *pp on whose every field is read by its column's learned
- * shape, with nothing around the fields: ncols (a constant where inlined)
- * numbers separated by sep (not ' '), then LF, CRLF or CR (or CRs then LF),
- * as plain_rows reads them; into the arrays from row k on.  Stops at the
- * first row that is not so (plain_rows reads it the general way) or at cap;
- * returns the new k, with *pp after the last row taken.  A row that stops
- * part way may have written values to row k: the row that fills k later
- * overwrites them. */
-static inline size_t shaped_rows(const char **pp, const char *end, size_t ncols, char sep,
-                                 aq_number_shape *shape, double *const *dst, size_t k,
-                                 size_t cap)
+/* The rows from *pp on that are numbers and separators only: ncols (a
+ * constant where inlined) finite plain decimals separated by sep (not ' '),
+ * nothing around them, then LF, CRLF, CR (or CRs then LF) or the end of the
+ * input, each number read as plain_rows reads it (by its column's shape
+ * when it fits, else the general reading, which learns the shape); into
+ * the arrays from row k on.  Stops at the first row that is not so
+ * (plain_rows reads it the general way) or at cap; returns the new k, with
+ * *pp after the last row taken.  A row that stops part way may have
+ * written values to row k: the row that fills k later overwrites them. */
+static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, char sep,
+                               aq_number_shape *shape, double *const *dst, size_t k,
+                               size_t cap)
 {
   const char *p = *pp;
   while (k < cap) {
     const char *q = p;
     size_t i = 0;
     for (; i < ncols; i++) {
-      const aq_number_shape *sh = &shape[i];
-      if (end - q < CSV_SHAPED_ROOM || !sh->len)
-        break;
-      size_t off = *q == '-' || *q == '+';
+      aq_number_shape *sh = &shape[i];
       double x;
-      if (!aq_number_shape_read_(sh, q, off, &x))
-        break;
-      q += off + sh->len;
+#if AQ_NUMBER_SHAPES
+      size_t off = q < end && (*q == '-' || *q == '+');
+      if (end - q >= CSV_SHAPED_ROOM && sh->len && aq_number_shape_read_(sh, q, off, &x)) {
+        q += off + sh->len;
+        if (sh->misses) /* as aq_number_parse_shaped does */
+          sh->misses = 0;
+      } else
+#endif
+      {
+        size_t used = aq_number_parse_unshaped_(sh, q, (size_t)(end - q), 0, &x);
+        if (!used)
+          break;
+        q += used;
+      }
       if (i + 1 < ncols) {
-        if (*q != sep)
+        if (q >= end || *q != sep)
           break;
         q++;
-      } else if (*q == '\n') {
+      } else if (q < end && *q == '\n') {
         q++;
-      } else if (*q == '\r') { /* the line end, as aq_text_line_ takes it */
+      } else if (q < end && *q == '\r') { /* the line end, as aq_text_line_ takes it */
         while (q < end && *q == '\r')
           q++;
         if (q < end && *q == '\n')
           q++;
-      } else {
+      } else if (q < end) {
         break;
       }
       if (dst[i])
@@ -307,14 +314,12 @@ static inline size_t shaped_rows(const char **pp, const char *end, size_t ncols,
       break;
     k++;
     p = q;
+    if (p >= end)
+      break;
   }
-  for (size_t i = 0; i < ncols; i++) /* as aq_number_parse_shaped does */
-    if (shape[i].misses && p != *pp)
-      shape[i].misses = 0;
   *pp = p;
   return k;
 }
-#endif
 
 static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t k)
 {
@@ -327,16 +332,14 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
                                    : NULL;
   size_t k0 = k;
   while (p < end && k < rows->cap) {
-#if AQ_NUMBER_SHAPES
     if (pr->sep != ' ') { /* the common rows first */
       if (pr->ncols == 2) /* (time, acceleration): its own loop */
-        k = shaped_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
+        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
       else
-        k = shaped_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
+        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
       if (p >= end || k >= rows->cap)
         break;
     }
-#endif
     const char *q = p;
     size_t i = 0;
     for (; i < pr->ncols; i++) {
