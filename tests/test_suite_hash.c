@@ -214,3 +214,61 @@ AQ_TEST(suite_records_named_in_order_on_threads)
   aq_check(strcmp(out[0], out[1]) == 0 && strlen(out[0]) > 1000,
            "text identical at -j 1 and -j 3");
 }
+
+/* A record named FILE#CHANNEL (given so, or one channel of a multi-channel
+ * file the suite expands) is stored with the sha256 of FILE, as sha256sum
+ * gives it: from the bytes read, and from the file read again when it is
+ * larger than a suite keeps per record (a 2.4 MB two-column CSV at -j 3). */
+AQ_TEST(suite_channel_sha256_is_the_files)
+{
+  char dir[512], big[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(big, sizeof big, "%s/two.csv", dir);
+  FILE *f = fopen(big, "w");
+  if (!aq_check(f != NULL, "write %s", big))
+    return;
+  fputs("t,ns_g,ew_g\n", f);
+  for (int i = 0; i < 120000; i++)
+    fprintf(f, "%.3f,%.6f,%.6f\n", 0.005 * i, 0.01 * sin(0.0314159 * i), 0.01 * cos(0.0314159 * i));
+  fclose(f);
+  /* the operands, and the records (name, file) they become, in order */
+  char list[4096];
+  snprintf(list, sizeof list,
+           "'tests/data/records/Q4149CF2.csv#NS' tests/data/records/2-ECU.dat '%s'", big);
+  const char *names[6][2] = {{"tests/data/records/Q4149CF2.csv#NS", "tests/data/records/Q4149CF2.csv"},
+                             {"tests/data/records/2-ECU.dat#U", "tests/data/records/2-ECU.dat"},
+                             {"tests/data/records/2-ECU.dat#N", "tests/data/records/2-ECU.dat"},
+                             {"tests/data/records/2-ECU.dat#E", "tests/data/records/2-ECU.dat"},
+                             {NULL, big},
+                             {NULL, big}};
+  char bn[2][800];
+  snprintf(bn[0], sizeof bn[0], "%s#ns_g", big);
+  snprintf(bn[1], sizeof bn[1], "%s#ew_g", big);
+  names[4][0] = bn[0];
+  names[5][0] = bn[1];
+  /* the reference: sha256sum of each record's file, with the record's name */
+  static char want[8192];
+  size_t wl = 0;
+  for (int i = 0; i < 6; i++) {
+    char cmd[2048], out[600];
+    snprintf(out, sizeof out, "%s/sum%d.txt", dir, i);
+    snprintf(cmd, sizeof cmd, "sha256sum '%s' | cut -c1-64 > '%s'", names[i][1], out);
+    char *h = system(cmd) == 0 ? aq_test_read_file(out, NULL) : NULL;
+    wl += (size_t)snprintf(want + wl, sizeof want - wl, "%.64s  %s\n", h ? h : "?", names[i][0]);
+    free(h);
+  }
+  for (int j = 1; j <= 3; j += 2) {
+    char h5[600], args[8192];
+    static char err[16384];
+    snprintf(h5, sizeof h5, "%s/c%d.h5", dir, j);
+    snprintf(args, sizeof args, "%s --arch arches/oppenheim.cfg -j %d -q -o '%s'", list, j, h5);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    /* 1: the vertical channel U is refused, the others run */
+    aq_check(rc == 1 && strstr(err, "2-ECU.dat#U"), "-j %d: exit %d: %s", j, rc, err);
+    char *got = stored_hashes(dir, h5);
+    aq_check(got && strcmp(got, want) == 0,
+             "-j %d: each channel's stored sha256 is its file's:\n%s\nwant:\n%s", j,
+             got ? got : "(unreadable)", want);
+    free(got);
+  }
+}

@@ -338,9 +338,11 @@ static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
     return;
   r->want_sha = 0;
   aq_error herr;
+  char file[4096];
   if (r->bytes)
     aq_sha256_hex(r->bytes, r->nbytes, r->sha256);
-  else if (aq_sha256_file(record_file(S, r->index), r->sha256, &herr) != AQ_OK)
+  else if (aq_sha256_file(aq_record_file(record_file(S, r->index), file, sizeof file),
+                          r->sha256, &herr) != AQ_OK)
     r->sha256[0] = '\0'; /* the reader says why it cannot be read */
   free(r->bytes);
   r->bytes = NULL;
@@ -928,15 +930,17 @@ static int journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t 
   for (size_t k = 1; !why[0] && k < *ne; k++) {
     rec_slot r;
     memset(&r, 0, sizeof r);
-    char sha[AQ_SHA256_HEX] = "";
+    char sha[AQ_SHA256_HEX] = "", file[4096];
     if (k - 1 < c->nrecords)
       slot_orient(S, k - 1, &r);
     if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], r.nruns, &r) != 0 ||
         r.index != k - 1)
       snprintf(why, sizeof why, "entry %zu: expected record %zu of this suite, got "
                                 "something else", k, k - 1);
-    else if (r.sha256[0] && (aq_sha256_file(record_file(S, k - 1), sha, &err) != AQ_OK ||
-                             strcmp(sha, r.sha256) != 0))
+    else if (r.sha256[0] &&
+             (aq_sha256_file(aq_record_file(record_file(S, k - 1), file, sizeof file), sha,
+                             &err) != AQ_OK ||
+              strcmp(sha, r.sha256) != 0))
       snprintf(why, sizeof why, "the record %s changed since the journal was written "
                                 "(sha256 %s, journal %s)", c->records[k - 1],
                sha[0] ? sha : "unreadable", r.sha256);

@@ -805,6 +805,13 @@ static void split_channel(const char *path, char *file, size_t cap, const char *
     snprintf(file, cap, "%s", path);
 }
 
+const char *aq_record_file(const char *name, char *buf, size_t cap)
+{
+  const char *want;
+  split_channel(name, buf, cap, &want);
+  return buf;
+}
+
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err)
 {
@@ -830,7 +837,7 @@ aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
   if (s != AQ_OK)
     return s;
   s = parse_one(buf, size, file, want, opts, rec, err);
-  if (bytes && !want) {
+  if (bytes) { /* the file's bytes, whichever of its channels was read */
     *bytes = buf;
     *nbytes = size;
   } else {

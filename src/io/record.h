@@ -123,11 +123,11 @@ double aq_units_to_mps2(aq_units u);
 aq_status aq_record_read(const char *path, const aq_read_opts *opts,
                          aq_record *rec, aq_error *err);
 
-/* aq_record_read, handing the bytes it read to the caller (*bytes malloc'd,
- * *nbytes of them; the caller frees) when the file read is path itself (not
- * the FILE of a FILE#CHANNEL name), whether or not they parse as a record;
- * otherwise (and when the file cannot be read) *bytes is NULL.  For a hash
- * of exactly the bytes read, without reading the file twice. */
+/* aq_record_read, handing the bytes of the file it read to the caller
+ * (*bytes malloc'd, *nbytes of them; the caller frees): path itself, or the
+ * FILE of a FILE#CHANNEL name, whether or not they parse as a record; NULL
+ * when the file cannot be read.  For a hash of exactly the bytes read,
+ * without reading the file twice. */
 aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
                               aq_record *rec, unsigned char **bytes,
                               size_t *nbytes, aq_error *err);
@@ -140,6 +140,11 @@ aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err);
 void aq_record_names_free(char **names, size_t n);
+
+/* The file a record name reads: NAME itself, or FILE for a channel named
+ * FILE#CHANNEL when NAME is not a file and FILE is (as aq_record_read
+ * resolves it).  Written to buf[cap] (truncated to fit); returns buf. */
+const char *aq_record_file(const char *name, char *buf, size_t cap);
 
 /* AQ_OK if rec may be run as horizontal excitation: it is not identified as
  * vertical, or opts->accept_vertical.  Otherwise AQ_EUNSUPPORTED with err
