@@ -101,6 +101,14 @@ static void generate(gen *g, rng *r, int extras)
   }
 }
 
+/* generate, until a file of at most max_rows rows comes */
+static void generate_short(gen *g, rng *r, int extras, size_t max_rows)
+{
+  do
+    generate(g, r, extras);
+  while (g->rows > max_rows);
+}
+
 /* 1-based line of byte pos of s[0..n), lines as the header comment says. */
 static long line_at(const char *s, size_t pos)
 {
@@ -183,9 +191,7 @@ AQ_TEST(io_csv_bad_character_at_each_position)
   gen g = {0};
   size_t tried = 0, wrong = 0;
   for (int f = 0; f < 24; f++) {
-    do
-      generate(&g, &r, 0);
-    while (g.rows > 12);
+    generate_short(&g, &r, 0, 12);
     /* from the second row on (a first row that is not numbers would be
      * taken for a line of the preamble) */
     size_t first = 0;
@@ -269,9 +275,7 @@ AQ_TEST(io_csv_cut_files)
   gen g = {0};
   size_t cuts = 0, ok = 0;
   for (int f = 0; f < 12; f++) {
-    do
-      generate(&g, &r, 1);
-    while (g.rows > 20);
+    generate_short(&g, &r, 1, 20);
     for (size_t n = 0; n < g.len; n++) {
       aq_raw_file raw;
       aq_error e;
