@@ -255,6 +255,72 @@ typedef struct {
  * from row k on.  Returns the new k, with c after the last row taken; any
  * other line (blank, a comment, quotes, a bad or missing field) is left to
  * the general reading, which reads it exactly as before. */
+/* The bytes a shaped read needs from a field's start: a sign and the 16 the
+ * shape's load reads (which hold the byte after the number, len <= 15). */
+#define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
+
+/* The rows from *pp on that are numbers and separators only: ncols (a
+ * constant where inlined) finite plain decimals separated by sep (not ' '),
+ * nothing around them, then LF, CRLF, CR (or CRs then LF) or the end of the
+ * input, each number read as plain_rows reads it (by its column's shape
+ * when it fits, else the general reading, which learns the shape); into
+ * the arrays from row k on.  Stops at the first row that is not so
+ * (plain_rows reads it the general way) or at cap; returns the new k, with
+ * *pp after the last row taken.  A row that stops part way may have
+ * written values to row k: the row that fills k later overwrites them. */
+static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, char sep,
+                               aq_number_shape *shape, double *const *dst, size_t k,
+                               size_t cap)
+{
+  const char *p = *pp;
+  while (k < cap) {
+    const char *q = p;
+    size_t i = 0;
+    for (; i < ncols; i++) {
+      aq_number_shape *sh = &shape[i];
+      double x;
+#if AQ_NUMBER_SHAPES
+      size_t off = q < end && (*q == '-' || *q == '+');
+      if (end - q >= CSV_SHAPED_ROOM && sh->len && aq_number_shape_read_(sh, q, off, &x)) {
+        q += off + sh->len;
+        if (sh->misses) /* as aq_number_parse_shaped does */
+          sh->misses = 0;
+      } else
+#endif
+      {
+        size_t used = aq_number_parse_unshaped_(sh, q, (size_t)(end - q), 0, &x);
+        if (!used)
+          break;
+        q += used;
+      }
+      if (i + 1 < ncols) {
+        if (q >= end || *q != sep)
+          break;
+        q++;
+      } else if (q < end && *q == '\n') {
+        q++;
+      } else if (q < end && *q == '\r') { /* the line end, as aq_text_line_ takes it */
+        while (q < end && *q == '\r')
+          q++;
+        if (q < end && *q == '\n')
+          q++;
+      } else if (q < end) {
+        break;
+      }
+      if (dst[i])
+        dst[i][k] = x;
+    }
+    if (i < ncols)
+      break;
+    k++;
+    p = q;
+    if (p >= end)
+      break;
+  }
+  *pp = p;
+  return k;
+}
+
 static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t k)
 {
   const char *s = c->s, *end = s + c->n;
@@ -264,7 +330,16 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
     dst[i] = pr->chof[i] >= 0 ? rows->raw->chan[pr->chof[i]].values
              : (long)i == pr->tcol ? rows->tt
                                    : NULL;
+  size_t k0 = k;
   while (p < end && k < rows->cap) {
+    if (pr->sep != ' ') { /* the common rows first */
+      if (pr->ncols == 2) /* (time, acceleration): its own loop */
+        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
+      else
+        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
+      if (p >= end || k >= rows->cap)
+        break;
+    }
     const char *q = p;
     size_t i = 0;
     for (; i < pr->ncols; i++) {
@@ -302,10 +377,10 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
     } else if (q < end) {
       q++;
     }
-    c->line++;
     k++;
     p = q;
   }
+  c->line += (long)(k - k0); /* one line per row */
   c->pos = (size_t)(p - s);
   return k;
 }
@@ -454,17 +529,23 @@ static double select_kth(double *d, size_t n, size_t k)
   return d[k];
 }
 
-/* The smallest and largest of the n - 1 steps of t, in one pass. */
-static void step_range(const double *t, size_t n, double *lo, double *hi)
+/* The smallest and largest of the n - 1 steps of t, and the first i
+ * (0 if none) where |t_i - (t_0 + i est)| > tol, in one pass. */
+static size_t step_range(const double *t, size_t n, double est, double tol, double *lo,
+                         double *hi)
 {
   double a = INFINITY, b = -INFINITY;
+  size_t off = 0;
   for (size_t i = 1; i < n; i++) {
     double d = t[i] - t[i - 1];
     a = d < a ? d : a;
     b = d > b ? d : b;
+    if (fabs(t[i] - (t[0] + (double)i * est)) > tol && !off)
+      off = i;
   }
   *lo = a;
   *hi = b;
+  return off;
 }
 
 /* Median of the n - 1 steps of t (NaN if out of memory): the upper median,
@@ -481,8 +562,12 @@ static double median_step(const double *t, size_t n)
   return m;
 }
 
-aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+/* aq_csv_parse; with columns_only, *columns_only gets the count of
+ * channels once the columns are known, and the rows are not read (raw stays
+ * empty). */
+static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
+                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err,
+                           size_t *columns_only)
 {
   memset(raw, 0, sizeof *raw);
   csv_cur c = {(const char *)buf, n, 0, 0};
@@ -677,6 +762,10 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     chof[i] = -1;
   for (size_t j = 0; j < nch; j++)
     chof[chcol[j]] = (int)j;
+  if (columns_only) {
+    *columns_only = nch;
+    return AQ_OK;
+  }
 
   /* Rows: as many as the rest holds at the first row's length, plus a
    * quarter; the arrays grow if more come. */
@@ -770,7 +859,7 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
         /* a step that is off (a missing or repeated row) is named at its
          * line; then a slow drift of the times is caught cumulatively */
         double lo, hi;
-        step_range(tt, k, &lo, &hi);
+        size_t off = step_range(tt, k, est, CSV_TIME_TOL_REL * est, &lo, &hi);
         /* The median step lies in [lo, hi]: when hi - lo <= tol * lo, no
          * step is farther than tol * median from it (the differences of
          * steps so close are exact), and the median is not needed. */
@@ -785,15 +874,14 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                 "expected evenly spaced times (step %.9g s within %g %%), got a "
                 "step of %.9g s from %.15g to %.15g",
                 med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
-        for (size_t i = 1; i < k && st == AQ_OK; i++)
-          if (fabs(tt[i] - (tt[0] + (double)i * est)) > CSV_TIME_TOL_REL * est) {
-            st = aq_error_set(
+        if (off && st == AQ_OK) {
+          size_t i = off;
+          st = aq_error_set(
                 err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (%.15g + k * %.9g s, within %g %% of "
                 "the step), got %.15g for sample %zu",
                 tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
-            break;
-          }
+        }
       }
     }
   }
@@ -832,4 +920,18 @@ aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
   }
   return AQ_OK;
+}
+
+aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  return csv_parse(buf, n, name, opts, raw, err, NULL);
+}
+
+aq_status aq_csv_channels(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, size_t *nchan, aq_error *err)
+{
+  aq_raw_file none;
+  *nchan = 0;
+  return csv_parse(buf, n, name, opts, &none, err, nchan);
 }

@@ -160,6 +160,13 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
+/* The count of channels aq_csv_parse would make of buf[0..n), from its
+ * preamble, column names and first row only (the rows are not read): AQ_OK
+ * with *nchan, or the error aq_csv_parse reports there.  On AQ_OK,
+ * aq_csv_parse gives *nchan channels or reports an error in the rows. */
+aq_status aq_csv_channels(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, size_t *nchan, aq_error *err);
+
 /* aq_decimal_parse, aq_number_parse: the decimal parser, number.h. */
 
 /* Shared by the text readers (record.c): the line at *pos of s[0..n) as

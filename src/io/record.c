@@ -906,7 +906,8 @@ void aq_record_names_free(char **names, size_t n)
 }
 
 /* Formats that hold one channel per file (SAC, AT2, K-NET) are not parsed
- * here; the others are, to list their channels. */
+ * here, nor text that has one column of acceleration (only its columns are
+ * read); the others are, to list their channels. */
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err)
 {
@@ -935,6 +936,12 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
     if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
       aq_format fmt = aq_record_detect(buf, size);
       int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      size_t nch;
+      /* text of one channel, or that fails before its rows, keeps its name
+       * whatever its rows hold: only its columns are read */
+      if (fmt == AQ_FMT_TEXT &&
+          (aq_csv_channels(buf, size, paths[i], opts, &nch, &ignored) != AQ_OK || nch <= 1))
+        single = 1;
       if (!single && aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
         memset(&raw, 0, sizeof raw); /* reported when it is read */
     }
