@@ -87,8 +87,15 @@ static int per_pair(void)
     memset(&proc, 0, sizeof proc);
     if (load(&pairs[k], &rec, &proc, &arch) != 0)
       return -1;
-    aq_capacity_job job = {&proc, proc.acc_mps2, arch, AQ_MODEL_WORKPATH, pairs[k].cor,
-                           0, NAN, {0.01, 1e-6}};
+    aq_capacity_job job = {.proc = &proc,
+                           .acc_mps2 = proc.acc_mps2,
+                           .arch = arch,
+                           .model = AQ_MODEL_WORKPATH,
+                           .cor = pairs[k].cor,
+                           .merge_tol_mps2 = 0,
+                           .scale_max = NAN,
+                           .scan = {0.01, 1e-6},
+                           .av_mps2 = NULL};
     aq_capacity_job fine = job, hunt = job;
     fine.scan.resolution = 0.001;
     hunt.scan.resolution = 1.0;
