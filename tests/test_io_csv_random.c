@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "kernels.h"
 #include "io/readers.h"
 
 #define RND_FILES 300  /* random files of the value test */
@@ -159,7 +160,7 @@ static size_t check_values(const gen *g, const aq_raw_file *raw, size_t rows, co
   return bad;
 }
 
-AQ_TEST(io_csv_random_files_equal_strtod)
+static void io_csv_random_files_equal_strtod_(void)
 {
   rng r = {20261123};
   gen g = {0};
@@ -183,9 +184,10 @@ AQ_TEST(io_csv_random_files_equal_strtod)
     printf("  %d random files, %zu values, %zu differ from strtod\n", RND_FILES, values, bad);
   free(g.text);
 }
+BOTH_KERNELS(io_csv_random_files_equal_strtod)
 
 /* A bad character at each position of the rows: refused at its line. */
-AQ_TEST(io_csv_bad_character_at_each_position)
+static void io_csv_bad_character_at_each_position_(void)
 {
   rng r = {7};
   gen g = {0};
@@ -224,10 +226,11 @@ AQ_TEST(io_csv_bad_character_at_each_position)
     printf("  %zu bad characters, %zu misreported\n", tried, wrong);
   free(g.text);
 }
+BOTH_KERNELS(io_csv_bad_character_at_each_position)
 
 /* An empty field in any row and column: refused at its line, naming the
  * column. */
-AQ_TEST(io_csv_missing_value_named)
+static void io_csv_missing_value_named_(void)
 {
   rng r = {99};
   gen g = {0};
@@ -266,10 +269,11 @@ AQ_TEST(io_csv_missing_value_named)
   }
   free(g.text);
 }
+BOTH_KERNELS(io_csv_missing_value_named)
 
 /* Every cut of a file: no read past the end; what is read is the rows
  * before the cut, as strtod reads them. */
-AQ_TEST(io_csv_cut_files)
+static void io_csv_cut_files_(void)
 {
   rng r = {31};
   gen g = {0};
@@ -297,6 +301,7 @@ AQ_TEST(io_csv_cut_files)
     printf("  %zu cuts, %zu read\n", cuts, ok);
   free(g.text);
 }
+BOTH_KERNELS(io_csv_cut_files)
 
 /* Times whose every step is within 1 % of the median but that drift from
  * t_0 + k dt by more than 1 % of dt: refused at the first row that does

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "kernels.h"
 #include "io/at2_fields.h"
 #include "io/formats.h"
 #include "io/number.h"
@@ -156,22 +157,6 @@ static int agree(const char *what, const char *text, size_t n, size_t data, long
   free(want);
   return ok;
 }
-
-/* ---- both kernels ------------------------------------------------------ */
-
-/* Test name_ once with the AVX2 kernel (at2_fields.c; where the CPU has it)
- * and once with the one-field reading alone, which every other CPU uses. */
-#define BOTH_KERNELS(name)                                                                      \
-  AQ_TEST(name)                                                                                 \
-  {                                                                                             \
-    for (int avx2 = 1; avx2 >= 0; avx2--) {                                                     \
-      aq_at2_fields_force_(avx2);                                                               \
-      if (getenv("AQ_TEST_VERBOSE"))                                                            \
-        printf("  " #name ": %s\n", aq_at2_fields_avx2() ? "AVX2 kernel" : "one-field kernel"); \
-      name##_();                                                                                \
-    }                                                                                           \
-    aq_at2_fields_force_(-1);                                                                   \
-  }
 
 /* ---- writing fields ---------------------------------------------------- */
 

@@ -37,6 +37,8 @@
 #include <string.h>
 #include <strings.h>
 
+#include "at2_fields.h"
+#include "csv_fields.h"
 #include "fixed.h"
 #include "number.h"
 #include "readers.h"
@@ -258,6 +260,7 @@ typedef struct {
 /* The bytes a shaped read needs from a field's start: a sign and the 16 the
  * shape's load reads (which hold the byte after the number, len <= 15). */
 #define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
+#define BARE_BACKOFF_MAX 64 /* rows between tries of aq_csv_rows4 at most */
 
 /* The rows from *pp on that are numbers and separators only: ncols (a
  * constant where inlined) finite plain decimals separated by sep (not ' '),
@@ -270,10 +273,29 @@ typedef struct {
  * written values to row k: the row that fills k later overwrites them. */
 static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, char sep,
                                aq_number_shape *shape, double *const *dst, size_t k,
-                               size_t cap)
+                               size_t cap, int vec)
 {
   const char *p = *pp;
+  /* rows to read one at a time before the next try of aq_csv_rows4, and
+   * that count's next value: doubled after each try that takes nothing,
+   * so rows that never fit the kernel cost few tries */
+  unsigned skip = 0, backoff = 1;
+  vec = vec && ncols <= AQ_CSV_FIELDS_COLS_MAX;
   while (k < cap) {
+    if (vec && skip-- == 0) {
+      size_t i = 0;
+      while (i < ncols && shape[i].len)
+        i++;
+      size_t k1 = i == ncols ? aq_csv_rows4(&p, end, ncols, sep, shape, dst, k, cap) : k;
+      if (k1 > k)
+        backoff = 1;
+      else if (backoff < BARE_BACKOFF_MAX)
+        backoff *= 2;
+      skip = backoff - 1;
+      k = k1;
+      if (k >= cap || p >= end)
+        break;
+    }
     const char *q = p;
     size_t i = 0;
     for (; i < ncols; i++) {
@@ -331,12 +353,13 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
              : (long)i == pr->tcol ? rows->tt
                                    : NULL;
   size_t k0 = k;
+  const int vec = aq_at2_fields_avx2(); /* the AVX2 rows (csv_fields.h) */
   while (p < end && k < rows->cap) {
     if (pr->sep != ' ') { /* the common rows first */
       if (pr->ncols == 2) /* (time, acceleration): its own loop */
-        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
+        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap, vec);
       else
-        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
+        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap, vec);
       if (p >= end || k >= rows->cap)
         break;
     }
