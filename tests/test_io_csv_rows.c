@@ -82,6 +82,10 @@ static void generate(gen *g, rng *r, size_t pad, size_t rows)
       double v = (rnd(r, 2000001) - 1000000.0) / 1000000.0 * pow(10.0, (int)rnd(r, 7) - 5);
       if (rnd(r, 40) == 0)
         v *= 1e-25; /* 10^e not exact: strtod's */
+      else if ((fmt[i] == 0 || fmt[i] == 2) && rnd(r, 8) == 0)
+        /* exponents about the exact path's edges, e = exponent less the
+         * digits after the point: +-22 and +-23 */
+        v = (1 + rnd(r, 1000000) / 1e6) * pow(10.0, (int)rnd(r, 14) + (rnd(r, 2) ? 18 : -23));
       snprintf(g->tok[k][i], TOK, fmts[fmt[i]], v);
     }
     for (size_t i = 0; i < g->ncols; i++) {

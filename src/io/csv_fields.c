@@ -31,6 +31,7 @@
 /* Bytes a field's reading needs from its start: a sign and the 16-byte
  * window (which holds the byte after the number: len <= 15). */
 #define FIELD_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
+#define MANT_MAX 12 /* mantissa digits the kernel reads: bytes 4-15 */
 
 /* 10^e by index e + 22: sign bit clear, multiply by it; set, divide by its
  * magnitude (aq_number_exact's one operation). */
@@ -42,9 +43,12 @@ static const double pow_signed[2 * AQ_NUMBER_EXACT_POW_MAX + 1] = {
 
 /* One column's shape as vectors, the same in both 128-bit halves. */
 typedef struct {
-  __m256i digit, fixed, plus, minus, shuf;
+  __m256i digit, fixed, plus, minus;
+  __m256i shuf;       /* window to [0, exponent digits | mantissa digits] */
+  __m256i esign;      /* window to its exponent sign's byte 4 times in bytes 0-3 */
   unsigned want2;     /* the shape's bytes in both halves' movemask bits */
   size_t len;
+  int e0;             /* the exponent less the field's, plus 22 */
 } col_vec;
 
 static inline AVX2 __m256i twice(const unsigned char *b)
@@ -52,24 +56,39 @@ static inline AVX2 __m256i twice(const unsigned char *b)
   return _mm256_broadcastsi128_si256(_mm_loadu_si128((const __m128i *)b));
 }
 
-static AVX2 void col_setup(col_vec *c, const aq_number_shape *sh)
+/* Fills *c from the shape; returns 0 when the kernel cannot read it (more
+ * than MANT_MAX mantissa digits, or more than three exponent digits). */
+static AVX2 int col_setup(col_vec *c, const aq_number_shape *sh)
 {
   c->digit = twice(sh->digit);
   c->fixed = twice(sh->fixed);
   c->plus = twice(sh->plus);
   c->minus = twice(sh->minus);
-  /* the mantissa digits, in order, to the last bytes; zeros before them */
-  unsigned char shuf[16];
+  unsigned char shuf[16], esign[16];
+  memset(shuf, 0x80, sizeof shuf);
+  memset(esign, 0x80, sizeof esign);
   size_t nd = 0;
   for (size_t j = 0; j < 16; j++)
     nd += sh->mant[j] != 0;
-  memset(shuf, 0x80, sizeof shuf);
+  if (nd > MANT_MAX || (sh->has_exp && sh->exp_digits > 3))
+    return 0;
+  /* the mantissa digits, in order, to the last bytes; zeros before them */
   for (size_t j = 0, r = 16 - nd; j < 16; j++)
     if (sh->mant[j])
       shuf[r++] = (unsigned char)j;
+  /* the exponent digits to bytes 1-3, right-aligned; its sign's byte */
+  if (sh->has_exp) {
+    for (size_t j = 0; j < sh->exp_digits; j++)
+      shuf[4 - sh->exp_digits + j] = (unsigned char)(sh->exp_at + j);
+    if (sh->exp_sign_at)
+      memset(esign, sh->exp_sign_at, 4);
+  }
   c->shuf = twice(shuf);
+  c->esign = twice(esign);
   c->want2 = sh->want | sh->want << 16;
   c->len = sh->len;
+  c->e0 = AQ_NUMBER_EXACT_POW_MAX - (int)sh->frac;
+  return 1;
 }
 
 /* The 16 bytes at a and at b in one register. */
@@ -90,59 +109,93 @@ static inline AVX2 __m256i in_shape(__m256i v, __m256i d, const col_vec *c)
                          _mm256_and_si256(is_fixed, c->fixed));
 }
 
-/* The mantissas of two fields (d = window - '0'), per half as 32-bit lanes
- * [h, l, h, l]: h its digits but the last eight, l those eight. */
-static inline AVX2 __m256i mantissa_two(__m256i d, const col_vec *c)
+/* Two fields (v their windows, d = v - '0') as 32-bit lanes per half:
+ * [+-E, a, b, c]: E the exponent's digits, a b c the mantissa's in groups
+ * of four (the mantissa is a 10^8 + b 10^4 + c). */
+static inline AVX2 __m256i fields_two(__m256i v, __m256i d, const col_vec *c)
 {
   const __m256i digits = _mm256_shuffle_epi8(d, c->shuf);
-  const __m256i w2 = _mm256_set1_epi16(0x010A);           /* bytes 10, 1 */
-  const __m256i w4 = _mm256_set1_epi32(0x00010064);       /* 100, 1 */
-  const __m256i w8 = _mm256_set1_epi32(0x00012710);       /* 10000, 1 */
-  __m256i t = _mm256_madd_epi16(_mm256_maddubs_epi16(digits, w2), w4);
-  t = _mm256_packus_epi32(t, t);
-  return _mm256_madd_epi16(t, w8);
+  /* bytes [0, e2, e1, e0, m..] times [0, 100, 10, 1, 10, 1, ...] in pairs,
+   * then the pairs' sums times [1, 1, 100, 1, 100, 1, 100, 1] in pairs */
+  const __m256i w2 = _mm256_setr_epi8(0, 100, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 0,
+                                      100, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1, 10, 1);
+  const __m256i w4 = _mm256_setr_epi16(1, 1, 100, 1, 100, 1, 100, 1, 1, 1, 100, 1, 100, 1, 100, 1);
+  const __m256i t = _mm256_madd_epi16(_mm256_maddubs_epi16(digits, w2), w4);
+  /* all ones in lane 0 where the exponent's sign is '-': negate E there */
+  const __m256i minus =
+      _mm256_shuffle_epi8(_mm256_cmpeq_epi8(v, _mm256_set1_epi8('-')), c->esign);
+  return _mm256_sub_epi32(_mm256_xor_si256(t, minus), minus);
 }
 
-/* The exponent of the field whose window is at w: the shape's, with the
- * field's exponent digits and sign; as an index into pow_signed, or -1 when
- * 10^e is not exact. */
-static inline int exp_index(const aq_number_shape *sh, const char *w)
-{
-  int e = -(int)sh->frac;
-  if (sh->has_exp) {
-    int ex = 0;
-    for (unsigned j = 0; j < sh->exp_digits; j++)
-      ex = ex * 10 + (w[sh->exp_at + j] - '0');
-    e += sh->exp_sign_at && w[sh->exp_sign_at] == '-' ? -ex : ex;
-  }
-  e += AQ_NUMBER_EXACT_POW_MAX;
-  return (unsigned)e <= 2 * AQ_NUMBER_EXACT_POW_MAX ? e : -1;
-}
-
-size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
-                    aq_number_shape *shape, double *const *dst, size_t k, size_t cap) AVX2;
-
-size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
-                    aq_number_shape *shape, double *const *dst, size_t k, size_t cap)
+/* aq_csv_rows4, inlined where ncols is a constant. */
+static inline __attribute__((always_inline)) AVX2 size_t
+rows4(const char **pp, const char *end, size_t ncols, char sep, aq_number_shape *shape,
+      double *const *dst, size_t k, size_t cap)
 {
   col_vec col[AQ_CSV_FIELDS_COLS_MAX];
   for (size_t i = 0; i < ncols; i++)
-    col_setup(&col[i], &shape[i]);
+    if (!col_setup(&col[i], &shape[i]))
+      return k;
   const size_t k0 = k;
   const char *p = *pp;
-  const __m256i order = _mm256_setr_epi32(0, 4, 2, 6, 1, 5, 3, 7);
+  const __m256i order = _mm256_setr_epi32(0, 4, 2, 6, 1, 5, 3, 7),
+                order_e = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
   const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
+  /* the bytes a group spans at most: signs, fields, separators, CR LFs */
+  size_t span = 0;
+  for (size_t i = 0; i < ncols; i++)
+    span += 2 + col[i].len;
+  span = ROWS * (span + 1) + FIELD_ROOM + sizeof(uint64_t);
+  /* where each field's terminator (separator or line end) is in a row
+   * without signs: at[i] */
+  size_t at[AQ_CSV_FIELDS_COLS_MAX];
+  for (size_t i = 0, a = 0; i < ncols; i++)
+    at[i] = a += col[i].len + (i > 0);
+  const __m256i lane_bit = _mm256_setr_epi64x(1, 2, 4, 8);
   while (cap - k >= ROWS) {
+    const int roomy = end - p >= (ptrdiff_t)span; /* no field near the end */
     /* the windows and signs: where the shapes put them */
     const char *w[AQ_CSV_FIELDS_COLS_MAX][ROWS];
-    uint64_t sign[AQ_CSV_FIELDS_COLS_MAX][ROWS];
+    int neg[AQ_CSV_FIELDS_COLS_MAX] = {0}; /* bit r: row r's field is negative */
     const char *q = p;
+    if (roomy) {
+      /* The same walk with every load at a fixed place from the row's
+       * start: the eight bytes from field i's terminator without signs
+       * hold it (byte s, the signs before it) and the next field's sign
+       * (byte s + 1), so a row waits for one load, not one per field. */
+#pragma GCC unroll 4
+      for (size_t r = 0; r < ROWS; r++) {
+        unsigned c = (unsigned char)q[0], s = 0;
+#pragma GCC unroll 4
+        for (size_t i = 0; i < ncols; i++) {
+          const unsigned off = c == '-' || c == '+';
+          neg[i] |= (c == '-') << r;
+          w[i][r] = q + at[i] - col[i].len + s + off;
+          s += off;
+          uint64_t word;
+          memcpy(&word, q + at[i], sizeof word);
+          word >>= 8 * s;
+          const unsigned t = (unsigned char)word;
+          c = (unsigned char)(word >> 8);
+          if (i + 1 < ncols) {
+            if (t != (unsigned char)sep)
+              goto out;
+          } else if (t == '\n') {
+            q += at[i] + s + 1;
+          } else if (t == '\r' && c == '\n') {
+            q += at[i] + s + 2;
+          } else {
+            goto out;
+          }
+        }
+      }
+    } else
     for (size_t r = 0; r < ROWS; r++)
       for (size_t i = 0; i < ncols; i++) {
         if (end - q < FIELD_ROOM)
           goto out;
         size_t off = *q == '-' || *q == '+';
-        sign[i][r] = (uint64_t)(*q == '-') << 63;
+        neg[i] |= (*q == '-') << r;
         w[i][r] = q + off;
         q += off + col[i].len;
         if (i + 1 < ncols) {
@@ -157,7 +210,9 @@ size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
           goto out;
         }
       }
-    __m256d x[AQ_CSV_FIELDS_COLS_MAX];
+    /* (a group that stops part way may have stored values at rows
+     * k..k+3 below cap: the rows that fill them later overwrite them) */
+#pragma GCC unroll 4
     for (size_t i = 0; i < ncols; i++) {
       const col_vec *c = &col[i];
       const __m256i v01 = load_two(w[i][0], w[i][1]), v23 = load_two(w[i][2], w[i][3]);
@@ -167,28 +222,38 @@ size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
           _mm256_and_si256(in_shape(v01, d01, c), in_shape(v23, d23, c)));
       if ((ok & c->want2) != c->want2)
         goto out;
-      int e[ROWS];
-      for (size_t r = 0; r < ROWS; r++)
-        if ((e[r] = exp_index(&shape[i], w[i][r])) < 0)
-          goto out;
-      /* [h0 l0 h2 l2 | h1 l1 h3 l3] to [h0 h1 h2 h3 l0 l1 l2 l3] */
-      const __m256i hl = _mm256_permutevar8x32_epi32(
-          _mm256_unpacklo_epi64(mantissa_two(d01, c), mantissa_two(d23, c)), order);
-      /* h < 10^7 (at most 15 digits): h 10^8 + l < 10^15, exact */
+      const __m256i t01 = fields_two(v01, d01, c), t23 = fields_two(v23, d23, c);
+      /* [E0 E1 E2 E3]: the exponents as indices into pow_signed */
+      const __m128i e = _mm_add_epi32(
+          _mm256_castsi256_si128(
+              _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(t01, t23), order_e)),
+          _mm_set1_epi32(c->e0));
+      const __m128i out_of_range =
+          _mm_or_si128(_mm_cmpgt_epi32(e, _mm_set1_epi32(2 * AQ_NUMBER_EXACT_POW_MAX)),
+                       _mm_cmpgt_epi32(_mm_setzero_si128(), e));
+      if (_mm_movemask_epi8(out_of_range))
+        goto out; /* 10^e not exact: strtod's */
+      /* [a, 10^4 b + c] per field, then [a0 a1 a2 a3 bc0 bc1 bc2 bc3] */
+      const __m256i w8 = _mm256_setr_epi16(0, 1, 10000, 1, 0, 0, 0, 0, 0, 1, 10000, 1, 0, 0, 0, 0);
+      const __m256i f01 = _mm256_madd_epi16(_mm256_packus_epi32(t01, t01), w8),
+                    f23 = _mm256_madd_epi16(_mm256_packus_epi32(t23, t23), w8);
+      const __m256i hl = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi64(f01, f23), order);
+      /* at most MANT_MAX = 12 digits: a 10^8 + bc < 10^12, exact */
       const __m256d m =
           _mm256_add_pd(_mm256_mul_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(hl)),
                                       _mm256_set1_pd(1e8)),
                         _mm256_cvtepi32_pd(_mm256_extracti128_si256(hl, 1)));
-      const __m256d pw = _mm256_setr_pd(pow_signed[e[0]], pow_signed[e[1]], pow_signed[e[2]],
-                                        pow_signed[e[3]]);
+      const __m256d pw = _mm256_i32gather_pd(pow_signed, e, 8);
       const __m256d pa = _mm256_and_pd(pw, magnitude);
-      /* m * 10^e or m / 10^-e: one rounding either way (aq_number_exact) */
-      x[i] = _mm256_xor_pd(_mm256_blendv_pd(_mm256_mul_pd(m, pa), _mm256_div_pd(m, pa), pw),
-                           _mm256_castsi256_pd(_mm256_loadu_si256((const __m256i *)sign[i])));
-    }
-    for (size_t i = 0; i < ncols; i++)
+      /* the sign bit of lane r where bit r of neg[i] is set */
+      const __m256i sel = _mm256_and_si256(_mm256_set1_epi64x(neg[i]), lane_bit);
+      const __m256i sign = _mm256_slli_epi64(_mm256_cmpeq_epi64(sel, lane_bit), 63);
+      const __m256d x = _mm256_xor_pd(
+          _mm256_blendv_pd(_mm256_mul_pd(m, pa), _mm256_div_pd(m, pa), pw),
+          _mm256_castsi256_pd(sign));
       if (dst[i])
-        _mm256_storeu_pd(dst[i] + k, x[i]);
+        _mm256_storeu_pd(dst[i] + k, x);
+    }
     k += ROWS;
     p = q;
   }
@@ -199,6 +264,16 @@ out:
         shape[i].misses = 0;
   *pp = p;
   return k;
+}
+size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
+                    aq_number_shape *shape, double *const *dst, size_t k, size_t cap) AVX2;
+
+size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
+                    aq_number_shape *shape, double *const *dst, size_t k, size_t cap)
+{
+  if (ncols == 2) /* (time, acceleration): its own loop */
+    return rows4(pp, end, 2, sep, shape, dst, k, cap);
+  return rows4(pp, end, ncols, sep, shape, dst, k, cap);
 }
 #else
 size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
