@@ -19,6 +19,7 @@
 #include "check.h"
 #include "io/at2_fields.h"
 #include "io/readers.h"
+#include "kernels.h"
 
 #define ROWS_MAX 160 /* rows of one file */
 #define COLS_MAX 4   /* the time and up to three channels */
@@ -253,3 +254,31 @@ AQ_TEST(io_csv_rows_cut_anywhere)
     printf("  %zu cuts, %zu read differently\n", cuts, differ);
   free(g.text);
 }
+
+/* One row's time moved by 30 % of the step, at each row in turn: refused
+ * at that row's line (its step is 1.3 dt, the first uneven one). */
+static void io_csv_rows_uneven_step_each_row_(void)
+{
+  enum { N = 41 };
+  size_t wrong = 0;
+  for (int j = 1; j < N; j++) {
+    char *text = malloc(N * 32 + 16);
+    size_t p = (size_t)sprintf(text, "t,acc\n");
+    for (int k = 0; k < N; k++)
+      p += (size_t)sprintf(text + p, "%.3f,%.4f\n", 0.01 * k + (k == j ? 0.003 : 0.0),
+                           0.001 * (k % 7));
+    aq_raw_file raw;
+    aq_error e;
+    aq_status st = parse_with(aq_at2_fields_avx2(), text, p, &raw, &e);
+    if (st == AQ_OK) {
+      aq_raw_file_free(&raw);
+      if (wrong++ < 5)
+        aq_check(0, "row %d moved: accepted", j);
+    } else if ((e.line != j + 2 || !strstr(e.message, "evenly spaced")) && wrong++ < 5) {
+      aq_check(0, "row %d moved: line %ld, want %d (%s)", j, e.line, j + 2, e.message);
+    }
+    free(text);
+  }
+  aq_check(wrong == 0, "%zu of %d moved rows misreported", wrong, N - 1);
+}
+BOTH_KERNELS(io_csv_rows_uneven_step_each_row)

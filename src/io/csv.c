@@ -558,8 +558,10 @@ static size_t step_range(const double *t, size_t n, double est, double tol, doub
                          double *hi)
 {
   double a = INFINITY, b = -INFINITY;
-  size_t off = 0;
-  for (size_t i = 1; i < n; i++) {
+  size_t off = 0, i = 1;
+  if (aq_at2_fields_avx2() && n > 1) /* four at a time (csv_fields.h) */
+    i = aq_csv_steps4(t, n, 1, est, tol, &a, &b, &off);
+  for (; i < n; i++) {
     double d = t[i] - t[i - 1];
     a = d < a ? d : a;
     b = d > b ? d : b;

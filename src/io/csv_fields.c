@@ -275,11 +275,49 @@ size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
     return rows4(pp, end, 2, sep, shape, dst, k, cap);
   return rows4(pp, end, ncols, sep, shape, dst, k, cap);
 }
+size_t aq_csv_steps4(const double *t, size_t n, size_t i0, double est, double tol, double *lo,
+                     double *hi, size_t *off) AVX2;
+
+size_t aq_csv_steps4(const double *t, size_t n, size_t i0, double est, double tol, double *lo,
+                     double *hi, size_t *off)
+{
+  __m256d a = _mm256_set1_pd(*lo), b = _mm256_set1_pd(*hi);
+  const __m256d t0 = _mm256_set1_pd(t[0]), e = _mm256_set1_pd(est), tl = _mm256_set1_pd(tol);
+  const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
+  __m256d idx = _mm256_setr_pd((double)i0, (double)i0 + 1, (double)i0 + 2, (double)i0 + 3);
+  size_t i = i0;
+  for (; n - i >= 4; i += 4) {
+    const __m256d ti = _mm256_loadu_pd(t + i);
+    const __m256d d = _mm256_sub_pd(ti, _mm256_loadu_pd(t + i - 1));
+    a = _mm256_min_pd(d, a); /* d < a ? d : a */
+    b = _mm256_max_pd(d, b); /* d > b ? d : b */
+    const __m256d dev =
+        _mm256_and_pd(_mm256_sub_pd(ti, _mm256_add_pd(t0, _mm256_mul_pd(idx, e))), magnitude);
+    const int far = _mm256_movemask_pd(_mm256_cmp_pd(dev, tl, _CMP_GT_OQ));
+    if (far && !*off)
+      *off = i + (size_t)__builtin_ctz((unsigned)far);
+    idx = _mm256_add_pd(idx, _mm256_set1_pd(4));
+  }
+  double la[4], hb[4];
+  _mm256_storeu_pd(la, a);
+  _mm256_storeu_pd(hb, b);
+  for (int j = 0; j < 4; j++) {
+    *lo = la[j] < *lo ? la[j] : *lo;
+    *hi = hb[j] > *hi ? hb[j] : *hi;
+  }
+  return i;
+}
 #else
 size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
                     aq_number_shape *shape, double *const *dst, size_t k, size_t cap)
 {
   (void)pp, (void)end, (void)ncols, (void)sep, (void)shape, (void)dst, (void)cap;
   return k;
+}
+size_t aq_csv_steps4(const double *t, size_t n, size_t i0, double est, double tol, double *lo,
+                     double *hi, size_t *off)
+{
+  (void)t, (void)n, (void)est, (void)tol, (void)lo, (void)hi, (void)off;
+  return i0;
 }
 #endif

@@ -32,4 +32,14 @@
 size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
                     aq_number_shape *shape, double *const *dst, size_t k, size_t cap);
 
+/* The steps of the times t[0..n) from i0 on (i0 >= 1), four at a time:
+ * for each i in [i0, returned), *lo = min(*lo, t[i] - t[i-1]) and *hi =
+ * max(*hi, ...) (as d < lo ? d : lo and d > hi ? d : hi), and *off the
+ * first such i (if *off is 0) where |t[i] - (t[0] + i est)| > tol, each
+ * term the IEEE operations of that formula.  Returns where it stopped
+ * (fewer than four steps left); csv.c's loop does the rest.  Call only
+ * when aq_at2_fields_avx2() is 1. */
+size_t aq_csv_steps4(const double *t, size_t n, size_t i0, double est, double tol, double *lo,
+                     double *hi, size_t *off);
+
 #endif
