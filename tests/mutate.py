@@ -6,7 +6,10 @@ file, the exact source text it replaces (which must occur exactly once) and
 the replacement.  One at a time, the mutated file is compiled (from standard
 input, so the work tree is never changed) and linked with the other objects
 of build/mut (the tests without sanitizers, -O1), and the test runner runs
-until its first failed test: first the mutated stage's tests, then all.  A mutant is "killed" when the tests fail (or
+until its first failed test: first the mutated stage's tests, then all.  A
+mutated header (.h) is written into a copy of src/ under build/mut/m, and
+every source and test file that includes it, directly or not, is compiled
+again against that copy.  A mutant is "killed" when the tests fail (or
 time out, or the mutant does not compile), "SURVIVED" when they pass, and
 "stale" when its source text is no longer found once: a stale mutant fails
 the run, so the list follows the code.  A survivor fails the run too unless
@@ -85,6 +88,43 @@ def run_tests(cmd, env, timeout):
     return subprocess.CompletedProcess(cmd, p.returncode, out, err)
 
 
+def includers(cc, cflags, header, sources):
+    """The sources that include header, directly or through other headers
+    (by the compiler's own dependency list)."""
+    out = []
+    for c in sources:
+        dp = subprocess.run([cc] + [f for f in cflags if f.startswith(("-I", "-D", "-std"))] +
+                            ["-MM", c], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        deps = dp.stdout.decode().replace("\\\n", " ").split()
+        if any(os.path.normpath(d) == os.path.normpath(header) for d in deps):
+            out.append(c)
+    return out
+
+
+def compile_with_header(cc, cflags, header, text, sources):
+    """The mutated header in a copy of src/; every includer compiled against
+    it.  Returns {source: object}, or None if one does not compile."""
+    tree = os.path.join(MUT, "m", "tree")
+    subprocess.run(["rm", "-rf", tree], check=True)
+    os.makedirs(tree)
+    subprocess.run(["cp", "-r", "src", os.path.join(tree, "src")], check=True)
+    with open(os.path.join(tree, header), "w", encoding="utf-8") as f:
+        f.write(text)
+    flags = [("-I" + os.path.join(tree, "src")) if f == "-Isrc" else f for f in cflags]
+    objs = {}
+    for c in includers(cc, cflags, header, sources):
+        # a source of src/ is compiled from the copy, so that its own
+        # directory (searched first by #include "...") holds the mutant
+        src = os.path.join(tree, c) if c.startswith("src/") else c
+        o = os.path.join(MUT, "m", c.replace("/", "_")[:-2] + ".o")
+        cp = subprocess.run([cc] + flags + ["-O1", "-g", "-c", "-o", o, src],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        if cp.returncode != 0:
+            return None
+        objs[c] = o
+    return objs
+
+
 def main():
     os.chdir(ROOT)
     cc = os.environ.get("CC", "cc")
@@ -113,6 +153,16 @@ def main():
     env = dict(os.environ, AQ_BIN=aqbin, AQ_TEST_STOP_FIRST="1")
     env.pop("AQ_TEST_VERBOSE", None)
     survived, unexplained, stale, t_start = [], [], [], time.time()
+    # a mutant's link must fail only because of the mutant: the unmutated
+    # objects must link with these flags (else run through `make mutate`)
+    for out, o in ((runner, [obj(c) for c in test_src + lib_src if c != "src/main.c"]),
+                   (aqbin, [obj(c) for c in lib_src])):
+        lp = subprocess.run([cc] + ldflags + ["-o", out] + o + libs,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        if lp.returncode != 0:
+            sys.stderr.write(lp.stderr.decode(errors="replace")[-2000:])
+            sys.exit("mutate: the unmutated objects do not link with AQ_LIBS=%r: "
+                     "run it as `make mutate`" % " ".join(libs))
     # the unmutated build must pass, or every mutant would look killed
     base = subprocess.run([os.path.join(MUT, "runner")],
                           env=dict(env, AQ_BIN=os.path.join(MUT, "archquake")),
@@ -136,16 +186,24 @@ def main():
                   "text not found" if n == 0 else "text found %d times" % n), flush=True)
             continue
         msrc = src.replace(old, new, 1)
-        d = os.path.dirname(path)
-        cp = subprocess.run([cc] + cflags + ["-O1", "-g", "-iquote", d, "-x", "c", "-c",
-                             "-o", mobj, "-"], input=msrc.encode(),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        if cp.returncode != 0:
+        if path.endswith(".h"):
+            mobjs = compile_with_header(cc, cflags, path, msrc, lib_src + test_src)
+        else:
+            d = os.path.dirname(path)
+            cp = subprocess.run([cc] + cflags + ["-O1", "-g", "-iquote", d, "-x", "c", "-c",
+                                 "-o", mobj, "-"], input=msrc.encode(),
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+            mobjs = {path: mobj} if cp.returncode == 0 else None
+        if mobjs is None:
             print("%-28s %-26s killed (does not compile)" % (mid, path), flush=True)
             continue
-        objs = [mobj if c == path else obj(c) for c in lib_src if c != "src/main.c"]
-        tobjs = [obj(c) for c in test_src]
-        mainobj = mobj if path == "src/main.c" else obj("src/main.c")
+        if not mobjs:
+            stale.append(mid)
+            print("%-28s %-26s stale (no source includes it)" % (mid, path), flush=True)
+            continue
+        objs = [mobjs.get(c, obj(c)) for c in lib_src if c != "src/main.c"]
+        tobjs = [mobjs.get(c, obj(c)) for c in test_src]
+        mainobj = mobjs.get("src/main.c", obj("src/main.c"))
         link_ok = all(subprocess.run([cc] + ldflags + ["-o", out] + o + libs).returncode == 0
                       for out, o in ((runner, tobjs + objs), (aqbin, [mainobj] + objs)))
         if not link_ok:

@@ -93,7 +93,7 @@ static size_t brute_force(double a, double b, const char *extra, double *t,
                           double *narrowest)
 {
   size_t n = (size_t)ceil(log(b / a) / log1p(RES / 10)) + 1;
-  double *s = malloc(n * sizeof *s);
+  double *s = calloc(n, sizeof *s);
   int *v = malloc(n * sizeof *v);
   size_t nt = 0;
   if (!s || !v)
@@ -244,7 +244,7 @@ AQ_TEST(capacity_cli_transitions_agree_with_ode)
   aq_check(n == 3, "three changes below 4 (%zu)", n);
   /* the reference model changes verdict within 2e-4 of each */
   const double d = 2e-4;
-  double s[2 * MAXT];
+  double s[2 * MAXT] = {0};
   int v[2 * MAXT];
   for (size_t k = 0; k < n; k++) {
     s[2 * k] = t[k] * (1 - d);

@@ -173,7 +173,7 @@ AQ_TEST(plot_every_figure_every_format)
   size_t made = 0;
   for (size_t i = 0; i < 4; i++)
     for (size_t k = 0; k < 3; k++) {
-      char out[600], args[1500], err[1024];
+      char out[600], args[3500], err[1024];
       snprintf(out, sizeof out, "%s/fig%zu.%s", dir, i, fmt[k]);
       snprintf(args, sizeof args, "%s -o %s", figs[i], out);
       int rc = aq_test_run(args, NULL, 0, err, sizeof err);

@@ -724,7 +724,7 @@ static int rows_with_field(const char *out, const char *field)
 
 AQ_TEST(suite_compare_by_identity)
 {
-  char rel[512], dir[1024], args[4096], h[6][1100];
+  char rel[512], dir[1024], args[8192], h[6][1100];
   aq_test_tmpdir(rel, sizeof rel);
   char *cwd = getcwd(NULL, 0);
   snprintf(dir, sizeof dir, "%s/%s", cwd ? cwd : ".", rel);

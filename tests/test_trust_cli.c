@@ -205,7 +205,7 @@ AQ_TEST(trust_ineffective_options_are_refused)
  * unreadable record in the list is never reported). */
 AQ_TEST(trust_duplicates_are_refused)
 {
-  char dir[512], h5[700], args[2048], twin[700], junk[700];
+  char dir[512], h5[700], args[4096], twin[700], junk[700];
   static char out[16384], err[8192];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
