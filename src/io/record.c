@@ -453,9 +453,9 @@ static const aq_units plausible_try[] = {AQ_UNITS_G,     AQ_UNITS_G10,
 
 /* acc[k] = v[k] * factor and *maxabs = the largest |v[k]| (from its value on
  * entry) for k = 0, 1, ... while the products are finite: returns the first
- * k whose product is not (or n), which the caller reads again one sample
- * at a time, acc[k] not yet written.  v and acc may be the same array (a
- * sample is read before its product is stored).  Two samples a vector:
+ * k whose product is not (or n), acc[k] not written (the caller reports
+ * that sample).  v and acc may be the same array (a sample is read before
+ * its product is stored).  Two samples a vector:
  * the same products and the same maximum (max is exact, in any order) as
  * the one-at-a-time loop, without its branches per sample. */
 static size_t scale_samples(const double *v, double *acc, size_t n, double factor,
@@ -567,22 +567,15 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     return aq_error_set(err, AQ_ENOMEM, label, -1, -1, NULL,
                         "out of memory for %zu samples", ch->npts);
   double maxabs = 0;
-  for (size_t k = scale_samples(ch->values, acc, ch->npts, factor, &maxabs); k < ch->npts;
-       k++) {
-    double a = ch->values[k] * factor;
-    if (!isfinite(a)) {
-      if (!in_place)
-        free(acc);
-      char fld[40];
-      snprintf(fld, sizeof fld, "value %zu", k + 1);
-      return aq_error_set(err, AQ_EVALUE, label, -1, -1, fld,
-                          "expected a value that is finite in m/s2, got %g %s "
-                          "(overflows)", ch->values[k], aq_units_name(used));
-    }
-    double v = fabs(ch->values[k]);
-    if (v > maxabs)
-      maxabs = v;
-    acc[k] = a;
+  size_t k = scale_samples(ch->values, acc, ch->npts, factor, &maxabs);
+  if (k < ch->npts) { /* the first sample whose product is not finite */
+    if (!in_place)
+      free(acc);
+    char fld[40];
+    snprintf(fld, sizeof fld, "value %zu", k + 1);
+    return aq_error_set(err, AQ_EVALUE, label, -1, -1, fld,
+                        "expected a value that is finite in m/s2, got %g %s "
+                        "(overflows)", ch->values[k], aq_units_name(used));
   }
 
   /* Plausibility: PGA in [AQ_PGA_MIN_G, AQ_PGA_MAX_G]. */
