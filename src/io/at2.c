@@ -47,20 +47,11 @@ static int skip_eol(at2_cur *c)
 {
   if (c->pos >= c->n)
     return 0;
-  if (c->s[c->pos] == '\n') {
-    c->pos++;
-    c->line++;
-    return 1;
-  }
-  if (c->s[c->pos] == '\r') {
-    while (c->pos < c->n && c->s[c->pos] == '\r')
-      c->pos++;
-    if (c->pos < c->n && c->s[c->pos] == '\n')
-      c->pos++;
-    c->line++;
-    return 1;
-  }
-  return 0;
+  if (c->s[c->pos] != '\n' && c->s[c->pos] != '\r')
+    return 0;
+  c->pos = (size_t)(aq_text_past_eol(c->s + c->pos, c->s + c->n) - c->s);
+  c->line++;
+  return 1;
 }
 
 /* The current line [*b, *e) and move to the next. */
@@ -228,7 +219,7 @@ static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts, int a
     }
     peer = 0;
     if (p < end && sep_kind[(unsigned char)*p] == 2) { /* a field may follow */
-      p = aq_at2_line_end(p, end);
+      p = aq_text_past_eol(p, end);
       line++;
       continue;
     }
@@ -237,7 +228,7 @@ static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts, int a
         p++;
       if (p >= end || sep_kind[(unsigned char)*p] != 2)
         break;
-      p = aq_at2_line_end(p, end);
+      p = aq_text_past_eol(p, end);
       line++;
     }
     if (p >= end)

@@ -15,19 +15,6 @@
 
 #define AQ_AT2_FIELD_W 15 /* characters of one PEER field */
 
-/* Past the line end at p < end (LF, CR, CR LF, CR CR LF: one line). */
-static inline const char *aq_at2_line_end(const char *p, const char *end)
-{
-  if (*p == '\r') {
-    while (p < end && *p == '\r')
-      p++;
-    if (p < end && *p == '\n')
-      p++;
-    return p;
-  }
-  return p + 1;
-}
-
 /* 1 when aq_at2_fields4 runs: an x86-64 build on a CPU with AVX2, unless
  * the environment sets AQ_NO_AVX2 (to anything but "0") or the test hook
  * below says otherwise. */

@@ -42,6 +42,7 @@
 #include "fixed.h"
 #include "number.h"
 #include "readers.h"
+#include "swar.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
  * times are rounded to a few decimals; 1 % of dt tolerates that and still
@@ -319,13 +320,8 @@ static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, c
         if (q >= end || *q != sep)
           break;
         q++;
-      } else if (q < end && *q == '\n') {
-        q++;
-      } else if (q < end && *q == '\r') { /* the line end, as aq_text_line_ takes it */
-        while (q < end && *q == '\r')
-          q++;
-        if (q < end && *q == '\n')
-          q++;
+      } else if (q < end && (*q == '\n' || *q == '\r')) {
+        q = aq_text_past_eol(q, end);
       } else if (q < end) {
         break;
       }
@@ -392,14 +388,8 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
     }
     if (i < pr->ncols)
       break; /* not plain: values written to row k are overwritten later */
-    if (q < end && *q == '\r') { /* the line end, as aq_text_line_ takes it */
-      while (q < end && *q == '\r')
-        q++;
-      if (q < end && *q == '\n')
-        q++;
-    } else if (q < end) {
-      q++;
-    }
+    if (q < end) /* at LF or CR: the last field was checked above */
+      q = aq_text_past_eol(q, end);
     k++;
     p = q;
   }

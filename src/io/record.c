@@ -155,47 +155,16 @@ void aq_record_free(aq_record *rec)
   memset(rec, 0, sizeof *rec);
 }
 
-/* The offset of the first LF or CR in s[p..n), or n.  Eight bytes at a
- * time: a byte equal to c makes (x - 1) & ~x & 0x80 set in x = byte ^ c; a
- * borrow can only mark bytes after a true match, so the lowest mark is the
- * first match. */
-static size_t line_end(const char *s, size_t p, size_t n)
-{
-  const uint64_t ones = 0x0101010101010101ULL, high = 0x8080808080808080ULL;
-  for (; p + 8 <= n; p += 8) {
-    uint64_t v;
-    memcpy(&v, s + p, 8);
-    uint64_t lf = v ^ (0x0A * ones), cr = v ^ (0x0D * ones);
-    uint64_t hit = (((lf - ones) & ~lf) | ((cr - ones) & ~cr)) & high;
-    if (hit) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-      return p + ((size_t)__builtin_ctzll(hit) >> 3);
-#else
-      break; /* the bytewise loop finds it */
-#endif
-    }
-  }
-  while (p < n && s[p] != '\n' && s[p] != '\r')
-    p++;
-  return p;
-}
-
 int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
 {
   size_t p = *pos;
   if (p >= n)
     return 0;
   *b = p;
-  p = line_end(s, p, n);
+  p = aq_swar_line_end(s, p, n);
   *e = p;
-  if (p < n && s[p] == '\r') {
-    while (p < n && s[p] == '\r')
-      p++;
-    if (p < n && s[p] == '\n')
-      p++;
-  } else if (p < n) {
-    p++;
-  }
+  if (p < n)
+    p = (size_t)(aq_text_past_eol(s + p, s + n) - s);
   *pos = p;
   return 1;
 }

@@ -1,5 +1,6 @@
 /* swar.h: eight text bytes at a time in one 64-bit word ("SIMD within a
- * register"), for the readers' fixed-width fast paths (at2.c, csv.c).
+ * register"), for the readers' fixed-width fast paths (at2.c, csv.c), and
+ * the text readers' line ends (aq_swar_line_end, aq_text_past_eol).
  * Pure functions of their arguments; the caller makes sure the eight bytes
  * it loads lie inside its buffer.
  *
@@ -98,6 +99,20 @@ static inline size_t aq_swar_line_end(const char *s, size_t i, size_t n)
   while (i < n && s[i] != '\n' && s[i] != '\r')
     i++;
   return i;
+}
+
+/* Past the line end at p < end (*p is LF or CR): LF, CR LF, CR, or CRs
+ * then LF, each one line, as every text reader counts them. */
+static inline const char *aq_text_past_eol(const char *p, const char *end)
+{
+  if (*p == '\r') {
+    while (p < end && *p == '\r')
+      p++;
+    if (p < end && *p == '\n')
+      p++;
+    return p;
+  }
+  return p + 1;
 }
 
 #endif
