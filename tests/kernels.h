@@ -9,19 +9,19 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "io/at2_fields.h"
+#include "io/cpu.h"
 
-#define BOTH_KERNELS(name)                                                                      \
-  static void name##_(void);                                                                    \
-  AQ_TEST(name)                                                                                 \
-  {                                                                                             \
-    for (int avx2 = 1; avx2 >= 0; avx2--) {                                                     \
-      aq_at2_fields_force_(avx2);                                                               \
-      if (getenv("AQ_TEST_VERBOSE"))                                                            \
-        printf("  " #name ": %s\n", aq_at2_fields_avx2() ? "AVX2 kernel" : "one-at-a-time");    \
-      name##_();                                                                                \
-    }                                                                                           \
-    aq_at2_fields_force_(-1);                                                                   \
+#define BOTH_KERNELS(name)                                                                          \
+  static void name##_(void);                                                                        \
+  AQ_TEST(name)                                                                                     \
+  {                                                                                                 \
+    for (int avx2 = 1; avx2 >= 0; avx2--) {                                                         \
+      aq_io_avx2_force_(avx2);                                                                      \
+      if (getenv("AQ_TEST_VERBOSE"))                                                                \
+        printf("  " #name ": %s\n", aq_io_avx2() ? "AVX2 kernel" : "one-at-a-time");                \
+      name##_();                                                                                    \
+    }                                                                                               \
+    aq_io_avx2_force_(-1);                                                                          \
   }
 
 #endif

@@ -17,7 +17,7 @@
 
 #include "check.h"
 #include "kernels.h"
-#include "io/at2_fields.h"
+#include "io/cpu.h"
 #include "io/readers.h"
 
 #define RND_FILES 300  /* random files of the value test */
@@ -413,9 +413,9 @@ static aq_status parse_with(int avx2, const char *s, size_t n, aq_raw_file *raw,
 {
   unsigned char *b = malloc(n ? n : 1);
   memcpy(b, s, n);
-  aq_at2_fields_force_(avx2);
+  aq_io_avx2_force_(avx2);
   aq_status st = aq_raw_parse(b, n, "fixed.csv", NULL, raw, e);
-  aq_at2_fields_force_(-1);
+  aq_io_avx2_force_(-1);
   free(b);
   return st;
 }
@@ -557,7 +557,7 @@ static void io_csv_rows_uneven_step_each_row_(void)
                            0.001 * (k % 7));
     aq_raw_file raw;
     aq_error e;
-    aq_status st = parse_with(aq_at2_fields_avx2(), text, p, &raw, &e);
+    aq_status st = parse_with(aq_io_avx2(), text, p, &raw, &e);
     if (st == AQ_OK) {
       aq_raw_file_free(&raw);
       if (wrong++ < 5)

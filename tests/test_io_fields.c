@@ -21,6 +21,7 @@
 #include "check.h"
 #include "kernels.h"
 #include "io/at2_fields.h"
+#include "io/cpu.h"
 #include "io/formats.h"
 #include "io/number.h"
 
@@ -399,22 +400,22 @@ AQ_TEST(io_at2_fields_switch)
   char keep[32] = "";
   if (was)
     snprintf(keep, sizeof keep, "%s", was);
-  aq_at2_fields_force_(-1);
+  aq_io_avx2_force_(-1);
   setenv("AQ_NO_AVX2", "1", 1);
-  aq_check(aq_at2_fields_avx2() == 0, "AQ_NO_AVX2=1: the AVX2 kernel is off");
-  aq_at2_fields_force_(1);
-  int cpu = aq_at2_fields_avx2(); /* 1 exactly where the CPU has it */
+  aq_check(aq_io_avx2() == 0, "AQ_NO_AVX2=1: the AVX2 kernel is off");
+  aq_io_avx2_force_(1);
+  int cpu = aq_io_avx2(); /* 1 exactly where the CPU has it */
 #if defined(__x86_64__)
   aq_check(cpu == !!__builtin_cpu_supports("avx2"), "forced on: on where the CPU has AVX2 (%d)",
            cpu);
 #else
   aq_check(cpu == 0, "not x86-64: never the AVX2 kernel");
 #endif
-  aq_at2_fields_force_(-1);
+  aq_io_avx2_force_(-1);
   setenv("AQ_NO_AVX2", "0", 1);
-  aq_check(aq_at2_fields_avx2() == cpu, "AQ_NO_AVX2=0: as the CPU says");
+  aq_check(aq_io_avx2() == cpu, "AQ_NO_AVX2=0: as the CPU says");
   unsetenv("AQ_NO_AVX2");
-  aq_check(aq_at2_fields_avx2() == cpu, "AQ_NO_AVX2 unset: as the CPU says");
+  aq_check(aq_io_avx2() == cpu, "AQ_NO_AVX2 unset: as the CPU says");
   if (was)
     setenv("AQ_NO_AVX2", keep, 1);
   if (getenv("AQ_TEST_VERBOSE"))

@@ -23,6 +23,7 @@
 
 #include "../units.h"
 #include "at2_fields.h"
+#include "cpu.h"
 #include "number.h"
 #include "readers.h"
 #include "swar.h"
@@ -591,7 +592,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
 
   size_t k = 0;
   char field[40], tokq[AT2_TOKEN_MAX + 8];
-  int avx2 = aq_at2_fields_avx2();
+  int avx2 = aq_io_avx2();
   while (k < npts) {
     k = plain_values(&c, acc, k, npts, avx2);
     if (k >= npts)

@@ -14,8 +14,6 @@
 
 #include <math.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "number.h"
 
@@ -26,24 +24,6 @@
 #else
 #define AT2_AVX2 0
 #endif
-
-static int forced = -1; /* aq_at2_fields_force_ */
-
-void aq_at2_fields_force_(int mode) { forced = mode; }
-
-int aq_at2_fields_avx2(void)
-{
-#if AT2_AVX2
-  if (!__builtin_cpu_supports("avx2"))
-    return 0;
-  if (forced >= 0)
-    return forced;
-  const char *no = getenv("AQ_NO_AVX2");
-  return !no || !*no || strcmp(no, "0") == 0;
-#else
-  return 0;
-#endif
-}
 
 #if AT2_AVX2
 /* The power of ten for a field's exponent, by index 100 * (sign is '+') +

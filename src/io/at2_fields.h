@@ -7,23 +7,14 @@
  * one IEEE multiply or divide by an exact power of ten, else the field is
  * left to the caller).  It runs only on an x86-64 CPU with AVX2, chosen at
  * run time; at2.c's one-field reading covers every other CPU, build and
- * line.  Pure functions of the bytes; no allocation; thread-safe. */
+ * line (the switch: aq_io_avx2, cpu.h).  Pure functions of the bytes; no
+ * allocation; thread-safe. */
 #ifndef AQ_IO_AT2_FIELDS_H
 #define AQ_IO_AT2_FIELDS_H
 
 #include <stddef.h>
 
 #define AQ_AT2_FIELD_W 15 /* characters of one PEER field */
-
-/* 1 when aq_at2_fields4 runs: an x86-64 build on a CPU with AVX2, unless
- * the environment sets AQ_NO_AVX2 (to anything but "0") or the test hook
- * below says otherwise. */
-int aq_at2_fields_avx2(void);
-
-/* Test hook: -1 as the CPU and environment say (the default), 0 never the
- * AVX2 kernel, 1 the AVX2 kernel where the CPU has it.  Set it before any
- * reading thread starts. */
-void aq_at2_fields_force_(int mode);
 
 /* Reads whole groups of four PEER fields from *p on (line *line) into
  * acc[k..npts), while every field of a group has PEER's exact shape
@@ -34,7 +25,7 @@ void aq_at2_fields_force_(int mode);
  * before the first group that is anything else, with *p and *line there
  * (a line end before it not taken), fewer than four values to go, or the
  * end of the bytes near.  Returns the new k.  Call only when
- * aq_at2_fields_avx2() is 1. */
+ * aq_io_avx2() is 1. */
 size_t aq_at2_fields4(const char **p, const char *end, long *line, double *acc, size_t k,
                       size_t npts);
 

@@ -37,7 +37,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "at2_fields.h"
+#include "cpu.h"
 #include "csv_fields.h"
 #include "fixed.h"
 #include "number.h"
@@ -349,7 +349,7 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
              : (long)i == pr->tcol ? rows->tt
                                    : NULL;
   size_t k0 = k;
-  const int vec = aq_at2_fields_avx2(); /* the AVX2 rows (csv_fields.h) */
+  const int vec = aq_io_avx2(); /* the AVX2 rows (csv_fields.h) */
   while (p < end && k < rows->cap) {
     if (pr->sep != ' ') { /* the common rows first */
       if (pr->ncols == 2) /* (time, acceleration): its own loop */
@@ -549,7 +549,7 @@ static size_t step_range(const double *t, size_t n, double est, double tol, doub
 {
   double a = INFINITY, b = -INFINITY;
   size_t off = 0, i = 1;
-  if (aq_at2_fields_avx2() && n > 1) /* four at a time (csv_fields.h) */
+  if (aq_io_avx2() && n > 1) /* four at a time (csv_fields.h) */
     i = aq_csv_steps4(t, n, 1, est, tol, &a, &b, &off);
   for (; i < n; i++) {
     double d = t[i] - t[i - 1];

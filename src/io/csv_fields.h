@@ -8,7 +8,7 @@
  * come from one vector multiply or divide by an exact power of ten
  * (IEEE-exact per lane, as one mulsd or divsd: the value strtod gives, as
  * aq_number_exact).  It runs only on an x86-64 CPU with AVX2, chosen at run
- * time by aq_at2_fields_avx2() (the same AQ_NO_AVX2 switch and test hook);
+ * time by aq_io_avx2() (the same AQ_NO_AVX2 switch and test hook);
  * csv.c's one-row reading covers every other CPU, build and row.  Pure
  * function of the bytes and shapes; no allocation; thread-safe. */
 #ifndef AQ_IO_CSV_FIELDS_H
@@ -28,7 +28,7 @@
  * each value exact by one operation.  Stops before the first group that is
  * anything else, with *pp there, or fewer than four rows to cap.  Returns
  * the new k; one line per row taken.  Call only with ncols <=
- * AQ_CSV_FIELDS_COLS_MAX, every shape learned, and aq_at2_fields_avx2() 1. */
+ * AQ_CSV_FIELDS_COLS_MAX, every shape learned, and aq_io_avx2() 1. */
 size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
                     aq_number_shape *shape, double *const *dst, size_t k, size_t cap);
 
@@ -38,7 +38,7 @@ size_t aq_csv_rows4(const char **pp, const char *end, size_t ncols, char sep,
  * first such i (if *off is 0) where |t[i] - (t[0] + i est)| > tol, each
  * term the IEEE operations of that formula.  Returns where it stopped
  * (fewer than four steps left); csv.c's loop does the rest.  Call only
- * when aq_at2_fields_avx2() is 1. */
+ * when aq_io_avx2() is 1. */
 size_t aq_csv_steps4(const double *t, size_t n, size_t i0, double est, double tol, double *lo,
                      double *hi, size_t *off);
 
