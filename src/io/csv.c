@@ -252,12 +252,6 @@ typedef struct {
   aq_number_shape *shape; /* each column's (number.h) */
 } plain_row;
 
-/* The rows from c->pos on that are plain: ncols finite plain decimals, with
- * blanks (and tabs, unless sep is the tab) around them, separated by sep, and a line end (LF, CRLF,
- * CR, CR CR LF, or the end of the input) after the last; into the arrays
- * from row k on.  Returns the new k, with c after the last row taken; any
- * other line (blank, a comment, quotes, a bad or missing field) is left to
- * the general reading, which reads it exactly as before. */
 /* The bytes a shaped read needs from a field's start: a sign and the 16 the
  * shape's load reads (which hold the byte after the number, len <= 15). */
 #define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
@@ -339,6 +333,13 @@ static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, c
   return k;
 }
 
+/* The rows from c->pos on that are plain: ncols finite plain decimals, with
+ * blanks (and tabs, unless sep is the tab) around them, separated by sep,
+ * and a line end (LF, CRLF, CR, CR CR LF, or the end of the input) after
+ * the last; into the arrays from row k on, bare rows (bare_rows) first.
+ * Returns the new k, with c after the last row taken; any other line
+ * (blank, a comment, quotes, a bad or missing field) is left to the
+ * general reading, which reads it exactly as before. */
 static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t k)
 {
   const char *s = c->s, *end = s + c->n;
