@@ -503,7 +503,8 @@ static void lines_csv(FILE *f, const cap *c)
       double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
       double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
       aq_plot_csv_text(f, r->record);
-      fprintf(f, "%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->polarity, r->d[D_MOVE], r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
+      fprintf(f, "%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->polarity, r->d[D_MOVE],
+              r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
     }
   }
 }
