@@ -11,6 +11,39 @@
 
 #define FIELD_MAX 64 /* longest numeric field accepted, characters */
 
+size_t aq_text_line_end(const char *s, size_t i, size_t n)
+{
+  while (i < n && s[i] != '\n' && s[i] != '\r')
+    i++;
+  return i;
+}
+
+const char *aq_text_past_eol(const char *p, const char *end)
+{
+  if (*p == '\r') {
+    while (p < end && *p == '\r')
+      p++;
+    if (p < end && *p == '\n')
+      p++;
+    return p;
+  }
+  return p + 1;
+}
+
+int aq_text_line(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
+{
+  size_t p = *pos;
+  if (p >= n)
+    return 0;
+  *b = p;
+  p = aq_text_line_end(s, p, n);
+  *e = p;
+  if (p < n)
+    p = (size_t)(aq_text_past_eol(s + p, s + n) - s);
+  *pos = p;
+  return 1;
+}
+
 void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n)
 {
   c->s = (const char *)buf;
@@ -40,7 +73,7 @@ int aq_line_blank(const aq_line *ln)
 int aq_lines_next(aq_lines *c, aq_line *out)
 {
   size_t b, e;
-  if (aq_lines_at_end(c) || !aq_text_line_(c->s, c->n, &c->pos, &b, &e))
+  if (aq_lines_at_end(c) || !aq_text_line(c->s, c->n, &c->pos, &b, &e))
     return 0;
   out->p = c->s + b;
   out->len = e - b;
