@@ -7,7 +7,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 FUZZ_SECONDS ?= 60
 
-PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot
+PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # HDF5 is linked from its static archive when one is installed (Debian's
 # libhdf5-dev ships it): the shared library brings in ~45 more (curl, TLS,
@@ -217,7 +217,7 @@ uninstall:
 # DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
-            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo
+            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
             openmpi-bin libopenmpi-dev man-db locales poppler-utils
 deps:
