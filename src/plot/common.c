@@ -448,22 +448,37 @@ static size_t utf8_chars(const char *s)
   return n;
 }
 
+void aq_plot_escape(const char *s, char *out, size_t cap)
+{
+  size_t n = 0;
+  if (cap == 0)
+    return;
+  for (; *s && n + 2 < cap; s++) {
+    if (*s == '#')
+      out[n++] = '#'; /* PLplot's escape character, doubled: itself */
+    out[n++] = *s;
+  }
+  out[n] = '\0';
+}
+
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap)
 {
   size_t n = utf8_chars(s);
+  char plain[1024];
   if (cap == 0)
     return;
-  if (n <= max_chars || max_chars < 3) {
-    snprintf(out, cap, "%s", s);
-    return;
+  if (n <= max_chars || max_chars < 3)
+    snprintf(plain, sizeof plain, "%s", s);
+  else {
+    size_t keep = max_chars - 1, head = (keep + 1) / 2, tail = keep - head;
+    const char *p = s, *q = s;
+    for (size_t i = 0; i < head; i++)
+      p += utf8_len(p);
+    for (size_t i = 0; i < n - tail; i++)
+      q += utf8_len(q);
+    snprintf(plain, sizeof plain, "%.*s…%s", (int)(p - s), s, q);
   }
-  size_t keep = max_chars - 1, head = (keep + 1) / 2, tail = keep - head;
-  const char *p = s, *q = s;
-  for (size_t i = 0; i < head; i++)
-    p += utf8_len(p);
-  for (size_t i = 0; i < n - tail; i++)
-    q += utf8_len(q);
-  snprintf(out, cap, "%.*s…%s", (int)(p - s), s, q);
+  aq_plot_escape(plain, out, cap);
 }
 
 size_t aq_plot_chars_fit(double width_frac)

@@ -192,7 +192,10 @@ static int draw(void *ctx, aq_error *err)
   plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
   const char *base = strrchr(r->record, '/');
   base = base ? base + 1 : r->record;
-  snprintf(title, sizeof title, "%.60s on arch %.40s: scale %g%s, run %s", base, r->arch,
+  char rec_e[160], arch_e[100];
+  aq_plot_escape(base, rec_e, sizeof rec_e);
+  aq_plot_escape(r->arch, arch_e, sizeof arch_e);
+  snprintf(title, sizeof title, "%.120s on arch %.80s: scale %g%s, run %s", rec_e, arch_e,
            r->scale, r->reversed ? " reversed" : "", r->key);
   plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
   plmtex("t", 1.2, 0.5, 0.5, title);
