@@ -491,6 +491,52 @@ size_t aq_plot_chars_fit(double width_frac)
   return per > 0 && w > per ? (size_t)(w / per) : 1;
 }
 
+void aq_plot_line(size_t n, const double *x, const double *y, size_t buckets)
+{
+  if (n <= 4 * buckets || buckets == 0) {
+    plline((PLINT)n, x, y);
+    return;
+  }
+  PLFLT *bx = malloc(4 * buckets * sizeof *bx), *by = malloc(4 * buckets * sizeof *by);
+  if (!bx || !by) { /* drawn whole */
+    free(bx);
+    free(by);
+    plline((PLINT)n, x, y);
+    return;
+  }
+  double x0 = x[0], w = (x[n - 1] - x[0]) / (double)buckets;
+  size_t m = 0;
+  for (size_t i = 0; i < n;) {
+    /* the samples of one bucket: the first, the lowest, the highest and
+       the last, in their order */
+    double edge = x0 + w * floor((x[i] - x0) / w + 1);
+    size_t j = i, lo = i, hi = i;
+    while (j < n && (x[j] < edge || j == i)) {
+      if (y[j] < y[lo])
+        lo = j;
+      if (y[j] > y[hi])
+        hi = j;
+      j++;
+    }
+    size_t k[4] = {i, lo < hi ? lo : hi, lo < hi ? hi : lo, j - 1};
+    for (int q = 0; q < 4; q++)
+      if (q == 0 || k[q] != k[q - 1]) {
+        bx[m] = x[k[q]];
+        by[m++] = y[k[q]];
+      }
+    i = j;
+    if (m + 4 > 4 * buckets) { /* uneven spacing: flush */
+      plline((PLINT)m, bx, by);
+      bx[0] = bx[m - 1];
+      by[0] = by[m - 1];
+      m = 1;
+    }
+  }
+  plline((PLINT)m, bx, by);
+  free(bx);
+  free(by);
+}
+
 void aq_plot_note(double x, double y, const char *text)
 {
   PLFLT def, ht, vx0, vx1, vy0, vy1, wx0, wx1, wy0, wy1;

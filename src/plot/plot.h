@@ -144,6 +144,11 @@ enum { AQ_PLOT_LEGEND_MAX = 40 };
 void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
                        const char *const *text, const int *color, const int *style,
                        const char *const *sym);
+/* plline of n points with x increasing, thinned where they are many more
+ * than the panel has pixels: in each of `buckets` equal spans of x the
+ * first, lowest, highest and last point, in order, so that the line looks
+ * the same (its extremes kept) at a fraction of the size in SVG and PDF. */
+void aq_plot_line(size_t n, const double *x, const double *y, size_t buckets);
 /* text centred at (x, y) (world coordinates) on a box of the background
  * colour, so that lines drawn before do not strike through it. */
 void aq_plot_note(double x, double y, const char *text);
