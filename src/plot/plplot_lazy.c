@@ -93,6 +93,8 @@
   V(c_plwidth, (PLFLT width), (width))                                                   \
   V(c_plwind, (PLFLT xmin, PLFLT xmax, PLFLT ymin, PLFLT ymax), (xmin, xmax, ymin,       \
     ymax))                                                                               \
+  V(plgDevs, (PLCHAR_VECTOR **p_menustr, PLCHAR_VECTOR **p_devname, int *p_ndev),        \
+    (p_menustr, p_devname, p_ndev))                                                      \
   V(plgFileDevs, (PLCHAR_VECTOR **p_menustr, PLCHAR_VECTOR **p_devname, int *p_ndev),    \
     (p_menustr, p_devname, p_ndev))                                                      \
   V(plsError, (PLINT_NC_SCALAR errcode, PLCHAR_NC_VECTOR errmsg), (errcode, errmsg))     \
