@@ -303,7 +303,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
     return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
-    if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
+    if (has_ci(line[0], len[0], "ACCELEROGRAM") &&
+        (has_ci(line[k], len[k], "STATION NO.") || has_ci(line[k], len[k], "STATION ID.")))
       return AQ_FMT_COSMOS;
   /* PEER: a line with NPTS and DT followed by values, after free text */
   size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
