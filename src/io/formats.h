@@ -122,6 +122,15 @@ aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
  * of (time, value) pairs in 10F7 whose six times step evenly?  1 or 0. */
 int aq_renadic_sniff(const unsigned char *buf, size_t n);
 
+/* BHRC (Iran) VOL1DS: three blocks (L, V, T) of 13 text lines, 14I5
+ * integers, 6E13.6 reals cut at column 70, and 10E13.6 data; units "g/10";
+ * dt from real #7 (samples per second); no start time (bhrc.c). */
+aq_status aq_bhrc_parse(const unsigned char *buf, size_t n, const char *name,
+                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does buf[0..n) start "* VOL" with "DS FILE" (BHRC VOLnDS)?  1 or 0. */
+int aq_bhrc_sniff(const unsigned char *buf, size_t n);
+
 /* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
  * case), the start of a channel's text header. */
 int aq_line_names_accelerogram_(const struct aq_line_s *ln);

@@ -300,6 +300,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
       has_ci(line[0], len[0], "ACCELEROGRAM"))
     return AQ_FMT_SMC;
+  if (aq_bhrc_sniff(buf, m))
+    return AQ_FMT_BHRC;
   if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
     return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
@@ -362,6 +364,14 @@ const char *aq_format_describe(aq_format fmt)
     return "GeoNet V1A/V2A";
   case AQ_FMT_RENADIC:
     return "RENADIC (Chile) V1";
+  case AQ_FMT_BHRC:
+    return "BHRC (Iran) VOL1DS";
+  case AQ_FMT_ASA:
+    return "Mexican ASA 2.0";
+  case AQ_FMT_NSMN:
+    return "AFAD/NSMN (Turkey) ASCII";
+  case AQ_FMT_NPTS_DT:
+    return "text with \"NPTS DT\" on its first line";
   }
   return "?";
 }
@@ -671,6 +681,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_geonet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_RENADIC:
     return aq_renadic_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_BHRC:
+    return aq_bhrc_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
