@@ -131,6 +131,16 @@ aq_status aq_bhrc_parse(const unsigned char *buf, size_t n, const char *name,
 /* Does buf[0..n) start "* VOL" with "DS FILE" (BHRC VOLnDS)?  1 or 0. */
 int aq_bhrc_sniff(const unsigned char *buf, size_t n);
 
+/* The Mexican strong-motion database's ASA 2.0 text, UNAM and CICESE
+ * layouts: Spanish "KEY : value" headers with "/"-separated per-channel
+ * lists, then one row per sample (asa.c). */
+aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does one of the first lines of buf[0..n) say "ARCHIVO ESTANDAR DE
+ * ACELERACION" (ASA 2.0)?  1 or 0. */
+int aq_asa_sniff(const unsigned char *buf, size_t n);
+
 /* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
  * case), the start of a channel's text header. */
 int aq_line_names_accelerogram_(const struct aq_line_s *ln);
