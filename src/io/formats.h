@@ -141,6 +141,16 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
  * ACELERACION" (ASA 2.0)?  1 or 0. */
 int aq_asa_sniff(const unsigned char *buf, size_t n);
 
+/* Turkey's NSMN/AFAD ASCII ("STRONG GROUND MOTION RECORDS OF TURKIYE"):
+ * "KEY : value" lines (SAMPLING INTERVAL (sec), NUMBER OF DATA, RECORD
+ * TIME), ISO-8859-9 place names, three columns N-S E-W U-D (nsmn.c). */
+aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
+                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does the first line of buf[0..n) say "STRONG GROUND MOTION RECORDS OF
+ * TURK..."?  1 or 0. */
+int aq_nsmn_sniff(const unsigned char *buf, size_t n);
+
 /* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
  * case), the start of a channel's text header. */
 int aq_line_names_accelerogram_(const struct aq_line_s *ln);

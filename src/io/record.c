@@ -285,6 +285,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
     return AQ_FMT_BHRC;
   if (aq_asa_sniff(buf, m))
     return AQ_FMT_ASA;
+  if (aq_nsmn_sniff(buf, m))
+    return AQ_FMT_NSMN;
   if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
     return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
@@ -668,6 +670,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_bhrc_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_ASA:
     return aq_asa_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_NSMN:
+    return aq_nsmn_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");

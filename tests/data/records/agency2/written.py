@@ -71,5 +71,43 @@ def asa_cicese():
         print("PRUE1004.041#%s npts %d dt %g peak %.4f gal = %.6g g" % (name, n, dt, pk, pk / 100 / G0))
 
 
+def nsmn():
+    """Turkey's NSMN/AFAD ASCII as gmprocess's reader describes it (18 header
+    lines, "KEY : value", RECORD TIME day/month/year, SAMPLING INTERVAL (sec),
+    three columns N-S E-W U-D), with a place name in ISO-8859-9 bytes.  The
+    values are written in gal, as the RAW PGA line says."""
+    n, dt = 300, 0.01
+    cols = [wave(n, dt, 187.654, 2.7, 0.2, 0.6), wave(n, dt, -143.21, 3.9, 0.9, 0.65),
+            wave(n, dt, 61.5, 6.1, 0.4, 0.55)]
+    rows = [[round(c[k], 6) for c in cols] for k in range(n)]
+    pk = [max(abs(r[j]) for r in rows) for j in range(3)]
+    head = [
+        "STRONG GROUND MOTION RECORDS OF TURKIYE",
+        "PLACE                          : Deneme \u0130stasyonu, G\u00fcne\u015fli (archquake test file, no agency data)",
+        "EARTHQUAKE DATE                : 05/03/2011",
+        "EARTHQUAKE TIME (GMT)          : 12:34:50",
+        "EARTHQUAKE MAGNITUDE           : (none: test record)",
+        "EPICENTER COORDINATES          : 40.0000N-30.0000E",
+        "STATION ID                     : 9999",
+        "STATION COORDINATES            : 40.1000N-30.1000E",
+        "STATION ALTITUDE (m)           : 100",
+        "RECORDER TYPE                  : (none)",
+        "RECORDER SERIAL NO             : 0",
+        "RECORD TIME                    : 05/03/2011 12:34:56.500000 (GMT)",
+        "NUMBER OF DATA                 : %d" % n,
+        "SAMPLING INTERVAL (sec)        : %g" % dt,
+        "RAW PGA VALUES (gal)           : N-S: %.6f  E-W: %.6f  U-D: %.6f" % tuple(pk),
+        "",
+        "",
+        "         N-S         E-W         U-D",
+    ]
+    body = ["".join("%12.6f" % x for x in r) for r in rows]
+    with open("TK9999-20110305.txt", "wb") as fh:
+        fh.write(("\r\n".join(head + body) + "\r\n").encode("iso8859_9"))
+    for j, name in enumerate(("N-S", "E-W", "U-D")):
+        print("TK9999-20110305.txt#%s npts %d dt %g peak %.6f gal = %.7g g" % (name, n, dt, pk[j], pk[j] / 100 / G0))
+
+
 if __name__ == "__main__":
     asa_cicese()
+    nsmn()
