@@ -151,6 +151,16 @@ aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
  * TURK..."?  1 or 0. */
 int aq_nsmn_sniff(const unsigned char *buf, size_t n);
 
+/* Text whose first line is the two numbers "NPTS DT" (OpenSees examples),
+ * then NPTS values or NPTS (time, value) pairs; no units stated (nptsdt.c). */
+aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Is the first non-blank line of buf[0..n) "NPTS DT" (a whole number >= 2
+ * and a number > 0) and are the numbers after it NPTS values or NPTS pairs
+ * on lines of two?  1 or 0 (reads all of buf). */
+int aq_nptsdt_sniff(const unsigned char *buf, size_t n);
+
 /* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
  * case), the start of a channel's text header. */
 int aq_line_names_accelerogram_(const struct aq_line_s *ln);

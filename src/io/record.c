@@ -293,6 +293,8 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
     if (has_ci(line[0], len[0], "ACCELEROGRAM") &&
         (has_ci(line[k], len[k], "STATION NO.") || has_ci(line[k], len[k], "STATION ID.")))
       return AQ_FMT_COSMOS;
+  if (aq_nptsdt_sniff(buf, n)) /* the whole file: its count decides */
+    return AQ_FMT_NPTS_DT;
   /* PEER: a line with NPTS and DT followed by values, after free text */
   size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
   int nt = 0;
@@ -672,6 +674,8 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_asa_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_NSMN:
     return aq_nsmn_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_NPTS_DT:
+    return aq_nptsdt_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
@@ -899,7 +903,8 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
     aq_error ignored;
     if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
       aq_format fmt = aq_record_detect(buf, size);
-      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
+                   fmt == AQ_FMT_NPTS_DT;
       size_t nch;
       /* text of one channel, or that fails before its rows, keeps its name
        * whatever its rows hold: only its columns are read */

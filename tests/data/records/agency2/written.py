@@ -108,6 +108,25 @@ def nsmn():
         print("TK9999-20110305.txt#%s npts %d dt %g peak %.6f gal = %.7g g" % (name, n, dt, pk[j], pk[j] / 100 / G0))
 
 
+def npts_dt():
+    """The two-number first line "NPTS DT" that OpenSees examples use, then
+    the values (several to a line, the last line short), or one (time,
+    value) pair to a line.  No units are stated (the values are in g)."""
+    n, dt = 403, 0.02
+    a = [round(x, 6) for x in wave(n, dt, 0.31234, 1.7, 0.5, 1.0)]
+    lines = ["%d %g" % (n, dt)] + [" ".join("%.6f" % x for x in a[i:i + 5]) for i in range(0, n, 5)]
+    with open("npts-dt-values.txt", "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    print("npts-dt-values.txt npts %d dt %g peak %.6f g" % (n, dt, max(abs(x) for x in a)))
+    n, dt, t0 = 350, 0.005, 0.0
+    a = [round(x, 7) for x in wave(n, dt, -0.0876, 4.2, 0.1, 0.4)]
+    lines = ["%d  %g" % (n, dt)] + ["%.3f\t%.7f" % (t0 + k * dt, a[k]) for k in range(n)]
+    with open("npts-dt-pairs.txt", "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    print("npts-dt-pairs.txt npts %d dt %g peak %.7f g" % (n, dt, max(abs(x) for x in a)))
+
+
 if __name__ == "__main__":
     asa_cicese()
     nsmn()
+    npts_dt()
