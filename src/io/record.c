@@ -279,7 +279,7 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (has_ci(line[0], len[0], "(Format v") && has_ci(line[0], len[0], "lines)"))
     return AQ_FMT_COSMOS;
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
-      has_ci(line[0], len[0], "ACCELEROGRAM"))
+      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN")))
     return AQ_FMT_SMC;
   if (aq_bhrc_sniff(buf, m))
     return AQ_FMT_BHRC;
