@@ -19,7 +19,8 @@ HDF5_A     := $(if $(filter 1,$(HDF5_STATIC)),$(firstword $(wildcard $(addsuffix
 HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs hdf5 2>/dev/null))
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5,$(PKGS)) 2>/dev/null) $(HDF5_LIBS)
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
-AQ_LIBS    = $(PKG_LIBS) -lpthread -lm
+# zlib: the tests decode the browser's PNG screenshots (also HDF5's own).
+AQ_LIBS    = $(PKG_LIBS) -lz -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
@@ -192,20 +193,26 @@ ARCHDIR = $(DESTDIR)$(PREFIX)/share/archquake/arches
 DOCDIR  = $(DESTDIR)$(PREFIX)/share/doc/archquake
 MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
 ARCH_FILES := $(wildcard arches/*.cfg)
-DOC_FILES  := README.md $(wildcard docs/*.md)
+# README.md with docs/ and docs/figures/ beside it, as in the source tree,
+# so that the README's links lead to installed files.
+DOC_FILES  := $(wildcard docs/*.md)
+FIG_FILES  := $(wildcard docs/figures/*.png)
 install: $(INSTALL_BIN) build/archquake.1
-	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR) $(MAN1DIR)
+	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR)/docs/figures $(MAN1DIR)
 	install -m 755 $(INSTALL_BIN) $(BINDIR)/archquake
 	if test -f archquake-mpi; then install -m 755 archquake-mpi $(BINDIR)/archquake-mpi; fi
 	install -m 644 $(ARCH_FILES) $(ARCHDIR)
-	install -m 644 $(DOC_FILES) $(DOCDIR)
+	install -m 644 README.md $(DOCDIR)
+	install -m 644 $(DOC_FILES) $(DOCDIR)/docs
+	install -m 644 $(FIG_FILES) $(DOCDIR)/docs/figures
 	install -m 644 build/archquake.1 $(MAN1DIR)/archquake.1
 
 uninstall:
 	rm -f $(BINDIR)/archquake $(BINDIR)/archquake-mpi $(MAN1DIR)/archquake.1
 	rm -f $(addprefix $(ARCHDIR)/,$(notdir $(ARCH_FILES)))
-	rm -f $(addprefix $(DOCDIR)/,$(notdir $(DOC_FILES)))
-	-rmdir $(ARCHDIR) $(DESTDIR)$(PREFIX)/share/archquake $(DOCDIR) 2>/dev/null
+	rm -f $(DOCDIR)/README.md $(addprefix $(DOCDIR)/,$(DOC_FILES) $(FIG_FILES))
+	-rmdir $(ARCHDIR) $(DESTDIR)$(PREFIX)/share/archquake $(DOCDIR)/docs/figures \
+	  $(DOCDIR)/docs $(DOCDIR) 2>/dev/null
 
 # Debian packages: DEB_PKGS builds and runs archquake (`make deps`);
 # DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
@@ -213,7 +220,7 @@ uninstall:
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            openmpi-bin libopenmpi-dev man-db locales
+            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)
