@@ -1,6 +1,7 @@
 /* reader.h: the reader contract.  One parser per format (sac.c, at2.c,
  * csv.c, knet.c, cosmos.c, csmip.c, smc.c, esm.c, mseed.c, geonet.c,
- * renadic.c; stationxml.c for the responses of miniSEED), each parsing a
+ * renadic.c, bhrc.c, asa.c, nsmn.c, nptsdt.c; stationxml.c for the
+ * responses of miniSEED), each parsing a
  * whole file already in memory (so that fuzzers and benches need no files)
  * into an aq_raw_file: what the file states, nothing decided.
  *
@@ -153,6 +154,41 @@ aq_reader_fn aq_renadic_parse;
  * ACCELEROGRAM and, after the 13 text and 14 numeric header lines, two lines
  * of (time, value) pairs in 10F7 whose six times step evenly?  1 or 0. */
 int aq_renadic_sniff(const unsigned char *buf, size_t n);
+
+/* BHRC (Iran) VOL1DS: three blocks (L, V, T) of 13 text lines, 14I5
+ * integers, 6E13.6 reals cut at column 70, and 10E13.6 data; units "g/10";
+ * dt from real #7 (samples per second); no start time (bhrc.c). */
+aq_reader_fn aq_bhrc_parse;
+
+/* Does buf[0..n) start "* VOL" with "DS FILE" (BHRC VOLnDS)?  1 or 0. */
+int aq_bhrc_sniff(const unsigned char *buf, size_t n);
+
+/* The Mexican strong-motion database's ASA 2.0 text, UNAM and CICESE
+ * layouts: Spanish "KEY : value" headers with "/"-separated per-channel
+ * lists, then one row per sample (asa.c). */
+aq_reader_fn aq_asa_parse;
+
+/* Does one of the first lines of buf[0..n) say "ARCHIVO ESTANDAR DE
+ * ACELERACION" (ASA 2.0)?  1 or 0. */
+int aq_asa_sniff(const unsigned char *buf, size_t n);
+
+/* Turkey's NSMN/AFAD ASCII ("STRONG GROUND MOTION RECORDS OF TURKIYE"):
+ * "KEY : value" lines (SAMPLING INTERVAL (sec), NUMBER OF DATA, RECORD
+ * TIME), ISO-8859-9 place names, three columns N-S E-W U-D (nsmn.c). */
+aq_reader_fn aq_nsmn_parse;
+
+/* Does the first line of buf[0..n) say "STRONG GROUND MOTION RECORDS OF
+ * TURK..."?  1 or 0. */
+int aq_nsmn_sniff(const unsigned char *buf, size_t n);
+
+/* Text whose first line is the two numbers "NPTS DT" (OpenSees examples),
+ * then NPTS values or NPTS (time, value) pairs; no units stated (nptsdt.c). */
+aq_reader_fn aq_nptsdt_parse;
+
+/* Is the first non-blank line of buf[0..n) "NPTS DT" (a whole number >= 2
+ * and a number > 0) and are the numbers after it NPTS values or NPTS pairs
+ * on lines of two?  1 or 0 (reads all of buf). */
+int aq_nptsdt_sniff(const unsigned char *buf, size_t n);
 
 /* ---- StationXML: the responses of miniSEED channels (stationxml.c) ------- */
 
