@@ -83,6 +83,7 @@ typedef enum {
   AQ_OPT_TEXT,
   AQ_OPT_FRAGILITY,
   AQ_OPT_DATA,
+  AQ_OPT_PAPER,
   AQ_OPT_RUN,
   AQ_OPT_ROTATION,
   AQ_OPT_IM,
@@ -217,6 +218,7 @@ typedef struct aq_opts {
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */
+  int paper;        /* --paper: an aq_plot_paper, or -1: the locale's */
   double rotation_rad;
 } aq_opts;
 
