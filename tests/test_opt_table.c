@@ -50,6 +50,7 @@ static const struct {
      "text fragility polarity scale-max resolution tol jobs model cor components azimuths "
      "azimuth vertical help detrend taper highpass order lowpass no-filter merge-tol",
      "oj"},
+    {AQ_CMD_REPORT, "report", "output help", "o"},
     {AQ_CMD_PLOT_HISTORY, "plot history", "output data run help", "o"},
     {AQ_CMD_PLOT_ARCH, "plot arch", "output data arch rotation help", "o"},
     {AQ_CMD_PLOT_DOMAIN, "plot domain", "output data arch ratios cor help", "o"},
@@ -128,9 +129,9 @@ AQ_TEST(opt_table_every_option_in_help_and_man)
   char *out = malloc(OUT_CAP), dir[512], cmd[1200], page_path[700];
   if (!aq_check(out != NULL, "memory"))
     return;
-  static const aq_cmd helps[] = {AQ_CMD_RUN,     AQ_CMD_INFO,    AQ_CMD_MECHANISM,
-                                 AQ_CMD_PULSE,   AQ_CMD_DOMAIN,  AQ_CMD_COMPARE,
-                                 AQ_CMD_CAPACITY, AQ_CMD_PLOT};
+  static const aq_cmd helps[] = {AQ_CMD_RUN,      AQ_CMD_INFO,   AQ_CMD_MECHANISM,
+                                 AQ_CMD_PULSE,    AQ_CMD_DOMAIN, AQ_CMD_COMPARE,
+                                 AQ_CMD_CAPACITY, AQ_CMD_REPORT, AQ_CMD_PLOT};
   for (size_t k = 0; k < sizeof helps / sizeof helps[0]; k++) {
     const aq_opt_command *c = &aq_opt_commands[helps[k]];
     snprintf(cmd, sizeof cmd, "%s%s--help", c->name, c->name[0] ? " " : "");
@@ -315,6 +316,7 @@ AQ_TEST(opt_table_every_command_reports_several_bad_options)
        {"--resolution", "--frob", "--all-azimuths", "--polarity"}},
       {"plot capacity x.h5 -o x.png --x deg --frob --rotation 0.1 --y g",
        {"--x", "--frob", "--rotation", "--y"}},
+      {"report a.h5 -o r.txt --frob --cor 0.5", {"-o", "--frob", "--cor"}},
   };
   for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
     char out[4096], err[8192];

@@ -169,6 +169,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)"},
+    [AQ_OPT_REPORT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
+                              .meta = "FILE", DEST(output), .cmds = C(REPORT),
+                              .help = "the page (.html)"},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -568,6 +571,25 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                          "first_collapse_scale, no collapse last, with the range over the\n"
                          "azimuths; --azimuth DEG gives one azimuth's; -o and --fragility\n"
                          "take plain RECORDs only):"}},
+    [AQ_CMD_REPORT] =
+        {.name = "report",
+         .title = "report",
+         .help_cmd = "report",
+         .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
+                 "One self-contained HTML page of a screening, to hand on: per arch its\n"
+                 "verdict table (sortable, filterable by verdict) and figures (the arch\n"
+                 "and its hinge sets, the suite's verdict map, the history of each\n"
+                 "collapsed run and of the strongest surviving one when the results hold\n"
+                 "histories), the capacity files' first collapses, collapse intervals,\n"
+                 "fragility curves and the ranking of the intensity measures, the failed\n"
+                 "records with their reasons, and the run: command line, build, date,\n"
+                 "options, every record and every arch.  Figures are inline SVG, text as\n"
+                 "text; nothing is fetched; it prints on A4 and Letter.\n"
+                 "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
+                 "CAPACITY.h5 one of archquake capacity -o.\n",
+         .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
+                 "3 the page could not be written.  No partial file is left under FILE.\n",
+         .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_PLOT] = {.name = "plot",
                      .title = "plot",
                      .help_cmd = "plot",

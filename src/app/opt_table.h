@@ -58,6 +58,7 @@ typedef enum {
   AQ_CMD_DOMAIN,
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
+  AQ_CMD_REPORT,
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -80,6 +81,7 @@ typedef enum {
   AQ_OPT_RATIOS,
   AQ_OPT_OUTPUT,      /* -o FILE.h5 */
   AQ_OPT_PLOT_OUTPUT, /* -o FILE.png|svg|pdf */
+  AQ_OPT_REPORT_OUTPUT, /* -o FILE.html */
   AQ_OPT_TEXT,
   AQ_OPT_FRAGILITY,
   AQ_OPT_DATA,
