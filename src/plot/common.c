@@ -64,6 +64,9 @@ static int device_exists(const char *device)
 
 aq_status aq_plot_device(const char *target, const char **device, aq_error *err)
 {
+  aq_status loaded = aq_plot_load(err); /* PLplot is opened on first use */
+  if (loaded != AQ_OK)
+    return loaded;
   const char *dot = strrchr(target, '.'), *slash = strrchr(target, '/');
   if (dot && (!slash || dot > slash))
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
