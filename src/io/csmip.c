@@ -75,9 +75,11 @@ static void units_from(const char *b, const char *end, char *out, size_t cap)
   while (b < end && *b == ' ')
     b++;
   const char *p = b;
-  while (p < end && *p != ' ' && *p != ')')
+  while (p < end && *p != ' ' && *p != ')' && *p != ',')
     p++;
   size_t n = (size_t)(p - b);
+  if (n > 1 && b[n - 1] == '.') /* "in cm/sec2." ends the sentence */
+    n--;
   if (n == 1 && (*b == 'g' || *b == 'G'))
     snprintf(out, cap, "g");
   else if (aq_find_ci(b, n, "cm/sec/sec") || aq_find_ci(b, n, "cm/sec2"))
@@ -186,6 +188,8 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     if (!tmp.channel[0] && aq_find_ci(p, (size_t)(end - p), "chan") == p)
       channel_line(&hdr[i], &tmp);
     const char *st = aq_find_ci(hdr[i].p, hdr[i].len, "station no.");
+    if (!st) /* SCSN: "Station Id. WLT" */
+      st = aq_find_ci(hdr[i].p, hdr[i].len, "station id.");
     if (st && !tmp.station[0]) {
       st += 11;
       size_t len = aq_next_word(&st, end, "");
@@ -216,8 +220,18 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     u = aq_find_ci(data.p, data.len, "units:");
     if (u)
       units_from(u + 6, dend, tmp.units, sizeof tmp.units);
+    else if ((u = aq_find_ci(data.p, data.len, ", in "))) /* Avol1: ", in cm/sec2." */
+      units_from(u + 5, dend, tmp.units, sizeof tmp.units);
   }
   const char *fp = aq_find_ci(data.p, data.len, "format");
+  if (!fp) /* Avol1 V2: "... in cm/sec2. (8f10.7)", the format in the last parentheses */
+    for (const char *q = dend; q > data.p; q--)
+      if (q[-1] == '(') {
+        aq_fortran_fmt g;
+        if (aq_fortran_fmt_find(q - 1, (size_t)(dend - q + 1), &g))
+          f = g;
+        break;
+      }
   if (fp && !aq_fortran_fmt_find(fp, (size_t)(dend - fp), &f)) {
     char got[96];
     aq_copy_trim(got, sizeof got, fp, (size_t)(dend - fp));

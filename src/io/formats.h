@@ -122,6 +122,45 @@ aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
  * of (time, value) pairs in 10F7 whose six times step evenly?  1 or 0. */
 int aq_renadic_sniff(const unsigned char *buf, size_t n);
 
+/* BHRC (Iran) VOL1DS: three blocks (L, V, T) of 13 text lines, 14I5
+ * integers, 6E13.6 reals cut at column 70, and 10E13.6 data; units "g/10";
+ * dt from real #7 (samples per second); no start time (bhrc.c). */
+aq_status aq_bhrc_parse(const unsigned char *buf, size_t n, const char *name,
+                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does buf[0..n) start "* VOL" with "DS FILE" (BHRC VOLnDS)?  1 or 0. */
+int aq_bhrc_sniff(const unsigned char *buf, size_t n);
+
+/* The Mexican strong-motion database's ASA 2.0 text, UNAM and CICESE
+ * layouts: Spanish "KEY : value" headers with "/"-separated per-channel
+ * lists, then one row per sample (asa.c). */
+aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does one of the first lines of buf[0..n) say "ARCHIVO ESTANDAR DE
+ * ACELERACION" (ASA 2.0)?  1 or 0. */
+int aq_asa_sniff(const unsigned char *buf, size_t n);
+
+/* Turkey's NSMN/AFAD ASCII ("STRONG GROUND MOTION RECORDS OF TURKIYE"):
+ * "KEY : value" lines (SAMPLING INTERVAL (sec), NUMBER OF DATA, RECORD
+ * TIME), ISO-8859-9 place names, three columns N-S E-W U-D (nsmn.c). */
+aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
+                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Does the first line of buf[0..n) say "STRONG GROUND MOTION RECORDS OF
+ * TURK..."?  1 or 0. */
+int aq_nsmn_sniff(const unsigned char *buf, size_t n);
+
+/* Text whose first line is the two numbers "NPTS DT" (OpenSees examples),
+ * then NPTS values or NPTS (time, value) pairs; no units stated (nptsdt.c). */
+aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Is the first non-blank line of buf[0..n) "NPTS DT" (a whole number >= 2
+ * and a number > 0) and are the numbers after it NPTS values or NPTS pairs
+ * on lines of two?  1 or 0 (reads all of buf). */
+int aq_nptsdt_sniff(const unsigned char *buf, size_t n);
+
 /* Shared (csmip.c, renadic.c): 1 if the line names an ACCELEROGRAM (any
  * case), the start of a channel's text header. */
 int aq_line_names_accelerogram_(const struct aq_line_s *ln);

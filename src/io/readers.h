@@ -99,7 +99,11 @@ typedef enum {
   AQ_FMT_GZIP,               /* gzip/zip compressed: refused */
   AQ_FMT_EMPTY,              /* zero bytes */
   AQ_FMT_GEONET,             /* GeoNet V1A/V2A (geonet.c) */
-  AQ_FMT_RENADIC             /* RENADIC (Chile) V1 (renadic.c) */
+  AQ_FMT_RENADIC,            /* RENADIC (Chile) V1 (renadic.c) */
+  AQ_FMT_BHRC,               /* BHRC (Iran) VOL1DS (bhrc.c) */
+  AQ_FMT_ASA,                /* Mexican ASA 2.0 (asa.c) */
+  AQ_FMT_NSMN,               /* AFAD / NSMN (Turkey) ASCII (nsmn.c) */
+  AQ_FMT_NPTS_DT             /* text whose first line is "NPTS DT" (nptsdt.c) */
 } aq_format;
 
 /* Classify buf[0..n) by content only.  Never fails. */

@@ -279,13 +279,22 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (has_ci(line[0], len[0], "(Format v") && has_ci(line[0], len[0], "lines)"))
     return AQ_FMT_COSMOS;
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
-      has_ci(line[0], len[0], "ACCELEROGRAM"))
+      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN")))
     return AQ_FMT_SMC;
+  if (aq_bhrc_sniff(buf, m))
+    return AQ_FMT_BHRC;
+  if (aq_asa_sniff(buf, m))
+    return AQ_FMT_ASA;
+  if (aq_nsmn_sniff(buf, m))
+    return AQ_FMT_NSMN;
   if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
     return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
-    if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
+    if (has_ci(line[0], len[0], "ACCELEROGRAM") &&
+        (has_ci(line[k], len[k], "STATION NO.") || has_ci(line[k], len[k], "STATION ID.")))
       return AQ_FMT_COSMOS;
+  if (aq_nptsdt_sniff(buf, n)) /* the whole file: its count decides */
+    return AQ_FMT_NPTS_DT;
   /* PEER: a line with NPTS and DT followed by values, after free text */
   size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
   int nt = 0;
@@ -342,6 +351,14 @@ const char *aq_format_describe(aq_format fmt)
     return "GeoNet V1A/V2A";
   case AQ_FMT_RENADIC:
     return "RENADIC (Chile) V1";
+  case AQ_FMT_BHRC:
+    return "BHRC (Iran) VOL1DS";
+  case AQ_FMT_ASA:
+    return "Mexican ASA 2.0";
+  case AQ_FMT_NSMN:
+    return "AFAD/NSMN (Turkey) ASCII";
+  case AQ_FMT_NPTS_DT:
+    return "text with \"NPTS DT\" on its first line";
   }
   return "?";
 }
@@ -651,6 +668,14 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_geonet_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_RENADIC:
     return aq_renadic_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_BHRC:
+    return aq_bhrc_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_ASA:
+    return aq_asa_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_NSMN:
+    return aq_nsmn_parse(buf, n, name, opts, raw, err);
+  case AQ_FMT_NPTS_DT:
+    return aq_nptsdt_parse(buf, n, name, opts, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
@@ -878,7 +903,8 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
     aq_error ignored;
     if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
       aq_format fmt = aq_record_detect(buf, size);
-      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
+                   fmt == AQ_FMT_NPTS_DT;
       size_t nch;
       /* text of one channel, or that fails before its rows, keeps its name
        * whatever its rows hold: only its columns are read */
