@@ -2,7 +2,7 @@
  * report.html`: check the options, then write the page with the page
  * stage (src/page) in this one thread. */
 #define _POSIX_C_SOURCE 200809L
-#include <getopt.h>
+#include <getopt.h> /* optind */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,8 +21,10 @@ int aq_cmd_report(int argc, char **argv)
   aq_opts o;
   aq_opts_init(&o, AQ_CMD_REPORT);
   int nerr = 0;
-  if (aq_opts_parse(AQ_CMD_REPORT, argc, argv, &o, &nerr))
-    return AQ_EXIT_OK; /* --help */
+  if (aq_opts_parse(AQ_CMD_REPORT, argc, argv, &o, &nerr)) { /* --help */
+    aq_opts_free(&o);
+    return AQ_EXIT_OK;
+  }
   const char *out = o.output;
   if (optind >= argc) {
     fprintf(stderr, "archquake: report: expected a results file (.h5), got none\n");
@@ -43,6 +45,7 @@ int aq_cmd_report(int argc, char **argv)
         nerr++;
       }
   }
+  aq_opts_free(&o);
   if (nerr)
     return AQ_EXIT_USAGE;
   /* the command line, shown at the page's end */

@@ -170,8 +170,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)"},
     [AQ_OPT_REPORT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
-                              .meta = "FILE", DEST(output), .cmds = C(REPORT),
-                              .help = "the page (.html)"},
+                              .meta = "FILE.html", DEST(output), .cmds = C(REPORT),
+                              .help = "the page"},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -571,6 +571,18 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                          "first_collapse_scale, no collapse last, with the range over the\n"
                          "azimuths; --azimuth DEG gives one azimuth's; -o and --fragility\n"
                          "take plain RECORDs only):"}},
+    [AQ_CMD_PLOT] = {.name = "plot",
+                     .title = "plot",
+                     .help_cmd = "plot",
+                     .head = plot_head,
+                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
+                             "bad options,\n3 the figure or the data could not be written.\n",
+                     .heading = {[AQ_GROUP_MAIN] = "Options:"}},
+    [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
+    [AQ_CMD_PLOT_ARCH] = FIGURE("arch"),
+    [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
+    [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
+    [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
     [AQ_CMD_REPORT] =
         {.name = "report",
          .title = "report",
@@ -584,24 +596,12 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "fragility curves and the ranking of the intensity measures, the failed\n"
                  "records with their reasons, and the run: command line, build, date,\n"
                  "options, every record and every arch.  Figures are inline SVG, text as\n"
-                 "text; nothing is fetched; it prints on A4 and Letter.\n"
+                 "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
                  "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
                  "CAPACITY.h5 one of archquake capacity -o.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
-    [AQ_CMD_PLOT] = {.name = "plot",
-                     .title = "plot",
-                     .help_cmd = "plot",
-                     .head = plot_head,
-                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
-                             "bad options,\n3 the figure or the data could not be written.\n",
-                     .heading = {[AQ_GROUP_MAIN] = "Options:"}},
-    [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
-    [AQ_CMD_PLOT_ARCH] = FIGURE("arch"),
-    [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
-    [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
-    [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
 };
 
 void aq_opts_init(aq_opts *o, aq_cmd cmd)

@@ -58,7 +58,7 @@ typedef enum {
   AQ_CMD_DOMAIN,
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
-  AQ_CMD_REPORT,
+  AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -220,7 +220,7 @@ typedef struct aq_opts {
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */
-  int paper;        /* --paper: an aq_plot_paper, or -1: the locale's */
+  int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;
 } aq_opts;
 
