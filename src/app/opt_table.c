@@ -44,6 +44,7 @@ static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_de
 static const char *const impacts[] = {"cor", "momentum", NULL};
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
+static const char *const papers[] = {"a4", "letter", NULL};
 
 /* The handlers of the options that are more than a value. */
 static void add_arch(char *arg, aq_opts *o, int *nerr)
@@ -168,6 +169,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)"},
+    [AQ_OPT_REPORT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
+                              .meta = "FILE.html", DEST(output), .cmds = C(REPORT),
+                              .help = "the page"},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -194,6 +198,10 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_Y] = {.name = "y", .kind = AQ_ARG_CHOICE, .choices = y_axes, .meta = "scale|pga",
                   DEST(y_pga), .cmds = C(PLOT_CAPACITY),
                   .help = "the scale factor (scale, the default) or the PGA in g (pga)"},
+    [AQ_OPT_PAPER] = {.name = "paper", .kind = AQ_ARG_CHOICE, .choices = papers,
+                      .meta = "a4|letter", DEST(paper), .cmds = PLOT_ALL,
+                      .help = "the page of a PDF (default: the locale's paper, LC_PAPER, "
+                              "else A4); the figure is scaled to fit"},
     [AQ_OPT_SCALE] = {.name = "scale", .kind = AQ_ARG_LIST, .lo = 0, .hi = INFINITY,
                       .meta = "LIST", DEST_LIST(scales, nscale), .cmds = C(RUN),
                       .help = "run each record scaled by each factor, e.g. 0.5,1,2 "
@@ -571,6 +579,24 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
     [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
     [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
+    [AQ_CMD_REPORT] =
+        {.name = "report",
+         .title = "report",
+         .help_cmd = "report",
+         .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
+                 "One self-contained HTML page of a screening, to hand on: per arch its\n"
+                 "verdict table (sortable, filterable by verdict) and figures (the arch\n"
+                 "and its hinge sets, the suite's verdict map, the history of each\n"
+                 "collapsed run and of the strongest surviving one when the results hold\n"
+                 "histories), the capacity files' first collapses, collapse intervals,\n"
+                 "fragility curves and the ranking of the intensity measures, the failed\n"
+                 "records with their reasons, and the run: command line, build, date,\n"
+                 "options, every record and every arch.  Figures are inline SVG, text as\n"
+                 "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
+                 "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
+                 "CAPACITY.h5 one of archquake capacity -o.\n",
+         .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
+                 "3 the page could not be written.  No partial file is left under FILE.\n"},
 };
 
 void aq_opts_init(aq_opts *o, aq_cmd cmd)
@@ -594,6 +620,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->pulse_dt_s = 0.01;
   o->domain_tol_s = 1e-9;
   o->max_duration_s = 100;
+  o->paper = -1;
   o->rtol = AQ_COMPARE_RTOL_DEFAULT;
   o->atol = AQ_COMPARE_ATOL_DEFAULT;
 }

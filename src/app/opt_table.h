@@ -64,6 +64,7 @@ typedef enum {
   AQ_CMD_PLOT_DOMAIN,
   AQ_CMD_PLOT_SUITE,
   AQ_CMD_PLOT_CAPACITY,
+  AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_N
 } aq_cmd;
 
@@ -80,6 +81,7 @@ typedef enum {
   AQ_OPT_RATIOS,
   AQ_OPT_OUTPUT,      /* -o FILE.h5 */
   AQ_OPT_PLOT_OUTPUT, /* -o FILE.png|svg|pdf */
+  AQ_OPT_REPORT_OUTPUT, /* -o FILE.html */
   AQ_OPT_TEXT,
   AQ_OPT_FRAGILITY,
   AQ_OPT_DATA,
@@ -88,6 +90,7 @@ typedef enum {
   AQ_OPT_IM,
   AQ_OPT_X,
   AQ_OPT_Y,
+  AQ_OPT_PAPER,
   AQ_OPT_SCALE,
   AQ_OPT_SCALE_TO_PGA,
   AQ_OPT_SCALE_TO_LAMBDA0,
@@ -217,6 +220,7 @@ typedef struct aq_opts {
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */
+  int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;
 } aq_opts;
 
