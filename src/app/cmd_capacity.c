@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "../capacity/capacity.h"
-#include "../io/formats.h"
+#include "../io/record.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text_capacity.h"

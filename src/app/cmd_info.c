@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../io/formats.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "../units.h"

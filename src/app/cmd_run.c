@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "../arch/stepper.h"
-#include "../io/formats.h"
+#include "../io/record.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
 #include "app.h"

@@ -1,4 +1,4 @@
-/* at2.c: PEER NGA .AT2 reader (see readers.h; format notes in
+/* at2.c: PEER NGA .AT2 reader (see reader.h; format notes in
  * docs/at2-format.md).
  *
  * Layout: three free-text lines (the third says "ACCELERATION TIME SERIES IN
@@ -24,7 +24,8 @@
 #include "../units.h"
 #include "fixed.h"
 #include "number.h"
-#include "readers.h"
+#include "reader.h"
+#include "units.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -494,7 +495,7 @@ static void trimmed(const char *s, size_t b, size_t e, char *out, size_t cap)
 }
 
 aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts; /* an AT2 file states everything it can */
   memset(raw, 0, sizeof *raw);

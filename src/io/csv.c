@@ -1,4 +1,4 @@
-/* csv.c: CSV / plain-text reader (see readers.h).
+/* csv.c: CSV / plain-text reader (see reader.h).
  *
  * Rows of numbers separated by ';', ',', tab or blanks (decided by the first
  * data row: ';' if it has one, else ',', else tab, else blanks; with ';' a
@@ -39,7 +39,8 @@
 
 #include "fixed.h"
 #include "number.h"
-#include "readers.h"
+#include "reader.h"
+#include "units.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
  * times are rounded to a few decimals; 1 % of dt tolerates that and still
@@ -574,7 +575,7 @@ static void channel_name(const char *col, char *out, size_t cap)
  * channels once the columns are known, and the rows are not read (raw stays
  * empty). */
 static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
-                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err,
+                           const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err,
                            size_t *columns_only)
 {
   memset(raw, 0, sizeof *raw);
@@ -932,13 +933,13 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
 }
 
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   return csv_parse(buf, n, name, opts, raw, err, NULL);
 }
 
 aq_status aq_csv_channels(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, size_t *nchan, aq_error *err)
+                          const aq_reader_opts *opts, size_t *nchan, aq_error *err)
 {
   aq_raw_file none;
   *nchan = 0;
