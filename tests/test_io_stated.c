@@ -9,7 +9,6 @@
 
 #include "check.h"
 #include "io/record.h"
-#include "io/readers.h"
 
 static int parse_text(const char *text, const aq_read_opts *ro, aq_record *r)
 {
