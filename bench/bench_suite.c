@@ -370,7 +370,7 @@ int main(int argc, char **argv)
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
   int nerr = 0;
-  aq_opt_record_handle(AQ_OPT_RECORD_UNITS, "*.SAC=counts", &cfg.read, &nerr);
+  aq_opt_units("*.SAC=counts", &cfg.read, &nerr);
   aq_signal_opts_default(&cfg.proc);
   cfg.records = recs;
   cfg.nrecords = NSAMPLE * COPIES;

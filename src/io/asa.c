@@ -246,6 +246,8 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
   while (!data && aq_lines_next(&c, &ln)) {
     if (aq_find_ci(ln.p, ln.len, ASA_MARKER))
       marker = 1;
+    if (!marker && ln.line >= ASA_SNIFF_LINES)
+      break;
     const char *colon = memchr(ln.p, ':', ln.len);
     if (!colon)
       continue;

@@ -117,6 +117,28 @@ int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f)
   return 1;
 }
 
+int aq_fortran_descriptor(const char *s, size_t n)
+{
+  size_t i = 0;
+  while (i < n && isdigit((unsigned char)s[i]))
+    i++;
+  if (i >= n || !strchr("FEIGfeig", s[i]))
+    return 0;
+  size_t d = ++i;
+  while (i < n && isdigit((unsigned char)s[i]))
+    i++;
+  if (i == d)
+    return 0;
+  if (i < n && s[i] == '.') {
+    d = ++i;
+    while (i < n && isdigit((unsigned char)s[i]))
+      i++;
+    if (i == d)
+      return 0;
+  }
+  return i == n;
+}
+
 int aq_field_double(const char *s, size_t n, double *out)
 {
   while (n > 0 && (*s == ' ' || *s == '\t')) {

@@ -63,6 +63,10 @@ typedef struct {
  * Returns 1 on success, 0 if there is none that parses. */
 int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f);
 
+/* 1 if s[0..n) is a whole Fortran edit descriptor ("8F10.5", "E15.7",
+ * "16I5"), which a header may print where a name is looked for. */
+int aq_fortran_descriptor(const char *s, size_t n);
+
 /* Parse the number in s[0..n) (blanks around it allowed).  Returns 1 on
  * success, 0 if blank or not entirely a finite number. */
 int aq_field_double(const char *s, size_t n, double *out);
