@@ -676,7 +676,8 @@ static int text_row(suite *S, const aq_summary *s)
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const rec_slot *r)
 {
-  if (r->failed || r->warning[0] || r->rec.units_conflict[0])
+  if (r->failed || r->warning[0] || r->rec.units_conflict[0] || r->rec.polarity_note[0] ||
+      r->rec.vertical_note[0])
     return 1;
   for (size_t i = 0; r->runs && i < r->nruns; i++)
     if (r->runs[i].failed)
@@ -699,6 +700,10 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
   if (r->rec.units_conflict[0])
     fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
+  if (r->rec.polarity_note[0])
+    fprintf(stderr, "archquake: %s: polarity: %s\n", path, r->rec.polarity_note);
+  if (r->rec.vertical_note[0])
+    fprintf(stderr, "archquake: %s: vertical: %s\n", path, r->rec.vertical_note);
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < r->nruns; i++) {
