@@ -37,7 +37,8 @@
  *        // operands: argv[optind .. argc); checks between options: nerr++
  *        if (nerr) { aq_opts_free(&o); return AQ_EXIT_USAGE; }
  *        ... o.field ...; aq_opts_free(&o);
- *   4. a line in main.c's table of commands.
+ *   4. a line in main.c's table of commands (archquake --help lists it from
+ *      its synopsis and summary here).
  */
 #ifndef AQ_APP_OPT_TABLE_H
 #define AQ_APP_OPT_TABLE_H
@@ -59,6 +60,7 @@ typedef enum {
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
   AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
+  AQ_CMD_SPECTRUM, /* archquake spectrum RECORD... */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -115,6 +117,9 @@ typedef enum {
   AQ_OPT_ATOL,
   AQ_OPT_IGNORE,
   AQ_OPT_QUIET,
+  AQ_OPT_PERIODS,       /* spectrum */
+  AQ_OPT_DAMPING,
+  AQ_OPT_SAMPLED_PEAKS,
   AQ_OPT_HELP,
   /* reading records */
   AQ_OPT_UNITS,
@@ -217,6 +222,12 @@ typedef struct aq_opts {
   const char *ignore[32]; /* --ignore names, pointing into ignore_buf */
   char ignore_buf[32][64];
   size_t nignore;
+  /* spectrum */
+  double *periods; /* --periods, s (NULL: PEER's 111) */
+  size_t nperiods;
+  double *dampings; /* --damping, ratios (NULL: 0.05) */
+  size_t ndampings;
+  int sampled_peaks; /* --sampled-peaks */
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */
@@ -247,6 +258,8 @@ typedef struct {
   const char *name;     /* as typed after archquake ("" the main job, "plot arch") */
   const char *title;    /* in messages: "the main job", "info", "plot arch" */
   const char *help_cmd; /* its --help: "archquake HELP_CMD --help" ("plot" for figures) */
+  const char *synopsis; /* in archquake --help's list of commands, after "archquake " */
+  const char *summary;  /* ... and what it does, in a few words (NULL: not listed) */
   const char *head;     /* usage line(s) and description, each line ending in '\n' */
   const char *tail;     /* after the options: columns, exit status */
   const char *heading[AQ_GROUP_N]; /* a group's heading, if not the default */
@@ -270,6 +283,10 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr);
 /* cmd's --help on f: head, options by group, tail.  AQ_CMD_PLOT lists the
  * options of every figure, each with the figures it applies to. */
 void aq_opts_help(aq_cmd cmd, FILE *f);
+
+/* archquake --help on f: the main job's help, the list of commands (their
+ * synopses and summaries) and the paragraph on arch names. */
+void aq_opts_main_help(FILE *f);
 
 /* 1 if option id applies to command cmd. */
 int aq_opt_applies(aq_opt_id id, aq_cmd cmd);
