@@ -5,53 +5,23 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../io/formats.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_record.h"
 #include "opt_signal.h"
-
-static const char usage_head[] =
-    "usage: archquake info [OPTIONS] RECORD...\n"
-    "Describe accelerograms: one TSV row per record on stdout.\n"
-    AQ_OPT_RECORD_USAGE
-    "  --help          this text\n"
-    "Processing (intensity measures are computed on the processed record):\n";
-static const char usage_tail[] =
-    "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
-    "  arias_m_s d5_95_s cav_m_s (npts, duration_s: the record as read; the\n"
-    "  measures: the processed record, pads included; --no-filter --detrend\n"
-    "  none gives the record as read)\n"
-    "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n";
+#include "opt_table.h"
 
 int aq_cmd_info(int argc, char **argv)
 {
-  struct option longopts[AQ_OPT_RECORD_NOPTS + 1 + AQ_OPT_SIGNAL_NOPTS + 1] = {
-      AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
-  aq_opt_signal_append(longopts);
-  aq_signal_opts so;
-  aq_signal_opts_default(&so);
-  aq_read_opts ro = {0};
-  int nerr = 0, c;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    if (aq_opt_signal_handle(c, optarg, &so, NULL, &nerr))
-      continue;
-    switch (c) {
-    case 'h':
-      fputs(usage_head, stdout);
-      fputs(aq_opt_signal_usage, stdout);
-      fputs(usage_tail, stdout);
-      return AQ_EXIT_OK;
-    default:
-      if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
-        aq_opt_unknown("info", argv, optind, optopt, &nerr);
-    }
-  }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_INFO);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_INFO, argc, argv, &o, &nerr))
+    return AQ_EXIT_OK; /* --help */
+  aq_read_opts ro = o.read;
+  aq_signal_opts so = o.proc;
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
   if (optind >= argc) {
     fprintf(stderr, "archquake: info: expected at least one RECORD\n");

@@ -44,7 +44,7 @@ static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_de
 static const char *const impacts[] = {"cor", "momentum", NULL};
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
-static const char *const papers[] = {"a4", "letter", NULL};
+static const char *const papers[] = {"a4", "letter", NULL}; /* aq_plot_paper */
 
 /* The handlers of the options that are more than a value. */
 static void add_arch(char *arg, aq_opts *o, int *nerr)
@@ -180,14 +180,19 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_DATA] = {.name = "data", .kind = AQ_ARG_STRING, .meta = "FILE.csv", DEST(data),
                      .cmds = PLOT_ALL,
                      .help = "also write the plotted data (columns carry units)"},
+    [AQ_OPT_PAPER] = {.name = "paper", .kind = AQ_ARG_CHOICE, .choices = papers,
+                      .meta = "a4|letter", DEST(paper), .cmds = PLOT_ALL,
+                      .help = "the page of a PDF (default: the locale's paper, LC_PAPER, else "
+                              "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
                     .cmds = C(PLOT_HISTORY),
                     .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
                             "(default: the first run)"},
     [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
                          .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
-                         .help = "draw the mechanism deformed at that rotation of body 1 "
-                                 "(> 0 primary set, < 0 reverse set, |RAD| <= q_c)"},
+                         .help = "draw the mechanism deformed at that rotation of body 1: "
+                                 "the primary set if RAD > 0, the reverse set if RAD < 0, "
+                                 "|RAD| <= q_c"},
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
@@ -198,10 +203,6 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_Y] = {.name = "y", .kind = AQ_ARG_CHOICE, .choices = y_axes, .meta = "scale|pga",
                   DEST(y_pga), .cmds = C(PLOT_CAPACITY),
                   .help = "the scale factor (scale, the default) or the PGA in g (pga)"},
-    [AQ_OPT_PAPER] = {.name = "paper", .kind = AQ_ARG_CHOICE, .choices = papers,
-                      .meta = "a4|letter", DEST(paper), .cmds = PLOT_ALL,
-                      .help = "the page of a PDF (default: the locale's paper, LC_PAPER, "
-                              "else A4); the figure is scaled to fit"},
     [AQ_OPT_SCALE] = {.name = "scale", .kind = AQ_ARG_LIST, .lo = 0, .hi = INFINITY,
                       .meta = "LIST", DEST_LIST(scales, nscale), .cmds = C(RUN),
                       .help = "run each record scaled by each factor, e.g. 0.5,1,2 "
@@ -437,13 +438,16 @@ static const char plot_head[] =
     "        and polarities: collapse, or peak rotation / q_c)\n"
     "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
     "        a file of archquake capacity -o, one arch (default: the file's\n"
-    "        first): one line per record and polarity through every scanned\n"
-    "        scale, the scale factor (--y pga: the PGA in g) against the run's\n"
-    "        peak rotation (--x qc: over q_c, the default; --x rad: in rad),\n"
-    "        beside a strip per record with the collapse intervals of each\n"
-    "        polarity shaded; below, the lognormal fragility of IM over the\n"
-    "        empirical fraction of first collapses, censored records at their\n"
-    "        cap, and the band of the median's interval\n"
+    "        first): a strip per record and polarity with the verdict at every\n"
+    "        scanned scale (--y scale: the scale factor, the default; --y pga:\n"
+    "        the PGA in g), shaded by the survived runs' peak rotation (--x qc:\n"
+    "        over q_c, the default; --x rad), red and hatched where it\n"
+    "        collapses, a tick at each change, its first collapse beside it\n"
+    "        (R: it survives again above a collapse); below, the lognormal\n"
+    "        fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s,\n"
+    "        pga_lambda0; default pga_g) over the empirical fraction of\n"
+    "        first collapses, censored records at their cap, and the band of\n"
+    "        the median's interval\n"
     "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n";
 
 /* A figure of plot: its --help is plot's. */
@@ -596,7 +600,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
                  "CAPACITY.h5 one of archquake capacity -o.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
-                 "3 the page could not be written.  No partial file is left under FILE.\n"},
+                 "3 the page could not be written.  No partial file is left under FILE.\n",
+         .heading = {[AQ_GROUP_MAIN] = "Options:"}},
 };
 
 void aq_opts_init(aq_opts *o, aq_cmd cmd)

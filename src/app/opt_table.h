@@ -58,13 +58,13 @@ typedef enum {
   AQ_CMD_DOMAIN,
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
+  AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
   AQ_CMD_PLOT_DOMAIN,
   AQ_CMD_PLOT_SUITE,
   AQ_CMD_PLOT_CAPACITY,
-  AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_N
 } aq_cmd;
 
@@ -85,12 +85,12 @@ typedef enum {
   AQ_OPT_TEXT,
   AQ_OPT_FRAGILITY,
   AQ_OPT_DATA,
+  AQ_OPT_PAPER,
   AQ_OPT_RUN,
   AQ_OPT_ROTATION,
   AQ_OPT_IM,
   AQ_OPT_X,
   AQ_OPT_Y,
-  AQ_OPT_PAPER,
   AQ_OPT_SCALE,
   AQ_OPT_SCALE_TO_PGA,
   AQ_OPT_SCALE_TO_LAMBDA0,

@@ -22,7 +22,6 @@
 #include "app.h"
 #include "farm.h"
 #include "opt.h"
-#include "opt_dyn.h"
 #include "suite_slot.h"
 
 /* Records in flight per worker thread: at least enough that a worker
@@ -1071,7 +1070,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   pthread_cond_init(&S.cond, NULL);
   pthread_cond_init(&S.wcond, NULL);
   S.cfg = c;
-  S.model_name = aq_opt_dyn_model_name(c->model);
+  S.model_name = aq_model_name(c->model);
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
   S.nscale = (c->scales ? c->nscale : 1) * S.npol;
   S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */

@@ -1,5 +1,5 @@
 /* asa.c: the Mexican strong-motion database's ASA 2.0 text ("ARCHIVO
- * ESTANDAR DE ACELERACION", formats.h).
+ * ESTANDAR DE ACELERACION", reader.h).
  *
  * A header of Spanish "KEY : value" lines (a blank key continues the key
  * above; "===" rules and section titles such as "DATOS DEL SISMO:" carry no
@@ -38,7 +38,8 @@
 #include <strings.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
+#include "units.h"
 
 #define ASA_MARKER "ARCHIVO ESTANDAR DE ACELERACION"
 #define ASA_SNIFF_LINES 12   /* the marker is looked for this far */
@@ -228,7 +229,7 @@ static int row_fields(const aq_line *ln, int nchan, int w, double *out)
 }
 
 aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
@@ -245,6 +246,8 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
   while (!data && aq_lines_next(&c, &ln)) {
     if (aq_find_ci(ln.p, ln.len, ASA_MARKER))
       marker = 1;
+    if (!marker && ln.line >= ASA_SNIFF_LINES)
+      break;
     const char *colon = memchr(ln.p, ':', ln.len);
     if (!colon)
       continue;

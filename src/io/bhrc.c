@@ -1,5 +1,5 @@
 /* bhrc.c: BHRC (Road, Housing and Urban Development Research Center, Iran)
- * VOL1DS text (formats.h).
+ * VOL1DS text (reader.h).
  *
  * One block per channel, usually three (L, V, T):
  *   13 text lines: 1 "* VOL1DS FILE:  5522/01" (station 5522, record 01),
@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define BHRC_TEXT_LINES 13
 #define BHRC_INT_LINES 7
@@ -178,7 +178,7 @@ static aq_status parse_block(aq_lines *c, const aq_line *first, const char *name
                         npts_text, c->n - c->pos);
 
   aq_raw_channel tmp;
-  aq_raw_channel_init_(&tmp);
+  aq_raw_channel_init(&tmp);
   tmp.npts = (size_t)npts_text;
   tmp.dt_s = dt_s;
   /* units: "UNITS ARE SECONDS AND G/10" */
@@ -269,13 +269,13 @@ static aq_status parse_block(aq_lines *c, const aq_line *first, const char *name
     aq_copy_trim(raw->event, sizeof raw->event, text[2].p, text[2].len);
     snprintf(raw->processing, sizeof raw->processing, "BHRC VOL1DS (uncorrected)");
   }
-  return aq_raw_append_channel_(raw, &tmp, name, err);
+  return aq_raw_append_channel(raw, &tmp, name, err);
 }
 
 aq_status aq_bhrc_parse(const unsigned char *buf, size_t n, const char *name,
-                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                        const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  return aq_parse_channels_(buf, n, name, "bhrc", starts_block,
+  return aq_raw_parse_channels(buf, n, name, "bhrc", starts_block,
                             "a BHRC block starting \"* VOL1DS FILE:\"", parse_block, raw, err);
 }

@@ -1,5 +1,5 @@
 /* nptsdt.c: text whose first line is the two numbers "NPTS DT", as OpenSees
- * examples and many course files write a ground motion (formats.h).
+ * examples and many course files write a ground motion (reader.h).
  *
  *     1560 0.02                   NPTS (a whole number >= 2), DT (s, > 0)
  *     0.0063 0.0036 0.0010 ...    then NPTS values, any number to a line,
@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 /* Each time must lie within this fraction of DT of t0 + k DT (times are
  * printed to a few decimals; a missing or repeated sample is off by DT). */
@@ -117,7 +117,7 @@ int aq_nptsdt_sniff(const unsigned char *buf, size_t n)
 }
 
 aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                          const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);

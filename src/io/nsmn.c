@@ -1,5 +1,5 @@
 /* nsmn.c: the ASCII of Turkey's national strong-motion network (NSMN, run
- * by AFAD) before the ESM-like DYNA 1.2 text (formats.h).
+ * by AFAD) before the ESM-like DYNA 1.2 text (reader.h).
  *
  * Line 1 "STRONG GROUND MOTION RECORDS OF TURKIYE", then "KEY : value"
  * lines, place names in ISO-8859-9 (Turkish Latin-5: 0xDD I with dot, 0xFE
@@ -26,7 +26,8 @@
 #include <strings.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
+#include "units.h"
 
 #define NSMN_MARKER "STRONG GROUND MOTION RECORDS OF TURK" /* TURKIYE, TURKEY */
 #define NSMN_NCHAN 3
@@ -84,7 +85,7 @@ static void units_of(const aq_line *ln, char *out, size_t cap)
 }
 
 aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
-                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                        const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);

@@ -1,5 +1,6 @@
-/* record.c: reading a record file, detecting its format from its content,
- * and the units helpers shared by the readers (see record.h, readers.h). */
+/* record.c: reading a record file: its format sniffed from its content,
+ * the parser of that format (reader.h), and the decision that makes a
+ * record of what the parser reports (see record.h). */
 #include "record.h"
 
 #include <ctype.h>
@@ -15,89 +16,12 @@
 #include <sys/stat.h>
 
 #include "../units.h"
-#include "formats.h"
-#include "readers.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
 #endif
 
-/* ---- units ------------------------------------------------------------ */
-
-static const struct {
-  const char *word;
-  aq_units units;
-} units_words[] = {
-    {"g", AQ_UNITS_G},           {"gal", AQ_UNITS_GAL},
-    {"cm/s2", AQ_UNITS_GAL},     {"cm/s^2", AQ_UNITS_GAL},
-    {"cm/s/s", AQ_UNITS_GAL},    {"cm/sec2", AQ_UNITS_GAL},
-    {"cm/sec^2", AQ_UNITS_GAL},  {"cm/sec/sec", AQ_UNITS_GAL},
-    {"cmps2", AQ_UNITS_GAL},     {"m/s2", AQ_UNITS_MPS2},
-    {"m/s^2", AQ_UNITS_MPS2},    {"m/s/s", AQ_UNITS_MPS2},
-    {"m/s**2", AQ_UNITS_MPS2},   {"mps2", AQ_UNITS_MPS2},
-    {"nm/s2", AQ_UNITS_NMPS2},   {"nm/s^2", AQ_UNITS_NMPS2},
-    {"nm/s/s", AQ_UNITS_NMPS2},  {"counts", AQ_UNITS_COUNTS},
-    {"g/10", AQ_UNITS_G10},      {"mm/s2", AQ_UNITS_MMPS2},
-    {"mm/s^2", AQ_UNITS_MMPS2},  {"mm/s/s", AQ_UNITS_MMPS2},
-    {"mm/sec2", AQ_UNITS_MMPS2}, {"mm/sec/sec", AQ_UNITS_MMPS2},
-};
-
-int aq_units_parse(const char *s, aq_units *out)
-{
-  if (!s)
-    return 0;
-  for (size_t i = 0; i < sizeof units_words / sizeof units_words[0]; i++)
-    if (strcasecmp(s, units_words[i].word) == 0) {
-      *out = units_words[i].units;
-      return 1;
-    }
-  return 0;
-}
-
-const char *aq_units_name(aq_units u)
-{
-  switch (u) {
-  case AQ_UNITS_FILE:
-    return "file";
-  case AQ_UNITS_G:
-    return "g";
-  case AQ_UNITS_GAL:
-    return "gal";
-  case AQ_UNITS_MPS2:
-    return "m/s2";
-  case AQ_UNITS_NMPS2:
-    return "nm/s2";
-  case AQ_UNITS_COUNTS:
-    return "counts";
-  case AQ_UNITS_G10:
-    return "g/10";
-  case AQ_UNITS_MMPS2:
-    return "mm/s2";
-  }
-  return "?";
-}
-
-double aq_units_to_mps2(aq_units u)
-{
-  switch (u) {
-  case AQ_UNITS_G:
-    return AQ_G0_MPS2;
-  case AQ_UNITS_GAL:
-    return 0.01;
-  case AQ_UNITS_MPS2:
-    return 1.0;
-  case AQ_UNITS_NMPS2:
-    return 1e-9;
-  case AQ_UNITS_G10:
-    return AQ_G0_MPS2 / 10.0;
-  case AQ_UNITS_MMPS2:
-    return 1e-3;
-  case AQ_UNITS_FILE:
-  case AQ_UNITS_COUNTS:
-    break;
-  }
-  return 0.0;
-}
+/* ---- options ---------------------------------------------------------- */
 
 const aq_units_rule *aq_read_opts_rule_for(const aq_read_opts *opts, const char *path)
 {
@@ -117,32 +41,6 @@ aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path)
 }
 
 /* ---- records ---------------------------------------------------------- */
-
-void aq_raw_file_free(aq_raw_file *raw)
-{
-  if (!raw)
-    return;
-  for (size_t i = 0; raw->chan && i < raw->nchan; i++)
-    free(raw->chan[i].values);
-  free(raw->chan);
-  memset(raw, 0, sizeof *raw);
-}
-
-aq_status aq_raw_file_alloc(aq_raw_file *raw, size_t nchan, const char *name,
-                            aq_error *err)
-{
-  raw->chan = calloc(nchan ? nchan : 1, sizeof *raw->chan);
-  if (!raw->chan)
-    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-  raw->nchan = nchan;
-  for (size_t i = 0; i < nchan; i++) {
-    raw->chan[i].azimuth_deg = NAN;
-    raw->chan[i].dip_deg = NAN;
-    raw->chan[i].vertical = -1;
-    raw->chan[i].units_line = -1;
-  }
-  return AQ_OK;
-}
 
 void aq_record_free(aq_record *rec)
 {
@@ -361,6 +259,70 @@ const char *aq_format_describe(aq_format fmt)
     return "text with \"NPTS DT\" on its first line";
   }
   return "?";
+}
+
+/* ---- miniSEED and its StationXML ---------------------------------------- */
+
+#define MSEED_XML_MAX_BYTES (64L << 20) /* a StationXML larger than this is refused */
+#define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
+
+/* aq_mseed_parse, then, if opts->response names a StationXML file, read it
+ * and aq_stationxml_apply() it. */
+static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name,
+                            const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  aq_status s = aq_mseed_parse(buf, n, name, NULL, raw, err);
+  if (s != AQ_OK || !opts || !opts->response[0])
+    return s;
+  const char *xml = opts->response;
+  FILE *f = fopen(xml, "rb");
+  unsigned char *x = NULL;
+  long len = -1;
+  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
+      fseek(f, 0, SEEK_SET) == 0 && (x = malloc((size_t)len + 1)) != NULL &&
+      fread(x, 1, (size_t)len, f) == (size_t)len) {
+    aq_response resp;
+    s = aq_stationxml_parse(x, (size_t)len, xml, &resp, err);
+    if (s == AQ_OK) {
+      s = aq_stationxml_apply(&resp, xml, raw, name, err);
+      aq_response_free(&resp);
+    }
+  } else {
+    s = aq_error_set(err, AQ_EIO, xml, -1, -1, "--response",
+                     "expected a readable StationXML file of at most %ld bytes, %s", MSEED_XML_MAX_BYTES,
+                     !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one" : "cannot read it");
+  }
+  free(x);
+  if (f)
+    fclose(f);
+  if (s != AQ_OK)
+    aq_raw_file_free(raw);
+  return s;
+}
+
+size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
+{
+  size_t k = 0;
+  for (size_t i = 0; i < n; i++) {
+    char head[MSEED_XML_SNIFF + 1];
+    size_t got = 0;
+    FILE *f = fopen(paths[i], "rb");
+    if (f) {
+      got = fread(head, 1, MSEED_XML_SNIFF, f);
+      fclose(f);
+    }
+    head[got] = '\0';
+    int is_xml = got > 0 && memchr(head, '\0', got) == NULL && strstr(head, "<FDSNStationXML");
+    if (!is_xml) {
+      paths[k++] = paths[i];
+      continue;
+    }
+    if (!ro->response[0] && strlen(paths[i]) < sizeof ro->response)
+      snprintf(ro->response, sizeof ro->response, "%s", paths[i]);
+  }
+  /* nothing but StationXML: leave them for the reader to refuse as records
+   * (k == 0 means no path was moved) */
+  return k ? k : n;
 }
 
 /* ---- deciding -------------------------------------------------------- */
@@ -642,40 +604,52 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
                       rec->channel, why);
 }
 
+/* What a parser may be told of opts (NULL for NULL), in *ro. */
+static const aq_reader_opts *reader_opts(const aq_read_opts *opts, aq_reader_opts *ro)
+{
+  if (!opts)
+    return NULL;
+  ro->dt_s = opts->dt_s;
+  ro->column = opts->column;
+  return ro;
+}
+
 aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   memset(raw, 0, sizeof *raw);
+  aq_reader_opts ro;
+  const aq_reader_opts *rop = reader_opts(opts, &ro);
   aq_format fmt = aq_record_detect(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
-    return aq_sac_parse(buf, n, name, opts, raw, err);
+    return aq_sac_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_AT2:
-    return aq_at2_parse(buf, n, name, opts, raw, err);
+    return aq_at2_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_TEXT:
-    return aq_csv_parse(buf, n, name, opts, raw, err);
+    return aq_csv_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_COSMOS:
-    return aq_cosmos_parse(buf, n, name, opts, raw, err);
+    return aq_cosmos_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_MSEED:
-    return aq_mseed_read_(buf, n, name, opts, raw, err);
+    return mseed_read(buf, n, name, opts, raw, err);
   case AQ_FMT_SMC:
-    return aq_smc_parse(buf, n, name, opts, raw, err);
+    return aq_smc_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_ESM:
-    return aq_esm_parse(buf, n, name, opts, raw, err);
+    return aq_esm_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_KNET:
-    return aq_knet_parse(buf, n, name, opts, raw, err);
+    return aq_knet_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_GEONET:
-    return aq_geonet_parse(buf, n, name, opts, raw, err);
+    return aq_geonet_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_RENADIC:
-    return aq_renadic_parse(buf, n, name, opts, raw, err);
+    return aq_renadic_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_BHRC:
-    return aq_bhrc_parse(buf, n, name, opts, raw, err);
+    return aq_bhrc_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_ASA:
-    return aq_asa_parse(buf, n, name, opts, raw, err);
+    return aq_asa_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_NSMN:
-    return aq_nsmn_parse(buf, n, name, opts, raw, err);
+    return aq_nsmn_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_NPTS_DT:
-    return aq_nptsdt_parse(buf, n, name, opts, raw, err);
+    return aq_nptsdt_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
@@ -906,10 +880,11 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
       int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
                    fmt == AQ_FMT_NPTS_DT;
       size_t nch;
+      aq_reader_opts ro;
       /* text of one channel, or that fails before its rows, keeps its name
        * whatever its rows hold: only its columns are read */
       if (fmt == AQ_FMT_TEXT &&
-          (aq_csv_channels(buf, size, paths[i], opts, &nch, &ignored) != AQ_OK || nch <= 1))
+          (aq_csv_channels(buf, size, paths[i], reader_opts(opts, &ro), &nch, &ignored) != AQ_OK || nch <= 1))
         single = 1;
       if (!single && aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
         memset(&raw, 0, sizeof raw); /* reported when it is read */

@@ -1,4 +1,4 @@
-/* smc.c: USGS SMC strong-motion text format (formats.h).
+/* smc.c: USGS SMC strong-motion text format (reader.h).
  *
  * Layout: 11 text lines (line 1 "2 CORRECTED ACCELEROGRAM": the leading
  * number is the data type, 1 uncorrected and 2 corrected acceleration,
@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define SMC_TEXT_LINES 11
 #define SMC_INTS 48
@@ -86,7 +86,7 @@ static aq_status uneven(aq_lines *c, int type, double ncomment, double nvalues,
 }
 
 aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
@@ -142,7 +142,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "comments",
                           "expected %g comment lines, the file ends after %g", ncomment, i);
   }
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch)
     return AQ_ENOMEM;
   ch->npts = (size_t)npts;
