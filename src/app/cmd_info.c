@@ -13,6 +13,35 @@
 #include "opt_signal.h"
 #include "opt_table.h"
 
+/* One row for rec (processed by so in ws); 1 if it failed (reported). */
+static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws *ws)
+{
+  aq_error err;
+  aq_error_clear(&err);
+  aq_processed p;
+  aq_im im;
+  if (aq_signal_process(rec, so, ws, &p, &err) != AQ_OK ||
+      aq_im_compute(&p, &im, &err) != AQ_OK) {
+    if (!err.input[0])
+      snprintf(err.input, sizeof err.input, "%s", rec->path);
+    aq_error_print(&err, stderr);
+    aq_processed_free(&p);
+    return 1;
+  }
+  if (rec->units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", rec->path, rec->units_conflict);
+  char warn[256];
+  if (aq_im_residual_warning(&im, warn, sizeof warn))
+    fprintf(stderr, "archquake: %s: warning: %s\n", rec->path, warn);
+  printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
+         rec->path, rec->format, rec->npts, rec->dt_s,
+         rec->dt_s * (double)rec->npts, rec->units_orig, im.pga_g, im.pgv_mps,
+         im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec->channel,
+         rec->vertical ? "yes" : "no");
+  aq_processed_free(&p);
+  return 0;
+}
+
 int aq_cmd_info(int argc, char **argv)
 {
   aq_opts o;
@@ -39,50 +68,25 @@ int aq_cmd_info(int argc, char **argv)
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
          "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
-  char **names;
-  size_t nnames;
-  aq_error xerr;
-  if (aq_record_expand(argv + optind, (size_t)(argc - optind), &ro, &names, &nnames,
-                       &xerr) != AQ_OK) {
-    aq_error_print(&xerr, stderr);
-    aq_signal_ws_free(ws);
-    return AQ_EXIT_FAIL;
-  }
-  for (size_t i = 0; i < nnames; i++) { /* every channel a record (FILE#CH) */
-    aq_record rec;
-    aq_error err;
-    aq_error_clear(&err);
-    if (aq_record_read(names[i], &ro, &rec, &err) != AQ_OK) {
-      aq_error_print(&err, stderr);
-      failed = 1;
-      continue;
+  for (int op = optind; op < argc; op++) { /* every channel a record (FILE#CH) */
+    aq_record_set set;
+    aq_error xerr;
+    if (aq_record_read_all(argv[op], &ro, 0, &set, &xerr) != AQ_OK) {
+      aq_error_print(&xerr, stderr);
+      aq_signal_ws_free(ws);
+      return AQ_EXIT_FAIL;
     }
-    aq_processed p;
-    aq_im im;
-    if (aq_signal_process(&rec, &so, ws, &p, &err) != AQ_OK ||
-        aq_im_compute(&p, &im, &err) != AQ_OK) {
-      if (!err.input[0])
-        snprintf(err.input, sizeof err.input, "%s", rec.path);
-      aq_error_print(&err, stderr);
-      aq_processed_free(&p);
-      aq_record_free(&rec);
-      failed = 1;
-      continue;
+    for (size_t i = 0; i < set.n; i++) {
+      aq_record_item *it = &set.item[i];
+      if (it->status != AQ_OK) {
+        aq_error_print(&it->err, stderr);
+        failed = 1;
+        continue;
+      }
+      failed |= describe(&it->rec, &so, ws);
     }
-    if (rec.units_conflict[0])
-      fprintf(stderr, "archquake: %s: units: %s\n", rec.path, rec.units_conflict);
-    char warn[256];
-    if (aq_im_residual_warning(&im, warn, sizeof warn))
-      fprintf(stderr, "archquake: %s: warning: %s\n", rec.path, warn);
-    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
-           rec.path, rec.format, rec.npts, rec.dt_s,
-           rec.dt_s * (double)rec.npts, rec.units_orig, im.pga_g, im.pgv_mps,
-           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec.channel,
-           rec.vertical ? "yes" : "no");
-    aq_processed_free(&p);
-    aq_record_free(&rec);
+    aq_record_set_free(&set);
   }
-  aq_record_names_free(names, nnames);
   aq_signal_ws_free(ws);
   fflush(stdout);
   return failed ? AQ_EXIT_FAIL : AQ_EXIT_OK;

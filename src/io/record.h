@@ -121,11 +121,49 @@ aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
                               aq_record *rec, unsigned char **bytes,
                               size_t *nbytes, aq_error *err);
 
+/* One record of a file read by aq_record_read_all: its name and either the
+ * record or why it could not be made. */
+typedef struct {
+  char *name;       /* the record's name: the operand as given, or
+                       "FILE#CHANNEL" for each channel of a file of several
+                       (as aq_record_expand names them) */
+  aq_status status; /* AQ_OK: rec holds the record; else err says why */
+  aq_record rec;
+  aq_error err;
+} aq_record_item;
+
+/* The records of one operand (aq_record_read_all). */
+typedef struct {
+  size_t n;
+  aq_record_item *item;  /* n items, in file order */
+  unsigned char *bytes;  /* with keep_bytes: the file's bytes (whatever its
+                            channels hold), NULL when it cannot be read */
+  size_t nbytes;
+} aq_record_set;
+
+/* Every record of the operand path from one parse of its file: FILE#CHANNEL
+ * (or a --component rule matching a file of several channels) gives that
+ * channel; a file of several channels with none chosen gives every channel,
+ * each decided on its own (aq_record_decide) and named FILE#CHANNEL; any
+ * other operand gives one record.  A file that cannot be read or parsed is
+ * one item carrying that error.  The same names, records and errors as
+ * aq_record_expand followed by aq_record_read of each name, which parses a
+ * file of N channels N + 1 times.  Returns AQ_OK with *set filled (free with
+ * aq_record_set_free), or AQ_ENOMEM (err filled, *set empty). */
+aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int keep_bytes,
+                             aq_record_set *set, aq_error *err);
+void aq_record_set_free(aq_record_set *set); /* NULL and zeroed are fine */
+
+/* Test hook: how many files aq_raw_parse has parsed in this process. */
+unsigned long aq_record_parses_(void);
+
 /* Record names for operands paths[0..n): a file of several channels, named
  * without #CHANNEL and chosen by no --component rule, becomes one name per
  * channel, "FILE#CHANNEL", in file order; any other operand is kept as given
  * (an unreadable one is reported when it is read).  On AQ_OK *out holds
- * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM. */
+ * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM.
+ * The names of a file that may hold several channels are those of
+ * aq_record_read_all. */
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err);
 void aq_record_names_free(char **names, size_t n);
