@@ -1,8 +1,9 @@
 /* test_opt_table.c: the one table of options (src/app/opt_table.h).
  *   - every option each command took before the table, by the spelling
  *     written here by hand, is still in the table for that command, once;
- *   - every option of the table appears in its commands' --help, and in
- *     the manual page tools/man.sh writes from them;
+ *   - every option of the table appears in its commands' --help (and
+ *     `archquake help COMMAND`), and in the manual page tools/man.sh writes
+ *     from them, which has a section for every command;
  *   - an option given to a command it does not apply to is refused by
  *     name, in one line naming the commands it belongs to (in process, for
  *     every option and every command; and through the program);
@@ -137,6 +138,14 @@ AQ_TEST(opt_table_every_option_in_help_and_man)
     snprintf(cmd, sizeof cmd, "%s%s--help", c->name, c->name[0] ? " " : "");
     int rc = aq_test_run(cmd, out, OUT_CAP, NULL, 0);
     aq_check(rc == 0 && strstr(out, "usage: archquake"), "%s: exit %d", cmd, rc);
+    if (c->name[0]) { /* archquake help NAME: the same text (main.c knows it) */
+      char *again = malloc(OUT_CAP), hcmd[128];
+      snprintf(hcmd, sizeof hcmd, "help %s", c->name);
+      aq_check(again && aq_test_run(hcmd, again, OUT_CAP, NULL, 0) == 0 &&
+                   strcmp(again, out) == 0,
+               "%s prints %s", hcmd, cmd);
+      free(again);
+    }
     /* the options' lines, written from the table, are at most 79
      * characters wide (the head and tail are the commands' own text) */
     char *own = NULL;

@@ -458,6 +458,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "",
          .title = "the main job",
          .help_cmd = "",
+         .synopsis = "[OPTIONS] RECORD... --arch FILE",
+         .summary = "run records against arches",
          .head = "usage: archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]\n"
                  "       archquake [OPTIONS] --components H1,H2[,V] ... --arch FILE ...\n"
                  "Run every record against every arch (and every scale factor): each record\n"
@@ -467,6 +469,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "info",
          .title = "info",
          .help_cmd = "info",
+         .synopsis = "info [OPTIONS] RECORD...",
+         .summary = "describe records",
          .head = "usage: archquake info [OPTIONS] RECORD...\n"
                  "Describe accelerograms: one TSV row per record on stdout.\n",
          .tail = "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
@@ -480,6 +484,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "mechanism",
          .title = "mechanism",
          .help_cmd = "mechanism",
+         .synopsis = "mechanism --arch FILE",
+         .summary = "static analysis of an arch",
          .head = "usage: archquake mechanism --arch FILE [--table] [--points N]\n"
                  "The hinge sets of an arch: one TSV row per set: primary, reverse, and\n"
                  "minimum, the admissible set of lowest lambda0 over every joint (the\n"
@@ -504,6 +510,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "pulse",
          .title = "pulse",
          .help_cmd = "pulse",
+         .synopsis = "pulse --arch FILE --accel-g A --duration S",
+         .summary = "one pulse",
          .head = "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
                  "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
                  "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n",
@@ -517,6 +525,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "domain",
          .title = "domain",
          .help_cmd = "domain",
+         .synopsis = "domain --arch FILE",
+         .summary = "half-cycle collapse domain",
          .head = "usage: archquake domain --arch FILE [OPTIONS]\n"
                  "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
                  "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
@@ -530,6 +540,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "compare",
          .title = "compare",
          .help_cmd = "compare",
+         .synopsis = "compare A.h5 B.h5",
+         .summary = "regression check",
          .head = "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A] [--ignore NAME]...\n"
                  "Compare two results files (archquake ... -o FILE.h5).  First their\n"
                  "configuration: processing options, model, cor, version (shown only), and\n"
@@ -551,6 +563,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "capacity",
          .title = "capacity",
          .help_cmd = "capacity",
+         .synopsis = "capacity RECORD... --arch FILE",
+         .summary = "collapse scales, fragility",
          .head = "usage: archquake capacity RECORD|--components H1,H2[,V]... --arch FILE "
                  "[--arch FILE ...] [OPTIONS]\n"
                  "For each record, arch and polarity, every scale factor at which the arch's\n"
@@ -574,6 +588,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT] = {.name = "plot",
                      .title = "plot",
                      .help_cmd = "plot",
+         .synopsis = "plot FIGURE ... -o FILE",
+         .summary = "figures (history arch domain suite capacity)",
                      .head = plot_head,
                      .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
                              "bad options,\n3 the figure or the data could not be written.\n",
@@ -587,6 +603,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "report",
          .title = "report",
          .help_cmd = "report",
+         .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",
+         .summary = "one HTML page to hand on",
          .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
                  "One self-contained HTML page of a screening, to hand on: per arch its\n"
                  "verdict table (sortable, filterable by verdict) and figures (the arch\n"
