@@ -161,6 +161,26 @@ size_t aq_test_count_lines(const char *s)
   return n;
 }
 
+const char *aq_test_tsv_field(const char *tsv, int row, int k, char *buf, size_t n)
+{
+  const char *p = tsv;
+  for (int r = 0; r < row && p; r++) {
+    p = strchr(p, '\n');
+    if (p)
+      p++;
+  }
+  for (int i = 0; i < k && p; i++) {
+    p = strpbrk(p, "\t\n");
+    p = p && *p == '\t' ? p + 1 : NULL;
+  }
+  buf[0] = '\0';
+  if (!p)
+    return buf;
+  size_t m = strcspn(p, "\t\n");
+  snprintf(buf, n, "%.*s", (int)(m < n ? m : n - 1), p);
+  return buf;
+}
+
 int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den)
 {
   size_t n = 0;

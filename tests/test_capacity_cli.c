@@ -27,26 +27,7 @@
 static const double RES = 0.01, TOL = 1e-6;
 enum { BIG = 1 << 20, MAXT = 64 };
 
-/* Field k (0-based) of data row `row` (1-based after the header) of a TSV. */
-static const char *field(const char *tsv, int row, int k, char *buf, size_t n)
-{
-  const char *p = tsv;
-  for (int r = 0; r < row && p; r++) {
-    p = strchr(p, '\n');
-    if (p)
-      p++;
-  }
-  for (int i = 0; i < k && p; i++) {
-    p = strpbrk(p, "\t\n");
-    p = p && *p == '\t' ? p + 1 : NULL;
-  }
-  buf[0] = '\0';
-  if (!p)
-    return buf;
-  size_t m = strcspn(p, "\t\n");
-  snprintf(buf, n, "%.*s", (int)(m < n ? m : n - 1), p);
-  return buf;
-}
+#define field aq_test_tsv_field /* field k of row (1-based after the header) */
 
 /* Changes of verdict from a collapse_intervals cell, kept in [a, b]:
  * each interval gives its lo (collapse starts) and a finite hi. */
