@@ -186,7 +186,7 @@ int main(void)
        pga_ratio lambda0 g as --scale-to-pga would */
     aq_subject subj;
     aq_subject_src src = {{path, NULL, NULL}, {NAN, NAN}, path};
-    aq_subject_opts o = {&ro, &so, 0, 0};
+    aq_subject_opts o = {&ro, &so, 0, 0, 0};
     if (aq_subject_prepare(&subj, &src, &o, ws, &e) != AQ_OK || !(subj.pga_g > 0)) {
       fprintf(stderr, "bench_dyn: skip %s: %s\n", path, e.message);
       aq_subject_free(&subj);

@@ -245,7 +245,7 @@ static int prepare_record(suite *S, rec_slot *r)
                         {m ? m->azimuth_deg[0] : NAN, m ? m->azimuth_deg[1] : NAN},
                         path};
   r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
-  aq_subject_opts so = {&c->read, &c->proc, c->vertical, r->want_sha ? S->keep_max : 0};
+  aq_subject_opts so = {&c->read, &c->proc, c->vertical, r->want_sha ? S->keep_max : 0, 0};
   aq_status s = aq_subject_prepare(&r->subj, &src, &so, S->ws, &r->err);
   if (s == AQ_OK)
     s = aq_scale_check_subject(&S->rule, path, r->subj.pga_g, &r->err);

@@ -87,7 +87,9 @@ aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
   s->motion = src->path[1] != NULL;
   s->stage = "read";
   double t0 = now_s();
-  aq_status st = read_component(s, 0, src->path[0], 1, o->read, o->keep_bytes_max > 0, err);
+  int horizontal = s->motion || !o->any_channel;
+  aq_status st =
+      read_component(s, 0, src->path[0], horizontal, o->read, o->keep_bytes_max > 0, err);
   if (s->bytes && s->nbytes > o->keep_bytes_max) { /* the caller reads it again to hash it */
     free(s->bytes);
     s->bytes = NULL;

@@ -6,7 +6,8 @@
  *
  * Reading: every component through aq_record_read; a horizontal one that
  * the file identifies as vertical is refused (aq_record_check_horizontal,
- * unless --accept-vertical).  A motion's azimuths come from the caller
+ * unless --accept-vertical; a plain record with opts.any_channel is not
+ * checked).  A motion's azimuths come from the caller
  * (--azimuths) or the files (aq_project_azimuth_of), must be orthogonal,
  * and its components must share dt and start time; the samples they share
  * are kept.  Its vertical is read only when it is run (opts.vertical); one
@@ -39,6 +40,9 @@ typedef struct {
   int vertical;               /* --vertical: run a motion's V */
   size_t keep_bytes_max;      /* > 0: keep the first file's bytes (for its sha256)
                                  when it has at most this many */
+  int any_channel;            /* 1: a plain record may be a channel the file
+                                 identifies as vertical (spectra: not excitation
+                                 of an arch) */
 } aq_subject_opts;
 
 typedef struct {
