@@ -49,6 +49,10 @@ typedef struct {
   char processing[160]; /* the agency's processing as stated, "" if none */
   char units_stated[24];/* units the file states ("" if none) */
   char units_used[24];  /* units applied (canonical name, e.g. "gal") */
+  char units_by[12];    /* where units_used came from: "file" (stated in it),
+                           "response" (miniSEED counts, the sensitivity from
+                           --response's StationXML), "rule" (--units GLOB=U),
+                           "option" (--units, the file stating none) */
   char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
   char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
                                samples are reversed by it (to_mps2 < 0) */
@@ -178,6 +182,17 @@ unsigned long aq_record_parses_(void);
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err);
 void aq_record_names_free(char **names, size_t n);
+
+/* aq_record_expand for a run of horizontal excitation: a channel that the
+ * file identifies as vertical, of a file of several channels named with
+ * neither #CHANNEL nor a --component rule, is left out (unless
+ * opts->accept_vertical), and one line says so in *notes ("FILE#UD:
+ * skipped: the file identifies channel \"UD\" as vertical (...) ..."; *nnotes
+ * of them, in operand order; free with aq_record_names_free).  A channel
+ * named by the user is kept, for the run to refuse. */
+aq_status aq_record_expand_horizontal(char *const *paths, size_t n, const aq_read_opts *opts,
+                                      char ***out, size_t *nout, char ***notes, size_t *nnotes,
+                                      aq_error *err);
 
 /* The file a record name reads: NAME itself, or FILE for a channel named
  * FILE#CHANNEL when NAME is not a file and FILE is (as aq_record_read
