@@ -64,6 +64,12 @@ size_t aq_test_count_lines(const char *s);
  * it; 1, 3: a truncated copy).  Returns 1 on success. */
 int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den);
 
+/* Write the file from, with its first occurrence of text a replaced by b
+ * (a NULL: unchanged), to dir/name; the path into out.  A missing a fails
+ * a check.  Returns 1 on success. */
+int aq_test_edited_copy(const char *from, const char *a, const char *b, const char *dir,
+                        const char *name, char *out, size_t cap);
+
 /* A fresh empty directory for this test under build/tmp (path in buf). */
 const char *aq_test_tmpdir(char *buf, size_t cap);
 

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../capacity/capacity.h"
+#include "../job/job.h"
 #include "../report/h5_spectrum.h"
 #include "../signal/spectrum.h"
 #include "../units.h"
@@ -32,7 +32,7 @@ typedef struct {
   const char *label;  /* as given */
   const char *path[3]; /* [1] NULL: a record */
   double phi[2];      /* --azimuths, or NAN */
-  aq_capacity_input in;
+  aq_subject in;      /* read and processed (job/subject.h) */
   aq_im im[2];        /* of each component, for the records table */
   char channel[16];   /* the component column of a record */
   double *psa_mps2;   /* ncomp x ndamp x nper */
@@ -87,9 +87,10 @@ static void run_source(void *ctx, size_t k)
   const job *J = ctx;
   source *s = &J->src[k];
   aq_error_clear(&s->err);
-  static const double az0 = 0;
-  s->st = aq_capacity_input_prepare(&s->in, s->path, 0, s->phi, J->ro, J->po, J->sws, &az0,
-                                    1, 0, &s->err);
+  aq_subject_src src = {{s->path[0], s->path[1], s->path[2]}, {s->phi[0], s->phi[1]},
+                        s->label};
+  aq_subject_opts so = {J->ro, J->po, 0, 0, 1}; /* a spectrum of any channel */
+  s->st = aq_subject_prepare(&s->in, &src, &so, J->sws, &s->err);
   for (int c = 0; s->st == AQ_OK && c < (s->path[1] ? 2 : 1); c++)
     s->st = aq_im_compute(&s->in.proc[c], &s->im[c], &s->err);
   aq_spectrum_ws *ws = s->st == AQ_OK ? aq_spectrum_ws_alloc() : NULL;
@@ -319,7 +320,7 @@ int aq_cmd_spectrum(int argc, char **argv)
     rc = AQ_EXIT_OUTPUT;
 done:
   for (size_t k = 0; J.src && k < n; k++) {
-    aq_capacity_input_free(&J.src[k].in);
+    aq_subject_free(&J.src[k].in);
     free(J.src[k].psa_mps2);
   }
   free(J.src);
