@@ -671,7 +671,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   } else if (has_stated) {
     used = stated;
     how = "as the file states";
-    units_by = stated == AQ_UNITS_COUNTS && opts && opts->response[0] && strcmp(raw->format, "mseed") == 0
+    units_by = stated == AQ_UNITS_COUNTS && opts && opts->nresponses > 0 && strcmp(raw->format, "mseed") == 0
              ? "response"
              : "file";
   } else if (global != AQ_UNITS_FILE && !rule) {
