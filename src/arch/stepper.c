@@ -585,6 +585,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   }
   res->peak_rotation_rad = S.peak_s;
   res->peak_set = smax[1] > smax[0] ? 1 : smax[0] > 0 ? 0 : -1; /* peak_s = max(smax) */
+  res->peak_rotation_set_rad[0] = smax[0];
+  res->peak_rotation_set_rad[1] = smax[1];
   /* |x| depends on s alone: its peak is that of the path over the range of
    * s each set covered (exact, whatever the model's sampling) */
   res->peak_displacement_m = 0;
