@@ -266,23 +266,6 @@ void aq_arch_free(aq_arch *a)
   free(a);
 }
 
-void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
-                         char *faces, size_t nf)
-{
-  if (joints)
-    snprintf(joints, nj, "%zu,%zu,%zu,%zu", hs->joint[0], hs->joint[1],
-             hs->joint[2], hs->joint[3]);
-  if (faces)
-    snprintf(faces, nf, "%c%c%c%c", hs->face[0], hs->face[1], hs->face[2],
-             hs->face[3]);
-}
-
-void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n)
-{
-  snprintf(buf, n, "%zu%c %zu%c %zu%c %zu%c", hs->joint[0], hs->face[0], hs->joint[1],
-           hs->face[1], hs->joint[2], hs->face[2], hs->joint[3], hs->face[3]);
-}
-
 static aq_hinge_set swap_faces(const aq_hinge_set *hs)
 {
   aq_hinge_set r = *hs;

@@ -34,6 +34,7 @@
  */
 #include <gsl/gsl_linalg.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "model.h"
@@ -54,6 +55,23 @@ static aq_vec2 rot(double t, aq_vec2 a)
 {
   double c = cos(t), s = sin(t);
   return v2(c * a.x - s * a.y, s * a.x + c * a.y);
+}
+
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf)
+{
+  if (joints)
+    snprintf(joints, nj, "%zu,%zu,%zu,%zu", hs->joint[0], hs->joint[1],
+             hs->joint[2], hs->joint[3]);
+  if (faces)
+    snprintf(faces, nf, "%c%c%c%c", hs->face[0], hs->face[1], hs->face[2],
+             hs->face[3]);
+}
+
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n)
+{
+  snprintf(buf, n, "%zu%c %zu%c %zu%c %zu%c", hs->joint[0], hs->face[0], hs->joint[1],
+           hs->face[1], hs->joint[2], hs->face[2], hs->joint[3], hs->face[3]);
 }
 
 aq_status aq_mech_init(aq_mech *m, const aq_geom *g, const aq_hinge_set *hs,

@@ -112,6 +112,13 @@ typedef struct {
   double toggle;     /* (H3'-H2') x (H4-H3') / (l23 l34): 0 at the toggle */
 } aq_mech_state;
 
+/* Format "0e 6i 12e 19i" (the arch file's syntax) into buf[n]. */
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n);
+
+/* Format "0,6,12,19" and "eiei". */
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf);
+
 /* Set up the four-bar of hinge set hs on geometry g (joints checked). */
 aq_status aq_mech_init(aq_mech *m, const aq_geom *g, const aq_hinge_set *hs,
                        aq_error *err);
@@ -258,12 +265,5 @@ const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set);
  * *hs, *lambda0 (either may be NULL); 0 when not searched (more voussoirs,
  * with [hinges]).  An arch whose minimum is <= 0 is never built. */
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
-
-/* Format "0e 6i 12e 19i" (the arch file's syntax) into buf[n]. */
-void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n);
-
-/* Format "0,6,12,19" and "eiei". */
-void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
-                         char *faces, size_t nf);
 
 #endif
