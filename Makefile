@@ -19,7 +19,7 @@ HDF5_A     := $(if $(filter 1,$(HDF5_STATIC)),$(firstword $(wildcard $(addsuffix
 HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs hdf5 2>/dev/null))
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5,$(PKGS)) 2>/dev/null) $(HDF5_LIBS)
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
-AQ_LIBS    = $(PKG_LIBS) -lpthread -lm
+AQ_LIBS    = $(PKG_LIBS) -lglpk -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
@@ -211,7 +211,7 @@ uninstall:
 # DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
-            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo
+            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
             openmpi-bin libopenmpi-dev man-db locales
 deps:

@@ -76,9 +76,8 @@ void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
   aq_hinge_set mhs;
   double ml0, l0 = aq_arch_path(a, 0)->lambda0;
   if (!aq_arch_minimum(a, &mhs, &ml0)) {
-    fprintf(stderr, "archquake: %s: warning: the minimum-lambda0 set was not searched "
-                    "(more than %d voussoirs): that the arch stands is not checked\n",
-            path, AQ_SEARCH_MAX_VOUSSOIRS);
+    fprintf(stderr, "archquake: %s: warning: the search found no admissible hinge set: "
+                    "that the arch stands is not checked\n", path);
     return;
   }
   if (aq_arch_searched(a) || !(ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)))

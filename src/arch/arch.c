@@ -41,7 +41,7 @@ struct aq_arch {
   aq_workpath *wp[2];
   aq_hinge_set min_hs;  /* the admissible set of lowest lambda0 (search.c) */
   double min_lambda0;
-  int min_known;        /* 0: more voussoirs than the search takes */
+  int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
 };
 
 enum {
@@ -286,18 +286,15 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   /* The arch's minimum over every admissible set, whether or not [hinges]
    * names one: an arch that some set turns into a mechanism under gravity
    * alone (lambda0 <= 0) cannot stand, whichever set the file names. */
-  if (!primary || p->voussoirs <= AQ_SEARCH_MAX_VOUSSOIRS) {
-    aq_error e2;
-    aq_error_clear(&e2);
-    st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, NULL,
-                           &e2);
-    if (st != AQ_OK && !primary) {
-      if (err)
-        *err = e2;
-      return st;
-    }
-    a->min_known = st == AQ_OK;
+  aq_error e2;
+  aq_error_clear(&e2);
+  st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, &e2);
+  if (st != AQ_OK && !primary) {
+    if (err)
+      *err = e2;
+    return st;
   }
+  a->min_known = st == AQ_OK;
   if (a->min_known && !(a->min_lambda0 > 0)) {
     char set[64];
     aq_hinge_set_text(&a->min_hs, set, sizeof set);

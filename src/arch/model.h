@@ -222,26 +222,17 @@ void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
 
 /* ---- search.c ------------------------------------------------------ */
 
-#define AQ_SEARCH_MAX_VOUSSOIRS 150 /* 2 C(151,4) = 4.2e7 sets: about a second */
-
-/* The admissible alternating four-hinge set (every hinge opens, every hinge
- * reaction compressive at s = 0) with the lowest lambda0 over all joints,
- * lambda0 <= 0 included: *best and *lambda0 (if not NULL).  A minimum
- * lambda0 <= 0 means the arch cannot stand.  AQ_EINADMISSIBLE if no set is
- * admissible; AQ_EVALUE above SEARCH_MAX_VOUSSOIRS (150) voussoirs.
- * *nsets (if not NULL): sets enumerated. */
+/* The admissible four-hinge set (every hinge opens, every hinge reaction
+ * compressive at s = 0) with the lowest lambda0 over all joints and faces,
+ * lambda0 <= 0 included: *best and *lambda0 (if not NULL), found by linear
+ * programming (search.c).  A minimum lambda0 <= 0 means the arch cannot
+ * stand.  AQ_EINADMISSIBLE if no set is found. */
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, size_t *nsets, aq_error *err);
-
-/* aq_search_minimum when its lambda0 is > 0 (the upper-bound mechanism);
- * AQ_EINADMISSIBLE (field "hinges", naming the set) when it is <= 0. */
-aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
-                              aq_hinge_set *best, size_t *nsets,
-                              aq_error *err);
+                            double *lambda0, aq_error *err);
 
 /* lambda0 and opening test at s = 0 only (cheap; no tables, no equilibrium):
  * returns 1 if every hinge opens at first order and fills *lambda0 (its sign
- * as computed), else 0. */
+ * as computed), else 0 (also for joints out of range or order). */
 int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
                        double *lambda0);
 
@@ -260,10 +251,9 @@ int aq_arch_searched(const aq_arch *a);
 /* The hinge set used for set 0 (primary) or 1 (reverse). */
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set);
 
-/* The admissible set of lowest lambda0 over every joint (aq_search_minimum),
- * found for every arch of at most AQ_SEARCH_MAX_VOUSSOIRS voussoirs: 1 and
- * *hs, *lambda0 (either may be NULL); 0 when not searched (more voussoirs,
- * with [hinges]).  An arch whose minimum is <= 0 is never built. */
+/* The admissible set of lowest lambda0 over every joint and face
+ * (aq_search_minimum): 1 and *hs, *lambda0 (either may be NULL); 0 when the
+ * search found none (the arch then has [hinges]).  An arch whose minimum is <= 0 is never built. */
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
 
 #endif
