@@ -49,7 +49,7 @@ static double search_ms(size_t nv)
   for (int r = 0; r < REPS; r++) {
     aq_hinge_set hs;
     double t0 = aq_bench_now_s();
-    aq_search_minimum(&g, AQ_G0_MPS2, &hs, NULL, &e);
+    aq_search_minimum(&g, AQ_G0_MPS2, &hs, NULL, NULL, &e);
     t[r] = aq_bench_now_s() - t0;
   }
   aq_geom_free(&g);

@@ -179,7 +179,7 @@ AQ_TEST(arch_standing_search_equals_brute_force)
         double want = 0, got = 0;
         aq_hinge_set harg, found;
         int have = brute_minimum(&g, &want, &harg);
-        aq_status st = aq_search_minimum(&g, 9.80665, &found, &got, &e);
+        aq_status st = aq_search_minimum(&g, 9.80665, &found, &got, NULL, &e);
         aq_check(have && st == AQ_OK, "n %d t/R %.3f: both find a set", n, t_over_r[it]);
         if (want > 0)
           aq_check_abs(got, want, LAMBDA_ABS_TOL + LAMBDA_REL_TOL * fabs(want),
@@ -222,7 +222,7 @@ static double critical_t_over_r(size_t n)
     aq_hinge_set hs;
     if (aq_geom_init(&g, &pp, &e) != AQ_OK)
       return NAN;
-    aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, &e);
+    aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, NULL, &e);
     aq_geom_free(&g);
     if (st != AQ_OK)
       return NAN;

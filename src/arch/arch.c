@@ -41,6 +41,7 @@ struct aq_arch {
   aq_workpath *wp[2];
   aq_hinge_set min_hs;  /* the admissible set of lowest lambda0 (search.c) */
   double min_lambda0;
+  aq_search_info min_info; /* programs solved, a lower lift-off mechanism */
   int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
 };
 
@@ -288,7 +289,8 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
    * alone (lambda0 <= 0) cannot stand, whichever set the file names. */
   aq_error e2;
   aq_error_clear(&e2);
-  st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, &e2);
+  st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, &a->min_info,
+                         &e2);
   if (st != AQ_OK && !primary) {
     if (err)
       *err = e2;
@@ -521,5 +523,15 @@ int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
     *hs = a->min_hs;
   if (lambda0)
     *lambda0 = a->min_lambda0;
+  return 1;
+}
+int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda)
+{
+  if (!a->min_known || !a->min_info.liftoff)
+    return 0;
+  if (joint)
+    *joint = a->min_info.liftoff_joint;
+  if (lambda)
+    *lambda = a->min_info.liftoff_lambda;
   return 1;
 }

@@ -222,13 +222,25 @@ void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
 
 /* ---- search.c ------------------------------------------------------ */
 
+/* What the search found besides the set. */
+typedef struct {
+  size_t programs;       /* linear programs solved */
+  /* 1: a mechanism in which joint liftoff_joint lifts off (both its ends
+   * open: no four-hinge set does that) has the multiplier liftoff_lambda,
+   * lower than the four-hinge minimum; archquake models four-hinge
+   * mechanisms only, so its lambda0 is then above the arch's */
+  int liftoff;
+  size_t liftoff_joint;
+  double liftoff_lambda;
+} aq_search_info;
+
 /* The admissible four-hinge set (every hinge opens, every hinge reaction
  * compressive at s = 0) with the lowest lambda0 over all joints and faces,
  * lambda0 <= 0 included: *best and *lambda0 (if not NULL), found by linear
- * programming (search.c).  A minimum lambda0 <= 0 means the arch cannot
- * stand.  AQ_EINADMISSIBLE if no set is found. */
+ * programming (search.c); *info (if not NULL).  A minimum lambda0 <= 0
+ * means the arch cannot stand.  AQ_EINADMISSIBLE if no set is found. */
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, aq_error *err);
+                            double *lambda0, aq_search_info *info, aq_error *err);
 
 /* lambda0 and opening test at s = 0 only (cheap; no tables, no equilibrium):
  * returns 1 if every hinge opens at first order and fills *lambda0 (its sign
@@ -255,5 +267,11 @@ const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set);
  * (aq_search_minimum): 1 and *hs, *lambda0 (either may be NULL); 0 when the
  * search found none (the arch then has [hinges]).  An arch whose minimum is <= 0 is never built. */
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
+
+/* 1 if a mechanism in which a joint lifts off (both its ends open) has a
+ * lower multiplier than every four-hinge set (aq_search_info): *joint and
+ * *lambda (either may be NULL); archquake models four-hinge mechanisms
+ * only, so its lambda0 then overestimates the arch's. */
+int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda);
 
 #endif

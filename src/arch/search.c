@@ -5,7 +5,7 @@
  * mechanism moves (docs/method.md sec. 8) and every hinge reaction is
  * compressive; its multiplier lambda0 comes from virtual work at s = 0
  * (docs/method.md sec. 5).  Enumerating the sets costs 16 C(n+1, 4) for n
- * voussoirs (4e11 at 1000).  The minimum is found instead as a linear
+ * voussoirs (4e11 at 1000).  The minimum is found instead with a linear
  * program whose dual is that enumeration:
  *
  *   unknowns  the force (R0x, R0y) and its moment m0 about a reference
@@ -27,27 +27,39 @@
  *                                   + g (P_x m_j - S^x_j)
  * with m_j, S^x_j, S^y_j the mass and first moments of voussoirs 0..j-1
  * (prefix sums).  The dual variables of the two rows of joint j are the
- * rotations of an intrados or an extrados hinge there: the dual is the
- * minimum over mechanisms of any hinge count of their kinematic multiplier,
- * and since the program has four unknowns an optimal vertex has four tight
- * rows: a four-hinge mechanism.  By duality (the static and kinematic
- * theorems) the optimum equals the minimum of lambda0 over every
- * admissible four-hinge set, with any faces; the line of thrust of the
- * optimum passes through the four hinges and lies inside the arch
- * elsewhere, so the hinge reactions are compressive.  GLPK solves each
- * program, the simplex in floating point, then if needed glp_exact in
- * rational arithmetic from that basis, so the optimal vertex is that of the data
- * as given, not of tolerances (the rational pass runs only when the
- * floating-point vertex leaves a row violated by more than OPT_TOL,
- * recomputed here in long double).
+ * rotations of an intrados or an extrados hinge there, so the dual is the
+ * minimum over mechanisms of any hinge count of their kinematic
+ * multiplier (static and kinematic theorems); the program has four
+ * unknowns, so an optimal vertex has four tight rows.  When they are four
+ * hinges on four joints, they are the minimum-lambda0 four-hinge set: its
+ * line of thrust passes through them and lies inside the arch elsewhere,
+ * so its hinge reactions are compressive.  GLPK solves each program
+ * through its dual (a basis of four rows, whatever the number of joints),
+ * in floating point and, when the vertex leaves a row violated by more
+ * than OPT_TOL (recomputed here in long double), again in rational
+ * arithmetic (glp_exact) from that basis.
  *
- * The set is then read from the tight rows and its lambda0 computed again
- * by virtual work (lambda0_fast: the same formula and prefix sums for every
- * set) and checked with the 9x9 (eq. (3): every hinge reaction
- * compressive).  Of the two directions the lower lambda0 wins; ties
- * (within TIE_REL, e.g. the mirror images of a symmetric arch) go to the
- * lower face pattern (faces read as binary digits, e 0 and i 1, so e i e i
- * before i e i e), then to the lower joints.
+ * The vertex can also hold both ends of one joint: a mechanism in which
+ * that joint lifts off (flat or thick arches under large lambda, about 6
+ * and more in the tests), which no four-hinge set can do and archquake
+ * does not model.  A branch and bound then finds the four-hinge minimum:
+ * a branch excludes rows (no hinge there: the row's dual fixed at 0, the
+ * row dropped from the program), so its optimum bounds every set in it
+ * from below; a vertex lifting joint j off branches into "no hinge at
+ * Pe_j" and "no hinge at Pi_j"; a vertex of four joints whose set is not
+ * admissible (with rows dropped its reactions need not be compressive)
+ * branches four ways, each without one of its hinges; a branch whose
+ * optimum is above the best set found is dropped.  The lift-off's lambda
+ * is reported (aq_search_info), for the warning that the four-hinge
+ * minimum is then above the arch's collapse multiplier.
+ *
+ * The set read from a vertex has its lambda0 computed again by virtual
+ * work (lambda0_fast: the same formula and prefix sums for every set) and
+ * checked with the 9x9 (eq. (3): every hinge reaction compressive).  Of
+ * the two directions the lower lambda0 wins; ties (within TIE_REL, e.g.
+ * the mirror images of a symmetric arch) go to the lower face pattern
+ * (faces read as binary digits, e 0 and i 1, so e i e i before i e i e),
+ * then to the lower joints.
  *
  * An arch that cannot stand: when the optimum of a direction is <= 0 the
  * set read from it has lambda0 <= 0 (gravity alone, or gravity with a load
@@ -56,10 +68,12 @@
  * every row by sigma times the joint's half length (in units of the
  * arch's weight times a length) and minimizes sigma: its tight rows are
  * the mechanism whose hinges gain the most work from gravity, a set with
- * lambda0 < 0, reported as the arch's minimum.
+ * lambda0 < 0, reported as the arch's minimum (not necessarily the lowest
+ * such set).
  */
 #include <glpk.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +83,7 @@
 #define TIGHT_REL 1e-9    /* a row within this of its bound (in the scaled moments, units of
                              the arch's weight times its size) counts as tight */
 #define OPT_TOL 1e-13     /* a row's slack (scaled moment) this far below 0 is a violation */
+#define MAX_PROGRAMS 4096 /* programs solved at most in the branch and bound */
 #define MAX_TIGHT 12      /* tight rows examined at most (C(12, 4) = 495 subsets) */
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
@@ -206,7 +221,7 @@ static void rows_fill(const aq_geom *g, int s, lp_row *row)
   }
 }
 
-typedef enum { LP_OPT, LP_INFEASIBLE, LP_FAILED } lp_status;
+typedef enum { LP_OPT, LP_INFEASIBLE, LP_UNBOUNDED, LP_FAILED } lp_status;
 
 /* The reduced cost of the dual's column i (the slack of the primal's row
  * i) at the primal solution x (the dual's row duals), in long double:
@@ -223,36 +238,39 @@ static long double slack(const lp_row *r, size_t i, int relax, const long double
  * row's slack at its primal solution, recomputed here, >= -OPT_TOL (the
  * dual's reduced costs; its basic columns are >= 0 by the simplex).  When
  * not, the rational simplex (glp_exact) settles it. */
-static int optimal_in_double(glp_prob *P, const lp_row *row, size_t nrows, int relax)
+static int optimal_in_double(glp_prob *P, const lp_row *row, size_t nrows, int relax,
+                             const unsigned char *ex)
 {
   long double x[4];
   for (int k = 0; k < 4; k++)
     x[k] = glp_get_row_dual(P, k + 1);
   for (size_t i = 0; i < nrows; i++)
-    if (slack(&row[i], i, relax, x) < -OPT_TOL)
+    if (!ex[i] && slack(&row[i], i, relax, x) < -OPT_TOL)
       return 0;
   return 1;
 }
 
-/* Solve one program through its dual, whose basis has four rows whatever
+/* One program, solved through its dual, whose basis has four rows whatever
  * the number of joints: relax = 0 maximizes lambda; relax = 1 fixes
  * lambda = 0 and minimizes sigma.  Written with every row as G x <= h
  * (intrados rows negated), the program max c.x has the dual
  *   min h.y  subject to  G^T y = c,  y >= 0,
- * one y per row: the rotation of a hinge at that row's joint end.  The
- * dual's basic columns are the primal's tight rows; a nonbasic column
- * whose reduced cost (the primal row's slack) is within TIGHT_REL of zero
- * is a tie.  Fills tight[] (row numbers, 0-based), *ntight.  The primal is
- * infeasible when the dual is unbounded. */
-static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, size_t *tight,
-                          size_t *ntight)
+ * one y per row: the rotation of a hinge at that row's joint end; a row
+ * excluded (ex[i]) has its y fixed at 0: no hinge there.  The dual's basic
+ * columns are the primal's tight rows (tight[0..*nbasic-1]); a nonbasic
+ * column whose reduced cost (the primal row's slack) is within TIGHT_REL
+ * of zero is a tie (appended).  *obj: the optimum (lambda, or -sigma).
+ * The primal is infeasible when the dual is unbounded, unbounded when the
+ * dual is infeasible. */
+static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, const unsigned char *ex,
+                          size_t *tight, size_t *ntight, size_t *nbasic, double *obj)
 {
   glp_prob *P = glp_create_prob();
   size_t nz = nrows * 4;
   int *ia = malloc((nz + 1) * sizeof *ia), *ja = malloc((nz + 1) * sizeof *ja);
   double *ar = malloc((nz + 1) * sizeof *ar);
   lp_status st = LP_FAILED;
-  *ntight = 0;
+  *ntight = *nbasic = 0;
   if (!P || !ia || !ja || !ar)
     goto done;
   glp_set_obj_dir(P, GLP_MIN);
@@ -263,7 +281,10 @@ static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, size_t *ti
   size_t z = 0;
   for (size_t i = 0; i < nrows; i++) {
     double sgn = i % 2 == 0 ? -1.0 : 1.0; /* intrados: M >= 0, i.e. -M <= 0 */
-    glp_set_col_bnds(P, (int)i + 1, GLP_LO, 0.0, 0.0);
+    if (ex[i])
+      glp_set_col_bnds(P, (int)i + 1, GLP_FX, 0.0, 0.0);
+    else
+      glp_set_col_bnds(P, (int)i + 1, GLP_LO, 0.0, 0.0);
     glp_set_obj_coef(P, (int)i + 1, -sgn * row[i].c0);
     for (int k = 0; k < 4; k++) {
       double v = k < 3 ? sgn * row[i].c[k] : relax ? -row[i].half : sgn * row[i].c[3];
@@ -281,17 +302,18 @@ static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, size_t *ti
   parm.msg_lev = GLP_MSG_OFF;
   glp_std_basis(P);
   int rc = glp_simplex(P, &parm);
-  if (rc == 0 && glp_get_status(P) == GLP_OPT && !optimal_in_double(P, row, nrows, relax))
+  if (rc == 0 && glp_get_status(P) == GLP_OPT && !optimal_in_double(P, row, nrows, relax, ex))
     rc = glp_exact(P, &parm);
   if (rc != 0)
     goto done;
   int s = glp_get_status(P);
-  if (s == GLP_UNBND) {
-    st = LP_INFEASIBLE;
+  if (s == GLP_UNBND || s == GLP_NOFEAS) {
+    st = s == GLP_UNBND ? LP_INFEASIBLE : LP_UNBOUNDED;
     goto done;
   }
   if (s != GLP_OPT)
     goto done;
+  *obj = glp_get_obj_val(P);
   /* the basic columns (the vertex), then the columns of zero reduced cost */
   long double x[4];
   for (int k = 0; k < 4; k++)
@@ -299,8 +321,12 @@ static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, size_t *ti
   for (int pass = 0; pass < 2; pass++)
     for (size_t i = 0; i < nrows && *ntight < MAX_TIGHT; i++) {
       int basic = glp_get_col_stat(P, (int)i + 1) == GLP_BS;
+      if (ex[i])
+        continue;
       if (pass == 0 ? basic : (!basic && fabsl(slack(&row[i], i, relax, x)) <= TIGHT_REL))
         tight[(*ntight)++] = i;
+      if (pass == 0)
+        *nbasic = *ntight;
     }
   st = LP_OPT;
 done:
@@ -312,82 +338,179 @@ done:
   return st;
 }
 
+/* The branch and bound over the programs (see the file's comment). */
 typedef struct {
-  int have;
+  const aq_geom *g;
+  double g_mps2;
+  lp_row *row;
+  size_t nrows;
+  unsigned char *ex;   /* rows excluded in the current branch */
+  int have;            /* best: the lowest admissible set so far */
   aq_hinge_set hs;
   double lambda0;
-} best_set;
+  int failed;          /* a program failed, or too many */
+  aq_search_info info;
+} bb;
 
-/* Every four of the tight rows on distinct joints that make an admissible
- * set (each hinge opens, compressive reactions when check_eq): the best
- * (before()) into *b. */
-static void from_tight(const aq_geom *g, double g_mps2, const size_t *tight, size_t nt,
-                       int check_eq, best_set *b)
+/* The set of four rows r (joint 2r/2, face e for odd r), if they are on
+ * distinct joints and make an admissible set: every hinge opens, and
+ * unless relax compressive hinge reactions, or when relax lambda0 <= 0.
+ * 1 and *hs, *l0; else 0. */
+static int admissible(const bb *B, const size_t rows[4], int relax, aq_hinge_set *hs,
+                      double *l0)
 {
+  size_t r[4] = {rows[0], rows[1], rows[2], rows[3]};
+  for (int i = 1; i < 4; i++) /* by joint */
+    for (int k = i; k > 0 && r[k] < r[k - 1]; k--) {
+      size_t t = r[k];
+      r[k] = r[k - 1];
+      r[k - 1] = t;
+    }
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = r[k] / 2;
+    hs->face[k] = r[k] % 2 ? 'e' : 'i';
+    if (k > 0 && hs->joint[k] == hs->joint[k - 1])
+      return 0;
+  }
+  if (!aq_search_lambda0(B->g, hs, l0) || !isfinite(*l0))
+    return 0;
+  return relax ? *l0 <= 0 : compressive(B->g, hs, B->g_mps2);
+}
+
+/* Every four of the tight rows that make an admissible set: the best
+ * (before()) into B.  Returns 1 if the vertex's own four (the first four,
+ * nbasic == 4) do. */
+static int from_tight(bb *B, const size_t *tight, size_t nt, size_t nbasic, int relax)
+{
+  int vertex = 0;
   for (size_t a = 0; a < nt; a++)
     for (size_t c = a + 1; c < nt; c++)
       for (size_t d = c + 1; d < nt; d++)
         for (size_t e = d + 1; e < nt; e++) {
           size_t r[4] = {tight[a], tight[c], tight[d], tight[e]};
-          for (int i = 1; i < 4; i++) /* by joint */
-            for (int k = i; k > 0 && r[k] < r[k - 1]; k--) {
-              size_t t = r[k];
-              r[k] = r[k - 1];
-              r[k - 1] = t;
-            }
           aq_hinge_set hs;
-          int ok = 1;
-          for (int k = 0; k < 4; k++) {
-            hs.joint[k] = r[k] / 2;
-            hs.face[k] = r[k] % 2 ? 'e' : 'i';
-            ok &= k == 0 || hs.joint[k] != hs.joint[k - 1];
-          }
           double l0;
-          if (!ok || !aq_search_lambda0(g, &hs, &l0) || !isfinite(l0))
+          if (!admissible(B, r, relax, &hs, &l0))
             continue;
-          if (b->have && !before(l0, &hs, b->lambda0, &b->hs))
+          vertex |= nbasic == 4 && e == 3;
+          if (B->have && !before(l0, &hs, B->lambda0, &B->hs))
             continue;
-          if (check_eq && !compressive(g, &hs, g_mps2))
-            continue;
-          b->have = 1;
-          b->hs = hs;
-          b->lambda0 = l0;
+          B->have = 1;
+          B->hs = hs;
+          B->lambda0 = l0;
         }
+  return vertex;
+}
+
+/* Solve the program with row r excluded as well, then restore it. */
+static lp_status node(bb *B, int relax, int depth);
+static void child(bb *B, size_t r, int relax, int depth)
+{
+  B->ex[r] = 1;
+  node(B, relax, depth + 1);
+  B->ex[r] = 0;
+}
+
+/* One node of the branch and bound: solve, bound, then
+ *  - a joint with both ends tight (lifting off, which no four-hinge set
+ *    does): branch without a hinge at its extrados end, then without one
+ *    at its intrados end (every four-hinge set lies in one of the two);
+ *  - else the vertex's four hinges: the set, if admissible, is the
+ *    branch's minimum; if not (with rows excluded its reactions need not
+ *    be compressive), every admissible set in the branch lacks one of its
+ *    hinges: branch four ways, each without one of them.
+ * In the relaxed program (relax) the first set with lambda0 <= 0 ends the
+ * search.  Returns the node's status. */
+static lp_status node(bb *B, int relax, int depth)
+{
+  size_t tight[MAX_TIGHT], nt, nb;
+  double obj = 0;
+  if (B->failed || (relax && B->have))
+    return LP_FAILED;
+  if (++B->info.programs > MAX_PROGRAMS) {
+    B->failed = 1;
+    return LP_FAILED;
+  }
+  lp_status st = lp_solve(B->row, B->nrows, relax, B->ex, tight, &nt, &nb, &obj);
+  if (st == LP_FAILED)
+    B->failed = 1;
+  if (st != LP_OPT)
+    return st;
+  if (relax ? !(obj < 0) : B->have && obj > B->lambda0 + TIE_REL * fabs(B->lambda0))
+    return st; /* relax: gravity drives nothing here; else: no lower set here */
+  size_t lift = SIZE_MAX;
+  for (size_t a = 0; a < nb; a++)
+    for (size_t b = a + 1; b < nb; b++)
+      if (tight[a] / 2 == tight[b] / 2)
+        lift = tight[a] / 2;
+  if (lift != SIZE_MAX) {
+    if (depth == 0 && !relax && (!B->info.liftoff || obj < B->info.liftoff_lambda)) {
+      B->info.liftoff = 1;
+      B->info.liftoff_joint = lift;
+      B->info.liftoff_lambda = obj;
+    }
+    child(B, 2 * lift + 1, relax, depth);
+    child(B, 2 * lift, relax, depth);
+  } else if (!from_tight(B, tight, nt, nb, relax) && nb == 4) {
+    for (size_t k = 0; k < 4; k++)
+      child(B, tight[k], relax, depth);
+  }
+  return st;
 }
 
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, aq_error *err)
+                            double *lambda0, aq_search_info *info, aq_error *err)
 {
   size_t n = g->p.voussoirs, nrows = 2 * (n + 1);
-  lp_row *row = malloc(nrows * sizeof *row);
-  if (!row)
+  bb B;
+  memset(&B, 0, sizeof B);
+  B.g = g;
+  B.g_mps2 = g_mps2;
+  B.nrows = nrows;
+  B.row = malloc(nrows * sizeof *B.row);
+  B.ex = calloc(nrows, 1);
+  if (!B.row || !B.ex) {
+    free(B.row);
+    free(B.ex);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
   glp_term_out(GLP_OFF);
-  best_set b = {0, {{0, 0, 0, 0}, {0, 0, 0, 0}}, 0};
-  int infeasible = 0, failed = 0;
+  int infeasible = 0;
   for (int s = 1; s >= -1; s -= 2) {
-    size_t tight[MAX_TIGHT], nt;
-    rows_fill(g, s, row);
-    lp_status st = lp_solve(row, nrows, 0, tight, &nt);
-    if (st == LP_OPT)
-      from_tight(g, g_mps2, tight, nt, 1, &b);
-    infeasible += st == LP_INFEASIBLE;
-    failed += st == LP_FAILED;
+    rows_fill(g, s, B.row);
+    infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
   }
-  if (!b.have && infeasible == 2) {
-    /* no line of thrust fits for any lambda: the set gravity drives most */
-    size_t tight[MAX_TIGHT], nt;
-    rows_fill(g, 1, row);
-    if (lp_solve(row, nrows, 1, tight, &nt) == LP_OPT)
-      from_tight(g, g_mps2, tight, nt, 0, &b);
+  if (!B.have && infeasible == 2 && !B.failed) {
+    /* no line of thrust fits for any lambda: a set gravity drives */
+    rows_fill(g, 1, B.row);
+    node(&B, 1, 0);
   }
-  free(row);
-  if (!b.have)
+  free(B.row);
+  free(B.ex);
+  if (B.info.liftoff && B.have &&
+      !(B.info.liftoff_lambda < B.lambda0 - TIE_REL * fabs(B.lambda0)))
+    B.info.liftoff = 0; /* no lower than the four-hinge minimum */
+  if (info)
+    *info = B.info;
+  if (B.failed && B.info.programs > MAX_PROGRAMS)
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
+                        "expected the minimum four-hinge mechanism within %d linear programs, "
+                        "got none settled (a mechanism with joint %zu lifting off has lambda "
+                        "= %.6g; archquake models four-hinge mechanisms only)",
+                        MAX_PROGRAMS, B.info.liftoff_joint, B.info.liftoff_lambda);
+  if (!B.have) {
+    if (B.info.liftoff)
+      return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
+                          "expected an admissible four-hinge mechanism, got none: a mechanism "
+                          "with joint %zu lifting off governs (lambda = %.6g), which archquake "
+                          "does not model",
+                          B.info.liftoff_joint, B.info.liftoff_lambda);
     return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
                         "expected an admissible four-hinge mechanism, got none (%s)",
-                        failed ? "the linear program failed" : "no set read from its optimum");
-  *best = b.hs;
+                        B.failed ? "the linear program failed" : "no set read from its optimum");
+  }
+  *best = B.hs;
   if (lambda0)
-    *lambda0 = b.lambda0;
+    *lambda0 = B.lambda0;
   return AQ_OK;
 }
