@@ -7,7 +7,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 FUZZ_SECONDS ?= 60
 
-PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot
+PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # HDF5 is linked from its static archive when one is installed (Debian's
 # libhdf5-dev ships it): the shared library brings in ~45 more (curl, TLS,
@@ -192,28 +192,35 @@ ARCHDIR = $(DESTDIR)$(PREFIX)/share/archquake/arches
 DOCDIR  = $(DESTDIR)$(PREFIX)/share/doc/archquake
 MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
 ARCH_FILES := $(wildcard arches/*.cfg)
-DOC_FILES  := README.md $(wildcard docs/*.md)
+# README.md with docs/ and docs/figures/ beside it, as in the source tree,
+# so that the README's links lead to installed files.
+DOC_FILES  := $(wildcard docs/*.md)
+FIG_FILES  := $(wildcard docs/figures/*.png)
 install: $(INSTALL_BIN) build/archquake.1
-	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR) $(MAN1DIR)
+	install -d $(BINDIR) $(ARCHDIR) $(DOCDIR)/docs/figures $(MAN1DIR)
 	install -m 755 $(INSTALL_BIN) $(BINDIR)/archquake
 	if test -f archquake-mpi; then install -m 755 archquake-mpi $(BINDIR)/archquake-mpi; fi
 	install -m 644 $(ARCH_FILES) $(ARCHDIR)
-	install -m 644 $(DOC_FILES) $(DOCDIR)
+	install -m 644 README.md $(DOCDIR)
+	install -m 644 $(DOC_FILES) $(DOCDIR)/docs
+	install -m 644 $(FIG_FILES) $(DOCDIR)/docs/figures
 	install -m 644 build/archquake.1 $(MAN1DIR)/archquake.1
 
 uninstall:
 	rm -f $(BINDIR)/archquake $(BINDIR)/archquake-mpi $(MAN1DIR)/archquake.1
 	rm -f $(addprefix $(ARCHDIR)/,$(notdir $(ARCH_FILES)))
-	rm -f $(addprefix $(DOCDIR)/,$(notdir $(DOC_FILES)))
-	-rmdir $(ARCHDIR) $(DESTDIR)$(PREFIX)/share/archquake $(DOCDIR) 2>/dev/null
+	rm -f $(DOCDIR)/README.md $(addprefix $(DOCDIR)/,$(DOC_FILES) $(FIG_FILES))
+	-rmdir $(ARCHDIR) $(DESTDIR)$(PREFIX)/share/archquake $(DOCDIR)/docs/figures \
+	  $(DOCDIR)/docs $(DOCDIR) 2>/dev/null
 
 # Debian packages: DEB_PKGS builds and runs archquake (`make deps`);
 # DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
-            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo libglpk-dev
+            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
+            libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            openmpi-bin libopenmpi-dev man-db locales
+            openmpi-bin libopenmpi-dev man-db locales poppler-utils
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)

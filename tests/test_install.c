@@ -80,6 +80,32 @@ static void check_lines_in(const char *text, const char *page, const char *what)
            what, missing, n);
 }
 
+/* Every relative link of the installed README ("](docs/x.md)",
+ * "](docs/figures/x.png)") names an installed file. */
+static void check_readme_links(const char *inst)
+{
+  char path[3 * PATH_MAX];
+  snprintf(path, sizeof path, "%s/share/doc/archquake/README.md", inst);
+  FILE *f = fopen(path, "r");
+  if (!aq_check(f != NULL, "open %s", path))
+    return;
+  size_t nlink = 0, missing = 0;
+  char line[4096];
+  while (fgets(line, sizeof line, f))
+    for (char *p = strstr(line, "]("); p; p = strstr(p + 2, "](")) {
+      char target[1024];
+      size_t len = strcspn(p + 2, ")#");
+      if (len == 0 || len >= sizeof target || strncmp(p + 2, "http", 4) == 0)
+        continue;
+      snprintf(target, sizeof target, "%.*s", (int)len, p + 2);
+      nlink++;
+      if (!exists(inst, "/share/doc/archquake", target) && missing++ < 3)
+        aq_check(0, "the installed README links %s, which is not installed", target);
+    }
+  fclose(f);
+  aq_check(nlink > 5 && missing == 0, "README links: %zu, %zu not installed", nlink, missing);
+}
+
 AQ_TEST(install_run_man_uninstall)
 {
   char tmp[512], root[PATH_MAX], dest[PATH_MAX + 16], cmd[8 * PATH_MAX];
@@ -108,11 +134,12 @@ AQ_TEST(install_run_man_uninstall)
   size_t ndoc = 0, narch = 0;
   if (glob("docs/*.md", 0, NULL, &g) == 0) {
     for (size_t i = 0; i < g.gl_pathc; i++)
-      ndoc += exists(inst, "/share/doc/archquake", base(g.gl_pathv[i]));
+      ndoc += exists(inst, "/share/doc/archquake/docs", base(g.gl_pathv[i]));
     aq_check(ndoc == g.gl_pathc && ndoc > 0, "docs installed: %zu of %zu", ndoc,
              (size_t)g.gl_pathc);
     globfree(&g);
   }
+  check_readme_links(inst);
   char installed_list[1024] = "";
   if (glob("arches/*.cfg", 0, NULL, &g) == 0) { /* sorted, as the list is */
     for (size_t i = 0; i < g.gl_pathc; i++) {

@@ -19,9 +19,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "kernels.h"
-#include "io/at2_fields.h"
-#include "io/cpu.h"
 #include "io/formats.h"
 #include "io/number.h"
 
@@ -209,7 +206,7 @@ static size_t random_at2(uint64_t *x, size_t npts, int crlf, int hard, char *buf
   return n;
 }
 
-static void io_at2_fields_equal_strtod_(void)
+AQ_TEST(io_at2_fields_equal_strtod)
 {
   enum { NPTS = 6000, FILES = 4 };
   size_t cap = NPTS * 20 + 200;
@@ -234,12 +231,11 @@ static void io_at2_fields_equal_strtod_(void)
            ok ? "yes" : "no");
   free(buf);
 }
-BOTH_KERNELS(io_at2_fields_equal_strtod)
 
 /* Every byte of the second and third lines of values replaced in turn by
  * each of a set of characters: what the reader makes of it must be what
  * strtod makes of the tokens. */
-static void io_at2_fields_each_byte_replaced_(void)
+AQ_TEST(io_at2_fields_each_byte_replaced)
 {
   static const char repl[] = {'Z', ':', '/', '0', '7', '9', 'e', 'E', ' ', '\t', ',', '\0'};
   enum { NPTS = 15 };
@@ -272,11 +268,10 @@ static void io_at2_fields_each_byte_replaced_(void)
     printf("  fields: %zu single-byte changes, %zu differ\n", cases, bad);
   free(t);
 }
-BOTH_KERNELS(io_at2_fields_each_byte_replaced)
 
 /* The file cut at every byte of its values: a cut inside the last value
  * reads what is left of it as strtod would, or refuses the file. */
-static void io_at2_fields_cut_anywhere_(void)
+AQ_TEST(io_at2_fields_cut_anywhere)
 {
   enum { NPTS = 12 };
   char base[2000];
@@ -294,14 +289,13 @@ static void io_at2_fields_cut_anywhere_(void)
   }
   aq_check(bad == 0, "%zu of %zu cut files differ", bad, cases);
 }
-BOTH_KERNELS(io_at2_fields_cut_anywhere)
 
 /* Random PEER fields (one in eight a hard token), lines of 1 to 5 of them
  * in a random order, LF, CR LF or CR line ends, the values starting at
  * every offset 0..31 from the buffer's start (the header's first line made
- * longer): four fields at a time meet every alignment, line ends between
- * any two lanes, and the last bytes of the buffer. */
-static void io_at2_fields_alignment_and_lines_(void)
+ * longer): the fields meet every alignment, line ends between any two of
+ * them, and the last bytes of the buffer. */
+AQ_TEST(io_at2_fields_alignment_and_lines)
 {
   enum { NPTS = 37, SHIFTS = 32 };
   static const char *const eols[] = {"\n", "\r\n", "\r"};
@@ -350,15 +344,13 @@ static void io_at2_fields_alignment_and_lines_(void)
   if (getenv("AQ_TEST_VERBOSE"))
     printf("  fields: %zu files at every alignment and line length, %zu differ\n", cases, bad);
 }
-BOTH_KERNELS(io_at2_fields_alignment_and_lines)
 
-/* Each of the 16 bytes the kernels read for a field (its 15 and the next
- * one) of fields 2 to 14 (groups of four lanes: fields 2-5, 6-9, 10-13
- * after the first, read alone, which stays intact: a first line of values
+/* Each of the 16 bytes the fast path reads for a field (its 15 and the next
+ * one) of fields 2 to 14 (the first stays intact: a first line of values
  * that does not start like one is the header's matter) replaced in turn by a byte of another class
  * or of the same class: neighbours of the digits, signs, points, exponent
  * letters, blanks, a line end, a NUL, and a digit with its high bit set. */
-static void io_at2_fields_bad_byte_each_lane_(void)
+AQ_TEST(io_at2_fields_bad_byte_each_lane)
 {
   static const char repl[] = {'/', ':', '0', '5', '9', '+', '-', '.', 'e', 'E', 'D',
                               ' ', '\t', ',', '\n', '\0', (char)0xB5, 'Z'};
@@ -389,37 +381,6 @@ static void io_at2_fields_bad_byte_each_lane_(void)
   aq_check(bad == 0, "%zu of %zu changed bytes differ", bad, cases);
   if (getenv("AQ_TEST_VERBOSE"))
     printf("  fields: %zu bytes changed in every lane, %zu differ\n", cases, bad);
-}
-BOTH_KERNELS(io_at2_fields_bad_byte_each_lane)
-
-/* The switch: AQ_NO_AVX2 set turns the AVX2 kernel off, "0" or unset leaves
- * it to the CPU; the test hook overrides the environment. */
-AQ_TEST(io_at2_fields_switch)
-{
-  const char *was = getenv("AQ_NO_AVX2");
-  char keep[32] = "";
-  if (was)
-    snprintf(keep, sizeof keep, "%s", was);
-  aq_io_avx2_force_(-1);
-  setenv("AQ_NO_AVX2", "1", 1);
-  aq_check(aq_io_avx2() == 0, "AQ_NO_AVX2=1: the AVX2 kernel is off");
-  aq_io_avx2_force_(1);
-  int cpu = aq_io_avx2(); /* 1 exactly where the CPU has it */
-#if defined(__x86_64__)
-  aq_check(cpu == !!__builtin_cpu_supports("avx2"), "forced on: on where the CPU has AVX2 (%d)",
-           cpu);
-#else
-  aq_check(cpu == 0, "not x86-64: never the AVX2 kernel");
-#endif
-  aq_io_avx2_force_(-1);
-  setenv("AQ_NO_AVX2", "0", 1);
-  aq_check(aq_io_avx2() == cpu, "AQ_NO_AVX2=0: as the CPU says");
-  unsetenv("AQ_NO_AVX2");
-  aq_check(aq_io_avx2() == cpu, "AQ_NO_AVX2 unset: as the CPU says");
-  if (was)
-    setenv("AQ_NO_AVX2", keep, 1);
-  if (getenv("AQ_TEST_VERBOSE"))
-    printf("  fields: AVX2 kernel available here: %s\n", cpu ? "yes" : "no");
 }
 
 /* ---- column shapes (number.h: aq_number_parse_shaped) ------------------ */

@@ -89,3 +89,36 @@ AQ_TEST(io_fixed_local_time_to_utc)
              out);
   }
 }
+
+/* The calendar (timegm(3) and gmtime_r(3) underneath): day of the year to
+ * month and day across leap rules, ISO times to seconds since 1970 and
+ * back; the expected values written out by hand (and by GNU date: `date -u
+ * -d 2019-07-06T03:19:53 +%s` is 1562383193). */
+AQ_TEST(io_fixed_calendar)
+{
+  static const struct {
+    int y, jd, mo, d; /* mo 0: refused */
+  } md[] = {{2000, 60, 2, 29},  {1900, 60, 3, 1},  {2100, 60, 3, 1},  {2016, 366, 12, 31},
+            {2019, 187, 7, 6},  {2019, 366, 0, 0}, {2019, 0, 0, 0},   {1799, 1, 0, 0},
+            {2201, 1, 0, 0},    {1983, 122, 5, 2}};
+  for (size_t i = 0; i < sizeof md / sizeof md[0]; i++) {
+    int mo = 0, d = 0;
+    int ok = aq_month_day(md[i].y, md[i].jd, &mo, &d);
+    aq_check(md[i].mo ? ok && mo == md[i].mo && d == md[i].d : !ok,
+             "day %d of %d: %d -> %d-%d", md[i].jd, md[i].y, ok, mo, d);
+  }
+  double t;
+  aq_check(aq_iso_parse("2019-07-06T03:19:53Z", &t) && t == 1562383193.0, "parse: %.17g", t);
+  aq_check(aq_iso_parse("1969-12-31T23:59:59.5", &t) && t == -0.5, "before 1970: %.17g", t);
+  aq_check(aq_iso_parse("2016-02-29", &t) && t == 1456704000.0, "date only: %.17g", t);
+  aq_check(!aq_iso_parse("2016-13-01", &t), "month 13 refused");
+  char out[40];
+  aq_check(aq_iso_from_ms(out, sizeof out, 1562383193040LL) &&
+               strcmp(out, "2019-07-06T03:19:53.040Z") == 0,
+           "from ms: %s", out);
+  aq_check(aq_iso_from_ms(out, sizeof out, -1LL) && strcmp(out, "1969-12-31T23:59:59.999Z") == 0,
+           "from -1 ms: %s", out);
+  aq_check(aq_iso_time(out, sizeof out, 2012, 2, 13, 45, 6, 45.25) &&
+               strcmp(out, "2012-02-14T21:06:45.250Z") == 0,
+           "hours past the day roll it over: %s", out);
+}

@@ -886,8 +886,8 @@ AQ_TEST(plot_capacity_lines_are_the_scan_points)
     check_axes(csv, 4, "capacity lines");
     aq_check(strstr(csv, y ? "# axis: PGA of the scaled record (g)\n"
                            : "# axis: scale factor on the processed record (1)\n") &&
-                 strstr(csv, y ? "# axis: peak rotation (rad)\n"
-                               : "# axis: peak rotation / q#dc#u (1)\n"),
+                 strstr(csv, y ? "# axis: survived: peak rotation (rad)\n"
+                               : "# axis: survived: peak rotation / qc (1)\n"),
              "axes as asked (--y %s)", y ? "pga" : "scale");
     /* the points' section, row for row against scan_points */
     const char *hdr = "record,polarity,legend_no,scale,pga_g,peak_rotation_rad,"

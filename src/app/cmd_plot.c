@@ -1,12 +1,15 @@
 /* cmd_plot.c: `archquake plot FIGURE ... -o FILE`: parse and check the
  * options, read the inputs, then draw with the plot stage (src/plot) in
  * this one thread.  Figures: history, arch, domain, suite, capacity. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* nl_langinfo's _NL_PAPER_WIDTH, _NL_PAPER_HEIGHT */
 #include <getopt.h>
+#include <langinfo.h>
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "../arch/domain.h"
 #include "../plot/plot.h"
@@ -35,19 +38,22 @@ static const char usage[] =
     "        and polarities: collapse, or peak rotation / q_c)\n"
     "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
     "        a file of archquake capacity -o, one arch (default: the file's\n"
-    "        first): one line per record and polarity through every scanned\n"
-    "        scale, the scale factor (--y pga: the PGA in g) against the run's\n"
-    "        peak rotation (--x qc: over q_c, the default; --x rad: in rad),\n"
-    "        beside a strip per record with the collapse intervals of each\n"
-    "        polarity shaded; below,\n"
-    "        the lognormal fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s,\n"
-    "        cav_m_s, pga_lambda0; default pga_g) over the empirical fraction of\n"
+    "        first): a strip per record and polarity with the verdict at every\n"
+    "        scanned scale (--y scale: the scale factor, the default; --y pga:\n"
+    "        the PGA in g), shaded by the survived runs' peak rotation (--x qc:\n"
+    "        over q_c, the default; --x rad), red and hatched where it\n"
+    "        collapses, a tick at each change, its first collapse beside it\n"
+    "        (R: it survives again above a collapse); below, the lognormal\n"
+    "        fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s,\n"
+    "        pga_lambda0; default pga_g) over the empirical fraction of\n"
     "        first collapses, censored records at their cap, and the band of\n"
     "        the median's interval\n"
     "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n"
     "Options:\n"
     "  -o, --output FILE  the figure (.png .svg .pdf)\n"
     "  --data FILE.csv    also write the plotted data (columns carry units)\n"
+    "  --paper a4|letter  the page of a PDF (default: the locale's paper,\n"
+    "                     LC_PAPER, else A4); the figure is scaled to fit\n"
     "  --help             this text\n"
     "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 bad options,\n"
     "3 the figure or the data could not be written.\n";
@@ -63,11 +69,29 @@ static const struct {
 
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
+static const char *const papers[] = {"a4", "letter", NULL};
+
+/* The locale's paper (LC_PAPER, glibc's page size in mm): Letter or A4. */
+static int locale_paper(void)
+{
+  if (!setlocale(LC_PAPER, ""))
+    return AQ_PAPER_A4;
+  union {
+    char *s;
+    unsigned int mm;
+  } w, h;
+  w.s = nl_langinfo(_NL_PAPER_WIDTH);
+  h.s = nl_langinfo(_NL_PAPER_HEIGHT);
+  int p = aq_plot_paper_of_size(w.mm, h.mm);
+  setlocale(LC_PAPER, "C");
+  return p;
+}
 
 typedef struct {
   int fig;
   const char *input, *out, *data, *run, *arch, *im;
   int x_rad, y_pga; /* capacity: index in x_axes, y_axes */
+  int paper;        /* index in papers; -1: the locale's */
   double rotation_rad, cor;
   double *ratios;
   size_t nr;
@@ -81,7 +105,7 @@ static int parse(int argc, char **argv, plot_opts *o)
       {"rotation", required_argument, NULL, 'R'}, {"ratios", required_argument, NULL, 't'},
       {"cor", required_argument, NULL, 'c'},    {"help", no_argument, NULL, 'h'},
       {"im", required_argument, NULL, 'i'},     {"x", required_argument, NULL, 'x'},
-      {"y", required_argument, NULL, 'y'},
+      {"y", required_argument, NULL, 'y'},      {"paper", required_argument, NULL, 'p'},
       {NULL, 0, NULL, 0}};
   int nerr = 0, c;
   opterr = 0;
@@ -109,6 +133,7 @@ static int parse(int argc, char **argv, plot_opts *o)
     case 'i': o->im = optarg; break;
     case 'x': aq_opt_choice("--x", optarg, x_axes, &o->x_rad, &nerr); break;
     case 'y': aq_opt_choice("--y", optarg, y_axes, &o->y_pga, &nerr); break;
+    case 'p': aq_opt_choice("--paper", optarg, papers, &o->paper, &nerr); break;
     case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
     case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;
     case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
@@ -135,6 +160,13 @@ static int parse(int argc, char **argv, plot_opts *o)
   }
   if (aq_opt_output_special("-o", o->out) || aq_opt_output_special("--data", o->data))
     nerr++;
+  if (o->paper >= 0 && o->out) { /* a page size only a PDF has */
+    const char *dot = strrchr(o->out, '.');
+    if (!dot || strcasecmp(dot, ".pdf") != 0) {
+      fprintf(stderr, "archquake: --paper: expected a .pdf output (-o), got \"%s\"\n", o->out);
+      nerr++;
+    }
+  }
   if (o->out && o->data && aq_opt_same_file(o->out, o->data)) {
     fprintf(stderr, "archquake: --data: expected a file other than -o, got \"%s\"\n",
             o->data);
@@ -197,7 +229,7 @@ int aq_cmd_plot(int argc, char **argv)
     fputs(usage, argc < 2 ? stderr : stdout);
     return argc < 2 ? AQ_EXIT_USAGE : AQ_EXIT_OK;
   }
-  plot_opts o = {.rotation_rad = 0, .cor = NAN};
+  plot_opts o = {.rotation_rad = 0, .cor = NAN, .paper = -1};
   int fig = -1, nerr = 0;
   aq_opt_choice("plot", argv[1], figures, &fig, &nerr);
   if (nerr)
@@ -208,6 +240,7 @@ int aq_cmd_plot(int argc, char **argv)
     free(o.ratios);
     return p < 0 ? AQ_EXIT_OK : AQ_EXIT_USAGE;
   }
+  aq_plot_set_paper(o.paper >= 0 ? (aq_plot_paper)o.paper : (aq_plot_paper)locale_paper());
   aq_error err;
   aq_error_clear(&err);
   int rc = AQ_EXIT_OK;

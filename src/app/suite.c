@@ -322,8 +322,7 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
  * (or sends it to the leader), so that with -o the hash overlaps the
  * workers' reading and processing of the next records; from the bytes the
  * reader read when they were kept, else from the file.  next, if not NULL,
- * is the next record, done too: when both have their bytes they are hashed
- * together (aq_sha256_hex2, 0.6 of the time of one after the other). */
+ * is the next record, done too when both have their bytes. */
 static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
 {
   if (next && r->want_sha && r->bytes && next->want_sha && next->bytes) {

@@ -22,11 +22,9 @@
 #include <strings.h>
 
 #include "../units.h"
-#include "at2_fields.h"
-#include "cpu.h"
+#include "fixed.h"
 #include "number.h"
 #include "readers.h"
-#include "swar.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -59,7 +57,7 @@ static int skip_eol(at2_cur *c)
 static void next_line(at2_cur *c, size_t *b, size_t *e)
 {
   *b = c->pos;
-  c->pos = aq_swar_line_end(c->s, c->pos, c->n);
+  c->pos = aq_text_line_end(c->s, c->pos, c->n);
   *e = c->pos;
   skip_eol(c);
 }
@@ -123,10 +121,9 @@ static const unsigned char sep_kind[256] = {[' '] = 1, ['\t'] = 1, [','] = 1, ['
  * digits.  Read whole, such a field needs no search for where its number
  * starts or ends, and no loop: the next field starts 15 bytes on whatever
  * the sign was. */
-#define PEER_FIELD_W AQ_AT2_FIELD_W
+#define PEER_FIELD_W 15 /* characters of one field */
 
-#if defined(__SSE2__) && !defined(AQ_NO_SIMD) /* every x86-64 CPU; elsewhere (or built
-                                                 * with -DAQ_NO_SIMD) 64-bit words */
+#if defined(__SSE2__) && !defined(AQ_NO_SIMD) /* every x86-64 CPU */
 /* The PEER field at p, with the separator after it (a blank or a line end,
  * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
  * caller has) are anything else, or the value is one strtod must read.
@@ -170,29 +167,13 @@ static int peer_field(const char *p, double *x)
   return aq_number_exact(m, (p[12] == '-' ? -ex : ex) - 7, p[2] == '-', x);
 }
 #else
-/* The PEER field at p, with the separator after it (a blank or a line end,
- * not taken): 1 and its value in *x, or 0 if the 16 bytes at p (which the
- * caller has) are anything else, or the value is one strtod must read. */
+/* Without SSE2 (or built with -DAQ_NO_SIMD) the general reading takes every
+ * field. */
 static int peer_field(const char *p, double *x)
 {
-  uint64_t a = aq_swar_load(p), b = aq_swar_load(p + 8);
-  /* a: ' ', ' ', ' ' or '-', '.', digits 1-4; b: digits 5-7, 'E', sign,
-   * two digits, the separator */
-  unsigned sign = aq_swar_byte(a, 2), esign = aq_swar_byte(b, 4), sep = aq_swar_byte(b, 7);
-  if ((a & 0xFF00FFFFULL) != ('.' << 24 | ' ' << 8 | ' ') || (sign != ' ' && sign != '-') ||
-      (aq_swar_byte(b, 3) | 0x20) != 'e' || (esign != '-' && esign != '+') ||
-      (sep != ' ' && sep != '\n' && sep != '\r'))
-    return 0;
-  /* the seven mantissa digits as bytes 0-6 of one word (byte 7: the 'E'),
-   * and the exponent digits at bytes 5-6 of b */
-  uint64_t mant = (a >> 32) | (b << 32);
-  if ((aq_swar_nondigits(mant) & 0x0080808080808080ULL) ||
-      (aq_swar_nondigits(b) & 0x0080800000000000ULL))
-    return 0;
-  int ex = (int)(aq_swar_byte(b, 5) & 0x0F) * 10 + (int)(aq_swar_byte(b, 6) & 0x0F);
-  /* value = 0.d1..d7 * 10^ex = d1..d7 * 10^(ex - 7) */
-  return aq_number_exact(aq_swar_digits(mant, 7), (esign == '-' ? -ex : ex) - 7, sign == '-',
-                         x);
+  (void)p;
+  (void)x;
+  return 0;
 }
 #endif
 
@@ -201,24 +182,16 @@ static int peer_field(const char *p, double *x)
  * new k.  Stops with c at the first token that is anything else (a glued
  * value, an end marker, a bad token: the careful loop takes it) or at the
  * end of the input.  The common case, in one pass over the bytes. */
-static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts, int avx2)
+static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
 {
   const char *s = c->s, *p = s + c->pos, *end = s + c->n;
   long line = c->line;
-  int peer = 0; /* the last value was a PEER field: four at a time may follow */
   while (k < npts) {
-    if (peer && avx2) {
-      k = aq_at2_fields4(&p, end, &line, acc, k, npts);
-      if (k >= npts)
-        break;
-    }
     if (end - p > PEER_FIELD_W && peer_field(p, &acc[k])) {
       k++;
       p += PEER_FIELD_W;
-      peer = 1;
       continue;
     }
-    peer = 0;
     if (p < end && sep_kind[(unsigned char)*p] == 2) { /* a field may follow */
       p = aq_text_past_eol(p, end);
       line++;
@@ -592,9 +565,8 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
 
   size_t k = 0;
   char field[40], tokq[AT2_TOKEN_MAX + 8];
-  int avx2 = aq_io_avx2();
   while (k < npts) {
-    k = plain_values(&c, acc, k, npts, avx2);
+    k = plain_values(&c, acc, k, npts);
     if (k >= npts)
       break;
     /* separators */

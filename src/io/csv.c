@@ -37,12 +37,9 @@
 #include <string.h>
 #include <strings.h>
 
-#include "cpu.h"
-#include "csv_fields.h"
 #include "fixed.h"
 #include "number.h"
 #include "readers.h"
-#include "swar.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
  * times are rounded to a few decimals; 1 % of dt tolerates that and still
@@ -65,7 +62,7 @@ typedef struct {
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
 static int next_line(csv_cur *c, size_t *b, size_t *e)
 {
-  if (!aq_text_line_(c->s, c->n, &c->pos, b, e))
+  if (!aq_text_line(c->s, c->n, &c->pos, b, e))
     return 0;
   c->line++;
   return 1;
@@ -232,7 +229,7 @@ static long row_line(const char *s, size_t n, size_t pos, long line0, size_t idx
 {
   long line = line0 - 1;
   size_t b, e, row = 0;
-  while (aq_text_line_(s, n, &pos, &b, &e)) {
+  while (aq_text_line(s, n, &pos, &b, &e)) {
     line++;
     trim_line(s, &b, &e);
     if (b < e && row++ == idx)
@@ -255,7 +252,6 @@ typedef struct {
 /* The bytes a shaped read needs from a field's start: a sign and the 16 the
  * shape's load reads (which hold the byte after the number, len <= 15). */
 #define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
-#define BARE_BACKOFF_MAX 64 /* rows between tries of aq_csv_rows4 at most */
 
 /* The rows from *pp on that are numbers and separators only: ncols (a
  * constant where inlined) finite plain decimals separated by sep (not ' '),
@@ -268,29 +264,10 @@ typedef struct {
  * written values to row k: the row that fills k later overwrites them. */
 static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, char sep,
                                aq_number_shape *shape, double *const *dst, size_t k,
-                               size_t cap, int vec)
+                               size_t cap)
 {
   const char *p = *pp;
-  /* rows to read one at a time before the next try of aq_csv_rows4, and
-   * that count's next value: doubled after each try that takes nothing,
-   * so rows that never fit the kernel cost few tries */
-  unsigned skip = 0, backoff = 1;
-  vec = vec && ncols <= AQ_CSV_FIELDS_COLS_MAX;
   while (k < cap) {
-    if (vec && skip-- == 0) {
-      size_t i = 0;
-      while (i < ncols && shape[i].len)
-        i++;
-      size_t k1 = i == ncols ? aq_csv_rows4(&p, end, ncols, sep, shape, dst, k, cap) : k;
-      if (k1 > k)
-        backoff = 1;
-      else if (backoff < BARE_BACKOFF_MAX)
-        backoff *= 2;
-      skip = backoff - 1;
-      k = k1;
-      if (k >= cap || p >= end)
-        break;
-    }
     const char *q = p;
     size_t i = 0;
     for (; i < ncols; i++) {
@@ -350,13 +327,12 @@ static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t
              : (long)i == pr->tcol ? rows->tt
                                    : NULL;
   size_t k0 = k;
-  const int vec = aq_io_avx2(); /* the AVX2 rows (csv_fields.h) */
   while (p < end && k < rows->cap) {
     if (pr->sep != ' ') { /* the common rows first */
       if (pr->ncols == 2) /* (time, acceleration): its own loop */
-        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap, vec);
+        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
       else
-        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap, vec);
+        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
       if (p >= end || k >= rows->cap)
         break;
     }
@@ -549,10 +525,8 @@ static size_t step_range(const double *t, size_t n, double est, double tol, doub
                          double *hi)
 {
   double a = INFINITY, b = -INFINITY;
-  size_t off = 0, i = 1;
-  if (aq_io_avx2() && n > 1) /* four at a time (csv_fields.h) */
-    i = aq_csv_steps4(t, n, 1, est, tol, &a, &b, &off);
-  for (; i < n; i++) {
+  size_t off = 0;
+  for (size_t i = 1; i < n; i++) {
     double d = t[i] - t[i - 1];
     a = d < a ? d : a;
     b = d > b ? d : b;

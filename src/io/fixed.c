@@ -1,15 +1,50 @@
-/* fixed.c: line cursor and fixed-width Fortran fields (see fixed.h). */
+/* fixed.c: line cursor, fixed-width Fortran fields and dates (see fixed.h). */
+#define _DEFAULT_SOURCE /* timegm(3): glibc declares it only with this */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
 
 #include "fixed.h"
 #include "readers.h"
 
 #define FIELD_MAX 64 /* longest numeric field accepted, characters */
+
+size_t aq_text_line_end(const char *s, size_t i, size_t n)
+{
+  while (i < n && s[i] != '\n' && s[i] != '\r')
+    i++;
+  return i;
+}
+
+const char *aq_text_past_eol(const char *p, const char *end)
+{
+  if (*p == '\r') {
+    while (p < end && *p == '\r')
+      p++;
+    if (p < end && *p == '\n')
+      p++;
+    return p;
+  }
+  return p + 1;
+}
+
+int aq_text_line(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
+{
+  size_t p = *pos;
+  if (p >= n)
+    return 0;
+  *b = p;
+  p = aq_text_line_end(s, p, n);
+  *e = p;
+  if (p < n)
+    p = (size_t)(aq_text_past_eol(s + p, s + n) - s);
+  *pos = p;
+  return 1;
+}
 
 void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n)
 {
@@ -40,7 +75,7 @@ int aq_line_blank(const aq_line *ln)
 int aq_lines_next(aq_lines *c, aq_line *out)
 {
   size_t b, e;
-  if (aq_lines_at_end(c) || !aq_text_line_(c->s, c->n, &c->pos, &b, &e))
+  if (aq_lines_at_end(c) || !aq_text_line(c->s, c->n, &c->pos, &b, &e))
     return 0;
   out->p = c->s + b;
   out->len = e - b;
@@ -171,57 +206,45 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
   return AQ_OK;
 }
 
-/* Days since 1970-01-01 of a proleptic Gregorian date (Howard Hinnant's
- * days_from_civil algorithm). */
-static long days_from_civil(long y, long m, long d)
-{
-  y -= m <= 2;
-  long era = (y >= 0 ? y : y - 399) / 400;
-  long yoe = y - era * 400;
-  long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-  long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + doe - 719468;
-}
+/* ---- calendar: timegm(3) and gmtime_r(3) -------------------------------- */
 
-static void civil_from_days(long z, long *y, long *m, long *d)
+/* Seconds since 1970-01-01T00:00:00Z of midnight (UTC) of year-month-day,
+ * where day may run past the month (a day of the year as the day of
+ * January): timegm normalises it.  Returns 1, or 0 if timegm fails. */
+static int utc_midnight_s(int year, int month, int day, long long *t)
 {
-  z += 719468;
-  long era = (z >= 0 ? z : z - 146096) / 146097;
-  long doe = z - era * 146097;
-  long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  long mp = (5 * doy + 2) / 153;
-  *d = doy - (153 * mp + 2) / 5 + 1;
-  *m = mp + (mp < 10 ? 3 : -9);
-  *y = yoe + era * 400 + (*m <= 2);
+  struct tm tm;
+  memset(&tm, 0, sizeof tm);
+  tm.tm_year = year - 1900;
+  tm.tm_mon = month - 1;
+  tm.tm_mday = day;
+  time_t s = timegm(&tm);
+  if (s == (time_t)-1) /* midnight is never the second before 1970 */
+    return 0;
+  *t = (long long)s;
+  return 1;
 }
 
 int aq_month_day(int year, int jday, int *month, int *day)
 {
-  if (year < 1800 || year > 2200 || jday < 1 || jday > 366)
+  long long t;
+  if (year < 1800 || year > 2200 || jday < 1 || jday > 366 || !utc_midnight_s(year, 1, jday, &t))
     return 0;
-  long y, m, d;
-  civil_from_days(days_from_civil(year, 1, 1) + jday - 1, &y, &m, &d);
-  if (y != year)
+  time_t s = (time_t)t;
+  struct tm tm;
+  if (!gmtime_r(&s, &tm) || tm.tm_year + 1900 != year)
     return 0;
-  *month = (int)m;
-  *day = (int)d;
+  *month = tm.tm_mon + 1;
+  *day = tm.tm_mday;
   return 1;
 }
 
 /* ISO-8601 of a date and a time of day in ms that may fall outside the day
  * (negative: days before; beyond 24 h: days after). */
-static void iso_from_day_ms(char *out, size_t cap, int year, int month, int day, long tod_ms)
+static int iso_from_day_ms(char *out, size_t cap, int year, int month, int day, long tod_ms)
 {
-  long days = days_from_civil(year, month, day);
-  long shift = tod_ms >= 0 ? tod_ms / 86400000L : -((-tod_ms + 86399999L) / 86400000L);
-  days += shift;
-  tod_ms -= shift * 86400000L;
-  long y, m, d;
-  civil_from_days(days, &y, &m, &d);
-  snprintf(out, cap, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.%03ldZ", y, m, d,
-           tod_ms / 3600000L, (tod_ms / 60000L) % 60, (tod_ms / 1000L) % 60,
-           tod_ms % 1000L);
+  long long t;
+  return utc_midnight_s(year, month, day, &t) && aq_iso_from_ms(out, cap, t * 1000 + tod_ms);
 }
 
 static int date_ok(int year, int month, int day, int minute, double sec)
@@ -235,9 +258,8 @@ int aq_iso_time(char *out, size_t cap, int year, int month, int day, int hour,
 {
   if (!date_ok(year, month, day, minute, sec) || hour < 0 || hour > 48)
     return 0;
-  iso_from_day_ms(out, cap, year, month, day,
-                  ((long)hour * 60 + minute) * 60000L + lround(sec * 1000.0));
-  return 1;
+  return iso_from_day_ms(out, cap, year, month, day,
+                         ((long)hour * 60 + minute) * 60000L + lround(sec * 1000.0));
 }
 
 int aq_iso_time_local(char *out, size_t cap, int year, int month, int day, int hour,
@@ -246,9 +268,8 @@ int aq_iso_time_local(char *out, size_t cap, int year, int month, int day, int h
   if (!date_ok(year, month, day, minute, sec) || hour < 0 || hour > 24 || east_h < -14 ||
       east_h > 14)
     return 0;
-  iso_from_day_ms(out, cap, year, month, day,
-                  ((long)(hour - east_h) * 60 + minute) * 60000L + lround(sec * 1000.0));
-  return 1;
+  return iso_from_day_ms(out, cap, year, month, day,
+                         ((long)(hour - east_h) * 60 + minute) * 60000L + lround(sec * 1000.0));
 }
 
 int aq_iso_parse(const char *s, double *epoch_s)
@@ -265,19 +286,25 @@ int aq_iso_parse(const char *s, double *epoch_s)
   if (y < 1 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 24 ||
       mi < 0 || mi > 59 || !(sec >= 0 && sec < 61))
     return 0;
-  *epoch_s = (double)days_from_civil(y, mo, d) * 86400.0 + h * 3600.0 + mi * 60.0 + sec;
+  long long day_s;
+  if (!utc_midnight_s(y, mo, d, &day_s))
+    return 0;
+  *epoch_s = (double)day_s + h * 3600.0 + mi * 60.0 + sec;
   return 1;
 }
 
 int aq_iso_from_ms(char *out, size_t cap, long long ms)
 {
   long long days = ms >= 0 ? ms / 86400000LL : -((-ms + 86399999LL) / 86400000LL);
-  long long tod = ms - days * 86400000LL;
-  long y, m, d;
+  long long tod = ms - days * 86400000LL; /* 0 .. 86399999 */
   if (days < -100000 || days > 3000000)
     return 0;
-  civil_from_days((long)days, &y, &m, &d);
-  snprintf(out, cap, "%04ld-%02ld-%02ldT%02lld:%02lld:%02lld.%03lldZ", y, m, d,
-           tod / 3600000LL, (tod / 60000LL) % 60, (tod / 1000LL) % 60, tod % 1000LL);
+  time_t s = (time_t)(days * 86400LL);
+  struct tm tm;
+  if (!gmtime_r(&s, &tm))
+    return 0;
+  snprintf(out, cap, "%04d-%02d-%02dT%02lld:%02lld:%02lld.%03lldZ", tm.tm_year + 1900,
+           tm.tm_mon + 1, tm.tm_mday, tod / 3600000LL, (tod / 60000LL) % 60,
+           (tod / 1000LL) % 60, tod % 1000LL);
   return 1;
 }

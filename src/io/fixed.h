@@ -26,6 +26,18 @@ typedef struct aq_line_s {
   long line;     /* 1-based line number */
 } aq_line;
 
+/* The line at *pos of s[0..n) as [*b, *e) without its end (LF, CRLF, CR,
+ * CR CR LF); *pos moves past the end.  Returns 0 (nothing set) at the end
+ * of the input. */
+int aq_text_line(const char *s, size_t n, size_t *pos, size_t *b, size_t *e);
+
+/* The offset of the first LF or CR in s[i..n), or n. */
+size_t aq_text_line_end(const char *s, size_t i, size_t n);
+
+/* Past the line end at p < end (*p is LF or CR): LF, CR LF, CR, or CRs
+ * then LF, each one line, as every text reader counts them. */
+const char *aq_text_past_eol(const char *p, const char *end);
+
 void aq_lines_init(aq_lines *c, const unsigned char *buf, size_t n);
 
 /* The next line in *out; 0 at end of input.  Trailing DOS end-of-file bytes

@@ -41,7 +41,7 @@ typedef struct {
 
 static void next_line(knet_cur *c, size_t *b, size_t *e)
 {
-  if (aq_text_line_(c->s, c->n, &c->pos, b, e))
+  if (aq_text_line(c->s, c->n, &c->pos, b, e))
     c->line++;
   else
     *b = *e = c->pos;

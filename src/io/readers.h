@@ -169,11 +169,6 @@ aq_status aq_csv_channels(const unsigned char *buf, size_t n, const char *name,
 
 /* aq_decimal_parse, aq_number_parse: the decimal parser, number.h. */
 
-/* Shared by the text readers (record.c): the line at *pos of s[0..n) as
- * [*b, *e) without its end (LF, CRLF, CR, CR CR LF); *pos moves past the end.
- * Returns 0 (nothing set) at the end of the input. */
-int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e);
-
 /* Shared by the readers (record.c): set rec->path to name and rec->name to
  * its last path component.  Returns AQ_OK or AQ_ENOMEM (err filled). */
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err);

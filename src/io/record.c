@@ -17,7 +17,6 @@
 #include "../units.h"
 #include "formats.h"
 #include "readers.h"
-#include "swar.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -155,20 +154,6 @@ void aq_record_free(aq_record *rec)
   memset(rec, 0, sizeof *rec);
 }
 
-int aq_text_line_(const char *s, size_t n, size_t *pos, size_t *b, size_t *e)
-{
-  size_t p = *pos;
-  if (p >= n)
-    return 0;
-  *b = p;
-  p = aq_swar_line_end(s, p, n);
-  *e = p;
-  if (p < n)
-    p = (size_t)(aq_text_past_eol(s + p, s + n) - s);
-  *pos = p;
-  return 1;
-}
-
 aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
 {
   const char *p = name ? name : "";
@@ -248,10 +233,6 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
    * (bytes >= 0x80 are allowed: Shift-JIS, Latin-1, UTF-8 in headers). */
   size_t m = n < AQ_SNIFF_BYTES ? n : AQ_SNIFF_BYTES, ctrl = 0;
   for (size_t i = 0; i < m; i++) {
-    if (m - i >= 8 && !aq_swar_below(aq_swar_load((const char *)buf + i), 0x20)) {
-      i += 7; /* eight bytes of plain text at once */
-      continue;
-    }
     unsigned char c = buf[i];
     if (c == 0)
       return AQ_FMT_UNKNOWN_BINARY;

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "../units.h"
+#include "fixed.h"
 #include "readers.h"
 
 #define SAC_HEADER_BYTES 632
@@ -127,33 +128,18 @@ static double sac_delta_decimal(float f)
   return (double)f;
 }
 
-static int is_leap(long y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
-
 /* NZYEAR..NZMSEC -> "YYYY-MM-DDTHH:MM:SS.mmmZ", or "" if any is undefined
  * or out of range. */
 static void sac_reference(const sac_hdr *h, char *out, size_t cap)
 {
   long y = hi(h, W_NZYEAR), jd = hi(h, W_NZJDAY), hh = hi(h, W_NZHOUR),
        mi = hi(h, W_NZMIN), ss = hi(h, W_NZSEC), ms = hi(h, W_NZMSEC);
+  int mon, day;
   out[0] = '\0';
-  if (y < 1 || y > 9999 || jd < 1 || jd > 365 + is_leap(y) || hh < 0 || hh > 23 ||
-      mi < 0 || mi > 59 || ss < 0 || ss > 60 || ms < 0 || ms > 999)
-    return;
-  static const int mdays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-  long mon = 0, d = jd;
-  while (mon < 12) {
-    long len = mdays[mon] + (mon == 1 && is_leap(y));
-    if (d <= len)
-      break;
-    d -= len;
-    mon++;
-  }
-  char tmp[128];
-  snprintf(tmp, sizeof tmp, "%04ld-%02ld-%02ldT%02ld:%02ld:%02ld.%03ldZ", y,
-           mon + 1, d, hh, mi, ss, ms);
-  size_t l = strlen(tmp) < cap ? strlen(tmp) : cap - 1;
-  memcpy(out, tmp, l);
-  out[l] = '\0';
+  if (hh < 0 || hh > 23 || mi < 0 || mi > 59 || ss < 0 || ss > 60 || ms < 0 || ms > 999 ||
+      !aq_month_day((int)y, (int)jd, &mon, &day) ||
+      !aq_iso_time(out, cap, (int)y, mon, day, (int)hh, (int)mi, (double)ss + ms * 1e-3))
+    out[0] = '\0';
 }
 
 aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,

@@ -1,17 +1,17 @@
 /* capacity.c: the capacity results of one arch (`archquake capacity`).
- * Top: one line per (record, polarity) through every scale the capacity
- * search ran (capacity/scan_points), ordered by scale: the scale factor
- * (or the PGA of the scaled record, g) against the run's peak rotation
- * (over q_c, or rad), so that a collapse runs out to q_c and a
- * resurrection (survival above a collapse) comes back; beside it, one strip
- * per line sharing the y axis: the range scanned (grey, from the scale
- * below which the arch never moves to the cap) with the collapse intervals
- * shaded in the line's colour.  Below, the fitted lognormal fragility
- * Phi(ln(x/median)/beta) in one IM, the band between the CDFs of the
- * median's interval ends, and the data it was fitted to, rebuilt as
- * aq_fragility_fit_records builds them: per record the lowest first
- * collapse of its polarities, at i/n (n records), or censored at its cap
- * (open circles). */
+ * Top: the verdict of every scale the capacity search ran
+ * (capacity/scan_points), as a strip per (record, polarity) along a
+ * shared scale axis (scale factor, or the PGA of the scaled record, g):
+ * blank below the scale that first moves the arch, shaded by the run's
+ * peak rotation (over q_c, or rad) where it survived, red and hatched
+ * where it collapsed (the collapse intervals), a tick at every change of
+ * verdict; beside each strip its first collapse scale, and R where it
+ * survives again above a collapse (a resurrection).  Below, the fitted
+ * lognormal fragility Phi(ln(x/median)/beta) in one IM, the band between
+ * the CDFs of the median's interval ends, and the data it was fitted to,
+ * rebuilt as aq_fragility_fit_records builds them: per record the lowest
+ * first collapse of its polarities, at i/n (n records), or censored at
+ * its cap (open circles). */
 #include <math.h>
 #include <plplot.h>
 #include <stdio.h>
@@ -22,13 +22,16 @@
 
 static const char *const AX_SCALE = "scale factor on the processed record (1)";
 static const char *const AX_PGA = "PGA of the scaled record (g)";
-static const char *const AX_QC = "peak rotation / q#dc#u (1)";
-static const char *const AX_RAD = "peak rotation (rad)";
+static const char *const AX_QC = "survived: peak rotation / q#dc#u (1)";
+static const char *const AX_RAD = "survived: peak rotation (rad)";
 static const char *const AX_PROB = "probability of collapse (1)";
 /* axis titles of the IMs of aq_fragility_im_names */
 static const char *const AX_IM[AQ_FRAGILITY_NIM] = {
     "PGA (g)", "PGV (m/s)", "PGD (m)", "Arias intensity (m/s)", "CAV (m/s)",
     "PGA / (#gl#d0#u g) (1)"};
+/* the IMs' units, for the fitted median */
+static const char *const IM_UNIT[AQ_FRAGILITY_NIM] = {"g", "m/s", "m", "m/s", "m/s",
+                                                      "#gl#d0#u g"};
 enum { NCURVE = 201 }; /* points of each CDF */
 
 /* The fragility panel's data. */
@@ -52,12 +55,11 @@ typedef struct {
   size_t *rec;  /* n: each line's record (0-based, in the file's order) */
   size_t nrec;
   int have_pol[2]; /* a normal, a reversed line among them */
-  PLFLT *bx, *by;  /* room for the longest line's points */
   frag f;
-  int logy;     /* 1: y on a log10 axis */
-  double ylo, yhi, xhi; /* axis ranges (y in its unit, not log) */
+  int logy;     /* 1: the scale axis log10 */
+  double ylo, yhi, xhi; /* scale axis range (in its unit, not log); shade's top */
   double split; /* page fraction of the fragility panel (bottom) */
-  double page_px, legend_px; /* page height, the top legend's height (px) */
+  double page_px, strips_px; /* page height, the strips' height (px) */
 } cap;
 
 enum { D_MOVE = 0, D_FIRST = 1, D_PGA = 2, D_SMAX = 4, I_START = 2, I_COUNT = 3 };
@@ -67,7 +69,7 @@ static const int LINE_COLOR[] = {AQ_PC_BLUE,   AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_
                                  AQ_PC_PURPLE, AQ_PC_TEAL,   AQ_PC_BROWN, AQ_PC_PINK,
                                  AQ_PC_OLIVE,  AQ_PC_NAVY};
 enum { NCOLOR = sizeof LINE_COLOR / sizeof LINE_COLOR[0] };
-enum { LEGEND_COLUMNS = 2 };
+enum { ROW_PX = 26, RECORD_GAP_PX = 8 }; /* a strip, the space between records */
 
 static const char *base(const char *p)
 {
@@ -168,20 +170,19 @@ static void draw_fragility(const cap *c)
   const frag *f = &c->f;
   const aq_h5_fragility_fit *q = f->fit;
   const double *lx = f->cx;
-  double poly[2][2 * NCURVE];
   plvpor(0.1, 0.95, c->split * 0.16, c->split * 0.88);
   plwind(0, f->hi, 0, 1.02);
   int fitted = isfinite(f->cdf[0][0]);
   int band = fitted && !isnan(q->median_lo) && !isnan(q->median_hi);
-  if (band) { /* between the CDFs at median_lo (above) and median_hi */
-    for (int i = 0; i < NCURVE; i++) {
-      poly[0][i] = lx[i];
-      poly[1][i] = f->cdf[1][i];
-      poly[0][2 * NCURVE - 1 - i] = lx[i];
-      poly[1][2 * NCURVE - 1 - i] = f->cdf[2][i];
-    }
+  if (band) { /* between the CDFs at median_lo (above) and median_hi, a
+                 quadrilateral per step: PLplot fills one polygon of many
+                 points wrongly on a PDF page scaled by plsdidev */
     plcol0(AQ_PC_LIGHT);
-    plfill(2 * NCURVE, poly[0], poly[1]);
+    for (int i = 0; i + 1 < NCURVE; i++) {
+      PLFLT qx[4] = {lx[i], lx[i + 1], lx[i + 1], lx[i]};
+      PLFLT qy[4] = {f->cdf[1][i], f->cdf[1][i + 1], f->cdf[2][i + 1], f->cdf[2][i]};
+      plfill(4, qx, qy);
+    }
   }
   if (fitted) {
     plcol0(AQ_PC_BLUE);
@@ -213,8 +214,8 @@ static void draw_fragility(const cap *c)
   char title[320];
   if (fitted)
     snprintf(title, sizeof title,
-             "fragility of arch %.100s: median %.3g, #gb %.3g (%zu records, %zu censored)",
-             c->arch, q->median, q->beta, f->n, f->n - f->ncol);
+             "fragility of arch %.100s: median %.3g %s, #gb %.3g (%zu records, %zu censored)",
+             c->arch, q->median, IM_UNIT[f->m], q->beta, f->n, f->n - f->ncol);
   else
     snprintf(title, sizeof title, "fragility of arch %.100s: %s (%zu records, %zu censored)",
              c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
@@ -297,78 +298,89 @@ static void ranges(cap *c)
   c->xhi = (xhi > 0 ? xhi : 1) * 1.04;
 }
 
-/* The lines: each line's points ordered by scale (as stored). */
-static void draw_lines(const cap *c)
+/* Strip k's row: its top edge in rows from the top (records apart by a gap). */
+static double row_top(const cap *c, size_t k)
 {
-  const aq_h5_capacity_table *t = c->t;
-  PLFLT *x = c->bx, *y = c->by;
-  for (size_t k = 0; k < c->n; k++) {
-    const aq_h5_capacity_row *r = &t->row[c->row[k]];
-    size_t np = 0;
-    for (size_t i = 0; i < r->point_count; i++) {
-      const aq_capacity_point *p = &t->point[r->point_start + i];
-      double yy = y_of(c, k, p->scale);
-      if (isfinite(x_of(c, p)) && yy > 0) {
-        x[np] = x_of(c, p);
-        y[np++] = axis_y(c, yy);
-      }
-    }
-    plcol0(c->color[k]);
-    pllsty(reversed(r) ? 2 : 1);
-    plwidth(1.5);
-    if (np > 1)
-      plline((PLINT)np, x, y);
-    else if (np == 1)
-      plstring(1, x, y, "•");
-    plwidth(1);
-    pllsty(1);
-  }
+  return (double)k + (double)c->rec[k] * RECORD_GAP_PX / (double)ROW_PX;
 }
 
-/* The strips: a column per record [r, r + 1], split between its lines
- * (polarities): the scanned range (grey) and the collapse intervals shaded
- * in the record's colour (hatched for a reversed polarity). */
-static void draw_strips(const cap *c)
+static void fill_box(double x0, double x1, double y0, double y1)
+{
+  PLFLT x[4] = {x0, x1, x1, x0}, y[4] = {y0, y0, y1, y1};
+  plfill(4, x, y);
+}
+
+/* The shade of a survived run: 0 at rest, 1 at the collapse rotation (or
+ * the largest peak rotation in rad). */
+static double shade(const cap *c, const aq_capacity_point *p)
+{
+  double v = c->o->x_rad ? p->peak_rotation_rad / c->xhi : p->peak_rotation_over_qc;
+  return isfinite(v) ? fmin(fmax(v, 0), 1) : 0;
+}
+
+/* Strip k in rows [y0, y1]: the scanned points' verdicts, each drawn from
+ * halfway to the point below to halfway to the point above (on the drawn
+ * axis), then the collapse intervals and the ticks at each change. */
+static void draw_strip(const cap *c, size_t k, double y0, double y1)
 {
   const aq_h5_capacity_table *t = c->t;
-  for (size_t k0 = 0, k1; k0 < c->n; k0 = k1) {
-    for (k1 = k0; k1 < c->n && c->rec[k1] == c->rec[k0];)
-      k1++;
-    double w = 0.84 / (double)(k1 - k0), x0 = (double)c->rec[k0] + 0.08;
-    for (size_t k = k0; k < k1; k++, x0 += w) {
-      const aq_h5_capacity_row *r = &t->row[c->row[k]];
-      double smax = r->d[D_SMAX], move = isfinite(r->d[D_MOVE]) ? r->d[D_MOVE] : 0;
-      double y0 = fmax(y_of(c, k, fmin(move, smax)), c->ylo), y1 = y_of(c, k, smax);
-      if (y1 > 0 && isfinite(y1) && y1 > y0) {
-        PLFLT gx[2] = {x0 + w / 2, x0 + w / 2}, gy[2] = {axis_y(c, y0), axis_y(c, y1)};
-        plcol0(AQ_PC_GREY);
-        plwidth(2);
-        plline(2, gx, gy);
-        plwidth(1);
-      }
-      for (int64_t j = 0; j < r->i[I_COUNT]; j++) {
-        size_t q = (size_t)(r->i[I_START] + j);
-        if (q >= t->ninterval)
-          break;
-        double a = y_of(c, k, t->interval[2 * q]);
-        double b = y_of(c, k, fmin(t->interval[2 * q + 1], smax));
-        if (!(a > 0 && b >= a))
-          continue;
-        PLFLT fx[5] = {x0 + 0.06 * w, x0 + 0.94 * w, x0 + 0.94 * w, x0 + 0.06 * w, 0};
-        PLFLT fy[5] = {axis_y(c, a), axis_y(c, a), axis_y(c, b), axis_y(c, b), 0};
-        fx[4] = fx[0], fy[4] = fy[0];
-        plcol0(c->color[k]);
-        plpsty(reversed(r) ? 3 : 0); /* 3: hatched at 45 degrees */
-        plfill(4, fx, fy);
-        plpsty(0);
-        plline(5, fx, fy);
+  const aq_h5_capacity_row *r = &t->row[c->row[k]];
+  double smax = r->d[D_SMAX], move = r->d[D_MOVE];
+  double xa = axis_y(c, c->ylo), xb = axis_y(c, c->yhi);
+  double xmove = isfinite(move) && y_of(c, k, move) > c->ylo ? axis_y(c, y_of(c, k, move)) : xa;
+  double xcap = isfinite(smax) && y_of(c, k, smax) > 0 ? axis_y(c, y_of(c, k, smax)) : xb;
+  PLFLT lx[2] = {xa, xmove}, ly[2] = {0.5 * (y0 + y1), 0.5 * (y0 + y1)};
+  plcol0(AQ_PC_GREY); /* at rest: a thin line */
+  plline(2, lx, ly);
+  double prev = xmove;
+  for (size_t i = 0; i < r->point_count; i++) {
+    const aq_capacity_point *p = &t->point[r->point_start + i];
+    double y = y_of(c, k, p->scale);
+    if (!(y > 0) || p->collapsed)
+      continue;
+    double x = axis_y(c, y), next = xcap;
+    for (size_t j = i + 1; j < r->point_count; j++) {
+      double yj = y_of(c, k, t->point[r->point_start + j].scale);
+      if (yj > 0 && axis_y(c, yj) > x) {
+        next = 0.5 * (x + axis_y(c, yj));
+        break;
       }
     }
-    char lab[24];
-    snprintf(lab, sizeof lab, "%zu", c->rec[k0] + 1);
-    plcol0(AQ_PC_FG);
-    plmtex("b", 1.2, (c->rec[k0] + 0.5) / (double)c->nrec, 0.5, lab);
+    double from = fmax(prev, xmove);
+    if (next > from) {
+      plcol1(shade(c, p));
+      fill_box(from, fmin(next, xcap), y0, y1);
+    }
+    prev = next;
   }
+  for (int64_t j = 0; j < r->i[I_COUNT]; j++) {
+    size_t q = (size_t)(r->i[I_START] + j);
+    if (q >= t->ninterval)
+      break;
+    double a = y_of(c, k, t->interval[2 * q]);
+    double b = y_of(c, k, fmin(t->interval[2 * q + 1], smax));
+    if (!(a > 0 && b >= a))
+      continue;
+    double xa_ = axis_y(c, fmax(a, c->ylo)), xb_ = axis_y(c, b);
+    plcol0(AQ_PC_RED);
+    fill_box(xa_, xb_, y0, y1);
+    plcol0(AQ_PC_BG); /* hatched: a collapse does not rest on colour alone */
+    plpsty(3);
+    fill_box(xa_, xb_, y0, y1);
+    plpsty(0);
+    plcol0(AQ_PC_FG); /* the changes of verdict */
+    plwidth(2);
+    PLFLT tx[2] = {xa_, xa_}, ty[2] = {y0 - 0.1, y1 + 0.1};
+    plline(2, tx, ty);
+    if (t->interval[2 * q + 1] < smax) {
+      tx[0] = tx[1] = xb_;
+      plline(2, tx, ty);
+    }
+    plwidth(1);
+  }
+  plcol0(AQ_PC_FG);
+  PLFLT bx[5] = {xmove, xcap, xcap, xmove, xmove}, by[5] = {y0, y0, y1, y1, y0};
+  plline(5, bx, by);
 }
 
 static int draw(void *ctx, aq_error *err)
@@ -377,76 +389,94 @@ static int draw(void *ctx, aq_error *err)
   const cap *c = ctx;
   const aq_h5_capacity_table *t = c->t;
   const double H = c->page_px;
-  const double ax0 = 0.11, ax1 = 0.74, sx0 = 0.78, sx1 = 0.96; /* main, strips */
-  /* top panel, from the top: title 40 px, axes, tick labels and axis title
-     78 px, the legend, 20 px */
-  const double vy1 = 1 - 40 / H, vy0 = c->split + (c->legend_px + 98) / H;
-  const char *yt = c->o->y_pga ? AX_PGA : AX_SCALE, *xt = c->o->x_rad ? AX_RAD : AX_QC;
+  /* the strips, from the top: title 50 px, the strips, the axis' labels
+     and title 60 px, the key 80 px */
+  const double vy1 = 1 - 50 / H, vy0 = vy1 - c->strips_px / H;
+  const char *yt = c->o->y_pga ? AX_PGA : AX_SCALE;
   pladv(0);
   plschr(0, 0.85);
-  /* main panel */
-  plvpor(ax0, ax1, vy0, vy1);
-  plwind(0, c->xhi, axis_y(c, c->ylo), axis_y(c, c->yhi));
-  if (!c->o->x_rad) { /* the collapse rotation */
-    PLFLT qx[2] = {1, 1}, qy[2] = {axis_y(c, c->ylo), axis_y(c, c->yhi)};
-    plcol0(AQ_PC_GREY);
-    pllsty(3);
-    plline(2, qx, qy);
-    pllsty(1);
+  /* the labels' margin: the longest name and its polarity, or as much as fits */
+  size_t longest = 1;
+  for (size_t k = 0; k < c->n; k++) {
+    size_t len = strlen(base(t->row[c->row[k]].record)) + 10;
+    longest = len > longest ? len : longest;
   }
-  draw_lines(c);
+  double per_char = 0.8 / (double)aq_plot_chars_fit(0.8);
+  double left = fmin(fmax((double)(longest + 2) * per_char, 0.15), 0.42), right = 0.84;
+  double nrows = c->n ? row_top(c, c->n - 1) + 1 : 1;
+  plvpor(left, right, vy0, vy1);
+  plwind(axis_y(c, c->ylo), axis_y(c, c->yhi), nrows, 0);
+  PLFLT cpos[4] = {0, 0.1, 0.5, 1}, rr[4] = {1, 1, 0.95, 0.55}; /* as the suite's */
+  PLFLT gg[4] = {1, 0.93, 0.6, 0.3}, bb[4] = {1, 0.6, 0.2, 0.1};
+  plscmap1l(1, 4, cpos, rr, gg, bb, NULL);
+  size_t fit = aq_plot_chars_fit(left - 0.01);
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    double y0 = row_top(c, k) + 0.12, y1 = row_top(c, k) + 0.88;
+    draw_strip(c, k, y0, y1);
+    /* the label: the record's name on its first strip, and the polarity */
+    char name[1024], lab[1100];
+    int first = k == 0 || c->rec[k] != c->rec[k - 1];
+    aq_plot_ellipsize(base(r->record), fit > 12 ? fit - 11 : 1, name, sizeof name);
+    snprintf(lab, sizeof lab, "%s  %s", first ? name : "", r->polarity);
+    double ymid = 1 - (row_top(c, k) + 0.5) / nrows;
+    plcol0(AQ_PC_FG);
+    plmtex("lv", 0.8, ymid, 1, lab);
+    /* beside it: the first collapse, R for a resurrection */
+    char fc[64];
+    double f = r->d[D_FIRST];
+    if (strcmp(r->status, "ok") != 0 && strncmp(r->status, "collapse", 8) != 0 &&
+        isnan(f) && r->point_count == 0)
+      snprintf(fc, sizeof fc, "%s", r->status);
+    else if (isfinite(f))
+      snprintf(fc, sizeof fc, "%.3g%s", y_of(c, k, f), r->i[0] > 0 ? "  R" : "");
+    else
+      snprintf(fc, sizeof fc, "none");
+    plmtex("rv", 0.8, ymid, 0, fc);
+  }
   plcol0(AQ_PC_FG);
-  plbox("bcnst", 0, 0, c->logy ? "bcnstvlf" : "bcnstv", 0, 0);
-  plmtex("b", 3.0, 0.5, 0.5, xt);
-  plmtex("l", 4.2, 0.5, 0.5, yt);
+  plbox(c->logy ? "bnstlf" : "bnst", 0, 0, "", 0, 0);
+  plmtex("b", 3.0, 0.5, 0.5, yt);
+  plmtex("t", 0.6, 1.02, 0, "first collapse");
   char title[256];
-  snprintf(title, sizeof title, "arch %.100s: the runs of the capacity scan", c->arch);
-  plmtex("t", 1.2, 0.5, 0.5, title);
+  snprintf(title, sizeof title, "arch %.100s: the verdict of each scanned run", c->arch);
+  plvpor(0.02, 0.98, vy0, vy1); /* the title centred on the page */
+  plmtex("t", 2.2, 0.5, 0.5, title);
   if (!t->have_points)
-    plmtex("t", -2.0, 0.5, 0.5, "(no scanned points in this file: written before "
-                                "capacity/scan_points)");
-  /* strips */
-  plvpor(sx0, sx1, vy0, vy1);
-  plwind(0, (double)c->nrec, axis_y(c, c->ylo), axis_y(c, c->yhi));
-  draw_strips(c);
+    plmtex("t", 1.0, 0.5, 0.5, "(no scanned points in this file: written before "
+                               "capacity/scan_points; the collapse intervals only)");
+  /* the key under the axis: the shade, then what the marks mean */
+  double ky1 = vy0 - 70 / H, ky0 = ky1 - 16 / H;
+  plvpor(0.08, 0.42, ky0, ky1);
+  double ktop = c->o->x_rad ? c->xhi : 1; /* the shade's scale: 0 to ktop */
+  plwind(0, ktop, 0, 1);
+  for (int i = 0; i < 50; i++) {
+    plcol1((i + 0.5) / 50);
+    fill_box(ktop * i / 50.0, ktop * (i + 1) / 50.0, 0, 1);
+  }
   plcol0(AQ_PC_FG);
-  plbox("bc", 0, 0, c->logy ? "bcstl" : "bcst", 0, 0);
-  plmtex("t", 1.2, 0.5, 0.5, "collapse");
-  plmtex("b", 3.0, 0.5, 0.5, "record (legend)");
-  /* legend under both: one entry per record, then the polarities and q_c */
-  const char *tx[AQ_PLOT_LEGEND_MAX];
-  char buf[AQ_PLOT_LEGEND_MAX][64];
-  int col[AQ_PLOT_LEGEND_MAX], st[AQ_PLOT_LEGEND_MAX];
-  size_t ne = 0;
-  for (size_t k = 0; k < c->n && ne + 4 < AQ_PLOT_LEGEND_MAX; k++) {
-    if (k && c->rec[k] == c->rec[k - 1])
-      continue;
-    snprintf(buf[ne], sizeof buf[ne], "%zu  %.28s", c->rec[k] + 1,
-             base(t->row[c->row[k]].record));
-    tx[ne] = buf[ne];
-    col[ne] = c->color[k];
-    st[ne++] = 1;
-  }
-  if (ne < c->nrec) {
-    snprintf(buf[ne], sizeof buf[ne], "... %zu more records", c->nrec - ne);
-    tx[ne] = buf[ne];
-    col[ne] = AQ_PC_BG;
-    st[ne++] = 0;
-  }
-  for (int k = 0; k < 2; k++)
-    if (c->have_pol[k]) {
-      tx[ne] = k ? "reversed (hatched strip)" : "normal (filled strip)";
-      col[ne] = AQ_PC_FG;
-      st[ne++] = k ? 2 : 1;
-    }
-  if (!c->o->x_rad) {
-    tx[ne] = "q#dc#u: collapse";
-    col[ne] = AQ_PC_GREY;
-    st[ne++] = 3;
-  }
-  plvpor(0.02, 0.98, vy0, vy1); /* the legend centred on the page */
-  aq_plot_legend_at(PL_POSITION_OUTSIDE | PL_POSITION_BOTTOM, 0, 78 / ((vy1 - vy0) * H),
-                    LEGEND_COLUMNS, ne, tx, col, st, NULL);
+  plbox("bcnst", 0, 0, "bc", 0, 0);
+  plmtex("b", 3.2, 0.5, 0.5, c->o->x_rad ? AX_RAD : AX_QC);
+  /* what the marks mean, one a line, right of the shade */
+  plvpor(0.5, 0.99, ky1 - 104 / H, ky1);
+  plwind(0, 1, 4.2, 0);
+  double bw = 0.06; /* a sample's width */
+  plcol0(AQ_PC_RED);
+  fill_box(0, bw, 0.1, 0.9);
+  plcol0(AQ_PC_BG);
+  plpsty(3);
+  fill_box(0, bw, 0.1, 0.9);
+  plpsty(0);
+  plcol0(AQ_PC_FG);
+  PLFLT tx[2] = {bw / 2, bw / 2}, ty[2] = {1.1, 1.9};
+  plwidth(2);
+  plline(2, tx, ty);
+  plwidth(1);
+  plptex(bw / 2, 2.5, 1, 0, 0.5, "R");
+  plptex(bw + 0.03, 0.5, 1, 0, 0, "collapse (a collapse interval)");
+  plptex(bw + 0.03, 1.5, 1, 0, 0, "a change of verdict");
+  plptex(bw + 0.03, 2.5, 1, 0, 0, "survives again above a collapse");
+  plptex(bw + 0.03, 3.5, 1, 0, 0, "blank: below the scale that moves it");
   draw_fragility(c);
   return 0;
 }
@@ -547,13 +577,6 @@ static aq_status lines_build(cap *c, const char *source, aq_error *err)
                           "(plot the scale: --y scale)", r->record);
   }
   c->nrec = c->n ? nrec + 1 : 0;
-  size_t m = 1;
-  for (size_t k = 0; k < c->n; k++)
-    m = m > t->row[c->row[k]].point_count ? m : t->row[c->row[k]].point_count;
-  c->bx = malloc(m * sizeof *c->bx);
-  c->by = malloc(m * sizeof *c->by);
-  if (!c->bx || !c->by)
-    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   if (c->n == 0)
     return aq_error_set(err, AQ_EVALUE, source, -1, -1, "--arch",
                         "expected an arch of the file such as \"%s\", got \"%s\"",
@@ -589,12 +612,10 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
     rc = aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   if (rc == AQ_OK) {
     ranges(&c);
-    size_t ne = (c.nrec <= AQ_PLOT_LEGEND_MAX - 4 ? c.nrec : AQ_PLOT_LEGEND_MAX - 3) +
-                (size_t)(c.have_pol[0] + c.have_pol[1]) + !o->x_rad;
-    size_t rows = (ne + LEGEND_COLUMNS - 1) / LEGEND_COLUMNS;
-    const double top_px = 560, frag_px = 500; /* top axes and its margins, fragility */
-    c.legend_px = 26.0 * (double)rows + 12;
-    c.page_px = top_px + c.legend_px + frag_px;
+    double nrows = c.n ? (double)c.n + (double)c.rec[c.n - 1] * RECORD_GAP_PX / ROW_PX : 1;
+    const double frame_px = 50 + 70 + 104 + 50, frag_px = 500; /* around the strips; below */
+    c.strips_px = ROW_PX * nrows;
+    c.page_px = frame_px + c.strips_px + frag_px;
     c.split = frag_px / c.page_px;
     rc = aq_plot_render(target, 1000, (int)c.page_px, draw, &c, draw_s, err);
   }
@@ -613,8 +634,6 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
   free(c.pga);
   free(c.color);
   free(c.rec);
-  free(c.bx);
-  free(c.by);
   free(c.f.x);
   return rc;
 }

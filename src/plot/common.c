@@ -6,6 +6,7 @@
 #include <plplot.h>
 #include <setjmp.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <time.h>
@@ -13,9 +14,17 @@
 
 #include "plot.h"
 
+/* SVG by PLplot's own svg driver, which writes text as <text> elements
+ * (selectable and searchable); svgcairo would write glyph outlines. */
 static const struct {
   const char *ext, *device;
-} formats[] = {{".png", "pngcairo"}, {".svg", "svgcairo"}, {".pdf", "pdfcairo"}};
+} formats[] = {{".png", "pngcairo"}, {".svg", "svg"}, {".pdf", "pdfcairo"}};
+
+/* The PDF page (--paper), points at 72/in, and the printing margin. */
+static aq_plot_paper paper = AQ_PAPER_A4;
+static const double PAPER_PT[2][2] = {{595.276, 841.89}, {612, 792}}; /* A4, Letter */
+static const double PAPER_MARGIN_PT = 28.35;                           /* 10 mm */
+static double figure_w_mm, figure_h_mm; /* the figure being drawn, on the page, mm */
 
 /* PLplot calls these instead of printing and exiting (plexit) or printing
  * (plabort); only one figure is drawn at a time (plot.h). */
@@ -46,7 +55,7 @@ static int device_exists(const char *device)
   const char *menu[MAX_DEV], *name[MAX_DEV];
   const char **pm = menu, **pn = name;
   int n = MAX_DEV;
-  plgFileDevs(&pm, &pn, &n);
+  plgDevs(&pm, &pn, &n); /* every device: PLplot files its svg driver as interactive */
   for (int i = 0; i < n; i++)
     if (name[i] && strcmp(name[i], device) == 0)
       return 1;
@@ -82,6 +91,18 @@ void aq_plot_temp_name(const char *target, char *tmp, size_t cap)
   snprintf(tmp, cap, "%s.tmp.%ld", target, (long)getpid());
 }
 
+void aq_plot_set_paper(aq_plot_paper p)
+{
+  paper = p == AQ_PAPER_LETTER ? AQ_PAPER_LETTER : AQ_PAPER_A4;
+}
+
+aq_plot_paper aq_plot_paper_of_size(double width_mm, double height_mm)
+{
+  /* Letter is 215.9 x 279.4 mm; A4 210 x 297 mm */
+  return fabs(width_mm - 215.9) < 3 && fabs(height_mm - 279.4) < 3 ? AQ_PAPER_LETTER
+                                                                    : AQ_PAPER_A4;
+}
+
 static double now_s(void)
 {
   struct timespec ts;
@@ -100,6 +121,140 @@ static void palette(void)
   plscmap0n(16);
   for (int i = 0; i < n; i++)
     plscol0(i, rgb[i][0], rgb[i][1], rgb[i][2]);
+}
+
+/* The page of a figure drawn width x height (points at 72/in, as for a
+ * PNG's pixels): the same for PNG and SVG; for PDF the paper, turned to
+ * the figure's orientation, with the figure scaled by k to fit within the
+ * margins, centred. */
+typedef struct {
+  int page_w, page_h; /* points */
+  double k;           /* figure to page */
+  double margin;      /* fraction of the page's width (and height) */
+} page_layout;
+
+static page_layout layout(const char *device, int width, int height)
+{
+  page_layout pl = {width, height, 1, 0};
+  if (strcmp(device, "pdfcairo") != 0)
+    return pl;
+  double pw = PAPER_PT[paper][0], ph = PAPER_PT[paper][1];
+  pl.margin = PAPER_MARGIN_PT / pw;
+  double fw = (1 - 2 * pl.margin) * pw, fh = (1 - 2 * pl.margin) * ph;
+  if (fmin(fh / width, fw / height) > fmin(fw / width, fh / height)) { /* landscape */
+    double t = pw;
+    pw = ph;
+    ph = t;
+  }
+  pl.k = fmin((1 - 2 * pl.margin) * pw / width, (1 - 2 * pl.margin) * ph / height);
+  pl.page_w = (int)lround(pw);
+  pl.page_h = (int)lround(ph);
+  return pl;
+}
+
+/* After plinit: the figure in its window of the page, and PLplot's default
+ * sizes (characters, symbols, ticks: proportional to the page, 4 mm times
+ * the mean of its sides over 400 mm) those of the figure's own page times
+ * k, so that a PDF is the PNG made smaller. */
+static void scale_text(const page_layout *pl, int width, int height)
+{
+  if (pl->k == 1)
+    return;
+  const double mm_per_pt = 25.4 / 72;
+  double s = 0.5 * (width + height) * mm_per_pt / 200 * pl->k;
+  plschr(4.0 * s, 1.0);
+  plssym(1.5 * s, 1.0);
+  plsmaj(3.0 * s, 1.0);
+  plsmin(1.5 * s, 1.0);
+}
+
+/* UTF-8 of code point u into out (at most 4 bytes); its length. */
+static size_t utf8_put(unsigned long u, char *out)
+{
+  if (u < 0x80) {
+    out[0] = (char)u;
+    return 1;
+  }
+  if (u < 0x800) {
+    out[0] = (char)(0xc0 | u >> 6);
+    out[1] = (char)(0x80 | (u & 0x3f));
+    return 2;
+  }
+  if (u < 0x10000) {
+    out[0] = (char)(0xe0 | u >> 12);
+    out[1] = (char)(0x80 | (u >> 6 & 0x3f));
+    out[2] = (char)(0x80 | (u & 0x3f));
+    return 3;
+  }
+  out[0] = (char)(0xf0 | u >> 18);
+  out[1] = (char)(0x80 | (u >> 12 & 0x3f));
+  out[2] = (char)(0x80 | (u >> 6 & 0x3f));
+  out[3] = (char)(0x80 | (u & 0x3f));
+  return 4;
+}
+
+/* The svg driver writes every character of a text as a numeric reference
+ * (&#x41;) and indents each element: its file rewritten with the
+ * characters as UTF-8 (those that XML needs escaped stay references) and
+ * without the indentation, so that the text can be searched in the file
+ * too and the file is about a third smaller.  0, or -1 on a read or write
+ * error. */
+static int svg_tidy(const char *path)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return -1;
+  size_t cap = 1 << 16, n = 0;
+  char *in = malloc(cap);
+  for (size_t got; in && (got = fread(in + n, 1, cap - n, f)) > 0;) {
+    n += got;
+    if (n == cap) {
+      char *m = realloc(in, cap *= 2);
+      if (!m) {
+        free(in);
+        in = NULL;
+      } else
+        in = m;
+    }
+  }
+  int bad = ferror(f);
+  fclose(f);
+  char *out = in ? malloc(n + 1) : NULL;
+  if (!in || !out || bad) {
+    free(in);
+    free(out);
+    return -1;
+  }
+  size_t m = 0;
+  int line_start = 1;
+  for (size_t i = 0; i < n;) {
+    if (line_start && (in[i] == ' ' || in[i] == '\t')) {
+      i++;
+      continue;
+    }
+    line_start = in[i] == '\n';
+    char *end;
+    if (in[i] == '&' && i + 3 < n && in[i + 1] == '#' && in[i + 2] == 'x') {
+      unsigned long u = strtoul(in + i + 3, &end, 16);
+      if (end > in + i + 3 && end < in + n && *end == ';' && u >= 0x20 && u <= 0x10ffff &&
+          u != '<' && u != '>' && u != '&' && u != '"' && u != '\'' &&
+          !(u >= 0xd800 && u <= 0xdfff)) {
+        m += utf8_put(u, out + m); /* never longer than the reference */
+        i = (size_t)(end + 1 - in);
+        continue;
+      }
+    }
+    out[m++] = in[i++];
+  }
+  free(in);
+  f = fopen(path, "wb");
+  bad = !f;
+  if (f) {
+    bad |= fwrite(out, 1, m, f) != m;
+    bad |= fclose(f) != 0;
+  }
+  free(out);
+  return bad ? -1 : 0;
 }
 
 aq_status aq_plot_render(const char *target, int width, int height,
@@ -128,13 +283,19 @@ aq_status aq_plot_render(const char *target, int width, int height,
   if (setjmp(pl_jump) == 0) {
     plsdev(device);
     plsfnam(tmp);
+    page_layout pl = layout(device, width, height);
+    figure_w_mm = width * pl.k * 25.4 / 72;
+    figure_h_mm = height * pl.k * 25.4 / 72;
     char geom[64];
-    snprintf(geom, sizeof geom, "%dx%d", width, height);
+    snprintf(geom, sizeof geom, "%dx%d", pl.page_w, pl.page_h);
     plsetopt("geometry", geom);
     palette();
+    if (pl.k != 1) /* the figure's proportions, centred within the margins */
+      plsdidev(pl.margin, (double)width / height, 0, 0);
     started = 1;
     plinit();
     plfontld(1);
+    scale_text(&pl, width, height);
     if (!pl_failed && draw(ctx, err) != 0 && !pl_failed) {
       pl_failed = 2; /* the figure's own error, already in err */
     }
@@ -168,6 +329,11 @@ aq_status aq_plot_render(const char *target, int width, int height,
     remove(tmp);
     return aq_error_set(err, AQ_EIO, target, -1, -1, "PLplot",
                         "the %s device wrote nothing", device);
+  }
+  if (strcmp(device, "svg") == 0 && svg_tidy(tmp) != 0) {
+    int e = errno;
+    remove(tmp);
+    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s", strerror(e));
   }
   if (rename(tmp, target) != 0) {
     int e = errno;
@@ -219,10 +385,112 @@ void aq_plot_csv_text(FILE *f, const char *s)
   fputs("\",", f);
 }
 
+/* PLplot's Greek escapes (#g + the Latin key) as the Unicode letters. */
+static const char GREEK_KEY[] = "ABGDEZYHIKLMNCOPRSTUFXQWabgdezyhiklmncoprstufxqw";
+static const char *const GREEK[] = {
+    "Α", "Β", "Γ", "Δ", "Ε", "Ζ", "Η", "Θ", "Ι", "Κ", "Λ", "Μ", "Ν", "Ξ", "Ο", "Π",
+    "Ρ", "Σ", "Τ", "Υ", "Φ", "Χ", "Ψ", "Ω", "α", "β", "γ", "δ", "ε", "ζ", "η", "θ",
+    "ι", "κ", "λ", "μ", "ν", "ξ", "ο", "π", "ρ", "σ", "τ", "υ", "φ", "χ", "ψ", "ω"};
+
+void aq_plot_plain(const char *s, char *out, size_t cap)
+{
+  size_t n = 0;
+  if (cap == 0)
+    return;
+  for (; *s && n + 1 < cap; s++) {
+    const char *put = NULL;
+    char one[2] = {*s, 0};
+    if (s[0] == '#' && s[1] == 'g' && s[2] && strchr(GREEK_KEY, s[2])) {
+      put = GREEK[strchr(GREEK_KEY, s[2]) - GREEK_KEY];
+      s += 2;
+    } else if (s[0] == '#' && s[1] && strchr("udbf", s[1])) {
+      s += 1; /* raise, lower, backspace: the text stays on the line */
+      continue;
+    } else if (s[0] == '#' && s[1] == '#') {
+      put = "#";
+      s += 1;
+    } else
+      put = one;
+    size_t len = strlen(put);
+    if (n + len + 1 > cap)
+      break;
+    memcpy(out + n, put, len);
+    n += len;
+  }
+  out[n] = '\0';
+}
+
 void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles)
 {
-  for (size_t i = 0; i < n; i++)
-    fprintf(f, "# axis: %s\n", titles[i]);
+  for (size_t i = 0; i < n; i++) {
+    char t[512];
+    aq_plot_plain(titles[i], t, sizeof t);
+    fprintf(f, "# axis: %s\n", t);
+  }
+}
+
+/* Bytes of the UTF-8 character that starts at s (1 for a stray byte). */
+static size_t utf8_len(const char *s)
+{
+  unsigned char c = (unsigned char)*s;
+  size_t n = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc0 ? 2 : 1;
+  for (size_t i = 1; i < n; i++)
+    if (((unsigned char)s[i] & 0xc0) != 0x80)
+      return 1;
+  return n;
+}
+
+static size_t utf8_chars(const char *s)
+{
+  size_t n = 0;
+  for (; *s; s += utf8_len(s))
+    n++;
+  return n;
+}
+
+void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap)
+{
+  size_t n = utf8_chars(s);
+  if (cap == 0)
+    return;
+  if (n <= max_chars || max_chars < 3) {
+    snprintf(out, cap, "%s", s);
+    return;
+  }
+  size_t keep = max_chars - 1, head = (keep + 1) / 2, tail = keep - head;
+  const char *p = s, *q = s;
+  for (size_t i = 0; i < head; i++)
+    p += utf8_len(p);
+  for (size_t i = 0; i < n - tail; i++)
+    q += utf8_len(q);
+  snprintf(out, cap, "%.*s…%s", (int)(p - s), s, q);
+}
+
+size_t aq_plot_chars_fit(double width_frac)
+{
+  PLFLT def, ht;
+  plgchr(&def, &ht);
+  /* DejaVu Sans, the cairo drivers' sans: about 0.85 of the character
+   * height per character of a file name, measured on the figures */
+  double w = width_frac * figure_w_mm, per = 0.85 * ht;
+  return per > 0 && w > per ? (size_t)(w / per) : 1;
+}
+
+void aq_plot_note(double x, double y, const char *text)
+{
+  PLFLT def, ht, vx0, vx1, vy0, vy1, wx0, wx1, wy0, wy1;
+  plgchr(&def, &ht);
+  plgvpd(&vx0, &vx1, &vy0, &vy1);
+  plgvpw(&wx0, &wx1, &wy0, &wy1);
+  /* half the text's width and a line's height, in world units */
+  double hw = 0.5 * (0.62 * ht * (double)utf8_chars(text) + ht) / ((vx1 - vx0) * figure_w_mm) *
+              (wx1 - wx0);
+  double hh = 0.9 * ht / ((vy1 - vy0) * figure_h_mm) * (wy1 - wy0);
+  PLFLT bx[4] = {x - hw, x + hw, x + hw, x - hw}, by[4] = {y - hh, y - hh, y + hh, y + hh};
+  plcol0(AQ_PC_BG);
+  plfill(4, bx, by);
+  plcol0(AQ_PC_FG);
+  plptex(x, y - 0.35 * hh, 1, 0, 0.5, text);
 }
 
 void aq_plot_legend(int position, size_t n, const char *const *text,

@@ -19,6 +19,14 @@
 #include "../units.h"
 #include "plot.h"
 
+/* The rotation and energy axes in a unit that keeps their tick labels
+ * short (at most about 5 characters, clear of the axis title): the largest
+ * value's unit of 1000s, from the smallest. */
+typedef struct {
+  double per;        /* SI units per axis unit */
+  const char *title; /* axis title */
+} axis_unit;
+
 typedef struct {
   const aq_plot_run *run;
   double *w_j;          /* work in at each sample, J */
@@ -26,18 +34,31 @@ typedef struct {
   size_t nimp;
   double *ag_t_s, *ag_g; /* ground: times, s, and g */
   double t0_s, t1_s;    /* time axis */
-  double e_unit;        /* 1: energies in J, 1e3: in kJ */
+  const axis_unit *e_unit, *q_unit; /* energy and rotation axes */
+  int qc_shown;         /* +-q_c on the rotation axis */
 } hist;
 
 /* Below this fraction of the smaller q_c, the rotation axis leaves +-q_c
  * out (named "off scale" in the legend) so that the response can be seen. */
 static const double QC_SHOWN_FRAC = 0.4;
-static const double KJ_ABOVE_J = 1e4; /* energies above this drawn in kJ */
 
 /* Axis titles (also written to the CSV, so that tests can read them). */
-static const char *const AX_TIME = "time in the record (s)", *const AX_GROUND = "ground (g)",
-                         *const AX_ROT = "rotation (rad)", *const AX_E_J = "energy (J)",
-                         *const AX_E_KJ = "energy (kJ)";
+static const char *const AX_TIME = "time in the record (s)", *const AX_GROUND = "ground (g)";
+
+static const axis_unit ROT_UNITS[] = {
+    {1e-6, "rotation (#gmrad)"}, {1e-3, "rotation (mrad)"}, {1, "rotation (rad)"}};
+static const axis_unit E_UNITS[] = {
+    {1e-3, "energy (mJ)"}, {1, "energy (J)"}, {1e3, "energy (kJ)"}, {1e6, "energy (MJ)"}};
+
+/* The unit of units[n] in which peak (>= 0, SI) reads below `below`:
+ * the largest unit that leaves peak at least 1, else the smallest. */
+static const axis_unit *unit_for(const axis_unit *units, size_t n, double peak, double below)
+{
+  size_t k = 0;
+  while (k + 1 < n && peak / units[k].per >= below)
+    k++;
+  return &units[k];
+}
 
 /* Ground acceleration held from sample i over [t0 + i dt, t0 + (i+1) dt). */
 static double ground_at(const aq_plot_run *r, double t_s)
@@ -85,7 +106,18 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
   aq_plot_range(r->ke_j, n, &lo, &hi);
   e_hi = fmax(e_hi, hi);
   aq_plot_range(r->pe_j, n, &lo, &hi);
-  h->e_unit = fmax(e_hi, hi) > KJ_ABOVE_J ? 1e3 : 1; /* J or kJ on the axis */
+  /* J up to 10 kJ (as before), mJ below 0.1 J, MJ above 10 MJ */
+  h->e_unit = unit_for(E_UNITS, sizeof E_UNITS / sizeof E_UNITS[0], fmax(e_hi, hi), 1e4);
+  if (fmax(e_hi, hi) >= 0.1 && h->e_unit->per < 1)
+    h->e_unit = &E_UNITS[1];
+  /* the rotation axis: +-q_c on it unless the rotation would be a flat
+     line under them; in rad from 0.05 rad, else mrad, else micro-rad */
+  aq_plot_range(r->q_rad, n, &lo, &hi);
+  double peak = fmax(fabs(lo), fabs(hi));
+  h->qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
+  if (h->qc_shown)
+    peak = fmax(peak, fmax(r->q_c_rad[0], r->q_c_rad[1]));
+  h->q_unit = unit_for(ROT_UNITS, sizeof ROT_UNITS / sizeof ROT_UNITS[0], peak, 50);
   /* the time axis: the record without its zero pads, and any motion */
   h->t0_s = INFINITY;
   h->t1_s = -INFINITY;
@@ -175,13 +207,29 @@ static int draw(void *ctx, aq_error *err)
   plcol0(AQ_PC_GREY);
   if (r->na)
     plline((PLINT)r->na, h->ag_t_s, h->ag_g);
-  else
-    plptex(0.5 * (h->t0_s + h->t1_s), 0.5 * (lo + hi), 1, 0, 0.5,
-           "not stored: run with --store-records");
   for (int s = 0; s < 2; s++)
     for (int sg = -1; sg <= 1; sg += 2)
       hline(h->t0_s, h->t1_s, sg * r->lambda0[s] * gr, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
             s ? 3 : 2);
+  if (!r->na) { /* in the widest band between the lines, on its own background */
+    double pad = 0.06 * (hi - lo), yl[6] = {lo - pad, hi + pad, 0, 0, 0, 0};
+    for (int s = 0; s < 2; s++) {
+      yl[2 + 2 * s] = r->lambda0[s] * gr;
+      yl[3 + 2 * s] = -r->lambda0[s] * gr;
+    }
+    double best = 0, ym = 0.5 * (lo + hi);
+    for (int i = 0; i < 6; i++) { /* the gap above each line to the next */
+      double next = INFINITY;
+      for (int j = 0; j < 6; j++)
+        if (yl[j] > yl[i])
+          next = fmin(next, yl[j]);
+      if (isfinite(next) && next - yl[i] > best) {
+        best = next - yl[i];
+        ym = 0.5 * (yl[i] + next);
+      }
+    }
+    aq_plot_note(0.5 * (h->t0_s + h->t1_s), ym, "ground not stored: run with --store-records");
+  }
   snprintf(l0p, sizeof l0p, "±#gl#d0#u g, primary (%.3g g)", r->lambda0[0] * gr);
   snprintf(l0r, sizeof l0r, "±#gl#d0#u g, reverse (%.3g g)", r->lambda0[1] * gr);
   {
@@ -190,22 +238,27 @@ static int draw(void *ctx, aq_error *err)
     aq_plot_legend(PL_POSITION_OUTSIDE | PL_POSITION_RIGHT, r->na ? 3 : 2, t, c, st, NULL);
   }
 
-  /* rotation */
+  /* rotation, in the axis' unit */
+  const double qper = h->q_unit->per;
+  const int qc_shown = h->qc_shown;
   aq_plot_range(r->q_rad, r->n, &lo, &hi);
-  double peak = fmax(fabs(lo), fabs(hi));
-  /* +-q_c on the axis unless the rotation would be a flat line under them */
-  int qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
   for (int s = 0; s < 2 && qc_shown; s++) {
     lo = fmin(lo, -r->q_c_rad[s]);
     hi = fmax(hi, r->q_c_rad[s]);
   }
-  panel(h, 0.38, 0.64, lo, hi, 0, AX_ROT);
+  panel(h, 0.38, 0.64, lo / qper, hi / qper, 0, h->q_unit->title);
   for (int s = 0; s < 2 && qc_shown; s++)
     for (int sg = -1; sg <= 1; sg += 2)
-      hline(h->t0_s, h->t1_s, sg * r->q_c_rad[s], s ? AQ_PC_ORANGE : AQ_PC_BLUE,
+      hline(h->t0_s, h->t1_s, sg * r->q_c_rad[s] / qper, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
             s ? 3 : 2);
   plcol0(AQ_PC_FG);
-  plline((PLINT)r->n, r->t_s, r->q_rad);
+  PLFLT *qy = malloc((r->n ? r->n : 1) * sizeof *qy);
+  if (qy) {
+    for (size_t k = 0; k < r->n; k++)
+      qy[k] = r->q_rad[k] / qper;
+    plline((PLINT)r->n, r->t_s, qy);
+    free(qy);
+  }
   if (h->nimp) {
     double *zero = calloc(h->nimp, sizeof *zero);
     if (zero) {
@@ -244,8 +297,8 @@ static int draw(void *ctx, aq_error *err)
   aq_plot_range(h->w_j, r->n, &a, &b);
   lo = fmin(fmin(lo, a), 0);
   hi = fmax(hi, b);
-  double unit = h->e_unit;
-  panel(h, 0.09, 0.35, lo / unit, hi / unit, 1, unit > 1 ? AX_E_KJ : AX_E_J);
+  double unit = h->e_unit->per;
+  panel(h, 0.09, 0.35, lo / unit, hi / unit, 1, h->e_unit->title);
   const double *e[3] = {r->pe_j, r->ke_j, h->w_j};
   const int ec[3] = {AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN};
   PLFLT *y = malloc((r->n ? r->n : 1) * sizeof *y);
@@ -273,8 +326,8 @@ static aq_status write_data(const hist *h, const char *data, aq_error *err)
   if (!f)
     return err->status;
   const aq_plot_run *r = h->run;
-  aq_plot_csv_axes(f, 4, (const char *[]){AX_TIME, AX_GROUND, AX_ROT,
-                                          h->e_unit > 1 ? AX_E_KJ : AX_E_J});
+  aq_plot_csv_axes(f, 4, (const char *[]){AX_TIME, AX_GROUND, h->q_unit->title,
+                                          h->e_unit->title});
   fprintf(f, "series,time_s,value\n");
   for (size_t i = 0; i < r->na; i++)
     fprintf(f, "ground_accel_g,%.17g,%.17g\n", h->ag_t_s[i], h->ag_g[i]);

@@ -1,6 +1,6 @@
-/* plot.h: figures from archquake's results, drawn with PLplot (cairo
- * drivers pngcairo, svgcairo, pdfcairo; the format is the target's
- * extension).  One figure per file:
+/* plot.h: figures from archquake's results, drawn with PLplot (devices
+ * pngcairo, svg (text kept as text), pdfcairo (A4 or Letter pages); the
+ * format is the target's extension).  One figure per file:
  *   history.c   one run's ground acceleration, rotation and energies
  *   arch.c      the arch to scale, its hinge sets, a deformed mechanism
  *   domain.c    the half-cycle collapse domain
@@ -74,7 +74,8 @@ typedef int (*aq_plot_draw_fn)(void *ctx, aq_error *err);
 aq_status aq_plot_device(const char *target, const char **device, aq_error *err);
 
 /* Render draw(ctx) to target, width x height (pixels for PNG; points at
- * 72/in for SVG and PDF keep the same proportions): the device is checked
+ * 72/in for SVG; a PDF is the paper of aq_plot_set_paper with the figure
+ * scaled onto it): the device is checked
  * to exist first; the figure is written to a temporary beside the target
  * and renamed onto it when PLplot finished without error.  PLplot's exit
  * and abort handlers are replaced for the duration, so a PLplot error
@@ -83,6 +84,16 @@ aq_status aq_plot_device(const char *target, const char **device, aq_error *err)
 aq_status aq_plot_render(const char *target, int width, int height,
                          aq_plot_draw_fn draw, void *ctx, double *draw_s,
                          aq_error *err);
+
+/* The PDF page: A4 (the default) or Letter, portrait or landscape as the
+ * figure is tall or wide, 10 mm margins; the figure scaled to fit, its
+ * text with it.  PNG and SVG keep the figure's own size.  Applies to the
+ * figures rendered after the call (PLplot's state is global anyway). */
+typedef enum { AQ_PAPER_A4 = 0, AQ_PAPER_LETTER = 1 } aq_plot_paper;
+void aq_plot_set_paper(aq_plot_paper p);
+/* The paper of a locale's page size (LC_PAPER, mm): Letter if it is
+ * 215.9 x 279.4 mm, else A4. */
+aq_plot_paper aq_plot_paper_of_size(double width_mm, double height_mm);
 
 /* The temporary a figure or its data is written to before the rename
  * ("<target>.tmp.<pid>"), into tmp[cap]: a signal handler can remove it. */
@@ -99,9 +110,22 @@ aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok
  * quotes doubled) when it holds a comma, a quote or a line break. */
 void aq_plot_csv_text(FILE *f, const char *s);
 
-/* "# axis: TITLE" for each of the figure's n axis titles (PLplot escapes
- * as drawn), before the CSV's header; readers skip them (pandas: comment='#'). */
+/* "# axis: TITLE" for each of the figure's n axis titles, before the
+ * CSV's header, in plain text (aq_plot_plain); readers skip them (pandas:
+ * comment='#'). */
 void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);
+
+/* A title as drawn (PLplot escapes: #gl for lambda, #d and #u to lower and
+ * raise) in plain UTF-8 text, into out[cap]: "#gl#d0#u g" -> "λ0 g". */
+void aq_plot_plain(const char *s, char *out, size_t cap);
+
+/* s shortened to at most max_chars characters (UTF-8) by an ellipsis in
+ * the middle, keeping its start and its end ("RSN6_IMP…hor1.AT2"), into
+ * out[cap]; s itself if it fits. */
+void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap);
+/* Between plinit and plend: how many characters of a file name fit in
+ * width_frac of the page's width at the current character height. */
+size_t aq_plot_chars_fit(double width_frac);
 
 /* Drawing helpers (between plinit and plend). */
 enum { AQ_PC_BG = 0, AQ_PC_FG, AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN,
@@ -117,6 +141,9 @@ enum { AQ_PLOT_LEGEND_MAX = 40 };
 void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
                        const char *const *text, const int *color, const int *style,
                        const char *const *sym);
+/* text centred at (x, y) (world coordinates) on a box of the background
+ * colour, so that lines drawn before do not strike through it. */
+void aq_plot_note(double x, double y, const char *text);
 /* Min and max of the finite values of x[n] into *lo, *hi (widened when equal). */
 void aq_plot_range(const double *x, size_t n, double *lo, double *hi);
 

@@ -9,7 +9,8 @@
 
 #include "plot.h"
 
-static const size_t NAME_MAX_CHARS = 34; /* record names longer are cut */
+/* the map's left edge: room for the longest name, within these */
+static const double VP_LEFT_MIN = 0.2, VP_LEFT_MAX = 0.45;
 static const char *const AX_KEY = "peak rotation / q#dc#u (1)";
 
 typedef struct {
@@ -41,7 +42,15 @@ static int draw(void *ctx, aq_error *err)
   const map *m = ctx;
   pladv(0);
   plschr(0, 0.85);
-  plvpor(0.34, 0.80, 0.14, 0.9);
+  /* the names' margin: the longest name, or as much as fits */
+  size_t longest = 1;
+  for (size_t i = 0; i < m->nrec; i++) {
+    size_t len = strlen(base(m->rec[i]));
+    longest = len > longest ? len : longest;
+  }
+  double per_char = 0.8 / (double)aq_plot_chars_fit(0.8); /* page fraction */
+  double left = fmin(fmax((double)(longest + 3) * per_char, VP_LEFT_MIN), VP_LEFT_MAX);
+  plvpor(left, 0.83, 0.14, 0.9);
   plwind(0, (double)m->narch, (double)m->nrec, 0);
   /* white (never moved) through yellow and orange to brown (about to
    * collapse); collapse itself is red, outside the scale */
@@ -69,22 +78,31 @@ static int draw(void *ctx, aq_error *err)
     }
   plcol0(AQ_PC_FG);
   plbox("bc", 1, 0, "bc", 1, 0);
-  for (size_t i = 0; i < m->nrec; i++)
-  {
-    char name[48];
-    const char *b = base(m->rec[i]);
-    if (strlen(b) > NAME_MAX_CHARS) /* keep the left margin: the start and "..." */
-      snprintf(name, sizeof name, "%.*s...", (int)NAME_MAX_CHARS - 3, b);
-    else
-      snprintf(name, sizeof name, "%s", b);
+  /* a name too long for the margin keeps its start and end (the full
+     name is in --data) */
+  size_t fit = aq_plot_chars_fit(left - 0.01);
+  fit = fit > 2 ? fit - 2 : 1; /* the 0.8 characters between name and map */
+  for (size_t i = 0; i < m->nrec; i++) {
+    char name[1024];
+    aq_plot_ellipsize(base(m->rec[i]), fit, name, sizeof name);
     plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, name);
   }
-  for (size_t j = 0; j < m->narch; j++)
-    plmtex("t", 0.8, (j + 0.5) / (double)m->narch, 0.5, m->arch[j]);
+  size_t afit = aq_plot_chars_fit((0.83 - left) / (double)m->narch);
+  for (size_t j = 0; j < m->narch; j++) {
+    char name[512];
+    aq_plot_ellipsize(m->arch[j], afit, name, sizeof name);
+    plmtex("t", 0.8, (j + 0.5) / (double)m->narch, 0.5, name);
+  }
+  /* the key's title, beside its labels (outside the map by the key's
+     offset and width, 0.045 of the page, and its labels) */
+  double key_chars = 0.85 * (double)aq_plot_chars_fit(0.045);
+  plmtex("r", key_chars + 4.2, 0.5, 0.5, AX_KEY);
   char t[512];
   snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
+  plvpor(0.02, 0.98, 0.14, 0.9); /* the caption centred on the page */
   plmtex("b", 1.6, 0.5, 0.5, t);
-  plmtex("b", 2.9, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");
+  plmtex("b", 3.1, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");
+  plvpor(left, 0.83, 0.14, 0.9);
   /* the colour key */
   PLFLT w, hgt, vals[11];
   for (int k = 0; k <= 10; k++)
@@ -92,7 +110,7 @@ static int draw(void *ctx, aq_error *err)
   const PLFLT *vv[1] = {vals};
   PLINT nv[1] = {11}, lopt[1] = {PL_COLORBAR_LABEL_RIGHT}, sub[1] = {0};
   PLFLT ticks[1] = {0.2};
-  const char *labels[1] = {AX_KEY};
+  const char *labels[1] = {""}; /* drawn above, clear of the tick labels */
   const char *axis[1] = {"bcvtm"};
   plcolorbar(&w, &hgt, PL_COLORBAR_SHADE | PL_COLORBAR_SHADE_LABEL,
              PL_POSITION_RIGHT | PL_POSITION_OUTSIDE, 0.02, 0, 0.025, 0.8, AQ_PC_BG,
