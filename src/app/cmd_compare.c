@@ -17,39 +17,7 @@
 #include "../report/text.h"
 #include "app.h"
 #include "opt.h"
-
-/* Defaults: a nightly rerun of the same build reproduces every value
- * exactly; 1e-9 leaves room only for a different compiler or libm. */
-#define AQ_COMPARE_RTOL_DEFAULT 1e-9
-#define AQ_COMPARE_ATOL_DEFAULT 0.0
-
-static const char usage[] =
-    "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A] [--ignore NAME]...\n"
-    "Compare two results files (archquake ... -o FILE.h5).  First their\n"
-    "configuration: processing options, model, cor, version (shown only), and\n"
-    "the content (sha256) of records and arches of one name.  Then run by run,\n"
-    "matched by identity: the record's content, the arch's name and .cfg\n"
-    "content, the scale and the polarity (however the files were spelt on the\n"
-    "command line).  Numbers agree when |a-b| <= A + R*max(|a|,|b|) (NaN equals\n"
-    "NaN); collapsed, impacts, model and status must be equal.\n"
-    "  --rtol R       relative tolerance (default 1e-9)\n"
-    "  --atol A       absolute tolerance in each field's units (default 0)\n"
-    "  --ignore NAME  leave out a setting or a field (repeatable, or a comma\n"
-    "                 list), e.g. --ignore model to compare two models' numbers;\n"
-    "                 record_sha256 / arch_sha256 match records by file name /\n"
-    "                 arches by name alone\n"
-    "  --help         this text\n"
-    "Each difference is a TSV row on stdout: record arch scale polarity field a b\n"
-    "rel_diff.  Configuration rows come first, with * for what they are not\n"
-    "about (field = the setting, record_sha256 or arch_sha256); field \"present\"\n"
-    "marks a run found in only one file.  Records are named by file name.  A file\n"
-    "of the first format (no hashes) is read too: records and arches then match\n"
-    "by name.\n"
-    "Exit status: 0 all runs and settings agree (a different version alone is\n"
-    "shown but agrees), 1 some differ, 2 bad options or a file that cannot be\n"
-    "read as a results file.\n";
-
-#define AQ_COMPARE_IGNORE_MAX 32
+#include "opt_table.h"
 
 typedef struct {
   FILE *out;
@@ -166,50 +134,12 @@ static size_t compare_capacity(const char *a, const char *b, double rtol, double
 
 int aq_cmd_compare(int argc, char **argv)
 {
-  static const struct option longopts[] = {
-      {"rtol", required_argument, NULL, 'r'},
-      {"atol", required_argument, NULL, 'a'},
-      {"ignore", required_argument, NULL, 'i'},
-      {"help", no_argument, NULL, 'h'},
-      {NULL, 0, NULL, 0}};
-  double rtol = AQ_COMPARE_RTOL_DEFAULT, atol = AQ_COMPARE_ATOL_DEFAULT;
-  int nerr = 0, c;
-  char ignore_buf[AQ_COMPARE_IGNORE_MAX][64];
-  const char *ignore[AQ_COMPARE_IGNORE_MAX];
-  size_t nignore = 0;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    switch (c) {
-    case 'r':
-      aq_opt_double("--rtol", optarg, 0, 1, &rtol, &nerr);
-      break;
-    case 'a':
-      aq_opt_double("--atol", optarg, 0, HUGE_VAL, &atol, &nerr);
-      break;
-    case 'i':
-      for (const char *p = optarg; *p;) {
-        size_t len = strcspn(p, ",");
-        if (len == 0 || len >= sizeof ignore_buf[0] || nignore == AQ_COMPARE_IGNORE_MAX) {
-          fprintf(stderr, "archquake: compare: --ignore: expected up to %d names of "
-                          "settings or fields, comma-separated, got \"%s\"\n",
-                  AQ_COMPARE_IGNORE_MAX, optarg);
-          nerr++;
-          break;
-        }
-        snprintf(ignore_buf[nignore], sizeof ignore_buf[0], "%.*s", (int)len, p);
-        ignore[nignore] = ignore_buf[nignore];
-        nignore++;
-        p += len + (p[len] == ',');
-      }
-      break;
-    case 'h':
-      fputs(usage, stdout);
-      return AQ_EXIT_OK;
-    default:
-      aq_opt_unknown("compare", argv, optind, optopt, &nerr);
-    }
-  }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_COMPARE);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_COMPARE, argc, argv, &o, &nerr))
+    return AQ_EXIT_OK; /* --help */
+  double rtol = o.rtol, atol = o.atol;
   if (argc - optind != 2) {
     fprintf(stderr,
             "archquake: compare: expected two results files A.h5 B.h5, got %d\n",
@@ -237,7 +167,7 @@ int aq_cmd_compare(int argc, char **argv)
   }
   sink s = {stdout};
   printf("record\tarch\tscale\tpolarity\tfield\ta\tb\trel_diff\n");
-  aq_compare_opts co = {rtol, atol, ignore, nignore};
+  aq_compare_opts co = {rtol, atol, o.ignore, o.nignore};
   size_t nd = aq_compare_suites(&suite[0], &suite[1], &co, on_diff, &s);
   size_t n[2] = {suite[0].nruns, suite[1].nruns};
   aq_h5_suite_free(&suite[0]);

@@ -14,95 +14,27 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_arch.h"
-
-/* Smallest --tol, s: a finer bisection of durations of 0.01-100 s would reach
- * the spacing of doubles, where hi - lo stops shrinking. */
-#define AQ_DOMAIN_TOL_MIN_S 1e-12
-
-static const char usage[] =
-    "usage: archquake domain --arch FILE [OPTIONS]\n"
-    "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
-    "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
-    "the arch, by bisection (the direction is the set's own, so domain takes no\n"
-    "--polarity).\n"
-    "  --arch FILE      the arch file (.cfg), or an installed arch by name\n"
-    "  --ratios LIST    comma-separated r > 1 (default 1.05,1.1,1.2,1.5,2,3,4)\n"
-    "  --cor C          kinetic-energy ratio kept at an impact, 0..1 (default:\n"
-    "                   the arch file's [dynamics] cor; refused with impact\n"
-    "                   momentum, which the runs then follow)\n"
-    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
-    "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
-    "  --tol S          bisection tolerance on the duration, s, 1e-12..1 (default 1e-9)\n"
-    "  --max-duration S give up above this duration, s (default 100)\n"
-    "  --help           this text\n"
-    "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
-    "  --max-duration)\n"
-    "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
-    "option the arch makes ineffective, as --cor with impact momentum).\n";
-
-static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
+#include "opt_table.h"
 
 int aq_cmd_domain(int argc, char **argv)
 {
-  static const struct option longopts[] = {
-      {"arch", required_argument, NULL, 'a'},
-      {"ratios", required_argument, NULL, 'R'},
-      {"cor", required_argument, NULL, 'c'},
-      {"model", required_argument, NULL, 'm'},
-      {"ode-rtol", required_argument, NULL, 'r'},
-      {"tol", required_argument, NULL, 't'},
-      {"max-duration", required_argument, NULL, 'M'},
-      {"help", no_argument, NULL, 'h'},
-      {NULL, 0, NULL, 0}};
-  const char *file = NULL;
-  double *ratios = NULL, cor = NAN, rtol = 1e-10, tol = 1e-9, tmax = 100;
-  size_t nr = 0;
-  int model = 0, nerr = 0, c, rtol_given = 0;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    switch (c) {
-    case 'a':
-      file = aq_opt_arch(optarg, &nerr);
-      break;
-    case 'R':
-      aq_opt_list("--ratios", optarg, 1, &ratios, &nr, &nerr);
-      break;
-    case 'c':
-      aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr);
-      break;
-    case 'm':
-      aq_opt_choice("--model", optarg, models, &model, &nerr);
-      break;
-    case 'r':
-      aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
-      rtol_given = 1;
-      break;
-    case 't':
-      aq_opt_double("--tol", optarg, AQ_DOMAIN_TOL_MIN_S, 1, &tol, &nerr);
-      break;
-    case 'M':
-      aq_opt_double_gt("--max-duration", optarg, 0, 3600, &tmax, &nerr);
-      break;
-    case 'h':
-      free(ratios);
-      fputs(usage, stdout);
-      return AQ_EXIT_OK;
-    default:
-      aq_opt_unknown("domain", argv, optind, optopt, &nerr);
-    }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_DOMAIN);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_DOMAIN, argc, argv, &o, &nerr)) {
+    aq_opts_free(&o);
+    return AQ_EXIT_OK; /* --help */
   }
+  const char *file = o.arch;
+  double *ratios = o.ratios, cor = o.cor, rtol = o.ode_rtol, tol = o.domain_tol_s,
+         tmax = o.max_duration_s;
+  size_t nr = o.nratios;
+  int model = o.model;
+  o.ratios = NULL; /* freed here */
+  aq_opts_free(&o);
   aq_opt_no_operands("domain", argc, argv, optind, &nerr);
   aq_opt_require("domain", "--arch FILE", file != NULL, &nerr);
-  aq_opt_ode_rtol(rtol_given, models[model], &nerr);
-  for (size_t i = 0; i < nr; i++)
-    if (!(ratios[i] <= 1000)) {
-      fprintf(stderr, "archquake: --ratios: expected ratios in (1, 1000], "
-                      "got %g\n", ratios[i]);
-      nerr++;
-      break;
-    }
+  aq_opt_ode_rtol(o.given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)model), &nerr);
   if (nerr) {
     free(ratios);
     return AQ_EXIT_USAGE;

@@ -11,36 +11,9 @@
 #include "../arch/model.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_arch.h"
+#include "opt_table.h"
 
 #define MIN_SET_TIE_REL 1e-9 /* relative: a lower lambda0 by less is the same mechanism */
-
-static const char usage[] =
-    "usage: archquake mechanism --arch FILE [--table] [--points N]\n"
-    "The hinge sets of an arch: one TSV row per set: primary, reverse, and\n"
-    "minimum, the admissible set of lowest lambda0 over every joint (the\n"
-    "primary itself without [hinges]; with [hinges] a lower one is warned of\n"
-    "on stderr: it governs unless its joints are restrained).  An arch whose\n"
-    "minimum lambda0 is <= 0 cannot stand and is refused (exit 1), naming the set.\n"
-    "  --arch FILE   the arch file (.cfg), or an installed arch by name\n"
-    "  --table       add, after a blank line, the work path of each admissible\n"
-    "                set at N points over [0, q_c] (the data of the paper's Figs 4-7)\n"
-    "  --points N    rows per set in --table (2..100000, default 101)\n"
-    "  --help        this text\n"
-    "Columns: set joints faces lambda0 q_c_rad admissible act_sign q_sign mass_kg\n"
-    "  impact_vel_ratio end table_n table_err thrust_ecc searched reason\n"
-    "  q_c_rad is the rotation of body 1 about H1 at collapse (magnitude;\n"
-    "  q = q_sign * s); act_sign is the sign of the ground acceleration along +x\n"
-    "  that drives the set; end is why the path ends (peak: lambda = 0, toggle,\n"
-    "  hinge: a hinge closes); table_err is the measured relative error of the\n"
-    "  interpolation tables against the exact kinematics; thrust_ecc is the\n"
-    "  largest eccentricity |r - R|/(t/2) of the line of thrust over the joints\n"
-    "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
-    "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
-    "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
-    "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
-    "  as above, in the deformed arch at lambda(q)).\n"
-    "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n";
 
 static const char *end_name(aq_end e)
 {
@@ -99,35 +72,14 @@ void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
 
 int aq_cmd_mechanism(int argc, char **argv)
 {
-  static const struct option longopts[] = {
-      {"arch", required_argument, NULL, 'a'},
-      {"table", no_argument, NULL, 't'},
-      {"points", required_argument, NULL, 'p'},
-      {"help", no_argument, NULL, 'h'},
-      {NULL, 0, NULL, 0}};
-  const char *file = NULL;
-  int table = 0, nerr = 0, c;
-  long points = 101;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    switch (c) {
-    case 'a':
-      file = aq_opt_arch(optarg, &nerr);
-      break;
-    case 't':
-      table = 1;
-      break;
-    case 'p':
-      aq_opt_long("--points", optarg, 2, 100000, &points, &nerr);
-      break;
-    case 'h':
-      fputs(usage, stdout);
-      return AQ_EXIT_OK;
-    default:
-      aq_opt_unknown("mechanism", argv, optind, optopt, &nerr);
-    }
-  }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_MECHANISM);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_MECHANISM, argc, argv, &o, &nerr))
+    return AQ_EXIT_OK; /* --help */
+  const char *file = o.arch;
+  long points = o.points;
+  int table = o.table;
   aq_opt_no_operands("mechanism", argc, argv, optind, &nerr);
   aq_opt_require("mechanism", "--arch FILE", file != NULL, &nerr);
   if (nerr)

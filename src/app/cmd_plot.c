@@ -135,7 +135,7 @@ static int parse(int argc, char **argv, plot_opts *o)
     case 'y': aq_opt_choice("--y", optarg, y_axes, &o->y_pga, &nerr); break;
     case 'p': aq_opt_choice("--paper", optarg, papers, &o->paper, &nerr); break;
     case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
-    case 't': aq_opt_list("--ratios", optarg, 1, &o->ratios, &o->nr, &nerr); break;
+    case 't': aq_opt_list("--ratios", optarg, 1, INFINITY, &o->ratios, &o->nr, &nerr); break;
     case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
     default: aq_opt_unknown("plot", argv, optind, optopt, &nerr);
     }

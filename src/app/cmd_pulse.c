@@ -16,50 +16,13 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_arch.h"
-
-static const char usage[] =
-    "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
-    "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
-    "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n"
-    "  --arch FILE      the arch file (.cfg), or an installed arch by name\n"
-    "  --accel-g A      pulse amplitude, g (signed, |A| <= 100: its sign is the\n"
-    "                   polarity, so pulse takes no --polarity)\n"
-    "  --duration S     pulse duration, s (0 < S <= 3600)\n"
-    "  --end S          stop at t = S (>= duration).  Default: run until rest\n"
-    "                   or collapse: end_s is the first duration + k s\n"
-    "                   (k = 0, 1, 2, ...) at which the arch has collapsed or\n"
-    "                   is at rest (s = 0, no kinetic energy, by the stepper's\n"
-    "                   rest criterion); the row equals that of --end end_s.\n"
-    "                   Motion that never rests (COR 1) stops at the cap,\n"
-    "                   --max-end, with a note on stderr (exit 0)\n"
-    "  --max-end S      the cap of the default end, s (default duration +\n"
-    "                   3600 s, and at most 5e6 steps of --dt)\n"
-    "  --dt S           constant steps of at most S seconds (default 0.01)\n"
-    "  --cor C          kinetic-energy ratio kept at an impact, 0..1\n"
-    "                   (default: the arch file's [dynamics] cor; refused with\n"
-    "                   impact momentum, which uses none)\n"
-    "  --impact RULE    cor | momentum (default: the arch file's)\n"
-    "  --model M        workpath (default) | ode | paper | workpath-quad\n"
-    "  --ode-rtol R     ode model tolerance (default 1e-10; only with --model ode)\n"
-    "  --history FILE   write the history as CSV (step ends, turning points,\n"
-    "                   impacts)\n"
-    "  --help           this text\n"
-    "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
-    "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
-    "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
-    "Exit status: 0 success, 1 the arch or the run failed, 2 bad options (or\n"
-    "an option the arch makes ineffective, as --cor with impact momentum),\n"
-    "3 the history could not be written.\n";
-
-static const char *const models[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
+#include "opt_table.h"
 
 /* Default end: candidate ends are duration + k * REST_CHUNK_S. */
 static const double REST_CHUNK_S = 1.0;
 static const double REST_CAP_S = 3600; /* after the pulse */
 static const double REST_CAP_STEPS = 5e6;
 static const double MAX_STEPS = 5e7;
-static const char *const impacts[] = {"cor", "momentum", NULL};
 
 /* Steps of at most dt_s: the pulse, then zero until end_s. */
 static aq_status pulse_steps(double a_mps2, double dur_s, double end_s,
@@ -124,71 +87,16 @@ static int write_history(const char *path, const aq_history *h)
 
 int aq_cmd_pulse(int argc, char **argv)
 {
-  static const struct option longopts[] = {
-      {"arch", required_argument, NULL, 'a'},
-      {"accel-g", required_argument, NULL, 'A'},
-      {"duration", required_argument, NULL, 'D'},
-      {"end", required_argument, NULL, 'e'},
-      {"max-end", required_argument, NULL, 'M'},
-      {"dt", required_argument, NULL, 't'},
-      {"cor", required_argument, NULL, 'c'},
-      {"impact", required_argument, NULL, 'i'},
-      {"model", required_argument, NULL, 'm'},
-      {"ode-rtol", required_argument, NULL, 'r'},
-      {"history", required_argument, NULL, 'H'},
-      {"help", no_argument, NULL, 'h'},
-      {NULL, 0, NULL, 0}};
-  const char *file = NULL, *hist = NULL;
-  double acc_g = NAN, dur = NAN, end = NAN, cap = NAN, dt = 0.01, cor = NAN,
-         rtol = 1e-10;
-  int model = 0, impact = -1, nerr = 0, c, acc_given = 0, dur_given = 0, rtol_given = 0;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    switch (c) {
-    case 'a':
-      file = aq_opt_arch(optarg, &nerr);
-      break;
-    case 'A':
-      aq_opt_double("--accel-g", optarg, -100, 100, &acc_g, &nerr);
-      acc_given = 1;
-      break;
-    case 'D':
-      aq_opt_double_gt("--duration", optarg, 0, 3600, &dur, &nerr);
-      dur_given = 1;
-      break;
-    case 'e':
-      aq_opt_double_gt("--end", optarg, 0, 86400, &end, &nerr);
-      break;
-    case 'M':
-      aq_opt_double_gt("--max-end", optarg, 0, 86400, &cap, &nerr);
-      break;
-    case 't':
-      aq_opt_double_gt("--dt", optarg, 0, 3600, &dt, &nerr);
-      break;
-    case 'c':
-      aq_opt_double("--cor", optarg, 0, 1, &cor, &nerr);
-      break;
-    case 'i':
-      aq_opt_choice("--impact", optarg, impacts, &impact, &nerr);
-      break;
-    case 'm':
-      aq_opt_choice("--model", optarg, models, &model, &nerr);
-      break;
-    case 'r':
-      aq_opt_double_gt("--ode-rtol", optarg, 0, 0.1, &rtol, &nerr);
-      rtol_given = 1;
-      break;
-    case 'H':
-      hist = optarg;
-      break;
-    case 'h':
-      fputs(usage, stdout);
-      return AQ_EXIT_OK;
-    default:
-      aq_opt_unknown("pulse", argv, optind, optopt, &nerr);
-    }
-  }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_PULSE);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_PULSE, argc, argv, &o, &nerr))
+    return AQ_EXIT_OK; /* --help */
+  const char *file = o.arch, *hist = o.history_file;
+  double acc_g = o.accel_g, dur = o.duration_s, end = o.end_s, cap = o.max_end_s,
+         dt = o.pulse_dt_s, cor = o.cor, rtol = o.ode_rtol;
+  int model = o.model, impact = o.impact;
+  int acc_given = o.given[AQ_OPT_ACCEL_G] > 0, dur_given = o.given[AQ_OPT_DURATION] > 0;
   aq_opt_no_operands("pulse", argc, argv, optind, &nerr);
   aq_opt_require("pulse", "--arch FILE", file != NULL, &nerr);
   /* a bad value was reported already: "got none" only when absent */
@@ -211,7 +119,7 @@ int aq_cmd_pulse(int argc, char **argv)
             dur, cap);
     nerr++;
   }
-  aq_opt_ode_rtol(rtol_given, models[model], &nerr);
+  aq_opt_ode_rtol(o.given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)model), &nerr);
   if (impact == AQ_IMPACT_MOMENTUM && !isnan(cor)) {
     fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
                     "momentum (a cor would have no effect)\n");
@@ -328,7 +236,7 @@ int aq_cmd_pulse(int argc, char **argv)
          "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals\n");
   printf("%s\t%.9g\t%.9g\t%.9g\t%d\t%.12g\t%.12g\t%.12g\t%.12g\t%zu\t%zu\t%.12g\t"
          "%.12g\t%zu\t%zu\n",
-         models[model], acc_g, dur, end, res.collapsed, res.collapse_time_s,
+         aq_model_name((aq_model)model), acc_g, dur, end, res.collapsed, res.collapse_time_s,
          res.peak_rotation_rad, res.peak_displacement_m,
          res.max_kinetic_energy_j, res.impacts, res.reversals, res.energy_in_j,
          res.energy_dissipated_j, res.steps_moving, res.evals);

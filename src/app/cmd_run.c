@@ -221,7 +221,7 @@ int aq_cmd_run(int argc, char **argv)
       text_path = optarg;
       break;
     case OPT_SCALE:
-      aq_opt_list("--scale", optarg, 0, &scales, &nscale, &nerr);
+      aq_opt_list("--scale", optarg, 0, INFINITY, &scales, &nscale, &nerr);
       break;
     case OPT_SCALE_PGA:
       aq_opt_double_gt("--scale-to-pga", optarg, 0, 100, &cfg.scale_to_pga_g, &nerr);

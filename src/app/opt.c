@@ -63,7 +63,7 @@ void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
   *out = v;
 }
 
-void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
+void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double **out,
                  size_t *n, int *nerr)
 {
   size_t cap = 1;
@@ -78,7 +78,7 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
     for (char *tok = strtok_r(copy, ",", &save); tok;
          tok = strtok_r(NULL, ",", &save)) {
       double x;
-      if (!parse_double(tok, &x) || !(x > lo)) {
+      if (!parse_double(tok, &x) || !(x > lo) || x > hi) {
         bad = 1;
         break;
       }
@@ -89,10 +89,16 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
   free(copy);
   if (bad) {
     free(v);
-    fprintf(stderr,
-            "archquake: %s: expected a comma-separated list of numbers > %g, "
-            "got \"%s\"\n",
-            opt, lo, arg ? arg : "");
+    if (isinf(hi))
+      fprintf(stderr,
+              "archquake: %s: expected a comma-separated list of numbers > %g, "
+              "got \"%s\"\n",
+              opt, lo, arg ? arg : "");
+    else
+      fprintf(stderr,
+              "archquake: %s: expected a comma-separated list of numbers in (%g, %g], "
+              "got \"%s\"\n",
+              opt, lo, hi, arg ? arg : "");
     (*nerr)++;
     return;
   }
@@ -215,24 +221,32 @@ static const char *dash_file(char **argv, int optind_after, int ch)
   return NULL;
 }
 
+int aq_opt_dash_file(const char *cmd, char **argv, int optind_after, int optopt_,
+                     int *nerr)
+{
+  static const char *last_file; /* one line per such word, not per letter */
+  const char *sep = cmd[0] ? " " : "";
+  const char *file = dash_file(argv, optind_after, optopt_);
+  if (!file)
+    return 0;
+  if (file != last_file) {
+    fprintf(stderr,
+            "archquake: %s: expected an option, got a file whose name "
+            "begins with '-': put it after '--' (archquake %s%s[OPTIONS] -- "
+            "%s) or write it as ./%s\n",
+            file, cmd, sep, file, file);
+    (*nerr)++;
+  }
+  last_file = file;
+  return 1;
+}
+
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr)
 {
-  static const char *last_file; /* one line per such word, not per letter */
   const char *sep = cmd[0] ? " " : ""; /* "archquake --help", "archquake plot --help" */
-  const char *file = dash_file(argv, optind_after, optopt_);
-  if (file) {
-    if (file != last_file) {
-      fprintf(stderr,
-              "archquake: %s: expected an option, got a file whose name "
-              "begins with '-': put it after '--' (archquake %s%s[OPTIONS] -- "
-              "%s) or write it as ./%s\n",
-              file, cmd, sep, file, file);
-      (*nerr)++;
-    }
-    last_file = file;
+  if (aq_opt_dash_file(cmd, argv, optind_after, optopt_, nerr))
     return;
-  }
   /* A short option (optopt_ a character) is named by itself: in a cluster
    * such as -ab, argv[optind_after - 1] may be another word (the previous
    * one, or an operand getopt has moved there).  A long option has no

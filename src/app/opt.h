@@ -17,9 +17,9 @@ void aq_opt_double_gt(const char *opt, const char *arg, double lo, double hi,
 /* An integer in [lo, hi]. */
 void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
                  int *nerr);
-/* A comma-separated list of distinct finite numbers each > lo; *out is
- * malloc'd (caller frees), *n its length. */
-void aq_opt_list(const char *opt, const char *arg, double lo, double **out,
+/* A comma-separated list of distinct finite numbers each in (lo, hi] (hi
+ * may be INFINITY); *out is malloc'd (caller frees), *n its length. */
+void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double **out,
                  size_t *n, int *nerr);
 /* Options that cannot take effect are refused, never ignored:
  * --ode-rtol given with a --model other than ode (one line, *nerr += 1). */
@@ -63,6 +63,12 @@ int aq_opt_output_special(const char *opt, const char *path);
  * destroy it: report it in one line naming opt and return 1; else 0. */
 int aq_opt_output_is_input(const char *opt, const char *out, char *const *records,
                            size_t nrec, char *const *arches, size_t narch);
+/* If the word getopt_long just took as an option (argv[optind_after - 1],
+ * or the cluster holding optopt_) names an existing file whose name begins
+ * with '-', report it once, with the hint to put it after '--' (cmd: the
+ * command as typed, "" the main job), and return 1; else 0. */
+int aq_opt_dash_file(const char *cmd, char **argv, int optind_after, int optopt_,
+                     int *nerr);
 /* Report the option getopt_long rejected (argv[optind-1], optopt). */
 void aq_opt_unknown(const char *cmd, char **argv, int optind_after, int optopt_,
                     int *nerr);

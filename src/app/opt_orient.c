@@ -34,8 +34,9 @@ static void oom(int *nerr)
   (*nerr)++;
 }
 
-static void components(const char *arg, aq_orient_opts *o, int *nerr)
+void aq_opt_components(const char *arg, aq_orient_opts *o, int *nerr)
 {
+  arg = arg ? arg : "";
   char *parts[4] = {NULL, NULL, NULL, NULL};
   size_t n = 0;
   const char *p = arg;
@@ -73,8 +74,9 @@ static void components(const char *arg, aq_orient_opts *o, int *nerr)
   m->azimuth_deg[0] = m->azimuth_deg[1] = NAN;
 }
 
-static void azimuths(const char *arg, aq_orient_opts *o, int *nerr)
+void aq_opt_azimuths(const char *arg, aq_orient_opts *o, int *nerr)
 {
+  arg = arg ? arg : "";
   if (o->nmotions == 0) {
     fprintf(stderr, "archquake: --azimuths: expected after the --components it "
                     "describes, got \"%s\" before any\n", arg);
@@ -85,7 +87,7 @@ static void azimuths(const char *arg, aq_orient_opts *o, int *nerr)
   double *v = NULL;
   size_t n = 0;
   int e0 = *nerr;
-  aq_opt_list("--azimuths", arg, -AQ_DEG_FULL_TURN, &v, &n, nerr);
+  aq_opt_list("--azimuths", arg, -AQ_DEG_FULL_TURN, INFINITY, &v, &n, nerr);
   if (*nerr > e0)
     return;
   if (n != 2 || v[0] > AQ_DEG_FULL_TURN || v[1] > AQ_DEG_FULL_TURN) {
@@ -99,8 +101,9 @@ static void azimuths(const char *arg, aq_orient_opts *o, int *nerr)
   free(v);
 }
 
-static void azimuth(const char *arg, aq_orient_opts *o, int *nerr)
+void aq_opt_azimuth(const char *arg, aq_orient_opts *o, int *nerr)
 {
+  arg = arg ? arg : "";
   double step = AQ_OPT_ORIENT_STEP_DEFAULT_DEG, one = 0;
   int scan = strncmp(arg, "all", 3) == 0 && (arg[3] == '\0' || arg[3] == ':');
   int e0 = *nerr;
@@ -129,13 +132,13 @@ int aq_opt_orient_handle(int id, const char *arg, aq_orient_opts *o, int *nerr)
 {
   switch (id) {
   case AQ_OPT_ORIENT_COMPONENTS:
-    components(arg ? arg : "", o, nerr);
+    aq_opt_components(arg, o, nerr);
     return 1;
   case AQ_OPT_ORIENT_AZIMUTHS:
-    azimuths(arg ? arg : "", o, nerr);
+    aq_opt_azimuths(arg, o, nerr);
     return 1;
   case AQ_OPT_ORIENT_AZIMUTH:
-    azimuth(arg ? arg : "", o, nerr);
+    aq_opt_azimuth(arg, o, nerr);
     return 1;
   case AQ_OPT_ORIENT_ALL_AZIMUTHS:
     o->all_azimuths = 1;

@@ -78,6 +78,11 @@ typedef struct {
 
 /* Zero o and set the defaults. */
 void aq_opt_orient_init(aq_orient_opts *o);
+/* --components H1,H2[,V], --azimuths A1,A2, --azimuth DEG|all[:STEP]:
+ * check arg and add it to o (a bad one: one line on stderr, *nerr += 1). */
+void aq_opt_components(const char *arg, aq_orient_opts *o, int *nerr);
+void aq_opt_azimuths(const char *arg, aq_orient_opts *o, int *nerr);
+void aq_opt_azimuth(const char *arg, aq_orient_opts *o, int *nerr);
 /* Handle option id: 1 if it is one of the orientation options, else 0. */
 int aq_opt_orient_handle(int id, const char *arg, aq_orient_opts *o, int *nerr);
 /* Check the combination once all options are in (--all-azimuths without

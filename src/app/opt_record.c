@@ -54,34 +54,57 @@ static const char *glob_rule(const char *opt, const char *a, const char *what,
   return eq + 1;
 }
 
-int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
+void aq_opt_units(const char *arg, aq_read_opts *ro, int *nerr)
 {
   const char *a = arg ? arg : "", *v;
+  aq_units u;
+  if (!strchr(a, '=')) {
+    parse_units("--units", a, &ro->units, nerr);
+    return;
+  }
+  aq_units_rule *r = &ro->rules[ro->nrules < AQ_UNITS_RULES_MAX ? ro->nrules : 0];
+  char glob[AQ_UNITS_GLOB_MAX];
+  if ((v = glob_rule("--units", a, "U", 32, ro->nrules, glob, nerr)) &&
+      parse_units("--units", v, &u, nerr)) {
+    memcpy(r->glob, glob, sizeof glob);
+    r->units = u;
+    ro->nrules++;
+  }
+}
+
+void aq_opt_component(const char *arg, aq_read_opts *ro, int *nerr)
+{
+  const char *a = arg ? arg : "", *v;
+  char glob[AQ_UNITS_GLOB_MAX];
+  size_t cap = sizeof ro->components[0].channel;
+  if ((v = glob_rule("--component", a, "CHANNEL", cap, ro->ncomponents, glob, nerr))) {
+    memcpy(ro->components[ro->ncomponents].glob, glob, sizeof glob);
+    snprintf(ro->components[ro->ncomponents].channel, cap, "%s", v);
+    ro->ncomponents++;
+  }
+}
+
+void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr)
+{
+  if (!arg || !arg[0] || strlen(arg) >= sizeof ro->response) {
+    fprintf(stderr, "archquake: --response: expected a StationXML file name of 1 to "
+                    "%zu characters, got \"%s\"\n",
+            sizeof ro->response - 1, arg ? arg : "");
+    (*nerr)++;
+    return;
+  }
+  snprintf(ro->response, sizeof ro->response, "%s", arg);
+}
+
+int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
+{
   switch (id) {
-  case AQ_OPT_RECORD_UNITS: {
-    aq_units u;
-    if (!strchr(a, '='))
-      return parse_units("--units", a, &ro->units, nerr), 1;
-    aq_units_rule *r = &ro->rules[ro->nrules < AQ_UNITS_RULES_MAX ? ro->nrules : 0];
-    char glob[AQ_UNITS_GLOB_MAX];
-    if ((v = glob_rule("--units", a, "U", 32, ro->nrules, glob, nerr)) &&
-        parse_units("--units", v, &u, nerr)) {
-      memcpy(r->glob, glob, sizeof glob);
-      r->units = u;
-      ro->nrules++;
-    }
+  case AQ_OPT_RECORD_UNITS:
+    aq_opt_units(arg, ro, nerr);
     return 1;
-  }
-  case AQ_OPT_RECORD_COMPONENT: {
-    char glob[AQ_UNITS_GLOB_MAX];
-    size_t cap = sizeof ro->components[0].channel;
-    if ((v = glob_rule("--component", a, "CHANNEL", cap, ro->ncomponents, glob, nerr))) {
-      memcpy(ro->components[ro->ncomponents].glob, glob, sizeof glob);
-      snprintf(ro->components[ro->ncomponents].channel, cap, "%s", v);
-      ro->ncomponents++;
-    }
+  case AQ_OPT_RECORD_COMPONENT:
+    aq_opt_component(arg, ro, nerr);
     return 1;
-  }
   case AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE:
     ro->accept_implausible = 1;
     return 1;
@@ -89,14 +112,7 @@ int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
     ro->accept_vertical = 1;
     return 1;
   case AQ_OPT_RECORD_RESPONSE:
-    if (!arg || !arg[0] || strlen(arg) >= sizeof ro->response) {
-      fprintf(stderr, "archquake: --response: expected a StationXML file name of 1 to "
-                      "%zu characters, got \"%s\"\n",
-              sizeof ro->response - 1, arg ? arg : "");
-      (*nerr)++;
-      return 1;
-    }
-    snprintf(ro->response, sizeof ro->response, "%s", arg);
+    aq_opt_response(arg, ro, nerr);
     return 1;
   case AQ_OPT_RECORD_DT:
     aq_opt_double_gt("--dt", arg, 0, 3600, &ro->dt_s, nerr);

@@ -63,6 +63,12 @@ extern const struct option aq_opt_record_longopts[];
   "  --response FILE.xml  StationXML giving the sensitivity of miniSEED\n"    \
   "                  records (a StationXML given as a RECORD does the same)\n"
 
+/* --units U or GLOB=U, --component GLOB=CH, --response FILE.xml: check
+ * arg and store it in ro (a bad one: one line on stderr, *nerr += 1). */
+void aq_opt_units(const char *arg, aq_read_opts *ro, int *nerr);
+void aq_opt_component(const char *arg, aq_read_opts *ro, int *nerr);
+void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr);
+
 /* Handle option id with argument arg: returns 1 if id is a reader option
  * (a bad value is reported on stderr as one line and counted in *nerr; ro
  * is left unchanged then), 0 if id is not one of them. */

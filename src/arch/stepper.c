@@ -46,6 +46,13 @@
 #include "leg.h"
 #include "paper.h"
 
+const char *const aq_model_names[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
+
+const char *aq_model_name(aq_model m)
+{
+  return (unsigned)m <= AQ_MODEL_WORKPATH_QUAD ? aq_model_names[m] : "?";
+}
+
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */
 static const size_t MAX_EVENTS_PER_STEP = 2000000; /* beyond: no progress, an error */
 

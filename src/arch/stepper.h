@@ -26,6 +26,12 @@ typedef enum {
   AQ_MODEL_WORKPATH_QUAD  /* time integral by Chebyshev panels (leg_quad.c) */
 } aq_model;
 
+/* The models' names, indexed by aq_model and NULL-terminated ("workpath",
+ * "ode", "paper", "workpath-quad"): --model's words, the model column. */
+extern const char *const aq_model_names[];
+/* The name of model m, or "?" outside the enum. */
+const char *aq_model_name(aq_model m);
+
 typedef struct aq_stepper aq_stepper;
 
 aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,

@@ -1,0 +1,616 @@
+/* opt_table.c: the table of every option and every command (see
+ * opt_table.h for how to add one), and the options' defaults. */
+#define _POSIX_C_SOURCE 200809L
+#include "opt_table.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../arch/stepper.h"
+#include "../capacity/capacity.h"
+#include "opt.h"
+#include "opt_arch.h"
+#include "opt_record.h"
+
+/* The commands an option applies to. */
+#define C(x) (1u << AQ_CMD_##x)
+#define PLOT_ALL (C(PLOT_HISTORY) | C(PLOT_ARCH) | C(PLOT_DOMAIN) | C(PLOT_SUITE) | C(PLOT_CAPACITY))
+#define ALL_CMDS ((1u << AQ_CMD_N) - 1)
+#define RECORDS (C(RUN) | C(INFO) | C(CAPACITY)) /* the commands that read records */
+#define SUITES (C(RUN) | C(CAPACITY))            /* ... and run them against arches */
+#define DYNAMICS (SUITES | C(PULSE) | C(DOMAIN))  /* the commands that run the stepper */
+
+/* Where a value goes. */
+#define DEST(f) .dest = offsetof(aq_opts, f)
+#define DEST_LIST(f, n) .dest = offsetof(aq_opts, f), .dest_n = offsetof(aq_opts, n)
+
+#define AQ_MAX_THREADS 1024
+#define AQ_OPT_FREQ_MAX_HZ 1e6
+#define AQ_OPT_ORDER_MAX 20 /* Butterworth orders used in practice are 1-8 */
+/* Smallest domain --tol, s: a finer bisection of durations of 0.01-100 s
+ * would reach the spacing of doubles, where hi - lo stops shrinking. */
+#define AQ_DOMAIN_TOL_MIN_S 1e-12
+/* compare's defaults: a nightly rerun of the same build reproduces every
+ * value exactly; 1e-9 leaves room only for a different compiler or libm. */
+#define AQ_COMPARE_RTOL_DEFAULT 1e-9
+#define AQ_COMPARE_ATOL_DEFAULT 0.0
+
+_Static_assert(sizeof(aq_detrend) == sizeof(int), "--detrend is stored as an int");
+
+static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_detrend */
+static const char *const impacts[] = {"cor", "momentum", NULL};
+static const char *const x_axes[] = {"qc", "rad", NULL};
+static const char *const y_axes[] = {"scale", "pga", NULL};
+
+/* The handlers of the options that are more than a value. */
+static void add_arch(char *arg, aq_opts *o, int *nerr)
+{
+  char **a = realloc(o->arches, (o->narches + 1) * sizeof *a);
+  if (!a) {
+    fprintf(stderr, "archquake: out of memory\n");
+    (*nerr)++;
+    return;
+  }
+  o->arches = a;
+  a[o->narches++] = aq_opt_arch(arg, nerr);
+}
+
+static void one_arch(char *arg, aq_opts *o, int *nerr)
+{
+  o->arch = aq_opt_arch(arg, nerr);
+}
+
+static void ignore(char *arg, aq_opts *o, int *nerr)
+{
+  size_t cap = sizeof o->ignore / sizeof o->ignore[0];
+  for (const char *p = arg; *p;) {
+    size_t len = strcspn(p, ",");
+    if (len == 0 || len >= sizeof o->ignore_buf[0] || o->nignore == cap) {
+      fprintf(stderr, "archquake: compare: --ignore: expected up to %zu names of "
+                      "settings or fields, comma-separated, got \"%s\"\n", cap, arg);
+      (*nerr)++;
+      return;
+    }
+    snprintf(o->ignore_buf[o->nignore], sizeof o->ignore_buf[0], "%.*s", (int)len, p);
+    o->ignore[o->nignore] = o->ignore_buf[o->nignore];
+    o->nignore++;
+    p += len + (p[len] == ',');
+  }
+}
+
+static void units(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_units(arg, &o->read, nerr);
+  size_t k = strlen(o->units_text); /* the rules as given, for the results file */
+  snprintf(o->units_text + k, sizeof o->units_text - k, "%s%s", k ? " " : "", arg);
+}
+
+static void component(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_component(arg, &o->read, nerr);
+}
+
+static void response(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_response(arg, &o->read, nerr);
+}
+
+static void components(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_components(arg, &o->orient, nerr);
+}
+
+static void azimuths(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_azimuths(arg, &o->orient, nerr);
+}
+
+static void azimuth(char *arg, aq_opts *o, int *nerr)
+{
+  aq_opt_azimuth(arg, &o->orient, nerr);
+}
+
+/* After --highpass's value: an explicit corner is checked as given. */
+static void highpass_given(char *arg, aq_opts *o, int *nerr)
+{
+  (void)arg;
+  (void)nerr;
+  o->proc.highpass_auto = 0;
+}
+
+const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
+    [AQ_OPT_ARCHES] = {.name = "arch", .kind = AQ_ARG_CUSTOM, .meta = "FILE", .fn = add_arch,
+                       .cmds = SUITES,
+                       .help = "an arch (.cfg), or an installed arch by name (oppenheim); "
+                               "repeatable"},
+    [AQ_OPT_ARCH] = {.name = "arch", .kind = AQ_ARG_CUSTOM, .meta = "FILE", .fn = one_arch,
+                     .cmds = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_ARCH) | C(PLOT_DOMAIN),
+                     .help = "the arch file (.cfg), or an installed arch by name (oppenheim)"},
+    [AQ_OPT_ARCH_NAME] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(arch),
+                          .cmds = C(PLOT_CAPACITY),
+                          .help = "the arch of the capacity file to draw, by its name "
+                                  "(default: the file's first)"},
+    [AQ_OPT_ACCEL_G] = {.name = "accel-g", .kind = AQ_ARG_DOUBLE, .lo = -100, .hi = 100,
+                        .meta = "A", DEST(accel_g), .cmds = C(PULSE),
+                        .help = "pulse amplitude, g (signed, |A| <= 100: its sign is the "
+                                "polarity, so pulse takes no --polarity)"},
+    [AQ_OPT_DURATION] = {.name = "duration", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
+                         .meta = "S", DEST(duration_s), .cmds = C(PULSE),
+                         .help = "pulse duration, s (0 < S <= 3600)"},
+    [AQ_OPT_END] = {.name = "end", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 86400, .meta = "S",
+                    DEST(end_s), .cmds = C(PULSE),
+                    .help = "stop at t = S (>= duration).  Default: run until rest or "
+                            "collapse: end_s is the first duration + k s (k = 0, 1, 2, ...) "
+                            "at which the arch has collapsed or is at rest (s = 0, no "
+                            "kinetic energy, by the stepper's rest criterion); the row "
+                            "equals that of --end end_s.  Motion that never rests (COR 1) "
+                            "stops at the cap, --max-end, with a note on stderr (exit 0)"},
+    [AQ_OPT_MAX_END] = {.name = "max-end", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 86400,
+                        .meta = "S", DEST(max_end_s), .cmds = C(PULSE),
+                        .help = "the cap of the default end, s (default duration + 3600 s, "
+                                "and at most 5e6 steps of --dt)"},
+    [AQ_OPT_PULSE_DT] = {.name = "dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
+                         .meta = "S", DEST(pulse_dt_s), .cmds = C(PULSE),
+                         .help = "constant steps of at most S seconds (default 0.01)"},
+    [AQ_OPT_RATIOS] = {.name = "ratios", .kind = AQ_ARG_LIST, .lo = 1, .hi = 1000,
+                       .meta = "LIST", DEST_LIST(ratios, nratios),
+                       .cmds = C(DOMAIN) | C(PLOT_DOMAIN),
+                       .help = "comma-separated ratios r > 1 (at most 1000) of the "
+                               "pulse to lambda0 g (default 1.05,1.1,1.2,1.5,2,3,4; plot domain: "
+                               "1.02,1.05,1.1,1.2,1.35,1.5,1.75,2,2.5,3,4,5)"},
+    [AQ_OPT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
+                       .meta = "FILE.h5", DEST(output), .cmds = SUITES,
+                       .help = "write the HDF5 results file (docs/hdf5-layout.md; capacity: "
+                               "its results in a `capacity` group)"},
+    [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
+                            .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
+                            .help = "the figure (.png .svg .pdf)"},
+    [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
+                     .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
+    [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
+                          DEST(fragility), .cmds = C(CAPACITY),
+                          .help = "lognormal fragility fits, one row per (arch, IM)"},
+    [AQ_OPT_DATA] = {.name = "data", .kind = AQ_ARG_STRING, .meta = "FILE.csv", DEST(data),
+                     .cmds = PLOT_ALL,
+                     .help = "also write the plotted data (columns carry units)"},
+    [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
+                    .cmds = C(PLOT_HISTORY),
+                    .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
+                            "(default: the first run)"},
+    [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
+                         .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
+                         .help = "draw the mechanism deformed at that rotation of body 1 "
+                                 "(> 0 primary set, < 0 reverse set, |RAD| <= q_c)"},
+    [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
+                   .cmds = C(PLOT_CAPACITY),
+                   .help = "the intensity measure of the fragility: pga_g (default), "
+                           "pgv_m_s, pgd_m, arias_m_s, cav_m_s or pga_lambda0"},
+    [AQ_OPT_X] = {.name = "x", .kind = AQ_ARG_CHOICE, .choices = x_axes, .meta = "qc|rad",
+                  DEST(x_rad), .cmds = C(PLOT_CAPACITY),
+                  .help = "the peak rotation over q_c (qc, the default) or in rad (rad)"},
+    [AQ_OPT_Y] = {.name = "y", .kind = AQ_ARG_CHOICE, .choices = y_axes, .meta = "scale|pga",
+                  DEST(y_pga), .cmds = C(PLOT_CAPACITY),
+                  .help = "the scale factor (scale, the default) or the PGA in g (pga)"},
+    [AQ_OPT_SCALE] = {.name = "scale", .kind = AQ_ARG_LIST, .lo = 0, .hi = INFINITY,
+                      .meta = "LIST", DEST_LIST(scales, nscale), .cmds = C(RUN),
+                      .help = "run each record scaled by each factor, e.g. 0.5,1,2 "
+                              "(default 1)"},
+    [AQ_OPT_SCALE_TO_PGA] = {.name = "scale-to-pga", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 100,
+                             .meta = "G", DEST(scale_to_pga_g), .cmds = C(RUN),
+                             .help = "scale each processed record to a PGA of G g instead"},
+    [AQ_OPT_SCALE_TO_LAMBDA0] = {.name = "scale-to-lambda0", .kind = AQ_ARG_DOUBLE_GT,
+                                 .lo = 0, .hi = 100, .meta = "K", DEST(scale_to_lambda0),
+                                 .cmds = C(RUN),
+                                 .help = "scale each processed record, for each arch, to a "
+                                         "PGA of K lambda0 g, lambda0 the arch's static "
+                                         "collapse multiplier (the smaller of its two hinge "
+                                         "sets'), so that one suite shakes arches of unlike "
+                                         "strength alike"},
+    [AQ_OPT_SCALE_MAX] = {.name = "scale-max", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e6,
+                          .meta = "S", DEST(scale_max), .cmds = C(CAPACITY),
+                          .help = "highest scale (default: PGA = 20 lambda0 g)"},
+    [AQ_OPT_RESOLUTION] = {.name = "resolution", .kind = AQ_ARG_DOUBLE,
+                           .lo = AQ_SCAN_RESOLUTION_MIN, .hi = AQ_SCAN_RESOLUTION_MAX,
+                           .meta = "R", DEST(resolution), .cmds = C(CAPACITY),
+                           .help = "relative scan step: no window of either verdict wider "
+                                   "than R is missed (default 0.01; 1e-4 to 1)"},
+    [AQ_OPT_SCAN_TOL] = {.name = "tol", .kind = AQ_ARG_DOUBLE, .lo = AQ_SCAN_TOL_MIN, .hi = 1,
+                         .meta = "T", DEST(scan_tol), .cmds = C(CAPACITY),
+                         .help = "relative tolerance of each change (default 1e-6; 1e-12 "
+                                 "to R)"},
+    [AQ_OPT_DOMAIN_TOL] = {.name = "tol", .kind = AQ_ARG_DOUBLE, .lo = AQ_DOMAIN_TOL_MIN_S,
+                           .hi = 1, .meta = "S", DEST(domain_tol_s), .cmds = C(DOMAIN),
+                           .help = "bisection tolerance on the duration, s, 1e-12..1 "
+                                   "(default 1e-9)"},
+    [AQ_OPT_MAX_DURATION] = {.name = "max-duration", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
+                             .hi = 3600, .meta = "S", DEST(max_duration_s), .cmds = C(DOMAIN),
+                             .help = "give up above this duration, s (default 100)"},
+    [AQ_OPT_JOBS] = {.name = "jobs", .short_name = 'j', .kind = AQ_ARG_LONG, .lo = 1,
+                     .hi = AQ_MAX_THREADS, .meta = "N", DEST(threads), .cmds = SUITES,
+                     .help = "worker threads (default: the number of cores); the results "
+                             "are the same for every N"},
+    [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
+                      .meta = "M", DEST(model), .cmds = DYNAMICS,
+                      .help = "workpath (default), ode (reference), paper, workpath-quad"},
+    [AQ_OPT_COR] = {.name = "cor", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "C",
+                    DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN),
+                    .help = "kinetic-energy ratio kept at an impact, 0..1 (default: each "
+                            "arch's [dynamics] cor; refused for an arch whose impact is "
+                            "momentum, which uses none)"},
+    [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
+                       .meta = "RULE", DEST(impact), .cmds = C(PULSE),
+                       .help = "cor | momentum (default: the arch file's)"},
+    [AQ_OPT_ODE_RTOL] = {.name = "ode-rtol", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
+                         .meta = "R", DEST(ode_rtol), .cmds = C(PULSE) | C(DOMAIN),
+                         .help = "ode model tolerance (default 1e-10; only with --model ode)"},
+    [AQ_OPT_HISTORY] = {.name = "history", .kind = AQ_ARG_FLAG, DEST(history), .cmds = C(RUN),
+                        .help = "write histories (step ends, turning points, impacts) to the "
+                                "HDF5 file (with -o)"},
+    [AQ_OPT_HISTORY_FILE] = {.name = "history", .kind = AQ_ARG_STRING, .meta = "FILE",
+                             DEST(history_file), .cmds = C(PULSE),
+                             .help = "write the history as CSV (step ends, turning points, "
+                                     "impacts)"},
+    [AQ_OPT_STORE_RECORDS] = {.name = "store-records", .kind = AQ_ARG_FLAG, DEST(store_records),
+                              .cmds = C(RUN),
+                              .help = "write the processed records to the HDF5 file (with -o)"},
+    [AQ_OPT_RESUME] = {.name = "resume", .kind = AQ_ARG_FLAG, DEST(resume), .cmds = C(RUN),
+                       .help = "continue an interrupted run of this same command (with -o): "
+                               "every record done is kept in FILE.h5.journal until the "
+                               "results file is complete; the outputs equal an "
+                               "uninterrupted run's (not with --history or --store-records)"},
+    [AQ_OPT_POLARITY] = {.name = "polarity", .kind = AQ_ARG_CHOICE,
+                         .choices = aq_opt_polarity_names, .meta = "P", DEST(polarity),
+                         .cmds = SUITES,
+                         .help = "normal (the record as read), reversed (negated) or both "
+                                 "(each record both ways; the polarity column says which: a "
+                                 "hinge-controlled arch's response depends on the sign); "
+                                 "default normal, for capacity both (the worse governs)"},
+    [AQ_OPT_TABLE] = {.name = "table", .kind = AQ_ARG_FLAG, DEST(table), .cmds = C(MECHANISM),
+                      .help = "add, after a blank line, the work path of each admissible set "
+                              "at N points over [0, q_c] (the data of the paper's Figs 4-7)"},
+    [AQ_OPT_POINTS] = {.name = "points", .kind = AQ_ARG_LONG, .lo = 2, .hi = 100000,
+                       .meta = "N", DEST(points), .cmds = C(MECHANISM),
+                       .help = "rows per set in --table (2..100000, default 101)"},
+    [AQ_OPT_RTOL] = {.name = "rtol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "R",
+                     DEST(rtol), .cmds = C(COMPARE), .help = "relative tolerance (default 1e-9)"},
+    [AQ_OPT_ATOL] = {.name = "atol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = HUGE_VAL,
+                     .meta = "A", DEST(atol), .cmds = C(COMPARE),
+                     .help = "absolute tolerance in each field's units (default 0)"},
+    [AQ_OPT_IGNORE] = {.name = "ignore", .kind = AQ_ARG_CUSTOM, .meta = "NAME", .fn = ignore,
+                       .cmds = C(COMPARE),
+                       .help = "leave out a setting or a field (repeatable, or a comma "
+                               "list), e.g. --ignore model to compare two models' numbers; "
+                               "record_sha256 / arch_sha256 match records by file name / "
+                               "arches by name alone"},
+    [AQ_OPT_QUIET] = {.name = "quiet", .short_name = 'q', .kind = AQ_ARG_FLAG, DEST(quiet),
+                      .cmds = C(RUN),
+                      .help = "no progress line (it is shown only on a terminal)"},
+    [AQ_OPT_HELP] = {.name = "help", .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
+                     .help = "this text"},
+
+    [AQ_OPT_UNITS] = {.name = "units", .kind = AQ_ARG_CUSTOM, .meta = "U", .fn = units,
+                      .cmds = RECORDS, .group = AQ_GROUP_READING,
+                      .help = "values of records that state no units are U: g, g/10, gal, "
+                              "cm/s2, mm/s2, m/s2, nm/s2 or counts (divided by the "
+                              "sensitivity the file states, e.g. SAC SCALE)",
+                      .meta2 = "GLOB=U",
+                      .help2 = "records whose path matches GLOB are read as U, even over "
+                               "units the file states (reported), e.g. '*.SAC=counts' "
+                               "(repeatable; the last matching rule wins)"},
+    [AQ_OPT_READ_DT] = {.name = "dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
+                        .meta = "S", DEST(read.dt_s), .cmds = RECORDS,
+                        .group = AQ_GROUP_READING,
+                        .help = "sample interval (s) of text records without time column"},
+    [AQ_OPT_COLUMN] = {.name = "column", .kind = AQ_ARG_SIZE, .lo = 1, .hi = 64, .meta = "N",
+                       DEST(read.column), .cmds = RECORDS, .group = AQ_GROUP_READING,
+                       .help = "column N (1-based) of a text record is the acceleration"},
+    [AQ_OPT_COMPONENT] = {.name = "component", .kind = AQ_ARG_CUSTOM, .meta = "GLOB=CH",
+                          .fn = component, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                          .help = "channel CH of multi-channel files matching GLOB (or name "
+                                  "one record as FILE#CH)"},
+    [AQ_OPT_ACCEPT_IMPLAUSIBLE] = {.name = "accept-implausible", .kind = AQ_ARG_FLAG,
+                                   DEST(read.accept_implausible), .cmds = RECORDS,
+                                   .group = AQ_GROUP_READING,
+                                   .help = "keep records whose PGA is outside 1e-5..10 g"},
+    [AQ_OPT_ACCEPT_VERTICAL] = {.name = "accept-vertical", .kind = AQ_ARG_FLAG,
+                                DEST(read.accept_vertical), .cmds = RECORDS,
+                                .group = AQ_GROUP_READING,
+                                .help = "run channels the file identifies as vertical"},
+    [AQ_OPT_RESPONSE] = {.name = "response", .kind = AQ_ARG_CUSTOM, .meta = "FILE.xml",
+                         .fn = response, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                         .help = "StationXML giving the sensitivity of miniSEED records (a "
+                                 "StationXML given as a RECORD does the same)"},
+
+    [AQ_OPT_COMPONENTS] = {.name = "components", .kind = AQ_ARG_CUSTOM, .meta = "H1,H2[,V]",
+                           .fn = components, .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                           .help = "one ground motion from two orthogonal horizontal "
+                                   "component records (and the vertical V); repeatable.  The "
+                                   "arch feels a_x = a1 cos(theta - phi1) + a2 cos(theta - "
+                                   "phi2).  The components must share dt and start time; the "
+                                   "samples they share are run"},
+    [AQ_OPT_AZIMUTHS] = {.name = "azimuths", .kind = AQ_ARG_CUSTOM, .meta = "A1,A2",
+                         .fn = azimuths, .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                         .help = "azimuths phi1, phi2 (deg from north) of the preceding "
+                                 "--components (default: from the files, e.g. PEER's GIL067 "
+                                 "is 67 deg)"},
+    [AQ_OPT_AZIMUTH] = {.name = "azimuth", .kind = AQ_ARG_CUSTOM, .meta = "DEG", .fn = azimuth,
+                        .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                        .help = "the arch's +x azimuth theta, deg from north (default 0)",
+                        .meta2 = "all[:STEP]",
+                        .help2 = "every theta 0, STEP, ... < 360 (default STEP 5); the TSV "
+                                 "shows the worst azimuth per (motion, arch, scale): a failed "
+                                 "run, else a collapse (the earliest), else the largest "
+                                 "peak_rotation_over_qc; the HDF5 file has all"},
+    [AQ_OPT_ALL_AZIMUTHS] = {.name = "all-azimuths", .kind = AQ_ARG_FLAG,
+                             DEST(orient.all_azimuths), .cmds = C(RUN),
+                             .group = AQ_GROUP_ORIENTATION,
+                             .help = "with --azimuth all: every azimuth's row in the TSV"},
+    [AQ_OPT_VERTICAL] = {.name = "vertical", .kind = AQ_ARG_FLAG, DEST(orient.vertical),
+                         .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                         .help = "run the vertical component V too (without it a V is "
+                                 "ignored, with a warning); a step with g + a_v <= 0 stops "
+                                 "the run: status run:eliftoff"},
+
+    [AQ_OPT_DETREND] = {.name = "detrend", .kind = AQ_ARG_CHOICE, .choices = detrends,
+                        .meta = "D", DEST(proc.detrend), .cmds = RECORDS,
+                        .group = AQ_GROUP_PROCESSING,
+                        .help = "remove the least-squares line (linear, default), the mean "
+                                "(mean) or nothing (none)"},
+    [AQ_OPT_TAPER] = {.name = "taper", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 0.5,
+                      .meta = "FRAC", DEST(proc.taper_frac), .cmds = RECORDS,
+                      .group = AQ_GROUP_PROCESSING,
+                      .help = "Hann taper over FRAC of the record at each end, 0-0.5 "
+                              "(default 0: only the zero pads' junctions are tapered)"},
+    [AQ_OPT_HIGHPASS] = {.name = "highpass", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
+                         .hi = AQ_OPT_FREQ_MAX_HZ, .meta = "HZ", DEST(proc.highpass_hz),
+                         .fn = highpass_given, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                         .help = "acausal Butterworth high-pass corner (default 0.03 Hz, or "
+                                 "1/duration for a record shorter than 33.3 s)"},
+    [AQ_OPT_ORDER] = {.name = "order", .kind = AQ_ARG_INT, .lo = 1, .hi = AQ_OPT_ORDER_MAX,
+                      .meta = "N", DEST(proc.order), .cmds = RECORDS,
+                      .group = AQ_GROUP_PROCESSING,
+                      .help = "Butterworth order, 1-20 (default 4)"},
+    [AQ_OPT_LOWPASS] = {.name = "lowpass", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
+                        .hi = AQ_OPT_FREQ_MAX_HZ, .meta = "HZ", DEST(proc.lowpass_hz),
+                        .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                        .help = "acausal Butterworth low-pass corner (default off)"},
+    [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
+                          .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                          .help = "no taper, pads or filter (detrend still applies)"},
+    [AQ_OPT_MERGE_TOL] = {.name = "merge-tol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 10,
+                          .meta = "G", DEST(merge_tol_g), .cmds = SUITES,
+                          .group = AQ_GROUP_PROCESSING,
+                          .help = "merge consecutive samples differing by less than G (g) "
+                                  "into one constant-acceleration step (default 0: none)"},
+};
+
+static const char run_tail[] =
+    "Output: TSV, one row per run (on a terminal: an aligned table with 6\n"
+    "significant digits; pipe or redirect it, or use --text, for the TSV).\n"
+    "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
+    "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
+    "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
+    "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
+    "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
+    "  record drove first; nan if it never moved) peak_rotation_over_qc (peak\n"
+    "  rotation / q_c of the set it occurred in) pga_over_lambda0_g (pga_g over\n"
+    "  lambda0_first, or over the lower lambda0 if it never moved);\n"
+    "  a run whose status is not ok has every result column nan, collapsed\n"
+    "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
+    "  --components motion, nan for a RECORD)\n"
+    "Exit status:\n"
+    "  0  every record read and every run done\n"
+    "  1  some record or run failed (each reported on stderr; the others ran)\n"
+    "  2  bad or missing options, or an arch file that cannot be loaded:\n"
+    "     nothing was run\n"
+    "  3  an output file could not be written (no partial file is left; an\n"
+    "     existing file of that name is untouched)\n"
+    "  A run ended by SIGINT, SIGTERM, SIGHUP or SIGPIPE removes its\n"
+    "  temporaries and ends with that signal.\n";
+
+static const char plot_head[] =
+    "usage: archquake plot FIGURE [INPUT] [OPTIONS] -o FILE\n"
+    "Draw a figure with PLplot; the format is FILE's extension: .png, .svg or\n"
+    ".pdf (cairo drivers).  No partial file is ever left under FILE.\n"
+    "Figures:\n"
+    "  history RESULTS.h5 [--run KEY]   one run of a results file written with\n"
+    "        --history: ground acceleration (g) with +-lambda0 g, rotation (rad)\n"
+    "        with +-q_c, kinetic and potential energy and the work put in (J);\n"
+    "        impacts and collapse marked\n"
+    "  arch --arch ARCH [--rotation RAD]   the arch to scale, its voussoirs and\n"
+    "        both hinge sets; with --rotation the mechanism deformed at that\n"
+    "        rotation of body 1\n"
+    "  domain --arch ARCH [--ratios LIST] [--cor C]   the half-cycle collapse\n"
+    "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
+    "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
+    "        and polarities: collapse, or peak rotation / q_c)\n"
+    "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
+    "        a file of archquake capacity -o, one arch (default: the file's\n"
+    "        first): one line per record and polarity through every scanned\n"
+    "        scale, the scale factor (--y pga: the PGA in g) against the run's\n"
+    "        peak rotation (--x qc: over q_c, the default; --x rad: in rad),\n"
+    "        beside a strip per record with the collapse intervals of each\n"
+    "        polarity shaded; below, the lognormal fragility of IM over the\n"
+    "        empirical fraction of first collapses, censored records at their\n"
+    "        cap, and the band of the median's interval\n"
+    "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n";
+
+/* A figure of plot: its --help is plot's. */
+#define FIGURE(n) {.name = "plot " n, .title = "plot " n, .help_cmd = "plot"}
+
+const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
+    [AQ_CMD_RUN] =
+        {.name = "",
+         .title = "the main job",
+         .help_cmd = "",
+         .head = "usage: archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]\n"
+                 "       archquake [OPTIONS] --components H1,H2[,V] ... --arch FILE ...\n"
+                 "Run every record against every arch (and every scale factor): each record\n"
+                 "is read and processed once.  One TSV row per run on stdout.\n",
+         .tail = run_tail},
+    [AQ_CMD_INFO] =
+        {.name = "info",
+         .title = "info",
+         .help_cmd = "info",
+         .head = "usage: archquake info [OPTIONS] RECORD...\n"
+                 "Describe accelerograms: one TSV row per record on stdout.\n",
+         .tail = "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
+                 "  arias_m_s d5_95_s cav_m_s channel vertical (npts, duration_s: the\n"
+                 "  record as read; the measures: the processed record, pads included;\n"
+                 "  --no-filter --detrend none gives the record as read)\n"
+                 "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n",
+         .heading = {[AQ_GROUP_PROCESSING] = "Processing (intensity measures are computed "
+                                             "on the processed record):"}},
+    [AQ_CMD_MECHANISM] =
+        {.name = "mechanism",
+         .title = "mechanism",
+         .help_cmd = "mechanism",
+         .head = "usage: archquake mechanism --arch FILE [--table] [--points N]\n"
+                 "The hinge sets of an arch: one TSV row per set: primary, reverse, and\n"
+                 "minimum, the admissible set of lowest lambda0 over every joint (the\n"
+                 "primary itself without [hinges]; with [hinges] a lower one is warned of\n"
+                 "on stderr: it governs unless its joints are restrained).  An arch whose\n"
+                 "minimum lambda0 is <= 0 cannot stand and is refused (exit 1), naming the set.\n",
+         .tail = "Columns: set joints faces lambda0 q_c_rad admissible act_sign q_sign mass_kg\n"
+                 "  impact_vel_ratio end table_n table_err thrust_ecc searched reason\n"
+                 "  q_c_rad is the rotation of body 1 about H1 at collapse (magnitude;\n"
+                 "  q = q_sign * s); act_sign is the sign of the ground acceleration along +x\n"
+                 "  that drives the set; end is why the path ends (peak: lambda = 0, toggle,\n"
+                 "  hinge: a hinge closes); table_err is the measured relative error of the\n"
+                 "  interpolation tables against the exact kinematics; thrust_ecc is the\n"
+                 "  largest eccentricity |r - R|/(t/2) of the line of thrust over the joints\n"
+                 "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
+                 "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
+                 "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
+                 "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
+                 "  as above, in the deformed arch at lambda(q)).\n"
+                 "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n"},
+    [AQ_CMD_PULSE] =
+        {.name = "pulse",
+         .title = "pulse",
+         .help_cmd = "pulse",
+         .head = "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
+                 "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
+                 "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n",
+         .tail = "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
+                 "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
+                 "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
+                 "Exit status: 0 success, 1 the arch or the run failed, 2 bad options (or\n"
+                 "an option the arch makes ineffective, as --cor with impact momentum),\n"
+                 "3 the history could not be written.\n"},
+    [AQ_CMD_DOMAIN] =
+        {.name = "domain",
+         .title = "domain",
+         .help_cmd = "domain",
+         .head = "usage: archquake domain --arch FILE [OPTIONS]\n"
+                 "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
+                 "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
+                 "the arch, by bisection (the direction is the set's own, so domain takes no\n"
+                 "--polarity).\n",
+         .tail = "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
+                 "  --max-duration)\n"
+                 "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
+                 "option the arch makes ineffective, as --cor with impact momentum).\n"},
+    [AQ_CMD_COMPARE] =
+        {.name = "compare",
+         .title = "compare",
+         .help_cmd = "compare",
+         .head = "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A] [--ignore NAME]...\n"
+                 "Compare two results files (archquake ... -o FILE.h5).  First their\n"
+                 "configuration: processing options, model, cor, version (shown only), and\n"
+                 "the content (sha256) of records and arches of one name.  Then run by run,\n"
+                 "matched by identity: the record's content, the arch's name and .cfg\n"
+                 "content, the scale and the polarity (however the files were spelt on the\n"
+                 "command line).  Numbers agree when |a-b| <= A + R*max(|a|,|b|) (NaN equals\n"
+                 "NaN); collapsed, impacts, model and status must be equal.\n",
+         .tail = "Each difference is a TSV row on stdout: record arch scale polarity field a b\n"
+                 "rel_diff.  Configuration rows come first, with * for what they are not\n"
+                 "about (field = the setting, record_sha256 or arch_sha256); field \"present\"\n"
+                 "marks a run found in only one file.  Records are named by file name.  A file\n"
+                 "of the first format (no hashes) is read too: records and arches then match\n"
+                 "by name.\n"
+                 "Exit status: 0 all runs and settings agree (a different version alone is\n"
+                 "shown but agrees), 1 some differ, 2 bad options or a file that cannot be\n"
+                 "read as a results file.\n"},
+    [AQ_CMD_CAPACITY] =
+        {.name = "capacity",
+         .title = "capacity",
+         .help_cmd = "capacity",
+         .head = "usage: archquake capacity RECORD|--components H1,H2[,V]... --arch FILE "
+                 "[--arch FILE ...] [OPTIONS]\n"
+                 "For each record, arch and polarity, every scale factor at which the arch's\n"
+                 "verdict (collapse or not) changes, from the scale at which it first moves\n"
+                 "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
+                 "polarity) on stdout.\n",
+         .tail = "Columns: record arch polarity status move_scale first_collapse_scale\n"
+                 "  first_collapse_pga_g first_collapse_pgv_m_s collapse_intervals\n"
+                 "  resurrection runs scale_max, with --components also azimuth_deg\n"
+                 "  first_collapse_scale_min first_collapse_scale_max (the range over the\n"
+                 "  azimuths where it collapses)  (status: ok, never_moves, read:CODE,\n"
+                 "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
+                 "  collapse holds at the cap)\n"
+                 "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
+                 "ran), 2 bad options or arch file, 3 an output could not be written.\n",
+         .heading = {[AQ_GROUP_ORIENTATION] =
+                         "Orientation (--azimuth all: each row is the worst azimuth, lowest\n"
+                         "first_collapse_scale, no collapse last, with the range over the\n"
+                         "azimuths; --azimuth DEG gives one azimuth's; -o and --fragility\n"
+                         "take plain RECORDs only):"}},
+    [AQ_CMD_PLOT] = {.name = "plot",
+                     .title = "plot",
+                     .help_cmd = "plot",
+                     .head = plot_head,
+                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
+                             "bad options,\n3 the figure or the data could not be written.\n",
+                     .heading = {[AQ_GROUP_MAIN] = "Options:"}},
+    [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
+    [AQ_CMD_PLOT_ARCH] = FIGURE("arch"),
+    [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
+    [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
+    [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
+};
+
+void aq_opts_init(aq_opts *o, aq_cmd cmd)
+{
+  memset(o, 0, sizeof *o);
+  aq_signal_opts_default(&o->proc);
+  aq_opt_orient_init(&o->orient);
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  o->threads = ncpu >= 1 ? (ncpu > AQ_MAX_THREADS ? AQ_MAX_THREADS : ncpu) : 1;
+  o->model = AQ_MODEL_WORKPATH;
+  o->cor = NAN;
+  o->impact = -1;
+  o->ode_rtol = 1e-10;
+  o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;
+  o->scale_to_pga_g = NAN;
+  o->scale_max = NAN;
+  o->resolution = AQ_SCAN_RESOLUTION_DEFAULT;
+  o->scan_tol = AQ_SCAN_TOL_DEFAULT;
+  o->points = 101;
+  o->accel_g = o->duration_s = o->end_s = o->max_end_s = NAN;
+  o->pulse_dt_s = 0.01;
+  o->domain_tol_s = 1e-9;
+  o->max_duration_s = 100;
+  o->rtol = AQ_COMPARE_RTOL_DEFAULT;
+  o->atol = AQ_COMPARE_ATOL_DEFAULT;
+}
+
+void aq_opts_free(aq_opts *o)
+{
+  free(o->arches);
+  free(o->scales);
+  free(o->ratios);
+  aq_opt_orient_free(&o->orient);
+  o->arches = NULL;
+  o->scales = o->ratios = NULL;
+  o->narches = o->nscale = o->nratios = 0;
+}
+
+int aq_opt_applies(aq_opt_id id, aq_cmd cmd)
+{
+  return (unsigned)id < AQ_OPT_N && (unsigned)cmd < AQ_CMD_N &&
+         (aq_opt_rows[id].cmds >> cmd & 1u);
+}

@@ -1,0 +1,273 @@
+/* opt_table.h: every option of every command, declared once, in one table
+ * (aq_opt_rows in opt_table.c): its name, the kind and range of its
+ * argument, where its value goes (a field of aq_opts), the commands it
+ * applies to and its help text.  One function parses every command's
+ * options through it (opt_parse.c): a bad value, an unknown option and an
+ * option of another command are each reported in one line, all of them,
+ * before anything is read.  --help, `archquake help COMMAND` and the man
+ * page (tools/man.sh reads --help) are written from the same table.
+ *
+ * To add an option:
+ *   1. an id in aq_opt_id below (the order of the ids is the order of
+ *      --help within a group);
+ *   2. its row in aq_opt_rows[] (opt_table.c): name, short letter or 0,
+ *      kind (AQ_ARG_*), metavariable, range lo..hi, destination
+ *      (DEST(field) of aq_opts, or a handler for AQ_ARG_CUSTOM), the
+ *      commands it applies to (C(RUN) | C(CAPACITY) ...), group, help;
+ *   3. its field in aq_opts, and its default in aq_opts_init if not 0.
+ *   The same name may have one row per meaning (--dt of text records and
+ *   --dt of pulse), each for commands of its own: no command has two rows
+ *   of one name (test_opt_table.c checks).  Checks between options (one
+ *   needs another) stay in the command, after aq_opts_parse.
+ *
+ * To add a command:
+ *   1. an id in aq_cmd (before AQ_CMD_N) and its row in aq_opt_commands[]
+ *      (opt_table.c): its name, usage line, description and the end of its
+ *      --help (columns, exit status);
+ *   2. its bit, C(NAME), in the rows of the options it takes (--help's row
+ *      applies to every command already);
+ *   3. in cmd_NAME.c:
+ *        aq_opts o;
+ *        aq_opts_init(&o, AQ_CMD_NAME);
+ *        int nerr = 0;
+ *        if (aq_opts_parse(AQ_CMD_NAME, argc, argv, &o, &nerr)) {  // --help
+ *          aq_opts_free(&o);
+ *          return AQ_EXIT_OK;
+ *        }
+ *        // operands: argv[optind .. argc); checks between options: nerr++
+ *        if (nerr) { aq_opts_free(&o); return AQ_EXIT_USAGE; }
+ *        ... o.field ...; aq_opts_free(&o);
+ *   4. a line in main.c's table of commands.
+ */
+#ifndef AQ_APP_OPT_TABLE_H
+#define AQ_APP_OPT_TABLE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "../io/record.h"
+#include "../signal/signal.h"
+#include "opt_orient.h"
+
+/* The commands (and plot's figures, which take options of their own). */
+typedef enum {
+  AQ_CMD_RUN = 0, /* archquake [OPTIONS] RECORD... --arch FILE: the main job */
+  AQ_CMD_INFO,
+  AQ_CMD_MECHANISM,
+  AQ_CMD_PULSE,
+  AQ_CMD_DOMAIN,
+  AQ_CMD_COMPARE,
+  AQ_CMD_CAPACITY,
+  AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
+  AQ_CMD_PLOT_HISTORY,
+  AQ_CMD_PLOT_ARCH,
+  AQ_CMD_PLOT_DOMAIN,
+  AQ_CMD_PLOT_SUITE,
+  AQ_CMD_PLOT_CAPACITY,
+  AQ_CMD_N
+} aq_cmd;
+
+/* The options, in the order --help lists them within a group. */
+typedef enum {
+  AQ_OPT_ARCHES = 0, /* --arch, repeatable (run, capacity) */
+  AQ_OPT_ARCH,       /* --arch, one (mechanism, pulse, domain, plot) */
+  AQ_OPT_ARCH_NAME,  /* --arch NAME of a capacity file (plot capacity) */
+  AQ_OPT_ACCEL_G,
+  AQ_OPT_DURATION,
+  AQ_OPT_END,
+  AQ_OPT_MAX_END,
+  AQ_OPT_PULSE_DT,
+  AQ_OPT_RATIOS,
+  AQ_OPT_OUTPUT,      /* -o FILE.h5 */
+  AQ_OPT_PLOT_OUTPUT, /* -o FILE.png|svg|pdf */
+  AQ_OPT_TEXT,
+  AQ_OPT_FRAGILITY,
+  AQ_OPT_DATA,
+  AQ_OPT_RUN,
+  AQ_OPT_ROTATION,
+  AQ_OPT_IM,
+  AQ_OPT_X,
+  AQ_OPT_Y,
+  AQ_OPT_SCALE,
+  AQ_OPT_SCALE_TO_PGA,
+  AQ_OPT_SCALE_TO_LAMBDA0,
+  AQ_OPT_SCALE_MAX,
+  AQ_OPT_RESOLUTION,
+  AQ_OPT_SCAN_TOL,
+  AQ_OPT_DOMAIN_TOL,
+  AQ_OPT_MAX_DURATION,
+  AQ_OPT_JOBS,
+  AQ_OPT_MODEL,
+  AQ_OPT_COR,
+  AQ_OPT_IMPACT,
+  AQ_OPT_ODE_RTOL,
+  AQ_OPT_HISTORY,      /* the main job: histories into the results file */
+  AQ_OPT_HISTORY_FILE, /* pulse: the history as CSV */
+  AQ_OPT_STORE_RECORDS,
+  AQ_OPT_RESUME,
+  AQ_OPT_POLARITY,
+  AQ_OPT_TABLE,
+  AQ_OPT_POINTS,
+  AQ_OPT_RTOL,
+  AQ_OPT_ATOL,
+  AQ_OPT_IGNORE,
+  AQ_OPT_QUIET,
+  AQ_OPT_HELP,
+  /* reading records */
+  AQ_OPT_UNITS,
+  AQ_OPT_READ_DT,
+  AQ_OPT_COLUMN,
+  AQ_OPT_COMPONENT,
+  AQ_OPT_ACCEPT_IMPLAUSIBLE,
+  AQ_OPT_ACCEPT_VERTICAL,
+  AQ_OPT_RESPONSE,
+  /* orientation */
+  AQ_OPT_COMPONENTS,
+  AQ_OPT_AZIMUTHS,
+  AQ_OPT_AZIMUTH,
+  AQ_OPT_ALL_AZIMUTHS,
+  AQ_OPT_VERTICAL,
+  /* processing */
+  AQ_OPT_DETREND,
+  AQ_OPT_TAPER,
+  AQ_OPT_HIGHPASS,
+  AQ_OPT_ORDER,
+  AQ_OPT_LOWPASS,
+  AQ_OPT_NO_FILTER,
+  AQ_OPT_MERGE_TOL,
+  AQ_OPT_N
+} aq_opt_id;
+
+/* The groups of --help, in this order; each but the first under a heading. */
+typedef enum {
+  AQ_GROUP_MAIN = 0,
+  AQ_GROUP_READING,     /* "Reading:" */
+  AQ_GROUP_ORIENTATION, /* "Orientation:" */
+  AQ_GROUP_PROCESSING,  /* "Processing:" */
+  AQ_GROUP_N
+} aq_opt_group;
+
+/* The kinds of argument and what the parser stores. */
+typedef enum {
+  AQ_ARG_FLAG,      /* no argument: int = 1 */
+  AQ_ARG_FLAG_OFF,  /* no argument: int = 0 */
+  AQ_ARG_DOUBLE,    /* double in [lo, hi] */
+  AQ_ARG_DOUBLE_GT, /* double in (lo, hi] */
+  AQ_ARG_LONG,      /* long in [lo, hi] */
+  AQ_ARG_INT,       /* int in [lo, hi] */
+  AQ_ARG_SIZE,      /* size_t in [lo, hi] */
+  AQ_ARG_LIST,      /* distinct doubles each in (lo, hi]: double * (malloc'd)
+                       at dest, their count (size_t) at dest_n */
+  AQ_ARG_CHOICE,    /* one of choices: int = its index */
+  AQ_ARG_STRING,    /* const char * = the argument (argv's own) */
+  AQ_ARG_CUSTOM     /* fn(arg, opts, nerr) checks and stores */
+} aq_arg_kind;
+
+/* Every option value of every command; aq_opts_init sets the defaults.
+ * Strings point into argv; what is malloc'd is freed by aq_opts_free. */
+typedef struct aq_opts {
+  unsigned char given[AQ_OPT_N]; /* how often each option was given (<= 255) */
+  /* arches */
+  char **arches;    /* --arch, repeatable: resolved paths (the array is malloc'd) */
+  size_t narches;
+  const char *arch; /* --arch, one: a resolved path; plot capacity: a name */
+  /* outputs */
+  const char *output;       /* -o */
+  const char *text;         /* --text */
+  const char *fragility;    /* --fragility */
+  const char *data;         /* --data */
+  const char *history_file; /* pulse --history */
+  /* reading, orientation, processing */
+  aq_read_opts read;
+  char units_text[1024]; /* every --units as given, space-separated */
+  aq_orient_opts orient;
+  aq_signal_opts proc;
+  double merge_tol_g; /* --merge-tol, g */
+  /* dynamics */
+  int model;       /* --model: an aq_model */
+  double cor;      /* --cor, or NAN: each arch's own */
+  int impact;      /* --impact: 0 cor, 1 momentum, -1 the arch's own */
+  double ode_rtol; /* --ode-rtol */
+  int polarity;    /* --polarity: AQ_POLARITY_* (opt.h) */
+  /* the main job */
+  double *scales; /* --scale */
+  size_t nscale;
+  double scale_to_pga_g;   /* --scale-to-pga, or NAN */
+  double scale_to_lambda0; /* --scale-to-lambda0, or 0 */
+  long threads;            /* -j */
+  int history, store_records, resume, quiet;
+  /* capacity */
+  double scale_max;  /* --scale-max, or NAN */
+  double resolution; /* --resolution */
+  double scan_tol;   /* --tol (relative) */
+  /* mechanism */
+  int table;
+  long points;
+  /* pulse */
+  double accel_g, duration_s, end_s, max_end_s, pulse_dt_s;
+  /* domain (and plot domain) */
+  double *ratios;
+  size_t nratios;
+  double domain_tol_s, max_duration_s;
+  /* compare */
+  double rtol, atol;
+  const char *ignore[32]; /* --ignore names, pointing into ignore_buf */
+  char ignore_buf[32][64];
+  size_t nignore;
+  /* plot */
+  const char *run, *im;
+  int x_rad, y_pga; /* --x, --y: index in their choices */
+  double rotation_rad;
+} aq_opts;
+
+/* One option (a row of the table). */
+typedef struct {
+  const char *name;   /* long name, without "--" */
+  char short_name;    /* -o, -j, -q; 0: none */
+  aq_arg_kind kind;
+  const char *meta;   /* the argument in --help ("FILE"); NULL for flags */
+  double lo, hi;      /* the range (numbers; LIST: each item) */
+  const char *const *choices; /* AQ_ARG_CHOICE: NULL-terminated */
+  size_t dest, dest_n;        /* offsetof(aq_opts, ...) */
+  /* AQ_ARG_CUSTOM: checks arg and stores it; other kinds: called after the
+   * value is stored (what else the option sets); NULL: nothing */
+  void (*fn)(char *arg, aq_opts *o, int *nerr);
+  unsigned cmds;      /* the commands it applies to: bit 1u << aq_cmd */
+  aq_opt_group group;
+  const char *help;   /* one paragraph, wrapped by --help */
+  const char *meta2, *help2; /* a second form (--units GLOB=U), or NULL */
+} aq_opt_row;
+
+/* One command: what --help says besides its options. */
+typedef struct {
+  const char *name;     /* as typed after archquake ("" the main job, "plot arch") */
+  const char *title;    /* in messages: "the main job", "info", "plot arch" */
+  const char *help_cmd; /* its --help: "archquake HELP_CMD --help" ("plot" for figures) */
+  const char *head;     /* usage line(s) and description, each line ending in '\n' */
+  const char *tail;     /* after the options: columns, exit status */
+  const char *heading[AQ_GROUP_N]; /* a group's heading, if not the default */
+} aq_opt_command;
+
+extern const aq_opt_row aq_opt_rows[AQ_OPT_N];
+extern const aq_opt_command aq_opt_commands[AQ_CMD_N];
+
+/* The defaults of every option for command cmd. */
+void aq_opts_init(aq_opts *o, aq_cmd cmd);
+/* Free what parsing allocated (o may be freed again). */
+void aq_opts_free(aq_opts *o);
+
+/* Parse argv[1..argc) as command cmd's options (getopt_long: operands are
+ * moved to the end, from argv[optind]).  Each bad value, unknown option and
+ * option cmd does not take is reported on stderr in one line and counted in
+ * *nerr; parsing goes on, so that all are reported.  Returns 1 if --help
+ * was given (cmd's help is then printed on stdout), else 0. */
+int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr);
+
+/* cmd's --help on f: head, options by group, tail.  AQ_CMD_PLOT lists the
+ * options of every figure, each with the figures it applies to. */
+void aq_opts_help(aq_cmd cmd, FILE *f);
+
+/* 1 if option id applies to command cmd. */
+int aq_opt_applies(aq_opt_id id, aq_cmd cmd);
+
+#endif
