@@ -19,7 +19,9 @@ HDF5_A     := $(if $(filter 1,$(HDF5_STATIC)),$(firstword $(wildcard $(addsuffix
 HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs hdf5 2>/dev/null))
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5,$(PKGS)) 2>/dev/null) $(HDF5_LIBS)
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
-AQ_LIBS    = $(PKG_LIBS) -lglpk -lpthread -lm
+# zlib: the tests decode the browser's PNG screenshots (also HDF5's own).
+# GLPK (no pkg-config file): the mechanism search's linear programs.
+AQ_LIBS    = $(PKG_LIBS) -lglpk -lz -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
@@ -220,7 +222,7 @@ DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libae
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
             libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            openmpi-bin libopenmpi-dev man-db locales poppler-utils
+            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)

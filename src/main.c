@@ -20,7 +20,7 @@ static const struct {
     {"info", aq_cmd_info},       {"mechanism", aq_cmd_mechanism},
     {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
     {"compare", aq_cmd_compare}, {"plot", aq_cmd_plot},
-    {"capacity", aq_cmd_capacity},
+    {"capacity", aq_cmd_capacity}, {"report", aq_cmd_report},
 };
 
 static const char commands_usage[] =
@@ -33,6 +33,7 @@ static const char commands_usage[] =
     "  archquake compare A.h5 B.h5                 regression check\n"
     "  archquake capacity RECORD... --arch FILE    collapse scales, fragility\n"
     "  archquake plot FIGURE ... -o FILE           figures (history arch domain suite capacity)\n"
+    "  archquake report RESULTS.h5 [CAP.h5...] -o F.html  one HTML page to hand on\n"
     "  archquake --version                         the version\n";
 
 /* The main job's usage and the command list, on stdout. */
@@ -83,7 +84,7 @@ int AQ_MAIN(int argc, char **argv)
         return commands[i].fn(2, av);
       }
     fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
-                    "domain, compare, plot, capacity), got \"%s\"\n", argv[2]);
+                    "domain, compare, plot, capacity, report), got \"%s\"\n", argv[2]);
     return AQ_EXIT_USAGE;
   }
   if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {

@@ -191,7 +191,7 @@ AQ_TEST(install_run_man_uninstall)
   if (page && aq_test_run("--help", want, OUT_CAP, NULL, 0) == 0) {
     check_lines_in(want, page, "archquake --help");
     static const char *const cmds[] = {"info", "mechanism", "pulse", "domain", "compare",
-                                       "capacity", "plot"};
+                                       "capacity", "plot", "report"};
     for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
       snprintf(cmd, sizeof cmd, "%s --help", cmds[i]);
       if (aq_check(aq_test_run(cmd, want, OUT_CAP, NULL, 0) == 0, "%s --help", cmds[i]))

@@ -31,6 +31,7 @@ int aq_cmd_domain(int argc, char **argv);    /* archquake domain */
 int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
 int aq_cmd_plot(int argc, char **argv);      /* archquake plot */
 int aq_cmd_capacity(int argc, char **argv);  /* archquake capacity */
+int aq_cmd_report(int argc, char **argv);    /* archquake report */
 
 /* With [hinges], warn on stderr (one line naming path and both sets) when
  * the arch's minimum-lambda0 set is lower than its primary: that mechanism

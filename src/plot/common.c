@@ -448,22 +448,37 @@ static size_t utf8_chars(const char *s)
   return n;
 }
 
+void aq_plot_escape(const char *s, char *out, size_t cap)
+{
+  size_t n = 0;
+  if (cap == 0)
+    return;
+  for (; *s && n + 2 < cap; s++) {
+    if (*s == '#')
+      out[n++] = '#'; /* PLplot's escape character, doubled: itself */
+    out[n++] = *s;
+  }
+  out[n] = '\0';
+}
+
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap)
 {
   size_t n = utf8_chars(s);
+  char plain[1024];
   if (cap == 0)
     return;
-  if (n <= max_chars || max_chars < 3) {
-    snprintf(out, cap, "%s", s);
-    return;
+  if (n <= max_chars || max_chars < 3)
+    snprintf(plain, sizeof plain, "%s", s);
+  else {
+    size_t keep = max_chars - 1, head = (keep + 1) / 2, tail = keep - head;
+    const char *p = s, *q = s;
+    for (size_t i = 0; i < head; i++)
+      p += utf8_len(p);
+    for (size_t i = 0; i < n - tail; i++)
+      q += utf8_len(q);
+    snprintf(plain, sizeof plain, "%.*s…%s", (int)(p - s), s, q);
   }
-  size_t keep = max_chars - 1, head = (keep + 1) / 2, tail = keep - head;
-  const char *p = s, *q = s;
-  for (size_t i = 0; i < head; i++)
-    p += utf8_len(p);
-  for (size_t i = 0; i < n - tail; i++)
-    q += utf8_len(q);
-  snprintf(out, cap, "%.*s…%s", (int)(p - s), s, q);
+  aq_plot_escape(plain, out, cap);
 }
 
 size_t aq_plot_chars_fit(double width_frac)
@@ -474,6 +489,52 @@ size_t aq_plot_chars_fit(double width_frac)
    * height per character of a file name, measured on the figures */
   double w = width_frac * figure_w_mm, per = 0.85 * ht;
   return per > 0 && w > per ? (size_t)(w / per) : 1;
+}
+
+void aq_plot_line(size_t n, const double *x, const double *y, size_t buckets)
+{
+  if (n <= 4 * buckets || buckets == 0) {
+    plline((PLINT)n, x, y);
+    return;
+  }
+  PLFLT *bx = malloc(4 * buckets * sizeof *bx), *by = malloc(4 * buckets * sizeof *by);
+  if (!bx || !by) { /* drawn whole */
+    free(bx);
+    free(by);
+    plline((PLINT)n, x, y);
+    return;
+  }
+  double x0 = x[0], w = (x[n - 1] - x[0]) / (double)buckets;
+  size_t m = 0;
+  for (size_t i = 0; i < n;) {
+    /* the samples of one bucket: the first, the lowest, the highest and
+       the last, in their order */
+    double edge = x0 + w * floor((x[i] - x0) / w + 1);
+    size_t j = i, lo = i, hi = i;
+    while (j < n && (x[j] < edge || j == i)) {
+      if (y[j] < y[lo])
+        lo = j;
+      if (y[j] > y[hi])
+        hi = j;
+      j++;
+    }
+    size_t k[4] = {i, lo < hi ? lo : hi, lo < hi ? hi : lo, j - 1};
+    for (int q = 0; q < 4; q++)
+      if (q == 0 || k[q] != k[q - 1]) {
+        bx[m] = x[k[q]];
+        by[m++] = y[k[q]];
+      }
+    i = j;
+    if (m + 4 > 4 * buckets) { /* uneven spacing: flush */
+      plline((PLINT)m, bx, by);
+      bx[0] = bx[m - 1];
+      by[0] = by[m - 1];
+      m = 1;
+    }
+  }
+  plline((PLINT)m, bx, by);
+  free(bx);
+  free(by);
 }
 
 void aq_plot_note(double x, double y, const char *text)

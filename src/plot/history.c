@@ -41,6 +41,8 @@ typedef struct {
 /* Below this fraction of the smaller q_c, the rotation axis leaves +-q_c
  * out (named "off scale" in the legend) so that the response can be seen. */
 static const double QC_SHOWN_FRAC = 0.4;
+/* the panels are about 620 px wide: a span a pixel keeps every extreme */
+static const size_t LINE_BUCKETS = 620;
 
 /* Axis titles (also written to the CSV, so that tests can read them). */
 static const char *const AX_TIME = "time in the record (s)", *const AX_GROUND = "ground (g)";
@@ -192,7 +194,10 @@ static int draw(void *ctx, aq_error *err)
   plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
   const char *base = strrchr(r->record, '/');
   base = base ? base + 1 : r->record;
-  snprintf(title, sizeof title, "%.60s on arch %.40s: scale %g%s, run %s", base, r->arch,
+  char rec_e[160], arch_e[100];
+  aq_plot_escape(base, rec_e, sizeof rec_e);
+  aq_plot_escape(r->arch, arch_e, sizeof arch_e);
+  snprintf(title, sizeof title, "%.120s on arch %.80s: scale %g%s, run %s", rec_e, arch_e,
            r->scale, r->reversed ? " reversed" : "", r->key);
   plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
   plmtex("t", 1.2, 0.5, 0.5, title);
@@ -206,7 +211,7 @@ static int draw(void *ctx, aq_error *err)
   panel(h, 0.67, 0.93, lo, hi, 0, AX_GROUND);
   plcol0(AQ_PC_GREY);
   if (r->na)
-    plline((PLINT)r->na, h->ag_t_s, h->ag_g);
+    aq_plot_line(r->na, h->ag_t_s, h->ag_g, LINE_BUCKETS);
   for (int s = 0; s < 2; s++)
     for (int sg = -1; sg <= 1; sg += 2)
       hline(h->t0_s, h->t1_s, sg * r->lambda0[s] * gr, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
@@ -256,7 +261,7 @@ static int draw(void *ctx, aq_error *err)
   if (qy) {
     for (size_t k = 0; k < r->n; k++)
       qy[k] = r->q_rad[k] / qper;
-    plline((PLINT)r->n, r->t_s, qy);
+    aq_plot_line(r->n, r->t_s, qy, LINE_BUCKETS);
     free(qy);
   }
   if (h->nimp) {
@@ -306,7 +311,7 @@ static int draw(void *ctx, aq_error *err)
     for (size_t k = 0; k < r->n; k++)
       y[k] = e[j][k] / unit;
     plcol0(ec[j]);
-    plline((PLINT)r->n, r->t_s, y);
+    aq_plot_line(r->n, r->t_s, y, LINE_BUCKETS);
   }
   free(y);
   {

@@ -119,9 +119,12 @@ void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);
  * raise) in plain UTF-8 text, into out[cap]: "#gl#d0#u g" -> "λ0 g". */
 void aq_plot_plain(const char *s, char *out, size_t cap);
 
+/* A name to draw (a file name, an arch's name) with PLplot's escape
+ * character '#' doubled, into out[cap]: drawn as it is ("x.csv#NS"). */
+void aq_plot_escape(const char *s, char *out, size_t cap);
 /* s shortened to at most max_chars characters (UTF-8) by an ellipsis in
  * the middle, keeping its start and its end ("RSN6_IMP…hor1.AT2"), into
- * out[cap]; s itself if it fits. */
+ * out[cap], escaped (aq_plot_escape); s itself if it fits. */
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap);
 /* Between plinit and plend: how many characters of a file name fit in
  * width_frac of the page's width at the current character height. */
@@ -141,6 +144,11 @@ enum { AQ_PLOT_LEGEND_MAX = 40 };
 void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
                        const char *const *text, const int *color, const int *style,
                        const char *const *sym);
+/* plline of n points with x increasing, thinned where they are many more
+ * than the panel has pixels: in each of `buckets` equal spans of x the
+ * first, lowest, highest and last point, in order, so that the line looks
+ * the same (its extremes kept) at a fraction of the size in SVG and PDF. */
+void aq_plot_line(size_t n, const double *x, const double *y, size_t buckets);
 /* text centred at (x, y) (world coordinates) on a box of the background
  * colour, so that lines drawn before do not strike through it. */
 void aq_plot_note(double x, double y, const char *text);

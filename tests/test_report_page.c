@@ -1,0 +1,452 @@
+/* test_report_page.c: `archquake report`.
+ *   - the page of a suite with histories and a capacity file: one verdict
+ *     row per run of the main job's TSV (written by the same command, read
+ *     here), the collapses marked in words, a figure per arch, the verdict
+ *     map, a history per collapsed run and one for the strongest survivor,
+ *     the capacity file's rows and fits; nothing that a browser would fetch;
+ *     the figures' text is text;
+ *   - bad input (a text file, an HDF5 file not archquake's, a capacity file
+ *     given as the results and the reverse, an older format_version): one
+ *     line naming the file, exit 1, no file;
+ *   - in a browser (Debian's chromium, headless, from disk; skipped and
+ *     said so where it is not installed): the page's first screen and its
+ *     second arch's verdict table are screenshots that are not blank and
+ *     show the table's COLLAPSE cells; the page prints to PDF; its net log
+ *     holds no request but the page's own file; the script ran (the DOM
+ *     has the filter it adds).  The screenshots are kept in build/check/. */
+#include <hdf5.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+#include "check.h"
+
+#define ARCHES "arches/"
+#define REC "tests/data/records/"
+enum { BIG = 1 << 22 };
+
+static int sh(const char *cmd, char *out, size_t cap)
+{
+  FILE *p = popen(cmd, "r");
+  if (!p)
+    return -1;
+  size_t n = out ? fread(out, 1, cap - 1, p) : 0;
+  if (out)
+    out[n] = '\0';
+  else {
+    char sink[4096];
+    while (fread(sink, 1, sizeof sink, p) > 0)
+      ;
+  }
+  return pclose(p);
+}
+
+static size_t count(const char *s, const char *what)
+{
+  size_t n = 0;
+  for (const char *p = s ? strstr(s, what) : NULL; p; p = strstr(p + 1, what))
+    n++;
+  return n;
+}
+
+static int exists(const char *path)
+{
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+/* The suite of the page tests: two records against two arches at two
+ * scales, with histories and the processed records; made once. */
+static const char *suite_h5(char *tsv, size_t cap)
+{
+  static char path[600];
+  static char rows[1 << 16];
+  if (!path[0]) {
+    char dir[512], args[2048], err[2048];
+    aq_test_tmpdir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/suite.h5", dir);
+    snprintf(args, sizeof args,
+             REC "ARL360.at2 " REC "IELC180.AT2 --arch " ARCHES "oppenheim.cfg --arch " ARCHES
+                 "thin.cfg --scale 0.5,5 --history --store-records -o %s",
+             path);
+    if (aq_test_run(args, rows, sizeof rows, err, sizeof err) != 0)
+      fprintf(stderr, "test_report_page: cannot make %s: %s\n", path, err);
+  }
+  if (tsv)
+    snprintf(tsv, cap, "%s", rows);
+  return path;
+}
+
+static const char *capacity_h5(void)
+{
+  static char path[600];
+  if (!path[0]) {
+    char dir[512], args[2048], err[2048];
+    aq_test_tmpdir(dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/cap.h5", dir);
+    snprintf(args, sizeof args,
+             "capacity " REC "RSN77_SFERN_PUL164-hor1.AT2 " REC "IELC180.AT2 --arch " ARCHES
+             "oppenheim.cfg --scale-max 4 -o %s",
+             path);
+    if (aq_test_run(args, NULL, 0, err, sizeof err) != 0)
+      fprintf(stderr, "test_report_page: cannot make %s: %s\n", path, err);
+  }
+  return path;
+}
+
+AQ_TEST(report_page_holds_the_suite)
+{
+  char *tsv = malloc(1 << 16);
+  const char *h5 = suite_h5(tsv, 1 << 16), *cap = capacity_h5();
+  char dir[512], page[600], args[2048], err[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(page, sizeof page, "%s/r.html", dir);
+  snprintf(args, sizeof args, "report %s %s -o %s", h5, cap, page);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "%s: exit %d \"%s\"", args, rc, err);
+  char *html = aq_test_read_file(page, NULL);
+  if (!aq_check(html != NULL, "%s written", page)) {
+    free(tsv);
+    return;
+  }
+  /* the TSV's runs: rows, collapses (column 7, collapsed), survivors */
+  size_t runs = 0, coll[2] = {0, 0}, surv[2] = {0, 0};
+  for (const char *l = strchr(tsv, '\n'); l && l[1]; l = strchr(l + 1, '\n')) {
+    const char *f = l + 1;
+    char arch[64];
+    const char *t = strchr(f, '\t');
+    size_t al = t ? strcspn(t + 1, "\t") : 0;
+    snprintf(arch, sizeof arch, "%.*s", (int)al, t ? t + 1 : "");
+    for (int k = 0; k < 6 && f; k++) {
+      f = strchr(f, '\t');
+      f = f ? f + 1 : NULL;
+    }
+    int a = strcmp(arch, "thin") == 0;
+    runs++;
+    coll[a] += f && f[0] == '1';
+    surv[a] += f && f[0] == '0';
+  }
+  aq_check(runs == 8 && coll[1] > 0, "TSV: %zu runs, %zu collapses on thin", runs, coll[1]);
+  aq_check(count(html, "<tr data-verdict=") == runs, "one verdict row per run (%zu of %zu)",
+           count(html, "<tr data-verdict="), runs);
+  aq_check(count(html, "<tr data-verdict=\"collapse\">") == coll[0] + coll[1] &&
+               count(html, "✖ COLLAPSE") == coll[0] + coll[1],
+           "collapses marked in words: %zu of %zu", count(html, "✖ COLLAPSE"),
+           coll[0] + coll[1]);
+  /* figures: the map, an arch each, a history per collapse and per arch
+     with a survivor one more, a capacity figure */
+  size_t want = 1 + 2 + coll[0] + coll[1] + (surv[0] > 0) + (surv[1] > 0) + 1;
+  aq_check(count(html, "<svg class=\"fig\"") == want, "%zu figures, want %zu",
+           count(html, "<svg class=\"fig\""), want);
+  /* the figures' text is text, the page fetches nothing */
+  aq_check(strstr(html, "<tspan") && strstr(html, ">IELC180.AT2<") &&
+               strstr(html, "thin: 24 voussoirs") != NULL,
+           "figure text as text");
+  aq_check(!strstr(html, "<link") && !strstr(html, " src=") && !strstr(html, "@import") &&
+               !strstr(html, "url(http") && !strstr(html, "href=\"http") &&
+               !strstr(html, "<!DOCTYPE svg"),
+           "no external resource");
+  /* the run and the capacity file */
+  aq_check(strstr(html, "ARL360.at2") && strstr(html, "sha256") && strstr(html, "format_version") == NULL,
+           "the run: records, hashes; bookkeeping left out");
+  aq_check(count(html, "RSN77_SFERN_PUL164-hor1.AT2") >= 2 && strstr(html, "pga_g") &&
+               strstr(html, "ranked by the dispersion"),
+           "capacity: its rows and the ranking of the measures");
+  aq_check(count(html, "How to read this") >= 6, "a note on how to read each section (%zu)",
+           count(html, "How to read this"));
+  free(html);
+  free(tsv);
+}
+
+/* exit 1, one line naming path and containing what, no page */
+static void refused(const char *args, const char *path, const char *what, const char *page)
+{
+  char err[2048];
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1 && aq_test_count_lines(err) == 1 && strstr(err, path) && strstr(err, what),
+           "%s: exit %d, one line naming %s and \"%s\": %s", args, rc, path, what, err);
+  aq_check(!exists(page), "%s: no page left", args);
+}
+
+AQ_TEST(report_page_bad_input)
+{
+  const char *h5 = suite_h5(NULL, 0), *cap = capacity_h5();
+  char dir[512], page[600], args[3000], text[600], alien[600], old[600], cmd[2000];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(page, sizeof page, "%s/r.html", dir);
+  /* a text file */
+  snprintf(text, sizeof text, "%s/notes.h5", dir);
+  FILE *f = fopen(text, "w");
+  if (f) {
+    fputs("not results\n", f);
+    fclose(f);
+  }
+  snprintf(args, sizeof args, "report %s -o %s", text, page);
+  refused(args, text, "expected an archquake results file", page);
+  /* an HDF5 file that archquake did not write */
+  snprintf(alien, sizeof alien, "%s/alien.h5", dir);
+  hid_t a = H5Fcreate(alien, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0)
+    H5Fclose(a);
+  snprintf(args, sizeof args, "report %s -o %s", alien, page);
+  refused(args, alien, "not written by archquake", page);
+  /* a capacity file as the results, a results file as a capacity file */
+  snprintf(args, sizeof args, "report %s -o %s", cap, page);
+  refused(args, cap, "capacity file", page);
+  snprintf(args, sizeof args, "report %s %s -o %s", h5, h5, page);
+  refused(args, h5, "expected a capacity file", page);
+  /* an older format_version: says which one it reads */
+  snprintf(old, sizeof old, "%s/old.h5", dir);
+  snprintf(cmd, sizeof cmd, "cp '%s' '%s'", h5, old);
+  sh(cmd, NULL, 0);
+  hid_t o = H5Fopen(old, H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t at = o >= 0 ? H5Aopen(o, "format_version", H5P_DEFAULT) : -1;
+  int64_t one = 1;
+  aq_check(at >= 0 && H5Awrite(at, H5T_NATIVE_INT64, &one) >= 0, "format_version set to 1");
+  if (at >= 0)
+    H5Aclose(at);
+  if (o >= 0)
+    H5Fclose(o);
+  snprintf(args, sizeof args, "report %s -o %s", old, page);
+  refused(args, old, "expected format_version 2, got 1", page);
+  /* options: no -o, not .html */
+  char err[1024];
+  snprintf(args, sizeof args, "report %s -o %s/r.pdf", h5, dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 2 && strstr(err, ".html") && aq_test_count_lines(err) == 1, "-o x.pdf: %d %s",
+           rc, err);
+}
+
+/* ---- the browser test ---------------------------------------------------- */
+
+static const char CHROMIUM_FLAGS[] =
+    "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+    "--disable-background-networking --disable-component-update --disable-sync "
+    "--hide-scrollbars --no-pdf-header-footer";
+
+static int have_chromium(void)
+{
+  char out[256];
+  int have = sh("command -v chromium", out, sizeof out) == 0 && out[0] == '/';
+  if (!have)
+    fprintf(stderr, "test_report_page: chromium not installed: the browser test is skipped "
+                    "(make deps-dev installs it)\n");
+  return have;
+}
+
+/* A PNG's pixels as RGB: how many grey levels (blank: 1) and the share of
+ * the verdict tables' COLLAPSE colour (179, 0, 27: the page's .v-c, apart
+ * from the verdict map's red); -1 if it cannot be decoded (8-bit RGB or
+ * RGBA, non-interlaced, as chromium writes them). */
+static int png_stats(const char *path, size_t *distinct_grey, double *red_share, long *w_out,
+                     long *h_out)
+{
+  size_t n;
+  unsigned char *p = (unsigned char *)aq_test_read_file(path, &n);
+  if (!p || n < 33 || memcmp(p, "\x89PNG\r\n\x1a\n", 8) != 0) {
+    free(p);
+    return -1;
+  }
+  long w = 0, h = 0;
+  int bpp = 0;
+  size_t zcap = n, zn = 0;
+  unsigned char *z = malloc(zcap);
+  for (size_t i = 8; z && i + 12 <= n;) {
+    size_t len = (size_t)p[i] << 24 | (size_t)p[i + 1] << 16 | (size_t)p[i + 2] << 8 | p[i + 3];
+    const unsigned char *type = p + i + 4, *d = p + i + 8;
+    if (i + 12 + len > n)
+      break;
+    if (!memcmp(type, "IHDR", 4)) {
+      w = (long)d[0] << 24 | d[1] << 16 | d[2] << 8 | d[3];
+      h = (long)d[4] << 24 | d[5] << 16 | d[6] << 8 | d[7];
+      bpp = d[8] == 8 && d[9] == 6 ? 4 : d[8] == 8 && d[9] == 2 ? 3 : 0;
+      if (d[12] != 0)
+        bpp = 0;
+    } else if (!memcmp(type, "IDAT", 4)) {
+      memcpy(z + zn, d, len);
+      zn += len;
+    }
+    i += 12 + len;
+  }
+  free(p);
+  if (!z || bpp == 0 || w <= 0 || h <= 0) {
+    free(z);
+    return -1;
+  }
+  size_t stride = (size_t)w * (size_t)bpp;
+  uLongf rn = (uLongf)((stride + 1) * (size_t)h);
+  unsigned char *raw = malloc(rn);
+  if (!raw || uncompress(raw, &rn, z, zn) != Z_OK) {
+    free(z);
+    free(raw);
+    return -1;
+  }
+  free(z);
+  unsigned char *prev = calloc(stride, 1);
+  size_t red = 0, seen[256] = {0};
+  for (long y = 0; prev && y < h; y++) {
+    unsigned char *row = raw + (size_t)y * (stride + 1), ft = row[0], *cur = row + 1;
+    for (size_t x = 0; x < stride; x++) { /* PNG's five filters */
+      int a = x >= (size_t)bpp ? cur[x - bpp] : 0, b = prev[x], c = x >= (size_t)bpp ? prev[x - bpp] : 0;
+      int pr = a + b - c, pa = abs(pr - a), pb = abs(pr - b), pc = abs(pr - c);
+      int pred = ft == 1 ? a : ft == 2 ? b : ft == 3 ? (a + b) / 2
+                 : ft == 4 ? (pa <= pb && pa <= pc ? a : pb <= pc ? b : c)
+                           : 0;
+      cur[x] = (unsigned char)(cur[x] + pred);
+    }
+    for (long x = 0; x < w; x++) {
+      const unsigned char *px = cur + x * bpp;
+      seen[(px[0] + px[1] + px[2]) / 3]++;
+      red += abs(px[0] - 179) <= 3 && px[1] <= 3 && abs(px[2] - 27) <= 3;
+    }
+    memcpy(prev, cur, stride);
+  }
+  free(prev);
+  free(raw);
+  *distinct_grey = 0;
+  for (int i = 0; i < 256; i++)
+    *distinct_grey += seen[i] > 0;
+  *red_share = (double)red / ((double)w * (double)h);
+  *w_out = w;
+  *h_out = h;
+  return 0;
+}
+
+/* Requests started in a net log (URL_REQUEST_START_JOB carries an
+ * initiator), and those a page started: the browser's own (update checks,
+ * accounts) are "not an origin"; a page's have its origin ("null" for a
+ * file). */
+static void count_requests(const char *log, size_t *starts, size_t *from_page)
+{
+  char *net = aq_test_read_file(log, NULL);
+  *starts = *from_page = 0;
+  for (const char *p = net ? strstr(net, "\"initiator\":\"") : NULL; p;
+       p = strstr(p + 1, "\"initiator\":\"")) {
+    (*starts)++;
+    *from_page += strncmp(p + 13, "not an origin\"", 14) != 0;
+  }
+  aq_check(net != NULL, "net log %s written", log);
+  free(net);
+}
+
+/* chromium with the flags above, a fresh profile, and what; 0 on success. */
+static int chromium(const char *dir, const char *what, const char *url, char *out, size_t cap)
+{
+  char cmd[4096], prof[700];
+  static int n;
+  snprintf(prof, sizeof prof, "%s/profile%d", dir, n++);
+  snprintf(cmd, sizeof cmd, "chromium %s --user-data-dir='%s' %s '%s' 2>/dev/null", CHROMIUM_FLAGS,
+           prof, what, url);
+  return sh(cmd, out, cap);
+}
+
+AQ_TEST(report_page_in_chromium)
+{
+  if (!have_chromium())
+    return;
+  const char *h5 = suite_h5(NULL, 0), *cap = capacity_h5();
+  char dir[512], page[600], args[2048], err[2048], url[1200], what[1500], shot[2][700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(page, sizeof page, "%s/report.html", dir);
+  snprintf(args, sizeof args, "report %s %s -o %s", h5, cap, page);
+  if (!aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "%s: %s", args, err))
+    return;
+  char real[4096];
+  if (!aq_check(realpath(page, real) != NULL, "realpath"))
+    return;
+  /* the first screen, kept for a reader in build/check/; a screen as
+     tall as the page's first part, down to the arch sections' verdict
+     tables (a headless screenshot shows the page from its top) */
+  sh("mkdir -p build/check", NULL, 0);
+  snprintf(url, sizeof url, "file://%.1100s", real);
+  for (int k = 0; k < 2; k++) {
+    snprintf(shot[k], sizeof shot[k], "%s/shot%d.png", dir, k);
+    snprintf(what, sizeof what, "--window-size=1000,%d --screenshot='%s'", k ? 16000 : 1300,
+             shot[k]);
+    chromium(dir, what, url, NULL, 0);
+    size_t grey = 0;
+    double red = 0;
+    long w = 0, h = 0;
+    int ok = png_stats(shot[k], &grey, &red, &w, &h) == 0;
+    aq_check(ok && w == 1000 && h == (k ? 16000 : 1300) && grey > 20,
+             "screenshot %d: %ldx%ld, %zu grey levels (not blank)", k, w, h, grey);
+    if (k == 1)
+      aq_check(red * (double)w * (double)h > 2000,
+               "the verdict tables on screen: %.0f pixels of COLLAPSE cells", red * w * h);
+  }
+  char cmd[3000];
+  snprintf(cmd, sizeof cmd, "cp '%s' build/check/report-first-page.png", shot[0]);
+  sh(cmd, NULL, 0);
+  /* printed to PDF; its page where the arch thin begins, as an image */
+  char pdf[700];
+  snprintf(pdf, sizeof pdf, "%s/report.pdf", dir);
+  snprintf(what, sizeof what, "--print-to-pdf='%s'", pdf);
+  chromium(dir, what, url, NULL, 0);
+  size_t n = 0;
+  char *bytes = aq_test_read_file(pdf, &n);
+  size_t pages = 0;
+  for (size_t i = 0; bytes && i + 11 < n; i++)
+    pages += memcmp(bytes + i, "/Type /Page", 11) == 0 && bytes[i + 11] != 's';
+  aq_check(bytes && n > 1000 && memcmp(bytes, "%PDF", 4) == 0 && pages >= 3,
+           "printed to PDF: %zu bytes, %zu pages", n, pages);
+  free(bytes);
+  char out[64];
+  if (sh("command -v pdftoppm >/dev/null && command -v pdftotext >/dev/null && echo y", out,
+         sizeof out) == 0 &&
+      out[0] == 'y') {
+    int page_no = 0;
+    for (int pg = 1; pg <= (int)pages && !page_no; pg++) {
+      char *text = malloc(BIG);
+      snprintf(cmd, sizeof cmd, "pdftotext -f %d -l %d -layout '%s' -", pg, pg, pdf);
+      if (text && sh(cmd, text, BIG) == 0 && strstr(text, "Arch thin") && strstr(text, "Verdicts"))
+        page_no = pg;
+      free(text);
+    }
+    snprintf(cmd, sizeof cmd,
+             "pdftoppm -f %d -l %d -r 90 -png -singlefile '%s' build/check/report-arch-thin",
+             page_no, page_no, pdf);
+    size_t grey = 0;
+    double red = 0;
+    long w = 0, h = 0;
+    aq_check(page_no > 1 && sh(cmd, NULL, 0) == 0 &&
+                 png_stats("build/check/report-arch-thin.png", &grey, &red, &w, &h) == 0 &&
+                 grey > 20,
+             "the printed page of arch thin (page %d): %zu grey levels", page_no, grey);
+  } else
+    fprintf(stderr, "test_report_page: pdftoppm not installed: the printed arch page is not "
+                    "kept\n");
+  /* the script ran, and no request left the page */
+  char log[700];
+  snprintf(log, sizeof log, "%s/net.json", dir);
+  snprintf(what, sizeof what, "--log-net-log='%s' --net-log-capture-mode=Everything --dump-dom",
+           log);
+  char *dom = malloc(BIG);
+  if (dom)
+    chromium(dir, what, url, dom, BIG);
+  aq_check(dom && strstr(dom, "class=\"controls\"") && strstr(dom, "table class=\"verdicts"),
+           "the DOM after the script: the verdict tables have their filter");
+  free(dom);
+  size_t starts = 0, from_page = 0;
+  count_requests(log, &starts, &from_page);
+  aq_check(from_page == 0, "net log: %zu requests, %zu from the page", starts, from_page);
+  /* the check itself: a page that fetches an image is caught */
+  char ctl[700];
+  snprintf(ctl, sizeof ctl, "%s/fetch.html", dir);
+  FILE *f = fopen(ctl, "w");
+  if (f) {
+    fputs("<!DOCTYPE html><html><body><img src=\"http://127.0.0.1:9/x.png\"></body></html>\n", f);
+    fclose(f);
+  }
+  char ctl_real[4096];
+  snprintf(url, sizeof url, "file://%.1100s", realpath(ctl, ctl_real) ? ctl_real : ctl);
+  snprintf(what, sizeof what, "--log-net-log='%s' --net-log-capture-mode=Everything --dump-dom",
+           log);
+  chromium(dir, what, url, NULL, 0);
+  size_t s2 = 0, p2 = 0;
+  count_requests(log, &s2, &p2);
+  aq_check(p2 >= 1, "a page fetching http://127.0.0.1:9/x.png is caught (%zu requests)", p2);
+}
