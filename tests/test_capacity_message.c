@@ -45,17 +45,27 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
   aq_capacity_point pt[3];
   aq_capacity c, d;
   sample(&c, iv, pt);
-  size_t n = aq_capacity_encoded_size(&c), used = 0;
+  aq_bytes_out w = {0};
+  aq_capacity_encode(&c, &w);
+  /* 5 words, 3 strings with their lengths, 4 doubles, 4 counters, the
+     interval count and 2 intervals, the point count and 3 points of 5 words */
+  size_t n = 5 * 8 + 3 * 8 + strlen("records/x.AT2") + strlen("t") + strlen(c.err.message) +
+             4 * 8 + 4 * 8 + 8 + 2 * 16 + 8 + 3 * 40;
+  aq_check(!w.oom && w.n == n, "encode writes the layout's %zu bytes: %zu", n, w.n);
   unsigned char *b = malloc(n + 8);
   aq_check(b != NULL, "buffer");
-  if (!b)
+  if (!b || w.n != n) {
+    free(b);
+    free(w.data);
     return;
-  memset(b, 0xa5, n + 8);
-  aq_check(aq_capacity_encode(&c, b) == n, "encode writes encoded_size bytes (%zu)", n);
-  aq_check(b[n] == 0xa5, "encode writes no further than encoded_size");
+  }
+  memcpy(b, w.data, n);
+  memset(b + n, 0xa5, 8);
+  free(w.data);
   aq_error e;
-  aq_check(aq_capacity_decode(b, n + 8, &used, &d, &e) == AQ_OK, "decode");
-  aq_check(used == n, "decode reads one result: %zu of %zu bytes", used, n);
+  aq_bytes_in r = {b, n + 8, 0, NULL, 0};
+  aq_check(aq_capacity_decode(&r, &d, &e) == AQ_OK, "decode");
+  aq_check(r.at == n, "decode reads one result: %zu of %zu bytes", r.at, n);
   aq_check(d.status == c.status && d.run_status == c.run_status, "status");
   aq_check(d.err.status == AQ_ENUMERIC && d.err.line == 17 && d.err.byte_offset == -1,
            "error codes");
@@ -90,24 +100,24 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
   memset(&z, 0, sizeof z);
   z.status = AQ_CAPACITY_NEVER_MOVES;
   z.first_collapse_scale = NAN;
-  size_t nz = aq_capacity_encoded_size(&z);
-  unsigned char *two = malloc(n + nz);
-  if (two) {
-    aq_capacity_encode(&z, two);
-    aq_capacity_encode(&c, two + nz);
-    size_t u1 = 0, u2 = 0;
-    aq_check(aq_capacity_decode(two, n + nz, &u1, &d, &e) == AQ_OK &&
+  aq_bytes_out two = {0};
+  aq_capacity_encode(&z, &two);
+  size_t nz = two.n;
+  aq_capacity_encode(&c, &two);
+  if (!two.oom) {
+    aq_bytes_in r2 = {two.data, two.n, 0, NULL, 0};
+    aq_check(aq_capacity_decode(&r2, &d, &e) == AQ_OK && r2.at == nz &&
                  d.status == AQ_CAPACITY_NEVER_MOVES && d.scan.ninterval == 0 &&
                  d.scan.interval == NULL && d.npoint == 0 && d.point == NULL &&
                  isnan(d.first_collapse_scale),
              "first of two");
     aq_capacity_free(&d);
-    aq_status s2 = aq_capacity_decode(two + u1, n + nz - u1, &u2, &d, &e);
-    aq_check(s2 == AQ_OK && u1 + u2 == n + nz && d.scan.ninterval == 2 && d.npoint == 3,
-             "second of two (%zu + %zu bytes)", u1, u2);
+    aq_status s2 = aq_capacity_decode(&r2, &d, &e);
+    aq_check(s2 == AQ_OK && r2.at == n + nz && d.scan.ninterval == 2 && d.npoint == 3,
+             "second of two (%zu + %zu bytes)", nz, r2.at - nz);
     aq_capacity_free(&d);
   }
-  free(two);
+  free(two.data);
   free(b);
 }
 
@@ -117,17 +127,19 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
   aq_capacity_point pt[3];
   aq_capacity c, d;
   sample(&c, iv, pt);
-  size_t n = aq_capacity_encoded_size(&c), used;
-  unsigned char *b = malloc(n);
-  if (!aq_check(b != NULL, "buffer"))
+  aq_bytes_out w = {0};
+  aq_capacity_encode(&c, &w);
+  size_t n = w.n;
+  unsigned char *b = w.data;
+  if (!aq_check(b != NULL && !w.oom, "buffer"))
     return;
-  aq_capacity_encode(&c, b);
   aq_error e;
   size_t refused = 0;
   for (size_t k = 0; k < n; k++) { /* every cut: an exact-size copy for ASan */
     unsigned char *cut = malloc(k ? k : 1);
     memcpy(cut, b, k);
-    aq_status s = aq_capacity_decode(cut, k, &used, &d, &e);
+    aq_bytes_in r = {cut, k, 0, NULL, 0};
+    aq_status s = aq_capacity_decode(&r, &d, &e);
     refused += s == AQ_EFORMAT && e.field[0] != '\0' && d.scan.interval == NULL &&
                d.point == NULL;
     aq_capacity_free(&d);
@@ -145,13 +157,15 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
   if (b2) {
     memcpy(b2, b, n);
     memcpy(b2 + at + 8 + 2 * 16, &huge, sizeof huge);
-    aq_status s = aq_capacity_decode(b2, n, &used, &d, &e);
+    aq_bytes_in r = {b2, n, 0, NULL, 0};
+    aq_status s = aq_capacity_decode(&r, &d, &e);
     aq_check(s == AQ_EFORMAT && strcmp(e.field, "npoint") == 0 && d.point == NULL,
              "a huge point count refused: field \"%s\"", e.field);
     aq_capacity_free(&d);
     memcpy(b2, b, n);
     memcpy(b2 + n - 8, &two, sizeof two);
-    s = aq_capacity_decode(b2, n, &used, &d, &e);
+    r = (aq_bytes_in){b2, n, 0, NULL, 0};
+    s = aq_capacity_decode(&r, &d, &e);
     aq_check(s == AQ_EFORMAT && strcmp(e.field, "point collapsed") == 0 &&
                  e.byte_offset == (long)(n - 8),
              "a collapse flag of 2 refused: field \"%s\" at byte %ld", e.field,
@@ -160,14 +174,16 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
     free(b2);
   }
   memcpy(b + at, &huge, sizeof huge);
-  aq_status s = aq_capacity_decode(b, n, &used, &d, &e);
+  aq_bytes_in r = {b, n, 0, NULL, 0};
+  aq_status s = aq_capacity_decode(&r, &d, &e);
   aq_check(s == AQ_EFORMAT && strcmp(e.field, "ninterval") == 0,
            "a huge interval count refused: field \"%s\"", e.field);
   aq_capacity_free(&d);
   /* a status out of range */
   int64_t bad = 7;
   memcpy(b, &bad, sizeof bad);
-  s = aq_capacity_decode(b, n, &used, &d, &e);
+  r = (aq_bytes_in){b, n, 0, NULL, 0};
+  s = aq_capacity_decode(&r, &d, &e);
   aq_check(s == AQ_EFORMAT && strcmp(e.field, "status") == 0 && e.byte_offset == 0,
            "a status of 7 refused: field \"%s\" at byte %ld", e.field, e.byte_offset);
   aq_capacity_free(&d);

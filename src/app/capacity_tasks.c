@@ -181,21 +181,24 @@ static void run_task(tasks *X, size_t t, aq_capacity *out)
 static int task_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
 {
   tasks *X = ctx;
-  size_t nout = X->S->npol * X->S->nz, len = 0;
+  size_t nout = X->S->npol * X->S->nz;
   aq_capacity *out = calloc(nout, sizeof *out);
   if (!out)
     return -1;
   run_task(X, t, out);
-  for (size_t k = 0; k < nout; k++)
-    len += aq_capacity_encoded_size(&out[k]);
-  *msg = malloc(len ? len : 1);
-  *n = len;
-  for (size_t k = 0, at = 0; *msg && k < nout; k++)
-    at += aq_capacity_encode(&out[k], *msg + at);
-  for (size_t k = 0; k < nout; k++)
+  aq_bytes_out w = {0};
+  for (size_t k = 0; k < nout; k++) {
+    aq_capacity_encode(&out[k], &w);
     aq_capacity_free(&out[k]);
+  }
   free(out);
-  return *msg ? 0 : -1;
+  if (w.oom) {
+    free(w.data);
+    return -1;
+  }
+  *msg = w.data;
+  *n = w.n;
+  return 0;
 }
 
 /* Leader: subject r prepared here, when the first result of it comes
@@ -210,18 +213,17 @@ static const aq_cap_item *ensure(tasks *X, size_t r)
 static int task_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq_error *err)
 {
   tasks *X = ctx;
-  size_t nout = X->S->npol * X->S->nz, at = 0;
+  size_t nout = X->S->npol * X->S->nz;
   aq_capacity *o = X->C + t * nout;
   const aq_cap_item *it = ensure(X, t / X->S->na);
+  aq_bytes_in r = {msg, n, 0, NULL, 0};
   for (size_t k = 0; k < nout; k++) {
-    size_t used = 0;
     aq_capacity_free(&o[k]);
-    if (aq_capacity_decode(msg + at, n - at, &used, &o[k], err) != AQ_OK)
+    if (aq_capacity_decode(&r, &o[k], err) != AQ_OK)
       return -1;
-    at += used;
   }
-  if (at != n)
-    return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)at, NULL,
+  if (r.at != n)
+    return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)r.at, NULL,
                         "expected %zu capacity results of task %zu in %zu bytes, got "
                         "bytes left over", nout, t, n), -1;
   for (size_t k = 0; !it->ok && k < nout; k++) { /* unread here: no results (its status) */

@@ -21,9 +21,10 @@
 #include "../report/report.h"
 #include "../report/text_capacity.h"
 #include "../units.h"
+#include "../util/cleanup.h"
+#include "../util/outfile.h"
 #include "app.h"
 #include "capacity_tasks.h"
-#include "cleanup.h"
 #include "opt.h"
 #include "opt_arch.h"
 #include "opt_dyn.h"
@@ -161,13 +162,11 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                     const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
                     long threads, int pol)
 {
-  char cmd[4096] = "", tmp[4200], created[64];
+  char cmd[4096] = "", created[64];
   for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
     k += snprintf(cmd + k, sizeof cmd - (size_t)k, "%s%s", i ? " " : "archquake ", argv[i]);
   aq_error e;
   aq_h5_writer *w = NULL;
-  aq_h5_temp_name(path, tmp, sizeof tmp);
-  int slot = aq_cleanup_add(tmp);
   time_t t = time(NULL);
   struct tm tm;
   if (!gmtime_r(&t, &tm) || !strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tm))
@@ -214,36 +213,32 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   if (s != AQ_OK)
     aq_error_print(&e, stderr);
   aq_h5_abort(w);
-  aq_cleanup_remove(slot);
   return s == AQ_OK ? 0 : -1;
 }
 
-/* Open a temporary beside path (registered for cleanup). */
-static FILE *tmp_open(const char *path, char *tmp, size_t n, int *slot)
+/* Open the temporary of an output (util/outfile.h): 0, or -1 (a line on
+ * stderr). */
+static int out_open(aq_outfile *o, const char *path)
 {
-  snprintf(tmp, n, "%s.tmp.%ld", path, (long)getpid());
-  FILE *f = fopen(tmp, "wx");
-  if (!f)
-    fprintf(stderr, "archquake: %s: cannot create the output (temporary %s): %s\n",
-            path, tmp, strerror(errno));
-  else
-    *slot = aq_cleanup_add(tmp);
-  return f;
+  aq_error e;
+  if (aq_outfile_open(o, path, &e) == AQ_OK)
+    return 0;
+  aq_error_print(&e, stderr);
+  return -1;
 }
 
-/* Close f and rename tmp onto path if ok; remove it otherwise.  0 or -1. */
-static int tmp_commit(FILE *f, const char *tmp, const char *path, int ok, int slot)
+/* Rename o's temporary onto its target if ok, else remove it: 0 or -1. */
+static int out_close(aq_outfile *o, int ok)
 {
-  if (fclose(f) != 0 || (ok && rename(tmp, path) != 0)) {
-    if (ok)
-      fprintf(stderr, "archquake: %s: cannot write the output: %s\n", path,
-              strerror(errno));
-    ok = 0;
+  aq_error e;
+  if (!ok) {
+    aq_outfile_abort(o);
+    return -1;
   }
-  if (!ok)
-    unlink(tmp);
-  aq_cleanup_remove(slot);
-  return ok ? 0 : -1;
+  if (aq_outfile_commit(o, &e) == AQ_OK)
+    return 0;
+  aq_error_print(&e, stderr);
+  return -1;
 }
 
 int aq_cmd_capacity(int argc, char **argv)
@@ -445,11 +440,9 @@ int aq_cmd_capacity(int argc, char **argv)
 
   /* outputs: every temporary is complete before any is renamed */
   aq_cleanup_install();
-  char tt[4096], tf[4096];
-  int st = -1, sf = -1;
-  FILE *ft = text ? tmp_open(text, tt, sizeof tt, &st) : stdout;
-  FILE *ff = frag ? tmp_open(frag, tf, sizeof tf, &sf) : NULL;
-  int ok = ft && (!frag || ff);
+  aq_outfile ot = {0}, of = {0};
+  int ok = (!text || out_open(&ot, text) == 0) && (!frag || out_open(&of, frag) == 0);
+  FILE *ft = text ? ot.f : stdout, *ff = of.f;
   rows o = {NULL, NULL, NULL};
   if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0)
     ok = 0;
@@ -466,9 +459,9 @@ int aq_cmd_capacity(int argc, char **argv)
                merge_tol_g, &dyn, threads, pol) != 0)
     ok = 0;
   rows_free(&o);
-  if (ff && tmp_commit(ff, tf, frag, ok, sf) != 0)
+  if (frag && out_close(&of, ok) != 0)
     ok = 0;
-  if (text && ft && tmp_commit(ft, tt, text, ok, st) != 0)
+  if (text && out_close(&ot, ok) != 0)
     ok = 0;
   if (!text && (fflush(stdout) != 0 || ferror(stdout)))
     ok = 0;

@@ -15,7 +15,7 @@
 #include "../plot/plot.h"
 #include "../report/h5.h"
 #include "app.h"
-#include "cleanup.h"
+#include "../util/cleanup.h"
 #include "opt.h"
 #include "opt_arch.h"
 

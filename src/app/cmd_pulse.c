@@ -14,6 +14,8 @@
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../units.h"
+#include "../util/cleanup.h"
+#include "../util/outfile.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -58,31 +60,29 @@ static aq_status pulse_steps(double a_mps2, double dur_s, double end_s,
   return rc;
 }
 
-static int write_history(const char *path, const aq_history *h)
+/* The history as CSV at path, under a temporary renamed onto it when
+ * complete (util/outfile.h).  Returns AQ_OK, or the failure (err). */
+static aq_status write_history(const char *path, const aq_history *h, aq_error *err)
 {
-  char tmp[4096];
-  if (snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid()) >=
-      (int)sizeof tmp)
-    return -1;
-  FILE *f = fopen(tmp, "w");
-  if (!f)
-    return -1;
-  int bad = fprintf(f, "time_s,rotation_rad,displacement_m,kinetic_energy_j,"
-                       "potential_energy_j,set\n") < 0;
+  aq_outfile o;
+  aq_cleanup_install(); /* a signal removes the temporary */
+  aq_status s = aq_outfile_open(&o, path, err);
+  if (s != AQ_OK)
+    return s;
+  int bad = fprintf(o.f, "time_s,rotation_rad,displacement_m,kinetic_energy_j,"
+                         "potential_energy_j,set\n") < 0;
   for (size_t i = 0; i < h->n && !bad; i++)
-    bad = fprintf(f, "%.10g,%.12g,%.12g,%.12g,%.12g,%d\n", h->time_s[i],
+    bad = fprintf(o.f, "%.10g,%.12g,%.12g,%.12g,%.12g,%d\n", h->time_s[i],
                   h->rotation_rad[i], h->displacement_m[i],
                   h->kinetic_energy_j[i], h->potential_energy_j[i],
                   h->set[i]) < 0;
-  if (fclose(f) != 0)
-    bad = 1;
-  if (bad || rename(tmp, path) != 0) {
-    int e = errno;
-    remove(tmp);
-    errno = e; /* for the caller's message */
-    return -1;
+  if (bad) {
+    s = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot write the history: %s",
+                     strerror(errno));
+    aq_outfile_abort(&o);
+    return s;
   }
-  return 0;
+  return aq_outfile_commit(&o, err);
 }
 
 int aq_cmd_pulse(int argc, char **argv)
@@ -226,8 +226,9 @@ int aq_cmd_pulse(int argc, char **argv)
             "archquake: %s: still moving at the cap t = %g s (--max-end); "
             "the row is that of --end %g\n",
             file, end, end);
-  if (hist && write_history(hist, &res.history) != 0) {
-    fprintf(stderr, "archquake: %s: cannot write the history: %s\n", hist, strerror(errno));
+  aq_error herr;
+  if (hist && write_history(hist, &res.history, &herr) != AQ_OK) {
+    aq_error_print(&herr, stderr);
     status = AQ_EXIT_OUTPUT;
     goto out;
   }

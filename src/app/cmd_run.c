@@ -15,8 +15,9 @@
 
 #include "../arch/stepper.h"
 #include "../io/formats.h"
+#include "../util/cleanup.h"
+#include "../util/outfile.h"
 #include "app.h"
-#include "cleanup.h"
 #include "opt.h"
 #include "opt_arch.h"
 #include "opt_dyn.h"
@@ -380,70 +381,38 @@ int aq_cmd_run(int argc, char **argv)
     if (text_path)
       aq_cleanup_stale(text_path);
   }
-  FILE *tf = NULL;
-  char *tmp = NULL;
-  int tslot = -1;
+  aq_outfile tout = {0}; /* --text: its temporary */
   struct stat sb;
+  aq_error terr;
+  int rc = AQ_EXIT_OK;
   if (text_path && stat(text_path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
     fprintf(stderr, "archquake: %s: --text: expected a file name, got a directory\n",
             text_path);
-    free(cmdline);
-    free(arches);
-    free(scales);
-    free(labels);
-    free(motions);
-    aq_opt_orient_free(&orient);
-    return AQ_EXIT_OUTPUT;
+    rc = AQ_EXIT_OUTPUT;
+  } else if (text_path && aq_outfile_open(&tout, text_path, &terr) != AQ_OK) {
+    aq_error_print(&terr, stderr);
+    rc = AQ_EXIT_OUTPUT;
   }
-  if (text_path) {
-    size_t len = strlen(text_path) + 32;
-    tmp = malloc(len);
-    if (tmp) {
-      snprintf(tmp, len, "%s.tmp.%ld", text_path, (long)getpid());
-      tf = fopen(tmp, "wx");
-    }
-    if (!tf) {
-      fprintf(stderr, "archquake: %s: cannot create the text output (temporary %s): %s\n",
-              text_path, tmp ? tmp : "", tmp ? strerror(errno) : "out of memory");
-      free(tmp);
-      free(cmdline);
-      free(arches);
-      free(scales);
-      free(labels);
-      free(motions);
-      aq_opt_orient_free(&orient);
-      return AQ_EXIT_OUTPUT;
-    }
-    tslot = aq_cleanup_add(tmp);
-  }
-  cfg.text = tf ? tf : stdout;
+  if (rc != AQ_EXIT_OK)
+    goto out;
+  cfg.text = tout.f ? tout.f : stdout;
   /* TSV for files and pipes */
-  cfg.aligned = !tf && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
+  cfg.aligned = !tout.f && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
-  int rc = aq_suite_run(&cfg, NULL);
+  rc = aq_suite_run(&cfg, NULL);
 
-  if (tf) {
-    int ok = rc != AQ_EXIT_OUTPUT && rc != AQ_EXIT_USAGE;
-    if (fclose(tf) != 0 && ok) {
-      fprintf(stderr, "archquake: %s: cannot write the text output: %s\n", text_path,
-              strerror(errno));
-      ok = 0;
+  if (tout.f) {
+    if (rc == AQ_EXIT_OUTPUT || rc == AQ_EXIT_USAGE) {
+      aq_outfile_abort(&tout);
+    } else if (aq_outfile_commit(&tout, &terr) != AQ_OK) {
+      aq_error_print(&terr, stderr);
       rc = AQ_EXIT_OUTPUT;
     }
-    if (ok && rename(tmp, text_path) != 0) {
-      fprintf(stderr, "archquake: %s: cannot rename %s onto it: %s\n", text_path, tmp,
-              strerror(errno));
-      ok = 0;
-      rc = AQ_EXIT_OUTPUT;
-    }
-    if (!ok)
-      unlink(tmp);
-    aq_cleanup_remove(tslot);
-    free(tmp);
   } else if (fflush(stdout) != 0 || ferror(stdout)) {
     fprintf(stderr, "archquake: stdout: cannot write the text output\n");
     rc = AQ_EXIT_OUTPUT;
   }
+out:
   free(cmdline);
   free(arches);
   free(scales);

@@ -46,6 +46,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "../util/pool.h"
 #include "app.h"
 #include "farm.h"
 
@@ -217,8 +218,9 @@ static size_t pick(farm_state *F, int r)
 }
 
 /* A worker thread: runs this rank's tasks, one at a time (no MPI here). */
-static void *farm_worker(void *arg)
+static void farm_worker(void *arg, size_t k)
 {
+  (void)k;
   farm_state *F = arg;
   pthread_mutex_lock(&F->lock);
   for (;;) {
@@ -262,7 +264,6 @@ static void *farm_worker(void *arg)
     F->done_tail = &d->next;
   }
   pthread_mutex_unlock(&F->lock);
-  return NULL;
 }
 
 /* The results finished so far (lock taken here); *oom set if a task failed. */
@@ -287,23 +288,22 @@ static void farm_free_done(done_msg *d)
   }
 }
 
-/* Start nt worker threads; returns how many started (the caller joins). */
-static size_t farm_start(farm_state *F, pthread_t *tid, size_t nt)
+/* Start nt worker threads into *pool; returns how many started (the
+ * caller joins them with farm_join). */
+static size_t farm_start(farm_state *F, aq_pool **pool, size_t nt)
 {
   size_t k = 0;
-  while (k < nt && pthread_create(&tid[k], NULL, farm_worker, F) == 0)
-    k++;
+  *pool = aq_pool_start(nt, farm_worker, F, &k);
   return k;
 }
 
-static void farm_join(farm_state *F, pthread_t *tid, size_t k)
+static void farm_join(farm_state *F, aq_pool *pool)
 {
   pthread_mutex_lock(&F->lock);
   F->stop = 1;
   pthread_cond_broadcast(&F->cond);
   pthread_mutex_unlock(&F->lock);
-  for (size_t i = 0; i < k; i++)
-    pthread_join(tid[i], NULL);
+  aq_pool_join(pool);
   int oom;
   farm_free_done(farm_take_done(F, &oom));
 }
@@ -311,8 +311,7 @@ static void farm_join(farm_state *F, pthread_t *tid, size_t k)
 /* Leader: hand tasks to the followers, one per thread of theirs and
  * AQ_MPI_QUEUED_EXTRA more each, run tasks on its own threads between, and
  * take every result. */
-static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid,
-                     aq_error *err)
+static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, aq_error *err)
 {
   const aq_farm_tasks *T = F->T;
   size_t nmax = T->ntask ? T->ntask : 1;
@@ -334,7 +333,8 @@ static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid,
     pos[F->todo[k]] = k;
   size_t ahead = T->ahead ? T->ahead * threads * (size_t)C->size : F->ntodo, lowest = 0;
   F->limit = ahead;
-  size_t nt = rc == 0 ? farm_start(F, tid, threads) : 0, ndone = 0;
+  aq_pool *pool = NULL;
+  size_t nt = rc == 0 ? farm_start(F, &pool, threads) : 0, ndone = 0;
   if (rc == 0 && nt == 0)
     rc = (aq_error_set(err, AQ_ENOMEM, "MPI", -1, -1, NULL, "cannot start a thread"), -1);
   long ns = AQ_MPI_POLL_MIN_NS;
@@ -417,7 +417,7 @@ static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid,
     }
     pause_ns(&ns, active);
   }
-  farm_join(F, tid, nt);
+  farm_join(F, pool);
   free(owner);
   free(pos);
   free(taken);
@@ -432,12 +432,13 @@ static int farm_lead(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid,
 
 /* Follower: take tasks from rank 0 onto this rank's threads and send each
  * result back, until rank 0 says stop. */
-static int farm_follow(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid)
+static int farm_follow(mpi_ctx *C, farm_state *F, size_t threads)
 {
   F->nring = threads + AQ_MPI_QUEUED_EXTRA;
   if (!(F->ring = calloc(F->nring, sizeof *F->ring)))
     follower_abort(C, MPI_SUCCESS, "out of memory");
-  size_t nt = farm_start(F, tid, threads);
+  aq_pool *pool = NULL;
+  size_t nt = farm_start(F, &pool, threads);
   if (nt == 0)
     follower_abort(C, MPI_SUCCESS, "cannot start a thread");
   long ns = AQ_MPI_POLL_MIN_NS;
@@ -472,7 +473,7 @@ static int farm_follow(mpi_ctx *C, farm_state *F, size_t threads, pthread_t *tid
       follower_abort(C, MPI_SUCCESS, "out of memory");
     pause_ns(&ns, active);
   }
-  farm_join(F, tid, nt);
+  farm_join(F, pool);
   free(F->ring);
   return 0;
 }
@@ -503,19 +504,15 @@ static int farm(void *ctx, const aq_farm_tasks *T, const size_t *todo, size_t nt
   F.done_tail = &F.done;
   pthread_mutex_init(&F.lock, NULL);
   pthread_cond_init(&F.cond, NULL);
-  pthread_t *tid = calloc(threads, sizeof *tid);
   int rc;
-  if (!tid)
-    rc = (aq_error_set(err, AQ_ENOMEM, "MPI", -1, -1, NULL, "out of memory"), -1);
-  else if (F.follower)
-    rc = farm_follow(C, &F, threads, tid);
+  if (F.follower)
+    rc = farm_follow(C, &F, threads);
   else
-    rc = farm_lead(C, &F, threads, tid, err);
+    rc = farm_lead(C, &F, threads, err);
   if (rc == 0 && !F.follower) { /* the results are all in: stop the followers */
     rc = stop_followers(C, err);
     C->stopped_all = rc == 0;
   }
-  free(tid);
   pthread_mutex_destroy(&F.lock);
   pthread_cond_destroy(&F.cond);
   return rc;

@@ -22,8 +22,8 @@
 #include "../signal/project.h"
 #include "../signal/steps.h"
 #include "../units.h"
+#include "../util/pool.h"
 #include "app.h"
-#include "cleanup.h"
 #include "farm.h"
 #include "opt.h"
 #include "suite_slot.h"
@@ -562,9 +562,9 @@ static void slot_done(suite *S, rec_slot *r)
     pthread_cond_broadcast(&S->cond);
 }
 
-static void *worker(void *arg)
+static void worker(void *ctx, size_t k)
 {
-  worker_arg *w = arg;
+  worker_arg *w = &((worker_arg *)ctx)[k];
   suite *S = w->S;
   const size_t nrec = S->cfg->nrecords;
   pthread_mutex_lock(&S->lock);
@@ -633,7 +633,6 @@ static void *worker(void *arg)
     S->wait_s += now_s() - t0;
   }
   pthread_mutex_unlock(&S->lock);
-  return NULL;
 }
 
 /* ---- the writer --------------------------------------------------------- */
@@ -789,25 +788,13 @@ static void iso_now(char *buf, size_t n)
 }
 
 /* Open the results file and write the root and the arches. */
-static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
-                         aq_error *err)
+static aq_status open_h5(suite *S, aq_h5_writer **out, aq_error *err)
 {
   const aq_suite_cfg *c = S->cfg;
   aq_h5_writer *w;
-  /* registered before it exists, so that no signal can slip in between */
-  size_t len = strlen(c->h5_path) + 40;
-  char *tmp = malloc(len);
-  if (!tmp)
-    return aq_error_set(err, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory");
-  aq_h5_temp_name(c->h5_path, tmp, len);
-  *cleanup_slot = aq_cleanup_add(tmp);
-  free(tmp);
   aq_status s = aq_h5_open(c->h5_path, &w, err);
-  if (s != AQ_OK) {
-    aq_cleanup_remove(*cleanup_slot);
-    *cleanup_slot = -1;
+  if (s != AQ_OK)
     return s;
-  }
   char created[64];
   iso_now(created, sizeof created);
   aq_h5_root root = {AQ_VERSION,
@@ -853,8 +840,6 @@ static aq_status open_h5(suite *S, aq_h5_writer **out, int *cleanup_slot,
   }
   if (s != AQ_OK) {
     aq_h5_abort(w);
-    aq_cleanup_remove(*cleanup_slot);
-    *cleanup_slot = -1;
     return s;
   }
   *out = w;
@@ -1109,7 +1094,7 @@ static int farm_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
   free(st);
   rec_slot view = *r;
   view.runs = r->runs ? r->runs + a * per : NULL;
-  aq_jbuf jb = {0};
+  aq_bytes_out jb = {0};
   aq_suite_slot_encode(&view, per, &jb);
   for (size_t k = 0; r->runs && k < per; k++) /* the results travel; not kept here */
     if (r->runs[a * per + k].have_res) {
@@ -1178,7 +1163,7 @@ static int farm_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq
     rec_slot *r = X->pend[X->next_write];
     ws = write_record(S, r, X->h5, X->stats, err);
     if (ws == AQ_OK && X->J) {
-      aq_jbuf jb = {0};
+      aq_bytes_out jb = {0};
       aq_suite_slot_encode(r, r->nruns, &jb);
       ws = jb.oom ? aq_error_set(err, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory")
                   : aq_journal_append(X->J, jb.data, jb.n, err);
@@ -1242,19 +1227,20 @@ static aq_status farm_suite(suite *S, aq_h5_writer *h5, aq_journal *J, size_t do
 
 /* The worker threads of S, each with its own steppers. */
 typedef struct {
-  long n, started;
-  pthread_t *tid;
+  long n;
+  size_t started;
+  aq_pool *pool;
   worker_arg *wa;
 } workers;
 
-/* Start up to W->n workers (W->started of them ran). */
+/* Start up to W->n workers (W->started of them run). */
 static void workers_start(suite *S, workers *W)
 {
   const aq_suite_cfg *c = S->cfg;
-  W->tid = calloc((size_t)W->n, sizeof *W->tid);
   W->wa = calloc((size_t)W->n, sizeof *W->wa);
-  for (long t = 0; W->tid && W->wa && t < W->n; t++) {
-    worker_arg *a = &W->wa[t];
+  long n = 0;
+  for (; W->wa && n < W->n; n++) {
+    worker_arg *a = &W->wa[n];
     a->S = S;
     a->st = calloc(c->narches ? c->narches : 1, sizeof *a->st);
     if (!a->st)
@@ -1264,10 +1250,8 @@ static void workers_start(suite *S, workers *W)
         aq_error e;
         a->st[k] = make_stepper(S, k, &e);
       }
-    if (pthread_create(&W->tid[t], NULL, worker, a) != 0)
-      break;
-    W->started++;
   }
+  W->pool = n > 0 ? aq_pool_start((size_t)n, worker, W->wa, &W->started) : NULL;
 }
 
 /* Wait for the workers to finish (told to stop first with stop) and free
@@ -1280,16 +1264,14 @@ static void workers_join(suite *S, workers *W, int stop)
     pthread_cond_broadcast(&S->cond);
     pthread_mutex_unlock(&S->lock);
   }
-  for (long t = 0; t < W->started; t++)
-    pthread_join(W->tid[t], NULL);
+  aq_pool_join(W->pool);
+  W->pool = NULL;
   for (long t = 0; W->wa && t < W->n; t++) {
     for (size_t a = 0; W->wa[t].st && a < S->cfg->narches; a++)
       aq_stepper_free(W->wa[t].st[a]);
     free(W->wa[t].st);
   }
-  free(W->tid);
   free(W->wa);
-  W->tid = NULL;
   W->wa = NULL;
   W->started = 0;
 }
@@ -1415,11 +1397,10 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   if (early)
     workers_start(&S, &W);
   aq_h5_writer *h5 = NULL;
-  int h5_slot = -1;
   aq_error oerr;
   aq_error_clear(&oerr);
   double tw = now_s();
-  if (c->h5_path && open_h5(&S, &h5, &h5_slot, &oerr) != AQ_OK) {
+  if (c->h5_path && open_h5(&S, &h5, &oerr) != AQ_OK) {
     aq_error_print(&oerr, stderr);
     rc = AQ_EXIT_OUTPUT;
     goto out;
@@ -1429,7 +1410,6 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   rc = journal_start(&S, &J, &jent, &njent); /* a refused journal: before any output */
   if (rc != AQ_EXIT_OK) {
     aq_h5_abort(h5);
-    aq_cleanup_remove(h5_slot);
     goto out;
   }
   if (c->aligned) {
@@ -1473,7 +1453,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
 
   if (!early)
     workers_start(&S, &W);
-  long started = W.started;
+  size_t started = W.started;
   if (started == 0) {
     aq_error_set(&oerr, AQ_ENOMEM, "", -1, -1, NULL, "cannot start a worker thread");
     fprintf(stderr, "archquake: cannot start a worker thread\n");
@@ -1513,7 +1493,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     record_sha256(&S, r, next);
     ws = write_record(&S, r, h5, &stats, &oerr);
     if (ws == AQ_OK && J) { /* the record is done: it survives an interruption */
-      aq_jbuf jb = {0};
+      aq_bytes_out jb = {0};
       aq_suite_slot_encode(r, r->nruns, &jb);
       ws = jb.oom ? aq_error_set(&oerr, AQ_ENOMEM, c->h5_path, -1, -1, NULL, "out of memory")
                   : aq_journal_append(J, jb.data, jb.n, &oerr);
@@ -1542,7 +1522,6 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   if (started == 0) {
     aq_h5_abort(h5);
     h5 = NULL;
-    aq_cleanup_remove(h5_slot);
     goto out;
   }
 
@@ -1557,7 +1536,6 @@ written:
                        stats.write_s};
     aq_status s = aq_h5_finish(h5, &tm, &oerr); /* frees h5 either way */
     h5 = NULL;
-    aq_cleanup_remove(h5_slot);
     stats.write_s += now_s() - t0;
     if (s != AQ_OK) {
       aq_error_print(&oerr, stderr);
@@ -1580,7 +1558,6 @@ written:
 output_failed:
   aq_error_print(&oerr, stderr);
   aq_h5_abort(h5);
-  aq_cleanup_remove(h5_slot);
   rc = AQ_EXIT_OUTPUT;
 out:
   workers_join(&S, &W, 1); /* the outputs failed: stopped before any record */
@@ -1624,11 +1601,10 @@ typedef struct {
   aq_error err;
 } expand_part;
 
-static void *expand_main(void *arg)
+static void expand_part_run(void *ctx, size_t k)
 {
-  expand_part *p = arg;
+  expand_part *p = &((expand_part *)ctx)[k];
   p->st = aq_record_expand(p->paths, p->n, p->opts, &p->names, &p->nnames, &p->err);
-  return NULL;
 }
 
 /* aq_record_expand of paths[0..n), on up to nthreads threads: the same
@@ -1640,32 +1616,21 @@ static aq_status expand_records(char *const *paths, size_t n, const aq_read_opts
   if (T > n / AQ_SUITE_EXPAND_MIN_PER_THREAD)
     T = n / AQ_SUITE_EXPAND_MIN_PER_THREAD;
   expand_part *p = T > 1 ? calloc(T, sizeof *p) : NULL;
-  pthread_t *tid = p ? calloc(T, sizeof *tid) : NULL;
-  if (!tid) {
-    free(p);
+  if (!p)
     return aq_record_expand(paths, n, opts, out, nout, err);
-  }
-  int *started = calloc(T, sizeof *started);
-  for (size_t k = 0; k < T; k++) {
+  for (size_t k = 0; k < T; k++)
     p[k] = (expand_part){paths + n * k / T, n * (k + 1) / T - n * k / T, opts, NULL, 0,
                          AQ_OK, {0}};
-    if (k > 0 && started)
-      started[k] = pthread_create(&tid[k], NULL, expand_main, &p[k]) == 0;
-  }
-  for (size_t k = 0; k < T; k++) /* this thread: part 0, and any not started */
-    if (!started || !started[k])
-      expand_main(&p[k]);
+  aq_status st = aq_pool_for(T, (long)T, expand_part_run, p, err);
   size_t total = 0;
-  aq_status st = AQ_OK;
-  for (size_t k = 0; k < T; k++) {
-    if (started && started[k])
-      pthread_join(tid[k], NULL);
-    if (st == AQ_OK && p[k].st != AQ_OK) {
+  for (size_t k = 0; st == AQ_OK && k < T; k++) {
+    if (p[k].st != AQ_OK) {
       st = p[k].st;
       *err = p[k].err;
     }
-    total += p[k].nnames;
   }
+  for (size_t k = 0; k < T; k++)
+    total += p[k].nnames;
   char **names = st == AQ_OK ? malloc((total ? total : 1) * sizeof *names) : NULL;
   if (st == AQ_OK && !names)
     st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
@@ -1679,8 +1644,6 @@ static aq_status expand_records(char *const *paths, size_t n, const aq_read_opts
     }
     m += p[k].nnames;
   }
-  free(started);
-  free(tid);
   free(p);
   *out = names;
   *nout = names ? total : 0;

@@ -12,116 +12,117 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../util/bytes.h"
 #include "app.h"
 #include "opt.h"
 
 enum { F_FAILED = 1, F_REC = 2, F_PROC = 4, F_IM = 8, F_RUNS = 16 };
 enum { R_RES = 1, R_FAILED = 2 };
 
-void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_jbuf *b)
+void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
 {
   uint64_t index = r->index;
   unsigned char f = (unsigned char)((r->failed ? F_FAILED : 0) | (r->have_rec ? F_REC : 0) |
                                     (r->have_proc ? F_PROC : 0) | (r->have_im ? F_IM : 0) |
                                     (r->runs ? F_RUNS : 0));
-  aq_jbuf_put(b, &index, sizeof index);
-  aq_jbuf_put(b, &f, 1);
+  aq_bytes_put(b, &index, sizeof index);
+  aq_bytes_put(b, &f, 1);
   if (r->failed)
-    aq_jbuf_put(b, &r->err, sizeof r->err);
-  aq_jbuf_put_str(b, r->status);
-  aq_jbuf_put_str(b, r->warning);
-  aq_jbuf_put_str(b, r->sha256);
-  aq_jbuf_put(b, &r->read_s, sizeof r->read_s);
-  aq_jbuf_put(b, &r->process_s, sizeof r->process_s);
+    aq_bytes_put(b, &r->err, sizeof r->err);
+  aq_bytes_put_str(b, r->status, sizeof r->status);
+  aq_bytes_put_str(b, r->warning, sizeof r->warning);
+  aq_bytes_put_str(b, r->sha256, sizeof r->sha256);
+  aq_bytes_put(b, &r->read_s, sizeof r->read_s);
+  aq_bytes_put(b, &r->process_s, sizeof r->process_s);
   if (r->have_rec) {
     aq_record m = r->rec; /* metadata: the strings follow, no samples */
     m.path = m.name = NULL;
     m.acc_mps2 = NULL;
-    aq_jbuf_put(b, &m, sizeof m);
-    aq_jbuf_put_str(b, r->rec.path);
-    aq_jbuf_put_str(b, r->rec.name);
+    aq_bytes_put(b, &m, sizeof m);
+    aq_bytes_put_str(b, r->rec.path, 0);
+    aq_bytes_put_str(b, r->rec.name, 0);
   }
   if (r->have_proc) {
     aq_processed p = r->proc;
     p.acc_mps2 = NULL;
-    aq_jbuf_put(b, &p, sizeof p);
+    aq_bytes_put(b, &p, sizeof p);
   }
   if (r->have_im)
-    aq_jbuf_put(b, &r->im, sizeof r->im);
+    aq_bytes_put(b, &r->im, sizeof r->im);
   for (size_t i = 0; r->runs && i < nruns; i++) {
     const run_slot *u = &r->runs[i];
     unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0));
-    aq_jbuf_put(b, &u->sum, sizeof u->sum);
-    aq_jbuf_put(b, &g, 1);
+    aq_bytes_put(b, &u->sum, sizeof u->sum);
+    aq_bytes_put(b, &g, 1);
     if (u->have_res) {
       aq_result res = u->res;
       memset(&res.history, 0, sizeof res.history);
-      aq_jbuf_put(b, &res, sizeof res);
+      aq_bytes_put(b, &res, sizeof res);
     }
     if (u->failed)
-      aq_jbuf_put(b, &u->err, sizeof u->err);
-    aq_jbuf_put(b, &u->run_s, sizeof u->run_s);
+      aq_bytes_put(b, &u->err, sizeof u->err);
+    aq_bytes_put(b, &u->run_s, sizeof u->run_s);
   }
 }
 
 int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
 {
   memset(r, 0, sizeof *r);
-  aq_jread_ctx c = {e->data, e->n, 0, 0};
-  uint64_t index;
-  unsigned char f;
-  aq_jread(&c, &index, sizeof index);
-  aq_jread(&c, &f, 1);
+  aq_bytes_in c = {e->data, e->n, 0, NULL, 0};
+  uint64_t index = 0;
+  unsigned char f = 0;
+  aq_bytes_get(&c, &index, sizeof index, NULL);
+  aq_bytes_get(&c, &f, 1, NULL);
   r->index = (size_t)index;
   r->failed = (f & F_FAILED) != 0;
   if (r->failed)
-    aq_jread(&c, &r->err, sizeof r->err);
-  aq_jread_str(&c, r->status, sizeof r->status, NULL);
-  aq_jread_str(&c, r->warning, sizeof r->warning, NULL);
-  aq_jread_str(&c, r->sha256, sizeof r->sha256, NULL);
-  aq_jread(&c, &r->read_s, sizeof r->read_s);
-  aq_jread(&c, &r->process_s, sizeof r->process_s);
-  if ((f & F_REC) && aq_jread(&c, &r->rec, sizeof r->rec) == 0) {
+    aq_bytes_get(&c, &r->err, sizeof r->err, NULL);
+  aq_bytes_get_str(&c, r->status, sizeof r->status, NULL, NULL);
+  aq_bytes_get_str(&c, r->warning, sizeof r->warning, NULL, NULL);
+  aq_bytes_get_str(&c, r->sha256, sizeof r->sha256, NULL, NULL);
+  aq_bytes_get(&c, &r->read_s, sizeof r->read_s, NULL);
+  aq_bytes_get(&c, &r->process_s, sizeof r->process_s, NULL);
+  if ((f & F_REC) && aq_bytes_get(&c, &r->rec, sizeof r->rec, NULL) == 0) {
     r->rec.path = r->rec.name = NULL;
     r->rec.acc_mps2 = NULL;
     r->have_rec = 1; /* aq_record_free frees what was read */
-    aq_jread_str(&c, NULL, 0, &r->rec.path);
-    aq_jread_str(&c, NULL, 0, &r->rec.name);
+    aq_bytes_get_str(&c, NULL, 0, &r->rec.path, NULL);
+    aq_bytes_get_str(&c, NULL, 0, &r->rec.name, NULL);
   }
-  if ((f & F_PROC) && aq_jread(&c, &r->proc, sizeof r->proc) == 0) {
+  if ((f & F_PROC) && aq_bytes_get(&c, &r->proc, sizeof r->proc, NULL) == 0) {
     r->proc.acc_mps2 = NULL;
     r->have_proc = 1;
   }
   if (f & F_IM)
-    r->have_im = aq_jread(&c, &r->im, sizeof r->im) == 0;
+    r->have_im = aq_bytes_get(&c, &r->im, sizeof r->im, NULL) == 0;
   if ((f & F_RUNS) && !c.bad && !(r->runs = calloc(nruns ? nruns : 1, sizeof *r->runs)))
     return -1;
   for (size_t i = 0; r->runs && i < nruns && !c.bad; i++) {
     run_slot *u = &r->runs[i];
     unsigned char g = 0;
-    aq_jread(&c, &u->sum, sizeof u->sum);
-    aq_jread(&c, &g, 1);
-    if ((g & R_RES) && aq_jread(&c, &u->res, sizeof u->res) == 0) {
+    aq_bytes_get(&c, &u->sum, sizeof u->sum, NULL);
+    aq_bytes_get(&c, &g, 1, NULL);
+    if ((g & R_RES) && aq_bytes_get(&c, &u->res, sizeof u->res, NULL) == 0) {
       memset(&u->res.history, 0, sizeof u->res.history);
       u->have_res = 1;
     }
     u->failed = (g & R_FAILED) != 0;
     if (u->failed)
-      aq_jread(&c, &u->err, sizeof u->err);
-    aq_jread(&c, &u->run_s, sizeof u->run_s);
+      aq_bytes_get(&c, &u->err, sizeof u->err, NULL);
+    aq_bytes_get(&c, &u->run_s, sizeof u->run_s, NULL);
   }
   r->runs_done = r->runs ? nruns : 0;
   r->state = SLOT_DONE;
-  return c.bad || c.off != c.n ? -1 : 0;
+  return c.bad || c.at != c.n ? -1 : 0;
 }
 
-static void line(aq_jbuf *b, const char *fmt, ...)
+static void line(aq_bytes_out *b, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
 
-static void line(aq_jbuf *b, const char *fmt, ...)
+static void line(aq_bytes_out *b, const char *fmt, ...)
 {
   char buf[2048];
   va_list ap;
@@ -133,12 +134,12 @@ static void line(aq_jbuf *b, const char *fmt, ...)
     return;
   }
   buf[k] = '\n';
-  aq_jbuf_put(b, buf, (size_t)k + 1);
+  aq_bytes_put(b, buf, (size_t)k + 1);
 }
 
 int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
 {
-  aq_jbuf b = {0};
+  aq_bytes_out b = {0};
   const aq_signal_opts *p = &c->proc;
   /* floating-point values in %a: exact, so equal text means equal numbers */
   line(&b, "archquake journal for %s", aq_build_string());
@@ -173,7 +174,7 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
   line(&b, "records=%zu", c->nrecords);
   for (size_t i = 0; i < c->nrecords; i++)
     line(&b, "record=%s", c->records[i]);
-  aq_jbuf_put(&b, "", 1);
+  aq_bytes_put(&b, "", 1);
   if (b.oom) {
     free(b.data);
     return -1;

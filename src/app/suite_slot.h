@@ -15,6 +15,7 @@
 #include "../report/report.h"
 #include "../signal/signal.h"
 #include "../signal/steps.h"
+#include "../util/bytes.h"
 #include "suite.h"
 
 typedef struct {
@@ -80,7 +81,7 @@ typedef struct {
 /* Encode the finished record r (nruns runs) as a journal payload into *b
  * (what writing it needs: metadata, intensity measures, status, messages,
  * summaries and counters; not the samples, steps or histories). */
-void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_jbuf *b);
+void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b);
 
 /* Decode a payload into r (zeroed first; free with the suite's slot_clear).
  * Returns 0, or -1 if the payload is not a record of nruns runs. */

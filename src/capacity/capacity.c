@@ -6,13 +6,13 @@
  * tasks.  Each job makes its own stepper, so a result depends on its
  * job alone, not on the thread that ran it. */
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../signal/steps.h"
 #include "../units.h"
+#include "../util/pool.h"
 #include "capacity.h"
 
 void aq_capacity_free(aq_capacity *c)
@@ -202,180 +202,74 @@ size_t aq_capacity_worst(const aq_capacity *c, size_t n, double *fcs_min,
 
 /* ---- results as bytes ----------------------------------------------------- */
 
-/* A cursor over a message: writing when p is NULL only counts. */
-typedef struct {
-  unsigned char *p;
-  size_t n;
-} wcur;
-
-static void put(wcur *w, const void *v, size_t k)
+void aq_capacity_encode(const aq_capacity *c, aq_bytes_out *w)
 {
-  if (w->p)
-    memcpy(w->p + w->n, v, k);
-  w->n += k;
-}
-
-static void put_i64(wcur *w, int64_t v) { put(w, &v, sizeof v); }
-static void put_f64(wcur *w, double v) { put(w, &v, sizeof v); }
-
-static void put_str(wcur *w, const char *s, size_t cap)
-{
-  size_t k = strnlen(s, cap - 1);
-  put_i64(w, (int64_t)k);
-  put(w, s, k);
-}
-
-static size_t encode(const aq_capacity *c, unsigned char *buf)
-{
-  wcur w = {buf, 0};
-  put_i64(&w, c->status);
-  put_i64(&w, c->run_status);
-  put_i64(&w, c->err.status);
-  put_i64(&w, c->err.line);
-  put_i64(&w, c->err.byte_offset);
-  put_str(&w, c->err.input, sizeof c->err.input);
-  put_str(&w, c->err.field, sizeof c->err.field);
-  put_str(&w, c->err.message, sizeof c->err.message);
-  put_f64(&w, c->lambda0);
-  put_f64(&w, c->move_scale);
-  put_f64(&w, c->scale_max);
-  put_f64(&w, c->first_collapse_scale);
-  put_i64(&w, c->resurrection);
-  put_i64(&w, (int64_t)c->scan.runs);
-  put_i64(&w, (int64_t)c->scan.grid_runs);
-  put_i64(&w, (int64_t)c->scan.bisect_runs);
-  put_i64(&w, (int64_t)c->scan.ninterval);
+  aq_bytes_put_i64(w, c->status);
+  aq_bytes_put_i64(w, c->run_status);
+  aq_bytes_put_i64(w, c->err.status);
+  aq_bytes_put_i64(w, c->err.line);
+  aq_bytes_put_i64(w, c->err.byte_offset);
+  aq_bytes_put_str(w, c->err.input, sizeof c->err.input);
+  aq_bytes_put_str(w, c->err.field, sizeof c->err.field);
+  aq_bytes_put_str(w, c->err.message, sizeof c->err.message);
+  aq_bytes_put_f64(w, c->lambda0);
+  aq_bytes_put_f64(w, c->move_scale);
+  aq_bytes_put_f64(w, c->scale_max);
+  aq_bytes_put_f64(w, c->first_collapse_scale);
+  aq_bytes_put_i64(w, c->resurrection);
+  aq_bytes_put_i64(w, (int64_t)c->scan.runs);
+  aq_bytes_put_i64(w, (int64_t)c->scan.grid_runs);
+  aq_bytes_put_i64(w, (int64_t)c->scan.bisect_runs);
+  aq_bytes_put_i64(w, (int64_t)c->scan.ninterval);
   for (size_t k = 0; k < c->scan.ninterval; k++) {
-    put_f64(&w, c->scan.interval[k].lo);
-    put_f64(&w, c->scan.interval[k].hi);
+    aq_bytes_put_f64(w, c->scan.interval[k].lo);
+    aq_bytes_put_f64(w, c->scan.interval[k].hi);
   }
-  put_i64(&w, (int64_t)c->npoint);
+  aq_bytes_put_i64(w, (int64_t)c->npoint);
   for (size_t k = 0; k < c->npoint; k++) {
     const aq_capacity_point *q = &c->point[k];
-    put_f64(&w, q->scale);
-    put_f64(&w, q->peak_rotation_rad);
-    put_f64(&w, q->peak_rotation_over_qc);
-    put_f64(&w, q->collapse_time_s);
-    put_i64(&w, q->collapsed);
-  }
-  return w.n;
-}
-
-size_t aq_capacity_encoded_size(const aq_capacity *c)
-{
-  return encode(c, NULL);
-}
-
-size_t aq_capacity_encode(const aq_capacity *c, unsigned char *buf)
-{
-  return encode(c, buf);
-}
-
-/* A cursor reading a message of n bytes; bad: it ran past the end, or a
- * value was out of range (what names it, bad_at is where it starts). */
-typedef struct {
-  const unsigned char *p;
-  size_t n, at;
-  const char *bad;
-  size_t bad_at;
-} rcur;
-
-static void bad(rcur *r, const char *what, size_t at)
-{
-  if (!r->bad) {
-    r->bad = what;
-    r->bad_at = at;
+    aq_bytes_put_f64(w, q->scale);
+    aq_bytes_put_f64(w, q->peak_rotation_rad);
+    aq_bytes_put_f64(w, q->peak_rotation_over_qc);
+    aq_bytes_put_f64(w, q->collapse_time_s);
+    aq_bytes_put_i64(w, q->collapsed);
   }
 }
 
-static int64_t get_i64(rcur *r, const char *what)
-{
-  int64_t v = 0;
-  if (r->bad)
-    return 0;
-  if (r->n - r->at < sizeof v) {
-    bad(r, what, r->at);
-    return 0;
-  }
-  memcpy(&v, r->p + r->at, sizeof v);
-  r->at += sizeof v;
-  return v;
-}
-
-static double get_f64(rcur *r, const char *what)
-{
-  int64_t b = get_i64(r, what);
-  double v;
-  memcpy(&v, &b, sizeof v);
-  return v;
-}
-
-static size_t get_count(rcur *r, size_t item_bytes, const char *what)
-{
-  int64_t v = get_i64(r, what);
-  if (!r->bad && (v < 0 || (uint64_t)v > (r->n - r->at) / (item_bytes ? item_bytes : 1))) {
-    bad(r, what, r->at - sizeof v);
-    return 0;
-  }
-  return (size_t)v;
-}
-
-static void get_str(rcur *r, char *s, size_t cap, const char *what)
-{
-  size_t k = get_count(r, 1, what);
-  if (!r->bad && k >= cap)
-    bad(r, what, r->at - sizeof(int64_t));
-  if (r->bad) {
-    s[0] = '\0';
-    return;
-  }
-  memcpy(s, r->p + r->at, k);
-  s[k] = '\0';
-  r->at += k;
-}
-
-static int get_int(rcur *r, int64_t lo, int64_t hi, const char *what)
-{
-  int64_t v = get_i64(r, what);
-  if (!r->bad && (v < lo || v > hi))
-    bad(r, what, r->at - sizeof v);
-  return (int)v;
-}
-
-aq_status aq_capacity_decode(const unsigned char *buf, size_t n, size_t *used,
-                             aq_capacity *out, aq_error *err)
+aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err)
 {
   memset(out, 0, sizeof *out);
-  rcur r = {buf, n, 0, NULL, 0};
-  out->status = (aq_capacity_status)get_int(&r, AQ_CAPACITY_OK, AQ_CAPACITY_FAILED, "status");
-  out->run_status = (aq_status)get_int(&r, INT32_MIN, INT32_MAX, "run_status");
-  out->err.status = (aq_status)get_int(&r, INT32_MIN, INT32_MAX, "error status");
-  out->err.line = (long)get_i64(&r, "error line");
-  out->err.byte_offset = (long)get_i64(&r, "error byte offset");
-  get_str(&r, out->err.input, sizeof out->err.input, "error input");
-  get_str(&r, out->err.field, sizeof out->err.field, "error field");
-  get_str(&r, out->err.message, sizeof out->err.message, "error message");
-  out->lambda0 = get_f64(&r, "lambda0");
-  out->move_scale = get_f64(&r, "move_scale");
-  out->scale_max = get_f64(&r, "scale_max");
-  out->first_collapse_scale = get_f64(&r, "first_collapse_scale");
-  out->resurrection = get_int(&r, 0, 1, "resurrection");
-  out->scan.runs = (size_t)get_i64(&r, "runs");
-  out->scan.grid_runs = (size_t)get_i64(&r, "grid_runs");
-  out->scan.bisect_runs = (size_t)get_i64(&r, "bisect_runs");
-  size_t ni = get_count(&r, 2 * sizeof(double), "ninterval");
-  if (!r.bad && ni) {
+  size_t start = r->at;
+  out->status = (aq_capacity_status)aq_bytes_get_int(r, AQ_CAPACITY_OK, AQ_CAPACITY_FAILED,
+                                                     "status");
+  out->run_status = (aq_status)aq_bytes_get_int(r, INT32_MIN, INT32_MAX, "run_status");
+  out->err.status = (aq_status)aq_bytes_get_int(r, INT32_MIN, INT32_MAX, "error status");
+  out->err.line = (long)aq_bytes_get_i64(r, "error line");
+  out->err.byte_offset = (long)aq_bytes_get_i64(r, "error byte offset");
+  aq_bytes_get_str(r, out->err.input, sizeof out->err.input, NULL, "error input");
+  aq_bytes_get_str(r, out->err.field, sizeof out->err.field, NULL, "error field");
+  aq_bytes_get_str(r, out->err.message, sizeof out->err.message, NULL, "error message");
+  out->lambda0 = aq_bytes_get_f64(r, "lambda0");
+  out->move_scale = aq_bytes_get_f64(r, "move_scale");
+  out->scale_max = aq_bytes_get_f64(r, "scale_max");
+  out->first_collapse_scale = aq_bytes_get_f64(r, "first_collapse_scale");
+  out->resurrection = (int)aq_bytes_get_int(r, 0, 1, "resurrection");
+  out->scan.runs = (size_t)aq_bytes_get_i64(r, "runs");
+  out->scan.grid_runs = (size_t)aq_bytes_get_i64(r, "grid_runs");
+  out->scan.bisect_runs = (size_t)aq_bytes_get_i64(r, "bisect_runs");
+  size_t ni = aq_bytes_get_count(r, 2 * sizeof(double), "ninterval");
+  if (!r->bad && ni) {
     out->scan.interval = malloc(ni * sizeof *out->scan.interval);
     if (!out->scan.interval)
       return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
     out->scan.ninterval = ni;
     for (size_t k = 0; k < ni; k++) {
-      out->scan.interval[k].lo = get_f64(&r, "interval");
-      out->scan.interval[k].hi = get_f64(&r, "interval");
+      out->scan.interval[k].lo = aq_bytes_get_f64(r, "interval");
+      out->scan.interval[k].hi = aq_bytes_get_f64(r, "interval");
     }
   }
-  size_t np = get_count(&r, 5 * sizeof(int64_t), "npoint");
-  if (!r.bad && np) {
+  size_t np = aq_bytes_get_count(r, 5 * sizeof(int64_t), "npoint");
+  if (!r->bad && np) {
     out->point = malloc(np * sizeof *out->point);
     if (!out->point) {
       aq_capacity_free(out);
@@ -384,20 +278,20 @@ aq_status aq_capacity_decode(const unsigned char *buf, size_t n, size_t *used,
     out->npoint = np;
     for (size_t k = 0; k < np; k++) {
       aq_capacity_point *q = &out->point[k];
-      q->scale = get_f64(&r, "point");
-      q->peak_rotation_rad = get_f64(&r, "point");
-      q->peak_rotation_over_qc = get_f64(&r, "point");
-      q->collapse_time_s = get_f64(&r, "point");
-      q->collapsed = get_int(&r, 0, 1, "point collapsed");
+      q->scale = aq_bytes_get_f64(r, "point");
+      q->peak_rotation_rad = aq_bytes_get_f64(r, "point");
+      q->peak_rotation_over_qc = aq_bytes_get_f64(r, "point");
+      q->collapse_time_s = aq_bytes_get_f64(r, "point");
+      q->collapsed = (int)aq_bytes_get_int(r, 0, 1, "point collapsed");
     }
   }
-  if (r.bad) {
+  if (r->bad) {
     aq_capacity_free(out);
-    return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)r.bad_at, r.bad,
+    return aq_error_set(err, AQ_EFORMAT, NULL, -1, (long)r->bad_at, r->bad,
                         "expected a capacity result of %zu bytes with a valid %s, got a "
-                        "message that ends or is out of range there", n, r.bad);
+                        "message that ends or is out of range there",
+                        r->n - start, r->bad);
   }
-  *used = r.at;
   return AQ_OK;
 }
 
@@ -419,47 +313,6 @@ void aq_capacity_run_jobs(const aq_capacity_job *jobs, size_t n, aq_capacity *ou
 }
 
 typedef struct {
-  size_t ntask, next;
-  aq_capacity_task_fn fn;
-  void *ctx;
-  pthread_mutex_t lock;
-} pool;
-
-static void *worker(void *arg)
-{
-  pool *P = arg;
-  for (;;) {
-    pthread_mutex_lock(&P->lock);
-    size_t i = P->next < P->ntask ? P->next++ : P->ntask;
-    pthread_mutex_unlock(&P->lock);
-    if (i >= P->ntask)
-      return NULL;
-    P->fn(P->ctx, i);
-  }
-}
-
-aq_status aq_capacity_run_tasks(size_t ntask, long threads, aq_capacity_task_fn fn,
-                                void *ctx, aq_error *err)
-{
-  pool P = {ntask, 0, fn, ctx, PTHREAD_MUTEX_INITIALIZER};
-  size_t nt = threads < 1 ? 1 : (size_t)threads;
-  if (nt > ntask)
-    nt = ntask ? ntask : 1;
-  pthread_t *tid = calloc(nt, sizeof *tid);
-  if (!tid)
-    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "threads", "out of memory");
-  size_t started = 0;
-  for (; started + 1 < nt; started++)
-    if (pthread_create(&tid[started], NULL, worker, &P) != 0)
-      break;
-  worker(&P); /* the calling thread works too */
-  for (size_t t = 0; t < started; t++)
-    pthread_join(tid[t], NULL);
-  free(tid);
-  return AQ_OK;
-}
-
-typedef struct {
   const aq_capacity_job *jobs;
   aq_capacity *out;
 } all_ctx;
@@ -474,5 +327,5 @@ aq_status aq_capacity_run_all(const aq_capacity_job *jobs, size_t njob,
                               long threads, aq_capacity *out, aq_error *err)
 {
   all_ctx A = {jobs, out};
-  return aq_capacity_run_tasks(njob, threads, run_job, &A, err);
+  return aq_pool_for(njob, threads, run_job, &A, err);
 }

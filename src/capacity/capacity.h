@@ -36,6 +36,7 @@
 #include "../arch/stepper.h"
 #include "../error.h"
 #include "../signal/signal.h"
+#include "../util/bytes.h"
 
 /* ---- scan.c ------------------------------------------------------------ */
 
@@ -171,26 +172,15 @@ void aq_capacity_free(aq_capacity *c);
  * FAILED with its err when the job cannot start. */
 void aq_capacity_run_jobs(const aq_capacity_job *jobs, size_t n, aq_capacity *out);
 
-/* Task k of a pool (thread-safe: called on any thread, concurrently). */
-typedef void (*aq_capacity_task_fn)(void *ctx, size_t k);
-/* Run fn(ctx, k) for every k < ntask on threads (>= 1) threads, the calling
- * one included, each taking the next k when free.  Returns AQ_OK, or
- * AQ_ENOMEM (err) when the pool cannot be made (nothing ran). */
-aq_status aq_capacity_run_tasks(size_t ntask, long threads, aq_capacity_task_fn fn,
-                                void *ctx, aq_error *err);
-
-/* A result as bytes, to travel between processes of one job (native byte
- * order: the ranks share a machine type): every field of c, the error
- * record, the intervals and the scan's points included, so the decoded
- * copy is equal bit for bit.  aq_capacity_encode writes aq_capacity_encoded_size(c) bytes to buf
- * and returns that size.  aq_capacity_decode reads one result from buf
- * (n bytes; *used gets its size) into *out (free with aq_capacity_free);
- * returns AQ_OK, AQ_EFORMAT (err: the byte offset and the field that ends
- * early or is out of range) or AQ_ENOMEM. */
-size_t aq_capacity_encoded_size(const aq_capacity *c);
-size_t aq_capacity_encode(const aq_capacity *c, unsigned char *buf);
-aq_status aq_capacity_decode(const unsigned char *buf, size_t n, size_t *used,
-                             aq_capacity *out, aq_error *err);
+/* A result as bytes, to travel between processes of one job
+ * (util/bytes.h): every field of c, the error record, the intervals and the
+ * scan's points included, so the decoded copy is equal bit for bit.
+ * aq_capacity_encode appends c to w; aq_capacity_decode reads one result
+ * from r into *out (free with aq_capacity_free) and returns AQ_OK, AQ_EFORMAT
+ * (err: the byte offset and the field that ends early or is out of range)
+ * or AQ_ENOMEM. */
+void aq_capacity_encode(const aq_capacity *c, aq_bytes_out *w);
+aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err);
 
 /* Analyse njob jobs on threads (>= 1) threads; out[i] is job i's result
  * whatever the number of threads, and the results do not depend on it.

@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../util/outfile.h"
+
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
 #define AQ_H5_RECORDS_CHUNK 64  /* rows per chunk of /records */
 /* Dataset bytes written between two background syncs (see sync_hint). */
@@ -113,8 +115,9 @@ typedef struct {
 } h5_table;
 
 struct aq_h5_writer {
-  char *target;
-  char *tmp;
+  aq_outfile out;   /* the temporary, renamed onto the target by aq_h5_finish */
+  char *target;     /* = out.target while it is held */
+  char *tmp;        /* = out.tmp */
   hid_t file;
   hid_t g_arches, g_waveforms, g_histories; /* the last two made when first needed */
   h5_table runs, records;
@@ -499,8 +502,7 @@ static void writer_free(aq_h5_writer *w)
   free(w->runs.buf);
   free(w->records.buf);
   free(w->run_cols);
-  free(w->target);
-  free(w->tmp);
+  aq_outfile_release(&w->out);
   free(w);
 }
 
@@ -551,22 +553,21 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   w->records.d = w->records.mt = w->records.ft = -1;
   w->sp_scalar = w->t_str = -1;
   w->sync_fd = -1;
-  size_t len = strlen(target) + 40;
-  w->target = strdup(target);
-  w->tmp = malloc(len);
   w->n_run_cols = aq_summary_nfields + N_RUN_EXTRA;
   w->run_cols = calloc(w->n_run_cols, sizeof *w->run_cols);
-  if (!w->target || !w->tmp || !w->run_cols) {
+  /* named and registered for removal on a signal before it exists */
+  if (!w->run_cols || aq_outfile_reserve(&w->out, target, err) != AQ_OK) {
     writer_free(w);
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   }
+  w->target = w->out.target;
+  w->tmp = w->out.tmp;
   for (size_t i = 0; i < aq_summary_nfields; i++) {
     const aq_summary_field *f = &aq_summary_fields[i];
     w->run_cols[i] = (h5_col){f->name, f->kind, offsetof(run_row, s) + f->offset,
                               f->size, aq_summary_units(f)};
   }
   memcpy(w->run_cols + aq_summary_nfields, run_extra_cols, sizeof run_extra_cols);
-  aq_h5_temp_name(target, w->tmp, len);
   struct stat sb;
   if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode)) {
     aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
@@ -627,11 +628,6 @@ fail:
   return st;
 }
 
-void aq_h5_temp_name(const char *target, char *buf, size_t n)
-{
-  snprintf(buf, n, "%s.tmp.%ld", target, (long)getpid());
-}
-
 const char *aq_h5_temp_path(const aq_h5_writer *w)
 {
   return w ? w->tmp : NULL;
@@ -642,8 +638,7 @@ void aq_h5_abort(aq_h5_writer *w)
   if (!w)
     return;
   close_quietly(w);
-  if (w->tmp)
-    unlink(w->tmp);
+  aq_outfile_abort(&w->out); /* removes the temporary */
   writer_free(w);
 }
 
@@ -988,12 +983,9 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
     goto fail;
   }
   close(fd);
-  if (rename(w->tmp, w->target) != 0) {
-    int e = errno;
-    st = aq_error_set(err, AQ_EIO, w->target, -1, -1, NULL,
-                      "cannot rename %s onto it: %s", w->tmp, strerror(e));
+  w->target = w->tmp = NULL; /* released by the commit either way */
+  if ((st = aq_outfile_commit(&w->out, err)) != AQ_OK) /* renamed, or removed */
     goto fail;
-  }
   writer_free(w);
   return AQ_OK;
 fail:

@@ -92,12 +92,10 @@ typedef struct {
 } aq_h5_record;
 
 /* Open the writer: creates "<target>.tmp.<pid>" (failing clearly if the
- * directory is not writable).  *out is the writer (NULL on failure). */
+ * directory is not writable), registered for removal on a signal
+ * (util/outfile.h) until aq_h5_finish renames it or aq_h5_abort removes
+ * it.  *out is the writer (NULL on failure). */
 aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err);
-
-/* The name aq_h5_open will give the temporary for target (in this process),
- * into buf[n]: a signal handler can know it before the file exists. */
-void aq_h5_temp_name(const char *target, char *buf, size_t n);
 
 /* The temporary file's name (for a signal handler that must remove it). */
 const char *aq_h5_temp_path(const aq_h5_writer *w);

@@ -18,8 +18,8 @@
  * and the file is truncated to the last whole entry.
  *
  * The payloads are opaque here: a single process, or the leader of several,
- * appends entries and reads them back in order.  aq_jbuf / aq_jread are
- * small helpers to build and parse payloads.  Nothing prints; failures fill
+ * appends entries and reads them back in order (util/bytes.h builds and
+ * parses them).  Nothing prints; failures fill
  * aq_error (input = the journal's path) and return a status.  The journal
  * object owns its descriptor; entries returned by aq_journal_open belong to
  * the caller (aq_journal_entries_free).
@@ -79,30 +79,5 @@ void aq_journal_close(aq_journal *j);
 aq_status aq_journal_remove(aq_journal *j, aq_error *err);
 
 void aq_journal_entries_free(aq_journal_entry *e, size_t n);
-
-/* Payload builder: bytes appended to a growing buffer; oom is set (and
- * further puts ignored) if memory runs out.  Free data with free(). */
-typedef struct {
-  unsigned char *data;
-  size_t n, cap;
-  int oom;
-} aq_jbuf;
-
-void aq_jbuf_put(aq_jbuf *b, const void *p, size_t n);
-/* A string as u64 length and its bytes (NULL as ""). */
-void aq_jbuf_put_str(aq_jbuf *b, const char *s);
-
-/* Payload reader: aq_jread copies n bytes into p; aq_jread_str copies a
- * string written by aq_jbuf_put_str into s[n] (NUL-terminated) or, with
- * s NULL, returns a malloc'd copy in *dup.  Each returns 0, or -1 when the
- * payload is too short (then bad is set and later reads fail too). */
-typedef struct {
-  const unsigned char *data;
-  size_t n, off;
-  int bad;
-} aq_jread_ctx;
-
-int aq_jread(aq_jread_ctx *r, void *p, size_t n);
-int aq_jread_str(aq_jread_ctx *r, char *s, size_t n, char **dup);
 
 #endif

@@ -45,6 +45,7 @@
 #include <unistd.h>
 
 #include "../io/sha256.h"
+#include "../util/outfile.h"
 #include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
@@ -116,7 +117,7 @@ static void wisdom_save(void)
   if (!wisdom_planned)
     return;
   wisdom_planned = 0;
-  char dir[PATH_MAX], file[PATH_MAX], tmp[PATH_MAX + 32];
+  char dir[PATH_MAX], file[PATH_MAX];
   char *w = fftw_export_wisdom_to_string();
   if (!w || !wisdom_path(dir, file, sizeof dir) ||
       (wisdom_text && strcmp(w, wisdom_text) == 0)) {
@@ -130,20 +131,19 @@ static void wisdom_save(void)
     *slash = '/';
   }
   mkdir(dir, 0700);
-  snprintf(tmp, sizeof tmp, "%s.tmp.%ld", file, (long)getpid());
   char hex[AQ_SHA256_HEX];
   size_t len = strlen(w);
   aq_sha256_hex(w, len, hex);
-  FILE *f = fopen(tmp, "wb");
-  int ok = f && fprintf(f, "%s%s\n", AQ_WISDOM_MAGIC, hex) > 0 &&
-           fwrite(w, 1, len, f) == len;
-  if (f && fclose(f) != 0)
-    ok = 0;
-  if (ok && rename(tmp, file) == 0) {
-    free(wisdom_text);
-    wisdom_text = strdup(w); /* NULL: the next save compares with nothing */
-  } else if (f) {
-    unlink(tmp);
+  aq_outfile o;
+  if (aq_outfile_open(&o, file, NULL) == AQ_OK) {
+    if (fprintf(o.f, "%s%s\n", AQ_WISDOM_MAGIC, hex) > 0 && fwrite(w, 1, len, o.f) == len) {
+      if (aq_outfile_commit(&o, NULL) == AQ_OK) {
+        free(wisdom_text);
+        wisdom_text = strdup(w); /* NULL: the next save compares with nothing */
+      }
+    } else {
+      aq_outfile_abort(&o);
+    }
   }
   fftw_free(w);
 }

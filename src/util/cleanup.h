@@ -4,8 +4,8 @@
  * registered path, then re-raises the signal with its default action (the
  * exit status says which signal).  Paths are copied
  * into static slots; the handler only reads them (async-signal-safe). */
-#ifndef AQ_APP_CLEANUP_H
-#define AQ_APP_CLEANUP_H
+#ifndef AQ_UTIL_CLEANUP_H
+#define AQ_UTIL_CLEANUP_H
 
 /* Install the handlers (idempotent). */
 void aq_cleanup_install(void);

@@ -1,10 +1,11 @@
-/* cleanup.c: remove registered temporaries on SIGINT/SIGTERM/SIGHUP (see
- * cleanup.h). */
+/* cleanup.c: remove registered temporaries on SIGINT/SIGTERM/SIGHUP/SIGPIPE
+ * (see cleanup.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "cleanup.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -18,6 +19,7 @@
 
 static char slot_path[AQ_CLEANUP_SLOTS][AQ_CLEANUP_PATH_MAX];
 static volatile sig_atomic_t slot_used[AQ_CLEANUP_SLOTS];
+static pthread_mutex_t slot_lock = PTHREAD_MUTEX_INITIALIZER; /* between threads (not the handler) */
 
 static void on_signal(int sig)
 {
@@ -45,14 +47,17 @@ int aq_cleanup_add(const char *path)
   size_t n = strlen(path);
   if (n >= AQ_CLEANUP_PATH_MAX)
     return -1;
-  for (int i = 0; i < AQ_CLEANUP_SLOTS; i++)
+  int slot = -1;
+  pthread_mutex_lock(&slot_lock);
+  for (int i = 0; i < AQ_CLEANUP_SLOTS && slot < 0; i++)
     if (!slot_used[i]) {
       memcpy(slot_path[i], path, n + 1);
       atomic_signal_fence(memory_order_seq_cst);
       slot_used[i] = 1; /* armed only once the path is complete */
-      return i;
+      slot = i;
     }
-  return -1;
+  pthread_mutex_unlock(&slot_lock);
+  return slot;
 }
 
 void aq_cleanup_remove(int slot)
