@@ -12,7 +12,7 @@
 #include "../page/figure.h"
 #include "../page/page.h"
 #include "app.h"
-#include "cleanup.h"
+#include "../util/cleanup.h"
 #include "opt.h"
 
 static const char usage[] =
