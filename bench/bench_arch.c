@@ -13,7 +13,7 @@ static double build_ms(size_t nv, int search, size_t *table_n, double *table_err
                        size_t *piece_n)
 {
   double t[REPS];
-  aq_arch_params p = {5.0, 1.25, AQ_PI, nv, 2000.0, 1.0};
+  aq_arch_params p = aq_arch_circular(5.0, 1.25, AQ_PI, nv, 2000.0, 1.0);
   /* the oppenheim mechanism scaled to nv voussoirs */
   aq_hinge_set hs = {{0, 6 * nv / 20, 12 * nv / 20, 19 * nv / 20}, {'e', 'i', 'e', 'i'}};
   for (int r = 0; r < REPS; r++) {
@@ -41,7 +41,7 @@ static double build_ms(size_t nv, int search, size_t *table_n, double *table_err
 static double search_ms(size_t nv)
 {
   double t[REPS];
-  aq_arch_params p = {5.0, 1.25, AQ_PI, nv, 2000.0, 1.0};
+  aq_arch_params p = aq_arch_circular(5.0, 1.25, AQ_PI, nv, 2000.0, 1.0);
   aq_geom g;
   aq_error e;
   if (aq_geom_init(&g, &p, &e) != AQ_OK)

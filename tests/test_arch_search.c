@@ -103,7 +103,7 @@ AQ_TEST(arch_search_beats_random_sets)
 AQ_TEST(arch_search_brute_force)
 {
   gsl_set_error_handler_off();
-  aq_arch_params pp = {2.73, 0.517, 143.0 * AQ_DEG_RAD, 9, 1711.0, 0.63};
+  aq_arch_params pp = aq_arch_circular(2.73, 0.517, 143.0 * AQ_DEG_RAD, 9, 1711.0, 0.63);
   aq_geom g;
   aq_error e;
   aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry");
@@ -194,8 +194,8 @@ AQ_TEST(arch_search_every_face_pattern)
   for (size_t ie = 0; ie < 3; ie++)
     for (size_t it = 0; it < 3; it++)
       for (size_t n = 8; n <= 11; n++) {
-        aq_arch_params pp = {2.91, 2.91 * t_over_r[it], embrace_deg[ie] * AQ_DEG_RAD, n,
-                             1913.0, 0.77};
+        aq_arch_params pp = aq_arch_circular(2.91, 2.91 * t_over_r[it], embrace_deg[ie] * AQ_DEG_RAD, n,
+                             1913.0, 0.77);
         aq_geom g;
         aq_error e;
         if (!aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry"))

@@ -115,7 +115,7 @@ AQ_TEST(arch_standing_refuses_an_arch_that_cannot_stand)
     int n;
   } cases[] = {{0.09, 12}, {0.08, 10}, {0.06, 12}, {0.09, 16}, {0.09, 40}};
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-    aq_arch_params pp = {5.0, 5.0 * cases[c].t_over_r, AQ_PI, (size_t)cases[c].n, 2000, 1};
+    aq_arch_params pp = aq_arch_circular(5.0, 5.0 * cases[c].t_over_r, AQ_PI, (size_t)cases[c].n, 2000, 1);
     aq_geom g;
     aq_error e;
     if (!aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry"))
@@ -147,7 +147,7 @@ AQ_TEST(arch_standing_refuses_an_arch_that_cannot_stand)
     aq_geom_free(&g);
   }
   /* the figures: 0e 2i 6e 9i with lambda0 -0.066 */
-  aq_arch_params pp = {5.0, 0.45, AQ_PI, 12, 2000, 1};
+  aq_arch_params pp = aq_arch_circular(5.0, 0.45, AQ_PI, 12, 2000, 1);
   aq_geom g;
   aq_error e;
   aq_geom_init(&g, &pp, &e);
@@ -170,8 +170,8 @@ AQ_TEST(arch_standing_search_equals_brute_force)
   for (size_t ie = 0; ie < 2; ie++)
     for (int n = 9; n <= 12; n++)
       for (size_t it = 0; it < sizeof t_over_r / sizeof t_over_r[0]; it++) {
-        aq_arch_params pp = {3.7, 3.7 * t_over_r[it], embrace_deg[ie] * AQ_DEG_RAD,
-                             (size_t)n, 2100, 0.8};
+        aq_arch_params pp = aq_arch_circular(3.7, 3.7 * t_over_r[it], embrace_deg[ie] * AQ_DEG_RAD,
+                             (size_t)n, 2100, 0.8);
         aq_geom g;
         aq_error e;
         if (!aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry"))
@@ -216,7 +216,7 @@ static double critical_t_over_r(size_t n)
   double lo = 0.09, hi = 0.11; /* brackets 0.1075 and the finite-n values */
   for (int it = 0; it < 16; it++) { /* 3e-7 */
     double mid = 0.5 * (lo + hi), l0 = 0;
-    aq_arch_params pp = {1.0, mid, AQ_PI, n, 2000, 1};
+    aq_arch_params pp = aq_arch_circular(1.0, mid, AQ_PI, n, 2000, 1);
     aq_geom g;
     aq_error e;
     aq_hinge_set hs;
@@ -267,7 +267,7 @@ AQ_TEST(arch_standing_mechanism_names_the_minimum_set)
     return;
   fputs(text, f);
   fclose(f);
-  aq_arch_params pp = {3.1, 0.71, 165 * AQ_DEG_RAD, 10, 2000, 1};
+  aq_arch_params pp = aq_arch_circular(3.1, 0.71, 165 * AQ_DEG_RAD, 10, 2000, 1);
   aq_geom g;
   aq_error e;
   aq_geom_init(&g, &pp, &e);
@@ -315,7 +315,7 @@ AQ_TEST(arch_standing_every_command_refuses)
     return;
   fputs(text, f);
   fclose(f);
-  aq_arch_params pp = {5.0, 0.45, AQ_PI, 12, 2000, 1};
+  aq_arch_params pp = aq_arch_circular(5.0, 0.45, AQ_PI, 12, 2000, 1);
   aq_geom g;
   aq_error e;
   double best = 0;

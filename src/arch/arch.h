@@ -32,6 +32,10 @@ void aq_arch_free(aq_arch *a);
 const char *aq_arch_name(const aq_arch *a);
 /* The .cfg text exactly as read (for the results file). */
 const char *aq_arch_config_text(const aq_arch *a);
+/* The arch's content digest, 64 hex digits and a NUL into hex: SHA-256 of
+ * the .cfg's bytes, followed by those of its joints and faces files for a
+ * `shape = joints` arch (so for every other arch that of the .cfg alone). */
+void aq_arch_sha256(const aq_arch *a, char hex[65]);
 const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a);
 /* set 0: primary, 1: reverse.  Check ->admissible before integrating. */
 const aq_path *aq_arch_path(const aq_arch *a, int set);

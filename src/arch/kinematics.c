@@ -257,8 +257,7 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
     out->v[k] = sol[2 * k + 1];
     /* joint normal pointing into the counter-clockwise body, turned with
      * each of the two bodies that meet at the hinge */
-    double th = m->g->theta_rad[m->hs.joint[k]];
-    aq_vec2 n0 = v2(-sin(th), cos(th));
+    aq_vec2 n0 = perp(m->g->ju[m->hs.joint[k]]);
     double rot_ccw = k < 3 ? st->phi[k][0] : 0.0;
     double rot_cw = k > 0 ? st->phi[k - 1][0] : 0.0;
     aq_vec2 f = v2(out->h[k], out->v[k]);
@@ -287,7 +286,6 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
   size_t n = g->p.voussoirs;
   const size_t *J = m->hs.joint;
   double gg = live->g_mps2, lam = eq->lambda, worst = 0;
-  double half_t = 0.5 * g->p.thickness_m, rm = g->p.radius_m;
   aq_vec2 hc[4] = {m->h[0], st->h2, st->h3, m->h[3]};
   if (tension)
     *tension = 0;
@@ -324,14 +322,12 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
       t = add(t, load);
       m0 += cross(c, load);
     }
-    /* joint line: P(r) = A + r u */
-    double th = g->theta_rad[j];
-    aq_vec2 u0 = v2(cos(th), sin(th));
-    aq_vec2 A = carry(m, st, part, v2(0, 0));
-    aq_vec2 u = sub(carry(m, st, part, u0), A);
+    /* joint line: P(r) = A + r u (model.h: jo, ju, jmid, jhalf) */
+    aq_vec2 A = carry(m, st, part, g->jo[j]);
+    aq_vec2 u = sub(carry(m, st, part, add(g->jo[j], g->ju[j])), A);
     double ut = cross(u, t);
     double r = ut != 0 ? (m0 - cross(A, t)) / ut : HUGE_VAL;
-    ecc[j] = (r - rm) / half_t;
+    ecc[j] = (r - g->jmid[j]) / g->jhalf[j];
     aq_vec2 nrm = perp(u); /* into the counter-clockwise side */
     double push = dot(t, nrm) * (cut_ccw ? 1.0 : -1.0);
     if (tension && !(push > 0))

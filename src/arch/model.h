@@ -1,12 +1,16 @@
 /* model.h: the static arch model behind arch.h and path.h (internal to
  * src/arch, used by tests and bench).
  *
- * Geometry (geometry.c): an arch of n equal annular-sector voussoirs with
- * radial joints, the centre of its circle at the origin.  Joint j (0..n) lies
- * at polar angle theta_j = pi/2 - embrace/2 + j*embrace/n, counted
- * counter-clockwise from the springing on the +x side; voussoir k lies
- * between joints k and k+1.  A hinge sits at the extrados point (face 'e',
- * radius r_e) or the intrados point (face 'i', radius r_i) of its joint.
+ * Geometry (geometry.c, shape.c, joints.c): an arch of n voussoirs between
+ * n + 1 straight joints, numbered 0..n counter-clockwise from the
+ * springing on the +x side; voussoir k lies between joints k and k+1.  A
+ * circular arch has equal annular-sector voussoirs with radial joints, the
+ * centre of its circle at the origin, joint j at polar angle
+ * theta_j = pi/2 - embrace/2 + j*embrace/n (closed forms); pointed,
+ * elliptical, parabolic and catenary arches have joints normal to their
+ * centre line at equal arc length and faces that are its exact offsets;
+ * a joints arch is given joint by joint.  A hinge sits at the extrados end
+ * (face 'e') or the intrados end (face 'i') of its joint.
  *
  * Four-bar (kinematics.c): hinges H1..H4 at joints j1 < j2 < j3 < j4; body 1
  * (voussoirs j1..j2-1) turns about H1 by q, body 3 (j3..j4-1) about H4, body
@@ -36,16 +40,103 @@ typedef struct {
   double x, y;
 } aq_vec2;
 
+/* ---- shape.c: centre lines ------------------------------------------ */
+
+typedef enum {
+  AQ_SHAPE_CIRCULAR = 0, /* radius_m, thickness_m, embrace_deg: exact annular sectors */
+  AQ_SHAPE_POINTED,      /* two-centred: span_m, rise_m >= span_m/2, thickness_m */
+  AQ_SHAPE_ELLIPTICAL,   /* x = (span/2) cos u, y = rise sin u */
+  AQ_SHAPE_PARABOLIC,    /* y = rise (1 - (2x/span)^2) */
+  AQ_SHAPE_CATENARY,     /* y = rise - a (cosh(x/a) - 1) */
+  AQ_SHAPE_JOINTS,       /* joints (and faces) given point by point */
+  AQ_SHAPE_COUNT
+} aq_shape;
+
+/* The shape names of the arch file, indexed by aq_shape. */
+extern const char *const aq_shape_names[AQ_SHAPE_COUNT];
+
+/* A centre line from the springing (span/2, 0) over the crown to
+ * (-span/2, 0), on one or two curves (the pointed arch's halves), each with
+ * its parameter u increasing that way (shape.c gives each). */
+typedef struct {
+  aq_shape shape;
+  double span, rise, t;  /* m */
+  double r, cx;          /* circular, pointed: radius, centre x of curve 0 (m) */
+  double a;              /* catenary: y = rise - a (cosh(x/a) - 1), m */
+  int ncurve;            /* 1, or 2 (pointed) */
+  double u0[2], u1[2];   /* parameter range of each curve */
+  double length;         /* centre-line length, m */
+} aq_centre;
+
+/* Check span, rise and thickness (the intrados must not fold: t/2 below
+ * every radius of curvature; a pointed arch needs rise >= span/2) and set
+ * the centre line up.  AQ_EVALUE/AQ_EGEOMETRY with the field. */
+aq_status aq_centre_init(aq_centre *s, aq_shape shape, double span_m, double rise_m,
+                         double thickness_m, aq_error *err);
+/* A circle of radius r from angle u0 to u1 (the circular arch's centre
+ * line, for its outlines and its fill). */
+void aq_centre_circle(aq_centre *s, double r, double thickness_m, double u0, double u1);
+/* C, C', C'' at u on curve. */
+void aq_centre_eval(const aq_centre *s, int curve, double u, aq_vec2 d[3]);
+/* Signed curvature C' x C'' / |C'|^3 (> 0: turning counter-clockwise). */
+double aq_centre_curvature(const aq_centre *s, int curve, double u);
+/* The offset C(u) + v N(u), N the unit normal away from the centre of
+ * curvature, and (if dp) its derivative d/du = C'(u) (1 + k v). */
+void aq_centre_offset(const aq_centre *s, int curve, double u, double v, aq_vec2 *p,
+                      aq_vec2 *dp);
+/* The n + 1 joints equally spaced in centre-line arc length: u[j] on
+ * curve[j] (a pointed arch's crown joint ends curve 0; n must be even
+ * there). */
+aq_status aq_centre_joints(const aq_centre *s, size_t n, double *u, int *curve,
+                           aq_error *err);
+
 /* ---- geometry.c ---------------------------------------------------- */
 
+/* A point mass carried by a voussoir (a wall, a statue, a bell). */
 typedef struct {
+  char name[64];       /* its key in [masses] */
+  size_t voussoir;     /* 0..n-1 */
+  aq_vec2 p;           /* position, m */
+  double mass_kg;      /* > 0, for the arch's depth */
+} aq_point_mass;
+
+typedef struct {
+  /* AQ_SHAPE_CIRCULAR (the first six, in this order) */
   double radius_m;      /* centre-line radius */
-  double thickness_m;   /* radial thickness */
+  double thickness_m;   /* radial thickness (every shape but joints: normal to the centre line) */
   double embrace_rad;   /* angle between the springings, (0, pi] */
-  size_t voussoirs;     /* >= 4 */
+  size_t voussoirs;     /* >= 4 (joints: the joints given, less one) */
   double density_kg_m3; /* > 0 */
   double depth_m;       /* out-of-plane depth, > 0 */
+  aq_shape shape;       /* 0: circular */
+  double span_m, rise_m; /* pointed, elliptical, parabolic, catenary */
+  /* AQ_SHAPE_JOINTS: the voussoirs + 1 joints' intrados and extrados ends,
+   * counter-clockwise from the springing on the +x side; optional faces
+   * ([0] intrados, [1] extrados): voussoir k's points strictly between its
+   * joints, in order from joint k, are face_pt[f][face_start[f][k] ..
+   * face_start[f][k+1]) (face_start NULL: straight faces).  Not owned;
+   * copied by aq_geom_init. */
+  const aq_vec2 *joint_i, *joint_e;
+  const aq_vec2 *face_pt[2];
+  const size_t *face_start[2];
+  /* fill over the extrados up to a level (when fill_density_kg_m3 > 0) */
+  double fill_level_m;       /* height of its horizontal top above y = 0, m */
+  double fill_density_kg_m3;
+  /* point masses (not owned; copied) */
+  size_t nmass;
+  const aq_point_mass *mass;
 } aq_arch_params;
+
+/* The parameters of a circular arch (no fill, no point masses). */
+static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_m,
+                                              double embrace_rad, size_t voussoirs,
+                                              double density_kg_m3, double depth_m)
+{
+  aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
+                      AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
+                      0, NULL};
+  return p;
+}
 
 /* Mass properties of one voussoir. */
 typedef struct {
@@ -55,10 +146,33 @@ typedef struct {
 } aq_mass;
 
 typedef struct {
-  aq_arch_params p;
-  double r_i_m, r_e_m;  /* intrados and extrados radii */
-  double *theta_rad;    /* n+1 joint angles */
-  aq_mass *vous;        /* n voussoirs */
+  aq_arch_params p;     /* as given; its pointers are not kept (NULL after init) */
+  aq_centre centre;     /* the centre line (every shape but joints) */
+  double r_i_m, r_e_m;  /* circular: intrados and extrados radii */
+  double *theta_rad;    /* circular: n+1 joint angles (NULL for the others) */
+  aq_vec2 *ji, *je;     /* n+1 joint ends: intrados, extrados */
+  /* joint j's line, for the line of thrust: the point jo[j] + r ju[j]
+   * (ju a unit vector from the intrados end towards the extrados end) is
+   * the joint's middle at r = jmid[j], its ends at jmid -+ jhalf (circular:
+   * jo the circle's centre, jmid the mean radius, jhalf t/2) */
+  aq_vec2 *jo, *ju;
+  double *jmid, *jhalf;
+  aq_mass *vous;        /* n voussoirs, each with its fill and point masses */
+  /* outlines for figures and the results file: voussoir k's closed polygon
+   * (counter-clockwise, curved faces sampled) is outline[outline_start[k]
+   * .. outline_start[k+1]), its fill's fill[fill_start[k] ..
+   * fill_start[k+1]) (empty without fill) */
+  aq_vec2 *outline, *fill;
+  size_t *outline_start, *fill_start;
+  aq_point_mass *mass;  /* p.nmass point masses (copied) */
+  /* internal: analytic shapes' voussoir k lies on curve vcurve[k], its
+   * intrados from u = vu[4k] to vu[4k+1], its extrados from vu[4k+2] to
+   * vu[4k+3]; a joints arch's faces (copied from p) */
+  int *vcurve;
+  double *vu;
+  aq_vec2 *face_pt[2];
+  size_t *face_start[2];
+  double stone_kg, fill_kg, point_kg; /* the masonry, the fill, the point masses */
   double mass_kg;       /* whole arch */
   aq_vec2 c;            /* whole-arch centroid */
   /* prefix sums over voussoirs 0..k-1 (n+1 entries): mass, first moments */
@@ -71,8 +185,12 @@ typedef struct {
 aq_mass aq_sector_mass(double r_i, double r_e, double th0, double th1,
                        double rho, double depth);
 
+/* The sum of two rigidly joined parts (parallel axes). */
+aq_mass aq_mass_add(aq_mass a, aq_mass b);
+
 /* Check the parameters (AQ_EVALUE/AQ_EGEOMETRY with field set, no input or
- * line) and fill g; aq_geom_free releases it (accepts a zeroed g). */
+ * line: a parameter's key, "joints_file", "level_m" or a point mass's name)
+ * and fill g; aq_geom_free releases it (accepts a zeroed g). */
 aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err);
 void aq_geom_free(aq_geom *g);
 
