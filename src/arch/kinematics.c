@@ -282,6 +282,13 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
                       const aq_live *live, const aq_equil *eq, double *ecc,
                       int *tension)
 {
+  return aq_mech_thrust_line(m, st, live, eq, ecc, tension, NULL, NULL);
+}
+
+double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                           const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                           aq_vec2 *dir)
+{
   const aq_geom *g = m->g;
   size_t n = g->p.voussoirs;
   const size_t *J = m->hs.joint;
@@ -295,6 +302,10 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
       ;
     if (k < 4) {
       ecc[j] = m->hs.face[k] == 'e' ? 1.0 : -1.0;
+      if (pt) {
+        pt[j] = hc[k];
+        dir[j] = v2(eq->h[k], eq->v[k]);
+      }
       continue;
     }
     /* the part j lies in (body index or -1 fixed), the hinge the sub-body
@@ -328,6 +339,10 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
     double ut = cross(u, t);
     double r = ut != 0 ? (m0 - cross(A, t)) / ut : HUGE_VAL;
     ecc[j] = (r - g->jmid[j]) / g->jhalf[j];
+    if (pt) {
+      pt[j] = add(A, scl(r, u));
+      dir[j] = t;
+    }
     aq_vec2 nrm = perp(u); /* into the counter-clockwise side */
     double push = dot(t, nrm) * (cut_ccw ? 1.0 : -1.0);
     if (tension && !(push > 0))

@@ -283,13 +283,23 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
  * check): the resultant carried across joint j, found from the equilibrium
  * of the voussoirs between j and the nearest hinge on the side of j towards
  * that hinge (the hinge reaction of `eq` plus their dead and live loads,
- * AQ_LIVE_HORIZONTAL only), crosses the joint at radius r.  Fills
- * ecc[j] = (r - R) / (t/2) for j = 0..n (|ecc| <= 1: inside the section;
+ * AQ_LIVE_HORIZONTAL only), crosses the joint's line jo + r ju (model.h
+ * aq_geom) at r.  Fills ecc[j] = (r - jmid) / jhalf for j = 0..n (a
+ * circular arch: (r - R) / (t/2)); |ecc| <= 1: inside the section;
  * hinge joints get their face, +1 or -1) and returns the largest |ecc|;
  * *tension (if not NULL) is set to 1 if some joint's resultant pulls. */
 double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
                       const aq_live *live, const aq_equil *eq, double *ecc,
                       int *tension);
+
+/* aq_mech_thrust, and (pt, dir not NULL, n+1 each) where the resultant
+ * crosses each joint (the hinge itself at a hinge joint) and its
+ * direction, in the deformed arch: the line of thrust is the funicular
+ * polygon through the crossings, each resultant's line running on to meet
+ * the next one's on the voussoir's load line. */
+double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                           const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                           aq_vec2 *dir);
 
 /* Velocity field of a set at s = 0 per unit ds: for voussoir k, centroid
  * velocity u[k] (m/rad) and rotation rate w[k] (rad/rad), zero for fixed
