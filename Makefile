@@ -193,7 +193,7 @@ BINDIR  = $(DESTDIR)$(PREFIX)/bin
 ARCHDIR = $(DESTDIR)$(PREFIX)/share/archquake/arches
 DOCDIR  = $(DESTDIR)$(PREFIX)/share/doc/archquake
 MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
-ARCH_FILES := $(wildcard arches/*.cfg)
+ARCH_FILES := $(wildcard arches/*.cfg arches/*.csv)
 # README.md with docs/ and docs/figures/ beside it, as in the source tree,
 # so that the README's links lead to installed files.
 DOC_FILES  := $(wildcard docs/*.md)
