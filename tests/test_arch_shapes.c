@@ -655,3 +655,267 @@ AQ_TEST(arch_shapes_joints_converge_to_circle)
            "32 chords a face: within 1e-3 of the closed forms");
   aq_arch_free(c);
 }
+
+/* ---- statics on every shape ------------------------------------------------ */
+
+/* Test arches of every shape, some with fill and point masses; n is the
+ * number of voussoirs (small enough for a brute force when asked). */
+typedef struct {
+  const char *name;
+  aq_arch_params p;
+  aq_point_mass mass[1];
+  aq_vec2 *arr[4];
+  size_t *st[2];
+} shape_case;
+
+static void shape_cases(shape_case *c, size_t *nc, size_t n)
+{
+  size_t k = 0;
+  c[k].name = "pointed equilateral";
+  c[k++].p = curve_params(AQ_SHAPE_POINTED, 4.1, 4.1 * sqrt(3) / 2, 0.41, n + n % 2, 2100, 0.7);
+  c[k].name = "elliptical 0.35, fill";
+  c[k].p = curve_params(AQ_SHAPE_ELLIPTICAL, 6.2, 0.35 * 6.2, 0.52, n, 2200, 1.3);
+  c[k].p.fill_level_m = 0.35 * 6.2 + 0.9;
+  c[k++].p.fill_density_kg_m3 = 1800;
+  c[k].name = "elliptical 0.6";
+  c[k++].p = curve_params(AQ_SHAPE_ELLIPTICAL, 5.3, 0.6 * 5.3, 0.47, n, 1950, 0.9);
+  c[k].name = "parabolic";
+  c[k++].p = curve_params(AQ_SHAPE_PARABOLIC, 6.7, 3.9, 0.55, n, 2050, 1.1);
+  c[k].name = "catenary, a statue";
+  c[k].p = curve_params(AQ_SHAPE_CATENARY, 5.9, 4.6, 0.33, n, 2000, 0.8);
+  c[k].mass[0] = (aq_point_mass){"statue", n / 2, {-0.05, 4.9}, 310}; /* left of the crown */
+  c[k].p.nmass = 1;
+  c[k].p.mass = c[k].mass;
+  k++;
+  c[k].name = "joints, faces";
+  c[k].p = joints_circle(3.3, 0.6, n, 2, c[k].arr, c[k].st);
+  k++;
+  *nc = k;
+}
+
+static void shape_cases_free(shape_case *c, size_t nc)
+{
+  for (size_t k = 0; k < nc; k++)
+    if (c[k].p.shape == AQ_SHAPE_JOINTS)
+      joints_free(c[k].arr, c[k].st);
+}
+
+/* lambda by the 9x9 at s = 0 and at four deformed positions equals the
+ * path's by virtual work, both sets, every shape. */
+AQ_TEST(arch_shapes_equilibrium_vs_virtual_work)
+{
+  gsl_set_error_handler_off();
+  shape_case c[8];
+  size_t nc;
+  shape_cases(c, &nc, 24);
+  for (size_t k = 0; k < nc; k++) {
+    aq_arch *a = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_build(&c[k].p, NULL, NULL, NULL, c[k].name, &a, &e) == AQ_OK,
+                  "%s: %s", c[k].name, e.message))
+      continue;
+    double worst = 0;
+    int sets = 0;
+    for (int s = 0; s < 2; s++) {
+      const aq_workpath *w = aq_arch_workpath(a, s);
+      const aq_path *p = aq_workpath_path(w);
+      if (!p->admissible)
+        continue;
+      sets++;
+      for (int i = 0; i < 5; i++) {
+        double sv = p->s_c_rad * i / 5.0;
+        aq_path_point pt;
+        aq_equil eq;
+        if (!aq_check(p->eval_exact(p->ctx, sv, &pt) == 0 &&
+                          aq_workpath_equilibrium(w, sv, &eq, &e) == AQ_OK,
+                      "%s set %d s %g", c[k].name, s, sv))
+          continue;
+        worst = fmax(worst, fabs(eq.lambda - pt.lambda) / fabs(p->lambda0));
+      }
+    }
+    aq_check(sets >= 1 && worst < LAMBDA_EQ_TOL,
+             "%s: lambda by the 9x9 = by virtual work at 5 positions of %d sets (worst %.3g)",
+             c[k].name, sets, worst);
+    aq_arch_free(a);
+  }
+  shape_cases_free(c, nc);
+}
+
+/* The search's minimum = a brute force over every set of 16 face patterns
+ * with the 9x9, every shape (9-10 voussoirs). */
+AQ_TEST(arch_shapes_search_brute_force)
+{
+  gsl_set_error_handler_off();
+  shape_case c[8];
+  size_t nc;
+  shape_cases(c, &nc, 9);
+  for (size_t k = 0; k < nc; k++) {
+    aq_geom g;
+    aq_error e;
+    if (!aq_check(aq_geom_init(&g, &c[k].p, &e) == AQ_OK, "%s: %s", c[k].name, e.message))
+      continue;
+    size_t n = g.p.voussoirs;
+    double best = HUGE_VAL;
+    for (int pat = 0; pat < 16; pat++)
+      for (size_t a = 0; a <= n; a++)
+        for (size_t b = a + 1; b <= n; b++)
+          for (size_t cc = b + 1; cc <= n; cc++)
+            for (size_t d = cc + 1; d <= n; d++) {
+              aq_hinge_set hs = {{a, b, cc, d}, {0, 0, 0, 0}};
+              for (int q = 0; q < 4; q++)
+                hs.face[q] = (pat >> (3 - q)) & 1 ? 'i' : 'e';
+              double l0;
+              if (aq_test_lambda0_eq(&g, &hs, &l0) && l0 < best)
+                best = l0;
+            }
+    aq_hinge_set found;
+    double got = 0, eq = 0;
+    aq_check(aq_search_minimum(&g, 9.80665, &found, &got, NULL, &e) == AQ_OK, "%s: search",
+             c[k].name);
+    aq_check(best > 0 && best < HUGE_VAL, "%s: stands (brute force %.6g)", c[k].name, best);
+    aq_check_rel(got, best, 1e-12, "%s: search = brute force over 16 C(%zu, 4) sets", c[k].name,
+                 n + 1);
+    aq_check(aq_test_lambda0_eq(&g, &found, &eq) && fabs(eq - best) <= 1e-12 * best,
+             "%s: the found set's own 9x9 lambda0 %.12g", c[k].name, eq);
+    aq_geom_free(&g);
+  }
+  shape_cases_free(c, nc);
+}
+
+/* ---- dynamics on every shape -------------------------------------------- */
+
+#include "arch/stepper.h"
+#include "signal/steps.h"
+
+/* Pulse a (m/s^2) for dur, then free until end, in steps of dt. */
+static int pulse(aq_stepper *st, double a, double dur, double end, double dt, aq_result *r)
+{
+  size_t n1 = (size_t)ceil(dur / dt - 1e-9), n2 = (size_t)ceil((end - dur) / dt - 1e-9),
+         n = n1 + n2;
+  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d), *acc = malloc(n * sizeof *acc);
+  for (size_t i = 0; i < n; i++) {
+    t[i] = i < n1 ? dur * i / n1 : dur + (end - dur) * (i - n1) / n2;
+    double t1 = i + 1 < n1 ? dur * (i + 1) / n1 : i < n1 ? dur : dur + (end - dur) * (i + 1 - n1) / n2;
+    d[i] = t1 - t[i];
+    acc[i] = i < n1 ? a : 0;
+  }
+  aq_steps s;
+  aq_error e;
+  int ok = aq_steps_from_list(t, d, acc, n, &s, &e) == AQ_OK;
+  free(t);
+  free(d);
+  free(acc);
+  if (!ok)
+    return 0;
+  ok = aq_stepper_run(st, &s, r, &e) == AQ_OK;
+  aq_check(ok, "run: %s", ok ? "" : e.message);
+  aq_steps_free(&s);
+  return ok;
+}
+
+/* COR 1 (impact = cor): after a pulse of 1.3 lambda0 g opening the primary
+ * set, 20 s of free rocking keep KE + m_T g y to round-off, on every shape
+ * with fill and point masses: the workpath within 2e-13 a cycle (measured
+ * 3e-15 .. 1.3e-13, the largest on the equilateral arch whose reverse set
+ * is near its toggle: M(0) / M(q_c) = 300), the ode within 5e-13 plus a
+ * twentieth of its tables' error; and the two models' peak rotations and
+ * impacts agree. */
+AQ_TEST(arch_shapes_energy_and_ode)
+{
+  gsl_set_error_handler_off();
+  shape_case c[8];
+  size_t nc;
+  shape_cases(c, &nc, 24);
+  for (size_t k = 0; k < nc; k++) {
+    aq_arch *a = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_build(&c[k].p, NULL, NULL, NULL, c[k].name, &a, &e) == AQ_OK,
+                  "%s: %s", c[k].name, e.message))
+      continue;
+    const aq_path *p = aq_arch_path(a, 0), *q = aq_arch_path(a, 1);
+    if (!aq_check(p->admissible && q->admissible, "%s: both sets admissible", c[k].name)) {
+      aq_arch_free(a);
+      continue;
+    }
+    double acc = p->act_sign * 1.3 * p->lambda0 * p->g_mps2, dur = 0.4, peak[2] = {0, 0};
+    size_t impacts[2] = {0, 0};
+    for (int mdl = 0; mdl < 2; mdl++) {
+      aq_stepper *st = aq_stepper_alloc(p, q, mdl ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH, &e);
+      if (!aq_check(st != NULL, "%s: stepper", c[k].name))
+        continue;
+      aq_stepper_set_cor(st, 1.0);
+      aq_stepper_set_ode_rtol(st, 1e-12);
+      aq_stepper_set_history(st, 1);
+      aq_result r;
+      for (;;) { /* a pulse short enough not to collapse it */
+        if (!pulse(st, acc, dur, dur + 20, 0.02, &r))
+          break;
+        if (!r.collapsed)
+          break;
+        aq_result_free(&r);
+        dur *= 0.7;
+      }
+      const aq_history *h = &r.history;
+      size_t i0 = 0;
+      while (i0 < h->n && h->time_s[i0] < dur - 1e-12)
+        i0++;
+      double e0 = h->kinetic_energy_j[i0] + h->potential_energy_j[i0], dmax = 0;
+      for (size_t i = i0; i < h->n; i++)
+        dmax = fmax(dmax, fabs(h->kinetic_energy_j[i] + h->potential_energy_j[i] - e0) / e0);
+      double cycles = 0.5 * (double)r.impacts;
+      aq_check(!r.collapsed && r.impacts >= 6, "%s, %s: rocks, %zu impacts in 20 s", c[k].name,
+               mdl ? "ode" : "workpath", r.impacts);
+      /* the ode reads the Hermite tables: its drift is bounded by their
+       * error, which a set near its toggle leaves at 1e-9 (round-off of the
+       * kinematics, docs/arch-model.md) */
+      double terr = fmax(aq_workpath_table_error(aq_arch_workpath(a, 0)),
+                         aq_workpath_table_error(aq_arch_workpath(a, 1)));
+      double bound = mdl ? 5e-13 + 0.05 * terr : 2e-13;
+      aq_check(dmax / fmax(cycles, 1) <= bound,
+               "%s, %s: energy drift %.3g over %.1f cycles (%.3g a cycle, bound %.3g; tables "
+               "%.3g)", c[k].name, mdl ? "ode" : "workpath", dmax, cycles,
+               dmax / fmax(cycles, 1), bound, terr);
+      peak[mdl] = r.peak_rotation_rad;
+      impacts[mdl] = r.impacts;
+      aq_result_free(&r);
+      aq_stepper_free(st);
+    }
+    aq_check_rel(peak[0], peak[1], 1e-9, "%s: peak rotation, workpath = ode", c[k].name);
+    aq_check(impacts[0] == impacts[1], "%s: impacts %zu = %zu", c[k].name, impacts[0],
+             impacts[1]);
+    aq_arch_free(a);
+  }
+  shape_cases_free(c, nc);
+}
+
+/* The half-cycle domain of the shipped arches of every new shape: the
+ * workpath's and the ode's (rtol 1e-12) shortest collapsing pulses, by
+ * bisection to 1e-9 s through the CLI, as on oppenheim (test_dyn_arch.c). */
+AQ_TEST(arch_shapes_domain_workpath_vs_ode)
+{
+  static const char *const arches[] = {"gothic", "bridge", "catenary", "vertical"};
+  for (size_t k = 0; k < 4; k++) {
+    static char o1[4096], o2[4096], err[4096];
+    char args[256];
+    snprintf(args, sizeof args, "domain --arch arches/%s.cfg --ratios 1.1,2,4", arches[k]);
+    int rc1 = aq_test_run(args, o1, sizeof o1, err, sizeof err);
+    snprintf(args, sizeof args,
+             "domain --arch arches/%s.cfg --ratios 1.1,2,4 --model ode --ode-rtol 1e-12",
+             arches[k]);
+    int rc2 = aq_test_run(args, o2, sizeof o2, err, sizeof err);
+    aq_check(rc1 == 0 && rc2 == 0, "%s: domain runs: %d %d %s", arches[k], rc1, rc2, err);
+    char *l1 = strchr(o1, '\n'), *l2 = strchr(o2, '\n');
+    int rows = 0;
+    while (l1 && l2) {
+      double r1, a1, t1, r2, a2, t2;
+      if (sscanf(l1 + 1, "%lf %lf %lf", &r1, &a1, &t1) != 3 ||
+          sscanf(l2 + 1, "%lf %lf %lf", &r2, &a2, &t2) != 3)
+        break;
+      rows++;
+      aq_check_rel(t1, t2, 1e-15, "%s, r = %g: workpath vs ode shortest pulse", arches[k], r1);
+      l1 = strchr(l1 + 1, '\n');
+      l2 = strchr(l2 + 1, '\n');
+    }
+    aq_check(rows == 3, "%s: 3 ratios", arches[k]);
+  }
+}
