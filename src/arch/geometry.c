@@ -39,7 +39,8 @@
 #define GL_POINTS 20         /* Gauss-Legendre points per panel */
 #define GL_MAX_DEPTH 20      /* halvings of a curve piece at most */
 #define GL_ROUNDOFF 1e-12    /* a difference that halving no longer halves and is below this: round-off */
-#define GL_REL_TOL 1e-15     /* halves agreeing to this (relative to the moments' size) */
+#define GL_REL_TOL 1e-13     /* halves agreeing to this (relative to the integrals' scale): the
+                                halves, returned, are then at round-off (an analytic integrand) */
 #define OUTLINE_PTS 16       /* points per curved face in the outlines (as the figure had) */
 #define CROSS_SAMPLES 32     /* samples of a curve piece when cutting it at the fill's level */
 #define CROSS_ITER 200       /* bisection steps locating a crossing (to round-off) */
@@ -142,29 +143,29 @@ static void gl_panel(const aq_centre *s, const gsl_integration_glfixed_table *gl
   }
 }
 
-/* The halves' sum, halved again until the halves agree with their whole
- * to GL_REL_TOL, or halving stops halving a difference already below
- * GL_ROUNDOFF (round-off), or GL_MAX_DEPTH. */
+/* The halves' sum, halved again until each of the five integrals of the
+ * halves agrees with their whole to GL_REL_TOL of its scale (scale[k]: the
+ * size of that integral over a region of the piece's extent), or halving
+ * stops halving a difference already below GL_ROUNDOFF of it (round-off),
+ * or GL_MAX_DEPTH. */
 static void gl_adapt(const aq_centre *s, const gsl_integration_glfixed_table *gl,
                      const piece *pc, aq_vec2 o, double a, double b, const double whole[5],
-                     int depth, double parent_diff, double out[5])
+                     const double scale[5], int depth, double parent, double out[5])
 {
-  double m = 0.5 * (a + b), l[5], r[5], size = 0, diff = 0;
+  double m = 0.5 * (a + b), l[5], r[5], worst = 0;
   gl_panel(s, gl, pc, o, a, m, l);
   gl_panel(s, gl, pc, o, m, b, r);
-  for (int k = 0; k < 5; k++) {
-    size = fmax(size, fabs(l[k]) + fabs(r[k]));
-    diff = fmax(diff, fabs(l[k] + r[k] - whole[k]));
-  }
-  if (diff <= GL_REL_TOL * size || depth >= GL_MAX_DEPTH ||
-      (diff > 0.5 * parent_diff && diff <= GL_ROUNDOFF * size)) {
+  for (int k = 0; k < 5; k++)
+    worst = fmax(worst, fabs(l[k] + r[k] - whole[k]) / scale[k]);
+  if (worst <= GL_REL_TOL || depth >= GL_MAX_DEPTH ||
+      (worst > 0.5 * parent && worst <= GL_ROUNDOFF)) {
     for (int k = 0; k < 5; k++)
       out[k] = l[k] + r[k];
     return;
   }
   double lo[5], hi[5];
-  gl_adapt(s, gl, pc, o, a, m, l, depth + 1, diff, lo);
-  gl_adapt(s, gl, pc, o, m, b, r, depth + 1, diff, hi);
+  gl_adapt(s, gl, pc, o, a, m, l, scale, depth + 1, worst, lo);
+  gl_adapt(s, gl, pc, o, m, b, r, scale, depth + 1, worst, hi);
   for (int k = 0; k < 5; k++)
     out[k] = lo[k] + hi[k];
 }
@@ -176,9 +177,14 @@ static void mom_piece(moments *m, const aq_centre *s, const gsl_integration_glfi
     mom_segment(m, pc->p0, pc->p1, o);
     return;
   }
+  /* the extent: the piece's ends and their distance from o, with the
+   * thickness (a piece is never far from the region it bounds) */
+  double L = fmax(hypot(pc->p0.x - o.x, pc->p0.y - o.y), hypot(pc->p1.x - o.x, pc->p1.y - o.y));
+  L = fmax(L, hypot(pc->p1.x - pc->p0.x, pc->p1.y - pc->p0.y)) + s->t;
+  const double scale[5] = {L * L, L * L * L, L * L * L, L * L * L * L, L * L * L * L};
   double whole[5], v[5];
   gl_panel(s, gl, pc, o, pc->u0, pc->u1, whole);
-  gl_adapt(s, gl, pc, o, pc->u0, pc->u1, whole, 0, HUGE_VAL, v);
+  gl_adapt(s, gl, pc, o, pc->u0, pc->u1, whole, scale, 0, HUGE_VAL, v);
   m->a += v[0];
   m->sx += v[1];
   m->sy += v[2];
