@@ -1047,3 +1047,73 @@ AQ_TEST(arch_shapes_bad_input)
                            "depth_m = 1\n"); /* radius of curvature 1/3 m at the springings */
   refused("intrados folding", dir, "a.cfg", 5, "thickness_m");
 }
+
+/* ---- minimum thickness ---------------------------------------------------- */
+
+/* The thickness (relative to the span) at which the arch's minimum lambda0
+ * crosses 0 (bisection to 1e-7; lambda0 grows with t). */
+static double critical_t(aq_shape s, double rise_over_span, size_t n, double lo, double hi)
+{
+  for (int it = 0; it < 21; it++) {
+    double mid = 0.5 * (lo + hi), l0 = -1;
+    aq_arch_params p = curve_params(s, 1.0, rise_over_span, mid, n, 2000, 1);
+    aq_geom g;
+    aq_error e;
+    aq_hinge_set hs;
+    if (aq_geom_init(&g, &p, &e) != AQ_OK)
+      return NAN;
+    aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, NULL, &e);
+    aq_geom_free(&g);
+    if (st != AQ_OK)
+      return NAN;
+    if (l0 > 0)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* A semicircle drawn as a pointed arch of rise span/2 and as an ellipse of
+ * equal axes has Milankovitch's minimum thickness t/R = 0.1075 (radial
+ * joints; 96 voussoirs: within 0.1 %), from below as the joints are
+ * refined; the equilateral arch and ellipses of rise/span 0.35 and 0.6
+ * converge as their joints are refined (48 to 96: within 0.1 %). */
+AQ_TEST(arch_shapes_minimum_thickness)
+{
+  gsl_set_error_handler_off();
+  double p96 = critical_t(AQ_SHAPE_POINTED, 0.5, 96, 0.03, 0.2);
+  double e96 = critical_t(AQ_SHAPE_ELLIPTICAL, 0.5, 96, 0.03, 0.2);
+  aq_check_rel(2 * p96, 0.1075, 1e-3, "semicircle as a pointed arch: t/R (Milankovitch 0.1075)");
+  aq_check_rel(2 * e96, 0.1075, 1e-3, "semicircle as an ellipse: t/R (Milankovitch 0.1075)");
+  aq_check(2 * p96 <= 0.1075 * (1 + 1e-4), "from below (joints only at 96 places)");
+  /* the bracket: a pointed arch thicker than t/span 0.045 takes fewer than
+   * 96 voussoirs (below) */
+  static const struct {
+    aq_shape s;
+    double r, hi;
+    const char *name;
+  } c[] = {{AQ_SHAPE_POINTED, 0.8660254037844386, 0.045, "equilateral pointed"},
+           {AQ_SHAPE_ELLIPTICAL, 0.35, 0.2, "elliptical, rise/span 0.35"},
+           {AQ_SHAPE_ELLIPTICAL, 0.6, 0.2, "elliptical, rise/span 0.6"}};
+  for (size_t k = 0; k < 3; k++) {
+    double t48 = critical_t(c[k].s, c[k].r, 48, 0.03, c[k].hi);
+    double t96 = critical_t(c[k].s, c[k].r, 96, 0.03, c[k].hi);
+    aq_check(t48 > 0.02 && t96 < 0.2 && t48 <= t96 * (1 + 1e-6),
+             "%s: t/span %.6f (48 voussoirs) <= %.6f (96)", c[k].name, t48, t96);
+    aq_check_rel(t48, t96, 1e-3, "%s: converged", c[k].name);
+  }
+  /* the joints beside a pointed crown must not reach past it */
+  aq_arch_params p = curve_params(AQ_SHAPE_POINTED, 1.0, 0.8660254037844386, 0.04, 192, 2000, 1);
+  aq_geom g;
+  aq_error e;
+  /* half-arcs of radius 1 about (-0.5, 0), the crown at 60 deg; the
+   * intrados arc of radius 0.98 meets x = 0 at acos(0.5/0.98): a half takes
+   * at most 60 deg / (60 deg - that) voussoirs */
+  double uc = PI / 3, ui = acos(0.5 / 0.98);
+  char want[64];
+  snprintf(want, sizeof want, "at most %d voussoirs", 2 * (int)floor(uc / (uc - ui)));
+  aq_check(aq_geom_init(&g, &p, &e) == AQ_EGEOMETRY && !strcmp(e.field, "voussoirs") &&
+               strstr(e.message, want),
+           "192 voussoirs at t/span 0.04: %s (%s)", e.message, want);
+}

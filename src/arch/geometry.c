@@ -490,6 +490,19 @@ static aq_status place_joints(aq_geom *g, aq_error *err)
       size_t m = n / 2;
       double r = g->centre.r, cx = g->centre.cx;
       double ui = acos(-cx / (r - h)), ue = acos(-cx / (r + h));
+      if (!(g->vu[4 * (m - 1)] < ui)) {
+        /* the radial joint beside the crown reaches past x = 0 at the
+         * intrados: at most uc / (uc - ui) voussoirs a half */
+        double uc = g->centre.u1[0];
+        size_t most = 2 * (size_t)floor(uc / (uc - ui) * (1 - 1e-12));
+        free(u);
+        free(c);
+        return aq_error_set(err, AQ_EGEOMETRY, NULL, -1, -1, "voussoirs",
+                            "expected at most %zu voussoirs for a pointed arch this thick "
+                            "(more put the joints beside the crown past the crown joint at "
+                            "the intrados), got %zu",
+                            most, n);
+      }
       g->vu[4 * (m - 1) + 1] = ui;
       g->vu[4 * (m - 1) + 3] = ue;
       g->vu[4 * m] = AQ_PI - ui;
