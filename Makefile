@@ -9,6 +9,12 @@ FUZZ_SECONDS ?= 60
 
 PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+# Opened on first use, not linked (src/util/lazylib.h): PLplot for figures,
+# libxml2 for StationXML.  Linked, they and the libraries they need (ICU,
+# libstdc++, freetype...) were loaded by every command: `archquake
+# --version` took 3.6x /bin/true.  Their sonames come from the libraries
+# the build would have linked.
+LAZY_PKGS := plplot libxml-2.0
 # HDF5 is linked from its static archive when one is installed (Debian's
 # libhdf5-dev ships it): the shared library brings in ~45 more (curl, TLS,
 # Kerberos, LDAP, for an S3 driver archquake never uses) whose loading and
@@ -17,7 +23,7 @@ HDF5_STATIC ?= 1
 HDF5_DIRS  := $(patsubst -L%,%,$(filter -L%,$(shell pkg-config --libs-only-L hdf5 2>/dev/null)))
 HDF5_A     := $(if $(filter 1,$(HDF5_STATIC)),$(firstword $(wildcard $(addsuffix /libhdf5.a,$(HDF5_DIRS)))))
 HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs hdf5 2>/dev/null))
-PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5,$(PKGS)) 2>/dev/null) $(HDF5_LIBS)
+PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5 $(LAZY_PKGS),$(PKGS)) 2>/dev/null) $(HDF5_LIBS) -ldl
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
 # zlib: the tests decode the browser's PNG screenshots (also HDF5's own).
 # GLPK (no pkg-config file): the mechanism search's linear programs.
@@ -64,6 +70,18 @@ build/fftw_wisdom.h: tools/fftw_wisdom.c
 	$(CC) $(AQ_CFLAGS) $(CFLAGS) $(LDFLAGS) -o build/fftw_wisdom_gen $< $(AQ_LIBS)
 	./build/fftw_wisdom_gen $@
 build/rel/src/signal/filter.o build/san/src/signal/filter.o build/mut/src/signal/filter.o build/fz/src/signal/filter.o: build/fftw_wisdom.h
+
+# The sonames of the libraries opened on first use (src/util/lazylib.h),
+# read from the shared libraries the compiler would link; rewritten only
+# when they change.
+lazy_soname = $(or $(shell objdump -p "$$($(CC) -print-file-name=lib$(1).so)" 2>/dev/null | \
+                 sed -n 's/^ *SONAME *//p'),lib$(1).so)
+build/lazylib_sonames.h: FORCE
+	@mkdir -p build
+	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n' \
+	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' > $@.new
+	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
+$(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o): build/lazylib_sonames.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)

@@ -11,9 +11,11 @@
  *      at resolution r costs) and on the bisections;
  *    - a hunt by doubling then fill (resolution 1: Vamvatsikos & Cornell's
  *      steps of a factor 2), its runs and the first collapse it finds.
- *    Times are medians of REPS repetitions.
+ *    Times are medians of REPS repetitions, and the first of them (first_s:
+ *    the pair's first search in the process).
  * 2. The suite: the 11 AT2 records of tests/data/records x the 5 shipped
- *    arches x both polarities with the binary at -j 2 (wall time), the
+ *    arches x both polarities with the binary at -j 2 (wall time of one
+ *    process, so cold: start, FFTW plans and arches included), the
  *    pairs with resurrection, runs per pair, and the fragility table. */
 #define _POSIX_C_SOURCE 200809L
 #include <gsl/gsl_errno.h>
@@ -76,9 +78,9 @@ static int per_pair(void)
   printf("Runs and time per (record, arch, polarity normal), resolution 0.01, tol 1e-6\n"
          "(times: medians of %d; brute@tol: runs counted, time = runs x capacity's "
          "time per run)\n", REPS);
-  printf("%-26s %-9s %4s %6s %6s %6s %9s %9s %9s %9s %11s %9s %9s\n", "record", "arch",
-         "cor", "runs", "grid", "bisect", "time_s", "bf10_runs", "bf10_s", "ratio_runs",
-         "bftol_runs", "ratio", "intervals");
+  printf("%-26s %-9s %4s %6s %6s %6s %9s %9s %9s %9s %9s %11s %9s %9s\n", "record",
+         "arch", "cor", "runs", "grid", "bisect", "time_s", "first_s", "bf10_runs", "bf10_s",
+         "ratio_runs", "bftol_runs", "ratio", "intervals");
   for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++) {
     aq_record rec;
     aq_processed proc;
@@ -112,13 +114,15 @@ static int per_pair(void)
     aq_capacity h;
     memset(&h, 0, sizeof h);
     run_pair(&hunt, &h);
+    double first = t[0]; /* the pair's first run in the process */
     double tm = aq_bench_median(t, REPS), tfm = aq_bench_median(tf, REPS);
     double bftol = ceil(log(c.scale_max / c.move_scale) / log1p(1e-6));
     const char *base = strrchr(pairs[k].record, '/');
-    printf("%-26.26s %-9s %4.1f %6zu %6zu %6zu %9.3f %9zu %9.3f %9.1f %11.0f %9.0f %9zu\n",
+    printf("%-26.26s %-9s %4.1f %6zu %6zu %6zu %9.3f %9.3f %9zu %9.3f %9.1f %11.0f %9.0f "
+           "%9zu\n",
            base ? base + 1 : pairs[k].record, aq_arch_name(arch),
            isnan(pairs[k].cor) ? 0.0 : pairs[k].cor, c.scan.runs, c.scan.grid_runs,
-           c.scan.bisect_runs, tm, f.scan.runs, tfm,
+           c.scan.bisect_runs, tm, first, f.scan.runs, tfm,
            (double)f.scan.runs / (double)c.scan.runs, bftol, bftol / (double)c.scan.runs,
            c.scan.ninterval);
     hunt_lines[k][0] = '\0';
@@ -193,7 +197,8 @@ static int suite(void)
   fclose(f);
   double med = rv && n ? aq_bench_median(rv, n < 1024 ? n : 1024) : NAN;
   free(rv);
-  printf("\nSuite: 11 AT2 records x 5 shipped arches x both polarities, -j 2: exit %d\n",
+  printf("\nSuite: 11 AT2 records x 5 shipped arches x both polarities, -j 2, one cold\n"
+         "process (./archquake capacity): exit %d\n",
          rc);
   printf("  wall %.1f s for %zu (record, arch, polarity) rows, %zu runs (%.2f ms per run, "
          "%.2f s per pair)\n", wall, n, runs, 1e3 * wall / (double)runs,

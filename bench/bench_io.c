@@ -29,7 +29,6 @@
 
 #include "app/app.h"
 #include "bench.h"
-#include "io/readers.h"
 #include "io/record.h"
 
 #define NPTS 20000

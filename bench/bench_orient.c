@@ -30,11 +30,10 @@ int main(void)
   aq_orient_opts o;
   aq_opt_orient_init(&o);
   int nerr = 0;
-  aq_opt_orient_handle(AQ_OPT_ORIENT_COMPONENTS,
-                       "tests/data/records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2,"
-                       "tests/data/records/RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
-                       &o, &nerr);
-  aq_opt_orient_handle(AQ_OPT_ORIENT_AZIMUTH, "all", &o, &nerr);
+  aq_opt_components("tests/data/records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2,"
+                    "tests/data/records/RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
+                    &o, &nerr);
+  aq_opt_azimuth("all", &o, &nerr);
   aq_opt_orient_check(&o, &nerr);
   if (nerr || o.nazimuth != NRUNS)
     return 1;

@@ -20,6 +20,11 @@
  *    from the cached run are the planning times.
  * 4. Results-file size per record for 10 x 200 records (with and without
  *    --store-records).
+ * Every suite figure also has its cold value beside the warm median: the
+ * same suite as the first work of a fresh process (this program run again
+ * as `bench_suite cold quiet J O` or `bench_suite cold strong M`, which
+ * prints its runs per second: libraries loaded, FFTW plans, arches, page
+ * faults of a new heap), the median of COLD_REPS such processes.
  * `bench_suite quiet` runs the first only. */
 #define _POSIX_C_SOURCE 200809L
 #include <gsl/gsl_errno.h>
@@ -35,6 +40,7 @@
 #include "bench.h"
 
 #define REPS 9
+#define COLD_REPS 5
 #define COPIES 40 /* 5 records x 40 copies x 1 arch x 1 scale = 200 runs */
 
 static const char *const sample[] = {
@@ -90,6 +96,29 @@ static double run_suite(aq_suite_cfg *cfg, aq_suite_stats *st)
   return (double)st->runs / wall;
 }
 
+static const char *self_path = "build/bench/bench_suite";
+
+/* The median runs per second of COLD_REPS fresh processes running one suite
+ * (`bench_suite cold ARGS`). */
+static double cold_rate(const char *args)
+{
+  double v[COLD_REPS];
+  for (int k = 0; k < COLD_REPS; k++) {
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "%s cold %s", self_path, args);
+    FILE *p = popen(cmd, "r");
+    if (!p || fscanf(p, "%lf", &v[k]) != 1) {
+      fprintf(stderr, "bench_suite: %s gave no rate\n", cmd);
+      exit(1);
+    }
+    if (pclose(p) != 0) {
+      fprintf(stderr, "bench_suite: %s failed\n", cmd);
+      exit(1);
+    }
+  }
+  return aq_bench_median(v, COLD_REPS);
+}
+
 static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
 {
   cfg->threads = 1;
@@ -113,16 +142,21 @@ static void quiet_suite(aq_suite_cfg *cfg, const char *h5)
       share[o][j][3][rep] = st.write_s / wall;
       share[o][j][4][rep] = st.wait_s / wall;
     }
-  printf("Quiet suite: %zu runs (records/ x %d, oppenheim, scale 2), median of %d:\n",
-         st.runs, COPIES, REPS);
+  printf("Quiet suite: %zu runs (records/ x %d, oppenheim, scale 2), median of %d\n"
+         "(cold: a fresh process's first suite, median of %d; warm / cold):\n",
+         st.runs, COPIES, REPS, COLD_REPS);
   static const char *const phase[5] = {"read", "process", "step", "write", "wait"};
   for (int o = 1; o >= 0; o--)
     for (int j = 0; j < 2; j++) {
       double r[REPS];
       memcpy(r, rate[o][j], sizeof r);
-      printf("  %-9s -j %d: %8.1f runs/s  [%.1f, %.1f]  ", o ? "TSV + -o" : "TSV only",
-             j + 1, aq_bench_median(r, REPS), minv(rate[o][j], REPS),
-             maxv(rate[o][j], REPS));
+      char args[32];
+      snprintf(args, sizeof args, "quiet %d %d", j + 1, o);
+      double cold = cold_rate(args);
+      printf("  %-9s -j %d: %8.1f runs/s  [%.1f, %.1f]  cold %.1f (%.2fx)  ",
+             o ? "TSV + -o" : "TSV only", j + 1, aq_bench_median(r, REPS),
+             minv(rate[o][j], REPS), maxv(rate[o][j], REPS), cold,
+             aq_bench_median(rate[o][j], REPS) / cold);
       for (int p = 0; p < 5; p++)
         printf(" %s %.0f%%", phase[p], 100 * aq_bench_median(share[o][j][p], REPS));
       printf("\n");
@@ -182,16 +216,18 @@ static const char *const strong_recs[] = {
     "tests/data/records/TCU052-N.AT2"};
 enum { NSTRONG = sizeof strong_recs / sizeof strong_recs[0] };
 
-static void strong_suite(aq_suite_cfg *base, const char *h5)
+static char *strong_arches[2] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+static char *strong_list[NSTRONG];
+
+/* The strong-shaking suite's configuration from the quiet one's. */
+static aq_suite_cfg strong_cfg(const aq_suite_cfg *base, const char *h5)
 {
-  char *arches[2] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
-  char *recs[NSTRONG];
   for (size_t i = 0; i < NSTRONG; i++)
-    recs[i] = (char *)strong_recs[i];
+    strong_list[i] = (char *)strong_recs[i];
   aq_suite_cfg cfg = *base;
-  cfg.records = recs;
+  cfg.records = strong_list;
   cfg.nrecords = NSTRONG;
-  cfg.arch_paths = arches;
+  cfg.arch_paths = strong_arches;
   cfg.narches = 2;
   cfg.scales = NULL;
   cfg.nscale = 1;
@@ -199,6 +235,12 @@ static void strong_suite(aq_suite_cfg *base, const char *h5)
   cfg.scale_to_lambda0 = 2.5;
   cfg.h5_path = h5;
   cfg.threads = 1;
+  return cfg;
+}
+
+static void strong_suite(aq_suite_cfg *base, const char *h5)
+{
+  aq_suite_cfg cfg = strong_cfg(base, h5);
   double rate[2][REPS], share[2][4][REPS];
   size_t runs = 0;
   for (int rep = 0; rep <= REPS; rep++)
@@ -222,14 +264,16 @@ static void strong_suite(aq_suite_cfg *base, const char *h5)
     r[k] = rate[0][k] / rate[1][k];
   printf("Strong shaking: %d records (records/ and 7 of tests/data/records) x 2 arches\n"
          "(oppenheim, thick) in one suite, --scale-to-lambda0 2.5, -o, -j 1: %zu runs,\n"
-         "median of %d:\n",
-         NSTRONG, runs, REPS);
+         "median of %d (cold: a fresh process's first suite, median of %d):\n",
+         NSTRONG, runs, REPS, COLD_REPS);
   static const char *const phase[4] = {"read", "process", "step", "write"};
   for (int m = 0; m < 2; m++) {
     double v[REPS];
     memcpy(v, rate[m], sizeof v);
-    printf("  %-9s %8.1f runs/s  [%.1f, %.1f]  ", m ? "ode:" : "workpath:",
-           aq_bench_median(v, REPS), minv(rate[m], REPS), maxv(rate[m], REPS));
+    double cold = cold_rate(m ? "strong 1" : "strong 0");
+    printf("  %-9s %8.1f runs/s  [%.1f, %.1f]  cold %.1f (%.2fx)  ", m ? "ode:" : "workpath:",
+           aq_bench_median(v, REPS), minv(rate[m], REPS), maxv(rate[m], REPS), cold,
+           aq_bench_median(v, REPS) / cold);
     double rest[REPS];
     for (int k = 0; k < REPS; k++)
       rest[k] = 1 - share[m][0][k] - share[m][1][k] - share[m][2][k] - share[m][3][k];
@@ -326,7 +370,7 @@ int main(int argc, char **argv)
   aq_suite_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
   int nerr = 0;
-  aq_opt_record_handle(AQ_OPT_RECORD_UNITS, "*.SAC=counts", &cfg.read, &nerr);
+  aq_opt_units("*.SAC=counts", &cfg.read, &nerr);
   aq_signal_opts_default(&cfg.proc);
   cfg.records = recs;
   cfg.nrecords = NSAMPLE * COPIES;
@@ -341,6 +385,20 @@ int main(int argc, char **argv)
   cfg.command_line = "bench_suite";
   if (nerr)
     return 1;
+  if (argc == 5 && strcmp(argv[1], "cold") == 0 && strcmp(argv[2], "quiet") == 0) {
+    cfg.threads = atoi(argv[3]); /* bench_suite cold quiet J O */
+    cfg.h5_path = atoi(argv[4]) ? h5 : NULL;
+  } else if (argc == 4 && strcmp(argv[1], "cold") == 0 && strcmp(argv[2], "strong") == 0) {
+    cfg = strong_cfg(&cfg, h5); /* bench_suite cold strong M */
+    cfg.model = atoi(argv[3]) ? AQ_MODEL_ODE : AQ_MODEL_WORKPATH;
+  }
+  if (argc > 1 && strcmp(argv[1], "cold") == 0) { /* one suite, its runs/s */
+    aq_suite_stats st;
+    printf("%.6g\n", run_suite(&cfg, &st));
+    unlink(h5);
+    fclose(text);
+    return 0;
+  }
   printf("Phase shares are phase time / wall time (read, process, step and wait\n"
          "summed over worker threads, write on the writer thread).\n");
   quiet_suite(&cfg, h5);

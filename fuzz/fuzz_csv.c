@@ -4,10 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/readers.h"
+#include "io/record.h"
 
 static aq_status parse_and_count(const unsigned char *buf, size_t n, const char *name,
-                                 const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                                 const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   size_t nch;
   aq_error ec;

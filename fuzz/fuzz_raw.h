@@ -1,5 +1,5 @@
 /* fuzz_raw.h: the body shared by the harnesses of the agency-format parsers
- * (io/formats.h), which report what a file states (aq_raw_file).  A harness
+ * (io/reader.h), which report what a file states (aq_raw_file).  A harness
  * defines AQ_FUZZ_RAW_PARSE and includes this file.  Each input is parsed
  * from memory; on success every channel must be consistent (npts > 0,
  * finite dt > 0, finite values), on failure the error must format to one
@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/formats.h"
+#include "io/record.h"
 
 static void aq_fuzz_raw_check(const aq_raw_file *r, aq_status s, const aq_error *e)
 {

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/formats.h"
+#include "io/record.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

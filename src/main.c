@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "app/app.h"
-#include "app/opt_arch.h"
+#include "app/opt_table.h"
 
 static const struct {
   const char *name;
@@ -23,28 +23,11 @@ static const struct {
     {"capacity", aq_cmd_capacity}, {"report", aq_cmd_report},
 };
 
-static const char commands_usage[] =
-    "Commands (each has --help; 'archquake help COMMAND' too):\n"
-    "  archquake [OPTIONS] RECORD... --arch FILE   run records against arches\n"
-    "  archquake info [OPTIONS] RECORD...          describe records\n"
-    "  archquake mechanism --arch FILE             static analysis of an arch\n"
-    "  archquake pulse --arch FILE --accel-g A --duration S   one pulse\n"
-    "  archquake domain --arch FILE                half-cycle collapse domain\n"
-    "  archquake compare A.h5 B.h5                 regression check\n"
-    "  archquake capacity RECORD... --arch FILE    collapse scales, fragility\n"
-    "  archquake plot FIGURE ... -o FILE           figures (history arch domain suite capacity)\n"
-    "  archquake report RESULTS.h5 [CAP.h5...] -o F.html  one HTML page to hand on\n"
-    "  archquake --version                         the version\n";
-
 /* The main job's usage and the command list, on stdout. */
 static void usage(void)
 {
-  char prog[] = "archquake", help[] = "--help";
-  char *av[] = {prog, help, NULL};
   fflush(stdout);
-  aq_cmd_run(2, av);
-  fputs(commands_usage, stdout);
-  aq_opt_arch_usage(stdout);
+  aq_opts_main_help(stdout);
 }
 
 /* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
@@ -83,8 +66,10 @@ int AQ_MAIN(int argc, char **argv)
         char *av[] = {argv[2], h, NULL};
         return commands[i].fn(2, av);
       }
-    fprintf(stderr, "archquake: help: expected a command (info, mechanism, pulse, "
-                    "domain, compare, plot, capacity, report), got \"%s\"\n", argv[2]);
+    fprintf(stderr, "archquake: help: expected a command (");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+      fprintf(stderr, "%s%s", i ? ", " : "", commands[i].name);
+    fprintf(stderr, "), got \"%s\"\n", argv[2]);
     return AQ_EXIT_USAGE;
   }
   if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {

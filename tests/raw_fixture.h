@@ -1,4 +1,4 @@
-/* raw_fixture.h: running an agency-format parser (io/formats.h) on a shipped
+/* raw_fixture.h: running an agency-format parser (io/reader.h) on a shipped
  * file, whole or altered, and the numbers the tests compare (peak, mean).
  * Paths are relative to the repository root. */
 #ifndef AQ_TESTS_RAW_FIXTURE_H
@@ -9,12 +9,11 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/formats.h"
+#include "io/record.h"
 
 #define AGENCY_DIR "tests/data/records/agency/"
 
-typedef aq_status (*aq_test_raw_parser)(const unsigned char *, size_t, const char *,
-                                        const aq_read_opts *, aq_raw_file *, aq_error *);
+typedef aq_reader_fn *aq_test_raw_parser;
 
 /* Parse buf[0..n) as name; the one-line message goes to msg.  Checks that a
  * failure leaves raw empty.  Returns the status. */

@@ -214,7 +214,9 @@ AQ_TEST(cli_unknown_option_named_as_typed)
            "-ab: exit %d, %s", rc, err);
   rc = aq_test_run("info -zq tests/data/records/IELC180.AT2", out, sizeof out, err,
                    sizeof err);
-  aq_check(rc == 2 && strstr(err, "-z: unknown") && strstr(err, "-q: unknown") &&
+  /* -q is the main job's: named as an option of another command */
+  aq_check(rc == 2 && strstr(err, "-z: unknown") &&
+               strstr(err, "info: -q: not an option of this command (only of the main job)") &&
                !strstr(err, "IELC180.AT2: unknown"),
            "info -zq: exit %d, %s", rc, err);
   rc = aq_test_run("info --bogus tests/data/records/IELC180.AT2", out, sizeof out,

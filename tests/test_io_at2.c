@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
+#include "io/number.h"
 #include "io/record.h"
 #include "units.h"
 

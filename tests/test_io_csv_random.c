@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
+#include "io/record.h"
 
 #define RND_FILES 300  /* random files of the value test */
 #define RND_ROWS_MAX 90 /* rows of one such file */

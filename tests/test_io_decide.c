@@ -12,7 +12,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
 #include "io/record.h"
 
 #define REC_DIR "tests/data/records/"

@@ -14,7 +14,6 @@
 #include <sys/stat.h>
 
 #include "check.h"
-#include "io/readers.h"
 #include "io/record.h"
 
 /* The names a full parse gives path (want, *nwant; each want[i] 4200 bytes). */

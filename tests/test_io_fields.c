@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/formats.h"
+#include "io/record.h"
 #include "io/number.h"
 
 #define AT2_HEAD "PEER TEST\nRANDOM FIELDS\nACCELERATION TIME SERIES IN UNITS OF G\n"

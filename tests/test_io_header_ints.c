@@ -8,7 +8,7 @@
 
 #include "check.h"
 #include "io/fixed.h"
-#include "io/readers.h"
+#include "io/record.h"
 
 #define SMC_FILE "tests/data/records/agency/0165b_a.smc"
 

@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
 #include "io/record.h"
 #include "raw_fixture.h"
 

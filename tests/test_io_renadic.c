@@ -16,9 +16,10 @@
 #define STORED_STEP_G 1e-4 /* values printed to 0.001 g/10 */
 
 static aq_status parse_via_detect(const unsigned char *buf, size_t n, const char *name,
-                                  const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                                  const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
-  return aq_raw_parse(buf, n, name, opts, raw, err);
+  (void)opts;
+  return aq_raw_parse(buf, n, name, NULL, raw, err);
 }
 
 AQ_TEST(io_renadic_three_channels)

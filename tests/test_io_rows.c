@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
+#include "io/record.h"
 
 /* Parse text as name (the extension picks the reader). */
 static aq_status parse(const char *text, const char *name, aq_raw_file *raw, aq_error *e)

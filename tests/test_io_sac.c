@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
 #include "io/record.h"
 #include "units.h"
 

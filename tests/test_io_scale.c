@@ -14,7 +14,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "io/readers.h"
 #include "io/record.h"
 
 #define G_MPS2 9.80665 /* standard gravity, m/s2 (CGPM 1901) */

@@ -60,12 +60,15 @@ AQ_TEST(io_smc_bad_input)
                (aq_test_msg_names(msg, SMC_CORR, "npts") ||
                 aq_test_msg_names(msg, SMC_CORR, "data")),
            "truncated data: %s", msg);
-  /* sampling rate null: the (time, value) pairs of uneven sampling */
+  /* sampling rate null: the values must then be (time, value) pairs, and
+   * these are not (their "times" go back): malformed, not uneven sampling
+   * (test_io_smc_variants.c refuses a file of true pairs) */
   aq_check(aq_test_raw_altered(aq_smc_parse, SMC_CORR, (size_t)-1,
                                "0.1700000E+39  0.2000000E+03", "0.1700000E+39  0.1700000E+39",
-                               msg, sizeof msg) == AQ_EUNSUPPORTED &&
-               aq_test_msg_names(msg, SMC_CORR, "real header #2") && strstr(msg, "uneven"),
-           "uneven: %s", msg);
+                               msg, sizeof msg) == AQ_EFORMAT &&
+               aq_test_msg_names(msg, SMC_CORR, "real header #2") &&
+               strstr(msg, "(time, value) pairs") && strstr(msg, "does not follow"),
+           "null rate, values not pairs: %s", msg);
   aq_check(aq_test_raw_altered(aq_smc_parse, SMC_CORR, (size_t)-1, "-1.1578E-1", "-1.15x8E-1",
                                msg, sizeof msg) == AQ_EFORMAT &&
                aq_test_msg_names(msg, SMC_CORR, "\"-1.15x8E-1\""),

@@ -14,6 +14,7 @@
  *     show the table's COLLAPSE cells; the page prints to PDF; its net log
  *     holds no request but the page's own file; the script ran (the DOM
  *     has the filter it adds).  The screenshots are kept in build/check/. */
+#define _XOPEN_SOURCE 700 /* realpath(3) */
 #include <hdf5.h>
 #include <limits.h>
 #include <math.h>

@@ -3,6 +3,7 @@
 #include <complex.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -311,25 +312,34 @@ AQ_TEST(signal_workspace_shared_by_threads)
   aq_signal_ws_free(ws);
 }
 
-AQ_TEST(signal_fft_size_is_smooth_and_minimal)
+/* The FFT lengths are 2^a or 3 2^a (two per octave, so the records of a
+ * suite share few), the smallest such at or above n: against the set
+ * written out here and a brute-force search of it. */
+AQ_TEST(signal_fft_size_is_two_per_octave_and_minimal)
 {
-  for (size_t n = 1; n < 3000; n += 7) {
+  static const size_t first[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128};
+  for (size_t k = 0; k + 1 < sizeof first / sizeof first[0]; k++)
+    for (size_t n = first[k] + 1; n <= first[k + 1]; n++)
+      if (!aq_check(aq_signal_fft_size(n) == first[k + 1], "fft size for %zu: %zu, want %zu",
+                    n, aq_signal_fft_size(n), first[k + 1]))
+        return;
+  aq_check(aq_signal_fft_size(1) == 1 && aq_signal_fft_size(0) == 1, "n <= 1: 1");
+  for (size_t n = 2; n < 300000; n = n * 11 / 10 + 7) {
     size_t m = aq_signal_fft_size(n), q = m;
-    while (q % 2 == 0) q /= 2;
-    while (q % 3 == 0) q /= 3;
-    while (q % 5 == 0) q /= 5;
-    int minimal = 1;
-    for (size_t j = n; j < m; j++) { /* brute force: nothing smaller works */
-      size_t t = j;
-      while (t % 2 == 0) t /= 2;
-      while (t % 3 == 0) t /= 3;
-      while (t % 5 == 0) t /= 5;
-      if (t == 1)
+    while (q % 2 == 0)
+      q /= 2;
+    int minimal = 1; /* brute force: no 2^a or 3 2^a in [n, m) */
+    for (size_t p = 1; p < m; p *= 2)
+      if ((p >= n && p < m) || (3 * p >= n && 3 * p < m))
         minimal = 0;
-    }
-    if (!aq_check(m >= n && q == 1 && minimal, "fft size for %zu: %zu", n, m))
+    if (!aq_check(m >= n && (q == 1 || q == 3) && minimal && m < 2 * n,
+                  "fft size for %zu: %zu", n, m))
       break;
   }
+  aq_check(aq_signal_fft_size((size_t)1 << 40) == (size_t)1 << 40 &&
+               aq_signal_fft_size(((size_t)1 << 40) + 1) == (size_t)3 << 39,
+           "2^40 and just above");
+  aq_check(aq_signal_fft_size(SIZE_MAX) == 0, "SIZE_MAX fits no length: 0");
 }
 
 /* The same on a real raw record: Ridgecrest 2019, CJ.T001230 vertical, which

@@ -1,7 +1,7 @@
 /* fftw_wisdom.c: writes build/fftw_wisdom.h, the FFTW_ESTIMATE wisdom of
- * every transform length the filter can use (2^a 3^b 5^c, see
- * aq_signal_fft_size) from AQ_WISDOM_MIN_N to AQ_WISDOM_MAX_N, one string
- * per length, for src/signal/filter.c.
+ * every transform length the filter can use (2^a and 3 2^a, the lengths
+ * aq_signal_fft_size gives) from AQ_WISDOM_MIN_N to AQ_WISDOM_MAX_N, one
+ * string per length, for src/signal/filter.c.
  *
  * Planning a length with FFTW_ESTIMATE costs 5-25 ms the first time in a
  * process (the planner's search, not the twiddles), which made a cold
@@ -20,7 +20,7 @@
 #include <string.h>
 
 #define AQ_WISDOM_MIN_N 1024L
-#define AQ_WISDOM_MAX_N (1L << 20)
+#define AQ_WISDOM_MAX_N (1L << 22)
 
 static int cmp_long(const void *a, const void *b)
 {
@@ -49,13 +49,12 @@ int main(int argc, char **argv)
     fprintf(stderr, "usage: fftw_wisdom OUT.h\n");
     return 2;
   }
-  static long len[4096];
+  static long len[256];
   size_t n = 0;
-  for (long p2 = 1; p2 <= AQ_WISDOM_MAX_N; p2 *= 2)
-    for (long p3 = p2; p3 <= AQ_WISDOM_MAX_N; p3 *= 3)
-      for (long p5 = p3; p5 <= AQ_WISDOM_MAX_N; p5 *= 5)
-        if (p5 >= AQ_WISDOM_MIN_N && n < sizeof len / sizeof len[0])
-          len[n++] = p5;
+  for (long p2 = 1; p2 <= AQ_WISDOM_MAX_N; p2 *= 2) /* 2^a and 3 2^a */
+    for (long m = p2; m <= 3 * p2 && m <= AQ_WISDOM_MAX_N; m += 2 * p2)
+      if (m >= AQ_WISDOM_MIN_N && n < sizeof len / sizeof len[0])
+        len[n++] = m;
   qsort(len, n, sizeof len[0], cmp_long);
   char tmp[4096];
   snprintf(tmp, sizeof tmp, "%s.tmp", argv[1]);

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../io/formats.h"
+#include "../io/record.h"
 #include "../report/report.h"
 #include "capacity_tasks.h"
 #include "opt.h"

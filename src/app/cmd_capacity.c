@@ -15,8 +15,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "../arch/stepper.h"
 #include "../capacity/capacity.h"
-#include "../io/formats.h"
+#include "../io/record.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text_capacity.h"
@@ -26,51 +27,8 @@
 #include "app.h"
 #include "capacity_tasks.h"
 #include "opt.h"
-#include "opt_arch.h"
-#include "opt_dyn.h"
-#include "opt_orient.h"
-#include "opt_record.h"
 #include "opt_signal.h"
-
-#define AQ_CAP_MAX_THREADS 1024
-
-static const char usage_head[] =
-    "usage: archquake capacity RECORD|--components H1,H2[,V]... --arch FILE [--arch FILE ...] [OPTIONS]\n"
-    "For each record, arch and polarity, every scale factor at which the arch's\n"
-    "verdict (collapse or not) changes, from the scale at which it first moves\n"
-    "to --scale-max (docs/capacity.md).  One TSV row per (record, arch,\n"
-    "polarity) on stdout.\n"
-    "  --arch FILE         an arch (.cfg), or an installed arch by name\n"
-    "                      (oppenheim); repeatable\n"
-    "  -o, --output FILE.h5  write the results to a `capacity` group\n"
-    "  --text FILE         write the TSV to FILE instead of stdout\n"
-    "  --fragility FILE    lognormal fragility fits, one row per (arch, IM)\n"
-    "  --polarity P        normal, reversed or both (default; the worse governs)\n"
-    "  --scale-max S       highest scale (default: PGA = 20 lambda0 g)\n"
-    "  --resolution R      relative scan step: no window of either verdict wider\n"
-    "                      than R is missed (default 0.01; 1e-4 to 1)\n"
-    "  --tol T             relative tolerance of each change (default 1e-6;\n"
-    "                      1e-12 to R)\n"
-    "  -j, --jobs N        worker threads (default: the number of cores)\n"
-    AQ_OPT_DYN_USAGE
-    "Orientation (--azimuth all: each row is the worst azimuth, lowest\n"
-    "first_collapse_scale, no collapse last; -o and --fragility take plain\n"
-    "RECORDs only):\n" AQ_OPT_ORIENT_USAGE
-    "  --help              this text\n"
-    "Reading:\n" AQ_OPT_RECORD_USAGE "Processing:\n";
-static const char usage_tail[] =
-    "Columns: record arch polarity status move_scale first_collapse_scale\n"
-    "  first_collapse_pga_g first_collapse_pgv_m_s collapse_intervals\n"
-    "  resurrection runs scale_max, with --components also azimuth_deg\n"
-    "  first_collapse_scale_min first_collapse_scale_max (the range over the\n"
-    "  azimuths where it collapses)  (status: ok, never_moves, read:CODE,\n"
-    "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
-    "  collapse holds at the cap)\n"
-    "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
-    "ran), 2 bad options or arch file, 3 an output could not be written.\n";
-
-enum { OPT_ARCH = 2000, OPT_TEXT, OPT_FRAG, OPT_POL, OPT_SMAX, OPT_RES, OPT_TOL,
-       OPT_HELP };
+#include "opt_table.h"
 
 /* The status cell of pair c of record r. */
 static void pair_status(const aq_cap_item *r, const aq_capacity *c, char *st, size_t n)
@@ -159,8 +117,8 @@ static void rows_free(rows *o)
 static int write_h5(const char *path, int argc, char **argv, char **recs, size_t nrec,
                     char **arch_paths, aq_arch **arches, size_t na, const aq_cap_item *R,
                     const rows *o, size_t npair, const aq_scan_opts *so,
-                    const aq_signal_opts *po, double merge_tol_g, const aq_dyn_opts *dyn,
-                    long threads, int pol)
+                    const aq_signal_opts *po, double merge_tol_g, aq_model model,
+                    double cor, long threads, int pol)
 {
   char cmd[4096] = "", created[64];
   for (int i = 0, k = 0; i < argc && k < (int)sizeof cmd - 2; i++)
@@ -177,8 +135,8 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                      .proc = po,
                      .merge_tol_g = merge_tol_g,
                      .units = "file",
-                     .model = aq_opt_dyn_model_name(dyn->model),
-                     .cor = dyn->cor,
+                     .model = aq_model_name(model),
+                     .cor = cor,
                      .scale_to_pga_g = NAN,
                      .threads = threads,
                      .build = aq_build_string(),
@@ -243,77 +201,31 @@ static int out_close(aq_outfile *o, int ok)
 
 int aq_cmd_capacity(int argc, char **argv)
 {
-  struct option lo[40] = {
-      AQ_OPT_RECORD_LONGOPTS,
-      {"arch", required_argument, NULL, OPT_ARCH},
-      {"output", required_argument, NULL, 'o'},
-      {"text", required_argument, NULL, OPT_TEXT},
-      {"fragility", required_argument, NULL, OPT_FRAG},
-      {"polarity", required_argument, NULL, OPT_POL},
-      {"scale-max", required_argument, NULL, OPT_SMAX},
-      {"resolution", required_argument, NULL, OPT_RES},
-      {"tol", required_argument, NULL, OPT_TOL},
-      {"jobs", required_argument, NULL, 'j'},
-      AQ_OPT_DYN_LONGOPTS,
-      AQ_OPT_ORIENT_LONGOPTS,
-      {"help", no_argument, NULL, OPT_HELP}};
-  aq_opt_signal_append(lo);
-  aq_orient_opts orient;
-  aq_opt_orient_init(&orient);
-  aq_read_opts ro;
-  memset(&ro, 0, sizeof ro);
-  aq_signal_opts po;
-  aq_signal_opts_default(&po);
-  double merge_tol_g = 0, smax = NAN;
-  aq_dyn_opts dyn;
-  aq_opt_dyn_default(&dyn);
-  aq_scan_opts so = {AQ_SCAN_RESOLUTION_DEFAULT, AQ_SCAN_TOL_DEFAULT};
-  long ncpu = sysconf(_SC_NPROCESSORS_ONLN), threads = ncpu >= 1 ? ncpu : 1;
-  int pol = AQ_POLARITY_BOTH, nerr = 0, c;
-  const char *h5 = NULL, *text = NULL, *frag = NULL;
-  char **arch_paths = calloc((size_t)argc + 1, sizeof *arch_paths);
-  size_t na = 0;
-  if (!arch_paths)
-    return AQ_EXIT_FAIL;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":o:j:", lo, NULL)) != -1) {
-    if (aq_opt_signal_handle(c, optarg, &po, &merge_tol_g, &nerr) ||
-        aq_opt_record_handle(c, optarg, &ro, &nerr) ||
-        aq_opt_dyn_handle(c, optarg, &dyn, &nerr) ||
-        aq_opt_orient_handle(c, optarg, &orient, &nerr))
-      continue;
-    switch (c) {
-    case OPT_ARCH: arch_paths[na++] = aq_opt_arch(optarg, &nerr); break;
-    case 'o': h5 = optarg; break;
-    case OPT_TEXT: text = optarg; break;
-    case OPT_FRAG: frag = optarg; break;
-    case OPT_POL: aq_opt_polarity(optarg, &pol, &nerr); break;
-    case OPT_SMAX: aq_opt_double_gt("--scale-max", optarg, 0, 1e6, &smax, &nerr); break;
-    case OPT_RES:
-      aq_opt_double("--resolution", optarg, AQ_SCAN_RESOLUTION_MIN,
-                    AQ_SCAN_RESOLUTION_MAX, &so.resolution, &nerr);
-      break;
-    case OPT_TOL: aq_opt_double("--tol", optarg, AQ_SCAN_TOL_MIN, 1, &so.tol, &nerr); break;
-    case 'j': aq_opt_long("-j", optarg, 1, AQ_CAP_MAX_THREADS, &threads, &nerr); break;
-    case OPT_HELP:
-      fputs(usage_head, stdout);
-      fputs(aq_opt_signal_usage, stdout);
-      fputs(usage_tail, stdout);
-      free(arch_paths);
-      aq_opt_orient_free(&orient);
-      return AQ_EXIT_OK;
-    default: aq_opt_unknown("capacity", argv, optind, optopt, &nerr);
-    }
+  aq_opts opts;
+  aq_opts_init(&opts, AQ_CMD_CAPACITY);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_CAPACITY, argc, argv, &opts, &nerr)) { /* --help */
+    aq_opts_free(&opts);
+    return AQ_EXIT_OK;
   }
+  aq_read_opts ro = opts.read;
+  aq_signal_opts po = opts.proc;
+  double merge_tol_g = opts.merge_tol_g, smax = opts.scale_max;
+  aq_model model = (aq_model)opts.model;
+  double cor = opts.cor;
+  aq_scan_opts so = {opts.resolution, opts.scan_tol};
+  long threads = opts.threads;
+  int pol = opts.polarity;
+  const char *h5 = opts.output, *text = opts.text, *frag = opts.fragility;
+  /* what the command owns from here: freed below */
+  char **arch_paths = opts.arches;
+  size_t na = opts.narches;
+  aq_orient_opts orient = opts.orient;
+  opts.arches = NULL;
+  aq_opt_orient_init(&opts.orient);
+  aq_opts_free(&opts);
   aq_opt_signal_check(&po, &nerr);
   aq_opt_orient_check(&orient, &nerr);
-  if (orient.all_azimuths) {
-    fprintf(stderr, "archquake: --all-azimuths: expected without capacity (its rows are "
-                    "the worst azimuth with the range over the azimuths; --azimuth DEG "
-                    "gives one azimuth's)\n");
-    nerr++;
-  }
   for (int i = 0; i < 2 && orient.nmotions; i++)
     if (i ? frag != NULL : h5 != NULL) {
       fprintf(stderr, "archquake: %s: expected plain RECORDs only, got --components (the "
@@ -403,7 +315,7 @@ int aq_cmd_capacity(int argc, char **argv)
     if (aq_arch_load(arch_paths[a], &arches[a], &se) != AQ_OK) {
       aq_error_print(&se, stderr);
       rc = AQ_EXIT_USAGE;
-    } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(dyn.cor),
+    } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(cor),
                                    aq_arch_dynamics_of(arches[a])->impact ==
                                        AQ_IMPACT_MOMENTUM)) {
       rc = AQ_EXIT_USAGE;
@@ -411,8 +323,8 @@ int aq_cmd_capacity(int argc, char **argv)
   if (rc != AQ_EXIT_OK)
     goto done;
   aq_cap_setup S = {nrec, (const char *const (*)[3])paths, (const double (*)[2])phi,
-                     &orient, &ro, &po, pol, pols, npol, nz, arches, na, dyn.model,
-                     dyn.cor, merge_tol_g * AQ_G0_MPS2, smax, so};
+                     &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
+                     cor, merge_tol_g * AQ_G0_MPS2, smax, so};
   if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
     rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
     goto done;
@@ -456,7 +368,7 @@ int aq_cmd_capacity(int argc, char **argv)
     ok = 0;
   if (ok && h5 &&
       write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, nrow, &so, &po,
-               merge_tol_g, &dyn, threads, pol) != 0)
+               merge_tol_g, model, cor, threads, pol) != 0)
     ok = 0;
   rows_free(&o);
   if (frag && out_close(&of, ok) != 0)

@@ -5,53 +5,52 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../io/formats.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_record.h"
 #include "opt_signal.h"
+#include "opt_table.h"
 
-static const char usage_head[] =
-    "usage: archquake info [OPTIONS] RECORD...\n"
-    "Describe accelerograms: one TSV row per record on stdout.\n"
-    AQ_OPT_RECORD_USAGE
-    "  --help          this text\n"
-    "Processing (intensity measures are computed on the processed record):\n";
-static const char usage_tail[] =
-    "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
-    "  arias_m_s d5_95_s cav_m_s (npts, duration_s: the record as read; the\n"
-    "  measures: the processed record, pads included; --no-filter --detrend\n"
-    "  none gives the record as read)\n"
-    "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n";
+/* One row for rec (processed by so in ws); 1 if it failed (reported). */
+static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws *ws)
+{
+  aq_error err;
+  aq_error_clear(&err);
+  aq_processed p;
+  aq_im im;
+  if (aq_signal_process(rec, so, ws, &p, &err) != AQ_OK ||
+      aq_im_compute(&p, &im, &err) != AQ_OK) {
+    if (!err.input[0])
+      snprintf(err.input, sizeof err.input, "%s", rec->path);
+    aq_error_print(&err, stderr);
+    aq_processed_free(&p);
+    return 1;
+  }
+  if (rec->units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", rec->path, rec->units_conflict);
+  char warn[256];
+  if (aq_im_residual_warning(&im, warn, sizeof warn))
+    fprintf(stderr, "archquake: %s: warning: %s\n", rec->path, warn);
+  printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
+         rec->path, rec->format, rec->npts, rec->dt_s,
+         rec->dt_s * (double)rec->npts, rec->units_orig, im.pga_g, im.pgv_mps,
+         im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec->channel,
+         rec->vertical ? "yes" : "no");
+  aq_processed_free(&p);
+  return 0;
+}
 
 int aq_cmd_info(int argc, char **argv)
 {
-  struct option longopts[AQ_OPT_RECORD_NOPTS + 1 + AQ_OPT_SIGNAL_NOPTS + 1] = {
-      AQ_OPT_RECORD_LONGOPTS, {"help", no_argument, NULL, 'h'}};
-  aq_opt_signal_append(longopts);
-  aq_signal_opts so;
-  aq_signal_opts_default(&so);
-  aq_read_opts ro = {0};
-  int nerr = 0, c;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":", longopts, NULL)) != -1) {
-    if (aq_opt_signal_handle(c, optarg, &so, NULL, &nerr))
-      continue;
-    switch (c) {
-    case 'h':
-      fputs(usage_head, stdout);
-      fputs(aq_opt_signal_usage, stdout);
-      fputs(usage_tail, stdout);
-      return AQ_EXIT_OK;
-    default:
-      if (!aq_opt_record_handle(c, optarg, &ro, &nerr))
-        aq_opt_unknown("info", argv, optind, optopt, &nerr);
-    }
-  }
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_INFO);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_INFO, argc, argv, &o, &nerr))
+    return AQ_EXIT_OK; /* --help */
+  aq_read_opts ro = o.read;
+  aq_signal_opts so = o.proc;
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
   if (optind >= argc) {
     fprintf(stderr, "archquake: info: expected at least one RECORD\n");
@@ -69,50 +68,25 @@ int aq_cmd_info(int argc, char **argv)
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
          "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
-  char **names;
-  size_t nnames;
-  aq_error xerr;
-  if (aq_record_expand(argv + optind, (size_t)(argc - optind), &ro, &names, &nnames,
-                       &xerr) != AQ_OK) {
-    aq_error_print(&xerr, stderr);
-    aq_signal_ws_free(ws);
-    return AQ_EXIT_FAIL;
-  }
-  for (size_t i = 0; i < nnames; i++) { /* every channel a record (FILE#CH) */
-    aq_record rec;
-    aq_error err;
-    aq_error_clear(&err);
-    if (aq_record_read(names[i], &ro, &rec, &err) != AQ_OK) {
-      aq_error_print(&err, stderr);
-      failed = 1;
-      continue;
+  for (int op = optind; op < argc; op++) { /* every channel a record (FILE#CH) */
+    aq_record_set set;
+    aq_error xerr;
+    if (aq_record_read_all(argv[op], &ro, 0, &set, &xerr) != AQ_OK) {
+      aq_error_print(&xerr, stderr);
+      aq_signal_ws_free(ws);
+      return AQ_EXIT_FAIL;
     }
-    aq_processed p;
-    aq_im im;
-    if (aq_signal_process(&rec, &so, ws, &p, &err) != AQ_OK ||
-        aq_im_compute(&p, &im, &err) != AQ_OK) {
-      if (!err.input[0])
-        snprintf(err.input, sizeof err.input, "%s", rec.path);
-      aq_error_print(&err, stderr);
-      aq_processed_free(&p);
-      aq_record_free(&rec);
-      failed = 1;
-      continue;
+    for (size_t i = 0; i < set.n; i++) {
+      aq_record_item *it = &set.item[i];
+      if (it->status != AQ_OK) {
+        aq_error_print(&it->err, stderr);
+        failed = 1;
+        continue;
+      }
+      failed |= describe(&it->rec, &so, ws);
     }
-    if (rec.units_conflict[0])
-      fprintf(stderr, "archquake: %s: units: %s\n", rec.path, rec.units_conflict);
-    char warn[256];
-    if (aq_im_residual_warning(&im, warn, sizeof warn))
-      fprintf(stderr, "archquake: %s: warning: %s\n", rec.path, warn);
-    printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
-           rec.path, rec.format, rec.npts, rec.dt_s,
-           rec.dt_s * (double)rec.npts, rec.units_orig, im.pga_g, im.pgv_mps,
-           im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec.channel,
-           rec.vertical ? "yes" : "no");
-    aq_processed_free(&p);
-    aq_record_free(&rec);
+    aq_record_set_free(&set);
   }
-  aq_record_names_free(names, nnames);
   aq_signal_ws_free(ws);
   fflush(stdout);
   return failed ? AQ_EXIT_FAIL : AQ_EXIT_OK;

@@ -17,59 +17,12 @@
 #include "app.h"
 #include "../util/cleanup.h"
 #include "opt.h"
-#include "opt_arch.h"
-
-static const char usage[] =
-    "usage: archquake plot FIGURE [INPUT] [OPTIONS] -o FILE\n"
-    "Draw a figure with PLplot; the format is FILE's extension: .png, .svg or\n"
-    ".pdf (cairo drivers).  No partial file is ever left under FILE.\n"
-    "Figures:\n"
-    "  history RESULTS.h5 [--run KEY]   one run of a results file written with\n"
-    "        --history: ground acceleration (g) with +-lambda0 g, rotation (rad)\n"
-    "        with +-q_c, kinetic and potential energy and the work put in (J);\n"
-    "        impacts and collapse marked.  KEY: a group under /runs, e.g.\n"
-    "        00000_000_000 (default: the first run)\n"
-    "  arch --arch ARCH [--rotation RAD]   the arch to scale, its voussoirs and\n"
-    "        both hinge sets; with --rotation the mechanism deformed at that\n"
-    "        rotation of body 1 (> 0 primary set, < 0 reverse set, |RAD| <= q_c)\n"
-    "  domain --arch ARCH [--ratios LIST] [--cor C]   the half-cycle collapse\n"
-    "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
-    "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
-    "        and polarities: collapse, or peak rotation / q_c)\n"
-    "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
-    "        a file of archquake capacity -o, one arch (default: the file's\n"
-    "        first): a strip per record and polarity with the verdict at every\n"
-    "        scanned scale (--y scale: the scale factor, the default; --y pga:\n"
-    "        the PGA in g), shaded by the survived runs' peak rotation (--x qc:\n"
-    "        over q_c, the default; --x rad), red and hatched where it\n"
-    "        collapses, a tick at each change, its first collapse beside it\n"
-    "        (R: it survives again above a collapse); below, the lognormal\n"
-    "        fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s,\n"
-    "        pga_lambda0; default pga_g) over the empirical fraction of\n"
-    "        first collapses, censored records at their cap, and the band of\n"
-    "        the median's interval\n"
-    "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n"
-    "Options:\n"
-    "  -o, --output FILE  the figure (.png .svg .pdf)\n"
-    "  --data FILE.csv    also write the plotted data (columns carry units)\n"
-    "  --paper a4|letter  the page of a PDF (default: the locale's paper,\n"
-    "                     LC_PAPER, else A4); the figure is scaled to fit\n"
-    "  --help             this text\n"
-    "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 bad options,\n"
-    "3 the figure or the data could not be written.\n";
+#include "opt_table.h"
 
 enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_N };
 static const char *const figures[] = {"history", "arch", "domain", "suite", "capacity", NULL};
-/* Per figure: takes an input file, and which options it accepts. */
-static const struct {
-  int input;
-  const char *opts; /* option letters: r run, a arch, R rotation, t ratios, c cor,
-                       i im, x x axis, y y axis */
-} takes[FIG_N] = {{1, "r"}, {0, "aR"}, {0, "atc"}, {1, ""}, {1, "aixy"}};
-
-static const char *const x_axes[] = {"qc", "rad", NULL};
-static const char *const y_axes[] = {"scale", "pga", NULL};
-static const char *const papers[] = {"a4", "letter", NULL};
+/* Per figure: whether it takes an input file (its options: opt_table.c). */
+static const int takes_input[FIG_N] = {1, 0, 0, 1, 1};
 
 /* The locale's paper (LC_PAPER, glibc's page size in mm): Letter or A4. */
 static int locale_paper(void)
@@ -90,8 +43,8 @@ static int locale_paper(void)
 typedef struct {
   int fig;
   const char *input, *out, *data, *run, *arch, *im;
-  int x_rad, y_pga; /* capacity: index in x_axes, y_axes */
-  int paper;        /* index in papers; -1: the locale's */
+  int x_rad, y_pga; /* capacity: --x rad, --y pga */
+  int paper;        /* an aq_plot_paper; -1: the locale's */
   double rotation_rad, cor;
   double *ratios;
   size_t nr;
@@ -99,48 +52,29 @@ typedef struct {
 
 static int parse(int argc, char **argv, plot_opts *o)
 {
-  static const struct option longopts[] = {
-      {"output", required_argument, NULL, 'o'}, {"data", required_argument, NULL, 'd'},
-      {"run", required_argument, NULL, 'r'},    {"arch", required_argument, NULL, 'a'},
-      {"rotation", required_argument, NULL, 'R'}, {"ratios", required_argument, NULL, 't'},
-      {"cor", required_argument, NULL, 'c'},    {"help", no_argument, NULL, 'h'},
-      {"im", required_argument, NULL, 'i'},     {"x", required_argument, NULL, 'x'},
-      {"y", required_argument, NULL, 'y'},      {"paper", required_argument, NULL, 'p'},
-      {NULL, 0, NULL, 0}};
-  int nerr = 0, c;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":o:", longopts, NULL)) != -1) {
-    if (c == 'h') {
-      fputs(usage, stdout);
-      return -1;
-    }
-    if (strchr("rRatcixy", c) && !strchr(takes[o->fig].opts, c)) {
-      const char *name = "?";
-      for (size_t k = 0; longopts[k].name; k++)
-        if (longopts[k].val == c)
-          name = longopts[k].name;
-      fprintf(stderr, "archquake: plot %s: --%s: not an option of this figure\n",
-              figures[o->fig], name);
-      nerr++;
-      continue;
-    }
-    switch (c) {
-    case 'o': o->out = optarg; break;
-    case 'd': o->data = optarg; break;
-    case 'r': o->run = optarg; break;
-    case 'a': o->arch = o->fig == FIG_CAPACITY ? optarg : aq_opt_arch(optarg, &nerr); break;
-    case 'i': o->im = optarg; break;
-    case 'x': aq_opt_choice("--x", optarg, x_axes, &o->x_rad, &nerr); break;
-    case 'y': aq_opt_choice("--y", optarg, y_axes, &o->y_pga, &nerr); break;
-    case 'p': aq_opt_choice("--paper", optarg, papers, &o->paper, &nerr); break;
-    case 'R': aq_opt_double("--rotation", optarg, -10, 10, &o->rotation_rad, &nerr); break;
-    case 't': aq_opt_list("--ratios", optarg, 1, INFINITY, &o->ratios, &o->nr, &nerr); break;
-    case 'c': aq_opt_double("--cor", optarg, 0, 1, &o->cor, &nerr); break;
-    default: aq_opt_unknown("plot", argv, optind, optopt, &nerr);
-    }
+  aq_opts a;
+  aq_cmd cmd = (aq_cmd)(AQ_CMD_PLOT_HISTORY + o->fig);
+  aq_opts_init(&a, cmd);
+  int nerr = 0;
+  if (aq_opts_parse(cmd, argc, argv, &a, &nerr)) {
+    aq_opts_free(&a);
+    return -1; /* --help */
   }
-  if (takes[o->fig].input) {
+  o->out = a.output;
+  o->data = a.data;
+  o->run = a.run;
+  o->arch = a.arch;
+  o->im = a.im;
+  o->x_rad = a.x_rad;
+  o->y_pga = a.y_pga;
+  o->paper = a.paper;
+  o->rotation_rad = a.rotation_rad;
+  o->cor = a.cor;
+  o->ratios = a.ratios; /* freed by the caller */
+  o->nr = a.nratios;
+  a.ratios = NULL;
+  aq_opts_free(&a);
+  if (takes_input[o->fig]) {
     if (optind < argc)
       o->input = argv[optind++];
     else {
@@ -151,7 +85,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
   aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
-  if (strchr(takes[o->fig].opts, 'a') && o->fig != FIG_CAPACITY)
+  if (o->fig == FIG_ARCH || o->fig == FIG_DOMAIN)
     aq_opt_require("plot", "--arch ARCH", o->arch != NULL, &nerr);
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
@@ -226,10 +160,10 @@ out:
 int aq_cmd_plot(int argc, char **argv)
 {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    fputs(usage, argc < 2 ? stderr : stdout);
+    aq_opts_help(AQ_CMD_PLOT, argc < 2 ? stderr : stdout);
     return argc < 2 ? AQ_EXIT_USAGE : AQ_EXIT_OK;
   }
-  plot_opts o = {.rotation_rad = 0, .cor = NAN, .paper = -1};
+  plot_opts o = {.rotation_rad = 0};
   int fig = -1, nerr = 0;
   aq_opt_choice("plot", argv[1], figures, &fig, &nerr);
   if (nerr)

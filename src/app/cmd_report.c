@@ -2,7 +2,7 @@
  * report.html`: check the options, then write the page with the page
  * stage (src/page) in this one thread. */
 #define _POSIX_C_SOURCE 200809L
-#include <getopt.h>
+#include <getopt.h> /* optind */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,45 +14,18 @@
 #include "app.h"
 #include "../util/cleanup.h"
 #include "opt.h"
-
-static const char usage[] =
-    "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
-    "One self-contained HTML page of a screening, to hand on: per arch its\n"
-    "verdict table (sortable, filterable by verdict) and figures (the arch\n"
-    "and its hinge sets, the suite's verdict map, the history of each\n"
-    "collapsed run and of the strongest surviving one when the results hold\n"
-    "histories), the capacity files' first collapses, collapse intervals,\n"
-    "fragility curves and the ranking of the intensity measures, the failed\n"
-    "records with their reasons, and the run: command line, build, date,\n"
-    "options, every record and every arch.  Figures are inline SVG, text as\n"
-    "text; nothing is fetched; it prints on A4 and Letter.\n"
-    "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
-    "CAPACITY.h5 one of archquake capacity -o.\n"
-    "Options:\n"
-    "  -o, --output FILE  the page (.html)\n"
-    "  --help             this text\n"
-    "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
-    "3 the page could not be written.  No partial file is left under FILE.\n";
+#include "opt_table.h"
 
 int aq_cmd_report(int argc, char **argv)
 {
-  static const struct option longopts[] = {{"output", required_argument, NULL, 'o'},
-                                           {"help", no_argument, NULL, 'h'},
-                                           {NULL, 0, NULL, 0}};
-  const char *out = NULL;
-  int nerr = 0, c;
-  opterr = 0;
-  optind = 1;
-  while ((c = getopt_long(argc, argv, ":o:", longopts, NULL)) != -1) {
-    if (c == 'h') {
-      fputs(usage, stdout);
-      return AQ_EXIT_OK;
-    }
-    if (c == 'o')
-      out = optarg;
-    else
-      aq_opt_unknown("report", argv, optind, optopt, &nerr);
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_REPORT);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_REPORT, argc, argv, &o, &nerr)) { /* --help */
+    aq_opts_free(&o);
+    return AQ_EXIT_OK;
   }
+  const char *out = o.output;
   if (optind >= argc) {
     fprintf(stderr, "archquake: report: expected a results file (.h5), got none\n");
     nerr++;
@@ -72,6 +45,7 @@ int aq_cmd_report(int argc, char **argv)
         nerr++;
       }
   }
+  aq_opts_free(&o);
   if (nerr)
     return AQ_EXIT_USAGE;
   /* the command line, shown at the page's end */

@@ -119,11 +119,6 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double 
 
 const char *const aq_opt_polarity_names[] = {"normal", "reversed", "both", NULL};
 
-void aq_opt_polarity(const char *arg, int *out, int *nerr)
-{
-  aq_opt_choice("--polarity", arg, aq_opt_polarity_names, out, nerr);
-}
-
 void aq_opt_ode_rtol(int given, const char *model, int *nerr)
 {
   if (given && strcmp(model, "ode") != 0) {

@@ -1,8 +1,9 @@
 /* opt.h: checked option values.  Each parser prints one line
  *   archquake: --OPTION: expected ..., got "..."
- * on stderr, increments *nerr on failure and leaves *out unchanged.
- * Commands use getopt_long with opterr = 0 and aq_opt_unknown() so that
- * every bad option is reported, not just the first. */
+ * on stderr, increments *nerr on failure and leaves *out unchanged.  The
+ * table of options (opt_table.h) checks each value with them, and a
+ * command the combinations with the rest, so that every bad option is
+ * reported, not just the first. */
 #ifndef AQ_APP_OPT_H
 #define AQ_APP_OPT_H
 
@@ -27,17 +28,11 @@ void aq_opt_ode_rtol(int given, const char *model, int *nerr);
 /* --cor given for an arch whose [dynamics] impact (or --impact) is
  * momentum: one line naming the arch file; returns 1 (refuse, exit 2). */
 int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
-/* --polarity normal|reversed|both: the sign of the records a command runs
- * (the record as read, negated, or each record both ways, each row saying
- * which).  Declared here once for every command that runs records. */
+/* --polarity's words, indexed by AQ_POLARITY_*, NULL-terminated: the sign
+ * of the records a command runs (the record as read, negated, or each
+ * record both ways, each row saying which). */
 enum { AQ_POLARITY_NORMAL = 0, AQ_POLARITY_REVERSED, AQ_POLARITY_BOTH };
-extern const char *const aq_opt_polarity_names[]; /* indexed by the enum, NULL-terminated */
-#define AQ_OPT_POLARITY_USAGE                                                        \
-  "  --polarity P        normal (the record as read, default), reversed (negated)\n" \
-  "                      or both (each record both ways; the polarity column\n"    \
-  "                      says which: a hinge-controlled arch's response depends\n"  \
-  "                      on the sign)\n"
-void aq_opt_polarity(const char *arg, int *out, int *nerr);
+extern const char *const aq_opt_polarity_names[];
 /* 1 if paths a and b name the same file: the same string, or the same
  * existing file however spelled (device and inode). */
 int aq_opt_same_file(const char *a, const char *b);

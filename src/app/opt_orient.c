@@ -128,28 +128,6 @@ void aq_opt_azimuth(const char *arg, aq_orient_opts *o, int *nerr)
   o->azimuth_given = 1;
 }
 
-int aq_opt_orient_handle(int id, const char *arg, aq_orient_opts *o, int *nerr)
-{
-  switch (id) {
-  case AQ_OPT_ORIENT_COMPONENTS:
-    aq_opt_components(arg, o, nerr);
-    return 1;
-  case AQ_OPT_ORIENT_AZIMUTHS:
-    aq_opt_azimuths(arg, o, nerr);
-    return 1;
-  case AQ_OPT_ORIENT_AZIMUTH:
-    aq_opt_azimuth(arg, o, nerr);
-    return 1;
-  case AQ_OPT_ORIENT_ALL_AZIMUTHS:
-    o->all_azimuths = 1;
-    return 1;
-  case AQ_OPT_ORIENT_VERTICAL:
-    o->vertical = 1;
-    return 1;
-  }
-  return 0;
-}
-
 void aq_opt_orient_check(aq_orient_opts *o, int *nerr)
 {
   if (o->all_azimuths && !o->scan) {

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_table.h"
 
 enum {
@@ -315,4 +316,21 @@ void aq_opts_help(aq_cmd cmd, FILE *f)
     }
   }
   fputs(c->tail, f);
+}
+
+void aq_opts_main_help(FILE *f)
+{
+  enum { SYNOPSIS_COL = 46 }; /* where the summaries start */
+  aq_opts_help(AQ_CMD_RUN, f);
+  fputs("Commands (each has --help; 'archquake help COMMAND' too):\n", f);
+  char lab[160];
+  for (int c = 0; c < AQ_CMD_N; c++) {
+    const aq_opt_command *k = &aq_opt_commands[c];
+    if (!k->summary)
+      continue;
+    snprintf(lab, sizeof lab, "  archquake %s", k->synopsis);
+    put_entry(f, lab, k->summary, NULL, SYNOPSIS_COL);
+  }
+  put_entry(f, "  archquake --version", "the version", NULL, SYNOPSIS_COL);
+  aq_opt_arch_usage(f);
 }

@@ -7,9 +7,6 @@
 
 #include "opt.h"
 
-const struct option aq_opt_record_longopts[] = {AQ_OPT_RECORD_LONGOPTS,
-                                                {NULL, 0, NULL, 0}};
-
 static int parse_units(const char *opt, const char *word, aq_units *u, int *nerr)
 {
   if (strcmp(word, "file") == 0) {
@@ -94,35 +91,4 @@ void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr)
     return;
   }
   snprintf(ro->response, sizeof ro->response, "%s", arg);
-}
-
-int aq_opt_record_handle(int id, const char *arg, aq_read_opts *ro, int *nerr)
-{
-  switch (id) {
-  case AQ_OPT_RECORD_UNITS:
-    aq_opt_units(arg, ro, nerr);
-    return 1;
-  case AQ_OPT_RECORD_COMPONENT:
-    aq_opt_component(arg, ro, nerr);
-    return 1;
-  case AQ_OPT_RECORD_ACCEPT_IMPLAUSIBLE:
-    ro->accept_implausible = 1;
-    return 1;
-  case AQ_OPT_RECORD_ACCEPT_VERTICAL:
-    ro->accept_vertical = 1;
-    return 1;
-  case AQ_OPT_RECORD_RESPONSE:
-    aq_opt_response(arg, ro, nerr);
-    return 1;
-  case AQ_OPT_RECORD_DT:
-    aq_opt_double_gt("--dt", arg, 0, 3600, &ro->dt_s, nerr);
-    return 1;
-  case AQ_OPT_RECORD_COLUMN: {
-    long col = (long)ro->column;
-    aq_opt_long("--column", arg, 1, 64, &col, nerr);
-    ro->column = (size_t)col;
-    return 1;
-  }
-  }
-  return 0;
 }

@@ -44,6 +44,7 @@ static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_de
 static const char *const impacts[] = {"cor", "momentum", NULL};
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
+static const char *const papers[] = {"a4", "letter", NULL}; /* aq_plot_paper */
 
 /* The handlers of the options that are more than a value. */
 static void add_arch(char *arg, aq_opts *o, int *nerr)
@@ -168,6 +169,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)"},
+    [AQ_OPT_REPORT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
+                              .meta = "FILE.html", DEST(output), .cmds = C(REPORT),
+                              .help = "the page"},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -176,14 +180,19 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_DATA] = {.name = "data", .kind = AQ_ARG_STRING, .meta = "FILE.csv", DEST(data),
                      .cmds = PLOT_ALL,
                      .help = "also write the plotted data (columns carry units)"},
+    [AQ_OPT_PAPER] = {.name = "paper", .kind = AQ_ARG_CHOICE, .choices = papers,
+                      .meta = "a4|letter", DEST(paper), .cmds = PLOT_ALL,
+                      .help = "the page of a PDF (default: the locale's paper, LC_PAPER, else "
+                              "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
                     .cmds = C(PLOT_HISTORY),
                     .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
                             "(default: the first run)"},
     [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
                          .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
-                         .help = "draw the mechanism deformed at that rotation of body 1 "
-                                 "(> 0 primary set, < 0 reverse set, |RAD| <= q_c)"},
+                         .help = "draw the mechanism deformed at that rotation of body 1: "
+                                 "the primary set if RAD > 0, the reverse set if RAD < 0, "
+                                 "|RAD| <= q_c"},
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
@@ -429,13 +438,16 @@ static const char plot_head[] =
     "        and polarities: collapse, or peak rotation / q_c)\n"
     "  capacity CAPACITY.h5 [--arch NAME] [--x qc|rad] [--y scale|pga] [--im IM]\n"
     "        a file of archquake capacity -o, one arch (default: the file's\n"
-    "        first): one line per record and polarity through every scanned\n"
-    "        scale, the scale factor (--y pga: the PGA in g) against the run's\n"
-    "        peak rotation (--x qc: over q_c, the default; --x rad: in rad),\n"
-    "        beside a strip per record with the collapse intervals of each\n"
-    "        polarity shaded; below, the lognormal fragility of IM over the\n"
-    "        empirical fraction of first collapses, censored records at their\n"
-    "        cap, and the band of the median's interval\n"
+    "        first): a strip per record and polarity with the verdict at every\n"
+    "        scanned scale (--y scale: the scale factor, the default; --y pga:\n"
+    "        the PGA in g), shaded by the survived runs' peak rotation (--x qc:\n"
+    "        over q_c, the default; --x rad), red and hatched where it\n"
+    "        collapses, a tick at each change, its first collapse beside it\n"
+    "        (R: it survives again above a collapse); below, the lognormal\n"
+    "        fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s,\n"
+    "        pga_lambda0; default pga_g) over the empirical fraction of\n"
+    "        first collapses, censored records at their cap, and the band of\n"
+    "        the median's interval\n"
     "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n";
 
 /* A figure of plot: its --help is plot's. */
@@ -446,6 +458,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "",
          .title = "the main job",
          .help_cmd = "",
+         .synopsis = "[OPTIONS] RECORD... --arch FILE",
+         .summary = "run records against arches",
          .head = "usage: archquake [OPTIONS] RECORD... --arch FILE [--arch FILE ...]\n"
                  "       archquake [OPTIONS] --components H1,H2[,V] ... --arch FILE ...\n"
                  "Run every record against every arch (and every scale factor): each record\n"
@@ -455,6 +469,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "info",
          .title = "info",
          .help_cmd = "info",
+         .synopsis = "info [OPTIONS] RECORD...",
+         .summary = "describe records",
          .head = "usage: archquake info [OPTIONS] RECORD...\n"
                  "Describe accelerograms: one TSV row per record on stdout.\n",
          .tail = "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
@@ -468,6 +484,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "mechanism",
          .title = "mechanism",
          .help_cmd = "mechanism",
+         .synopsis = "mechanism --arch FILE",
+         .summary = "static analysis of an arch",
          .head = "usage: archquake mechanism --arch FILE [--table] [--points N]\n"
                  "The hinge sets of an arch: one TSV row per set: primary, reverse, and\n"
                  "minimum, the admissible set of lowest lambda0 over every joint (the\n"
@@ -492,6 +510,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "pulse",
          .title = "pulse",
          .help_cmd = "pulse",
+         .synopsis = "pulse --arch FILE --accel-g A --duration S",
+         .summary = "one pulse",
          .head = "usage: archquake pulse --arch FILE --accel-g A --duration S [OPTIONS]\n"
                  "A rectangular ground-acceleration pulse of A g (signed along +x) from\n"
                  "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n",
@@ -505,6 +525,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "domain",
          .title = "domain",
          .help_cmd = "domain",
+         .synopsis = "domain --arch FILE",
+         .summary = "half-cycle collapse domain",
          .head = "usage: archquake domain --arch FILE [OPTIONS]\n"
                  "Half-cycle collapse domain: for each ratio r, the shortest rectangular\n"
                  "pulse of r lambda0 g (direction opening the primary set) that collapses\n"
@@ -518,6 +540,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "compare",
          .title = "compare",
          .help_cmd = "compare",
+         .synopsis = "compare A.h5 B.h5",
+         .summary = "regression check",
          .head = "usage: archquake compare A.h5 B.h5 [--rtol R] [--atol A] [--ignore NAME]...\n"
                  "Compare two results files (archquake ... -o FILE.h5).  First their\n"
                  "configuration: processing options, model, cor, version (shown only), and\n"
@@ -539,6 +563,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "capacity",
          .title = "capacity",
          .help_cmd = "capacity",
+         .synopsis = "capacity RECORD... --arch FILE",
+         .summary = "collapse scales, fragility",
          .head = "usage: archquake capacity RECORD|--components H1,H2[,V]... --arch FILE "
                  "[--arch FILE ...] [OPTIONS]\n"
                  "For each record, arch and polarity, every scale factor at which the arch's\n"
@@ -562,6 +588,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT] = {.name = "plot",
                      .title = "plot",
                      .help_cmd = "plot",
+         .synopsis = "plot FIGURE ... -o FILE",
+         .summary = "figures (history arch domain suite capacity)",
                      .head = plot_head,
                      .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
                              "bad options,\n3 the figure or the data could not be written.\n",
@@ -571,6 +599,27 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
     [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
     [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
+    [AQ_CMD_REPORT] =
+        {.name = "report",
+         .title = "report",
+         .help_cmd = "report",
+         .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",
+         .summary = "one HTML page to hand on",
+         .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
+                 "One self-contained HTML page of a screening, to hand on: per arch its\n"
+                 "verdict table (sortable, filterable by verdict) and figures (the arch\n"
+                 "and its hinge sets, the suite's verdict map, the history of each\n"
+                 "collapsed run and of the strongest surviving one when the results hold\n"
+                 "histories), the capacity files' first collapses, collapse intervals,\n"
+                 "fragility curves and the ranking of the intensity measures, the failed\n"
+                 "records with their reasons, and the run: command line, build, date,\n"
+                 "options, every record and every arch.  Figures are inline SVG, text as\n"
+                 "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
+                 "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
+                 "CAPACITY.h5 one of archquake capacity -o.\n",
+         .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
+                 "3 the page could not be written.  No partial file is left under FILE.\n",
+         .heading = {[AQ_GROUP_MAIN] = "Options:"}},
 };
 
 void aq_opts_init(aq_opts *o, aq_cmd cmd)
@@ -594,6 +643,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->pulse_dt_s = 0.01;
   o->domain_tol_s = 1e-9;
   o->max_duration_s = 100;
+  o->paper = -1;
   o->rtol = AQ_COMPARE_RTOL_DEFAULT;
   o->atol = AQ_COMPARE_ATOL_DEFAULT;
 }

@@ -37,7 +37,8 @@
  *        // operands: argv[optind .. argc); checks between options: nerr++
  *        if (nerr) { aq_opts_free(&o); return AQ_EXIT_USAGE; }
  *        ... o.field ...; aq_opts_free(&o);
- *   4. a line in main.c's table of commands.
+ *   4. a line in main.c's table of commands (archquake --help lists it from
+ *      its synopsis and summary here).
  */
 #ifndef AQ_APP_OPT_TABLE_H
 #define AQ_APP_OPT_TABLE_H
@@ -58,6 +59,7 @@ typedef enum {
   AQ_CMD_DOMAIN,
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
+  AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -80,9 +82,11 @@ typedef enum {
   AQ_OPT_RATIOS,
   AQ_OPT_OUTPUT,      /* -o FILE.h5 */
   AQ_OPT_PLOT_OUTPUT, /* -o FILE.png|svg|pdf */
+  AQ_OPT_REPORT_OUTPUT, /* -o FILE.html */
   AQ_OPT_TEXT,
   AQ_OPT_FRAGILITY,
   AQ_OPT_DATA,
+  AQ_OPT_PAPER,
   AQ_OPT_RUN,
   AQ_OPT_ROTATION,
   AQ_OPT_IM,
@@ -217,6 +221,7 @@ typedef struct aq_opts {
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */
+  int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;
 } aq_opts;
 
@@ -243,6 +248,8 @@ typedef struct {
   const char *name;     /* as typed after archquake ("" the main job, "plot arch") */
   const char *title;    /* in messages: "the main job", "info", "plot arch" */
   const char *help_cmd; /* its --help: "archquake HELP_CMD --help" ("plot" for figures) */
+  const char *synopsis; /* in archquake --help's list of commands, after "archquake " */
+  const char *summary;  /* ... and what it does, in a few words (NULL: not listed) */
   const char *head;     /* usage line(s) and description, each line ending in '\n' */
   const char *tail;     /* after the options: columns, exit status */
   const char *heading[AQ_GROUP_N]; /* a group's heading, if not the default */
@@ -266,6 +273,10 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr);
 /* cmd's --help on f: head, options by group, tail.  AQ_CMD_PLOT lists the
  * options of every figure, each with the figures it applies to. */
 void aq_opts_help(aq_cmd cmd, FILE *f);
+
+/* archquake --help on f: the main job's help, the list of commands (their
+ * synopses and summaries) and the paragraph on arch names. */
+void aq_opts_main_help(FILE *f);
 
 /* 1 if option id applies to command cmd. */
 int aq_opt_applies(aq_opt_id id, aq_cmd cmd);

@@ -100,8 +100,6 @@ typedef struct {
   size_t line_cap;
 } suite;
 
-static const char *const model_names[] = {"workpath", "ode", "paper", "workpath-quad"};
-
 /* Run slot k of an arch: factor k / npol, the record negated (reversed)
  * for the second slot of each factor with --polarity both, or for every
  * slot with --polarity reversed. */
@@ -1306,7 +1304,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   pthread_cond_init(&S.cond, NULL);
   pthread_cond_init(&S.wcond, NULL);
   S.cfg = c;
-  S.model_name = model_names[c->model <= AQ_MODEL_WORKPATH_QUAD ? c->model : 0];
+  S.model_name = aq_model_name(c->model);
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
   S.nscale = (c->scales ? c->nscale : 1) * S.npol;
   S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */

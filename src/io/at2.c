@@ -1,4 +1,4 @@
-/* at2.c: PEER NGA .AT2 reader (see readers.h; format notes in
+/* at2.c: PEER NGA .AT2 reader (see reader.h; format notes in
  * docs/at2-format.md).
  *
  * Layout: three free-text lines (the third says "ACCELERATION TIME SERIES IN
@@ -24,7 +24,8 @@
 #include "../units.h"
 #include "fixed.h"
 #include "number.h"
-#include "readers.h"
+#include "reader.h"
+#include "units.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -494,7 +495,7 @@ static void trimmed(const char *s, size_t b, size_t e, char *out, size_t cap)
 }
 
 aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts; /* an AT2 file states everything it can */
   memset(raw, 0, sizeof *raw);
@@ -668,7 +669,8 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
    * text line), the processing (filter corners on the NPTS or units line). */
   if (h.ntext >= 2)
     trimmed(s, h.text_b[1], h.text_e[1], raw->event, sizeof raw->event);
-  size_t cb = 0, ce = 0;
+  size_t cb = 0, ce = 0, le = 0; /* le: the end of the component's line */
+  int last_field = 0;             /* PEER's last field: the component alone */
   if (h.ntext == 3) {
     size_t b = h.text_b[1], e = h.text_e[1], commas = 0;
     for (size_t i = b; i < e; i++)
@@ -676,11 +678,13 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
         commas++, cb = i + 1;
     if (commas < 2)
       cb = 0;
+    le = e;
+    last_field = cb != 0;
   }
   for (int k = 0; k < h.ntext && !cb; k++) {
     const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "Component:");
     if (f)
-      cb = (size_t)(f - s) + 10;
+      cb = (size_t)(f - s) + 10, le = h.text_e[k];
   }
   if (cb) {
     while (cb < n && (s[cb] == ' ' || s[cb] == '\t'))
@@ -688,7 +692,15 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     ce = cb;
     while (ce < n && (isalnum((unsigned char)s[ce]) || s[ce] == '-' || s[ce] == '.'))
       ce++;
-    if (ce > cb && ce - cb <= AT2_CHANNEL_MAX) {
+    /* PEER's last field holds the component and at most a remark in
+     * parentheses ("180", "N (CWB)"); other words there ("8 values per
+     * line") are not a component, nor is a Fortran format ("8F10.5") */
+    size_t r = ce;
+    while (r < le && (s[r] == ' ' || s[r] == '\t'))
+      r++;
+    int alone = !last_field || r >= le || s[r] == '(';
+    if (ce > cb && ce - cb <= AT2_CHANNEL_MAX && alone &&
+        !aq_fortran_descriptor(s + cb, ce - cb)) {
       trimmed(s, cb, ce, ch->channel, sizeof ch->channel);
       char *endp;
       double az = strtod(ch->channel, &endp);

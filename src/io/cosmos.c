@@ -1,4 +1,4 @@
-/* cosmos.c: COSMOS strong-motion data format v1.20, V0/V1/V2 (formats.h).
+/* cosmos.c: COSMOS strong-motion data format v1.20, V0/V1/V2 (reader.h).
  *
  * Per channel, in this order:
  *   text header, N lines; line 1 says "... (Format v01.20 with N text lines)"
@@ -28,7 +28,7 @@
 
 #include "../units.h"
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define COSMOS_NULL -999.0          /* the format's "unknown" value */
 #define COSMOS_NULL_TOL 1e-6        /* |v - (-999)| below this is "unknown" */
@@ -220,7 +220,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     return s;
   }
   aq_raw_channel tmp;
-  aq_raw_channel_init_(&tmp);
+  aq_raw_channel_init(&tmp);
   if (ntext >= 5)
     station_code(&text[4], &tmp);
   if (ntext >= 9)
@@ -365,7 +365,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   }
   free(iv);
   free(rv);
-  return aq_raw_append_channel_(raw, &tmp, name, err);
+  return aq_raw_append_channel(raw, &tmp, name, err);
 fail:
   free(tmp.values);
   free(iv);
@@ -376,7 +376,7 @@ fail:
 static int cosmos_starts(const aq_line *ln) { return aq_find_ci(ln->p, ln->len, "(Format v") != NULL; }
 
 aq_status aq_cosmos_parse(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                          const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   aq_lines c;
   aq_line ln = {NULL, 0, 0};
@@ -385,6 +385,6 @@ aq_status aq_cosmos_parse(const unsigned char *buf, size_t n, const char *name,
     ;
   if (c.line > 1 && !cosmos_starts(&ln) && aq_find_ci(ln.p, ln.len, "accelerogram"))
     return aq_csmip_parse(buf, n, name, opts, raw, err); /* the CSMIP variant */
-  return aq_parse_channels_(buf, n, name, "cosmos", cosmos_starts,
+  return aq_raw_parse_channels(buf, n, name, "cosmos", cosmos_starts,
                             "\"... (Format v01.20 with N text lines)\"", parse_channel, raw, err);
 }

@@ -1,4 +1,4 @@
-/* csmip.c: CSMIP (CGS / CDMG "DMG") V1 and V2 text (formats.h).
+/* csmip.c: CSMIP (CGS / CDMG "DMG") V1 and V2 text (reader.h).
  *
  * Per channel: free-text header lines (13 in V1, 25 in V2); 100 integers in
  * 16I5 (7 lines); reals in 8F10 (50 on 7 lines in V1, 100 on 13 lines in
@@ -21,7 +21,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define CSMIP_MAX_HEADER_LINES 80 /* the data line is looked for this far */
 #define CSMIP_INTS 100
@@ -75,9 +75,11 @@ static void units_from(const char *b, const char *end, char *out, size_t cap)
   while (b < end && *b == ' ')
     b++;
   const char *p = b;
-  while (p < end && *p != ' ' && *p != ')')
+  while (p < end && *p != ' ' && *p != ')' && *p != ',')
     p++;
   size_t n = (size_t)(p - b);
+  if (n > 1 && b[n - 1] == '.') /* "in cm/sec2." ends the sentence */
+    n--;
   if (n == 1 && (*b == 'g' || *b == 'G'))
     snprintf(out, cap, "g");
   else if (aq_find_ci(b, n, "cm/sec/sec") || aq_find_ci(b, n, "cm/sec2"))
@@ -102,7 +104,7 @@ static void start_time(const aq_line *ln, char *out, size_t cap)
   if (sscanf(tmp, "%d/%d/%d, %d:%d:%lf %7s%n", &mo, &d, &y, &h, &mi, &s, zone, &used) < 7)
     return;
   int east;
-  if (!aq_zone_offset_(zone, strlen(zone), &east))
+  if (!aq_zone_offset(zone, strlen(zone), &east))
     return;
   if (y < 100)
     y += y < 50 ? 2000 : 1900;
@@ -178,7 +180,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       return s;
   }
   aq_raw_channel tmp;
-  aq_raw_channel_init_(&tmp);
+  aq_raw_channel_init(&tmp);
   for (size_t i = 0; i < ntext; i++) {
     const char *p = hdr[i].p, *end = p + hdr[i].len;
     while (p < end && *p == ' ')
@@ -186,6 +188,8 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     if (!tmp.channel[0] && aq_find_ci(p, (size_t)(end - p), "chan") == p)
       channel_line(&hdr[i], &tmp);
     const char *st = aq_find_ci(hdr[i].p, hdr[i].len, "station no.");
+    if (!st) /* SCSN: "Station Id. WLT" */
+      st = aq_find_ci(hdr[i].p, hdr[i].len, "station id.");
     if (st && !tmp.station[0]) {
       st += 11;
       size_t len = aq_next_word(&st, end, "");
@@ -216,8 +220,18 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     u = aq_find_ci(data.p, data.len, "units:");
     if (u)
       units_from(u + 6, dend, tmp.units, sizeof tmp.units);
+    else if ((u = aq_find_ci(data.p, data.len, ", in "))) /* Avol1: ", in cm/sec2." */
+      units_from(u + 5, dend, tmp.units, sizeof tmp.units);
   }
   const char *fp = aq_find_ci(data.p, data.len, "format");
+  if (!fp) /* Avol1 V2: "... in cm/sec2. (8f10.7)", the format in the last parentheses */
+    for (const char *q = dend; q > data.p; q--)
+      if (q[-1] == '(') {
+        aq_fortran_fmt g;
+        if (aq_fortran_fmt_find(q - 1, (size_t)(dend - q + 1), &g))
+          f = g;
+        break;
+      }
   if (fp && !aq_fortran_fmt_find(fp, (size_t)(dend - fp), &f)) {
     char got[96];
     aq_copy_trim(got, sizeof got, fp, (size_t)(dend - fp));
@@ -267,14 +281,14 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
         break;
       }
   }
-  return aq_raw_append_channel_(raw, &tmp, name, err);
+  return aq_raw_append_channel(raw, &tmp, name, err);
 }
 
 aq_status aq_csmip_parse(const unsigned char *buf, size_t n, const char *name,
-                         const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                         const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  return aq_parse_channels_(buf, n, name, "csmip", aq_line_names_accelerogram_,
+  return aq_raw_parse_channels(buf, n, name, "csmip", aq_line_names_accelerogram,
                             "a channel header naming an (UN)CORRECTED ACCELEROGRAM",
                             parse_channel, raw, err);
 }

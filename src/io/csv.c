@@ -1,4 +1,4 @@
-/* csv.c: CSV / plain-text reader (see readers.h).
+/* csv.c: CSV / plain-text reader (see reader.h).
  *
  * Rows of numbers separated by ';', ',', tab or blanks (decided by the first
  * data row: ';' if it has one, else ',', else tab, else blanks; with ';' a
@@ -39,7 +39,8 @@
 
 #include "fixed.h"
 #include "number.h"
-#include "readers.h"
+#include "reader.h"
+#include "units.h"
 
 /* Each time t_k must lie within this fraction of dt of t_0 + k dt (text
  * times are rounded to a few decimals; 1 % of dt tolerates that and still
@@ -552,11 +553,29 @@ static double median_step(const double *t, size_t n)
   return m;
 }
 
+/* A column's name as the channel's: as written when it fits; else without
+ * its units in parentheses or brackets ("Acceleration (g)" ->
+ * "Acceleration"); else none, never a cut phrase. */
+static void channel_name(const char *col, char *out, size_t cap)
+{
+  size_t n = strlen(col);
+  if (n >= cap) {
+    const char *u = strpbrk(col, "([");
+    n = u ? (size_t)(u - col) : n;
+    while (n > 0 && is_space(col[n - 1]))
+      n--;
+  }
+  if (n >= cap)
+    n = 0;
+  memcpy(out, col, n);
+  out[n] = '\0';
+}
+
 /* aq_csv_parse; with columns_only, *columns_only gets the count of
  * channels once the columns are known, and the rows are not read (raw stays
  * empty). */
 static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
-                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err,
+                           const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err,
                            size_t *columns_only)
 {
   memset(raw, 0, sizeof *raw);
@@ -703,7 +722,8 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
   }
 
   /* Which column is time, which is acceleration. */
-  double dt_known = opts && opts->dt_s > 0 ? opts->dt_s : pre_dt;
+  /* the file's DT over --dt, which is for files that state none */
+  double dt_known = pre_dt > 0 ? pre_dt : opts && opts->dt_s > 0 ? opts->dt_s : 0;
   long tcol = -1;
   if (have_names) {
     for (size_t i = 0; i < ncols; i++)
@@ -894,7 +914,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     aq_units cu;
     int r = have_names ? units_in(names[col], &cu) : 0;
     if (have_names)
-      snprintf(ch->channel, sizeof ch->channel, "%.15s", names[col]);
+      channel_name(names[col], ch->channel, sizeof ch->channel);
     if (r > 0) {
       snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(cu));
       ch->units_line = hline;
@@ -913,13 +933,13 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
 }
 
 aq_status aq_csv_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   return csv_parse(buf, n, name, opts, raw, err, NULL);
 }
 
 aq_status aq_csv_channels(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, size_t *nchan, aq_error *err)
+                          const aq_reader_opts *opts, size_t *nchan, aq_error *err)
 {
   aq_raw_file none;
   *nchan = 0;

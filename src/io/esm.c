@@ -1,4 +1,4 @@
-/* esm.c: ESM / ITACA ASCII (the "DYNA 1.x" header) (formats.h).
+/* esm.c: ESM / ITACA ASCII (the "DYNA 1.x" header) (reader.h).
  *
  * Layout: "KEY: value" header lines (about 64, some values empty), then
  * NDATA values, one per line (blank-separated values on a line are taken
@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define ESM_MAX_HEADER_LINES 200
 
@@ -59,7 +59,7 @@ static int is_c_space(char c)
 }
 
 aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
@@ -117,7 +117,7 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected a whole number from 1 to what the file can hold, got \"%s\"",
                         got);
   }
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch)
     return AQ_ENOMEM;
   ch->npts = (size_t)nd;

@@ -9,7 +9,7 @@
 #include <time.h>
 
 #include "fixed.h"
-#include "readers.h"
+#include "number.h"
 
 #define FIELD_MAX 64 /* longest numeric field accepted, characters */
 
@@ -117,6 +117,28 @@ int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f)
   return 1;
 }
 
+int aq_fortran_descriptor(const char *s, size_t n)
+{
+  size_t i = 0;
+  while (i < n && isdigit((unsigned char)s[i]))
+    i++;
+  if (i >= n || !strchr("FEIGfeig", s[i]))
+    return 0;
+  size_t d = ++i;
+  while (i < n && isdigit((unsigned char)s[i]))
+    i++;
+  if (i == d)
+    return 0;
+  if (i < n && s[i] == '.') {
+    d = ++i;
+    while (i < n && isdigit((unsigned char)s[i]))
+      i++;
+    if (i == d)
+      return 0;
+  }
+  return i == n;
+}
+
 int aq_field_double(const char *s, size_t n, double *out)
 {
   while (n > 0 && (*s == ' ' || *s == '\t')) {
@@ -204,6 +226,27 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
     }
   }
   return AQ_OK;
+}
+
+int aq_line_names_accelerogram(const aq_line *ln)
+{
+  return aq_find_ci(ln->p, ln->len, "accelerogram") != NULL;
+}
+
+int aq_zone_offset(const char *s, size_t n, int *hours_east)
+{
+  static const struct {
+    const char *word;
+    int east_h;
+  } zones[] = {{"UTC", 0},  {"GMT", 0},  {"UT", 0},  {"PDT", -7}, {"PST", -8},
+               {"MDT", -6}, {"MST", -7}, {"CDT", -5}, {"CST", -6}, {"EDT", -4},
+               {"EST", -5}, {"JST", 9}};
+  for (size_t i = 0; i < sizeof zones / sizeof zones[0]; i++)
+    if (strlen(zones[i].word) == n && strncasecmp(s, zones[i].word, n) == 0) {
+      *hours_east = zones[i].east_h;
+      return 1;
+    }
+  return 0;
 }
 
 /* ---- calendar: timegm(3) and gmtime_r(3) -------------------------------- */

@@ -1,5 +1,6 @@
-/* fixed.h: line cursor and Fortran fixed-width fields for the agency text
- * readers (cosmos.c, csmip.c, smc.c, esm.c).
+/* fixed.h: what the text readers share below them: lines (a cursor and
+ * the line-end rule), Fortran fixed-width fields, and dates (calendar by
+ * timegm(3), time zones).
  *
  * The cursor walks buf[0..n) line by line (LF, CRLF, CR CR LF or CR ends;
  * no final newline needed) without copying; lines point into buf and are
@@ -62,6 +63,10 @@ typedef struct {
  * Returns 1 on success, 0 if there is none that parses. */
 int aq_fortran_fmt_find(const char *s, size_t n, aq_fortran_fmt *f);
 
+/* 1 if s[0..n) is a whole Fortran edit descriptor ("8F10.5", "E15.7",
+ * "16I5"), which a header may print where a name is looked for. */
+int aq_fortran_descriptor(const char *s, size_t n);
+
 /* Parse the number in s[0..n) (blanks around it allowed).  Returns 1 on
  * success, 0 if blank or not entirely a finite number. */
 int aq_field_double(const char *s, size_t n, double *out);
@@ -83,11 +88,19 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
  * length returned ends at a blank, at end or at a character of stops. */
 size_t aq_next_word(const char **p, const char *end, const char *stops);
 
+/* 1 if the line names an ACCELEROGRAM (any case): the start of a channel's
+ * text header in CSMIP and RENADIC files. */
+int aq_line_names_accelerogram(const aq_line *ln);
+
 /* Copy s[0..n) trimmed of blanks into out (NUL-terminated, truncated). */
 void aq_copy_trim(char *out, size_t cap, const char *s, size_t n);
 
 /* Case-insensitive search for needle in s[0..n); NULL if absent. */
 const char *aq_find_ci(const char *s, size_t n, const char *needle);
+
+/* Whole hours east of UTC of a zone word s[0..n) ("UTC", "GMT", "PDT",
+ * "PST", "JST", ...): 1 and *hours_east if known, else 0. */
+int aq_zone_offset(const char *s, size_t n, int *hours_east);
 
 /* ISO-8601 "YYYY-MM-DDThh:mm:ss.sssZ" from a calendar date and time of day
  * in UTC (sec may carry a fraction; hour may exceed 23, which rolls the day

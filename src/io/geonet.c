@@ -1,5 +1,5 @@
 /* geonet.c: GeoNet (GNS Science, New Zealand) V1A/V2A strong-motion text
- * format (formats.h; notes in docs/agency-formats.md).
+ * format (reader.h; notes in docs/agency-formats.md).
  *
  * One block per component, usually three (two horizontals, then "Up"):
  *     16 text lines  line 1 "Corrected accelerogram ... GNS Science" (V2A) or
@@ -23,7 +23,7 @@
 #include <stdlib.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 #include "number.h"
 
 #define GEONET_TEXT_LINES 16
@@ -122,7 +122,7 @@ static aq_status geonet_block(aq_lines *c, const aq_line *first, const char *nam
                         "expected the interval of text line %ld (%g s), got %g s",
                         text[10].line, stated, dt);
 
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch)
     return AQ_ENOMEM;
   ch->npts = (size_t)npts;
@@ -199,10 +199,10 @@ static aq_status geonet_block(aq_lines *c, const aq_line *first, const char *nam
 }
 
 aq_status aq_geonet_parse(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                          const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts; /* a GeoNet file states everything it can */
-  return aq_parse_channels_(buf, n, name, "geonet", geonet_starts,
+  return aq_raw_parse_channels(buf, n, name, "geonet", geonet_starts,
                             "\"Corrected accelerogram\" or \"Uncorrected accelerogram\"",
                             geonet_block, raw, err);
 }

@@ -1,4 +1,4 @@
-/* knet.c: K-NET and KiK-net ASCII reader (see readers.h; format notes in
+/* knet.c: K-NET and KiK-net ASCII reader (see reader.h; format notes in
  * docs/knet-format.md).
  *
  * NIED's ASCII files: 17 header lines, each a key in columns 1-18 and its
@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "readers.h"
+#include "reader.h"
 
 #define KNET_HEADER_LINES 17
 #define KNET_KEY_COLS 18           /* the key's columns */
@@ -88,7 +88,7 @@ static int jst_to_utc(const char *v, double shift_s, char *out, size_t cap)
 }
 
 aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
-                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                        const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts; /* a K-NET file states everything it can */
   memset(raw, 0, sizeof *raw);

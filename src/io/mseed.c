@@ -1,4 +1,4 @@
-/* mseed.c: miniSEED 2 through libmseed (formats.h).
+/* mseed.c: miniSEED 2 through libmseed (reader.h).
  *
  * libmseed unpacks each record (msr_parse: header, blockettes, Steim1/2,
  * integer and float encodings); this file groups the records by
@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define MSEED_MIN_RECLEN 48 /* fixed header 48 bytes: nothing shorter is a record */
 #define MSEED_MAX_RECLEN (1 << 20)
@@ -201,7 +201,7 @@ static aq_status check_payload(const unsigned char *rec, int reclen, char *scrat
 }
 
 aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
-                         const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                         const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
@@ -278,7 +278,7 @@ aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
           } else {
             ids = t;
             snprintf(ids[nid++], sizeof ids[0], "%s", id);
-            aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+            aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
             if (!ch) {
               s = AQ_ENOMEM;
             } else {
@@ -321,64 +321,4 @@ aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
   }
   snprintf(raw->format, sizeof raw->format, "mseed");
   return AQ_OK;
-}
-
-#define MSEED_XML_MAX_BYTES (64L << 20) /* a StationXML larger than this is refused */
-#define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
-
-aq_status aq_mseed_read_(const unsigned char *buf, size_t n, const char *name,
-                         const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
-{
-  aq_status s = aq_mseed_parse(buf, n, name, opts, raw, err);
-  if (s != AQ_OK || !opts || !opts->response[0])
-    return s;
-  const char *xml = opts->response;
-  FILE *f = fopen(xml, "rb");
-  unsigned char *x = NULL;
-  long len = -1;
-  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
-      fseek(f, 0, SEEK_SET) == 0 && (x = malloc((size_t)len + 1)) != NULL &&
-      fread(x, 1, (size_t)len, f) == (size_t)len) {
-    aq_response resp;
-    s = aq_stationxml_parse(x, (size_t)len, xml, &resp, err);
-    if (s == AQ_OK) {
-      s = aq_stationxml_apply(&resp, xml, raw, name, err);
-      aq_response_free(&resp);
-    }
-  } else {
-    s = aq_error_set(err, AQ_EIO, xml, -1, -1, "--response",
-                     "expected a readable StationXML file of at most %ld bytes, %s", MSEED_XML_MAX_BYTES,
-                     !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one" : "cannot read it");
-  }
-  free(x);
-  if (f)
-    fclose(f);
-  if (s != AQ_OK)
-    aq_raw_file_free(raw);
-  return s;
-}
-
-size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
-{
-  size_t k = 0;
-  for (size_t i = 0; i < n; i++) {
-    char head[MSEED_XML_SNIFF + 1];
-    size_t got = 0;
-    FILE *f = fopen(paths[i], "rb");
-    if (f) {
-      got = fread(head, 1, MSEED_XML_SNIFF, f);
-      fclose(f);
-    }
-    head[got] = '\0';
-    int is_xml = got > 0 && memchr(head, '\0', got) == NULL && strstr(head, "<FDSNStationXML");
-    if (!is_xml) {
-      paths[k++] = paths[i];
-      continue;
-    }
-    if (!ro->response[0] && strlen(paths[i]) < sizeof ro->response)
-      snprintf(ro->response, sizeof ro->response, "%s", paths[i]);
-  }
-  /* nothing but StationXML: leave them for the reader to refuse as records
-   * (k == 0 means no path was moved) */
-  return k ? k : n;
 }

@@ -1,12 +1,14 @@
-/* record.c: reading a record file, detecting its format from its content,
- * and the units helpers shared by the readers (see record.h, readers.h). */
+/* record.c: reading a record file: its format sniffed from its content,
+ * the parser of that format (reader.h), and the decision that makes a
+ * record of what the parser reports (see record.h). */
 #include "record.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <float.h>
-#include <math.h>
 #include <fnmatch.h>
+#include <math.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,89 +17,12 @@
 #include <sys/stat.h>
 
 #include "../units.h"
-#include "formats.h"
-#include "readers.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
 #endif
 
-/* ---- units ------------------------------------------------------------ */
-
-static const struct {
-  const char *word;
-  aq_units units;
-} units_words[] = {
-    {"g", AQ_UNITS_G},           {"gal", AQ_UNITS_GAL},
-    {"cm/s2", AQ_UNITS_GAL},     {"cm/s^2", AQ_UNITS_GAL},
-    {"cm/s/s", AQ_UNITS_GAL},    {"cm/sec2", AQ_UNITS_GAL},
-    {"cm/sec^2", AQ_UNITS_GAL},  {"cm/sec/sec", AQ_UNITS_GAL},
-    {"cmps2", AQ_UNITS_GAL},     {"m/s2", AQ_UNITS_MPS2},
-    {"m/s^2", AQ_UNITS_MPS2},    {"m/s/s", AQ_UNITS_MPS2},
-    {"m/s**2", AQ_UNITS_MPS2},   {"mps2", AQ_UNITS_MPS2},
-    {"nm/s2", AQ_UNITS_NMPS2},   {"nm/s^2", AQ_UNITS_NMPS2},
-    {"nm/s/s", AQ_UNITS_NMPS2},  {"counts", AQ_UNITS_COUNTS},
-    {"g/10", AQ_UNITS_G10},      {"mm/s2", AQ_UNITS_MMPS2},
-    {"mm/s^2", AQ_UNITS_MMPS2},  {"mm/s/s", AQ_UNITS_MMPS2},
-    {"mm/sec2", AQ_UNITS_MMPS2}, {"mm/sec/sec", AQ_UNITS_MMPS2},
-};
-
-int aq_units_parse(const char *s, aq_units *out)
-{
-  if (!s)
-    return 0;
-  for (size_t i = 0; i < sizeof units_words / sizeof units_words[0]; i++)
-    if (strcasecmp(s, units_words[i].word) == 0) {
-      *out = units_words[i].units;
-      return 1;
-    }
-  return 0;
-}
-
-const char *aq_units_name(aq_units u)
-{
-  switch (u) {
-  case AQ_UNITS_FILE:
-    return "file";
-  case AQ_UNITS_G:
-    return "g";
-  case AQ_UNITS_GAL:
-    return "gal";
-  case AQ_UNITS_MPS2:
-    return "m/s2";
-  case AQ_UNITS_NMPS2:
-    return "nm/s2";
-  case AQ_UNITS_COUNTS:
-    return "counts";
-  case AQ_UNITS_G10:
-    return "g/10";
-  case AQ_UNITS_MMPS2:
-    return "mm/s2";
-  }
-  return "?";
-}
-
-double aq_units_to_mps2(aq_units u)
-{
-  switch (u) {
-  case AQ_UNITS_G:
-    return AQ_G0_MPS2;
-  case AQ_UNITS_GAL:
-    return 0.01;
-  case AQ_UNITS_MPS2:
-    return 1.0;
-  case AQ_UNITS_NMPS2:
-    return 1e-9;
-  case AQ_UNITS_G10:
-    return AQ_G0_MPS2 / 10.0;
-  case AQ_UNITS_MMPS2:
-    return 1e-3;
-  case AQ_UNITS_FILE:
-  case AQ_UNITS_COUNTS:
-    break;
-  }
-  return 0.0;
-}
+/* ---- options ---------------------------------------------------------- */
 
 const aq_units_rule *aq_read_opts_rule_for(const aq_read_opts *opts, const char *path)
 {
@@ -117,32 +42,6 @@ aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path)
 }
 
 /* ---- records ---------------------------------------------------------- */
-
-void aq_raw_file_free(aq_raw_file *raw)
-{
-  if (!raw)
-    return;
-  for (size_t i = 0; raw->chan && i < raw->nchan; i++)
-    free(raw->chan[i].values);
-  free(raw->chan);
-  memset(raw, 0, sizeof *raw);
-}
-
-aq_status aq_raw_file_alloc(aq_raw_file *raw, size_t nchan, const char *name,
-                            aq_error *err)
-{
-  raw->chan = calloc(nchan ? nchan : 1, sizeof *raw->chan);
-  if (!raw->chan)
-    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-  raw->nchan = nchan;
-  for (size_t i = 0; i < nchan; i++) {
-    raw->chan[i].azimuth_deg = NAN;
-    raw->chan[i].dip_deg = NAN;
-    raw->chan[i].vertical = -1;
-    raw->chan[i].units_line = -1;
-  }
-  return AQ_OK;
-}
 
 void aq_record_free(aq_record *rec)
 {
@@ -279,13 +178,22 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (has_ci(line[0], len[0], "(Format v") && has_ci(line[0], len[0], "lines)"))
     return AQ_FMT_COSMOS;
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
-      has_ci(line[0], len[0], "ACCELEROGRAM"))
+      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN")))
     return AQ_FMT_SMC;
+  if (aq_bhrc_sniff(buf, m))
+    return AQ_FMT_BHRC;
+  if (aq_asa_sniff(buf, m))
+    return AQ_FMT_ASA;
+  if (aq_nsmn_sniff(buf, m))
+    return AQ_FMT_NSMN;
   if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
     return AQ_FMT_RENADIC;
   for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
-    if (has_ci(line[0], len[0], "ACCELEROGRAM") && has_ci(line[k], len[k], "STATION NO."))
+    if (has_ci(line[0], len[0], "ACCELEROGRAM") &&
+        (has_ci(line[k], len[k], "STATION NO.") || has_ci(line[k], len[k], "STATION ID.")))
       return AQ_FMT_COSMOS;
+  if (aq_nptsdt_sniff(buf, n)) /* the whole file: its count decides */
+    return AQ_FMT_NPTS_DT;
   /* PEER: a line with NPTS and DT followed by values, after free text */
   size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
   int nt = 0;
@@ -342,8 +250,80 @@ const char *aq_format_describe(aq_format fmt)
     return "GeoNet V1A/V2A";
   case AQ_FMT_RENADIC:
     return "RENADIC (Chile) V1";
+  case AQ_FMT_BHRC:
+    return "BHRC (Iran) VOL1DS";
+  case AQ_FMT_ASA:
+    return "Mexican ASA 2.0";
+  case AQ_FMT_NSMN:
+    return "AFAD/NSMN (Turkey) ASCII";
+  case AQ_FMT_NPTS_DT:
+    return "text with \"NPTS DT\" on its first line";
   }
   return "?";
+}
+
+/* ---- miniSEED and its StationXML ---------------------------------------- */
+
+#define MSEED_XML_MAX_BYTES (64L << 20) /* a StationXML larger than this is refused */
+#define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
+
+/* aq_mseed_parse, then, if opts->response names a StationXML file, read it
+ * and aq_stationxml_apply() it. */
+static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name,
+                            const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+{
+  aq_status s = aq_mseed_parse(buf, n, name, NULL, raw, err);
+  if (s != AQ_OK || !opts || !opts->response[0])
+    return s;
+  const char *xml = opts->response;
+  FILE *f = fopen(xml, "rb");
+  unsigned char *x = NULL;
+  long len = -1;
+  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
+      fseek(f, 0, SEEK_SET) == 0 && (x = malloc((size_t)len + 1)) != NULL &&
+      fread(x, 1, (size_t)len, f) == (size_t)len) {
+    aq_response resp;
+    s = aq_stationxml_parse(x, (size_t)len, xml, &resp, err);
+    if (s == AQ_OK) {
+      s = aq_stationxml_apply(&resp, xml, raw, name, err);
+      aq_response_free(&resp);
+    }
+  } else {
+    s = aq_error_set(err, AQ_EIO, xml, -1, -1, "--response",
+                     "expected a readable StationXML file of at most %ld bytes, %s", MSEED_XML_MAX_BYTES,
+                     !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one" : "cannot read it");
+  }
+  free(x);
+  if (f)
+    fclose(f);
+  if (s != AQ_OK)
+    aq_raw_file_free(raw);
+  return s;
+}
+
+size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
+{
+  size_t k = 0;
+  for (size_t i = 0; i < n; i++) {
+    char head[MSEED_XML_SNIFF + 1];
+    size_t got = 0;
+    FILE *f = fopen(paths[i], "rb");
+    if (f) {
+      got = fread(head, 1, MSEED_XML_SNIFF, f);
+      fclose(f);
+    }
+    head[got] = '\0';
+    int is_xml = got > 0 && memchr(head, '\0', got) == NULL && strstr(head, "<FDSNStationXML");
+    if (!is_xml) {
+      paths[k++] = paths[i];
+      continue;
+    }
+    if (!ro->response[0] && strlen(paths[i]) < sizeof ro->response)
+      snprintf(ro->response, sizeof ro->response, "%s", paths[i]);
+  }
+  /* nothing but StationXML: leave them for the reader to refuse as records
+   * (k == 0 means no path was moved) */
+  return k ? k : n;
 }
 
 /* ---- deciding -------------------------------------------------------- */
@@ -625,32 +605,57 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
                       rec->channel, why);
 }
 
+/* What a parser may be told of opts (NULL for NULL), in *ro. */
+static const aq_reader_opts *reader_opts(const aq_read_opts *opts, aq_reader_opts *ro)
+{
+  if (!opts)
+    return NULL;
+  ro->dt_s = opts->dt_s;
+  ro->column = opts->column;
+  return ro;
+}
+
+static atomic_ulong parses; /* aq_record_parses_ */
+
+unsigned long aq_record_parses_(void) { return atomic_load(&parses); }
+
 aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   memset(raw, 0, sizeof *raw);
+  atomic_fetch_add(&parses, 1);
+  aq_reader_opts ro;
+  const aq_reader_opts *rop = reader_opts(opts, &ro);
   aq_format fmt = aq_record_detect(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
-    return aq_sac_parse(buf, n, name, opts, raw, err);
+    return aq_sac_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_AT2:
-    return aq_at2_parse(buf, n, name, opts, raw, err);
+    return aq_at2_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_TEXT:
-    return aq_csv_parse(buf, n, name, opts, raw, err);
+    return aq_csv_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_COSMOS:
-    return aq_cosmos_parse(buf, n, name, opts, raw, err);
+    return aq_cosmos_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_MSEED:
-    return aq_mseed_read_(buf, n, name, opts, raw, err);
+    return mseed_read(buf, n, name, opts, raw, err);
   case AQ_FMT_SMC:
-    return aq_smc_parse(buf, n, name, opts, raw, err);
+    return aq_smc_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_ESM:
-    return aq_esm_parse(buf, n, name, opts, raw, err);
+    return aq_esm_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_KNET:
-    return aq_knet_parse(buf, n, name, opts, raw, err);
+    return aq_knet_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_GEONET:
-    return aq_geonet_parse(buf, n, name, opts, raw, err);
+    return aq_geonet_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_RENADIC:
-    return aq_renadic_parse(buf, n, name, opts, raw, err);
+    return aq_renadic_parse(buf, n, name, rop, raw, err);
+  case AQ_FMT_BHRC:
+    return aq_bhrc_parse(buf, n, name, rop, raw, err);
+  case AQ_FMT_ASA:
+    return aq_asa_parse(buf, n, name, rop, raw, err);
+  case AQ_FMT_NSMN:
+    return aq_nsmn_parse(buf, n, name, rop, raw, err);
+  case AQ_FMT_NPTS_DT:
+    return aq_nptsdt_parse(buf, n, name, rop, raw, err);
   case AQ_FMT_EMPTY:
     return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
                         "expected a record, got an empty file (0 bytes)");
@@ -848,9 +853,127 @@ void aq_record_names_free(char **names, size_t n)
   free(names);
 }
 
-/* Formats that hold one channel per file (SAC, AT2, K-NET) are not parsed
- * here, nor text that has one column of acceleration (only its columns are
- * read); the others are, to list their channels. */
+void aq_record_set_free(aq_record_set *set)
+{
+  if (!set)
+    return;
+  for (size_t i = 0; set->item && i < set->n; i++) {
+    free(set->item[i].name);
+    aq_record_free(&set->item[i].rec);
+  }
+  free(set->item);
+  free(set->bytes);
+  memset(set, 0, sizeof *set);
+}
+
+/* The last --component rule matching path, or NULL. */
+static const char *component_rule(const aq_read_opts *opts, const char *path)
+{
+  const char *ch = NULL;
+  for (size_t r = 0; opts && r < opts->ncomponents && r < AQ_UNITS_RULES_MAX; r++)
+    if (fnmatch(opts->components[r].glob, path, 0) == 0)
+      ch = opts->components[r].channel;
+  return ch;
+}
+
+/* Append an item named name (a copy) to set: its record from channel ichan
+ * of raw (scaled in place, its values taken from raw), or the status s with
+ * e when s is not AQ_OK.  AQ_OK, or AQ_ENOMEM for the set itself. */
+static aq_status add_item(aq_record_set *set, const char *name, aq_raw_file *raw, size_t ichan,
+                          const char *file, const aq_read_opts *opts, aq_status s,
+                          const aq_error *e)
+{
+  aq_record_item *it = realloc(set->item, (set->n + 1) * sizeof *it);
+  if (!it)
+    return AQ_ENOMEM;
+  set->item = it;
+  it += set->n;
+  memset(it, 0, sizeof *it);
+  if (!(it->name = strdup(name)))
+    return AQ_ENOMEM;
+  set->n++;
+  aq_error_clear(&it->err);
+  if (s == AQ_OK) {
+    s = decide(raw, ichan, file, opts, &it->rec, &it->err, raw->chan[ichan].values);
+    if (s == AQ_OK)
+      raw->chan[ichan].values = NULL; /* it->rec.acc_mps2 now */
+  } else {
+    it->err = *e;
+  }
+  it->status = s;
+  return AQ_OK;
+}
+
+/* aq_record_read_all of the bytes buf[0..size) of file, for the operand
+ * path (want: the channel it names, or NULL). */
+static aq_status read_all_bytes(const unsigned char *buf, size_t size, const char *path,
+                                const char *file, const char *want,
+                                const aq_read_opts *opts, aq_record_set *set)
+{
+  aq_raw_file raw;
+  aq_error e;
+  aq_error_clear(&e);
+  aq_status s = aq_raw_parse(buf, size, file, opts, &raw, &e), st = AQ_OK;
+  if (s != AQ_OK)
+    return add_item(set, path, NULL, 0, file, opts, s, &e);
+  const char *rule = want ? NULL : component_rule(opts, path);
+  if (want || raw.nchan == 1 || rule) { /* one channel: as aq_record_read */
+    size_t ichan = 0;
+    char name[4200];
+    snprintf(name, sizeof name, "%s", path);
+    if (!want && raw.nchan > 1)
+      snprintf(name, sizeof name, "%s#%s", path, rule);
+    s = select_channel(&raw, want, file, opts, &ichan, &e);
+    st = add_item(set, name, &raw, ichan, file, opts, s, &e);
+  } else {
+    for (size_t c = 0; c < raw.nchan && st == AQ_OK; c++) {
+      char label[4200];
+      record_label(&raw, c, path, label, sizeof label);
+      st = add_item(set, label, &raw, c, file, opts, AQ_OK, NULL);
+    }
+  }
+  aq_raw_file_free(&raw);
+  return st;
+}
+
+aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int keep_bytes,
+                             aq_record_set *set, aq_error *err)
+{
+  memset(set, 0, sizeof *set);
+  aq_error e;
+  aq_error_clear(&e);
+  aq_status st;
+  if (!path || !*path) {
+    aq_error_set(&e, AQ_EIO, "", -1, -1, NULL,
+                 "expected a record file name, got an empty string");
+    st = add_item(set, path ? path : "", NULL, 0, "", opts, AQ_EIO, &e);
+  } else {
+    char file[4096];
+    const char *want;
+    split_channel(path, file, sizeof file, &want);
+    unsigned char *buf = NULL;
+    size_t size = 0;
+    aq_status s = read_bytes(file, &buf, &size, &e);
+    st = s == AQ_OK ? read_all_bytes(buf, size, path, file, want, opts, set)
+                    : add_item(set, path, NULL, 0, file, opts, s, &e);
+    if (keep_bytes && buf) {
+      set->bytes = buf;
+      set->nbytes = size;
+    } else {
+      free(buf);
+    }
+  }
+  if (st != AQ_OK) {
+    aq_record_set_free(set);
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  }
+  return AQ_OK;
+}
+
+/* Formats that hold one channel per file (SAC, AT2, K-NET, NPTS DT) are not
+ * parsed here, nor text that has one column of acceleration (only its
+ * columns are read); the others are read as aq_record_read_all reads them,
+ * and named as it names them. */
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err)
 {
@@ -862,60 +985,54 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   aq_status st = AQ_OK;
   for (size_t i = 0; i < n && st == AQ_OK; i++) {
-    aq_raw_file raw;
-    memset(&raw, 0, sizeof raw);
+    aq_record_set set;
+    memset(&set, 0, sizeof set);
     char file[4096];
     const char *want;
     split_channel(paths[i], file, sizeof file, &want);
-    int chosen = want != NULL;
-    const char *rule_ch = NULL; /* the last --component rule matching */
-    for (size_t r = 0; !chosen && opts && r < opts->ncomponents && r < AQ_UNITS_RULES_MAX;
-         r++)
-      if (fnmatch(opts->components[r].glob, paths[i], 0) == 0)
-        rule_ch = opts->components[r].channel;
     unsigned char *buf = NULL;
     size_t size = 0;
     aq_error ignored;
-    if (!chosen && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
+    if (!want && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
       aq_format fmt = aq_record_detect(buf, size);
-      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET;
+      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
+                   fmt == AQ_FMT_NPTS_DT;
       size_t nch;
+      aq_reader_opts ro;
       /* text of one channel, or that fails before its rows, keeps its name
        * whatever its rows hold: only its columns are read */
       if (fmt == AQ_FMT_TEXT &&
-          (aq_csv_channels(buf, size, paths[i], opts, &nch, &ignored) != AQ_OK || nch <= 1))
+          (aq_csv_channels(buf, size, paths[i], reader_opts(opts, &ro), &nch, &ignored) !=
+               AQ_OK ||
+           nch <= 1))
         single = 1;
-      if (!single && aq_raw_parse(buf, size, paths[i], opts, &raw, &ignored) != AQ_OK)
-        memset(&raw, 0, sizeof raw); /* reported when it is read */
+      if (!single && read_all_bytes(buf, size, paths[i], paths[i], NULL, opts, &set) != AQ_OK)
+        st = AQ_ENOMEM;
     }
     free(buf);
-    size_t add = raw.nchan > 1 && !rule_ch ? raw.nchan : 1;
-    if (k + add > cap) {
+    size_t add = set.n > 1 ? set.n : 1;
+    if (st == AQ_OK && k + add > cap) {
       size_t ncap = 2 * cap + add;
       char **g = realloc(names, ncap * sizeof *names);
-      if (!g) {
-        aq_raw_file_free(&raw);
-        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
-        break;
+      if (!g)
+        st = AQ_ENOMEM;
+      else {
+        names = g;
+        cap = ncap;
       }
-      names = g;
-      cap = ncap;
     }
     for (size_t c = 0; c < add && st == AQ_OK; c++) {
-      char label[4200];
-      if (raw.nchan > 1 && rule_ch)
-        snprintf(label, sizeof label, "%s#%s", paths[i], rule_ch);
-      else if (raw.nchan > 1)
-        record_label(&raw, c, paths[i], label, sizeof label);
-
-      else
-        snprintf(label, sizeof label, "%s", paths[i]);
-      if (!(names[k] = strdup(label)))
-        st = aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
+      /* (a file that fails to parse is one item named as given: reported
+       * when it is read) */
+      const char *name = set.n ? set.item[c].name : paths[i];
+      if (!(names[k] = strdup(name)))
+        st = AQ_ENOMEM;
       else
         k++;
     }
-    aq_raw_file_free(&raw);
+    aq_record_set_free(&set);
+    if (st != AQ_OK)
+      aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
   }
   if (st != AQ_OK) {
     aq_record_names_free(names, k);

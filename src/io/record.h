@@ -1,10 +1,13 @@
-/* record.h: the in-memory accelerogram, and the reader entry point.
+/* record.h: reading records.  src/io turns record files into evenly
+ * sampled ground acceleration in m/s^2 (aq_record).
  *
- * Every reader (sac.c, at2.c, csv.c, ...; see readers.h) reports what a file
- * states, and aq_record_decide() (record.c) makes an aq_record of it: evenly
- * sampled ground acceleration in m/s^2, dt in s.  The record owns its arrays and
- * strings; aq_record_free() releases them (NULL and zeroed records are fine).
- * Readers report through aq_error and never print.
+ * record.c sniffs a file's format from its content, dispatches to the
+ * parser of that format (reader.h), which reports what the file states, and
+ * decides (aq_record_decide) for every format alike: the units that apply,
+ * whether the magnitude is plausible, whether a channel is vertical, and
+ * the response of a miniSEED channel.  The record owns its arrays and
+ * strings; aq_record_free() releases them (NULL and zeroed records are
+ * fine).  Nothing here prints: errors fill an aq_error.
  */
 #ifndef AQ_IO_RECORD_H
 #define AQ_IO_RECORD_H
@@ -12,6 +15,8 @@
 #include <stddef.h>
 
 #include "../error.h"
+#include "reader.h"
+#include "units.h"
 
 /* How aq_record_decide knew a channel is vertical (aq_record.vertical_by). */
 typedef enum {
@@ -33,7 +38,7 @@ typedef struct {
   char units_orig[24];  /* units of the file's values as used (= units_used) */
   double to_mps2;       /* factor applied to the file's values to get m/s^2 */
   double *acc_mps2;     /* npts samples of ground acceleration, m/s^2 */
-  /* Decided by aq_record_decide (readers.h): */
+  /* Decided by aq_record_decide: */
   double azimuth_deg;   /* direction of positive motion, deg from north; NAN if unknown */
   double dip_deg;       /* SEED: 0 horizontal, -90 up, +90 down; NAN if unknown */
   int vertical;         /* 1: the file identifies the channel as vertical */
@@ -51,18 +56,6 @@ typedef struct {
  * strong-motion accelerometers). */
 #define AQ_PGA_MAX_G 10.0
 #define AQ_PGA_MIN_G 1e-5
-
-/* Units override (--units).  AQ_UNITS_FILE: take the units from the file. */
-typedef enum {
-  AQ_UNITS_FILE = 0,
-  AQ_UNITS_G,
-  AQ_UNITS_GAL,   /* = cm/s^2 */
-  AQ_UNITS_MPS2,
-  AQ_UNITS_NMPS2,
-  AQ_UNITS_COUNTS, /* divided by the sensitivity (SAC SCALE, counts per m/s^2) */
-  AQ_UNITS_G10,   /* tenths of g (some agency formats) */
-  AQ_UNITS_MMPS2  /* mm/s^2 */
-} aq_units;
 
 /* A per-file units rule (--units GLOB=U): records whose path as given
  * matches glob (fnmatch(3), no flags, so '*' also matches '/') are read in
@@ -96,6 +89,15 @@ typedef struct {
                                        sensitivity of miniSEED counts; "" none */
 } aq_read_opts;
 
+/* Take the StationXML files out of the list of record paths paths[0..n):
+ * the first becomes ro->response (unless --response gave one), and the
+ * others are dropped as well (responses are looked up in the first only).
+ * Returns the number of paths left, in their order (n, untouched, when all
+ * are StationXML: then they are reported as not records).  A file is taken when
+ * its first bytes hold "<FDSNStationXML" (read with stdio; unreadable files
+ * stay in the list, for the reader to report). */
+size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro);
+
 /* The units override that applies to path: the last rule whose glob matches
  * path (as given), else opts->units (AQ_UNITS_FILE if none).  opts may be
  * NULL (AQ_UNITS_FILE). */
@@ -103,19 +105,6 @@ aq_units aq_read_opts_units_for(const aq_read_opts *opts, const char *path);
 
 /* The --units GLOB=U rule matching path (the last one), or NULL. */
 const aq_units_rule *aq_read_opts_rule_for(const aq_read_opts *opts, const char *path);
-
-/* Parse a units word: g, gal, cm/s2 (also cm/s^2, cm/s/s, cm/sec2, cmps2),
- * m/s2 (m/s^2, m/s/s, mps2), mm/s2, nm/s2 (nm/s^2), g/10, counts;
- * case-insensitive.
- * Returns 1 and sets *out on success, 0 if s is not one of them. */
-int aq_units_parse(const char *s, aq_units *out);
-
-/* The canonical name of u ("g", "gal", "m/s2", "nm/s2", "counts", "file"). */
-const char *aq_units_name(aq_units u);
-
-/* Metres per second squared per unit of u (g: 9.80665, gal: 0.01, ...);
- * 0 for AQ_UNITS_FILE and AQ_UNITS_COUNTS (counts need a sensitivity). */
-double aq_units_to_mps2(aq_units u);
 
 /* Read the file at path, detecting its format from its content.
  * On success fills *rec (caller frees with aq_record_free) and returns AQ_OK;
@@ -132,11 +121,49 @@ aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
                               aq_record *rec, unsigned char **bytes,
                               size_t *nbytes, aq_error *err);
 
+/* One record of a file read by aq_record_read_all: its name and either the
+ * record or why it could not be made. */
+typedef struct {
+  char *name;       /* the record's name: the operand as given, or
+                       "FILE#CHANNEL" for each channel of a file of several
+                       (as aq_record_expand names them) */
+  aq_status status; /* AQ_OK: rec holds the record; else err says why */
+  aq_record rec;
+  aq_error err;
+} aq_record_item;
+
+/* The records of one operand (aq_record_read_all). */
+typedef struct {
+  size_t n;
+  aq_record_item *item;  /* n items, in file order */
+  unsigned char *bytes;  /* with keep_bytes: the file's bytes (whatever its
+                            channels hold), NULL when it cannot be read */
+  size_t nbytes;
+} aq_record_set;
+
+/* Every record of the operand path from one parse of its file: FILE#CHANNEL
+ * (or a --component rule matching a file of several channels) gives that
+ * channel; a file of several channels with none chosen gives every channel,
+ * each decided on its own (aq_record_decide) and named FILE#CHANNEL; any
+ * other operand gives one record.  A file that cannot be read or parsed is
+ * one item carrying that error.  The same names, records and errors as
+ * aq_record_expand followed by aq_record_read of each name, which parses a
+ * file of N channels N + 1 times.  Returns AQ_OK with *set filled (free with
+ * aq_record_set_free), or AQ_ENOMEM (err filled, *set empty). */
+aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int keep_bytes,
+                             aq_record_set *set, aq_error *err);
+void aq_record_set_free(aq_record_set *set); /* NULL and zeroed are fine */
+
+/* Test hook: how many files aq_raw_parse has parsed in this process. */
+unsigned long aq_record_parses_(void);
+
 /* Record names for operands paths[0..n): a file of several channels, named
  * without #CHANNEL and chosen by no --component rule, becomes one name per
  * channel, "FILE#CHANNEL", in file order; any other operand is kept as given
  * (an unreadable one is reported when it is read).  On AQ_OK *out holds
- * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM. */
+ * *nout malloc'd names (free with aq_record_names_free); else AQ_ENOMEM.
+ * The names of a file that may hold several channels are those of
+ * aq_record_read_all. */
 aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
                            char ***out, size_t *nout, aq_error *err);
 void aq_record_names_free(char **names, size_t n);
@@ -153,5 +180,67 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
                                      aq_error *err);
 
 void aq_record_free(aq_record *rec);
+
+/* ---- sniffing, dispatching, deciding (record.c) --------------------------- */
+
+/* What the bytes look like. */
+typedef enum {
+  AQ_FMT_UNKNOWN_BINARY = 0, /* binary, not recognised */
+  AQ_FMT_SAC,                /* SAC binary, NVHDR = 6 (or 7) in one byte order */
+  AQ_FMT_AT2,                /* PEER NGA acceleration (.AT2) */
+  AQ_FMT_TEXT,               /* anything else that is text: tried as CSV */
+  AQ_FMT_PEER_VT2,           /* PEER velocity (.VT2): refused */
+  AQ_FMT_PEER_DT2,           /* PEER displacement (.DT2): refused */
+  AQ_FMT_MSEED,              /* miniSEED 2 (mseed.c); 3 refused */
+  AQ_FMT_COSMOS,             /* COSMOS V0/V1/V2 (cosmos.c), CSMIP (csmip.c) */
+  AQ_FMT_SMC,                /* USGS SMC (smc.c) */
+  AQ_FMT_KNET,               /* K-NET / KiK-net ASCII (knet.c) */
+  AQ_FMT_ESM,                /* ESM / ITACA ASCII (esm.c) */
+  AQ_FMT_XML,                /* XML (StationXML, QuakeML): refused */
+  AQ_FMT_HDF5,               /* HDF5 (e.g. an archquake results file): refused */
+  AQ_FMT_GZIP,               /* gzip/zip compressed: refused */
+  AQ_FMT_EMPTY,              /* zero bytes */
+  AQ_FMT_GEONET,             /* GeoNet V1A/V2A (geonet.c) */
+  AQ_FMT_RENADIC,            /* RENADIC (Chile) V1 (renadic.c) */
+  AQ_FMT_BHRC,               /* BHRC (Iran) VOL1DS (bhrc.c) */
+  AQ_FMT_ASA,                /* Mexican ASA 2.0 (asa.c) */
+  AQ_FMT_NSMN,               /* AFAD / NSMN (Turkey) ASCII (nsmn.c) */
+  AQ_FMT_NPTS_DT             /* text whose first line is "NPTS DT" (nptsdt.c) */
+} aq_format;
+
+/* Classify buf[0..n) by content only.  Never fails. */
+aq_format aq_record_detect(const unsigned char *buf, size_t n);
+
+/* A short description of what fmt looks like, for messages
+ * ("miniSEED (SEED data records)", ...). */
+const char *aq_format_describe(aq_format fmt);
+
+/* Parse from memory into a raw file: dispatch on aq_record_detect() (and,
+ * for miniSEED, match the channels to the response of opts->response). */
+aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
+                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
+
+/* Parse from memory and decide one record: dispatch on aq_record_detect(),
+ * then aq_record_decide() on the file's only channel, or on the channel that
+ * name's "#CHANNEL" suffix or a --component rule selects (a file of several
+ * channels with none selected is refused, naming the channels). */
+aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
+                          const aq_read_opts *opts, aq_record *rec,
+                          aq_error *err);
+
+/* Turn channel ichan of raw into an aq_record in m/s^2:
+ * choose the units (the file's stated units win; a global --units U applies
+ * only to files that state none; a --units 'GLOB=U' rule matching path may
+ * override stated units, and the conflict is recorded in rec->units_conflict);
+ * counts need a sensitivity; check plausibility (PGA after conversion in
+ * [AQ_PGA_MIN_G, AQ_PGA_MAX_G], else refuse naming the PGA found and the units
+ * that would make it plausible, unless opts->accept_implausible); mark the
+ * record vertical when the file says so (vertical flag, dip, or a channel
+ * code ending in Z / named UD, Up, V, Vert).  path is the name reported and
+ * matched against rules (the file path as given, without "#CHANNEL");
+ * rec->name gets "#CHANNEL" appended when raw has several channels.
+ * The values are copied: raw is unchanged. */
+aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *path,
+                           const aq_read_opts *opts, aq_record *rec, aq_error *err);
 
 #endif

@@ -1,4 +1,4 @@
-/* renadic.c: RENADIC (Universidad de Chile) V1 text (formats.h).
+/* renadic.c: RENADIC (Universidad de Chile) V1 text (reader.h).
  *
  * The layout borrows CSMIP V1's headers but not its data.  Per channel:
  *   13 text lines, the first naming an (UN)CORRECTED ACCELEROGRAM; among them
@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define RENADIC_TEXT_LINES 13
 #define RENADIC_INTS 100
@@ -149,7 +149,7 @@ static void start_time(const aq_line *ln, char *out, size_t cap)
   out[0] = '\0';
   aq_copy_trim(tmp, sizeof tmp, ln->p, ln->len);
   if (sscanf(tmp, "%d/%d/%d %d:%d:%lf (%7[A-Za-z])", &mo, &d, &y, &h, &mi, &s, zone) != 7 ||
-      !aq_zone_offset_(zone, strlen(zone), &east))
+      !aq_zone_offset(zone, strlen(zone), &east))
     return;
   if (!aq_iso_time_local(out, cap, y, mo, d, h, mi, s, east))
     out[0] = '\0';
@@ -195,7 +195,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
                           "expected %d text lines, the file ends after %d",
                           RENADIC_TEXT_LINES, i);
   aq_raw_channel tmp;
-  aq_raw_channel_init_(&tmp);
+  aq_raw_channel_init(&tmp);
   long npts = -1;
   for (int i = 1; i < RENADIC_TEXT_LINES; i++) {
     const aq_line *h = &hdr[i];
@@ -291,14 +291,14 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     aq_copy_trim(raw->processing, sizeof raw->processing, first->p, first->len);
     aq_copy_trim(raw->event, sizeof raw->event, hdr[1].p, hdr[1].len);
   }
-  return aq_raw_append_channel_(raw, &tmp, name, err);
+  return aq_raw_append_channel(raw, &tmp, name, err);
 }
 
 aq_status aq_renadic_parse(const unsigned char *buf, size_t n, const char *name,
-                           const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                           const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
-  return aq_parse_channels_(buf, n, name, "renadic", aq_line_names_accelerogram_,
+  return aq_raw_parse_channels(buf, n, name, "renadic", aq_line_names_accelerogram,
                             "a channel header naming an UNCORRECTED ACCELEROGRAM",
                             parse_channel, raw, err);
 }

@@ -1,4 +1,4 @@
-/* sac.c: SAC binary reader (see readers.h; format notes in docs/sac-format.md).
+/* sac.c: SAC binary reader (see reader.h; format notes in docs/sac-format.md).
  *
  * A SAC file is a 632-byte header (70 float32 words, 40 int32 words, then
  * 8-byte strings, KEVNM 16) followed by NPTS float32 samples, all in one byte
@@ -14,7 +14,7 @@
 
 #include "../units.h"
 #include "fixed.h"
-#include "readers.h"
+#include "reader.h"
 
 #define SAC_HEADER_BYTES 632
 #define SAC_FOOTER7_BYTES (22 * 8)
@@ -143,7 +143,7 @@ static void sac_reference(const sac_hdr *h, char *out, size_t cap)
 }
 
 aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts; /* a SAC file states everything it can */
   memset(raw, 0, sizeof *raw);

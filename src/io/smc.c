@@ -1,4 +1,4 @@
-/* smc.c: USGS SMC strong-motion text format (formats.h).
+/* smc.c: USGS SMC strong-motion text format (reader.h).
  *
  * Layout: 11 text lines (line 1 "2 CORRECTED ACCELEROGRAM": the leading
  * number is the data type, 1 uncorrected and 2 corrected acceleration,
@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define SMC_TEXT_LINES 11
 #define SMC_INTS 48
@@ -33,8 +33,60 @@ static aq_status smc_bad(aq_error *err, const char *name, long line, const char 
   return aq_error_set(err, AQ_EFORMAT, name, line, -1, field, fmt, got);
 }
 
+/* A file whose real #2 (samples per second) is null holds (time, value)
+ * pairs of uneven sampling (film digitised at its own times): they are not
+ * resampled here.  Check that they are such pairs (times increasing) and
+ * refuse them in one line that says what they are; c is at the comments. */
+static aq_status uneven(aq_lines *c, int type, double ncomment, double nvalues,
+                        long real_line, const char *name, aq_error *err)
+{
+  aq_fortran_fmt fd = {8, 10, 'E'};
+  if (!(nvalues >= 2) || fmod(nvalues, 2) != 0 || ncomment < 0 || ncomment > (double)c->n ||
+      nvalues > (double)(c->n - c->pos) / fd.width + 1)
+    return smc_bad(err, name, real_line - 5, "integer header #17 (npts)",
+                   "expected an even count of values, (time, value) pairs, that the file "
+                   "can hold, got %g",
+                   nvalues);
+  for (double i = 0; i < ncomment; i++) {
+    aq_line ln;
+    if (!aq_lines_next(c, &ln))
+      return aq_error_set(err, AQ_EFORMAT, name, c->line, -1, "comments",
+                          "expected %g comment lines, the file ends after %g", ncomment, i);
+  }
+  long data_line = c->line;
+  size_t nv = (size_t)nvalues;
+  double *v = malloc(nv * sizeof *v);
+  if (!v)
+    return aq_error_set(err, AQ_ENOMEM, name, c->line, -1, "data", "out of memory");
+  aq_status s = aq_fixed_read(c, nv, &fd, v, name, "data (8E10.4)", err);
+  double step_min = INFINITY, step_max = 0;
+  for (size_t k = 2; s == AQ_OK && k < nv; k += 2) {
+    double step = v[k] - v[k - 2];
+    if (!(step > 0)) {
+      s = aq_error_set(err, AQ_EFORMAT, name, data_line + (long)(k / 8), -1, "data",
+                       "real header #2 (samples per second) is null, so the values are "
+                       "(time, value) pairs, but time %zu (%g s) does not follow %g s",
+                       k / 2 + 1, v[k], v[k - 2]);
+      break;
+    }
+    step_min = fmin(step_min, step);
+    step_max = fmax(step_max, step);
+  }
+  if (s == AQ_OK)
+    s = aq_error_set(err, AQ_EUNSUPPORTED, name, real_line, -1,
+                     "real header #2 (samples per second)",
+                     "USGS SMC type %d with no sampling rate holds %zu (time, value) pairs, "
+                     "unevenly sampled (steps %.2g to %.2g s, %g to %g s), which is not "
+                     "supported: archquake does not resample; use the agency's corrected "
+                     "(type 2) file of this record",
+                     type, nv / 2, step_min, step_max, v[0],
+                     v[nv - 2]);
+  free(v);
+  return s;
+}
+
 aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
+                       const aq_reader_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
@@ -49,13 +101,14 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   if (text[0].len < 2 || text[0].p[1] != ' ' || !aq_field_double(text[0].p, 1, &type) ||
       (!aq_find_ci(text[0].p, text[0].len, "ACCELEROGRAM") &&
        !aq_find_ci(text[0].p, text[0].len, "VELOCITY") &&
-       !aq_find_ci(text[0].p, text[0].len, "DISPLACEMENT"))) {
+       !aq_find_ci(text[0].p, text[0].len, "DISPLACEMENT") &&
+       !aq_find_ci(text[0].p, text[0].len, "UNKNOWN"))) {
     char got[64];
     aq_copy_trim(got, sizeof got, text[0].p, text[0].len);
     return aq_error_set(err, AQ_EFORMAT, name, 1, -1, "data type",
                         "expected \"N (UN)CORRECTED ACCELEROGRAM\", got \"%s\"", got);
   }
-  if (type < 1 || type > 4) {
+  if (type < 0 || type > 4) {
     char got[64];
     aq_copy_trim(got, sizeof got, text[0].p, text[0].len);
     return aq_error_set(err, AQ_EUNSUPPORTED, name, 1, -1, "data type",
@@ -75,10 +128,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
     return smc_bad(err, name, real_line - 5, "integer header #16 (comment lines)",
                    "expected >= 0, got %g", ncomment);
   if (rate >= SMC_REAL_NULL_MIN)
-    return aq_error_set(err, AQ_EUNSUPPORTED, name, real_line, -1,
-                        "real header #2 (samples per second)",
-                        "not stated: the file holds unevenly sampled (time, value) pairs, "
-                        "which are not resampled; resample them first");
+    return uneven(&c, (int)type, ncomment, npts, real_line, name, err);
   if (!(rate > 0))
     return smc_bad(err, name, real_line, "real header #2 (samples per second)",
                    "expected > 0, got %g", rate);
@@ -92,7 +142,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
       return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "comments",
                           "expected %g comment lines, the file ends after %g", ncomment, i);
   }
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch)
     return AQ_ENOMEM;
   ch->npts = (size_t)npts;
@@ -109,6 +159,8 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   }
   static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
+  if (type == 0) /* converted from another format: the quantity is not stated */
+    snprintf(ch->units_said, sizeof ch->units_said, "line 1: data type 0 (UNKNOWN)");
   double from_vertical = iv[12], az = iv[13];
   if (from_vertical == 0 || from_vertical == 180) {
     ch->dip_deg = from_vertical == 0 ? -90 : 90;

@@ -1,5 +1,5 @@
 /* stationxml.c: the instrument sensitivity, azimuth and dip of each channel
- * epoch of an FDSN StationXML file, through libxml2 (formats.h).
+ * epoch of an FDSN StationXML file, through libxml2 (reader.h).
  *
  * Read: Network@code / Station@code / Channel@code, @locationCode,
  * @startDate, @endDate, with Azimuth, Dip and Response/InstrumentSensitivity
@@ -21,7 +21,7 @@
 
 #include "../units.h"
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
 #define SXML_MAX_EPOCHS 100000
 #define SXML_DIP_TOL_DEG 1.0 /* |dip| within this of 90 (or 0) is vertical (horizontal) */

@@ -64,6 +64,9 @@ static int device_exists(const char *device)
 
 aq_status aq_plot_device(const char *target, const char **device, aq_error *err)
 {
+  aq_status loaded = aq_plot_load(err); /* PLplot is opened on first use */
+  if (loaded != AQ_OK)
+    return loaded;
   const char *dot = strrchr(target, '.'), *slash = strrchr(target, '/');
   if (dot && (!slash || dot > slash))
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
@@ -569,7 +572,8 @@ void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
   PLINT pat[MAX_ENTRIES] = {0}, tcol[MAX_ENTRIES], symn[MAX_ENTRIES];
   PLFLT w[MAX_ENTRIES], bs[MAX_ENTRIES] = {0}, blw[MAX_ENTRIES] = {0},
         ss[MAX_ENTRIES];
-  const char *sy[MAX_ENTRIES];
+  const char *sy[MAX_ENTRIES], *ptext[MAX_ENTRIES];
+  char padded[MAX_ENTRIES][160];
   if (n > MAX_ENTRIES)
     n = MAX_ENTRIES;
   for (size_t i = 0; i < n; i++) {
@@ -587,6 +591,10 @@ void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
     ss[i] = 1.0;
     symn[i] = 1;
     sy[i] = sym && sym[i] ? sym[i] : "";
+    /* a space's room after each text: on a PDF page scaled onto the paper
+       PLplot measures the text a little narrower than cairo draws it */
+    snprintf(padded[i], sizeof padded[i], "%s\u2002", text[i]); /* an en space */
+    ptext[i] = padded[i];
     box[i] = color[i];
     bs[i] = 0.8;
   }
@@ -595,7 +603,7 @@ void aq_plot_legend_at(int position, double x, double y, int ncolumn, size_t n,
   pllegend(&lw, &lh, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX |
                          (ncol > 1 ? PL_LEGEND_ROW_MAJOR : 0),
            position, x, y, 0.06, AQ_PC_BG, AQ_PC_FG, 1, nrow, ncol, (PLINT)n, opt, 0.6, 0.7,
-           1.7, 0.0, tcol, text, box, pat, bs,
+           1.7, 0.0, tcol, ptext, box, pat, bs,
            blw, col, sty, w, col, ss, symn, sy);
 }
 

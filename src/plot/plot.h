@@ -62,6 +62,13 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *run,
                            aq_error *err);
 void aq_plot_run_free(aq_plot_run *run);
 
+/* ---- plplot_lazy.c ---------------------------------------------------- */
+
+/* Open PLplot (once; archquake does not load it at start): AQ_OK, or
+ * AQ_EUNSUPPORTED (err names the library and why).  aq_plot_device calls
+ * it, so every figure drawn through aq_plot_render has it. */
+aq_status aq_plot_load(aq_error *err);
+
 /* ---- common.c ------------------------------------------------------ */
 
 /* Draws one figure between plinit and plend; returns 0, or non-zero after

@@ -9,8 +9,9 @@
  *      record at each end (default 0: the record itself is not tapered);
  *   3. zero pads: total 1.5 n / fc seconds (n = order, fc = high-pass corner;
  *      Converse & Brady 1992, Boore 2005 BSSA 95(2) 745-750), half before and
- *      half after the record, then more zeros after it up to a fast FFT size
- *      2^a 3^b 5^c; the pads stay in the processed record (pad_front marks the
+ *      half after the record, then more zeros after it up to the next FFT
+ *      length 2^a or 3 2^a (few lengths, so a suite plans few: see
+ *      docs/processing.md); the pads stay in the processed record (pad_front marks the
  *      original first sample) so that velocity and displacement integrated
  *      from it are consistent with the filtered acceleration (Boore 2005);
  *   4. junctions: the pad samples next to the record take a half-cosine
@@ -65,23 +66,15 @@ void aq_processed_free(aq_processed *p)
 
 size_t aq_signal_fft_size(size_t n)
 {
-  if (n <= 1)
-    return 1;
-  size_t best = 0;
-  for (size_t p5 = 1;; p5 *= 5) {
-    for (size_t p35 = p5;; p35 *= 3) {
-      size_t m = p35;
-      while (m < n && m <= SIZE_MAX / 2)
-        m *= 2;
-      if (m >= n && (best == 0 || m < best))
-        best = m;
-      if (p35 >= n || p35 > SIZE_MAX / 3)
-        break;
-    }
-    if (p5 >= n || p5 > SIZE_MAX / 5)
-      break;
+  /* in increasing order: 1, 2, 3, 4, 6, 8, 12, ... (2^a, then 3 2^(a-1)) */
+  for (size_t m = 1;; m *= 2) {
+    if (m >= n)
+      return m;
+    if (m >= 2 && m / 2 * 3 >= n)
+      return m / 2 * 3;
+    if (m > SIZE_MAX / 2)
+      return 0;
   }
-  return best;
 }
 
 /* Check the options against the record (dt, length). */

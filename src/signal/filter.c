@@ -152,7 +152,7 @@ static void wisdom_save(void)
  * FFTW_ESTIMATE's first plan of a length costs 5-25 ms of planner search
  * (a cold 5-record suite spent 60 % of its time there), although the plan
  * it chooses is fixed for a given FFTW build.  The build plans every
- * length aq_signal_fft_size can give between 2^10 and 2^20 once, in
+ * length aq_signal_fft_size can give between 2^10 and 2^22 once, in
  * tools/fftw_wisdom.c, and keeps each length's wisdom apart; before
  * planning a length, its wisdom is imported (a few hundred bytes, about
  * 0.1 ms) and FFTW rebuilds the plan ESTIMATE chose without searching: the

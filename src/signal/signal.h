@@ -114,7 +114,9 @@ int aq_im_residual_warning(const aq_im *im, char *buf, size_t n);
 aq_status aq_steps_from_processed(const aq_processed *p, double merge_tol_mps2,
                                   aq_steps *out, aq_error *err);
 
-/* The smallest 2^a 3^b 5^c >= n (a fast FFTW size); 0 if none fits size_t. */
+/* The smallest FFT length of the form 2^a or 3 2^a that is >= n (two per
+ * octave: a suite's records share few lengths, so few FFTW plans are made;
+ * docs/processing.md); 0 if none fits size_t. */
 size_t aq_signal_fft_size(size_t n);
 
 #endif

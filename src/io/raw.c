@@ -1,13 +1,37 @@
-/* formats.c: small helpers shared by the agency-format parsers (formats.h). */
+/* raw.c: the raw file a reader fills (reader.h): allocation, channels
+ * appended one by one, and the walk over the channels of a multi-channel
+ * text file (COSMOS, CSMIP). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "fixed.h"
-#include "formats.h"
+#include "reader.h"
 
-aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error *err)
+void aq_raw_file_free(aq_raw_file *raw)
+{
+  if (!raw)
+    return;
+  for (size_t i = 0; raw->chan && i < raw->nchan; i++)
+    free(raw->chan[i].values);
+  free(raw->chan);
+  memset(raw, 0, sizeof *raw);
+}
+
+aq_status aq_raw_file_alloc(aq_raw_file *raw, size_t nchan, const char *name,
+                            aq_error *err)
+{
+  raw->chan = calloc(nchan ? nchan : 1, sizeof *raw->chan);
+  if (!raw->chan)
+    return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+  raw->nchan = nchan;
+  for (size_t i = 0; i < nchan; i++)
+    aq_raw_channel_init(&raw->chan[i]);
+  return AQ_OK;
+}
+
+aq_raw_channel *aq_raw_add_channel(aq_raw_file *raw, const char *name, aq_error *err)
 {
   aq_raw_channel *c = realloc(raw->chan, (raw->nchan + 1) * sizeof *c);
   if (!c) {
@@ -17,14 +41,14 @@ aq_raw_channel *aq_raw_add_channel_(aq_raw_file *raw, const char *name, aq_error
   }
   raw->chan = c;
   c += raw->nchan++;
-  aq_raw_channel_init_(c);
+  aq_raw_channel_init(c);
   return c;
 }
 
-aq_status aq_raw_append_channel_(aq_raw_file *raw, aq_raw_channel *c, const char *name,
+aq_status aq_raw_append_channel(aq_raw_file *raw, aq_raw_channel *c, const char *name,
                                  aq_error *err)
 {
-  aq_raw_channel *ch = aq_raw_add_channel_(raw, name, err);
+  aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch) {
     free(c->values);
     c->values = NULL;
@@ -34,38 +58,18 @@ aq_status aq_raw_append_channel_(aq_raw_file *raw, aq_raw_channel *c, const char
   return AQ_OK;
 }
 
-int aq_line_names_accelerogram_(const aq_line *ln)
-{
-  return aq_find_ci(ln->p, ln->len, "accelerogram") != NULL;
-}
-
-void aq_raw_channel_init_(aq_raw_channel *c)
+void aq_raw_channel_init(aq_raw_channel *c)
 {
   memset(c, 0, sizeof *c);
   c->azimuth_deg = NAN;
   c->dip_deg = NAN;
   c->vertical = -1;
+  c->units_line = -1;
 }
 
-int aq_zone_offset_(const char *s, size_t n, int *hours_east)
-{
-  static const struct {
-    const char *word;
-    int east_h;
-  } zones[] = {{"UTC", 0},  {"GMT", 0},  {"UT", 0},  {"PDT", -7}, {"PST", -8},
-               {"MDT", -6}, {"MST", -7}, {"CDT", -5}, {"CST", -6}, {"EDT", -4},
-               {"EST", -5}, {"JST", 9}};
-  for (size_t i = 0; i < sizeof zones / sizeof zones[0]; i++)
-    if (strlen(zones[i].word) == n && strncasecmp(s, zones[i].word, n) == 0) {
-      *hours_east = zones[i].east_h;
-      return 1;
-    }
-  return 0;
-}
-
-aq_status aq_parse_channels_(const unsigned char *buf, size_t n, const char *name,
+aq_status aq_raw_parse_channels(const unsigned char *buf, size_t n, const char *name,
                              const char *format, int (*starts)(const aq_line *),
-                             const char *expected, aq_channel_parser_ parse, aq_raw_file *raw,
+                             const char *expected, aq_raw_channel_parser parse, aq_raw_file *raw,
                              aq_error *err)
 {
   memset(raw, 0, sizeof *raw);

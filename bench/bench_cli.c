@@ -1,0 +1,454 @@
+/* bench_cli.c: the commands as a user starts them, each run a fresh process
+ * (make bench; never in make check).
+ *
+ * 1. Start-up: /bin/true, `archquake --version`, `archquake info` (no
+ *    record: the usage error) and `archquake info RECORD` (one AT2 record
+ *    read, processed and measured), interleaved, START_REPS each; medians
+ *    of the wall time and of the CPU time (user + system, from wait4), and
+ *    each one's ratio to /bin/true.
+ * 2. The main job from a cold process: the 12 shared PEER records (the AT2
+ *    files of tests/data/records) against oppenheim and thick, each scaled
+ *    to 2.5 lambda0 g of the arch, -o, -j 1, the default model and --model
+ *    ode, interleaved, JOB_REPS each (a process per run; the FFTW wisdom
+ *    cache as the first run left it), then the first run with an empty
+ *    cache; medians.  Beside them the floor of that work, measured here in
+ *    one process: the files' bytes read (open, fread, close), one FFT pair
+ *    (r2c + c2r, planned beforehand) per record at its padded length, and
+ *    the default model's stepping of the 24 runs (steps made beforehand);
+ *    each the median of FLOOR_REPS.  Printed: the floor, each command's
+ *    ratio to it, and ode / default.
+ * AQ_BIN_BEFORE=path adds the same commands of another build (e.g. the
+ * previous one) to the same interleaved runs, for a before/after on equal
+ * terms.  The load average is printed before and after. */
+#define _GNU_SOURCE /* wait4 */
+#include <fcntl.h>
+#include <fftw3.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "arch/arch.h"
+#include "arch/stepper.h"
+#include "bench.h"
+#include "io/record.h"
+#include "signal/signal.h"
+#include "units.h"
+
+#define START_REPS 201
+#define JOB_REPS 15
+#define FLOOR_REPS 21
+#define MAXARG 64
+
+static const char *const shared[] = {
+    "tests/data/records/ARL360.at2",
+    "tests/data/records/CHY028-N.AT2",
+    "tests/data/records/IELC180.AT2",
+    "tests/data/records/RSN1616_DUZCE_362-E.AT2",
+    "tests/data/records/RSN4013_SANSIMEO_36258021.AT2",
+    "tests/data/records/RSN4843_CHUETSU_65006NS.AT2",
+    "tests/data/records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2",
+    "tests/data/records/RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
+    "tests/data/records/RSN763_LOMAP_GIL067.AT2",
+    "tests/data/records/RSN763_LOMAP_GIL337.AT2",
+    "tests/data/records/RSN77_SFERN_PUL164-hor1.AT2",
+    "tests/data/records/TCU052-N.AT2"};
+enum { NSHARED = sizeof shared / sizeof shared[0] };
+static const char *const job_arches[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+enum { NARCH = 2 };
+#define JOB_K 2.5 /* --scale-to-lambda0 */
+
+typedef struct {
+  const char *label;
+  char *argv[MAXARG];
+  const char *env;  /* one NAME=VALUE added to the environment, or NULL */
+  double *wall, *cpu;
+} command;
+
+/* CPU time of the calling thread, s. */
+static double thread_cpu_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A floor part: median wall and CPU time of FLOOR_REPS repetitions. */
+typedef struct {
+  double wall[FLOOR_REPS], cpu[FLOOR_REPS];
+} floor_times;
+
+static void floor_start(double *w, double *c)
+{
+  *w = aq_bench_now_s();
+  *c = thread_cpu_s();
+}
+
+static void floor_stop(floor_times *f, int r, double w, double c)
+{
+  f->wall[r] = aq_bench_now_s() - w;
+  f->cpu[r] = thread_cpu_s() - c;
+}
+
+static void load_average(const char *when)
+{
+  double l[3];
+  if (getloadavg(l, 3) == 3)
+    printf("  load average %s: %.2f %.2f %.2f\n", when, l[0], l[1], l[2]);
+}
+
+/* Run c once (stdout and stderr to /dev/null); wall and CPU time, s.
+ * Exits the bench if the command fails. */
+static void run(const command *c, double *wall, double *cpu, int want_status)
+{
+  double t0 = aq_bench_now_s();
+  pid_t p = fork();
+  if (p == 0) {
+    int fd = open("/dev/null", O_WRONLY);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+    }
+    if (c->env)
+      putenv((char *)c->env);
+    execv(c->argv[0], c->argv);
+    _exit(127);
+  }
+  int st = 0;
+  struct rusage ru;
+  if (p < 0 || wait4(p, &st, 0, &ru) != p) {
+    perror("bench_cli: fork");
+    exit(1);
+  }
+  *wall = aq_bench_now_s() - t0;
+  *cpu = (double)ru.ru_utime.tv_sec + (double)ru.ru_stime.tv_sec +
+         1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  if (!WIFEXITED(st) || WEXITSTATUS(st) != want_status) {
+    fprintf(stderr, "bench_cli: %s: exit %d, expected %d\n", c->label,
+            WIFEXITED(st) ? WEXITSTATUS(st) : -1, want_status);
+    exit(1);
+  }
+}
+
+/* Run the n commands reps times each, interleaved; c[i].wall/cpu filled. */
+static void interleave(command *c, size_t n, int reps, const int *status)
+{
+  for (size_t i = 0; i < n; i++) {
+    c[i].wall = calloc((size_t)reps, sizeof(double));
+    c[i].cpu = calloc((size_t)reps, sizeof(double));
+    if (!c[i].wall || !c[i].cpu)
+      exit(1);
+  }
+  for (int r = 0; r < reps; r++)
+    for (size_t i = 0; i < n; i++)
+      run(&c[i], &c[i].wall[r], &c[i].cpu[r], status ? status[i] : 0);
+}
+
+static void free_commands(command *c, size_t n)
+{
+  for (size_t i = 0; i < n; i++) {
+    free(c[i].wall);
+    free(c[i].cpu);
+  }
+}
+
+/* argv from a label's words plus extra (NULL-terminated) arguments. */
+static void set_argv(command *c, const char *bin, const char *const *args)
+{
+  size_t k = 0;
+  c->argv[k++] = (char *)bin;
+  for (; args && *args && k + 1 < MAXARG; args++)
+    c->argv[k++] = (char *)*args;
+  c->argv[k] = NULL;
+}
+
+/* ---- 1. start-up ---------------------------------------------------------- */
+
+static void startup(const char *before)
+{
+  static const char *const version[] = {"--version", NULL};
+  static const char *const info0[] = {"info", NULL};
+  static const char *const info1[] = {"info", "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", NULL};
+  const char *const *what[3] = {version, info0, info1};
+  static const char *const names[3] = {"--version", "info (no record: usage error)",
+                                       "info RECORD (RSN6 ELC180)"};
+  command c[7];
+  int status[7] = {0};
+  size_t n = 0;
+  memset(c, 0, sizeof c);
+  c[n].label = "/bin/true";
+  set_argv(&c[n++], "/bin/true", NULL);
+  for (int k = 0; k < 3; k++)
+    for (int b = 0; b < (before ? 2 : 1); b++) {
+      c[n].label = names[k];
+      status[n] = k == 1 ? 2 : 0;
+      set_argv(&c[n++], b ? before : "./archquake", what[k]);
+    }
+  printf("Start-up: %d runs of each, interleaved; medians (wall, and CPU = user +\n"
+         "system); ratio to /bin/true's median:\n", START_REPS);
+  load_average("before");
+  interleave(c, n, START_REPS, status);
+  load_average("after");
+  double tw = aq_bench_median(c[0].wall, START_REPS);
+  double tc = aq_bench_median(c[0].cpu, START_REPS);
+  for (size_t i = 0; i < n; i++) {
+    double w = aq_bench_median(c[i].wall, START_REPS), u = aq_bench_median(c[i].cpu, START_REPS);
+    const char *who = i == 0 ? "" : before && (i % 2 == 0) ? "before " : before ? "after  " : "";
+    printf("  %s%-32s wall %7.3f ms %5.2fx   cpu %7.3f ms %5.2fx\n", who, c[i].label, 1e3 * w,
+           w / tw, 1e3 * u, u / tc);
+  }
+  free_commands(c, n);
+}
+
+/* ---- 2. the main job and its floor ----------------------------------------- */
+
+/* Median time (s) to read every shared record's bytes, as a reader does
+ * before it parses: open, fread of its size, close. */
+static void floor_read(floor_times *ft)
+{
+  for (int r = 0; r < FLOOR_REPS; r++) {
+    double w0, c0;
+    floor_start(&w0, &c0);
+    size_t sum = 0;
+    for (size_t i = 0; i < NSHARED; i++) {
+      FILE *f = fopen(shared[i], "rb");
+      struct stat st;
+      if (!f || fstat(fileno(f), &st) != 0)
+        exit(1);
+      unsigned char *b = malloc((size_t)st.st_size + 1);
+      if (!b || fread(b, 1, (size_t)st.st_size, f) != (size_t)st.st_size)
+        exit(1);
+      sum += b[st.st_size / 2];
+      free(b);
+      fclose(f);
+    }
+    floor_stop(ft, r, w0 - (sum == 1 ? 1e-12 : 0), c0);
+  }
+}
+
+/* Median time (s) of one r2c + c2r pair at each length n[i] (planned
+ * before the timing, FFTW_ESTIMATE, in place). */
+static void floor_fft(const size_t *n, size_t nrec, floor_times *ft)
+{
+  double **x = calloc(nrec, sizeof *x);
+  fftw_plan *f = calloc(nrec, sizeof *f), *b = calloc(nrec, sizeof *b);
+  if (!x || !f || !b)
+    exit(1);
+  for (size_t i = 0; i < nrec; i++) {
+    x[i] = fftw_malloc(2 * (n[i] / 2 + 1) * sizeof(double));
+    if (!x[i])
+      exit(1);
+    f[i] = fftw_plan_dft_r2c_1d((int)n[i], x[i], (fftw_complex *)x[i], FFTW_ESTIMATE);
+    b[i] = fftw_plan_dft_c2r_1d((int)n[i], (fftw_complex *)x[i], x[i], FFTW_ESTIMATE);
+    if (!f[i] || !b[i])
+      exit(1);
+    for (size_t k = 0; k < n[i]; k++)
+      x[i][k] = sin(0.001 * (double)k);
+  }
+  for (int r = 0; r < FLOOR_REPS; r++) {
+    double w0, c0;
+    floor_start(&w0, &c0);
+    for (size_t i = 0; i < nrec; i++) {
+      fftw_execute(f[i]);
+      fftw_execute(b[i]);
+    }
+    floor_stop(ft, r, w0, c0);
+  }
+  for (size_t i = 0; i < nrec; i++) {
+    fftw_destroy_plan(f[i]);
+    fftw_destroy_plan(b[i]);
+    fftw_free(x[i]);
+  }
+  free(x);
+  free(f);
+  free(b);
+}
+
+/* The floor's parts: bytes read, FFT pairs, the default model's stepping
+ * of every (record, arch) run at K lambda0 g; *nlen distinct FFT lengths. */
+static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *nlen)
+{
+  aq_error e;
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts so;
+  aq_signal_opts_default(&so);
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  aq_arch *arch[NARCH] = {NULL};
+  aq_stepper *st[NARCH] = {NULL};
+  double l0[NARCH];
+  for (int a = 0; a < NARCH; a++) {
+    if (aq_arch_load(job_arches[a], &arch[a], &e) != AQ_OK) {
+      aq_error_print(&e, stderr);
+      return -1;
+    }
+    st[a] = aq_stepper_alloc(aq_arch_path(arch[a], 0), aq_arch_path(arch[a], 1),
+                             AQ_MODEL_WORKPATH, &e);
+    if (!st[a])
+      return -1;
+    const aq_arch_dynamics *d = aq_arch_dynamics_of(arch[a]);
+    aq_stepper_set_cor(st[a], d->cor);
+    aq_stepper_set_impact(st[a], d->impact == AQ_IMPACT_MOMENTUM);
+    l0[a] = INFINITY;
+    for (int k = 0; k < 2; k++) {
+      const aq_path *p = aq_arch_path(arch[a], k);
+      if (p && p->admissible)
+        l0[a] = fmin(l0[a], p->lambda0);
+    }
+  }
+  size_t n[NSHARED];
+  aq_steps steps[NSHARED];
+  double pga_mps2[NSHARED];
+  for (size_t i = 0; i < NSHARED; i++) {
+    aq_record rec;
+    aq_processed proc;
+    aq_im im;
+    if (aq_record_read(shared[i], &ro, &rec, &e) != AQ_OK ||
+        aq_signal_process(&rec, &so, ws, &proc, &e) != AQ_OK ||
+        aq_im_compute(&proc, &im, &e) != AQ_OK ||
+        aq_steps_from_processed(&proc, 0, &steps[i], &e) != AQ_OK) {
+      aq_error_print(&e, stderr);
+      return -1;
+    }
+    n[i] = proc.n;
+    pga_mps2[i] = im.pga_g * AQ_G0_MPS2;
+    aq_processed_free(&proc);
+    aq_record_free(&rec);
+  }
+  *nlen = 0;
+  for (size_t i = 0; i < NSHARED; i++) {
+    size_t j = 0;
+    while (j < i && n[j] != n[i])
+      j++;
+    *nlen += j == i;
+  }
+  floor_read(fr);
+  floor_fft(n, NSHARED, ff);
+  for (int r = 0; r < FLOOR_REPS; r++) {
+    double w0, c0;
+    floor_start(&w0, &c0);
+    for (size_t i = 0; i < NSHARED; i++)
+      for (int a = 0; a < NARCH; a++) {
+        aq_result res;
+        aq_stepper_set_scale(st[a], JOB_K * l0[a] * AQ_G0_MPS2 / pga_mps2[i]);
+        if (aq_stepper_run(st[a], &steps[i], &res, &e) != AQ_OK) {
+          aq_error_print(&e, stderr);
+          return -1;
+        }
+        aq_result_free(&res);
+      }
+    floor_stop(fs, r, w0, c0);
+  }
+  for (size_t i = 0; i < NSHARED; i++)
+    aq_steps_free(&steps[i]);
+  for (int a = 0; a < NARCH; a++) {
+    aq_stepper_free(st[a]);
+    aq_arch_free(arch[a]);
+  }
+  aq_signal_ws_free(ws);
+  return 0;
+}
+
+static void main_job(const char *before)
+{
+  char cache[64], env_cache[96], out[96];
+  snprintf(cache, sizeof cache, "/tmp/aq-bench-cli-%ld", (long)getpid());
+  snprintf(env_cache, sizeof env_cache, "XDG_CACHE_HOME=%s", cache);
+  snprintf(out, sizeof out, "%s/job.h5", cache);
+  mkdir(cache, 0700);
+  const char *args[MAXARG];
+  size_t k = 0;
+  for (size_t i = 0; i < NSHARED; i++)
+    args[k++] = shared[i];
+  for (int a = 0; a < NARCH; a++) {
+    args[k++] = "--arch";
+    args[k++] = job_arches[a];
+  }
+  args[k++] = "--scale-to-lambda0";
+  args[k++] = "2.5";
+  args[k++] = "-o";
+  args[k++] = out;
+  args[k++] = "-j";
+  args[k++] = "1";
+  args[k++] = "-q";
+  size_t base = k;
+  command c[4];
+  memset(c, 0, sizeof c);
+  size_t nc = 0;
+  for (int b = 0; b < (before ? 2 : 1); b++)
+    for (int m = 0; m < 2; m++) {
+      args[base] = m ? "--model" : NULL;
+      args[base + 1] = m ? "ode" : NULL;
+      args[base + 2] = NULL;
+      c[nc].label = m ? "--model ode" : "default model";
+      c[nc].env = env_cache;
+      set_argv(&c[nc++], b ? before : "./archquake", args);
+    }
+  floor_times part[3];
+  size_t nlen;
+  if (job_floor(&part[0], &part[1], &part[2], &nlen) != 0) {
+    fprintf(stderr, "bench_cli: the floor cannot be measured\n");
+    exit(1);
+  }
+  double pw[3], pc[3];
+  for (int k = 0; k < 3; k++) {
+    pw[k] = aq_bench_median(part[k].wall, FLOOR_REPS);
+    pc[k] = aq_bench_median(part[k].cpu, FLOOR_REPS);
+  }
+  double fl = pw[0] + pw[1] + pw[2], flc = pc[0] + pc[1] + pc[2];
+  printf("\nThe main job from a cold process: %d shared AT2 records x oppenheim, thick,\n"
+         "--scale-to-lambda0 2.5, -o, -j 1 (%d runs); %d runs of each command,\n"
+         "interleaved, medians; the wisdom cache as the first run left it:\n",
+         NSHARED, 2 * NSHARED, JOB_REPS);
+  printf("  floor, wall %.2f ms = read %.2f + FFT pairs %.2f (%zu lengths) + default "
+         "stepping %.2f\n        CPU %.2f ms = %.2f + %.2f + %.2f\n",
+         1e3 * fl, 1e3 * pw[0], 1e3 * pw[1], nlen, 1e3 * pw[2], 1e3 * flc, 1e3 * pc[0],
+         1e3 * pc[1], 1e3 * pc[2]);
+  /* an empty cache first, once each (as a user's first run) */
+  double empty_w[4], empty_c[4];
+  for (size_t i = 0; i < nc; i++) {
+    char rm[160];
+    snprintf(rm, sizeof rm, "rm -rf %s/archquake", cache);
+    if (system(rm) != 0)
+      exit(1);
+    run(&c[i], &empty_w[i], &empty_c[i], 0);
+  }
+  load_average("before");
+  interleave(c, nc, JOB_REPS, NULL);
+  load_average("after");
+  double def_w[2] = {0, 0};
+  for (size_t i = 0; i < nc; i++) {
+    double w = aq_bench_median(c[i].wall, JOB_REPS), u = aq_bench_median(c[i].cpu, JOB_REPS);
+    int b = before && i >= 2; /* the before build's runs come second */
+    if (i % 2 == 0)
+      def_w[b] = w;
+    printf("  %s%-14s wall %8.2f ms (%5.2fx the floor)  cpu %8.2f ms (%5.2fx)  empty cache: "
+           "wall %.2f ms",
+           before ? (b ? "before " : "after  ") : "", c[i].label, 1e3 * w, w / fl, 1e3 * u,
+           u / flc, 1e3 * empty_w[i]);
+    if (i % 2 == 1)
+      printf("  ode/default %.2f", w / def_w[b]);
+    printf("\n");
+  }
+  free_commands(c, nc);
+  char rm[160];
+  snprintf(rm, sizeof rm, "rm -rf %s", cache);
+  if (system(rm) != 0)
+    fprintf(stderr, "bench_cli: cannot remove %s\n", cache);
+}
+
+int main(void)
+{
+  gsl_set_error_handler_off();
+  const char *before = getenv("AQ_BIN_BEFORE");
+  if (before && !before[0])
+    before = NULL;
+  startup(before);
+  main_job(before);
+  return 0;
+}

