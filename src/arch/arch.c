@@ -56,6 +56,9 @@ struct aq_arch {
   int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
+  /* aq_arch_drawing's arrays (drawing_make) */
+  double *d_joints, *d_parts, *d_outline, *d_fill, *d_mass;
+  int64_t *d_ostart, *d_fstart;
 };
 
 enum {
@@ -382,7 +385,73 @@ void aq_arch_free(aq_arch *a)
   free(a->text);
   free(a->data[0]);
   free(a->data[1]);
+  free(a->d_joints);
+  free(a->d_parts);
+  free(a->d_outline);
+  free(a->d_fill);
+  free(a->d_mass);
+  free(a->d_ostart);
+  free(a->d_fstart);
   free(a);
+}
+
+/* aq_arch_drawing's arrays from the geometry: 0, or -1 out of memory. */
+static int drawing_make(aq_arch *a)
+{
+  const aq_geom *g = &a->geom;
+  size_t n = g->p.voussoirs, no = g->outline_start[n], nf = g->fill_start[n], nm = g->p.nmass;
+  a->d_joints = malloc(4 * (n + 1) * sizeof *a->d_joints);
+  a->d_parts = malloc(4 * n * sizeof *a->d_parts);
+  a->d_outline = malloc((2 * no + 1) * sizeof *a->d_outline);
+  a->d_fill = malloc((2 * nf + 1) * sizeof *a->d_fill);
+  a->d_mass = malloc((4 * nm + 1) * sizeof *a->d_mass);
+  a->d_ostart = malloc((n + 1) * sizeof *a->d_ostart);
+  a->d_fstart = malloc((n + 1) * sizeof *a->d_fstart);
+  if (!a->d_joints || !a->d_parts || !a->d_outline || !a->d_fill || !a->d_mass ||
+      !a->d_ostart || !a->d_fstart)
+    return -1;
+  for (size_t j = 0; j <= n; j++) {
+    double *r = a->d_joints + 4 * j;
+    r[0] = g->ji[j].x, r[1] = g->ji[j].y, r[2] = g->je[j].x, r[3] = g->je[j].y;
+    a->d_ostart[j] = (int64_t)g->outline_start[j];
+    a->d_fstart[j] = (int64_t)g->fill_start[j];
+  }
+  for (size_t k = 0; k < n; k++) {
+    double *r = a->d_parts + 4 * k;
+    r[0] = g->vous[k].mass_kg, r[1] = g->vous[k].c.x, r[2] = g->vous[k].c.y;
+    r[3] = g->vous[k].inertia_kgm2;
+  }
+  for (size_t i = 0; i < no; i++)
+    a->d_outline[2 * i] = g->outline[i].x, a->d_outline[2 * i + 1] = g->outline[i].y;
+  for (size_t i = 0; i < nf; i++)
+    a->d_fill[2 * i] = g->fill[i].x, a->d_fill[2 * i + 1] = g->fill[i].y;
+  for (size_t i = 0; i < nm; i++) {
+    double *r = a->d_mass + 4 * i;
+    r[0] = (double)g->mass[i].voussoir, r[1] = g->mass[i].p.x, r[2] = g->mass[i].p.y;
+    r[3] = g->mass[i].mass_kg;
+  }
+  return 0;
+}
+
+void aq_arch_drawing_of(const aq_arch *a, aq_arch_drawing *d)
+{
+  const aq_geom *g = &a->geom;
+  size_t n = g->p.voussoirs;
+  d->shape = aq_shape_names[g->p.shape];
+  d->voussoirs = n;
+  d->joints = a->d_joints;
+  d->parts = a->d_parts;
+  d->noutline = g->outline_start[n];
+  d->nfill = g->fill_start[n];
+  d->outline = a->d_outline;
+  d->outline_start = a->d_ostart;
+  d->fill = a->d_fill;
+  d->fill_start = a->d_fstart;
+  d->nmass = g->p.nmass;
+  d->mass = a->d_mass;
+  d->stone_kg = g->stone_kg;
+  d->fill_kg = g->fill_kg;
+  d->point_kg = g->point_kg;
 }
 
 static aq_hinge_set swap_faces(const aq_hinge_set *hs)
@@ -446,6 +515,8 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
                         aq_workpath_reason(a->wp[0]));
   aq_workpath_set_impact(a->wp[0], a->wp[1]);
   aq_workpath_set_impact(a->wp[1], a->wp[0]);
+  if (drawing_make(a) != 0)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   return AQ_OK;
 }
 
