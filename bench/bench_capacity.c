@@ -28,6 +28,7 @@
 #include "bench.h"
 #include "capacity/capacity.h"
 #include "io/record.h"
+#include "job/job.h"
 #include "signal/signal.h"
 
 #define REPS 3
@@ -43,7 +44,9 @@ static const pair pairs[] = {
     {"tests/data/records/IELC180.AT2", "arches/thin.cfg", NAN},
 };
 
-static int load(const pair *p, aq_record *rec, aq_processed *proc, aq_arch **arch)
+/* The pair's record as the capacity command prepares it (job/subject.h):
+ * read, processed, viewed at factor 1. */
+static int load(const pair *p, aq_subject *subj, aq_view *view, aq_arch **arch)
 {
   aq_error e;
   aq_read_opts ro;
@@ -51,8 +54,10 @@ static int load(const pair *p, aq_record *rec, aq_processed *proc, aq_arch **arc
   aq_signal_opts so;
   aq_signal_opts_default(&so);
   aq_signal_ws *ws = aq_signal_ws_alloc();
-  int ok = ws && aq_record_read(p->record, &ro, rec, &e) == AQ_OK &&
-           aq_signal_process(rec, &so, ws, proc, &e) == AQ_OK &&
+  aq_subject_src src = {{p->record, NULL, NULL}, {NAN, NAN}, p->record};
+  aq_subject_opts o = {&ro, &so, 0, 0, 0};
+  int ok = ws && aq_subject_prepare(subj, &src, &o, ws, &e) == AQ_OK &&
+           aq_view_make(view, subj, 0, &e) == AQ_OK &&
            aq_arch_load(p->arch, arch, &e) == AQ_OK;
   aq_signal_ws_free(ws);
   if (!ok)
@@ -82,22 +87,20 @@ static int per_pair(void)
          "arch", "cor", "runs", "grid", "bisect", "time_s", "first_s", "bf10_runs", "bf10_s",
          "ratio_runs", "bftol_runs", "ratio", "intervals");
   for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++) {
-    aq_record rec;
-    aq_processed proc;
+    aq_subject subj;
+    aq_view view;
     aq_arch *arch = NULL;
-    memset(&rec, 0, sizeof rec);
-    memset(&proc, 0, sizeof proc);
-    if (load(&pairs[k], &rec, &proc, &arch) != 0)
+    memset(&view, 0, sizeof view);
+    if (load(&pairs[k], &subj, &view, &arch) != 0)
       return -1;
-    aq_capacity_job job = {.proc = &proc,
-                           .acc_mps2 = proc.acc_mps2,
+    aq_capacity_job job = {.view = &view,
+                           .reversed = 0,
                            .arch = arch,
                            .model = AQ_MODEL_WORKPATH,
                            .cor = pairs[k].cor,
                            .merge_tol_mps2 = 0,
                            .scale_max = NAN,
-                           .scan = {0.01, 1e-6},
-                           .av_mps2 = NULL};
+                           .scan = {0.01, 1e-6}};
     aq_capacity_job fine = job, hunt = job;
     fine.scan.resolution = 0.001;
     hunt.scan.resolution = 1.0;
@@ -137,8 +140,8 @@ static int per_pair(void)
     aq_capacity_free(&c);
     aq_capacity_free(&f);
     aq_arch_free(arch);
-    aq_processed_free(&proc);
-    aq_record_free(&rec);
+    aq_view_free(&view);
+    aq_subject_free(&subj);
   }
   printf("Hunt (steps of x2) and fill, against the scan:\n");
   for (size_t k = 0; k < sizeof pairs / sizeof pairs[0]; k++)

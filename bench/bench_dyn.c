@@ -2,8 +2,8 @@
  * one run (so that the ratios hold on a noisy machine).
  *
  * Cases: arches/oppenheim.cfg under two rectangular pulses (0.01 s steps)
- * and under the records in records/ (read, baseline-corrected with the
- * default processing, scaled to a PGA of 2.5 and of 5 lambda0 g), COR 0.7.
+ * and under the records in records/ (read and processed as the main job
+ * does, job/subject.h, scaled to a PGA of 2.5 and of 5 lambda0 g), COR 0.7.
  * Settings: the work path (default: time-Taylor leg; a looser tolerance;
  * records merged with --merge-tol), workpath-quad (Chebyshev panels, two
  * settings), the ode model at several rtol, the paper model.  Reference:
@@ -35,6 +35,7 @@
 #include "arch/stepper.h"
 #include "bench.h"
 #include "io/record.h"
+#include "job/job.h"
 #include "signal/signal.h"
 #include "units.h"
 
@@ -55,7 +56,6 @@ typedef struct {
 typedef struct {
   char name[64];
   int is_record;
-  aq_processed proc; /* records */
   double pulse_a, pulse_dur, pulse_end;
   aq_steps steps[3]; /* merge 0, 0.001 g, 0.01 g (records); [0] for pulses */
 } bcase;
@@ -177,39 +177,32 @@ int main(void)
     double pga_ratio = SCALES[ii / nn];
     char path[512];
     snprintf(path, sizeof path, "records/%s", names[i]);
-    aq_record rec;
     aq_read_opts ro;
     memset(&ro, 0, sizeof ro);
     aq_signal_opts so;
     aq_signal_opts_default(&so);
     bcase *c = &cs[nc];
-    if (aq_record_read(path, &ro, &rec, &e) != AQ_OK) {
+    /* the record as the main job prepares it (job/subject.h), scaled to
+       pga_ratio lambda0 g as --scale-to-pga would */
+    aq_subject subj;
+    aq_subject_src src = {{path, NULL, NULL}, {NAN, NAN}, path};
+    aq_subject_opts o = {&ro, &so, 0, 0, 0};
+    if (aq_subject_prepare(&subj, &src, &o, ws, &e) != AQ_OK || !(subj.pga_g > 0)) {
       fprintf(stderr, "bench_dyn: skip %s: %s\n", path, e.message);
+      aq_subject_free(&subj);
       continue;
     }
-    aq_processed pr;
-    aq_im im;
-    int ok = aq_signal_process(&rec, &so, ws, &pr, &e) == AQ_OK &&
-             aq_im_compute(&pr, &im, &e) == AQ_OK && im.pga_g > 0;
-    aq_record_free(&rec);
-    if (!ok) {
-      fprintf(stderr, "bench_dyn: skip %s: %s\n", path, e.message);
-      continue;
-    }
-    so.scale = pga_ratio * p->lambda0 * p->g_mps2 / AQ_G0_MPS2 / im.pga_g;
-    aq_processed_free(&pr);
-    if (aq_record_read(path, &ro, &rec, &e) != AQ_OK ||
-        aq_signal_process(&rec, &so, ws, &c->proc, &e) != AQ_OK) {
-      aq_record_free(&rec);
-      continue;
-    }
-    aq_record_free(&rec);
+    aq_scale_rule rule = {NULL, 0, pga_ratio * p->lambda0 * p->g_mps2 / AQ_G0_MPS2, 0};
+    double scale = aq_scale_factor(&rule, 0, subj.pga_g);
     c->is_record = 1;
     snprintf(c->name, sizeof c->name, "%.24s x%.1f", names[i], pga_ratio);
     int good = 1;
-    for (int k = 0; k < 3; k++)
-      good &= aq_steps_from_processed(&c->proc, MERGES_G[k] * AQ_G0_MPS2,
-                                      &c->steps[k], &e) == AQ_OK;
+    for (int k = 0; k < 3; k++) {
+      double peak;
+      good &= aq_subject_steps(&subj, 0, scale, scale, MERGES_G[k] * AQ_G0_MPS2, &c->steps[k],
+                               &peak, &e) == AQ_OK;
+    }
+    aq_subject_free(&subj);
     if (good)
       nc++;
   }
@@ -350,7 +343,6 @@ int main(void)
   for (size_t c = 0; c < nc; c++) {
     for (int k = 0; k < 3; k++)
       aq_steps_free(&cs[c].steps[k]);
-    aq_processed_free(&cs[c].proc);
   }
   aq_arch_free(a);
   return 0;

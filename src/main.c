@@ -21,6 +21,7 @@ static const struct {
     {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
     {"compare", aq_cmd_compare}, {"plot", aq_cmd_plot},
     {"capacity", aq_cmd_capacity}, {"report", aq_cmd_report},
+    {"spectrum", aq_cmd_spectrum},
 };
 
 /* The main job's usage and the command list, on stdout. */

@@ -53,12 +53,22 @@ int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
  * *n (if not NULL) its length.  NULL if it cannot be read. */
 char *aq_test_read_file(const char *path, size_t *n);
 
+/* Field k (0-based) of line row (0-based: 0 is a TSV's header) of the
+ * text tsv, into buf[n] ("" if there is none); returns buf. */
+const char *aq_test_tsv_field(const char *tsv, int row, int k, char *buf, size_t n);
+
 /* Lines (newlines) in s. */
 size_t aq_test_count_lines(const char *s);
 
 /* Copy the first num/den of the bytes of file from to file to (1, 1: all of
  * it; 1, 3: a truncated copy).  Returns 1 on success. */
 int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den);
+
+/* Write the file from, with its first occurrence of text a replaced by b
+ * (a NULL: unchanged), to dir/name; the path into out.  A missing a fails
+ * a check.  Returns 1 on success. */
+int aq_test_edited_copy(const char *from, const char *a, const char *b, const char *dir,
+                        const char *name, char *out, size_t cap);
 
 /* A fresh empty directory for this test under build/tmp (path in buf). */
 const char *aq_test_tmpdir(char *buf, size_t cap);

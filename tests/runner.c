@@ -161,6 +161,26 @@ size_t aq_test_count_lines(const char *s)
   return n;
 }
 
+const char *aq_test_tsv_field(const char *tsv, int row, int k, char *buf, size_t n)
+{
+  const char *p = tsv;
+  for (int r = 0; r < row && p; r++) {
+    p = strchr(p, '\n');
+    if (p)
+      p++;
+  }
+  for (int i = 0; i < k && p; i++) {
+    p = strpbrk(p, "\t\n");
+    p = p && *p == '\t' ? p + 1 : NULL;
+  }
+  buf[0] = '\0';
+  if (!p)
+    return buf;
+  size_t m = strcspn(p, "\t\n");
+  snprintf(buf, n, "%.*s", (int)(m < n ? m : n - 1), p);
+  return buf;
+}
+
 int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den)
 {
   size_t n = 0;
@@ -171,6 +191,31 @@ int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den
   if (f)
     ok &= fclose(f) == 0;
   free(b);
+  return ok;
+}
+
+int aq_test_edited_copy(const char *from, const char *a, const char *b, const char *dir,
+                        const char *name, char *out, size_t cap)
+{
+  size_t n;
+  char *buf = aq_test_read_file(from, &n);
+  if (!aq_check(buf != NULL, "read %s", from))
+    return 0;
+  snprintf(out, cap, "%s/%s", dir, name);
+  char *at = a ? strstr(buf, a) : NULL;
+  int ok = !a || aq_check(at != NULL, "%s holds \"%s\"", from, a);
+  FILE *f = ok ? fopen(out, "wb") : NULL;
+  ok = f != NULL;
+  if (ok && at) {
+    size_t pre = (size_t)(at - buf), la = strlen(a);
+    ok = fwrite(buf, 1, pre, f) == pre && fputs(b, f) >= 0 &&
+         fwrite(at + la, 1, n - pre - la, f) == n - pre - la;
+  } else if (ok) {
+    ok = fwrite(buf, 1, n, f) == n;
+  }
+  if (f && fclose(f) != 0)
+    ok = 0;
+  free(buf);
   return ok;
 }
 

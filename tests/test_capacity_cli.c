@@ -27,26 +27,7 @@
 static const double RES = 0.01, TOL = 1e-6;
 enum { BIG = 1 << 20, MAXT = 64 };
 
-/* Field k (0-based) of data row `row` (1-based after the header) of a TSV. */
-static const char *field(const char *tsv, int row, int k, char *buf, size_t n)
-{
-  const char *p = tsv;
-  for (int r = 0; r < row && p; r++) {
-    p = strchr(p, '\n');
-    if (p)
-      p++;
-  }
-  for (int i = 0; i < k && p; i++) {
-    p = strpbrk(p, "\t\n");
-    p = p && *p == '\t' ? p + 1 : NULL;
-  }
-  buf[0] = '\0';
-  if (!p)
-    return buf;
-  size_t m = strcspn(p, "\t\n");
-  snprintf(buf, n, "%.*s", (int)(m < n ? m : n - 1), p);
-  return buf;
-}
+#define field aq_test_tsv_field /* field k of row (1-based after the header) */
 
 /* Changes of verdict from a collapse_intervals cell, kept in [a, b]:
  * each interval gives its lo (collapse starts) and a finite hi. */
@@ -330,6 +311,35 @@ AQ_TEST(capacity_cli_bad_input)
   rc = aq_test_run(args, out, BIG, err, sizeof err);
   aq_check(rc == 3, "unwritable --text: exit %d (%s)", rc, err);
   free(out);
+}
+
+/* A channel the file identifies as vertical (the K-NET UD file) is not
+ * horizontal excitation: capacity refuses it as the main job does (both
+ * read it through job/subject.h), and runs it with --accept-vertical.
+ * capacity used to run it silently. */
+AQ_TEST(capacity_cli_vertical_channel_refused_as_by_the_main_job)
+{
+  static char out[16384], main_out[16384];
+  char err[8192], cell[256], mcell[256];
+  const char *ud = "tests/data/records/AOM0170806140843.UD";
+  char args[1024];
+  snprintf(args, sizeof args,
+           "capacity %s --arch arches/thin.cfg --resolution 0.2 --polarity normal", ud);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && strcmp(field(out, 1, 3, cell, sizeof cell), "read:eunsupported") == 0 &&
+               strstr(err, "vertical") && strstr(err, "--accept-vertical") && strstr(err, ud),
+           "capacity of a vertical channel: exit %d, status %s, %s", rc, cell, err);
+  snprintf(args, sizeof args, "%s --arch arches/thin.cfg", ud);
+  int mrc = aq_test_run(args, main_out, sizeof main_out, err, sizeof err);
+  aq_check(mrc == 1 && strcmp(field(main_out, 1, 5, mcell, sizeof mcell), cell) == 0,
+           "the main job's status is the same: %s (exit %d)", mcell, mrc);
+  snprintf(args, sizeof args,
+           "capacity %s --accept-vertical --arch arches/thin.cfg --resolution 0.2 "
+           "--polarity normal",
+           ud);
+  rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && strcmp(field(out, 1, 3, cell, sizeof cell), "ok") == 0,
+           "with --accept-vertical it runs: exit %d, status %s", rc, cell);
 }
 
 AQ_TEST(capacity_cli_same_for_every_j)

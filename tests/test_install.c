@@ -84,7 +84,7 @@ static void check_lines_in(const char *text, const char *page, const char *what)
  * "](docs/figures/x.png)") names an installed file. */
 static void check_readme_links(const char *inst)
 {
-  char path[3 * PATH_MAX];
+  char path[4 * PATH_MAX]; /* inst is at most 3 * PATH_MAX */
   snprintf(path, sizeof path, "%s/share/doc/archquake/README.md", inst);
   FILE *f = fopen(path, "r");
   if (!aq_check(f != NULL, "open %s", path))

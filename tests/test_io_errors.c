@@ -257,14 +257,28 @@ AQ_TEST(io_errors_sac)
   put_i32(c, 4 * 86, 7);
   snprintf(p, sizeof p, "%s/vel.SAC", d);
   put(p, c, n);
-  expect_fail(p, 1, NEED("vel.SAC", "IDEP", "IVEL", "velocity", "--units"));
+  expect_fail(p, 1, NEED("vel.SAC", "IDEP", "IVEL", "velocity", "acceleration only"));
+  /* not an acceleration whatever --units says */
+  snprintf(a, sizeof a, "--units g --units '*=gal' %s", p);
+  expect_fail(a, 1, NEED("vel.SAC", "header IDEP: IVEL", "expected ground acceleration"));
   put_i32(c, 4 * 86, 6);
   snprintf(p, sizeof p, "%s/disp.SAC", d);
   put(p, c, n);
-  expect_fail(p, 1, NEED("disp.SAC", "IDEP", "IDISP", "--units"));
+  expect_fail(p, 1, NEED("disp.SAC", "IDEP", "IDISP", "displacement", "acceleration only"));
+  snprintf(a, sizeof a, "--units m/s2 %s", p);
+  expect_fail(a, 1, NEED("disp.SAC", "header IDEP: IDISP", "expected ground acceleration"));
   /* IACC with values in g: implausible as nm/s2 */
   expect_fail(REC_DIR "20190706031952.CJ.T001230.HNE.sac", 1,
-              NEED("HNE.sac", "nm/s2", "implausible", "plausible in g", "--units '"));
+              NEED("HNE.sac", "nm/s2", "implausible", "header IDEP: IACC", "what the file states",
+                   "--units '"));
+  {
+    /* no other units offered for what the file states */
+    char out[4096], err[4096];
+    aq_test_run("info " REC_DIR "20190706031952.CJ.T001230.HNE.sac", out, sizeof out, err,
+                sizeof err);
+    aq_check(!strstr(err, "plausible in") && !strstr(err, "g (0.0"),
+             "stated units second-guessed: %s", err);
+  }
   free(c);
   free(t);
 }
@@ -310,7 +324,9 @@ AQ_TEST(io_errors_csv)
   expect_fail(p, 1, NEED("nounits.csv", "units", "found none", "--units"));
   snprintf(p, sizeof p, "%s/vel.csv", d);
   put_text(p, "time,vel (cm/s)\n0,0.1\n0.01,0.2\n");
-  expect_fail(p, 1, NEED("vel.csv", "vel (cm/s)", "expected acceleration units", "--units"));
+  expect_fail(p, 1, NEED("vel.csv", "vel (cm/s)", "velocity", "acceleration only"));
+  snprintf(a, sizeof a, "--units g %s", p);
+  expect_fail(a, 1, NEED("vel.csv", "vel (cm/s)", "expected ground acceleration"));
   snprintf(p, sizeof p, "%s/single.txt", d);
   put_text(p, "acc_g\n0.1\n0.2\n0.3\n");
   expect_fail(p, 1, NEED("single.txt:2: dt: no time column", "--dt"));

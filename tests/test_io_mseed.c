@@ -22,52 +22,48 @@
 #define SAME_EVENT_REL 0.01 /* the issue's agreement between two formats */
 #define MSEED_RECLEN 4096   /* the CE.58360 files: 4 records of 4096 bytes */
 
-static int load_xml(const char *path, const char *from, const char *to, aq_response *resp,
-                    char *msg, size_t cap)
+/* The StationXML at path with text `from` replaced once by `to` (from
+ * NULL: unchanged) written to a file of the test's directory, named name;
+ * its path into out.  Returns 1 on success. */
+static int xml_file(const char *path, const char *from, const char *to, const char *name,
+                    char *out, size_t cap)
+{
+  char dir[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  return aq_test_edited_copy(path, from, to, dir, name, out, cap);
+}
+
+/* Parse mseed at path with the responses xml[0..nxml) (as --response gives
+ * them); AQ status, message in msg. */
+static aq_status with_responses(const char *path, const char *const *xml, size_t nxml,
+                                aq_raw_file *raw, char *msg, size_t cap)
 {
   size_t n;
   char *buf = aq_test_read_file(path, &n);
+  memset(raw, 0, sizeof *raw);
   if (!aq_check(buf != NULL, "read %s", path))
-    return 0;
-  char *work = buf;
-  if (from) {
-    char *at = strstr(buf, from);
-    aq_check(at != NULL, "%s holds %s", path, from);
-    size_t lf = strlen(from), lt = strlen(to), pre = (size_t)(at - buf);
-    work = malloc(n - lf + lt + 1);
-    memcpy(work, buf, pre);
-    memcpy(work + pre, to, lt);
-    memcpy(work + pre + lt, at + lf, n - pre - lf + 1);
-    n = n - lf + lt;
-    free(buf);
-  }
+    return AQ_EIO;
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  for (size_t i = 0; i < nxml; i++)
+    ro.responses[ro.nresponses++] = xml[i];
   aq_error e;
   aq_error_clear(&e);
-  aq_status s = aq_stationxml_parse((const unsigned char *)work, n, path, resp, &e);
+  aq_status s = aq_raw_parse((const unsigned char *)buf, n, path, &ro, raw, &e);
   aq_error_format(&e, msg, cap);
-  free(work);
-  return s == AQ_OK;
+  free(buf);
+  return s;
 }
 
-/* Parse mseed at path and apply the response; AQ status, message in msg. */
-static aq_status with_response(const char *path, const aq_response *resp, const char *xml,
-                               aq_raw_file *raw, char *msg, size_t cap)
+static aq_status with_response(const char *path, const char *xml, aq_raw_file *raw, char *msg,
+                               size_t cap)
 {
-  if (!aq_test_raw_load(aq_mseed_parse, path, raw))
-    return AQ_EFORMAT;
-  aq_error e;
-  aq_error_clear(&e);
-  aq_status s = aq_stationxml_apply(resp, xml, raw, path, &e);
-  aq_error_format(&e, msg, cap);
-  return s;
+  return with_responses(path, &xml, 1, raw, msg, cap);
 }
 
 AQ_TEST(io_mseed_ce58360_with_stationxml)
 {
-  aq_response resp;
   char msg[1400];
-  if (!aq_check(load_xml(CE_XML, NULL, NULL, &resp, msg, sizeof msg), "%s", msg))
-    return;
   static const char *comp[3] = {"E", "N", "Z"};
   static const double sens[3] = {152378.61058, 152444.97686, 157251.15408};
   static const double raw_g[3] = {0.08312, 0.05354, 1.031};
@@ -77,7 +73,7 @@ AQ_TEST(io_mseed_ce58360_with_stationxml)
   const char *path[3] = {CE_FILE("E"), CE_FILE("N"), CE_FILE("Z")};
   for (int i = 0; i < 3; i++) {
     aq_raw_file r;
-    aq_status s = with_response(path[i], &resp, CE_XML, &r, msg, sizeof msg);
+    aq_status s = with_response(path[i], CE_XML, &r, msg, sizeof msg);
     if (!aq_check(s == AQ_OK && r.nchan == 1, "HN%s: %s", comp[i], msg)) {
       aq_raw_file_free(&r);
       continue;
@@ -100,21 +96,16 @@ AQ_TEST(io_mseed_ce58360_with_stationxml)
              "HN%s az %g dip %g vertical %d", comp[i], c->azimuth_deg, c->dip_deg, c->vertical);
     aq_raw_file_free(&r);
   }
-  aq_response_free(&resp);
 }
 
 /* CI.CLC HNE: miniSEED + StationXML here, and the SAC that mseed2sac wrote
  * from it read by the SAC reader; demeaned PGA 0.3433 g in PROVENANCE. */
 AQ_TEST(io_mseed_ci_clc_agrees_with_sac)
 {
-  aq_response resp;
   char msg[1400];
-  if (!aq_check(load_xml(REC_DIR "CI.CLC.xml", NULL, NULL, &resp, msg, sizeof msg), "%s", msg))
-    return;
   aq_raw_file r;
-  aq_status s = with_response(REC_DIR "CI.CLC..HNE.mseed", &resp, REC_DIR "CI.CLC.xml", &r, msg,
+  aq_status s = with_response(REC_DIR "CI.CLC..HNE.mseed", REC_DIR "CI.CLC.xml", &r, msg,
                               sizeof msg);
-  aq_response_free(&resp);
   if (!aq_check(s == AQ_OK && r.nchan == 1, "%s", msg)) {
     aq_raw_file_free(&r);
     return;
@@ -218,55 +209,58 @@ AQ_TEST(io_mseed_gaps_overlaps_truncation)
 
 AQ_TEST(io_mseed_stationxml_choices_and_refusals)
 {
-  char msg[1400];
+  char msg[1400], xp[700];
   aq_response resp;
   aq_raw_file r;
   /* another station's StationXML: no matching channel */
-  if (load_xml(REC_DIR "CI.CLC.xml", NULL, NULL, &resp, msg, sizeof msg)) {
-    aq_check(with_response(CE_FILE("E"), &resp, REC_DIR "CI.CLC.xml", &r, msg, sizeof msg) ==
-                     AQ_EUNITS &&
-                 aq_test_msg_names(msg, "CI.CLC.xml", "CE.58360..HNE"),
-             "no channel: %s", msg);
-    aq_raw_file_free(&r);
-    aq_response_free(&resp);
-  }
+  aq_check(with_response(CE_FILE("E"), REC_DIR "CI.CLC.xml", &r, msg, sizeof msg) ==
+                   AQ_EUNITS &&
+               strstr(msg, "CI.CLC.xml") && strstr(msg, "CE.58360..HNE") &&
+               strstr(msg, "got none"),
+           "no channel: %s", msg);
+  aq_raw_file_free(&r);
   /* the only HNE epoch starts after the record */
-  if (load_xml(CE_XML, "endDate=\"3000-01-01T00:00:00\" locationCode=\"\" startDate=\"2008-01-23",
-               "endDate=\"3000-01-01T00:00:00\" locationCode=\"\" startDate=\"2020-01-23", &resp,
-               msg, sizeof msg)) {
-    aq_check(with_response(CE_FILE("E"), &resp, CE_XML, &r, msg, sizeof msg) == AQ_EUNITS &&
-                 aq_test_msg_names(msg, CE_XML, "epoch") && strstr(msg, "2019-10-15T05:33:21"),
+  if (xml_file(CE_XML, "endDate=\"3000-01-01T00:00:00\" locationCode=\"\" startDate=\"2008-01-23",
+               "endDate=\"3000-01-01T00:00:00\" locationCode=\"\" startDate=\"2020-01-23",
+               "later.xml", xp, sizeof xp)) {
+    aq_check(with_response(CE_FILE("E"), xp, &r, msg, sizeof msg) == AQ_EUNITS &&
+                 strstr(msg, "later.xml") && strstr(msg, "epochs") &&
+                 strstr(msg, "2019-10-15T05:33:21") && strstr(msg, "2020-01-23"),
              "no epoch: %s", msg);
     aq_raw_file_free(&r);
-    aq_response_free(&resp);
   }
-  /* velocity input units: refused */
-  if (load_xml(CE_XML, "<Name>M/S**2</Name>", "<Name>M/S</Name>", &resp, msg, sizeof msg)) {
-    aq_check(with_response(CE_FILE("E"), &resp, CE_XML, &r, msg, sizeof msg) == AQ_EUNITS &&
-                 aq_test_msg_names(msg, CE_XML, "InputUnits") && strstr(msg, "\"M/S\""),
-             "velocity: %s", msg);
+  /* velocity input units: the record is velocity (refused when decided) */
+  if (xml_file(CE_XML, "<Name>M/S**2</Name>", "<Name>M/S</Name>", "vel.xml", xp, sizeof xp)) {
+    if (aq_check(with_response(CE_FILE("E"), xp, &r, msg, sizeof msg) == AQ_OK, "vel: %s", msg))
+      aq_check(r.chan[0].quantity == AQ_QUANTITY_VELOCITY &&
+                   strstr(r.chan[0].quantity_said, "M/S"),
+               "velocity stated: %d %s", r.chan[0].quantity, r.chan[0].quantity_said);
     aq_raw_file_free(&r);
-    aq_response_free(&resp);
+  }
+  /* input units volts: refused naming them */
+  if (xml_file(CE_XML, "<Name>M/S**2</Name>", "<Name>V</Name>", "volts.xml", xp, sizeof xp)) {
+    aq_check(with_response(CE_FILE("E"), xp, &r, msg, sizeof msg) == AQ_EUNITS &&
+                 aq_test_msg_names(msg, "volts.xml", "InputUnits") && strstr(msg, "\"V\""),
+             "volts: %s", msg);
+    aq_raw_file_free(&r);
   }
   /* input units g: counts per g / 9.80665 */
-  if (load_xml(CE_XML, "<Name>M/S**2</Name>", "<Name>g</Name>", &resp, msg, sizeof msg)) {
-    if (aq_check(with_response(CE_FILE("E"), &resp, CE_XML, &r, msg, sizeof msg) == AQ_OK,
-                 "g: %s", msg))
+  if (xml_file(CE_XML, "<Name>M/S**2</Name>", "<Name>g</Name>", "g.xml", xp, sizeof xp)) {
+    if (aq_check(with_response(CE_FILE("E"), xp, &r, msg, sizeof msg) == AQ_OK, "g: %s", msg))
       aq_check_rel(r.chan[0].counts_per_mps2, 152378.61058 / G_TO_MPS2, 1e-12, "per g");
     aq_raw_file_free(&r);
-    aq_response_free(&resp);
   }
   /* nm/s2 and a negative sensitivity (reversed polarity), sign kept */
-  if (load_xml(CE_XML, "<Value>152378.61058</Value>\n      <Frequency>1.0</Frequency>\n      "
+  if (xml_file(CE_XML, "<Value>152378.61058</Value>\n      <Frequency>1.0</Frequency>\n      "
                        "<InputUnits>\n       <Name>M/S**2</Name>",
                "<Value>-1.5237861058e-4</Value>\n      <Frequency>1.0</Frequency>\n      "
                "<InputUnits>\n       <Name>NM/S**2</Name>",
-               &resp, msg, sizeof msg)) {
-    if (aq_check(with_response(CE_FILE("E"), &resp, CE_XML, &r, msg, sizeof msg) == AQ_OK,
+               "neg.xml", xp, sizeof xp)) {
+    if (aq_check(with_response(CE_FILE("E"), xp, &r, msg, sizeof msg) == AQ_OK,
                  "nm/s2: %s", msg))
-      aq_check_rel(r.chan[0].counts_per_mps2, -152378.61058, 1e-9, "negative, per nm/s2 (%.10g)", r.chan[0].counts_per_mps2);
+      aq_check_rel(r.chan[0].counts_per_mps2, -152378.61058, 1e-9, "negative, per nm/s2 (%.10g)",
+                   r.chan[0].counts_per_mps2);
     aq_raw_file_free(&r);
-    aq_response_free(&resp);
   }
   /* a StationXML cut in the middle */
   size_t n;

@@ -431,3 +431,37 @@ AQ_TEST(io_units_sac_iacc_is_nm_per_s2)
     aq_record_free(&r);
   }
 }
+
+/* E, the last sample's time, against B + (NPTS-1) DELTA: test.sac has B
+ * 10 s, DELTA 1 s, NPTS 100, E 109 s (ObsPy's values); E 0.6 s later is
+ * more than half a sample off and refused naming both times, 0.4 s later
+ * is not; E undefined (-12345) is not checked. */
+AQ_TEST(io_sac_end_time_checked)
+{
+  size_t n;
+  unsigned char *b = (unsigned char *)aq_test_read_file(REC_DIR "test.sac", &n);
+  if (!aq_check(b && n == 1032, "read test.sac"))
+    return;
+  static const struct {
+    float e;
+    int ok;
+  } c[] = {{109.0f, 1}, {109.6f, 0}, {108.4f, 0}, {109.4f, 1}, {-12345.0f, 1}};
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_MPS2;
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    memcpy(b + 4 * 6, &c[i].e, 4); /* word 6, little-endian as the file */
+    aq_record r;
+    aq_error e;
+    aq_error_clear(&e);
+    aq_status s = aq_record_parse(b, n, "e.sac", &ro, &r, &e);
+    char want[64];
+    snprintf(want, sizeof want, "got E = %.9g s", (double)c[i].e);
+    aq_check(c[i].ok ? s == AQ_OK
+                     : s == AQ_EFORMAT && strcmp(e.field, "header E") == 0 &&
+                           strstr(e.message, "= 109 s") && strstr(e.message, want),
+             "E %g: status %d: %s", (double)c[i].e, (int)s, e.message);
+    if (s == AQ_OK)
+      aq_record_free(&r);
+  }
+  free(b);
+}

@@ -11,6 +11,8 @@
  * dropped and its record runs again. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -71,6 +73,53 @@ static pid_t rs_spawn(const rs_suite *s, const char *extra, const char *out, con
     _exit(127);
   }
   return pid;
+}
+
+/* As rs_spawn, but stdout goes through a pipe to a `cat > out` whose pid
+ * is put in *cat (reap it after the suite's process has ended, before out
+ * is read).  The kill test needs it: a SIGKILL can end a write(2) to a
+ * regular file short at a page boundary (the kernel checks for a fatal
+ * signal between pages), which no program can prevent, whereas a write of
+ * at most PIPE_BUF bytes to a pipe is atomic.  Through the pipe, the test
+ * sees exactly what the program promises: each row one write(2). */
+static pid_t rs_spawn_piped(const rs_suite *s, const char *extra, const char *out,
+                            const char *err, pid_t *cat)
+{
+  static char sh[24000];
+  int fd[2];
+  *cat = -1;
+  if (pipe(fd) != 0)
+    return -1;
+  *cat = fork();
+  if (*cat == 0) {
+    close(fd[1]);
+    int o = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (o < 0 || dup2(fd[0], 0) < 0 || dup2(o, 1) < 0)
+      _exit(127);
+    execl("/bin/cat", "cat", (char *)NULL);
+    _exit(127);
+  }
+  snprintf(sh, sizeof sh, "exec %s %s %s 2>'%s'", aq_test_bin(), s->cmd, extra, err);
+  pid_t pid = *cat > 0 ? fork() : -1;
+  if (pid == 0) {
+    close(fd[0]);
+    if (dup2(fd[1], 1) < 0)
+      _exit(127);
+    close(fd[1]);
+    execl("/bin/sh", "sh", "-c", sh, (char *)NULL);
+    _exit(127);
+  }
+  close(fd[0]);
+  close(fd[1]);
+  return pid;
+}
+
+/* Wait for the `cat` of rs_spawn_piped: out is then complete. */
+static void rs_reap(pid_t cat)
+{
+  int st;
+  if (cat > 0)
+    waitpid(cat, &st, 0);
 }
 
 /* Run to the end; the exit status, or -1. */
@@ -258,7 +307,13 @@ AQ_TEST(suite_resume_after_random_kills)
        * previous run's, its rows and its "done before" count */
       unlink(out);
       unlink(err);
-      pid_t pid = rs_spawn(&s, extra, out, err);
+      pid_t cat;
+      pid_t pid = rs_spawn_piped(&s, extra, out, err, &cat);
+      if (pid < 0) {
+        aq_check(0, "could not start the suite: %s", strerror(errno));
+        rs_reap(cat);
+        break;
+      }
       /* a random moment in the start-up or in the first eighth of the
        * work after it (a whole run is about 1 s under the sanitizers, a
        * good part of it start-up on a loaded machine): each run does a
@@ -273,6 +328,7 @@ AQ_TEST(suite_resume_after_random_kills)
         kill(pid, SIGKILL);
         waitpid(pid, &st, 0);
       }
+      rs_reap(cat);
       if (WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL && rs_exists(h5)) {
         /* killed after the results file was complete (while exiting): it
          * must be the whole suite's; the TSV may lack the last rows */

@@ -9,11 +9,22 @@
 #ifndef AQ_APP_H
 #define AQ_APP_H
 
+#include <stddef.h>
+
 #define AQ_VERSION "0.1.0"
 
 /* The exact build: "VERSION (git describe)" as embedded by the Makefile,
  * or VERSION alone when it was built outside a git checkout. */
 const char *aq_build_string(void);
+
+/* argv joined by spaces, words with shell-special characters in single
+ * quotes (malloc'd; NULL when out of memory): a results file's
+ * command_line, taken before getopt_long permutes argv. */
+char *aq_app_command_line(int argc, char **argv);
+
+/* The time now, ISO-8601 UTC ("2024-05-01T12:00:00Z"; "unknown" if the
+ * clock cannot say), into buf[n]: a results file's created. */
+void aq_app_now_utc(char *buf, size_t n);
 
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
 
@@ -31,6 +42,7 @@ int aq_cmd_domain(int argc, char **argv);    /* archquake domain */
 int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
 int aq_cmd_plot(int argc, char **argv);      /* archquake plot */
 int aq_cmd_capacity(int argc, char **argv);  /* archquake capacity */
+int aq_cmd_spectrum(int argc, char **argv);  /* archquake spectrum */
 int aq_cmd_report(int argc, char **argv);    /* archquake report */
 
 /* With [hinges], warn on stderr (one line naming path and both sets) when

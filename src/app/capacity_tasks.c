@@ -12,21 +12,59 @@
 #include "capacity_tasks.h"
 #include "opt.h"
 
-/* aq_cap_prepare, its lines on stderr only when loud (a follower prepares
- * quietly: the leader reports each subject once, when it prepares it). */
+void aq_cap_item_free(aq_cap_item *it)
+{
+  for (size_t z = 0; it->view && z < it->naz; z++)
+    aq_view_free(&it->view[z]);
+  free(it->view);
+  free(it->im);
+  aq_subject_free(&it->subj);
+  memset(it, 0, sizeof *it);
+}
+
+/* The subject's views at every azimuth, each with its measures. */
+static aq_status make_views(const aq_cap_setup *S, aq_cap_item *it, aq_error *err)
+{
+  const aq_orient_opts *or = S->orient;
+  size_t naz = it->subj.motion ? or->nazimuth : 1;
+  it->view = calloc(naz, sizeof *it->view);
+  it->im = calloc(naz, sizeof *it->im);
+  if (!it->view || !it->im)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
+  aq_status s = AQ_OK;
+  for (size_t z = 0; s == AQ_OK && z < naz; z++) {
+    s = aq_view_make(&it->view[z], &it->subj, it->subj.motion ? or->azimuths_deg[z] : 0.0,
+                     err);
+    it->naz = z + 1;
+    if (s == AQ_OK)
+      s = aq_im_compute(&it->view[z].at, &it->im[z], err);
+  }
+  aq_subject_shed(&it->subj); /* the views hold what the runs need */
+  return s;
+}
+
+/* Read, process and view subject r; its lines on stderr only when loud (a
+ * follower prepares quietly: the leader reports each subject once, when it
+ * prepares it). */
 static void prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it,
                     int loud)
 {
+  memset(it, 0, sizeof *it);
   aq_error_clear(&it->err);
   const aq_orient_opts *or = S->orient;
-  aq_status s = aq_capacity_input_prepare(&it->in, S->paths[r], or->vertical, S->phi_deg[r],
-                                          S->ro, S->po, ws, or->azimuths_deg, or->nazimuth,
-                                          S->polarity != AQ_POLARITY_NORMAL, &it->err);
-  aq_summary_status(it->status, sizeof it->status, it->in.stage ? it->in.stage : "read", s);
+  aq_subject_src src = {{S->paths[r][0], S->paths[r][1], S->paths[r][2]},
+                        {S->phi_deg[r][0], S->phi_deg[r][1]},
+                        S->labels[r]};
+  aq_subject_opts so = {S->ro, S->po, or->vertical, 0, 0};
+  aq_status s = aq_subject_prepare(&it->subj, &src, &so, ws, &it->err);
+  const char *stage = it->subj.stage;
+  if (s == AQ_OK)
+    s = make_views(S, it, &it->err);
+  aq_summary_status(it->status, sizeof it->status, stage, s);
   it->ok = s == AQ_OK;
   if (loud && !it->ok)
     aq_error_print(&it->err, stderr);
-  else if (loud && S->paths[r][1] && S->paths[r][2] && !or->vertical)
+  else if (loud && it->subj.v_ignored)
     fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
             S->paths[r][2]);
 }
@@ -40,12 +78,8 @@ void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
 static aq_capacity_job job_of(const aq_cap_setup *S, const aq_cap_item *it, size_t a,
                               size_t p, size_t z)
 {
-  const aq_capacity_input *in = &it->in;
-  size_t m = aq_capacity_input_n(in) ? aq_capacity_input_n(in) : 1;
-  return (aq_capacity_job){&in->proc[0],
-                           (S->pols[p] == AQ_POLARITY_REVERSED ? in->neg : in->acc) + z * m,
-                           S->arches[a], S->model, S->cor, S->merge_tol_mps2, S->scale_max,
-                           S->scan, in->run_v ? in->proc[2].acc_mps2 : NULL};
+  return (aq_capacity_job){&it->view[z], S->pols[p] == AQ_POLARITY_REVERSED, S->arches[a],
+                           S->model, S->cor, S->merge_tol_mps2, S->scale_max, S->scan};
 }
 
 /* ---- here: one pool over every (subject, arch, polarity, azimuth) -------- */
@@ -61,7 +95,7 @@ static int run_here(const aq_cap_setup *S, const aq_cap_item *R, aq_capacity *C,
   int rc = jobs && slot && out ? 0 : -1;
   for (size_t i = 0; rc == 0 && i < njob; i++) {
     size_t t = i / nout, r = t / S->na, p = i % nout / S->nz, z = i % S->nz;
-    if (!R[r].ok || z >= R[r].in.naz)
+    if (!R[r].ok || z >= R[r].naz)
       continue;
     jobs[nrun] = job_of(S, &R[r], t % S->na, p, z);
     slot[nrun++] = i;
@@ -112,8 +146,7 @@ static void evict_one(tasks *X)
       best = r;
   if (best == X->S->nrec)
     return;
-  aq_capacity_input_free(&X->R[best].in);
-  memset(&X->R[best], 0, sizeof X->R[best]);
+  aq_cap_item_free(&X->R[best]);
   X->state[best] = SUBJ_NONE;
   X->nready--;
 }
@@ -170,7 +203,7 @@ static void run_task(tasks *X, size_t t, aq_capacity *out)
         o->status = AQ_CAPACITY_FAILED;
         o->run_status = it->err.status;
         o->err = it->err;
-      } else if (z < it->in.naz) {
+      } else if (z < it->naz) {
         aq_capacity_job job = job_of(S, it, a, p, z);
         aq_capacity_run_jobs(&job, 1, o);
       }
@@ -277,7 +310,7 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
     ensure(&X, r); /* every subject, for the outputs (none left without arches) */
   if (!leader)
     for (size_t r = 0; r < S->nrec; r++)
-      aq_capacity_input_free(&R[r].in);
+      aq_cap_item_free(&R[r]);
   aq_signal_ws_free(X.ws);
   free(X.state);
   free(X.users);

@@ -22,18 +22,26 @@
 
 /* ---- the capacity tasks ------------------------------------------------- */
 
-/* A subject (record or ground motion) as read, processed and projected, or
- * the stage where it failed (status, err). */
+/* A subject (record or ground motion) as read and processed (job/subject.h)
+ * with its view at each azimuth and their intensity measures, or the stage
+ * where it failed (status, err). */
 typedef struct {
-  aq_capacity_input in;
+  aq_subject subj;   /* metadata once its views are made */
+  size_t naz;        /* views: one per azimuth (1 for a record) */
+  aq_view *view;
+  aq_im *im;         /* per view: the measures of its in-plane series */
   char status[48];
   int ok;
   aq_error err;
 } aq_cap_item;
 
+/* Free what an item holds (a zeroed item is fine). */
+void aq_cap_item_free(aq_cap_item *it);
+
 /* What every task shares, read-only. */
 typedef struct {
   size_t nrec;
+  char *const *labels;           /* per subject: its name (a motion's label) */
   const char *const (*paths)[3]; /* per subject: its files (read by aq_cap_prepare) */
   const double (*phi_deg)[2];    /* per subject: its components' azimuths, or NAN */
   const aq_orient_opts *orient;

@@ -50,7 +50,7 @@ static int fit_all(size_t nrec, size_t na, const aq_cap_item *R, size_t npol,
   if (!im)
     return -1;
   for (size_t r = 0; r < nrec; r++)
-    im[r] = R[r].ok ? &R[r].in.im[0] : NULL;
+    im[r] = R[r].ok ? &R[r].im[0] : NULL;
   int rc = 0;
   for (size_t a = 0; a < na && rc == 0; a++) {
     aq_error e;
@@ -89,16 +89,16 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     size_t r = i / (na * npol), w = 0;
     double lo = NAN, hi = NAN;
     if (R[r].ok)
-      w = aq_capacity_worst(C + i * nz, R[r].in.naz, &lo, &hi);
+      w = aq_capacity_worst(C + i * nz, R[r].naz, &lo, &hi);
     const aq_capacity *cw = &C[i * nz + w];
-    const aq_im *im = R[r].ok ? &R[r].in.im[w] : NULL;
+    const aq_im *im = R[r].ok ? &R[r].im[w] : NULL;
     pair_status(&R[r], cw, o->status[i], sizeof o->status[i]);
     int have = R[r].ok && cw->status != AQ_CAPACITY_FAILED;
     o->row[i] = (aq_capacity_row){recs[r], aq_arch_name(arches[i / npol % na]),
                                   aq_opt_polarity_names[pols[i % npol]], o->status[i],
                                   have ? cw : NULL, im ? im->pga_g : NAN,
                                   im ? im->pgv_mps : NAN, im, or->nmotions > 0,
-                                  R[r].in.motion ? or->azimuths_deg[w] : NAN, lo, hi};
+                                  R[r].subj.motion ? or->azimuths_deg[w] : NAN, lo, hi};
   }
   for (size_t i = 0; i < nf; i++)
     o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
@@ -155,9 +155,9 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
   }
   for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
     aq_h5_record hr = {.source_file = recs[r],
-                       .rec = R[r].in.have_rec[0] ? &R[r].in.rec[0] : NULL,
-                       .proc = R[r].in.have_proc[0] ? &R[r].in.proc[0] : NULL,
-                       .im = R[r].ok ? &R[r].in.im[0] : NULL,
+                       .rec = R[r].subj.have_rec[0] ? &R[r].subj.rec[0] : NULL,
+                       .proc = R[r].subj.have_proc[0] ? &R[r].subj.proc[0] : NULL,
+                       .im = R[r].ok ? &R[r].im[0] : NULL,
                        .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
@@ -323,7 +323,7 @@ int aq_cmd_capacity(int argc, char **argv)
     }
   if (rc != AQ_EXIT_OK)
     goto done;
-  aq_cap_setup S = {nrec, (const char *const (*)[3])paths, (const double (*)[2])phi,
+  aq_cap_setup S = {nrec, recs, (const char *const (*)[3])paths, (const double (*)[2])phi,
                      &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
                      cor, merge_tol_g * AQ_G0_MPS2, smax, so};
   if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
@@ -339,10 +339,10 @@ int aq_cmd_capacity(int argc, char **argv)
       rc = AQ_EXIT_FAIL;
   for (size_t i = 0; i < njob; i++) {
     size_t j = i / nz, r = j / (na * npol);
-    if (R[r].ok && i % nz < R[r].in.naz && C[i].status == AQ_CAPACITY_FAILED) {
+    if (R[r].ok && i % nz < R[r].naz && C[i].status == AQ_CAPACITY_FAILED) {
       char msg[1200], az[64] = "";
       aq_error_format(&C[i].err, msg, sizeof msg);
-      if (R[r].in.motion)
+      if (R[r].subj.motion)
         snprintf(az, sizeof az, ", azimuth %g deg", orient.azimuths_deg[i % nz]);
       fprintf(stderr, "archquake: %s: arch %s, polarity %s%s: %s\n", recs[r],
               aq_arch_name(arches[j / npol % na]), aq_opt_polarity_names[pols[j % npol]],
@@ -384,7 +384,7 @@ done:
   for (size_t i = 0; i < njob && C; i++)
     aq_capacity_free(&C[i]);
   for (size_t r = 0; r < nrec && R; r++)
-    aq_capacity_input_free(&R[r].in);
+    aq_cap_item_free(&R[r]);
   for (size_t a = 0; a < na && arches; a++)
     aq_arch_free(arches[a]);
   free(arches);

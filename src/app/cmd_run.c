@@ -23,44 +23,6 @@
 #include "opt_table.h"
 #include "suite.h"
 
-/* argv joined by spaces, words with shell-special characters in single
- * quotes (malloc'd; NULL when out of memory). */
-static char *join_argv(int argc, char **argv)
-{
-  size_t len = 1;
-  for (int i = 0; i < argc; i++)
-    len += 4 * strlen(argv[i]) + 3;
-  char *s = malloc(len), *p = s;
-  if (!s)
-    return NULL;
-  for (int i = 0; i < argc; i++) {
-    const char *w = argv[i];
-    int plain = *w != '\0';
-    for (const char *q = w; *q; q++)
-      if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                  "0123456789-_./=,:+@%", *q))
-        plain = 0;
-    if (i)
-      *p++ = ' ';
-    if (plain) {
-      strcpy(p, w);
-      p += strlen(w);
-    } else {
-      *p++ = '\'';
-      for (const char *q = w; *q; q++) {
-        if (*q == '\'') {
-          memcpy(p, "'\\''", 4);
-          p += 4;
-        } else
-          *p++ = *q;
-      }
-      *p++ = '\'';
-    }
-  }
-  *p = '\0';
-  return s;
-}
-
 /* 1 if the paths a and b name the same file, existing or not: the same
  * string, the same existing file, or the same name in the same directory
  * (however spelled: "./x", "d/../x"). */
@@ -93,7 +55,7 @@ int aq_cmd_run(int argc, char **argv)
   aq_opts o;
   aq_opts_init(&o, AQ_CMD_RUN);
   /* before getopt_long permutes argv */
-  char *cmdline = join_argv(argc, argv);
+  char *cmdline = aq_app_command_line(argc, argv);
   cfg.command_line = cmdline ? cmdline : "";
   if (aq_opts_parse(AQ_CMD_RUN, argc, argv, &o, &nerr)) { /* --help */
     free(cmdline);

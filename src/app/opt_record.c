@@ -83,12 +83,12 @@ void aq_opt_component(const char *arg, aq_read_opts *ro, int *nerr)
 
 void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr)
 {
-  if (!arg || !arg[0] || strlen(arg) >= sizeof ro->response) {
-    fprintf(stderr, "archquake: --response: expected a StationXML file name of 1 to "
-                    "%zu characters, got \"%s\"\n",
-            sizeof ro->response - 1, arg ? arg : "");
+  if (!arg || !arg[0] || ro->nresponses >= AQ_RESPONSES_MAX) {
+    fprintf(stderr, "archquake: --response: expected a StationXML file name (at most %d "
+                    "of them), got \"%s\"\n",
+            AQ_RESPONSES_MAX, arg ? arg : "");
     (*nerr)++;
     return;
   }
-  snprintf(ro->response, sizeof ro->response, "%s", arg);
+  ro->responses[ro->nresponses++] = arg; /* argv's string: lives as long as the command */
 }

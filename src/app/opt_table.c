@@ -19,7 +19,7 @@
 #define C(x) (1u << AQ_CMD_##x)
 #define PLOT_ALL (C(PLOT_HISTORY) | C(PLOT_ARCH) | C(PLOT_DOMAIN) | C(PLOT_SUITE) | C(PLOT_CAPACITY))
 #define ALL_CMDS ((1u << AQ_CMD_N) - 1)
-#define RECORDS (C(RUN) | C(INFO) | C(CAPACITY)) /* the commands that read records */
+#define RECORDS (C(RUN) | C(INFO) | C(CAPACITY) | C(SPECTRUM)) /* the commands that read records */
 #define SUITES (C(RUN) | C(CAPACITY))            /* ... and run them against arches */
 #define DYNAMICS (SUITES | C(PULSE) | C(DOMAIN))  /* the commands that run the stepper */
 
@@ -114,6 +114,22 @@ static void azimuth(char *arg, aq_opts *o, int *nerr)
   aq_opt_azimuth(arg, &o->orient, nerr);
 }
 
+/* After --damping's list, each in (0, 1]: 1 (critical damping) is refused
+ * too, as no oscillation is left for a spectrum. */
+static void damping_below_1(char *arg, aq_opts *o, int *nerr)
+{
+  for (size_t i = 0; i < o->ndampings; i++)
+    if (!(o->dampings[i] < 1)) {
+      fprintf(stderr, "archquake: --damping: expected damping ratios in (0, 1), "
+                      "got \"%s\"\n", arg);
+      (*nerr)++;
+      free(o->dampings);
+      o->dampings = NULL;
+      o->ndampings = 0;
+      return;
+    }
+}
+
 /* After --highpass's value: an explicit corner is checked as given. */
 static void highpass_given(char *arg, aq_opts *o, int *nerr)
 {
@@ -163,9 +179,10 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "pulse to lambda0 g (default 1.05,1.1,1.2,1.5,2,3,4; plot domain: "
                                "1.02,1.05,1.1,1.2,1.35,1.5,1.75,2,2.5,3,4,5)"},
     [AQ_OPT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
-                       .meta = "FILE.h5", DEST(output), .cmds = SUITES,
+                       .meta = "FILE.h5", DEST(output), .cmds = SUITES | C(SPECTRUM),
                        .help = "write the HDF5 results file (docs/hdf5-layout.md; capacity: "
-                               "its results in a `capacity` group)"},
+                               "its results in a `capacity` group; spectrum: the spectra "
+                               "in a `spectra` group)"},
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)"},
@@ -238,7 +255,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                              .hi = 3600, .meta = "S", DEST(max_duration_s), .cmds = C(DOMAIN),
                              .help = "give up above this duration, s (default 100)"},
     [AQ_OPT_JOBS] = {.name = "jobs", .short_name = 'j', .kind = AQ_ARG_LONG, .lo = 1,
-                     .hi = AQ_MAX_THREADS, .meta = "N", DEST(threads), .cmds = SUITES,
+                     .hi = AQ_MAX_THREADS, .meta = "N", DEST(threads),
+                     .cmds = SUITES | C(SPECTRUM),
                      .help = "worker threads (default: the number of cores); the results "
                              "are the same for every N"},
     [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
@@ -297,6 +315,20 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_QUIET] = {.name = "quiet", .short_name = 'q', .kind = AQ_ARG_FLAG, DEST(quiet),
                       .cmds = C(RUN),
                       .help = "no progress line (it is shown only on a terminal)"},
+    [AQ_OPT_PERIODS] = {.name = "periods", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1e4,
+                        .meta = "LIST", DEST_LIST(periods, nperiods), .cmds = C(SPECTRUM),
+                        .help = "oscillator periods, s, comma-separated, each > 0 (default: "
+                                "PEER's 111 periods of the NGA-West2 flatfile, 0.01-20 s)"},
+    [AQ_OPT_DAMPING] = {.name = "damping", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1,
+                        .meta = "LIST", DEST_LIST(dampings, ndampings), .fn = damping_below_1,
+                        .cmds = C(SPECTRUM),
+                        .help = "damping ratios, comma-separated, each in (0, 1) (default "
+                                "0.05)"},
+    [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
+                              DEST(sampled_peaks), .cmds = C(SPECTRUM),
+                              .help = "each oscillator's peak at the samples only, as PEER's "
+                                      "NGA-West2 flatfile takes it (default: over continuous "
+                                      "time, between samples too; docs/spectrum.md)"},
     [AQ_OPT_HELP] = {.name = "help", .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
 
@@ -334,14 +366,17 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                  "StationXML given as a RECORD does the same)"},
 
     [AQ_OPT_COMPONENTS] = {.name = "components", .kind = AQ_ARG_CUSTOM, .meta = "H1,H2[,V]",
-                           .fn = components, .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                           .fn = components, .cmds = SUITES | C(SPECTRUM),
+                           .group = AQ_GROUP_ORIENTATION,
                            .help = "one ground motion from two orthogonal horizontal "
                                    "component records (and the vertical V); repeatable.  The "
                                    "arch feels a_x = a1 cos(theta - phi1) + a2 cos(theta - "
                                    "phi2).  The components must share dt and start time; the "
-                                   "samples they share are run"},
+                                   "samples they share are run (spectrum: their RotD50, "
+                                   "RotD100 and GeoMean)"},
     [AQ_OPT_AZIMUTHS] = {.name = "azimuths", .kind = AQ_ARG_CUSTOM, .meta = "A1,A2",
-                         .fn = azimuths, .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
+                         .fn = azimuths, .cmds = SUITES | C(SPECTRUM),
+                         .group = AQ_GROUP_ORIENTATION,
                          .help = "azimuths phi1, phi2 (deg from north) of the preceding "
                                  "--components (default: from the files, e.g. PEER's GIL067 "
                                  "is 67 deg)"},
@@ -585,6 +620,27 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                          "first_collapse_scale, no collapse last, with the range over the\n"
                          "azimuths; --azimuth DEG gives one azimuth's; -o and --fragility\n"
                          "take plain RECORDs only):"}},
+    [AQ_CMD_SPECTRUM] =
+        {.name = "spectrum",
+         .title = "spectrum",
+         .help_cmd = "spectrum",
+         .synopsis = "spectrum RECORD...",
+         .summary = "response spectra, RotD50/RotD100",
+         .head = "usage: archquake spectrum RECORD|--components H1,H2 ... [--periods LIST]\n"
+                 "       [--damping LIST] [-o FILE.h5] [OPTIONS]\n"
+                 "Elastic response spectra (pseudo-spectral acceleration, 5 % damping by\n"
+                 "default) of processed records: for a RECORD its own, for two horizontal\n"
+                 "components their RotD50, RotD100 (Boore 2010, 180 angles) and geometric\n"
+                 "mean (docs/spectrum.md).  --no-filter --detrend none: the records as\n"
+                 "read.  One TSV row per (record, component, damping, period) on stdout.\n",
+         .tail = "Columns: record component damping period_s psa_g sd_m psv_m_s\n"
+                 "  (component: the record's channel, or RotD50, RotD100, GeoMean for a\n"
+                 "  pair; sd_m = PSA / omega^2, psv_m_s = PSA / omega).  Periods below 2 dt\n"
+                 "  lie above a record's Nyquist frequency: they are computed for the\n"
+                 "  record as linear between samples (PSA -> PGA as T -> 0), with a warning.\n"
+                 "Exit status: 0 success; 1 a record could not be read or processed, or a\n"
+                 "pair does not fit (each said in one line; nothing is written); 2 bad\n"
+                 "options; 3 the output file could not be written.\n"},
     [AQ_CMD_PLOT] = {.name = "plot",
                      .title = "plot",
                      .help_cmd = "plot",
@@ -653,6 +709,10 @@ void aq_opts_free(aq_opts *o)
   free(o->arches);
   free(o->scales);
   free(o->ratios);
+  free(o->periods);
+  free(o->dampings);
+  o->periods = o->dampings = NULL;
+  o->nperiods = o->ndampings = 0;
   aq_opt_orient_free(&o->orient);
   o->arches = NULL;
   o->scales = o->ratios = NULL;

@@ -60,6 +60,7 @@ typedef enum {
   AQ_CMD_COMPARE,
   AQ_CMD_CAPACITY,
   AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
+  AQ_CMD_SPECTRUM, /* archquake spectrum RECORD... */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -116,6 +117,9 @@ typedef enum {
   AQ_OPT_ATOL,
   AQ_OPT_IGNORE,
   AQ_OPT_QUIET,
+  AQ_OPT_PERIODS,       /* spectrum */
+  AQ_OPT_DAMPING,
+  AQ_OPT_SAMPLED_PEAKS,
   AQ_OPT_HELP,
   /* reading records */
   AQ_OPT_UNITS,
@@ -218,6 +222,12 @@ typedef struct aq_opts {
   const char *ignore[32]; /* --ignore names, pointing into ignore_buf */
   char ignore_buf[32][64];
   size_t nignore;
+  /* spectrum */
+  double *periods; /* --periods, s (NULL: PEER's 111) */
+  size_t nperiods;
+  double *dampings; /* --damping, ratios (NULL: 0.05) */
+  size_t ndampings;
+  int sampled_peaks; /* --sampled-peaks */
   /* plot */
   const char *run, *im;
   int x_rad, y_pga; /* --x, --y: index in their choices */

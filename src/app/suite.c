@@ -4,8 +4,6 @@
 #include "suite.h"
 
 #include <errno.h>
-#if defined(__GLIBC__) || defined(__linux__)
-#endif
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -19,8 +17,6 @@
 #include "../report/h5.h"
 #include "../report/report.h"
 #include "../report/text.h"
-#include "../signal/project.h"
-#include "../signal/steps.h"
 #include "../units.h"
 #include "../util/pool.h"
 #include "app.h"
@@ -77,6 +73,7 @@ typedef struct {
   int *arch_ok;             /* 0: its stepper cannot be made (reported once) */
   aq_error *arch_err;
   double *lambda0;          /* each arch's, for --scale-to-lambda0 (NAN: none) */
+  aq_scale_rule rule;       /* the scaling rule (job/scale.h) */
   const char *model_name;
   size_t nscale;            /* runs per arch per record: factors x polarities */
   size_t npol;              /* polarities per factor (2 with --polarity both) */
@@ -120,43 +117,26 @@ static const char *slot_polarity(const suite *S, size_t k)
  * run results only.  Called by the thread that finished its last run. */
 static void slot_shed(suite *S, rec_slot *r)
 {
-  if (!S->cfg->store_records) {
-    free(r->proc.acc_mps2);
-    r->proc.acc_mps2 = NULL; /* the metadata stays: the writer needs it */
-  }
-  aq_processed_free(&r->h2.proc);
-  aq_processed_free(&r->v.proc);
-  r->h2.have_proc = r->v.have_proc = 0;
-  if (r->steps && r->steps_st) /* (both, unless prepare_record ran out of memory) */
-    for (size_t k = 0; k < S->nscale; k++)
-      if (r->steps_st[k] == AQ_OK)
-        aq_steps_free(&r->steps[k]);
-  if (r->unit && r->unit_st == AQ_OK)
-    aq_steps_free(&r->unit_steps);
-  r->unit = 0;
-  free(r->steps);
-  free(r->steps_st);
-  free(r->steps_err);
-  r->steps = NULL;
-  r->steps_st = NULL;
-  r->steps_err = NULL;
+  aq_processed *first = &r->subj.proc[0], keep = *first;
+  first->acc_mps2 = NULL;
+  aq_subject_shed(&r->subj);
+  if (S->cfg->store_records)
+    *first = keep; /* the writer writes it */
+  else
+    free(keep.acc_mps2);
+  aq_runs_free(&r->plan);
 }
 
 static void slot_clear(suite *S, rec_slot *r)
 {
   slot_shed(S, r);
-  aq_record_free(&r->rec);
-  aq_processed_free(&r->proc);
-  aq_record_free(&r->h2.rec);
-  aq_record_free(&r->v.rec);
+  aq_subject_free(&r->subj);
   if (r->runs)
     for (size_t k = 0; k < r->nruns; k++)
       if (r->runs[k].have_res)
         aq_result_free(&r->runs[k].res);
   free(r->runs);
   free(r->scale);
-  free(r->pga_g);
-  free(r->bytes);
   memset(r, 0, sizeof *r);
 }
 
@@ -208,113 +188,6 @@ static void fail_runs(suite *S, rec_slot *r)
   }
 }
 
-/* Read one component record (*have_rec set on success); a horizontal one
- * must not be identified as vertical (aq_record_check_horizontal).  With
- * bytes, the file's bytes as aq_record_read_keep gives them. */
-static aq_status read_component(suite *S, const char *path, int horizontal,
-                                aq_record *rec, int *have_rec, unsigned char **bytes,
-                                size_t *nbytes, aq_error *err)
-{
-  aq_status s = bytes ? aq_record_read_keep(path, &S->cfg->read, rec, bytes, nbytes, err)
-                      : aq_record_read(path, &S->cfg->read, rec, err);
-  if (s == AQ_OK && horizontal &&
-      (s = aq_record_check_horizontal(rec, &S->cfg->read, err)) != AQ_OK)
-    aq_record_free(rec);
-  *have_rec = s == AQ_OK;
-  return s;
-}
-
-/* Process a component read (its samples freed once processed; *have_proc
- * set on success). */
-static aq_status process_component(suite *S, aq_record *rec, aq_processed *proc,
-                                   int *have_proc, aq_error *err)
-{
-  aq_signal_opts po = S->cfg->proc;
-  po.scale = 1.0;
-  aq_status s = aq_signal_process(rec, &po, S->ws, proc, err);
-  *have_proc = s == AQ_OK;
-  free(rec->acc_mps2); /* the processed copy is all that is needed now */
-  rec->acc_mps2 = NULL;
-  return s;
-}
-
-/* A motion's second component read beside the first (r->rec): azimuths
- * from --azimuths or the files, orthogonal, aligned, cut to the samples
- * both have; a vertical given without --vertical noted in r->warning. */
-static aq_status read_second(suite *S, rec_slot *r)
-{
-  const aq_orient_motion *m = r->motion;
-  aq_status s =
-      read_component(S, m->path[1], 1, &r->h2.rec, &r->h2.have_rec, NULL, NULL, &r->err);
-  if (s != AQ_OK)
-    return s;
-  r->run_v = m->path[2] && S->cfg->vertical;
-  if (r->run_v &&
-      (s = read_component(S, m->path[2], 0, &r->v.rec, &r->v.have_rec, NULL, NULL,
-                          &r->err)) != AQ_OK)
-    return s;
-  const aq_record *all[3] = {&r->rec, &r->h2.rec, &r->v.rec};
-  size_t nc = r->run_v ? 3 : 2;
-  for (int j = 0; j < 2; j++)
-    r->phi_deg[j] = isfinite(m->azimuth_deg[j]) ? m->azimuth_deg[j]
-                                                : aq_project_azimuth_of(all[j]);
-  s = aq_project_check_pair(m->label, r->phi_deg, &r->err);
-  if (s == AQ_OK)
-    s = aq_project_check_aligned(all, nc, &r->err);
-  if (s != AQ_OK)
-    return s;
-  size_t npts = aq_project_common_npts(all, nc);
-  r->rec.npts = r->h2.rec.npts = npts;
-  if (r->run_v)
-    r->v.rec.npts = npts;
-  if (m->path[2] && !r->run_v)
-    snprintf(r->warning, sizeof r->warning,
-             "vertical component %s ignored (--vertical runs it)", m->path[2]);
-  return AQ_OK;
-}
-
-/* Steps of prepared record r at azimuth z: the processed record, or the
- * motion's projection there, times sa (the vertical times sv); *peak_mps2
- * the peak |a| of what the arch feels. */
-static aq_status steps_at(const suite *S, const rec_slot *r, size_t z, double sa, double sv,
-                          aq_steps *out, double *peak_mps2, aq_error *err)
-{
-  const aq_processed *p = &r->proc;
-  double c[2] = {1.0, 0.0};
-  *peak_mps2 = 0;
-  if (r->motion)
-    aq_project_coefs(S->cfg->azimuths_deg[z], r->phi_deg, c);
-  return aq_steps_project_v(p->acc_mps2, c[0], r->motion ? r->h2.proc.acc_mps2 : NULL,
-                            c[1], sa, r->run_v ? r->v.proc.acc_mps2 : NULL, sv, p->n,
-                            p->dt_s, -(double)p->pad_front * p->dt_s,
-                            S->cfg->merge_tol_g * AQ_G0_MPS2, out, peak_mps2, err);
-}
-
-/* Steps of run slot (k, z) of prepared record r, scaled by scale and
- * negated for a reversed slot; *pga_g the PGA of what the arch feels. */
-static aq_status make_steps(const suite *S, const rec_slot *r, size_t k, size_t z,
-                            double scale, aq_steps *out, double *pga_g, aq_error *err)
-{
-  double sa = slot_reversed(S, k) ? -scale : scale; /* polarity */
-  double peak = 0;
-  /* the vertical scales with the motion but keeps its sign: reversing the
-   * polarity turns the arch round, it does not turn gravity over */
-  aq_status s = steps_at(S, r, z, sa, scale, out, &peak, err);
-  *pga_g = peak / AQ_G0_MPS2;
-  return s;
-}
-
-/* Whether a run at factor sa (polarity included, vertical at |sa|) may use
- * the record's steps at factor 1 with sa given to the stepper: without
- * merging, a step is one sample, sa (1 x) = sa x exactly, the stepper forms
- * the same product (aq_stepper_set_scale) and the vertical's factor is
- * |sa|; and the peak |a| of the scaled steps is |sa| times the unit peak
- * exactly (rounding is monotonic). */
-static int unit_fits(const rec_slot *r, double sa, double scale)
-{
-  return r->unit && isfinite(sa) && (!r->run_v || fabs(sa) == scale);
-}
-
 /* The record file's identity in the results (compare keys on it), when
  * prepare_record asked for it: hashed by the thread that writes the record
  * (or sends it to the leader), so that with -o the hash overlaps the
@@ -323,12 +196,13 @@ static int unit_fits(const rec_slot *r, double sa, double scale)
  * is the next record, done too when both have their bytes. */
 static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
 {
-  if (next && r->want_sha && r->bytes && next->want_sha && next->bytes) {
-    aq_sha256_hex2(r->bytes, r->nbytes, r->sha256, next->bytes, next->nbytes, next->sha256);
+  aq_subject *a = &r->subj, *b = next ? &next->subj : NULL;
+  if (b && r->want_sha && a->bytes && next->want_sha && b->bytes) {
+    aq_sha256_hex2(a->bytes, a->nbytes, r->sha256, b->bytes, b->nbytes, next->sha256);
     r->want_sha = next->want_sha = 0;
-    free(r->bytes);
-    free(next->bytes);
-    r->bytes = next->bytes = NULL;
+    free(a->bytes);
+    free(b->bytes);
+    a->bytes = b->bytes = NULL;
     return;
   }
   if (!r->want_sha)
@@ -336,19 +210,19 @@ static void record_sha256(const suite *S, rec_slot *r, rec_slot *next)
   r->want_sha = 0;
   aq_error herr;
   char file[4096];
-  if (r->bytes)
-    aq_sha256_hex(r->bytes, r->nbytes, r->sha256);
+  if (a->bytes)
+    aq_sha256_hex(a->bytes, a->nbytes, r->sha256);
   else if (aq_sha256_file(aq_record_file(record_file(S, r->index), file, sizeof file),
                           r->sha256, &herr) != AQ_OK)
     r->sha256[0] = '\0'; /* the reader says why it cannot be read */
-  free(r->bytes);
-  r->bytes = NULL;
+  free(a->bytes);
+  a->bytes = NULL;
 }
 
-/* Read, process and measure record r->index (both components of a motion),
- * then, for a single azimuth, scale it by each factor and split each into
- * steps (with several azimuths each run makes its own).  Returns 1 if its
- * runs can go ahead, 0 if the record failed (its runs are filled as failed). */
+/* Read, process and measure record r->index (every component of a motion,
+ * job/subject.h), then make the step lists its runs share (job/run.h).
+ * Returns 1 if its runs can go ahead, 0 if the record failed (its runs are
+ * filled as failed). */
 static int prepare_record(suite *S, rec_slot *r)
 {
   const aq_suite_cfg *c = S->cfg;
@@ -356,111 +230,42 @@ static int prepare_record(suite *S, rec_slot *r)
   slot_orient(S, r->index, r);
   r->runs = calloc(r->nruns ? r->nruns : 1, sizeof *r->runs);
   r->scale = calloc(S->nscale, sizeof *r->scale);
-  r->pga_g = calloc(S->nscale, sizeof *r->pga_g);
-  r->steps = calloc(S->nscale, sizeof *r->steps);
-  r->steps_st = calloc(S->nscale, sizeof *r->steps_st);
-  r->steps_err = calloc(S->nscale, sizeof *r->steps_err);
-  if (!r->runs || !r->scale || !r->pga_g || !r->steps || !r->steps_st ||
-      !r->steps_err) {
+  double *slot_sa = calloc(S->nscale, sizeof *slot_sa);
+  if (!r->runs || !r->scale || !slot_sa) {
     free(r->runs);
+    free(slot_sa);
     r->runs = NULL; /* the writer reports it; no run rows can be made */
     r->failed = 1;
     aq_error_set(&r->err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
     aq_summary_status(r->status, sizeof r->status, "read", AQ_ENOMEM);
     return 0;
   }
-  for (size_t k = 0; k < S->nscale; k++)
-    r->steps_st[k] = AQ_EINTERNAL; /* nothing to free yet */
-  double t0 = now_s();
-  const char *first = record_file(S, r->index);
+  const aq_orient_motion *m = r->motion;
+  aq_subject_src src = {{m ? m->path[0] : path, m ? m->path[1] : NULL, m ? m->path[2] : NULL},
+                        {m ? m->azimuth_deg[0] : NAN, m ? m->azimuth_deg[1] : NAN},
+                        path};
   r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
-  aq_status s = read_component(S, first, 1, &r->rec, &r->have_rec,
-                               r->want_sha ? &r->bytes : NULL, &r->nbytes, &r->err);
-  if (r->bytes && r->nbytes > S->keep_max) { /* record_sha256 reads it again */
-    free(r->bytes);
-    r->bytes = NULL;
-  }
-  if (s == AQ_OK && r->motion)
-    s = read_second(S, r);
-  double t1 = now_s();
-  r->read_s = t1 - t0;
-  if (s != AQ_OK) {
-    r->failed = 1;
-    aq_summary_status(r->status, sizeof r->status, "read", s);
-    fail_runs(S, r);
-    return 0;
-  }
-  s = process_component(S, &r->rec, &r->proc, &r->have_proc, &r->err);
-  if (s == AQ_OK && r->motion)
-    s = process_component(S, &r->h2.rec, &r->h2.proc, &r->h2.have_proc, &r->err);
-  if (s == AQ_OK && r->run_v)
-    s = process_component(S, &r->v.rec, &r->v.proc, &r->v.have_proc, &r->err);
-  if (s == AQ_OK && r->motion &&
-      (r->h2.proc.n != r->proc.n || r->h2.proc.pad_front != r->proc.pad_front ||
-       (r->run_v && (r->v.proc.n != r->proc.n || r->v.proc.pad_front != r->proc.pad_front))))
-    s = aq_error_set(&r->err, AQ_EINTERNAL, path, -1, -1, NULL,
-                     "the components' processed lengths differ (%zu, %zu samples)",
-                     r->proc.n, r->h2.proc.n);
+  aq_subject_opts so = {&c->read, &c->proc, c->vertical, r->want_sha ? S->keep_max : 0, 0};
+  aq_status s = aq_subject_prepare(&r->subj, &src, &so, S->ws, &r->err);
   if (s == AQ_OK)
-    s = aq_im_compute(&r->proc, &r->im, &r->err);
-  if (s == AQ_OK) {
-    r->have_im = 1;
-    if (!r->warning[0])
-      aq_im_residual_warning(&r->im, r->warning, sizeof r->warning);
+    s = aq_scale_check_subject(&S->rule, path, r->subj.pga_g, &r->err);
+  for (size_t k = 0; s == AQ_OK && k < S->nscale; k++) {
+    r->scale[k] = aq_scale_factor(&S->rule, k / S->npol, r->subj.pga_g);
+    slot_sa[k] = aq_scale_signed(r->scale[k], slot_reversed(S, k));
   }
-  /* --scale-to-pga: a motion's PGA is the peak of its horizontal vector,
-   * the same at every azimuth */
-  double pga_g = r->im.pga_g;
-  if (s == AQ_OK && r->motion)
-    pga_g = aq_project_peak_horizontal(r->proc.acc_mps2, r->h2.proc.acc_mps2,
-                                       r->proc.n) / AQ_G0_MPS2;
-  if (s == AQ_OK && !c->scales && !(pga_g > 0)) {
-    s = aq_error_set(&r->err, AQ_EVALUE, path, -1, -1,
-                     c->scale_to_lambda0 > 0 ? "--scale-to-lambda0" : "--scale-to-pga",
-                     "expected a record with PGA > 0 to scale, got PGA %g g", pga_g);
-  }
+  if (s == AQ_OK)
+    s = aq_runs_init(&r->plan, &r->subj, r->naz, r->motion ? c->azimuths_deg[0] : 0.0,
+                     c->merge_tol_g * AQ_G0_MPS2, slot_sa, S->nscale,
+                     aq_scale_per_arch(&S->rule), &r->err);
+  free(slot_sa);
   if (s != AQ_OK) {
-    r->process_s = now_s() - t1;
     r->failed = 1;
-    aq_summary_status(r->status, sizeof r->status, "process", s);
+    aq_summary_status(r->status, sizeof r->status, r->subj.stage, s);
     fail_runs(S, r);
     return 0;
   }
   snprintf(r->status, sizeof r->status, "ok");
-  for (size_t k = 0; k < S->nscale; k++) {
-    /* --scale-to-lambda0: the factor per arch is K lambda0 / PGA, made by
-     * each run; here the factor to a PGA of 1 g */
-    r->scale[k] = c->scales                 ? c->scales[k / S->npol]
-                  : c->scale_to_lambda0 > 0 ? 1.0 / pga_g
-                                            : c->scale_to_pga_g / pga_g;
-    aq_error_clear(&r->steps_err[k]);
-  }
-  /* one list at factor 1 for the runs that fit (unit_fits), made once
-   * instead of a scaled list per factor or per run */
-  r->unit = r->naz == 1 && c->merge_tol_g == 0;
-  if (r->unit)
-    r->unit_st = steps_at(S, r, 0, 1.0, 1.0, &r->unit_steps, &r->unit_peak_mps2, &r->unit_err);
-  for (size_t k = 0; k < S->nscale; k++) {
-    double sa = slot_reversed(S, k) ? -r->scale[k] : r->scale[k];
-    if (r->naz == 1 && !(c->scale_to_lambda0 > 0) && !unit_fits(r, sa, r->scale[k]))
-      r->steps_st[k] = make_steps(S, r, k, 0, r->scale[k], &r->steps[k], &r->pga_g[k],
-                                  &r->steps_err[k]);
-  }
-  r->process_s = now_s() - t1;
   return 1;
-}
-
-/* The arch's static collapse multiplier: the smaller of its admissible
- * hinge sets' lambda0 (NAN if none is admissible). */
-static double arch_lambda0(const aq_arch *A)
-{
-  double l0 = NAN;
-  for (int k = 0; k < 2; k++) {
-    const aq_path *p = aq_arch_path(A, k);
-    if (p && p->admissible && (isnan(l0) || p->lambda0 < l0))
-      l0 = p->lambda0;
-  }
-  return l0;
 }
 
 /* Run i of prepared record r with this thread's steppers (st[a] NULL when
@@ -472,59 +277,27 @@ static void run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   run_index(S, r, i, &ai, &k, &z);
   run_slot *u = &r->runs[i];
   double t0 = now_s();
-  aq_steps own;
-  const aq_steps *steps = &r->steps[k];
-  aq_status rs = r->steps_st[k];
-  double pga_g = r->pga_g[k], scale = r->scale[k];
-  int have_own = 0, unit = 0, per_arch = c->scale_to_lambda0 > 0;
-  if (per_arch) /* lambda0 g: the arch's static collapse acceleration */
-    scale = c->scale_to_lambda0 * S->lambda0[ai] * r->scale[k];
-  double sa = slot_reversed(S, k) ? -scale : scale; /* polarity */
-  if (per_arch && !st[ai]) {
-    rs = AQ_OK; /* the arch's own failure is reported below */
-  } else if (per_arch && !(scale > 0)) {
-    rs = aq_error_set(&u->err, AQ_EVALUE, c->arch_paths[ai], -1, -1, "--scale-to-lambda0",
-                      "expected an arch with a static collapse multiplier lambda0 > 0, "
-                      "got %g", S->lambda0[ai]);
-  } else if (unit_fits(r, sa, scale)) {
-    /* the record at factor 1, sa given to the stepper: the same run */
-    unit = 1;
-    steps = &r->unit_steps;
-    rs = r->unit_st;
-    pga_g = rs == AQ_OK ? fabs(sa) * r->unit_peak_mps2 / AQ_G0_MPS2 : 0;
-    if (rs != AQ_OK)
-      u->err = r->unit_err;
-  } else if (r->naz > 1 || per_arch) {
-    /* made for this run: one list per azimuth (or arch) at a time */
-    aq_error_clear(&u->err);
-    rs = make_steps(S, r, k, z, scale, &own, &pga_g, &u->err);
-    have_own = rs == AQ_OK;
-    steps = &own;
-  } else if (rs != AQ_OK) {
-    u->err = r->steps_err[k];
-  }
+  double scale = aq_scale_for_arch(&S->rule, S->lambda0[ai], r->scale[k]);
+  double sa = aq_scale_signed(scale, slot_reversed(S, k)), pga_g = 0;
+  int steps_failed = 0, ran = 0;
+  aq_status rs = AQ_OK;
+  if (aq_scale_per_arch(&S->rule) && !st[ai])
+    ; /* the arch's own failure is reported below */
+  else if ((rs = aq_scale_check_arch(&S->rule, c->arch_paths[ai], S->lambda0[ai], scale,
+                                     &u->err)) != AQ_OK)
+    steps_failed = 1;
+  else
+    rs = aq_runs_run(&r->plan, k, r->motion ? c->azimuths_deg[z] : 0.0, sa, st[ai], &u->res,
+                     &pga_g, &steps_failed, &ran, &u->err);
   const char *stage = "run";
-  if (rs != AQ_OK) {
+  if (steps_failed) {
     stage = "process";
   } else if (!st[ai]) {
     rs = S->arch_err[ai].status != AQ_OK ? S->arch_err[ai].status : AQ_EINTERNAL;
     u->err = S->arch_err[ai];
     stage = "arch";
-  } else {
-    aq_error_clear(&u->err);
-    memset(&u->res, 0, sizeof u->res);
-    /* aq_stepper_run starts every run afresh (the ode model's step size
-     * included), so results do not depend on which runs a thread did before:
-     * the -j tests check it. */
-    if (unit)
-      aq_stepper_set_scale(st[ai], sa);
-    rs = aq_stepper_run(st[ai], steps, &u->res, &u->err);
-    if (unit)
-      aq_stepper_set_scale(st[ai], 1.0);
-    u->have_res = 1;
   }
-  if (have_own)
-    aq_steps_free(&own);
+  u->have_res = ran;
   char status[AQ_SUMMARY_STATUS_MAX];
   aq_summary_status(status, sizeof status, stage, rs);
   u->failed = rs != AQ_OK;
@@ -600,8 +373,8 @@ static void worker(void *ctx, size_t k)
       pthread_mutex_unlock(&S->lock);
       int ok = prepare_record(S, r);
       pthread_mutex_lock(&S->lock);
-      S->read_s += r->read_s;
-      S->process_s += r->process_s;
+      S->read_s += r->subj.read_s;
+      S->process_s += r->subj.process_s;
       if (ok && r->nruns > 0) {
         r->state = SLOT_READY;
         if (r->nruns > 1) /* runs for the other threads too */
@@ -676,8 +449,11 @@ static int text_row(suite *S, const aq_summary *s)
 /* 1 if writing r prints something on stderr. */
 static int has_diagnostics(const rec_slot *r)
 {
-  if (r->failed || r->warning[0] || r->rec.units_conflict[0])
+  if (r->failed || r->subj.warning[0] || r->subj.rec[0].units_conflict[0])
     return 1;
+  for (int k = 0; k < 3; k++)
+    if (r->subj.have_rec[k] && (r->subj.rec[k].polarity_note[0] || r->subj.rec[k].vertical_note[0]))
+      return 1;
   for (size_t i = 0; r->runs && i < r->nruns; i++)
     if (r->runs[i].failed)
       return 1;
@@ -695,10 +471,17 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     aq_error_print(&r->err, stderr);
     stats->records_failed++;
   }
-  if (r->warning[0])
-    fprintf(stderr, "archquake: %s: warning: %s\n", path, r->warning);
-  if (r->rec.units_conflict[0])
-    fprintf(stderr, "archquake: %s: units: %s\n", path, r->rec.units_conflict);
+  const aq_subject *sj = &r->subj;
+  if (sj->warning[0])
+    fprintf(stderr, "archquake: %s: warning: %s\n", path, sj->warning);
+  if (sj->rec[0].units_conflict[0])
+    fprintf(stderr, "archquake: %s: units: %s\n", path, sj->rec[0].units_conflict);
+  for (int k = 0; k < 3; k++) { /* each component's polarity and vertical notes */
+    if (sj->have_rec[k] && sj->rec[k].polarity_note[0])
+      fprintf(stderr, "archquake: %s: polarity: %s\n", sj->rec[k].path, sj->rec[k].polarity_note);
+    if (sj->have_rec[k] && sj->rec[k].vertical_note[0])
+      fprintf(stderr, "archquake: %s: vertical: %s\n", sj->rec[k].path, sj->rec[k].vertical_note);
+  }
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < r->nruns; i++) {
@@ -718,14 +501,14 @@ static aq_status write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
   }
   if (h5) {
     aq_h5_record hr = {path,
-                       r->have_rec ? &r->rec : NULL,
-                       r->have_proc ? &r->proc : NULL,
-                       r->have_im ? &r->im : NULL,
+                       sj->have_rec[0] ? &sj->rec[0] : NULL,
+                       sj->have_proc[0] ? &sj->proc[0] : NULL,
+                       sj->have_im ? &sj->im : NULL,
                        r->status,
                        r->failed ? r->err.message : NULL,
                        r->sha256,
-                       r->read_s,
-                       r->process_s};
+                       sj->read_s,
+                       sj->process_s};
     char full[1200];
     if (r->failed) {
       aq_error_format(&r->err, full, sizeof full);
@@ -977,16 +760,8 @@ static aq_status journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stat
 /* A stepper for arch a with the suite's settings, or NULL (err filled). */
 static aq_stepper *make_stepper(const suite *S, size_t a, aq_error *err)
 {
-  const aq_arch *arch = S->arches[a];
-  aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1),
-                                    S->cfg->model, err);
-  if (!st)
-    return NULL;
-  const aq_arch_dynamics *d = aq_arch_dynamics_of(arch);
-  aq_stepper_set_cor(st, isnan(S->cfg->cor) ? d->cor : S->cfg->cor);
-  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
-  aq_stepper_set_history(st, S->cfg->history);
-  return st;
+  const aq_suite_cfg *c = S->cfg;
+  return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, err);
 }
 
 /* ---- other processes (farm.h): a task per (record, arch) ---------------- */
@@ -1144,8 +919,8 @@ static int farm_take(void *ctx, size_t t, const unsigned char *msg, size_t n, aq
     }
     *m = part; /* m owns the record's metadata now */
     m->runs = runs;
-    S->read_s += part.read_s;
-    S->process_s += part.process_s;
+    S->read_s += part.subj.read_s;
+    S->process_s += part.subj.process_s;
   }
   for (size_t k = 0; m->runs && part.runs && k < per; k++) { /* moved into m */
     m->runs[a * per + k] = part.runs[k];
@@ -1309,6 +1084,8 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
   S.nscale = (c->scales ? c->nscale : 1) * S.npol;
   S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */
+  S.rule = (aq_scale_rule){c->scales, c->nscale, c->scale_to_pga_g,
+                           c->scale_to_lambda0 > 0 ? c->scale_to_lambda0 : 0};
   long nthreads = c->threads < 1 ? 1 : c->threads;
   if ((size_t)nthreads > c->nrecords)
     nthreads = c->nrecords ? (long)c->nrecords : 1;
@@ -1363,7 +1140,7 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
     goto out;
   }
   for (size_t a = 0; a < c->narches; a++)
-    S.lambda0[a] = arch_lambda0(S.arches[a]);
+    S.lambda0[a] = aq_lambda0(S.arches[a]);
   /* An arch whose stepper cannot be made (no admissible mechanism...) is
    * reported once; its runs fail. */
   for (size_t a = 0; a < c->narches; a++) {

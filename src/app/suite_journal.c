@@ -22,33 +22,34 @@ enum { R_RES = 1, R_FAILED = 2 };
 void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
 {
   uint64_t index = r->index;
-  unsigned char f = (unsigned char)((r->failed ? F_FAILED : 0) | (r->have_rec ? F_REC : 0) |
-                                    (r->have_proc ? F_PROC : 0) | (r->have_im ? F_IM : 0) |
+  unsigned char f = (unsigned char)((r->failed ? F_FAILED : 0) | (r->subj.have_rec[0] ? F_REC : 0) |
+                                    (r->subj.have_proc[0] ? F_PROC : 0) |
+                                    (r->subj.have_im ? F_IM : 0) |
                                     (r->runs ? F_RUNS : 0));
   aq_bytes_put(b, &index, sizeof index);
   aq_bytes_put(b, &f, 1);
   if (r->failed)
     aq_bytes_put(b, &r->err, sizeof r->err);
   aq_bytes_put_str(b, r->status, sizeof r->status);
-  aq_bytes_put_str(b, r->warning, sizeof r->warning);
+  aq_bytes_put_str(b, r->subj.warning, sizeof r->subj.warning);
   aq_bytes_put_str(b, r->sha256, sizeof r->sha256);
-  aq_bytes_put(b, &r->read_s, sizeof r->read_s);
-  aq_bytes_put(b, &r->process_s, sizeof r->process_s);
-  if (r->have_rec) {
-    aq_record m = r->rec; /* metadata: the strings follow, no samples */
+  aq_bytes_put(b, &r->subj.read_s, sizeof r->subj.read_s);
+  aq_bytes_put(b, &r->subj.process_s, sizeof r->subj.process_s);
+  if (r->subj.have_rec[0]) {
+    aq_record m = r->subj.rec[0]; /* metadata: the strings follow, no samples */
     m.path = m.name = NULL;
     m.acc_mps2 = NULL;
     aq_bytes_put(b, &m, sizeof m);
-    aq_bytes_put_str(b, r->rec.path, 0);
-    aq_bytes_put_str(b, r->rec.name, 0);
+    aq_bytes_put_str(b, r->subj.rec[0].path, 0);
+    aq_bytes_put_str(b, r->subj.rec[0].name, 0);
   }
-  if (r->have_proc) {
-    aq_processed p = r->proc;
+  if (r->subj.have_proc[0]) {
+    aq_processed p = r->subj.proc[0];
     p.acc_mps2 = NULL;
     aq_bytes_put(b, &p, sizeof p);
   }
-  if (r->have_im)
-    aq_bytes_put(b, &r->im, sizeof r->im);
+  if (r->subj.have_im)
+    aq_bytes_put(b, &r->subj.im, sizeof r->subj.im);
   for (size_t i = 0; r->runs && i < nruns; i++) {
     const run_slot *u = &r->runs[i];
     unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0));
@@ -78,23 +79,24 @@ int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
   if (r->failed)
     aq_bytes_get(&c, &r->err, sizeof r->err, NULL);
   aq_bytes_get_str(&c, r->status, sizeof r->status, NULL, NULL);
-  aq_bytes_get_str(&c, r->warning, sizeof r->warning, NULL, NULL);
+  aq_bytes_get_str(&c, r->subj.warning, sizeof r->subj.warning, NULL, NULL);
   aq_bytes_get_str(&c, r->sha256, sizeof r->sha256, NULL, NULL);
-  aq_bytes_get(&c, &r->read_s, sizeof r->read_s, NULL);
-  aq_bytes_get(&c, &r->process_s, sizeof r->process_s, NULL);
-  if ((f & F_REC) && aq_bytes_get(&c, &r->rec, sizeof r->rec, NULL) == 0) {
-    r->rec.path = r->rec.name = NULL;
-    r->rec.acc_mps2 = NULL;
-    r->have_rec = 1; /* aq_record_free frees what was read */
-    aq_bytes_get_str(&c, NULL, 0, &r->rec.path, NULL);
-    aq_bytes_get_str(&c, NULL, 0, &r->rec.name, NULL);
+  aq_bytes_get(&c, &r->subj.read_s, sizeof r->subj.read_s, NULL);
+  aq_bytes_get(&c, &r->subj.process_s, sizeof r->subj.process_s, NULL);
+  aq_record *rec = &r->subj.rec[0];
+  if ((f & F_REC) && aq_bytes_get(&c, rec, sizeof *rec, NULL) == 0) {
+    rec->path = rec->name = NULL;
+    rec->acc_mps2 = NULL;
+    r->subj.have_rec[0] = 1; /* aq_record_free frees what was read */
+    aq_bytes_get_str(&c, NULL, 0, &rec->path, NULL);
+    aq_bytes_get_str(&c, NULL, 0, &rec->name, NULL);
   }
-  if ((f & F_PROC) && aq_bytes_get(&c, &r->proc, sizeof r->proc, NULL) == 0) {
-    r->proc.acc_mps2 = NULL;
-    r->have_proc = 1;
+  if ((f & F_PROC) && aq_bytes_get(&c, &r->subj.proc[0], sizeof r->subj.proc[0], NULL) == 0) {
+    r->subj.proc[0].acc_mps2 = NULL;
+    r->subj.have_proc[0] = 1;
   }
   if (f & F_IM)
-    r->have_im = aq_bytes_get(&c, &r->im, sizeof r->im, NULL) == 0;
+    r->subj.have_im = aq_bytes_get(&c, &r->subj.im, sizeof r->subj.im, NULL) == 0;
   if ((f & F_RUNS) && !c.bad && !(r->runs = calloc(nruns ? nruns : 1, sizeof *r->runs)))
     return -1;
   for (size_t i = 0; r->runs && i < nruns && !c.bad; i++) {

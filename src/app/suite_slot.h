@@ -11,6 +11,7 @@
 #include "../error.h"
 #include "../io/record.h"
 #include "../io/sha256.h"
+#include "../job/job.h"
 #include "../report/journal.h"
 #include "../report/report.h"
 #include "../signal/signal.h"
@@ -27,50 +28,21 @@ typedef struct {
   double run_s;
 } run_slot;
 
-/* The second horizontal or the vertical component of a ground motion (the
- * first is the record slot's own rec and proc). */
-typedef struct {
-  aq_record rec;
-  aq_processed proc;
-  int have_rec, have_proc;
-} comp_slot;
-
 enum { SLOT_FREE = 0, SLOT_PREPARING, SLOT_READY, SLOT_DONE };
 
 typedef struct {
   int state;
   size_t index;       /* record index */
-  aq_record rec;      /* metadata (samples freed once processed) */
-  int have_rec;
-  aq_processed proc;
-  int have_proc;
-  aq_im im;
-  int have_im;
+  aq_subject subj;    /* read and processed (job/subject.h): metadata, measures,
+                       * warning; its samples until its runs are done */
   int failed;         /* record-level failure (read or process) */
   aq_error err;
   char status[AQ_SUMMARY_STATUS_MAX];
-  char warning[300];  /* residual warning, "" if none */
   char sha256[AQ_SHA256_HEX]; /* of the file (with -o), "" if unreadable */
   int want_sha;       /* 1: sha256 still to be computed (suite.c, record_sha256) */
-  unsigned char *bytes; /* the file's bytes as read, kept for that (or NULL) */
-  size_t nbytes;
-  double read_s, process_s;
-  double *scale;      /* nscale factors applied */
-  double *pga_g;      /* PGA of each scaled record, g */
-  aq_steps *steps;    /* nscale step lists */
-  aq_status *steps_st;/* status of each step list */
-  aq_error *steps_err;
-  int unit;           /* 1: unit_steps made (without merging, one azimuth) */
-  aq_steps unit_steps;/* the record at factor 1: runs that fit give their
-                       * factor to the stepper (suite.c, unit_fits) */
-  aq_status unit_st;
-  aq_error unit_err;
-  double unit_peak_mps2; /* peak |a| of unit_steps */
+  double *scale;      /* per run slot: the factor before the arch (job/scale.h) */
+  aq_runs plan;       /* the step lists its runs share (job/run.h) */
   const aq_orient_motion *motion; /* NULL: a plain in-plane record */
-  comp_slot h2;       /* a motion's second horizontal component */
-  comp_slot v;        /* its vertical component (with --vertical) */
-  int run_v;          /* 1: the vertical is run */
-  double phi_deg[2];  /* a motion's component azimuths, deg */
   size_t naz;         /* azimuths per (arch, scale): 1 for a plain record */
   size_t nruns;       /* narch * nscale * naz */
   run_slot *runs;     /* nruns, arch-major, then scale, then azimuth */

@@ -1,10 +1,10 @@
-/* capacity.c: the collapse capacity of one (processed record, arch,
+/* capacity.c: the collapse capacity of one (subject at an azimuth, arch,
  * polarity): the exact scale below which the arch never moves, then the
- * scan of scan.c with one dynamic run per verdict (a collapsing run stops
- * at its collapse: the stepper ends there); a result as bytes and back
- * (archquake-mpi's messages); and a pool of threads over many such jobs or
- * tasks.  Each job makes its own stepper, so a result depends on its
- * job alone, not on the thread that ran it. */
+ * scan of scan.c with one run per verdict on the subject's view (a
+ * collapsing run stops at its collapse: the stepper ends there); a result
+ * as bytes and back (archquake-mpi's messages); and many such jobs on
+ * threads.  Each job makes its own stepper, so a result depends on its job
+ * alone, not on the thread that ran it. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -26,13 +26,7 @@ void aq_capacity_free(aq_capacity *c)
 }
 
 double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
-                              size_t n, double *lambda0)
-{
-  return aq_capacity_move_scale_v(arch, acc_mps2, NULL, n, lambda0);
-}
-
-double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
-                                const double *av_mps2, size_t n, double *lambda0)
+                              const double *av_mps2, size_t n, double sign, double *lambda0)
 {
   double best = INFINITY, l0 = INFINITY;
   for (int k = 0; k < 2; k++) {
@@ -42,7 +36,7 @@ double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
     l0 = fmin(l0, p->lambda0);
     double drive = 0; /* max of act_sign a over the samples, m/s^2 */
     for (size_t i = 0; i < n; i++) /* s act_sign a > lambda0 (g + s a_v) */
-      drive = fmax(drive, p->act_sign * acc_mps2[i] -
+      drive = fmax(drive, p->act_sign * (sign * acc_mps2[i]) -
                               (av_mps2 ? p->lambda0 * av_mps2[i] : 0.0));
     if (drive > 0) /* motion needs act_sign a > lambda0 (g + a_v) (stepper.c) */
       best = fmin(best, p->lambda0 * p->g_mps2 / drive);
@@ -55,7 +49,6 @@ double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
 typedef struct {
   const aq_capacity_job *job;
   aq_stepper *st;
-  double *buf;      /* proc->n scaled samples */
   aq_capacity *out; /* gets a point per run */
   size_t cap;       /* points allocated */
 } run_ctx;
@@ -90,30 +83,26 @@ static int by_scale(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-/* One run at scale: steps as the main job makes them (the processed record
- * times the scale, split with --merge-tol), then the stepper. */
+/* One run at scale: the view with the factor (its sign the polarity)
+ * given to the stepper, or without it, merged steps of the scaled series
+ * (--merge-tol), as the main job makes them. */
 static aq_status run_at(void *vctx, double scale, int *collapsed, aq_error *err)
 {
   run_ctx *c = vctx;
-  const aq_processed *p = c->job->proc;
-  aq_steps steps;
-  aq_status s;
-  if (c->job->av_mps2) { /* the vertical scales with the motion */
-    double peak;
-    s = aq_steps_project_v(c->job->acc_mps2, 1.0, NULL, 0.0, scale, c->job->av_mps2,
-                           scale, p->n, p->dt_s, -(double)p->pad_front * p->dt_s,
-                           c->job->merge_tol_mps2, &steps, &peak, err);
-  } else {
-    for (size_t i = 0; i < p->n; i++)
-      c->buf[i] = scale * c->job->acc_mps2[i];
-    s = aq_steps_from_samples(c->buf, p->n, p->dt_s, -(double)p->pad_front * p->dt_s,
-                              c->job->merge_tol_mps2, &steps, err);
-  }
-  if (s != AQ_OK)
-    return s;
+  const aq_capacity_job *job = c->job;
+  double sa = aq_scale_signed(scale, job->reversed);
   aq_result res;
-  s = aq_stepper_run(c->st, &steps, &res, err);
-  aq_steps_free(&steps);
+  aq_status s;
+  if (job->merge_tol_mps2 == 0 && isfinite(sa)) {
+    s = aq_job_run_view(c->st, job->view, sa, &res, err);
+  } else {
+    aq_steps steps;
+    s = aq_view_steps(job->view, sa, scale, job->merge_tol_mps2, &steps, err);
+    if (s != AQ_OK)
+      return s;
+    s = aq_stepper_run(c->st, &steps, &res, err);
+    aq_steps_free(&steps);
+  }
   if (s != AQ_OK) {
     size_t len = strlen(err->message);
     snprintf(err->message + len, sizeof err->message - len, " (scale %.9g)", scale);
@@ -130,12 +119,12 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
 {
   memset(out, 0, sizeof *out);
   out->first_collapse_scale = NAN;
-  const aq_processed *p = job->proc;
-  out->move_scale = aq_capacity_move_scale_v(job->arch, job->acc_mps2, job->av_mps2,
-                                             p->n, &out->lambda0);
+  const aq_steps *v = &job->view->steps; /* one step per sample: the series */
+  out->move_scale = aq_capacity_move_scale(job->arch, v->a_mps2, v->av_mps2, v->n,
+                                           job->reversed ? -1.0 : 1.0, &out->lambda0);
   double amax = 0; /* PGA, m/s^2 */
-  for (size_t i = 0; i < p->n; i++)
-    amax = fmax(amax, fabs(job->acc_mps2[i]));
+  for (size_t i = 0; i < v->n; i++)
+    amax = fmax(amax, fabs(v->a_mps2[i]));
   out->scale_max = !isnan(job->scale_max)
                        ? job->scale_max
                        : amax > 0 ? AQ_CAPACITY_CAP_LAMBDA0 * out->lambda0 *
@@ -145,21 +134,12 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
     out->status = AQ_CAPACITY_NEVER_MOVES;
     return AQ_OK;
   }
-  aq_stepper *st = aq_stepper_alloc(aq_arch_path(job->arch, 0),
-                                    aq_arch_path(job->arch, 1), job->model, err);
+  aq_stepper *st = aq_job_stepper(job->arch, job->model, job->cor, 0, err);
   if (!st)
     return err->status;
-  const aq_arch_dynamics *d = aq_arch_dynamics_of(job->arch);
-  aq_stepper_set_cor(st, isnan(job->cor) ? d->cor : job->cor);
-  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
-  run_ctx c = {job, st, malloc((p->n ? p->n : 1) * sizeof(double)), out, 0};
-  if (!c.buf) {
-    aq_stepper_free(st);
-    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "capacity", "out of memory");
-  }
+  run_ctx c = {job, st, out, 0};
   aq_status s = aq_scan_run(out->move_scale, out->scale_max, &job->scan, run_at,
                             &c, &out->scan, &out->err);
-  free(c.buf);
   aq_stepper_free(st);
   if (out->npoint) /* grid and bisection runs interleave */
     qsort(out->point, out->npoint, sizeof *out->point, by_scale);

@@ -9,12 +9,10 @@
  *   31(3), 2002, with the hunt replaced by a scan that finds every window
  *   wider than the resolution: docs/capacity.md states the guarantee).  The
  *   verdict comes from a callback, so the scan knows no physics.
- * capacity.c: the verdict of one (processed record, arch, polarity) at a
- *   scale (one dynamic run with the stepper), the exact scale at which the
- *   arch first moves (with a vertical too), the worst of a scan over
- *   azimuths, and a thread pool over many such pairs.
- * input.c: a subject read and processed once: a record, or a ground motion
- *   of two horizontal components (and the vertical) projected per azimuth.
+ * capacity.c: the verdict of one (subject at an azimuth, arch, polarity)
+ *   at a scale (one run, job/run.h, on the subject's view), the exact scale
+ *   at which the arch first moves (with a vertical too), the worst of a scan
+ *   over azimuths, and many such jobs on threads (util/pool.h).
  * fragility.c: lognormal fit by maximum likelihood with right-censoring
  *   (Baker 2015, Earthquake Spectra 31(1), eq. 7, with the censored terms
  *   of his eq. 11 form) and a profile-likelihood confidence interval of the
@@ -35,6 +33,7 @@
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../error.h"
+#include "../job/job.h"
 #include "../signal/signal.h"
 #include "../util/bytes.h"
 
@@ -92,19 +91,20 @@ void aq_scan_result_free(aq_scan_result *r);
 /* Default cap: the scale at which the record's PGA reaches this many lambda0 g. */
 #define AQ_CAPACITY_CAP_LAMBDA0 20.0
 
-/* One (record, arch, polarity) to analyse.  The pointers are borrowed. */
+/* One (subject, azimuth, polarity, arch) to analyse.  The pointers are
+ * borrowed. */
 typedef struct {
-  const aq_processed *proc; /* processed record at scale 1 (normal polarity) */
-  const double *acc_mps2;   /* proc->n samples with the polarity applied (the
-                               processed record, or its negation made once) */
+  const aq_view *view;   /* the subject at the azimuth, factor 1 (job/subject.h):
+                            every run of the scan gives its factor to the
+                            stepper (merged steps, --merge-tol, are made per run) */
+  int reversed;          /* the polarity: every factor negated (the vertical
+                            keeps its sign) */
   const aq_arch *arch;
   aq_model model;
   double cor;            /* kinetic-energy ratio at impact, or NAN: the arch's own */
   double merge_tol_mps2; /* as aq_steps_from_samples (0: one step per sample) */
   double scale_max;      /* cap, or NAN: AQ_CAPACITY_CAP_LAMBDA0 lambda0 g / PGA */
   aq_scan_opts scan;
-  const double *av_mps2; /* proc->n vertical samples (positive up, scaled with
-                            the motion, never negated), or NULL: none */
 } aq_capacity_job;
 
 typedef enum {
@@ -137,20 +137,17 @@ typedef struct {
   aq_capacity_point *point;    /* malloc'd, by increasing scale; NULL when none */
 } aq_capacity;
 
-/* The scale at or below which no step of acc (n samples) opens either set
- * of arch: min over usable sets k of lambda0_k g / max_i (act_sign_k a_i)
- * (INFINITY when no sample drives any set).  Exact for one step per
+/* The scale at or below which no sample of sign * acc (n samples; sign
+ * +1 or -1, the polarity) opens either set of arch, with a vertical
+ * av_mps2 (NULL: none) scaled with the motion: at scale s a sample drives
+ * set k if s act_sign_k a_i > lambda0_k (g + s av_i), so the scale is min
+ * over usable sets k of lambda0_k g / max_i (act_sign_k a_i - lambda0_k
+ * av_i) (INFINITY when no sample drives any set).  Exact for one step per
  * sample; merged steps (--merge-tol) are means of samples, so no merged
  * step moves the arch below it either.  *lambda0 (may be NULL) gets the
  * smallest lambda0 of the usable sets. */
 double aq_capacity_move_scale(const aq_arch *arch, const double *acc_mps2,
-                              size_t n, double *lambda0);
-/* As aq_capacity_move_scale with a vertical av_mps2 (NULL: none) scaled
- * with the motion: at scale s a sample drives set k if s act_sign_k a_i >
- * lambda0_k (g + s av_i), so the scale is min over k of lambda0_k g /
- * max_i (act_sign_k a_i - lambda0_k av_i). */
-double aq_capacity_move_scale_v(const aq_arch *arch, const double *acc_mps2,
-                                const double *av_mps2, size_t n, double *lambda0);
+                              const double *av_mps2, size_t n, double sign, double *lambda0);
 
 /* Of n results of one (motion, arch, polarity) over azimuths: the index of
  * the worst (a failed run first, then the lowest first_collapse_scale; no
@@ -188,41 +185,6 @@ aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err);
  * err.  Returns AQ_OK, or AQ_ENOMEM when the threads cannot be made. */
 aq_status aq_capacity_run_all(const aq_capacity_job *jobs, size_t njob,
                               long threads, aq_capacity *out, aq_error *err);
-
-/* ---- input.c --------------------------------------------------------------- */
-
-/* One capacity subject read and processed: a plain record (one in-plane
- * component) or a ground motion (two horizontal components, optionally the
- * vertical), with the in-plane acceleration at each arch azimuth asked. */
-typedef struct {
-  aq_record rec[3];     /* H1 (or the record), H2, V */
-  aq_processed proc[3];
-  int have_rec[3], have_proc[3];
-  int motion;           /* 1: two horizontal components */
-  int run_v;            /* the vertical is run */
-  double phi_deg[2];    /* the components' azimuths */
-  size_t naz;           /* in-plane series: one per azimuth (1 for a record) */
-  double *acc;          /* naz * n in-plane samples (m/s^2, normal polarity) */
-  double *neg;          /* the same negated (reversed polarity), or NULL */
-  aq_im *im;            /* naz: the measures of each in-plane series */
-  const char *stage;    /* where it failed: "read" or "process" */
-} aq_capacity_input;
-
-/* Read and process path[0] (path[1] NULL: a plain record) or the motion
- * path[0..2] (path[2] NULL or vertical 0: no vertical), azimuths from
- * phi_given (NAN: the files'), checked orthogonal and aligned, cut to the
- * samples all share, each processed once, then projected at the naz arch
- * azimuths (deg; ignored for a plain record); want_neg also makes the
- * negated series.  On failure in->stage says where; free with
- * aq_capacity_input_free in every case. */
-aq_status aq_capacity_input_prepare(aq_capacity_input *in, const char *const path[3],
-                                    int vertical, const double phi_given[2],
-                                    const aq_read_opts *ro, const aq_signal_opts *po,
-                                    aq_signal_ws *ws, const double *azimuths_deg,
-                                    size_t naz, int want_neg, aq_error *err);
-/* Samples per in-plane series. */
-size_t aq_capacity_input_n(const aq_capacity_input *in);
-void aq_capacity_input_free(aq_capacity_input *in);
 
 /* ---- fragility.c ---------------------------------------------------------- */
 

@@ -535,7 +535,8 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
 
   /* Units: the text lines say "UNITS OF G"; an AT2 file is in g by its
    * definition when they say nothing. */
-  char ustated[24] = "g", usaid[64] = "";
+  char ustated[24] = "g", usaid[64] = "", ufrom[64] = "a PEER AT2 file: g";
+  int qty = AQ_QUANTITY_UNSTATED;
   for (int k = 0; k < h.ntext; k++) {
     aq_units hu;
     char uword[32] = "";
@@ -543,11 +544,14 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                          sizeof uword);
     if (r == 1) {
       snprintf(ustated, sizeof ustated, "%s", aq_units_name(hu));
+      snprintf(ufrom, sizeof ufrom, "header line %d: UNITS OF %.24s", k + 1, uword);
+      qty = AQ_QUANTITY_ACCELERATION;
       break;
     }
     if (r < 0) {
       ustated[0] = '\0';
       snprintf(usaid, sizeof usaid, "UNITS OF %s", uword);
+      qty = aq_units_quantity(uword);
       break;
     }
   }
@@ -662,6 +666,11 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   ch->begin_s = 0.0;
   snprintf(ch->units, sizeof ch->units, "%s", ustated);
   snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
+  snprintf(ch->units_from, sizeof ch->units_from, "%s", ufrom);
+  ch->quantity = qty;
+  if (qty != AQ_QUANTITY_UNSTATED)
+    snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s",
+             qty == AQ_QUANTITY_ACCELERATION ? ufrom : usaid);
   ch->values = acc;
   /* What the text states: the event line (PEER: "Event, date, station,
    * component"), the component (PEER's three text lines: the second line's

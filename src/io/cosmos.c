@@ -285,6 +285,27 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       code = atoi(par + 1);
   }
   units_word(code, &ln, tmp.units, sizeof tmp.units);
+  {
+    /* the data line names what its values are ("7000 acceleration pts") */
+    static const struct {
+      const char *word;
+      int q;
+    } kinds[] = {{"accel", AQ_QUANTITY_ACCELERATION},
+                 {"veloc", AQ_QUANTITY_VELOCITY},
+                 {"displ", AQ_QUANTITY_DISPLACEMENT}};
+    const char *pts = aq_find_ci(ln.p, ln.len, "pts");
+    size_t before = pts ? (size_t)(pts - ln.p) : ln.len;
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+      if (aq_find_ci(ln.p, before, kinds[i].word)) {
+        char said[64];
+        aq_copy_trim(said, sizeof said, ln.p, before + (pts ? 3 : 0));
+        tmp.quantity = kinds[i].q;
+        snprintf(tmp.quantity_said, sizeof tmp.quantity_said, "line %ld: \"%s\"", ln.line,
+                 said);
+        break;
+      }
+    snprintf(tmp.units_from, sizeof tmp.units_from, "line %ld: units code %d", ln.line, code);
+  }
   if (code == 50) {
     double lsb_uv = rv[21], sens_v_per_g = rv[41], gain = rv[46];
     static const char *const fld[3] = {"real header #22 (LSB, microvolts/count)",
@@ -313,6 +334,8 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       tmp.azimuth_deg = orient;
       tmp.dip_deg = 0;
       tmp.vertical = 0;
+      snprintf(tmp.orient_said, sizeof tmp.orient_said,
+               "integer header #54 (orientation): %g", orient);
     } else if (orient == 400 || orient == 500) {
       tmp.dip_deg = orient == 400 ? -90 : 90;
       tmp.vertical = 1;

@@ -59,15 +59,21 @@ static int number_at(const char *p, const char *end, double *out)
 
 /* "13200 Accelerogram points at 200 pts/sec in units of g" (1) or
  * "3251 POINTS OF ACCEL DATA EQUALLY SPACED AT .020 SEC. (UNITS: ...)" (2). */
-static int data_line_kind(const aq_line *ln)
+static int data_line_kind(const aq_line *ln, int *qty)
 {
+  *qty = AQ_QUANTITY_ACCELERATION;
   if (leading_long(ln->p, ln->p + ln->len) < 1)
     return 0;
   if (aq_find_ci(ln->p, ln->len, "accelerogram points"))
     return 1;
   if (aq_find_ci(ln->p, ln->len, "points of accel data"))
     return 2;
-  return 0;
+  /* a channel whose first block is velocity or displacement: read as it is,
+   * for the decision to refuse (record.c) */
+  *qty = aq_find_ci(ln->p, ln->len, "points of veloc data")   ? AQ_QUANTITY_VELOCITY
+         : aq_find_ci(ln->p, ln->len, "points of displ data") ? AQ_QUANTITY_DISPLACEMENT
+                                                             : AQ_QUANTITY_UNSTATED;
+  return *qty != AQ_QUANTITY_UNSTATED ? 2 : 0;
 }
 
 static void units_from(const char *b, const char *end, char *out, size_t cap)
@@ -129,6 +135,8 @@ static void channel_line(const aq_line *ln, aq_raw_channel *ch)
     ch->azimuth_deg = az;
     ch->dip_deg = 0;
     ch->vertical = 0;
+    snprintf(ch->orient_said, sizeof ch->orient_said, "line %ld: %.*s deg", ln->line, (int)len,
+             b);
   } else if (aq_find_ci(b, (size_t)(p - b), "up")) {
     ch->dip_deg = -90;
     ch->vertical = 1;
@@ -143,7 +151,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
 {
   aq_line hdr[CSMIP_MAX_HEADER_LINES];
   size_t nh = 0;
-  int kind = 0;
+  int kind = 0, qty = AQ_QUANTITY_UNSTATED;
   hdr[nh++] = *first;
   aq_lines hstart = *c; /* just after the first line */
   aq_line ln;
@@ -153,7 +161,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
                           "expected \"N Accelerogram points at R pts/sec\" or \"N POINTS "
                           "OF ACCEL DATA ...\" within %d lines of the channel start",
                           CSMIP_MAX_HEADER_LINES);
-    kind = data_line_kind(&ln);
+    kind = data_line_kind(&ln, &qty);
     if (!kind)
       hdr[nh++] = ln;
   }
@@ -181,6 +189,14 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   }
   aq_raw_channel tmp;
   aq_raw_channel_init(&tmp);
+  {
+    char said[72];
+    aq_copy_trim(said, sizeof said, data.p, data.len);
+    tmp.quantity = qty;
+    snprintf(tmp.quantity_said, sizeof tmp.quantity_said, "line %ld: \"%.64s\"", data.line,
+             said);
+    snprintf(tmp.units_from, sizeof tmp.units_from, "line %ld (the data line)", data.line);
+  }
   for (size_t i = 0; i < ntext; i++) {
     const char *p = hdr[i].p, *end = p + hdr[i].len;
     while (p < end && *p == ' ')

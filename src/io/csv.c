@@ -414,6 +414,33 @@ static int units_in(const char *text, aq_units *u)
   return 0;
 }
 
+/* The quantity the units in text measure ("vel (cm/s)", "disp_cm",
+ * "cm/s"): the word in () or [], after the last '_' or blank, or the whole
+ * text (aq_units_quantity). */
+static aq_quantity quantity_in(const char *text)
+{
+  char t[CSV_NAME_MAX];
+  snprintf(t, sizeof t, "%s", text);
+  char *o = strpbrk(t, "([");
+  if (o) {
+    char *cl = strpbrk(o + 1, ")]");
+    if (cl)
+      *cl = '\0';
+    char *in = o + 1;
+    while (*in == ' ')
+      in++;
+    return aq_units_quantity(in);
+  }
+  size_t l = strlen(t);
+  while (l > 0 && t[l - 1] == ' ')
+    t[--l] = '\0';
+  aq_quantity q = aq_units_quantity(t);
+  char *sfx = strrchr(t, '_');
+  if (!sfx)
+    sfx = strrchr(t, ' ');
+  return q != AQ_QUANTITY_UNSTATED || !sfx ? q : aq_units_quantity(sfx + 1);
+}
+
 static int is_time_name(const char *name)
 {
   char base[CSV_NAME_MAX];
@@ -921,12 +948,16 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     } else if (r < 0) {
       snprintf(ch->units_said, sizeof ch->units_said, "line %ld: column \"%.40s\"",
                hline, names[col]);
+      ch->quantity = (int)quantity_in(names[col]);
+      snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s", ch->units_said);
     } else if (pre_units > 0) {
       snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(pre_u));
       ch->units_line = pre_line;
     } else if (pre_units < 0) {
       snprintf(ch->units_said, sizeof ch->units_said, "line %ld: UNIT = %s",
                pre_line, pre_said);
+      ch->quantity = (int)quantity_in(pre_said);
+      snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s", ch->units_said);
     }
   }
   return AQ_OK;

@@ -178,6 +178,17 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
   if (type[0] && strcmp(type, "ACCELERATION") != 0)
     snprintf(ch->units_said, sizeof ch->units_said, "DATA_TYPE: %.20s, UNITS: %.20s", type,
              units);
+  if (type[0]) {
+    ch->quantity = strcmp(type, "ACCELERATION") == 0   ? AQ_QUANTITY_ACCELERATION
+                   : strcmp(type, "VELOCITY") == 0     ? AQ_QUANTITY_VELOCITY
+                   : strcmp(type, "DISPLACEMENT") == 0 ? AQ_QUANTITY_DISPLACEMENT
+                                                       : AQ_QUANTITY_UNSTATED;
+    snprintf(ch->quantity_said, sizeof ch->quantity_said, "line %ld: DATA_TYPE: %.20s",
+             k[K_DATA_TYPE].line, type);
+  }
+  if (units[0])
+    snprintf(ch->units_from, sizeof ch->units_from, "line %ld: UNITS: %.20s", k[K_UNITS].line,
+             units);
   ch->units_line = k[K_UNITS].line;
   {
     char t[40];

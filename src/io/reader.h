@@ -31,6 +31,7 @@
 #include <stddef.h>
 
 #include "../error.h"
+#include "units.h"
 
 /* ---- what a parser fills ------------------------------------------------ */
 
@@ -64,6 +65,16 @@ typedef struct {
                             IVOL (50, volts)", "line 3: UNITS OF CM/S");
                             "" if nothing */
   long units_line;       /* line (text) where units are stated, or -1/0 */
+  char units_from[64];   /* where the file states its units, for messages
+                            ("header IDEP: IACC (8)", "StationXML X.xml");
+                            "" if units says all */
+  int quantity;          /* what the file says the values are (aq_quantity):
+                            0 does not say */
+  char quantity_said[96];/* where it says so, for messages ("header IDEP:
+                            IVEL (7, velocity)"); "" if it does not */
+  char orient_said[64];  /* the field that states azimuth, dip or vertical,
+                            for messages ("integer header #54: 0"); "" if
+                            none or the format's only place */
 } aq_raw_channel;
 
 /* A whole file: one or more channels, plus what the file says about the
@@ -211,14 +222,23 @@ aq_status aq_stationxml_parse(const unsigned char *buf, size_t n, const char *na
                               aq_response *resp, aq_error *err);
 void aq_response_free(aq_response *resp);
 
-/* For every channel of raw whose units are "counts": find the epoch of resp
- * with the same network, station, location and channel that covers the
- * channel's start, and set counts_per_mps2 (from the sensitivity and its
- * input units: m/s^2, nm/s^2 or g; the sign is kept), azimuth and dip.  No
- * matching channel, no covering epoch or input units that are not
- * acceleration: AQ_EUNITS naming xml_name and the channel. */
-aq_status aq_stationxml_apply(const aq_response *resp, const char *xml_name,
-                              aq_raw_file *raw, const char *name, aq_error *err);
+/* The epochs of resp of channel net.sta.loc.cha: returns how many cover the
+ * time t_s (s since 1970, UTC), the first of them in *hit (NULL if none);
+ * *nsame (if not NULL) grows by the number of epochs of that channel, and
+ * spans[cap] (if not NULL) gets the spans of the first three appended
+ * ("START to END|open", comma-separated). */
+size_t aq_response_find(const aq_response *resp, const char *net, const char *sta,
+                        const char *loc, const char *cha, double t_s,
+                        const aq_response_epoch **hit, size_t *nsame, char *spans, size_t cap);
+
+/* What epoch e of the StationXML xml_name states about channel ch: the
+ * quantity its input units measure (quantity, quantity_said); for
+ * acceleration the sensitivity in counts per m/s^2, sign kept
+ * (counts_per_mps2, units_from); azimuth, dip and vertical (orient_said).
+ * AQ_EUNITS naming xml_name for input units it does not know or a
+ * sensitivity that is zero or not a number. */
+aq_status aq_response_apply(const aq_response_epoch *e, const char *xml_name, aq_raw_channel *ch,
+                            aq_error *err);
 
 /* ---- for the parsers: the raw file (raw.c) ------------------------------- */
 

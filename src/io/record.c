@@ -17,6 +17,7 @@
 #include <sys/stat.h>
 
 #include "../units.h"
+#include "fixed.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -53,7 +54,7 @@ void aq_record_free(aq_record *rec)
   memset(rec, 0, sizeof *rec);
 }
 
-aq_status aq_record_set_names_(aq_record *rec, const char *name, aq_error *err)
+static aq_status set_names(aq_record *rec, const char *name, aq_error *err)
 {
   const char *p = name ? name : "";
   const char *slash = strrchr(p, '/');
@@ -178,8 +179,9 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n)
   if (has_ci(line[0], len[0], "(Format v") && has_ci(line[0], len[0], "lines)"))
     return AQ_FMT_COSMOS;
   if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
-      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN")))
-    return AQ_FMT_SMC;
+      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN") ||
+       has_ci(line[0], len[0], "VELOCITY") || has_ci(line[0], len[0], "DISPLACEMENT")))
+    return AQ_FMT_SMC; /* (velocity and displacement read to be refused as such) */
   if (aq_bhrc_sniff(buf, m))
     return AQ_FMT_BHRC;
   if (aq_asa_sniff(buf, m))
@@ -267,35 +269,133 @@ const char *aq_format_describe(aq_format fmt)
 #define MSEED_XML_MAX_BYTES (64L << 20) /* a StationXML larger than this is refused */
 #define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
 
-/* aq_mseed_parse, then, if opts->response names a StationXML file, read it
- * and aq_stationxml_apply() it. */
+/* The StationXML files of a miniSEED read, each loaded and parsed when a
+ * channel first needs it. */
+typedef struct {
+  const char *name;
+  unsigned char *bytes;
+  size_t n;
+  int state; /* 0 not loaded, 1 bytes, 2 parsed */
+  aq_response resp;
+} xml_file;
+
+/* The bytes of StationXML x (state 1), or an error naming it. */
+static aq_status xml_load(xml_file *x, aq_error *err)
+{
+  if (x->state)
+    return AQ_OK;
+  FILE *f = fopen(x->name, "rb");
+  long len = -1;
+  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
+      fseek(f, 0, SEEK_SET) == 0 && (x->bytes = malloc((size_t)len + 1)) != NULL &&
+      fread(x->bytes, 1, (size_t)len, f) == (size_t)len) {
+    fclose(f);
+    x->n = (size_t)len;
+    x->state = 1;
+    return AQ_OK;
+  }
+  if (f)
+    fclose(f);
+  free(x->bytes);
+  x->bytes = NULL;
+  return aq_error_set(err, AQ_EIO, x->name, -1, -1, "response",
+                      "expected a readable StationXML file of at most %ld bytes, %s",
+                      MSEED_XML_MAX_BYTES,
+                      !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one"
+                                                                         : "cannot read it");
+}
+
+/* Does x mention station sta at all (code="STA")?  Only those are parsed. */
+static int xml_mentions(const xml_file *x, const char *sta)
+{
+  char pat[24];
+  int m = snprintf(pat, sizeof pat, "\"%s\"", sta);
+  if (m <= 2 || (size_t)m >= sizeof pat)
+    return 1;
+  for (size_t i = 0; i + (size_t)m <= x->n; i++)
+    if (x->bytes[i] == '"' && memcmp(x->bytes + i, pat, (size_t)m) == 0)
+      return 1;
+  return 0;
+}
+
+/* Give channel ch of miniSEED name the one response of xs[0..nx) that
+ * matches its identity and start. */
+static aq_status match_response(xml_file *xs, size_t nx, aq_raw_channel *ch, const char *name,
+                                aq_error *err)
+{
+  char id[80], field[96];
+  snprintf(id, sizeof id, "%s.%s.%s.%s", ch->network, ch->station, ch->location, ch->channel);
+  snprintf(field, sizeof field, "channel %s", id);
+  double t0;
+  if (!aq_iso_parse(ch->reference, &t0))
+    return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
+                        "the record states no start time to choose a response epoch");
+  t0 += ch->begin_s;
+  const aq_response_epoch *hit = NULL;
+  size_t nhit = 0, nsame = 0, first = 0, second = 0; /* files of the first two hits */
+  char spans[256] = "";
+  for (size_t j = 0; j < nx; j++) {
+    aq_status s = xml_load(&xs[j], err);
+    if (s != AQ_OK)
+      return s;
+    if (xs[j].state == 1) {
+      if (!xml_mentions(&xs[j], ch->station))
+        continue;
+      if ((s = aq_stationxml_parse(xs[j].bytes, xs[j].n, xs[j].name, &xs[j].resp, err)) != AQ_OK)
+        return s;
+      xs[j].state = 2;
+    }
+    const aq_response_epoch *h;
+    size_t k = aq_response_find(&xs[j].resp, ch->network, ch->station, ch->location,
+                                ch->channel, t0, &h, &nsame, spans, sizeof spans);
+    if (k && nhit == 0) {
+      hit = h;
+      first = second = j; /* second: j again if it holds two */
+    } else if (k && nhit == 1) {
+      second = j;
+    }
+    nhit += k;
+  }
+  if (nhit == 1)
+    return aq_response_apply(hit, xs[first].name, ch, err);
+  char list[300] = "";
+  size_t len = 0, shown = 0;
+  if (nhit > 1)
+    snprintf(list, sizeof list, "%s and %s", xs[first].name, xs[second].name);
+  else
+    for (size_t j = 0; j < nx && len + 60 < sizeof list; j++, shown++)
+      len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", j ? ", " : "", xs[j].name);
+  if (nhit > 1)
+    return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
+                        "expected one response for %s at its start %s, got %zu that match: %s",
+                        id, ch->reference, nhit, list);
+  return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
+                      "expected a response for %s at its start %s, got none%s%s%s in %s%s",
+                      id, ch->reference, nsame ? " (its epochs: " : "", nsame ? spans : "",
+                      nsame ? ")" : "", list,
+                      shown < nx ? " and more" : "");
+}
+
+/* aq_mseed_parse, then, with opts->responses, each channel's response. */
 static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name,
                             const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
   aq_status s = aq_mseed_parse(buf, n, name, NULL, raw, err);
-  if (s != AQ_OK || !opts || !opts->response[0])
+  if (s != AQ_OK || !opts || !opts->nresponses)
     return s;
-  const char *xml = opts->response;
-  FILE *f = fopen(xml, "rb");
-  unsigned char *x = NULL;
-  long len = -1;
-  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
-      fseek(f, 0, SEEK_SET) == 0 && (x = malloc((size_t)len + 1)) != NULL &&
-      fread(x, 1, (size_t)len, f) == (size_t)len) {
-    aq_response resp;
-    s = aq_stationxml_parse(x, (size_t)len, xml, &resp, err);
-    if (s == AQ_OK) {
-      s = aq_stationxml_apply(&resp, xml, raw, name, err);
-      aq_response_free(&resp);
-    }
-  } else {
-    s = aq_error_set(err, AQ_EIO, xml, -1, -1, "--response",
-                     "expected a readable StationXML file of at most %ld bytes, %s", MSEED_XML_MAX_BYTES,
-                     !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one" : "cannot read it");
+  size_t nx = opts->nresponses < AQ_RESPONSES_MAX ? opts->nresponses : AQ_RESPONSES_MAX;
+  xml_file *xs = calloc(nx, sizeof *xs);
+  if (!xs)
+    s = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
+  for (size_t j = 0; xs && j < nx; j++)
+    xs[j].name = opts->responses[j];
+  for (size_t i = 0; s == AQ_OK && i < raw->nchan; i++)
+    s = match_response(xs, nx, &raw->chan[i], name, err);
+  for (size_t j = 0; xs && j < nx; j++) {
+    free(xs[j].bytes);
+    aq_response_free(&xs[j].resp);
   }
-  free(x);
-  if (f)
-    fclose(f);
+  free(xs);
   if (s != AQ_OK)
     aq_raw_file_free(raw);
   return s;
@@ -303,7 +403,10 @@ static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name
 
 size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
 {
-  size_t k = 0;
+  size_t k = 0, nx = 0;
+  char **xml = malloc((n ? n : 1) * sizeof *xml);
+  if (!xml)
+    return n; /* left as records: each refused as not one */
   for (size_t i = 0; i < n; i++) {
     char head[MSEED_XML_SNIFF + 1];
     size_t got = 0;
@@ -314,16 +417,22 @@ size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
     }
     head[got] = '\0';
     int is_xml = got > 0 && memchr(head, '\0', got) == NULL && strstr(head, "<FDSNStationXML");
-    if (!is_xml) {
+    if (is_xml && ro->nresponses + nx < AQ_RESPONSES_MAX)
+      xml[nx++] = paths[i];
+    else
       paths[k++] = paths[i];
-      continue;
-    }
-    if (!ro->response[0] && strlen(paths[i]) < sizeof ro->response)
-      snprintf(ro->response, sizeof ro->response, "%s", paths[i]);
   }
-  /* nothing but StationXML: leave them for the reader to refuse as records
-   * (k == 0 means no path was moved) */
-  return k ? k : n;
+  if (k == 0) { /* nothing but StationXML: the reader refuses them as records */
+    memcpy(paths, xml, n * sizeof *xml);
+    free(xml);
+    return n;
+  }
+  for (size_t j = 0; j < nx; j++) {
+    ro->responses[ro->nresponses++] = xml[j];
+    paths[k + j] = xml[j];
+  }
+  free(xml);
+  return k;
 }
 
 /* ---- deciding -------------------------------------------------------- */
@@ -427,6 +536,97 @@ static size_t scale_samples(const double *v, double *acc, size_t n, double facto
   return k;
 }
 
+/* SEED instrument codes (the second letter of a three-letter channel code
+ * after a band code) of sensors that do not record acceleration: H and L
+ * seismometers (high and low gain), P geophones, M mass position (SEED
+ * manual, appendix A); N is an accelerometer. */
+static const char *instrument_not_acceleration(const char *channel)
+{
+  static const char bands[] = "FGDCESHBMLVURPTQAIO";
+  if (strlen(channel) != 3 || !strchr(bands, channel[0]) || !isalnum((unsigned char)channel[2]))
+    return NULL;
+  switch (channel[1]) {
+  case 'H':
+    return "a high-gain seismometer (velocity)";
+  case 'L':
+    return "a low-gain seismometer (velocity)";
+  case 'P':
+    return "a geophone (velocity)";
+  case 'M':
+    return "a mass position";
+  default:
+    return NULL;
+  }
+}
+
+/* The quantity the file name says, by its words (split at anything not a
+ * letter or digit, and between a lower- and an upper-case letter: "RawVel"):
+ * velocity (vel, velo, veloc, velocity, VT2) or displacement (disp, displ,
+ * displacement, DT2); the word in *word. */
+static aq_quantity name_quantity(const char *path, char *word, size_t cap)
+{
+  static const char *const vel[] = {"vel", "velo", "veloc", "velocity", "velocities", "vt2"};
+  static const char *const disp[] = {"disp", "displ", "displacement", "displacements", "dt2"};
+  const char *base = strrchr(path, '/');
+  const char *p = base ? base + 1 : path;
+  while (*p) {
+    while (*p && !isalnum((unsigned char)*p))
+      p++;
+    const char *b = p;
+    while (*p && isalnum((unsigned char)*p) &&
+           !(p > b && islower((unsigned char)p[-1]) && isupper((unsigned char)*p)))
+      p++;
+    size_t len = (size_t)(p - b);
+    for (size_t i = 0; len && i < sizeof vel / sizeof vel[0]; i++)
+      if (strlen(vel[i]) == len && strncasecmp(b, vel[i], len) == 0) {
+        snprintf(word, cap, "%.*s", (int)len, b);
+        return AQ_QUANTITY_VELOCITY;
+      }
+    for (size_t i = 0; len && i < sizeof disp / sizeof disp[0]; i++)
+      if (strlen(disp[i]) == len && strncasecmp(b, disp[i], len) == 0) {
+        snprintf(word, cap, "%.*s", (int)len, b);
+        return AQ_QUANTITY_DISPLACEMENT;
+      }
+  }
+  return AQ_QUANTITY_UNSTATED;
+}
+
+/* AQ_OK when nothing the file says contradicts acceleration; else
+ * AQ_EUNITS naming the evidence: what the file says the values are, units
+ * of velocity or displacement, the file's name, or a SEED instrument code
+ * of a sensor that does not record acceleration (unless the file states
+ * acceleration itself: a record converted by the user keeps its code). */
+static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
+                                    const char *label, aq_error *err)
+{
+  char ev[200] = "", word[64];
+  aq_quantity q = AQ_QUANTITY_UNSTATED;
+  if (ch->quantity == AQ_QUANTITY_VELOCITY || ch->quantity == AQ_QUANTITY_DISPLACEMENT) {
+    q = (aq_quantity)ch->quantity;
+    snprintf(ev, sizeof ev, "%s", ch->quantity_said[0] ? ch->quantity_said : "the file says so");
+  } else if ((q = aq_units_quantity(ch->units)) == AQ_QUANTITY_VELOCITY ||
+             q == AQ_QUANTITY_DISPLACEMENT) {
+    snprintf(ev, sizeof ev, "units \"%s\"%s%s", ch->units, ch->units_from[0] ? ", " : "",
+             ch->units_from);
+  } else if ((q = name_quantity(path, word, sizeof word)) != AQ_QUANTITY_UNSTATED) {
+    snprintf(ev, sizeof ev, "the file name says \"%s\"", word);
+  } else if (ch->quantity != AQ_QUANTITY_ACCELERATION && instrument_not_acceleration(ch->channel)) {
+    q = ch->channel[1] == 'M' ? AQ_QUANTITY_DISPLACEMENT : AQ_QUANTITY_VELOCITY;
+    snprintf(ev, sizeof ev, "SEED channel %s: instrument code %c, %s", ch->channel,
+             ch->channel[1], instrument_not_acceleration(ch->channel));
+  }
+  if (!ev[0])
+    return AQ_OK;
+  return aq_error_set(err, AQ_EUNITS, label, -1, -1, "quantity",
+                      "expected ground acceleration, got %s (%s); archquake reads "
+                      "acceleration only: convert the record to acceleration first",
+                      ch->channel[1] == 'M' && q == AQ_QUANTITY_DISPLACEMENT &&
+                              strstr(ev, "mass position")
+                          ? "a mass position"
+                          : aq_quantity_name(q),
+                      ev);
+}
+
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
@@ -448,6 +648,9 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   if (!(ch->dt_s > 0) || !isfinite(ch->dt_s))
     return aq_error_set(err, AQ_EFORMAT, label, -1, -1, "dt",
                         "expected a sample interval > 0 s, got %g", ch->dt_s);
+  aq_status sq = check_acceleration(ch, path ? path : "", label, err);
+  if (sq != AQ_OK)
+    return sq;
 
   /* Units: a rule naming the file, else the file's own, else --units. */
   aq_units stated = AQ_UNITS_FILE, used;
@@ -508,28 +711,43 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                         "(overflows)", ch->values[k], aq_units_name(used));
   }
 
-  /* Plausibility: PGA in [AQ_PGA_MIN_G, AQ_PGA_MAX_G]. */
-  double pga_g = maxabs * factor / AQ_G0_MPS2;
+  /* Plausibility: |PGA| in [AQ_PGA_MIN_G, AQ_PGA_MAX_G] (a negative
+   * sensitivity gives a negative factor: the channel's polarity). */
+  double pga_g = maxabs * fabs(factor) / AQ_G0_MPS2;
+  /* the file states the conversion: its own units, or counts with the
+   * sensitivity it states; then no other units are offered */
+  int file_states = used == AQ_UNITS_COUNTS || (has_stated && used == stated);
   if (!(pga_g >= AQ_PGA_MIN_G && pga_g <= AQ_PGA_MAX_G) &&
       !(opts && opts->accept_implausible)) {
-    char alt[160] = "";
-    size_t len = 0;
-    for (size_t i = 0; i < sizeof plausible_try / sizeof plausible_try[0]; i++) {
-      double p = maxabs * aq_units_to_mps2(plausible_try[i]) / AQ_G0_MPS2;
-      if (p >= AQ_PGA_MIN_G && p <= AQ_PGA_MAX_G && len + 24 < sizeof alt)
-        len += (size_t)snprintf(alt + len, sizeof alt - len, "%s%s (%.3g g)",
-                                len ? ", " : "", aq_units_name(plausible_try[i]), p);
-    }
     if (!in_place)
       free(acc);
-    char hint[AQ_UNITS_GLOB_MAX + 200];
-    if (!alt[0])
-      snprintf(hint, sizeof hint, "no units make it plausible%s",
-               used == AQ_UNITS_COUNTS ? " (check the sensitivity)" : "");
-    else
-      snprintf(hint, sizeof hint, "plausible in %s: say which with --units %s%s%sU%s",
-               alt, has_stated ? "'" : "", has_stated ? path : "",
-               has_stated ? "=" : "", has_stated ? "'" : "");
+    char hint[AQ_UNITS_GLOB_MAX + 300];
+    if (used == AQ_UNITS_COUNTS)
+      snprintf(hint, sizeof hint, "the sensitivity is %.9g counts per m/s2%s%s%s: check it",
+               ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
+               ch->units_from[0] ? ")" : "");
+    else if (file_states)
+      snprintf(hint, sizeof hint,
+               "%s is what the file states%s%s%s: if the file is wrong, say what its "
+               "values are in with --units '%s=U'",
+               aq_units_name(used), ch->units_from[0] ? " (" : "", ch->units_from,
+               ch->units_from[0] ? ")" : "", path);
+    else {
+      char alt[160] = "";
+      size_t len = 0;
+      for (size_t i = 0; i < sizeof plausible_try / sizeof plausible_try[0]; i++) {
+        double p = maxabs * aq_units_to_mps2(plausible_try[i]) / AQ_G0_MPS2;
+        if (p >= AQ_PGA_MIN_G && p <= AQ_PGA_MAX_G && len + 24 < sizeof alt)
+          len += (size_t)snprintf(alt + len, sizeof alt - len, "%s%s (%.3g g)",
+                                  len ? ", " : "", aq_units_name(plausible_try[i]), p);
+      }
+      if (!alt[0])
+        snprintf(hint, sizeof hint, "no units make it plausible");
+      else
+        snprintf(hint, sizeof hint, "plausible in %s: say which with --units %s%s%sU%s",
+                 alt, has_stated ? "'" : "", has_stated ? path : "", has_stated ? "=" : "",
+                 has_stated ? "'" : "");
+    }
     return aq_error_set(err, AQ_EUNITS, label, -1, -1, "units",
                         "PGA %.3g g with the values in %s (%s) is implausible "
                         "(expected %g to %g g); %s; or keep it with "
@@ -537,19 +755,42 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                         pga_g, aq_units_name(used), how, AQ_PGA_MIN_G, AQ_PGA_MAX_G,
                         hint);
   }
+  if (factor < 0) /* a negative sensitivity: the channel's polarity, applied */
+    snprintf(rec->polarity_note, sizeof rec->polarity_note,
+             "reversed: the sensitivity is %.9g counts per m/s2%s%s%s, and its sign is "
+             "applied to the samples",
+             ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
+             ch->units_from[0] ? ")" : "");
 
-  /* Vertical: what the file states, else its dip, else the channel name. */
+  /* Vertical: what the file states, else its dip, else the channel name;
+   * a name saying vertical over a field saying horizontal is vertical, and
+   * the conflict is noted. */
   aq_vertical_by by = AQ_VERTICAL_BY_NONE;
+  int says = channel_says_vertical(ch->channel);
   if (ch->vertical > 0)
     by = AQ_VERTICAL_BY_STATED;
   else if (ch->vertical < 0 && isfinite(ch->dip_deg) &&
            fabs(ch->dip_deg) >= AQ_VERTICAL_DIP_MIN_DEG)
     by = AQ_VERTICAL_BY_DIP;
-  else if (ch->vertical < 0 && channel_says_vertical(ch->channel))
+  else if (says && ch->vertical < 0 && !isfinite(ch->dip_deg))
     by = AQ_VERTICAL_BY_NAME;
+  else if (says) { /* a field says horizontal: stated, or a dip near 0 */
+    by = AQ_VERTICAL_BY_NAME_OVER_FIELD;
+    char field[96];
+    if (ch->orient_said[0])
+      snprintf(field, sizeof field, "%s", ch->orient_said);
+    else if (isfinite(ch->dip_deg))
+      snprintf(field, sizeof field, "dip %g deg", ch->dip_deg);
+    else
+      snprintf(field, sizeof field, "azimuth %g deg", ch->azimuth_deg);
+    snprintf(rec->vertical_note, sizeof rec->vertical_note,
+             "channel \"%s\" says vertical, the orientation field (%s) says horizontal: "
+             "taken as vertical",
+             ch->channel, field);
+  }
   int vert = by != AQ_VERTICAL_BY_NONE;
 
-  aq_status s = aq_record_set_names_(rec, label, err);
+  aq_status s = set_names(rec, label, err);
   if (s != AQ_OK) {
     if (!in_place)
       free(acc);
@@ -590,8 +831,10 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
 {
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
-  char why[64];
-  if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
+  char why[260];
+  if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
+    snprintf(why, sizeof why, "by its channel name: %s", rec->vertical_note);
+  else if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
     snprintf(why, sizeof why, "by its dip, %g deg", rec->dip_deg);
   else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
     snprintf(why, sizeof why, "by its channel name");

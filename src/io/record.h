@@ -23,7 +23,9 @@ typedef enum {
   AQ_VERTICAL_BY_NONE = 0, /* not vertical */
   AQ_VERTICAL_BY_STATED,   /* the file states it (orientation code, direction word) */
   AQ_VERTICAL_BY_DIP,      /* its dip or incidence angle */
-  AQ_VERTICAL_BY_NAME      /* its channel or column name (Z, UD, Up, vert, ...) */
+  AQ_VERTICAL_BY_NAME,     /* its channel or column name (Z, UD, Up, vert, ...) */
+  AQ_VERTICAL_BY_NAME_OVER_FIELD /* its name, over an orientation field saying
+                                    horizontal (the conflict in vertical_note) */
 } aq_vertical_by;
 
 typedef struct {
@@ -48,6 +50,10 @@ typedef struct {
   char units_stated[24];/* units the file states ("" if none) */
   char units_used[24];  /* units applied (canonical name, e.g. "gal") */
   char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
+  char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
+                               samples are reversed by it (to_mps2 < 0) */
+  char vertical_note[200];  /* "" or one line: the channel name and an orientation
+                               field disagree (vertical_by NAME_OVER_FIELD) */
 } aq_record;
 
 /* Plausible peak ground acceleration after conversion, g: a record outside
@@ -61,6 +67,7 @@ typedef struct {
  * matches glob (fnmatch(3), no flags, so '*' also matches '/') are read in
  * units. */
 #define AQ_UNITS_RULES_MAX 16
+#define AQ_RESPONSES_MAX 4096 /* StationXML files one command takes */
 #define AQ_UNITS_GLOB_MAX 256
 typedef struct {
   char glob[AQ_UNITS_GLOB_MAX];
@@ -85,17 +92,21 @@ typedef struct {
     char glob[AQ_UNITS_GLOB_MAX];
     char channel[16];
   } components[AQ_UNITS_RULES_MAX]; /* --component GLOB=CH: the last matching wins */
-  char response[AQ_UNITS_GLOB_MAX]; /* --response FILE.xml: StationXML giving the
-                                       sensitivity of miniSEED counts; "" none */
+  size_t nresponses;      /* StationXML files giving the responses of miniSEED
+                             channels: each --response, then the StationXML
+                             operands (aq_read_opts_take_stationxml) */
+  const char *responses[AQ_RESPONSES_MAX]; /* their names (not owned: the
+                                              command line's strings) */
 } aq_read_opts;
 
-/* Take the StationXML files out of the list of record paths paths[0..n):
- * the first becomes ro->response (unless --response gave one), and the
- * others are dropped as well (responses are looked up in the first only).
- * Returns the number of paths left, in their order (n, untouched, when all
- * are StationXML: then they are reported as not records).  A file is taken when
- * its first bytes hold "<FDSNStationXML" (read with stdio; unreadable files
- * stay in the list, for the reader to report). */
+/* Take the StationXML files out of the list of record paths paths[0..n)
+ * into ro->responses (after any --response), where a miniSEED channel's
+ * response is looked up by its identity.  Returns the number of paths
+ * left, in their order; the StationXML ones follow them in paths (n,
+ * nothing moved, when all are StationXML: then they are reported as not
+ * records).  A file is taken when its first bytes hold "<FDSNStationXML"
+ * (read with stdio; unreadable files stay in the list, for the reader to
+ * report); beyond AQ_RESPONSES_MAX they stay too (refused as records). */
 size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro);
 
 /* The units override that applies to path: the last rule whose glob matches
@@ -216,7 +227,9 @@ aq_format aq_record_detect(const unsigned char *buf, size_t n);
 const char *aq_format_describe(aq_format fmt);
 
 /* Parse from memory into a raw file: dispatch on aq_record_detect() (and,
- * for miniSEED, match the channels to the response of opts->response). */
+ * for miniSEED with opts->responses, give each channel the one response
+ * whose network, station, location, channel and epoch match it, searched
+ * across every StationXML; none, or two, is an error naming the files). */
 aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 

@@ -22,7 +22,7 @@
 #define SAC_IUNDEF (-12345)
 
 /* Float words. */
-enum { W_DELTA = 0, W_SCALE = 3, W_B = 5, W_CMPAZ = 57, W_CMPINC = 58 };
+enum { W_DELTA = 0, W_SCALE = 3, W_B = 5, W_E = 6, W_CMPAZ = 57, W_CMPINC = 58 };
 /* Integer words (word numbers, byte = 4 * word). */
 enum {
   W_NZYEAR = 70, W_NZJDAY, W_NZHOUR, W_NZMIN, W_NZSEC, W_NZMSEC, W_NVHDR,
@@ -39,6 +39,11 @@ enum { K_STNM = 440, K_EVNM = 448, K_HOLE = 464, K_CMPNM = 600, K_NETWK = 608 };
  * float32 (float32 carries 7.2 decimal digits); if none does, DELTA is taken
  * as stored. */
 #define SAC_DELTA_SIG_DIGITS 7
+
+/* E, the time of the last sample, must lie within this many samples of
+ * B + (NPTS-1) DELTA (float32 E and B of a record 15 h after its reference
+ * time are rounded to 0.004 s, 0.2 samples at 100 samples/s). */
+#define SAC_E_TOL_SAMPLES 0.5
 
 typedef struct {
   const unsigned char *b;
@@ -187,21 +192,32 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
         data_bytes < want ? "file truncated" : "trailing bytes");
 
   float delta_f = hf(&h, W_DELTA);
-  double delta = sac_delta_decimal(delta_f), b = hf(&h, W_B);
-  if (nv == 7) { /* the footer's float64 DELTA and B, where they agree with
-                   the header's float32 copies */
+  double delta = sac_delta_decimal(delta_f), b = hf(&h, W_B), e = hf(&h, W_E);
+  if (nv == 7) { /* the footer's float64 DELTA, B and E, where they agree
+                   with the header's float32 copies */
     const unsigned char *ft = buf + SAC_HEADER_BYTES + (size_t)npts * 4;
-    double d64 = rd_f64(ft, h.big), b64 = rd_f64(ft + 8, h.big);
+    double d64 = rd_f64(ft, h.big), b64 = rd_f64(ft + 8, h.big), e64 = rd_f64(ft + 16, h.big);
     if (isfinite(d64) && (float)d64 == delta_f)
       delta = d64;
     if (isfinite(b64) && (float)b64 == (float)b)
       b = b64;
+    if (isfinite(e64) && (float)e64 == (float)e)
+      e = e64;
   }
   if (!isfinite(delta) || !(delta > 0) || delta == SAC_UNDEF)
     return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_DELTA, "header DELTA",
                         "expected a sample interval > 0 s, got %g", delta);
   if (!isfinite(b) || b == SAC_UNDEF)
     b = 0.0;
+  else if (isfinite(e) && e != SAC_UNDEF) {
+    /* the last sample's time, as the header states it twice */
+    double last = b + (double)(npts - 1) * delta;
+    if (fabs(e - last) > SAC_E_TOL_SAMPLES * delta)
+      return aq_error_set(err, AQ_EFORMAT, name, -1, 4L * W_E, "header E",
+                          "expected B + (NPTS-1)*DELTA = %.9g + %ld*%.9g = %.9g s (within "
+                          "half a sample), got E = %.9g s: the header contradicts itself",
+                          b, (long)npts - 1, delta, last, e);
+  }
 
   aq_status s = aq_raw_file_alloc(raw, 1, name, err);
   if (s != AQ_OK)
@@ -245,15 +261,27 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
   else
     snprintf(ch->units_said, sizeof ch->units_said, "header IDEP: %s",
              idep_name(idep));
+  if (idep == SAC_IACC || idep == SAC_IVEL || idep == SAC_IDISP) {
+    ch->quantity = idep == SAC_IACC   ? AQ_QUANTITY_ACCELERATION
+                   : idep == SAC_IVEL ? AQ_QUANTITY_VELOCITY
+                                      : AQ_QUANTITY_DISPLACEMENT;
+    snprintf(ch->quantity_said, sizeof ch->quantity_said, "header IDEP: %s", idep_name(idep));
+    snprintf(ch->units_from, sizeof ch->units_from, "header IDEP: %s", idep_name(idep));
+  }
   double scale = hf(&h, W_SCALE);
-  if (isfinite(scale) && scale > 0 && scale != SAC_UNDEF)
+  if (isfinite(scale) && scale > 0 && scale != SAC_UNDEF) {
     ch->counts_per_mps2 = scale;
+    if (!ch->units_from[0])
+      snprintf(ch->units_from, sizeof ch->units_from, "header SCALE");
+  }
 
   /* Orientation: CMPAZ (deg from north), CMPINC (deg from vertical up). */
   double az = hf(&h, W_CMPAZ), inc = hf(&h, W_CMPINC);
   if (isfinite(az) && az != SAC_UNDEF)
     ch->azimuth_deg = az;
-  if (isfinite(inc) && inc != SAC_UNDEF && inc >= 0 && inc <= 180)
+  if (isfinite(inc) && inc != SAC_UNDEF && inc >= 0 && inc <= 180) {
     ch->dip_deg = inc - 90.0; /* SEED dip: CMPINC 0 (up) is -90 */
+    snprintf(ch->orient_said, sizeof ch->orient_said, "header CMPINC: %g", inc);
+  }
   return AQ_OK;
 }

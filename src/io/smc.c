@@ -161,6 +161,16 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
   if (type == 0) /* converted from another format: the quantity is not stated */
     snprintf(ch->units_said, sizeof ch->units_said, "line 1: data type 0 (UNKNOWN)");
+  if (type >= 1) {
+    static const int qty[5] = {AQ_QUANTITY_UNSTATED, AQ_QUANTITY_ACCELERATION,
+                               AQ_QUANTITY_ACCELERATION, AQ_QUANTITY_VELOCITY,
+                               AQ_QUANTITY_DISPLACEMENT};
+    char said[48];
+    aq_copy_trim(said, sizeof said, text[0].p, text[0].len);
+    ch->quantity = qty[(int)type];
+    snprintf(ch->quantity_said, sizeof ch->quantity_said, "line 1: data type \"%s\"", said);
+    snprintf(ch->units_from, sizeof ch->units_from, "line 1: data type %d", (int)type);
+  }
   double from_vertical = iv[12], az = iv[13];
   if (from_vertical == 0 || from_vertical == 180) {
     ch->dip_deg = from_vertical == 0 ? -90 : 90;
@@ -168,6 +178,8 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   } else if (from_vertical == 90) {
     ch->dip_deg = 0;
     ch->vertical = 0;
+    snprintf(ch->orient_said, sizeof ch->orient_said,
+             "integer header #13 (angle from vertical): 90");
     if (az != SMC_INT_NULL && az >= 0 && az <= 360)
       ch->azimuth_deg = az;
   }

@@ -5,9 +5,10 @@
  * @startDate, @endDate, with Azimuth, Dip and Response/InstrumentSensitivity
  * (Value, InputUnits/Name).  Elements are matched by local name, so the
  * namespace version does not matter.  The sensitivity is counts per input
- * unit; aq_stationxml_apply() turns it into counts per m/s^2 for the epoch
- * that covers a record's start, keeping its sign (a negative sensitivity
- * means the sensor's polarity is reversed).  libxml2 never prints here
+ * unit; aq_response_apply() turns it into counts per m/s^2, keeping its
+ * sign (a negative sensitivity means the sensor's polarity is reversed);
+ * record.c finds the epoch of each channel (aq_response_find) across every
+ * StationXML given.  libxml2 never prints here
  * (XML_PARSE_NOERROR | XML_PARSE_NOWARNING) and never touches the network.
  */
 #include <libxml/parser.h>
@@ -145,9 +146,9 @@ aq_status aq_stationxml_parse(const unsigned char *buf, size_t n, const char *na
   return s;
 }
 
-/* m/s^2 per input unit of a StationXML acceleration unit name; 0 if the
- * name is not acceleration. */
-static double input_units_to_mps2(const char *u)
+/* What a StationXML input unit name measures, and m/s^2 per unit for
+ * acceleration (0 otherwise): *q AQ_QUANTITY_UNSTATED if unknown. */
+static double input_units(const char *u, aq_quantity *q)
 {
   char t[24];
   size_t k = 0;
@@ -157,14 +158,27 @@ static double input_units_to_mps2(const char *u)
   t[k] = '\0';
   static const struct {
     const char *name;
-    double mps2;
-  } known[] = {{"M/S**2", 1.0},   {"M/S^2", 1.0},    {"M/S2", 1.0},     {"M/S/S", 1.0},
-               {"NM/S**2", 1e-9}, {"NM/S^2", 1e-9},  {"NM/S2", 1e-9},   {"NM/S/S", 1e-9},
-               {"MM/S**2", 1e-3}, {"MM/S^2", 1e-3},  {"MM/S2", 1e-3},   {"CM/S**2", 1e-2},
-               {"CM/S^2", 1e-2},  {"CM/S2", 1e-2},   {"GAL", 1e-2},     {"G", AQ_G0_MPS2}};
+    double mps2; /* 0: not acceleration */
+    aq_quantity q;
+  } known[] = {
+      {"M/S**2", 1.0, AQ_QUANTITY_ACCELERATION},   {"M/S^2", 1.0, AQ_QUANTITY_ACCELERATION},
+      {"M/S2", 1.0, AQ_QUANTITY_ACCELERATION},     {"M/S/S", 1.0, AQ_QUANTITY_ACCELERATION},
+      {"NM/S**2", 1e-9, AQ_QUANTITY_ACCELERATION}, {"NM/S^2", 1e-9, AQ_QUANTITY_ACCELERATION},
+      {"NM/S2", 1e-9, AQ_QUANTITY_ACCELERATION},   {"NM/S/S", 1e-9, AQ_QUANTITY_ACCELERATION},
+      {"MM/S**2", 1e-3, AQ_QUANTITY_ACCELERATION}, {"MM/S^2", 1e-3, AQ_QUANTITY_ACCELERATION},
+      {"MM/S2", 1e-3, AQ_QUANTITY_ACCELERATION},   {"CM/S**2", 1e-2, AQ_QUANTITY_ACCELERATION},
+      {"CM/S^2", 1e-2, AQ_QUANTITY_ACCELERATION},  {"CM/S2", 1e-2, AQ_QUANTITY_ACCELERATION},
+      {"GAL", 1e-2, AQ_QUANTITY_ACCELERATION},     {"G", AQ_G0_MPS2, AQ_QUANTITY_ACCELERATION},
+      {"M/S", 0, AQ_QUANTITY_VELOCITY},            {"NM/S", 0, AQ_QUANTITY_VELOCITY},
+      {"MM/S", 0, AQ_QUANTITY_VELOCITY},           {"CM/S", 0, AQ_QUANTITY_VELOCITY},
+      {"M", 0, AQ_QUANTITY_DISPLACEMENT},          {"NM", 0, AQ_QUANTITY_DISPLACEMENT},
+      {"MM", 0, AQ_QUANTITY_DISPLACEMENT},         {"CM", 0, AQ_QUANTITY_DISPLACEMENT}};
   for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-    if (strcmp(t, known[i].name) == 0)
+    if (strcmp(t, known[i].name) == 0) {
+      *q = known[i].q;
       return known[i].mps2;
+    }
+  *q = AQ_QUANTITY_UNSTATED;
   return 0;
 }
 
@@ -176,61 +190,61 @@ static int covers(const aq_response_epoch *e, double t_s)
   return !e->end[0] || !aq_iso_parse(e->end, &b) || t_s < b;
 }
 
-aq_status aq_stationxml_apply(const aq_response *resp, const char *xml_name,
-                              aq_raw_file *raw, const char *name, aq_error *err)
+size_t aq_response_find(const aq_response *resp, const char *net, const char *sta,
+                        const char *loc, const char *cha, double t_s,
+                        const aq_response_epoch **hit, size_t *nsame, char *spans, size_t cap)
 {
-  for (size_t i = 0; i < raw->nchan; i++) {
-    aq_raw_channel *ch = &raw->chan[i];
-    char id[80], field[112];
-    snprintf(id, sizeof id, "%s.%s.%s.%s", ch->network, ch->station, ch->location,
-             ch->channel);
-    snprintf(field, sizeof field, "channel %s", id);
-    double t0;
-    if (!aq_iso_parse(ch->reference, &t0))
-      return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
-                          "the record states no start time to choose a response epoch");
-    t0 += ch->begin_s;
-    const aq_response_epoch *hit = NULL;
-    size_t nsame = 0;
-    char spans[256] = "";
-    for (size_t k = 0; k < resp->n; k++) {
-      const aq_response_epoch *e = &resp->epoch[k];
-      if (strcmp(e->network, ch->network) || strcmp(e->station, ch->station) ||
-          strcmp(e->location, ch->location) || strcmp(e->channel, ch->channel))
-        continue;
-      if (nsame++ < 3) {
-        size_t l = strlen(spans);
-        snprintf(spans + l, sizeof spans - l, "%s%s to %s", l ? ", " : "", e->start,
-                 e->end[0] ? e->end : "open");
-      }
-      if (!hit && covers(e, t0))
-        hit = e;
+  size_t nhit = 0, same = 0;
+  *hit = NULL;
+  for (size_t k = 0; k < resp->n; k++) {
+    const aq_response_epoch *e = &resp->epoch[k];
+    if (strcmp(e->network, net) || strcmp(e->station, sta) || strcmp(e->location, loc) ||
+        strcmp(e->channel, cha))
+      continue;
+    if (same++ < 3 && spans && cap) {
+      size_t l = strlen(spans);
+      snprintf(spans + l, cap - l, "%s%s to %s", l ? ", " : "", e->start,
+               e->end[0] ? e->end : "open");
     }
-    if (nsame == 0)
-      return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, field,
-                          "expected a Channel for %s (record %s), got none in this StationXML",
-                          id, name);
-    if (!hit)
-      return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, field,
-                          "expected an epoch covering the record start %s, got %s", ch->reference,
-                          spans);
-    double per_unit = input_units_to_mps2(hit->input_units);
-    if (per_unit == 0)
-      return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, "InstrumentSensitivity InputUnits",
-                          "%s: expected acceleration (M/S**2, NM/S**2, G), got \"%s\"", id,
-                          hit->input_units);
-    if (!isfinite(hit->sensitivity) || hit->sensitivity == 0)
+    if (covers(e, t_s) && nhit++ == 0)
+      *hit = e;
+  }
+  if (nsame)
+    *nsame += same;
+  return nhit;
+}
+
+aq_status aq_response_apply(const aq_response_epoch *e, const char *xml_name, aq_raw_channel *ch,
+                            aq_error *err)
+{
+  char id[80];
+  snprintf(id, sizeof id, "%s.%s.%s.%s", e->network, e->station, e->location, e->channel);
+  aq_quantity q;
+  double per_unit = input_units(e->input_units, &q);
+  const char *slash = strrchr(xml_name, '/');
+  const char *base = slash ? slash + 1 : xml_name; /* for the short fields */
+  if (q == AQ_QUANTITY_UNSTATED)
+    return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, "InstrumentSensitivity InputUnits",
+                        "%s: expected acceleration (M/S**2, NM/S**2, G), got \"%s\"", id,
+                        e->input_units);
+  ch->quantity = q;
+  snprintf(ch->quantity_said, sizeof ch->quantity_said, "%.40s: InputUnits %.20s", base,
+           e->input_units);
+  if (q == AQ_QUANTITY_ACCELERATION) {
+    if (!isfinite(e->sensitivity) || e->sensitivity == 0)
       return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, "InstrumentSensitivity Value",
-                          "%s: expected a non-zero number, got %g", id, hit->sensitivity);
-    ch->counts_per_mps2 = hit->sensitivity / per_unit; /* counts/(unit) / (m/s^2 per unit) */
-    if (isfinite(hit->azimuth_deg))
-      ch->azimuth_deg = hit->azimuth_deg;
-    if (isfinite(hit->dip_deg)) {
-      ch->dip_deg = hit->dip_deg;
-      ch->vertical = fabs(fabs(hit->dip_deg) - 90.0) < SXML_DIP_TOL_DEG ? 1
-                     : fabs(hit->dip_deg) < SXML_DIP_TOL_DEG ? 0
-                                                             : -1;
-    }
+                          "%s: expected a non-zero number, got %g", id, e->sensitivity);
+    ch->counts_per_mps2 = e->sensitivity / per_unit; /* counts/(unit) / (m/s^2 per unit) */
+    snprintf(ch->units_from, sizeof ch->units_from, "%.40s: InstrumentSensitivity", base);
+  }
+  if (isfinite(e->azimuth_deg))
+    ch->azimuth_deg = e->azimuth_deg;
+  if (isfinite(e->dip_deg)) {
+    ch->dip_deg = e->dip_deg;
+    ch->vertical = fabs(fabs(e->dip_deg) - 90.0) < SXML_DIP_TOL_DEG ? 1
+                   : fabs(e->dip_deg) < SXML_DIP_TOL_DEG             ? 0
+                                                                      : -1;
+    snprintf(ch->orient_said, sizeof ch->orient_said, "%.40s: Dip %g", base, e->dip_deg);
   }
   return AQ_OK;
 }

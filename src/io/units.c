@@ -80,3 +80,37 @@ double aq_units_to_mps2(aq_units u)
   }
   return 0.0;
 }
+
+aq_quantity aq_units_quantity(const char *word)
+{
+  static const char *const vel[] = {"cm/s", "cm/sec", "m/s", "m/sec", "mm/s", "mm/sec",
+                                    "nm/s", "nm/sec", "in/s", "in/sec", "kine"};
+  static const char *const disp[] = {"cm", "m", "mm", "nm", "in", "inch", "inches"};
+  aq_units u;
+  if (!word || !*word)
+    return AQ_QUANTITY_UNSTATED;
+  if (aq_units_parse(word, &u))
+    return u == AQ_UNITS_COUNTS ? AQ_QUANTITY_UNSTATED : AQ_QUANTITY_ACCELERATION;
+  for (size_t i = 0; i < sizeof vel / sizeof vel[0]; i++)
+    if (strcasecmp(word, vel[i]) == 0)
+      return AQ_QUANTITY_VELOCITY;
+  for (size_t i = 0; i < sizeof disp / sizeof disp[0]; i++)
+    if (strcasecmp(word, disp[i]) == 0)
+      return AQ_QUANTITY_DISPLACEMENT;
+  return AQ_QUANTITY_UNSTATED;
+}
+
+const char *aq_quantity_name(aq_quantity q)
+{
+  switch (q) {
+  case AQ_QUANTITY_ACCELERATION:
+    return "acceleration";
+  case AQ_QUANTITY_VELOCITY:
+    return "velocity";
+  case AQ_QUANTITY_DISPLACEMENT:
+    return "displacement";
+  case AQ_QUANTITY_UNSTATED:
+    break;
+  }
+  return "unstated";
+}

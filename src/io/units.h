@@ -19,6 +19,23 @@ typedef enum {
   AQ_UNITS_MMPS2   /* mm/s^2 */
 } aq_units;
 
+/* What a record's values are, as a file states it. */
+typedef enum {
+  AQ_QUANTITY_UNSTATED = 0,
+  AQ_QUANTITY_ACCELERATION,
+  AQ_QUANTITY_VELOCITY,
+  AQ_QUANTITY_DISPLACEMENT
+} aq_quantity;
+
+/* The quantity a units word measures: acceleration for the words
+ * aq_units_parse takes (but counts), velocity for cm/s, cm/sec, m/s, mm/s,
+ * nm/s, in/s (also written /sec), displacement for cm, m, mm, nm, in;
+ * AQ_QUANTITY_UNSTATED for anything else.  Case-insensitive. */
+aq_quantity aq_units_quantity(const char *word);
+
+/* "acceleration", "velocity", "displacement" or "unstated". */
+const char *aq_quantity_name(aq_quantity q);
+
 /* Parse a units word: g, gal, cm/s2 (also cm/s^2, cm/s/s, cm/sec2, cmps2),
  * m/s2 (m/s^2, m/s/s, mps2), mm/s2, nm/s2 (nm/s^2), g/10, counts;
  * case-insensitive.

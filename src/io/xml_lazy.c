@@ -33,15 +33,10 @@
   R(xmlChar *, xmlNodeGetContent, (const xmlNode *cur), (cur))                            \
   V(xmlFreeDoc, (xmlDocPtr cur), (cur))
 
-#define AQ_XML_POINTER_V(name, params, args) static void(*p_##name) params;
-#define AQ_XML_POINTER_R(type, name, params, args) static type(*p_##name) params;
-AQ_XML_FUNCS(AQ_XML_POINTER_V, AQ_XML_POINTER_R)
+AQ_XML_FUNCS(AQ_LAZYLIB_POINTER_V, AQ_LAZYLIB_POINTER_R)
 static xmlFreeFunc *p_xmlFree; /* the library's variable */
-
-#define AQ_XML_SYM_V(name, params, args) {#name, &p_##name},
-#define AQ_XML_SYM_R(type, name, params, args) {#name, &p_##name},
 static const aq_lazylib_sym xml_syms[] = {
-    AQ_XML_FUNCS(AQ_XML_SYM_V, AQ_XML_SYM_R){"xmlFree", &p_xmlFree}};
+    AQ_XML_FUNCS(AQ_LAZYLIB_SYM_V, AQ_LAZYLIB_SYM_R){"xmlFree", &p_xmlFree}};
 
 static aq_lazylib xml = {AQ_XML2_SONAME, "libxml2", xml_syms,
                          sizeof xml_syms / sizeof xml_syms[0], 0, ""};
@@ -80,24 +75,13 @@ static void need(int resolved)
     abort();
 }
 
-#define AQ_XML_TRAMPOLINE_V(name, params, args)                                           \
-  void name params                                                                        \
-  {                                                                                       \
-    need(p_##name != NULL);                                                               \
-    p_##name args;                                                                        \
-  }
-#define AQ_XML_TRAMPOLINE_R(type, name, params, args)                                     \
-  type name params                                                                        \
-  {                                                                                       \
-    need(p_##name != NULL);                                                               \
-    return p_##name args;                                                                 \
-  }
+/* xmlReadMemory and xmlGetLastError are written out above */
 #define AQ_XML_SKIP_R(type, name, params, args)
-AQ_XML_FUNCS(AQ_XML_TRAMPOLINE_V, AQ_XML_SKIP_R) /* xmlFreeDoc */
-AQ_XML_TRAMPOLINE_R(xmlNodePtr, xmlDocGetRootElement, (const xmlDoc *doc), (doc))
-AQ_XML_TRAMPOLINE_R(xmlChar *, xmlGetProp, (const xmlNode *node, const xmlChar *name),
-                    (node, name))
-AQ_XML_TRAMPOLINE_R(xmlChar *, xmlNodeGetContent, (const xmlNode *cur), (cur))
+AQ_XML_FUNCS(AQ_LAZYLIB_TRAMPOLINE_V, AQ_XML_SKIP_R) /* xmlFreeDoc */
+AQ_LAZYLIB_TRAMPOLINE_R(xmlNodePtr, xmlDocGetRootElement, (const xmlDoc *doc), (doc))
+AQ_LAZYLIB_TRAMPOLINE_R(xmlChar *, xmlGetProp, (const xmlNode *node, const xmlChar *name),
+                        (node, name))
+AQ_LAZYLIB_TRAMPOLINE_R(xmlChar *, xmlNodeGetContent, (const xmlNode *cur), (cur))
 
 static void free_through_library(void *mem)
 {

@@ -100,13 +100,9 @@
   V(plsError, (PLINT_NC_SCALAR errcode, PLCHAR_NC_VECTOR errmsg), (errcode, errmsg))     \
 /* end of AQ_PLPLOT_FUNCS */
 
-#define AQ_PL_POINTER_V(name, params, args) static void(*p_##name) params;
-#define AQ_PL_POINTER_R(type, name, params, args) static type(*p_##name) params;
-AQ_PLPLOT_FUNCS(AQ_PL_POINTER_V, AQ_PL_POINTER_R)
-
-#define AQ_PL_SYM_V(name, params, args) {#name, &p_##name},
-#define AQ_PL_SYM_R(type, name, params, args) {#name, &p_##name},
-static const aq_lazylib_sym plplot_syms[] = {AQ_PLPLOT_FUNCS(AQ_PL_SYM_V, AQ_PL_SYM_R)};
+AQ_PLPLOT_FUNCS(AQ_LAZYLIB_POINTER_V, AQ_LAZYLIB_POINTER_R)
+static const aq_lazylib_sym plplot_syms[] = {
+    AQ_PLPLOT_FUNCS(AQ_LAZYLIB_SYM_V, AQ_LAZYLIB_SYM_R)};
 
 static aq_lazylib plplot = {AQ_PLPLOT_SONAME, "PLplot", plplot_syms,
                             sizeof plplot_syms / sizeof plplot_syms[0], 0, ""};
@@ -124,16 +120,4 @@ static void need(int resolved)
     abort();
 }
 
-#define AQ_PL_TRAMPOLINE_V(name, params, args)                                            \
-  void name params                                                                       \
-  {                                                                                      \
-    need(p_##name != NULL);                                                               \
-    p_##name args;                                                                       \
-  }
-#define AQ_PL_TRAMPOLINE_R(type, name, params, args)                                      \
-  type name params                                                                       \
-  {                                                                                      \
-    need(p_##name != NULL);                                                               \
-    return p_##name args;                                                                \
-  }
-AQ_PLPLOT_FUNCS(AQ_PL_TRAMPOLINE_V, AQ_PL_TRAMPOLINE_R)
+AQ_PLPLOT_FUNCS(AQ_LAZYLIB_TRAMPOLINE_V, AQ_LAZYLIB_TRAMPOLINE_R)

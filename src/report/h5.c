@@ -226,6 +226,21 @@ static herr_t attr_int(aq_h5_writer *w, hid_t loc, const char *name, int64_t v)
   return attr_write(loc, name, H5T_NATIVE_INT64, w->sp_scalar, &v);
 }
 
+int aq_h5_attr_text(aq_h5_writer *w, int64_t loc, const char *name, const char *value)
+{
+  return attr_str(w, (hid_t)loc, name, value) < 0 ? -1 : 0;
+}
+
+int aq_h5_attr_int(aq_h5_writer *w, int64_t loc, const char *name, int64_t v)
+{
+  return attr_int(w, (hid_t)loc, name, v) < 0 ? -1 : 0;
+}
+
+int aq_h5_attr_double(aq_h5_writer *w, int64_t loc, const char *name, double v)
+{
+  return attr_double(w, (hid_t)loc, name, v) < 0 ? -1 : 0;
+}
+
 static herr_t attr_doubles(hid_t loc, const char *name, const double *v,
                            size_t n)
 {
@@ -671,6 +686,12 @@ static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
 
 aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
 {
+  return aq_h5_write_root_kind(w, r, NULL, err);
+}
+
+aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char *kind,
+                                aq_error *err)
+{
   aq_status st = AQ_OK;
   const char *obj = "/";
   hid_t f = w->file;
@@ -683,6 +704,12 @@ aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
   CK(attr_str(w, f, "created", r->created), "root attributes");
   if (r->proc)
     CK(write_proc(w, f, r->proc), "root attributes");
+  if (kind) { /* no runs: only what applies */
+    CK(attr_str(w, f, "kind", kind), "root attributes");
+    CK(attr_str(w, f, "units_override", r->units ? r->units : "file"), "root attributes");
+    CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
+    return AQ_OK;
+  }
   CK(attr_double(w, f, "merge_tol_g", r->merge_tol_g), "root attributes");
   CK(attr_str(w, f, "units_override", r->units ? r->units : "file"),
      "root attributes");

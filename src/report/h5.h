@@ -106,6 +106,13 @@ const char *aq_h5_temp_path(const aq_h5_writer *w);
 
 aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err);
 
+/* The root of a file that holds no runs, of the given kind ("spectrum":
+ * archquake spectrum -o): the attribute kind, version, build, command line,
+ * creation time, processing options, units_override and timing_threads of
+ * r, none of the run options (merge_tol_g, model, scales ... polarity). */
+aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char *kind,
+                                aq_error *err);
+
 /* Arch number index (0-based, in command-line order). */
 aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
                            aq_error *err);
@@ -176,6 +183,12 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err);
  * automatic error printing is off in the readers). */
 int aq_h5_attr_num(int64_t loc, const char *name, int64_t mtype, void *out);
 void aq_h5_suite_free(aq_h5_suite *s);
+
+/* Attributes of an object (loc: its HDF5 id) of the writer's open file:
+ * text (NULL as ""), 64-bit integer, double.  0, or -1 when HDF5 failed. */
+int aq_h5_attr_text(aq_h5_writer *w, int64_t loc, const char *name, const char *value);
+int aq_h5_attr_int(aq_h5_writer *w, int64_t loc, const char *name, int64_t v);
+int aq_h5_attr_double(aq_h5_writer *w, int64_t loc, const char *name, double v);
 
 /* The open file's HDF5 id (between aq_h5_open and aq_h5_finish), for the
  * writers of further groups (h5_capacity.c); an hid_t. */

@@ -34,6 +34,32 @@ typedef struct {
   char fail[400];             /* why it failed, kept for later calls */
 } aq_lazylib;
 
+/* The module's side, for an X-macro list of the library's functions,
+ * V(name, (parameters), (arguments)) for those returning void and
+ * R(type, name, (parameters), (arguments)) for the others:
+ *   LIST(AQ_LAZYLIB_POINTER_V, AQ_LAZYLIB_POINTER_R)  the pointers p_NAME;
+ *   static const aq_lazylib_sym syms[] =
+ *       {LIST(AQ_LAZYLIB_SYM_V, AQ_LAZYLIB_SYM_R)};   what to resolve;
+ *   LIST(AQ_LAZYLIB_TRAMPOLINE_V, AQ_LAZYLIB_TRAMPOLINE_R)  the functions,
+ * each of which calls need(p_NAME != NULL) (the module's own function: it
+ * loads the library or stops) and then the library's. */
+#define AQ_LAZYLIB_POINTER_V(name, params, args) static void(*p_##name) params;
+#define AQ_LAZYLIB_POINTER_R(type, name, params, args) static type(*p_##name) params;
+#define AQ_LAZYLIB_SYM_V(name, params, args) {#name, &p_##name},
+#define AQ_LAZYLIB_SYM_R(type, name, params, args) {#name, &p_##name},
+#define AQ_LAZYLIB_TRAMPOLINE_V(name, params, args)                                        \
+  void name params                                                                        \
+  {                                                                                       \
+    need(p_##name != NULL);                                                               \
+    p_##name args;                                                                        \
+  }
+#define AQ_LAZYLIB_TRAMPOLINE_R(type, name, params, args)                                  \
+  type name params                                                                        \
+  {                                                                                       \
+    need(p_##name != NULL);                                                               \
+    return p_##name args;                                                                 \
+  }
+
 /* Open lib and resolve its symbols, once per process (later calls return
  * the first call's outcome).  AQ_OK, or AQ_EUNSUPPORTED with err naming the
  * library and dlerror()'s reason (library not installed, symbol missing). */

@@ -1,0 +1,20 @@
+/* job.h: the path from a file name to a result: a subject (a record or a
+ * ground motion) read and processed once, its step list built once as a
+ * view, and runs (factor, polarity, azimuth, arch) giving an aq_result.
+ *
+ *   subject.h  reading, checking and processing a record or motion; views
+ *   scale.h    the scaling rule (--scale, --scale-to-pga,
+ *              --scale-to-lambda0), the polarity, lambda0
+ *   run.h      the arch's stepper, and the runs of a subject
+ *
+ * The main job (src/app/suite*.c), capacity (src/capacity), archquake-mpi
+ * and the benches all take this path.  It comes after arch (its steppers)
+ * and before capacity and report; nothing here prints. */
+#ifndef AQ_JOB_H
+#define AQ_JOB_H
+
+#include "run.h"
+#include "scale.h"
+#include "subject.h"
+
+#endif

@@ -1,0 +1,125 @@
+/* run.c: runs of a subject, through the arch's stepper (run.h). */
+#include "run.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+
+aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
+                           aq_error *err)
+{
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1), model, err);
+  if (!st)
+    return NULL;
+  const aq_arch_dynamics *d = aq_arch_dynamics_of(arch);
+  aq_stepper_set_cor(st, isnan(cor) ? d->cor : cor);
+  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
+  aq_stepper_set_history(st, history);
+  return st;
+}
+
+aq_status aq_job_run_view(aq_stepper *st, const aq_view *v, double sa, aq_result *res,
+                          aq_error *err)
+{
+  /* the stepper starts every run afresh (the ode model's step size
+   * included), so results do not depend on which runs it did before */
+  aq_stepper_set_scale(st, sa);
+  aq_status s = aq_stepper_run(st, &v->steps, res, err);
+  aq_stepper_set_scale(st, 1.0);
+  return s;
+}
+
+void aq_runs_free(aq_runs *R)
+{
+  if (R->unit && R->view_st == AQ_OK)
+    aq_view_free(&R->view);
+  for (size_t k = 0; R->list_st && k < R->nlist; k++)
+    if (R->list_st[k] == AQ_OK)
+      aq_steps_free(&R->list[k]);
+  free(R->list);
+  free(R->list_st);
+  free(R->list_err);
+  free(R->list_pga_g);
+  memset(R, 0, sizeof *R);
+}
+
+aq_status aq_runs_init(aq_runs *R, const aq_subject *s, size_t naz, double theta_deg,
+                       double merge_tol_mps2, const double *slot_sa, size_t nslot,
+                       int per_arch, aq_error *err)
+{
+  memset(R, 0, sizeof *R);
+  R->s = s;
+  R->merge_tol_mps2 = merge_tol_mps2;
+  R->unit = naz == 1 && merge_tol_mps2 == 0;
+  if (R->unit) {
+    R->view_st = aq_view_make(&R->view, s, theta_deg, &R->view_err);
+    return AQ_OK;
+  }
+  if (naz != 1 || per_arch)
+    return AQ_OK;
+  R->list = calloc(nslot ? nslot : 1, sizeof *R->list);
+  R->list_st = calloc(nslot ? nslot : 1, sizeof *R->list_st);
+  R->list_err = calloc(nslot ? nslot : 1, sizeof *R->list_err);
+  R->list_pga_g = calloc(nslot ? nslot : 1, sizeof *R->list_pga_g);
+  if (!R->list || !R->list_st || !R->list_err || !R->list_pga_g) {
+    aq_runs_free(R);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  R->nlist = nslot;
+  for (size_t k = 0; k < nslot; k++) {
+    double peak = 0, sa = slot_sa[k];
+    aq_error_clear(&R->list_err[k]);
+    R->list_st[k] = aq_subject_steps(s, theta_deg, sa, fabs(sa), merge_tol_mps2, &R->list[k], &peak,
+                                     &R->list_err[k]);
+    R->list_pga_g[k] = peak / AQ_G0_MPS2;
+  }
+  return AQ_OK;
+}
+
+aq_status aq_runs_run(const aq_runs *R, size_t k, double theta_deg, double sa,
+                      aq_stepper *st, aq_result *res, double *pga_g, int *steps_failed,
+                      int *ran, aq_error *err)
+{
+  aq_steps own;
+  const aq_steps *steps = NULL;
+  aq_status s;
+  int have_own = 0;
+  *steps_failed = 0;
+  *ran = 0;
+  int view = R->unit && isfinite(sa);
+  if (view) { /* the view at factor 1, sa given to the stepper */
+    s = R->view_st;
+    *pga_g = s == AQ_OK ? fabs(sa) * R->view.peak_mps2 / AQ_G0_MPS2 : 0;
+    if (s != AQ_OK)
+      *err = R->view_err;
+  } else if (k < R->nlist) { /* the merged list of this slot */
+    s = R->list_st[k];
+    steps = &R->list[k];
+    *pga_g = R->list_pga_g[k];
+    if (s != AQ_OK)
+      *err = R->list_err[k];
+  } else { /* made for this run */
+    double peak = 0;
+    aq_error_clear(err);
+    s = aq_subject_steps(R->s, theta_deg, sa, fabs(sa), R->merge_tol_mps2, &own, &peak, err);
+    *pga_g = peak / AQ_G0_MPS2;
+    have_own = s == AQ_OK;
+    steps = &own;
+  }
+  if (s != AQ_OK) {
+    *steps_failed = 1;
+    return s;
+  }
+  if (st) {
+    aq_error_clear(err);
+    memset(res, 0, sizeof *res);
+    *ran = 1;
+    s = view ? aq_job_run_view(st, &R->view, sa, res, err)
+                : aq_stepper_run(st, steps, res, err);
+  }
+  if (have_own)
+    aq_steps_free(&own);
+  return s;
+}

@@ -1,0 +1,71 @@
+/* run.h: a run: a subject at a factor (its sign the polarity), an azimuth
+ * and an arch, through the arch's stepper, giving an aq_result.
+ *
+ * A subject's runs share what they can (aq_runs, made once per subject):
+ *   - one azimuth, no merging: a view at factor 1, every run giving its
+ *     factor to the stepper (no scaled copy, no step list per run);
+ *   - one azimuth, merging (--merge-tol), factors known before the arch:
+ *     a merged list per (factor, polarity), shared by the arches;
+ *   - otherwise each run makes its own list (one azimuth of a motion at a
+ *     time, or a factor per arch).
+ * Which of them a run used does not change its result, bit for bit (the
+ * pinned outputs, tests/pin.sh, hold it).  Units: factors dimensionless,
+ * pga_g in g.  Nothing here prints. */
+#ifndef AQ_JOB_RUN_H
+#define AQ_JOB_RUN_H
+
+#include <stddef.h>
+
+#include "../arch/arch.h"
+#include "../arch/result.h"
+#include "../arch/stepper.h"
+#include "../error.h"
+#include "subject.h"
+
+/* A stepper for arch: model, cor (NAN: the arch's own), the arch's impact
+ * rule, histories kept or not.  NULL (err) when it cannot be made. */
+aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
+                           aq_error *err);
+
+/* Run st over view v at factor sa (its sign the polarity; the vertical at
+ * |sa|).  res as aq_stepper_run's. */
+aq_status aq_job_run_view(aq_stepper *st, const aq_view *v, double sa, aq_result *res,
+                          aq_error *err);
+
+/* The step lists a subject's runs share. */
+typedef struct {
+  const aq_subject *s;
+  double merge_tol_mps2;
+  int unit;              /* 1: view made (one azimuth, no merging) */
+  aq_view view;
+  aq_status view_st;
+  aq_error view_err;
+  size_t nlist;          /* merged lists: one per run slot, or 0 */
+  aq_steps *list;
+  aq_status *list_st;
+  aq_error *list_err;
+  double *list_pga_g;
+} aq_runs;
+
+/* The lists the runs of s will share: with naz == 1 azimuth (theta_deg),
+ * a view without merging, else (merge_tol_mps2 > 0) the nslot lists
+ * slot_sa[k] (factor and sign), unless per_arch (the factor waits for the
+ * arch: nothing shared).  A list that cannot be made fails only its runs
+ * (their status says so).  Returns AQ_OK, or AQ_ENOMEM (err). */
+aq_status aq_runs_init(aq_runs *R, const aq_subject *s, size_t naz, double theta_deg,
+                       double merge_tol_mps2, const double *slot_sa, size_t nslot,
+                       int per_arch, aq_error *err);
+void aq_runs_free(aq_runs *R);
+
+/* One run: run slot k (its list, when made) at azimuth theta_deg, factor
+ * sa (signed), with st (NULL: the arch cannot run).  *pga_g gets the PGA
+ * the arch feels (0 when its steps failed).  Returns AQ_OK with res filled;
+ * or the steps' failure with *steps_failed = 1;  A factor that is not
+ * finite never goes to the stepper (which keeps only finite ones): such a
+ * run makes its own list, as every run did before views; or, st NULL, AQ_OK without
+ * running (*ran = 0); or the stepper's failure. */
+aq_status aq_runs_run(const aq_runs *R, size_t k, double theta_deg, double sa,
+                      aq_stepper *st, aq_result *res, double *pga_g, int *steps_failed,
+                      int *ran, aq_error *err);
+
+#endif

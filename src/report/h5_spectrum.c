@@ -1,0 +1,186 @@
+/* h5_spectrum.c: the /spectra table of a spectrum file (h5_spectrum.h): a
+ * compound dataset whose two text fields are variable-length strings.
+ * Every HDF5 call is checked. */
+#include "h5_spectrum.h"
+
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A row as stored. */
+typedef struct {
+  const char *record, *component;
+  double damping, period_s, psa_g, sd_m, psv_m_s;
+} h5_row;
+
+static const struct {
+  const char *name, *units;
+  size_t offset;
+  int text;
+} fields[] = {
+    {"record", "", offsetof(h5_row, record), 1},
+    {"component", "", offsetof(h5_row, component), 1},
+    {"damping", "1", offsetof(h5_row, damping), 0},
+    {"period_s", "s", offsetof(h5_row, period_s), 0},
+    {"psa_g", "g", offsetof(h5_row, psa_g), 0},
+    {"sd_m", "m", offsetof(h5_row, sd_m), 0},
+    {"psv_m_s", "m/s", offsetof(h5_row, psv_m_s), 0}};
+enum { NFIELDS = sizeof fields / sizeof fields[0] };
+
+/* The row's compound type (memory layout), or < 0; *str the string type
+ * inside it (close both). */
+static hid_t row_type(hid_t *str)
+{
+  *str = H5Tcopy(H5T_C_S1);
+  if (*str < 0 || H5Tset_size(*str, H5T_VARIABLE) < 0)
+    return -1;
+  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(h5_row));
+  for (size_t i = 0; t >= 0 && i < NFIELDS; i++)
+    if (H5Tinsert(t, fields[i].name, fields[i].offset,
+                  fields[i].text ? *str : H5T_NATIVE_DOUBLE) < 0) {
+      H5Tclose(t);
+      t = -1;
+    }
+  return t;
+}
+
+aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
+                              const aq_h5_spectra *s, aq_error *err)
+{
+  hid_t file = (hid_t)aq_h5_file_id(w), str = -1;
+  h5_row *v = malloc((s->n ? s->n : 1) * sizeof *v);
+  hid_t t = row_type(&str), ft = t >= 0 ? H5Tcopy(t) : -1;
+  herr_t rc = v && ft >= 0 && H5Tpack(ft) >= 0 ? 0 : -1;
+  for (size_t i = 0; rc == 0 && i < s->n; i++) {
+    const aq_spectrum_row *r = &s->row[i];
+    v[i] = (h5_row){r->record, r->component, r->damping, r->period_s,
+                    r->psa_g, r->sd_m, r->psv_m_s};
+  }
+  hsize_t dim = s->n;
+  hid_t sp = rc == 0 ? H5Screate_simple(1, &dim, NULL) : -1;
+  hid_t d = sp >= 0 ? H5Dcreate2(file, "spectra", ft, sp, H5P_DEFAULT, H5P_DEFAULT,
+                                 H5P_DEFAULT)
+                    : -1;
+  rc = d < 0 ? -1 : s->n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
+  for (size_t i = 0; rc >= 0 && i < NFIELDS; i++) {
+    char an[64];
+    snprintf(an, sizeof an, "units_%s", fields[i].name);
+    if (!fields[i].text)
+      rc = aq_h5_attr_text(w, d, an, fields[i].units);
+  }
+  if (rc >= 0)
+    rc = aq_h5_attr_text(w, d, "peaks", s->sampled_peaks ? "samples" : "continuous");
+  if (rc >= 0)
+    rc = aq_h5_attr_int(w, d, "rotd_angles", (int64_t)s->n_angles);
+  if (d >= 0 && H5Dclose(d) < 0)
+    rc = -1;
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (ft >= 0 && H5Tclose(ft) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  if (str >= 0 && H5Tclose(str) < 0)
+    rc = -1;
+  free(v);
+  if (rc < 0)
+    return aq_error_set(err, AQ_EIO, target, -1, -1, "/spectra",
+                        "could not write the spectra table (HDF5)");
+  return AQ_OK;
+}
+
+void aq_h5_spectra_table_free(aq_h5_spectra_table *t)
+{
+  free(t->record);
+  free(t->component);
+  free(t->damping);
+  free(t->period_s);
+  free(t->psa_g);
+  free(t->sd_m);
+  free(t->psv_m_s);
+  memset(t, 0, sizeof *t);
+}
+
+/* The table's rows from the open dataset d into t. */
+static aq_status read_rows(hid_t d, const char *path, aq_h5_spectra_table *t,
+                           aq_error *err)
+{
+  hid_t str = -1, mt = row_type(&str), sp = H5Dget_space(d);
+  hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  h5_row *v = n >= 0 ? calloc((size_t)n + 1, sizeof *v) : NULL;
+  aq_status st = AQ_OK;
+  if (mt < 0 || n < 0 || !v || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/spectra",
+                      "expected the spectrum table of archquake spectrum -o, "
+                      "got one HDF5 cannot read as such");
+    n = 0;
+  }
+  size_t m = (size_t)n + 1;
+  t->record = malloc(m * sizeof *t->record);
+  t->component = malloc(m * sizeof *t->component);
+  double **col[] = {&t->damping, &t->period_s, &t->psa_g, &t->sd_m, &t->psv_m_s};
+  int ok = t->record && t->component;
+  for (size_t j = 0; j < sizeof col / sizeof *col; j++)
+    ok = (*col[j] = malloc(m * sizeof(double))) != NULL && ok;
+  if (st == AQ_OK && !ok)
+    st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, "/spectra", "out of memory");
+  for (size_t i = 0; st == AQ_OK && i < (size_t)n; i++) {
+    snprintf(t->record[i], sizeof t->record[i], "%s", v[i].record ? v[i].record : "");
+    snprintf(t->component[i], sizeof t->component[i], "%s",
+             v[i].component ? v[i].component : "");
+    t->damping[i] = v[i].damping;
+    t->period_s[i] = v[i].period_s;
+    t->psa_g[i] = v[i].psa_g;
+    t->sd_m[i] = v[i].sd_m;
+    t->psv_m_s[i] = v[i].psv_m_s;
+  }
+  t->n = st == AQ_OK ? (size_t)n : 0;
+  if (v && n > 0)
+    H5Dvlen_reclaim(mt, sp, H5P_DEFAULT, v);
+  free(v);
+  if (sp >= 0)
+    H5Sclose(sp);
+  if (mt >= 0)
+    H5Tclose(mt);
+  if (str >= 0)
+    H5Tclose(str);
+  return st;
+}
+
+aq_status aq_h5_spectra_read(const char *path, aq_h5_spectra_table *t, aq_error *err)
+{
+  memset(t, 0, sizeof *t);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected an HDF5 file of archquake spectrum -o, "
+                        "got one HDF5 cannot open");
+  aq_status st;
+  hid_t d = H5Lexists(f, "spectra", H5P_DEFAULT) > 0 ? H5Dopen2(f, "spectra", H5P_DEFAULT) : -1;
+  if (d < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/spectra",
+                      "expected the spectra of archquake spectrum -o, got a file "
+                      "without them");
+  } else {
+    st = read_rows(d, path, t, err);
+    char peaks[16] = "";
+    hid_t a = H5Aexists(d, "peaks") > 0 ? H5Aopen(d, "peaks", H5P_DEFAULT) : -1;
+    if (a >= 0) {
+      hid_t at = H5Aget_type(a);
+      if (at >= 0 && H5Tget_size(at) < sizeof peaks)
+        H5Aread(a, at, peaks);
+      if (at >= 0)
+        H5Tclose(at);
+      H5Aclose(a);
+    }
+    t->sampled_peaks = strcmp(peaks, "samples") == 0;
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  if (st != AQ_OK)
+    aq_h5_spectra_table_free(t);
+  return st;
+}
