@@ -200,8 +200,8 @@ static int draw(void *ctx, aq_error *err)
     snprintf(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
              f->set ? "reverse" : "primary", f->s_rad);
   else
-    snprintf(title, sizeof title, "arch %s: %s, %zu voussoirs, %s %.4g m", name,
-             aq_shape_names[g->p.shape], n, what, span);
+    snprintf(title, sizeof title, "arch %s: %zu voussoirs, %s, %s %.4g m", name, n,
+             aq_shape_names[g->p.shape], what, span);
   pllab(AX_X, AX_Y, title);
   /* fill, then the voussoirs: undeformed (dashed when deformed), deformed */
   for (int d = 0; d <= (f->set >= 0); d++) {
