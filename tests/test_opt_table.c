@@ -163,6 +163,21 @@ AQ_TEST(opt_table_every_option_in_help_and_man)
           break;
         aq_check(e - p <= 79, "%s: a line of %d characters: %.*s", cmd, (int)(e - p),
                  (int)(e - p), p);
+        /* an option's line ("  --name", "  -o, --name") is one of this
+         * command's (for plot: of one of its figures) */
+        const char *q = p + 2;
+        if (strncmp(p, "  -", 3) != 0)
+          continue;
+        if (q[1] != '-' && strncmp(q + 2, ", --", 4) == 0)
+          q += 4;
+        char name[64];
+        if (sscanf(q, "--%63[a-z0-9-]", name) != 1)
+          continue;
+        int mine = 0;
+        for (int x = 0; x < AQ_CMD_N; x++)
+          if (helps[k] == AQ_CMD_PLOT ? x >= AQ_CMD_PLOT_HISTORY : x == (int)helps[k])
+            mine |= rows_for((aq_cmd)x, name, 0) > 0;
+        aq_check(mine, "%s lists --%s, not one of its options", cmd, name);
       }
     }
     free(own);

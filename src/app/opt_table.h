@@ -15,15 +15,18 @@
  *      (DEST(field) of aq_opts, or a handler for AQ_ARG_CUSTOM), the
  *      commands it applies to (C(RUN) | C(CAPACITY) ...), group, help;
  *   3. its field in aq_opts, and its default in aq_opts_init if not 0.
- *   The same name may have one row per meaning (--dt of text records and
+ *   The message of a bad value names the option as "--name", or "-x" if it
+ *   has a letter.  The same name may have one row per meaning (--dt of text records and
  *   --dt of pulse), each for commands of its own: no command has two rows
  *   of one name (test_opt_table.c checks).  Checks between options (one
  *   needs another) stay in the command, after aq_opts_parse.
  *
  * To add a command:
- *   1. an id in aq_cmd (before AQ_CMD_N) and its row in aq_opt_commands[]
- *      (opt_table.c): its name, usage line, description and the end of its
- *      --help (columns, exit status);
+ *   1. an id in aq_cmd (before AQ_CMD_PLOT: plot's figures stay last, in a
+ *      row) and its row in aq_opt_commands[] (opt_table.c): its name, title,
+ *      synopsis and summary (archquake --help's list of commands), usage
+ *      line and description, and the end of its --help (columns, exit
+ *      status);
  *   2. its bit, C(NAME), in the rows of the options it takes (--help's row
  *      applies to every command already);
  *   3. in cmd_NAME.c:
