@@ -13,7 +13,8 @@
 # empty), and every other file NAME.EXT it writes into @T@ must equal REF.EXT:
 # byte for byte, or for .h5 files `archquake compare` exit 0, h5diff of the
 # groups that compare does not read (/arches, /capacity, /histories,
-# /waveforms, those the reference has) and /records without its timings.  Cases whose NAME is not their REF
+# /waveforms, those the reference has) and /records without its timings (the
+# reference's columns: a column added since is not a change).  Cases whose NAME is not their REF
 # (the same job at another -j) are checked against the reference also when
 # recording.  Stderr is not compared.  Last line: "N passed, N failed".
 # AQ_BIN: the program (default ./archquake).  AQ_PIN_ONLY=SUBSTRING: only
@@ -33,16 +34,36 @@ ok() { pass=$((pass + 1)); [ -n "${AQ_TEST_VERBOSE:-}" ] && echo "ok: $1"; retur
 bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
 
 # The /records table as text, every double to 17 digits, without its
-# timing_* fields (which differ from run to run).
+# timing_* fields (which differ from run to run).  With a second argument, a
+# file of column names one a line: only those columns (and their units_
+# attributes), so that a column added since the reference is not a change.
 records_text() {
-  h5dump -m %.17g -d /records "$1" 2>/dev/null </dev/null | awk '
+  h5dump -m %.17g -d /records "$1" 2>/dev/null </dev/null | awk -v keep="${2:-}" '
+    BEGIN { if (keep != "") while ((getline l <keep) > 0) want[l] = 1 }
+    function kept(nm) { return keep == "" || (nm in want) }
     NR == 1 { next }
-    !data && /^   DATA \{/ { data = 1; print; next }
-    !data { if (match($0, /"[^"]*";$/)) { n++; if ($0 ~ /"timing_[^"]*";$/) skip[n] = 1 } print; next }
+    !data && /^   DATA \{/ { data = 1; printf "%s", buf; buf = ""; print; next }
+    !data {
+      buf = buf $0 "\n"
+      if (match($0, /"[^"]*";$/)) {
+        n++; nm = substr($0, RSTART + 1, RLENGTH - 3)
+        if (nm ~ /^timing_/ || !kept(nm)) skip[n] = 1
+        if (kept(nm)) printf "%s", buf
+        buf = ""
+      }
+      next
+    }
     data == 1 && /^   \}/ { data = 2 }
     data == 1 && /^   \([0-9]+\): \{/ { k = 0; print; next }
     data == 1 && /^         [^ ]/ { k++; if (!skip[k]) print; next }
+    data == 2 && /^   ATTRIBUTE "units_/ { nm = $2; gsub(/"/, "", nm); sub(/^units_/, "", nm); drop = !kept(nm) }
+    drop { if ($0 ~ /^   \}$/) drop = 0; next }
     { print }'
+}
+
+# The /records table's column names, one a line.
+records_cols() {
+  h5dump -H -d /records "$1" 2>/dev/null </dev/null | sed -n 's/^      } *"\([^"]*\)";$/\1/p; s/^      H5T_[A-Z0-9_]* *"\([^"]*\)";$/\1/p'
 }
 
 # same_h5 REF NEW NAME: compare exit 0; h5diff of the groups that compare
@@ -66,8 +87,9 @@ same_h5() {
       fi
     fi
   done
-  records_text "$1" >"$T/rec.ref"
-  records_text "$2" >"$T/rec.new"
+  records_cols "$1" >"$T/rec.cols"
+  records_text "$1" "$T/rec.cols" >"$T/rec.ref"
+  records_text "$2" "$T/rec.cols" >"$T/rec.new"
   if [ ! -s "$T/rec.ref" ] || ! cmp -s "$T/rec.ref" "$T/rec.new"; then
     bad "$3: /records differs: $(diff "$T/rec.ref" "$T/rec.new" | head -n 6)"
     return

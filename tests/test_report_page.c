@@ -163,6 +163,70 @@ AQ_TEST(report_page_holds_the_suite)
   free(tsv);
 }
 
+/* The records table's row of the record named name ("" if none). */
+static void record_row(const char *html, const char *name, char *row, size_t cap)
+{
+  row[0] = '\0';
+  const char *t = strstr(html, "id=\"records\"");
+  const char *end = t ? strstr(t, "</table>") : NULL;
+  char cell[300];
+  snprintf(cell, sizeof cell, ">%s<", name);
+  const char *c = t ? strstr(t, cell) : NULL;
+  if (!c || c > end)
+    return;
+  const char *a = c, *z = strstr(c, "</tr>");
+  while (a > t && strncmp(a, "<tr>", 4) != 0)
+    a--;
+  snprintf(row, cap, "%.*s", z ? (int)(z - a) : 0, a);
+}
+
+/* Where each record's units came from and whether it is vertical, as the
+ * command line and the files themselves say: the AT2 header states g; the
+ * miniSEED's counts take the sensitivity of the StationXML given; the CSN
+ * SAC states nm/s2 (IDEP IACC) and a --units rule reads it as g; the
+ * synthetic SAC states none and takes --units; the JMA CSV states gal, its
+ * UD channel is vertical by its name and its NS channel is not. */
+AQ_TEST(report_page_records_units_and_vertical)
+{
+  char dir[512], h5[600], page[600], args[3000], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/u.h5", dir);
+  snprintf(page, sizeof page, "%s/u.html", dir);
+  snprintf(args, sizeof args,
+           REC "IELC180.AT2 " REC "CI.CLC..HNE.mseed " REC "CI.CLC.xml " REC
+               "20190706031952.CJ.T001230.HNE.sac " REC "test.sac " REC "Q4149CF2.csv#NS " REC
+               "Q4149CF2.csv#UD --units m/s2 --units *HNE.sac=g --accept-vertical --arch " ARCHES
+               "thin.cfg -j 1 -o %s",
+           h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  snprintf(args, sizeof args, "report %s -o %s", h5, page);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  char *html = aq_test_read_file(page, NULL);
+  if (!aq_check(rc == 0 && html, "%s: exit %d %s", args, rc, err))
+    return;
+  static const struct {
+    const char *name, *units, *vertical;
+  } want[] = {
+      {"IELC180.AT2", "g <small>(stated in the file)", "<td>no</td>"},
+      {"CI.CLC..HNE.mseed", "counts <small>(StationXML response)", "<td>no</td>"},
+      {"20190706031952.CJ.T001230.HNE.sac", "g <small>(a --units rule; the file states nm/s2)",
+       "<td>no</td>"},
+      {"test.sac", "m/s2 <small>(--units)", "<td>no</td>"},
+      {"Q4149CF2.csv#NS", "gal <small>(stated in the file)", "<td>no</td>"},
+      {"Q4149CF2.csv#UD", "gal <small>(stated in the file)",
+       "<td><b>yes</b> <small>(its channel name)</small></td>"},
+  };
+  for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+    char row[4096];
+    record_row(html, want[i].name, row, sizeof row);
+    aq_check(strstr(row, want[i].units) && strstr(row, want[i].vertical),
+             "%s: units \"%s\", vertical \"%s\" in: %s", want[i].name, want[i].units,
+             want[i].vertical, row);
+  }
+  free(html);
+}
+
 /* exit 1, one line naming path and containing what, no page */
 static void refused(const char *args, const char *path, const char *what, const char *page)
 {

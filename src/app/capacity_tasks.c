@@ -280,7 +280,7 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
   }
   /* farmed: every task goes out at once; each process prepares a subject
    * when it runs a task of it, the leader also when a result of it comes
-   * first (as the main job's farm, suite.c) */
+   * first (as the main job's farm, suite_farm.c) */
   int leader = !farm_hook->follower;
   tasks X = {.S = S, .R = R, .C = C, .lazy = 1, .leader = leader,
              .keep = leader ? (size_t)-1

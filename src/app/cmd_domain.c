@@ -11,6 +11,7 @@
 #include "../arch/arch.h"
 #include "../arch/domain.h"
 #include "../arch/stepper.h"
+#include "../job/run.h"
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
@@ -63,13 +64,11 @@ int aq_cmd_domain(int argc, char **argv)
     goto out;
   }
   const aq_path *pp = aq_arch_path(arch, 0);
-  st = aq_stepper_alloc(pp, aq_arch_path(arch, 1), (aq_model)model, &err);
+  st = aq_job_stepper(arch, (aq_model)model, cor, 0, &err);
   if (!st) {
     aq_error_print(&err, stderr);
     goto out;
   }
-  aq_stepper_set_cor(st, isnan(cor) ? dyn->cor : cor);
-  aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
   aq_stepper_set_ode_rtol(st, rtol);
   printf("ratio\taccel_g\tmin_duration_s\n");
   for (size_t i = 0; i < nr; i++) {

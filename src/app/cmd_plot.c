@@ -12,6 +12,7 @@
 #include <strings.h>
 
 #include "../arch/domain.h"
+#include "../job/run.h"
 #include "../plot/plot.h"
 #include "../report/h5.h"
 #include "app.h"
@@ -129,14 +130,12 @@ static int plot_domain(const plot_opts *o, const aq_arch *arch, aq_error *err)
     return AQ_EXIT_USAGE;
   const aq_path *pp = aq_arch_path(arch, 0);
   double *dur = malloc(n * sizeof *dur);
-  aq_stepper *st = aq_stepper_alloc(pp, aq_arch_path(arch, 1), AQ_MODEL_WORKPATH, err);
+  aq_stepper *st = aq_job_stepper(arch, AQ_MODEL_WORKPATH, o->cor, 0, err);
   int rc = AQ_EXIT_OK;
   if (!dur || !st) {
     rc = dur ? fail(err) : AQ_EXIT_FAIL;
     goto out;
   }
-  aq_stepper_set_cor(st, isnan(o->cor) ? dyn->cor : o->cor);
-  aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
   for (size_t i = 0; i < n; i++) {
     double a;
     if (aq_domain_min_duration(st, pp, ratio[i], TOL_S, TMAX_S, &a, &dur[i], err) != AQ_OK) {

@@ -1,5 +1,5 @@
 /* farm.h: tasks farmed out to other processes (archquake-mpi, src/app/mpi.c)
- * by the commands that can use them: the main job (suite.c, a task per
+ * by the commands that can use them: the main job (suite_farm.c, a task per
  * (record, arch)) and capacity (capacity_tasks.c, a task per (subject,
  * arch)).  A task's result travels as a message of bytes; the leader takes
  * every result on one thread and alone writes.  Outside archquake-mpi no

@@ -1,5 +1,6 @@
-/* suite_journal.c: a finished record as a journal entry, and the identity
- * of a suite, for --resume (see suite_slot.h and report/journal.h).
+/* suite_journal.c: the main job's journal, for --resume (suite_slot.h,
+ * report/journal.h): a finished record as a journal entry, the identity
+ * of a suite, starting a journal (checking one read back) and replaying it.
  *
  * Structs are stored as their bytes: the identity names the exact build, so
  * a journal is read back only by the build that wrote it. */
@@ -183,4 +184,142 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
   }
   *out = (char *)b.data;
   return 0;
+}
+
+/* The first line where identities a (the journal's) and b (this
+ * command's) differ, into buf[n] as 'has "..." where this command has
+ * "..."'. */
+static void first_difference(const char *a, const char *b, char *buf, size_t n)
+{
+  while (*a && *b) {
+    size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
+    if (la != lb || memcmp(a, b, la) != 0) {
+      snprintf(buf, n, "has \"%.*s\" where this command has \"%.*s\"", (int)la, a,
+               (int)lb, b);
+      return;
+    }
+    a += la + (a[la] != '\0');
+    b += lb + (b[lb] != '\0');
+  }
+  snprintf(buf, n, "has %s lines than this command's identity", *a ? "more" : "fewer");
+}
+
+/* Start the journal of a suite writing to c->h5_path.  With --resume and a
+ * journal of the same command, its entries (identity first) are checked and
+ * returned in *e (*ne of them) for journal_replay.  Returns AQ_EXIT_OK, or
+ * the exit status after printing one line. */
+int aq_suite_journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t *ne)
+{
+  const aq_suite_cfg *c = S->cfg;
+  *J = NULL;
+  *e = NULL;
+  *ne = 0;
+  if (!c->h5_path || c->history || c->store_records)
+    return AQ_EXIT_OK; /* datasets a journal does not hold */
+  char *id = NULL, *path = malloc(strlen(c->h5_path) + 16);
+  size_t dropped = 0;
+  aq_error err;
+  aq_error_clear(&err);
+  int rc = AQ_EXIT_OK;
+  if (!path || aq_suite_identity(c, S->arches, &id) != 0) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto out;
+  }
+  aq_journal_name(c->h5_path, path, strlen(c->h5_path) + 16);
+  if (c->resume && aq_journal_open(path, J, e, ne, &dropped, &err) != AQ_OK) {
+    char msg[1200];
+    aq_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "archquake: %s (--resume: run without it to start over)\n", msg);
+    rc = AQ_EXIT_USAGE;
+    goto out;
+  }
+  if (!*J) {
+    if (aq_journal_create(path, id, strlen(id) + 1, AQ_SUITE_JOURNAL_SYNC_S, J, &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      rc = AQ_EXIT_OUTPUT;
+    }
+    goto out;
+  }
+  char why[1200] = "";
+  if ((*e)[0].n != strlen(id) + 1 || memcmp((*e)[0].data, id, (*e)[0].n) != 0) {
+    char diff[1000];
+    first_difference((const char *)(*e)[0].data, id, diff, sizeof diff);
+    snprintf(why, sizeof why, "the journal is another command's: it %s", diff);
+  }
+  /* Check every entry before writing anything: the order, and that each
+   * record's file is still the one that was run. */
+  for (size_t k = 1; !why[0] && k < *ne; k++) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    char sha[AQ_SHA256_HEX] = "", file[4096];
+    if (k - 1 < c->nrecords)
+      aq_suite_slot_orient(S, k - 1, &r);
+    if (k - 1 >= c->nrecords || aq_suite_slot_decode(&(*e)[k], r.nruns, &r) != 0 ||
+        r.index != k - 1)
+      snprintf(why, sizeof why, "entry %zu: expected record %zu of this suite, got "
+                                "something else", k, k - 1);
+    else if (r.sha256[0] &&
+             (aq_sha256_file(aq_record_file(aq_suite_record_file(S, k - 1), file, sizeof file), sha,
+                             &err) != AQ_OK ||
+              strcmp(sha, r.sha256) != 0))
+      snprintf(why, sizeof why, "the record %s changed since the journal was written "
+                                "(sha256 %s, journal %s)", c->records[k - 1],
+               sha[0] ? sha : "unreadable", r.sha256);
+    aq_suite_slot_clear(S, &r);
+  }
+  if (why[0]) {
+    fprintf(stderr, "archquake: %s: --resume: %s; run without --resume to start over\n",
+            path, why);
+    aq_journal_close(*J);
+    *J = NULL;
+    rc = AQ_EXIT_USAGE;
+    goto out;
+  }
+  if (dropped)
+    fprintf(stderr, "archquake: %s: dropped a torn last entry (%zu bytes): its record "
+                    "runs again\n", path, dropped);
+  fprintf(stderr, "archquake: %s: %zu of %zu records done before, continuing\n", path,
+          *ne - 1, c->nrecords);
+out:
+  if (*J)
+    aq_journal_set_sync_period(*J, AQ_SUITE_JOURNAL_SYNC_S);
+  if (rc != AQ_EXIT_OK) {
+    aq_journal_entries_free(*e, *ne);
+    *e = NULL;
+    *ne = 0;
+  }
+  free(id);
+  free(path);
+  return rc;
+}
+
+/* Write the records of journal entries e[1..ne) again, in order
+ * (diagnostics, rows, results file).  Returns AQ_OK or the output failure. */
+aq_status aq_suite_journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
+                                const aq_journal_entry *e, size_t ne, aq_error *err)
+{
+  for (size_t k = 1; k < ne; k++) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    aq_suite_slot_orient(S, k - 1, &r);
+    aq_suite_slot_decode(&e[k], r.nruns, &r); /* checked by journal_start */
+    aq_suite_slot_orient(S, k - 1, &r);
+    aq_status ws = aq_suite_write_record(S, &r, h5, stats, err);
+    aq_suite_slot_clear(S, &r);
+    if (ws != AQ_OK)
+      return ws;
+  }
+  return AQ_OK;
+}
+
+aq_status aq_suite_journal_append(suite *S, aq_journal *J, const rec_slot *r, aq_error *err)
+{
+  aq_bytes_out jb = {0};
+  aq_suite_slot_encode(r, r->nruns, &jb);
+  aq_status s = jb.oom ? aq_error_set(err, AQ_ENOMEM, S->cfg->h5_path, -1, -1, NULL,
+                                      "out of memory")
+                       : aq_journal_append(J, jb.data, jb.n, err);
+  free(jb.data);
+  return s;
 }

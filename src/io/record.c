@@ -658,9 +658,11 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   const aq_units_rule *rule = aq_read_opts_rule_for(opts, path);
   aq_units global = opts ? opts->units : AQ_UNITS_FILE;
   const char *how; /* for the plausibility message */
+  const char *units_by; /* rec->units_by */
   if (rule && rule->units != AQ_UNITS_FILE) {
     used = rule->units;
     how = "by --units rule";
+    units_by = "rule";
     if (has_stated && stated != used)
       snprintf(rec->units_conflict, sizeof rec->units_conflict,
                "the file states %s, the rule --units '%.120s=%s' reads it as %s",
@@ -669,9 +671,13 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   } else if (has_stated) {
     used = stated;
     how = "as the file states";
+    units_by = stated == AQ_UNITS_COUNTS && opts && opts->nresponses > 0 && strcmp(raw->format, "mseed") == 0
+             ? "response"
+             : "file";
   } else if (global != AQ_UNITS_FILE && !rule) {
     used = global;
     how = "by --units";
+    units_by = "option";
   } else {
     const char *said = ch->units_said[0] ? ch->units_said : ch->units;
     return aq_error_set(err, AQ_EUNITS, label, -1, -1, "units",
@@ -811,6 +817,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     snprintf(rec->units_stated, sizeof rec->units_stated, "%s", aq_units_name(stated));
   snprintf(rec->units_used, sizeof rec->units_used, "%s", aq_units_name(used));
   snprintf(rec->units_orig, sizeof rec->units_orig, "%s", aq_units_name(used));
+  snprintf(rec->units_by, sizeof rec->units_by, "%s", units_by);
   rec->azimuth_deg = ch->azimuth_deg;
   rec->dip_deg = ch->dip_deg;
   rec->vertical = vert;

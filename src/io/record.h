@@ -49,6 +49,10 @@ typedef struct {
   char processing[160]; /* the agency's processing as stated, "" if none */
   char units_stated[24];/* units the file states ("" if none) */
   char units_used[24];  /* units applied (canonical name, e.g. "gal") */
+  char units_by[12];    /* where units_used came from: "file" (stated in it),
+                           "response" (miniSEED counts, the sensitivity from
+                           --response's StationXML), "rule" (--units GLOB=U),
+                           "option" (--units, the file stating none) */
   char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
   char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
                                samples are reversed by it (to_mps2 < 0) */

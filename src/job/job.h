@@ -6,6 +6,7 @@
  *   scale.h    the scaling rule (--scale, --scale-to-pga,
  *              --scale-to-lambda0), the polarity, lambda0
  *   run.h      the arch's stepper, and the runs of a subject
+ *   names.h    the records a suite's operands name (FILE#CH), on threads
  *
  * The main job (src/app/suite*.c), capacity (src/capacity), archquake-mpi
  * and the benches all take this path.  It comes after arch (its steppers)
@@ -13,6 +14,7 @@
 #ifndef AQ_JOB_H
 #define AQ_JOB_H
 
+#include "names.h"
 #include "run.h"
 #include "scale.h"
 #include "subject.h"

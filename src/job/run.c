@@ -20,6 +20,13 @@ aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int 
   return st;
 }
 
+aq_arch_dynamics aq_job_dynamics(const aq_arch *arch, double cor)
+{
+  aq_arch_dynamics used = *aq_arch_dynamics_of(arch);
+  used.cor = used.impact == AQ_IMPACT_MOMENTUM ? NAN : isnan(cor) ? used.cor : cor;
+  return used;
+}
+
 aq_status aq_job_run_view(aq_stepper *st, const aq_view *v, double sa, aq_result *res,
                           aq_error *err)
 {

@@ -27,6 +27,10 @@
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            aq_error *err);
 
+/* The dynamics arch's runs use: its impact rule, cor (NAN: the arch's own)
+ * over the file's, none (NAN) with the momentum rule. */
+aq_arch_dynamics aq_job_dynamics(const aq_arch *arch, double cor);
+
 /* Run st over view v at factor sa (its sign the polarity; the vertical at
  * |sa|).  res as aq_stepper_run's. */
 aq_status aq_job_run_view(aq_stepper *st, const aq_view *v, double sa, aq_result *res,

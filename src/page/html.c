@@ -116,6 +116,62 @@ static void read_note(aq_page_buf *b, const char *html)
   aq_page_puts(b, "</div>\n");
 }
 
+/* A record's units and where they came from (/records units_source; a file
+ * written before that column says only whether --units was given). */
+static void units_td(aq_page_buf *b, const aq_page_attrs *root, const aq_page_table *t,
+                     size_t i)
+{
+  static const char *const from[][2] = {{"file", "stated in the file"},
+                                        {"response", "StationXML response"},
+                                        {"rule", "a --units rule"},
+                                        {"option", "--units"}};
+  const char *u = aq_page_cell(t, i, "units_orig");
+  const char *src = aq_page_cell(t, i, "units_source");
+  const char *said = src;
+  for (size_t k = 0; k < sizeof from / sizeof from[0]; k++)
+    if (strcmp(src, from[k][0]) == 0)
+      said = from[k][1];
+  if (aq_page_col(t, "units_source") < 0) {
+    const char *uo = aq_page_attr(root, "units_override");
+    said = !uo || strcmp(uo, "file") == 0 ? "stated in the file" : "--units or the file";
+  }
+  aq_page_puts(b, "<td>");
+  aq_page_esc(b, u[0] ? u : "–");
+  if (u[0] && said[0]) {
+    aq_page_puts(b, " <small>(");
+    aq_page_esc(b, said);
+    const char *stated = aq_page_cell(t, i, "units_stated");
+    if (stated[0] && strcmp(stated, u) != 0) {
+      aq_page_puts(b, "; the file states ");
+      aq_page_esc(b, stated);
+    }
+    aq_page_puts(b, ")</small>");
+  }
+  aq_page_puts(b, "</td>");
+}
+
+/* Whether the file identifies the record as vertical, and how. */
+static void vertical_td(aq_page_buf *b, const aq_page_table *t, size_t i)
+{
+  double v = aq_page_cell_num(t, i, "vertical");
+  const char *by = aq_page_cell(t, i, "vertical_by");
+  const char *how = strcmp(by, "stated") == 0 ? "the file says so"
+                    : strcmp(by, "dip") == 0  ? "its dip"
+                    : strcmp(by, "name") == 0 ? "its channel name"
+                                              : by;
+  if (!(v >= 0)) { /* no such column, or the record was not read */
+    aq_page_puts(b, "<td>–</td>");
+    return;
+  }
+  aq_page_puts(b, v > 0 ? "<td><b>yes</b>" : "<td>no");
+  if (v > 0 && how[0]) {
+    aq_page_puts(b, " <small>(");
+    aq_page_esc(b, how);
+    aq_page_puts(b, ")</small>");
+  }
+  aq_page_puts(b, "</td>");
+}
+
 /* ---- figures ----------------------------------------------------------- */
 
 typedef struct {
@@ -210,17 +266,19 @@ static void section_run(page *p)
   /* records */
   const aq_page_table *t = &p->r.records;
   aq_page_printf(b, "<h3 id=\"records\">Records (%zu)</h3>\n", t->nrow);
-  read_note(b, "Each record as read and processed.  <i>Units</i> are those the file "
-               "states, or the <code>--units</code> rule that applied (the options above); "
-               "PGA, PGV, Arias intensity and the significant duration D5–95 are of the "
-               "processed record before scaling.  A vertical channel is named by its "
-               "channel code (Z, UD); the main job runs one only with "
-               "<code>--accept-vertical</code>.");
+  read_note(b, "Each record as read and processed.  <i>Units</i> are those the values "
+               "were read in, and where they came from: stated in the file, the "
+               "sensitivity of a StationXML response (miniSEED counts), a "
+               "<code>--units GLOB=U</code> rule or <code>--units</code> (the options "
+               "above).  PGA, PGV, Arias intensity and the significant duration D5–95 "
+               "are of the processed record before scaling.  <i>Vertical</i> says "
+               "whether the file identifies the channel as vertical, and how (it says "
+               "so, its dip, or its channel name: Z, UD, ...); the main job runs a "
+               "vertical only with <code>--accept-vertical</code>.");
   aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>#</th><th>record</th><th>sha256</th>"
-                  "<th>format</th><th>units</th><th>channel</th><th>PGA (g)</th>"
-                  "<th>PGV (m/s)</th><th>Arias (m/s)</th><th>D5–95 (s)</th><th>status</th>"
-                  "</tr></thead><tbody>\n");
-  const char *uo = aq_page_attr(root, "units_override");
+                  "<th>format</th><th>units (from)</th><th>channel</th><th>vertical</th>"
+                  "<th>PGA (g)</th><th>PGV (m/s)</th><th>Arias (m/s)</th><th>D5–95 (s)</th>"
+                  "<th>status</th></tr></thead><tbody>\n");
   for (size_t i = 0; i < t->nrow; i++) {
     aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i);
     text_td(b, aq_page_cell(t, i, "name"), 1);
@@ -230,23 +288,13 @@ static void section_run(page *p)
     aq_page_esc(b, aq_page_cell(t, i, "sha256"));
     aq_page_puts(b, "</td>");
     text_td(b, aq_page_cell(t, i, "format"), 0);
-    /* units, and where they came from */
-    const char *u = aq_page_cell(t, i, "units_orig");
-    const char *src = aq_page_col(t, "units_source") >= 0 ? aq_page_cell(t, i, "units_source")
-                      : !uo || strcmp(uo, "file") == 0 ? "the file" : "--units or the file";
-    aq_page_puts(b, "<td>");
-    aq_page_esc(b, u[0] ? u : "–");
-    if (u[0]) {
-      aq_page_puts(b, " <small>(");
-      aq_page_esc(b, src);
-      aq_page_puts(b, ")</small>");
-    }
-    aq_page_puts(b, "</td>");
+    units_td(b, root, t, i);
     char ch[160];
     snprintf(ch, sizeof ch, "%s%s%s%s%s", aq_page_cell(t, i, "network"),
              aq_page_cell(t, i, "network")[0] ? "." : "", aq_page_cell(t, i, "station"),
              aq_page_cell(t, i, "station")[0] ? "." : "", aq_page_cell(t, i, "channel"));
     text_td(b, ch[0] ? ch : "–", 0);
+    vertical_td(b, t, i);
     num_td(b, aq_page_cell_num(t, i, "pga_g"), "%.4g");
     num_td(b, aq_page_cell_num(t, i, "pgv_m_s"), "%.4g");
     num_td(b, aq_page_cell_num(t, i, "arias_m_s"), "%.4g");

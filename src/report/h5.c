@@ -64,10 +64,13 @@ typedef struct {
   char format[16];
   char units_orig[24];
   double to_m_s2;
+  char units_stated[24], units_source[12];
   int64_t npts;
   double dt_s, begin_s;
   char reference_time[40];
   char network[16], station[16], location[16], channel[16];
+  int64_t vertical; /* 1 vertical, 0 horizontal, -1 not read */
+  char vertical_by[8];
   /* processing used */
   char detrend[8];
   int64_t filter;
@@ -88,10 +91,12 @@ static const h5_col record_cols[] = {
     REC_COL(sha256, AQ_SF_STR, ""),      REC_COL(status, AQ_SF_STR, ""),
     REC_COL(error, AQ_SF_STR, ""),       REC_COL(format, AQ_SF_STR, ""),
     REC_COL(units_orig, AQ_SF_STR, ""),  REC_COL(to_m_s2, AQ_SF_DOUBLE, "m/s^2 per file unit"),
+    REC_COL(units_stated, AQ_SF_STR, ""), REC_COL(units_source, AQ_SF_STR, ""),
     REC_COL(npts, AQ_SF_INT, "1"),       REC_COL(dt_s, AQ_SF_DOUBLE, "s"),
     REC_COL(begin_s, AQ_SF_DOUBLE, "s"), REC_COL(reference_time, AQ_SF_STR, ""),
     REC_COL(network, AQ_SF_STR, ""),     REC_COL(station, AQ_SF_STR, ""),
     REC_COL(location, AQ_SF_STR, ""),    REC_COL(channel, AQ_SF_STR, ""),
+    REC_COL(vertical, AQ_SF_INT, "1"),   REC_COL(vertical_by, AQ_SF_STR, ""),
     REC_COL(detrend, AQ_SF_STR, ""),     REC_COL(filter, AQ_SF_INT, "1"),
     REC_COL(taper_frac, AQ_SF_DOUBLE, "1"), REC_COL(highpass_hz, AQ_SF_DOUBLE, "Hz"),
     REC_COL(highpass_order, AQ_SF_INT, "1"), REC_COL(lowpass_hz, AQ_SF_DOUBLE, "Hz"),
@@ -670,6 +675,20 @@ static const char *detrend_name(aq_detrend d)
   return "unknown";
 }
 
+/* How a record was known to be vertical (/records vertical_by). */
+static const char *vertical_by_name(int by)
+{
+  switch (by) {
+  case AQ_VERTICAL_BY_STATED:
+    return "stated";
+  case AQ_VERTICAL_BY_DIP:
+    return "dip";
+  case AQ_VERTICAL_BY_NAME:
+    return "name";
+  }
+  return "";
+}
+
 /* Processing parameters requested (root attributes). */
 static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
 {
@@ -815,6 +834,7 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
   row->taper_frac = row->highpass_hz = row->lowpass_hz = NAN;
   row->pga_g = row->pgv_m_s = row->pgd_m = row->arias_m_s = NAN;
   row->d5_95_s = row->cav_m_s = row->v_end_m_s = row->d_end_m = NAN;
+  row->vertical = -1;
   if (r->rec) {
     const aq_record *rec = r->rec;
     COPY(row->name, rec->name);
@@ -829,6 +849,10 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
     COPY(row->station, rec->station);
     COPY(row->location, rec->location);
     COPY(row->channel, rec->channel);
+    COPY(row->units_stated, rec->units_stated);
+    COPY(row->units_source, rec->units_by);
+    row->vertical = rec->vertical ? 1 : 0;
+    COPY(row->vertical_by, vertical_by_name(rec->vertical_by));
   }
   if (r->proc) {
     const aq_processed *p = r->proc;
