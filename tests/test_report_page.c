@@ -233,6 +233,43 @@ AQ_TEST(report_page_records_units_and_vertical)
   free(html);
 }
 
+/* Arches of other shapes: the arches table gives each one's shape and
+ * voussoirs as its .cfg states them (gothic.cfg: pointed, 24; bridge.cfg:
+ * elliptical, 31), and each is drawn with its line of thrust. */
+AQ_TEST(report_page_arch_shapes)
+{
+  char dir[512], h5[600], page[600], args[3000], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/g.h5", dir);
+  snprintf(page, sizeof page, "%s/g.html", dir);
+  snprintf(args, sizeof args,
+           REC "IELC180.AT2 --arch " ARCHES "gothic.cfg --arch " ARCHES "bridge.cfg -j 1 -q -o %s",
+           h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  snprintf(args, sizeof args, "report %s -o %s", h5, page);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  char *html = aq_test_read_file(page, NULL);
+  if (!aq_check(rc == 0 && html, "%s: exit %d %s", args, rc, err))
+    return;
+  char *cfg[2] = {aq_test_read_file(ARCHES "gothic.cfg", NULL),
+                  aq_test_read_file(ARCHES "bridge.cfg", NULL)};
+  aq_check(cfg[0] && strstr(cfg[0], "shape = pointed") && strstr(cfg[0], "voussoirs = 24") &&
+               cfg[1] && strstr(cfg[1], "shape = elliptical") && strstr(cfg[1], "voussoirs = 31"),
+           "the .cfg files state the shapes");
+  const char *t = strstr(html, "id=\"arches\"");
+  const char *end = t ? strstr(t, "</table>") : NULL;
+  const char *g = t ? strstr(t, "pointed, 24 voussoirs") : NULL;
+  const char *e = t ? strstr(t, "elliptical, 31 voussoirs") : NULL;
+  aq_check(g && e && g < end && e < end, "the arches table: pointed and elliptical");
+  aq_check(count(html, "<svg class=\"fig\"") >= 3 && count(html, "line of thrust") >= 2,
+           "each arch drawn with its line of thrust (%zu figures, %zu)",
+           count(html, "<svg class=\"fig\""), count(html, "line of thrust"));
+  free(cfg[0]);
+  free(cfg[1]);
+  free(html);
+}
+
 /* exit 1, one line naming path and containing what, no page */
 static void refused(const char *args, const char *path, const char *what, const char *page)
 {

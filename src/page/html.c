@@ -152,6 +152,21 @@ static void units_td(aq_page_buf *b, const aq_page_attrs *root, const aq_page_ta
   aq_page_puts(b, "</td>");
 }
 
+/* An arch's shape and voussoirs, as its results file keeps them
+ * (/geometry); "–" for a file written before they were kept. */
+static void shape_text(aq_page_buf *b, const aq_page_attrs *g)
+{
+  const char *shape = aq_page_attr(g, "shape");
+  double nv = aq_page_attr_num(g, "voussoirs");
+  if (!shape) {
+    aq_page_puts(b, "–");
+    return;
+  }
+  aq_page_esc(b, shape);
+  if (nv > 0)
+    aq_page_printf(b, ", %.0f voussoirs", nv);
+}
+
 /* Whether the file identifies the record as vertical, and how. */
 static void vertical_td(aq_page_buf *b, const aq_page_table *t, size_t i)
 {
@@ -325,9 +340,11 @@ static void section_run(page *p)
                "accelerates one way, the <i>reverse</i> set (the same joints, faces "
                "swapped) the other way.  λ0 is the static collapse multiplier: a constant "
                "ground acceleration of λ0 g starts the mechanism.  q<sub>c</sub> is the "
-               "rotation at which it collapses.  Joints are numbered from the left "
-               "springing; e: extrados, i: intrados.");
-  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>arch</th><th>set</th><th>joints</th>"
+               "rotation at which it collapses.  Joints are numbered from the springing "
+               "on the +x side (the right in the figures), counter-clockwise; e: "
+               "extrados, i: intrados.  The shape and voussoirs are those the results "
+               "file keeps with the arch's geometry.");
+  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>arch</th><th>shape</th><th>set</th><th>joints</th>"
                   "<th>faces</th><th>λ0</th><th>q<sub>c</sub> (rad)</th><th>admissible</th>"
                   "<th>file, sha256</th></tr></thead><tbody>\n");
   for (size_t a = 0; a < p->r.narch; a++) {
@@ -340,7 +357,9 @@ static void section_run(page *p)
         aq_page_puts(b, "<td rowspan=\"2\"><a href=\"#arch-");
         aq_page_printf(b, "%zu\">", a);
         aq_page_esc(b, (v = aq_page_attr(A, "name")) ? v : "?");
-        aq_page_puts(b, "</a></td>");
+        aq_page_puts(b, "</a></td><td rowspan=\"2\">");
+        shape_text(b, &p->r.geom[a]);
+        aq_page_puts(b, "</td>");
       }
       text_td(b, set, 0);
       snprintf(k, sizeof k, "%s_joints", set);
