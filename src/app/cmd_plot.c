@@ -87,9 +87,6 @@ static int parse(int argc, char **argv, plot_opts *o)
     }
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
-  aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
-  if (o->fig == FIG_ARCH || o->fig == FIG_DOMAIN)
-    aq_opt_require("plot", "--arch ARCH", o->arch != NULL, &nerr);
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
