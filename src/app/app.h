@@ -28,6 +28,15 @@ void aq_app_now_utc(char *buf, size_t n);
 
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
 
+/* archquake's command line (dispatch.c): a command, help, the version or
+ * the main job; returns the exit status.  main (src/main.c) and
+ * archquake-mpi's main (mpi.c) call it. */
+int aq_app_main(int argc, char **argv);
+/* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
+int aq_app_is_command(const char *name);
+/* 1 if argv is the main job (not a command, help or the version). */
+int aq_app_is_main_job(int argc, char **argv);
+
 /* The allocator policy of every command (heap.c): blocks of a record's
  * size are kept in the heap between records instead of being mapped and
  * handed back to the kernel each time.  main() sets it first; the suite
