@@ -16,8 +16,16 @@
  * 2. The suite: the 11 AT2 records of tests/data/records x the 5 shipped
  *    arches x both polarities with the binary at -j 2 (wall time of one
  *    process, so cold: start, FFTW plans and arches included), the
- *    pairs with resurrection, runs per pair, and the fragility table. */
+ *    pairs with resurrection, runs per pair, and the fragility table.
+ * 3. The models: the same suite under the default model and under
+ *    --model ode, one process each, one after the other: wall and CPU time
+ *    (user + system of the child processes), the ratio ode / default, and
+ *    how far the two agree (rows with the same status, first collapse
+ *    scales equal as printed or within 1e-5 relative, the largest relative
+ *    difference, runs of each).  `bench_capacity models` runs it alone. */
 #define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE /* getloadavg */
+#include <sys/resource.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -218,10 +226,119 @@ static int suite(void)
   return 0;
 }
 
-int main(void)
+/* CPU time (user + system, s) of the waited-for children so far. */
+static double children_cpu_s(void)
+{
+  struct rusage ru;
+  if (getrusage(RUSAGE_CHILDREN, &ru) != 0)
+    return NAN;
+  return (double)ru.ru_utime.tv_sec + (double)ru.ru_stime.tv_sec +
+         1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+typedef struct {
+  char key[512], status[32];
+  double fcs;
+  long runs;
+} cap_row;
+
+/* The rows of a capacity table (at most max); their number, or -1. */
+static long read_rows(const char *path, cap_row *rows, long max)
+{
+  FILE *f = fopen(path, "r");
+  if (!f)
+    return -1;
+  char line[1 << 16];
+  long n = 0;
+  while (n < max && fgets(line, sizeof line, f)) {
+    if (strncmp(line, "record\t", 7) == 0)
+      continue;
+    char *c[12];
+    size_t k = 0;
+    for (char *p = strtok(line, "\t\n"); p && k < 12; p = strtok(NULL, "\t\n"))
+      c[k++] = p;
+    if (k < 12)
+      continue;
+    snprintf(rows[n].key, sizeof rows[n].key, "%s|%s|%s", c[0], c[1], c[2]);
+    snprintf(rows[n].status, sizeof rows[n].status, "%s", c[3]);
+    rows[n].fcs = strtod(c[5], NULL);
+    rows[n].runs = atol(c[10]);
+    n++;
+  }
+  fclose(f);
+  return n;
+}
+
+static int models(void)
+{
+  static const char *const model[2] = {"", " --model ode"};
+  static const char *const out[2] = {"build/bench/capacity_default.tsv",
+                                     "build/bench/capacity_ode.tsv"};
+  double wall[2], cpu[2];
+  double l[3] = {NAN, NAN, NAN};
+  if (getloadavg(l, 3) != 3)
+    l[0] = NAN;
+  for (int m = 0; m < 2; m++) {
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "./archquake capacity tests/data/records/*.AT2 --arch arches/oppenheim.cfg "
+             "--arch arches/thin.cfg --arch arches/thick.cfg --arch arches/segmental.cfg "
+             "--arch arches/search.cfg -j 2%s --text %s 2>/dev/null",
+             model[m], out[m]);
+    double c0 = children_cpu_s(), t0 = aq_bench_now_s();
+    int rc = system(cmd);
+    wall[m] = aq_bench_now_s() - t0;
+    cpu[m] = children_cpu_s() - c0;
+    (void)rc; /* a failed row is a row (status) */
+  }
+  enum { MAXROWS = 1024 };
+  cap_row *a = calloc(MAXROWS, sizeof *a), *b = calloc(MAXROWS, sizeof *b);
+  long na = a ? read_rows(out[0], a, MAXROWS) : -1, nb = b ? read_rows(out[1], b, MAXROWS) : -1;
+  if (na <= 0 || na != nb) {
+    fprintf(stderr, "bench_capacity: the model tables differ in rows (%ld, %ld)\n", na, nb);
+    free(a);
+    free(b);
+    return -1;
+  }
+  long same_status = 0, equal = 0, close = 0, runs_a = 0, runs_b = 0;
+  double worst = 0;
+  for (long i = 0; i < na; i++) {
+    runs_a += a[i].runs;
+    runs_b += b[i].runs;
+    if (strcmp(a[i].key, b[i].key) != 0 || strcmp(a[i].status, b[i].status) != 0)
+      continue;
+    same_status++;
+    double x = a[i].fcs, y = b[i].fcs;
+    if ((isnan(x) && isnan(y)) || x == y) {
+      equal++;
+      close++;
+      continue;
+    }
+    double rel = fabs(x - y) / fmax(fabs(x), fabs(y));
+    close += rel <= 1e-5;
+    worst = isnan(rel) ? INFINITY : fmax(worst, rel);
+  }
+  printf("\nModels: the suite above (-j 2, one process each, in turn; load %.2f), "
+         "default against --model ode:\n", l[0]);
+  printf("  default     wall %8.2f s  cpu %8.2f s  runs %ld\n", wall[0], cpu[0], runs_a);
+  printf("  --model ode wall %8.2f s  cpu %8.2f s  runs %ld\n", wall[1], cpu[1], runs_b);
+  printf("  ode / default: wall %.1fx, cpu %.1fx\n", wall[1] / wall[0], cpu[1] / cpu[0]);
+  printf("  agreement over %ld rows: same status %ld; first collapse scale equal as printed "
+         "%ld, within 1e-5 relative %ld; largest relative difference %.3g\n",
+         na, same_status, equal, close, worst);
+  free(a);
+  free(b);
+  return 0;
+}
+
+int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
+  if (argc == 2 && strcmp(argv[1], "models") == 0) /* section 3 alone */
+    return models() == 0 ? 0 : 1;
   if (per_pair() != 0)
     return 1;
-  return suite() == 0 ? 0 : 1;
+  if (suite() != 0)
+    return 1;
+  return models() == 0 ? 0 : 1;
 }

@@ -17,6 +17,19 @@
  *    the default model's stepping of the 24 runs (steps made beforehand);
  *    each the median of FLOOR_REPS.  Printed: the floor, each command's
  *    ratio to it, and ode / default.
+ * 3. Where the main job's time goes beyond the floor, stage by stage, cold
+ *    and warm: this program run again as `bench_cli stages` (a fresh
+ *    process, as archquake is) does the job's work with the library's own
+ *    calls, in the job's order, twice: the two arches loaded (their
+ *    mechanism search and work-path tables), then per record its file read
+ *    and parsed, its bytes hashed (sha256, as -o does), processed (detrend,
+ *    pads, filter: the FFTW plans of each new length come in the first
+ *    pass), its intensity measures and its step list at factor 1; the 24
+ *    runs of the default model; the HDF5 file created with its tables (and
+ *    removed); the FFTW workspace freed.  The first pass is cold (first
+ *    calls in the process: plans, page faults of a new heap, caches), the
+ *    second warm.  Medians of STAGE_REPS processes, CPU time of the
+ *    thread, each stage's cold - warm beside them.
  * AQ_BIN_BEFORE=path adds the same commands of another build (e.g. the
  * previous one) to the same interleaved runs, for a before/after on equal
  * terms.  The load average is printed before and after. */
@@ -37,12 +50,15 @@
 #include "arch/stepper.h"
 #include "bench.h"
 #include "io/record.h"
+#include "io/sha256.h"
+#include "report/h5.h"
 #include "signal/signal.h"
 #include "units.h"
 
 #define START_REPS 201
 #define JOB_REPS 15
 #define FLOOR_REPS 21
+#define STAGE_REPS 11
 #define MAXARG 64
 
 static const char *const shared[] = {
@@ -442,13 +458,164 @@ static void main_job(const char *before)
     fprintf(stderr, "bench_cli: cannot remove %s\n", cache);
 }
 
-int main(void)
+/* ---- 3. the job's stages, cold and warm ----------------------------------- */
+
+enum { ST_ARCH, ST_READ, ST_HASH, ST_PROCESS, ST_IM, ST_STEPS, ST_STEP, ST_H5, ST_WS, NSTAGE };
+static const char *const stage_name[NSTAGE] = {
+    "arches loaded (2: mechanism search, tables)", "records read and parsed",
+    "files hashed (sha256)", "processed (detrend, pads, filter; plans)",
+    "intensity measures (pads included)", "step lists (factor 1)",
+    "default model's 24 runs", "HDF5 file set up (tables; removed)",
+    "FFTW workspace freed (wisdom)"};
+
+/* The child: the job's stages twice in this process; prints 2 x NSTAGE
+ * CPU times (s), cold then warm.  Returns 0, or 1 if a stage fails. */
+static int stages_child(void)
+{
+  aq_error e;
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts so;
+  aq_signal_opts_default(&so);
+  char h5[96];
+  snprintf(h5, sizeof h5, "/tmp/aq-bench-cli-stages-%ld.h5", (long)getpid());
+  for (int pass = 0; pass < 2; pass++) {
+    double t[NSTAGE] = {0}, w, c;
+    aq_arch *arch[NARCH] = {NULL};
+    floor_start(&w, &c);
+    for (int a = 0; a < NARCH; a++)
+      if (aq_arch_load(job_arches[a], &arch[a], &e) != AQ_OK)
+        goto fail;
+    t[ST_ARCH] = thread_cpu_s() - c;
+    aq_signal_ws *ws = aq_signal_ws_alloc();
+    aq_steps steps[NSHARED];
+    double pga_mps2[NSHARED];
+    memset(steps, 0, sizeof steps);
+    for (size_t i = 0; i < NSHARED; i++) {
+      aq_record rec;
+      aq_processed proc;
+      aq_im im;
+      char hex[AQ_SHA256_HEX];
+      double c0 = thread_cpu_s();
+      if (aq_record_read(shared[i], &ro, &rec, &e) != AQ_OK)
+        goto fail;
+      double c1 = thread_cpu_s();
+      FILE *f = fopen(shared[i], "rb");
+      unsigned char *b = malloc(1 << 22);
+      size_t nb = f && b ? fread(b, 1, 1 << 22, f) : 0;
+      if (f)
+        fclose(f);
+      double c2 = thread_cpu_s();
+      aq_sha256_hex(b, nb, hex);
+      double c3 = thread_cpu_s();
+      free(b);
+      if (aq_signal_process(&rec, &so, ws, &proc, &e) != AQ_OK)
+        goto fail;
+      double c4 = thread_cpu_s();
+      if (aq_im_compute(&proc, &im, &e) != AQ_OK)
+        goto fail;
+      double c5 = thread_cpu_s();
+      if (aq_steps_from_processed(&proc, 0, &steps[i], &e) != AQ_OK)
+        goto fail;
+      double c6 = thread_cpu_s();
+      t[ST_READ] += c1 - c0;
+      t[ST_HASH] += c3 - c2;
+      t[ST_PROCESS] += c4 - c3;
+      t[ST_IM] += c5 - c4;
+      t[ST_STEPS] += c6 - c5;
+      pga_mps2[i] = im.pga_g * AQ_G0_MPS2;
+      aq_processed_free(&proc);
+      aq_record_free(&rec);
+    }
+    c = thread_cpu_s();
+    for (int a = 0; a < NARCH; a++) {
+      aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch[a], 0), aq_arch_path(arch[a], 1),
+                                        AQ_MODEL_WORKPATH, &e);
+      if (!st)
+        goto fail;
+      const aq_arch_dynamics *d = aq_arch_dynamics_of(arch[a]);
+      aq_stepper_set_cor(st, d->cor);
+      aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
+      double l0 = INFINITY;
+      for (int k = 0; k < 2; k++) {
+        const aq_path *p = aq_arch_path(arch[a], k);
+        if (p && p->admissible)
+          l0 = fmin(l0, p->lambda0);
+      }
+      for (size_t i = 0; i < NSHARED; i++) {
+        aq_result res;
+        aq_stepper_set_scale(st, JOB_K * l0 * AQ_G0_MPS2 / pga_mps2[i]);
+        aq_status rs = aq_stepper_run(st, &steps[i], &res, &e);
+        aq_result_free(&res);
+        if (rs != AQ_OK) {
+          aq_stepper_free(st);
+          goto fail;
+        }
+      }
+      aq_stepper_free(st);
+    }
+    t[ST_STEP] = thread_cpu_s() - c;
+    c = thread_cpu_s();
+    aq_h5_writer *hw = NULL;
+    if (aq_h5_open(h5, &hw, &e) != AQ_OK)
+      goto fail;
+    aq_h5_abort(hw);
+    t[ST_H5] = thread_cpu_s() - c;
+    c = thread_cpu_s();
+    aq_signal_ws_free(ws);
+    t[ST_WS] = thread_cpu_s() - c;
+    for (size_t i = 0; i < NSHARED; i++)
+      aq_steps_free(&steps[i]);
+    for (int a = 0; a < NARCH; a++)
+      aq_arch_free(arch[a]);
+    for (int k = 0; k < NSTAGE; k++)
+      printf("%.9g%c", t[k], k + 1 < NSTAGE ? ' ' : '\n');
+    (void)w;
+  }
+  return 0;
+fail:
+  aq_error_print(&e, stderr);
+  return 1;
+}
+
+static void stages(void)
+{
+  double cold[NSTAGE][STAGE_REPS], warm[NSTAGE][STAGE_REPS];
+  for (int r = 0; r < STAGE_REPS; r++) {
+    FILE *p = popen("./build/bench/bench_cli stages", "r");
+    int ok = p != NULL;
+    for (int pass = 0; ok && pass < 2; pass++)
+      for (int k = 0; ok && k < NSTAGE; k++)
+        ok = fscanf(p, "%lf", pass ? &warm[k][r] : &cold[k][r]) == 1;
+    if (!p || pclose(p) != 0 || !ok) {
+      fprintf(stderr, "bench_cli: bench_cli stages failed\n");
+      exit(1);
+    }
+  }
+  printf("\nThe main job's work stage by stage (library calls, the job's order), in a\n"
+         "fresh process: the first pass cold, the same work again warm; CPU time,\n"
+         "medians of %d processes:\n", STAGE_REPS);
+  printf("  %-44s %9s %9s %9s\n", "stage", "cold_ms", "warm_ms", "cold-warm");
+  double sc = 0, sw = 0;
+  for (int k = 0; k < NSTAGE; k++) {
+    double mc = aq_bench_median(cold[k], STAGE_REPS), mw = aq_bench_median(warm[k], STAGE_REPS);
+    sc += mc;
+    sw += mw;
+    printf("  %-44s %9.2f %9.2f %9.2f\n", stage_name[k], 1e3 * mc, 1e3 * mw, 1e3 * (mc - mw));
+  }
+  printf("  %-44s %9.2f %9.2f %9.2f\n", "sum", 1e3 * sc, 1e3 * sw, 1e3 * (sc - sw));
+}
+
+int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
+  if (argc == 2 && strcmp(argv[1], "stages") == 0)
+    return stages_child();
   const char *before = getenv("AQ_BIN_BEFORE");
   if (before && !before[0])
     before = NULL;
   startup(before);
   main_job(before);
+  stages();
   return 0;
 }

@@ -12,6 +12,13 @@ set -u
 BIN=${AQ_BIN:-./archquake}
 MPIBIN=${AQ_MPI_BIN:-./archquake-mpi}
 MPIRUN="mpirun --oversubscribe --allow-run-as-root"
+# When a rank dies, mpirun sends the others SIGCONT, then SIGTERM (rank 0's
+# handler removes its temporaries and ends it), then SIGKILL, waiting
+# odls_base_sigkill_timeout between them: 1 s by default, which a loaded
+# machine can overrun before the handler runs (CI once found rank 0's
+# temporaries left).  The killed-follower checks are about the handler, so
+# they give it 4 s.
+export OMPI_MCA_odls_base_sigkill_timeout=4
 # a run that takes longer than this has hung (the suites below take seconds)
 HANG_S=120
 R=tests/data/records

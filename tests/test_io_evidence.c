@@ -275,3 +275,57 @@ AQ_TEST(io_evidence_vertical_is_vertical)
     }
   }
 }
+
+/* The main job's names: a JMA CSV's UD (its header line "NS,EW,UD") is left
+ * out with one note when the file is given whole, kept when named (FILE#UD,
+ * or a --component rule) or with --accept-vertical. */
+AQ_TEST(io_evidence_vertical_skipped_unless_named)
+{
+  static const char *const csv = REC_DIR "Q4149CF2.csv";
+  char *paths[1] = {(char *)csv};
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  char **names = NULL, **notes = NULL;
+  size_t n = 0, nn = 0;
+  aq_error e;
+  aq_error_clear(&e);
+  if (aq_check(aq_record_expand_horizontal(paths, 1, &ro, &names, &n, &notes, &nn, &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(n == 2 && strcmp(names[0], REC_DIR "Q4149CF2.csv#NS") == 0 &&
+                 strcmp(names[1], REC_DIR "Q4149CF2.csv#EW") == 0,
+             "NS, EW: %zu names", n);
+    aq_check(nn == 1 && strstr(notes[0], "Q4149CF2.csv#UD: skipped") &&
+                 strstr(notes[0], "\"UD\"") && strstr(notes[0], "--accept-vertical"),
+             "one note: %zu %s", nn, nn ? notes[0] : "");
+    aq_record_names_free(names, n);
+    aq_record_names_free(notes, nn);
+  }
+  /* with --accept-vertical, or UD named: kept, no note */
+  ro.accept_vertical = 1;
+  if (aq_check(aq_record_expand_horizontal(paths, 1, &ro, &names, &n, &notes, &nn, &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(n == 3 && nn == 0 && strstr(names[2], "#UD"), "accepted: %zu names %zu notes", n,
+             nn);
+    aq_record_names_free(names, n);
+    aq_record_names_free(notes, nn);
+  }
+  ro.accept_vertical = 0;
+  char *ud[1] = {(char *)REC_DIR "Q4149CF2.csv#UD"};
+  if (aq_check(aq_record_expand_horizontal(ud, 1, &ro, &names, &n, &notes, &nn, &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(n == 1 && nn == 0 && strcmp(names[0], ud[0]) == 0, "named: %zu names %zu notes",
+             n, nn);
+    aq_record_names_free(names, n);
+    aq_record_names_free(notes, nn);
+  }
+  snprintf(ro.components[0].glob, sizeof ro.components[0].glob, "*Q4149CF2*");
+  snprintf(ro.components[0].channel, sizeof ro.components[0].channel, "UD");
+  ro.ncomponents = 1;
+  if (aq_check(aq_record_expand_horizontal(paths, 1, &ro, &names, &n, &notes, &nn, &e) == AQ_OK,
+               "%s", e.message)) {
+    aq_check(n == 1 && nn == 0 && strstr(names[0], "#UD"), "by rule: %zu names %zu notes", n,
+             nn);
+    aq_record_names_free(names, n);
+    aq_record_names_free(notes, nn);
+  }
+}

@@ -108,7 +108,8 @@ AQ_TEST(orient_steps_project_equals_projected_samples)
     aq_check(ok && s.n == t.n, "tol %g: %zu and %zu steps", tol, s.n, t.n);
     int same = ok && s.n == t.n;
     for (size_t i = 0; same && i < s.n; i++)
-      same = s.a_mps2[i] == t.a_mps2[i] && s.t_s[i] == t.t_s[i] && s.dt_s[i] == t.dt_s[i];
+      same = s.a_mps2[i] == t.a_mps2[i] && aq_steps_t(&s, i) == aq_steps_t(&t, i) &&
+             aq_steps_dt(&s, i) == aq_steps_dt(&t, i);
     aq_check(same, "tol %g: the same steps bit for bit", tol);
     aq_check(pk == peak, "peak %.17g = %.17g", pk, peak);
     if (ok) {

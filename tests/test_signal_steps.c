@@ -68,7 +68,7 @@ AQ_TEST(signal_steps_merge_matches_brute_force)
   size_t i = 0, k = 0;
   int ok = 1;
   for (; k < s.n && ok; k++) {
-    size_t m = (size_t)lround(s.dt_s[k] / dt);
+    size_t m = (size_t)lround(aq_steps_dt(&s, k) / dt);
     double lo = a[i], hi = a[i], sum = 0;
     for (size_t j = i; j < i + m; j++) {
       lo = fmin(lo, a[j]);
@@ -77,7 +77,7 @@ AQ_TEST(signal_steps_merge_matches_brute_force)
     }
     int maximal = i + m == N || fmax(hi, a[i + m]) - fmin(lo, a[i + m]) >= tol;
     ok = m >= 1 && i + m <= N && hi - lo < tol && maximal &&
-         fabs(s.t_s[k] - (double)i * dt) < 1e-12 &&
+         fabs(aq_steps_t(&s, k) - (double)i * dt) < 1e-12 &&
          fabs(s.a_mps2[k] - sum / (double)m) < 1e-12;
     i += m;
   }
@@ -102,14 +102,14 @@ AQ_TEST(signal_steps_from_processed_record)
   aq_error e;
   aq_status st0 = aq_steps_from_processed(&p, 0, &s, &e);
   aq_check(st0 == AQ_OK && s.n == 9, "one step per sample: %zu", s.n);
-  aq_check_abs(s.t_s[0], -0.06, 1e-15, "front pad at negative time");
-  aq_check_abs(s.t_s[3], 0.0, 1e-15, "record starts at t = 0");
-  aq_check(s.a_mps2[3] == 1.25 && s.dt_s[3] == 0.02, "zero-order hold");
+  aq_check_abs(aq_steps_t(&s, 0), -0.06, 1e-15, "front pad at negative time");
+  aq_check_abs(aq_steps_t(&s, 3), 0.0, 1e-15, "record starts at t = 0");
+  aq_check(s.a_mps2[3] == 1.25 && aq_steps_dt(&s, 3) == 0.02, "zero-order hold");
   aq_steps_free(&s);
   aq_status st = aq_steps_from_processed(&p, 0.1, &s, &e);
   /* zeros | 1.25 | -0.5 | 0.75 | 2.0 | zeros: each pair differs by > 0.1 */
   aq_check(st == AQ_OK && s.n == 6, "merge-tol joins the pad zeros: %zu steps",
            s.n);
-  aq_check_abs(s.t_s[1], 0.0, 1e-15, "second step starts the record");
+  aq_check_abs(aq_steps_t(&s, 1), 0.0, 1e-15, "second step starts the record");
   aq_steps_free(&s);
 }

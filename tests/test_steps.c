@@ -16,7 +16,7 @@ AQ_TEST(steps_zoh_and_quiet_index)
   aq_error e;
   aq_check(aq_steps_from_samples(a, N, 0.005, -1.25, 0, &s, &e) == AQ_OK, "build");
   aq_check(s.n == N, "one step per sample: %zu", s.n);
-  aq_check_abs(s.t_s[400], -1.25 + 400 * 0.005, 1e-15, "step time from index");
+  aq_check_abs(aq_steps_t(&s, 400), -1.25 + 400 * 0.005, 1e-15, "step time from index");
   aq_check(aq_steps_next_outside(&s, 0, -0.5, 0.5) == 777, "first loud step");
   aq_check(aq_steps_next_outside(&s, 778, -0.5, 0.5) == N, "none after");
   /* brute force agrees for thresholds near the quiet amplitude */
@@ -45,8 +45,8 @@ AQ_TEST(steps_merge_keeps_impulse)
   aq_check(aq_steps_from_samples(a, N, 0.01, 0, 0.05, &s, &e) == AQ_OK, "build");
   double got = 0, dur = 0;
   for (size_t i = 0; i < s.n; i++) {
-    got += s.a_mps2[i] * s.dt_s[i];
-    dur += s.dt_s[i];
+    got += s.a_mps2[i] * aq_steps_dt(&s, i);
+    dur += aq_steps_dt(&s, i);
   }
   aq_check(s.n < N / 3, "merging reduces the steps: %zu", s.n);
   aq_check_rel(got, imp, 2e-14, "merged steps keep the impulse");

@@ -658,16 +658,20 @@ AQ_TEST(suite_fftw_wisdom_cache)
   setenv("XDG_CACHE_HOME", dir, 1);
   snprintf(wis, sizeof wis, "%s/archquake/fftw-wisdom", dir);
   static char err[8192];
-  /* 1: no cache yet and no built-in wisdom (every length planned by FFTW's
-   * search: the reference); 2: from the cache; 3: a corrupt cache; 4: a
-   * foreign file (FFTW wisdom without archquake's header); 5: a directory
-   * there (3-5 plan from the built-in wisdom of tools/fftw_wisdom.c) */
-  for (int k = 0; k < 5; k++) {
-    if (k == 0)
-      setenv("AQ_FFTW_NO_BUILTIN_WISDOM", "1", 1);
-    else
+  /* Without the built-in wisdom (every length then comes from the cache or
+   * from FFTW's search): 1: no cache yet (the reference); 2: from the cache;
+   * 3: a corrupt cache; 4: a foreign file (FFTW wisdom without archquake's
+   * header); 5: with the built-in wisdom, which covers every length of
+   * these records, and a corrupt cache: the cache is neither read (same
+   * TSV) nor rewritten (the corrupt bytes stay); 6: a directory there. */
+  char *kept = NULL;
+  size_t nkept = 0;
+  for (int k = 0; k < 6; k++) {
+    if (k == 4)
       unsetenv("AQ_FFTW_NO_BUILTIN_WISDOM");
-    if (k == 2) {
+    else
+      setenv("AQ_FFTW_NO_BUILTIN_WISDOM", "1", 1);
+    if (k == 2 || k == 4) {
       FILE *f = fopen(wis, "r+b");
       if (f) {
         fseek(f, 150, SEEK_SET);
@@ -675,13 +679,15 @@ AQ_TEST(suite_fftw_wisdom_cache)
         fclose(f);
       }
       aq_check(!wisdom_file_valid(wis), "the corrupted cache fails its digest");
+      if (k == 4)
+        kept = aq_test_read_file(wis, &nkept);
     } else if (k == 3) {
       FILE *f = fopen(wis, "w");
       if (f) {
         fputs("(fftw-3.3.10 fftw_wisdom #x458a31c8 #x92381c4c #x4f974889 #xcd46f97e\n)\n", f);
         fclose(f);
       }
-    } else if (k == 4) {
+    } else if (k == 5) {
       unlink(wis);
       mkdir(wis, 0700);
     }
@@ -692,6 +698,13 @@ AQ_TEST(suite_fftw_wisdom_cache)
     aq_check(rc == 0, "run %d: exit %d: %s", k + 1, rc, err);
     if (k < 4)
       aq_check(wisdom_file_valid(wis), "run %d leaves a whole cache file", k + 1);
+    if (k == 4) {
+      size_t n = 0;
+      char *now = aq_test_read_file(wis, &n);
+      aq_check(kept && now && n == nkept && memcmp(kept, now, n) == 0,
+               "run 5 (built-in wisdom) leaves the cache file as it was");
+      free(now);
+    }
     if (k > 0) {
       size_t n0 = 0, n1 = 0;
       char *a = aq_test_read_file(tsv[0], &n0), *b = aq_test_read_file(tsv[1], &n1);
@@ -701,7 +714,9 @@ AQ_TEST(suite_fftw_wisdom_cache)
       free(b);
     }
   }
-  aq_check(count_files(dir, ".tmp") == 0 && count_files(dir, NULL) == 6,
+  free(kept);
+  unsetenv("AQ_FFTW_NO_BUILTIN_WISDOM");
+  aq_check(count_files(dir, ".tmp") == 0 && count_files(dir, NULL) == 7,
            "no temporary left (%d entries)", count_files(dir, NULL));
   if (old)
     setenv("XDG_CACHE_HOME", saved, 1);

@@ -1,6 +1,7 @@
 /* result.c: freeing a run's result (see result.h). */
 #include "result.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,4 +17,19 @@ void aq_result_free(aq_result *r)
   free(h->potential_energy_j);
   free(h->set);
   memset(h, 0, sizeof *h);
+}
+
+double aq_result_peak_over_qc(const aq_result *r, const aq_path *primary, const aq_path *reverse)
+{
+  const aq_path *set[2] = {primary, reverse};
+  double over = 0;
+  for (int k = 0; k < 2; k++) {
+    double q = r->peak_rotation_set_rad[k];
+    if (!(q > 0))
+      continue;
+    if (!set[k] || !set[k]->admissible || !(set[k]->s_c_rad > 0))
+      return NAN;
+    over = fmax(over, q / set[k]->s_c_rad); /* |q| = s on a set */
+  }
+  return over;
 }

@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "path.h"
+
 typedef struct {
   size_t n, cap;
   /* One sample at each step end, and (default and workpath-quad models) one
@@ -30,6 +32,8 @@ typedef struct {
   size_t impacts;              /* returns to the undeformed shape */
   int first_set;               /* set the record drove first: 0 primary, 1 reverse, -1 none */
   int peak_set;                /* set in which peak_rotation_rad occurred, -1 if it never moved */
+  double peak_rotation_set_rad[2]; /* max |q| on the primary (0) and reverse (1) set, rad
+                                      (0 on a set it never moved on) */
   size_t reversals;            /* zero-velocity turning points */
   size_t steps_total;          /* steps in the input */
   size_t steps_moving;         /* steps integrated in motion (not skipped at rest) */
@@ -39,5 +43,10 @@ typedef struct {
 } aq_result;
 
 void aq_result_free(aq_result *r);
+
+/* The largest |q| / q_c over both sets (primary, reverse: NULL or not
+ * admissible where the arch has none): 1 for a run that collapsed (it stops
+ * at q_c), 0 if it never moved, NAN if it moved on a set with no path. */
+double aq_result_peak_over_qc(const aq_result *r, const aq_path *primary, const aq_path *reverse);
 
 #endif

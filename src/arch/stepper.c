@@ -382,7 +382,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   if (st->taylor)
     aq_taylor_reset(st->taylor);
   st->rest_since_s = NAN;
-  double rest_since = steps->n ? steps->t_s[0] : 0; /* at rest from the start */
+  double rest_since = steps->n ? aq_steps_t(steps, 0) : 0; /* at rest from the start */
   if (st->eom)
     aq_eom_reset(st->eom);
   aq_leg_stats S = {0};
@@ -447,14 +447,14 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       size_t j = aq_steps_next_outside(steps, i, blo, bhi);
       if (st->history)
         for (; i < j; i++)
-          if ((rc = hist_push(&res->history, steps->t_s[i] + steps->dt_s[i],
+          if ((rc = hist_push(&res->history, aq_steps_t(steps, i) + aq_steps_dt(steps, i),
                               0, 0, 0, 0, -1)) != AQ_OK)
             goto nomem;
       i = j;
       if (i >= n_end)
         break;
     }
-    const double a = scale * steps->a_mps2[i], dt = steps->dt_s[i];
+    const double a = scale * steps->a_mps2[i], dt = aq_steps_dt(steps, i);
     const double av = avs ? vscale * avs[i] : 0;
     if (avs)
       for (int k = 0; k < 2; k++)
@@ -466,7 +466,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       if (nev > MAX_EVENTS_PER_STEP) {
         rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "stepper",
                           "no progress at t = %.3f s (%zu events in one step)",
-                          steps->t_s[i] + t_in, nev);
+                          aq_steps_t(steps, i) + t_in, nev);
         goto fail;
       }
       if (rest) {
@@ -486,7 +486,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       S.peak_s = fmax(m.s, smax[set]);
       hc.p = st->path[set];
       hc.set = set;
-      hc.t0_s = steps->t_s[i] + t_in;
+      hc.t0_s = aq_steps_t(steps, i) + t_in;
       rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
                &end, &S, err);
       if (hc.rc != AQ_OK)
@@ -498,7 +498,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       if (rc != AQ_OK) {
         size_t len = strlen(err->message);
         snprintf(err->message + len, sizeof err->message - len,
-                 " at t = %.3f s", steps->t_s[i] + t_in);
+                 " at t = %.3f s", aq_steps_t(steps, i) + t_in);
         goto fail;
       }
       e_in += -a * st->path[set]->mass_kg * (m.x_m - x0);
@@ -511,13 +511,13 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       t_in = end == AQ_LEG_TIME ? dt : t_in + used;
       if (end == AQ_LEG_COLLAPSE) {
         res->collapsed = 1;
-        res->collapse_time_s = steps->t_s[i] + t_in;
+        res->collapse_time_s = aq_steps_t(steps, i) + t_in;
         S.peak_s = fmax(S.peak_s, st->path[set]->s_c_rad);
         break;
       }
       if (end == AQ_LEG_REST) {
         rest = 1;
-        rest_since = steps->t_s[i] + t_in;
+        rest_since = aq_steps_t(steps, i) + t_in;
         m = (aq_motion){0, 0, 1, 0, 0};
         if (activated(st, a, av) == set || activated(st, a, av) < 0)
           break; /* nothing moves it within this step */
@@ -527,7 +527,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         res->impacts++;
         double ke_pre = m.ke_j, ke_post = 0;
         if (st->history &&
-            (rc = hist_push(&res->history, steps->t_s[i] + t_in, 0, 0, ke_pre,
+            (rc = hist_push(&res->history, aq_steps_t(steps, i) + t_in, 0, 0, ke_pre,
                             0, set)) != AQ_OK)
           goto nomem;
         int other = 1 - set;
@@ -557,13 +557,13 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
           res->energy_dissipated_j += ke_post;
           m.ke_j = 0;
           rest = 1;
-          rest_since = steps->t_s[i] + t_in;
+          rest_since = aq_steps_t(steps, i) + t_in;
         }
       }
     }
     if (st->history) {
       const aq_path *p = set >= 0 ? st->path[set] : st->path[0];
-      double tt = res->collapsed ? res->collapse_time_s : steps->t_s[i] + dt;
+      double tt = res->collapsed ? res->collapse_time_s : aq_steps_t(steps, i) + dt;
       rc = hist_push(&res->history, tt, rest ? 0 : p->q_sign * m.s,
                      rest ? 0 : m.x_m, rest ? 0 : m.ke_j,
                      rest ? 0 : p->mass_kg * p->g_mps2 * m.y_m,
@@ -580,11 +580,13 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     rc = aq_error_set(err, AQ_ELIFTOFF, NULL, -1, -1, "vertical",
                       "at t = %.3f s: g + a_v = %.6g m/s^2 (a_v = %.6g m/s^2): "
                       "the arch leaves the ground, which the model does not cover",
-                      steps->t_s[n_end], g_min + av, av);
+                      aq_steps_t(steps, n_end), g_min + av, av);
     goto fail;
   }
   res->peak_rotation_rad = S.peak_s;
   res->peak_set = smax[1] > smax[0] ? 1 : smax[0] > 0 ? 0 : -1; /* peak_s = max(smax) */
+  res->peak_rotation_set_rad[0] = smax[0];
+  res->peak_rotation_set_rad[1] = smax[1];
   /* |x| depends on s alone: its peak is that of the path over the range of
    * s each set covered (exact, whatever the model's sampling) */
   res->peak_displacement_m = 0;

@@ -65,12 +65,10 @@ static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_er
     o->point = p;
     c->cap = nc;
   }
-  /* peak over the collapse rotation of the set it peaked in, as the main
-     job's summary (peak_rotation_over_qc) */
-  const aq_path *ps = res->peak_set >= 0 ? aq_arch_path(c->job->arch, res->peak_set) : NULL;
-  double over = ps && ps->admissible ? res->peak_rotation_rad / ps->s_c_rad
-                : res->peak_rotation_rad == 0 ? 0
-                                              : NAN;
+  /* the largest |q| / q_c over both sets, as the main job's summary
+     (peak_rotation_over_qc) */
+  double over = aq_result_peak_over_qc(res, aq_arch_path(c->job->arch, 0),
+                                       aq_arch_path(c->job->arch, 1));
   o->point[o->npoint++] = (aq_capacity_point){
       scale, res->peak_rotation_rad, over,
       res->collapsed ? res->collapse_time_s : NAN, res->collapsed ? 1 : 0};

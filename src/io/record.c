@@ -833,20 +833,26 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
   return decide(raw, ichan, path, opts, rec, err, NULL);
 }
 
+/* Why rec is vertical, for messages: "by its dip, 90 deg", ... */
+static void vertical_why(const aq_record *rec, char *why, size_t cap)
+{
+  if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
+    snprintf(why, cap, "by its channel name: %s", rec->vertical_note);
+  else if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
+    snprintf(why, cap, "by its dip, %g deg", rec->dip_deg);
+  else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
+    snprintf(why, cap, "by its channel name");
+  else
+    snprintf(why, cap, "as the file states");
+}
+
 aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *opts,
                                      aq_error *err)
 {
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
   char why[260];
-  if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
-    snprintf(why, sizeof why, "by its channel name: %s", rec->vertical_note);
-  else if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
-    snprintf(why, sizeof why, "by its dip, %g deg", rec->dip_deg);
-  else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
-    snprintf(why, sizeof why, "by its channel name");
-  else
-    snprintf(why, sizeof why, "as the file states");
+  vertical_why(rec, why, sizeof why);
   return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
                       "expected a horizontal component, got channel \"%s\", which "
                       "the file identifies as vertical (%s); a vertical "
@@ -1220,17 +1226,39 @@ aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int kee
   return AQ_OK;
 }
 
+/* Append to notes[0..*n) the line saying why item it, a channel the file
+ * identifies as vertical, is left out of a run. */
+static aq_status add_note(char ***notes, size_t *n, const aq_record_item *it)
+{
+  char why[260], line[4600];
+  vertical_why(&it->rec, why, sizeof why);
+  snprintf(line, sizeof line,
+           "%s: skipped: the file identifies channel \"%s\" as vertical (%s), not horizontal "
+           "excitation; name it with --accept-vertical to run it",
+           it->name, it->rec.channel, why);
+  char **g = realloc(*notes, (*n + 1) * sizeof *g);
+  if (!g)
+    return AQ_ENOMEM;
+  *notes = g;
+  if (!(g[*n] = strdup(line)))
+    return AQ_ENOMEM;
+  (*n)++;
+  return AQ_OK;
+}
+
 /* Formats that hold one channel per file (SAC, AT2, K-NET, NPTS DT) are not
  * parsed here, nor text that has one column of acceleration (only its
  * columns are read); the others are read as aq_record_read_all reads them,
  * and named as it names them. */
-aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
-                           char ***out, size_t *nout, aq_error *err)
+static aq_status expand(char *const *paths, size_t n, const aq_read_opts *opts, int skip_vertical,
+                        char ***out, size_t *nout, char ***notes, size_t *nnotes, aq_error *err)
 {
   size_t cap = n + 1, k = 0;
   char **names = malloc(cap * sizeof *names);
   *out = NULL;
   *nout = 0;
+  size_t nn = 0;
+  char **nt = NULL;
   if (!names)
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   aq_status st = AQ_OK;
@@ -1275,6 +1303,11 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
       /* (a file that fails to parse is one item named as given: reported
        * when it is read) */
       const char *name = set.n ? set.item[c].name : paths[i];
+      if (skip_vertical && set.n > 1 && set.item[c].status == AQ_OK &&
+          set.item[c].rec.vertical && !(opts && opts->accept_vertical)) {
+        st = add_note(&nt, &nn, &set.item[c]);
+        continue;
+      }
       if (!(names[k] = strdup(name)))
         st = AQ_ENOMEM;
       else
@@ -1286,9 +1319,29 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
   }
   if (st != AQ_OK) {
     aq_record_names_free(names, k);
+    aq_record_names_free(nt, nn);
     return st;
   }
   *out = names;
   *nout = k;
+  if (notes) {
+    *notes = nt;
+    *nnotes = nn;
+  }
   return AQ_OK;
+}
+
+aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
+                           char ***out, size_t *nout, aq_error *err)
+{
+  return expand(paths, n, opts, 0, out, nout, NULL, NULL, err);
+}
+
+aq_status aq_record_expand_horizontal(char *const *paths, size_t n, const aq_read_opts *opts,
+                                      char ***out, size_t *nout, char ***notes, size_t *nnotes,
+                                      aq_error *err)
+{
+  *notes = NULL;
+  *nnotes = 0;
+  return expand(paths, n, opts, 1, out, nout, notes, nnotes, err);
 }

@@ -183,6 +183,17 @@ aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opt
                            char ***out, size_t *nout, aq_error *err);
 void aq_record_names_free(char **names, size_t n);
 
+/* aq_record_expand for a run of horizontal excitation: a channel that the
+ * file identifies as vertical, of a file of several channels named with
+ * neither #CHANNEL nor a --component rule, is left out (unless
+ * opts->accept_vertical), and one line says so in *notes ("FILE#UD:
+ * skipped: the file identifies channel \"UD\" as vertical (...) ..."; *nnotes
+ * of them, in operand order; free with aq_record_names_free).  A channel
+ * named by the user is kept, for the run to refuse. */
+aq_status aq_record_expand_horizontal(char *const *paths, size_t n, const aq_read_opts *opts,
+                                      char ***out, size_t *nout, char ***notes, size_t *nnotes,
+                                      aq_error *err);
+
 /* The file a record name reads: NAME itself, or FILE for a channel named
  * FILE#CHANNEL when NAME is not a file and FILE is (as aq_record_read
  * resolves it).  Written to buf[cap] (truncated to fit); returns buf. */

@@ -90,10 +90,7 @@ void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *
       set[k] = NULL;
   const aq_path *first = res->first_set >= 0 ? set[res->first_set] : NULL;
   s->lambda0_first = first ? first->lambda0 : NAN;
-  const aq_path *peak = res->peak_set >= 0 ? set[res->peak_set] : NULL;
-  s->peak_rotation_over_qc = peak                          ? res->peak_rotation_rad / peak->s_c_rad
-                             : res->peak_rotation_rad == 0 ? 0
-                                                           : NAN;
+  s->peak_rotation_over_qc = aq_result_peak_over_qc(res, primary, reverse);
   /* the set driven first, else the one the record would have to drive */
   double l0 = first ? first->lambda0 : NAN;
   for (int k = 0; !first && k < 2; k++)

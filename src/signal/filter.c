@@ -28,7 +28,11 @@
  * ESTIMATE would choose anyway: results are bit-identical with or without
  * the cache (the suite tests check it).  The cache is optional: when it
  * cannot be read or written nothing is reported and planning happens as
- * before.
+ * before.  It serves only the lengths the built-in wisdom (below) lacks: it
+ * is read before the first such plan and written only after one, so a
+ * process whose lengths are all built in neither reads nor rewrites it
+ * (reading and rewriting it cost about 1.5 ms of a 12-record suite's CPU
+ * time, for plans the built-in wisdom gives anyway).
  */
 #include "filter.h"
 
@@ -159,9 +163,10 @@ static void wisdom_save(void)
  * same plan, so the same bits.  Wisdom of another FFTW build is skipped
  * (version check here, configuration hash in FFTW), and the length is
  * planned as before.  AQ_FFTW_NO_BUILTIN_WISDOM (set, non-empty) turns it
- * off, so that tests can compare the results with and without it. */
+ * off, so that tests can compare the results with and without it.
+ * Returns 1 if length n's wisdom was imported. */
 
-static void builtin_wisdom(size_t n)
+static int builtin_wisdom(size_t n)
 {
   static int off = -1;
   if (off < 0) {
@@ -171,15 +176,14 @@ static void builtin_wisdom(size_t n)
   size_t lo = 0, hi = sizeof aq_fftw_wisdom / sizeof aq_fftw_wisdom[0];
   while (!off && lo < hi) {
     size_t mid = lo + (hi - lo) / 2;
-    if ((size_t)aq_fftw_wisdom[mid].n == n) {
-      fftw_import_wisdom_from_string(aq_fftw_wisdom[mid].wisdom); /* 0: planned as before */
-      return;
-    }
+    if ((size_t)aq_fftw_wisdom[mid].n == n) /* 0: refused, planned as before */
+      return fftw_import_wisdom_from_string(aq_fftw_wisdom[mid].wisdom) != 0;
     if ((size_t)aq_fftw_wisdom[mid].n < n)
       lo = mid + 1;
     else
       hi = mid;
   }
+  return 0;
 }
 
 typedef struct {
@@ -243,9 +247,10 @@ static const plan_pair *plans_for(aq_signal_ws *ws, size_t n)
   /* plan in place on a scratch array aligned as fftw_malloc aligns: every
    * array later passed to the new-array execute calls is aligned alike
    * (aq_filter_alloc) and also in place */
-  wisdom_load();
-  builtin_wisdom(n);
-  wisdom_planned = 1;
+  if (!builtin_wisdom(n)) { /* the cache, for a length not built in */
+    wisdom_load();
+    wisdom_planned = 1;
+  }
   double *x = fftw_malloc(2 * (n / 2 + 1) * sizeof *x);
   fftw_plan r2c = NULL, c2r = NULL;
   if (x) {

@@ -20,19 +20,22 @@ void aq_steps_free(aq_steps *s)
   memset(s, 0, sizeof *s);
 }
 
-static aq_status steps_alloc(aq_steps *s, size_t n, aq_error *err)
+/* n steps; times: 1 for t_s and dt_s arrays, 0 for equal steps. */
+static aq_status steps_alloc(aq_steps *s, size_t n, int times, aq_error *err)
 {
   memset(s, 0, sizeof *s);
   size_t m = n ? n : 1;
   s->block = AQ_STEPS_BLOCK;
   s->nblock = (n + s->block - 1) / s->block;
   size_t nb = s->nblock ? s->nblock : 1;
-  s->t_s = malloc(m * sizeof *s->t_s);
-  s->dt_s = malloc(m * sizeof *s->dt_s);
+  if (times) {
+    s->t_s = malloc(m * sizeof *s->t_s);
+    s->dt_s = malloc(m * sizeof *s->dt_s);
+  }
   s->a_mps2 = malloc(m * sizeof *s->a_mps2);
   s->block_min_mps2 = malloc(nb * sizeof *s->block_min_mps2);
   s->block_max_mps2 = malloc(nb * sizeof *s->block_max_mps2);
-  if (!s->t_s || !s->dt_s || !s->a_mps2 || !s->block_min_mps2 ||
+  if ((times && (!s->t_s || !s->dt_s)) || !s->a_mps2 || !s->block_min_mps2 ||
       !s->block_max_mps2) {
     aq_steps_free(s);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "steps",
@@ -82,7 +85,7 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "merge-tol",
                         "expected a finite tolerance >= 0, got %g",
                         merge_tol_mps2);
-  aq_status st = steps_alloc(out, n, err);
+  aq_status st = steps_alloc(out, n, merge_tol_mps2 > 0, err);
   if (st != AQ_OK)
     return st;
   if (v && !(out->av_mps2 = malloc((n ? n : 1) * sizeof *out->av_mps2))) {
@@ -94,12 +97,13 @@ static aq_status steps_build(const double *a1, double c1, const double *a2,
   double peak = 0;
   if (merge_tol_mps2 == 0) {
     /* one step per sample (the default): the loop below with j = i + 1,
-     * whose divisions by 1 and products by 1 are exact, without them */
+     * whose divisions by 1 and products by 1 are exact, without them; the
+     * times it would store are t0_s + i dt_s and dt_s (aq_steps_t, _dt) */
+    out->t0_s = t0_s;
+    out->step_s = dt_s;
     for (size_t i = 0; i < n; i++) {
       double a = sample(a1, c1, a2, c2, sc, i), fa = fabs(a);
       peak = fa > peak ? fa : peak;
-      out->t_s[i] = t0_s + (double)i * dt_s;
-      out->dt_s[i] = dt_s;
       out->a_mps2[i] = a;
       if (v)
         out->av_mps2[i] = sv * v[i];
@@ -203,7 +207,7 @@ aq_status aq_steps_from_list(const double *t_s, const double *dt_s,
                           "> 0 s, got t=%g dt=%g a=%g",
                           i, t_s[i], dt_s[i], a_mps2[i]);
   }
-  aq_status st = steps_alloc(out, n, err);
+  aq_status st = steps_alloc(out, n, 1, err);
   if (st != AQ_OK)
     return st;
   if (n) {

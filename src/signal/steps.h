@@ -16,8 +16,10 @@
 
 typedef struct {
   size_t n;         /* number of steps */
-  double *t_s;      /* start of step i, s */
-  double *dt_s;     /* duration of step i, s (> 0) */
+  double *t_s;      /* start of step i, s; NULL: every step lasts step_s and
+                       step i starts at t0_s + i step_s (aq_steps_t) */
+  double *dt_s;     /* duration of step i, s (> 0); NULL with t_s */
+  double t0_s, step_s; /* the start and the duration of equal steps (t_s NULL) */
   double *a_mps2;   /* ground acceleration during step i, m/s^2 */
   size_t block;     /* steps per block of the quiet index (power of two) */
   size_t nblock;    /* number of blocks */
@@ -27,10 +29,24 @@ typedef struct {
                        positive up; NULL: none (0), the horizontal-only case */
 } aq_steps;
 
+/* Start and duration of step i, s.  Equal steps (one per sample: no t_s,
+ * dt_s arrays, which were pure arithmetic and 2/3 of a list's memory) give
+ * t0_s + i step_s, the very value the arrays held. */
+static inline double aq_steps_t(const aq_steps *s, size_t i)
+{
+  return s->t_s ? s->t_s[i] : s->t0_s + (double)i * s->step_s;
+}
+
+static inline double aq_steps_dt(const aq_steps *s, size_t i)
+{
+  return s->dt_s ? s->dt_s[i] : s->step_s;
+}
+
 /* Build steps from n samples at dt_s (zero-order hold: sample i holds over
  * [t0_s + i dt, t0_s + (i+1) dt)).  merge_tol_mps2 > 0 merges runs of
  * consecutive samples that differ by less than it into one step at their
- * duration-weighted mean; 0 keeps one step per sample. */
+ * duration-weighted mean (t_s, dt_s arrays); 0 keeps one step per sample
+ * (equal steps: t_s and dt_s NULL, t0_s and step_s set). */
 aq_status aq_steps_from_samples(const double *a_mps2, size_t n, double dt_s,
                                 double t0_s, double merge_tol_mps2,
                                 aq_steps *out, aq_error *err);
