@@ -26,7 +26,8 @@ HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs h
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5 $(LAZY_PKGS),$(PKGS)) 2>/dev/null) $(HDF5_LIBS) -ldl
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
 # zlib: the tests decode the browser's PNG screenshots (also HDF5's own).
-AQ_LIBS    = $(PKG_LIBS) -lz -lpthread -lm
+# GLPK (no pkg-config file): the mechanism search's linear programs.
+AQ_LIBS    = $(PKG_LIBS) -lglpk -lz -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
@@ -207,7 +208,7 @@ BINDIR  = $(DESTDIR)$(PREFIX)/bin
 ARCHDIR = $(DESTDIR)$(PREFIX)/share/archquake/arches
 DOCDIR  = $(DESTDIR)$(PREFIX)/share/doc/archquake
 MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
-ARCH_FILES := $(wildcard arches/*.cfg)
+ARCH_FILES := $(wildcard arches/*.cfg arches/*.csv)
 # README.md with docs/ and docs/figures/ beside it, as in the source tree,
 # so that the README's links lead to installed files.
 DOC_FILES  := $(wildcard docs/*.md)
@@ -233,7 +234,8 @@ uninstall:
 # DEB_DEV_PKGS adds what the tests, `make fuzz` and `make mpi` need
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
-            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev
+            libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
+            libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
             openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium
 deps:

@@ -127,14 +127,13 @@ AQ_TEST(arch_cli_bad_files)
   expect_error("three hinges", 11, "primary = 0e 5i 10e", NULL, "%s:11: primary: expected four hinges");
   expect_error("bad face", 11, "primary = 0e 5x 10e 16i", NULL, "%s:11: primary: expected four hinges");
   expect_error("unknown key", 9, "depth = 0.93", NULL, "%s:9: depth: expected a key of [arch]");
-  expect_error("unknown section", 12, "[dynamic]", NULL, "%s:12: section: expected [arch], [hinges] or [dynamics]");
+  expect_error("unknown section", 12, "[dynamic]", NULL, "%s:12: section: expected [arch], [fill], [masses], [hinges] or [dynamics]");
   expect_error("duplicate key", 0, NULL, "[arch]\nradius_m = 5\n", "%s:17: radius_m: expected one value per key");
   expect_error("missing key", 8, "", NULL, "%s: density_kg_m3: expected a value in [arch], got none");
   expect_error("hinges without primary", 11, "", NULL, "%s:10: primary: expected a primary hinge set");
-  /* no [hinges] and too many voussoirs for the search: lines 10-11 become
-   * comments, line 7 the size */
-  expect_error_lines("search too large", 7, "voussoirs = 400", 10, "; no hinges", 11, "; none",
-                     "%s:7: voussoirs: expected at most 150 voussoirs without [hinges]");
+  /* too many voussoirs, with no [hinges] (lines 10-11 become comments) */
+  expect_error_lines("too many voussoirs", 7, "voussoirs = 1001", 10, "; no hinges", 11, "; none",
+                     "%s:7: voussoirs: expected an integer in 4..1000");
   expect_error("cor > 1", 13, "cor = 1.2", NULL, "%s:13: cor: expected");
   expect_error("impact", 14, "impact = newton", NULL, "%s:14: impact: expected cor or momentum");
   expect_error("not INI", 3, "name probe", NULL, "%s:3: expected KEY = VALUE");

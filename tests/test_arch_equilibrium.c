@@ -86,7 +86,7 @@ AQ_TEST(arch_kclc_point_load)
 {
   gsl_set_error_handler_off();
   double ri = 1.806, t = 0.1661 * ri;
-  aq_arch_params p = {ri + 0.5 * t, t, AQ_PI, 27, 1530.0, 0.25};
+  aq_arch_params p = aq_arch_circular(ri + 0.5 * t, t, AQ_PI, 27, 1530.0, 0.25);
   aq_hinge_set hs = {{3, 8, 20, 27}, {'i', 'e', 'i', 'e'}};
   aq_arch_dynamics dyn = {0.0, AQ_IMPACT_COR, 9.81};
   aq_arch *a = NULL;

@@ -65,7 +65,7 @@ AQ_TEST(arch_sector_mass_vs_quadrature)
 AQ_TEST(arch_geometry_joints_and_bodies)
 {
   gsl_set_error_handler_off();
-  aq_arch_params p = {4.137, 0.913, 157.3 * AQ_DEG_RAD, 23, 1873.0, 0.677};
+  aq_arch_params p = aq_arch_circular(4.137, 0.913, 157.3 * AQ_DEG_RAD, 23, 1873.0, 0.677);
   aq_geom g;
   aq_error e;
   aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "geometry builds");
@@ -95,7 +95,7 @@ AQ_TEST(arch_geometry_joints_and_bodies)
  * whole annular sector (r_c = 2/3 (re^3-ri^3)/(re^2-ri^2) sin(b/2)/(b/2)). */
 AQ_TEST(arch_rigid_body_potential_energy)
 {
-  aq_arch_params p = {5.0, 1.25, AQ_PI, 20, 2000.0, 1.0};
+  aq_arch_params p = aq_arch_circular(5.0, 1.25, AQ_PI, 20, 2000.0, 1.0);
   aq_geom g;
   aq_error e;
   aq_check(aq_geom_init(&g, &p, &e) == AQ_OK, "geometry builds");

@@ -167,7 +167,7 @@ AQ_TEST(arch_kinematics_hinges_open)
     aq_arch_free(a);
   }
   /* a non-alternating set on oppenheim is refused: hinge 2 cannot open */
-  aq_arch_params pp = {5.0, 1.25, AQ_PI, 20, 2000.0, 1.0};
+  aq_arch_params pp = aq_arch_circular(5.0, 1.25, AQ_PI, 20, 2000.0, 1.0);
   aq_hinge_set bad = {{0, 6, 12, 19}, {'e', 'e', 'i', 'i'}};
   aq_arch *a = NULL;
   aq_error e;
@@ -285,7 +285,7 @@ AQ_TEST(arch_potential_energy_by_voussoir)
  * tables must still follow the exact path, including close to s = 0. */
 AQ_TEST(arch_tables_near_toggle)
 {
-  aq_arch_params pp = {5.0, 1.25, AQ_PI, 20, 2000.0, 1.0};
+  aq_arch_params pp = aq_arch_circular(5.0, 1.25, AQ_PI, 20, 2000.0, 1.0);
   aq_geom g;
   aq_error e;
   aq_geom_init(&g, &pp, &e);

@@ -24,8 +24,9 @@
  * lambda0 ~ 6e-6 and q_c ~ 1e-6 rad whose tables never reach their
  * tolerance, and the table refinement ran for minutes (found by
  * fuzz/fuzz_arch.c).  Expected: a prompt, one-line refusal naming the set;
- * since the search also ranks sets of lambda0 <= 0, the refusal says that
- * the arch cannot stand, naming the set that collapses under gravity. */
+ * since the search also finds sets of lambda0 <= 0, the refusal says that
+ * the arch cannot stand, naming a set that collapses under gravity (which
+ * set, and that it has lambda0 <= 0 by the 9x9: test_arch_standing.c). */
 AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
 {
   char dir[512], cfg[600], args[2048], err[4096];
@@ -41,7 +42,7 @@ AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
   int rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 1, "mechanism: exit %d (want 1, the arch could not be built): %s", rc, err);
   aq_check(aq_test_count_lines(err) == 1 && strstr(err, "barely.cfg") && strstr(err, "cannot") &&
-               strstr(err, "hinge set 0e 6i 16e 27i"),
+               strstr(err, "hinge set "),
            "one line naming the file and the set: %s", err);
   char h5[700], txt[700];
   snprintf(h5, sizeof h5, "%s/out.h5", dir);
@@ -50,7 +51,7 @@ AQ_TEST(review_arch_untabulable_path_is_refused_promptly)
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 2, "run: exit %d (want 2, an arch that cannot be loaded): %s", rc, err);
   aq_check(aq_test_count_lines(err) == 1 && strstr(err, "barely.cfg") &&
-               strstr(err, "hinge set 0e 6i 16e 27i"),
+               strstr(err, "hinge set "),
            "run: one line naming the file and the set: %s", err);
   aq_check(access(h5, F_OK) != 0 && access(txt, F_OK) != 0, "run: no output file left");
 }

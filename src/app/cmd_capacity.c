@@ -149,7 +149,8 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                      .source_file = arch_paths[a],
                      .config_text = aq_arch_config_text(arches[a]),
                      .dyn = aq_arch_dynamics_of(arches[a]),
-                     .set = {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)}};
+                     .set = {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)},
+                     .arch = arches[a]};
     s = aq_h5_write_arch(w, a, &ha, &e);
   }
   for (size_t r = 0; s == AQ_OK && r < nrec; r++) {

@@ -49,11 +49,17 @@ void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
   aq_hinge_set mhs;
   double ml0, l0 = aq_arch_path(a, 0)->lambda0;
   if (!aq_arch_minimum(a, &mhs, &ml0)) {
-    fprintf(stderr, "archquake: %s: warning: the minimum-lambda0 set was not searched "
-                    "(more than %d voussoirs): that the arch stands is not checked\n",
-            path, AQ_SEARCH_MAX_VOUSSOIRS);
+    fprintf(stderr, "archquake: %s: warning: the search found no admissible hinge set: "
+                    "that the arch stands is not checked\n", path);
     return;
   }
+  size_t lj;
+  double ll;
+  if (aq_arch_liftoff(a, &lj, &ll))
+    fprintf(stderr, "archquake: %s: warning: a mechanism in which joint %zu lifts off has "
+                    "lambda = %.6g, below every four-hinge set's (%.6g): archquake models "
+                    "four-hinge mechanisms only, so it overestimates this arch\n",
+            path, lj, ll, ml0);
   if (aq_arch_searched(a) || !(ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)))
     return;
   char set[64], prim[64];

@@ -169,9 +169,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
       line(&b, "motion=%zu azimuths=%a,%a", i, c->motions[i]->azimuth_deg[0],
            c->motions[i]->azimuth_deg[1]);
   for (size_t a = 0; a < c->narches; a++) {
-    const char *cfg = aq_arch_config_text(arches[a]);
     char sha[AQ_SHA256_HEX];
-    aq_sha256_hex(cfg, strlen(cfg), sha);
+    aq_arch_sha256(arches[a], sha);
     line(&b, "arch=%s sha256=%s", c->arch_paths[a], sha);
   }
   line(&b, "records=%zu", c->nrecords);

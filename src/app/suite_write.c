@@ -216,7 +216,7 @@ aq_status aq_suite_open_h5(suite *S, aq_h5_writer **out, aq_error *err)
     aq_arch_dynamics used = aq_job_dynamics(A, c->cor); /* the values the runs use */
     const char *cfg = aq_arch_config_text(A);
     char sha[AQ_SHA256_HEX], joints[2][64], faces[2][8];
-    aq_sha256_hex(cfg, strlen(cfg), sha); /* the file's bytes, as read */
+    aq_arch_sha256(A, sha); /* the file's bytes, as read, and a joints arch's files' */
     for (int k = 0; k < 2; k++)
       aq_hinge_set_format(aq_arch_hinge_set(A, k), joints[k], sizeof joints[k],
                           faces[k], sizeof faces[k]);
@@ -228,7 +228,8 @@ aq_status aq_suite_open_h5(suite *S, aq_h5_writer **out, aq_error *err)
                      sha,
                      aq_arch_searched(A),
                      {joints[0], joints[1]},
-                     {faces[0], faces[1]}};
+                     {faces[0], faces[1]},
+                     A};
     s = aq_h5_write_arch(w, a, &ha, err);
   }
   if (s != AQ_OK) {

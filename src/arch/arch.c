@@ -4,8 +4,15 @@
  *
  * Sections and keys (all others are errors, as are duplicate keys):
  *   [arch]      name (optional, default: the file name without directory and
- *               .cfg), radius_m, thickness_m, embrace_deg, voussoirs,
- *               density_kg_m3, depth_m
+ *               .cfg), shape (circular (default), pointed, elliptical,
+ *               parabolic, catenary, joints), density_kg_m3, depth_m, and by
+ *               shape: circular radius_m, thickness_m, embrace_deg,
+ *               voussoirs; pointed..catenary span_m, rise_m, thickness_m,
+ *               voussoirs; joints joints_file, faces_file (optional; paths
+ *               relative to the .cfg, read by joints.c).  A key the shape
+ *               does not take is refused.
+ *   [fill]      level_m, density_kg_m3 (both, if the section is there)
+ *   [masses]    NAME = VOUSSOIR X_M Y_M MASS_KG, one point mass a line
  *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
  *               (optional, default: the primary's joints, faces swapped);
  *               without [hinges] the primary comes from the search (search.c)
@@ -23,13 +30,17 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "../io/sha256.h"
 #include "../units.h"
 #include "arch.h"
+#include "joints.h"
 #include "model.h"
 
 #define MAX_LINE_CHARS 190    /* libinih's line buffer is 200 bytes */
-#define MAX_VOUSSOIRS 1000    /* search cost grows as voussoirs^4 */
+#define MAX_VOUSSOIRS 1000    /* the search's and the tables' cost grow with them */
+#define MAX_MASSES 1000       /* point masses in [masses] */
 #define MAX_FILE_BYTES 1000000
+#define PATH_BYTES 4096       /* a joints or faces file's path beside the .cfg */
 
 struct aq_arch {
   char *name;
@@ -41,24 +52,55 @@ struct aq_arch {
   aq_workpath *wp[2];
   aq_hinge_set min_hs;  /* the admissible set of lowest lambda0 (search.c) */
   double min_lambda0;
-  int min_known;        /* 0: more voussoirs than the search takes */
+  aq_search_info min_info; /* programs solved, a lower lift-off mechanism */
+  int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
+  char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
+  size_t ndata[2];
+  /* aq_arch_drawing's arrays (drawing_make) */
+  double *d_joints, *d_parts, *d_outline, *d_fill, *d_mass;
+  int64_t *d_ostart, *d_fstart;
 };
 
 enum {
-  K_NAME, K_RADIUS, K_THICK, K_EMBRACE, K_VOUS, K_DENS, K_DEPTH,
-  K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
+  K_NAME, K_SHAPE, K_RADIUS, K_EMBRACE, K_SPAN, K_RISE, K_THICK, K_VOUS, K_DENS, K_DEPTH,
+  K_JOINTS, K_FACES, K_LEVEL, K_FDENS, K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
 };
+/* Which shapes take a key (bit 1 << aq_shape). */
+#define S_ALL ((1u << AQ_SHAPE_COUNT) - 1)
+#define S_CIRC (1u << AQ_SHAPE_CIRCULAR)
+#define S_CURVE ((1u << AQ_SHAPE_POINTED) | (1u << AQ_SHAPE_ELLIPTICAL) | \
+                 (1u << AQ_SHAPE_PARABOLIC) | (1u << AQ_SHAPE_CATENARY))
+#define S_JOINTS (1u << AQ_SHAPE_JOINTS)
 static const struct {
   const char *section, *name;
-  int required;
+  unsigned shapes;   /* the shapes that take it */
+  unsigned required; /* the shapes that need it */
 } keys[NKEYS] = {
-    {"arch", "name", 0},          {"arch", "radius_m", 1},
-    {"arch", "thickness_m", 1},   {"arch", "embrace_deg", 1},
-    {"arch", "voussoirs", 1},     {"arch", "density_kg_m3", 1},
-    {"arch", "depth_m", 1},       {"hinges", "primary", 0},
-    {"hinges", "reverse", 0},     {"dynamics", "cor", 0},
-    {"dynamics", "impact", 0},    {"dynamics", "g_mps2", 0},
+    {"arch", "name", S_ALL, 0},
+    {"arch", "shape", S_ALL, 0},
+    {"arch", "radius_m", S_CIRC, S_CIRC},
+    {"arch", "embrace_deg", S_CIRC, S_CIRC},
+    {"arch", "span_m", S_CURVE, S_CURVE},
+    {"arch", "rise_m", S_CURVE, S_CURVE},
+    {"arch", "thickness_m", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
+    {"arch", "voussoirs", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
+    {"arch", "density_kg_m3", S_ALL, S_ALL},
+    {"arch", "depth_m", S_ALL, S_ALL},
+    {"arch", "joints_file", S_JOINTS, S_JOINTS},
+    {"arch", "faces_file", S_JOINTS, 0},
+    {"fill", "level_m", S_ALL, 0},
+    {"fill", "density_kg_m3", S_ALL, 0},
+    {"hinges", "primary", S_ALL, 0},
+    {"hinges", "reverse", S_ALL, 0},
+    {"dynamics", "cor", S_ALL, 0},
+    {"dynamics", "impact", S_ALL, 0},
+    {"dynamics", "g_mps2", S_ALL, 0},
 };
+
+typedef struct {
+  aq_point_mass m;
+  long line;
+} mass_line;
 
 typedef struct {
   const char *file;
@@ -66,12 +108,17 @@ typedef struct {
   long line;        /* lines read so far */
   long key_line[NKEYS];
   int hinges_section; /* line of [hinges], 0 if absent */
+  int fill_section;   /* line of [fill], 0 if absent */
   aq_error *err;
   int failed;
   char name[64];
+  int shape;
+  char path[2][200];  /* joints_file, faces_file as given */
   double num[NKEYS];
   aq_hinge_set hs[2];
   int impact;
+  mass_line *mass;
+  size_t nmass;
 } parse_ctx;
 
 static int fail(parse_ctx *c, aq_status s, const char *field, const char *fmt,
@@ -113,14 +160,18 @@ static char *reader(char *str, int num, void *stream)
     size_t n = e ? (size_t)(e - p - 1) : 0;
     char sec[64];
     snprintf(sec, sizeof sec, "%.*s", (int)(n < 63 ? n : 63), p + 1);
-    if (!e || (strcmp(sec, "arch") && strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
+    if (!e || (strcmp(sec, "arch") && strcmp(sec, "fill") && strcmp(sec, "masses") &&
+               strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
       char got[80];
       snprintf(got, sizeof got, "[%s]", e ? sec : "...");
-      fail(c, AQ_EFORMAT, "section", "expected [arch], [hinges] or [dynamics], got %s", got);
+      fail(c, AQ_EFORMAT, "section",
+           "expected [arch], [fill], [masses], [hinges] or [dynamics], got %s", got);
       return NULL;
     }
     if (!strcmp(sec, "hinges") && !c->hinges_section)
       c->hinges_section = (int)c->line;
+    if (!strcmp(sec, "fill") && !c->fill_section)
+      c->fill_section = (int)c->line;
   }
   return str;
 }
@@ -161,12 +212,61 @@ static int parse_hinges(const char *v, aq_hinge_set *hs)
   return *p == '\0';
 }
 
+/* A line of [masses]: NAME = VOUSSOIR X_M Y_M MASS_KG. */
+static int mass_key(parse_ctx *c, const char *name, const char *value)
+{
+  char got[160];
+  snprintf(got, sizeof got, "\"%.150s\"", value);
+  for (size_t i = 0; i < c->nmass; i++)
+    if (!strcmp(c->mass[i].m.name, name)) {
+      char g2[64];
+      snprintf(g2, sizeof g2, "a second one (first on line %ld)", c->mass[i].line);
+      return fail(c, AQ_EFORMAT, name, "expected one value per key, got %s", g2);
+    }
+  if (strlen(name) >= sizeof c->mass[0].m.name)
+    return fail(c, AQ_EVALUE, "masses", "expected a mass name of 1..63 characters, got %s",
+                got);
+  if (c->nmass >= MAX_MASSES)
+    return fail(c, AQ_EVALUE, name, "expected at most 1000 point masses, got %s", got);
+  mass_line ml;
+  memset(&ml, 0, sizeof ml);
+  snprintf(ml.m.name, sizeof ml.m.name, "%s", name);
+  ml.line = c->line;
+  char *end;
+  errno = 0;
+  long k = strtol(value, &end, 10);
+  int ok = end != value && !errno && k >= 0 && (*end == ' ' || *end == '\t');
+  char rest[200];
+  double v[3];
+  int used = 0;
+  if (ok) {
+    snprintf(rest, sizeof rest, "%s", end);
+    ok = sscanf(rest, "%lf %lf %lf %n", &v[0], &v[1], &v[2], &used) == 3 &&
+         rest[used] == '\0' && isfinite(v[0]) && isfinite(v[1]) && v[2] > 0 && isfinite(v[2]);
+  }
+  if (!ok)
+    return fail(c, AQ_EVALUE, name, "expected VOUSSOIR X_M Y_M MASS_KG (a voussoir number, "
+                "the position in m and a mass > 0 kg, e.g. 10 0.0 6.2 450), got %s", got);
+  ml.m.voussoir = (size_t)k;
+  ml.m.p.x = v[0];
+  ml.m.p.y = v[1];
+  ml.m.mass_kg = v[2];
+  mass_line *grown = realloc(c->mass, (c->nmass + 1) * sizeof *grown);
+  if (!grown)
+    return fail(c, AQ_ENOMEM, name, "out of memory%s", "");
+  c->mass = grown;
+  c->mass[c->nmass++] = ml;
+  return 1;
+}
+
 static int handler(void *user, const char *section, const char *name,
                    const char *value)
 {
   parse_ctx *c = user;
   if (c->failed)
     return 0;
+  if (!strcmp(section, "masses"))
+    return mass_key(c, name, value);
   int k;
   for (k = 0; k < NKEYS; k++)
     if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
@@ -175,8 +275,8 @@ static int handler(void *user, const char *section, const char *name,
     char got[128];
     snprintf(got, sizeof got, "\"%.100s\"", name);
     if (!section[0])
-      return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [hinges] or "
-                  "[dynamics], got %s before any section", got);
+      return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [fill], [masses], "
+                  "[hinges] or [dynamics], got %s before any section", got);
     char expect[256];
     expect[0] = '\0';
     for (int i = 0; i < NKEYS; i++)
@@ -203,13 +303,33 @@ static int handler(void *user, const char *section, const char *name,
       return fail(c, AQ_EVALUE, name, "expected a name of 1..63 characters without tabs, got %s", got);
     snprintf(c->name, sizeof c->name, "%s", value);
     return 1;
+  case K_SHAPE:
+    for (c->shape = 0; c->shape < AQ_SHAPE_COUNT; c->shape++)
+      if (!strcmp(value, aq_shape_names[c->shape]))
+        return 1;
+    return fail(c, AQ_EVALUE, name, "expected circular, pointed, elliptical, parabolic, "
+                "catenary or joints, got %s", got);
+  case K_JOINTS:
+  case K_FACES:
+    if (!value[0] || strlen(value) >= sizeof c->path[0])
+      return fail(c, AQ_EVALUE, name, "expected a file name of 1..199 characters, got %s",
+                  got);
+    snprintf(c->path[k - K_JOINTS], sizeof c->path[0], "%s", value);
+    return 1;
   case K_RADIUS:
   case K_THICK:
   case K_DEPTH:
+  case K_SPAN:
+  case K_RISE:
     if (!parse_number(value, &x) || !(x > 0))
       return fail(c, AQ_EVALUE, name, "expected a length > 0 m, got %s", got);
     break;
+  case K_LEVEL:
+    if (!parse_number(value, &x))
+      return fail(c, AQ_EVALUE, name, "expected a height (m), got %s", got);
+    break;
   case K_DENS:
+  case K_FDENS:
     if (!parse_number(value, &x) || !(x > 0))
       return fail(c, AQ_EVALUE, name, "expected a density > 0 kg/m^3, got %s", got);
     break;
@@ -263,24 +383,75 @@ void aq_arch_free(aq_arch *a)
   aq_geom_free(&a->geom);
   free(a->name);
   free(a->text);
+  free(a->data[0]);
+  free(a->data[1]);
+  free(a->d_joints);
+  free(a->d_parts);
+  free(a->d_outline);
+  free(a->d_fill);
+  free(a->d_mass);
+  free(a->d_ostart);
+  free(a->d_fstart);
   free(a);
 }
 
-void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
-                         char *faces, size_t nf)
+/* aq_arch_drawing's arrays from the geometry: 0, or -1 out of memory. */
+static int drawing_make(aq_arch *a)
 {
-  if (joints)
-    snprintf(joints, nj, "%zu,%zu,%zu,%zu", hs->joint[0], hs->joint[1],
-             hs->joint[2], hs->joint[3]);
-  if (faces)
-    snprintf(faces, nf, "%c%c%c%c", hs->face[0], hs->face[1], hs->face[2],
-             hs->face[3]);
+  const aq_geom *g = &a->geom;
+  size_t n = g->p.voussoirs, no = g->outline_start[n], nf = g->fill_start[n], nm = g->p.nmass;
+  a->d_joints = malloc(4 * (n + 1) * sizeof *a->d_joints);
+  a->d_parts = malloc(4 * n * sizeof *a->d_parts);
+  a->d_outline = malloc((2 * no + 1) * sizeof *a->d_outline);
+  a->d_fill = malloc((2 * nf + 1) * sizeof *a->d_fill);
+  a->d_mass = malloc((4 * nm + 1) * sizeof *a->d_mass);
+  a->d_ostart = malloc((n + 1) * sizeof *a->d_ostart);
+  a->d_fstart = malloc((n + 1) * sizeof *a->d_fstart);
+  if (!a->d_joints || !a->d_parts || !a->d_outline || !a->d_fill || !a->d_mass ||
+      !a->d_ostart || !a->d_fstart)
+    return -1;
+  for (size_t j = 0; j <= n; j++) {
+    double *r = a->d_joints + 4 * j;
+    r[0] = g->ji[j].x, r[1] = g->ji[j].y, r[2] = g->je[j].x, r[3] = g->je[j].y;
+    a->d_ostart[j] = (int64_t)g->outline_start[j];
+    a->d_fstart[j] = (int64_t)g->fill_start[j];
+  }
+  for (size_t k = 0; k < n; k++) {
+    double *r = a->d_parts + 4 * k;
+    r[0] = g->vous[k].mass_kg, r[1] = g->vous[k].c.x, r[2] = g->vous[k].c.y;
+    r[3] = g->vous[k].inertia_kgm2;
+  }
+  for (size_t i = 0; i < no; i++)
+    a->d_outline[2 * i] = g->outline[i].x, a->d_outline[2 * i + 1] = g->outline[i].y;
+  for (size_t i = 0; i < nf; i++)
+    a->d_fill[2 * i] = g->fill[i].x, a->d_fill[2 * i + 1] = g->fill[i].y;
+  for (size_t i = 0; i < nm; i++) {
+    double *r = a->d_mass + 4 * i;
+    r[0] = (double)g->mass[i].voussoir, r[1] = g->mass[i].p.x, r[2] = g->mass[i].p.y;
+    r[3] = g->mass[i].mass_kg;
+  }
+  return 0;
 }
 
-void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n)
+void aq_arch_drawing_of(const aq_arch *a, aq_arch_drawing *d)
 {
-  snprintf(buf, n, "%zu%c %zu%c %zu%c %zu%c", hs->joint[0], hs->face[0], hs->joint[1],
-           hs->face[1], hs->joint[2], hs->face[2], hs->joint[3], hs->face[3]);
+  const aq_geom *g = &a->geom;
+  size_t n = g->p.voussoirs;
+  d->shape = aq_shape_names[g->p.shape];
+  d->voussoirs = n;
+  d->joints = a->d_joints;
+  d->parts = a->d_parts;
+  d->noutline = g->outline_start[n];
+  d->nfill = g->fill_start[n];
+  d->outline = a->d_outline;
+  d->outline_start = a->d_ostart;
+  d->fill = a->d_fill;
+  d->fill_start = a->d_fstart;
+  d->nmass = g->p.nmass;
+  d->mass = a->d_mass;
+  d->stone_kg = g->stone_kg;
+  d->fill_kg = g->fill_kg;
+  d->point_kg = g->point_kg;
 }
 
 static aq_hinge_set swap_faces(const aq_hinge_set *hs)
@@ -303,18 +474,16 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   /* The arch's minimum over every admissible set, whether or not [hinges]
    * names one: an arch that some set turns into a mechanism under gravity
    * alone (lambda0 <= 0) cannot stand, whichever set the file names. */
-  if (!primary || p->voussoirs <= AQ_SEARCH_MAX_VOUSSOIRS) {
-    aq_error e2;
-    aq_error_clear(&e2);
-    st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, NULL,
-                           &e2);
-    if (st != AQ_OK && !primary) {
-      if (err)
-        *err = e2;
-      return st;
-    }
-    a->min_known = st == AQ_OK;
+  aq_error e2;
+  aq_error_clear(&e2);
+  st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, &a->min_info,
+                         &e2);
+  if (st != AQ_OK && !primary) {
+    if (err)
+      *err = e2;
+    return st;
   }
+  a->min_known = st == AQ_OK;
   if (a->min_known && !(a->min_lambda0 > 0)) {
     char set[64];
     aq_hinge_set_text(&a->min_hs, set, sizeof set);
@@ -346,6 +515,8 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
                         aq_workpath_reason(a->wp[0]));
   aq_workpath_set_impact(a->wp[0], a->wp[1]);
   aq_workpath_set_impact(a->wp[1], a->wp[0]);
+  if (drawing_make(a) != 0)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   return AQ_OK;
 }
 
@@ -423,6 +594,139 @@ aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
   return st;
 }
 
+/* The checks that need the whole file: the keys the shape takes and
+ * needs, [fill] and [hinges] complete; then a joints arch's files, read
+ * from beside the .cfg (joints.c names their own lines). */
+static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_error *err)
+{
+  unsigned bit = 1u << c->shape;
+  const char *shape = aq_shape_names[c->shape];
+  for (int k = 0; k < NKEYS; k++)
+    if (c->key_line[k] && !(keys[k].shapes & bit)) {
+      char takes[256] = "";
+      for (int i = 0; i < NKEYS; i++)
+        if (!strcmp(keys[i].section, "arch") && (keys[i].shapes & bit) && i != K_NAME &&
+            i != K_SHAPE)
+          snprintf(takes + strlen(takes), sizeof takes - strlen(takes), "%s%s",
+                   takes[0] ? ", " : "", keys[i].name);
+      return aq_error_set(err, AQ_EFORMAT, path, c->key_line[k], -1, keys[k].name,
+                          "expected no %s with shape = %s (it takes %s), got one",
+                          keys[k].name, shape, takes);
+    }
+  for (int k = 0; k < NKEYS; k++)
+    if ((keys[k].required & bit) && !c->key_line[k]) {
+      if (c->shape == AQ_SHAPE_CIRCULAR)
+        return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
+                            "expected a value in [%s], got none", keys[k].section);
+      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
+                          "expected a value in [%s] for shape = %s, got none", keys[k].section,
+                          shape);
+    }
+  if (c->fill_section && (!c->key_line[K_LEVEL] || !c->key_line[K_FDENS]))
+    return aq_error_set(err, AQ_EFORMAT, path, c->fill_section, -1,
+                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m",
+                        "expected level_m and density_kg_m3 in [fill], got no %s",
+                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m");
+  if (c->hinges_section && !c->key_line[K_PRIMARY])
+    return aq_error_set(err, AQ_EFORMAT, path, c->hinges_section, -1, "primary",
+                        "expected a primary hinge set in [hinges], got none");
+  if (c->shape != AQ_SHAPE_JOINTS)
+    return AQ_OK;
+  /* joints_file and faces_file: relative to the .cfg's directory */
+  char full[2][PATH_BYTES];
+  const char *slash = strrchr(path, '/');
+  for (int f = 0; f < 2; f++) {
+    if (!c->path[f][0])
+      continue;
+    int w = c->path[f][0] == '/' || !slash
+                ? snprintf(full[f], sizeof full[f], "%s", c->path[f])
+                : snprintf(full[f], sizeof full[f], "%.*s/%s", (int)(slash - path), path,
+                           c->path[f]);
+    if (w < 0 || (size_t)w >= sizeof full[f])
+      return aq_error_set(err, AQ_EVALUE, path, c->key_line[K_JOINTS + f], -1,
+                          keys[K_JOINTS + f].name, "expected a path of at most %d bytes, got "
+                          "a longer one", PATH_BYTES - 1);
+  }
+  aq_status st = aq_joints_read(full[0], c->path[1][0] ? full[1] : NULL, J, err);
+  if (st == AQ_EIO && err) { /* a file that cannot be read: said on its key's line */
+    int f = !strcmp(err->input, full[0]) ? 0 : 1;
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
+    const char *r = strstr(why, "got ");
+    aq_error_set(err, AQ_EIO, path, c->key_line[K_JOINTS + f], -1, keys[K_JOINTS + f].name,
+                 "expected a readable file, got \"%.300s\": %.200s", full[f], r ? r + 4 : why);
+  }
+  return st;
+}
+
+/* The arch from the parsed file. */
+static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J, aq_arch **out,
+                              aq_error *err)
+{
+  aq_arch_params p;
+  memset(&p, 0, sizeof p);
+  p.radius_m = c->num[K_RADIUS];
+  p.thickness_m = c->num[K_THICK];
+  p.embrace_rad = c->num[K_EMBRACE] * AQ_DEG_RAD;
+  p.voussoirs = c->shape == AQ_SHAPE_JOINTS ? J->n : (size_t)c->num[K_VOUS];
+  p.density_kg_m3 = c->num[K_DENS];
+  p.depth_m = c->num[K_DEPTH];
+  p.shape = (aq_shape)c->shape;
+  p.span_m = c->num[K_SPAN];
+  p.rise_m = c->num[K_RISE];
+  if (c->shape == AQ_SHAPE_JOINTS) {
+    p.joint_i = J->ji;
+    p.joint_e = J->je;
+    for (int f = 0; f < 2; f++) {
+      p.face_pt[f] = J->face_pt[f];
+      p.face_start[f] = J->face_start[f];
+    }
+  }
+  if (c->fill_section) {
+    p.fill_level_m = c->num[K_LEVEL];
+    p.fill_density_kg_m3 = c->num[K_FDENS];
+  }
+  aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
+  if (c->nmass && !pm)
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  for (size_t i = 0; i < c->nmass; i++)
+    pm[i] = c->mass[i].m;
+  p.nmass = c->nmass;
+  p.mass = pm;
+  aq_arch_dynamics dyn = {c->num[K_COR], (aq_impact)c->impact, c->num[K_G]};
+  char name[64];
+  if (c->name[0]) {
+    snprintf(name, sizeof name, "%s", c->name);
+  } else {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t len = strlen(b);
+    if (len > 4 && !strcmp(b + len - 4, ".cfg"))
+      len -= 4;
+    snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
+  }
+  aq_status st = aq_arch_build(&p, c->key_line[K_PRIMARY] ? &c->hs[0] : NULL,
+                               c->key_line[K_REVERSE] ? &c->hs[1] : NULL, &dyn, name, out, err);
+  free(pm);
+  if (st != AQ_OK && err) {
+    /* name the file and the line of the key the model complained about */
+    long line = -1;
+    for (int k = NKEYS; k-- > 0;)
+      if (!strcmp(err->field, keys[k].name) && c->key_line[k])
+        line = c->key_line[k];
+    for (size_t i = 0; i < c->nmass; i++)
+      if (!strcmp(err->field, c->mass[i].m.name))
+        line = c->mass[i].line;
+    if (!strcmp(err->field, "reverse") && !c->key_line[K_REVERSE])
+      line = c->key_line[K_PRIMARY];
+    if (!strcmp(err->field, "hinges") && !c->key_line[K_PRIMARY])
+      line = -1;
+    snprintf(err->input, sizeof err->input, "%s", path);
+    err->line = line > 0 ? line : -1;
+  }
+  return st;
+}
+
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err)
 {
@@ -468,53 +772,26 @@ aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
       return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
     return err ? err->status : AQ_EFORMAT;
   }
-  for (int k = 0; k < NKEYS; k++)
-    if (keys[k].required && !c.key_line[k]) {
-      free(text);
-      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
-                          "expected a value in [%s], got none", keys[k].section);
-    }
-  if (c.hinges_section && !c.key_line[K_PRIMARY]) {
-    free(text);
-    return aq_error_set(err, AQ_EFORMAT, path, c.hinges_section, -1, "primary",
-                        "expected a primary hinge set in [hinges], got none");
-  }
-  aq_arch_params p = {c.num[K_RADIUS], c.num[K_THICK], c.num[K_EMBRACE] * AQ_DEG_RAD,
-                      (size_t)c.num[K_VOUS], c.num[K_DENS], c.num[K_DEPTH]};
-  aq_arch_dynamics dyn = {c.num[K_COR], (aq_impact)c.impact, c.num[K_G]};
-  char name[64];
-  if (c.name[0]) {
-    snprintf(name, sizeof name, "%s", c.name);
-  } else {
-    const char *b = strrchr(path, '/');
-    b = b ? b + 1 : path;
-    size_t len = strlen(b);
-    if (len > 4 && !strcmp(b + len - 4, ".cfg"))
-      len -= 4;
-    snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
-  }
   aq_arch *a = NULL;
-  st = aq_arch_build(&p, c.key_line[K_PRIMARY] ? &c.hs[0] : NULL,
-                     c.key_line[K_REVERSE] ? &c.hs[1] : NULL, &dyn, name, &a, err);
+  aq_joints J;
+  memset(&J, 0, sizeof J);
+  st = after_parse(&c, path, &J, err);
+  if (st == AQ_OK)
+    st = build_parsed(&c, path, &J, &a, err);
+  free(c.mass);
   if (st != AQ_OK) {
-    if (err) {
-      /* name the file and the line of the key the model complained about */
-      long line = -1;
-      for (int k = 0; k < NKEYS; k++)
-        if (!strcmp(err->field, keys[k].name))
-          line = c.key_line[k];
-      if (!strcmp(err->field, "reverse") && !c.key_line[K_REVERSE])
-        line = c.key_line[K_PRIMARY];
-      if (!strcmp(err->field, "hinges") && !c.key_line[K_PRIMARY])
-        line = -1;
-      snprintf(err->input, sizeof err->input, "%s", path);
-      err->line = line > 0 ? line : -1;
-    }
+    aq_joints_free(&J);
     free(text);
     return st;
   }
   free(a->text);
   a->text = text;
+  for (int f = 0; f < 2; f++) { /* the joints arch's files, for its digest */
+    a->data[f] = J.bytes[f];
+    a->ndata[f] = J.nbytes[f];
+    J.bytes[f] = NULL;
+  }
+  aq_joints_free(&J);
   *out = a;
   return AQ_OK;
 }
@@ -542,4 +819,27 @@ int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
   if (lambda0)
     *lambda0 = a->min_lambda0;
   return 1;
+}
+int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda)
+{
+  if (!a->min_known || !a->min_info.liftoff)
+    return 0;
+  if (joint)
+    *joint = a->min_info.liftoff_joint;
+  if (lambda)
+    *lambda = a->min_info.liftoff_lambda;
+  return 1;
+}
+
+void aq_arch_sha256(const aq_arch *a, char hex[65])
+{
+  aq_sha256_ctx c;
+  unsigned char d[AQ_SHA256_BYTES];
+  aq_sha256_init(&c);
+  aq_sha256_update(&c, a->text, strlen(a->text));
+  for (int f = 0; f < 2; f++)
+    if (a->data[f])
+      aq_sha256_update(&c, a->data[f], a->ndata[f]);
+  aq_sha256_final(&c, d);
+  aq_sha256_hexify_(d, hex);
 }

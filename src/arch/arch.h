@@ -6,6 +6,9 @@
 #ifndef AQ_ARCH_ARCH_H
 #define AQ_ARCH_ARCH_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 #include "../error.h"
 #include "path.h"
 
@@ -32,7 +35,34 @@ void aq_arch_free(aq_arch *a);
 const char *aq_arch_name(const aq_arch *a);
 /* The .cfg text exactly as read (for the results file). */
 const char *aq_arch_config_text(const aq_arch *a);
+/* The arch's content digest, 64 hex digits and a NUL into hex: SHA-256 of
+ * the .cfg's bytes, followed by those of its joints and faces files for a
+ * `shape = joints` arch (so for every other arch that of the .cfg alone). */
+void aq_arch_sha256(const aq_arch *a, char hex[65]);
 const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a);
+/* The arch's generated geometry as plain arrays, for the results file and
+ * for figures read back from it: owned by the arch, valid while it lives.
+ * Voussoir k lies between joints k and k+1; its outline (a closed polygon,
+ * counter-clockwise, curved faces sampled) is rows outline_start[k] ..
+ * outline_start[k+1] of outline, its fill's rows fill_start[k] ..
+ * fill_start[k+1] of fill (none without fill). */
+typedef struct {
+  const char *shape;          /* circular, pointed, elliptical, parabolic, catenary, joints */
+  size_t voussoirs;           /* n */
+  const double *joints;       /* (n+1) x 4: xi_m, yi_m, xe_m, ye_m (intrados, extrados end) */
+  const double *parts;        /* n x 4: mass_kg, x_m, y_m, inertia_kgm2 of each voussoir with its
+                                 fill and point masses (centroid; centroidal inertia, kg m^2) */
+  size_t noutline, nfill;     /* rows of outline and fill */
+  const double *outline;      /* noutline x 2: x_m, y_m */
+  const int64_t *outline_start; /* n+1 */
+  const double *fill;         /* nfill x 2: x_m, y_m */
+  const int64_t *fill_start;  /* n+1 */
+  size_t nmass;               /* point masses */
+  const double *mass;         /* nmass x 4: voussoir, x_m, y_m, mass_kg */
+  double stone_kg, fill_kg, point_kg; /* masonry, fill, point masses */
+} aq_arch_drawing;
+void aq_arch_drawing_of(const aq_arch *a, aq_arch_drawing *d);
+
 /* set 0: primary, 1: reverse.  Check ->admissible before integrating. */
 const aq_path *aq_arch_path(const aq_arch *a, int set);
 

@@ -34,6 +34,7 @@
  */
 #include <gsl/gsl_linalg.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "model.h"
@@ -54,6 +55,23 @@ static aq_vec2 rot(double t, aq_vec2 a)
 {
   double c = cos(t), s = sin(t);
   return v2(c * a.x - s * a.y, s * a.x + c * a.y);
+}
+
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf)
+{
+  if (joints)
+    snprintf(joints, nj, "%zu,%zu,%zu,%zu", hs->joint[0], hs->joint[1],
+             hs->joint[2], hs->joint[3]);
+  if (faces)
+    snprintf(faces, nf, "%c%c%c%c", hs->face[0], hs->face[1], hs->face[2],
+             hs->face[3]);
+}
+
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n)
+{
+  snprintf(buf, n, "%zu%c %zu%c %zu%c %zu%c", hs->joint[0], hs->face[0], hs->joint[1],
+           hs->face[1], hs->joint[2], hs->face[2], hs->joint[3], hs->face[3]);
 }
 
 aq_status aq_mech_init(aq_mech *m, const aq_geom *g, const aq_hinge_set *hs,
@@ -239,8 +257,7 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
     out->v[k] = sol[2 * k + 1];
     /* joint normal pointing into the counter-clockwise body, turned with
      * each of the two bodies that meet at the hinge */
-    double th = m->g->theta_rad[m->hs.joint[k]];
-    aq_vec2 n0 = v2(-sin(th), cos(th));
+    aq_vec2 n0 = perp(m->g->ju[m->hs.joint[k]]);
     double rot_ccw = k < 3 ? st->phi[k][0] : 0.0;
     double rot_cw = k > 0 ? st->phi[k - 1][0] : 0.0;
     aq_vec2 f = v2(out->h[k], out->v[k]);
@@ -265,11 +282,17 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
                       const aq_live *live, const aq_equil *eq, double *ecc,
                       int *tension)
 {
+  return aq_mech_thrust_line(m, st, live, eq, ecc, tension, NULL, NULL);
+}
+
+double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                           const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                           aq_vec2 *dir)
+{
   const aq_geom *g = m->g;
   size_t n = g->p.voussoirs;
   const size_t *J = m->hs.joint;
   double gg = live->g_mps2, lam = eq->lambda, worst = 0;
-  double half_t = 0.5 * g->p.thickness_m, rm = g->p.radius_m;
   aq_vec2 hc[4] = {m->h[0], st->h2, st->h3, m->h[3]};
   if (tension)
     *tension = 0;
@@ -279,6 +302,10 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
       ;
     if (k < 4) {
       ecc[j] = m->hs.face[k] == 'e' ? 1.0 : -1.0;
+      if (pt) {
+        pt[j] = hc[k];
+        dir[j] = v2(eq->h[k], eq->v[k]);
+      }
       continue;
     }
     /* the part j lies in (body index or -1 fixed), the hinge the sub-body
@@ -306,14 +333,16 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
       t = add(t, load);
       m0 += cross(c, load);
     }
-    /* joint line: P(r) = A + r u */
-    double th = g->theta_rad[j];
-    aq_vec2 u0 = v2(cos(th), sin(th));
-    aq_vec2 A = carry(m, st, part, v2(0, 0));
-    aq_vec2 u = sub(carry(m, st, part, u0), A);
+    /* joint line: P(r) = A + r u (model.h: jo, ju, jmid, jhalf) */
+    aq_vec2 A = carry(m, st, part, g->jo[j]);
+    aq_vec2 u = sub(carry(m, st, part, add(g->jo[j], g->ju[j])), A);
     double ut = cross(u, t);
     double r = ut != 0 ? (m0 - cross(A, t)) / ut : HUGE_VAL;
-    ecc[j] = (r - rm) / half_t;
+    ecc[j] = (r - g->jmid[j]) / g->jhalf[j];
+    if (pt) {
+      pt[j] = add(A, scl(r, u));
+      dir[j] = t;
+    }
     aq_vec2 nrm = perp(u); /* into the counter-clockwise side */
     double push = dot(t, nrm) * (cut_ccw ? 1.0 : -1.0);
     if (tension && !(push > 0))

@@ -1,12 +1,16 @@
 /* model.h: the static arch model behind arch.h and path.h (internal to
  * src/arch, used by tests and bench).
  *
- * Geometry (geometry.c): an arch of n equal annular-sector voussoirs with
- * radial joints, the centre of its circle at the origin.  Joint j (0..n) lies
- * at polar angle theta_j = pi/2 - embrace/2 + j*embrace/n, counted
- * counter-clockwise from the springing on the +x side; voussoir k lies
- * between joints k and k+1.  A hinge sits at the extrados point (face 'e',
- * radius r_e) or the intrados point (face 'i', radius r_i) of its joint.
+ * Geometry (geometry.c, shape.c, joints.c): an arch of n voussoirs between
+ * n + 1 straight joints, numbered 0..n counter-clockwise from the
+ * springing on the +x side; voussoir k lies between joints k and k+1.  A
+ * circular arch has equal annular-sector voussoirs with radial joints, the
+ * centre of its circle at the origin, joint j at polar angle
+ * theta_j = pi/2 - embrace/2 + j*embrace/n (closed forms); pointed,
+ * elliptical, parabolic and catenary arches have joints normal to their
+ * centre line at equal arc length and faces that are its exact offsets;
+ * a joints arch is given joint by joint.  A hinge sits at the extrados end
+ * (face 'e') or the intrados end (face 'i') of its joint.
  *
  * Four-bar (kinematics.c): hinges H1..H4 at joints j1 < j2 < j3 < j4; body 1
  * (voussoirs j1..j2-1) turns about H1 by q, body 3 (j3..j4-1) about H4, body
@@ -36,16 +40,103 @@ typedef struct {
   double x, y;
 } aq_vec2;
 
+/* ---- shape.c: centre lines ------------------------------------------ */
+
+typedef enum {
+  AQ_SHAPE_CIRCULAR = 0, /* radius_m, thickness_m, embrace_deg: exact annular sectors */
+  AQ_SHAPE_POINTED,      /* two-centred: span_m, rise_m >= span_m/2, thickness_m */
+  AQ_SHAPE_ELLIPTICAL,   /* x = (span/2) cos u, y = rise sin u */
+  AQ_SHAPE_PARABOLIC,    /* y = rise (1 - (2x/span)^2) */
+  AQ_SHAPE_CATENARY,     /* y = rise - a (cosh(x/a) - 1) */
+  AQ_SHAPE_JOINTS,       /* joints (and faces) given point by point */
+  AQ_SHAPE_COUNT
+} aq_shape;
+
+/* The shape names of the arch file, indexed by aq_shape. */
+extern const char *const aq_shape_names[AQ_SHAPE_COUNT];
+
+/* A centre line from the springing (span/2, 0) over the crown to
+ * (-span/2, 0), on one or two curves (the pointed arch's halves), each with
+ * its parameter u increasing that way (shape.c gives each). */
+typedef struct {
+  aq_shape shape;
+  double span, rise, t;  /* m */
+  double r, cx;          /* circular, pointed: radius, centre x of curve 0 (m) */
+  double a;              /* catenary: y = rise - a (cosh(x/a) - 1), m */
+  int ncurve;            /* 1, or 2 (pointed) */
+  double u0[2], u1[2];   /* parameter range of each curve */
+  double length;         /* centre-line length, m */
+} aq_centre;
+
+/* Check span, rise and thickness (the intrados must not fold: t/2 below
+ * every radius of curvature; a pointed arch needs rise >= span/2) and set
+ * the centre line up.  AQ_EVALUE/AQ_EGEOMETRY with the field. */
+aq_status aq_centre_init(aq_centre *s, aq_shape shape, double span_m, double rise_m,
+                         double thickness_m, aq_error *err);
+/* A circle of radius r from angle u0 to u1 (the circular arch's centre
+ * line, for its outlines and its fill). */
+void aq_centre_circle(aq_centre *s, double r, double thickness_m, double u0, double u1);
+/* C, C', C'' at u on curve. */
+void aq_centre_eval(const aq_centre *s, int curve, double u, aq_vec2 d[3]);
+/* Signed curvature C' x C'' / |C'|^3 (> 0: turning counter-clockwise). */
+double aq_centre_curvature(const aq_centre *s, int curve, double u);
+/* The offset C(u) + v N(u), N the unit normal away from the centre of
+ * curvature, and (if dp) its derivative d/du = C'(u) (1 + k v). */
+void aq_centre_offset(const aq_centre *s, int curve, double u, double v, aq_vec2 *p,
+                      aq_vec2 *dp);
+/* The n + 1 joints equally spaced in centre-line arc length: u[j] on
+ * curve[j] (a pointed arch's crown joint ends curve 0; n must be even
+ * there). */
+aq_status aq_centre_joints(const aq_centre *s, size_t n, double *u, int *curve,
+                           aq_error *err);
+
 /* ---- geometry.c ---------------------------------------------------- */
 
+/* A point mass carried by a voussoir (a wall, a statue, a bell). */
 typedef struct {
+  char name[64];       /* its key in [masses] */
+  size_t voussoir;     /* 0..n-1 */
+  aq_vec2 p;           /* position, m */
+  double mass_kg;      /* > 0, for the arch's depth */
+} aq_point_mass;
+
+typedef struct {
+  /* AQ_SHAPE_CIRCULAR (the first six, in this order) */
   double radius_m;      /* centre-line radius */
-  double thickness_m;   /* radial thickness */
+  double thickness_m;   /* radial thickness (every shape but joints: normal to the centre line) */
   double embrace_rad;   /* angle between the springings, (0, pi] */
-  size_t voussoirs;     /* >= 4 */
+  size_t voussoirs;     /* >= 4 (joints: the joints given, less one) */
   double density_kg_m3; /* > 0 */
   double depth_m;       /* out-of-plane depth, > 0 */
+  aq_shape shape;       /* 0: circular */
+  double span_m, rise_m; /* pointed, elliptical, parabolic, catenary */
+  /* AQ_SHAPE_JOINTS: the voussoirs + 1 joints' intrados and extrados ends,
+   * counter-clockwise from the springing on the +x side; optional faces
+   * ([0] intrados, [1] extrados): voussoir k's points strictly between its
+   * joints, in order from joint k, are face_pt[f][face_start[f][k] ..
+   * face_start[f][k+1]) (face_start NULL: straight faces).  Not owned;
+   * copied by aq_geom_init. */
+  const aq_vec2 *joint_i, *joint_e;
+  const aq_vec2 *face_pt[2];
+  const size_t *face_start[2];
+  /* fill over the extrados up to a level (when fill_density_kg_m3 > 0) */
+  double fill_level_m;       /* height of its horizontal top above y = 0, m */
+  double fill_density_kg_m3;
+  /* point masses (not owned; copied) */
+  size_t nmass;
+  const aq_point_mass *mass;
 } aq_arch_params;
+
+/* The parameters of a circular arch (no fill, no point masses). */
+static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_m,
+                                              double embrace_rad, size_t voussoirs,
+                                              double density_kg_m3, double depth_m)
+{
+  aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
+                      AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
+                      0, NULL};
+  return p;
+}
 
 /* Mass properties of one voussoir. */
 typedef struct {
@@ -55,10 +146,33 @@ typedef struct {
 } aq_mass;
 
 typedef struct {
-  aq_arch_params p;
-  double r_i_m, r_e_m;  /* intrados and extrados radii */
-  double *theta_rad;    /* n+1 joint angles */
-  aq_mass *vous;        /* n voussoirs */
+  aq_arch_params p;     /* as given; its pointers are not kept (NULL after init) */
+  aq_centre centre;     /* the centre line (every shape but joints) */
+  double r_i_m, r_e_m;  /* circular: intrados and extrados radii */
+  double *theta_rad;    /* circular: n+1 joint angles (NULL for the others) */
+  aq_vec2 *ji, *je;     /* n+1 joint ends: intrados, extrados */
+  /* joint j's line, for the line of thrust: the point jo[j] + r ju[j]
+   * (ju a unit vector from the intrados end towards the extrados end) is
+   * the joint's middle at r = jmid[j], its ends at jmid -+ jhalf (circular:
+   * jo the circle's centre, jmid the mean radius, jhalf t/2) */
+  aq_vec2 *jo, *ju;
+  double *jmid, *jhalf;
+  aq_mass *vous;        /* n voussoirs, each with its fill and point masses */
+  /* outlines for figures and the results file: voussoir k's closed polygon
+   * (counter-clockwise, curved faces sampled) is outline[outline_start[k]
+   * .. outline_start[k+1]), its fill's fill[fill_start[k] ..
+   * fill_start[k+1]) (empty without fill) */
+  aq_vec2 *outline, *fill;
+  size_t *outline_start, *fill_start;
+  aq_point_mass *mass;  /* p.nmass point masses (copied) */
+  /* internal: analytic shapes' voussoir k lies on curve vcurve[k], its
+   * intrados from u = vu[4k] to vu[4k+1], its extrados from vu[4k+2] to
+   * vu[4k+3]; a joints arch's faces (copied from p) */
+  int *vcurve;
+  double *vu;
+  aq_vec2 *face_pt[2];
+  size_t *face_start[2];
+  double stone_kg, fill_kg, point_kg; /* the masonry, the fill, the point masses */
   double mass_kg;       /* whole arch */
   aq_vec2 c;            /* whole-arch centroid */
   /* prefix sums over voussoirs 0..k-1 (n+1 entries): mass, first moments */
@@ -71,8 +185,12 @@ typedef struct {
 aq_mass aq_sector_mass(double r_i, double r_e, double th0, double th1,
                        double rho, double depth);
 
+/* The sum of two rigidly joined parts (parallel axes). */
+aq_mass aq_mass_add(aq_mass a, aq_mass b);
+
 /* Check the parameters (AQ_EVALUE/AQ_EGEOMETRY with field set, no input or
- * line) and fill g; aq_geom_free releases it (accepts a zeroed g). */
+ * line: a parameter's key, "joints_file", "level_m" or a point mass's name)
+ * and fill g; aq_geom_free releases it (accepts a zeroed g). */
 aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err);
 void aq_geom_free(aq_geom *g);
 
@@ -111,6 +229,13 @@ typedef struct {
   aq_vec2 c[3][4];   /* body centroid and its 1st..3rd derivatives */
   double toggle;     /* (H3'-H2') x (H4-H3') / (l23 l34): 0 at the toggle */
 } aq_mech_state;
+
+/* Format "0e 6i 12e 19i" (the arch file's syntax) into buf[n]. */
+void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n);
+
+/* Format "0,6,12,19" and "eiei". */
+void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
+                         char *faces, size_t nf);
 
 /* Set up the four-bar of hinge set hs on geometry g (joints checked). */
 aq_status aq_mech_init(aq_mech *m, const aq_geom *g, const aq_hinge_set *hs,
@@ -158,13 +283,23 @@ aq_status aq_mech_equilibrium(const aq_mech *m, const aq_mech_state *st,
  * check): the resultant carried across joint j, found from the equilibrium
  * of the voussoirs between j and the nearest hinge on the side of j towards
  * that hinge (the hinge reaction of `eq` plus their dead and live loads,
- * AQ_LIVE_HORIZONTAL only), crosses the joint at radius r.  Fills
- * ecc[j] = (r - R) / (t/2) for j = 0..n (|ecc| <= 1: inside the section;
+ * AQ_LIVE_HORIZONTAL only), crosses the joint's line jo + r ju (model.h
+ * aq_geom) at r.  Fills ecc[j] = (r - jmid) / jhalf for j = 0..n (a
+ * circular arch: (r - R) / (t/2)); |ecc| <= 1: inside the section;
  * hinge joints get their face, +1 or -1) and returns the largest |ecc|;
  * *tension (if not NULL) is set to 1 if some joint's resultant pulls. */
 double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
                       const aq_live *live, const aq_equil *eq, double *ecc,
                       int *tension);
+
+/* aq_mech_thrust, and (pt, dir not NULL, n+1 each) where the resultant
+ * crosses each joint (the hinge itself at a hinge joint) and its
+ * direction, in the deformed arch: the line of thrust is the funicular
+ * polygon through the crossings, each resultant's line running on to meet
+ * the next one's on the voussoir's load line. */
+double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                           const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                           aq_vec2 *dir);
 
 /* Velocity field of a set at s = 0 per unit ds: for voussoir k, centroid
  * velocity u[k] (m/rad) and rotation rate w[k] (rad/rad), zero for fixed
@@ -215,26 +350,29 @@ void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
 
 /* ---- search.c ------------------------------------------------------ */
 
-#define AQ_SEARCH_MAX_VOUSSOIRS 150 /* 2 C(151,4) = 4.2e7 sets: about a second */
+/* What the search found besides the set. */
+typedef struct {
+  size_t programs;       /* linear programs solved */
+  /* 1: a mechanism in which joint liftoff_joint lifts off (both its ends
+   * open: no four-hinge set does that) has the multiplier liftoff_lambda,
+   * lower than the four-hinge minimum; archquake models four-hinge
+   * mechanisms only, so its lambda0 is then above the arch's */
+  int liftoff;
+  size_t liftoff_joint;
+  double liftoff_lambda;
+} aq_search_info;
 
-/* The admissible alternating four-hinge set (every hinge opens, every hinge
- * reaction compressive at s = 0) with the lowest lambda0 over all joints,
- * lambda0 <= 0 included: *best and *lambda0 (if not NULL).  A minimum
- * lambda0 <= 0 means the arch cannot stand.  AQ_EINADMISSIBLE if no set is
- * admissible; AQ_EVALUE above SEARCH_MAX_VOUSSOIRS (150) voussoirs.
- * *nsets (if not NULL): sets enumerated. */
+/* The admissible four-hinge set (every hinge opens, every hinge reaction
+ * compressive at s = 0) with the lowest lambda0 over all joints and faces,
+ * lambda0 <= 0 included: *best and *lambda0 (if not NULL), found by linear
+ * programming (search.c); *info (if not NULL).  A minimum lambda0 <= 0
+ * means the arch cannot stand.  AQ_EINADMISSIBLE if no set is found. */
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, size_t *nsets, aq_error *err);
-
-/* aq_search_minimum when its lambda0 is > 0 (the upper-bound mechanism);
- * AQ_EINADMISSIBLE (field "hinges", naming the set) when it is <= 0. */
-aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
-                              aq_hinge_set *best, size_t *nsets,
-                              aq_error *err);
+                            double *lambda0, aq_search_info *info, aq_error *err);
 
 /* lambda0 and opening test at s = 0 only (cheap; no tables, no equilibrium):
  * returns 1 if every hinge opens at first order and fills *lambda0 (its sign
- * as computed), else 0. */
+ * as computed), else 0 (also for joints out of range or order). */
 int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
                        double *lambda0);
 
@@ -253,17 +391,15 @@ int aq_arch_searched(const aq_arch *a);
 /* The hinge set used for set 0 (primary) or 1 (reverse). */
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set);
 
-/* The admissible set of lowest lambda0 over every joint (aq_search_minimum),
- * found for every arch of at most AQ_SEARCH_MAX_VOUSSOIRS voussoirs: 1 and
- * *hs, *lambda0 (either may be NULL); 0 when not searched (more voussoirs,
- * with [hinges]).  An arch whose minimum is <= 0 is never built. */
+/* The admissible set of lowest lambda0 over every joint and face
+ * (aq_search_minimum): 1 and *hs, *lambda0 (either may be NULL); 0 when the
+ * search found none (the arch then has [hinges]).  An arch whose minimum is <= 0 is never built. */
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
 
-/* Format "0e 6i 12e 19i" (the arch file's syntax) into buf[n]. */
-void aq_hinge_set_text(const aq_hinge_set *hs, char *buf, size_t n);
-
-/* Format "0,6,12,19" and "eiei". */
-void aq_hinge_set_format(const aq_hinge_set *hs, char *joints, size_t nj,
-                         char *faces, size_t nf);
+/* 1 if a mechanism in which a joint lifts off (both its ends open) has a
+ * lower multiplier than every four-hinge set (aq_search_info): *joint and
+ * *lambda (either may be NULL); archquake models four-hinge mechanisms
+ * only, so its lambda0 then overestimates the arch's. */
+int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda);
 
 #endif

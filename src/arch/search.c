@@ -1,30 +1,90 @@
-/* search.c: the upper-bound mechanism when the arch file has no [hinges].
+/* search.c: the arch's minimum-lambda0 four-hinge mechanism, over every
+ * joint and every face, by the static (lower-bound) side of limit analysis.
  *
- * Every alternating four-hinge set (joints j1 < j2 < j3 < j4 in 0..n, faces
- * e i e i or i e i e) is a one-degree-of-freedom mechanism; its multiplier
- * lambda0 follows from the velocities at s = 0 alone (virtual work,
- * docs/method.md sec. 5), computed in O(1) per set from prefix sums of the voussoirs' mass
- * and first moments.  The sets whose hinges all open are ranked by lambda0,
- * whatever its sign; the lowest SEARCH_KEEP are kept and checked in order
- * with the full equilibrium (eq. (3): every hinge reaction compressive); the
- * first that passes is the arch's minimum-lambda0 set.  A set with
- * lambda0 <= 0 is kept too: gravity alone (or gravity and a load of the
- * other sign) drives it, so the arch cannot stand, and the caller must know
- * it rather than be handed the lowest positive set.  Ties
- * (lambda0 equal to TIE_REL, e.g. the mirror images of a symmetric arch) go
- * to the set enumerated first (e i e i before i e i e, then lowest joints).
+ * A hinge set is admissible when each of its four hinges opens as the
+ * mechanism moves (docs/method.md sec. 8) and every hinge reaction is
+ * compressive; its multiplier lambda0 comes from virtual work at s = 0
+ * (docs/method.md sec. 5).  Enumerating the sets costs 16 C(n+1, 4) for n
+ * voussoirs (4e11 at 1000).  The minimum is found instead with a linear
+ * program whose dual is that enumeration:
+ *
+ *   unknowns  the force (R0x, R0y) and its moment m0 about a reference
+ *             point that the ground exerts across joint 0, and lambda, the
+ *             horizontal body force per unit mass s lambda g (s = +1 or
+ *             -1: one program per direction);
+ *   maximize  lambda,
+ *   such that across every joint j the resultant of the ground's force and
+ *             the loads of voussoirs 0..j-1 (gravity and the horizontal
+ *             force, at each voussoir's centroid, fill and attached masses
+ *             included) is a compression between the joint's ends: its
+ *             moment about the intrados end Pi_j is >= 0 and about the
+ *             extrados end Pe_j is <= 0 (joint direction u = Pe - Pi,
+ *             normal J u into voussoir j: a compressive force b at Pe has
+ *             moment |Pe - Pi| b about Pi).
+ *
+ * The moment across joint j about a point P is linear in the unknowns:
+ *   M_j(P) = m0 + P_y R0x - P_x R0y + s lambda g (P_y m_j - S^y_j)
+ *                                   + g (P_x m_j - S^x_j)
+ * with m_j, S^x_j, S^y_j the mass and first moments of voussoirs 0..j-1
+ * (prefix sums).  The dual variables of the two rows of joint j are the
+ * rotations of an intrados or an extrados hinge there, so the dual is the
+ * minimum over mechanisms of any hinge count of their kinematic
+ * multiplier (static and kinematic theorems); the program has four
+ * unknowns, so an optimal vertex has four tight rows.  When they are four
+ * hinges on four joints, they are the minimum-lambda0 four-hinge set: its
+ * line of thrust passes through them and lies inside the arch elsewhere,
+ * so its hinge reactions are compressive.  GLPK solves each program
+ * through its dual (a basis of four rows, whatever the number of joints),
+ * in floating point and, when the vertex leaves a row violated by more
+ * than OPT_TOL (recomputed here in long double), again in rational
+ * arithmetic (glp_exact) from that basis.
+ *
+ * The vertex can also hold both ends of one joint: a mechanism in which
+ * that joint lifts off (flat or thick arches under large lambda, about 6
+ * and more in the tests), which no four-hinge set can do and archquake
+ * does not model.  A branch and bound then finds the four-hinge minimum:
+ * a branch excludes rows (no hinge there: the row's dual fixed at 0, the
+ * row dropped from the program), so its optimum bounds every set in it
+ * from below; a vertex lifting joint j off branches into "no hinge at
+ * Pe_j" and "no hinge at Pi_j"; a vertex of four joints whose set is not
+ * admissible (with rows dropped its reactions need not be compressive)
+ * branches four ways, each without one of its hinges; a branch whose
+ * optimum is above the best set found is dropped.  The lift-off's lambda
+ * is reported (aq_search_info), for the warning that the four-hinge
+ * minimum is then above the arch's collapse multiplier.
+ *
+ * The set read from a vertex has its lambda0 computed again by virtual
+ * work (lambda0_fast: the same formula and prefix sums for every set) and
+ * checked with the 9x9 (eq. (3): every hinge reaction compressive).  Of
+ * the two directions the lower lambda0 wins; ties (within TIE_REL, e.g.
+ * the mirror images of a symmetric arch) go to the lower face pattern
+ * (faces read as binary digits, e 0 and i 1, so e i e i before i e i e),
+ * then to the lower joints.
+ *
+ * An arch that cannot stand: when the optimum of a direction is <= 0 the
+ * set read from it has lambda0 <= 0 (gravity alone, or gravity with a load
+ * the other way, drives it).  When no lambda at all lets a line of thrust
+ * fit (both programs infeasible), a third program at lambda = 0 relaxes
+ * every row by sigma times the joint's half length (in units of the
+ * arch's weight times a length) and minimizes sigma: its tight rows are
+ * the mechanism whose hinges gain the most work from gravity, a set with
+ * lambda0 < 0, reported as the arch's minimum (not necessarily the lowest
+ * such set).
  */
+#include <glpk.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "model.h"
 
-#define SEARCH_KEEP 256 /* candidates kept for the full admissibility check */
-#define TIE_REL 1e-12   /* lambda0 within this (relative) of another is a tie */
-
-/* a lower than b by more than a tie */
-static int lower(double a, double b) { return a < b - TIE_REL * fabs(b); }
+#define TIE_REL 1e-12     /* lambda0 within this (relative) of another is a tie */
+#define TIGHT_REL 1e-9    /* a row within this of its bound (in the scaled moments, units of
+                             the arch's weight times its size) counts as tight */
+#define OPT_TOL 1e-13     /* a row's slack (scaled moment) this far below 0 is a violation */
+#define MAX_PROGRAMS 4096 /* programs solved at most in the branch and bound */
+#define MAX_TIGHT 12      /* tight rows examined at most (C(12, 4) = 495 subsets) */
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -66,124 +126,391 @@ int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0)
   aq_vec2 P[4];
   int open[4];
   for (int k = 0; k < 4; k++) {
+    if (hs->joint[k] > g->p.voussoirs || (k > 0 && hs->joint[k] <= hs->joint[k - 1]))
+      return 0;
     P[k] = aq_geom_joint_point(g, hs->joint[k], hs->face[k]);
     open[k] = hs->face[k] == 'i' ? 1 : -1;
   }
   return lambda0_fast(g, hs->joint, P, open[0], open, lambda0);
 }
 
-typedef struct {
-  double lambda0;
-  size_t j[4];
-  int pattern; /* 0: e i e i, 1: i e i e */
-} cand;
-
-aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, size_t *nsets, aq_error *err)
+/* Faces as binary digits (e 0, i 1, the first hinge's the highest): the
+ * order of ties. */
+static int pattern(const aq_hinge_set *hs)
 {
-  size_t n = g->p.voussoirs, count = 0, nk = 0;
-  if (n > AQ_SEARCH_MAX_VOUSSOIRS)
-    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "voussoirs",
-                        "expected at most %d voussoirs without [hinges] (the search "
-                        "grows as voussoirs^4), got %zu",
-                        AQ_SEARCH_MAX_VOUSSOIRS, n);
-  aq_vec2 *pt = malloc(2 * (n + 1) * sizeof *pt); /* [face][joint] */
-  cand *keep = malloc(SEARCH_KEEP * sizeof *keep);
-  if (!pt || !keep) {
-    free(pt);
-    free(keep);
-    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
-  }
-  for (size_t j = 0; j <= n; j++) {
-    pt[j] = aq_geom_joint_point(g, j, 'e');
-    pt[n + 1 + j] = aq_geom_joint_point(g, j, 'i');
-  }
-  static const char faces[2][4] = {{'e', 'i', 'e', 'i'}, {'i', 'e', 'i', 'e'}};
-  for (int pat = 0; pat < 2; pat++) {
-    int open[4];
-    for (int k = 0; k < 4; k++)
-      open[k] = faces[pat][k] == 'i' ? 1 : -1;
-    size_t j[4];
-    for (j[0] = 0; j[0] + 3 <= n; j[0]++)
-      for (j[1] = j[0] + 1; j[1] + 2 <= n; j[1]++)
-        for (j[2] = j[1] + 1; j[2] + 1 <= n; j[2]++)
-          for (j[3] = j[2] + 1; j[3] <= n; j[3]++) {
-            aq_vec2 P[4];
-            for (int k = 0; k < 4; k++)
-              P[k] = pt[(faces[pat][k] == 'i' ? n + 1 : 0) + j[k]];
-            count++;
-            double l0;
-            if (!lambda0_fast(g, j, P, open[0], open, &l0) || !isfinite(l0))
-              continue;
-            if (nk == SEARCH_KEEP && !lower(l0, keep[nk - 1].lambda0))
-              continue;
-            size_t pos = nk < SEARCH_KEEP ? nk++ : nk - 1;
-            while (pos > 0 && lower(l0, keep[pos - 1].lambda0)) {
-              keep[pos] = keep[pos - 1];
-              pos--;
-            }
-            keep[pos].lambda0 = l0;
-            memcpy(keep[pos].j, j, sizeof j);
-            keep[pos].pattern = pat;
-          }
-  }
-  if (nsets)
-    *nsets = count;
-  free(pt);
-  aq_status st = AQ_EINADMISSIBLE;
-  for (size_t c = 0; c < nk; c++) {
-    aq_hinge_set hs;
-    for (int k = 0; k < 4; k++) {
-      hs.joint[k] = keep[c].j[k];
-      hs.face[k] = faces[keep[c].pattern][k];
-    }
-    aq_mech m;
-    aq_mech_state s0;
-    aq_equil eq;
-    aq_error e2;
-    if (aq_mech_init(&m, g, &hs, &e2) != AQ_OK || aq_mech_eval(&m, 0.0, &s0) != 0)
-      continue;
-    /* act_sign: the sign that drives s forward (see workpath.c) */
-    double gx = 0;
-    for (int b = 0; b < 3; b++)
-      gx += m.body[b].mass_kg * s0.c[b][1].x;
-    int act = (double)m.open[0] * gx > 0 ? -1 : 1;
-    aq_live live = {AQ_LIVE_HORIZONTAL, act, {0, 0}, 0, g_mps2};
-    if (aq_mech_equilibrium(&m, &s0, &live, &eq, &e2) != AQ_OK)
-      continue;
-    int ok = 1;
-    for (int k = 0; k < 4; k++)
-      ok &= eq.normal[k] > 0;
-    if (ok) {
-      *best = hs;
-      if (lambda0)
-        *lambda0 = keep[c].lambda0;
-      st = AQ_OK;
-      break;
-    }
-  }
-  free(keep);
-  if (st != AQ_OK)
-    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
-                        "expected an admissible four-hinge mechanism among the %d "
-                        "with the lowest lambda0, got none",
-                        SEARCH_KEEP);
-  return AQ_OK;
+  int p = 0;
+  for (int k = 0; k < 4; k++)
+    p = 2 * p + (hs->face[k] == 'i');
+  return p;
 }
 
-aq_status aq_search_mechanism(const aq_geom *g, double g_mps2,
-                              aq_hinge_set *best, size_t *nsets, aq_error *err)
+/* 1 if (la, a) comes before (lb, b): a lower lambda0 by more than a tie,
+ * else on a tie the lower face pattern, then the lower joints. */
+static int before(double la, const aq_hinge_set *a, double lb, const aq_hinge_set *b)
 {
-  double l0;
-  aq_status st = aq_search_minimum(g, g_mps2, best, &l0, nsets, err);
-  if (st == AQ_OK && !(l0 > 0)) {
-    char set[64];
-    aq_hinge_set_text(best, set, sizeof set);
-    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
-                        "expected an arch that stands under its own weight, got "
-                        "one that cannot: the admissible hinge set %s has "
-                        "lambda0 = %.4g <= 0",
-                        set, l0);
+  if (la < lb - TIE_REL * fabs(lb))
+    return 1;
+  if (lb < la - TIE_REL * fabs(la))
+    return 0;
+  if (pattern(a) != pattern(b))
+    return pattern(a) < pattern(b);
+  for (int k = 0; k < 4; k++)
+    if (a->joint[k] != b->joint[k])
+      return a->joint[k] < b->joint[k];
+  return 0;
+}
+
+/* 1 if every hinge reaction of hs is compressive at s = 0 by the 9x9. */
+static int compressive(const aq_geom *g, const aq_hinge_set *hs, double g_mps2)
+{
+  aq_mech m;
+  aq_mech_state s0;
+  aq_equil eq;
+  aq_error e2;
+  if (aq_mech_init(&m, g, hs, &e2) != AQ_OK || aq_mech_eval(&m, 0.0, &s0) != 0)
+    return 0;
+  /* act_sign: the sign that drives s forward (see workpath.c) */
+  double gx = 0;
+  for (int b = 0; b < 3; b++)
+    gx += m.body[b].mass_kg * s0.c[b][1].x;
+  int act = (double)m.open[0] * gx > 0 ? -1 : 1;
+  aq_live live = {AQ_LIVE_HORIZONTAL, act, {0, 0}, 0, g_mps2};
+  if (aq_mech_equilibrium(&m, &s0, &live, &eq, &e2) != AQ_OK)
+    return 0;
+  for (int k = 0; k < 4; k++)
+    if (!(eq.normal[k] > 0))
+      return 0;
+  return 1;
+}
+
+/* The rows' data in scaled form (see the file's comment): row 2j is the
+ * intrados end of joint j, row 2j+1 the extrados end.  With O a reference
+ * point, L a length and W = m_T g, the row's value
+ *   c[0] R0x/W + c[1] R0y/W + c[2] m0/(W L) + c[3] lambda + c0
+ * is M_j(P)/(W L); half: the joint's half length / L (for sigma). */
+typedef struct {
+  double c[4], c0, half;
+} lp_row;
+
+static void rows_fill(const aq_geom *g, int s, lp_row *row)
+{
+  size_t n = g->p.voussoirs;
+  double xlo = HUGE_VAL, xhi = -HUGE_VAL, ylo = HUGE_VAL, yhi = -HUGE_VAL;
+  for (size_t j = 0; j <= n; j++)
+    for (int f = 0; f < 2; f++) {
+      aq_vec2 p = aq_geom_joint_point(g, j, f ? 'e' : 'i');
+      xlo = fmin(xlo, p.x), xhi = fmax(xhi, p.x), ylo = fmin(ylo, p.y), yhi = fmax(yhi, p.y);
+    }
+  aq_vec2 o = {0.5 * (xlo + xhi), 0.5 * (ylo + yhi)};
+  double L = fmax(xhi - xlo, yhi - ylo), mt = g->mass_kg;
+  for (size_t j = 0; j <= n; j++) {
+    double mj = g->cum_m[j];
+    double sx = g->cum_mx[j] - mj * o.x, sy = g->cum_my[j] - mj * o.y;
+    aq_vec2 pi = aq_geom_joint_point(g, j, 'i'), pe = aq_geom_joint_point(g, j, 'e');
+    for (int f = 0; f < 2; f++) {
+      aq_vec2 p = f ? pe : pi;
+      double px = p.x - o.x, py = p.y - o.y;
+      lp_row *r = &row[2 * j + (size_t)f];
+      r->c[0] = py / L;
+      r->c[1] = -px / L;
+      r->c[2] = 1.0;
+      r->c[3] = (double)s * (py * mj - sy) / (mt * L);
+      r->c0 = (px * mj - sx) / (mt * L);
+      r->half = 0.5 * hypot(pe.x - pi.x, pe.y - pi.y) / L;
+    }
+  }
+}
+
+typedef enum { LP_OPT, LP_INFEASIBLE, LP_UNBOUNDED, LP_FAILED } lp_status;
+
+/* The reduced cost of the dual's column i (the slack of the primal's row
+ * i) at the primal solution x (the dual's row duals), in long double:
+ * h_i - G_i x. */
+static long double slack(const lp_row *r, size_t i, int relax, const long double x[4])
+{
+  long double sgn = i % 2 == 0 ? -1.0L : 1.0L, h = -sgn * (long double)r->c0, gx = 0;
+  for (int k = 0; k < 4; k++)
+    gx += (k < 3 ? sgn * r->c[k] : relax ? -(long double)r->half : sgn * r->c[3]) * x[k];
+  return h - gx;
+}
+
+/* 1 if the floating-point simplex's vertex is optimal to OPT_TOL: every
+ * row's slack at its primal solution, recomputed here, >= -OPT_TOL (the
+ * dual's reduced costs; its basic columns are >= 0 by the simplex).  When
+ * not, the rational simplex (glp_exact) settles it. */
+static int optimal_in_double(glp_prob *P, const lp_row *row, size_t nrows, int relax,
+                             const unsigned char *ex)
+{
+  long double x[4];
+  for (int k = 0; k < 4; k++)
+    x[k] = glp_get_row_dual(P, k + 1);
+  for (size_t i = 0; i < nrows; i++)
+    if (!ex[i] && slack(&row[i], i, relax, x) < -OPT_TOL)
+      return 0;
+  return 1;
+}
+
+/* One program, solved through its dual, whose basis has four rows whatever
+ * the number of joints: relax = 0 maximizes lambda; relax = 1 fixes
+ * lambda = 0 and minimizes sigma.  Written with every row as G x <= h
+ * (intrados rows negated), the program max c.x has the dual
+ *   min h.y  subject to  G^T y = c,  y >= 0,
+ * one y per row: the rotation of a hinge at that row's joint end; a row
+ * excluded (ex[i]) has its y fixed at 0: no hinge there.  The dual's basic
+ * columns are the primal's tight rows (tight[0..*nbasic-1]); a nonbasic
+ * column whose reduced cost (the primal row's slack) is within TIGHT_REL
+ * of zero is a tie (appended).  *obj: the optimum (lambda, or -sigma).
+ * The primal is infeasible when the dual is unbounded, unbounded when the
+ * dual is infeasible. */
+static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, const unsigned char *ex,
+                          size_t *tight, size_t *ntight, size_t *nbasic, double *obj)
+{
+  glp_prob *P = glp_create_prob();
+  size_t nz = nrows * 4;
+  int *ia = malloc((nz + 1) * sizeof *ia), *ja = malloc((nz + 1) * sizeof *ja);
+  double *ar = malloc((nz + 1) * sizeof *ar);
+  lp_status st = LP_FAILED;
+  *ntight = *nbasic = 0;
+  if (!P || !ia || !ja || !ar)
+    goto done;
+  glp_set_obj_dir(P, GLP_MIN);
+  glp_add_rows(P, 4);
+  for (int k = 0; k < 4; k++) /* c: lambda (max), or -sigma (max) */
+    glp_set_row_bnds(P, k + 1, GLP_FX, k < 3 ? 0.0 : relax ? -1.0 : 1.0, 0.0);
+  glp_add_cols(P, (int)nrows);
+  size_t z = 0;
+  for (size_t i = 0; i < nrows; i++) {
+    double sgn = i % 2 == 0 ? -1.0 : 1.0; /* intrados: M >= 0, i.e. -M <= 0 */
+    if (ex[i])
+      glp_set_col_bnds(P, (int)i + 1, GLP_FX, 0.0, 0.0);
+    else
+      glp_set_col_bnds(P, (int)i + 1, GLP_LO, 0.0, 0.0);
+    glp_set_obj_coef(P, (int)i + 1, -sgn * row[i].c0);
+    for (int k = 0; k < 4; k++) {
+      double v = k < 3 ? sgn * row[i].c[k] : relax ? -row[i].half : sgn * row[i].c[3];
+      if (v == 0)
+        continue;
+      z++;
+      ia[z] = k + 1;
+      ja[z] = (int)i + 1;
+      ar[z] = v;
+    }
+  }
+  glp_load_matrix(P, (int)z, ia, ja, ar);
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  glp_std_basis(P);
+  int rc = glp_simplex(P, &parm);
+  if (rc == 0 && glp_get_status(P) == GLP_OPT && !optimal_in_double(P, row, nrows, relax, ex))
+    rc = glp_exact(P, &parm);
+  if (rc != 0)
+    goto done;
+  int s = glp_get_status(P);
+  if (s == GLP_UNBND || s == GLP_NOFEAS) {
+    st = s == GLP_UNBND ? LP_INFEASIBLE : LP_UNBOUNDED;
+    goto done;
+  }
+  if (s != GLP_OPT)
+    goto done;
+  *obj = glp_get_obj_val(P);
+  /* the basic columns (the vertex), then the columns of zero reduced cost */
+  long double x[4];
+  for (int k = 0; k < 4; k++)
+    x[k] = glp_get_row_dual(P, k + 1);
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t i = 0; i < nrows && *ntight < MAX_TIGHT; i++) {
+      int basic = glp_get_col_stat(P, (int)i + 1) == GLP_BS;
+      if (ex[i])
+        continue;
+      if (pass == 0 ? basic : (!basic && fabsl(slack(&row[i], i, relax, x)) <= TIGHT_REL))
+        tight[(*ntight)++] = i;
+      if (pass == 0)
+        *nbasic = *ntight;
+    }
+  st = LP_OPT;
+done:
+  free(ia);
+  free(ja);
+  free(ar);
+  if (P)
+    glp_delete_prob(P);
+  return st;
+}
+
+/* The branch and bound over the programs (see the file's comment). */
+typedef struct {
+  const aq_geom *g;
+  double g_mps2;
+  lp_row *row;
+  size_t nrows;
+  unsigned char *ex;   /* rows excluded in the current branch */
+  int have;            /* best: the lowest admissible set so far */
+  aq_hinge_set hs;
+  double lambda0;
+  int failed;          /* a program failed, or too many */
+  aq_search_info info;
+} bb;
+
+/* The set of four rows r (joint 2r/2, face e for odd r), if they are on
+ * distinct joints and make an admissible set: every hinge opens, and
+ * unless relax compressive hinge reactions, or when relax lambda0 <= 0.
+ * 1 and *hs, *l0; else 0. */
+static int admissible(const bb *B, const size_t rows[4], int relax, aq_hinge_set *hs,
+                      double *l0)
+{
+  size_t r[4] = {rows[0], rows[1], rows[2], rows[3]};
+  for (int i = 1; i < 4; i++) /* by joint */
+    for (int k = i; k > 0 && r[k] < r[k - 1]; k--) {
+      size_t t = r[k];
+      r[k] = r[k - 1];
+      r[k - 1] = t;
+    }
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = r[k] / 2;
+    hs->face[k] = r[k] % 2 ? 'e' : 'i';
+    if (k > 0 && hs->joint[k] == hs->joint[k - 1])
+      return 0;
+  }
+  if (!aq_search_lambda0(B->g, hs, l0) || !isfinite(*l0))
+    return 0;
+  return relax ? *l0 <= 0 : compressive(B->g, hs, B->g_mps2);
+}
+
+/* Every four of the tight rows that make an admissible set: the best
+ * (before()) into B.  Returns 1 if the vertex's own four (the first four,
+ * nbasic == 4) do. */
+static int from_tight(bb *B, const size_t *tight, size_t nt, size_t nbasic, int relax)
+{
+  int vertex = 0;
+  for (size_t a = 0; a < nt; a++)
+    for (size_t c = a + 1; c < nt; c++)
+      for (size_t d = c + 1; d < nt; d++)
+        for (size_t e = d + 1; e < nt; e++) {
+          size_t r[4] = {tight[a], tight[c], tight[d], tight[e]};
+          aq_hinge_set hs;
+          double l0;
+          if (!admissible(B, r, relax, &hs, &l0))
+            continue;
+          vertex |= nbasic == 4 && e == 3;
+          if (B->have && !before(l0, &hs, B->lambda0, &B->hs))
+            continue;
+          B->have = 1;
+          B->hs = hs;
+          B->lambda0 = l0;
+        }
+  return vertex;
+}
+
+/* Solve the program with row r excluded as well, then restore it. */
+static lp_status node(bb *B, int relax, int depth);
+static void child(bb *B, size_t r, int relax, int depth)
+{
+  B->ex[r] = 1;
+  node(B, relax, depth + 1);
+  B->ex[r] = 0;
+}
+
+/* One node of the branch and bound: solve, bound, then
+ *  - a joint with both ends tight (lifting off, which no four-hinge set
+ *    does): branch without a hinge at its extrados end, then without one
+ *    at its intrados end (every four-hinge set lies in one of the two);
+ *  - else the vertex's four hinges: the set, if admissible, is the
+ *    branch's minimum; if not (with rows excluded its reactions need not
+ *    be compressive), every admissible set in the branch lacks one of its
+ *    hinges: branch four ways, each without one of them.
+ * In the relaxed program (relax) the first set with lambda0 <= 0 ends the
+ * search.  Returns the node's status. */
+static lp_status node(bb *B, int relax, int depth)
+{
+  size_t tight[MAX_TIGHT], nt, nb;
+  double obj = 0;
+  if (B->failed || (relax && B->have))
+    return LP_FAILED;
+  if (++B->info.programs > MAX_PROGRAMS) {
+    B->failed = 1;
+    return LP_FAILED;
+  }
+  lp_status st = lp_solve(B->row, B->nrows, relax, B->ex, tight, &nt, &nb, &obj);
+  if (st == LP_FAILED)
+    B->failed = 1;
+  if (st != LP_OPT)
+    return st;
+  if (relax ? !(obj < 0) : B->have && obj > B->lambda0 + TIE_REL * fabs(B->lambda0))
+    return st; /* relax: gravity drives nothing here; else: no lower set here */
+  size_t lift = SIZE_MAX;
+  for (size_t a = 0; a < nb; a++)
+    for (size_t b = a + 1; b < nb; b++)
+      if (tight[a] / 2 == tight[b] / 2)
+        lift = tight[a] / 2;
+  if (lift != SIZE_MAX) {
+    if (depth == 0 && !relax && (!B->info.liftoff || obj < B->info.liftoff_lambda)) {
+      B->info.liftoff = 1;
+      B->info.liftoff_joint = lift;
+      B->info.liftoff_lambda = obj;
+    }
+    child(B, 2 * lift + 1, relax, depth);
+    child(B, 2 * lift, relax, depth);
+  } else if (!from_tight(B, tight, nt, nb, relax) && nb == 4) {
+    for (size_t k = 0; k < 4; k++)
+      child(B, tight[k], relax, depth);
   }
   return st;
+}
+
+aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
+                            double *lambda0, aq_search_info *info, aq_error *err)
+{
+  size_t n = g->p.voussoirs, nrows = 2 * (n + 1);
+  bb B;
+  memset(&B, 0, sizeof B);
+  B.g = g;
+  B.g_mps2 = g_mps2;
+  B.nrows = nrows;
+  B.row = malloc(nrows * sizeof *B.row);
+  B.ex = calloc(nrows, 1);
+  if (!B.row || !B.ex) {
+    free(B.row);
+    free(B.ex);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  glp_term_out(GLP_OFF);
+  int infeasible = 0;
+  for (int s = 1; s >= -1; s -= 2) {
+    rows_fill(g, s, B.row);
+    infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
+  }
+  if (!B.have && infeasible == 2 && !B.failed) {
+    /* no line of thrust fits for any lambda: a set gravity drives */
+    rows_fill(g, 1, B.row);
+    node(&B, 1, 0);
+  }
+  free(B.row);
+  free(B.ex);
+  if (B.info.liftoff && B.have &&
+      !(B.info.liftoff_lambda < B.lambda0 - TIE_REL * fabs(B.lambda0)))
+    B.info.liftoff = 0; /* no lower than the four-hinge minimum */
+  if (info)
+    *info = B.info;
+  if (B.failed && B.info.programs > MAX_PROGRAMS)
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
+                        "expected the minimum four-hinge mechanism within %d linear programs, "
+                        "got none settled (a mechanism with joint %zu lifting off has lambda "
+                        "= %.6g; archquake models four-hinge mechanisms only)",
+                        MAX_PROGRAMS, B.info.liftoff_joint, B.info.liftoff_lambda);
+  if (!B.have) {
+    if (B.info.liftoff)
+      return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
+                          "expected an admissible four-hinge mechanism, got none: a mechanism "
+                          "with joint %zu lifting off governs (lambda = %.6g), which archquake "
+                          "does not model",
+                          B.info.liftoff_joint, B.info.liftoff_lambda);
+    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
+                        "expected an admissible four-hinge mechanism, got none (%s)",
+                        B.failed ? "the linear program failed" : "no set read from its optimum");
+  }
+  *best = B.hs;
+  if (lambda0)
+    *lambda0 = B.lambda0;
+  return AQ_OK;
 }

@@ -1,19 +1,31 @@
-/* arch.c: the arch to scale (m), its voussoirs and the hinges of both sets,
- * extrados and intrados hinges told apart; with a rotation, the four-bar
- * deformed by the arch stage's exact kinematics (aq_mech_eval: body 1 turns
- * about H1, body 3 about H4, body 2 rides between on H2', H3') drawn over
- * the undeformed outline. */
+/* arch.c: the arch to scale (m) as it is built: its voussoirs (the real
+ * faces, from the arch stage's outlines), its fill and its point masses,
+ * the hinges of both sets (extrados and intrados told apart), and the line
+ * of thrust: the funicular polygon of the resultants across the joints,
+ * where the resultant crosses each joint, from the hinge reactions of the
+ * 9x9 equilibrium (eq. (3), aq_mech_thrust_line) of the primary set at
+ * lambda0.  With a rotation, the
+ * four-bar deformed by the arch stage's exact kinematics (aq_mech_eval:
+ * body 1 turns about H1, body 3 about H4, body 2 rides between on H2', H3')
+ * is drawn over the undeformed outline, fill and masses moving with their
+ * voussoirs, and the line of thrust is that set's at lambda(q) in the
+ * deformed arch.  The frame holds the undeformed and the deformed arch
+ * with a margin. */
 #include <math.h>
 #include <plplot.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "../arch/model.h"
 #include "plot.h"
 
-enum { ARC_PTS = 16 };
-static const char *const AX_X = "x from the arch's centre (m)",
-                         *const AX_Y = "y from the arch's centre (m)"; /* points per voussoir face arc */
+static const char *const AX_X = "x (m)", *const AX_Y = "y (m)";
+#define FRAME_MARGIN 0.06 /* of the drawing's larger extent, on every side */
+#define FIG_W 1000        /* pixels */
+#define PLOT_H 620        /* pixels above the legend */
+#define LEGEND_ROW 27     /* pixels per legend entry */
+#define C_FILL 15         /* colour map 0's spare entry (plot.h uses 0..14): sand */
 
 typedef struct {
   const aq_arch *arch;
@@ -21,7 +33,13 @@ typedef struct {
   int set;             /* deformed set, -1: none */
   double s_rad;        /* its rotation, rad (>= 0) */
   aq_mech_state st;    /* deformed four-bar */
-  const aq_mech *m;
+  const aq_mech *m;    /* the deformed set's four-bar */
+  int thrust_set;      /* the set whose line of thrust is drawn, -1: none */
+  double thrust_lambda;/* its multiplier */
+  size_t nthrust;      /* points of the line of thrust */
+  aq_vec2 *thrust;     /* n + 1 */
+  size_t nlegend;      /* legend entries */
+  int height;          /* figure height, pixels */
 } fig;
 
 static aq_vec2 rot_about(aq_vec2 p, aq_vec2 from, aq_vec2 to, double a)
@@ -47,28 +65,8 @@ static aq_vec2 moved(const fig *f, size_t k, aq_vec2 p)
   return rot_about(p, m->h[3], m->h[3], f->st.phi[2][0]);    /* body 3 about H4 */
 }
 
-/* Outline of voussoir k: extrados arc then intrados arc back (2 ARC_PTS). */
-static void outline(const fig *f, size_t k, int deformed, PLFLT *x, PLFLT *y)
-{
-  const aq_geom *g = f->g;
-  double a0 = g->theta_rad[k], a1 = g->theta_rad[k + 1];
-  for (int i = 0; i < ARC_PTS; i++) {
-    double t = a0 + (a1 - a0) * i / (ARC_PTS - 1);
-    aq_vec2 pe = {g->r_e_m * cos(t), g->r_e_m * sin(t)};
-    double u = a1 - (a1 - a0) * i / (ARC_PTS - 1);
-    aq_vec2 pi = {g->r_i_m * cos(u), g->r_i_m * sin(u)};
-    if (deformed) {
-      pe = moved(f, k, pe);
-      pi = moved(f, k, pi);
-    }
-    x[i] = pe.x;
-    y[i] = pe.y;
-    x[ARC_PTS + i] = pi.x;
-    y[ARC_PTS + i] = pi.y;
-  }
-}
-
 static const char *const sym_e[2] = {"●", "▲"}, *const sym_i[2] = {"○", "△"};
+#define SYM_MASS "■"
 
 /* Hinge k of set s, deformed when s is the deformed set. */
 static aq_vec2 hinge(const fig *f, int s, int k)
@@ -79,58 +77,166 @@ static aq_vec2 hinge(const fig *f, int s, int k)
   return k == 1 ? f->st.h2 : f->st.h3;
 }
 
+/* The line of thrust of set s at state st: where the resultant crosses
+ * each joint (the hinge at a hinge joint), joined joint to joint. */
+static int thrust_line(fig *f, int s, const aq_mech_state *st, aq_error *err)
+{
+  const aq_workpath *w = aq_arch_workpath(f->arch, s);
+  const aq_path *p = aq_workpath_path(w);
+  const aq_mech *m = aq_workpath_mech(w);
+  size_t n = f->g->p.voussoirs;
+  aq_equil eq;
+  aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, p->g_mps2};
+  if (aq_mech_equilibrium(m, st, &live, &eq, err) != AQ_OK)
+    return -1;
+  double *ecc = malloc((n + 1) * sizeof *ecc);
+  aq_vec2 *pt = malloc((n + 1) * sizeof *pt), *dir = malloc((n + 1) * sizeof *dir);
+  f->thrust = malloc((n + 1) * sizeof *f->thrust);
+  if (!ecc || !pt || !dir || !f->thrust) {
+    free(ecc);
+    free(pt);
+    free(dir);
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    return -1;
+  }
+  aq_mech_thrust_line(m, st, &live, &eq, ecc, NULL, pt, dir);
+  size_t k = 0;
+  for (size_t j = 0; j <= n; j++)
+    f->thrust[k++] = pt[j];
+  f->nthrust = k;
+  f->thrust_set = s;
+  f->thrust_lambda = eq.lambda;
+  free(ecc);
+  free(pt);
+  free(dir);
+  return 0;
+}
+
+/* A closed polygon of pts[0..n), voussoir k's, moved when deformed. */
+static void polygon(const fig *f, size_t k, const aq_vec2 *pts, size_t n, int deformed,
+                    int fill_color, int line_color, int style)
+{
+  if (n < 2)
+    return;
+  PLFLT *x = malloc((n + 1) * sizeof *x), *y = malloc((n + 1) * sizeof *y);
+  if (!x || !y) {
+    free(x);
+    free(y);
+    return;
+  }
+  for (size_t i = 0; i <= n; i++) {
+    aq_vec2 p = deformed ? moved(f, k, pts[i % n]) : pts[i % n];
+    x[i] = p.x;
+    y[i] = p.y;
+  }
+  if (fill_color >= 0) {
+    plcol0(fill_color);
+    plfill((PLINT)n, x, y);
+  }
+  if (line_color >= 0) {
+    plcol0(line_color);
+    pllsty(style);
+    plline((PLINT)n + 1, x, y);
+    pllsty(1);
+  }
+  free(x);
+  free(y);
+}
+
+/* The extent of everything drawn: outlines, fill, masses, deformed too. */
+static void extent(const fig *f, double *xlo, double *xhi, double *ylo, double *yhi)
+{
+  const aq_geom *g = f->g;
+  size_t n = g->p.voussoirs;
+  *xlo = *ylo = HUGE_VAL;
+  *xhi = *yhi = -HUGE_VAL;
+  for (int d = 0; d <= (f->set >= 0); d++)
+    for (size_t k = 0; k < n; k++) {
+      for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
+        aq_vec2 p = d ? moved(f, k, g->outline[i]) : g->outline[i];
+        *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
+        *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
+      }
+      for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
+        aq_vec2 p = d ? moved(f, k, g->fill[i]) : g->fill[i];
+        *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
+        *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
+      }
+    }
+  for (size_t i = 0; i < g->p.nmass; i++)
+    for (int d = 0; d <= (f->set >= 0); d++) {
+      aq_vec2 p = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
+      *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
+      *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
+    }
+}
+
 static int draw(void *ctx, aq_error *err)
 {
   (void)err;
   const fig *f = ctx;
   const aq_geom *g = f->g;
   size_t n = g->p.voussoirs;
-  PLFLT x[2 * ARC_PTS + 1], y[2 * ARC_PTS + 1];
-  double re = g->r_e_m, span = 2 * re;
-  /* from just below the arch's lowest point (its springings); the legend
-   * goes below the frame */
-  double ybot = fmin(g->r_i_m, g->r_e_m) * cos(0.5 * g->p.embrace_rad);
-  double ylo = ybot - 0.08 * (re - ybot);
+  double xlo, xhi, ylo, yhi;
+  extent(f, &xlo, &xhi, &ylo, &yhi);
+  double size = fmax(xhi - xlo, yhi - ylo), pad = FRAME_MARGIN * size;
+  xlo -= pad, xhi += pad, ylo -= pad, yhi += pad;
   pladv(0);
+  plscol0(C_FILL, 232, 214, 170);
   plschr(0, 0.9);
-  double xlo = -0.6 * span, xhi = 0.6 * span, yhi = re * 1.1;
-  plvpas(0.1, 0.95, 0.33, 0.92, (yhi - ylo) / (xhi - xlo)); /* equal scales: to scale */
+  double legend = (double)(LEGEND_ROW * f->nlegend + 40) / f->height;
+  plvpas(0.1, 0.95, legend + 0.09, 0.93, (yhi - ylo) / (xhi - xlo)); /* equal scales */
   plwind(xlo, xhi, ylo, yhi);
   plcol0(AQ_PC_LIGHT);
   plbox("g", 0, 0, "g", 0, 0);
   plcol0(AQ_PC_FG);
   plbox("bcnst", 0, 0, "bcnstv", 0, 0);
-  char title[256];
+  char title[300], name[160];
+  aq_plot_escape(aq_arch_name(f->arch), name, sizeof name);
+  /* the centre line's span and rise (a joints arch: its intrados span) */
+  double span = g->p.shape == AQ_SHAPE_JOINTS ? fabs(g->ji[0].x - g->ji[n].x) : g->centre.span;
+  const char *what = g->p.shape == AQ_SHAPE_JOINTS ? "intrados span" : "span";
   if (f->set >= 0)
-    snprintf(title, sizeof title, "arch %s: %s set deformed at %.4g rad",
-             aq_arch_name(f->arch), f->set ? "reverse" : "primary", f->s_rad);
+    snprintf(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
+             f->set ? "reverse" : "primary", f->s_rad);
   else
-    snprintf(title, sizeof title, "arch %s: %zu voussoirs, span %.3g m",
-             aq_arch_name(f->arch), n,
-             2 * g->r_e_m * sin(0.5 * g->p.embrace_rad));
+    snprintf(title, sizeof title, "arch %s: %zu voussoirs, %s, %s %.4g m", name, n,
+             aq_shape_names[g->p.shape], what, span);
   pllab(AX_X, AX_Y, title);
-  for (size_t k = 0; k < n; k++) {
-    outline(f, k, 0, x, y);
-    x[2 * ARC_PTS] = x[0];
-    y[2 * ARC_PTS] = y[0];
-    if (f->set < 0) {
-      plcol0(AQ_PC_LIGHT);
-      plfill(2 * ARC_PTS, x, y);
-      plcol0(AQ_PC_FG);
-      plline(2 * ARC_PTS + 1, x, y);
-    } else {
-      plcol0(AQ_PC_GREY);
-      pllsty(2);
-      plline(2 * ARC_PTS + 1, x, y);
-      pllsty(1);
-      outline(f, k, 1, x, y);
-      x[2 * ARC_PTS] = x[0];
-      y[2 * ARC_PTS] = y[0];
-      plcol0(AQ_PC_LIGHT);
-      plfill(2 * ARC_PTS, x, y);
-      plcol0(AQ_PC_FG);
-      plline(2 * ARC_PTS + 1, x, y);
+  /* fill, then the voussoirs: undeformed (dashed when deformed), deformed */
+  for (int d = 0; d <= (f->set >= 0); d++) {
+    int ghost = f->set >= 0 && d == 0;
+    for (size_t k = 0; k < n; k++) {
+      size_t a = g->fill_start[k], b = g->fill_start[k + 1];
+      polygon(f, k, g->fill + a, b - a, d, ghost ? -1 : C_FILL, ghost ? AQ_PC_GREY : -1, 2);
     }
+    for (size_t k = 0; k < n; k++) {
+      size_t a = g->outline_start[k], b = g->outline_start[k + 1];
+      polygon(f, k, g->outline + a, b - a, d, ghost ? -1 : AQ_PC_LIGHT,
+              ghost ? AQ_PC_GREY : AQ_PC_FG, ghost ? 2 : 1);
+    }
+  }
+  /* the line of thrust */
+  if (f->nthrust > 1) {
+    PLFLT *x = malloc(f->nthrust * sizeof *x), *y = malloc(f->nthrust * sizeof *y);
+    if (x && y) {
+      for (size_t i = 0; i < f->nthrust; i++)
+        x[i] = f->thrust[i].x, y[i] = f->thrust[i].y;
+      plcol0(AQ_PC_RED);
+      plwidth(2);
+      plline((PLINT)f->nthrust, x, y);
+      plwidth(1);
+    }
+    free(x);
+    free(y);
+  }
+  /* point masses, moved with their voussoirs */
+  plschr(0, 1.1);
+  for (size_t i = 0; i < g->p.nmass; i++) {
+    aq_vec2 p = moved(f, g->mass[i].voussoir, g->mass[i].p);
+    PLFLT px = p.x, py = p.y;
+    plcol0(AQ_PC_PURPLE);
+    plstring(1, &px, &py, SYM_MASS);
   }
   static const int color[2] = {AQ_PC_BLUE, AQ_PC_ORANGE};
   plschr(0, 1.3);
@@ -144,55 +250,90 @@ static int draw(void *ctx, aq_error *err)
     }
   }
   plschr(0, 0.9);
-  char txt[4][128];
-  const char *t[6];
-  int c[6], st[6];
-  const char *sy[6];
+  char txt[8][160];
+  const char *t[8];
+  int c[8], st[8];
+  const char *sy[8];
+  size_t nl = 0;
   for (int s = 0; s < 2; s++) {
     const aq_path *p = aq_arch_path(f->arch, s);
-    snprintf(txt[2 * s], sizeof txt[0], "%s, extrados hinge: #gl#d0#u = %.4g, q#dc#u = %.4g rad",
+    snprintf(txt[nl], sizeof txt[0], "%s, extrados hinge: #gl#d0#u = %.4g, q#dc#u = %.4g rad",
              s ? "reverse" : "primary", p->lambda0, p->s_c_rad);
-    snprintf(txt[2 * s + 1], sizeof txt[0], "%s, intrados hinge%s", s ? "reverse" : "primary",
+    t[nl] = txt[nl], c[nl] = color[s], st[nl] = 0, sy[nl] = sym_e[s];
+    nl++;
+    snprintf(txt[nl], sizeof txt[0], "%s, intrados hinge%s", s ? "reverse" : "primary",
              p->admissible ? "" : " (set not admissible)");
-    t[2 * s] = txt[2 * s];
-    t[2 * s + 1] = txt[2 * s + 1];
-    c[2 * s] = c[2 * s + 1] = color[s];
-    st[2 * s] = st[2 * s + 1] = 0;
-    sy[2 * s] = sym_e[s];
-    sy[2 * s + 1] = sym_i[s];
+    t[nl] = txt[nl], c[nl] = color[s], st[nl] = 0, sy[nl] = sym_i[s];
+    nl++;
   }
-  size_t nl = 4;
+  if (f->nthrust > 1) {
+    if (f->set >= 0)
+      snprintf(txt[nl], sizeof txt[0], "line of thrust, %s set at #gl = %.4g",
+               f->thrust_set ? "reverse" : "primary", f->thrust_lambda);
+    else
+      snprintf(txt[nl], sizeof txt[0], "line of thrust at #gl#d0#u (9×9 equilibrium)");
+    t[nl] = txt[nl], c[nl] = AQ_PC_RED, st[nl] = 1, sy[nl] = "";
+    nl++;
+  }
+  if (g->fill_kg > 0) {
+    snprintf(txt[nl], sizeof txt[0], "fill: %.4g kg, carried by the voussoirs (masonry %.4g kg)",
+             g->fill_kg, g->stone_kg);
+    t[nl] = txt[nl], c[nl] = C_FILL, st[nl] = 0, sy[nl] = SYM_MASS;
+    nl++;
+  }
+  if (g->p.nmass > 0) {
+    snprintf(txt[nl], sizeof txt[0], "%zu point mass%s, %.4g kg", g->p.nmass,
+             g->p.nmass > 1 ? "es" : "", g->point_kg);
+    t[nl] = txt[nl], c[nl] = AQ_PC_PURPLE, st[nl] = 0, sy[nl] = SYM_MASS;
+    nl++;
+  }
   if (f->set >= 0) {
-    t[4] = "undeformed";
-    c[4] = AQ_PC_GREY;
-    st[4] = 2;
-    sy[4] = "";
-    nl = 5;
+    t[nl] = "undeformed", c[nl] = AQ_PC_GREY, st[nl] = 2, sy[nl] = "";
+    nl++;
   }
-  plvpor(0.1, 0.95, 0.01, 0.21);
+  plvpor(0.1, 0.95, 0.01, legend);
   aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP, nl, t, c, st, sy);
   return 0;
 }
 
 /* series,index,x_m,y_m: voussoir corners (ext k, ext k+1, int k+1, int k),
- * hinges of both sets, and the deformed corners and hinges. */
+ * outlines (curved faces sampled) and fills by voussoir, point masses,
+ * hinges of both sets, the line of thrust, and the deformed corners,
+ * outlines, fills, masses and hinges. */
 static aq_status write_data(const fig *f, const char *data, aq_error *err)
 {
   char tmp[1024];
+  const aq_geom *g = f->g;
+  size_t n = g->p.voussoirs;
   FILE *o = aq_plot_csv_open(data, tmp, sizeof tmp, err);
   if (!o)
     return err->status;
   aq_plot_csv_axes(o, 2, (const char *[]){AX_X, AX_Y});
   fprintf(o, "series,index,x_m,y_m\n");
-  for (int d = 0; d <= (f->set >= 0); d++)
-    for (size_t k = 0; k < f->g->p.voussoirs; k++) {
-      aq_vec2 p[4] = {aq_geom_joint_point(f->g, k, 'e'), aq_geom_joint_point(f->g, k + 1, 'e'),
-                      aq_geom_joint_point(f->g, k + 1, 'i'), aq_geom_joint_point(f->g, k, 'i')};
+  for (int d = 0; d <= (f->set >= 0); d++) {
+    const char *pre = d ? "deformed_" : "";
+    for (size_t k = 0; k < n; k++) {
+      aq_vec2 p[4] = {g->je[k], g->je[k + 1], g->ji[k + 1], g->ji[k]};
       for (int i = 0; i < 4; i++) {
         aq_vec2 q = d ? moved(f, k, p[i]) : p[i];
-        fprintf(o, "%s,%zu,%.17g,%.17g\n", d ? "deformed_corner" : "corner", k, q.x, q.y);
+        fprintf(o, "%scorner,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
       }
     }
+    for (size_t k = 0; k < n; k++)
+      for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
+        aq_vec2 q = d ? moved(f, k, g->outline[i]) : g->outline[i];
+        fprintf(o, "%soutline,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+      }
+    for (size_t k = 0; k < n; k++)
+      for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
+        aq_vec2 q = d ? moved(f, k, g->fill[i]) : g->fill[i];
+        fprintf(o, "%sfill,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+      }
+    for (size_t i = 0; i < g->p.nmass; i++) {
+      aq_vec2 q = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
+      fprintf(o, "%smass,%zu,%.17g,%.17g\n", pre, g->mass[i].voussoir, q.x, q.y);
+    }
+  }
   for (int s = 0; s < 2; s++) {
     const aq_mech *m = aq_workpath_mech(aq_arch_workpath(f->arch, s));
     for (int k = 0; k < 4; k++) {
@@ -205,6 +346,8 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
       }
     }
   }
+  for (size_t i = 0; i < f->nthrust; i++)
+    fprintf(o, "thrust,%zu,%.17g,%.17g\n", i, f->thrust[i].x, f->thrust[i].y);
   return aq_plot_csv_close(o, tmp, data, 1, err);
 }
 
@@ -216,6 +359,9 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
   f.arch = arch;
   f.g = aq_arch_geom(arch);
   f.set = -1;
+  f.thrust_set = -1;
+  aq_mech_state st0;
+  const aq_mech *m0 = aq_workpath_mech(aq_arch_workpath(arch, 0));
   if (rotation_rad != 0) {
     f.set = rotation_rad > 0 ? 0 : 1;
     f.s_rad = fabs(rotation_rad);
@@ -228,9 +374,18 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
     if (aq_mech_eval(f.m, p->q_sign * f.s_rad, &f.st) != 0)
       return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "--rotation",
                           "the %s set does not close at %g rad", p->name, rotation_rad);
+    if (thrust_line(&f, f.set, &f.st, err) != 0)
+      return err->status;
+  } else if (aq_arch_path(arch, 0)->admissible && aq_mech_eval(m0, 0.0, &st0) == 0 &&
+             thrust_line(&f, 0, &st0, err) != 0) {
+    return err->status;
   }
-  aq_status rc = aq_plot_render(target, 1000, 760, draw, &f, draw_s, err);
+  const aq_geom *g = f.g;
+  f.nlegend = 4 + (f.nthrust > 1) + (g->fill_kg > 0) + (g->p.nmass > 0) + (f.set >= 0);
+  f.height = PLOT_H + LEGEND_ROW * (int)f.nlegend + 40;
+  aq_status rc = aq_plot_render(target, FIG_W, f.height, draw, &f, draw_s, err);
   if (rc == AQ_OK && data)
     rc = write_data(&f, data, err);
+  free(f.thrust);
   return rc;
 }

@@ -760,6 +760,81 @@ static const char *impact_name(aq_impact i)
   return i == AQ_IMPACT_MOMENTUM ? "momentum" : "cor";
 }
 
+/* A rows x cols dataset of doubles (cols 1: 1-D) with its units and, for
+ * a table, its columns' names (attribute columns, comma-separated). */
+static herr_t dataset_2d(aq_h5_writer *w, hid_t loc, const char *name, const double *v,
+                         size_t rows, size_t cols, const char *units, const char *columns)
+{
+  hsize_t dim[2] = {rows, cols};
+  hid_t s = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
+  if (s < 0)
+    return -1;
+  hid_t d = H5Dcreate2(loc, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t rc = d < 0 ? -1 : 0;
+  if (rc == 0 && rows > 0)
+    rc = H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
+  if (rc == 0)
+    sync_hint(w, rows * cols * sizeof(double));
+  if (rc == 0)
+    rc = attr_str(w, d, "units", units);
+  if (rc == 0 && columns)
+    rc = attr_str(w, d, "columns", columns);
+  if (d >= 0 && H5Dclose(d) < 0)
+    rc = -1;
+  if (H5Sclose(s) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* /geometry/NNN: arch NNN's generated geometry (docs/hdf5-layout.md), so
+ * that a result can be drawn again without its .cfg. */
+static aq_status write_geometry(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
+                                aq_error *err)
+{
+  aq_status st = AQ_OK;
+  char obj[64];
+  snprintf(obj, sizeof obj, "/geometry/%03zu", index);
+  aq_arch_drawing d;
+  aq_arch_drawing_of(a->arch, &d);
+  size_t n = d.voussoirs;
+  double *ostart = malloc((n + 1) * sizeof *ostart), *fstart = malloc((n + 1) * sizeof *fstart);
+  hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), g = -1;
+  if (!ostart || !fstart) {
+    st = aq_error_set(err, AQ_ENOMEM, w->target, -1, -1, obj, "out of memory");
+    goto fail;
+  }
+  for (size_t k = 0; k <= n; k++)
+    ostart[k] = (double)d.outline_start[k], fstart[k] = (double)d.fill_start[k];
+  CK(lcpl, "H5Pcreate");
+  CK(H5Pset_create_intermediate_group(lcpl, 1), "H5Pset_create_intermediate_group");
+  g = H5Gcreate2(w->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  CK(g, "H5Gcreate");
+  CK(attr_str(w, g, "name", a->name), "geometry attributes");
+  CK(attr_str(w, g, "shape", d.shape), "geometry attributes");
+  CK(attr_int(w, g, "voussoirs", (int64_t)n), "geometry attributes");
+  CK(attr_double(w, g, "masonry_kg", d.stone_kg), "geometry attributes");
+  CK(attr_double(w, g, "fill_kg", d.fill_kg), "geometry attributes");
+  CK(attr_double(w, g, "point_masses_kg", d.point_kg), "geometry attributes");
+  CK(dataset_2d(w, g, "joints", d.joints, n + 1, 4, "m", "xi_m,yi_m,xe_m,ye_m"), "joints");
+  CK(dataset_2d(w, g, "voussoirs", d.parts, n, 4, "kg, m, m, kg m^2",
+                "mass_kg,x_m,y_m,inertia_kgm2"),
+     "voussoirs");
+  CK(dataset_2d(w, g, "outline", d.outline, d.noutline, 2, "m", "x_m,y_m"), "outline");
+  CK(dataset_2d(w, g, "outline_start", ostart, n + 1, 1, "1", NULL), "outline_start");
+  CK(dataset_2d(w, g, "fill", d.fill, d.nfill, 2, "m", "x_m,y_m"), "fill");
+  CK(dataset_2d(w, g, "fill_start", fstart, n + 1, 1, "1", NULL), "fill_start");
+  CK(dataset_2d(w, g, "masses", d.mass, d.nmass, 4, "1, m, m, kg", "voussoir,x_m,y_m,mass_kg"),
+     "masses");
+fail:
+  free(ostart);
+  free(fstart);
+  if (g >= 0 && H5Gclose(g) < 0 && st == AQ_OK)
+    st = h5_fail(err, w->target, obj, "H5Gclose", errno);
+  if (lcpl >= 0)
+    H5Pclose(lcpl);
+  return st;
+}
+
 aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
                            aq_error *err)
 {
@@ -800,6 +875,9 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     CK(attr_double(w, g, nm, p ? p->mass_kg : NAN), "arch attributes");
   }
   CK(H5Gclose(g), "H5Gclose");
+  g = -1;
+  if (a->arch)
+    return write_geometry(w, index, a, err);
   return AQ_OK;
 fail:
   if (g >= 0)

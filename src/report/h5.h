@@ -74,6 +74,10 @@ typedef struct {
   int searched;                    /* 1: the primary set came from the search */
   /* Hinge sets as used: joints "0,6,12,19" and faces "eiei" (NULL: unknown) */
   const char *joints[2], *faces[2];
+  /* The arch itself, for its generated geometry in /geometry/NNN (joints,
+   * voussoirs' mass properties, outlines, fill, point masses:
+   * docs/hdf5-layout.md); NULL: not written. */
+  const aq_arch *arch;
 } aq_h5_arch;
 
 /* One record: what was read, how it was processed and what it measures.
