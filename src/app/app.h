@@ -1,4 +1,7 @@
-/* app.h: the command-line layer.  Each subcommand parses and checks all of
+/* src/app: the command line: dispatch, one file per command, the option
+ * table, the main job's scheduler and ordered writer, and archquake-mpi.
+ *
+ * app.h: the command-line layer.  Each subcommand parses and checks all of
  * its options before touching any input, reports every bad option on stderr
  * (one line each) and returns an exit status:
  *   0  success
