@@ -11,8 +11,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
+#include "report/h5_spectrum.h"
 
 #define RECORD "tests/data/records/ARL360.at2"
 #define ARCH "arches/oppenheim.cfg"
@@ -1042,4 +1044,70 @@ AQ_TEST(plot_capacity_data_quotes_record_names)
   /* every point row and the interval rows: at least the scan's points */
   aq_check(rows >= 10, "%zu rows quote the name as %s", rows, want + 1);
   free(csv);
+}
+
+/* plot spectrum: every format; --data holds the file's spectra of the
+ * record chosen, in the file's order, with the axis titles' units; bad
+ * input in one line. */
+AQ_TEST(plot_spectrum_formats_data_and_bad_input)
+{
+  char dir[512], h5[600], args[2400], err[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/sp.h5", dir);
+  snprintf(args, sizeof args,
+           "spectrum tests/data/records/ARL360.at2 tests/data/records/IELC180.AT2 "
+           "--periods 0.05,0.2,1,4 --damping 0.05,0.1 -o %s", h5);
+  if (!aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "%s: %s", args, err))
+    return;
+  static const char *const fmt[] = {"png", "svg", "pdf"};
+  for (int k = 0; k < 3; k++) {
+    char out[600];
+    snprintf(out, sizeof out, "%s/sp.%s", dir, fmt[k]);
+    snprintf(args, sizeof args, "plot spectrum %s -o %s", h5, out);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0 && err[0] == '\0', "%s: exit %d, stderr \"%s\"", args, rc, err);
+    valid(out);
+  }
+  char png[600], csv[600];
+  snprintf(png, sizeof png, "%s/one.png", dir);
+  snprintf(csv, sizeof csv, "%s/one.csv", dir);
+  snprintf(args, sizeof args, "plot spectrum %s --record IELC180.AT2 -o %s --data %s", h5, png,
+           csv);
+  aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "%s: %s", args, err);
+  char *data = aq_test_read_file(csv, NULL);
+  aq_h5_spectra_table t;
+  aq_error e;
+  if (data && aq_check(aq_h5_spectra_read(h5, &t, &e) == AQ_OK, "read %s", h5)) {
+    check_axes(data, 2, "plot spectrum --data");
+    const char *p = strstr(data, "record,component,damping,period_s,psa_g\n");
+    size_t rows = 0, same = 0;
+    for (p = p ? strchr(p, '\n') + 1 : NULL; p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL) {
+      size_t i = 8 + rows++; /* IELC180's 8 rows follow ARL360's 8 */
+      char rec[512], comp[32];
+      double d, T, a;
+      if (sscanf(p, "%511[^,],%31[^,],%lf,%lf,%lf", rec, comp, &d, &T, &a) == 5 && i < t.n)
+        same += !strcmp(rec, t.record[i]) && !strcmp(comp, t.component[i]) &&
+                d == t.damping[i] && T == t.period_s[i] && a == t.psa_g[i];
+    }
+    aq_check(rows == 8 && same == 8, "--data: %zu rows, %zu the file's (want 8)", rows, same);
+    aq_h5_spectra_table_free(&t);
+  }
+  free(data);
+  const char *results_file = results();
+  struct {
+    const char *fmt, *in, *says;
+    int rc;
+  } bad[] = {
+      {"plot spectrum %s -o %s/x.png", results_file, "spectra", 1},
+      {"plot spectrum %s --record nosuch.AT2 -o %s/x.png", h5, "nosuch.AT2", 2},
+      {"plot spectrum %s --run 00000_000_000 -o %s/x.png", h5, "--run", 2},
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+    snprintf(args, sizeof args, bad[k].fmt, bad[k].in, dir);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == bad[k].rc && aq_test_count_lines(err) == 1 && strstr(err, bad[k].says),
+             "%s: exit %d, one line naming %s: %s", args, rc, bad[k].says, err);
+  }
+  snprintf(png, sizeof png, "%s/x.png", dir);
+  aq_check(access(png, F_OK) != 0, "no figure left by the bad input");
 }

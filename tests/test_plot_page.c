@@ -321,3 +321,41 @@ AQ_TEST(plot_page_domain_data_plain)
            "--data axis titles in plain text (%zu, %zu with a #)", axes, escaped);
   free(data);
 }
+
+/* plot spectrum: on the PDF page within its margins, the axis titles with
+ * their units and every curve's component named (the pair's RotD50,
+ * RotD100, GeoMean; the record's channel) for both dampings. */
+AQ_TEST(plot_page_spectrum_axes_and_curves)
+{
+  if (!have_poppler())
+    return;
+  char dir[512], h5[600], pdf[600], args[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/sp.h5", dir);
+  snprintf(pdf, sizeof pdf, "%s/sp.pdf", dir);
+  snprintf(args, sizeof args,
+           "spectrum --components tests/data/records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2,"
+           "tests/data/records/RSN6_IMPVALL.I_I-ELC270-hor2.AT2 tests/data/records/ARL360.at2 "
+           "--damping 0.02,0.05 -o %s", h5);
+  if (!run_ok(args))
+    return;
+  snprintf(args, sizeof args, "plot spectrum %s -o %s", h5, pdf);
+  if (!run_ok(args))
+    return;
+  check_page(pdf, 0, "plot spectrum");
+  enum { MAXW = 4000 };
+  word *w = malloc(MAXW * sizeof *w);
+  double pw, ph;
+  long n = w ? pdf_words(pdf, w, MAXW, &pw, &ph) : -1;
+  static const char *const want[] = {"period", "(s)", "pseudo-spectral", "PSA", "(g)",
+                                     "RotD50,", "RotD100,", "GeoMean,", "360,"};
+  for (size_t k = 0; k < sizeof want / sizeof *want; k++) {
+    long seen = 0;
+    for (long i = 0; i < n; i++)
+      seen += strcmp(w[i].text, want[k]) == 0;
+    long need = k >= 5 ? 2 : 1; /* each component at both dampings */
+    aq_check(seen >= need, "plot spectrum: \"%s\" drawn %ld times (want %ld)", want[k], seen,
+             need);
+  }
+  free(w);
+}

@@ -1,6 +1,6 @@
 /* cmd_plot.c: `archquake plot FIGURE ... -o FILE`: parse and check the
  * options, read the inputs, then draw with the plot stage (src/plot) in
- * this one thread.  Figures: history, arch, domain, suite, capacity. */
+ * this one thread.  Figures: history, arch, domain, suite, capacity, spectrum. */
 #define _GNU_SOURCE /* nl_langinfo's _NL_PAPER_WIDTH, _NL_PAPER_HEIGHT */
 #include <getopt.h>
 #include <langinfo.h>
@@ -21,10 +21,11 @@
 #include "opt_arch.h"
 #include "opt_table.h"
 
-enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_N };
-static const char *const figures[] = {"history", "arch", "domain", "suite", "capacity", NULL};
+enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_SPECTRUM, FIG_N };
+static const char *const figures[] = {"history", "arch",     "domain",
+                                      "suite",   "capacity", "spectrum", NULL};
 /* Per figure: whether it takes an input file (its options: opt_table.c). */
-static const int takes_input[FIG_N] = {1, 0, 0, 1, 1};
+static const int takes_input[FIG_N] = {1, 0, 0, 1, 1, 1};
 
 /* The locale's paper (LC_PAPER, glibc's page size in mm): Letter or A4. */
 static int locale_paper(void)
@@ -44,7 +45,7 @@ static int locale_paper(void)
 
 typedef struct {
   int fig;
-  const char *input, *out, *data, *run, *arch, *im;
+  const char *input, *out, *data, *run, *arch, *im, *record;
   int x_rad, y_pga; /* capacity: --x rad, --y pga */
   int paper;        /* an aq_plot_paper; -1: the locale's */
   double rotation_rad, cor;
@@ -67,6 +68,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->run = a.run;
   o->arch = a.arch;
   o->im = a.im;
+  o->record = a.record;
   o->x_rad = a.x_rad;
   o->y_pga = a.y_pga;
   o->paper = a.paper;
@@ -122,6 +124,7 @@ static int fail(const aq_error *err)
          : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
                  !strcmp(err->field, "--rotation") ||
                  !strcmp(err->field, "--arch") || !strcmp(err->field, "--im") ||
+                 !strcmp(err->field, "--record") ||
                  !strcmp(err->field, "--y")
              ? AQ_EXIT_USAGE
              : AQ_EXIT_FAIL;
@@ -239,6 +242,17 @@ int aq_cmd_plot(int argc, char **argv)
     if (aq_plot_capacity(&t, &co, o.input, o.out, o.data, NULL, &err) != AQ_OK)
       rc = fail(&err);
     aq_h5_capacity_table_free(&t);
+    break;
+  }
+  case FIG_SPECTRUM: {
+    aq_h5_spectra_table t;
+    if (aq_h5_spectra_read(o.input, &t, &err) != AQ_OK) {
+      rc = fail(&err);
+      break;
+    }
+    if (aq_plot_spectrum(&t, o.record, o.input, o.out, o.data, NULL, &err) != AQ_OK)
+      rc = fail(&err);
+    aq_h5_spectra_table_free(&t);
     break;
   }
   }

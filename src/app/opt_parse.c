@@ -95,7 +95,7 @@ static void command_list(unsigned mask, char *buf, size_t n)
   const char *names[AQ_CMD_N];
   size_t k = 0, len = 0;
   unsigned figures = 0;
-  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_CAPACITY; c++)
+  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_SPECTRUM; c++)
     figures |= 1u << c;
   int all_figures = (mask & figures) == figures;
   for (int c = 0; c < AQ_CMD_N; c++) {
@@ -134,7 +134,7 @@ static void refuse(aq_cmd cmd, int id, int as_short, int *nerr)
     snprintf(typed, sizeof typed, "-%c", r->short_name);
   else
     snprintf(typed, sizeof typed, "--%s", r->name);
-  int figure = cmd >= AQ_CMD_PLOT_HISTORY && cmd <= AQ_CMD_PLOT_CAPACITY;
+  int figure = cmd >= AQ_CMD_PLOT_HISTORY && cmd <= AQ_CMD_PLOT_SPECTRUM;
   fprintf(stderr, "archquake: %s%s%s: not an option of this %s (only of %s)\n", c->name,
           c->name[0] ? ": " : "", typed, figure ? "figure" : "command", list);
   (*nerr)++;
@@ -262,7 +262,7 @@ static void put_entry(FILE *f, const char *lab, const char *text, const char *no
 void aq_opts_help(aq_cmd cmd, FILE *f)
 {
   unsigned figures = 0;
-  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_CAPACITY; c++)
+  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_SPECTRUM; c++)
     figures |= 1u << c;
   if (figures >> cmd & 1u) /* a figure's help is plot's */
     cmd = AQ_CMD_PLOT;
@@ -296,9 +296,9 @@ void aq_opts_help(aq_cmd cmd, FILE *f)
       if (cmd == AQ_CMD_PLOT && (r->cmds & figures) != figures) {
         int nfig = 0;
         size_t k = 0;
-        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_CAPACITY; x++)
+        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_SPECTRUM; x++)
           nfig += (int)(r->cmds >> x & 1u);
-        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_CAPACITY; x++)
+        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_SPECTRUM; x++)
           if (r->cmds >> x & 1u) {
             int w = snprintf(note + k, sizeof note - k, "%s%s",
                              k ? ", " : nfig > 1 ? "(figures " : "(figure ",

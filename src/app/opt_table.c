@@ -17,7 +17,8 @@
 
 /* The commands an option applies to. */
 #define C(x) (1u << AQ_CMD_##x)
-#define PLOT_ALL (C(PLOT_HISTORY) | C(PLOT_ARCH) | C(PLOT_DOMAIN) | C(PLOT_SUITE) | C(PLOT_CAPACITY))
+#define PLOT_ALL (C(PLOT_HISTORY) | C(PLOT_ARCH) | C(PLOT_DOMAIN) | C(PLOT_SUITE) | C(PLOT_CAPACITY) | \
+                  C(PLOT_SPECTRUM))
 #define ALL_CMDS ((1u << AQ_CMD_N) - 1)
 #define RECORDS (C(RUN) | C(INFO) | C(CAPACITY) | C(SPECTRUM)) /* the commands that read records */
 #define SUITES (C(RUN) | C(CAPACITY))            /* ... and run them against arches */
@@ -210,6 +211,10 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                     .cmds = C(PLOT_HISTORY),
                     .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
                             "(default: the first run)"},
+    [AQ_OPT_RECORD] = {.name = "record", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(record),
+                       .cmds = C(PLOT_SPECTRUM),
+                       .help = "the record (or --components pair) of a spectrum file to draw, "
+                               "as its record column says or by file name (default: all)"},
     [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
                          .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
                          .help = "draw the mechanism deformed at that rotation of body 1: "
@@ -488,6 +493,9 @@ static const char plot_head[] =
     "        pga_lambda0; default pga_g) over the empirical fraction of\n"
     "        first collapses, censored records at their cap, and the band of\n"
     "        the median's interval\n"
+    "  spectrum SPECTRA.h5 [--record NAME]   a file of archquake spectrum -o:\n"
+    "        pseudo-spectral acceleration (g) against period (s, log axis), one\n"
+    "        curve per record, component and damping\n"
     "ARCH: an arch file (.cfg), or an installed arch by name (oppenheim).\n";
 
 /* A figure of plot: its --help is plot's. */
@@ -650,7 +658,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                      .title = "plot",
                      .help_cmd = "plot",
          .synopsis = "plot FIGURE ... -o FILE",
-         .summary = "figures (history arch domain suite capacity)",
+         .summary = "figures (history arch domain suite capacity spectrum)",
                      .head = plot_head,
                      .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
                              "bad options,\n3 the figure or the data could not be written.\n",
@@ -660,6 +668,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
     [AQ_CMD_PLOT_SUITE] = FIGURE("suite"),
     [AQ_CMD_PLOT_CAPACITY] = FIGURE("capacity"),
+    [AQ_CMD_PLOT_SPECTRUM] = FIGURE("spectrum"),
     [AQ_CMD_REPORT] =
         {.name = "report",
          .title = "report",

@@ -70,6 +70,7 @@ typedef enum {
   AQ_CMD_PLOT_DOMAIN,
   AQ_CMD_PLOT_SUITE,
   AQ_CMD_PLOT_CAPACITY,
+  AQ_CMD_PLOT_SPECTRUM,
   AQ_CMD_N
 } aq_cmd;
 
@@ -93,6 +94,7 @@ typedef enum {
   AQ_OPT_DATA,
   AQ_OPT_PAPER,
   AQ_OPT_RUN,
+  AQ_OPT_RECORD, /* plot spectrum */
   AQ_OPT_ROTATION,
   AQ_OPT_IM,
   AQ_OPT_X,
@@ -233,7 +235,7 @@ typedef struct aq_opts {
   size_t ndampings;
   int sampled_peaks; /* --sampled-peaks */
   /* plot */
-  const char *run, *im;
+  const char *run, *im, *record;
   int x_rad, y_pga; /* --x, --y: index in their choices */
   int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;

@@ -6,6 +6,7 @@
  *   domain.c    the half-cycle collapse domain
  *   suite.c     a record x arch map of the verdicts
  *   capacity.c  the collapse intervals and fragility of `archquake capacity`
+ *   spectrum.c  the response spectra of `archquake spectrum`
  * common.c renders (driver check, exit/abort handlers, temporary + rename)
  * and writes the plotted data (--data FILE.csv, also temporary + rename);
  * h5_read.c reads a run's histories (the verdicts come from
@@ -25,6 +26,7 @@
 #include "../error.h"
 #include "../report/h5.h"
 #include "../report/h5_capacity.h"
+#include "../report/h5_spectrum.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
 
@@ -211,6 +213,16 @@ typedef struct {
 } aq_plot_capacity_opts;
 
 aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity_opts *o,
+                           const char *source, const char *target, const char *data,
+                           double *draw_s, aq_error *err);
+
+/* spectrum.c: PSA (g) against period (s, log axis) of the spectra of t
+ * (a file of archquake spectrum -o, source its name), one curve per
+ * (record, component, damping), of the record named record (its record
+ * column, or that column's file name; NULL: every record).  AQ_EVALUE
+ * (field --record) when none matches or the curves are more than a legend
+ * holds (AQ_PLOT_LEGEND_MAX). */
+aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
 
