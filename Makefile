@@ -240,7 +240,7 @@ DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libae
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
             libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium
+            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium librsvg2-bin
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)

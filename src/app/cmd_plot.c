@@ -92,9 +92,11 @@ static int parse(int argc, char **argv, plot_opts *o)
     }
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
-  aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
-  if ((o->fig == FIG_ARCH && !o->input) || o->fig == FIG_DOMAIN)
-    aq_opt_require("plot", "--arch ARCH", o->arch != NULL, &nerr);
+  if (o->fig == FIG_ARCH && !o->input && !o->arch) { /* AQ_OPT_ARCH_DRAWN: not required */
+    fprintf(stderr, "archquake: plot arch: expected --arch ARCH or a results file, got "
+                    "neither\n");
+    nerr++;
+  }
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
     aq_error_print(&err, stderr);

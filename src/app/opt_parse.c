@@ -199,6 +199,22 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
       o->given[id]++;
     store(&aq_opt_rows[id], optarg, o, nerr);
   }
+  /* what the table says of cmd's options together */
+  const aq_opt_command *k = &aq_opt_commands[cmd];
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    if (!aq_opt_applies((aq_opt_id)i, cmd))
+      continue;
+    if ((r->required >> cmd & 1u) && !o->given[i]) {
+      char name[64];
+      fprintf(stderr, "archquake: %s%sexpected %s%s%s, got none\n", k->name,
+              k->name[0] ? ": " : "", spelling(r, name, sizeof name), r->meta ? " " : "",
+              r->meta ? r->meta : "");
+      (*nerr)++;
+    }
+    if (r->check)
+      r->check(o, nerr);
+  }
   return 0;
 }
 
