@@ -138,10 +138,13 @@ aq_stepper *aq_suite_stepper(const suite *S, size_t a, aq_error *err);
  * AQ_EXIT_FAIL (an arch cannot run: its runs fail). */
 int aq_suite_arches(suite *S);
 /* The records of cfg (every channel of a multi-channel file a record of its
- * own, FILE#CH) into *names (*n, for aq_record_names_free, also on failure),
- * with cfg->motions each one's motion in *mo (free()d). */
+ * own, FILE#CH, but the vertical ones of a file given whole) into *names
+ * (*n, for aq_record_names_free, also on failure), with cfg->motions each
+ * one's motion in *mo (free()d); the lines naming the verticals left out
+ * in *notes (*nnotes, for aq_record_names_free). */
 aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names, size_t *n,
-                         const aq_orient_motion ***mo, aq_error *err);
+                         const aq_orient_motion ***mo, char ***notes, size_t *nnotes,
+                         aq_error *err);
 
 /* suite_write.c */
 

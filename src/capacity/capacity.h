@@ -203,6 +203,7 @@ typedef struct {
  * PGD (m), Arias intensity (m/s), CAV (m/s), PGA / (lambda0 g). */
 enum { AQ_FRAGILITY_NIM = 6 };
 extern const char *const aq_fragility_im_names[AQ_FRAGILITY_NIM];
+extern const char *const aq_fragility_im_units[AQ_FRAGILITY_NIM]; /* "g", "m/s", "m", ..., "1" */
 /* IM number which of the record with measures im (scale 1) scaled by
  * scale, for an arch of smallest lambda0 (Arias grows as scale^2). */
 double aq_fragility_im_at(const aq_im *im, double lambda0, int which,

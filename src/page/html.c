@@ -31,6 +31,7 @@ static const char STYLE[] =
     "th{background:#e8e8e8}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
     "table.wide{width:100%}code,.mono{font-family:'DejaVu Sans Mono',monospace;font-size:.92em;"
     "word-break:break-all}\n"
+    "td.hash{font-family:'DejaVu Sans Mono',monospace;font-size:.8em;white-space:nowrap}\n"
     "pre{font-size:.85em;background:#f4f4f4;padding:.4em;white-space:pre-wrap}\n"
     ".read{background:#f3f6fb;border-left:4px solid #1f5bb4;padding:.3em .8em;margin:.6em 0}\n"
     ".v-c{background:#b3001b;color:#fff;font-weight:bold}\n"
@@ -42,6 +43,7 @@ static const char STYLE[] =
     ".summary td{border:none;padding:0 1em 0 0}\n"
     "@media print{body{max-width:none;padding:0;font-size:9pt}.controls{display:none}"
     "th.sort:after{content:''}h2{page-break-before:always}h2.first{page-break-before:auto}"
+    "h2,h3,h4{break-after:avoid;page-break-after:avoid}"
     "tr,.fig,.read{page-break-inside:avoid}thead{display:table-header-group}"
     "a{color:inherit;text-decoration:none}}\n"
     "@page{margin:12mm}\n";
@@ -296,19 +298,16 @@ static void section_run(page *p)
                "are of the processed record before scaling.  <i>Vertical</i> says "
                "whether the file identifies the channel as vertical, and how (it says "
                "so, its dip, or its channel name: Z, UD, ...); the main job runs a "
-               "vertical only with <code>--accept-vertical</code>.");
-  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>#</th><th>record</th><th>sha256</th>"
+               "vertical only with <code>--accept-vertical</code>.  The second table gives each "
+               "file's SHA-256 (as <code>sha256sum</code> prints it), to check that a file "
+               "at hand is the one that was run.");
+  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>#</th><th>record</th>"
                   "<th>format</th><th>units (from)</th><th>channel</th><th>vertical</th>"
                   "<th>PGA (g)</th><th>PGV (m/s)</th><th>Arias (m/s)</th><th>D5–95 (s)</th>"
                   "<th>status</th></tr></thead><tbody>\n");
   for (size_t i = 0; i < t->nrow; i++) {
     aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i);
     text_td(b, aq_page_cell(t, i, "name"), 1);
-    aq_page_puts(b, "<td class=\"mono\" title=\"");
-    aq_page_esc(b, aq_page_cell(t, i, "sha256"));
-    aq_page_puts(b, "\">");
-    aq_page_esc(b, aq_page_cell(t, i, "sha256"));
-    aq_page_puts(b, "</td>");
     text_td(b, aq_page_cell(t, i, "format"), 0);
     units_td(b, root, t, i);
     char ch[160];
@@ -324,6 +323,20 @@ static void section_run(page *p)
     const char *st = aq_page_cell(t, i, "status");
     aq_page_printf(b, "<td class=\"%s\">", strcmp(st, "ok") ? "v-f" : "v-s");
     aq_page_esc(b, strcmp(st, "ok") ? st : "ok");
+    aq_page_puts(b, "</td></tr>\n");
+  }
+  aq_page_puts(b, "</tbody></table>\n");
+  /* the files the records came from, with their hashes: a table of its
+     own, so that each hash stays on one line */
+  aq_page_puts(b, "<h4>Record files and their SHA-256</h4>\n"
+                  "<table class=\"wide files\"><thead><tr><th>#</th><th>file as given</th>"
+                  "<th>SHA-256 of its bytes</th></tr></thead><tbody>\n");
+  for (size_t i = 0; i < t->nrow; i++) {
+    aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i);
+    text_td(b, aq_page_cell(t, i, "source_file"), 1);
+    const char *h = aq_page_cell(t, i, "sha256");
+    aq_page_puts(b, h[0] ? "<td class=\"hash\">" : "<td>");
+    aq_page_esc(b, h[0] ? h : "– (not read)");
     aq_page_puts(b, "</td></tr>\n");
   }
   aq_page_puts(b, "</tbody></table>\n");
@@ -353,9 +366,12 @@ static void section_run(page *p)
       }
       text_td(b, set, 0);
       snprintf(k, sizeof k, "%s_joints", set);
-      text_td(b, (v = aq_page_attr(A, k)) ? v : "–", 1);
+      aq_page_puts(b, "<td class=\"hash\">");
+      aq_page_esc(b, (v = aq_page_attr(A, k)) ? v : "–");
       snprintf(k, sizeof k, "%s_faces", set);
-      text_td(b, (v = aq_page_attr(A, k)) ? v : "–", 1);
+      aq_page_puts(b, "</td><td class=\"hash\">");
+      aq_page_esc(b, (v = aq_page_attr(A, k)) ? v : "–");
+      aq_page_puts(b, "</td>");
       snprintf(k, sizeof k, "%s_lambda0", set);
       num_td(b, aq_page_attr_num(A, k), "%.4g");
       snprintf(k, sizeof k, "%s_q_c_rad", set);
