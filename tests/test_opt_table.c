@@ -466,3 +466,29 @@ AQ_TEST(opt_table_required_and_ineffective_refused)
              err);
   }
 }
+
+/* -h is --help for every command (plot too, before a figure), and plot's
+ * figures are the table's: an unknown one is named in one line with the
+ * list written here by hand. */
+AQ_TEST(opt_table_short_help_and_figures)
+{
+  static const char *const cmds[] = {"info", "mechanism", "pulse", "domain", "compare",
+                                     "capacity", "report", "spectrum", "plot", "plot arch"};
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    char a[64], b[64];
+    static char out_h[65536], out_help[65536], err[4096];
+    snprintf(a, sizeof a, "%s -h", cmds[k]);
+    snprintf(b, sizeof b, "%s --help", cmds[k]);
+    int rh = aq_test_run(a, out_h, sizeof out_h, err, sizeof err);
+    int rl = aq_test_run(b, out_help, sizeof out_help, err, sizeof err);
+    aq_check(rh == 0 && rl == 0 && strncmp(out_h, "usage: archquake ", 17) == 0 &&
+                 strcmp(out_h, out_help) == 0,
+             "%s: exit %d, and the same text as --help (exit %d)", a, rh, rl);
+  }
+  char out[4096], err[4096];
+  int rc = aq_test_run("plot bogus -o x.png", out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && aq_test_count_lines(err) == 1 &&
+               strstr(err, "plot: expected one of "
+                           "history|arch|domain|suite|capacity|spectrum, got \"bogus\""),
+           "plot bogus: exit %d, one line naming the figures: %s", rc, err);
+}

@@ -21,10 +21,11 @@
 #include "opt_arch.h"
 #include "opt_table.h"
 
+/* The figures, in the order of their commands in opt_table.h (their names
+ * and options: opt_table.c). */
 enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_SPECTRUM, FIG_N };
-static const char *const figures[] = {"history", "arch",     "domain",
-                                      "suite",   "capacity", "spectrum", NULL};
-/* Per figure: whether it takes an input file (its options: opt_table.c). */
+_Static_assert(FIG_N == AQ_CMD_N - AQ_CMD_PLOT - 1, "a figure per plot command");
+/* Per figure: whether it takes an input file. */
 static const int takes_input[FIG_N] = {1, 0, 0, 1, 1, 1};
 
 /* The locale's paper (LC_PAPER, glibc's page size in mm): Letter or A4. */
@@ -86,8 +87,8 @@ static int parse(int argc, char **argv, plot_opts *o)
     if (optind < argc)
       o->input = argv[optind++];
     else {
-      fprintf(stderr, "archquake: plot %s: expected a results file (.h5), got none\n",
-              figures[o->fig]);
+      fprintf(stderr, "archquake: %s: expected a results file (.h5), got none\n",
+              aq_opt_commands[cmd].name);
       nerr++;
     }
   }
@@ -168,16 +169,15 @@ out:
 
 int aq_cmd_plot(int argc, char **argv)
 {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+  if (argc < 2 || aq_opt_is(AQ_OPT_HELP, argv[1])) {
     aq_opts_help(AQ_CMD_PLOT, argc < 2 ? stderr : stdout);
     return argc < 2 ? AQ_EXIT_USAGE : AQ_EXIT_OK;
   }
   plot_opts o = {.rotation_rad = 0};
-  int fig = -1, nerr = 0;
-  aq_opt_choice("plot", argv[1], figures, &fig, &nerr);
-  if (nerr)
+  int cmd = aq_opts_figure(argv[1]);
+  if (cmd < 0)
     return AQ_EXIT_USAGE;
-  o.fig = fig;
+  o.fig = cmd - (AQ_CMD_PLOT + 1);
   int p = parse(argc - 1, argv + 1, &o);
   if (p) {
     free(o.ratios);

@@ -398,7 +398,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .help = "each oscillator's peak at the samples only, as PEER's "
                                       "NGA-West2 flatfile takes it (default: over continuous "
                                       "time, between samples too; docs/spectrum.md)"},
-    [AQ_OPT_HELP] = {.name = "help", .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
+    [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
 
     [AQ_OPT_UNITS] = {.name = "units", .kind = AQ_ARG_CUSTOM, .meta = "U", .fn = units,

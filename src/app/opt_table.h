@@ -75,6 +75,8 @@ typedef enum {
   AQ_CMD_PLOT_SPECTRUM,
   AQ_CMD_N
 } aq_cmd;
+/* plot's figures: AQ_CMD_PLOT < cmd < AQ_CMD_N. */
+#define AQ_CMD_IS_FIGURE(c) ((c) > AQ_CMD_PLOT && (c) < AQ_CMD_N)
 
 /* The options, in the order --help lists them within a group. */
 typedef enum {
@@ -305,5 +307,12 @@ void aq_opts_main_help(FILE *f);
 
 /* 1 if option id applies to command cmd. */
 int aq_opt_applies(aq_opt_id id, aq_cmd cmd);
+
+/* 1 if word spells option id ("--name", or "-x" for its letter). */
+int aq_opt_is(aq_opt_id id, const char *word);
+
+/* The figure of plot named word ("history": the command "plot history"),
+ * or -1 with one line naming the figures on stderr. */
+int aq_opts_figure(const char *word);
 
 #endif

@@ -363,6 +363,14 @@ aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names_out, size_t *n_o
       }
     }
   }
+  /* a record's name is stored whole or not at all: refused before any run
+   * when it does not fit the results' record fields */
+  for (size_t i = 0; st == AQ_OK && i < n; i++)
+    if (strlen(names[i]) >= AQ_SUMMARY_RECORD_MAX)
+      st = aq_error_set(err, AQ_EVALUE, names[i], -1, -1, "record name",
+                        "expected at most %d bytes (the results' record and source_file "
+                        "fields), got %zu: run it from a shorter path",
+                        AQ_SUMMARY_RECORD_MAX - 1, strlen(names[i]));
   *names_out = names;
   *n_out = n;
   *mo_out = mo;
