@@ -110,13 +110,10 @@ check: build/san/runner build/san/archquake
 # alone writes, with the serial HDF5 library.  Only `make mpi` needs MPI.
 MPICC ?= mpicc
 mpi: archquake-mpi
-build/mpi/main.o: src/main.c $(HDRS)
-	@mkdir -p $(dir $@)
-	$(CC) $(AQ_CFLAGS) $(CFLAGS) -DAQ_MAIN=aq_main_serial -c -o $@ $<
 build/mpi/mpi.o: src/app/mpi.c $(HDRS)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
-archquake-mpi: build/mpi/mpi.o build/mpi/main.o $(REL_OBJ)
+archquake-mpi: build/mpi/mpi.o $(REL_OBJ)
 	$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 
 # The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3

@@ -1,4 +1,7 @@
-/* capacity.h: collapse capacity of an arch under a record scaled by a
+/* src/capacity: the scale factors at which an arch's verdict changes under
+ * a record, and fragility fits of them.
+ *
+ * capacity.h: collapse capacity of an arch under a record scaled by a
  * factor (src/capacity), and lognormal fragility fits of the first-collapse
  * intensities.
  *

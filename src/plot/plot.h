@@ -1,4 +1,6 @@
-/* plot.h: figures from archquake's results, drawn with PLplot (devices
+/* src/plot: figures (PNG, SVG, PDF) drawn with PLplot from a results file.
+ *
+ * plot.h: figures from archquake's results, drawn with PLplot (devices
  * pngcairo, svg (text kept as text), pdfcairo (A4 or Letter pages); the
  * format is the target's extension).  One figure per file:
  *   history.c   one run's ground acceleration, rotation and energies
