@@ -18,6 +18,7 @@
 #include "app.h"
 #include "../util/cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_table.h"
 
 /* The figures, in the order of their commands in opt_table.h (their names
@@ -78,6 +79,10 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->nr = a.nratios;
   a.ratios = NULL;
   aq_opts_free(&a);
+  if (o->fig == FIG_ARCH && optind < argc) /* a results file: its arch by name */
+    o->input = argv[optind++];
+  else if (o->fig == FIG_ARCH && o->arch) /* an arch file, or an installed one */
+    o->arch = aq_opt_arch((char *)o->arch, &nerr); /* argv's own string */
   if (takes_input[o->fig]) {
     if (optind < argc)
       o->input = argv[optind++];
@@ -88,6 +93,11 @@ static int parse(int argc, char **argv, plot_opts *o)
     }
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
+  if (o->fig == FIG_ARCH && !o->input && !o->arch) { /* AQ_OPT_ARCH_DRAWN: not required */
+    fprintf(stderr, "archquake: plot arch: expected --arch ARCH or a results file, got "
+                    "neither\n");
+    nerr++;
+  }
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
@@ -187,7 +197,8 @@ int aq_cmd_plot(int argc, char **argv)
     aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
     slot[1] = aq_cleanup_add(tmp[1]);
   }
-  if (o.arch && o.fig != FIG_CAPACITY && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+  if (o.arch && o.fig != FIG_CAPACITY && !(o.fig == FIG_ARCH && o.input) &&
+      aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
     rc = fail(&err);
     goto out;
   }
@@ -204,7 +215,8 @@ int aq_cmd_plot(int argc, char **argv)
     break;
   }
   case FIG_ARCH:
-    if (aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err) != AQ_OK)
+    if ((o.input ? aq_plot_arch_h5(o.input, o.arch, o.rotation_rad, o.out, o.data, NULL, &err)
+                 : aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err)) != AQ_OK)
       rc = fail(&err);
     break;
   case FIG_DOMAIN:

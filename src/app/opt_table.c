@@ -197,14 +197,18 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "repeatable",
                        .required = SUITES},
     [AQ_OPT_ARCH] = {.name = "arch", .kind = AQ_ARG_CUSTOM, .meta = "FILE", .fn = one_arch,
-                     .cmds = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_ARCH) | C(PLOT_DOMAIN),
+                     .cmds = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_DOMAIN),
                      .help = "the arch file (.cfg), or an installed arch by name (oppenheim)",
-                     .required = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_ARCH) |
-                                 C(PLOT_DOMAIN)},
+                     .required = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_DOMAIN)},
     [AQ_OPT_ARCH_NAME] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(arch),
                           .cmds = C(PLOT_CAPACITY),
                           .help = "the arch of the capacity file to draw, by its name "
                                   "(default: the file's first)"},
+    [AQ_OPT_ARCH_DRAWN] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "ARCH", DEST(arch),
+                           .cmds = C(PLOT_ARCH),
+                           .help = "the arch file (.cfg), or an installed arch by name; with "
+                                   "a results file (RESULTS.h5 before the options), the name "
+                                   "of its arch to draw (default: its first)"},
     [AQ_OPT_ACCEL_G] = {.name = "accel-g", .kind = AQ_ARG_DOUBLE, .lo = -100, .hi = 100,
                         .meta = "A", DEST(accel_g), .cmds = C(PULSE),
                         .help = "pulse amplitude, g (signed, |A| <= 100: its sign is the "

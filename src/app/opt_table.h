@@ -83,6 +83,7 @@ typedef enum {
   AQ_OPT_ARCHES = 0, /* --arch, repeatable (run, capacity) */
   AQ_OPT_ARCH,       /* --arch, one (mechanism, pulse, domain, plot) */
   AQ_OPT_ARCH_NAME,  /* --arch NAME of a capacity file (plot capacity) */
+  AQ_OPT_ARCH_DRAWN, /* --arch FILE, or NAME with a results file (plot arch) */
   AQ_OPT_ACCEL_G,
   AQ_OPT_DURATION,
   AQ_OPT_END,

@@ -3,6 +3,7 @@
  * script only adds sorting (click a column's head) and a filter by verdict
  * to the verdict tables; every table and figure is there without it. */
 #include <errno.h>
+#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -191,12 +192,33 @@ static void vertical_td(aq_page_buf *b, const aq_page_table *t, size_t i)
 
 /* ---- figures ----------------------------------------------------------- */
 
+/* Whether results file path keeps arch index's geometry (/geometry/NNN). */
+static int has_geometry(const char *path, size_t index)
+{
+  char obj[64];
+  snprintf(obj, sizeof obj, "/geometry/%03zu", index);
+  int there = 0;
+  H5E_BEGIN_TRY
+  {
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) {
+      there = H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 && H5Lexists(f, obj, H5P_DEFAULT) > 0;
+      H5Fclose(f);
+    }
+  }
+  H5E_END_TRY;
+  return there;
+}
+
 typedef struct {
   const aq_arch *arch;
+  const char *results, *name; /* arch NULL: drawn from the results file's /geometry */
 } arch_fig;
 static aq_status draw_arch(void *ctx, const char *svg, aq_error *err)
 {
   const arch_fig *a = ctx;
+  if (!a->arch)
+    return aq_plot_arch_h5(a->results, a->name, 0, svg, NULL, NULL, err);
   return aq_plot_arch(a->arch, 0, svg, NULL, NULL, err);
 }
 
@@ -465,8 +487,11 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
   const char *cfg = aq_page_attr(A, "config");
   aq_arch *arch = NULL;
   aq_error e;
-  if (cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK) {
-    arch_fig f = {arch};
+  /* from its .cfg as read; an arch the .cfg alone does not make (a joints
+   * arch's files) from the geometry the results file keeps */
+  int loaded = cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK;
+  if (loaded || has_geometry(p->in->results, a)) {
+    arch_fig f = {arch, p->in->results, name};
     char label[200];
     snprintf(label, sizeof label, "arch %s to scale with its hinge sets", name);
     aq_status st = figure(p, label, draw_arch, &f);
