@@ -179,7 +179,7 @@ AQ_TEST(report_long_record_name_whole_or_refused)
     int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
     FILE *f = fopen(h5, "rb");
     if (!extra) {
-      char want[1400];
+      char want[sizeof p + 16];
       snprintf(want, sizeof want, "\n%s\tthin\t", p);
       aq_check(rc == 0 && strstr(out, want) && f, "255 bytes: exit %d: %s", rc, err);
     } else {
