@@ -110,13 +110,10 @@ check: build/san/runner build/san/archquake
 # alone writes, with the serial HDF5 library.  Only `make mpi` needs MPI.
 MPICC ?= mpicc
 mpi: archquake-mpi
-build/mpi/main.o: src/main.c $(HDRS)
-	@mkdir -p $(dir $@)
-	$(CC) $(AQ_CFLAGS) $(CFLAGS) -DAQ_MAIN=aq_main_serial -c -o $@ $<
 build/mpi/mpi.o: src/app/mpi.c $(HDRS)
 	@mkdir -p $(dir $@)
 	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
-archquake-mpi: build/mpi/mpi.o build/mpi/main.o $(REL_OBJ)
+archquake-mpi: build/mpi/mpi.o $(REL_OBJ)
 	$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 
 # The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3
@@ -240,7 +237,7 @@ DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libae
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
             libglpk-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
-            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium
+            openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium librsvg2-bin
 deps:
 	apt-get update
 	DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(DEB_PKGS)

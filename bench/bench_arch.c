@@ -1,10 +1,21 @@
 /* bench_arch.c: building an arch (geometry, both work paths with their
  * tables and the Taylor leg's pieces) at 20 and 60 voussoirs, with given hinges and with the mechanism
- * search, and the cost of one path evaluation (tables vs exact). */
+ * search, and the cost of one path evaluation (tables vs exact); then
+ * every shape: loading each shipped arch (its search included) and a
+ * bridge arch of 1000 voussoirs with its fill, and the cost per moving
+ * step of the workpath model against the ode reference (rtol 1e-12) under
+ * a pulse of 1.5 lambda0 for 0.1 s then 1.9 s free (rocking, impacts, no
+ * collapse), with the workpath's error in peak rotation against the
+ * ode's. */
+#include <gsl/gsl_errno.h>
+#include <math.h>
 #include <stdio.h>
 
+#include "arch/arch.h"
 #include "arch/model.h"
+#include "arch/stepper.h"
 #include "bench.h"
+#include "signal/steps.h"
 #include "units.h"
 
 #define REPS 21
@@ -56,8 +67,113 @@ static double search_ms(size_t nv)
   return 1e3 * aq_bench_median(t, REPS);
 }
 
+/* Median ms to load path (its search included); -1 on error. */
+static double load_ms(const char *path, int reps)
+{
+  double t[REPS];
+  for (int r = 0; r < reps; r++) {
+    aq_arch *a = NULL;
+    aq_error e;
+    double t0 = aq_bench_now_s();
+    aq_status st = aq_arch_load(path, &a, &e);
+    t[r] = aq_bench_now_s() - t0;
+    aq_arch_free(a);
+    if (st != AQ_OK) {
+      fprintf(stderr, "bench_arch: %s\n", e.message);
+      return -1;
+    }
+  }
+  return 1e3 * aq_bench_median(t, (size_t)reps);
+}
+
+/* One run of arch a under steps by model m: *us per moving step (median of
+ * reps), *peak the peak rotation; 0 on error. */
+static int step_cost(const aq_arch *a, aq_model m, const aq_steps *steps, int reps, double *us,
+                     double *peak, size_t *moving)
+{
+  double t[REPS];
+  for (int r = 0; r < reps; r++) {
+    aq_error e;
+    aq_result res;
+    aq_stepper *st = aq_stepper_alloc(aq_arch_path(a, 0), aq_arch_path(a, 1), m, &e);
+    if (!st) {
+      fprintf(stderr, "bench_arch: %s\n", e.message);
+      return 0;
+    }
+    const aq_arch_dynamics *dyn = aq_arch_dynamics_of(a);
+    aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
+    aq_stepper_set_cor(st, dyn->cor);
+    if (m == AQ_MODEL_ODE)
+      aq_stepper_set_ode_rtol(st, 1e-12);
+    double t0 = aq_bench_now_s();
+    aq_status rc = aq_stepper_run(st, steps, &res, &e);
+    t[r] = aq_bench_now_s() - t0;
+    aq_stepper_free(st);
+    if (rc != AQ_OK) {
+      fprintf(stderr, "bench_arch: %s\n", e.message);
+      return 0;
+    }
+    *peak = res.peak_rotation_rad;
+    *moving = res.steps_moving;
+    t[r] /= res.steps_moving ? (double)res.steps_moving : 1.0;
+  }
+  *us = 1e6 * aq_bench_median(t, (size_t)reps);
+  return 1;
+}
+
+static int shapes(void)
+{
+  static const char *const names[] = {"oppenheim", "gothic", "bridge", "catenary", "vertical"};
+  printf("\narch\tshape\tvoussoirs\tload_ms\tmoving_steps\twp_us_per_step\t"
+         "ode_us_per_step\tode_over_wp\tpeak_rot_rad\tpeak_rot_rel_err\n");
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+    char path[64];
+    snprintf(path, sizeof path, "arches/%s.cfg", names[k]);
+    double ms = load_ms(path, 5);
+    aq_arch *a = NULL;
+    aq_error e;
+    if (ms < 0 || aq_arch_load(path, &a, &e) != AQ_OK)
+      return 0;
+    const aq_path *p = aq_arch_path(a, 0);
+    enum { NS = 200 }; /* 2 s at 0.01 s */
+    double acc[NS];
+    for (int i = 0; i < NS; i++)
+      acc[i] = i < 10 ? p->act_sign * 1.5 * p->lambda0 * aq_arch_dynamics_of(a)->g_mps2 : 0;
+    aq_steps steps;
+    int ok = aq_steps_from_samples(acc, NS, 0.01, 0, 0, &steps, &e) == AQ_OK;
+    double us[2] = {0, 0}, peak[2] = {0, 0};
+    size_t mv[2] = {0, 0};
+    ok = ok && step_cost(a, AQ_MODEL_WORKPATH, &steps, REPS, &us[0], &peak[0], &mv[0]) &&
+         step_cost(a, AQ_MODEL_ODE, &steps, 5, &us[1], &peak[1], &mv[1]);
+    aq_arch_drawing d;
+    aq_arch_drawing_of(a, &d);
+    if (ok)
+      printf("%s\t%s\t%zu\t%.2f\t%zu\t%.2f\t%.2f\t%.1f\t%.4g\t%.1e\n", names[k],
+             d.shape, d.voussoirs, ms, mv[0], us[0], us[1], us[1] / us[0], peak[1],
+             fabs(peak[0] - peak[1]) / peak[1]);
+    aq_steps_free(&steps);
+    aq_arch_free(a);
+    if (!ok)
+      return 0;
+  }
+  /* 1000 voussoirs: the bound is 1 s, search included */
+  FILE *f = fopen("build/bench/elliptical1000.cfg", "w");
+  if (!f)
+    return 0;
+  fprintf(f, "[arch]\nname = elliptical1000\nshape = elliptical\nspan_m = 12\nrise_m = 4.2\n"
+             "thickness_m = 0.8\nvoussoirs = 1000\ndensity_kg_m3 = 2200\ndepth_m = 4\n"
+             "[fill]\nlevel_m = 5.3\ndensity_kg_m3 = 1800\n");
+  fclose(f);
+  double ms = load_ms("build/bench/elliptical1000.cfg", 5);
+  if (ms < 0)
+    return 0;
+  printf("elliptical1000\telliptical\t1000\t%.1f\t-\t-\t-\t-\t-\t-\n", ms);
+  return 1;
+}
+
 int main(void)
 {
+  gsl_set_error_handler_off();
   printf("voussoirs\thinges\tbuild_ms\tsearch_ms\tsets\ttable_n_primary\ttable_n_reverse\t"
          "table_err_primary\ttable_err_reverse\tpieces_primary\tpieces_reverse\n");
   static const size_t nvs[] = {20, 60};
@@ -101,5 +217,7 @@ int main(void)
   printf("\neval\tns_per_call\tratio_to_table\n");
   printf("table\t%.1f\t1.00\nexact\t%.1f\t%.2f\n", 1e9 * me, 1e9 * mx, mx / me);
   aq_arch_free(a);
+  if (!shapes())
+    return 1;
   return sink == 12345.678 ? 1 : 0;
 }

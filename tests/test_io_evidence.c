@@ -278,7 +278,8 @@ AQ_TEST(io_evidence_vertical_is_vertical)
 
 /* The main job's names: a JMA CSV's UD (its header line "NS,EW,UD") is left
  * out with one note when the file is given whole, kept when named (FILE#UD,
- * or a --component rule) or with --accept-vertical. */
+ * or a --component rule) or with --accept-vertical; the main job runs NS
+ * and EW and exits 0, and refuses UD named without --accept-vertical. */
 AQ_TEST(io_evidence_vertical_skipped_unless_named)
 {
   static const char *const csv = REC_DIR "Q4149CF2.csv";
@@ -318,6 +319,18 @@ AQ_TEST(io_evidence_vertical_skipped_unless_named)
     aq_record_names_free(names, n);
     aq_record_names_free(notes, nn);
   }
+  /* the main job: NS and EW run, exit 0, one note; UD named: refused */
+  static char out[8192];
+  char err[4096];
+  int rc = aq_test_run(REC_DIR "Q4149CF2.csv --arch arches/oppenheim.cfg", out, sizeof out, err,
+                       sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out) == 3 && !strstr(out, "#UD") &&
+               aq_test_count_lines(err) == 1 && strstr(err, "Q4149CF2.csv#UD: skipped"),
+           "main job: exit %d: %s%s", rc, out, err);
+  rc = aq_test_run(REC_DIR "Q4149CF2.csv#UD --arch arches/oppenheim.cfg", out, sizeof out, err,
+                   sizeof err);
+  aq_check(rc == 1 && strstr(err, "expected a horizontal component") && strstr(err, "\"UD\""),
+           "UD named: exit %d: %s", rc, err);
   snprintf(ro.components[0].glob, sizeof ro.components[0].glob, "*Q4149CF2*");
   snprintf(ro.components[0].channel, sizeof ro.components[0].channel, "UD");
   ro.ncomponents = 1;

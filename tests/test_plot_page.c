@@ -7,12 +7,15 @@
  *   - a record name too long for the suite's margin is drawn shortened by
  *     an ellipsis in the middle (its start and end kept), within the page,
  *     and is whole in the data; the SVG keeps its text as text;
+ *   - a tall suite map (26 records, 5 arches): each cell's label fits its
+ *     cell, no two words overlap, the arches' names are whole;
  *   - history at small rotations: the tick labels of the rotation axis
  *     stay clear of its title, and the note of a missing ground is drawn;
  *   - capacity: a strip per record and polarity, each with its first
  *     collapse scale as `archquake capacity` prints it;
  *   - domain --data: the axis titles in plain text, no PLplot escapes.
- * Skipped, and said so, where poppler-utils is not installed. */
+ * Skipped, and said so, where poppler-utils is not installed (and the
+ * SVG's part where librsvg2-bin's rsvg-convert is not). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -177,6 +180,92 @@ AQ_TEST(plot_page_suite_long_names)
   snprintf(args, sizeof args, "plot suite %s -o %s --paper letter", h5, pdf);
   if (run_ok(args))
     check_page(pdf, 1, "suite, --paper letter");
+}
+
+/* Is s a cell's label of the suite map: collapse, failed or a number
+ * with three decimals? */
+static int map_label(const char *s)
+{
+  if (strcmp(s, "collapse") == 0 || strcmp(s, "failed") == 0)
+    return 1;
+  size_t n = strlen(s);
+  return n == 5 && s[0] >= '0' && s[0] <= '9' && s[1] == '.' && strspn(s + 2, "0123456789") == 3;
+}
+
+/* The words of the tall map of plot_page_suite_tall_map_cells in pdf. */
+static void map_words(const char *pdf, const char *what)
+{
+  enum { MAXW = 1000 };
+  word *w = malloc(MAXW * sizeof *w);
+  double pw = NAN, ph = NAN;
+  long nw = w ? pdf_words(pdf, w, MAXW, &pw, &ph) : -1;
+  long labels = 0, overlaps = 0, arches = 0;
+  static const char *const names[] = {"thin", "thick", "oppenheim", "segmental", "search"};
+  for (long i = 0; i < nw; i++) {
+    labels += map_label(w[i].text);
+    for (size_t k = 0; k < 5; k++)
+      arches += strcmp(w[i].text, names[k]) == 0;
+    for (long j = i + 1; j < nw; j++) {
+      double dy = fmin(w[i].y1, w[j].y1) - fmax(w[i].y0, w[j].y0);
+      double dx = fmin(w[i].x1, w[j].x1) - fmax(w[i].x0, w[j].x0);
+      if (dy > 0.5 * (w[i].y1 - w[i].y0) && dx > 0 && overlaps++ < 3)
+        aq_check(0, "%s: \"%s\" and \"%s\" overlap", what, w[i].text, w[j].text);
+    }
+  }
+  /* and the caption's "red: collapse" */
+  aq_check(labels == 26 * 5 + 1, "%s: one word per cell, a label (%ld of %d)", what, labels,
+           26 * 5 + 1);
+  aq_check(overlaps == 0, "%s: no two words overlap (%ld)", what, overlaps);
+  aq_check(arches == 5, "%s: the arches' names whole (%ld of 5)", what, arches);
+  free(w);
+}
+
+/* A tall map (26 records) of the five shipped arches: PLplot's text grows
+ * with the figure's height, and it outgrew the cells ("collapse" over its
+ * neighbours, "0.0020.000" read as one word).  Each cell's label is one
+ * word, no two words of a line overlap, and the arches' names are whole. */
+AQ_TEST(plot_page_suite_tall_map_cells)
+{
+  char dir[512], args[8192], pdf[600], h5[600], cmd[2400], out[256];
+  aq_test_tmpdir(dir, sizeof dir);
+  int n = snprintf(args, sizeof args, "-q -o %s/m.h5", dir);
+  for (int i = 0; i < 24; i++) {
+    snprintf(cmd, sizeof cmd, "cp tests/data/records/ARL360.at2 '%s/r%02d_from_a_station_archive_ARL360.at2'", dir, i);
+    if (!aq_check(sh(cmd, out, sizeof out) == 0, "copy the record"))
+      return;
+    n += snprintf(args + n, sizeof args - (size_t)n, " %s/r%02d_from_a_station_archive_ARL360.at2", dir, i);
+  }
+  snprintf(cmd, sizeof cmd, "echo not a record >'%s/broken.at2'", dir);
+  sh(cmd, out, sizeof out);
+  snprintf(args + n, sizeof args - (size_t)n,
+           " tests/data/records/IELC180.AT2 %s/broken.at2 --arch " ARCHES "thin.cfg --arch " ARCHES
+           "thick.cfg --arch " ARCHES "oppenheim.cfg --arch " ARCHES "segmental.cfg --arch " ARCHES
+           "search.cfg",
+           dir);
+  char err[2048];
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 1, "the suite: exit %d (one record unreadable) %s", rc, err);
+  if (!have_poppler())
+    return;
+  snprintf(h5, sizeof h5, "%s/m.h5", dir);
+  snprintf(pdf, sizeof pdf, "%s/m.pdf", dir);
+  snprintf(args, sizeof args, "plot suite %s -o %s", h5, pdf);
+  if (!run_ok(args))
+    return;
+  check_page(pdf, 0, "tall suite map, PDF");
+  map_words(pdf, "PDF");
+  /* the SVG (the report's figures), as librsvg lays it out */
+  if (sh("command -v rsvg-convert >/dev/null && echo y", out, sizeof out) != 0 || out[0] != 'y') {
+    fprintf(stderr, "test_plot_page: rsvg-convert not installed (librsvg2-bin): the SVG map "
+                    "not checked\n");
+    return;
+  }
+  snprintf(args, sizeof args, "plot suite %s -o %s/m.svg", h5, dir);
+  snprintf(cmd, sizeof cmd, "rsvg-convert -f pdf -o '%s/svg.pdf' '%s/m.svg' 2>&1", dir, dir);
+  if (run_ok(args) && aq_check(sh(cmd, out, sizeof out) == 0, "%s: %s", cmd, out)) {
+    snprintf(pdf, sizeof pdf, "%s/svg.pdf", dir);
+    map_words(pdf, "SVG");
+  }
 }
 
 AQ_TEST(plot_page_history_small_rotation)

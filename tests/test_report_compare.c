@@ -263,7 +263,7 @@ static int write_runs(const char *path, const aq_summary *s, size_t n)
     goto fail;
   for (size_t k = 0; k < 2; k++) {
     aq_h5_arch ha = {k ? "thin" : "oppenheim", "x.cfg", "", NULL, {NULL, NULL},
-                     k ? "77aa" : "9e6c", 0, {NULL, NULL}, {NULL, NULL}};
+                     k ? "77aa" : "9e6c", 0, {NULL, NULL}, {NULL, NULL}, NULL};
     if (aq_h5_write_arch(w, k, &ha, &err) != AQ_OK)
       goto fail;
   }

@@ -11,7 +11,8 @@
  *   - in a browser (Debian's chromium, headless, from disk; skipped and
  *     said so where it is not installed): the page's first screen and its
  *     second arch's verdict table are screenshots that are not blank and
- *     show the table's COLLAPSE cells; the page prints to PDF; its net log
+ *     show the table's COLLAPSE cells; the page prints to PDF on A4 and on
+ *     Letter, every page that size and every word within its margins; its net log
  *     holds no request but the page's own file; the script ran (the DOM
  *     has the filter it adds).  The screenshots are kept in build/check/. */
 #define _XOPEN_SOURCE 700 /* realpath(3) */
@@ -154,6 +155,11 @@ AQ_TEST(report_page_holds_the_suite)
   /* the run and the capacity file */
   aq_check(strstr(html, "ARL360.at2") && strstr(html, "sha256") && strstr(html, "format_version") == NULL,
            "the run: records, hashes; bookkeeping left out");
+  /* the record's hash as sha256sum gives it, on one line of the files table */
+  char sum[128] = "", cell[200];
+  sh("sha256sum " REC "ARL360.at2", sum, sizeof sum);
+  snprintf(cell, sizeof cell, "<td class=\"hash\">%.64s</td>", sum);
+  aq_check(strlen(sum) > 64 && strstr(html, cell), "the files table: %s", cell);
   aq_check(count(html, "RSN77_SFERN_PUL164-hor1.AT2") >= 2 && strstr(html, "pga_g") &&
                strstr(html, "ranked by the dispersion"),
            "capacity: its rows and the ranking of the measures");
@@ -224,6 +230,43 @@ AQ_TEST(report_page_records_units_and_vertical)
              "%s: units \"%s\", vertical \"%s\" in: %s", want[i].name, want[i].units,
              want[i].vertical, row);
   }
+  free(html);
+}
+
+/* Arches of other shapes: the arches table gives each one's shape and
+ * voussoirs as its .cfg states them (gothic.cfg: pointed, 24; bridge.cfg:
+ * elliptical, 31), and each is drawn with its line of thrust. */
+AQ_TEST(report_page_arch_shapes)
+{
+  char dir[512], h5[600], page[600], args[3000], err[4096];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/g.h5", dir);
+  snprintf(page, sizeof page, "%s/g.html", dir);
+  snprintf(args, sizeof args,
+           REC "IELC180.AT2 --arch " ARCHES "gothic.cfg --arch " ARCHES "bridge.cfg -j 1 -q -o %s",
+           h5);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  snprintf(args, sizeof args, "report %s -o %s", h5, page);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  char *html = aq_test_read_file(page, NULL);
+  if (!aq_check(rc == 0 && html, "%s: exit %d %s", args, rc, err))
+    return;
+  char *cfg[2] = {aq_test_read_file(ARCHES "gothic.cfg", NULL),
+                  aq_test_read_file(ARCHES "bridge.cfg", NULL)};
+  aq_check(cfg[0] && strstr(cfg[0], "shape = pointed") && strstr(cfg[0], "voussoirs = 24") &&
+               cfg[1] && strstr(cfg[1], "shape = elliptical") && strstr(cfg[1], "voussoirs = 31"),
+           "the .cfg files state the shapes");
+  const char *t = strstr(html, "id=\"arches\"");
+  const char *end = t ? strstr(t, "</table>") : NULL;
+  const char *g = t ? strstr(t, "pointed, 24 voussoirs") : NULL;
+  const char *e = t ? strstr(t, "elliptical, 31 voussoirs") : NULL;
+  aq_check(g && e && g < end && e < end, "the arches table: pointed and elliptical");
+  aq_check(count(html, "<svg class=\"fig\"") >= 3 && count(html, "line of thrust") >= 2,
+           "each arch drawn with its line of thrust (%zu figures, %zu)",
+           count(html, "<svg class=\"fig\""), count(html, "line of thrust"));
+  free(cfg[0]);
+  free(cfg[1]);
   free(html);
 }
 
@@ -446,30 +489,81 @@ AQ_TEST(report_page_in_chromium)
   char cmd[3000];
   snprintf(cmd, sizeof cmd, "cp '%s' build/check/report-first-page.png", shot[0]);
   sh(cmd, NULL, 0);
-  /* printed to PDF; its page where the arch thin begins, as an image */
-  char pdf[700];
-  snprintf(pdf, sizeof pdf, "%s/report.pdf", dir);
-  snprintf(what, sizeof what, "--print-to-pdf='%s'", pdf);
-  chromium(dir, what, url, NULL, 0);
-  size_t n = 0;
-  char *bytes = aq_test_read_file(pdf, &n);
-  size_t pages = 0;
-  for (size_t i = 0; bytes && i + 11 < n; i++)
-    pages += memcmp(bytes + i, "/Type /Page", 11) == 0 && bytes[i + 11] != 's';
-  aq_check(bytes && n > 1000 && memcmp(bytes, "%PDF", 4) == 0 && pages >= 3,
-           "printed to PDF: %zu bytes, %zu pages", n, pages);
-  free(bytes);
+  /* printed to PDF on A4 and on Letter (a copy of the page whose CSS asks
+     for the paper: the browser's own default is its locale's); every word,
+     the figures' too, within the page's 12 mm margins; the A4 page where
+     the arch thin begins kept as an image */
+  static const struct {
+    const char *name, *css;
+    double w_pt, h_pt;
+  } paper[] = {{"A4", "210mm 297mm", 595.276, 841.89}, {"Letter", "8.5in 11in", 612, 792}};
   char out[64];
-  if (sh("command -v pdftoppm >/dev/null && command -v pdftotext >/dev/null && echo y", out,
-         sizeof out) == 0 &&
-      out[0] == 'y') {
+  int poppler = sh("command -v pdftoppm >/dev/null && command -v pdftotext >/dev/null && "
+                   "command -v pdfinfo >/dev/null && echo y",
+                   out, sizeof out) == 0 &&
+                out[0] == 'y';
+  if (!poppler)
+    fprintf(stderr, "test_report_page: poppler-utils not installed: the printed pages are "
+                    "not measured\n");
+  char *text = malloc(BIG);
+  for (size_t k = 0; k < 2 && text; k++) {
+    char copy[700], pdf[700], copy_real[4096];
+    snprintf(copy, sizeof copy, "%s/report-%s.html", dir, paper[k].name);
+    snprintf(cmd, sizeof cmd, "sed 's|</head>|<style>@page{size:%s}</style></head>|' '%s' >'%s'",
+             paper[k].css, page, copy);
+    sh(cmd, NULL, 0);
+    snprintf(pdf, sizeof pdf, "%s/report-%s.pdf", dir, paper[k].name);
+    snprintf(what, sizeof what, "--print-to-pdf='%s'", pdf);
+    snprintf(url, sizeof url, "file://%.1100s", realpath(copy, copy_real) ? copy_real : copy);
+    chromium(dir, what, url, NULL, 0);
+    size_t n = 0;
+    char *bytes = aq_test_read_file(pdf, &n);
+    size_t pages = 0;
+    for (size_t i = 0; bytes && i + 11 < n; i++)
+      pages += memcmp(bytes + i, "/Type /Page", 11) == 0 && bytes[i + 11] != 's';
+    aq_check(bytes && n > 1000 && memcmp(bytes, "%PDF", 4) == 0 && pages >= 3,
+             "%s: printed to PDF: %zu bytes, %zu pages", paper[k].name, n, pages);
+    free(bytes);
+    if (!poppler)
+      continue;
+    /* every page of the paper's size, every word within the margins */
+    snprintf(cmd, sizeof cmd, "pdftotext -bbox '%s' -", pdf);
+    long words = 0, outside = 0, wrong = 0;
+    if (sh(cmd, text, BIG) == 0) {
+      const double margin = 12 / 25.4 * 72 - 1; /* pt, less 1 pt */
+      double pw = NAN, ph = NAN;
+      for (const char *q = text; (q = strchr(q, '<')) != NULL; q++) {
+        if (strncmp(q, "<page width=\"", 13) == 0) {
+          pw = strtod(q + 13, NULL);
+          const char *hh = strstr(q, "height=\"");
+          ph = hh ? strtod(hh + 8, NULL) : NAN;
+          wrong += !(fabs(pw - paper[k].w_pt) < 1.5 && fabs(ph - paper[k].h_pt) < 1.5);
+        } else if (strncmp(q, "<word ", 6) == 0) {
+          const char *a = strstr(q, "xMin=\""), *b2 = strstr(q, "yMin=\""),
+                     *c = strstr(q, "xMax=\""), *d = strstr(q, "yMax=\"");
+          if (!a || !b2 || !c || !d)
+            break;
+          double x0 = strtod(a + 6, NULL), y0 = strtod(b2 + 6, NULL), x1 = strtod(c + 6, NULL),
+                 y1 = strtod(d + 6, NULL);
+          words++;
+          if ((x0 < margin || y0 < margin || x1 > pw - margin || y1 > ph - margin) &&
+              outside++ < 3)
+            aq_check(0, "%s: a word at x %.1f-%.1f, y %.1f-%.1f outside the margins of the "
+                        "%.0f x %.0f pt page",
+                     paper[k].name, x0, x1, y0, y1, pw, ph);
+        }
+      }
+    }
+    aq_check(words > 200 && wrong == 0 && outside == 0,
+             "%s: %zu pages of %.0f x %.0f pt (%ld others), %ld words, %ld outside the margins",
+             paper[k].name, pages, paper[k].w_pt, paper[k].h_pt, wrong, words, outside);
+    if (k != 0)
+      continue;
     int page_no = 0;
     for (int pg = 1; pg <= (int)pages && !page_no; pg++) {
-      char *text = malloc(BIG);
       snprintf(cmd, sizeof cmd, "pdftotext -f %d -l %d -layout '%s' -", pg, pg, pdf);
-      if (text && sh(cmd, text, BIG) == 0 && strstr(text, "Arch thin") && strstr(text, "Verdicts"))
+      if (sh(cmd, text, BIG) == 0 && strstr(text, "Arch thin") && strstr(text, "Verdicts"))
         page_no = pg;
-      free(text);
     }
     snprintf(cmd, sizeof cmd,
              "pdftoppm -f %d -l %d -r 90 -png -singlefile '%s' build/check/report-arch-thin",
@@ -481,9 +575,9 @@ AQ_TEST(report_page_in_chromium)
                  png_stats("build/check/report-arch-thin.png", &grey, &red, &w, &h) == 0 &&
                  grey > 20,
              "the printed page of arch thin (page %d): %zu grey levels", page_no, grey);
-  } else
-    fprintf(stderr, "test_report_page: pdftoppm not installed: the printed arch page is not "
-                    "kept\n");
+  }
+  free(text);
+  snprintf(url, sizeof url, "file://%.1100s", real);
   /* the script ran, and no request left the page */
   char log[700];
   snprintf(log, sizeof log, "%s/net.json", dir);

@@ -1,4 +1,7 @@
-/* app.h: the command-line layer.  Each subcommand parses and checks all of
+/* src/app: the command line: dispatch, one file per command, the option
+ * table, the main job's scheduler and ordered writer, and archquake-mpi.
+ *
+ * app.h: the command-line layer.  Each subcommand parses and checks all of
  * its options before touching any input, reports every bad option on stderr
  * (one line each) and returns an exit status:
  *   0  success
@@ -27,6 +30,15 @@ char *aq_app_command_line(int argc, char **argv);
 void aq_app_now_utc(char *buf, size_t n);
 
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
+
+/* archquake's command line (dispatch.c): a command, help, the version or
+ * the main job; returns the exit status.  main (src/main.c) and
+ * archquake-mpi's main (mpi.c) call it. */
+int aq_app_main(int argc, char **argv);
+/* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
+int aq_app_is_command(const char *name);
+/* 1 if argv is the main job (not a command, help or the version). */
+int aq_app_is_main_job(int argc, char **argv);
 
 /* The allocator policy of every command (heap.c): blocks of a record's
  * size are kept in the heap between records instead of being mapped and

@@ -27,7 +27,6 @@
 #include "app.h"
 #include "capacity_tasks.h"
 #include "opt.h"
-#include "opt_signal.h"
 #include "opt_table.h"
 
 /* The status cell of pair c of record r. */
@@ -236,8 +235,6 @@ int aq_cmd_capacity(int argc, char **argv)
   opts.arches = NULL;
   aq_opt_orient_init(&opts.orient);
   aq_opts_free(&opts);
-  aq_opt_signal_check(&po, &nerr);
-  aq_opt_orient_check(&orient, &nerr);
   for (int i = 0; i < 2 && orient.nmotions; i++)
     if (i ? frag != NULL : h5 != NULL) {
       fprintf(stderr, "archquake: %s: expected plain RECORDs only, got --components (the "
@@ -256,7 +253,6 @@ int aq_cmd_capacity(int argc, char **argv)
     fprintf(stderr, "archquake: capacity: expected at least one RECORD or --components\n");
     nerr++;
   }
-  aq_opt_require("capacity", "--arch FILE", na > 0, &nerr);
   aq_opt_distinct_files("arch file", arch_paths, na, &nerr);
   if (optind < argc)
     aq_opt_distinct_files("record", argv + optind, (size_t)(argc - optind), &nerr);

@@ -34,8 +34,6 @@ int aq_cmd_domain(int argc, char **argv)
   o.ratios = NULL; /* freed here */
   aq_opts_free(&o);
   aq_opt_no_operands("domain", argc, argv, optind, &nerr);
-  aq_opt_require("domain", "--arch FILE", file != NULL, &nerr);
-  aq_opt_ode_rtol(o.given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)model), &nerr);
   if (nerr) {
     free(ratios);
     return AQ_EXIT_USAGE;

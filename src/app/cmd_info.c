@@ -10,7 +10,6 @@
 #include "../units.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_signal.h"
 #include "opt_table.h"
 
 /* One row for rec (processed by so in ws); 1 if it failed (reported). */
@@ -63,7 +62,6 @@ int aq_cmd_info(int argc, char **argv)
     fprintf(stderr, "archquake: info: expected at least one RECORD\n");
     nerr++;
   }
-  aq_opt_signal_check(&so, &nerr);
   if (nerr)
     return AQ_EXIT_USAGE;
 

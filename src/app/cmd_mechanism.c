@@ -81,7 +81,6 @@ int aq_cmd_mechanism(int argc, char **argv)
   long points = o.points;
   int table = o.table;
   aq_opt_no_operands("mechanism", argc, argv, optind, &nerr);
-  aq_opt_require("mechanism", "--arch FILE", file != NULL, &nerr);
   if (nerr)
     return AQ_EXIT_USAGE;
 

@@ -18,12 +18,14 @@
 #include "app.h"
 #include "../util/cleanup.h"
 #include "opt.h"
+#include "opt_arch.h"
 #include "opt_table.h"
 
+/* The figures, in the order of their commands in opt_table.h (their names
+ * and options: opt_table.c). */
 enum { FIG_HISTORY = 0, FIG_ARCH, FIG_DOMAIN, FIG_SUITE, FIG_CAPACITY, FIG_SPECTRUM, FIG_N };
-static const char *const figures[] = {"history", "arch",     "domain",
-                                      "suite",   "capacity", "spectrum", NULL};
-/* Per figure: whether it takes an input file (its options: opt_table.c). */
+_Static_assert(FIG_N == AQ_CMD_N - AQ_CMD_PLOT - 1, "a figure per plot command");
+/* Per figure: whether it takes an input file. */
 static const int takes_input[FIG_N] = {1, 0, 0, 1, 1, 1};
 
 /* The locale's paper (LC_PAPER, glibc's page size in mm): Letter or A4. */
@@ -77,19 +79,25 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->nr = a.nratios;
   a.ratios = NULL;
   aq_opts_free(&a);
+  if (o->fig == FIG_ARCH && optind < argc) /* a results file: its arch by name */
+    o->input = argv[optind++];
+  else if (o->fig == FIG_ARCH && o->arch) /* an arch file, or an installed one */
+    o->arch = aq_opt_arch((char *)o->arch, &nerr); /* argv's own string */
   if (takes_input[o->fig]) {
     if (optind < argc)
       o->input = argv[optind++];
     else {
-      fprintf(stderr, "archquake: plot %s: expected a results file (.h5), got none\n",
-              figures[o->fig]);
+      fprintf(stderr, "archquake: %s: expected a results file (.h5), got none\n",
+              aq_opt_commands[cmd].name);
       nerr++;
     }
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
-  aq_opt_require("plot", "-o FILE", o->out != NULL, &nerr);
-  if (o->fig == FIG_ARCH || o->fig == FIG_DOMAIN)
-    aq_opt_require("plot", "--arch ARCH", o->arch != NULL, &nerr);
+  if (o->fig == FIG_ARCH && !o->input && !o->arch) { /* AQ_OPT_ARCH_DRAWN: not required */
+    fprintf(stderr, "archquake: plot arch: expected --arch ARCH or a results file, got "
+                    "neither\n");
+    nerr++;
+  }
   aq_error err;
   if (o->out && aq_plot_device(o->out, NULL, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
@@ -161,16 +169,15 @@ out:
 
 int aq_cmd_plot(int argc, char **argv)
 {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+  if (argc < 2 || aq_opt_is(AQ_OPT_HELP, argv[1])) {
     aq_opts_help(AQ_CMD_PLOT, argc < 2 ? stderr : stdout);
     return argc < 2 ? AQ_EXIT_USAGE : AQ_EXIT_OK;
   }
   plot_opts o = {.rotation_rad = 0};
-  int fig = -1, nerr = 0;
-  aq_opt_choice("plot", argv[1], figures, &fig, &nerr);
-  if (nerr)
+  int cmd = aq_opts_figure(argv[1]);
+  if (cmd < 0)
     return AQ_EXIT_USAGE;
-  o.fig = fig;
+  o.fig = cmd - (AQ_CMD_PLOT + 1);
   int p = parse(argc - 1, argv + 1, &o);
   if (p) {
     free(o.ratios);
@@ -190,7 +197,8 @@ int aq_cmd_plot(int argc, char **argv)
     aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
     slot[1] = aq_cleanup_add(tmp[1]);
   }
-  if (o.arch && o.fig != FIG_CAPACITY && aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+  if (o.arch && o.fig != FIG_CAPACITY && !(o.fig == FIG_ARCH && o.input) &&
+      aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
     rc = fail(&err);
     goto out;
   }
@@ -207,7 +215,8 @@ int aq_cmd_plot(int argc, char **argv)
     break;
   }
   case FIG_ARCH:
-    if (aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err) != AQ_OK)
+    if ((o.input ? aq_plot_arch_h5(o.input, o.arch, o.rotation_rad, o.out, o.data, NULL, &err)
+                 : aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err)) != AQ_OK)
       rc = fail(&err);
     break;
   case FIG_DOMAIN:

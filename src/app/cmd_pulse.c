@@ -96,12 +96,7 @@ int aq_cmd_pulse(int argc, char **argv)
   double acc_g = o.accel_g, dur = o.duration_s, end = o.end_s, cap = o.max_end_s,
          dt = o.pulse_dt_s, cor = o.cor, rtol = o.ode_rtol;
   int model = o.model, impact = o.impact;
-  int acc_given = o.given[AQ_OPT_ACCEL_G] > 0, dur_given = o.given[AQ_OPT_DURATION] > 0;
   aq_opt_no_operands("pulse", argc, argv, optind, &nerr);
-  aq_opt_require("pulse", "--arch FILE", file != NULL, &nerr);
-  /* a bad value was reported already: "got none" only when absent */
-  aq_opt_require("pulse", "--accel-g A", acc_given, &nerr);
-  aq_opt_require("pulse", "--duration S", dur_given, &nerr);
   if (!isnan(end) && !isnan(dur) && end < dur) {
     fprintf(stderr,
             "archquake: --end: expected a time >= --duration (%g s), got %g\n",
@@ -117,12 +112,6 @@ int aq_cmd_pulse(int argc, char **argv)
     fprintf(stderr,
             "archquake: --max-end: expected a time >= --duration (%g s), got %g\n",
             dur, cap);
-    nerr++;
-  }
-  aq_opt_ode_rtol(o.given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)model), &nerr);
-  if (impact == AQ_IMPACT_MOMENTUM && !isnan(cor)) {
-    fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
-                    "momentum (a cor would have no effect)\n");
     nerr++;
   }
   if (hist && !*hist) {

@@ -30,7 +30,6 @@ int aq_cmd_report(int argc, char **argv)
     fprintf(stderr, "archquake: report: expected a results file (.h5), got none\n");
     nerr++;
   }
-  aq_opt_require("report", "-o FILE", out != NULL, &nerr);
   if (out) {
     const char *dot = strrchr(out, '.');
     if (!dot || (strcasecmp(dot, ".html") != 0 && strcasecmp(dot, ".htm") != 0)) {

@@ -19,7 +19,6 @@
 #include "../util/outfile.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_signal.h"
 #include "opt_table.h"
 #include "suite.h"
 
@@ -85,16 +84,10 @@ int aq_cmd_run(int argc, char **argv)
   o.scales = NULL;
   aq_opt_orient_init(&o.orient);
   aq_opts_free(&o);
-  aq_opt_signal_check(&cfg.proc, &nerr);
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind),
                                                     &cfg.read);
-  aq_opt_orient_check(&orient, &nerr);
   if (optind >= argc && orient.nmotions == 0) {
     fprintf(stderr, "archquake: expected at least one RECORD or --components (see 'archquake --help')\n");
-    nerr++;
-  }
-  if (cfg.narches == 0) {
-    fprintf(stderr, "archquake: --arch: expected at least one arch file, got none\n");
     nerr++;
   }
   aq_opt_distinct_files("arch file", arches, cfg.narches, &nerr);

@@ -21,7 +21,6 @@
 #include "../util/pool.h"
 #include "app.h"
 #include "opt.h"
-#include "opt_signal.h"
 #include "opt_table.h"
 
 /* The rows of one spectrum source: a record gives one component (its
@@ -230,8 +229,6 @@ int aq_cmd_spectrum(int argc, char **argv)
     aq_opts_free(&o);
     return AQ_EXIT_OK;
   }
-  aq_opt_signal_check(&o.proc, &nerr);
-  aq_opt_orient_check(&o.orient, &nerr);
   for (size_t i = 0; i < o.orient.nmotions; i++)
     if (o.orient.motions[i].path[2]) {
       fprintf(stderr, "archquake: spectrum: --components %s: expected two horizontal "

@@ -50,8 +50,6 @@
 #include "app.h"
 #include "farm.h"
 
-int aq_main_serial(int argc, char **argv); /* src/main.c */
-int aq_main_is_command(const char *name);
 
 /* A rank with nothing to do sleeps between polls, AQ_MPI_POLL_MIN_NS at
  * first, doubling to AQ_MPI_POLL_MAX_NS while nothing comes: an idle rank
@@ -520,18 +518,6 @@ static int farm(void *ctx, const aq_farm_tasks *T, const size_t *todo, size_t nt
 
 /* ---- entry -------------------------------------------------------------- */
 
-/* 1 if argv is the main job (not a command, help or the version). */
-static int is_main_job(int argc, char **argv)
-{
-  static const char *const other[] = {"help", "-h", "--help", "--version"};
-  if (argc < 2 || aq_main_is_command(argv[1]))
-    return 0;
-  for (size_t k = 0; k < sizeof other / sizeof other[0]; k++)
-    if (strcmp(argv[1], other[k]) == 0)
-      return 0;
-  return 1;
-}
-
 int main(int argc, char **argv)
 {
   int provided = 0;
@@ -547,14 +533,14 @@ int main(int argc, char **argv)
   MPI_Comm_rank(MPI_COMM_WORLD, &C.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &C.size);
   /* the main job and capacity farm their tasks out when there are followers */
-  int farmed = C.size > 1 && (is_main_job(argc, argv) ||
+  int farmed = C.size > 1 && (aq_app_is_main_job(argc, argv) ||
                               (argc >= 2 && strcmp(argv[1], "capacity") == 0));
   aq_farm F = {&C, C.rank != 0, farmed ? farm : NULL};
   aq_farm_set(&F); /* with one rank, or another command: runs here */
   int rc = AQ_EXIT_OK;
 
   if (C.rank == 0) {
-    rc = aq_main_serial(argc, argv);
+    rc = aq_app_main(argc, argv);
     fflush(stdout);
     aq_error err;
     if (farmed && !C.broken && !C.stopped_all && stop_followers(&C, &err) != 0)
@@ -570,7 +556,7 @@ int main(int argc, char **argv)
       C.diag = diag;
     if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
       follower_abort(&C, MPI_SUCCESS, "cannot silence its output");
-    rc = aq_main_serial(argc, argv);
+    rc = aq_app_main(argc, argv);
     size_t i;
     while (!C.stopped) /* the command failed here but not on rank 0 */
       if (recv_task(&C, &i) == 0)

@@ -267,14 +267,6 @@ void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
   }
 }
 
-void aq_opt_require(const char *cmd, const char *what, int given, int *nerr)
-{
-  if (!given) {
-    fprintf(stderr, "archquake: %s: expected %s, got none\n", cmd, what);
-    (*nerr)++;
-  }
-}
-
 int aq_opt_output_special(const char *opt, const char *path)
 {
   struct stat sb;

@@ -45,8 +45,6 @@ void aq_opt_choice(const char *opt, const char *arg, const char *const *choices,
 /* Report operands (argv[optind_..argc-1]) that a command does not take. */
 void aq_opt_no_operands(const char *cmd, int argc, char **argv, int optind_,
                         int *nerr);
-/* Report a required option that was not given ("--arch FILE"). */
-void aq_opt_require(const char *cmd, const char *what, int given, int *nerr);
 /* An existing output path that is not a regular file (a device such as
  * /dev/null, a FIFO, a socket) would be replaced when the output's
  * temporary is renamed onto it: report it in one line naming opt and

@@ -95,14 +95,14 @@ static void command_list(unsigned mask, char *buf, size_t n)
   const char *names[AQ_CMD_N];
   size_t k = 0, len = 0;
   unsigned figures = 0;
-  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_SPECTRUM; c++)
+  for (int c = AQ_CMD_PLOT + 1; c < AQ_CMD_N; c++)
     figures |= 1u << c;
   int all_figures = (mask & figures) == figures;
   for (int c = 0; c < AQ_CMD_N; c++) {
     if (!(mask >> c & 1u) || c == AQ_CMD_PLOT)
       continue;
     if (all_figures && (figures >> c & 1u)) {
-      if (c == AQ_CMD_PLOT_HISTORY)
+      if (c == AQ_CMD_PLOT + 1)
         names[k++] = aq_opt_commands[AQ_CMD_PLOT].title;
       continue;
     }
@@ -134,7 +134,7 @@ static void refuse(aq_cmd cmd, int id, int as_short, int *nerr)
     snprintf(typed, sizeof typed, "-%c", r->short_name);
   else
     snprintf(typed, sizeof typed, "--%s", r->name);
-  int figure = cmd >= AQ_CMD_PLOT_HISTORY && cmd <= AQ_CMD_PLOT_SPECTRUM;
+  int figure = AQ_CMD_IS_FIGURE(cmd);
   fprintf(stderr, "archquake: %s%s%s: not an option of this %s (only of %s)\n", c->name,
           c->name[0] ? ": " : "", typed, figure ? "figure" : "command", list);
   (*nerr)++;
@@ -199,6 +199,22 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
       o->given[id]++;
     store(&aq_opt_rows[id], optarg, o, nerr);
   }
+  /* what the table says of cmd's options together */
+  const aq_opt_command *k = &aq_opt_commands[cmd];
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    if (!aq_opt_applies((aq_opt_id)i, cmd))
+      continue;
+    if ((r->required >> cmd & 1u) && !o->given[i]) {
+      char name[64];
+      fprintf(stderr, "archquake: %s%sexpected %s%s%s, got none\n", k->name,
+              k->name[0] ? ": " : "", spelling(r, name, sizeof name), r->meta ? " " : "",
+              r->meta ? r->meta : "");
+      (*nerr)++;
+    }
+    if (r->check)
+      r->check(o, nerr);
+  }
   return 0;
 }
 
@@ -262,7 +278,7 @@ static void put_entry(FILE *f, const char *lab, const char *text, const char *no
 void aq_opts_help(aq_cmd cmd, FILE *f)
 {
   unsigned figures = 0;
-  for (int c = AQ_CMD_PLOT_HISTORY; c <= AQ_CMD_PLOT_SPECTRUM; c++)
+  for (int c = AQ_CMD_PLOT + 1; c < AQ_CMD_N; c++)
     figures |= 1u << c;
   if (figures >> cmd & 1u) /* a figure's help is plot's */
     cmd = AQ_CMD_PLOT;
@@ -296,9 +312,9 @@ void aq_opts_help(aq_cmd cmd, FILE *f)
       if (cmd == AQ_CMD_PLOT && (r->cmds & figures) != figures) {
         int nfig = 0;
         size_t k = 0;
-        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_SPECTRUM; x++)
+        for (int x = AQ_CMD_PLOT + 1; x < AQ_CMD_N; x++)
           nfig += (int)(r->cmds >> x & 1u);
-        for (int x = AQ_CMD_PLOT_HISTORY; x <= AQ_CMD_PLOT_SPECTRUM; x++)
+        for (int x = AQ_CMD_PLOT + 1; x < AQ_CMD_N; x++)
           if (r->cmds >> x & 1u) {
             int w = snprintf(note + k, sizeof note - k, "%s%s",
                              k ? ", " : nfig > 1 ? "(figures " : "(figure ",
@@ -333,4 +349,27 @@ void aq_opts_main_help(FILE *f)
   }
   put_entry(f, "  archquake --version", "the version", NULL, SYNOPSIS_COL);
   aq_opt_arch_usage(f);
+}
+
+int aq_opt_is(aq_opt_id id, const char *word)
+{
+  if ((unsigned)id >= AQ_OPT_N || !word || word[0] != '-')
+    return 0;
+  const aq_opt_row *r = &aq_opt_rows[id];
+  if (word[1] == '-')
+    return strcmp(word + 2, r->name) == 0;
+  return r->short_name && word[1] == r->short_name && word[2] == '\0';
+}
+
+int aq_opts_figure(const char *word)
+{
+  const char *prefix = aq_opt_commands[AQ_CMD_PLOT].name; /* "plot" */
+  size_t np = strlen(prefix);
+  const char *names[AQ_CMD_N + 1];
+  int n = 0, out = -1, nerr = 0;
+  for (int c = AQ_CMD_PLOT + 1; c < AQ_CMD_N; c++) /* "plot NAME": NAME */
+    names[n++] = aq_opt_commands[c].name + np + 1;
+  names[n] = NULL;
+  aq_opt_choice(prefix, word, names, &out, &nerr);
+  return nerr ? -1 : AQ_CMD_PLOT + 1 + out;
 }

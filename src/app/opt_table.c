@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../capacity/capacity.h"
 #include "opt.h"
@@ -174,6 +175,56 @@ static void sa_avg(char *arg, aq_opts *o, int *nerr)
   free(v);
 }
 
+/* The checks between options (the rows' .check), made after parsing. */
+
+/* --no-filter turns off the taper, the pads and the filter: an option that
+ * sets one of them would be ignored, so it is refused, even at its default. */
+static void no_filter_alone(aq_opts *o, int *nerr)
+{
+  static const aq_opt_id filter_opts[] = {AQ_OPT_TAPER, AQ_OPT_HIGHPASS, AQ_OPT_ORDER,
+                                          AQ_OPT_LOWPASS};
+  if (!o->given[AQ_OPT_NO_FILTER])
+    return;
+  for (size_t k = 0; k < sizeof filter_opts / sizeof filter_opts[0]; k++)
+    if (o->given[filter_opts[k]]) {
+      fprintf(stderr, "archquake: --%s: expected no --no-filter with it (--no-filter "
+                      "applies no taper, pads or filter), got both\n",
+              aq_opt_rows[filter_opts[k]].name);
+      (*nerr)++;
+    }
+}
+
+/* Checks that need the record (the Nyquist frequency, the record length)
+ * are made by aq_signal_process. */
+static void lowpass_above_highpass(aq_opts *o, int *nerr)
+{
+  const aq_signal_opts *p = &o->proc;
+  if (p->filter && p->lowpass_hz > 0 && !(p->lowpass_hz > p->highpass_hz)) {
+    fprintf(stderr, "archquake: --lowpass: expected a corner above --highpass %g Hz, "
+                    "got %g Hz\n", p->highpass_hz, p->lowpass_hz);
+    (*nerr)++;
+  }
+}
+
+static void ode_rtol_needs_ode(aq_opts *o, int *nerr)
+{
+  aq_opt_ode_rtol(o->given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)o->model), nerr);
+}
+
+static void momentum_takes_no_cor(aq_opts *o, int *nerr)
+{
+  if (o->impact == AQ_IMPACT_MOMENTUM && !isnan(o->cor)) {
+    fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
+                    "momentum (a cor would have no effect)\n");
+    (*nerr)++;
+  }
+}
+
+static void orientation(aq_opts *o, int *nerr)
+{
+  aq_opt_orient_check(&o->orient, nerr);
+}
+
 /* After --highpass's value: an explicit corner is checked as given. */
 static void highpass_given(char *arg, aq_opts *o, int *nerr)
 {
@@ -186,21 +237,30 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_ARCHES] = {.name = "arch", .kind = AQ_ARG_CUSTOM, .meta = "FILE", .fn = add_arch,
                        .cmds = SUITES,
                        .help = "an arch (.cfg), or an installed arch by name (oppenheim); "
-                               "repeatable"},
+                               "repeatable",
+                       .required = SUITES},
     [AQ_OPT_ARCH] = {.name = "arch", .kind = AQ_ARG_CUSTOM, .meta = "FILE", .fn = one_arch,
-                     .cmds = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_ARCH) | C(PLOT_DOMAIN),
-                     .help = "the arch file (.cfg), or an installed arch by name (oppenheim)"},
+                     .cmds = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_DOMAIN),
+                     .help = "the arch file (.cfg), or an installed arch by name (oppenheim)",
+                     .required = C(MECHANISM) | C(PULSE) | C(DOMAIN) | C(PLOT_DOMAIN)},
     [AQ_OPT_ARCH_NAME] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(arch),
                           .cmds = C(PLOT_CAPACITY),
                           .help = "the arch of the capacity file to draw, by its name "
                                   "(default: the file's first)"},
+    [AQ_OPT_ARCH_DRAWN] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "ARCH", DEST(arch),
+                           .cmds = C(PLOT_ARCH),
+                           .help = "the arch file (.cfg), or an installed arch by name; with "
+                                   "a results file (RESULTS.h5 before the options), the name "
+                                   "of its arch to draw (default: its first)"},
     [AQ_OPT_ACCEL_G] = {.name = "accel-g", .kind = AQ_ARG_DOUBLE, .lo = -100, .hi = 100,
                         .meta = "A", DEST(accel_g), .cmds = C(PULSE),
                         .help = "pulse amplitude, g (signed, |A| <= 100: its sign is the "
-                                "polarity, so pulse takes no --polarity)"},
+                                "polarity, so pulse takes no --polarity)",
+                        .required = C(PULSE)},
     [AQ_OPT_DURATION] = {.name = "duration", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
                          .meta = "S", DEST(duration_s), .cmds = C(PULSE),
-                         .help = "pulse duration, s (0 < S <= 3600)"},
+                         .help = "pulse duration, s (0 < S <= 3600)",
+                         .required = C(PULSE)},
     [AQ_OPT_END] = {.name = "end", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 86400, .meta = "S",
                     DEST(end_s), .cmds = C(PULSE),
                     .help = "stop at t = S (>= duration).  Default: run until rest or "
@@ -229,10 +289,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "in a `spectra` group)"},
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
-                            .help = "the figure (.png .svg .pdf)"},
+                            .help = "the figure (.png .svg .pdf)",
+                            .required = PLOT_ALL},
     [AQ_OPT_REPORT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                               .meta = "FILE.html", DEST(output), .cmds = C(REPORT),
-                              .help = "the page"},
+                              .help = "the page",
+                              .required = C(REPORT)},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -317,10 +379,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                             "momentum, which uses none)"},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
-                       .help = "cor | momentum (default: the arch file's)"},
+                       .help = "cor | momentum (default: the arch file's)",
+                       .check = momentum_takes_no_cor},
     [AQ_OPT_ODE_RTOL] = {.name = "ode-rtol", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
                          .meta = "R", DEST(ode_rtol), .cmds = C(PULSE) | C(DOMAIN),
-                         .help = "ode model tolerance (default 1e-10; only with --model ode)"},
+                         .help = "ode model tolerance (default 1e-10; only with --model ode)",
+                         .check = ode_rtol_needs_ode},
     [AQ_OPT_HISTORY] = {.name = "history", .kind = AQ_ARG_FLAG, DEST(history), .cmds = C(RUN),
                         .help = "write histories (step ends, turning points, impacts) to the "
                                 "HDF5 file (with -o)"},
@@ -377,7 +441,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .help = "each oscillator's peak at the samples only, as PEER's "
                                       "NGA-West2 flatfile takes it (default: over continuous "
                                       "time, between samples too; docs/spectrum.md)"},
-    [AQ_OPT_HELP] = {.name = "help", .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
+    [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
 
     [AQ_OPT_UNITS] = {.name = "units", .kind = AQ_ARG_CUSTOM, .meta = "U", .fn = units,
@@ -421,7 +485,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                    "arch feels a_x = a1 cos(theta - phi1) + a2 cos(theta - "
                                    "phi2).  The components must share dt and start time; the "
                                    "samples they share are run (spectrum: their RotD50, "
-                                   "RotD100 and GeoMean)"},
+                                   "RotD100 and GeoMean)",
+                           .check = orientation},
     [AQ_OPT_AZIMUTHS] = {.name = "azimuths", .kind = AQ_ARG_CUSTOM, .meta = "A1,A2",
                          .fn = azimuths, .cmds = SUITES | C(SPECTRUM),
                          .group = AQ_GROUP_ORIENTATION,
@@ -468,7 +533,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_LOWPASS] = {.name = "lowpass", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
                         .hi = AQ_OPT_FREQ_MAX_HZ, .meta = "HZ", DEST(proc.lowpass_hz),
                         .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
-                        .help = "acausal Butterworth low-pass corner (default off)"},
+                        .help = "acausal Butterworth low-pass corner (default off)",
+                        .check = lowpass_above_highpass},
     [AQ_OPT_IM_PERIODS] = {.name = "im-periods", .kind = AQ_ARG_CUSTOM, .meta = "LIST",
                            .fn = im_periods, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                            .help = "intensity measures Sa(T), 5 % damping, at these periods, "
@@ -481,7 +547,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "or none (default 0.1,1)"},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
-                          .help = "no taper, pads or filter (detrend still applies)"},
+                          .help = "no taper, pads or filter (detrend still applies)",
+                          .check = no_filter_alone},
     [AQ_OPT_MERGE_TOL] = {.name = "merge-tol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 10,
                           .meta = "G", DEST(merge_tol_g), .cmds = SUITES,
                           .group = AQ_GROUP_PROCESSING,

@@ -16,10 +16,12 @@
  *      commands it applies to (C(RUN) | C(CAPACITY) ...), group, help;
  *   3. its field in aq_opts, and its default in aq_opts_init if not 0.
  *   The message of a bad value names the option as "--name", or "-x" if it
- *   has a letter.  The same name may have one row per meaning (--dt of text records and
+ *   has a letter.  .required: the commands that cannot run without it.
+ *   .check: its check against the other options (--ode-rtol needs --model
+ *   ode), made for every command it applies to.  The same name may have one row per meaning (--dt of text records and
  *   --dt of pulse), each for commands of its own: no command has two rows
- *   of one name (test_opt_table.c checks).  Checks between options (one
- *   needs another) stay in the command, after aq_opts_parse.
+ *   of one name (test_opt_table.c checks).  Checks that need the operands
+ *   or the files stay in the command, after aq_opts_parse.
  *
  * To add a command:
  *   1. an id in aq_cmd (before AQ_CMD_PLOT: plot's figures stay last, in a
@@ -73,12 +75,15 @@ typedef enum {
   AQ_CMD_PLOT_SPECTRUM,
   AQ_CMD_N
 } aq_cmd;
+/* plot's figures: AQ_CMD_PLOT < cmd < AQ_CMD_N. */
+#define AQ_CMD_IS_FIGURE(c) ((c) > AQ_CMD_PLOT && (c) < AQ_CMD_N)
 
 /* The options, in the order --help lists them within a group. */
 typedef enum {
   AQ_OPT_ARCHES = 0, /* --arch, repeatable (run, capacity) */
   AQ_OPT_ARCH,       /* --arch, one (mechanism, pulse, domain, plot) */
   AQ_OPT_ARCH_NAME,  /* --arch NAME of a capacity file (plot capacity) */
+  AQ_OPT_ARCH_DRAWN, /* --arch FILE, or NAME with a results file (plot arch) */
   AQ_OPT_ACCEL_G,
   AQ_OPT_DURATION,
   AQ_OPT_END,
@@ -258,6 +263,12 @@ typedef struct {
   aq_opt_group group;
   const char *help;   /* one paragraph, wrapped by --help */
   const char *meta2, *help2; /* a second form (--units GLOB=U), or NULL */
+  unsigned required;  /* the commands that need it (a subset of cmds): "expected
+                         --name META, got none" when it is not given */
+  /* The check between this option and others, made once every option is
+   * in, for every command the row applies to (given or not): one line per
+   * problem, *nerr incremented.  NULL: none. */
+  void (*check)(aq_opts *o, int *nerr);
 } aq_opt_row;
 
 /* One command: what --help says besides its options. */
@@ -281,10 +292,11 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd);
 void aq_opts_free(aq_opts *o);
 
 /* Parse argv[1..argc) as command cmd's options (getopt_long: operands are
- * moved to the end, from argv[optind]).  Each bad value, unknown option and
- * option cmd does not take is reported on stderr in one line and counted in
- * *nerr; parsing goes on, so that all are reported.  Returns 1 if --help
- * was given (cmd's help is then printed on stdout), else 0. */
+ * moved to the end, from argv[optind]).  Each bad value, unknown option,
+ * option cmd does not take, required option not given and failed check
+ * between options (the rows' .check) is reported on stderr in one line and
+ * counted in *nerr; parsing goes on, so that all are reported.  Returns 1
+ * if --help was given (cmd's help is then printed on stdout), else 0. */
 int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr);
 
 /* cmd's --help on f: head, options by group, tail.  AQ_CMD_PLOT lists the
@@ -297,5 +309,12 @@ void aq_opts_main_help(FILE *f);
 
 /* 1 if option id applies to command cmd. */
 int aq_opt_applies(aq_opt_id id, aq_cmd cmd);
+
+/* 1 if word spells option id ("--name", or "-x" for its letter). */
+int aq_opt_is(aq_opt_id id, const char *word);
+
+/* The figure of plot named word ("history": the command "plot history"),
+ * or -1 with one line naming the figures on stderr. */
+int aq_opts_figure(const char *word);
 
 #endif

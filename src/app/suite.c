@@ -396,7 +396,12 @@ int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats)
   size_t n = 0;
   aq_error err;
   const aq_orient_motion **mo = NULL;
-  aq_status st = aq_suite_names(cfg, &names, &n, &mo, &err);
+  char **notes = NULL;
+  size_t nnotes = 0;
+  aq_status st = aq_suite_names(cfg, &names, &n, &mo, &notes, &nnotes, &err);
+  for (size_t i = 0; st == AQ_OK && !aq_farm_is_follower() && i < nnotes; i++)
+    fprintf(stderr, "archquake: %s\n", notes[i]); /* a vertical left out (io/record.h) */
+  aq_record_names_free(notes, nnotes);
   if (st != AQ_OK) {
     aq_error_print(&err, stderr);
     aq_record_names_free(names, n);

@@ -1,6 +1,7 @@
 /* suite_journal.c: the main job's journal, for --resume (suite_slot.h,
  * report/journal.h): a finished record as a journal entry, the identity
- * of a suite, starting a journal (checking one read back) and replaying it.
+ * of a suite, starting a journal (checking one read back) and appending to
+ * it (suite_write.c replays one).
  *
  * Structs are stored as their bytes: the identity names the exact build, so
  * a journal is read back only by the build that wrote it. */
@@ -205,7 +206,7 @@ static void first_difference(const char *a, const char *b, char *buf, size_t n)
 
 /* Start the journal of a suite writing to c->h5_path.  With --resume and a
  * journal of the same command, its entries (identity first) are checked and
- * returned in *e (*ne of them) for journal_replay.  Returns AQ_EXIT_OK, or
+ * returned in *e (*ne of them) for aq_suite_journal_replay.  Returns AQ_EXIT_OK, or
  * the exit status after printing one line. */
 int aq_suite_journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t *ne)
 {
@@ -291,25 +292,6 @@ out:
   free(id);
   free(path);
   return rc;
-}
-
-/* Write the records of journal entries e[1..ne) again, in order
- * (diagnostics, rows, results file).  Returns AQ_OK or the output failure. */
-aq_status aq_suite_journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
-                                const aq_journal_entry *e, size_t ne, aq_error *err)
-{
-  for (size_t k = 1; k < ne; k++) {
-    rec_slot r;
-    memset(&r, 0, sizeof r);
-    aq_suite_slot_orient(S, k - 1, &r);
-    aq_suite_slot_decode(&e[k], r.nruns, &r); /* checked by journal_start */
-    aq_suite_slot_orient(S, k - 1, &r);
-    aq_status ws = aq_suite_write_record(S, &r, h5, stats, err);
-    aq_suite_slot_clear(S, &r);
-    if (ws != AQ_OK)
-      return ws;
-  }
-  return AQ_OK;
 }
 
 aq_status aq_suite_journal_append(suite *S, aq_journal *J, const rec_slot *r, aq_error *err)

@@ -305,14 +305,18 @@ int aq_suite_arches(suite *S)
  * own, FILE#CH) into *names (*n), with cfg->motions each one's motion in
  * *mo (NULL without motions). */
 aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names_out, size_t *n_out,
-                         const aq_orient_motion ***mo_out, aq_error *err)
+                         const aq_orient_motion ***mo_out, char ***notes, size_t *nnotes,
+                         aq_error *err)
 {
+  *notes = NULL;
+  *nnotes = 0;
   char **names = NULL;
   size_t n = 0;
   const aq_orient_motion **mo = NULL;
   aq_status st = AQ_OK;
   if (!cfg->motions) {
-    st = aq_job_names(cfg->records, cfg->nrecords, &cfg->read, cfg->threads, &names, &n, err);
+    st = aq_job_names(cfg->records, cfg->nrecords, &cfg->read, cfg->threads, &names, &n, notes,
+                      nnotes, err);
   } else { /* plain records expanded one by one, motions kept beside them */
     for (size_t i = 0; st == AQ_OK && i < cfg->nrecords; i++) {
       char **one = NULL;
@@ -325,7 +329,18 @@ aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names_out, size_t *n_o
         }
         st = one ? AQ_OK : aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
       } else {
-        st = aq_record_expand(cfg->records + i, 1, &cfg->read, &one, &k, err);
+        char **nt = NULL, **g;
+        size_t nn = 0;
+        st = aq_record_expand_horizontal(cfg->records + i, 1, &cfg->read, &one, &k, &nt, &nn, err);
+        g = nn ? realloc(*notes, (*nnotes + nn) * sizeof *g) : *notes;
+        if (nn && g) { /* the verticals left out of this file */
+          memcpy(g + *nnotes, nt, nn * sizeof *g);
+          *notes = g;
+          *nnotes += nn;
+          free(nt);
+        } else {
+          aq_record_names_free(nt, nn);
+        }
       }
       char **nn = st == AQ_OK ? realloc(names, (n + k) * sizeof *nn) : NULL;
       const aq_orient_motion **nm = nn ? realloc(mo, (n + k) * sizeof *nm) : NULL;
@@ -348,6 +363,14 @@ aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names_out, size_t *n_o
       }
     }
   }
+  /* a record's name is stored whole or not at all: refused before any run
+   * when it does not fit the results' record fields */
+  for (size_t i = 0; st == AQ_OK && i < n; i++)
+    if (strlen(names[i]) >= AQ_SUMMARY_RECORD_MAX)
+      st = aq_error_set(err, AQ_EVALUE, names[i], -1, -1, "record name",
+                        "expected at most %d bytes (the results' record and source_file "
+                        "fields), got %zu: run it from a shorter path",
+                        AQ_SUMMARY_RECORD_MAX - 1, strlen(names[i]));
   *names_out = names;
   *n_out = n;
   *mo_out = mo;

@@ -4,9 +4,10 @@
  *                    records in flight, the order of writing
  *   suite_record.c   a record in flight: prepared and run through job/
  *                    (subject, scale, runs), its rows' summaries
- *   suite_write.c    the ordered writer: diagnostics, TSV rows, results file
+ *   suite_write.c    the ordered writer: diagnostics, TSV rows, results
+ *                    file; a journal's records written again (--resume)
  *   suite_journal.c  the journal (--resume): a record as an entry, the
- *                    suite's identity, starting and replaying it
+ *                    suite's identity, starting it, appending to it
  *   suite_farm.c     other processes (farm.h): a task per (record, arch)
  *
  * A record in flight is a rec_slot; the suite's state, a suite. */
@@ -138,10 +139,13 @@ aq_stepper *aq_suite_stepper(const suite *S, size_t a, aq_error *err);
  * AQ_EXIT_FAIL (an arch cannot run: its runs fail). */
 int aq_suite_arches(suite *S);
 /* The records of cfg (every channel of a multi-channel file a record of its
- * own, FILE#CH) into *names (*n, for aq_record_names_free, also on failure),
- * with cfg->motions each one's motion in *mo (free()d). */
+ * own, FILE#CH, but the vertical ones of a file given whole) into *names
+ * (*n, for aq_record_names_free, also on failure), with cfg->motions each
+ * one's motion in *mo (free()d); the lines naming the verticals left out
+ * in *notes (*nnotes, for aq_record_names_free). */
 aq_status aq_suite_names(const aq_suite_cfg *cfg, char ***names, size_t *n,
-                         const aq_orient_motion ***mo, aq_error *err);
+                         const aq_orient_motion ***mo, char ***notes, size_t *nnotes,
+                         aq_error *err);
 
 /* suite_write.c */
 
@@ -156,6 +160,9 @@ aq_status aq_suite_write_record(suite *S, rec_slot *r, aq_h5_writer *h5, aq_suit
 aq_status aq_suite_open_h5(suite *S, aq_h5_writer **out, aq_error *err);
 /* The text header (and the aligned layout). */
 aq_status aq_suite_text_header(suite *S, aq_error *err);
+/* Write the records of journal entries e[1..ne) again, in order. */
+aq_status aq_suite_journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
+                                  const aq_journal_entry *e, size_t ne, aq_error *err);
 /* Write records done..nrecords in order as the workers finish them (and
  * journal them, J not NULL).  Returns AQ_OK or the output failure. */
 aq_status aq_suite_write_all(suite *S, double t_start, size_t done, aq_h5_writer *h5,
@@ -165,9 +172,6 @@ aq_status aq_suite_write_all(suite *S, double t_start, size_t done, aq_h5_writer
 
 /* Start the journal of a suite with -o (see suite_journal.c). */
 int aq_suite_journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_t *ne);
-/* Write the records of journal entries e[1..ne) again, in order. */
-aq_status aq_suite_journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
-                                  const aq_journal_entry *e, size_t ne, aq_error *err);
 /* Append finished record r to J. */
 aq_status aq_suite_journal_append(suite *S, aq_journal *J, const rec_slot *r, aq_error *err);
 

@@ -262,6 +262,25 @@ aq_status aq_suite_text_header(suite *S, aq_error *err)
   return AQ_OK;
 }
 
+/* Write the records of journal entries e[1..ne) again, in order
+ * (diagnostics, rows, results file).  Returns AQ_OK or the output failure. */
+aq_status aq_suite_journal_replay(suite *S, aq_h5_writer *h5, aq_suite_stats *stats,
+                                  const aq_journal_entry *e, size_t ne, aq_error *err)
+{
+  for (size_t k = 1; k < ne; k++) {
+    rec_slot r;
+    memset(&r, 0, sizeof r);
+    aq_suite_slot_orient(S, k - 1, &r);
+    aq_suite_slot_decode(&e[k], r.nruns, &r); /* checked by aq_suite_journal_start */
+    aq_suite_slot_orient(S, k - 1, &r);
+    aq_status ws = aq_suite_write_record(S, &r, h5, stats, err);
+    aq_suite_slot_clear(S, &r);
+    if (ws != AQ_OK)
+      return ws;
+  }
+  return AQ_OK;
+}
+
 /* Write in record order as records finish: the writer waits for record i
  * (refreshing the progress line), writes it, journals it and frees its
  * slot for the workers. */

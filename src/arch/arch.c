@@ -843,3 +843,15 @@ void aq_arch_sha256(const aq_arch *a, char hex[65])
   aq_sha256_final(&c, d);
   aq_sha256_hexify_(d, hex);
 }
+
+aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *primary,
+                               const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                               const char *name, aq_arch **out, aq_error *err)
+{
+  aq_arch_params p = aq_arch_circular(0, 0, 0, d->voussoirs, 1, 1);
+  for (int s = 0; s < AQ_SHAPE_COUNT; s++)
+    if (d->shape && !strcmp(d->shape, aq_shape_names[s]))
+      p.shape = (aq_shape)s;
+  p.stored = d;
+  return aq_arch_build(&p, primary, reverse, dyn, name, out, err);
+}

@@ -1,4 +1,7 @@
-/* arch.h: an arch built from its .cfg (geometry, hinge sets, dynamics
+/* src/arch: an arch and the physics of its rocking: geometry, hinge sets,
+ * work paths, the impact rule and the steppers that run steps to a result.
+ *
+ * arch.h: an arch built from its .cfg (geometry, hinge sets, dynamics
  * options), with the work paths of its primary and reverse hinge sets.
  * Built once (aq_arch_load), then read-only and safe to share between
  * threads.  aq_arch_free accepts NULL.  Reports through aq_error

@@ -750,9 +750,79 @@ static aq_status add_masses(aq_geom *g, aq_error *err)
   return AQ_OK;
 }
 
+/* The geometry as stored (p->stored), copied: joints, voussoirs, outlines,
+ * fill and point masses as they are. */
+static aq_status from_stored(aq_geom *g, aq_error *err)
+{
+  const aq_arch_drawing *d = g->p.stored;
+  size_t n = d->voussoirs;
+  if (n < 4 || !d->joints || !d->parts || d->outline_start[0] != 0 ||
+      (size_t)d->outline_start[n] != d->noutline || (size_t)d->fill_start[n] != d->nfill)
+    return aq_error_set(err, AQ_EFORMAT, NULL, -1, -1, "geometry",
+                        "expected a stored geometry of at least 4 voussoirs with its outlines, "
+                        "got %zu voussoirs", n);
+  for (size_t k = 0; k < n; k++)
+    if (d->outline_start[k] > d->outline_start[k + 1] || d->fill_start[k] > d->fill_start[k + 1] ||
+        !(d->parts[4 * k] > 0))
+      return aq_error_set(err, AQ_EFORMAT, NULL, -1, -1, "geometry",
+                          "expected voussoir %zu's mass > 0 and its outline's rows in order, "
+                          "got neither", k);
+  g->p.voussoirs = n;
+  g->p.nmass = d->nmass;
+  aq_status st = alloc_all(g, err);
+  if (st != AQ_OK)
+    return st;
+  g->outline = malloc((d->noutline ? d->noutline : 1) * sizeof *g->outline);
+  g->fill = malloc((d->nfill ? d->nfill : 1) * sizeof *g->fill);
+  if (!g->outline || !g->fill)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  for (size_t j = 0; j <= n; j++) {
+    const double *r = d->joints + 4 * j;
+    g->ji[j] = (aq_vec2){r[0], r[1]};
+    g->je[j] = (aq_vec2){r[2], r[3]};
+    double dx = r[2] - r[0], dy = r[3] - r[1], l = hypot(dx, dy);
+    if (!(l > 0))
+      return aq_error_set(err, AQ_EFORMAT, NULL, -1, -1, "geometry",
+                          "expected joints of length > 0, got joint %zu of length 0", j);
+    g->jo[j] = g->ji[j];
+    g->ju[j] = (aq_vec2){dx / l, dy / l};
+    g->jmid[j] = g->jhalf[j] = 0.5 * l;
+    g->outline_start[j] = (size_t)d->outline_start[j];
+    g->fill_start[j] = (size_t)d->fill_start[j];
+  }
+  for (size_t k = 0; k < n; k++) {
+    const double *r = d->parts + 4 * k;
+    g->vous[k] = (aq_mass){r[0], {r[1], r[2]}, r[3]};
+  }
+  for (size_t i = 0; i < d->noutline; i++)
+    g->outline[i] = (aq_vec2){d->outline[2 * i], d->outline[2 * i + 1]};
+  for (size_t i = 0; i < d->nfill; i++)
+    g->fill[i] = (aq_vec2){d->fill[2 * i], d->fill[2 * i + 1]};
+  for (size_t i = 0; i < d->nmass; i++) {
+    const double *r = d->mass + 4 * i;
+    g->mass[i] = (aq_point_mass){"", (size_t)r[0], {r[1], r[2]}, r[3]};
+    snprintf(g->mass[i].name, sizeof g->mass[i].name, "mass %zu", i);
+  }
+  g->stone_kg = d->stone_kg;
+  g->fill_kg = d->fill_kg;
+  g->point_kg = d->point_kg;
+  free(g->theta_rad);
+  g->theta_rad = NULL;
+  return AQ_OK;
+}
+
 aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err)
 {
   memset(g, 0, sizeof *g);
+  if (p->stored) {
+    g->p = *p;
+    aq_status st = from_stored(g, err);
+    if (st != AQ_OK) {
+      aq_geom_free(g);
+      return st;
+    }
+    goto sums;
+  }
   aq_status st = check_params(p, err);
   if (st != AQ_OK)
     return st;
@@ -783,6 +853,8 @@ aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err)
     goto fail;
   if (p->shape != AQ_SHAPE_CIRCULAR)
     free(g->theta_rad), g->theta_rad = NULL;
+sums:
+  n = g->p.voussoirs;
   g->cum_m[0] = g->cum_mx[0] = g->cum_my[0] = 0;
   for (size_t k = 0; k < n; k++) {
     g->cum_m[k + 1] = g->cum_m[k] + g->vous[k].mass_kg;
@@ -796,6 +868,7 @@ aq_status aq_geom_init(aq_geom *g, const aq_arch_params *p, aq_error *err)
   g->p.face_pt[0] = g->p.face_pt[1] = NULL;
   g->p.face_start[0] = g->p.face_start[1] = NULL;
   g->p.mass = NULL;
+  g->p.stored = NULL;
   return AQ_OK;
 fail:
   aq_geom_free(g);

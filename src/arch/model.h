@@ -125,6 +125,9 @@ typedef struct {
   /* point masses (not owned; copied) */
   size_t nmass;
   const aq_point_mass *mass;
+  /* a geometry as stored in a results file (not NULL: every field above
+   * but depth, density and shape is unused; copied) */
+  const aq_arch_drawing *stored;
 } aq_arch_params;
 
 /* The parameters of a circular arch (no fill, no point masses). */
@@ -134,7 +137,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL};
+                      0, NULL, NULL};
   return p;
 }
 
@@ -377,6 +380,15 @@ int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
                        double *lambda0);
 
 /* ---- arch.c -------------------------------------------------------- */
+
+/* An arch from its geometry as stored in a results file (aq_arch_drawing:
+ * joints, the voussoirs' mass properties, outlines, fill, point masses)
+ * and its hinge sets: no integration, the stored masses as they are; for
+ * drawing a result again without its .cfg.  shape names the shape (for
+ * titles).  Errors as aq_arch_build's. */
+aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *primary,
+                               const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                               const char *name, aq_arch **out, aq_error *err);
 
 /* Build an arch from parameters (no file): primary NULL runs the search,
  * reverse NULL takes the primary's face swap.  dyn NULL: cor 0, impact cor,

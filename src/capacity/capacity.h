@@ -1,4 +1,7 @@
-/* capacity.h: collapse capacity of an arch under a record scaled by a
+/* src/capacity: the scale factors at which an arch's verdict changes under
+ * a record, and fragility fits of them.
+ *
+ * capacity.h: collapse capacity of an arch under a record scaled by a
  * factor (src/capacity), and lognormal fragility fits of the first-collapse
  * intensities.
  *
@@ -206,6 +209,7 @@ typedef struct {
  * PGD (m), Arias intensity (m/s), CAV (m/s), PGA / (lambda0 g). */
 enum { AQ_FRAGILITY_NIM = 6 };
 extern const char *const aq_fragility_im_names[AQ_FRAGILITY_NIM];
+extern const char *const aq_fragility_im_units[AQ_FRAGILITY_NIM]; /* "g", "m/s", "m", ..., "1" */
 /* IM number which of the record with measures im (scale 1) scaled by
  * scale, for an arch of smallest lambda0 (Arias grows as scale^2).  From
  * AQ_FRAGILITY_NIM on, the spectral measures: which - AQ_FRAGILITY_NIM is

@@ -253,6 +253,8 @@ aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
 
 const char *const aq_fragility_im_names[AQ_FRAGILITY_NIM] = {
     "pga_g", "pgv_m_s", "pgd_m", "arias_m_s", "cav_m_s", "pga_lambda0"};
+const char *const aq_fragility_im_units[AQ_FRAGILITY_NIM] = {"g",   "m/s", "m",
+                                                             "m/s", "m/s", "1"};
 
 double aq_fragility_im_at(const aq_im *im, double lambda0, int which,
                           double scale)

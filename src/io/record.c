@@ -1233,8 +1233,8 @@ static aq_status add_note(char ***notes, size_t *n, const aq_record_item *it)
   char why[260], line[4600];
   vertical_why(&it->rec, why, sizeof why);
   snprintf(line, sizeof line,
-           "%s: skipped: the file identifies channel \"%s\" as vertical (%s), not horizontal "
-           "excitation; name it with --accept-vertical to run it",
+           "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is not "
+           "horizontal excitation (give --accept-vertical to run it)",
            it->name, it->rec.channel, why);
   char **g = realloc(*notes, (*n + 1) * sizeof *g);
   if (!g)

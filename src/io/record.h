@@ -1,5 +1,5 @@
-/* record.h: reading records.  src/io turns record files into evenly
- * sampled ground acceleration in m/s^2 (aq_record).
+/* src/io (record.h): record files of every format in, evenly sampled
+ * ground acceleration in m/s^2 (aq_record) out.
  *
  * record.c sniffs a file's format from its content, dispatches to the
  * parser of that format (reader.h), which reports what the file states, and

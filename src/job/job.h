@@ -1,4 +1,4 @@
-/* job.h: the path from a file name to a result: a subject (a record or a
+/* src/job (job.h): the path from a file name to a result: a subject (a record or a
  * ground motion) read and processed once, its step list built once as a
  * view, and runs (factor, polarity, azimuth, arch) giving an aq_result.
  *

@@ -16,8 +16,8 @@ typedef struct {
   char *const *paths;
   size_t n;
   const aq_read_opts *opts;
-  char **names;
-  size_t nnames;
+  char **names, **notes;
+  size_t nnames, nnotes;
   aq_status st;
   aq_error err;
 } expand_part;
@@ -25,21 +25,22 @@ typedef struct {
 static void expand_part_run(void *ctx, size_t k)
 {
   expand_part *p = &((expand_part *)ctx)[k];
-  p->st = aq_record_expand(p->paths, p->n, p->opts, &p->names, &p->nnames, &p->err);
+  p->st = aq_record_expand_horizontal(p->paths, p->n, p->opts, &p->names, &p->nnames, &p->notes,
+                                      &p->nnotes, &p->err);
 }
 
 aq_status aq_job_names(char *const *paths, size_t n, const aq_read_opts *opts, long nthreads,
-                       char ***out, size_t *nout, aq_error *err)
+                       char ***out, size_t *nout, char ***notes, size_t *nnotes, aq_error *err)
 {
   size_t T = nthreads > 1 ? (size_t)nthreads : 1;
   if (T > n / AQ_JOB_NAMES_MIN_PER_THREAD)
     T = n / AQ_JOB_NAMES_MIN_PER_THREAD;
   expand_part *p = T > 1 ? calloc(T, sizeof *p) : NULL;
   if (!p)
-    return aq_record_expand(paths, n, opts, out, nout, err);
+    return aq_record_expand_horizontal(paths, n, opts, out, nout, notes, nnotes, err);
   for (size_t k = 0; k < T; k++)
-    p[k] = (expand_part){paths + n * k / T, n * (k + 1) / T - n * k / T, opts, NULL, 0,
-                         AQ_OK, {0}};
+    p[k] = (expand_part){paths + n * k / T, n * (k + 1) / T - n * k / T, opts, NULL, NULL, 0,
+                         0, AQ_OK, {0}};
   aq_status st = aq_pool_for(T, (long)T, expand_part_run, p, err);
   size_t total = 0;
   for (size_t k = 0; st == AQ_OK && k < T; k++) {
@@ -63,8 +64,29 @@ aq_status aq_job_names(char *const *paths, size_t n, const aq_read_opts *opts, l
     }
     m += p[k].nnames;
   }
+  /* the notes, in operand order */
+  size_t nn = 0, mn = 0;
+  for (size_t k = 0; k < T; k++)
+    nn += p[k].nnotes;
+  char **nt = st == AQ_OK && nn ? malloc(nn * sizeof *nt) : NULL;
+  if (st == AQ_OK && nn && !nt) {
+    st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    aq_record_names_free(names, total);
+    names = NULL;
+  }
+  for (size_t k = 0; k < T; k++) {
+    if (nt)
+      memcpy(nt + mn, p[k].notes, p[k].nnotes * sizeof *nt);
+    else
+      aq_record_names_free(p[k].notes, p[k].nnotes);
+    if (nt)
+      free(p[k].notes);
+    mn += p[k].nnotes;
+  }
   free(p);
   *out = names;
   *nout = names ? total : 0;
+  *notes = nt;
+  *nnotes = nt ? nn : 0;
   return st;
 }

@@ -10,11 +10,12 @@
 #include "../error.h"
 #include "../io/record.h"
 
-/* aq_record_expand of paths[0..n), on up to nthreads threads: the same
- * names in the same order into *out (*nout of them; free with
- * aq_record_names_free).  Returns AQ_OK, or the first operand's failure
- * (err filled, *out NULL). */
+/* aq_record_expand_horizontal of paths[0..n), on up to nthreads threads:
+ * the same names in the same order into *out (*nout of them), and the
+ * lines saying which vertical channels were left out into *notes (*nnotes;
+ * free both with aq_record_names_free).  Returns AQ_OK, or the first
+ * operand's failure (err filled, *out and *notes NULL). */
 aq_status aq_job_names(char *const *paths, size_t n, const aq_read_opts *opts, long nthreads,
-                       char ***out, size_t *nout, aq_error *err);
+                       char ***out, size_t *nout, char ***notes, size_t *nnotes, aq_error *err);
 
 #endif

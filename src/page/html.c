@@ -3,6 +3,7 @@
  * script only adds sorting (click a column's head) and a filter by verdict
  * to the verdict tables; every table and figure is there without it. */
 #include <errno.h>
+#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,6 +31,7 @@ static const char STYLE[] =
     "th{background:#e8e8e8}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
     "table.wide{width:100%}code,.mono{font-family:'DejaVu Sans Mono',monospace;font-size:.92em;"
     "word-break:break-all}\n"
+    "td.hash{font-family:'DejaVu Sans Mono',monospace;font-size:.8em;white-space:nowrap}\n"
     "pre{font-size:.85em;background:#f4f4f4;padding:.4em;white-space:pre-wrap}\n"
     ".read{background:#f3f6fb;border-left:4px solid #1f5bb4;padding:.3em .8em;margin:.6em 0}\n"
     ".v-c{background:#b3001b;color:#fff;font-weight:bold}\n"
@@ -41,6 +43,7 @@ static const char STYLE[] =
     ".summary td{border:none;padding:0 1em 0 0}\n"
     "@media print{body{max-width:none;padding:0;font-size:9pt}.controls{display:none}"
     "th.sort:after{content:''}h2{page-break-before:always}h2.first{page-break-before:auto}"
+    "h2,h3,h4{break-after:avoid;page-break-after:avoid}"
     "tr,.fig,.read{page-break-inside:avoid}thead{display:table-header-group}"
     "a{color:inherit;text-decoration:none}}\n"
     "@page{margin:12mm}\n";
@@ -150,6 +153,21 @@ static void units_td(aq_page_buf *b, const aq_page_attrs *root, const aq_page_ta
   aq_page_puts(b, "</td>");
 }
 
+/* An arch's shape and voussoirs, as its results file keeps them
+ * (/geometry); "–" for a file written before they were kept. */
+static void shape_text(aq_page_buf *b, const aq_page_attrs *g)
+{
+  const char *shape = aq_page_attr(g, "shape");
+  double nv = aq_page_attr_num(g, "voussoirs");
+  if (!shape) {
+    aq_page_puts(b, "–");
+    return;
+  }
+  aq_page_esc(b, shape);
+  if (nv > 0)
+    aq_page_printf(b, ", %.0f voussoirs", nv);
+}
+
 /* Whether the file identifies the record as vertical, and how. */
 static void vertical_td(aq_page_buf *b, const aq_page_table *t, size_t i)
 {
@@ -174,12 +192,33 @@ static void vertical_td(aq_page_buf *b, const aq_page_table *t, size_t i)
 
 /* ---- figures ----------------------------------------------------------- */
 
+/* Whether results file path keeps arch index's geometry (/geometry/NNN). */
+static int has_geometry(const char *path, size_t index)
+{
+  char obj[64];
+  snprintf(obj, sizeof obj, "/geometry/%03zu", index);
+  int there = 0;
+  H5E_BEGIN_TRY
+  {
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) {
+      there = H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 && H5Lexists(f, obj, H5P_DEFAULT) > 0;
+      H5Fclose(f);
+    }
+  }
+  H5E_END_TRY;
+  return there;
+}
+
 typedef struct {
   const aq_arch *arch;
+  const char *results, *name; /* arch NULL: drawn from the results file's /geometry */
 } arch_fig;
 static aq_status draw_arch(void *ctx, const char *svg, aq_error *err)
 {
   const arch_fig *a = ctx;
+  if (!a->arch)
+    return aq_plot_arch_h5(a->results, a->name, 0, svg, NULL, NULL, err);
   return aq_plot_arch(a->arch, 0, svg, NULL, NULL, err);
 }
 
@@ -274,19 +313,16 @@ static void section_run(page *p)
                "are of the processed record before scaling.  <i>Vertical</i> says "
                "whether the file identifies the channel as vertical, and how (it says "
                "so, its dip, or its channel name: Z, UD, ...); the main job runs a "
-               "vertical only with <code>--accept-vertical</code>.");
-  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>#</th><th>record</th><th>sha256</th>"
+               "vertical only with <code>--accept-vertical</code>.  The second table gives each "
+               "file's SHA-256 (as <code>sha256sum</code> prints it), to check that a file "
+               "at hand is the one that was run.");
+  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>#</th><th>record</th>"
                   "<th>format</th><th>units (from)</th><th>channel</th><th>vertical</th>"
                   "<th>PGA (g)</th><th>PGV (m/s)</th><th>Arias (m/s)</th><th>D5–95 (s)</th>"
                   "<th>status</th></tr></thead><tbody>\n");
   for (size_t i = 0; i < t->nrow; i++) {
     aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i);
     text_td(b, aq_page_cell(t, i, "name"), 1);
-    aq_page_puts(b, "<td class=\"mono\" title=\"");
-    aq_page_esc(b, aq_page_cell(t, i, "sha256"));
-    aq_page_puts(b, "\">");
-    aq_page_esc(b, aq_page_cell(t, i, "sha256"));
-    aq_page_puts(b, "</td>");
     text_td(b, aq_page_cell(t, i, "format"), 0);
     units_td(b, root, t, i);
     char ch[160];
@@ -305,6 +341,20 @@ static void section_run(page *p)
     aq_page_puts(b, "</td></tr>\n");
   }
   aq_page_puts(b, "</tbody></table>\n");
+  /* the files the records came from, with their hashes: a table of its
+     own, so that each hash stays on one line */
+  aq_page_puts(b, "<h4>Record files and their SHA-256</h4>\n"
+                  "<table class=\"wide files\"><thead><tr><th>#</th><th>file as given</th>"
+                  "<th>SHA-256 of its bytes</th></tr></thead><tbody>\n");
+  for (size_t i = 0; i < t->nrow; i++) {
+    aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i);
+    text_td(b, aq_page_cell(t, i, "source_file"), 1);
+    const char *h = aq_page_cell(t, i, "sha256");
+    aq_page_puts(b, h[0] ? "<td class=\"hash\">" : "<td>");
+    aq_page_esc(b, h[0] ? h : "– (not read)");
+    aq_page_puts(b, "</td></tr>\n");
+  }
+  aq_page_puts(b, "</tbody></table>\n");
 
   /* arches */
   aq_page_printf(b, "<h3 id=\"arches\">Arches (%zu)</h3>\n", p->r.narch);
@@ -312,9 +362,11 @@ static void section_run(page *p)
                "accelerates one way, the <i>reverse</i> set (the same joints, faces "
                "swapped) the other way.  λ0 is the static collapse multiplier: a constant "
                "ground acceleration of λ0 g starts the mechanism.  q<sub>c</sub> is the "
-               "rotation at which it collapses.  Joints are numbered from the left "
-               "springing; e: extrados, i: intrados.");
-  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>arch</th><th>set</th><th>joints</th>"
+               "rotation at which it collapses.  Joints are numbered from the springing "
+               "on the +x side (the right in the figures), counter-clockwise; e: "
+               "extrados, i: intrados.  The shape and voussoirs are those the results "
+               "file keeps with the arch's geometry.");
+  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>arch</th><th>shape</th><th>set</th><th>joints</th>"
                   "<th>faces</th><th>λ0</th><th>q<sub>c</sub> (rad)</th><th>admissible</th>"
                   "<th>file, sha256</th></tr></thead><tbody>\n");
   for (size_t a = 0; a < p->r.narch; a++) {
@@ -327,13 +379,18 @@ static void section_run(page *p)
         aq_page_puts(b, "<td rowspan=\"2\"><a href=\"#arch-");
         aq_page_printf(b, "%zu\">", a);
         aq_page_esc(b, (v = aq_page_attr(A, "name")) ? v : "?");
-        aq_page_puts(b, "</a></td>");
+        aq_page_puts(b, "</a></td><td rowspan=\"2\">");
+        shape_text(b, &p->r.geom[a]);
+        aq_page_puts(b, "</td>");
       }
       text_td(b, set, 0);
       snprintf(k, sizeof k, "%s_joints", set);
-      text_td(b, (v = aq_page_attr(A, k)) ? v : "–", 1);
+      aq_page_puts(b, "<td class=\"hash\">");
+      aq_page_esc(b, (v = aq_page_attr(A, k)) ? v : "–");
       snprintf(k, sizeof k, "%s_faces", set);
-      text_td(b, (v = aq_page_attr(A, k)) ? v : "–", 1);
+      aq_page_puts(b, "</td><td class=\"hash\">");
+      aq_page_esc(b, (v = aq_page_attr(A, k)) ? v : "–");
+      aq_page_puts(b, "</td>");
       snprintf(k, sizeof k, "%s_lambda0", set);
       num_td(b, aq_page_attr_num(A, k), "%.4g");
       snprintf(k, sizeof k, "%s_q_c_rad", set);
@@ -430,8 +487,11 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
   const char *cfg = aq_page_attr(A, "config");
   aq_arch *arch = NULL;
   aq_error e;
-  if (cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK) {
-    arch_fig f = {arch};
+  /* from its .cfg as read; an arch the .cfg alone does not make (a joints
+   * arch's files) from the geometry the results file keeps */
+  int loaded = cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK;
+  if (loaded || has_geometry(p->in->results, a)) {
+    arch_fig f = {arch, p->in->results, name};
     char label[200];
     snprintf(label, sizeof label, "arch %s to scale with its hinge sets", name);
     aq_status st = figure(p, label, draw_arch, &f);

@@ -1,4 +1,7 @@
-/* page.h: the report of a screening as one self-contained HTML page
+/* src/page: the HTML report of a screening, one self-contained page from
+ * results files and the plot stage's figures.
+ *
+ * page.h: the report of a screening as one self-contained HTML page
  * (`archquake report RESULTS.h5 [CAPACITY.h5 ...] -o report.html`).
  *
  * The page holds everything inline: the figures are SVG drawn by the plot

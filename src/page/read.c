@@ -37,9 +37,13 @@ void aq_page_results_free(aq_page_results *r)
 {
   attrs_free(&r->root);
   table_free(&r->records);
-  for (size_t i = 0; i < r->narch; i++)
+  for (size_t i = 0; i < r->narch; i++) {
     attrs_free(&r->arch[i]);
+    if (r->geom)
+      attrs_free(&r->geom[i]);
+  }
   free(r->arch);
+  free(r->geom);
   aq_h5_suite_free(&r->suite);
   memset(r, 0, sizeof *r);
 }
@@ -303,7 +307,8 @@ aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *e
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/arches", "expected the arch groups");
   if (st == AQ_OK) {
     r->arch = calloc(info.nlinks + 1, sizeof *r->arch);
-    for (hsize_t k = 0; r->arch && k < info.nlinks; k++) {
+    r->geom = calloc(info.nlinks + 1, sizeof *r->geom);
+    for (hsize_t k = 0; r->arch && r->geom && k < info.nlinks; k++) {
       char name[32];
       snprintf(name, sizeof name, "%03llu", (unsigned long long)k);
       hid_t a = H5Gopen2(g, name, H5P_DEFAULT);
@@ -316,8 +321,22 @@ aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *e
       }
       r->narch++;
       H5Gclose(a);
+      /* its geometry, where the file keeps it */
+      char gname[48];
+      snprintf(gname, sizeof gname, "/geometry/%s", name);
+      hid_t gg = -1;
+      if (H5Lexists(f, "geometry", H5P_DEFAULT) > 0 && H5Lexists(f, gname, H5P_DEFAULT) > 0)
+        gg = H5Gopen2(f, gname, H5P_DEFAULT);
+      int bad = gg >= 0 && read_attrs(gg, &r->geom[k]) != 0;
+      if (gg >= 0)
+        H5Gclose(gg);
+      if (bad) {
+        st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/geometry",
+                          "cannot read the attributes of %s", gname);
+        break;
+      }
     }
-    if (!r->arch)
+    if (!r->arch || !r->geom)
       st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
   }
   if (g >= 0)

@@ -35,6 +35,8 @@ typedef struct {
   aq_page_table records;
   size_t narch;
   aq_page_attrs *arch; /* narch: /arches/NNN in order */
+  aq_page_attrs *geom; /* narch: /geometry/NNN (shape, voussoirs, masses; none
+                          in a file written before it was kept) */
   aq_h5_suite suite;   /* the runs */
   int have_histories;  /* /histories exists */
 } aq_page_results;

@@ -11,6 +11,7 @@
  * voussoirs, and the line of thrust is that set's at lambda(q) in the
  * deformed arch.  The frame holds the undeformed and the deformed arch
  * with a margin. */
+#include <hdf5.h>
 #include <math.h>
 #include <plplot.h>
 #include <stdio.h>
@@ -193,9 +194,13 @@ static int draw(void *ctx, aq_error *err)
   plbox("bcnst", 0, 0, "bcnstv", 0, 0);
   char title[300], name[160];
   aq_plot_escape(aq_arch_name(f->arch), name, sizeof name);
-  /* the centre line's span and rise (a joints arch: its intrados span) */
-  double span = g->p.shape == AQ_SHAPE_JOINTS ? fabs(g->ji[0].x - g->ji[n].x) : g->centre.span;
-  const char *what = g->p.shape == AQ_SHAPE_JOINTS ? "intrados span" : "span";
+  /* the centre line's span, between the springing joints' midpoints (the
+   * centre line passes through every joint's midpoint; so also for an arch
+   * read back from a results file); a joints arch: its intrados span */
+  int centre = g->p.shape != AQ_SHAPE_JOINTS;
+  double span = centre ? fabs(0.5 * (g->ji[0].x + g->je[0].x) - 0.5 * (g->ji[n].x + g->je[n].x))
+                       : fabs(g->ji[0].x - g->ji[n].x);
+  const char *what = centre ? "span" : "intrados span";
   if (f->set >= 0)
     snprintf(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
              f->set ? "reverse" : "primary", f->s_rad);
@@ -388,4 +393,202 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
     rc = write_data(&f, data, err);
   free(f.thrust);
   return rc;
+}
+
+/* ---- an arch drawn again from a results file ---------------------------- */
+
+/* String attribute name of loc into buf[n] ("" if none). */
+static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
+{
+  buf[0] = '\0';
+  hid_t a = -1, t = -1;
+  int ok = 0;
+  H5E_BEGIN_TRY
+  {
+    a = H5Aopen(loc, name, H5P_DEFAULT);
+    if (a >= 0 && (t = H5Tcopy(H5T_C_S1)) >= 0 && H5Tset_size(t, n) >= 0 &&
+        H5Tset_strpad(t, H5T_STR_NULLTERM) >= 0)
+      ok = H5Aread(a, t, buf) >= 0;
+  }
+  H5E_END_TRY;
+  if (t >= 0)
+    H5Tclose(t);
+  if (a >= 0)
+    H5Aclose(a);
+  buf[n - 1] = '\0';
+  return ok;
+}
+
+static int attr_double(hid_t loc, const char *name, double *v)
+{
+  hid_t a = -1;
+  int ok = 0;
+  H5E_BEGIN_TRY
+  {
+    a = H5Aopen(loc, name, H5P_DEFAULT);
+    ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
+  }
+  H5E_END_TRY;
+  if (a >= 0)
+    H5Aclose(a);
+  return ok;
+}
+
+/* Dataset name of group g, rows x cols doubles (cols as stored), into a new
+ * array *v; -1 if missing or of other columns. */
+static long dataset(hid_t g, const char *name, int cols, double **v)
+{
+  hid_t d = -1, s = -1;
+  long rows = -1;
+  *v = NULL;
+  H5E_BEGIN_TRY
+  {
+    d = H5Dopen2(g, name, H5P_DEFAULT);
+    if (d >= 0 && (s = H5Dget_space(d)) >= 0) {
+      hsize_t dim[2] = {0, 1};
+      int nd = H5Sget_simple_extent_ndims(s);
+      if (nd == (cols > 1 ? 2 : 1) && H5Sget_simple_extent_dims(s, dim, NULL) == nd &&
+          (cols == 1 || dim[1] == (hsize_t)cols)) {
+        *v = malloc((dim[0] * (hsize_t)cols + 1) * sizeof **v);
+        if (*v && (dim[0] == 0 || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                          *v) >= 0))
+          rows = (long)dim[0];
+      }
+    }
+  }
+  H5E_END_TRY;
+  if (s >= 0)
+    H5Sclose(s);
+  if (d >= 0)
+    H5Dclose(d);
+  if (rows < 0) {
+    free(*v);
+    *v = NULL;
+  }
+  return rows;
+}
+
+/* "0,6,12,19" and "eiei" into hs. */
+static int hinges(const char *joints, const char *faces, aq_hinge_set *hs)
+{
+  unsigned long j[4];
+  if (sscanf(joints, "%lu,%lu,%lu,%lu", &j[0], &j[1], &j[2], &j[3]) != 4 || strlen(faces) != 4)
+    return 0;
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = j[k];
+    hs->face[k] = faces[k];
+  }
+  return 1;
+}
+
+aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_rad,
+                          const char *target, const char *data, double *draw_s, aq_error *err)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected an archquake results file (HDF5), got one that cannot be "
+                        "opened as such");
+  aq_status st = AQ_OK;
+  char obj[64], got[128], first[128] = "", names[512] = "";
+  long index = -1;
+  for (long k = 0; k < 1000; k++) {
+    snprintf(obj, sizeof obj, "/arches/%03ld", k);
+    htri_t there = H5Lexists(f, "/arches", H5P_DEFAULT) > 0 ? H5Lexists(f, obj, H5P_DEFAULT) : 0;
+    if (there <= 0)
+      break;
+    hid_t g = H5Gopen2(f, obj, H5P_DEFAULT);
+    attr_text(g, "name", got, sizeof got);
+    H5Gclose(g);
+    if (!first[0])
+      snprintf(first, sizeof first, "%s", got);
+    snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", k ? ", " : "", got);
+    if (!name || !strcmp(name, got)) {
+      index = k;
+      break;
+    }
+  }
+  double *joints = NULL, *parts = NULL, *outline = NULL, *ostart = NULL, *fill = NULL,
+         *fstart = NULL, *mass = NULL;
+  int64_t *os = NULL, *fs = NULL;
+  aq_arch *arch = NULL;
+  if (index < 0) {
+    st = aq_error_set(err, AQ_EVALUE, path, -1, -1, "--arch",
+                      "expected the name of one of the file's arches (%s), got \"%s\"",
+                      names[0] ? names : "none", name ? name : "");
+    goto done;
+  }
+  char gname[64], pj[64], pf[8], rj[64], rf[8], shape[32];
+  snprintf(gname, sizeof gname, "/geometry/%03ld", index);
+  hid_t ga = H5Gopen2(f, obj, H5P_DEFAULT);
+  aq_arch_dynamics dyn = {0, AQ_IMPACT_COR, 9.80665};
+  aq_hinge_set hs[2];
+  int ok = ga >= 0 && attr_text(ga, "name", got, sizeof got) &&
+           attr_text(ga, "primary_joints", pj, sizeof pj) &&
+           attr_text(ga, "primary_faces", pf, sizeof pf) &&
+           attr_text(ga, "reverse_joints", rj, sizeof rj) &&
+           attr_text(ga, "reverse_faces", rf, sizeof rf) && hinges(pj, pf, &hs[0]) &&
+           hinges(rj, rf, &hs[1]);
+  attr_double(ga, "g_m_s2", &dyn.g_mps2);
+  if (ga >= 0)
+    H5Gclose(ga);
+  hid_t gg = ok && H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 &&
+                     H5Lexists(f, gname, H5P_DEFAULT) > 0
+                 ? H5Gopen2(f, gname, H5P_DEFAULT)
+                 : -1;
+  if (!ok || gg < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, gname,
+                      "expected arch %s's hinge sets in %s and its geometry in %s, got %s "
+                      "(a file written before the geometry was stored: draw it from its .cfg)",
+                      got, obj, gname, ok ? "no geometry" : "no hinge sets");
+    goto done;
+  }
+  attr_text(gg, "shape", shape, sizeof shape);
+  long nj = dataset(gg, "joints", 4, &joints), nv = dataset(gg, "voussoirs", 4, &parts);
+  long no = dataset(gg, "outline", 2, &outline), nos = dataset(gg, "outline_start", 1, &ostart);
+  long nf = dataset(gg, "fill", 2, &fill), nfs = dataset(gg, "fill_start", 1, &fstart);
+  long nm = dataset(gg, "masses", 4, &mass);
+  double kg[3] = {NAN, 0, 0};
+  attr_double(gg, "masonry_kg", &kg[0]);
+  attr_double(gg, "fill_kg", &kg[1]);
+  attr_double(gg, "point_masses_kg", &kg[2]);
+  H5Gclose(gg);
+  if (nv < 4 || nj != nv + 1 || nos != nv + 1 || nfs != nv + 1 || no < 0 || nf < 0 || nm < 0) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, gname,
+                      "expected joints, voussoirs, outline, fill and masses of matching sizes, "
+                      "got %ld joints for %ld voussoirs", nj, nv);
+    goto done;
+  }
+  os = malloc((size_t)(nv + 1) * sizeof *os);
+  fs = malloc((size_t)(nv + 1) * sizeof *fs);
+  if (!os || !fs) {
+    st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    goto done;
+  }
+  for (long k = 0; k <= nv; k++) {
+    os[k] = (int64_t)ostart[k];
+    fs[k] = (int64_t)fstart[k];
+  }
+  aq_arch_drawing d = {shape, (size_t)nv, joints, parts, (size_t)no, (size_t)nf, outline, os,
+                       fill, fs, (size_t)nm, mass, kg[0], kg[1], kg[2]};
+  st = aq_arch_from_drawing(&d, &hs[0], &hs[1], &dyn, got, &arch, err);
+  if (st != AQ_OK) {
+    snprintf(err->input, sizeof err->input, "%s", path);
+    goto done;
+  }
+  st = aq_plot_arch(arch, rotation_rad, target, data, draw_s, err);
+done:
+  aq_arch_free(arch);
+  free(joints);
+  free(parts);
+  free(outline);
+  free(ostart);
+  free(fill);
+  free(fstart);
+  free(mass);
+  free(os);
+  free(fs);
+  H5Fclose(f);
+  return st;
 }

@@ -1,4 +1,6 @@
-/* plot.h: figures from archquake's results, drawn with PLplot (devices
+/* src/plot: figures (PNG, SVG, PDF) drawn with PLplot from a results file.
+ *
+ * plot.h: figures from archquake's results, drawn with PLplot (devices
  * pngcairo, svg (text kept as text), pdfcairo (A4 or Letter pages); the
  * format is the target's extension).  One figure per file:
  *   history.c   one run's ground acceleration, rotation and energies
@@ -178,6 +180,11 @@ aq_status aq_plot_history(const aq_plot_run *run, const char *target,
  * H1 (> 0: primary set, < 0: reverse set, |rotation| <= the set's q_c). */
 aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *target,
                        const char *data, double *draw_s, aq_error *err);
+/* The same for arch `name` (NULL: the first) of results file path, drawn
+ * from its stored geometry (/geometry/NNN) and hinge sets (/arches/NNN)
+ * without its .cfg.  Errors name the file (or --arch for an unknown name). */
+aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_rad,
+                          const char *target, const char *data, double *draw_s, aq_error *err);
 
 /* domain.c: duration (s) against ratio for the n ratios, with the shortest
  * collapsing durations dur_s[] (INFINITY: none up to the search limit)

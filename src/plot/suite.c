@@ -11,6 +11,10 @@
 
 /* the map's left edge: room for the longest name, within these */
 static const double VP_LEFT_MIN = 0.2, VP_LEFT_MAX = 0.45;
+/* a cell's label, "collapse", with room either side (aq_plot_chars_fit
+   counts a file name's wider characters); the text's scale no smaller */
+enum { CELL_CHARS = 7 };
+static const double SCALE_MIN = 0.45;
 static const char *const AX_KEY = "peak rotation / q#dc#u (1)";
 
 typedef struct {
@@ -41,15 +45,27 @@ static int draw(void *ctx, aq_error *err)
   (void)err;
   const map *m = ctx;
   pladv(0);
-  plschr(0, 0.85);
   /* the names' margin: the longest name, or as much as fits */
   size_t longest = 1;
   for (size_t i = 0; i < m->nrec; i++) {
     size_t len = strlen(base(m->rec[i]));
     longest = len > longest ? len : longest;
   }
-  double per_char = 0.8 / (double)aq_plot_chars_fit(0.8); /* page fraction */
-  double left = fmin(fmax((double)(longest + 3) * per_char, VP_LEFT_MIN), VP_LEFT_MAX);
+  /* text small enough that a cell holds its label ("collapse"): PLplot's
+     text grows with the figure's height, which grows with the records,
+     while the cells' width is shared by the arches */
+  double scale = 0.85, left = VP_LEFT_MIN;
+  size_t cell = 0;
+  for (int pass = 0; pass < 3; pass++) {
+    plschr(0, scale);
+    double per_char = 0.8 / (double)aq_plot_chars_fit(0.8); /* page fraction */
+    left = fmin(fmax((double)(longest + 3) * per_char, VP_LEFT_MIN), VP_LEFT_MAX);
+    cell = aq_plot_chars_fit((0.83 - left) / (double)m->narch);
+    if (cell >= CELL_CHARS || scale <= SCALE_MIN)
+      break;
+    scale = fmax(scale * (double)cell / CELL_CHARS, SCALE_MIN);
+  }
+  int tight = cell < CELL_CHARS; /* even the smallest text: short labels */
   plvpor(left, 0.83, 0.14, 0.9);
   plwind(0, (double)m->narch, (double)m->nrec, 0);
   /* white (never moved) through yellow and orange to brown (about to
@@ -64,13 +80,13 @@ static int draw(void *ctx, aq_error *err)
       char lab[32];
       if (m->coll[i * m->narch + j]) {
         plcol0(AQ_PC_RED);
-        snprintf(lab, sizeof lab, "collapse");
+        snprintf(lab, sizeof lab, "%s", tight ? "coll." : "collapse");
       } else if (isnan(v)) {
         plcol0(AQ_PC_LIGHT);
-        snprintf(lab, sizeof lab, "failed");
+        snprintf(lab, sizeof lab, "%s", tight ? "fail" : "failed");
       } else {
         plcol1(fmin(fmax(v, 0), 1));
-        snprintf(lab, sizeof lab, "%.3f", v);
+        snprintf(lab, sizeof lab, tight ? "%.2f" : "%.3f", v);
       }
       plfill(4, x, y);
       plcol0(m->coll[i * m->narch + j] ? AQ_PC_BG : AQ_PC_FG);
@@ -87,11 +103,19 @@ static int draw(void *ctx, aq_error *err)
     aq_plot_ellipsize(base(m->rec[i]), fit, name, sizeof name);
     plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, name);
   }
-  size_t afit = aq_plot_chars_fit((0.83 - left) / (double)m->narch);
+  /* the arches' names over their columns; when one is too long for its
+     column, every other name a line higher, each with two columns' room */
+  double col = (0.83 - left) / (double)m->narch;
+  size_t afit = aq_plot_chars_fit(col);
+  int stagger = 0;
+  for (size_t j = 0; j < m->narch; j++)
+    stagger |= m->narch > 1 && strlen(m->arch[j]) > afit;
+  if (stagger)
+    afit = aq_plot_chars_fit(2 * col) - 1;
   for (size_t j = 0; j < m->narch; j++) {
     char name[512];
     aq_plot_ellipsize(m->arch[j], afit, name, sizeof name);
-    plmtex("t", 0.8, (j + 0.5) / (double)m->narch, 0.5, name);
+    plmtex("t", stagger && j % 2 ? 2.0 : 0.8, (j + 0.5) / (double)m->narch, 0.5, name);
   }
   /* the key's title, beside its labels (outside the map by the key's
      offset and width, 0.045 of the page, and its labels) */

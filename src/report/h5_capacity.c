@@ -38,9 +38,12 @@ static herr_t ds_strings(hid_t g, const char *name, const char *const *v, size_t
   return rc;
 }
 
-/* A dataset of n rows x cols of type t from buf. */
+static herr_t attr_s(hid_t g, const char *name, const char *v);
+
+/* A dataset of n rows x cols of type t from buf, with its units attribute
+ * (units NULL: none). */
 static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
-                       size_t cols)
+                       size_t cols, const char *units)
 {
   hsize_t dim[2] = {n, cols};
   hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
@@ -50,10 +53,50 @@ static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size
   hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (d >= 0) {
     rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
+    if (rc >= 0 && units)
+      rc = attr_s(d, "units", units);
     if (H5Dclose(d) < 0)
       rc = -1;
   }
   if (H5Sclose(sp) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* Attribute name of g: n variable-length strings. */
+static herr_t attr_strings(hid_t g, const char *name, const char *const *v, size_t n)
+{
+  hsize_t dim = n;
+  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &dim, NULL);
+  herr_t rc = -1;
+  if (t >= 0 && sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0) {
+    hid_t a = H5Acreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
+    if (a >= 0) {
+      rc = H5Awrite(a, t, v);
+      if (H5Aclose(a) < 0)
+        rc = -1;
+    }
+  }
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  return rc;
+}
+
+/* The n x AQ_FRAGILITY_NIM dataset name of the IMs, its columns named
+ * (`columns`) with their units (`units`), one string per column. */
+static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
+{
+  if (ds_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
+    return -1;
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  herr_t rc = attr_strings(d, "columns", aq_fragility_im_names, AQ_FRAGILITY_NIM);
+  if (rc >= 0)
+    rc = attr_strings(d, "units", aq_fragility_im_units, AQ_FRAGILITY_NIM);
+  if (H5Dclose(d) < 0)
     rc = -1;
   return rc;
 }
@@ -182,6 +225,7 @@ const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
     "first_collapse_pgv_m_s", "scale_max", "lambda0"};
 const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT] = {
     "resurrection", "runs", "interval_start", "interval_count"};
+static const char *const dunits[AQ_H5_CAP_NDOUBLE] = {"1", "1", "g", "m/s", "1", "1"};
 #define dnames aq_h5_capacity_double_names
 #define inames aq_h5_capacity_int_names
 
@@ -311,18 +355,17 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
       ds_strings(g, "status", col_s[3], np) < 0)
     goto fail;
   for (int j = 0; j < 6; j++)
-    if (ds_write(g, dnames[j], H5T_NATIVE_DOUBLE, k.d[j], c->npair, 1) < 0)
+    if (ds_write(g, dnames[j], H5T_NATIVE_DOUBLE, k.d[j], c->npair, 1, dunits[j]) < 0)
       goto fail;
   for (int j = 0; j < 4; j++)
-    if (ds_write(g, inames[j], H5T_NATIVE_INT64, k.i[j], c->npair, 1) < 0)
+    if (ds_write(g, inames[j], H5T_NATIVE_INT64, k.i[j], c->npair, 1, "1") < 0)
       goto fail;
   what = "capacity/intervals";
-  if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2) < 0)
+  if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, "1") < 0)
     goto fail;
   what = "capacity/im_first_collapse, im_cap";
-  if (ds_write(g, "im_first_collapse", H5T_NATIVE_DOUBLE, k.im[0], c->npair,
-               AQ_FRAGILITY_NIM) < 0 ||
-      ds_write(g, "im_cap", H5T_NATIVE_DOUBLE, k.im[1], c->npair, AQ_FRAGILITY_NIM) < 0)
+  if (ds_ims(g, "im_first_collapse", k.im[0], c->npair) < 0 ||
+      ds_ims(g, "im_cap", k.im[1], c->npair) < 0)
     goto fail;
   what = "capacity/scan_points";
   if (write_points(g, c) < 0)
@@ -332,14 +375,32 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
       ds_strings(gf, "arch", col_s[4], c->nfit) < 0 ||
       ds_strings(gf, "im", col_s[5], c->nfit) < 0 ||
-      ds_write(gf, "records", H5T_NATIVE_INT64, fn[0], c->nfit, 1) < 0 ||
-      ds_write(gf, "censored", H5T_NATIVE_INT64, fn[1], c->nfit, 1) < 0 ||
-      ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1) < 0 ||
-      ds_write(gf, "beta", H5T_NATIVE_DOUBLE, fd[1], c->nfit, 1) < 0 ||
-      ds_write(gf, "median_lo", H5T_NATIVE_DOUBLE, fd[2], c->nfit, 1) < 0 ||
-      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1) < 0 ||
-      ds_write(gf, "rank", H5T_NATIVE_INT64, fn[2], c->nfit, 1) < 0)
+      ds_write(gf, "records", H5T_NATIVE_INT64, fn[0], c->nfit, 1, "1") < 0 ||
+      ds_write(gf, "censored", H5T_NATIVE_INT64, fn[1], c->nfit, 1, "1") < 0 ||
+      ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1, NULL) < 0 ||
+      ds_write(gf, "beta", H5T_NATIVE_DOUBLE, fd[1], c->nfit, 1, "1") < 0 ||
+      ds_write(gf, "median_lo", H5T_NATIVE_DOUBLE, fd[2], c->nfit, 1, NULL) < 0 ||
+      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1, NULL) < 0 ||
+      ds_write(gf, "rank", H5T_NATIVE_INT64, fn[2], c->nfit, 1, "1") < 0)
     goto fail;
+  /* the median's units are its row's IM's: one string per row */
+  for (size_t i = 0; i < c->nfit; i++) {
+    col_s[5][i] = "1";
+    for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
+      if (c->fit[i].im && strcmp(c->fit[i].im, aq_fragility_im_names[m]) == 0)
+        col_s[5][i] = aq_fragility_im_units[m];
+    if (c->fit[i].im && strncmp(c->fit[i].im, "sa_", 3) == 0)
+      col_s[5][i] = "g"; /* Sa(T) and Sa_avg (sa_..._g) */
+  }
+  for (int j = 0; j < 3 && c->nfit; j++) {
+    static const char *const med[3] = {"median", "median_lo", "median_hi"};
+    hid_t d = H5Dopen2(gf, med[j], H5P_DEFAULT);
+    herr_t rc = d < 0 ? -1 : attr_strings(d, "units", col_s[5], c->nfit);
+    if (d >= 0 && H5Dclose(d) < 0)
+      rc = -1;
+    if (rc < 0)
+      goto fail;
+  }
   what = "H5Gclose";
   if (H5Gclose(gf) < 0) {
     gf = -1;

@@ -1,4 +1,7 @@
-/* report.h: the results of a suite as the report writers see them
+/* src/report: results written and read back: TSV rows, the HDF5 results
+ * file, the journal of a run in progress, and compare.
+ *
+ * report.h: the results of a suite as the report writers see them
  * (src/report).  One run = (record, arch, scale); its summary is one
  * aq_summary, a plain struct with fixed-size strings, which is at once a text
  * row (text.c), a row of the HDF5 summary table (h5.c), and what

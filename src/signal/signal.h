@@ -1,4 +1,7 @@
-/* signal.h: baseline correction, intensity measures and constant-acceleration
+/* src/signal: a record made ready for the arch: baseline and filter,
+ * intensity measures, spectra and constant-acceleration steps.
+ *
+ * signal.h: baseline correction, intensity measures and constant-acceleration
  * steps (src/signal).  Input: aq_record (m/s^2, s).  Output: aq_processed
  * (corrected, padded acceleration, m/s^2), aq_im (intensity measures, SI
  * except pga_g) and aq_steps (see steps.h).

@@ -1,4 +1,4 @@
-/* util.h: what every stage may use and none owns: threads (pool.h), values
+/* src/util (util.h): what every stage may use and none owns: threads (pool.h), values
  * as bytes and back (bytes.h), and output files written under a temporary
  * name and renamed onto their target when complete, removed on a signal
  * (outfile.h, cleanup.h), and shared libraries opened on first use rather
