@@ -195,6 +195,51 @@ AQ_TEST(spectrum_im_fragility_rank)
   aq_check(seen == 0x7f, "ranks 1..7 each once (%#x)", seen);
 }
 
+/* PGA and PGA/lambda0 are proportional within an arch, so their beta is
+ * the same number; the fit finds each to its simplex size only, so the
+ * ranking must not order them by the optimiser's noise: measures whose
+ * beta / power agree within the fit's resolution take the declared order,
+ * pga_g just before pga_lambda0, whatever lambda0 is. */
+AQ_TEST(spectrum_im_fragility_rank_ties)
+{
+  enum { NR = 9, NL = 40 };
+  static const double zz[NR] = {-1.21, 0.35, 1.72, -0.48, 0.91, -1.65, 0.12, 1.05, -0.77};
+  static const double ww[NR] = {0.83, -1.44, 0.27, 1.36, -0.58, 0.64, -1.02, 0.19, -0.25};
+  int bad = 0;
+  for (int k = 0; k < NL; k++) {
+    const double l0 = 0.05 + 0.0731 * k;
+    aq_capacity cap[NR];
+    aq_im imv[NR];
+    const aq_im *im[NR];
+    memset(cap, 0, sizeof cap);
+    memset(imv, 0, sizeof imv);
+    for (int r = 0; r < NR; r++) {
+      double s = exp(0.3 * zz[r]);
+      cap[r] = (aq_capacity){.status = AQ_CAPACITY_OK, .lambda0 = l0, .scale_max = 1e3,
+                             .first_collapse_scale = s};
+      imv[r].sa_avg_g = NAN;
+      imv[r].pga_g = 0.3 * exp(0.2 * ww[r]);
+      imv[r].pgv_mps = 0.2 * exp(0.5 * ww[r] + 0.1 * zz[r]);
+      imv[r].pgd_m = 0.05 * exp(0.7 * zz[r]);
+      imv[r].arias_mps = 0.4 * exp(0.9 * ww[r]);
+      imv[r].cav_mps = 1.1 * exp(0.6 * ww[r] - 0.4 * zz[r]);
+      im[r] = &imv[r];
+    }
+    aq_fragility fits[AQ_FRAGILITY_NIM];
+    aq_error e;
+    if (!aq_check(aq_fragility_fit_records(cap, NR, 1, 1, im, 0.9, fits, &e) == AQ_OK,
+                  "fit: %s", e.message))
+      return;
+    aq_check_rel(fits[5].beta, fits[0].beta, 1e-5, "lambda0 %g: equal beta", l0);
+    bad += fits[5].rank != fits[0].rank + 1;
+    if (fits[5].rank != fits[0].rank + 1)
+      fprintf(stderr, "  lambda0 %g: pga_g rank %d (beta %.17g), pga_lambda0 rank %d (beta %.17g)\n", l0,
+              fits[0].rank, fits[0].beta, fits[5].rank, fits[5].beta);
+  }
+  aq_check(bad == 0, "pga_lambda0 ranks just after pga_g at every lambda0: %d of %d not", bad,
+           NL);
+}
+
 static int col_of(const char *header, const char *name)
 {
   char b[128];

@@ -32,6 +32,7 @@
  * 0.5 n size^2, which meets its rounding (1e-16 of it) for size ~ 1e-8 */
 static const double FIT_SIMPLEX_SIZE = 1e-7;
 static const size_t FIT_MAX_ITER = 20000;
+static const double RANK_TIE = 10 * FIT_SIMPLEX_SIZE; /* relative, of beta / power */
 static const double PROFILE_LNBETA_TOL = 1e-10; /* inner maximisation over ln beta */
 static const double CI_LNTHETA_TOL = 1e-9;      /* ends of the interval, in ln theta */
 static const double CI_LNTHETA_SPAN = 30.0;     /* farther than e^30 x theta: unbounded */
@@ -341,14 +342,22 @@ aq_status aq_fragility_fit_records_n(const aq_capacity *cap, size_t nrec, size_t
   }
   free(x);
   free(cen);
-  for (int m = 0; m < nim; m++) /* rank: 1 + the measures of smaller beta / power */
+  /* rank: 1 + the measures of smaller beta / power.  The simplex finds
+   * ln beta to FIT_SIMPLEX_SIZE only, so betas within RANK_TIE of each
+   * other are not told apart: they take the declared order (PGA and
+   * PGA/lambda0, proportional within an arch, have the same beta, and
+   * the optimiser's last digits must not decide which comes first). */
+  for (int m = 0; m < nim; m++)
     if (isfinite(fits[m].beta)) {
       double bm = fits[m].beta / aq_fragility_im_power(m);
       fits[m].rank = 1;
-      for (int j = 0; j < nim; j++)
-        fits[m].rank += isfinite(fits[j].beta) &&
-                        (fits[j].beta / aq_fragility_im_power(j) < bm ||
-                         (fits[j].beta / aq_fragility_im_power(j) == bm && j < m));
+      for (int j = 0; j < nim; j++) {
+        if (j == m || !isfinite(fits[j].beta))
+          continue;
+        double bj = fits[j].beta / aq_fragility_im_power(j);
+        int tie = fabs(bj - bm) <= RANK_TIE * fmax(bj, bm);
+        fits[m].rank += tie ? j < m : bj < bm;
+      }
     }
   return st;
 }
