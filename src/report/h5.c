@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "../util/outfile.h"
+#include "h5_table.h"
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
 #define AQ_H5_RECORDS_CHUNK 64  /* rows per chunk of /records */
@@ -22,14 +23,9 @@
 #define AQ_H5_SYNC_BYTES ((size_t)8 << 20)
 
 /* ---- the two tables --------------------------------------------------------
- * A column of a compound table: member name, kind, place in the row struct,
- * and units (the attribute units_<name> of the table; "" for strings). */
-typedef struct {
-  const char *name;
-  aq_summary_kind kind;
-  size_t offset, size;
-  const char *units;
-} h5_col;
+ * Column lists (h5_table.h); units "" for strings (each column has its
+ * attribute units_<name>). */
+typedef aq_h5_col h5_col;
 
 /* A row of /summary: the run's summary (every field of aq_summary_fields, so
  * a field added there is a column here), then what only the file keeps. */
@@ -41,14 +37,13 @@ typedef struct {
   char error[AQ_H5_ERROR_MAX];
 } run_row;
 
-#define RUN_COL(f, kind, units) \
-  {#f, kind, offsetof(run_row, f), sizeof(((run_row *)0)->f), units}
+#define RUN_COL(f, kind, units) AQ_H5_COL(run_row, f, kind, units)
 static const h5_col run_extra_cols[] = {
-    RUN_COL(record_index, AQ_SF_INT, "1"),    RUN_COL(arch_index, AQ_SF_INT, "1"),
-    RUN_COL(scale_index, AQ_SF_INT, "1"),     RUN_COL(reversals, AQ_SF_INT, "1"),
-    RUN_COL(steps_total, AQ_SF_INT, "1"),     RUN_COL(steps_moving, AQ_SF_INT, "1"),
-    RUN_COL(path_evaluations, AQ_SF_INT, "1"), RUN_COL(timing_run_s, AQ_SF_DOUBLE, "s"),
-    RUN_COL(error, AQ_SF_STR, ""),
+    RUN_COL(record_index, AQ_H5_INT, "1"),    RUN_COL(arch_index, AQ_H5_INT, "1"),
+    RUN_COL(scale_index, AQ_H5_INT, "1"),     RUN_COL(reversals, AQ_H5_INT, "1"),
+    RUN_COL(steps_total, AQ_H5_INT, "1"),     RUN_COL(steps_moving, AQ_H5_INT, "1"),
+    RUN_COL(path_evaluations, AQ_H5_INT, "1"), RUN_COL(timing_run_s, AQ_H5_DOUBLE, "s"),
+    RUN_COL(error, AQ_H5_STR, ""),
 };
 enum { N_RUN_EXTRA = sizeof run_extra_cols / sizeof run_extra_cols[0] };
 
@@ -87,30 +82,29 @@ typedef struct {
   char waveform[40]; /* path of its /waveforms dataset, "" if not stored */
 } record_row;
 
-#define REC_COL(f, kind, units) \
-  {#f, kind, offsetof(record_row, f), sizeof(((record_row *)0)->f), units}
+#define REC_COL(f, kind, units) AQ_H5_COL(record_row, f, kind, units)
 static const h5_col record_cols[] = {
-    REC_COL(source_file, AQ_SF_STR, ""), REC_COL(name, AQ_SF_STR, ""),
-    REC_COL(sha256, AQ_SF_STR, ""),      REC_COL(status, AQ_SF_STR, ""),
-    REC_COL(error, AQ_SF_STR, ""),       REC_COL(format, AQ_SF_STR, ""),
-    REC_COL(units_orig, AQ_SF_STR, ""),  REC_COL(to_m_s2, AQ_SF_DOUBLE, "m/s^2 per file unit"),
-    REC_COL(units_stated, AQ_SF_STR, ""), REC_COL(units_source, AQ_SF_STR, ""),
-    REC_COL(npts, AQ_SF_INT, "1"),       REC_COL(dt_s, AQ_SF_DOUBLE, "s"),
-    REC_COL(begin_s, AQ_SF_DOUBLE, "s"), REC_COL(reference_time, AQ_SF_STR, ""),
-    REC_COL(network, AQ_SF_STR, ""),     REC_COL(station, AQ_SF_STR, ""),
-    REC_COL(location, AQ_SF_STR, ""),    REC_COL(channel, AQ_SF_STR, ""),
-    REC_COL(vertical, AQ_SF_INT, "1"),   REC_COL(vertical_by, AQ_SF_STR, ""),
-    REC_COL(detrend, AQ_SF_STR, ""),     REC_COL(filter, AQ_SF_INT, "1"),
-    REC_COL(taper_frac, AQ_SF_DOUBLE, "1"), REC_COL(highpass_hz, AQ_SF_DOUBLE, "Hz"),
-    REC_COL(highpass_order, AQ_SF_INT, "1"), REC_COL(lowpass_hz, AQ_SF_DOUBLE, "Hz"),
-    REC_COL(pad_front, AQ_SF_INT, "1"),  REC_COL(pad_back, AQ_SF_INT, "1"),
-    REC_COL(n_orig, AQ_SF_INT, "1"),     REC_COL(pga_g, AQ_SF_DOUBLE, "g"),
-    REC_COL(pgv_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(pgd_m, AQ_SF_DOUBLE, "m"),
-    REC_COL(arias_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(d5_95_s, AQ_SF_DOUBLE, "s"),
-    REC_COL(cav_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(v_end_m_s, AQ_SF_DOUBLE, "m/s"),
-    REC_COL(d_end_m, AQ_SF_DOUBLE, "m"), REC_COL(pgv_pga_s, AQ_SF_DOUBLE, "s"),
-    REC_COL(timing_read_s, AQ_SF_DOUBLE, "s"),
-    REC_COL(timing_process_s, AQ_SF_DOUBLE, "s"), REC_COL(waveform, AQ_SF_STR, ""),
+    REC_COL(source_file, AQ_H5_STR, ""), REC_COL(name, AQ_H5_STR, ""),
+    REC_COL(sha256, AQ_H5_STR, ""),      REC_COL(status, AQ_H5_STR, ""),
+    REC_COL(error, AQ_H5_STR, ""),       REC_COL(format, AQ_H5_STR, ""),
+    REC_COL(units_orig, AQ_H5_STR, ""),  REC_COL(to_m_s2, AQ_H5_DOUBLE, "m/s^2 per file unit"),
+    REC_COL(units_stated, AQ_H5_STR, ""), REC_COL(units_source, AQ_H5_STR, ""),
+    REC_COL(npts, AQ_H5_INT, "1"),       REC_COL(dt_s, AQ_H5_DOUBLE, "s"),
+    REC_COL(begin_s, AQ_H5_DOUBLE, "s"), REC_COL(reference_time, AQ_H5_STR, ""),
+    REC_COL(network, AQ_H5_STR, ""),     REC_COL(station, AQ_H5_STR, ""),
+    REC_COL(location, AQ_H5_STR, ""),    REC_COL(channel, AQ_H5_STR, ""),
+    REC_COL(vertical, AQ_H5_INT, "1"),   REC_COL(vertical_by, AQ_H5_STR, ""),
+    REC_COL(detrend, AQ_H5_STR, ""),     REC_COL(filter, AQ_H5_INT, "1"),
+    REC_COL(taper_frac, AQ_H5_DOUBLE, "1"), REC_COL(highpass_hz, AQ_H5_DOUBLE, "Hz"),
+    REC_COL(highpass_order, AQ_H5_INT, "1"), REC_COL(lowpass_hz, AQ_H5_DOUBLE, "Hz"),
+    REC_COL(pad_front, AQ_H5_INT, "1"),  REC_COL(pad_back, AQ_H5_INT, "1"),
+    REC_COL(n_orig, AQ_H5_INT, "1"),     REC_COL(pga_g, AQ_H5_DOUBLE, "g"),
+    REC_COL(pgv_m_s, AQ_H5_DOUBLE, "m/s"), REC_COL(pgd_m, AQ_H5_DOUBLE, "m"),
+    REC_COL(arias_m_s, AQ_H5_DOUBLE, "m/s"), REC_COL(d5_95_s, AQ_H5_DOUBLE, "s"),
+    REC_COL(cav_m_s, AQ_H5_DOUBLE, "m/s"), REC_COL(v_end_m_s, AQ_H5_DOUBLE, "m/s"),
+    REC_COL(d_end_m, AQ_H5_DOUBLE, "m"), REC_COL(pgv_pga_s, AQ_H5_DOUBLE, "s"),
+    REC_COL(timing_read_s, AQ_H5_DOUBLE, "s"),
+    REC_COL(timing_process_s, AQ_H5_DOUBLE, "s"), REC_COL(waveform, AQ_H5_STR, ""),
 };
 enum { N_RECORD_COLS = sizeof record_cols / sizeof record_cols[0] };
 
@@ -385,49 +379,6 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
 
 /* ---- tables ------------------------------------------------------------- */
 
-/* The compound type of the columns (memory layout, rows of rowsize bytes);
- * *file gets the packed copy for the file.  Returns the memory type or < 0. */
-static hid_t table_type(const h5_col *cols, size_t ncols, size_t rowsize,
-                        hid_t *file)
-{
-  hid_t t = H5Tcreate(H5T_COMPOUND, rowsize);
-  if (t < 0)
-    return -1;
-  for (size_t i = 0; i < ncols; i++) {
-    const h5_col *c = &cols[i];
-    herr_t rc = -1;
-    switch (c->kind) {
-    case AQ_SF_STR: {
-      hid_t m = str_type(c->size);
-      if (m >= 0) {
-        rc = H5Tinsert(t, c->name, c->offset, m);
-        if (H5Tclose(m) < 0)
-          rc = -1;
-      }
-      break;
-    }
-    case AQ_SF_DOUBLE:
-      rc = H5Tinsert(t, c->name, c->offset, H5T_NATIVE_DOUBLE);
-      break;
-    case AQ_SF_INT:
-      rc = H5Tinsert(t, c->name, c->offset, H5T_NATIVE_INT64);
-      break;
-    }
-    if (rc < 0) {
-      H5Tclose(t);
-      return -1;
-    }
-  }
-  *file = H5Tcopy(t);
-  if (*file < 0 || H5Tpack(*file) < 0) {
-    if (*file >= 0)
-      H5Tclose(*file);
-    H5Tclose(t);
-    return -1;
-  }
-  return t;
-}
-
 /* Create the empty, extensible table name with one units_<column>
  * attribute per column. */
 static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
@@ -439,7 +390,7 @@ static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
   T->buf = calloc(chunk, rowsize);
   if (!T->buf)
     return -1;
-  T->mt = table_type(cols, ncols, rowsize, &T->ft);
+  T->mt = aq_h5_table_type(cols, ncols, rowsize, &T->ft);
   if (T->mt < 0)
     return -1;
   hsize_t dim = 0, maxdim = H5S_UNLIMITED, ch = chunk;
@@ -450,11 +401,8 @@ static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
     T->d = H5Dcreate2(w->file, name, T->ft, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     rc = T->d < 0 ? -1 : 0;
   }
-  for (size_t i = 0; rc >= 0 && i < ncols; i++) {
-    char an[96];
-    snprintf(an, sizeof an, "units_%s", cols[i].name);
-    rc = attr_str(w, T->d, an, cols[i].units);
-  }
+  if (rc >= 0)
+    rc = aq_h5_table_units(T->d, cols, ncols);
   if (dcpl >= 0 && H5Pclose(dcpl) < 0)
     rc = -1;
   if (sp >= 0 && H5Sclose(sp) < 0)
@@ -593,8 +541,11 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   w->tmp = w->out.tmp;
   for (size_t i = 0; i < aq_summary_nfields; i++) {
     const aq_summary_field *f = &aq_summary_fields[i];
-    w->run_cols[i] = (h5_col){f->name, f->kind, offsetof(run_row, s) + f->offset,
-                              f->size, aq_summary_units(f)};
+    aq_h5_kind kind = f->kind == AQ_SF_STR      ? AQ_H5_STR
+                      : f->kind == AQ_SF_DOUBLE ? AQ_H5_DOUBLE
+                                                : AQ_H5_INT;
+    w->run_cols[i] = (h5_col){f->name, kind, offsetof(run_row, s) + f->offset, f->size,
+                              aq_summary_units(f)};
   }
   memcpy(w->run_cols + aq_summary_nfields, run_extra_cols, sizeof run_extra_cols);
   struct stat sb;
@@ -716,7 +667,7 @@ static herr_t records_open(aq_h5_writer *w, const aq_signal_opts *proc)
   for (size_t k = 0; k < w->n_spectral; k++) {
     aq_im_spectral_name(proc, k, w->rec_names[k], sizeof w->rec_names[k]);
     w->rec_cols[N_RECORD_COLS + k] =
-        (h5_col){w->rec_names[k], AQ_SF_DOUBLE, offsetof(record_row, sa) + k * sizeof(double),
+        (h5_col){w->rec_names[k], AQ_H5_DOUBLE, offsetof(record_row, sa) + k * sizeof(double),
                  sizeof(double), "g"};
   }
   w->n_rec_cols = N_RECORD_COLS + w->n_spectral;

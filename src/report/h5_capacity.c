@@ -12,31 +12,8 @@
 
 #include "compare.h"
 #include "h5_capacity.h"
+#include "h5_table.h"
 #include "text.h"
-
-/* n variable-length strings as a 1-D dataset. */
-static herr_t ds_strings(hid_t g, const char *name, const char *const *v, size_t n)
-{
-  hsize_t dim = n;
-  hid_t t = H5Tcopy(H5T_C_S1);
-  if (t < 0)
-    return -1;
-  hid_t sp = H5Screate_simple(1, &dim, NULL);
-  herr_t rc = -1;
-  if (sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0) {
-    hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (d >= 0) {
-      rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
-      if (H5Dclose(d) < 0)
-        rc = -1;
-    }
-  }
-  if (sp >= 0 && H5Sclose(sp) < 0)
-    rc = -1;
-  if (H5Tclose(t) < 0)
-    rc = -1;
-  return rc;
-}
 
 static herr_t attr_s(hid_t g, const char *name, const char *v);
 
@@ -146,31 +123,14 @@ typedef struct {
   double collapse_time_s;
 } h5_point;
 
-static const struct {
-  const char *name, *units;
-  size_t offset;
-  int is_int;
-} point_fields[] = {
-    {"pair", "1", offsetof(h5_point, pair), 1},
-    {"scale", "1", offsetof(h5_point, scale), 0},
-    {"peak_rotation_rad", "rad", offsetof(h5_point, peak_rotation_rad), 0},
-    {"peak_rotation_over_qc", "1", offsetof(h5_point, peak_rotation_over_qc), 0},
-    {"collapsed", "1", offsetof(h5_point, collapsed), 1},
-    {"collapse_time_s", "s", offsetof(h5_point, collapse_time_s), 0}};
-enum { NPOINT_FIELDS = sizeof point_fields / sizeof point_fields[0] };
-
-/* The compound type of h5_point (memory layout), or < 0. */
-static hid_t point_type(void)
-{
-  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(h5_point));
-  for (size_t i = 0; t >= 0 && i < NPOINT_FIELDS; i++)
-    if (H5Tinsert(t, point_fields[i].name, point_fields[i].offset,
-                  point_fields[i].is_int ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE) < 0) {
-      H5Tclose(t);
-      t = -1;
-    }
-  return t;
-}
+static const aq_h5_col point_cols[] = {
+    AQ_H5_COL(h5_point, pair, AQ_H5_INT, "1"),
+    AQ_H5_COL(h5_point, scale, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(h5_point, peak_rotation_rad, AQ_H5_DOUBLE, "rad"),
+    AQ_H5_COL(h5_point, peak_rotation_over_qc, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(h5_point, collapsed, AQ_H5_INT, "1"),
+    AQ_H5_COL(h5_point, collapse_time_s, AQ_H5_DOUBLE, "s")};
+enum { NPOINT_COLS = sizeof point_cols / sizeof point_cols[0] };
 
 /* capacity/scan_points from the pairs' aq_capacity points. */
 static herr_t write_points(hid_t g, const aq_h5_capacity *c)
@@ -179,92 +139,121 @@ static herr_t write_points(hid_t g, const aq_h5_capacity *c)
   for (size_t p = 0; p < c->npair; p++)
     n += c->row[p].cap ? c->row[p].cap->npoint : 0;
   h5_point *v = malloc((n ? n : 1) * sizeof *v);
-  hid_t t = point_type(), ft = t >= 0 ? H5Tcopy(t) : -1;
-  herr_t rc = v && ft >= 0 && H5Tpack(ft) >= 0 ? 0 : -1;
-  for (size_t p = 0, k = 0; rc == 0 && p < c->npair; p++)
+  if (!v)
+    return -1;
+  for (size_t p = 0, k = 0; p < c->npair; p++)
     for (size_t q = 0; c->row[p].cap && q < c->row[p].cap->npoint; q++) {
       const aq_capacity_point *a = &c->row[p].cap->point[q];
       v[k++] = (h5_point){(int64_t)p, a->scale, a->peak_rotation_rad,
                           a->peak_rotation_over_qc, a->collapsed, a->collapse_time_s};
     }
-  hsize_t dim = n;
-  hid_t sp = rc == 0 ? H5Screate_simple(1, &dim, NULL) : -1;
-  hid_t d = sp >= 0 ? H5Dcreate2(g, "scan_points", ft, sp, H5P_DEFAULT, H5P_DEFAULT,
-                                 H5P_DEFAULT)
-                    : -1;
-  rc = d < 0 ? -1 : n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
-  for (size_t i = 0; rc >= 0 && i < NPOINT_FIELDS; i++) {
-    char an[64];
-    snprintf(an, sizeof an, "units_%s", point_fields[i].name);
-    rc = attr_s(d, an, point_fields[i].units);
-  }
-  if (d >= 0 && H5Dclose(d) < 0)
-    rc = -1;
-  if (sp >= 0 && H5Sclose(sp) < 0)
-    rc = -1;
-  if (ft >= 0 && H5Tclose(ft) < 0)
-    rc = -1;
-  if (t >= 0 && H5Tclose(t) < 0)
-    rc = -1;
+  herr_t rc = aq_h5_table_write(g, "scan_points", point_cols, NPOINT_COLS, sizeof *v, v, n, NULL);
   free(v);
   return rc;
 }
 
-/* Per-pair and per-fit numeric columns, filled from c. */
+/* A row of /capacity (one per (record, arch, polarity)) and of
+ * capacity/fragility (one per fit): each a dataset per column. */
 typedef struct {
-  double *d[6];  /* move_scale first_collapse_scale first_collapse_pga_g
-                    first_collapse_pgv_m_s scale_max lambda0 */
-  int64_t *i[4]; /* resurrection runs interval_start interval_count */
-  double *iv;    /* intervals, 2 per row */
-  size_t niv;
-  double *im[2]; /* npair x AQ_FRAGILITY_NIM: the IMs at first collapse, at the cap */
-} columns;
+  const char *record, *arch, *polarity, *status;
+  double move_scale, first_collapse_scale, first_collapse_pga_g, first_collapse_pgv_m_s,
+      scale_max, lambda0;
+  int64_t resurrection, runs, interval_start, interval_count;
+} pair_row;
 
+static const aq_h5_col pair_cols[] = {
+    AQ_H5_COL(pair_row, record, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(pair_row, arch, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(pair_row, polarity, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(pair_row, status, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(pair_row, move_scale, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(pair_row, first_collapse_scale, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(pair_row, first_collapse_pga_g, AQ_H5_DOUBLE, "g"),
+    AQ_H5_COL(pair_row, first_collapse_pgv_m_s, AQ_H5_DOUBLE, "m/s"),
+    AQ_H5_COL(pair_row, scale_max, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(pair_row, lambda0, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(pair_row, resurrection, AQ_H5_INT, "1"),
+    AQ_H5_COL(pair_row, runs, AQ_H5_INT, "1"),
+    AQ_H5_COL(pair_row, interval_start, AQ_H5_INT, "1"),
+    AQ_H5_COL(pair_row, interval_count, AQ_H5_INT, "1")};
+enum { NPAIR_COLS = sizeof pair_cols / sizeof pair_cols[0] };
+
+typedef struct {
+  const char *arch, *im;
+  int64_t records, censored;
+  double median, beta, median_lo, median_hi; /* the median's units: per row, below */
+  int64_t rank;
+} fit_row;
+
+static const aq_h5_col fit_cols[] = {
+    AQ_H5_COL(fit_row, arch, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(fit_row, im, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(fit_row, records, AQ_H5_INT, "1"),
+    AQ_H5_COL(fit_row, censored, AQ_H5_INT, "1"),
+    AQ_H5_COL(fit_row, median, AQ_H5_DOUBLE, NULL),
+    AQ_H5_COL(fit_row, beta, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(fit_row, median_lo, AQ_H5_DOUBLE, NULL),
+    AQ_H5_COL(fit_row, median_hi, AQ_H5_DOUBLE, NULL),
+    AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1")};
+enum { NFIT_COLS = sizeof fit_cols / sizeof fit_cols[0] };
+
+/* The reader's names of the numeric columns (pair_cols' 5th to 14th). */
 const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
     "move_scale", "first_collapse_scale", "first_collapse_pga_g",
     "first_collapse_pgv_m_s", "scale_max", "lambda0"};
 const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT] = {
     "resurrection", "runs", "interval_start", "interval_count"};
-static const char *const dunits[AQ_H5_CAP_NDOUBLE] = {"1", "1", "g", "m/s", "1", "1"};
 #define dnames aq_h5_capacity_double_names
 #define inames aq_h5_capacity_int_names
 
+/* What the writer builds from c. */
+typedef struct {
+  pair_row *pair; /* npair */
+  fit_row *fit;   /* nfit */
+  double *iv;     /* intervals, 2 per row */
+  size_t niv;
+  double *im[2];  /* npair x AQ_FRAGILITY_NIM: the IMs at first collapse, at the cap */
+  const char **med_units; /* nfit: the units of each fit's median (its IM's) */
+} columns;
+
 static int fill(const aq_h5_capacity *c, columns *k)
 {
-  size_t n = c->npair ? c->npair : 1, niv = 0;
+  size_t n = c->npair ? c->npair : 1, nf = c->nfit ? c->nfit : 1, niv = 0;
   for (size_t p = 0; p < c->npair; p++)
     niv += c->row[p].cap ? c->row[p].cap->scan.ninterval : 0;
-  for (int j = 0; j < 6; j++)
-    if (!(k->d[j] = malloc(n * sizeof(double))))
-      return -1;
-  for (int j = 0; j < 4; j++)
-    if (!(k->i[j] = malloc(n * sizeof(int64_t))))
-      return -1;
-  if (!(k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double))))
-    return -1;
+  k->pair = malloc(n * sizeof *k->pair);
+  k->fit = malloc(nf * sizeof *k->fit);
+  k->med_units = malloc(nf * sizeof *k->med_units);
+  k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double));
   for (int j = 0; j < 2; j++)
-    if (!(k->im[j] = malloc(n * AQ_FRAGILITY_NIM * sizeof(double))))
-      return -1;
+    k->im[j] = malloc(n * AQ_FRAGILITY_NIM * sizeof(double));
+  if (!k->pair || !k->fit || !k->med_units || !k->iv || !k->im[0] || !k->im[1])
+    return -1;
   for (size_t p = 0; p < c->npair; p++) {
-    const aq_capacity *a = c->row[p].cap;
+    const aq_capacity_row *r = &c->row[p];
+    const aq_capacity *a = r->cap;
     int v = a != NULL;
     double fc = v ? a->first_collapse_scale : NAN;
-    k->d[0][p] = v ? a->move_scale : NAN;
-    k->d[1][p] = fc;
-    k->d[2][p] = fc * c->row[p].pga_g;
-    k->d[3][p] = fc * c->row[p].pgv_mps;
-    k->d[4][p] = v ? a->scale_max : NAN;
-    k->d[5][p] = v ? a->lambda0 : NAN;
-    k->i[0][p] = v ? a->resurrection : 0;
-    k->i[1][p] = v ? (int64_t)a->scan.runs : 0;
-    k->i[2][p] = (int64_t)k->niv;
-    k->i[3][p] = v ? (int64_t)a->scan.ninterval : 0;
+    k->pair[p] = (pair_row){r->record,
+                            r->arch,
+                            r->polarity,
+                            r->status,
+                            v ? a->move_scale : NAN,
+                            fc,
+                            fc * r->pga_g,
+                            fc * r->pgv_mps,
+                            v ? a->scale_max : NAN,
+                            v ? a->lambda0 : NAN,
+                            v ? a->resurrection : 0,
+                            v ? (int64_t)a->scan.runs : 0,
+                            (int64_t)k->niv,
+                            v ? (int64_t)a->scan.ninterval : 0};
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++) { /* what the fits were given */
-      int w = v && c->row[p].im;
+      int w = v && r->im;
       k->im[0][p * AQ_FRAGILITY_NIM + m] =
-          w && !isnan(fc) ? aq_fragility_im_at(c->row[p].im, a->lambda0, m, fc) : NAN;
+          w && !isnan(fc) ? aq_fragility_im_at(r->im, a->lambda0, m, fc) : NAN;
       k->im[1][p * AQ_FRAGILITY_NIM + m] =
-          w ? aq_fragility_im_at(c->row[p].im, a->lambda0, m, a->scale_max) : NAN;
+          w ? aq_fragility_im_at(r->im, a->lambda0, m, a->scale_max) : NAN;
     }
     for (size_t q = 0; v && q < a->scan.ninterval; q++) {
       k->iv[2 * k->niv] = a->scan.interval[q].lo;
@@ -272,15 +261,26 @@ static int fill(const aq_h5_capacity *c, columns *k)
       k->niv++;
     }
   }
+  for (size_t i = 0; i < c->nfit; i++) {
+    const aq_fragility *q = c->fit[i].fit;
+    const char *im = c->fit[i].im;
+    k->fit[i] = (fit_row){c->fit[i].arch, im, (int64_t)q->n, (int64_t)q->ncensored,
+                          q->median, q->beta, q->median_lo, q->median_hi, q->rank};
+    k->med_units[i] = "1";
+    for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
+      if (im && strcmp(im, aq_fragility_im_names[m]) == 0)
+        k->med_units[i] = aq_fragility_im_units[m];
+    if (im && strncmp(im, "sa_", 3) == 0)
+      k->med_units[i] = "g"; /* Sa(T) and Sa_avg (sa_..._g) */
+  }
   return 0;
 }
 
 static void columns_free(columns *k)
 {
-  for (int j = 0; j < 6; j++)
-    free(k->d[j]);
-  for (int j = 0; j < 4; j++)
-    free(k->i[j]);
+  free(k->pair);
+  free(k->fit);
+  free(k->med_units);
   free(k->iv);
   free(k->im[0]);
   free(k->im[1]);
@@ -293,49 +293,10 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   columns k;
   memset(&k, 0, sizeof k);
   const char *obj = "/capacity";
+  aq_status st = AQ_OK;
   if (fill(c, &k) != 0) {
     columns_free(&k);
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
-  }
-  size_t nf = c->nfit ? c->nfit : 1;
-  double *fd[4] = {malloc(nf * sizeof(double)), malloc(nf * sizeof(double)),
-                   malloc(nf * sizeof(double)), malloc(nf * sizeof(double))};
-  int64_t *fn[3] = {malloc(nf * sizeof(int64_t)), malloc(nf * sizeof(int64_t)),
-                    malloc(nf * sizeof(int64_t))};
-  aq_status st = AQ_OK;
-  const char **str = NULL;
-  if (!fd[0] || !fd[1] || !fd[2] || !fd[3] || !fn[0] || !fn[1] || !fn[2]) {
-    st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
-    goto out;
-  }
-  str = malloc(4 * (c->npair + c->nfit + 1) * sizeof *str);
-  if (!str) {
-    st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
-    goto out;
-  }
-  for (size_t i = 0; i < c->nfit; i++) {
-    const aq_fragility *q = c->fit[i].fit;
-    fd[0][i] = q->median;
-    fd[1][i] = q->beta;
-    fd[2][i] = q->median_lo;
-    fd[3][i] = q->median_hi;
-    fn[0][i] = (int64_t)q->n;
-    fn[1][i] = (int64_t)q->ncensored;
-    fn[2][i] = q->rank;
-  }
-  /* string columns: record arch polarity status (npair each), then arch im */
-  const size_t np = c->npair;
-  const char **col_s[6] = {str, str + np, str + 2 * np, str + 3 * np, str + 4 * np,
-                           str + 4 * np + c->nfit};
-  for (size_t i = 0; i < np; i++) {
-    col_s[0][i] = c->row[i].record;
-    col_s[1][i] = c->row[i].arch;
-    col_s[2][i] = c->row[i].polarity;
-    col_s[3][i] = c->row[i].status;
-  }
-  for (size_t i = 0; i < c->nfit; i++) {
-    col_s[4][i] = c->fit[i].arch;
-    col_s[5][i] = c->fit[i].im;
   }
   const char *what = "H5Gcreate2";
   errno = 0;
@@ -349,17 +310,8 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
              "median interval by profile likelihood") < 0)
     goto fail;
   what = "capacity columns";
-  if (ds_strings(g, "record", col_s[0], np) < 0 ||
-      ds_strings(g, "arch", col_s[1], np) < 0 ||
-      ds_strings(g, "polarity", col_s[2], np) < 0 ||
-      ds_strings(g, "status", col_s[3], np) < 0)
+  if (aq_h5_columns_write(g, pair_cols, NPAIR_COLS, sizeof *k.pair, k.pair, c->npair) < 0)
     goto fail;
-  for (int j = 0; j < 6; j++)
-    if (ds_write(g, dnames[j], H5T_NATIVE_DOUBLE, k.d[j], c->npair, 1, dunits[j]) < 0)
-      goto fail;
-  for (int j = 0; j < 4; j++)
-    if (ds_write(g, inames[j], H5T_NATIVE_INT64, k.i[j], c->npair, 1, "1") < 0)
-      goto fail;
   what = "capacity/intervals";
   if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, "1") < 0)
     goto fail;
@@ -373,29 +325,13 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   obj = "/capacity/fragility";
   what = "fragility columns";
   if ((gf = H5Gcreate2(g, "fragility", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
-      ds_strings(gf, "arch", col_s[4], c->nfit) < 0 ||
-      ds_strings(gf, "im", col_s[5], c->nfit) < 0 ||
-      ds_write(gf, "records", H5T_NATIVE_INT64, fn[0], c->nfit, 1, "1") < 0 ||
-      ds_write(gf, "censored", H5T_NATIVE_INT64, fn[1], c->nfit, 1, "1") < 0 ||
-      ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1, NULL) < 0 ||
-      ds_write(gf, "beta", H5T_NATIVE_DOUBLE, fd[1], c->nfit, 1, "1") < 0 ||
-      ds_write(gf, "median_lo", H5T_NATIVE_DOUBLE, fd[2], c->nfit, 1, NULL) < 0 ||
-      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1, NULL) < 0 ||
-      ds_write(gf, "rank", H5T_NATIVE_INT64, fn[2], c->nfit, 1, "1") < 0)
+      aq_h5_columns_write(gf, fit_cols, NFIT_COLS, sizeof *k.fit, k.fit, c->nfit) < 0)
     goto fail;
   /* the median's units are its row's IM's: one string per row */
-  for (size_t i = 0; i < c->nfit; i++) {
-    col_s[5][i] = "1";
-    for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
-      if (c->fit[i].im && strcmp(c->fit[i].im, aq_fragility_im_names[m]) == 0)
-        col_s[5][i] = aq_fragility_im_units[m];
-    if (c->fit[i].im && strncmp(c->fit[i].im, "sa_", 3) == 0)
-      col_s[5][i] = "g"; /* Sa(T) and Sa_avg (sa_..._g) */
-  }
   for (int j = 0; j < 3 && c->nfit; j++) {
     static const char *const med[3] = {"median", "median_lo", "median_hi"};
     hid_t d = H5Dopen2(gf, med[j], H5P_DEFAULT);
-    herr_t rc = d < 0 ? -1 : attr_strings(d, "units", col_s[5], c->nfit);
+    herr_t rc = d < 0 ? -1 : attr_strings(d, "units", k.med_units, c->nfit);
     if (d >= 0 && H5Dclose(d) < 0)
       rc = -1;
     if (rc < 0)
@@ -422,12 +358,6 @@ fail:
   if (g >= 0)
     H5Gclose(g);
 out:
-  free(str);
-  for (int j = 0; j < 4; j++)
-    free(fd[j]);
-  free(fn[0]);
-  free(fn[1]);
-  free(fn[2]);
   columns_free(&k);
   return st;
 }
@@ -565,7 +495,8 @@ static int read_points(hid_t g, aq_h5_capacity_table *t, const char **what)
   *what = "scan_points";
   if (H5Lexists(g, "scan_points", H5P_DEFAULT) <= 0)
     return 0;
-  hid_t d = H5Dopen2(g, "scan_points", H5P_DEFAULT), sp = -1, mt = point_type();
+  hid_t d = H5Dopen2(g, "scan_points", H5P_DEFAULT), sp = -1, ft = -1,
+        mt = aq_h5_table_type(point_cols, NPOINT_COLS, sizeof(h5_point), &ft);
   hsize_t n = 0;
   int ok = d >= 0 && mt >= 0 && (sp = H5Dget_space(d)) >= 0 &&
            H5Sget_simple_extent_dims(sp, &n, NULL) == 1;
@@ -597,6 +528,8 @@ static int read_points(hid_t g, aq_h5_capacity_table *t, const char **what)
     H5Dclose(d);
   if (mt >= 0)
     H5Tclose(mt);
+  if (ft >= 0)
+    H5Tclose(ft);
   return ok ? 0 : -1;
 }
 

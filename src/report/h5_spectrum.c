@@ -9,80 +9,42 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "h5_table.h"
+
 /* A row as stored. */
 typedef struct {
   const char *record, *component;
   double damping, period_s, psa_g, sd_m, psv_m_s;
 } h5_row;
 
-static const struct {
-  const char *name, *units;
-  size_t offset;
-  int text;
-} fields[] = {
-    {"record", "", offsetof(h5_row, record), 1},
-    {"component", "", offsetof(h5_row, component), 1},
-    {"damping", "1", offsetof(h5_row, damping), 0},
-    {"period_s", "s", offsetof(h5_row, period_s), 0},
-    {"psa_g", "g", offsetof(h5_row, psa_g), 0},
-    {"sd_m", "m", offsetof(h5_row, sd_m), 0},
-    {"psv_m_s", "m/s", offsetof(h5_row, psv_m_s), 0}};
-enum { NFIELDS = sizeof fields / sizeof fields[0] };
-
-/* The row's compound type (memory layout), or < 0; *str the string type
- * inside it (close both). */
-static hid_t row_type(hid_t *str)
-{
-  *str = H5Tcopy(H5T_C_S1);
-  if (*str < 0 || H5Tset_size(*str, H5T_VARIABLE) < 0)
-    return -1;
-  hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(h5_row));
-  for (size_t i = 0; t >= 0 && i < NFIELDS; i++)
-    if (H5Tinsert(t, fields[i].name, fields[i].offset,
-                  fields[i].text ? *str : H5T_NATIVE_DOUBLE) < 0) {
-      H5Tclose(t);
-      t = -1;
-    }
-  return t;
-}
+static const aq_h5_col cols[] = {
+    AQ_H5_COL(h5_row, record, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(h5_row, component, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(h5_row, damping, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(h5_row, period_s, AQ_H5_DOUBLE, "s"),
+    AQ_H5_COL(h5_row, psa_g, AQ_H5_DOUBLE, "g"),
+    AQ_H5_COL(h5_row, sd_m, AQ_H5_DOUBLE, "m"),
+    AQ_H5_COL(h5_row, psv_m_s, AQ_H5_DOUBLE, "m/s")};
+enum { NCOLS = sizeof cols / sizeof cols[0] };
 
 aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
                               const aq_h5_spectra *s, aq_error *err)
 {
-  hid_t file = (hid_t)aq_h5_file_id(w), str = -1;
+  hid_t file = (hid_t)aq_h5_file_id(w), d = -1;
   h5_row *v = malloc((s->n ? s->n : 1) * sizeof *v);
-  hid_t t = row_type(&str), ft = t >= 0 ? H5Tcopy(t) : -1;
-  herr_t rc = v && ft >= 0 && H5Tpack(ft) >= 0 ? 0 : -1;
+  herr_t rc = v ? 0 : -1;
   for (size_t i = 0; rc == 0 && i < s->n; i++) {
     const aq_spectrum_row *r = &s->row[i];
     v[i] = (h5_row){r->record, r->component, r->damping, r->period_s,
                     r->psa_g, r->sd_m, r->psv_m_s};
   }
-  hsize_t dim = s->n;
-  hid_t sp = rc == 0 ? H5Screate_simple(1, &dim, NULL) : -1;
-  hid_t d = sp >= 0 ? H5Dcreate2(file, "spectra", ft, sp, H5P_DEFAULT, H5P_DEFAULT,
-                                 H5P_DEFAULT)
-                    : -1;
-  rc = d < 0 ? -1 : s->n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) : 0;
-  for (size_t i = 0; rc >= 0 && i < NFIELDS; i++) {
-    char an[64];
-    snprintf(an, sizeof an, "units_%s", fields[i].name);
-    if (!fields[i].text)
-      rc = aq_h5_attr_text(w, d, an, fields[i].units);
-  }
+  if (rc >= 0)
+    rc = aq_h5_table_write(file, "spectra", cols, NCOLS, sizeof(h5_row), v, s->n, &d);
   if (rc >= 0)
     rc = aq_h5_attr_text(w, d, "peaks", s->sampled_peaks ? "samples" : "continuous");
   if (rc >= 0)
     rc = aq_h5_attr_int(w, d, "rotd_angles", (int64_t)s->n_angles);
   if (d >= 0 && H5Dclose(d) < 0)
-    rc = -1;
-  if (sp >= 0 && H5Sclose(sp) < 0)
-    rc = -1;
-  if (ft >= 0 && H5Tclose(ft) < 0)
-    rc = -1;
-  if (t >= 0 && H5Tclose(t) < 0)
-    rc = -1;
-  if (str >= 0 && H5Tclose(str) < 0)
     rc = -1;
   free(v);
   if (rc < 0)
@@ -107,7 +69,7 @@ void aq_h5_spectra_table_free(aq_h5_spectra_table *t)
 static aq_status read_rows(hid_t d, const char *path, aq_h5_spectra_table *t,
                            aq_error *err)
 {
-  hid_t str = -1, mt = row_type(&str), sp = H5Dget_space(d);
+  hid_t ft = -1, mt = aq_h5_table_type(cols, NCOLS, sizeof(h5_row), &ft), sp = H5Dget_space(d);
   hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
   h5_row *v = n >= 0 ? calloc((size_t)n + 1, sizeof *v) : NULL;
   aq_status st = AQ_OK;
@@ -144,8 +106,8 @@ static aq_status read_rows(hid_t d, const char *path, aq_h5_spectra_table *t,
     H5Sclose(sp);
   if (mt >= 0)
     H5Tclose(mt);
-  if (str >= 0)
-    H5Tclose(str);
+  if (ft >= 0)
+    H5Tclose(ft);
   return st;
 }
 
