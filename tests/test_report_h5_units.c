@@ -155,39 +155,3 @@ AQ_TEST(report_h5_units_everywhere)
   if (aq_check(rc == 0, "main: exit %d: %s", rc, err))
     aq_check(all_have_units(f) >= 8, "main file walked");
 }
-
-/* No record name is cut: one of 255 bytes is written whole (the TSV's
- * record column), one of 256 is refused before any run, in one line,
- * with no results file. */
-AQ_TEST(report_long_record_name_whole_or_refused)
-{
-  char d[512], dir[1200], p[1400], cmd[3200], out[8192], err[4096], h5[1500];
-  aq_test_tmpdir(d, sizeof d);
-  for (int extra = 0; extra < 2; extra++) {
-    /* d/AAAA.../B...B/ARL360.at2 with the B's making 255 + extra bytes */
-    size_t base = strlen(d) + 1 + 150 + 1 + strlen("/ARL360.at2");
-    size_t nb = 255 + (size_t)extra - base;
-    snprintf(dir, sizeof dir, "%s/%0150d/%c%0*d", d, 0, extra ? 'y' : 'x', (int)nb - 1, 0);
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", dir);
-    if (!aq_check(system(cmd) == 0, "mkdir"))
-      return;
-    snprintf(p, sizeof p, "%s/ARL360.at2", dir);
-    aq_test_copy_prefix("tests/data/records/ARL360.at2", p, 1, 1);
-    aq_check(strlen(p) == 255 + (size_t)extra, "path of %zu bytes", strlen(p));
-    snprintf(h5, sizeof h5, "%s/r%d.h5", d, extra);
-    snprintf(cmd, sizeof cmd, "'%s' --arch arches/thin.cfg --scale 1 -o '%s'", p, h5);
-    int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
-    FILE *f = fopen(h5, "rb");
-    if (!extra) {
-      char want[sizeof p + 16];
-      snprintf(want, sizeof want, "\n%s\tthin\t", p);
-      aq_check(rc == 0 && strstr(out, want) && f, "255 bytes: exit %d: %s", rc, err);
-    } else {
-      aq_check(rc == 1 && !f && aq_test_count_lines(err) == 1 && !out[0] &&
-                   strstr(err, "record name") && strstr(err, "at most 255 bytes"),
-               "256 bytes: exit %d: %s%s", rc, out, err);
-    }
-    if (f)
-      fclose(f);
-  }
-}

@@ -265,6 +265,13 @@ int aq_suite_arches(suite *S)
     }
   }
   for (size_t a = 0; !bad_arch && a < c->narches; a++) {
+    if (strlen(aq_arch_name(S->arches[a])) >= AQ_SUMMARY_ARCH_MAX) { /* stored whole or not */
+      fprintf(stderr, "archquake: %s: name: expected at most %d bytes (the results' arch "
+                      "field), got %zu\n",
+              c->arch_paths[a], AQ_SUMMARY_ARCH_MAX - 1, strlen(aq_arch_name(S->arches[a])));
+      bad_arch = 1;
+      break;
+    }
     for (size_t b = 0; b < a; b++)
       if (strcmp(aq_arch_name(S->arches[a]), aq_arch_name(S->arches[b])) == 0) {
         fprintf(stderr, "archquake: %s: name: expected a name unlike the other arches', "

@@ -186,25 +186,36 @@ static int read_table(hid_t f, const char *name, aq_page_table *t)
     hid_t mt0 = H5Tget_member_type(ft, (unsigned)j);
     int is_str = mt0 >= 0 && H5Tget_class(mt0) == H5T_STRING;
     int is_num = mt0 >= 0 && (H5Tget_class(mt0) == H5T_FLOAT || H5Tget_class(mt0) == H5T_INTEGER);
-    size_t sz = is_str ? H5Tget_size(mt0) : sizeof(double);
+    int is_vstr = is_str && H5Tis_variable_str(mt0) > 0; /* a string kept whole */
+    size_t sz = is_vstr ? sizeof(char *) : is_str ? H5Tget_size(mt0) : sizeof(double);
     snprintf(t->col[j], sizeof t->col[j], "%s", mname ? mname : "?");
     hid_t st = -1, mem = -1;
     if (is_str) {
       st = H5Tcopy(H5T_C_S1);
-      H5Tset_size(st, sz);
+      H5Tset_size(st, is_vstr ? H5T_VARIABLE : sz);
     }
     char *buf = (is_str || is_num) && mname ? malloc((size_t)nrow * sz + 1) : NULL;
     if (buf) {
       mem = H5Tcreate(H5T_COMPOUND, sz);
       H5Tinsert(mem, mname, 0, is_str ? st : H5T_NATIVE_DOUBLE);
     }
-    if (buf && (nrow == 0 || H5Dread(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0))
+    int got = buf && (nrow == 0 || H5Dread(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
+    if (got)
       for (size_t i = 0; i < (size_t)nrow; i++) {
-        double num;
+        double num = NAN;
         size_t k = i * t->ncol + (size_t)j;
-        t->cell[k] = value_text(is_str ? st : H5T_NATIVE_DOUBLE, buf + i * sz, 1, &num);
-        t->num[k] = num;
+        const char *vs = is_vstr ? *(char **)(void *)(buf + i * sz) : NULL;
+        t->cell[k] = is_vstr ? strdup(vs ? vs : "")
+                             : value_text(is_str ? st : H5T_NATIVE_DOUBLE, buf + i * sz, 1, &num);
+        t->num[k] = is_vstr ? NAN : num;
       }
+    if (got && is_vstr && nrow > 0) { /* the strings HDF5 allocated */
+      hid_t ms = H5Dget_space(d);
+      if (ms >= 0) {
+        H5Dvlen_reclaim(mem, ms, H5P_DEFAULT, buf);
+        H5Sclose(ms);
+      }
+    }
     for (size_t i = 0; i < (size_t)nrow; i++) { /* a column not read: empty */
       size_t k = i * t->ncol + (size_t)j;
       if (!t->cell[k]) {

@@ -35,7 +35,7 @@
 /* One run with its histories (sample times in record time, s). */
 typedef struct {
   char key[64];          /* run key: "00000_000_000", "r" appended when reversed */
-  char record[256];      /* record file as given */
+  char record[AQ_SUMMARY_RECORD_MAX]; /* record file as given (whole) */
   char arch[128];        /* arch name */
   double scale;          /* factor applied to the processed record */
   int reversed;          /* 1: the record negated (polarity reversed) */

@@ -34,7 +34,8 @@ typedef struct {
   int64_t record_index, arch_index, scale_index; /* rows of /records, groups of /arches, --scale */
   int64_t reversals, steps_total, steps_moving, path_evaluations; /* stepper counters */
   double timing_run_s;
-  char error[AQ_H5_ERROR_MAX];
+  char *error;             /* the run's message, whole (owned: freed at the flush) */
+  const char *record_text; /* = s.record, the column `record` (a variable-length string) */
 } run_row;
 
 #define RUN_COL(f, kind, units) AQ_H5_COL(run_row, f, kind, units)
@@ -43,18 +44,20 @@ static const h5_col run_extra_cols[] = {
     RUN_COL(scale_index, AQ_H5_INT, "1"),     RUN_COL(reversals, AQ_H5_INT, "1"),
     RUN_COL(steps_total, AQ_H5_INT, "1"),     RUN_COL(steps_moving, AQ_H5_INT, "1"),
     RUN_COL(path_evaluations, AQ_H5_INT, "1"), RUN_COL(timing_run_s, AQ_H5_DOUBLE, "s"),
-    RUN_COL(error, AQ_H5_STR, ""),
+    RUN_COL(error, AQ_H5_VSTR, ""),
 };
 enum { N_RUN_EXTRA = sizeof run_extra_cols / sizeof run_extra_cols[0] };
 
 /* A row of /records.  A new metadata field of aq_record is one member here,
  * one line in record_cols and one in record_fill. */
 typedef struct {
-  char source_file[AQ_SUMMARY_RECORD_MAX]; /* path as given */
-  char name[AQ_SUMMARY_RECORD_MAX];        /* file name without directories */
-  char sha256[65];                         /* of the file's bytes */
+  /* the user's strings, whole (variable-length strings, owned by the row
+   * until the flush: see row_strings) */
+  char *source_file; /* path as given */
+  char *name;        /* file name without directories */
+  char sha256[65];   /* of the file's bytes */
   char status[AQ_SUMMARY_STATUS_MAX];
-  char error[AQ_H5_ERROR_MAX];
+  char *error;
   /* as read */
   char format[16];
   char units_orig[24];
@@ -84,9 +87,9 @@ typedef struct {
 
 #define REC_COL(f, kind, units) AQ_H5_COL(record_row, f, kind, units)
 static const h5_col record_cols[] = {
-    REC_COL(source_file, AQ_H5_STR, ""), REC_COL(name, AQ_H5_STR, ""),
+    REC_COL(source_file, AQ_H5_VSTR, ""), REC_COL(name, AQ_H5_VSTR, ""),
     REC_COL(sha256, AQ_H5_STR, ""),      REC_COL(status, AQ_H5_STR, ""),
-    REC_COL(error, AQ_H5_STR, ""),       REC_COL(format, AQ_H5_STR, ""),
+    REC_COL(error, AQ_H5_VSTR, ""),       REC_COL(format, AQ_H5_STR, ""),
     REC_COL(units_orig, AQ_H5_STR, ""),  REC_COL(to_m_s2, AQ_H5_DOUBLE, "m/s^2 per file unit"),
     REC_COL(units_stated, AQ_H5_STR, ""), REC_COL(units_source, AQ_H5_STR, ""),
     REC_COL(npts, AQ_H5_INT, "1"),       REC_COL(dt_s, AQ_H5_DOUBLE, "s"),
@@ -115,6 +118,8 @@ typedef struct {
   unsigned char *buf;/* cap rows of rowsize bytes */
   size_t rowsize, cap, nbuf;
   hsize_t nrows;     /* rows already in the dataset */
+  size_t owned[4];   /* offsets of the row's heap strings (freed at each flush) */
+  size_t nowned;
 } h5_table;
 
 struct aq_h5_writer {
@@ -410,6 +415,20 @@ static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
   return rc;
 }
 
+/* Free the buffered rows' own strings (after a flush, or when giving up). */
+static void row_strings_free(h5_table *T)
+{
+  for (size_t r = 0; T->buf && r < T->nbuf; r++)
+    for (size_t k = 0; k < T->nowned; k++)
+      free(*(char **)(void *)(T->buf + r * T->rowsize + T->owned[k]));
+}
+
+/* A copy of s ("" for NULL) for a row's own string, or NULL. */
+static char *row_string(const char *s)
+{
+  return strdup(s ? s : "");
+}
+
 /* Append the buffered rows to the table.  Returns < 0 on failure. */
 static herr_t table_flush(aq_h5_writer *w, h5_table *T)
 {
@@ -432,6 +451,7 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
     rc = -1;
   if (rc >= 0) {
     sync_hint(w, T->nbuf * T->rowsize);
+    row_strings_free(T);
     T->nrows += T->nbuf;
     T->nbuf = 0;
     memset(T->buf, 0, T->cap * T->rowsize);
@@ -450,6 +470,8 @@ static void *table_row(aq_h5_writer *w, h5_table *T)
 
 static void table_close_quietly(h5_table *T)
 {
+  row_strings_free(T);
+  T->nbuf = 0;
   if (T->mt >= 0)
     H5Tclose(T->mt);
   if (T->ft >= 0)
@@ -528,6 +550,10 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   w->file = w->g_arches = w->g_waveforms = w->g_histories = -1;
   w->runs.d = w->runs.mt = w->runs.ft = -1;
   w->records.d = w->records.mt = w->records.ft = -1;
+  w->runs.owned[w->runs.nowned++] = offsetof(run_row, error);
+  w->records.owned[w->records.nowned++] = offsetof(record_row, source_file);
+  w->records.owned[w->records.nowned++] = offsetof(record_row, name);
+  w->records.owned[w->records.nowned++] = offsetof(record_row, error);
   w->sp_scalar = w->t_str = -1;
   w->sync_fd = -1;
   w->n_run_cols = aq_summary_nfields + N_RUN_EXTRA;
@@ -546,6 +572,9 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
                                                 : AQ_H5_INT;
     w->run_cols[i] = (h5_col){f->name, kind, offsetof(run_row, s) + f->offset, f->size,
                               aq_summary_units(f)};
+    if (strcmp(f->name, "record") == 0) /* whole, not AQ_SUMMARY_RECORD_MAX bytes a row */
+      w->run_cols[i] = (h5_col){f->name, AQ_H5_VSTR, offsetof(run_row, record_text),
+                                sizeof(const char *), ""};
   }
   memcpy(w->run_cols + aq_summary_nfields, run_extra_cols, sizeof run_extra_cols);
   struct stat sb;
@@ -879,12 +908,13 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
     CK(records_open(w, NULL), "table");
   record_row *row = table_row(w, &w->records);
   CK(row ? 0 : -1, "rows");
-  COPY(row->source_file, r->source_file);
+  const char *base = r->source_file ? strrchr(r->source_file, '/') : NULL;
+  row->source_file = row_string(r->source_file);
+  row->error = row_string(r->error);
+  row->name = row_string(r->rec ? r->rec->name : base ? base + 1 : r->source_file);
+  CK(row->source_file && row->error && row->name ? 0 : -1, "rows (out of memory)");
   COPY(row->sha256, r->sha256);
   COPY(row->status, r->status ? r->status : "ok");
-  COPY(row->error, r->error);
-  const char *base = r->source_file ? strrchr(r->source_file, '/') : NULL;
-  COPY(row->name, base ? base + 1 : r->source_file);
   row->to_m_s2 = row->dt_s = row->begin_s = NAN;
   row->taper_frac = row->highpass_hz = row->lowpass_hz = NAN;
   row->pga_g = row->pgv_m_s = row->pgd_m = row->arias_m_s = NAN;
@@ -895,7 +925,6 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
     row->sa[k] = NAN;
   if (r->rec) {
     const aq_record *rec = r->rec;
-    COPY(row->name, rec->name);
     COPY(row->format, rec->format);
     COPY(row->units_orig, rec->units_orig);
     row->to_m_s2 = rec->to_mps2;
@@ -974,7 +1003,9 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   row->arch_index = (int64_t)ai;
   row->scale_index = (int64_t)si;
   row->timing_run_s = timing_run_s;
-  COPY(row->error, error);
+  row->record_text = row->s.record;
+  row->error = row_string(error);
+  CK(row->error ? 0 : -1, "rows (out of memory)");
   if (!res)
     return AQ_OK;
   row->reversals = (int64_t)res->reversals;

@@ -37,7 +37,6 @@
 #include "report.h"
 
 #define AQ_H5_FORMAT_VERSION 2 /* root attribute format_version */
-#define AQ_H5_ERROR_MAX 400    /* bytes kept of a run's or record's error message */
 
 typedef struct aq_h5_writer aq_h5_writer;
 

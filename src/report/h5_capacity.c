@@ -406,8 +406,9 @@ static herr_t ds_read_strings(hid_t g, const char *name, void *base, size_t stri
   if (v && t >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0 &&
       ds_read(g, name, t, v, n, 1) >= 0) {
     rc = 0;
-    for (size_t i = 0; i < n; i++)
-      snprintf((char *)base + i * stride + off, cap, "%s", v[i] ? v[i] : "");
+    for (size_t i = 0; i < n; i++) /* whole, or not read */
+      if (snprintf((char *)base + i * stride + off, cap, "%s", v[i] ? v[i] : "") >= (int)cap)
+        rc = -1;
     hsize_t dim = n;
     hid_t sp = H5Screate_simple(1, &dim, NULL);
     if (n && sp >= 0)

@@ -34,7 +34,7 @@ extern const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE];
 extern const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT];
 
 typedef struct {
-  char record[512], arch[128], polarity[16], status[48];
+  char record[AQ_SUMMARY_RECORD_MAX], arch[AQ_SUMMARY_ARCH_MAX], polarity[16], status[48];
   double d[AQ_H5_CAP_NDOUBLE]; /* move_scale first_collapse_scale first_collapse_pga_g
                                   first_collapse_pgv_m_s scale_max lambda0 */
   int64_t i[AQ_H5_CAP_NINT];   /* resurrection runs interval_start interval_count */
@@ -46,7 +46,7 @@ typedef struct {
 
 /* One fit of capacity/fragility. */
 typedef struct {
-  char arch[128], im[32];
+  char arch[AQ_SUMMARY_ARCH_MAX], im[32];
   double median, beta, median_lo, median_hi;
   int64_t records, censored;
 } aq_h5_fragility_fit;

@@ -91,31 +91,6 @@ static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
   return ok;
 }
 
-/* Read every row of table name into a malloc'd array of rows of rowsize
- * bytes, through the memory type mt.  Returns the number of rows, or -1. */
-static long read_table(hid_t f, const char *name, hid_t mt, size_t rowsize,
-                       void **out)
-{
-  *out = NULL;
-  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
-  if (d < 0)
-    return -1;
-  long n = -1;
-  hid_t sp = H5Dget_space(d);
-  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-  void *v = np >= 0 ? calloc((size_t)np ? (size_t)np : 1, rowsize) : NULL;
-  if (v && (np == 0 || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0)) {
-    n = (long)np;
-    *out = v;
-    v = NULL;
-  }
-  free(v);
-  if (sp >= 0)
-    H5Sclose(sp);
-  H5Dclose(d);
-  return n;
-}
-
 /* Insert a member into compound t; returns < 0 on failure. */
 static herr_t member(hid_t t, const char *name, aq_summary_kind kind,
                      size_t offset, size_t size)
@@ -139,6 +114,40 @@ static int required(const aq_summary_field *f)
   return !strcmp(f->name, "record") || !strcmp(f->name, "arch") || !strcmp(f->name, "scale");
 }
 
+/* Read the variable-length string column name of table d (n rows) into
+ * the char[size] fields of rows (rowsize bytes apart, at offset).  Returns
+ * 1, or -1 when it cannot be read or a string does not fit whole. */
+static int read_vlen_column(hid_t d, hsize_t n, const char *name, size_t size, void *rows,
+                            size_t rowsize, size_t offset)
+{
+  char **col = calloc(n ? n : 1, sizeof *col);
+  hid_t s = H5Tcopy(H5T_C_S1), t = H5Tcreate(H5T_COMPOUND, sizeof(char *));
+  int ok = -1;
+  if (col && s >= 0 && t >= 0 && H5Tset_size(s, H5T_VARIABLE) >= 0 &&
+      H5Tinsert(t, name, 0, s) >= 0 &&
+      (n == 0 || H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, col) >= 0)) {
+    ok = 1;
+    for (hsize_t i = 0; i < n; i++) {
+      const char *v = col[i] ? col[i] : "";
+      if (strlen(v) >= size)
+        ok = -1;
+      else
+        memcpy((char *)rows + i * rowsize + offset, v, strlen(v) + 1);
+    }
+    hid_t sp = H5Dget_space(d);
+    if (n && sp >= 0)
+      H5Dvlen_reclaim(t, sp, H5P_DEFAULT, col);
+    if (sp >= 0)
+      H5Sclose(sp);
+  }
+  if (t >= 0)
+    H5Tclose(t);
+  if (s >= 0)
+    H5Tclose(s);
+  free(col);
+  return ok;
+}
+
 /* Read column name of table d (n rows) into rows of rowsize bytes at offset
  * (a member of size bytes, of kind kind).  Returns 1 if read, 0 if the table
  * has no such column, -1 on failure. */
@@ -151,6 +160,12 @@ static int read_column(hid_t d, hid_t ftype, hsize_t n, const char *name,
     return 0;
   }
   int ok = -1;
+  hid_t m = H5Tget_member_type(ftype, (unsigned)H5Tget_member_index(ftype, name));
+  int vlen = kind == AQ_SF_STR && m >= 0 && H5Tis_variable_str(m) > 0;
+  if (m >= 0)
+    H5Tclose(m);
+  if (vlen) /* a string written whole (variable length): copied whole or refused */
+    return read_vlen_column(d, n, name, size, rows, rowsize, offset);
   unsigned char *col = malloc((n ? n : 1) * size);
   hid_t t = H5Tcreate(H5T_COMPOUND, size);
   if (col && t >= 0 && member(t, name, kind, 0, size) >= 0 &&
@@ -222,6 +237,35 @@ static hid_t input_type(void)
     t = -1;
   }
   return t;
+}
+
+/* The name and sha256 of each row of /records (format 2), or -1. */
+static long read_inputs(hid_t f, void **out)
+{
+  *out = NULL;
+  hid_t d = H5Dopen2(f, "/records", H5P_DEFAULT);
+  if (d < 0)
+    return -1;
+  hid_t ft = H5Dget_type(d), sp = H5Dget_space(d);
+  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  aq_h5_input *v = np >= 0 && ft >= 0 && H5Tget_class(ft) == H5T_COMPOUND
+                       ? calloc((size_t)np ? (size_t)np : 1, sizeof *v)
+                       : NULL;
+  int ok = v && read_column(d, ft, (hsize_t)np, "name", AQ_SF_STR, sizeof v->name, v, sizeof *v,
+                            offsetof(aq_h5_input, name)) > 0 &&
+           read_column(d, ft, (hsize_t)np, "sha256", AQ_SF_STR, sizeof v->sha256, v, sizeof *v,
+                       offsetof(aq_h5_input, sha256)) > 0;
+  if (ft >= 0)
+    H5Tclose(ft);
+  if (sp >= 0)
+    H5Sclose(sp);
+  H5Dclose(d);
+  if (!ok) {
+    free(v);
+    return -1;
+  }
+  *out = v;
+  return (long)np;
 }
 
 /* ---- format 1: a group per run and per record, summaries as attributes */
@@ -388,13 +432,13 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   }
   out->runs = runs;
   out->nruns = (size_t)n;
-  mt = input_type();
   if (format == 1) {
+    mt = input_type();
     n = read_groups(f, "/records", sizeof(aq_h5_input), fill_record_v1, &v);
-  } else if (mt >= 0) {
-    n = read_table(f, "/records", mt, sizeof(aq_h5_input), &v);
+  } else {
+    n = read_inputs(f, &v); /* by column: a name written whole is of variable length */
   }
-  if (mt < 0 || n < 0) {
+  if ((format == 1 && mt < 0) || n < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/records",
                       "expected the record table of a results file, got none readable");
     goto done;

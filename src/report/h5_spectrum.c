@@ -55,6 +55,10 @@ aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
 
 void aq_h5_spectra_table_free(aq_h5_spectra_table *t)
 {
+  for (size_t i = 0; i < t->n; i++) {
+    free(t->record[i]);
+    free(t->component[i]);
+  }
   free(t->record);
   free(t->component);
   free(t->damping);
@@ -89,16 +93,19 @@ static aq_status read_rows(hid_t d, const char *path, aq_h5_spectra_table *t,
   if (st == AQ_OK && !ok)
     st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, "/spectra", "out of memory");
   for (size_t i = 0; st == AQ_OK && i < (size_t)n; i++) {
-    snprintf(t->record[i], sizeof t->record[i], "%s", v[i].record ? v[i].record : "");
-    snprintf(t->component[i], sizeof t->component[i], "%s",
-             v[i].component ? v[i].component : "");
+    t->record[i] = strdup(v[i].record ? v[i].record : "");
+    t->component[i] = strdup(v[i].component ? v[i].component : "");
+    t->n = i + 1; /* what aq_h5_spectra_table_free frees */
+    if (!t->record[i] || !t->component[i])
+      st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, "/spectra", "out of memory");
     t->damping[i] = v[i].damping;
     t->period_s[i] = v[i].period_s;
     t->psa_g[i] = v[i].psa_g;
     t->sd_m[i] = v[i].sd_m;
     t->psv_m_s[i] = v[i].psv_m_s;
   }
-  t->n = st == AQ_OK ? (size_t)n : 0;
+  if (st == AQ_OK)
+    t->n = (size_t)n;
   if (v && n > 0)
     H5Dvlen_reclaim(mt, sp, H5P_DEFAULT, v);
   free(v);

@@ -39,8 +39,8 @@ aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
 /* The spectra read back: n rows, the strings copied. */
 typedef struct {
   size_t n;
-  char (*record)[512];
-  char (*component)[32];
+  char **record;    /* whole, as written */
+  char **component;
   double *damping, *period_s, *psa_g, *sd_m, *psv_m_s;
   int sampled_peaks;
 } aq_h5_spectra_table;

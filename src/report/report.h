@@ -3,7 +3,8 @@
  *
  * report.h: the results of a suite as the report writers see them
  * (src/report).  One run = (record, arch, scale); its summary is one
- * aq_summary, a plain struct with fixed-size strings, which is at once a text
+ * aq_summary, a plain struct with fixed-size strings (none of them cut: see
+ * the limits below), which is at once a text
  * row (text.c), a row of the HDF5 summary table (h5.c), and what
  * `archquake compare` matches and compares (compare.c).  The field table aq_summary_fields[] lists the
  * summary's fields in column order; every writer and the reader use it, so a
@@ -22,7 +23,11 @@
 #include "../arch/result.h"
 #include "../error.h"
 
-#define AQ_SUMMARY_RECORD_MAX 256
+/* A record as given is a path the system can open: PATH_MAX (4096) bytes
+ * with its NUL.  It is kept whole: the main job refuses a longer one before
+ * any run (src/app/suite_record.c), and the HDF5 files store it as a
+ * variable-length string (docs/hdf5-layout.md). */
+#define AQ_SUMMARY_RECORD_MAX 4096
 #define AQ_SUMMARY_ARCH_MAX 128
 #define AQ_SUMMARY_MODEL_MAX 16
 #define AQ_SUMMARY_STATUS_MAX 48
@@ -79,8 +84,10 @@ typedef struct {
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
-/* Fill s for one run.  record, arch, model and status are copied (truncated
- * to the field sizes); res may be NULL for a run that did not happen (then
+/* Fill s for one run.  record, arch, model and status are copied (record
+ * must be shorter than AQ_SUMMARY_RECORD_MAX, arch than AQ_SUMMARY_ARCH_MAX:
+ * the callers refuse longer ones before any run; model and status are the
+ * program's own short words); res may be NULL for a run that did not happen (then
  * the result fields are as documented above).  pga_g may be NAN. */
 void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
                      const char *model, double scale, double pga_g,
