@@ -354,3 +354,14 @@ aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
   aq_signal_ws_free(own);
   return AQ_OK;
 }
+
+void aq_signal_fingerprint(char *buf, size_t n)
+{
+  /* FFTW_ESTIMATE picks codelets by the SIMD sets the CPU (and OS) offer */
+  __builtin_cpu_init();
+  const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
+  snprintf(buf, n, "%s; cpu sse2 %d avx %d avx2 %d fma %d avx512f %d; builtin wisdom %d",
+           fftw_version, !!__builtin_cpu_supports("sse2"), !!__builtin_cpu_supports("avx"),
+           !!__builtin_cpu_supports("avx2"), !!__builtin_cpu_supports("fma"),
+           !!__builtin_cpu_supports("avx512f"), !(e && e[0]));
+}
