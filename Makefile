@@ -123,7 +123,9 @@ archquake-mpi: build/mpi/mpi.o $(REL_OBJ)
 # The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3
 # ranks, a failing record, --resume, a killed follower.
 check-mpi: archquake archquake-mpi
-	AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi sh tests/mpi.sh
+	rm -rf build/tmp/cache-mpi
+	XDG_CACHE_HOME=$(CURDIR)/build/tmp/cache-mpi AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi \
+	  sh tests/mpi.sh
 
 # Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
 # (fast to rebuild and run); each mutant recompiles one file and relinks.
