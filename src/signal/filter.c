@@ -49,6 +49,7 @@
 #include <unistd.h>
 
 #include "../io/sha256.h"
+#include "../util/diskcache.h"
 #include "../util/outfile.h"
 #include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
@@ -68,15 +69,7 @@ static char *wisdom_text;  /* the wisdom as loaded or last saved, or NULL */
  * no home for it. */
 static int wisdom_path(char *dir, char *file, size_t n)
 {
-  const char *x = getenv("XDG_CACHE_HOME"), *h = getenv("HOME");
-  int len;
-  if (x && x[0] == '/')
-    len = snprintf(dir, n, "%s/archquake", x);
-  else if (h && h[0] == '/')
-    len = snprintf(dir, n, "%s/.cache/archquake", h);
-  else
-    return 0;
-  if (len < 0 || (size_t)len + 20 >= n)
+  if (!aq_diskcache_default_dir(dir, n) || strlen(dir) + 20 >= n)
     return 0;
   snprintf(file, n, "%s/fftw-wisdom", dir);
   return 1;
