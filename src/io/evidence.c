@@ -168,16 +168,15 @@ static const char *instrument_not_acceleration(const char *channel)
   }
 }
 
-/* The quantity the file name says, by its words (split at anything not a
- * letter or digit, and between a lower- and an upper-case letter: "RawVel"):
- * velocity (vel, velo, veloc, velocity, VT2) or displacement (disp, displ,
+/* The quantity the words of s say (split at anything not a letter or
+ * digit, and between a lower- and an upper-case letter: "RawVel"): velocity
+ * (vel, velo, veloc, velocity, VT2) or displacement (disp, displ,
  * displacement, DT2); the word in *word. */
-static aq_quantity name_quantity(const char *path, char *word, size_t cap)
+static aq_quantity words_quantity(const char *s, char *word, size_t cap)
 {
   static const char *const vel[] = {"vel", "velo", "veloc", "velocity", "velocities", "vt2"};
   static const char *const disp[] = {"disp", "displ", "displacement", "displacements", "dt2"};
-  const char *base = strrchr(path, '/');
-  const char *p = base ? base + 1 : path;
+  const char *p = s;
   while (*p) {
     while (*p && !isalnum((unsigned char)*p))
       p++;
@@ -205,6 +204,8 @@ aq_quantity aq_evidence_quantity(const aq_raw_channel *ch, const char *path, cha
 {
   char word[64];
   aq_quantity q = AQ_QUANTITY_UNSTATED;
+  const char *base = strrchr(path, '/');
+  base = base ? base + 1 : path;
   ev[0] = '\0';
   if (ch->quantity == AQ_QUANTITY_VELOCITY || ch->quantity == AQ_QUANTITY_DISPLACEMENT) {
     q = (aq_quantity)ch->quantity;
@@ -213,8 +214,11 @@ aq_quantity aq_evidence_quantity(const aq_raw_channel *ch, const char *path, cha
              q == AQ_QUANTITY_DISPLACEMENT) {
     snprintf(ev, cap, "units \"%s\"%s%s", ch->units, ch->units_from[0] ? ", " : "",
              ch->units_from);
-  } else if ((q = name_quantity(path, word, sizeof word)) != AQ_QUANTITY_UNSTATED) {
+  } else if ((q = words_quantity(base, word, sizeof word)) != AQ_QUANTITY_UNSTATED) {
     snprintf(ev, cap, "the file name says \"%s\"", word);
+  } else if (ch->quantity != AQ_QUANTITY_ACCELERATION &&
+             (q = words_quantity(ch->channel, word, sizeof word)) != AQ_QUANTITY_UNSTATED) {
+    snprintf(ev, cap, "the channel's name \"%s\"", ch->channel);
   } else if (ch->quantity != AQ_QUANTITY_ACCELERATION && instrument_not_acceleration(ch->channel)) {
     q = ch->channel[1] == 'M' ? AQ_QUANTITY_DISPLACEMENT : AQ_QUANTITY_VELOCITY;
     snprintf(ev, cap, "SEED channel %s: instrument code %c, %s", ch->channel,

@@ -24,9 +24,10 @@ aq_status aq_evidence_responses(const char *const *xml, size_t nx, const char *n
 /* Does anything about channel ch of the file at path contradict ground
  * acceleration?  Its stated quantity (ch->quantity: velocity or
  * displacement), units of velocity or displacement, the file name's words
- * (vel, veloc, disp, displ, VT2, DT2, ...), or a SEED instrument code of a
- * sensor that does not record acceleration (H, L, P, M; not when the file
- * states acceleration itself).  Returns AQ_QUANTITY_VELOCITY or
+ * (vel, veloc, disp, displ, VT2, DT2, ...), the same words in the channel's
+ * name (a text column "velocity"), or a SEED instrument code of a sensor
+ * that does not record acceleration (H, L, P, M); the last two not when
+ * the file states acceleration itself.  Returns AQ_QUANTITY_VELOCITY or
  * AQ_QUANTITY_DISPLACEMENT with the evidence in ev (cap bytes, e.g.
  * "header IDEP: IVEL (7, velocity)") and *what the quantity's name for a
  * message ("velocity", "a mass position"); AQ_QUANTITY_UNSTATED (ev "")
