@@ -130,10 +130,11 @@ AQ_TEST(opt_table_every_option_in_help_and_man)
   char *out = malloc(OUT_CAP), dir[512], cmd[1200], page_path[700];
   if (!aq_check(out != NULL, "memory"))
     return;
-  static const aq_cmd helps[] = {AQ_CMD_RUN,      AQ_CMD_INFO,   AQ_CMD_MECHANISM,
-                                 AQ_CMD_PULSE,    AQ_CMD_DOMAIN, AQ_CMD_COMPARE,
-                                 AQ_CMD_CAPACITY, AQ_CMD_REPORT, AQ_CMD_PLOT};
-  for (size_t k = 0; k < sizeof helps / sizeof helps[0]; k++) {
+  aq_cmd helps[AQ_CMD_N]; /* every command of the table, plot for its figures */
+  size_t nhelps = 0;
+  for (int c = 0; c <= AQ_CMD_PLOT; c++)
+    helps[nhelps++] = (aq_cmd)c;
+  for (size_t k = 0; k < nhelps; k++) {
     const aq_opt_command *c = &aq_opt_commands[helps[k]];
     snprintf(cmd, sizeof cmd, "%s%s--help", c->name, c->name[0] ? " " : "");
     int rc = aq_test_run(cmd, out, OUT_CAP, NULL, 0);

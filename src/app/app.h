@@ -31,14 +31,16 @@ void aq_app_now_utc(char *buf, size_t n);
 
 enum { AQ_EXIT_OK = 0, AQ_EXIT_FAIL = 1, AQ_EXIT_USAGE = 2, AQ_EXIT_OUTPUT = 3 };
 
-/* archquake's command line (dispatch.c): a command, help, the version or
- * the main job; returns the exit status.  main (src/main.c) and
- * archquake-mpi's main (mpi.c) call it. */
+/* archquake's command line (dispatch.c): the command argv[1] names in the
+ * table of commands (opt_table.h), else the main job (whose options
+ * include --help and --version); a word that names neither a command nor
+ * a file is refused in one line listing the commands.  Returns the exit
+ * status.  main (src/main.c) and archquake-mpi's main (mpi.c) call it. */
 int aq_app_main(int argc, char **argv);
-/* 1 if name is a command (archquake-mpi runs those on rank 0 alone). */
-int aq_app_is_command(const char *name);
-/* 1 if argv is the main job (not a command, help or the version). */
-int aq_app_is_main_job(int argc, char **argv);
+/* 1 if argv runs a command whose tasks archquake-mpi spreads over the
+ * ranks (the table's .farmed: the main job and capacity), not its --help
+ * or --version; the other commands run on rank 0 alone. */
+int aq_app_farms(int argc, char **argv);
 
 /* The allocator policy of every command (heap.c): blocks of a record's
  * size are kept in the heap between records instead of being mapped and
@@ -56,6 +58,7 @@ int aq_cmd_plot(int argc, char **argv);      /* archquake plot */
 int aq_cmd_capacity(int argc, char **argv);  /* archquake capacity */
 int aq_cmd_spectrum(int argc, char **argv);  /* archquake spectrum */
 int aq_cmd_report(int argc, char **argv);    /* archquake report */
+int aq_cmd_help(int argc, char **argv);      /* archquake help [COMMAND] */
 
 /* With [hinges], warn on stderr (one line naming path and both sets) when
  * the arch's minimum-lambda0 set is lower than its primary: that mechanism

@@ -1,48 +1,75 @@
-/* dispatch.c: archquake's command line to a command (app.h): the commands
- * by name, help and the version; anything else is the main job.  Called by
- * main (src/main.c) and by archquake-mpi's main (mpi.c). */
+/* dispatch.c: archquake's command line to a command (app.h).  The commands
+ * are the rows of the table of commands (aq_opt_commands, opt_table.c):
+ * their names, entry points and help; anything else is the main job, whose
+ * options include --help and --version.  Called by main (src/main.c) and
+ * by archquake-mpi's main (mpi.c). */
+#define _POSIX_C_SOURCE 200809L
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app.h"
+#include "opt.h"
 #include "opt_table.h"
 
-static const struct {
-  const char *name;
-  int (*fn)(int, char **);
-} commands[] = {
-    {"info", aq_cmd_info},       {"mechanism", aq_cmd_mechanism},
-    {"pulse", aq_cmd_pulse},     {"domain", aq_cmd_domain},
-    {"compare", aq_cmd_compare}, {"plot", aq_cmd_plot},
-    {"capacity", aq_cmd_capacity}, {"report", aq_cmd_report},
-    {"spectrum", aq_cmd_spectrum},
-};
-
-/* The main job's usage and the command list, on stdout. */
-static void usage(void)
+/* 1 if word looks like a command, not a record: a word of letters, digits,
+ * '-' and '_' (no '.', '/', '#' or glob character) naming no file. */
+static int looks_like_command(const char *word)
 {
-  fflush(stdout);
-  aq_opts_main_help(stdout);
-}
-
-int aq_app_is_command(const char *name)
-{
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    if (strcmp(name, commands[i].name) == 0)
-      return 1;
-  return 0;
-}
-
-int aq_app_is_main_job(int argc, char **argv)
-{
-  static const char *const other[] = {"help", "-h", "--help", "--version"};
-  if (argc < 2 || aq_app_is_command(argv[1]))
+  if (!word[0] || word[0] == '-' || word[strspn(word, "abcdefghijklmnopqrstuvwxyz"
+                                                   "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                   "0123456789-_")] != '\0')
     return 0;
-  for (size_t k = 0; k < sizeof other / sizeof other[0]; k++)
-    if (strcmp(argv[1], other[k]) == 0)
-      return 0;
-  return 1;
+  return access(word, F_OK) != 0;
+}
+
+/* The line that refuses word, which names no command (what: how it was
+ * taken, e.g. "a command or an existing RECORD"). */
+static void no_command(const char *prefix, const char *word, const char *what)
+{
+  char names[512];
+  aq_opt_command_names(names, sizeof names);
+  fprintf(stderr, "archquake: %sexpected %s, got \"%s\" (commands: %s)\n", prefix, what,
+          word, names);
+}
+
+int aq_cmd_help(int argc, char **argv)
+{
+  aq_opts o;
+  aq_opts_init(&o, AQ_CMD_HELP);
+  int nerr = 0;
+  if (aq_opts_parse(AQ_CMD_HELP, argc, argv, &o, &nerr)) { /* help --help */
+    aq_opts_free(&o);
+    return AQ_EXIT_OK;
+  }
+  aq_opts_free(&o);
+  const aq_opt_command *c = NULL;
+  if (optind < argc && !(c = aq_opt_command_named(argv[optind]))) {
+    no_command("help: ", argv[optind], "a command");
+    nerr++;
+  }
+  if (optind + 1 < argc)
+    aq_opt_no_operands("help", argc, argv, optind + 1, &nerr);
+  if (nerr)
+    return AQ_EXIT_USAGE;
+  if (!c) { /* archquake help: archquake --help */
+    aq_opts_main_help(stdout);
+    return AQ_EXIT_OK;
+  }
+  char h[] = "--help";
+  char *av[] = {argv[optind], h, NULL};
+  return c->run(2, av);
+}
+
+int aq_app_farms(int argc, char **argv)
+{
+  if (argc < 2 || aq_opt_is(AQ_OPT_HELP, argv[1]) || aq_opt_is(AQ_OPT_VERSION, argv[1]))
+    return 0;
+  const aq_opt_command *c = aq_opt_command_named(argv[1]);
+  if (!c && looks_like_command(argv[1]))
+    return 0; /* refused */
+  return (c ? c : &aq_opt_commands[AQ_CMD_RUN])->farmed;
 }
 
 int aq_app_main(int argc, char **argv)
@@ -50,33 +77,16 @@ int aq_app_main(int argc, char **argv)
   gsl_set_error_handler_off(); /* GSL's default handler aborts */
   aq_app_heap_policy();        /* records' arrays stay in the heap */
   if (argc < 2) { /* nothing to run: the usage, and the status of a usage error */
-    usage();
+    fflush(stdout);
+    aq_opts_main_help(stdout);
     return AQ_EXIT_USAGE;
   }
-  if (strcmp(argv[1], "--version") == 0) {
-    printf("archquake %s\n", AQ_VERSION);
-    return AQ_EXIT_OK;
-  }
-  int help = strcmp(argv[1], "help") == 0;
-  if (help && argc >= 3) { /* archquake help COMMAND = archquake COMMAND --help */
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-      if (strcmp(argv[2], commands[i].name) == 0) {
-        char h[] = "--help";
-        char *av[] = {argv[2], h, NULL};
-        return commands[i].fn(2, av);
-      }
-    fprintf(stderr, "archquake: help: expected a command (");
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-      fprintf(stderr, "%s%s", i ? ", " : "", commands[i].name);
-    fprintf(stderr, "), got \"%s\"\n", argv[2]);
+  const aq_opt_command *c = aq_opt_command_named(argv[1]);
+  if (c)
+    return c->run(argc - 1, argv + 1);
+  if (looks_like_command(argv[1])) {
+    no_command("", argv[1], "a command or an existing RECORD");
     return AQ_EXIT_USAGE;
   }
-  if (help || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
-    usage();
-    return AQ_EXIT_OK;
-  }
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    if (strcmp(argv[1], commands[i].name) == 0)
-      return commands[i].fn(argc - 1, argv + 1);
-  return aq_cmd_run(argc, argv);
+  return aq_opt_commands[AQ_CMD_RUN].run(argc, argv);
 }

@@ -532,9 +532,9 @@ int main(int argc, char **argv)
   C.t_init = MPI_Wtime();
   MPI_Comm_rank(MPI_COMM_WORLD, &C.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &C.size);
-  /* the main job and capacity farm their tasks out when there are followers */
-  int farmed = C.size > 1 && (aq_app_is_main_job(argc, argv) ||
-                              (argc >= 2 && strcmp(argv[1], "capacity") == 0));
+  /* the commands the table marks (the main job and capacity) farm their
+   * tasks out when there are followers */
+  int farmed = C.size > 1 && aq_app_farms(argc, argv);
   aq_farm F = {&C, C.rank != 0, farmed ? farm : NULL};
   aq_farm_set(&F); /* with one rank, or another command: runs here */
   int rc = AQ_EXIT_OK;

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app.h"
 #include "opt.h"
 #include "opt_arch.h"
 #include "opt_table.h"
@@ -191,8 +192,15 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
         refuse(cmd, id, as_short, nerr);
       continue;
     }
-    if (id == AQ_OPT_HELP) {
-      aq_opts_help(cmd, stdout);
+    if (id == AQ_OPT_HELP) { /* the main job's is archquake --help */
+      if (cmd == AQ_CMD_RUN)
+        aq_opts_main_help(stdout);
+      else
+        aq_opts_help(cmd, stdout);
+      return 1;
+    }
+    if (id == AQ_OPT_VERSION) {
+      printf("archquake %s\n", AQ_VERSION);
       return 1;
     }
     if (o->given[id] < UINT8_MAX)
@@ -347,7 +355,6 @@ void aq_opts_main_help(FILE *f)
     snprintf(lab, sizeof lab, "  archquake %s", k->synopsis);
     put_entry(f, lab, k->summary, NULL, SYNOPSIS_COL);
   }
-  put_entry(f, "  archquake --version", "the version", NULL, SYNOPSIS_COL);
   aq_opt_arch_usage(f);
 }
 
@@ -359,6 +366,29 @@ int aq_opt_is(aq_opt_id id, const char *word)
   if (word[1] == '-')
     return strcmp(word + 2, r->name) == 0;
   return r->short_name && word[1] == r->short_name && word[2] == '\0';
+}
+
+const aq_opt_command *aq_opt_command_named(const char *word)
+{
+  for (int c = 0; word && c < AQ_CMD_N; c++) {
+    const aq_opt_command *k = &aq_opt_commands[c];
+    if (k->run && k->name[0] && strcmp(k->name, word) == 0)
+      return k;
+  }
+  return NULL;
+}
+
+void aq_opt_command_names(char *buf, size_t n)
+{
+  size_t len = 0;
+  buf[0] = '\0';
+  for (int c = 0; c < AQ_CMD_N && len < n; c++) {
+    const aq_opt_command *k = &aq_opt_commands[c];
+    if (!k->run || !k->name[0])
+      continue;
+    int w = snprintf(buf + len, n - len, "%s%s", len ? ", " : "", k->name);
+    len += w > 0 ? (size_t)w : 0;
+  }
 }
 
 int aq_opts_figure(const char *word)

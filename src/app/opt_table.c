@@ -12,6 +12,7 @@
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../capacity/capacity.h"
+#include "app.h"
 #include "opt.h"
 #include "opt_arch.h"
 #include "opt_record.h"
@@ -400,6 +401,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                       "time, between samples too; docs/spectrum.md)"},
     [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
+    [AQ_OPT_VERSION] = {.name = "version", .kind = AQ_ARG_FLAG, .cmds = C(RUN),
+                        .help = "the version, and nothing else"},
 
     [AQ_OPT_UNITS] = {.name = "units", .kind = AQ_ARG_CUSTOM, .meta = "U", .fn = units,
                       .cmds = RECORDS, .group = AQ_GROUP_READING,
@@ -566,6 +569,7 @@ static const char plot_head[] =
 const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_RUN] =
         {.name = "",
+         .run = aq_cmd_run, .farmed = 1,
          .title = "the main job",
          .help_cmd = "",
          .synopsis = "[OPTIONS] RECORD... --arch FILE",
@@ -577,6 +581,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .tail = run_tail},
     [AQ_CMD_INFO] =
         {.name = "info",
+         .run = aq_cmd_info,
          .title = "info",
          .help_cmd = "info",
          .synopsis = "info [OPTIONS] RECORD...",
@@ -592,6 +597,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                                              "on the processed record):"}},
     [AQ_CMD_MECHANISM] =
         {.name = "mechanism",
+         .run = aq_cmd_mechanism,
          .title = "mechanism",
          .help_cmd = "mechanism",
          .synopsis = "mechanism --arch FILE",
@@ -618,6 +624,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n"},
     [AQ_CMD_PULSE] =
         {.name = "pulse",
+         .run = aq_cmd_pulse,
          .title = "pulse",
          .help_cmd = "pulse",
          .synopsis = "pulse --arch FILE --accel-g A --duration S",
@@ -633,6 +640,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "3 the history could not be written.\n"},
     [AQ_CMD_DOMAIN] =
         {.name = "domain",
+         .run = aq_cmd_domain,
          .title = "domain",
          .help_cmd = "domain",
          .synopsis = "domain --arch FILE",
@@ -648,6 +656,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "option the arch makes ineffective, as --cor with impact momentum).\n"},
     [AQ_CMD_COMPARE] =
         {.name = "compare",
+         .run = aq_cmd_compare,
          .title = "compare",
          .help_cmd = "compare",
          .synopsis = "compare A.h5 B.h5",
@@ -671,6 +680,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "read as a results file.\n"},
     [AQ_CMD_CAPACITY] =
         {.name = "capacity",
+         .run = aq_cmd_capacity, .farmed = 1,
          .title = "capacity",
          .help_cmd = "capacity",
          .synopsis = "capacity RECORD... --arch FILE",
@@ -697,6 +707,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                          "take plain RECORDs only):"}},
     [AQ_CMD_SPECTRUM] =
         {.name = "spectrum",
+         .run = aq_cmd_spectrum,
          .title = "spectrum",
          .help_cmd = "spectrum",
          .synopsis = "spectrum RECORD...",
@@ -717,6 +728,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "pair does not fit (each said in one line; nothing is written); 2 bad\n"
                  "options; 3 the output file could not be written.\n"},
     [AQ_CMD_PLOT] = {.name = "plot",
+                     .run = aq_cmd_plot,
                      .title = "plot",
                      .help_cmd = "plot",
          .synopsis = "plot FIGURE ... -o FILE",
@@ -725,6 +737,18 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                      .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
                              "bad options,\n3 the figure or the data could not be written.\n",
                      .heading = {[AQ_GROUP_MAIN] = "Options:"}},
+    [AQ_CMD_HELP] =
+        {.name = "help",
+         .run = aq_cmd_help,
+         .title = "help",
+         .help_cmd = "help",
+         .synopsis = "help [COMMAND]",
+         .summary = "a command's --help",
+         .head = "usage: archquake help [COMMAND]\n"
+                 "Print COMMAND's --help (archquake COMMAND --help); without a COMMAND,\n"
+                 "archquake --help.\n",
+         .tail = "Exit status: 0 printed, 2 an unknown COMMAND or bad options.\n",
+         .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
     [AQ_CMD_PLOT_ARCH] = FIGURE("arch"),
     [AQ_CMD_PLOT_DOMAIN] = FIGURE("domain"),
@@ -733,6 +757,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT_SPECTRUM] = FIGURE("spectrum"),
     [AQ_CMD_REPORT] =
         {.name = "report",
+         .run = aq_cmd_report,
          .title = "report",
          .help_cmd = "report",
          .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",

@@ -42,8 +42,9 @@
  *        // operands: argv[optind .. argc); checks between options: nerr++
  *        if (nerr) { aq_opts_free(&o); return AQ_EXIT_USAGE; }
  *        ... o.field ...; aq_opts_free(&o);
- *   4. a line in main.c's table of commands (archquake --help lists it from
- *      its synopsis and summary here).
+ *   4. its entry point in the row's .run (dispatch.c runs it by name, and
+ *      archquake --help lists it from its synopsis and summary); .farmed
+ *      if archquake-mpi spreads its tasks over the ranks (farm.h).
  */
 #ifndef AQ_APP_OPT_TABLE_H
 #define AQ_APP_OPT_TABLE_H
@@ -66,6 +67,7 @@ typedef enum {
   AQ_CMD_CAPACITY,
   AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_SPECTRUM, /* archquake spectrum RECORD... */
+  AQ_CMD_HELP,     /* archquake help [COMMAND] */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
   AQ_CMD_PLOT_ARCH,
@@ -131,6 +133,7 @@ typedef enum {
   AQ_OPT_DAMPING,
   AQ_OPT_SAMPLED_PEAKS,
   AQ_OPT_HELP,
+  AQ_OPT_VERSION,
   /* reading records */
   AQ_OPT_UNITS,
   AQ_OPT_READ_DT,
@@ -269,9 +272,16 @@ typedef struct {
   void (*check)(aq_opts *o, int *nerr);
 } aq_opt_row;
 
-/* One command: what --help says besides its options. */
+/* One command: its name, its entry point and what --help says besides its
+ * options.  Dispatch (dispatch.c), archquake --help's list of commands,
+ * `archquake help`, the manual page (tools/man.sh reads --help) and
+ * archquake-mpi (mpi.c) read this table alone. */
 typedef struct {
   const char *name;     /* as typed after archquake ("" the main job, "plot arch") */
+  /* its entry point: argv[0] is its name (the main job: the program's);
+   * NULL for plot's figures, which plot's entry point runs */
+  int (*run)(int argc, char **argv);
+  int farmed;           /* archquake-mpi spreads its tasks over the ranks */
   const char *title;    /* in messages: "the main job", "info", "plot arch" */
   const char *help_cmd; /* its --help: "archquake HELP_CMD --help" ("plot" for figures) */
   const char *synopsis; /* in archquake --help's list of commands, after "archquake " */
@@ -310,6 +320,13 @@ int aq_opt_applies(aq_opt_id id, aq_cmd cmd);
 
 /* 1 if word spells option id ("--name", or "-x" for its letter). */
 int aq_opt_is(aq_opt_id id, const char *word);
+
+/* The command named word (not a figure, not the main job), or NULL. */
+const aq_opt_command *aq_opt_command_named(const char *word);
+
+/* "info, mechanism, ..., plot": every command's name, as typed, into
+ * buf[n] (for the line that refuses an unknown one). */
+void aq_opt_command_names(char *buf, size_t n);
 
 /* The figure of plot named word ("history": the command "plot history"),
  * or -1 with one line naming the figures on stderr. */

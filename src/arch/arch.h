@@ -3,8 +3,8 @@
  *
  * arch.h: an arch built from its .cfg (geometry, hinge sets, dynamics
  * options), with the work paths of its primary and reverse hinge sets.
- * Built once (aq_arch_load), then read-only and safe to share between
- * threads.  aq_arch_free accepts NULL.  Reports through aq_error
+ * Built once (aq_arch_load, which reads the .cfg: cfg.c), then read-only
+ * and safe to share between threads.  aq_arch_free accepts NULL.  Reports through aq_error
  * ("FILE:LINE: KEY: expected ..., got ...").  SI units throughout. */
 #ifndef AQ_ARCH_ARCH_H
 #define AQ_ARCH_ARCH_H

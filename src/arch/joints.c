@@ -23,7 +23,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+
+#include "infile.h"
 
 #define MAX_FILE_BYTES 20000000 /* 20 MB */
 #define MAX_JOINTS 1001
@@ -47,37 +48,17 @@ void aq_joints_free(aq_joints *j)
   memset(j, 0, sizeof *j);
 }
 
+/* The file whole (20 MB at most, text without NUL bytes), or NULL and *st. */
 static char *slurp(const char *path, size_t *len, aq_error *err, aq_status *st)
 {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "expected a readable file, got %s",
-                       strerror(errno));
-    return NULL;
-  }
-  struct stat sb;
-  if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
-    fclose(f);
-    *st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                       "expected a readable file, got a directory");
-    return NULL;
-  }
-  char *buf = malloc(MAX_FILE_BYTES + 1);
-  size_t n = buf ? fread(buf, 1, MAX_FILE_BYTES + 1, f) : 0;
-  int bad = buf && ferror(f);
-  fclose(f);
-  if (!buf) {
-    *st = aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-    return NULL;
-  }
-  if (bad || n > MAX_FILE_BYTES || memchr(buf, '\0', n)) {
+  size_t n = 0;
+  char *buf = aq_infile_read(path, MAX_FILE_BYTES, "file", &n, st, err);
+  if (buf && (n > MAX_FILE_BYTES || memchr(buf, '\0', n))) {
     free(buf);
     *st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL, "expected a text file of at "
-                       "most 20 MB, got %s",
-                       bad ? "a read error" : n > MAX_FILE_BYTES ? "more" : "a NUL byte");
+                       "most 20 MB, got %s", n > MAX_FILE_BYTES ? "more" : "a NUL byte");
     return NULL;
   }
-  buf[n] = '\0';
   *len = n;
   return buf;
 }
@@ -125,17 +106,6 @@ static int skip_line(const char *p)
   return *p == '\n' || *p == '\0' || *p == '#';
 }
 
-static int number(const char *s, double *x)
-{
-  char *end;
-  errno = 0;
-  double d = strtod(s, &end);
-  if (end == s || *end || errno == ERANGE || !isfinite(d))
-    return 0;
-  *x = d;
-  return 1;
-}
-
 static int integer(const char *s, long *x)
 {
   char *end;
@@ -147,26 +117,32 @@ static int integer(const char *s, long *x)
   return 1;
 }
 
+/* The next row that is not skipped, its fields split into f (split) and
+ * *p past it, *line counting every line read; -1 at the end of the text. */
+static int next_row(const char **p, long *line, char f[][MAX_FIELD], int max)
+{
+  while (**p) {
+    (*line)++;
+    if (!skip_line(*p))
+      return split(*p, f, max, p);
+    const char *nl = strchr(*p, '\n');
+    *p = nl ? nl + 1 : *p + strlen(*p);
+  }
+  return -1;
+}
+
 /* The header line: the first line that is not skipped must be want. */
 static const char *header(const char *text, const char *path, const char *want, long *line,
                           aq_error *err, aq_status *st)
 {
-  const char *p = text;
-  for (;;) {
-    (*line)++;
-    if (!*p) {
-      *st = aq_error_set(err, AQ_EFORMAT, path, *line, -1, NULL,
-                         "expected the header %s, got an empty file", want);
-      return NULL;
-    }
-    if (!skip_line(p))
-      break;
-    const char *nl = strchr(p, '\n');
-    p = nl ? nl + 1 : p + strlen(p);
-  }
+  const char *next = text;
   char f[8][MAX_FIELD], got[8 * MAX_FIELD + 8];
-  const char *next;
-  int nf = split(p, f, 8, &next);
+  int nf = next_row(&next, line, f, 8);
+  if (nf < 0) {
+    *st = aq_error_set(err, AQ_EFORMAT, path, *line + 1, -1, NULL,
+                       "expected the header %s, got an empty file", want);
+    return NULL;
+  }
   got[0] = '\0';
   for (int i = 0; i < nf && i < 8; i++)
     snprintf(got + strlen(got), sizeof got - strlen(got), "%s%s", i ? "," : "", f[i]);
@@ -192,15 +168,9 @@ static aq_status read_joints(const char *path, const char *text, aq_joints *J, a
   J->jline = malloc(cap * sizeof *J->jline);
   if (!J->ji || !J->je || !J->jline)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-  while (*p) {
-    line++;
-    if (skip_line(p)) {
-      const char *nl = strchr(p, '\n');
-      p = nl ? nl + 1 : p + strlen(p);
-      continue;
-    }
-    char f[6][MAX_FIELD];
-    int nf = split(p, f, 6, &p);
+  char f[6][MAX_FIELD];
+  int nf;
+  while ((nf = next_row(&p, &line, f, 6)) >= 0) {
     if (nf != 5) {
       char got[32];
       snprintf(got, sizeof got, "%d", nf);
@@ -218,7 +188,7 @@ static aq_status read_joints(const char *path, const char *text, aq_joints *J, a
                           "expected at most %d joints (1000 voussoirs), got more", MAX_JOINTS);
     double v[4];
     for (int k = 0; k < 4; k++)
-      if (!number(f[k + 1], &v[k]))
+      if (!aq_infile_number(f[k + 1], &v[k]))
         return aq_error_set(err, AQ_EFORMAT, path, line, -1, col[k + 1],
                             "expected a finite number (m), got \"%s\"", f[k + 1]);
     if (n == cap) {
@@ -266,15 +236,9 @@ static aq_status read_faces(const char *path, const char *text, aq_joints *J, aq
     aq_vec2 p;
     long line;
   } *rows = NULL;
-  while (*p) {
-    line++;
-    if (skip_line(p)) {
-      const char *nl = strchr(p, '\n');
-      p = nl ? nl + 1 : p + strlen(p);
-      continue;
-    }
-    char f[5][MAX_FIELD];
-    int nf = split(p, f, 5, &p);
+  char f[5][MAX_FIELD];
+  int nf;
+  while ((nf = next_row(&p, &line, f, 5)) >= 0) {
     if (nf != 4) {
       free(rows);
       return aq_error_set(err, AQ_EFORMAT, path, line, -1, NULL,
@@ -289,9 +253,9 @@ static aq_status read_faces(const char *path, const char *text, aq_joints *J, aq
       bad = col[0], snprintf(expect, sizeof expect, "a voussoir in 0..%zu", n - 1);
     else if (strcmp(f[1], "i") && strcmp(f[1], "e"))
       bad = col[1], snprintf(expect, sizeof expect, "i (intrados) or e (extrados)");
-    else if (!number(f[2], &x))
+    else if (!aq_infile_number(f[2], &x))
       bad = col[2], snprintf(expect, sizeof expect, "a finite number (m)");
-    else if (!number(f[3], &y))
+    else if (!aq_infile_number(f[3], &y))
       bad = col[3], snprintf(expect, sizeof expect, "a finite number (m)");
     else if (np >= MAX_FACE_POINTS)
       bad = col[0], snprintf(expect, sizeof expect, "at most %d points", MAX_FACE_POINTS);

@@ -379,7 +379,7 @@ aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
 int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
                        double *lambda0);
 
-/* ---- arch.c -------------------------------------------------------- */
+/* ---- arch.c (the arch object; cfg.c reads its .cfg) ------------------ */
 
 /* An arch from its geometry as stored in a results file (aq_arch_drawing:
  * joints, the voussoirs' mass properties, outlines, fill, point masses)
@@ -396,6 +396,11 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
 aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
                         const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
                         const char *name, aq_arch **out, aq_error *err);
+/* The arch takes text (its .cfg as read, NUL-terminated) and data[f]
+ * (a joints arch's joints and faces files as read, ndata[f] bytes, or
+ * NULL): aq_arch_config_text and aq_arch_sha256 give them back, and
+ * aq_arch_free frees them (cfg.c, after aq_arch_build). */
+void aq_arch_keep_sources(aq_arch *a, char *text, char *data[2], const size_t ndata[2]);
 const aq_geom *aq_arch_geom(const aq_arch *a);
 const aq_workpath *aq_arch_workpath(const aq_arch *a, int set);
 /* 1 if the primary came from the search. */

@@ -1,0 +1,555 @@
+/* cfg.c: the arch file (.cfg, INI read with libinih): its sections and keys
+ * checked, each message naming the file, the line and the key; the arch
+ * then built by arch.c (aq_arch_build).  The format, with units, defaults
+ * and an example per arch type, is documented in docs/arch-file.md.
+ *
+ * Sections and keys (all others are errors, as are duplicate keys):
+ *   [arch]      name (optional, default: the file name without directory and
+ *               .cfg), shape (circular (default), pointed, elliptical,
+ *               parabolic, catenary, joints), density_kg_m3, depth_m, and by
+ *               shape: circular radius_m, thickness_m, embrace_deg,
+ *               voussoirs; pointed..catenary span_m, rise_m, thickness_m,
+ *               voussoirs; joints joints_file, faces_file (optional; paths
+ *               relative to the .cfg, read by joints.c).  A key the shape
+ *               does not take is refused.
+ *   [fill]      level_m, density_kg_m3 (both, if the section is there)
+ *   [masses]    NAME = VOUSSOIR X_M Y_M MASS_KG, one point mass a line
+ *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
+ *               (optional, default: the primary's joints, faces swapped);
+ *               without [hinges] the primary comes from the search (search.c)
+ *   [dynamics]  cor (0..1, kinetic-energy ratio, docs/method.md sec. 7), impact
+ *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
+ * libinih calls the handler for each key as it reads the line; the reader
+ * below feeds it line by line and counts lines, so every message names the
+ * line of its key.
+ */
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../units.h"
+#include "arch.h"
+#include "infile.h"
+#include "joints.h"
+#include "model.h"
+
+#define MAX_LINE_CHARS 190    /* libinih's line buffer is 200 bytes */
+#define MAX_VOUSSOIRS 1000    /* the search's and the tables' cost grow with them */
+#define MAX_MASSES 1000       /* point masses in [masses] */
+#define MAX_FILE_BYTES 1000000
+#define PATH_BYTES 4096       /* a joints or faces file's path beside the .cfg */
+
+enum {
+  K_NAME, K_SHAPE, K_RADIUS, K_EMBRACE, K_SPAN, K_RISE, K_THICK, K_VOUS, K_DENS, K_DEPTH,
+  K_JOINTS, K_FACES, K_LEVEL, K_FDENS, K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
+};
+/* Which shapes take a key (bit 1 << aq_shape). */
+#define S_ALL ((1u << AQ_SHAPE_COUNT) - 1)
+#define S_CIRC (1u << AQ_SHAPE_CIRCULAR)
+#define S_CURVE ((1u << AQ_SHAPE_POINTED) | (1u << AQ_SHAPE_ELLIPTICAL) | \
+                 (1u << AQ_SHAPE_PARABOLIC) | (1u << AQ_SHAPE_CATENARY))
+#define S_JOINTS (1u << AQ_SHAPE_JOINTS)
+static const struct {
+  const char *section, *name;
+  unsigned shapes;   /* the shapes that take it */
+  unsigned required; /* the shapes that need it */
+} keys[NKEYS] = {
+    {"arch", "name", S_ALL, 0},
+    {"arch", "shape", S_ALL, 0},
+    {"arch", "radius_m", S_CIRC, S_CIRC},
+    {"arch", "embrace_deg", S_CIRC, S_CIRC},
+    {"arch", "span_m", S_CURVE, S_CURVE},
+    {"arch", "rise_m", S_CURVE, S_CURVE},
+    {"arch", "thickness_m", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
+    {"arch", "voussoirs", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
+    {"arch", "density_kg_m3", S_ALL, S_ALL},
+    {"arch", "depth_m", S_ALL, S_ALL},
+    {"arch", "joints_file", S_JOINTS, S_JOINTS},
+    {"arch", "faces_file", S_JOINTS, 0},
+    {"fill", "level_m", S_ALL, 0},
+    {"fill", "density_kg_m3", S_ALL, 0},
+    {"hinges", "primary", S_ALL, 0},
+    {"hinges", "reverse", S_ALL, 0},
+    {"dynamics", "cor", S_ALL, 0},
+    {"dynamics", "impact", S_ALL, 0},
+    {"dynamics", "g_mps2", S_ALL, 0},
+};
+
+typedef struct {
+  aq_point_mass m;
+  long line;
+} mass_line;
+
+typedef struct {
+  const char *file;
+  const char *text; /* cursor */
+  long line;        /* lines read so far */
+  long key_line[NKEYS];
+  int hinges_section; /* line of [hinges], 0 if absent */
+  int fill_section;   /* line of [fill], 0 if absent */
+  aq_error *err;
+  int failed;
+  char name[64];
+  int shape;
+  char path[2][200];  /* joints_file, faces_file as given */
+  double num[NKEYS];
+  aq_hinge_set hs[2];
+  int impact;
+  mass_line *mass;
+  size_t nmass;
+} parse_ctx;
+
+static int fail(parse_ctx *c, aq_status s, const char *field, const char *fmt,
+                const char *got)
+{
+  if (!c->failed) {
+    aq_error_set(c->err, s, c->file, c->line, -1, field, fmt, got);
+    c->failed = 1;
+  }
+  return 0;
+}
+
+static char *reader(char *str, int num, void *stream)
+{
+  parse_ctx *c = stream;
+  if (c->failed || !*c->text)
+    return NULL;
+  const char *nl = strchr(c->text, '\n');
+  size_t len = nl ? (size_t)(nl - c->text) + 1 : strlen(c->text);
+  c->line++;
+  if (len > MAX_LINE_CHARS || (int)len >= num) {
+    if (!c->failed)
+      aq_error_set(c->err, AQ_EFORMAT, c->file, c->line, -1, NULL,
+                   "expected a line of at most %d characters, got %zu", MAX_LINE_CHARS, len);
+    c->failed = 1;
+    return NULL;
+  }
+  memcpy(str, c->text, len);
+  str[len] = '\0';
+  c->text += len;
+  /* sections: libinih does not report them, so check them here */
+  const char *p = str;
+  if (c->line == 1 && !strncmp(p, "\xEF\xBB\xBF", 3))
+    p += 3; /* a UTF-8 byte-order mark, which libinih skips too */
+  while (*p == ' ' || *p == '\t')
+    p++;
+  if (*p == '[') {
+    const char *e = strchr(p, ']');
+    size_t n = e ? (size_t)(e - p - 1) : 0;
+    char sec[64];
+    snprintf(sec, sizeof sec, "%.*s", (int)(n < 63 ? n : 63), p + 1);
+    if (!e || (strcmp(sec, "arch") && strcmp(sec, "fill") && strcmp(sec, "masses") &&
+               strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
+      char got[80];
+      snprintf(got, sizeof got, "[%s]", e ? sec : "...");
+      fail(c, AQ_EFORMAT, "section",
+           "expected [arch], [fill], [masses], [hinges] or [dynamics], got %s", got);
+      return NULL;
+    }
+    if (!strcmp(sec, "hinges") && !c->hinges_section)
+      c->hinges_section = (int)c->line;
+    if (!strcmp(sec, "fill") && !c->fill_section)
+      c->fill_section = (int)c->line;
+  }
+  return str;
+}
+
+/* "0e 6i 12e 19i" -> hs (syntax only; the model checks range and order). */
+static int parse_hinges(const char *v, aq_hinge_set *hs)
+{
+  const char *p = v;
+  for (int k = 0; k < 4; k++) {
+    while (*p == ' ' || *p == '\t')
+      p++;
+    if (*p < '0' || *p > '9')
+      return 0;
+    char *end;
+    errno = 0;
+    unsigned long j = strtoul(p, &end, 10);
+    if (errno || j > 1000000 || (*end != 'e' && *end != 'i'))
+      return 0;
+    hs->joint[k] = (size_t)j;
+    hs->face[k] = *end;
+    p = end + 1;
+    if (*p && *p != ' ' && *p != '\t')
+      return 0;
+  }
+  while (*p == ' ' || *p == '\t')
+    p++;
+  return *p == '\0';
+}
+
+/* A line of [masses]: NAME = VOUSSOIR X_M Y_M MASS_KG. */
+static int mass_key(parse_ctx *c, const char *name, const char *value)
+{
+  char got[160];
+  snprintf(got, sizeof got, "\"%.150s\"", value);
+  for (size_t i = 0; i < c->nmass; i++)
+    if (!strcmp(c->mass[i].m.name, name)) {
+      char g2[64];
+      snprintf(g2, sizeof g2, "a second one (first on line %ld)", c->mass[i].line);
+      return fail(c, AQ_EFORMAT, name, "expected one value per key, got %s", g2);
+    }
+  if (strlen(name) >= sizeof c->mass[0].m.name)
+    return fail(c, AQ_EVALUE, "masses", "expected a mass name of 1..63 characters, got %s",
+                got);
+  if (c->nmass >= MAX_MASSES)
+    return fail(c, AQ_EVALUE, name, "expected at most 1000 point masses, got %s", got);
+  mass_line ml;
+  memset(&ml, 0, sizeof ml);
+  snprintf(ml.m.name, sizeof ml.m.name, "%s", name);
+  ml.line = c->line;
+  char *end;
+  errno = 0;
+  long k = strtol(value, &end, 10);
+  int ok = end != value && !errno && k >= 0 && (*end == ' ' || *end == '\t');
+  char rest[200];
+  double v[3];
+  int used = 0;
+  if (ok) {
+    snprintf(rest, sizeof rest, "%s", end);
+    ok = sscanf(rest, "%lf %lf %lf %n", &v[0], &v[1], &v[2], &used) == 3 &&
+         rest[used] == '\0' && isfinite(v[0]) && isfinite(v[1]) && v[2] > 0 && isfinite(v[2]);
+  }
+  if (!ok)
+    return fail(c, AQ_EVALUE, name, "expected VOUSSOIR X_M Y_M MASS_KG (a voussoir number, "
+                "the position in m and a mass > 0 kg, e.g. 10 0.0 6.2 450), got %s", got);
+  ml.m.voussoir = (size_t)k;
+  ml.m.p.x = v[0];
+  ml.m.p.y = v[1];
+  ml.m.mass_kg = v[2];
+  mass_line *grown = realloc(c->mass, (c->nmass + 1) * sizeof *grown);
+  if (!grown)
+    return fail(c, AQ_ENOMEM, name, "out of memory%s", "");
+  c->mass = grown;
+  c->mass[c->nmass++] = ml;
+  return 1;
+}
+
+static int handler(void *user, const char *section, const char *name,
+                   const char *value)
+{
+  parse_ctx *c = user;
+  if (c->failed)
+    return 0;
+  if (!strcmp(section, "masses"))
+    return mass_key(c, name, value);
+  int k;
+  for (k = 0; k < NKEYS; k++)
+    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
+      break;
+  if (k == NKEYS) {
+    char got[128];
+    snprintf(got, sizeof got, "\"%.100s\"", name);
+    if (!section[0])
+      return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [fill], [masses], "
+                  "[hinges] or [dynamics], got %s before any section", got);
+    char expect[256];
+    expect[0] = '\0';
+    for (int i = 0; i < NKEYS; i++)
+      if (!strcmp(keys[i].section, section)) {
+        strcat(expect, expect[0] ? ", " : "");
+        strcat(expect, keys[i].name);
+      }
+    char fmt[400];
+    snprintf(fmt, sizeof fmt, "expected a key of [%s] (%s), got %%s", section, expect);
+    return fail(c, AQ_EFORMAT, name, fmt, got);
+  }
+  if (c->key_line[k]) {
+    char got[64];
+    snprintf(got, sizeof got, "a second one (first on line %ld)", c->key_line[k]);
+    return fail(c, AQ_EFORMAT, name, "expected one value per key, got %s", got);
+  }
+  c->key_line[k] = c->line;
+  char got[160];
+  snprintf(got, sizeof got, "\"%.150s\"", value);
+  double x;
+  switch (k) {
+  case K_NAME:
+    if (!value[0] || strlen(value) >= sizeof c->name || strpbrk(value, "\t\r\n"))
+      return fail(c, AQ_EVALUE, name, "expected a name of 1..63 characters without tabs, got %s", got);
+    snprintf(c->name, sizeof c->name, "%s", value);
+    return 1;
+  case K_SHAPE:
+    for (c->shape = 0; c->shape < AQ_SHAPE_COUNT; c->shape++)
+      if (!strcmp(value, aq_shape_names[c->shape]))
+        return 1;
+    return fail(c, AQ_EVALUE, name, "expected circular, pointed, elliptical, parabolic, "
+                "catenary or joints, got %s", got);
+  case K_JOINTS:
+  case K_FACES:
+    if (!value[0] || strlen(value) >= sizeof c->path[0])
+      return fail(c, AQ_EVALUE, name, "expected a file name of 1..199 characters, got %s",
+                  got);
+    snprintf(c->path[k - K_JOINTS], sizeof c->path[0], "%s", value);
+    return 1;
+  case K_RADIUS:
+  case K_THICK:
+  case K_DEPTH:
+  case K_SPAN:
+  case K_RISE:
+    if (!aq_infile_number(value, &x) || !(x > 0))
+      return fail(c, AQ_EVALUE, name, "expected a length > 0 m, got %s", got);
+    break;
+  case K_LEVEL:
+    if (!aq_infile_number(value, &x))
+      return fail(c, AQ_EVALUE, name, "expected a height (m), got %s", got);
+    break;
+  case K_DENS:
+  case K_FDENS:
+    if (!aq_infile_number(value, &x) || !(x > 0))
+      return fail(c, AQ_EVALUE, name, "expected a density > 0 kg/m^3, got %s", got);
+    break;
+  case K_EMBRACE:
+    if (!aq_infile_number(value, &x) || !(x > 0) || !(x <= 180))
+      return fail(c, AQ_EVALUE, name, "expected an angle in (0, 180] deg, got %s", got);
+    break;
+  case K_VOUS: {
+    char *end;
+    errno = 0;
+    long v = strtol(value, &end, 10);
+    if (end == value || *end || errno || v < 4 || v > MAX_VOUSSOIRS)
+      return fail(c, AQ_EVALUE, name, "expected an integer in 4..1000, got %s", got);
+    x = (double)v;
+    break;
+  }
+  case K_PRIMARY:
+  case K_REVERSE:
+    if (!parse_hinges(value, &c->hs[k - K_PRIMARY]))
+      return fail(c, AQ_EVALUE, name,
+                  "expected four hinges JOINT FACE with FACE e or i (e.g. 0e 6i 12e 19i), got %s",
+                  got);
+    return 1;
+  case K_COR:
+    if (!aq_infile_number(value, &x) || !(x >= 0) || !(x <= 1))
+      return fail(c, AQ_EVALUE, name, "expected a kinetic-energy ratio in [0, 1], got %s", got);
+    break;
+  case K_IMPACT:
+    if (!strcmp(value, "cor"))
+      c->impact = AQ_IMPACT_COR;
+    else if (!strcmp(value, "momentum"))
+      c->impact = AQ_IMPACT_MOMENTUM;
+    else
+      return fail(c, AQ_EVALUE, name, "expected cor or momentum, got %s", got);
+    return 1;
+  case K_G:
+    if (!aq_infile_number(value, &x) || !(x > 0) || !(x <= 100))
+      return fail(c, AQ_EVALUE, name, "expected a gravity in (0, 100] m/s^2, got %s", got);
+    break;
+  }
+  c->num[k] = x;
+  return 1;
+}
+
+aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
+{
+  *out = NULL;
+  aq_status st = AQ_OK;
+  size_t len = 0;
+  char *buf = aq_infile_read(path, MAX_FILE_BYTES, "arch file", &len, &st, err);
+  if (!buf)
+    return st;
+  st = aq_arch_load_string(buf, len, path, out, err);
+  free(buf);
+  return st;
+}
+
+/* The checks that need the whole file: the keys the shape takes and
+ * needs, [fill] and [hinges] complete; then a joints arch's files, read
+ * from beside the .cfg (joints.c names their own lines). */
+static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_error *err)
+{
+  unsigned bit = 1u << c->shape;
+  const char *shape = aq_shape_names[c->shape];
+  for (int k = 0; k < NKEYS; k++)
+    if (c->key_line[k] && !(keys[k].shapes & bit)) {
+      char takes[256] = "";
+      for (int i = 0; i < NKEYS; i++)
+        if (!strcmp(keys[i].section, "arch") && (keys[i].shapes & bit) && i != K_NAME &&
+            i != K_SHAPE)
+          snprintf(takes + strlen(takes), sizeof takes - strlen(takes), "%s%s",
+                   takes[0] ? ", " : "", keys[i].name);
+      return aq_error_set(err, AQ_EFORMAT, path, c->key_line[k], -1, keys[k].name,
+                          "expected no %s with shape = %s (it takes %s), got one",
+                          keys[k].name, shape, takes);
+    }
+  for (int k = 0; k < NKEYS; k++)
+    if ((keys[k].required & bit) && !c->key_line[k]) {
+      if (c->shape == AQ_SHAPE_CIRCULAR)
+        return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
+                            "expected a value in [%s], got none", keys[k].section);
+      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
+                          "expected a value in [%s] for shape = %s, got none", keys[k].section,
+                          shape);
+    }
+  if (c->fill_section && (!c->key_line[K_LEVEL] || !c->key_line[K_FDENS]))
+    return aq_error_set(err, AQ_EFORMAT, path, c->fill_section, -1,
+                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m",
+                        "expected level_m and density_kg_m3 in [fill], got no %s",
+                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m");
+  if (c->hinges_section && !c->key_line[K_PRIMARY])
+    return aq_error_set(err, AQ_EFORMAT, path, c->hinges_section, -1, "primary",
+                        "expected a primary hinge set in [hinges], got none");
+  if (c->shape != AQ_SHAPE_JOINTS)
+    return AQ_OK;
+  /* joints_file and faces_file: relative to the .cfg's directory */
+  char full[2][PATH_BYTES];
+  const char *slash = strrchr(path, '/');
+  for (int f = 0; f < 2; f++) {
+    if (!c->path[f][0])
+      continue;
+    int w = c->path[f][0] == '/' || !slash
+                ? snprintf(full[f], sizeof full[f], "%s", c->path[f])
+                : snprintf(full[f], sizeof full[f], "%.*s/%s", (int)(slash - path), path,
+                           c->path[f]);
+    if (w < 0 || (size_t)w >= sizeof full[f])
+      return aq_error_set(err, AQ_EVALUE, path, c->key_line[K_JOINTS + f], -1,
+                          keys[K_JOINTS + f].name, "expected a path of at most %d bytes, got "
+                          "a longer one", PATH_BYTES - 1);
+  }
+  aq_status st = aq_joints_read(full[0], c->path[1][0] ? full[1] : NULL, J, err);
+  if (st == AQ_EIO && err) { /* a file that cannot be read: said on its key's line */
+    int f = !strcmp(err->input, full[0]) ? 0 : 1;
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
+    const char *r = strstr(why, "got ");
+    aq_error_set(err, AQ_EIO, path, c->key_line[K_JOINTS + f], -1, keys[K_JOINTS + f].name,
+                 "expected a readable file, got \"%.300s\": %.200s", full[f], r ? r + 4 : why);
+  }
+  return st;
+}
+
+/* The arch from the parsed file. */
+static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J, aq_arch **out,
+                              aq_error *err)
+{
+  aq_arch_params p;
+  memset(&p, 0, sizeof p);
+  p.radius_m = c->num[K_RADIUS];
+  p.thickness_m = c->num[K_THICK];
+  p.embrace_rad = c->num[K_EMBRACE] * AQ_DEG_RAD;
+  p.voussoirs = c->shape == AQ_SHAPE_JOINTS ? J->n : (size_t)c->num[K_VOUS];
+  p.density_kg_m3 = c->num[K_DENS];
+  p.depth_m = c->num[K_DEPTH];
+  p.shape = (aq_shape)c->shape;
+  p.span_m = c->num[K_SPAN];
+  p.rise_m = c->num[K_RISE];
+  if (c->shape == AQ_SHAPE_JOINTS) {
+    p.joint_i = J->ji;
+    p.joint_e = J->je;
+    for (int f = 0; f < 2; f++) {
+      p.face_pt[f] = J->face_pt[f];
+      p.face_start[f] = J->face_start[f];
+    }
+  }
+  if (c->fill_section) {
+    p.fill_level_m = c->num[K_LEVEL];
+    p.fill_density_kg_m3 = c->num[K_FDENS];
+  }
+  aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
+  if (c->nmass && !pm)
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  for (size_t i = 0; i < c->nmass; i++)
+    pm[i] = c->mass[i].m;
+  p.nmass = c->nmass;
+  p.mass = pm;
+  aq_arch_dynamics dyn = {c->num[K_COR], (aq_impact)c->impact, c->num[K_G]};
+  char name[64];
+  if (c->name[0]) {
+    snprintf(name, sizeof name, "%s", c->name);
+  } else {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t len = strlen(b);
+    if (len > 4 && !strcmp(b + len - 4, ".cfg"))
+      len -= 4;
+    snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
+  }
+  aq_status st = aq_arch_build(&p, c->key_line[K_PRIMARY] ? &c->hs[0] : NULL,
+                               c->key_line[K_REVERSE] ? &c->hs[1] : NULL, &dyn, name, out, err);
+  free(pm);
+  if (st != AQ_OK && err) {
+    /* name the file and the line of the key the model complained about */
+    long line = -1;
+    for (int k = NKEYS; k-- > 0;)
+      if (!strcmp(err->field, keys[k].name) && c->key_line[k])
+        line = c->key_line[k];
+    for (size_t i = 0; i < c->nmass; i++)
+      if (!strcmp(err->field, c->mass[i].m.name))
+        line = c->mass[i].line;
+    if (!strcmp(err->field, "reverse") && !c->key_line[K_REVERSE])
+      line = c->key_line[K_PRIMARY];
+    if (!strcmp(err->field, "hinges") && !c->key_line[K_PRIMARY])
+      line = -1;
+    snprintf(err->input, sizeof err->input, "%s", path);
+    err->line = line > 0 ? line : -1;
+  }
+  return st;
+}
+
+aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
+                              aq_arch **out, aq_error *err)
+{
+  *out = NULL;
+  aq_status st = AQ_OK;
+  if (len > MAX_FILE_BYTES)
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                        "expected an arch file of at most 1 MB, got more");
+  if (len && memchr(data, '\0', len))
+    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
+                        "expected a text arch file, got a NUL byte");
+  char *text = malloc(len + 1);
+  if (!text)
+    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+  if (len)
+    memcpy(text, data, len);
+  text[len] = '\0';
+  parse_ctx c;
+  memset(&c, 0, sizeof c);
+  c.file = path;
+  c.text = text;
+  c.err = err;
+  c.num[K_G] = AQ_G0_MPS2;
+  int rc = ini_parse_stream(reader, &c, handler, &c);
+  if (!c.failed && rc > 0) {
+    /* a line libinih could not parse: show it */
+    const char *p = text;
+    for (int l = 1; l < rc && p; l++) {
+      p = strchr(p, '\n');
+      p = p ? p + 1 : NULL;
+    }
+    char got[120];
+    size_t len = p ? strcspn(p, "\r\n") : 0;
+    snprintf(got, sizeof got, "\"%.*s\"", (int)(len < 100 ? len : 100), p ? p : "");
+    aq_error_set(err, AQ_EFORMAT, path, rc, -1, NULL,
+                 "expected KEY = VALUE, [section] or a comment, got %s", got);
+    free(text);
+    return AQ_EFORMAT;
+  }
+  if (c.failed || rc < 0) {
+    free(text);
+    if (!c.failed)
+      return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
+    return err ? err->status : AQ_EFORMAT;
+  }
+  aq_arch *a = NULL;
+  aq_joints J;
+  memset(&J, 0, sizeof J);
+  st = after_parse(&c, path, &J, err);
+  if (st == AQ_OK)
+    st = build_parsed(&c, path, &J, &a, err);
+  free(c.mass);
+  if (st != AQ_OK) {
+    aq_joints_free(&J);
+    free(text);
+    return st;
+  }
+  aq_arch_keep_sources(a, text, J.bytes, J.nbytes); /* the joints arch's files: its digest */
+  J.bytes[0] = J.bytes[1] = NULL;
+  aq_joints_free(&J);
+  *out = a;
+  return AQ_OK;
+}
