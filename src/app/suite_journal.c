@@ -9,6 +9,7 @@
 #include "suite_slot.h"
 
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +21,24 @@
 
 enum { F_FAILED = 1, F_REC = 2, F_PROC = 4, F_IM = 8, F_RUNS = 16 };
 enum { R_RES = 1, R_FAILED = 2 };
+
+/* A run's summary: its record as a string (up to AQ_SUMMARY_RECORD_MAX bytes,
+ * mostly unused), the other fields as they are. */
+static void sum_put(aq_bytes_out *b, const aq_summary *s)
+{
+  const size_t at = offsetof(aq_summary, record), end = at + sizeof s->record;
+  aq_bytes_put(b, s, at);
+  aq_bytes_put_str(b, s->record, sizeof s->record);
+  aq_bytes_put(b, (const char *)s + end, sizeof *s - end);
+}
+
+static void sum_get(aq_bytes_in *c, aq_summary *s)
+{
+  const size_t at = offsetof(aq_summary, record), end = at + sizeof s->record;
+  aq_bytes_get(c, s, at, NULL);
+  aq_bytes_get_str(c, s->record, sizeof s->record, NULL, NULL);
+  aq_bytes_get(c, (char *)s + end, sizeof *s - end, NULL);
+}
 
 void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
 {
@@ -55,7 +74,7 @@ void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
   for (size_t i = 0; r->runs && i < nruns; i++) {
     const run_slot *u = &r->runs[i];
     unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0));
-    aq_bytes_put(b, &u->sum, sizeof u->sum);
+    sum_put(b, &u->sum);
     aq_bytes_put(b, &g, 1);
     if (u->have_res) {
       aq_result res = u->res;
@@ -104,7 +123,7 @@ int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
   for (size_t i = 0; r->runs && i < nruns && !c.bad; i++) {
     run_slot *u = &r->runs[i];
     unsigned char g = 0;
-    aq_bytes_get(&c, &u->sum, sizeof u->sum, NULL);
+    sum_get(&c, &u->sum);
     aq_bytes_get(&c, &g, 1, NULL);
     if ((g & R_RES) && aq_bytes_get(&c, &u->res, sizeof u->res, NULL) == 0) {
       memset(&u->res.history, 0, sizeof u->res.history);
@@ -308,3 +327,4 @@ aq_status aq_suite_journal_append(suite *S, aq_journal *J, const rec_slot *r, aq
   free(jb.data);
   return s;
 }
+
