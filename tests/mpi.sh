@@ -109,6 +109,38 @@ if cmp -s "$T/oref.tsv" "$T/o3.tsv"; then ok "motion, N=3: TSV byte-identical"; 
 "$BIN" compare "$T/oref.h5" "$T/o3.h5" >/dev/null 2>&1
 check $? 0 "motion, N=3: compare with archquake -j 1's results file"
 
+# The shaped arches (pointed, elliptical with fill and a point mass,
+# catenary, one given by a joints file): plain records at two scales and
+# both polarities, and K-NET's three components with the vertical
+# (--vertical) at every 45th azimuth and each azimuth's row; 2 and 3 ranks
+# against archquake -j 1.
+SARCH="--arch arches/gothic.cfg --arch arches/bridge.cfg --arch arches/catenary.cfg
+       --arch arches/vertical.cfg"
+K=$R/AOM0170806140843
+for sc in "plain:$R/ARL360.at2 $R/IELC180.AT2 --scale 1,4 --polarity both:33" \
+          "vertical:--components $K.NS,$K.EW,$K.UD --vertical --azimuth all:45 --all-azimuths --scale 15,40:65"; do
+  name=${sc%%:*}
+  rest=${sc#*:}
+  sa=${rest%:*}
+  lines=${rest##*:}
+  # shellcheck disable=SC2086
+  "$BIN" -j 1 $sa $SARCH -o "$T/s$name.h5" >"$T/s$name.tsv" 2>/dev/null
+  st0=$?
+  check "$(wc -l <"$T/s$name.tsv" | tr -d ' ')" "$lines" "shaped arches, $name: reference rows + header"
+  check "$(cut -f2 "$T/s$name.tsv" | sort -u | tr '\n' ' ')" "arch bridge catenary gothic vertical " \
+    "shaped arches, $name: every arch in the reference"
+  for nj in "2 1" "3 2"; do
+    set -- $nj
+    # shellcheck disable=SC2086
+    $MPIRUN -n $1 "$MPIBIN" -j $2 $sa $SARCH -o "$T/s$name$1$2.h5" >"$T/s$name$1$2.tsv" 2>/dev/null
+    check $? $st0 "shaped arches, $name, N=$1 -j $2: exit status as archquake -j 1's"
+    if cmp -s "$T/s$name.tsv" "$T/s$name$1$2.tsv"; then ok "shaped arches, $name, N=$1 -j $2: TSV byte-identical"; else
+      bad "shaped arches, $name, N=$1 -j $2: TSV differs from archquake -j 1's"; fi
+    "$BIN" compare "$T/s$name.h5" "$T/s$name$1$2.h5" >/dev/null 2>&1
+    check $? 0 "shaped arches, $name, N=$1 -j $2: compare with archquake -j 1's results file"
+  done
+done
+
 # What cannot travel between ranks is refused before anything runs.
 # shellcheck disable=SC2086
 $MPIRUN -n 2 "$MPIBIN" $R/ARL360.at2 --arch arches/oppenheim.cfg --history -o "$T/hist.h5" \
