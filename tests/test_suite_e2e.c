@@ -233,6 +233,42 @@ static hid_t compared_type(hid_t ft)
   return t;
 }
 
+/* Rows x and y (n of type t, read from datasets of space sp): 1 if a
+ * variable-length string differs; then those strings are freed and their
+ * pointers zeroed, so that the rows compare by their bytes. */
+static int vlen_strings_differ(hid_t t, hid_t sp, unsigned char *x, unsigned char *y, size_t n)
+{
+  size_t off[64], m = 0, row = H5Tget_size(t);
+  if (H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0) {
+    off[m++] = 0;
+  } else if (H5Tget_class(t) == H5T_COMPOUND) {
+    for (int i = 0; i < H5Tget_nmembers(t) && m < 64; i++) {
+      hid_t mt = H5Tget_member_type(t, (unsigned)i);
+      if (H5Tget_class(mt) == H5T_STRING && H5Tis_variable_str(mt) > 0)
+        off[m++] = H5Tget_member_offset(t, (unsigned)i);
+      H5Tclose(mt);
+    }
+  }
+  int differ = 0;
+  for (size_t r = 0; r < n; r++)
+    for (size_t k = 0; k < m; k++) {
+      const char *a, *b; /* the rows are packed: pointers may be unaligned */
+      memcpy(&a, x + r * row + off[k], sizeof a);
+      memcpy(&b, y + r * row + off[k], sizeof b);
+      differ |= strcmp(a ? a : "", b ? b : "") != 0;
+    }
+  if (m) {
+    H5Dvlen_reclaim(t, sp, H5P_DEFAULT, x);
+    H5Dvlen_reclaim(t, sp, H5P_DEFAULT, y);
+    for (size_t r = 0; r < n; r++)
+      for (size_t k = 0; k < m; k++) {
+        memset(x + r * row + off[k], 0, sizeof(char *));
+        memset(y + r * row + off[k], 0, sizeof(char *));
+      }
+  }
+  return differ;
+}
+
 static herr_t visit(hid_t root, const char *name, const H5O_info_t *info, void *data)
 {
   walk *w = data;
@@ -282,10 +318,10 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info, void *
     if (n != H5Sget_simple_extent_npoints(sb)) {
       note(w, "dataset size", name);
     } else if (bytes) {
-      unsigned char *x = malloc(bytes), *y = malloc(bytes);
+      unsigned char *x = calloc(1, bytes), *y = calloc(1, bytes);
       if (!x || !y || H5Dread(a, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, x) < 0 ||
           H5Dread(b, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, y) < 0 ||
-          memcmp(x, y, bytes) != 0)
+          vlen_strings_differ(ta, sa, x, y, (size_t)n) || memcmp(x, y, bytes) != 0)
         note(w, "dataset", name);
       free(x);
       free(y);

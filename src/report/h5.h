@@ -161,7 +161,7 @@ typedef struct {
  * version...), as text (numbers as %.17g). */
 typedef struct {
   char name[48];
-  char value[256];
+  char value[AQ_SUMMARY_RECORD_MAX]; /* whole: one that does not fit is not read */
 } aq_h5_setting;
 
 typedef struct {

@@ -15,7 +15,6 @@
 #include "h5_table.h"
 #include "text.h"
 
-static herr_t attr_s(hid_t g, const char *name, const char *v);
 
 /* A dataset of n rows x cols of type t from buf, with its units attribute
  * (units NULL: none). */
@@ -31,7 +30,7 @@ static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size
   if (d >= 0) {
     rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
     if (rc >= 0 && units)
-      rc = attr_s(d, "units", units);
+      rc = aq_h5_attr_string(d, "units", units);
     if (H5Dclose(d) < 0)
       rc = -1;
   }
@@ -95,24 +94,6 @@ static herr_t attr_d(hid_t g, const char *name, double v)
   return rc;
 }
 
-static herr_t attr_s(hid_t g, const char *name, const char *v)
-{
-  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
-  herr_t rc = -1;
-  if (t >= 0 && sp >= 0 && H5Tset_size(t, strlen(v) + 1) >= 0) {
-    hid_t a = H5Acreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    if (a >= 0) {
-      rc = H5Awrite(a, t, v);
-      if (H5Aclose(a) < 0)
-        rc = -1;
-    }
-  }
-  if (sp >= 0 && H5Sclose(sp) < 0)
-    rc = -1;
-  if (t >= 0 && H5Tclose(t) < 0)
-    rc = -1;
-  return rc;
-}
 
 /* capacity/scan_points: one row per run of the scans, by pair then scale.
  * The fields with their units (a units_<field> attribute each). */
@@ -305,7 +286,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   what = "capacity attributes";
   if (attr_d(g, "resolution", c->resolution) < 0 || attr_d(g, "tol", c->tol) < 0 ||
       attr_d(g, "fragility_ci", c->ci) < 0 ||
-      attr_s(g, "fragility_method",
+      aq_h5_attr_string(g, "fragility_method",
              "lognormal maximum likelihood, right-censored at each record's cap; "
              "median interval by profile likelihood") < 0)
     goto fail;

@@ -45,8 +45,8 @@ static hid_t str_type(size_t size)
 }
 
 /* Scalar attribute name of loc as text into buf[n] (strings as they are,
- * floats as %.17g, integers in decimal).  Returns 0, or -1 if absent or not
- * a scalar string or number. */
+ * floats as %.17g, integers in decimal).  Returns 0, or -1 if absent, not
+ * a scalar string or number, or a string longer than n - 1 bytes (never cut). */
 static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
 {
   if (H5Aexists(loc, name) <= 0)
@@ -62,8 +62,8 @@ static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
       size_t sz = H5Tget_size(t);
       char *tmp = malloc(sz + 1);
       hid_t m = tmp ? str_type(sz + 1) : -1;
-      if (m >= 0 && H5Aread(a, m, tmp) >= 0) {
-        snprintf(buf, n, "%s", tmp);
+      if (m >= 0 && H5Aread(a, m, tmp) >= 0 && strlen(tmp) < n) { /* whole, or not read */
+        memcpy(buf, tmp, strlen(tmp) + 1);
         ok = 0;
       }
       if (m >= 0)
@@ -180,6 +180,35 @@ static int read_column(hid_t d, hid_t ftype, hsize_t n, const char *name,
   return ok;
 }
 
+/* A compound table name of f opened for read_column: *d, *ft, its rows *np
+ * and a zeroed array of them (rowsize bytes each), or NULL (*d < 0 then,
+ * or close it with table_done). */
+static void *table_rows(hid_t f, const char *name, size_t rowsize, hid_t *d, hid_t *ft,
+                        hssize_t *np)
+{
+  *ft = -1;
+  *np = -1;
+  *d = H5Dopen2(f, name, H5P_DEFAULT);
+  if (*d < 0)
+    return NULL;
+  *ft = H5Dget_type(*d);
+  hid_t sp = H5Dget_space(*d);
+  *np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  if (sp >= 0)
+    H5Sclose(sp);
+  return *np >= 0 && *ft >= 0 && H5Tget_class(*ft) == H5T_COMPOUND
+             ? calloc((size_t)*np ? (size_t)*np : 1, rowsize)
+             : NULL;
+}
+
+static void table_done(hid_t d, hid_t ft)
+{
+  if (ft >= 0)
+    H5Tclose(ft);
+  if (d >= 0)
+    H5Dclose(d);
+}
+
 /* The runs of /summary, column by column: a column this build knows that
  * the file lacks (written before it existed) keeps the value a run without
  * a result has (aq_summary_fill); columns this build does not know are
@@ -187,14 +216,11 @@ static int read_column(hid_t d, hid_t ftype, hsize_t n, const char *name,
 static long read_runs(hid_t f, aq_h5_run **out)
 {
   *out = NULL;
-  hid_t d = H5Dopen2(f, "/summary", H5P_DEFAULT);
+  hid_t d, ft;
+  hssize_t np;
+  aq_h5_run *v = table_rows(f, "/summary", sizeof *v, &d, &ft, &np);
   if (d < 0)
     return -1;
-  hid_t ft = H5Dget_type(d), sp = H5Dget_space(d);
-  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-  aq_h5_run *v = np >= 0 && ft >= 0 && H5Tget_class(ft) == H5T_COMPOUND
-                     ? calloc((size_t)np ? (size_t)np : 1, sizeof *v)
-                     : NULL;
   int ok = v != NULL;
   for (hssize_t i = 0; ok && i < np; i++)
     aq_summary_fill(&v[i].s, "", "", "", NAN, NAN, "", NULL);
@@ -213,11 +239,7 @@ static long read_runs(hid_t f, aq_h5_run **out)
   for (int k = 0; ok && k < 3; k++)
     ok = read_column(d, ft, (hsize_t)np, idx[k].name, AQ_SF_INT, sizeof(int64_t), v,
                      sizeof *v, idx[k].offset) > 0;
-  if (ft >= 0)
-    H5Tclose(ft);
-  if (sp >= 0)
-    H5Sclose(sp);
-  H5Dclose(d);
+  table_done(d, ft);
   if (!ok) {
     free(v);
     return -1;
@@ -243,23 +265,16 @@ static hid_t input_type(void)
 static long read_inputs(hid_t f, void **out)
 {
   *out = NULL;
-  hid_t d = H5Dopen2(f, "/records", H5P_DEFAULT);
+  hid_t d, ft;
+  hssize_t np;
+  aq_h5_input *v = table_rows(f, "/records", sizeof *v, &d, &ft, &np);
   if (d < 0)
     return -1;
-  hid_t ft = H5Dget_type(d), sp = H5Dget_space(d);
-  hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-  aq_h5_input *v = np >= 0 && ft >= 0 && H5Tget_class(ft) == H5T_COMPOUND
-                       ? calloc((size_t)np ? (size_t)np : 1, sizeof *v)
-                       : NULL;
   int ok = v && read_column(d, ft, (hsize_t)np, "name", AQ_SF_STR, sizeof v->name, v, sizeof *v,
                             offsetof(aq_h5_input, name)) > 0 &&
            read_column(d, ft, (hsize_t)np, "sha256", AQ_SF_STR, sizeof v->sha256, v, sizeof *v,
                        offsetof(aq_h5_input, sha256)) > 0;
-  if (ft >= 0)
-    H5Tclose(ft);
-  if (sp >= 0)
-    H5Sclose(sp);
-  H5Dclose(d);
+  table_done(d, ft);
   if (!ok) {
     free(v);
     return -1;
