@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "../io/record.h"
+#include "../job/cache.h"
 #include "../report/report.h"
 #include "capacity_tasks.h"
 #include "opt.h"
@@ -120,74 +121,27 @@ static int run_here(const aq_cap_setup *S, const aq_cap_item *R, aq_capacity *C,
 
 typedef struct {
   const aq_cap_setup *S;
-  aq_cap_item *R;
   aq_capacity *C;
-  int lazy;             /* farmed: prepare subjects as tasks (or results) come */
   int leader;           /* keep every subject prepared (for the outputs), report it */
-  pthread_mutex_t lock; /* guards state, users, used, nready */
-  pthread_cond_t cond;
+  aq_cache *cache;      /* subjects prepared here (job/cache.h): the leader's
+                           item r is R[r]; a follower keeps the last few */
   pthread_mutex_t prep; /* one subject prepared at a time (ws, FFTW plans) */
   aq_signal_ws *ws;
-  unsigned char *state; /* per subject: 0 not prepared, 1 preparing, 2 ready */
-  size_t *users;        /* tasks using it now */
-  size_t *used;         /* tick of its last use */
-  size_t tick, nready, keep;
 } tasks;
 
-enum { SUBJ_NONE = 0, SUBJ_PREPARING, SUBJ_READY };
-
-/* Drop the least recently used ready subject nobody uses (lock held). */
-static void evict_one(tasks *X)
+/* The cache's preparing of subject r into item (job/cache.h). */
+static void task_prepare(void *ctx, size_t r, void *item)
 {
-  size_t best = X->S->nrec;
-  for (size_t r = 0; r < X->S->nrec; r++)
-    if (X->state[r] == SUBJ_READY && X->users[r] == 0 &&
-        (best == X->S->nrec || X->used[r] < X->used[best]))
-      best = r;
-  if (best == X->S->nrec)
-    return;
-  aq_cap_item_free(&X->R[best]);
-  X->state[best] = SUBJ_NONE;
-  X->nready--;
+  tasks *X = ctx;
+  pthread_mutex_lock(&X->prep);
+  prepare(X->S, r, X->ws, item, X->leader);
+  pthread_mutex_unlock(&X->prep);
 }
 
-static const aq_cap_item *acquire(tasks *X, size_t r)
+static void task_clear(void *ctx, void *item)
 {
-  if (!X->lazy)
-    return &X->R[r];
-  pthread_mutex_lock(&X->lock);
-  while (X->state[r] == SUBJ_PREPARING)
-    pthread_cond_wait(&X->cond, &X->lock);
-  if (X->state[r] == SUBJ_NONE) {
-    while (X->nready >= X->keep && X->nready > 0) {
-      size_t before = X->nready;
-      evict_one(X);
-      if (X->nready == before)
-        break; /* all in use */
-    }
-    X->state[r] = SUBJ_PREPARING;
-    pthread_mutex_unlock(&X->lock);
-    pthread_mutex_lock(&X->prep);
-    prepare(X->S, r, X->ws, &X->R[r], X->leader);
-    pthread_mutex_unlock(&X->prep);
-    pthread_mutex_lock(&X->lock);
-    X->state[r] = SUBJ_READY;
-    X->nready++;
-    pthread_cond_broadcast(&X->cond);
-  }
-  X->users[r]++;
-  pthread_mutex_unlock(&X->lock);
-  return &X->R[r];
-}
-
-static void release(tasks *X, size_t r)
-{
-  if (!X->lazy)
-    return;
-  pthread_mutex_lock(&X->lock);
-  X->users[r]--;
-  X->used[r] = ++X->tick;
-  pthread_mutex_unlock(&X->lock);
+  (void)ctx;
+  aq_cap_item_free(item);
 }
 
 /* Task t into out[npol nz] (zeroed). */
@@ -195,7 +149,7 @@ static void run_task(tasks *X, size_t t, aq_capacity *out)
 {
   const aq_cap_setup *S = X->S;
   size_t r = t / S->na, a = t % S->na;
-  const aq_cap_item *it = acquire(X, r);
+  const aq_cap_item *it = aq_cache_acquire(X->cache, r);
   for (size_t p = 0; p < S->npol; p++)
     for (size_t z = 0; z < S->nz; z++) {
       aq_capacity *o = &out[p * S->nz + z];
@@ -208,7 +162,7 @@ static void run_task(tasks *X, size_t t, aq_capacity *out)
         aq_capacity_run_jobs(&job, 1, o);
       }
     }
-  release(X, r);
+  aq_cache_release(X->cache, (void *)it);
 }
 
 static int task_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
@@ -238,8 +192,8 @@ static int task_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
  * before any task of it ran here (its rows, fits and /records need it). */
 static const aq_cap_item *ensure(tasks *X, size_t r)
 {
-  const aq_cap_item *it = acquire(X, r);
-  release(X, r);
+  const aq_cap_item *it = aq_cache_acquire(X->cache, r);
+  aq_cache_release(X->cache, (void *)it);
   return it;
 }
 
@@ -282,19 +236,16 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
    * when it runs a task of it, the leader also when a result of it comes
    * first (as the main job's farm, suite_farm.c) */
   int leader = !farm_hook->follower;
-  tasks X = {.S = S, .R = R, .C = C, .lazy = 1, .leader = leader,
-             .keep = leader ? (size_t)-1
-                            : (size_t)(threads > 0 ? threads : 1) + AQ_CAP_KEEP_EXTRA};
-  pthread_mutex_init(&X.lock, NULL);
+  size_t nkeep = leader ? S->nrec : (size_t)(threads > 0 ? threads : 1) + AQ_CAP_KEEP_EXTRA;
+  aq_cap_item *kept = leader ? R : calloc(nkeep, sizeof *kept);
+  tasks X = {.S = S, .C = C, .leader = leader};
+  aq_cache_cfg cc = {S->nrec, nkeep, kept, sizeof *kept, task_prepare, task_clear, &X};
   pthread_mutex_init(&X.prep, NULL);
-  pthread_cond_init(&X.cond, NULL);
   size_t ntask = S->nrec * S->na, ntodo = leader ? ntask : 0;
   size_t *todo = calloc(ntask ? ntask : 1, sizeof *todo);
   X.ws = aq_signal_ws_alloc();
-  X.state = calloc(S->nrec ? S->nrec : 1, 1);
-  X.users = calloc(S->nrec ? S->nrec : 1, sizeof *X.users);
-  X.used = calloc(S->nrec ? S->nrec : 1, sizeof *X.used);
-  int rc = todo && X.ws && X.state && X.users && X.used ? 0 : -1;
+  X.cache = kept ? aq_cache_alloc(&cc) : NULL;
+  int rc = todo && X.ws && X.cache ? 0 : -1;
   for (size_t t = 0; rc == 0 && t < ntodo; t++)
     todo[t] = t;
   aq_farm_tasks T = {ntask, threads, S->na, 0, task_run, task_take, &X};
@@ -308,16 +259,14 @@ int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threa
   }
   for (size_t r = 0; rc == 0 && leader && r < S->nrec; r++)
     ensure(&X, r); /* every subject, for the outputs (none left without arches) */
-  if (!leader)
-    for (size_t r = 0; r < S->nrec; r++)
-      aq_cap_item_free(&R[r]);
+  aq_cache_free(X.cache);
+  if (!leader) {
+    for (size_t k = 0; kept && k < nkeep; k++)
+      aq_cap_item_free(&kept[k]);
+    free(kept);
+  }
   aq_signal_ws_free(X.ws);
-  free(X.state);
-  free(X.users);
-  free(X.used);
   free(todo);
-  pthread_mutex_destroy(&X.lock);
   pthread_mutex_destroy(&X.prep);
-  pthread_cond_destroy(&X.cond);
   return rc;
 }

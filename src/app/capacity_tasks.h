@@ -7,7 +7,8 @@
  * task goes out at once, the leader prepares a subject when it runs a task
  * of it or the first result of it comes (and keeps it, for its outputs),
  * and a follower prepares one when a task of it comes and keeps the last
- * few for the next tasks of the same subject.  Results
+ * few for the next tasks of the same subject (both through job/cache.h,
+ * the main job's farm's cache too).  Results
  * travel as aq_capacity_encode's bytes, so the leader's copy is bit for bit
  * the follower's.  The caller owns every array it passes in. */
 #ifndef AQ_APP_CAPACITY_TASKS_H
@@ -69,8 +70,8 @@ void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
  * threads threads here or farmed out, into
  * C[((r na + a) npol + p) nz + z] (zeroed by the caller; slots of azimuths a
  * subject lacks stay zero).  Follower: run the tasks handed out, preparing
- * their subjects into R (nrec zeroed items; freed again here) as they come;
- * C is NULL.  Returns 0, or -1 (a line on stderr): out of memory or the
+ * their subjects as they come (job/cache.h keeps the last few; R is not
+ * touched); C is NULL.  Returns 0, or -1 (a line on stderr): out of memory or the
  * exchange failed, and nothing may be written. */
 int aq_cap_run(const aq_cap_setup *S, aq_cap_item *R, aq_capacity *C, long threads);
 

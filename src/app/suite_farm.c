@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../job/cache.h"
 #include "app.h"
 #include "farm.h"
 
@@ -29,11 +30,8 @@ int aq_suite_is_remote(void)
 
 typedef struct {
   suite *S;
-  pthread_mutex_t lock;   /* guards the cache */
-  pthread_cond_t cond;
-  rec_slot *cache;        /* records prepared here (state SLOT_PREPARING or SLOT_READY) */
-  size_t *users, *used;   /* per cache slot: tasks using it, tick of its last use */
-  size_t ncache, tick;
+  aq_cache *cache;        /* records prepared here (job/cache.h) */
+  rec_slot *kept;         /* its items */
   /* leader */
   aq_h5_writer *h5;
   aq_journal *J;
@@ -43,52 +41,20 @@ typedef struct {
   size_t next_write;
 } farm_ctx;
 
-/* Record i prepared in the cache (with a use counted). */
-static rec_slot *farm_acquire(farm_ctx *X, size_t i)
+/* The cache's preparing of record i into slot item (job/cache.h). */
+static void farm_prepare(void *ctx, size_t i, void *item)
 {
-  pthread_mutex_lock(&X->lock);
-  for (;;) {
-    size_t hit = X->ncache, lru = X->ncache;
-    for (size_t k = 0; k < X->ncache; k++) {
-      rec_slot *x = &X->cache[k];
-      if (x->state != SLOT_FREE && x->index == i)
-        hit = k;
-      else if (X->users[k] == 0 && x->state != SLOT_PREPARING &&
-               (lru == X->ncache || X->used[k] < X->used[lru]))
-        lru = k;
-    }
-    if (hit < X->ncache && X->cache[hit].state == SLOT_READY) {
-      X->users[hit]++;
-      pthread_mutex_unlock(&X->lock);
-      return &X->cache[hit];
-    }
-    if (hit == X->ncache && lru < X->ncache) { /* prepare it here */
-      rec_slot *r = &X->cache[lru];
-      aq_suite_slot_clear(X->S, r);
-      r->state = SLOT_PREPARING;
-      r->index = i;
-      X->users[lru] = 1;
-      pthread_mutex_unlock(&X->lock);
-      aq_suite_prepare(X->S, r);
-      aq_suite_record_sha256(X->S, r, NULL); /* before the slot is shared */
-      pthread_mutex_lock(&X->lock);
-      r->state = SLOT_READY;
-      pthread_cond_broadcast(&X->cond);
-      pthread_mutex_unlock(&X->lock);
-      return r;
-    }
-    pthread_cond_wait(&X->cond, &X->lock); /* being prepared, or every slot in use */
-  }
+  farm_ctx *X = ctx;
+  rec_slot *r = item;
+  r->index = i;
+  aq_suite_prepare(X->S, r);
+  aq_suite_record_sha256(X->S, r, NULL); /* before the slot is shared */
 }
 
-static void farm_release(farm_ctx *X, rec_slot *r)
+static void farm_clear(void *ctx, void *item)
 {
-  pthread_mutex_lock(&X->lock);
-  size_t k = (size_t)(r - X->cache);
-  X->users[k]--;
-  X->used[k] = ++X->tick;
-  pthread_cond_broadcast(&X->cond);
-  pthread_mutex_unlock(&X->lock);
+  farm_ctx *X = ctx;
+  aq_suite_slot_clear(X->S, item);
 }
 
 /* Task t: record t / narches with arch t % narches, every factor,
@@ -99,7 +65,7 @@ static int farm_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
   farm_ctx *X = ctx;
   suite *S = X->S;
   size_t na = S->cfg->narches, a = t % na;
-  rec_slot *r = farm_acquire(X, t / na);
+  rec_slot *r = aq_cache_acquire(X->cache, t / na);
   size_t per = r->nruns / na; /* runs of one arch */
   aq_stepper **st = calloc(na, sizeof *st);
   int rc = st ? 0 : -1;
@@ -120,7 +86,7 @@ static int farm_run(void *ctx, size_t t, unsigned char **msg, size_t *n)
       aq_result_free(&r->runs[a * per + k].res);
       r->runs[a * per + k].have_res = 0;
     }
-  farm_release(X, r);
+  aq_cache_release(X->cache, r);
   if (jb.oom || rc != 0) {
     free(jb.data);
     return -1;
@@ -200,20 +166,18 @@ aq_status aq_suite_farm(suite *S, aq_h5_writer *h5, aq_journal *J, size_t done,
   const aq_farm *f = aq_farm_get();
   size_t threads = c->threads > 0 ? (size_t)c->threads : 1, na = c->narches;
   size_t ntask = c->nrecords * na, ntodo = f->follower ? 0 : ntask - done * na;
-  farm_ctx X = {.S = S, .h5 = h5, .J = J, .stats = stats, .next_write = done,
-                .ncache = threads + AQ_SUITE_FARM_KEEP_EXTRA};
-  pthread_mutex_init(&X.lock, NULL);
-  pthread_cond_init(&X.cond, NULL);
-  X.cache = calloc(X.ncache, sizeof *X.cache);
-  X.users = calloc(X.ncache, sizeof *X.users);
-  X.used = calloc(X.ncache, sizeof *X.used);
+  size_t nkeep = threads + AQ_SUITE_FARM_KEEP_EXTRA;
+  farm_ctx X = {.S = S, .h5 = h5, .J = J, .stats = stats, .next_write = done};
+  X.kept = calloc(nkeep, sizeof *X.kept);
+  aq_cache_cfg cc = {c->nrecords, nkeep, X.kept, sizeof *X.kept, farm_prepare, farm_clear, &X};
+  X.cache = X.kept ? aq_cache_alloc(&cc) : NULL;
   size_t *todo = calloc(ntodo ? ntodo : 1, sizeof *todo);
   if (!f->follower) {
     X.pend = calloc(c->nrecords ? c->nrecords : 1, sizeof *X.pend);
     X.parts = calloc(c->nrecords ? c->nrecords : 1, sizeof *X.parts);
   }
   aq_status ws = AQ_OK;
-  if (!X.cache || !X.users || !X.used || !todo || (!f->follower && (!X.pend || !X.parts)))
+  if (!X.cache || !todo || (!f->follower && (!X.pend || !X.parts)))
     ws = aq_error_set(err, AQ_ENOMEM, "", -1, -1, NULL, "out of memory");
   for (size_t k = 0; k < ntodo; k++)
     todo[k] = done * na + k;
@@ -226,15 +190,12 @@ aq_status aq_suite_farm(suite *S, aq_h5_writer *h5, aq_journal *J, size_t done,
       aq_suite_slot_clear(S, X.pend[i]);
       free(X.pend[i]);
     }
-  for (size_t k = 0; X.cache && k < X.ncache; k++)
-    aq_suite_slot_clear(S, &X.cache[k]);
-  free(X.cache);
-  free(X.users);
-  free(X.used);
+  aq_cache_free(X.cache);
+  for (size_t k = 0; X.kept && k < nkeep; k++)
+    aq_suite_slot_clear(S, &X.kept[k]);
+  free(X.kept);
   free(X.pend);
   free(X.parts);
   free(todo);
-  pthread_cond_destroy(&X.cond);
-  pthread_mutex_destroy(&X.lock);
   return ws;
 }

@@ -7,6 +7,7 @@
  *              --scale-to-lambda0), the polarity, lambda0
  *   run.h      the arch's stepper, and the runs of a subject
  *   names.h    the records a suite's operands name (FILE#CH), on threads
+ *   cache.h    prepared subjects kept for a process's next tasks (farmed)
  *
  * The main job (src/app/suite*.c), capacity (src/capacity), archquake-mpi
  * and the benches all take this path.  It comes after arch (its steppers)
@@ -14,6 +15,7 @@
 #ifndef AQ_JOB_H
 #define AQ_JOB_H
 
+#include "cache.h"
 #include "names.h"
 #include "run.h"
 #include "scale.h"
