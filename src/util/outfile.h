@@ -30,7 +30,7 @@ typedef struct {
 void aq_outfile_temp_name(const char *target, char *buf, size_t n);
 
 /* Name and register the temporary of target in *o (no file is made).
- * AQ_ENOMEM (err) when out of memory. */
+ * AQ_EIO (err) when target is a directory; AQ_ENOMEM when out of memory. */
 aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err);
 
 /* As aq_outfile_reserve, then create the temporary for writing (o->f).
@@ -38,7 +38,8 @@ aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err);
  * be created; nothing is left registered then. */
 aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err);
 
-/* Close o->f (if open; a failed close is a failed write) and rename the
+/* Close o->f (if open; a failed close, or a write error the stream holds,
+ * is a failed write) and rename the
  * temporary onto the target.  On failure the temporary is removed and err
  * says why.  Either way o is released. */
 aq_status aq_outfile_commit(aq_outfile *o, aq_error *err);
