@@ -435,6 +435,21 @@ AQ_TEST(suite_resume_after_sigint_and_bad_journals)
   aq_check(jnow && jsaved && memcmp(jnow, jsaved, jn) == 0, "the journal is untouched");
   free(jnow);
 
+  /* other spectral measures are another command too (the records' rows differ) */
+  snprintf(other, sizeof other, "-o %s --resume --im-periods 0.3", h5);
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 2 && e && strstr(e, "another command") && strstr(e, "im_period"),
+           "other --im-periods refused: exit %d: %s", rc, e ? e : "");
+  free(e);
+  snprintf(other, sizeof other, "-o %s --resume --sa-avg 0.2,2", h5);
+  rc = rs_run(&s, other, out, err);
+  e = aq_test_read_file(err, NULL);
+  aq_check(rc == 2 && e && strstr(e, "another command") && strstr(e, "sa_avg"),
+           "other --sa-avg refused: exit %d: %s", rc, e ? e : "");
+  free(e);
+  aq_check(rs_whole_rows(out) == 0 && !rs_exists(h5), "nothing written");
+
   /* a record changed in place since it was run: refused, naming it */
   char rec[700], keep[700];
   snprintf(rec, sizeof rec, "%s/rec01.csv", s.dir);

@@ -43,7 +43,7 @@ static void pair_status(const aq_cap_item *r, const aq_capacity *c, char *st, si
 /* Per arch: the fits of every IM over the records that were read (stderr
  * gets the reason of a fit that fails; its row stays nan). */
 static int fit_all(size_t nrec, size_t na, const aq_cap_item *R, size_t npol,
-                   const aq_capacity *C, aq_fragility *fits)
+                   const aq_capacity *C, int nim, aq_fragility *fits)
 {
   const aq_im **im = malloc((nrec ? nrec : 1) * sizeof *im);
   if (!im)
@@ -53,9 +53,8 @@ static int fit_all(size_t nrec, size_t na, const aq_cap_item *R, size_t npol,
   int rc = 0;
   for (size_t a = 0; a < na && rc == 0; a++) {
     aq_error e;
-    aq_status s = aq_fragility_fit_records(C + a * npol, nrec, na * npol, npol, im,
-                                           AQ_FRAGILITY_CI_DEFAULT,
-                                           fits + a * AQ_FRAGILITY_NIM, &e);
+    aq_status s = aq_fragility_fit_records_n(C + a * npol, nrec, na * npol, npol, im, nim,
+                                             AQ_FRAGILITY_CI_DEFAULT, fits + a * nim, &e);
     if (s == AQ_ENOMEM)
       rc = -1;
     else if (s != AQ_OK)
@@ -70,20 +69,28 @@ typedef struct {
   aq_capacity_row *row;
   char (*status)[48];
   aq_fragility_row *fit;
+  size_t nfit;
+  char (*im_name)[64]; /* the spectral measures' names */
 } rows;
 
 /* Row i of (subject, arch, polarity) is the worst of its nz azimuths'
  * results C[i * nz ...] (nz = 1 without --azimuth all). */
 static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t na,
                      const aq_cap_item *R, const int *pols, size_t npol, const aq_capacity *C,
-                     size_t nz, const aq_orient_opts *or, const aq_fragility *fits)
+                     size_t nz, const aq_orient_opts *or, const aq_signal_opts *po,
+                     const aq_fragility *fits)
 {
-  size_t n = nrec * na * npol, nf = na * AQ_FRAGILITY_NIM;
+  size_t n = nrec * na * npol, nsp = aq_im_spectral_count(po), nim = AQ_FRAGILITY_NIM + nsp;
+  size_t nf = na * nim;
   o->row = malloc((n ? n : 1) * sizeof *o->row);
   o->status = malloc((n ? n : 1) * sizeof *o->status);
   o->fit = malloc((nf ? nf : 1) * sizeof *o->fit);
-  if (!o->row || !o->status || !o->fit)
+  o->im_name = malloc((nsp ? nsp : 1) * sizeof *o->im_name);
+  o->nfit = nf;
+  if (!o->row || !o->status || !o->fit || !o->im_name)
     return -1;
+  for (size_t k = 0; k < nsp; k++)
+    aq_im_spectral_name(po, k, o->im_name[k], sizeof o->im_name[k]);
   for (size_t i = 0; i < n; i++) {
     size_t r = i / (na * npol), w = 0;
     double lo = NAN, hi = NAN;
@@ -100,8 +107,11 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
                                   R[r].subj.motion ? or->azimuths_deg[w] : NAN, lo, hi};
   }
   for (size_t i = 0; i < nf; i++)
-    o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / AQ_FRAGILITY_NIM]),
-                                   aq_fragility_im_names[i % AQ_FRAGILITY_NIM], &fits[i]};
+    o->fit[i] = (aq_fragility_row){aq_arch_name(arches[i / nim]),
+                                   i % nim < AQ_FRAGILITY_NIM
+                                       ? aq_fragility_im_names[i % nim]
+                                       : o->im_name[i % nim - AQ_FRAGILITY_NIM],
+                                   &fits[i]};
   return 0;
 }
 
@@ -110,6 +120,7 @@ static void rows_free(rows *o)
   free(o->row);
   free(o->status);
   free(o->fit);
+  free(o->im_name);
 }
 
 /* The results file: root, arches, records, then the capacity group. */
@@ -160,7 +171,7 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                        .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
-  aq_h5_capacity hc = {o->row, npair, o->fit, na * AQ_FRAGILITY_NIM, so->resolution,
+  aq_h5_capacity hc = {o->row, npair, o->fit, o->nfit, so->resolution,
                        so->tol, AQ_FRAGILITY_CI_DEFAULT};
   if (s == AQ_OK)
     s = aq_h5_write_capacity(w, path, &hc, &e);
@@ -302,7 +313,8 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_cap_item *R = calloc(nrec, sizeof *R);
   size_t nrow = nrec * na * npol, njob = nrow * nz;
   aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
-  aq_fragility *fits = calloc(na * AQ_FRAGILITY_NIM, sizeof *fits);
+  int nim = AQ_FRAGILITY_NIM + (int)aq_im_spectral_count(&po);
+  aq_fragility *fits = calloc(na * (size_t)nim, sizeof *fits);
   if (!arches || !R || !C || !fits) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
@@ -352,16 +364,17 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_outfile ot = {0}, of = {0};
   int ok = (!text || out_open(&ot, text) == 0) && (!frag || out_open(&of, frag) == 0);
   FILE *ft = text ? ot.f : stdout, *ff = of.f;
-  rows o = {NULL, NULL, NULL};
-  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, fits) != 0)
+  rows o = {NULL, NULL, NULL, 0, NULL};
+  if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, nim, fits) != 0)
     ok = 0;
-  if (ok && make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, nz, &orient, fits) != 0) {
+  if (ok &&
+      make_rows(&o, recs, nrec, arches, na, R, pols, npol, C, nz, &orient, &po, fits) != 0) {
     fprintf(stderr, "archquake: out of memory\n");
     ok = 0;
   }
   if (ok && aq_text_capacity(ft, o.row, nrow) != 0)
     ok = 0;
-  if (ok && ff && aq_text_fragility(ff, o.fit, na * AQ_FRAGILITY_NIM) != 0)
+  if (ok && ff && aq_text_fragility(ff, o.fit, o.nfit) != 0)
     ok = 0;
   if (ok && h5 &&
       write_h5(h5, argc, argv, recs, nrec, arch_paths, arches, na, R, &o, nrow, &so, &po,

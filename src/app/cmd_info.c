@@ -36,11 +36,14 @@ static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws
   char warn[256];
   if (aq_im_residual_warning(&im, warn, sizeof warn))
     fprintf(stderr, "archquake: %s: warning: %s\n", rec->path, warn);
-  printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n",
+  printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\t%.6g",
          rec->path, rec->format, rec->npts, rec->dt_s,
          rec->dt_s * (double)rec->npts, rec->units_orig, im.pga_g, im.pgv_mps,
          im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec->channel,
-         rec->vertical ? "yes" : "no");
+         rec->vertical ? "yes" : "no", im.pgv_pga_s);
+  for (size_t k = 0; k < aq_im_spectral_count(so); k++)
+    printf("\t%.6g", aq_im_spectral_value(&im, k));
+  putchar('\n');
   aq_processed_free(&p);
   return 0;
 }
@@ -69,7 +72,13 @@ int aq_cmd_info(int argc, char **argv)
   }
   int failed = 0;
   printf("file\tformat\tnpts\tdt_s\tduration_s\tunits\tpga_g\tpgv_m_s\t"
-         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\n");
+         "pgd_m\tarias_m_s\td5_95_s\tcav_m_s\tchannel\tvertical\tpgv_pga_s");
+  for (size_t k = 0; k < aq_im_spectral_count(&so); k++) {
+    char name[64];
+    aq_im_spectral_name(&so, k, name, sizeof name);
+    printf("\t%s", name);
+  }
+  putchar('\n');
   for (int op = optind; op < argc; op++) { /* every channel a record (FILE#CH) */
     aq_record_set set;
     aq_error xerr;

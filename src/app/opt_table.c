@@ -133,6 +133,49 @@ static void damping_below_1(char *arg, aq_opts *o, int *nerr)
     }
 }
 
+/* --im-periods LIST: Sa(T) at up to AQ_IM_SA_MAX periods (s); "none":
+ * no Sa(T). */
+static void im_periods(char *arg, aq_opts *o, int *nerr)
+{
+  o->proc.im_nsa = 0;
+  if (!strcmp(arg, "none"))
+    return;
+  double *v = NULL;
+  size_t n = 0;
+  int before = *nerr;
+  aq_opt_list("--im-periods", arg, 0, 1e4, &v, &n, nerr);
+  if (*nerr == before && n > AQ_IM_SA_MAX) {
+    fprintf(stderr, "archquake: --im-periods: expected at most %d periods, got %zu in \"%s\"\n",
+            AQ_IM_SA_MAX, n, arg);
+    (*nerr)++;
+  } else if (*nerr == before) {
+    o->proc.im_nsa = n;
+    memcpy(o->proc.im_period_s, v, n * sizeof *v);
+  }
+  free(v);
+}
+
+/* --sa-avg T1,T2: the range of Sa_avg, s, 0 < T1 < T2; "none": no Sa_avg. */
+static void sa_avg(char *arg, aq_opts *o, int *nerr)
+{
+  o->proc.sa_avg_lo_s = o->proc.sa_avg_hi_s = 0;
+  if (!strcmp(arg, "none"))
+    return;
+  double *v = NULL;
+  size_t n = 0;
+  int before = *nerr;
+  aq_opt_list("--sa-avg", arg, 0, 1e4, &v, &n, nerr);
+  if (*nerr == before && (n != 2 || !(v[0] < v[1]))) {
+    fprintf(stderr, "archquake: --sa-avg: expected two periods T1,T2 in s with T1 < T2, "
+                    "got \"%s\"\n", arg);
+    (*nerr)++;
+  } else if (*nerr == before) {
+    o->proc.sa_avg_lo_s = v[0];
+    o->proc.sa_avg_hi_s = v[1];
+  }
+  free(v);
+}
+
 /* The checks between options (the rows' .check), made after parsing. */
 
 /* --no-filter turns off the taper, the pads and the filter: an option that
@@ -495,6 +538,16 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                         .help = "acausal Butterworth low-pass corner (default off)",
                         .check = lowpass_above_highpass},
+    [AQ_OPT_IM_PERIODS] = {.name = "im-periods", .kind = AQ_ARG_CUSTOM, .meta = "LIST",
+                           .fn = im_periods, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                           .help = "intensity measures Sa(T), 5 % damping, at these periods, "
+                                   "s, comma-separated, at most 8, or none (default "
+                                   "0.2,0.5,1)"},
+    [AQ_OPT_SA_AVG] = {.name = "sa-avg", .kind = AQ_ARG_CUSTOM, .meta = "T1,T2",
+                       .fn = sa_avg, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                       .help = "intensity measure Sa_avg: the geometric mean of Sa at 10 "
+                               "periods evenly spaced from T1 to T2 s (Eads et al. 2015), "
+                               "or none (default 0.1,1)"},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies)",
@@ -589,9 +642,10 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .head = "usage: archquake info [OPTIONS] RECORD...\n"
                  "Describe accelerograms: one TSV row per record on stdout.\n",
          .tail = "Columns: file format npts dt_s duration_s units pga_g pgv_m_s pgd_m\n"
-                 "  arias_m_s d5_95_s cav_m_s channel vertical (npts, duration_s: the\n"
-                 "  record as read; the measures: the processed record, pads included;\n"
-                 "  --no-filter --detrend none gives the record as read)\n"
+                 "  arias_m_s d5_95_s cav_m_s channel vertical pgv_pga_s, then one column\n"
+                 "  per --im-periods T, sa_Ts_g, and sa_avg_T1_T2s_g (--sa-avg) (npts,\n"
+                 "  duration_s: the record as read; the measures: the processed record,\n"
+                 "  pads included; --no-filter --detrend none gives the record as read)\n"
                  "Exit status: 0 all records read, 1 some record failed, 2 bad options.\n",
          .heading = {[AQ_GROUP_PROCESSING] = "Processing (intensity measures are computed "
                                              "on the processed record):"}},

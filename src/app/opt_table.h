@@ -131,6 +131,8 @@ typedef enum {
   AQ_OPT_QUIET,
   AQ_OPT_PERIODS,       /* spectrum */
   AQ_OPT_DAMPING,
+  AQ_OPT_IM_PERIODS,    /* the spectral intensity measures */
+  AQ_OPT_SA_AVG,
   AQ_OPT_SAMPLED_PEAKS,
   AQ_OPT_HELP,
   AQ_OPT_VERSION,

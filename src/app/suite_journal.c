@@ -152,6 +152,10 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
   line(&b, "detrend=%d taper=%a filter=%d highpass=%a highpass_auto=%d order=%d lowpass=%a",
        (int)p->detrend, p->taper_frac, p->filter, p->highpass_hz, p->highpass_auto,
        p->order, p->lowpass_hz);
+  /* the spectral measures the records table and /records carry */
+  line(&b, "im_periods=%zu sa_avg=%a,%a", p->im_nsa, p->sa_avg_lo_s, p->sa_avg_hi_s);
+  for (size_t k = 0; k < p->im_nsa && k < AQ_IM_SA_MAX; k++)
+    line(&b, "im_period=%a", p->im_period_s[k]);
   line(&b, "merge_tol_g=%a scale_to_pga_g=%a", c->merge_tol_g,
        c->scales ? 0.0 : c->scale_to_pga_g);
   if (!c->scales && c->scale_to_lambda0 > 0)

@@ -198,6 +198,9 @@ typedef struct {
   double beta;      /* lognormal standard deviation */
   double median_lo, median_hi; /* confidence interval of the median (INFINITY: unbounded) */
   double loglik;    /* maximised log-likelihood */
+  int rank;         /* aq_fragility_fit_records_n: 1 for the measure of the
+                       arch's smallest dispersion (per power of the scale,
+                       aq_fragility_im_power), 2 the next...; 0 unfitted */
 } aq_fragility;
 
 #define AQ_FRAGILITY_CI_DEFAULT 0.90
@@ -208,7 +211,9 @@ enum { AQ_FRAGILITY_NIM = 6 };
 extern const char *const aq_fragility_im_names[AQ_FRAGILITY_NIM];
 extern const char *const aq_fragility_im_units[AQ_FRAGILITY_NIM]; /* "g", "m/s", "m", ..., "1" */
 /* IM number which of the record with measures im (scale 1) scaled by
- * scale, for an arch of smallest lambda0 (Arias grows as scale^2). */
+ * scale, for an arch of smallest lambda0 (Arias grows as scale^2).  From
+ * AQ_FRAGILITY_NIM on, the spectral measures: which - AQ_FRAGILITY_NIM is
+ * aq_im_spectral_value's k (Sa(T), then Sa_avg; both grow as the scale). */
 double aq_fragility_im_at(const aq_im *im, double lambda0, int which,
                           double scale);
 
@@ -232,6 +237,21 @@ aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
 aq_status aq_fragility_fit_records(const aq_capacity *cap, size_t nrec, size_t stride,
                                    size_t npol, const aq_im *const *im, double ci,
                                    aq_fragility *fits, aq_error *err);
+
+/* The power of the scale an IM grows with: 2 for Arias intensity, 1 for
+ * the others.  Ranked, the dispersion of each is divided by it: ln IA at
+ * collapse is twice as spread as ln sqrt(IA), which orders the records
+ * alike; dividing compares how well each orders them. */
+int aq_fragility_im_power(int which);
+
+/* As aq_fragility_fit_records for the first nim measures (AQ_FRAGILITY_NIM
+ * and the spectral ones after them, as aq_fragility_im_at numbers them),
+ * filling fits[0..nim) and their rank by beta / power (the efficiency of
+ * the measure for this arch, as Luco & Cornell 2007 judge a measure and
+ * oq-vmtk ranks them). */
+aq_status aq_fragility_fit_records_n(const aq_capacity *cap, size_t nrec, size_t stride,
+                                     size_t npol, const aq_im *const *im, int nim,
+                                     double ci, aq_fragility *fits, aq_error *err);
 
 /* The negative log-likelihood of (theta, beta) for the data above (the
  * function fitted; exposed for tests and the bench). */

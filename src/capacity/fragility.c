@@ -32,6 +32,7 @@
  * 0.5 n size^2, which meets its rounding (1e-16 of it) for size ~ 1e-8 */
 static const double FIT_SIMPLEX_SIZE = 1e-7;
 static const size_t FIT_MAX_ITER = 20000;
+static const double RANK_TIE = 10 * FIT_SIMPLEX_SIZE; /* relative, of beta / power */
 static const double PROFILE_LNBETA_TOL = 1e-10; /* inner maximisation over ln beta */
 static const double CI_LNTHETA_TOL = 1e-9;      /* ends of the interval, in ln theta */
 static const double CI_LNTHETA_SPAN = 30.0;     /* farther than e^30 x theta: unbounded */
@@ -178,7 +179,7 @@ static double ci_end(ci_ctx *c, double dir)
 aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
                            double ci, aq_fragility *out, aq_error *err)
 {
-  *out = (aq_fragility){n, 0, NAN, NAN, NAN, NAN, NAN};
+  *out = (aq_fragility){n, 0, NAN, NAN, NAN, NAN, NAN, 0};
   double sum = 0, sum2 = 0, xmin = INFINITY, xmax = -INFINITY;
   size_t nc = 0;
   for (size_t i = 0; i < n; i++) {
@@ -273,25 +274,40 @@ double aq_fragility_im_at(const aq_im *im, double lambda0, int which,
   case 5:
     return scale * im->pga_g / lambda0;
   default:
-    return NAN;
+    return which > 5 && (size_t)(which - AQ_FRAGILITY_NIM) <= im->n_sa
+               ? scale * aq_im_spectral_value(im, (size_t)(which - AQ_FRAGILITY_NIM))
+               : NAN;
   }
+}
+
+int aq_fragility_im_power(int which)
+{
+  return which == 3 ? 2 : 1;
 }
 
 aq_status aq_fragility_fit_records(const aq_capacity *cap, size_t nrec, size_t stride,
                                    size_t npol, const aq_im *const *im, double ci,
                                    aq_fragility *fits, aq_error *err)
 {
+  return aq_fragility_fit_records_n(cap, nrec, stride, npol, im, AQ_FRAGILITY_NIM, ci, fits,
+                                    err);
+}
+
+aq_status aq_fragility_fit_records_n(const aq_capacity *cap, size_t nrec, size_t stride,
+                                     size_t npol, const aq_im *const *im, int nim,
+                                     double ci, aq_fragility *fits, aq_error *err)
+{
   double *x = malloc((nrec ? nrec : 1) * sizeof *x);
   int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
   aq_status st = AQ_OK;
-  for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
-    fits[m] = (aq_fragility){0, 0, NAN, NAN, NAN, NAN, NAN};
+  for (int m = 0; m < nim; m++)
+    fits[m] = (aq_fragility){0, 0, NAN, NAN, NAN, NAN, NAN, 0};
   if (!x || !cen) {
     free(x);
     free(cen);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "fragility", "out of memory");
   }
-  for (int m = 0; m < AQ_FRAGILITY_NIM; m++) {
+  for (int m = 0; m < nim; m++) {
     size_t n = 0;
     for (size_t r = 0; r < nrec; r++) {
       if (!im[r])
@@ -326,5 +342,22 @@ aq_status aq_fragility_fit_records(const aq_capacity *cap, size_t nrec, size_t s
   }
   free(x);
   free(cen);
+  /* rank: 1 + the measures of smaller beta / power.  The simplex finds
+   * ln beta to FIT_SIMPLEX_SIZE only, so betas within RANK_TIE of each
+   * other are not told apart: they take the declared order (PGA and
+   * PGA/lambda0, proportional within an arch, have the same beta, and
+   * the optimiser's last digits must not decide which comes first). */
+  for (int m = 0; m < nim; m++)
+    if (isfinite(fits[m].beta)) {
+      double bm = fits[m].beta / aq_fragility_im_power(m);
+      fits[m].rank = 1;
+      for (int j = 0; j < nim; j++) {
+        if (j == m || !isfinite(fits[j].beta))
+          continue;
+        double bj = fits[j].beta / aq_fragility_im_power(j);
+        int tie = fabs(bj - bm) <= RANK_TIE * fmax(bj, bm);
+        fits[m].rank += tie ? j < m : bj < bm;
+      }
+    }
   return st;
 }

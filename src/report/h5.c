@@ -80,6 +80,9 @@ typedef struct {
   int64_t pad_front, pad_back, n_orig;
   /* intensity measures of the processed, unscaled record */
   double pga_g, pgv_m_s, pgd_m, arias_m_s, d5_95_s, cav_m_s, v_end_m_s, d_end_m;
+  double pgv_pga_s;
+  double sa[AQ_IM_SA_MAX + 1]; /* the spectral measures (aq_im_spectral_value),
+                                  columns named by the root's options */
   double timing_read_s, timing_process_s;
   char waveform[40]; /* path of its /waveforms dataset, "" if not stored */
 } record_row;
@@ -105,7 +108,8 @@ static const h5_col record_cols[] = {
     REC_COL(pgv_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(pgd_m, AQ_SF_DOUBLE, "m"),
     REC_COL(arias_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(d5_95_s, AQ_SF_DOUBLE, "s"),
     REC_COL(cav_m_s, AQ_SF_DOUBLE, "m/s"), REC_COL(v_end_m_s, AQ_SF_DOUBLE, "m/s"),
-    REC_COL(d_end_m, AQ_SF_DOUBLE, "m"), REC_COL(timing_read_s, AQ_SF_DOUBLE, "s"),
+    REC_COL(d_end_m, AQ_SF_DOUBLE, "m"), REC_COL(pgv_pga_s, AQ_SF_DOUBLE, "s"),
+    REC_COL(timing_read_s, AQ_SF_DOUBLE, "s"),
     REC_COL(timing_process_s, AQ_SF_DOUBLE, "s"), REC_COL(waveform, AQ_SF_STR, ""),
 };
 enum { N_RECORD_COLS = sizeof record_cols / sizeof record_cols[0] };
@@ -128,6 +132,11 @@ struct aq_h5_writer {
   h5_table runs, records;
   h5_col *run_cols; /* aq_summary_fields then run_extra_cols */
   size_t n_run_cols;
+  /* /records: record_cols then the spectral measures of the root's options
+   * (made by aq_h5_write_root, which knows them) */
+  h5_col rec_cols[N_RECORD_COLS + AQ_IM_SA_MAX + 1];
+  char rec_names[AQ_IM_SA_MAX + 1][64];
+  size_t n_rec_cols, n_spectral;
   int store_records;
   /* Reused by every attribute (H5Acreate2 copies them): the scalar
    * dataspace, and a string type whose size is set per attribute. */
@@ -631,10 +640,6 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   obj = "/arches";
   w->g_arches = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(w->g_arches, "H5Gcreate");
-  obj = "/records";
-  CK(table_open(w, &w->records, obj, record_cols, N_RECORD_COLS,
-                sizeof(record_row), AQ_H5_RECORDS_CHUNK),
-     "table");
   obj = "/summary";
   CK(table_open(w, &w->runs, obj, w->run_cols, w->n_run_cols, sizeof(run_row),
                 AQ_H5_SUMMARY_CHUNK),
@@ -703,6 +708,22 @@ static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
   return 0;
 }
 
+/* /records, with a column per spectral measure of proc (NULL: none). */
+static herr_t records_open(aq_h5_writer *w, const aq_signal_opts *proc)
+{
+  memcpy(w->rec_cols, record_cols, sizeof record_cols);
+  w->n_spectral = proc ? aq_im_spectral_count(proc) : 0;
+  for (size_t k = 0; k < w->n_spectral; k++) {
+    aq_im_spectral_name(proc, k, w->rec_names[k], sizeof w->rec_names[k]);
+    w->rec_cols[N_RECORD_COLS + k] =
+        (h5_col){w->rec_names[k], AQ_SF_DOUBLE, offsetof(record_row, sa) + k * sizeof(double),
+                 sizeof(double), "g"};
+  }
+  w->n_rec_cols = N_RECORD_COLS + w->n_spectral;
+  return table_open(w, &w->records, "/records", w->rec_cols, w->n_rec_cols,
+                    sizeof(record_row), AQ_H5_RECORDS_CHUNK);
+}
+
 aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
 {
   return aq_h5_write_root_kind(w, r, NULL, err);
@@ -712,8 +733,11 @@ aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char
                                 aq_error *err)
 {
   aq_status st = AQ_OK;
-  const char *obj = "/";
+  const char *obj = "/records";
   hid_t f = w->file;
+  if (!w->records.buf)
+    CK(records_open(w, r->proc), "table");
+  obj = "/";
   w->store_records = r->store_records;
   CK(attr_str(w, f, "archquake_version", r->version), "root attributes");
   CK(attr_str(w, f, "archquake_build", r->build ? r->build : r->version),
@@ -900,6 +924,8 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
 {
   aq_status st = AQ_OK;
   const char *obj = "/records";
+  if (!w->records.buf) /* no root written: the fixed columns */
+    CK(records_open(w, NULL), "table");
   record_row *row = table_row(w, &w->records);
   CK(row ? 0 : -1, "rows");
   COPY(row->source_file, r->source_file);
@@ -913,6 +939,9 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
   row->pga_g = row->pgv_m_s = row->pgd_m = row->arias_m_s = NAN;
   row->d5_95_s = row->cav_m_s = row->v_end_m_s = row->d_end_m = NAN;
   row->vertical = -1;
+  row->pgv_pga_s = NAN;
+  for (size_t k = 0; k < w->n_spectral; k++)
+    row->sa[k] = NAN;
   if (r->rec) {
     const aq_record *rec = r->rec;
     COPY(row->name, rec->name);
@@ -968,6 +997,9 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
     row->cav_m_s = m->cav_mps;
     row->v_end_m_s = m->v_end_mps;
     row->d_end_m = m->d_end_m;
+    row->pgv_pga_s = m->pgv_pga_s;
+    for (size_t k = 0; k < w->n_spectral; k++)
+      row->sa[k] = aq_im_spectral_value(m, k);
   }
   row->timing_read_s = r->timing_read_s;
   row->timing_process_s = r->timing_process_s;
@@ -1057,6 +1089,8 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
   const char *obj = "/summary";
   CK(table_close(w, &w->runs), "rows");
   obj = "/records";
+  if (!w->records.buf)
+    CK(records_open(w, NULL), "table");
   CK(table_close(w, &w->records), "rows");
   obj = "/";
   if (t) {

@@ -300,10 +300,11 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   size_t nf = c->nfit ? c->nfit : 1;
   double *fd[4] = {malloc(nf * sizeof(double)), malloc(nf * sizeof(double)),
                    malloc(nf * sizeof(double)), malloc(nf * sizeof(double))};
-  int64_t *fn[2] = {malloc(nf * sizeof(int64_t)), malloc(nf * sizeof(int64_t))};
+  int64_t *fn[3] = {malloc(nf * sizeof(int64_t)), malloc(nf * sizeof(int64_t)),
+                    malloc(nf * sizeof(int64_t))};
   aq_status st = AQ_OK;
   const char **str = NULL;
-  if (!fd[0] || !fd[1] || !fd[2] || !fd[3] || !fn[0] || !fn[1]) {
+  if (!fd[0] || !fd[1] || !fd[2] || !fd[3] || !fn[0] || !fn[1] || !fn[2]) {
     st = aq_error_set(err, AQ_ENOMEM, target, -1, -1, obj, "out of memory");
     goto out;
   }
@@ -320,6 +321,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
     fd[3][i] = q->median_hi;
     fn[0][i] = (int64_t)q->n;
     fn[1][i] = (int64_t)q->ncensored;
+    fn[2][i] = q->rank;
   }
   /* string columns: record arch polarity status (npair each), then arch im */
   const size_t np = c->npair;
@@ -378,7 +380,8 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
       ds_write(gf, "median", H5T_NATIVE_DOUBLE, fd[0], c->nfit, 1, NULL) < 0 ||
       ds_write(gf, "beta", H5T_NATIVE_DOUBLE, fd[1], c->nfit, 1, "1") < 0 ||
       ds_write(gf, "median_lo", H5T_NATIVE_DOUBLE, fd[2], c->nfit, 1, NULL) < 0 ||
-      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1, NULL) < 0)
+      ds_write(gf, "median_hi", H5T_NATIVE_DOUBLE, fd[3], c->nfit, 1, NULL) < 0 ||
+      ds_write(gf, "rank", H5T_NATIVE_INT64, fn[2], c->nfit, 1, "1") < 0)
     goto fail;
   /* the median's units are its row's IM's: one string per row */
   for (size_t i = 0; i < c->nfit; i++) {
@@ -386,6 +389,8 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
       if (c->fit[i].im && strcmp(c->fit[i].im, aq_fragility_im_names[m]) == 0)
         col_s[5][i] = aq_fragility_im_units[m];
+    if (c->fit[i].im && strncmp(c->fit[i].im, "sa_", 3) == 0)
+      col_s[5][i] = "g"; /* Sa(T) and Sa_avg (sa_..._g) */
   }
   for (int j = 0; j < 3 && c->nfit; j++) {
     static const char *const med[3] = {"median", "median_lo", "median_hi"};
@@ -422,6 +427,7 @@ out:
     free(fd[j]);
   free(fn[0]);
   free(fn[1]);
+  free(fn[2]);
   columns_free(&k);
   return st;
 }

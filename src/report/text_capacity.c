@@ -64,7 +64,7 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
 
 int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
 {
-  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\n", f);
+  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\trank\n", f);
   for (size_t i = 0; i < n; i++) {
     const aq_fragility *fit = rows[i].fit;
     char v[4][40];
@@ -72,8 +72,12 @@ int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
     aq_text_double(v[1], sizeof v[1], fit->beta);
     aq_text_double(v[2], sizeof v[2], fit->median_lo);
     aq_text_double(v[3], sizeof v[3], fit->median_hi);
-    fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\n", rows[i].arch, rows[i].im, fit->n,
+    fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\t", rows[i].arch, rows[i].im, fit->n,
             fit->ncensored, v[0], v[1], v[2], v[3]);
+    if (fit->rank > 0)
+      fprintf(f, "%d\n", fit->rank);
+    else
+      fputs("nan\n", f);
   }
   return ferror(f) ? -1 : 0;
 }

@@ -54,6 +54,12 @@ void aq_signal_opts_default(aq_signal_opts *o)
   o->order = 4;
   o->lowpass_hz = 0;
   o->scale = 1.0;
+  static const double im_periods_s[] = {0.2, 0.5, 1.0};
+  o->im_nsa = sizeof im_periods_s / sizeof *im_periods_s;
+  for (size_t i = 0; i < AQ_IM_SA_MAX; i++)
+    o->im_period_s[i] = i < o->im_nsa ? im_periods_s[i] : 0;
+  o->sa_avg_lo_s = 0.1;
+  o->sa_avg_hi_s = 1.0;
 }
 
 void aq_processed_free(aq_processed *p)

@@ -13,6 +13,7 @@
 
 #include "../units.h"
 #include "signal.h"
+#include "spectrum.h"
 
 void aq_signal_integrate(const double *a_mps2, size_t n, double dt_s,
                          double *v_mps, double *d_m)
@@ -54,6 +55,50 @@ static void arias_crossings(const double *a, size_t n, double dt_s, double lo,
       cum += inc;
     }
   }
+}
+
+/* The spectral measures p->used asks for: Sa(T) at its periods and Sa_avg
+ * over its range, one spectrum of them all (spectrum.h). */
+static aq_status spectral(const aq_processed *p, aq_im *im, aq_error *err)
+{
+  const aq_signal_opts *u = &p->used;
+  im->sa_avg_g = NAN;
+  size_t nsa = u->im_nsa, navg = u->sa_avg_lo_s > 0 ? AQ_IM_SA_AVG_N : 0;
+  if (nsa > AQ_IM_SA_MAX)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "--im-periods",
+                        "expected at most %d periods, got %zu", AQ_IM_SA_MAX, nsa);
+  if (nsa + navg == 0)
+    return AQ_OK;
+  double T[AQ_IM_SA_MAX + AQ_IM_SA_AVG_N], psa[AQ_IM_SA_MAX + AQ_IM_SA_AVG_N];
+  for (size_t i = 0; i < nsa; i++) {
+    T[i] = u->im_period_s[i];
+    if (!(T[i] > 0) || !isfinite(T[i]))
+      return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "--im-periods",
+                          "expected periods > 0 s, got %g", T[i]);
+  }
+  if (navg && aq_spectrum_avg_periods(u->sa_avg_lo_s, u->sa_avg_hi_s, navg, T + nsa, err) != AQ_OK) {
+    snprintf(err->field, sizeof err->field, "--sa-avg");
+    return err->status;
+  }
+  aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
+  if (!ws)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "spectrum", "out of memory");
+  aq_status st = aq_spectrum_psa(ws, NULL, p->acc_mps2, p->n, p->dt_s, AQ_IM_DAMPING, T,
+                                 nsa + navg, psa, err);
+  aq_spectrum_ws_free(ws);
+  if (st != AQ_OK)
+    return st;
+  im->n_sa = nsa;
+  for (size_t i = 0; i < nsa; i++) {
+    im->sa_period_s[i] = T[i];
+    im->sa_g[i] = psa[i] / AQ_G0_MPS2;
+  }
+  if (navg) {
+    im->sa_avg_lo_s = u->sa_avg_lo_s;
+    im->sa_avg_hi_s = u->sa_avg_hi_s;
+    im->sa_avg_g = aq_spectrum_geomean(psa + nsa, navg) / AQ_G0_MPS2;
+  }
+  return AQ_OK;
 }
 
 aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
@@ -101,7 +146,26 @@ aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err)
   }
   im->residual_warn = (fabs(v) > AQ_IM_VEND_LIMIT_MPS ? AQ_IM_WARN_VEND : 0) |
                       (fabs(d) > AQ_IM_DEND_LIMIT_M ? AQ_IM_WARN_DEND : 0);
-  return AQ_OK;
+  im->pgv_pga_s = pga > 0 ? pgv / pga : NAN;
+  return spectral(p, im, err);
+}
+
+size_t aq_im_spectral_count(const aq_signal_opts *u)
+{
+  return u->im_nsa + (u->sa_avg_lo_s > 0);
+}
+
+void aq_im_spectral_name(const aq_signal_opts *u, size_t k, char *buf, size_t n)
+{
+  if (k < u->im_nsa)
+    snprintf(buf, n, "sa_%gs_g", u->im_period_s[k]);
+  else
+    snprintf(buf, n, "sa_avg_%g_%gs_g", u->sa_avg_lo_s, u->sa_avg_hi_s);
+}
+
+double aq_im_spectral_value(const aq_im *im, size_t k)
+{
+  return k < im->n_sa ? im->sa_g[k] : im->sa_avg_g;
 }
 
 int aq_im_residual_warning(const aq_im *im, char *buf, size_t n)

@@ -35,6 +35,14 @@ typedef struct {
   int order;          /* --order of the Butterworth high-pass (default 4) */
   double lowpass_hz;  /* --lowpass corner, 0 = off (default off) */
   double scale;       /* multiply the processed record by this (default 1) */
+  /* The spectral intensity measures aq_im_compute adds (5 % damping):
+   * Sa(T) at im_period_s[0..im_nsa) (--im-periods; default 0.2, 0.5, 1 s)
+   * and Sa_avg over [sa_avg_lo_s, sa_avg_hi_s] (--sa-avg; default 0.1 to
+   * 1 s; lo = 0: none).  All zero: no spectral measure. */
+  size_t im_nsa;
+#define AQ_IM_SA_MAX 8
+  double im_period_s[AQ_IM_SA_MAX];
+  double sa_avg_lo_s, sa_avg_hi_s;
 } aq_signal_opts;
 
 /* The default high-pass corner, Hz: low enough to keep the long-period
@@ -67,7 +75,20 @@ typedef struct {
   double d_end_m;      /* residual displacement at the end, m */
   int residual_warn;   /* AQ_IM_WARN_* bits: residuals above PRISM's limits;
                           the caller warns (aq_im_residual_warning), it is not an error */
+  double pgv_pga_s;    /* PGV / PGA (m/s over m/s^2), s; NAN for a record of zeros */
+  /* Spectral measures, from the options the record was processed with
+   * (p->used): PSA at AQ_IM_DAMPING, the peak over continuous time. */
+  size_t n_sa;                       /* = used.im_nsa */
+  double sa_period_s[AQ_IM_SA_MAX];  /* s */
+  double sa_g[AQ_IM_SA_MAX];         /* Sa(T), g */
+  double sa_avg_lo_s, sa_avg_hi_s;   /* the range of Sa_avg, s (0: none) */
+  double sa_avg_g; /* Sa_avg: the geometric mean of Sa at AQ_IM_SA_AVG_N
+                      periods evenly spaced over the range (Eads et al.
+                      2015), g; NAN when there is no range */
 } aq_im;
+
+#define AQ_IM_DAMPING 0.05 /* of the spectral measures */
+#define AQ_IM_SA_AVG_N 10  /* periods of Sa_avg (Eads et al. 2015: ten) */
 
 /* PRISM's residual limits: warn when |v_end| > 1 cm/s or |d_end| > 1 cm. */
 #define AQ_IM_VEND_LIMIT_MPS 0.01
@@ -94,9 +115,20 @@ aq_status aq_signal_process(const aq_record *rec, const aq_signal_opts *o,
  * PGA (g), PGV (m/s), PGD (m) with trapezoidal integration from rest at the
  * first sample, Arias intensity pi/(2g) int a^2 dt (m/s), D5-95 (s) from the
  * normalised Arias curve with linear interpolation, CAV int |a| dt (m/s),
- * residual end velocity and displacement, residual_warn.  Allocates nothing.
- * Returns AQ_EVALUE (err filled) for an empty record or dt <= 0. */
+ * residual end velocity and displacement, residual_warn, PGV/PGA; and the
+ * spectral measures p->used asks for (spectrum.h's aq_spectrum_psa, which
+ * allocates its workspace here: the only allocation).  Returns AQ_EVALUE
+ * (err filled) for an empty record, dt <= 0 or a bad period (field
+ * "--im-periods" or "--sa-avg"), AQ_ENOMEM. */
 aq_status aq_im_compute(const aq_processed *p, aq_im *im, aq_error *err);
+
+/* The spectral measures of options u, in the order of every table: Sa(T)
+ * at each of u->im_period_s, then Sa_avg when u has a range.  Their count;
+ * the name of measure k < count ("sa_0.2s_g", "sa_avg_0.1_1s_g"); and its
+ * value in im (computed with u), g. */
+size_t aq_im_spectral_count(const aq_signal_opts *u);
+void aq_im_spectral_name(const aq_signal_opts *u, size_t k, char *buf, size_t n);
+double aq_im_spectral_value(const aq_im *im, size_t k);
 
 /* Trapezoidal integration from rest: v[0] = 0, v[k+1] = v[k] + dt (a[k] +
  * a[k+1]) / 2 (m/s from m/s^2), and likewise d from v (m).  v and d hold n
