@@ -30,10 +30,6 @@ aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err)
 {
   memset(o, 0, sizeof *o);
   o->slot = -1;
-  struct stat sb; /* a directory would fail only at the rename, after the work */
-  if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode))
-    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
-                        "expected a file name, got a directory");
   size_t len = strlen(target) + 32;
   o->target = strdup(target);
   o->tmp = malloc(len);
@@ -52,6 +48,13 @@ aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err)
 
 aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err)
 {
+  struct stat sb; /* a directory would fail only at the rename, after the work */
+  if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    memset(o, 0, sizeof *o);
+    o->slot = -1;
+    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
+                        "expected a file name, got a directory");
+  }
   aq_status s = aq_outfile_reserve(o, target, err);
   if (s != AQ_OK)
     return s;

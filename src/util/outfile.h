@@ -30,12 +30,13 @@ typedef struct {
 void aq_outfile_temp_name(const char *target, char *buf, size_t n);
 
 /* Name and register the temporary of target in *o (no file is made).
- * AQ_EIO (err) when target is a directory; AQ_ENOMEM when out of memory. */
+ * AQ_ENOMEM (err) when out of memory. */
 aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err);
 
 /* As aq_outfile_reserve, then create the temporary for writing (o->f).
- * AQ_EIO (err: the target, the temporary and the reason) when it cannot
- * be created; nothing is left registered then. */
+ * AQ_EIO (err: the target, the temporary and the reason) when target is a
+ * directory or the temporary cannot be created; nothing is left registered
+ * then. */
 aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err);
 
 /* Close o->f (if open; a failed close, or a write error the stream holds,
