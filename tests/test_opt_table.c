@@ -651,3 +651,29 @@ AQ_TEST(opt_table_period_lists)
              "%s: exit %d, header ending \"%s\": %.300s", args, rc, good[k].tail, out);
   }
 }
+
+/* Every rule of the table can be made: its options exist and share a
+ * command with the row (else the rule never applies), and a bound between
+ * values joins two numbers (the parser reads both as doubles). */
+AQ_TEST(opt_table_rules_well_formed)
+{
+  int nrules = 0;
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    const int *const lists[] = {r->requires, r->conflicts, r->not_below, r->not_above};
+    for (int kind = 0; kind < 4; kind++)
+      for (const int *j = lists[kind]; j && *j >= 0; j++) {
+        nrules++;
+        if (!aq_check(*j < AQ_OPT_N && *j != i, "--%s: rule %d names option %d", r->name,
+                      kind, *j))
+          continue;
+        const aq_opt_row *q = &aq_opt_rows[*j];
+        aq_check(r->cmds & q->cmds, "--%s and --%s: no command takes both", r->name, q->name);
+        if (kind >= 2)
+          aq_check((r->kind == AQ_ARG_DOUBLE || r->kind == AQ_ARG_DOUBLE_GT) &&
+                       (q->kind == AQ_ARG_DOUBLE || q->kind == AQ_ARG_DOUBLE_GT),
+                   "--%s, --%s: a bound between two numbers", r->name, q->name);
+      }
+  }
+  aq_check(nrules >= 16, "%d rules", nrules);
+}
