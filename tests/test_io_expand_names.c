@@ -30,7 +30,7 @@ static size_t full_parse_names(const char *path, const aq_read_opts *ro, char (*
     rule |= fnmatch(ro->components[r].glob, path, 0) == 0;
   size_t k = 0;
   if (b) {
-    aq_format fmt = aq_record_detect((const unsigned char *)b, n);
+    aq_format fmt = aq_sniff_format((const unsigned char *)b, n);
     if (fmt != AQ_FMT_SAC && fmt != AQ_FMT_AT2 && fmt != AQ_FMT_KNET &&
         aq_raw_parse((const unsigned char *)b, n, path, ro, &raw, &e) != AQ_OK)
       memset(&raw, 0, sizeof raw);

@@ -85,7 +85,7 @@ AQ_TEST(io_geonet_detect_and_decide)
   char *buf = aq_test_read_file(WTMC, &n);
   if (!aq_check(buf != NULL, "read %s", WTMC))
     return;
-  aq_check(aq_record_detect((const unsigned char *)buf, n) == AQ_FMT_GEONET,
+  aq_check(aq_sniff_format((const unsigned char *)buf, n) == AQ_FMT_GEONET,
            "detected by content");
   /* the name does not matter: a .txt name still reads as GeoNet */
   aq_raw_file raw;

@@ -83,9 +83,9 @@ AQ_TEST(io_renadic_detection)
     char *buf = aq_test_read_file(f[i].path, &n);
     if (!aq_check(buf != NULL, "read %s", f[i].path))
       continue;
-    aq_format got = aq_record_detect((const unsigned char *)buf, n);
+    aq_format got = aq_sniff_format((const unsigned char *)buf, n);
     aq_check(got == f[i].want, "%s: detected %d (%s), want %d", f[i].path, (int)got,
-             aq_format_describe(got), (int)f[i].want);
+             aq_sniff_describe(got), (int)f[i].want);
     free(buf);
   }
 }

@@ -150,7 +150,7 @@ aq_reader_fn aq_esm_parse;
 
 /* miniSEED 2 through libmseed (mseed.c): one channel per network.station.
  * location.channel; counts with counts_per_mps2 = 0 (the sensitivity comes
- * from a StationXML: record.c matches the responses). */
+ * from a StationXML: evidence.c matches the responses). */
 aq_reader_fn aq_mseed_parse;
 
 /* GeoNet (New Zealand) V1A/V2A: the acceleration of every component, mm/s^2

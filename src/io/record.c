@@ -1,9 +1,9 @@
-/* record.c: reading a record file: its format sniffed from its content,
- * the parser of that format (reader.h), and the decision that makes a
- * record of what the parser reports (see record.h). */
+/* record.c: reading a record file: its format sniffed from its content
+ * (sniff.c), the parser of that format (reader.h), what the channel's
+ * fields say beyond its values (evidence.c), and the one decision that
+ * makes a record of what the parser reports (see record.h). */
 #include "record.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <fnmatch.h>
@@ -17,7 +17,7 @@
 #include <sys/stat.h>
 
 #include "../units.h"
-#include "fixed.h"
+#include "evidence.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -69,314 +69,12 @@ static aq_status set_names(aq_record *rec, const char *name, aq_error *err)
   return AQ_OK;
 }
 
-/* ---- detection -------------------------------------------------------- */
-
-/* Bytes sniffed to decide text or binary, and lines of a text header looked
- * at to recognise a format. */
-#define AQ_SNIFF_BYTES 8192
-#define AQ_SNIFF_LINES 8
-/* Text has no NUL and at most this percentage of other control bytes (a form
- * feed or a stray escape may occur in exported text). */
-#define AQ_SNIFF_CTRL_PERCENT 1
-
-static int32_t get_i32(const unsigned char *p, int big)
-{
-  uint32_t u = big ? (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 |
-                         (uint32_t)p[2] << 8 | p[3]
-                   : (uint32_t)p[3] << 24 | (uint32_t)p[2] << 16 |
-                         (uint32_t)p[1] << 8 | p[0];
-  return (int32_t)u;
-}
-
-/* Case-insensitive search for needle in s[0..n). */
-static int has_ci(const char *s, size_t n, const char *needle)
-{
-  size_t m = strlen(needle);
-  char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
-  for (size_t i = 0; i + m <= n; i++)
-    if ((char)(s[i] | 0x20) == c0 && strncasecmp(s + i, needle, m) == 0)
-      return 1;
-  return 0;
-}
-
-static int starts_ci(const char *s, size_t n, const char *prefix)
-{
-  size_t m = strlen(prefix);
-  return n >= m && strncasecmp(s, prefix, m) == 0;
-}
-
-aq_format aq_record_detect(const unsigned char *buf, size_t n)
-{
-  if (n == 0)
-    return AQ_FMT_EMPTY;
-  if (n >= 2 && buf[0] == 0x1f && buf[1] == 0x8b)
-    return AQ_FMT_GZIP;
-  if (n >= 4 && memcmp(buf, "PK\x03\x04", 4) == 0)
-    return AQ_FMT_GZIP;
-  if (n >= 8 && memcmp(buf, "\x89HDF\r\n\x1a\n", 8) == 0)
-    return AQ_FMT_HDF5;
-  if (n >= 632) { /* SAC: NVHDR is header word 76 (byte 304) */
-    int32_t le = get_i32(buf + 304, 0), be = get_i32(buf + 304, 1);
-    if (le == 6 || le == 7 || be == 6 || be == 7)
-      return AQ_FMT_SAC;
-  }
-  if (n >= 3 && buf[0] == 'M' && buf[1] == 'S' && buf[2] == 3)
-    return AQ_FMT_MSEED; /* miniSEED 3 */
-  if (n >= 48) {         /* miniSEED 2: 6-char sequence number, quality, blank */
-    int ok = 1;
-    for (int i = 0; i < 6 && ok; i++)
-      ok = (buf[i] >= '0' && buf[i] <= '9') || buf[i] == ' ' || buf[i] == 0;
-    if (ok && strchr("DRQM", buf[6]) && buf[6] && (buf[7] == ' ' || buf[7] == 0))
-      return AQ_FMT_MSEED;
-  }
-  /* Text or binary: NUL or control bytes other than white space mean binary
-   * (bytes >= 0x80 are allowed: Shift-JIS, Latin-1, UTF-8 in headers). */
-  size_t m = n < AQ_SNIFF_BYTES ? n : AQ_SNIFF_BYTES, ctrl = 0;
-  for (size_t i = 0; i < m; i++) {
-    unsigned char c = buf[i];
-    if (c == 0)
-      return AQ_FMT_UNKNOWN_BINARY;
-    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v')
-      ctrl++;
-  }
-  if (ctrl * 100 > AQ_SNIFF_CTRL_PERCENT * m)
-    return AQ_FMT_UNKNOWN_BINARY;
-
-  const char *s = (const char *)buf;
-  size_t i = 0;
-  if (m >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte-order mark */
-    i = 3;
-  while (i < m && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r' || s[i] == '\n'))
-    i++;
-  if (i < m && s[i] == '<')
-    return AQ_FMT_XML;
-
-  /* The first lines. */
-  const char *line[AQ_SNIFF_LINES];
-  size_t len[AQ_SNIFF_LINES], nl = 0, p = 0;
-  while (nl < AQ_SNIFF_LINES && p < m) {
-    size_t q = p;
-    while (q < m && s[q] != '\n' && s[q] != '\r')
-      q++;
-    line[nl] = s + p;
-    len[nl] = q - p;
-    nl++;
-    if (q < m && s[q] == '\r' && q + 1 < m && s[q + 1] == '\n')
-      q++;
-    p = q + 1;
-  }
-  if (nl == 0)
-    return AQ_FMT_TEXT;
-  if (starts_ci(line[0], len[0], "Origin Time"))
-    return AQ_FMT_KNET;
-  if (has_ci(line[0], len[0], "accelerogram") && has_ci(line[0], len[0], "GNS Science"))
-    return AQ_FMT_GEONET;
-  for (size_t k = 0; k < nl; k++)
-    if (starts_ci(line[k], len[k], "EVENT_NAME:") ||
-        starts_ci(line[k], len[k], "EVENT_ID:") ||
-        starts_ci(line[k], len[k], "ESM_"))
-      return AQ_FMT_ESM;
-  if (has_ci(line[0], len[0], "(Format v") && has_ci(line[0], len[0], "lines)"))
-    return AQ_FMT_COSMOS;
-  if (len[0] >= 2 && line[0][0] >= '0' && line[0][0] <= '9' && line[0][1] == ' ' &&
-      (has_ci(line[0], len[0], "ACCELEROGRAM") || has_ci(line[0], len[0], "UNKNOWN") ||
-       has_ci(line[0], len[0], "VELOCITY") || has_ci(line[0], len[0], "DISPLACEMENT")))
-    return AQ_FMT_SMC; /* (velocity and displacement read to be refused as such) */
-  if (aq_bhrc_sniff(buf, m))
-    return AQ_FMT_BHRC;
-  if (aq_asa_sniff(buf, m))
-    return AQ_FMT_ASA;
-  if (aq_nsmn_sniff(buf, m))
-    return AQ_FMT_NSMN;
-  if (aq_renadic_sniff(buf, m)) /* before CSMIP, whose headers it shares */
-    return AQ_FMT_RENADIC;
-  for (size_t k = 1; k < nl; k++) /* CSMIP V1/V2, read by the COSMOS reader */
-    if (has_ci(line[0], len[0], "ACCELEROGRAM") &&
-        (has_ci(line[k], len[k], "STATION NO.") || has_ci(line[k], len[k], "STATION ID.")))
-      return AQ_FMT_COSMOS;
-  if (aq_nptsdt_sniff(buf, n)) /* the whole file: its count decides */
-    return AQ_FMT_NPTS_DT;
-  /* PEER: a line with NPTS and DT followed by values, after free text */
-  size_t tb[AQ_SNIFF_LINES], te[AQ_SNIFF_LINES];
-  int nt = 0;
-  if (aq_at2_sniff(buf, m, tb, te, &nt, AQ_SNIFF_LINES)) {
-    for (int j = 0; j < nt; j++) {
-      if (has_ci(s + tb[j], te[j] - tb[j], "VELOCITY"))
-        return AQ_FMT_PEER_VT2;
-      if (has_ci(s + tb[j], te[j] - tb[j], "DISPLACEMENT"))
-        return AQ_FMT_PEER_DT2;
-    }
-    return AQ_FMT_AT2;
-  }
-  return AQ_FMT_TEXT;
-}
-
-const char *aq_format_describe(aq_format fmt)
-{
-  switch (fmt) {
-  case AQ_FMT_UNKNOWN_BINARY:
-    return "binary data that is neither SAC (NVHDR, header word 76 at byte 304, "
-           "is not 6 in either byte order) nor miniSEED";
-  case AQ_FMT_SAC:
-    return "SAC binary";
-  case AQ_FMT_AT2:
-    return "PEER NGA acceleration (.AT2)";
-  case AQ_FMT_TEXT:
-    return "CSV or plain text";
-  case AQ_FMT_PEER_VT2:
-    return "a PEER velocity time series (.VT2), not acceleration: read the .AT2 "
-           "of the same record";
-  case AQ_FMT_PEER_DT2:
-    return "a PEER displacement time series (.DT2), not acceleration: read the "
-           ".AT2 of the same record";
-  case AQ_FMT_MSEED:
-    return "miniSEED";
-  case AQ_FMT_COSMOS:
-    return "COSMOS strong-motion format (or CSMIP V1/V2)";
-  case AQ_FMT_SMC:
-    return "USGS SMC format";
-  case AQ_FMT_KNET:
-    return "K-NET/KiK-net ASCII";
-  case AQ_FMT_ESM:
-    return "ESM/ITACA ASCII";
-  case AQ_FMT_XML:
-    return "XML (StationXML or QuakeML metadata?), not a record";
-  case AQ_FMT_HDF5:
-    return "HDF5 (an archquake results file?), not a record";
-  case AQ_FMT_GZIP:
-    return "a compressed file (gzip or zip), which is not supported: "
-           "decompress it first";
-  case AQ_FMT_EMPTY:
-    return "an empty file (0 bytes)";
-  case AQ_FMT_GEONET:
-    return "GeoNet V1A/V2A";
-  case AQ_FMT_RENADIC:
-    return "RENADIC (Chile) V1";
-  case AQ_FMT_BHRC:
-    return "BHRC (Iran) VOL1DS";
-  case AQ_FMT_ASA:
-    return "Mexican ASA 2.0";
-  case AQ_FMT_NSMN:
-    return "AFAD/NSMN (Turkey) ASCII";
-  case AQ_FMT_NPTS_DT:
-    return "text with \"NPTS DT\" on its first line";
-  }
-  return "?";
-}
-
 /* ---- miniSEED and its StationXML ---------------------------------------- */
 
-#define MSEED_XML_MAX_BYTES (64L << 20) /* a StationXML larger than this is refused */
 #define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
 
-/* The StationXML files of a miniSEED read, each loaded and parsed when a
- * channel first needs it. */
-typedef struct {
-  const char *name;
-  unsigned char *bytes;
-  size_t n;
-  int state; /* 0 not loaded, 1 bytes, 2 parsed */
-  aq_response resp;
-} xml_file;
-
-/* The bytes of StationXML x (state 1), or an error naming it. */
-static aq_status xml_load(xml_file *x, aq_error *err)
-{
-  if (x->state)
-    return AQ_OK;
-  FILE *f = fopen(x->name, "rb");
-  long len = -1;
-  if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) >= 0 && len <= MSEED_XML_MAX_BYTES &&
-      fseek(f, 0, SEEK_SET) == 0 && (x->bytes = malloc((size_t)len + 1)) != NULL &&
-      fread(x->bytes, 1, (size_t)len, f) == (size_t)len) {
-    fclose(f);
-    x->n = (size_t)len;
-    x->state = 1;
-    return AQ_OK;
-  }
-  if (f)
-    fclose(f);
-  free(x->bytes);
-  x->bytes = NULL;
-  return aq_error_set(err, AQ_EIO, x->name, -1, -1, "response",
-                      "expected a readable StationXML file of at most %ld bytes, %s",
-                      MSEED_XML_MAX_BYTES,
-                      !f ? "cannot open it" : len > MSEED_XML_MAX_BYTES ? "got a larger one"
-                                                                         : "cannot read it");
-}
-
-/* Does x mention station sta at all (code="STA")?  Only those are parsed. */
-static int xml_mentions(const xml_file *x, const char *sta)
-{
-  char pat[24];
-  int m = snprintf(pat, sizeof pat, "\"%s\"", sta);
-  if (m <= 2 || (size_t)m >= sizeof pat)
-    return 1;
-  for (size_t i = 0; i + (size_t)m <= x->n; i++)
-    if (x->bytes[i] == '"' && memcmp(x->bytes + i, pat, (size_t)m) == 0)
-      return 1;
-  return 0;
-}
-
-/* Give channel ch of miniSEED name the one response of xs[0..nx) that
- * matches its identity and start. */
-static aq_status match_response(xml_file *xs, size_t nx, aq_raw_channel *ch, const char *name,
-                                aq_error *err)
-{
-  char id[80], field[96];
-  snprintf(id, sizeof id, "%s.%s.%s.%s", ch->network, ch->station, ch->location, ch->channel);
-  snprintf(field, sizeof field, "channel %s", id);
-  double t0;
-  if (!aq_iso_parse(ch->reference, &t0))
-    return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
-                        "the record states no start time to choose a response epoch");
-  t0 += ch->begin_s;
-  const aq_response_epoch *hit = NULL;
-  size_t nhit = 0, nsame = 0, first = 0, second = 0; /* files of the first two hits */
-  char spans[256] = "";
-  for (size_t j = 0; j < nx; j++) {
-    aq_status s = xml_load(&xs[j], err);
-    if (s != AQ_OK)
-      return s;
-    if (xs[j].state == 1) {
-      if (!xml_mentions(&xs[j], ch->station))
-        continue;
-      if ((s = aq_stationxml_parse(xs[j].bytes, xs[j].n, xs[j].name, &xs[j].resp, err)) != AQ_OK)
-        return s;
-      xs[j].state = 2;
-    }
-    const aq_response_epoch *h;
-    size_t k = aq_response_find(&xs[j].resp, ch->network, ch->station, ch->location,
-                                ch->channel, t0, &h, &nsame, spans, sizeof spans);
-    if (k && nhit == 0) {
-      hit = h;
-      first = second = j; /* second: j again if it holds two */
-    } else if (k && nhit == 1) {
-      second = j;
-    }
-    nhit += k;
-  }
-  if (nhit == 1)
-    return aq_response_apply(hit, xs[first].name, ch, err);
-  char list[300] = "";
-  size_t len = 0, shown = 0;
-  if (nhit > 1)
-    snprintf(list, sizeof list, "%s and %s", xs[first].name, xs[second].name);
-  else
-    for (size_t j = 0; j < nx && len + 60 < sizeof list; j++, shown++)
-      len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", j ? ", " : "", xs[j].name);
-  if (nhit > 1)
-    return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
-                        "expected one response for %s at its start %s, got %zu that match: %s",
-                        id, ch->reference, nhit, list);
-  return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
-                      "expected a response for %s at its start %s, got none%s%s%s in %s%s",
-                      id, ch->reference, nsame ? " (its epochs: " : "", nsame ? spans : "",
-                      nsame ? ")" : "", list,
-                      shown < nx ? " and more" : "");
-}
-
-/* aq_mseed_parse, then, with opts->responses, each channel's response. */
+/* aq_mseed_parse, then, with opts->responses, each channel's response
+ * (evidence.c). */
 static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name,
                             const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
 {
@@ -384,18 +82,7 @@ static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name
   if (s != AQ_OK || !opts || !opts->nresponses)
     return s;
   size_t nx = opts->nresponses < AQ_RESPONSES_MAX ? opts->nresponses : AQ_RESPONSES_MAX;
-  xml_file *xs = calloc(nx, sizeof *xs);
-  if (!xs)
-    s = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-  for (size_t j = 0; xs && j < nx; j++)
-    xs[j].name = opts->responses[j];
-  for (size_t i = 0; s == AQ_OK && i < raw->nchan; i++)
-    s = match_response(xs, nx, &raw->chan[i], name, err);
-  for (size_t j = 0; xs && j < nx; j++) {
-    free(xs[j].bytes);
-    aq_response_free(&xs[j].resp);
-  }
-  free(xs);
+  s = aq_evidence_responses(opts->responses, nx, name, raw, err);
   if (s != AQ_OK)
     aq_raw_file_free(raw);
   return s;
@@ -441,36 +128,6 @@ size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
  * or 180 is dip -90 or +90; a tilted sensor of a few degrees stays what it
  * was meant to be). */
 #define AQ_VERTICAL_DIP_MIN_DEG 45.0
-
-/* Does a channel name say vertical?  Its words (split at anything not a
- * letter or digit, trailing digits dropped: KiK-net "UD2") UD, UP, U, Z, V,
- * VERT, VERTICAL, DOWN, or a SEED code of three letters ending in Z. */
-static int channel_says_vertical(const char *name)
-{
-  static const char *const words[] = {"UD", "UP", "U", "Z", "V", "VERT",
-                                      "VERTICAL", "DOWN", "DWN", "DU", NULL};
-  const char *p = name;
-  while (*p) {
-    while (*p && !isalnum((unsigned char)*p))
-      p++;
-    const char *b = p;
-    while (*p && isalnum((unsigned char)*p))
-      p++;
-    size_t len = (size_t)(p - b);
-    size_t alpha = len;
-    while (alpha > 0 && isdigit((unsigned char)b[alpha - 1]))
-      alpha--;
-    if (alpha == 0)
-      continue;
-    for (int i = 0; words[i]; i++)
-      if (strlen(words[i]) == alpha && strncasecmp(b, words[i], alpha) == 0)
-        return 1;
-    if (len == 3 && alpha == 3 && isalpha((unsigned char)b[0]) &&
-        isalpha((unsigned char)b[1]) && (b[2] == 'Z' || b[2] == 'z'))
-      return 1;
-  }
-  return 0;
-}
 
 /* "path" or "path#CHANNEL" (the channel's name, or its 1-based number when
  * it has none) into out. */
@@ -536,95 +193,19 @@ static size_t scale_samples(const double *v, double *acc, size_t n, double facto
   return k;
 }
 
-/* SEED instrument codes (the second letter of a three-letter channel code
- * after a band code) of sensors that do not record acceleration: H and L
- * seismometers (high and low gain), P geophones, M mass position (SEED
- * manual, appendix A); N is an accelerometer. */
-static const char *instrument_not_acceleration(const char *channel)
-{
-  static const char bands[] = "FGDCESHBMLVURPTQAIO";
-  if (strlen(channel) != 3 || !strchr(bands, channel[0]) || !isalnum((unsigned char)channel[2]))
-    return NULL;
-  switch (channel[1]) {
-  case 'H':
-    return "a high-gain seismometer (velocity)";
-  case 'L':
-    return "a low-gain seismometer (velocity)";
-  case 'P':
-    return "a geophone (velocity)";
-  case 'M':
-    return "a mass position";
-  default:
-    return NULL;
-  }
-}
-
-/* The quantity the file name says, by its words (split at anything not a
- * letter or digit, and between a lower- and an upper-case letter: "RawVel"):
- * velocity (vel, velo, veloc, velocity, VT2) or displacement (disp, displ,
- * displacement, DT2); the word in *word. */
-static aq_quantity name_quantity(const char *path, char *word, size_t cap)
-{
-  static const char *const vel[] = {"vel", "velo", "veloc", "velocity", "velocities", "vt2"};
-  static const char *const disp[] = {"disp", "displ", "displacement", "displacements", "dt2"};
-  const char *base = strrchr(path, '/');
-  const char *p = base ? base + 1 : path;
-  while (*p) {
-    while (*p && !isalnum((unsigned char)*p))
-      p++;
-    const char *b = p;
-    while (*p && isalnum((unsigned char)*p) &&
-           !(p > b && islower((unsigned char)p[-1]) && isupper((unsigned char)*p)))
-      p++;
-    size_t len = (size_t)(p - b);
-    for (size_t i = 0; len && i < sizeof vel / sizeof vel[0]; i++)
-      if (strlen(vel[i]) == len && strncasecmp(b, vel[i], len) == 0) {
-        snprintf(word, cap, "%.*s", (int)len, b);
-        return AQ_QUANTITY_VELOCITY;
-      }
-    for (size_t i = 0; len && i < sizeof disp / sizeof disp[0]; i++)
-      if (strlen(disp[i]) == len && strncasecmp(b, disp[i], len) == 0) {
-        snprintf(word, cap, "%.*s", (int)len, b);
-        return AQ_QUANTITY_DISPLACEMENT;
-      }
-  }
-  return AQ_QUANTITY_UNSTATED;
-}
-
 /* AQ_OK when nothing the file says contradicts acceleration; else
- * AQ_EUNITS naming the evidence: what the file says the values are, units
- * of velocity or displacement, the file's name, or a SEED instrument code
- * of a sensor that does not record acceleration (unless the file states
- * acceleration itself: a record converted by the user keeps its code). */
+ * AQ_EUNITS naming the evidence (aq_evidence_quantity). */
 static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                                     const char *label, aq_error *err)
 {
-  char ev[200] = "", word[64];
-  aq_quantity q = AQ_QUANTITY_UNSTATED;
-  if (ch->quantity == AQ_QUANTITY_VELOCITY || ch->quantity == AQ_QUANTITY_DISPLACEMENT) {
-    q = (aq_quantity)ch->quantity;
-    snprintf(ev, sizeof ev, "%s", ch->quantity_said[0] ? ch->quantity_said : "the file says so");
-  } else if ((q = aq_units_quantity(ch->units)) == AQ_QUANTITY_VELOCITY ||
-             q == AQ_QUANTITY_DISPLACEMENT) {
-    snprintf(ev, sizeof ev, "units \"%s\"%s%s", ch->units, ch->units_from[0] ? ", " : "",
-             ch->units_from);
-  } else if ((q = name_quantity(path, word, sizeof word)) != AQ_QUANTITY_UNSTATED) {
-    snprintf(ev, sizeof ev, "the file name says \"%s\"", word);
-  } else if (ch->quantity != AQ_QUANTITY_ACCELERATION && instrument_not_acceleration(ch->channel)) {
-    q = ch->channel[1] == 'M' ? AQ_QUANTITY_DISPLACEMENT : AQ_QUANTITY_VELOCITY;
-    snprintf(ev, sizeof ev, "SEED channel %s: instrument code %c, %s", ch->channel,
-             ch->channel[1], instrument_not_acceleration(ch->channel));
-  }
-  if (!ev[0])
+  char ev[200];
+  const char *what;
+  if (aq_evidence_quantity(ch, path, ev, sizeof ev, &what) == AQ_QUANTITY_UNSTATED)
     return AQ_OK;
   return aq_error_set(err, AQ_EUNITS, label, -1, -1, "quantity",
                       "expected ground acceleration, got %s (%s); archquake reads "
                       "acceleration only: convert the record to acceleration first",
-                      ch->channel[1] == 'M' && q == AQ_QUANTITY_DISPLACEMENT &&
-                              strstr(ev, "mass position")
-                          ? "a mass position"
-                          : aq_quantity_name(q),
-                      ev);
+                      what, ev);
 }
 
 /* aq_record_decide; with in_place (the channel's own values, which the
@@ -772,7 +353,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
    * a name saying vertical over a field saying horizontal is vertical, and
    * the conflict is noted. */
   aq_vertical_by by = AQ_VERTICAL_BY_NONE;
-  int says = channel_says_vertical(ch->channel);
+  int says = aq_evidence_says_vertical(ch->channel);
   if (ch->vertical > 0)
     by = AQ_VERTICAL_BY_STATED;
   else if (ch->vertical < 0 && isfinite(ch->dip_deg) &&
@@ -882,7 +463,7 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
   atomic_fetch_add(&parses, 1);
   aq_reader_opts ro;
   const aq_reader_opts *rop = reader_opts(opts, &ro);
-  aq_format fmt = aq_record_detect(buf, n);
+  aq_format fmt = aq_sniff_format(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
     return aq_sac_parse(buf, n, name, rop, raw, err);
@@ -919,10 +500,10 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
                         "expected a record: SAC or miniSEED (binary), or text "
                         "(docs/agency-formats.md), got %s",
-                        aq_format_describe(fmt));
+                        aq_sniff_describe(fmt));
   default:
     return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "looks like %s", aq_format_describe(fmt));
+                        "looks like %s", aq_sniff_describe(fmt));
   }
 }
 
@@ -1272,7 +853,7 @@ static aq_status expand(char *const *paths, size_t n, const aq_read_opts *opts, 
     size_t size = 0;
     aq_error ignored;
     if (!want && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
-      aq_format fmt = aq_record_detect(buf, size);
+      aq_format fmt = aq_sniff_format(buf, size);
       int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
                    fmt == AQ_FMT_NPTS_DT;
       size_t nch;

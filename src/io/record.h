@@ -1,11 +1,14 @@
 /* src/io (record.h): record files of every format in, evenly sampled
  * ground acceleration in m/s^2 (aq_record) out.
  *
- * record.c sniffs a file's format from its content, dispatches to the
- * parser of that format (reader.h), which reports what the file states, and
- * decides (aq_record_decide) for every format alike: the units that apply,
- * whether the magnitude is plausible, whether a channel is vertical, and
- * the response of a miniSEED channel.  The record owns its arrays and
+ * sniff.c tells a file's format from its content; record.c dispatches to
+ * the parser of that format (reader.h), which reports what the file states;
+ * evidence.c gathers what a channel's fields say beyond its values (the
+ * response of a miniSEED channel matched by identity, anything saying it is
+ * not an acceleration, a name saying vertical); and one function in
+ * record.c (aq_record_decide) decides for every format alike: the units
+ * that apply, whether the magnitude is plausible, whether a channel is
+ * vertical.  The record owns its arrays and
  * strings; aq_record_free() releases them (NULL and zeroed records are
  * fine).  Nothing here prints: errors fill an aq_error.
  */
@@ -16,6 +19,7 @@
 
 #include "../error.h"
 #include "reader.h"
+#include "sniff.h"
 #include "units.h"
 
 /* How aq_record_decide knew a channel is vertical (aq_record.vertical_by). */
@@ -207,48 +211,16 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
 
 void aq_record_free(aq_record *rec);
 
-/* ---- sniffing, dispatching, deciding (record.c) --------------------------- */
+/* ---- dispatching and deciding (record.c; the format from sniff.h) ------- */
 
-/* What the bytes look like. */
-typedef enum {
-  AQ_FMT_UNKNOWN_BINARY = 0, /* binary, not recognised */
-  AQ_FMT_SAC,                /* SAC binary, NVHDR = 6 (or 7) in one byte order */
-  AQ_FMT_AT2,                /* PEER NGA acceleration (.AT2) */
-  AQ_FMT_TEXT,               /* anything else that is text: tried as CSV */
-  AQ_FMT_PEER_VT2,           /* PEER velocity (.VT2): refused */
-  AQ_FMT_PEER_DT2,           /* PEER displacement (.DT2): refused */
-  AQ_FMT_MSEED,              /* miniSEED 2 (mseed.c); 3 refused */
-  AQ_FMT_COSMOS,             /* COSMOS V0/V1/V2 (cosmos.c), CSMIP (csmip.c) */
-  AQ_FMT_SMC,                /* USGS SMC (smc.c) */
-  AQ_FMT_KNET,               /* K-NET / KiK-net ASCII (knet.c) */
-  AQ_FMT_ESM,                /* ESM / ITACA ASCII (esm.c) */
-  AQ_FMT_XML,                /* XML (StationXML, QuakeML): refused */
-  AQ_FMT_HDF5,               /* HDF5 (e.g. an archquake results file): refused */
-  AQ_FMT_GZIP,               /* gzip/zip compressed: refused */
-  AQ_FMT_EMPTY,              /* zero bytes */
-  AQ_FMT_GEONET,             /* GeoNet V1A/V2A (geonet.c) */
-  AQ_FMT_RENADIC,            /* RENADIC (Chile) V1 (renadic.c) */
-  AQ_FMT_BHRC,               /* BHRC (Iran) VOL1DS (bhrc.c) */
-  AQ_FMT_ASA,                /* Mexican ASA 2.0 (asa.c) */
-  AQ_FMT_NSMN,               /* AFAD / NSMN (Turkey) ASCII (nsmn.c) */
-  AQ_FMT_NPTS_DT             /* text whose first line is "NPTS DT" (nptsdt.c) */
-} aq_format;
-
-/* Classify buf[0..n) by content only.  Never fails. */
-aq_format aq_record_detect(const unsigned char *buf, size_t n);
-
-/* A short description of what fmt looks like, for messages
- * ("miniSEED (SEED data records)", ...). */
-const char *aq_format_describe(aq_format fmt);
-
-/* Parse from memory into a raw file: dispatch on aq_record_detect() (and,
+/* Parse from memory into a raw file: dispatch on aq_sniff_format() (and,
  * for miniSEED with opts->responses, give each channel the one response
  * whose network, station, location, channel and epoch match it, searched
  * across every StationXML; none, or two, is an error naming the files). */
 aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
                        const aq_read_opts *opts, aq_raw_file *raw, aq_error *err);
 
-/* Parse from memory and decide one record: dispatch on aq_record_detect(),
+/* Parse from memory and decide one record: dispatch on aq_sniff_format(),
  * then aq_record_decide() on the file's only channel, or on the channel that
  * name's "#CHANNEL" suffix or a --component rule selects (a file of several
  * channels with none selected is refused, naming the channels). */

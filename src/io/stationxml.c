@@ -7,7 +7,7 @@
  * namespace version does not matter.  The sensitivity is counts per input
  * unit; aq_response_apply() turns it into counts per m/s^2, keeping its
  * sign (a negative sensitivity means the sensor's polarity is reversed);
- * record.c finds the epoch of each channel (aq_response_find) across every
+ * evidence.c finds the epoch of each channel (aq_response_find) across every
  * StationXML given.  libxml2 never prints here
  * (XML_PARSE_NOERROR | XML_PARSE_NOWARNING) and never touches the network.
  */
