@@ -106,22 +106,29 @@ static aq_status match_response(xml_file *xs, size_t nx, aq_raw_channel *ch, con
   }
   if (nhit == 1)
     return aq_response_apply(hit, xs[first].name, ch, err);
-  char list[300] = "";
+  char list[300] = "", more[80] = "";
   size_t len = 0, shown = 0;
   if (nhit > 1)
     snprintf(list, sizeof list, "%s and %s", xs[first].name, xs[second].name);
-  else
-    for (size_t j = 0; j < nx && len + 60 < sizeof list; j++, shown++)
+  else /* whole names while they fit (the first in any case), then a count */
+    for (size_t j = 0; j < nx; j++, shown++) {
+      size_t m = strlen(xs[j].name) + (j ? 2 : 0);
+      if (j && len + m >= sizeof list)
+        break;
       len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", j ? ", " : "", xs[j].name);
+      if (len >= sizeof list)
+        len = sizeof list - 1;
+    }
   if (nhit > 1)
     return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
                         "expected one response for %s at its start %s, got %zu that match: %s",
                         id, ch->reference, nhit, list);
+  if (shown < nx)
+    snprintf(more, sizeof more, " and %zu more (%zu StationXML files)", nx - shown, nx);
   return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
                       "expected a response for %s at its start %s, got none%s%s%s in %s%s",
                       id, ch->reference, nsame ? " (its epochs: " : "", nsame ? spans : "",
-                      nsame ? ")" : "", list,
-                      shown < nx ? " and more" : "");
+                      nsame ? ")" : "", list, more);
 }
 
 aq_status aq_evidence_responses(const char *const *xml, size_t nx, const char *name,
