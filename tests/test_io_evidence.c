@@ -217,8 +217,15 @@ AQ_TEST(io_evidence_responses_by_identity)
                  strstr(out, "BK.CMB.00.HNE__"),
              "order %d: exit %d: %s%s", i, rc, out, err);
   }
+  /* one file given twice (by --response and among the records, and by
+   * another name of it) is one response */
+  int rc = aq_test_run("info --response " REC_DIR "CI.CLC.xml --response ./" REC_DIR
+                       "CI.CLC.xml " REC_DIR "CI.CLC..HNE.mseed " REC_DIR "CI.CLC.xml",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out) == 2 && strstr(out, "CI.CLC..HNE.mseed\t"),
+           "the same file twice: exit %d: %s%s", rc, out, err);
   /* none matches: every file searched named */
-  int rc = aq_test_run("info --response " REC_DIR "BK.CMB.xml --response " EV_DIR
+  rc = aq_test_run("info --response " REC_DIR "BK.CMB.xml --response " EV_DIR
                        "BK.KCC.xml " REC_DIR "CI.CLC..HNE.mseed",
                        out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(err, "CI.CLC..HNE") && strstr(err, "got none") &&

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "fixed.h"
 
@@ -136,13 +137,28 @@ aq_status aq_evidence_responses(const char *const *xml, size_t nx, const char *n
 {
   aq_status s = AQ_OK;
   xml_file *xs = calloc(nx ? nx : 1, sizeof *xs);
-  if (!xs)
+  struct stat *st = calloc(nx ? nx : 1, sizeof *st);
+  if (!xs || !st)
     s = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-  for (size_t j = 0; xs && j < nx; j++)
-    xs[j].name = xml[j];
+  /* one file given twice (--response X and X among the records, or two
+   * names of it) is searched once: it is one response, not two */
+  size_t nk = 0;
+  for (size_t j = 0; s == AQ_OK && j < nx; j++) {
+    int found = stat(xml[j], &st[nk]) == 0, dup = 0;
+    for (size_t k = 0; k < nk && !dup; k++)
+      dup = strcmp(xs[k].name, xml[j]) == 0 ||
+            (found && st[k].st_dev == st[nk].st_dev &&
+             st[k].st_ino == st[nk].st_ino && st[k].st_ino != 0);
+    if (!dup) {
+      if (!found)
+        memset(&st[nk], 0, sizeof st[nk]);
+      xs[nk++].name = xml[j];
+    }
+  }
+  free(st);
   for (size_t i = 0; s == AQ_OK && i < raw->nchan; i++)
-    s = match_response(xs, nx, &raw->chan[i], name, err);
-  for (size_t j = 0; xs && j < nx; j++) {
+    s = match_response(xs, nk, &raw->chan[i], name, err);
+  for (size_t j = 0; xs && j < nk; j++) {
     free(xs[j].bytes);
     aq_response_free(&xs[j].resp);
   }
