@@ -75,6 +75,8 @@ int aq_cmd_run(int argc, char **argv)
   cfg.narches = o.narches;
   const char *text_path = o.text;
   int quiet = o.quiet;
+  int use_cache = !o.no_cache;
+  const char *cache_dir = o.cache_dir;
   /* what the run owns from here: freed below */
   char **arches = o.arches;
   double *scales = o.scales;
@@ -208,7 +210,17 @@ int aq_cmd_run(int argc, char **argv)
   /* TSV for files and pipes */
   cfg.aligned = !tout.f && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
+  if (use_cache) /* none without a home for it: the run goes on */
+    cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
   rc = aq_suite_run(&cfg, NULL);
+  char *notes = aq_diskcache_notes(cfg.cache);
+  for (char *line = notes, *nl; line && *line; line = nl + 1) {
+    nl = strchr(line, '\n');
+    *nl = '\0';
+    fprintf(stderr, "archquake: note: %s\n", line);
+  }
+  free(notes);
+  aq_diskcache_close(cfg.cache);
 
   if (tout.f) {
     if (rc == AQ_EXIT_OUTPUT || rc == AQ_EXIT_USAGE) {

@@ -226,6 +226,16 @@ static void orientation(aq_opts *o, int *nerr)
   aq_opt_orient_check(&o->orient, nerr);
 }
 
+/* --cache-dir names where --no-cache would not look: refused together. */
+static void cache_dir_needs_cache(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_CACHE_DIR] && o->given[AQ_OPT_NO_CACHE]) {
+    fprintf(stderr, "archquake: --cache-dir: expected no --no-cache with it (--no-cache "
+                    "uses no cache directory), got both\n");
+    (*nerr)++;
+  }
+}
+
 /* After --highpass's value: an explicit corner is checked as given. */
 static void highpass_given(char *arg, aq_opts *o, int *nerr)
 {
@@ -557,6 +567,15 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                           .group = AQ_GROUP_PROCESSING,
                           .help = "merge consecutive samples differing by less than G (g) "
                                   "into one constant-acceleration step (default 0: none)"},
+    [AQ_OPT_NO_CACHE] = {.name = "no-cache", .kind = AQ_ARG_FLAG, DEST(no_cache),
+                         .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                         .help = "neither read nor store processed records in the cache "
+                                 "(results are the same either way; docs/cache.md)"},
+    [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
+                          DEST(cache_dir), .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                          .help = "keep processed records in DIR (default "
+                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
+                          .check = cache_dir_needs_cache},
 };
 
 static const char run_tail[] =

@@ -158,6 +158,8 @@ typedef enum {
   AQ_OPT_LOWPASS,
   AQ_OPT_NO_FILTER,
   AQ_OPT_MERGE_TOL,
+  AQ_OPT_NO_CACHE,  /* prepared records on disk (docs/cache.md) */
+  AQ_OPT_CACHE_DIR,
   AQ_OPT_N
 } aq_opt_id;
 
@@ -206,6 +208,8 @@ typedef struct aq_opts {
   aq_orient_opts orient;
   aq_signal_opts proc;
   double merge_tol_g; /* --merge-tol, g */
+  int no_cache;          /* --no-cache */
+  const char *cache_dir; /* --cache-dir, or NULL: the default */
   /* dynamics */
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */

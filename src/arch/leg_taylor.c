@@ -267,6 +267,38 @@ static double tl_shift1(const double *w, const double *q, int d, int j)
   return s0 + s1;
 }
 
+/* tl_comp and tl_build: GCC cannot see that tl_build's switch reaches case
+ * k only after cases 0..k-1 filled rows 0..k-1 of U, and warns that they
+ * may be read uninitialized. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+/* Coefficient k of G(u(t)), u(t) = sum_{i>=1} c_i t^i, from the powers of
+ * u: U[j][k] is coefficient k of u(t)^j (U[1][k] = c_k, U[j][k] = sum_i
+ * c_i U[j-1][k-i]); row k of U is filled here (c_1..c_k are known).
+ * Inlined with k a constant (tl_build's switch), the loops unroll into
+ * straight-line code with no branch. */
+static inline __attribute__((always_inline)) double
+tl_comp(const int k, double U[][TL_MAX_ORDER + 1], const double *c,
+        const double *G)
+{
+  U[1][k] = c[k];
+  double comp = k == 0 ? G[0] : G[1] * c[k];
+#pragma GCC unroll 20
+  for (int j = 2; j <= k; j++) {
+    const double *up = &U[j - 1][k - 1]; /* U[j-1][k-i] = up[1 - i] */
+    double sum = 0;
+#pragma GCC unroll 20
+    for (int i = 1; i <= k - j + 1; i++)
+      sum += c[i] * up[1 - i];
+    U[j][k] = sum;
+    comp += G[j] * sum;
+  }
+  return comp;
+}
+
 /* Build the series from (s0, v0) on piece pc under ground acceleration a
  * for a wanted step *h; *h is shortened when TL_MAX_ORDER cannot reach the
  * tolerance there.  e0: with the acceleration's pieces (pc->has_g), the
@@ -352,16 +384,21 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
       F[k + 1] = f * im0;
       G[k] = (k + 1) * F[k + 1];
     }
-    /* the powers of u at order k (c_1..c_k are known) */
-    U[1][k] = c[k];
-    double comp = k == 0 ? G[0] : G[1] * c[k];
-    for (int j = 2; j <= k; j++) {
-      const double *up = &U[j - 1][k - 1]; /* U[j-1][k-i] = up[1 - i] */
-      double sum = 0;
-      for (int i = 1; i <= k - j + 1; i++)
-        sum += c[i] * up[1 - i];
-      U[j][k] = sum;
-      comp += G[j] * sum;
+    double comp;
+    switch (k) { /* tl_comp with k a constant: straight-line code */
+#define TL_COMP_CASE(K)                                                        \
+  case K:                                                                      \
+    comp = tl_comp(K, U, c, G);                                                \
+    break;
+      TL_COMP_CASE(0) TL_COMP_CASE(1) TL_COMP_CASE(2) TL_COMP_CASE(3)
+      TL_COMP_CASE(4) TL_COMP_CASE(5) TL_COMP_CASE(6) TL_COMP_CASE(7)
+      TL_COMP_CASE(8) TL_COMP_CASE(9) TL_COMP_CASE(10) TL_COMP_CASE(11)
+      TL_COMP_CASE(12) TL_COMP_CASE(13) TL_COMP_CASE(14) TL_COMP_CASE(15)
+      TL_COMP_CASE(16) TL_COMP_CASE(17)
+#undef TL_COMP_CASE
+    default:
+      comp = tl_comp(k, U, c, G);
+      break;
     }
     c[k + 2] = comp * TL_INV[k + 1] * TL_INV[k + 2];
     n = k + 2;
@@ -384,6 +421,9 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
   }
   ts->n = n;
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 static aq_status tl_fail(aq_error *err, const aq_path *p, const char *what,
                          double s)

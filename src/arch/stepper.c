@@ -73,6 +73,9 @@ struct aq_stepper {
   aq_taylor *taylor; /* default model (paths with pieces, tables) */
   aq_quad *quad;     /* workpath-quad, and the default's fallback */
   aq_path pv[2];     /* the sets' paths with g replaced by the step's g + a_v */
+  /* M(0) of each set for the momentum rule, evaluated at the first impact
+   * of a run that needs it (NAN: not yet); M depends on s alone */
+  double m0_kgm2[2];
 };
 
 
@@ -382,6 +385,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   if (st->taylor)
     aq_taylor_reset(st->taylor);
   st->rest_since_s = NAN;
+  st->m0_kgm2[0] = st->m0_kgm2[1] = NAN;
   double rest_since = steps->n ? aq_steps_t(steps, 0) : 0; /* at rest from the start */
   if (st->eom)
     aq_eom_reset(st->eom);
@@ -534,17 +538,21 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
         const aq_path *q = st->path[other];
         if (q) {
           if (st->momentum) {
-            aq_path_point p0, p1;
-            if (aq_eom_eval(st->path[set], st->exact, 0, &p0) ||
-                aq_eom_eval(q, st->exact, 0, &p1)) {
-              rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "stepper",
-                                "path evaluation failed at s = 0");
-              goto fail;
+            for (int k = 0; k < 2; k++) {
+              aq_path_point p0;
+              if (isnan(st->m0_kgm2[k])) {
+                if (aq_eom_eval(st->path[k], st->exact, 0, &p0)) {
+                  rc = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "stepper",
+                                    "path evaluation failed at s = 0");
+                  goto fail;
+                }
+                st->m0_kgm2[k] = p0.mgen_kgm2;
+              }
             }
-            S.evals += 2;
-            double sdot = sqrt(2 * ke_pre / p0.mgen_kgm2);
+            S.evals += 2; /* counted at every impact, as when evaluated there */
+            double sdot = sqrt(2 * ke_pre / st->m0_kgm2[set]);
             double v1 = q->impact_vel_ratio * sdot;
-            ke_post = 0.5 * p1.mgen_kgm2 * v1 * v1;
+            ke_post = 0.5 * st->m0_kgm2[other] * v1 * v1;
           } else {
             ke_post = st->cor * ke_pre; /* eq. (26): cor = KE_f / KE_i */
           }
