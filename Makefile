@@ -7,7 +7,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 FUZZ_SECONDS ?= 60
 
-PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle
+PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle libxxhash
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # Opened on first use, not linked (src/util/lazylib.h): PLplot for figures,
 # libxml2 for StationXML.  Linked, they and the libraries they need (ICU,
@@ -102,8 +102,12 @@ build/san/runner: $(TEST_OBJ) $(SAN_OBJ)
 
 # One runner, sanitizers on; its last line is "N passed, N failed".
 # TESTS=substring runs only the tests whose names contain it.
+# The disk cache of prepared records (docs/cache.md) goes to build/tmp/cache,
+# emptied first, not to the user's ~/.cache.
 check: build/san/runner build/san/archquake
+	rm -rf build/tmp/cache
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  XDG_CACHE_HOME=$(CURDIR)/build/tmp/cache \
 	  AQ_BIN=build/san/archquake ./build/san/runner $(TESTS)
 
 # archquake-mpi (src/app/mpi.c): the main job over Open MPI ranks; rank 0
@@ -119,7 +123,9 @@ archquake-mpi: build/mpi/mpi.o $(REL_OBJ)
 # The MPI tests (tests/mpi.sh): outputs equal archquake -j 1's at 1, 2 and 3
 # ranks, a failing record, --resume, a killed follower.
 check-mpi: archquake archquake-mpi
-	AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi sh tests/mpi.sh
+	rm -rf build/tmp/cache-mpi
+	XDG_CACHE_HOME=$(CURDIR)/build/tmp/cache-mpi AQ_BIN=./archquake AQ_MPI_BIN=./archquake-mpi \
+	  sh tests/mpi.sh
 
 # Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
 # (fast to rebuild and run); each mutant recompiles one file and relinks.
@@ -235,7 +241,7 @@ uninstall:
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
-            libglpk-dev
+            libglpk-dev libxxhash-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
             openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium librsvg2-bin
 deps:

@@ -6,7 +6,8 @@
  * step of the workpath model against the ode reference (rtol 1e-12) under
  * a pulse of 1.5 lambda0 for 0.1 s then 1.9 s free (rocking, impacts, no
  * collapse), with the workpath's error in peak rotation against the
- * ode's. */
+ * ode's; last, each shipped arch under that pulse with cor and with
+ * momentum impacts (the cost of a step follows its impacts). */
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -86,10 +87,12 @@ static double load_ms(const char *path, int reps)
   return 1e3 * aq_bench_median(t, (size_t)reps);
 }
 
-/* One run of arch a under steps by model m: *us per moving step (median of
- * reps), *peak the peak rotation; 0 on error. */
-static int step_cost(const aq_arch *a, aq_model m, const aq_steps *steps, int reps, double *us,
-                     double *peak, size_t *moving)
+/* One run of arch a under steps by model m, with the arch file's impact
+ * rule (momentum -1) or cor (0) or momentum (1) impacts: *us per moving
+ * step (median of reps), *peak the peak rotation, *moving the moving
+ * steps, *impacts (if not NULL) the impacts; 0 on error. */
+static int step_cost_rule(const aq_arch *a, aq_model m, int momentum, const aq_steps *steps,
+                          int reps, double *us, double *peak, size_t *moving, size_t *impacts)
 {
   double t[REPS];
   for (int r = 0; r < reps; r++) {
@@ -101,7 +104,7 @@ static int step_cost(const aq_arch *a, aq_model m, const aq_steps *steps, int re
       return 0;
     }
     const aq_arch_dynamics *dyn = aq_arch_dynamics_of(a);
-    aq_stepper_set_impact(st, dyn->impact == AQ_IMPACT_MOMENTUM);
+    aq_stepper_set_impact(st, momentum < 0 ? dyn->impact == AQ_IMPACT_MOMENTUM : momentum);
     aq_stepper_set_cor(st, dyn->cor);
     if (m == AQ_MODEL_ODE)
       aq_stepper_set_ode_rtol(st, 1e-12);
@@ -115,9 +118,65 @@ static int step_cost(const aq_arch *a, aq_model m, const aq_steps *steps, int re
     }
     *peak = res.peak_rotation_rad;
     *moving = res.steps_moving;
+    if (impacts)
+      *impacts = res.impacts;
     t[r] /= res.steps_moving ? (double)res.steps_moving : 1.0;
   }
   *us = 1e6 * aq_bench_median(t, (size_t)reps);
+  return 1;
+}
+
+static int step_cost(const aq_arch *a, aq_model m, const aq_steps *steps, int reps, double *us,
+                     double *peak, size_t *moving)
+{
+  return step_cost_rule(a, m, -1, steps, reps, us, peak, moving, NULL);
+}
+
+/* The steps of the shapes' table: a pulse of 1.5 lambda0 g for 0.1 s,
+ * then 1.9 s free, at 0.01 s.  1 on success. */
+static int pulse_steps(const aq_arch *a, aq_steps *steps)
+{
+  const aq_path *p = aq_arch_path(a, 0);
+  enum { NS = 200 };
+  double acc[NS];
+  for (int i = 0; i < NS; i++)
+    acc[i] = i < 10 ? p->act_sign * 1.5 * p->lambda0 * aq_arch_dynamics_of(a)->g_mps2 : 0;
+  aq_error e;
+  return aq_steps_from_samples(acc, NS, 0.01, 0, 0, steps, &e) == AQ_OK;
+}
+
+/* Where the bridge's steps go: each shipped arch under the same pulse with
+ * cor impacts (kinetic-energy ratio as its file says, 0 for all) and with
+ * momentum impacts, the workpath model: moving steps, impacts, and the
+ * cost per run and per moving step. */
+static int impact_rules(void)
+{
+  static const char *const names[] = {"oppenheim", "gothic", "bridge", "catenary", "vertical"};
+  printf("\narch\timpact\tmoving_steps\timpacts\twp_us_per_run\twp_us_per_step\n");
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+    char path[64];
+    snprintf(path, sizeof path, "arches/%s.cfg", names[k]);
+    aq_arch *a = NULL;
+    aq_error e;
+    aq_steps steps;
+    if (aq_arch_load(path, &a, &e) != AQ_OK || !pulse_steps(a, &steps)) {
+      aq_arch_free(a);
+      return 0;
+    }
+    for (int mom = 0; mom < 2; mom++) {
+      double us = 0, peak = 0;
+      size_t mv = 0, imp = 0;
+      if (!step_cost_rule(a, AQ_MODEL_WORKPATH, mom, &steps, REPS, &us, &peak, &mv, &imp)) {
+        aq_steps_free(&steps);
+        aq_arch_free(a);
+        return 0;
+      }
+      printf("%s\t%s\t%zu\t%zu\t%.2f\t%.2f\n", names[k], mom ? "momentum" : "cor", mv, imp,
+             us * (double)mv, us);
+    }
+    aq_steps_free(&steps);
+    aq_arch_free(a);
+  }
   return 1;
 }
 
@@ -134,13 +193,8 @@ static int shapes(void)
     aq_error e;
     if (ms < 0 || aq_arch_load(path, &a, &e) != AQ_OK)
       return 0;
-    const aq_path *p = aq_arch_path(a, 0);
-    enum { NS = 200 }; /* 2 s at 0.01 s */
-    double acc[NS];
-    for (int i = 0; i < NS; i++)
-      acc[i] = i < 10 ? p->act_sign * 1.5 * p->lambda0 * aq_arch_dynamics_of(a)->g_mps2 : 0;
     aq_steps steps;
-    int ok = aq_steps_from_samples(acc, NS, 0.01, 0, 0, &steps, &e) == AQ_OK;
+    int ok = pulse_steps(a, &steps);
     double us[2] = {0, 0}, peak[2] = {0, 0};
     size_t mv[2] = {0, 0};
     ok = ok && step_cost(a, AQ_MODEL_WORKPATH, &steps, REPS, &us[0], &peak[0], &mv[0]) &&
@@ -217,7 +271,7 @@ int main(void)
   printf("\neval\tns_per_call\tratio_to_table\n");
   printf("table\t%.1f\t1.00\nexact\t%.1f\t%.2f\n", 1e9 * me, 1e9 * mx, mx / me);
   aq_arch_free(a);
-  if (!shapes())
+  if (!shapes() || !impact_rules())
     return 1;
   return sink == 12345.678 ? 1 : 0;
 }

@@ -11,7 +11,9 @@
  *    to 2.5 lambda0 g of the arch, -o, -j 1, the default model and --model
  *    ode, interleaved, JOB_REPS each (a process per run; the FFTW wisdom
  *    cache as the first run left it), then the first run with an empty
- *    cache; medians.  Beside them the floor of that work, measured here in
+ *    cache; medians.  The cache of prepared records (docs/cache.md) off
+ *    (--no-cache), emptied before each run (untimed: the run fills it) and
+ *    filled, side by side.  Beside them the floor of that work, measured here in
  *    one process: the files' bytes read (open, fread, close), one FFT pair
  *    (r2c + c2r, planned beforehand) per record at its padded length, and
  *    the default model's stepping of the 24 runs (steps made beforehand);
@@ -26,7 +28,10 @@
  *    pads, filter: the FFTW plans of each new length come in the first
  *    pass), its intensity measures and its step list at factor 1; the 24
  *    runs of the default model; the HDF5 file created with its tables (and
- *    removed); the FFTW workspace freed.  The first pass is cold (first
+ *    removed); the FFTW workspace freed; then, apart, each record prepared
+ *    through the disk cache of prepared records instead (docs/cache.md:
+ *    the file hashed for the key, the entry read, checked and decoded;
+ *    the first process fills it).  The first pass is cold (first
  *    calls in the process: plans, page faults of a new heap, caches), the
  *    second warm.  Medians of STAGE_REPS processes, CPU time of the
  *    thread, each stage's cold - warm beside them.
@@ -51,6 +56,7 @@
 #include "bench.h"
 #include "io/record.h"
 #include "io/sha256.h"
+#include "job/subject.h"
 #include "report/h5.h"
 #include "signal/signal.h"
 #include "units.h"
@@ -83,6 +89,7 @@ typedef struct {
   const char *label;
   char *argv[MAXARG];
   const char *env;  /* one NAME=VALUE added to the environment, or NULL */
+  const char *prep; /* a shell command run (untimed) before each run, or NULL */
   double *wall, *cpu;
 } command;
 
@@ -122,6 +129,10 @@ static void load_average(const char *when)
  * Exits the bench if the command fails. */
 static void run(const command *c, double *wall, double *cpu, int want_status)
 {
+  if (c->prep && system(c->prep) != 0) {
+    fprintf(stderr, "bench_cli: %s: %s failed\n", c->label, c->prep);
+    exit(1);
+  }
   double t0 = aq_bench_now_s();
   pid_t p = fork();
   if (p == 0) {
@@ -378,41 +389,59 @@ static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *
   return 0;
 }
 
+/* The main job's commands: this build's default model with the cache of
+ * prepared records off (--no-cache), empty before each run (it fills it:
+ * "cache cold") and filled ("cache warm"); --model ode off and warm; the
+ * before build's two models (it has no such cache). */
+enum { JC_OFF, JC_COLD, JC_WARM, JC_ODE_OFF, JC_ODE_WARM, JC_N };
+static const char *const jc_label[JC_N] = {"default, no cache", "default, cache cold",
+                                           "default, cache warm", "ode, no cache",
+                                           "ode, cache warm"};
+
 static void main_job(const char *before)
 {
-  char cache[64], env_cache[96], out[96];
+  char cache[64], env_cache[96], out[96], prep[160];
   snprintf(cache, sizeof cache, "/tmp/aq-bench-cli-%ld", (long)getpid());
   snprintf(env_cache, sizeof env_cache, "XDG_CACHE_HOME=%s", cache);
   snprintf(out, sizeof out, "%s/job.h5", cache);
+  snprintf(prep, sizeof prep, "rm -rf %s/archquake/records", cache);
   mkdir(cache, 0700);
-  const char *args[MAXARG];
+  const char *args[JC_N + 2][MAXARG];
   size_t k = 0;
   for (size_t i = 0; i < NSHARED; i++)
-    args[k++] = shared[i];
+    args[0][k++] = shared[i];
   for (int a = 0; a < NARCH; a++) {
-    args[k++] = "--arch";
-    args[k++] = job_arches[a];
+    args[0][k++] = "--arch";
+    args[0][k++] = job_arches[a];
   }
-  args[k++] = "--scale-to-lambda0";
-  args[k++] = "2.5";
-  args[k++] = "-o";
-  args[k++] = out;
-  args[k++] = "-j";
-  args[k++] = "1";
-  args[k++] = "-q";
+  args[0][k++] = "--scale-to-lambda0";
+  args[0][k++] = "2.5";
+  args[0][k++] = "-o";
+  args[0][k++] = out;
+  args[0][k++] = "-j";
+  args[0][k++] = "1";
+  args[0][k++] = "-q";
   size_t base = k;
-  command c[4];
+  command c[JC_N + 2];
   memset(c, 0, sizeof c);
-  size_t nc = 0;
-  for (int b = 0; b < (before ? 2 : 1); b++)
-    for (int m = 0; m < 2; m++) {
-      args[base] = m ? "--model" : NULL;
-      args[base + 1] = m ? "ode" : NULL;
-      args[base + 2] = NULL;
-      c[nc].label = m ? "--model ode" : "default model";
-      c[nc].env = env_cache;
-      set_argv(&c[nc++], b ? before : "./archquake", args);
+  size_t nc = before ? JC_N + 2 : JC_N;
+  for (size_t i = 0; i < nc; i++) {
+    int ode = i == JC_ODE_OFF || i == JC_ODE_WARM || i == JC_N + 1;
+    int off = i == JC_OFF || i == JC_ODE_OFF;
+    memcpy(args[i], args[0], base * sizeof args[0][0]);
+    size_t m = base;
+    if (ode) {
+      args[i][m++] = "--model";
+      args[i][m++] = "ode";
     }
+    if (off)
+      args[i][m++] = "--no-cache";
+    args[i][m] = NULL;
+    c[i].label = i < JC_N ? jc_label[i] : ode ? "before: ode" : "before: default";
+    c[i].env = env_cache;
+    c[i].prep = i == JC_COLD ? prep : NULL;
+    set_argv(&c[i], i < JC_N ? "./archquake" : before, args[i]);
+  }
   floor_times part[3];
   size_t nlen;
   if (job_floor(&part[0], &part[1], &part[2], &nlen) != 0) {
@@ -420,45 +449,56 @@ static void main_job(const char *before)
     exit(1);
   }
   double pw[3], pc[3];
-  for (int k = 0; k < 3; k++) {
-    pw[k] = aq_bench_median(part[k].wall, FLOOR_REPS);
-    pc[k] = aq_bench_median(part[k].cpu, FLOOR_REPS);
+  for (int j = 0; j < 3; j++) {
+    pw[j] = aq_bench_median(part[j].wall, FLOOR_REPS);
+    pc[j] = aq_bench_median(part[j].cpu, FLOOR_REPS);
   }
   double fl = pw[0] + pw[1] + pw[2], flc = pc[0] + pc[1] + pc[2];
   printf("\nThe main job from a cold process: %d shared AT2 records x oppenheim, thick,\n"
          "--scale-to-lambda0 2.5, -o, -j 1 (%d runs); %d runs of each command,\n"
-         "interleaved, medians; the wisdom cache as the first run left it:\n",
+         "interleaved, medians; the wisdom cache as the first run left it; the cache\n"
+         "of prepared records (docs/cache.md) off, emptied before each run (cold:\n"
+         "the run fills it) or filled (warm):\n",
          NSHARED, 2 * NSHARED, JOB_REPS);
   printf("  floor, wall %.2f ms = read %.2f + FFT pairs %.2f (%zu lengths) + default "
          "stepping %.2f\n        CPU %.2f ms = %.2f + %.2f + %.2f\n",
          1e3 * fl, 1e3 * pw[0], 1e3 * pw[1], nlen, 1e3 * pw[2], 1e3 * flc, 1e3 * pc[0],
          1e3 * pc[1], 1e3 * pc[2]);
-  /* an empty cache first, once each (as a user's first run) */
-  double empty_w[4], empty_c[4];
+  /* an empty cache first, once each (as a user's first run), in this
+   * order, so that the warm commands find it filled */
+  double empty_w[JC_N + 2];
   for (size_t i = 0; i < nc; i++) {
     char rm[160];
     snprintf(rm, sizeof rm, "rm -rf %s/archquake", cache);
-    if (system(rm) != 0)
+    if (i != JC_WARM && i != JC_ODE_WARM && system(rm) != 0)
       exit(1);
-    run(&c[i], &empty_w[i], &empty_c[i], 0);
+    run(&c[i], &empty_w[i], &empty_w[i], 0);
+    empty_w[i] = c[i].prep || i == JC_WARM || i == JC_ODE_WARM ? NAN : empty_w[i];
   }
   load_average("before");
   interleave(c, nc, JOB_REPS, NULL);
   load_average("after");
-  double def_w[2] = {0, 0};
+  double med_w[JC_N + 2], med_c[JC_N + 2];
   for (size_t i = 0; i < nc; i++) {
-    double w = aq_bench_median(c[i].wall, JOB_REPS), u = aq_bench_median(c[i].cpu, JOB_REPS);
-    int b = before && i >= 2; /* the before build's runs come second */
-    if (i % 2 == 0)
-      def_w[b] = w;
-    printf("  %s%-14s wall %8.2f ms (%5.2fx the floor)  cpu %8.2f ms (%5.2fx)  empty cache: "
-           "wall %.2f ms",
-           before ? (b ? "before " : "after  ") : "", c[i].label, 1e3 * w, w / fl, 1e3 * u,
-           u / flc, 1e3 * empty_w[i]);
-    if (i % 2 == 1)
-      printf("  ode/default %.2f", w / def_w[b]);
+    med_w[i] = aq_bench_median(c[i].wall, JOB_REPS);
+    med_c[i] = aq_bench_median(c[i].cpu, JOB_REPS);
+  }
+  for (size_t i = 0; i < nc; i++) {
+    printf("  %-20s wall %8.2f ms (%5.2fx the floor)  cpu %8.2f ms (%5.2fx)", c[i].label,
+           1e3 * med_w[i], med_w[i] / fl, 1e3 * med_c[i], med_c[i] / flc);
+    if (!isnan(empty_w[i]))
+      printf("  empty wisdom cache: wall %.2f ms", 1e3 * empty_w[i]);
     printf("\n");
   }
+  printf("  ode/default (wall, CPU): no cache %.2f %.2f, cache warm %.2f %.2f",
+         med_w[JC_ODE_OFF] / med_w[JC_OFF], med_c[JC_ODE_OFF] / med_c[JC_OFF],
+         med_w[JC_ODE_WARM] / med_w[JC_WARM], med_c[JC_ODE_WARM] / med_c[JC_WARM]);
+  if (before)
+    printf(", before %.2f %.2f", med_w[JC_N + 1] / med_w[JC_N], med_c[JC_N + 1] / med_c[JC_N]);
+  printf("\n  cache warm / no cache (CPU): default %.2f, ode %.2f; cache cold / no cache: "
+         "%.2f\n",
+         med_c[JC_WARM] / med_c[JC_OFF], med_c[JC_ODE_WARM] / med_c[JC_ODE_OFF],
+         med_c[JC_COLD] / med_c[JC_OFF]);
   free_commands(c, nc);
   char rm[160];
   snprintf(rm, sizeof rm, "rm -rf %s", cache);
@@ -468,18 +508,23 @@ static void main_job(const char *before)
 
 /* ---- 3. the job's stages, cold and warm ----------------------------------- */
 
-enum { ST_ARCH, ST_READ, ST_HASH, ST_PROCESS, ST_IM, ST_STEPS, ST_STEP, ST_H5, ST_WS, NSTAGE };
+enum { ST_ARCH, ST_READ, ST_HASH, ST_PROCESS, ST_IM, ST_STEPS, ST_STEP, ST_H5, ST_WS, ST_CACHE,
+       NSTAGE };
 static const char *const stage_name[NSTAGE] = {
     "arches loaded (2: mechanism search, tables)", "records read and parsed",
     "files hashed (sha256)", "processed (detrend, pads, filter; plans)",
     "intensity measures (pads included)", "step lists (factor 1)",
     "default model's 24 runs", "HDF5 file set up (tables; removed)",
-    "FFTW workspace freed (wisdom)"};
+    "FFTW workspace freed (wisdom)",
+    "instead of read..measures: the disk cache"};
 
 /* The child: the job's stages twice in this process; prints 2 x NSTAGE
  * CPU times (s), cold then warm.  Returns 0, or 1 if a stage fails. */
-static int stages_child(void)
+static int stages_child(const char *cache_dir)
 {
+  aq_diskcache *dc = aq_diskcache_open(cache_dir, "records", "bench");
+  if (!dc)
+    return 1;
   aq_error e;
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
@@ -531,6 +576,17 @@ static int stages_child(void)
       t[ST_PROCESS] += c4 - c3;
       t[ST_IM] += c5 - c4;
       t[ST_STEPS] += c6 - c5;
+      /* the same record prepared through the disk cache (key: the file
+       * read and hashed; the entry read, checked and decoded), filled by
+       * the first process of the run */
+      aq_subject sj;
+      aq_subject_src src = {{shared[i], NULL, NULL}, {NAN, NAN}, NULL};
+      aq_subject_opts sopt = {&ro, &so, 0, 0, 0, dc};
+      double c7 = thread_cpu_s();
+      if (aq_subject_prepare(&sj, &src, &sopt, ws, &e) != AQ_OK)
+        goto fail;
+      t[ST_CACHE] += thread_cpu_s() - c7;
+      aq_subject_free(&sj);
       pga_mps2[i] = im.pga_g * AQ_G0_MPS2;
       aq_processed_free(&proc);
       aq_record_free(&rec);
@@ -571,8 +627,10 @@ static int stages_child(void)
       printf("%.9g%c", t[k], k + 1 < NSTAGE ? ' ' : '\n');
     (void)w;
   }
+  aq_diskcache_close(dc);
   return 0;
 fail:
+  aq_diskcache_close(dc);
   aq_error_print(&e, stderr);
   return 1;
 }
@@ -580,8 +638,11 @@ fail:
 static void stages(void)
 {
   double cold[NSTAGE][STAGE_REPS], warm[NSTAGE][STAGE_REPS];
+  char dir[64], cmd[160];
+  snprintf(dir, sizeof dir, "/tmp/aq-bench-cli-stages-%ld", (long)getpid());
+  snprintf(cmd, sizeof cmd, "./build/bench/bench_cli stages %s", dir);
   for (int r = 0; r < STAGE_REPS; r++) {
-    FILE *p = popen("./build/bench/bench_cli stages", "r");
+    FILE *p = popen(cmd, "r");
     int ok = p != NULL;
     for (int pass = 0; ok && pass < 2; pass++)
       for (int k = 0; ok && k < NSTAGE; k++)
@@ -596,20 +657,34 @@ static void stages(void)
          "medians of %d processes:\n", STAGE_REPS);
   printf("  %-44s %9s %9s %9s\n", "stage", "cold_ms", "warm_ms", "cold-warm");
   double sc = 0, sw = 0;
-  for (int k = 0; k < NSTAGE; k++) {
+  for (int k = 0; k < NSTAGE - 1; k++) {
     double mc = aq_bench_median(cold[k], STAGE_REPS), mw = aq_bench_median(warm[k], STAGE_REPS);
     sc += mc;
     sw += mw;
     printf("  %-44s %9.2f %9.2f %9.2f\n", stage_name[k], 1e3 * mc, 1e3 * mw, 1e3 * (mc - mw));
   }
   printf("  %-44s %9.2f %9.2f %9.2f\n", "sum", 1e3 * sc, 1e3 * sw, 1e3 * (sc - sw));
+  double mc = aq_bench_median(cold[ST_CACHE], STAGE_REPS);
+  double mw = aq_bench_median(warm[ST_CACHE], STAGE_REPS);
+  printf("  %-44s %9.2f %9.2f %9.2f\n", stage_name[ST_CACHE], 1e3 * mc, 1e3 * mw,
+         1e3 * (mc - mw));
+  printf("  (the records from the disk cache, the first process filling it: read,\n"
+         "  hash, process and measures cold %.2f ms become %.2f ms)\n",
+         1e3 * (aq_bench_median(cold[ST_READ], STAGE_REPS) +
+                aq_bench_median(cold[ST_HASH], STAGE_REPS) +
+                aq_bench_median(cold[ST_PROCESS], STAGE_REPS) +
+                aq_bench_median(cold[ST_IM], STAGE_REPS)),
+         1e3 * mc);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd) != 0)
+    fprintf(stderr, "bench_cli: cannot remove %s\n", dir);
 }
 
 int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
-  if (argc == 2 && strcmp(argv[1], "stages") == 0)
-    return stages_child();
+  if (argc == 3 && strcmp(argv[1], "stages") == 0)
+    return stages_child(argv[2]);
   const char *before = getenv("AQ_BIN_BEFORE");
   if (before && !before[0])
     before = NULL;

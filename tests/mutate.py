@@ -34,7 +34,8 @@ LIST = os.path.join("tests", "mutants.txt")
 # Test-name prefixes run first for a mutant in each stage.
 STAGE_TESTS = [("src/arch/stepper.c", "dyn_"), ("src/arch/eom.c", "dyn_"),
                ("src/io/", "io_"), ("src/signal/", "signal_"), ("src/arch/", "arch_"),
-               ("src/report/", "report_"), ("src/app/", "app_")]
+               ("src/report/", "report_"), ("src/app/", "app_"),
+               ("src/util/diskcache.c", "cache_"), ("src/job/subject_cache.c", "cache_")]
 
 
 def parse_list(path):
@@ -150,7 +151,10 @@ def main():
     os.makedirs(os.path.join(MUT, "m"), exist_ok=True)
     runner, aqbin = os.path.join(MUT, "m", "runner"), os.path.join(MUT, "m", "archquake")
     mobj = os.path.join(MUT, "m", "mutant.o")
-    env = dict(os.environ, AQ_BIN=aqbin, AQ_TEST_STOP_FIRST="1")
+    # the cache of prepared records (docs/cache.md) under build/mut, emptied
+    # for every mutant (each build's entries are its own anyway)
+    cache = os.path.abspath(os.path.join(MUT, "cache"))
+    env = dict(os.environ, AQ_BIN=aqbin, AQ_TEST_STOP_FIRST="1", XDG_CACHE_HOME=cache)
     env.pop("AQ_TEST_VERBOSE", None)
     survived, unexplained, stale, t_start = [], [], [], time.time()
     # a mutant's link must fail only because of the mutant: the unmutated
@@ -174,6 +178,7 @@ def main():
                                       time.time() - t_start), flush=True)
     for mid, path, old, new, equiv in muts:
         t0 = time.time()
+        subprocess.run(["rm", "-rf", cache], check=True)
         try:
             with open(path, encoding="utf-8") as f:
                 src = f.read()

@@ -50,7 +50,7 @@ AQ_TEST(app_options_out_of_range_refused)
       {"domain --arch arches/thin.cfg", "--tol", "0"},
       {"domain --arch arches/thin.cfg", "--tol", "1e-300"}, /* would bisect for ever */
       {"domain --arch arches/thin.cfg", "--max-duration", "0"},
-      {"mechanism --arch arches/thin.cfg", "--points", "1"},
+      {"mechanism --arch arches/thin.cfg --table", "--points", "1"},
       {"compare records/a.h5 records/b.h5", "--rtol", "1.5"},
       {"compare records/a.h5 records/b.h5", "--atol", "-1"},
   };

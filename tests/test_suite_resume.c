@@ -523,7 +523,7 @@ AQ_TEST(suite_resume_after_sigint_and_bad_journals)
   static char cout[4096], cerr[4096];
   rc = aq_test_run("records/elcentro_chopra.csv --arch arches/thin.cfg --resume", cout,
                    sizeof cout, cerr, sizeof cerr);
-  aq_check(rc == 2 && strstr(cerr, "--resume") && strstr(cerr, "no -o"),
+  aq_check(rc == 2 && strstr(cerr, "--resume: expected -o as well"),
            "--resume without -o refused: %s", cerr);
   snprintf(other, sizeof other,
            "records/elcentro_chopra.csv --arch arches/thin.cfg --resume --history -o %s", h5);

@@ -56,7 +56,7 @@ static void prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
   aq_subject_src src = {{S->paths[r][0], S->paths[r][1], S->paths[r][2]},
                         {S->phi_deg[r][0], S->phi_deg[r][1]},
                         S->labels[r]};
-  aq_subject_opts so = {S->ro, S->po, or->vertical, 0, 0};
+  aq_subject_opts so = {S->ro, S->po, or->vertical, 0, 0, NULL};
   aq_status s = aq_subject_prepare(&it->subj, &src, &so, ws, &it->err);
   const char *stage = it->subj.stage;
   if (s == AQ_OK)

@@ -242,12 +242,8 @@ int aq_cmd_capacity(int argc, char **argv)
                       "implemented)\n", i ? "--fragility" : "-o");
       nerr++;
     }
+  /* --tol <= --resolution: the table's rule */
   aq_error se;
-  if (aq_scan_check(&so, &se) != AQ_OK && strcmp(se.field, "tol") == 0) {
-    fprintf(stderr, "archquake: --tol: expected %g to --resolution (%g), got %g\n",
-            AQ_SCAN_TOL_MIN, so.resolution, so.tol);
-    nerr++;
-  }
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
   if (optind >= argc && orient.nmotions == 0) {
     fprintf(stderr, "archquake: capacity: expected at least one RECORD or --components\n");

@@ -97,23 +97,7 @@ int aq_cmd_pulse(int argc, char **argv)
          dt = o.pulse_dt_s, cor = o.cor, rtol = o.ode_rtol;
   int model = o.model, impact = o.impact;
   aq_opt_no_operands("pulse", argc, argv, optind, &nerr);
-  if (!isnan(end) && !isnan(dur) && end < dur) {
-    fprintf(stderr,
-            "archquake: --end: expected a time >= --duration (%g s), got %g\n",
-            dur, end);
-    nerr++;
-  }
-  if (!isnan(cap) && !isnan(end)) {
-    fprintf(stderr, "archquake: --max-end: expected no --end (it caps the "
-                    "default end), got --end %g\n", end);
-    nerr++;
-  }
-  if (!isnan(cap) && !isnan(dur) && cap < dur) {
-    fprintf(stderr,
-            "archquake: --max-end: expected a time >= --duration (%g s), got %g\n",
-            dur, cap);
-    nerr++;
-  }
+  /* --end, --max-end and --duration together: the table's rules */
   if (hist && !*hist) {
     fprintf(stderr, "archquake: --history: expected a file name, got \"\"\n");
     nerr++;

@@ -75,6 +75,8 @@ int aq_cmd_run(int argc, char **argv)
   cfg.narches = o.narches;
   const char *text_path = o.text;
   int quiet = o.quiet;
+  int use_cache = !o.no_cache;
+  const char *cache_dir = o.cache_dir;
   /* what the run owns from here: freed below */
   char **arches = o.arches;
   double *scales = o.scales;
@@ -91,32 +93,8 @@ int aq_cmd_run(int argc, char **argv)
     nerr++;
   }
   aq_opt_distinct_files("arch file", arches, cfg.narches, &nerr);
-  if ((scales != NULL) + !isnan(cfg.scale_to_pga_g) + (cfg.scale_to_lambda0 > 0) > 1) {
-    fprintf(stderr, "archquake: --scale, --scale-to-pga, --scale-to-lambda0: expected one "
-                    "of them, got %s\n",
-            !scales ? "--scale-to-pga and --scale-to-lambda0"
-            : isnan(cfg.scale_to_pga_g) ? "--scale and --scale-to-lambda0"
-            : cfg.scale_to_lambda0 > 0  ? "all three"
-                                        : "--scale and --scale-to-pga");
-    nerr++;
-  }
-  if (cfg.history && !cfg.h5_path) {
-    fprintf(stderr, "archquake: --history: expected -o FILE.h5 as well (histories "
-                    "are written only to the results file)\n");
-    nerr++;
-  }
-  if (cfg.store_records && !cfg.h5_path) {
-    fprintf(stderr, "archquake: --store-records: expected -o FILE.h5 as well (processed "
-                    "records are written only to the results file)\n");
-    nerr++;
-  }
-  if (cfg.resume && (!cfg.h5_path || cfg.history || cfg.store_records)) {
-    fprintf(stderr, "archquake: --resume: expected -o FILE.h5 and neither --history nor "
-                    "--store-records, got %s (the journal beside the results file holds "
-                    "rows and record metadata, not datasets)\n",
-            !cfg.h5_path ? "no -o" : cfg.history ? "--history" : "--store-records");
-    nerr++;
-  }
+  /* the scaling options, --history, --store-records and --resume together:
+   * the table's rules (opt_table.c) */
   if (cfg.h5_path && text_path && same_output(cfg.h5_path, text_path)) {
     if (strcmp(cfg.h5_path, text_path) == 0)
       fprintf(stderr, "archquake: --text: expected a file other than -o's, got \"%s\" twice\n",
@@ -208,7 +186,17 @@ int aq_cmd_run(int argc, char **argv)
   /* TSV for files and pipes */
   cfg.aligned = !tout.f && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
+  if (use_cache) /* none without a home for it: the run goes on */
+    cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
   rc = aq_suite_run(&cfg, NULL);
+  char *notes = aq_diskcache_notes(cfg.cache);
+  for (char *line = notes, *nl; line && *line; line = nl + 1) {
+    nl = strchr(line, '\n');
+    *nl = '\0';
+    fprintf(stderr, "archquake: note: %s\n", line);
+  }
+  free(notes);
+  aq_diskcache_close(cfg.cache);
 
   if (tout.f) {
     if (rc == AQ_EXIT_OUTPUT || rc == AQ_EXIT_USAGE) {

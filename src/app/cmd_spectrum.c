@@ -88,7 +88,7 @@ static void run_source(void *ctx, size_t k)
   aq_error_clear(&s->err);
   aq_subject_src src = {{s->path[0], s->path[1], s->path[2]}, {s->phi[0], s->phi[1]},
                         s->label};
-  aq_subject_opts so = {J->ro, J->po, 0, 0, 1}; /* a spectrum of any channel */
+  aq_subject_opts so = {J->ro, J->po, 0, 0, 1, NULL}; /* a spectrum of any channel */
   s->st = aq_subject_prepare(&s->in, &src, &so, J->sws, &s->err);
   for (int c = 0; s->st == AQ_OK && c < (s->path[1] ? 2 : 1); c++)
     s->st = aq_im_compute(&s->in.proc[c], &s->im[c], &s->err);

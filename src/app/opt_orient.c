@@ -135,11 +135,6 @@ void aq_opt_orient_check(aq_orient_opts *o, int *nerr)
                     "(it shows every azimuth of the scan)\n");
     (*nerr)++;
   }
-  if (o->azimuth_given && o->nmotions == 0) {
-    fprintf(stderr, "archquake: --azimuth: expected --components as well (a plain "
-                    "RECORD is already the arch's in-plane component)\n");
-    (*nerr)++;
-  }
   int have_v = 0;
   for (size_t i = 0; i < o->nmotions; i++) {
     aq_orient_motion *m = &o->motions[i];

@@ -6,6 +6,7 @@
  * argument taken) and refused by name rather than reported as unknown. */
 #define _POSIX_C_SOURCE 200809L
 #include <getopt.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,6 +142,40 @@ static void refuse(aq_cmd cmd, int id, int as_short, int *nerr)
   (*nerr)++;
 }
 
+/* Row r, given to cmd: its rules with the other options cmd takes (see
+ * aq_opt_row), one line for each that is broken. */
+static void rules(aq_cmd cmd, const aq_opt_row *r, const aq_opts *o, int *nerr)
+{
+  const char *base = (const char *)o;
+  char me[64], other[64], why[256] = "";
+  spelling(r, me, sizeof me);
+  if (r->why)
+    snprintf(why, sizeof why, " (%s)", r->why);
+  const int *const lists[] = {r->requires, r->conflicts, r->not_below, r->not_above};
+  for (int kind = 0; kind < 4; kind++)
+    for (const int *j = lists[kind]; j && *j >= 0; j++) {
+      const aq_opt_row *q = &aq_opt_rows[*j];
+      if (!aq_opt_applies((aq_opt_id)*j, cmd))
+        continue;
+      spelling(q, other, sizeof other);
+      if (kind == 0 && !o->given[*j])
+        fprintf(stderr, "archquake: %s: expected %s as well%s\n", me, other, why);
+      else if (kind == 1 && o->given[*j])
+        fprintf(stderr, "archquake: %s: expected no %s with it%s, got both\n", me, other,
+                why);
+      else if (kind >= 2) {
+        double mine = *(const double *)(const void *)(base + r->dest);
+        double bound = *(const double *)(const void *)(base + q->dest);
+        if (isnan(mine) || isnan(bound) || (kind == 2 ? mine >= bound : mine <= bound))
+          continue;
+        fprintf(stderr, "archquake: %s: expected a value %s %s (%g), got %g\n", me,
+                kind == 2 ? ">=" : "<=", other, bound, mine);
+      } else
+        continue;
+      (*nerr)++;
+    }
+}
+
 int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
 {
   /* one getopt entry per name and per letter: the row that applies to
@@ -220,6 +255,8 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
               r->meta ? r->meta : "");
       (*nerr)++;
     }
+    if (o->given[i])
+      rules(cmd, r, o, nerr);
     if (r->check)
       r->check(o, nerr);
   }

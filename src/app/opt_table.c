@@ -29,6 +29,8 @@
 /* Where a value goes. */
 #define DEST(f) .dest = offsetof(aq_opts, f)
 #define DEST_LIST(f, n) .dest = offsetof(aq_opts, f), .dest_n = offsetof(aq_opts, n)
+/* A list of options for a rule (.requires, .conflicts, .not_below, .not_above). */
+#define OPTS(...) ((const int[]){__VA_ARGS__, -1})
 
 #define AQ_MAX_THREADS 1024
 #define AQ_OPT_FREQ_MAX_HZ 1e6
@@ -178,23 +180,6 @@ static void sa_avg(char *arg, aq_opts *o, int *nerr)
 
 /* The checks between options (the rows' .check), made after parsing. */
 
-/* --no-filter turns off the taper, the pads and the filter: an option that
- * sets one of them would be ignored, so it is refused, even at its default. */
-static void no_filter_alone(aq_opts *o, int *nerr)
-{
-  static const aq_opt_id filter_opts[] = {AQ_OPT_TAPER, AQ_OPT_HIGHPASS, AQ_OPT_ORDER,
-                                          AQ_OPT_LOWPASS};
-  if (!o->given[AQ_OPT_NO_FILTER])
-    return;
-  for (size_t k = 0; k < sizeof filter_opts / sizeof filter_opts[0]; k++)
-    if (o->given[filter_opts[k]]) {
-      fprintf(stderr, "archquake: --%s: expected no --no-filter with it (--no-filter "
-                      "applies no taper, pads or filter), got both\n",
-              aq_opt_rows[filter_opts[k]].name);
-      (*nerr)++;
-    }
-}
-
 /* Checks that need the record (the Nyquist frequency, the record length)
  * are made by aq_signal_process. */
 static void lowpass_above_highpass(aq_opts *o, int *nerr)
@@ -224,6 +209,16 @@ static void momentum_takes_no_cor(aq_opts *o, int *nerr)
 static void orientation(aq_opts *o, int *nerr)
 {
   aq_opt_orient_check(&o->orient, nerr);
+}
+
+/* --cache-dir names where --no-cache would not look: refused together. */
+static void cache_dir_needs_cache(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_CACHE_DIR] && o->given[AQ_OPT_NO_CACHE]) {
+    fprintf(stderr, "archquake: --cache-dir: expected no --no-cache with it (--no-cache "
+                    "uses no cache directory), got both\n");
+    (*nerr)++;
+  }
 }
 
 /* After --highpass's value: an explicit corner is checked as given. */
@@ -269,11 +264,14 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                             "at which the arch has collapsed or is at rest (s = 0, no "
                             "kinetic energy, by the stepper's rest criterion); the row "
                             "equals that of --end end_s.  Motion that never rests (COR 1) "
-                            "stops at the cap, --max-end, with a note on stderr (exit 0)"},
+                            "stops at the cap, --max-end, with a note on stderr (exit 0)",
+                    .not_below = OPTS(AQ_OPT_DURATION)},
     [AQ_OPT_MAX_END] = {.name = "max-end", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 86400,
                         .meta = "S", DEST(max_end_s), .cmds = C(PULSE),
                         .help = "the cap of the default end, s (default duration + 3600 s, "
-                                "and at most 5e6 steps of --dt)"},
+                                "and at most 5e6 steps of --dt)",
+                        .conflicts = OPTS(AQ_OPT_END), .not_below = OPTS(AQ_OPT_DURATION),
+                        .why = "it caps the default end"},
     [AQ_OPT_PULSE_DT] = {.name = "dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
                          .meta = "S", DEST(pulse_dt_s), .cmds = C(PULSE),
                          .help = "constant steps of at most S seconds (default 0.01)"},
@@ -337,7 +335,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               "(default 1)"},
     [AQ_OPT_SCALE_TO_PGA] = {.name = "scale-to-pga", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 100,
                              .meta = "G", DEST(scale_to_pga_g), .cmds = C(RUN),
-                             .help = "scale each processed record to a PGA of G g instead"},
+                             .help = "scale each processed record to a PGA of G g instead",
+                             .conflicts = OPTS(AQ_OPT_SCALE),
+                             .why = "one scaling rule per run"},
     [AQ_OPT_SCALE_TO_LAMBDA0] = {.name = "scale-to-lambda0", .kind = AQ_ARG_DOUBLE_GT,
                                  .lo = 0, .hi = 100, .meta = "K", DEST(scale_to_lambda0),
                                  .cmds = C(RUN),
@@ -345,7 +345,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                          "PGA of K lambda0 g, lambda0 the arch's static "
                                          "collapse multiplier (the smaller of its two hinge "
                                          "sets'), so that one suite shakes arches of unlike "
-                                         "strength alike"},
+                                         "strength alike",
+                                 .conflicts = OPTS(AQ_OPT_SCALE, AQ_OPT_SCALE_TO_PGA),
+                                 .why = "one scaling rule per run"},
     [AQ_OPT_SCALE_MAX] = {.name = "scale-max", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e6,
                           .meta = "S", DEST(scale_max), .cmds = C(CAPACITY),
                           .help = "highest scale (default: PGA = 20 lambda0 g)"},
@@ -357,11 +359,13 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_SCAN_TOL] = {.name = "tol", .kind = AQ_ARG_DOUBLE, .lo = AQ_SCAN_TOL_MIN, .hi = 1,
                          .meta = "T", DEST(scan_tol), .cmds = C(CAPACITY),
                          .help = "relative tolerance of each change (default 1e-6; 1e-12 "
-                                 "to R)"},
+                                 "to R)",
+                         .not_above = OPTS(AQ_OPT_RESOLUTION)},
     [AQ_OPT_DOMAIN_TOL] = {.name = "tol", .kind = AQ_ARG_DOUBLE, .lo = AQ_DOMAIN_TOL_MIN_S,
                            .hi = 1, .meta = "S", DEST(domain_tol_s), .cmds = C(DOMAIN),
                            .help = "bisection tolerance on the duration, s, 1e-12..1 "
-                                   "(default 1e-9)"},
+                                   "(default 1e-9; at most --max-duration)",
+                           .not_above = OPTS(AQ_OPT_MAX_DURATION)},
     [AQ_OPT_MAX_DURATION] = {.name = "max-duration", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
                              .hi = 3600, .meta = "S", DEST(max_duration_s), .cmds = C(DOMAIN),
                              .help = "give up above this duration, s (default 100)"},
@@ -388,19 +392,27 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .check = ode_rtol_needs_ode},
     [AQ_OPT_HISTORY] = {.name = "history", .kind = AQ_ARG_FLAG, DEST(history), .cmds = C(RUN),
                         .help = "write histories (step ends, turning points, impacts) to the "
-                                "HDF5 file (with -o)"},
+                                "HDF5 file (with -o)",
+                        .requires = OPTS(AQ_OPT_OUTPUT),
+                        .why = "histories are written only to the results file"},
     [AQ_OPT_HISTORY_FILE] = {.name = "history", .kind = AQ_ARG_STRING, .meta = "FILE",
                              DEST(history_file), .cmds = C(PULSE),
                              .help = "write the history as CSV (step ends, turning points, "
                                      "impacts)"},
     [AQ_OPT_STORE_RECORDS] = {.name = "store-records", .kind = AQ_ARG_FLAG, DEST(store_records),
                               .cmds = C(RUN),
-                              .help = "write the processed records to the HDF5 file (with -o)"},
+                              .help = "write the processed records to the HDF5 file (with -o)",
+                              .requires = OPTS(AQ_OPT_OUTPUT),
+                              .why = "processed records are written only to the results file"},
     [AQ_OPT_RESUME] = {.name = "resume", .kind = AQ_ARG_FLAG, DEST(resume), .cmds = C(RUN),
                        .help = "continue an interrupted run of this same command (with -o): "
                                "every record done is kept in FILE.h5.journal until the "
                                "results file is complete; the outputs equal an "
-                               "uninterrupted run's (not with --history or --store-records)"},
+                               "uninterrupted run's (not with --history or --store-records)",
+                       .requires = OPTS(AQ_OPT_OUTPUT),
+                       .conflicts = OPTS(AQ_OPT_HISTORY, AQ_OPT_STORE_RECORDS),
+                       .why = "the journal beside the results file holds rows and record "
+                              "metadata, not datasets"},
     [AQ_OPT_POLARITY] = {.name = "polarity", .kind = AQ_ARG_CHOICE,
                          .choices = aq_opt_polarity_names, .meta = "P", DEST(polarity),
                          .cmds = SUITES,
@@ -413,7 +425,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               "at N points over [0, q_c] (the data of the paper's Figs 4-7)"},
     [AQ_OPT_POINTS] = {.name = "points", .kind = AQ_ARG_LONG, .lo = 2, .hi = 100000,
                        .meta = "N", DEST(points), .cmds = C(MECHANISM),
-                       .help = "rows per set in --table (2..100000, default 101)"},
+                       .help = "rows per set in --table (2..100000, default 101)",
+                       .requires = OPTS(AQ_OPT_TABLE),
+                       .why = "the number of rows of the table"},
     [AQ_OPT_RTOL] = {.name = "rtol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "R",
                      DEST(rtol), .cmds = C(COMPARE), .help = "relative tolerance (default 1e-9)"},
     [AQ_OPT_ATOL] = {.name = "atol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = HUGE_VAL,
@@ -499,6 +513,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_AZIMUTH] = {.name = "azimuth", .kind = AQ_ARG_CUSTOM, .meta = "DEG", .fn = azimuth,
                         .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
                         .help = "the arch's +x azimuth theta, deg from north (default 0)",
+                        .requires = OPTS(AQ_OPT_COMPONENTS),
+                        .why = "a plain RECORD is already the arch's in-plane component",
                         .meta2 = "all[:STEP]",
                         .help2 = "every theta 0, STEP, ... < 360 (default STEP 5); the TSV "
                                  "shows the worst azimuth per (motion, arch, scale): a failed "
@@ -551,12 +567,25 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies)",
-                          .check = no_filter_alone},
+                          /* an option that sets one of them would be ignored: refused,
+                           * even at its default */
+                          .conflicts = OPTS(AQ_OPT_TAPER, AQ_OPT_HIGHPASS, AQ_OPT_ORDER,
+                                            AQ_OPT_LOWPASS),
+                          .why = "it applies no taper, pads or filter"},
     [AQ_OPT_MERGE_TOL] = {.name = "merge-tol", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 10,
                           .meta = "G", DEST(merge_tol_g), .cmds = SUITES,
                           .group = AQ_GROUP_PROCESSING,
                           .help = "merge consecutive samples differing by less than G (g) "
                                   "into one constant-acceleration step (default 0: none)"},
+    [AQ_OPT_NO_CACHE] = {.name = "no-cache", .kind = AQ_ARG_FLAG, DEST(no_cache),
+                         .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                         .help = "neither read nor store processed records in the cache "
+                                 "(results are the same either way; docs/cache.md)"},
+    [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
+                          DEST(cache_dir), .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                          .help = "keep processed records in DIR (default "
+                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
+                          .check = cache_dir_needs_cache},
 };
 
 static const char run_tail[] =

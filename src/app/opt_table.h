@@ -17,8 +17,12 @@
  *   3. its field in aq_opts, and its default in aq_opts_init if not 0.
  *   The message of a bad value names the option as "--name", or "-x" if it
  *   has a letter.  .required: the commands that cannot run without it.
- *   .check: its check against the other options (--ode-rtol needs --model
- *   ode), made for every command it applies to.  The same name may have one row per meaning (--dt of text records and
+ *   .requires, .conflicts, .not_below, .not_above: the options it needs,
+ *   cannot be given with, and whose values bound its own (--history needs
+ *   -o; --scale-to-pga and --scale exclude each other; pulse --end >=
+ *   --duration), each rule declared once, on one of its rows.  .check:
+ *   a check against other options' values that those cannot say
+ *   (--ode-rtol needs --model ode), made for every command it applies to.  The same name may have one row per meaning (--dt of text records and
  *   --dt of pulse), each for commands of its own: no command has two rows
  *   of one name (test_opt_table.c checks).  Checks that need the operands
  *   or the files stay in the command, after aq_opts_parse.
@@ -158,6 +162,8 @@ typedef enum {
   AQ_OPT_LOWPASS,
   AQ_OPT_NO_FILTER,
   AQ_OPT_MERGE_TOL,
+  AQ_OPT_NO_CACHE,  /* prepared records on disk (docs/cache.md) */
+  AQ_OPT_CACHE_DIR,
   AQ_OPT_N
 } aq_opt_id;
 
@@ -206,6 +212,8 @@ typedef struct aq_opts {
   aq_orient_opts orient;
   aq_signal_opts proc;
   double merge_tol_g; /* --merge-tol, g */
+  int no_cache;          /* --no-cache */
+  const char *cache_dir; /* --cache-dir, or NULL: the default */
   /* dynamics */
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */
@@ -268,9 +276,20 @@ typedef struct {
   const char *meta2, *help2; /* a second form (--units GLOB=U), or NULL */
   unsigned required;  /* the commands that need it (a subset of cmds): "expected
                          --name META, got none" when it is not given */
-  /* The check between this option and others, made once every option is
-   * in, for every command the row applies to (given or not): one line per
-   * problem, *nerr incremented.  NULL: none. */
+  /* Rules between this option and others, declared here once and made by
+   * aq_opts_parse when this option is given, for every command that takes
+   * both: each a list of option ids ending in -1 (OPTS(...) in
+   * opt_table.c), NULL for none.  A broken rule is one line naming both
+   * options; nothing is run. */
+  const int *requires;  /* each of these must be given too */
+  const int *conflicts; /* none of these may be given with it */
+  const int *not_below; /* its value >= each of these options' (given or default) */
+  const int *not_above; /* its value <= each of these options' */
+  const char *why;      /* why, in parentheses in the requires and conflicts lines */
+  /* A check between this option and the values of others that the rules
+   * above cannot say, made once every option is in, for every command the
+   * row applies to (given or not): one line per problem, *nerr
+   * incremented.  NULL: none. */
   void (*check)(aq_opts *o, int *nerr);
 } aq_opt_row;
 

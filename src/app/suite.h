@@ -36,6 +36,7 @@
 #include "../error.h"
 #include "../io/record.h"
 #include "../signal/signal.h"
+#include "../util/diskcache.h"
 #include "opt_orient.h"
 
 typedef struct {
@@ -71,6 +72,7 @@ typedef struct {
   int aligned;             /* 1: an aligned table instead of TSV (a terminal) */
   const char *command_line;/* for the results file */
   const char *units_text;  /* --units as given (for the results file), or NULL */
+  aq_diskcache *cache;     /* prepared records on disk (--no-cache: NULL) */
 } aq_suite_cfg;
 
 /* Wall-time figures of a finished suite (s).  read/process/run are summed

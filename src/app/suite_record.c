@@ -135,6 +135,10 @@ void aq_suite_record_sha256(const suite *S, rec_slot *r, rec_slot *next)
   if (!r->want_sha)
     return;
   r->want_sha = 0;
+  if (a->sha256[0]) { /* the cache's key hashed it (job/subject_cache.h) */
+    memcpy(r->sha256, a->sha256, sizeof r->sha256);
+    return;
+  }
   aq_error herr;
   char file[4096];
   if (a->bytes)
@@ -172,7 +176,8 @@ int aq_suite_prepare(suite *S, rec_slot *r)
                         {m ? m->azimuth_deg[0] : NAN, m ? m->azimuth_deg[1] : NAN},
                         path};
   r->want_sha = c->h5_path != NULL; /* hashed by record_sha256 */
-  aq_subject_opts so = {&c->read, &c->proc, c->vertical, r->want_sha ? S->keep_max : 0, 0};
+  aq_subject_opts so = {&c->read, &c->proc, c->vertical, r->want_sha ? S->keep_max : 0, 0,
+                        c->cache};
   aq_status s = aq_subject_prepare(&r->subj, &src, &so, S->ws, &r->err);
   if (s == AQ_OK)
     s = aq_scale_check_subject(&S->rule, path, r->subj.pga_g, &r->err);

@@ -3,6 +3,7 @@
  * view, and runs (factor, polarity, azimuth, arch) giving an aq_result.
  *
  *   subject.h  reading, checking and processing a record or motion; views
+ *   subject_cache.h  prepared subjects kept on disk (util/diskcache.h)
  *   scale.h    the scaling rule (--scale, --scale-to-pga,
  *              --scale-to-lambda0), the polarity, lambda0
  *   run.h      the arch's stepper, and the runs of a subject
@@ -20,5 +21,6 @@
 #include "run.h"
 #include "scale.h"
 #include "subject.h"
+#include "subject_cache.h"
 
 #endif

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "../signal/project.h"
+#include "subject_cache.h"
 #include "../units.h"
 
 static double now_s(void)
@@ -80,8 +81,9 @@ static aq_status process_component(aq_subject *s, int j, const aq_signal_opts *o
   return st;
 }
 
-aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
-                             const aq_subject_opts *o, aq_signal_ws *ws, aq_error *err)
+/* aq_subject_prepare without the cache. */
+static aq_status prepare(aq_subject *s, const aq_subject_src *src, const aq_subject_opts *o,
+                         aq_signal_ws *ws, aq_error *err)
 {
   memset(s, 0, sizeof *s);
   s->motion = src->path[1] != NULL;
@@ -122,6 +124,34 @@ aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
                          : s->im.pga_g;
   }
   s->process_s = now_s() - t1;
+  return st;
+}
+
+aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
+                             const aq_subject_opts *o, aq_signal_ws *ws, aq_error *err)
+{
+  aq_subject_key k;
+  double t0 = now_s();
+  if (!o->cache || !aq_subject_cache_key(src, o, &k))
+    return prepare(s, src, o, ws, err);
+  double t1 = now_s();
+  aq_status st = AQ_OK;
+  if (aq_subject_cache_get(o->cache, &k, s)) {
+    s->read_s = t1 - t0;
+    s->process_s = now_s() - t1;
+  } else {
+    aq_subject_opts once = *o; /* the key hashed the bytes already */
+    once.keep_bytes_max = 0;
+    if ((st = prepare(s, src, &once, ws, err)) == AQ_OK)
+      aq_subject_cache_put(o->cache, &k, s);
+  }
+  if (st == AQ_OK) { /* hashed already: the caller need not hash the bytes */
+    memcpy(s->sha256, k.sha256[0], sizeof s->sha256);
+    free(s->bytes);
+    s->bytes = NULL;
+    s->nbytes = 0;
+  }
+  aq_subject_key_free(&k);
   return st;
 }
 

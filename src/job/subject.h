@@ -14,6 +14,10 @@
  * given and not run is noted in warning.  A record's samples are freed once
  * processed (its metadata stays).
  *
+ * With opts.cache, a subject prepared before with the same files, options
+ * and build is read from the cache instead (subject_cache.h), and one
+ * prepared here is stored there: the same subject either way.
+ *
  * Units: m/s^2 and s inside; pga_g in g.  The subject owns everything in it
  * (aq_subject_free, also after a failure); views own their steps
  * (aq_view_free).  Nothing prints: failures fill an aq_error, and stage
@@ -25,7 +29,9 @@
 
 #include "../error.h"
 #include "../io/record.h"
+#include "../io/sha256.h"
 #include "../signal/signal.h"
+#include "../util/diskcache.h"
 
 /* Where a subject comes from. */
 typedef struct {
@@ -43,6 +49,8 @@ typedef struct {
   int any_channel;            /* 1: a plain record may be a channel the file
                                  identifies as vertical (spectra: not excitation
                                  of an arch) */
+  aq_diskcache *cache;        /* prepared subjects on disk (subject_cache.h),
+                                 or NULL: none */
 } aq_subject_opts;
 
 typedef struct {
@@ -63,6 +71,8 @@ typedef struct {
   const char *stage;    /* "read" or "process": where it failed */
   unsigned char *bytes; /* the first file's bytes (opts.keep_bytes_max), or NULL */
   size_t nbytes;
+  char sha256[AQ_SHA256_HEX]; /* the first file's SHA-256 when the cache key
+                                 hashed it (then no bytes are kept), else "" */
   double read_s, process_s; /* wall time, s */
 } aq_subject;
 

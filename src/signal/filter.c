@@ -49,6 +49,7 @@
 #include <unistd.h>
 
 #include "../io/sha256.h"
+#include "../util/diskcache.h"
 #include "../util/outfile.h"
 #include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
@@ -68,15 +69,7 @@ static char *wisdom_text;  /* the wisdom as loaded or last saved, or NULL */
  * no home for it. */
 static int wisdom_path(char *dir, char *file, size_t n)
 {
-  const char *x = getenv("XDG_CACHE_HOME"), *h = getenv("HOME");
-  int len;
-  if (x && x[0] == '/')
-    len = snprintf(dir, n, "%s/archquake", x);
-  else if (h && h[0] == '/')
-    len = snprintf(dir, n, "%s/.cache/archquake", h);
-  else
-    return 0;
-  if (len < 0 || (size_t)len + 20 >= n)
+  if (!aq_diskcache_default_dir(dir, n) || strlen(dir) + 20 >= n)
     return 0;
   snprintf(file, n, "%s/fftw-wisdom", dir);
   return 1;
@@ -353,4 +346,15 @@ aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
   fftw_execute_dft_c2r(c2r, spec, x);
   aq_signal_ws_free(own);
   return AQ_OK;
+}
+
+void aq_signal_fingerprint(char *buf, size_t n)
+{
+  /* FFTW_ESTIMATE picks codelets by the SIMD sets the CPU (and OS) offer */
+  __builtin_cpu_init();
+  const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
+  snprintf(buf, n, "%s; cpu sse2 %d avx %d avx2 %d fma %d avx512f %d; builtin wisdom %d",
+           fftw_version, !!__builtin_cpu_supports("sse2"), !!__builtin_cpu_supports("avx"),
+           !!__builtin_cpu_supports("avx2"), !!__builtin_cpu_supports("fma"),
+           !!__builtin_cpu_supports("avx512f"), !(e && e[0]));
 }

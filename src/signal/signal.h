@@ -154,4 +154,11 @@ aq_status aq_steps_from_processed(const aq_processed *p, double merge_tol_mps2,
  * docs/processing.md); 0 if none fits size_t. */
 size_t aq_signal_fft_size(size_t n);
 
+/* What the processed samples depend on beyond the record and the options,
+ * into buf[n] (one line, for a cache key: src/job/subject_cache.h): FFTW's
+ * version, the CPU's SIMD sets among which FFTW's plans choose their
+ * codelets (SSE2, AVX, AVX2, FMA, AVX-512), and whether the built-in
+ * wisdom is used. */
+void aq_signal_fingerprint(char *buf, size_t n);
+
 #endif
