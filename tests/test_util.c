@@ -191,16 +191,24 @@ AQ_TEST(util_outfile_renamed_only_when_complete)
                exists(tmp),
            "an existing temporary refused and kept: %s", e.message);
   unlink(tmp);
-  /* a target that cannot be renamed onto (a directory): the temporary goes */
+  /* a target that is a directory: refused before anything is written */
   char sub[800];
   snprintf(sub, sizeof sub, "%s/adir", dir);
   mkdir(sub, 0777);
-  char subf[900];
-  snprintf(subf, sizeof subf, "%s/x", sub);
+  aq_outfile_temp_name(sub, tmp, sizeof tmp);
+  aq_check(aq_outfile_open(&o, sub, &e) == AQ_EIO && strstr(e.message, "got a directory") &&
+               !exists(tmp),
+           "a directory refused, no temporary: %s", e.message);
+  /* a target that became one meanwhile cannot be renamed onto: the
+   * temporary goes */
+  char sub2[800], subf[900];
+  snprintf(sub2, sizeof sub2, "%s/bdir", dir);
+  aq_outfile_temp_name(sub2, tmp, sizeof tmp);
+  aq_check(aq_outfile_open(&o, sub2, &e) == AQ_OK, "opened");
+  mkdir(sub2, 0777);
+  snprintf(subf, sizeof subf, "%s/x", sub2);
   f = fopen(subf, "w");
   fclose(f);
-  aq_outfile_temp_name(sub, tmp, sizeof tmp);
-  aq_check(aq_outfile_open(&o, sub, &e) == AQ_OK, "opened beside a directory");
   aq_check(aq_outfile_commit(&o, &e) == AQ_EIO && strstr(e.message, "rename") && !exists(tmp),
            "a failed rename: reported, no temporary: %s", e.message);
 }

@@ -188,15 +188,8 @@ int aq_cmd_plot(int argc, char **argv)
   aq_error_clear(&err);
   int rc = AQ_EXIT_OK;
   aq_arch *arch = NULL;
-  char tmp[2][1024]; /* a signal while drawing removes the temporaries */
-  int slot[2] = {-1, -1};
-  aq_cleanup_install();
-  aq_plot_temp_name(o.out, tmp[0], sizeof tmp[0]);
-  slot[0] = aq_cleanup_add(tmp[0]);
-  if (o.data) {
-    aq_plot_temp_name(o.data, tmp[1], sizeof tmp[1]);
-    slot[1] = aq_cleanup_add(tmp[1]);
-  }
+  aq_cleanup_install(); /* a signal while drawing removes the temporaries (util/outfile.h) */
+  aq_plot_hold(o.data != NULL); /* the figure renamed once its data are written */
   if (o.arch && o.fig != FIG_CAPACITY && !(o.fig == FIG_ARCH && o.input) &&
       aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
     rc = fail(&err);
@@ -259,8 +252,8 @@ int aq_cmd_plot(int argc, char **argv)
   }
   }
 out:
-  aq_cleanup_remove(slot[0]);
-  aq_cleanup_remove(slot[1]);
+  if (aq_plot_held_finish(rc == AQ_EXIT_OK, &err) != AQ_OK)
+    rc = fail(&err);
   aq_arch_free(arch);
   free(o.ratios);
   return rc;

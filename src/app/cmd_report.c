@@ -9,7 +9,6 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "../page/figure.h"
 #include "../page/page.h"
 #include "app.h"
 #include "../util/cleanup.h"
@@ -61,17 +60,11 @@ int aq_cmd_report(int argc, char **argv)
   }
   aq_page_input in = {argv[optind], (const char *const *)argv + optind + 1,
                       (size_t)(argc - optind - 1), cmd, aq_build_string()};
-  char tmp[2][1100];
-  snprintf(tmp[0], sizeof tmp[0], "%s.tmp.%ld", out, (long)getpid());
-  aq_page_figure_temp(out, tmp[1], sizeof tmp[1]);
-  aq_cleanup_install();
-  int slot[2] = {aq_cleanup_add(tmp[0]), aq_cleanup_add(tmp[1])};
+  aq_cleanup_install(); /* a signal removes the page's temporaries (src/page) */
   aq_error err;
   aq_error_clear(&err);
   aq_page_stats st;
   aq_status rc = aq_page_write(&in, out, &st, &err);
-  aq_cleanup_remove(slot[0]);
-  aq_cleanup_remove(slot[1]);
   free(cmd);
   if (rc != AQ_OK) {
     aq_error_print(&err, stderr);

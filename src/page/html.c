@@ -2,7 +2,6 @@
  * small script inline, the figures inline SVG, nothing fetched.  The
  * script only adds sorting (click a column's head) and a filter by verdict
  * to the verdict tables; every table and figure is there without it. */
-#include <errno.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,6 +13,8 @@
 #include "../arch/arch.h"
 #include "../plot/plot.h"
 #include "../report/h5_capacity.h"
+#include "../util/cleanup.h"
+#include "../util/outfile.h"
 #include "buf.h"
 #include "figure.h"
 #include "page.h"
@@ -816,6 +817,7 @@ aq_status aq_page_write(const aq_page_input *in, const char *target, aq_page_sta
   p.target = target;
   p.err = err;
   aq_page_figure_temp(target, p.tmp, sizeof p.tmp);
+  int fig_slot = aq_cleanup_add(p.tmp); /* a signal while drawing removes it */
   /* every input checked before anything is drawn */
   aq_status st = aq_page_results_read(in->results, &p.r, err);
   for (size_t c = 0; c < in->ncapacity && st == AQ_OK; c++) {
@@ -829,20 +831,11 @@ aq_status aq_page_write(const aq_page_input *in, const char *target, aq_page_sta
   if (st == AQ_OK)
     st = build(&p, stats);
   aq_page_results_free(&p.r);
-  if (st == AQ_OK) {
-    char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", target, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
-    int bad = !f;
-    if (f) {
-      bad |= fwrite(b.s, 1, b.n, f) != b.n;
-      bad |= fclose(f) != 0;
-    }
-    if (bad || rename(tmp, target) != 0) {
-      int e = errno;
-      remove(tmp);
-      st = aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s", strerror(e));
-    }
+  aq_cleanup_remove(fig_slot);
+  aq_outfile o;
+  if (st == AQ_OK && (st = aq_outfile_open(&o, target, err)) == AQ_OK) {
+    fwrite(b.s, 1, b.n, o.f); /* a short write fails the commit (ferror) */
+    st = aq_outfile_commit(&o, err);
   }
   if (stats) {
     stats->bytes = b.n;

@@ -307,10 +307,10 @@ static int draw(void *ctx, aq_error *err)
  * outlines, fills, masses and hinges. */
 static aq_status write_data(const fig *f, const char *data, aq_error *err)
 {
-  char tmp[1024];
+  aq_outfile tmp;
   const aq_geom *g = f->g;
   size_t n = g->p.voussoirs;
-  FILE *o = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+  FILE *o = aq_plot_csv_open(data, &tmp, err);
   if (!o)
     return err->status;
   aq_plot_csv_axes(o, 2, (const char *[]){AX_X, AX_Y});
@@ -353,7 +353,7 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
   }
   for (size_t i = 0; i < f->nthrust; i++)
     fprintf(o, "thrust,%zu,%.17g,%.17g\n", i, f->thrust[i].x, f->thrust[i].y);
-  return aq_plot_csv_close(o, tmp, data, 1, err);
+  return aq_plot_csv_close(&tmp, err);
 }
 
 aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *target,

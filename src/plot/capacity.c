@@ -620,14 +620,14 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
     rc = aq_plot_render(target, 1000, (int)c.page_px, draw, &c, draw_s, err);
   }
   if (rc == AQ_OK && data) {
-    char tmp[1024];
-    FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+    aq_outfile tmp;
+    FILE *f = aq_plot_csv_open(data, &tmp, err);
     if (!f)
       rc = err->status;
     else {
       lines_csv(f, &c);
       frag_csv(f, &c);
-      rc = aq_plot_csv_close(f, tmp, data, 1, err);
+      rc = aq_plot_csv_close(&tmp, err);
     }
   }
   free(c.row);

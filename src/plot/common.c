@@ -1,6 +1,6 @@
 /* common.c: rendering a figure with PLplot without letting it exit, and the
  * CSV of the plotted data; both written to a temporary beside the target
- * and renamed onto it only when complete (see plot.h). */
+ * and renamed onto it only when complete (util/outfile.h, see plot.h). */
 #include <errno.h>
 #include <math.h>
 #include <plplot.h>
@@ -87,11 +87,6 @@ aq_status aq_plot_device(const char *target, const char **device, aq_error *err)
   return aq_error_set(err, AQ_EOPTION, target, -1, -1, "extension",
                       "expected .png, .svg or .pdf, got \"%s\"",
                       dot && (!slash || dot > slash) ? dot : "");
-}
-
-void aq_plot_temp_name(const char *target, char *tmp, size_t cap)
-{
-  snprintf(tmp, cap, "%s.tmp.%ld", target, (long)getpid());
 }
 
 void aq_plot_set_paper(aq_plot_paper p)
@@ -260,6 +255,28 @@ static int svg_tidy(const char *path)
   return bad ? -1 : 0;
 }
 
+/* A figure rendered while held (aq_plot_hold) waits here, complete, for
+ * the rest of the command's outputs. */
+static int hold_figure;
+static aq_outfile held;
+
+void aq_plot_hold(int on)
+{
+  hold_figure = on;
+}
+
+aq_status aq_plot_held_finish(int ok, aq_error *err)
+{
+  hold_figure = 0;
+  if (!held.target)
+    return AQ_OK;
+  if (!ok) {
+    aq_outfile_abort(&held);
+    return AQ_OK;
+  }
+  return aq_outfile_commit(&held, err);
+}
+
 aq_status aq_plot_render(const char *target, int width, int height,
                          aq_plot_draw_fn draw, void *ctx, double *draw_s,
                          aq_error *err)
@@ -268,13 +285,11 @@ aq_status aq_plot_render(const char *target, int width, int height,
   aq_status rc = aq_plot_device(target, &device, err);
   if (rc != AQ_OK)
     return rc;
-  char tmp[1024];
-  aq_plot_temp_name(target, tmp, sizeof tmp);
-  FILE *probe = fopen(tmp, "wb"); /* the target's directory must be writable */
-  if (!probe)
-    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
-                        "cannot write beside the target: %s", strerror(errno));
-  fclose(probe);
+  aq_outfile out; /* the target's directory must be writable */
+  if ((rc = aq_outfile_open(&out, target, err)) != AQ_OK)
+    return rc;
+  fclose(out.f); /* PLplot writes it */
+  out.f = NULL;
 
   volatile int started = 0;
   volatile double t0 = now_s();
@@ -285,7 +300,7 @@ aq_status aq_plot_render(const char *target, int width, int height,
   plsError(&pl_errcode, pl_errmsg);
   if (setjmp(pl_jump) == 0) {
     plsdev(device);
-    plsfnam(tmp);
+    plsfnam(out.tmp);
     page_layout pl = layout(device, width, height);
     figure_w_mm = width * pl.k * 25.4 / 72;
     figure_h_mm = height * pl.k * 25.4 / 72;
@@ -315,13 +330,13 @@ aq_status aq_plot_render(const char *target, int width, int height,
   if (draw_s)
     *draw_s = now_s() - t0;
   if (pl_failed) {
-    remove(tmp);
+    aq_outfile_abort(&out);
     if (pl_failed == 2)
       return err ? err->status : AQ_EIO;
     return aq_error_set(err, AQ_EIO, target, -1, -1, "PLplot", "%s",
                         pl_message[0] ? pl_message : "drawing failed");
   }
-  FILE *f = fopen(tmp, "rb");
+  FILE *f = fopen(out.tmp, "rb");
   long size = -1;
   if (f) {
     if (fseek(f, 0, SEEK_END) == 0)
@@ -329,48 +344,30 @@ aq_status aq_plot_render(const char *target, int width, int height,
     fclose(f);
   }
   if (size <= 0) {
-    remove(tmp);
+    aq_outfile_abort(&out);
     return aq_error_set(err, AQ_EIO, target, -1, -1, "PLplot",
                         "the %s device wrote nothing", device);
   }
-  if (strcmp(device, "svg") == 0 && svg_tidy(tmp) != 0) {
+  if (strcmp(device, "svg") == 0 && svg_tidy(out.tmp) != 0) {
     int e = errno;
-    remove(tmp);
+    aq_outfile_abort(&out);
     return aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s", strerror(e));
   }
-  if (rename(tmp, target) != 0) {
-    int e = errno;
-    remove(tmp);
-    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot rename %s: %s",
-                        tmp, strerror(e));
+  if (hold_figure && !held.target) {
+    held = out; /* renamed by aq_plot_held_finish */
+    return AQ_OK;
   }
-  return AQ_OK;
+  return aq_outfile_commit(&out, err);
 }
 
-FILE *aq_plot_csv_open(const char *target, char *tmp, size_t cap, aq_error *err)
+FILE *aq_plot_csv_open(const char *target, aq_outfile *o, aq_error *err)
 {
-  aq_plot_temp_name(target, tmp, cap);
-  FILE *f = fopen(tmp, "w");
-  if (!f)
-    aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s",
-                 strerror(errno));
-  return f;
+  return aq_outfile_open(o, target, err) == AQ_OK ? o->f : NULL;
 }
 
-aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok,
-                            aq_error *err)
+aq_status aq_plot_csv_close(aq_outfile *o, aq_error *err)
 {
-  int bad = ferror(f);
-  bad |= fclose(f) != 0;
-  if (!ok || bad || rename(tmp, target) != 0) {
-    int e = errno;
-    remove(tmp);
-    if (!ok)
-      return err ? err->status : AQ_EIO;
-    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL, "cannot write: %s",
-                        strerror(e));
-  }
-  return AQ_OK;
+  return aq_outfile_commit(o, err);
 }
 
 void aq_plot_csv_text(FILE *f, const char *s)

@@ -109,8 +109,8 @@ aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ra
     }
   aq_status rc = aq_plot_render(target, 1000, 720, draw, &d, draw_s, err);
   if (rc == AQ_OK && data) {
-    char tmp[1024];
-    FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+    aq_outfile tmp;
+    FILE *f = aq_plot_csv_open(data, &tmp, err);
     if (!f)
       rc = err->status;
     else {
@@ -118,7 +118,7 @@ aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ra
       fprintf(f, "ratio,min_duration_s\n");
       for (size_t i = 0; i < n; i++)
         fprintf(f, "%.17g,%.17g\n", ratio[i], dur_s[i]);
-      rc = aq_plot_csv_close(f, tmp, data, 1, err);
+      rc = aq_plot_csv_close(&tmp, err);
     }
   }
   free(d.order);

@@ -326,8 +326,8 @@ static int draw(void *ctx, aq_error *err)
 /* Long format: series,time_s,value (the series name carries the unit). */
 static aq_status write_data(const hist *h, const char *data, aq_error *err)
 {
-  char tmp[1024];
-  FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+  aq_outfile tmp;
+  FILE *f = aq_plot_csv_open(data, &tmp, err);
   if (!f)
     return err->status;
   const aq_plot_run *r = h->run;
@@ -351,7 +351,7 @@ static aq_status write_data(const hist *h, const char *data, aq_error *err)
     fprintf(f, "impact,%.17g,0\n", h->imp_t_s[i]);
   if (r->collapsed == 1)
     fprintf(f, "collapse,%.17g,1\n", r->collapse_time_s);
-  return aq_plot_csv_close(f, tmp, data, 1, err);
+  return aq_plot_csv_close(&tmp, err);
 }
 
 aq_status aq_plot_history(const aq_plot_run *run, const char *target,

@@ -9,8 +9,9 @@
  *   suite.c     a record x arch map of the verdicts
  *   capacity.c  the collapse intervals and fragility of `archquake capacity`
  *   spectrum.c  the response spectra of `archquake spectrum`
- * common.c renders (driver check, exit/abort handlers, temporary + rename)
- * and writes the plotted data (--data FILE.csv, also temporary + rename);
+ * common.c renders (driver check, exit/abort handlers) and writes the
+ * plotted data (--data FILE.csv), each through a temporary renamed when
+ * complete (util/outfile.h: removed on a signal too);
  * h5_read.c reads a run's histories (the verdicts come from
  * aq_h5_read_suite).
  *
@@ -29,6 +30,7 @@
 #include "../report/h5.h"
 #include "../report/h5_capacity.h"
 #include "../report/h5_spectrum.h"
+#include "../util/outfile.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
 
@@ -96,6 +98,15 @@ aq_status aq_plot_render(const char *target, int width, int height,
                          aq_plot_draw_fn draw, void *ctx, double *draw_s,
                          aq_error *err);
 
+/* Hold the next figure aq_plot_render makes (on = 1): complete under its
+ * temporary, not renamed until aq_plot_held_finish, so that a command
+ * writing a figure and its data (--data) leaves neither when the data
+ * fail.  aq_plot_held_finish renames the held figure onto its target (ok =
+ * 1; AQ_EIO, err, when that fails) or removes it (ok = 0), and stops
+ * holding.  Returns AQ_OK when nothing is held. */
+void aq_plot_hold(int on);
+aq_status aq_plot_held_finish(int ok, aq_error *err);
+
 /* The PDF page: A4 (the default) or Letter, portrait or landscape as the
  * figure is tall or wide, 10 mm margins; the figure scaled to fit, its
  * text with it.  PNG and SVG keep the figure's own size.  Applies to the
@@ -106,16 +117,12 @@ void aq_plot_set_paper(aq_plot_paper p);
  * 215.9 x 279.4 mm, else A4. */
 aq_plot_paper aq_plot_paper_of_size(double width_mm, double height_mm);
 
-/* The temporary a figure or its data is written to before the rename
- * ("<target>.tmp.<pid>"), into tmp[cap]: a signal handler can remove it. */
-void aq_plot_temp_name(const char *target, char *tmp, size_t cap);
-
-/* CSV of the plotted data: open a temporary beside target (tmp[cap]
- * receives its name), then close, check and rename it (or remove it on
- * failure: ok = 0).  Columns carry their units (`time_s`, `accel_g`). */
-FILE *aq_plot_csv_open(const char *target, char *tmp, size_t cap, aq_error *err);
-aq_status aq_plot_csv_close(FILE *f, const char *tmp, const char *target, int ok,
-                            aq_error *err);
+/* CSV of the plotted data: open its temporary beside target (util/outfile.h,
+ * *o; the stream returned, or NULL with err filled), then close, check and
+ * rename it onto target (aq_plot_csv_close), or aq_outfile_abort(o).
+ * Columns carry their units (`time_s`, `accel_g`). */
+FILE *aq_plot_csv_open(const char *target, aq_outfile *o, aq_error *err);
+aq_status aq_plot_csv_close(aq_outfile *o, aq_error *err);
 
 /* A text field of a --data CSV and its comma, quoted (RFC 4180: inner
  * quotes doubled) when it holds a comma, a quote or a line break. */

@@ -214,8 +214,8 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
   F.nc = ncurve;
   rc = aq_plot_render(target, WIDTH_PX, fig_height(F.nc), draw, &F, draw_s, err);
   if (rc == AQ_OK && data) {
-    char tmp[1024];
-    FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+    aq_outfile tmp;
+    FILE *f = aq_plot_csv_open(data, &tmp, err);
     if (!f)
       rc = err->status;
     else {
@@ -227,7 +227,7 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
           aq_plot_csv_text(f, t->component[i]);
           fprintf(f, "%.17g,%.17g,%.17g\n", t->damping[i], t->period_s[i], t->psa_g[i]);
         }
-      rc = aq_plot_csv_close(f, tmp, data, 1, err);
+      rc = aq_plot_csv_close(&tmp, err);
     }
   }
   free(F.c);

@@ -179,8 +179,8 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
   int h = 230 + 48 * (int)m.nrec, w = 1000;
   rc = aq_plot_render(target, w, h < 560 ? 560 : h, draw, &m, draw_s, err);
   if (rc == AQ_OK && data) {
-    char tmp[1024];
-    FILE *f = aq_plot_csv_open(data, tmp, sizeof tmp, err);
+    aq_outfile tmp;
+    FILE *f = aq_plot_csv_open(data, &tmp, err);
     if (!f) {
       rc = err->status;
       goto out;
@@ -194,7 +194,7 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
         aq_plot_csv_text(f, m.arch[j]);
         fprintf(f, "%d,%.17g\n", m.coll[i * m.narch + j], m.v[i * m.narch + j]);
       }
-    rc = aq_plot_csv_close(f, tmp, data, 1, err);
+    rc = aq_plot_csv_close(&tmp, err);
   }
 out:
   free(m.rec);

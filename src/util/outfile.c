@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cleanup.h"
@@ -47,6 +48,13 @@ aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err)
 
 aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err)
 {
+  struct stat sb; /* a directory would fail only at the rename, after the work */
+  if (stat(target, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    memset(o, 0, sizeof *o);
+    o->slot = -1;
+    return aq_error_set(err, AQ_EIO, target, -1, -1, NULL,
+                        "expected a file name, got a directory");
+  }
   aq_status s = aq_outfile_reserve(o, target, err);
   if (s != AQ_OK)
     return s;
@@ -60,10 +68,16 @@ aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err)
 
 aq_status aq_outfile_commit(aq_outfile *o, aq_error *err)
 {
+  if (!o->target) /* zeroed, or released already: nothing to rename */
+    return aq_error_set(err, AQ_EINTERNAL, "", -1, -1, NULL, "expected an open output, got none");
   aq_status s = AQ_OK;
-  if (o->f && fclose(o->f) != 0)
-    s = aq_error_set(err, AQ_EIO, o->target, -1, -1, NULL, "cannot write the output: %s",
-                     strerror(errno));
+  if (o->f) {
+    int bad = ferror(o->f); /* a write that failed before the close */
+    bad |= fclose(o->f) != 0;
+    if (bad)
+      s = aq_error_set(err, AQ_EIO, o->target, -1, -1, NULL, "cannot write the output: %s",
+                       strerror(errno));
+  }
   o->f = NULL;
   if (s == AQ_OK && rename(o->tmp, o->target) != 0)
     s = aq_error_set(err, AQ_EIO, o->target, -1, -1, NULL, "cannot rename %s onto it: %s",

@@ -34,11 +34,13 @@ void aq_outfile_temp_name(const char *target, char *buf, size_t n);
 aq_status aq_outfile_reserve(aq_outfile *o, const char *target, aq_error *err);
 
 /* As aq_outfile_reserve, then create the temporary for writing (o->f).
- * AQ_EIO (err: the target, the temporary and the reason) when it cannot
- * be created; nothing is left registered then. */
+ * AQ_EIO (err: the target, the temporary and the reason) when target is a
+ * directory or the temporary cannot be created; nothing is left registered
+ * then. */
 aq_status aq_outfile_open(aq_outfile *o, const char *target, aq_error *err);
 
-/* Close o->f (if open; a failed close is a failed write) and rename the
+/* Close o->f (if open; a failed close, or a write error the stream holds,
+ * is a failed write) and rename the
  * temporary onto the target.  On failure the temporary is removed and err
  * says why.  Either way o is released. */
 aq_status aq_outfile_commit(aq_outfile *o, aq_error *err);
