@@ -140,6 +140,8 @@ build/mut/archquake: build/mut/src/main.o $(filter build/mut/src/%,$(MUT_OBJ))
 	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 
 mutate: build/mut/runner build/mut/archquake
+	rm -rf build/tmp/cache-mut
+	XDG_CACHE_HOME=$(CURDIR)/build/tmp/cache-mut \
 	AQ_CFLAGS='$(AQ_CFLAGS)' AQ_LIBS='$(AQ_LIBS)' CC='$(CC)' LDFLAGS='$(LDFLAGS)' \
 	  python3 tests/mutate.py $(MUTANTS)
 
