@@ -67,7 +67,7 @@ static int load(const pair *p, aq_subject *subj, aq_view *view, aq_arch **arch)
   aq_signal_opts_default(&so);
   aq_signal_ws *ws = aq_signal_ws_alloc();
   aq_subject_src src = {{p->record, NULL, NULL}, {NAN, NAN}, p->record};
-  aq_subject_opts o = {&ro, &so, 0, 0, 0};
+  aq_subject_opts o = {.read = &ro, .proc = &so}; /* the rest 0 or NULL: no cache */
   int ok = ws && aq_subject_prepare(subj, &src, &o, ws, &e) == AQ_OK &&
            aq_view_make(view, subj, 0, &e) == AQ_OK &&
            aq_arch_load(p->arch, arch, &e) == AQ_OK;
