@@ -1,8 +1,11 @@
 /* arch_lambda0.h: lambda0 of a hinge set by the 9x9 equilibrium (eq. (3)),
  * a second way to get it besides the search's virtual work: the tests'
- * brute-force references. */
+ * brute-force references; and the search's minimum lambda0 of an arch
+ * built from parameters, for the tests' bisections on the thickness. */
 #ifndef AQ_TESTS_ARCH_LAMBDA0_H
 #define AQ_TESTS_ARCH_LAMBDA0_H
+
+#include <math.h>
 
 #include "arch/model.h"
 
@@ -36,6 +39,41 @@ static inline int aq_test_lambda0_eq(const aq_geom *g, const aq_hinge_set *hs, d
       return 0;
   *l0 = eq.lambda;
   return 1;
+}
+
+/* The search's minimum lambda0 of the arch p describes (standard gravity),
+ * or NAN if its geometry or the search fails. */
+static inline double aq_test_min_lambda0(const aq_arch_params *p)
+{
+  aq_geom g;
+  aq_error e;
+  aq_hinge_set hs;
+  double l0 = NAN;
+  if (aq_geom_init(&g, p, &e) != AQ_OK)
+    return NAN;
+  aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, NULL, &e);
+  aq_geom_free(&g);
+  return st == AQ_OK ? l0 : NAN;
+}
+
+/* The thickness t in [lo, hi] at which the minimum lambda0 of the arch
+ * make(t, ctx) crosses 0 (lambda0 grows with t), by iters bisections; NAN
+ * if an arch fails. */
+static inline double aq_test_critical_thickness(aq_arch_params (*make)(double t, const void *ctx),
+                                                const void *ctx, double lo, double hi, int iters)
+{
+  for (int it = 0; it < iters; it++) {
+    double mid = 0.5 * (lo + hi);
+    aq_arch_params p = make(mid, ctx);
+    double l0 = aq_test_min_lambda0(&p);
+    if (isnan(l0))
+      return NAN;
+    if (l0 > 0)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 #endif

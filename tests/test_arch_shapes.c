@@ -1120,28 +1120,24 @@ AQ_TEST(arch_shapes_bad_input)
 
 /* ---- minimum thickness ---------------------------------------------------- */
 
+typedef struct {
+  aq_shape s;
+  double rise_over_span;
+  size_t n;
+} curve_case;
+
+static aq_arch_params curve_of_thickness(double t, const void *ctx)
+{
+  const curve_case *c = ctx;
+  return curve_params(c->s, 1.0, c->rise_over_span, t, c->n, 2000, 1);
+}
+
 /* The thickness (relative to the span) at which the arch's minimum lambda0
  * crosses 0 (bisection to 1e-7; lambda0 grows with t). */
 static double critical_t(aq_shape s, double rise_over_span, size_t n, double lo, double hi)
 {
-  for (int it = 0; it < 21; it++) {
-    double mid = 0.5 * (lo + hi), l0 = -1;
-    aq_arch_params p = curve_params(s, 1.0, rise_over_span, mid, n, 2000, 1);
-    aq_geom g;
-    aq_error e;
-    aq_hinge_set hs;
-    if (aq_geom_init(&g, &p, &e) != AQ_OK)
-      return NAN;
-    aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, NULL, &e);
-    aq_geom_free(&g);
-    if (st != AQ_OK)
-      return NAN;
-    if (l0 > 0)
-      hi = mid;
-    else
-      lo = mid;
-  }
-  return 0.5 * (lo + hi);
+  curve_case c = {s, rise_over_span, n};
+  return aq_test_critical_thickness(curve_of_thickness, &c, lo, hi, 21);
 }
 
 /* A semicircle drawn as a pointed arch of rise span/2 and as an ellipse of

@@ -209,29 +209,17 @@ AQ_TEST(arch_standing_search_equals_brute_force)
            positive);
 }
 
+static aq_arch_params semicircle_of_thickness(double t, const void *ctx)
+{
+  return aq_arch_circular(1.0, t, AQ_PI, *(const size_t *)ctx, 2000, 1);
+}
+
 /* Critical t/R of a semicircle of n voussoirs: where the minimum lambda0
- * crosses 0 (bisection; lambda0 grows with t). */
+ * crosses 0 (bisection to 3e-7 in [0.09, 0.11], which brackets 0.1075 and
+ * the finite-n values; lambda0 grows with t). */
 static double critical_t_over_r(size_t n)
 {
-  double lo = 0.09, hi = 0.11; /* brackets 0.1075 and the finite-n values */
-  for (int it = 0; it < 16; it++) { /* 3e-7 */
-    double mid = 0.5 * (lo + hi), l0 = 0;
-    aq_arch_params pp = aq_arch_circular(1.0, mid, AQ_PI, n, 2000, 1);
-    aq_geom g;
-    aq_error e;
-    aq_hinge_set hs;
-    if (aq_geom_init(&g, &pp, &e) != AQ_OK)
-      return NAN;
-    aq_status st = aq_search_minimum(&g, 9.80665, &hs, &l0, NULL, &e);
-    aq_geom_free(&g);
-    if (st != AQ_OK)
-      return NAN;
-    if (l0 > 0)
-      hi = mid;
-    else
-      lo = mid;
-  }
-  return 0.5 * (lo + hi);
+  return aq_test_critical_thickness(semicircle_of_thickness, &n, 0.09, 0.11, 16);
 }
 
 AQ_TEST(arch_standing_minimum_thickness_of_a_semicircle)

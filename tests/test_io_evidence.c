@@ -217,16 +217,36 @@ AQ_TEST(io_evidence_responses_by_identity)
                  strstr(out, "BK.CMB.00.HNE__"),
              "order %d: exit %d: %s%s", i, rc, out, err);
   }
+  /* one file given twice (by --response and among the records, and by
+   * another name of it) is one response */
+  int rc = aq_test_run("info --response " REC_DIR "CI.CLC.xml --response ./" REC_DIR
+                       "CI.CLC.xml " REC_DIR "CI.CLC..HNE.mseed " REC_DIR "CI.CLC.xml",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && aq_test_count_lines(out) == 2 && strstr(out, "CI.CLC..HNE.mseed\t"),
+           "the same file twice: exit %d: %s%s", rc, out, err);
   /* none matches: every file searched named */
-  int rc = aq_test_run("info --response " REC_DIR "BK.CMB.xml --response " EV_DIR
+  rc = aq_test_run("info --response " REC_DIR "BK.CMB.xml --response " EV_DIR
                        "BK.KCC.xml " REC_DIR "CI.CLC..HNE.mseed",
                        out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(err, "CI.CLC..HNE") && strstr(err, "got none") &&
                strstr(err, "BK.CMB.xml") && strstr(err, "BK.KCC.xml") &&
                aq_test_count_lines(err) == 1,
            "none: exit %d: %s", rc, err);
-  /* two match: both named */
+  /* none among twelve whose names do not all fit the line: the rest counted */
   aq_test_tmpdir(d, sizeof d);
+  size_t len = (size_t)snprintf(cmd, sizeof cmd, "info");
+  for (int i = 1; i <= 12; i++) {
+    char nm[64];
+    snprintf(nm, sizeof nm, "station-metadata-download-%02d.xml", i);
+    if (aq_test_edited_copy(REC_DIR "BK.CMB.xml", NULL, NULL, d, nm, x, sizeof x))
+      len += (size_t)snprintf(cmd + len, sizeof cmd - len, " %s", x);
+  }
+  snprintf(cmd + len, sizeof cmd - len, " " REC_DIR "CI.CLC..HNE.mseed");
+  rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+  aq_check(rc == 1 && strstr(err, "got none") && strstr(err, "download-01.xml, ") &&
+               strstr(err, " more (12 StationXML files)") && aq_test_count_lines(err) == 1,
+           "twelve: exit %d: %s", rc, err);
+  /* two match: both named */
   if (aq_test_edited_copy(REC_DIR "CI.CLC.xml", NULL, NULL, d, "copy.xml", x, sizeof x)) {
     snprintf(cmd, sizeof cmd, "info " REC_DIR "CI.CLC.xml %s " REC_DIR "CI.CLC..HNE.mseed", x);
     rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);

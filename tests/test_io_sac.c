@@ -343,6 +343,45 @@ AQ_TEST(io_sac_mseed2sac_counts_need_scale)
   }
 }
 
+/* A negative sensitivity is the channel's polarity: Debian's mseed2sac
+ * writes SCALE -214371.7 (float32) for BK.KCC HNZ given its StationXML's
+ * InstrumentSensitivity -214371.7163008 (tests/data/records/evidence/
+ * PROVENANCE.md: demeaned peak +4.393e-4 m/s2, up, = 4.479e-5 g).  It was
+ * refused as "found none". */
+AQ_TEST(io_sac_negative_scale_is_polarity)
+{
+  char d[512], sac[700], msg[1400];
+  aq_test_tmpdir(d, sizeof d);
+  if (!aq_check(run_mseed2sac(d,
+                              "-f 3 -M 'BK,KCC,00,HNZ,37.32363,-119.3187,888.1,87.3,0,0,,"
+                              "-214371.7163008,1.0,M/S**2,100'",
+                              "evidence/BK.KCC.00.HNZ.mseed",
+                              "BK.KCC.00.HNZ.Q.2019.185.173655.SAC", sac, sizeof sac),
+                "mseed2sac ran"))
+    return;
+  aq_read_opts ro = {0};
+  ro.units = AQ_UNITS_COUNTS; /* mseed2sac leaves IDEP undefined */
+  aq_record r;
+  if (!aq_check(read_rec(sac, &ro, &r, msg, sizeof msg), "%s", msg))
+    return;
+  aq_check(r.npts == 33000 && r.dt_s == 0.01, "npts %zu dt %g", r.npts, r.dt_s);
+  /* SCALE as float32 */
+  aq_check_rel(r.to_mps2, 1.0 / (double)(float)-214371.7163008, 1e-15, "1 / SCALE");
+  double mean = 0, peak = 0;
+  for (size_t k = 0; k < r.npts; k++)
+    mean += r.acc_mps2[k];
+  mean /= (double)r.npts;
+  for (size_t k = 0; k < r.npts; k++)
+    if (fabs(r.acc_mps2[k] - mean) > fabs(peak))
+      peak = r.acc_mps2[k] - mean;
+  aq_check_rel(peak, 4.393e-4, 1e-3, "demeaned peak +4.393e-4 m/s2 (up), got %g", peak);
+  aq_check_rel(fabs(peak) / 9.80665, 4.479e-5, 5e-4, "PGA 4.479e-5 g");
+  aq_check(strstr(r.polarity_note, "reversed") && strstr(r.polarity_note, "-214371.7") &&
+               strstr(r.polarity_note, "header SCALE"),
+           "polarity recorded: %s", r.polarity_note);
+  aq_record_free(&r);
+}
+
 /* Header version 7: a copy of ObsPy's test.sac with NVHDR = 7 and the
  * 22-word float64 footer (DELTA, B, E, O, A, ...) appended. */
 AQ_TEST(io_sac_version7_footer)

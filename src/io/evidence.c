@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "fixed.h"
 
@@ -106,22 +107,29 @@ static aq_status match_response(xml_file *xs, size_t nx, aq_raw_channel *ch, con
   }
   if (nhit == 1)
     return aq_response_apply(hit, xs[first].name, ch, err);
-  char list[300] = "";
+  char list[300] = "", more[80] = "";
   size_t len = 0, shown = 0;
   if (nhit > 1)
     snprintf(list, sizeof list, "%s and %s", xs[first].name, xs[second].name);
-  else
-    for (size_t j = 0; j < nx && len + 60 < sizeof list; j++, shown++)
+  else /* whole names while they fit (the first in any case), then a count */
+    for (size_t j = 0; j < nx; j++, shown++) {
+      size_t m = strlen(xs[j].name) + (j ? 2 : 0);
+      if (j && len + m >= sizeof list)
+        break;
       len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", j ? ", " : "", xs[j].name);
+      if (len >= sizeof list)
+        len = sizeof list - 1;
+    }
   if (nhit > 1)
     return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
                         "expected one response for %s at its start %s, got %zu that match: %s",
                         id, ch->reference, nhit, list);
+  if (shown < nx)
+    snprintf(more, sizeof more, " and %zu more (%zu StationXML files)", nx - shown, nx);
   return aq_error_set(err, AQ_EUNITS, name, -1, -1, field,
                       "expected a response for %s at its start %s, got none%s%s%s in %s%s",
                       id, ch->reference, nsame ? " (its epochs: " : "", nsame ? spans : "",
-                      nsame ? ")" : "", list,
-                      shown < nx ? " and more" : "");
+                      nsame ? ")" : "", list, more);
 }
 
 aq_status aq_evidence_responses(const char *const *xml, size_t nx, const char *name,
@@ -129,13 +137,28 @@ aq_status aq_evidence_responses(const char *const *xml, size_t nx, const char *n
 {
   aq_status s = AQ_OK;
   xml_file *xs = calloc(nx ? nx : 1, sizeof *xs);
-  if (!xs)
+  struct stat *st = calloc(nx ? nx : 1, sizeof *st);
+  if (!xs || !st)
     s = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
-  for (size_t j = 0; xs && j < nx; j++)
-    xs[j].name = xml[j];
+  /* one file given twice (--response X and X among the records, or two
+   * names of it) is searched once: it is one response, not two */
+  size_t nk = 0;
+  for (size_t j = 0; s == AQ_OK && j < nx; j++) {
+    int found = stat(xml[j], &st[nk]) == 0, dup = 0;
+    for (size_t k = 0; k < nk && !dup; k++)
+      dup = strcmp(xs[k].name, xml[j]) == 0 ||
+            (found && st[k].st_dev == st[nk].st_dev &&
+             st[k].st_ino == st[nk].st_ino && st[k].st_ino != 0);
+    if (!dup) {
+      if (!found)
+        memset(&st[nk], 0, sizeof st[nk]);
+      xs[nk++].name = xml[j];
+    }
+  }
+  free(st);
   for (size_t i = 0; s == AQ_OK && i < raw->nchan; i++)
-    s = match_response(xs, nx, &raw->chan[i], name, err);
-  for (size_t j = 0; xs && j < nx; j++) {
+    s = match_response(xs, nk, &raw->chan[i], name, err);
+  for (size_t j = 0; xs && j < nk; j++) {
     free(xs[j].bytes);
     aq_response_free(&xs[j].resp);
   }

@@ -254,7 +254,9 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
   hstr(&h, K_EVNM, 16, raw->event, sizeof raw->event);
 
   /* Units: IDEP = IACC states nm/s^2; SCALE is the sensitivity that
-   * mseed2sac -M writes (counts per m/s^2), used when the values are counts. */
+   * mseed2sac -M writes (counts per m/s^2), used when the values are counts;
+   * its sign is kept (a negative sensitivity: the channel's polarity,
+   * which record.c applies and reports). */
   int32_t idep = hi(&h, W_IDEP);
   if (idep == SAC_IACC)
     snprintf(ch->units, sizeof ch->units, "nm/s2");
@@ -269,7 +271,7 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
     snprintf(ch->units_from, sizeof ch->units_from, "header IDEP: %s", idep_name(idep));
   }
   double scale = hf(&h, W_SCALE);
-  if (isfinite(scale) && scale > 0 && scale != SAC_UNDEF) {
+  if (isfinite(scale) && scale != 0 && scale != SAC_UNDEF) {
     ch->counts_per_mps2 = scale;
     if (!ch->units_from[0])
       snprintf(ch->units_from, sizeof ch->units_from, "header SCALE");
