@@ -22,7 +22,11 @@
  *    (user + system of the child processes), the ratio ode / default, and
  *    how far the two agree (rows with the same status, first collapse
  *    scales equal as printed or within 1e-5 relative, the largest relative
- *    difference, runs of each).  `bench_capacity models` runs it alone. */
+ *    difference, runs of each).  `bench_capacity models` runs it alone.
+ * 4. `bench_capacity ab BIN_A BIN_B [N]` (alone, not in make bench): the
+ *    suite of 3 under the default model with two programs, e.g. main's and
+ *    a branch's, N times each (default 3) in turn: CPU medians, their ratio,
+ *    and whether the tables are byte-identical. */
 #define _POSIX_C_SOURCE 200809L
 #define _DEFAULT_SOURCE /* getloadavg */
 #include <sys/resource.h>
@@ -63,7 +67,7 @@ static int load(const pair *p, aq_subject *subj, aq_view *view, aq_arch **arch)
   aq_signal_opts_default(&so);
   aq_signal_ws *ws = aq_signal_ws_alloc();
   aq_subject_src src = {{p->record, NULL, NULL}, {NAN, NAN}, p->record};
-  aq_subject_opts o = {&ro, &so, 0, 0, 0};
+  aq_subject_opts o = {.read = &ro, .proc = &so}; /* the rest 0 or NULL: no cache */
   int ok = ws && aq_subject_prepare(subj, &src, &o, ws, &e) == AQ_OK &&
            aq_view_make(view, subj, 0, &e) == AQ_OK &&
            aq_arch_load(p->arch, arch, &e) == AQ_OK;
@@ -331,11 +335,58 @@ static int models(void)
   return 0;
 }
 
+/* Two programs (before and after a change), the default model: the suite
+ * of section 3 run by each in turn, reps times, alternating; CPU medians,
+ * their ratio, and whether the tables are byte-identical. */
+static int ab(const char *bin[2], int reps)
+{
+  enum { MAXREP = 15 };
+  double cpu[2][MAXREP], wall[2][MAXREP];
+  int same = 1;
+  if (reps < 1 || reps > MAXREP)
+    reps = 3;
+  for (int r = 0; r < reps; r++) {
+    for (int k = 0; k < 2; k++) {
+      char cmd[2048];
+      snprintf(cmd, sizeof cmd,
+               "%s capacity tests/data/records/*.AT2 --arch arches/oppenheim.cfg "
+               "--arch arches/thin.cfg --arch arches/thick.cfg --arch arches/segmental.cfg "
+               "--arch arches/search.cfg -j 2 --text build/bench/capacity_ab%d.tsv 2>/dev/null",
+               bin[k], k);
+      double c0 = children_cpu_s(), t0 = aq_bench_now_s();
+      int rc = system(cmd);
+      wall[k][r] = aq_bench_now_s() - t0;
+      cpu[k][r] = children_cpu_s() - c0;
+      if (rc != 0)
+        fprintf(stderr, "bench_capacity: %s exited with %d\n", bin[k], rc);
+    }
+    same = same && system("cmp -s build/bench/capacity_ab0.tsv build/bench/capacity_ab1.tsv") == 0;
+  }
+  double l[3] = {NAN, NAN, NAN};
+  if (getloadavg(l, 3) != 3)
+    l[0] = NAN;
+  printf("\nBefore / after: the suite of the models section, default model, -j 2, %d runs "
+         "of each program in turn (load %.2f):\n", reps, l[0]);
+  double mc[2];
+  for (int k = 0; k < 2; k++) {
+    mc[k] = aq_bench_median(cpu[k], (size_t)reps);
+    printf("  %-40s cpu median %7.2f s  wall median %7.2f s\n", bin[k], mc[k],
+           aq_bench_median(wall[k], (size_t)reps));
+  }
+  printf("  first / second: cpu %.3fx; tables byte-identical in every run: %s\n",
+         mc[0] / mc[1], same ? "yes" : "NO");
+  return 0;
+}
+
 int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
   if (argc == 2 && strcmp(argv[1], "models") == 0) /* section 3 alone */
     return models() == 0 ? 0 : 1;
+  if ((argc == 4 || argc == 5) && strcmp(argv[1], "ab") == 0) {
+    const char *bin[2] = {argv[2], argv[3]};
+    return ab(bin, argc == 5 ? atoi(argv[4]) : 3) == 0 ? 0 : 1;
+  }
   if (per_pair() != 0)
     return 1;
   if (suite() != 0)

@@ -18,6 +18,7 @@
 #include "../arch/stepper.h"
 #include "../capacity/capacity.h"
 #include "../io/record.h"
+#include "../job/names.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text_capacity.h"
@@ -265,10 +266,30 @@ int aq_cmd_capacity(int argc, char **argv)
       nerr += aq_opt_output_is_input(i == 0 ? "-o" : i == 1 ? "--text" : "--fragility",
                                      outs[i], argv + optind, (size_t)(argc - optind),
                                      arch_paths, na);
+  /* the RECORDs as the main job names them (job/names.h): every channel of
+   * a multi-channel file a record of its own, its vertical left out with a
+   * note unless named */
+  char **names = NULL, **notes = NULL;
+  size_t nplain = 0, nnotes = 0;
+  int bad_out = nerr ? 0
+                     : aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
+                           aq_opt_output_special("--fragility", frag);
+  if (!nerr && !bad_out && optind < argc) {
+    if (aq_job_names(argv + optind, (size_t)(argc - optind), &ro, threads, &names, &nplain,
+                     &notes, &nnotes, &se) != AQ_OK) {
+      aq_error_print(&se, stderr);
+      aq_opt_orient_free(&orient);
+      free(arch_paths);
+      return AQ_EXIT_FAIL;
+    }
+    for (size_t i = 0; !aq_farm_is_follower() && i < nnotes; i++)
+      fprintf(stderr, "archquake: %s\n", notes[i]); /* a vertical left out (io/record.h) */
+    aq_record_names_free(notes, nnotes);
+  }
   char **recs = NULL;
   const char *(*paths)[3] = NULL;
   double(*phi)[2] = NULL;
-  size_t nplain = (size_t)(argc - optind), nrec = nplain + orient.nmotions;
+  size_t nrec = nplain + orient.nmotions;
   if (!nerr) { /* subjects: each RECORD, then each motion */
     recs = calloc(nrec ? nrec : 1, sizeof *recs);
     paths = calloc(nrec ? nrec : 1, sizeof *paths);
@@ -279,7 +300,7 @@ int aq_cmd_capacity(int argc, char **argv)
     }
     for (size_t i = 0; !nerr && i < nrec; i++) {
       const aq_orient_motion *m = i < nplain ? NULL : &orient.motions[i - nplain];
-      recs[i] = m ? m->label : argv[optind + (int)i];
+      recs[i] = m ? m->label : names[i];
       paths[i][0] = m ? m->path[0] : recs[i];
       paths[i][1] = m ? m->path[1] : NULL;
       paths[i][2] = m ? m->path[2] : NULL;
@@ -287,12 +308,12 @@ int aq_cmd_capacity(int argc, char **argv)
       phi[i][1] = m ? m->azimuth_deg[1] : NAN;
     }
   }
-  if (nerr || aq_opt_output_special("-o", h5) + aq_opt_output_special("--text", text) +
-                  aq_opt_output_special("--fragility", frag)) {
+  if (nerr || bad_out) {
     free(arch_paths);
     free(recs);
     free(paths);
     free(phi);
+    aq_record_names_free(names, nplain);
     aq_opt_orient_free(&orient);
     return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
@@ -306,7 +327,7 @@ int aq_cmd_capacity(int argc, char **argv)
     pols[npol++] = AQ_POLARITY_NORMAL;
   if (pol != AQ_POLARITY_NORMAL)
     pols[npol++] = AQ_POLARITY_REVERSED;
-  aq_cap_item *R = calloc(nrec, sizeof *R);
+  aq_cap_item *R = calloc(nrec ? nrec : 1, sizeof *R);
   size_t nrow = nrec * na * npol, njob = nrow * nz;
   aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
   int nim = AQ_FRAGILITY_NIM + (int)aq_im_spectral_count(&po);
@@ -400,6 +421,7 @@ done:
   free(recs);
   free(paths);
   free(phi);
+  aq_record_names_free(names, nplain);
   aq_opt_orient_free(&orient);
   return rc;
 }

@@ -117,15 +117,21 @@ static double piece_val(const aq_path_piece *pc, const double *c, int n, double 
 #define PIECE_X(pc, s) piece_val((pc), (pc)->x, (pc)->deg + 1, (s))
 #define PIECE_Y(pc, s) piece_val((pc), (pc)->y, (pc)->deg + 1, (s))
 
+/* The degree of an arch's pieces (workpath.c): the per-step polynomial
+ * work is compiled for it with constant loop bounds (unrolled); any other
+ * degree takes the same code with the bound read from the piece. */
+enum { TL_DEG_ARCH = 14 };
+
 /* M, x and y at s in one pass (three independent Horner chains, each
- * rounded as piece_val rounds it). */
-static void piece_mxy(const aq_path_piece *pc, double s, double *mv, double *xv,
-                      double *yv)
+ * rounded as piece_val rounds it); n = pc->deg. */
+static inline __attribute__((always_inline)) void
+piece_mxy_n(const aq_path_piece *pc, const int n, double s, double *mv,
+            double *xv, double *yv)
 {
-  const int n = pc->deg;
   double t = (s - pc->s_ref) * pc->iscale;
   double rm = pc->m[n], rx = pc->x[n + 1] * t + pc->x[n],
          ry = pc->y[n + 1] * t + pc->y[n];
+#pragma GCC unroll 20
   for (int k = n - 1; k >= 0; k--) {
     rm = rm * t + pc->m[k];
     rx = rx * t + pc->x[k];
@@ -134,6 +140,15 @@ static void piece_mxy(const aq_path_piece *pc, double s, double *mv, double *xv,
   *mv = rm;
   *xv = rx;
   *yv = ry;
+}
+
+static void piece_mxy(const aq_path_piece *pc, double s, double *mv, double *xv,
+                      double *yv)
+{
+  if (pc->deg == TL_DEG_ARCH)
+    piece_mxy_n(pc, TL_DEG_ARCH, s, mv, xv, yv);
+  else
+    piece_mxy_n(pc, pc->deg, s, mv, xv, yv);
 }
 
 /* 1 / k for the integral of P (no division in the loop). */
@@ -253,11 +268,13 @@ static void tl_fact_make(const aq_path_piece *pc, tl_fact *pf)
 }
 
 /* sum_i w_{j+i} q_i, i = 0..d-j (tl_shift_j for one polynomial). */
-static double tl_shift1(const double *w, const double *q, int d, int j)
+static inline __attribute__((always_inline)) double
+tl_shift1(const double *w, const double *q, int d, int j)
 {
   double s0 = 0, s1 = 0;
   const double *a = w + j;
   int n = d - j, i = 0;
+#pragma GCC unroll 20
   for (; i < n; i += 2) {
     s0 += a[i] * q[i];
     s1 += a[i + 1] * q[i + 1];
@@ -303,12 +320,13 @@ tl_comp(const int k, double U[][TL_MAX_ORDER + 1], const double *c,
  * for a wanted step *h; *h is shortened when TL_MAX_ORDER cannot reach the
  * tolerance there.  e0: with the acceleration's pieces (pc->has_g), the
  * energy C of path.h, KE(s0) + m_T (a xr(s0) + g yr(s0)) (J). */
-static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
-                     double g, double a, double s0, double v0, double e0,
-                     double tol, double *h, tl_series *ts)
+static inline __attribute__((always_inline)) void
+tl_build_d(const aq_path_piece *pc, const int d, const tl_fact *pf, double mt,
+           double g, double a, double s0, double v0, double e0, double tol,
+           double *h, tl_series *ts)
 {
   enum { N = TL_MAX_ORDER, D = AQ_PIECE_MAX_DEG };
-  const int d = pc->deg, has_g = pc->has_g;
+  const int has_g = pc->has_g;
   /* The piece's polynomials shifted to s0, in powers of u = s - s0 (Taylor
    * coefficients at t0 of the piece's polynomials in t, t0 in [0, 1]):
    *   [u^j] = iscale^j / j! sum_i (c_{j+i} (j+i)!) (t0^i / i!)
@@ -362,7 +380,7 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
     if (has_g) {
       if (k > 0)
         sj *= pc->iscale * TL_INV[k];
-      G[k] = k <= d ? sj * tl_shift1(wp, q, d, k) : 0;
+      /* G[k] in the switch below, with k a constant */
     } else {
       /* P's u^k (into K_{k+1}) and M's u^(k+1) */
       if (jm <= k + 1) {
@@ -388,6 +406,8 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
     switch (k) { /* tl_comp with k a constant: straight-line code */
 #define TL_COMP_CASE(K)                                                        \
   case K:                                                                      \
+    if (has_g)                                                                 \
+      G[K] = K <= d ? sj * tl_shift1(wp, q, d, K) : 0;                         \
     comp = tl_comp(K, U, c, G);                                                \
     break;
       TL_COMP_CASE(0) TL_COMP_CASE(1) TL_COMP_CASE(2) TL_COMP_CASE(3)
@@ -397,6 +417,8 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
       TL_COMP_CASE(16) TL_COMP_CASE(17)
 #undef TL_COMP_CASE
     default:
+      if (has_g)
+        G[k] = k <= d ? sj * tl_shift1(wp, q, d, k) : 0;
       comp = tl_comp(k, U, c, G);
       break;
     }
@@ -420,6 +442,16 @@ static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
       *h = hn;
   }
   ts->n = n;
+}
+
+static void tl_build(const aq_path_piece *pc, const tl_fact *pf, double mt,
+                     double g, double a, double s0, double v0, double e0,
+                     double tol, double *h, tl_series *ts)
+{
+  if (pc->deg == TL_DEG_ARCH)
+    tl_build_d(pc, TL_DEG_ARCH, pf, mt, g, a, s0, v0, e0, tol, h, ts);
+  else
+    tl_build_d(pc, pc->deg, pf, mt, g, a, s0, v0, e0, tol, h, ts);
 }
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
