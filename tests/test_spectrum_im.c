@@ -333,7 +333,8 @@ AQ_TEST(spectrum_im_records_table)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
   snprintf(args, sizeof args,
-           "--arch arches/oppenheim.cfg " REC " --scale 0.1 --im-periods 0.4 -o %s >/dev/null",
+           "--arch arches/oppenheim.cfg " REC " --scale 0.1 --im-periods 0.4 --sa-avg 0.1,1 "
+           "-o %s >/dev/null",
            h5);
   int rc = aq_test_run(args, NULL, 0, err, sizeof err);
   int ri = aq_test_run("info " REC " --im-periods 0.4", out, BIG, NULL, 0);
@@ -357,6 +358,29 @@ AQ_TEST(spectrum_im_records_table)
       aq_check_rel(got[k], num(out, 1, col_of(out, names[k])), 1e-5, "/records %s = info's",
                    names[k]);
   }
+  /* unnamed, the main job computes no spectral measure (info does) */
+  snprintf(h5, sizeof h5, "%s/plain.h5", dir);
+  snprintf(args, sizeof args, "--arch arches/oppenheim.cfg " REC " --scale 0.1 -o %s", h5);
+  rc = aq_test_run(args, out, BIG, err, sizeof err);
+  if (aq_check(rc == 0, "plain run: exit %d (%s)", rc, err)) {
+    aq_check(!strstr(out, "sa_"), "no sa_ column in the main job's table: %.300s", out);
+    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t d = f >= 0 ? H5Dopen2(f, "/records", H5P_DEFAULT) : -1;
+    hid_t t = d >= 0 ? H5Dget_type(d) : -1;
+    aq_check(t >= 0 && H5Tget_member_index(t, "sa_0.2s_g") < 0 &&
+                 H5Tget_member_index(t, "sa_avg_0.1_1s_g") < 0 &&
+                 H5Tget_member_index(t, "pgv_pga_s") >= 0,
+             "/records: pgv_pga_s but no spectral column");
+    if (t >= 0)
+      H5Tclose(t);
+    if (d >= 0)
+      H5Dclose(d);
+    if (f >= 0)
+      H5Fclose(f);
+  }
+  rc = aq_test_run("info " REC, out, BIG, NULL, 0);
+  aq_check(rc == 0 && col_of(out, "sa_0.2s_g") > 0 && col_of(out, "sa_avg_0.1_1s_g") > 0,
+           "info's defaults keep Sa(0.2 s) and Sa_avg: %.200s", out);
   free(out);
 }
 

@@ -537,12 +537,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                            .fn = im_periods, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                            .help = "intensity measures Sa(T), 5 % damping, at these periods, "
                                    "s, comma-separated, at most 8, or none (default "
-                                   "0.2,0.5,1)"},
+                                   "0.2,0.5,1 in info and capacity, none in the main job)"},
     [AQ_OPT_SA_AVG] = {.name = "sa-avg", .kind = AQ_ARG_CUSTOM, .meta = "T1,T2",
                        .fn = sa_avg, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                        .help = "intensity measure Sa_avg: the geometric mean of Sa at 10 "
                                "periods evenly spaced from T1 to T2 s (Eads et al. 2015), "
-                               "or none (default 0.1,1)"},
+                               "or none (default 0.1,1 in info and capacity, none in the main job)"},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies)",
@@ -853,6 +853,12 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->impact = -1;
   o->ode_rtol = 1e-10;
   o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;
+  if (cmd == AQ_CMD_RUN) { /* the main job: spectral measures only when named; their
+                              13 periods over the padded records cost more than
+                              everything else it does (docs/spectrum.md) */
+    o->proc.im_nsa = 0;
+    o->proc.sa_avg_lo_s = o->proc.sa_avg_hi_s = 0;
+  }
   o->scale_to_pga_g = NAN;
   o->scale_max = NAN;
   o->resolution = AQ_SCAN_RESOLUTION_DEFAULT;
