@@ -97,6 +97,8 @@ AQ_TEST(report_long_record_path_whole_everywhere)
              "main /summary record: %zu bytes", strlen(got));
     aq_check(!strcmp(h5_string(f, "/records", "source_file", got, sizeof got), p),
              "main /records source_file: %zu bytes", strlen(got));
+    aq_check(!strcmp(h5_string(f, "/records", "name", got, sizeof got), "ARL360.at2"),
+             "main /records name: %s", got);
     snprintf(cmd, sizeof cmd, "compare '%s' '%s'", f, f);
     rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
     aq_check(rc == 0, "compare reads it: exit %d: %s", rc, err);

@@ -131,6 +131,10 @@ size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
 
 /* "path" or "path#CHANNEL" (the channel's name, or its 1-based number when
  * it has none) into out. */
+/* A record's label: its path (at most PATH_MAX, 4096 bytes, or no file
+ * could be opened by it), '#' and the channel's name (under 16). */
+#define RECORD_LABEL_MAX (4096 + 32)
+
 static void record_label(const aq_raw_file *raw, size_t ichan, const char *path,
                          char *out, size_t cap)
 {
@@ -221,7 +225,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     return aq_error_set(err, AQ_EINTERNAL, path, -1, -1, NULL,
                         "channel %zu of %zu", ichan + 1, raw ? raw->nchan : 0);
   const aq_raw_channel *ch = &raw->chan[ichan];
-  char label[AQ_UNITS_GLOB_MAX + 24];
+  char label[RECORD_LABEL_MAX];
   record_label(raw, ichan, path ? path : "", label, sizeof label);
   if (ch->npts == 0 || !ch->values)
     return aq_error_set(err, AQ_EFORMAT, label, -1, -1, NULL,
@@ -756,7 +760,7 @@ static aq_status read_all_bytes(const unsigned char *buf, size_t size, const cha
   const char *rule = want ? NULL : component_rule(opts, path);
   if (want || raw.nchan == 1 || rule) { /* one channel: as aq_record_read */
     size_t ichan = 0;
-    char name[4200];
+    char name[RECORD_LABEL_MAX];
     snprintf(name, sizeof name, "%s", path);
     if (!want && raw.nchan > 1)
       snprintf(name, sizeof name, "%s#%s", path, rule);
@@ -764,7 +768,7 @@ static aq_status read_all_bytes(const unsigned char *buf, size_t size, const cha
     st = add_item(set, name, &raw, ichan, file, opts, s, &e);
   } else {
     for (size_t c = 0; c < raw.nchan && st == AQ_OK; c++) {
-      char label[4200];
+      char label[RECORD_LABEL_MAX];
       record_label(&raw, c, path, label, sizeof label);
       st = add_item(set, label, &raw, c, file, opts, AQ_OK, NULL);
     }
