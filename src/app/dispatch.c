@@ -34,6 +34,24 @@ static void no_command(const char *prefix, const char *word, const char *what)
           word, names);
 }
 
+/* Each command's entry point, by its row in aq_opt_commands: argv[0] is
+ * its name (the main job: the program's).  plot's figures have none:
+ * plot's entry point runs them. */
+static int (*const entry[AQ_CMD_N])(int argc, char **argv) = {
+    [AQ_CMD_RUN] = aq_cmd_run,         [AQ_CMD_INFO] = aq_cmd_info,
+    [AQ_CMD_MECHANISM] = aq_cmd_mechanism, [AQ_CMD_PULSE] = aq_cmd_pulse,
+    [AQ_CMD_DOMAIN] = aq_cmd_domain,   [AQ_CMD_COMPARE] = aq_cmd_compare,
+    [AQ_CMD_CAPACITY] = aq_cmd_capacity, [AQ_CMD_REPORT] = aq_cmd_report,
+    [AQ_CMD_SPECTRUM] = aq_cmd_spectrum, [AQ_CMD_HELP] = aq_cmd_help,
+    [AQ_CMD_PLOT] = aq_cmd_plot,
+};
+
+/* Run command c (a row of aq_opt_commands that is not a figure). */
+static int run(const aq_opt_command *c, int argc, char **argv)
+{
+  return entry[c - aq_opt_commands](argc, argv);
+}
+
 int aq_cmd_help(int argc, char **argv)
 {
   aq_opts o;
@@ -59,7 +77,7 @@ int aq_cmd_help(int argc, char **argv)
   }
   char h[] = "--help";
   char *av[] = {argv[optind], h, NULL};
-  return c->run(2, av);
+  return run(c, 2, av);
 }
 
 int aq_app_farms(int argc, char **argv)
@@ -83,10 +101,10 @@ int aq_app_main(int argc, char **argv)
   }
   const aq_opt_command *c = aq_opt_command_named(argv[1]);
   if (c)
-    return c->run(argc - 1, argv + 1);
+    return run(c, argc - 1, argv + 1);
   if (looks_like_command(argv[1])) {
     no_command("", argv[1], "a command or an existing RECORD");
     return AQ_EXIT_USAGE;
   }
-  return aq_opt_commands[AQ_CMD_RUN].run(argc, argv);
+  return entry[AQ_CMD_RUN](argc, argv);
 }

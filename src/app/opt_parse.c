@@ -413,7 +413,7 @@ const aq_opt_command *aq_opt_command_named(const char *word)
 {
   for (int c = 0; word && c < AQ_CMD_N; c++) {
     const aq_opt_command *k = &aq_opt_commands[c];
-    if (k->run && k->name[0] && strcmp(k->name, word) == 0)
+    if (!AQ_CMD_IS_FIGURE(c) && k->name[0] && strcmp(k->name, word) == 0)
       return k;
   }
   return NULL;
@@ -425,7 +425,7 @@ void aq_opt_command_names(char *buf, size_t n)
   buf[0] = '\0';
   for (int c = 0; c < AQ_CMD_N && len < n; c++) {
     const aq_opt_command *k = &aq_opt_commands[c];
-    if (!k->run || !k->name[0])
+    if (AQ_CMD_IS_FIGURE(c) || !k->name[0])
       continue;
     int w = snprintf(buf + len, n - len, "%s%s", len ? ", " : "", k->name);
     len += w > 0 ? (size_t)w : 0;

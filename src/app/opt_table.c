@@ -630,7 +630,7 @@ static const char plot_head[] =
 const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_RUN] =
         {.name = "",
-         .run = aq_cmd_run, .farmed = 1,
+         .farmed = 1,
          .title = "the main job",
          .help_cmd = "",
          .synopsis = "[OPTIONS] RECORD... --arch FILE",
@@ -642,7 +642,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .tail = run_tail},
     [AQ_CMD_INFO] =
         {.name = "info",
-         .run = aq_cmd_info,
          .title = "info",
          .help_cmd = "info",
          .synopsis = "info [OPTIONS] RECORD...",
@@ -659,7 +658,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                                              "on the processed record):"}},
     [AQ_CMD_MECHANISM] =
         {.name = "mechanism",
-         .run = aq_cmd_mechanism,
          .title = "mechanism",
          .help_cmd = "mechanism",
          .synopsis = "mechanism --arch FILE",
@@ -686,7 +684,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n"},
     [AQ_CMD_PULSE] =
         {.name = "pulse",
-         .run = aq_cmd_pulse,
          .title = "pulse",
          .help_cmd = "pulse",
          .synopsis = "pulse --arch FILE --accel-g A --duration S",
@@ -702,7 +699,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "3 the history could not be written.\n"},
     [AQ_CMD_DOMAIN] =
         {.name = "domain",
-         .run = aq_cmd_domain,
          .title = "domain",
          .help_cmd = "domain",
          .synopsis = "domain --arch FILE",
@@ -718,7 +714,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "option the arch makes ineffective, as --cor with impact momentum).\n"},
     [AQ_CMD_COMPARE] =
         {.name = "compare",
-         .run = aq_cmd_compare,
          .title = "compare",
          .help_cmd = "compare",
          .synopsis = "compare A.h5 B.h5",
@@ -742,7 +737,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "read as a results file.\n"},
     [AQ_CMD_CAPACITY] =
         {.name = "capacity",
-         .run = aq_cmd_capacity, .farmed = 1,
+         .farmed = 1,
          .title = "capacity",
          .help_cmd = "capacity",
          .synopsis = "capacity RECORD... --arch FILE",
@@ -769,7 +764,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                          "take plain RECORDs only):"}},
     [AQ_CMD_SPECTRUM] =
         {.name = "spectrum",
-         .run = aq_cmd_spectrum,
          .title = "spectrum",
          .help_cmd = "spectrum",
          .synopsis = "spectrum RECORD...",
@@ -790,7 +784,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "pair does not fit (each said in one line; nothing is written); 2 bad\n"
                  "options; 3 the output file could not be written.\n"},
     [AQ_CMD_PLOT] = {.name = "plot",
-                     .run = aq_cmd_plot,
                      .title = "plot",
                      .help_cmd = "plot",
          .synopsis = "plot FIGURE ... -o FILE",
@@ -801,7 +794,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                      .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_HELP] =
         {.name = "help",
-         .run = aq_cmd_help,
          .title = "help",
          .help_cmd = "help",
          .synopsis = "help [COMMAND]",
@@ -819,7 +811,6 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
     [AQ_CMD_PLOT_SPECTRUM] = FIGURE("spectrum"),
     [AQ_CMD_REPORT] =
         {.name = "report",
-         .run = aq_cmd_report,
          .title = "report",
          .help_cmd = "report",
          .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",

@@ -46,9 +46,11 @@
  *        // operands: argv[optind .. argc); checks between options: nerr++
  *        if (nerr) { aq_opts_free(&o); return AQ_EXIT_USAGE; }
  *        ... o.field ...; aq_opts_free(&o);
- *   4. its entry point in the row's .run (dispatch.c runs it by name, and
- *      archquake --help lists it from its synopsis and summary); .farmed
- *      if archquake-mpi spreads its tasks over the ranks (farm.h).
+ *   4. its entry point in dispatch.c's entry[] (dispatch.c runs it by
+ *      name, and archquake --help lists it from its row's synopsis and
+ *      summary; the table names no function of the commands, so calls run
+ *      one way: dispatch -> cmd_*.c -> opt_*.c); .farmed if archquake-mpi
+ *      spreads its tasks over the ranks (farm.h).
  */
 #ifndef AQ_APP_OPT_TABLE_H
 #define AQ_APP_OPT_TABLE_H
@@ -298,15 +300,12 @@ typedef struct {
   void (*check)(aq_opts *o, int *nerr);
 } aq_opt_row;
 
-/* One command: its name, its entry point and what --help says besides its
- * options.  Dispatch (dispatch.c), archquake --help's list of commands,
+/* One command: its name and what --help says besides its options (its
+ * entry point: dispatch.c's entry[], by the same aq_cmd).  Dispatch (dispatch.c), archquake --help's list of commands,
  * `archquake help`, the manual page (tools/man.sh reads --help) and
  * archquake-mpi (mpi.c) read this table alone. */
 typedef struct {
   const char *name;     /* as typed after archquake ("" the main job, "plot arch") */
-  /* its entry point: argv[0] is its name (the main job: the program's);
-   * NULL for plot's figures, which plot's entry point runs */
-  int (*run)(int argc, char **argv);
   int farmed;           /* archquake-mpi spreads its tasks over the ranks */
   const char *title;    /* in messages: "the main job", "info", "plot arch" */
   const char *help_cmd; /* its --help: "archquake HELP_CMD --help" ("plot" for figures) */
