@@ -51,6 +51,24 @@ hid_t aq_h5_table_type(const aq_h5_col *cols, size_t ncols, size_t rowsize, hid_
   return t;
 }
 
+hid_t aq_h5_xfer(hid_t mt, hid_t ft, size_t n)
+{
+  size_t ms = H5Tget_size(mt), fs = H5Tget_size(ft), es = ms > fs ? ms : fs;
+  size_t def = H5Pget_buffer(H5P_DATASET_XFER_DEFAULT, NULL, NULL);
+  if (!ms || !fs || !def)
+    return -1;
+  /* at most the default buffer (so a long table converts in strips of as
+   * many values as with it), at least one value */
+  size_t most = def / es ? def / es : 1;
+  size_t size = (n < 1 ? 1 : n < most ? n : most) * es;
+  hid_t p = H5Pcreate(H5P_DATASET_XFER);
+  if (p >= 0 && H5Pset_buffer(p, size, NULL, NULL) < 0) {
+    H5Pclose(p);
+    p = -1;
+  }
+  return p;
+}
+
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value)
 {
   if (!value)
@@ -94,7 +112,12 @@ static hid_t dataset(hid_t loc, const char *name, hid_t t, const void *buf, size
   if (sp < 0)
     return -1;
   hid_t d = H5Dcreate2(loc, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (d >= 0 && n && H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+  hid_t xfer = d >= 0 && n ? aq_h5_xfer(t, t, n) : -1;
+  if (d >= 0 && n && (xfer < 0 || H5Dwrite(d, t, H5S_ALL, H5S_ALL, xfer, buf) < 0)) {
+    H5Dclose(d);
+    d = -1;
+  }
+  if (xfer >= 0 && H5Pclose(xfer) < 0 && d >= 0) {
     H5Dclose(d);
     d = -1;
   }
@@ -116,7 +139,10 @@ herr_t aq_h5_table_write(hid_t loc, const char *name, const aq_h5_col *cols, siz
   hsize_t dim = nrows;
   hid_t sp = H5Screate_simple(1, &dim, NULL);
   hid_t d = sp < 0 ? -1 : H5Dcreate2(loc, name, ft, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  herr_t rc = d < 0 ? -1 : nrows ? H5Dwrite(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) : 0;
+  hid_t xfer = d >= 0 && nrows ? aq_h5_xfer(mt, ft, nrows) : -1;
+  herr_t rc = d < 0 ? -1 : !nrows ? 0 : xfer < 0 ? -1 : H5Dwrite(d, mt, H5S_ALL, H5S_ALL, xfer, rows);
+  if (xfer >= 0 && H5Pclose(xfer) < 0)
+    rc = -1;
   if (rc >= 0)
     rc = aq_h5_table_units(d, cols, ncols);
   if (rc >= 0 && out)
