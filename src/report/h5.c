@@ -441,7 +441,7 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
   if (fs < 0)
     return -1;
   hid_t ms = H5Screate_simple(1, &count, NULL);
-  hid_t xfer = aq_h5_xfer(T->mt, T->ft, T->nbuf);
+  hid_t xfer = aq_h5_xfer(T->d, T->mt, T->nbuf);
   herr_t rc = -1;
   if (ms >= 0 && xfer >= 0 &&
       H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
