@@ -10,10 +10,11 @@ FUZZ_SECONDS ?= 60
 PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle libxxhash
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # Opened on first use, not linked (src/util/lazylib.h): PLplot for figures,
-# libxml2 for StationXML.  Linked, they and the libraries they need (ICU,
-# libstdc++, freetype...) were loaded by every command: `archquake
-# --version` took 3.6x /bin/true.  Their sonames come from the libraries
-# the build would have linked.
+# libxml2 for StationXML, GLPK for the mechanism search (below).  Linked,
+# they and the libraries they need (ICU, libstdc++, freetype, GMP,
+# SuiteSparse...) were loaded by every command: `archquake --version` took
+# 3.6x /bin/true.  Their sonames come from the libraries the build would
+# have linked.
 LAZY_PKGS := plplot libxml-2.0
 # HDF5 is linked from its static archive when one is installed (Debian's
 # libhdf5-dev ships it): the shared library brings in ~45 more (curl, TLS,
@@ -26,8 +27,9 @@ HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,$(shell pkg-config --libs h
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5 $(LAZY_PKGS),$(PKGS)) 2>/dev/null) $(HDF5_LIBS) -ldl
 AQ_CFLAGS  = -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -Isrc -Ibuild $(PKG_CFLAGS)
 # zlib: the tests decode the browser's PNG screenshots (also HDF5's own).
-# GLPK (no pkg-config file): the mechanism search's linear programs.
-AQ_LIBS    = $(PKG_LIBS) -lglpk -lz -lpthread -lm
+# GLPK (no pkg-config file), the mechanism search's linear programs, is
+# opened on first use too (src/arch/glpk_lazy.c): libglpk-dev for its header.
+AQ_LIBS    = $(PKG_LIBS) -lz -lpthread -lm
 SAN        = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC   := $(sort $(wildcard src/*.c src/*/*.c))
@@ -78,10 +80,10 @@ lazy_soname = $(or $(shell objdump -p "$$($(CC) -print-file-name=lib$(1).so)" 2>
                  sed -n 's/^ *SONAME *//p'),lib$(1).so)
 build/lazylib_sonames.h: FORCE
 	@mkdir -p build
-	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n' \
-	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' > $@.new
+	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n#define AQ_GLPK_SONAME "%s"\n' \
+	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' '$(call lazy_soname,glpk)' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-$(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o): build/lazylib_sonames.h
+$(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o build/$(d)/src/arch/glpk_lazy.o): build/lazylib_sonames.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)

@@ -16,6 +16,35 @@ const char *aq_strerror(aq_status s)
   return "unknown status";
 }
 
+/* Mark a cut text: buf (n > 3 bytes) was filled to its end, so its last
+ * three bytes become "...", never leaving half a UTF-8 character before
+ * them. */
+static void mark_cut(char *buf, size_t n)
+{
+  if (n < 4)
+    return;
+  size_t k = n - 4;
+  while (k > 0 && ((unsigned char)buf[k] & 0xC0) == 0x80) /* a continuation byte */
+    k--;
+  memcpy(buf + k, "...", 4);
+}
+
+/* Copy a file name into dst[n], keeping its end (the file itself) when it
+ * is longer: "..." and its last bytes. */
+static void copy_name(char *dst, size_t n, const char *src)
+{
+  size_t len = strlen(src);
+  if (len < n) {
+    memcpy(dst, src, len + 1);
+    return;
+  }
+  const char *tail = src + len - (n - 4);
+  while (*tail && ((unsigned char)*tail & 0xC0) == 0x80)
+    tail++;
+  memcpy(dst, "...", 3);
+  memcpy(dst + 3, tail, strlen(tail) + 1);
+}
+
 void aq_error_clear(aq_error *e)
 {
   if (!e)
@@ -33,14 +62,17 @@ aq_status aq_error_set(aq_error *e, aq_status s, const char *input, long line,
   if (!e)
     return s;
   e->status = s;
-  snprintf(e->input, sizeof e->input, "%s", input ? input : "");
+  copy_name(e->input, sizeof e->input, input ? input : "");
   e->line = line;
   e->byte_offset = byte_offset;
-  snprintf(e->field, sizeof e->field, "%s", field ? field : "");
+  if (snprintf(e->field, sizeof e->field, "%s", field ? field : "") >= (int)sizeof e->field)
+    mark_cut(e->field, sizeof e->field);
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(e->message, sizeof e->message, fmt, ap);
+  int w = vsnprintf(e->message, sizeof e->message, fmt, ap);
   va_end(ap);
+  if (w >= (int)sizeof e->message)
+    mark_cut(e->message, sizeof e->message);
   /* keep it one line */
   for (char *p = e->message; *p; p++)
     if (*p == '\n' || *p == '\r')
@@ -64,6 +96,7 @@ void aq_error_format(const aq_error *e, char *buf, size_t n)
         k += (size_t)w_;                                       \
     }                                                          \
   } while (0)
+  /* k >= n after a put: the line was cut (marked below) */
   if (e->input[0]) {
     AQ_PUT("%s", e->input);
     if (e->line > 0)
@@ -80,6 +113,8 @@ void aq_error_format(const aq_error *e, char *buf, size_t n)
   }
   AQ_PUT("%s", e->message[0] ? e->message : aq_strerror(e->status));
 #undef AQ_PUT
+  if (k >= n)
+    mark_cut(buf, n);
   /* one line, whatever the input's name or the text quoted holds */
   for (char *p = buf; *p; p++)
     if (*p == '\n' || *p == '\r')

@@ -156,6 +156,48 @@ static int h5_arch_attr_double(const char *path, const char *obj, const char *na
 
 /* Item 4: an option that cannot take effect is refused (exit 2, one line
  * with the reason, no output); the results file holds the values used. */
+/* --dt is for records that state no sample interval: a record that states
+ * its own keeps it (DT= .0100 SEC in ELC's header) and says so in one note
+ * when --dt differs, in every command that reads records; a text record
+ * without a time column takes --dt, silently. */
+AQ_TEST(trust_dt_option_not_silently_ignored)
+{
+  char dir[512], txt[600], args[2048], cell[64];
+  static char out[16384], err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(txt, sizeof txt, "%s/plain.txt", dir);
+  FILE *f = fopen(txt, "w");
+  aq_check(f != NULL, "write %s", txt);
+  if (!f)
+    return;
+  for (int i = 0; i < 400; i++) /* one value per line, no time column */
+    fprintf(f, "%.6f\n", 0.05 * sin(0.3 * i));
+  fclose(f);
+  static const char *const cmds[] = {"info", "", "spectrum --periods 0.5"};
+  for (size_t c = 0; c < sizeof cmds / sizeof cmds[0]; c++) {
+    const char *arch = c == 1 ? "--arch arches/thin.cfg" : "";
+    snprintf(args, sizeof args, "%s %s %s %s --units g --dt 0.02", cmds[c], ELC, txt, arch);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 0, "%s: exit 0: %d %s", args, rc, err);
+    aq_check(strstr(err, ELC ": dt: --dt 0.02 s not used: the file states a sample interval "
+                         "of 0.01 s") != NULL,
+             "%s: one note names the record and both intervals: %s", args, err);
+    aq_check(strstr(err, "plain.txt: dt:") == NULL, "%s: no note for the text record: %s",
+             args, err);
+  }
+  /* info's dt_s column: the file's interval for ELC, --dt for the text */
+  snprintf(args, sizeof args, "info %s %s --units g --dt 0.02", ELC, txt);
+  aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(tsv_cell(out, 1, "dt_s", cell, sizeof cell) && strcmp(cell, "0.01") == 0,
+           "ELC keeps DT= .0100: %s", cell);
+  aq_check(tsv_cell(out, 2, "dt_s", cell, sizeof cell) && strcmp(cell, "0.02") == 0,
+           "the text record takes --dt: %s", cell);
+  /* the same interval given again is no news */
+  snprintf(args, sizeof args, "info %s --dt 0.01", ELC);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && strstr(err, "not used") == NULL, "--dt equal to DT: no note: %s", err);
+}
+
 AQ_TEST(trust_ineffective_options_are_refused)
 {
   char dir[512], h5[700], args[2048];

@@ -2,9 +2,10 @@
  * The loader against the dynamic linker's own answers (a symbol resolved
  * through it is the one the runner was linked with; a missing library or
  * symbol is an error naming it), and the program against readelf(1) and
- * the loader's trace (LD_DEBUG=files): archquake needs neither PLplot nor
- * libxml2 to start, `--version` and `info` load neither, a figure loads
- * PLplot and a StationXML file loads libxml2. */
+ * the loader's trace (LD_DEBUG=files): archquake needs neither PLplot,
+ * libxml2 nor GLPK to start, `--version` and `info` load none of them, a
+ * figure loads PLplot, a StationXML file libxml2 and the mechanism search
+ * GLPK. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -66,29 +67,42 @@ static char *loaded(const char *args)
   return capture(cmd);
 }
 
-AQ_TEST(lazylib_archquake_starts_without_plplot_or_libxml2)
+AQ_TEST(lazylib_archquake_starts_without_plplot_libxml2_or_glpk)
 {
   char cmd[700];
   snprintf(cmd, sizeof cmd, "readelf -d %s | grep NEEDED", aq_test_bin());
   char *needed = capture(cmd);
   aq_check(needed && strstr(needed, "libc.so"), "readelf lists the program's libraries");
-  aq_check(needed && !strstr(needed, "libplplot") && !strstr(needed, "libxml2"),
-           "PLplot and libxml2 are not among the libraries loaded at start:\n%s",
+  aq_check(needed && !strstr(needed, "libplplot") && !strstr(needed, "libxml2") &&
+               !strstr(needed, "libglpk"),
+           "PLplot, libxml2 and GLPK are not among the libraries loaded at start:\n%s",
            needed ? needed : "");
   free(needed);
 
   char *v = loaded("--version");
   aq_check(v && strstr(v, "libc.so"), "LD_DEBUG traces the loading");
-  aq_check(v && !strstr(v, "plplot") && !strstr(v, "libxml2") && !strstr(v, "libicu"),
-           "--version loads no PLplot, libxml2 or ICU:\n%s", v ? v : "");
+  aq_check(v && !strstr(v, "plplot") && !strstr(v, "libxml2") && !strstr(v, "libicu") &&
+               !strstr(v, "libglpk") && !strstr(v, "libgmp"),
+           "--version loads no PLplot, libxml2, ICU, GLPK or GMP:\n%s", v ? v : "");
   free(v);
   char *i = loaded("info records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2");
-  aq_check(i && !strstr(i, "plplot") && !strstr(i, "libxml2"),
-           "info on an AT2 record loads neither:\n%s", i ? i : "");
+  aq_check(i && !strstr(i, "plplot") && !strstr(i, "libxml2") && !strstr(i, "libglpk"),
+           "info on an AT2 record loads none:\n%s", i ? i : "");
   free(i);
 
   char dir[512], args[1200];
   aq_test_tmpdir(dir, sizeof dir);
+  /* an empty cache directory: the arch is built, its hinges searched */
+  char mcmd[2000];
+  snprintf(mcmd, sizeof mcmd, "XDG_CACHE_HOME=%s LD_DEBUG=files %s mechanism --arch "
+           "arches/search.cfg 2>&1 >/dev/null | grep 'file='", dir, aq_test_bin());
+  char *m = capture(mcmd);
+  aq_check(m && strstr(m, "libglpk") && strstr(m, "dynamically loaded") && strstr(m, "libgmp") &&
+               !strstr(m, "plplot"),
+           "the mechanism search opens GLPK (and GMP, which it needs), not PLplot:\n%s",
+           m ? m : "");
+  free(m);
+
   snprintf(args, sizeof args, "plot arch --arch arches/oppenheim.cfg -o %s/a.png", dir);
   char *p = loaded(args);
   aq_check(p && strstr(p, "libplplot") && strstr(p, "dynamically loaded"),

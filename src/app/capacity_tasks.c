@@ -12,6 +12,7 @@
 #include "../report/report.h"
 #include "capacity_tasks.h"
 #include "opt.h"
+#include "opt_record.h"
 
 void aq_cap_item_free(aq_cap_item *it)
 {
@@ -68,6 +69,9 @@ static void prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
   else if (loud && it->subj.v_ignored)
     fprintf(stderr, "archquake: %s: vertical component ignored (--vertical runs it)\n",
             S->paths[r][2]);
+  for (int k = 0; loud && it->ok && k < 3; k++)
+    if (it->subj.have_rec[k])
+      aq_record_print_notes(&it->subj.rec[k], stderr);
 }
 
 void aq_cap_prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_item *it)

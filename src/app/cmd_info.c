@@ -11,6 +11,7 @@
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
+#include "opt_record.h"
 
 /* One row for rec (processed by so in ws); 1 if it failed (reported). */
 static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws *ws)
@@ -29,10 +30,7 @@ static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws
   }
   if (rec->units_conflict[0])
     fprintf(stderr, "archquake: %s: units: %s\n", rec->path, rec->units_conflict);
-  if (rec->polarity_note[0])
-    fprintf(stderr, "archquake: %s: polarity: %s\n", rec->path, rec->polarity_note);
-  if (rec->vertical_note[0])
-    fprintf(stderr, "archquake: %s: vertical: %s\n", rec->path, rec->vertical_note);
+  aq_record_print_notes(rec, stderr);
   char warn[256];
   if (aq_im_residual_warning(&im, warn, sizeof warn))
     fprintf(stderr, "archquake: %s: warning: %s\n", rec->path, warn);

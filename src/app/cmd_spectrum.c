@@ -22,6 +22,7 @@
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
+#include "opt_record.h"
 
 /* The rows of one spectrum source: a record gives one component (its
  * channel), a pair three. */
@@ -303,10 +304,14 @@ int aq_cmd_spectrum(int argc, char **argv)
     }
   if (rc != AQ_EXIT_OK)
     goto done; /* nothing is written */
-  for (size_t k = 0; k < n; k++)
+  for (size_t k = 0; k < n; k++) {
     if (J.src[k].in.rec[0].units_conflict[0])
       fprintf(stderr, "archquake: %s: units: %s\n", J.src[k].in.rec[0].path,
               J.src[k].in.rec[0].units_conflict);
+    for (int c = 0; c < 3; c++)
+      if (J.src[k].in.have_rec[c])
+        aq_record_print_notes(&J.src[k].in.rec[c], stderr);
+  }
   warn_nyquist(J.src, n, J.periods, J.nper);
   if (o.output && write_h5(o.output, cmdline ? cmdline : "", &J, n, o.threads) != 0) {
     rc = AQ_EXIT_OUTPUT;

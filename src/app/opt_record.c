@@ -92,3 +92,10 @@ void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr)
   }
   ro->responses[ro->nresponses++] = arg; /* argv's string: lives as long as the command */
 }
+
+void aq_record_print_notes(const aq_record *rec, FILE *f)
+{
+  const char *topic, *text;
+  for (size_t i = 0; (text = aq_record_note(rec, i, &topic)) != NULL; i++)
+    fprintf(f, "archquake: %s: %s: %s\n", rec->path, topic, text);
+}

@@ -12,11 +12,16 @@
 #ifndef AQ_APP_OPT_RECORD_H
 #define AQ_APP_OPT_RECORD_H
 
+#include <stdio.h>
+
 #include "../io/record.h"
 
 /* --units U or GLOB=U, --component GLOB=CH, --response FILE.xml: check
  * arg and store it in ro (a bad one: one line on stderr, *nerr += 1). */
 void aq_opt_units(const char *arg, aq_read_opts *ro, int *nerr);
+/* Print rec's notes (aq_record_note), one line each: "archquake: PATH:
+ * TOPIC: TEXT". */
+void aq_record_print_notes(const aq_record *rec, FILE *f);
 void aq_opt_component(const char *arg, aq_read_opts *ro, int *nerr);
 void aq_opt_response(const char *arg, aq_read_opts *ro, int *nerr);
 

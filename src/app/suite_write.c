@@ -17,6 +17,7 @@
 #include "../report/text.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_record.h"
 
 /* Progress line refresh period, s. */
 #define AQ_SUITE_PROGRESS_PERIOD_S 0.25
@@ -66,7 +67,7 @@ int aq_suite_has_diagnostics(const rec_slot *r)
   if (r->failed || r->subj.warning[0] || r->subj.rec[0].units_conflict[0])
     return 1;
   for (int k = 0; k < 3; k++)
-    if (r->subj.have_rec[k] && (r->subj.rec[k].polarity_note[0] || r->subj.rec[k].vertical_note[0]))
+    if (r->subj.have_rec[k] && aq_record_note(&r->subj.rec[k], 0, NULL))
       return 1;
   for (size_t i = 0; r->runs && i < r->nruns; i++)
     if (r->runs[i].failed)
@@ -90,12 +91,9 @@ aq_status aq_suite_write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     fprintf(stderr, "archquake: %s: warning: %s\n", path, sj->warning);
   if (sj->rec[0].units_conflict[0])
     fprintf(stderr, "archquake: %s: units: %s\n", path, sj->rec[0].units_conflict);
-  for (int k = 0; k < 3; k++) { /* each component's polarity and vertical notes */
-    if (sj->have_rec[k] && sj->rec[k].polarity_note[0])
-      fprintf(stderr, "archquake: %s: polarity: %s\n", sj->rec[k].path, sj->rec[k].polarity_note);
-    if (sj->have_rec[k] && sj->rec[k].vertical_note[0])
-      fprintf(stderr, "archquake: %s: vertical: %s\n", sj->rec[k].path, sj->rec[k].vertical_note);
-  }
+  for (int k = 0; k < 3; k++) /* each component's notes */
+    if (sj->have_rec[k])
+      aq_record_print_notes(&sj->rec[k], stderr);
   if (!r->runs)
     return AQ_OK;
   for (size_t i = 0; i < r->nruns; i++) {

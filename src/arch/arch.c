@@ -238,7 +238,9 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   aq_error_clear(&e2);
   st = aq_search_minimum(&a->geom, a->dyn.g_mps2, &a->min_hs, &a->min_lambda0, &a->min_info,
                          &e2);
-  if (st != AQ_OK && !primary) {
+  /* AQ_EUNSUPPORTED: GLPK could not be opened, so nothing was searched:
+   * refused even with [hinges], or whether the arch stands goes unchecked */
+  if (st != AQ_OK && (!primary || st == AQ_EUNSUPPORTED)) {
     if (err)
       *err = e2;
     return st;

@@ -23,7 +23,9 @@
  *
  * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
  * tables over s in [0, s_c] (eval, for the ode and workpath-quad) and
- * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search (search.c): the upper-bound mechanism.
+ * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search
+ * (search.c): the upper-bound mechanism, with GLPK opened on first use
+ * (glpk_lazy.c).
  *
  * Units: SI (m, kg, rad, N).  Nothing here prints; errors go to aq_error.
  */
@@ -384,6 +386,11 @@ typedef struct {
  * means the arch cannot stand.  AQ_EINADMISSIBLE if no set is found. */
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
                             double *lambda0, aq_search_info *info, aq_error *err);
+
+/* Open GLPK, which the search calls through glpk_lazy.c (once per process;
+ * later calls return the first's outcome): AQ_OK, or AQ_EUNSUPPORTED with
+ * err naming the library and the loader's reason. */
+aq_status aq_glpk_load(aq_error *err);
 
 /* lambda0 and opening test at s = 0 only (cheap; no tables, no equilibrium):
  * returns 1 if every hinge opens at first order and fills *lambda0 (its sign

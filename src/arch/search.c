@@ -461,6 +461,8 @@ static lp_status node(bb *B, int relax, int depth)
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
                             double *lambda0, aq_search_info *info, aq_error *err)
 {
+  if (aq_glpk_load(err) != AQ_OK)
+    return AQ_EUNSUPPORTED;
   size_t n = g->p.voussoirs, nrows = 2 * (n + 1);
   bb B;
   memset(&B, 0, sizeof B);

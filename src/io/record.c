@@ -236,6 +236,12 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   aq_status sq = check_acceleration(ch, path ? path : "", label, err);
   if (sq != AQ_OK)
     return sq;
+  /* --dt is for records that state no sample interval: one that states its
+   * own keeps it, and says so when the two differ (a suite may mix both) */
+  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
+    snprintf(rec->dt_note, sizeof rec->dt_note,
+             "--dt %g s not used: the file states a sample interval of %g s", opts->dt_s,
+             ch->dt_s);
 
   /* Units: a rule naming the file, else the file's own, else --units. */
   aq_units stated = AQ_UNITS_FILE, used;
@@ -444,6 +450,22 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
                       "component is not horizontal excitation (give "
                       "--accept-vertical to run it anyway)",
                       rec->channel, why);
+}
+
+const char *aq_record_note(const aq_record *rec, size_t i, const char **topic)
+{
+  const struct {
+    const char *topic, *text;
+  } note[] = {{"polarity", rec->polarity_note},
+              {"vertical", rec->vertical_note},
+              {"dt", rec->dt_note}};
+  for (size_t k = 0; k < sizeof note / sizeof note[0]; k++)
+    if (note[k].text[0] && i-- == 0) {
+      if (topic)
+        *topic = note[k].topic;
+      return note[k].text;
+    }
+  return NULL;
 }
 
 /* What a parser may be told of opts (NULL for NULL), in *ro. */

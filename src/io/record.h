@@ -62,7 +62,14 @@ typedef struct {
                                samples are reversed by it (to_mps2 < 0) */
   char vertical_note[200];  /* "" or one line: the channel name and an orientation
                                field disagree (vertical_by NAME_OVER_FIELD) */
+  char dt_note[120];        /* "" or one line: --dt differs from the sample
+                               interval the file states, which is the one used */
 } aq_record;
+
+/* The i-th note a record carries (i = 0, 1, ...), in the order polarity,
+ * vertical, dt, the empty ones skipped: its text, and in *topic (if not
+ * NULL) its word ("polarity", "vertical", "dt"); NULL past the last. */
+const char *aq_record_note(const aq_record *rec, size_t i, const char **topic);
 
 /* Plausible peak ground acceleration after conversion, g: a record outside
  * [AQ_PGA_MIN_G, AQ_PGA_MAX_G] is refused unless accept_implausible (the
