@@ -53,3 +53,44 @@ AQ_TEST(steps_merge_keeps_impulse)
   aq_check_rel(dur, N * 0.01, 5e-15, "and the duration");
   aq_steps_free(&s);
 }
+
+/* A list over the caller's samples: no copy, the index and peak from the
+ * samples themselves, and the caller's array untouched by the free. */
+AQ_TEST(steps_over_borrows_the_samples)
+{
+  enum { N = 1000 }; /* 15 whole blocks of 64 and a part block of 40 */
+  double *a = malloc(N * sizeof *a);
+  aq_check(a != NULL, "memory");
+  if (!a)
+    return;
+  double want_peak = 0;
+  for (size_t i = 0; i < N; i++) {
+    a[i] = 0.02 * sin(0.37 * (double)i) - (i % 97 == 5 ? 0.9 : 0.0);
+    if (fabs(a[i]) > want_peak)
+      want_peak = fabs(a[i]);
+  }
+  a[990] = -2.385; /* the peak, negative, in the part block */
+  want_peak = 2.385;
+  aq_steps s;
+  aq_error e;
+  double peak = -1;
+  aq_check(aq_steps_over(a, N, 0.005, -1.25, &s, &peak, &e) == AQ_OK, "build");
+  aq_check(s.a_mps2 == a && s.borrowed, "the caller's samples, not a copy");
+  aq_check(s.n == N && !s.t_s && !s.dt_s, "one equal step per sample: %zu", s.n);
+  aq_check(aq_steps_t(&s, 400) == -1.25 + 400 * 0.005 && aq_steps_dt(&s, 7) == 0.005,
+           "times t0 + i dt");
+  aq_check(peak == want_peak, "peak %.17g, want %.17g", peak, want_peak);
+  for (size_t b = 0; b * 64 < N; b++) { /* each block's extremes, by hand */
+    double lo = a[b * 64], hi = lo;
+    for (size_t i = b * 64; i < N && i < (b + 1) * 64; i++) {
+      lo = fmin(lo, a[i]);
+      hi = fmax(hi, a[i]);
+    }
+    aq_check(s.block_min_mps2[b] == lo && s.block_max_mps2[b] == hi, "block %zu", b);
+  }
+  aq_check(aq_steps_next_outside(&s, 0, -2, 2) == 990, "the loud step");
+  aq_steps_free(&s);
+  aq_check(a[990] == -2.385, "the samples stay the caller's"); /* ASan: not freed */
+  free(a);
+  aq_check(aq_steps_over(&peak, 1, 0, 0, &s, NULL, &e) == AQ_EVALUE, "dt 0 refused");
+}

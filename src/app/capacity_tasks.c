@@ -41,7 +41,8 @@ static aq_status make_views(const aq_cap_setup *S, aq_cap_item *it, aq_error *er
     if (s == AQ_OK)
       s = aq_im_compute(&it->view[z].at, &it->im[z], err);
   }
-  aq_subject_shed(&it->subj); /* the views hold what the runs need */
+  if (it->subj.motion) /* its views hold what the runs need; a record's */
+    aq_subject_shed(&it->subj); /* view borrows its samples (job/subject.h) */
   return s;
 }
 

@@ -89,6 +89,7 @@ int aq_cmd_run(int argc, char **argv)
   int quiet = o.quiet;
   int use_cache = !o.no_cache;
   const char *cache_dir = o.cache_dir;
+  unsigned long long cache_max = o.cache_max;
   /* what the run owns from here: freed below */
   char **arches = o.arches;
   double *scales = o.scales;
@@ -201,6 +202,12 @@ int aq_cmd_run(int argc, char **argv)
   if (use_cache) { /* none without a home for it: the run goes on */
     cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
     cfg.arch_cache = aq_diskcache_open(cache_dir, "arches", aq_build_string());
+    if (cache_max) { /* one cap for the directory: every kind's entries count */
+      if (cfg.cache)
+        aq_diskcache_set_max(cfg.cache, cache_max);
+      if (cfg.arch_cache)
+        aq_diskcache_set_max(cfg.arch_cache, cache_max);
+    }
   }
   rc = aq_suite_run(&cfg, NULL);
   print_notes(cfg.arch_cache);

@@ -44,6 +44,7 @@ static const char *slot_polarity(const suite *S, size_t k)
  * run results only.  Called by the thread that finished its last run. */
 void aq_suite_slot_shed(suite *S, rec_slot *r)
 {
+  aq_runs_free(&r->plan); /* first: a record's view borrows its samples */
   aq_processed *first = &r->subj.proc[0], keep = *first;
   first->acc_mps2 = NULL;
   aq_subject_shed(&r->subj);
@@ -51,7 +52,6 @@ void aq_suite_slot_shed(suite *S, rec_slot *r)
     *first = keep; /* the writer writes it */
   else
     free(keep.acc_mps2);
-  aq_runs_free(&r->plan);
 }
 
 void aq_suite_slot_clear(suite *S, rec_slot *r)

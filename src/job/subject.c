@@ -199,7 +199,10 @@ aq_status aq_view_make(aq_view *v, const aq_subject *s, double theta_deg, aq_err
   const aq_processed *p = &s->proc[0];
   v->dt_s = p->dt_s;
   v->t0_s = -(double)p->pad_front * p->dt_s;
-  aq_status st = aq_subject_steps(s, theta_deg, 1.0, 1.0, 0, &v->steps, &v->peak_mps2, err);
+  aq_status st =
+      s->motion || s->run_v
+          ? aq_subject_steps(s, theta_deg, 1.0, 1.0, 0, &v->steps, &v->peak_mps2, err)
+          : aq_steps_over(p->acc_mps2, p->n, p->dt_s, v->t0_s, &v->steps, &v->peak_mps2, err);
   v->at = *p;
   v->at.acc_mps2 = st == AQ_OK ? v->steps.a_mps2 : NULL;
   return st;

@@ -102,7 +102,10 @@ aq_status aq_subject_steps(const aq_subject *s, double theta_deg, double sa, dou
  * (steps.a_mps2 is the in-plane series, steps.av_mps2 the vertical when it
  * is run).  A run at factor sa gives sa to the stepper (aq_job_run_view):
  * the stepper forms sa a_i, the very product a list at factor sa holds, so
- * the results are those of a list made at that factor, bit for bit. */
+ * the results are those of a list made at that factor, bit for bit.
+ * A plain record's view borrows the subject's processed samples (no copy:
+ * aq_steps_over), so it must be freed before aq_subject_shed or
+ * aq_subject_free; a motion's owns its projected series. */
 typedef struct {
   aq_steps steps;
   double peak_mps2;  /* max |a_i| */

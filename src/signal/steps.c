@@ -13,15 +13,18 @@ void aq_steps_free(aq_steps *s)
     return;
   free(s->t_s);
   free(s->dt_s);
-  free(s->a_mps2);
+  if (!s->borrowed)
+    free(s->a_mps2);
   free(s->block_min_mps2);
   free(s->block_max_mps2);
   free(s->av_mps2);
   memset(s, 0, sizeof *s);
 }
 
-/* n steps; times: 1 for t_s and dt_s arrays, 0 for equal steps. */
-static aq_status steps_alloc(aq_steps *s, size_t n, int times, aq_error *err)
+/* n steps; times: 1 for t_s and dt_s arrays, 0 for equal steps; borrow:
+ * a_mps2 (the caller's) instead of an array of samples. */
+static aq_status steps_alloc_over(aq_steps *s, size_t n, int times, double *borrow,
+                                  aq_error *err)
 {
   memset(s, 0, sizeof *s);
   size_t m = n ? n : 1;
@@ -32,7 +35,8 @@ static aq_status steps_alloc(aq_steps *s, size_t n, int times, aq_error *err)
     s->t_s = malloc(m * sizeof *s->t_s);
     s->dt_s = malloc(m * sizeof *s->dt_s);
   }
-  s->a_mps2 = malloc(m * sizeof *s->a_mps2);
+  s->borrowed = borrow != NULL;
+  s->a_mps2 = borrow ? borrow : malloc(m * sizeof *s->a_mps2);
   s->block_min_mps2 = malloc(nb * sizeof *s->block_min_mps2);
   s->block_max_mps2 = malloc(nb * sizeof *s->block_max_mps2);
   if ((times && (!s->t_s || !s->dt_s)) || !s->a_mps2 || !s->block_min_mps2 ||
@@ -43,6 +47,11 @@ static aq_status steps_alloc(aq_steps *s, size_t n, int times, aq_error *err)
   }
   s->n = n;
   return AQ_OK;
+}
+
+static aq_status steps_alloc(aq_steps *s, size_t n, int times, aq_error *err)
+{
+  return steps_alloc_over(s, n, times, NULL, err);
 }
 
 static void steps_index(aq_steps *s)
@@ -72,15 +81,23 @@ static inline double sample(const double *a1, double c1, const double *a2,
   return a2 ? s * (c1 * a1[i] + c2 * a2[i]) : s * (c1 * a1[i]);
 }
 
+/* dt_s must be a finite step > 0 s. */
+static aq_status check_dt(double dt_s, aq_error *err)
+{
+  if (!(dt_s > 0) || !isfinite(dt_s))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "dt",
+                        "expected a finite step > 0 s, got %g", dt_s);
+  return AQ_OK;
+}
+
 static aq_status steps_build(const double *a1, double c1, const double *a2,
                              double c2, double sc, const double *v, double sv,
                              size_t n, double dt_s, double t0_s,
                              double merge_tol_mps2, aq_steps *out,
                              double *peak_mps2, aq_error *err)
 {
-  if (!(dt_s > 0) || !isfinite(dt_s))
-    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "dt",
-                        "expected a finite step > 0 s, got %g", dt_s);
+  if (check_dt(dt_s, err) != AQ_OK)
+    return AQ_EVALUE;
   if (!(merge_tol_mps2 >= 0) || !isfinite(merge_tol_mps2))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "merge-tol",
                         "expected a finite tolerance >= 0, got %g",
@@ -175,6 +192,30 @@ aq_status aq_steps_project_v(const double *a1_mps2, double c1, const double *a2_
 {
   return steps_build(a1_mps2, c1, a2_mps2, c2, scale, av_mps2, vscale, n, dt_s,
                      t0_s, merge_tol_mps2, out, peak_mps2, err);
+}
+
+aq_status aq_steps_over(double *a_mps2, size_t n, double dt_s, double t0_s,
+                        aq_steps *out, double *peak_mps2, aq_error *err)
+{
+  aq_status st = check_dt(dt_s, err);
+  if (st == AQ_OK)
+    st = steps_alloc_over(out, n, 0, a_mps2, err);
+  if (st != AQ_OK)
+    return st;
+  out->t0_s = t0_s;
+  out->step_s = dt_s;
+  steps_index(out);
+  /* max |a| over the blocks' extremes: each is a sample, and every sample
+   * lies between its block's, so this is max |a_i| itself */
+  double peak = 0;
+  for (size_t b = 0; b < out->nblock; b++) {
+    double lo = fabs(out->block_min_mps2[b]), hi = fabs(out->block_max_mps2[b]);
+    peak = lo > peak ? lo : peak;
+    peak = hi > peak ? hi : peak;
+  }
+  if (peak_mps2)
+    *peak_mps2 = peak;
+  return AQ_OK;
 }
 
 aq_status aq_steps_set_vertical(aq_steps *s, const double *av_mps2, aq_error *err)

@@ -5,7 +5,8 @@
  * Times are s relative to the original record's first sample (steps in the
  * front pad have negative times).  The block min/max arrays let the stepper
  * skip quiet stretches cheaply (aq_steps_next_outside).  aq_steps owns its
- * arrays; aq_steps_free releases them.
+ * arrays (aq_steps_free releases them), except the samples of a list made
+ * over the caller's array (aq_steps_over: borrowed, left to the caller).
  */
 #ifndef AQ_SIGNAL_STEPS_H
 #define AQ_SIGNAL_STEPS_H
@@ -27,6 +28,7 @@ typedef struct {
   double *block_max_mps2; /* max a over each block */
   double *av_mps2;  /* vertical ground acceleration during step i, m/s^2,
                        positive up; NULL: none (0), the horizontal-only case */
+  int borrowed;     /* 1: a_mps2 is the caller's (aq_steps_over), not freed */
 } aq_steps;
 
 /* Start and duration of step i, s.  Equal steps (one per sample: no t_s,
@@ -72,6 +74,15 @@ aq_status aq_steps_project_v(const double *a1_mps2, double c1, const double *a2_
                              double vscale, size_t n, double dt_s, double t0_s,
                              double merge_tol_mps2, aq_steps *out,
                              double *peak_mps2, aq_error *err);
+
+/* One step per sample over the caller's samples a_mps2[0..n) at dt_s from
+ * t0_s, without copying them: out->a_mps2 is a_mps2 (borrowed: it must
+ * outlive the list, and aq_steps_free leaves it), and only the quiet index
+ * is made.  The same list, bit for bit, as aq_steps_from_samples with
+ * merge_tol_mps2 0 makes (whose samples are products by 1, exact).
+ * *peak_mps2 (if not NULL) receives max |a_mps2[i]| (0 for n = 0). */
+aq_status aq_steps_over(double *a_mps2, size_t n, double dt_s, double t0_s,
+                        aq_steps *out, double *peak_mps2, aq_error *err);
 
 /* Give s a vertical acceleration per step (copies av_mps2[0..s->n), m/s^2,
  * positive up).  AQ_EVALUE for a value that is not finite, AQ_ENOMEM. */
