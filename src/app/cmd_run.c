@@ -199,15 +199,11 @@ int aq_cmd_run(int argc, char **argv)
   /* TSV for files and pipes */
   cfg.aligned = !tout.f && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
+  if (cache_max) /* every store of the run: the bound is the directory's */
+    aq_diskcache_set_default_max(cache_max);
   if (use_cache) { /* none without a home for it: the run goes on */
     cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
     cfg.arch_cache = aq_diskcache_open(cache_dir, "arches", aq_build_string());
-    if (cache_max) { /* one cap for the directory: every kind's entries count */
-      if (cfg.cache)
-        aq_diskcache_set_max(cfg.cache, cache_max);
-      if (cfg.arch_cache)
-        aq_diskcache_set_max(cfg.arch_cache, cache_max);
-    }
   }
   rc = aq_suite_run(&cfg, NULL);
   print_notes(cfg.arch_cache);
