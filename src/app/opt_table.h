@@ -166,6 +166,7 @@ typedef enum {
   AQ_OPT_MERGE_TOL,
   AQ_OPT_NO_CACHE,  /* prepared records on disk (docs/cache.md) */
   AQ_OPT_CACHE_DIR,
+  AQ_OPT_CACHE_MAX,
   AQ_OPT_N
 } aq_opt_id;
 
@@ -216,6 +217,7 @@ typedef struct aq_opts {
   double merge_tol_g; /* --merge-tol, g */
   int no_cache;          /* --no-cache */
   const char *cache_dir; /* --cache-dir, or NULL: the default */
+  unsigned long long cache_max; /* --cache-max, bytes, or 0: the default */
   /* dynamics */
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */

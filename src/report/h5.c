@@ -441,10 +441,13 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
   if (fs < 0)
     return -1;
   hid_t ms = H5Screate_simple(1, &count, NULL);
+  hid_t xfer = aq_h5_xfer(T->d, T->mt, T->nbuf);
   herr_t rc = -1;
-  if (ms >= 0 &&
+  if (ms >= 0 && xfer >= 0 &&
       H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
-    rc = H5Dwrite(T->d, T->mt, ms, fs, H5P_DEFAULT, T->buf);
+    rc = H5Dwrite(T->d, T->mt, ms, fs, xfer, T->buf);
+  if (xfer >= 0 && H5Pclose(xfer) < 0)
+    rc = -1;
   if (ms >= 0 && H5Sclose(ms) < 0)
     rc = -1;
   if (H5Sclose(fs) < 0)
@@ -452,9 +455,9 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
   if (rc >= 0) {
     sync_hint(w, T->nbuf * T->rowsize);
     row_strings_free(T);
+    memset(T->buf, 0, T->nbuf * T->rowsize); /* the rest is still zero */
     T->nrows += T->nbuf;
     T->nbuf = 0;
-    memset(T->buf, 0, T->cap * T->rowsize);
   }
   return rc;
 }

@@ -51,6 +51,32 @@ hid_t aq_h5_table_type(const aq_h5_col *cols, size_t ncols, size_t rowsize, hid_
   return t;
 }
 
+hid_t aq_h5_xfer(hid_t d, hid_t mt, size_t n)
+{
+  /* HDF5 converts in strips of (buffer size / the larger of the memory type
+   * and the type as stored) values.  The dataset's type comes back in its
+   * memory form, where a variable-length value takes 8 bytes (a pointer),
+   * stored as 16 (length and heap address): the stored type is at most
+   * twice as large. */
+  hid_t ft = H5Dget_type(d);
+  size_t ms = H5Tget_size(mt), fs = ft < 0 ? 0 : H5Tget_size(ft);
+  size_t def = H5Pget_buffer(H5P_DATASET_XFER_DEFAULT, NULL, NULL);
+  if (ft >= 0 && H5Tclose(ft) < 0)
+    fs = 0;
+  if (!ms || !fs || !def)
+    return -1;
+  size_t es = ms > 2 * fs ? ms : 2 * fs;
+  /* n values in one strip; from the default size on, the default (a long
+   * table converts in the same strips as without this list) */
+  size_t size = n && n < def / es ? n * es : def;
+  hid_t p = H5Pcreate(H5P_DATASET_XFER);
+  if (p >= 0 && H5Pset_buffer(p, size, NULL, NULL) < 0) {
+    H5Pclose(p);
+    p = -1;
+  }
+  return p;
+}
+
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value)
 {
   if (!value)
@@ -94,7 +120,12 @@ static hid_t dataset(hid_t loc, const char *name, hid_t t, const void *buf, size
   if (sp < 0)
     return -1;
   hid_t d = H5Dcreate2(loc, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (d >= 0 && n && H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+  hid_t xfer = d >= 0 && n ? aq_h5_xfer(d, t, n) : -1;
+  if (d >= 0 && n && (xfer < 0 || H5Dwrite(d, t, H5S_ALL, H5S_ALL, xfer, buf) < 0)) {
+    H5Dclose(d);
+    d = -1;
+  }
+  if (xfer >= 0 && H5Pclose(xfer) < 0 && d >= 0) {
     H5Dclose(d);
     d = -1;
   }
@@ -116,7 +147,10 @@ herr_t aq_h5_table_write(hid_t loc, const char *name, const aq_h5_col *cols, siz
   hsize_t dim = nrows;
   hid_t sp = H5Screate_simple(1, &dim, NULL);
   hid_t d = sp < 0 ? -1 : H5Dcreate2(loc, name, ft, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  herr_t rc = d < 0 ? -1 : nrows ? H5Dwrite(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) : 0;
+  hid_t xfer = d >= 0 && nrows ? aq_h5_xfer(d, mt, nrows) : -1;
+  herr_t rc = d < 0 ? -1 : !nrows ? 0 : xfer < 0 ? -1 : H5Dwrite(d, mt, H5S_ALL, H5S_ALL, xfer, rows);
+  if (xfer >= 0 && H5Pclose(xfer) < 0)
+    rc = -1;
   if (rc >= 0)
     rc = aq_h5_table_units(d, cols, ncols);
   if (rc >= 0 && out)

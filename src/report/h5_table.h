@@ -34,6 +34,13 @@ typedef struct {
  * or < 0; *file gets its packed copy for the file (close both). */
 hid_t aq_h5_table_type(const aq_h5_col *cols, size_t ncols, size_t rowsize, hid_t *file);
 
+/* A transfer property list for writing n values of memory type mt to
+ * dataset d, whose type-conversion buffers hold the n values (in the larger
+ * of the two types) rather than HDF5's default 1 MiB (two of which are
+ * calloc'ed, every page touched, at each write that converts), up to that
+ * default; or < 0.  Close it with H5Pclose. */
+hid_t aq_h5_xfer(hid_t d, hid_t mt, size_t n);
+
 /* The units_<name> attributes of table d (the columns with units). */
 herr_t aq_h5_table_units(hid_t d, const aq_h5_col *cols, size_t ncols);
 

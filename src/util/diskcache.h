@@ -23,6 +23,22 @@
  * write never fails its caller: a directory that cannot be made or
  * written gives one note per store, and the run goes on without storing.
  *
+ * The directory is bounded (aq_diskcache_set_max; AQ_DISKCACHE_MAX_DEFAULT):
+ * every entry under it, of every kind, counts.  A read of an entry touches
+ * its modification time (when older than a minute), the time of its last
+ * use.  A store that writes scans the directory when it closes, and also
+ * while it runs each time it has written a tenth of the cap or the total
+ * it knows (its last scan's and its writes since) passes the cap; a scan
+ * that finds more than the cap removes entries until at most 9/10 of it
+ * is left: the other builds' entries first (this build can never read
+ * them), then the least recently used.  A store that only reads never
+ * scans.  A removed entry is a miss for a later read; a reader that has it
+ * open keeps its whole contents (an unlinked file lives until unmapped).
+ * Temporaries older than an hour (a killed writer's) go too; younger ones
+ * are a writer's at work and stay.  So when every writer has closed, the
+ * directory holds at most the cap; while several write, it may hold more
+ * by what they wrote since their last scans.
+ *
  * Nothing here prints: notes are kept (under a lock, the store is shared
  * by threads) for the caller to take (aq_diskcache_notes).  The store owns
  * its notes; a value read is the caller's (aq_diskcache_release). */
@@ -44,7 +60,17 @@ const char *aq_diskcache_default_dir(char *buf, size_t n);
  * first write.  NULL when out of memory or when there is no directory. */
 aq_diskcache *aq_diskcache_open(const char *dir, const char *kind, const char *version);
 
-/* Free the store; NULL is fine. */
+/* The default cap of a directory's entries, bytes (docs/cache.md: about
+ * 1,600 prepared records of the shared records' mean size). */
+#define AQ_DISKCACHE_MAX_DEFAULT (512ull << 20)
+
+/* Bound the directory (every kind under dir) to max_bytes (> 0) from the
+ * next write on.  Stores of one directory should share one cap: each
+ * evicts down to its own. */
+void aq_diskcache_set_max(aq_diskcache *c, unsigned long long max_bytes);
+
+/* Free the store, after a last scan if it wrote (see above); NULL is
+ * fine. */
 void aq_diskcache_close(aq_diskcache *c);
 
 /* The store's directory of entries ("<dir>/<kind>"). */
@@ -78,9 +104,11 @@ void aq_diskcache_entry_path(const aq_diskcache *c, const void *key, size_t nkey
  * (malloc'd, or NULL when none): the store keeps no copy. */
 char *aq_diskcache_notes(aq_diskcache *c);
 
-/* Counters: entries read whole (hits), misses, corrupt entries, writes. */
+/* Counters: entries read whole (hits), misses, corrupt entries, writes;
+ * scans of the directory and entries this store removed to keep its cap. */
 typedef struct {
   size_t hits, misses, corrupt, writes;
+  size_t scans, evicted;
 } aq_diskcache_counts;
 aq_diskcache_counts aq_diskcache_count(aq_diskcache *c);
 
