@@ -567,14 +567,16 @@ AQ_TEST(cache_cap_checked_when_a_store_closes)
   aq_diskcache_close(b); /* far under the default cap: nothing removed */
   int n = 0;
   aq_check(tree_bytes(dir, &n) == 10 * s && n == 10, "10 entries of %lld bytes kept", s);
-  /* a cap of 10.5 entries: its tenth is more than one entry */
+  /* a cap of 10.5 entries: its tenth is more than one entry; given as the
+   * process's, as the main job's --cache-max is */
   long long cap = 21 * s / 2;
+  aq_diskcache_set_default_max((unsigned long long)cap);
   aq_diskcache *a = aq_diskcache_open(dir, "records", "test 1");
+  aq_diskcache_set_default_max(AQ_DISKCACHE_MAX_DEFAULT);
   if (!a) {
     aq_check(0, "store opened");
     return;
   }
-  aq_diskcache_set_max(a, (unsigned long long)cap);
   aq_check(aq_diskcache_put(a, "a0", 2, val, sizeof val), "a0 stored");
   aq_diskcache_counts k = aq_diskcache_count(a);
   n = 0;

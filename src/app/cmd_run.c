@@ -187,10 +187,10 @@ int aq_cmd_run(int argc, char **argv)
   /* TSV for files and pipes */
   cfg.aligned = !tout.f && isatty(STDOUT_FILENO) && !aq_suite_is_remote();
 
+  if (cache_max) /* every store of the run: the bound is the directory's */
+    aq_diskcache_set_default_max(cache_max);
   if (use_cache) /* none without a home for it: the run goes on */
     cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
-  if (cfg.cache && cache_max)
-    aq_diskcache_set_max(cfg.cache, cache_max);
   rc = aq_suite_run(&cfg, NULL);
   char *notes = aq_diskcache_notes(cfg.cache);
   for (char *line = notes, *nl; line && *line; line = nl + 1) {
