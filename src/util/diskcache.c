@@ -13,6 +13,7 @@
 #include <nettle/sha2.h>
 #include <pthread.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,6 +60,15 @@ struct aq_diskcache {
   size_t nnotes;
   aq_diskcache_counts counts;
 };
+
+/* The cap of the stores opened next (aq_diskcache_set_default_max). */
+static _Atomic unsigned long long default_max = AQ_DISKCACHE_MAX_DEFAULT;
+
+void aq_diskcache_set_default_max(unsigned long long max_bytes)
+{
+  if (max_bytes > 0)
+    atomic_store(&default_max, max_bytes);
+}
 
 const char *aq_diskcache_default_dir(char *buf, size_t n)
 {
@@ -143,7 +153,7 @@ aq_diskcache *aq_diskcache_open(const char *dir, const char *kind, const char *v
     return NULL;
   }
   sprintf(c->build, "%s\n", build);
-  c->max = AQ_DISKCACHE_MAX_DEFAULT;
+  c->max = atomic_load(&default_max);
   c->used = -1;
   pthread_mutex_init(&c->lock, NULL);
   pthread_mutex_init(&c->evict_lock, NULL);

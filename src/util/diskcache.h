@@ -69,6 +69,11 @@ aq_diskcache *aq_diskcache_open(const char *dir, const char *kind, const char *v
  * evicts down to its own. */
 void aq_diskcache_set_max(aq_diskcache *c, unsigned long long max_bytes);
 
+/* The cap of every store opened from now on in this process (> 0; the
+ * start: AQ_DISKCACHE_MAX_DEFAULT): a command's --cache-max, so that its
+ * stores of every kind share it. */
+void aq_diskcache_set_default_max(unsigned long long max_bytes);
+
 /* Free the store, after a last scan if it wrote (see above); NULL is
  * fine. */
 void aq_diskcache_close(aq_diskcache *c);
