@@ -542,11 +542,13 @@ static int stages_child(const char *cache_dir)
     t[ST_ARCH] = thread_cpu_s() - c;
     aq_signal_ws *ws = aq_signal_ws_alloc();
     aq_steps steps[NSHARED];
+    aq_processed procs[NSHARED]; /* the steps borrow their samples, as the job's do */
     double pga_mps2[NSHARED];
     memset(steps, 0, sizeof steps);
+    memset(procs, 0, sizeof procs);
     for (size_t i = 0; i < NSHARED; i++) {
       aq_record rec;
-      aq_processed proc;
+      aq_processed *proc = &procs[i];
       aq_im im;
       char hex[AQ_SHA256_HEX];
       double c0 = thread_cpu_s();
@@ -562,13 +564,16 @@ static int stages_child(const char *cache_dir)
       aq_sha256_hex(b, nb, hex);
       double c3 = thread_cpu_s();
       free(b);
-      if (aq_signal_process(&rec, &so, ws, &proc, &e) != AQ_OK)
+      if (aq_signal_process(&rec, &so, ws, proc, &e) != AQ_OK)
         goto fail;
       double c4 = thread_cpu_s();
-      if (aq_im_compute(&proc, &im, &e) != AQ_OK)
+      if (aq_im_compute(proc, &im, &e) != AQ_OK)
         goto fail;
       double c5 = thread_cpu_s();
-      if (aq_steps_from_processed(&proc, 0, &steps[i], &e) != AQ_OK)
+      /* a plain record's view (job/subject.h): no copy of the samples */
+      if (aq_steps_over(proc->acc_mps2, proc->n, proc->dt_s,
+                        -(double)proc->pad_front * proc->dt_s, &steps[i], NULL,
+                        &e) != AQ_OK)
         goto fail;
       double c6 = thread_cpu_s();
       t[ST_READ] += c1 - c0;
@@ -588,7 +593,6 @@ static int stages_child(const char *cache_dir)
       t[ST_CACHE] += thread_cpu_s() - c7;
       aq_subject_free(&sj);
       pga_mps2[i] = im.pga_g * AQ_G0_MPS2;
-      aq_processed_free(&proc);
       aq_record_free(&rec);
     }
     c = thread_cpu_s();
@@ -619,8 +623,10 @@ static int stages_child(const char *cache_dir)
     c = thread_cpu_s();
     aq_signal_ws_free(ws);
     t[ST_WS] = thread_cpu_s() - c;
-    for (size_t i = 0; i < NSHARED; i++)
+    for (size_t i = 0; i < NSHARED; i++) {
       aq_steps_free(&steps[i]);
+      aq_processed_free(&procs[i]);
+    }
     for (int a = 0; a < NARCH; a++)
       aq_arch_free(arch[a]);
     for (int k = 0; k < NSTAGE; k++)

@@ -57,6 +57,62 @@ static void slot_done(suite *S, rec_slot *r)
     pthread_cond_broadcast(&S->cond);
 }
 
+/* One piece of work with the steppers st (S->lock held, released while it
+ * works): a waiting run of the oldest prepared record, else the next record
+ * prepared if the window has room.  Returns 1 if it did one, 0 if none
+ * was there to do. */
+int aq_suite_work_one(suite *S, aq_stepper **st)
+{
+  const size_t nrec = S->cfg->nrecords;
+  /* 1. a waiting run of the oldest prepared record */
+  rec_slot *r = NULL;
+  for (size_t idx = S->next_write; idx < S->next_claim && !r; idx++) {
+    rec_slot *x = &S->slots[idx % S->window];
+    if (x->state == SLOT_READY && x->next_run < x->nruns)
+      r = x;
+  }
+  if (r) {
+    size_t i = r->next_run++;
+    pthread_mutex_unlock(&S->lock);
+    aq_suite_run_one(S, r, i, st);
+    pthread_mutex_lock(&S->lock);
+    S->run_s += r->runs[i].run_s;
+    S->runs_done++;
+    if (++r->runs_done == r->nruns) { /* the last: nobody else uses r now */
+      pthread_mutex_unlock(&S->lock);
+      aq_suite_slot_shed(S, r);
+      pthread_mutex_lock(&S->lock);
+      slot_done(S, r);
+    }
+    return 1;
+  }
+  /* 2. prepare the next record, if the window has room */
+  if (S->next_claim < nrec && S->next_claim < S->next_write + S->window) {
+    size_t idx = S->next_claim++;
+    r = &S->slots[idx % S->window];
+    r->state = SLOT_PREPARING;
+    r->index = idx;
+    pthread_mutex_unlock(&S->lock);
+    int ok = aq_suite_prepare(S, r);
+    pthread_mutex_lock(&S->lock);
+    S->read_s += r->subj.read_s;
+    S->process_s += r->subj.process_s;
+    if (ok && r->nruns > 0) {
+      r->state = SLOT_READY;
+      if (r->nruns > 1) /* runs for the other threads too */
+        pthread_cond_broadcast(&S->cond);
+    } else {
+      S->runs_done += r->runs ? r->nruns : 0;
+      pthread_mutex_unlock(&S->lock);
+      aq_suite_slot_shed(S, r);
+      pthread_mutex_lock(&S->lock);
+      slot_done(S, r);
+    }
+    return 1;
+  }
+  return 0;
+}
+
 static void worker(void *ctx, size_t k)
 {
   worker_arg *w = &((worker_arg *)ctx)[k];
@@ -66,52 +122,8 @@ static void worker(void *ctx, size_t k)
   for (;;) {
     if (S->stop)
       break;
-    /* 1. a waiting run of the oldest prepared record */
-    rec_slot *r = NULL;
-    for (size_t idx = S->next_write; idx < S->next_claim && !r; idx++) {
-      rec_slot *x = &S->slots[idx % S->window];
-      if (x->state == SLOT_READY && x->next_run < x->nruns)
-        r = x;
-    }
-    if (r) {
-      size_t i = r->next_run++;
-      pthread_mutex_unlock(&S->lock);
-      aq_suite_run_one(S, r, i, w->st);
-      pthread_mutex_lock(&S->lock);
-      S->run_s += r->runs[i].run_s;
-      S->runs_done++;
-      if (++r->runs_done == r->nruns) { /* the last: nobody else uses r now */
-        pthread_mutex_unlock(&S->lock);
-        aq_suite_slot_shed(S, r);
-        pthread_mutex_lock(&S->lock);
-        slot_done(S, r);
-      }
+    if (aq_suite_work_one(S, w->st))
       continue;
-    }
-    /* 2. prepare the next record, if the window has room */
-    if (S->next_claim < nrec && S->next_claim < S->next_write + S->window) {
-      size_t idx = S->next_claim++;
-      r = &S->slots[idx % S->window];
-      r->state = SLOT_PREPARING;
-      r->index = idx;
-      pthread_mutex_unlock(&S->lock);
-      int ok = aq_suite_prepare(S, r);
-      pthread_mutex_lock(&S->lock);
-      S->read_s += r->subj.read_s;
-      S->process_s += r->subj.process_s;
-      if (ok && r->nruns > 0) {
-        r->state = SLOT_READY;
-        if (r->nruns > 1) /* runs for the other threads too */
-          pthread_cond_broadcast(&S->cond);
-      } else {
-        S->runs_done += r->runs ? r->nruns : 0;
-        pthread_mutex_unlock(&S->lock);
-        aq_suite_slot_shed(S, r);
-        pthread_mutex_lock(&S->lock);
-        slot_done(S, r);
-      }
-      continue;
-    }
     /* 3. nothing left to hand out, or wait for the writer or a record */
     if (S->next_claim >= nrec) {
       int pending = 0;
@@ -130,7 +142,9 @@ static void worker(void *ctx, size_t k)
   pthread_mutex_unlock(&S->lock);
 }
 
-/* The worker threads of S, each with its own steppers. */
+/* The worker threads of S, each with its own steppers.  One worker (-j 1)
+ * is no thread: the writer does the work itself, with that worker's
+ * steppers (S->inline_st), between the records it writes. */
 typedef struct {
   long n;
   size_t started;
@@ -138,7 +152,8 @@ typedef struct {
   worker_arg *wa;
 } workers;
 
-/* Start up to W->n workers (W->started of them run). */
+/* Start up to W->n workers (W->started of them run; with W->n 1 the
+ * writer's steppers made instead). */
 static void workers_start(suite *S, workers *W)
 {
   const aq_suite_cfg *c = S->cfg;
@@ -155,6 +170,11 @@ static void workers_start(suite *S, workers *W)
         aq_error e;
         a->st[k] = aq_suite_stepper(S, k, &e);
       }
+  }
+  if (W->n == 1 && n == 1) { /* -j 1: the writer works (aq_suite_write_all) */
+    S->inline_st = W->wa[0].st;
+    W->started = 1;
+    return;
   }
   W->pool = n > 0 ? aq_pool_start((size_t)n, worker, W->wa, &W->started) : NULL;
 }
@@ -179,6 +199,7 @@ static void workers_join(suite *S, workers *W, int stop)
   free(W->wa);
   W->wa = NULL;
   W->started = 0;
+  S->inline_st = NULL;
 }
 
 /* Records in flight for nthreads workers (see AQ_SUITE_WINDOW_PER_THREAD). */

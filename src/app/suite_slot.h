@@ -93,6 +93,8 @@ typedef struct {
   size_t keep_max;          /* a record file's bytes kept up to this size */
   size_t next_claim, next_write;
   int stop;                 /* the writer gave up: workers stop claiming */
+  aq_stepper **inline_st;   /* -j 1: no worker thread; the writer works with
+                             * these steppers (one per arch), else NULL */
   size_t runs_done;         /* for the progress line */
   size_t total_runs;        /* of every record */
   double read_s, process_s, run_s;
@@ -108,6 +110,12 @@ typedef struct {
  * killed suite loses nothing; an operating-system crash, at most the
  * records finished in this interval (they run again with --resume). */
 #define AQ_SUITE_JOURNAL_SYNC_S 1.0
+
+/* suite.c */
+/* One piece of work with the steppers st, S->lock held (released while
+ * it works): a run, or a record prepared.  Returns 1, or 0 if none was
+ * there to do. */
+int aq_suite_work_one(suite *S, aq_stepper **st);
 
 /* suite_record.c */
 

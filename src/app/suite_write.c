@@ -292,6 +292,18 @@ aq_status aq_suite_write_all(suite *S, double t_start, size_t done, aq_h5_writer
     rec_slot *r = &S->slots[i % S->window];
     pthread_mutex_lock(&S->lock);
     while (!(r->state == SLOT_DONE && r->index == i)) {
+      if (S->inline_st) { /* -j 1: this thread works (suite.c) */
+        if (!aq_suite_work_one(S, S->inline_st)) {
+          ws = aq_error_set(err, AQ_EINTERNAL, NULL, -1, -1, NULL,
+                            "record %zu is neither done nor to be done", i);
+          break;
+        }
+        if (c->progress && aq_suite_now_s() - last_progress >= AQ_SUITE_PROGRESS_PERIOD_S) {
+          aq_suite_progress(S, t_start, 0);
+          last_progress = aq_suite_now_s();
+        }
+        continue;
+      }
       struct timespec ts;
       clock_gettime(CLOCK_REALTIME, &ts);
       ts.tv_nsec += (long)(AQ_SUITE_PROGRESS_PERIOD_S * 1e9);
@@ -304,6 +316,11 @@ aq_status aq_suite_write_all(suite *S, double t_start, size_t done, aq_h5_writer
         aq_suite_progress(S, t_start, 0);
         last_progress = aq_suite_now_s();
       }
+    }
+    if (ws != AQ_OK) {
+      S->stop = 1;
+      pthread_mutex_unlock(&S->lock);
+      break;
     }
     rec_slot *next = &S->slots[(i + 1) % S->window]; /* the window holds 2 or more */
     if (!(i + 1 < c->nrecords && next->state == SLOT_DONE && next->index == i + 1))
