@@ -10,12 +10,13 @@ FUZZ_SECONDS ?= 60
 PKGS      := gsl fftw3 hdf5 inih mseed libxml-2.0 plplot nettle libxxhash
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # Opened on first use, not linked (src/util/lazylib.h): PLplot for figures,
-# libxml2 for StationXML, GLPK for the mechanism search (below).  Linked,
+# libxml2 for StationXML, libmseed for miniSEED, GLPK for the mechanism
+# search (below).  Linked,
 # they and the libraries they need (ICU, libstdc++, freetype, GMP,
 # SuiteSparse...) were loaded by every command: `archquake --version` took
 # 3.6x /bin/true.  Their sonames come from the libraries the build would
 # have linked.
-LAZY_PKGS := plplot libxml-2.0
+LAZY_PKGS := plplot libxml-2.0 mseed
 # HDF5 is linked from its static archive when one is installed (Debian's
 # libhdf5-dev ships it): the shared library brings in ~45 more (curl, TLS,
 # Kerberos, LDAP, for an S3 driver archquake never uses) whose loading and
@@ -26,8 +27,8 @@ HDF5_A     := $(if $(filter 1,$(HDF5_STATIC)),$(firstword $(wildcard $(addsuffix
 HDF5_LIBS   = $(if $(HDF5_A),$(HDF5_A) -lsz -laec -lz -ldl,$(shell pkg-config --libs hdf5 2>/dev/null))
 PKG_LIBS   = $(shell pkg-config --libs $(filter-out hdf5 $(LAZY_PKGS),$(PKGS)) 2>/dev/null) $(HDF5_LIBS) -ldl
 # The other libraries are linked from their static archives too, where the
-# Debian -dev package ships one (all but libmseed's; libm and libc stay
-# shared): each shared library costs every command its mapping, symbol
+# Debian -dev package ships one (libmseed-dev ships none: libmseed is
+# opened on first use; libm and libc stay shared): each shared library costs every command its mapping, symbol
 # lookup, relocation and page faults, and the nine of these made
 # `archquake --version` take 2.3x as long as /bin/true to start (1.5x
 # static).  Only the members archquake calls are linked.  STATIC_LIBS=0:
@@ -93,10 +94,11 @@ lazy_soname = $(or $(shell objdump -p "$$($(CC) -print-file-name=lib$(1).so)" 2>
                  sed -n 's/^ *SONAME *//p'),lib$(1).so)
 build/lazylib_sonames.h: FORCE
 	@mkdir -p build
-	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n#define AQ_GLPK_SONAME "%s"\n' \
-	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' '$(call lazy_soname,glpk)' > $@.new
+	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n#define AQ_GLPK_SONAME "%s"\n#define AQ_MSEED_SONAME "%s"\n' \
+	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' '$(call lazy_soname,glpk)' \
+	  '$(call lazy_soname,mseed)' > $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
-$(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o build/$(d)/src/arch/glpk_lazy.o): build/lazylib_sonames.h
+$(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o build/$(d)/src/arch/glpk_lazy.o build/$(d)/src/io/mseed_lazy.o): build/lazylib_sonames.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)

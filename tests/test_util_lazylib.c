@@ -3,9 +3,9 @@
  * through it is the one the runner was linked with; a missing library or
  * symbol is an error naming it), and the program against readelf(1) and
  * the loader's trace (LD_DEBUG=files): archquake needs neither PLplot,
- * libxml2 nor GLPK to start, `--version` and `info` load none of them, a
- * figure loads PLplot, a StationXML file libxml2 and the mechanism search
- * GLPK. */
+ * libxml2, libmseed nor GLPK to start, `--version` and `info` of an AT2
+ * record load none of them, a figure loads PLplot, a miniSEED file
+ * libmseed, a StationXML file libxml2 and the mechanism search GLPK. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -67,26 +67,28 @@ static char *loaded(const char *args)
   return capture(cmd);
 }
 
-AQ_TEST(lazylib_archquake_starts_without_plplot_libxml2_or_glpk)
+AQ_TEST(lazylib_archquake_starts_without_plplot_libxml2_mseed_or_glpk)
 {
   char cmd[700];
   snprintf(cmd, sizeof cmd, "readelf -d %s | grep NEEDED", aq_test_bin());
   char *needed = capture(cmd);
   aq_check(needed && strstr(needed, "libc.so"), "readelf lists the program's libraries");
   aq_check(needed && !strstr(needed, "libplplot") && !strstr(needed, "libxml2") &&
-               !strstr(needed, "libglpk"),
-           "PLplot, libxml2 and GLPK are not among the libraries loaded at start:\n%s",
+               !strstr(needed, "libglpk") && !strstr(needed, "libmseed"),
+           "PLplot, libxml2, libmseed and GLPK are not among the libraries loaded at "
+           "start:\n%s",
            needed ? needed : "");
   free(needed);
 
   char *v = loaded("--version");
   aq_check(v && strstr(v, "libc.so"), "LD_DEBUG traces the loading");
   aq_check(v && !strstr(v, "plplot") && !strstr(v, "libxml2") && !strstr(v, "libicu") &&
-               !strstr(v, "libglpk") && !strstr(v, "libgmp"),
-           "--version loads no PLplot, libxml2, ICU, GLPK or GMP:\n%s", v ? v : "");
+               !strstr(v, "libglpk") && !strstr(v, "libgmp") && !strstr(v, "libmseed"),
+           "--version loads no PLplot, libxml2, ICU, GLPK, GMP or libmseed:\n%s", v ? v : "");
   free(v);
   char *i = loaded("info records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2");
-  aq_check(i && !strstr(i, "plplot") && !strstr(i, "libxml2") && !strstr(i, "libglpk"),
+  aq_check(i && !strstr(i, "plplot") && !strstr(i, "libxml2") && !strstr(i, "libglpk") &&
+               !strstr(i, "libmseed"),
            "info on an AT2 record loads none:\n%s", i ? i : "");
   free(i);
 
@@ -111,7 +113,8 @@ AQ_TEST(lazylib_archquake_starts_without_plplot_libxml2_or_glpk)
   free(p);
   char *x = loaded("info tests/data/records/CI.CLC..HNE.mseed "
                    "--response tests/data/records/CI.CLC.xml");
-  aq_check(x && strstr(x, "libxml2") && !strstr(x, "plplot"),
-           "a StationXML file opens libxml2, not PLplot:\n%s", x ? x : "");
+  aq_check(x && strstr(x, "libxml2") && strstr(x, "libmseed") && !strstr(x, "plplot"),
+           "a miniSEED file opens libmseed, its StationXML libxml2, not PLplot:\n%s",
+           x ? x : "");
   free(x);
 }

@@ -9,7 +9,7 @@
  * overlapping samples are equal and refused otherwise.  Values stay counts
  * (units "counts", counts_per_mps2 = 0): the sensitivity is the StationXML's
  * (stationxml.c).  libmseed's log output is silenced: this library never
- * prints.
+ * prints.  libmseed is opened on first use (mseed_lazy.c).
  */
 #include <libmseed.h>
 #include <math.h>
@@ -205,6 +205,8 @@ aq_status aq_mseed_parse(const unsigned char *buf, size_t n, const char *name,
 {
   (void)opts;
   memset(raw, 0, sizeof *raw);
+  if (aq_mseed_load(name, err) != AQ_OK)
+    return AQ_EUNSUPPORTED;
   pthread_once(&log_once, silence_libmseed);
   mseed_piece *pc = NULL;
   size_t np = 0, cap = 0;

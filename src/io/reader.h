@@ -152,6 +152,10 @@ aq_reader_fn aq_esm_parse;
  * location.channel; counts with counts_per_mps2 = 0 (the sensitivity comes
  * from a StationXML: evidence.c matches the responses). */
 aq_reader_fn aq_mseed_parse;
+/* Open libmseed (mseed_lazy.c; once per process, later calls return the
+ * first's outcome): AQ_OK, or AQ_EUNSUPPORTED with err naming the file
+ * name, the library and the loader's reason. */
+aq_status aq_mseed_load(const char *name, aq_error *err);
 
 /* GeoNet (New Zealand) V1A/V2A: the acceleration of every component, mm/s^2
  * (geonet.c). */
