@@ -70,6 +70,14 @@ int aq_test_copy_prefix(const char *from, const char *to, size_t num, size_t den
 int aq_test_edited_copy(const char *from, const char *a, const char *b, const char *dir,
                         const char *name, char *out, size_t cap);
 
+/* The names in directory dir that hold part (0 if dir cannot be read). */
+int aq_test_count_names(const char *dir, const char *part);
+
+/* 1 if dir/a.tsv and dir/b.tsv are byte-identical (and longer than 500
+ * bytes) and the results files dir/a.h5 and dir/b.h5 compare equal with no
+ * tolerance (archquake compare --rtol 0 --atol 0). */
+int aq_test_same_outputs(const char *dir, const char *a, const char *b);
+
 /* A fresh empty directory for this test under build/tmp (path in buf). */
 const char *aq_test_tmpdir(char *buf, size_t cap);
 

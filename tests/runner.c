@@ -3,6 +3,7 @@
  * AQ_TEST_STOP_FIRST set: stop after the first failed test (make mutate). */
 #include "check.h"
 
+#include <dirent.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -217,6 +218,31 @@ int aq_test_edited_copy(const char *from, const char *a, const char *b, const ch
     ok = 0;
   free(buf);
   return ok;
+}
+
+int aq_test_count_names(const char *dir, const char *part)
+{
+  DIR *d = opendir(dir);
+  int n = 0;
+  for (struct dirent *e; d && (e = readdir(d));)
+    n += strstr(e->d_name, part) != NULL;
+  if (d)
+    closedir(d);
+  return n;
+}
+
+int aq_test_same_outputs(const char *dir, const char *a, const char *b)
+{
+  char pa[600], pb[600], args[1400];
+  size_t na = 0, nb = 0;
+  snprintf(pa, sizeof pa, "%s/%s.tsv", dir, a);
+  snprintf(pb, sizeof pb, "%s/%s.tsv", dir, b);
+  char *x = aq_test_read_file(pa, &na), *y = aq_test_read_file(pb, &nb);
+  int same = x && y && na == nb && na > 500 && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  snprintf(args, sizeof args, "compare %s/%s.h5 %s/%s.h5 --rtol 0 --atol 0", dir, a, dir, b);
+  return same && aq_test_run(args, NULL, 0, NULL, 0) == 0;
 }
 
 const char *aq_test_tmpdir(char *buf, size_t cap)

@@ -35,17 +35,6 @@
 #include "../src/util/diskcache.h"
 #include "check.h"
 
-/* Entries (files ending .aqc) and temporaries (".tmp.") in dir. */
-static int count_entries(const char *dir, const char *suffix)
-{
-  DIR *d = opendir(dir);
-  int n = 0;
-  for (struct dirent *e; d && (e = readdir(d));)
-    n += strstr(e->d_name, suffix) != NULL;
-  if (d)
-    closedir(d);
-  return n;
-}
 
 AQ_TEST(cache_store_keys_never_confused)
 {
@@ -246,21 +235,6 @@ static int job(const char *dir, const char *name, const char *extra, char *err, 
   return aq_test_run(args, NULL, 0, err, cap);
 }
 
-/* 1 if dir/a.tsv and dir/b.tsv are byte-identical and the results files
- * compare equal with no tolerance. */
-static int same_outputs(const char *dir, const char *a, const char *b)
-{
-  char pa[600], pb[600], args[1400];
-  size_t na = 0, nb = 0;
-  snprintf(pa, sizeof pa, "%s/%s.tsv", dir, a);
-  snprintf(pb, sizeof pb, "%s/%s.tsv", dir, b);
-  char *x = aq_test_read_file(pa, &na), *y = aq_test_read_file(pb, &nb);
-  int same = x && y && na == nb && na > 500 && memcmp(x, y, na) == 0;
-  free(x);
-  free(y);
-  snprintf(args, sizeof args, "compare %s/%s.h5 %s/%s.h5 --rtol 0 --atol 0", dir, a, dir, b);
-  return same && aq_test_run(args, NULL, 0, NULL, 0) == 0;
-}
 
 AQ_TEST(cache_main_job_identical_and_corruption_recomputed)
 {
@@ -271,14 +245,16 @@ AQ_TEST(cache_main_job_identical_and_corruption_recomputed)
   snprintf(rdir, sizeof rdir, "%s/records", cdir);
   snprintf(opt, sizeof opt, "--cache-dir %s", cdir);
   aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
-  aq_check(count_entries(rdir, ".aqc") == 0, "--no-cache stores nothing");
+  aq_check(aq_test_count_names(rdir, ".aqc") == 0, "--no-cache stores nothing");
   aq_check(job(dir, "fill", opt, err, sizeof err) == 0, "cache cold: %s", err);
-  aq_check(count_entries(rdir, ".aqc") == CACHE_NREC, "one entry per record (%d)",
-           count_entries(rdir, ".aqc"));
+  aq_check(aq_test_count_names(rdir, ".aqc") == CACHE_NREC, "one entry per record (%d)",
+           aq_test_count_names(rdir, ".aqc"));
   aq_check(job(dir, "hit", opt, err, sizeof err) == 0 && !strstr(err, "note"),
            "cache warm: %s", err);
-  aq_check(same_outputs(dir, "off", "fill"), "filling the cache: the outputs of --no-cache");
-  aq_check(same_outputs(dir, "off", "hit"), "read from the cache: the outputs of --no-cache");
+  aq_check(aq_test_same_outputs(dir, "off", "fill"),
+           "filling the cache: the outputs of --no-cache");
+  aq_check(aq_test_same_outputs(dir, "off", "hit"),
+           "read from the cache: the outputs of --no-cache");
   /* one byte of every entry spoilt: each reported in one line, computed again */
   DIR *d = opendir(rdir);
   int spoilt = 0;
@@ -305,19 +281,20 @@ AQ_TEST(cache_main_job_identical_and_corruption_recomputed)
     notes++;
   aq_check(notes == CACHE_NREC && strstr(err, "is corrupt (checksum mismatch)"),
            "one note per corrupt entry (%zu): %s", notes, err);
-  aq_check(same_outputs(dir, "off", "spoilt"), "corrupt entries: the outputs of --no-cache");
+  aq_check(aq_test_same_outputs(dir, "off", "spoilt"),
+           "corrupt entries: the outputs of --no-cache");
   aq_check(job(dir, "again", opt, err, sizeof err) == 0 && !strstr(err, "note"),
            "the entries were written again: no note: %s", err);
-  aq_check(same_outputs(dir, "off", "again"), "then: the outputs of --no-cache");
+  aq_check(aq_test_same_outputs(dir, "off", "again"), "then: the outputs of --no-cache");
   /* another processing option: other entries, its own results */
   snprintf(corrupt_opt, sizeof corrupt_opt, "--no-cache --highpass 0.07");
   aq_check(job(dir, "hp-off", corrupt_opt, err, sizeof err) == 0, "%s", err);
   snprintf(corrupt_opt, sizeof corrupt_opt, "%s --highpass 0.07", opt);
   aq_check(job(dir, "hp", corrupt_opt, err, sizeof err) == 0, "%s", err);
-  aq_check(count_entries(rdir, ".aqc") == 2 * CACHE_NREC, "--highpass: entries of its own");
-  aq_check(same_outputs(dir, "hp-off", "hp") && !same_outputs(dir, "off", "hp"),
+  aq_check(aq_test_count_names(rdir, ".aqc") == 2 * CACHE_NREC, "--highpass: entries of its own");
+  aq_check(aq_test_same_outputs(dir, "hp-off", "hp") && !aq_test_same_outputs(dir, "off", "hp"),
            "--highpass 0.07 from the cache: its own results, not the default's");
-  aq_check(count_entries(rdir, ".tmp.") == 0, "no temporary left");
+  aq_check(aq_test_count_names(rdir, ".tmp.") == 0, "no temporary left");
 }
 
 /* Two processes of two threads each run the main job at once with the
@@ -336,7 +313,8 @@ static void two_at_once(const char *dir, const char *extra, int rounds,
     for (int k = 1; k <= 2; k++) {
       char name[32], ep[700];
       snprintf(name, sizeof name, "p%d%d", round, k);
-      aq_check(same_outputs(dir, "off", name), "process %s: the outputs of --no-cache", name);
+      aq_check(aq_test_same_outputs(dir, "off", name), "process %s: the outputs of --no-cache",
+               name);
       snprintf(ep, sizeof ep, "%s/%s.err", dir, name);
       char *e = aq_test_read_file(ep, NULL);
       aq_check(e && e[0] == '\0', "process %s: nothing on stderr: %s", name, e ? e : "");
@@ -356,7 +334,8 @@ AQ_TEST(cache_main_job_two_processes_at_once)
   two_at_once(dir, "", 2, NULL); /* fill one cache at once, twice */
   char rdir[700];
   snprintf(rdir, sizeof rdir, "%s/cache/records", dir);
-  aq_check(count_entries(rdir, ".aqc") == CACHE_NREC && count_entries(rdir, ".tmp.") == 0,
+  aq_check(aq_test_count_names(rdir, ".aqc") == CACHE_NREC &&
+               aq_test_count_names(rdir, ".tmp.") == 0,
            "one entry per record, no temporary left");
 }
 
@@ -372,10 +351,12 @@ AQ_TEST(cache_main_job_unwritable_cache_dir)
   snprintf(opt, sizeof opt, "--cache-dir %s/cache", file);
   aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
   aq_check(job(dir, "ro", opt, err, sizeof err) == 0, "an unwritable cache: exit 0: %s", err);
-  aq_check(aq_test_count_lines(err) == 1 &&
-               strstr(err, "archquake: note: cannot write the cache in "),
-           "one note: %s", err);
-  aq_check(same_outputs(dir, "off", "ro"), "the outputs of --no-cache");
+  const char *first = strstr(err, "archquake: note: cannot write the cache in ");
+  aq_check(aq_test_count_lines(err) == 2 && first &&
+               strstr(first + 1, "archquake: note: cannot write the cache in ") &&
+               strstr(err, "/cache/arches (") && strstr(err, "/cache/records ("),
+           "one note per store (arches, records): %s", err);
+  aq_check(aq_test_same_outputs(dir, "off", "ro"), "the outputs of --no-cache");
   snprintf(opt, sizeof opt, "--cache-dir %s/c --no-cache", dir);
   aq_check(job(dir, "both", opt, err, sizeof err) == 2 && strstr(err, "--cache-dir") &&
                strstr(err, "--no-cache"),

@@ -43,6 +43,18 @@ static int same_output(const char *a, const char *b)
          sa.st_ino == sb.st_ino;
 }
 
+/* The disk cache's notes (NULL: none), one line each on stderr. */
+static void print_notes(aq_diskcache *c)
+{
+  char *notes = aq_diskcache_notes(c);
+  for (char *line = notes, *nl; line && *line; line = nl + 1) {
+    nl = strchr(line, '\n');
+    *nl = '\0';
+    fprintf(stderr, "archquake: note: %s\n", line);
+  }
+  free(notes);
+}
+
 int aq_cmd_run(int argc, char **argv)
 {
   aq_suite_cfg cfg;
@@ -189,16 +201,14 @@ int aq_cmd_run(int argc, char **argv)
 
   if (cache_max) /* every store of the run: the bound is the directory's */
     aq_diskcache_set_default_max(cache_max);
-  if (use_cache) /* none without a home for it: the run goes on */
+  if (use_cache) { /* none without a home for it: the run goes on */
     cfg.cache = aq_diskcache_open(cache_dir, "records", aq_build_string());
-  rc = aq_suite_run(&cfg, NULL);
-  char *notes = aq_diskcache_notes(cfg.cache);
-  for (char *line = notes, *nl; line && *line; line = nl + 1) {
-    nl = strchr(line, '\n');
-    *nl = '\0';
-    fprintf(stderr, "archquake: note: %s\n", line);
+    cfg.arch_cache = aq_diskcache_open(cache_dir, "arches", aq_build_string());
   }
-  free(notes);
+  rc = aq_suite_run(&cfg, NULL);
+  print_notes(cfg.arch_cache);
+  print_notes(cfg.cache);
+  aq_diskcache_close(cfg.arch_cache);
   aq_diskcache_close(cfg.cache);
 
   if (tout.f) {

@@ -73,6 +73,7 @@ typedef struct {
   const char *command_line;/* for the results file */
   const char *units_text;  /* --units as given (for the results file), or NULL */
   aq_diskcache *cache;     /* prepared records on disk (--no-cache: NULL) */
+  aq_diskcache *arch_cache; /* built arches on disk (--no-cache: NULL) */
 } aq_suite_cfg;
 
 /* Wall-time figures of a finished suite (s).  read/process/run are summed

@@ -264,7 +264,7 @@ int aq_suite_arches(suite *S)
   for (size_t a = 0; a < c->narches; a++) {
     aq_error e;
     aq_error_clear(&e);
-    if (aq_arch_load(c->arch_paths[a], &S->arches[a], &e) != AQ_OK) {
+    if (aq_arch_cache_load(c->arch_cache, c->arch_paths[a], NULL, &S->arches[a], &e) != AQ_OK) {
       aq_error_print(&e, stderr);
       bad_arch = 1;
     }

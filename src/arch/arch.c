@@ -3,6 +3,7 @@
  * its geometry, the search's minimum, the work paths of its primary and
  * reverse hinge sets, the arrays of its drawing and its content digest.
  */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -119,15 +120,117 @@ static aq_hinge_set swap_faces(const aq_hinge_set *hs)
   return r;
 }
 
-/* Everything after the parameters: geometry, hinge sets, paths.  Errors
- * carry the field ("primary", "reverse", a parameter key) but no file. */
+static const char *const set_names[2] = {"primary", "reverse"};
+
+/* ---- The built tables as bytes (aq_arch_tables_put, tables_get) ----
+ * What the search and the work paths computed, kept between processes
+ * (src/job/arch_cache.h) so that a later build of the same arch reads
+ * them instead: the search's result, the two hinge sets and both paths
+ * (workpath.c), each double as its bits. */
+#define TABLES_FORMAT "archquake arch tables 1"
+
+static void set_put(aq_bytes_out *b, const aq_hinge_set *hs)
+{
+  for (int k = 0; k < 4; k++) {
+    aq_bytes_put_i64(b, (int64_t)hs->joint[k]);
+    aq_bytes_put_i64(b, hs->face[k]);
+  }
+}
+
+static void set_get(aq_bytes_in *r, size_t voussoirs, aq_hinge_set *hs)
+{
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = (size_t)aq_bytes_get_int(r, 0, (int64_t)voussoirs, "joint");
+    hs->face[k] = (char)aq_bytes_get_int(r, 'e', 'i', "face");
+  }
+}
+
+static int same_set(const aq_hinge_set *a, const aq_hinge_set *b)
+{
+  for (int k = 0; k < 4; k++)
+    if (a->joint[k] != b->joint[k] || a->face[k] != b->face[k])
+      return 0;
+  return 1;
+}
+
+void aq_arch_tables_put(const aq_arch *a, aq_bytes_out *b)
+{
+  aq_bytes_put_str(b, TABLES_FORMAT, 0);
+  aq_bytes_put_i64(b, a->searched);
+  aq_bytes_put_i64(b, a->min_known);
+  aq_hinge_set none = {{0, 0, 0, 0}, {'e', 'e', 'e', 'e'}}; /* no minimum: never read */
+  set_put(b, a->min_known ? &a->min_hs : &none);
+  aq_bytes_put_f64(b, a->min_lambda0);
+  aq_bytes_put_i64(b, (int64_t)a->min_info.programs);
+  aq_bytes_put_i64(b, a->min_info.liftoff);
+  aq_bytes_put_i64(b, (int64_t)a->min_info.liftoff_joint);
+  aq_bytes_put_f64(b, a->min_info.liftoff_lambda);
+  for (int s = 0; s < 2; s++)
+    set_put(b, &a->hs[s]);
+  for (int s = 0; s < 2; s++)
+    aq_workpath_put(a->wp[s], b);
+}
+
+/* The search's result, the hinge sets and the paths from kept[0..n)
+ * (aq_arch_tables_put's), when they are those of this arch's [hinges]
+ * (primary, reverse; NULL: searched, the primary's faces swapped): 0, or
+ * -1 with nothing taken. */
+static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
+                      const aq_hinge_set *primary, const aq_hinge_set *reverse)
+{
+  aq_bytes_in r = {kept, n, 0, NULL, 0};
+  size_t nv = a->geom.p.voussoirs;
+  char format[sizeof TABLES_FORMAT];
+  aq_bytes_get_str(&r, format, sizeof format, NULL, "format");
+  a->searched = (int)aq_bytes_get_int(&r, 0, 1, "searched");
+  a->min_known = (int)aq_bytes_get_int(&r, 0, 1, "minimum known");
+  set_get(&r, nv, &a->min_hs);
+  a->min_lambda0 = aq_bytes_get_f64(&r, "minimum lambda0");
+  a->min_info.programs = (size_t)aq_bytes_get_int(&r, 0, INT64_MAX, "programs");
+  a->min_info.liftoff = (int)aq_bytes_get_int(&r, 0, 1, "liftoff");
+  a->min_info.liftoff_joint = (size_t)aq_bytes_get_int(&r, 0, (int64_t)nv, "liftoff joint");
+  a->min_info.liftoff_lambda = aq_bytes_get_f64(&r, "liftoff lambda");
+  for (int s = 0; s < 2; s++)
+    set_get(&r, nv, &a->hs[s]);
+  aq_hinge_set swapped = swap_faces(&a->hs[0]);
+  int ok = !r.bad && !strcmp(format, TABLES_FORMAT) &&
+           (primary ? !a->searched && same_set(&a->hs[0], primary)
+                    : a->searched && a->min_known && same_set(&a->hs[0], &a->min_hs)) &&
+           same_set(&a->hs[1], reverse ? reverse : &swapped);
+  for (int s = 0; s < 2 && ok; s++)
+    ok = aq_workpath_get(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &r, &a->wp[s],
+                         NULL) == AQ_OK;
+  if (ok && r.at == r.n && aq_workpath_path(a->wp[0])->admissible)
+    return 0;
+  for (int s = 0; s < 2; s++) {
+    aq_workpath_free(a->wp[s]);
+    a->wp[s] = NULL;
+  }
+  a->searched = a->min_known = 0;
+  memset(&a->min_hs, 0, sizeof a->min_hs);
+  memset(&a->min_info, 0, sizeof a->min_info);
+  memset(a->hs, 0, sizeof a->hs);
+  a->min_lambda0 = 0;
+  return -1;
+}
+
+/* Everything after the parameters: geometry, hinge sets, paths (from
+ * kept[0..nkept), aq_arch_tables_put's bytes, when they are this arch's:
+ * *used 1).  Errors carry the field ("primary", "reverse", a parameter
+ * key) but no file. */
 static aq_status build_core(aq_arch *a, const aq_arch_params *p,
-                            const aq_hinge_set *primary,
-                            const aq_hinge_set *reverse, aq_error *err)
+                            const aq_hinge_set *primary, const aq_hinge_set *reverse,
+                            const unsigned char *kept, size_t nkept, int *used, aq_error *err)
 {
   aq_status st = aq_geom_init(&a->geom, p, err);
   if (st != AQ_OK)
     return st;
+  if (kept && tables_get(a, kept, nkept, primary, reverse) == 0) {
+    *used = 1;
+    if (drawing_make(a) != 0)
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    return AQ_OK;
+  }
   /* The arch's minimum over every admissible set, whether or not [hinges]
    * names one: an arch that some set turns into a mechanism under gravity
    * alone (lambda0 <= 0) cannot stand, whichever set the file names. */
@@ -159,12 +262,11 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
     a->searched = 1;
   }
   a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
-  static const char *const names[2] = {"primary", "reverse"};
   for (int s = 0; s < 2; s++) {
-    st = aq_workpath_build(&a->geom, &a->hs[s], a->dyn.g_mps2, names[s], &a->wp[s], err);
+    st = aq_workpath_build(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &a->wp[s], err);
     if (st != AQ_OK) {
       if (err && !strcmp(err->field, "hinges"))
-        snprintf(err->field, sizeof err->field, "%s", names[s]);
+        snprintf(err->field, sizeof err->field, "%s", set_names[s]);
       return st;
     }
   }
@@ -183,7 +285,18 @@ aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
                         const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
                         const char *name, aq_arch **out, aq_error *err)
 {
+  return aq_arch_build_kept(p, primary, reverse, dyn, name, NULL, 0, NULL, out, err);
+}
+
+aq_status aq_arch_build_kept(const aq_arch_params *p, const aq_hinge_set *primary,
+                             const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                             const char *name, const unsigned char *kept, size_t nkept,
+                             int *used, aq_arch **out, aq_error *err)
+{
+  int used_ = 0;
   *out = NULL;
+  if (used)
+    *used = 0;
   aq_arch *a = calloc(1, sizeof *a);
   if (!a)
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
@@ -198,11 +311,13 @@ aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
     aq_arch_free(a);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   }
-  aq_status st = build_core(a, p, primary, reverse, err);
+  aq_status st = build_core(a, p, primary, reverse, kept, nkept, &used_, err);
   if (st != AQ_OK) {
     aq_arch_free(a);
     return st;
   }
+  if (used)
+    *used = used_;
   *out = a;
   return AQ_OK;
 }

@@ -27,6 +27,36 @@ typedef struct {
 } aq_arch_dynamics;
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err);
+
+/* An arch's sources as read: its .cfg's text and a joints arch's joints
+ * and faces files (data[f] NULL where there is none). */
+typedef struct {
+  const char *text;
+  size_t ntext;
+  const char *data[2];
+  size_t ndata[2];
+} aq_arch_sources;
+
+/* Where what an arch's build computes (the mechanism search's result, the
+ * work paths' tables and pieces, as bytes) is kept between builds, under
+ * the arch's sources (src/job/arch_cache.h keeps them on disk): */
+typedef struct {
+  void *ctx;
+  /* The bytes kept for the arch of src: 1 and *bytes, *n, *handle (for
+   * release), or 0 when none. */
+  int (*get)(void *ctx, const aq_arch_sources *src, const unsigned char **bytes, size_t *n,
+             void **handle);
+  void (*release)(void *ctx, void *handle);
+  /* Keep bytes[0..n) for the arch of src (never fails the build). */
+  void (*put)(void *ctx, const aq_arch_sources *src, const unsigned char *bytes, size_t n);
+} aq_arch_store;
+
+/* As aq_arch_load, through store (NULL: none): bytes kept for the same
+ * sources are taken instead of the search and the tables (the arch is the
+ * one aq_arch_load builds, bit for bit); else the arch is built and its
+ * bytes are put.  *hit (if not NULL): 1 when the kept bytes were taken. */
+aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
+                              aq_arch **out, aq_error *err);
 /* As aq_arch_load, from the len bytes at data (need not be NUL-terminated;
  * a NUL byte inside is an error); path names the input in messages and
  * gives the default name.  The bytes are copied; *out is the caller's

@@ -344,17 +344,29 @@ static int handler(void *user, const char *section, const char *name,
   return 1;
 }
 
-aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
+static aq_status load_string(const char *data, size_t len, const char *path,
+                             const aq_arch_store *store, int *hit, aq_arch **out,
+                             aq_error *err);
+
+aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
+                              aq_arch **out, aq_error *err)
 {
   *out = NULL;
+  if (hit)
+    *hit = 0;
   aq_status st = AQ_OK;
   size_t len = 0;
   char *buf = aq_infile_read(path, MAX_FILE_BYTES, "arch file", &len, &st, err);
   if (!buf)
     return st;
-  st = aq_arch_load_string(buf, len, path, out, err);
+  st = load_string(buf, len, path, store, hit, out, err);
   free(buf);
   return st;
+}
+
+aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
+{
+  return aq_arch_load_stored(path, NULL, NULL, out, err);
 }
 
 /* The checks that need the whole file: the keys the shape takes and
@@ -422,9 +434,36 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
   return st;
 }
 
-/* The arch from the parsed file. */
-static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J, aq_arch **out,
+/* aq_arch_build_kept through store (NULL: aq_arch_build): the bytes kept
+ * for src taken, or the arch's bytes put once built; *hit 1 when taken. */
+static aq_status build_stored(const aq_arch_params *p, const aq_hinge_set *primary,
+                              const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                              const char *name, const aq_arch_sources *src,
+                              const aq_arch_store *store, int *hit, aq_arch **out,
                               aq_error *err)
+{
+  const unsigned char *kept = NULL;
+  size_t nkept = 0;
+  void *handle = NULL;
+  int got = store && store->get(store->ctx, src, &kept, &nkept, &handle);
+  aq_status st = aq_arch_build_kept(p, primary, reverse, dyn, name, got ? kept : NULL, nkept,
+                                    hit, out, err);
+  if (got)
+    store->release(store->ctx, handle);
+  if (st == AQ_OK && store && !*hit) {
+    aq_bytes_out b = {0};
+    aq_arch_tables_put(*out, &b);
+    if (!b.oom)
+      store->put(store->ctx, src, b.data, b.n);
+    free(b.data);
+  }
+  return st;
+}
+
+/* The arch from the parsed file (its sources src, through store). */
+static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J,
+                              const aq_arch_sources *src, const aq_arch_store *store, int *hit,
+                              aq_arch **out, aq_error *err)
 {
   aq_arch_params p;
   memset(&p, 0, sizeof p);
@@ -468,8 +507,9 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
       len -= 4;
     snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
   }
-  aq_status st = aq_arch_build(&p, c->key_line[K_PRIMARY] ? &c->hs[0] : NULL,
-                               c->key_line[K_REVERSE] ? &c->hs[1] : NULL, &dyn, name, out, err);
+  aq_status st = build_stored(&p, c->key_line[K_PRIMARY] ? &c->hs[0] : NULL,
+                              c->key_line[K_REVERSE] ? &c->hs[1] : NULL, &dyn, name, src, store,
+                              hit, out, err);
   free(pm);
   if (st != AQ_OK && err) {
     /* name the file and the line of the key the model complained about */
@@ -493,7 +533,17 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err)
 {
+  return load_string(data, len, path, NULL, NULL, out, err);
+}
+
+static aq_status load_string(const char *data, size_t len, const char *path,
+                             const aq_arch_store *store, int *hit, aq_arch **out,
+                             aq_error *err)
+{
+  int hit_ = 0;
   *out = NULL;
+  if (hit)
+    *hit = 0;
   aq_status st = AQ_OK;
   if (len > MAX_FILE_BYTES)
     return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
@@ -539,8 +589,9 @@ aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
   aq_joints J;
   memset(&J, 0, sizeof J);
   st = after_parse(&c, path, &J, err);
+  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]}};
   if (st == AQ_OK)
-    st = build_parsed(&c, path, &J, &a, err);
+    st = build_parsed(&c, path, &J, &src, store, &hit_, &a, err);
   free(c.mass);
   if (st != AQ_OK) {
     aq_joints_free(&J);
@@ -550,6 +601,8 @@ aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
   aq_arch_keep_sources(a, text, J.bytes, J.nbytes); /* the joints arch's files: its digest */
   J.bytes[0] = J.bytes[1] = NULL;
   aq_joints_free(&J);
+  if (hit)
+    *hit = hit_;
   *out = a;
   return AQ_OK;
 }

@@ -35,6 +35,7 @@
 #include <stddef.h>
 
 #include "../error.h"
+#include "../util/bytes.h"
 #include "arch.h"
 #include "path.h"
 
@@ -352,6 +353,17 @@ aq_status aq_workpath_equilibrium(const aq_workpath *w, double s,
                                   aq_equil *out, aq_error *err);
 /* Set impact_vel_ratio of b for impacts arriving on a (see path.h). */
 void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a);
+/* The built path w as bytes (everything aq_workpath_build and
+ * aq_workpath_set_impact computed beyond the four-bar: the path's
+ * constants, its end, the tables and the pieces), for the arch's tables
+ * kept between processes (arch.c). */
+void aq_workpath_put(const aq_workpath *w, aq_bytes_out *b);
+/* The path of hs on g from bytes of aq_workpath_put (the four-bar set up
+ * again by aq_mech_init, nothing else computed: bit for bit the path
+ * built).  AQ_EFORMAT (field name) when the bytes are not such a path. */
+aq_status aq_workpath_get(const aq_geom *g, const aq_hinge_set *hs, double g_mps2,
+                          const char *name, aq_bytes_in *r, aq_workpath **out,
+                          aq_error *err);
 
 /* ---- search.c ------------------------------------------------------ */
 
@@ -403,6 +415,20 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
 aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
                         const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
                         const char *name, aq_arch **out, aq_error *err);
+/* As aq_arch_build, with kept[0..nkept) (aq_arch_tables_put's bytes of an
+ * arch built before, or NULL) taken for the search and the work paths
+ * when they are of the hinge sets that primary and reverse ask for: *used
+ * (if not NULL) is then 1 and the arch is, bit for bit, the one they were
+ * put from, provided p is its parameters (the caller's key: the arch's
+ * sources, src/job/arch_cache.h).  Bytes that are not such tables are
+ * passed over (*used 0: built). */
+aq_status aq_arch_build_kept(const aq_arch_params *p, const aq_hinge_set *primary,
+                             const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
+                             const char *name, const unsigned char *kept, size_t nkept,
+                             int *used, aq_arch **out, aq_error *err);
+/* What the search and the work paths computed for a, as bytes, for
+ * aq_arch_build_kept. */
+void aq_arch_tables_put(const aq_arch *a, aq_bytes_out *b);
 /* The arch takes text (its .cfg as read, NUL-terminated) and data[f]
  * (a joints arch's joints and faces files as read, ndata[f] bytes, or
  * NULL): aq_arch_config_text and aq_arch_sha256 give them back, and

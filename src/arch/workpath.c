@@ -651,9 +651,10 @@ void aq_workpath_free(aq_workpath *w)
 
 static const char *face_name(char f) { return f == 'e' ? "extrados" : "intrados"; }
 
-aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
-                            double g_mps2, const char *name, aq_workpath **out,
-                            aq_error *err)
+/* A path of hs on g with its four-bar set up and its functions (tables,
+ * exact, pieces) in place, nothing else computed, into *out. */
+static aq_status path_alloc(const aq_geom *g, const aq_hinge_set *hs, double g_mps2,
+                            const char *name, aq_workpath **out, aq_error *err)
 {
   *out = NULL;
   aq_workpath *w = calloc(1, sizeof *w);
@@ -676,6 +677,20 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
   p->mass_kg = g->mass_kg;
   p->g_mps2 = g_mps2;
   p->q_sign = w->mech.open[0];
+  *out = w;
+  return AQ_OK;
+}
+
+aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
+                            double g_mps2, const char *name, aq_workpath **out,
+                            aq_error *err)
+{
+  aq_status st = path_alloc(g, hs, g_mps2, name, out, err);
+  if (st != AQ_OK)
+    return st;
+  aq_workpath *w = *out;
+  *out = NULL;
+  aq_path *p = &w->path;
   p->act_sign = 1;
   p->admissible = 0;
   aq_mech_state s0;
@@ -799,4 +814,106 @@ void aq_workpath_set_impact(aq_workpath *b, const aq_workpath *a)
   }
   free(ua);
   free(wa);
+}
+
+/* ---- The built path as bytes (arch.c's aq_arch_tables_put and _get) ----
+ * Everything aq_workpath_build computed past the four-bar, each double as
+ * its bits: a path read back is the path built, bit for bit.  The four-bar
+ * itself (aq_mech_init: closed forms from the geometry) is set up again. */
+void aq_workpath_put(const aq_workpath *w, aq_bytes_out *b)
+{
+  const aq_path *p = &w->path;
+  aq_bytes_put_i64(b, p->admissible);
+  aq_bytes_put_i64(b, p->act_sign);
+  aq_bytes_put_f64(b, p->lambda0);
+  aq_bytes_put_f64(b, p->s_c_rad);
+  aq_bytes_put_f64(b, p->impact_vel_ratio);
+  aq_bytes_put_f64(b, p->x_mono_rad);
+  for (int k = 0; k < 3; k++) {
+    aq_bytes_put_f64(b, w->c0[k].x);
+    aq_bytes_put_f64(b, w->c0[k].y);
+  }
+  aq_bytes_put_i64(b, w->end);
+  aq_bytes_put_str(b, w->reason, sizeof w->reason);
+  aq_bytes_put_f64(b, w->tab_err);
+  aq_bytes_put_f64(b, w->thrust0);
+  aq_bytes_put_i64(b, (int64_t)w->n);
+  if (w->n) {
+    aq_bytes_put(b, w->bp, (w->n + 1) * sizeof *w->bp);
+    aq_bytes_put(b, w->coef, w->n * NF * 6 * sizeof *w->coef);
+  }
+  aq_bytes_put_i64(b, (int64_t)w->npc);
+  if (w->npc) {
+    aq_bytes_put(b, w->pbp, (w->npc + 1) * sizeof *w->pbp);
+    aq_bytes_put(b, w->piece, w->npc * sizeof *w->piece);
+  }
+}
+
+/* n + extra items of size bytes each from r into a new array *out
+ * (NULL when n is 0; n is bounded by the caller); -1 when r cannot hold
+ * them or out of memory. */
+static int get_array(aq_bytes_in *r, size_t n, size_t extra, size_t size, void **out,
+                     const char *what)
+{
+  *out = NULL;
+  if (!n)
+    return 0;
+  size_t bytes = (n + extra) * size;
+  if (r->bad || bytes > r->n - r->at ||
+      !(*out = malloc(bytes))) {
+    r->bad = r->bad ? r->bad : what;
+    return -1;
+  }
+  return aq_bytes_get(r, *out, bytes, what);
+}
+
+aq_status aq_workpath_get(const aq_geom *g, const aq_hinge_set *hs, double g_mps2,
+                          const char *name, aq_bytes_in *r, aq_workpath **out,
+                          aq_error *err)
+{
+  aq_status st = path_alloc(g, hs, g_mps2, name, out, err);
+  if (st != AQ_OK)
+    return st;
+  aq_workpath *w = *out;
+  *out = NULL;
+  aq_path *p = &w->path;
+  p->admissible = (int)aq_bytes_get_int(r, 0, 1, "admissible");
+  p->act_sign = aq_bytes_get_int(r, -1, 1, "act_sign") < 0 ? -1 : 1;
+  p->lambda0 = aq_bytes_get_f64(r, "lambda0");
+  p->s_c_rad = aq_bytes_get_f64(r, "s_c");
+  p->impact_vel_ratio = aq_bytes_get_f64(r, "impact_vel_ratio");
+  p->x_mono_rad = aq_bytes_get_f64(r, "x_mono");
+  for (int k = 0; k < 3; k++) {
+    w->c0[k].x = aq_bytes_get_f64(r, "c0");
+    w->c0[k].y = aq_bytes_get_f64(r, "c0");
+  }
+  w->end = (aq_end)aq_bytes_get_int(r, AQ_END_PEAK, AQ_END_NONE, "end");
+  aq_bytes_get_str(r, w->reason, sizeof w->reason, NULL, "reason");
+  w->tab_err = aq_bytes_get_f64(r, "table_error");
+  w->thrust0 = aq_bytes_get_f64(r, "thrust0");
+  w->n = w->cap = (size_t)aq_bytes_get_int(r, 0, TABLE_MAX_INTERVALS, "table_n");
+  void *bp, *coef, *pbp, *piece;
+  get_array(r, w->n, 1, sizeof *w->bp, &bp, "breakpoints");
+  w->bp = bp;
+  get_array(r, w->n * NF * 6, 0, sizeof *w->coef, &coef, "coefficients");
+  w->coef = coef;
+  w->npc = w->pcap = (size_t)aq_bytes_get_int(r, 0, TABLE_MAX_INTERVALS, "pieces");
+  get_array(r, w->npc, 1, sizeof *w->pbp, &pbp, "piece breakpoints");
+  w->pbp = pbp;
+  get_array(r, w->npc, 0, sizeof *w->piece, &piece, "pieces");
+  w->piece = piece;
+  for (size_t i = 0; i < w->npc && !r->bad; i++)
+    if (w->piece[i].deg < 0 || w->piece[i].deg >= AQ_PIECE_MAX_DEG)
+      r->bad = "piece degree";
+  /* a path that may be integrated has its tables and pieces */
+  if (!r->bad && p->admissible && (!w->n || !w->npc || !(p->s_c_rad > 0)))
+    r->bad = "tables";
+  if (r->bad) {
+    aq_workpath_free(w);
+    return aq_error_set(err, AQ_EFORMAT, NULL, -1, -1, name,
+                        "expected a stored work path, got bytes that are not one (%s)",
+                        r->bad);
+  }
+  *out = w;
+  return AQ_OK;
 }

@@ -4,6 +4,8 @@
  *
  *   subject.h  reading, checking and processing a record or motion; views
  *   subject_cache.h  prepared subjects kept on disk (util/diskcache.h)
+ *   arch_cache.h  built arches kept on disk (the search, the tables)
+ *   cache_key.h  the libraries and CPU in those caches' keys
  *   scale.h    the scaling rule (--scale, --scale-to-pga,
  *              --scale-to-lambda0), the polarity, lambda0
  *   run.h      the arch's stepper, and the runs of a subject
@@ -16,6 +18,7 @@
 #ifndef AQ_JOB_H
 #define AQ_JOB_H
 
+#include "arch_cache.h"
 #include "cache.h"
 #include "names.h"
 #include "run.h"

@@ -10,6 +10,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cache_key.h"
+
 #define KEY_FORMAT "archquake prepared subject 1\n"
 
 /* The options go into the key field by field (strings as strings: the
@@ -104,6 +106,7 @@ int aq_subject_cache_key(const aq_subject_src *src, const aq_subject_opts *o,
   char fp[256];
   aq_signal_fingerprint(fp, sizeof fp);
   aq_bytes_put_str(b, KEY_FORMAT, 0);
+  aq_cache_key_platform(b);
   aq_bytes_put_str(b, fp, 0);
   read_opts_key(b, o->read);
   proc_opts_key(b, o->proc);

@@ -10,7 +10,8 @@
  * option, every processing option (the scale excepted: a subject is at
  * factor 1), the subject options (vertical, any channel, azimuths given),
  * FFTW's version and the CPU features its plans depend on
- * (aq_signal_fingerprint), and, through the store, the archquake version
+ * (aq_signal_fingerprint), the libraries and CPU (cache_key.h, shared with
+ * arch_cache.h), and, through the store, the archquake version
  * and build.  Records whose reading takes StationXML responses are not
  * cached (their responses' files would belong in the key).
  *

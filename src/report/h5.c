@@ -35,7 +35,8 @@ typedef struct {
   int64_t reversals, steps_total, steps_moving, path_evaluations; /* stepper counters */
   double timing_run_s;
   char *error;             /* the run's message, whole (owned: freed at the flush) */
-  const char *record_text; /* = s.record, the column `record` (a variable-length string) */
+  char *record_text; /* a copy of s.record, the column `record` (a variable-length
+                        string; owned: freed at the flush) */
 } run_row;
 
 #define RUN_COL(f, kind, units) AQ_H5_COL(run_row, f, kind, units)
@@ -112,13 +113,25 @@ static const h5_col record_cols[] = {
 enum { N_RECORD_COLS = sizeof record_cols / sizeof record_cols[0] };
 
 /* An extensible 1-D compound dataset filled a chunk of rows at a time, so
- * the writer's memory does not grow with the suite. */
+ * the writer's memory does not grow with the suite.  A row is filled as its
+ * struct (row), then packed as the file stores it, every column's bytes
+ * side by side (buf), so that a flush hands HDF5 rows of the file's layout:
+ * a /summary row is 4.5 KB as a struct (aq_summary holds the record path)
+ * and about 540 bytes packed, which is what the conversion buffers then
+ * hold. */
 typedef struct {
-  hid_t d, mt, ft;   /* dataset, memory and packed file types */
-  unsigned char *buf;/* cap rows of rowsize bytes */
-  size_t rowsize, cap, nbuf;
-  hsize_t nrows;     /* rows already in the dataset */
-  size_t owned[4];   /* offsets of the row's heap strings (freed at each flush) */
+  hid_t d, ft;        /* dataset, packed type (the rows in buf) */
+  const h5_col *cols; /* the columns, over the row struct */
+  size_t ncols;
+  size_t *at;         /* each column's offset in a packed row */
+  unsigned char *row; /* the row being filled (rowsize bytes), if open */
+  int open;           /* row holds a row not yet packed */
+  unsigned char *buf; /* cap packed rows of psize bytes */
+  size_t rowsize, psize, cap, nbuf;
+  hsize_t nrows;      /* rows already in the dataset */
+  size_t owned[4];    /* offsets in the struct of the row's heap strings
+                         (freed at each flush) */
+  size_t owned_at[4]; /* theirs in a packed row */
   size_t nowned;
 } h5_table;
 
@@ -384,6 +397,13 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
 
 /* ---- tables ------------------------------------------------------------- */
 
+/* The bytes of column c in a row: its member's (a pointer for a
+ * variable-length string). */
+static size_t col_bytes(const h5_col *c)
+{
+  return c->kind == AQ_H5_VSTR ? sizeof(const char *) : c->size;
+}
+
 /* Create the empty, extensible table name with one units_<column>
  * attribute per column. */
 static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
@@ -392,11 +412,31 @@ static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
 {
   T->rowsize = rowsize;
   T->cap = chunk;
-  T->buf = calloc(chunk, rowsize);
-  if (!T->buf)
+  T->cols = cols;
+  T->ncols = ncols;
+  T->row = calloc(1, rowsize);
+  T->at = calloc(ncols, sizeof *T->at);
+  if (!T->row || !T->at)
     return -1;
-  T->mt = aq_h5_table_type(cols, ncols, rowsize, &T->ft);
-  if (T->mt < 0)
+  hid_t mt = aq_h5_table_type(cols, ncols, rowsize, &T->ft);
+  if (mt < 0 || H5Tclose(mt) < 0)
+    return -1;
+  T->psize = H5Tget_size(T->ft);
+  for (size_t i = 0; i < ncols; i++) {
+    int k = H5Tget_member_index(T->ft, cols[i].name);
+    if (k < 0)
+      return -1;
+    T->at[i] = H5Tget_member_offset(T->ft, (unsigned)k);
+    for (size_t j = 0; j < T->nowned; j++)
+      if (T->owned[j] == cols[i].offset)
+        T->owned_at[j] = T->at[i];
+  }
+  /* every byte of a packed row is a column's, so row_pack writes it all */
+  size_t bytes = 0;
+  for (size_t i = 0; i < ncols; i++)
+    bytes += col_bytes(&cols[i]);
+  T->buf = bytes == T->psize ? malloc(chunk * T->psize) : NULL;
+  if (!T->psize || !T->buf)
     return -1;
   hsize_t dim = 0, maxdim = H5S_UNLIMITED, ch = chunk;
   hid_t sp = H5Screate_simple(1, &dim, &maxdim);
@@ -415,12 +455,29 @@ static herr_t table_open(aq_h5_writer *w, h5_table *T, const char *name,
   return rc;
 }
 
-/* Free the buffered rows' own strings (after a flush, or when giving up). */
-static void row_strings_free(h5_table *T)
+/* Free the buffered rows' own strings (after a flush, or when giving up),
+ * and with all, the open row's. */
+static void row_strings_free(h5_table *T, int all)
 {
   for (size_t r = 0; T->buf && r < T->nbuf; r++)
-    for (size_t k = 0; k < T->nowned; k++)
-      free(*(char **)(void *)(T->buf + r * T->rowsize + T->owned[k]));
+    for (size_t k = 0; k < T->nowned; k++) {
+      char *p; /* (a packed row's pointers are not aligned) */
+      memcpy(&p, T->buf + r * T->psize + T->owned_at[k], sizeof p);
+      free(p);
+    }
+  for (size_t k = 0; all && T->open && k < T->nowned; k++)
+    free(*(char **)(void *)(T->row + T->owned[k]));
+  if (all)
+    T->open = 0;
+}
+
+/* Pack the open row into the buffer (which has room). */
+static void row_pack(h5_table *T)
+{
+  unsigned char *p = T->buf + T->nbuf++ * T->psize;
+  for (size_t i = 0; i < T->ncols; i++)
+    memcpy(p + T->at[i], T->row + T->cols[i].offset, col_bytes(&T->cols[i]));
+  T->open = 0;
 }
 
 /* A copy of s ("" for NULL) for a row's own string, or NULL. */
@@ -441,11 +498,11 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
   if (fs < 0)
     return -1;
   hid_t ms = H5Screate_simple(1, &count, NULL);
-  hid_t xfer = aq_h5_xfer(T->d, T->mt, T->nbuf);
+  hid_t xfer = aq_h5_xfer(T->d, T->ft, T->nbuf);
   herr_t rc = -1;
   if (ms >= 0 && xfer >= 0 &&
       H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) >= 0)
-    rc = H5Dwrite(T->d, T->mt, ms, fs, xfer, T->buf);
+    rc = H5Dwrite(T->d, T->ft, ms, fs, xfer, T->buf);
   if (xfer >= 0 && H5Pclose(xfer) < 0)
     rc = -1;
   if (ms >= 0 && H5Sclose(ms) < 0)
@@ -453,33 +510,51 @@ static herr_t table_flush(aq_h5_writer *w, h5_table *T)
   if (H5Sclose(fs) < 0)
     rc = -1;
   if (rc >= 0) {
-    sync_hint(w, T->nbuf * T->rowsize);
-    row_strings_free(T);
-    memset(T->buf, 0, T->nbuf * T->rowsize); /* the rest is still zero */
+    sync_hint(w, T->nbuf * T->psize);
+    row_strings_free(T, 0); /* (a packed row's every byte is a column's) */
     T->nrows += T->nbuf;
     T->nbuf = 0;
   }
   return rc;
 }
 
-/* The next row of the table's buffer (zeroed), or NULL if the flush that
- * made room failed. */
+/* Pack the open row, if any, after a flush if the buffer is full.
+ * Returns < 0 if that flush failed. */
+static herr_t row_commit(aq_h5_writer *w, h5_table *T)
+{
+  if (!T->open)
+    return 0;
+  if (T->nbuf == T->cap && table_flush(w, T) < 0)
+    return -1;
+  row_pack(T);
+  return 0;
+}
+
+/* The next row to fill (zeroed), the last one packed; or NULL if the
+ * flush that made room failed. */
 static void *table_row(aq_h5_writer *w, h5_table *T)
 {
-  if (T->nbuf == T->cap && table_flush(w, T) < 0)
+  if (row_commit(w, T) < 0)
     return NULL;
-  return T->buf + T->rowsize * T->nbuf++;
+  memset(T->row, 0, T->rowsize);
+  T->open = 1;
+  return T->row;
 }
 
 static void table_close_quietly(h5_table *T)
 {
-  row_strings_free(T);
+  row_strings_free(T, 1);
   T->nbuf = 0;
-  if (T->mt >= 0)
-    H5Tclose(T->mt);
   if (T->ft >= 0)
     H5Tclose(T->ft);
-  T->mt = T->ft = -1;
+  T->ft = -1;
+}
+
+static void table_free(h5_table *T)
+{
+  free(T->buf);
+  free(T->row);
+  free(T->at);
 }
 
 /* ---- lifecycle ---------------------------------------------------------- */
@@ -501,8 +576,8 @@ static void writer_free(aq_h5_writer *w)
       H5Tclose(w->t_str);
   }
   H5E_END_TRY;
-  free(w->runs.buf);
-  free(w->records.buf);
+  table_free(&w->runs);
+  table_free(&w->records);
   free(w->run_cols);
   aq_outfile_release(&w->out);
   free(w);
@@ -551,9 +626,10 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   if (!w)
     return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
   w->file = w->g_arches = w->g_waveforms = w->g_histories = -1;
-  w->runs.d = w->runs.mt = w->runs.ft = -1;
-  w->records.d = w->records.mt = w->records.ft = -1;
+  w->runs.d = w->runs.ft = -1;
+  w->records.d = w->records.ft = -1;
   w->runs.owned[w->runs.nowned++] = offsetof(run_row, error);
+  w->runs.owned[w->runs.nowned++] = offsetof(run_row, record_text);
   w->records.owned[w->records.nowned++] = offsetof(record_row, source_file);
   w->records.owned[w->records.nowned++] = offsetof(record_row, name);
   w->records.owned[w->records.nowned++] = offsetof(record_row, error);
@@ -1006,9 +1082,9 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   row->arch_index = (int64_t)ai;
   row->scale_index = (int64_t)si;
   row->timing_run_s = timing_run_s;
-  row->record_text = row->s.record;
+  row->record_text = row_string(row->s.record);
   row->error = row_string(error);
-  CK(row->error ? 0 : -1, "rows (out of memory)");
+  CK(row->record_text && row->error ? 0 : -1, "rows (out of memory)");
   if (!res)
     return AQ_OK;
   row->reversals = (int64_t)res->reversals;
@@ -1052,15 +1128,11 @@ fail:
 /* Flush and close a table. */
 static herr_t table_close(aq_h5_writer *w, h5_table *T)
 {
-  herr_t rc = table_flush(w, T);
+  herr_t rc = row_commit(w, T) < 0 ? -1 : table_flush(w, T);
   if (rc >= 0 && H5Dclose(T->d) < 0)
     rc = -1;
   if (rc >= 0)
     T->d = -1;
-  if (rc >= 0 && H5Tclose(T->mt) < 0)
-    rc = -1;
-  if (rc >= 0)
-    T->mt = -1;
   if (rc >= 0 && H5Tclose(T->ft) < 0)
     rc = -1;
   if (rc >= 0)
