@@ -45,7 +45,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/platform/x86.h> /* CPU_FEATURE_ACTIVE (glibc) */
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -351,13 +350,11 @@ aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
 
 void aq_signal_fingerprint(char *buf, size_t n)
 {
-  /* FFTW_ESTIMATE picks codelets by the SIMD sets the CPU (and OS) offer:
-   * "active" in glibc's terms, which the loader has read already (GCC's
-   * __builtin_cpu_supports linked libgcc's constructor, which ran CPUID
-   * again in every process, 0.1 ms of each command's start) */
+  /* FFTW_ESTIMATE picks codelets by the SIMD sets the CPU (and OS) offer */
+  __builtin_cpu_init();
   const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
   snprintf(buf, n, "%s; cpu sse2 %d avx %d avx2 %d fma %d avx512f %d; builtin wisdom %d",
-           fftw_version, !!CPU_FEATURE_ACTIVE(SSE2), !!CPU_FEATURE_ACTIVE(AVX),
-           !!CPU_FEATURE_ACTIVE(AVX2), !!CPU_FEATURE_ACTIVE(FMA), !!CPU_FEATURE_ACTIVE(AVX512F),
-           !(e && e[0]));
+           fftw_version, !!__builtin_cpu_supports("sse2"), !!__builtin_cpu_supports("avx"),
+           !!__builtin_cpu_supports("avx2"), !!__builtin_cpu_supports("fma"),
+           !!__builtin_cpu_supports("avx512f"), !(e && e[0]));
 }
