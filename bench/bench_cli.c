@@ -31,7 +31,10 @@
  *    removed); the FFTW workspace freed; then, apart, each record prepared
  *    through the disk cache of prepared records instead (docs/cache.md:
  *    the file hashed for the key, the entry read, checked and decoded;
- *    the first process fills it).  The first pass is cold (first
+ *    the first process fills it), and the two arches loaded through the
+ *    disk cache of built arches (docs/cache.md; first in each pass, so
+ *    that the cold pass is a process that never loads GLPK, as the job
+ *    with the cache warm).  The first pass is cold (first
  *    calls in the process: plans, page faults of a new heap, caches), the
  *    second warm.  Medians of STAGE_REPS processes, CPU time of the
  *    thread, each stage's cold - warm beside them.
@@ -56,6 +59,7 @@
 #include "bench.h"
 #include "io/record.h"
 #include "io/sha256.h"
+#include "job/arch_cache.h"
 #include "job/subject.h"
 #include "report/h5.h"
 #include "signal/signal.h"
@@ -389,10 +393,11 @@ static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *
   return 0;
 }
 
-/* The main job's commands: this build's default model with the cache of
- * prepared records off (--no-cache), empty before each run (it fills it:
- * "cache cold") and filled ("cache warm"); --model ode off and warm; the
- * before build's two models (it has no such cache). */
+/* The main job's commands: this build's default model with the disk cache
+ * (prepared records, built arches) off (--no-cache), empty before each run
+ * (it fills it: "cache cold") and filled ("cache warm"); --model ode off
+ * and warm; the before build's two models with a cache directory of its
+ * own, filled by its first run (warm, whatever it keeps there). */
 enum { JC_OFF, JC_COLD, JC_WARM, JC_ODE_OFF, JC_ODE_WARM, JC_N };
 static const char *const jc_label[JC_N] = {"default, no cache", "default, cache cold",
                                            "default, cache warm", "ode, no cache",
@@ -400,12 +405,15 @@ static const char *const jc_label[JC_N] = {"default, no cache", "default, cache 
 
 static void main_job(const char *before)
 {
-  char cache[64], env_cache[96], out[96], prep[160];
+  char cache[64], env_cache[96], out[96], prep[240], bcache[80], env_bcache[112];
   snprintf(cache, sizeof cache, "/tmp/aq-bench-cli-%ld", (long)getpid());
   snprintf(env_cache, sizeof env_cache, "XDG_CACHE_HOME=%s", cache);
+  snprintf(bcache, sizeof bcache, "%s-before", cache);
+  snprintf(env_bcache, sizeof env_bcache, "XDG_CACHE_HOME=%s", bcache);
   snprintf(out, sizeof out, "%s/job.h5", cache);
-  snprintf(prep, sizeof prep, "rm -rf %s/archquake/records", cache);
+  snprintf(prep, sizeof prep, "rm -rf %s/archquake/records %s/archquake/arches", cache, cache);
   mkdir(cache, 0700);
+  mkdir(bcache, 0700);
   const char *args[JC_N + 2][MAXARG];
   size_t k = 0;
   for (size_t i = 0; i < NSHARED; i++)
@@ -438,7 +446,7 @@ static void main_job(const char *before)
       args[i][m++] = "--no-cache";
     args[i][m] = NULL;
     c[i].label = i < JC_N ? jc_label[i] : ode ? "before: ode" : "before: default";
-    c[i].env = env_cache;
+    c[i].env = i < JC_N ? env_cache : env_bcache;
     c[i].prep = i == JC_COLD ? prep : NULL;
     set_argv(&c[i], i < JC_N ? "./archquake" : before, args[i]);
   }
@@ -469,7 +477,7 @@ static void main_job(const char *before)
   double empty_w[JC_N + 2];
   for (size_t i = 0; i < nc; i++) {
     char rm[160];
-    snprintf(rm, sizeof rm, "rm -rf %s/archquake", cache);
+    snprintf(rm, sizeof rm, "rm -rf %s/archquake", i < JC_N ? cache : bcache);
     if (i != JC_WARM && i != JC_ODE_WARM && system(rm) != 0)
       exit(1);
     run(&c[i], &empty_w[i], &empty_w[i], 0);
@@ -494,14 +502,18 @@ static void main_job(const char *before)
          med_w[JC_ODE_OFF] / med_w[JC_OFF], med_c[JC_ODE_OFF] / med_c[JC_OFF],
          med_w[JC_ODE_WARM] / med_w[JC_WARM], med_c[JC_ODE_WARM] / med_c[JC_WARM]);
   if (before)
-    printf(", before %.2f %.2f", med_w[JC_N + 1] / med_w[JC_N], med_c[JC_N + 1] / med_c[JC_N]);
+    printf(", before %.2f %.2f\n  this build's cache warm / before's (wall, CPU): default %.3f "
+           "%.3f, ode %.3f %.3f",
+           med_w[JC_N + 1] / med_w[JC_N], med_c[JC_N + 1] / med_c[JC_N],
+           med_w[JC_WARM] / med_w[JC_N], med_c[JC_WARM] / med_c[JC_N],
+           med_w[JC_ODE_WARM] / med_w[JC_N + 1], med_c[JC_ODE_WARM] / med_c[JC_N + 1]);
   printf("\n  cache warm / no cache (CPU): default %.2f, ode %.2f; cache cold / no cache: "
          "%.2f\n",
          med_c[JC_WARM] / med_c[JC_OFF], med_c[JC_ODE_WARM] / med_c[JC_ODE_OFF],
          med_c[JC_COLD] / med_c[JC_OFF]);
   free_commands(c, nc);
   char rm[160];
-  snprintf(rm, sizeof rm, "rm -rf %s", cache);
+  snprintf(rm, sizeof rm, "rm -rf %s %s", cache, bcache);
   if (system(rm) != 0)
     fprintf(stderr, "bench_cli: cannot remove %s\n", cache);
 }
@@ -509,22 +521,27 @@ static void main_job(const char *before)
 /* ---- 3. the job's stages, cold and warm ----------------------------------- */
 
 enum { ST_ARCH, ST_READ, ST_HASH, ST_PROCESS, ST_IM, ST_STEPS, ST_STEP, ST_H5, ST_WS, ST_CACHE,
-       NSTAGE };
+       ST_ARCH_CACHE, NSTAGE };
 static const char *const stage_name[NSTAGE] = {
     "arches loaded (2: mechanism search, tables)", "records read and parsed",
     "files hashed (sha256)", "processed (detrend, pads, filter; plans)",
     "intensity measures (pads included)", "step lists (factor 1)",
     "default model's 24 runs", "HDF5 file set up (tables; removed)",
     "FFTW workspace freed (wisdom)",
-    "instead of read..measures: the disk cache"};
+    "instead of read..measures: the disk cache",
+    "instead of arches loaded: the disk cache"};
 
 /* The child: the job's stages twice in this process; prints 2 x NSTAGE
  * CPU times (s), cold then warm.  Returns 0, or 1 if a stage fails. */
 static int stages_child(const char *cache_dir)
 {
   aq_diskcache *dc = aq_diskcache_open(cache_dir, "records", "bench");
-  if (!dc)
+  aq_diskcache *ac = aq_diskcache_open(cache_dir, "arches", "bench");
+  if (!dc || !ac) {
+    aq_diskcache_close(dc);
+    aq_diskcache_close(ac);
     return 1;
+  }
   aq_error e;
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
@@ -535,6 +552,16 @@ static int stages_child(const char *cache_dir)
   for (int pass = 0; pass < 2; pass++) {
     double t[NSTAGE] = {0}, w, c;
     aq_arch *arch[NARCH] = {NULL};
+    /* the arches through the disk cache (filled by the first process),
+     * first: as the job does, a process that reads them never loads GLPK */
+    c = thread_cpu_s();
+    for (int a = 0; a < NARCH; a++) {
+      if (aq_arch_cache_load(ac, job_arches[a], NULL, &arch[a], &e) != AQ_OK)
+        goto fail;
+      aq_arch_free(arch[a]);
+      arch[a] = NULL;
+    }
+    t[ST_ARCH_CACHE] = thread_cpu_s() - c;
     floor_start(&w, &c);
     for (int a = 0; a < NARCH; a++)
       if (aq_arch_load(job_arches[a], &arch[a], &e) != AQ_OK)
@@ -634,9 +661,11 @@ static int stages_child(const char *cache_dir)
     (void)w;
   }
   aq_diskcache_close(dc);
+  aq_diskcache_close(ac);
   return 0;
 fail:
   aq_diskcache_close(dc);
+  aq_diskcache_close(ac);
   aq_error_print(&e, stderr);
   return 1;
 }
@@ -663,7 +692,7 @@ static void stages(void)
          "medians of %d processes:\n", STAGE_REPS);
   printf("  %-44s %9s %9s %9s\n", "stage", "cold_ms", "warm_ms", "cold-warm");
   double sc = 0, sw = 0;
-  for (int k = 0; k < NSTAGE - 1; k++) {
+  for (int k = 0; k < ST_CACHE; k++) {
     double mc = aq_bench_median(cold[k], STAGE_REPS), mw = aq_bench_median(warm[k], STAGE_REPS);
     sc += mc;
     sw += mw;
@@ -674,6 +703,11 @@ static void stages(void)
   double mw = aq_bench_median(warm[ST_CACHE], STAGE_REPS);
   printf("  %-44s %9.2f %9.2f %9.2f\n", stage_name[ST_CACHE], 1e3 * mc, 1e3 * mw,
          1e3 * (mc - mw));
+  mc = aq_bench_median(cold[ST_ARCH_CACHE], STAGE_REPS);
+  mw = aq_bench_median(warm[ST_ARCH_CACHE], STAGE_REPS);
+  printf("  %-44s %9.2f %9.2f %9.2f\n", stage_name[ST_ARCH_CACHE], 1e3 * mc, 1e3 * mw,
+         1e3 * (mc - mw));
+  mc = aq_bench_median(cold[ST_CACHE], STAGE_REPS);
   printf("  (the records from the disk cache, the first process filling it: read,\n"
          "  hash, process and measures cold %.2f ms become %.2f ms)\n",
          1e3 * (aq_bench_median(cold[ST_READ], STAGE_REPS) +
