@@ -58,7 +58,7 @@ AQ_TEST(steps_merge_keeps_impulse)
  * samples themselves, and the caller's array untouched by the free. */
 AQ_TEST(steps_over_borrows_the_samples)
 {
-  enum { N = 1000 }; /* 15 whole blocks of 64 and a part block of 40 */
+  enum { N = 1003 }; /* 15 whole blocks of 64 and a part block of 43 */
   double *a = malloc(N * sizeof *a);
   aq_check(a != NULL, "memory");
   if (!a)
@@ -69,7 +69,8 @@ AQ_TEST(steps_over_borrows_the_samples)
     if (fabs(a[i]) > want_peak)
       want_peak = fabs(a[i]);
   }
-  a[990] = -2.385; /* the peak, negative, in the part block */
+  a[1001] = -2.385; /* the peak, negative, in the part block */
+  a[1002] = 1.9;    /* its greatest, its last sample */
   want_peak = 2.385;
   aq_steps s;
   aq_error e;
@@ -88,9 +89,9 @@ AQ_TEST(steps_over_borrows_the_samples)
     }
     aq_check(s.block_min_mps2[b] == lo && s.block_max_mps2[b] == hi, "block %zu", b);
   }
-  aq_check(aq_steps_next_outside(&s, 0, -2, 2) == 990, "the loud step");
+  aq_check(aq_steps_next_outside(&s, 0, -2, 2) == 1001, "the loud step");
   aq_steps_free(&s);
-  aq_check(a[990] == -2.385, "the samples stay the caller's"); /* ASan: not freed */
+  aq_check(a[1001] == -2.385, "the samples stay the caller's"); /* ASan: not freed */
   free(a);
   aq_check(aq_steps_over(&peak, 1, 0, 0, &s, NULL, &e) == AQ_EVALUE, "dt 0 refused");
 }

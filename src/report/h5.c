@@ -159,6 +159,7 @@ struct aq_h5_writer {
   int sync_fd;
   size_t sync_pending;
   int sync_thread_on;   /* the thread runs */
+  int sync_tried;       /* sync_start was called (once) */
   int sync_request;     /* a sync is asked for (under sync_lock) */
   int sync_quit;        /* the thread is to end (under sync_lock) */
   int sync_errno;       /* first failure of a background sync, 0 if none */
@@ -286,8 +287,10 @@ static herr_t attr_doubles(hid_t loc, const char *name, const double *v,
  * aq_h5_finish must do before the rename finds almost everything already on
  * disk (for a 36 MB file: 3 ms instead of 30 ms at the end of the suite,
  * when nothing else is left to run).  The thread only syncs a descriptor: it
- * never enters the HDF5 library.  The final fsync is unchanged; a failed
- * background sync fails aq_h5_finish (its error is reported to that
+ * never enters the HDF5 library.  It starts at the first request, so a
+ * file with less than AQ_H5_SYNC_BYTES of datasets (the main job's file for
+ * a few hundred runs) never starts one.  The final fsync is unchanged; a
+ * failed background sync fails aq_h5_finish (its error is reported to that
  * descriptor only once). */
 
 static void *sync_main(void *arg)
@@ -346,13 +349,20 @@ static void sync_stop(aq_h5_writer *w)
 }
 
 /* bytes of dataset values were written: ask for a background sync once
- * AQ_H5_SYNC_BYTES have been written since the last request (never waits). */
+ * AQ_H5_SYNC_BYTES have been written since the last request, starting the
+ * thread at the first (never waits for a sync). */
 static void sync_hint(aq_h5_writer *w, size_t bytes)
 {
   w->sync_pending += bytes;
-  if (!w->sync_thread_on || w->sync_pending < AQ_H5_SYNC_BYTES)
+  if (w->sync_pending < AQ_H5_SYNC_BYTES)
     return;
   w->sync_pending = 0;
+  if (!w->sync_tried) {
+    w->sync_tried = 1;
+    sync_start(w);
+  }
+  if (!w->sync_thread_on)
+    return;
   pthread_mutex_lock(&w->sync_lock);
   w->sync_request = 1;
   pthread_cond_signal(&w->sync_cond);
@@ -675,7 +685,6 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   }
   close(fd);
   w->sync_fd = open(w->tmp, O_RDONLY); /* -1: no background sync */
-  sync_start(w);
   aq_status st = AQ_OK;
   const char *obj = "/";
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
