@@ -11,7 +11,7 @@
  *   u64 XXH3-64 (native byte order).  A read compares the whole key, so two keys whose
  * file names collide are never confused: the other key's entry is a miss
  * (and the next write replaces it).  An entry that is short, long, not
- * ours or fails its CRC is corrupt: one note says so, and it is a miss.
+ * ours or fails its checksum is corrupt: one note says so, and it is a miss.
  * Every key is prefixed with the store's identity (the program's version
  * and the executable's build: its ELF build-id, else its size and time),
  * so a rebuilt program never reads what another build wrote.
