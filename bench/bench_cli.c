@@ -328,6 +328,8 @@ static int job_floor(floor_times *fr, floor_times *ff, floor_times *fs, size_t *
   memset(&ro, 0, sizeof ro);
   aq_signal_opts so;
   aq_signal_opts_default(&so);
+  so.im_nsa = 0; /* the main job's: spectral measures only when named (opt_table.c) */
+  so.sa_avg_lo_s = so.sa_avg_hi_s = 0;
   aq_signal_ws *ws = aq_signal_ws_alloc();
   aq_arch *arch[NARCH] = {NULL};
   aq_stepper *st[NARCH] = {NULL};
@@ -547,6 +549,8 @@ static int stages_child(const char *cache_dir)
   memset(&ro, 0, sizeof ro);
   aq_signal_opts so;
   aq_signal_opts_default(&so);
+  so.im_nsa = 0; /* the main job's: spectral measures only when named (opt_table.c) */
+  so.sa_avg_lo_s = so.sa_avg_hi_s = 0;
   char h5[96];
   snprintf(h5, sizeof h5, "/tmp/aq-bench-cli-stages-%ld.h5", (long)getpid());
   for (int pass = 0; pass < 2; pass++) {

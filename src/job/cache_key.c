@@ -7,17 +7,15 @@
 #include <gsl/gsl_version.h>
 #include <stdio.h>
 
+#include "../util/cpu.h"
+
 void aq_cache_key_platform(aq_bytes_out *b)
 {
-  char s[256];
-  __builtin_cpu_init();
+  char s[256], cpu[96];
+  aq_cpu_simd(cpu, sizeof cpu);
   /* GLPK's version as built: asking the library would load it (the search
    * does only when it runs) */
-  snprintf(s, sizeof s,
-           "glibc %s; gsl %s; glpk %d.%d; cpu sse2 %d avx %d avx2 %d fma %d avx512f %d",
-           gnu_get_libc_version(), gsl_version, GLP_MAJOR_VERSION, GLP_MINOR_VERSION,
-           !!__builtin_cpu_supports("sse2"), !!__builtin_cpu_supports("avx"),
-           !!__builtin_cpu_supports("avx2"), !!__builtin_cpu_supports("fma"),
-           !!__builtin_cpu_supports("avx512f"));
+  snprintf(s, sizeof s, "glibc %s; gsl %s; glpk %d.%d; %s", gnu_get_libc_version(), gsl_version,
+           GLP_MAJOR_VERSION, GLP_MINOR_VERSION, cpu);
   aq_bytes_put_str(b, s, 0);
 }

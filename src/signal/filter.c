@@ -51,6 +51,7 @@
 #include "../io/sha256.h"
 #include "../util/diskcache.h"
 #include "../util/outfile.h"
+#include "../util/cpu.h"
 #include "fftw_wisdom.h" /* build/: aq_fftw_wisdom[], made by tools/fftw_wisdom.c */
 
 /* FFTW's planner is global to the process: one lock for every workspace. */
@@ -351,10 +352,8 @@ aq_status aq_filter_apply(aq_signal_ws *ws, double *x, size_t n, double dt_s,
 void aq_signal_fingerprint(char *buf, size_t n)
 {
   /* FFTW_ESTIMATE picks codelets by the SIMD sets the CPU (and OS) offer */
-  __builtin_cpu_init();
+  char cpu[96];
+  aq_cpu_simd(cpu, sizeof cpu);
   const char *e = getenv("AQ_FFTW_NO_BUILTIN_WISDOM");
-  snprintf(buf, n, "%s; cpu sse2 %d avx %d avx2 %d fma %d avx512f %d; builtin wisdom %d",
-           fftw_version, !!__builtin_cpu_supports("sse2"), !!__builtin_cpu_supports("avx"),
-           !!__builtin_cpu_supports("avx2"), !!__builtin_cpu_supports("fma"),
-           !!__builtin_cpu_supports("avx512f"), !(e && e[0]));
+  snprintf(buf, n, "%s; %s; builtin wisdom %d", fftw_version, cpu, !(e && e[0]));
 }
