@@ -33,29 +33,6 @@ _Static_assert(sizeof(aq_record) == 1264,
                "aq_record changed: check that subject_cache.c stores every pointer field "
                "apart (path, name, acc_mps2), then update this size");
 
-/* The whole file at path into *buf (malloc'd), *n bytes; 0, or -1. */
-static int slurp(const char *path, unsigned char **buf, size_t *n)
-{
-  *buf = NULL;
-  *n = 0;
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return -1;
-  struct stat sb;
-  int ok = fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size >= 0;
-  size_t size = ok ? (size_t)sb.st_size : 0;
-  unsigned char *b = ok ? malloc(size ? size : 1) : NULL;
-  ok = b && fread(b, 1, size, f) == size && fgetc(f) == EOF && !ferror(f);
-  fclose(f);
-  if (!ok) {
-    free(b);
-    return -1;
-  }
-  *buf = b;
-  *n = size;
-  return 0;
-}
-
 /* Every reading option but the responses (a keyed subject has none). */
 static void read_opts_key(aq_bytes_out *b, const aq_read_opts *r)
 {
@@ -124,14 +101,12 @@ int aq_subject_cache_key(const aq_subject_src *src, const aq_subject_opts *o,
       continue;
     aq_bytes_put_str(b, src->path[j], 0);
     char file[4096];
-    unsigned char *bytes;
-    size_t n;
-    if (slurp(aq_record_file(src->path[j], file, sizeof file), &bytes, &n) != 0) {
-      aq_subject_key_free(k); /* the reader says why */
+    aq_error e; /* the reader says why */
+    if (aq_sha256_file(aq_record_file(src->path[j], file, sizeof file), k->sha256[j], &e) !=
+        AQ_OK) {
+      aq_subject_key_free(k);
       return 0;
     }
-    aq_sha256_hex(bytes, n, k->sha256[j]);
-    free(bytes);
     aq_bytes_put_str(b, k->sha256[j], 0);
   }
   if (b->oom) {
