@@ -581,11 +581,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                   "into one constant-acceleration step (default 0: none)"},
     [AQ_OPT_NO_CACHE] = {.name = "no-cache", .kind = AQ_ARG_FLAG, DEST(no_cache),
                          .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
-                         .help = "neither read nor store processed records in the cache "
-                                 "(results are the same either way; docs/cache.md)"},
+                         .help = "neither read nor store processed records and built arches "
+                                 "in the cache (results are the same either way; "
+                                 "docs/cache.md)"},
     [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
                           DEST(cache_dir), .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
-                          .help = "keep processed records in DIR (default "
+                          .help = "keep processed records and built arches in DIR (default "
                                   "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
                           .check = cache_dir_needs_cache},
     [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
