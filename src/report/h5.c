@@ -220,18 +220,6 @@ static hid_t str_type(size_t size)
   return t;
 }
 
-static herr_t attr_write(hid_t loc, const char *name, hid_t type, hid_t space,
-                         const void *buf)
-{
-  hid_t a = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-  if (a < 0)
-    return -1;
-  herr_t rc = H5Awrite(a, type, buf);
-  if (H5Aclose(a) < 0)
-    rc = -1;
-  return rc;
-}
-
 /* A scalar string attribute (fixed length strlen + 1, NUL-terminated). */
 static herr_t attr_str(aq_h5_writer *w, hid_t loc, const char *name,
                        const char *value)
@@ -240,17 +228,17 @@ static herr_t attr_str(aq_h5_writer *w, hid_t loc, const char *name,
     value = "";
   if (H5Tset_size(w->t_str, strlen(value) + 1) < 0)
     return -1;
-  return attr_write(loc, name, w->t_str, w->sp_scalar, value);
+  return aq_h5_attr_write(loc, name, w->t_str, w->sp_scalar, value);
 }
 
 static herr_t attr_double(aq_h5_writer *w, hid_t loc, const char *name, double v)
 {
-  return attr_write(loc, name, H5T_NATIVE_DOUBLE, w->sp_scalar, &v);
+  return aq_h5_attr_write(loc, name, H5T_NATIVE_DOUBLE, w->sp_scalar, &v);
 }
 
 static herr_t attr_int(aq_h5_writer *w, hid_t loc, const char *name, int64_t v)
 {
-  return attr_write(loc, name, H5T_NATIVE_INT64, w->sp_scalar, &v);
+  return aq_h5_attr_write(loc, name, H5T_NATIVE_INT64, w->sp_scalar, &v);
 }
 
 int aq_h5_attr_text(aq_h5_writer *w, int64_t loc, const char *name, const char *value)
@@ -275,7 +263,7 @@ static herr_t attr_doubles(hid_t loc, const char *name, const double *v,
   hid_t s = H5Screate_simple(1, &dim, NULL);
   if (s < 0)
     return -1;
-  herr_t rc = attr_write(loc, name, H5T_NATIVE_DOUBLE, s, v);
+  herr_t rc = aq_h5_attr_write(loc, name, H5T_NATIVE_DOUBLE, s, v);
   if (H5Sclose(s) < 0)
     rc = -1;
   return rc;

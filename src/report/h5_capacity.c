@@ -45,14 +45,8 @@ static herr_t attr_strings(hid_t g, const char *name, const char *const *v, size
   hsize_t dim = n;
   hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &dim, NULL);
   herr_t rc = -1;
-  if (t >= 0 && sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0) {
-    hid_t a = H5Acreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    if (a >= 0) {
-      rc = H5Awrite(a, t, v);
-      if (H5Aclose(a) < 0)
-        rc = -1;
-    }
-  }
+  if (t >= 0 && sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0)
+    rc = aq_h5_attr_write(g, name, t, sp, v);
   if (sp >= 0 && H5Sclose(sp) < 0)
     rc = -1;
   if (t >= 0 && H5Tclose(t) < 0)
@@ -82,13 +76,7 @@ static herr_t attr_d(hid_t g, const char *name, double v)
   hid_t sp = H5Screate(H5S_SCALAR);
   if (sp < 0)
     return -1;
-  herr_t rc = -1;
-  hid_t a = H5Acreate2(g, name, H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
-  if (a >= 0) {
-    rc = H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
-    if (H5Aclose(a) < 0)
-      rc = -1;
-  }
+  herr_t rc = aq_h5_attr_write(g, name, H5T_NATIVE_DOUBLE, sp, &v);
   if (H5Sclose(sp) < 0)
     rc = -1;
   return rc;

@@ -77,6 +77,17 @@ hid_t aq_h5_xfer(hid_t d, hid_t mt, size_t n)
   return p;
 }
 
+herr_t aq_h5_attr_write(hid_t loc, const char *name, hid_t type, hid_t space, const void *buf)
+{
+  hid_t a = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (a < 0)
+    return -1;
+  herr_t rc = H5Awrite(a, type, buf);
+  if (H5Aclose(a) < 0)
+    rc = -1;
+  return rc;
+}
+
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value)
 {
   if (!value)
@@ -84,14 +95,8 @@ herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value)
   hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
   herr_t rc = -1;
   if (t >= 0 && sp >= 0 && H5Tset_size(t, strlen(value) + 1) >= 0 &&
-      H5Tset_strpad(t, H5T_STR_NULLTERM) >= 0) {
-    hid_t a = H5Acreate2(loc, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    if (a >= 0) {
-      rc = H5Awrite(a, t, value);
-      if (H5Aclose(a) < 0)
-        rc = -1;
-    }
-  }
+      H5Tset_strpad(t, H5T_STR_NULLTERM) >= 0)
+    rc = aq_h5_attr_write(loc, name, t, sp, value);
   if (sp >= 0 && H5Sclose(sp) < 0)
     rc = -1;
   if (t >= 0 && H5Tclose(t) < 0)

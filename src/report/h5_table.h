@@ -55,6 +55,10 @@ herr_t aq_h5_table_write(hid_t loc, const char *name, const aq_h5_col *cols, siz
 herr_t aq_h5_columns_write(hid_t loc, const aq_h5_col *cols, size_t ncols, size_t rowsize,
                            const void *rows, size_t nrows);
 
+/* Attribute name of loc with the given type and dataspace, holding buf
+ * (created, written, closed; type and space stay the caller's). */
+herr_t aq_h5_attr_write(hid_t loc, const char *name, hid_t type, hid_t space, const void *buf);
+
 /* Scalar string attribute (fixed length strlen + 1, NUL-terminated; NULL
  * as ""). */
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value);
