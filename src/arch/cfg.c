@@ -17,6 +17,10 @@
  *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
  *               (optional, default: the primary's joints, faces swapped);
  *               without [hinges] the primary comes from the search (search.c)
+ *               and control (fixed | free; default fixed with a primary, free
+ *               without; free takes no reverse)
+ *   [contact]   friction (the Coulomb coefficient of every joint, > 0;
+ *               optional: none; a command's --friction wins, aq_arch_options)
  *   [dynamics]  cor (0..1, kinetic-energy ratio, docs/method.md sec. 7), impact
  *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
  * libinih calls the handler for each key as it reads the line; the reader
@@ -44,7 +48,8 @@
 
 enum {
   K_NAME, K_SHAPE, K_RADIUS, K_EMBRACE, K_SPAN, K_RISE, K_THICK, K_VOUS, K_DENS, K_DEPTH,
-  K_JOINTS, K_FACES, K_LEVEL, K_FDENS, K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
+  K_JOINTS, K_FACES, K_LEVEL, K_FDENS, K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G,
+  K_CONTROL, K_FRICTION, NKEYS
 };
 /* Which shapes take a key (bit 1 << aq_shape). */
 #define S_ALL ((1u << AQ_SHAPE_COUNT) - 1)
@@ -76,6 +81,8 @@ static const struct {
     {"dynamics", "cor", S_ALL, 0},
     {"dynamics", "impact", S_ALL, 0},
     {"dynamics", "g_mps2", S_ALL, 0},
+    {"hinges", "control", S_ALL, 0},
+    {"contact", "friction", S_ALL, 0},
 };
 
 typedef struct {
@@ -98,6 +105,7 @@ typedef struct {
   double num[NKEYS];
   aq_hinge_set hs[2];
   int impact;
+  int control;
   mass_line *mass;
   size_t nmass;
 } parse_ctx;
@@ -142,11 +150,11 @@ static char *reader(char *str, int num, void *stream)
     char sec[64];
     snprintf(sec, sizeof sec, "%.*s", (int)(n < 63 ? n : 63), p + 1);
     if (!e || (strcmp(sec, "arch") && strcmp(sec, "fill") && strcmp(sec, "masses") &&
-               strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
+               strcmp(sec, "hinges") && strcmp(sec, "dynamics") && strcmp(sec, "contact"))) {
       char got[80];
       snprintf(got, sizeof got, "[%s]", e ? sec : "...");
       fail(c, AQ_EFORMAT, "section",
-           "expected [arch], [fill], [masses], [hinges] or [dynamics], got %s", got);
+           "expected [arch], [fill], [masses], [hinges], [contact] or [dynamics], got %s", got);
       return NULL;
     }
     if (!strcmp(sec, "hinges") && !c->hinges_section)
@@ -246,7 +254,7 @@ static int handler(void *user, const char *section, const char *name,
     snprintf(got, sizeof got, "\"%.100s\"", name);
     if (!section[0])
       return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [fill], [masses], "
-                  "[hinges] or [dynamics], got %s before any section", got);
+                  "[hinges], [contact] or [dynamics], got %s before any section", got);
     char expect[256];
     expect[0] = '\0';
     for (int i = 0; i < NKEYS; i++)
@@ -339,17 +347,40 @@ static int handler(void *user, const char *section, const char *name,
     if (!aq_infile_number(value, &x) || !(x > 0) || !(x <= 100))
       return fail(c, AQ_EVALUE, name, "expected a gravity in (0, 100] m/s^2, got %s", got);
     break;
+  case K_CONTROL:
+    for (c->control = 0; c->control < 2; c->control++)
+      if (!strcmp(value, aq_hinge_control_names[c->control]))
+        return 1;
+    return fail(c, AQ_EVALUE, name, "expected fixed or free, got %s", got);
+  case K_FRICTION:
+    if (!aq_infile_number(value, &x) || !(x > 0) || !isfinite(x))
+      return fail(c, AQ_EVALUE, name, "expected a Coulomb coefficient > 0 (finite), got %s",
+                  got);
+    break;
   }
   c->num[k] = x;
   return 1;
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err);
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err);
 
 aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
                               aq_arch **out, aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, NULL, store, hit, out, err);
+}
+
+aq_status aq_arch_load_opts(const char *path, const aq_arch_options *opt, aq_arch **out,
+                            aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, opt, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_stored_opts(const char *path, const aq_arch_options *opt,
+                                   const aq_arch_store *store, int *hit, aq_arch **out,
+                                   aq_error *err)
 {
   *out = NULL;
   if (hit)
@@ -359,14 +390,14 @@ aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int 
   char *buf = aq_infile_read(path, MAX_FILE_BYTES, "arch file", &len, &st, err);
   if (!buf)
     return st;
-  st = load_string(buf, len, path, store, hit, out, err);
+  st = load_string(buf, len, path, opt, store, hit, out, err);
   free(buf);
   return st;
 }
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
 {
-  return aq_arch_load_stored(path, NULL, NULL, out, err);
+  return aq_arch_load_stored_opts(path, NULL, NULL, NULL, out, err);
 }
 
 /* The checks that need the whole file: the keys the shape takes and
@@ -402,9 +433,21 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
                         c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m",
                         "expected level_m and density_kg_m3 in [fill], got no %s",
                         c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m");
-  if (c->hinges_section && !c->key_line[K_PRIMARY])
+  if (c->key_line[K_REVERSE] && !c->key_line[K_PRIMARY])
+    return aq_error_set(err, AQ_EFORMAT, path, c->key_line[K_REVERSE], -1, "primary",
+                        "expected a primary hinge set in [hinges] with the reverse, got none");
+  if (c->hinges_section && !c->key_line[K_PRIMARY] && !c->key_line[K_CONTROL])
     return aq_error_set(err, AQ_EFORMAT, path, c->hinges_section, -1, "primary",
-                        "expected a primary hinge set in [hinges], got none");
+                        "expected a primary hinge set or a control in [hinges], got neither");
+  /* control: fixed by default when the file names the primary, free when
+   * the search finds it */
+  if (!c->key_line[K_CONTROL])
+    c->control = c->key_line[K_PRIMARY] ? AQ_CONTROL_FIXED : AQ_CONTROL_FREE;
+  if (c->control == AQ_CONTROL_FREE && c->key_line[K_REVERSE])
+    return aq_error_set(err, AQ_EVALUE, path, c->key_line[K_REVERSE], -1, "reverse",
+                        "expected no reverse with control = free (line %ld: each direction's "
+                        "set is its own minimum mechanism), got one",
+                        c->key_line[K_CONTROL]);
   if (c->shape != AQ_SHAPE_JOINTS)
     return AQ_OK;
   /* joints_file and faces_file: relative to the .cfg's directory */
@@ -488,6 +531,8 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
     p.fill_level_m = c->num[K_LEVEL];
     p.fill_density_kg_m3 = c->num[K_FDENS];
   }
+  p.control = (aq_hinge_control)c->control;
+  p.friction = src->friction > 0 ? src->friction : c->num[K_FRICTION]; /* 0: none */
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
@@ -533,12 +578,18 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err)
 {
-  return load_string(data, len, path, NULL, NULL, out, err);
+  return load_string(data, len, path, NULL, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_string_opts(const char *data, size_t len, const char *path,
+                                   const aq_arch_options *opt, aq_arch **out, aq_error *err)
+{
+  return load_string(data, len, path, opt, NULL, NULL, out, err);
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err)
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err)
 {
   int hit_ = 0;
   *out = NULL;
@@ -589,7 +640,9 @@ static aq_status load_string(const char *data, size_t len, const char *path,
   aq_joints J;
   memset(&J, 0, sizeof J);
   st = after_parse(&c, path, &J, err);
-  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]}};
+  double friction = opt && opt->friction > 0 && isfinite(opt->friction) ? opt->friction : 0;
+  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]},
+                         friction};
   if (st == AQ_OK)
     st = build_parsed(&c, path, &J, &src, store, &hit_, &a, err);
   free(c.mass);
