@@ -144,7 +144,7 @@ AQ_TEST(arch_cli_bad_files)
     snprintf(line, sizeof line, "[contact]\nfriction = %s", bad_mu[k]);
     snprintf(what, sizeof what, "friction \"%s\"", bad_mu[k]);
     expect_error(what, 12, line, NULL,
-                 "%s:13: friction: expected a Coulomb coefficient > 0 (finite), got");
+                 "%s:13: friction: expected a Coulomb coefficient in (0, 1000], got");
   }
   /* too many voussoirs, with no [hinges] (lines 10-11 become comments) */
   expect_error_lines("too many voussoirs", 7, "voussoirs = 1001", 10, "; no hinges", 11, "; none",
