@@ -142,9 +142,11 @@ static const char *num(char *buf, size_t n, double x)
   return buf;
 }
 
+/* The rows, after one comment line saying where the peaks were taken. */
 static void print_rows(const job *J, size_t n)
 {
   char b[5][40];
+  printf("# peaks: %s\n", aq_spectrum_peaks_text(J->so.peaks));
   printf("record\tcomponent\tdamping\tperiod_s\tpsa_g\tsd_m\tpsv_m_s\n");
   for (size_t k = 0; k < n; k++) {
     const source *s = &J->src[k];
@@ -199,7 +201,7 @@ static int write_h5(const char *path, const char *cmdline, const job *J, size_t 
                                         a / (om * om), a / om};
         }
   }
-  aq_h5_spectra hs = {rows, nrow, J->so.sampled_peaks, J->so.n_angles};
+  aq_h5_spectra hs = {rows, nrow, J->so.peaks, J->so.n_angles};
   if (s == AQ_OK)
     s = aq_h5_write_spectra(w, path, &hs, &e);
   if (s == AQ_OK) {
@@ -260,7 +262,7 @@ int aq_cmd_spectrum(int argc, char **argv)
            .damping = o.dampings ? o.dampings : &damping_default,
            .ndamp = o.dampings ? o.ndampings : 1};
   aq_spectrum_opts_default(&J.so);
-  J.so.sampled_peaks = o.sampled_peaks;
+  J.so.peaks = o.proc.peaks;
 
   char **names = NULL;
   size_t nnames = 0, n = 0;
