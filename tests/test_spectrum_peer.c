@@ -24,8 +24,8 @@
 #define PI 3.14159265358979323846
 #define G0 9.80665 /* m/s^2 per g, written here */
 #define R "tests/data/records/"
-#define H1 R "RSN8883_14383980_13849360.AT2" /* PEER's H1: azimuth 360 */
-#define H2 R "RSN8883_14383980_13849090.AT2" /* H2: azimuth 90 */
+#define H1 "tests/data/spectra/RSN8883_14383980_13849360.AT2" /* PEER's H1: azimuth 360 */
+#define H2 "tests/data/spectra/RSN8883_14383980_13849090.AT2" /* H2: azimuth 90 */
 #define PUBLISHED "tests/data/spectra/RSN8883_peer_nga_west2.tsv"
 
 static int read_rec(const char *path, aq_record *r)
