@@ -132,6 +132,10 @@ typedef struct {
   /* a geometry as stored in a results file (not NULL: every field above
    * but depth, density and shape is unused; copied) */
   const aq_arch_drawing *stored;
+  /* statics: how the hinges are chosen (arch.h; 0: fixed) and the Coulomb
+   * friction coefficient of every joint (> 0; 0: none) */
+  aq_hinge_control control;
+  double friction;
 } aq_arch_params;
 
 /* The parameters of a circular arch (no fill, no point masses). */
@@ -141,7 +145,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL, NULL};
+                      0, NULL, NULL, AQ_CONTROL_FIXED, 0};
   return p;
 }
 
@@ -388,6 +392,20 @@ typedef struct {
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
                             double *lambda0, aq_search_info *info, aq_error *err);
 
+/* As aq_search_minimum over the sets that ground acceleration of sign
+ * act_sign drives (path.h act_sign; -1 or +1) alone: that direction's
+ * minimum-lambda0 admissible set.  For an arch that stands (its
+ * aq_search_minimum above 0); AQ_EINADMISSIBLE (field "hinges") if that
+ * direction has none. */
+aq_status aq_search_direction(const aq_geom *g, double g_mps2, int act_sign,
+                              aq_hinge_set *best, double *lambda0, aq_search_info *info,
+                              aq_error *err);
+
+/* The sign of the ground acceleration that drives hs (path.h act_sign, as
+ * aq_workpath_build sets it), or 0 when hs is no mechanism (joints out of
+ * range or order, a hinge that does not open). */
+int aq_search_act_sign(const aq_geom *g, const aq_hinge_set *hs);
+
 /* Open GLPK, which the search calls through glpk_lazy.c (once per process;
  * later calls return the first's outcome): AQ_OK, or AQ_EUNSUPPORTED with
  * err naming the library and the loader's reason. */
@@ -411,7 +429,9 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
                                const char *name, aq_arch **out, aq_error *err);
 
 /* Build an arch from parameters (no file): primary NULL runs the search,
- * reverse NULL takes the primary's face swap.  dyn NULL: cor 0, impact cor,
+ * reverse NULL takes the primary's face swap; with p->control free, the
+ * sets are each direction's minimum (arch.h aq_hinge_control; a reverse is
+ * refused, AQ_EVALUE field "reverse").  dyn NULL: cor 0, impact cor,
  * standard gravity.  The caller frees with aq_arch_free. */
 aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
                         const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
