@@ -270,8 +270,8 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   a->control = p->control;
   a->friction = p->friction;
   aq_status st = aq_geom_init(&a->geom, p, err);
-  if (st != AQ_OK)
-    return st;
+  if (st != AQ_OK || (st = aq_geom_check_strut(&a->geom, err)) != AQ_OK)
+    return st; /* a strut fits: no set of any hinges is a mechanism */
   if (kept && tables_get(a, kept, nkept, primary, reverse) == 0) {
     *used = 1;
     if (drawing_make(a) != 0)
