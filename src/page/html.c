@@ -711,7 +711,19 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     if (n) {
       aq_page_puts(b, "<p>The intensity measures ranked by the dispersion β of their "
                       "fragility fit: the smaller β, the better the measure predicts this "
-                      "arch's collapse.</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
+                      "arch's collapse.");
+      int spectral = 0;
+      for (size_t i = 0; i < n; i++)
+        spectral |= strncmp(t.fit[order[i]].im, "sa_", 3) == 0;
+      if (spectral) {
+        int r = aq_spectrum_peaks_parse(t.peaks);
+        aq_page_puts(b, "  Sa(T) and Sa_avg are pseudo-spectral accelerations at 5 % "
+                        "damping, their peaks taken by the rule <i>");
+        aq_page_esc(b, r >= 0 ? aq_spectrum_peaks_text((aq_spectrum_peaks)r)
+                              : "not stated (a file written before --peaks: exact)");
+        aq_page_puts(b, "</i>.");
+      }
+      aq_page_puts(b, "</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
                       "<th>median</th><th>β</th><th>median 90 % interval</th><th>records</th>"
                       "<th>censored</th></tr></thead><tbody>\n");
       for (size_t i = 0; i < n; i++) {

@@ -762,7 +762,8 @@ static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
       attr_double(w, loc, "highpass_hz", p->filter ? p->highpass_hz : NAN) < 0 ||
       attr_int(w, loc, "highpass_order", p->filter ? p->order : 0) < 0 ||
       attr_double(w, loc, "lowpass_hz",
-                  p->filter && p->lowpass_hz > 0 ? p->lowpass_hz : NAN) < 0)
+                  p->filter && p->lowpass_hz > 0 ? p->lowpass_hz : NAN) < 0 ||
+      attr_str(w, loc, "peaks", aq_spectrum_peaks_names[p->peaks]) < 0)
     return -1;
   return 0;
 }

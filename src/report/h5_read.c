@@ -20,7 +20,7 @@ static const char *const setting_names[] = {
     "detrend",           "filter",          "taper_frac",     "highpass_hz",
     "highpass_order",    "lowpass_hz",      "merge_tol_g",    "units_override",
     "dt_override_s",     "scale_mode",      "scale_to_pga_g", "polarity",
-    "scale_to_lambda0"};
+    "scale_to_lambda0",  "peaks"};
 enum { NSETTINGS = sizeof setting_names / sizeof setting_names[0] };
 
 void aq_h5_suite_free(aq_h5_suite *s)
