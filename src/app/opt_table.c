@@ -15,6 +15,7 @@
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../capacity/capacity.h"
+#include "../signal/spectrum.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_arch.h"
@@ -47,6 +48,7 @@
 #define AQ_COMPARE_ATOL_DEFAULT 0.0
 
 _Static_assert(sizeof(aq_detrend) == sizeof(int), "--detrend is stored as an int");
+_Static_assert(sizeof(aq_spectrum_peaks) == sizeof(int), "--peaks is stored as an int");
 
 static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_detrend */
 static const char *const impacts[] = {"cor", "momentum", NULL};
@@ -142,6 +144,14 @@ static void sa_avg(char *arg, aq_opts *o, int *nerr)
 }
 
 /* The checks between options (the rows' .check), made after parsing. */
+
+/* --sampled-peaks is --peaks samples (their rows refuse the two together). */
+static void sampled_peaks_alias(aq_opts *o, int *nerr)
+{
+  (void)nerr;
+  if (o->sampled_peaks)
+    o->proc.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+}
 
 /* Checks that need the record (the Nyquist frequency, the record length)
  * are made by aq_signal_process. */
@@ -501,11 +511,6 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .cmds = C(SPECTRUM),
                         .help = "damping ratios, comma-separated, each in (0, 1) (default "
                                 "0.05)"},
-    [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
-                              DEST(sampled_peaks), .cmds = C(SPECTRUM),
-                              .help = "each oscillator's peak at the samples only, as PEER's "
-                                      "NGA-West2 flatfile takes it (default: over continuous "
-                                      "time, between samples too; docs/spectrum.md)"},
     [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
     [AQ_OPT_VERSION] = {.name = "version", .kind = AQ_ARG_FLAG, .cmds = C(RUN),
@@ -618,6 +623,22 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                        .help = "intensity measure Sa_avg: the geometric mean of Sa at 10 "
                                "periods evenly spaced from T1 to T2 s (Eads et al. 2015), "
                                "or none (default 0.1,1 in info and capacity, none in the main job)"},
+    [AQ_OPT_PEAKS] = {.name = "peaks", .kind = AQ_ARG_CHOICE,
+                      .choices = aq_spectrum_peaks_names, .meta = "RULE", DEST(proc.peaks),
+                      .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                      .help = "where each oscillator's peak is taken, for the spectra and "
+                              "the spectral measures: peer (default: at the samples and at "
+                              "N - 1 points between each two, N = ceil(10 dt / T), as PEER "
+                              "computes the NGA-West2 spectra), exact (over continuous time, "
+                              "the record linear between samples) or samples (at the samples "
+                              "only); docs/spectrum.md"},
+    [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
+                              DEST(sampled_peaks), .cmds = RECORDS,
+                              .group = AQ_GROUP_PROCESSING,
+                              .help = "the same as --peaks samples",
+                              .conflicts = OPTS(AQ_OPT_PEAKS),
+                              .why = "it is --peaks samples",
+                              .check = sampled_peaks_alias},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies; "
@@ -666,7 +687,7 @@ static const char run_tail[] =
     "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
     "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
     "  record drove first; nan if it never moved) peak_rotation_over_qc (the\n"
-    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0_g (pga_g over\n"
+    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0 (pga_g over\n"
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"

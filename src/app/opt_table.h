@@ -140,7 +140,8 @@ typedef enum {
   AQ_OPT_DAMPING,
   AQ_OPT_IM_PERIODS,    /* the spectral intensity measures */
   AQ_OPT_SA_AVG,
-  AQ_OPT_SAMPLED_PEAKS,
+  AQ_OPT_PEAKS,         /* where a spectral peak is taken */
+  AQ_OPT_SAMPLED_PEAKS, /* --peaks samples */
   AQ_OPT_HELP,
   AQ_OPT_VERSION,
   /* reading records */
@@ -256,7 +257,7 @@ typedef struct aq_opts {
   size_t nperiods;
   double *dampings; /* --damping, ratios (NULL: 0.05) */
   size_t ndampings;
-  int sampled_peaks; /* --sampled-peaks */
+  int sampled_peaks; /* --sampled-peaks: the same as --peaks samples */
   /* plot */
   const char *run, *im, *record;
   int x_rad, y_pga; /* --x, --y: index in their choices */

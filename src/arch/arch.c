@@ -419,6 +419,16 @@ int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda)
   return 1;
 }
 
+void aq_arch_sources_of(const aq_arch *a, aq_arch_sources *src)
+{
+  src->text = a->text;
+  src->ntext = a->text ? strlen(a->text) : 0;
+  for (int f = 0; f < 2; f++) {
+    src->data[f] = a->data[f];
+    src->ndata[f] = a->ndata[f];
+  }
+}
+
 void aq_arch_sha256(const aq_arch *a, char hex[65])
 {
   aq_sha256_ctx c;

@@ -108,6 +108,9 @@ const char *aq_arch_config_text(const aq_arch *a);
  * the .cfg's bytes, followed by those of its joints and faces files for a
  * `shape = joints` arch (so for every other arch that of the .cfg alone). */
 void aq_arch_sha256(const aq_arch *a, char hex[65]);
+/* The arch's sources as read, those aq_arch_sha256 covers (owned by the
+ * arch; the files' bytes NUL-terminated). */
+void aq_arch_sources_of(const aq_arch *a, aq_arch_sources *src);
 const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a);
 /* The arch's generated geometry as plain arrays, for the results file and
  * for figures read back from it: owned by the arch, valid while it lives.
