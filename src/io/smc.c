@@ -220,11 +220,20 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
     aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, c.line, -1, "data", "out of memory");
   }
-  s = aq_fixed_read(&c, ch->npts, &fd, ch->values, name, what, err);
+  aq_line last;
+  s = aq_fixed_read_last(&c, ch->npts, &fd, ch->values, name, what, &last, err);
   if (s != AQ_OK) {
     aq_raw_file_free(raw);
     return s;
   }
+  /* rows past integer #17: reported for the decision (record.c) */
+  aq_extra_rows x;
+  aq_extra_rows_scan(&c, &last, aq_fixed_row, &fd, &x);
+  ch->extra_rows = x.rows;
+  ch->extra_values = x.values;
+  ch->extra_line = x.line;
+  ch->extra_repeat = x.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "integer header #17");
   static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
   if (type == 0) /* converted from another format: the quantity is not stated */
