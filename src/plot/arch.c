@@ -321,38 +321,39 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
       aq_vec2 p[4] = {g->je[k], g->je[k + 1], g->ji[k + 1], g->ji[k]};
       for (int i = 0; i < 4; i++) {
         aq_vec2 q = d ? moved(f, k, p[i]) : p[i];
-        fprintf(o, "%scorner,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%scorner,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
         aq_vec2 q = d ? moved(f, k, g->outline[i]) : g->outline[i];
-        fprintf(o, "%soutline,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%soutline,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
         aq_vec2 q = d ? moved(f, k, g->fill[i]) : g->fill[i];
-        fprintf(o, "%sfill,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%sfill,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t i = 0; i < g->p.nmass; i++) {
       aq_vec2 q = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
-      fprintf(o, "%smass,%zu,%.17g,%.17g\n", pre, g->mass[i].voussoir, q.x, q.y);
+      fprintf(o, "%smass,%zu,%s,%s\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
+              AQ_TEXT_NUM(q.y));
     }
   }
   for (int s = 0; s < 2; s++) {
     const aq_mech *m = aq_workpath_mech(aq_arch_workpath(f->arch, s));
     for (int k = 0; k < 4; k++) {
-      fprintf(o, "%s_hinge_%c,%zu,%.17g,%.17g\n", s ? "reverse" : "primary",
-              m->hs.face[k], m->hs.joint[k], m->h[k].x, m->h[k].y);
+      fprintf(o, "%s_hinge_%c,%zu,%s,%s\n", s ? "reverse" : "primary", m->hs.face[k],
+              m->hs.joint[k], AQ_TEXT_NUM(m->h[k].x), AQ_TEXT_NUM(m->h[k].y));
       if (s == f->set) {
         aq_vec2 h = hinge(f, s, k);
-        fprintf(o, "deformed_hinge_%c,%zu,%.17g,%.17g\n", m->hs.face[k],
-                m->hs.joint[k], h.x, h.y);
+        fprintf(o, "deformed_hinge_%c,%zu,%s,%s\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
+                AQ_TEXT_NUM(h.y));
       }
     }
   }
   for (size_t i = 0; i < f->nthrust; i++)
-    fprintf(o, "thrust,%zu,%.17g,%.17g\n", i, f->thrust[i].x, f->thrust[i].y);
+    fprintf(o, "thrust,%zu,%s,%s\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
   return aq_plot_csv_close(&tmp, err);
 }
 
@@ -468,6 +469,50 @@ static long dataset(hid_t g, const char *name, int cols, double **v)
   return rows;
 }
 
+/* The point masses of geometry group g into a new nmass x 4 array *v
+ * (voussoir, x_m, y_m, mass_kg): the table `masses` (its voussoir an
+ * integer), or the nmass x 4 doubles of a file written before; -1 if
+ * missing or neither. */
+static long masses(hid_t g, double **v)
+{
+  static const char *const col[4] = {"voussoir", "x_m", "y_m", "mass_kg"};
+  hid_t d = -1, t = -1, s = -1, m = -1;
+  long rows = -1;
+  *v = NULL;
+  H5E_BEGIN_TRY
+  {
+    d = H5Dopen2(g, "masses", H5P_DEFAULT);
+    t = d >= 0 ? H5Dget_type(d) : -1;
+    if (t >= 0 && H5Tget_class(t) == H5T_COMPOUND && (s = H5Dget_space(d)) >= 0) {
+      hssize_t n = H5Sget_simple_extent_npoints(s);
+      m = H5Tcreate(H5T_COMPOUND, 4 * sizeof(double)); /* the integer converted */
+      int ok = n >= 0 && m >= 0;
+      for (int k = 0; ok && k < 4; k++)
+        ok = H5Tinsert(m, col[k], (size_t)k * sizeof(double), H5T_NATIVE_DOUBLE) >= 0;
+      *v = ok ? malloc(((size_t)n * 4 + 1) * sizeof **v) : NULL;
+      if (*v && (n == 0 || H5Dread(d, m, H5S_ALL, H5S_ALL, H5P_DEFAULT, *v) >= 0))
+        rows = (long)n;
+    }
+  }
+  H5E_END_TRY;
+  if (m >= 0)
+    H5Tclose(m);
+  if (s >= 0)
+    H5Sclose(s);
+  int compound = t >= 0 && H5Tget_class(t) == H5T_COMPOUND;
+  if (t >= 0)
+    H5Tclose(t);
+  if (d >= 0)
+    H5Dclose(d);
+  if (rows < 0) {
+    free(*v);
+    *v = NULL;
+    if (!compound)
+      return dataset(g, "masses", 4, v);
+  }
+  return rows;
+}
+
 /* "0,6,12,19" and "eiei" into hs. */
 static int hinges(const char *joints, const char *faces, aq_hinge_set *hs)
 {
@@ -530,7 +575,8 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
            attr_text(ga, "reverse_joints", rj, sizeof rj) &&
            attr_text(ga, "reverse_faces", rf, sizeof rf) && hinges(pj, pf, &hs[0]) &&
            hinges(rj, rf, &hs[1]);
-  attr_double(ga, "g_m_s2", &dyn.g_mps2);
+  if (!attr_double(ga, "g_mps2", &dyn.g_mps2))
+    attr_double(ga, "g_m_s2", &dyn.g_mps2); /* its name before it became the .cfg key's */
   if (ga >= 0)
     H5Gclose(ga);
   hid_t gg = ok && H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 &&
@@ -548,7 +594,7 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
   long nj = dataset(gg, "joints", 4, &joints), nv = dataset(gg, "voussoirs", 4, &parts);
   long no = dataset(gg, "outline", 2, &outline), nos = dataset(gg, "outline_start", 1, &ostart);
   long nf = dataset(gg, "fill", 2, &fill), nfs = dataset(gg, "fill_start", 1, &fstart);
-  long nm = dataset(gg, "masses", 4, &mass);
+  long nm = masses(gg, &mass);
   double kg[3] = {NAN, 0, 0};
   attr_double(gg, "masonry_kg", &kg[0]);
   attr_double(gg, "fill_kg", &kg[1]);
