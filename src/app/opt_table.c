@@ -635,7 +635,7 @@ static const char run_tail[] =
     "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
     "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
     "  record drove first; nan if it never moved) peak_rotation_over_qc (the\n"
-    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0_g (pga_g over\n"
+    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0 (pga_g over\n"
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
