@@ -9,6 +9,7 @@
 
 #include "../arch/arch.h"
 #include "../arch/model.h"
+#include "../report/text.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -36,11 +37,11 @@ static void print_set(const aq_workpath *w, int searched)
   const aq_mech *m = aq_workpath_mech(w);
   char joints[64], faces[8];
   aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
-  printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%.6g\t%d\t%s\n",
-         p->name, joints, faces, p->lambda0, p->s_c_rad, p->admissible, p->act_sign,
-         p->q_sign, p->mass_kg, p->impact_vel_ratio,
+  printf("%s\t%s\t%s\t%s\t%s\t%d\t%+d\t%+d\t%s\t%s\t%s\t%zu\t%s\t%s\t%d\t%s\n", p->name, joints,
+         faces, AQ_TEXT_NUM(p->lambda0), AQ_TEXT_NUM(p->s_c_rad), p->admissible, p->act_sign,
+         p->q_sign, AQ_TEXT_NUM(p->mass_kg), AQ_TEXT_NUM(p->impact_vel_ratio),
          p->admissible ? end_name(aq_workpath_end(w)) : "-", aq_workpath_table_size(w),
-         aq_workpath_table_error(w), aq_workpath_thrust0(w), searched,
+         AQ_TEXT_NUM(aq_workpath_table_error(w)), AQ_TEXT_NUM(aq_workpath_thrust0(w)), searched,
          p->admissible ? "-" : aq_workpath_reason(w));
 }
 
@@ -146,9 +147,11 @@ int aq_cmd_mechanism(int argc, char **argv)
         double thrust = aq_mech_eval(aq_workpath_mech(w), p->q_sign * sv, &st) == 0
                             ? aq_mech_thrust(aq_workpath_mech(w), &st, &live, &eq, ecc, NULL)
                             : NAN;
-        printf("%s\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.6g\t%.6g\n",
-               p->name, sv, p->q_sign * sv, pt.lambda, eq.lambda, pt.x_m, pt.y_m,
-               p->mass_kg * p->g_mps2 * pt.y_m, pt.mgen_kgm2, nmin, thrust);
+        printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n", p->name, AQ_TEXT_NUM(sv),
+               AQ_TEXT_NUM(p->q_sign * sv), AQ_TEXT_NUM(pt.lambda), AQ_TEXT_NUM(eq.lambda),
+               AQ_TEXT_NUM(pt.x_m), AQ_TEXT_NUM(pt.y_m),
+               AQ_TEXT_NUM(p->mass_kg * p->g_mps2 * pt.y_m), AQ_TEXT_NUM(pt.mgen_kgm2),
+               AQ_TEXT_NUM(nmin), AQ_TEXT_NUM(thrust));
       }
     }
     free(ecc);

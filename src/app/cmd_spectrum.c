@@ -15,6 +15,7 @@
 
 #include "../job/job.h"
 #include "../report/h5_spectrum.h"
+#include "../report/text.h"
 #include "../signal/spectrum.h"
 #include "../units.h"
 #include "../util/cleanup.h"
@@ -130,21 +131,8 @@ static void warn_nyquist(const source *src, size_t n, const double *periods, siz
                   "to the PGA as T -> 0)\n", below, tmin, 2 * dt, who, 0.5 / dt);
 }
 
-/* x in the fewest significant digits (15 to 17) that read back to it:
- * 0.05 stays 0.05. */
-static const char *num(char *buf, size_t n, double x)
-{
-  for (int p = 15; p <= 17; p++) {
-    snprintf(buf, n, "%.*g", p, x);
-    if (strtod(buf, NULL) == x)
-      break;
-  }
-  return buf;
-}
-
 static void print_rows(const job *J, size_t n)
 {
-  char b[5][40];
   printf("record\tcomponent\tdamping\tperiod_s\tpsa_g\tsd_m\tpsv_m_s\n");
   for (size_t k = 0; k < n; k++) {
     const source *s = &J->src[k];
@@ -153,10 +141,9 @@ static void print_rows(const job *J, size_t n)
         for (size_t i = 0; i < J->nper; i++) {
           double a = s->psa_mps2[(c * J->ndamp + d) * J->nper + i];
           double w = 2 * AQ_PI / J->periods[i];
-          printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\n", s->label,
-                 s->path[1] ? pair_names[c] : s->channel, num(b[0], 40, J->damping[d]),
-                 num(b[1], 40, J->periods[i]), num(b[2], 40, a / AQ_G0_MPS2),
-                 num(b[3], 40, a / (w * w)), num(b[4], 40, a / w));
+          printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\n", s->label, s->path[1] ? pair_names[c] : s->channel,
+                 AQ_TEXT_NUM(J->damping[d]), AQ_TEXT_NUM(J->periods[i]),
+                 AQ_TEXT_NUM(a / AQ_G0_MPS2), AQ_TEXT_NUM(a / (w * w)), AQ_TEXT_NUM(a / w));
         }
   }
 }

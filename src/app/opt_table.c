@@ -828,11 +828,12 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "help",
          .title = "help",
          .help_cmd = "help",
-         .synopsis = "help [COMMAND]",
-         .summary = "a command's --help",
-         .head = "usage: archquake help [COMMAND]\n"
+         .synopsis = "help [COMMAND|arch-file]",
+         .summary = "a command's --help; the arch file's keys",
+         .head = "usage: archquake help [COMMAND|arch-file]\n"
                  "Print COMMAND's --help (archquake COMMAND --help); without a COMMAND,\n"
-                 "archquake --help.\n",
+                 "archquake --help; with arch-file, the arch file's sections and keys\n"
+                 "(units, ranges, defaults), shapes, joints and faces files.\n",
          .tail = "Exit status: 0 printed, 2 an unknown COMMAND or bad options.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
@@ -863,6 +864,29 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
 };
+
+const aq_opt_note aq_opt_environment[] = {
+    {"XDG_CACHE_HOME", "the cache of processed records and built arches, and FFTW's wisdom, "
+                       "are kept in $XDG_CACHE_HOME/archquake (an absolute path; "
+                       "docs/cache.md)"},
+    {"HOME", "without XDG_CACHE_HOME, the cache is ~/.cache/archquake; with neither "
+             "there is none"},
+    {"ARCHQUAKE_DATADIR", "--arch NAME looks for NAME.cfg in $ARCHQUAKE_DATADIR/arches "
+                          "first (Arches, above)"},
+    {"LC_PAPER", "plot: the page of a PDF without --paper, Letter or A4 (the locale's, as "
+                 "LC_ALL, LC_PAPER and LANG set it)"},
+    {NULL, NULL}};
+
+const aq_opt_note aq_opt_files[] = {
+    {"~/.cache/archquake/records/, arches/",
+     "the cache (or under $XDG_CACHE_HOME/archquake, or --cache-dir): one entry per "
+     "processed record and per built arch, for later runs of the same build; at most "
+     "--cache-max (default 512M); removing it loses nothing but time"},
+    {"~/.cache/archquake/fftw-wisdom", "FFTW's plans for record lengths the built-in "
+                                       "wisdom lacks"},
+    {"FILE.h5.journal", "beside a results file being written with -o: the records done, "
+                        "until the file is complete (--resume reads it)"},
+    {NULL, NULL}};
 
 void aq_opts_init(aq_opts *o, aq_cmd cmd)
 {

@@ -46,8 +46,8 @@
 #define CROSS_ITER 200       /* bisection steps locating a crossing (to round-off) */
 #define MAX_PIECES 8         /* pieces of a voussoir's or fill's loop before cutting */
 
-const char *const aq_shape_names[AQ_SHAPE_COUNT] = {"circular", "pointed", "elliptical",
-                                                     "parabolic", "catenary", "joints"};
+const char *const aq_shape_names[AQ_SHAPE_COUNT + 1] = {
+    "circular", "pointed", "elliptical", "parabolic", "catenary", "joints", NULL};
 
 aq_mass aq_sector_mass(double r_i, double r_e, double th0, double th1,
                        double rho, double depth)

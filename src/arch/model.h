@@ -55,8 +55,9 @@ typedef enum {
   AQ_SHAPE_COUNT
 } aq_shape;
 
-/* The shape names of the arch file, indexed by aq_shape. */
-extern const char *const aq_shape_names[AQ_SHAPE_COUNT];
+/* The shape names of the arch file, indexed by aq_shape; NULL after the
+ * last (cfg_keys.c's shape = takes them). */
+extern const char *const aq_shape_names[AQ_SHAPE_COUNT + 1];
 
 /* A centre line from the springing (span/2, 0) over the crown to
  * (-span/2, 0), on one or two curves (the pointed arch's halves), each with

@@ -101,7 +101,7 @@ static void num_td(aq_page_buf *b, double v, const char *fmt)
     aq_page_puts(b, "<td class=\"n\" data-v=\"NaN\">–</td>");
     return;
   }
-  aq_page_printf(b, "<td class=\"n\" data-v=\"%.17g\">", v);
+  aq_page_printf(b, "<td class=\"n\" data-v=\"%s\">", AQ_TEXT_NUM(v));
   aq_page_printf(b, fmt, v);
   aq_page_puts(b, "</td>");
 }

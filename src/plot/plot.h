@@ -30,6 +30,7 @@
 #include "../report/h5.h"
 #include "../report/h5_capacity.h"
 #include "../report/h5_spectrum.h"
+#include "../report/text.h"
 #include "../util/outfile.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */

@@ -225,7 +225,8 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
         for (size_t i = F.c[k].start; i < F.c[k].start + F.c[k].n; i++) {
           aq_plot_csv_text(f, t->record[i]);
           aq_plot_csv_text(f, t->component[i]);
-          fprintf(f, "%.17g,%.17g,%.17g\n", t->damping[i], t->period_s[i], t->psa_g[i]);
+          fprintf(f, "%s,%s,%s\n", AQ_TEXT_NUM(t->damping[i]), AQ_TEXT_NUM(t->period_s[i]),
+                  AQ_TEXT_NUM(t->psa_g[i]));
         }
       rc = aq_plot_csv_close(&tmp, err);
     }
