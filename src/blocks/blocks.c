@@ -103,15 +103,26 @@ aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err)
       barrier = fmin(barrier, p->mass_kg * p->g_mps2 * pt.y_m);
   }
   b->dv_floor_j = isfinite(barrier) ? COLLAPSE_FLOOR * barrier : 0;
-  /* the spread's limit: the three-hinge mechanism of spreading supports
-   * (hinges at both springings' extrados and the crown's intrados) flat */
-  size_t n = g->p.voussoirs, jc = 0;
-  for (size_t j = 0; j <= n; j++)
-    if (g->ji[j].y + g->je[j].y > g->ji[jc].y + g->je[jc].y)
-      jc = j;
-  aq_vec2 p0 = g->je[0], pn = g->je[n], pc = g->ji[jc];
-  b->spread_max = hypot(pc.x - p0.x, pc.y - p0.y) + hypot(pn.x - pc.x, pn.y - pc.y) -
-                  hypot(pn.x - p0.x, pn.y - p0.y);
+  /* the spread's limit: the chain of voussoirs reaches at most the sum of
+   * their longest spans from a point of one joint to a point of the next
+   * (the diagonals); supports spread farther than that less their
+   * nearest distance are out of its reach */
+  size_t n = g->p.voussoirs;
+  double reach = 0;
+  for (size_t k = 0; k < n; k++) {
+    aq_vec2 a[2] = {g->ji[k], g->je[k]}, c[2] = {g->ji[k + 1], g->je[k + 1]};
+    double d = 0;
+    for (int x = 0; x < 2; x++)
+      for (int y = 0; y < 2; y++)
+        d = fmax(d, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
+    reach += d;
+  }
+  double near = INFINITY;
+  aq_vec2 a[2] = {g->ji[0], g->je[0]}, c[2] = {g->ji[n], g->je[n]};
+  for (int x = 0; x < 2; x++)
+    for (int y = 0; y < 2; y++)
+      near = fmin(near, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
+  b->spread_max = reach - near;
   return b;
 }
 
@@ -164,8 +175,8 @@ aq_status aq_blocks_set_spread(aq_blocks *b, double spread_m, aq_error *err)
 {
   if (!(spread_m >= 0) || !(spread_m < b->spread_max || spread_m == 0))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m",
-                        "expected 0 <= spread < %.6g m (the spread that lays the arch's "
-                        "three-hinge mechanism flat), got %g",
+                        "expected 0 <= spread < %.6g m (beyond it the voussoirs cannot "
+                        "reach across the supports), got %g",
                         b->spread_max, spread_m);
   b->spread_m = spread_m;
   return AQ_OK;

@@ -14,7 +14,8 @@
  * with, at every corner that is active (its gap predicted at the end of
  * the step, gap + h u_n-, at most the activation threshold), Newton's
  * impact law and Coulomb's friction at the level of velocities and
- * impulses:  0 <= P_n  perp  u_n+ + e_n u_n- >= 0,  |P_t| <= mu P_n, and
+ * impulses:  0 <= P_n  perp  u_n+ + e_n min(u_n-, 0) >= 0 (restitution of an
+ * approach only),  |P_t| <= mu P_n, and
  * u_t+ = 0 while |P_t| < mu P_n, else P_t = -mu P_n sign(u_t+).
  *
  * The problem is solved exactly, in one of two ways.  First the contact
@@ -76,7 +77,8 @@ struct aq_moreau {
   aq_jstate *st, *trial;
   aq_corner *cr, *cr1;
   int cr_valid;             /* cr holds the corners at q with gvx */
-  double *un0;
+  double *un0, *ut0;        /* normal and tangential velocities at the step's start */
+  double h;                 /* the step */
   unsigned char *active;
   unsigned char *flipped;   /* per joint: its hinge was guessed to rock on, this step */
   double *vfree, *vnew, *dv, *q1;
@@ -104,6 +106,7 @@ void aq_moreau_free(aq_moreau *m)
   free(m->cr);
   free(m->cr1);
   free(m->un0);
+  free(m->ut0);
   free(m->active);
   free(m->flipped);
   free(m->vfree);
@@ -152,6 +155,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->cr = calloc(nc, sizeof *m->cr);
   m->cr1 = calloc(nc, sizeof *m->cr1);
   m->un0 = calloc(nc, sizeof *m->un0);
+  m->ut0 = calloc(nc, sizeof *m->ut0);
   m->active = calloc(nc, 1);
   m->flipped = calloc(s->nj, 1);
   m->vfree = calloc(nb3, sizeof *m->vfree);
@@ -164,7 +168,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->pn = calloc(nc, sizeof *m->pn);
   m->pt = calloc(nc, sizeof *m->pt);
   m->keep_v = calloc(nb3, sizeof *m->keep_v);
-  m->keep_pn = calloc(nc, sizeof *m->keep_pn);
+  m->keep_pn = calloc(2 * nc, sizeof *m->keep_pn); /* also scaled impulses of 2 nc rows */
   m->keep_pt = calloc(nc, sizeof *m->keep_pt);
   m->chain = aq_chain_alloc(s);
   m->fc = aq_fc2d_alloc();
@@ -178,7 +182,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->sq = calloc(nb3, sizeof *m->sq);
   m->sv = calloc(nb3, sizeof *m->sv);
   m->sst = calloc(s->nj, sizeof *m->sst);
-  if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->un0 ||
+  if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->un0 || !m->ut0 ||
       !m->active || !m->flipped || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
       !m->u || !m->pn || !m->pt || !m->keep_v || !m->keep_pn || !m->keep_pt || !m->chain || !m->fc || !m->cidx || !m->W || !m->fq ||
       !m->fr || !m->fu || !m->fmu || !m->fd || !m->sq || !m->sv || !m->sst) {
@@ -329,7 +333,7 @@ static int check(aq_moreau *m, aq_jstate *st, double tol_u, double tol_p)
     double un[2], ut[2];
     for (int k = 0; k < 2; k++) {
       const aq_corner *C = &m->cr[2 * j + k];
-      un[k] = aq_crow_dot(s, j, &C->n, m->vnew) + m->e_n * m->un0[2 * j + k];
+      un[k] = aq_crow_dot(s, j, &C->n, m->vnew) + m->e_n * fmin(m->un0[2 * j + k], 0);
       ut[k] = aq_crow_dot(s, j, &C->t, m->vnew);
       closed[k] = st ? aq_jstate_closed(cur, k) : m->pn[2 * j + k] > tol_p;
       want[k] = closed[k];
@@ -357,7 +361,9 @@ static int check(aq_moreau *m, aq_jstate *st, double tol_u, double tol_p)
       if (fabs(T) > m->mu * N + tol_p) {
         slide = T > 0 ? -1 : 1;
         bad++;
-      } else if (st && slide != 0 && slide * ut[first] < -tol_u) {
+      } else if (st && slide != 0 && slide * ut[first] <= tol_u) {
+        /* not sliding that way: it sticks, or slides back (the sticking
+         * solve then says which) */
         slide = 0;
         bad++;
       } else if (!st && fabs(T) < m->mu * N - tol_p && fabs(ut[first]) > tol_u) {
@@ -396,7 +402,7 @@ static int solve_chain(aq_moreau *m, aq_jstate *st, int max, int *iters)
       aq_chain_row(m->chain, r, &j, &kind);
       double target = kind == AQ_CHAIN_ROW_T
                           ? 0
-                          : -m->e_n * m->un0[2 * j + (kind == AQ_CHAIN_ROW_N1)];
+                          : -m->e_n * fmin(m->un0[2 * j + (kind == AQ_CHAIN_ROW_N1)], 0);
       m->rhs[r] = target - m->u[r];
     }
     aq_chain_solve(m->chain, m->rhs, m->x);
@@ -408,6 +414,31 @@ static int solve_chain(aq_moreau *m, aq_jstate *st, int max, int *iters)
       return 1;
   }
   return 0;
+}
+
+/* vnew, pn, pt from Siconos's (scaled) impulses fr of the nc active
+ * corners cidx, times scale. */
+static void from_impulses(aq_moreau *m, int nc, double scale)
+{
+  const aq_bodies *s = m->s;
+  memcpy(m->vnew, m->vfree, 3 * m->nb * sizeof *m->vnew);
+  memset(m->pn, 0, 2 * m->nj * sizeof *m->pn);
+  memset(m->pt, 0, 2 * m->nj * sizeof *m->pt);
+  for (int i = 0; i < nc; i++) {
+    int c = m->cidx[i];
+    size_t j = (size_t)c / 2;
+    m->pn[c] = m->fr[2 * i] * scale;
+    m->pt[c] = m->fr[2 * i + 1] * scale;
+    int a = s->joint[j].a, b = s->joint[j].b;
+    for (int d = 0; d < 3; d++) {
+      double fa = m->cr[c].n.ga[d] * m->pn[c] + m->cr[c].t.ga[d] * m->pt[c];
+      double fb = m->cr[c].n.gb[d] * m->pn[c] + m->cr[c].t.gb[d] * m->pt[c];
+      if (a >= 0)
+        m->vnew[3 * a + d] += m->minv[3 * a + d] * fa;
+      if (b >= 0)
+        m->vnew[3 * b + d] += m->minv[3 * b + d] * fb;
+    }
+  }
 }
 
 /* The whole problem by Siconos; 0 and vnew, pn, pt, or AQ_ENUMERIC. */
@@ -447,32 +478,44 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
           }
       m->W[i + (size_t)n * (size_t)k] = w;
     }
-    m->fq[i] = aq_crow_dot(s, ji, ri, m->vfree) + (i % 2 ? 0 : m->e_n * m->un0[ci]);
+    m->fq[i] = aq_crow_dot(s, ji, ri, m->vfree) + (i % 2 ? 0 : m->e_n * fmin(m->un0[ci], 0));
     m->fr[i] = 0;
     if (i % 2 == 0)
       m->fmu[i / 2] = m->mu;
   }
   /* Lemke's method on the problem's LCP stalls on the redundant contacts
    * of closed joints (W singular: two corners, four unknowns, three
-   * freedoms); a compliance of eps times W's largest diagonal entry makes
-   * W definite and changes velocities by that fraction of the impulses'
-   * scale.  Its pivoting still fails now and then on these degenerate
-   * problems (the answer fails the check below, against the true W): it
-   * is tried again with a larger compliance, then NSGS from its answer. */
-  double dmax = 0;
+   * freedoms), and its pivoting tolerances are absolute: the problem goes
+   * to it scaled (W by its largest diagonal entry, q by its largest
+   * entry, so both are of order 1), with a compliance eps on W's diagonal
+   * that makes it definite and changes velocities by eps of the scale.
+   * Its pivoting still fails now and then on these degenerate problems
+   * (the answer fails the check below, against the true W): it is tried
+   * again with a larger compliance, then NSGS from its answer. */
+  double dmax = 0, qmax = 0;
   for (int i = 0; i < n; i++) {
     m->fd[i] = m->W[i + (size_t)n * (size_t)i];
     dmax = fmax(dmax, m->fd[i]);
+    qmax = fmax(qmax, fabs(m->fq[i]));
+  }
+  if (!(dmax > 0) || !(qmax > 0))
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "contact",
+                        "a contact problem without a scale (W %g, q %g)", dmax, qmax);
+  for (size_t i = 0; i < (size_t)n * (size_t)n; i++)
+    m->W[i] /= dmax;
+  for (int i = 0; i < n; i++) {
+    m->fd[i] /= dmax;
+    m->fq[i] /= qmax;
   }
   static const struct {
     aq_fc2d_solver solver;
     double eps;
-  } attempts[] = {{AQ_FC2D_LEMKE, 1e-10}, {AQ_FC2D_LEMKE, 1e-8}, {AQ_FC2D_LEMKE, 1e-6},
-                  {AQ_FC2D_NSGS, 1e-10}};
+  } attempts[] = {{AQ_FC2D_LEMKE, 1e-12}, {AQ_FC2D_LEMKE, 1e-10}, {AQ_FC2D_LEMKE, 1e-8},
+                  {AQ_FC2D_NSGS, 1e-12}};
   for (size_t attempt = 0; attempt < sizeof attempts / sizeof attempts[0]; attempt++) {
     double eps = attempts[attempt].eps;
     for (int i = 0; i < n; i++)
-      m->W[i + (size_t)n * (size_t)i] = m->fd[i] + eps * dmax;
+      m->W[i + (size_t)n * (size_t)i] = m->fd[i] + eps;
     double rel = fmax(SICONOS_CHECK_REL, 100 * eps);
     double tol_u = rel * m->vscale, tol_p = rel * m->pscale;
     int it = 0;
@@ -481,28 +524,29 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
     *pivots += it;
     if (info < 0)
       continue;
-    /* the velocities from the impulses */
-    memcpy(m->vnew, m->vfree, 3 * m->nb * sizeof *m->vnew);
-    memset(m->pn, 0, 2 * m->nj * sizeof *m->pn);
-    memset(m->pt, 0, 2 * m->nj * sizeof *m->pt);
-    for (int i = 0; i < nc; i++) {
-      int c = m->cidx[i];
-      size_t j = (size_t)c / 2;
-      m->pn[c] = m->fr[2 * i];
-      m->pt[c] = m->fr[2 * i + 1];
-      int a = s->joint[j].a, b = s->joint[j].b;
-      for (int d = 0; d < 3; d++) {
-        double fa = m->cr[c].n.ga[d] * m->pn[c] + m->cr[c].t.ga[d] * m->pt[c];
-        double fb = m->cr[c].n.gb[d] * m->pn[c] + m->cr[c].t.gb[d] * m->pt[c];
-        if (a >= 0)
-          m->vnew[3 * a + d] += m->minv[3 * a + d] * fa;
-        if (b >= 0)
-          m->vnew[3 * b + d] += m->minv[3 * b + d] * fb;
+    from_impulses(m, nc, qmax / dmax);
+    if (check(m, NULL, tol_u, tol_p) != 0)
+      continue;
+    if (eps > attempts[0].eps) {
+      /* polish a looser answer: NSGS from it at the first compliance */
+      memcpy(m->keep_v, m->vnew, 3 * m->nb * sizeof *m->keep_v);
+      memcpy(m->keep_pn, m->fr, (size_t)n * sizeof *m->fr); /* scaled impulses */
+      for (int i = 0; i < n; i++)
+        m->W[i + (size_t)n * (size_t)i] = m->fd[i] + attempts[0].eps;
+      it = 0;
+      info = aq_fc2d_solve(m->fc, AQ_FC2D_NSGS, nc, m->W, m->fq, m->fmu, SICONOS_TOL, m->fr,
+                           m->fu, &it);
+      *pivots += it;
+      double r0 = SICONOS_CHECK_REL;
+      if (info >= 0) {
+        from_impulses(m, nc, qmax / dmax);
+        if (check(m, NULL, r0 * m->vscale, r0 * m->pscale) == 0)
+          return AQ_OK;
       }
+      memcpy(m->fr, m->keep_pn, (size_t)n * sizeof *m->fr);
+      from_impulses(m, nc, qmax / dmax);
     }
-    int nbad = check(m, NULL, tol_u, tol_p);
-    if (nbad == 0)
-      return AQ_OK;
+    return AQ_OK;
   }
   return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "contact",
                       "the frictional contact problem of %d contacts was not solved "
@@ -548,6 +592,10 @@ static void project(aq_moreau *m, const aq_jstate *st, double *q1, const double 
       if (!aq_jstate_closed(m->st[j], k) && aq_jstate_closed(m->st[j], 1 - k))
         p = 1 - k;
       double w = m->s->joint[j].width_m, s0 = m->cr[2 * j + p].s_m - (p - k) * w;
+      /* plus the slip of a joint that slid at the step's start and sticks
+       * at its end (the scheme's h (1 - theta) u_t-) */
+      if (m->st[j].slide != 0)
+        s0 += m->h * (1 - m->theta) * m->ut0[2 * j + p];
       m->rhs[r] = -(m->cr1[2 * j + k].s_m - s0);
     } else {
       m->rhs[r] = -m->cr1[2 * j + (kind == AQ_CHAIN_ROW_N1)].gap_m;
@@ -568,8 +616,11 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
   double gvx1[2] = {(gx1[0] - m->gx[0]) / h, (gx1[1] - m->gx[1]) / h};
   /* the corners at q; the normal velocities before the step */
   aq_moreau_corners(m);
-  for (size_t c = 0; c < nc; c++)
+  m->h = h;
+  for (size_t c = 0; c < nc; c++) {
     m->un0[c] = aq_crow_dot(s, c / 2, &m->cr[c].n, m->v);
+    m->ut0[c] = aq_crow_dot(s, c / 2, &m->cr[c].t, m->v);
+  }
   if (gvx1[0] != m->gvx[0] || gvx1[1] != m->gvx[1])
     eval_corners(m, m->q, m->gx, gvx1, m->cr);
   /* active: closed in the step before (its rate, evaluated in the new
@@ -614,7 +665,7 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
       memcpy(m->keep_v, m->vnew, nb3 * sizeof *m->keep_v);
       memcpy(m->keep_pn, m->pn, nc * sizeof *m->keep_pn);
       memcpy(m->keep_pt, m->pt, nc * sizeof *m->keep_pt);
-      if (!(m->direct && solve_chain(m, m->trial, 1, &info->iters))) {
+      if (!(m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters))) {
         memcpy(m->vnew, m->keep_v, nb3 * sizeof *m->keep_v);
         memcpy(m->pn, m->keep_pn, nc * sizeof *m->keep_pn);
         memcpy(m->pt, m->keep_pt, nc * sizeof *m->keep_pt);
