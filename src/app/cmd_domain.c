@@ -55,7 +55,8 @@ int aq_cmd_domain(int argc, char **argv)
   aq_arch *arch = NULL;
   int status = AQ_EXIT_FAIL;
   aq_stepper *st = NULL;
-  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+  aq_arch_options ao = {o.friction};
+  if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     goto out;
   }

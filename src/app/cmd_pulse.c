@@ -125,7 +125,8 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_error err;
   aq_error_clear(&err);
   aq_arch *arch = NULL;
-  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+  aq_arch_options ao = {o.friction};
+  if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }

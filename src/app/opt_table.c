@@ -381,6 +381,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                     .help = "kinetic-energy ratio kept at an impact, 0..1 (default: each "
                             "arch's [dynamics] cor; refused for an arch whose impact is "
                             "momentum, which uses none)"},
+    [AQ_OPT_FRICTION] = {.name = "friction", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e3,
+                         .meta = "MU", DEST(friction),
+                         .cmds = DYNAMICS | C(MECHANISM),
+                         .help = "the Coulomb friction coefficient of every joint, springings "
+                                 "included, 0 < MU <= 1000 (default: each arch's [contact] "
+                                 "friction; none if it has none)"},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -612,7 +618,8 @@ static const char run_tail[] =
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
-    "  --components motion, nan for a RECORD)\n"
+    "  --components motion, nan for a RECORD; control: fixed or free, the\n"
+    "  arch's hinge control, which its verdicts assume)\n"
     "Exit status:\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -897,6 +904,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->threads = ncpu >= 1 ? (ncpu > AQ_MAX_THREADS ? AQ_MAX_THREADS : ncpu) : 1;
   o->model = AQ_MODEL_WORKPATH;
   o->cor = NAN;
+  o->friction = NAN;
   o->impact = -1;
   o->ode_rtol = 1e-10;
   o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;

@@ -122,6 +122,7 @@ typedef enum {
   AQ_OPT_JOBS,
   AQ_OPT_MODEL,
   AQ_OPT_COR,
+  AQ_OPT_FRICTION,
   AQ_OPT_IMPACT,
   AQ_OPT_ODE_RTOL,
   AQ_OPT_HISTORY,      /* the main job: histories into the results file */
@@ -221,6 +222,7 @@ typedef struct aq_opts {
   /* dynamics */
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */
+  double friction; /* --friction, or NAN: each arch's [contact] friction */
   int impact;      /* --impact: 0 cor, 1 momentum, -1 the arch's own */
   double ode_rtol; /* --ode-rtol */
   int polarity;    /* --polarity: AQ_POLARITY_* (opt.h) */

@@ -7,7 +7,9 @@
  * take and need each, are the table of cfg_keys.c: every other section or
  * key is an error, as is a key given twice or a value outside its range
  * (read from the table: the message names it).  What the table cannot say
- * is here: [fill] with both keys or none, [hinges] with a primary, a key
+ * is here: [fill] with both keys or none, [hinges] with a primary or a
+ * control (the control's default: fixed with a primary, free without; a
+ * reverse needs a primary and fixed control), a key
  * the shape does not take, the joints and faces files read by joints.c
  * (paths relative to the .cfg).  A new key or section is a row of that
  * table (how: cfg_keys.h) and, for what it sets, a case in handler() below;
@@ -55,6 +57,7 @@ typedef struct {
   double num[AQ_CFG_NKEYS];
   aq_hinge_set hs[2];
   int impact;
+  int control; /* aq_hinge_control */
   mass_line *mass;
   size_t nmass;
 } parse_ctx;
@@ -323,17 +326,33 @@ static int handler(void *user, const char *section, const char *name,
   case AQ_CFG_IMPACT:
     c->impact = (int)c->num[k]; /* aq_impact, in the table's order */
     return 1;
+  case AQ_CFG_CONTROL:
+    c->control = (int)c->num[k]; /* aq_hinge_control, in the table's order */
+    return 1;
   default:
     return 1; /* a number, kept in c->num[k] */
   }
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err);
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err);
 
 aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
                               aq_arch **out, aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, NULL, store, hit, out, err);
+}
+
+aq_status aq_arch_load_opts(const char *path, const aq_arch_options *opt, aq_arch **out,
+                            aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, opt, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_stored_opts(const char *path, const aq_arch_options *opt,
+                                   const aq_arch_store *store, int *hit, aq_arch **out,
+                                   aq_error *err)
 {
   *out = NULL;
   if (hit)
@@ -343,14 +362,14 @@ aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int 
   char *buf = aq_infile_read(path, MAX_FILE_BYTES, "arch file", &len, &st, err);
   if (!buf)
     return st;
-  st = load_string(buf, len, path, store, hit, out, err);
+  st = load_string(buf, len, path, opt, store, hit, out, err);
   free(buf);
   return st;
 }
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
 {
-  return aq_arch_load_stored(path, NULL, NULL, out, err);
+  return aq_arch_load_stored_opts(path, NULL, NULL, NULL, out, err);
 }
 
 /* The checks that need the whole file: the keys the shape takes and
@@ -386,9 +405,21 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
                         c->key_line[AQ_CFG_FILL_LEVEL] ? "density_kg_m3" : "level_m",
                         "expected level_m and density_kg_m3 in [fill], got no %s",
                         c->key_line[AQ_CFG_FILL_LEVEL] ? "density_kg_m3" : "level_m");
-  if (c->hinges_section && !c->key_line[AQ_CFG_PRIMARY])
+  if (c->key_line[AQ_CFG_REVERSE] && !c->key_line[AQ_CFG_PRIMARY])
+    return aq_error_set(err, AQ_EFORMAT, path, c->key_line[AQ_CFG_REVERSE], -1, "primary",
+                        "expected a primary hinge set in [hinges] with the reverse, got none");
+  if (c->hinges_section && !c->key_line[AQ_CFG_PRIMARY] && !c->key_line[AQ_CFG_CONTROL])
     return aq_error_set(err, AQ_EFORMAT, path, c->hinges_section, -1, "primary",
-                        "expected a primary hinge set in [hinges], got none");
+                        "expected a primary hinge set or a control in [hinges], got neither");
+  /* control: fixed by default when the file names the primary, free when
+   * the search finds it */
+  if (!c->key_line[AQ_CFG_CONTROL])
+    c->control = c->key_line[AQ_CFG_PRIMARY] ? AQ_CONTROL_FIXED : AQ_CONTROL_FREE;
+  if (c->control == AQ_CONTROL_FREE && c->key_line[AQ_CFG_REVERSE])
+    return aq_error_set(err, AQ_EVALUE, path, c->key_line[AQ_CFG_REVERSE], -1, "reverse",
+                        "expected no reverse with control = free (line %ld: each direction's "
+                        "set is its own minimum mechanism), got one",
+                        c->key_line[AQ_CFG_CONTROL]);
   if (c->shape != AQ_SHAPE_JOINTS)
     return AQ_OK;
   /* joints_file and faces_file: relative to the .cfg's directory */
@@ -472,6 +503,8 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
     p.fill_level_m = c->num[AQ_CFG_FILL_LEVEL];
     p.fill_density_kg_m3 = c->num[AQ_CFG_FILL_DENSITY];
   }
+  p.control = (aq_hinge_control)c->control;
+  p.friction = src->friction > 0 ? src->friction : c->num[AQ_CFG_FRICTION]; /* 0: none */
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
@@ -517,12 +550,18 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err)
 {
-  return load_string(data, len, path, NULL, NULL, out, err);
+  return load_string(data, len, path, NULL, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_string_opts(const char *data, size_t len, const char *path,
+                                   const aq_arch_options *opt, aq_arch **out, aq_error *err)
+{
+  return load_string(data, len, path, opt, NULL, NULL, out, err);
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err)
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err)
 {
   int hit_ = 0;
   *out = NULL;
@@ -573,7 +612,9 @@ static aq_status load_string(const char *data, size_t len, const char *path,
   aq_joints J;
   memset(&J, 0, sizeof J);
   st = after_parse(&c, path, &J, err);
-  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]}};
+  double friction = opt && opt->friction > 0 && isfinite(opt->friction) ? opt->friction : 0;
+  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]},
+                         friction};
   if (st == AQ_OK)
     st = build_parsed(&c, path, &J, &src, store, &hit_, &a, err);
   free(c.mass);

@@ -25,6 +25,7 @@
                 .lo = AQ_CFG_DENSITY_MIN_KG_M3, .hi = AQ_CFG_DENSITY_MAX_KG_M3
 
 static const char *const impacts[] = {"cor", "momentum", NULL}; /* aq_impact */
+static const char *const controls[] = {"fixed", "free", NULL};  /* aq_hinge_control */
 
 const aq_cfg_section aq_cfg_sections[] = {
     {"arch", "the arch: its shape, size and masonry (required)"},
@@ -32,9 +33,10 @@ const aq_cfg_section aq_cfg_sections[] = {
              "voussoirs as rigid columns (optional; both keys when present)"},
     {"masses", "point masses (a statue, a wall) carried rigidly by a voussoir, one a line "
                "(optional)"},
-    {"hinges", "the hinge sets (optional: without it archquake searches every "
-               "alternating four-hinge set and takes the admissible one of lowest "
-               "lambda0)"},
+    {"hinges", "the hinge sets and how they are chosen (optional: without a primary "
+               "archquake searches every four-hinge set, and with control = free each "
+               "direction of ground acceleration gets its own minimum-lambda0 set)"},
+    {"contact", "the joints' contact (optional)"},
     {"dynamics", "impacts and gravity (optional)"},
 };
 const size_t aq_cfg_nsections = sizeof aq_cfg_sections / sizeof aq_cfg_sections[0];
@@ -105,12 +107,27 @@ const aq_cfg_key aq_cfg_keys[AQ_CFG_NKEYS] = {
     [AQ_CFG_PRIMARY] = {"hinges", "primary", AQ_CFG_HINGES, .shapes = S_ALL,
                         .help = "four hinges JOINT FACE, FACE e (extrados) or i (intrados), "
                                 "joints strictly increasing, e.g. 0e 6i 12e 19i, an "
-                                "admissible mechanism; required in [hinges] (without "
-                                "[hinges] the primary is searched)"},
+                                "admissible mechanism; [hinges] names a primary or a "
+                                "control (without a primary it is searched)"},
     [AQ_CFG_REVERSE] = {"hinges", "reverse", AQ_CFG_HINGES, .shapes = S_ALL,
                         .deflt = "the primary's joints with faces swapped",
                         .help = "the set the arch rocks on after it returns through the "
-                                "undeformed shape; same syntax"},
+                                "undeformed shape; same syntax; needs a primary; refused "
+                                "with control = free"},
+    [AQ_CFG_CONTROL] = {"hinges", "control", AQ_CFG_CHOICE, .what = "a hinge control",
+                        .choices = controls, .shapes = S_ALL,
+                        .deflt = "fixed with a primary, free without",
+                        .help = "fixed: the hinge-controlled arch, its sets the primary and "
+                                "the reverse (every other joint carries what the thrust "
+                                "demands); free: any joint may open, set 0 the minimum "
+                                "mechanism of a ground acceleration along -x, set 1 that "
+                                "along +x"},
+    [AQ_CFG_FRICTION] = {"contact", "friction", AQ_CFG_REAL, .what = "a Coulomb coefficient",
+                         .unit = "", .lo = 0, .hi = AQ_CFG_FRICTION_MAX, .lo_open = 1,
+                         .shapes = S_ALL, .deflt = "none (sliding not checked)",
+                         .help = "the Coulomb friction coefficient of every joint, the "
+                                 "springings included (|T| <= friction N); --friction "
+                                 "overrides it"},
     [AQ_CFG_COR] = {"dynamics", "cor", AQ_CFG_REAL, .what = "a kinetic-energy ratio",
                     .unit = "", .lo = 0, .hi = 1, .shapes = S_ALL, .deflt = "0",
                     .help = "kinetic-energy ratio kept at an impact (not a velocity ratio), "

@@ -39,6 +39,9 @@
 #define AQ_CFG_DENSITY_MAX_KG_M3 2e4
 /* A point mass, kg: up to a million tonnes per arch. */
 #define AQ_CFG_MASS_MAX_KG 1e9
+/* The Coulomb friction coefficient of a joint: dry masonry has about 0.4
+ * to 0.8; above 1000 no joint of an arch could slide. */
+#define AQ_CFG_FRICTION_MAX 1e3
 
 /* The kinds of value. */
 typedef enum {
@@ -70,6 +73,8 @@ typedef enum {
   AQ_CFG_MASS_LINE,
   AQ_CFG_PRIMARY,
   AQ_CFG_REVERSE,
+  AQ_CFG_CONTROL,
+  AQ_CFG_FRICTION,
   AQ_CFG_COR,
   AQ_CFG_IMPACT,
   AQ_CFG_G,

@@ -484,13 +484,31 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
                  ncol, ncol == 1 ? "" : "s", nsurv, nfail, ncol + nsurv + nfail,
                  aq_page_attr_num(A, "primary_lambda0"), aq_page_attr_num(A, "reverse_lambda0"),
                  aq_page_attr_num(A, "primary_q_c_rad"), aq_page_attr_num(A, "reverse_q_c_rad"));
+  const char *control = aq_page_attr(A, "control");
+  double mu = aq_page_attr_num(A, "friction");
+  if (control && !strcmp(control, "free"))
+    aq_page_puts(b, "<p>Hinges <b>free</b>: any joint may open, so each direction of ground "
+                    "acceleration drives its own minimum mechanism (primary: along −x, "
+                    "reverse: along +x).");
+  else
+    aq_page_printf(b, "<p>Hinges <b>fixed</b>%s: the hinge-controlled arch, whose mechanical "
+                      "joints are the primary set's (the reverse set swaps their faces); every "
+                      "other joint is taken to carry what the thrust demands, and every verdict "
+                      "below assumes so.",
+                   control ? "" : " (a file written before the control was recorded)");
+  if (mu > 0)
+    aq_page_printf(b, "  Joint friction μ = %.4g.</p>\n", mu);
+  else
+    aq_page_puts(b, "  No joint friction given: sliding is not checked.</p>\n");
   /* the arch */
   const char *cfg = aq_page_attr(A, "config");
   aq_arch *arch = NULL;
   aq_error e;
   /* from its .cfg as read; an arch the .cfg alone does not make (a joints
    * arch's files) from the geometry the results file keeps */
-  int loaded = cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK;
+  aq_arch_options ao = {mu}; /* the friction the runs used (--friction over the file's) */
+  int loaded =
+      cfg && aq_arch_load_string_opts(cfg, strlen(cfg), name, &ao, &arch, &e) == AQ_OK;
   if (loaded || has_geometry(p->in->results, a)) {
     arch_fig f = {arch, p->in->results, name};
     char label[200];
