@@ -17,7 +17,10 @@
  * displacement of 1e-9 m along a direction that is not the mechanism's)
  * from passing for that top.  Two bounds end the run as collapsed as well:
  * a body turned by more than COLLAPSE_ROT_RAD, or a joint whose two corners
- * are both open by more than its width (the voussoirs have parted). */
+ * are both open by more than its width or that slid by more than its
+ * width (the voussoirs have parted: a voussoir between vertical joints that
+ * lose their thrust drops out, its potential energy falling, which the rule
+ * above does not take for a collapse). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +34,9 @@
  * range holds the load, when v = 0 is the step's exact solution). */
 static const double STILL_REL = 1e-6;
 static const double COLLAPSE_ROT_RAD = AQ_PI / 4;
+/* ... or slid along a joint by more than this fraction of its width (its
+ * corner off the other side's face: the voussoirs have parted). */
+static const double COLLAPSE_SLIP = 1.0;
 
 aq_status aq_events_init(aq_events *e, const aq_bodies *s, aq_error *err)
 {
@@ -228,9 +234,15 @@ int aq_events_fallen(const aq_events *e, aq_moreau *m)
     if (fabs(q[3 * b + 2] - e->q0[3 * b + 2]) > COLLAPSE_ROT_RAD)
       return 1;
   const aq_corner *cr = aq_moreau_corners(m);
-  for (size_t j = 0; j < s->nj; j++)
-    if (cr[2 * j].gap_m > s->joint[j].width_m && cr[2 * j + 1].gap_m > s->joint[j].width_m)
+  const aq_jstate *st = aq_moreau_jstate(m);
+  for (size_t j = 0; j < s->nj; j++) {
+    double w = s->joint[j].width_m;
+    if (cr[2 * j].gap_m > w && cr[2 * j + 1].gap_m > w)
       return 1;
+    for (int k = 0; k < 2; k++)
+      if (aq_jstate_closed(st[j], k) && fabs(cr[2 * j + k].s_m - (k ? w : 0)) > COLLAPSE_SLIP * w)
+        return 1;
+  }
   return 0;
 }
 

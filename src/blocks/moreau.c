@@ -75,12 +75,12 @@ struct aq_moreau {
   double *q, *v, *minv;
   double gx[2], gvx[2];
   aq_jstate *st, *trial;
-  aq_corner *cr, *cr1;
+  aq_corner *cr, *cr1, *cr2; /* at q, at q1 before the projection, after a pass */
   int cr_valid;             /* cr holds the corners at q with gvx */
   double *un0, *ut0;        /* normal and tangential velocities at the step's start */
   double h;                 /* the step */
   unsigned char *active;
-  unsigned char *flipped;   /* per joint: its hinge was guessed to rock on, this step */
+  aq_jstate *proj;          /* the projection's states */
   double *vfree, *vnew, *dv, *q1;
   double *rhs, *x, *u;
   double *pn, *pt;          /* per corner impulses of the accepted solution */
@@ -105,10 +105,11 @@ void aq_moreau_free(aq_moreau *m)
   free(m->trial);
   free(m->cr);
   free(m->cr1);
+  free(m->cr2);
   free(m->un0);
   free(m->ut0);
   free(m->active);
-  free(m->flipped);
+  free(m->proj);
   free(m->vfree);
   free(m->vnew);
   free(m->dv);
@@ -154,10 +155,11 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->trial = calloc(s->nj, sizeof *m->trial);
   m->cr = calloc(nc, sizeof *m->cr);
   m->cr1 = calloc(nc, sizeof *m->cr1);
+  m->cr2 = calloc(nc, sizeof *m->cr2);
   m->un0 = calloc(nc, sizeof *m->un0);
   m->ut0 = calloc(nc, sizeof *m->ut0);
   m->active = calloc(nc, 1);
-  m->flipped = calloc(s->nj, 1);
+  m->proj = calloc(s->nj, sizeof *m->proj);
   m->vfree = calloc(nb3, sizeof *m->vfree);
   m->vnew = calloc(nb3, sizeof *m->vnew);
   m->dv = calloc(nb3, sizeof *m->dv);
@@ -182,8 +184,8 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->sq = calloc(nb3, sizeof *m->sq);
   m->sv = calloc(nb3, sizeof *m->sv);
   m->sst = calloc(s->nj, sizeof *m->sst);
-  if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->un0 || !m->ut0 ||
-      !m->active || !m->flipped || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
+  if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->cr2 || !m->un0 || !m->ut0 ||
+      !m->active || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
       !m->u || !m->pn || !m->pt || !m->keep_v || !m->keep_pn || !m->keep_pt || !m->chain || !m->fc || !m->cidx || !m->W || !m->fq ||
       !m->fr || !m->fu || !m->fmu || !m->fd || !m->sq || !m->sv || !m->sst) {
     aq_moreau_free(m);
@@ -573,38 +575,64 @@ static void states_of(aq_moreau *m, aq_jstate *st)
 
 /* Close the closed corners of states st at q1 (rows at q, corners at q1
  * in cr1): gap 0, and no change of s at a sticking joint. */
-static void project(aq_moreau *m, const aq_jstate *st, double *q1, const double gx1[2])
+static void project(aq_moreau *m, const aq_jstate *st0, double *q1, const double gx1[2])
 {
-  (void)gx1;
-  aq_chain_factor(m->chain, m->cr, st, m->mu, 1, 1);
-  size_t nr = aq_chain_nrows(m->chain);
-  if (nr == 0)
-    return;
-  for (size_t r = 0; r < nr; r++) {
-    size_t j;
-    int kind;
-    aq_chain_row(m->chain, r, &j, &kind);
-    if (kind == AQ_CHAIN_ROW_T) {
-      /* the joint's tangential position as it was at the corner that was
-       * closed before the step (a landing corner's own s was that of an
-       * open joint, off by w (1 - cos phi)) */
-      int k = aq_jstate_closed(st[j], 0) ? 0 : 1, p = k;
-      if (!aq_jstate_closed(m->st[j], k) && aq_jstate_closed(m->st[j], 1 - k))
-        p = 1 - k;
-      double w = m->s->joint[j].width_m, s0 = m->cr[2 * j + p].s_m - (p - k) * w;
-      /* plus the slip of a joint that slid at the step's start and sticks
-       * at its end (the scheme's h (1 - theta) u_t-) */
-      if (m->st[j].slide != 0)
-        s0 += m->h * (1 - m->theta) * m->ut0[2 * j + p];
-      m->rhs[r] = -(m->cr1[2 * j + k].s_m - s0);
-    } else {
-      m->rhs[r] = -m->cr1[2 * j + (kind == AQ_CHAIN_ROW_N1)].gap_m;
+  /* the closed corners, and the open ones left inside their contact (a
+   * corner that landed and left within the step, by at most h |u_n-| / 2,
+   * or one the projection of the others pushes in): those only pushed out
+   * (no tangential row: a joint without a closed corner is taken as
+   * sliding); a pass that pushes an open corner in is made again with it */
+  aq_jstate *st = m->proj;
+  for (size_t j = 0; j < m->nj; j++)
+    st[j] = st0[j];
+  memcpy(m->keep_v, q1, 3 * m->nb * sizeof *q1);
+  for (int pass = 0; pass < 2 * MAX_LATE; pass++) {
+    int added = 0;
+    const aq_corner *now = pass ? m->cr2 : m->cr1;
+    for (size_t j = 0; j < m->nj; j++) {
+      int c[2], any = 0;
+      for (int k = 0; k < 2; k++) {
+        c[k] = aq_jstate_closed(st[j], k);
+        if (!c[k] && now[2 * j + k].gap_m < -m->closed_m)
+          c[k] = added = 1;
+        any |= aq_jstate_closed(st0[j], k);
+      }
+      st[j] = from_closed(c[0], c[1], any ? st0[j].slide : 1);
     }
+    if (pass > 0 && !added)
+      return;
+    memcpy(q1, m->keep_v, 3 * m->nb * sizeof *q1);
+    aq_chain_factor(m->chain, m->cr, st, m->mu, 1, 1);
+    size_t nr = aq_chain_nrows(m->chain);
+    if (nr == 0)
+      return;
+    for (size_t r = 0; r < nr; r++) {
+      size_t j;
+      int kind;
+      aq_chain_row(m->chain, r, &j, &kind);
+      if (kind == AQ_CHAIN_ROW_T) {
+        /* the joint's tangential position as it was at the corner that was
+         * closed before the step (a landing corner's own s was that of an
+         * open joint, off by w (1 - cos phi)) */
+        int k = aq_jstate_closed(st[j], 0) ? 0 : 1, p = k;
+        if (!aq_jstate_closed(m->st[j], k) && aq_jstate_closed(m->st[j], 1 - k))
+          p = 1 - k;
+        double w = m->s->joint[j].width_m, s0 = m->cr[2 * j + p].s_m - (p - k) * w;
+        /* plus the slip of a joint that slid at the step's start and
+         * sticks at its end (the scheme's h (1 - theta) u_t-) */
+        if (m->st[j].slide != 0)
+          s0 += m->h * (1 - m->theta) * m->ut0[2 * j + p];
+        m->rhs[r] = -(m->cr1[2 * j + k].s_m - s0);
+      } else {
+        m->rhs[r] = -m->cr1[2 * j + (kind == AQ_CHAIN_ROW_N1)].gap_m;
+      }
+    }
+    aq_chain_solve(m->chain, m->rhs, m->x);
+    aq_chain_apply(m->chain, m->x, m->dv);
+    for (size_t i = 0; i < 3 * m->nb; i++)
+      q1[i] += m->dv[i];
+    eval_corners(m, q1, gx1, m->gvx, m->cr2);
   }
-  aq_chain_solve(m->chain, m->rhs, m->x);
-  aq_chain_apply(m->chain, m->x, m->dv);
-  for (size_t i = 0; i < 3 * m->nb; i++)
-    q1[i] += m->dv[i];
 }
 
 aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const double gx1[2],
@@ -649,7 +677,6 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
           !aq_jstate_closed(m->st[j], k))
         info->impact = 1;
   }
-  memset(m->flipped, 0, m->nj);
   /* solve; a corner left out as open that the step's positions carry
    * through its contact (its predicted gap missed the step's
    * acceleration) joins the problem and the step is solved again */
