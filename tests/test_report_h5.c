@@ -145,7 +145,7 @@ static aq_status write_fixture_to(aq_h5_writer *w, fixture *fx, aq_error *err)
                      "[arch]\nname = oppenheim\nradius_m = 5.0\n", &fx->dyn,
                      {&fx->path[0], &fx->path[1]},
                      a ? "5e1a" : "0a7b", (int)a, {"0,6,12,19", "0,6,12,19"},
-                     {"eiei", "ieie"}, NULL};
+                     {"eiei", "ieie"}, NULL, {NULL, NULL}};
     if ((st = aq_h5_write_arch(w, a, &ha, err)) != AQ_OK)
       return st;
   }

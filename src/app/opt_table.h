@@ -141,7 +141,8 @@ typedef enum {
   AQ_OPT_DAMPING,
   AQ_OPT_IM_PERIODS,    /* the spectral intensity measures */
   AQ_OPT_SA_AVG,
-  AQ_OPT_SAMPLED_PEAKS,
+  AQ_OPT_PEAKS,         /* where a spectral peak is taken */
+  AQ_OPT_SAMPLED_PEAKS, /* --peaks samples */
   AQ_OPT_HELP,
   AQ_OPT_VERSION,
   /* reading records */
@@ -259,7 +260,7 @@ typedef struct aq_opts {
   size_t nperiods;
   double *dampings; /* --damping, ratios (NULL: 0.05) */
   size_t ndampings;
-  int sampled_peaks; /* --sampled-peaks */
+  int sampled_peaks; /* --sampled-peaks: the same as --peaks samples */
   /* plot */
   const char *run, *im, *record;
   int x_rad, y_pga; /* --x, --y: index in their choices */
@@ -274,6 +275,11 @@ typedef struct {
   aq_arg_kind kind;
   const char *meta;   /* the argument in --help ("FILE"); NULL for flags */
   double lo, hi;      /* the range (numbers; LIST: each item) */
+  int hi_open;        /* LIST: hi itself is outside (--damping: each in (0, 1)) */
+  /* A value of 0 asks for nothing (--taper 0: no taper): it conflicts with
+   * no option (a .conflicts rule holds only between values that conflict,
+   * so --no-filter --taper 0 is no conflict). */
+  int zero_is_off;
   const char *const *choices; /* AQ_ARG_CHOICE: NULL-terminated */
   size_t dest, dest_n;        /* offsetof(aq_opts, ...) */
   /* AQ_ARG_CUSTOM: checks arg and stores it; other kinds: called after the

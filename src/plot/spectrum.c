@@ -99,8 +99,8 @@ static int draw(void *ctx, aq_error *err)
   plbox("glh", 0, 0, "g", 0, 0); /* a grid at every decade's ticks */
   char title[512], name[160];
   short_name(F->source, 50, name, sizeof name);
-  snprintf(title, sizeof title, "response spectra of %s (peaks %s)", name,
-           t->sampled_peaks ? "at the samples" : "over continuous time");
+  snprintf(title, sizeof title, "response spectra of %s (peaks: %s)", name,
+           t->peaks >= 0 ? aq_spectrum_peaks_names[t->peaks] : "not stated");
   size_t most = 0;
   for (size_t k = 0; k < F->nc; k++)
     most = F->c[k].n > most ? F->c[k].n : most;

@@ -77,7 +77,19 @@ typedef struct {
    * voussoirs' mass properties, outlines, fill, point masses:
    * docs/hdf5-layout.md); NULL: not written. */
   const aq_arch *arch;
+  /* A joints arch's joints and faces files, as read (NUL-terminated; NULL
+   * where there is none): attributes joints_csv, faces_csv. */
+  const char *data_text[2];
 } aq_h5_arch;
+
+/* Arch number index as loaded: A's name, .cfg text, its joints and faces
+ * files' texts, SHA-256 (aq_arch_sha256), hinge sets as used and geometry,
+ * with source_file the path as given and used the [dynamics] values the
+ * runs used (NULL: the arch's own).  The one way the commands write an
+ * arch (the main job, capacity). */
+aq_status aq_h5_write_arch_of(aq_h5_writer *w, size_t index, const aq_arch *A,
+                              const char *source_file, const aq_arch_dynamics *used,
+                              aq_error *err);
 
 /* One record: what was read, how it was processed and what it measures.
  * rec, proc and im are NULL when the stage did not get that far; rec's
