@@ -113,10 +113,10 @@ AQ_TEST(blocks_cli_refusals)
     const char *want; /* in the one line */
   } cases[] = {
       {NULL, NULL, "", "oppenheim.cfg: friction: expected a Coulomb coefficient"},
-      {NULL, NULL, "--friction 0", "--friction: expected a number > 0"},
+      {NULL, NULL, "--friction 0", "--friction: expected a number in (0, 1000]"},
       {NULL, NULL, "--friction nan", "--friction"},
       {NULL, NULL, "--friction -0.6", "--friction"},
-      {NULL, NULL, "--friction 10 --blocks-dt 0", "--blocks-dt: expected a number > 0"},
+      {NULL, NULL, "--friction 10 --blocks-dt 0", "--blocks-dt: expected a number in (0, 0.1]"},
       {NULL, NULL, "--friction 10 --blocks-dt -0.001", "--blocks-dt"},
       {NULL, NULL, "--friction 10 --cor 0.3", "--cor: expected a four-hinge model"},
       {"[dynamics]", "[contact]\ne_n = 1.5\n[dynamics]", "--friction 10", "e_n"},
