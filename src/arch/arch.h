@@ -147,4 +147,16 @@ aq_hinge_control aq_arch_control(const aq_arch *a);
  * was given. */
 double aq_arch_friction(const aq_arch *a);
 
+/* The forces across the joints of set 0 or 1 along its path, tabled
+ * (src/arch/demand.h): built on the first call (safe from any thread) and
+ * kept with the arch; NULL when the set is not admissible or they cannot
+ * be built. */
+typedef struct aq_demand_table aq_demand_table;
+const aq_demand_table *aq_arch_demand_table(const aq_arch *a, int set);
+/* A tracker of what a run of a asks of its joints (demand.h), for
+ * aq_stepper_set_demand, checking the friction mu_limit (NAN: none).
+ * NULL (err) out of memory. */
+typedef struct aq_demand aq_demand;
+aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err);
+
 #endif
