@@ -131,8 +131,10 @@ static void warn_nyquist(const source *src, size_t n, const double *periods, siz
                   "to the PGA as T -> 0)\n", below, tmin, 2 * dt, who, 0.5 / dt);
 }
 
+/* The rows, after one comment line saying where the peaks were taken. */
 static void print_rows(const job *J, size_t n)
 {
+  printf("# peaks: %s\n", aq_spectrum_peaks_text(J->so.peaks));
   printf("record\tcomponent\tdamping\tperiod_s\tpsa_g\tsd_m\tpsv_m_s\n");
   for (size_t k = 0; k < n; k++) {
     const source *s = &J->src[k];
@@ -186,7 +188,7 @@ static int write_h5(const char *path, const char *cmdline, const job *J, size_t 
                                         a / (om * om), a / om};
         }
   }
-  aq_h5_spectra hs = {rows, nrow, J->so.sampled_peaks, J->so.n_angles};
+  aq_h5_spectra hs = {rows, nrow, J->so.peaks, J->so.n_angles};
   if (s == AQ_OK)
     s = aq_h5_write_spectra(w, path, &hs, &e);
   if (s == AQ_OK) {
@@ -247,7 +249,7 @@ int aq_cmd_spectrum(int argc, char **argv)
            .damping = o.dampings ? o.dampings : &damping_default,
            .ndamp = o.dampings ? o.ndampings : 1};
   aq_spectrum_opts_default(&J.so);
-  J.so.sampled_peaks = o.sampled_peaks;
+  J.so.peaks = o.proc.peaks;
 
   char **names = NULL;
   size_t nnames = 0, n = 0;

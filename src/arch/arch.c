@@ -4,6 +4,7 @@
  * reverse hinge sets, the arrays of its drawing and its content digest.
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include "../io/sha256.h"
 #include "../units.h"
 #include "arch.h"
+#include "demand.h"
 #include "model.h"
 
 struct aq_arch {
@@ -29,19 +31,28 @@ struct aq_arch {
   aq_hinge_control control; /* fixed, or free: each direction's own minimum */
   double friction;      /* Coulomb coefficient of every joint; 0: none */
   aq_statics *statics;  /* the statics with friction (friction.c) */
+  double e_n, spread_m; /* the block model's restitution and spread of the supports */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
   /* aq_arch_drawing's arrays (drawing_make) */
   double *d_joints, *d_parts, *d_outline, *d_fill, *d_mass;
   int64_t *d_ostart, *d_fstart;
+  /* the joints' demand tables (demand.h), built on first use */
+  aq_demand_table *demand[2];
+  int demand_tried[2];
 };
+
+/* Guards every arch's demand tables while one is built (rarely). */
+static pthread_mutex_t demand_lock = PTHREAD_MUTEX_INITIALIZER;
 
 void aq_arch_free(aq_arch *a)
 {
   if (!a)
     return;
-  for (int s = 0; s < 2; s++)
+  for (int s = 0; s < 2; s++) {
     aq_workpath_free(a->wp[s]);
+    aq_demand_table_free(a->demand[s]);
+  }
   aq_statics_free(a->statics);
   aq_geom_free(&a->geom);
   free(a->name);
@@ -273,11 +284,18 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   if (!(p->friction >= 0) || !isfinite(p->friction))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "friction",
                         "expected a Coulomb coefficient > 0, got %g", p->friction);
+  if (!(p->e_n >= 0 && p->e_n <= 1))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "e_n", "expected 0..1, got %g", p->e_n);
+  if (!(p->spread_m >= 0) || !isfinite(p->spread_m))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m", "expected >= 0 m, got %g",
+                        p->spread_m);
   a->control = p->control;
   a->friction = p->friction;
+  a->e_n = p->e_n;
+  a->spread_m = p->spread_m;
   aq_status st = aq_geom_init(&a->geom, p, err);
-  if (st != AQ_OK)
-    return st;
+  if (st != AQ_OK || (st = aq_geom_check_strut(&a->geom, err)) != AQ_OK)
+    return st; /* a strut fits: no set of any hinges is a mechanism */
   if (kept && tables_get(a, kept, nkept, primary, reverse) == 0) {
     *used = 1;
     if (drawing_make(a) != 0)
@@ -437,6 +455,8 @@ double aq_arch_joint_friction(const aq_arch *a, int set, double *ratio, size_t *
     *joint = SIZE_MAX;
   return NAN;
 }
+double aq_arch_restitution(const aq_arch *a) { return a->e_n; }
+double aq_arch_spread(const aq_arch *a) { return a->spread_m; }
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
 {
@@ -457,6 +477,16 @@ int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda)
   if (lambda)
     *lambda = a->min_info.liftoff_lambda;
   return 1;
+}
+
+void aq_arch_sources_of(const aq_arch *a, aq_arch_sources *src)
+{
+  src->text = a->text;
+  src->ntext = a->text ? strlen(a->text) : 0;
+  for (int f = 0; f < 2; f++) {
+    src->data[f] = a->data[f];
+    src->ndata[f] = a->ndata[f];
+  }
 }
 
 void aq_arch_sha256(const aq_arch *a, char hex[65])
@@ -484,4 +514,36 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
   p.stored = d;
   p.friction = friction > 0 ? friction : 0;
   return aq_arch_build(&p, primary, reverse, dyn, name, out, err);
+}
+
+const aq_demand_table *aq_arch_demand_table(const aq_arch *a, int set)
+{
+  if (set < 0 || set > 1 || !a->wp[set])
+    return NULL;
+  aq_arch *w = (aq_arch *)a; /* a cache of what the arch is: built once */
+  pthread_mutex_lock(&demand_lock);
+  if (!w->demand_tried[set]) {
+    aq_error e;
+    aq_error_clear(&e);
+    const aq_path *p = aq_workpath_path(w->wp[set]);
+    if (p->admissible)
+      aq_demand_table_build(aq_workpath_mech(w->wp[set]), p, &w->demand[set], &e);
+    w->demand_tried[set] = 1;
+  }
+  const aq_demand_table *t = w->demand[set];
+  pthread_mutex_unlock(&demand_lock);
+  return t;
+}
+
+static const aq_demand_table *demand_get(void *ctx, int set)
+{
+  return aq_arch_demand_table(ctx, set);
+}
+
+aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err)
+{
+  aq_demand *d = aq_demand_alloc(demand_get, (void *)a, err);
+  if (d)
+    aq_demand_set_limit(d, mu_limit);
+  return d;
 }

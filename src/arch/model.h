@@ -137,6 +137,9 @@ typedef struct {
   aq_hinge_control control;
   double friction;
   int friction_table; /* 1: with the table of the least friction over the load */
+  /* the block model: the contacts' normal restitution [0, 1] and the
+   * supports' spread (m, >= 0) */
+  double e_n, spread_m;
 } aq_arch_params;
 
 /* The parameters of a circular arch (no fill, no point masses). */
@@ -146,7 +149,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0};
+                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0, 0, 0};
   return p;
 }
 
@@ -212,6 +215,30 @@ aq_vec2 aq_geom_joint_point(const aq_geom *g, size_t j, char face);
 /* Mass properties of voussoirs [j0, j1) as one body: mass, centroid and
  * centroidal inertia (parallel-axis sum). */
 aq_mass aq_geom_body(const aq_geom *g, size_t j0, size_t j1);
+
+/* The straight strut of an arch: the line y = a + b x that crosses every
+ * joint between its ends, the intrados end on or below it and the
+ * extrados end on or above it (the side on which a thrust pushing from the
+ * +x springing towards the other keeps every joint in compression), with
+ * the largest margin, the least vertical distance of an end from the line
+ * on its side (geometry.c, aq_geom_strut).  A margin > 0: the strut fits
+ * inside the arch, and a thrust along it, made as large as needed, carries
+ * any load: no four-hinge mechanism opens under any horizontal load. */
+typedef struct {
+  double a, b;        /* the line y = a + b x: m, m/m */
+  double margin_m;    /* > 0: it fits; < 0: the least violation */
+  size_t tight_i, tight_e; /* the joints whose intrados end and extrados end are
+                              nearest the line (both margin_m from it) */
+  aq_vec2 p0, pn;     /* where the line meets joint 0 and joint n */
+} aq_strut;
+void aq_geom_strut(const aq_geom *g, aq_strut *s);
+
+/* AQ_OK if a horizontal load can open the arch into a four-hinge mechanism
+ * as far as its geometry tells (no strut fits, aq_geom_strut); else
+ * AQ_EINADMISSIBLE with one line (field "thickness_m", or "joints_file" for
+ * a joints arch) giving the strut and, for an arch with a centre line, the
+ * rise or thickness a mechanism needs. */
+aq_status aq_geom_check_strut(const aq_geom *g, aq_error *err);
 
 /* ---- kinematics.c -------------------------------------------------- */
 

@@ -23,11 +23,14 @@ typedef enum {
   AQ_MODEL_WORKPATH = 0,  /* time-Taylor leg on the path's pieces (leg_taylor.c) */
   AQ_MODEL_ODE,           /* GSL rk8pd on the equation of motion (eom.c) */
   AQ_MODEL_PAPER,         /* the paper's printed fits (paper.c) */
-  AQ_MODEL_WORKPATH_QUAD  /* time integral by Chebyshev panels (leg_quad.c) */
+  AQ_MODEL_WORKPATH_QUAD, /* time integral by Chebyshev panels (leg_quad.c) */
+  AQ_MODEL_BLOCKS         /* rigid voussoirs in frictional contact: not this stepper's
+                             (src/blocks/blocks.h runs it; aq_stepper_alloc refuses it) */
 } aq_model;
 
 /* The models' names, indexed by aq_model and NULL-terminated ("workpath",
- * "ode", "paper", "workpath-quad"): --model's words, the model column. */
+ * "ode", "paper", "workpath-quad", "blocks"): --model's words, the model
+ * column. */
 extern const char *const aq_model_names[];
 /* The name of model m, or "?" outside the enum. */
 const char *aq_model_name(aq_model m);
@@ -52,6 +55,13 @@ void aq_stepper_set_taylor_tol(aq_stepper *st, double tol); /* workpath series t
  * copy of the steps. */
 void aq_stepper_set_scale(aq_stepper *st, double scale);
 void aq_stepper_set_rest_tol(aq_stepper *st, double tol);/* rest: KE <= tol * m_T g y(s_c) after an impact */
+
+/* Track what each run asks of the joints with d (demand.h; the stepper
+ * takes it and frees it; NULL: none): every leg's start, end and turning
+ * points are its samples.  The paper model has no joint forces: its runs
+ * are not tracked. */
+typedef struct aq_demand aq_demand;
+void aq_stepper_set_demand(aq_stepper *st, aq_demand *d);
 
 /* Run from rest at q = 0.  res is overwritten (free with aq_result_free).
  * Errors name the time in the record ("at t = 12.340 s"). */

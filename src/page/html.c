@@ -282,7 +282,9 @@ static void section_run(page *p)
   aq_page_puts(b, "<h2 id=\"run\">The run</h2>\n");
   read_note(b, "What was run, on what, and how: enough to run it again and get the "
                "same numbers.  Each input is identified by the SHA-256 of its bytes, so a "
-               "changed file is seen even under the same name.");
+               "changed file is seen even under the same name: a record's of its file, an "
+               "arch's of its .cfg followed by its joints and faces files for a joints "
+               "arch (each shown in the arch's section as read).");
   aq_page_puts(b, "<table class=\"wide\"><tbody>\n<tr><th>command line</th><td class=\"mono\">");
   aq_page_esc(b, (v = aq_page_attr(root, "command_line")) ? v : "?");
   aq_page_puts(b, "</td></tr>\n<tr><th>archquake</th><td>");
@@ -447,8 +449,8 @@ static aq_status history_figure(page *p, const aq_h5_run *r, const char *why)
   }
   hist_fig h = {&run};
   char label[512];
-  snprintf(label, sizeof label, "history of %.200s on %.100s at scale %g", base(r->s.record),
-           r->s.arch, r->s.scale);
+  aq_text_fit(label, sizeof label, "history of %s on %s at scale %g", base(r->s.record),
+              r->s.arch, r->s.scale);
   aq_status st = figure(p, label, draw_history, &h);
   aq_plot_run_free(&run);
   return st;
@@ -551,6 +553,17 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     aq_page_esc(b, cfg);
     aq_page_puts(b, "</pre></details>\n");
   }
+  /* a joints arch's files, as read: with the .cfg, what its SHA-256 covers */
+  static const char *const data_attr[2][2] = {{"joints_csv", "Its joints file as read"},
+                                              {"faces_csv", "Its faces file as read"}};
+  for (int k = 0; k < 2; k++) {
+    const char *text = aq_page_attr(A, data_attr[k][0]);
+    if (!text)
+      continue;
+    aq_page_printf(b, "<details><summary>%s</summary><pre>", data_attr[k][1]);
+    aq_page_esc(b, text);
+    aq_page_puts(b, "</pre></details>\n");
+  }
   /* the verdict table */
   aq_page_printf(b, "<h3 id=\"verdicts-%zu\">Verdicts</h3>\n", a);
   read_note(b, "One row per run: a record, scaled, against this arch.  <b>COLLAPSE</b> "
@@ -596,7 +609,7 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     num_td(b, r->s.collapse_time_s, "%.3f");
     num_td(b, r->s.peak_rotation_over_qc, "%.3f");
     num_td(b, r->s.peak_rotation_rad, "%.3g");
-    num_td(b, r->s.pga_over_lambda0_g, "%.3g");
+    num_td(b, r->s.pga_over_lambda0, "%.3g");
     num_td(b, r->s.impacts < 0 ? NAN : (double)r->s.impacts, "%.0f");
     aq_page_puts(b, "</tr>\n");
     (*nrows)++;
@@ -700,7 +713,7 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     aq_page_puts(b, "</h3>\n");
     cap_fig c = {&t, arch, path};
     char label[300];
-    snprintf(label, sizeof label, "capacity of arch %s: verdict strips and fragility", arch);
+    aq_text_fit(label, sizeof label, "capacity of arch %s: verdict strips and fragility", arch);
     st = figure(p, label, draw_capacity, &c);
     /* the measures ranked by the dispersion of their fits */
     size_t order[64], n = 0;
@@ -719,7 +732,19 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     if (n) {
       aq_page_puts(b, "<p>The intensity measures ranked by the dispersion β of their "
                       "fragility fit: the smaller β, the better the measure predicts this "
-                      "arch's collapse.</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
+                      "arch's collapse.");
+      int spectral = 0;
+      for (size_t i = 0; i < n; i++)
+        spectral |= strncmp(t.fit[order[i]].im, "sa_", 3) == 0;
+      if (spectral) {
+        int r = aq_spectrum_peaks_parse(t.peaks);
+        aq_page_puts(b, "  Sa(T) and Sa_avg are pseudo-spectral accelerations at 5 % "
+                        "damping, their peaks taken by the rule <i>");
+        aq_page_esc(b, r >= 0 ? aq_spectrum_peaks_text((aq_spectrum_peaks)r)
+                              : "not stated (a file written before --peaks: exact)");
+        aq_page_puts(b, "</i>.");
+      }
+      aq_page_puts(b, "</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
                       "<th>median</th><th>β</th><th>median 90 % interval</th><th>records</th>"
                       "<th>censored</th></tr></thead><tbody>\n");
       for (size_t i = 0; i < n; i++) {
