@@ -325,8 +325,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                        .cmds = SUITES | C(SPECTRUM) | C(SELECT),
                        .help = "write the HDF5 results file (docs/hdf5-layout.md; capacity: "
                                "its results in a `capacity` group; spectrum: the spectra "
-                               "in a `spectra` group; select: the suite, its spectra and "
-                               "checks in a `select` group)"},
+                               "in a `spectra` group; select: a `select` group)"},
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)",
@@ -337,8 +336,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .required = C(REPORT)},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
                      .cmds = SUITES | C(SELECT),
-                     .help = "write the TSV to FILE instead of stdout (select: the suite "
-                             "file)"},
+                     .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
                           DEST(fragility), .cmds = C(CAPACITY),
                           .help = "lognormal fragility fits, one row per (arch, IM)"},
@@ -501,11 +499,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                       "time, between samples too; docs/spectrum.md)"},
     [AQ_OPT_TARGET] = {.name = "target", .kind = AQ_ARG_STRING, .meta = "SPEC", DEST(target),
                        .cmds = C(SELECT) | C(PLOT_SPECTRUM),
-                       .help = "the target spectrum: ec8:type=1|2,ground=A..E,ag=G"
-                               "[,importance=GAMMA][,damping=ZETA] (EN 1998-1:2004 3.2.2.2; ag "
-                               "the reference a_gR in g), asce7:sds=G,sd1=G,tl=S[,mcer] (ASCE/SEI "
-                               "7-22, the design or MCE_R spectrum), or a CSV file "
-                               "period_s,psa_g of your own (docs/select.md)",
+                       .help = "the target spectrum: ec8:KEY=VALUE,... with type=1|2, "
+                               "ground=A..E, ag=G (a_gR in g) and optionally importance=GAMMA, "
+                               "damping=ZETA (EN 1998-1:2004 3.2.2.2); asce7:sds=G,sd1=G,tl=S "
+                               "and optionally ,mcer (ASCE/SEI 7-22, the design or MCE_R "
+                               "spectrum); or a CSV file period_s,psa_g of your own "
+                               "(docs/select.md)",
                        .required = C(SELECT)},
     [AQ_OPT_COUNT] = {.name = "count", .kind = AQ_ARG_SIZE, .lo = 1, .hi = 1000, .meta = "N",
                       DEST(count), .cmds = C(SELECT),
@@ -542,7 +541,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                      "or 0.2T..2T of Sa(T))",
                              .conflicts = OPTS(AQ_OPT_SELECT_PERIODS),
                              .why = "both give the period range"},
-    [AQ_OPT_ARCH_FRAGILITY] = {.name = "arch", .kind = AQ_ARG_STRING, .meta = "NAME",
+    [AQ_OPT_ARCH_FRAGILITY] = {.name = "fragility-arch", .kind = AQ_ARG_STRING, .meta = "NAME",
                                DEST(arch), .cmds = C(SELECT),
                                .help = "the arch of the --fragility file, by name (default: "
                                        "its only arch)",
@@ -550,9 +549,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                .why = "it names an arch of that file"},
     [AQ_OPT_SUITE] = {.name = "suite", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(suite),
                       .cmds = SUITES,
-                      .help = "the records of a suite file of archquake select, each run at "
-                              "its scale (times each --scale factor, if given); with "
-                              "capacity, each record's scale 1 is the suite's",
+                      .help = "the records of a suite file of select, each at its scale "
+                              "(capacity: its scale 1)",
                       .conflicts = OPTS(AQ_OPT_SCALE_TO_PGA, AQ_OPT_SCALE_TO_LAMBDA0),
                       .why = "the suite gives each record its scale"},
     [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,

@@ -111,11 +111,12 @@ aq_status aq_select_range_from_fragility(const char *path, const char *arch, dou
     return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "--fragility",
                         "expected a fragility file of archquake capacity, got an empty file");
   if (!arch && several)
-    return aq_error_set(err, AQ_EVALUE, path, -1, -1, "--arch",
-                        "expected --arch NAME: the file holds several arches (\"%s\" first)",
+    return aq_error_set(err, AQ_EVALUE, path, -1, -1, "--fragility-arch",
+                        "expected --fragility-arch NAME: the file holds several arches (\"%s\" "
+                        "first)",
                         first_arch);
   if (!seen)
-    return aq_error_set(err, AQ_EVALUE, path, -1, -1, "--arch",
+    return aq_error_set(err, AQ_EVALUE, path, -1, -1, "--fragility-arch",
                         "expected an arch of the file, got \"%s\"", arch ? arch : "");
   if (!best_rank)
     return aq_error_set(err, AQ_EVALUE, path, -1, -1, "--fragility",

@@ -27,7 +27,7 @@ int aq_select_range_of_im(const char *im, double *t1_s, double *t2_s);
  * path (arch NULL: the file's only arch), its name into im[nim].  Returns
  * AQ_OK; AQ_EIO; AQ_EFORMAT (not a fragility file: err names the line);
  * AQ_EVALUE (no such arch, several arches and none named, no fitted
- * spectral measure: field "--fragility" or "--arch"). */
+ * spectral measure: field "--fragility" or "--fragility-arch"). */
 aq_status aq_select_range_from_fragility(const char *path, const char *arch, double *t1_s,
                                          double *t2_s, char *im, size_t nim, aq_error *err);
 

@@ -310,13 +310,30 @@ static int greedy_swaps(walk *w, size_t first, aq_select_eval *e)
   return 1;
 }
 
+/* A suite of one record, to rank the first records. */
+typedef struct {
+  aq_select_eval e;
+  size_t i;
+} single_suite;
+
+/* qsort's comparison: the better suite first, ties by index. */
+static int by_single(const void *a, const void *b)
+{
+  const single_suite *x = a, *y = b;
+  if (aq_select_better(&x->e, &y->e))
+    return -1;
+  if (aq_select_better(&y->e, &x->e))
+    return 1;
+  return (x->i > y->i) - (x->i < y->i);
+}
+
 static int cmp_size(const void *a, const void *b)
 {
   size_t x = *(const size_t *)a, y = *(const size_t *)b;
   return (x > y) - (x < y);
 }
 
-aq_status aq_select_heuristic(const aq_select_prepared *q, size_t starts,
+aq_status aq_select_heuristic(const aq_select_prepared *q, size_t starts, double budget,
                               aq_select_result *r, aq_error *err)
 {
   const aq_select_problem *p = q->p;
@@ -332,37 +349,25 @@ aq_status aq_select_heuristic(const aq_select_prepared *q, size_t starts,
   w.evc = calloc(event_count(p) + 1, sizeof *w.evc);
   w.sum = malloc((K ? K : 1) * sizeof *w.sum);
   w.trial = malloc((K ? K : 1) * sizeof *w.trial);
-  size_t *order = malloc(M * sizeof *order);
-  aq_select_eval *single = malloc(M * sizeof *single);
+  single_suite *single = malloc(M * sizeof *single);
   r->idx = malloc(N * sizeof *r->idx);
   aq_status st = AQ_OK;
-  if (!w.set || !w.in || !w.evc || !w.sum || !w.trial || !order || !single || !r->idx) {
+  if (!w.set || !w.in || !w.evc || !w.sum || !w.trial || !single || !r->idx) {
     st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "select", "out of memory");
     goto done;
   }
-  /* the first records: the best suites of one, in order (insertion sort
-   * of the top `starts`) */
-  if (starts > M)
-    starts = M;
-  if (starts == 0)
-    starts = 1;
-  size_t ntop = 0;
+  /* the first records: the best suites of one, in order */
   for (size_t c = 0; c < M; c++) {
-    aq_select_evaluate(q, &c, 1, &single[c]);
+    aq_select_evaluate(q, &c, 1, &single[c].e);
+    single[c].i = c;
     r->evaluated += 1;
-    size_t at = ntop < starts ? ntop++ : starts;
-    while (at > 0 && aq_select_better(&single[c], &single[order[at - 1]])) {
-      if (at < starts)
-        order[at] = order[at - 1];
-      at--;
-    }
-    if (at < starts)
-      order[at] = c;
   }
-  for (size_t s = 0; s < ntop; s++) {
+  qsort(single, M, sizeof *single, by_single);
+  for (size_t s = 0; s < M && (s < starts || r->evaluated * (double)K < budget); s++) {
+    r->starts = s + 1;
     aq_select_eval e;
     w.evaluated = 0;
-    int ok = greedy_swaps(&w, order[s], &e);
+    int ok = greedy_swaps(&w, single[s].i, &e);
     r->evaluated += w.evaluated;
     if (ok && (!r->found || aq_select_better(&e, &r->eval))) {
       r->found = 1;
@@ -378,7 +383,6 @@ done:
   free(w.evc);
   free(w.sum);
   free(w.trial);
-  free(order);
   free(single);
   if (st != AQ_OK)
     aq_select_result_free(r);
@@ -390,5 +394,5 @@ aq_status aq_select_search(const aq_select_prepared *q, double exhaustive_max, l
 {
   if (aq_select_combinations(q->p->nrec, q->p->count) <= exhaustive_max)
     return aq_select_exhaustive(q, threads, r, err);
-  return aq_select_heuristic(q, AQ_SELECT_STARTS, r, err);
+  return aq_select_heuristic(q, AQ_SELECT_STARTS, AQ_SELECT_HEURISTIC_BUDGET, r, err);
 }
