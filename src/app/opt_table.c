@@ -679,13 +679,14 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                   "into one constant-acceleration step (default 0: none)"},
     [AQ_OPT_NO_CACHE] = {.name = "no-cache", .kind = AQ_ARG_FLAG, DEST(no_cache),
                          .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
-                         .help = "neither read nor store processed records and built arches "
-                                 "in the cache (results are the same either way; "
+                         .help = "neither read nor store processed records, built arches "
+                                 "and spectra in the cache (results are the same either way; "
                                  "docs/cache.md)"},
     [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
                           DEST(cache_dir), .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
-                          .help = "keep processed records and built arches in DIR (default "
-                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
+                          .help = "keep processed records, built arches and spectra in DIR "
+                                  "(default $XDG_CACHE_HOME/archquake, else "
+                                  "~/.cache/archquake)",
                           .check = cache_dir_needs_cache},
     [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
                           .fn = cache_max, .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
@@ -935,11 +936,11 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "event) goes to stdout or --text; the main job and capacity run it with\n"
                  "--suite.\n",
          .tail = "Exit status: 0 a suite that meets every condition was written; 1 some\n"
-                 "pool member could not be used (each named; the others were), or with\n"
-                 "--best-effort a suite that does not meet them was written; 2 bad options,\n"
-                 "a bad target or range, too few usable records, or no suite that meets the\n"
-                 "conditions (how far the best falls short is said; nothing is written);\n"
-                 "3 an output could not be written (no partial file is left).\n",
+                 "pool member could not be used (each named; the suite is chosen from the\n"
+                 "others), fewer than N usable, or no suite meets the conditions (how far\n"
+                 "the best falls short, and where, is said; nothing is written unless\n"
+                 "--best-effort); 2 bad options, target or range, or a pool of fewer than N\n"
+                 "records; 3 an output could not be written (no partial file is left).\n",
          .heading = {[AQ_GROUP_PROCESSING] = "Processing (the pool is processed as the main "
                                              "job processes records):"}},
     [AQ_CMD_PLOT] = {.name = "plot",
