@@ -560,7 +560,7 @@ static int stages_child(const char *cache_dir)
      * first: as the job does, a process that reads them never loads GLPK */
     c = thread_cpu_s();
     for (int a = 0; a < NARCH; a++) {
-      if (aq_arch_cache_load(ac, job_arches[a], NULL, &arch[a], &e) != AQ_OK)
+      if (aq_arch_cache_load(ac, job_arches[a], NULL, NULL, &arch[a], &e) != AQ_OK)
         goto fail;
       aq_arch_free(arch[a]);
       arch[a] = NULL;

@@ -53,8 +53,9 @@ int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
  * *n (if not NULL) its length.  NULL if it cannot be read. */
 char *aq_test_read_file(const char *path, size_t *n);
 
-/* Field k (0-based) of line row (0-based: 0 is a TSV's header) of the
- * text tsv, into buf[n] ("" if there is none); returns buf. */
+/* Field k (0-based) of line row (0-based: 0 is a TSV's header, the first
+ * line after any comment lines, "# ...") of the text tsv, into buf[n] (""
+ * if there is none); returns buf. */
 const char *aq_test_tsv_field(const char *tsv, int row, int k, char *buf, size_t n);
 
 /* Lines (newlines) in s. */

@@ -165,6 +165,11 @@ size_t aq_test_count_lines(const char *s)
 const char *aq_test_tsv_field(const char *tsv, int row, int k, char *buf, size_t n)
 {
   const char *p = tsv;
+  while (p && *p == '#') { /* comment lines before the header */
+    p = strchr(p, '\n');
+    if (p)
+      p++;
+  }
   for (int r = 0; r < row && p; r++) {
     p = strchr(p, '\n');
     if (p)

@@ -155,7 +155,7 @@ AQ_TEST(arch_cache_round_trip_bit_for_bit)
     int hit[2] = {-1, -1};
     aq_check(aq_arch_load(file, &ref, &e) == AQ_OK, "%s built: %s", file, e.message);
     for (int k = 0; k < 2; k++) /* 0 fills the cache, 1 reads it */
-      aq_check(aq_arch_cache_load(c, file, &hit[k], &got[k], &e) == AQ_OK, "%s (%d): %s", file,
+      aq_check(aq_arch_cache_load(c, file, NULL, &hit[k], &got[k], &e) == AQ_OK, "%s (%d): %s", file,
                k, e.message);
     aq_check(hit[0] == 0 && hit[1] == 1, "%s: built and stored, then read (%d, %d)", file,
              hit[0], hit[1]);
@@ -180,7 +180,7 @@ static int load_via(aq_diskcache *c, const char *file, int *hit, aq_arch **a)
 {
   aq_error e;
   *a = NULL;
-  return aq_check(aq_arch_cache_load(c, file, hit, a, &e) == AQ_OK, "%s: %s", file, e.message);
+  return aq_check(aq_arch_cache_load(c, file, NULL, hit, a, &e) == AQ_OK, "%s: %s", file, e.message);
 }
 
 /* The sources of file (as aq_arch_load_stored gives them to the store)

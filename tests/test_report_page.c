@@ -163,6 +163,11 @@ AQ_TEST(report_page_holds_the_suite)
   aq_check(count(html, "RSN77_SFERN_PUL164-hor1.AT2") >= 2 && strstr(html, "pga_g") &&
                strstr(html, "ranked by the dispersion"),
            "capacity: its rows and the ranking of the measures");
+  aq_check(strstr(html, "sa_avg_0.1_1s_g") && strstr(html, "their peaks taken by the rule "
+                                                         "<i>peer: each peak at the samples"),
+           "the rule of the spectral measures' peaks (the default, peer)");
+  aq_check(strstr(html, "<td>peaks</td>") || strstr(html, ">peaks<"),
+           "the run's options list peaks");
   aq_check(count(html, "How to read this") >= 6, "a note on how to read each section (%zu)",
            count(html, "How to read this"));
   free(html);

@@ -118,15 +118,26 @@ AQ_TEST(spectrum_step_peak_between_samples)
       aq_spectrum_opts o;
       aq_spectrum_opts_default(&o);
       aq_error e;
+      double psa_p;
+      aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &psa_p, &e) == AQ_OK,
+               "psa at PEER's refined samples (the default)");
+      o.peaks = AQ_SPECTRUM_PEAKS_EXACT;
       aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &psa, &e) == AQ_OK,
                "psa");
-      o.sampled_peaks = 1;
+      o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
       aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &psa_s, &e) == AQ_OK,
                "psa at the samples");
       free_part f = fit_free(T, z, -A / (w * w), 0);
-      double ms = 0;
+      /* PEER's N, written out: 10 dt / T = 7.30, 3.15, 0.81, 0.13 */
+      const size_t peer_n[] = {8, 4, 1, 1};
+      double ms = 0, mp = 0;
       for (size_t k = 0; k < n; k++)
         ms = fmax(ms, fabs(w * w * (-A / (w * w) + free_at(&f, (double)k * dt))));
+      for (size_t k = 0; k < n * peer_n[i]; k++)
+        mp = fmax(mp, fabs(w * w * (-A / (w * w) +
+                                    free_at(&f, (double)k * dt / (double)peer_n[i]))));
+      aq_check_rel(psa_p, mp, STEP_PEAK_REL,
+                   "step, T = %g s, z = %g: the peak at dt / %zu", T, z, peer_n[i]);
       aq_check_rel(psa, A * (1 + exp(-z * PI / sqrt(1 - z * z))), STEP_PEAK_REL,
                    "step, T = %g s, z = %g: the peak between samples", T, z);
       aq_check_rel(psa_s, ms, STEP_PEAK_REL,
@@ -159,8 +170,9 @@ AQ_TEST(spectrum_peak_in_an_interval_below_the_largest_sample)
   aq_spectrum_opts o;
   aq_spectrum_opts_default(&o);
   aq_error e;
+  o.peaks = AQ_SPECTRUM_PEAKS_EXACT;
   aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &psa, &e) == AQ_OK, "psa");
-  o.sampled_peaks = 1;
+  o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
   aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &psa_s, &e) == AQ_OK, "psa");
   double r = sqrt(1 - z * z);
   aq_check_rel(psa_s, A * (1 + exp(-3 * z * PI / r)), 1e-13,
@@ -262,9 +274,10 @@ AQ_TEST(spectrum_peak_against_a_finer_sampling)
     aq_spectrum_opts o;
     aq_spectrum_opts_default(&o);
     aq_error e;
+    o.peaks = AQ_SPECTRUM_PEAKS_EXACT;
     aq_check(aq_spectrum_psa(ws, &o, r.acc_mps2, n, dt, z, &T, 1, &psa, &e) == AQ_OK,
              "psa");
-    o.sampled_peaks = 1;
+    o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
     aq_check(aq_spectrum_psa(ws, &o, r.acc_mps2, n, dt, z, &T, 1, &psa_s, &e) == AQ_OK,
              "psa at samples");
     aq_check(aq_spectrum_response(af, nf, dt / (double)m, z, T, u, v, &e) == AQ_OK,
@@ -407,10 +420,10 @@ AQ_TEST(spectrum_rotd_from_rotated_inputs)
   double *peaks = alloc_d(np * na), *rot = alloc_d(n), psa[6], psa1[6], psa2[6];
   aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
   aq_error e;
-  for (int sampled = 0; sampled < 2; sampled++) {
+  for (int mode = 0; mode < 3; mode++) {
     aq_spectrum_opts o;
     aq_spectrum_opts_default(&o);
-    o.sampled_peaks = sampled;
+    o.peaks = (aq_spectrum_peaks)mode;
     aq_check(aq_spectrum_rotd(ws, &o, r1.acc_mps2, r1.npts, r2.acc_mps2, r2.npts,
                               r1.dt_s, 0.05, periods, np, out, peaks, &e) == AQ_OK,
              "rotd");
@@ -429,8 +442,8 @@ AQ_TEST(spectrum_rotd_from_rotated_inputs)
       for (size_t i = 0; i < np; i++)
         worst = fmax(worst, fabs(peaks[i * na + j] - psa[i]) / psa[i]);
     }
-    aq_check_abs(worst, 0, 1e-13, "%s: each angle's peak = the rotated input's "
-                 "PSA (worst relative difference)", sampled ? "sampled" : "continuous");
+    aq_check_abs(worst, 0, 1e-13, "peaks %s: each angle's peak = the rotated input's "
+                 "PSA (worst relative difference)", aq_spectrum_peaks_names[mode]);
     for (size_t i = 0; i < np; i++) {
       double *p = peaks + i * na, srt[180];
       memcpy(srt, p, sizeof srt);
@@ -487,9 +500,12 @@ AQ_TEST(spectrum_rotd_of_two_steps)
   aq_rotd out[1];
   aq_error e;
   aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
+  aq_spectrum_opts o;
+  aq_spectrum_opts_default(&o);
+  o.peaks = AQ_SPECTRUM_PEAKS_EXACT;
   for (int i = 0; i < 3; i++) {
     double z = dampings[i];
-    aq_check(aq_spectrum_rotd(ws, NULL, a1, n, a2, n, dt, z, &periods[i], 1, out,
+    aq_check(aq_spectrum_rotd(ws, &o, a1, n, a2, n, dt, z, &periods[i], 1, out,
                               peaks, &e) == AQ_OK, "rotd");
     double amp = 1 + exp(-z * PI / sqrt(1 - z * z));
     double worst = 0;
@@ -538,10 +554,10 @@ AQ_TEST(spectrum_rotd_orders_on_every_pair)
       aq_record_free(&r1);
       continue;
     }
-    for (int sampled = 0; sampled < 2; sampled++) {
+    for (int mode = 0; mode < 3; mode++) {
       aq_spectrum_opts o;
       aq_spectrum_opts_default(&o);
-      o.sampled_peaks = sampled;
+      o.peaks = (aq_spectrum_peaks)mode;
       aq_error e;
       aq_check(aq_spectrum_rotd(ws, &o, r1.acc_mps2, r1.npts, r2.acc_mps2, r2.npts,
                                 r1.dt_s, 0.05, aq_spectrum_peer_periods_s, np,
@@ -554,8 +570,8 @@ AQ_TEST(spectrum_rotd_orders_on_every_pair)
       for (size_t i = 0; i < np; i++)
         bad += !(out[i].rotd100_mps2 >= p1[i] && out[i].rotd100_mps2 >= p2[i] &&
                  out[i].rotd50_mps2 <= out[i].rotd100_mps2 && out[i].rotd50_mps2 > 0);
-      aq_check(bad == 0, "%s (%s peaks): %zu periods out of order", pairs[q][0],
-               sampled ? "sampled" : "continuous", bad);
+      aq_check(bad == 0, "%s (peaks %s): %zu periods out of order", pairs[q][0],
+               aq_spectrum_peaks_names[mode], bad);
     }
     aq_record_free(&r1);
     aq_record_free(&r2);
@@ -569,8 +585,9 @@ AQ_TEST(spectrum_rotd_orders_on_every_pair)
 /* PEER's NGA-West2 flatfile, RSN6 (Imperial Valley-02, El Centro Array #9),
  * RotD50 at 5 %, g, as printed: PGA 0.23349; PSA(0.1 s) 0.42696, (0.2 s)
  * 0.57773, (0.5 s) 0.629952, (1 s) 0.351286, (2 s) 0.215745.  PEER takes
- * each oscillator's peak at the samples: the files as published, peaks at
- * the samples, must agree within half a unit of the last printed digit.
+ * each oscillator's peak at the samples (refined only below T = 10 dt =
+ * 0.1 s): the files as published, peaks at PEER's refined samples, the
+ * default, must agree within half a unit of the last printed digit.
  * Measured (archquake - flatfile, g): +2.6e-6, -4.5e-7, -1.9e-7, +2.2e-7,
  * -3.4e-8, +2.1e-7.  The continuous peaks lie above by +2.5e-3 (0.58 %),
  * +5.3e-3 (0.91 %), +6.4e-4, +2.2e-6, +2.1e-5 g. */
@@ -584,8 +601,8 @@ AQ_TEST(spectrum_rotd50_nga_west2_flatfile_rsn6)
   const double half_unit[] = {5e-6, 5e-6, 5e-6, 5e-7, 5e-7, 5e-7};
   aq_rotd out[6];
   aq_spectrum_opts o;
-  aq_spectrum_opts_default(&o);
-  o.sampled_peaks = 1;
+  aq_spectrum_opts_default(&o); /* PEER's refined samples: at dt = 0.01 s and
+                                   these periods, N = 1, the samples */
   aq_error e;
   aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
   aq_check(aq_spectrum_rotd(ws, &o, r1.acc_mps2, r1.npts, r2.acc_mps2, r2.npts,
@@ -638,6 +655,32 @@ AQ_TEST(spectrum_bad_arguments)
   aq_check(aq_spectrum_rotd(ws, &o, a, 4, a, 3, 0.01, 0.05, &T, 1, &rd, NULL,
                             &e) == AQ_EVALUE && strcmp(e.field, "n_angles") == 0,
            "an odd number of angles is refused");
+  aq_spectrum_opts_default(&o);
+  o.peaks = (aq_spectrum_peaks)3;
+  aq_check(aq_spectrum_psa(ws, &o, a, 4, 0.01, 0.05, &T, 1, &out, &e) == AQ_EVALUE &&
+               strcmp(e.field, "peaks") == 0,
+           "an unknown peak rule is refused (psa)");
+  aq_check(aq_spectrum_rotd(ws, &o, a, 4, a, 4, 0.01, 0.05, &T, 1, &rd, NULL, &e) ==
+                   AQ_EVALUE && strcmp(e.field, "peaks") == 0,
+           "an unknown peak rule is refused (rotd)");
+  /* PEER's rule below dt / 1000 (1e-5 s at 0.01 s): 10 dt / T steps past
+   * 10^4 are refused; dt / 1000 itself is 10^4 steps, taken */
+  aq_spectrum_opts_default(&o);
+  T = 0.99e-5;
+  aq_check(aq_spectrum_psa(ws, &o, a, 4, 0.01, 0.05, &T, 1, &out, &e) == AQ_EVALUE &&
+               strcmp(e.field, "period_s") == 0 && strstr(e.message, "peer"),
+           "T = 0.99e-5 s at dt = 0.01 s under peer: %s", e.message);
+  aq_check(aq_spectrum_rotd(ws, &o, a, 4, a, 4, 0.01, 0.05, &T, 1, &rd, NULL, &e) ==
+                   AQ_EVALUE && strcmp(e.field, "period_s") == 0,
+           "the same for rotd");
+  T = 1e-5;
+  aq_check(aq_spectrum_psa(ws, &o, a, 4, 0.01, 0.05, &T, 1, &out, &e) == AQ_OK,
+           "T = 1e-5 s at dt = 0.01 s under peer: %s", e.message);
+  o.peaks = AQ_SPECTRUM_PEAKS_EXACT;
+  T = 1e-7;
+  aq_check(aq_spectrum_psa(ws, &o, a, 4, 0.01, 0.05, &T, 1, &out, &e) == AQ_OK,
+           "T = 1e-7 s under exact");
+  T = 0.5;
   aq_check(aq_spectrum_response(a, 4, 0.01, 0.05, 0, a, a, &e) == AQ_EVALUE,
            "a response history needs T > 0");
   double p[3];

@@ -38,7 +38,7 @@ AQ_TEST(spectrum_cli_flatfile_rsn6)
   aq_check(rc == 0, "exit %d: %s", rc, err);
   const double flat[] = {0.42696, 0.57773, 0.629952, 0.351286, 0.215745};
   const double half[] = {5e-6, 5e-6, 5e-7, 5e-7, 5e-7};
-  aq_check(aq_test_count_lines(out) == 16, "header + 3 x 5 rows: %zu lines",
+  aq_check(aq_test_count_lines(out) == 17, "comment, header + 3 x 5 rows: %zu lines",
            aq_test_count_lines(out));
   for (int i = 0; i < 5; i++) {
     aq_check(strcmp(field(out, 1 + i, 1, b, sizeof b), "RotD50") == 0,
@@ -59,8 +59,11 @@ AQ_TEST(spectrum_cli_columns)
                        "0.02,0.05", out, BIG, err, sizeof err);
   aq_check(rc == 0, "exit %d: %s", rc, err);
   const char *head = "record\tcomponent\tdamping\tperiod_s\tpsa_g\tsd_m\tpsv_m_s\n";
-  aq_check(strncmp(out, head, strlen(head)) == 0, "header: %.80s", out);
-  aq_check(aq_test_count_lines(out) == 7, "6 rows: %zu lines", aq_test_count_lines(out));
+  const char *nl = strchr(out, '\n');
+  aq_check(strncmp(out, "# peaks: peer: ", 15) == 0, "a comment line first: %.80s", out);
+  aq_check(nl && strncmp(nl + 1, head, strlen(head)) == 0, "then the header: %.80s",
+           nl ? nl + 1 : "");
+  aq_check(aq_test_count_lines(out) == 8, "6 rows: %zu lines", aq_test_count_lines(out));
   for (int r = 1; r <= 6; r++) {
     double T = num_at(out, r, 3), psa = num_at(out, r, 4) * G0, w = 2 * PI / T;
     aq_check(strcmp(field(out, r, 1, b, sizeof b), "360") == 0, "channel: %s", b);
@@ -80,7 +83,7 @@ AQ_TEST(spectrum_cli_default_periods)
   char *out = malloc(BIG), err[4096];
   int rc = aq_test_run("spectrum " R "IELC180.AT2", out, BIG, err, sizeof err);
   aq_check(rc == 0, "exit %d: %s", rc, err);
-  aq_check(aq_test_count_lines(out) == 112, "111 rows: %zu lines",
+  aq_check(aq_test_count_lines(out) == 113, "111 rows: %zu lines",
            aq_test_count_lines(out));
   aq_check(num_at(out, 1, 3) == 0.01 && num_at(out, 111, 3) == 20, "0.01 to 20 s");
   int sorted = 1;
@@ -104,7 +107,7 @@ AQ_TEST(spectrum_cli_nyquist_warning_once)
            "one line: %s", err);
   /* ARL360 has dt = 0.02 s: three periods below 0.04 s */
   aq_check(strstr(err, "3 of the periods") && strstr(err, "ARL360"), "names them: %s", err);
-  aq_check(aq_test_count_lines(out) == 9, "8 rows: %zu", aq_test_count_lines(out));
+  aq_check(aq_test_count_lines(out) == 10, "8 rows: %zu", aq_test_count_lines(out));
   free(out);
 }
 
@@ -125,7 +128,7 @@ AQ_TEST(spectrum_cli_jobs_and_results_file)
   aq_check(aq_test_run(cmd, o3, BIG, err, sizeof err) == 0, "-j 3: %s", err);
   aq_check(strcmp(o1, o3) == 0, "the same TSV at -j 1 and -j 3");
   /* ARL360 and Q4149CF2.csv's NS, EW and UD: 4 x 2 x 3; the pair: 3 x 2 x 3 */
-  aq_check(aq_test_count_lines(o1) == 1 + 24 + 18, "rows: %zu", aq_test_count_lines(o1));
+  aq_check(aq_test_count_lines(o1) == 2 + 24 + 18, "rows: %zu", aq_test_count_lines(o1));
   aq_h5_spectra_table t1, t3;
   aq_error e;
   aq_check(aq_h5_spectra_read(h1, &t1, &e) == AQ_OK, "read %s: %s", h1, e.message);
@@ -145,7 +148,7 @@ AQ_TEST(spectrum_cli_jobs_and_results_file)
   }
   aq_check(same == 42, "-j 1 and -j 3 files: %zu of 42 rows the same", same);
   aq_check(agree == 42, "file = TSV: %zu of 42 rows", agree);
-  aq_check(!t1.sampled_peaks, "peaks: continuous");
+  aq_check(t1.peaks == AQ_SPECTRUM_PEAKS_PEER, "peaks: peer, the default (%d)", t1.peaks);
   hid_t f = H5Fopen(h1, H5F_ACC_RDONLY, H5P_DEFAULT);
   char kind[32] = "";
   hid_t a = f >= 0 ? H5Aopen(f, "kind", H5P_DEFAULT) : -1, at = a >= 0 ? H5Aget_type(a) : -1;
@@ -164,6 +167,50 @@ AQ_TEST(spectrum_cli_jobs_and_results_file)
   aq_h5_spectra_table_free(&t3);
   free(o1);
   free(o3);
+}
+
+/* --peaks: the comment line and the results file say the rule; PEER's
+ * (the default) equals the samples' at T >= 10 dt and lies between the
+ * samples' and the continuous peak below; --sampled-peaks is --peaks
+ * samples, byte for byte. */
+AQ_TEST(spectrum_cli_peaks)
+{
+  static const char *const rule[] = {"", "--peaks peer", "--peaks exact", "--peaks samples",
+                                     "--sampled-peaks"};
+  static const char *const says[] = {"peer", "peer", "exact", "samples", "samples"};
+  char *out[5], dir[512], h5[700], cmd[2048], err[4096], b[64];
+  aq_test_tmpdir(dir, sizeof dir);
+  for (int m = 0; m < 5; m++) {
+    out[m] = malloc(BIG);
+    snprintf(h5, sizeof h5, "%s/peaks%d.h5", dir, m);
+    snprintf(cmd, sizeof cmd, "spectrum " R "ARL360.at2 --periods 0.013,0.05,0.21,1.1 %s -o %s",
+             rule[m], h5);
+    aq_check(aq_test_run(cmd, out[m], BIG, err, sizeof err) == 0, "%s: %s", rule[m], err);
+    char want[64];
+    snprintf(want, sizeof want, "# peaks: %s: ", says[m]);
+    aq_check(strncmp(out[m], want, strlen(want)) == 0, "%s: %.60s", rule[m], out[m]);
+    aq_h5_spectra_table t;
+    aq_error e;
+    if (aq_check(aq_h5_spectra_read(h5, &t, &e) == AQ_OK, "read %s: %s", h5, e.message)) {
+      aq_check(t.peaks >= 0 && strcmp(aq_spectrum_peaks_names[t.peaks], says[m]) == 0,
+               "%s: the file's peaks %d", rule[m], t.peaks);
+      aq_h5_spectra_table_free(&t);
+    }
+  }
+  aq_check(strcmp(out[0], out[1]) == 0, "peer is the default");
+  aq_check(strcmp(out[3], out[4]) == 0, "--sampled-peaks = --peaks samples");
+  /* ARL360: dt = 0.02 s, so 10 dt = 0.2 s: rows 1, 2 refined (N = 16, 4) */
+  for (int r = 1; r <= 4; r++) {
+    double p = num_at(out[0], r, 4), x = num_at(out[2], r, 4), s = num_at(out[3], r, 4);
+    aq_check(s <= p && p <= x, "T = %s: samples %.9g <= peer %.9g <= exact %.9g",
+             field(out[0], r, 3, b, sizeof b), s, p, x);
+    if (r >= 3)
+      aq_check(p == s, "T = %s >= 10 dt: peer = samples", b);
+    else
+      aq_check(p > s && p < x, "T = %s < 10 dt: peer strictly between", b);
+  }
+  for (int m = 0; m < 5; m++)
+    free(out[m]);
 }
 
 /* Bad input: one line on stderr, no rows, no results file. */
@@ -187,6 +234,12 @@ AQ_TEST(spectrum_cli_bad_input)
       /* a pair not orthogonal */
       {"--components " PAIR " --azimuths 0,45", "orthogonal", 1},
       {R "no-such-file.AT2", "no-such-file", 1},
+      {"--peaks exactly", "--peaks", 2},
+      {"--peaks sample", "--peaks", 2},
+      {"--peaks", "--peaks", 2},
+      {"--peaks peer --sampled-peaks", "--sampled-peaks", 2},
+      /* PEER's rule at dt = 0.02 s: 10 dt / T = 20000 steps, past the most */
+      {"--periods 0.00001", "peer", 1},
   };
   char dir[512], h5[600], cmd[2048], err[4096];
   char *out = malloc(BIG);

@@ -26,8 +26,10 @@ enum { BIG = 1 << 16 };
  * overshoot, t = pi / wd: (a0 / w^2) (1 + exp(-pi z / sqrt(1 - z^2))).  So
  * PSA = a0 (1 + exp(-pi z / sqrt(1 - z^2))) at every period whose first
  * overshoot falls in the record, and Sa_avg, a geometric mean of equal
- * values, is the same.  PGV = a0 (n - 1) dt (the trapezoid is exact for a
- * constant), so PGV/PGA = (n - 1) dt. */
+ * values, is the same: so with --peaks exact.  With the default, PEER's
+ * refined samples (N = 1 at these periods, all >= 10 dt), each is the
+ * largest |w^2 u| at the samples.  PGV = a0 (n - 1) dt (the trapezoid is
+ * exact for a constant), so PGV/PGA = (n - 1) dt. */
 AQ_TEST(spectrum_im_step_closed_form)
 {
   const double a0 = 2.7, dt = 0.01, z = 0.05;
@@ -50,6 +52,27 @@ AQ_TEST(spectrum_im_step_closed_form)
   p.used.sa_avg_hi_s = 2.2;
   aq_im im;
   aq_error e;
+  if (aq_check(aq_im_compute(&p, &im, &e) == AQ_OK, "im (peer): %s", e.message)) {
+    double T[13] = {0.13, 0.5, 1.7}, sa[13], lsum = 0;
+    for (int k = 0; k < 10; k++)
+      T[3 + k] = 0.3 + (2.2 - 0.3) * k / 9.0;
+    for (int i = 0; i < 13; i++) {
+      double w = 2 * PI / T[i], wd = w * sqrt(1 - z * z), m = 0;
+      for (size_t k = 0; k < n; k++) {
+        double t = (double)k * dt;
+        m = fmax(m, fabs(a0 * (1 - exp(-z * w * t) *
+                                         (cos(wd * t) + z / sqrt(1 - z * z) * sin(wd * t)))));
+      }
+      sa[i] = m / G0;
+      lsum += i >= 3 ? log(sa[i]) : 0;
+    }
+    for (size_t k = 0; k < 3; k++)
+      aq_check_rel(im.sa_g[k], sa[k], 1e-9, "Sa(%g s) of a step, peak at the samples",
+                   im.sa_period_s[k]);
+    aq_check_rel(im.sa_avg_g, exp(lsum / 10), 1e-9, "Sa_avg of a step, peaks at the "
+                 "samples");
+  }
+  p.used.peaks = AQ_SPECTRUM_PEAKS_EXACT;
   if (aq_check(aq_im_compute(&p, &im, &e) == AQ_OK, "im: %s", e.message)) {
     double want = a0 * (1 + exp(-PI * z / sqrt(1 - z * z))) / G0;
     aq_check(im.n_sa == 3, "3 Sa(T): %zu", im.n_sa);
@@ -312,6 +335,8 @@ AQ_TEST(spectrum_im_bad_options)
       {"--sa-avg 1,0.5", "--sa-avg"},
       {"--sa-avg 0.5", "--sa-avg"},
       {"--sa-avg 0,1", "--sa-avg"},
+      {"--peaks continuous", "--peaks"},
+      {"--peaks samples --sampled-peaks", "--sampled-peaks"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     char args[256], out[1024], err[1024];
@@ -381,6 +406,74 @@ AQ_TEST(spectrum_im_records_table)
   rc = aq_test_run("info " REC, out, BIG, NULL, 0);
   aq_check(rc == 0 && col_of(out, "sa_0.2s_g") > 0 && col_of(out, "sa_avg_0.1_1s_g") > 0,
            "info's defaults keep Sa(0.2 s) and Sa_avg: %.200s", out);
+  free(out);
+}
+
+/* Column name of the first row of /records in the results file h5 (NAN if
+ * absent), and the root attribute peaks into buf. */
+static double records_value(const char *h5, const char *name, char *peaks, size_t n)
+{
+  double v = NAN;
+  peaks[0] = '\0';
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t d = f >= 0 ? H5Dopen2(f, "/records", H5P_DEFAULT) : -1;
+  if (d >= 0) {
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(double));
+    H5Tinsert(t, name, 0, H5T_NATIVE_DOUBLE);
+    if (H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) < 0)
+      v = NAN;
+    H5Tclose(t);
+    H5Dclose(d);
+  }
+  hid_t a = f >= 0 && H5Aexists(f, "peaks") > 0 ? H5Aopen(f, "peaks", H5P_DEFAULT) : -1;
+  hid_t at = a >= 0 ? H5Aget_type(a) : -1;
+  if (at >= 0 && H5Tget_size(at) < n && H5Aread(a, at, peaks) < 0)
+    peaks[0] = '\0';
+  if (at >= 0)
+    H5Tclose(at);
+  if (a >= 0)
+    H5Aclose(a);
+  if (f >= 0)
+    H5Fclose(f);
+  return v;
+}
+
+/* --peaks reaches the main job's /records (and its root attribute), and is
+ * part of the disk cache's key: the same record, the same options but the
+ * rule, run one after the other into one cache directory, gives each
+ * rule's own Sa (at 0.013 s, below 10 dt = 0.2 s of ARL360, the three
+ * differ: samples < peer < exact), equal to info's under that rule.  With
+ * the rule left out of the key the second run would read the first's
+ * entry and repeat its value. */
+AQ_TEST(spectrum_im_peaks_through_the_cache)
+{
+  static const char *const rule[3] = {"peer", "exact", "samples"};
+  char dir[512], h5[600], args[1600], err[2048], peaks[32];
+  char *out = malloc(BIG);
+  if (!out)
+    return;
+  aq_test_tmpdir(dir, sizeof dir);
+  double sa[3];
+  for (int m = 0; m < 3; m++) {
+    snprintf(h5, sizeof h5, "%s/p%d.h5", dir, m);
+    snprintf(args, sizeof args,
+             "--arch arches/oppenheim.cfg " REC " --scale 0.1 --im-periods 0.013 --peaks %s "
+             "--cache-dir %s/cache -o %s >/dev/null", rule[m], dir, h5);
+    int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    aq_check(rc == 0, "--peaks %s: exit %d (%s)", rule[m], rc, err);
+    sa[m] = records_value(h5, "sa_0.013s_g", peaks, sizeof peaks);
+    aq_check(strcmp(peaks, rule[m]) == 0, "root attribute peaks: \"%s\" (want %s)", peaks,
+             rule[m]);
+    snprintf(args, sizeof args, "info " REC " --im-periods 0.013 --sa-avg none --peaks %s",
+             rule[m]);
+    rc = aq_test_run(args, out, BIG, NULL, 0);
+    aq_check(rc == 0, "info --peaks %s", rule[m]);
+    aq_check_rel(sa[m], num(out, 1, col_of(out, "sa_0.013s_g")), 1e-5,
+                 "--peaks %s: /records = info's", rule[m]);
+  }
+  aq_check(sa[2] < sa[0] && sa[0] < sa[1], "samples %.9g < peer %.9g < exact %.9g", sa[2],
+           sa[0], sa[1]);
+  aq_check(aq_test_count_names(dir, "cache") == 1, "the cache directory was used");
   free(out);
 }
 

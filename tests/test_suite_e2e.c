@@ -612,7 +612,7 @@ AQ_TEST(suite_interrupted_run_leaves_nothing)
 
 AQ_TEST(suite_options_checked_before_any_record)
 {
-  static char out[8192], err[8192];
+  static char out[16384], err[8192];
   /* every bad option reported, the (missing) record never opened */
   int rc = aq_test_run("build/no-such-record.AT2 --arch arches/thin.cfg --cor 5 -j 0 "
                        "--bogus --scale 1,-2 --model fast --taper -0.1",

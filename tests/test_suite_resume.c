@@ -23,11 +23,12 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "report/report.h"
 
+#define RS_FIELDS aq_summary_nfields /* TSV columns, as the summary's table has them */
 enum {
   RS_NREC = 60,   /* records in the suite (one unreadable among them) */
   RS_NRUNS = 6,   /* runs per record: 2 arches x 3 scales */
-  RS_FIELDS = 19, /* TSV columns (azimuth_deg the last) */
   RS_KILLS = 20,  /* SIGKILLs landing while the suite runs */
   RS_ROUNDS = 8   /* suites killed and resumed to completion, at most */
 };

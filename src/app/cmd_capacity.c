@@ -226,6 +226,7 @@ int aq_cmd_capacity(int argc, char **argv)
   double merge_tol_g = opts.merge_tol_g, smax = opts.scale_max;
   aq_model model = (aq_model)opts.model;
   double cor = opts.cor;
+  aq_arch_options ao = {opts.friction};
   aq_scan_opts so = {opts.resolution, opts.scan_tol};
   long threads = opts.threads;
   int pol = opts.polarity;
@@ -345,7 +346,7 @@ int aq_cmd_capacity(int argc, char **argv)
     goto done;
   }
   for (size_t a = 0; a < na; a++)
-    if (aq_arch_load(arch_paths[a], &arches[a], &se) != AQ_OK) {
+    if (aq_arch_load_opts(arch_paths[a], &ao, &arches[a], &se) != AQ_OK) {
       aq_error_print(&se, stderr);
       rc = AQ_EXIT_USAGE;
     } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(cor),

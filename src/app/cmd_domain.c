@@ -13,6 +13,7 @@
 #include "../arch/stepper.h"
 #include "../job/run.h"
 #include "../units.h"
+#include "../report/text.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -54,7 +55,8 @@ int aq_cmd_domain(int argc, char **argv)
   aq_arch *arch = NULL;
   int status = AQ_EXIT_FAIL;
   aq_stepper *st = NULL;
-  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+  aq_arch_options ao = {o.friction};
+  if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     goto out;
   }
@@ -76,9 +78,9 @@ int aq_cmd_domain(int argc, char **argv)
     if (aq_domain_min_duration(st, pp, ratios[i], tol, tmax, &a, &dur, &err) != AQ_OK)
       goto runfail;
     if (isinf(dur))
-      printf("%.9g\t%.9g\tinf\n", ratios[i], a / AQ_G0_MPS2);
+      printf("%s\t%s\tinf\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2));
     else
-      printf("%.9g\t%.9g\t%.12g\n", ratios[i], a / AQ_G0_MPS2, dur);
+      printf("%s\t%s\t%s\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2), AQ_TEXT_NUM(dur));
   }
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
   goto out;

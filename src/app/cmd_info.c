@@ -8,6 +8,7 @@
 #include "../io/record.h"
 #include "../signal/signal.h"
 #include "../units.h"
+#include "../report/text.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -34,13 +35,13 @@ static int describe(const aq_record *rec, const aq_signal_opts *so, aq_signal_ws
   char warn[256];
   if (aq_im_residual_warning(&im, warn, sizeof warn))
     fprintf(stderr, "archquake: %s: warning: %s\n", rec->path, warn);
-  printf("%s\t%s\t%zu\t%.9g\t%.9g\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\t%.6g",
-         rec->path, rec->format, rec->npts, rec->dt_s,
-         rec->dt_s * (double)rec->npts, rec->units_orig, im.pga_g, im.pgv_mps,
-         im.pgd_m, im.arias_mps, im.d5_95_s, im.cav_mps, rec->channel,
-         rec->vertical ? "yes" : "no", im.pgv_pga_s);
+  printf("%s\t%s\t%zu\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s", rec->path, rec->format,
+         rec->npts, AQ_TEXT_NUM(rec->dt_s), AQ_TEXT_NUM(rec->dt_s * (double)rec->npts),
+         rec->units_orig, AQ_TEXT_NUM(im.pga_g), AQ_TEXT_NUM(im.pgv_mps), AQ_TEXT_NUM(im.pgd_m),
+         AQ_TEXT_NUM(im.arias_mps), AQ_TEXT_NUM(im.d5_95_s), AQ_TEXT_NUM(im.cav_mps), rec->channel,
+         rec->vertical ? "yes" : "no", AQ_TEXT_NUM(im.pgv_pga_s));
   for (size_t k = 0; k < aq_im_spectral_count(so); k++)
-    printf("\t%.6g", aq_im_spectral_value(&im, k));
+    printf("\t%s", AQ_TEXT_NUM(aq_im_spectral_value(&im, k)));
   putchar('\n');
   aq_processed_free(&p);
   return 0;

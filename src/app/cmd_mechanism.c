@@ -9,6 +9,7 @@
 
 #include "../arch/arch.h"
 #include "../arch/model.h"
+#include "../report/text.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -29,19 +30,73 @@ static const char *end_name(aq_end e)
   }
 }
 
-/* One TSV row for the set of w. */
-static void print_set(const aq_workpath *w, int searched)
+/* One TSV row for the set of w of arch a. */
+static void print_set(const aq_arch *a, const aq_workpath *w, int searched)
 {
   const aq_path *p = aq_workpath_path(w);
   const aq_mech *m = aq_workpath_mech(w);
   char joints[64], faces[8];
   aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
-  printf("%s\t%s\t%s\t%.10g\t%.10g\t%d\t%+d\t%+d\t%.10g\t%.10g\t%s\t%zu\t%.3g\t%.6g\t%d\t%s\n",
-         p->name, joints, faces, p->lambda0, p->s_c_rad, p->admissible, p->act_sign,
-         p->q_sign, p->mass_kg, p->impact_vel_ratio,
+  printf("%s\t%s\t%s\t%s\t%s\t%d\t%+d\t%+d\t%s\t%s\t%s\t%zu\t%s\t%s\t%d\t%s\t%s\n", p->name,
+         joints, faces, AQ_TEXT_NUM(p->lambda0), AQ_TEXT_NUM(p->s_c_rad), p->admissible,
+         p->act_sign, p->q_sign, AQ_TEXT_NUM(p->mass_kg), AQ_TEXT_NUM(p->impact_vel_ratio),
          p->admissible ? end_name(aq_workpath_end(w)) : "-", aq_workpath_table_size(w),
-         aq_workpath_table_error(w), aq_workpath_thrust0(w), searched,
-         p->admissible ? "-" : aq_workpath_reason(w));
+         AQ_TEXT_NUM(aq_workpath_table_error(w)), AQ_TEXT_NUM(aq_workpath_thrust0(w)), searched,
+         p->admissible ? "-" : aq_workpath_reason(w), aq_hinge_control_names[aq_arch_control(a)]);
+}
+
+/* The `minimum` rows: the arch's minimum-lambda0 set of each direction of
+ * ground acceleration (act_sign -1, then +1), whatever [hinges] names:
+ * with free control the arch's own two sets, else the search's minimum
+ * and the other direction's by the search.  0, or -1 (printed) when a
+ * path cannot be built. */
+static int print_minima(const char *file, const aq_arch *a, aq_error *err)
+{
+  aq_hinge_set mhs;
+  if (!aq_arch_minimum(a, &mhs, NULL))
+    return 0;
+  const aq_geom *g = aq_arch_geom(a);
+  double g_mps2 = aq_arch_path(a, 0)->g_mps2;
+  int mact = aq_search_act_sign(g, &mhs);
+  for (int k = 0; k < 2; k++) {
+    int act = k ? 1 : -1;
+    aq_hinge_set hs = mhs;
+    if (aq_arch_control(a) == AQ_CONTROL_FREE) {
+      hs = *aq_arch_hinge_set(a, k);
+    } else if (act != mact) {
+      aq_error e2;
+      aq_error_clear(&e2);
+      if (aq_search_direction(g, g_mps2, act, &hs, NULL, NULL, &e2) != AQ_OK) {
+        fprintf(stderr, "archquake: %s: warning: no minimum four-hinge set for act_sign %+d: "
+                        "%s\n", file, act, e2.message);
+        continue;
+      }
+    }
+    aq_workpath *mw = NULL;
+    if (aq_workpath_build(g, &hs, g_mps2, "minimum", &mw, err) != AQ_OK) {
+      aq_error_print(err, stderr);
+      return -1;
+    }
+    print_set(a, mw, aq_arch_searched(a));
+    /* a fixed set of this direction above its minimum: free joints fail sooner */
+    const aq_path *mp = aq_workpath_path(mw);
+    for (int s = 0; s < 2 && aq_arch_control(a) == AQ_CONTROL_FIXED; s++) {
+      const aq_path *p = aq_arch_path(a, s);
+      if (!p->admissible || p->act_sign != act ||
+          !(mp->lambda0 < p->lambda0 - MIN_SET_TIE_REL * fabs(p->lambda0)))
+        continue;
+      char set[64], fixed[64];
+      aq_hinge_set_text(&hs, set, sizeof set);
+      aq_hinge_set_text(aq_arch_hinge_set(a, s), fixed, sizeof fixed);
+      fprintf(stderr, "archquake: %s: warning: the %s set %s (act_sign %+d) has lambda0 = "
+                      "%.6g, above that direction's minimum %s's %.6g: the verdicts hold for "
+                      "hinges fixed where [hinges] puts them; with joints free to open "
+                      "(control = free) that direction fails at the lower load\n",
+              file, p->name, fixed, act, p->lambda0, set, mp->lambda0);
+    }
+    aq_workpath_free(mw);
+  }
+  return 0;
 }
 
 void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
@@ -87,28 +142,22 @@ int aq_cmd_mechanism(int argc, char **argv)
   aq_arch *a = NULL;
   aq_error err;
   aq_error_clear(&err);
-  if (aq_arch_load(file, &a, &err) != AQ_OK) {
+  aq_arch_options ao = {o.friction};
+  if (aq_arch_load_opts(file, &ao, &a, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }
   printf("set\tjoints\tfaces\tlambda0\tq_c_rad\tadmissible\tact_sign\tq_sign\tmass_kg\t"
-         "impact_vel_ratio\tend\ttable_n\ttable_err\tthrust_ecc\tsearched\treason\n");
+         "impact_vel_ratio\tend\ttable_n\ttable_err\tthrust_ecc\tsearched\treason\t"
+         "control\n");
   for (int s = 0; s < 2; s++)
-    print_set(aq_arch_workpath(a, s), s == 0 && aq_arch_searched(a));
-  /* the arch's own minimum-lambda0 set: it governs unless its joints are
+    print_set(a, aq_arch_workpath(a, s),
+              aq_arch_searched(a) && (s == 0 || aq_arch_control(a) == AQ_CONTROL_FREE));
+  /* the arch's own minimum-lambda0 sets: they govern unless its joints are
    * restrained, whatever [hinges] names */
-  aq_hinge_set mhs;
-  double ml0;
-  if (aq_arch_minimum(a, &mhs, &ml0)) {
-    aq_workpath *mw = NULL;
-    if (aq_workpath_build(aq_arch_geom(a), &mhs, aq_arch_path(a, 0)->g_mps2, "minimum",
-                          &mw, &err) != AQ_OK) {
-      aq_error_print(&err, stderr);
-      aq_arch_free(a);
-      return AQ_EXIT_FAIL;
-    }
-    print_set(mw, aq_arch_searched(a));
-    aq_workpath_free(mw);
+  if (print_minima(file, a, &err) != 0) {
+    aq_arch_free(a);
+    return AQ_EXIT_FAIL;
   }
   aq_mechanism_warn_minimum(file, a);
   int rc = AQ_EXIT_OK;
@@ -146,9 +195,11 @@ int aq_cmd_mechanism(int argc, char **argv)
         double thrust = aq_mech_eval(aq_workpath_mech(w), p->q_sign * sv, &st) == 0
                             ? aq_mech_thrust(aq_workpath_mech(w), &st, &live, &eq, ecc, NULL)
                             : NAN;
-        printf("%s\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.10g\t%.6g\t%.6g\n",
-               p->name, sv, p->q_sign * sv, pt.lambda, eq.lambda, pt.x_m, pt.y_m,
-               p->mass_kg * p->g_mps2 * pt.y_m, pt.mgen_kgm2, nmin, thrust);
+        printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n", p->name, AQ_TEXT_NUM(sv),
+               AQ_TEXT_NUM(p->q_sign * sv), AQ_TEXT_NUM(pt.lambda), AQ_TEXT_NUM(eq.lambda),
+               AQ_TEXT_NUM(pt.x_m), AQ_TEXT_NUM(pt.y_m),
+               AQ_TEXT_NUM(p->mass_kg * p->g_mps2 * pt.y_m), AQ_TEXT_NUM(pt.mgen_kgm2),
+               AQ_TEXT_NUM(nmin), AQ_TEXT_NUM(thrust));
       }
     }
     free(ecc);

@@ -16,6 +16,7 @@
 #include "../units.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
+#include "../report/text.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_table.h"
@@ -72,9 +73,9 @@ static aq_status write_history(const char *path, const aq_history *h, aq_error *
   int bad = fprintf(o.f, "time_s,rotation_rad,displacement_m,kinetic_energy_j,"
                          "potential_energy_j,set\n") < 0;
   for (size_t i = 0; i < h->n && !bad; i++)
-    bad = fprintf(o.f, "%.10g,%.12g,%.12g,%.12g,%.12g,%d\n", h->time_s[i],
-                  h->rotation_rad[i], h->displacement_m[i],
-                  h->kinetic_energy_j[i], h->potential_energy_j[i],
+    bad = fprintf(o.f, "%s,%s,%s,%s,%s,%d\n", AQ_TEXT_NUM(h->time_s[i]),
+                  AQ_TEXT_NUM(h->rotation_rad[i]), AQ_TEXT_NUM(h->displacement_m[i]),
+                  AQ_TEXT_NUM(h->kinetic_energy_j[i]), AQ_TEXT_NUM(h->potential_energy_j[i]),
                   h->set[i]) < 0;
   if (bad) {
     s = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot write the history: %s",
@@ -124,7 +125,8 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_error err;
   aq_error_clear(&err);
   aq_arch *arch = NULL;
-  if (aq_arch_load(file, &arch, &err) != AQ_OK) {
+  aq_arch_options ao = {o.friction};
+  if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }
@@ -208,12 +210,13 @@ int aq_cmd_pulse(int argc, char **argv)
   printf("model\taccel_g\tduration_s\tend_s\tcollapsed\tcollapse_time_s\t"
          "peak_rotation_rad\tpeak_displacement_m\tmax_kinetic_energy_j\timpacts\t"
          "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals\n");
-  printf("%s\t%.9g\t%.9g\t%.9g\t%d\t%.12g\t%.12g\t%.12g\t%.12g\t%zu\t%zu\t%.12g\t"
-         "%.12g\t%zu\t%zu\n",
-         aq_model_name((aq_model)model), acc_g, dur, end, res.collapsed, res.collapse_time_s,
-         res.peak_rotation_rad, res.peak_displacement_m,
-         res.max_kinetic_energy_j, res.impacts, res.reversals, res.energy_in_j,
-         res.energy_dissipated_j, res.steps_moving, res.evals);
+  printf("%s\t%s\t%s\t%s\t%d\t%s\t%s\t%s\t%s\t%zu\t%zu\t%s\t"
+         "%s\t%zu\t%zu\n",
+         aq_model_name((aq_model)model), AQ_TEXT_NUM(acc_g), AQ_TEXT_NUM(dur), AQ_TEXT_NUM(end),
+         res.collapsed, AQ_TEXT_NUM(res.collapse_time_s), AQ_TEXT_NUM(res.peak_rotation_rad),
+         AQ_TEXT_NUM(res.peak_displacement_m), AQ_TEXT_NUM(res.max_kinetic_energy_j), res.impacts,
+         res.reversals, AQ_TEXT_NUM(res.energy_in_j), AQ_TEXT_NUM(res.energy_dissipated_j),
+         res.steps_moving, res.evals);
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
 out:
   aq_result_free(&res);

@@ -173,6 +173,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.arch_paths = arches;
   cfg.model = (aq_model)o.model;
   cfg.cor = o.cor;
+  cfg.friction = o.friction;
   cfg.units_text = o.units_text[0] ? o.units_text : NULL;
   if (isnan(cfg.scale_to_pga_g) && !(cfg.scale_to_lambda0 > 0)) {
     cfg.scales = scales ? scales : &one;

@@ -353,6 +353,7 @@ int aq_cmd_select(int argc, char **argv)
   P.damping = target.damping;
   P.pair_rule = aq_select_pair_rule(&target);
   aq_spectrum_opts_default(&P.sopts);
+  P.sopts.peaks = o.proc.peaks; /* --peaks: where each oscillator's peak is taken */
   P.read = &o.read;
   P.proc = &o.proc;
   if (o.cache_max)

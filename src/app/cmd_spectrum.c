@@ -15,6 +15,7 @@
 
 #include "../job/job.h"
 #include "../report/h5_spectrum.h"
+#include "../report/text.h"
 #include "../signal/spectrum.h"
 #include "../units.h"
 #include "../util/cleanup.h"
@@ -130,21 +131,10 @@ static void warn_nyquist(const source *src, size_t n, const double *periods, siz
                   "to the PGA as T -> 0)\n", below, tmin, 2 * dt, who, 0.5 / dt);
 }
 
-/* x in the fewest significant digits (15 to 17) that read back to it:
- * 0.05 stays 0.05. */
-static const char *num(char *buf, size_t n, double x)
-{
-  for (int p = 15; p <= 17; p++) {
-    snprintf(buf, n, "%.*g", p, x);
-    if (strtod(buf, NULL) == x)
-      break;
-  }
-  return buf;
-}
-
+/* The rows, after one comment line saying where the peaks were taken. */
 static void print_rows(const job *J, size_t n)
 {
-  char b[5][40];
+  printf("# peaks: %s\n", aq_spectrum_peaks_text(J->so.peaks));
   printf("record\tcomponent\tdamping\tperiod_s\tpsa_g\tsd_m\tpsv_m_s\n");
   for (size_t k = 0; k < n; k++) {
     const source *s = &J->src[k];
@@ -153,10 +143,9 @@ static void print_rows(const job *J, size_t n)
         for (size_t i = 0; i < J->nper; i++) {
           double a = s->psa_mps2[(c * J->ndamp + d) * J->nper + i];
           double w = 2 * AQ_PI / J->periods[i];
-          printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\n", s->label,
-                 s->path[1] ? pair_names[c] : s->channel, num(b[0], 40, J->damping[d]),
-                 num(b[1], 40, J->periods[i]), num(b[2], 40, a / AQ_G0_MPS2),
-                 num(b[3], 40, a / (w * w)), num(b[4], 40, a / w));
+          printf("%s\t%s\t%s\t%s\t%s\t%s\t%s\n", s->label, s->path[1] ? pair_names[c] : s->channel,
+                 AQ_TEXT_NUM(J->damping[d]), AQ_TEXT_NUM(J->periods[i]),
+                 AQ_TEXT_NUM(a / AQ_G0_MPS2), AQ_TEXT_NUM(a / (w * w)), AQ_TEXT_NUM(a / w));
         }
   }
 }
@@ -199,7 +188,7 @@ static int write_h5(const char *path, const char *cmdline, const job *J, size_t 
                                         a / (om * om), a / om};
         }
   }
-  aq_h5_spectra hs = {rows, nrow, J->so.sampled_peaks, J->so.n_angles};
+  aq_h5_spectra hs = {rows, nrow, J->so.peaks, J->so.n_angles};
   if (s == AQ_OK)
     s = aq_h5_write_spectra(w, path, &hs, &e);
   if (s == AQ_OK) {
@@ -260,7 +249,7 @@ int aq_cmd_spectrum(int argc, char **argv)
            .damping = o.dampings ? o.dampings : &damping_default,
            .ndamp = o.dampings ? o.ndampings : 1};
   aq_spectrum_opts_default(&J.so);
-  J.so.sampled_peaks = o.sampled_peaks;
+  J.so.peaks = o.proc.peaks;
 
   char **names = NULL;
   size_t nnames = 0, n = 0;

@@ -64,14 +64,19 @@ int aq_cmd_help(int argc, char **argv)
   }
   aq_opts_free(&o);
   const aq_opt_command *c = NULL;
-  if (optind < argc && !(c = aq_opt_command_named(argv[optind]))) {
-    no_command("help: ", argv[optind], "a command");
+  int arch_file = optind < argc && !strcmp(argv[optind], AQ_HELP_ARCH_FILE);
+  if (optind < argc && !arch_file && !(c = aq_opt_command_named(argv[optind]))) {
+    no_command("help: ", argv[optind], "a command or " AQ_HELP_ARCH_FILE);
     nerr++;
   }
   if (optind + 1 < argc)
     aq_opt_no_operands("help", argc, argv, optind + 1, &nerr);
   if (nerr)
     return AQ_EXIT_USAGE;
+  if (arch_file) {
+    aq_help_arch_file(stdout);
+    return AQ_EXIT_OK;
+  }
   if (!c) { /* archquake help: archquake --help */
     aq_opts_main_help(stdout);
     return AQ_EXIT_OK;

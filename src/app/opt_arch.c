@@ -149,6 +149,7 @@ void aq_opt_arch_usage(FILE *f)
           "  %s/arches\n"
           "  BINDIR/../share/archquake/arches   (BINDIR: where archquake is)\n"
           "  BINDIR/arches                      (the source tree)\n"
-          "An unknown name is reported with the list of installed arches.\n",
+          "An unknown name is reported with the list of installed arches.  The\n"
+          "file's sections and keys: archquake help arch-file.\n",
           AQ_DATADIR);
 }

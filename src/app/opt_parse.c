@@ -279,7 +279,7 @@ static int label(const aq_opt_row *r, const char *meta, char *buf, size_t n)
 
 /* label, then text from column col, its words wrapped at HELP_WIDTH (two
  * spaces after a sentence are kept within a line). */
-static void put_entry(FILE *f, const char *lab, const char *text, const char *note, int col)
+void aq_opt_help_entry(FILE *f, const char *lab, const char *text, const char *note, int col)
 {
   int at = fprintf(f, "%s", lab);
   if (at + 2 > col) {
@@ -373,10 +373,10 @@ void aq_opts_help(aq_cmd cmd, FILE *f)
         snprintf(note + k, sizeof note - k, ")");
       }
       label(r, r->meta, lab, sizeof lab);
-      put_entry(f, lab, r->help, note[0] ? note : NULL, col);
+      aq_opt_help_entry(f, lab, r->help, note[0] ? note : NULL, col);
       if (r->meta2) {
         label(r, r->meta2, lab, sizeof lab);
-        put_entry(f, lab, r->help2, NULL, col);
+        aq_opt_help_entry(f, lab, r->help2, NULL, col);
       }
     }
   }
@@ -394,9 +394,18 @@ void aq_opts_main_help(FILE *f)
     if (!k->summary)
       continue;
     snprintf(lab, sizeof lab, "  archquake %s", k->synopsis);
-    put_entry(f, lab, k->summary, NULL, SYNOPSIS_COL);
+    aq_opt_help_entry(f, lab, k->summary, NULL, SYNOPSIS_COL);
   }
   aq_opt_arch_usage(f);
+  const aq_opt_note *const notes[] = {aq_opt_environment, aq_opt_files};
+  const char *const titles[] = {"Environment:", "Files:"};
+  for (int t = 0; t < 2; t++) {
+    fprintf(f, "%s\n", titles[t]);
+    for (const aq_opt_note *e = notes[t]; e->name; e++) {
+      snprintf(lab, sizeof lab, "  %s", e->name);
+      aq_opt_help_entry(f, lab, e->help, NULL, HELP_COL_MAX);
+    }
+  }
 }
 
 int aq_opt_is(aq_opt_id id, const char *word)

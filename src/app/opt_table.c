@@ -13,6 +13,7 @@
 #include "../arch/stepper.h"
 #include "../capacity/capacity.h"
 #include "../select/misfit.h"
+#include "../signal/spectrum.h"
 #include "app.h"
 #include "opt.h"
 #include "opt_arch.h"
@@ -46,6 +47,7 @@
 #define AQ_COMPARE_ATOL_DEFAULT 0.0
 
 _Static_assert(sizeof(aq_detrend) == sizeof(int), "--detrend is stored as an int");
+_Static_assert(sizeof(aq_spectrum_peaks) == sizeof(int), "--peaks is stored as an int");
 
 static const char *const detrends[] = {"mean", "linear", "none", NULL}; /* aq_detrend */
 static const char *const impacts[] = {"cor", "momentum", NULL};
@@ -195,6 +197,14 @@ static void scale_range(char *arg, aq_opts *o, int *nerr)
 }
 
 /* The checks between options (the rows' .check), made after parsing. */
+
+/* --sampled-peaks is --peaks samples (their rows refuse the two together). */
+static void sampled_peaks_alias(aq_opts *o, int *nerr)
+{
+  (void)nerr;
+  if (o->sampled_peaks)
+    o->proc.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+}
 
 /* Checks that need the record (the Nyquist frequency, the record length)
  * are made by aq_signal_process. */
@@ -423,6 +433,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                     .help = "kinetic-energy ratio kept at an impact, 0..1 (default: each "
                             "arch's [dynamics] cor; refused for an arch whose impact is "
                             "momentum, which uses none)"},
+    [AQ_OPT_FRICTION] = {.name = "friction", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e3,
+                         .meta = "MU", DEST(friction),
+                         .cmds = DYNAMICS | C(MECHANISM),
+                         .help = "the Coulomb friction coefficient of every joint, springings "
+                                 "included, 0 < MU <= 1000 (default: each arch's [contact] "
+                                 "friction; none if it has none)"},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -492,11 +508,6 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .cmds = C(SPECTRUM),
                         .help = "damping ratios, comma-separated, each in (0, 1) (default "
                                 "0.05)"},
-    [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
-                              DEST(sampled_peaks), .cmds = C(SPECTRUM),
-                              .help = "each oscillator's peak at the samples only, as PEER's "
-                                      "NGA-West2 flatfile takes it (default: over continuous "
-                                      "time, between samples too; docs/spectrum.md)"},
     [AQ_OPT_TARGET] = {.name = "target", .kind = AQ_ARG_STRING, .meta = "SPEC", DEST(target),
                        .cmds = C(SELECT) | C(PLOT_SPECTRUM),
                        .help = "the target spectrum: ec8:KEY=VALUE,... with type=1|2, "
@@ -664,6 +675,22 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                        .help = "intensity measure Sa_avg: the geometric mean of Sa at 10 "
                                "periods evenly spaced from T1 to T2 s (Eads et al. 2015), "
                                "or none (default 0.1,1 in info and capacity, none in the main job)"},
+    [AQ_OPT_PEAKS] = {.name = "peaks", .kind = AQ_ARG_CHOICE,
+                      .choices = aq_spectrum_peaks_names, .meta = "RULE", DEST(proc.peaks),
+                      .cmds = READS, .group = AQ_GROUP_PROCESSING,
+                      .help = "where each oscillator's peak is taken, for the spectra and "
+                              "the spectral measures: peer (default: at the samples and at "
+                              "N - 1 points between each two, N = ceil(10 dt / T), as PEER "
+                              "computes the NGA-West2 spectra), exact (over continuous time, "
+                              "the record linear between samples) or samples (at the samples "
+                              "only); docs/spectrum.md"},
+    [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
+                              DEST(sampled_peaks), .cmds = READS,
+                              .group = AQ_GROUP_PROCESSING,
+                              .help = "the same as --peaks samples",
+                              .conflicts = OPTS(AQ_OPT_PEAKS),
+                              .why = "it is --peaks samples",
+                              .check = sampled_peaks_alias},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = READS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies)",
@@ -711,7 +738,8 @@ static const char run_tail[] =
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
-    "  --components motion, nan for a RECORD)\n"
+    "  --components motion, nan for a RECORD; control: fixed or free, the\n"
+    "  arch's hinge control, which its verdicts assume)\n"
     "Exit status:\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -956,11 +984,12 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "help",
          .title = "help",
          .help_cmd = "help",
-         .synopsis = "help [COMMAND]",
-         .summary = "a command's --help",
-         .head = "usage: archquake help [COMMAND]\n"
+         .synopsis = "help [COMMAND|arch-file]",
+         .summary = "a command's --help; the arch file's keys",
+         .head = "usage: archquake help [COMMAND|arch-file]\n"
                  "Print COMMAND's --help (archquake COMMAND --help); without a COMMAND,\n"
-                 "archquake --help.\n",
+                 "archquake --help; with arch-file, the arch file's sections and keys\n"
+                 "(units, ranges, defaults), shapes, joints and faces files.\n",
          .tail = "Exit status: 0 printed, 2 an unknown COMMAND or bad options.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_PLOT_HISTORY] = FIGURE("history"),
@@ -992,6 +1021,29 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
 };
 
+const aq_opt_note aq_opt_environment[] = {
+    {"XDG_CACHE_HOME", "the cache of processed records and built arches, and FFTW's wisdom, "
+                       "are kept in $XDG_CACHE_HOME/archquake (an absolute path; "
+                       "docs/cache.md)"},
+    {"HOME", "without XDG_CACHE_HOME, the cache is ~/.cache/archquake; with neither "
+             "there is none"},
+    {"ARCHQUAKE_DATADIR", "--arch NAME looks for NAME.cfg in $ARCHQUAKE_DATADIR/arches "
+                          "first (Arches, above)"},
+    {"LC_PAPER", "plot: the page of a PDF without --paper, Letter or A4 (the locale's, as "
+                 "LC_ALL, LC_PAPER and LANG set it)"},
+    {NULL, NULL}};
+
+const aq_opt_note aq_opt_files[] = {
+    {"~/.cache/archquake/records/, arches/",
+     "the cache (or under $XDG_CACHE_HOME/archquake, or --cache-dir): one entry per "
+     "processed record and per built arch, for later runs of the same build; at most "
+     "--cache-max (default 512M); removing it loses nothing but time"},
+    {"~/.cache/archquake/fftw-wisdom", "FFTW's plans for record lengths the built-in "
+                                       "wisdom lacks"},
+    {"FILE.h5.journal", "beside a results file being written with -o: the records done, "
+                        "until the file is complete (--resume reads it)"},
+    {NULL, NULL}};
+
 void aq_opts_init(aq_opts *o, aq_cmd cmd)
 {
   memset(o, 0, sizeof *o);
@@ -1001,6 +1053,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->threads = ncpu >= 1 ? (ncpu > AQ_MAX_THREADS ? AQ_MAX_THREADS : ncpu) : 1;
   o->model = AQ_MODEL_WORKPATH;
   o->cor = NAN;
+  o->friction = NAN;
   o->impact = -1;
   o->ode_rtol = 1e-10;
   o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;

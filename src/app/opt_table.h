@@ -123,6 +123,7 @@ typedef enum {
   AQ_OPT_JOBS,
   AQ_OPT_MODEL,
   AQ_OPT_COR,
+  AQ_OPT_FRICTION,
   AQ_OPT_IMPACT,
   AQ_OPT_ODE_RTOL,
   AQ_OPT_HISTORY,      /* the main job: histories into the results file */
@@ -140,7 +141,8 @@ typedef enum {
   AQ_OPT_DAMPING,
   AQ_OPT_IM_PERIODS,    /* the spectral intensity measures */
   AQ_OPT_SA_AVG,
-  AQ_OPT_SAMPLED_PEAKS,
+  AQ_OPT_PEAKS,         /* where a spectral peak is taken */
+  AQ_OPT_SAMPLED_PEAKS, /* --peaks samples */
   AQ_OPT_TARGET,        /* select, plot spectrum */
   AQ_OPT_COUNT,         /* select */
   AQ_OPT_SELECT_PERIODS,
@@ -232,6 +234,7 @@ typedef struct aq_opts {
   /* dynamics */
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */
+  double friction; /* --friction, or NAN: each arch's [contact] friction */
   int impact;      /* --impact: 0 cor, 1 momentum, -1 the arch's own */
   double ode_rtol; /* --ode-rtol */
   int polarity;    /* --polarity: AQ_POLARITY_* (opt.h) */
@@ -265,7 +268,7 @@ typedef struct aq_opts {
   size_t nperiods;
   double *dampings; /* --damping, ratios (NULL: 0.05) */
   size_t ndampings;
-  int sampled_peaks; /* --sampled-peaks */
+  int sampled_peaks; /* --sampled-peaks: the same as --peaks samples */
   /* select */
   const char *target;      /* --target SPEC (select, plot spectrum) */
   size_t count;            /* --count N */
@@ -343,6 +346,15 @@ typedef struct {
 extern const aq_opt_row aq_opt_rows[AQ_OPT_N];
 extern const aq_opt_command aq_opt_commands[AQ_CMD_N];
 
+/* The environment variables archquake reads and the files it keeps, each
+ * with what it does (a table each, ending in {NULL, NULL}), in archquake
+ * --help's Environment and Files (and so the man page's ENVIRONMENT and
+ * FILES).  A getenv() added anywhere gets its row here. */
+typedef struct {
+  const char *name, *help;
+} aq_opt_note;
+extern const aq_opt_note aq_opt_environment[], aq_opt_files[];
+
 /* The defaults of every option for command cmd. */
 void aq_opts_init(aq_opts *o, aq_cmd cmd);
 /* Free what parsing allocated (o may be freed again). */
@@ -363,6 +375,18 @@ void aq_opts_help(aq_cmd cmd, FILE *f);
 /* archquake --help on f: the main job's help, the list of commands (their
  * synopses and summaries) and the paragraph on arch names. */
 void aq_opts_main_help(FILE *f);
+
+/* One entry of a help text on f: lab, then text (and note, if not NULL)
+ * from column col (on the next line if lab reaches it), its words wrapped
+ * at 79 columns. */
+void aq_opt_help_entry(FILE *f, const char *lab, const char *text, const char *note, int col);
+
+/* `archquake help arch-file` on f: the arch file's syntax, sections, keys
+ * (unit, range, default, the shapes that take them), shapes, joints and
+ * faces files, all from the table the parser reads (src/arch/cfg_keys.h;
+ * help_arch.c). */
+void aq_help_arch_file(FILE *f);
+#define AQ_HELP_ARCH_FILE "arch-file" /* its word after help */
 
 /* 1 if option id applies to command cmd. */
 int aq_opt_applies(aq_opt_id id, aq_cmd cmd);

@@ -38,7 +38,7 @@ static int spectra_key(const ctx *C, const aq_subject_src *src, const aq_subject
     aq_bytes_put_f64(key, P->periods_s[k]);
   aq_bytes_put_f64(key, P->damping);
   aq_bytes_put_i64(key, P->pair_rule);
-  aq_bytes_put_i64(key, P->sopts.sampled_peaks);
+  aq_bytes_put_i64(key, P->sopts.peaks);
   aq_bytes_put_i64(key, (int64_t)P->sopts.n_angles);
   if (key->oom) {
     free(key->data);

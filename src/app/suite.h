@@ -63,6 +63,7 @@ typedef struct {
                             * (lambda0 the smaller of its hinge sets'); else 0 */
   aq_model model;          /* --model */
   double cor;              /* --cor, or NAN for each arch's own */
+  double friction;         /* --friction, or NAN for each arch's own */
   int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */
   int history;             /* --history: keep and write histories */
   int store_records;       /* --store-records: write processed waveforms (with -o) */

@@ -172,7 +172,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
        (int)p->detrend, p->taper_frac, p->filter, p->highpass_hz, p->highpass_auto,
        p->order, p->lowpass_hz);
   /* the spectral measures the records table and /records carry */
-  line(&b, "im_periods=%zu sa_avg=%a,%a", p->im_nsa, p->sa_avg_lo_s, p->sa_avg_hi_s);
+  line(&b, "im_periods=%zu sa_avg=%a,%a peaks=%d", p->im_nsa, p->sa_avg_lo_s, p->sa_avg_hi_s,
+       (int)p->peaks);
   for (size_t k = 0; k < p->im_nsa && k < AQ_IM_SA_MAX; k++)
     line(&b, "im_period=%a", p->im_period_s[k]);
   line(&b, "merge_tol_g=%a scale_to_pga_g=%a", c->merge_tol_g,

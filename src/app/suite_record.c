@@ -112,6 +112,8 @@ static void fail_runs(suite *S, rec_slot *r)
                     S->model_name, scale, NAN, r->status, NULL);
     aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
     u->sum.azimuth_deg = run_azimuth(S, r, z);
+    snprintf(u->sum.control, sizeof u->sum.control, "%s",
+             aq_hinge_control_names[aq_arch_control(S->arches[a])]);
   }
 }
 
@@ -244,6 +246,8 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   aq_summary_normalise(&u->sum, slot_polarity(S, k), u->have_res ? &u->res : NULL,
                        aq_arch_path(S->arches[ai], 0), aq_arch_path(S->arches[ai], 1));
   u->sum.azimuth_deg = run_azimuth(S, r, z);
+  snprintf(u->sum.control, sizeof u->sum.control, "%s",
+           aq_hinge_control_names[aq_arch_control(S->arches[ai])]);
   u->run_s = aq_suite_now_s() - t0;
 }
 
@@ -265,7 +269,9 @@ int aq_suite_arches(suite *S)
   for (size_t a = 0; a < c->narches; a++) {
     aq_error e;
     aq_error_clear(&e);
-    if (aq_arch_cache_load(c->arch_cache, c->arch_paths[a], NULL, &S->arches[a], &e) != AQ_OK) {
+    aq_arch_options ao = {c->friction};
+    if (aq_arch_cache_load(c->arch_cache, c->arch_paths[a], &ao, NULL, &S->arches[a], &e) !=
+        AQ_OK) {
       aq_error_print(&e, stderr);
       bad_arch = 1;
     }

@@ -3,6 +3,7 @@
  * its geometry, the search's minimum, the work paths of its primary and
  * reverse hinge sets, the arrays of its drawing and its content digest.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +26,8 @@ struct aq_arch {
   double min_lambda0;
   aq_search_info min_info; /* programs solved, a lower lift-off mechanism */
   int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
+  aq_hinge_control control; /* fixed, or free: each direction's own minimum */
+  double friction;      /* Coulomb coefficient of every joint; 0: none */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
   /* aq_arch_drawing's arrays (drawing_make) */
@@ -121,13 +124,14 @@ static aq_hinge_set swap_faces(const aq_hinge_set *hs)
 }
 
 static const char *const set_names[2] = {"primary", "reverse"};
+const char *const aq_hinge_control_names[2] = {"fixed", "free"};
 
 /* ---- The built tables as bytes (aq_arch_tables_put, tables_get) ----
  * What the search and the work paths computed, kept between processes
  * (src/job/arch_cache.h) so that a later build of the same arch reads
  * them instead: the search's result, the two hinge sets and both paths
  * (workpath.c), each double as its bits. */
-#define TABLES_FORMAT "archquake arch tables 1"
+#define TABLES_FORMAT "archquake arch tables 2"
 
 static void set_put(aq_bytes_out *b, const aq_hinge_set *hs)
 {
@@ -156,6 +160,7 @@ static int same_set(const aq_hinge_set *a, const aq_hinge_set *b)
 void aq_arch_tables_put(const aq_arch *a, aq_bytes_out *b)
 {
   aq_bytes_put_str(b, TABLES_FORMAT, 0);
+  aq_bytes_put_i64(b, a->control);
   aq_bytes_put_i64(b, a->searched);
   aq_bytes_put_i64(b, a->min_known);
   aq_hinge_set none = {{0, 0, 0, 0}, {'e', 'e', 'e', 'e'}}; /* no minimum: never read */
@@ -173,8 +178,9 @@ void aq_arch_tables_put(const aq_arch *a, aq_bytes_out *b)
 
 /* The search's result, the hinge sets and the paths from kept[0..n)
  * (aq_arch_tables_put's), when they are those of this arch's [hinges]
- * (primary, reverse; NULL: searched, the primary's faces swapped): 0, or
- * -1 with nothing taken. */
+ * (primary, reverse; NULL: searched, the primary's faces swapped; free
+ * control: the primary, if given, one of the two sets): 0, or -1 with
+ * nothing taken. */
 static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
                       const aq_hinge_set *primary, const aq_hinge_set *reverse)
 {
@@ -182,6 +188,7 @@ static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
   size_t nv = a->geom.p.voussoirs;
   char format[sizeof TABLES_FORMAT];
   aq_bytes_get_str(&r, format, sizeof format, NULL, "format");
+  int control = (int)aq_bytes_get_int(&r, AQ_CONTROL_FIXED, AQ_CONTROL_FREE, "control");
   a->searched = (int)aq_bytes_get_int(&r, 0, 1, "searched");
   a->min_known = (int)aq_bytes_get_int(&r, 0, 1, "minimum known");
   set_get(&r, nv, &a->min_hs);
@@ -193,10 +200,15 @@ static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
   for (int s = 0; s < 2; s++)
     set_get(&r, nv, &a->hs[s]);
   aq_hinge_set swapped = swap_faces(&a->hs[0]);
-  int ok = !r.bad && !strcmp(format, TABLES_FORMAT) &&
-           (primary ? !a->searched && same_set(&a->hs[0], primary)
-                    : a->searched && a->min_known && same_set(&a->hs[0], &a->min_hs)) &&
-           same_set(&a->hs[1], reverse ? reverse : &swapped);
+  int ok = !r.bad && !strcmp(format, TABLES_FORMAT) && control == (int)a->control;
+  if (ok && a->control == AQ_CONTROL_FREE)
+    ok = !reverse && (primary ? !a->searched && (same_set(&a->hs[0], primary) ||
+                                                 same_set(&a->hs[1], primary))
+                              : a->searched && a->min_known);
+  else if (ok)
+    ok = (primary ? !a->searched && same_set(&a->hs[0], primary)
+                  : a->searched && a->min_known && same_set(&a->hs[0], &a->min_hs)) &&
+         same_set(&a->hs[1], reverse ? reverse : &swapped);
   for (int s = 0; s < 2 && ok; s++)
     ok = aq_workpath_get(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &r, &a->wp[s],
                          NULL) == AQ_OK;
@@ -214,6 +226,32 @@ static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
   return -1;
 }
 
+/* Free control's sets: for act_sign -1 (set 0) and +1 (set 1) the
+ * primary if it is that direction's, else the arch's minimum if it is,
+ * else that direction's own minimum by the search. */
+static aq_status free_sets(aq_arch *a, const aq_hinge_set *primary, aq_error *err)
+{
+  int pact = primary ? aq_search_act_sign(&a->geom, primary) : 0;
+  int mact = a->min_known ? aq_search_act_sign(&a->geom, &a->min_hs) : 0;
+  if (primary && !pact)
+    pact = -1; /* no mechanism: set 0, where building its path says why */
+  for (int k = 0; k < 2; k++) {
+    int act = k ? 1 : -1;
+    if (primary && pact == act) {
+      a->hs[k] = *primary;
+    } else if (mact == act) {
+      a->hs[k] = a->min_hs;
+    } else {
+      aq_search_info info;
+      aq_status st = aq_search_direction(&a->geom, a->dyn.g_mps2, act, &a->hs[k], NULL, &info,
+                                         err);
+      if (st != AQ_OK)
+        return st;
+    }
+  }
+  return AQ_OK;
+}
+
 /* Everything after the parameters: geometry, hinge sets, paths (from
  * kept[0..nkept), aq_arch_tables_put's bytes, when they are this arch's:
  * *used 1).  Errors carry the field ("primary", "reverse", a parameter
@@ -222,9 +260,18 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
                             const aq_hinge_set *primary, const aq_hinge_set *reverse,
                             const unsigned char *kept, size_t nkept, int *used, aq_error *err)
 {
+  if (p->control == AQ_CONTROL_FREE && reverse)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "reverse",
+                        "expected no reverse set with control = free (each direction's set is "
+                        "its own minimum mechanism), got one");
+  if (!(p->friction >= 0) || !isfinite(p->friction))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "friction",
+                        "expected a Coulomb coefficient > 0, got %g", p->friction);
+  a->control = p->control;
+  a->friction = p->friction;
   aq_status st = aq_geom_init(&a->geom, p, err);
-  if (st != AQ_OK)
-    return st;
+  if (st != AQ_OK || (st = aq_geom_check_strut(&a->geom, err)) != AQ_OK)
+    return st; /* a strut fits: no set of any hinges is a mechanism */
   if (kept && tables_get(a, kept, nkept, primary, reverse) == 0) {
     *used = 1;
     if (drawing_make(a) != 0)
@@ -255,13 +302,15 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
                         "<= 0 (gravity alone makes it a mechanism)",
                         set, a->min_lambda0);
   }
-  if (primary) {
-    a->hs[0] = *primary;
+  if (a->control == AQ_CONTROL_FREE) {
+    st = free_sets(a, primary, err);
+    if (st != AQ_OK)
+      return st;
   } else {
-    a->hs[0] = a->min_hs;
-    a->searched = 1;
+    a->hs[0] = primary ? *primary : a->min_hs;
+    a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
   }
-  a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
+  a->searched = !primary;
   for (int s = 0; s < 2; s++) {
     st = aq_workpath_build(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &a->wp[s], err);
     if (st != AQ_OK) {
@@ -346,6 +395,8 @@ const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
   return set == 0 || set == 1 ? a->wp[set] : NULL;
 }
 int aq_arch_searched(const aq_arch *a) { return a->searched; }
+aq_hinge_control aq_arch_control(const aq_arch *a) { return a->control; }
+double aq_arch_friction(const aq_arch *a) { return a->friction > 0 ? a->friction : NAN; }
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
 {

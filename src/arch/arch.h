@@ -26,6 +26,28 @@ typedef struct {
   double g_mps2;    /* gravity, m/s^2 */
 } aq_arch_dynamics;
 
+/* How the arch's hinges are chosen ([hinges] control, docs/arch-file.md):
+ *   AQ_CONTROL_FIXED: the hinge-controlled arch: set 0 is the primary
+ *     (the file's, or the search's minimum), set 1 the file's reverse or
+ *     the primary's face swap; every other joint carries what the thrust
+ *     demands.  The default when the file names a primary.
+ *   AQ_CONTROL_FREE: any joint may open: set 0 is the minimum-lambda0
+ *     mechanism that a ground acceleration of sign -1 drives (act_sign -1),
+ *     set 1 that of sign +1 (act_sign +1), each found by the search (a
+ *     primary the file names takes its own direction's place).  The
+ *     default without a primary. */
+typedef enum { AQ_CONTROL_FIXED = 0, AQ_CONTROL_FREE } aq_hinge_control;
+
+/* The names of the control modes ("fixed", "free"), indexed by
+ * aq_hinge_control. */
+extern const char *const aq_hinge_control_names[2];
+
+/* What a command gives over the arch file's own values (zeroed: none). */
+typedef struct {
+  double friction; /* --friction: the Coulomb coefficient of every joint, > 0 and
+                      finite; 0 or NAN: the file's [contact] friction */
+} aq_arch_options;
+
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err);
 
 /* An arch's sources as read: its .cfg's text and a joints arch's joints
@@ -35,7 +57,13 @@ typedef struct {
   size_t ntext;
   const char *data[2];
   size_t ndata[2];
+  double friction;   /* the command's friction over the file's (aq_arch_options),
+                        or 0: none */
 } aq_arch_sources;
+
+/* As aq_arch_load with opt (NULL: none) over the file's values. */
+aq_status aq_arch_load_opts(const char *path, const aq_arch_options *opt, aq_arch **out,
+                            aq_error *err);
 
 /* Where what an arch's build computes (the mechanism search's result, the
  * work paths' tables and pieces, as bytes) is kept between builds, under
@@ -57,12 +85,20 @@ typedef struct {
  * bytes are put.  *hit (if not NULL): 1 when the kept bytes were taken. */
 aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
                               aq_arch **out, aq_error *err);
+/* As aq_arch_load_stored with opt (NULL: none) over the file's values
+ * (their bytes kept apart from the file's: aq_arch_sources). */
+aq_status aq_arch_load_stored_opts(const char *path, const aq_arch_options *opt,
+                                   const aq_arch_store *store, int *hit, aq_arch **out,
+                                   aq_error *err);
 /* As aq_arch_load, from the len bytes at data (need not be NUL-terminated;
  * a NUL byte inside is an error); path names the input in messages and
  * gives the default name.  The bytes are copied; *out is the caller's
  * (aq_arch_free), NULL on failure. */
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err);
+/* As aq_arch_load_string with opt (NULL: none) over the file's values. */
+aq_status aq_arch_load_string_opts(const char *data, size_t len, const char *path,
+                                   const aq_arch_options *opt, aq_arch **out, aq_error *err);
 void aq_arch_free(aq_arch *a);
 
 const char *aq_arch_name(const aq_arch *a);
@@ -96,7 +132,16 @@ typedef struct {
 } aq_arch_drawing;
 void aq_arch_drawing_of(const aq_arch *a, aq_arch_drawing *d);
 
-/* set 0: primary, 1: reverse.  Check ->admissible before integrating. */
+/* set 0: primary, 1: reverse.  Check ->admissible before integrating.
+ * Free control (aq_arch_control): set 0 is driven by act_sign -1, set 1 by
+ * act_sign +1, each its direction's minimum mechanism. */
 const aq_path *aq_arch_path(const aq_arch *a, int set);
+
+/* The arch's hinge control (see aq_hinge_control). */
+aq_hinge_control aq_arch_control(const aq_arch *a);
+/* The Coulomb friction coefficient of every joint in effect (the file's
+ * [contact] friction, or the command's --friction over it), NAN when none
+ * was given. */
+double aq_arch_friction(const aq_arch *a);
 
 #endif

@@ -3,22 +3,17 @@
  * then built by arch.c (aq_arch_build).  The format, with units, defaults
  * and an example per arch type, is documented in docs/arch-file.md.
  *
- * Sections and keys (all others are errors, as are duplicate keys):
- *   [arch]      name (optional, default: the file name without directory and
- *               .cfg), shape (circular (default), pointed, elliptical,
- *               parabolic, catenary, joints), density_kg_m3, depth_m, and by
- *               shape: circular radius_m, thickness_m, embrace_deg,
- *               voussoirs; pointed..catenary span_m, rise_m, thickness_m,
- *               voussoirs; joints joints_file, faces_file (optional; paths
- *               relative to the .cfg, read by joints.c).  A key the shape
- *               does not take is refused.
- *   [fill]      level_m, density_kg_m3 (both, if the section is there)
- *   [masses]    NAME = VOUSSOIR X_M Y_M MASS_KG, one point mass a line
- *   [hinges]    primary = 4 x JOINT FACE (e.g. 0e 6i 12e 19i), reverse
- *               (optional, default: the primary's joints, faces swapped);
- *               without [hinges] the primary comes from the search (search.c)
- *   [dynamics]  cor (0..1, kinetic-energy ratio, docs/method.md sec. 7), impact
- *               (cor | momentum), g_mps2; all optional (0, cor, 9.80665)
+ * The sections and keys, their kinds, ranges, defaults and the shapes that
+ * take and need each, are the table of cfg_keys.c: every other section or
+ * key is an error, as is a key given twice or a value outside its range
+ * (read from the table: the message names it).  What the table cannot say
+ * is here: [fill] with both keys or none, [hinges] with a primary or a
+ * control (the control's default: fixed with a primary, free without; a
+ * reverse needs a primary and fixed control), a key
+ * the shape does not take, the joints and faces files read by joints.c
+ * (paths relative to the .cfg).  A new key or section is a row of that
+ * table (how: cfg_keys.h) and, for what it sets, a case in handler() below;
+ * `archquake help arch-file` and the manual page then document it.
  * libinih calls the handler for each key as it reads the line; the reader
  * below feeds it line by line and counts lines, so every message names the
  * line of its key.
@@ -32,51 +27,15 @@
 
 #include "../units.h"
 #include "arch.h"
+#include "cfg_keys.h"
 #include "infile.h"
 #include "joints.h"
 #include "model.h"
 
 #define MAX_LINE_CHARS 190    /* libinih's line buffer is 200 bytes */
-#define MAX_VOUSSOIRS 1000    /* the search's and the tables' cost grow with them */
 #define MAX_MASSES 1000       /* point masses in [masses] */
 #define MAX_FILE_BYTES 1000000
 #define PATH_BYTES 4096       /* a joints or faces file's path beside the .cfg */
-
-enum {
-  K_NAME, K_SHAPE, K_RADIUS, K_EMBRACE, K_SPAN, K_RISE, K_THICK, K_VOUS, K_DENS, K_DEPTH,
-  K_JOINTS, K_FACES, K_LEVEL, K_FDENS, K_PRIMARY, K_REVERSE, K_COR, K_IMPACT, K_G, NKEYS
-};
-/* Which shapes take a key (bit 1 << aq_shape). */
-#define S_ALL ((1u << AQ_SHAPE_COUNT) - 1)
-#define S_CIRC (1u << AQ_SHAPE_CIRCULAR)
-#define S_CURVE ((1u << AQ_SHAPE_POINTED) | (1u << AQ_SHAPE_ELLIPTICAL) | \
-                 (1u << AQ_SHAPE_PARABOLIC) | (1u << AQ_SHAPE_CATENARY))
-#define S_JOINTS (1u << AQ_SHAPE_JOINTS)
-static const struct {
-  const char *section, *name;
-  unsigned shapes;   /* the shapes that take it */
-  unsigned required; /* the shapes that need it */
-} keys[NKEYS] = {
-    {"arch", "name", S_ALL, 0},
-    {"arch", "shape", S_ALL, 0},
-    {"arch", "radius_m", S_CIRC, S_CIRC},
-    {"arch", "embrace_deg", S_CIRC, S_CIRC},
-    {"arch", "span_m", S_CURVE, S_CURVE},
-    {"arch", "rise_m", S_CURVE, S_CURVE},
-    {"arch", "thickness_m", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
-    {"arch", "voussoirs", S_CIRC | S_CURVE, S_CIRC | S_CURVE},
-    {"arch", "density_kg_m3", S_ALL, S_ALL},
-    {"arch", "depth_m", S_ALL, S_ALL},
-    {"arch", "joints_file", S_JOINTS, S_JOINTS},
-    {"arch", "faces_file", S_JOINTS, 0},
-    {"fill", "level_m", S_ALL, 0},
-    {"fill", "density_kg_m3", S_ALL, 0},
-    {"hinges", "primary", S_ALL, 0},
-    {"hinges", "reverse", S_ALL, 0},
-    {"dynamics", "cor", S_ALL, 0},
-    {"dynamics", "impact", S_ALL, 0},
-    {"dynamics", "g_mps2", S_ALL, 0},
-};
 
 typedef struct {
   aq_point_mass m;
@@ -87,7 +46,7 @@ typedef struct {
   const char *file;
   const char *text; /* cursor */
   long line;        /* lines read so far */
-  long key_line[NKEYS];
+  long key_line[AQ_CFG_NKEYS];
   int hinges_section; /* line of [hinges], 0 if absent */
   int fill_section;   /* line of [fill], 0 if absent */
   aq_error *err;
@@ -95,9 +54,10 @@ typedef struct {
   char name[64];
   int shape;
   char path[2][200];  /* joints_file, faces_file as given */
-  double num[NKEYS];
+  double num[AQ_CFG_NKEYS];
   aq_hinge_set hs[2];
   int impact;
+  int control; /* aq_hinge_control */
   mass_line *mass;
   size_t nmass;
 } parse_ctx;
@@ -110,6 +70,18 @@ static int fail(parse_ctx *c, aq_status s, const char *field, const char *fmt,
     c->failed = 1;
   }
   return 0;
+}
+
+/* "[arch], [fill], ... or [dynamics]" from the table, between pre and post. */
+static void section_list(char *buf, size_t n, const char *pre, const char *post)
+{
+  size_t len = (size_t)snprintf(buf, n, "%s", pre);
+  for (size_t k = 0; k < aq_cfg_nsections && len < n; k++)
+    len += (size_t)snprintf(buf + len, n - len, "%s[%s]",
+                            k == 0 ? "" : k + 1 < aq_cfg_nsections ? ", " : " or ",
+                            aq_cfg_sections[k].name);
+  if (len < n)
+    snprintf(buf + len, n - len, "%s", post);
 }
 
 static char *reader(char *str, int num, void *stream)
@@ -141,12 +113,14 @@ static char *reader(char *str, int num, void *stream)
     size_t n = e ? (size_t)(e - p - 1) : 0;
     char sec[64];
     snprintf(sec, sizeof sec, "%.*s", (int)(n < 63 ? n : 63), p + 1);
-    if (!e || (strcmp(sec, "arch") && strcmp(sec, "fill") && strcmp(sec, "masses") &&
-               strcmp(sec, "hinges") && strcmp(sec, "dynamics"))) {
-      char got[80];
+    size_t k = 0;
+    while (e && k < aq_cfg_nsections && strcmp(sec, aq_cfg_sections[k].name))
+      k++;
+    if (!e || k == aq_cfg_nsections) {
+      char got[80], fmt[256];
       snprintf(got, sizeof got, "[%s]", e ? sec : "...");
-      fail(c, AQ_EFORMAT, "section",
-           "expected [arch], [fill], [masses], [hinges] or [dynamics], got %s", got);
+      section_list(fmt, sizeof fmt, "expected ", ", got %s");
+      fail(c, AQ_EFORMAT, "section", fmt, got);
       return NULL;
     }
     if (!strcmp(sec, "hinges") && !c->hinges_section)
@@ -212,11 +186,17 @@ static int mass_key(parse_ctx *c, const char *name, const char *value)
   if (ok) {
     snprintf(rest, sizeof rest, "%s", end);
     ok = sscanf(rest, "%lf %lf %lf %n", &v[0], &v[1], &v[2], &used) == 3 &&
-         rest[used] == '\0' && isfinite(v[0]) && isfinite(v[1]) && v[2] > 0 && isfinite(v[2]);
+         rest[used] == '\0' && fabs(v[0]) <= AQ_CFG_COORD_MAX_M &&
+         fabs(v[1]) <= AQ_CFG_COORD_MAX_M && aq_cfg_in_range(&aq_cfg_keys[AQ_CFG_MASS_LINE], v[2]);
   }
-  if (!ok)
-    return fail(c, AQ_EVALUE, name, "expected VOUSSOIR X_M Y_M MASS_KG (a voussoir number, "
-                "the position in m and a mass > 0 kg, e.g. 10 0.0 6.2 450), got %s", got);
+  if (!ok) {
+    char range[64], fmt[300];
+    aq_cfg_range_text(&aq_cfg_keys[AQ_CFG_MASS_LINE], range, sizeof range);
+    snprintf(fmt, sizeof fmt, "expected VOUSSOIR X_M Y_M MASS_KG (a voussoir number, the "
+             "position in m, each within +-%g m, and a mass in %s, e.g. 10 0.0 6.2 450), "
+             "got %%s", AQ_CFG_COORD_MAX_M, range);
+    return fail(c, AQ_EVALUE, name, fmt, got);
+  }
   ml.m.voussoir = (size_t)k;
   ml.m.p.x = v[0];
   ml.m.p.y = v[1];
@@ -229,6 +209,57 @@ static int mass_key(parse_ctx *c, const char *name, const char *value)
   return 1;
 }
 
+/* The value of key k checked by the table's rule for its kind (cfg_keys.h):
+ * a number or an integer into c->num[k], a choice's index into c->num[k];
+ * 0 and the line that refuses it otherwise.  What the key sets beyond
+ * c->num is the handler's. */
+static int checked_value(parse_ctx *c, int k, const char *name, const char *value)
+{
+  const aq_cfg_key *key = &aq_cfg_keys[k];
+  char got[160], range[64], fmt[400];
+  snprintf(got, sizeof got, "\"%.150s\"", value);
+  aq_cfg_range_text(key, range, sizeof range);
+  double x = 0;
+  switch (key->kind) {
+  case AQ_CFG_REAL:
+    if (aq_infile_number(value, &x) && aq_cfg_in_range(key, x))
+      break;
+    snprintf(fmt, sizeof fmt, "expected %s in %s, got %%s", key->what, range);
+    return fail(c, AQ_EVALUE, name, fmt, got);
+  case AQ_CFG_INT: {
+    char *end;
+    errno = 0;
+    long v = strtol(value, &end, 10);
+    x = (double)v;
+    if (end != value && !*end && !errno && aq_cfg_in_range(key, x))
+      break;
+    snprintf(fmt, sizeof fmt, "expected %s in %s, got %%s", key->what, range);
+    return fail(c, AQ_EVALUE, name, fmt, got);
+  }
+  case AQ_CFG_CHOICE: {
+    size_t n = 0;
+    while (key->choices[n] && strcmp(value, key->choices[n]))
+      n++;
+    if (key->choices[n]) {
+      x = (double)n;
+      break;
+    }
+    size_t len = (size_t)snprintf(fmt, sizeof fmt, "expected ");
+    for (size_t i = 0; key->choices[i] && len < sizeof fmt; i++)
+      len += (size_t)snprintf(fmt + len, sizeof fmt - len, "%s%s",
+                              i == 0 ? "" : key->choices[i + 1] ? ", " : " or ",
+                              key->choices[i]);
+    if (len < sizeof fmt)
+      snprintf(fmt + len, sizeof fmt - len, ", got %%s");
+    return fail(c, AQ_EVALUE, name, fmt, got);
+  }
+  default:
+    break;
+  }
+  c->num[k] = x;
+  return 1;
+}
+
 static int handler(void *user, const char *section, const char *name,
                    const char *value)
 {
@@ -238,23 +269,24 @@ static int handler(void *user, const char *section, const char *name,
   if (!strcmp(section, "masses"))
     return mass_key(c, name, value);
   int k;
-  for (k = 0; k < NKEYS; k++)
-    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].name, name))
+  for (k = 0; k < AQ_CFG_NKEYS; k++)
+    if (!strcmp(aq_cfg_keys[k].section, section) && !strcmp(aq_cfg_keys[k].name, name))
       break;
-  if (k == NKEYS) {
+  if (k == AQ_CFG_NKEYS) {
     char got[128];
     snprintf(got, sizeof got, "\"%.100s\"", name);
-    if (!section[0])
-      return fail(c, AQ_EFORMAT, name, "expected a key inside [arch], [fill], [masses], "
-                  "[hinges] or [dynamics], got %s before any section", got);
-    char expect[256];
+    if (!section[0]) {
+      char fmt[256];
+      section_list(fmt, sizeof fmt, "expected a key inside ", ", got %s before any section");
+      return fail(c, AQ_EFORMAT, name, fmt, got);
+    }
+    char expect[512];
     expect[0] = '\0';
-    for (int i = 0; i < NKEYS; i++)
-      if (!strcmp(keys[i].section, section)) {
-        strcat(expect, expect[0] ? ", " : "");
-        strcat(expect, keys[i].name);
-      }
-    char fmt[400];
+    for (int i = 0; i < AQ_CFG_NKEYS; i++)
+      if (!strcmp(aq_cfg_keys[i].section, section))
+        snprintf(expect + strlen(expect), sizeof expect - strlen(expect), "%s%s",
+                 expect[0] ? ", " : "", aq_cfg_keys[i].name);
+    char fmt[700];
     snprintf(fmt, sizeof fmt, "expected a key of [%s] (%s), got %%s", section, expect);
     return fail(c, AQ_EFORMAT, name, fmt, got);
   }
@@ -264,92 +296,63 @@ static int handler(void *user, const char *section, const char *name,
     return fail(c, AQ_EFORMAT, name, "expected one value per key, got %s", got);
   }
   c->key_line[k] = c->line;
+  if (!checked_value(c, k, name, value))
+    return 0;
   char got[160];
   snprintf(got, sizeof got, "\"%.150s\"", value);
-  double x;
   switch (k) {
-  case K_NAME:
+  case AQ_CFG_NAME:
     if (!value[0] || strlen(value) >= sizeof c->name || strpbrk(value, "\t\r\n"))
       return fail(c, AQ_EVALUE, name, "expected a name of 1..63 characters without tabs, got %s", got);
     snprintf(c->name, sizeof c->name, "%s", value);
     return 1;
-  case K_SHAPE:
-    for (c->shape = 0; c->shape < AQ_SHAPE_COUNT; c->shape++)
-      if (!strcmp(value, aq_shape_names[c->shape]))
-        return 1;
-    return fail(c, AQ_EVALUE, name, "expected circular, pointed, elliptical, parabolic, "
-                "catenary or joints, got %s", got);
-  case K_JOINTS:
-  case K_FACES:
+  case AQ_CFG_SHAPE:
+    c->shape = (int)c->num[k];
+    return 1;
+  case AQ_CFG_JOINTS_FILE:
+  case AQ_CFG_FACES_FILE:
     if (!value[0] || strlen(value) >= sizeof c->path[0])
       return fail(c, AQ_EVALUE, name, "expected a file name of 1..199 characters, got %s",
                   got);
-    snprintf(c->path[k - K_JOINTS], sizeof c->path[0], "%s", value);
+    snprintf(c->path[k - AQ_CFG_JOINTS_FILE], sizeof c->path[0], "%s", value);
     return 1;
-  case K_RADIUS:
-  case K_THICK:
-  case K_DEPTH:
-  case K_SPAN:
-  case K_RISE:
-    if (!aq_infile_number(value, &x) || !(x > 0))
-      return fail(c, AQ_EVALUE, name, "expected a length > 0 m, got %s", got);
-    break;
-  case K_LEVEL:
-    if (!aq_infile_number(value, &x))
-      return fail(c, AQ_EVALUE, name, "expected a height (m), got %s", got);
-    break;
-  case K_DENS:
-  case K_FDENS:
-    if (!aq_infile_number(value, &x) || !(x > 0))
-      return fail(c, AQ_EVALUE, name, "expected a density > 0 kg/m^3, got %s", got);
-    break;
-  case K_EMBRACE:
-    if (!aq_infile_number(value, &x) || !(x > 0) || !(x <= 180))
-      return fail(c, AQ_EVALUE, name, "expected an angle in (0, 180] deg, got %s", got);
-    break;
-  case K_VOUS: {
-    char *end;
-    errno = 0;
-    long v = strtol(value, &end, 10);
-    if (end == value || *end || errno || v < 4 || v > MAX_VOUSSOIRS)
-      return fail(c, AQ_EVALUE, name, "expected an integer in 4..1000, got %s", got);
-    x = (double)v;
-    break;
-  }
-  case K_PRIMARY:
-  case K_REVERSE:
-    if (!parse_hinges(value, &c->hs[k - K_PRIMARY]))
+  case AQ_CFG_PRIMARY:
+  case AQ_CFG_REVERSE:
+    if (!parse_hinges(value, &c->hs[k - AQ_CFG_PRIMARY]))
       return fail(c, AQ_EVALUE, name,
                   "expected four hinges JOINT FACE with FACE e or i (e.g. 0e 6i 12e 19i), got %s",
                   got);
     return 1;
-  case K_COR:
-    if (!aq_infile_number(value, &x) || !(x >= 0) || !(x <= 1))
-      return fail(c, AQ_EVALUE, name, "expected a kinetic-energy ratio in [0, 1], got %s", got);
-    break;
-  case K_IMPACT:
-    if (!strcmp(value, "cor"))
-      c->impact = AQ_IMPACT_COR;
-    else if (!strcmp(value, "momentum"))
-      c->impact = AQ_IMPACT_MOMENTUM;
-    else
-      return fail(c, AQ_EVALUE, name, "expected cor or momentum, got %s", got);
+  case AQ_CFG_IMPACT:
+    c->impact = (int)c->num[k]; /* aq_impact, in the table's order */
     return 1;
-  case K_G:
-    if (!aq_infile_number(value, &x) || !(x > 0) || !(x <= 100))
-      return fail(c, AQ_EVALUE, name, "expected a gravity in (0, 100] m/s^2, got %s", got);
-    break;
+  case AQ_CFG_CONTROL:
+    c->control = (int)c->num[k]; /* aq_hinge_control, in the table's order */
+    return 1;
+  default:
+    return 1; /* a number, kept in c->num[k] */
   }
-  c->num[k] = x;
-  return 1;
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err);
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err);
 
 aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int *hit,
                               aq_arch **out, aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, NULL, store, hit, out, err);
+}
+
+aq_status aq_arch_load_opts(const char *path, const aq_arch_options *opt, aq_arch **out,
+                            aq_error *err)
+{
+  return aq_arch_load_stored_opts(path, opt, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_stored_opts(const char *path, const aq_arch_options *opt,
+                                   const aq_arch_store *store, int *hit, aq_arch **out,
+                                   aq_error *err)
 {
   *out = NULL;
   if (hit)
@@ -359,14 +362,14 @@ aq_status aq_arch_load_stored(const char *path, const aq_arch_store *store, int 
   char *buf = aq_infile_read(path, MAX_FILE_BYTES, "arch file", &len, &st, err);
   if (!buf)
     return st;
-  st = load_string(buf, len, path, store, hit, out, err);
+  st = load_string(buf, len, path, opt, store, hit, out, err);
   free(buf);
   return st;
 }
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err)
 {
-  return aq_arch_load_stored(path, NULL, NULL, out, err);
+  return aq_arch_load_stored_opts(path, NULL, NULL, NULL, out, err);
 }
 
 /* The checks that need the whole file: the keys the shape takes and
@@ -376,35 +379,47 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
 {
   unsigned bit = 1u << c->shape;
   const char *shape = aq_shape_names[c->shape];
-  for (int k = 0; k < NKEYS; k++)
-    if (c->key_line[k] && !(keys[k].shapes & bit)) {
+  for (int k = 0; k < AQ_CFG_NKEYS; k++)
+    if (c->key_line[k] && !(aq_cfg_keys[k].shapes & bit)) {
       char takes[256] = "";
-      for (int i = 0; i < NKEYS; i++)
-        if (!strcmp(keys[i].section, "arch") && (keys[i].shapes & bit) && i != K_NAME &&
-            i != K_SHAPE)
+      for (int i = 0; i < AQ_CFG_NKEYS; i++)
+        if (!strcmp(aq_cfg_keys[i].section, "arch") && (aq_cfg_keys[i].shapes & bit) && i != AQ_CFG_NAME &&
+            i != AQ_CFG_SHAPE)
           snprintf(takes + strlen(takes), sizeof takes - strlen(takes), "%s%s",
-                   takes[0] ? ", " : "", keys[i].name);
-      return aq_error_set(err, AQ_EFORMAT, path, c->key_line[k], -1, keys[k].name,
+                   takes[0] ? ", " : "", aq_cfg_keys[i].name);
+      return aq_error_set(err, AQ_EFORMAT, path, c->key_line[k], -1, aq_cfg_keys[k].name,
                           "expected no %s with shape = %s (it takes %s), got one",
-                          keys[k].name, shape, takes);
+                          aq_cfg_keys[k].name, shape, takes);
     }
-  for (int k = 0; k < NKEYS; k++)
-    if ((keys[k].required & bit) && !c->key_line[k]) {
+  for (int k = 0; k < AQ_CFG_NKEYS; k++)
+    if ((aq_cfg_keys[k].required & bit) && !c->key_line[k]) {
       if (c->shape == AQ_SHAPE_CIRCULAR)
-        return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
-                            "expected a value in [%s], got none", keys[k].section);
-      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, keys[k].name,
-                          "expected a value in [%s] for shape = %s, got none", keys[k].section,
+        return aq_error_set(err, AQ_EFORMAT, path, -1, -1, aq_cfg_keys[k].name,
+                            "expected a value in [%s], got none", aq_cfg_keys[k].section);
+      return aq_error_set(err, AQ_EFORMAT, path, -1, -1, aq_cfg_keys[k].name,
+                          "expected a value in [%s] for shape = %s, got none", aq_cfg_keys[k].section,
                           shape);
     }
-  if (c->fill_section && (!c->key_line[K_LEVEL] || !c->key_line[K_FDENS]))
+  if (c->fill_section && (!c->key_line[AQ_CFG_FILL_LEVEL] || !c->key_line[AQ_CFG_FILL_DENSITY]))
     return aq_error_set(err, AQ_EFORMAT, path, c->fill_section, -1,
-                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m",
+                        c->key_line[AQ_CFG_FILL_LEVEL] ? "density_kg_m3" : "level_m",
                         "expected level_m and density_kg_m3 in [fill], got no %s",
-                        c->key_line[K_LEVEL] ? "density_kg_m3" : "level_m");
-  if (c->hinges_section && !c->key_line[K_PRIMARY])
+                        c->key_line[AQ_CFG_FILL_LEVEL] ? "density_kg_m3" : "level_m");
+  if (c->key_line[AQ_CFG_REVERSE] && !c->key_line[AQ_CFG_PRIMARY])
+    return aq_error_set(err, AQ_EFORMAT, path, c->key_line[AQ_CFG_REVERSE], -1, "primary",
+                        "expected a primary hinge set in [hinges] with the reverse, got none");
+  if (c->hinges_section && !c->key_line[AQ_CFG_PRIMARY] && !c->key_line[AQ_CFG_CONTROL])
     return aq_error_set(err, AQ_EFORMAT, path, c->hinges_section, -1, "primary",
-                        "expected a primary hinge set in [hinges], got none");
+                        "expected a primary hinge set or a control in [hinges], got neither");
+  /* control: fixed by default when the file names the primary, free when
+   * the search finds it */
+  if (!c->key_line[AQ_CFG_CONTROL])
+    c->control = c->key_line[AQ_CFG_PRIMARY] ? AQ_CONTROL_FIXED : AQ_CONTROL_FREE;
+  if (c->control == AQ_CONTROL_FREE && c->key_line[AQ_CFG_REVERSE])
+    return aq_error_set(err, AQ_EVALUE, path, c->key_line[AQ_CFG_REVERSE], -1, "reverse",
+                        "expected no reverse with control = free (line %ld: each direction's "
+                        "set is its own minimum mechanism), got one",
+                        c->key_line[AQ_CFG_CONTROL]);
   if (c->shape != AQ_SHAPE_JOINTS)
     return AQ_OK;
   /* joints_file and faces_file: relative to the .cfg's directory */
@@ -418,8 +433,8 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
                 : snprintf(full[f], sizeof full[f], "%.*s/%s", (int)(slash - path), path,
                            c->path[f]);
     if (w < 0 || (size_t)w >= sizeof full[f])
-      return aq_error_set(err, AQ_EVALUE, path, c->key_line[K_JOINTS + f], -1,
-                          keys[K_JOINTS + f].name, "expected a path of at most %d bytes, got "
+      return aq_error_set(err, AQ_EVALUE, path, c->key_line[AQ_CFG_JOINTS_FILE + f], -1,
+                          aq_cfg_keys[AQ_CFG_JOINTS_FILE + f].name, "expected a path of at most %d bytes, got "
                           "a longer one", PATH_BYTES - 1);
   }
   aq_status st = aq_joints_read(full[0], c->path[1][0] ? full[1] : NULL, J, err);
@@ -428,7 +443,7 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
     char why[sizeof err->message];
     snprintf(why, sizeof why, "%s", err->message);
     const char *r = strstr(why, "got ");
-    aq_error_set(err, AQ_EIO, path, c->key_line[K_JOINTS + f], -1, keys[K_JOINTS + f].name,
+    aq_error_set(err, AQ_EIO, path, c->key_line[AQ_CFG_JOINTS_FILE + f], -1, aq_cfg_keys[AQ_CFG_JOINTS_FILE + f].name,
                  "expected a readable file, got \"%.300s\": %.200s", full[f], r ? r + 4 : why);
   }
   return st;
@@ -467,15 +482,15 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
 {
   aq_arch_params p;
   memset(&p, 0, sizeof p);
-  p.radius_m = c->num[K_RADIUS];
-  p.thickness_m = c->num[K_THICK];
-  p.embrace_rad = c->num[K_EMBRACE] * AQ_DEG_RAD;
-  p.voussoirs = c->shape == AQ_SHAPE_JOINTS ? J->n : (size_t)c->num[K_VOUS];
-  p.density_kg_m3 = c->num[K_DENS];
-  p.depth_m = c->num[K_DEPTH];
+  p.radius_m = c->num[AQ_CFG_RADIUS];
+  p.thickness_m = c->num[AQ_CFG_THICKNESS];
+  p.embrace_rad = c->num[AQ_CFG_EMBRACE] * AQ_DEG_RAD;
+  p.voussoirs = c->shape == AQ_SHAPE_JOINTS ? J->n : (size_t)c->num[AQ_CFG_VOUSSOIRS];
+  p.density_kg_m3 = c->num[AQ_CFG_DENSITY];
+  p.depth_m = c->num[AQ_CFG_DEPTH];
   p.shape = (aq_shape)c->shape;
-  p.span_m = c->num[K_SPAN];
-  p.rise_m = c->num[K_RISE];
+  p.span_m = c->num[AQ_CFG_SPAN];
+  p.rise_m = c->num[AQ_CFG_RISE];
   if (c->shape == AQ_SHAPE_JOINTS) {
     p.joint_i = J->ji;
     p.joint_e = J->je;
@@ -485,9 +500,11 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
     }
   }
   if (c->fill_section) {
-    p.fill_level_m = c->num[K_LEVEL];
-    p.fill_density_kg_m3 = c->num[K_FDENS];
+    p.fill_level_m = c->num[AQ_CFG_FILL_LEVEL];
+    p.fill_density_kg_m3 = c->num[AQ_CFG_FILL_DENSITY];
   }
+  p.control = (aq_hinge_control)c->control;
+  p.friction = src->friction > 0 ? src->friction : c->num[AQ_CFG_FRICTION]; /* 0: none */
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
@@ -495,7 +512,7 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
     pm[i] = c->mass[i].m;
   p.nmass = c->nmass;
   p.mass = pm;
-  aq_arch_dynamics dyn = {c->num[K_COR], (aq_impact)c->impact, c->num[K_G]};
+  aq_arch_dynamics dyn = {c->num[AQ_CFG_COR], (aq_impact)c->impact, c->num[AQ_CFG_G]};
   char name[64];
   if (c->name[0]) {
     snprintf(name, sizeof name, "%s", c->name);
@@ -507,22 +524,22 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
       len -= 4;
     snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), b);
   }
-  aq_status st = build_stored(&p, c->key_line[K_PRIMARY] ? &c->hs[0] : NULL,
-                              c->key_line[K_REVERSE] ? &c->hs[1] : NULL, &dyn, name, src, store,
+  aq_status st = build_stored(&p, c->key_line[AQ_CFG_PRIMARY] ? &c->hs[0] : NULL,
+                              c->key_line[AQ_CFG_REVERSE] ? &c->hs[1] : NULL, &dyn, name, src, store,
                               hit, out, err);
   free(pm);
   if (st != AQ_OK && err) {
     /* name the file and the line of the key the model complained about */
     long line = -1;
-    for (int k = NKEYS; k-- > 0;)
-      if (!strcmp(err->field, keys[k].name) && c->key_line[k])
+    for (int k = AQ_CFG_NKEYS; k-- > 0;)
+      if (!strcmp(err->field, aq_cfg_keys[k].name) && c->key_line[k])
         line = c->key_line[k];
     for (size_t i = 0; i < c->nmass; i++)
       if (!strcmp(err->field, c->mass[i].m.name))
         line = c->mass[i].line;
-    if (!strcmp(err->field, "reverse") && !c->key_line[K_REVERSE])
-      line = c->key_line[K_PRIMARY];
-    if (!strcmp(err->field, "hinges") && !c->key_line[K_PRIMARY])
+    if (!strcmp(err->field, "reverse") && !c->key_line[AQ_CFG_REVERSE])
+      line = c->key_line[AQ_CFG_PRIMARY];
+    if (!strcmp(err->field, "hinges") && !c->key_line[AQ_CFG_PRIMARY])
       line = -1;
     snprintf(err->input, sizeof err->input, "%s", path);
     err->line = line > 0 ? line : -1;
@@ -533,12 +550,18 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
 aq_status aq_arch_load_string(const char *data, size_t len, const char *path,
                               aq_arch **out, aq_error *err)
 {
-  return load_string(data, len, path, NULL, NULL, out, err);
+  return load_string(data, len, path, NULL, NULL, NULL, out, err);
+}
+
+aq_status aq_arch_load_string_opts(const char *data, size_t len, const char *path,
+                                   const aq_arch_options *opt, aq_arch **out, aq_error *err)
+{
+  return load_string(data, len, path, opt, NULL, NULL, out, err);
 }
 
 static aq_status load_string(const char *data, size_t len, const char *path,
-                             const aq_arch_store *store, int *hit, aq_arch **out,
-                             aq_error *err)
+                             const aq_arch_options *opt, const aq_arch_store *store, int *hit,
+                             aq_arch **out, aq_error *err)
 {
   int hit_ = 0;
   *out = NULL;
@@ -562,7 +585,7 @@ static aq_status load_string(const char *data, size_t len, const char *path,
   c.file = path;
   c.text = text;
   c.err = err;
-  c.num[K_G] = AQ_G0_MPS2;
+  c.num[AQ_CFG_G] = AQ_G0_MPS2;
   int rc = ini_parse_stream(reader, &c, handler, &c);
   if (!c.failed && rc > 0) {
     /* a line libinih could not parse: show it */
@@ -589,7 +612,9 @@ static aq_status load_string(const char *data, size_t len, const char *path,
   aq_joints J;
   memset(&J, 0, sizeof J);
   st = after_parse(&c, path, &J, err);
-  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]}};
+  double friction = opt && opt->friction > 0 && isfinite(opt->friction) ? opt->friction : 0;
+  aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]},
+                         friction};
   if (st == AQ_OK)
     st = build_parsed(&c, path, &J, &src, store, &hit_, &a, err);
   free(c.mass);

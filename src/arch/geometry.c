@@ -46,8 +46,8 @@
 #define CROSS_ITER 200       /* bisection steps locating a crossing (to round-off) */
 #define MAX_PIECES 8         /* pieces of a voussoir's or fill's loop before cutting */
 
-const char *const aq_shape_names[AQ_SHAPE_COUNT] = {"circular", "pointed", "elliptical",
-                                                     "parabolic", "catenary", "joints"};
+const char *const aq_shape_names[AQ_SHAPE_COUNT + 1] = {
+    "circular", "pointed", "elliptical", "parabolic", "catenary", "joints", NULL};
 
 aq_mass aq_sector_mass(double r_i, double r_e, double th0, double th1,
                        double rho, double depth)
@@ -716,13 +716,20 @@ static double springing_level(const aq_geom *g)
 
 /* Point masses: each inside its voussoir's vertical strip (between the
  * lowest and highest x of its outline and fill) and above the arch's
- * lowest point. */
+ * lowest point, each to MASS_ON_JOINT_REL of the arch's size: a mass on the
+ * joint between two voussoirs (at x = 0 on a crown joint, which the
+ * outlines place within round-off of it, on either side) may name either,
+ * which carries it. */
+#define MASS_ON_JOINT_REL 1e-9
 static aq_status add_masses(aq_geom *g, aq_error *err)
 {
   size_t n = g->p.voussoirs;
-  double ylo = HUGE_VAL;
-  for (size_t i = 0; i < g->outline_start[n]; i++)
+  double ylo = HUGE_VAL, size = 0;
+  for (size_t i = 0; i < g->outline_start[n]; i++) {
     ylo = fmin(ylo, g->outline[i].y);
+    size = fmax(size, fmax(fabs(g->outline[i].x), fabs(g->outline[i].y)));
+  }
+  double tol = MASS_ON_JOINT_REL * size;
   for (size_t m = 0; m < g->p.nmass; m++) {
     aq_point_mass pm = g->p.mass[m];
     g->mass[m] = pm;
@@ -738,11 +745,13 @@ static aq_status add_masses(aq_geom *g, aq_error *err)
       xlo = fmin(xlo, g->outline[i].x), xhi = fmax(xhi, g->outline[i].x);
     for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++)
       xlo = fmin(xlo, g->fill[i].x), xhi = fmax(xhi, g->fill[i].x);
-    if (!(pm.p.x >= xlo && pm.p.x <= xhi && pm.p.y >= ylo) || !isfinite(pm.p.y))
+    if (!(pm.p.x >= xlo - tol && pm.p.x <= xhi + tol && pm.p.y >= ylo - tol) ||
+        !isfinite(pm.p.y))
       return aq_error_set(err, AQ_EGEOMETRY, NULL, -1, -1, pm.name,
                           "expected a point on voussoir %zu (x in [%.6g, %.6g] m, above or "
                           "below it; y >= %.6g m, the arch's lowest point), got (%g, %g) m",
-                          k, xlo, xhi, ylo, pm.p.x, pm.p.y);
+                          k, fabs(xlo) < tol ? 0.0 : xlo, fabs(xhi) < tol ? 0.0 : xhi,
+                          fabs(ylo) < tol ? 0.0 : ylo, pm.p.x, pm.p.y);
     aq_mass pt = {pm.mass_kg, pm.p, 0};
     g->vous[k] = aq_mass_add(g->vous[k], pt);
     g->point_kg += pm.mass_kg;
@@ -898,4 +907,107 @@ aq_mass aq_geom_body(const aq_geom *g, size_t j0, size_t j1)
     b.inertia_kgm2 += g->vous[k].inertia_kgm2 + g->vous[k].mass_kg * (dx * dx + dy * dy);
   }
   return b;
+}
+
+/* ---- the straight strut -------------------------------------------------- */
+
+#define STRUT_SLOPE_MAX 1e4    /* slopes searched, m/m: lines within 0.006 deg of vertical */
+#define STRUT_BISECTIONS 200   /* halvings of the slope's bracket (to round-off) */
+#define STRUT_MARGIN_REL 1e-9  /* a margin above this (relative to the arch's size) fits */
+
+/* For slope b: the best offset *a and the margin (half the gap between the
+ * lowest extrados end and the highest intrados end, each measured from the
+ * line y = b x); *dgap the gap's slope in b (a supergradient); *ti, *te
+ * the joints of those two ends. */
+static double strut_at(const aq_geom *g, double b, double *a, double *dgap, size_t *ti,
+                       size_t *te)
+{
+  size_t n = g->p.voussoirs;
+  double lo_e = HUGE_VAL, hi_i = -HUGE_VAL;
+  *ti = *te = 0;
+  for (size_t j = 0; j <= n; j++) {
+    double e = g->je[j].y - b * g->je[j].x, i = g->ji[j].y - b * g->ji[j].x;
+    if (e < lo_e)
+      lo_e = e, *te = j;
+    if (i > hi_i)
+      hi_i = i, *ti = j;
+  }
+  *a = 0.5 * (lo_e + hi_i);
+  *dgap = -g->je[*te].x + g->ji[*ti].x;
+  return 0.5 * (lo_e - hi_i);
+}
+
+/* Where the line y = a + b x meets the segment from p to q (clamped to it). */
+static aq_vec2 strut_meets(double a, double b, aq_vec2 p, aq_vec2 q)
+{
+  double den = (q.y - p.y) - b * (q.x - p.x);
+  double t = den != 0 ? (a + b * p.x - p.y) / den : 0.5;
+  t = t < 0 ? 0 : t > 1 ? 1 : t;
+  aq_vec2 r = {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+  return r;
+}
+
+void aq_geom_strut(const aq_geom *g, aq_strut *s)
+{
+  /* the margin is concave in the slope b (a minimum of lines minus a
+   * maximum of lines): bisection on the sign of its supergradient */
+  double lo = -STRUT_SLOPE_MAX, hi = STRUT_SLOPE_MAX, a, d;
+  size_t ti, te;
+  for (int k = 0; k < STRUT_BISECTIONS && hi - lo > 0; k++) {
+    double mid = 0.5 * (lo + hi);
+    strut_at(g, mid, &a, &d, &ti, &te);
+    if (d > 0)
+      lo = mid;
+    else if (d < 0)
+      hi = mid;
+    else
+      lo = hi = mid;
+  }
+  double b = 0.5 * (lo + hi);
+  s->margin_m = strut_at(g, b, &a, &d, &s->tight_i, &s->tight_e);
+  s->a = a;
+  s->b = b;
+  size_t n = g->p.voussoirs;
+  s->p0 = strut_meets(a, b, g->ji[0], g->je[0]);
+  s->pn = strut_meets(a, b, g->ji[n], g->je[n]);
+}
+
+aq_status aq_geom_check_strut(const aq_geom *g, aq_error *err)
+{
+  size_t n = g->p.voussoirs;
+  double size = 0;
+  for (size_t j = 0; j <= n; j++)
+    size = fmax(size, fmax(fmax(fabs(g->ji[j].x), fabs(g->ji[j].y)),
+                           fmax(fabs(g->je[j].x), fabs(g->je[j].y))));
+  aq_strut s;
+  aq_geom_strut(g, &s);
+  if (!(s.margin_m > STRUT_MARGIN_REL * size))
+    return AQ_OK;
+  int joints = g->p.shape == AQ_SHAPE_JOINTS;
+  char rule[400] = "";
+  if (!joints) {
+    /* joints normal to the centre line: the intrados end rises to the
+     * crown, the extrados end is lowest at a springing, so with a joint at
+     * the crown a strut fits while f - t/2 <= (t/2) cos(phi): the rise f
+     * at most (t/2)(1 + cos phi), phi the centre line's slope at the
+     * springings (docs/arch-model.md) */
+    double t = g->p.thickness_m;
+    double f = g->p.shape == AQ_SHAPE_CIRCULAR
+                   ? g->p.radius_m * (1 - cos(0.5 * g->p.embrace_rad))
+                   : g->p.rise_m;
+    double ux = g->je[0].x - g->ji[0].x, uy = g->je[0].y - g->ji[0].y;
+    double cphi = uy / hypot(ux, uy), phi_deg = acos(fmin(1, fmax(-1, cphi))) / AQ_DEG_RAD;
+    snprintf(rule, sizeof rule,
+             "; a mechanism needs a rise above (t/2)(1 + cos %.3g deg) = %.4g m (here %.4g; "
+             "%.3g deg: the springings' slope) or t below %.4g m (here %.4g)",
+             phi_deg, 0.5 * t * (1 + cphi), f, phi_deg, 2 * f / (1 + cphi), t);
+  }
+  return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, joints ? "joints_file" : "thickness_m",
+                      "expected an arch a horizontal load can open into four hinges, got one "
+                      "too flat for its thickness: a straight strut from joint 0 at (%.4g, "
+                      "%.4g) m to joint %zu at (%.4g, %.4g) m passes %.4g m inside every joint "
+                      "(nearest: joint %zu's intrados, joint %zu's extrados) and carries any "
+                      "horizontal load%s",
+                      s.p0.x, s.p0.y, n, s.pn.x, s.pn.y, s.margin_m, s.tight_i, s.tight_e,
+                      rule);
 }

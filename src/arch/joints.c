@@ -10,8 +10,9 @@
  *                k+1, in order from joint k (the rows of one face in that
  *                order; faces may come in any order).
  * Blank lines and lines starting with '#' are skipped; CR LF line ends are
- * read as LF.  Checks: numbers finite, joints numbered in order, 4 to 1000
- * voussoirs, each joint of length > 0, each voussoir a simple polygon of
+ * read as LF.  Checks: coordinates within +-1000 m (cfg_keys.h), joints
+ * numbered in order, 4 to 1000 voussoirs, each joint 0.001 to 1000 m
+ * long, each voussoir a simple polygon of
  * positive area (counter-clockwise: the arch runs from +x to -x over the
  * crown, so a file given the other way round is refused), no joint
  * crossing another, no two voussoirs overlapping.
@@ -24,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg_keys.h"
 #include "infile.h"
 
 #define MAX_FILE_BYTES 20000000 /* 20 MB */
@@ -117,6 +119,12 @@ static int integer(const char *s, long *x)
   return 1;
 }
 
+/* 1 and *x if s is a number within +-AQ_CFG_COORD_MAX_M (cfg_keys.h). */
+static int coordinate(const char *s, double *x)
+{
+  return aq_infile_number(s, x) && fabs(*x) <= AQ_CFG_COORD_MAX_M;
+}
+
 /* The next row that is not skipped, its fields split into f (split) and
  * *p past it, *line counting every line read; -1 at the end of the text. */
 static int next_row(const char **p, long *line, char f[][MAX_FIELD], int max)
@@ -131,11 +139,12 @@ static int next_row(const char **p, long *line, char f[][MAX_FIELD], int max)
   return -1;
 }
 
-/* The header line: the first line that is not skipped must be want. */
+/* The header line: the first line that is not skipped must be want (a
+ * UTF-8 byte-order mark before it, as spreadsheets write one, skipped). */
 static const char *header(const char *text, const char *path, const char *want, long *line,
                           aq_error *err, aq_status *st)
 {
-  const char *next = text;
+  const char *next = strncmp(text, "\xEF\xBB\xBF", 3) ? text : text + 3;
   char f[8][MAX_FIELD], got[8 * MAX_FIELD + 8];
   int nf = next_row(&next, line, f, 8);
   if (nf < 0) {
@@ -159,7 +168,7 @@ static aq_status read_joints(const char *path, const char *text, aq_joints *J, a
   static const char *const col[5] = {"joint", "xi_m", "yi_m", "xe_m", "ye_m"};
   aq_status st = AQ_OK;
   long line = 0;
-  const char *p = header(text, path, "joint,xi_m,yi_m,xe_m,ye_m", &line, err, &st);
+  const char *p = header(text, path, aq_cfg_joints_header, &line, err, &st);
   if (!p)
     return st;
   size_t cap = 64, n = 0;
@@ -188,9 +197,10 @@ static aq_status read_joints(const char *path, const char *text, aq_joints *J, a
                           "expected at most %d joints (1000 voussoirs), got more", MAX_JOINTS);
     double v[4];
     for (int k = 0; k < 4; k++)
-      if (!aq_infile_number(f[k + 1], &v[k]))
-        return aq_error_set(err, AQ_EFORMAT, path, line, -1, col[k + 1],
-                            "expected a finite number (m), got \"%s\"", f[k + 1]);
+      if (!coordinate(f[k + 1], &v[k]))
+        return aq_error_set(err, AQ_EVALUE, path, line, -1, col[k + 1],
+                            "expected a coordinate within +-%g m, got \"%s\"",
+                            AQ_CFG_COORD_MAX_M, f[k + 1]);
     if (n == cap) {
       cap *= 2;
       aq_vec2 *a = realloc(J->ji, cap * sizeof *a);
@@ -208,10 +218,13 @@ static aq_status read_joints(const char *path, const char *text, aq_joints *J, a
     J->ji[n] = (aq_vec2){v[0], v[1]};
     J->je[n] = (aq_vec2){v[2], v[3]};
     J->jline[n] = line;
-    if (!(hypot(v[2] - v[0], v[3] - v[1]) > 0))
+    double len = hypot(v[2] - v[0], v[3] - v[1]);
+    if (!(len >= AQ_CFG_LENGTH_MIN_M && len <= AQ_CFG_LENGTH_MAX_M))
       return aq_error_set(err, AQ_EGEOMETRY, path, line, -1, "xe_m",
-                          "expected a joint of length > 0 (its extrados end away from its "
-                          "intrados end), got both ends at (%g, %g) m", v[0], v[1]);
+                          "expected a joint %g to %g m long (its extrados end away from its "
+                          "intrados end), got %g m from (%g, %g) to (%g, %g) m",
+                          AQ_CFG_LENGTH_MIN_M, AQ_CFG_LENGTH_MAX_M, len, v[0], v[1], v[2],
+                          v[3]);
     n++;
   }
   if (n < 5)
@@ -226,7 +239,7 @@ static aq_status read_faces(const char *path, const char *text, aq_joints *J, aq
   static const char *const col[4] = {"voussoir", "face", "x_m", "y_m"};
   aq_status st = AQ_OK;
   long line = 0;
-  const char *p = header(text, path, "voussoir,face,x_m,y_m", &line, err, &st);
+  const char *p = header(text, path, aq_cfg_faces_header, &line, err, &st);
   if (!p)
     return st;
   size_t n = J->n, cap = 0, np = 0;
@@ -253,10 +266,12 @@ static aq_status read_faces(const char *path, const char *text, aq_joints *J, aq
       bad = col[0], snprintf(expect, sizeof expect, "a voussoir in 0..%zu", n - 1);
     else if (strcmp(f[1], "i") && strcmp(f[1], "e"))
       bad = col[1], snprintf(expect, sizeof expect, "i (intrados) or e (extrados)");
-    else if (!aq_infile_number(f[2], &x))
-      bad = col[2], snprintf(expect, sizeof expect, "a finite number (m)");
-    else if (!aq_infile_number(f[3], &y))
-      bad = col[3], snprintf(expect, sizeof expect, "a finite number (m)");
+    else if (!coordinate(f[2], &x))
+      bad = col[2], snprintf(expect, sizeof expect, "a coordinate within +-%g m",
+                             AQ_CFG_COORD_MAX_M);
+    else if (!coordinate(f[3], &y))
+      bad = col[3], snprintf(expect, sizeof expect, "a coordinate within +-%g m",
+                             AQ_CFG_COORD_MAX_M);
     else if (np >= MAX_FACE_POINTS)
       bad = col[0], snprintf(expect, sizeof expect, "at most %d points", MAX_FACE_POINTS);
     if (bad) {

@@ -55,8 +55,9 @@ typedef enum {
   AQ_SHAPE_COUNT
 } aq_shape;
 
-/* The shape names of the arch file, indexed by aq_shape. */
-extern const char *const aq_shape_names[AQ_SHAPE_COUNT];
+/* The shape names of the arch file, indexed by aq_shape; NULL after the
+ * last (cfg_keys.c's shape = takes them). */
+extern const char *const aq_shape_names[AQ_SHAPE_COUNT + 1];
 
 /* A centre line from the springing (span/2, 0) over the crown to
  * (-span/2, 0), on one or two curves (the pointed arch's halves), each with
@@ -131,6 +132,10 @@ typedef struct {
   /* a geometry as stored in a results file (not NULL: every field above
    * but depth, density and shape is unused; copied) */
   const aq_arch_drawing *stored;
+  /* statics: how the hinges are chosen (arch.h; 0: fixed) and the Coulomb
+   * friction coefficient of every joint (> 0; 0: none) */
+  aq_hinge_control control;
+  double friction;
 } aq_arch_params;
 
 /* The parameters of a circular arch (no fill, no point masses). */
@@ -140,7 +145,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL, NULL};
+                      0, NULL, NULL, AQ_CONTROL_FIXED, 0};
   return p;
 }
 
@@ -206,6 +211,30 @@ aq_vec2 aq_geom_joint_point(const aq_geom *g, size_t j, char face);
 /* Mass properties of voussoirs [j0, j1) as one body: mass, centroid and
  * centroidal inertia (parallel-axis sum). */
 aq_mass aq_geom_body(const aq_geom *g, size_t j0, size_t j1);
+
+/* The straight strut of an arch: the line y = a + b x that crosses every
+ * joint between its ends, the intrados end on or below it and the
+ * extrados end on or above it (the side on which a thrust pushing from the
+ * +x springing towards the other keeps every joint in compression), with
+ * the largest margin, the least vertical distance of an end from the line
+ * on its side (geometry.c, aq_geom_strut).  A margin > 0: the strut fits
+ * inside the arch, and a thrust along it, made as large as needed, carries
+ * any load: no four-hinge mechanism opens under any horizontal load. */
+typedef struct {
+  double a, b;        /* the line y = a + b x: m, m/m */
+  double margin_m;    /* > 0: it fits; < 0: the least violation */
+  size_t tight_i, tight_e; /* the joints whose intrados end and extrados end are
+                              nearest the line (both margin_m from it) */
+  aq_vec2 p0, pn;     /* where the line meets joint 0 and joint n */
+} aq_strut;
+void aq_geom_strut(const aq_geom *g, aq_strut *s);
+
+/* AQ_OK if a horizontal load can open the arch into a four-hinge mechanism
+ * as far as its geometry tells (no strut fits, aq_geom_strut); else
+ * AQ_EINADMISSIBLE with one line (field "thickness_m", or "joints_file" for
+ * a joints arch) giving the strut and, for an arch with a centre line, the
+ * rise or thickness a mechanism needs. */
+aq_status aq_geom_check_strut(const aq_geom *g, aq_error *err);
 
 /* ---- kinematics.c -------------------------------------------------- */
 
@@ -387,6 +416,20 @@ typedef struct {
 aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
                             double *lambda0, aq_search_info *info, aq_error *err);
 
+/* As aq_search_minimum over the sets that ground acceleration of sign
+ * act_sign drives (path.h act_sign; -1 or +1) alone: that direction's
+ * minimum-lambda0 admissible set.  For an arch that stands (its
+ * aq_search_minimum above 0); AQ_EINADMISSIBLE (field "hinges") if that
+ * direction has none. */
+aq_status aq_search_direction(const aq_geom *g, double g_mps2, int act_sign,
+                              aq_hinge_set *best, double *lambda0, aq_search_info *info,
+                              aq_error *err);
+
+/* The sign of the ground acceleration that drives hs (path.h act_sign, as
+ * aq_workpath_build sets it), or 0 when hs is no mechanism (joints out of
+ * range or order, a hinge that does not open). */
+int aq_search_act_sign(const aq_geom *g, const aq_hinge_set *hs);
+
 /* Open GLPK, which the search calls through glpk_lazy.c (once per process;
  * later calls return the first's outcome): AQ_OK, or AQ_EUNSUPPORTED with
  * err naming the library and the loader's reason. */
@@ -410,7 +453,9 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
                                const char *name, aq_arch **out, aq_error *err);
 
 /* Build an arch from parameters (no file): primary NULL runs the search,
- * reverse NULL takes the primary's face swap.  dyn NULL: cor 0, impact cor,
+ * reverse NULL takes the primary's face swap; with p->control free, the
+ * sets are each direction's minimum (arch.h aq_hinge_control; a reverse is
+ * refused, AQ_EVALUE field "reverse").  dyn NULL: cor 0, impact cor,
  * standard gravity.  The caller frees with aq_arch_free. */
 aq_status aq_arch_build(const aq_arch_params *p, const aq_hinge_set *primary,
                         const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,

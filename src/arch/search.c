@@ -61,6 +61,12 @@
  * (faces read as binary digits, e 0 and i 1, so e i e i before i e i e),
  * then to the lower joints.
  *
+ * One direction alone (aq_search_direction, for an arch whose hinges are
+ * free: each direction of ground acceleration drives its own minimum):
+ * only that direction's program, and only sets that the direction drives
+ * (act_sign, from the horizontal work of the set's bodies) are read from
+ * its vertices.
+ *
  * An arch that cannot stand: when the optimum of a direction is <= 0 the
  * set read from it has lambda0 <= 0 (gravity alone, or gravity with a load
  * the other way, drives it).  When no lambda at all lets a line of thrust
@@ -74,6 +80,7 @@
 #include <glpk.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -88,9 +95,11 @@
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
 
-/* First-order lambda0 from the hinge points P[k] and the joints. */
+/* First-order lambda0 from the hinge points P[k] and the joints; *act (if
+ * not NULL): the sign of the ground acceleration that drives the set
+ * (path.h act_sign), from the horizontal work rate of gravity's bodies. */
 static int lambda0_fast(const aq_geom *g, const size_t j[4], const aq_vec2 P[4],
-                        int open1, const int open[4], double *lambda0)
+                        int open1, const int open[4], double *lambda0, int *act)
 {
   aq_vec2 v1 = {P[1].x - P[0].x, P[1].y - P[0].y};
   aq_vec2 v2 = {P[2].x - P[1].x, P[2].y - P[1].y};
@@ -118,10 +127,13 @@ static int lambda0_fast(const aq_geom *g, const size_t j[4], const aq_vec2 P[4],
   if (gx == 0)
     return 0;
   *lambda0 = (double)open1 * gy / fabs(gx);
+  if (act) /* a horizontal body force along -act_sign x does positive work (compressive()) */
+    *act = (double)open1 * gx > 0 ? -1 : 1;
   return 1;
 }
 
-int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0)
+/* aq_search_lambda0 with the set's act_sign (*act, if not NULL). */
+static int set_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0, int *act)
 {
   aq_vec2 P[4];
   int open[4];
@@ -131,7 +143,19 @@ int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0)
     P[k] = aq_geom_joint_point(g, hs->joint[k], hs->face[k]);
     open[k] = hs->face[k] == 'i' ? 1 : -1;
   }
-  return lambda0_fast(g, hs->joint, P, open[0], open, lambda0);
+  return lambda0_fast(g, hs->joint, P, open[0], open, lambda0, act);
+}
+
+int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0)
+{
+  return set_lambda0(g, hs, lambda0, NULL);
+}
+
+int aq_search_act_sign(const aq_geom *g, const aq_hinge_set *hs)
+{
+  double l0;
+  int act = 0;
+  return set_lambda0(g, hs, &l0, &act) ? act : 0;
 }
 
 /* Faces as binary digits (e 0, i 1, the first hinge's the highest): the
@@ -345,6 +369,7 @@ typedef struct {
   lp_row *row;
   size_t nrows;
   unsigned char *ex;   /* rows excluded in the current branch */
+  int act;             /* 0: sets of either direction; -1, +1: only sets of that act_sign */
   int have;            /* best: the lowest admissible set so far */
   aq_hinge_set hs;
   double lambda0;
@@ -372,7 +397,8 @@ static int admissible(const bb *B, const size_t rows[4], int relax, aq_hinge_set
     if (k > 0 && hs->joint[k] == hs->joint[k - 1])
       return 0;
   }
-  if (!aq_search_lambda0(B->g, hs, l0) || !isfinite(*l0))
+  int act = 0;
+  if (!set_lambda0(B->g, hs, l0, &act) || !isfinite(*l0) || (B->act && act != B->act))
     return 0;
   return relax ? *l0 <= 0 : compressive(B->g, hs, B->g_mps2);
 }
@@ -458,8 +484,9 @@ static lp_status node(bb *B, int relax, int depth)
   return st;
 }
 
-aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
-                            double *lambda0, aq_search_info *info, aq_error *err)
+/* aq_search_minimum (act 0) and aq_search_direction (act -1 or +1). */
+static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *best,
+                        double *lambda0, aq_search_info *info, aq_error *err)
 {
   if (aq_glpk_load(err) != AQ_OK)
     return AQ_EUNSUPPORTED;
@@ -468,6 +495,7 @@ aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
   memset(&B, 0, sizeof B);
   B.g = g;
   B.g_mps2 = g_mps2;
+  B.act = act;
   B.nrows = nrows;
   B.row = malloc(nrows * sizeof *B.row);
   B.ex = calloc(nrows, 1);
@@ -478,11 +506,13 @@ aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
   }
   glp_term_out(GLP_OFF);
   int infeasible = 0;
-  for (int s = 1; s >= -1; s -= 2) {
+  for (int s = 1; s >= -1; s -= 2) { /* the body force s lambda g drives act_sign -s */
+    if (act && s != -act)
+      continue;
     rows_fill(g, s, B.row);
     infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
   }
-  if (!B.have && infeasible == 2 && !B.failed) {
+  if (!act && !B.have && infeasible == 2 && !B.failed) {
     /* no line of thrust fits for any lambda: a set gravity drives */
     rows_fill(g, 1, B.row);
     node(&B, 1, 0);
@@ -501,18 +531,34 @@ aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
                         "= %.6g; archquake models four-hinge mechanisms only)",
                         MAX_PROGRAMS, B.info.liftoff_joint, B.info.liftoff_lambda);
   if (!B.have) {
+    char dir[48] = "";
+    if (act)
+      snprintf(dir, sizeof dir, " driven by act_sign %+d", act);
     if (B.info.liftoff)
       return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
-                          "expected an admissible four-hinge mechanism, got none: a mechanism "
-                          "with joint %zu lifting off governs (lambda = %.6g), which archquake "
-                          "does not model",
-                          B.info.liftoff_joint, B.info.liftoff_lambda);
+                          "expected an admissible four-hinge mechanism%s, got none: a "
+                          "mechanism with joint %zu lifting off governs (lambda = %.6g), which "
+                          "archquake does not model",
+                          dir, B.info.liftoff_joint, B.info.liftoff_lambda);
     return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "hinges",
-                        "expected an admissible four-hinge mechanism, got none (%s)",
+                        "expected an admissible four-hinge mechanism%s, got none (%s)", dir,
                         B.failed ? "the linear program failed" : "no set read from its optimum");
   }
   *best = B.hs;
   if (lambda0)
     *lambda0 = B.lambda0;
   return AQ_OK;
+}
+
+aq_status aq_search_minimum(const aq_geom *g, double g_mps2, aq_hinge_set *best,
+                            double *lambda0, aq_search_info *info, aq_error *err)
+{
+  return search(g, g_mps2, 0, best, lambda0, info, err);
+}
+
+aq_status aq_search_direction(const aq_geom *g, double g_mps2, int act_sign,
+                              aq_hinge_set *best, double *lambda0, aq_search_info *info,
+                              aq_error *err)
+{
+  return search(g, g_mps2, act_sign < 0 ? -1 : 1, best, lambda0, info, err);
 }

@@ -7,7 +7,7 @@
 #include "../io/sha256.h"
 #include "cache_key.h"
 
-#define KEY_FORMAT "archquake arch 1\n"
+#define KEY_FORMAT "archquake arch 2\n"
 
 void aq_arch_cache_key(const aq_arch_sources *src, aq_bytes_out *key)
 {
@@ -23,6 +23,7 @@ void aq_arch_cache_key(const aq_arch_sources *src, aq_bytes_out *key)
       aq_sha256_hex(part[k], n[k], hex);
     aq_bytes_put_str(key, hex, 0);
   }
+  aq_bytes_put_f64(key, src->friction); /* a command's --friction: another build */
 }
 
 /* aq_arch_store over an aq_diskcache. */
@@ -60,9 +61,9 @@ static void put(void *ctx, const aq_arch_sources *src, const unsigned char *byte
   free(key.data);
 }
 
-aq_status aq_arch_cache_load(aq_diskcache *c, const char *path, int *hit, aq_arch **out,
-                             aq_error *err)
+aq_status aq_arch_cache_load(aq_diskcache *c, const char *path, const aq_arch_options *opt,
+                             int *hit, aq_arch **out, aq_error *err)
 {
   aq_arch_store s = {c, get, release, put};
-  return aq_arch_load_stored(path, c ? &s : NULL, hit, out, err);
+  return aq_arch_load_stored_opts(path, opt, c ? &s : NULL, hit, out, err);
 }

@@ -25,9 +25,9 @@
  * of memory). */
 void aq_arch_cache_key(const aq_arch_sources *src, aq_bytes_out *key);
 
-/* aq_arch_load through the store c (NULL: built, no cache); *hit (if not
- * NULL) 1 when the arch's tables were read from c. */
-aq_status aq_arch_cache_load(aq_diskcache *c, const char *path, int *hit, aq_arch **out,
-                             aq_error *err);
+/* aq_arch_load_opts (opt NULL: none) through the store c (NULL: built, no
+ * cache); *hit (if not NULL) 1 when the arch's tables were read from c. */
+aq_status aq_arch_cache_load(aq_diskcache *c, const char *path, const aq_arch_options *opt,
+                             int *hit, aq_arch **out, aq_error *err);
 
 #endif

@@ -23,7 +23,7 @@
 _Static_assert(sizeof(aq_read_opts) == 41336,
                "aq_read_opts changed: add the new field to the cache key "
                "(src/job/subject_cache.c, read_opts_key), then update this size");
-_Static_assert(sizeof(aq_signal_opts) == 144,
+_Static_assert(sizeof(aq_signal_opts) == 152,
                "aq_signal_opts changed: add the new field to the cache key "
                "(src/job/subject_cache.c, proc_opts_key), then update this size");
 /* A record's metadata is stored as its bytes, its three pointers (path,
@@ -68,6 +68,7 @@ static void proc_opts_key(aq_bytes_out *b, const aq_signal_opts *p)
     aq_bytes_put_f64(b, p->im_period_s[i]);
   aq_bytes_put_f64(b, p->sa_avg_lo_s);
   aq_bytes_put_f64(b, p->sa_avg_hi_s);
+  aq_bytes_put_i64(b, p->peaks); /* where their peaks are taken */
 }
 
 void aq_subject_key_free(aq_subject_key *k)

@@ -102,7 +102,7 @@ static void num_td(aq_page_buf *b, double v, const char *fmt)
     aq_page_puts(b, "<td class=\"n\" data-v=\"NaN\">–</td>");
     return;
   }
-  aq_page_printf(b, "<td class=\"n\" data-v=\"%.17g\">", v);
+  aq_page_printf(b, "<td class=\"n\" data-v=\"%s\">", AQ_TEXT_NUM(v));
   aq_page_printf(b, fmt, v);
   aq_page_puts(b, "</td>");
 }
@@ -485,13 +485,31 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
                  ncol, ncol == 1 ? "" : "s", nsurv, nfail, ncol + nsurv + nfail,
                  aq_page_attr_num(A, "primary_lambda0"), aq_page_attr_num(A, "reverse_lambda0"),
                  aq_page_attr_num(A, "primary_q_c_rad"), aq_page_attr_num(A, "reverse_q_c_rad"));
+  const char *control = aq_page_attr(A, "control");
+  double mu = aq_page_attr_num(A, "friction");
+  if (control && !strcmp(control, "free"))
+    aq_page_puts(b, "<p>Hinges <b>free</b>: any joint may open, so each direction of ground "
+                    "acceleration drives its own minimum mechanism (primary: along −x, "
+                    "reverse: along +x).");
+  else
+    aq_page_printf(b, "<p>Hinges <b>fixed</b>%s: the hinge-controlled arch, whose mechanical "
+                      "joints are the primary set's (the reverse set swaps their faces); every "
+                      "other joint is taken to carry what the thrust demands, and every verdict "
+                      "below assumes so.",
+                   control ? "" : " (a file written before the control was recorded)");
+  if (mu > 0)
+    aq_page_printf(b, "  Joint friction μ = %.4g.</p>\n", mu);
+  else
+    aq_page_puts(b, "  No joint friction given: sliding is not checked.</p>\n");
   /* the arch */
   const char *cfg = aq_page_attr(A, "config");
   aq_arch *arch = NULL;
   aq_error e;
   /* from its .cfg as read; an arch the .cfg alone does not make (a joints
    * arch's files) from the geometry the results file keeps */
-  int loaded = cfg && aq_arch_load_string(cfg, strlen(cfg), name, &arch, &e) == AQ_OK;
+  aq_arch_options ao = {mu}; /* the friction the runs used (--friction over the file's) */
+  int loaded =
+      cfg && aq_arch_load_string_opts(cfg, strlen(cfg), name, &ao, &arch, &e) == AQ_OK;
   if (loaded || has_geometry(p->in->results, a)) {
     arch_fig f = {arch, p->in->results, name};
     char label[200];
@@ -681,7 +699,19 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     if (n) {
       aq_page_puts(b, "<p>The intensity measures ranked by the dispersion β of their "
                       "fragility fit: the smaller β, the better the measure predicts this "
-                      "arch's collapse.</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
+                      "arch's collapse.");
+      int spectral = 0;
+      for (size_t i = 0; i < n; i++)
+        spectral |= strncmp(t.fit[order[i]].im, "sa_", 3) == 0;
+      if (spectral) {
+        int r = aq_spectrum_peaks_parse(t.peaks);
+        aq_page_puts(b, "  Sa(T) and Sa_avg are pseudo-spectral accelerations at 5 % "
+                        "damping, their peaks taken by the rule <i>");
+        aq_page_esc(b, r >= 0 ? aq_spectrum_peaks_text((aq_spectrum_peaks)r)
+                              : "not stated (a file written before --peaks: exact)");
+        aq_page_puts(b, "</i>.");
+      }
+      aq_page_puts(b, "</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
                       "<th>median</th><th>β</th><th>median 90 % interval</th><th>records</th>"
                       "<th>censored</th></tr></thead><tbody>\n");
       for (size_t i = 0; i < n; i++) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../report/text.h"
 #include "read.h"
 
 /* The format this build's page reads (the tables of format 2). */
@@ -48,17 +49,6 @@ void aq_page_results_free(aq_page_results *r)
   memset(r, 0, sizeof *r);
 }
 
-/* A number as text: integers whole, others to 6 significant digits. */
-static void num_text(double v, char *buf, size_t n)
-{
-  if (isnan(v))
-    snprintf(buf, n, "nan");
-  else if (v == floor(v) && fabs(v) < 1e15)
-    snprintf(buf, n, "%.0f", v);
-  else
-    snprintf(buf, n, "%.6g", v);
-}
-
 /* The value of attribute or dataset element data of type t (npoints
  * elements) as text; *num the number if it is one. */
 static char *value_text(hid_t t, const void *data, size_t npoints, double *num)
@@ -80,8 +70,8 @@ static char *value_text(hid_t t, const void *data, size_t npoints, double *num)
   s[0] = '\0';
   for (size_t i = 0; i < npoints; i++) {
     double v = ((const double *)data)[i];
-    char one[40];
-    num_text(v, one, sizeof one);
+    char one[AQ_TEXT_NUM_MAX];
+    aq_text_double(one, sizeof one, v); /* the shortest that reads back */
     strcat(s, i ? ", " : "");
     strcat(s, one);
     if (npoints == 1)

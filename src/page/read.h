@@ -1,7 +1,8 @@
 /* read.h: the results and capacity files as the page shows them
  * (src/page/read.c).  Text where the page shows text: every attribute of
  * the root and of each arch group, and every column of the /records table,
- * as the file holds them (numbers as %.6g, or %.17g where asked); the runs
+ * as the file holds them (numbers as the shortest decimal that reads back
+ * to the same double, aq_text_double); the runs
  * as aq_h5_read_suite reads them; capacity tables as aq_h5_capacity_read.
  * Everything malloc'd, freed by aq_page_results_free. */
 #ifndef AQ_PAGE_READ_H

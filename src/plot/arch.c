@@ -321,38 +321,39 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
       aq_vec2 p[4] = {g->je[k], g->je[k + 1], g->ji[k + 1], g->ji[k]};
       for (int i = 0; i < 4; i++) {
         aq_vec2 q = d ? moved(f, k, p[i]) : p[i];
-        fprintf(o, "%scorner,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%scorner,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
         aq_vec2 q = d ? moved(f, k, g->outline[i]) : g->outline[i];
-        fprintf(o, "%soutline,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%soutline,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
         aq_vec2 q = d ? moved(f, k, g->fill[i]) : g->fill[i];
-        fprintf(o, "%sfill,%zu,%.17g,%.17g\n", pre, k, q.x, q.y);
+        fprintf(o, "%sfill,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t i = 0; i < g->p.nmass; i++) {
       aq_vec2 q = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
-      fprintf(o, "%smass,%zu,%.17g,%.17g\n", pre, g->mass[i].voussoir, q.x, q.y);
+      fprintf(o, "%smass,%zu,%s,%s\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
+              AQ_TEXT_NUM(q.y));
     }
   }
   for (int s = 0; s < 2; s++) {
     const aq_mech *m = aq_workpath_mech(aq_arch_workpath(f->arch, s));
     for (int k = 0; k < 4; k++) {
-      fprintf(o, "%s_hinge_%c,%zu,%.17g,%.17g\n", s ? "reverse" : "primary",
-              m->hs.face[k], m->hs.joint[k], m->h[k].x, m->h[k].y);
+      fprintf(o, "%s_hinge_%c,%zu,%s,%s\n", s ? "reverse" : "primary", m->hs.face[k],
+              m->hs.joint[k], AQ_TEXT_NUM(m->h[k].x), AQ_TEXT_NUM(m->h[k].y));
       if (s == f->set) {
         aq_vec2 h = hinge(f, s, k);
-        fprintf(o, "deformed_hinge_%c,%zu,%.17g,%.17g\n", m->hs.face[k],
-                m->hs.joint[k], h.x, h.y);
+        fprintf(o, "deformed_hinge_%c,%zu,%s,%s\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
+                AQ_TEXT_NUM(h.y));
       }
     }
   }
   for (size_t i = 0; i < f->nthrust; i++)
-    fprintf(o, "thrust,%zu,%.17g,%.17g\n", i, f->thrust[i].x, f->thrust[i].y);
+    fprintf(o, "thrust,%zu,%s,%s\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
   return aq_plot_csv_close(&tmp, err);
 }
 

@@ -487,20 +487,22 @@ static void frag_csv(FILE *f, const cap *c)
   const frag *g = &c->f;
   const aq_h5_fragility_fit *q = g->fit;
   const char *ax[2] = {AX_IM[g->m], AX_PROB};
-  fprintf(f, "\n# fragility: arch=%s im=%s median=%.17g beta=%.17g median_lo=%.17g "
-             "median_hi=%.17g records=%zu censored=%zu\n",
-          c->arch, aq_fragility_im_names[g->m], q ? q->median : NAN, q ? q->beta : NAN,
-          q ? q->median_lo : NAN, q ? q->median_hi : NAN, g->n, g->n - g->ncol);
+  fprintf(f,
+          "\n# fragility: arch=%s im=%s median=%s beta=%s median_lo=%s "
+          "median_hi=%s records=%zu censored=%zu\n",
+          c->arch, aq_fragility_im_names[g->m], AQ_TEXT_NUM(q ? q->median : NAN),
+          AQ_TEXT_NUM(q ? q->beta : NAN), AQ_TEXT_NUM(q ? q->median_lo : NAN),
+          AQ_TEXT_NUM(q ? q->median_hi : NAN), g->n, g->n - g->ncol);
   aq_plot_csv_axes(f, 2, ax);
   fprintf(f, "series,%s,probability\n", aq_fragility_im_names[g->m]);
   static const char *const name[3] = {"fit", "fit_median_lo", "fit_median_hi"};
   for (int k = 0; k < 3; k++)
     for (int i = 0; i < NCURVE && isfinite(g->cdf[0][0]); i++)
-      fprintf(f, "%s,%.17g,%.17g\n", name[k], g->cx[i], g->cdf[k][i]);
+      fprintf(f, "%s,%s,%s\n", name[k], AQ_TEXT_NUM(g->cx[i]), AQ_TEXT_NUM(g->cdf[k][i]));
   for (size_t i = 0; i < g->ncol; i++)
-    fprintf(f, "empirical,%.17g,%.17g\n", g->x[i], (i + 1) / (double)g->n);
+    fprintf(f, "empirical,%s,%s\n", AQ_TEXT_NUM(g->x[i]), AQ_TEXT_NUM((i + 1) / (double)g->n));
   for (size_t i = g->ncol; i < g->n; i++)
-    fprintf(f, "censored,%.17g,%.17g\n", g->x[i], g->ncol / (double)g->n);
+    fprintf(f, "censored,%s,%s\n", AQ_TEXT_NUM(g->x[i]), AQ_TEXT_NUM(g->ncol / (double)g->n));
 }
 
 /* The top panel's data: the lines' points, then the shaded intervals. */
@@ -516,9 +518,9 @@ static void lines_csv(FILE *f, const cap *c)
     for (size_t i = 0; i < r->point_count; i++) {
       const aq_capacity_point *p = &t->point[r->point_start + i];
       aq_plot_csv_text(f, r->record);
-      fprintf(f, "%s,%zu,%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", r->polarity, c->rec[k] + 1,
-              p->scale, p->scale * c->pga[k], p->peak_rotation_rad,
-              p->peak_rotation_over_qc, p->collapsed, p->collapse_time_s);
+      fprintf(f, "%s,%zu,%s,%s,%s,%s,%d,%s\n", r->polarity, c->rec[k] + 1, AQ_TEXT_NUM(p->scale),
+              AQ_TEXT_NUM(p->scale * c->pga[k]), AQ_TEXT_NUM(p->peak_rotation_rad),
+              AQ_TEXT_NUM(p->peak_rotation_over_qc), p->collapsed, AQ_TEXT_NUM(p->collapse_time_s));
     }
   }
   fprintf(f, "\n# collapse intervals (shaded; scale factors; record_pga_g: the record's "
@@ -533,8 +535,9 @@ static void lines_csv(FILE *f, const cap *c)
       double a = m && q < t->ninterval ? t->interval[2 * q] : NAN;
       double b = m && q < t->ninterval ? t->interval[2 * q + 1] : NAN;
       aq_plot_csv_text(f, r->record);
-      fprintf(f, "%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g\n", r->polarity, r->d[D_MOVE],
-              r->d[D_SMAX], a, b, c->rec[k] + 1, c->pga[k]);
+      fprintf(f, "%s,%s,%s,%s,%s,%zu,%s\n", r->polarity, AQ_TEXT_NUM(r->d[D_MOVE]),
+              AQ_TEXT_NUM(r->d[D_SMAX]), AQ_TEXT_NUM(a), AQ_TEXT_NUM(b), c->rec[k] + 1,
+              AQ_TEXT_NUM(c->pga[k]));
     }
   }
 }

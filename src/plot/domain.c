@@ -117,7 +117,7 @@ aq_status aq_plot_domain(const char *arch_name, double lambda0, const double *ra
       aq_plot_csv_axes(f, 2, (const char *[]){AX_X, AX_Y});
       fprintf(f, "ratio,min_duration_s\n");
       for (size_t i = 0; i < n; i++)
-        fprintf(f, "%.17g,%.17g\n", ratio[i], dur_s[i]);
+        fprintf(f, "%s,%s\n", AQ_TEXT_NUM(ratio[i]), AQ_TEXT_NUM(dur_s[i]));
       rc = aq_plot_csv_close(&tmp, err);
     }
   }

@@ -335,22 +335,22 @@ static aq_status write_data(const hist *h, const char *data, aq_error *err)
                                           h->e_unit->title});
   fprintf(f, "series,time_s,value\n");
   for (size_t i = 0; i < r->na; i++)
-    fprintf(f, "ground_accel_g,%.17g,%.17g\n", h->ag_t_s[i], h->ag_g[i]);
+    fprintf(f, "ground_accel_g,%s,%s\n", AQ_TEXT_NUM(h->ag_t_s[i]), AQ_TEXT_NUM(h->ag_g[i]));
   for (int s = 0; s < 2; s++) {
-    fprintf(f, "%s_lambda0_g,nan,%.17g\n", s ? "reverse" : "primary",
-            r->lambda0[s] * r->g_mps2 / AQ_G0_MPS2);
-    fprintf(f, "%s_q_c_rad,nan,%.17g\n", s ? "reverse" : "primary", r->q_c_rad[s]);
+    fprintf(f, "%s_lambda0_g,nan,%s\n", s ? "reverse" : "primary",
+            AQ_TEXT_NUM(r->lambda0[s] * r->g_mps2 / AQ_G0_MPS2));
+    fprintf(f, "%s_q_c_rad,nan,%s\n", s ? "reverse" : "primary", AQ_TEXT_NUM(r->q_c_rad[s]));
   }
   static const char *names[] = {"rotation_rad", "kinetic_energy_j",
                                 "potential_energy_j", "work_in_j"};
   const double *v[] = {r->q_rad, r->ke_j, r->pe_j, h->w_j};
   for (size_t j = 0; j < (r->na ? 4 : 3); j++)
     for (size_t i = 0; i < r->n; i++)
-      fprintf(f, "%s,%.17g,%.17g\n", names[j], r->t_s[i], v[j][i]);
+      fprintf(f, "%s,%s,%s\n", names[j], AQ_TEXT_NUM(r->t_s[i]), AQ_TEXT_NUM(v[j][i]));
   for (size_t i = 0; i < h->nimp; i++)
-    fprintf(f, "impact,%.17g,0\n", h->imp_t_s[i]);
+    fprintf(f, "impact,%s,0\n", AQ_TEXT_NUM(h->imp_t_s[i]));
   if (r->collapsed == 1)
-    fprintf(f, "collapse,%.17g,1\n", r->collapse_time_s);
+    fprintf(f, "collapse,%s,1\n", AQ_TEXT_NUM(r->collapse_time_s));
   return aq_plot_csv_close(&tmp, err);
 }
 

@@ -32,6 +32,7 @@
 #include "../report/h5_capacity.h"
 #include "../report/h5_select.h"
 #include "../report/h5_spectrum.h"
+#include "../report/text.h"
 #include "../select/target.h"
 #include "../util/outfile.h"
 

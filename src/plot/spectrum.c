@@ -99,8 +99,8 @@ static int draw(void *ctx, aq_error *err)
   plbox("glh", 0, 0, "g", 0, 0); /* a grid at every decade's ticks */
   char title[512], name[160];
   short_name(F->source, 50, name, sizeof name);
-  snprintf(title, sizeof title, "response spectra of %s (peaks %s)", name,
-           t->sampled_peaks ? "at the samples" : "over continuous time");
+  snprintf(title, sizeof title, "response spectra of %s (peaks: %s)", name,
+           t->peaks >= 0 ? aq_spectrum_peaks_names[t->peaks] : "not stated");
   size_t most = 0;
   for (size_t k = 0; k < F->nc; k++)
     most = F->c[k].n > most ? F->c[k].n : most;
@@ -225,7 +225,8 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
         for (size_t i = F.c[k].start; i < F.c[k].start + F.c[k].n; i++) {
           aq_plot_csv_text(f, t->record[i]);
           aq_plot_csv_text(f, t->component[i]);
-          fprintf(f, "%.17g,%.17g,%.17g\n", t->damping[i], t->period_s[i], t->psa_g[i]);
+          fprintf(f, "%s,%s,%s\n", AQ_TEXT_NUM(t->damping[i]), AQ_TEXT_NUM(t->period_s[i]),
+                  AQ_TEXT_NUM(t->psa_g[i]));
         }
       rc = aq_plot_csv_close(&tmp, err);
     }

@@ -192,7 +192,7 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
       {
         aq_plot_csv_text(f, m.rec[i]);
         aq_plot_csv_text(f, m.arch[j]);
-        fprintf(f, "%d,%.17g\n", m.coll[i * m.narch + j], m.v[i * m.narch + j]);
+        fprintf(f, "%d,%s\n", m.coll[i * m.narch + j], AQ_TEXT_NUM(m.v[i * m.narch + j]));
       }
     rc = aq_plot_csv_close(&tmp, err);
   }

@@ -759,7 +759,8 @@ static herr_t write_proc(aq_h5_writer *w, hid_t loc, const aq_signal_opts *p)
       attr_double(w, loc, "highpass_hz", p->filter ? p->highpass_hz : NAN) < 0 ||
       attr_int(w, loc, "highpass_order", p->filter ? p->order : 0) < 0 ||
       attr_double(w, loc, "lowpass_hz",
-                  p->filter && p->lowpass_hz > 0 ? p->lowpass_hz : NAN) < 0)
+                  p->filter && p->lowpass_hz > 0 ? p->lowpass_hz : NAN) < 0 ||
+      attr_str(w, loc, "peaks", aq_spectrum_peaks_names[p->peaks]) < 0)
     return -1;
   return 0;
 }
@@ -928,6 +929,11 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
   CK(attr_str(w, g, "sha256", a->sha256), "arch attributes");
   CK(attr_str(w, g, "config", a->config_text), "arch attributes");
   CK(attr_int(w, g, "searched", a->searched ? 1 : 0), "arch attributes");
+  if (a->arch) {
+    CK(attr_str(w, g, "control", aq_hinge_control_names[aq_arch_control(a->arch)]),
+       "arch attributes");
+    CK(attr_double(w, g, "friction", aq_arch_friction(a->arch)), "arch attributes");
+  }
   if (a->dyn) {
     CK(attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
     CK(attr_str(w, g, "impact", impact_name(a->dyn->impact)), "arch attributes");

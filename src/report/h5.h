@@ -158,7 +158,7 @@ typedef struct {
 } aq_h5_input;
 
 /* One configuration value of a file's root (processing options, model, cor,
- * version...), as text (numbers as %.17g). */
+ * version...), as text (numbers as aq_text_double prints them). */
 typedef struct {
   char name[48];
   char value[AQ_SUMMARY_RECORD_MAX]; /* whole: one that does not fit is not read */

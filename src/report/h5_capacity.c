@@ -519,6 +519,15 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
     return AQ_OK;
   }
   *present = 1;
+  hid_t pa = H5Aexists(f, "peaks") > 0 ? H5Aopen(f, "peaks", H5P_DEFAULT) : -1;
+  hid_t pt = pa >= 0 ? H5Aget_type(pa) : -1;
+  if (pt >= 0 && H5Tget_class(pt) == H5T_STRING && !H5Tis_variable_str(pt) &&
+      H5Tget_size(pt) < sizeof t->peaks && H5Aread(pa, pt, t->peaks) < 0)
+    t->peaks[0] = '\0';
+  if (pt >= 0)
+    H5Tclose(pt);
+  if (pa >= 0)
+    H5Aclose(pa);
   hid_t g = H5Gopen2(f, "capacity", H5P_DEFAULT), d = -1, sp = -1;
   hsize_t n = 0, ni[2] = {0, 0};
   const char *what = "record";

@@ -61,6 +61,8 @@ typedef struct {
   int have_points;          /* 1: the file holds capacity/scan_points */
   size_t npoint;
   aq_capacity_point *point; /* malloc'd: every scanned scale, by row then scale */
+  char peaks[16];           /* the root's peaks attribute (where the spectral
+                               measures' peaks were taken), "" if none */
 } aq_h5_capacity_table;
 
 /* Read the capacity group of the results file at path into *t (free with

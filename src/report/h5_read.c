@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "h5.h"
+#include "text.h"
 
 /* The root attributes compared as configuration, in the order shown. */
 static const char *const setting_names[] = {
@@ -19,7 +20,7 @@ static const char *const setting_names[] = {
     "detrend",           "filter",          "taper_frac",     "highpass_hz",
     "highpass_order",    "lowpass_hz",      "merge_tol_g",    "units_override",
     "dt_override_s",     "scale_mode",      "scale_to_pga_g", "polarity",
-    "scale_to_lambda0"};
+    "scale_to_lambda0",  "peaks"};
 enum { NSETTINGS = sizeof setting_names / sizeof setting_names[0] };
 
 void aq_h5_suite_free(aq_h5_suite *s)
@@ -45,7 +46,8 @@ static hid_t str_type(size_t size)
 }
 
 /* Scalar attribute name of loc as text into buf[n] (strings as they are,
- * floats as %.17g, integers in decimal).  Returns 0, or -1 if absent, not
+ * floats as the shortest decimal that reads back (aq_text_double),
+ * integers in decimal).  Returns 0, or -1 if absent, not
  * a scalar string or number, or a string longer than n - 1 bytes (never cut). */
 static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
 {
@@ -72,7 +74,7 @@ static int attr_text(hid_t loc, const char *name, char *buf, size_t n)
     } else if (cls == H5T_FLOAT) {
       double v;
       if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0) {
-        snprintf(buf, n, v != v ? "nan" : "%.17g", v);
+        aq_text_double(buf, n, v);
         ok = 0;
       }
     } else if (cls == H5T_INTEGER) {

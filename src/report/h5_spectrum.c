@@ -41,7 +41,9 @@ aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
   if (rc >= 0)
     rc = aq_h5_table_write(file, "spectra", cols, NCOLS, sizeof(h5_row), v, s->n, &d);
   if (rc >= 0)
-    rc = aq_h5_attr_text(w, d, "peaks", s->sampled_peaks ? "samples" : "continuous");
+    rc = aq_h5_attr_text(w, d, "peaks", aq_spectrum_peaks_names[s->peaks]);
+  if (rc >= 0)
+    rc = aq_h5_attr_text(w, d, "peaks_text", aq_spectrum_peaks_text(s->peaks));
   if (rc >= 0)
     rc = aq_h5_attr_int(w, d, "rotd_angles", (int64_t)s->n_angles);
   if (d >= 0 && H5Dclose(d) < 0)
@@ -145,7 +147,7 @@ aq_status aq_h5_spectra_read(const char *path, aq_h5_spectra_table *t, aq_error 
         H5Tclose(at);
       H5Aclose(a);
     }
-    t->sampled_peaks = strcmp(peaks, "samples") == 0;
+    t->peaks = aq_spectrum_peaks_parse(peaks);
     H5Dclose(d);
   }
   H5Fclose(f);

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "../error.h"
+#include "../signal/spectrum.h"
 #include "h5.h"
 
 /* One spectral ordinate. */
@@ -27,12 +28,13 @@ typedef struct {
 typedef struct {
   const aq_spectrum_row *row;
   size_t n;
-  int sampled_peaks;     /* 1: peaks at the samples (--sampled-peaks) */
+  aq_spectrum_peaks peaks; /* where the peaks were taken (--peaks) */
   size_t n_angles;       /* RotD's angles over [0, 180) deg */
 } aq_h5_spectra;
 
-/* Write /spectra (its attributes: peaks "continuous" or "samples",
- * rotd_angles; a units_FIELD attribute per column). */
+/* Write /spectra (its attributes: peaks "peer", "exact" or "samples",
+ * peaks_text the rule in words, rotd_angles; a units_FIELD attribute per
+ * column). */
 aq_status aq_h5_write_spectra(aq_h5_writer *w, const char *target,
                               const aq_h5_spectra *s, aq_error *err);
 
@@ -42,7 +44,8 @@ typedef struct {
   char **record;    /* whole, as written */
   char **component;
   double *damping, *period_s, *psa_g, *sd_m, *psv_m_s;
-  int sampled_peaks;
+  int peaks; /* an aq_spectrum_peaks (a file before --peaks: "continuous",
+                EXACT), or -1: not stated */
 } aq_h5_spectra_table;
 
 /* Read /spectra of the file at path into *t (free with

@@ -32,6 +32,7 @@
 #define AQ_SUMMARY_MODEL_MAX 16
 #define AQ_SUMMARY_STATUS_MAX 48
 #define AQ_SUMMARY_POLARITY_MAX 16
+#define AQ_SUMMARY_CONTROL_MAX 8
 
 /* An integer result that a failed run did not compute (collapsed, impacts):
  * the text writers show it as "nan", the HDF5 file stores it as is. */
@@ -63,6 +64,8 @@ typedef struct {
                                    admissible lambda0) */
   double azimuth_deg;           /* the arch's +x azimuth, deg from north, for a ground
                                    motion given as components; NAN for one in-plane record */
+  char control[AQ_SUMMARY_CONTROL_MAX]; /* the arch's hinge control, "fixed" or "free"
+                                           (arch.h aq_hinge_control) */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -80,11 +83,12 @@ typedef struct {
 /* The fields in column order (record arch model scale pga_g status collapsed
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
- * peak_rotation_over_qc pga_over_lambda0_g azimuth_deg). */
+ * peak_rotation_over_qc pga_over_lambda0_g azimuth_deg control). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
-/* Fill s for one run.  record, arch, model and status are copied (record
+/* Fill s for one run (control "fixed": the caller sets the arch's).
+ * record, arch, model and status are copied (record
  * must be shorter than AQ_SUMMARY_RECORD_MAX, arch than AQ_SUMMARY_ARCH_MAX:
  * the callers refuse longer ones before any run; model and status are the
  * program's own short words); res may be NULL for a run that did not happen (then

@@ -32,6 +32,7 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(azimuth_deg, AQ_SF_DOUBLE, 1),
+    AQ_SF_ADDED(control, AQ_SF_STR, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -51,6 +52,7 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   copy_str(s->model, sizeof s->model, model);
   copy_str(s->status, sizeof s->status, status);
   copy_str(s->polarity, sizeof s->polarity, "normal");
+  copy_str(s->control, sizeof s->control, "fixed"); /* files before it: hinge-controlled */
   s->scale = scale;
   s->pga_g = pga_g;
   s->lambda0_first = NAN; /* aq_summary_normalise fills them */

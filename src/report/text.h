@@ -1,6 +1,7 @@
 /* text.h: the TSV summary (one row per run, header row first).  Columns are
- * the fields of aq_summary_fields[] in order.  Numbers are printed with
- * %.17g (they read back to the same double), NaN as "nan" and infinities as
+ * the fields of aq_summary_fields[] in order.  Numbers are printed as the
+ * shortest decimal that reads back to the same double (aq_text_double:
+ * 0.8, not 0.80000000000000004), NaN as "nan" and infinities as
  * "inf"/"-inf" whatever the C library would print; tabs and line breaks in
  * names become spaces, so a row is always one line.  Deterministic: the same
  * summary gives the same bytes.  The caller owns the FILE. */
@@ -12,8 +13,17 @@
 
 #include "report.h"
 
-/* Format x as the text writer does into buf (n >= 32). */
+/* x as every output of archquake prints a double (TSV, CSV, HDF5
+ * attributes as text, the report): the shortest decimal that strtod reads
+ * back to the same double (%.15g, %.16g or %.17g, whichever is first to),
+ * "nan" for any NaN, "inf" and "-inf"; into buf (n >= AQ_TEXT_NUM_MAX). */
+enum { AQ_TEXT_NUM_MAX = 32 };
 void aq_text_double(char *buf, size_t n, double x);
+/* The same into buf[AQ_TEXT_NUM_MAX], returned, for a printf argument:
+ * printf("%s,%s\n", AQ_TEXT_NUM(a), AQ_TEXT_NUM(b)) (each its own buffer,
+ * alive to the end of the enclosing block). */
+char *aq_text_num(char *buf, double x);
+#define AQ_TEXT_NUM(x) aq_text_num((char[AQ_TEXT_NUM_MAX]){0}, (x))
 
 /* Format an integer field as the text writer does (AQ_SUMMARY_INT_NONE as
  * "nan") into buf (n >= 32). */

@@ -1,8 +1,8 @@
 /* text_capacity.h: the TSV tables of `archquake capacity` (docs/capacity.md):
  * one row per (record, arch, polarity), and one per (arch, intensity
  * measure) of fragility fits.  Numbers as the text writer prints them
- * (%.17g, nan, inf).  The caller owns the FILE and the rows; both functions
- * return 0, or -1 if a write failed. */
+ * (aq_text_double: the shortest that reads back, nan, inf).  The caller owns the FILE and the rows;
+ * both functions return 0, or -1 if a write failed. */
 #ifndef AQ_REPORT_TEXT_CAPACITY_H
 #define AQ_REPORT_TEXT_CAPACITY_H
 

@@ -19,7 +19,7 @@ const char *aq_select_pair_name(aq_pair_rule r)
 
 const char *aq_select_peaks_name(const aq_spectrum_opts *opts)
 {
-  return opts->sampled_peaks ? "samples" : "exact";
+  return aq_spectrum_peaks_names[opts->peaks];
 }
 
 aq_status aq_select_grid(double t1_s, double t2_s, const double *user, size_t n_user,

@@ -54,8 +54,8 @@ aq_status aq_select_spectrum(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
                              double damping, const double *periods, size_t n,
                              double *psa_mps2, double *psa0_mps2, aq_error *err);
 
-/* The name of the peak convention of spectra computed with opts ("samples"
- * or "exact"), for the outputs. */
+/* The name of the peak convention of spectra computed with opts ("peer",
+ * "exact" or "samples": spectrum.h), for the outputs. */
 const char *aq_select_peaks_name(const aq_spectrum_opts *opts);
 
 #endif

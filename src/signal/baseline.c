@@ -60,6 +60,7 @@ void aq_signal_opts_default(aq_signal_opts *o)
     o->im_period_s[i] = i < o->im_nsa ? im_periods_s[i] : 0;
   o->sa_avg_lo_s = 0.1;
   o->sa_avg_hi_s = 1.0;
+  o->peaks = AQ_SPECTRUM_PEAKS_PEER;
 }
 
 void aq_processed_free(aq_processed *p)

@@ -83,7 +83,10 @@ static aq_status spectral(const aq_processed *p, aq_im *im, aq_error *err)
   aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
   if (!ws)
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "spectrum", "out of memory");
-  aq_status st = aq_spectrum_psa(ws, NULL, p->acc_mps2, p->n, p->dt_s, AQ_IM_DAMPING, T,
+  aq_spectrum_opts so;
+  aq_spectrum_opts_default(&so);
+  so.peaks = u->peaks;
+  aq_status st = aq_spectrum_psa(ws, &so, p->acc_mps2, p->n, p->dt_s, AQ_IM_DAMPING, T,
                                  nsa + navg, psa, err);
   aq_spectrum_ws_free(ws);
   if (st != AQ_OK)

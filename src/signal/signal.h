@@ -19,6 +19,7 @@
 
 #include "../error.h"
 #include "../io/record.h"
+#include "spectrum.h"
 #include "steps.h"
 
 typedef enum { AQ_DETREND_MEAN = 0, AQ_DETREND_LINEAR, AQ_DETREND_NONE } aq_detrend;
@@ -43,6 +44,8 @@ typedef struct {
 #define AQ_IM_SA_MAX 8
   double im_period_s[AQ_IM_SA_MAX];
   double sa_avg_lo_s, sa_avg_hi_s;
+  aq_spectrum_peaks peaks; /* --peaks: where their peaks are taken (default
+                              PEER's refined samples; spectrum.h) */
 } aq_signal_opts;
 
 /* The default high-pass corner, Hz: low enough to keep the long-period
@@ -77,7 +80,7 @@ typedef struct {
                           the caller warns (aq_im_residual_warning), it is not an error */
   double pgv_pga_s;    /* PGV / PGA (m/s over m/s^2), s; NAN for a record of zeros */
   /* Spectral measures, from the options the record was processed with
-   * (p->used): PSA at AQ_IM_DAMPING, the peak over continuous time. */
+   * (p->used): PSA at AQ_IM_DAMPING, the peak taken as used.peaks says. */
   size_t n_sa;                       /* = used.im_nsa */
   double sa_period_s[AQ_IM_SA_MAX];  /* s */
   double sa_g[AQ_IM_SA_MAX];         /* Sa(T), g */

@@ -42,7 +42,21 @@
  *
  * The peak is taken from the first sample to the last (a processed record
  * carries its zero pads, over which the oscillator swings on freely).  With
- * sampled_peaks only the samples count, as in PEER's NGA-West2 spectra.
+ * peaks SAMPLES only the samples count.
+ *
+ * PEER's refined samples (peaks PEER, the default).  PEER's NGA-West2
+ * spectra take the peak at the samples of the record resampled to dt / N,
+ * N = ceil(10 dt / T), the acceleration interpolated linearly, through the
+ * piecewise-linear recursion at dt / N.  The input linear between samples
+ * is the same input at any refinement, so that recursion gives the exact
+ * response at the points k dt + j dt / N: here the state at the samples
+ * comes from the recursion at dt, and the N - 1 points inside an interval
+ * from the recursion at dt / N started from its first sample.  Only an
+ * interval whose bound (above) passes the peak found so far can raise it,
+ * so only those are refined: the peak is the refined samples' exactly,
+ * at the cost of the continuous search.  For RotD the refined points of
+ * both components join the samples' points, in the intervals where the
+ * two bounds together could pass the smallest angle's peak.
  *
  * RotD (Boore 2010, BSSA 100(4) 1830-1835).  The oscillator is linear, so
  * the response to a1 cos(theta) + a2 sin(theta) is x1 cos(theta) + x2
@@ -92,10 +106,47 @@ enum { TAYLOR_N = 24 };
 #define ROOT_STEP_REL 1e-9
 #define ROOT_MAX_ITER 100
 
+const char *const aq_spectrum_peaks_names[] = {"peer", "exact", "samples", NULL};
+
+int aq_spectrum_peaks_parse(const char *name)
+{
+  for (int i = 0; aq_spectrum_peaks_names[i]; i++)
+    if (strcmp(name, aq_spectrum_peaks_names[i]) == 0)
+      return i;
+  return strcmp(name, "continuous") == 0 ? AQ_SPECTRUM_PEAKS_EXACT : -1;
+}
+
+const char *aq_spectrum_peaks_text(aq_spectrum_peaks peaks)
+{
+  switch (peaks) {
+  case AQ_SPECTRUM_PEAKS_PEER:
+    return "peer: each peak at the samples and at N - 1 points between them, N = "
+           "ceil(10 dt / T), as PEER's NGA-West2 spectra";
+  case AQ_SPECTRUM_PEAKS_EXACT:
+    return "exact: each peak over continuous time, the input linear between samples";
+  case AQ_SPECTRUM_PEAKS_SAMPLES:
+    return "samples: each peak at the samples only";
+  }
+  return "unknown";
+}
+
+size_t aq_spectrum_peer_steps(double dt_s, double period_s)
+{
+  double r = 10 * dt_s / period_s, w = nearbyint(r);
+  if (!(r <= AQ_SPECTRUM_PEER_STEPS_MAX + 1.0))
+    return 0;
+  if (fabs(r - w) <= AQ_SPECTRUM_PEER_RATIO_TOL * w)
+    r = w;
+  size_t n = (size_t)ceil(r);
+  if (n > AQ_SPECTRUM_PEER_STEPS_MAX)
+    return 0;
+  return n < 1 ? 1 : n;
+}
+
 void aq_spectrum_opts_default(aq_spectrum_opts *o)
 {
   o->n_angles = AQ_SPECTRUM_ANGLES_DEFAULT;
-  o->sampled_peaks = 0;
+  o->peaks = AQ_SPECTRUM_PEAKS_PEER;
 }
 
 typedef struct {
@@ -108,6 +159,11 @@ struct aq_spectrum_ws {
   double *rho;           /* per interval: slack of the bound above the ends */
   size_t *pts, *ivs;     /* candidate samples and intervals (RotD) */
   pt2 *pp, *hull;        /* candidate points (cap); their hull (2 cap) */
+  size_t cap_ref;        /* points ref and ref_hull hold (PEER's RotD) */
+  pt2 *ref, *ref_hull;   /* the hull's vertices and the refined points;
+                            their hull (2 cap_ref) */
+  size_t cap_steps;
+  double *xs1, *xs2;     /* one interval's refined points (cap_steps) */
   size_t cap_angles;
   double *cs, *sn, *sorted; /* cos, sin of each angle; a copy to sort */
 };
@@ -133,6 +189,10 @@ void aq_spectrum_ws_free(aq_spectrum_ws *ws)
   free(ws->cs);
   free(ws->sn);
   free(ws->sorted);
+  free(ws->ref);
+  free(ws->ref_hull);
+  free(ws->xs1);
+  free(ws->xs2);
   free(ws);
 }
 
@@ -173,6 +233,42 @@ static int ws_reserve(aq_spectrum_ws *ws, size_t n, size_t n_angles)
     }
     ws->cap_angles = n_angles;
   }
+  return 1;
+}
+
+/* Room for n refined points of PEER's RotD (and their hull, 2 n), keeping
+ * those held; and for one interval's refined points, steps - 1 of each
+ * component.  0 when out of memory. */
+static int ref_reserve(aq_spectrum_ws *ws, size_t n)
+{
+  if (n <= ws->cap_ref)
+    return 1;
+  size_t cap = n > 2 * ws->cap_ref ? n : 2 * ws->cap_ref;
+  pt2 *r = realloc(ws->ref, cap * sizeof *r);
+  if (!r)
+    return 0;
+  ws->ref = r;
+  pt2 *h = realloc(ws->ref_hull, 2 * cap * sizeof *h);
+  if (!h)
+    return 0;
+  ws->ref_hull = h;
+  ws->cap_ref = cap;
+  return 1;
+}
+
+static int steps_reserve(aq_spectrum_ws *ws, size_t steps)
+{
+  if (steps <= ws->cap_steps)
+    return 1;
+  double *a = realloc(ws->xs1, steps * sizeof *a);
+  if (!a)
+    return 0;
+  ws->xs1 = a;
+  double *b = realloc(ws->xs2, steps * sizeof *b);
+  if (!b)
+    return 0;
+  ws->xs2 = b;
+  ws->cap_steps = steps;
   return 1;
 }
 
@@ -464,6 +560,70 @@ static double peak_one(const sdof *o, const double *a, size_t n, size_t nt,
   return best;
 }
 
+/* PEER's refined samples inside one interval: from the state (x, y) at its
+ * first sample, input a0 to a1 (linear), the recursion of s (the
+ * oscillator over dt / steps) to each of the steps - 1 points between the
+ * two samples.  Returns their largest |x|; xs (NULL, or steps - 1 values)
+ * receives x at each. */
+static double substeps(const sdof *s, size_t steps, double x, double y, double a0,
+                       double a1, double *xs)
+{
+  double m = 0, ak = a0;
+  for (size_t j = 1; j < steps; j++) {
+    double an = a0 + (a1 - a0) * ((double)j / (double)steps);
+    double xn = s->p[0][0] * x + s->p[0][1] * y + s->b[0][0] * ak + s->b[0][1] * an;
+    double yn = s->p[1][0] * x + s->p[1][1] * y + s->b[1][0] * ak + s->b[1][1] * an;
+    x = xn;
+    y = yn;
+    ak = an;
+    if (xs)
+      xs[j - 1] = x;
+    m = dmax(m, fabs(x));
+  }
+  return m;
+}
+
+/* The peak of one component at PEER's refined samples: best is its peak at
+ * the samples, amax the input's; s the oscillator over dt / steps.  An
+ * interval is refined only if its bound (the largest |x| it can reach
+ * between samples) passes the peak found so far. */
+static double peak_refined(const sdof *o, const sdof *s, size_t steps, const double *a,
+                           size_t n, size_t nt, const double *x, const double *y,
+                           double best, double amax)
+{
+  if (o->pga || steps < 2)
+    return best;
+  double g = global_slack(o, x, y, nt, amax);
+  for (size_t k = 0; k + 1 < nt; k++) {
+    if (dmax(fabs(x[k]), fabs(x[k + 1])) + g <= best)
+      continue;
+    double a0 = acc_at(a, n, k), a1 = acc_at(a, n, k + 1);
+    double sig = (a1 - a0) * o->inv_theta;
+    if (piece_bound(o, o->theta, x[k], y[k], x[k + 1], a0, a1, sig) > best)
+      best = dmax(best, substeps(s, steps, x[k], y[k], a0, a1, NULL));
+  }
+  return best;
+}
+
+/* The oscillator over PEER's refined step dt / steps of period_s (> 0 or
+ * 0): *steps = N (1: no refinement).  Errors: "period_s" below dt / 1000. */
+static aq_status peer_init(sdof *s, size_t *steps, double period_s, double zeta,
+                           double dt_s, aq_error *err)
+{
+  *steps = 1;
+  if (period_s == 0)
+    return AQ_OK;
+  size_t n = aq_spectrum_peer_steps(dt_s, period_s);
+  if (n == 0)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "period_s",
+                        "expected a period >= %g s (dt / %d) with peaks peer (ceil(10 dt / T) "
+                        "steps in every sample interval), got %g",
+                        10 * dt_s / AQ_SPECTRUM_PEER_STEPS_MAX,
+                        AQ_SPECTRUM_PEER_STEPS_MAX / 10, period_s);
+  *steps = n;
+  return n > 1 ? sdof_init(s, period_s, zeta, dt_s / (double)n, err) : AQ_OK;
+}
+
 static aq_status check_args(const double *acc, size_t n, double dt_s,
                             double damping, const double *period_s,
                             size_t n_periods, aq_error *err)
@@ -491,6 +651,15 @@ static aq_status check_args(const double *acc, size_t n, double dt_s,
   return AQ_OK;
 }
 
+static aq_status check_peaks(const aq_spectrum_opts *o, aq_error *err)
+{
+  if (o->peaks != AQ_SPECTRUM_PEAKS_PEER && o->peaks != AQ_SPECTRUM_PEAKS_EXACT &&
+      o->peaks != AQ_SPECTRUM_PEAKS_SAMPLES)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "peaks",
+                        "expected peer, exact or samples, got %d", (int)o->peaks);
+  return AQ_OK;
+}
+
 aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
                           const double *acc_mps2, size_t n, double dt_s,
                           double damping, const double *period_s,
@@ -503,6 +672,8 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
   }
   aq_status st =
       check_args(acc_mps2, n, dt_s, damping, period_s, n_periods, err);
+  if (st == AQ_OK)
+    st = check_peaks(opts, err);
   if (st != AQ_OK)
     return st;
   if (!ws_reserve(ws, n, 0))
@@ -514,10 +685,19 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
     st = sdof_init(&o, period_s[i], damping, dt_s, err);
     if (st != AQ_OK)
       return st;
+    sdof sub;
+    size_t steps = 1;
+    if (opts->peaks == AQ_SPECTRUM_PEAKS_PEER) {
+      st = peer_init(&sub, &steps, period_s[i], damping, dt_s, err);
+      if (st != AQ_OK)
+        return st;
+    }
     double m = respond(&o, acc_mps2, n, n, ws->x1, ws->y1);
-    psa_mps2[i] = opts->sampled_peaks
-                      ? m
-                      : peak_one(&o, acc_mps2, n, n, ws->x1, ws->y1, m, amax);
+    if (opts->peaks == AQ_SPECTRUM_PEAKS_EXACT)
+      m = peak_one(&o, acc_mps2, n, n, ws->x1, ws->y1, m, amax);
+    else if (opts->peaks == AQ_SPECTRUM_PEAKS_PEER)
+      m = peak_refined(&o, &sub, steps, acc_mps2, n, n, ws->x1, ws->y1, m, amax);
+    psa_mps2[i] = m;
   }
   return AQ_OK;
 }
@@ -606,11 +786,54 @@ static size_t hull2(pt2 *p, size_t m, pt2 *h)
 /* Directions of the lower bound of every angle's peak (below). */
 enum { LO_DIRS = 16 };
 
+/* PEER's refined points of both components, in the intervals where the
+ * two components' bounds together (|c x1 + s x2| <= sqrt(b1^2 + b2^2))
+ * pass lo_all, the smallest angle's peak at the samples, joined to the nh
+ * vertices of the samples' hull (ws->hull): every angle's peak over the
+ * hull of all.  s steps dt / steps.  0 when out of memory. */
+static int rotd_refined(aq_spectrum_ws *ws, const sdof *o, const sdof *s, size_t steps,
+                        const double *a1, size_t n1, const double *a2, size_t n2,
+                        size_t nt, size_t na, size_t nh, double lo_all, double *peak)
+{
+  const double *x1 = ws->x1, *x2 = ws->x2, *y1 = ws->y1, *y2 = ws->y2;
+  if (!ref_reserve(ws, nh) || !steps_reserve(ws, steps))
+    return 0;
+  memcpy(ws->ref, ws->hull, nh * sizeof *ws->ref);
+  size_t m = nh;
+  double lo2 = lo_all * lo_all, th = o->theta;
+  for (size_t k = 0; k + 1 < nt; k++) {
+    double a10 = acc_at(a1, n1, k), a11 = acc_at(a1, n1, k + 1);
+    double a20 = acc_at(a2, n2, k), a21 = acc_at(a2, n2, k + 1);
+    double s1 = (a11 - a10) * o->inv_theta, s2 = (a21 - a20) * o->inv_theta;
+    double b1 = piece_bound(o, th, x1[k], y1[k], x1[k + 1], a10, a11, s1);
+    double b2 = piece_bound(o, th, x2[k], y2[k], x2[k + 1], a20, a21, s2);
+    if (b1 * b1 + b2 * b2 <= lo2)
+      continue;
+    substeps(s, steps, x1[k], y1[k], a10, a11, ws->xs1);
+    substeps(s, steps, x2[k], y2[k], a20, a21, ws->xs2);
+    if (!ref_reserve(ws, m + steps - 1))
+      return 0;
+    for (size_t j = 0; j + 1 < steps; j++)
+      ws->ref[m++] = (pt2){ws->xs1[j], ws->xs2[j]};
+  }
+  if (m == nh)
+    return 1;
+  size_t nr = hull2(ws->ref, m, ws->ref_hull);
+  for (size_t j = 0; j < na; j++) {
+    double h = 0, c = ws->cs[j], sn = ws->sn[j];
+    for (size_t i = 0; i < nr; i++)
+      h = dmax(h, fabs(c * ws->ref_hull[i].x + sn * ws->ref_hull[i].y));
+    peak[j] = h;
+  }
+  return 1;
+}
+
 /* Peaks of every angle for one period: ws->x1.. hold the two responses at
- * the samples (nt of them). */
-static void rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const double *a1,
-                       size_t n1, const double *a2, size_t n2, size_t nt,
-                       size_t na, int sampled, double *peak)
+ * the samples (nt of them); sub and steps: PEER's refined oscillator.
+ * 0 when out of memory. */
+static int rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const sdof *sub, size_t steps,
+                      const double *a1, size_t n1, const double *a2, size_t n2,
+                      size_t nt, size_t na, aq_spectrum_peaks peaks, double *peak)
 {
   const double *x1 = ws->x1, *x2 = ws->x2, *y1 = ws->y1, *y2 = ws->y2;
   const double *cs = ws->cs, *sn = ws->sn;
@@ -677,8 +900,11 @@ static void rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const double *a1,
     peak[j] = h;
     lo_all = h < lo_all ? h : lo_all;
   }
-  if (o->pga || sampled)
-    return;
+  if (o->pga || peaks == AQ_SPECTRUM_PEAKS_SAMPLES ||
+      (peaks == AQ_SPECTRUM_PEAKS_PEER && steps < 2))
+    return 1;
+  if (peaks == AQ_SPECTRUM_PEAKS_PEER)
+    return rotd_refined(ws, o, sub, steps, a1, n1, a2, n2, nt, na, nh, lo_all, peak);
   /* Between samples: an interval can raise an angle's peak only if its
    * larger end's projection plus its slack rho (the chord and transient
    * bounds for both components together: |c u + s v| <= |u| + |v|) passes
@@ -718,6 +944,7 @@ static void rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const double *a1,
         search_interval(o, p0, q0, b0, b1, &peak[j]);
     }
   }
+  return 1;
 }
 
 aq_status aq_spectrum_rotd(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
@@ -736,6 +963,8 @@ aq_status aq_spectrum_rotd(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
       check_args(acc1_mps2, n1, dt_s, damping, period_s, n_periods, err);
   if (st == AQ_OK)
     st = check_args(acc2_mps2, n2, dt_s, damping, period_s, n_periods, err);
+  if (st == AQ_OK)
+    st = check_peaks(opts, err);
   if (st != AQ_OK)
     return st;
   size_t na = opts->n_angles;
@@ -749,15 +978,20 @@ aq_status aq_spectrum_rotd(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
   for (size_t j = 0; j < na; j++)
     angle_cs(j, na, &ws->cs[j], &ws->sn[j]);
   for (size_t i = 0; i < n_periods; i++) {
-    sdof o;
+    sdof o, sub;
+    size_t steps = 1;
     st = sdof_init(&o, period_s[i], damping, dt_s, err);
+    if (st == AQ_OK && opts->peaks == AQ_SPECTRUM_PEAKS_PEER)
+      st = peer_init(&sub, &steps, period_s[i], damping, dt_s, err);
     if (st != AQ_OK)
       return st;
     respond(&o, acc1_mps2, n1, n, ws->x1, ws->y1);
     respond(&o, acc2_mps2, n2, n, ws->x2, ws->y2);
     double *pk = ws->sorted; /* the angles' peaks, then sorted in place */
-    rotd_peaks(ws, &o, acc1_mps2, n1, acc2_mps2, n2, n, na,
-               opts->sampled_peaks, pk);
+    if (!rotd_peaks(ws, &o, &sub, steps, acc1_mps2, n1, acc2_mps2, n2, n, na, opts->peaks,
+                    pk))
+      return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "spectrum",
+                          "out of memory for the refined points of %zu samples", n);
     if (angle_peaks_mps2)
       memcpy(angle_peaks_mps2 + i * na, pk, na * sizeof *pk);
     aq_rotd *r = &out[i];

@@ -20,6 +20,9 @@
  * zero of the velocity inside the interval, to rounding: the PSA returned is
  * the true peak of the piecewise-linear input's response within
  * AQ_SPECTRUM_PEAK_REL (relative; the bound is stated in spectrum.c).
+ * The peak is taken there (aq_spectrum_peaks EXACT), at the samples
+ * (SAMPLES), or, by default, at the samples refined as PEER refines them
+ * for the NGA-West2 spectra (PEER).
  * docs/spectrum.md explains the method and lists the checks.
  */
 #ifndef AQ_SIGNAL_SPECTRUM_H
@@ -43,13 +46,58 @@
 #define AQ_SPECTRUM_PEER_N 111
 extern const double aq_spectrum_peer_periods_s[AQ_SPECTRUM_PEER_N];
 
+/* Where a peak is taken (--peaks; docs/spectrum.md):
+ *   PEER (the default): as PEER computes the NGA-West2 database's spectra:
+ *     every sample interval cut into N = ceil(10 dt / T) equal steps (N = 1
+ *     when dt <= T / 10; a ratio within AQ_SPECTRUM_PEER_RATIO_TOL of a
+ *     whole number is that number), the acceleration linear between
+ *     samples, the peak at the samples and at those N - 1 points between
+ *     them (the exact response there, so the same as the piecewise-linear
+ *     recursion at dt / N);
+ *   EXACT: the peak over continuous time (within AQ_SPECTRUM_PEAK_REL);
+ *   SAMPLES: the peak at the samples only (lower than EXACT by up to
+ *     1 - cos(pi dt / T)).
+ * All three take the same response; they differ only below T = 10 dt for
+ * PEER and SAMPLES, and at every period for EXACT. */
+typedef enum {
+  AQ_SPECTRUM_PEAKS_PEER = 0,
+  AQ_SPECTRUM_PEAKS_EXACT,
+  AQ_SPECTRUM_PEAKS_SAMPLES
+} aq_spectrum_peaks;
+
+/* Their names, as --peaks takes them and the results file stores them:
+ * "peer", "exact", "samples", then NULL. */
+extern const char *const aq_spectrum_peaks_names[];
+
+/* The rule of a name among aq_spectrum_peaks_names (and "continuous", the
+ * name files written before --peaks gave EXACT), or -1. */
+int aq_spectrum_peaks_parse(const char *name);
+
+/* One line saying what a rule does, for the TSV's comment and the report
+ * ("peaks at the samples and at N - 1 points between them, N = ceil(10 dt
+ * / T) (PEER NGA-West2)"); never NULL. */
+const char *aq_spectrum_peaks_text(aq_spectrum_peaks peaks);
+
+/* Relative distance from a whole number within which PEER's ratio 10 dt / T
+ * is taken as that number: dt and T are decimal fractions, and their
+ * quotient in binary misses a whole ratio by a few units of rounding
+ * (10 x 0.005 / 0.025 = 2.0000000000000004), which would add a step. */
+#define AQ_SPECTRUM_PEER_RATIO_TOL 1e-9
+
+/* The most steps per interval the PEER rule is asked for: a period below
+ * 10 dt / AQ_SPECTRUM_PEER_STEPS_MAX (dt / 1000) is refused under it (its
+ * cost grows as 1/T, and its PSA is the PGA's to rounding long before). */
+#define AQ_SPECTRUM_PEER_STEPS_MAX 10000
+
+/* N of the PEER rule for a period_s > 0 and dt_s > 0: ceil(10 dt / T) with
+ * the tolerance above, at least 1; 0 if it would pass
+ * AQ_SPECTRUM_PEER_STEPS_MAX. */
+size_t aq_spectrum_peer_steps(double dt_s, double period_s);
+
 /* Options of a spectrum; aq_spectrum_opts_default() sets the defaults. */
 typedef struct {
   size_t n_angles; /* RotD angles over [0, 180) degrees (default 180: 1 degree) */
-  int sampled_peaks; /* 0 (default): the peak over continuous time; 1: the
-                        peak at the samples only, as PEER's NGA-West2
-                        flatfile spectra are computed (lower by up to
-                        1 - cos(pi dt / T)) */
+  aq_spectrum_peaks peaks; /* where a peak is taken (default PEER) */
 } aq_spectrum_opts;
 
 void aq_spectrum_opts_default(aq_spectrum_opts *o);
@@ -63,7 +111,9 @@ void aq_spectrum_ws_free(aq_spectrum_ws *ws);
  * gives the limit T -> 0, the peak |a| of the input (PGA).  Fills
  * psa_mps2[i] (m/s^2) for each of the n_periods.  opts NULL: defaults.
  * Returns AQ_OK, AQ_EVALUE (a bad argument, the field names it: "period_s",
- * "damping", "dt", "npts", "samples") or AQ_ENOMEM; err filled. */
+ * "damping", "dt", "npts", "samples", "peaks"; under PEER a period > 0
+ * below dt / 1000, see AQ_SPECTRUM_PEER_STEPS_MAX) or AQ_ENOMEM; err
+ * filled. */
 aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
                           const double *acc_mps2, size_t n, double dt_s,
                           double damping, const double *period_s,
