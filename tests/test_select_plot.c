@@ -12,23 +12,12 @@
 #include <string.h>
 
 #include "check.h"
+#include "select_fixture.h"
 #include "report/h5_select.h"
 
 #define R "tests/data/records/"
-#define EC8B "ec8:type=1,ground=B,ag=0.25"
+#define EC8B AQ_TEST_EC8B
 enum { BIG = 1 << 20 };
-
-static double ec8_b(double T)
-{
-  double ag = 0.25, S = 1.2, TB = 0.15, TC = 0.5, TD = 2.0;
-  if (T <= TB)
-    return ag * S * (1 + T / TB * 1.5);
-  if (T <= TC)
-    return ag * S * 2.5;
-  if (T <= TD)
-    return ag * S * 2.5 * TC / T;
-  return ag * S * 2.5 * TC * TD / (T * T);
-}
 
 static const char *const pool =
     R "RSN6_IMPVALL.I_I-ELC180-hor1.AT2 " R "RSN763_LOMAP_GIL067.AT2 " R "ARL360.at2 "
@@ -77,7 +66,7 @@ AQ_TEST(select_plot_suite_against_target)
     *c0 = '\0';
     const char *name = line[0] == '"' ? line + 1 : line;
     if (!strcmp(name, "target")) {
-      aq_check_rel(a, ec8_b(T), 1e-12, "the target at %g s", T);
+      aq_check_rel(a, aq_test_ec8_b(T), 1e-12, "the target at %g s", T);
       ntarget++;
       continue;
     }

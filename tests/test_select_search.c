@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "select_fixture.h"
 #include "select/search.h"
 
 #define G0 9.80665
@@ -297,20 +298,6 @@ static void spectra_free(spectra *s)
   free(s->target);
 }
 
-/* EN 1998-1:2004 type 1, ground B (Table 3.2: S 1.2, T_B 0.15, T_C 0.5,
- * T_D 2 s), a_g = 0.25 g, 5 %: eqs. (3.2)-(3.5), g. */
-static double ec8_b(double T)
-{
-  double ag = 0.25, S = 1.2, TB = 0.15, TC = 0.5, TD = 2.0;
-  if (T <= TB)
-    return ag * S * (1 + T / TB * 1.5);
-  if (T <= TC)
-    return ag * S * 2.5;
-  if (T <= TD)
-    return ag * S * 2.5 * TC / T;
-  return ag * S * 2.5 * TC * TD / (T * T);
-}
-
 /* Run select on files[0..n) with extra options; the -o file into h5. */
 static int run_select(const char *const *files, size_t n, const char *extra, const char *h5,
                       const char *tsv)
@@ -338,12 +325,12 @@ AQ_TEST(select_search_pool12_exhaustive)
   snprintf(tsv, sizeof tsv, "%s/s.tsv", dir);
   if (run_select(pool12, 12, "--count 7", h5, tsv) != 0)
     return;
-  spectra s;
+  spectra s = {0};
   if (!aq_check(read_spectra(h5, &s) && s.M == 12, "the pool's spectra read back"))
     return;
   double *target = malloc(s.K * sizeof *target);
   for (size_t k = 0; k < s.K; k++)
-    target[k] = ec8_b(s.period[k]);
+    target[k] = aq_test_ec8_b(s.period[k]);
   pool P = {s.M, s.K, s.psa, s.pga, target, 0.25 * 1.2, NULL, 0, 0.25, 4};
   size_t best[7];
   double count;
@@ -389,12 +376,12 @@ AQ_TEST(select_search_pool43_heuristic)
   if (run_select(files, n, "--count 7 --scale-range 0.01,100 --units '*T001230.HNE.sac=g'", h5,
                  tsv) != 0) /* CSN writes g and states nm/s2 (PROVENANCE.md) */
     return;
-  spectra s;
+  spectra s = {0};
   if (!aq_check(read_spectra(h5, &s) && s.M == 43, "43 usable records, got %zu", s.M))
     return;
   double *target = malloc(s.K * sizeof *target);
   for (size_t k = 0; k < s.K; k++)
-    target[k] = ec8_b(s.period[k]) * G0;
+    target[k] = aq_test_ec8_b(s.period[k]) * G0;
   for (size_t i = 0; i < s.M * s.K; i++)
     s.psa[i] *= G0;
   for (size_t i = 0; i < s.M; i++)

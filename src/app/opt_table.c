@@ -1015,7 +1015,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "options, every record and every arch.  Figures are inline SVG, text as\n"
                  "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
                  "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
-                 "CAPACITY.h5 one of archquake capacity -o.\n",
+                 "CAPACITY.h5 one of archquake capacity -o; a file of archquake select -o\n"
+                 "given there too adds its suite: the target, checks, spectra, records.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},

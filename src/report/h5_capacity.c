@@ -16,29 +16,6 @@
 #include "text.h"
 
 
-/* A dataset of n rows x cols of type t from buf, with its units attribute
- * (units NULL: none). */
-static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
-                       size_t cols, const char *units)
-{
-  hsize_t dim[2] = {n, cols};
-  hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
-  if (sp < 0)
-    return -1;
-  herr_t rc = -1;
-  hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (d >= 0) {
-    rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
-    if (rc >= 0 && units)
-      rc = aq_h5_attr_string(d, "units", units);
-    if (H5Dclose(d) < 0)
-      rc = -1;
-  }
-  if (H5Sclose(sp) < 0)
-    rc = -1;
-  return rc;
-}
-
 /* Attribute name of g: n variable-length strings. */
 static herr_t attr_strings(hid_t g, const char *name, const char *const *v, size_t n)
 {
@@ -58,7 +35,7 @@ static herr_t attr_strings(hid_t g, const char *name, const char *const *v, size
  * (`columns`) with their units (`units`), one string per column. */
 static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
 {
-  if (ds_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
+  if (aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
     return -1;
   hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
   if (d < 0)
@@ -282,7 +259,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   if (aq_h5_columns_write(g, pair_cols, NPAIR_COLS, sizeof *k.pair, k.pair, c->npair) < 0)
     goto fail;
   what = "capacity/intervals";
-  if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, "1") < 0)
+  if (aq_h5_array_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, "1") < 0)
     goto fail;
   what = "capacity/im_first_collapse, im_cap";
   if (ds_ims(g, "im_first_collapse", k.im[0], c->npair) < 0 ||

@@ -57,22 +57,7 @@ enum { NPOOL = sizeof pool_cols / sizeof pool_cols[0] };
 static herr_t ds_doubles(hid_t g, const char *name, const double *buf, size_t rows,
                          size_t cols, const char *units)
 {
-  hsize_t dim[2] = {rows, cols};
-  hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
-  if (sp < 0)
-    return -1;
-  herr_t rc = -1;
-  hid_t d = H5Dcreate2(g, name, H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (d >= 0) {
-    rc = rows && cols ? H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
-    if (rc >= 0 && units)
-      rc = aq_h5_attr_string(d, "units", units);
-    if (H5Dclose(d) < 0)
-      rc = -1;
-  }
-  if (H5Sclose(sp) < 0)
-    rc = -1;
-  return rc;
+  return aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, rows, cols, units);
 }
 
 static herr_t attr_num(hid_t g, const char *name, hid_t t, const void *v)
