@@ -25,7 +25,7 @@ static void key_of(const char *path, char *key, size_t n)
   aq_record_free(&rec);
 }
 
-AQ_TEST(select_events_keys)
+AQ_TEST(io_event_keys_for_select)
 {
   static const struct {
     const char *a, *b; /* one event */

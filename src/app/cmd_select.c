@@ -7,22 +7,17 @@
  * --text, the HDF5 file with -o), or is not and nothing is written (unless
  * --best-effort), one line saying by how much the best falls short. */
 #define _POSIX_C_SOURCE 200809L
-#include <dirent.h>
 #include <getopt.h>
-#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "../job/names.h"
 #include "../report/h5_select.h"
 #include "../select/choose.h"
 #include "../select/range.h"
 #include "../select/suite_file.h"
-#include "../units.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
 #include "app.h"
@@ -30,168 +25,9 @@
 #include "opt_table.h"
 #include "select_pool.h"
 
-/* A growing list of strings (malloc'd). */
-typedef struct {
-  char **v;
-  size_t n, cap;
-} strs;
-
-static int push(strs *s, const char *x)
-{
-  if (s->n == s->cap) {
-    size_t c = s->cap ? 2 * s->cap : 64;
-    char **v = realloc(s->v, c * sizeof *v);
-    if (!v)
-      return -1;
-    s->v = v;
-    s->cap = c;
-  }
-  if (!(s->v[s->n] = strdup(x)))
-    return -1;
-  s->n++;
-  return 0;
-}
-
-static void strs_free(strs *s)
-{
-  for (size_t i = 0; i < s->n; i++)
-    free(s->v[i]);
-  free(s->v);
-  memset(s, 0, sizeof *s);
-}
-
-static int cmp_str(const void *a, const void *b)
-{
-  return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* The pool's operands as files: a directory gives its files (not those
- * whose names begin with '.', not its subdirectories) in name order; a word
- * that names no file and holds a glob character gives its matches (none:
- * an error); anything else is kept as given (FILE#CH, or for the reader to
- * refuse).  Returns 0, or -1 (one line on stderr). */
-static int expand_pool(char *const *ops, size_t n, strs *out)
-{
-  for (size_t i = 0; i < n; i++) {
-    struct stat sb;
-    if (stat(ops[i], &sb) == 0 && S_ISDIR(sb.st_mode)) {
-      DIR *d = opendir(ops[i]);
-      if (!d) {
-        fprintf(stderr, "archquake: select: %s: cannot read the directory\n", ops[i]);
-        return -1;
-      }
-      strs files = {0};
-      struct dirent *e;
-      int bad = 0;
-      while (!bad && (e = readdir(d))) {
-        if (e->d_name[0] == '.')
-          continue;
-        size_t len = strlen(ops[i]) + strlen(e->d_name) + 2;
-        char *path = malloc(len);
-        if (!path) {
-          bad = 1;
-          break;
-        }
-        snprintf(path, len, "%s%s%s", ops[i], ops[i][strlen(ops[i]) - 1] == '/' ? "" : "/",
-                 e->d_name);
-        if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
-          bad = push(&files, path) != 0;
-        free(path);
-      }
-      closedir(d);
-      qsort(files.v, files.n, sizeof *files.v, cmp_str);
-      for (size_t k = 0; !bad && k < files.n; k++)
-        bad = push(out, files.v[k]) != 0;
-      strs_free(&files);
-      if (bad) {
-        fprintf(stderr, "archquake: select: out of memory\n");
-        return -1;
-      }
-      continue;
-    }
-    if (access(ops[i], F_OK) != 0 && strpbrk(ops[i], "*?[")) {
-      glob_t g;
-      int r = glob(ops[i], 0, NULL, &g);
-      if (r != 0) {
-        fprintf(stderr, "archquake: select: %s: expected a record, a directory or a glob "
-                        "matching files, got a glob matching none\n", ops[i]);
-        if (r != GLOB_NOMATCH)
-          globfree(&g);
-        return -1;
-      }
-      for (size_t k = 0; k < g.gl_pathc; k++)
-        if (push(out, g.gl_pathv[k]) != 0) {
-          globfree(&g);
-          fprintf(stderr, "archquake: select: out of memory\n");
-          return -1;
-        }
-      globfree(&g);
-      continue;
-    }
-    if (push(out, ops[i]) != 0) {
-      fprintf(stderr, "archquake: select: out of memory\n");
-      return -1;
-    }
-  }
-  return 0;
-}
-
-/* The comment lines of the suite file (each malloc'd into c). */
-static void describe(strs *c, const aq_select_input *in, const aq_selection *s,
-                     const aq_select_pool *P, const char *range_from, long nusable,
-                     const aq_signal_opts *proc)
-{
-  char b[1024], t[512];
-  snprintf(b, sizeof b, "archquake select (%s): a suite of %zu for the target %s",
-           aq_build_string(), in->count, in->target->spec);
-  push(c, b);
-  aq_target_describe(in->target, t, sizeof t);
-  snprintf(b, sizeof b, "target: %s", t);
-  push(c, b);
-  snprintf(b, sizeof b, "range: %g to %g s (%s); %zu periods, where the misfit and the checks "
-           "are computed", in->periods_s[0], in->periods_s[in->nper - 1], range_from, in->nper);
-  push(c, b);
-  snprintf(b, sizeof b, "spectra: damping %g, peaks %s, pairs %s; processing: detrend %s, %s",
-           in->target->damping, aq_select_peaks_name(&P->sopts),
-           aq_select_pair_name(P->pair_rule),
-           proc->detrend == AQ_DETREND_LINEAR ? "linear" : proc->detrend == AQ_DETREND_MEAN
-                                                             ? "mean" : "none",
-           proc->filter ? "pads and high-pass as the main job" : "no filter");
-  push(c, b);
-  char ev[64] = "no limit of records per event";
-  if (in->max_per_event)
-    snprintf(ev, sizeof ev, "at most %zu records of one event", in->max_per_event);
-  snprintf(b, sizeof b, "rule: %s: the mean scaled spectrum at least %g %% of the target over "
-           "the range%s; %s; at least %zu records; each scale within %g to %g",
-           aq_target_code(in->target), 100 * AQ_SELECT_BAND,
-           in->target->kind == AQ_TARGET_EC8 ? ", the mean PGA at least a_g S" : "", ev,
-           aq_select_min_count(in->target), in->scale_lo, in->scale_hi);
-  push(c, b);
-  snprintf(b, sizeof b, "search: %s over a pool of %ld usable records, %.0f combinations, "
-           "%.0f suites evaluated",
-           s->search.kind == AQ_SEARCH_EXHAUSTIVE
-               ? "exhaustive (every combination)"
-               : "greedy, then swaps (Jayaram, Lin & Baker 2011), from 4 starts",
-           nusable, s->search.combinations, s->search.evaluated);
-  push(c, b);
-  aq_selection_factor_note(s, in, t, sizeof t);
-  snprintf(b, sizeof b, "common factor: %s", t);
-  push(c, b);
-  snprintf(b, sizeof b, "misfit: %.6g (mean over the periods of (ln mean scaled PSA - ln "
-           "target)^2)", s->search.eval.misfit);
-  push(c, b);
-  for (size_t i = 0; i < s->nchecks; i++) {
-    snprintf(b, sizeof b, "check %s: %s: %s", s->checks[i].name,
-             s->checks[i].holds ? "holds" : "FAILS", s->checks[i].detail);
-    push(c, b);
-  }
-  snprintf(b, sizeof b, "conditions: %s", s->all_hold ? "all hold" : "NOT ALL HOLD");
-  push(c, b);
-}
-
 /* Write the suite file to f. */
-static int write_suite(FILE *f, const strs *comments, const aq_selection *s,
-                       const aq_select_member *const *use, size_t N)
+static int write_suite(FILE *f, char lines[][AQ_SELECTION_LINE_MAX], size_t nlines,
+                       const aq_selection *s, const aq_select_member *const *use, size_t N)
 {
   aq_suite_row *rows = calloc(N ? N : 1, sizeof *rows);
   if (!rows)
@@ -204,9 +40,49 @@ static int write_suite(FILE *f, const strs *comments, const aq_selection *s,
     rows[j].misfit = s->misfit_one[j];
     snprintf(rows[j].event, sizeof rows[j].event, "%s", m->event);
   }
-  int r = aq_suite_file_write(f, (const char *const *)comments->v, comments->n, rows, N);
+  const char *comment[AQ_SELECTION_LINES_MAX];
+  for (size_t i = 0; i < nlines; i++)
+    comment[i] = lines[i];
+  int r = aq_suite_file_write(f, comment, nlines, rows, N);
   free(rows);
   return r;
+}
+
+/* -o: the selection into an HDF5 file; 0, or -1 (one line on stderr, no
+ * file left). */
+static int write_h5(const char *path, const aq_select_input *in, const aq_selection *sel,
+                    aq_select_member *const *use, char lines[][AQ_SELECTION_LINE_MAX],
+                    size_t nlines, const char *cmdline, const aq_signal_opts *proc,
+                    const aq_select_pool *P)
+{
+  char created[64];
+  aq_app_now_utc(created, sizeof created);
+  size_t M = in->nrec;
+  const char **rec = malloc(M * sizeof *rec), **chan = malloc(M * sizeof *chan),
+             **ev = malloc(M * sizeof *ev), *comment[AQ_SELECTION_LINES_MAX];
+  for (size_t i = 0; i < nlines; i++)
+    comment[i] = lines[i];
+  for (size_t i = 0; rec && chan && ev && i < M; i++) {
+    rec[i] = use[i]->name;
+    chan[i] = use[i]->channel;
+    ev[i] = use[i]->event;
+  }
+  aq_h5_select hs = {.input = in, .sel = sel, .record = rec, .channel = chan, .event = ev,
+                     .comments = comment, .ncomments = nlines, .version = AQ_VERSION,
+                     .build = aq_build_string(), .command_line = cmdline ? cmdline : "",
+                     .created = created, .proc = proc,
+                     .peaks = aq_select_peaks_name(&P->sopts),
+                     .pair_rule = aq_select_pair_name(P->pair_rule)};
+  aq_error err;
+  aq_status st = rec && chan && ev ? aq_h5_select_write(path, &hs, &err)
+                                   : aq_error_set(&err, AQ_ENOMEM, path, -1, -1, NULL,
+                                                  "out of memory");
+  free(rec);
+  free(chan);
+  free(ev);
+  if (st != AQ_OK)
+    aq_error_print(&err, stderr);
+  return st == AQ_OK ? 0 : -1;
 }
 
 int aq_cmd_select(int argc, char **argv)
@@ -227,7 +103,8 @@ int aq_cmd_select(int argc, char **argv)
   }
   aq_target target = {0};
   aq_error err;
-  strs files = {0}, comments = {0};
+  char **files = NULL, lines[AQ_SELECTION_LINES_MAX][AQ_SELECTION_LINE_MAX];
+  size_t nfiles = 0, nlines = 0;
   char **names = NULL, **notes = NULL;
   size_t nnames = 0, nnotes = 0;
   double *grid = NULL;
@@ -309,12 +186,14 @@ int aq_cmd_select(int argc, char **argv)
     goto done;
   }
   /* the pool: files, names (every horizontal channel a record), pairs */
-  if (expand_pool(argv + optind, (size_t)(argc - optind), &files) != 0) {
-    rc = AQ_EXIT_USAGE;
+  if (aq_select_pool_files(argv + optind, (size_t)(argc - optind), &files, &nfiles, &err) !=
+      AQ_OK) {
+    aq_error_print(&err, stderr);
+    rc = err.status == AQ_ENOMEM ? AQ_EXIT_FAIL : AQ_EXIT_USAGE;
     goto done;
   }
-  if (files.n && aq_job_names(files.v, files.n, &o.read, o.threads, &names, &nnames, &notes,
-                              &nnotes, &err) != AQ_OK) {
+  if (nfiles && aq_job_names(files, nfiles, &o.read, o.threads, &names, &nnames, &notes,
+                             &nnotes, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     rc = AQ_EXIT_FAIL;
     goto done;
@@ -423,7 +302,15 @@ int aq_cmd_select(int argc, char **argv)
     if (!o.best_effort || !sel.search.found)
       goto done;
   }
-  describe(&comments, &in, &sel, &P, range_from, (long)M, &o.proc);
+  char proc_text[160];
+  snprintf(proc_text, sizeof proc_text, "detrend %s, %s",
+           o.proc.detrend == AQ_DETREND_LINEAR ? "linear"
+           : o.proc.detrend == AQ_DETREND_MEAN ? "mean"
+                                               : "none",
+           o.proc.filter ? "pads and high-pass as the main job" : "no filter");
+  aq_selection_context ctx = {aq_build_string(), range_from, aq_select_peaks_name(&P.sopts),
+                              aq_select_pair_name(P.pair_rule), proc_text, M};
+  nlines = aq_selection_describe(&sel, &in, &ctx, lines);
   aq_cleanup_install();
   aq_outfile tout = {0};
   if (o.text && aq_outfile_open(&tout, o.text, &err) != AQ_OK) {
@@ -431,40 +318,13 @@ int aq_cmd_select(int argc, char **argv)
     rc = AQ_EXIT_OUTPUT;
     goto done;
   }
-  if (o.output) {
-    char created[64];
-    aq_app_now_utc(created, sizeof created);
-    aq_h5_select hs = {.input = &in, .sel = &sel, .comments = (const char *const *)comments.v,
-                       .ncomments = comments.n, .version = AQ_VERSION,
-                       .build = aq_build_string(), .command_line = cmdline ? cmdline : "",
-                       .created = created, .proc = &o.proc,
-                       .peaks = aq_select_peaks_name(&P.sopts),
-                       .pair_rule = aq_select_pair_name(P.pair_rule)};
-    const char **rec = malloc(M * sizeof *rec), **chan = malloc(M * sizeof *chan),
-               **ev = malloc(M * sizeof *ev);
-    for (size_t i = 0; rec && chan && ev && i < M; i++) {
-      rec[i] = use[i]->name;
-      chan[i] = use[i]->channel;
-      ev[i] = use[i]->event;
-    }
-    hs.record = rec;
-    hs.channel = chan;
-    hs.event = ev;
-    aq_status hst = rec && chan && ev ? aq_h5_select_write(o.output, &hs, &err)
-                                      : aq_error_set(&err, AQ_ENOMEM, o.output, -1, -1, NULL,
-                                                     "out of memory");
-    free(rec);
-    free(chan);
-    free(ev);
-    if (hst != AQ_OK) {
-      aq_error_print(&err, stderr);
-      aq_outfile_abort(&tout);
-      rc = AQ_EXIT_OUTPUT;
-      goto done;
-    }
+  if (o.output && write_h5(o.output, &in, &sel, use, lines, nlines, cmdline, &o.proc, &P) != 0) {
+    aq_outfile_abort(&tout);
+    rc = AQ_EXIT_OUTPUT;
+    goto done;
   }
   FILE *tf = tout.f ? tout.f : stdout;
-  if (write_suite(tf, &comments, &sel, (const aq_select_member *const *)use, o.count) != 0 ||
+  if (write_suite(tf, lines, nlines, &sel, (const aq_select_member *const *)use, o.count) != 0 ||
       (tout.f && aq_outfile_commit(&tout, &err) != AQ_OK) ||
       (!tout.f && fflush(stdout) != 0)) {
     if (tout.f)
@@ -494,8 +354,7 @@ done:
   free(keys);
   aq_select_pool_free(&P);
   free(grid);
-  strs_free(&files);
-  strs_free(&comments);
+  aq_record_names_free(files, nfiles);
   aq_record_names_free(names, nnames);
   aq_record_names_free(notes, nnotes);
   aq_target_free(&target);

@@ -3,10 +3,14 @@
 #define _POSIX_C_SOURCE 200809L
 #include "select_pool.h"
 
+#include <dirent.h>
+#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "../job/subject.h"
 #include "../job/subject_cache.h"
@@ -167,4 +171,99 @@ void aq_select_pool_free(aq_select_pool *pool)
   free(pool->m);
   pool->m = NULL;
   pool->n = 0;
+}
+
+/* A growing list of names. */
+typedef struct {
+  char **v;
+  size_t n, cap;
+} names;
+
+static int push(names *s, const char *x)
+{
+  if (s->n == s->cap) {
+    size_t c = s->cap ? 2 * s->cap : 64;
+    char **v = realloc(s->v, c * sizeof *v);
+    if (!v)
+      return -1;
+    s->v = v;
+    s->cap = c;
+  }
+  if (!(s->v[s->n] = strdup(x)))
+    return -1;
+  s->n++;
+  return 0;
+}
+
+static int cmp_name(const void *a, const void *b)
+{
+  return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The regular files of directory dir, in name order, onto out. */
+static aq_status add_directory(const char *dir, names *out, aq_error *err)
+{
+  DIR *d = opendir(dir);
+  if (!d)
+    return aq_error_set(err, AQ_EIO, dir, -1, -1, NULL, "cannot read the directory");
+  names files = {0};
+  struct dirent *e;
+  int bad = 0;
+  size_t dl = strlen(dir);
+  while (!bad && (e = readdir(d))) {
+    if (e->d_name[0] == '.')
+      continue;
+    size_t len = dl + strlen(e->d_name) + 2;
+    char *path = malloc(len);
+    struct stat sb;
+    if (!path) {
+      bad = 1;
+      break;
+    }
+    snprintf(path, len, "%s%s%s", dir, dl && dir[dl - 1] == '/' ? "" : "/", e->d_name);
+    if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+      bad = push(&files, path) != 0;
+    free(path);
+  }
+  closedir(d);
+  if (files.n)
+    qsort(files.v, files.n, sizeof *files.v, cmp_name);
+  for (size_t k = 0; !bad && k < files.n; k++)
+    bad = push(out, files.v[k]) != 0;
+  aq_record_names_free(files.v, files.n);
+  return bad ? aq_error_set(err, AQ_ENOMEM, dir, -1, -1, NULL, "out of memory") : AQ_OK;
+}
+
+aq_status aq_select_pool_files(char *const *ops, size_t n, char ***files, size_t *nfiles,
+                               aq_error *err)
+{
+  names out = {0};
+  aq_status st = AQ_OK;
+  for (size_t i = 0; st == AQ_OK && i < n; i++) {
+    struct stat sb;
+    if (stat(ops[i], &sb) == 0 && S_ISDIR(sb.st_mode)) {
+      st = add_directory(ops[i], &out, err);
+    } else if (access(ops[i], F_OK) != 0 && strpbrk(ops[i], "*?[")) {
+      glob_t g;
+      int r = glob(ops[i], 0, NULL, &g);
+      if (r != 0)
+        st = aq_error_set(err, AQ_EIO, ops[i], -1, -1, NULL,
+                          "expected a record, a directory or a glob matching files, got a "
+                          "glob matching none");
+      for (size_t k = 0; r == 0 && st == AQ_OK && k < g.gl_pathc; k++)
+        if (push(&out, g.gl_pathv[k]) != 0)
+          st = aq_error_set(err, AQ_ENOMEM, ops[i], -1, -1, NULL, "out of memory");
+      if (r == 0 || r == GLOB_NOSPACE)
+        globfree(&g);
+    } else if (push(&out, ops[i]) != 0) {
+      st = aq_error_set(err, AQ_ENOMEM, ops[i], -1, -1, NULL, "out of memory");
+    }
+  }
+  if (st != AQ_OK) {
+    aq_record_names_free(out.v, out.n);
+    return st;
+  }
+  *files = out.v;
+  *nfiles = out.n;
+  return AQ_OK;
 }

@@ -55,6 +55,16 @@ typedef struct {
   aq_diskcache *cache;  /* NULL: none */
 } aq_select_pool;
 
+/* The pool's operands ops[0..n) as files: a directory gives its regular
+ * files (not those whose names begin with '.') in name order; a word that
+ * names no file and holds a glob character gives its matches (none: an
+ * error); anything else is kept as given (FILE#CH, or for the reader to
+ * refuse).  *files (malloc'd names, *nfiles of them; free with
+ * aq_record_names_free).  AQ_OK, AQ_EIO (a directory that cannot be read,
+ * a glob matching nothing: err names it), AQ_ENOMEM. */
+aq_status aq_select_pool_files(char *const *ops, size_t n, char ***files, size_t *nfiles,
+                               aq_error *err);
+
 /* Prepare every member of pool (members named, the rest set), on threads.
  * Returns AQ_OK (each member's own status says whether it is usable) or
  * AQ_ENOMEM (err). */

@@ -131,3 +131,44 @@ void aq_selection_factor_note(const aq_selection *s, const aq_select_input *in, 
              "raised by this factor", f, why, 100 * AQ_SELECT_BAND,
              in->periods_s[e->min_k], e->min_ratio);
 }
+
+size_t aq_selection_describe(const aq_selection *s, const aq_select_input *in,
+                             const aq_selection_context *c,
+                             char lines[][AQ_SELECTION_LINE_MAX])
+{
+  size_t n = 0;
+  char t[512];
+  const size_t L = AQ_SELECTION_LINE_MAX;
+  snprintf(lines[n++], L, "archquake select (%s): a suite of %zu for the target %s", c->build,
+           in->count, in->target->spec);
+  aq_target_describe(in->target, t, sizeof t);
+  snprintf(lines[n++], L, "target: %s", t);
+  snprintf(lines[n++], L, "range: %g to %g s (%s); %zu periods, where the misfit and the "
+           "checks are computed", in->periods_s[0], in->periods_s[in->nper - 1],
+           c->range_from, in->nper);
+  snprintf(lines[n++], L, "spectra: damping %g, peaks %s, pairs %s; processing: %s",
+           in->target->damping, c->peaks, c->pair_rule, c->processing);
+  char ev[64] = "no limit of records per event";
+  if (in->max_per_event)
+    snprintf(ev, sizeof ev, "at most %zu records of one event", in->max_per_event);
+  snprintf(lines[n++], L, "rule: %s: the mean scaled spectrum at least %g %% of the target "
+           "over the range%s; %s; at least %zu records; each scale within %g to %g",
+           aq_target_code(in->target), 100 * AQ_SELECT_BAND,
+           in->target->kind == AQ_TARGET_EC8 ? ", the mean PGA at least a_g S" : "", ev,
+           aq_select_min_count(in->target), in->scale_lo, in->scale_hi);
+  snprintf(lines[n++], L, "search: %s over a pool of %zu usable records, %.0f combinations, "
+           "%.0f suites evaluated",
+           s->search.kind == AQ_SEARCH_EXHAUSTIVE
+               ? "exhaustive (every combination)"
+               : "greedy, then swaps (Jayaram, Lin & Baker 2011)",
+           c->nusable, s->search.combinations, s->search.evaluated);
+  aq_selection_factor_note(s, in, t, sizeof t);
+  snprintf(lines[n++], L, "common factor: %s", t);
+  snprintf(lines[n++], L, "misfit: %.6g (mean over the periods of (ln mean scaled PSA - ln "
+           "target)^2)", s->search.eval.misfit);
+  for (size_t i = 0; i < s->nchecks; i++)
+    snprintf(lines[n++], L, "check %s: %s: %s", s->checks[i].name,
+             s->checks[i].holds ? "holds" : "FAILS", s->checks[i].detail);
+  snprintf(lines[n++], L, "conditions: %s", s->all_hold ? "all hold" : "NOT ALL HOLD");
+  return n;
+}

@@ -59,6 +59,26 @@ void aq_selection_free(aq_selection *s);
 void aq_selection_shortfall(const aq_selection *s, const aq_select_input *in, char *buf,
                             size_t n);
 
+/* What the suite file's header says beyond the selection itself. */
+typedef struct {
+  const char *build;      /* the program's version and build */
+  const char *range_from; /* how the range was chosen ("--periods", ...) */
+  const char *peaks;      /* the spectra's peak rule (spectrum.h's name) */
+  const char *pair_rule;  /* a pair's spectrum (pool.h's name) */
+  const char *processing; /* the pool's processing in words */
+  size_t nusable;         /* usable records of the pool */
+} aq_selection_context;
+
+/* The lines of the suite file's header (target, range, spectra, rule,
+ * search, common factor, misfit, each check, whether all hold; no "# "
+ * and no newline), at most AQ_SELECTION_LINES_MAX of AQ_SELECTION_LINE_MAX
+ * bytes into lines; returns their number. */
+#define AQ_SELECTION_LINES_MAX (9 + AQ_SELECT_CHECKS_MAX)
+#define AQ_SELECTION_LINE_MAX 1024
+size_t aq_selection_describe(const aq_selection *s, const aq_select_input *in,
+                             const aq_selection_context *c,
+                             char lines[][AQ_SELECTION_LINE_MAX]);
+
 /* One sentence on the common factor: "none (the least-misfit suite meets
  * the conditions)" or "1.043: the least-misfit suite fell below 90 % of the
  * target at 0.45 s", into buf[n]. */
