@@ -189,11 +189,26 @@ static unsigned char *attr_bytes(hid_t obj, const char *aname, size_t *len)
   if (a < 0)
     return NULL;
   hid_t t = H5Aget_type(a), s = H5Aget_space(a);
-  size_t n = H5Tget_size(t) * (size_t)H5Sget_simple_extent_npoints(s);
-  unsigned char *b = calloc(n + 1, 1);
-  if (b && H5Aread(a, t, b) < 0) {
-    free(b);
-    b = NULL;
+  size_t np = (size_t)H5Sget_simple_extent_npoints(s), n = H5Tget_size(t) * np;
+  unsigned char *b = NULL;
+  if (H5Tis_variable_str(t) > 0) { /* strings (columns, units): their text */
+    char **v = calloc(np + 1, sizeof *v);
+    n = 0;
+    if (v && H5Aread(a, t, v) >= 0) {
+      for (size_t i = 0; i < np; i++)
+        n += (v[i] ? strlen(v[i]) : 0) + 1;
+      b = calloc(n + 1, 1);
+      for (size_t i = 0, k = 0; b && i < np; k += strlen((char *)b + k) + 1, i++)
+        strcpy((char *)b + k, v[i] ? v[i] : "");
+      H5Dvlen_reclaim(t, s, H5P_DEFAULT, v);
+    }
+    free(v);
+  } else {
+    b = calloc(n + 1, 1);
+    if (b && H5Aread(a, t, b) < 0) {
+      free(b);
+      b = NULL;
+    }
   }
   *len = n;
   H5Sclose(s);

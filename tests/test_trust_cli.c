@@ -239,7 +239,7 @@ AQ_TEST(trust_ineffective_options_are_refused)
   aq_check(rc == 0 && h5_arch_attr_double(h5, "/arches/000", "cor", &cor) && isnan(cor),
            "impact momentum uses no cor: NaN in the file, got %g (exit %d)", cor, rc);
   /* arches/search.cfg states g_mps2 = 9.81 */
-  aq_check(h5_arch_attr_double(h5, "/arches/000", "g_m_s2", &g) && g == 9.81,
+  aq_check(h5_arch_attr_double(h5, "/arches/000", "g_mps2", &g) && g == 9.81,
            "the arch's gravity: %g", g);
 }
 
@@ -353,7 +353,7 @@ AQ_TEST(trust_polarity_and_normalised_results)
   aq_check_abs(pr, 0.011, 0.0005, "peak rotation at 0.5 negated (issue: 0.011)");
   for (size_t r = 1; r <= 4; r++) {
     static const char *const cols[] = {"peak_rotation_rad", "lambda0_first",
-                                       "peak_rotation_over_qc", "pga_over_lambda0_g"};
+                                       "peak_rotation_over_qc", "pga_over_lambda0"};
     for (size_t k = 0; k < 4; k++)
       aq_check_rel(cell_double(out, r, cols[k]), cell_double(ode, r, cols[k]), 1e-9,
                    "row %zu %s: workpath = ode", r, cols[k]);
@@ -364,7 +364,7 @@ AQ_TEST(trust_polarity_and_normalised_results)
              l0[1]);
     aq_check(fabs(ratio * qc[0] - peak) <= 1e-8 * peak || fabs(ratio * qc[1] - peak) <= 1e-8 * peak,
              "row %zu: peak / q_c of one of mechanism's sets (ratio %.6g)", r, ratio);
-    aq_check_rel(cell_double(out, r, "pga_over_lambda0_g"),
+    aq_check_rel(cell_double(out, r, "pga_over_lambda0"),
                  cell_double(out, r, "pga_g") / lf, 1e-12, "row %zu: PGA/(lambda0 g)", r);
   }
   /* a PGA of 0.14 g cannot reach the reverse set's 0.80: the record drives
@@ -378,7 +378,7 @@ AQ_TEST(trust_polarity_and_normalised_results)
                               "--polarity both --history -o %s", h5);
   rc = aq_test_run(args, NULL, 0, err, sizeof err);
   static const char *const cols[] = {"lambda0_first", "peak_rotation_over_qc",
-                                     "pga_over_lambda0_g", "peak_rotation_rad"};
+                                     "pga_over_lambda0", "peak_rotation_rad"};
   for (size_t r = 0; r < 4; r++)
     for (size_t k = 0; k < 4; k++) {
       double v = NAN;
@@ -440,7 +440,7 @@ AQ_TEST(trust_polarity_reversed_equals_negated_copy)
   static const char *const cols[] = {"collapsed", "collapse_time_s", "peak_rotation_rad",
                                      "peak_displacement_m", "max_kinetic_energy_j",
                                      "impacts", "energy_in_j", "lambda0_first",
-                                     "peak_rotation_over_qc", "pga_over_lambda0_g"};
+                                     "peak_rotation_over_qc", "pga_over_lambda0"};
   int collapsed = 0;
   for (size_t r = 1; r <= 4; r++) {
     char pol[32];
@@ -477,7 +477,7 @@ AQ_TEST(trust_compare_reads_files_without_the_new_columns)
            "/usr/bin/python3 -c \"import h5py, sys\n"
            "with h5py.File(sys.argv[1], 'r+') as f:\n"
            "  t = f['summary'][:]\n"
-           "  added = ('polarity', 'lambda0_first', 'peak_rotation_over_qc', 'pga_over_lambda0_g')\n"
+           "  added = ('polarity', 'lambda0_first', 'peak_rotation_over_qc', 'pga_over_lambda0')\n"
            "  keep = [n for n in t.dtype.names if n not in added]\n"
            "  assert len(keep) == len(t.dtype.names) - 4\n"
            "  del f['summary']\n"

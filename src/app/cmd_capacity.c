@@ -19,6 +19,7 @@
 #include "../capacity/capacity.h"
 #include "../io/record.h"
 #include "../job/names.h"
+#include "../job/run.h"
 #include "../report/h5_capacity.h"
 #include "../report/report.h"
 #include "../report/text_capacity.h"
@@ -155,15 +156,10 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                      .polarity = aq_opt_polarity_names[pol]};
   aq_status s = aq_h5_open(path, &w, &e);
   if (s == AQ_OK)
-    s = aq_h5_write_root(w, &root, &e);
+    s = aq_h5_write_root_kind(w, &root, "capacity", &e);
   for (size_t a = 0; s == AQ_OK && a < na; a++) {
-    aq_h5_arch ha = {.name = aq_arch_name(arches[a]),
-                     .source_file = arch_paths[a],
-                     .config_text = aq_arch_config_text(arches[a]),
-                     .dyn = aq_arch_dynamics_of(arches[a]),
-                     .set = {aq_arch_path(arches[a], 0), aq_arch_path(arches[a], 1)},
-                     .arch = arches[a]};
-    s = aq_h5_write_arch(w, a, &ha, &e);
+    aq_arch_dynamics used = aq_job_dynamics(arches[a], cor); /* the values the runs use */
+    s = aq_h5_write_arch_of(w, a, arches[a], arch_paths[a], &used, &e);
   }
   for (size_t r = 0; s == AQ_OK && r < nrec; r++) {
     aq_h5_record hr = {.source_file = recs[r],

@@ -3,10 +3,13 @@
 #define _POSIX_C_SOURCE 200809L
 #include "opt_table.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../arch/arch.h"
@@ -96,22 +99,6 @@ static void units(char *arg, aq_opts *o, int *nerr)
   aq_opt_units(arg, &o->read, nerr);
   size_t k = strlen(o->units_text); /* the rules as given, for the results file */
   snprintf(o->units_text + k, sizeof o->units_text - k, "%s%s", k ? " " : "", arg);
-}
-
-/* After --damping's list, each in (0, 1]: 1 (critical damping) is refused
- * too, as no oscillation is left for a spectrum. */
-static void damping_below_1(char *arg, aq_opts *o, int *nerr)
-{
-  for (size_t i = 0; i < o->ndampings; i++)
-    if (!(o->dampings[i] < 1)) {
-      fprintf(stderr, "archquake: --damping: expected damping ratios in (0, 1), "
-                      "got \"%s\"\n", arg);
-      (*nerr)++;
-      free(o->dampings);
-      o->dampings = NULL;
-      o->ndampings = 0;
-      return;
-    }
 }
 
 /* The intensity measures' periods: "none" (no period), or a list of nmin
@@ -237,12 +224,69 @@ static void orientation(aq_opts *o, int *nerr)
   aq_opt_orient_check(&o->orient, nerr);
 }
 
-/* --cache-dir names where --no-cache would not look: refused together. */
+/* Why the cache directory dir cannot be used (made if missing, beside an
+ * existing parent, as the cache makes it; written; its records/ and
+ * arches/ directories), into why[n]; "" if it can. */
+static void cache_dir_unusable(const char *dir, char *why, size_t n)
+{
+  struct stat sb;
+  why[0] = '\0';
+  if (!dir[0]) {
+    snprintf(why, n, "an empty name");
+  } else if (stat(dir, &sb) == 0) {
+    if (!S_ISDIR(sb.st_mode))
+      snprintf(why, n, "a file that is not a directory");
+    else if (access(dir, W_OK | X_OK) != 0)
+      snprintf(why, n, "a directory that cannot be written (%s)", strerror(errno));
+    for (int k = 0; k < 2 && !why[0]; k++) {
+      char sub[PATH_MAX];
+      snprintf(sub, sizeof sub, "%s/%s", dir, k ? "arches" : "records");
+      if (stat(sub, &sb) == 0 && !S_ISDIR(sb.st_mode))
+        snprintf(why, n, "a directory whose %s is a file, not a directory", k ? "arches"
+                                                                               : "records");
+    }
+  } else if (errno != ENOENT) {
+    snprintf(why, n, "a path that cannot be looked at (%s)", strerror(errno));
+  } else {
+    char parent[PATH_MAX];
+    snprintf(parent, sizeof parent, "%s", dir);
+    char *slash = strrchr(parent, '/');
+    while (slash && slash > parent && slash[1] == '\0') { /* "dir/" */
+      *slash = '\0';
+      slash = strrchr(parent, '/');
+    }
+    if (!slash)
+      snprintf(parent, sizeof parent, ".");
+    else if (slash == parent)
+      parent[1] = '\0';
+    else
+      *slash = '\0';
+    if (stat(parent, &sb) != 0)
+      snprintf(why, n, "its parent %s cannot be used (%s)", parent, strerror(errno));
+    else if (!S_ISDIR(sb.st_mode))
+      snprintf(why, n, "its parent %s is not a directory", parent);
+    else if (access(parent, W_OK | X_OK) != 0)
+      snprintf(why, n, "its parent %s cannot be written (%s)", parent, strerror(errno));
+  }
+}
+
+/* --cache-dir names where --no-cache would not look: refused together.  A
+ * directory the user names must be usable, or nothing runs (without
+ * --cache-dir, a default directory that cannot be written is a note and
+ * the run goes on). */
 static void cache_dir_needs_cache(aq_opts *o, int *nerr)
 {
   if (o->given[AQ_OPT_CACHE_DIR] && o->given[AQ_OPT_NO_CACHE]) {
     fprintf(stderr, "archquake: --cache-dir: expected no --no-cache with it (--no-cache "
                     "uses no cache directory), got both\n");
+    (*nerr)++;
+    return;
+  }
+  char why[PATH_MAX + 128];
+  if (o->given[AQ_OPT_CACHE_DIR] && o->cache_dir &&
+      (cache_dir_unusable(o->cache_dir, why, sizeof why), why[0])) {
+    fprintf(stderr, "archquake: --cache-dir: expected a directory that can be written, or "
+                    "made in an existing one, got \"%s\": %s\n", o->cache_dir, why);
     (*nerr)++;
   }
 }
@@ -359,8 +403,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
                     .cmds = C(PLOT_HISTORY),
-                    .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
-                            "(default: the first run)"},
+                    .help = "the run to draw: a group under /histories, e.g. "
+                            "00000_000_000 (default: the first run with histories)"},
     [AQ_OPT_RECORD] = {.name = "record", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(record),
                        .cmds = C(PLOT_SPECTRUM),
                        .help = "the record (or --components pair) of a spectrum file to draw, "
@@ -503,8 +547,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .meta = "LIST", DEST_LIST(periods, nperiods), .cmds = C(SPECTRUM),
                         .help = "oscillator periods, s, comma-separated, each > 0 (default: "
                                 "PEER's 111 periods of the NGA-West2 flatfile, 0.01-20 s)"},
-    [AQ_OPT_DAMPING] = {.name = "damping", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1,
-                        .meta = "LIST", DEST_LIST(dampings, ndampings), .fn = damping_below_1,
+    /* each in (0, 1): critical damping (1) leaves no oscillation for a spectrum */
+    [AQ_OPT_DAMPING] = {.name = "damping", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1, .hi_open = 1,
+                        .meta = "LIST", DEST_LIST(dampings, ndampings),
                         .cmds = C(SPECTRUM),
                         .help = "damping ratios, comma-separated, each in (0, 1) (default "
                                 "0.05)"},
@@ -647,6 +692,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .help = "remove the least-squares line (linear, default), the mean "
                                 "(mean) or nothing (none)"},
     [AQ_OPT_TAPER] = {.name = "taper", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 0.5,
+                      .zero_is_off = 1, /* --taper 0: no taper, as --no-filter gives */
                       .meta = "FRAC", DEST(proc.taper_frac), .cmds = READS,
                       .group = AQ_GROUP_PROCESSING,
                       .help = "Hann taper over FRAC of the record at each end, 0-0.5 "
@@ -693,9 +739,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .check = sampled_peaks_alias},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = READS, .group = AQ_GROUP_PROCESSING,
-                          .help = "no taper, pads or filter (detrend still applies)",
+                          .help = "no taper, pads or filter (detrend still applies; "
+                                  "--taper 0, no taper, may be given with it)",
                           /* an option that sets one of them would be ignored: refused,
-                           * even at its default */
+                           * even at its default, unless it asks for none (--taper 0:
+                           * .zero_is_off) */
                           .conflicts = OPTS(AQ_OPT_TAPER, AQ_OPT_HIGHPASS, AQ_OPT_ORDER,
                                             AQ_OPT_LOWPASS),
                           .why = "it applies no taper, pads or filter"},
@@ -711,9 +759,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                  "docs/cache.md)"},
     [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
                           DEST(cache_dir), .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
-                          .help = "keep processed records, built arches and spectra in DIR "
-                                  "(default $XDG_CACHE_HOME/archquake, else "
-                                  "~/.cache/archquake)",
+                          .help = "keep processed records, built arches and spectra in DIR (made "
+                                  "if its parent exists; one that cannot be used stops the "
+                                  "command before anything runs; default "
+                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake, "
+                                  "which, if it cannot be used, is a note and the run goes "
+                                  "on)",
                           .check = cache_dir_needs_cache},
     [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
                           .fn = cache_max, .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
@@ -734,13 +785,13 @@ static const char run_tail[] =
     "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
     "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
     "  record drove first; nan if it never moved) peak_rotation_over_qc (the\n"
-    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0_g (pga_g over\n"
+    "  largest |q| / q_c over both sets; 1 at collapse) pga_over_lambda0 (pga_g over\n"
     "  lambda0_first, or over the lower lambda0 if it never moved);\n"
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
     "  --components motion, nan for a RECORD; control: fixed or free, the\n"
     "  arch's hinge control, which its verdicts assume)\n"
-    "Exit status:\n"
+    "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
     "  2  bad or missing options, or an arch file that cannot be loaded:\n"
@@ -840,7 +891,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
                  "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
                  "  as above, in the deformed arch at lambda(q)).\n"
-                 "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded (the arch\n"
+                 "is mechanism's input, as a record is info's), 2 bad options.\n"},
     [AQ_CMD_PULSE] =
         {.name = "pulse",
          .title = "pulse",
@@ -853,9 +905,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .tail = "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
                  "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
                  "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
-                 "Exit status: 0 success, 1 the arch or the run failed, 2 bad options (or\n"
-                 "an option the arch makes ineffective, as --cor with impact momentum),\n"
-                 "3 the history could not be written.\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded, or the run\n"
+                 "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
+                 "with impact momentum), 3 the history could not be written.\n"},
     [AQ_CMD_DOMAIN] =
         {.name = "domain",
          .title = "domain",
@@ -869,8 +921,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "--polarity).\n",
          .tail = "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
                  "  --max-duration)\n"
-                 "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
-                 "option the arch makes ineffective, as --cor with impact momentum).\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded, or a run\n"
+                 "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
+                 "with impact momentum).\n"},
     [AQ_CMD_COMPARE] =
         {.name = "compare",
          .title = "compare",
@@ -915,7 +968,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
                  "  collapse holds at the cap)\n"
                  "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
-                 "ran), 2 bad options or arch file, 3 an output could not be written.\n",
+                 "ran), 2 bad options or an arch file that cannot be loaded (nothing ran),\n"
+                 "3 an output could not be written.\n",
          .heading = {[AQ_GROUP_ORIENTATION] =
                          "Orientation (--azimuth all: each row is the worst azimuth, lowest\n"
                          "first_collapse_scale, no collapse last, with the range over the\n"
@@ -977,8 +1031,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .synopsis = "plot FIGURE ... -o FILE",
          .summary = "figures (history arch domain suite capacity spectrum)",
                      .head = plot_head,
-                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
-                             "bad options,\n3 the figure or the data could not be written.\n",
+                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn (a\n"
+                             "results file, or an arch file that cannot be loaded), 2 bad\n"
+                             "options, 3 the figure or the data could not be written.\n",
                      .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_HELP] =
         {.name = "help",

@@ -294,6 +294,11 @@ typedef struct {
   aq_arg_kind kind;
   const char *meta;   /* the argument in --help ("FILE"); NULL for flags */
   double lo, hi;      /* the range (numbers; LIST: each item) */
+  int hi_open;        /* LIST: hi itself is outside (--damping: each in (0, 1)) */
+  /* A value of 0 asks for nothing (--taper 0: no taper): it conflicts with
+   * no option (a .conflicts rule holds only between values that conflict,
+   * so --no-filter --taper 0 is no conflict). */
+  int zero_is_off;
   const char *const *choices; /* AQ_ARG_CHOICE: NULL-terminated */
   size_t dest, dest_n;        /* offsetof(aq_opts, ...) */
   /* AQ_ARG_CUSTOM: checks arg and stores it; other kinds: called after the

@@ -212,23 +212,7 @@ aq_status aq_suite_open_h5(suite *S, aq_h5_writer **out, aq_error *err)
   for (size_t a = 0; s == AQ_OK && a < c->narches; a++) {
     const aq_arch *A = S->arches[a];
     aq_arch_dynamics used = aq_job_dynamics(A, c->cor); /* the values the runs use */
-    const char *cfg = aq_arch_config_text(A);
-    char sha[AQ_SHA256_HEX], joints[2][64], faces[2][8];
-    aq_arch_sha256(A, sha); /* the file's bytes, as read, and a joints arch's files' */
-    for (int k = 0; k < 2; k++)
-      aq_hinge_set_format(aq_arch_hinge_set(A, k), joints[k], sizeof joints[k],
-                          faces[k], sizeof faces[k]);
-    aq_h5_arch ha = {aq_arch_name(A),
-                     c->arch_paths[a],
-                     cfg,
-                     &used,
-                     {aq_arch_path(A, 0), aq_arch_path(A, 1)},
-                     sha,
-                     aq_arch_searched(A),
-                     {joints[0], joints[1]},
-                     {faces[0], faces[1]},
-                     A};
-    s = aq_h5_write_arch(w, a, &ha, err);
+    s = aq_h5_write_arch_of(w, a, A, c->arch_paths[a], &used, err);
   }
   if (s != AQ_OK) {
     aq_h5_abort(w);

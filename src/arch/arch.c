@@ -4,6 +4,7 @@
  * reverse hinge sets, the arrays of its drawing and its content digest.
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include "../io/sha256.h"
 #include "../units.h"
 #include "arch.h"
+#include "demand.h"
 #include "model.h"
 
 struct aq_arch {
@@ -33,14 +35,22 @@ struct aq_arch {
   /* aq_arch_drawing's arrays (drawing_make) */
   double *d_joints, *d_parts, *d_outline, *d_fill, *d_mass;
   int64_t *d_ostart, *d_fstart;
+  /* the joints' demand tables (demand.h), built on first use */
+  aq_demand_table *demand[2];
+  int demand_tried[2];
 };
+
+/* Guards every arch's demand tables while one is built (rarely). */
+static pthread_mutex_t demand_lock = PTHREAD_MUTEX_INITIALIZER;
 
 void aq_arch_free(aq_arch *a)
 {
   if (!a)
     return;
-  for (int s = 0; s < 2; s++)
+  for (int s = 0; s < 2; s++) {
     aq_workpath_free(a->wp[s]);
+    aq_demand_table_free(a->demand[s]);
+  }
   aq_geom_free(&a->geom);
   free(a->name);
   free(a->text);
@@ -419,6 +429,16 @@ int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda)
   return 1;
 }
 
+void aq_arch_sources_of(const aq_arch *a, aq_arch_sources *src)
+{
+  src->text = a->text;
+  src->ntext = a->text ? strlen(a->text) : 0;
+  for (int f = 0; f < 2; f++) {
+    src->data[f] = a->data[f];
+    src->ndata[f] = a->ndata[f];
+  }
+}
+
 void aq_arch_sha256(const aq_arch *a, char hex[65])
 {
   aq_sha256_ctx c;
@@ -442,4 +462,36 @@ aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *pri
       p.shape = (aq_shape)s;
   p.stored = d;
   return aq_arch_build(&p, primary, reverse, dyn, name, out, err);
+}
+
+const aq_demand_table *aq_arch_demand_table(const aq_arch *a, int set)
+{
+  if (set < 0 || set > 1 || !a->wp[set])
+    return NULL;
+  aq_arch *w = (aq_arch *)a; /* a cache of what the arch is: built once */
+  pthread_mutex_lock(&demand_lock);
+  if (!w->demand_tried[set]) {
+    aq_error e;
+    aq_error_clear(&e);
+    const aq_path *p = aq_workpath_path(w->wp[set]);
+    if (p->admissible)
+      aq_demand_table_build(aq_workpath_mech(w->wp[set]), p, &w->demand[set], &e);
+    w->demand_tried[set] = 1;
+  }
+  const aq_demand_table *t = w->demand[set];
+  pthread_mutex_unlock(&demand_lock);
+  return t;
+}
+
+static const aq_demand_table *demand_get(void *ctx, int set)
+{
+  return aq_arch_demand_table(ctx, set);
+}
+
+aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err)
+{
+  aq_demand *d = aq_demand_alloc(demand_get, (void *)a, err);
+  if (d)
+    aq_demand_set_limit(d, mu_limit);
+  return d;
 }

@@ -108,6 +108,9 @@ const char *aq_arch_config_text(const aq_arch *a);
  * the .cfg's bytes, followed by those of its joints and faces files for a
  * `shape = joints` arch (so for every other arch that of the .cfg alone). */
 void aq_arch_sha256(const aq_arch *a, char hex[65]);
+/* The arch's sources as read, those aq_arch_sha256 covers (owned by the
+ * arch; the files' bytes NUL-terminated). */
+void aq_arch_sources_of(const aq_arch *a, aq_arch_sources *src);
 const aq_arch_dynamics *aq_arch_dynamics_of(const aq_arch *a);
 /* The arch's generated geometry as plain arrays, for the results file and
  * for figures read back from it: owned by the arch, valid while it lives.
@@ -143,5 +146,17 @@ aq_hinge_control aq_arch_control(const aq_arch *a);
  * [contact] friction, or the command's --friction over it), NAN when none
  * was given. */
 double aq_arch_friction(const aq_arch *a);
+
+/* The forces across the joints of set 0 or 1 along its path, tabled
+ * (src/arch/demand.h): built on the first call (safe from any thread) and
+ * kept with the arch; NULL when the set is not admissible or they cannot
+ * be built. */
+typedef struct aq_demand_table aq_demand_table;
+const aq_demand_table *aq_arch_demand_table(const aq_arch *a, int set);
+/* A tracker of what a run of a asks of its joints (demand.h), for
+ * aq_stepper_set_demand, checking the friction mu_limit (NAN: none).
+ * NULL (err) out of memory. */
+typedef struct aq_demand aq_demand;
+aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err);
 
 #endif

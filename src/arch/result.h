@@ -39,6 +39,16 @@ typedef struct {
   size_t steps_moving;         /* steps integrated in motion (not skipped at rest) */
   size_t evals;                /* path (or right-hand side) evaluations; table pieces fetched */
   size_t substeps;             /* integrator steps: Taylor sub-steps, panels, rk8pd steps */
+  /* What the motion asked of the joints (demand.h), NAN when not tracked
+   * or the arch never moved: */
+  double mu_demand;            /* largest |T|/N at any joint (INFINITY: a joint in tension) */
+  size_t mu_demand_joint;      /* where */
+  double thrust_ecc_max;       /* largest |eccentricity| of the thrust at a non-hinge joint */
+  double thrust_ecc_time_s;    /* first time it passed 1 (record time), NAN: never */
+  double slide_time_s;         /* first time mu_demand passed the friction given, NAN: never */
+  size_t demand_samples;       /* states looked at */
+  size_t demand_full;          /* of them, with every joint evaluated */
+  size_t demand_looks;         /* single joints evaluated */
   aq_history history;          /* filled only when asked */
 } aq_result;
 

@@ -42,6 +42,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "demand.h"
 #include "eom.h"
 #include "leg.h"
 #include "paper.h"
@@ -76,6 +77,7 @@ struct aq_stepper {
   /* M(0) of each set for the momentum rule, evaluated at the first impact
    * of a run that needs it (NAN: not yet); M depends on s alone */
   double m0_kgm2[2];
+  aq_demand *demand; /* the joints' demand (demand.h), owned; NULL: none */
 };
 
 
@@ -164,6 +166,7 @@ void aq_stepper_free(aq_stepper *st)
   aq_paper_free(st->paper);
   aq_taylor_free(st->taylor);
   aq_quad_free(st->quad);
+  aq_demand_free(st->demand);
   free(st);
 }
 
@@ -217,6 +220,13 @@ void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
 }
 
 double aq_stepper_rest_since(const aq_stepper *st) { return st->rest_since_s; }
+
+void aq_stepper_set_demand(aq_stepper *st, aq_demand *d)
+{
+  aq_demand_free(st->demand);
+  st->demand = d;
+}
+
 
 static aq_status hist_push(aq_history *h, double t, double q, double x,
                            double ke, double pe, int set)
@@ -389,6 +399,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   double rest_since = steps->n ? aq_steps_t(steps, 0) : 0; /* at rest from the start */
   if (st->eom)
     aq_eom_reset(st->eom);
+  aq_demand *const dem = st->model == AQ_MODEL_PAPER ? NULL : st->demand;
   aq_leg_stats S = {0};
   hist_turn_ctx hc = {&res->history, NULL, 0, 0, AQ_OK};
   if (st->history) {
@@ -439,6 +450,12 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     bhi = (scale > 0 ? hi : lo) / scale;
     blo -= 4 * DBL_EPSILON * fabs(blo);
     bhi += 4 * DBL_EPSILON * fabs(bhi);
+  }
+  if (dem) { /* the largest |a| / g of the run, from the quiet index's blocks */
+    double amax = 0;
+    for (size_t b = 0; b < steps->nblock; b++)
+      amax = fmax(amax, fmax(fabs(steps->block_min_mps2[b]), fabs(steps->block_max_mps2[b])));
+    aq_demand_begin(dem, fabs(scale) * amax / (g_min + av_min));
   }
   int rest = 1, set = -1;
   double smax[2] = {0, 0}; /* largest s reached on each set */
@@ -491,8 +508,15 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       hc.p = st->path[set];
       hc.set = set;
       hc.t0_s = aq_steps_t(steps, i) + t_in;
+      const double g_leg = avs ? st->pv[set].g_mps2 : st->path[set]->g_mps2;
+      const size_t rev0 = S.reversals;
+      if (dem)
+        aq_demand_at(dem, set, m.s, m.ke_j, a, g_leg, hc.t0_s);
       rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
                &end, &S, err);
+      if (dem && rc == AQ_OK)
+        aq_demand_leg(dem, set, m.s, m.ke_j, m.dir, S.reversals - rev0, a, g_leg,
+                      hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used));
       if (hc.rc != AQ_OK)
         goto nomem;
       if (end == AQ_LEG_COLLAPSE)
@@ -609,6 +633,20 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       res->peak_displacement_m = fmax(res->peak_displacement_m, px);
     }
   res->max_kinetic_energy_j = S.peak_ke_j;
+  res->mu_demand = res->thrust_ecc_max = NAN;
+  res->thrust_ecc_time_s = res->slide_time_s = NAN;
+  if (dem) {
+    aq_demand_result dr;
+    aq_demand_get(dem, &dr);
+    res->mu_demand = dr.mu_max;
+    res->mu_demand_joint = dr.mu_joint;
+    res->thrust_ecc_max = dr.ecc_max;
+    res->thrust_ecc_time_s = dr.ecc_over_s;
+    res->slide_time_s = dr.slide_s;
+    res->demand_samples = dr.samples;
+    res->demand_full = dr.full;
+    res->demand_looks = dr.looks;
+  }
   res->energy_in_j = e_in;
   res->reversals = S.reversals;
   res->evals = S.evals;

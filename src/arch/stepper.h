@@ -53,6 +53,13 @@ void aq_stepper_set_taylor_tol(aq_stepper *st, double tol); /* workpath series t
 void aq_stepper_set_scale(aq_stepper *st, double scale);
 void aq_stepper_set_rest_tol(aq_stepper *st, double tol);/* rest: KE <= tol * m_T g y(s_c) after an impact */
 
+/* Track what each run asks of the joints with d (demand.h; the stepper
+ * takes it and frees it; NULL: none): every leg's start, end and turning
+ * points are its samples.  The paper model has no joint forces: its runs
+ * are not tracked. */
+typedef struct aq_demand aq_demand;
+void aq_stepper_set_demand(aq_stepper *st, aq_demand *d);
+
 /* Run from rest at q = 0.  res is overwritten (free with aq_result_free).
  * Errors name the time in the record ("at t = 12.340 s"). */
 aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps,

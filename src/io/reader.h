@@ -75,6 +75,16 @@ typedef struct {
   char orient_said[64];  /* the field that states azimuth, dip or vertical,
                             for messages ("integer header #54: 0"); "" if
                             none or the format's only place */
+  /* Rows past the count the file states, before its data end (a reader
+   * that reads a stated count looks, aq_extra_rows_scan): npts values were
+   * read, extra_values more follow in extra_rows rows from line
+   * extra_line; extra_repeat 1 when each of those rows is a copy of the
+   * last row read.  aq_record_decide notes a repeat and refuses the rest. */
+  size_t extra_rows, extra_values;
+  long extra_line;
+  int extra_repeat;
+  char count_from[48];   /* the field that states the count ("NPTS",
+                            "integer header #17"), for those messages */
 } aq_raw_channel;
 
 /* A whole file: one or more channels, plus what the file says about the

@@ -258,6 +258,25 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   aq_status sq = check_acceleration(ch, path ? path : "", label, err);
   if (sq != AQ_OK)
     return sq;
+  /* Rows past the count the file states: a copy of its last row (an
+   * agency padding its block) is said and not read; anything else means
+   * the count or the data is wrong, and is refused naming both counts. */
+  char rows[64];
+  if (ch->extra_rows == 1)
+    snprintf(rows, sizeof rows, "the row at line %ld", ch->extra_line);
+  else
+    snprintf(rows, sizeof rows, "the %zu rows from line %ld", ch->extra_rows, ch->extra_line);
+  if (ch->extra_values > 0 && ch->extra_repeat)
+    snprintf(rec->count_note, sizeof rec->count_note,
+             "the file holds %zu values, %s states %zu: %s %s the last and %s not read",
+             ch->npts + ch->extra_values, ch->count_from, ch->npts, rows,
+             ch->extra_rows == 1 ? "repeats" : "repeat", ch->extra_rows == 1 ? "is" : "are");
+  else if (ch->extra_values > 0)
+    return aq_error_set(err, AQ_EFORMAT, label, ch->extra_line, -1, "data",
+                        "expected %zu values (%s), got %zu: %s %s",
+                        ch->npts, ch->count_from, ch->npts + ch->extra_values, rows,
+                        ch->extra_rows == 1 ? "is not a copy of the last row"
+                                            : "are not all copies of the last row");
   /* --dt is for records that state no sample interval: one that states its
    * own keeps it, and says so when the two differ (a suite may mix both) */
   if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
@@ -481,7 +500,8 @@ const char *aq_record_note(const aq_record *rec, size_t i, const char **topic)
     const char *topic, *text;
   } note[] = {{"polarity", rec->polarity_note},
               {"vertical", rec->vertical_note},
-              {"dt", rec->dt_note}};
+              {"dt", rec->dt_note},
+              {"data", rec->count_note}};
   for (size_t k = 0; k < sizeof note / sizeof note[0]; k++)
     if (note[k].text[0] && i-- == 0) {
       if (topic)

@@ -69,11 +69,14 @@ typedef struct {
                                field disagree (vertical_by NAME_OVER_FIELD) */
   char dt_note[120];        /* "" or one line: --dt differs from the sample
                                interval the file states, which is the one used */
+  char count_note[200];     /* "" or one line: rows past the count the file
+                               states repeat its last row and are not read */
 } aq_record;
 
 /* The i-th note a record carries (i = 0, 1, ...), in the order polarity,
- * vertical, dt, the empty ones skipped: its text, and in *topic (if not
- * NULL) its word ("polarity", "vertical", "dt"); NULL past the last. */
+ * vertical, dt, data, the empty ones skipped: its text, and in *topic (if
+ * not NULL) its word ("polarity", "vertical", "dt", "data"); NULL past the
+ * last. */
 const char *aq_record_note(const aq_record *rec, size_t i, const char **topic);
 
 /* Plausible peak ground acceleration after conversion, g: a record outside

@@ -283,7 +283,9 @@ static void section_run(page *p)
   aq_page_puts(b, "<h2 id=\"run\">The run</h2>\n");
   read_note(b, "What was run, on what, and how: enough to run it again and get the "
                "same numbers.  Each input is identified by the SHA-256 of its bytes, so a "
-               "changed file is seen even under the same name.");
+               "changed file is seen even under the same name: a record's of its file, an "
+               "arch's of its .cfg followed by its joints and faces files for a joints "
+               "arch (each shown in the arch's section as read).");
   aq_page_puts(b, "<table class=\"wide\"><tbody>\n<tr><th>command line</th><td class=\"mono\">");
   aq_page_esc(b, (v = aq_page_attr(root, "command_line")) ? v : "?");
   aq_page_puts(b, "</td></tr>\n<tr><th>archquake</th><td>");
@@ -531,6 +533,17 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     aq_page_esc(b, cfg);
     aq_page_puts(b, "</pre></details>\n");
   }
+  /* a joints arch's files, as read: with the .cfg, what its SHA-256 covers */
+  static const char *const data_attr[2][2] = {{"joints_csv", "Its joints file as read"},
+                                              {"faces_csv", "Its faces file as read"}};
+  for (int k = 0; k < 2; k++) {
+    const char *text = aq_page_attr(A, data_attr[k][0]);
+    if (!text)
+      continue;
+    aq_page_printf(b, "<details><summary>%s</summary><pre>", data_attr[k][1]);
+    aq_page_esc(b, text);
+    aq_page_puts(b, "</pre></details>\n");
+  }
   /* the verdict table */
   aq_page_printf(b, "<h3 id=\"verdicts-%zu\">Verdicts</h3>\n", a);
   read_note(b, "One row per run: a record, scaled, against this arch.  <b>COLLAPSE</b> "
@@ -576,7 +589,7 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     num_td(b, r->s.collapse_time_s, "%.3f");
     num_td(b, r->s.peak_rotation_over_qc, "%.3f");
     num_td(b, r->s.peak_rotation_rad, "%.3g");
-    num_td(b, r->s.pga_over_lambda0_g, "%.3g");
+    num_td(b, r->s.pga_over_lambda0, "%.3g");
     num_td(b, r->s.impacts < 0 ? NAN : (double)r->s.impacts, "%.0f");
     aq_page_puts(b, "</tr>\n");
     (*nrows)++;

@@ -469,6 +469,50 @@ static long dataset(hid_t g, const char *name, int cols, double **v)
   return rows;
 }
 
+/* The point masses of geometry group g into a new nmass x 4 array *v
+ * (voussoir, x_m, y_m, mass_kg): the table `masses` (its voussoir an
+ * integer), or the nmass x 4 doubles of a file written before; -1 if
+ * missing or neither. */
+static long masses(hid_t g, double **v)
+{
+  static const char *const col[4] = {"voussoir", "x_m", "y_m", "mass_kg"};
+  hid_t d = -1, t = -1, s = -1, m = -1;
+  long rows = -1;
+  *v = NULL;
+  H5E_BEGIN_TRY
+  {
+    d = H5Dopen2(g, "masses", H5P_DEFAULT);
+    t = d >= 0 ? H5Dget_type(d) : -1;
+    if (t >= 0 && H5Tget_class(t) == H5T_COMPOUND && (s = H5Dget_space(d)) >= 0) {
+      hssize_t n = H5Sget_simple_extent_npoints(s);
+      m = H5Tcreate(H5T_COMPOUND, 4 * sizeof(double)); /* the integer converted */
+      int ok = n >= 0 && m >= 0;
+      for (int k = 0; ok && k < 4; k++)
+        ok = H5Tinsert(m, col[k], (size_t)k * sizeof(double), H5T_NATIVE_DOUBLE) >= 0;
+      *v = ok ? malloc(((size_t)n * 4 + 1) * sizeof **v) : NULL;
+      if (*v && (n == 0 || H5Dread(d, m, H5S_ALL, H5S_ALL, H5P_DEFAULT, *v) >= 0))
+        rows = (long)n;
+    }
+  }
+  H5E_END_TRY;
+  if (m >= 0)
+    H5Tclose(m);
+  if (s >= 0)
+    H5Sclose(s);
+  int compound = t >= 0 && H5Tget_class(t) == H5T_COMPOUND;
+  if (t >= 0)
+    H5Tclose(t);
+  if (d >= 0)
+    H5Dclose(d);
+  if (rows < 0) {
+    free(*v);
+    *v = NULL;
+    if (!compound)
+      return dataset(g, "masses", 4, v);
+  }
+  return rows;
+}
+
 /* "0,6,12,19" and "eiei" into hs. */
 static int hinges(const char *joints, const char *faces, aq_hinge_set *hs)
 {
@@ -531,7 +575,8 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
            attr_text(ga, "reverse_joints", rj, sizeof rj) &&
            attr_text(ga, "reverse_faces", rf, sizeof rf) && hinges(pj, pf, &hs[0]) &&
            hinges(rj, rf, &hs[1]);
-  attr_double(ga, "g_m_s2", &dyn.g_mps2);
+  if (!attr_double(ga, "g_mps2", &dyn.g_mps2))
+    attr_double(ga, "g_m_s2", &dyn.g_mps2); /* its name before it became the .cfg key's */
   if (ga >= 0)
     H5Gclose(ga);
   hid_t gg = ok && H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 &&
@@ -549,7 +594,7 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
   long nj = dataset(gg, "joints", 4, &joints), nv = dataset(gg, "voussoirs", 4, &parts);
   long no = dataset(gg, "outline", 2, &outline), nos = dataset(gg, "outline_start", 1, &ostart);
   long nf = dataset(gg, "fill", 2, &fill), nfs = dataset(gg, "fill_start", 1, &fstart);
-  long nm = dataset(gg, "masses", 4, &mass);
+  long nm = masses(gg, &mass);
   double kg[3] = {NAN, 0, 0};
   attr_double(gg, "masonry_kg", &kg[0]);
   attr_double(gg, "fill_kg", &kg[1]);

@@ -200,9 +200,10 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
       aq_h5_attr_num(arc, "primary_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[0]) < 0 ||
       aq_h5_attr_num(arc, "reverse_q_c_rad", H5T_NATIVE_DOUBLE, &r->q_c_rad[1]) < 0 ||
       aq_h5_attr_num(arc, "primary_mass_kg", H5T_NATIVE_DOUBLE, &r->mass_kg) < 0 ||
-      aq_h5_attr_num(arc, "g_m_s2", H5T_NATIVE_DOUBLE, &r->g_mps2) < 0) {
+      (aq_h5_attr_num(arc, "g_mps2", H5T_NATIVE_DOUBLE, &r->g_mps2) < 0 &&
+       aq_h5_attr_num(arc, "g_m_s2", H5T_NATIVE_DOUBLE, &r->g_mps2) < 0)) { /* (its former name) */
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, obj,
-                      "expected the arch's lambda0, q_c_rad, mass_kg and g_m_s2, got none");
+                      "expected the arch's lambda0, q_c_rad, mass_kg and g_mps2, got none");
     goto done;
   }
 done:

@@ -14,11 +14,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../arch/model.h"
 #include "../util/outfile.h"
 #include "h5_table.h"
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
 #define AQ_H5_RECORDS_CHUNK 64  /* rows per chunk of /records */
+/* Values per chunk of a history or waveform dataset (32 KiB of doubles):
+ * what the deflate filter compresses at a time (make bench: bench_h5). */
+#define AQ_H5_SERIES_CHUNK 4096
 /* Dataset bytes written between two background syncs (see sync_hint). */
 #define AQ_H5_SYNC_BYTES ((size_t)8 << 20)
 
@@ -140,7 +144,7 @@ struct aq_h5_writer {
   char *target;     /* = out.target while it is held */
   char *tmp;        /* = out.tmp */
   hid_t file;
-  hid_t g_arches, g_waveforms, g_histories; /* the last two made when first needed */
+  hid_t g_arches, g_waveforms, g_histories; /* each made when first needed */
   h5_table runs, records;
   h5_col *run_cols; /* aq_summary_fields then run_extra_cols */
   size_t n_run_cols;
@@ -150,6 +154,8 @@ struct aq_h5_writer {
   char rec_names[AQ_IM_SA_MAX + 1][64];
   size_t n_rec_cols, n_spectral;
   int store_records;
+  int no_runs; /* a kind of file without runs (capacity, spectrum): no /summary */
+  int deflate; /* deflate level of the series (histories, waveforms), 0: none */
   /* Reused by every attribute (H5Acreate2 copies them): the scalar
    * dataspace, and a string type whose size is set per attribute. */
   hid_t sp_scalar, t_str;
@@ -269,6 +275,14 @@ static herr_t attr_doubles(hid_t loc, const char *name, const double *v,
   return rc;
 }
 
+/* The group under the root named name, made when first needed. */
+static hid_t lazy_group(aq_h5_writer *w, hid_t *g, const char *name)
+{
+  if (*g < 0)
+    *g = H5Gcreate2(w->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  return *g;
+}
+
 /* ---- background sync ------------------------------------------------------
  * The temporary is fdatasync'ed by a thread of the writer's own while the
  * suite runs, every AQ_H5_SYNC_BYTES of datasets, so that the fsync that
@@ -357,19 +371,49 @@ static void sync_hint(aq_h5_writer *w, size_t bytes)
   pthread_mutex_unlock(&w->sync_lock);
 }
 
-/* A 1-D dataset of n values of mtype, stored as ftype, with a units
- * attribute and then the nd double attributes dname[k] = dval[k]. */
+/* The creation properties of a long series of n values (a history, a
+ * waveform): chunks of AQ_H5_SERIES_CHUNK values, each byte-shuffled then
+ * deflated at the writer's level (docs/hdf5-layout.md, "Compression"); or
+ * H5P_DEFAULT (contiguous) when the level is 0, n is 0 or HDF5 has no
+ * deflate filter.  Close it with H5Pclose unless H5P_DEFAULT; < 0 on
+ * failure. */
+static hid_t series_dcpl(const aq_h5_writer *w, size_t n)
+{
+  if (w->deflate <= 0 || n == 0 || H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
+    return H5P_DEFAULT;
+  hsize_t chunk = n < AQ_H5_SERIES_CHUNK ? n : AQ_H5_SERIES_CHUNK;
+  hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+  if (p >= 0 && (H5Pset_chunk(p, 1, &chunk) < 0 || H5Pset_shuffle(p) < 0 ||
+                 H5Pset_deflate(p, (unsigned)w->deflate) < 0)) {
+    H5Pclose(p);
+    return -1;
+  }
+  return p;
+}
+
+void aq_h5_set_deflate(aq_h5_writer *w, int level)
+{
+  w->deflate = level < 0 ? 0 : level > 9 ? 9 : level;
+}
+
+/* A 1-D dataset of n values of mtype, stored as ftype (series: chunked and
+ * compressed, series_dcpl), with a units attribute and then the nd double
+ * attributes dname[k] = dval[k]. */
 static herr_t dataset_1d(aq_h5_writer *w, hid_t loc, const char *name,
                          hid_t ftype, hid_t mtype, const void *v, size_t n,
                          const char *units, size_t nd,
-                         const char *const *dname, const double *dval)
+                         const char *const *dname, const double *dval, int series)
 {
   hsize_t dim = n;
+  hid_t dcpl = series ? series_dcpl(w, n) : H5P_DEFAULT;
+  if (dcpl < 0)
+    return -1;
   hid_t s = H5Screate_simple(1, &dim, NULL);
+  hid_t d = s < 0 ? -1 : H5Dcreate2(loc, name, ftype, s, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (dcpl != H5P_DEFAULT)
+    H5Pclose(dcpl);
   if (s < 0)
     return -1;
-  hid_t d = H5Dcreate2(loc, name, ftype, s, H5P_DEFAULT, H5P_DEFAULT,
-                       H5P_DEFAULT);
   herr_t rc = d < 0 ? -1 : 0;
   if (rc == 0 && n > 0)
     rc = H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
@@ -390,7 +434,7 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
                               size_t n, const char *units)
 {
   return dataset_1d(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, n,
-                    units, 0, NULL, NULL);
+                    units, 0, NULL, NULL, 1);
 }
 
 /* ---- tables ------------------------------------------------------------- */
@@ -633,6 +677,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   w->records.owned[w->records.nowned++] = offsetof(record_row, error);
   w->sp_scalar = w->t_str = -1;
   w->sync_fd = -1;
+  w->deflate = AQ_H5_DEFLATE_LEVEL;
   w->n_run_cols = aq_summary_nfields + N_RUN_EXTRA;
   w->run_cols = calloc(w->n_run_cols, sizeof *w->run_cols);
   /* named and registered for removal on a signal before it exists */
@@ -693,14 +738,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   CK(w->sp_scalar, "H5Screate");
   w->t_str = str_type(1);
   CK(w->t_str, "H5Tcopy");
-  obj = "/arches";
-  w->g_arches = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  CK(w->g_arches, "H5Gcreate");
-  obj = "/summary";
-  CK(table_open(w, &w->runs, obj, w->run_cols, w->n_run_cols, sizeof(run_row),
-                AQ_H5_SUMMARY_CHUNK),
-     "table");
-  *out = w;
+  *out = w; /* /arches and /summary: by aq_h5_write_root_kind, for the kinds that hold them */
   return AQ_OK;
 fail:
   if (fapl >= 0)
@@ -783,7 +821,7 @@ static herr_t records_open(aq_h5_writer *w, const aq_signal_opts *proc)
 
 aq_status aq_h5_write_root(aq_h5_writer *w, const aq_h5_root *r, aq_error *err)
 {
-  return aq_h5_write_root_kind(w, r, NULL, err);
+  return aq_h5_write_root_kind(w, r, "results", err);
 }
 
 aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char *kind,
@@ -804,8 +842,22 @@ aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char
   CK(attr_str(w, f, "created", r->created), "root attributes");
   if (r->proc)
     CK(write_proc(w, f, r->proc), "root attributes");
-  if (kind) { /* no runs: only what applies */
-    CK(attr_str(w, f, "kind", kind), "root attributes");
+  kind = kind ? kind : "results";
+  int results = strcmp(kind, "results") == 0, capacity = strcmp(kind, "capacity") == 0;
+  CK(attr_str(w, f, "kind", kind), "root attributes");
+  if (results || capacity) { /* the files with arches */
+    obj = "/arches";
+    CK(lazy_group(w, &w->g_arches, obj), "H5Gcreate");
+  }
+  w->no_runs = !results;
+  if (results && !w->runs.buf) { /* and with runs */
+    obj = "/summary";
+    CK(table_open(w, &w->runs, obj, w->run_cols, w->n_run_cols, sizeof(run_row),
+                  AQ_H5_SUMMARY_CHUNK),
+       "table");
+  }
+  obj = "/";
+  if (!results && !capacity) { /* no runs: only what applies */
     CK(attr_str(w, f, "units_override", r->units ? r->units : "file"), "root attributes");
     CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
     return AQ_OK;
@@ -817,6 +869,11 @@ aq_status aq_h5_write_root_kind(aq_h5_writer *w, const aq_h5_root *r, const char
      "root attributes");
   CK(attr_str(w, f, "model", r->model), "root attributes");
   CK(attr_double(w, f, "cor", r->cor), "root attributes");
+  if (capacity) { /* the scales are the search's (capacity attributes), no histories */
+    CK(attr_str(w, f, "polarity", r->polarity ? r->polarity : "normal"), "root attributes");
+    CK(attr_int(w, f, "timing_threads", r->threads), "root attributes");
+    return AQ_OK;
+  }
   if (r->scales) {
     CK(attr_str(w, f, "scale_mode", "list"), "root attributes");
     CK(attr_doubles(f, "scales", r->scales, r->nscale), "root attributes");
@@ -841,10 +898,11 @@ static const char *impact_name(aq_impact i)
   return i == AQ_IMPACT_MOMENTUM ? "momentum" : "cor";
 }
 
-/* A rows x cols dataset of doubles (cols 1: 1-D) with its units and, for
- * a table, its columns' names (attribute columns, comma-separated). */
+/* A rows x cols table of doubles with its columns' names and units, one
+ * string per column (attributes columns and units, as in /capacity). */
 static herr_t dataset_2d(aq_h5_writer *w, hid_t loc, const char *name, const double *v,
-                         size_t rows, size_t cols, const char *units, const char *columns)
+                         size_t rows, size_t cols, const char *const *units,
+                         const char *const *columns)
 {
   hsize_t dim[2] = {rows, cols};
   hid_t s = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
@@ -857,9 +915,9 @@ static herr_t dataset_2d(aq_h5_writer *w, hid_t loc, const char *name, const dou
   if (rc == 0)
     sync_hint(w, rows * cols * sizeof(double));
   if (rc == 0)
-    rc = attr_str(w, d, "units", units);
-  if (rc == 0 && columns)
-    rc = attr_str(w, d, "columns", columns);
+    rc = aq_h5_attr_strings(d, "columns", columns, cols);
+  if (rc == 0)
+    rc = aq_h5_attr_strings(d, "units", units, cols);
   if (d >= 0 && H5Dclose(d) < 0)
     rc = -1;
   if (H5Sclose(s) < 0)
@@ -878,14 +936,24 @@ static aq_status write_geometry(aq_h5_writer *w, size_t index, const aq_h5_arch 
   aq_arch_drawing d;
   aq_arch_drawing_of(a->arch, &d);
   size_t n = d.voussoirs;
-  double *ostart = malloc((n + 1) * sizeof *ostart), *fstart = malloc((n + 1) * sizeof *fstart);
+  /* the point masses as a table: the voussoir an integer, as every index */
+  typedef struct {
+    int64_t voussoir;
+    double x_m, y_m, mass_kg;
+  } mass_row;
+  static const aq_h5_col mass_cols[] = {
+      AQ_H5_COL(mass_row, voussoir, AQ_H5_INT, "1"), AQ_H5_COL(mass_row, x_m, AQ_H5_DOUBLE, "m"),
+      AQ_H5_COL(mass_row, y_m, AQ_H5_DOUBLE, "m"),
+      AQ_H5_COL(mass_row, mass_kg, AQ_H5_DOUBLE, "kg")};
+  mass_row *masses = malloc((d.nmass ? d.nmass : 1) * sizeof *masses);
   hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), g = -1;
-  if (!ostart || !fstart) {
+  if (!masses) {
     st = aq_error_set(err, AQ_ENOMEM, w->target, -1, -1, obj, "out of memory");
     goto fail;
   }
-  for (size_t k = 0; k <= n; k++)
-    ostart[k] = (double)d.outline_start[k], fstart[k] = (double)d.fill_start[k];
+  for (size_t i = 0; i < d.nmass; i++)
+    masses[i] = (mass_row){(int64_t)d.mass[4 * i], d.mass[4 * i + 1], d.mass[4 * i + 2],
+                           d.mass[4 * i + 3]};
   CK(lcpl, "H5Pcreate");
   CK(H5Pset_create_intermediate_group(lcpl, 1), "H5Pset_create_intermediate_group");
   g = H5Gcreate2(w->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
@@ -896,19 +964,25 @@ static aq_status write_geometry(aq_h5_writer *w, size_t index, const aq_h5_arch 
   CK(attr_double(w, g, "masonry_kg", d.stone_kg), "geometry attributes");
   CK(attr_double(w, g, "fill_kg", d.fill_kg), "geometry attributes");
   CK(attr_double(w, g, "point_masses_kg", d.point_kg), "geometry attributes");
-  CK(dataset_2d(w, g, "joints", d.joints, n + 1, 4, "m", "xi_m,yi_m,xe_m,ye_m"), "joints");
-  CK(dataset_2d(w, g, "voussoirs", d.parts, n, 4, "kg, m, m, kg m^2",
-                "mass_kg,x_m,y_m,inertia_kgm2"),
-     "voussoirs");
-  CK(dataset_2d(w, g, "outline", d.outline, d.noutline, 2, "m", "x_m,y_m"), "outline");
-  CK(dataset_2d(w, g, "outline_start", ostart, n + 1, 1, "1", NULL), "outline_start");
-  CK(dataset_2d(w, g, "fill", d.fill, d.nfill, 2, "m", "x_m,y_m"), "fill");
-  CK(dataset_2d(w, g, "fill_start", fstart, n + 1, 1, "1", NULL), "fill_start");
-  CK(dataset_2d(w, g, "masses", d.mass, d.nmass, 4, "1, m, m, kg", "voussoir,x_m,y_m,mass_kg"),
+  static const char *const m4[4] = {"m", "m", "m", "m"}, *const xy[2] = {"x_m", "y_m"},
+                           *const jc[4] = {"xi_m", "yi_m", "xe_m", "ye_m"},
+                           *const vc[4] = {"mass_kg", "x_m", "y_m", "inertia_kgm2"},
+                           *const vu[4] = {"kg", "m", "m", "kg m^2"};
+  CK(dataset_2d(w, g, "joints", d.joints, n + 1, 4, m4, jc), "joints");
+  CK(dataset_2d(w, g, "voussoirs", d.parts, n, 4, vu, vc), "voussoirs");
+  CK(dataset_2d(w, g, "outline", d.outline, d.noutline, 2, m4, xy), "outline");
+  CK(dataset_1d(w, g, "outline_start", H5T_STD_I64LE, H5T_NATIVE_INT64, d.outline_start, n + 1,
+                "1", 0, NULL, NULL, 0),
+     "outline_start");
+  CK(dataset_2d(w, g, "fill", d.fill, d.nfill, 2, m4, xy), "fill");
+  CK(dataset_1d(w, g, "fill_start", H5T_STD_I64LE, H5T_NATIVE_INT64, d.fill_start, n + 1, "1",
+                0, NULL, NULL, 0),
+     "fill_start");
+  CK(aq_h5_table_write(g, "masses", mass_cols, sizeof mass_cols / sizeof mass_cols[0],
+                       sizeof(mass_row), masses, d.nmass, NULL),
      "masses");
 fail:
-  free(ostart);
-  free(fstart);
+  free(masses);
   if (g >= 0 && H5Gclose(g) < 0 && st == AQ_OK)
     st = h5_fail(err, w->target, obj, "H5Gclose", errno);
   if (lcpl >= 0)
@@ -921,13 +995,19 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
 {
   aq_status st = AQ_OK;
   char obj[64];
+  hid_t g = -1;
   snprintf(obj, sizeof obj, "/arches/%03zu", index);
-  hid_t g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CK(lazy_group(w, &w->g_arches, "/arches"), "H5Gcreate");
+  g = H5Gcreate2(w->file, obj, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   CK(g, "H5Gcreate");
   CK(attr_str(w, g, "name", a->name), "arch attributes");
   CK(attr_str(w, g, "source_file", a->source_file), "arch attributes");
   CK(attr_str(w, g, "sha256", a->sha256), "arch attributes");
   CK(attr_str(w, g, "config", a->config_text), "arch attributes");
+  static const char *const data_name[2] = {"joints_csv", "faces_csv"};
+  for (int k = 0; k < 2; k++) /* a joints arch's files, as read (in sha256) */
+    if (a->data_text[k])
+      CK(attr_str(w, g, data_name[k], a->data_text[k]), "arch attributes");
   CK(attr_int(w, g, "searched", a->searched ? 1 : 0), "arch attributes");
   if (a->arch) {
     CK(attr_str(w, g, "control", aq_hinge_control_names[aq_arch_control(a->arch)]),
@@ -937,7 +1017,7 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
   if (a->dyn) {
     CK(attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
     CK(attr_str(w, g, "impact", impact_name(a->dyn->impact)), "arch attributes");
-    CK(attr_double(w, g, "g_m_s2", a->dyn->g_mps2), "arch attributes");
+    CK(attr_double(w, g, "g_mps2", a->dyn->g_mps2), "arch attributes");
   }
   static const char *const set_name[2] = {"primary", "reverse"};
   for (int k = 0; k < 2; k++) {
@@ -971,15 +1051,32 @@ fail:
   return st;
 }
 
-#define COPY(dst, src) snprintf((dst), sizeof(dst), "%s", (src) ? (src) : "")
-
-/* The group under the root named name, made when first needed. */
-static hid_t lazy_group(aq_h5_writer *w, hid_t *g, const char *name)
+aq_status aq_h5_write_arch_of(aq_h5_writer *w, size_t index, const aq_arch *A,
+                              const char *source_file, const aq_arch_dynamics *used,
+                              aq_error *err)
 {
-  if (*g < 0)
-    *g = H5Gcreate2(w->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  return *g;
+  char sha[65], joints[2][64], faces[2][8];
+  aq_arch_sources src;
+  aq_arch_sha256(A, sha); /* the .cfg's bytes as read, and a joints arch's files' */
+  aq_arch_sources_of(A, &src);
+  for (int k = 0; k < 2; k++)
+    aq_hinge_set_format(aq_arch_hinge_set(A, k), joints[k], sizeof joints[k], faces[k],
+                        sizeof faces[k]);
+  aq_h5_arch ha = {.name = aq_arch_name(A),
+                   .source_file = source_file,
+                   .config_text = aq_arch_config_text(A),
+                   .dyn = used ? used : aq_arch_dynamics_of(A),
+                   .set = {aq_arch_path(A, 0), aq_arch_path(A, 1)},
+                   .sha256 = sha,
+                   .searched = aq_arch_searched(A),
+                   .joints = {joints[0], joints[1]},
+                   .faces = {faces[0], faces[1]},
+                   .arch = A,
+                   .data_text = {src.data[0], src.data[1]}};
+  return aq_h5_write_arch(w, index, &ha, err);
 }
+
+#define COPY(dst, src) snprintf((dst), sizeof(dst), "%s", (src) ? (src) : "")
 
 aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
                              const aq_h5_record *r, aq_error *err)
@@ -1044,7 +1141,7 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
       CK(lazy_group(w, &w->g_waveforms, obj), "H5Gcreate");
       obj = "acceleration";
       CK(dataset_1d(w, w->file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                    p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val),
+                    p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val, 1),
          name);
       snprintf(row->waveform, sizeof row->waveform, "%s", name);
     }
@@ -1078,6 +1175,13 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
   aq_status st = AQ_OK;
   const char *obj = "/summary";
   hid_t g = -1;
+  if (w->no_runs)
+    return aq_error_set(err, AQ_EINTERNAL, w->target, -1, -1, obj,
+                        "a run written to a file of another kind than results");
+  if (!w->runs.buf) /* no root written: a results file */
+    CK(table_open(w, &w->runs, obj, w->run_cols, w->n_run_cols, sizeof(run_row),
+                  AQ_H5_SUMMARY_CHUNK),
+       "table");
   run_row *row = table_row(w, &w->runs);
   CK(row ? 0 : -1, "rows");
   row->s = *s;
@@ -1116,9 +1220,9 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
      "kinetic_energy_j");
   CK(dataset_doubles(w, g, "potential_energy_j", h->potential_energy_j, h->n, "J"),
      "potential_energy_j");
-  if (h->set)
-    CK(dataset_1d(w, g, "hinge_set", H5T_STD_I32LE, H5T_NATIVE_INT, h->set, h->n,
-                  "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL),
+  if (h->set) /* 64-bit in the file, as every integer */
+    CK(dataset_1d(w, g, "hinge_set", H5T_STD_I64LE, H5T_NATIVE_INT, h->set, h->n,
+                  "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL, 1),
        "hinge_set");
   CK(H5Gclose(g), "H5Gclose");
   return AQ_OK;
@@ -1147,7 +1251,8 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
 {
   aq_status st = AQ_OK;
   const char *obj = "/summary";
-  CK(table_close(w, &w->runs), "rows");
+  if (w->runs.buf) /* a results file's */
+    CK(table_close(w, &w->runs), "rows");
   obj = "/records";
   if (!w->records.buf)
     CK(records_open(w, NULL), "table");
@@ -1161,7 +1266,8 @@ aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err)
     CK(attr_double(w, w->file, "timing_run_s", t->run_s), "root attributes");
     CK(attr_double(w, w->file, "timing_write_s", t->write_s), "root attributes");
   }
-  CK(H5Gclose(w->g_arches), "H5Gclose");
+  if (w->g_arches >= 0)
+    CK(H5Gclose(w->g_arches), "H5Gclose");
   w->g_arches = -1;
   if (w->g_waveforms >= 0)
     CK(H5Gclose(w->g_waveforms), "H5Gclose");

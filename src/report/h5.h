@@ -77,7 +77,19 @@ typedef struct {
    * voussoirs' mass properties, outlines, fill, point masses:
    * docs/hdf5-layout.md); NULL: not written. */
   const aq_arch *arch;
+  /* A joints arch's joints and faces files, as read (NUL-terminated; NULL
+   * where there is none): attributes joints_csv, faces_csv. */
+  const char *data_text[2];
 } aq_h5_arch;
+
+/* Arch number index as loaded: A's name, .cfg text, its joints and faces
+ * files' texts, SHA-256 (aq_arch_sha256), hinge sets as used and geometry,
+ * with source_file the path as given and used the [dynamics] values the
+ * runs used (NULL: the arch's own).  The one way the commands write an
+ * arch (the main job, capacity). */
+aq_status aq_h5_write_arch_of(aq_h5_writer *w, size_t index, const aq_arch *A,
+                              const char *source_file, const aq_arch_dynamics *used,
+                              aq_error *err);
 
 /* One record: what was read, how it was processed and what it measures.
  * rec, proc and im are NULL when the stage did not get that far; rec's
@@ -138,6 +150,13 @@ typedef struct {
 /* Write the summary table and timings, close, sync and rename onto the
  * target.  Frees w whatever happens; on failure the temporary is removed. */
 aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err);
+
+/* Series (histories, waveforms) are stored in chunks, byte-shuffled and
+ * deflated at this level (zlib's 1..9; docs/hdf5-layout.md, "Compression";
+ * chosen by make bench's bench_h5).  aq_h5_set_deflate sets another for
+ * this writer's later series (0: stored as they are), for the bench. */
+#define AQ_H5_DEFLATE_LEVEL 1
+void aq_h5_set_deflate(aq_h5_writer *w, int level);
 
 /* Give up: close what is open, remove the temporary, free w (NULL is fine). */
 void aq_h5_abort(aq_h5_writer *w);

@@ -16,21 +16,6 @@
 #include "text.h"
 
 
-/* Attribute name of g: n variable-length strings. */
-static herr_t attr_strings(hid_t g, const char *name, const char *const *v, size_t n)
-{
-  hsize_t dim = n;
-  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &dim, NULL);
-  herr_t rc = -1;
-  if (t >= 0 && sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0)
-    rc = aq_h5_attr_write(g, name, t, sp, v);
-  if (sp >= 0 && H5Sclose(sp) < 0)
-    rc = -1;
-  if (t >= 0 && H5Tclose(t) < 0)
-    rc = -1;
-  return rc;
-}
-
 /* The n x AQ_FRAGILITY_NIM dataset name of the IMs, its columns named
  * (`columns`) with their units (`units`), one string per column. */
 static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
@@ -40,9 +25,9 @@ static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
   hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
   if (d < 0)
     return -1;
-  herr_t rc = attr_strings(d, "columns", aq_fragility_im_names, AQ_FRAGILITY_NIM);
+  herr_t rc = aq_h5_attr_strings(d, "columns", aq_fragility_im_names, AQ_FRAGILITY_NIM);
   if (rc >= 0)
-    rc = attr_strings(d, "units", aq_fragility_im_units, AQ_FRAGILITY_NIM);
+    rc = aq_h5_attr_strings(d, "units", aq_fragility_im_units, AQ_FRAGILITY_NIM);
   if (H5Dclose(d) < 0)
     rc = -1;
   return rc;
@@ -259,7 +244,12 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   if (aq_h5_columns_write(g, pair_cols, NPAIR_COLS, sizeof *k.pair, k.pair, c->npair) < 0)
     goto fail;
   what = "capacity/intervals";
-  if (aq_h5_array_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, "1") < 0)
+  static const char *const iv_cols[2] = {"lo", "hi"}, *const iv_units[2] = {"1", "1"};
+  hid_t di = -1;
+  if (aq_h5_array_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, NULL) < 0 ||
+      (di = H5Dopen2(g, "intervals", H5P_DEFAULT)) < 0 ||
+      aq_h5_attr_strings(di, "columns", iv_cols, 2) < 0 ||
+      aq_h5_attr_strings(di, "units", iv_units, 2) < 0 || H5Dclose(di) < 0)
     goto fail;
   what = "capacity/im_first_collapse, im_cap";
   if (ds_ims(g, "im_first_collapse", k.im[0], c->npair) < 0 ||
@@ -277,7 +267,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   for (int j = 0; j < 3 && c->nfit; j++) {
     static const char *const med[3] = {"median", "median_lo", "median_hi"};
     hid_t d = H5Dopen2(gf, med[j], H5P_DEFAULT);
-    herr_t rc = d < 0 ? -1 : attr_strings(d, "units", k.med_units, c->nfit);
+    herr_t rc = d < 0 ? -1 : aq_h5_attr_strings(d, "units", k.med_units, c->nfit);
     if (d >= 0 && H5Dclose(d) < 0)
       rc = -1;
     if (rc < 0)

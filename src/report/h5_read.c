@@ -211,10 +211,24 @@ static void table_done(hid_t d, hid_t ft)
     H5Dclose(d);
 }
 
+/* Columns renamed since files were written: read under the former name
+ * when the file lacks the present one. */
+static const char *former_name(const char *name)
+{
+  static const char *const renamed[][2] = {
+      {"pga_over_lambda0", "pga_over_lambda0_g"}, /* a ratio, not in g */
+  };
+  for (size_t k = 0; k < sizeof renamed / sizeof renamed[0]; k++)
+    if (strcmp(name, renamed[k][0]) == 0)
+      return renamed[k][1];
+  return NULL;
+}
+
 /* The runs of /summary, column by column: a column this build knows that
  * the file lacks (written before it existed) keeps the value a run without
  * a result has (aq_summary_fill); columns this build does not know are
- * left alone. */
+ * left alone.  A file of a kind without runs (capacity, spectrum) has
+ * none. */
 static long read_runs(hid_t f, aq_h5_run **out)
 {
   *out = NULL;
@@ -230,6 +244,9 @@ static long read_runs(hid_t f, aq_h5_run **out)
     const aq_summary_field *fl = &aq_summary_fields[i];
     int rc = read_column(d, ft, (hsize_t)np, fl->name, fl->kind, fl->size, v, sizeof *v,
                          offsetof(aq_h5_run, s) + fl->offset);
+    if (rc == 0 && former_name(fl->name))
+      rc = read_column(d, ft, (hsize_t)np, former_name(fl->name), fl->kind, fl->size, v,
+                       sizeof *v, offsetof(aq_h5_run, s) + fl->offset);
     ok = rc > 0 || (rc == 0 && !required(fl));
   }
   static const struct {
@@ -433,9 +450,16 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   }
   void *v = NULL;
   long n = -1;
-  aq_h5_run *runs;
+  aq_h5_run *runs = NULL;
   void *rv = NULL;
-  if (format == 1) {
+  /* a file of a kind without runs (capacity) or arches (spectrum) holds
+     no such objects; one written before the kinds had them empty */
+  char kind[32] = "results";
+  attr_text(f, "kind", kind, sizeof kind);
+  int results = strcmp(kind, "results") == 0;
+  if (!results && H5Lexists(f, "/summary", H5P_DEFAULT) <= 0) {
+    n = 0;
+  } else if (format == 1) {
     n = read_groups(f, "/runs", sizeof *runs, fill_run_v1, &rv);
     runs = rv;
   } else {
@@ -462,9 +486,11 @@ aq_status aq_h5_read_suite(const char *path, aq_h5_suite *out, aq_error *err)
   }
   out->records = v;
   out->nrecords = (size_t)n;
-  arches = H5Gopen2(f, "/arches", H5P_DEFAULT);
-  H5G_info_t info;
-  if (arches < 0 || H5Gget_info(arches, &info) < 0) {
+  H5G_info_t info = {0};
+  if (!results && H5Lexists(f, "/arches", H5P_DEFAULT) <= 0) /* a spectrum file */
+    arches = -1;
+  else if ((arches = H5Gopen2(f, "/arches", H5P_DEFAULT)) < 0 ||
+           H5Gget_info(arches, &info) < 0) {
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/arches",
                       "expected the arch groups of a results file, got none readable");
     goto done;

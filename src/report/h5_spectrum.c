@@ -18,8 +18,8 @@ typedef struct {
 } h5_row;
 
 static const aq_h5_col cols[] = {
-    AQ_H5_COL(h5_row, record, AQ_H5_VSTR, NULL),
-    AQ_H5_COL(h5_row, component, AQ_H5_VSTR, NULL),
+    AQ_H5_COL(h5_row, record, AQ_H5_VSTR, ""),
+    AQ_H5_COL(h5_row, component, AQ_H5_VSTR, ""),
     AQ_H5_COL(h5_row, damping, AQ_H5_DOUBLE, "1"),
     AQ_H5_COL(h5_row, period_s, AQ_H5_DOUBLE, "s"),
     AQ_H5_COL(h5_row, psa_g, AQ_H5_DOUBLE, "g"),

@@ -201,6 +201,20 @@ herr_t aq_h5_columns_write(hid_t loc, const aq_h5_col *cols, size_t ncols, size_
   return rc;
 }
 
+herr_t aq_h5_attr_strings(hid_t loc, const char *name, const char *const *v, size_t n)
+{
+  hsize_t dim = n;
+  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &dim, NULL);
+  herr_t rc = -1;
+  if (t >= 0 && sp >= 0 && H5Tset_size(t, H5T_VARIABLE) >= 0)
+    rc = aq_h5_attr_write(loc, name, t, sp, v);
+  if (sp >= 0 && H5Sclose(sp) < 0)
+    rc = -1;
+  if (t >= 0 && H5Tclose(t) < 0)
+    rc = -1;
+  return rc;
+}
+
 herr_t aq_h5_array_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
                          size_t cols, const char *units)
 {

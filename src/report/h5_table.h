@@ -64,6 +64,10 @@ herr_t aq_h5_array_write(hid_t loc, const char *name, hid_t t, const void *buf, 
  * (created, written, closed; type and space stay the caller's). */
 herr_t aq_h5_attr_write(hid_t loc, const char *name, hid_t type, hid_t space, const void *buf);
 
+/* Attribute name of loc: n variable-length strings (a 2-D dataset's
+ * columns and their units, one string per column). */
+herr_t aq_h5_attr_strings(hid_t loc, const char *name, const char *const *v, size_t n);
+
 /* Scalar string attribute (fixed length strlen + 1, NUL-terminated; NULL
  * as ""). */
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value);

@@ -60,7 +60,7 @@ typedef struct {
   /* normalised results (NAN for a failed run) */
   double lambda0_first;         /* lambda0 of the set the record drove first; NAN if it never moved */
   double peak_rotation_over_qc; /* peak rotation / q_c of the set it occurred in (0 if never moved) */
-  double pga_over_lambda0_g;    /* pga_g / lambda0 of the set driven first (if none: the lower
+  double pga_over_lambda0;    /* pga_g / lambda0 of the set driven first (if none: the lower
                                    admissible lambda0) */
   double azimuth_deg;           /* the arch's +x azimuth, deg from north, for a ground
                                    motion given as components; NAN for one in-plane record */
@@ -83,7 +83,7 @@ typedef struct {
 /* The fields in column order (record arch model scale pga_g status collapsed
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
- * peak_rotation_over_qc pga_over_lambda0_g azimuth_deg control). */
+ * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 

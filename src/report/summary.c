@@ -30,7 +30,7 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(polarity, AQ_SF_STR, 1),
     AQ_SF_ADDED(lambda0_first, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(peak_rotation_over_qc, AQ_SF_DOUBLE, 0),
-    AQ_SF_ADDED(pga_over_lambda0_g, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(pga_over_lambda0, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(azimuth_deg, AQ_SF_DOUBLE, 1),
     AQ_SF_ADDED(control, AQ_SF_STR, 0),
 };
@@ -57,7 +57,7 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->pga_g = pga_g;
   s->lambda0_first = NAN; /* aq_summary_normalise fills them */
   s->peak_rotation_over_qc = NAN;
-  s->pga_over_lambda0_g = NAN;
+  s->pga_over_lambda0 = NAN;
   s->azimuth_deg = NAN;
   if (res) {
     s->collapsed = res->collapsed ? 1 : 0;
@@ -98,7 +98,7 @@ void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *
   for (int k = 0; !first && k < 2; k++)
     if (set[k] && !(set[k]->lambda0 >= l0))
       l0 = set[k]->lambda0;
-  s->pga_over_lambda0_g = s->pga_g / l0;
+  s->pga_over_lambda0 = s->pga_g / l0;
 }
 
 void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)
@@ -131,7 +131,7 @@ const char *aq_summary_units(const aq_summary_field *f)
                {"_deg", "deg"}};
   if (f->kind == AQ_SF_STR)
     return "";
-  if (strstr(f->name, "_over_")) /* a ratio (pga_over_lambda0_g: PGA / (lambda0 g)) */
+  if (strstr(f->name, "_over_")) /* a ratio (pga_over_lambda0: PGA / (lambda0 g)) */
     return "1";
   size_t n = strlen(f->name);
   for (size_t k = 0; k < sizeof rule / sizeof rule[0]; k++) {

@@ -1,0 +1,536 @@
+/* test_arch_demand.c: what a hinge set in motion asks of its joints
+ * (src/arch/demand.c) against computations of the test's own:
+ *   - every piece's dynamic balance (d'Alembert) with accelerations by
+ *     central differences of the four-bar's positions along the motion,
+ *     summed over the voussoirs on the other side of each joint;
+ *   - sddot against the equation of motion (eom.c);
+ *   - at rest at lambda0, the static 9x9 balance (kinematics.c) and the
+ *     line of thrust of aq_mech_thrust_line;
+ *   - the tables against the exact forms;
+ *   - the tracker against every joint evaluated at every state;
+ *   - a run that barely passes lambda0 against the static demand. */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/demand.h"
+#include "arch/eom.h"
+#include "arch/model.h"
+#include "arch/stepper.h"
+#include "check.h"
+#include "test_dyn_steps.h"
+
+static const char *const shipped[] = {"arches/oppenheim.cfg", "arches/thin.cfg",
+                                      "arches/thick.cfg",     "arches/segmental.cfg",
+                                      "arches/search.cfg",    "arches/gothic.cfg",
+                                      "arches/bridge.cfg",    "arches/catenary.cfg",
+                                      "arches/vertical.cfg"};
+#define NSHIPPED (sizeof shipped / sizeof shipped[0])
+
+static aq_vec2 vec(double x, double y)
+{
+  aq_vec2 v = {x, y};
+  return v;
+}
+
+/* Where voussoir v's centroid and its joint j's ends are at q, and the
+ * rotation of the part that carries them (body index b, -1 fixed). */
+static void carried(const aq_mech *m, const aq_mech_state *st, int b, aq_vec2 p0, aq_vec2 *p)
+{
+  if (b < 0) {
+    *p = p0;
+    return;
+  }
+  aq_vec2 piv0[3] = {m->h[0], m->h[1], m->h[3]}, piv[3] = {m->h[0], st->h2, m->h[3]};
+  double c = cos(st->phi[b][0]), s = sin(st->phi[b][0]);
+  double dx = p0.x - piv0[b].x, dy = p0.y - piv0[b].y;
+  *p = vec(piv[b].x + c * dx - s * dy, piv[b].y + s * dx + c * dy);
+}
+
+static int part_of(const aq_mech *m, size_t v)
+{
+  const size_t *J = m->hs.joint;
+  return v < J[0] ? -1 : v < J[1] ? 0 : v < J[2] ? 1 : v < J[3] ? 2 : -1;
+}
+
+static double phi_of(const aq_mech_state *st, int b) { return b < 0 ? 0 : st->phi[b][0]; }
+
+/* The force (x, y) and moment about the origin of joint entry f at z,
+ * acting on the part on the joint's clockwise side from its
+ * counter-clockwise side (N, T in the frame of the joint turned with the
+ * part that carries the forms: its clockwise part, or its counter-clockwise
+ * one at a joint of the +x fixed part). */
+typedef struct {
+  double fx, fy, m0;
+} wrench;
+
+/* Voussoir v's loads at the state: gravity g, ground a, d'Alembert from
+ * the centroid's acceleration acc and the part's angular acceleration al. */
+static wrench loads(const aq_mass *vm, aq_vec2 c, double g, double a, aq_vec2 acc, double al)
+{
+  wrench w;
+  w.fx = -vm->mass_kg * (a + acc.x);
+  w.fy = -vm->mass_kg * (g + acc.y);
+  w.m0 = c.x * w.fy - c.y * w.fx - vm->inertia_kgm2 * al;
+  return w;
+}
+
+AQ_TEST(arch_demand_forms_dalembert)
+{
+  gsl_set_error_handler_off();
+  double worst_f = 0, worst_m = 0, worst_acc = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    const aq_geom *g = aq_arch_geom(A);
+    size_t n = g->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fm = calloc(nf, sizeof *fm);
+    for (int set = 0; set < 2; set++) {
+      const aq_path *p = aq_arch_path(A, set);
+      if (!p->admissible)
+        continue;
+      const aq_mech *m = aq_workpath_mech(aq_arch_workpath(A, set));
+      static const double at[] = {0.0123, 0.2871, 0.6413};
+      for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        double s = at[i] * p->s_c_rad, sd = (i == 1 ? -0.731 : 0.4127), ga = 9.80665 + 0.613,
+               a = (i == 2 ? -0.827 : 0.5531) * 9.80665;
+        aq_demand_kin kin;
+        if (!aq_check(aq_demand_forms(m, p->q_sign, s, fm, &kin) == 0, "forms"))
+          continue;
+        /* sddot against the equation of motion */
+        aq_path pg = *p;
+        pg.g_mps2 = ga;
+        aq_path_point pt;
+        p->eval_exact(p->ctx, s, &pt);
+        double sdd = aq_eom_accel(&pg, &pt, sd, a);
+        double sdd_f = kin.sddot[0] * ga + kin.sddot[1] * a + kin.sddot[2] * sd * sd;
+        aq_check_rel(sdd_f, sdd, 1e-11, "%s set %d s %g: sddot vs the equation of motion",
+                     shipped[f], set, s);
+        /* accelerations by central differences along the motion s(t) = s +
+         * sd t + sdd t^2/2 (second order in t at 0: the acceleration of a
+         * point is c'' sd^2 + c' sdd), steps h and h/2 with Richardson's
+         * extrapolation */
+        double h = 1e-3 * p->s_c_rad / (fabs(sd) + 1e-3);
+        aq_mech_state st[5];
+        for (int k = 0; k < 5; k++) {
+          double tt = (k - 2) * 0.5 * h;
+          aq_mech_eval(m, p->q_sign * (s + sd * tt + 0.5 * sdd * tt * tt), &st[k]);
+        }
+        aq_vec2 *acc = calloc(n, sizeof *acc), *cen = calloc(n, sizeof *cen);
+        double *alv = calloc(n, sizeof *alv);
+        for (size_t v = 0; v < n; v++) {
+          int b = part_of(m, v);
+          aq_vec2 c[5];
+          double ph[5];
+          for (int k = 0; k < 5; k++) {
+            carried(m, &st[k], b, g->vous[v].c, &c[k]);
+            ph[k] = phi_of(&st[k], b);
+          }
+          cen[v] = c[2];
+          double hh = 0.5 * h;
+          double ax1 = (c[0].x - 2 * c[2].x + c[4].x) / (h * h), ax2 = (c[1].x - 2 * c[2].x + c[3].x) / (hh * hh);
+          double ay1 = (c[0].y - 2 * c[2].y + c[4].y) / (h * h), ay2 = (c[1].y - 2 * c[2].y + c[3].y) / (hh * hh);
+          double p1 = (ph[0] - 2 * ph[2] + ph[4]) / (h * h), p2 = (ph[1] - 2 * ph[2] + ph[3]) / (hh * hh);
+          acc[v] = vec((4 * ax2 - ax1) / 3, (4 * ay2 - ay1) / 3);
+          alv[v] = (4 * p2 - p1) / 3;
+        }
+        /* a length for the moments: the largest joint end's distance from the origin */
+        double L = 0;
+        for (size_t jj = 0; jj <= n; jj++)
+          L = fmax(L, fmax(hypot(g->je[jj].x, g->je[jj].y), hypot(g->ji[jj].x, g->ji[jj].y)));
+        /* the resultant of each non-hinge joint inside a body, from the
+         * forms, against the balance of the voussoirs on its other side:
+         * those up to the next hinge, with that hinge's reaction (itself
+         * from the forms at the hinge) */
+        double Fscale = g->mass_kg * ga;
+        for (size_t j = 0; j < nf; j++) {
+          const aq_joint_form *q = &fm[j];
+          size_t jj = q->joint;
+          int b = jj < m->hs.joint[0] ? -2 : jj > m->hs.joint[3] ? -3 : part_of(m, jj);
+          if (q->hinge >= 0 || b < 0)
+            continue;
+          double N = q->n[0] * ga + q->n[1] * a + q->n[2] * sd * sd;
+          double T = q->t[0] * ga + q->t[1] * a + q->t[2] * sd * sd;
+          double E = q->e[0] * ga + q->e[1] * a + q->e[2] * sd * sd;
+          /* the joint frame turned with body b */
+          aq_vec2 o, ou;
+          carried(m, &st[2], b, g->jo[jj], &o);
+          carried(m, &st[2], b, vec(g->jo[jj].x + g->ju[jj].x, g->jo[jj].y + g->ju[jj].y), &ou);
+          aq_vec2 u = vec(ou.x - o.x, ou.y - o.y), nr = vec(-u.y, u.x);
+          aq_vec2 mid = vec(o.x + g->jmid[jj] * u.x, o.y + g->jmid[jj] * u.y);
+          /* t: external force on the clockwise sub-body but the joint's;
+           * the clockwise sub-body pushes the other side with +t */
+          double tx = N * nr.x + T * u.x, ty = N * nr.y + T * u.y;
+          double m0 = E * g->jhalf[jj] + (mid.x * ty - mid.y * tx);
+          /* the counter-clockwise sub-body: voussoirs jj .. J_{b+1}-1 */
+          size_t hj = m->hs.joint[b + 1];
+          double sx = tx, sy = ty, sm = m0;
+          for (size_t v = jj; v < hj; v++) {
+            wrench w = loads(&g->vous[v], cen[v], ga, a, acc[v], alv[v]);
+            sx += w.fx, sy += w.fy, sm += w.m0;
+          }
+          /* hinge b+1's reaction on body b (its clockwise side): -(h, v) */
+          const aq_joint_form *hf = &fm[hj];
+          int hb = b + 1 < 3 ? b + 1 : -1;
+          double Nh = hf->n[0] * ga + hf->n[1] * a + hf->n[2] * sd * sd;
+          double Th = hf->t[0] * ga + hf->t[1] * a + hf->t[2] * sd * sd;
+          double rot = phi_of(&st[2], hb), cr = cos(rot), sr = sin(rot);
+          aq_vec2 hu = vec(cr * g->ju[hj].x - sr * g->ju[hj].y, sr * g->ju[hj].x + cr * g->ju[hj].y);
+          aq_vec2 hn = vec(-hu.y, hu.x);
+          double hx = Nh * hn.x + Th * hu.x, hy = Nh * hn.y + Th * hu.y;
+          aq_vec2 hp = b + 1 == 1 ? st[2].h2 : b + 1 == 2 ? st[2].h3 : m->h[3];
+          sx -= hx, sy -= hy, sm -= hp.x * hy - hp.y * hx;
+          double ef = hypot(sx, sy) / Fscale, em = fabs(sm) / (Fscale * L);
+          worst_f = fmax(worst_f, ef), worst_m = fmax(worst_m, em);
+          aq_check(ef < 1e-5 && em < 1e-5,
+                   "%s set %d s %g joint %zu: balance of the other side %.3g (force), %.3g "
+                   "(moment) of the weight",
+                   shipped[f], set, s, jj, ef, em);
+        }
+        /* the springings against the balance of the whole arch */
+        double sx = 0, sy = 0, sm = 0;
+        for (size_t v = 0; v < n; v++) {
+          wrench w = loads(&g->vous[v], cen[v], ga, a, acc[v], alv[v]);
+          sx += w.fx, sy += w.fy, sm += w.m0;
+        }
+        for (int end = 0; end < 2; end++) {
+          const aq_joint_form *q = &fm[end ? n : 0];
+          size_t jj = q->joint;
+          double N = q->n[0] * ga + q->n[1] * a + q->n[2] * sd * sd;
+          double T = q->t[0] * ga + q->t[1] * a + q->t[2] * sd * sd;
+          double E = q->e[0] * ga + q->e[1] * a + q->e[2] * sd * sd;
+          int b = q->hinge >= 0 && !end ? 0 : -1; /* H1's entry: body 0's face; H4's: the ground's */
+          double rot = phi_of(&st[2], b), cr = cos(rot), sr = sin(rot);
+          aq_vec2 u = vec(cr * g->ju[jj].x - sr * g->ju[jj].y, sr * g->ju[jj].x + cr * g->ju[jj].y);
+          aq_vec2 nr = vec(-u.y, u.x);
+          double sg = end ? 1.0 : -1.0; /* joint 0's forms are the +x part's, on its ccw side */
+          aq_vec2 o;
+          carried(m, &st[2], b, g->jo[jj], &o);
+          aq_vec2 mid = vec(o.x + g->jmid[jj] * u.x, o.y + g->jmid[jj] * u.y);
+          double tx, ty, m0;
+          if (q->hinge >= 0) { /* the hinge's reaction (h, v) on its ccw body */
+            double hx = N * nr.x + T * u.x, hy = N * nr.y + T * u.y;
+            aq_vec2 hp = end ? m->h[3] : m->h[0];
+            /* the abutment's force on the arch: +(h, v) at H1, -(h, v) at H4 */
+            tx = end ? -hx : hx, ty = end ? -hy : hy;
+            m0 = hp.x * ty - hp.y * tx;
+          } else { /* t of the sub-body beside the springing; the abutment gives -t */
+            double Ns = sg * N;
+            double ttx = Ns * nr.x + T * u.x, tty = Ns * nr.y + T * u.y;
+            double tm = sg * E * g->jhalf[jj] + (mid.x * tty - mid.y * ttx);
+            tx = -ttx, ty = -tty, m0 = -tm;
+          }
+          sx += tx, sy += ty, sm += m0;
+        }
+        double ef = hypot(sx, sy) / Fscale, em = fabs(sm) / (Fscale * L);
+        worst_acc = fmax(worst_acc, fmax(ef, em));
+        aq_check(ef < 1e-5 && em < 1e-5,
+                 "%s set %d s %g: the whole arch's balance with both springings' "
+                 "resultants %.3g (force), %.3g (moment)",
+                 shipped[f], set, s, ef, em);
+        free(acc);
+        free(cen);
+        free(alv);
+      }
+    }
+    free(fm);
+    aq_arch_free(A);
+  }
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("demand d'Alembert: joints %.3g (force) %.3g (moment), springings %.3g\n", worst_f,
+           worst_m, worst_acc);
+}
+
+AQ_TEST(arch_demand_tables_vs_forms)
+{
+  gsl_set_error_handler_off();
+  unsigned long long rng = 0x5eed2385ULL;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fe = calloc(nf, sizeof *fe), *ft = calloc(nf, sizeof *ft);
+    for (int set = 0; set < 2; set++) {
+      const aq_path *p = aq_arch_path(A, set);
+      const aq_demand_table *t = aq_arch_demand_table(A, set);
+      if (!p->admissible) {
+        aq_check(t == NULL, "%s set %d: no tables for an inadmissible set", shipped[f], set);
+        continue;
+      }
+      if (!aq_check(t != NULL, "%s set %d: tables", shipped[f], set))
+        continue;
+      const aq_mech *m = aq_workpath_mech(aq_arch_workpath(A, set));
+      aq_demand_forms(m, p->q_sign, 0, fe, NULL);
+      double scale = 0; /* the tables' tolerance is against the largest normal force at rest */
+      for (size_t j = 0; j < nf; j++)
+        scale = fmax(scale, fabs(fe[j].n[0]));
+      double worst = 0;
+      for (int i = 0; i < 200; i++) {
+        double s = i == 0 ? 0 : i == 1 ? p->s_c_rad : p->s_c_rad * tds_rng(&rng);
+        aq_demand_kin ke, kt;
+        aq_demand_forms(m, p->q_sign, s, fe, &ke);
+        aq_check(aq_demand_table_forms(t, s, ft, &kt) == 0, "tabled at %g", s);
+        for (size_t j = 0; j < nf; j++)
+          for (int k = 0; k < 2; k++) /* the g and a columns */
+            worst = fmax(worst, fmax(fabs(ft[j].n[k] - fe[j].n[k]),
+                                     fmax(fabs(ft[j].t[k] - fe[j].t[k]),
+                                          fabs(ft[j].e[k] - fe[j].e[k]))) / scale);
+        aq_check_rel(kt.mgen_kgm2, ke.mgen_kgm2, 1e-7, "M at %g", s);
+        if (i == 0)
+          for (size_t j = 0; j < nf; j++) /* the nodes are exact (but for / m_T * m_T) */
+            aq_check(fabs(ft[j].n[0] - fe[j].n[0]) <= 4e-16 * fabs(fe[j].n[0]) &&
+                         fabs(ft[j].t[1] - fe[j].t[1]) <= 4e-16 * fabs(fe[j].t[1]),
+                     "exact at s = 0");
+      }
+      aq_check(worst <= 1e-7, "%s set %d: tables within %.3g of the largest normal force",
+               shipped[f], set, worst);
+    }
+    free(fe);
+    free(ft);
+    aq_arch_free(A);
+  }
+}
+
+/* The largest |T|/N and |e|/N (non-hinge) over every entry at one state,
+ * from the tables, with the state's first time over each limit. */
+typedef struct {
+  double mu, ecc, mu_over, ecc_over;
+} brute;
+
+static void brute_at(const aq_demand_table *t, aq_joint_form *f, size_t nf, double s, double ke,
+                     double a, double g, double t_s, double mu_limit, brute *b)
+{
+  aq_demand_kin kin;
+  aq_demand_table_forms(t, s, f, &kin);
+  double al = a / g, w = 2 * ke / (kin.mgen_kgm2 * g);
+  for (size_t j = 0; j < nf; j++) {
+    double N = f[j].n[0] + al * f[j].n[1] + w * f[j].n[2];
+    double T = fabs(f[j].t[0] + al * f[j].t[1] + w * f[j].t[2]);
+    double E = fabs(f[j].e[0] + al * f[j].e[1] + w * f[j].e[2]);
+    double mu = N > 0 ? T / N : INFINITY, ecc = N > 0 ? E / N : INFINITY;
+    b->mu = fmax(b->mu, mu);
+    if (mu > mu_limit && isnan(b->mu_over))
+      b->mu_over = t_s;
+    if (f[j].hinge < 0) {
+      b->ecc = fmax(b->ecc, ecc);
+      if (ecc > 1 && isnan(b->ecc_over))
+        b->ecc_over = t_s;
+    }
+  }
+}
+
+AQ_TEST(arch_demand_tracker_vs_every_joint)
+{
+  /* states of a motion: s and KE move smoothly (a swing out and back),
+   * the ground acceleration jumps from step to step; the tracker, told
+   * each, against every joint evaluated at each */
+  gsl_set_error_handler_off();
+  unsigned long long rng = 0x2385a11ULL;
+  size_t runs = 0, full = 0, samples = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fb = calloc(nf, sizeof *fb);
+    aq_demand *d = aq_arch_demand_tracker(A, 0.55, &e);
+    const aq_path *p0 = aq_arch_path(A, 0);
+    double g = p0->g_mps2, l0 = p0->lambda0;
+    for (int r = 0; r < 6; r++) {
+      double amax = (0.5 + 3 * tds_rng(&rng)) * l0;
+      aq_demand_begin(d, amax);
+      brute b = {0, 0, NAN, NAN};
+      int set = 0;
+      double s = 0, phase = 0, t_s = 0;
+      for (int i = 0; i < 400; i++) {
+        const aq_path *p = aq_arch_path(A, set);
+        const aq_demand_table *t = aq_arch_demand_table(A, set);
+        if (!t)
+          break;
+        /* a swing: s = A sin(phase), KE ~ cos^2 */
+        double amp = (0.05 + 0.9 * tds_rng(&rng)) * p->s_c_rad;
+        phase += 0.05 + 0.3 * tds_rng(&rng);
+        double sn = sin(phase);
+        s = fabs(amp * sn);
+        double ke = 0.5 * p->mass_kg * g * 0.01 * p->s_c_rad * (1 - sn * sn) * tds_rng(&rng);
+        double a = (2 * tds_rng(&rng) - 1) * amax * g;
+        t_s += 0.01;
+        aq_demand_at(d, set, s, ke, a, g, t_s);
+        brute_at(t, fb, nf, s, ke, a, g, t_s, 0.55, &b);
+        if (tds_rng(&rng) < 0.03) {
+          aq_demand_at(d, set, 0, ke, a, g, t_s); /* an impact: the other set */
+          brute_at(t, fb, nf, 0, ke, a, g, t_s, 0.55, &b);
+          if (aq_arch_path(A, 1 - set)->admissible)
+            set = 1 - set;
+        }
+      }
+      aq_demand_result dr;
+      aq_demand_get(d, &dr);
+      runs++, full += dr.full, samples += dr.samples;
+      aq_check(dr.mu_max == b.mu || fabs(dr.mu_max - b.mu) <= 1e-9 * b.mu,
+               "%s run %d: tracker mu %.17g, every joint %.17g", shipped[f], r, dr.mu_max, b.mu);
+      aq_check(dr.ecc_max == b.ecc || fabs(dr.ecc_max - b.ecc) <= 1e-9 * b.ecc,
+               "%s run %d: tracker ecc %.17g, every joint %.17g", shipped[f], r, dr.ecc_max, b.ecc);
+      aq_check((isnan(dr.slide_s) && isnan(b.mu_over)) || dr.slide_s == b.mu_over,
+               "%s run %d: first over the friction %g, every joint %g", shipped[f], r,
+               dr.slide_s, b.mu_over);
+      aq_check((isnan(dr.ecc_over_s) && isnan(b.ecc_over)) || dr.ecc_over_s == b.ecc_over,
+               "%s run %d: thrust first out %g, every joint %g", shipped[f], r, dr.ecc_over_s,
+               b.ecc_over);
+    }
+    aq_demand_free(d);
+    free(fb);
+    aq_arch_free(A);
+  }
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("tracker: %zu runs, %zu states, %zu with every joint evaluated\n", runs, samples, full);
+}
+
+/* mu of the static collapse state at lambda0 on set p, by the 9x9 balance
+ * and the line of thrust of kinematics.c: the largest |T|/N over every
+ * joint (both faces of a hinge coincide at rest), infinite when a joint's
+ * resultant pulls (gothic's face-swapped set at its joint 10). */
+static double static_mu(const aq_workpath *w)
+{
+  const aq_path *p = aq_workpath_path(w);
+  const aq_mech *m = aq_workpath_mech(w);
+  const aq_geom *g = m->g;
+  size_t n = g->p.voussoirs;
+  aq_mech_state st;
+  aq_mech_eval(m, 0, &st);
+  aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, p->g_mps2};
+  aq_equil eq;
+  aq_error e;
+  aq_mech_equilibrium(m, &st, &live, &eq, &e);
+  double *ecc = calloc(n + 1, sizeof *ecc);
+  aq_vec2 *pt = calloc(n + 1, sizeof *pt), *dir = calloc(n + 1, sizeof *dir);
+  int tension = 0;
+  aq_mech_thrust_line(m, &st, &live, &eq, ecc, &tension, pt, dir);
+  double mu = tension ? INFINITY : 0; /* a joint pulled apart holds by no friction */
+  for (size_t j = 0; j <= n; j++) {
+    aq_vec2 u = g->ju[j];
+    double T = u.x * dir[j].x + u.y * dir[j].y, N = -u.y * dir[j].x + u.x * dir[j].y;
+    mu = fmax(mu, fabs(T) / fabs(N));
+  }
+  free(ecc);
+  free(pt);
+  free(dir);
+  return mu;
+}
+
+AQ_TEST(arch_demand_barely_past_lambda0_is_the_static_demand)
+{
+  gsl_set_error_handler_off();
+  static const aq_model models[] = {AQ_MODEL_WORKPATH, AQ_MODEL_ODE, AQ_MODEL_WORKPATH_QUAD};
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    for (int set = 0; set < 2; set++) {
+      const aq_path *p = aq_arch_path(A, set);
+      if (!p->admissible)
+        continue;
+      double want = static_mu(aq_arch_workpath(A, set));
+      for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        aq_stepper *st = aq_stepper_alloc(aq_arch_path(A, 0), aq_arch_path(A, 1), models[k], &e);
+        if (!aq_check(st != NULL, "stepper"))
+          continue;
+        aq_stepper_set_demand(st, aq_arch_demand_tracker(A, NAN, &e));
+        aq_steps steps;
+        /* 1e-9 above the set's threshold for the whole record (0.4 s) */
+        double acc[40];
+        for (int i = 0; i < 40; i++)
+          acc[i] = p->act_sign * p->lambda0 * p->g_mps2 * (1 + 1e-9);
+        if (!aq_check(aq_steps_from_samples(acc, 40, 0.01, 0, 0, &steps, &e) == AQ_OK, "steps"))
+          continue;
+        aq_result res;
+        aq_check(aq_stepper_run(st, &steps, &res, &e) == AQ_OK, "runs");
+        aq_check(res.first_set == set, "%s: set %d moved", shipped[f], set);
+        if (isinf(want))
+          aq_check(isinf(res.mu_demand), "%s set %d: a joint in tension at rest, got %g", shipped[f],
+                   set, res.mu_demand);
+        else
+          aq_check_rel(res.mu_demand, want, 1e-7,
+                     "%s set %d %s: mu_demand against the static collapse state at lambda0",
+                     shipped[f], set, aq_model_name(models[k]));
+        aq_result_free(&res);
+        aq_steps_free(&steps);
+        aq_stepper_free(st);
+      }
+    }
+    aq_arch_free(A);
+  }
+}
+
+AQ_TEST(arch_demand_runs_as_with_every_joint_at_every_state)
+{
+  /* real motions (pseudo-random records about lambda0 on every shipped
+   * arch, three models): the tracker's results equal those of every joint
+   * evaluated at every state the run passed through */
+  gsl_set_error_handler_off();
+  static const aq_model models[] = {AQ_MODEL_WORKPATH, AQ_MODEL_ODE, AQ_MODEL_WORKPATH_QUAD};
+  unsigned long long rng = 0xd3a1d23ULL;
+  size_t runs = 0, moved = 0, states = 0, full = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    const aq_path *p0 = aq_arch_path(A, 0), *p1 = aq_arch_path(A, 1);
+    double lneg = p0->act_sign < 0 ? p0->lambda0 : p1->admissible ? p1->lambda0 : p0->lambda0;
+    double lpos = p0->act_sign > 0 ? p0->lambda0 : p1->admissible ? p1->lambda0 : p0->lambda0;
+    for (int r = 0; r < 3; r++) {
+      enum { N = 300 };
+      double t[N], dt[N], acc[N];
+      tds_random(&rng, lneg * p0->g_mps2, lpos * p0->g_mps2, t, dt, acc, N);
+      aq_steps steps;
+      if (!aq_check(aq_steps_from_list(t, dt, acc, N, &steps, &e) == AQ_OK, "steps"))
+        continue;
+      aq_model model = models[r % 3];
+      aq_result res[2];
+      for (int k = 0; k < 2; k++) {
+        aq_stepper *st = aq_stepper_alloc(p0, p1, model, &e);
+        aq_demand *d = aq_arch_demand_tracker(A, 0.45, &e);
+        aq_demand_set_every(d, k);
+        aq_stepper_set_demand(st, d);
+        aq_check(aq_stepper_run(st, &steps, &res[k], &e) == AQ_OK, "runs");
+        aq_stepper_free(st);
+      }
+      runs++;
+      moved += res[0].first_set >= 0;
+      states += res[0].demand_samples, full += res[0].demand_full;
+      int never = res[0].first_set < 0;
+      aq_check(never ? isnan(res[0].mu_demand) && isnan(res[1].mu_demand)
+                     : res[0].mu_demand == res[1].mu_demand &&
+                           res[0].thrust_ecc_max == res[1].thrust_ecc_max,
+               "%s %s run %d: mu %.17g ecc %.17g, every joint %.17g %.17g", shipped[f],
+               aq_model_name(model), r, res[0].mu_demand, res[0].thrust_ecc_max,
+               res[1].mu_demand, res[1].thrust_ecc_max);
+      aq_check(res[0].mu_demand_joint == res[1].mu_demand_joint, "joint");
+      aq_check((isnan(res[0].slide_time_s) && isnan(res[1].slide_time_s)) ||
+                   res[0].slide_time_s == res[1].slide_time_s,
+               "%s: slides at %g, every joint %g", shipped[f], res[0].slide_time_s,
+               res[1].slide_time_s);
+      aq_check((isnan(res[0].thrust_ecc_time_s) && isnan(res[1].thrust_ecc_time_s)) ||
+                   res[0].thrust_ecc_time_s == res[1].thrust_ecc_time_s,
+               "%s: thrust out at %g, every joint %g", shipped[f], res[0].thrust_ecc_time_s,
+               res[1].thrust_ecc_time_s);
+      aq_check(res[1].demand_full == res[1].demand_samples, "the reference evaluates every state");
+      aq_result_free(&res[0]);
+      aq_result_free(&res[1]);
+      aq_steps_free(&steps);
+    }
+    aq_arch_free(A);
+  }
+  aq_check(moved >= runs / 2, "most runs move (%zu of %zu)", moved, runs);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("runs %zu (moved %zu): %zu states, %zu with every joint evaluated\n", runs, moved,
+           states, full);
+}
