@@ -14,6 +14,7 @@
 
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
+#include "../blocks/blocks.h"
 #include "../capacity/capacity.h"
 #include "../select/misfit.h"
 #include "../signal/spectrum.h"
@@ -210,8 +211,43 @@ static void ode_rtol_needs_ode(aq_opts *o, int *nerr)
   aq_opt_ode_rtol(o->given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)o->model), nerr);
 }
 
+/* The block model runs in pulse (src/blocks/blocks.h). */
+static void blocks_model_applies(aq_opts *o, int *nerr)
+{
+  if (o->model == AQ_MODEL_BLOCKS && o->cmd != AQ_CMD_PULSE) {
+    fprintf(stderr, "archquake: --model: expected workpath, ode, paper or workpath-quad here "
+                    "(--model blocks runs in pulse), got blocks\n");
+    (*nerr)++;
+  }
+}
+
+static void blocks_dt_needs_blocks(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks with it, got --model "
+                    "%s\n", aq_model_name((aq_model)o->model));
+    (*nerr)++;
+  }
+}
+
+/* --cor and --impact are the four-hinge models' impact rules; the block
+ * model's impacts follow each contact's restitution ([contact] e_n). */
+static void cor_not_blocks(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_COR] && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --cor: expected a four-hinge model with it, got --model "
+                    "blocks (its impacts follow [contact] e_n)\n");
+    (*nerr)++;
+  }
+}
+
 static void momentum_takes_no_cor(aq_opts *o, int *nerr)
 {
+  if (o->given[AQ_OPT_IMPACT] && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --impact: expected a four-hinge model with it, got --model "
+                    "blocks (its impacts follow [contact] e_n)\n");
+    (*nerr)++;
+  }
   if (o->impact == AQ_IMPACT_MOMENTUM && !isnan(o->cor)) {
     fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
                     "momentum (a cor would have no effect)\n");
@@ -471,9 +507,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                              "are the same for every N"},
     [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
                       .meta = "M", DEST(model), .cmds = DYNAMICS,
-                      .help = "workpath (default), ode (reference), paper, workpath-quad"},
+                      .help = "workpath (default), ode (reference), paper, workpath-quad, "
+                              "blocks (pulse; docs/blocks.md)",
+                      .check = blocks_model_applies},
     [AQ_OPT_COR] = {.name = "cor", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "C",
-                    DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN),
+                    DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN), .check = cor_not_blocks,
                     .help = "kinetic-energy ratio kept at an impact, 0..1 (default: each "
                             "arch's [dynamics] cor; refused for an arch whose impact is "
                             "momentum, which uses none)"},
@@ -483,6 +521,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .help = "the Coulomb friction coefficient of every joint, springings "
                                  "included, 0 < MU <= 1000 (default: each arch's [contact] "
                                  "friction; none if it has none)"},
+    [AQ_OPT_BLOCKS_DT] = {.name = "blocks-dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
+                          .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE),
+                          .help = "the block model's time step, s (default 0.002; only with "
+                                  "--model blocks)",
+                          .check = blocks_dt_needs_blocks},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -1110,6 +1153,8 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->model = AQ_MODEL_WORKPATH;
   o->cor = NAN;
   o->friction = NAN;
+  o->blocks_dt_s = AQ_BLOCKS_DT_DEFAULT_S;
+  o->cmd = (int)cmd;
   o->impact = -1;
   o->ode_rtol = 1e-10;
   o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;

@@ -62,10 +62,12 @@ typedef struct {
                            "response" (miniSEED counts, the sensitivity from
                            --response's StationXML), "rule" (--units GLOB=U),
                            "option" (--units, the file stating none) */
-  char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
-  char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
+  /* Notes name fields, rules and files (a StationXML's name whole, up to
+   * NAME_MAX): a text longer than its room ends in "...", never cut unseen. */
+  char units_conflict[512]; /* "" or one line: the file states X, the rule GLOB=U uses U */
+  char polarity_note[512];  /* "" or one line: the sensitivity is negative, so the
                                samples are reversed by it (to_mps2 < 0) */
-  char vertical_note[200];  /* "" or one line: the channel name and an orientation
+  char vertical_note[512];  /* "" or one line: the channel name and an orientation
                                field disagree (vertical_by NAME_OVER_FIELD) */
   char dt_note[120];        /* "" or one line: --dt differs from the sample
                                interval the file states, which is the one used */
