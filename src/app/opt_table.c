@@ -3,14 +3,18 @@
 #define _POSIX_C_SOURCE 200809L
 #include "opt_table.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
+#include "../blocks/blocks.h"
 #include "../capacity/capacity.h"
 #include "../signal/spectrum.h"
 #include "app.h"
@@ -96,22 +100,6 @@ static void units(char *arg, aq_opts *o, int *nerr)
   snprintf(o->units_text + k, sizeof o->units_text - k, "%s%s", k ? " " : "", arg);
 }
 
-/* After --damping's list, each in (0, 1]: 1 (critical damping) is refused
- * too, as no oscillation is left for a spectrum. */
-static void damping_below_1(char *arg, aq_opts *o, int *nerr)
-{
-  for (size_t i = 0; i < o->ndampings; i++)
-    if (!(o->dampings[i] < 1)) {
-      fprintf(stderr, "archquake: --damping: expected damping ratios in (0, 1), "
-                      "got \"%s\"\n", arg);
-      (*nerr)++;
-      free(o->dampings);
-      o->dampings = NULL;
-      o->ndampings = 0;
-      return;
-    }
-}
-
 /* The intensity measures' periods: "none" (no period), or a list of nmin
  * to nmax distinct periods in s, each in (0, 1e4], ascending if asked, into
  * v[0..nmax).  Returns their number; 0 for none or a bad list (one line
@@ -183,8 +171,43 @@ static void ode_rtol_needs_ode(aq_opts *o, int *nerr)
   aq_opt_ode_rtol(o->given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)o->model), nerr);
 }
 
+/* The block model runs in pulse (src/blocks/blocks.h). */
+static void blocks_model_applies(aq_opts *o, int *nerr)
+{
+  if (o->model == AQ_MODEL_BLOCKS && o->cmd != AQ_CMD_PULSE) {
+    fprintf(stderr, "archquake: --model: expected workpath, ode, paper or workpath-quad here "
+                    "(--model blocks runs in pulse), got blocks\n");
+    (*nerr)++;
+  }
+}
+
+static void blocks_dt_needs_blocks(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks with it, got --model "
+                    "%s\n", aq_model_name((aq_model)o->model));
+    (*nerr)++;
+  }
+}
+
+/* --cor and --impact are the four-hinge models' impact rules; the block
+ * model's impacts follow each contact's restitution ([contact] e_n). */
+static void cor_not_blocks(aq_opts *o, int *nerr)
+{
+  if (o->given[AQ_OPT_COR] && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --cor: expected a four-hinge model with it, got --model "
+                    "blocks (its impacts follow [contact] e_n)\n");
+    (*nerr)++;
+  }
+}
+
 static void momentum_takes_no_cor(aq_opts *o, int *nerr)
 {
+  if (o->given[AQ_OPT_IMPACT] && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --impact: expected a four-hinge model with it, got --model "
+                    "blocks (its impacts follow [contact] e_n)\n");
+    (*nerr)++;
+  }
   if (o->impact == AQ_IMPACT_MOMENTUM && !isnan(o->cor)) {
     fprintf(stderr, "archquake: --cor: expected --impact cor with it, got --impact "
                     "momentum (a cor would have no effect)\n");
@@ -197,12 +220,69 @@ static void orientation(aq_opts *o, int *nerr)
   aq_opt_orient_check(&o->orient, nerr);
 }
 
-/* --cache-dir names where --no-cache would not look: refused together. */
+/* Why the cache directory dir cannot be used (made if missing, beside an
+ * existing parent, as the cache makes it; written; its records/ and
+ * arches/ directories), into why[n]; "" if it can. */
+static void cache_dir_unusable(const char *dir, char *why, size_t n)
+{
+  struct stat sb;
+  why[0] = '\0';
+  if (!dir[0]) {
+    snprintf(why, n, "an empty name");
+  } else if (stat(dir, &sb) == 0) {
+    if (!S_ISDIR(sb.st_mode))
+      snprintf(why, n, "a file that is not a directory");
+    else if (access(dir, W_OK | X_OK) != 0)
+      snprintf(why, n, "a directory that cannot be written (%s)", strerror(errno));
+    for (int k = 0; k < 2 && !why[0]; k++) {
+      char sub[PATH_MAX];
+      snprintf(sub, sizeof sub, "%s/%s", dir, k ? "arches" : "records");
+      if (stat(sub, &sb) == 0 && !S_ISDIR(sb.st_mode))
+        snprintf(why, n, "a directory whose %s is a file, not a directory", k ? "arches"
+                                                                               : "records");
+    }
+  } else if (errno != ENOENT) {
+    snprintf(why, n, "a path that cannot be looked at (%s)", strerror(errno));
+  } else {
+    char parent[PATH_MAX];
+    snprintf(parent, sizeof parent, "%s", dir);
+    char *slash = strrchr(parent, '/');
+    while (slash && slash > parent && slash[1] == '\0') { /* "dir/" */
+      *slash = '\0';
+      slash = strrchr(parent, '/');
+    }
+    if (!slash)
+      snprintf(parent, sizeof parent, ".");
+    else if (slash == parent)
+      parent[1] = '\0';
+    else
+      *slash = '\0';
+    if (stat(parent, &sb) != 0)
+      snprintf(why, n, "its parent %s cannot be used (%s)", parent, strerror(errno));
+    else if (!S_ISDIR(sb.st_mode))
+      snprintf(why, n, "its parent %s is not a directory", parent);
+    else if (access(parent, W_OK | X_OK) != 0)
+      snprintf(why, n, "its parent %s cannot be written (%s)", parent, strerror(errno));
+  }
+}
+
+/* --cache-dir names where --no-cache would not look: refused together.  A
+ * directory the user names must be usable, or nothing runs (without
+ * --cache-dir, a default directory that cannot be written is a note and
+ * the run goes on). */
 static void cache_dir_needs_cache(aq_opts *o, int *nerr)
 {
   if (o->given[AQ_OPT_CACHE_DIR] && o->given[AQ_OPT_NO_CACHE]) {
     fprintf(stderr, "archquake: --cache-dir: expected no --no-cache with it (--no-cache "
                     "uses no cache directory), got both\n");
+    (*nerr)++;
+    return;
+  }
+  char why[PATH_MAX + 128];
+  if (o->given[AQ_OPT_CACHE_DIR] && o->cache_dir &&
+      (cache_dir_unusable(o->cache_dir, why, sizeof why), why[0])) {
+    fprintf(stderr, "archquake: --cache-dir: expected a directory that can be written, or "
+                    "made in an existing one, got \"%s\": %s\n", o->cache_dir, why);
     (*nerr)++;
   }
 }
@@ -317,8 +397,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
                     .cmds = C(PLOT_HISTORY),
-                    .help = "the run to draw: a group under /runs, e.g. 00000_000_000 "
-                            "(default: the first run)"},
+                    .help = "the run to draw: a group under /histories, e.g. "
+                            "00000_000_000 (default: the first run with histories)"},
     [AQ_OPT_RECORD] = {.name = "record", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(record),
                        .cmds = C(PLOT_SPECTRUM),
                        .help = "the record (or --components pair) of a spectrum file to draw, "
@@ -385,9 +465,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                              "are the same for every N"},
     [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
                       .meta = "M", DEST(model), .cmds = DYNAMICS,
-                      .help = "workpath (default), ode (reference), paper, workpath-quad"},
+                      .help = "workpath (default), ode (reference), paper, workpath-quad, "
+                              "blocks (pulse; docs/blocks.md)",
+                      .check = blocks_model_applies},
     [AQ_OPT_COR] = {.name = "cor", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "C",
-                    DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN),
+                    DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN), .check = cor_not_blocks,
                     .help = "kinetic-energy ratio kept at an impact, 0..1 (default: each "
                             "arch's [dynamics] cor; refused for an arch whose impact is "
                             "momentum, which uses none)"},
@@ -397,6 +479,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .help = "the Coulomb friction coefficient of every joint, springings "
                                  "included, 0 < MU <= 1000 (default: each arch's [contact] "
                                  "friction; none if it has none)"},
+    [AQ_OPT_BLOCKS_DT] = {.name = "blocks-dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
+                          .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE),
+                          .help = "the block model's time step, s (default 0.002; only with "
+                                  "--model blocks)",
+                          .check = blocks_dt_needs_blocks},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -461,8 +548,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .meta = "LIST", DEST_LIST(periods, nperiods), .cmds = C(SPECTRUM),
                         .help = "oscillator periods, s, comma-separated, each > 0 (default: "
                                 "PEER's 111 periods of the NGA-West2 flatfile, 0.01-20 s)"},
-    [AQ_OPT_DAMPING] = {.name = "damping", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1,
-                        .meta = "LIST", DEST_LIST(dampings, ndampings), .fn = damping_below_1,
+    /* each in (0, 1): critical damping (1) leaves no oscillation for a spectrum */
+    [AQ_OPT_DAMPING] = {.name = "damping", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1, .hi_open = 1,
+                        .meta = "LIST", DEST_LIST(dampings, ndampings),
                         .cmds = C(SPECTRUM),
                         .help = "damping ratios, comma-separated, each in (0, 1) (default "
                                 "0.05)"},
@@ -549,6 +637,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .help = "remove the least-squares line (linear, default), the mean "
                                 "(mean) or nothing (none)"},
     [AQ_OPT_TAPER] = {.name = "taper", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 0.5,
+                      .zero_is_off = 1, /* --taper 0: no taper, as --no-filter gives */
                       .meta = "FRAC", DEST(proc.taper_frac), .cmds = RECORDS,
                       .group = AQ_GROUP_PROCESSING,
                       .help = "Hann taper over FRAC of the record at each end, 0-0.5 "
@@ -595,9 +684,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .check = sampled_peaks_alias},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
                           .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
-                          .help = "no taper, pads or filter (detrend still applies)",
+                          .help = "no taper, pads or filter (detrend still applies; "
+                                  "--taper 0, no taper, may be given with it)",
                           /* an option that sets one of them would be ignored: refused,
-                           * even at its default */
+                           * even at its default, unless it asks for none (--taper 0:
+                           * .zero_is_off) */
                           .conflicts = OPTS(AQ_OPT_TAPER, AQ_OPT_HIGHPASS, AQ_OPT_ORDER,
                                             AQ_OPT_LOWPASS),
                           .why = "it applies no taper, pads or filter"},
@@ -613,8 +704,12 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                  "docs/cache.md)"},
     [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
                           DEST(cache_dir), .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
-                          .help = "keep processed records and built arches in DIR (default "
-                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake)",
+                          .help = "keep processed records and built arches in DIR (made "
+                                  "if its parent exists; one that cannot be used stops the "
+                                  "command before anything runs; default "
+                                  "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake, "
+                                  "which, if it cannot be used, is a note and the run goes "
+                                  "on)",
                           .check = cache_dir_needs_cache},
     [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
                           .fn = cache_max, .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
@@ -650,7 +745,7 @@ static const char run_tail[] =
     "  mu_demand passed it; beyond: free control, the thrust left a joint's\n"
     "  section; slides+beyond: both: the verdict holds for the four-hinge\n"
     "  model only up to that time, follow such a run with --model blocks)\n"
-    "Exit status:\n"
+    "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
     "  2  bad or missing options, or an arch file that cannot be loaded:\n"
@@ -750,7 +845,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
                  "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
                  "  as above, in the deformed arch at lambda(q)).\n"
-                 "Exit status: 0 success, 1 the arch could not be built, 2 bad options.\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded (the arch\n"
+                 "is mechanism's input, as a record is info's), 2 bad options.\n"},
     [AQ_CMD_PULSE] =
         {.name = "pulse",
          .title = "pulse",
@@ -763,9 +859,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .tail = "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
                  "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
                  "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
-                 "Exit status: 0 success, 1 the arch or the run failed, 2 bad options (or\n"
-                 "an option the arch makes ineffective, as --cor with impact momentum),\n"
-                 "3 the history could not be written.\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded, or the run\n"
+                 "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
+                 "with impact momentum), 3 the history could not be written.\n"},
     [AQ_CMD_DOMAIN] =
         {.name = "domain",
          .title = "domain",
@@ -779,8 +875,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "--polarity).\n",
          .tail = "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
                  "  --max-duration)\n"
-                 "Exit status: 0 success, 1 the arch or a run failed, 2 bad options (or an\n"
-                 "option the arch makes ineffective, as --cor with impact momentum).\n"},
+                 "Exit status: 0 success, 1 an arch file that cannot be loaded, or a run\n"
+                 "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
+                 "with impact momentum).\n"},
     [AQ_CMD_COMPARE] =
         {.name = "compare",
          .title = "compare",
@@ -825,7 +922,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  process:CODE, arch:CODE, run:CODE; intervals lo-hi;lo-hi, hi inf when\n"
                  "  collapse holds at the cap)\n"
                  "Exit status: 0 all done, 1 some record or run failed (reported; the others\n"
-                 "ran), 2 bad options or arch file, 3 an output could not be written.\n",
+                 "ran), 2 bad options or an arch file that cannot be loaded (nothing ran),\n"
+                 "3 an output could not be written.\n",
          .heading = {[AQ_GROUP_ORIENTATION] =
                          "Orientation (--azimuth all: each row is the worst azimuth, lowest\n"
                          "first_collapse_scale, no collapse last, with the range over the\n"
@@ -858,8 +956,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
          .synopsis = "plot FIGURE ... -o FILE",
          .summary = "figures (history arch domain suite capacity spectrum)",
                      .head = plot_head,
-                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn, 2 "
-                             "bad options,\n3 the figure or the data could not be written.\n",
+                     .tail = "Exit status: 0 drawn, 1 an input could not be read or drawn (a\n"
+                             "results file, or an arch file that cannot be loaded), 2 bad\n"
+                             "options, 3 the figure or the data could not be written.\n",
                      .heading = {[AQ_GROUP_MAIN] = "Options:"}},
     [AQ_CMD_HELP] =
         {.name = "help",
@@ -935,6 +1034,8 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->model = AQ_MODEL_WORKPATH;
   o->cor = NAN;
   o->friction = NAN;
+  o->blocks_dt_s = AQ_BLOCKS_DT_DEFAULT_S;
+  o->cmd = (int)cmd;
   o->impact = -1;
   o->ode_rtol = 1e-10;
   o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;

@@ -123,6 +123,7 @@ typedef enum {
   AQ_OPT_MODEL,
   AQ_OPT_COR,
   AQ_OPT_FRICTION,
+  AQ_OPT_BLOCKS_DT,    /* --model blocks: its time step */
   AQ_OPT_IMPACT,
   AQ_OPT_ODE_RTOL,
   AQ_OPT_HISTORY,      /* the main job: histories into the results file */
@@ -201,6 +202,7 @@ typedef enum {
  * Strings point into argv; what is malloc'd is freed by aq_opts_free. */
 typedef struct aq_opts {
   unsigned char given[AQ_OPT_N]; /* how often each option was given (<= 255) */
+  int cmd;                       /* the aq_cmd being parsed */
   /* arches */
   char **arches;    /* --arch, repeatable: resolved paths (the array is malloc'd) */
   size_t narches;
@@ -224,6 +226,7 @@ typedef struct aq_opts {
   int model;       /* --model: an aq_model */
   double cor;      /* --cor, or NAN: each arch's own */
   double friction; /* --friction, or NAN: each arch's [contact] friction */
+  double blocks_dt_s; /* --blocks-dt: the block model's step, s */
   int impact;      /* --impact: 0 cor, 1 momentum, -1 the arch's own */
   double ode_rtol; /* --ode-rtol */
   int polarity;    /* --polarity: AQ_POLARITY_* (opt.h) */
@@ -272,6 +275,11 @@ typedef struct {
   aq_arg_kind kind;
   const char *meta;   /* the argument in --help ("FILE"); NULL for flags */
   double lo, hi;      /* the range (numbers; LIST: each item) */
+  int hi_open;        /* LIST: hi itself is outside (--damping: each in (0, 1)) */
+  /* A value of 0 asks for nothing (--taper 0: no taper): it conflicts with
+   * no option (a .conflicts rule holds only between values that conflict,
+   * so --no-filter --taper 0 is no conflict). */
+  int zero_is_off;
   const char *const *choices; /* AQ_ARG_CHOICE: NULL-terminated */
   size_t dest, dest_n;        /* offsetof(aq_opts, ...) */
   /* AQ_ARG_CUSTOM: checks arg and stores it; other kinds: called after the

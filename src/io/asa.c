@@ -28,7 +28,9 @@
  *                                         origin (a record after midnight)
  *   CLAVE DE LA ESTACION                  the station code
  * Rows past the declared count (the UNAM file repeats its last row) are not
- * read, up to ASA_EXTRA_ROWS_MAX; fewer rows, or more, are refused.
+ * read: they are reported (aq_raw_channel's extra_*) for aq_record_decide,
+ * which notes copies of the last row and refuses others; fewer rows, or a
+ * line after the data that is not a row, are refused.
  */
 #include <ctype.h>
 #include <math.h>
@@ -45,7 +47,6 @@
 #define ASA_SNIFF_LINES 12   /* the marker is looked for this far */
 #define ASA_CHAN_MAX 6       /* channels of the C1-C6 lists */
 #define ASA_VALUE_MAX 128    /* characters kept of a header value */
-#define ASA_EXTRA_ROWS_MAX 16
 #define ASA_NAME_LINES 8     /* lines after "DATOS DE ACELERACION:" before data */
 /* DURACION is printed to 0.01 s; npts x dt must agree with it to a sample. */
 #define ASA_DT_REL 1e-3      /* INTERVALO against 1 / VEL. DE MUESTREO */
@@ -200,6 +201,20 @@ static aq_status bad(aq_error *err, const char *name, long line, const char *fie
 }
 
 /* One data row: nchan fields, by width w when w > 0, else blank-separated. */
+static int row_fields(const aq_line *ln, int nchan, int w, double *out);
+
+/* A row past the count (aq_extra_rows_scan): ctx holds nchan and the width. */
+typedef struct {
+  int nchan, width;
+} row_shape;
+
+static size_t extra_row(const aq_line *ln, const void *ctx)
+{
+  const row_shape *r = ctx;
+  double v[ASA_CHAN_MAX];
+  return row_fields(ln, r->nchan, r->width, v) ? 1 : 0;
+}
+
 static int row_fields(const aq_line *ln, int nchan, int w, double *out)
 {
   if (w > 0) {
@@ -408,20 +423,24 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
                           aq_lines_at_end(&c) ? "the file ends" : "a row that is not", k);
     }
   }
-  for (size_t extra = 0; aq_lines_next(&c, &ln);) {
-    if (aq_line_blank(&ln))
-      continue;
-    if (!row_fields(&ln, nchan, width, v) || ++extra > ASA_EXTRA_ROWS_MAX) {
-      char got[48];
-      aq_copy_trim(got, sizeof got, ln.p, ln.len);
-      aq_raw_file_free(raw);
-      return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
-                          "expected the end of the data after %zu rows (NUM. TOTAL DE "
-                          "MUESTRAS), got \"%s\" %s",
-                          rows, got,
-                          extra > ASA_EXTRA_ROWS_MAX ? "and more rows than a few of padding"
-                                                     : "");
-    }
+  row_shape shape = {nchan, width};
+  aq_extra_rows x;
+  aq_extra_rows_scan(&c, &ln, extra_row, &shape, &x);
+  if (aq_lines_next(&c, &ln)) {
+    char got[48];
+    aq_copy_trim(got, sizeof got, ln.p, ln.len);
+    aq_raw_file_free(raw);
+    return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
+                        "expected the end of the data after %zu rows (NUM. TOTAL DE "
+                        "MUESTRAS), got \"%s\"",
+                        rows + x.rows, got);
+  }
+  for (int j = 0; j < nchan; j++) {
+    aq_raw_channel *ch = &raw->chan[j];
+    ch->extra_rows = ch->extra_values = x.rows;
+    ch->extra_line = x.line;
+    ch->extra_repeat = x.repeat;
+    snprintf(ch->count_from, sizeof ch->count_from, "NUM. TOTAL DE MUESTRAS");
   }
   snprintf(raw->event, sizeof raw->event, "%.12s %.16s %.60s", f[F_EQ_DATE].value,
            f[F_EQ_TIME].value, f[F_MAG].value);

@@ -654,6 +654,23 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                         "truncated or NPTS too large",
                         npts, npts_line, k);
   }
+  /* values past NPTS, reported for the decision (record.c): numbers left
+   * on the last value's line (never a copy of a row), else rows of numbers
+   * after it up to anything else (an "End Data" marker ends the data) */
+  aq_extra_rows x;
+  memset(&x, 0, sizeof x);
+  size_t lb = c.pos, lend = aq_text_line_end(c.s, c.pos, c.n);
+  while (lb > 0 && c.s[lb - 1] != '\n' && c.s[lb - 1] != '\r')
+    lb--;
+  aq_line last = {c.s + lb, lend - lb, c.line}, rest = {c.s + c.pos, lend - c.pos, c.line};
+  if (!aq_line_blank(&rest)) {
+    x.values = aq_numbers_row(&rest, NULL);
+    x.rows = x.values > 0;
+    x.line = c.line;
+  } else {
+    aq_lines after = {c.s, c.n, lend, c.line};
+    aq_extra_rows_scan(&after, &last, NULL, NULL, &x);
+  }
   aq_status st = aq_raw_file_alloc(raw, 1, name, err);
   if (st != AQ_OK) {
     free(acc);
@@ -668,6 +685,11 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
   snprintf(ch->units_from, sizeof ch->units_from, "%s", ufrom);
   ch->quantity = qty;
+  ch->extra_rows = x.rows;
+  ch->extra_values = x.values;
+  ch->extra_line = x.line;
+  ch->extra_repeat = x.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "NPTS");
   if (qty != AQ_QUANTITY_UNSTATED)
     snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s",
              qty == AQ_QUANTITY_ACCELERATION ? ufrom : usaid);

@@ -242,8 +242,17 @@ static aq_status parse_block(aq_lines *c, const aq_line *first, const char *name
   char what[48];
   snprintf(what, sizeof what, "data of channel %zu (10E13.6)", raw->nchan + 1);
   aq_fortran_fmt fd = {BHRC_PER_LINE, BHRC_REAL_WIDTH, 'E'};
-  aq_status s = aq_fixed_read(c, tmp.npts, &fd, tmp.values, name, what, err);
   aq_line ln;
+  aq_status s = aq_fixed_read_last(c, tmp.npts, &fd, tmp.values, name, what, &ln, err);
+  if (s == AQ_OK) { /* rows past NO. OF POINTS: reported for the decision (record.c) */
+    aq_extra_rows x;
+    aq_extra_rows_scan(c, &ln, aq_fixed_row, &fd, &x);
+    tmp.extra_rows = x.rows;
+    tmp.extra_values = x.values;
+    tmp.extra_line = x.line;
+    tmp.extra_repeat = x.repeat;
+    snprintf(tmp.count_from, sizeof tmp.count_from, "NO. OF POINTS");
+  }
   while (s == AQ_OK) { /* the block ends with "/&" */
     if (!aq_lines_next(c, &ln)) {
       s = aq_error_set(err, AQ_EFORMAT, name, c->line, -1, "end of block",

@@ -363,9 +363,18 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   {
     char what[48];
     snprintf(what, sizeof what, "data of channel %zu", raw->nchan + 1);
-    s = aq_fixed_read(c, tmp.npts, &f, tmp.values, name, what, err);
+    aq_line last;
+    s = aq_fixed_read_last(c, tmp.npts, &f, tmp.values, name, what, &last, err);
     if (s != AQ_OK)
       goto fail;
+    /* rows past the count: reported for the decision (record.c) */
+    aq_extra_rows x;
+    aq_extra_rows_scan(c, &last, aq_fixed_row, &f, &x);
+    tmp.extra_rows = x.rows;
+    tmp.extra_values = x.values;
+    tmp.extra_line = x.line;
+    tmp.extra_repeat = x.repeat;
+    snprintf(tmp.count_from, sizeof tmp.count_from, "the data header");
   }
   /* the end line, if present */
   {

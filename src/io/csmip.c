@@ -273,11 +273,21 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     return aq_error_set(err, AQ_ENOMEM, name, data.line, -1, "data", "out of memory");
   char what[48];
   snprintf(what, sizeof what, "data of channel %zu", raw->nchan + 1);
-  aq_status s = aq_fixed_read(c, tmp.npts, &f, tmp.values, name, what, err);
+  aq_line last;
+  aq_status s = aq_fixed_read_last(c, tmp.npts, &f, tmp.values, name, what, &last, err);
   if (s != AQ_OK) {
     free(tmp.values);
     return s;
   }
+  /* rows past the count (before the next block's data line or the end
+   * line): reported for the decision (record.c) */
+  aq_extra_rows x;
+  aq_extra_rows_scan(c, &last, aq_fixed_row, &f, &x);
+  tmp.extra_rows = x.rows;
+  tmp.extra_values = x.values;
+  tmp.extra_line = x.line;
+  tmp.extra_repeat = x.repeat;
+  snprintf(tmp.count_from, sizeof tmp.count_from, "the data line (line %ld)", data.line);
   /* skip velocity and displacement (V2) up to and including the end line */
   aq_lines peek = *c;
   while (aq_lines_next(&peek, &ln)) {

@@ -130,6 +130,8 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
   /* the values: blank-separated numbers on the remaining lines */
   c = data_start;
   size_t got = 0;
+  aq_extra_rows x; /* values past NDATA: reported for the decision (record.c) */
+  memset(&x, 0, sizeof x);
   while (got < ch->npts && aq_lines_next(&c, &ln)) {
     size_t i = 0;
     while (i < ln.len) {
@@ -140,14 +142,19 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
         i++;
       if (i == b)
         break;
-      if (got == ch->npts || !aq_field_double(ln.p + b, i - b, &ch->values[got])) {
+      if (got == ch->npts) { /* more on NDATA's last line: never a copy of a row */
+        aq_line rest = {ln.p + b, ln.len - b, ln.line};
+        x.values = aq_numbers_row(&rest, NULL);
+        x.rows = 1;
+        x.line = ln.line;
+        break;
+      }
+      if (!aq_field_double(ln.p + b, i - b, &ch->values[got])) {
         char tok[48];
         aq_copy_trim(tok, sizeof tok, ln.p + b, i - b);
         aq_raw_file_free(raw);
         return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
-                            got == (size_t)nd ? "expected NDATA = %.0f values, got more (\"%s\")"
-                                              : "value %.0f: expected a number, got \"%s\"",
-                            got == (size_t)nd ? nd : (double)got + 1, tok);
+                            "value %zu: expected a number, got \"%s\"", got + 1, tok);
       }
       got++;
     }
@@ -157,12 +164,28 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "data",
                         "expected NDATA = %.0f values, the file ends after %zu", nd, got);
   }
+  if (x.rows == 0)
+    aq_extra_rows_scan(&c, &ln, NULL, NULL, &x);
+  if (x.rows > 0 && x.values == 0) {
+    aq_raw_file_free(raw);
+    return aq_error_set(err, AQ_EFORMAT, name, x.line, -1, "data",
+                        "expected the end of the data after NDATA = %.0f values, got more "
+                        "on this line", nd);
+  }
   if (!aq_lines_at_end(&c)) {
     aq_lines_next(&c, &ln);
+    char tok[48];
+    aq_copy_trim(tok, sizeof tok, ln.p, ln.len);
     aq_raw_file_free(raw);
     return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
-                        "expected NDATA = %.0f values, got more", nd);
+                        "expected the end of the file after NDATA = %.0f values, got \"%s\"",
+                        nd, tok);
   }
+  ch->extra_rows = x.rows;
+  ch->extra_values = x.values;
+  ch->extra_line = x.line;
+  ch->extra_repeat = x.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "NDATA");
   /* what the header states */
   aq_copy_trim(ch->network, sizeof ch->network, k[K_NETWORK].val.p, k[K_NETWORK].val.len);
   aq_copy_trim(ch->station, sizeof ch->station, k[K_STATION].val.p, k[K_STATION].val.len);

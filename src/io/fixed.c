@@ -200,7 +200,32 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
                         double *out, const char *name, const char *what,
                         aq_error *err)
 {
+  aq_line last;
+  return aq_fixed_read_last(c, count, f, out, name, what, &last, err);
+}
+
+size_t aq_fixed_row(const aq_line *ln, const void *ctx)
+{
+  const aq_fortran_fmt *f = ctx;
+  size_t w = (size_t)f->width, len = ln->len;
+  while (len > 0 && (ln->p[len - 1] == ' ' || ln->p[len - 1] == '\t'))
+    len--;
+  if (w == 0 || len == 0 || len % w != 0 || len / w > (size_t)f->per_line)
+    return 0;
+  for (size_t b = 0; b < len; b += w) {
+    double v;
+    if (!aq_field_double(ln->p + b, w, &v))
+      return 0;
+  }
+  return len / w;
+}
+
+aq_status aq_fixed_read_last(aq_lines *c, size_t count, const aq_fortran_fmt *f,
+                             double *out, const char *name, const char *what,
+                             aq_line *last, aq_error *err)
+{
   size_t k = 0;
+  memset(last, 0, sizeof *last);
   size_t w = (size_t)f->width;
   while (k < count) {
     aq_line ln;
@@ -208,6 +233,7 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
       return aq_error_set(err, AQ_EFORMAT, name, c->line, -1, what,
                           "expected %zu values, the file ends after %zu", count, k);
     size_t nf = count - k < (size_t)f->per_line ? count - k : (size_t)f->per_line;
+    *last = ln;
     for (size_t j = 0; j < nf; j++, k++) {
       size_t b = j * w;
       if (b >= ln.len)
@@ -226,6 +252,64 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
     }
   }
   return AQ_OK;
+}
+
+size_t aq_numbers_row(const aq_line *ln, const void *ctx)
+{
+  (void)ctx;
+  size_t n = 0, i = 0;
+  while (i < ln->len) {
+    while (i < ln->len && (ln->p[i] == ' ' || ln->p[i] == '\t'))
+      i++;
+    size_t b = i;
+    while (i < ln->len && ln->p[i] != ' ' && ln->p[i] != '\t')
+      i++;
+    double v;
+    if (i > b && !aq_field_double(ln->p + b, i - b, &v))
+      return 0;
+    n += i > b;
+  }
+  return n;
+}
+
+/* s[0..n) without the blanks around it: its start and length. */
+static const char *trimmed(const char *s, size_t n, size_t *len)
+{
+  while (n > 0 && (*s == ' ' || *s == '\t'))
+    s++, n--;
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+    n--;
+  *len = n;
+  return s;
+}
+
+void aq_extra_rows_scan(aq_lines *c, const aq_line *last, aq_row_fn *row, const void *ctx,
+                        aq_extra_rows *x)
+{
+  memset(x, 0, sizeof *x);
+  x->repeat = 1;
+  size_t ll = 0;
+  const char *lp = last ? trimmed(last->p, last->len, &ll) : "";
+  for (;;) {
+    aq_lines at = *c;
+    aq_line ln;
+    if (!aq_lines_next(&at, &ln))
+      break;
+    if (!aq_line_blank(&ln)) {
+      size_t nv = row ? row(&ln, ctx) : aq_numbers_row(&ln, ctx);
+      if (nv == 0)
+        break;
+      size_t tl;
+      const char *tp = trimmed(ln.p, ln.len, &tl);
+      if (x->rows++ == 0)
+        x->line = ln.line;
+      x->values += nv;
+      x->repeat &= last && tl == ll && memcmp(tp, lp, tl) == 0;
+    }
+    *c = at;
+  }
+  if (x->rows == 0)
+    x->repeat = 0;
 }
 
 int aq_line_names_accelerogram(const aq_line *ln)

@@ -84,6 +84,35 @@ aq_status aq_fixed_read(aq_lines *c, size_t count, const aq_fortran_fmt *f,
                         double *out, const char *name, const char *what,
                         aq_error *err);
 
+/* aq_fixed_read, the last line read in *last (for aq_extra_rows_scan). */
+aq_status aq_fixed_read_last(aq_lines *c, size_t count, const aq_fortran_fmt *f,
+                             double *out, const char *name, const char *what,
+                             aq_line *last, aq_error *err);
+
+/* The values of a line of f's layout: per_line fields of width columns (a
+ * shorter line, whole fields), each a number; 0 if it is not such a line.
+ * An aq_row_fn with ctx the aq_fortran_fmt. */
+size_t aq_fixed_row(const aq_line *ln, const void *ctx);
+
+/* Rows past a data block of a stated count, what a reader reports in
+ * aq_raw_channel's extra_* fields: from c on, every line that row()
+ * accepts (it returns the values the line holds; 0: not a row of the
+ * block; NULL: a line of blank-separated numbers, each one value), blank
+ * lines skipped, up to the first it does not accept or the end of the
+ * input, where c is left.  last is the block's last row: each extra row is
+ * compared with it (text, blanks around trimmed). */
+typedef struct {
+  size_t rows, values; /* 0: none */
+  long line;           /* the first one's line */
+  int repeat;          /* 1: every one is a copy of last */
+} aq_extra_rows;
+typedef size_t aq_row_fn(const aq_line *ln, const void *ctx);
+/* The default row: a line of blank-separated numbers, each one value (0 if
+ * a word is not a number, or the line is blank). */
+size_t aq_numbers_row(const aq_line *ln, const void *ctx);
+void aq_extra_rows_scan(aq_lines *c, const aq_line *last, aq_row_fn *row, const void *ctx,
+                        aq_extra_rows *x);
+
 /* The word at *p (before end) after blanks: *p moves to its start, the
  * length returned ends at a blank, at end or at a character of stops. */
 size_t aq_next_word(const char **p, const char *end, const char *stops);

@@ -132,9 +132,21 @@ static aq_status geonet_block(aq_lines *c, const aq_line *first, const char *nam
     return aq_error_set(err, AQ_ENOMEM, name, c->line, -1, "data", "out of memory");
   char what[64];
   snprintf(what, sizeof what, "acceleration of component %zu (10F8)", raw->nchan);
-  s = aq_fixed_read(c, ch->npts, &fr, ch->values, name, what, err);
+  aq_line last;
+  s = aq_fixed_read_last(c, ch->npts, &fr, ch->values, name, what, &last, err);
   if (s != AQ_OK)
     return s;
+  if (v1) { /* rows past the count, before the next component's text: reported
+               for the decision (record.c); in a V2A the velocity follows at
+               once, so there the counts alone divide the series */
+    aq_extra_rows x;
+    aq_extra_rows_scan(c, &last, aq_fixed_row, &fr, &x);
+    ch->extra_rows = x.rows;
+    ch->extra_values = x.values;
+    ch->extra_line = x.line;
+    ch->extra_repeat = x.repeat;
+    snprintf(ch->count_from, sizeof ch->count_from, "integer header #31");
+  }
   if (!v1) {
     double nvel = iv[GI_NPTS_VEL - 1], ndis = iv[GI_NPTS_DIS - 1];
     if (!(nvel >= 0) || !(ndis >= 0) || nvel > (double)left || ndis > (double)left)

@@ -181,7 +181,7 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
   }
   ch->values = v;
   size_t k = 0;
-  while (c.pos < c.n) {
+  while (c.pos < c.n && k < want) {
     char ch0 = s[c.pos];
     if (ch0 == ' ' || ch0 == '\t') {
       c.pos++;
@@ -201,7 +201,7 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
       x = x * 10 + (s[i++] - '0');
     int ok = i > d0 && (i == c.n || s[i] == ' ' || s[i] == '\t' || s[i] == '\n' ||
                         s[i] == '\r');
-    if (!ok || k >= want) {
+    if (!ok) {
       char got[24], fld[32];
       size_t e = b;
       while (e < c.n && e - b < 20 && !isspace((unsigned char)s[e]))
@@ -209,12 +209,8 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
       copy_trim(s, b, e, got, sizeof got);
       snprintf(fld, sizeof fld, "value %zu", k + 1);
       aq_raw_file_free(raw);
-      if (!ok)
-        return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, fld,
-                            "expected an integer count, got \"%s\"", got);
-      return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "Duration Time(s)",
-                          "expected %zu values (%s s x %g Hz), got more (\"%s\")", want,
-                          val[K_DURATION], hz, got);
+      return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, fld,
+                          "expected an integer count, got \"%s\"", got);
     }
     v[k++] = (double)(s[b] == '-' ? -x : x);
     c.pos = i;
@@ -225,6 +221,37 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected %zu values (%s s x %g Hz), got %zu: file truncated",
                         want, val[K_DURATION], hz, k);
   }
+  /* values past the count, reported for the decision (record.c): numbers
+   * left on the last value's line (never a copy of a row), else rows of
+   * them after it; anything else after the data is refused */
+  aq_extra_rows x;
+  memset(&x, 0, sizeof x);
+  size_t lb = c.pos, lend = aq_text_line_end(s, c.pos, c.n);
+  while (lb > 0 && s[lb - 1] != '\n' && s[lb - 1] != '\r')
+    lb--;
+  aq_line last = {s + lb, lend - lb, c.line}, rest = {s + c.pos, lend - c.pos, c.line};
+  aq_lines after = {s, c.n, lend, c.line};
+  if (!aq_line_blank(&rest)) {
+    x.values = aq_numbers_row(&rest, NULL);
+    x.rows = 1;
+    x.line = c.line;
+    aq_lines_next(&after, &rest);
+  } else {
+    aq_extra_rows_scan(&after, &last, NULL, NULL, &x);
+  }
+  if ((x.rows > 0 && x.values == 0) || !aq_lines_at_end(&after)) {
+    long at = x.rows > 0 && x.values == 0 ? x.line : after.line;
+    aq_raw_file_free(raw);
+    return aq_error_set(err, AQ_EFORMAT, name, at, -1, "Duration Time(s)",
+                        "expected the end of the file after %zu values (%s s x %g Hz), got "
+                        "more that are not values",
+                        want, val[K_DURATION], hz);
+  }
+  ch->extra_rows = x.rows;
+  ch->extra_values = x.values;
+  ch->extra_line = x.line;
+  ch->extra_repeat = x.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "Duration Time(s) x Sampling Freq(Hz)");
 
   snprintf(raw->format, sizeof raw->format, "%s", kik ? "kiknet" : "knet");
   snprintf(raw->event, sizeof raw->event, "%.19s JST M%.6s %.8sN %.8sE %.6s km",

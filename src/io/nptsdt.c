@@ -9,8 +9,10 @@
  *     ...                         NPTSDT_TIME_TOL_REL of DT)
  * Numbers are separated by blanks, tabs or commas.  Which of the two is
  * decided by the count: NPTS numbers after the first line are values,
- * 2 NPTS on lines of two are pairs; anything else is refused, naming both
- * counts.  The file states no units, no channel and no start: record.c asks
+ * 2 NPTS on lines of two are pairs (more on lines of two: pairs and rows
+ * past the count; more otherwise: values and rows past the count, which
+ * are reported for the decision in record.c); fewer are refused, naming
+ * both counts.  The file states no units, no channel and no start: record.c asks
  * for --units.  dt is the file's, whatever --dt says (--dt is for files that
  * state none).
  */
@@ -113,7 +115,7 @@ int aq_nptsdt_sniff(const unsigned char *buf, size_t n)
   long bad;
   if (!first_line(&c, &ln, &npts, &dt) || !count_numbers(c, &count, &pairs, &bad))
     return 0;
-  return (double)count == npts || (pairs && (double)count == 2 * npts);
+  return (double)count >= npts;
 }
 
 aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
@@ -149,12 +151,12 @@ aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
   if (npts_d > (double)n)
     return aq_error_set(err, AQ_EFORMAT, name, head, -1, "NPTS",
                         "expected at most the %zu bytes of the file, got %.0f", n, npts_d);
-  if (!((double)count == npts_d || (pairs && (double)count == 2 * npts_d)))
+  if (!((double)count >= npts_d))
     return aq_error_set(err, AQ_EFORMAT, name, head, -1, "NPTS",
                         "expected %.0f values, or %.0f (time, value) pairs one to a line, "
                         "after \"NPTS DT\"; got %zu numbers%s",
                         npts_d, npts_d, count, pairs ? " on lines of two" : "");
-  int is_pairs = (double)count != npts_d;
+  int is_pairs = (double)count != npts_d && pairs && (double)count >= 2 * npts_d;
   aq_status s = aq_raw_file_alloc(raw, 1, name, err);
   if (s != AQ_OK)
     return s;
@@ -168,12 +170,22 @@ aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
   }
   size_t k = 0;
   double t0 = 0;
-  while (aq_lines_next(&c, &ln)) {
+  aq_extra_rows x_rows; /* rows past NPTS: reported for the decision (record.c) */
+  memset(&x_rows, 0, sizeof x_rows);
+  while (k < ch->npts && aq_lines_next(&c, &ln)) {
     size_t pos = 0, len;
     double x[2];
     if (!is_pairs) {
-      while (next_number(&ln, &pos, &len, &x[0]) == 1)
+      while (k < ch->npts && next_number(&ln, &pos, &len, &x[0]) == 1)
         ch->values[k++] = x[0];
+      if (k == ch->npts) {
+        aq_line rest = {ln.p + pos, ln.len - pos, ln.line};
+        if (!aq_line_blank(&rest)) { /* more on NPTS's last line: no copy of a row */
+          x_rows.values = aq_numbers_row(&rest, NULL);
+          x_rows.rows = 1;
+          x_rows.line = ln.line;
+        }
+      }
       continue;
     }
     if (next_number(&ln, &pos, &len, &x[0]) != 1)
@@ -190,6 +202,13 @@ aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
     }
     ch->values[k++] = x[1];
   }
+  if (x_rows.rows == 0)
+    aq_extra_rows_scan(&c, &ln, NULL, NULL, &x_rows);
+  ch->extra_rows = x_rows.rows;
+  ch->extra_values = is_pairs ? x_rows.values / 2 : x_rows.values;
+  ch->extra_line = x_rows.line;
+  ch->extra_repeat = x_rows.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "NPTS");
   ch->begin_s = t0;
   snprintf(raw->format, sizeof raw->format, "npts-dt");
   return AQ_OK;

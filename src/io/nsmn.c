@@ -43,6 +43,16 @@ int aq_nsmn_sniff(const unsigned char *buf, size_t n)
 }
 
 /* Three numbers separated by blanks, and nothing else: 1 (values in v). */
+static int data_row(const aq_line *ln, double v[NSMN_NCHAN]);
+
+/* A row past the count (aq_extra_rows_scan): one value of each channel. */
+static size_t extra_row(const aq_line *ln, const void *ctx)
+{
+  (void)ctx;
+  double v[NSMN_NCHAN];
+  return data_row(ln, v) ? 1 : 0;
+}
+
 static int data_row(const aq_line *ln, double v[NSMN_NCHAN])
 {
   const char *p = ln->p, *end = ln->p + ln->len;
@@ -210,6 +220,9 @@ aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
                           k);
     }
   }
+  /* rows past NUMBER OF DATA: reported for the decision (record.c) */
+  aq_extra_rows x;
+  aq_extra_rows_scan(&c, &ln, extra_row, NULL, &x);
   if (aq_lines_next(&c, &ln)) {
     char got[48];
     aq_copy_trim(got, sizeof got, ln.p, ln.len);
@@ -217,7 +230,14 @@ aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
     return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
                         "expected the end of the file after %zu rows (NUMBER OF DATA), got "
                         "\"%s\"",
-                        np, got);
+                        np + x.rows, got);
+  }
+  for (int j = 0; j < NSMN_NCHAN; j++) {
+    aq_raw_channel *ch = &raw->chan[j];
+    ch->extra_rows = ch->extra_values = x.rows;
+    ch->extra_line = x.line;
+    ch->extra_repeat = x.repeat;
+    snprintf(ch->count_from, sizeof ch->count_from, "NUMBER OF DATA");
   }
   snprintf(raw->event, sizeof raw->event, "%.20s %.20s %.40s", date, time_s, mag);
   snprintf(raw->format, sizeof raw->format, "nsmn");

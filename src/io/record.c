@@ -236,6 +236,25 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   aq_status sq = check_acceleration(ch, path ? path : "", label, err);
   if (sq != AQ_OK)
     return sq;
+  /* Rows past the count the file states: a copy of its last row (an
+   * agency padding its block) is said and not read; anything else means
+   * the count or the data is wrong, and is refused naming both counts. */
+  char rows[64];
+  if (ch->extra_rows == 1)
+    snprintf(rows, sizeof rows, "the row at line %ld", ch->extra_line);
+  else
+    snprintf(rows, sizeof rows, "the %zu rows from line %ld", ch->extra_rows, ch->extra_line);
+  if (ch->extra_values > 0 && ch->extra_repeat)
+    snprintf(rec->count_note, sizeof rec->count_note,
+             "the file holds %zu values, %s states %zu: %s %s the last and %s not read",
+             ch->npts + ch->extra_values, ch->count_from, ch->npts, rows,
+             ch->extra_rows == 1 ? "repeats" : "repeat", ch->extra_rows == 1 ? "is" : "are");
+  else if (ch->extra_values > 0)
+    return aq_error_set(err, AQ_EFORMAT, label, ch->extra_line, -1, "data",
+                        "expected %zu values (%s), got %zu: %s %s",
+                        ch->npts, ch->count_from, ch->npts + ch->extra_values, rows,
+                        ch->extra_rows == 1 ? "is not a copy of the last row"
+                                            : "are not all copies of the last row");
   /* --dt is for records that state no sample interval: one that states its
    * own keeps it, and says so when the two differ (a suite may mix both) */
   if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
@@ -255,10 +274,10 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     how = "by --units rule";
     units_by = "rule";
     if (has_stated && stated != used)
-      snprintf(rec->units_conflict, sizeof rec->units_conflict,
-               "the file states %s, the rule --units '%.120s=%s' reads it as %s",
-               aq_units_name(stated), rule->glob, aq_units_name(used),
-               aq_units_name(used));
+      aq_text_fit(rec->units_conflict, sizeof rec->units_conflict,
+                  "the file states %s, the rule --units '%s=%s' reads it as %s",
+                  aq_units_name(stated), rule->glob, aq_units_name(used),
+                  aq_units_name(used));
   } else if (has_stated) {
     used = stated;
     how = "as the file states";
@@ -353,11 +372,11 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                         hint);
   }
   if (factor < 0) /* a negative sensitivity: the channel's polarity, applied */
-    snprintf(rec->polarity_note, sizeof rec->polarity_note,
-             "reversed: the sensitivity is %.9g counts per m/s2%s%s%s, and its sign is "
-             "applied to the samples",
-             ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
-             ch->units_from[0] ? ")" : "");
+    aq_text_fit(rec->polarity_note, sizeof rec->polarity_note,
+                "reversed: the sensitivity is %.9g counts per m/s2%s%s%s, and its sign is "
+                "applied to the samples",
+                ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
+                ch->units_from[0] ? ")" : "");
 
   /* Vertical: what the file states, else its dip, else the channel name;
    * a name saying vertical over a field saying horizontal is vertical, and
@@ -373,17 +392,17 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     by = AQ_VERTICAL_BY_NAME;
   else if (says) { /* a field says horizontal: stated, or a dip near 0 */
     by = AQ_VERTICAL_BY_NAME_OVER_FIELD;
-    char field[96];
+    char field[sizeof ch->orient_said];
     if (ch->orient_said[0])
       snprintf(field, sizeof field, "%s", ch->orient_said);
     else if (isfinite(ch->dip_deg))
       snprintf(field, sizeof field, "dip %g deg", ch->dip_deg);
     else
       snprintf(field, sizeof field, "azimuth %g deg", ch->azimuth_deg);
-    snprintf(rec->vertical_note, sizeof rec->vertical_note,
-             "channel \"%s\" says vertical, the orientation field (%s) says horizontal: "
-             "taken as vertical",
-             ch->channel, field);
+    aq_text_fit(rec->vertical_note, sizeof rec->vertical_note,
+                "channel \"%s\" says vertical, the orientation field (%s) says horizontal: "
+                "taken as vertical",
+                ch->channel, field);
   }
   int vert = by != AQ_VERTICAL_BY_NONE;
 
@@ -428,7 +447,7 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
 static void vertical_why(const aq_record *rec, char *why, size_t cap)
 {
   if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
-    snprintf(why, cap, "by its channel name: %s", rec->vertical_note);
+    aq_text_fit(why, cap, "by its channel name: %s", rec->vertical_note);
   else if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
     snprintf(why, cap, "by its dip, %g deg", rec->dip_deg);
   else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
@@ -442,7 +461,7 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
 {
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
-  char why[260];
+  char why[sizeof rec->vertical_note + 32];
   vertical_why(rec, why, sizeof why);
   return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
                       "expected a horizontal component, got channel \"%s\", which "
@@ -458,7 +477,8 @@ const char *aq_record_note(const aq_record *rec, size_t i, const char **topic)
     const char *topic, *text;
   } note[] = {{"polarity", rec->polarity_note},
               {"vertical", rec->vertical_note},
-              {"dt", rec->dt_note}};
+              {"dt", rec->dt_note},
+              {"data", rec->count_note}};
   for (size_t k = 0; k < sizeof note / sizeof note[0]; k++)
     if (note[k].text[0] && i-- == 0) {
       if (topic)
@@ -489,6 +509,9 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
   atomic_fetch_add(&parses, 1);
   aq_reader_opts ro;
   const aq_reader_opts *rop = reader_opts(opts, &ro);
+  size_t bom = aq_sniff_bom(buf, n); /* a text's byte-order mark: its readers skip it */
+  buf += bom;
+  n -= bom;
   aq_format fmt = aq_sniff_format(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
@@ -837,12 +860,12 @@ aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int kee
  * identifies as vertical, is left out of a run. */
 static aq_status add_note(char ***notes, size_t *n, const aq_record_item *it)
 {
-  char why[260], line[4600];
+  char why[sizeof it->rec.vertical_note + 32], line[5400];
   vertical_why(&it->rec, why, sizeof why);
-  snprintf(line, sizeof line,
-           "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is not "
-           "horizontal excitation (give --accept-vertical to run it)",
-           it->name, it->rec.channel, why);
+  aq_text_fit(line, sizeof line,
+              "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is "
+              "not horizontal excitation (give --accept-vertical to run it)",
+              it->name, it->rec.channel, why);
   char **g = realloc(*notes, (*n + 1) * sizeof *g);
   if (!g)
     return AQ_ENOMEM;

@@ -57,18 +57,23 @@ typedef struct {
                            "response" (miniSEED counts, the sensitivity from
                            --response's StationXML), "rule" (--units GLOB=U),
                            "option" (--units, the file stating none) */
-  char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
-  char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
+  /* Notes name fields, rules and files (a StationXML's name whole, up to
+   * NAME_MAX): a text longer than its room ends in "...", never cut unseen. */
+  char units_conflict[512]; /* "" or one line: the file states X, the rule GLOB=U uses U */
+  char polarity_note[512];  /* "" or one line: the sensitivity is negative, so the
                                samples are reversed by it (to_mps2 < 0) */
-  char vertical_note[200];  /* "" or one line: the channel name and an orientation
+  char vertical_note[512];  /* "" or one line: the channel name and an orientation
                                field disagree (vertical_by NAME_OVER_FIELD) */
   char dt_note[120];        /* "" or one line: --dt differs from the sample
                                interval the file states, which is the one used */
+  char count_note[200];     /* "" or one line: rows past the count the file
+                               states repeat its last row and are not read */
 } aq_record;
 
 /* The i-th note a record carries (i = 0, 1, ...), in the order polarity,
- * vertical, dt, the empty ones skipped: its text, and in *topic (if not
- * NULL) its word ("polarity", "vertical", "dt"); NULL past the last. */
+ * vertical, dt, data, the empty ones skipped: its text, and in *topic (if
+ * not NULL) its word ("polarity", "vertical", "dt", "data"); NULL past the
+ * last. */
 const char *aq_record_note(const aq_record *rec, size_t i, const char **topic);
 
 /* Plausible peak ground acceleration after conversion, g: a record outside

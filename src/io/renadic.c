@@ -253,8 +253,18 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   long data_line = c->line;
   if (s == AQ_OK) {
     char what[64];
+    aq_line last;
     snprintf(what, sizeof what, "(time, value) pairs of channel %zu", raw->nchan + 1);
-    s = aq_fixed_read(c, 2 * tmp.npts, &pair_fmt, pairs, name, what, err);
+    s = aq_fixed_read_last(c, 2 * tmp.npts, &pair_fmt, pairs, name, what, &last, err);
+    if (s == AQ_OK) { /* pairs past NO. OF POINTS: reported for the decision (record.c) */
+      aq_extra_rows x;
+      aq_extra_rows_scan(c, &last, aq_fixed_row, &pair_fmt, &x);
+      tmp.extra_rows = x.rows;
+      tmp.extra_values = x.values / 2;
+      tmp.extra_line = x.line;
+      tmp.extra_repeat = x.repeat;
+      snprintf(tmp.count_from, sizeof tmp.count_from, "NO. OF POINTS");
+    }
   }
   if (s == AQ_OK) {
     for (size_t k = 0; k < tmp.npts; k++) {

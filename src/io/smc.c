@@ -6,7 +6,11 @@
  * line 6 "station = ... component= 90"), 48 integers (8I10, 6 lines),
  * 50 reals (5E15.7, 10 lines), integer #16 comment lines starting "|", then
  * integer #17 values, 8 per line in E10.4 whose fields touch
- * (`-2.7715E+0-1.1578E-1`).  Acceleration is in cm/s^2.
+ * (`-2.7715E+0-1.1578E-1`).  Acceleration is in cm/s^2.  Files written by
+ * converters lay the values out otherwise (PEER's PEA2SMC: 5 per line in
+ * E14.7, `1.1365572E-02-5.7981615E-03`), so the layout is read from the
+ * file itself: the first data line's length is a whole number of fields of
+ * one width, each of which reads as a number (data_layout).
  * Header positions used (1-based): integers #2-#7 start year, day of year,
  * hour, minute, second, millisecond; #13 angle from vertical (0 up, 180
  * down, 90 horizontal); #14 azimuth; #16 comment lines; #17 npts.  Real #2
@@ -26,11 +30,69 @@
 #define SMC_REALS 50
 #define SMC_INT_NULL -32768
 #define SMC_REAL_NULL_MIN 1e38 /* 1.7E+38 (and anything as large) is null */
+/* The widths a data field may have: E10.4 (the standard) to E24.16 and
+ * more; a narrower field cannot hold an E-format number with a digit
+ * after the point and a two-character exponent. */
+#define SMC_WIDTH_MIN 6
+#define SMC_WIDTH_MAX 40
 
 static aq_status smc_bad(aq_error *err, const char *name, long line, const char *field,
                          const char *fmt, double got)
 {
   return aq_error_set(err, AQ_EFORMAT, name, line, -1, field, fmt, got);
+}
+
+/* The layout of the nvalues data values from the next line of c on: the
+ * first data line's length (trailing blanks aside) is per x width, every
+ * one of its per fields reads as a number, and per <= nvalues.  Among
+ * several such (F-format digits can read at two widths), the one whose
+ * line count, ceil(nvalues / per), is the file's count of lines left; the
+ * standard 8E10 when none reads the line (aq_fixed_read then names the
+ * line and columns that do not).  Returns 0 (err filled) when two layouts
+ * fit alike; fills *fd and what (the layout in words for messages). */
+static int data_layout(const aq_lines *c, double nvalues, aq_fortran_fmt *fd, char *what,
+                       size_t what_n, const char *name, aq_error *err)
+{
+  *fd = (aq_fortran_fmt){8, 10, 'E'};
+  aq_lines peek = *c;
+  aq_line first;
+  size_t left = 0;
+  int have = aq_lines_next(&peek, &first);
+  for (aq_line ln; have && aq_lines_next(&peek, &ln);)
+    left += !aq_line_blank(&ln);
+  left += have;
+  size_t len = have ? first.len : 0;
+  while (len > 0 && (first.p[len - 1] == ' ' || first.p[len - 1] == '\t'))
+    len--;
+  aq_fortran_fmt fit[SMC_WIDTH_MAX];
+  size_t nfit = 0, nexact = 0, exact = 0;
+  for (size_t w = SMC_WIDTH_MIN; w <= SMC_WIDTH_MAX && w <= len; w++) {
+    size_t per = len / w;
+    if (len % w != 0 || (double)per > nvalues)
+      continue;
+    int ok = 1;
+    double v;
+    for (size_t j = 0; ok && j < per; j++)
+      ok = aq_field_double(first.p + j * w, w, &v);
+    if (!ok)
+      continue;
+    if ((size_t)ceil(nvalues / (double)per) == left) {
+      nexact++;
+      exact = nfit;
+    }
+    fit[nfit++] = (aq_fortran_fmt){(int)per, (int)w, 'E'};
+  }
+  if (nfit == 1 || nexact == 1)
+    *fd = fit[nfit == 1 ? 0 : exact];
+  else if (nfit > 1)
+    return aq_error_set(err, AQ_EFORMAT, name, first.line, -1, "data",
+                        "expected values in fields of one width, got a line that reads "
+                        "as %d values of %d columns and as %d of %d",
+                        fit[0].per_line, fit[0].width, fit[1].per_line, fit[1].width) ==
+           AQ_OK;
+  snprintf(what, what_n, "data (%dE%d: %d values of %d columns a line)", fd->per_line,
+           fd->width, fd->per_line, fd->width);
+  return 1;
 }
 
 /* A file whose real #2 (samples per second) is null holds (time, value)
@@ -40,9 +102,8 @@ static aq_status smc_bad(aq_error *err, const char *name, long line, const char 
 static aq_status uneven(aq_lines *c, int type, double ncomment, double nvalues,
                         long real_line, const char *name, aq_error *err)
 {
-  aq_fortran_fmt fd = {8, 10, 'E'};
   if (!(nvalues >= 2) || fmod(nvalues, 2) != 0 || ncomment < 0 || ncomment > (double)c->n ||
-      nvalues > (double)(c->n - c->pos) / fd.width + 1)
+      nvalues > (double)(c->n - c->pos) / SMC_WIDTH_MIN + 1)
     return smc_bad(err, name, real_line - 5, "integer header #17 (npts)",
                    "expected an even count of values, (time, value) pairs, that the file "
                    "can hold, got %g",
@@ -54,16 +115,21 @@ static aq_status uneven(aq_lines *c, int type, double ncomment, double nvalues,
                           "expected %g comment lines, the file ends after %g", ncomment, i);
   }
   long data_line = c->line;
+  aq_fortran_fmt fd;
+  char what[64];
+  if (!data_layout(c, nvalues, &fd, what, sizeof what, name, err))
+    return err->status;
   size_t nv = (size_t)nvalues;
   double *v = malloc(nv * sizeof *v);
   if (!v)
     return aq_error_set(err, AQ_ENOMEM, name, c->line, -1, "data", "out of memory");
-  aq_status s = aq_fixed_read(c, nv, &fd, v, name, "data (8E10.4)", err);
+  aq_status s = aq_fixed_read(c, nv, &fd, v, name, what, err);
   double step_min = INFINITY, step_max = 0;
   for (size_t k = 2; s == AQ_OK && k < nv; k += 2) {
     double step = v[k] - v[k - 2];
     if (!(step > 0)) {
-      s = aq_error_set(err, AQ_EFORMAT, name, data_line + (long)(k / 8), -1, "data",
+      s = aq_error_set(err, AQ_EFORMAT, name, data_line + (long)(k / (size_t)fd.per_line), -1,
+                       "data",
                        "real header #2 (samples per second) is null, so the values are "
                        "(time, value) pairs, but time %zu (%g s) does not follow %g s",
                        k / 2 + 1, v[k], v[k - 2]);
@@ -115,7 +181,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected a time series (1 to 4), got \"%s\"", got);
   }
   double iv[SMC_INTS], rv[SMC_REALS];
-  aq_fortran_fmt fi = {8, 10, 'I'}, fr = {5, 15, 'E'}, fd = {8, 10, 'E'};
+  aq_fortran_fmt fi = {8, 10, 'I'}, fr = {5, 15, 'E'}, fd;
   aq_status s = aq_fixed_read(&c, SMC_INTS, &fi, iv, name, "integer header (8I10)", err);
   if (s != AQ_OK)
     return s;
@@ -132,16 +198,18 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   if (!(rate > 0))
     return smc_bad(err, name, real_line, "real header #2 (samples per second)",
                    "expected > 0, got %g", rate);
-  if (!(npts >= 1) || npts > (double)(c.n - c.pos) / fd.width + 1)
+  if (!(npts >= 1) || npts > (double)(c.n - c.pos) / SMC_WIDTH_MIN + 1)
     return smc_bad(err, name, real_line - 5, "integer header #17 (npts)",
-                   "expected 1 to the number of 10-column values the file can hold, got %g",
-                   npts);
+                   "expected 1 to the number of values the file can hold, got %g", npts);
   for (double i = 0; i < ncomment; i++) {
     aq_line ln;
     if (!aq_lines_next(&c, &ln))
       return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "comments",
                           "expected %g comment lines, the file ends after %g", ncomment, i);
   }
+  char what[64];
+  if (!data_layout(&c, npts, &fd, what, sizeof what, name, err))
+    return err->status;
   aq_raw_channel *ch = aq_raw_add_channel(raw, name, err);
   if (!ch)
     return AQ_ENOMEM;
@@ -152,11 +220,20 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
     aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, c.line, -1, "data", "out of memory");
   }
-  s = aq_fixed_read(&c, ch->npts, &fd, ch->values, name, "data (8E10.4)", err);
+  aq_line last;
+  s = aq_fixed_read_last(&c, ch->npts, &fd, ch->values, name, what, &last, err);
   if (s != AQ_OK) {
     aq_raw_file_free(raw);
     return s;
   }
+  /* rows past integer #17: reported for the decision (record.c) */
+  aq_extra_rows x;
+  aq_extra_rows_scan(&c, &last, aq_fixed_row, &fd, &x);
+  ch->extra_rows = x.rows;
+  ch->extra_values = x.values;
+  ch->extra_line = x.line;
+  ch->extra_repeat = x.repeat;
+  snprintf(ch->count_from, sizeof ch->count_from, "integer header #17");
   static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
   if (type == 0) /* converted from another format: the quantity is not stated */

@@ -13,6 +13,10 @@
 #include "subject_cache.h"
 #include "../units.h"
 
+/* The room of a vertical's path in the warning: whole up to 460 bytes,
+ * else "..." and its end, the file's name whole (NAME_MAX, 255, fits). */
+#define AQ_SUBJECT_WARNING_PATH 460
+
 static double now_s(void)
 {
   struct timespec ts;
@@ -61,8 +65,9 @@ static aq_status read_motion(aq_subject *s, const aq_subject_src *src,
     s->rec[j].npts = npts;
   if (src->path[2] && !s->run_v) {
     s->v_ignored = 1;
-    snprintf(s->warning, sizeof s->warning,
-             "vertical component %s ignored (--vertical runs it)", src->path[2]);
+    char path[AQ_SUBJECT_WARNING_PATH + 1];
+    aq_text_fit(s->warning, sizeof s->warning, "vertical component %s ignored (--vertical runs it)",
+                aq_path_fit(src->path[2], AQ_SUBJECT_WARNING_PATH, path, sizeof path));
   }
   return AQ_OK;
 }

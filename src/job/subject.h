@@ -65,8 +65,9 @@ typedef struct {
   double pga_g;         /* the PGA a scaling rule divides, g: the record's, or
                            the peak of a motion's horizontal vector (the same
                            at every azimuth) */
-  char warning[300];    /* "" or one sentence: a vertical not run, else
-                           residuals above PRISM's limits */
+  char warning[512];    /* "" or one sentence: a vertical not run (its path
+                           cut, if need be, to "..." and its end, the file's
+                           name whole), else residuals above PRISM's limits */
   int v_ignored;        /* 1: a vertical was given and is not run */
   const char *stage;    /* "read" or "process": where it failed */
   unsigned char *bytes; /* the first file's bytes (opts.keep_bytes_max), or NULL */

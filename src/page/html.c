@@ -449,8 +449,8 @@ static aq_status history_figure(page *p, const aq_h5_run *r, const char *why)
   }
   hist_fig h = {&run};
   char label[512];
-  snprintf(label, sizeof label, "history of %.200s on %.100s at scale %g", base(r->s.record),
-           r->s.arch, r->s.scale);
+  aq_text_fit(label, sizeof label, "history of %s on %s at scale %g", base(r->s.record),
+              r->s.arch, r->s.scale);
   aq_status st = figure(p, label, draw_history, &h);
   aq_plot_run_free(&run);
   return st;
@@ -692,7 +692,7 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     aq_page_puts(b, "</h3>\n");
     cap_fig c = {&t, arch, path};
     char label[300];
-    snprintf(label, sizeof label, "capacity of arch %s: verdict strips and fragility", arch);
+    aq_text_fit(label, sizeof label, "capacity of arch %s: verdict strips and fragility", arch);
     st = figure(p, label, draw_capacity, &c);
     /* the measures ranked by the dispersion of their fits */
     size_t order[64], n = 0;

@@ -192,7 +192,7 @@ static int draw(void *ctx, aq_error *err)
   plbox("g", 0, 0, "g", 0, 0);
   plcol0(AQ_PC_FG);
   plbox("bcnst", 0, 0, "bcnstv", 0, 0);
-  char title[300], name[160];
+  char title[512], name[300]; /* a name of up to 127 bytes, each '#' doubled */
   aq_plot_escape(aq_arch_name(f->arch), name, sizeof name);
   /* the centre line's span, between the springing joints' midpoints (the
    * centre line passes through every joint's midpoint; so also for an arch
@@ -202,11 +202,11 @@ static int draw(void *ctx, aq_error *err)
                        : fabs(g->ji[0].x - g->ji[n].x);
   const char *what = centre ? "span" : "intrados span";
   if (f->set >= 0)
-    snprintf(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
-             f->set ? "reverse" : "primary", f->s_rad);
+    aq_text_fit(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
+                f->set ? "reverse" : "primary", f->s_rad);
   else
-    snprintf(title, sizeof title, "arch %s: %zu voussoirs, %s, %s %.4g m", name, n,
-             aq_shape_names[g->p.shape], what, span);
+    aq_text_fit(title, sizeof title, "arch %s: %zu voussoirs, %s, %s %.4g m", name, n,
+                aq_shape_names[g->p.shape], what, span);
   pllab(AX_X, AX_Y, title);
   /* fill, then the voussoirs: undeformed (dashed when deformed), deformed */
   for (int d = 0; d <= (f->set >= 0); d++) {

@@ -213,13 +213,13 @@ static void draw_fragility(const cap *c)
   plmtex("l", 4.0, 0.5, 0.5, AX_PROB);
   char title[320];
   if (fitted)
-    snprintf(title, sizeof title,
-             "fragility of arch %.100s: median %.3g %s, #gb %.3g (%zu records, %zu censored)",
-             c->arch, q->median, IM_UNIT[f->m], q->beta, f->n, f->n - f->ncol);
+    aq_text_fit(title, sizeof title,
+                "fragility of arch %s: median %.3g %s, #gb %.3g (%zu records, %zu censored)",
+                c->arch, q->median, IM_UNIT[f->m], q->beta, f->n, f->n - f->ncol);
   else
-    snprintf(title, sizeof title, "fragility of arch %.100s: %s (%zu records, %zu censored)",
-             c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
-             f->n, f->n - f->ncol);
+    aq_text_fit(title, sizeof title, "fragility of arch %s: %s (%zu records, %zu censored)",
+                c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
+                f->n, f->n - f->ncol);
   plmtex("t", 1.2, 0.5, 0.5, title);
   /* a legend entry only for what is drawn */
   const char *all_tx[] = {"lognormal fit", "median's confidence interval",
@@ -418,7 +418,7 @@ static int draw(void *ctx, aq_error *err)
     char name[1024], lab[1100];
     int first = k == 0 || c->rec[k] != c->rec[k - 1];
     aq_plot_ellipsize(base(r->record), fit > 12 ? fit - 11 : 1, name, sizeof name);
-    snprintf(lab, sizeof lab, "%s  %s", first ? name : "", r->polarity);
+    aq_text_fit(lab, sizeof lab, "%s  %s", first ? name : "", r->polarity);
     double ymid = 1 - (row_top(c, k) + 0.5) / nrows;
     plcol0(AQ_PC_FG);
     plmtex("lv", 0.8, ymid, 1, lab);
@@ -439,7 +439,7 @@ static int draw(void *ctx, aq_error *err)
   plmtex("b", 3.0, 0.5, 0.5, yt);
   plmtex("t", 0.6, 1.02, 0, "first collapse");
   char title[256];
-  snprintf(title, sizeof title, "arch %.100s: the verdict of each scanned run", c->arch);
+  aq_text_fit(title, sizeof title, "arch %s: the verdict of each scanned run", c->arch);
   plvpor(0.02, 0.98, vy0, vy1); /* the title centred on the page */
   plmtex("t", 2.2, 0.5, 0.5, title);
   if (!t->have_points)

@@ -194,11 +194,13 @@ static int draw(void *ctx, aq_error *err)
   plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
   const char *base = strrchr(r->record, '/');
   base = base ? base + 1 : r->record;
-  char rec_e[160], arch_e[100];
-  aq_plot_escape(base, rec_e, sizeof rec_e);
-  aq_plot_escape(r->arch, arch_e, sizeof arch_e);
-  snprintf(title, sizeof title, "%.120s on arch %.80s: scale %g%s, run %s", rec_e, arch_e,
-           r->scale, r->reversed ? " reversed" : "", r->key);
+  /* long names keep their start and end around a "…" (the full ones are in
+     --data and the results file) */
+  char rec_e[512], arch_e[256];
+  aq_plot_ellipsize(base, 80, rec_e, sizeof rec_e);
+  aq_plot_ellipsize(r->arch, 50, arch_e, sizeof arch_e);
+  aq_text_fit(title, sizeof title, "%s on arch %s: scale %g%s, run %s", rec_e, arch_e,
+              r->scale, r->reversed ? " reversed" : "", r->key);
   plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
   plmtex("t", 1.2, 0.5, 0.5, title);
   /* ground */

@@ -139,7 +139,8 @@ void aq_plot_csv_axes(FILE *f, size_t n, const char *const *titles);
 void aq_plot_plain(const char *s, char *out, size_t cap);
 
 /* A name to draw (a file name, an arch's name) with PLplot's escape
- * character '#' doubled, into out[cap]: drawn as it is ("x.csv#NS"). */
+ * character '#' doubled, into out[cap]: drawn as it is ("x.csv#NS"); one
+ * that does not fit ends in "…". */
 void aq_plot_escape(const char *s, char *out, size_t cap);
 /* s shortened to at most max_chars characters (UTF-8) by an ellipsis in
  * the middle, keeping its start and its end ("RSN6_IMP…hor1.AT2"), into

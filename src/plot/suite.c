@@ -122,7 +122,7 @@ static int draw(void *ctx, aq_error *err)
   double key_chars = 0.85 * (double)aq_plot_chars_fit(0.045);
   plmtex("r", key_chars + 4.2, 0.5, 0.5, AX_KEY);
   char t[512];
-  snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
+  aq_text_fit(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
   plvpor(0.02, 0.98, 0.14, 0.9); /* the caption centred on the page */
   plmtex("b", 1.6, 0.5, 0.5, t);
   plmtex("b", 3.1, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");

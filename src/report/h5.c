@@ -20,6 +20,9 @@
 
 #define AQ_H5_SUMMARY_CHUNK 256 /* rows per chunk of /summary */
 #define AQ_H5_RECORDS_CHUNK 64  /* rows per chunk of /records */
+/* Values per chunk of a history or waveform dataset (32 KiB of doubles):
+ * what the deflate filter compresses at a time (make bench: bench_h5). */
+#define AQ_H5_SERIES_CHUNK 4096
 /* Dataset bytes written between two background syncs (see sync_hint). */
 #define AQ_H5_SYNC_BYTES ((size_t)8 << 20)
 
@@ -152,6 +155,7 @@ struct aq_h5_writer {
   size_t n_rec_cols, n_spectral;
   int store_records;
   int no_runs; /* a kind of file without runs (capacity, spectrum): no /summary */
+  int deflate; /* deflate level of the series (histories, waveforms), 0: none */
   /* Reused by every attribute (H5Acreate2 copies them): the scalar
    * dataspace, and a string type whose size is set per attribute. */
   hid_t sp_scalar, t_str;
@@ -367,19 +371,49 @@ static void sync_hint(aq_h5_writer *w, size_t bytes)
   pthread_mutex_unlock(&w->sync_lock);
 }
 
-/* A 1-D dataset of n values of mtype, stored as ftype, with a units
- * attribute and then the nd double attributes dname[k] = dval[k]. */
+/* The creation properties of a long series of n values (a history, a
+ * waveform): chunks of AQ_H5_SERIES_CHUNK values, each byte-shuffled then
+ * deflated at the writer's level (docs/hdf5-layout.md, "Compression"); or
+ * H5P_DEFAULT (contiguous) when the level is 0, n is 0 or HDF5 has no
+ * deflate filter.  Close it with H5Pclose unless H5P_DEFAULT; < 0 on
+ * failure. */
+static hid_t series_dcpl(const aq_h5_writer *w, size_t n)
+{
+  if (w->deflate <= 0 || n == 0 || H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
+    return H5P_DEFAULT;
+  hsize_t chunk = n < AQ_H5_SERIES_CHUNK ? n : AQ_H5_SERIES_CHUNK;
+  hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+  if (p >= 0 && (H5Pset_chunk(p, 1, &chunk) < 0 || H5Pset_shuffle(p) < 0 ||
+                 H5Pset_deflate(p, (unsigned)w->deflate) < 0)) {
+    H5Pclose(p);
+    return -1;
+  }
+  return p;
+}
+
+void aq_h5_set_deflate(aq_h5_writer *w, int level)
+{
+  w->deflate = level < 0 ? 0 : level > 9 ? 9 : level;
+}
+
+/* A 1-D dataset of n values of mtype, stored as ftype (series: chunked and
+ * compressed, series_dcpl), with a units attribute and then the nd double
+ * attributes dname[k] = dval[k]. */
 static herr_t dataset_1d(aq_h5_writer *w, hid_t loc, const char *name,
                          hid_t ftype, hid_t mtype, const void *v, size_t n,
                          const char *units, size_t nd,
-                         const char *const *dname, const double *dval)
+                         const char *const *dname, const double *dval, int series)
 {
   hsize_t dim = n;
+  hid_t dcpl = series ? series_dcpl(w, n) : H5P_DEFAULT;
+  if (dcpl < 0)
+    return -1;
   hid_t s = H5Screate_simple(1, &dim, NULL);
+  hid_t d = s < 0 ? -1 : H5Dcreate2(loc, name, ftype, s, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (dcpl != H5P_DEFAULT)
+    H5Pclose(dcpl);
   if (s < 0)
     return -1;
-  hid_t d = H5Dcreate2(loc, name, ftype, s, H5P_DEFAULT, H5P_DEFAULT,
-                       H5P_DEFAULT);
   herr_t rc = d < 0 ? -1 : 0;
   if (rc == 0 && n > 0)
     rc = H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
@@ -400,7 +434,7 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
                               size_t n, const char *units)
 {
   return dataset_1d(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, n,
-                    units, 0, NULL, NULL);
+                    units, 0, NULL, NULL, 1);
 }
 
 /* ---- tables ------------------------------------------------------------- */
@@ -643,6 +677,7 @@ aq_status aq_h5_open(const char *target, aq_h5_writer **out, aq_error *err)
   w->records.owned[w->records.nowned++] = offsetof(record_row, error);
   w->sp_scalar = w->t_str = -1;
   w->sync_fd = -1;
+  w->deflate = AQ_H5_DEFLATE_LEVEL;
   w->n_run_cols = aq_summary_nfields + N_RUN_EXTRA;
   w->run_cols = calloc(w->n_run_cols, sizeof *w->run_cols);
   /* named and registered for removal on a signal before it exists */
@@ -937,11 +972,11 @@ static aq_status write_geometry(aq_h5_writer *w, size_t index, const aq_h5_arch 
   CK(dataset_2d(w, g, "voussoirs", d.parts, n, 4, vu, vc), "voussoirs");
   CK(dataset_2d(w, g, "outline", d.outline, d.noutline, 2, m4, xy), "outline");
   CK(dataset_1d(w, g, "outline_start", H5T_STD_I64LE, H5T_NATIVE_INT64, d.outline_start, n + 1,
-                "1", 0, NULL, NULL),
+                "1", 0, NULL, NULL, 0),
      "outline_start");
   CK(dataset_2d(w, g, "fill", d.fill, d.nfill, 2, m4, xy), "fill");
   CK(dataset_1d(w, g, "fill_start", H5T_STD_I64LE, H5T_NATIVE_INT64, d.fill_start, n + 1, "1",
-                0, NULL, NULL),
+                0, NULL, NULL, 0),
      "fill_start");
   CK(aq_h5_table_write(g, "masses", mass_cols, sizeof mass_cols / sizeof mass_cols[0],
                        sizeof(mass_row), masses, d.nmass, NULL),
@@ -1106,7 +1141,7 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
       CK(lazy_group(w, &w->g_waveforms, obj), "H5Gcreate");
       obj = "acceleration";
       CK(dataset_1d(w, w->file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                    p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val),
+                    p->acc_mps2, p->n, "m/s^2", 2, time_attr, time_val, 1),
          name);
       snprintf(row->waveform, sizeof row->waveform, "%s", name);
     }
@@ -1187,7 +1222,7 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
      "potential_energy_j");
   if (h->set) /* 64-bit in the file, as every integer */
     CK(dataset_1d(w, g, "hinge_set", H5T_STD_I64LE, H5T_NATIVE_INT, h->set, h->n,
-                  "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL),
+                  "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL, 1),
        "hinge_set");
   CK(H5Gclose(g), "H5Gclose");
   return AQ_OK;

@@ -151,6 +151,13 @@ typedef struct {
  * target.  Frees w whatever happens; on failure the temporary is removed. */
 aq_status aq_h5_finish(aq_h5_writer *w, const aq_h5_timing *t, aq_error *err);
 
+/* Series (histories, waveforms) are stored in chunks, byte-shuffled and
+ * deflated at this level (zlib's 1..9; docs/hdf5-layout.md, "Compression";
+ * chosen by make bench's bench_h5).  aq_h5_set_deflate sets another for
+ * this writer's later series (0: stored as they are), for the bench. */
+#define AQ_H5_DEFLATE_LEVEL 1
+void aq_h5_set_deflate(aq_h5_writer *w, int level);
+
 /* Give up: close what is open, remove the temporary, free w (NULL is fine). */
 void aq_h5_abort(aq_h5_writer *w);
 
