@@ -145,7 +145,7 @@ static int plot_domain(const plot_opts *o, const aq_arch *arch, aq_error *err)
     return AQ_EXIT_USAGE;
   const aq_path *pp = aq_arch_path(arch, 0);
   double *dur = malloc(n * sizeof *dur);
-  aq_stepper *st = aq_job_stepper(arch, AQ_MODEL_WORKPATH, o->cor, 0, err);
+  aq_stepper *st = aq_job_stepper(arch, AQ_MODEL_WORKPATH, o->cor, 0, 0, err);
   int rc = AQ_EXIT_OK;
   if (!dur || !st) {
     rc = dur ? fail(err) : AQ_EXIT_FAIL;

@@ -248,6 +248,8 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   u->sum.azimuth_deg = run_azimuth(S, r, z);
   snprintf(u->sum.control, sizeof u->sum.control, "%s",
            aq_hinge_control_names[aq_arch_control(S->arches[ai])]);
+  aq_summary_mark(&u->sum, aq_arch_friction(S->arches[ai]),
+                  aq_arch_control(S->arches[ai]) == AQ_CONTROL_FREE);
   u->run_s = aq_suite_now_s() - t0;
 }
 
@@ -255,7 +257,7 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
 aq_stepper *aq_suite_stepper(const suite *S, size_t a, aq_error *err)
 {
   const aq_suite_cfg *c = S->cfg;
-  return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, err);
+  return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, 1, err);
 }
 
 /* Arches: loaded once, every bad one reported; nothing runs if any is.

@@ -532,6 +532,9 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
   atomic_fetch_add(&parses, 1);
   aq_reader_opts ro;
   const aq_reader_opts *rop = reader_opts(opts, &ro);
+  size_t bom = aq_sniff_bom(buf, n); /* a text's byte-order mark: its readers skip it */
+  buf += bom;
+  n -= bom;
   aq_format fmt = aq_sniff_format(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
