@@ -637,3 +637,5 @@ double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu)
   }
   return lo;
 }
+
+int aq_statics_nodes(const aq_statics *s, int act_sign) { return s->ntab[act_sign > 0]; }

@@ -557,6 +557,8 @@ double aq_statics_lambda_friction(const aq_statics *s, int act_sign, size_t *joi
 /* The least friction at lambda >= 0 (the table's interpolant; INFINITY
  * above lambda_top, NAN below 0), *joint the nearest node's joint. */
 double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, size_t *joint);
+/* The nodes of direction act_sign's table (0: none). */
+int aq_statics_nodes(const aq_statics *s, int act_sign);
 /* The largest lambda >= 0 at which a line stands with friction mu, from
  * the table (NAN when none does, not even at rest; lambda_top when mu
  * is at least the table's last friction). */
