@@ -212,6 +212,11 @@ static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                       what, ev);
 }
 
+/* --dt and a file's interval within this (relative) are the same: both
+ * are decimals as written (0.01, ".0100"), whose doubles differ by a few
+ * units of rounding at most. */
+#define AQ_DT_SAME_REL 1e-9
+
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
@@ -257,7 +262,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                                             : "are not all copies of the last row");
   /* --dt is for records that state no sample interval: one that states its
    * own keeps it, and says so when the two differ (a suite may mix both) */
-  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
+  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > AQ_DT_SAME_REL * opts->dt_s)
     snprintf(rec->dt_note, sizeof rec->dt_note,
              "--dt %g s not used: the file states a sample interval of %g s", opts->dt_s,
              ch->dt_s);
