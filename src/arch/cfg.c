@@ -516,6 +516,8 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
   }
   p.control = (aq_hinge_control)c->control;
   p.friction = src->friction > 0 ? src->friction : c->num[AQ_CFG_FRICTION]; /* 0: none */
+  p.e_n = c->num[AQ_CFG_EN];
+  p.spread_m = c->num[AQ_CFG_SPREAD];
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
