@@ -97,8 +97,14 @@ build/lazylib_sonames.h: FORCE
 	@printf '#define AQ_PLPLOT_SONAME "%s"\n#define AQ_XML2_SONAME "%s"\n#define AQ_GLPK_SONAME "%s"\n#define AQ_MSEED_SONAME "%s"\n' \
 	  '$(call lazy_soname,plplot)' '$(call lazy_soname,xml2)' '$(call lazy_soname,glpk)' \
 	  '$(call lazy_soname,mseed)' > $@.new
+	@printf '#define AQ_SICONOS_SONAME "%s"\n' '$(call lazy_soname,siconos_numerics)' >> $@.new
 	@cmp -s $@.new $@ && rm -f $@.new || mv -f $@.new $@
 $(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/xml_lazy.o build/$(d)/src/arch/glpk_lazy.o build/$(d)/src/io/mseed_lazy.o): build/lazylib_sonames.h
+# Siconos Numerics (the block model's contact problems, src/blocks/siconos_lazy.c),
+# opened on first use too; its headers live under /usr/include/siconos.
+SICONOS_CFLAGS := -I/usr/include/siconos/numerics -I/usr/include/siconos
+$(foreach d,rel san mut fz,build/$(d)/src/blocks/siconos_lazy.o): build/lazylib_sonames.h
+$(foreach d,rel san mut fz,build/$(d)/src/blocks/siconos_lazy.o): AQ_CFLAGS += $(SICONOS_CFLAGS)
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -265,7 +271,7 @@ uninstall:
 # (`make deps-dev`, used by .ci/run).
 DEB_PKGS := build-essential pkg-config libgsl-dev libfftw3-dev libhdf5-dev libaec-dev zlib1g-dev \
             libinih-dev libmseed-dev libxml2-dev libplplot-dev plplot-driver-cairo nettle-dev \
-            libglpk-dev libxxhash-dev
+            libglpk-dev libxxhash-dev libsiconos-numerics-dev
 DEB_DEV_PKGS := $(DEB_PKGS) hdf5-tools python3-h5py mseed2sac clang libclang-rt-14-dev \
             openmpi-bin libopenmpi-dev man-db locales poppler-utils chromium librsvg2-bin
 deps:

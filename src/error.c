@@ -29,20 +29,55 @@ static void mark_cut(char *buf, size_t n)
   memcpy(buf + k, "...", 4);
 }
 
+const char *aq_path_fit(const char *path, size_t max, char *buf, size_t n)
+{
+  if (!buf || n == 0)
+    return "";
+  if (!path)
+    path = "";
+  if (max >= n)
+    max = n - 1;
+  size_t len = strlen(path);
+  if (len <= max) {
+    memcpy(buf, path, len + 1);
+    return buf;
+  }
+  if (max < 4) {
+    buf[0] = '\0';
+    return buf;
+  }
+  /* "..." and the last max - 3 bytes, from a character's first byte */
+  const char *tail = path + len - (max - 3);
+  while (*tail && ((unsigned char)*tail & 0xC0) == 0x80)
+    tail++;
+  memcpy(buf, "...", 3);
+  memcpy(buf + 3, tail, strlen(tail) + 1);
+  return buf;
+}
+
+int aq_text_fit(char *buf, size_t n, const char *fmt, ...)
+{
+  if (!buf || n == 0)
+    return 0;
+  va_list ap;
+  va_start(ap, fmt);
+  int w = vsnprintf(buf, n, fmt, ap);
+  va_end(ap);
+  if (w < 0) {
+    buf[0] = '\0';
+    return 0;
+  }
+  if ((size_t)w < n)
+    return 0;
+  mark_cut(buf, n);
+  return 1;
+}
+
 /* Copy a file name into dst[n], keeping its end (the file itself) when it
  * is longer: "..." and its last bytes. */
 static void copy_name(char *dst, size_t n, const char *src)
 {
-  size_t len = strlen(src);
-  if (len < n) {
-    memcpy(dst, src, len + 1);
-    return;
-  }
-  const char *tail = src + len - (n - 4);
-  while (*tail && ((unsigned char)*tail & 0xC0) == 0x80)
-    tail++;
-  memcpy(dst, "...", 3);
-  memcpy(dst + 3, tail, strlen(tail) + 1);
+  aq_path_fit(src, n - 1, dst, n);
 }
 
 void aq_error_clear(aq_error *e)

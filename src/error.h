@@ -68,4 +68,21 @@ void aq_error_format(const aq_error *e, char *buf, size_t n);
 /* Print "archquake: <formatted>\n" to f. */
 void aq_error_print(const aq_error *e, FILE *f);
 
+/* Texts of a fixed size never cut unseen.  A path shown in at most max
+ * bytes (max >= 4): the path itself when it fits, else "..." and as much
+ * of its end as fits, so the file's name (after the last '/') stays whole
+ * when it fits in max - 3 bytes (a name of up to NAME_MAX, 255, in any
+ * max >= 258); never half a UTF-8 character.  Written into buf[n], n > max;
+ * returns buf. */
+const char *aq_path_fit(const char *path, size_t max, char *buf, size_t n);
+
+/* snprintf into buf[n] (n >= 4) that marks a cut: a text that does not fit
+ * ends in "..." (never half a UTF-8 character).  Returns 1 if it was cut,
+ * else 0. */
+int aq_text_fit(char *buf, size_t n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 #endif

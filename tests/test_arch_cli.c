@@ -127,7 +127,7 @@ AQ_TEST(arch_cli_bad_files)
   expect_error("three hinges", 11, "primary = 0e 5i 10e", NULL, "%s:11: primary: expected four hinges");
   expect_error("bad face", 11, "primary = 0e 5x 10e 16i", NULL, "%s:11: primary: expected four hinges");
   expect_error("unknown key", 9, "depth = 0.93", NULL, "%s:9: depth: expected a key of [arch]");
-  expect_error("unknown section", 12, "[dynamic]", NULL, "%s:12: section: expected [arch], [fill], [masses], [hinges], [contact] or [dynamics]");
+  expect_error("unknown section", 12, "[dynamic]", NULL, "%s:12: section: expected [arch], [fill], [masses], [hinges], [contact], [supports] or [dynamics]");
   expect_error("duplicate key", 0, NULL, "[arch]\nradius_m = 5\n", "%s:17: radius_m: expected one value per key");
   expect_error("missing key", 8, "", NULL, "%s: density_kg_m3: expected a value in [arch], got none");
   expect_error("hinges without primary", 11, "", NULL, "%s:10: primary: expected a primary hinge set");

@@ -13,6 +13,7 @@
 
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
+#include "../blocks/blocks.h"
 #include "../units.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
@@ -62,8 +63,11 @@ static aq_status pulse_steps(double a_mps2, double dur_s, double end_s,
 }
 
 /* The history as CSV at path, under a temporary renamed onto it when
- * complete (util/outfile.h).  Returns AQ_OK, or the failure (err). */
-static aq_status write_history(const char *path, const aq_history *h, aq_error *err)
+ * complete (util/outfile.h); the block model's (b not NULL) with every
+ * voussoir's centroid and rotation after the common columns.  Returns
+ * AQ_OK, or the failure (err). */
+static aq_status write_history(const char *path, const aq_history *h,
+                               const aq_blocks_result *b, aq_error *err)
 {
   aq_outfile o;
   aq_cleanup_install(); /* a signal removes the temporary */
@@ -71,12 +75,22 @@ static aq_status write_history(const char *path, const aq_history *h, aq_error *
   if (s != AQ_OK)
     return s;
   int bad = fprintf(o.f, "time_s,rotation_rad,displacement_m,kinetic_energy_j,"
-                         "potential_energy_j,set\n") < 0;
-  for (size_t i = 0; i < h->n && !bad; i++)
-    bad = fprintf(o.f, "%s,%s,%s,%s,%s,%d\n", AQ_TEXT_NUM(h->time_s[i]),
+                         "potential_energy_j,set") < 0;
+  size_t nv = b ? b->nvous : 0;
+  for (size_t k = 0; k < nv && !bad; k++)
+    bad = fprintf(o.f, ",v%zu_x_m,v%zu_y_m,v%zu_rot_rad", k, k, k) < 0;
+  bad = bad || fputc('\n', o.f) == EOF;
+  for (size_t i = 0; i < h->n && !bad; i++) {
+    bad = fprintf(o.f, "%s,%s,%s,%s,%s,%d", AQ_TEXT_NUM(h->time_s[i]),
                   AQ_TEXT_NUM(h->rotation_rad[i]), AQ_TEXT_NUM(h->displacement_m[i]),
                   AQ_TEXT_NUM(h->kinetic_energy_j[i]), AQ_TEXT_NUM(h->potential_energy_j[i]),
                   h->set[i]) < 0;
+    for (size_t k = 0; k < nv && !bad; k++)
+      bad = fprintf(o.f, ",%s,%s,%s", AQ_TEXT_NUM(b->hist_x_m[i * nv + k]),
+                    AQ_TEXT_NUM(b->hist_y_m[i * nv + k]),
+                    AQ_TEXT_NUM(b->hist_rot_rad[i * nv + k])) < 0;
+    bad = bad || fputc('\n', o.f) == EOF;
+  }
   if (bad) {
     s = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot write the history: %s",
                      strerror(errno));
@@ -84,6 +98,42 @@ static aq_status write_history(const char *path, const aq_history *h, aq_error *
     return s;
   }
   return aq_outfile_commit(&o, err);
+}
+
+/* The block model of arch for pulse, its options from the arch (friction,
+ * required; control; [contact] e_n; [supports] spread_m) and dt_s: 0 and
+ * *out, or the exit status after one line naming the file and field. */
+static int pulse_blocks(const char *file, const aq_arch *arch, double dt_s, int history,
+                        aq_blocks **out)
+{
+  aq_error err;
+  aq_error_clear(&err);
+  *out = NULL;
+  double mu = aq_arch_friction(arch);
+  if (isnan(mu)) {
+    fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for --model "
+                    "blocks ([contact] friction or --friction), got none\n", file);
+    return AQ_EXIT_USAGE;
+  }
+  aq_blocks *b = aq_blocks_alloc(arch, &err);
+  if (!b) {
+    aq_error_print(&err, stderr);
+    return AQ_EXIT_FAIL;
+  }
+  if (aq_blocks_set_friction(b, mu, &err) != AQ_OK ||
+      aq_blocks_set_restitution(b, aq_arch_restitution(arch), &err) != AQ_OK ||
+      aq_blocks_set_dt(b, dt_s, &err) != AQ_OK ||
+      (aq_arch_control(arch) == AQ_CONTROL_FIXED &&
+       aq_blocks_set_control(b, AQ_BLOCKS_FIXED, &err) != AQ_OK) ||
+      aq_blocks_set_spread(b, aq_arch_spread(arch), &err) != AQ_OK) {
+    snprintf(err.input, sizeof err.input, "%s", file);
+    aq_error_print(&err, stderr);
+    aq_blocks_free(b);
+    return AQ_EXIT_FAIL; /* as every value of the arch file refused */
+  }
+  aq_blocks_set_history(b, history);
+  *out = b;
+  return AQ_EXIT_OK;
 }
 
 int aq_cmd_pulse(int argc, char **argv)
@@ -143,16 +193,29 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_steps steps = {0};
   aq_result res;
   memset(&res, 0, sizeof res);
-  aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1),
-                                    (aq_model)model, &err);
-  if (!st) {
-    aq_error_print(&err, stderr);
-    goto out;
+  aq_blocks_result bres;
+  memset(&bres, 0, sizeof bres);
+  aq_result *R = &res; /* the run's row: the stepper's, or the block model's */
+  aq_stepper *st = NULL;
+  aq_blocks *bk = NULL;
+  if (model == AQ_MODEL_BLOCKS) {
+    R = &bres.r;
+    status = pulse_blocks(file, arch, o.blocks_dt_s, hist != NULL, &bk);
+    if (status != AQ_EXIT_OK)
+      goto out;
+    status = AQ_EXIT_FAIL;
+  } else {
+    st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1), (aq_model)model,
+                          &err);
+    if (!st) {
+      aq_error_print(&err, stderr);
+      goto out;
+    }
+    aq_stepper_set_cor(st, cor);
+    aq_stepper_set_impact(st, impact);
+    aq_stepper_set_ode_rtol(st, rtol);
+    aq_stepper_set_history(st, hist != NULL);
   }
-  aq_stepper_set_cor(st, cor);
-  aq_stepper_set_impact(st, impact);
-  aq_stepper_set_ode_rtol(st, rtol);
-  aq_stepper_set_history(st, hist != NULL);
   /* Default end: runs to duration + k chunks with k = 1, 2, 4, ... (each
    * from the start, so that the row is that of --end) until the arch rests
    * or collapses or the cap is reached; then the first chunk end at or
@@ -163,12 +226,14 @@ int aq_cmd_pulse(int argc, char **argv)
   for (;;) {
     double e = until_rest ? (k >= kmax ? cap : dur + k * REST_CHUNK_S) : end;
     aq_result_free(&res);
+    aq_blocks_result_free(&bres);
     aq_steps_free(&steps);
     if (pulse_steps(acc_g * AQ_G0_MPS2, dur, e, dt, &steps, &err) != AQ_OK) {
       aq_error_print(&err, stderr);
       goto out;
     }
-    if (aq_stepper_run(st, &steps, &res, &err) != AQ_OK) {
+    if ((bk ? aq_blocks_run(bk, &steps, &bres, &err) : aq_stepper_run(st, &steps, &res, &err)) !=
+        AQ_OK) {
       snprintf(err.input, sizeof err.input, "%s", file);
       aq_error_print(&err, stderr);
       goto out;
@@ -176,7 +241,9 @@ int aq_cmd_pulse(int argc, char **argv)
     end = e;
     if (!until_rest)
       break;
-    double t_ev = res.collapsed ? res.collapse_time_s : aq_stepper_rest_since(st);
+    double t_ev = R->collapsed ? R->collapse_time_s
+                  : bk      ? aq_blocks_rest_since(bk)
+                            : aq_stepper_rest_since(st);
     if (isnan(t_ev)) { /* still moving at e */
       klo = k;
       if (k >= kmax) {
@@ -202,26 +269,45 @@ int aq_cmd_pulse(int argc, char **argv)
             "the row is that of --end %g\n",
             file, end, end);
   aq_error herr;
-  if (hist && write_history(hist, &res.history, &herr) != AQ_OK) {
+  if (hist && write_history(hist, &R->history, bk ? &bres : NULL, &herr) != AQ_OK) {
     aq_error_print(&herr, stderr);
     status = AQ_EXIT_OUTPUT;
     goto out;
   }
   printf("model\taccel_g\tduration_s\tend_s\tcollapsed\tcollapse_time_s\t"
          "peak_rotation_rad\tpeak_displacement_m\tmax_kinetic_energy_j\timpacts\t"
-         "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals\n");
+         "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals%s\n",
+         bk ? "\tmax_slip_m\thinges_observed\thinges_first_s\tmechanism_changed_s" : "");
   printf("%s\t%s\t%s\t%s\t%d\t%s\t%s\t%s\t%s\t%zu\t%zu\t%s\t"
-         "%s\t%zu\t%zu\n",
+         "%s\t%zu\t%zu",
          aq_model_name((aq_model)model), AQ_TEXT_NUM(acc_g), AQ_TEXT_NUM(dur), AQ_TEXT_NUM(end),
-         res.collapsed, AQ_TEXT_NUM(res.collapse_time_s), AQ_TEXT_NUM(res.peak_rotation_rad),
-         AQ_TEXT_NUM(res.peak_displacement_m), AQ_TEXT_NUM(res.max_kinetic_energy_j), res.impacts,
-         res.reversals, AQ_TEXT_NUM(res.energy_in_j), AQ_TEXT_NUM(res.energy_dissipated_j),
-         res.steps_moving, res.evals);
+         R->collapsed, AQ_TEXT_NUM(R->collapse_time_s), AQ_TEXT_NUM(R->peak_rotation_rad),
+         AQ_TEXT_NUM(R->peak_displacement_m), AQ_TEXT_NUM(R->max_kinetic_energy_j), R->impacts,
+         R->reversals, AQ_TEXT_NUM(R->energy_in_j), AQ_TEXT_NUM(R->energy_dissipated_j),
+         R->steps_moving, R->evals);
+  if (bk) {
+    size_t cap = 24 * (bres.nhinges + 1);
+    char *hb = malloc(cap), *tb = malloc(cap);
+    if (!hb || !tb) {
+      free(hb);
+      free(tb);
+      fprintf(stderr, "archquake: out of memory\n");
+      goto out;
+    }
+    aq_blocks_hinges_text(&bres, hb, cap, tb, cap);
+    printf("\t%s\t%s\t%s\t%s", AQ_TEXT_NUM(bres.max_slip_m), hb[0] ? hb : "-",
+           tb[0] ? tb : "-", AQ_TEXT_NUM(bres.mechanism_changed_s));
+    free(hb);
+    free(tb);
+  }
+  putchar('\n');
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
 out:
   aq_result_free(&res);
+  aq_blocks_result_free(&bres);
   aq_steps_free(&steps);
   aq_stepper_free(st);
+  aq_blocks_free(bk);
   aq_arch_free(arch);
   return status;
 }

@@ -145,9 +145,12 @@ static void line(aq_bytes_out *b, const char *fmt, ...)
 #endif
     ;
 
+/* A line of the identity holds a path whole (record=PATH, up to 4095 bytes). */
+#define JOURNAL_LINE_MAX 8192
+
 static void line(aq_bytes_out *b, const char *fmt, ...)
 {
-  char buf[2048];
+  char buf[JOURNAL_LINE_MAX];
   va_list ap;
   va_start(ap, fmt);
   int k = vsnprintf(buf, sizeof buf, fmt, ap);
@@ -182,6 +185,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
     line(&b, "scale_to_lambda0=%a", c->scale_to_lambda0);
   for (size_t k = 0; c->scales && k < c->nscale; k++)
     line(&b, "scale=%a", c->scales[k]);
+  for (size_t i = 0; c->record_scales && i < c->nrecords; i++) /* --suite */
+    line(&b, "record_scale=%a", c->record_scales[i]);
   line(&b, "units=%d dt=%a column=%zu", (int)c->read.units, c->read.dt_s, c->read.column);
   for (size_t k = 0; k < c->read.nrules; k++)
     line(&b, "units_rule=%d %s", (int)c->read.rules[k].units, c->read.rules[k].glob);
@@ -218,8 +223,8 @@ static void first_difference(const char *a, const char *b, char *buf, size_t n)
   while (*a && *b) {
     size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
     if (la != lb || memcmp(a, b, la) != 0) {
-      snprintf(buf, n, "has \"%.*s\" where this command has \"%.*s\"", (int)la, a,
-               (int)lb, b);
+      aq_text_fit(buf, n, "has \"%.*s\" where this command has \"%.*s\"", (int)la, a,
+                  (int)lb, b);
       return;
     }
     a += la + (a[la] != '\0');
@@ -265,11 +270,13 @@ int aq_suite_journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_
     }
     goto out;
   }
-  char why[1200] = "";
+  /* two identity lines quoted whole, or a record's path whole */
+  char why[2 * JOURNAL_LINE_MAX + 256];
+  why[0] = '\0';
   if ((*e)[0].n != strlen(id) + 1 || memcmp((*e)[0].data, id, (*e)[0].n) != 0) {
-    char diff[1000];
+    char diff[2 * JOURNAL_LINE_MAX + 64];
     first_difference((const char *)(*e)[0].data, id, diff, sizeof diff);
-    snprintf(why, sizeof why, "the journal is another command's: it %s", diff);
+    aq_text_fit(why, sizeof why, "the journal is another command's: it %s", diff);
   }
   /* Check every entry before writing anything: the order, and that each
    * record's file is still the one that was run. */
@@ -287,9 +294,9 @@ int aq_suite_journal_start(suite *S, aq_journal **J, aq_journal_entry **e, size_
              (aq_sha256_file(aq_record_file(aq_suite_record_file(S, k - 1), file, sizeof file), sha,
                              &err) != AQ_OK ||
               strcmp(sha, r.sha256) != 0))
-      snprintf(why, sizeof why, "the record %s changed since the journal was written "
-                                "(sha256 %s, journal %s)", c->records[k - 1],
-               sha[0] ? sha : "unreadable", r.sha256);
+      aq_text_fit(why, sizeof why, "the record %s changed since the journal was written "
+                                   "(sha256 %s, journal %s)", c->records[k - 1],
+                  sha[0] ? sha : "unreadable", r.sha256);
     aq_suite_slot_clear(S, &r);
   }
   if (why[0]) {

@@ -30,6 +30,7 @@ struct aq_arch {
   int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
   aq_hinge_control control; /* fixed, or free: each direction's own minimum */
   double friction;      /* Coulomb coefficient of every joint; 0: none */
+  double e_n, spread_m; /* the block model's restitution and spread of the supports */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
   /* aq_arch_drawing's arrays (drawing_make) */
@@ -277,8 +278,15 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   if (!(p->friction >= 0) || !isfinite(p->friction))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "friction",
                         "expected a Coulomb coefficient > 0, got %g", p->friction);
+  if (!(p->e_n >= 0 && p->e_n <= 1))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "e_n", "expected 0..1, got %g", p->e_n);
+  if (!(p->spread_m >= 0) || !isfinite(p->spread_m))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m", "expected >= 0 m, got %g",
+                        p->spread_m);
   a->control = p->control;
   a->friction = p->friction;
+  a->e_n = p->e_n;
+  a->spread_m = p->spread_m;
   aq_status st = aq_geom_init(&a->geom, p, err);
   if (st != AQ_OK || (st = aq_geom_check_strut(&a->geom, err)) != AQ_OK)
     return st; /* a strut fits: no set of any hinges is a mechanism */
@@ -407,6 +415,8 @@ const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
 int aq_arch_searched(const aq_arch *a) { return a->searched; }
 aq_hinge_control aq_arch_control(const aq_arch *a) { return a->control; }
 double aq_arch_friction(const aq_arch *a) { return a->friction > 0 ? a->friction : NAN; }
+double aq_arch_restitution(const aq_arch *a) { return a->e_n; }
+double aq_arch_spread(const aq_arch *a) { return a->spread_m; }
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
 {

@@ -146,6 +146,10 @@ aq_hinge_control aq_arch_control(const aq_arch *a);
  * [contact] friction, or the command's --friction over it), NAN when none
  * was given. */
 double aq_arch_friction(const aq_arch *a);
+/* The block model's ([contact] e_n, [supports] spread_m): the contacts'
+ * normal restitution (default 0) and the supports' spread, m (default 0). */
+double aq_arch_restitution(const aq_arch *a);
+double aq_arch_spread(const aq_arch *a);
 
 /* The forces across the joints of set 0 or 1 along its path, tabled
  * (src/arch/demand.h): built on the first call (safe from any thread) and

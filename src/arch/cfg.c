@@ -156,11 +156,21 @@ static int parse_hinges(const char *v, aq_hinge_set *hs)
   return *p == '\0';
 }
 
+/* A value as quoted in a message, into buf[n]: whole when it fits, else
+ * "..." and its end (a file's name whole: aq_path_fit). */
+static void quoted(char *buf, size_t n, const char *value)
+{
+  char v[256];
+  size_t room = n > 3 ? n - 3 : 1;
+  snprintf(buf, n, "\"%s\"", aq_path_fit(value, room < sizeof v ? room : sizeof v - 1, v,
+                                          sizeof v));
+}
+
 /* A line of [masses]: NAME = VOUSSOIR X_M Y_M MASS_KG. */
 static int mass_key(parse_ctx *c, const char *name, const char *value)
 {
   char got[160];
-  snprintf(got, sizeof got, "\"%.150s\"", value);
+  quoted(got, sizeof got, value);
   for (size_t i = 0; i < c->nmass; i++)
     if (!strcmp(c->mass[i].m.name, name)) {
       char g2[64];
@@ -217,7 +227,7 @@ static int checked_value(parse_ctx *c, int k, const char *name, const char *valu
 {
   const aq_cfg_key *key = &aq_cfg_keys[k];
   char got[160], range[64], fmt[400];
-  snprintf(got, sizeof got, "\"%.150s\"", value);
+  quoted(got, sizeof got, value);
   aq_cfg_range_text(key, range, sizeof range);
   double x = 0;
   switch (key->kind) {
@@ -274,7 +284,7 @@ static int handler(void *user, const char *section, const char *name,
       break;
   if (k == AQ_CFG_NKEYS) {
     char got[128];
-    snprintf(got, sizeof got, "\"%.100s\"", name);
+    quoted(got, sizeof got, name);
     if (!section[0]) {
       char fmt[256];
       section_list(fmt, sizeof fmt, "expected a key inside ", ", got %s before any section");
@@ -299,7 +309,7 @@ static int handler(void *user, const char *section, const char *name,
   if (!checked_value(c, k, name, value))
     return 0;
   char got[160];
-  snprintf(got, sizeof got, "\"%.150s\"", value);
+  quoted(got, sizeof got, value);
   switch (k) {
   case AQ_CFG_NAME:
     if (!value[0] || strlen(value) >= sizeof c->name || strpbrk(value, "\t\r\n"))
@@ -440,11 +450,12 @@ static aq_status after_parse(parse_ctx *c, const char *path, aq_joints *J, aq_er
   aq_status st = aq_joints_read(full[0], c->path[1][0] ? full[1] : NULL, J, err);
   if (st == AQ_EIO && err) { /* a file that cannot be read: said on its key's line */
     int f = !strcmp(err->input, full[0]) ? 0 : 1;
-    char why[sizeof err->message];
+    char why[sizeof err->message], shown[301];
     snprintf(why, sizeof why, "%s", err->message);
     const char *r = strstr(why, "got ");
     aq_error_set(err, AQ_EIO, path, c->key_line[AQ_CFG_JOINTS_FILE + f], -1, aq_cfg_keys[AQ_CFG_JOINTS_FILE + f].name,
-                 "expected a readable file, got \"%.300s\": %.200s", full[f], r ? r + 4 : why);
+                 "expected a readable file, got \"%s\": %.200s",
+                 aq_path_fit(full[f], 300, shown, sizeof shown), r ? r + 4 : why);
   }
   return st;
 }
@@ -505,6 +516,8 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
   }
   p.control = (aq_hinge_control)c->control;
   p.friction = src->friction > 0 ? src->friction : c->num[AQ_CFG_FRICTION]; /* 0: none */
+  p.e_n = c->num[AQ_CFG_EN];
+  p.spread_m = c->num[AQ_CFG_SPREAD];
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");

@@ -37,6 +37,7 @@ const aq_cfg_section aq_cfg_sections[] = {
                "archquake searches every four-hinge set, and with control = free each "
                "direction of ground acceleration gets its own minimum-lambda0 set)"},
     {"contact", "the joints' contact (optional)"},
+    {"supports", "the supports (optional; the block model, --model blocks)"},
     {"dynamics", "impacts and gravity (optional)"},
 };
 const size_t aq_cfg_nsections = sizeof aq_cfg_sections / sizeof aq_cfg_sections[0];
@@ -128,6 +129,16 @@ const aq_cfg_key aq_cfg_keys[AQ_CFG_NKEYS] = {
                          .help = "the Coulomb friction coefficient of every joint, the "
                                  "springings included (|T| <= friction N); --friction "
                                  "overrides it"},
+    [AQ_CFG_EN] = {"contact", "e_n", AQ_CFG_REAL, .what = "a restitution", .unit = "",
+                   .lo = 0, .hi = 1, .shapes = S_ALL, .deflt = "0",
+                   .help = "the normal restitution of every contact of the block model "
+                           "(--model blocks): Newton's law, a corner that lands leaves at "
+                           "e_n times its approach velocity"},
+    [AQ_CFG_SPREAD] = {"supports", "spread_m", AQ_CFG_REAL, .what = "a length", .unit = "m",
+                       .lo = 0, .hi = AQ_CFG_LENGTH_MAX_M, .shapes = S_ALL, .deflt = "0",
+                       .help = "the block model's supports (--model blocks) move apart by "
+                               "this much, quasi-statically, before the record starts; "
+                               "less than the voussoirs can reach across"},
     [AQ_CFG_COR] = {"dynamics", "cor", AQ_CFG_REAL, .what = "a kinetic-energy ratio",
                     .unit = "", .lo = 0, .hi = 1, .shapes = S_ALL, .deflt = "0",
                     .help = "kinetic-energy ratio kept at an impact (not a velocity ratio), "

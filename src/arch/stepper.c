@@ -47,11 +47,12 @@
 #include "leg.h"
 #include "paper.h"
 
-const char *const aq_model_names[] = {"workpath", "ode", "paper", "workpath-quad", NULL};
+const char *const aq_model_names[] = {"workpath", "ode", "paper", "workpath-quad", "blocks",
+                                      NULL};
 
 const char *aq_model_name(aq_model m)
 {
-  return (unsigned)m <= AQ_MODEL_WORKPATH_QUAD ? aq_model_names[m] : "?";
+  return (unsigned)m <= AQ_MODEL_BLOCKS ? aq_model_names[m] : "?";
 }
 
 static const double REST_TOL_DEFAULT = 1e-12; /* KE / E_ref at which impacts end */

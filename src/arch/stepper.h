@@ -23,11 +23,14 @@ typedef enum {
   AQ_MODEL_WORKPATH = 0,  /* time-Taylor leg on the path's pieces (leg_taylor.c) */
   AQ_MODEL_ODE,           /* GSL rk8pd on the equation of motion (eom.c) */
   AQ_MODEL_PAPER,         /* the paper's printed fits (paper.c) */
-  AQ_MODEL_WORKPATH_QUAD  /* time integral by Chebyshev panels (leg_quad.c) */
+  AQ_MODEL_WORKPATH_QUAD, /* time integral by Chebyshev panels (leg_quad.c) */
+  AQ_MODEL_BLOCKS         /* rigid voussoirs in frictional contact: not this stepper's
+                             (src/blocks/blocks.h runs it; aq_stepper_alloc refuses it) */
 } aq_model;
 
 /* The models' names, indexed by aq_model and NULL-terminated ("workpath",
- * "ode", "paper", "workpath-quad"): --model's words, the model column. */
+ * "ode", "paper", "workpath-quad", "blocks"): --model's words, the model
+ * column. */
 extern const char *const aq_model_names[];
 /* The name of model m, or "?" outside the enum. */
 const char *aq_model_name(aq_model m);

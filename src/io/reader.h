@@ -65,16 +65,18 @@ typedef struct {
                             IVOL (50, volts)", "line 3: UNITS OF CM/S");
                             "" if nothing */
   long units_line;       /* line (text) where units are stated, or -1/0 */
-  char units_from[64];   /* where the file states its units, for messages
-                            ("header IDEP: IACC (8)", "StationXML X.xml");
-                            "" if units says all */
+  char units_from[320];  /* where the file states its units, for messages
+                            ("header IDEP: IACC (8)", "X.xml:
+                            InstrumentSensitivity": room for a file name of
+                            NAME_MAX, 255, whole); "" if units says all */
   int quantity;          /* what the file says the values are (aq_quantity):
                             0 does not say */
-  char quantity_said[96];/* where it says so, for messages ("header IDEP:
-                            IVEL (7, velocity)"); "" if it does not */
-  char orient_said[64];  /* the field that states azimuth, dip or vertical,
-                            for messages ("integer header #54: 0"); "" if
-                            none or the format's only place */
+  char quantity_said[320];/* where it says so, for messages ("header IDEP:
+                            IVEL (7, velocity)", "X.xml: InputUnits M/S",
+                            the file's name whole); "" if it does not */
+  char orient_said[320]; /* the field that states azimuth, dip or vertical,
+                            for messages ("integer header #54: 0", "X.xml:
+                            Dip -90"); "" if none or the format's only place */
   /* Rows past the count the file states, before its data end (a reader
    * that reads a stated count looks, aq_extra_rows_scan): npts values were
    * read, extra_values more follow in extra_rows rows from line
@@ -94,6 +96,11 @@ typedef struct {
                             "csmip", "knet", "kiknet", "smc", "esm", "mseed",
                             ... */
   char event[96];        /* event name / id / origin time as stated, "" if none */
+  char event_name[96];   /* the event alone, as the file names it: no station,
+                            component or record time (an AT2's text line holds
+                            the station and component after the event; CSMIP's
+                            "Record of" line is the record's trigger time);
+                            "" if the file names no event */
   char processing[160];  /* the agency's processing as stated (e.g. PEER filter
                             corners), "" if none */
   size_t nchan;

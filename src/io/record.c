@@ -4,6 +4,7 @@
  * makes a record of what the parser reports (see record.h). */
 #include "record.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <fnmatch.h>
@@ -212,6 +213,27 @@ static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                       what, ev);
 }
 
+/* The event as records are compared by it: name in lower case (ASCII),
+ * every run of characters other than letters and digits one space, none at
+ * either end ("Imperial Valley-02, 5/19/1940" -> "imperial valley 02 5 19
+ * 1940"), so that spacing and punctuation do not make two events of one. */
+static void decide_event_key(const char *name, char *key, size_t cap)
+{
+  size_t k = 0;
+  int gap = 0;
+  for (const char *p = name; *p && k + 2 < cap; p++) {
+    unsigned char c = (unsigned char)*p;
+    if (isalnum(c)) {
+      if (gap && k)
+        key[k++] = ' ';
+      key[k++] = (char)tolower(c);
+      gap = 0;
+    } else
+      gap = 1;
+  }
+  key[k] = '\0';
+}
+
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
@@ -274,10 +296,10 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     how = "by --units rule";
     units_by = "rule";
     if (has_stated && stated != used)
-      snprintf(rec->units_conflict, sizeof rec->units_conflict,
-               "the file states %s, the rule --units '%.120s=%s' reads it as %s",
-               aq_units_name(stated), rule->glob, aq_units_name(used),
-               aq_units_name(used));
+      aq_text_fit(rec->units_conflict, sizeof rec->units_conflict,
+                  "the file states %s, the rule --units '%s=%s' reads it as %s",
+                  aq_units_name(stated), rule->glob, aq_units_name(used),
+                  aq_units_name(used));
   } else if (has_stated) {
     used = stated;
     how = "as the file states";
@@ -372,11 +394,11 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                         hint);
   }
   if (factor < 0) /* a negative sensitivity: the channel's polarity, applied */
-    snprintf(rec->polarity_note, sizeof rec->polarity_note,
-             "reversed: the sensitivity is %.9g counts per m/s2%s%s%s, and its sign is "
-             "applied to the samples",
-             ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
-             ch->units_from[0] ? ")" : "");
+    aq_text_fit(rec->polarity_note, sizeof rec->polarity_note,
+                "reversed: the sensitivity is %.9g counts per m/s2%s%s%s, and its sign is "
+                "applied to the samples",
+                ch->counts_per_mps2, ch->units_from[0] ? " (" : "", ch->units_from,
+                ch->units_from[0] ? ")" : "");
 
   /* Vertical: what the file states, else its dip, else the channel name;
    * a name saying vertical over a field saying horizontal is vertical, and
@@ -392,17 +414,17 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
     by = AQ_VERTICAL_BY_NAME;
   else if (says) { /* a field says horizontal: stated, or a dip near 0 */
     by = AQ_VERTICAL_BY_NAME_OVER_FIELD;
-    char field[96];
+    char field[sizeof ch->orient_said];
     if (ch->orient_said[0])
       snprintf(field, sizeof field, "%s", ch->orient_said);
     else if (isfinite(ch->dip_deg))
       snprintf(field, sizeof field, "dip %g deg", ch->dip_deg);
     else
       snprintf(field, sizeof field, "azimuth %g deg", ch->azimuth_deg);
-    snprintf(rec->vertical_note, sizeof rec->vertical_note,
-             "channel \"%s\" says vertical, the orientation field (%s) says horizontal: "
-             "taken as vertical",
-             ch->channel, field);
+    aq_text_fit(rec->vertical_note, sizeof rec->vertical_note,
+                "channel \"%s\" says vertical, the orientation field (%s) says horizontal: "
+                "taken as vertical",
+                ch->channel, field);
   }
   int vert = by != AQ_VERTICAL_BY_NONE;
 
@@ -422,6 +444,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   snprintf(rec->location, sizeof rec->location, "%s", ch->location);
   snprintf(rec->channel, sizeof rec->channel, "%s", ch->channel);
   snprintf(rec->event, sizeof rec->event, "%s", raw->event);
+  decide_event_key(raw->event_name, rec->event_key, sizeof rec->event_key);
   snprintf(rec->processing, sizeof rec->processing, "%s", raw->processing);
   if (has_stated)
     snprintf(rec->units_stated, sizeof rec->units_stated, "%s", aq_units_name(stated));
@@ -447,7 +470,7 @@ aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *pat
 static void vertical_why(const aq_record *rec, char *why, size_t cap)
 {
   if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
-    snprintf(why, cap, "by its channel name: %s", rec->vertical_note);
+    aq_text_fit(why, cap, "by its channel name: %s", rec->vertical_note);
   else if (rec->vertical_by == AQ_VERTICAL_BY_DIP)
     snprintf(why, cap, "by its dip, %g deg", rec->dip_deg);
   else if (rec->vertical_by == AQ_VERTICAL_BY_NAME)
@@ -461,7 +484,7 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
 {
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
-  char why[260];
+  char why[sizeof rec->vertical_note + 32];
   vertical_why(rec, why, sizeof why);
   return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
                       "expected a horizontal component, got channel \"%s\", which "
@@ -509,6 +532,9 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
   atomic_fetch_add(&parses, 1);
   aq_reader_opts ro;
   const aq_reader_opts *rop = reader_opts(opts, &ro);
+  size_t bom = aq_sniff_bom(buf, n); /* a text's byte-order mark: its readers skip it */
+  buf += bom;
+  n -= bom;
   aq_format fmt = aq_sniff_format(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:
@@ -857,12 +883,12 @@ aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int kee
  * identifies as vertical, is left out of a run. */
 static aq_status add_note(char ***notes, size_t *n, const aq_record_item *it)
 {
-  char why[260], line[4600];
+  char why[sizeof it->rec.vertical_note + 32], line[5400];
   vertical_why(&it->rec, why, sizeof why);
-  snprintf(line, sizeof line,
-           "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is not "
-           "horizontal excitation (give --accept-vertical to run it)",
-           it->name, it->rec.channel, why);
+  aq_text_fit(line, sizeof line,
+              "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is "
+              "not horizontal excitation (give --accept-vertical to run it)",
+              it->name, it->rec.channel, why);
   char **g = realloc(*notes, (*n + 1) * sizeof *g);
   if (!g)
     return AQ_ENOMEM;

@@ -50,6 +50,11 @@ typedef struct {
   int vertical;         /* 1: the file identifies the channel as vertical */
   int vertical_by;      /* how (aq_vertical_by): stated, dip or channel name; 0 if not */
   char event[96];       /* event as the file states it, "" if none */
+  char event_key[96];   /* the event as records are compared by it (select's
+                           --max-per-event): the event alone as the file names
+                           it (the reader's event_name), in lower case, every
+                           run of characters other than letters and digits one
+                           space; "" if the file names no event */
   char processing[160]; /* the agency's processing as stated, "" if none */
   char units_stated[24];/* units the file states ("" if none) */
   char units_used[24];  /* units applied (canonical name, e.g. "gal") */
@@ -57,10 +62,12 @@ typedef struct {
                            "response" (miniSEED counts, the sensitivity from
                            --response's StationXML), "rule" (--units GLOB=U),
                            "option" (--units, the file stating none) */
-  char units_conflict[200]; /* "" or one line: the file states X, the rule GLOB=U uses U */
-  char polarity_note[200];  /* "" or one line: the sensitivity is negative, so the
+  /* Notes name fields, rules and files (a StationXML's name whole, up to
+   * NAME_MAX): a text longer than its room ends in "...", never cut unseen. */
+  char units_conflict[512]; /* "" or one line: the file states X, the rule GLOB=U uses U */
+  char polarity_note[512];  /* "" or one line: the sensitivity is negative, so the
                                samples are reversed by it (to_mps2 < 0) */
-  char vertical_note[200];  /* "" or one line: the channel name and an orientation
+  char vertical_note[512];  /* "" or one line: the channel name and an orientation
                                field disagree (vertical_by NAME_OVER_FIELD) */
   char dt_note[120];        /* "" or one line: --dt differs from the sample
                                interval the file states, which is the one used */

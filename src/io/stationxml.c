@@ -228,14 +228,14 @@ aq_status aq_response_apply(const aq_response_epoch *e, const char *xml_name, aq
                         "%s: expected acceleration (M/S**2, NM/S**2, G), got \"%s\"", id,
                         e->input_units);
   ch->quantity = q;
-  snprintf(ch->quantity_said, sizeof ch->quantity_said, "%.40s: InputUnits %.20s", base,
-           e->input_units);
+  aq_text_fit(ch->quantity_said, sizeof ch->quantity_said, "%s: InputUnits %.20s", base,
+              e->input_units);
   if (q == AQ_QUANTITY_ACCELERATION) {
     if (!isfinite(e->sensitivity) || e->sensitivity == 0)
       return aq_error_set(err, AQ_EUNITS, xml_name, -1, -1, "InstrumentSensitivity Value",
                           "%s: expected a non-zero number, got %g", id, e->sensitivity);
     ch->counts_per_mps2 = e->sensitivity / per_unit; /* counts/(unit) / (m/s^2 per unit) */
-    snprintf(ch->units_from, sizeof ch->units_from, "%.40s: InstrumentSensitivity", base);
+    aq_text_fit(ch->units_from, sizeof ch->units_from, "%s: InstrumentSensitivity", base);
   }
   if (isfinite(e->azimuth_deg))
     ch->azimuth_deg = e->azimuth_deg;
@@ -244,7 +244,7 @@ aq_status aq_response_apply(const aq_response_epoch *e, const char *xml_name, aq
     ch->vertical = fabs(fabs(e->dip_deg) - 90.0) < SXML_DIP_TOL_DEG ? 1
                    : fabs(e->dip_deg) < SXML_DIP_TOL_DEG             ? 0
                                                                       : -1;
-    snprintf(ch->orient_said, sizeof ch->orient_said, "%.40s: Dip %g", base, e->dip_deg);
+    aq_text_fit(ch->orient_said, sizeof ch->orient_said, "%s: Dip %g", base, e->dip_deg);
   }
   return AQ_OK;
 }

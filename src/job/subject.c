@@ -13,6 +13,10 @@
 #include "subject_cache.h"
 #include "../units.h"
 
+/* The room of a vertical's path in the warning: whole up to 460 bytes,
+ * else "..." and its end, the file's name whole (NAME_MAX, 255, fits). */
+#define AQ_SUBJECT_WARNING_PATH 460
+
 static double now_s(void)
 {
   struct timespec ts;
@@ -61,8 +65,9 @@ static aq_status read_motion(aq_subject *s, const aq_subject_src *src,
     s->rec[j].npts = npts;
   if (src->path[2] && !s->run_v) {
     s->v_ignored = 1;
-    snprintf(s->warning, sizeof s->warning,
-             "vertical component %s ignored (--vertical runs it)", src->path[2]);
+    char path[AQ_SUBJECT_WARNING_PATH + 1];
+    aq_text_fit(s->warning, sizeof s->warning, "vertical component %s ignored (--vertical runs it)",
+                aq_path_fit(src->path[2], AQ_SUBJECT_WARNING_PATH, path, sizeof path));
   }
   return AQ_OK;
 }
@@ -158,6 +163,15 @@ aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
 size_t aq_subject_n(const aq_subject *s)
 {
   return s->have_proc[0] ? s->proc[0].n : 0;
+}
+
+aq_status aq_subject_scale(aq_subject *s, double f, aq_error *err)
+{
+  for (int j = 0; j < 3; j++)
+    for (size_t i = 0; s->have_proc[j] && s->proc[j].acc_mps2 && i < s->proc[j].n; i++)
+      s->proc[j].acc_mps2[i] *= f;
+  s->pga_g *= f;
+  return s->have_im ? aq_im_compute(&s->proc[0], &s->im, err) : AQ_OK;
 }
 
 void aq_subject_shed(aq_subject *s)

@@ -65,8 +65,9 @@ typedef struct {
   double pga_g;         /* the PGA a scaling rule divides, g: the record's, or
                            the peak of a motion's horizontal vector (the same
                            at every azimuth) */
-  char warning[300];    /* "" or one sentence: a vertical not run, else
-                           residuals above PRISM's limits */
+  char warning[512];    /* "" or one sentence: a vertical not run (its path
+                           cut, if need be, to "..." and its end, the file's
+                           name whole), else residuals above PRISM's limits */
   int v_ignored;        /* 1: a vertical was given and is not run */
   const char *stage;    /* "read" or "process": where it failed */
   unsigned char *bytes; /* the first file's bytes (opts.keep_bytes_max), or NULL */
@@ -80,6 +81,13 @@ typedef struct {
  * or the failure (err, s->stage). */
 aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
                              const aq_subject_opts *opts, aq_signal_ws *ws, aq_error *err);
+
+/* Multiply the prepared subject by f (> 0): every processed component (a
+ * vertical too: it scales with the motion), the PGA and the intensity
+ * measures (computed again from the scaled samples), so that the subject at
+ * factor 1 is the record at f (capacity's --suite).  Before any view is
+ * made.  Returns AQ_OK, or the measures' failure (err). */
+aq_status aq_subject_scale(aq_subject *s, double f, aq_error *err);
 
 /* Free the processed samples (what runs need, not what writing needs). */
 void aq_subject_shed(aq_subject *s);

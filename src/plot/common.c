@@ -461,6 +461,14 @@ void aq_plot_escape(const char *s, char *out, size_t cap)
     out[n++] = *s;
   }
   out[n] = '\0';
+  if (*s && cap >= 4) { /* cut: its end marked "…", never half a character */
+    size_t k = cap - 4 < n ? cap - 4 : n;
+    while (k > 0 && ((unsigned char)out[k] & 0xC0) == 0x80)
+      k--;
+    if (k > 0 && out[k - 1] == '#' && (k < 2 || out[k - 2] != '#'))
+      k--; /* not half an escape */
+    memcpy(out + k, "\xe2\x80\xa6", 4);
+  }
 }
 
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap)

@@ -56,11 +56,11 @@ static void display_name(const char *record, char *out, size_t cap)
 {
   const char *comma = strchr(record, ',');
   if (!comma) {
-    snprintf(out, cap, "%s", base(record));
+    aq_text_fit(out, cap, "%s", base(record));
     return;
   }
-  char first[512];
-  snprintf(first, sizeof first, "%.*s", (int)(comma - record), record);
+  char first[4096]; /* a path whole (PATH_MAX): its end is the file's name */
+  aq_text_fit(first, sizeof first, "%.*s", (int)(comma - record), record);
   const char *a = base(first), *b = base(comma + 1);
   size_t la = strlen(a), lb = strlen(b), p = 0, q = 0;
   while (p < la && p < lb && a[p] == b[p])
@@ -68,10 +68,10 @@ static void display_name(const char *record, char *out, size_t cap)
   while (q < la - p && q < lb - p && a[la - 1 - q] == b[lb - 1 - q])
     q++;
   if (p + q > 0)
-    snprintf(out, cap, "%.*s{%.*s,%.*s}%s", (int)p, a, (int)(la - p - q), a + p,
-             (int)(lb - p - q), b + p, a + la - q);
+    aq_text_fit(out, cap, "%.*s{%.*s,%.*s}%s", (int)p, a, (int)(la - p - q), a + p,
+                (int)(lb - p - q), b + p, a + la - q);
   else
-    snprintf(out, cap, "%s,%s", a, b);
+    aq_text_fit(out, cap, "%s,%s", a, b);
 }
 
 static int draw(void *ctx, aq_error *err)

@@ -70,20 +70,25 @@ double aq_project_azimuth_of(const aq_record *rec)
   return az;
 }
 
+/* The room of the other component's path in a message of 512 bytes. */
+#define AQ_PROJECT_PATH_SHOWN 300
+
 aq_status aq_project_check_aligned(const aq_record *const *rec, size_t n,
                                    aq_error *err)
 {
+  char ap[AQ_PROJECT_PATH_SHOWN + 1]; /* the other file in the message: its name whole */
   for (size_t j = 1; j < n; j++) {
     const aq_record *a = rec[0], *b = rec[j];
+    aq_path_fit(a->path, AQ_PROJECT_PATH_SHOWN, ap, sizeof ap);
     if (fabs(b->dt_s - a->dt_s) > AQ_PROJECT_DT_REL_TOL * a->dt_s)
       return aq_error_set(err, AQ_EVALUE, b->path, -1, -1, "dt",
                           "expected the sample interval of %s (%.9g s), got %.9g s",
-                          a->path, a->dt_s, b->dt_s);
+                          ap, a->dt_s, b->dt_s);
     if (strcmp(a->reference, b->reference) != 0 ||
         fabs(b->begin_s - a->begin_s) > AQ_PROJECT_T0_FRAC_DT * a->dt_s)
       return aq_error_set(err, AQ_EVALUE, b->path, -1, -1, "start time",
                           "expected the start of %s (%s%s%.6f s), got %s%s%.6f s",
-                          a->path, a->reference, a->reference[0] ? " + " : "",
+                          ap, a->reference, a->reference[0] ? " + " : "",
                           a->begin_s, b->reference, b->reference[0] ? " + " : "",
                           b->begin_s);
   }

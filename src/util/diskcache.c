@@ -5,6 +5,8 @@
 #define _GNU_SOURCE /* dl_iterate_phdr */
 #include "diskcache.h"
 
+#include "../error.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -193,17 +195,28 @@ const char *aq_diskcache_dir(const aq_diskcache *c)
   return c->dir;
 }
 
-/* One note line (under the lock). */
+/* Paths in notes: whole up to this, else "..." and their end, the file's
+ * name whole (aq_path_fit). */
+#define NOTE_PATH_MAX 512
+
+/* One note line (under the lock); one cut by the room left ends in "...". */
 __attribute__((format(printf, 2, 3))) static void note_locked(aq_diskcache *c, const char *fmt, ...)
 {
   if (c->nnotes + 2 >= sizeof c->notes)
     return;
   va_list ap;
   va_start(ap, fmt);
-  int len = vsnprintf(c->notes + c->nnotes, sizeof c->notes - c->nnotes - 1, fmt, ap);
+  size_t room = sizeof c->notes - c->nnotes - 1;
+  int len = vsnprintf(c->notes + c->nnotes, room, fmt, ap);
   va_end(ap);
   if (len < 0)
     return;
+  if ((size_t)len >= room && room >= 4) {
+    size_t k = c->nnotes + room - 4;
+    while (k > c->nnotes && ((unsigned char)c->notes[k] & 0xC0) == 0x80)
+      k--;
+    memcpy(c->notes + k, "...", 4);
+  }
   c->nnotes = strlen(c->notes);
   c->notes[c->nnotes++] = '\n';
   c->notes[c->nnotes] = '\0';
@@ -267,7 +280,9 @@ static int corrupt(aq_diskcache *c, const char *path, const char *why)
   pthread_mutex_lock(&c->lock);
   c->counts.corrupt++;
   c->counts.misses++;
-  note_locked(c, "cache entry %s is corrupt (%s): not used, computed again", path, why);
+  char p[NOTE_PATH_MAX + 1];
+  note_locked(c, "cache entry %s is corrupt (%s): not used, computed again",
+              aq_path_fit(path, NOTE_PATH_MAX, p, sizeof p), why);
   pthread_mutex_unlock(&c->lock);
   return 0;
 }
@@ -576,9 +591,10 @@ static void bound(aq_diskcache *c, long long n)
 static int write_failed(aq_diskcache *c, const char *what, int e)
 {
   pthread_mutex_lock(&c->lock);
+  char p[NOTE_PATH_MAX + 1];
   if (!c->write_failed)
     note_locked(c, "cannot write the cache in %s (%s: %s): the run goes on without storing",
-                c->dir, what, strerror(e));
+                aq_path_fit(c->dir, NOTE_PATH_MAX, p, sizeof p), what, strerror(e));
   c->write_failed = 1;
   pthread_mutex_unlock(&c->lock);
   return 0;

@@ -14,8 +14,8 @@ static int open_all(aq_lazylib *lib)
   void *h = dlopen(lib->soname, RTLD_NOW | RTLD_LOCAL);
   if (!h) {
     const char *why = dlerror();
-    snprintf(lib->fail, sizeof lib->fail, "cannot load %s: %s", lib->soname,
-             why ? why : "unknown reason");
+    aq_text_fit(lib->fail, sizeof lib->fail, "cannot load %s: %s", lib->soname,
+                why ? why : "unknown reason");
     return -1;
   }
   for (size_t i = 0; i < lib->nsym; i++) {
@@ -23,8 +23,8 @@ static int open_all(aq_lazylib *lib)
     void *p = dlsym(h, lib->sym[i].name);
     if (!p) {
       const char *why = dlerror();
-      snprintf(lib->fail, sizeof lib->fail, "%s has no %s: %s", lib->soname,
-               lib->sym[i].name, why ? why : "null symbol");
+      aq_text_fit(lib->fail, sizeof lib->fail, "%s has no %s: %s", lib->soname,
+                  lib->sym[i].name, why ? why : "null symbol");
       return -1; /* the handle stays open: dlclose could run its destructors twice */
     }
     /* POSIX (dlsym): a function pointer is stored through a void * */

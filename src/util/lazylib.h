@@ -9,7 +9,8 @@
  *
  * The module defines the library's functions itself as trampolines that
  * call through the resolved pointers (src/plot/plplot_lazy.c,
- * src/io/xml_lazy.c, src/io/mseed_lazy.c, src/arch/glpk_lazy.c), so its
+ * src/io/xml_lazy.c, src/io/mseed_lazy.c, src/arch/glpk_lazy.c,
+ * src/blocks/siconos_lazy.c), so its
  * callers include the library's own header and are unchanged.  Thread-safe; the library stays loaded until exit.
  * Nothing prints: a failure fills an aq_error naming the library. */
 #ifndef AQ_UTIL_LAZYLIB_H

@@ -1,0 +1,381 @@
+/* bench_blocks.c: the block model (src/blocks, docs/blocks.md): its speed,
+ * the convergence of its step, and what it sees against the four-hinge
+ * models.  Sections (all by default; name some to run only those):
+ *
+ *   speed  oppenheim (20 voussoirs, every joint free, friction 10) through
+ *          each record of records/ (read and processed as the main job
+ *          does, scaled to a PGA of 2 lambda0 g), at the default step: the
+ *          median time of 3 runs, the steps taken, how many needed Siconos,
+ *          and the cost per step per contact (time / (steps x 2 (n + 1)))
+ *   conv   the hinge-controlled arch (control fixed) under 2 lambda0 for
+ *          0.15 s: voussoir 0's peak rotation against the exact four-hinge
+ *          equation of motion (the ode model, rtol 1e-12) as the step
+ *          halves, with the ratio of successive errors (the scheme's order)
+ *   dt     the step's convergence study: voussoir 0's peak rotation of the
+ *          free arch on every shipped arch under 1.5 lambda0 for 0.3 s (in
+ *          steps of 0.01 s, as a record's) and oppenheim under the first
+ *          AT2 record of records/ at 2 lambda0,
+ *          against a step of 1.25e-4 s; the largest step within 1 %
+ *   free   the first half-cycle, free against fixed hinges: every shipped
+ *          arch under 1.5 lambda0 for 0.3 s, the block model's peak
+ *          rotation and its time against the four-hinge model's (workpath),
+ *          the hinges that opened and when the mechanism changed */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/arch.h"
+#include "arch/model.h"
+#include "arch/stepper.h"
+#include "bench.h"
+#include "blocks/blocks.h"
+#include "io/record.h"
+#include "job/job.h"
+#include "signal/signal.h"
+#include "units.h"
+
+static const char *const ARCHES[] = {
+    "arches/oppenheim.cfg", "arches/thin.cfg",     "arches/thick.cfg",
+    "arches/gothic.cfg",    "arches/catenary.cfg", "arches/segmental.cfg",
+    "arches/bridge.cfg",    "arches/search.cfg",   "arches/vertical.cfg"};
+enum { NARCH = sizeof ARCHES / sizeof ARCHES[0] };
+
+static aq_arch *load(const char *path)
+{
+  aq_arch *a = NULL;
+  aq_error e;
+  if (aq_arch_load(path, &a, &e) != AQ_OK) {
+    fprintf(stderr, "bench_blocks: %s: %s\n", path, e.message);
+    return NULL;
+  }
+  return a;
+}
+
+/* A rectangular pulse a for T s, then nothing until end, in steps of
+ * step_s (a record's sampling: 0.01 s; 1 ms for the histories). */
+static int pulse_steps(double a, double T, double end, double step_s, aq_steps *s)
+{
+  size_t n = (size_t)llround(end / step_s), n1 = (size_t)llround(T / step_s);
+  double *acc = malloc(n * sizeof *acc);
+  if (!acc)
+    return 0;
+  for (size_t i = 0; i < n; i++)
+    acc[i] = i < n1 ? a : 0;
+  aq_error e;
+  int ok = aq_steps_from_samples(acc, n, step_s, 0, 0, s, &e) == AQ_OK;
+  free(acc);
+  return ok;
+}
+
+static int pulse(double a, double T, double end, aq_steps *s)
+{
+  return pulse_steps(a, T, end, 1e-3, s);
+}
+
+/* One run of the block model; 0 on failure. */
+static int run_blocks(const aq_arch *A, aq_blocks_control c, double mu, double dt,
+                      const aq_steps *s, aq_blocks_result *r, double *sec)
+{
+  aq_error e;
+  aq_blocks *B = aq_blocks_alloc(A, &e);
+  if (!B)
+    return 0;
+  int ok = aq_blocks_set_friction(B, mu, &e) == AQ_OK && aq_blocks_set_dt(B, dt, &e) == AQ_OK &&
+           (c == AQ_BLOCKS_FREE || aq_blocks_set_control(B, c, &e) == AQ_OK);
+  double t0 = aq_bench_now_s();
+  ok = ok && aq_blocks_run(B, s, r, &e) == AQ_OK;
+  if (sec)
+    *sec = aq_bench_now_s() - t0;
+  if (!ok)
+    fprintf(stderr, "bench_blocks: run: %s\n", e.message);
+  aq_blocks_free(B);
+  return ok;
+}
+
+/* The records of records/, sorted. */
+static size_t record_names(char **names, size_t cap)
+{
+  DIR *dir = opendir("records");
+  size_t n = 0;
+  struct dirent *de;
+  while (dir && (de = readdir(dir)) && n < cap) {
+    if (de->d_name[0] == '.' || strstr(de->d_name, ".md"))
+      continue;
+    names[n++] = strdup(de->d_name);
+  }
+  if (dir)
+    closedir(dir);
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 1; j < n; j++)
+      if (strcmp(names[i], names[j]) > 0) {
+        char *t = names[i];
+        names[i] = names[j];
+        names[j] = t;
+      }
+  return n;
+}
+
+/* The record at path as the main job prepares it, scaled to a PGA of
+ * ratio lambda0 g of path p. */
+static int record_steps(const char *path, const aq_path *p, double ratio, aq_steps *s)
+{
+  aq_error e;
+  aq_read_opts ro;
+  memset(&ro, 0, sizeof ro);
+  aq_signal_opts so;
+  aq_signal_opts_default(&so);
+  aq_signal_ws *ws = aq_signal_ws_alloc();
+  aq_subject subj;
+  aq_subject_src src = {{path, NULL, NULL}, {NAN, NAN}, path};
+  aq_subject_opts o = {.read = &ro, .proc = &so};
+  int ok = aq_subject_prepare(&subj, &src, &o, ws, &e) == AQ_OK && subj.pga_g > 0;
+  if (ok) {
+    aq_scale_rule rule = {NULL, 0, ratio * p->lambda0 * p->g_mps2 / AQ_G0_MPS2, 0};
+    double scale = aq_scale_factor(&rule, 0, subj.pga_g), peak;
+    ok = aq_subject_steps(&subj, 0, scale, scale, 0, s, &peak, &e) == AQ_OK;
+  }
+  if (!ok)
+    fprintf(stderr, "bench_blocks: skip %s: %s\n", path, e.message);
+  aq_subject_free(&subj);
+  aq_signal_ws_free(ws);
+  return ok;
+}
+
+static void speed(void)
+{
+  printf("== speed: oppenheim, every joint free, friction 10, records at a PGA of 2 lambda0 g,"
+         " step %g s (median of 3)\n",
+         AQ_BLOCKS_DT_DEFAULT_S);
+  aq_arch *A = load("arches/oppenheim.cfg");
+  if (!A)
+    return;
+  const aq_path *p = aq_arch_path(A, 0);
+  char *names[64];
+  size_t nn = record_names(names, 64);
+  printf("%-36s %8s %8s %7s %7s %8s %10s %12s\n", "record", "length_s", "moving_s", "steps",
+         "siconos", "lps", "median_s", "us/step/ctc");
+  double total = 0;
+  for (size_t i = 0; i < nn; i++) {
+    char path[512];
+    snprintf(path, sizeof path, "records/%s", names[i]);
+    aq_steps s;
+    if (!record_steps(path, p, 2.0, &s))
+      continue;
+    double t[3];
+    aq_blocks_result r;
+    int ok = 1;
+    for (int k = 0; k < 3 && ok; k++) {
+      ok = run_blocks(A, AQ_BLOCKS_FREE, 10, AQ_BLOCKS_DT_DEFAULT_S, &s, &r, &t[k]);
+      if (ok && k < 2)
+        aq_blocks_result_free(&r);
+    }
+    if (ok) {
+      double med = aq_bench_median(t, 3), len = 0;
+      for (size_t k = 0; k < s.n; k++)
+        len += aq_steps_t(&s, k) >= 0 ? aq_steps_dt(&s, k) : 0;
+      size_t nc = 2 * (aq_arch_geom(A)->p.voussoirs + 1);
+      printf("%-36.36s %8.1f %8.1f %7zu %7zu %8zu %10.3f %12.3f\n", names[i], len,
+             (double)r.steps * AQ_BLOCKS_DT_DEFAULT_S, r.steps, r.steps_siconos, r.statics, med,
+             r.steps ? 1e6 * med / ((double)r.steps * (double)nc) : 0);
+      total += med;
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+  }
+  printf("total median %.3f s\n", total);
+  for (size_t i = 0; i < nn; i++)
+    free(names[i]);
+  aq_arch_free(A);
+}
+
+static void conv(void)
+{
+  printf("== conv: control fixed, friction 10, 2 lambda0 for 0.15 s: voussoir 0's peak "
+         "rotation against the ode (rtol 1e-12)\n");
+  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg",
+                                    "arches/gothic.cfg"};
+  printf("%-22s %10s %16s %12s %8s\n", "arch", "dt_s", "peak_rad", "rel_err", "ratio");
+  for (size_t k = 0; k < 3; k++) {
+    aq_arch *A = load(two[k]);
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    aq_steps s;
+    aq_error e;
+    if (!pulse(p->act_sign * 2.0 * p->lambda0 * p->g_mps2, 0.15, 1.5, &s)) {
+      aq_arch_free(A);
+      continue;
+    }
+    aq_stepper *st = aq_stepper_alloc(p, aq_arch_path(A, 1), AQ_MODEL_ODE, &e);
+    aq_stepper_set_ode_rtol(st, 1e-12);
+    aq_result ro;
+    if (st && aq_stepper_run(st, &s, &ro, &e) == AQ_OK) {
+      printf("%-22s %10s %16.10f\n", two[k], "ode", ro.peak_rotation_rad);
+      double prev = NAN;
+      for (int i = 0; i < 7; i++) {
+        double dt = 8e-3 / (1 << i);
+        aq_blocks_result r;
+        if (!run_blocks(A, AQ_BLOCKS_FIXED, 10, dt, &s, &r, NULL))
+          continue;
+        double err = r.r.peak_rotation_rad / ro.peak_rotation_rad - 1;
+        printf("%-22s %10.3g %16.10f %12.3e %8.3f\n", two[k], dt, r.r.peak_rotation_rad, err,
+               prev / err);
+        prev = err;
+        aq_blocks_result_free(&r);
+      }
+      aq_result_free(&ro);
+    }
+    aq_stepper_free(st);
+    aq_steps_free(&s);
+    aq_arch_free(A);
+  }
+}
+
+static void dt_study(void)
+{
+  printf("== dt: voussoir 0's peak rotation, every joint free, friction 10, against dt = "
+         "1.25e-4 s\n");
+  static const double dts[] = {1e-2, 8e-3, 5e-3, 4e-3, 2e-3, 1e-3, 5e-4};
+  enum { ND = sizeof dts / sizeof dts[0] };
+  double worst[ND];
+  for (int i = 0; i < ND; i++)
+    worst[i] = 0;
+  printf("%-34s", "case");
+  for (int i = 0; i < ND; i++)
+    printf(" %9.2g", dts[i]);
+  printf("\n");
+  char *names[64];
+  size_t nn = record_names(names, 64);
+  for (size_t k = 0; k <= NARCH; k++) {
+    aq_arch *A = load(k < NARCH ? ARCHES[k] : "arches/oppenheim.cfg");
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    aq_steps s;
+    char label[64];
+    int ok;
+    if (k < NARCH) {
+      ok = pulse_steps(p->act_sign * 1.5 * p->lambda0 * p->g_mps2, 0.3, 2.0, 0.01, &s);
+      snprintf(label, sizeof label, "%s 1.5 lambda0 0.3 s", ARCHES[k] + 7);
+    } else {
+      size_t r = 0;
+      while (r < nn && !strstr(names[r], ".AT2"))
+        r++;
+      char path[512];
+      snprintf(path, sizeof path, "records/%s", r < nn ? names[r] : "");
+      ok = r < nn && record_steps(path, p, 2.0, &s);
+      snprintf(label, sizeof label, "oppenheim %.16s x2", r < nn ? names[r] : "");
+    }
+    if (!ok) {
+      aq_arch_free(A);
+      continue;
+    }
+    aq_blocks_result r;
+    if (run_blocks(A, AQ_BLOCKS_FREE, 10, 1.25e-4, &s, &r, NULL)) {
+      double ref = r.r.peak_rotation_rad;
+      aq_blocks_result_free(&r);
+      printf("%-34.34s", label);
+      for (int i = 0; i < ND; i++) {
+        if (!run_blocks(A, AQ_BLOCKS_FREE, 10, dts[i], &s, &r, NULL)) {
+          printf(" %9s", "fail");
+          continue;
+        }
+        double err = fabs(r.r.peak_rotation_rad / ref - 1);
+        worst[i] = fmax(worst[i], err);
+        printf(" %9.2e", err);
+        aq_blocks_result_free(&r);
+      }
+      printf("\n");
+    }
+    aq_steps_free(&s);
+    aq_arch_free(A);
+  }
+  printf("%-34s", "largest");
+  for (int i = 0; i < ND; i++)
+    printf(" %9.2e", worst[i]);
+  printf("\n");
+  for (size_t i = 0; i < nn; i++)
+    free(names[i]);
+}
+
+static void free_half_cycle(void)
+{
+  printf("== free: 1.5 lambda0 for 0.3 s, friction 10, step %g s: voussoir 0's peak rotation, "
+         "the block model (every joint free) against the four-hinge work path\n",
+         AQ_BLOCKS_DT_DEFAULT_S);
+  printf("%-12s %12s %9s %12s %9s %9s %9s  %s\n", "arch", "4hinge_rad", "at_s", "blocks_rad",
+         "at_s", "ratio", "changed_s", "hinges (first opening, s)");
+  for (size_t k = 0; k < NARCH; k++) {
+    aq_arch *A = load(ARCHES[k]);
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    aq_steps s;
+    if (!pulse(p->act_sign * 1.5 * p->lambda0 * p->g_mps2, 0.3, 3.0, &s)) {
+      aq_arch_free(A);
+      continue;
+    }
+    aq_error e;
+    aq_stepper *st = aq_stepper_alloc(p, aq_arch_path(A, 1), AQ_MODEL_WORKPATH, &e);
+    aq_stepper_set_history(st, 1);
+    aq_result ro;
+    aq_blocks_result r;
+    aq_blocks *B = aq_blocks_alloc(A, &e);
+    if (st && B && aq_stepper_run(st, &s, &ro, &e) == AQ_OK &&
+        aq_blocks_set_friction(B, 10, &e) == AQ_OK) {
+      aq_blocks_set_history(B, 1);
+      if (aq_blocks_run(B, &s, &r, &e) == AQ_OK) {
+        double t4 = NAN, tb = NAN;
+        for (size_t i = 0; i < ro.history.n; i++)
+          if (fabs(ro.history.rotation_rad[i]) >= ro.peak_rotation_rad * (1 - 1e-12)) {
+            t4 = ro.history.time_s[i];
+            break;
+          }
+        for (size_t i = 0; i < r.r.history.n; i++)
+          if (fabs(r.r.history.rotation_rad[i]) >= r.r.peak_rotation_rad * (1 - 1e-12)) {
+            tb = r.r.history.time_s[i];
+            break;
+          }
+        char hb[512], tbuf[512];
+        aq_blocks_hinges_text(&r, hb, sizeof hb, tbuf, sizeof tbuf);
+        printf("%-12.12s %12.6g %9.3f %12.6g %9.3f %9.4f %9.3f  %s (%s)%s\n", ARCHES[k] + 7,
+               ro.peak_rotation_rad, t4, r.r.peak_rotation_rad, tb,
+               r.r.peak_rotation_rad / ro.peak_rotation_rad, r.mechanism_changed_s, hb, tbuf,
+               r.r.collapsed || ro.collapsed ? " [collapse]" : "");
+        aq_blocks_result_free(&r);
+      }
+      aq_result_free(&ro);
+    }
+    aq_blocks_free(B);
+    aq_stepper_free(st);
+    aq_steps_free(&s);
+    aq_arch_free(A);
+  }
+}
+
+int main(int argc, char **argv)
+{
+  gsl_set_error_handler_off();
+  int all = argc < 2;
+  for (int pass = 0; pass < 4; pass++) {
+    static const char *const names[] = {"speed", "conv", "dt", "free"};
+    int want = all;
+    for (int i = 1; i < argc; i++)
+      want |= !strcmp(argv[i], names[pass]);
+    if (!want)
+      continue;
+    if (pass == 0)
+      speed();
+    else if (pass == 1)
+      conv();
+    else if (pass == 2)
+      dt_study();
+    else
+      free_half_cycle();
+  }
+  return 0;
+}

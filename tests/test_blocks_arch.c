@@ -1,0 +1,411 @@
+/* test_blocks_arch.c: the block model (src/blocks) on the shipped arches:
+ * the onset of motion against the four-hinge lambda0 (the kinematic
+ * search, src/arch) and against the static theorem with friction (a
+ * linear program written here, in joint resultants), no creep below the
+ * onset, the hinge-controlled arch against the exact four-hinge equation
+ * of motion (the ode model), its collapse time, the spread of the
+ * supports, and the refusals of bad options. */
+#include <glpk.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "arch/model.h"
+#include "arch/stepper.h"
+#include "arch_fixture.h"
+#include "blocks/blocks_run.h"
+#include "check.h"
+
+static const char *const ARCHES[] = {
+    "arches/oppenheim.cfg", "arches/thin.cfg",      "arches/thick.cfg",
+    "arches/gothic.cfg",    "arches/catenary.cfg",  "arches/segmental.cfg",
+    "arches/bridge.cfg",    "arches/search.cfg",    "arches/vertical.cfg"};
+enum { NARCH = sizeof ARCHES / sizeof ARCHES[0] };
+
+/* A constant ground acceleration a for T s, then nothing for tail s (0:
+ * none). */
+static int const_steps(double a, double T, double tail, aq_steps *s)
+{
+  double t[2] = {0, T}, d[2] = {T, tail}, acc[2] = {a, 0};
+  aq_error e;
+  return aq_check(aq_steps_from_list(t, d, acc, tail > 0 ? 2 : 1, s, &e) == AQ_OK, "steps");
+}
+
+static aq_blocks *model(const aq_arch *A, double mu, aq_blocks_control c)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  aq_blocks *B = aq_blocks_alloc(A, &e);
+  if (!aq_check(B != NULL, "blocks model: %s", e.message))
+    return NULL;
+  aq_check(aq_blocks_set_friction(B, mu, &e) == AQ_OK, "friction");
+  if (c == AQ_BLOCKS_FIXED)
+    aq_check(aq_blocks_set_control(B, c, &e) == AQ_OK, "control: %s", e.message);
+  return B;
+}
+
+static int run(aq_blocks *B, const aq_steps *s, aq_blocks_result *r)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  return aq_check(aq_blocks_run(B, s, r, &e) == AQ_OK, "run: %s", e.message);
+}
+
+static int by_time(const void *a, const void *b)
+{
+  const aq_blocks_hinge *x = a, *y = b;
+  return (x->time_s > y->time_s) - (x->time_s < y->time_s);
+}
+
+/* With friction 10, a constant ground acceleration of 0.97 lambda0 g (the
+ * primary set's, in its direction) moves nothing, every step solved (no
+ * creep: the prototype's capped Gauss-Seidel moved 1.7 mm in 1 s); 1.03
+ * lambda0 g moves the arch, and the first four hinges that open form an
+ * alternating set whose own lambda0 (the search's aq_search_lambda0) lies
+ * below the load: on every shipped shape, fill included. */
+AQ_TEST(blocks_arch_onset_lambda0)
+{
+  for (size_t k = 0; k < NARCH; k++) {
+    aq_arch *A = aq_test_arch_load(ARCHES[k]);
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    for (int above = 0; above < 2; above++) {
+      double f = above ? 1.03 : 0.97;
+      aq_blocks *B = model(A, 10, AQ_BLOCKS_FREE);
+      if (!B)
+        break;
+      aq_blocks_set_rest_skip(B, above);
+      aq_steps s;
+      aq_blocks_result r;
+      if (const_steps(p->act_sign * f * p->lambda0 * p->g_mps2, above ? 0.8 : 0.3, 0, &s) &&
+          run(B, &s, &r)) {
+        if (!above) {
+          aq_check(r.r.peak_displacement_m < 1e-12, "%s: 0.97 lambda0: no creep (%g m)",
+                   ARCHES[k], r.r.peak_displacement_m);
+        } else if (aq_check(r.nhinges >= 4 && r.r.peak_displacement_m > 1e-3,
+                            "%s: 1.03 lambda0: moves (%zu hinges, %g m)", ARCHES[k],
+                            r.nhinges, r.r.peak_displacement_m)) {
+          qsort(r.hinges, r.nhinges, sizeof *r.hinges, by_time);
+          aq_hinge_set hs;
+          size_t idx[4] = {0, 1, 2, 3};
+          for (int i = 0; i < 4; i++)
+            for (int j = i + 1; j < 4; j++)
+              if (r.hinges[idx[j]].joint < r.hinges[idx[i]].joint) {
+                size_t t = idx[i];
+                idx[i] = idx[j];
+                idx[j] = t;
+              }
+          for (int i = 0; i < 4; i++) {
+            hs.joint[i] = r.hinges[idx[i]].joint;
+            hs.face[i] = r.hinges[idx[i]].face;
+          }
+          double l0 = NAN;
+          int opens = aq_search_lambda0(aq_arch_geom(A), &hs, &l0);
+          aq_check(opens && fabs(l0) <= 1.03 * p->lambda0 && fabs(l0) >= 0.97 * p->lambda0,
+                   "%s: the first four hinges %zu%c %zu%c %zu%c %zu%c: lambda0 %g "
+                   "(load %g)",
+                   ARCHES[k], hs.joint[0], hs.face[0], hs.joint[1], hs.face[1],
+                   hs.joint[2], hs.face[2], hs.joint[3], hs.face[3], l0,
+                   1.03 * p->lambda0);
+        }
+        aq_blocks_result_free(&r);
+      }
+      aq_steps_free(&s);
+      aq_blocks_free(B);
+    }
+    aq_arch_free(A);
+  }
+}
+
+/* The static theorem with friction, here in joint resultants (N, T, M
+ * about the joint's middle, per joint; N >= 0, |T| <= mu N,
+ * |M| <= N w / 2) rather than the model's corner forces: the largest
+ * horizontal load lambda m g (against act_sign) under which every voussoir
+ * balances.  GLPK.  NAN on failure. */
+static double lambda_friction(const aq_geom *g, double mu, int act_sign, double g_mps2)
+{
+  aq_error e;
+  if (aq_glpk_load(&e) != AQ_OK)
+    return NAN;
+  size_t n = g->p.voussoirs, nj = n + 1, ncol = 3 * nj + 1, nrow = 3 * n + 4 * nj;
+  size_t cap = 12 * nj + n + 16 * nj + 8;
+  int *ia = malloc(cap * sizeof *ia), *ja = malloc(cap * sizeof *ja);
+  double *ar = malloc(cap * sizeof *ar);
+  glp_prob *P = glp_create_prob();
+  glp_term_out(GLP_OFF);
+  glp_add_rows(P, (int)nrow);
+  glp_add_cols(P, (int)ncol);
+  size_t z = 1;
+  double W = g->mass_kg * g_mps2;
+  for (size_t k = 0; k < n; k++) {
+    double wk = g->vous[k].mass_kg * g_mps2 / W;
+    glp_set_row_bnds(P, (int)(3 * k + 1), GLP_FX, 0, 0);
+    glp_set_row_bnds(P, (int)(3 * k + 2), GLP_FX, wk, wk);
+    glp_set_row_bnds(P, (int)(3 * k + 3), GLP_FX, 0, 0);
+    ia[z] = (int)(3 * k + 1), ja[z] = (int)ncol, ar[z++] = -act_sign * wk;
+  }
+  for (size_t j = 0; j < nj; j++) {
+    aq_vec2 pi = g->ji[j], pe = g->je[j], mid = {(pi.x + pe.x) / 2, (pi.y + pe.y) / 2};
+    double w = hypot(pe.x - pi.x, pe.y - pi.y);
+    aq_vec2 t = {(pe.x - pi.x) / w, (pe.y - pi.y) / w}, nn = {-t.y, t.x};
+    int cN = (int)(3 * j + 1), cT = cN + 1, cM = cN + 2;
+    glp_set_col_bnds(P, cN, GLP_LO, 0, 0);
+    glp_set_col_bnds(P, cT, GLP_FR, 0, 0);
+    glp_set_col_bnds(P, cM, GLP_FR, 0, 0);
+    /* on voussoir j (its side B, for j < n) +, on voussoir j - 1 - */
+    for (int side = 0; side < 2; side++) {
+      long k = side ? (long)j : (long)j - 1;
+      if (k < 0 || k >= (long)n)
+        continue;
+      double sg = side ? 1 : -1;
+      aq_vec2 r = {mid.x - g->vous[k].c.x, mid.y - g->vous[k].c.y};
+      int row = (int)(3 * k + 1);
+      ia[z] = row, ja[z] = cN, ar[z++] = sg * nn.x;
+      ia[z] = row, ja[z] = cT, ar[z++] = sg * t.x;
+      ia[z] = row + 1, ja[z] = cN, ar[z++] = sg * nn.y;
+      ia[z] = row + 1, ja[z] = cT, ar[z++] = sg * t.y;
+      ia[z] = row + 2, ja[z] = cN, ar[z++] = sg * (r.x * nn.y - r.y * nn.x);
+      ia[z] = row + 2, ja[z] = cT, ar[z++] = sg * (r.x * t.y - r.y * t.x);
+      ia[z] = row + 2, ja[z] = cM, ar[z++] = sg;
+    }
+    int fr = (int)(3 * n + 4 * j + 1);
+    glp_set_row_bnds(P, fr, GLP_UP, 0, 0); /* T - mu N <= 0 */
+    ia[z] = fr, ja[z] = cT, ar[z++] = 1;
+    ia[z] = fr, ja[z] = cN, ar[z++] = -mu;
+    glp_set_row_bnds(P, fr + 1, GLP_LO, 0, 0); /* T + mu N >= 0 */
+    ia[z] = fr + 1, ja[z] = cT, ar[z++] = 1;
+    ia[z] = fr + 1, ja[z] = cN, ar[z++] = mu;
+    glp_set_row_bnds(P, fr + 2, GLP_UP, 0, 0); /* M - N w/2 <= 0 */
+    ia[z] = fr + 2, ja[z] = cM, ar[z++] = 1;
+    ia[z] = fr + 2, ja[z] = cN, ar[z++] = -w / 2;
+    glp_set_row_bnds(P, fr + 3, GLP_LO, 0, 0); /* M + N w/2 >= 0 */
+    ia[z] = fr + 3, ja[z] = cM, ar[z++] = 1;
+    ia[z] = fr + 3, ja[z] = cN, ar[z++] = w / 2;
+  }
+  glp_set_col_bnds(P, (int)ncol, GLP_FR, 0, 0);
+  glp_set_obj_coef(P, (int)ncol, 1);
+  glp_set_obj_dir(P, GLP_MAX);
+  glp_load_matrix(P, (int)z - 1, ia, ja, ar);
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  double lam = NAN;
+  if (glp_simplex(P, &parm) == 0 && glp_get_status(P) == GLP_OPT)
+    lam = glp_get_obj_val(P);
+  glp_delete_prob(P);
+  free(ia);
+  free(ja);
+  free(ar);
+  return lam;
+}
+
+/* With friction 0.6, the onset is the static theorem's lambda_friction:
+ * at 0.95 of it nothing moves, at 1.05 the arch slides.  Without friction
+ * (mu 10) the same program gives the search's lambda0. */
+AQ_TEST(blocks_arch_onset_friction)
+{
+  static const char *const some[] = {"arches/oppenheim.cfg", "arches/gothic.cfg",
+                                     "arches/bridge.cfg", "arches/catenary.cfg"};
+  for (size_t k = 0; k < sizeof some / sizeof some[0]; k++) {
+    aq_arch *A = aq_test_arch_load(some[k]);
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    const aq_geom *g = aq_arch_geom(A);
+    double l10 = lambda_friction(g, 10, p->act_sign, p->g_mps2);
+    aq_check_rel(l10, p->lambda0, 1e-6, "%s: the program at friction 10 is lambda0", some[k]);
+    double lf = lambda_friction(g, 0.6, p->act_sign, p->g_mps2);
+    if (!aq_check(lf > 0 && lf <= p->lambda0 * (1 + 1e-9), "%s: lambda_friction %g",
+                  some[k], lf)) {
+      aq_arch_free(A);
+      continue;
+    }
+    for (int above = 0; above < 2; above++) {
+      double f = above ? 1.05 : 0.95;
+      aq_blocks *B = model(A, 0.6, AQ_BLOCKS_FREE);
+      if (!B)
+        break;
+      aq_blocks_set_rest_skip(B, above);
+      aq_steps s;
+      aq_blocks_result r;
+      if (const_steps(p->act_sign * f * lf * p->g_mps2, 0.3, 0, &s) && run(B, &s, &r)) {
+        if (above && lf < 0.999 * p->lambda0)
+          aq_check(r.max_slip_m > 1e-5, "%s: %.2f lambda_friction %g: slides (%g m)",
+                   some[k], f, lf, r.max_slip_m);
+        else if (above) /* friction 0.6 does not limit it: it rocks */
+          aq_check(r.r.peak_rotation_rad > 1e-6 && r.max_slip_m < 1e-9,
+                   "%s: %.2f lambda_friction %g = lambda0: rocks (%g rad, slip %g m)",
+                   some[k], f, lf, r.r.peak_rotation_rad, r.max_slip_m);
+        else
+          aq_check(r.r.peak_displacement_m < 1e-12,
+                   "%s: %.2f lambda_friction: stands (%g m)", some[k], f,
+                   r.r.peak_displacement_m);
+        aq_blocks_result_free(&r);
+      }
+      aq_steps_free(&s);
+      aq_blocks_free(B);
+    }
+    aq_arch_free(A);
+  }
+}
+
+/* The hinge-controlled arch (every joint but the four mechanical ones
+ * bonded) reduces to the four-hinge mechanism: under 2 lambda0 for 0.15 s
+ * voussoir 0's peak rotation equals the exact equation of motion's
+ * (the ode model at rtol 1e-12) within 1 % at the default step, and the
+ * error halves with the step (first order).  Under 1.6 lambda0 for 0.6 s
+ * it collapses when the ode passes q_c, within a few steps. */
+AQ_TEST(blocks_arch_fixed_against_ode)
+{
+  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+  for (size_t k = 0; k < 2; k++) {
+    aq_arch *A = aq_test_arch_load(two[k]);
+    if (!A)
+      continue;
+    const aq_path *p = aq_arch_path(A, 0);
+    for (int collapse = 0; collapse < 2; collapse++) {
+      double f = collapse ? 1.6 : 2.0, T = collapse ? 0.6 : 0.15;
+      aq_steps s;
+      if (!const_steps(p->act_sign * f * p->lambda0 * p->g_mps2, T, 1.5, &s))
+        break;
+      aq_error e;
+      aq_stepper *st = aq_stepper_alloc(p, aq_arch_path(A, 1), AQ_MODEL_ODE, &e);
+      aq_stepper_set_ode_rtol(st, 1e-12);
+      aq_result ro;
+      if (!aq_check(st && aq_stepper_run(st, &s, &ro, &e) == AQ_OK, "ode: %s", e.message)) {
+        aq_stepper_free(st);
+        aq_steps_free(&s);
+        break;
+      }
+      double err[3];
+      for (int i = 0; i < (collapse ? 1 : 3); i++) {
+        double dt = AQ_BLOCKS_DT_DEFAULT_S / (1 << i);
+        aq_blocks *B = model(A, 10, AQ_BLOCKS_FIXED);
+        if (!B)
+          break;
+        aq_blocks_set_dt(B, dt, &e);
+        aq_blocks_result r;
+        if (run(B, &s, &r)) {
+          if (collapse) {
+            aq_check(r.r.collapsed && ro.collapsed &&
+                         fabs(r.r.collapse_time_s - ro.collapse_time_s) <= 3 * dt,
+                     "%s: collapse at %g s, the ode's %g s", two[k], r.r.collapse_time_s,
+                     ro.collapse_time_s);
+          } else {
+            err[i] = r.r.peak_rotation_rad / ro.peak_rotation_rad - 1;
+            if (i == 0)
+              aq_check_rel(r.r.peak_rotation_rad, ro.peak_rotation_rad, 1e-2,
+                           "%s: peak rotation at the default step", two[k]);
+            aq_check(!r.r.collapsed, "%s: no collapse", two[k]);
+          }
+          aq_blocks_result_free(&r);
+        }
+        aq_blocks_free(B);
+      }
+      if (!collapse)
+        for (int i = 0; i < 2; i++)
+          aq_check(fabs(err[i] / err[i + 1] - 2) < 0.3,
+                   "%s: first order: %.3e -> %.3e (ratio %.3f)", two[k], err[i], err[i + 1],
+                   err[i] / err[i + 1]);
+      aq_result_free(&ro);
+      aq_stepper_free(st);
+      aq_steps_free(&s);
+    }
+    aq_arch_free(A);
+  }
+}
+
+/* The supports spread by 2 cm before the record: the arch settles on a
+ * three-hinge mechanism (its joints read from the run's state) and its
+ * crown hinge drops as the rigid halves' kinematics say: each half turns
+ * about its haunch hinge, which moves out with its support by 1 cm. */
+AQ_TEST(blocks_arch_spread)
+{
+  aq_arch *A = aq_test_arch_load("arches/oppenheim.cfg");
+  if (!A)
+    return;
+  aq_blocks *B = model(A, 10, AQ_BLOCKS_FREE);
+  aq_error e;
+  double d = 0.02;
+  aq_steps s;
+  aq_blocks_result r;
+  if (B && aq_check(aq_blocks_set_spread(B, d, &e) == AQ_OK, "spread") &&
+      const_steps(0, 0.2, 0, &s)) {
+    if (run(B, &s, &r)) {
+      aq_check(!r.r.collapsed, "stands on the spread supports");
+      const aq_bodies *bs = aq_blocks_bodies(B);
+      aq_moreau *m = aq_blocks_moreau(B);
+      const aq_jstate *st = aq_moreau_jstate(m);
+      size_t hinge[3], nh = 0;
+      for (size_t j = 0; j < bs->nj && nh < 3; j++)
+        if (st[j].kind == AQ_JOINT_HINGE_I || st[j].kind == AQ_JOINT_HINGE_E)
+          hinge[nh++] = j;
+      if (aq_check(nh == 3 && hinge[0] + hinge[2] == bs->nj - 1 &&
+                       2 * hinge[1] == bs->nj - 1,
+                   "a symmetric three-hinge mechanism (%zu hinges)", nh)) {
+        const aq_geom *g = aq_arch_geom(A);
+        int fa = st[hinge[0]].kind == AQ_JOINT_HINGE_E, fc = st[hinge[1]].kind == AQ_JOINT_HINGE_E;
+        aq_vec2 pa = fa ? g->je[hinge[0]] : g->ji[hinge[0]];
+        aq_vec2 pc = fc ? g->je[hinge[1]] : g->ji[hinge[1]];
+        double L = hypot(pc.x - pa.x, pc.y - pa.y), x = pa.x + d / 2;
+        double want = pa.y + sqrt(L * L - (x - pc.x) * (x - pc.x)) - pc.y;
+        aq_vec2 now = aq_bodies_point(bs, bs->joint[hinge[1]].b, aq_moreau_q(m),
+                                      aq_moreau_gx(m), pc);
+        aq_check_rel(now.y - pc.y, want, 1e-6, "crown drop, hinges %zu %zu %zu", hinge[0],
+                     hinge[1], hinge[2]);
+      }
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+  }
+  aq_blocks_free(B);
+  aq_arch_free(A);
+}
+
+/* Bad options: one error each, naming the field and the expectation; a
+ * run without friction is refused. */
+AQ_TEST(blocks_arch_bad_options)
+{
+  aq_arch *A = aq_test_arch_load("arches/oppenheim.cfg");
+  if (!A)
+    return;
+  aq_error e;
+  aq_blocks *B = aq_blocks_alloc(A, &e);
+  if (!aq_check(B != NULL, "model")) {
+    aq_arch_free(A);
+    return;
+  }
+  static const double bad_mu[] = {0, -0.6, NAN, INFINITY};
+  for (size_t i = 0; i < 4; i++)
+    aq_check(aq_blocks_set_friction(B, bad_mu[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "friction") && strstr(e.message, "> 0"),
+             "friction %g refused: %s", bad_mu[i], e.message);
+  static const double bad_en[] = {-0.01, 1.01, NAN};
+  for (size_t i = 0; i < 3; i++)
+    aq_check(aq_blocks_set_restitution(B, bad_en[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "e_n") && strstr(e.message, "0..1"),
+             "e_n %g refused: %s", bad_en[i], e.message);
+  static const double bad_dt[] = {0, -1e-3, NAN, INFINITY};
+  for (size_t i = 0; i < 4; i++)
+    aq_check(aq_blocks_set_dt(B, bad_dt[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "blocks-dt") && strstr(e.message, "> 0"),
+             "dt %g refused: %s", bad_dt[i], e.message);
+  double big = aq_blocks_spread_max(B);
+  double bad_sp[] = {-0.01, big, 2 * big, NAN};
+  for (size_t i = 0; i < 4; i++)
+    aq_check(aq_blocks_set_spread(B, bad_sp[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "spread_m") && strstr(e.message, "expected 0 <="),
+             "spread %g refused: %s", bad_sp[i], e.message);
+  aq_steps s;
+  aq_blocks_result r;
+  if (const_steps(1, 0.1, 0, &s)) {
+    aq_error_clear(&e);
+    aq_check(aq_blocks_run(B, &s, &r, &e) == AQ_EVALUE && !strcmp(e.field, "friction") &&
+                 strstr(e.message, "friction"),
+             "no friction: refused (%s)", e.message);
+    aq_steps_free(&s);
+  }
+  aq_blocks_free(B);
+  aq_arch_free(A);
+}

@@ -1,0 +1,272 @@
+/* test_blocks_block.c: the block model (src/blocks) on a single rigid block
+ * on the ground, against closed forms: the rocking onset at tan(alpha),
+ * the rocking equation of motion about a corner, Housner's impact ratio,
+ * and Newmark's sliding block. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "blocks/blocks_run.h"
+#include "check.h"
+
+static const double G = 9.80665;
+
+/* A block 2b wide and 2h tall on the ground, centroid at (0, h). */
+typedef struct {
+  double b, h, m;
+} block;
+
+static aq_blocks *block_model(block k, double mu, double e_n, double dt)
+{
+  aq_body body = {k.m, k.m * (4 * k.b * k.b + 4 * k.h * k.h) / 12, {0, k.h}, 0, 0};
+  aq_vec2 ends[1][2] = {{{-k.b, 0}, {k.b, 0}}};
+  aq_error e;
+  aq_error_clear(&e);
+  aq_blocks *B = aq_blocks_alloc_bodies(&body, 1, (const aq_vec2(*)[2])ends, 1, G, &e);
+  if (!aq_check(B != NULL, "block model: %s", e.message))
+    return NULL;
+  aq_check(aq_blocks_set_friction(B, mu, &e) == AQ_OK, "friction %g", mu);
+  aq_check(aq_blocks_set_restitution(B, e_n, &e) == AQ_OK, "e_n %g", e_n);
+  aq_check(aq_blocks_set_dt(B, dt, &e) == AQ_OK, "dt %g", dt);
+  return B;
+}
+
+/* Steps of step_s each: a1 for n1 of them, then a2 for n2. */
+static int two_levels(double a1, size_t n1, double a2, size_t n2, double step_s,
+                      aq_steps *s)
+{
+  size_t n = n1 + n2;
+  double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d), *a = malloc(n * sizeof *a);
+  int ok = t && d && a;
+  for (size_t i = 0; ok && i < n; i++) {
+    t[i] = (double)i * step_s;
+    d[i] = step_s;
+    a[i] = i < n1 ? a1 : a2;
+  }
+  aq_error e;
+  ok = ok && aq_steps_from_list(t, d, a, n, s, &e) == AQ_OK;
+  free(t);
+  free(d);
+  free(a);
+  return aq_check(ok, "steps");
+}
+
+static int run(aq_blocks *B, const aq_steps *s, aq_blocks_result *r)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  return aq_check(aq_blocks_run(B, s, r, &e) == AQ_OK, "run: %s", e.message);
+}
+
+/* A block stands under a constant ground acceleration below g tan(alpha)
+ * and rocks above it, both ways, whether steps at rest are skipped (the
+ * static range) or every step is solved (the dynamics alone). */
+AQ_TEST(blocks_block_rocking_onset)
+{
+  block k = {0.15, 0.55, 850};
+  double ta = k.b / k.h;
+  for (int skip = 0; skip < 2; skip++)
+    for (int sgn = -1; sgn <= 1; sgn += 2)
+      for (int above = 0; above < 2; above++) {
+        double f = above ? 1.001 : 0.999;
+        aq_blocks *B = block_model(k, 10, 0, 1e-3);
+        if (!B)
+          return;
+        aq_blocks_set_rest_skip(B, skip);
+        aq_steps s;
+        aq_blocks_result r;
+        if (two_levels(sgn * f * G * ta, 200, 0, 0, 1e-3, &s) && run(B, &s, &r)) {
+          if (above)
+            aq_check(r.r.peak_rotation_rad > 1e-6,
+                     "%.3f g tan(alpha), sign %d, skip %d: rocks (peak %g rad)", f, sgn, skip,
+                     r.r.peak_rotation_rad);
+          else
+            aq_check(r.r.peak_rotation_rad < 1e-12 && r.r.peak_displacement_m < 1e-12,
+                     "%.3f g tan(alpha), sign %d, skip %d: stands (peak %g rad, %g m)", f,
+                     sgn, skip, r.r.peak_rotation_rad, r.r.peak_displacement_m);
+          aq_check(r.max_slip_m < 1e-12, "no slip with friction 10 (%g m)", r.max_slip_m);
+          aq_blocks_result_free(&r);
+        }
+        aq_steps_free(&s);
+        aq_blocks_free(B);
+      }
+}
+
+/* The tipping angle theta about a corner under a constant horizontal body
+ * force A per unit mass: (4/3) R theta'' = A cos(alpha - theta) -
+ * g sin(alpha - theta) (I_O = 4/3 m R^2), by a test-local RK4 with 1e5
+ * steps. */
+static double tip_angle(double A, double alpha, double R, double T)
+{
+  double th = 0, w = 0, dt = T / 1e5;
+  for (int i = 0; i < 100000; i++) {
+#define ACC(x) (0.75 / R * (A * cos(alpha - (x)) - G * sin(alpha - (x))))
+    double k1t = w, k1w = ACC(th);
+    double k2t = w + 0.5 * dt * k1w, k2w = ACC(th + 0.5 * dt * k1t);
+    double k3t = w + 0.5 * dt * k2w, k3w = ACC(th + 0.5 * dt * k2t);
+    double k4t = w + dt * k3w, k4w = ACC(th + dt * k3t);
+#undef ACC
+    th += dt / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+    w += dt / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+  }
+  return th;
+}
+
+/* Rocking about a corner under 1.6 g tan(alpha) for 0.4 s: the rotation at
+ * the end against the equation of motion, converging at the scheme's
+ * first order as the step halves. */
+AQ_TEST(blocks_block_rocking_motion)
+{
+  block k = {0.15, 0.55, 850};
+  double alpha = atan2(k.b, k.h), R = hypot(k.b, k.h), A = 1.6 * G * k.b / k.h;
+  double want = tip_angle(A, alpha, R, 0.4), err[2];
+  for (int i = 0; i < 2; i++) {
+    double dt = i ? 5e-4 : 1e-3;
+    aq_blocks *B = block_model(k, 10, 0, dt);
+    if (!B)
+      return;
+    aq_blocks_set_history(B, 1);
+    aq_steps s;
+    aq_blocks_result r;
+    if (two_levels(-A, 400, 0, 0, 1e-3, &s) && run(B, &s, &r)) {
+      double got = -r.r.history.rotation_rad[r.r.history.n - 1];
+      err[i] = got / want - 1;
+      aq_check_rel(got, want, 2e-3, "tipping angle at 0.4 s, dt %g", dt);
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+    aq_blocks_free(B);
+  }
+  aq_check(fabs(err[0] / err[1] - 2) < 0.3, "first order: errors %.3e, %.3e (ratio %.3f)",
+           err[0], err[1], err[0] / err[1]);
+}
+
+/* Free rocking after a pulse with e_n = 0: each impact keeps r^2 of the
+ * energy, r = 1 - 3/2 sin^2(alpha) (Housner 1963, The behavior of inverted
+ * pendulum structures during earthquakes, Bulletin of the Seismological
+ * Society of America 53(2), 403-417, eq. (13) for the rectangular block):
+ * the energy measured between the first and second impacts over that
+ * between the pulse and the first, against r^2, within the scheme's
+ * first-order error (which halves with the step). */
+AQ_TEST(blocks_block_housner_impact)
+{
+  block k = {0.15, 0.55, 850};
+  double alpha = atan2(k.b, k.h), rr = 1 - 1.5 * sin(alpha) * sin(alpha);
+  double err[2];
+  for (int i = 0; i < 2; i++) {
+    double dt = i ? 2.5e-4 : 5e-4;
+    aq_blocks *B = block_model(k, 10, 0, dt);
+    if (!B)
+      return;
+    aq_blocks_set_history(B, 1);
+    aq_steps s;
+    aq_blocks_result r;
+    err[i] = NAN;
+    if (two_levels(-1.8 * G * k.b / k.h, 150, 0, 1850, 1e-3, &s) && run(B, &s, &r)) {
+      const aq_history *H = &r.r.history;
+      /* the energy in each swing: between sign changes of the rotation */
+      double e[2] = {0, 0};
+      int n[2] = {0, 0}, swing = 0;
+      for (size_t j = 151; j + 1 < H->n && swing < 2; j++) {
+        if (H->rotation_rad[j] * H->rotation_rad[j + 1] < 0) {
+          swing++;
+          j++; /* the step with the impact in it */
+          continue;
+        }
+        if (fabs(H->rotation_rad[j]) > 1e-6) {
+          e[swing] += H->kinetic_energy_j[j] + H->potential_energy_j[j];
+          n[swing]++;
+        }
+      }
+      if (aq_check(n[0] > 10 && n[1] > 10, "two swings (%d, %d samples)", n[0], n[1])) {
+        double ratio = (e[1] / n[1]) / (e[0] / n[0]);
+        err[i] = ratio / (rr * rr) - 1;
+        aq_check_rel(ratio, rr * rr, 2e-2, "energy kept at the impact, dt %g", dt);
+      }
+      aq_check(r.r.impacts >= 2, "impacts counted (%zu)", r.r.impacts);
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+    aq_blocks_free(B);
+  }
+  aq_check(fabs(err[1]) < 0.7 * fabs(err[0]), "the error falls with the step: %.3e, %.3e",
+           err[0], err[1]);
+}
+
+/* A wide block sliding on its base (friction 0.2, tan alpha = 2.4: it
+ * never rocks): it stands below mu g and slides above it; under a
+ * rectangular pulse A for t0 its slip is Newmark's A t0^2 (A - mu g) /
+ * (2 mu g) (Newmark 1965, Effects of earthquakes on dams and embankments,
+ * Geotechnique 15(2), 139-160: the rigid block on an inclined plane, here
+ * flat, under one rectangular pulse). */
+AQ_TEST(blocks_block_newmark_sliding)
+{
+  block k = {0.6, 0.25, 1234.5};
+  double mu = 0.2;
+  for (int above = 0; above < 2; above++) {
+    aq_blocks *B = block_model(k, mu, 0, 1e-3);
+    if (!B)
+      return;
+    aq_blocks_set_rest_skip(B, 0);
+    aq_steps s;
+    aq_blocks_result r;
+    double f = above ? 1.001 : 0.999;
+    if (two_levels(f * mu * G, 300, 0, 0, 1e-3, &s) && run(B, &s, &r)) {
+      if (above)
+        aq_check(r.max_slip_m > 1e-9, "slides above mu g (%g m)", r.max_slip_m);
+      else
+        aq_check(r.max_slip_m < 1e-12, "stands below mu g (%g m)", r.max_slip_m);
+      aq_check(r.r.peak_rotation_rad < 1e-12, "does not rock (%g)", r.r.peak_rotation_rad);
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+    aq_blocks_free(B);
+  }
+  double A = 0.45 * G, t0 = 0.4, want = A * t0 * t0 * (A - mu * G) / (2 * mu * G);
+  aq_blocks *B = block_model(k, mu, 0, 1e-3);
+  if (!B)
+    return;
+  aq_steps s;
+  aq_blocks_result r;
+  if (two_levels(A, 400, 0, 1600, 1e-3, &s) && run(B, &s, &r)) {
+    aq_check_rel(r.max_slip_m, want, 1e-12, "Newmark's slip");
+    aq_check(!isnan(aq_blocks_rest_since(B)), "at rest again");
+    aq_blocks_result_free(&r);
+  }
+  aq_steps_free(&s);
+  aq_blocks_free(B);
+}
+
+/* e_n = 1: after a pulse the block rocks freely; its first impact (the
+ * landing corner moves along the normal only) and the flights after it
+ * keep the energy but for the scheme's error at each impact (Moreau-Jean
+ * applies the step's weight and the impulse together: an O(h) error per
+ * impact), so the energy lost over 1.85 s of free motion halves with the
+ * step. */
+AQ_TEST(blocks_block_energy_restitution_one)
+{
+  block k = {0.15, 0.55, 850};
+  double lost[2];
+  for (int i = 0; i < 2; i++) {
+    double dt = i ? 2.5e-4 : 5e-4;
+    aq_blocks *B = block_model(k, 10, 1, dt);
+    if (!B)
+      return;
+    aq_blocks_set_history(B, 1);
+    aq_steps s;
+    aq_blocks_result r;
+    lost[i] = NAN;
+    if (two_levels(-1.8 * G * k.b / k.h, 150, 0, 1850, 1e-3, &s) && run(B, &s, &r)) {
+      const aq_history *H = &r.r.history;
+      double e0 = H->kinetic_energy_j[150] + H->potential_energy_j[150];
+      double e1 = H->kinetic_energy_j[H->n - 1] + H->potential_energy_j[H->n - 1];
+      lost[i] = 1 - e1 / e0;
+      aq_check(r.r.impacts >= 10, "it bounces on (%zu impacts)", r.r.impacts);
+      aq_check(lost[i] >= 0 && lost[i] < (i ? 0.2 : 0.4),
+               "energy lost over the free motion, dt %g: %.3e", dt, lost[i]);
+      aq_blocks_result_free(&r);
+    }
+    aq_steps_free(&s);
+    aq_blocks_free(B);
+  }
+  aq_check(fabs(lost[0] / lost[1] - 2) < 0.6, "first order: %.3e -> %.3e", lost[0], lost[1]);
+}
