@@ -453,7 +453,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
-                           "pgv_m_s, pgd_m, arias_m_s, cav_m_s or pga_lambda0"},
+                           "pgv_m_s, pgd_m, arias_m_s, cav_m_s, pga_lambda0, or a spectral "
+                           "measure the file's fits hold (capacity's --im-periods and "
+                           "--sa-avg: sa_0.2s_g, sa_avg_0.1_1s_g)"},
     [AQ_OPT_X] = {.name = "x", .kind = AQ_ARG_CHOICE, .choices = x_axes, .meta = "qc|rad",
                   DEST(x_rad), .cmds = C(PLOT_CAPACITY),
                   .help = "the peak rotation over q_c (qc, the default) or in rad (rad)"},
@@ -536,7 +538,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .check = ode_rtol_needs_ode},
     [AQ_OPT_HISTORY] = {.name = "history", .kind = AQ_ARG_FLAG, DEST(history), .cmds = C(RUN),
                         .help = "write histories (step ends, turning points, impacts) to the "
-                                "HDF5 file (with -o)",
+                                "HDF5 file (with -o), with each record's processed ground "
+                                "motion (as --store-records), which plot history draws",
                         .requires = OPTS(AQ_OPT_OUTPUT),
                         .why = "histories are written only to the results file"},
     [AQ_OPT_HISTORY_FILE] = {.name = "history", .kind = AQ_ARG_STRING, .meta = "FILE",
