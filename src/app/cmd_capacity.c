@@ -29,6 +29,7 @@
 #include "app.h"
 #include "capacity_tasks.h"
 #include "opt.h"
+#include "opt_suite.h"
 #include "opt_table.h"
 
 /* The status cell of pair c of record r. */
@@ -73,6 +74,7 @@ typedef struct {
   aq_fragility_row *fit;
   size_t nfit;
   char (*im_name)[64]; /* the spectral measures' names */
+  size_t nspectral;    /* their number */
 } rows;
 
 /* Row i of (subject, arch, polarity) is the worst of its nz azimuths'
@@ -93,6 +95,7 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     return -1;
   for (size_t k = 0; k < nsp; k++)
     aq_im_spectral_name(po, k, o->im_name[k], sizeof o->im_name[k]);
+  o->nspectral = nsp;
   for (size_t i = 0; i < n; i++) {
     size_t r = i / (na * npol), w = 0;
     double lo = NAN, hi = NAN;
@@ -168,8 +171,12 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                        .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
+  const char *spectral[AQ_IM_SA_MAX + 1];
+  size_t nsp = 0;
+  for (; nsp < o->nspectral && nsp < AQ_IM_SA_MAX + 1; nsp++)
+    spectral[nsp] = o->im_name[nsp];
   aq_h5_capacity hc = {o->row, npair, o->fit, o->nfit, so->resolution,
-                       so->tol, AQ_FRAGILITY_CI_DEFAULT};
+                       so->tol, AQ_FRAGILITY_CI_DEFAULT, nsp, spectral};
   if (s == AQ_OK)
     s = aq_h5_write_capacity(w, path, &hc, &e);
   if (s == AQ_OK) {
@@ -230,6 +237,8 @@ int aq_cmd_capacity(int argc, char **argv)
   char **arch_paths = opts.arches;
   size_t na = opts.narches;
   aq_orient_opts orient = opts.orient;
+  const char *suite_path = opts.suite; /* --suite: argv's string */
+  aq_opt_suite suite_in = {0};
   opts.arches = NULL;
   aq_opt_orient_init(&opts.orient);
   aq_opts_free(&opts);
@@ -243,7 +252,9 @@ int aq_cmd_capacity(int argc, char **argv)
   /* --tol <= --resolution: the table's rule */
   aq_error se;
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
-  if (optind >= argc && orient.nmotions == 0) {
+  if (suite_path)
+    aq_opt_suite_take(suite_path, &argc, &argv, optind, &orient, &suite_in, &nerr);
+  if (optind >= argc && orient.nmotions == 0 && !suite_path) {
     fprintf(stderr, "archquake: capacity: expected at least one RECORD or --components\n");
     nerr++;
   }
@@ -277,6 +288,7 @@ int aq_cmd_capacity(int argc, char **argv)
       aq_error_print(&se, stderr);
       aq_opt_orient_free(&orient);
       free(arch_paths);
+      aq_opt_suite_free(&suite_in);
       return AQ_EXIT_FAIL;
     }
     for (size_t i = 0; !aq_farm_is_follower() && i < nnotes; i++)
@@ -312,6 +324,7 @@ int aq_cmd_capacity(int argc, char **argv)
     free(phi);
     aq_record_names_free(names, nplain);
     aq_opt_orient_free(&orient);
+    aq_opt_suite_free(&suite_in);
     return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
 
@@ -360,7 +373,7 @@ int aq_cmd_capacity(int argc, char **argv)
   }
   aq_cap_setup S = {nrec, recs, (const char *const (*)[3])paths, (const double (*)[2])phi,
                      &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
-                     cor, merge_tol_g * AQ_G0_MPS2, smax, so};
+                     cor, merge_tol_g * AQ_G0_MPS2, smax, so, suite_in.factors};
   if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
     rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
     goto done;
@@ -391,7 +404,7 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_outfile ot = {0}, of = {0};
   int ok = (!text || out_open(&ot, text) == 0) && (!frag || out_open(&of, frag) == 0);
   FILE *ft = text ? ot.f : stdout, *ff = of.f;
-  rows o = {NULL, NULL, NULL, 0, NULL};
+  rows o = {NULL, NULL, NULL, 0, NULL, 0};
   if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, nim, fits) != 0)
     ok = 0;
   if (ok &&
@@ -433,5 +446,6 @@ done:
   free(phi);
   aq_record_names_free(names, nplain);
   aq_opt_orient_free(&orient);
+  aq_opt_suite_free(&suite_in);
   return rc;
 }

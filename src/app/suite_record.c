@@ -107,7 +107,7 @@ static void fail_runs(suite *S, rec_slot *r)
     size_t a, k, z;
     aq_suite_run_index(S, r, i, &a, &k, &z);
     run_slot *u = &r->runs[i];
-    double scale = c->scales ? c->scales[k / S->npol] : NAN;
+    double scale = c->scales ? c->scales[k / S->npol] * aq_suite_record_factor(c, r->index) : NAN;
     aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
                     S->model_name, scale, NAN, r->status, NULL);
     aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
@@ -184,7 +184,8 @@ int aq_suite_prepare(suite *S, rec_slot *r)
   if (s == AQ_OK)
     s = aq_scale_check_subject(&S->rule, path, r->subj.pga_g, &r->err);
   for (size_t k = 0; s == AQ_OK && k < S->nscale; k++) {
-    r->scale[k] = aq_scale_factor(&S->rule, k / S->npol, r->subj.pga_g);
+    r->scale[k] = aq_scale_factor(&S->rule, k / S->npol, r->subj.pga_g) *
+                  aq_suite_record_factor(c, r->index);
     slot_sa[k] = aq_scale_signed(r->scale[k], aq_suite_reversed(S, k));
   }
   if (s == AQ_OK)

@@ -247,15 +247,12 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
                         "more that are not values",
                         want, val[K_DURATION], hz);
   }
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "Duration Time(s) x Sampling Freq(Hz)");
+  aq_raw_set_extra(ch, &x, 1, "Duration Time(s) x Sampling Freq(Hz)");
 
   snprintf(raw->format, sizeof raw->format, "%s", kik ? "kiknet" : "knet");
   snprintf(raw->event, sizeof raw->event, "%.19s JST M%.6s %.8sN %.8sE %.6s km",
            val[K_ORIGIN], val[K_MAG], val[K_LAT], val[K_LON], val[K_DEPTH]);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   ch->npts = want;
   ch->dt_s = 1.0 / hz;
   ch->begin_s = 0.0;

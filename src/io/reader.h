@@ -96,6 +96,11 @@ typedef struct {
                             "csmip", "knet", "kiknet", "smc", "esm", "mseed",
                             ... */
   char event[96];        /* event name / id / origin time as stated, "" if none */
+  char event_name[96];   /* the event alone, as the file names it: no station,
+                            component or record time (an AT2's text line holds
+                            the station and component after the event; CSMIP's
+                            "Record of" line is the record's trigger time);
+                            "" if the file names no event */
   char processing[160];  /* the agency's processing as stated (e.g. PEER filter
                             corners), "" if none */
   size_t nchan;
@@ -272,6 +277,25 @@ void aq_raw_channel_init(aq_raw_channel *c);
 /* Append an initialised channel to raw; NULL on allocation failure (err
  * filled). */
 aq_raw_channel *aq_raw_add_channel(aq_raw_file *raw, const char *name, aq_error *err);
+
+/* The rows past the stated count a reader found (fixed.h aq_extra_rows,
+ * each per values of this channel: 2 for (time, value) pairs) into c's
+ * extra_* fields, with count_from the field that states the count. */
+struct aq_extra_rows_s;
+void aq_raw_set_extra(aq_raw_channel *c, const struct aq_extra_rows_s *x, size_t per,
+                      const char *count_from);
+
+/* The end of a table of rows, one value of every channel of raw a row,
+ * after its stated count (rows, stated by count_from): the rows past it
+ * (row() as aq_extra_rows_scan's, last the count's last row) are set on
+ * every channel; then nothing but blank lines may follow.  AQ_OK, or
+ * AQ_EFORMAT naming the line that does (raw freed). */
+struct aq_lines_s;
+struct aq_line_s;
+aq_status aq_raw_rows_end(struct aq_lines_s *c, const struct aq_line_s *last,
+                          size_t (*row)(const struct aq_line_s *, const void *),
+                          const void *ctx, size_t rows, const char *count_from,
+                          aq_raw_file *raw, const char *name, aq_error *err);
 
 /* Append *c (its values owned by raw from then on) to raw; on allocation
  * failure free c->values and return AQ_ENOMEM (err filled). */

@@ -4,6 +4,7 @@
  * makes a record of what the parser reports (see record.h). */
 #include "record.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <fnmatch.h>
@@ -212,6 +213,32 @@ static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                       what, ev);
 }
 
+/* --dt and a file's interval within this (relative) are the same: both
+ * are decimals as written (0.01, ".0100"), whose doubles differ by a few
+ * units of rounding at most. */
+#define AQ_DT_SAME_REL 1e-9
+
+/* The event as records are compared by it: name in lower case (ASCII),
+ * every run of characters other than letters and digits one space, none at
+ * either end ("Imperial Valley-02, 5/19/1940" -> "imperial valley 02 5 19
+ * 1940"), so that spacing and punctuation do not make two events of one. */
+static void decide_event_key(const char *name, char *key, size_t cap)
+{
+  size_t k = 0;
+  int gap = 0;
+  for (const char *p = name; *p && k + 2 < cap; p++) {
+    unsigned char c = (unsigned char)*p;
+    if (isalnum(c)) {
+      if (gap && k)
+        key[k++] = ' ';
+      key[k++] = (char)tolower(c);
+      gap = 0;
+    } else
+      gap = 1;
+  }
+  key[k] = '\0';
+}
+
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
@@ -257,7 +284,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                                             : "are not all copies of the last row");
   /* --dt is for records that state no sample interval: one that states its
    * own keeps it, and says so when the two differ (a suite may mix both) */
-  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
+  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > AQ_DT_SAME_REL * opts->dt_s)
     snprintf(rec->dt_note, sizeof rec->dt_note,
              "--dt %g s not used: the file states a sample interval of %g s", opts->dt_s,
              ch->dt_s);
@@ -422,6 +449,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   snprintf(rec->location, sizeof rec->location, "%s", ch->location);
   snprintf(rec->channel, sizeof rec->channel, "%s", ch->channel);
   snprintf(rec->event, sizeof rec->event, "%s", raw->event);
+  decide_event_key(raw->event_name, rec->event_key, sizeof rec->event_key);
   snprintf(rec->processing, sizeof rec->processing, "%s", raw->processing);
   if (has_stated)
     snprintf(rec->units_stated, sizeof rec->units_stated, "%s", aq_units_name(stated));

@@ -229,11 +229,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   /* rows past integer #17: reported for the decision (record.c) */
   aq_extra_rows x;
   aq_extra_rows_scan(&c, &last, aq_fixed_row, &fd, &x);
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "integer header #17");
+  aq_raw_set_extra(ch, &x, 1, "integer header #17");
   static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
   if (type == 0) /* converted from another format: the quantity is not stated */
@@ -276,6 +272,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
                    aq_header_int(iv[4]), sec))
     ch->reference[0] = '\0';
   aq_copy_trim(raw->event, sizeof raw->event, text[3].p, text[3].len);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   aq_copy_trim(raw->processing, sizeof raw->processing, text[0].p + 2, text[0].len - 2);
   snprintf(raw->format, sizeof raw->format, "smc");
   return AQ_OK;

@@ -9,6 +9,7 @@
  *   suite.c     a record x arch map of the verdicts
  *   capacity.c  the collapse intervals and fragility of `archquake capacity`
  *   spectrum.c  the response spectra of `archquake spectrum`
+ *   select.c    a suite's spectra against its target (`archquake select`)
  * common.c renders (driver check, exit/abort handlers) and writes the
  * plotted data (--data FILE.csv), each through a temporary renamed when
  * complete (util/outfile.h: removed on a signal too);
@@ -29,8 +30,10 @@
 #include "../error.h"
 #include "../report/h5.h"
 #include "../report/h5_capacity.h"
+#include "../report/h5_select.h"
 #include "../report/h5_spectrum.h"
 #include "../report/text.h"
+#include "../select/target.h"
 #include "../util/outfile.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
@@ -52,6 +55,10 @@ typedef struct {
   double g_mps2;         /* the arch's gravity */
   size_t n;              /* history samples */
   double *t_s, *q_rad, *x_m, *ke_j, *pe_j; /* rotation (global sign), COM x, energies */
+  int *set;              /* n: the hinge set moving (0 primary, 1 reverse, -1 at rest);
+                            NULL when the file holds none (format 1) */
+  int q_sign[2];         /* primary, reverse: the sign of q while that set moves (0:
+                            unknown) */
   size_t na;             /* ground samples (processed record, scaled, signed);
                             0 when the file does not hold it (format 2
                             written without --store-records) */
@@ -146,9 +153,36 @@ void aq_plot_escape(const char *s, char *out, size_t cap);
  * the middle, keeping its start and its end ("RSN6_IMP…hor1.AT2"), into
  * out[cap], escaped (aq_plot_escape); s itself if it fits. */
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap);
+/* The same for n names at once, into out (n strings of cap bytes): each
+ * at most max_chars characters, and distinct where the names are: the
+ * ellipsis placed alike for all where that keeps them apart (even, then
+ * more of the end, then more of the start), else each showing where it
+ * first differs from the others ("…LOMAP_GIL067…"). */
+void aq_plot_ellipsize_set(const char *const *names, size_t n, size_t max_chars, char *out,
+                           size_t cap);
 /* Between plinit and plend: how many characters of a file name fit in
  * width_frac of the page's width at the current character height. */
 size_t aq_plot_chars_fit(double width_frac);
+
+/* Text measured as the figures draw it (DejaVu Sans, the cairo drivers'
+ * and librsvg's "sans"): the width of s in em (PLplot's escapes resolved:
+ * #gX a Greek letter, #u and #d a smaller sub- or superscript, ## a #).
+ * Needs no PLplot. */
+double aq_plot_text_em(const char *s);
+/* The font size (mm) of text of PLplot character height height_mm. */
+double aq_plot_font_mm(double height_mm);
+/* Between plinit and plend, in mm of the figure's own size (72 points an
+ * inch, whatever the page it is scaled onto): set the character height;
+ * the width of s and the height of a line (the font's ascent and descent)
+ * at the current height. */
+void aq_plot_text_height(double mm);
+double aq_plot_text_mm(const char *s);
+double aq_plot_line_mm(void);
+/* The figure's width, and s (a name, not escaped) shortened by an ellipsis
+ * in its middle until it is at most width_mm wide at the current
+ * character height, escaped, into out[cap] (s itself if it fits). */
+double aq_plot_page_w_mm(void);
+void aq_plot_shorten_to(const char *s, double width_mm, char *out, size_t cap);
 
 /* Drawing helpers (between plinit and plend). */
 enum { AQ_PC_BG = 0, AQ_PC_FG, AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN,
@@ -236,5 +270,36 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
 aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
+
+/* select.c: spectra against a target: PSA (g) against period (s, log
+ * axis), the target and band x target (dashed) from a third of the range's
+ * start to three times its end (within the target's periods), each
+ * spectrum (thin, scaled as given), their mean (thick), the range's ends;
+ * --data: the target, the mean and each curve (curve, period_s, psa_g). */
+typedef struct {
+  size_t n, nper;
+  const double *period_s;     /* the range's periods, s, ascending */
+  const double *psa_g;        /* n x nper, as drawn (scaled), g */
+  const char *const *label;   /* n */
+  const aq_target *target;
+  const char *target_name;    /* in the legend */
+  double band;                /* 0.9 */
+  const char *title;
+} aq_plot_target_set;
+
+aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const char *data,
+                         double *draw_s, aq_error *err);
+
+/* The suite of a file of `archquake select -o` (each record at its scale)
+ * against its target, or override (NULL: the file's). */
+aq_status aq_plot_select(const aq_h5_select_file *f, const aq_target *override,
+                         const char *source, const char *target, const char *data,
+                         double *draw_s, aq_error *err);
+
+/* The spectra of t (a file of `archquake spectrum -o`; record NULL: all)
+ * against target tg: every one at the same periods and tg's damping. */
+aq_status aq_plot_spectra_target(const aq_h5_spectra_table *t, const char *record,
+                                 const aq_target *tg, const char *source, const char *target,
+                                 const char *data, double *draw_s, aq_error *err);
 
 #endif
