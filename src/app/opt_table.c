@@ -1112,9 +1112,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "report",
          .title = "report",
          .help_cmd = "report",
-         .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",
+         .synopsis = "report FILE.h5 ... -o F.html",
          .summary = "one HTML page to hand on",
-         .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
+         .head = "usage: archquake report FILE.h5 ... -o REPORT.html\n"
                  "One self-contained HTML page of a screening, to hand on: per arch its\n"
                  "verdict table (sortable, filterable by verdict) and figures (the arch\n"
                  "and its hinge sets, the suite's verdict map, the history of each\n"
@@ -1124,9 +1124,11 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "records with their reasons, and the run: command line, build, date,\n"
                  "options, every record and every arch.  Figures are inline SVG, text as\n"
                  "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
-                 "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
-                 "CAPACITY.h5 one of archquake capacity -o; a file of archquake select -o\n"
-                 "given there too adds its suite: the target, checks, spectra, records.\n",
+                 "Each FILE.h5 in its section, whatever their order: at most one\n"
+                 "results file of the main job (archquake ... -o), and any files of\n"
+                 "archquake capacity -o, select -o (its suite: the target, checks,\n"
+                 "spectra, records) and spectrum -o (its spectra: a figure and a table);\n"
+                 "without a results file, the run is the first file's.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},

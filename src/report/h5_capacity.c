@@ -115,6 +115,7 @@ typedef struct {
   int64_t records, censored;
   double median, beta, median_lo, median_hi; /* the median's units: per row, below */
   int64_t rank;
+  double beta_per_power; /* what rank orders: beta / the IM's power of the scale */
 } fit_row;
 
 static const aq_h5_col fit_cols[] = {
@@ -126,7 +127,8 @@ static const aq_h5_col fit_cols[] = {
     AQ_H5_COL(fit_row, beta, AQ_H5_DOUBLE, "1"),
     AQ_H5_COL(fit_row, median_lo, AQ_H5_DOUBLE, NULL),
     AQ_H5_COL(fit_row, median_hi, AQ_H5_DOUBLE, NULL),
-    AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1")};
+    AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1"),
+    AQ_H5_COL(fit_row, beta_per_power, AQ_H5_DOUBLE, "1")};
 enum { NFIT_COLS = sizeof fit_cols / sizeof fit_cols[0] };
 
 /* The reader's names of the numeric columns (pair_cols' 5th to 14th). */
@@ -208,7 +210,8 @@ static int fill(const aq_h5_capacity *c, columns *k)
     const aq_fragility *q = c->fit[i].fit;
     const char *im = c->fit[i].im;
     k->fit[i] = (fit_row){c->fit[i].arch, im, (int64_t)q->n, (int64_t)q->ncensored,
-                          q->median, q->beta, q->median_lo, q->median_hi, q->rank};
+                          q->median, q->beta, q->median_lo, q->median_hi, q->rank,
+                          aq_fragility_row_ranked(im, q->beta)};
     k->med_units[i] = "1";
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
       if (im && strcmp(im, aq_fragility_im_names[m]) == 0)
@@ -476,6 +479,18 @@ static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
     ok = ds_read(gf, j ? "censored" : "records", H5T_NATIVE_INT64, iv, n, 1) >= 0;
     for (size_t i = 0; ok && i < t->nfit; i++)
       *(j ? &t->fit[i].censored : &t->fit[i].records) = iv[i];
+  }
+  /* the rank and what it orders (files written before: from beta) */
+  int have_rank = ok && H5Lexists(gf, "rank", H5P_DEFAULT) > 0;
+  if (have_rank)
+    ok = ds_read(gf, "rank", H5T_NATIVE_INT64, iv, n, 1) >= 0;
+  int have_ranked = ok && H5Lexists(gf, "beta_per_power", H5P_DEFAULT) > 0;
+  if (have_ranked)
+    ok = ds_read(gf, "beta_per_power", H5T_NATIVE_DOUBLE, v, n, 1) >= 0;
+  for (size_t i = 0; ok && i < t->nfit; i++) {
+    t->fit[i].rank = have_rank ? iv[i] : 0;
+    t->fit[i].beta_per_power =
+        have_ranked ? v[i] : aq_fragility_row_ranked(t->fit[i].im, t->fit[i].beta);
   }
   free(v);
   free(iv);

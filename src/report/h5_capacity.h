@@ -55,6 +55,8 @@ typedef struct {
   char arch[AQ_SUMMARY_ARCH_MAX], im[32];
   double median, beta, median_lo, median_hi;
   int64_t records, censored;
+  int64_t rank;          /* 1 for the arch's best measure; 0 unfitted (or not in the file) */
+  double beta_per_power; /* what rank orders: beta over the IM's power of the scale */
 } aq_h5_fragility_fit;
 
 typedef struct {
