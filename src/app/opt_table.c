@@ -566,7 +566,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .help = "normal (the record as read), reversed (negated) or both "
                                  "(each record both ways; the polarity column says which: a "
                                  "hinge-controlled arch's response depends on the sign); "
-                                 "default normal, for capacity both (the worse governs)"},
+                                 "default both, the worse governing every summary, or normal "
+                                 "alone when every arch has free hinges and is its own mirror "
+                                 "image (it answers a record and its negation alike) or every "
+                                 "subject is a ground motion at azimuths in opposite pairs "
+                                 "(--azimuth all)"},
     [AQ_OPT_TABLE] = {.name = "table", .kind = AQ_ARG_FLAG, DEST(table), .cmds = C(MECHANISM),
                       .help = "add, after a blank line, the work path of each admissible set "
                               "at N points over [0, q_c] (the data of the paper's Figs 4-7)"},
@@ -942,6 +946,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  interpolation tables against the exact kinematics; thrust_ecc is the\n"
                  "  largest eccentricity |r - R|/(t/2) of the line of thrust over the joints\n"
                  "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
+                 "  impact_vel_ratio is the set's velocity after an impact arriving from the\n"
+                 "  other set over the velocity before (momentum rule); <= 0: the arch stops.\n"
                  "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
                  "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
                  "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
@@ -1171,7 +1177,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->cmd = (int)cmd;
   o->impact = -1;
   o->ode_rtol = 1e-10;
-  o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;
+  o->polarity = AQ_POLARITY_AUTO; /* aq_opt_polarity_resolve, once the arches are loaded */
   if (cmd == AQ_CMD_RUN) { /* the main job: spectral measures only when named; their
                               13 periods over the padded records cost more than
                               everything else it does (docs/spectrum.md) */
