@@ -512,8 +512,8 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
   static const struct {
     aq_fc2d_solver solver;
     double eps;
-  } attempts[] = {{AQ_FC2D_LEMKE, 1e-12}, {AQ_FC2D_LEMKE, 1e-10}, {AQ_FC2D_LEMKE, 1e-8},
-                  {AQ_FC2D_NSGS, 1e-12}};
+  } attempts[] = {{AQ_FC2D_LEMKE, 1e-12}, {AQ_FC2D_AP, 1e-12}, {AQ_FC2D_LEMKE, 1e-10},
+                  {AQ_FC2D_AP, 1e-10}, {AQ_FC2D_LEMKE, 1e-8}, {AQ_FC2D_NSGS, 1e-12}};
   for (size_t attempt = 0; attempt < sizeof attempts / sizeof attempts[0]; attempt++) {
     double eps = attempts[attempt].eps;
     for (int i = 0; i < n; i++)
