@@ -437,8 +437,9 @@ static void agree(const char *dir)
         names[j] = t;
       }
   printf("(agree: the arch's own impact rule; agree_m: the momentum rule)\n");
-  printf("%-12s %-6s %5s %5s %6s %6s %6s %6s %8s %8s %10s\n", "arch", "hinges", "mu", "runs",
-         "agree", "both_c", "4h_only", "bk_only", "agree_m", "failed", "blocks_s");
+  printf("%-12s %-6s %5s %5s %6s %6s %6s %6s %8s %8s %6s %10s\n", "arch", "hinges", "mu",
+         "runs", "agree", "both_c", "4h_only", "bk_only", "agree_m", "failed", "loose",
+         "blocks_s");
   for (size_t a = 0; a < 3; a++)
     for (int mode = 0; mode < 2; mode++)
       for (int m = 0; m < 2; m++) {
@@ -454,7 +455,8 @@ static void agree(const char *dir)
         if (!A)
           continue;
         const aq_path *p = aq_arch_path(A, 0);
-        size_t runs = 0, same = 0, both = 0, only4 = 0, onlyb = 0, failed = 0, agreem = 0;
+        size_t runs = 0, same = 0, both = 0, only4 = 0, onlyb = 0, failed = 0, agreem = 0,
+               loose = 0;
         double secs = 0;
         char diffs[8192];
         size_t dk = 0;
@@ -488,7 +490,10 @@ static void agree(const char *dir)
             secs += sec;
             if (!ok4 || !okb || !okm) {
               failed++;
+              if (!okb)
+                fprintf(stderr, "bench_blocks: %s x%.1f: %s\n", names[r], ratios[k], e.message);
             } else {
+              loose += rb.steps_loose;
               agreem += rm.collapsed == rb.r.collapsed;
               int c4 = ro.collapsed, cb = rb.r.collapsed;
               same += c4 == cb;
@@ -518,9 +523,9 @@ static void agree(const char *dir)
             aq_stepper_free(st);
             aq_steps_free(&s);
           }
-        printf("%-12.12s %-6s %5g %5zu %6zu %6zu %6zu %6zu %8zu %8zu %10.1f\n%s", arches[a] + 7,
-               mode ? "free" : "fixed", mus[m], runs, same, both, only4, onlyb, agreem, failed,
-               secs, diffs);
+        printf("%-12.12s %-6s %5g %5zu %6zu %6zu %6zu %6zu %8zu %8zu %6zu %10.1f\n%s",
+               arches[a] + 7, mode ? "free" : "fixed", mus[m], runs, same, both, only4, onlyb,
+               agreem, failed, loose, secs, diffs);
         fflush(stdout);
         aq_arch_free(A);
       }

@@ -348,6 +348,7 @@ static aq_status advance(aq_blocks *b, double t, double dt, double ax, double ay
       b->counters.siconos++;
     b->counters.iters += (size_t)info.iters;
     b->counters.pivots += (size_t)info.pivots;
+    b->counters.loose += (size_t)info.loose;
     int ev = aq_events_step(&b->ev, b->m, tend, h, ax, ay, info.impact, record);
     if (ev == 2) {
       int fell = 0;
@@ -485,6 +486,7 @@ done:
   res->active_set_iters = b->counters.iters;
   res->siconos_pivots = b->counters.pivots;
   res->statics = b->counters.statics;
+  res->steps_loose = b->counters.loose;
   res->r.substeps = b->counters.steps;
   res->r.evals = b->counters.iters;
   if (res->r.collapsed || !b->at_rest)

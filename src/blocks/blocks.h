@@ -71,6 +71,8 @@ typedef struct {
   size_t active_set_iters;   /* chain solves in all */
   size_t siconos_pivots;     /* Lemke pivots (or NSGS sweeps) in all */
   size_t statics;            /* static ranges found (linear programs pairs) */
+  size_t steps_loose;        /* steps whose contact problem Siconos solved only to 1e-3 of the
+                                step's scales (docs/blocks.md) */
   /* per-voussoir history (when asked): sample i, voussoir k at
    * [i * nvous + k] of each (centroid x, y, m; rotation, rad) */
   size_t nvous;

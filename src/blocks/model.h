@@ -215,6 +215,7 @@ typedef struct {
   aq_step_path path;
   int iters;          /* chain solves */
   int pivots;         /* Siconos's pivots or sweeps */
+  int loose;          /* 1: Siconos's best answer met only LOOSE_REL (moreau.c) */
   int impact;         /* 1: a contact closed with an approach velocity */
 } aq_step_info;
 
