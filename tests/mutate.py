@@ -33,9 +33,12 @@ MUT = os.path.join("build", "mut")
 LIST = os.path.join("tests", "mutants.txt")
 # Test-name prefixes run first for a mutant in each stage.
 STAGE_TESTS = [("src/arch/stepper.c", "dyn_"), ("src/arch/eom.c", "dyn_"),
+               ("src/app/suite_record.c", "select_cli_suite"),
+               ("src/job/subject.c", "select_cli_suite"),
                ("src/io/", "io_"), ("src/signal/", "signal_"), ("src/arch/", "arch_"),
                ("src/report/", "report_"), ("src/app/", "app_"),
-               ("src/util/diskcache.c", "cache_"), ("src/job/subject_cache.c", "cache_")]
+               ("src/util/diskcache.c", "cache_"), ("src/job/subject_cache.c", "cache_"),
+               ("src/select/", "select_")]
 
 
 def parse_list(path):

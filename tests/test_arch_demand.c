@@ -534,3 +534,66 @@ AQ_TEST(arch_demand_runs_as_with_every_joint_at_every_state)
     printf("runs %zu (moved %zu): %zu states, %zu with every joint evaluated\n", runs, moved,
            states, full);
 }
+
+AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
+{
+  /* the claim the tracker rests on: in the box where it looks at no joint,
+   * no joint exceeds the running maxima.  States of smooth swings (so that
+   * boxes are kept); after each, the box's eight corners and random points
+   * inside it, every joint evaluated there. */
+  gsl_set_error_handler_off();
+  unsigned long long rng = 0xb0c5e5ULL;
+  size_t boxes = 0, points = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fb = calloc(nf, sizeof *fb);
+    aq_demand *d = aq_arch_demand_tracker(A, NAN, &e);
+    for (int set = 0; set < 2; set++) {
+      const aq_path *p = aq_arch_path(A, set);
+      const aq_demand_table *t = aq_arch_demand_table(A, set);
+      if (!t)
+        continue;
+      double g = p->g_mps2, amax = 2.5 * p->lambda0;
+      aq_demand_begin(d, amax);
+      double amp = 0.6 * p->s_c_rad, phase = 0;
+      for (int i = 0; i < 300; i++) {
+        phase += 0.02 + 0.05 * tds_rng(&rng);
+        double sn = sin(phase), s = fabs(amp * sn);
+        double ke = 0.3 * p->mass_kg * g * 0.01 * p->s_c_rad * (1 - sn * sn);
+        double a = (2 * tds_rng(&rng) - 1) * amax * g;
+        aq_demand_at(d, set, s, ke, a, g, 0.01 * i);
+        double bx[6];
+        if (!aq_demand_fast_box(d, set, bx))
+          continue;
+        boxes++;
+        double mu = aq_demand_max(d, 0), ecc = aq_demand_max(d, 1);
+        for (int c = 0; c < 14; c++) {
+          double u[3];
+          for (int k = 0; k < 3; k++)
+            u[k] = c < 8 ? (c >> k & 1) : tds_rng(&rng);
+          double ss = bx[0] + u[0] * (bx[1] - bx[0]), al = bx[2] + u[1] * (bx[3] - bx[2]);
+          double kg = fmax(0, bx[4]) + u[2] * (fmin(bx[5], 1e30) - fmax(0, bx[4]));
+          if (!(ss >= 0 && ss <= p->s_c_rad) || !isfinite(kg))
+            continue;
+          brute b = {0, 0, NAN, NAN};
+          brute_at(t, fb, nf, ss, kg * g, al * g, g, 0, INFINITY, &b);
+          points++;
+          aq_check(b.mu <= mu * (1 + 1e-12) && b.ecc <= ecc * (1 + 1e-12),
+                   "%s set %d state %d: at s %.9g a/g %.6g KE/g %.6g in the box, |T|/N %.12g "
+                   "(max %.12g), ecc %.12g (max %.12g)",
+                   shipped[f], set, i, ss, al, kg, b.mu, mu, b.ecc, ecc);
+        }
+      }
+    }
+    aq_demand_free(d);
+    free(fb);
+    aq_arch_free(A);
+  }
+  aq_check(boxes > 1000, "boxes kept (%zu)", boxes);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("regions: %zu boxes, %zu points\n", boxes, points);
+}

@@ -955,7 +955,8 @@ AQ_TEST(arch_shapes_main_job_plot_and_report)
     aq_test_tsv_field(t[0], row, 5, st, sizeof st);
     double q0 = atof(aq_test_tsv_field(t[0], row, 8, p0, sizeof p0));
     double q1 = atof(aq_test_tsv_field(t[1], row, 8, p1, sizeof p1));
-    aq_check(!strcmp(a, arches[row - 1]) && !strcmp(st, "ok"), "row %d: %s %s", row, a, st);
+    /* it ran: ok, or its marks (free arches' thrust leaves a section: beyond) */
+    aq_check(!strcmp(a, arches[row - 1]) && st[0] && !strchr(st, ':'), "row %d: %s %s", row, a, st);
     moved += q1 > 0;
     aq_check_rel(q0, q1, 1e-6, "%s: peak rotation, workpath vs ode", a);
   }

@@ -57,6 +57,7 @@ int aq_cmd_compare(int argc, char **argv);   /* archquake compare */
 int aq_cmd_plot(int argc, char **argv);      /* archquake plot */
 int aq_cmd_capacity(int argc, char **argv);  /* archquake capacity */
 int aq_cmd_spectrum(int argc, char **argv);  /* archquake spectrum */
+int aq_cmd_select(int argc, char **argv);    /* archquake select */
 int aq_cmd_report(int argc, char **argv);    /* archquake report */
 int aq_cmd_help(int argc, char **argv);      /* archquake help [COMMAND] */
 

@@ -61,6 +61,8 @@ static void prepare(const aq_cap_setup *S, size_t r, aq_signal_ws *ws, aq_cap_it
   aq_subject_opts so = {S->ro, S->po, or->vertical, 0, 0, NULL};
   aq_status s = aq_subject_prepare(&it->subj, &src, &so, ws, &it->err);
   const char *stage = it->subj.stage;
+  if (s == AQ_OK && S->factor) /* --suite: the suite's record is the subject */
+    s = aq_subject_scale(&it->subj, S->factor[r], &it->err);
   if (s == AQ_OK)
     s = make_views(S, it, &it->err);
   aq_summary_status(it->status, sizeof it->status, stage, s);

@@ -59,6 +59,8 @@ typedef struct {
   double merge_tol_mps2;
   double scale_max;              /* --scale-max, or NAN */
   aq_scan_opts scan;
+  const double *factor;          /* --suite: per subject, its suite scale (the
+                                    subject's factor 1 is the suite's); NULL: none */
 } aq_cap_setup;
 
 /* Read, process and project subject r into *it (errors printed on stderr,

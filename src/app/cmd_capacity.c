@@ -29,6 +29,7 @@
 #include "app.h"
 #include "capacity_tasks.h"
 #include "opt.h"
+#include "opt_suite.h"
 #include "opt_table.h"
 
 /* The status cell of pair c of record r. */
@@ -230,6 +231,8 @@ int aq_cmd_capacity(int argc, char **argv)
   char **arch_paths = opts.arches;
   size_t na = opts.narches;
   aq_orient_opts orient = opts.orient;
+  const char *suite_path = opts.suite; /* --suite: argv's string */
+  aq_opt_suite suite_in = {0};
   opts.arches = NULL;
   aq_opt_orient_init(&opts.orient);
   aq_opts_free(&opts);
@@ -243,7 +246,9 @@ int aq_cmd_capacity(int argc, char **argv)
   /* --tol <= --resolution: the table's rule */
   aq_error se;
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind), &ro);
-  if (optind >= argc && orient.nmotions == 0) {
+  if (suite_path)
+    aq_opt_suite_take(suite_path, &argc, &argv, optind, &orient, &suite_in, &nerr);
+  if (optind >= argc && orient.nmotions == 0 && !suite_path) {
     fprintf(stderr, "archquake: capacity: expected at least one RECORD or --components\n");
     nerr++;
   }
@@ -277,6 +282,7 @@ int aq_cmd_capacity(int argc, char **argv)
       aq_error_print(&se, stderr);
       aq_opt_orient_free(&orient);
       free(arch_paths);
+      aq_opt_suite_free(&suite_in);
       return AQ_EXIT_FAIL;
     }
     for (size_t i = 0; !aq_farm_is_follower() && i < nnotes; i++)
@@ -312,6 +318,7 @@ int aq_cmd_capacity(int argc, char **argv)
     free(phi);
     aq_record_names_free(names, nplain);
     aq_opt_orient_free(&orient);
+    aq_opt_suite_free(&suite_in);
     return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
 
@@ -347,7 +354,7 @@ int aq_cmd_capacity(int argc, char **argv)
     goto done;
   aq_cap_setup S = {nrec, recs, (const char *const (*)[3])paths, (const double (*)[2])phi,
                      &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
-                     cor, merge_tol_g * AQ_G0_MPS2, smax, so};
+                     cor, merge_tol_g * AQ_G0_MPS2, smax, so, suite_in.factors};
   if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
     rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
     goto done;
@@ -420,5 +427,6 @@ done:
   free(phi);
   aq_record_names_free(names, nplain);
   aq_opt_orient_free(&orient);
+  aq_opt_suite_free(&suite_in);
   return rc;
 }

@@ -66,7 +66,7 @@ int aq_cmd_domain(int argc, char **argv)
     goto out;
   }
   const aq_path *pp = aq_arch_path(arch, 0);
-  st = aq_job_stepper(arch, (aq_model)model, cor, 0, &err);
+  st = aq_job_stepper(arch, (aq_model)model, cor, 0, 0, &err);
   if (!st) {
     aq_error_print(&err, stderr);
     goto out;

@@ -46,7 +46,7 @@ static int locale_paper(void)
 
 typedef struct {
   int fig;
-  const char *input, *out, *data, *run, *arch, *im, *record;
+  const char *input, *out, *data, *run, *arch, *im, *record, *target;
   int x_rad, y_pga; /* capacity: --x rad, --y pga */
   int paper;        /* an aq_plot_paper; -1: the locale's */
   double rotation_rad, cor;
@@ -70,6 +70,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->arch = a.arch;
   o->im = a.im;
   o->record = a.record;
+  o->target = a.target;
   o->x_rad = a.x_rad;
   o->y_pga = a.y_pga;
   o->paper = a.paper;
@@ -144,7 +145,7 @@ static int plot_domain(const plot_opts *o, const aq_arch *arch, aq_error *err)
     return AQ_EXIT_USAGE;
   const aq_path *pp = aq_arch_path(arch, 0);
   double *dur = malloc(n * sizeof *dur);
-  aq_stepper *st = aq_job_stepper(arch, AQ_MODEL_WORKPATH, o->cor, 0, err);
+  aq_stepper *st = aq_job_stepper(arch, AQ_MODEL_WORKPATH, o->cor, 0, 0, err);
   int rc = AQ_EXIT_OK;
   if (!dur || !st) {
     rc = dur ? fail(err) : AQ_EXIT_FAIL;
@@ -164,6 +165,49 @@ static int plot_domain(const plot_opts *o, const aq_arch *arch, aq_error *err)
 out:
   aq_stepper_free(st);
   free(dur);
+  return rc;
+}
+
+/* plot spectrum: a spectrum file's spectra, or with --target against it;
+ * a select file's suite against its target (or --target's). */
+static int plot_spectrum(const plot_opts *o)
+{
+  aq_error err;
+  aq_target tg;
+  int have = o->target != NULL, rc = AQ_EXIT_OK;
+  if (have && aq_target_parse(o->target, &tg, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    return AQ_EXIT_USAGE;
+  }
+  if (aq_h5_is_select(o->input)) {
+    aq_h5_select_file f;
+    if (o->record) {
+      fprintf(stderr, "archquake: plot spectrum: --record: expected a file of archquake "
+                      "spectrum -o, got %s, a suite of archquake select (drawn whole)\n",
+              o->input);
+      rc = AQ_EXIT_USAGE;
+    } else if (aq_h5_select_read(o->input, &f, &err) != AQ_OK) {
+      rc = fail(&err);
+    } else {
+      if (aq_plot_select(&f, have ? &tg : NULL, o->input, o->out, o->data, NULL, &err) != AQ_OK)
+        rc = fail(&err);
+      aq_h5_select_file_free(&f);
+    }
+  } else {
+    aq_h5_spectra_table t;
+    if (aq_h5_spectra_read(o->input, &t, &err) != AQ_OK) {
+      rc = fail(&err);
+    } else {
+      if ((have ? aq_plot_spectra_target(&t, o->record, &tg, o->input, o->out, o->data, NULL,
+                                         &err)
+                : aq_plot_spectrum(&t, o->record, o->input, o->out, o->data, NULL, &err)) !=
+          AQ_OK)
+        rc = fail(&err);
+      aq_h5_spectra_table_free(&t);
+    }
+  }
+  if (have)
+    aq_target_free(&tg);
   return rc;
 }
 
@@ -239,17 +283,9 @@ int aq_cmd_plot(int argc, char **argv)
     aq_h5_capacity_table_free(&t);
     break;
   }
-  case FIG_SPECTRUM: {
-    aq_h5_spectra_table t;
-    if (aq_h5_spectra_read(o.input, &t, &err) != AQ_OK) {
-      rc = fail(&err);
-      break;
-    }
-    if (aq_plot_spectrum(&t, o.record, o.input, o.out, o.data, NULL, &err) != AQ_OK)
-      rc = fail(&err);
-    aq_h5_spectra_table_free(&t);
+  case FIG_SPECTRUM:
+    rc = plot_spectrum(&o);
     break;
-  }
   }
 out:
   if (aq_plot_held_finish(rc == AQ_EXIT_OK, &err) != AQ_OK)

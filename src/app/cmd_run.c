@@ -19,6 +19,7 @@
 #include "../util/outfile.h"
 #include "app.h"
 #include "opt.h"
+#include "opt_suite.h"
 #include "opt_table.h"
 #include "suite.h"
 
@@ -94,6 +95,8 @@ int aq_cmd_run(int argc, char **argv)
   char **arches = o.arches;
   double *scales = o.scales;
   size_t nscale = o.nscale;
+  const char *suite_path = o.suite; /* --suite: argv's string */
+  aq_opt_suite suite_in = {0};
   aq_orient_opts orient = o.orient;
   o.arches = NULL;
   o.scales = NULL;
@@ -101,7 +104,10 @@ int aq_cmd_run(int argc, char **argv)
   aq_opts_free(&o);
   argc = optind + (int)aq_read_opts_take_stationxml(argv + optind, (size_t)(argc - optind),
                                                     &cfg.read);
-  if (optind >= argc && orient.nmotions == 0) {
+  if (suite_path && aq_opt_suite_take(suite_path, &argc, &argv, optind, &orient, &suite_in,
+                                      &nerr) == 0)
+    cfg.record_scales = suite_in.factors; /* each record at its own scale */
+  if (optind >= argc && orient.nmotions == 0 && !suite_path) {
     fprintf(stderr, "archquake: expected at least one RECORD or --components (see 'archquake --help')\n");
     nerr++;
   }
@@ -153,6 +159,7 @@ int aq_cmd_run(int argc, char **argv)
     free(labels);
     free(motions);
     aq_opt_orient_free(&orient);
+    aq_opt_suite_free(&suite_in);
     return nerr ? AQ_EXIT_USAGE : AQ_EXIT_OUTPUT;
   }
 
@@ -230,5 +237,6 @@ out:
   free(labels);
   free(motions);
   aq_opt_orient_free(&orient);
+  aq_opt_suite_free(&suite_in);
   return rc;
 }

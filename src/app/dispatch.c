@@ -43,6 +43,7 @@ static int (*const entry[AQ_CMD_N])(int argc, char **argv) = {
     [AQ_CMD_DOMAIN] = aq_cmd_domain,   [AQ_CMD_COMPARE] = aq_cmd_compare,
     [AQ_CMD_CAPACITY] = aq_cmd_capacity, [AQ_CMD_REPORT] = aq_cmd_report,
     [AQ_CMD_SPECTRUM] = aq_cmd_spectrum, [AQ_CMD_HELP] = aq_cmd_help,
+    [AQ_CMD_SELECT] = aq_cmd_select,
     [AQ_CMD_PLOT] = aq_cmd_plot,
 };
 

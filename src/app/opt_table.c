@@ -16,6 +16,7 @@
 #include "../arch/stepper.h"
 #include "../blocks/blocks.h"
 #include "../capacity/capacity.h"
+#include "../select/misfit.h"
 #include "../signal/spectrum.h"
 #include "app.h"
 #include "opt.h"
@@ -29,6 +30,7 @@
 #define ALL_CMDS ((1u << AQ_CMD_N) - 1)
 #define RECORDS (C(RUN) | C(INFO) | C(CAPACITY) | C(SPECTRUM)) /* the commands that read records */
 #define SUITES (C(RUN) | C(CAPACITY))            /* ... and run them against arches */
+#define READS (RECORDS | C(SELECT)) /* reading and processing: select's pool too */
 #define DYNAMICS (SUITES | C(PULSE) | C(DOMAIN))  /* the commands that run the stepper */
 
 /* Where a value goes. */
@@ -142,6 +144,44 @@ static void sa_avg(char *arg, aq_opts *o, int *nerr)
   periods("--sa-avg", arg, 2, 2, 1, "two periods T1,T2 in s with T1 < T2, or none", v, nerr);
   o->proc.sa_avg_lo_s = v[0];
   o->proc.sa_avg_hi_s = v[1];
+}
+
+/* select --periods T1,T2: the period range, 0 < T1 < T2. */
+static void select_periods(char *arg, aq_opts *o, int *nerr)
+{
+  double v[2] = {NAN, NAN};
+  if (periods("--periods", arg, 2, 2, 1, "two periods T1,T2 in s with 0 < T1 < T2", v,
+              nerr) == 2) {
+    o->range_s[0] = v[0];
+    o->range_s[1] = v[1];
+  }
+}
+
+/* --scale-range LO,HI: 0 < LO <= HI (equal: one scale for every record). */
+static void scale_range(char *arg, aq_opts *o, int *nerr)
+{
+  char *comma = strchr(arg, ',');
+  if (!comma || strchr(comma + 1, ',')) {
+    fprintf(stderr, "archquake: --scale-range: expected two factors LO,HI with 0 < LO <= HI, "
+                    "got \"%s\"\n", arg);
+    (*nerr)++;
+    return;
+  }
+  int before = *nerr;
+  double v[2];
+  *comma = '\0';
+  aq_opt_double_gt("--scale-range", arg, 0, 1e6, &v[0], nerr);
+  aq_opt_double_gt("--scale-range", comma + 1, 0, 1e6, &v[1], nerr);
+  *comma = ',';
+  if (*nerr != before)
+    return;
+  if (!(v[0] <= v[1])) {
+    fprintf(stderr, "archquake: --scale-range: expected LO <= HI, got \"%s\"\n", arg);
+    (*nerr)++;
+    return;
+  }
+  o->scale_range[0] = v[0];
+  o->scale_range[1] = v[1];
 }
 
 /* The checks between options (the rows' .check), made after parsing. */
@@ -371,10 +411,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "pulse to lambda0 g (default 1.05,1.1,1.2,1.5,2,3,4; plot domain: "
                                "1.02,1.05,1.1,1.2,1.35,1.5,1.75,2,2.5,3,4,5)"},
     [AQ_OPT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
-                       .meta = "FILE.h5", DEST(output), .cmds = SUITES | C(SPECTRUM),
+                       .meta = "FILE.h5", DEST(output),
+                       .cmds = SUITES | C(SPECTRUM) | C(SELECT),
                        .help = "write the HDF5 results file (docs/hdf5-layout.md; capacity: "
                                "its results in a `capacity` group; spectrum: the spectra "
-                               "in a `spectra` group)"},
+                               "in a `spectra` group; select: a `select` group)"},
     [AQ_OPT_PLOT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                             .meta = "FILE", DEST(output), .cmds = PLOT_ALL,
                             .help = "the figure (.png .svg .pdf)",
@@ -384,7 +425,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .help = "the page",
                               .required = C(REPORT)},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
-                     .cmds = SUITES, .help = "write the TSV to FILE instead of stdout"},
+                     .cmds = SUITES | C(SELECT),
+                     .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
                           DEST(fragility), .cmds = C(CAPACITY),
                           .help = "lognormal fragility fits, one row per (arch, IM)"},
@@ -460,7 +502,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                              .help = "give up above this duration, s (default 100)"},
     [AQ_OPT_JOBS] = {.name = "jobs", .short_name = 'j', .kind = AQ_ARG_LONG, .lo = 1,
                      .hi = AQ_MAX_THREADS, .meta = "N", DEST(threads),
-                     .cmds = SUITES | C(SPECTRUM),
+                     .cmds = SUITES | C(SPECTRUM) | C(SELECT),
                      .help = "worker threads (default: the number of cores); the results "
                              "are the same for every N"},
     [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
@@ -554,13 +596,69 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                         .cmds = C(SPECTRUM),
                         .help = "damping ratios, comma-separated, each in (0, 1) (default "
                                 "0.05)"},
+    [AQ_OPT_TARGET] = {.name = "target", .kind = AQ_ARG_STRING, .meta = "SPEC", DEST(target),
+                       .cmds = C(SELECT) | C(PLOT_SPECTRUM),
+                       .help = "the target spectrum: ec8:KEY=VALUE,... with type=1|2, "
+                               "ground=A..E, ag=G (a_gR in g) and optionally importance=GAMMA, "
+                               "damping=ZETA (EN 1998-1:2004 3.2.2.2); asce7:sds=G,sd1=G,tl=S "
+                               "and optionally ,mcer (ASCE/SEI 7-22, the design or MCE_R "
+                               "spectrum); or a CSV file period_s,psa_g of your own "
+                               "(docs/select.md)",
+                       .required = C(SELECT)},
+    [AQ_OPT_COUNT] = {.name = "count", .kind = AQ_ARG_SIZE, .lo = 1, .hi = 1000, .meta = "N",
+                      DEST(count), .cmds = C(SELECT),
+                      .help = "records (or --components pairs) in the suite, 1..1000",
+                      .required = C(SELECT)},
+    [AQ_OPT_SELECT_PERIODS] = {.name = "periods", .kind = AQ_ARG_CUSTOM, .meta = "T1,T2",
+                               .fn = select_periods, .cmds = C(SELECT),
+                               .help = "the period range, s, 0 < T1 < T2 (default: the range "
+                                       "of the best-ranked spectral measure of --fragility, "
+                                       "else 0.1,1; docs/select.md)"},
+    [AQ_OPT_PERIOD_GRID] = {.name = "period-grid", .kind = AQ_ARG_LIST, .lo = 0, .hi = 1e4,
+                            .meta = "LIST", DEST_LIST(period_grid, nperiod_grid),
+                            .cmds = C(SELECT),
+                            .help = "the periods, s, at which the suite is matched and checked "
+                                    "(those within the range; default: PEER's 111 periods "
+                                    "within the range, and T1 and T2)"},
+    [AQ_OPT_SCALE_RANGE] = {.name = "scale-range", .kind = AQ_ARG_CUSTOM, .meta = "LO,HI",
+                            .fn = scale_range, .cmds = C(SELECT),
+                            .help = "each record's scale factor within LO..HI, 0 < LO <= HI "
+                                    "(default 0.25,4)"},
+    [AQ_OPT_MAX_PER_EVENT] = {.name = "max-per-event", .kind = AQ_ARG_SIZE, .lo = 1,
+                              .hi = 1000, .meta = "K", DEST(max_per_event), .cmds = C(SELECT),
+                              .help = "at most K records of one event, where the files name "
+                                      "their event (default: no limit)"},
+    [AQ_OPT_BEST_EFFORT] = {.name = "best-effort", .kind = AQ_ARG_FLAG, DEST(best_effort),
+                            .cmds = C(SELECT),
+                            .help = "when no suite meets the conditions within the scale "
+                                    "range, write the one closest to them anyway (its file "
+                                    "says which fail; exit status 1)"},
+    [AQ_OPT_FRAGILITY_IN] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
+                             DEST(fragility_in), .cmds = C(SELECT),
+                             .help = "capacity's --fragility fits: the period range is that of "
+                                     "the arch's best-ranked spectral measure (Sa_avg T1..T2, "
+                                     "or 0.2T..2T of Sa(T))",
+                             .conflicts = OPTS(AQ_OPT_SELECT_PERIODS),
+                             .why = "both give the period range"},
+    [AQ_OPT_ARCH_FRAGILITY] = {.name = "fragility-arch", .kind = AQ_ARG_STRING, .meta = "NAME",
+                               DEST(arch), .cmds = C(SELECT),
+                               .help = "the arch of the --fragility file, by name (default: "
+                                       "its only arch)",
+                               .requires = OPTS(AQ_OPT_FRAGILITY_IN),
+                               .why = "it names an arch of that file"},
+    [AQ_OPT_SUITE] = {.name = "suite", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(suite),
+                      .cmds = SUITES,
+                      .help = "the records of a suite file of select, each at its scale "
+                              "(capacity: its scale 1)",
+                      .conflicts = OPTS(AQ_OPT_SCALE_TO_PGA, AQ_OPT_SCALE_TO_LAMBDA0),
+                      .why = "the suite gives each record its scale"},
     [AQ_OPT_HELP] = {.name = "help", .short_name = 'h', .kind = AQ_ARG_FLAG, .cmds = ALL_CMDS,
                      .help = "this text"},
     [AQ_OPT_VERSION] = {.name = "version", .kind = AQ_ARG_FLAG, .cmds = C(RUN),
                         .help = "the version, and nothing else"},
 
     [AQ_OPT_UNITS] = {.name = "units", .kind = AQ_ARG_CUSTOM, .meta = "U", .fn = units,
-                      .cmds = RECORDS, .group = AQ_GROUP_READING,
+                      .cmds = READS, .group = AQ_GROUP_READING,
                       .help = "values of records that state no units are U: g, g/10, gal, "
                               "cm/s2, mm/s2, m/s2, nm/s2 or counts (divided by the "
                               "sensitivity the file states, e.g. SAC SCALE)",
@@ -569,32 +667,32 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "units the file states (reported), e.g. '*.SAC=counts' "
                                "(repeatable; the last matching rule wins)"},
     [AQ_OPT_READ_DT] = {.name = "dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 3600,
-                        .meta = "S", DEST(read.dt_s), .cmds = RECORDS,
+                        .meta = "S", DEST(read.dt_s), .cmds = READS,
                         .group = AQ_GROUP_READING,
                         .help = "sample interval (s) of text records without time column"},
     [AQ_OPT_COLUMN] = {.name = "column", .kind = AQ_ARG_SIZE, .lo = 1, .hi = 64, .meta = "N",
-                       DEST(read.column), .cmds = RECORDS, .group = AQ_GROUP_READING,
+                       DEST(read.column), .cmds = READS, .group = AQ_GROUP_READING,
                        .help = "column N (1-based) of a text record is the acceleration"},
     [AQ_OPT_COMPONENT] = {.name = "component", .kind = AQ_ARG_CUSTOM, .meta = "GLOB=CH",
-                          .read_fn = aq_opt_component, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                          .read_fn = aq_opt_component, .cmds = READS, .group = AQ_GROUP_READING,
                           .help = "channel CH of multi-channel files matching GLOB (or name "
                                   "one record as FILE#CH)"},
     [AQ_OPT_ACCEPT_IMPLAUSIBLE] = {.name = "accept-implausible", .kind = AQ_ARG_FLAG,
-                                   DEST(read.accept_implausible), .cmds = RECORDS,
+                                   DEST(read.accept_implausible), .cmds = READS,
                                    .group = AQ_GROUP_READING,
                                    .help = "keep records whose PGA is outside 1e-5..10 g"},
     [AQ_OPT_ACCEPT_VERTICAL] = {.name = "accept-vertical", .kind = AQ_ARG_FLAG,
-                                DEST(read.accept_vertical), .cmds = RECORDS,
+                                DEST(read.accept_vertical), .cmds = READS,
                                 .group = AQ_GROUP_READING,
                                 .help = "run channels the file identifies as vertical"},
     [AQ_OPT_RESPONSE] = {.name = "response", .kind = AQ_ARG_CUSTOM, .meta = "FILE.xml",
-                         .read_fn = aq_opt_response, .cmds = RECORDS, .group = AQ_GROUP_READING,
+                         .read_fn = aq_opt_response, .cmds = READS, .group = AQ_GROUP_READING,
                          .help = "StationXML giving the sensitivity of miniSEED records (a "
                                  "StationXML given as a RECORD does the same)"},
 
     [AQ_OPT_COMPONENTS] = {.name = "components", .kind = AQ_ARG_CUSTOM, .meta = "H1,H2[,V]",
                            .orient_fn = aq_opt_components,
-                           .cmds = SUITES | C(SPECTRUM),
+                           .cmds = SUITES | C(SPECTRUM) | C(SELECT),
                            .group = AQ_GROUP_ORIENTATION,
                            .help = "one ground motion from two orthogonal horizontal "
                                    "component records (and the vertical V); repeatable.  The "
@@ -605,7 +703,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                            .check = orientation},
     [AQ_OPT_AZIMUTHS] = {.name = "azimuths", .kind = AQ_ARG_CUSTOM, .meta = "A1,A2",
                          .orient_fn = aq_opt_azimuths,
-                         .cmds = SUITES | C(SPECTRUM),
+                         .cmds = SUITES | C(SPECTRUM) | C(SELECT),
                          .group = AQ_GROUP_ORIENTATION,
                          .help = "azimuths phi1, phi2 (deg from north) of the preceding "
                                  "--components (default: from the files, e.g. PEER's GIL067 "
@@ -632,28 +730,28 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                  "the run: status run:eliftoff"},
 
     [AQ_OPT_DETREND] = {.name = "detrend", .kind = AQ_ARG_CHOICE, .choices = detrends,
-                        .meta = "D", DEST(proc.detrend), .cmds = RECORDS,
+                        .meta = "D", DEST(proc.detrend), .cmds = READS,
                         .group = AQ_GROUP_PROCESSING,
                         .help = "remove the least-squares line (linear, default), the mean "
                                 "(mean) or nothing (none)"},
     [AQ_OPT_TAPER] = {.name = "taper", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 0.5,
                       .zero_is_off = 1, /* --taper 0: no taper, as --no-filter gives */
-                      .meta = "FRAC", DEST(proc.taper_frac), .cmds = RECORDS,
+                      .meta = "FRAC", DEST(proc.taper_frac), .cmds = READS,
                       .group = AQ_GROUP_PROCESSING,
                       .help = "Hann taper over FRAC of the record at each end, 0-0.5 "
                               "(default 0: only the zero pads' junctions are tapered)"},
     [AQ_OPT_HIGHPASS] = {.name = "highpass", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
                          .hi = AQ_OPT_FREQ_MAX_HZ, .meta = "HZ", DEST(proc.highpass_hz),
-                         .fn = highpass_given, .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                         .fn = highpass_given, .cmds = READS, .group = AQ_GROUP_PROCESSING,
                          .help = "acausal Butterworth high-pass corner (default 0.03 Hz, or "
                                  "1/duration for a record shorter than 33.3 s)"},
     [AQ_OPT_ORDER] = {.name = "order", .kind = AQ_ARG_INT, .lo = 1, .hi = AQ_OPT_ORDER_MAX,
-                      .meta = "N", DEST(proc.order), .cmds = RECORDS,
+                      .meta = "N", DEST(proc.order), .cmds = READS,
                       .group = AQ_GROUP_PROCESSING,
                       .help = "Butterworth order, 1-20 (default 4)"},
     [AQ_OPT_LOWPASS] = {.name = "lowpass", .kind = AQ_ARG_DOUBLE_GT, .lo = 0,
                         .hi = AQ_OPT_FREQ_MAX_HZ, .meta = "HZ", DEST(proc.lowpass_hz),
-                        .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                        .cmds = READS, .group = AQ_GROUP_PROCESSING,
                         .help = "acausal Butterworth low-pass corner (default off)",
                         .check = lowpass_above_highpass},
     [AQ_OPT_IM_PERIODS] = {.name = "im-periods", .kind = AQ_ARG_CUSTOM, .meta = "LIST",
@@ -668,7 +766,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "or none (default 0.1,1 in info and capacity, none in the main job)"},
     [AQ_OPT_PEAKS] = {.name = "peaks", .kind = AQ_ARG_CHOICE,
                       .choices = aq_spectrum_peaks_names, .meta = "RULE", DEST(proc.peaks),
-                      .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                      .cmds = READS, .group = AQ_GROUP_PROCESSING,
                       .help = "where each oscillator's peak is taken, for the spectra and "
                               "the spectral measures: peer (default: at the samples and at "
                               "N - 1 points between each two, N = ceil(10 dt / T), as PEER "
@@ -676,14 +774,14 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               "the record linear between samples) or samples (at the samples "
                               "only); docs/spectrum.md"},
     [AQ_OPT_SAMPLED_PEAKS] = {.name = "sampled-peaks", .kind = AQ_ARG_FLAG,
-                              DEST(sampled_peaks), .cmds = RECORDS,
+                              DEST(sampled_peaks), .cmds = READS,
                               .group = AQ_GROUP_PROCESSING,
                               .help = "the same as --peaks samples",
                               .conflicts = OPTS(AQ_OPT_PEAKS),
                               .why = "it is --peaks samples",
                               .check = sampled_peaks_alias},
     [AQ_OPT_NO_FILTER] = {.name = "no-filter", .kind = AQ_ARG_FLAG_OFF, DEST(proc.filter),
-                          .cmds = RECORDS, .group = AQ_GROUP_PROCESSING,
+                          .cmds = READS, .group = AQ_GROUP_PROCESSING,
                           .help = "no taper, pads or filter (detrend still applies; "
                                   "--taper 0, no taper, may be given with it)",
                           /* an option that sets one of them would be ignored: refused,
@@ -698,13 +796,13 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                           .help = "merge consecutive samples differing by less than G (g) "
                                   "into one constant-acceleration step (default 0: none)"},
     [AQ_OPT_NO_CACHE] = {.name = "no-cache", .kind = AQ_ARG_FLAG, DEST(no_cache),
-                         .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
-                         .help = "neither read nor store processed records and built arches "
-                                 "in the cache (results are the same either way; "
+                         .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
+                         .help = "neither read nor store processed records, built arches "
+                                 "and spectra in the cache (results are the same either way; "
                                  "docs/cache.md)"},
     [AQ_OPT_CACHE_DIR] = {.name = "cache-dir", .kind = AQ_ARG_STRING, .meta = "DIR",
-                          DEST(cache_dir), .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
-                          .help = "keep processed records and built arches in DIR (made "
+                          DEST(cache_dir), .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
+                          .help = "keep processed records, built arches and spectra in DIR (made "
                                   "if its parent exists; one that cannot be used stops the "
                                   "command before anything runs; default "
                                   "$XDG_CACHE_HOME/archquake, else ~/.cache/archquake, "
@@ -712,7 +810,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                   "on)",
                           .check = cache_dir_needs_cache},
     [AQ_OPT_CACHE_MAX] = {.name = "cache-max", .kind = AQ_ARG_CUSTOM, .meta = "SIZE",
-                          .fn = cache_max, .cmds = C(RUN), .group = AQ_GROUP_PROCESSING,
+                          .fn = cache_max, .cmds = C(RUN) | C(SELECT), .group = AQ_GROUP_PROCESSING,
                           .help = "keep the cache directory under SIZE bytes, or K, M, G, T "
                                   "(1K = 1024), e.g. 2G (default 512M): a write that passes "
                                   "it removes other builds' entries, then the least "
@@ -726,7 +824,8 @@ static const char run_tail[] =
     "significant digits; pipe or redirect it, or use --text, for the TSV).\n"
     "Columns: record arch model scale pga_g status collapsed collapse_time_s\n"
     "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
-    "  energy_in_j energy_dissipated_j  (status: ok, or read:CODE, process:CODE,\n"
+    "  energy_in_j energy_dissipated_j  (status: ok, slides, beyond,\n"
+    "  slides+beyond (below), or read:CODE, process:CODE,\n"
     "  arch:CODE, run:CODE; collapse_time_s is nan for an arch that survives;\n"
     "  then polarity (normal | reversed) lambda0_first (lambda0 of the set the\n"
     "  record drove first; nan if it never moved) peak_rotation_over_qc (the\n"
@@ -735,7 +834,15 @@ static const char run_tail[] =
     "  a run whose status is not ok has every result column nan, collapsed\n"
     "  included: no verdict; then azimuth_deg: the arch's azimuth for a\n"
     "  --components motion, nan for a RECORD; control: fixed or free, the\n"
-    "  arch's hinge control, which its verdicts assume)\n"
+    "  arch's hinge control, which its verdicts assume; then mu_demand (the\n"
+    "  largest |T|/N at any joint over the run) mu_demand_joint (where)\n"
+    "  thrust_ecc_max (the largest eccentricity of the thrust at a joint that\n"
+    "  is not a hinge) thrust_ecc_time_s (when it first passed 1)\n"
+    "  slide_time_s (when mu_demand first passed the friction given), nan\n"
+    "  when the arch never moved; status slides: a friction was given and\n"
+    "  mu_demand passed it; beyond: free control, the thrust left a joint's\n"
+    "  section; slides+beyond: both: the verdict holds for the four-hinge\n"
+    "  model only up to that time, follow such a run with --model blocks)\n"
     "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -941,6 +1048,35 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "Exit status: 0 success; 1 a record could not be read or processed, or a\n"
                  "pair does not fit (each said in one line; nothing is written); 2 bad\n"
                  "options; 3 the output file could not be written.\n"},
+    [AQ_CMD_SELECT] =
+        {.name = "select",
+         .title = "select",
+         .help_cmd = "select",
+         .synopsis = "select POOL... --target SPEC --count N",
+         .summary = "choose and scale a suite to a target spectrum",
+         .head = "usage: archquake select POOL... --target SPEC --count N [--periods T1,T2]\n"
+                 "       [--scale-range LO,HI] [--max-per-event K] [--components H1,H2 ...]\n"
+                 "       [--text SUITE.tsv] [-o SUITE.h5] [OPTIONS]\n"
+                 "Choose N records of the pool (records, directories of records, or quoted\n"
+                 "globs; or pairs with --components), each scaled to bring its spectrum\n"
+                 "closest to the target in the log over the period range, whose mean\n"
+                 "spectrum has the least misfit to the target and meets the code's\n"
+                 "conditions: the mean nowhere below 90 % of the target over the range, for\n"
+                 "Eurocode 8 the mean PGA at least a_g S, at most K records of one event.  A\n"
+                 "suite that falls short is raised by one common factor within the scale\n"
+                 "range.  Every suite is tried when the combinations are at most 2e6, else\n"
+                 "greedy selection then swaps (Jayaram, Lin & Baker 2011) (docs/select.md).\n"
+                 "The suite file (TSV: comment lines, then record channel scale misfit\n"
+                 "event) goes to stdout or --text; the main job and capacity run it with\n"
+                 "--suite.\n",
+         .tail = "Exit status: 0 a suite that meets every condition was written; 1 some\n"
+                 "pool member could not be used (each named; the suite is chosen from the\n"
+                 "others), fewer than N usable, or no suite meets the conditions (how far\n"
+                 "the best falls short, and where, is said; nothing is written unless\n"
+                 "--best-effort); 2 bad options, target or range, or a pool of fewer than N\n"
+                 "records; 3 an output could not be written (no partial file is left).\n",
+         .heading = {[AQ_GROUP_PROCESSING] = "Processing (the pool is processed as the main "
+                                             "job processes records):"}},
     [AQ_CMD_PLOT] = {.name = "plot",
                      .title = "plot",
                      .help_cmd = "plot",
@@ -986,7 +1122,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "options, every record and every arch.  Figures are inline SVG, text as\n"
                  "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
                  "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
-                 "CAPACITY.h5 one of archquake capacity -o.\n",
+                 "CAPACITY.h5 one of archquake capacity -o; a file of archquake select -o\n"
+                 "given there too adds its suite: the target, checks, spectra, records.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},
@@ -1047,6 +1184,9 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->max_duration_s = 100;
   o->paper = -1;
   o->rtol = AQ_COMPARE_RTOL_DEFAULT;
+  o->range_s[0] = o->range_s[1] = NAN;
+  o->scale_range[0] = AQ_SELECT_SCALE_LO_DEFAULT;
+  o->scale_range[1] = AQ_SELECT_SCALE_HI_DEFAULT;
   o->atol = AQ_COMPARE_ATOL_DEFAULT;
 }
 
@@ -1057,6 +1197,9 @@ void aq_opts_free(aq_opts *o)
   free(o->ratios);
   free(o->periods);
   free(o->dampings);
+  free(o->period_grid);
+  o->period_grid = NULL;
+  o->nperiod_grid = 0;
   o->periods = o->dampings = NULL;
   o->nperiods = o->ndampings = 0;
   aq_opt_orient_free(&o->orient);

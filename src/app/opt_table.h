@@ -73,6 +73,7 @@ typedef enum {
   AQ_CMD_CAPACITY,
   AQ_CMD_REPORT, /* archquake report RESULTS.h5 [CAPACITY.h5 ...] -o FILE.html */
   AQ_CMD_SPECTRUM, /* archquake spectrum RECORD... */
+  AQ_CMD_SELECT,   /* archquake select POOL... --target SPEC --count N */
   AQ_CMD_HELP,     /* archquake help [COMMAND] */
   AQ_CMD_PLOT, /* plot's --help; its figures parse as the five below */
   AQ_CMD_PLOT_HISTORY,
@@ -143,6 +144,16 @@ typedef enum {
   AQ_OPT_SA_AVG,
   AQ_OPT_PEAKS,         /* where a spectral peak is taken */
   AQ_OPT_SAMPLED_PEAKS, /* --peaks samples */
+  AQ_OPT_TARGET,        /* select, plot spectrum */
+  AQ_OPT_COUNT,         /* select */
+  AQ_OPT_SELECT_PERIODS,
+  AQ_OPT_PERIOD_GRID,
+  AQ_OPT_SCALE_RANGE,
+  AQ_OPT_MAX_PER_EVENT,
+  AQ_OPT_BEST_EFFORT,
+  AQ_OPT_FRAGILITY_IN,
+  AQ_OPT_ARCH_FRAGILITY,
+  AQ_OPT_SUITE,         /* the main job and capacity: a suite file of select */
   AQ_OPT_HELP,
   AQ_OPT_VERSION,
   /* reading records */
@@ -261,6 +272,17 @@ typedef struct aq_opts {
   double *dampings; /* --damping, ratios (NULL: 0.05) */
   size_t ndampings;
   int sampled_peaks; /* --sampled-peaks: the same as --peaks samples */
+  /* select */
+  const char *target;      /* --target SPEC (select, plot spectrum) */
+  size_t count;            /* --count N */
+  double range_s[2];       /* --periods T1,T2 of select, s (NAN: not given) */
+  double *period_grid;     /* --period-grid, s (NULL: PEER's within the range) */
+  size_t nperiod_grid;
+  double scale_range[2];   /* --scale-range LO,HI */
+  size_t max_per_event;    /* --max-per-event K (0: no limit) */
+  int best_effort;         /* --best-effort */
+  const char *fragility_in; /* select --fragility FILE (capacity's fits) */
+  const char *suite;       /* --suite FILE (the main job, capacity) */
   /* plot */
   const char *run, *im, *record;
   int x_rad, y_pga; /* --x, --y: index in their choices */

@@ -53,6 +53,8 @@ typedef struct {
   aq_read_opts read;       /* reader options */
   aq_signal_opts proc;     /* processing options (proc.scale is ignored) */
   double merge_tol_g;      /* --merge-tol, g (0: one step per sample) */
+  const double *record_scales; /* --suite: each record's factor, multiplying each
+                            * scale (NULL: 1) */
   const double *scales;    /* --scale factors, or NULL with --scale-to-pga */
   size_t nscale;           /* their number */
   double scale_to_pga_g;   /* --scale-to-pga target, g (used when scales is NULL) */
@@ -76,6 +78,12 @@ typedef struct {
   aq_diskcache *cache;     /* prepared records on disk (--no-cache: NULL) */
   aq_diskcache *arch_cache; /* built arches on disk (--no-cache: NULL) */
 } aq_suite_cfg;
+
+/* Record i's own factor (--suite), 1 without a suite. */
+static inline double aq_suite_record_factor(const aq_suite_cfg *c, size_t i)
+{
+  return c->record_scales ? c->record_scales[i] : 1.0;
+}
 
 /* Wall-time figures of a finished suite (s).  read/process/run are summed
  * over worker threads; write is the writer's time in the report writers. */

@@ -185,6 +185,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
     line(&b, "scale_to_lambda0=%a", c->scale_to_lambda0);
   for (size_t k = 0; c->scales && k < c->nscale; k++)
     line(&b, "scale=%a", c->scales[k]);
+  for (size_t i = 0; c->record_scales && i < c->nrecords; i++) /* --suite */
+    line(&b, "record_scale=%a", c->record_scales[i]);
   line(&b, "units=%d dt=%a column=%zu", (int)c->read.units, c->read.dt_s, c->read.column);
   for (size_t k = 0; k < c->read.nrules; k++)
     line(&b, "units_rule=%d %s", (int)c->read.rules[k].units, c->read.rules[k].glob);

@@ -107,7 +107,7 @@ static void fail_runs(suite *S, rec_slot *r)
     size_t a, k, z;
     aq_suite_run_index(S, r, i, &a, &k, &z);
     run_slot *u = &r->runs[i];
-    double scale = c->scales ? c->scales[k / S->npol] : NAN;
+    double scale = c->scales ? c->scales[k / S->npol] * aq_suite_record_factor(c, r->index) : NAN;
     aq_summary_fill(&u->sum, c->records[r->index], aq_arch_name(S->arches[a]),
                     S->model_name, scale, NAN, r->status, NULL);
     aq_summary_normalise(&u->sum, slot_polarity(S, k), NULL, NULL, NULL);
@@ -184,7 +184,8 @@ int aq_suite_prepare(suite *S, rec_slot *r)
   if (s == AQ_OK)
     s = aq_scale_check_subject(&S->rule, path, r->subj.pga_g, &r->err);
   for (size_t k = 0; s == AQ_OK && k < S->nscale; k++) {
-    r->scale[k] = aq_scale_factor(&S->rule, k / S->npol, r->subj.pga_g);
+    r->scale[k] = aq_scale_factor(&S->rule, k / S->npol, r->subj.pga_g) *
+                  aq_suite_record_factor(c, r->index);
     slot_sa[k] = aq_scale_signed(r->scale[k], aq_suite_reversed(S, k));
   }
   if (s == AQ_OK)
@@ -247,6 +248,8 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   u->sum.azimuth_deg = run_azimuth(S, r, z);
   snprintf(u->sum.control, sizeof u->sum.control, "%s",
            aq_hinge_control_names[aq_arch_control(S->arches[ai])]);
+  aq_summary_mark(&u->sum, aq_arch_friction(S->arches[ai]),
+                  aq_arch_control(S->arches[ai]) == AQ_CONTROL_FREE);
   u->run_s = aq_suite_now_s() - t0;
 }
 
@@ -254,7 +257,7 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
 aq_stepper *aq_suite_stepper(const suite *S, size_t a, aq_error *err)
 {
   const aq_suite_cfg *c = S->cfg;
-  return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, err);
+  return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, 1, err);
 }
 
 /* Arches: loaded once, every bad one reported; nothing runs if any is.

@@ -1146,6 +1146,15 @@ void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t r
     slow(d, t, k, s, al, kg, t_s);
 }
 
+int aq_demand_fast_box(const aq_demand *d, int k, double out[6])
+{
+  const box *f = &d->fast[k];
+  out[0] = f->s0, out[1] = f->s1, out[2] = f->a0, out[3] = f->a1, out[4] = f->k0, out[5] = f->k1;
+  return f->s0 <= f->s1 && f->a0 <= f->a1 && f->k0 <= f->k1;
+}
+
+double aq_demand_max(const aq_demand *d, int q) { return d->max[q ? 1 : 0]; }
+
 void aq_demand_get(const aq_demand *d, aq_demand_result *r)
 {
   r->mu_max = r->ecc_max = NAN;

@@ -126,5 +126,10 @@ void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, dou
 void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t rev,
                    double a_mps2, double g_mps2, double t_s);
 void aq_demand_get(const aq_demand *d, aq_demand_result *r);
+/* For the tests: the box of set k's states (s0 s1 in rad, a/g, KE/g in
+ * J s^2/m) in which no joint exceeds the running maxima; 0 when there is
+ * none.  The running maximum of quantity q (0: |T|/N, 1: eccentricity). */
+int aq_demand_fast_box(const aq_demand *d, int k, double box[6]);
+double aq_demand_max(const aq_demand *d, int q);
 
 #endif

@@ -372,6 +372,69 @@ static size_t polygon(const aq_joints *J, size_t k, const char *jpath, const cha
   return m;
 }
 
+/* The joints alone (each voussoir's quadrilateral, its faces left out):
+ * they must run from the springing on the +x side to the other, each
+ * intrados end in xi_m, yi_m.  Joints running from -x, or whose ends are
+ * swapped, turn most quadrilaterals clockwise; both at once turn them back
+ * counter-clockwise but start at -x: each said for what it is. */
+static aq_status check_direction(const aq_joints *J, const char *jpath, aq_error *err)
+{
+  size_t n = J->n, clockwise = 0;
+  for (size_t k = 0; k < n; k++) {
+    aq_vec2 q[4] = {J->ji[k], J->je[k], J->je[k + 1], J->ji[k + 1]};
+    double area = 0;
+    for (int i = 0; i < 4; i++)
+      area += q[i].x * q[(i + 1) % 4].y - q[(i + 1) % 4].x * q[i].y;
+    clockwise += area < 0;
+  }
+  double x0 = 0.5 * (J->ji[0].x + J->je[0].x), xn = 0.5 * (J->ji[n].x + J->je[n].x);
+  int from_minus = x0 < xn, cw = 2 * clockwise > n;
+  if (!from_minus && !cw)
+    return AQ_OK;
+  if (from_minus && cw) /* the same arch, listed from the other springing */
+    return aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[1], -1, "joint",
+                        "expected joints from the springing on the +x side over the crown to "
+                        "the other, got joint 0 at x = %.4g m and joint %zu at x = %.4g m "
+                        "(%zu of %zu voussoirs clockwise): the file runs the other way",
+                        x0, n, xn, clockwise, n);
+  if (cw) /* from +x, but every joint upside down */
+    return aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[0], -1, "xi_m",
+                        "expected each joint's intrados end in xi_m,yi_m and its extrados end "
+                        "in xe_m,ye_m, got them swapped: the joints run from +x (joint 0 at x "
+                        "= %.4g m) to -x (joint %zu at x = %.4g m) yet %zu of %zu voussoirs "
+                        "turn clockwise, as they do when the intrados and extrados columns "
+                        "are exchanged",
+                        x0, n, xn, clockwise, n);
+  return aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[0], -1, "xi_m",
+                      "expected joints from the springing on the +x side, each intrados end "
+                      "in xi_m,yi_m, got joint 0 at x = %.4g m and joint %zu at x = %.4g m "
+                      "with the voussoirs counter-clockwise: the file runs the other way and "
+                      "its intrados and extrados columns are swapped",
+                      x0, n, xn);
+}
+
+/* Of the edges v[i]..v[i+1] (of m) and w[j]..w[j+1] (of mw), the vertex a
+ * message names: the latest face point if one of their ends is one (the
+ * joints were checked on their own), else joint. */
+static const vtx *blame(const vtx *v, size_t i, size_t m, const vtx *w, size_t j, size_t mw,
+                        const char *jpath, const vtx *joint)
+{
+  const vtx *ends[4] = {&v[i], &v[(i + 1) % m], &w[j], &w[(j + 1) % mw]}, *at = joint;
+  int face = 0;
+  for (int q = 0; q < 4; q++)
+    if (ends[q]->file != jpath && (!face || ends[q]->line > at->line))
+      at = ends[q], face = 1;
+  return at;
+}
+
+/* 1 if segments ab and cd cross at a point inside both (touching, at an
+ * end or along a line, does not count). */
+static int segments_cross(aq_vec2 a, aq_vec2 b, aq_vec2 c, aq_vec2 d)
+{
+  double d1 = cross3(c, d, a), d2 = cross3(c, d, b), d3 = cross3(a, b, c), d4 = cross3(a, b, d);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
 static aq_status check_polygons(const aq_joints *J, const char *jpath, const char *fpath,
                                 aq_error *err)
 {
@@ -399,6 +462,8 @@ static aq_status check_polygons(const aq_joints *J, const char *jpath, const cha
                           b, a);
         break;
       }
+  if (st == AQ_OK)
+    st = check_direction(J, jpath, err);
   for (size_t k = 0; k < n && st == AQ_OK; k++) {
     size_t m = polygon(J, k, jpath, fpath, v);
     double area = 0;
@@ -425,13 +490,8 @@ static aq_status check_polygons(const aq_joints *J, const char *jpath, const cha
         if (i == 0 && j == m - 1)
           continue;
         if (segments_meet(v[i].p, v[(i + 1) % m].p, v[j].p, v[(j + 1) % m].p)) {
-          /* blame the latest face point of the two edges if there is one
-           * (the joints were checked on their own), else the later edge */
-          const vtx *ends[4] = {&v[i], &v[(i + 1) % m], &v[j], &v[(j + 1) % m]}, *at = &v[j];
-          int face = 0;
-          for (int q = 0; q < 4; q++)
-            if (ends[q]->file != jpath && (!face || ends[q]->line > at->line))
-              at = ends[q], face = 1;
+          /* the latest face point of the two edges, else the later edge */
+          const vtx *at = blame(v, i, m, v, j, m, jpath, &v[j]);
           st = aq_error_set(err, AQ_EGEOMETRY, at->file, at->line, -1, at->field,
                             "expected voussoir %zu a simple polygon (joints %zu and %zu, its "
                             "faces between), got one whose sides cross",
@@ -451,17 +511,22 @@ static aq_status check_polygons(const aq_joints *J, const char *jpath, const cha
     }
   }
   /* no two voussoirs overlap: edges of voussoirs more than one apart whose
-   * boxes meet do not meet */
+   * boxes meet do not meet; neighbours, which share a joint, do not cross
+   * (a face point of one inside the other).  The line blamed is the face
+   * point's that makes an edge, else the later voussoir's joint. */
   for (size_t a = 0; a < n && st == AQ_OK; a++)
-    for (size_t b = a + 2; b < n && st == AQ_OK; b++) {
+    for (size_t b = a + 1; b < n && st == AQ_OK; b++) {
       if (box[4 * a] > box[4 * b + 1] || box[4 * b] > box[4 * a + 1] ||
           box[4 * a + 2] > box[4 * b + 3] || box[4 * b + 2] > box[4 * a + 3])
         continue;
       size_t ma = polygon(J, a, jpath, fpath, v), mb = polygon(J, b, jpath, fpath, w);
+      vtx joint = {J->je[b], jpath, J->jline[b], "joint"};
       for (size_t i = 0; i < ma && st == AQ_OK; i++)
         for (size_t j = 0; j < mb; j++)
-          if (segments_meet(v[i].p, v[(i + 1) % ma].p, w[j].p, w[(j + 1) % mb].p)) {
-            st = aq_error_set(err, AQ_EGEOMETRY, jpath, J->jline[b], -1, "joint",
+          if (b == a + 1 ? segments_cross(v[i].p, v[(i + 1) % ma].p, w[j].p, w[(j + 1) % mb].p)
+                         : segments_meet(v[i].p, v[(i + 1) % ma].p, w[j].p, w[(j + 1) % mb].p)) {
+            const vtx *at = blame(v, i, ma, w, j, mb, jpath, &joint);
+            st = aq_error_set(err, AQ_EGEOMETRY, at->file, at->line, -1, at->field,
                               "expected voussoirs that do not overlap, got voussoir %zu "
                               "meeting voussoir %zu",
                               b, a);

@@ -444,6 +444,7 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
   }
   snprintf(raw->event, sizeof raw->event, "%.12s %.16s %.60s", f[F_EQ_DATE].value,
            f[F_EQ_TIME].value, f[F_MAG].value);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   snprintf(raw->format, sizeof raw->format, "asa");
   return AQ_OK;
 }

@@ -700,6 +700,17 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
    * text line), the processing (filter corners on the NPTS or units line). */
   if (h.ntext >= 2)
     trimmed(s, h.text_b[1], h.text_e[1], raw->event, sizeof raw->event);
+  if (h.ntext >= 2) { /* the event alone: the line without its last two fields,
+                         the station and the component ("Imperial Valley-02,
+                         5/19/1940" of "..., El Centro Array #9, 180") */
+    size_t b = h.text_b[1], e = h.text_e[1], commas = 0;
+    while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == ','))
+      e--;
+    while (e > b && commas < 2)
+      commas += s[--e] == ',';
+    if (commas == 2)
+      trimmed(s, b, e, raw->event_name, sizeof raw->event_name);
+  }
   size_t cb = 0, ce = 0, le = 0; /* le: the end of the component's line */
   int last_field = 0;             /* PEER's last field: the component alone */
   if (h.ntext == 3) {

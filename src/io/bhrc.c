@@ -276,6 +276,7 @@ static aq_status parse_block(aq_lines *c, const aq_line *first, const char *name
   }
   if (raw->nchan == 0) {
     aq_copy_trim(raw->event, sizeof raw->event, text[2].p, text[2].len);
+    snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
     snprintf(raw->processing, sizeof raw->processing, "BHRC VOL1DS (uncorrected)");
   }
   return aq_raw_append_channel(raw, &tmp, name, err);

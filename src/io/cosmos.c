@@ -387,6 +387,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   }
   if (raw->nchan == 0) {
     aq_copy_trim(raw->event, sizeof raw->event, text[1].p, text[1].len);
+    snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
     const char *fmt = aq_find_ci(first->p, first->len, "(format");
     size_t kind_len = fmt ? (size_t)(fmt - first->p) : first->len;
     char kind[64], filt[96];

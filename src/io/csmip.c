@@ -304,6 +304,8 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
       if (aq_find_ci(hdr[i].p, hdr[i].len, "earthquake") ||
           aq_find_ci(hdr[i].p, hdr[i].len, "record of")) {
         aq_copy_trim(raw->event, sizeof raw->event, hdr[i].p, hdr[i].len);
+        if (aq_find_ci(hdr[i].p, hdr[i].len, "earthquake")) /* not a record's time */
+          snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event);
         break;
       }
   }

@@ -622,6 +622,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
   long pre_line = -1;
   char pre_said[48] = "";
   char start[40] = "";         /* the first row's time, ISO-8601 UTC, if stated */
+  char event[96] = "";         /* CWB's "#Origin Time(GMT+08): ...": the event */
   size_t seq_b = 0, seq_e = 0; /* a "#DataSequence:" list of column names */
   long seq_line = -1;
   size_t hb = 0, he = 0; /* last non-numeric line before the data */
@@ -652,6 +653,10 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
         snprintf(pre_said, sizeof pre_said, "%.40s", val);
       } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
         seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
+      } else if (e - b > 11 && strncasecmp(s + b + 1, "Origin Time", 11) == 0) {
+        size_t l = e - b - 1 < sizeof event - 1 ? e - b - 1 : sizeof event - 1;
+        memcpy(event, s + b + 1, l);
+        event[l] = '\0';
       } else {
         cwb_start(s, b + 1, e, start, sizeof start);
       }
@@ -931,6 +936,8 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     return st;
   }
   snprintf(raw->format, sizeof raw->format, "csv");
+  snprintf(raw->event, sizeof raw->event, "%s", event);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", event); /* the event alone */
   for (size_t j = 0; j < nch; j++) {
     aq_raw_channel *ch = &raw->chan[j];
     size_t col = chcol[j];

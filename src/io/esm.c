@@ -226,6 +226,7 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
   aq_copy_trim(id, sizeof id, k[K_EVENT_ID].val.p, k[K_EVENT_ID].val.len);
   aq_copy_trim(ev, sizeof ev, k[K_EVENT_NAME].val.p, k[K_EVENT_NAME].val.len);
   snprintf(raw->event, sizeof raw->event, "%s%s%s", id, id[0] && ev[0] ? " " : "", ev);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   char base[40], filt[24], ord[8], lo[16], hi[16];
   aq_copy_trim(base, sizeof base, k[K_BASELINE].val.p, k[K_BASELINE].val.len);
   aq_copy_trim(filt, sizeof filt, k[K_FILTER].val.p, k[K_FILTER].val.len);

@@ -201,6 +201,7 @@ static aq_status geonet_block(aq_lines *c, const aq_line *first, const char *nam
     aq_copy_trim(when, sizeof when, text[7].p, text[7].len);
     aq_copy_trim(where, sizeof where, text[6].p, text[6].len);
     snprintf(raw->event, sizeof raw->event, "%s, %s", when, where);
+    snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
     char kind[24], corr[64], filt[64];
     snprintf(kind, sizeof kind, "%s", v1 ? "V1A uncorrected" : "V2A corrected");
     aq_copy_trim(corr, sizeof corr, text[10].p, text[10].len);

@@ -256,6 +256,7 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
   snprintf(raw->format, sizeof raw->format, "%s", kik ? "kiknet" : "knet");
   snprintf(raw->event, sizeof raw->event, "%.19s JST M%.6s %.8sN %.8sE %.6s km",
            val[K_ORIGIN], val[K_MAG], val[K_LAT], val[K_LON], val[K_DEPTH]);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   ch->npts = want;
   ch->dt_s = 1.0 / hz;
   ch->begin_s = 0.0;

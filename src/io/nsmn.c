@@ -240,6 +240,7 @@ aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
     snprintf(ch->count_from, sizeof ch->count_from, "NUMBER OF DATA");
   }
   snprintf(raw->event, sizeof raw->event, "%.20s %.20s %.40s", date, time_s, mag);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   snprintf(raw->format, sizeof raw->format, "nsmn");
   return AQ_OK;
 }

@@ -96,6 +96,11 @@ typedef struct {
                             "csmip", "knet", "kiknet", "smc", "esm", "mseed",
                             ... */
   char event[96];        /* event name / id / origin time as stated, "" if none */
+  char event_name[96];   /* the event alone, as the file names it: no station,
+                            component or record time (an AT2's text line holds
+                            the station and component after the event; CSMIP's
+                            "Record of" line is the record's trigger time);
+                            "" if the file names no event */
   char processing[160];  /* the agency's processing as stated (e.g. PEER filter
                             corners), "" if none */
   size_t nchan;

@@ -4,6 +4,7 @@
  * makes a record of what the parser reports (see record.h). */
 #include "record.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <fnmatch.h>
@@ -210,6 +211,27 @@ static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                       "expected ground acceleration, got %s (%s); archquake reads "
                       "acceleration only: convert the record to acceleration first",
                       what, ev);
+}
+
+/* The event as records are compared by it: name in lower case (ASCII),
+ * every run of characters other than letters and digits one space, none at
+ * either end ("Imperial Valley-02, 5/19/1940" -> "imperial valley 02 5 19
+ * 1940"), so that spacing and punctuation do not make two events of one. */
+static void decide_event_key(const char *name, char *key, size_t cap)
+{
+  size_t k = 0;
+  int gap = 0;
+  for (const char *p = name; *p && k + 2 < cap; p++) {
+    unsigned char c = (unsigned char)*p;
+    if (isalnum(c)) {
+      if (gap && k)
+        key[k++] = ' ';
+      key[k++] = (char)tolower(c);
+      gap = 0;
+    } else
+      gap = 1;
+  }
+  key[k] = '\0';
 }
 
 /* aq_record_decide; with in_place (the channel's own values, which the
@@ -422,6 +444,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
   snprintf(rec->location, sizeof rec->location, "%s", ch->location);
   snprintf(rec->channel, sizeof rec->channel, "%s", ch->channel);
   snprintf(rec->event, sizeof rec->event, "%s", raw->event);
+  decide_event_key(raw->event_name, rec->event_key, sizeof rec->event_key);
   snprintf(rec->processing, sizeof rec->processing, "%s", raw->processing);
   if (has_stated)
     snprintf(rec->units_stated, sizeof rec->units_stated, "%s", aq_units_name(stated));
@@ -509,6 +532,9 @@ aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
   atomic_fetch_add(&parses, 1);
   aq_reader_opts ro;
   const aq_reader_opts *rop = reader_opts(opts, &ro);
+  size_t bom = aq_sniff_bom(buf, n); /* a text's byte-order mark: its readers skip it */
+  buf += bom;
+  n -= bom;
   aq_format fmt = aq_sniff_format(buf, n);
   switch (fmt) {
   case AQ_FMT_SAC:

@@ -50,6 +50,11 @@ typedef struct {
   int vertical;         /* 1: the file identifies the channel as vertical */
   int vertical_by;      /* how (aq_vertical_by): stated, dip or channel name; 0 if not */
   char event[96];       /* event as the file states it, "" if none */
+  char event_key[96];   /* the event as records are compared by it (select's
+                           --max-per-event): the event alone as the file names
+                           it (the reader's event_name), in lower case, every
+                           run of characters other than letters and digits one
+                           space; "" if the file names no event */
   char processing[160]; /* the agency's processing as stated, "" if none */
   char units_stated[24];/* units the file states ("" if none) */
   char units_used[24];  /* units applied (canonical name, e.g. "gal") */

@@ -300,6 +300,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
   if (raw->nchan == 0) {
     aq_copy_trim(raw->processing, sizeof raw->processing, first->p, first->len);
     aq_copy_trim(raw->event, sizeof raw->event, hdr[1].p, hdr[1].len);
+    snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   }
   return aq_raw_append_channel(raw, &tmp, name, err);
 }

@@ -252,6 +252,7 @@ aq_status aq_sac_parse(const unsigned char *buf, size_t n, const char *name,
   hstr(&h, K_HOLE, 8, ch->location, sizeof ch->location);
   hstr(&h, K_CMPNM, 8, ch->channel, sizeof ch->channel);
   hstr(&h, K_EVNM, 16, raw->event, sizeof raw->event);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* KEVNM: the event alone */
 
   /* Units: IDEP = IACC states nm/s^2; SCALE is the sensitivity that
    * mseed2sac -M writes (counts per m/s^2), used when the values are counts;

@@ -276,6 +276,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
                    aq_header_int(iv[4]), sec))
     ch->reference[0] = '\0';
   aq_copy_trim(raw->event, sizeof raw->event, text[3].p, text[3].len);
+  snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   aq_copy_trim(raw->processing, sizeof raw->processing, text[0].p + 2, text[0].len - 2);
   snprintf(raw->format, sizeof raw->format, "smc");
   return AQ_OK;

@@ -44,10 +44,29 @@ static int starts_ci(const char *s, size_t n, const char *prefix)
   return n >= m && strncasecmp(s, prefix, m) == 0;
 }
 
+int aq_sniff_is_text(aq_format f)
+{
+  return f != AQ_FMT_UNKNOWN_BINARY && f != AQ_FMT_SAC && f != AQ_FMT_MSEED &&
+         f != AQ_FMT_HDF5 && f != AQ_FMT_GZIP && f != AQ_FMT_EMPTY;
+}
+
+size_t aq_sniff_bom(const unsigned char *buf, size_t n)
+{
+  if (n < 3 || memcmp(buf, "\xEF\xBB\xBF", 3) != 0)
+    return 0;
+  aq_format f = aq_sniff_format(buf + 3, n - 3);
+  return aq_sniff_is_text(f) && f != AQ_FMT_EMPTY ? 3 : 0;
+}
+
 aq_format aq_sniff_format(const unsigned char *buf, size_t n)
 {
   if (n == 0)
     return AQ_FMT_EMPTY;
+  if (n > 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) { /* a UTF-8 byte-order mark, as */
+    aq_format f = aq_sniff_format(buf + 3, n - 3);   /* spreadsheets write: the text's */
+    if (aq_sniff_is_text(f))                         /* format after it */
+      return f;
+  }
   if (n >= 2 && buf[0] == 0x1f && buf[1] == 0x8b)
     return AQ_FMT_GZIP;
   if (n >= 4 && memcmp(buf, "PK\x03\x04", 4) == 0)
@@ -83,8 +102,6 @@ aq_format aq_sniff_format(const unsigned char *buf, size_t n)
 
   const char *s = (const char *)buf;
   size_t i = 0;
-  if (m >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte-order mark */
-    i = 3;
   while (i < m && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r' || s[i] == '\n'))
     i++;
   if (i < m && s[i] == '<')

@@ -31,6 +31,16 @@ typedef enum {
   AQ_FMT_NPTS_DT             /* text whose first line is "NPTS DT" (nptsdt.c) */
 } aq_format;
 
+/* 1 if f is a text format (a record's text, or XML): not binary, not
+ * empty. */
+int aq_sniff_is_text(aq_format f);
+
+/* The length of a UTF-8 byte-order mark at buf that a text format follows
+ * (3), as spreadsheets write one; else 0.  Every text reader is given the
+ * bytes after it (record.c), so that a file saved with one reads as the
+ * same file without; the format is sniffed after it too. */
+size_t aq_sniff_bom(const unsigned char *buf, size_t n);
+
 /* Classify buf[0..n) by content only.  Never fails. */
 aq_format aq_sniff_format(const unsigned char *buf, size_t n);
 

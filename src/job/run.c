@@ -8,7 +8,7 @@
 #include "../units.h"
 
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
-                           aq_error *err)
+                           int demand, aq_error *err)
 {
   aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1), model, err);
   if (!st)
@@ -17,6 +17,16 @@ aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int 
   aq_stepper_set_cor(st, isnan(cor) ? d->cor : cor);
   aq_stepper_set_impact(st, d->impact == AQ_IMPACT_MOMENTUM);
   aq_stepper_set_history(st, history);
+  /* what each run asks of the joints (docs/demand.md), against the arch's
+   * friction */
+  if (!demand)
+    return st;
+  aq_demand *dm = aq_arch_demand_tracker(arch, aq_arch_friction(arch), err);
+  if (!dm) {
+    aq_stepper_free(st);
+    return NULL;
+  }
+  aq_stepper_set_demand(st, dm);
   return st;
 }
 

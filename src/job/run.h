@@ -23,9 +23,11 @@
 #include "subject.h"
 
 /* A stepper for arch: model, cor (NAN: the arch's own), the arch's impact
- * rule, histories kept or not.  NULL (err) when it cannot be made. */
+ * rule, histories kept or not, and (demand 1) what each run asks of the
+ * joints tracked against the arch's friction (docs/demand.md).  NULL (err)
+ * when it cannot be made. */
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
-                           aq_error *err);
+                           int demand, aq_error *err);
 
 /* The dynamics arch's runs use: its impact rule, cor (NAN: the arch's own)
  * over the file's, none (NAN) with the momentum rule. */

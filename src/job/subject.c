@@ -165,6 +165,15 @@ size_t aq_subject_n(const aq_subject *s)
   return s->have_proc[0] ? s->proc[0].n : 0;
 }
 
+aq_status aq_subject_scale(aq_subject *s, double f, aq_error *err)
+{
+  for (int j = 0; j < 3; j++)
+    for (size_t i = 0; s->have_proc[j] && s->proc[j].acc_mps2 && i < s->proc[j].n; i++)
+      s->proc[j].acc_mps2[i] *= f;
+  s->pga_g *= f;
+  return s->have_im ? aq_im_compute(&s->proc[0], &s->im, err) : AQ_OK;
+}
+
 void aq_subject_shed(aq_subject *s)
 {
   for (int j = 0; j < 3; j++) {

@@ -82,6 +82,13 @@ typedef struct {
 aq_status aq_subject_prepare(aq_subject *s, const aq_subject_src *src,
                              const aq_subject_opts *opts, aq_signal_ws *ws, aq_error *err);
 
+/* Multiply the prepared subject by f (> 0): every processed component (a
+ * vertical too: it scales with the motion), the PGA and the intensity
+ * measures (computed again from the scaled samples), so that the subject at
+ * factor 1 is the record at f (capacity's --suite).  Before any view is
+ * made.  Returns AQ_OK, or the measures' failure (err). */
+aq_status aq_subject_scale(aq_subject *s, double f, aq_error *err);
+
 /* Free the processed samples (what runs need, not what writing needs). */
 void aq_subject_shed(aq_subject *s);
 

@@ -29,7 +29,7 @@ _Static_assert(sizeof(aq_signal_opts) == 152,
 /* A record's metadata is stored as its bytes, its three pointers (path,
  * name, acc_mps2) apart: a pointer field added to aq_record must be
  * stored apart too. */
-_Static_assert(sizeof(aq_record) == 2400,
+_Static_assert(sizeof(aq_record) == 2496,
                "aq_record changed: check that subject_cache.c stores every pointer field "
                "apart (path, name, acc_mps2), then update this size");
 

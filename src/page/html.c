@@ -19,6 +19,7 @@
 #include "figure.h"
 #include "page.h"
 #include "read.h"
+#include "select.h"
 
 /* ---- style and script --------------------------------------------------- */
 
@@ -812,8 +813,13 @@ static aq_status build(page *p, aq_page_stats *stats)
     aq_page_esc(b, nm ? nm : "?");
     aq_page_puts(b, "</a>");
   }
-  for (size_t c = 0; c < p->in->ncapacity; c++)
-    aq_page_printf(b, " · <a href=\"#capacity-%zu\">capacity %zu</a>", c, c + 1);
+  for (size_t c = 0; c < p->in->ncapacity; c++) {
+    aq_page_kind kind = AQ_PAGE_CAPACITY;
+    aq_page_file_kind(p->in->capacity[c], &kind, p->err);
+    aq_page_printf(b, " · <a href=\"#%s-%zu\">%s %zu</a>",
+                   kind == AQ_PAGE_SELECT ? "select" : "capacity", c,
+                   kind == AQ_PAGE_SELECT ? "suite" : "capacity", c + 1);
+  }
   aq_page_puts(b, " · <a href=\"#failed\">failed records</a> · <a href=\"#run\">the run</a>"
                   "</p>\n");
   /* overview: the verdict map */
@@ -829,8 +835,13 @@ static aq_status build(page *p, aq_page_stats *stats)
   size_t nrows = 0;
   for (size_t a = 0; a < p->r.narch && st == AQ_OK; a++)
     st = section_arch(p, a, &nrows);
-  for (size_t c = 0; c < p->in->ncapacity && st == AQ_OK; c++)
-    st = section_capacity(p, p->in->capacity[c], c);
+  for (size_t c = 0; c < p->in->ncapacity && st == AQ_OK; c++) {
+    aq_page_kind kind = AQ_PAGE_CAPACITY;
+    aq_page_file_kind(p->in->capacity[c], &kind, p->err);
+    st = kind == AQ_PAGE_SELECT
+             ? aq_page_select_section(b, p->in->capacity[c], c, p->tmp, &p->nfig, p->err)
+             : section_capacity(p, p->in->capacity[c], c);
+  }
   if (st != AQ_OK)
     return st;
   section_failed(p);
@@ -866,7 +877,7 @@ aq_status aq_page_write(const aq_page_input *in, const char *target, aq_page_sta
   for (size_t c = 0; c < in->ncapacity && st == AQ_OK; c++) {
     aq_page_kind kind;
     st = aq_page_file_kind(in->capacity[c], &kind, err);
-    if (st == AQ_OK && kind != AQ_PAGE_CAPACITY)
+    if (st == AQ_OK && kind != AQ_PAGE_CAPACITY && kind != AQ_PAGE_SELECT)
       st = aq_error_set(err, AQ_EFORMAT, in->capacity[c], -1, -1, NULL,
                         "expected a capacity file (archquake capacity -o), got a results "
                         "file of the main job: give it first");

@@ -38,6 +38,7 @@
 typedef enum {
   AQ_PAGE_RESULTS = 0, /* the main job's results (/summary with runs) */
   AQ_PAGE_CAPACITY,    /* archquake capacity -o (/capacity) */
+  AQ_PAGE_SELECT,      /* archquake select -o (/select): a suite and its target */
 } aq_page_kind;
 
 /* The kind of file at path, or an error naming the file and what it is
@@ -47,7 +48,7 @@ aq_status aq_page_file_kind(const char *path, aq_page_kind *kind, aq_error *err)
 
 typedef struct {
   const char *results;         /* the main job's results file */
-  const char *const *capacity; /* capacity files (may be none) */
+  const char *const *capacity; /* capacity files and select files (may be none) */
   size_t ncapacity;
   const char *command_line;    /* this report's command, shown at the end */
   const char *build;           /* this program's version and build */

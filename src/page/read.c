@@ -273,6 +273,8 @@ aq_status aq_page_file_kind(const char *path, aq_page_kind *kind, aq_error *err)
                                            : "up to this build");
   else if (H5Lexists(f, "capacity", H5P_DEFAULT) > 0)
     *kind = AQ_PAGE_CAPACITY;
+  else if (H5Lexists(f, "select", H5P_DEFAULT) > 0)
+    *kind = AQ_PAGE_SELECT;
   else
     *kind = AQ_PAGE_RESULTS;
   H5Fclose(f);
@@ -288,8 +290,10 @@ aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *e
     return st;
   if (kind != AQ_PAGE_RESULTS)
     return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
-                        "expected the main job's results file first, got a capacity file "
-                        "(archquake capacity -o): give it after the results file");
+                        "expected the main job's results file first, got a %s file "
+                        "(archquake %s -o): give it after the results file",
+                        kind == AQ_PAGE_SELECT ? "select" : "capacity",
+                        kind == AQ_PAGE_SELECT ? "select" : "capacity");
   st = aq_h5_read_suite(path, &r->suite, err);
   if (st != AQ_OK)
     return st;

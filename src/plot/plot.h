@@ -9,6 +9,7 @@
  *   suite.c     a record x arch map of the verdicts
  *   capacity.c  the collapse intervals and fragility of `archquake capacity`
  *   spectrum.c  the response spectra of `archquake spectrum`
+ *   select.c    a suite's spectra against its target (`archquake select`)
  * common.c renders (driver check, exit/abort handlers) and writes the
  * plotted data (--data FILE.csv), each through a temporary renamed when
  * complete (util/outfile.h: removed on a signal too);
@@ -29,8 +30,10 @@
 #include "../error.h"
 #include "../report/h5.h"
 #include "../report/h5_capacity.h"
+#include "../report/h5_select.h"
 #include "../report/h5_spectrum.h"
 #include "../report/text.h"
+#include "../select/target.h"
 #include "../util/outfile.h"
 
 /* ---- h5_read.c: what the figures take from a results file ------------ */
@@ -236,5 +239,36 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
 aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
+
+/* select.c: spectra against a target: PSA (g) against period (s, log
+ * axis), the target and band x target (dashed) from a third of the range's
+ * start to three times its end (within the target's periods), each
+ * spectrum (thin, scaled as given), their mean (thick), the range's ends;
+ * --data: the target, the mean and each curve (curve, period_s, psa_g). */
+typedef struct {
+  size_t n, nper;
+  const double *period_s;     /* the range's periods, s, ascending */
+  const double *psa_g;        /* n x nper, as drawn (scaled), g */
+  const char *const *label;   /* n */
+  const aq_target *target;
+  const char *target_name;    /* in the legend */
+  double band;                /* 0.9 */
+  const char *title;
+} aq_plot_target_set;
+
+aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const char *data,
+                         double *draw_s, aq_error *err);
+
+/* The suite of a file of `archquake select -o` (each record at its scale)
+ * against its target, or override (NULL: the file's). */
+aq_status aq_plot_select(const aq_h5_select_file *f, const aq_target *override,
+                         const char *source, const char *target, const char *data,
+                         double *draw_s, aq_error *err);
+
+/* The spectra of t (a file of `archquake spectrum -o`; record NULL: all)
+ * against target tg: every one at the same periods and tg's damping. */
+aq_status aq_plot_spectra_target(const aq_h5_spectra_table *t, const char *record,
+                                 const aq_target *tg, const char *source, const char *target,
+                                 const char *data, double *draw_s, aq_error *err);
 
 #endif

@@ -16,34 +16,11 @@
 #include "text.h"
 
 
-/* A dataset of n rows x cols of type t from buf, with its units attribute
- * (units NULL: none). */
-static herr_t ds_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
-                       size_t cols, const char *units)
-{
-  hsize_t dim[2] = {n, cols};
-  hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
-  if (sp < 0)
-    return -1;
-  herr_t rc = -1;
-  hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (d >= 0) {
-    rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
-    if (rc >= 0 && units)
-      rc = aq_h5_attr_string(d, "units", units);
-    if (H5Dclose(d) < 0)
-      rc = -1;
-  }
-  if (H5Sclose(sp) < 0)
-    rc = -1;
-  return rc;
-}
-
 /* The n x AQ_FRAGILITY_NIM dataset name of the IMs, its columns named
  * (`columns`) with their units (`units`), one string per column. */
 static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
 {
-  if (ds_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
+  if (aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
     return -1;
   hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
   if (d < 0)
@@ -269,7 +246,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
   what = "capacity/intervals";
   static const char *const iv_cols[2] = {"lo", "hi"}, *const iv_units[2] = {"1", "1"};
   hid_t di = -1;
-  if (ds_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, NULL) < 0 ||
+  if (aq_h5_array_write(g, "intervals", H5T_NATIVE_DOUBLE, k.iv, k.niv, 2, NULL) < 0 ||
       (di = H5Dopen2(g, "intervals", H5P_DEFAULT)) < 0 ||
       aq_h5_attr_strings(di, "columns", iv_cols, 2) < 0 ||
       aq_h5_attr_strings(di, "units", iv_units, 2) < 0 || H5Dclose(di) < 0)

@@ -214,3 +214,24 @@ herr_t aq_h5_attr_strings(hid_t loc, const char *name, const char *const *v, siz
     rc = -1;
   return rc;
 }
+
+herr_t aq_h5_array_write(hid_t g, const char *name, hid_t t, const void *buf, size_t n,
+                         size_t cols, const char *units)
+{
+  hsize_t dim[2] = {n, cols};
+  hid_t sp = H5Screate_simple(cols > 1 ? 2 : 1, dim, NULL);
+  if (sp < 0)
+    return -1;
+  herr_t rc = -1;
+  hid_t d = H5Dcreate2(g, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (d >= 0) {
+    rc = n ? H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) : 0;
+    if (rc >= 0 && units)
+      rc = aq_h5_attr_string(d, "units", units);
+    if (H5Dclose(d) < 0)
+      rc = -1;
+  }
+  if (H5Sclose(sp) < 0)
+    rc = -1;
+  return rc;
+}

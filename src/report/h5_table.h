@@ -55,6 +55,11 @@ herr_t aq_h5_table_write(hid_t loc, const char *name, const aq_h5_col *cols, siz
 herr_t aq_h5_columns_write(hid_t loc, const aq_h5_col *cols, size_t ncols, size_t rowsize,
                            const void *rows, size_t nrows);
 
+/* Dataset name of loc: n rows x cols of type t from buf (cols 1: 1-D),
+ * with its units attribute (units NULL: none). */
+herr_t aq_h5_array_write(hid_t loc, const char *name, hid_t t, const void *buf, size_t n,
+                         size_t cols, const char *units);
+
 /* Attribute name of loc with the given type and dataspace, holding buf
  * (created, written, closed; type and space stay the caller's). */
 herr_t aq_h5_attr_write(hid_t loc, const char *name, hid_t type, hid_t space, const void *buf);

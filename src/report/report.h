@@ -66,6 +66,14 @@ typedef struct {
                                    motion given as components; NAN for one in-plane record */
   char control[AQ_SUMMARY_CONTROL_MAX]; /* the arch's hinge control, "fixed" or "free"
                                            (arch.h aq_hinge_control) */
+  /* what the motion asked of the joints (docs/demand.md); NAN for a run that
+   * did not move or failed, and under the paper model */
+  double mu_demand;             /* largest |T|/N at any joint (inf: a joint pulled apart) */
+  int64_t mu_demand_joint;      /* the joint where it occurred (or _NONE) */
+  double thrust_ecc_max;        /* largest |eccentricity| of the thrust at a non-hinge joint */
+  double thrust_ecc_time_s;     /* first time the eccentricity passed 1, s; NAN: never */
+  double slide_time_s;          /* first time mu_demand passed the friction given, s; NAN:
+                                   never, or no friction given */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -83,7 +91,8 @@ typedef struct {
 /* The fields in column order (record arch model scale pga_g status collapsed
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
- * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control). */
+ * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control mu_demand
+ * mu_demand_joint thrust_ecc_max thrust_ecc_time_s slide_time_s). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
@@ -102,6 +111,16 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
  * hinge sets' paths of its arch (either may be NULL or inadmissible). */
 void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *res,
                           const aq_path *primary, const aq_path *reverse);
+
+/* The marks of a run that ran (status "ok"), as its status: "slides" when
+ * a friction was given (friction, NAN: none) and the run's friction demand
+ * passed it, "beyond" under free control (free_control 1) when the thrust
+ * left a joint's section, "slides+beyond" both; "ok" when neither.  A
+ * failed run keeps its status (it has no verdict to mark). */
+void aq_summary_mark(aq_summary *s, double friction, int free_control);
+
+/* 1 if status is a failure's ("stage:code"), 0 for "ok" and the marks. */
+int aq_summary_failed(const char *status);
 
 /* Short status code for a failure in a stage: "<stage>:<code>", e.g.
  * "read:eformat", "run:enumeric" (code = the aq_status name in lower case

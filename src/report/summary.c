@@ -33,6 +33,11 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(pga_over_lambda0, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(azimuth_deg, AQ_SF_DOUBLE, 1),
     AQ_SF_ADDED(control, AQ_SF_STR, 0),
+    AQ_SF_ADDED(mu_demand, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(mu_demand_joint, AQ_SF_INT, 0),
+    AQ_SF_ADDED(thrust_ecc_max, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(thrust_ecc_time_s, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(slide_time_s, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -59,6 +64,15 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->peak_rotation_over_qc = NAN;
   s->pga_over_lambda0 = NAN;
   s->azimuth_deg = NAN;
+  s->mu_demand = s->thrust_ecc_max = s->thrust_ecc_time_s = s->slide_time_s = NAN;
+  s->mu_demand_joint = AQ_SUMMARY_INT_NONE;
+  if (res && !isnan(res->mu_demand)) {
+    s->mu_demand = res->mu_demand;
+    s->mu_demand_joint = (int64_t)res->mu_demand_joint;
+    s->thrust_ecc_max = res->thrust_ecc_max;
+    s->thrust_ecc_time_s = res->thrust_ecc_time_s;
+    s->slide_time_s = res->slide_time_s;
+  }
   if (res) {
     s->collapsed = res->collapsed ? 1 : 0;
     s->collapse_time_s = res->collapsed ? res->collapse_time_s : NAN;
@@ -100,6 +114,19 @@ void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *
       l0 = set[k]->lambda0;
   s->pga_over_lambda0 = s->pga_g / l0;
 }
+
+void aq_summary_mark(aq_summary *s, double friction, int free_control)
+{
+  if (strcmp(s->status, "ok") != 0)
+    return;
+  int slides = !isnan(friction) && s->mu_demand > friction; /* NAN compares false */
+  int beyond = free_control && s->thrust_ecc_max > 1;
+  if (slides || beyond)
+    snprintf(s->status, sizeof s->status, "%s%s%s", slides ? "slides" : "",
+             slides && beyond ? "+" : "", beyond ? "beyond" : "");
+}
+
+int aq_summary_failed(const char *status) { return strchr(status, ':') != NULL; }
 
 void aq_summary_status(char *buf, size_t n, const char *stage, aq_status st)
 {
@@ -164,7 +191,7 @@ const char *aq_summary_get_str(const aq_summary *s, const aq_summary_field *f)
 /* 1 if run a is worse than run b (see aq_summary_worst). */
 static int worse(const aq_summary *a, const aq_summary *b)
 {
-  int fa = strcmp(a->status, "ok") != 0, fb = strcmp(b->status, "ok") != 0;
+  int fa = aq_summary_failed(a->status), fb = aq_summary_failed(b->status);
   if (fa || fb)
     return fa && !fb;
   if (a->collapsed != b->collapsed)

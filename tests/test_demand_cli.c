@@ -1,0 +1,123 @@
+/* test_demand_cli.c: what the motion asks of the joints in the main job's
+ * rows: the columns, the status marks (slides, beyond) against the row's own
+ * numbers and the friction given, and no verdict marked on a failed run. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+
+static char out[1 << 16], err[8192];
+
+/* Column of name in the TSV's header, or -1. */
+static int column(const char *tsv, const char *name)
+{
+  char buf[128];
+  for (int k = 0; k < 64; k++) {
+    aq_test_tsv_field(tsv, 0, k, buf, sizeof buf);
+    if (!buf[0])
+      return -1;
+    if (strcmp(buf, name) == 0)
+      return k;
+  }
+  return -1;
+}
+
+static double num(const char *tsv, int row, int k)
+{
+  char buf[128];
+  aq_test_tsv_field(tsv, row, k, buf, sizeof buf);
+  return strtod(buf, NULL);
+}
+
+static const char *str(const char *tsv, int row, int k, char *buf, size_t n)
+{
+  return aq_test_tsv_field(tsv, row, k, buf, n);
+}
+
+AQ_TEST(demand_cli_columns_and_marks)
+{
+  /* El Centro at 2 on oppenheim (fixed) and on search (free): both move */
+  const char *recs = "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 records/RSN1616_DUZCE_362-E.AT2";
+  char cmd[1024], buf[64];
+  double mu[2][2], ecc[2][2];
+  static const char *const fr[2] = {"0.6", "5"};
+  for (int f = 0; f < 2; f++) {
+    snprintf(cmd, sizeof cmd, "%s --arch arches/oppenheim.cfg --arch arches/search.cfg --scale 2 "
+                              "--friction %s",
+             recs, fr[f]);
+    int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+    aq_check(rc == 0, "exit 0, got %d: %s", rc, err);
+    int cs = column(out, "status"), cm = column(out, "mu_demand"), cj = column(out, "mu_demand_joint"),
+        ce = column(out, "thrust_ecc_max"), ct = column(out, "thrust_ecc_time_s"),
+        csl = column(out, "slide_time_s"), cc = column(out, "control"),
+        cf = column(out, "first_set"), cl = column(out, "lambda0_first");
+    (void)cf;
+    aq_check(cs >= 0 && cm == cc + 1 && cj == cm + 1 && ce == cj + 1 && ct == ce + 1 && csl == ct + 1,
+             "the columns after control: mu_demand mu_demand_joint thrust_ecc_max "
+             "thrust_ecc_time_s slide_time_s");
+    for (int row = 1; row <= 4; row++) {
+      char st[64], ctl[16];
+      str(out, row, cs, st, sizeof st);
+      str(out, row, cc, ctl, sizeof ctl);
+      double m = num(out, row, cm), e = num(out, row, ce), ts = num(out, row, csl),
+             te = num(out, row, ct), l0 = num(out, row, cl);
+      if (isnan(l0)) { /* never moved: nothing asked in motion */
+        aq_check(isnan(m) && isnan(e) && strcmp(st, "ok") == 0,
+                 "row %d never moved: mu %g ecc %g status %s", row, m, e, st);
+        continue;
+      }
+      double fric = strtod(fr[f], NULL);
+      int slides = m > fric, beyond = strcmp(ctl, "free") == 0 && e > 1;
+      const char *want = slides && beyond ? "slides+beyond" : slides ? "slides" : beyond ? "beyond" : "ok";
+      aq_check(strcmp(st, want) == 0, "row %d (%s, friction %s, mu_demand %g, thrust %g): status %s, "
+                                      "want %s", row, ctl, fr[f], m, e, st, want);
+      aq_check(slides ? ts >= 0 : isnan(ts), "row %d: slide_time_s %g with mu_demand %g", row, ts, m);
+      aq_check(e > 1 ? te >= 0 : isnan(te), "row %d: thrust_ecc_time_s %g with thrust %g", row, te, e);
+      aq_check(num(out, row, cj) >= 0 && num(out, row, cj) <= 30, "row %d: a joint", row);
+      if (row == 1 || row == 2) { /* El Centro: oppenheim, search */
+        mu[f][row - 1] = m;
+        ecc[f][row - 1] = e;
+      }
+    }
+    aq_check(strcmp(str(out, 1, cs, buf, sizeof buf), f == 0 ? "slides" : "ok") == 0,
+             "El Centro x2 on oppenheim: it slides at mu = 0.6, not at 5 (%s)", buf);
+    aq_check(strcmp(str(out, 2, cs, buf, sizeof buf), f == 0 ? "beyond" : "beyond") == 0,
+             "El Centro x2 on search (free): beyond (%s)", buf);
+  }
+  /* the friction marks the verdict, it does not change the motion */
+  for (int a = 0; a < 2; a++)
+    aq_check(mu[0][a] == mu[1][a] && ecc[0][a] == ecc[1][a], "arch %d: the same demand at any friction", a);
+  /* without a friction nothing slides */
+  int rc = aq_test_run("records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg "
+                       "--scale 2",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 0, "exit 0");
+  aq_check(strcmp(str(out, 1, column(out, "status"), buf, sizeof buf), "ok") == 0 &&
+               isnan(num(out, 1, column(out, "slide_time_s"))) &&
+               num(out, 1, column(out, "thrust_ecc_max")) > 1,
+           "no friction: ok, no slide time, though the fixed arch's thrust leaves a section (%s)",
+           buf);
+}
+
+AQ_TEST(demand_cli_failed_run_unmarked)
+{
+  /* a record that cannot be read: its rows fail, no demand, no mark */
+  FILE *f = fopen("build/san/demand_bad.AT2", "w");
+  if (!aq_check(f != NULL, "write a bad record"))
+    return;
+  fputs("not an AT2 file\n", f);
+  fclose(f);
+  int rc = aq_test_run("build/san/demand_bad.AT2 --arch arches/oppenheim.cfg --friction 0.01 "
+                       "",
+                       out, sizeof out, err, sizeof err);
+  aq_check(rc == 1, "exit 1, got %d", rc);
+  char st[64];
+  str(out, 1, column(out, "status"), st, sizeof st);
+  aq_check(strchr(st, ':') != NULL, "a failure's status, got %s", st);
+  aq_check(isnan(num(out, 1, column(out, "mu_demand"))) &&
+               isnan(num(out, 1, column(out, "thrust_ecc_max"))),
+           "no demand without a run");
+  remove("build/san/demand_bad.AT2");
+}
