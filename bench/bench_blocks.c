@@ -84,6 +84,15 @@ static int pulse(double a, double T, double end, aq_steps *s)
   return pulse_steps(a, T, end, 1e-3, s);
 }
 
+/* The process's CPU time, s (the machine may be shared: wall times are
+ * printed beside it). */
+static double cpu_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* One run of the block model; 0 on failure. */
 static int run_blocks(const aq_arch *A, aq_blocks_control c, double mu, double dt,
                       const aq_steps *s, aq_blocks_result *r, double *sec)
@@ -164,37 +173,40 @@ static void speed(void)
   const aq_path *p = aq_arch_path(A, 0);
   char *names[64];
   size_t nn = record_names(names, 64);
-  printf("%-36s %8s %8s %7s %7s %8s %10s %12s\n", "record", "length_s", "moving_s", "steps",
-         "siconos", "lps", "median_s", "us/step/ctc");
-  double total = 0;
+  printf("%-36s %8s %8s %7s %7s %8s %10s %9s %12s\n", "record", "length_s", "moving_s",
+         "steps", "siconos", "lps", "median_s", "cpu_s", "us/step/ctc");
+  double total = 0, ctotal = 0;
   for (size_t i = 0; i < nn; i++) {
     char path[512];
     snprintf(path, sizeof path, "records/%s", names[i]);
     aq_steps s;
     if (!record_steps(path, p, 2.0, &s))
       continue;
-    double t[3];
+    double t[3], c[3];
     aq_blocks_result r;
     int ok = 1;
     for (int k = 0; k < 3 && ok; k++) {
+      double c0 = cpu_s();
       ok = run_blocks(A, AQ_BLOCKS_FREE, 10, AQ_BLOCKS_DT_DEFAULT_S, &s, &r, &t[k]);
+      c[k] = cpu_s() - c0;
       if (ok && k < 2)
         aq_blocks_result_free(&r);
     }
     if (ok) {
-      double med = aq_bench_median(t, 3), len = 0;
+      double med = aq_bench_median(t, 3), cmed = aq_bench_median(c, 3), len = 0;
       for (size_t k = 0; k < s.n; k++)
         len += aq_steps_t(&s, k) >= 0 ? aq_steps_dt(&s, k) : 0;
       size_t nc = 2 * (aq_arch_geom(A)->p.voussoirs + 1);
-      printf("%-36.36s %8.1f %8.1f %7zu %7zu %8zu %10.3f %12.3f\n", names[i], len,
+      printf("%-36.36s %8.1f %8.1f %7zu %7zu %8zu %10.3f %9.3f %12.3f\n", names[i], len,
              (double)r.steps * AQ_BLOCKS_DT_DEFAULT_S, r.steps, r.steps_siconos, r.statics, med,
-             r.steps ? 1e6 * med / ((double)r.steps * (double)nc) : 0);
+             cmed, r.steps ? 1e6 * cmed / ((double)r.steps * (double)nc) : 0);
       total += med;
+      ctotal += cmed;
       aq_blocks_result_free(&r);
     }
     aq_steps_free(&s);
   }
-  printf("total median %.3f s\n", total);
+  printf("total median %.3f s wall, %.3f s CPU\n", total, ctotal);
   for (size_t i = 0; i < nn; i++)
     free(names[i]);
   aq_arch_free(A);
@@ -468,7 +480,7 @@ static void agree(const char *dir)
             aq_steps s;
             if (!record_steps(path, p, ratios[k], &s))
               continue;
-            aq_stepper *st = aq_job_stepper(A, AQ_MODEL_WORKPATH, NAN, 0, &e);
+            aq_stepper *st = aq_job_stepper(A, AQ_MODEL_WORKPATH, NAN, 0, 0, &e);
             aq_result ro, rm;
             aq_blocks_result rb;
             double sec = 0;
