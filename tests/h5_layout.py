@@ -136,7 +136,10 @@ class Checker:
 
     @staticmethod
     def same_type(got, want):
-        # a fixed or a variable-length string where the layout says "string"
+        # a fixed or a variable-length string where the layout says "string";
+        # [n×k]: any number of columns
+        if want.endswith("[n×k]"):
+            want, got = want[:-2], re.sub(r"×\d+\]$", "×", got)
         return want == got or want == "string" and got == "string (variable length)"
 
     # --- units ---------------------------------------------------------
@@ -205,6 +208,11 @@ class Checker:
                     n = np.asarray(units).size
                     if n != d.shape[0]:
                         self.fault("%s: %s: %d units for %d rows" % (fname, path, n, d.shape[0]))
+                elif e[3] == "one per column":
+                    n = np.asarray(units).size
+                    if n != (d.shape[1] if d.ndim == 2 else 1):
+                        self.fault("%s: %s: %d units for %s columns" % (fname, path, n,
+                                                                       d.shape[1:]))
                 elif u != e[3]:
                     self.fault("%s: %s: units %r, %s says %r (table of `%s`)"
                                % (fname, path, u, self.docname, e[3], sec))
@@ -222,12 +230,24 @@ class Checker:
                     if len(c) != d.shape[1] or len(u) != d.shape[1]:
                         self.fault("%s: %s: %d columns, %d names, %d units: one of each per "
                                    "column" % (fname, path, d.shape[1], len(c), len(u)))
-                    if e is not None and " ".join(c) != e[4]:
+                    if e is not None and not self.same_columns(c, e[4].split()):
                         self.fault("%s: %s: columns %r, %s says %r (table of `%s`)"
                                    % (fname, path, " ".join(c), self.docname, e[4], sec))
                     for cn, cu in zip(c, u):
                         self.suffix_rule("%s: %s" % (fname, path), cn, cu)
         self.attrs(path, d, fname)
+
+    @staticmethod
+    def same_columns(got, want):
+        """The columns as documented: in order; a documented name with a
+        placeholder (sa_<T>s_g) stands for any number of columns after the
+        literal ones, each matching one such name."""
+        fixed = [w for w in want if "<" not in w]
+        free = [pattern(w) for w in want if "<" in w]
+        if not free:
+            return got == want
+        return got[:len(fixed)] == fixed and \
+            all(any(p.match(c) for p in free) for c in got[len(fixed):])
 
     def table(self, path, d, fname):
         for name in d.dtype.names:

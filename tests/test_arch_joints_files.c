@@ -41,6 +41,22 @@ static int vertical_joints(double j[13][4])
   return n;
 }
 
+/* vertical.csv's joints j as a joints file at path: listed from -x
+ * (reversed) and with the intrados and extrados ends exchanged (swapped)
+ * as asked. */
+static void write_joints(const char *path, double j[13][4], int reversed, int swapped)
+{
+  char csv[4096];
+  size_t len = (size_t)snprintf(csv, sizeof csv, "joint,xi_m,yi_m,xe_m,ye_m\n");
+  for (int k = 0; k < 13; k++) {
+    const double *r = j[reversed ? 12 - k : k];
+    int i = swapped ? 2 : 0, e = swapped ? 0 : 2;
+    len += (size_t)snprintf(csv + len, sizeof csv - len, "%d,%.15g,%.15g,%.15g,%.15g\n", k,
+                            r[i], r[i + 1], r[e], r[e + 1]);
+  }
+  write_file(path, csv);
+}
+
 /* mechanism on dir/a.cfg (joints j.csv, faces f.csv if faces): exit 1 and
  * one line starting with want (%s: dir). */
 static void refused(const char *what, const char *dir, const char *want)
@@ -64,14 +80,9 @@ AQ_TEST(arch_joints_files_faults_where_they_are)
   double j[13][4];
   if (!aq_check(vertical_joints(j) == 13, "arches/vertical.csv: 13 joints"))
     return;
-  char csv[4096];
-  /* as given: from +x, intrados first */
-  size_t len = (size_t)snprintf(csv, sizeof csv, "joint,xi_m,yi_m,xe_m,ye_m\n");
-  for (int k = 0; k < 13; k++)
-    len += (size_t)snprintf(csv + len, sizeof csv - len, "%d,%.15g,%.15g,%.15g,%.15g\n", k,
-                            j[k][0], j[k][1], j[k][2], j[k][3]);
-  snprintf(path, sizeof path, "%s/j.csv", dir);
-  write_file(path, csv);
+  char jpath[700];
+  snprintf(jpath, sizeof jpath, "%s/j.csv", dir);
+  write_joints(jpath, j, 0, 0); /* as given: from +x, intrados first */
   snprintf(path, sizeof path, "%s/f.csv", dir);
   /* voussoir 2's intrados pulled out over voussoir 0 (x 3.9, y 0.2) */
   write_file(path, "voussoir,face,x_m,y_m\n2,i,3.9,0.2\n");
@@ -85,31 +96,18 @@ AQ_TEST(arch_joints_files_faults_where_they_are)
           "meeting voussoir 1");
   write_file(path, "voussoir,face,x_m,y_m\n");
   /* the intrados and extrados columns exchanged */
-  len = (size_t)snprintf(csv, sizeof csv, "joint,xi_m,yi_m,xe_m,ye_m\n");
-  for (int k = 0; k < 13; k++)
-    len += (size_t)snprintf(csv + len, sizeof csv - len, "%d,%.15g,%.15g,%.15g,%.15g\n", k,
-                            j[k][2], j[k][3], j[k][0], j[k][1]);
-  snprintf(path, sizeof path, "%s/j.csv", dir);
-  write_file(path, csv);
+  write_joints(jpath, j, 0, 1);
   refused("columns exchanged", dir, "archquake: %s/j.csv:2: xi_m: expected each joint's "
                                      "intrados end in xi_m,yi_m and its extrados end in "
                                      "xe_m,ye_m, got them swapped");
   /* listed from the -x springing */
-  len = (size_t)snprintf(csv, sizeof csv, "joint,xi_m,yi_m,xe_m,ye_m\n");
-  for (int k = 0; k < 13; k++)
-    len += (size_t)snprintf(csv + len, sizeof csv - len, "%d,%.15g,%.15g,%.15g,%.15g\n", k,
-                            j[12 - k][0], j[12 - k][1], j[12 - k][2], j[12 - k][3]);
-  write_file(path, csv);
+  write_joints(jpath, j, 1, 0);
   refused("from -x", dir, "archquake: %s/j.csv:3: joint: expected joints from the springing "
                           "on the +x side over the crown to the other, got joint 0 at x = "
                           "-4.33 m and joint 12 at x = 4.33 m (12 of 12 voussoirs clockwise): "
                           "the file runs the other way");
   /* both: from -x, columns exchanged (counter-clockwise again) */
-  len = (size_t)snprintf(csv, sizeof csv, "joint,xi_m,yi_m,xe_m,ye_m\n");
-  for (int k = 0; k < 13; k++)
-    len += (size_t)snprintf(csv + len, sizeof csv - len, "%d,%.15g,%.15g,%.15g,%.15g\n", k,
-                            j[12 - k][2], j[12 - k][3], j[12 - k][0], j[12 - k][1]);
-  write_file(path, csv);
+  write_joints(jpath, j, 1, 1);
   refused("from -x, exchanged", dir, "archquake: %s/j.csv:2: xi_m: expected joints from the "
                                      "springing on the +x side, each intrados end in "
                                      "xi_m,yi_m, got joint 0 at x = -4.33 m and joint 12 at x = "

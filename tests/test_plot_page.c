@@ -298,8 +298,11 @@ AQ_TEST(plot_page_history_small_rotation)
   if (!run_ok(args))
     return;
   char *data = aq_test_read_file(csv, NULL);
-  aq_check(data && strstr(data, "# axis: rotation (mrad)\n"),
-           "a peak of %g rad drawn in mrad (axis title in the data)", peak);
+  /* over q_c (thin's primary set's 0.0208 rad, q_c_rad of the file): a
+     ratio of some thousandths, drawn in thousandths */
+  aq_check(data && strstr(data, "# axis: rotation / qc of its set (10⁻³)\n"),
+           "a peak of %g rad, %g of q_c, drawn in thousandths of q_c (axis title in the "
+           "data)", peak, peak / 0.020813);
   free(data);
   if (!have_poppler())
     return;
@@ -308,15 +311,17 @@ AQ_TEST(plot_page_history_small_rotation)
   word *w = malloc(MAXW * sizeof *w);
   double pw = NAN, ph = NAN;
   long n = w ? pdf_words(pdf, w, MAXW, &pw, &ph) : 0;
-  /* the title's words "rotation (mrad)", drawn upwards left of the axis */
+  /* the title's words "rotation / qc of its set (10⁻³)", drawn upwards
+     left of the axis */
   const word *title = NULL;
   for (long i = 0; i < n; i++)
-    if (strcmp(w[i].text, "(mrad)") == 0)
+    if (strcmp(w[i].text, "(10⁻³)") == 0)
       title = &w[i];
-  long labels = 0, overlap = 0, longest = 0, note = 0;
+  long labels = 0, overlap = 0, longest = 0, note = 0, missing = 0;
   for (long i = 0; i < n && title; i++) {
     const word *q = &w[i];
-    note += strcmp(q->text, "--store-records") == 0;
+    note += strcmp(q->text, "ground") == 0; /* the axis' and the legend's */
+    missing += strcmp(q->text, "before") == 0; /* the note of a file without it */
     char *e;
     strtod(q->text, &e);
     /* a number beside the title's band of the page, in the panel's height */
@@ -330,7 +335,9 @@ AQ_TEST(plot_page_history_small_rotation)
   aq_check(title && labels >= 3 && overlap == 0 && longest <= 5,
            "rotation axis: %ld tick labels, at most %ld characters, %ld over the title", labels,
            longest, overlap);
-  aq_check(note == 1, "the note of the missing ground is drawn");
+  aq_check(note == 2 && missing == 0,
+           "the ground (stored with --history) on its axis and in the legend, no note of it "
+           "missing (%ld words \"ground\", %ld \"before\")", note, missing);
   free(w);
 }
 

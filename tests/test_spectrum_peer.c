@@ -39,8 +39,8 @@ static int read_rec(const char *path, aq_record *r)
 }
 
 /* N written out from the definition: a ratio 10 dt / T within 1e-6 of a
- * whole number is that number (the test's own tolerance), else its
- * ceiling; at least 1. */
+ * whole number is that number (as PEER's files print dt and T in decimals),
+ * else its ceiling; at least 1. */
 static size_t steps_of(double dt, double T)
 {
   double r = 10 * dt / T, w = floor(r + 0.5);
@@ -56,7 +56,11 @@ AQ_TEST(spectrum_peer_steps)
     size_t n;
   } c[] = {
       {0.005, 0.01, 5},   /* 10 x 0.005 / 0.01 = 5 exactly */
-      {0.005, 0.025, 2},  /* = 2: in binary 2.0000000000000004 */
+      {0.005, 0.025, 2},  /* = 2 */
+      {0.007, 0.01, 7},   /* = 7: in binary 7.000000000000001 */
+      {0.011, 0.055, 2},  /* = 2: in binary 1.9999999999999998 */
+      {(double)0.001f, 0.01, 1}, /* a float's DELTA, 0.0010000000474974513: 1.0000000475 */
+      {0.001 * (1 + 3e-6), 0.01, 2}, /* 1.000003: a step more, beyond the tolerance */
       {0.005, 0.05, 1},   /* = 1 */
       {0.005, 0.0125, 4}, /* = 4 */
       {0.005, 0.03, 2},   /* 1.67 */

@@ -74,6 +74,7 @@ typedef struct {
   aq_fragility_row *fit;
   size_t nfit;
   char (*im_name)[64]; /* the spectral measures' names */
+  size_t nspectral;    /* their number */
 } rows;
 
 /* Row i of (subject, arch, polarity) is the worst of its nz azimuths'
@@ -94,6 +95,7 @@ static int make_rows(rows *o, char **recs, size_t nrec, aq_arch **arches, size_t
     return -1;
   for (size_t k = 0; k < nsp; k++)
     aq_im_spectral_name(po, k, o->im_name[k], sizeof o->im_name[k]);
+  o->nspectral = nsp;
   for (size_t i = 0; i < n; i++) {
     size_t r = i / (na * npol), w = 0;
     double lo = NAN, hi = NAN;
@@ -169,8 +171,12 @@ static int write_h5(const char *path, int argc, char **argv, char **recs, size_t
                        .status = R[r].status};
     s = aq_h5_write_record(w, r, &hr, &e);
   }
+  const char *spectral[AQ_IM_SA_MAX + 1];
+  size_t nsp = 0;
+  for (; nsp < o->nspectral && nsp < AQ_IM_SA_MAX + 1; nsp++)
+    spectral[nsp] = o->im_name[nsp];
   aq_h5_capacity hc = {o->row, npair, o->fit, o->nfit, so->resolution,
-                       so->tol, AQ_FRAGILITY_CI_DEFAULT};
+                       so->tol, AQ_FRAGILITY_CI_DEFAULT, nsp, spectral};
   if (s == AQ_OK)
     s = aq_h5_write_capacity(w, path, &hc, &e);
   if (s == AQ_OK) {
@@ -388,7 +394,7 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_outfile ot = {0}, of = {0};
   int ok = (!text || out_open(&ot, text) == 0) && (!frag || out_open(&of, frag) == 0);
   FILE *ft = text ? ot.f : stdout, *ff = of.f;
-  rows o = {NULL, NULL, NULL, 0, NULL};
+  rows o = {NULL, NULL, NULL, 0, NULL, 0};
   if (ok && (ff || h5) && fit_all(nrec, na, R, npol, C, nim, fits) != 0)
     ok = 0;
   if (ok &&

@@ -58,13 +58,36 @@ int aq_cmd_report(int argc, char **argv)
       strcat(cmd, argv[i]);
     }
   }
-  aq_page_input in = {argv[optind], (const char *const *)argv + optind + 1,
-                      (size_t)(argc - optind - 1), cmd, aq_build_string()};
-  aq_cleanup_install(); /* a signal removes the page's temporaries (src/page) */
+  /* the results file of the main job (the first of that kind), then every
+     other file in the order given; a file that cannot be told is refused */
+  const char **others = malloc((size_t)(argc - optind + 1) * sizeof *others);
+  const char *results = NULL;
+  size_t nothers = 0;
   aq_error err;
   aq_error_clear(&err);
+  for (int i = optind; others && i < argc; i++) {
+    aq_page_kind kind;
+    if (aq_page_file_kind(argv[i], &kind, &err) != AQ_OK) {
+      aq_error_print(&err, stderr);
+      free(others);
+      free(cmd);
+      return AQ_EXIT_FAIL;
+    }
+    if (kind == AQ_PAGE_RESULTS && !results)
+      results = argv[i];
+    else
+      others[nothers++] = argv[i];
+  }
+  if (!others) {
+    free(cmd);
+    fprintf(stderr, "archquake: report: out of memory\n");
+    return AQ_EXIT_FAIL;
+  }
+  aq_page_input in = {results, others, nothers, cmd, aq_build_string()};
+  aq_cleanup_install(); /* a signal removes the page's temporaries (src/page) */
   aq_page_stats st;
   aq_status rc = aq_page_write(&in, out, &st, &err);
+  free(others);
   free(cmd);
   if (rc != AQ_OK) {
     aq_error_print(&err, stderr);

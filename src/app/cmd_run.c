@@ -82,7 +82,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.scale_to_lambda0 = o.scale_to_lambda0;
   cfg.threads = o.threads;
   cfg.history = o.history;
-  cfg.store_records = o.store_records;
+  cfg.store_records = o.store_records || o.history; /* a history with the ground it answers */
   cfg.polarity = o.polarity;
   cfg.resume = o.resume;
   cfg.narches = o.narches;

@@ -454,7 +454,9 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
-                           "pgv_m_s, pgd_m, arias_m_s, cav_m_s or pga_lambda0"},
+                           "pgv_m_s, pgd_m, arias_m_s, cav_m_s, pga_lambda0, or a spectral "
+                           "measure the file's fits hold (capacity's --im-periods and "
+                           "--sa-avg: sa_0.2s_g, sa_avg_0.1_1s_g)"},
     [AQ_OPT_X] = {.name = "x", .kind = AQ_ARG_CHOICE, .choices = x_axes, .meta = "qc|rad",
                   DEST(x_rad), .cmds = C(PLOT_CAPACITY),
                   .help = "the peak rotation over q_c (qc, the default) or in rad (rad)"},
@@ -537,7 +539,8 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .check = ode_rtol_needs_ode},
     [AQ_OPT_HISTORY] = {.name = "history", .kind = AQ_ARG_FLAG, DEST(history), .cmds = C(RUN),
                         .help = "write histories (step ends, turning points, impacts) to the "
-                                "HDF5 file (with -o)",
+                                "HDF5 file (with -o), with each record's processed ground "
+                                "motion (as --store-records), which plot history draws",
                         .requires = OPTS(AQ_OPT_OUTPUT),
                         .why = "histories are written only to the results file"},
     [AQ_OPT_HISTORY_FILE] = {.name = "history", .kind = AQ_ARG_STRING, .meta = "FILE",
@@ -1113,9 +1116,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
         {.name = "report",
          .title = "report",
          .help_cmd = "report",
-         .synopsis = "report RESULTS.h5 [CAP.h5...] -o F.html",
+         .synopsis = "report FILE.h5 ... -o F.html",
          .summary = "one HTML page to hand on",
-         .head = "usage: archquake report RESULTS.h5 [CAPACITY.h5 ...] -o REPORT.html\n"
+         .head = "usage: archquake report FILE.h5 ... -o REPORT.html\n"
                  "One self-contained HTML page of a screening, to hand on: per arch its\n"
                  "verdict table (sortable, filterable by verdict) and figures (the arch\n"
                  "and its hinge sets, the suite's verdict map, the history of each\n"
@@ -1125,9 +1128,11 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "records with their reasons, and the run: command line, build, date,\n"
                  "options, every record and every arch.  Figures are inline SVG, text as\n"
                  "text; nothing is fetched; it prints on A4 and Letter (docs/report.md).\n"
-                 "RESULTS.h5 is the main job's results file (archquake ... -o), each\n"
-                 "CAPACITY.h5 one of archquake capacity -o; a file of archquake select -o\n"
-                 "given there too adds its suite: the target, checks, spectra, records.\n",
+                 "Each FILE.h5 in its section, whatever their order: at most one\n"
+                 "results file of the main job (archquake ... -o), and any files of\n"
+                 "archquake capacity -o, select -o (its suite: the target, checks,\n"
+                 "spectra, records) and spectrum -o (its spectra: a figure and a table);\n"
+                 "without a results file, the run is the first file's.\n",
          .tail = "Exit status: 0 written, 1 an input could not be read, 2 bad options,\n"
                  "3 the page could not be written.  No partial file is left under FILE.\n",
          .heading = {[AQ_GROUP_MAIN] = "Options:"}},

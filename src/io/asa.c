@@ -424,24 +424,10 @@ aq_status aq_asa_parse(const unsigned char *buf, size_t n, const char *name,
     }
   }
   row_shape shape = {nchan, width};
-  aq_extra_rows x;
-  aq_extra_rows_scan(&c, &ln, extra_row, &shape, &x);
-  if (aq_lines_next(&c, &ln)) {
-    char got[48];
-    aq_copy_trim(got, sizeof got, ln.p, ln.len);
-    aq_raw_file_free(raw);
-    return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
-                        "expected the end of the data after %zu rows (NUM. TOTAL DE "
-                        "MUESTRAS), got \"%s\"",
-                        rows + x.rows, got);
-  }
-  for (int j = 0; j < nchan; j++) {
-    aq_raw_channel *ch = &raw->chan[j];
-    ch->extra_rows = ch->extra_values = x.rows;
-    ch->extra_line = x.line;
-    ch->extra_repeat = x.repeat;
-    snprintf(ch->count_from, sizeof ch->count_from, "NUM. TOTAL DE MUESTRAS");
-  }
+  aq_status rs = aq_raw_rows_end(&c, &ln, extra_row, &shape, rows, "NUM. TOTAL DE MUESTRAS",
+                                 raw, name, err);
+  if (rs != AQ_OK)
+    return rs;
   snprintf(raw->event, sizeof raw->event, "%.12s %.16s %.60s", f[F_EQ_DATE].value,
            f[F_EQ_TIME].value, f[F_MAG].value);
   snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */

@@ -685,11 +685,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   snprintf(ch->units_said, sizeof ch->units_said, "%s", usaid);
   snprintf(ch->units_from, sizeof ch->units_from, "%s", ufrom);
   ch->quantity = qty;
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "NPTS");
+  aq_raw_set_extra(ch, &x, 1, "NPTS");
   if (qty != AQ_QUANTITY_UNSTATED)
     snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s",
              qty == AQ_QUANTITY_ACCELERATION ? ufrom : usaid);

@@ -247,11 +247,7 @@ static aq_status parse_block(aq_lines *c, const aq_line *first, const char *name
   if (s == AQ_OK) { /* rows past NO. OF POINTS: reported for the decision (record.c) */
     aq_extra_rows x;
     aq_extra_rows_scan(c, &ln, aq_fixed_row, &fd, &x);
-    tmp.extra_rows = x.rows;
-    tmp.extra_values = x.values;
-    tmp.extra_line = x.line;
-    tmp.extra_repeat = x.repeat;
-    snprintf(tmp.count_from, sizeof tmp.count_from, "NO. OF POINTS");
+    aq_raw_set_extra(&tmp, &x, 1, "NO. OF POINTS");
   }
   while (s == AQ_OK) { /* the block ends with "/&" */
     if (!aq_lines_next(c, &ln)) {

@@ -370,11 +370,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     /* rows past the count: reported for the decision (record.c) */
     aq_extra_rows x;
     aq_extra_rows_scan(c, &last, aq_fixed_row, &f, &x);
-    tmp.extra_rows = x.rows;
-    tmp.extra_values = x.values;
-    tmp.extra_line = x.line;
-    tmp.extra_repeat = x.repeat;
-    snprintf(tmp.count_from, sizeof tmp.count_from, "the data header");
+    aq_raw_set_extra(&tmp, &x, 1, "the data header");
   }
   /* the end line, if present */
   {

@@ -283,11 +283,9 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
    * line): reported for the decision (record.c) */
   aq_extra_rows x;
   aq_extra_rows_scan(c, &last, aq_fixed_row, &f, &x);
-  tmp.extra_rows = x.rows;
-  tmp.extra_values = x.values;
-  tmp.extra_line = x.line;
-  tmp.extra_repeat = x.repeat;
-  snprintf(tmp.count_from, sizeof tmp.count_from, "the data line (line %ld)", data.line);
+  char from[48];
+  snprintf(from, sizeof from, "the data line (line %ld)", data.line);
+  aq_raw_set_extra(&tmp, &x, 1, from);
   /* skip velocity and displacement (V2) up to and including the end line */
   aq_lines peek = *c;
   while (aq_lines_next(&peek, &ln)) {

@@ -181,11 +181,7 @@ aq_status aq_esm_parse(const unsigned char *buf, size_t n, const char *name,
                         "expected the end of the file after NDATA = %.0f values, got \"%s\"",
                         nd, tok);
   }
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "NDATA");
+  aq_raw_set_extra(ch, &x, 1, "NDATA");
   /* what the header states */
   aq_copy_trim(ch->network, sizeof ch->network, k[K_NETWORK].val.p, k[K_NETWORK].val.len);
   aq_copy_trim(ch->station, sizeof ch->station, k[K_STATION].val.p, k[K_STATION].val.len);

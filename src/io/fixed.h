@@ -101,7 +101,7 @@ size_t aq_fixed_row(const aq_line *ln, const void *ctx);
  * lines skipped, up to the first it does not accept or the end of the
  * input, where c is left.  last is the block's last row: each extra row is
  * compared with it (text, blanks around trimmed). */
-typedef struct {
+typedef struct aq_extra_rows_s {
   size_t rows, values; /* 0: none */
   long line;           /* the first one's line */
   int repeat;          /* 1: every one is a copy of last */

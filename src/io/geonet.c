@@ -141,11 +141,7 @@ static aq_status geonet_block(aq_lines *c, const aq_line *first, const char *nam
                once, so there the counts alone divide the series */
     aq_extra_rows x;
     aq_extra_rows_scan(c, &last, aq_fixed_row, &fr, &x);
-    ch->extra_rows = x.rows;
-    ch->extra_values = x.values;
-    ch->extra_line = x.line;
-    ch->extra_repeat = x.repeat;
-    snprintf(ch->count_from, sizeof ch->count_from, "integer header #31");
+    aq_raw_set_extra(ch, &x, 1, "integer header #31");
   }
   if (!v1) {
     double nvel = iv[GI_NPTS_VEL - 1], ndis = iv[GI_NPTS_DIS - 1];

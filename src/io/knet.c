@@ -247,11 +247,7 @@ aq_status aq_knet_parse(const unsigned char *buf, size_t n, const char *name,
                         "more that are not values",
                         want, val[K_DURATION], hz);
   }
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "Duration Time(s) x Sampling Freq(Hz)");
+  aq_raw_set_extra(ch, &x, 1, "Duration Time(s) x Sampling Freq(Hz)");
 
   snprintf(raw->format, sizeof raw->format, "%s", kik ? "kiknet" : "knet");
   snprintf(raw->event, sizeof raw->event, "%.19s JST M%.6s %.8sN %.8sE %.6s km",

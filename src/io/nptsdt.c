@@ -204,11 +204,7 @@ aq_status aq_nptsdt_parse(const unsigned char *buf, size_t n, const char *name,
   }
   if (x_rows.rows == 0)
     aq_extra_rows_scan(&c, &ln, NULL, NULL, &x_rows);
-  ch->extra_rows = x_rows.rows;
-  ch->extra_values = is_pairs ? x_rows.values / 2 : x_rows.values;
-  ch->extra_line = x_rows.line;
-  ch->extra_repeat = x_rows.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "NPTS");
+  aq_raw_set_extra(ch, &x_rows, is_pairs ? 2 : 1, "NPTS");
   ch->begin_s = t0;
   snprintf(raw->format, sizeof raw->format, "npts-dt");
   return AQ_OK;

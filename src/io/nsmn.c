@@ -221,24 +221,9 @@ aq_status aq_nsmn_parse(const unsigned char *buf, size_t n, const char *name,
     }
   }
   /* rows past NUMBER OF DATA: reported for the decision (record.c) */
-  aq_extra_rows x;
-  aq_extra_rows_scan(&c, &ln, extra_row, NULL, &x);
-  if (aq_lines_next(&c, &ln)) {
-    char got[48];
-    aq_copy_trim(got, sizeof got, ln.p, ln.len);
-    aq_raw_file_free(raw);
-    return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
-                        "expected the end of the file after %zu rows (NUMBER OF DATA), got "
-                        "\"%s\"",
-                        np + x.rows, got);
-  }
-  for (int j = 0; j < NSMN_NCHAN; j++) {
-    aq_raw_channel *ch = &raw->chan[j];
-    ch->extra_rows = ch->extra_values = x.rows;
-    ch->extra_line = x.line;
-    ch->extra_repeat = x.repeat;
-    snprintf(ch->count_from, sizeof ch->count_from, "NUMBER OF DATA");
-  }
+  aq_status rs = aq_raw_rows_end(&c, &ln, extra_row, NULL, np, "NUMBER OF DATA", raw, name, err);
+  if (rs != AQ_OK)
+    return rs;
   snprintf(raw->event, sizeof raw->event, "%.20s %.20s %.40s", date, time_s, mag);
   snprintf(raw->event_name, sizeof raw->event_name, "%s", raw->event); /* the event alone */
   snprintf(raw->format, sizeof raw->format, "nsmn");

@@ -58,6 +58,36 @@ aq_status aq_raw_append_channel(aq_raw_file *raw, aq_raw_channel *c, const char 
   return AQ_OK;
 }
 
+void aq_raw_set_extra(aq_raw_channel *c, const aq_extra_rows *x, size_t per,
+                      const char *count_from)
+{
+  c->extra_rows = x->rows;
+  c->extra_values = per > 1 ? x->values / per : x->values;
+  c->extra_line = x->line;
+  c->extra_repeat = x->repeat;
+  snprintf(c->count_from, sizeof c->count_from, "%s", count_from);
+}
+
+aq_status aq_raw_rows_end(aq_lines *c, const aq_line *last, aq_row_fn *row, const void *ctx,
+                          size_t rows, const char *count_from, aq_raw_file *raw,
+                          const char *name, aq_error *err)
+{
+  aq_extra_rows x;
+  aq_extra_rows_scan(c, last, row, ctx, &x);
+  aq_line ln;
+  if (aq_lines_next(c, &ln)) {
+    char got[48];
+    aq_copy_trim(got, sizeof got, ln.p, ln.len);
+    aq_raw_file_free(raw);
+    return aq_error_set(err, AQ_EFORMAT, name, ln.line, -1, "data",
+                        "expected the end of the data after %zu rows (%s), got \"%s\"",
+                        rows + x.rows, count_from, got);
+  }
+  for (size_t j = 0; j < raw->nchan; j++)
+    aq_raw_set_extra(&raw->chan[j], &x, 1, count_from);
+  return AQ_OK;
+}
+
 void aq_raw_channel_init(aq_raw_channel *c)
 {
   memset(c, 0, sizeof *c);

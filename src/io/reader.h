@@ -278,6 +278,25 @@ void aq_raw_channel_init(aq_raw_channel *c);
  * filled). */
 aq_raw_channel *aq_raw_add_channel(aq_raw_file *raw, const char *name, aq_error *err);
 
+/* The rows past the stated count a reader found (fixed.h aq_extra_rows,
+ * each per values of this channel: 2 for (time, value) pairs) into c's
+ * extra_* fields, with count_from the field that states the count. */
+struct aq_extra_rows_s;
+void aq_raw_set_extra(aq_raw_channel *c, const struct aq_extra_rows_s *x, size_t per,
+                      const char *count_from);
+
+/* The end of a table of rows, one value of every channel of raw a row,
+ * after its stated count (rows, stated by count_from): the rows past it
+ * (row() as aq_extra_rows_scan's, last the count's last row) are set on
+ * every channel; then nothing but blank lines may follow.  AQ_OK, or
+ * AQ_EFORMAT naming the line that does (raw freed). */
+struct aq_lines_s;
+struct aq_line_s;
+aq_status aq_raw_rows_end(struct aq_lines_s *c, const struct aq_line_s *last,
+                          size_t (*row)(const struct aq_line_s *, const void *),
+                          const void *ctx, size_t rows, const char *count_from,
+                          aq_raw_file *raw, const char *name, aq_error *err);
+
 /* Append *c (its values owned by raw from then on) to raw; on allocation
  * failure free c->values and return AQ_ENOMEM (err filled). */
 aq_status aq_raw_append_channel(aq_raw_file *raw, aq_raw_channel *c, const char *name,

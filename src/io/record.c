@@ -213,6 +213,11 @@ static aq_status check_acceleration(const aq_raw_channel *ch, const char *path,
                       what, ev);
 }
 
+/* --dt and a file's interval within this (relative) are the same: both
+ * are decimals as written (0.01, ".0100"), whose doubles differ by a few
+ * units of rounding at most. */
+#define AQ_DT_SAME_REL 1e-9
+
 /* The event as records are compared by it: name in lower case (ASCII),
  * every run of characters other than letters and digits one space, none at
  * either end ("Imperial Valley-02, 5/19/1940" -> "imperial valley 02 5 19
@@ -279,7 +284,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                                             : "are not all copies of the last row");
   /* --dt is for records that state no sample interval: one that states its
    * own keeps it, and says so when the two differ (a suite may mix both) */
-  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > 1e-9 * opts->dt_s)
+  if (opts && opts->dt_s > 0 && fabs(ch->dt_s - opts->dt_s) > AQ_DT_SAME_REL * opts->dt_s)
     snprintf(rec->dt_note, sizeof rec->dt_note,
              "--dt %g s not used: the file states a sample interval of %g s", opts->dt_s,
              ch->dt_s);

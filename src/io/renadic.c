@@ -259,11 +259,7 @@ static aq_status parse_channel(aq_lines *c, const aq_line *first, const char *na
     if (s == AQ_OK) { /* pairs past NO. OF POINTS: reported for the decision (record.c) */
       aq_extra_rows x;
       aq_extra_rows_scan(c, &last, aq_fixed_row, &pair_fmt, &x);
-      tmp.extra_rows = x.rows;
-      tmp.extra_values = x.values / 2;
-      tmp.extra_line = x.line;
-      tmp.extra_repeat = x.repeat;
-      snprintf(tmp.count_from, sizeof tmp.count_from, "NO. OF POINTS");
+      aq_raw_set_extra(&tmp, &x, 2, "NO. OF POINTS");
     }
   }
   if (s == AQ_OK) {

@@ -229,11 +229,7 @@ aq_status aq_smc_parse(const unsigned char *buf, size_t n, const char *name,
   /* rows past integer #17: reported for the decision (record.c) */
   aq_extra_rows x;
   aq_extra_rows_scan(&c, &last, aq_fixed_row, &fd, &x);
-  ch->extra_rows = x.rows;
-  ch->extra_values = x.values;
-  ch->extra_line = x.line;
-  ch->extra_repeat = x.repeat;
-  snprintf(ch->count_from, sizeof ch->count_from, "integer header #17");
+  aq_raw_set_extra(ch, &x, 1, "integer header #17");
   static const char *const units[5] = {"", "cm/s2", "cm/s2", "cm/s", "cm"};
   snprintf(ch->units, sizeof ch->units, "%s", units[(int)type]);
   if (type == 0) /* converted from another format: the quantity is not stated */

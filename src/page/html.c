@@ -268,11 +268,34 @@ static aq_status figure(page *p, const char *label, aq_page_draw_fn draw, void *
 static int is_option(const char *name)
 {
   static const char *const not[] = {"archquake_version", "archquake_build", "command_line",
-                                    "created", "format_version", NULL};
+                                    "created", "format_version", "kind", NULL};
   for (int i = 0; not[i]; i++)
     if (strcmp(name, not[i]) == 0)
       return 0;
   return strncmp(name, "timing_", 7) != 0;
+}
+
+/* An option's value as the page shows it: what a NaN (a value that does
+ * not apply) means for that option, in words; every other value as the
+ * file holds it. */
+static const char *option_text(const char *name, const char *value, double num)
+{
+  static const struct {
+    const char *name, *nan;
+  } words[] = {
+      {"cor", "per arch (each arch's own [dynamics] cor)"},
+      {"lowpass_hz", "off"},
+      {"highpass_hz", "off (no filter)"},
+      {"dt_override_s", "none (each file's own interval)"},
+      {"scale_to_pga_g", "none"},
+      {"scale_to_lambda0", "none"},
+  };
+  if (!isnan(num) || strcmp(value, "nan") != 0)
+    return value;
+  for (size_t k = 0; k < sizeof words / sizeof words[0]; k++)
+    if (strcmp(name, words[k].name) == 0)
+      return words[k].nan;
+  return "– (not applicable)";
 }
 
 static void section_run(page *p)
@@ -293,15 +316,16 @@ static void section_run(page *p)
                  : (v = aq_page_attr(root, "archquake_version")) ? v : "?");
   aq_page_puts(b, "</td></tr>\n<tr><th>date (UTC)</th><td>");
   aq_page_esc(b, (v = aq_page_attr(root, "created")) ? v : "?");
-  aq_page_puts(b, "</td></tr>\n<tr><th>results file</th><td class=\"mono\">");
-  aq_page_esc(b, p->in->results);
+  aq_page_puts(b, p->in->results ? "</td></tr>\n<tr><th>results file</th><td class=\"mono\">"
+                                 : "</td></tr>\n<tr><th>file</th><td class=\"mono\">");
+  aq_page_esc(b, p->in->results ? p->in->results : p->in->capacity[0]);
   aq_page_puts(b, "</td></tr>\n</tbody></table>\n<h3>Processing and run options</h3>\n"
                   "<table><thead><tr><th>option</th><th>value</th></tr></thead><tbody>\n");
   for (size_t i = 0; i < root->n; i++)
     if (is_option(root->name[i])) {
       aq_page_puts(b, "<tr>");
       text_td(b, root->name[i], 1);
-      text_td(b, root->value[i], 0);
+      text_td(b, option_text(root->name[i], root->value[i], root->num[i]), 0);
       aq_page_puts(b, "</tr>\n");
     }
   aq_page_puts(b, "</tbody></table>\n");
@@ -360,7 +384,9 @@ static void section_run(page *p)
   }
   aq_page_puts(b, "</tbody></table>\n");
 
-  /* arches */
+  /* arches (a spectrum file has none) */
+  if (p->r.narch == 0)
+    return;
   aq_page_printf(b, "<h3 id=\"arches\">Arches (%zu)</h3>\n", p->r.narch);
   read_note(b, "Each arch's two hinge sets: the <i>primary</i> set opens when the ground "
                "accelerates one way, the <i>reverse</i> set (the same joints, faces "
@@ -695,14 +721,15 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
     char label[300];
     aq_text_fit(label, sizeof label, "capacity of arch %s: verdict strips and fragility", arch);
     st = figure(p, label, draw_capacity, &c);
-    /* the measures ranked by the dispersion of their fits */
+    /* the measures in the order of their rank: by what the rank orders,
+       the dispersion per power of the scale (beta_per_power), NaN last */
     size_t order[64], n = 0;
     for (size_t i = 0; i < t.nfit && n < 64; i++)
       if (strcmp(t.fit[i].arch, arch) == 0)
         order[n++] = i;
-    for (size_t i = 1; i < n; i++) /* by beta, NaN last */
+    for (size_t i = 1; i < n; i++)
       for (size_t j = i; j > 0; j--) {
-        double x = t.fit[order[j - 1]].beta, y = t.fit[order[j]].beta;
+        double x = t.fit[order[j - 1]].beta_per_power, y = t.fit[order[j]].beta_per_power;
         if (!(isnan(x) ? 0 : isnan(y) ? 1 : x > y))
           break;
         size_t s = order[j];
@@ -710,9 +737,12 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
         order[j - 1] = s;
       }
     if (n) {
-      aq_page_puts(b, "<p>The intensity measures ranked by the dispersion β of their "
-                      "fragility fit: the smaller β, the better the measure predicts this "
-                      "arch's collapse.");
+      aq_page_puts(b, "<p>The intensity measures ranked by the dispersion of their "
+                      "fragility fit per power of the scale the measure grows with: β, "
+                      "halved for Arias intensity, which grows as the square of the scale "
+                      "and so spreads twice as much while ordering the records alike (the "
+                      "column <i>ranked by</i>).  The smaller, the better the measure "
+                      "predicts this arch's collapse.");
       int spectral = 0;
       for (size_t i = 0; i < n; i++)
         spectral |= strncmp(t.fit[order[i]].im, "sa_", 3) == 0;
@@ -725,14 +755,19 @@ static aq_status section_capacity(page *p, const char *path, size_t index)
         aq_page_puts(b, "</i>.");
       }
       aq_page_puts(b, "</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
-                      "<th>median</th><th>β</th><th>median 90 % interval</th><th>records</th>"
+                      "<th>median</th><th>β</th><th>ranked by: β per power of the scale</th>"
+                      "<th>median 90 % interval</th><th>records</th>"
                       "<th>censored</th></tr></thead><tbody>\n");
       for (size_t i = 0; i < n; i++) {
         const aq_h5_fragility_fit *f = &t.fit[order[i]];
-        aq_page_printf(b, "<tr><td class=\"n\">%zu</td>", i + 1);
+        if (f->rank > 0) /* the file's rank */
+          aq_page_printf(b, "<tr><td class=\"n\">%lld</td>", (long long)f->rank);
+        else
+          aq_page_puts(b, "<tr><td class=\"n\">–</td>");
         text_td(b, f->im, 1);
         num_td(b, f->median, "%.4g");
         num_td(b, f->beta, "%.3f");
+        num_td(b, f->beta_per_power, "%.3f");
         aq_page_printf(b, "<td class=\"n\">%.4g – %.4g</td>", f->median_lo, f->median_hi);
         num_td(b, (double)f->records, "%.0f");
         num_td(b, (double)f->censored, "%.0f");
@@ -777,6 +812,130 @@ static void section_failed(page *p)
   aq_page_puts(b, "</tbody></table>\n");
 }
 
+/* ---- spectra ------------------------------------------------------------- */
+
+typedef struct {
+  const aq_h5_spectra_table *t;
+  const char *record, *source; /* record NULL: every record */
+} spectrum_fig;
+static aq_status draw_spectrum(void *ctx, const char *svg, aq_error *err)
+{
+  const spectrum_fig *f = ctx;
+  return aq_plot_spectrum(f->t, f->record, f->source, svg, NULL, NULL, err);
+}
+
+/* The periods a spectrum's table shows beside each curve's peak, those of
+ * them the file holds. */
+static const double TABLE_T_S[] = {0.1, 0.2, 0.3, 0.5, 1, 2, 3};
+enum { NTABLE_T = sizeof TABLE_T_S / sizeof TABLE_T_S[0] };
+
+static aq_status section_spectrum(page *p, const char *path, size_t index)
+{
+  aq_page_buf *b = p->b;
+  aq_h5_spectra_table t;
+  aq_status st = aq_h5_spectra_read(path, &t, p->err);
+  if (st != AQ_OK)
+    return st;
+  aq_page_printf(b, "<h2 id=\"spectrum-%zu\">Spectra: ", index);
+  aq_page_esc(b, base(path));
+  aq_page_puts(b, "</h2>\n");
+  int rule = t.peaks;
+  read_note(b, "The response spectra of each record (and of each <code>--components</code> "
+               "pair: RotD50, RotD100, GeoMean): the pseudo-spectral acceleration "
+               "PSA = ω² max|u| of a damped oscillator against its period, in g.");
+  aq_page_puts(b, "<p>Peaks taken by the rule <i>");
+  aq_page_esc(b, rule >= 0 ? aq_spectrum_peaks_text((aq_spectrum_peaks)rule)
+                           : "not stated (a file written before --peaks: exact)");
+  aq_page_puts(b, "</i>.</p>\n");
+  /* the curves: runs of rows of one (record, component, damping) */
+  size_t ncurve = 0, nrec = 0;
+  for (size_t i = 0; i < t.n; i++) {
+    int same_rec = i > 0 && !strcmp(t.record[i], t.record[i - 1]);
+    ncurve += !(same_rec && !strcmp(t.component[i], t.component[i - 1]) &&
+                t.damping[i] == t.damping[i - 1]);
+    nrec += !same_rec;
+  }
+  /* the figures: all curves in one, or a figure per record when a legend
+     would not hold them */
+  if (ncurve <= AQ_PLOT_LEGEND_MAX) {
+    spectrum_fig f = {&t, NULL, path};
+    char label[300];
+    aq_text_fit(label, sizeof label, "response spectra of %s", base(path));
+    st = figure(p, label, draw_spectrum, &f);
+  } else {
+    for (size_t i = 0; i < t.n && st == AQ_OK; i++)
+      if (i == 0 || strcmp(t.record[i], t.record[i - 1]) != 0) {
+        spectrum_fig f = {&t, t.record[i], path};
+        char label[600];
+        aq_text_fit(label, sizeof label, "response spectra of %s", base(t.record[i]));
+        st = figure(p, label, draw_spectrum, &f);
+      }
+  }
+  /* the table: per curve its peak and its PSA at the periods of
+     TABLE_T_S the file holds */
+  int have[NTABLE_T] = {0};
+  for (size_t i = 0; i < t.n; i++)
+    for (int k = 0; k < NTABLE_T; k++)
+      have[k] |= fabs(t.period_s[i] - TABLE_T_S[k]) <= 1e-9 * TABLE_T_S[k];
+  aq_page_printf(b, "<h3>PSA of %zu curve%s of %zu record%s</h3>\n", ncurve,
+                 ncurve == 1 ? "" : "s", nrec, nrec == 1 ? "" : "s");
+  aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>record</th><th>component</th>"
+                  "<th>damping</th><th>peak PSA (g)</th><th>at T (s)</th>");
+  for (int k = 0; k < NTABLE_T; k++)
+    if (have[k])
+      aq_page_printf(b, "<th>PSA at %g s (g)</th>", TABLE_T_S[k]);
+  aq_page_puts(b, "</tr></thead><tbody>\n");
+  for (size_t i = 0; i < t.n && st == AQ_OK;) {
+    size_t j = i, peak = i;
+    double at[NTABLE_T];
+    for (int k = 0; k < NTABLE_T; k++)
+      at[k] = NAN;
+    for (; j < t.n && !strcmp(t.record[j], t.record[i]) &&
+           !strcmp(t.component[j], t.component[i]) && t.damping[j] == t.damping[i];
+         j++) {
+      if (t.psa_g[j] > t.psa_g[peak])
+        peak = j;
+      for (int k = 0; k < NTABLE_T; k++)
+        if (fabs(t.period_s[j] - TABLE_T_S[k]) <= 1e-9 * TABLE_T_S[k])
+          at[k] = t.psa_g[j];
+    }
+    aq_page_puts(b, "<tr><td class=\"mono\" title=\"");
+    aq_page_esc(b, t.record[i]);
+    aq_page_puts(b, "\">");
+    aq_page_esc(b, base(t.record[i]));
+    aq_page_puts(b, "</td>");
+    text_td(b, t.component[i], 0);
+    num_td(b, t.damping[i], "%.3g");
+    num_td(b, t.psa_g[peak], "%.4g");
+    num_td(b, t.period_s[peak], "%.4g");
+    for (int k = 0; k < NTABLE_T; k++)
+      if (have[k])
+        num_td(b, at[k], "%.4g");
+    aq_page_puts(b, "</tr>\n");
+    i = j;
+  }
+  aq_page_puts(b, "</tbody></table>\n");
+  /* every value, for those who want them (the TSV of archquake spectrum) */
+  aq_page_printf(b, "<details><summary>Every value (%zu rows)</summary>\n<table><thead><tr>"
+                    "<th>record</th><th>component</th><th>damping</th><th>T (s)</th>"
+                    "<th>PSA (g)</th><th>SD (m)</th><th>PSV (m/s)</th></tr></thead><tbody>\n",
+                 t.n);
+  for (size_t i = 0; i < t.n; i++) {
+    aq_page_puts(b, "<tr>");
+    text_td(b, base(t.record[i]), 1);
+    text_td(b, t.component[i], 0);
+    num_td(b, t.damping[i], "%.3g");
+    num_td(b, t.period_s[i], "%.4g");
+    num_td(b, t.psa_g[i], "%.4g");
+    num_td(b, t.sd_m[i], "%.4g");
+    num_td(b, t.psv_m_s[i], "%.4g");
+    aq_page_puts(b, "</tr>\n");
+  }
+  aq_page_puts(b, "</tbody></table></details>\n");
+  aq_h5_spectra_table_free(&t);
+  return st;
+}
+
 /* ---- the page -------------------------------------------------------------- */
 
 static double now_s(void)
@@ -786,61 +945,96 @@ static double now_s(void)
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+/* The file a section of kind `kind` reports, other files: capacity,
+ * select, spectrum. */
+static aq_page_kind other_kind(const page *p, size_t c)
+{
+  aq_page_kind kind = AQ_PAGE_CAPACITY;
+  aq_error e;
+  aq_page_file_kind(p->in->capacity[c], &kind, &e); /* checked before the page */
+  return kind;
+}
+
 static aq_status build(page *p, aq_page_stats *stats)
 {
   aq_page_buf *b = p->b;
   const aq_h5_suite *S = &p->r.suite;
-  size_t ncol = 0, nfail = 0;
+  const char *first = p->in->results ? p->in->results : p->in->capacity[0];
+  size_t ncol = 0, nfail = 0, nkind[4] = {0, 0, 0, 0};
   for (size_t k = 0; k < S->nruns; k++) {
     ncol += strcmp(verdict(&S->runs[k].s), "collapse") == 0;
     nfail += strcmp(verdict(&S->runs[k].s), "failed") == 0;
   }
+  for (size_t c = 0; c < p->in->ncapacity; c++)
+    nkind[other_kind(p, c)]++;
   aq_page_puts(b, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
                   "<meta name=\"viewport\" content=\"width=device-width\">\n<title>archquake "
                   "report: ");
-  aq_page_esc(b, base(p->in->results));
+  aq_page_esc(b, base(first));
   aq_page_printf(b, "</title>\n<style>\n%s</style>\n</head><body>\n", STYLE);
   aq_page_puts(b, "<h1>archquake report</h1>\n<p class=\"mono\">");
-  aq_page_esc(b, p->in->results);
+  aq_page_esc(b, p->in->results ? p->in->results : first);
+  for (size_t c = p->in->results ? 0 : 1; c < p->in->ncapacity; c++) {
+    aq_page_puts(b, "<br>");
+    aq_page_esc(b, p->in->capacity[c]);
+  }
   aq_page_puts(b, "</p>\n<table class=\"summary\"><tr>");
-  aq_page_printf(b, "<td><b>%zu</b> records</td><td><b>%zu</b> arches</td><td><b>%zu</b> "
-                    "runs</td><td><b>%zu</b> collapses</td><td><b>%zu</b> failed runs</td>",
-                 p->r.records.nrow, p->r.narch, S->nruns, ncol, nfail);
-  aq_page_puts(b, "</tr></table>\n<p>Contents: <a href=\"#overview\">overview</a>");
-  for (size_t a = 0; a < p->r.narch; a++) {
-    const char *nm = aq_page_attr(&p->r.arch[a], "name");
-    aq_page_printf(b, " · <a href=\"#arch-%zu\">arch ", a);
-    aq_page_esc(b, nm ? nm : "?");
-    aq_page_puts(b, "</a>");
+  aq_page_printf(b, "<td><b>%zu</b> records</td>", p->r.records.nrow);
+  if (p->in->results)
+    aq_page_printf(b, "<td><b>%zu</b> arches</td><td><b>%zu</b> runs</td><td><b>%zu</b> "
+                      "collapses</td><td><b>%zu</b> failed runs</td>",
+                   p->r.narch, S->nruns, ncol, nfail);
+  else if (p->r.narch)
+    aq_page_printf(b, "<td><b>%zu</b> arches</td>", p->r.narch);
+  if (nkind[AQ_PAGE_CAPACITY])
+    aq_page_printf(b, "<td><b>%zu</b> capacity file%s</td>", nkind[AQ_PAGE_CAPACITY],
+                   nkind[AQ_PAGE_CAPACITY] == 1 ? "" : "s");
+  if (nkind[AQ_PAGE_SELECT])
+    aq_page_printf(b, "<td><b>%zu</b> selected suite%s</td>", nkind[AQ_PAGE_SELECT],
+                   nkind[AQ_PAGE_SELECT] == 1 ? "" : "s");
+  if (nkind[AQ_PAGE_SPECTRUM])
+    aq_page_printf(b, "<td><b>%zu</b> spectrum file%s</td>", nkind[AQ_PAGE_SPECTRUM],
+                   nkind[AQ_PAGE_SPECTRUM] == 1 ? "" : "s");
+  aq_page_puts(b, "</tr></table>\n<p>Contents: ");
+  if (p->in->results) {
+    aq_page_puts(b, "<a href=\"#overview\">overview</a>");
+    for (size_t a = 0; a < p->r.narch; a++) {
+      const char *nm = aq_page_attr(&p->r.arch[a], "name");
+      aq_page_printf(b, " · <a href=\"#arch-%zu\">arch ", a);
+      aq_page_esc(b, nm ? nm : "?");
+      aq_page_puts(b, "</a>");
+    }
+    aq_page_puts(b, " · ");
   }
   for (size_t c = 0; c < p->in->ncapacity; c++) {
-    aq_page_kind kind = AQ_PAGE_CAPACITY;
-    aq_page_file_kind(p->in->capacity[c], &kind, p->err);
-    aq_page_printf(b, " · <a href=\"#%s-%zu\">%s %zu</a>",
-                   kind == AQ_PAGE_SELECT ? "select" : "capacity", c,
-                   kind == AQ_PAGE_SELECT ? "suite" : "capacity", c + 1);
+    aq_page_kind kind = other_kind(p, c);
+    static const char *const id[] = {"", "capacity", "select", "spectrum"},
+                             *const what[] = {"", "capacity", "suite", "spectra"};
+    aq_page_printf(b, "<a href=\"#%s-%zu\">%s %zu</a> · ", id[kind], c, what[kind], c + 1);
   }
-  aq_page_puts(b, " · <a href=\"#failed\">failed records</a> · <a href=\"#run\">the run</a>"
+  aq_page_puts(b, "<a href=\"#failed\">failed records</a> · <a href=\"#run\">the run</a>"
                   "</p>\n");
-  /* overview: the verdict map */
-  aq_page_puts(b, "<h2 id=\"overview\" class=\"first\">Overview</h2>\n");
-  read_note(b, "Each record against each arch: the worst run over the scales and "
-               "polarities.  A red cell collapsed; otherwise the number is the largest peak "
-               "rotation as a fraction of the collapse rotation q<sub>c</sub> (0: the arch "
-               "never moved; near 1: close to collapse).  Grey cells failed: see "
-               "<a href=\"#failed\">Failed records</a>.");
-  suite_fig sf = {S, p->in->results};
-  aq_status st = S->nruns ? figure(p, "verdict map: records against arches", draw_suite, &sf)
-                          : AQ_OK;
+  aq_status st = AQ_OK;
   size_t nrows = 0;
-  for (size_t a = 0; a < p->r.narch && st == AQ_OK; a++)
-    st = section_arch(p, a, &nrows);
+  if (p->in->results) {
+    /* overview: the verdict map */
+    aq_page_puts(b, "<h2 id=\"overview\" class=\"first\">Overview</h2>\n");
+    read_note(b, "Each record against each arch: the worst run over the scales and "
+                 "polarities.  A red cell collapsed; otherwise the number is the largest peak "
+                 "rotation as a fraction of the collapse rotation q<sub>c</sub> (0: the arch "
+                 "never moved; near 1: close to collapse).  Grey cells failed: see "
+                 "<a href=\"#failed\">Failed records</a>.");
+    suite_fig sf = {S, p->in->results};
+    st = S->nruns ? figure(p, "verdict map: records against arches", draw_suite, &sf) : AQ_OK;
+    for (size_t a = 0; a < p->r.narch && st == AQ_OK; a++)
+      st = section_arch(p, a, &nrows);
+  }
   for (size_t c = 0; c < p->in->ncapacity && st == AQ_OK; c++) {
-    aq_page_kind kind = AQ_PAGE_CAPACITY;
-    aq_page_file_kind(p->in->capacity[c], &kind, p->err);
+    aq_page_kind kind = other_kind(p, c);
     st = kind == AQ_PAGE_SELECT
              ? aq_page_select_section(b, p->in->capacity[c], c, p->tmp, &p->nfig, p->err)
-             : section_capacity(p, p->in->capacity[c], c);
+         : kind == AQ_PAGE_SPECTRUM ? section_spectrum(p, p->in->capacity[c], c)
+                                    : section_capacity(p, p->in->capacity[c], c);
   }
   if (st != AQ_OK)
     return st;
@@ -872,15 +1066,21 @@ aq_status aq_page_write(const aq_page_input *in, const char *target, aq_page_sta
   p.err = err;
   aq_page_figure_temp(target, p.tmp, sizeof p.tmp);
   int fig_slot = aq_cleanup_add(p.tmp); /* a signal while drawing removes it */
-  /* every input checked before anything is drawn */
-  aq_status st = aq_page_results_read(in->results, &p.r, err);
+  /* every input checked before anything is drawn: the results file (or
+     the first other file: the run's section) read, every other one's kind */
+  aq_status st = AQ_OK;
+  if (!in->results && in->ncapacity == 0)
+    st = aq_error_set(err, AQ_EVALUE, target, -1, -1, NULL,
+                      "expected a results, capacity, select or spectrum file, got none");
+  if (st == AQ_OK)
+    st = aq_page_results_read(in->results ? in->results : in->capacity[0], &p.r, err);
   for (size_t c = 0; c < in->ncapacity && st == AQ_OK; c++) {
     aq_page_kind kind;
     st = aq_page_file_kind(in->capacity[c], &kind, err);
-    if (st == AQ_OK && kind != AQ_PAGE_CAPACITY && kind != AQ_PAGE_SELECT)
+    if (st == AQ_OK && kind == AQ_PAGE_RESULTS)
       st = aq_error_set(err, AQ_EFORMAT, in->capacity[c], -1, -1, NULL,
-                        "expected a capacity file (archquake capacity -o), got a results "
-                        "file of the main job: give it first");
+                        "expected at most one results file of the main job, got a second "
+                        "(report each suite on a page of its own)");
   }
   if (st == AQ_OK)
     st = build(&p, stats);

@@ -39,6 +39,7 @@ typedef enum {
   AQ_PAGE_RESULTS = 0, /* the main job's results (/summary with runs) */
   AQ_PAGE_CAPACITY,    /* archquake capacity -o (/capacity) */
   AQ_PAGE_SELECT,      /* archquake select -o (/select): a suite and its target */
+  AQ_PAGE_SPECTRUM,    /* archquake spectrum -o (/spectra) */
 } aq_page_kind;
 
 /* The kind of file at path, or an error naming the file and what it is
@@ -46,9 +47,14 @@ typedef enum {
  * format_version this build cannot read (it names the versions it reads). */
 aq_status aq_page_file_kind(const char *path, aq_page_kind *kind, aq_error *err);
 
+/* The files of a page, each reported in a section of its kind: at most one
+ * results file of the main job (its runs, arches and records; NULL: none),
+ * and any capacity, select and spectrum files.  The run's section shows the
+ * results file's command, options and records, or without one the first
+ * other file's. */
 typedef struct {
-  const char *results;         /* the main job's results file */
-  const char *const *capacity; /* capacity files and select files (may be none) */
+  const char *results;         /* the main job's results file, or NULL */
+  const char *const *capacity; /* capacity, select and spectrum files (may be none) */
   size_t ncapacity;
   const char *command_line;    /* this report's command, shown at the end */
   const char *build;           /* this program's version and build */
@@ -62,10 +68,10 @@ typedef struct {
   double build_s;  /* wall time, s */
 } aq_page_stats;
 
-/* Write the page to target.  Errors: an input of the wrong kind
- * (a capacity file as the results, a results file as a capacity file)
- * or unreadable (AQ_EFORMAT, naming the file), the page cannot be written
- * (AQ_EIO).  stats may be NULL. */
+/* Write the page to target.  Errors: an input of another kind than its
+ * place (a results file among the others) or unreadable (AQ_EFORMAT,
+ * naming the file), no file at all (AQ_EVALUE), the page cannot be
+ * written (AQ_EIO).  stats may be NULL. */
 aq_status aq_page_write(const aq_page_input *in, const char *target, aq_page_stats *stats,
                         aq_error *err);
 

@@ -271,12 +271,31 @@ aq_status aq_page_file_kind(const char *path, aq_page_kind *kind, aq_error *err)
                       "archquake", PAGE_FORMAT, format, PAGE_FORMAT,
                       format < PAGE_FORMAT ? "since the /summary and /records tables"
                                            : "up to this build");
-  else if (H5Lexists(f, "capacity", H5P_DEFAULT) > 0)
-    *kind = AQ_PAGE_CAPACITY;
-  else if (H5Lexists(f, "select", H5P_DEFAULT) > 0)
-    *kind = AQ_PAGE_SELECT;
-  else
-    *kind = AQ_PAGE_RESULTS;
+  else {
+    /* the root's kind, else (a file written before it) what it holds */
+    char k[32] = "";
+    hid_t a = H5Aexists(f, "kind") > 0 ? H5Aopen(f, "kind", H5P_DEFAULT) : -1;
+    hid_t at = a >= 0 ? H5Aget_type(a) : -1;
+    if (at >= 0 && H5Tget_class(at) == H5T_STRING && !H5Tis_variable_str(at) &&
+        H5Tget_size(at) < sizeof k && H5Aread(a, at, k) < 0)
+      k[0] = '\0';
+    if (at >= 0)
+      H5Tclose(at);
+    if (a >= 0)
+      H5Aclose(a);
+    if (!strcmp(k, "capacity") || (!k[0] && H5Lexists(f, "capacity", H5P_DEFAULT) > 0))
+      *kind = AQ_PAGE_CAPACITY;
+    else if (!strcmp(k, "select") || (!k[0] && H5Lexists(f, "select", H5P_DEFAULT) > 0))
+      *kind = AQ_PAGE_SELECT;
+    else if (!strcmp(k, "spectrum") || (!k[0] && H5Lexists(f, "spectra", H5P_DEFAULT) > 0))
+      *kind = AQ_PAGE_SPECTRUM;
+    else if (!k[0] || !strcmp(k, "results"))
+      *kind = AQ_PAGE_RESULTS;
+    else
+      st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "kind",
+                        "expected a results, capacity, select or spectrum file, got a file "
+                        "of kind \"%s\" (a later archquake's: report it with that one)", k);
+  }
   H5Fclose(f);
   return st;
 }
@@ -288,13 +307,7 @@ aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *e
   aq_status st = aq_page_file_kind(path, &kind, err);
   if (st != AQ_OK)
     return st;
-  if (kind != AQ_PAGE_RESULTS)
-    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, NULL,
-                        "expected the main job's results file first, got a %s file "
-                        "(archquake %s -o): give it after the results file",
-                        kind == AQ_PAGE_SELECT ? "select" : "capacity",
-                        kind == AQ_PAGE_SELECT ? "select" : "capacity");
-  st = aq_h5_read_suite(path, &r->suite, err);
+  st = aq_h5_read_suite(path, &r->suite, err); /* runs only in a results file */
   if (st != AQ_OK)
     return st;
   hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -306,9 +319,11 @@ aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *e
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/records",
                       "expected the record table, got none readable");
   r->have_histories = H5Lexists(f, "histories", H5P_DEFAULT) > 0;
-  hid_t g = st == AQ_OK ? H5Gopen2(f, "/arches", H5P_DEFAULT) : -1;
-  H5G_info_t info;
-  if (st == AQ_OK && (g < 0 || H5Gget_info(g, &info) < 0))
+  /* the arches (none in a spectrum file) */
+  int arches = kind != AQ_PAGE_SPECTRUM || H5Lexists(f, "arches", H5P_DEFAULT) > 0;
+  hid_t g = st == AQ_OK && arches ? H5Gopen2(f, "/arches", H5P_DEFAULT) : -1;
+  H5G_info_t info = {0};
+  if (st == AQ_OK && arches && (g < 0 || H5Gget_info(g, &info) < 0))
     st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/arches", "expected the arch groups");
   if (st == AQ_OK) {
     r->arch = calloc(info.nlinks + 1, sizeof *r->arch);

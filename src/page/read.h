@@ -42,7 +42,9 @@ typedef struct {
   int have_histories;  /* /histories exists */
 } aq_page_results;
 
-/* Read the results file at path (its kind checked: AQ_PAGE_RESULTS). */
+/* Read the file at path, of any kind (aq_page_file_kind): its root, its
+ * records, its arches (none in a spectrum file) and its runs (none but in a
+ * results file). */
 aq_status aq_page_results_read(const char *path, aq_page_results *r, aq_error *err);
 void aq_page_results_free(aq_page_results *r);
 

@@ -25,7 +25,7 @@ static const char *const AX_X = "x (m)", *const AX_Y = "y (m)";
 #define FRAME_MARGIN 0.06 /* of the drawing's larger extent, on every side */
 #define FIG_W 1000        /* pixels */
 #define PLOT_H 620        /* pixels above the legend */
-#define LEGEND_ROW 27     /* pixels per legend entry */
+#define LEGEND_ROW 32     /* pixels per legend entry (2 character heights) */
 #define C_FILL 15         /* colour map 0's spare entry (plot.h uses 0..14): sand */
 
 typedef struct {
@@ -192,8 +192,7 @@ static int draw(void *ctx, aq_error *err)
   plbox("g", 0, 0, "g", 0, 0);
   plcol0(AQ_PC_FG);
   plbox("bcnst", 0, 0, "bcnstv", 0, 0);
-  char title[512], name[300]; /* a name of up to 127 bytes, each '#' doubled */
-  aq_plot_escape(aq_arch_name(f->arch), name, sizeof name);
+  char title[700], name[300], rest[300];
   /* the centre line's span, between the springing joints' midpoints (the
    * centre line passes through every joint's midpoint; so also for an arch
    * read back from a results file); a joints arch: its intrados span */
@@ -202,12 +201,25 @@ static int draw(void *ctx, aq_error *err)
                        : fabs(g->ji[0].x - g->ji[n].x);
   const char *what = centre ? "span" : "intrados span";
   if (f->set >= 0)
-    aq_text_fit(title, sizeof title, "arch %s: %s set deformed at %.4g rad", name,
-                f->set ? "reverse" : "primary", f->s_rad);
+    snprintf(rest, sizeof rest, "%s set deformed at %.4g rad", f->set ? "reverse" : "primary",
+             f->s_rad);
   else
-    aq_text_fit(title, sizeof title, "arch %s: %zu voussoirs, %s, %s %.4g m", name, n,
-                aq_shape_names[g->p.shape], what, span);
-  pllab(AX_X, AX_Y, title);
+    snprintf(rest, sizeof rest, "%zu voussoirs, %s, %s %.4g m", n, aq_shape_names[g->p.shape],
+             what, span);
+  /* on one line, or the name on a line of its own */
+  double room = 0.94 * aq_plot_page_w_mm();
+  aq_plot_escape(aq_arch_name(f->arch), name, sizeof name);
+  snprintf(title, sizeof title, "arch %s: %s", name, rest);
+  pllab(AX_X, AX_Y, "");
+  if (aq_plot_text_mm(title) <= room) {
+    plmtex("t", 2.0, 0.5, 0.5, title);
+  } else {
+    aq_plot_shorten_to(aq_arch_name(f->arch), room - aq_plot_text_mm("arch :"), name,
+                       sizeof name);
+    snprintf(title, sizeof title, "arch %s:", name);
+    plmtex("t", 3.0, 0.5, 0.5, title);
+    plmtex("t", 1.6, 0.5, 0.5, rest);
+  }
   /* fill, then the voussoirs: undeformed (dashed when deformed), deformed */
   for (int d = 0; d <= (f->set >= 0); d++) {
     int ghost = f->set >= 0 && d == 0;

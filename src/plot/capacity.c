@@ -58,8 +58,25 @@ typedef struct {
   frag f;
   int logy;     /* 1: the scale axis log10 */
   double ylo, yhi, xhi; /* scale axis range (in its unit, not log); shade's top */
-  double split; /* page fraction of the fragility panel (bottom) */
-  double page_px, strips_px; /* page height, the strips' height (px) */
+  char im_axis[96], im_unit[32]; /* the fragility IM's axis title and unit */
+  /* the layout, mm of the figure (72 points an inch) from its top left */
+  double w, h;                /* the figure */
+  char title[2][300];         /* the strips' title, on one or two lines */
+  int title_lines;
+  double title_y;             /* its first line's centre */
+  double note_y;              /* a file without scan points: the note's centre */
+  double head_y;              /* the first collapses' column head */
+  double sx0, sx1, sy0, sy1;  /* the strips */
+  char (*label)[1100];        /* each strip's label (record name, polarity) */
+  char (*fc)[64];             /* each strip's first collapse */
+  double key_y;               /* the keys' top */
+  double marks_x;             /* the marks' legend: its left edge */
+  char ftitle[2][400];        /* the fragility's title */
+  int ftitle_lines;
+  double ftitle_y;
+  double fx0, fx1, fy0, fy1;  /* the fragility's frame */
+  double leg_y, leg_colw;     /* its legend: top, a column's width */
+  int leg_cols;
 } cap;
 
 enum { D_MOVE = 0, D_FIRST = 1, D_PGA = 2, D_SMAX = 4, I_START = 2, I_COUNT = 3 };
@@ -70,6 +87,33 @@ static const int LINE_COLOR[] = {AQ_PC_BLUE,   AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_
                                  AQ_PC_OLIVE,  AQ_PC_NAVY};
 enum { NCOLOR = sizeof LINE_COLOR / sizeof LINE_COLOR[0] };
 enum { ROW_PX = 26, RECORD_GAP_PX = 8 }; /* a strip, the space between records */
+
+/* The layout's sizes (mm of the figure, 72 points an inch): the figure is
+ * 1000 points wide, as tall as its strips make it; every text is measured
+ * (aq_plot_text_em) and given room, so nothing runs off the figure or into
+ * another text. */
+static const double PT_MM = 25.4 / 72;
+static const double TXT_MM = 3.7;     /* character height: labels, ticks, axes */
+static const double TITLE_MM = 3.9;   /* titles */
+static const double KEY_MM = 3.4;     /* the keys' texts */
+static const double MARGIN_MM = 6;    /* the figure's edge */
+static const double PAD_MM = 4;       /* between bands */
+static const double FRAG_H_MM = 100;  /* the fragility's frame */
+static const double SAMPLE_MM = 9;    /* a key's sample (line, box, symbol) */
+static const double LABEL_SHARE = 0.4; /* at most this much of the width for labels */
+
+/* Width of s at character height ht_mm, mm. */
+static double width_mm(const char *s, double ht_mm)
+{
+  return aq_plot_text_em(s) * aq_plot_font_mm(ht_mm);
+}
+
+/* A text line's pitch at character height ht_mm: the font's line and a
+ * sixth more. */
+static double pitch_mm(double ht_mm)
+{
+  return 1.164 * aq_plot_font_mm(ht_mm) * 7 / 6;
+}
 
 static const char *base(const char *p)
 {
@@ -134,7 +178,7 @@ static int frag_build(cap *c, int m)
   free(cen);
   for (size_t i = 0; i < t->nfit; i++)
     if (strcmp(t->fit[i].arch, c->arch) == 0 &&
-        strcmp(t->fit[i].im, aq_fragility_im_names[m]) == 0)
+        strcmp(t->fit[i].im, t->im_name[m]) == 0)
       f->fit = &t->fit[i];
   const aq_h5_fragility_fit *q = f->fit;
   int fitted = q && isfinite(q->median) && q->beta > 0;
@@ -165,15 +209,80 @@ static int frag_build(cap *c, int m)
   return 0;
 }
 
-static void draw_fragility(const cap *c)
+/* The viewport of the figure's rectangle x0..x1, y0..y1 (mm from its top
+ * left). */
+static void vp_mm(const cap *c, double x0, double x1, double y0, double y1)
+{
+  plvpor(x0 / c->w, x1 / c->w, 1 - y1 / c->h, 1 - y0 / c->h);
+}
+
+/* The whole figure as the world, in mm from its top left: where the
+ * titles and keys are written with plptex (at their centre line). */
+static void page_mm(const cap *c)
+{
+  plvpor(0, 1, 0, 1);
+  plwind(0, c->w, c->h, 0);
+}
+
+/* A key's entry at (x, y) (mm, its centre line): its sample, a line of
+ * style (>= 1), a box of colour (style -1) or a symbol, then its text. */
+static void key_entry(double x, double y, int color, int style, const char *sym,
+                      const char *text)
+{
+  plcol0(color);
+  if (style > 0) {
+    PLFLT lx[2] = {x, x + SAMPLE_MM}, ly[2] = {y, y};
+    pllsty(style);
+    plwidth(2);
+    plline(2, lx, ly);
+    plwidth(1);
+    pllsty(1);
+  } else if (style < 0) {
+    PLFLT bx[4] = {x, x + SAMPLE_MM, x + SAMPLE_MM, x};
+    PLFLT by[4] = {y - 1.6, y - 1.6, y + 1.6, y + 1.6};
+    plfill(4, bx, by);
+  }
+  if (sym && sym[0]) {
+    PLFLT px = x + SAMPLE_MM / 2, py = y;
+    plstring(1, &px, &py, sym);
+  }
+  plcol0(AQ_PC_FG);
+  plptex(x + SAMPLE_MM + 2, y, 1, 0, 0, text);
+}
+
+/* The entries the fragility's key shows: only what is drawn. */
+static int frag_keys(const cap *c, const char **tx, int *col, int *st, const char **sym)
 {
   const frag *f = &c->f;
   const aq_h5_fragility_fit *q = f->fit;
+  int fitted = q && isfinite(q->median) && q->beta > 0;
+  int band = fitted && !isnan(q->median_lo) && !isnan(q->median_hi);
+  static const char *const all_tx[] = {"lognormal fit", "median's confidence interval",
+                                       "first collapses (i/n)", "censored at the cap"};
+  static const int all_col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG},
+                   all_st[] = {1, -1, 0, 0};
+  static const char *const all_sym[] = {"", "", "●", "○"};
+  const int drawn[] = {fitted, band, f->ncol > 0, f->n > f->ncol};
+  int k = 0;
+  for (int i = 0; i < 4; i++)
+    if (drawn[i]) {
+      tx[k] = all_tx[i];
+      sym[k] = all_sym[i];
+      col[k] = all_col[i];
+      st[k++] = all_st[i];
+    }
+  return k;
+}
+
+static void draw_fragility(const cap *c)
+{
+  const frag *f = &c->f;
   const double *lx = f->cx;
-  plvpor(0.1, 0.95, c->split * 0.16, c->split * 0.88);
+  aq_plot_text_height(TXT_MM);
+  vp_mm(c, c->fx0, c->fx1, c->fy0, c->fy1);
   plwind(0, f->hi, 0, 1.02);
   int fitted = isfinite(f->cdf[0][0]);
-  int band = fitted && !isnan(q->median_lo) && !isnan(q->median_hi);
+  int band = fitted && !isnan(f->fit->median_lo) && !isnan(f->fit->median_hi);
   if (band) { /* between the CDFs at median_lo (above) and median_hi, a
                  quadrilateral per step: PLplot fills one polygon of many
                  points wrongly on a PDF page scaled by plsdidev */
@@ -209,37 +318,19 @@ static void draw_fragility(const cap *c)
   }
   plcol0(AQ_PC_FG);
   plbox("bcnst", 0, 0, "bcnstv", 0.2, 2);
-  plmtex("b", 3.0, 0.5, 0.5, AX_IM[f->m]);
+  plmtex("b", 3.0, 0.5, 0.5, c->im_axis);
   plmtex("l", 4.0, 0.5, 0.5, AX_PROB);
-  char title[320];
-  if (fitted)
-    aq_text_fit(title, sizeof title,
-                "fragility of arch %s: median %.3g %s, #gb %.3g (%zu records, %zu censored)",
-                c->arch, q->median, IM_UNIT[f->m], q->beta, f->n, f->n - f->ncol);
-  else
-    aq_text_fit(title, sizeof title, "fragility of arch %s: %s (%zu records, %zu censored)",
-                c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file",
-                f->n, f->n - f->ncol);
-  plmtex("t", 1.2, 0.5, 0.5, title);
-  /* a legend entry only for what is drawn */
-  const char *all_tx[] = {"lognormal fit", "median's confidence interval",
-                          "first collapses (i/n)", "censored at the cap"};
-  const int all_col[] = {AQ_PC_BLUE, AQ_PC_LIGHT, AQ_PC_RED, AQ_PC_FG},
-            all_st[] = {1, -1, 0, 0};
-  const char *all_sym[] = {"", "", "●", "○"};
-  const int drawn[] = {fitted, band, f->ncol > 0, f->n > f->ncol};
+  /* the title above, the key below the axis' title: nothing on the data */
+  page_mm(c);
+  aq_plot_text_height(TITLE_MM);
+  for (int i = 0; i < c->ftitle_lines; i++)
+    plptex(c->w / 2, c->ftitle_y + i * pitch_mm(TITLE_MM), 1, 0, 0.5, c->ftitle[i]);
   const char *tx[4], *sym[4];
-  int col[4], st[4], k = 0;
-  for (int i = 0; i < 4; i++)
-    if (drawn[i]) {
-      tx[k] = all_tx[i];
-      sym[k] = all_sym[i];
-      col[k] = all_col[i];
-      st[k++] = all_st[i];
-    }
-  if (k > 0)
-    aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_LEFT, k, tx, col, st,
-                   sym);
+  int col[4], st[4], k = frag_keys(c, tx, col, st, sym);
+  aq_plot_text_height(KEY_MM);
+  for (int i = 0; i < k; i++)
+    key_entry(c->fx0 + (i % c->leg_cols) * c->leg_colw,
+              c->leg_y + (i / c->leg_cols + 0.5) * pitch_mm(KEY_MM), col[i], st[i], sym[i], tx[i]);
 }
 
 static int reversed(const aq_h5_capacity_row *r)
@@ -388,66 +479,43 @@ static int draw(void *ctx, aq_error *err)
   (void)err;
   const cap *c = ctx;
   const aq_h5_capacity_table *t = c->t;
-  const double H = c->page_px;
-  /* the strips, from the top: title 50 px, the strips, the axis' labels
-     and title 60 px, the key 80 px */
-  const double vy1 = 1 - 50 / H, vy0 = vy1 - c->strips_px / H;
   const char *yt = c->o->y_pga ? AX_PGA : AX_SCALE;
   pladv(0);
-  plschr(0, 0.85);
-  /* the labels' margin: the longest name and its polarity, or as much as fits */
-  size_t longest = 1;
-  for (size_t k = 0; k < c->n; k++) {
-    size_t len = strlen(base(t->row[c->row[k]].record)) + 10;
-    longest = len > longest ? len : longest;
-  }
-  double per_char = 0.8 / (double)aq_plot_chars_fit(0.8);
-  double left = fmin(fmax((double)(longest + 2) * per_char, 0.15), 0.42), right = 0.84;
+  aq_plot_text_height(TXT_MM);
   double nrows = c->n ? row_top(c, c->n - 1) + 1 : 1;
-  plvpor(left, right, vy0, vy1);
+  vp_mm(c, c->sx0, c->sx1, c->sy0, c->sy1);
   plwind(axis_y(c, c->ylo), axis_y(c, c->yhi), nrows, 0);
   PLFLT cpos[4] = {0, 0.1, 0.5, 1}, rr[4] = {1, 1, 0.95, 0.55}; /* as the suite's */
   PLFLT gg[4] = {1, 0.93, 0.6, 0.3}, bb[4] = {1, 0.6, 0.2, 0.1};
   plscmap1l(1, 4, cpos, rr, gg, bb, NULL);
-  size_t fit = aq_plot_chars_fit(left - 0.01);
   for (size_t k = 0; k < c->n; k++) {
-    const aq_h5_capacity_row *r = &t->row[c->row[k]];
     double y0 = row_top(c, k) + 0.12, y1 = row_top(c, k) + 0.88;
     draw_strip(c, k, y0, y1);
-    /* the label: the record's name on its first strip, and the polarity */
-    char name[1024], lab[1100];
-    int first = k == 0 || c->rec[k] != c->rec[k - 1];
-    aq_plot_ellipsize(base(r->record), fit > 12 ? fit - 11 : 1, name, sizeof name);
-    aq_text_fit(lab, sizeof lab, "%s  %s", first ? name : "", r->polarity);
+    /* the label (the record's name on its first strip, and the polarity)
+       and beside it the first collapse, R for a resurrection */
     double ymid = 1 - (row_top(c, k) + 0.5) / nrows;
     plcol0(AQ_PC_FG);
-    plmtex("lv", 0.8, ymid, 1, lab);
-    /* beside it: the first collapse, R for a resurrection */
-    char fc[64];
-    double f = r->d[D_FIRST];
-    if (strcmp(r->status, "ok") != 0 && strncmp(r->status, "collapse", 8) != 0 &&
-        isnan(f) && r->point_count == 0)
-      snprintf(fc, sizeof fc, "%s", r->status);
-    else if (isfinite(f))
-      snprintf(fc, sizeof fc, "%.3g%s", y_of(c, k, f), r->i[0] > 0 ? "  R" : "");
-    else
-      snprintf(fc, sizeof fc, "none");
-    plmtex("rv", 0.8, ymid, 0, fc);
+    plmtex("lv", 0.8, ymid, 1, c->label[k]);
+    plmtex("rv", 0.8, ymid, 0, c->fc[k]);
   }
   plcol0(AQ_PC_FG);
   plbox(c->logy ? "bnstlf" : "bnst", 0, 0, "", 0, 0);
   plmtex("b", 3.0, 0.5, 0.5, yt);
-  plmtex("t", 0.6, 1.02, 0, "first collapse");
-  char title[256];
-  aq_text_fit(title, sizeof title, "arch %s: the verdict of each scanned run", c->arch);
-  plvpor(0.02, 0.98, vy0, vy1); /* the title centred on the page */
-  plmtex("t", 2.2, 0.5, 0.5, title);
-  if (!t->have_points)
-    plmtex("t", 1.0, 0.5, 0.5, "(no scanned points in this file: written before "
-                               "capacity/scan_points; the collapse intervals only)");
+  /* the titles and the column's head */
+  page_mm(c);
+  plptex(c->sx1 + 0.8 * TXT_MM, c->head_y, 1, 0, 0, "first collapse");
+  aq_plot_text_height(TITLE_MM);
+  for (int i = 0; i < c->title_lines; i++)
+    plptex(c->w / 2, c->title_y + i * pitch_mm(TITLE_MM), 1, 0, 0.5, c->title[i]);
+  if (!t->have_points) {
+    aq_plot_text_height(KEY_MM);
+    plptex(c->w / 2, c->note_y, 1, 0, 0.5, "(no scanned points: written before "
+                                           "capacity/scan_points; the intervals only)");
+  }
   /* the key under the axis: the shade, then what the marks mean */
-  double ky1 = vy0 - 70 / H, ky0 = ky1 - 16 / H;
-  plvpor(0.08, 0.42, ky0, ky1);
+  aq_plot_text_height(TXT_MM);
+  double cx0 = MARGIN_MM + 4 * TXT_MM, cx1 = c->marks_x - 4 * TXT_MM;
+  vp_mm(c, cx0, cx1, c->key_y, c->key_y + 16 * PT_MM);
   double ktop = c->o->x_rad ? c->xhi : 1; /* the shade's scale: 0 to ktop */
   plwind(0, ktop, 0, 1);
   for (int i = 0; i < 50; i++) {
@@ -457,26 +525,27 @@ static int draw(void *ctx, aq_error *err)
   plcol0(AQ_PC_FG);
   plbox("bcnst", 0, 0, "bc", 0, 0);
   plmtex("b", 3.2, 0.5, 0.5, c->o->x_rad ? AX_RAD : AX_QC);
-  /* what the marks mean, one a line, right of the shade */
-  plvpor(0.5, 0.99, ky1 - 104 / H, ky1);
-  plwind(0, 1, 4.2, 0);
-  double bw = 0.06; /* a sample's width */
+  /* what the marks mean, one a line */
+  page_mm(c);
+  aq_plot_text_height(KEY_MM);
+  double lp = pitch_mm(KEY_MM), x = c->marks_x, y = c->key_y + lp / 2;
   plcol0(AQ_PC_RED);
-  fill_box(0, bw, 0.1, 0.9);
+  fill_box(x, x + SAMPLE_MM, y - 1.8, y + 1.8);
   plcol0(AQ_PC_BG);
   plpsty(3);
-  fill_box(0, bw, 0.1, 0.9);
+  fill_box(x, x + SAMPLE_MM, y - 1.8, y + 1.8);
   plpsty(0);
   plcol0(AQ_PC_FG);
-  PLFLT tx[2] = {bw / 2, bw / 2}, ty[2] = {1.1, 1.9};
+  PLFLT tx[2] = {x + SAMPLE_MM / 2, x + SAMPLE_MM / 2}, ty[2] = {y + lp - 1.8, y + lp + 1.8};
   plwidth(2);
   plline(2, tx, ty);
   plwidth(1);
-  plptex(bw / 2, 2.5, 1, 0, 0.5, "R");
-  plptex(bw + 0.03, 0.5, 1, 0, 0, "collapse (a collapse interval)");
-  plptex(bw + 0.03, 1.5, 1, 0, 0, "a change of verdict");
-  plptex(bw + 0.03, 2.5, 1, 0, 0, "survives again above a collapse");
-  plptex(bw + 0.03, 3.5, 1, 0, 0, "blank: below the scale that moves it");
+  plptex(x + SAMPLE_MM / 2, y + 2 * lp, 1, 0, 0.5, "R");
+  static const char *const marks[4] = {"collapse (a collapse interval)", "a change of verdict",
+                                       "survives again above a collapse",
+                                       "blank: below the scale that moves it"};
+  for (int i = 0; i < 4; i++)
+    plptex(x + SAMPLE_MM + 2, y + i * lp, 1, 0, 0, marks[i]);
   draw_fragility(c);
   return 0;
 }
@@ -486,15 +555,15 @@ static void frag_csv(FILE *f, const cap *c)
 {
   const frag *g = &c->f;
   const aq_h5_fragility_fit *q = g->fit;
-  const char *ax[2] = {AX_IM[g->m], AX_PROB};
+  const char *ax[2] = {c->im_axis, AX_PROB};
   fprintf(f,
           "\n# fragility: arch=%s im=%s median=%s beta=%s median_lo=%s "
           "median_hi=%s records=%zu censored=%zu\n",
-          c->arch, aq_fragility_im_names[g->m], AQ_TEXT_NUM(q ? q->median : NAN),
+          c->arch, c->t->im_name[g->m], AQ_TEXT_NUM(q ? q->median : NAN),
           AQ_TEXT_NUM(q ? q->beta : NAN), AQ_TEXT_NUM(q ? q->median_lo : NAN),
           AQ_TEXT_NUM(q ? q->median_hi : NAN), g->n, g->n - g->ncol);
   aq_plot_csv_axes(f, 2, ax);
-  fprintf(f, "series,%s,probability\n", aq_fragility_im_names[g->m]);
+  fprintf(f, "series,%s,probability\n", c->t->im_name[g->m]);
   static const char *const name[3] = {"fit", "fit_median_lo", "fit_median_hi"};
   for (int k = 0; k < 3; k++)
     for (int i = 0; i < NCURVE && isfinite(g->cdf[0][0]); i++)
@@ -587,6 +656,170 @@ static aq_status lines_build(cap *c, const char *source, aq_error *err)
   return AQ_OK;
 }
 
+/* The fragility IM m's axis title and unit: the six by table, a spectral
+ * measure from its name (sa_0.2s_g: Sa(0.2 s); sa_avg_0.1_1s_g: Sa_avg
+ * over 0.1 to 1 s; both in g). */
+static void im_titles(cap *c, int m)
+{
+  const char *name = c->t->im_name[m];
+  double t1, t2;
+  if (m < AQ_FRAGILITY_NIM) {
+    snprintf(c->im_axis, sizeof c->im_axis, "%s", AX_IM[m]);
+    snprintf(c->im_unit, sizeof c->im_unit, "%s", IM_UNIT[m]);
+  } else if (sscanf(name, "sa_avg_%lf_%lfs_g", &t1, &t2) == 2) {
+    snprintf(c->im_axis, sizeof c->im_axis, "Sa#davg#u over %g–%g s (g)", t1, t2);
+    snprintf(c->im_unit, sizeof c->im_unit, "g");
+  } else if (sscanf(name, "sa_%lfs_g", &t1) == 1) {
+    snprintf(c->im_axis, sizeof c->im_axis, "Sa(%g s) (g)", t1);
+    snprintf(c->im_unit, sizeof c->im_unit, "g");
+  } else {
+    aq_plot_escape(name, c->im_axis, sizeof c->im_axis);
+    c->im_unit[0] = '\0';
+  }
+}
+
+/* Split s at its last ": " that leaves a first part within w mm at
+ * character height ht into a[0], a[1] (the part after the colon); *lines 1
+ * when s fits whole or cannot be split so. */
+static void split_title(const char *s, double w, double ht, char (*a)[400], int *lines)
+{
+  snprintf(a[0], sizeof a[0], "%s", s);
+  a[1][0] = '\0';
+  *lines = 1;
+  if (width_mm(s, ht) <= w)
+    return;
+  const char *cut = NULL;
+  for (const char *p = strstr(s, ": "); p; p = strstr(p + 1, ": "))
+    cut = p;
+  if (!cut)
+    return;
+  snprintf(a[0], sizeof a[0], "%.*s", (int)(cut + 1 - s), s);
+  snprintf(a[1], sizeof a[1], "%s", cut + 2);
+  *lines = 2;
+}
+
+/* The layout (see the sizes above): every text measured before the figure
+ * is drawn, its height then known.  -1 when out of memory. */
+static int plan(cap *c)
+{
+  const aq_h5_capacity_table *t = c->t;
+  c->w = 1000 * PT_MM;
+  c->label = calloc(c->n ? c->n : 1, sizeof *c->label);
+  c->fc = calloc(c->n ? c->n : 1, sizeof *c->fc);
+  const char **names = malloc((c->nrec ? c->nrec : 1) * sizeof *names);
+  char(*short_names)[1024] = malloc((c->nrec ? c->nrec : 1) * sizeof *short_names);
+  if (!c->label || !c->fc || !names || !short_names) {
+    free(names);
+    free(short_names);
+    return -1;
+  }
+  /* the labels: each record's name, shortened as much as the label share
+     needs, the names of one figure kept distinct */
+  size_t longest = 1;
+  for (size_t k = 0; k < c->n; k++)
+    if (k == 0 || c->rec[k] != c->rec[k - 1]) {
+      names[c->rec[k]] = base(t->row[c->row[k]].record);
+      size_t len = strlen(names[c->rec[k]]);
+      longest = len > longest ? len : longest;
+    }
+  double pol_w = width_mm("  reversed", TXT_MM), room = LABEL_SHARE * c->w - pol_w;
+  for (size_t keep = longest + 1; keep-- > 5;) {
+    aq_plot_ellipsize_set(names, c->nrec, keep, short_names[0], sizeof short_names[0]);
+    double widest = 0;
+    for (size_t r = 0; r < c->nrec; r++)
+      widest = fmax(widest, width_mm(short_names[r], TXT_MM));
+    if (widest <= room)
+      break;
+  }
+  double label_w = 0, fc_w = width_mm("first collapse", TXT_MM);
+  for (size_t k = 0; k < c->n; k++) {
+    const aq_h5_capacity_row *r = &t->row[c->row[k]];
+    int first = k == 0 || c->rec[k] != c->rec[k - 1];
+    snprintf(c->label[k], sizeof c->label[k], "%s  %s", first ? short_names[c->rec[k]] : "",
+             r->polarity);
+    label_w = fmax(label_w, width_mm(c->label[k], TXT_MM));
+    double f = r->d[D_FIRST];
+    if (strcmp(r->status, "ok") != 0 && strncmp(r->status, "collapse", 8) != 0 && isnan(f) &&
+        r->point_count == 0)
+      snprintf(c->fc[k], sizeof c->fc[k], "%s", r->status);
+    else if (isfinite(f))
+      snprintf(c->fc[k], sizeof c->fc[k], "%.3g%s", y_of(c, k, f), r->i[0] > 0 ? "  R" : "");
+    else
+      snprintf(c->fc[k], sizeof c->fc[k], "none");
+    fc_w = fmax(fc_w, width_mm(c->fc[k], TXT_MM));
+  }
+  free(names);
+  free(short_names);
+  /* across: labels, strips, first collapses */
+  double gap = 0.8 * TXT_MM, w = c->w, y;
+  c->sx0 = MARGIN_MM + label_w + gap;
+  c->sx1 = w - MARGIN_MM - fc_w - gap;
+  /* down: the title, the column's head, the strips, their axis */
+  char title[300];
+  snprintf(title, sizeof title, "arch %.200s: the verdict of each scanned run", c->arch);
+  char lines[2][400];
+  split_title(title, w - 2 * MARGIN_MM, TITLE_MM, lines, &c->title_lines);
+  for (int i = 0; i < 2; i++)
+    snprintf(c->title[i], sizeof c->title[i], "%.299s", lines[i]);
+  double lt = pitch_mm(TITLE_MM), lp = pitch_mm(TXT_MM), lk = pitch_mm(KEY_MM);
+  y = MARGIN_MM;
+  c->title_y = y + lt / 2;
+  y += c->title_lines * lt;
+  if (!t->have_points) {
+    c->note_y = y + lk / 2;
+    y += lk;
+  }
+  c->head_y = y + lp / 2;
+  y += lp;
+  double nrows = c->n ? row_top(c, c->n - 1) + 1 : 1;
+  c->sy0 = y;
+  c->sy1 = y += nrows * ROW_PX * PT_MM;
+  /* the axis' tick labels and title (3 character heights below it) */
+  y += 3.0 * TXT_MM + 0.6 * lp + PAD_MM;
+  /* the keys: the shade's bar (16 points), its labels and title (3.2
+     character heights below it); the marks, four lines */
+  c->key_y = y;
+  c->marks_x = w / 2 + 2 * MARGIN_MM;
+  double marks_w = SAMPLE_MM + 2 + width_mm("blank: below the scale that moves it", KEY_MM);
+  if (c->marks_x + marks_w > w - MARGIN_MM)
+    c->marks_x = w - MARGIN_MM - marks_w;
+  y += fmax(16 * PT_MM + 3.2 * TXT_MM + 0.6 * lp, 4 * lk) + 2 * PAD_MM;
+  /* the fragility: its title, frame, axis and key */
+  const frag *f = &c->f;
+  const aq_h5_fragility_fit *q = f->fit;
+  char ftitle[400], med[48] = "";
+  if (q && isfinite(q->median) && q->beta > 0) {
+    snprintf(med, sizeof med, "%.3g", q->median);
+    snprintf(ftitle, sizeof ftitle,
+             "fragility of arch %.100s: median %s %s, #gb %.3g (%zu records, %zu censored)",
+             c->arch, med, c->im_unit, q->beta, f->n, f->n - f->ncol);
+  } else
+    snprintf(ftitle, sizeof ftitle, "fragility of arch %.100s: %s (%zu records, %zu censored)",
+             c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file", f->n,
+             f->n - f->ncol);
+  split_title(ftitle, w - 2 * MARGIN_MM, TITLE_MM, c->ftitle, &c->ftitle_lines);
+  c->ftitle_y = y + lt / 2;
+  y += c->ftitle_lines * lt + 0.5 * lp;
+  c->fx0 = MARGIN_MM + 4.0 * TXT_MM + 0.6 * lp;
+  c->fx1 = w - MARGIN_MM - 2 * TXT_MM; /* room for half of the last tick's label */
+  c->fy0 = y;
+  c->fy1 = y += FRAG_H_MM;
+  y += 3.0 * TXT_MM + 0.6 * lp + PAD_MM;
+  const char *tx[4], *sym[4];
+  int col[4], st[4], k = frag_keys(c, tx, col, st, sym);
+  double entry = 0;
+  for (int i = 0; i < k; i++)
+    entry = fmax(entry, SAMPLE_MM + 2 + width_mm(tx[i], KEY_MM) + 2 * MARGIN_MM);
+  c->leg_cols = k ? k : 1;
+  while (c->leg_cols > 1 && c->fx0 + c->leg_cols * entry > w - MARGIN_MM)
+    c->leg_cols--;
+  c->leg_colw = entry;
+  c->leg_y = y;
+  y += (k + c->leg_cols - 1) / c->leg_cols * lk + MARGIN_MM;
+  c->h = ceil(y / PT_MM) * PT_MM; /* whole points */
+  return 0;
+}
+
 aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity_opts *o,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err)
@@ -596,14 +829,18 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
   c.t = t;
   c.o = o;
   c.arch = o->arch;
-  int m = 0;
+  int m = 0; /* the IMs the file holds: the six, then its spectral measures */
+  size_t nim = t->nim ? t->nim : AQ_FRAGILITY_NIM;
   if (o->im) {
-    for (m = 0; m < AQ_FRAGILITY_NIM && strcmp(aq_fragility_im_names[m], o->im) != 0; m++)
+    for (m = 0; m < (int)nim && strcmp(t->im_name[m], o->im) != 0; m++)
       ;
-    if (m == AQ_FRAGILITY_NIM)
+    if (m == (int)nim) {
+      char list[600] = "";
+      for (size_t j = 0, n = 0; j < nim && n < sizeof list; j++)
+        n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", j ? ", " : "", t->im_name[j]);
       return aq_error_set(err, AQ_EOPTION, source, -1, -1, "--im",
-                          "expected one of pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s, "
-                          "pga_lambda0, got \"%s\"", o->im);
+                          "expected one of the file's measures (%s), got \"%s\"", list, o->im);
+    }
   }
   if (t->n == 0)
     return aq_error_set(err, AQ_EFORMAT, source, -1, -1, "capacity",
@@ -615,13 +852,12 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
     rc = aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   if (rc == AQ_OK) {
     ranges(&c);
-    double nrows = c.n ? (double)c.n + (double)c.rec[c.n - 1] * RECORD_GAP_PX / ROW_PX : 1;
-    const double frame_px = 50 + 70 + 104 + 50, frag_px = 500; /* around the strips; below */
-    c.strips_px = ROW_PX * nrows;
-    c.page_px = frame_px + c.strips_px + frag_px;
-    c.split = frag_px / c.page_px;
-    rc = aq_plot_render(target, 1000, (int)c.page_px, draw, &c, draw_s, err);
+    im_titles(&c, m);
+    if (plan(&c) != 0)
+      rc = aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
   }
+  if (rc == AQ_OK) /* 1000 points wide, as tall as the plan */
+    rc = aq_plot_render(target, 1000, (int)ceil(c.h / PT_MM), draw, &c, draw_s, err);
   if (rc == AQ_OK && data) {
     aq_outfile tmp;
     FILE *f = aq_plot_csv_open(data, &tmp, err);
@@ -638,5 +874,7 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
   free(c.color);
   free(c.rec);
   free(c.f.x);
+  free(c.label);
+  free(c.fc);
   return rc;
 }

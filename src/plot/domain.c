@@ -38,14 +38,19 @@ static int draw(void *ctx, aq_error *err)
   if (!(dlo <= dhi))
     dlo = 0.01, dhi = d->tmax_s;
   double x0 = floor(log10(dlo) - 0.05), x1 = ceil(log10(dhi) + 0.05);
-  double y0 = 1, y1 = rhi * 1.08;
+  double y1 = rhi * 1.08, y0 = 1 - 0.04 * (y1 - 1); /* room for the points near 1 */
   pladv(0);
   plschr(0, 0.95);
-  plvpor(0.11, 0.95, 0.11, 0.9);
+  plvpor(0.11, 0.95, 0.2, 0.9); /* below: the axis' title, then the key */
   plwind(x0, x1, y0, y1);
-  char title[256];
-  snprintf(title, sizeof title, "half-cycle collapse domain of arch %s (#gl#d0#u = %.4g)",
-           d->arch, d->lambda0);
+  char title[600], name[300];
+  aq_plot_shorten_to(d->arch,
+                     0.94 * aq_plot_page_w_mm() -
+                         aq_plot_text_mm("half-cycle collapse domain of arch  (#gl#d0#u = "
+                                         "0.0001234)"),
+                     name, sizeof name);
+  snprintf(title, sizeof title, "half-cycle collapse domain of arch %s (#gl#d0#u = %.4g)", name,
+           d->lambda0);
   /* the collapse region: right of the boundary, up to the top of the frame */
   if (d->nf) {
     PLFLT *x = malloc((d->nf + 3) * sizeof *x), *y = malloc((d->nf + 3) * sizeof *y);
@@ -81,11 +86,14 @@ static int draw(void *ctx, aq_error *err)
   pllab(AX_X, AX_Y, title);
   plcol0(AQ_PC_FG);
   plptex(x1 - 0.05 * (x1 - x0), y1 - 0.1 * (y1 - y0), 1, 0, 1, "collapse");
-  plptex(x0 + 0.05 * (x1 - x0), 1 + 0.5 * (y1 - 1), 1, 0, 0, "no collapse");
+  /* low and left, where the boundary is furthest right (the ratio near 1
+     takes the longest pulse) */
+  plptex(x0 + 0.03 * (x1 - x0), 1 + 0.06 * (y1 - 1), 1, 0, 0, "no collapse");
   const char *t[] = {"shortest collapsing pulse", "collapse region"};
   int c[] = {AQ_PC_RED, AQ_PC_SHADE}, st[] = {1, -1};
   const char *sy[] = {"●", ""};
-  aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_BOTTOM | PL_POSITION_LEFT, 2, t, c, st, sy);
+  /* the key outside the frame, under the axis' title: on no data */
+  aq_plot_legend_at(PL_POSITION_OUTSIDE | PL_POSITION_BOTTOM, 0, 0.16, 2, 2, t, c, st, sy);
   return 0;
 }
 

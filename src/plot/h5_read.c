@@ -76,6 +76,7 @@ void aq_plot_run_free(aq_plot_run *r)
   free(r->x_m);
   free(r->ke_j);
   free(r->pe_j);
+  free(r->set);
   free(r->ag_mps2);
   memset(r, 0, sizeof *r);
 }
@@ -156,6 +157,23 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
     }
     r->n = n;
   }
+  /* the hinge set at each sample, where the file keeps it (format 2) */
+  snprintf(obj, sizeof obj, "%s/%s/hinge_set", hist, r->key);
+  if (H5Oexists_by_name(f, obj, H5P_DEFAULT) > 0) {
+    hid_t d = H5Dopen2(f, obj, H5P_DEFAULT), sp = d >= 0 ? H5Dget_space(d) : -1;
+    r->set = sp >= 0 && H5Sget_simple_extent_npoints(sp) == (hssize_t)r->n
+                 ? malloc((r->n ? r->n : 1) * sizeof *r->set)
+                 : NULL;
+    if (r->set && H5Dread(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, r->set) < 0) {
+      free(r->set);
+      r->set = NULL;
+    }
+    if (sp >= 0)
+      H5Sclose(sp);
+    if (d >= 0)
+      H5Dclose(d);
+  }
+  H5Eclear2(H5E_DEFAULT);
 
   /* the ground, as the run saw it (absent from a format-2 file written
    * without --store-records: the figure then goes without it) */
@@ -206,6 +224,9 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
                       "expected the arch's lambda0, q_c_rad, mass_kg and g_mps2, got none");
     goto done;
   }
+  /* the sign of q while each set moves (0 if the file does not say) */
+  aq_h5_attr_num(arc, "primary_q_sign", H5T_NATIVE_INT, &r->q_sign[0]);
+  aq_h5_attr_num(arc, "reverse_q_sign", H5T_NATIVE_INT, &r->q_sign[1]);
 done:
   H5E_BEGIN_TRY
   {

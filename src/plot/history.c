@@ -1,8 +1,11 @@
 /* history.c: one run's response, three panels sharing the time axis:
  * ground acceleration (g) with +-lambda0 g of both sets, rotation of body 1
- * (rad) with +-q_c of both sets, and kinetic energy, potential energy and
- * the work done by the ground (J).  Impacts (returns to q = 0) are marked on
- * the rotation panel, the collapse across all three.
+ * over the collapse rotation q_c of the hinge set moving (each set's
+ * rotation to its own q_c: collapse at +-1 whichever set it is, as the
+ * summary's peak_rotation_over_qc), and kinetic energy, potential energy
+ * and the work done by the ground (J).  Impacts (returns to q = 0) are
+ * marked on the rotation panel, the collapse across all three.  The time
+ * axis ends where the run did (its collapse, or the record's end).
  *
  * The work put in is not stored as a history; it is accumulated over the
  * samples from the energy balance of docs/method.md sec. 5: over an
@@ -33,13 +36,16 @@ typedef struct {
   double *imp_t_s;      /* impact times, s */
   size_t nimp;
   double *ag_t_s, *ag_g; /* ground: times, s, and g */
+  double *qr;           /* rotation / q_c of the set moving, at each sample */
+  int qc_sign[2];       /* the side (+1, -1) of each set's collapse line, 0: none */
   double t0_s, t1_s;    /* time axis */
   const axis_unit *e_unit, *q_unit; /* energy and rotation axes */
   int qc_shown;         /* +-q_c on the rotation axis */
 } hist;
 
-/* Below this fraction of the smaller q_c, the rotation axis leaves +-q_c
- * out (named "off scale" in the legend) so that the response can be seen. */
+/* Below this fraction of q_c (a peak of rotation / q_c under it), the
+ * rotation axis leaves the collapse lines out (named "off scale" in the
+ * legend) so that the response can be seen. */
 static const double QC_SHOWN_FRAC = 0.4;
 /* the panels are about 620 px wide: a span a pixel keeps every extreme */
 static const size_t LINE_BUCKETS = 620;
@@ -47,8 +53,9 @@ static const size_t LINE_BUCKETS = 620;
 /* Axis titles (also written to the CSV, so that tests can read them). */
 static const char *const AX_TIME = "time in the record (s)", *const AX_GROUND = "ground (g)";
 
-static const axis_unit ROT_UNITS[] = {
-    {1e-6, "rotation (#gmrad)"}, {1e-3, "rotation (mrad)"}, {1, "rotation (rad)"}};
+static const axis_unit ROT_UNITS[] = {{1e-6, "rotation / q#dc#u of its set (10⁻⁶)"},
+                                      {1e-3, "rotation / q#dc#u of its set (10⁻³)"},
+                                      {1, "rotation / q#dc#u of its set (1)"}};
 static const axis_unit E_UNITS[] = {
     {1e-3, "energy (mJ)"}, {1, "energy (J)"}, {1e3, "energy (kJ)"}, {1e6, "energy (MJ)"}};
 
@@ -80,7 +87,8 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
   h->imp_t_s = malloc((n ? n : 1) * sizeof *h->imp_t_s);
   h->ag_t_s = malloc((r->na ? r->na : 1) * sizeof *h->ag_t_s);
   h->ag_g = malloc((r->na ? r->na : 1) * sizeof *h->ag_g);
-  if (!h->w_j || !h->imp_t_s || !h->ag_t_s || !h->ag_g) {
+  h->qr = malloc((n ? n : 1) * sizeof *h->qr);
+  if (!h->w_j || !h->imp_t_s || !h->ag_t_s || !h->ag_g || !h->qr) {
     aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "history", "out of memory");
     return -1;
   }
@@ -112,14 +120,33 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
   h->e_unit = unit_for(E_UNITS, sizeof E_UNITS / sizeof E_UNITS[0], fmax(e_hi, hi), 1e4);
   if (fmax(e_hi, hi) >= 0.1 && h->e_unit->per < 1)
     h->e_unit = &E_UNITS[1];
-  /* the rotation axis: +-q_c on it unless the rotation would be a flat
-     line under them; in rad from 0.05 rad, else mrad, else micro-rad */
-  aq_plot_range(r->q_rad, n, &lo, &hi);
+  /* the rotation over q_c of the set moving at each sample (its hinge_set;
+     a file without them: the set whose side of 0 q is on, else the
+     smaller q_c), and the side of each set's collapse line */
+  for (int s = 0; s < 2; s++)
+    h->qc_sign[s] = r->q_sign[s] > 0 ? 1 : r->q_sign[s] < 0 ? -1 : 0;
+  double qc_min = fmin(r->q_c_rad[0], r->q_c_rad[1]);
+  for (size_t k = 0; k < n; k++) {
+    int s = r->set ? r->set[k] : -1;
+    if (s < 0 && r->q_rad[k] != 0)
+      for (int j = 0; j < 2; j++)
+        if (h->qc_sign[j] != 0 && (r->q_rad[k] > 0) == (h->qc_sign[j] > 0))
+          s = j;
+    double qc = s == 0 || s == 1 ? r->q_c_rad[s] : qc_min;
+    h->qr[k] = qc > 0 ? r->q_rad[k] / qc : 0;
+  }
+  if (!h->qc_sign[0] && !h->qc_sign[1]) { /* not known: both sides, the smaller q_c */
+    h->qc_sign[0] = -1;
+    h->qc_sign[1] = 1;
+  }
+  /* the collapse lines (+-1) on it unless the response would be a flat
+     line under them; the unit keeps the tick labels short */
+  aq_plot_range(h->qr, n, &lo, &hi);
   double peak = fmax(fabs(lo), fabs(hi));
-  h->qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC * fmin(r->q_c_rad[0], r->q_c_rad[1]);
+  h->qc_shown = peak == 0 || peak >= QC_SHOWN_FRAC;
   if (h->qc_shown)
-    peak = fmax(peak, fmax(r->q_c_rad[0], r->q_c_rad[1]));
-  h->q_unit = unit_for(ROT_UNITS, sizeof ROT_UNITS / sizeof ROT_UNITS[0], peak, 50);
+    peak = fmax(peak, 1);
+  h->q_unit = unit_for(ROT_UNITS, sizeof ROT_UNITS / sizeof ROT_UNITS[0], peak, 200);
   /* the time axis: the record without its zero pads, and any motion */
   h->t0_s = INFINITY;
   h->t1_s = -INFINITY;
@@ -134,6 +161,12 @@ static int prepare(hist *h, const aq_plot_run *r, aq_error *err)
     }
   if (r->collapsed == 1 && isfinite(r->collapse_time_s))
     h->t1_s = fmax(h->t1_s, r->collapse_time_s);
+  /* the run ends at its last sample (its collapse, or the padded
+     record's end): the axis no further, and a fiftieth more */
+  if (n && r->t_s[n - 1] < h->t1_s)
+    h->t1_s = r->t_s[n - 1];
+  if (h->t0_s < h->t1_s)
+    h->t1_s += (h->t1_s - h->t0_s) / 50;
   if (!(h->t0_s < h->t1_s)) {
     h->t0_s = n ? r->t_s[0] : 0;
     h->t1_s = n && r->t_s[n - 1] > h->t0_s ? r->t_s[n - 1] : h->t0_s + 1;
@@ -147,6 +180,7 @@ static void release(hist *h)
   free(h->imp_t_s);
   free(h->ag_t_s);
   free(h->ag_g);
+  free(h->qr);
 }
 
 static void hline(double t0, double t1, double y, int color, int style)
@@ -188,21 +222,33 @@ static int draw(void *ctx, aq_error *err)
   const hist *h = ctx;
   const aq_plot_run *r = h->run;
   const double gr = r->g_mps2 / AQ_G0_MPS2; /* lambda0 g in units of g0 */
-  char title[512], l0p[64], l0r[64], qcp[64], qcr[64];
+  char title[1100], l0p[64], l0r[64], qcp[64], qcr[64];
   pladv(0);
   plschr(0, 0.85);
   plsyax(7, 0); /* plain numbers, no "(x10^4)" above the axis */
   const char *base = strrchr(r->record, '/');
   base = base ? base + 1 : r->record;
-  /* long names keep their start and end around a "…" (the full ones are in
-     --data and the results file) */
-  char rec_e[512], arch_e[256];
-  aq_plot_ellipsize(base, 80, rec_e, sizeof rec_e);
-  aq_plot_ellipsize(r->arch, 50, arch_e, sizeof arch_e);
-  aq_text_fit(title, sizeof title, "%s on arch %s: scale %g%s, run %s", rec_e, arch_e,
-              r->scale, r->reversed ? " reversed" : "", r->key);
+  /* the title on one line, or the record's name on a line of its own (the
+     names whole, shortened only beyond the page's width) */
+  char rest[500], rec_e[600], arch_e[300];
+  double room = 0.94 * aq_plot_page_w_mm();
+  aq_plot_escape(base, rec_e, sizeof rec_e);
+  aq_plot_escape(r->arch, arch_e, sizeof arch_e);
+  snprintf(title, sizeof title, "%s on arch %s: scale %g%s, run %s", rec_e, arch_e, r->scale,
+           r->reversed ? " reversed" : "", r->key);
   plvpor(0.02, 0.98, 0.08, 0.93); /* the title centred on the page */
-  plmtex("t", 1.2, 0.5, 0.5, title);
+  if (aq_plot_text_mm(title) <= room) {
+    plmtex("t", 1.2, 0.5, 0.5, title);
+  } else {
+    snprintf(rest, sizeof rest, "on arch : scale %g%s, run %s", r->scale,
+             r->reversed ? " reversed" : "", r->key);
+    aq_plot_shorten_to(r->arch, room - aq_plot_text_mm(rest), arch_e, sizeof arch_e);
+    aq_plot_shorten_to(base, room, rec_e, sizeof rec_e);
+    snprintf(rest, sizeof rest, "on arch %s: scale %g%s, run %s", arch_e, r->scale,
+             r->reversed ? " reversed" : "", r->key);
+    plmtex("t", 2.6, 0.5, 0.5, rec_e);
+    plmtex("t", 1.2, 0.5, 0.5, rest);
+  }
   /* ground */
   double lo, hi;
   aq_plot_range(h->ag_g, r->na, &lo, &hi);
@@ -235,7 +281,7 @@ static int draw(void *ctx, aq_error *err)
         ym = 0.5 * (yl[i] + next);
       }
     }
-    aq_plot_note(0.5 * (h->t0_s + h->t1_s), ym, "ground not stored: run with --store-records");
+    aq_plot_note(0.5 * (h->t0_s + h->t1_s), ym, "ground not in this file (written before --history stored it)");
   }
   snprintf(l0p, sizeof l0p, "±#gl#d0#u g, primary (%.3g g)", r->lambda0[0] * gr);
   snprintf(l0r, sizeof l0r, "±#gl#d0#u g, reverse (%.3g g)", r->lambda0[1] * gr);
@@ -248,21 +294,20 @@ static int draw(void *ctx, aq_error *err)
   /* rotation, in the axis' unit */
   const double qper = h->q_unit->per;
   const int qc_shown = h->qc_shown;
-  aq_plot_range(r->q_rad, r->n, &lo, &hi);
-  for (int s = 0; s < 2 && qc_shown; s++) {
-    lo = fmin(lo, -r->q_c_rad[s]);
-    hi = fmax(hi, r->q_c_rad[s]);
+  aq_plot_range(h->qr, r->n, &lo, &hi);
+  for (int s = 0; s < 2 && qc_shown; s++) { /* each set's collapse, on its side */
+    lo = fmin(lo, h->qc_sign[s] ? h->qc_sign[s] : lo);
+    hi = fmax(hi, h->qc_sign[s] ? h->qc_sign[s] : hi);
   }
   panel(h, 0.38, 0.64, lo / qper, hi / qper, 0, h->q_unit->title);
   for (int s = 0; s < 2 && qc_shown; s++)
-    for (int sg = -1; sg <= 1; sg += 2)
-      hline(h->t0_s, h->t1_s, sg * r->q_c_rad[s] / qper, s ? AQ_PC_ORANGE : AQ_PC_BLUE,
-            s ? 3 : 2);
+    if (h->qc_sign[s])
+      hline(h->t0_s, h->t1_s, h->qc_sign[s] / qper, s ? AQ_PC_ORANGE : AQ_PC_BLUE, s ? 3 : 2);
   plcol0(AQ_PC_FG);
   PLFLT *qy = malloc((r->n ? r->n : 1) * sizeof *qy);
   if (qy) {
     for (size_t k = 0; k < r->n; k++)
-      qy[k] = r->q_rad[k] / qper;
+      qy[k] = h->qr[k] / qper;
     aq_plot_line(r->n, r->t_s, qy, LINE_BUCKETS);
     free(qy);
   }
@@ -276,18 +321,19 @@ static int draw(void *ctx, aq_error *err)
       free(zero);
     }
   }
-  snprintf(qcp, sizeof qcp, "±q#dc#u, primary (%.3g rad)", r->q_c_rad[0]);
-  snprintf(qcr, sizeof qcr, "±q#dc#u, reverse (%.3g rad)", r->q_c_rad[1]);
+  snprintf(qcp, sizeof qcp, "primary: q#dc#u %.3g rad", r->q_c_rad[0]);
+  snprintf(qcr, sizeof qcr, "reverse: q#dc#u %.3g rad", r->q_c_rad[1]);
   {
     char imp[64];
     snprintf(imp, sizeof imp, "impact (%zu)", h->nimp);
-    const char *t[] = {"rotation", qcp, qcr, imp, "collapse"};
+    const char *t[] = {"rotation / q#dc#u", qcp, qcr, imp, "collapse"};
     int c[] = {AQ_PC_FG, AQ_PC_BLUE, AQ_PC_ORANGE, AQ_PC_GREEN, AQ_PC_RED};
     int st[] = {1, 2, 3, 0, 1};
     const char *sy[] = {"", "", "", "◆", ""};
-    if (!qc_shown) { /* the q_c entries say so instead of showing a line */
-      t[1] = r->q_c_rad[0] < r->q_c_rad[1] ? qcp : qcr;
-      t[2] = "(±q#dc#u off scale)";
+    if (!qc_shown) { /* the collapse lines (1) off scale: the legend says so */
+      t[1] = "(collapse: 1, off scale)";
+      t[2] = qcp;
+      snprintf(qcp, sizeof qcp, "q#dc#u %.3g, %.3g rad", r->q_c_rad[0], r->q_c_rad[1]);
       c[1] = c[2] = AQ_PC_FG;
       st[1] = st[2] = 0;
     }
@@ -343,10 +389,10 @@ static aq_status write_data(const hist *h, const char *data, aq_error *err)
             AQ_TEXT_NUM(r->lambda0[s] * r->g_mps2 / AQ_G0_MPS2));
     fprintf(f, "%s_q_c_rad,nan,%s\n", s ? "reverse" : "primary", AQ_TEXT_NUM(r->q_c_rad[s]));
   }
-  static const char *names[] = {"rotation_rad", "kinetic_energy_j",
+  static const char *names[] = {"rotation_rad", "rotation_over_qc", "kinetic_energy_j",
                                 "potential_energy_j", "work_in_j"};
-  const double *v[] = {r->q_rad, r->ke_j, r->pe_j, h->w_j};
-  for (size_t j = 0; j < (r->na ? 4 : 3); j++)
+  const double *v[] = {r->q_rad, h->qr, r->ke_j, r->pe_j, h->w_j};
+  for (size_t j = 0; j < (r->na ? 5 : 4); j++)
     for (size_t i = 0; i < r->n; i++)
       fprintf(f, "%s,%s,%s\n", names[j], AQ_TEXT_NUM(r->t_s[i]), AQ_TEXT_NUM(v[j][i]));
   for (size_t i = 0; i < h->nimp; i++)

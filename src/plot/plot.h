@@ -55,6 +55,10 @@ typedef struct {
   double g_mps2;         /* the arch's gravity */
   size_t n;              /* history samples */
   double *t_s, *q_rad, *x_m, *ke_j, *pe_j; /* rotation (global sign), COM x, energies */
+  int *set;              /* n: the hinge set moving (0 primary, 1 reverse, -1 at rest);
+                            NULL when the file holds none (format 1) */
+  int q_sign[2];         /* primary, reverse: the sign of q while that set moves (0:
+                            unknown) */
   size_t na;             /* ground samples (processed record, scaled, signed);
                             0 when the file does not hold it (format 2
                             written without --store-records) */
@@ -149,9 +153,36 @@ void aq_plot_escape(const char *s, char *out, size_t cap);
  * the middle, keeping its start and its end ("RSN6_IMP…hor1.AT2"), into
  * out[cap], escaped (aq_plot_escape); s itself if it fits. */
 void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap);
+/* The same for n names at once, into out (n strings of cap bytes): each
+ * at most max_chars characters, and distinct where the names are: the
+ * ellipsis placed alike for all where that keeps them apart (even, then
+ * more of the end, then more of the start), else each showing where it
+ * first differs from the others ("…LOMAP_GIL067…"). */
+void aq_plot_ellipsize_set(const char *const *names, size_t n, size_t max_chars, char *out,
+                           size_t cap);
 /* Between plinit and plend: how many characters of a file name fit in
  * width_frac of the page's width at the current character height. */
 size_t aq_plot_chars_fit(double width_frac);
+
+/* Text measured as the figures draw it (DejaVu Sans, the cairo drivers'
+ * and librsvg's "sans"): the width of s in em (PLplot's escapes resolved:
+ * #gX a Greek letter, #u and #d a smaller sub- or superscript, ## a #).
+ * Needs no PLplot. */
+double aq_plot_text_em(const char *s);
+/* The font size (mm) of text of PLplot character height height_mm. */
+double aq_plot_font_mm(double height_mm);
+/* Between plinit and plend, in mm of the figure's own size (72 points an
+ * inch, whatever the page it is scaled onto): set the character height;
+ * the width of s and the height of a line (the font's ascent and descent)
+ * at the current height. */
+void aq_plot_text_height(double mm);
+double aq_plot_text_mm(const char *s);
+double aq_plot_line_mm(void);
+/* The figure's width, and s (a name, not escaped) shortened by an ellipsis
+ * in its middle until it is at most width_mm wide at the current
+ * character height, escaped, into out[cap] (s itself if it fits). */
+double aq_plot_page_w_mm(void);
+void aq_plot_shorten_to(const char *s, double width_mm, char *out, size_t cap);
 
 /* Drawing helpers (between plinit and plend). */
 enum { AQ_PC_BG = 0, AQ_PC_FG, AQ_PC_BLUE, AQ_PC_RED, AQ_PC_GREEN,

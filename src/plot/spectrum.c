@@ -32,7 +32,7 @@ static int fig_height(size_t ncurve)
 typedef struct {
   size_t start, n;  /* its rows of the table (periods, in the file's order) */
   int color, style;
-  char label[200];
+  char label[800];
 } curve;
 
 typedef struct {
@@ -51,14 +51,12 @@ static const char *base(const char *path)
 
 /* A record column as drawn: a RECORD by its file name; a --components
  * pair by its two file names, their common start and end written once
- * ("RSN6_IMPVALL.I_I-ELC{180-hor1,270-hor2}.AT2"); shortened to max
- * characters. */
-static void short_name(const char *record, size_t max, char *out, size_t cap)
+ * ("RSN6_IMPVALL.I_I-ELC{180-hor1,270-hor2}.AT2"); whole, not escaped. */
+static void display_name(const char *record, char *out, size_t cap)
 {
-  char names[600];
   const char *comma = strchr(record, ',');
   if (!comma) {
-    aq_plot_ellipsize(base(record), max, out, cap);
+    aq_text_fit(out, cap, "%s", base(record));
     return;
   }
   char first[4096]; /* a path whole (PATH_MAX): its end is the file's name */
@@ -70,16 +68,14 @@ static void short_name(const char *record, size_t max, char *out, size_t cap)
   while (q < la - p && q < lb - p && a[la - 1 - q] == b[lb - 1 - q])
     q++;
   if (p + q > 0)
-    aq_text_fit(names, sizeof names, "%.*s{%.*s,%.*s}%s", (int)p, a, (int)(la - p - q), a + p,
+    aq_text_fit(out, cap, "%.*s{%.*s,%.*s}%s", (int)p, a, (int)(la - p - q), a + p,
                 (int)(lb - p - q), b + p, a + la - q);
   else
-    aq_text_fit(names, sizeof names, "%s,%s", a, b);
-  aq_plot_ellipsize(names, max, out, cap);
+    aq_text_fit(out, cap, "%s,%s", a, b);
 }
 
 static int draw(void *ctx, aq_error *err)
 {
-  (void)err;
   const fig *F = ctx;
   const aq_h5_spectra_table *t = F->t;
   double x0 = log10(F->tlo), x1 = log10(F->thi);
@@ -97,8 +93,11 @@ static int draw(void *ctx, aq_error *err)
   plwind(x0, x1, 0, y1);
   plcol0(AQ_PC_LIGHT);
   plbox("glh", 0, 0, "g", 0, 0); /* a grid at every decade's ticks */
-  char title[512], name[160];
-  short_name(F->source, 50, name, sizeof name);
+  char title[1100], name[600], whole[600];
+  display_name(F->source, whole, sizeof whole);
+  aq_plot_shorten_to(whole, 0.94 * aq_plot_page_w_mm() -
+                                aq_plot_text_mm("response spectra of  (peaks: not stated)"),
+                     name, sizeof name);
   snprintf(title, sizeof title, "response spectra of %s (peaks: %s)", name,
            t->peaks >= 0 ? aq_spectrum_peaks_names[t->peaks] : "not stated");
   size_t most = 0;
@@ -131,12 +130,25 @@ static int draw(void *ctx, aq_error *err)
   plvpor(0.1, 0.96, top - (double)(ROW_PX * nrow) / h, top);
   plwind(0, 1, (double)nrow, 0);
   plschr(0, 0.8);
+  /* the records' names, shortened alike and kept apart */
+  enum { NM = 600 };
+  char *full = malloc((F->nc ? F->nc : 1) * NM), *nm = malloc((F->nc ? F->nc : 1) * NM);
+  const char **fp = malloc((F->nc ? F->nc : 1) * sizeof *fp);
+  if (!full || !nm || !fp) {
+    free(full);
+    free(nm);
+    free(fp);
+    return aq_error_set(err, AQ_ENOMEM, F->source, -1, -1, NULL, "out of memory"), -1;
+  }
+  for (size_t k = 0; k < F->nc; k++) {
+    display_name(t->record[F->c[k].start], full + k * NM, NM);
+    fp[k] = full + k * NM;
+  }
+  aq_plot_ellipsize_set(fp, F->nc, ncol > 1 ? 28 : 56, nm, NM);
   for (size_t k = 0; k < F->nc; k++) {
     curve *c = &F->c[k];
-    char nm[160];
-    short_name(t->record[c->start], ncol > 1 ? 28 : 56, nm, sizeof nm);
-    snprintf(c->label, sizeof c->label, "%s  %s, #gz = %g %%", nm, t->component[c->start],
-             100 * t->damping[c->start]);
+    snprintf(c->label, sizeof c->label, "%s  %s, #gz = %g %%", nm + k * NM,
+             t->component[c->start], 100 * t->damping[c->start]);
     double x = ncol > 1 && k >= nrow ? 0.5 : 0.0, y = (double)(k % nrow) + 0.5;
     PLFLT lx[2] = {x + 0.01, x + 0.07}, ly[2] = {y, y};
     plcol0(c->color);
@@ -148,6 +160,9 @@ static int draw(void *ctx, aq_error *err)
     plcol0(AQ_PC_FG);
     plptex(x + 0.085, y, 1, 0, 0, c->label);
   }
+  free(full);
+  free(nm);
+  free(fp);
   return 0;
 }
 

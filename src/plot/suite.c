@@ -98,11 +98,20 @@ static int draw(void *ctx, aq_error *err)
      name is in --data) */
   size_t fit = aq_plot_chars_fit(left - 0.01);
   fit = fit > 2 ? fit - 2 : 1; /* the 0.8 characters between name and map */
-  for (size_t i = 0; i < m->nrec; i++) {
-    char name[1024];
-    aq_plot_ellipsize(base(m->rec[i]), fit, name, sizeof name);
-    plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, name);
+  enum { NAME = 1024 };
+  size_t nn = m->nrec > m->narch ? m->nrec : m->narch;
+  const char **names = malloc((nn ? nn : 1) * sizeof *names);
+  char *short_names = malloc((nn ? nn : 1) * NAME);
+  if (!names || !short_names) {
+    free(names);
+    free(short_names);
+    return aq_error_set(err, AQ_ENOMEM, m->source, -1, -1, NULL, "out of memory"), -1;
   }
+  for (size_t i = 0; i < m->nrec; i++) /* shortened alike, kept distinct */
+    names[i] = base(m->rec[i]);
+  aq_plot_ellipsize_set(names, m->nrec, fit, short_names, NAME);
+  for (size_t i = 0; i < m->nrec; i++)
+    plmtex("lv", 0.8, 1 - (i + 0.5) / (double)m->nrec, 1, short_names + i * NAME);
   /* the arches' names over their columns; when one is too long for its
      column, every other name a line higher, each with two columns' room */
   double col = (0.83 - left) / (double)m->narch;
@@ -112,17 +121,22 @@ static int draw(void *ctx, aq_error *err)
     stagger |= m->narch > 1 && strlen(m->arch[j]) > afit;
   if (stagger)
     afit = aq_plot_chars_fit(2 * col) - 1;
-  for (size_t j = 0; j < m->narch; j++) {
-    char name[512];
-    aq_plot_ellipsize(m->arch[j], afit, name, sizeof name);
-    plmtex("t", stagger && j % 2 ? 2.0 : 0.8, (j + 0.5) / (double)m->narch, 0.5, name);
-  }
+  aq_plot_ellipsize_set(m->arch, m->narch, afit, short_names, NAME);
+  for (size_t j = 0; j < m->narch; j++)
+    plmtex("t", stagger && j % 2 ? 2.0 : 0.8, (j + 0.5) / (double)m->narch, 0.5,
+           short_names + j * NAME);
+  free(names);
+  free(short_names);
   /* the key's title, beside its labels (outside the map by the key's
      offset and width, 0.045 of the page, and its labels) */
   double key_chars = 0.85 * (double)aq_plot_chars_fit(0.045);
   plmtex("r", key_chars + 4.2, 0.5, 0.5, AX_KEY);
-  char t[512];
-  aq_text_fit(t, sizeof t, "%s: records (rows) against arches (columns)", base(m->source));
+  char t[1100], src[600];
+  aq_plot_shorten_to(base(m->source),
+                     0.94 * aq_plot_page_w_mm() -
+                         aq_plot_text_mm(": records (rows) against arches (columns)"),
+                     src, sizeof src);
+  snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", src);
   plvpor(0.02, 0.98, 0.14, 0.9); /* the caption centred on the page */
   plmtex("b", 1.6, 0.5, 0.5, t);
   plmtex("b", 3.1, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "../arch/model.h"
+#include "../io/sha256.h"
 #include "../util/outfile.h"
 #include "h5_table.h"
 
@@ -1093,6 +1094,14 @@ aq_status aq_h5_write_record(aq_h5_writer *w, size_t index,
   row->name = row_string(r->rec ? r->rec->name : base ? base + 1 : r->source_file);
   CK(row->source_file && row->error && row->name ? 0 : -1, "rows (out of memory)");
   COPY(row->sha256, r->sha256);
+  if (!r->sha256 && r->rec && r->source_file) { /* a command that did not hash it
+                                                   (capacity, spectrum): its file's */
+    char file[4096];
+    aq_error herr;
+    if (aq_sha256_file(aq_record_file(r->source_file, file, sizeof file), row->sha256,
+                       &herr) != AQ_OK)
+      row->sha256[0] = '\0';
+  }
   COPY(row->status, r->status ? r->status : "ok");
   row->to_m_s2 = row->dt_s = row->begin_s = NAN;
   row->taper_frac = row->highpass_hz = row->lowpass_hz = NAN;

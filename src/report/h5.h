@@ -101,7 +101,8 @@ typedef struct {
   const aq_im *im;           /* its intensity measures, or NULL */
   const char *status;        /* "ok" or a short code ("read:eformat") */
   const char *error;         /* one-line message, or NULL */
-  const char *sha256;        /* hex digest of the file, or NULL */
+  const char *sha256;        /* hex digest of the file, or NULL: the writer
+                                hashes the file of a record read */
   double timing_read_s;      /* wall time reading, s (timing: not deterministic) */
   double timing_process_s;   /* wall time processing, s */
 } aq_h5_record;

@@ -16,18 +16,19 @@
 #include "text.h"
 
 
-/* The n x AQ_FRAGILITY_NIM dataset name of the IMs, its columns named
- * (`columns`) with their units (`units`), one string per column. */
-static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n)
+/* The n x nim dataset name of the IMs, its columns named (`columns`) with
+ * their units (`units`), one string per column. */
+static herr_t ds_ims(hid_t g, const char *name, const double *buf, size_t n, size_t nim,
+                     const char *const *names, const char *const *units)
 {
-  if (aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, n, AQ_FRAGILITY_NIM, NULL) < 0)
+  if (aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, n, nim, NULL) < 0)
     return -1;
   hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
   if (d < 0)
     return -1;
-  herr_t rc = aq_h5_attr_strings(d, "columns", aq_fragility_im_names, AQ_FRAGILITY_NIM);
+  herr_t rc = aq_h5_attr_strings(d, "columns", names, nim);
   if (rc >= 0)
-    rc = aq_h5_attr_strings(d, "units", aq_fragility_im_units, AQ_FRAGILITY_NIM);
+    rc = aq_h5_attr_strings(d, "units", units, nim);
   if (H5Dclose(d) < 0)
     rc = -1;
   return rc;
@@ -114,6 +115,7 @@ typedef struct {
   int64_t records, censored;
   double median, beta, median_lo, median_hi; /* the median's units: per row, below */
   int64_t rank;
+  double beta_per_power; /* what rank orders: beta / the IM's power of the scale */
 } fit_row;
 
 static const aq_h5_col fit_cols[] = {
@@ -125,7 +127,8 @@ static const aq_h5_col fit_cols[] = {
     AQ_H5_COL(fit_row, beta, AQ_H5_DOUBLE, "1"),
     AQ_H5_COL(fit_row, median_lo, AQ_H5_DOUBLE, NULL),
     AQ_H5_COL(fit_row, median_hi, AQ_H5_DOUBLE, NULL),
-    AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1")};
+    AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1"),
+    AQ_H5_COL(fit_row, beta_per_power, AQ_H5_DOUBLE, "1")};
 enum { NFIT_COLS = sizeof fit_cols / sizeof fit_cols[0] };
 
 /* The reader's names of the numeric columns (pair_cols' 5th to 14th). */
@@ -143,7 +146,9 @@ typedef struct {
   fit_row *fit;   /* nfit */
   double *iv;     /* intervals, 2 per row */
   size_t niv;
-  double *im[2];  /* npair x AQ_FRAGILITY_NIM: the IMs at first collapse, at the cap */
+  size_t nim;     /* the six IMs of aq_fragility_im_names, then the spectral ones */
+  const char *im_name[AQ_H5_CAP_NIM_MAX], *im_units[AQ_H5_CAP_NIM_MAX];
+  double *im[2];  /* npair x nim: the IMs at first collapse, at the cap */
   const char **med_units; /* nfit: the units of each fit's median (its IM's) */
 } columns;
 
@@ -156,8 +161,17 @@ static int fill(const aq_h5_capacity *c, columns *k)
   k->fit = malloc(nf * sizeof *k->fit);
   k->med_units = malloc(nf * sizeof *k->med_units);
   k->iv = malloc((niv ? niv : 1) * 2 * sizeof(double));
+  k->nim = AQ_FRAGILITY_NIM;
+  for (size_t m = 0; m < AQ_FRAGILITY_NIM; m++) {
+    k->im_name[m] = aq_fragility_im_names[m];
+    k->im_units[m] = aq_fragility_im_units[m];
+  }
+  for (size_t m = 0; m < c->nspectral && k->nim < AQ_H5_CAP_NIM_MAX; m++) {
+    k->im_name[k->nim] = c->spectral[m];
+    k->im_units[k->nim++] = "g"; /* Sa(T) and Sa_avg (sa_..._g) */
+  }
   for (int j = 0; j < 2; j++)
-    k->im[j] = malloc(n * AQ_FRAGILITY_NIM * sizeof(double));
+    k->im[j] = malloc(n * k->nim * sizeof(double));
   if (!k->pair || !k->fit || !k->med_units || !k->iv || !k->im[0] || !k->im[1])
     return -1;
   for (size_t p = 0; p < c->npair; p++) {
@@ -179,12 +193,12 @@ static int fill(const aq_h5_capacity *c, columns *k)
                             v ? (int64_t)a->scan.runs : 0,
                             (int64_t)k->niv,
                             v ? (int64_t)a->scan.ninterval : 0};
-    for (int m = 0; m < AQ_FRAGILITY_NIM; m++) { /* what the fits were given */
+    for (size_t m = 0; m < k->nim; m++) { /* what the fits were given */
       int w = v && r->im;
-      k->im[0][p * AQ_FRAGILITY_NIM + m] =
-          w && !isnan(fc) ? aq_fragility_im_at(r->im, a->lambda0, m, fc) : NAN;
-      k->im[1][p * AQ_FRAGILITY_NIM + m] =
-          w ? aq_fragility_im_at(r->im, a->lambda0, m, a->scale_max) : NAN;
+      k->im[0][p * k->nim + m] =
+          w && !isnan(fc) ? aq_fragility_im_at(r->im, a->lambda0, (int)m, fc) : NAN;
+      k->im[1][p * k->nim + m] =
+          w ? aq_fragility_im_at(r->im, a->lambda0, (int)m, a->scale_max) : NAN;
     }
     for (size_t q = 0; v && q < a->scan.ninterval; q++) {
       k->iv[2 * k->niv] = a->scan.interval[q].lo;
@@ -196,7 +210,8 @@ static int fill(const aq_h5_capacity *c, columns *k)
     const aq_fragility *q = c->fit[i].fit;
     const char *im = c->fit[i].im;
     k->fit[i] = (fit_row){c->fit[i].arch, im, (int64_t)q->n, (int64_t)q->ncensored,
-                          q->median, q->beta, q->median_lo, q->median_hi, q->rank};
+                          q->median, q->beta, q->median_lo, q->median_hi, q->rank,
+                          aq_fragility_row_ranked(im, q->beta)};
     k->med_units[i] = "1";
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
       if (im && strcmp(im, aq_fragility_im_names[m]) == 0)
@@ -252,8 +267,8 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
       aq_h5_attr_strings(di, "units", iv_units, 2) < 0 || H5Dclose(di) < 0)
     goto fail;
   what = "capacity/im_first_collapse, im_cap";
-  if (ds_ims(g, "im_first_collapse", k.im[0], c->npair) < 0 ||
-      ds_ims(g, "im_cap", k.im[1], c->npair) < 0)
+  if (ds_ims(g, "im_first_collapse", k.im[0], c->npair, k.nim, k.im_name, k.im_units) < 0 ||
+      ds_ims(g, "im_cap", k.im[1], c->npair, k.nim, k.im_name, k.im_units) < 0)
     goto fail;
   what = "capacity/scan_points";
   if (write_points(g, c) < 0)
@@ -359,10 +374,57 @@ static herr_t ds_read_strings(hid_t g, const char *name, void *base, size_t stri
 }
 
 /* The IMs at first collapse and at the cap (NAN when absent: older files). */
+/* The column names of the IM matrix d (its columns attribute) into
+ * t->im_name; the six of aq_fragility_im_names for a file written before
+ * it named them.  The number of columns, or 0. */
+static size_t im_columns(hid_t d, aq_h5_capacity_table *t)
+{
+  hid_t sp = H5Dget_space(d);
+  hsize_t dim[2] = {0, 0};
+  int nd = sp >= 0 ? H5Sget_simple_extent_dims(sp, dim, NULL) : -1;
+  if (sp >= 0)
+    H5Sclose(sp);
+  size_t m = nd == 2 ? (size_t)dim[1] : 0;
+  if (m < AQ_FRAGILITY_NIM || m > AQ_H5_CAP_NIM_MAX)
+    return 0;
+  for (size_t j = 0; j < AQ_FRAGILITY_NIM; j++)
+    snprintf(t->im_name[j], sizeof t->im_name[j], "%s", aq_fragility_im_names[j]);
+  hid_t a = H5Aexists(d, "columns") > 0 ? H5Aopen(d, "columns", H5P_DEFAULT) : -1;
+  hid_t at = a >= 0 ? H5Aget_type(a) : -1, as = a >= 0 ? H5Aget_space(a) : -1;
+  char *v[AQ_H5_CAP_NIM_MAX] = {NULL};
+  if (at >= 0 && as >= 0 && H5Tis_variable_str(at) > 0 &&
+      H5Sget_simple_extent_npoints(as) == (hssize_t)m && H5Aread(a, at, v) >= 0) {
+    for (size_t j = 0; j < m; j++)
+      snprintf(t->im_name[j], sizeof t->im_name[j], "%s", v[j] ? v[j] : "");
+    H5Dvlen_reclaim(at, as, H5P_DEFAULT, v);
+  } else if (m > AQ_FRAGILITY_NIM) {
+    m = 0; /* spectral columns without their names */
+  }
+  if (as >= 0)
+    H5Sclose(as);
+  if (at >= 0)
+    H5Tclose(at);
+  if (a >= 0)
+    H5Aclose(a);
+  return m;
+}
+
 static int read_im(hid_t g, aq_h5_capacity_table *t, const char **what)
 {
   static const char *const name[2] = {"im_first_collapse", "im_cap"};
   size_t n = t->n, m = AQ_FRAGILITY_NIM;
+  for (size_t j = 0; j < AQ_FRAGILITY_NIM; j++)
+    snprintf(t->im_name[j], sizeof t->im_name[j], "%s", aq_fragility_im_names[j]);
+  if (H5Lexists(g, name[0], H5P_DEFAULT) > 0) {
+    hid_t d = H5Dopen2(g, name[0], H5P_DEFAULT);
+    m = d >= 0 ? im_columns(d, t) : 0;
+    if (d >= 0)
+      H5Dclose(d);
+    *what = name[0];
+    if (m == 0)
+      return -1;
+  }
+  t->nim = m;
   double *v = malloc((n ? n : 1) * m * sizeof *v);
   if (!v)
     return -1;
@@ -373,8 +435,8 @@ static int read_im(hid_t g, aq_h5_capacity_table *t, const char **what)
     if (have && ds_read(g, name[k], H5T_NATIVE_DOUBLE, v, n, m) < 0)
       rc = -1;
     for (size_t i = 0; rc == 0 && i < n; i++)
-      for (size_t j = 0; j < m; j++)
-        (k ? t->row[i].im_cap : t->row[i].im_first)[j] = have ? v[i * m + j] : NAN;
+      for (size_t j = 0; j < AQ_H5_CAP_NIM_MAX; j++)
+        (k ? t->row[i].im_cap : t->row[i].im_first)[j] = have && j < m ? v[i * m + j] : NAN;
   }
   free(v);
   return rc;
@@ -417,6 +479,18 @@ static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
     ok = ds_read(gf, j ? "censored" : "records", H5T_NATIVE_INT64, iv, n, 1) >= 0;
     for (size_t i = 0; ok && i < t->nfit; i++)
       *(j ? &t->fit[i].censored : &t->fit[i].records) = iv[i];
+  }
+  /* the rank and what it orders (files written before: from beta) */
+  int have_rank = ok && H5Lexists(gf, "rank", H5P_DEFAULT) > 0;
+  if (have_rank)
+    ok = ds_read(gf, "rank", H5T_NATIVE_INT64, iv, n, 1) >= 0;
+  int have_ranked = ok && H5Lexists(gf, "beta_per_power", H5P_DEFAULT) > 0;
+  if (have_ranked)
+    ok = ds_read(gf, "beta_per_power", H5T_NATIVE_DOUBLE, v, n, 1) >= 0;
+  for (size_t i = 0; ok && i < t->nfit; i++) {
+    t->fit[i].rank = have_rank ? iv[i] : 0;
+    t->fit[i].beta_per_power =
+        have_ranked ? v[i] : aq_fragility_row_ranked(t->fit[i].im, t->fit[i].beta);
   }
   free(v);
   free(iv);

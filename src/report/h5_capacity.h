@@ -21,6 +21,8 @@ typedef struct {
   const aq_fragility_row *fit;  /* one per (arch, intensity measure) */
   size_t nfit;
   double resolution, tol, ci;   /* the options used */
+  size_t nspectral;             /* the spectral measures fitted after the six, */
+  const char *const *spectral;  /* their names (aq_im_spectral_name), nspectral */
 } aq_h5_capacity;
 
 aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
@@ -29,6 +31,9 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
 /* ---- reading back and comparing (archquake compare) ---------------------- */
 
 enum { AQ_H5_CAP_NDOUBLE = 6, AQ_H5_CAP_NINT = 4 };
+/* The most intensity measures a row holds: the six of the fits, then the
+ * spectral ones (Sa(T) at each period, Sa_avg). */
+enum { AQ_H5_CAP_NIM_MAX = AQ_FRAGILITY_NIM + AQ_IM_SA_MAX + 1 };
 /* Names of the numeric columns, in the order of aq_h5_capacity_row. */
 extern const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE];
 extern const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT];
@@ -38,9 +43,10 @@ typedef struct {
   double d[AQ_H5_CAP_NDOUBLE]; /* move_scale first_collapse_scale first_collapse_pga_g
                                   first_collapse_pgv_m_s scale_max lambda0 */
   int64_t i[AQ_H5_CAP_NINT];   /* resurrection runs interval_start interval_count */
-  /* the fragility IMs (aq_fragility_im_names) at first collapse (NAN: none)
-     and at the cap; NAN when the file does not hold them */
-  double im_first[AQ_FRAGILITY_NIM], im_cap[AQ_FRAGILITY_NIM];
+  /* the fragility IMs (the table's im_name: aq_fragility_im_names, then the
+     spectral ones) at first collapse (NAN: none) and at the cap; NAN when
+     the file does not hold them */
+  double im_first[AQ_H5_CAP_NIM_MAX], im_cap[AQ_H5_CAP_NIM_MAX];
   size_t point_start, point_count; /* its rows of the table's point[] */
 } aq_h5_capacity_row;
 
@@ -49,6 +55,8 @@ typedef struct {
   char arch[AQ_SUMMARY_ARCH_MAX], im[32];
   double median, beta, median_lo, median_hi;
   int64_t records, censored;
+  int64_t rank;          /* 1 for the arch's best measure; 0 unfitted (or not in the file) */
+  double beta_per_power; /* what rank orders: beta over the IM's power of the scale */
 } aq_h5_fragility_fit;
 
 typedef struct {
@@ -63,6 +71,10 @@ typedef struct {
   aq_capacity_point *point; /* malloc'd: every scanned scale, by row then scale */
   char peaks[16];           /* the root's peaks attribute (where the spectral
                                measures' peaks were taken), "" if none */
+  size_t nim;               /* columns of the rows' im_first and im_cap: the six
+                               of aq_fragility_im_names, then the spectral
+                               measures (files written before them: 6) */
+  char im_name[AQ_H5_CAP_NIM_MAX][32];
 } aq_h5_capacity_table;
 
 /* Read the capacity group of the results file at path into *t (free with

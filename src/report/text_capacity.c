@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "text.h"
 
@@ -62,9 +63,19 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
   return ferror(f) ? -1 : 0;
 }
 
+double aq_fragility_row_ranked(const char *im, double beta)
+{
+  int which = AQ_FRAGILITY_NIM; /* a spectral measure */
+  for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
+    if (im && strcmp(im, aq_fragility_im_names[m]) == 0)
+      which = m;
+  return beta / aq_fragility_im_power(which);
+}
+
 int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
 {
-  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\trank\n", f);
+  fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\trank\t"
+        "beta_per_power\n", f);
   for (size_t i = 0; i < n; i++) {
     const aq_fragility *fit = rows[i].fit;
     char v[4][40];
@@ -75,9 +86,10 @@ int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
     fprintf(f, "%s\t%s\t%zu\t%zu\t%s\t%s\t%s\t%s\t", rows[i].arch, rows[i].im, fit->n,
             fit->ncensored, v[0], v[1], v[2], v[3]);
     if (fit->rank > 0)
-      fprintf(f, "%d\n", fit->rank);
+      fprintf(f, "%d\t", fit->rank);
     else
-      fputs("nan\n", f);
+      fputs("nan\t", f);
+    fprintf(f, "%s\n", AQ_TEXT_NUM(aq_fragility_row_ranked(rows[i].im, fit->beta)));
   }
   return ferror(f) ? -1 : 0;
 }

@@ -30,6 +30,11 @@ typedef struct {
   const aq_fragility *fit;
 } aq_fragility_row;
 
+/* What a fit's rank orders: its beta over the power of the scale its IM
+ * grows with (aq_fragility_im_power: 2 for arias_m_s, 1 for the others,
+ * spectral ones included); NAN without a fit. */
+double aq_fragility_row_ranked(const char *im, double beta);
+
 /* With rows[0].oriented the columns azimuth_deg, first_collapse_scale_min
  * and first_collapse_scale_max follow scale_max. */
 int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n);

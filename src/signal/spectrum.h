@@ -79,10 +79,13 @@ int aq_spectrum_peaks_parse(const char *name);
 const char *aq_spectrum_peaks_text(aq_spectrum_peaks peaks);
 
 /* Relative distance from a whole number within which PEER's ratio 10 dt / T
- * is taken as that number: dt and T are decimal fractions, and their
- * quotient in binary misses a whole ratio by a few units of rounding
- * (10 x 0.005 / 0.025 = 2.0000000000000004), which would add a step. */
-#define AQ_SPECTRUM_PEER_RATIO_TOL 1e-9
+ * is taken as that number: dt and T are decimal fractions whose binary
+ * quotient can miss a whole ratio (10 x 0.007 / 0.01 = 7.000000000000001),
+ * and a dt read from a binary float (SAC's DELTA: 0.001 is stored as
+ * 0.0010000000474974513, 4.7e-8 above) misses it by the float's rounding,
+ * 6e-8; either would add a step.  1e-6 is above both, and below the
+ * distance of any ratio of decimals printed to 6 digits from a whole one. */
+#define AQ_SPECTRUM_PEER_RATIO_TOL 1e-6
 
 /* The most steps per interval the PEER rule is asked for: a period below
  * 10 dt / AQ_SPECTRUM_PEER_STEPS_MAX (dt / 1000) is refused under it (its
