@@ -231,7 +231,7 @@ AQ_TEST(arch_control_in_results_file)
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
   snprintf(args, sizeof args,
            "records/RSN1616_DUZCE_362-E.AT2 --arch arches/oppenheim.cfg --arch arches/gothic.cfg "
-           "--friction 0.537 --no-cache -j 1 -o %s", h5);
+           "--friction 0.537 --polarity normal --no-cache -j 1 -o %s", h5);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   if (!aq_check(rc == 0, "runs: %d %s", rc, err))
     return;

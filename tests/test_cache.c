@@ -381,6 +381,31 @@ AQ_TEST(cache_main_job_unwritable_cache_dir)
            "--cache-dir with --no-cache: refused: %s", err);
 }
 
+/* The default directory under an $XDG_CACHE_HOME that does not exist yet,
+ * two levels deep: made (the XDG base-directory rule), filled, no note. */
+AQ_TEST(cache_default_dir_missing_parents_made)
+{
+  char dir[512], cwd[PATH_MAX], xdg[PATH_MAX + 600], rdir[PATH_MAX + 700];
+  static char err[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(xdg, sizeof xdg, "%s%s%s/not/yet", dir[0] == '/' ? "" : getcwd(cwd, sizeof cwd),
+           dir[0] == '/' ? "" : "/", dir);
+  const char *was = getenv("XDG_CACHE_HOME");
+  char *keep = was ? strdup(was) : NULL;
+  setenv("XDG_CACHE_HOME", xdg, 1);
+  int rc = job(dir, "deep", "", err, sizeof err);
+  if (keep)
+    setenv("XDG_CACHE_HOME", keep, 1);
+  else
+    unsetenv("XDG_CACHE_HOME");
+  free(keep);
+  aq_check(rc == 0 && !strstr(err, "note"), "exit 0, no note: %s", err);
+  snprintf(rdir, sizeof rdir, "%s/archquake/records", xdg);
+  aq_check(aq_test_count_names(rdir, ".aqc") == CACHE_NREC,
+           "one entry per record under the directories made (%d)",
+           aq_test_count_names(rdir, ".aqc"));
+}
+
 /* The bytes of the files ending ".aqc" in dir and its directories, as the
  * file system counts them (st_size), walked here. */
 static long long tree_bytes(const char *dir, int *nentries)

@@ -55,7 +55,8 @@ static int main_job(const double *s, size_t n, const char *extra, int *v)
   char *args = malloc(len), *out = malloc(BIG);
   int ok = args && out;
   if (ok) {
-    size_t k = (size_t)snprintf(args, len, REC " --arch " ARCH " -j 2 %s --scale ", extra);
+    size_t k = (size_t)snprintf(args, len, REC " --arch " ARCH " --polarity normal -j 2 %s --scale ",
+                                extra);
     for (size_t i = 0; i < n; i++)
       k += (size_t)snprintf(args + k, len - k, "%s%.17g", i ? "," : "", s[i]);
     ok = aq_test_run(args, out, BIG, NULL, 0) == 0;
@@ -385,7 +386,7 @@ AQ_TEST(capacity_cli_move_scale_against_the_main_job)
     aq_check(rc == 0 && m > 0 && isfinite(m), "%s: move_scale %g", arches[k], m);
     const double d = 1e-9;
     snprintf(args, sizeof args,
-             "tests/data/records/IELC180.AT2 --arch %s --scale %.17g,%.17g -j 1",
+             "tests/data/records/IELC180.AT2 --arch %s --polarity normal --scale %.17g,%.17g -j 1",
              arches[k], m * (1 - d), m * (1 + d));
     rc = aq_test_run(args, out, BIG, NULL, 0);
     double below = strtod(field(out, 1, 8, cell, sizeof cell), NULL);
@@ -662,7 +663,7 @@ AQ_TEST(capacity_points_match_main_job)
   aq_check(resurrected >= 2, "%zu survived runs above the first collapse", resurrected);
 
   /* the main job at every stored scale */
-  size_t k = (size_t)snprintf(args, 512, REC " --arch " ARCH PROC " -j 2 --scale ");
+  size_t k = (size_t)snprintf(args, 512, REC " --arch " ARCH PROC " --polarity normal -j 2 --scale ");
   for (long i = 0; i < n; i++)
     k += (size_t)snprintf(args + k, 26, "%s%.17g", i ? "," : "", p[i].scale);
   rc = aq_test_run(args, main_out, BIG, NULL, 0);

@@ -143,6 +143,8 @@ AQ_TEST(cli_progress_line_never_mixes_with_rows)
   args[k++] = "ode";
   args[k++] = "--scale";
   args[k++] = "1,2,3,4";
+  args[k++] = "--polarity";
+  args[k++] = "normal";
   for (int i = 0; i < NREC; i++)
     args[k++] = (char *)recs[i];
   args[k++] = "--arch";
@@ -292,7 +294,8 @@ AQ_TEST(cli_tsv_nan_reads_back_in_pandas)
   }
   size_t nan_cells = count_str(text, "\tnan\t") + count_str(text, "\tnan\n");
   size_t lines = count_str(text, "\n");
-  aq_check(nan_cells >= 1 && lines == 9, "the TSV has %zu nan cells, %zu lines",
+  /* 2 records x 2 arches x 2 scales x both polarities (fixed arches), and the header */
+  aq_check(nan_cells >= 1 && lines == 17, "the TSV has %zu nan cells, %zu lines",
            nan_cells, lines);
   free(text);
   static const char pandas_py[] =
@@ -338,8 +341,8 @@ AQ_TEST(cli_tsv_nan_reads_back_in_pandas)
   size_t nrow = 0, nnan = 0;
   char t1[32] = "", t2[32] = "";
   int got = sscanf(line, "%zu %zu %31s %31s", &nrow, &nnan, t1, t2);
-  aq_check(pst == 0 && got == 4 && nrow == 8 && nnan == nan_cells &&
+  aq_check(pst == 0 && got == 4 && nrow == 16 && nnan == nan_cells &&
                strcmp(t1, "float64") == 0 && strcmp(t2, "float64") == 0,
-           "%s: \"%s\" (want 8 rows, %zu NaN)", found ? "pandas" : "csv", line,
+           "%s: \"%s\" (want 16 rows, %zu NaN)", found ? "pandas" : "csv", line,
            nan_cells);
 }

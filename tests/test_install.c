@@ -171,7 +171,7 @@ AQ_TEST(install_run_man_uninstall)
            root, inst, cwd, record);
   rc = sh(root, cmd, out, err);
   aq_check(rc == 0, "installed run: exit %d: %s", rc, err);
-  aq_check(strcmp(out, want) == 0 && aq_test_count_lines(out) == 2,
+  aq_check(strcmp(out, want) == 0 && aq_test_count_lines(out) == 3, /* header, 2 polarities */
            "installed run --arch oppenheim prints the source run's TSV:\n%s---\n%s", out,
            want);
   /* An unknown name: one line, naming the installed arches and where. */

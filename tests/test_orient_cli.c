@@ -178,12 +178,13 @@ AQ_TEST(orient_projection_equals_own_csv)
                                 "arches/thin.cfg --arch arches/oppenheim.cfg "
                                 "--scale 0.5,2.2 -j 2" RAW, th);
     int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
-    aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 5 &&
-                 aq_test_count_lines(out2) == 5,
-             "%g deg: 4 rows each (%d %d): %s", th, rc, rc2, err);
+    /* 2 arches x 2 scales x both polarities (one azimuth: the sign is not covered) */
+    aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 9 &&
+                 aq_test_count_lines(out2) == 9,
+             "%g deg: 8 rows each (%d %d): %s", th, rc, rc2, err);
     static const char *const skip[] = {"record", "azimuth_deg"};
     int collapsed = 0;
-    for (size_t r = 1; r <= 4; r++) {
+    for (size_t r = 1; r <= 8; r++) {
       char why[600];
       aq_check(rows_equal(out, r, out2, r, skip, 2, why, sizeof why),
                "%g deg row %zu: CSV = --components: %s", th, r, why);
@@ -191,7 +192,7 @@ AQ_TEST(orient_projection_equals_own_csv)
     }
     aq_check(cell_d(out2, 1, "azimuth_deg") == th, "azimuth column %g", th);
     if (t == 0)
-      aq_check(collapsed > 0 && collapsed < 4, "both verdicts among the rows (%d)", collapsed);
+      aq_check(collapsed > 0 && collapsed < 8, "both verdicts among the rows (%d)", collapsed);
   }
   /* --scale-to-pga scales a motion by the peak of its horizontal vector,
    * the same at every azimuth */
@@ -215,7 +216,7 @@ AQ_TEST(orient_projection_equals_own_csv)
 AQ_TEST(orient_half_turn_is_reversed_polarity)
 {
   int rc = aq_test_run("--components " H1 "," H2 " --azimuth 215 --arch arches/thin.cfg "
-                       "--arch arches/oppenheim.cfg --scale 0.5,2.2",
+                       "--arch arches/oppenheim.cfg --scale 0.5,2.2 --polarity normal",
                        out, sizeof out, err, sizeof err);
   int rc2 = aq_test_run("--components " H1 "," H2 " --azimuth 35 --polarity reversed "
                         "--arch arches/thin.cfg --arch arches/oppenheim.cfg --scale 0.5,2.2",
@@ -358,7 +359,7 @@ AQ_TEST(orient_refusals)
   /* a vertical given without --vertical is ignored, and the output says so */
   snprintf(args, sizeof args, "--components " H1 "," H2 ",%s --arch arches/thin.cfg", a);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  aq_check(rc == 0 && strstr(err, "ignored") && strstr(err, a) && aq_test_count_lines(out) == 2,
+  aq_check(rc == 0 && strstr(err, "ignored") && strstr(err, a) && aq_test_count_lines(out) == 3,
            "V without --vertical ignored with a warning (%d): %s", rc, err);
 }
 
@@ -382,22 +383,22 @@ AQ_TEST(orient_vertical_cli)
                               "arches/thin.cfg --arch arches/oppenheim.cfg --scale 0.5,2.2" RAW, v);
   int rc2 = aq_test_run(args, out, sizeof out, err, sizeof err);
   static const char *const skip_rec[] = {"record"};
-  int same = aq_test_count_lines(out) == 5;
+  int same = aq_test_count_lines(out) == 9; /* 2 arches x 2 scales x both polarities */
   char why[600] = "";
-  for (size_t r = 1; same && r <= 4; r++)
+  for (size_t r = 1; same && r <= 8; r++)
     same = rows_equal(base, r, out, r, skip_rec, 1, why, sizeof why);
   aq_check(rc == 0 && rc2 == 0 && same && strstr(err, "ignored") && strstr(err, v),
            "V without --vertical: the pair's rows (%s), and a warning: %s", why, err);
   char args_v[2100];
   snprintf(args_v, sizeof args_v, "%s --vertical", args);
   rc = aq_test_run(args_v, out2, sizeof out2, err, sizeof err);
-  aq_check(rc == 0 && aq_test_count_lines(out2) == 5 && strcmp(out2, base) != 0 &&
+  aq_check(rc == 0 && aq_test_count_lines(out2) == 9 && strcmp(out2, base) != 0 &&
                !strstr(err, "ignored"),
            "with --vertical: run, and other results (%d): %s", rc, err);
   int differ = 0;
-  for (size_t r = 1; r <= 4; r++)
+  for (size_t r = 1; r <= 8; r++)
     differ += cell_d(out2, r, "peak_rotation_rad") != cell_d(base, r, "peak_rotation_rad");
-  aq_check(differ >= 2, "the vertical changes the peaks of %d of 4 runs", differ);
+  aq_check(differ >= 2, "the vertical changes the peaks of %d of 8 runs", differ);
   snprintf(args, sizeof args, "--components " H1 "," H2 ",%s --vertical --azimuth 30 --arch "
                               "arches/oppenheim.cfg --scale 0.9" RAW, lift);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);

@@ -31,7 +31,8 @@ static const char *results(void)
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(path, sizeof path, "%s/hist.h5", dir);
   snprintf(args, sizeof args,
-           RECORD " --arch " ARCH " --scale 5,10 --history --store-records -o %s", path);
+           RECORD " --arch " ARCH " --scale 5,10 --polarity normal --history --store-records -o %s",
+           path);
   if (aq_test_run(args, NULL, 0, err, sizeof err) != 0)
     fprintf(stderr, "test_plot_cli: cannot make %s: %s\n", path, err);
   return path;
@@ -489,6 +490,76 @@ AQ_TEST(plot_suite_is_the_worst_run)
            "4 cells, each the worst run of the TSV (%zu cells, %zu agree, %zu collapse)", cells,
            agree, collapses);
   free(csv);
+  free(tsv);
+}
+
+/* The map's marks: a cell says slides (beyond) when some run of its record
+ * and arch has the status mark slides (beyond) in the TSV, and the key
+ * names --model blocks; the CSV has them as columns. */
+AQ_TEST(plot_suite_marks_the_runs)
+{
+  char dir[512], h5[600], out[600], data[600], args[2048], err[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/m.h5", dir);
+  enum { TSV_CAP = 1 << 16 };
+  char *tsv = malloc(TSV_CAP);
+  if (!tsv)
+    return;
+  snprintf(args, sizeof args,
+           "tests/data/records/IELC180.AT2 tests/data/records/RSN77_SFERN_PUL164-hor1.AT2 " RECORD
+                  " --arch arches/oppenheim.cfg --arch arches/search.cfg --scale 2.5,1,0.3"
+                  " --friction 0.6 -o %s",
+           h5);
+  int rc = aq_test_run(args, tsv, TSV_CAP, err, sizeof err);
+  aq_check(rc == 0, "suite: exit %d %s", rc, err);
+  snprintf(out, sizeof out, "%s/m.svg", dir);
+  snprintf(data, sizeof data, "%s/m.csv", dir);
+  snprintf(args, sizeof args, "plot suite %s -o %s --data %s", h5, out, data);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  aq_check(rc == 0, "%s: exit %d %s", args, rc, err);
+  char *csv = aq_test_read_file(data, NULL), *svg = aq_test_read_file(out, NULL);
+  if (!aq_check(csv && svg, "%s and %s written", data, out)) {
+    free(csv);
+    free(svg);
+    free(tsv);
+    return;
+  }
+  aq_check(strstr(csv, "record,arch,collapsed,peak_rotation_over_qc,slides,beyond\n") != NULL,
+           "the CSV's columns");
+  size_t cells = 0, agree = 0, marks[2] = {0, 0}, unmarked = 0;
+  for (const char *c = strstr(csv, "record,arch,"); c && (c = strchr(c, '\n')) && c[1];) {
+    c++;
+    char rec[300], arch[64];
+    int coll, mk[2];
+    double v;
+    if (sscanf(c, "%299[^,],%63[^,],%d,%lf,%d,%d", rec, arch, &coll, &v, &mk[0], &mk[1]) != 6)
+      break;
+    cells++;
+    int any[2] = {0, 0}, none = 0;
+    for (int row = 1;; row++) {
+      char r2[300], a2[64], st[64];
+      if (!aq_test_tsv_field(tsv, row, 0, r2, sizeof r2)[0])
+        break;
+      aq_test_tsv_field(tsv, row, 1, a2, sizeof a2);
+      aq_test_tsv_field(tsv, row, 5, st, sizeof st);
+      if (strcmp(r2, rec) || strcmp(a2, arch))
+        continue;
+      any[0] |= strstr(st, "slides") != NULL;
+      any[1] |= strstr(st, "beyond") != NULL;
+      none |= strcmp(st, "ok") == 0;
+    }
+    agree += mk[0] == any[0] && mk[1] == any[1];
+    marks[0] += (size_t)mk[0];
+    marks[1] += (size_t)mk[1];
+    unmarked += none && (mk[0] || mk[1]); /* a cell marked though some of its runs are not */
+  }
+  aq_check(cells == 6 && agree == 6 && marks[0] > 0 && marks[1] > 0 && unmarked > 0,
+           "6 cells, each marked as its runs are (%zu cells, %zu agree, %zu slide, %zu beyond, "
+           "%zu with unmarked runs too)",
+           cells, agree, marks[0], marks[1], unmarked);
+  aq_check(strstr(svg, "--model blocks") != NULL, "the key names --model blocks");
+  free(csv);
+  free(svg);
   free(tsv);
 }
 

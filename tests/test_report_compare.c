@@ -437,11 +437,11 @@ AQ_TEST(report_compare_reads_format1)
   aq_test_tmpdir(dir, sizeof dir);
   char *cwd = getcwd(NULL, 0);
   static char out[16384], err[4096];
-  /* 0: the same suite with the processing of the day the file was written;
-   * 1: another scale; 2: today's default processing */
+  /* 0: the same suite with the processing and polarity of the day the file
+   * was written; 1: another scale; 2: today's defaults (both polarities) */
   static const char *const opts[3] = {
-      "--scale 1,3.5 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
-      "--scale 1,3.25 --detrend mean --taper 0.05 --highpass 0.05 --order 4",
+      "--scale 1,3.5 --detrend mean --taper 0.05 --highpass 0.05 --order 4 --polarity normal",
+      "--scale 1,3.25 --detrend mean --taper 0.05 --highpass 0.05 --order 4 --polarity normal",
       "--scale 1,3.5"};
   for (int k = 0; k < 3; k++) {
     snprintf(args, sizeof args,
@@ -469,9 +469,14 @@ AQ_TEST(report_compare_reads_format1)
   snprintf(args, sizeof args,
            "compare tests/data/results/format1-elcentro-thin.h5 %s/today2.h5 %s", dir, ign);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  aq_check(rc == 1 && !strstr(out, "present") && strstr(out, "\n*\t*\t*\t*\tdetrend\tmean\tlinear\t") &&
+  aq_check(rc == 1 && !strstr(out, "normal\tpresent") &&
+               strstr(out, "\tthin\t1\treversed\tpresent\tno\tyes\t") &&
+               strstr(out, "\tthin\t3.5\treversed\tpresent\tno\tyes\t") &&
+               strstr(out, "\n*\t*\t*\t*\tpolarity\t\tboth\t") &&
+               strstr(out, "\n*\t*\t*\t*\tdetrend\tmean\tlinear\t") &&
                strstr(out, "\n*\t*\t*\t*\ttaper_frac\t"),
-           "today's defaults: runs matched, the settings named: exit %d: %s", rc, out);
+           "today's defaults: the normal runs matched, the reversed ones new, the settings "
+           "named: exit %d: %s", rc, out);
 }
 
 /* A survivor's collapse time is NaN in the summary, whatever the result

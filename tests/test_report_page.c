@@ -115,33 +115,45 @@ AQ_TEST(report_page_holds_the_suite)
     free(tsv);
     return;
   }
-  /* the TSV's runs: rows, collapses (column 7, collapsed), survivors */
-  size_t runs = 0, coll[2] = {0, 0}, surv[2] = {0, 0};
-  for (const char *l = strchr(tsv, '\n'); l && l[1]; l = strchr(l + 1, '\n')) {
-    const char *f = l + 1;
-    char arch[64];
-    const char *t = strchr(f, '\t');
-    size_t al = t ? strcspn(t + 1, "\t") : 0;
-    snprintf(arch, sizeof arch, "%.*s", (int)al, t ? t + 1 : "");
-    for (int k = 0; k < 6 && f; k++) {
-      f = strchr(f, '\t');
-      f = f ? f + 1 : NULL;
+  /* the TSV's runs: rows, collapses (column 7, collapsed); each record and
+     scale ran both ways (fixed arches), the worse governing: a group
+     survives when neither of its runs collapsed (none fails here) */
+  size_t runs = aq_test_count_lines(tsv) - 1, coll[2] = {0, 0}, gsurv[2] = {0, 0},
+         gcoll[2] = {0, 0};
+  for (int row = 1; row <= (int)runs; row += 2) {
+    char arch[64], rec[2][300], sc[2][64], pol[2][16], c[2][8];
+    aq_test_tsv_field(tsv, row, 1, arch, sizeof arch);
+    for (int k = 0; k < 2; k++) {
+      aq_test_tsv_field(tsv, row + k, 0, rec[k], sizeof rec[k]);
+      aq_test_tsv_field(tsv, row + k, 3, sc[k], sizeof sc[k]);
+      aq_test_tsv_field(tsv, row + k, 14, pol[k], sizeof pol[k]);
+      aq_test_tsv_field(tsv, row + k, 6, c[k], sizeof c[k]);
     }
-    int a = strcmp(arch, "thin") == 0;
-    runs++;
-    coll[a] += f && f[0] == '1';
-    surv[a] += f && f[0] == '0';
+    aq_check(!strcmp(rec[0], rec[1]) && !strcmp(sc[0], sc[1]) && !strcmp(pol[0], "normal") &&
+                 !strcmp(pol[1], "reversed"),
+             "rows %d and %d: one record and scale, normal then reversed", row, row + 1);
+    int a = strcmp(arch, "thin") == 0, n = (c[0][0] == '1') + (c[1][0] == '1');
+    coll[a] += (size_t)n;
+    gcoll[a] += n > 0;
+    gsurv[a] += n == 0;
   }
-  aq_check(runs == 8 && coll[1] > 0, "TSV: %zu runs, %zu collapses on thin", runs, coll[1]);
+  aq_check(runs == 16 && coll[1] > 0, "TSV: %zu runs, %zu collapses on thin", runs, coll[1]);
   aq_check(count(html, "<tr data-verdict=") == runs, "one verdict row per run (%zu of %zu)",
            count(html, "<tr data-verdict="), runs);
   aq_check(count(html, "<tr data-verdict=\"collapse\">") == coll[0] + coll[1] &&
                count(html, "✖ COLLAPSE") == coll[0] + coll[1],
            "collapses marked in words: %zu of %zu", count(html, "✖ COLLAPSE"),
            coll[0] + coll[1]);
+  for (int a = 0; a < 2; a++) {
+    char want_text[200];
+    snprintf(want_text, sizeof want_text,
+             "the worse governs: <b>%zu collapse%s</b>, %zu survived, 0 failed, of 4.", gcoll[a],
+             gcoll[a] == 1 ? "" : "s", gsurv[a]);
+    aq_check(strstr(html, want_text) != NULL, "arch %d: %s", a, want_text);
+  }
   /* figures: the map, an arch each, a history per collapse and per arch
-     with a survivor one more, a capacity figure */
-  size_t want = 1 + 2 + coll[0] + coll[1] + (surv[0] > 0) + (surv[1] > 0) + 1;
+     whose worse polarity survived somewhere one more, a capacity figure */
+  size_t want = 1 + 2 + coll[0] + coll[1] + (gsurv[0] > 0) + (gsurv[1] > 0) + 1;
   aq_check(count(html, "<svg class=\"fig\"") == want, "%zu figures, want %zu",
            count(html, "<svg class=\"fig\""), want);
   /* the figures' text is text, the page fetches nothing */
@@ -172,6 +184,47 @@ AQ_TEST(report_page_holds_the_suite)
            count(html, "How to read this"));
   free(html);
   free(tsv);
+}
+
+/* Each record and scale run both ways, the worse governs: San Fernando at
+ * 3 on oppenheim survives as recorded and collapses negated (the TSV says
+ * so), so the arch's governed count is one collapse of one, and no
+ * surviving run is drawn (the survivor is not the governing run). */
+AQ_TEST(report_page_worse_polarity_governs)
+{
+  char dir[512], h5[600], page[600], args[2048], err[2048];
+  static char tsv[8192];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/w.h5", dir);
+  snprintf(page, sizeof page, "%s/w.html", dir);
+  snprintf(args, sizeof args,
+           REC "RSN77_SFERN_PUL164-hor1.AT2 --arch " ARCHES "oppenheim.cfg --scale 3 --history "
+               "-o %s",
+           h5);
+  int rc = aq_test_run(args, tsv, sizeof tsv, err, sizeof err);
+  char c[2][8], pol[2][16];
+  for (int r = 0; r < 2; r++) {
+    aq_test_tsv_field(tsv, r + 1, 6, c[r], sizeof c[r]);
+    aq_test_tsv_field(tsv, r + 1, 14, pol[r], sizeof pol[r]);
+  }
+  if (!aq_check(rc == 0 && aq_test_count_lines(tsv) == 3 && !strcmp(c[0], "0") &&
+                    !strcmp(c[1], "1") && !strcmp(pol[1], "reversed"),
+                "the suite: normal survives (%s), reversed collapses (%s): %s", c[0], c[1], err))
+    return;
+  snprintf(args, sizeof args, "report %s -o %s", h5, page);
+  rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  char *html = aq_test_read_file(page, NULL);
+  if (!aq_check(rc == 0 && html, "report: exit %d %s", rc, err)) {
+    free(html);
+    return;
+  }
+  aq_check(strstr(html, "<b>1 collapse</b>, 1 survived, 0 failed, of 2 runs.") &&
+               strstr(html, "the worse governs: <b>1 collapse</b>, 0 survived, 0 failed, of 1."),
+           "two runs, one governing collapse");
+  aq_check(count(html, "<svg class=\"fig\"") == 3 && !strstr(html, "strongest surviving run)"),
+           "the map, the arch and the collapse's history; no survivor drawn (%zu figures)",
+           count(html, "<svg class=\"fig\""));
+  free(html);
 }
 
 /* The records table's row of the record named name ("" if none). */

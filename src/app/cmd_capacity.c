@@ -333,16 +333,12 @@ int aq_cmd_capacity(int argc, char **argv)
   aq_arch **arches = calloc(na, sizeof *arches);
   int pols[2];
   size_t npol = 0;
-  if (pol != AQ_POLARITY_REVERSED)
-    pols[npol++] = AQ_POLARITY_NORMAL;
-  if (pol != AQ_POLARITY_NORMAL)
-    pols[npol++] = AQ_POLARITY_REVERSED;
-  aq_cap_item *R = calloc(nrec ? nrec : 1, sizeof *R);
-  size_t nrow = nrec * na * npol, njob = nrow * nz;
-  aq_capacity *C = calloc(njob ? njob : 1, sizeof *C);
+  aq_cap_item *R = NULL;
+  aq_capacity *C = NULL;
+  aq_fragility *fits = NULL;
+  size_t nrow = 0, njob = 0;
   int nim = AQ_FRAGILITY_NIM + (int)aq_im_spectral_count(&po);
-  aq_fragility *fits = calloc(na * (size_t)nim, sizeof *fits);
-  if (!arches || !R || !C || !fits) {
+  if (!arches) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto done;
@@ -360,6 +356,23 @@ int aq_cmd_capacity(int argc, char **argv)
     }
   if (rc != AQ_EXIT_OK)
     goto done;
+  /* both polarities unless every arch answers a record and its negation
+   * alike (or the user asked for one) */
+  pol = aq_opt_polarity_resolve(pol, arches, na, nplain == 0 && orient.nmotions > 0,
+                                orient.azimuths_deg, orient.nazimuth);
+  if (pol != AQ_POLARITY_REVERSED)
+    pols[npol++] = AQ_POLARITY_NORMAL;
+  if (pol != AQ_POLARITY_NORMAL)
+    pols[npol++] = AQ_POLARITY_REVERSED;
+  nrow = nrec * na * npol, njob = nrow * nz;
+  R = calloc(nrec ? nrec : 1, sizeof *R);
+  C = calloc(njob ? njob : 1, sizeof *C);
+  fits = calloc(na * (size_t)nim, sizeof *fits);
+  if (!R || !C || !fits) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
   aq_cap_setup S = {nrec, recs, (const char *const (*)[3])paths, (const double (*)[2])phi,
                      &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
                      opts.blocks_dt_s, cor, merge_tol_g * AQ_G0_MPS2, smax, so,

@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "opt.h"
 
+#include "../arch/arch.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -124,6 +126,35 @@ void aq_opt_list_range(const char *opt, const char *arg, double lo, double hi, i
 }
 
 const char *const aq_opt_polarity_names[] = {"normal", "reversed", "both", NULL};
+
+/* 1 if each of the n azimuths has its opposite (plus 180 deg, to 1e-9 deg)
+ * among them. */
+static int half_turns_present(const double *az, size_t n)
+{
+  for (size_t i = 0; i < n; i++) {
+    int found = 0;
+    for (size_t j = 0; j < n && !found; j++) {
+      double d = fmod(az[j] - az[i] - 180, 360);
+      found = fabs(d) < 1e-9 || fabs(fabs(d) - 360) < 1e-9;
+    }
+    if (!found)
+      return 0;
+  }
+  return n > 0;
+}
+
+int aq_opt_polarity_resolve(int pol, aq_arch *const *arches, size_t n, int all_motions,
+                            const double *az, size_t naz)
+{
+  if (pol != AQ_POLARITY_AUTO)
+    return pol;
+  if (all_motions && half_turns_present(az, naz))
+    return AQ_POLARITY_NORMAL;
+  for (size_t a = 0; a < n; a++)
+    if (!arches[a] || !aq_arch_one_polarity(arches[a]))
+      return AQ_POLARITY_BOTH;
+  return AQ_POLARITY_NORMAL;
+}
 
 void aq_opt_ode_rtol(int given, const char *model, int *nerr)
 {

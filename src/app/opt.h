@@ -9,6 +9,8 @@
 
 #include <stddef.h>
 
+typedef struct aq_arch aq_arch;
+
 /* A finite number in [lo, hi]. */
 void aq_opt_double(const char *opt, const char *arg, double lo, double hi,
                    double *out, int *nerr);
@@ -37,8 +39,18 @@ int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction);
 /* --polarity's words, indexed by AQ_POLARITY_*, NULL-terminated: the sign
  * of the records a command runs (the record as read, negated, or each
  * record both ways, each row saying which). */
-enum { AQ_POLARITY_NORMAL = 0, AQ_POLARITY_REVERSED, AQ_POLARITY_BOTH };
+enum { AQ_POLARITY_NORMAL = 0, AQ_POLARITY_REVERSED, AQ_POLARITY_BOTH,
+       AQ_POLARITY_AUTO /* not given: aq_opt_polarity_resolve decides */ };
 extern const char *const aq_opt_polarity_names[];
+/* The polarity a command runs: pol as given, or (AQ_POLARITY_AUTO, the
+ * default) both, unless every arch answers a record and its negation alike
+ * (arch.h aq_arch_one_polarity: free hinges, mirror-symmetric), or every
+ * subject is a ground motion (all_motions) run at azimuths az[0..naz-1]
+ * each of which has its opposite among them (theta + 180 deg is the
+ * negated motion): then normal.  A verdict never rests on the record's
+ * sign convention unless the user asks for one polarity. */
+int aq_opt_polarity_resolve(int pol, aq_arch *const *arches, size_t n, int all_motions,
+                            const double *az, size_t naz);
 /* 1 if paths a and b name the same file: the same string, or the same
  * existing file however spelled (device and inode). */
 int aq_opt_same_file(const char *a, const char *b);

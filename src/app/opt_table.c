@@ -567,7 +567,11 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                          .help = "normal (the record as read), reversed (negated) or both "
                                  "(each record both ways; the polarity column says which: a "
                                  "hinge-controlled arch's response depends on the sign); "
-                                 "default normal, for capacity both (the worse governs)"},
+                                 "default both, the worse governing every summary, or normal "
+                                 "alone when every arch has free hinges and is its own mirror "
+                                 "image (it answers a record and its negation alike) or every "
+                                 "subject is a ground motion at azimuths in opposite pairs "
+                                 "(--azimuth all)"},
     [AQ_OPT_TABLE] = {.name = "table", .kind = AQ_ARG_FLAG, DEST(table), .cmds = C(MECHANISM),
                       .help = "add, after a blank line, the work path of each admissible set "
                               "at N points over [0, q_c] (the data of the paper's Figs 4-7)"},
@@ -1175,7 +1179,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->cmd = (int)cmd;
   o->impact = -1;
   o->ode_rtol = 1e-10;
-  o->polarity = cmd == AQ_CMD_CAPACITY ? AQ_POLARITY_BOTH : AQ_POLARITY_NORMAL;
+  o->polarity = AQ_POLARITY_AUTO; /* aq_opt_polarity_resolve, once the arches are loaded */
   if (cmd == AQ_CMD_RUN) { /* the main job: spectral measures only when named; their
                               13 periods over the padded records cost more than
                               everything else it does (docs/spectrum.md) */

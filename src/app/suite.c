@@ -220,12 +220,14 @@ static size_t suite_window(const suite *S, size_t nthreads)
   return nthreads * per;
 }
 
-static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
+static int suite_run(const aq_suite_cfg *c_in, aq_suite_stats *stats_out)
 {
   double t_start = aq_suite_now_s();
   aq_app_heap_policy(); /* records' arrays stay in the heap (heap.c) */
   aq_suite_stats stats;
   memset(&stats, 0, sizeof stats);
+  aq_suite_cfg cc = *c_in; /* its polarity decided once the arches are loaded */
+  const aq_suite_cfg *c = &cc;
   suite S;
   memset(&S, 0, sizeof S);
   pthread_mutex_init(&S.lock, NULL);
@@ -233,19 +235,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   pthread_cond_init(&S.wcond, NULL);
   S.cfg = c;
   S.model_name = aq_model_name(c->model);
-  S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
-  S.nscale = (c->scales ? c->nscale : 1) * S.npol;
-  S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */
-  for (size_t i = 0; i < c->nrecords; i++)
-    S.total_runs += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
   S.rule = (aq_scale_rule){c->scales, c->nscale, c->scale_to_pga_g,
                            c->scale_to_lambda0 > 0 ? c->scale_to_lambda0 : 0};
-  long nthreads = c->threads < 1 ? 1 : c->threads;
-  if ((size_t)nthreads > c->nrecords)
-    nthreads = c->nrecords ? (long)c->nrecords : 1;
-  S.window = suite_window(&S, (size_t)nthreads);
-  workers W = {nthreads, 0, NULL, NULL};
-  S.keep_max = (size_t)AQ_SUITE_KEEP_BYTES / S.window;
+  workers W = {1, 0, NULL, NULL};
   int rc = AQ_EXIT_OK;
   aq_status ws = AQ_OK;
   aq_journal *J = NULL; /* with -o: the records written so far */
@@ -256,10 +248,9 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   S.arch_ok = calloc(c->narches ? c->narches : 1, sizeof *S.arch_ok);
   S.arch_err = calloc(c->narches ? c->narches : 1, sizeof *S.arch_err);
   S.lambda0 = calloc(c->narches ? c->narches : 1, sizeof *S.lambda0);
-  S.slots = calloc(S.window, sizeof *S.slots);
   S.ws = aq_signal_ws_alloc();
   S.line = c->text ? open_memstream(&S.line_buf, &S.line_cap) : NULL;
-  if (!S.arches || !S.arch_ok || !S.arch_err || !S.lambda0 || !S.slots || !S.ws || (c->text && !S.line)) {
+  if (!S.arches || !S.arch_ok || !S.arch_err || !S.lambda0 || !S.ws || (c->text && !S.line)) {
     fprintf(stderr, "archquake: out of memory\n");
     rc = AQ_EXIT_FAIL;
     goto out;
@@ -267,6 +258,30 @@ static int suite_run(const aq_suite_cfg *c, aq_suite_stats *stats_out)
   rc = aq_suite_arches(&S);
   if (rc == AQ_EXIT_USAGE)
     goto out;
+  /* both polarities unless every arch answers a record and its negation
+   * alike (or the user asked for one) */
+  int all_motions = cc.nrecords > 0;
+  for (size_t i = 0; i < cc.nrecords; i++)
+    all_motions &= cc.motions && cc.motions[i];
+  cc.polarity = aq_opt_polarity_resolve(cc.polarity, S.arches, cc.narches, all_motions,
+                                        cc.azimuths_deg, cc.nazimuth);
+  S.npol = c->polarity == AQ_POLARITY_BOTH ? 2 : 1;
+  S.nscale = (c->scales ? c->nscale : 1) * S.npol;
+  S.nruns = c->narches * S.nscale; /* per plain record; x azimuths per motion */
+  for (size_t i = 0; i < c->nrecords; i++)
+    S.total_runs += S.nruns * (c->motions && c->motions[i] ? c->nazimuth : 1);
+  long nthreads = c->threads < 1 ? 1 : c->threads;
+  if ((size_t)nthreads > c->nrecords)
+    nthreads = c->nrecords ? (long)c->nrecords : 1;
+  W.n = nthreads;
+  S.window = suite_window(&S, (size_t)nthreads);
+  S.keep_max = (size_t)AQ_SUITE_KEEP_BYTES / S.window;
+  S.slots = calloc(S.window, sizeof *S.slots);
+  if (!S.slots) {
+    fprintf(stderr, "archquake: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto out;
+  }
 
   if (aq_farm_is_follower()) {
     aq_error ferr;

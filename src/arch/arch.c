@@ -505,3 +505,47 @@ aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *e
     aq_demand_set_limit(d, mu_limit);
   return d;
 }
+
+/* Mirror symmetry: to this fraction of the arch's size in position, and of
+ * each mass and inertia.  The shipped shapes' joints come from closed forms
+ * and are mirror images to round-off (1e-15); a joints file symmetric only
+ * to its printed digits is taken as asymmetric (its runs go both ways). */
+#define MIRROR_REL_TOL 1e-9
+
+int aq_arch_mirror_symmetric(const aq_arch *a)
+{
+  const aq_geom *g = &a->geom;
+  size_t n = g->p.voussoirs;
+  /* the axis: midway between the springings' intrados ends */
+  double xc = 0.5 * (g->ji[0].x + g->ji[n].x), size = 0;
+  for (size_t j = 0; j <= n; j++)
+    size = fmax(size, fmax(hypot(g->ji[j].x - xc, g->ji[j].y), hypot(g->je[j].x - xc, g->je[j].y)));
+  double tol = MIRROR_REL_TOL * size;
+  for (size_t j = 0; j <= n; j++) {
+    const aq_vec2 *p[2] = {&g->ji[j], &g->je[j]}, *q[2] = {&g->ji[n - j], &g->je[n - j]};
+    for (int f = 0; f < 2; f++)
+      if (!(fabs(p[f]->x - (2 * xc - q[f]->x)) <= tol && fabs(p[f]->y - q[f]->y) <= tol))
+        return 0;
+  }
+  for (size_t k = 0; k < n; k++) {
+    const aq_mass *u = &g->vous[k], *v = &g->vous[n - 1 - k];
+    if (!(fabs(u->mass_kg - v->mass_kg) <= MIRROR_REL_TOL * u->mass_kg &&
+          fabs(u->inertia_kgm2 - v->inertia_kgm2) <= MIRROR_REL_TOL * u->inertia_kgm2 &&
+          fabs(u->c.x - (2 * xc - v->c.x)) <= tol && fabs(u->c.y - v->c.y) <= tol))
+      return 0;
+  }
+  return 1;
+}
+
+int aq_arch_one_polarity(const aq_arch *a)
+{
+  if (a->control != AQ_CONTROL_FREE || !aq_arch_mirror_symmetric(a))
+    return 0;
+  size_t n = a->geom.p.voussoirs;
+  const aq_hinge_set *s0 = &a->hs[0], *s1 = &a->hs[1];
+  for (int k = 0; k < 4; k++) /* set 1 is set 0 seen in the mirror */
+    if (s1->joint[k] != n - s0->joint[3 - k] || s1->face[k] != s0->face[3 - k])
+      return 0;
+  const aq_path *p0 = aq_workpath_path(a->wp[0]), *p1 = aq_workpath_path(a->wp[1]);
+  return p0->admissible && p1->admissible;
+}

@@ -151,6 +151,18 @@ double aq_arch_friction(const aq_arch *a);
 double aq_arch_restitution(const aq_arch *a);
 double aq_arch_spread(const aq_arch *a);
 
+/* 1 if the arch is its own mirror image about the vertical line midway
+ * between its springings: joints, voussoirs with their fill and point
+ * masses (mass, centroid, inertia), to 1e-9 of its size (of each mass and
+ * inertia). */
+int aq_arch_mirror_symmetric(const aq_arch *a);
+/* 1 if the arch answers a record and the negated record alike, up to the
+ * mirror: free hinges (each direction's minimum mechanism), the arch
+ * mirror-symmetric and set 1 set 0's mirror (joint j of one where joint
+ * n - j of the other is, same faces), both admissible.  One polarity is
+ * then enough for its verdicts (docs/arch-model.md, "Polarity"). */
+int aq_arch_one_polarity(const aq_arch *a);
+
 /* The forces across the joints of set 0 or 1 along its path, tabled
  * (src/arch/demand.h): built on the first call (safe from any thread) and
  * kept with the arch; NULL when the set is not admissible or they cannot

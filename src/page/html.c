@@ -444,7 +444,14 @@ static void section_run(page *p)
 
 static const char *verdict(const aq_summary *s)
 {
-  return strcmp(s->status, "ok") != 0 ? "failed" : s->collapsed == 1 ? "collapse" : "survived";
+  return aq_summary_failed(s->status) ? "failed" : s->collapsed == 1 ? "collapse" : "survived";
+}
+
+/* The marks of a run that ran (docs/demand.md): 0 none, 1 slides, 2
+ * beyond, 3 both. */
+static int marks(const aq_summary *s)
+{
+  return (strstr(s->status, "slides") != NULL) | (strstr(s->status, "beyond") != NULL) << 1;
 }
 
 /* The history key of a run (as h5.c names /histories groups). */
@@ -483,6 +490,68 @@ static aq_status history_figure(page *p, const aq_h5_run *r, const char *why)
   return st;
 }
 
+/* A run's place among its arch's: its record, scale and azimuth, whose
+ * polarities (both, unless the arch is its own mirror image) make one group
+ * in which the worse run governs. */
+typedef struct {
+  int64_t rec, scale;
+  double az;
+  size_t k;
+} run_key;
+
+static int run_key_cmp(const void *pa, const void *pb)
+{
+  const run_key *x = pa, *y = pb;
+  if (x->rec != y->rec)
+    return x->rec < y->rec ? -1 : 1;
+  if (x->scale != y->scale)
+    return x->scale < y->scale ? -1 : 1;
+  int nx = isnan(x->az), ny = isnan(y->az);
+  if (nx || ny)
+    return nx - ny;
+  if (x->az != y->az)
+    return x->az < y->az ? -1 : 1;
+  return x->k < y->k ? -1 : x->k > y->k;
+}
+
+/* The governing run of each group of arch a's runs (the worse polarity,
+ * aq_summary_worst), in a new array of *ng; NULL when out of memory. */
+static const aq_h5_run **governing_runs(const aq_h5_suite *S, size_t a, size_t *ng)
+{
+  size_t n = 0;
+  for (size_t k = 0; k < S->nruns; k++)
+    n += S->runs[k].arch_index == (int64_t)a;
+  run_key *key = malloc((n ? n : 1) * sizeof *key);
+  const aq_summary **row = malloc((n ? n : 1) * sizeof *row);
+  const aq_h5_run **gov = malloc((n ? n : 1) * sizeof *gov);
+  if (!key || !row || !gov) {
+    free(key);
+    free(row);
+    free(gov);
+    return NULL;
+  }
+  n = 0;
+  for (size_t k = 0; k < S->nruns; k++) {
+    const aq_h5_run *r = &S->runs[k];
+    if (r->arch_index == (int64_t)a)
+      key[n++] = (run_key){r->record_index, r->scale_index, r->s.azimuth_deg, k};
+  }
+  qsort(key, n, sizeof *key, run_key_cmp);
+  *ng = 0;
+  for (size_t i = 0; i < n;) {
+    size_t j = i;
+    for (; j < n && key[j].rec == key[i].rec && key[j].scale == key[i].scale &&
+           (key[j].az == key[i].az || (isnan(key[j].az) && isnan(key[i].az)));
+         j++)
+      row[j - i] = &S->runs[key[j].k].s;
+    gov[(*ng)++] = &S->runs[key[i + aq_summary_worst(row, j - i)].k];
+    i = j;
+  }
+  free(key);
+  free(row);
+  return gov;
+}
+
 static aq_status section_arch(page *p, size_t a, size_t *nrows)
 {
   aq_page_buf *b = p->b;
@@ -490,7 +559,7 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
   const char *name = aq_page_attr(A, "name");
   name = name ? name : "?";
   const aq_h5_suite *S = &p->r.suite;
-  size_t ncol = 0, nsurv = 0, nfail = 0, any_az = 0, any_rev = 0;
+  size_t ncol = 0, nsurv = 0, nfail = 0, any_az = 0, any_rev = 0, nslide = 0, nbeyond = 0;
   const aq_h5_run *strongest = NULL;
   for (size_t k = 0; k < S->nruns; k++) {
     const aq_h5_run *r = &S->runs[k];
@@ -500,11 +569,24 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     ncol += v[0] == 'c';
     nsurv += v[0] == 's';
     nfail += v[0] == 'f';
+    nslide += marks(&r->s) & 1;
+    nbeyond += (marks(&r->s) & 2) >> 1;
     any_az += !isnan(r->s.azimuth_deg);
     any_rev += strcmp(r->s.polarity, "reversed") == 0;
-    if (v[0] == 's' && (!strongest || r->s.pga_g > strongest->s.pga_g))
-      strongest = r;
   }
+  /* the worse polarity of each record and scale governs */
+  size_t ng = 0, gcol = 0, gsurv = 0;
+  const aq_h5_run **gov = governing_runs(S, a, &ng);
+  if (!gov)
+    return aq_error_set(p->err, AQ_ENOMEM, p->target, -1, -1, NULL, "out of memory");
+  for (size_t g = 0; g < ng; g++) {
+    const char *v = verdict(&gov[g]->s);
+    gcol += v[0] == 'c';
+    gsurv += v[0] == 's';
+    if (v[0] == 's' && (!strongest || gov[g]->s.pga_g > strongest->s.pga_g))
+      strongest = gov[g];
+  }
+  free(gov);
   aq_page_printf(b, "<h2 id=\"arch-%zu\">Arch ", a);
   aq_page_esc(b, name);
   aq_page_puts(b, "</h2>\n");
@@ -513,6 +595,11 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
                  ncol, ncol == 1 ? "" : "s", nsurv, nfail, ncol + nsurv + nfail,
                  aq_page_attr_num(A, "primary_lambda0"), aq_page_attr_num(A, "reverse_lambda0"),
                  aq_page_attr_num(A, "primary_q_c_rad"), aq_page_attr_num(A, "reverse_q_c_rad"));
+  if (any_rev)
+    aq_page_printf(b, "<p>Each record and scale ran both ways (the polarity column), and the "
+                      "worse governs: <b>%zu collapse%s</b>, %zu survived, %zu failed, of %zu."
+                      "</p>\n",
+                   gcol, gcol == 1 ? "" : "s", gsurv, ng - gcol - gsurv, ng);
   const char *control = aq_page_attr(A, "control");
   double mu = aq_page_attr_num(A, "friction");
   if (control && !strcmp(control, "free"))
@@ -529,6 +616,18 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     aq_page_printf(b, "  Joint friction μ = %.4g.</p>\n", mu);
   else
     aq_page_puts(b, "  No joint friction given: sliding is not checked.</p>\n");
+  if (nslide || nbeyond) {
+    aq_page_puts(b, "<p><b>Beyond the four-hinge model:</b> ");
+    if (nslide)
+      aq_page_printf(b, "%zu run%s <b>slide%s</b> (the friction demand passed μ); ", nslide,
+                     nslide == 1 ? "" : "s", nslide == 1 ? "s" : "");
+    if (nbeyond)
+      aq_page_printf(b, "in %zu run%s the thrust left a joint's section with free hinges "
+                        "(<b>beyond</b>); ",
+                     nbeyond, nbeyond == 1 ? "" : "s");
+    aq_page_puts(b, "their verdicts are the four-hinge model's, which stops describing the "
+                    "arch at the time given; follow them with <code>--model blocks</code>.</p>\n");
+  }
   /* the arch */
   const char *cfg = aq_page_attr(A, "config");
   aq_arch *arch = NULL;
@@ -577,8 +676,15 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
                "have no verdict (their reason is in <a href=\"#failed\">Failed "
                "records</a> or the status).  The margin is in the last columns: the peak "
                "rotation as a fraction of q<sub>c</sub> (1 is collapse) and the PGA over "
-               "λ0 g (below 1 the arch never moves).  Click a column's head to sort; the "
-               "boxes above the table hide a verdict.");
+               "λ0 g (below 1 the arch never moves).  The friction demand is the largest "
+               "|T|/N at any joint over the run (∞: a joint pulled apart), the thrust the "
+               "largest eccentricity of the line of thrust at a joint that is not a hinge "
+               "(beyond 1 it leaves the section).  <b>slides</b>: a friction μ was given and "
+               "the demand passed it; <b>beyond</b>: with free hinges the thrust left a "
+               "section; each with the time, from which the four-hinge model of the verdict "
+               "no longer describes the arch: follow such a run with <code>--model "
+               "blocks</code>.  Click a column's head to sort; the boxes above the table "
+               "hide a verdict.");
   aq_page_puts(b, "<table class=\"verdicts wide\"><thead><tr><th>record</th><th>scale</th>");
   if (any_rev)
     aq_page_puts(b, "<th>polarity</th>");
@@ -586,7 +692,8 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     aq_page_puts(b, "<th>azimuth (°)</th>");
   aq_page_puts(b, "<th>PGA (g)</th><th>verdict</th><th>collapse at (s)</th>"
                   "<th>peak rotation / q<sub>c</sub></th><th>peak rotation (rad)</th>"
-                  "<th>PGA / λ0 g</th><th>impacts</th></tr></thead><tbody>\n");
+                  "<th>PGA / λ0 g</th><th>impacts</th><th>friction demand</th>"
+                  "<th>thrust eccentricity</th></tr></thead><tbody>\n");
   for (size_t k = 0; k < S->nruns; k++) {
     const aq_h5_run *r = &S->runs[k];
     if (r->arch_index != (int64_t)a)
@@ -604,19 +711,27 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
     if (any_az)
       num_td(b, r->s.azimuth_deg, "%.4g");
     num_td(b, r->s.pga_g, "%.4g");
-    if (v[0] == 'c')
-      aq_page_puts(b, "<td class=\"v-c\">✖ COLLAPSE</td>");
-    else if (v[0] == 'f') {
+    if (v[0] == 'f') {
       aq_page_puts(b, "<td class=\"v-f\">⚠ failed: ");
       aq_page_esc(b, r->s.status);
-      aq_page_puts(b, "</td>");
-    } else
-      aq_page_puts(b, "<td class=\"v-s\">survived</td>");
+    } else {
+      /* the marks follow the verdict in its cell (a failed run has none) */
+      aq_page_puts(b, v[0] == 'c' ? "<td class=\"v-c\">✖ COLLAPSE"
+                                  : "<td class=\"v-s\">survived");
+      int mk = marks(&r->s);
+      if (mk & 1)
+        aq_page_printf(b, "; slides at %.3f s", r->s.slide_time_s);
+      if (mk & 2)
+        aq_page_printf(b, "; beyond at %.3f s", r->s.thrust_ecc_time_s);
+    }
+    aq_page_puts(b, "</td>");
     num_td(b, r->s.collapse_time_s, "%.3f");
     num_td(b, r->s.peak_rotation_over_qc, "%.3f");
     num_td(b, r->s.peak_rotation_rad, "%.3g");
     num_td(b, r->s.pga_over_lambda0, "%.3g");
     num_td(b, r->s.impacts < 0 ? NAN : (double)r->s.impacts, "%.0f");
+    num_td(b, r->s.mu_demand, "%.3g");
+    num_td(b, r->s.thrust_ecc_max, "%.3g");
     aq_page_puts(b, "</tr>\n");
     (*nrows)++;
   }

@@ -1,7 +1,11 @@
 /* suite.c: a record x arch map of the verdicts of a results file, for
  * screening at a glance: each cell is the worst run of that record and
  * arch over scales and polarities: a collapse, or the peak rotation over
- * the collapse rotation q_c of its set (0 never moved, 1 collapse). */
+ * the collapse rotation q_c of its set (0 never moved, 1 collapse), and
+ * under it the marks of its runs: "slides" (some run's friction demand
+ * passed the given friction), "beyond" (with free hinges, some run's thrust
+ * left a joint's section): where the four-hinge verdict stops holding
+ * (docs/demand.md). */
 #include <math.h>
 #include <plplot.h>
 #include <stdlib.h>
@@ -23,7 +27,16 @@ typedef struct {
   const char **rec, **arch; /* names, first appearance order */
   double *v;                /* nrec x narch: peak/q_c, 1 + collapse, NaN failed or none */
   int *coll;                /* nrec x narch: 1 some run collapsed */
+  int *mark;                /* nrec x narch: 1 some run slides, | 2 some run beyond */
 } map;
+
+/* a run's marks (docs/tsv.md, status): 1 slides, 2 beyond */
+static int run_marks(const aq_summary *s)
+{
+  if (aq_summary_failed(s->status))
+    return 0;
+  return (strstr(s->status, "slides") != NULL) | (strstr(s->status, "beyond") != NULL) << 1;
+}
 
 static size_t index_of(const char **names, size_t *n, const char *s)
 {
@@ -66,7 +79,12 @@ static int draw(void *ctx, aq_error *err)
     scale = fmax(scale * (double)cell / CELL_CHARS, SCALE_MIN);
   }
   int tight = cell < CELL_CHARS; /* even the smallest text: short labels */
-  plvpor(left, 0.83, 0.14, 0.9);
+  double text_scale = scale;
+  int any_mark = 0;
+  for (size_t k = 0; k < m->nrec * m->narch; k++)
+    any_mark |= m->mark[k];
+  double bottom = any_mark ? 0.2 : 0.14; /* room for the marks' key */
+  plvpor(left, 0.83, bottom, 0.9);
   plwind(0, (double)m->narch, (double)m->nrec, 0);
   /* white (never moved) through yellow and orange to brown (about to
    * collapse); collapse itself is red, outside the scale */
@@ -90,7 +108,15 @@ static int draw(void *ctx, aq_error *err)
       }
       plfill(4, x, y);
       plcol0(m->coll[i * m->narch + j] ? AQ_PC_BG : AQ_PC_FG);
-      plptex(j + 0.5, i + 0.5, 1, 0, 0.5, lab);
+      int mk = m->mark[i * m->narch + j];
+      plptex(j + 0.5, i + (mk ? 0.42 : 0.5), 1, 0, 0.5, lab);
+      if (mk) { /* the marks under the label, smaller */
+        static const char *const full[4] = {"", "slides", "beyond", "slides beyond"};
+        static const char *const brief[4] = {"", "s", "b", "s b"};
+        plschr(0, text_scale * 0.75);
+        plptex(j + 0.5, i + 0.8, 1, 0, 0.5, tight || mk == 3 ? brief[mk] : full[mk]);
+        plschr(0, text_scale);
+      }
     }
   plcol0(AQ_PC_FG);
   plbox("bc", 1, 0, "bc", 1, 0);
@@ -137,10 +163,17 @@ static int draw(void *ctx, aq_error *err)
                          aq_plot_text_mm(": records (rows) against arches (columns)"),
                      src, sizeof src);
   snprintf(t, sizeof t, "%s: records (rows) against arches (columns)", src);
-  plvpor(0.02, 0.98, 0.14, 0.9); /* the caption centred on the page */
+  plvpor(0.02, 0.98, bottom, 0.9); /* the caption centred on the page */
   plmtex("b", 1.6, 0.5, 0.5, t);
   plmtex("b", 3.1, 0.5, 0.5, "the worst run over scales and polarities; red: collapse");
-  plvpor(left, 0.83, 0.14, 0.9);
+  if (any_mark) { /* the marks' key, only when a cell holds one */
+    plmtex("b", 4.6, 0.5, 0.5,
+           "slides (s): a run's friction demand passed #gm;  beyond (b): its thrust left a "
+           "joint's section");
+    plmtex("b", 6.1, 0.5, 0.5,
+           "the four-hinge verdict holds until then: follow such runs with --model blocks");
+  }
+  plvpor(left, 0.83, bottom, 0.9);
   /* the colour key */
   PLFLT w, hgt, vals[11];
   for (int k = 0; k <= 10; k++)
@@ -163,7 +196,7 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
   if (n == 0)
     return aq_error_set(err, AQ_EFORMAT, source, -1, -1, "/runs",
                         "expected at least one run, got none");
-  map m = {source, 0, 0, NULL, NULL, NULL, NULL};
+  map m = {source, 0, 0, NULL, NULL, NULL, NULL, NULL};
   m.rec = malloc(n * sizeof *m.rec);
   m.arch = malloc(n * sizeof *m.arch);
   aq_status rc = AQ_ENOMEM;
@@ -174,7 +207,8 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
     }
   m.v = malloc((m.nrec * m.narch + 1) * sizeof *m.v);
   m.coll = calloc(m.nrec * m.narch + 1, sizeof *m.coll);
-  if (!m.rec || !m.arch || !m.v || !m.coll) {
+  m.mark = calloc(m.nrec * m.narch + 1, sizeof *m.mark);
+  if (!m.rec || !m.arch || !m.v || !m.coll || !m.mark) {
     aq_error_set(err, AQ_ENOMEM, source, -1, -1, NULL, "out of memory");
     goto out;
   }
@@ -186,6 +220,7 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
     size_t c = i * m.narch + j;
     if (runs[k].s.collapsed == 1)
       m.coll[c] = 1;
+    m.mark[c] |= run_marks(&runs[k].s);
     if (runs[k].s.collapsed >= 0 && !(m.v[c] >= runs[k].s.peak_rotation_over_qc))
       m.v[c] = runs[k].s.peak_rotation_over_qc;
   }
@@ -200,13 +235,15 @@ aq_status aq_plot_suite(const aq_h5_run *runs, size_t n, const char *source,
       goto out;
     }
     aq_plot_csv_axes(f, 1, (const char *[]){AX_KEY});
-    fprintf(f, "record,arch,collapsed,peak_rotation_over_qc\n");
+    fprintf(f, "record,arch,collapsed,peak_rotation_over_qc,slides,beyond\n");
     for (size_t i = 0; i < m.nrec; i++)
       for (size_t j = 0; j < m.narch; j++)
       {
         aq_plot_csv_text(f, m.rec[i]);
         aq_plot_csv_text(f, m.arch[j]);
-        fprintf(f, "%d,%s\n", m.coll[i * m.narch + j], AQ_TEXT_NUM(m.v[i * m.narch + j]));
+        int mk = m.mark[i * m.narch + j];
+        fprintf(f, "%d,%s,%d,%d\n", m.coll[i * m.narch + j], AQ_TEXT_NUM(m.v[i * m.narch + j]),
+                mk & 1, mk >> 1);
       }
     rc = aq_plot_csv_close(&tmp, err);
   }
@@ -215,5 +252,6 @@ out:
   free(m.arch);
   free(m.v);
   free(m.coll);
+  free(m.mark);
   return rc;
 }

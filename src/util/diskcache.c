@@ -385,16 +385,18 @@ static int make_dir(const char *d)
   return mkdir(d, 0700) == 0 || errno == EEXIST ? 0 : -1;
 }
 
-/* The store's directories: the top one's parent (~/.cache), the top one,
- * the kind's. */
+/* The store's directories: every missing one above the top one (the XDG
+ * base-directory rule: a missing $XDG_CACHE_HOME is made, 0700), the top
+ * one, the kind's.  A --cache-dir the user names is checked before the run
+ * (src/app/opt_table.c), so only the default directory grows parents here. */
 static int make_dirs(const aq_diskcache *c)
 {
   char parent[PATH_MAX];
   snprintf(parent, sizeof parent, "%s", c->top);
-  char *slash = strrchr(parent, '/');
-  if (slash && slash != parent) {
-    *slash = '\0';
-    make_dir(parent); /* its failure shows below */
+  for (char *p = parent + 1; (p = strchr(p, '/')) != NULL; p++) {
+    *p = '\0';
+    make_dir(parent); /* a failure shows at the top one below */
+    *p = '/';
   }
   return make_dir(c->top) == 0 && make_dir(c->dir) == 0 ? 0 : -1;
 }
