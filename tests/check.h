@@ -49,6 +49,11 @@ const char *aq_test_bin(void);
 int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
                 size_t err_cap);
 
+/* Running any shell command: cmd through /bin/sh, its stdout and stderr
+ * together into out[cap] (NUL-terminated, truncated; out may be NULL to drop
+ * them); returns the exit status (or -1). */
+int aq_test_sh(const char *cmd, char *out, size_t cap);
+
 /* The bytes of the file at path, NUL-terminated, malloc'd (caller frees);
  * *n (if not NULL) its length.  NULL if it cannot be read. */
 char *aq_test_read_file(const char *path, size_t *n);

@@ -134,6 +134,29 @@ int aq_test_run(const char *args, char *out, size_t out_cap, char *errbuf,
   return WEXITSTATUS(rc);
 }
 
+int aq_test_sh(const char *cmd, char *out, size_t cap)
+{
+  size_t len = strlen(cmd) + 16;
+  char *full = malloc(len);
+  if (!full)
+    return -1;
+  snprintf(full, len, "(%s) 2>&1", cmd);
+  FILE *p = popen(full, "r");
+  free(full);
+  if (!p)
+    return -1;
+  char sink[4096];
+  size_t n = 0, got;
+  while ((got = fread(out && n + 1 < cap ? out + n : sink, 1,
+                      out && n + 1 < cap ? cap - 1 - n : sizeof sink, p)) > 0)
+    if (out && n + 1 < cap)
+      n += got;
+  if (out && cap)
+    out[n] = '\0';
+  int rc = pclose(p);
+  return rc == -1 || !WIFEXITED(rc) ? -1 : WEXITSTATUS(rc);
+}
+
 char *aq_test_read_file(const char *path, size_t *n)
 {
   FILE *f = fopen(path, "rb");

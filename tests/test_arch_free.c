@@ -288,14 +288,50 @@ static void field(const aq_arch_drawing *dr, const aq_hinge_set *hs, int q_sign,
   }
 }
 
+/* The momentum rule's ratio computed here for both ways of an arch whose
+ * two sets are admissible: want[b], arriving on set 1 - b and leaving on
+ * set b, is the projection of the arriving motion (the field of the set
+ * arrived on, backwards) onto the field of the set left on, by the masses
+ * and inertias: -sum(m u_a . u_b + I w_a w_b) / sum(m |u_b|^2 + I w_b^2),
+ * the impulse-momentum balance about the new set's hinges; m[k] is set k's
+ * sum(m |u_k|^2 + I w_k^2).  0 if a set is not admissible. */
+static int ratios(const aq_arch *a, double want[2], double m[2])
+{
+  aq_arch_drawing dr;
+  aq_arch_drawing_of(a, &dr);
+  size_t n = dr.voussoirs;
+  pt *u = malloc(2 * n * sizeof *u);
+  double *w = malloc(2 * n * sizeof *w);
+  const aq_path *p[2] = {aq_arch_path(a, 0), aq_arch_path(a, 1)};
+  int ok = u && w && p[0]->admissible && p[1]->admissible;
+  if (ok) {
+    for (int k = 0; k < 2; k++)
+      field(&dr, aq_arch_hinge_set(a, k), p[k]->q_sign, u + k * n, w + k * n);
+    for (int k = 0; k < 2; k++) {
+      m[k] = 0;
+      for (size_t i = 0; i < n; i++)
+        m[k] += dr.parts[4 * i] * dot(u[k * n + i], u[k * n + i]) +
+                dr.parts[4 * i + 3] * w[k * n + i] * w[k * n + i];
+    }
+    for (int b = 0; b < 2; b++) {
+      int aa = 1 - b;
+      double cross = 0;
+      for (size_t i = 0; i < n; i++)
+        cross += dr.parts[4 * i] * dot(u[aa * n + i], u[b * n + i]) +
+                 dr.parts[4 * i + 3] * w[aa * n + i] * w[b * n + i];
+      want[b] = -cross / m[b];
+    }
+  }
+  free(u);
+  free(w);
+  return ok;
+}
+
 /* On every shipped arch, fixed and free: arriving at rest on one set and
  * leaving on the other, the post-impact sdot over the pre-impact |sdot| is
- * the projection of the arriving motion (the field of the set arrived on,
- * backwards) onto the field of the set left on, by the masses and
- * inertias: -sum(m u_a . u_b + I w_a w_b) / sum(m |u_b|^2 + I w_b^2), the
- * impulse-momentum balance about the new set's hinges; to 1e-11 (the mass
- * M_b(0) comes from the work path's tables, 4e-12).  The kinetic energy
- * kept, ratio^2 M_b / M_a, is at most 1. */
+ * ratios()'s projection, to 1e-11 (the mass M_b(0) comes from the work
+ * path's tables, 4e-12).  On these arches it is positive and the kinetic
+ * energy kept, ratio^2 M_b / M_a, is at most 1. */
 AQ_TEST(arch_free_impact_rule_between_two_sets)
 {
   gsl_set_error_handler_off();
@@ -308,41 +344,100 @@ AQ_TEST(arch_free_impact_rule_between_two_sets)
     aq_arch *a = load(path);
     if (!a)
       continue;
-    aq_arch_drawing dr;
-    aq_arch_drawing_of(a, &dr);
-    size_t n = dr.voussoirs;
-    pt *u = malloc(2 * n * sizeof *u);
-    double *w = malloc(2 * n * sizeof *w);
-    const aq_path *p[2] = {aq_arch_path(a, 0), aq_arch_path(a, 1)};
-    if (u && w && p[0]->admissible && p[1]->admissible) {
-      for (int k = 0; k < 2; k++)
-        field(&dr, aq_arch_hinge_set(a, k), p[k]->q_sign, u + k * n, w + k * n);
-      double m[2] = {0, 0};
-      for (int k = 0; k < 2; k++)
-        for (size_t i = 0; i < n; i++)
-          m[k] += dr.parts[4 * i] * dot(u[k * n + i], u[k * n + i]) +
-                  dr.parts[4 * i + 3] * w[k * n + i] * w[k * n + i];
+    double want[2], m[2];
+    if (ratios(a, want, m))
       for (int b = 0; b < 2; b++) { /* arriving on 1 - b, leaving on b */
         int aa = 1 - b;
-        double cross = 0;
-        for (size_t i = 0; i < n; i++)
-          cross += dr.parts[4 * i] * dot(u[aa * n + i], u[b * n + i]) +
-                   dr.parts[4 * i + 3] * w[aa * n + i] * w[b * n + i];
-        double want = -cross / m[b];
-        aq_check_rel(p[b]->impact_vel_ratio, want, 1e-11, "%s: from set %d onto set %d",
-                     all[f], aa, b);
-        aq_check(want > 0 && want * want * m[b] <= m[aa] * (1 + 1e-12),
-                 "%s: onto set %d: ratio %.6g, kinetic energy kept %.6g", all[f], b, want,
-                 want * want * m[b] / m[aa]);
+        aq_check_rel(aq_arch_path(a, b)->impact_vel_ratio, want[b], 1e-11,
+                     "%s: from set %d onto set %d", all[f], aa, b);
+        aq_check(want[b] > 0 && want[b] * want[b] * m[b] <= m[aa] * (1 + 1e-12),
+                 "%s: onto set %d: ratio %.6g, kinetic energy kept %.6g", all[f], b, want[b],
+                 want[b] * want[b] * m[b] / m[aa]);
         checked++;
       }
-    }
-    free(u);
-    free(w);
     aq_arch_free(a);
   }
   aq_check(checked == 16, "16 impacts checked, both ways on each arch but segmental, whose "
                           "reverse set is not admissible (%zu)", checked);
+}
+
+/* A flat arch's two sets can have fields that point against each other:
+ * the projection of the arriving motion onto the set left on is negative
+ * (parabolic span 10 m, rise 1.2 m, t 0.6 m, free: -0.909 and -0.685, here
+ * from ratios()).  No impulse at the new set's hinges can open it, and the
+ * set arrived on cannot reopen (the projection on its own field is
+ * -|sdot|): the arch stops at that impact, its kinetic energy all lost.
+ * From a pulse in each direction: one impact, no motion on the other set,
+ * every joule put in dissipated, and no motion after the impact.  The same
+ * pulses on a shipped free arch (positive ratios) rock it onto the other
+ * set: the test tells the two rules apart. */
+AQ_TEST(arch_free_impact_negative_ratio_stops)
+{
+  gsl_set_error_handler_off();
+  char dir[512], path[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/flat.cfg", dir);
+  FILE *f = fopen(path, "w");
+  if (!aq_check(f != NULL, "write %s", path))
+    return;
+  fputs("[arch]\nname = flat\nshape = parabolic\nspan_m = 10\nrise_m = 1.2\n"
+        "thickness_m = 0.6\nvoussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1.0\n"
+        "[dynamics]\nimpact = momentum\n",
+        f);
+  fclose(f);
+  static const char *const files[2] = {NULL, "arches/search.cfg"};
+  for (int c = 0; c < 2; c++) {
+    aq_arch *a = load(c ? files[c] : path);
+    if (!a)
+      continue;
+    double want[2], m[2];
+    if (!aq_check(ratios(a, want, m), "%s: both sets admissible", c ? files[c] : "flat"))
+      goto next;
+    for (int k = 0; k < 2; k++) { /* a pulse that drives set k, arriving back on it */
+      const aq_path *p = aq_arch_path(a, k);
+      int other = 1 - k;
+      aq_check(c ? want[other] > 0 : want[other] < 0, "%s: onto set %d, ratio %.6g",
+               c ? files[c] : "flat", other, want[other]);
+      aq_check_rel(aq_arch_path(a, other)->impact_vel_ratio, want[other], 1e-11,
+                   "%s: onto set %d: the arch's ratio", c ? files[c] : "flat", other);
+      /* 1.3 lambda0 g for the longest of these durations that moves the
+       * arch without collapsing it */
+      static const double durs[] = {0.2, 0.1, 0.05, 0.02, 0.01, 0.005};
+      int done = 0;
+      for (size_t d = 0; d < sizeof durs / sizeof durs[0] && !done; d++) {
+        aq_steps s;
+        if (!tds_pulse(p->act_sign * 1.3 * p->lambda0 * p->g_mps2, durs[d], durs[d] + 3.0, 1e-3,
+                       &s))
+          continue;
+        aq_result r;
+        if (run(a, AQ_MODEL_WORKPATH, 1, &s, &r)) {
+          if (!r.collapsed && r.impacts > 0) {
+            done = 1;
+            const char *nm = c ? files[c] : "flat";
+            aq_check(r.peak_rotation_set_rad[k] > 0, "%s set %d, %g s: moved", nm, k, durs[d]);
+            if (c)
+              aq_check(r.peak_rotation_set_rad[other] > 0 && r.impacts > 1,
+                       "%s set %d, %g s: rocks onto set %d (%zu impacts)", nm, k, durs[d],
+                       other, r.impacts);
+            else {
+              aq_check(r.impacts == 1 && r.peak_rotation_set_rad[other] == 0,
+                       "%s set %d, %g s: stops at its first impact (%zu impacts, %g rad on "
+                       "set %d)",
+                       nm, k, durs[d], r.impacts, r.peak_rotation_set_rad[other], other);
+              aq_check_rel(r.energy_dissipated_j, r.energy_in_j, 1e-9,
+                           "%s set %d: everything put in is dissipated", nm, k);
+            }
+          }
+          aq_result_free(&r);
+        }
+        aq_steps_free(&s);
+      }
+      aq_check(done, "%s set %d: a pulse that moves it and brings it back", c ? files[c] : "flat",
+               k);
+    }
+  next:
+    aq_arch_free(a);
+  }
 }
 
 /* ---- which arches need one polarity ---------------------------------------- */

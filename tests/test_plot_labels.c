@@ -28,22 +28,10 @@
 #define LONG_B "Station_archive_of_the_2024_campaign_RSN763_LOMAP_GIL337_horizontal_acceleration.AT2"
 #define LONG_ARCH "thin_arch_of_the_figures_test_with_a_name_of_sixty_characters"
 
-static int sh(const char *cmd, char *out, size_t cap)
-{
-  char full[16384];
-  snprintf(full, sizeof full, "%s 2>&1", cmd);
-  FILE *p = popen(full, "r");
-  if (!p)
-    return -1;
-  size_t n = fread(out, 1, cap - 1, p);
-  out[n] = '\0';
-  return pclose(p);
-}
-
 static int have_tools(void)
 {
   char out[64];
-  int ok = sh("command -v pdftotext && command -v pdftoppm && command -v rsvg-convert", out,
+  int ok = aq_test_sh("command -v pdftotext && command -v pdftoppm && command -v rsvg-convert", out,
               sizeof out) == 0;
   if (!ok)
     fprintf(stderr, "test_plot_labels: poppler-utils or librsvg2-bin not installed: "
@@ -60,7 +48,7 @@ static int make_inputs(const char *dir)
            "RSN763_LOMAP_GIL337.AT2 '%s/" LONG_B "' && sed 's/^name = thin/name = " LONG_ARCH
            "/' arches/thin.cfg > '%s/long.cfg'",
            dir, dir, dir);
-  if (!aq_check(sh(cmd, out, sizeof out) == 0, "%s: %s", cmd, out))
+  if (!aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "%s: %s", cmd, out))
     return 0;
   const char *jobs[3] = {
       "'%s/" LONG_A "' '%s/" LONG_B "' " REC "IELC180.AT2 --arch arches/thin.cfg --arch "
@@ -82,7 +70,7 @@ static int make_inputs(const char *dir)
            "' RSN6_IMPVALL.I_I-ELC180-hor1.AT2 RSN6_IMPVALL.I_I-ELC270-hor2.AT2 "
            "'RSN6_IMPVALL.I_I-ELC{180-hor1,270-hor2}.AT2' > '%s/names.txt'",
            dir);
-  return aq_check(sh(cmd, out, sizeof out) == 0, "names: %s", out);
+  return aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "names: %s", out);
 }
 
 AQ_TEST(plot_labels_every_figure)
@@ -122,7 +110,7 @@ AQ_TEST(plot_labels_every_figure)
   char cmd[9000];
   static char out[1 << 16];
   snprintf(cmd, sizeof cmd, "LC_ALL=C.UTF-8 /usr/bin/python3 tests/plot_labels.py %s", list);
-  int rc = sh(cmd, out, sizeof out);
+  int rc = aq_test_sh(cmd, out, sizeof out);
   aq_check(rc == 0, "every figure's labels inside the page, apart, on no mark, each shortened "
                     "name one name's (exit %d):\n%s", rc, out);
   /* the suite's margin shortened the two names alike but for their middle
@@ -153,7 +141,7 @@ AQ_TEST(plot_labels_capacity_key_off_the_data)
   if (!aq_check(rc == 0, "%s: exit %d %s", args, rc, err))
     return;
   snprintf(cmd, sizeof cmd, "pdftotext -bbox '%s/c.pdf' -", dir);
-  if (!aq_check(sh(cmd, out, sizeof out) == 0, "%s", cmd))
+  if (!aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "%s", cmd))
     return;
   double top = NAN, bottom = NAN, key = NAN;
   long nkey = 0, inside = 0;

@@ -23,19 +23,6 @@
 #define REC "tests/data/records/"
 #define PAIR REC "RSN6_IMPVALL.I_I-ELC180-hor1.AT2," REC "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"
 
-/* stdout and stderr of a shell command into out[cap]; its exit status. */
-static int sh(const char *cmd, char *out, size_t cap)
-{
-  char full[8192];
-  snprintf(full, sizeof full, "%s 2>&1", cmd);
-  FILE *p = popen(full, "r");
-  if (!p)
-    return -1;
-  size_t n = fread(out, 1, cap - 1, p);
-  out[n] = '\0';
-  return pclose(p);
-}
-
 /* The three kinds of file in dir: m.h5 (main job), az.h5 (a --components
  * motion), c.h5 (capacity), s.h5 (spectrum).  1 if all were written. */
 static int make_files(const char *dir)
@@ -70,7 +57,7 @@ AQ_TEST(report_h5_layout_every_kind_documented)
            "/usr/bin/python3 tests/h5_layout.py docs/hdf5-layout.md %s/m.h5 %s/az.h5 %s/c.h5 "
            "%s/s.h5",
            dir, dir, dir, dir);
-  int rc = sh(cmd, out, sizeof out);
+  int rc = aq_test_sh(cmd, out, sizeof out);
   aq_check(rc == 0 && strstr(out, " 0 faults"),
            "every object of a results, capacity and spectrum file as docs/hdf5-layout.md "
            "documents it (exit %d):\n%s",
@@ -107,7 +94,7 @@ AQ_TEST(report_h5_layout_checker_finds_faults)
            "    h['time_s'].attrs['units'] = b'ms'\n"
            "\" %s/m.h5 && /usr/bin/python3 tests/h5_layout.py docs/hdf5-layout.md %s/m.h5",
            dir, dir);
-  rc = sh(cmd, out, sizeof out);
+  rc = aq_test_sh(cmd, out, sizeof out);
   aq_check(rc != 0, "the edited file fails the layout (exit %d)", rc);
   static const char *const want[] = {
       "column pga_over_lambda0_g (double) is not in docs/hdf5-layout.md",
@@ -139,7 +126,7 @@ AQ_TEST(report_h5_layout_kinds_hold_their_own)
            "print('results holds', sorted(m))\n"
            "\" %s",
            dir);
-  int rc = sh(cmd, out, sizeof out);
+  int rc = aq_test_sh(cmd, out, sizeof out);
   aq_check(rc == 0 && strstr(out, "kinds results capacity spectrum\n"), "root kind: %s", out);
   aq_check(strstr(out, "spectrum holds ['records', 'spectra']\n") != NULL,
            "a spectrum file holds its records and spectra only: %s", out);
@@ -162,7 +149,7 @@ AQ_TEST(report_h5_layout_arch_texts_and_sha256)
   aq_test_tmpdir(dir, sizeof dir);
   if (!make_files(dir))
     return;
-  int rc = sh("cat arches/vertical.cfg arches/vertical.csv arches/vertical_faces.csv | sha256sum "
+  int rc = aq_test_sh("cat arches/vertical.cfg arches/vertical.csv arches/vertical_faces.csv | sha256sum "
               "&& sha256sum < arches/bridge.cfg",
               sums, sizeof sums);
   if (!aq_check(rc == 0 && strlen(sums) > 130, "sha256sum: %s", sums))
@@ -182,7 +169,7 @@ AQ_TEST(report_h5_layout_arch_texts_and_sha256)
            "              'joints_csv' in a, a['primary_joints'].decode(), a['g_mps2'])\n"
            "\" %s",
            dir);
-  rc = sh(cmd, out, sizeof out);
+  rc = aq_test_sh(cmd, out, sizeof out);
   aq_check(rc == 0, "read the arches: %s", out);
   for (int k = 0; k < 2; k++) {
     const char *fn = k ? "/c.h5" : "/m.h5";
@@ -233,7 +220,7 @@ AQ_TEST(report_h5_layout_series_deflated)
            "print(n, 'series', plain, 'not deflated', 'ratio %%.1f' %% (raw / stored))\n"
            "\" %s/m.h5",
            dir);
-  rc = sh(cmd, out, sizeof out);
+  rc = aq_test_sh(cmd, out, sizeof out);
   int n = 0, plain = -1;
   double ratio = 0;
   sscanf(out, "%d series %d not deflated ratio %lf", &n, &plain, &ratio);

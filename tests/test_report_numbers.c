@@ -130,12 +130,9 @@ static int numbers_ok(const char *dir, const char *args, const char *what)
     return 0;
   fputs(CHECKER, f);
   fclose(f);
-  snprintf(cmd, sizeof cmd, "/usr/bin/python3 '%s' %s 2>&1", py, args);
-  FILE *p = popen(cmd, "r");
+  snprintf(cmd, sizeof cmd, "/usr/bin/python3 '%s' %s", py, args);
   char out[4096] = "";
-  size_t n = p ? fread(out, 1, sizeof out - 1, p) : 0;
-  out[n] = '\0';
-  int rc = p ? pclose(p) : -1;
+  int rc = aq_test_sh(cmd, out, sizeof out);
   return aq_check(rc == 0, "%s: %s", what, out);
 }
 

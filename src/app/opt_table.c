@@ -950,6 +950,8 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  interpolation tables against the exact kinematics; thrust_ecc is the\n"
                  "  largest eccentricity |r - R|/(t/2) of the line of thrust over the joints\n"
                  "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
+                 "  impact_vel_ratio is the set's velocity after an impact arriving from the\n"
+                 "  other set over the velocity before (momentum rule); <= 0: the arch stops.\n"
                  "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
                  "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
                  "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"

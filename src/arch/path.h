@@ -99,7 +99,9 @@ typedef struct {
   /* Impact when the arch returns to s = 0 on the OTHER set and continues on
    * this one: post-impact sdot on this set = impact_vel_ratio * |pre-impact
    * sdot on the other set| by the impulse-momentum balance about this set's
-   * hinges (the multi-body Housner rule).  Used with impact = momentum. */
+   * hinges (the multi-body Housner rule).  Used with impact = momentum;
+   * <= 0 (the arriving motion would close this set's hinges): the arch
+   * stops there. */
   double impact_vel_ratio;
   /* |x_m| is non-decreasing in s on [0, x_mono_rad] (by the tables' slopes,
    * sampled; 0 when unknown): the peak displacement up to any s there is

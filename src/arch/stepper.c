@@ -25,7 +25,8 @@
  *     quiet steps are skipped with aq_steps_next_outside;
  *   - impact at the return to s = 0: switch to the other set and keep
  *     cor * KE (cor is the kinetic-energy ratio, docs/method.md sec. 7) or, with
- *     the momentum rule, the velocity impact_vel_ratio * |sdot|;
+ *     the momentum rule, the velocity impact_vel_ratio * |sdot| (a ratio
+ *     <= 0: plastic stop, as below);
  *   - the other set inadmissible: plastic stop, the arch rests at s = 0
  *     (docs/method.md sec. 8: an inadmissible set is never integrated);
  *   - rest: after an impact, KE <= rest_tol * E_ref (E_ref = m_T g y(s_c)
@@ -603,7 +604,11 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
             }
             S.evals += 2; /* counted at every impact, as when evaluated there */
             double sdot = sqrt(2 * ke_pre / st->m0_kgm2[set]);
-            double v1 = q->impact_vel_ratio * sdot;
+            /* a ratio <= 0: the arriving motion would close the new set's
+             * hinges, so no impulse at them opens it; the set arrived on
+             * cannot reopen either (its projection is -|sdot|): the arch
+             * stops, plastic (docs/arch-model.md, "Impacts") */
+            double v1 = fmax(q->impact_vel_ratio, 0.0) * sdot;
             ke_post = 0.5 * st->m0_kgm2[other] * v1 * v1;
           } else {
             ke_post = st->cor * ke_pre; /* eq. (26): cor = KE_f / KE_i */

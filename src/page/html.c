@@ -765,18 +765,10 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
 
 static aq_status section_capacity(page *p, const char *path, size_t index)
 {
-  aq_page_buf *b = p->b;
-  aq_page_kind kind;
-  aq_status st = aq_page_file_kind(path, &kind, p->err);
-  if (st != AQ_OK)
-    return st;
-  if (kind != AQ_PAGE_CAPACITY)
-    return aq_error_set(p->err, AQ_EFORMAT, path, -1, -1, NULL,
-                        "expected a capacity file (archquake capacity -o), got a results "
-                        "file of the main job: give it first");
+  aq_page_buf *b = p->b; /* path's kind: capacity, checked before the page */
   aq_h5_capacity_table t;
   int present = 0;
-  st = aq_h5_capacity_read(path, &t, &present, p->err);
+  aq_status st = aq_h5_capacity_read(path, &t, &present, p->err);
   if (st != AQ_OK)
     return st;
   aq_page_printf(b, "<h2 id=\"capacity-%zu\">Capacity: ", index);
