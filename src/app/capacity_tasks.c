@@ -87,7 +87,8 @@ static aq_capacity_job job_of(const aq_cap_setup *S, const aq_cap_item *it, size
                               size_t p, size_t z)
 {
   return (aq_capacity_job){&it->view[z], S->pols[p] == AQ_POLARITY_REVERSED, S->arches[a],
-                           S->model, S->cor, S->merge_tol_mps2, S->scale_max, S->scan};
+                           S->model, S->cor, S->merge_tol_mps2, S->scale_max, S->scan,
+                           S->blocks_dt_s};
 }
 
 /* ---- here: one pool over every (subject, arch, polarity, azimuth) -------- */

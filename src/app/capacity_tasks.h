@@ -55,6 +55,7 @@ typedef struct {
   aq_arch *const *arches;
   size_t na;
   aq_model model;
+  double blocks_dt_s;            /* --blocks-dt */
   double cor;                    /* --cor, or NAN */
   double merge_tol_mps2;
   double scale_max;              /* --scale-max, or NAN */

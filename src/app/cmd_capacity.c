@@ -349,7 +349,9 @@ int aq_cmd_capacity(int argc, char **argv)
       rc = AQ_EXIT_USAGE;
     } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(cor),
                                    aq_arch_dynamics_of(arches[a])->impact ==
-                                       AQ_IMPACT_MOMENTUM)) {
+                                       AQ_IMPACT_MOMENTUM) ||
+               aq_opt_blocks_friction(arch_paths[a], model == AQ_MODEL_BLOCKS,
+                                      aq_arch_friction(arches[a]))) {
       rc = AQ_EXIT_USAGE;
     }
   if (rc != AQ_EXIT_OK)
@@ -373,7 +375,8 @@ int aq_cmd_capacity(int argc, char **argv)
   }
   aq_cap_setup S = {nrec, recs, (const char *const (*)[3])paths, (const double (*)[2])phi,
                      &orient, &ro, &po, pol, pols, npol, nz, arches, na, model,
-                     cor, merge_tol_g * AQ_G0_MPS2, smax, so, suite_in.factors};
+                     opts.blocks_dt_s, cor, merge_tol_g * AQ_G0_MPS2, smax, so,
+                     suite_in.factors};
   if (aq_farm_is_follower()) { /* archquake-mpi: run what rank 0 hands out */
     rc = aq_cap_run(&S, R, NULL, threads) == 0 ? AQ_EXIT_OK : AQ_EXIT_FAIL;
     goto done;

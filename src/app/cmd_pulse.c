@@ -100,39 +100,21 @@ static aq_status write_history(const char *path, const aq_history *h,
   return aq_outfile_commit(&o, err);
 }
 
-/* The block model of arch for pulse, its options from the arch (friction,
- * required; control; [contact] e_n; [supports] spread_m) and dt_s: 0 and
- * *out, or the exit status after one line naming the file and field. */
+/* The block model of arch for pulse (aq_blocks_for_arch): 0 and *out, or
+ * the exit status after one line naming the file and field (2 for the
+ * friction it needs and was not given, 1 for a value of the arch file). */
 static int pulse_blocks(const char *file, const aq_arch *arch, double dt_s, int history,
                         aq_blocks **out)
 {
   aq_error err;
   aq_error_clear(&err);
-  *out = NULL;
-  double mu = aq_arch_friction(arch);
-  if (isnan(mu)) {
-    fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for --model "
-                    "blocks ([contact] friction or --friction), got none\n", file);
-    return AQ_EXIT_USAGE;
-  }
-  aq_blocks *b = aq_blocks_alloc(arch, &err);
-  if (!b) {
-    aq_error_print(&err, stderr);
-    return AQ_EXIT_FAIL;
-  }
-  if (aq_blocks_set_friction(b, mu, &err) != AQ_OK ||
-      aq_blocks_set_restitution(b, aq_arch_restitution(arch), &err) != AQ_OK ||
-      aq_blocks_set_dt(b, dt_s, &err) != AQ_OK ||
-      (aq_arch_control(arch) == AQ_CONTROL_FIXED &&
-       aq_blocks_set_control(b, AQ_BLOCKS_FIXED, &err) != AQ_OK) ||
-      aq_blocks_set_spread(b, aq_arch_spread(arch), &err) != AQ_OK) {
+  *out = aq_blocks_for_arch(arch, dt_s, &err);
+  if (!*out) {
     snprintf(err.input, sizeof err.input, "%s", file);
     aq_error_print(&err, stderr);
-    aq_blocks_free(b);
-    return AQ_EXIT_FAIL; /* as every value of the arch file refused */
+    return isnan(aq_arch_friction(arch)) ? AQ_EXIT_USAGE : AQ_EXIT_FAIL;
   }
-  aq_blocks_set_history(b, history);
-  *out = b;
+  aq_blocks_set_history(*out, history);
   return AQ_EXIT_OK;
 }
 

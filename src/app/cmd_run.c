@@ -172,6 +172,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.vertical = orient.vertical;
   cfg.arch_paths = arches;
   cfg.model = (aq_model)o.model;
+  cfg.blocks_dt_s = o.blocks_dt_s;
   cfg.cor = o.cor;
   cfg.friction = o.friction;
   cfg.units_text = o.units_text[0] ? o.units_text : NULL;

@@ -175,6 +175,15 @@ int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum)
   return 1;
 }
 
+int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction)
+{
+  if (!blocks || !isnan(friction))
+    return 0;
+  fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for --model "
+                  "blocks ([contact] friction or --friction), got none\n", arch_path);
+  return 1;
+}
+
 int aq_opt_same_file(const char *a, const char *b)
 {
   struct stat sa, sb;

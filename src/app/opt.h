@@ -33,6 +33,9 @@ void aq_opt_ode_rtol(int given, const char *model, int *nerr);
 /* --cor given for an arch whose [dynamics] impact (or --impact) is
  * momentum: one line naming the arch file; returns 1 (refuse, exit 2). */
 int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
+/* The block model needs a friction: 1 (after one line naming the arch
+ * file) when blocks is set and the arch has none (friction NAN), else 0. */
+int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction);
 /* --polarity's words, indexed by AQ_POLARITY_*, NULL-terminated: the sign
  * of the records a command runs (the record as read, negated, or each
  * record both ways, each row saying which). */

@@ -211,12 +211,13 @@ static void ode_rtol_needs_ode(aq_opts *o, int *nerr)
   aq_opt_ode_rtol(o->given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)o->model), nerr);
 }
 
-/* The block model runs in pulse (src/blocks/blocks.h). */
+/* The block model runs in pulse, the main job and capacity
+ * (src/blocks/blocks.h); domain's half-cycles are the four-hinge model's. */
 static void blocks_model_applies(aq_opts *o, int *nerr)
 {
-  if (o->model == AQ_MODEL_BLOCKS && o->cmd != AQ_CMD_PULSE) {
+  if (o->model == AQ_MODEL_BLOCKS && o->cmd == AQ_CMD_DOMAIN) {
     fprintf(stderr, "archquake: --model: expected workpath, ode, paper or workpath-quad here "
-                    "(--model blocks runs in pulse), got blocks\n");
+                    "(domain's half-cycles are the four-hinge model's), got blocks\n");
     (*nerr)++;
   }
 }
@@ -510,7 +511,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_MODEL] = {.name = "model", .kind = AQ_ARG_CHOICE, .choices = aq_model_names,
                       .meta = "M", DEST(model), .cmds = DYNAMICS,
                       .help = "workpath (default), ode (reference), paper, workpath-quad, "
-                              "blocks (pulse; docs/blocks.md)",
+                              "blocks (rigid voussoirs in frictional contact; docs/blocks.md)",
                       .check = blocks_model_applies},
     [AQ_OPT_COR] = {.name = "cor", .kind = AQ_ARG_DOUBLE, .lo = 0, .hi = 1, .meta = "C",
                     DEST(cor), .cmds = DYNAMICS | C(PLOT_DOMAIN), .check = cor_not_blocks,
@@ -524,7 +525,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                  "included, 0 < MU <= 1000 (default: each arch's [contact] "
                                  "friction; none if it has none)"},
     [AQ_OPT_BLOCKS_DT] = {.name = "blocks-dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
-                          .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE),
+                          .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE) | SUITES,
                           .help = "the block model's time step, s (default 0.002; only with "
                                   "--model blocks)",
                           .check = blocks_dt_needs_blocks},
@@ -849,7 +850,10 @@ static const char run_tail[] =
     "  when the arch never moved; status slides: a friction was given and\n"
     "  mu_demand passed it; beyond: free control, the thrust left a joint's\n"
     "  section; slides+beyond: both: the verdict holds for the four-hinge\n"
-    "  model only up to that time, follow such a run with --model blocks)\n"
+    "  model only up to that time, follow such a run with --model blocks);\n"
+    "  last, with --model blocks: max_slip_m hinges_observed (the joints and\n"
+    "  faces that opened, 0e,6i,...) hinges_first_s (when) mechanism_changed_s\n"
+    "  (when the open joints left the arch's sets); nan and - otherwise\n"
     "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"

@@ -79,6 +79,7 @@ void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
     if (u->have_res) {
       aq_result res = u->res;
       memset(&res.history, 0, sizeof res.history);
+      res.bodies = NULL; /* the summary keeps its columns */
       aq_bytes_put(b, &res, sizeof res);
     }
     if (u->failed)
@@ -127,6 +128,7 @@ int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
     aq_bytes_get(&c, &g, 1, NULL);
     if ((g & R_RES) && aq_bytes_get(&c, &u->res, sizeof u->res, NULL) == 0) {
       memset(&u->res.history, 0, sizeof u->res.history);
+      u->res.bodies = NULL;
       u->have_res = 1;
     }
     u->failed = (g & R_FAILED) != 0;

@@ -257,6 +257,8 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
 aq_stepper *aq_suite_stepper(const suite *S, size_t a, aq_error *err)
 {
   const aq_suite_cfg *c = S->cfg;
+  if (c->model == AQ_MODEL_BLOCKS)
+    return aq_job_stepper_blocks(S->arches[a], c->blocks_dt_s, c->history, err);
   return aq_job_stepper(S->arches[a], c->model, c->cor, c->history, 1, err);
 }
 
@@ -295,6 +297,8 @@ int aq_suite_arches(suite *S)
         break;
       }
     aq_mechanism_warn_minimum(c->arch_paths[a], S->arches[a]);
+    bad_arch |= aq_opt_blocks_friction(c->arch_paths[a], c->model == AQ_MODEL_BLOCKS,
+                                       aq_arch_friction(S->arches[a]));
     bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
                                     aq_arch_dynamics_of(S->arches[a])->impact ==
                                         AQ_IMPACT_MOMENTUM);

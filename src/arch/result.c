@@ -17,6 +17,15 @@ void aq_result_free(aq_result *r)
   free(h->potential_energy_j);
   free(h->set);
   memset(h, 0, sizeof *h);
+  if (r->bodies) {
+    free(r->bodies->hinges_observed);
+    free(r->bodies->hinges_first_s);
+    free(r->bodies->hist_x_m);
+    free(r->bodies->hist_y_m);
+    free(r->bodies->hist_rot_rad);
+    free(r->bodies);
+    r->bodies = NULL;
+  }
 }
 
 double aq_result_peak_over_qc(const aq_result *r, const aq_path *primary, const aq_path *reverse)

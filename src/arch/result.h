@@ -21,6 +21,21 @@ typedef struct {
   int *set;                   /* 0 primary, 1 reverse, -1 at rest */
 } aq_history;
 
+/* The block model's own outputs (src/blocks/blocks.h, docs/blocks.md);
+ * owned by the result. */
+typedef struct {
+  double max_slip_m;          /* largest tangential slip at any joint, m */
+  char *hinges_observed;      /* the joints and faces that opened, "0e,6i,12e,19i" ("" none) */
+  char *hinges_first_s;       /* their first opening times, s, in the same order */
+  double mechanism_changed_s; /* first time the opened set left the arch's sets; NAN: never */
+  size_t steps_siconos;       /* steps whose contact problem went to Siconos */
+  size_t steps_loose;         /* of them, solved to 1e-3 of the step's scales only */
+  /* with a history: every voussoir's centroid and rotation at each sample,
+   * sample i, voussoir k at [i * nvous + k] (m, m, rad) */
+  size_t nvous;
+  double *hist_x_m, *hist_y_m, *hist_rot_rad;
+} aq_result_bodies;
+
 typedef struct {
   int collapsed;               /* 1 if q passed q_c of the active set */
   double collapse_time_s;      /* NAN if it survived; s in record time */
@@ -50,6 +65,7 @@ typedef struct {
   size_t demand_full;          /* of them, with every joint evaluated */
   size_t demand_looks;         /* single joints evaluated */
   aq_history history;          /* filled only when asked */
+  aq_result_bodies *bodies;    /* the block model's own; NULL for the four-hinge models */
 } aq_result;
 
 void aq_result_free(aq_result *r);

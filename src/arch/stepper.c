@@ -80,6 +80,8 @@ struct aq_stepper {
    * of a run that needs it (NAN: not yet); M depends on s alone */
   double m0_kgm2[2];
   aq_demand *demand; /* the joints' demand (demand.h), owned; NULL: none */
+  int delegated;     /* 1: runs are del's (aq_stepper_alloc_delegate) */
+  aq_stepper_delegate del;
 };
 
 
@@ -160,10 +162,30 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
   return st;
 }
 
+aq_stepper *aq_stepper_alloc_delegate(aq_model model, const aq_stepper_delegate *d,
+                                      aq_error *err)
+{
+  aq_stepper *st = calloc(1, sizeof *st);
+  if (!st) {
+    if (d->free)
+      d->free(d->ctx);
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "stepper", "out of memory");
+    return NULL;
+  }
+  st->model = model;
+  st->scale = 1;
+  st->rest_since_s = NAN;
+  st->delegated = 1;
+  st->del = *d;
+  return st;
+}
+
 void aq_stepper_free(aq_stepper *st)
 {
   if (!st)
     return;
+  if (st->delegated && st->del.free)
+    st->del.free(st->del.ctx);
   aq_eom_free(st->eom);
   aq_paper_free(st->paper);
   aq_taylor_free(st->taylor);
@@ -221,7 +243,10 @@ void aq_stepper_set_rest_tol(aq_stepper *st, double tol)
     st->rest_tol = tol;
 }
 
-double aq_stepper_rest_since(const aq_stepper *st) { return st->rest_since_s; }
+double aq_stepper_rest_since(const aq_stepper *st)
+{
+  return st->delegated ? st->del.rest_since(st->del.ctx) : st->rest_since_s;
+}
 
 void aq_stepper_set_demand(aq_stepper *st, aq_demand *d)
 {
@@ -388,6 +413,8 @@ static double peak_x(const aq_path *p, int exact, double smax, size_t *evals)
 aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
                          aq_error *err)
 {
+  if (st->delegated)
+    return st->del.run(st->del.ctx, steps, st->scale, st->history, res, err);
   memset(res, 0, sizeof *res);
   res->collapse_time_s = NAN;
   res->first_set = res->peak_set = -1;

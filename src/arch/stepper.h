@@ -37,6 +37,26 @@ const char *aq_model_name(aq_model m);
 
 typedef struct aq_stepper aq_stepper;
 
+/* A model run by a stage above this one (the block model,
+ * src/blocks/blocks.h), driven through a stepper so that the job layer and
+ * its callers (the main job, capacity, archquake-mpi) keep one kind of
+ * stepper: run fills res as aq_stepper_run does (steps times scale, the
+ * history when asked), rest_since answers aq_stepper_rest_since, free
+ * frees ctx (aq_stepper_free calls it). */
+typedef struct {
+  void *ctx;
+  aq_status (*run)(void *ctx, const aq_steps *steps, double scale, int history,
+                   aq_result *res, aq_error *err);
+  double (*rest_since)(const void *ctx);
+  void (*free)(void *ctx);
+} aq_stepper_delegate;
+
+/* A stepper whose runs are d's (model names it: AQ_MODEL_BLOCKS); the
+ * setters of the four-hinge models (cor, impact, tolerances, demand) do not
+ * apply to it and are ignored.  On failure d->free(d->ctx) is called. */
+aq_stepper *aq_stepper_alloc_delegate(aq_model model, const aq_stepper_delegate *d,
+                                      aq_error *err);
+
 aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
                              aq_model model, aq_error *err);
 void aq_stepper_free(aq_stepper *st);

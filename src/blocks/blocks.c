@@ -126,6 +126,30 @@ aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err)
   return b;
 }
 
+aq_blocks *aq_blocks_for_arch(const aq_arch *arch, double dt_s, aq_error *err)
+{
+  double mu = aq_arch_friction(arch);
+  if (isnan(mu)) {
+    aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "friction",
+                 "expected a Coulomb coefficient for --model blocks ([contact] friction or "
+                 "--friction), got none");
+    return NULL;
+  }
+  aq_blocks *b = aq_blocks_alloc(arch, err);
+  if (!b)
+    return NULL;
+  if (aq_blocks_set_friction(b, mu, err) != AQ_OK ||
+      aq_blocks_set_restitution(b, aq_arch_restitution(arch), err) != AQ_OK ||
+      aq_blocks_set_dt(b, dt_s, err) != AQ_OK ||
+      (aq_arch_control(arch) == AQ_CONTROL_FIXED &&
+       aq_blocks_set_control(b, AQ_BLOCKS_FIXED, err) != AQ_OK) ||
+      aq_blocks_set_spread(b, aq_arch_spread(arch), err) != AQ_OK) {
+    aq_blocks_free(b);
+    return NULL;
+  }
+  return b;
+}
+
 aq_blocks *aq_blocks_alloc_bodies(const aq_body *body, size_t nb, const aq_vec2 (*ends)[2],
                                   size_t nj, double g_mps2, aq_error *err)
 {
@@ -348,6 +372,7 @@ static aq_status advance(aq_blocks *b, double t, double dt, double ax, double ay
       b->counters.siconos++;
     b->counters.iters += (size_t)info.iters;
     b->counters.pivots += (size_t)info.pivots;
+    b->counters.loose += (size_t)info.loose;
     int ev = aq_events_step(&b->ev, b->m, tend, h, ax, ay, info.impact, record);
     if (ev == 2) {
       int fell = 0;
@@ -485,6 +510,7 @@ done:
   res->active_set_iters = b->counters.iters;
   res->siconos_pivots = b->counters.pivots;
   res->statics = b->counters.statics;
+  res->steps_loose = b->counters.loose;
   res->r.substeps = b->counters.steps;
   res->r.evals = b->counters.iters;
   if (res->r.collapsed || !b->at_rest)

@@ -71,6 +71,8 @@ typedef struct {
   size_t active_set_iters;   /* chain solves in all */
   size_t siconos_pivots;     /* Lemke pivots (or NSGS sweeps) in all */
   size_t statics;            /* static ranges found (linear programs pairs) */
+  size_t steps_loose;        /* steps whose contact problem Siconos solved only to 1e-3 of the
+                                step's scales (docs/blocks.md) */
   /* per-voussoir history (when asked): sample i, voussoir k at
    * [i * nvous + k] of each (centroid x, y, m; rotation, rad) */
   size_t nvous;
@@ -82,6 +84,11 @@ void aq_blocks_result_free(aq_blocks_result *r);
 /* The block model of arch (every voussoir a body: free control).
  * Opens Siconos Numerics (AQ_EUNSUPPORTED if it cannot). */
 aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err);
+/* The block model as the arch asks for it: its friction (required:
+ * AQ_EVALUE, field "friction", without one), [contact] e_n, [supports]
+ * spread_m, its hinge control (fixed: the arch's sets' joints free, every
+ * other bonded), the step dt_s.  Errors name the field (not the file). */
+aq_blocks *aq_blocks_for_arch(const aq_arch *arch, double dt_s, aq_error *err);
 void aq_blocks_free(aq_blocks *b);
 
 /* Options; each returns AQ_EVALUE (field named) for a value out of range. */

@@ -78,7 +78,7 @@ struct aq_blocks {
   int stat_valid, stat_ok;
   double stat_lo, stat_hi;
   struct {
-    size_t steps, direct, siconos, iters, pivots, statics, ahead;
+    size_t steps, direct, siconos, iters, pivots, statics, ahead, loose;
   } counters;
 };
 

@@ -176,7 +176,8 @@ aq_status aq_siconos_load(aq_error *err);
 typedef enum {
   AQ_FC2D_LEMKE = 0, /* lexicographic Lemke on the problem's LCP (exact, pivoting) */
   AQ_FC2D_NSGS,      /* non-smooth Gauss-Seidel to a tolerance */
-  AQ_FC2D_ENUM       /* enumeration of the LCP's cases (small problems) */
+  AQ_FC2D_ENUM,      /* enumeration of the LCP's cases (small problems) */
+  AQ_FC2D_AP         /* Lemke's method on Anitescu and Potra's LCP of the problem */
 } aq_fc2d_solver;
 
 typedef struct aq_fc2d aq_fc2d;
@@ -214,6 +215,7 @@ typedef struct {
   aq_step_path path;
   int iters;          /* chain solves */
   int pivots;         /* Siconos's pivots or sweeps */
+  int loose;          /* 1: Siconos's best answer met only LOOSE_REL (moreau.c) */
   int impact;         /* 1: a contact closed with an approach velocity */
 } aq_step_info;
 

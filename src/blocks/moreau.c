@@ -63,6 +63,10 @@ static const double CHECK_REL = 1e-9;
 static const double SICONOS_CHECK_REL = 1e-7;
 /* The activation threshold, per the bodies' length scale. */
 static const double CLOSED_REL = 1e-9;
+/* When no attempt meets its tolerance (Lemke's pivoting in double precision
+ * on an ill-conditioned problem of 40-odd contacts: gothic, friction 0.6),
+ * the best answer is taken if it meets this fraction of the scales. */
+static const double LOOSE_REL = 1e-3;
 /* Siconos's own stopping tolerance (relative to |q|). */
 static const double SICONOS_TOL = 1e-13;
 
@@ -88,7 +92,7 @@ struct aq_moreau {
   aq_chain *chain;
   aq_fc2d *fc;
   int *cidx;                /* active corners for Siconos */
-  double *W, *fq, *fr, *fu, *fmu, *fd;
+  double *W, *fq, *fr, *fu, *fmu, *fd, *best_r;
   double vscale, pscale;
   double *sq, *sv, sgx[2], sgvx[2]; /* a saved state (aq_moreau_save) */
   aq_jstate *sst;
@@ -131,6 +135,7 @@ void aq_moreau_free(aq_moreau *m)
   free(m->fu);
   free(m->fmu);
   free(m->fd);
+  free(m->best_r);
   free(m->sq);
   free(m->sv);
   free(m->sst);
@@ -181,13 +186,14 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->fu = calloc(2 * nc, sizeof *m->fu);
   m->fmu = calloc(nc, sizeof *m->fmu);
   m->fd = calloc(2 * nc, sizeof *m->fd);
+  m->best_r = calloc(2 * nc, sizeof *m->best_r);
   m->sq = calloc(nb3, sizeof *m->sq);
   m->sv = calloc(nb3, sizeof *m->sv);
   m->sst = calloc(s->nj, sizeof *m->sst);
   if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->cr2 || !m->un0 || !m->ut0 ||
       !m->active || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
       !m->u || !m->pn || !m->pt || !m->keep_v || !m->keep_pn || !m->keep_pt || !m->chain || !m->fc || !m->cidx || !m->W || !m->fq ||
-      !m->fr || !m->fu || !m->fmu || !m->fd || !m->sq || !m->sv || !m->sst) {
+      !m->fr || !m->fu || !m->fmu || !m->fd || !m->best_r || !m->sq || !m->sv || !m->sst) {
     aq_moreau_free(m);
     aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "blocks", "out of memory");
     return NULL;
@@ -444,8 +450,9 @@ static void from_impulses(aq_moreau *m, int nc, double scale)
 }
 
 /* The whole problem by Siconos; 0 and vnew, pn, pt, or AQ_ENUMERIC. */
-static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
+static aq_status solve_siconos(aq_moreau *m, int *pivots, int *loose, aq_error *err)
 {
+  double best_rel = INFINITY;
   const aq_bodies *s = m->s;
   int nc = 0;
   for (size_t c = 0; c < 2 * m->nj; c++)
@@ -512,8 +519,8 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
   static const struct {
     aq_fc2d_solver solver;
     double eps;
-  } attempts[] = {{AQ_FC2D_LEMKE, 1e-12}, {AQ_FC2D_LEMKE, 1e-10}, {AQ_FC2D_LEMKE, 1e-8},
-                  {AQ_FC2D_NSGS, 1e-12}};
+  } attempts[] = {{AQ_FC2D_LEMKE, 1e-12}, {AQ_FC2D_AP, 1e-12}, {AQ_FC2D_LEMKE, 1e-10},
+                  {AQ_FC2D_AP, 1e-10}, {AQ_FC2D_LEMKE, 1e-8}, {AQ_FC2D_NSGS, 1e-12}};
   for (size_t attempt = 0; attempt < sizeof attempts / sizeof attempts[0]; attempt++) {
     double eps = attempts[attempt].eps;
     for (int i = 0; i < n; i++)
@@ -527,8 +534,16 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
     if (info < 0)
       continue;
     from_impulses(m, nc, qmax / dmax);
-    if (check(m, NULL, tol_u, tol_p) != 0)
+    if (check(m, NULL, tol_u, tol_p) != 0) {
+      /* the best so far of the answers that fail: by the tolerance they meet */
+      for (double r = 10 * rel; r <= LOOSE_REL && r < best_rel; r *= 10)
+        if (check(m, NULL, r * m->vscale, r * m->pscale) == 0) {
+          best_rel = r;
+          memcpy(m->best_r, m->fr, (size_t)n * sizeof *m->fr);
+          break;
+        }
       continue;
+    }
     if (eps > attempts[0].eps) {
       /* polish a looser answer: NSGS from it at the first compliance */
       memcpy(m->keep_v, m->vnew, 3 * m->nb * sizeof *m->keep_v);
@@ -548,6 +563,14 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, aq_error *err)
       memcpy(m->fr, m->keep_pn, (size_t)n * sizeof *m->fr);
       from_impulses(m, nc, qmax / dmax);
     }
+    return AQ_OK;
+  }
+  if (best_rel <= LOOSE_REL) {
+    /* none met its tolerance: the best, within LOOSE_REL of the step's scales
+     * (the chain then tries the state it gives, exactly) */
+    memcpy(m->fr, m->best_r, (size_t)n * sizeof *m->fr);
+    from_impulses(m, nc, qmax / dmax);
+    ++*loose;
     return AQ_OK;
   }
   return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "contact",
@@ -684,7 +707,7 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
     int ok = m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters);
     if (!ok) {
       info->path = AQ_STEP_SICONOS;
-      aq_status rc = solve_siconos(m, &info->pivots, err);
+      aq_status rc = solve_siconos(m, &info->pivots, &info->loose, err);
       if (rc != AQ_OK)
         return rc;
       states_of(m, m->trial);

@@ -132,7 +132,9 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
     out->status = AQ_CAPACITY_NEVER_MOVES;
     return AQ_OK;
   }
-  aq_stepper *st = aq_job_stepper(job->arch, job->model, job->cor, 0, 0, err);
+  aq_stepper *st = job->model == AQ_MODEL_BLOCKS
+                       ? aq_job_stepper_blocks(job->arch, job->blocks_dt_s, 0, err)
+                       : aq_job_stepper(job->arch, job->model, job->cor, 0, 0, err);
   if (!st)
     return err->status;
   run_ctx c = {job, st, out, 0};

@@ -108,6 +108,7 @@ typedef struct {
   double merge_tol_mps2; /* as aq_steps_from_samples (0: one step per sample) */
   double scale_max;      /* cap, or NAN: AQ_CAPACITY_CAP_LAMBDA0 lambda0 g / PGA */
   aq_scan_opts scan;
+  double blocks_dt_s;    /* model AQ_MODEL_BLOCKS: its step, s */
 } aq_capacity_job;
 
 typedef enum {

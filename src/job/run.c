@@ -5,11 +5,69 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../blocks/blocks.h"
 #include "../units.h"
+
+/* ---- the block model as a stepper ------------------------------------ */
+
+static aq_status blocks_run(void *ctx, const aq_steps *steps, double scale, int history,
+                            aq_result *res, aq_error *err)
+{
+  aq_blocks *b = ctx;
+  aq_blocks_set_scale(b, scale);
+  aq_blocks_set_history(b, history);
+  aq_blocks_result br;
+  memset(res, 0, sizeof *res);
+  res->collapse_time_s = NAN;
+  aq_status s = aq_blocks_run(b, steps, &br, err);
+  if (s != AQ_OK)
+    return s;
+  aq_result_bodies *x = calloc(1, sizeof *x);
+  size_t cap = 24 * (br.nhinges + 1);
+  char *hb = malloc(cap), *tb = malloc(cap);
+  if (!x || !hb || !tb) {
+    free(x);
+    free(hb);
+    free(tb);
+    aq_blocks_result_free(&br);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "blocks", "out of memory");
+  }
+  aq_blocks_hinges_text(&br, hb, cap, tb, cap);
+  *res = br.r; /* the common columns; the history moves with them */
+  memset(&br.r, 0, sizeof br.r);
+  /* the joints' demand is the four-hinge model's question (docs/demand.md) */
+  res->mu_demand = res->thrust_ecc_max = res->thrust_ecc_time_s = res->slide_time_s = NAN;
+  *x = (aq_result_bodies){br.max_slip_m, hb, tb, br.mechanism_changed_s, br.steps_siconos,
+                          br.steps_loose, br.nvous, br.hist_x_m, br.hist_y_m,
+                          br.hist_rot_rad};
+  br.hist_x_m = br.hist_y_m = br.hist_rot_rad = NULL;
+  res->bodies = x;
+  aq_blocks_result_free(&br);
+  return AQ_OK;
+}
+
+static double blocks_rest(const void *ctx) { return aq_blocks_rest_since(ctx); }
+static void blocks_free(void *ctx) { aq_blocks_free(ctx); }
+
+aq_stepper *aq_job_stepper_blocks(const aq_arch *arch, double dt_s, int history,
+                                  aq_error *err)
+{
+  aq_blocks *b = aq_blocks_for_arch(arch, dt_s, err);
+  if (!b)
+    return NULL;
+  aq_blocks_set_history(b, history);
+  aq_stepper_delegate d = {b, blocks_run, blocks_rest, blocks_free};
+  aq_stepper *st = aq_stepper_alloc_delegate(AQ_MODEL_BLOCKS, &d, err);
+  if (st)
+    aq_stepper_set_history(st, history);
+  return st;
+}
 
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            int demand, aq_error *err)
 {
+  if (model == AQ_MODEL_BLOCKS)
+    return aq_job_stepper_blocks(arch, AQ_BLOCKS_DT_DEFAULT_S, history, err);
   aq_stepper *st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1), model, err);
   if (!st)
     return NULL;

@@ -29,6 +29,14 @@
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            int demand, aq_error *err);
 
+/* The block model of arch (src/blocks/blocks.h aq_blocks_for_arch: its
+ * friction required) at step dt_s, as a stepper (aq_stepper_alloc_delegate):
+ * its runs fill an aq_result with the block model's own outputs in
+ * res->bodies.  model AQ_MODEL_BLOCKS to aq_job_stepper gives this at the
+ * default step.  NULL (err, field named) when it cannot be made. */
+aq_stepper *aq_job_stepper_blocks(const aq_arch *arch, double dt_s, int history,
+                                  aq_error *err);
+
 /* The dynamics arch's runs use: its impact rule, cor (NAN: the arch's own)
  * over the file's, none (NAN) with the momentum rule. */
 aq_arch_dynamics aq_job_dynamics(const aq_arch *arch, double cor);

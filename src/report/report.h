@@ -33,6 +33,7 @@
 #define AQ_SUMMARY_STATUS_MAX 48
 #define AQ_SUMMARY_POLARITY_MAX 16
 #define AQ_SUMMARY_CONTROL_MAX 8
+#define AQ_SUMMARY_HINGES_MAX 160 /* the block model's hinge lists, truncated with ",..." */
 
 /* An integer result that a failed run did not compute (collapsed, impacts):
  * the text writers show it as "nan", the HDF5 file stores it as is. */
@@ -74,6 +75,13 @@ typedef struct {
   double thrust_ecc_time_s;     /* first time the eccentricity passed 1, s; NAN: never */
   double slide_time_s;          /* first time mu_demand passed the friction given, s; NAN:
                                    never, or no friction given */
+  /* the block model's own (docs/blocks.md); NAN and "-" for the four-hinge
+   * models and a failed run */
+  double max_slip_m;            /* largest tangential slip at any joint, m */
+  char hinges_observed[AQ_SUMMARY_HINGES_MAX]; /* the joints and faces that opened,
+                                                  "0e,6i,12e,19i" ("-": none) */
+  char hinges_first_s[AQ_SUMMARY_HINGES_MAX];  /* their first opening times, s */
+  double mechanism_changed_s;   /* first time the opened set left the arch's sets; NAN: never */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -92,7 +100,8 @@ typedef struct {
  * collapse_time_s peak_rotation_rad peak_displacement_m max_kinetic_energy_j
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
  * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control mu_demand
- * mu_demand_joint thrust_ecc_max thrust_ecc_time_s slide_time_s). */
+ * mu_demand_joint thrust_ecc_max thrust_ecc_time_s slide_time_s max_slip_m
+ * hinges_observed hinges_first_s mechanism_changed_s). */
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 

@@ -38,6 +38,10 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(thrust_ecc_max, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(thrust_ecc_time_s, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(slide_time_s, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(max_slip_m, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(hinges_observed, AQ_SF_STR, 0),
+    AQ_SF_ADDED(hinges_first_s, AQ_SF_STR, 0),
+    AQ_SF_ADDED(mechanism_changed_s, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -45,6 +49,24 @@ const size_t aq_summary_nfields =
 static void copy_str(char *dst, size_t n, const char *src)
 {
   snprintf(dst, n, "%s", src ? src : "");
+}
+
+/* A comma-separated list into dst[n]: "-" when empty, cut at a comma with
+ * ",..." when it does not fit. */
+static void copy_list(char *dst, size_t n, const char *src)
+{
+  if (!src || !*src) {
+    copy_str(dst, n, "-");
+    return;
+  }
+  if (strlen(src) < n) {
+    copy_str(dst, n, src);
+    return;
+  }
+  size_t k = n - 5; /* room for ",..." and the NUL */
+  while (k > 0 && src[k] != ',')
+    k--;
+  snprintf(dst, n, "%.*s,...", (int)k, src);
 }
 
 void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
@@ -66,6 +88,15 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->azimuth_deg = NAN;
   s->mu_demand = s->thrust_ecc_max = s->thrust_ecc_time_s = s->slide_time_s = NAN;
   s->mu_demand_joint = AQ_SUMMARY_INT_NONE;
+  s->max_slip_m = s->mechanism_changed_s = NAN;
+  copy_str(s->hinges_observed, sizeof s->hinges_observed, "-");
+  copy_str(s->hinges_first_s, sizeof s->hinges_first_s, "-");
+  if (res && res->bodies) {
+    s->max_slip_m = res->bodies->max_slip_m;
+    s->mechanism_changed_s = res->bodies->mechanism_changed_s;
+    copy_list(s->hinges_observed, sizeof s->hinges_observed, res->bodies->hinges_observed);
+    copy_list(s->hinges_first_s, sizeof s->hinges_first_s, res->bodies->hinges_first_s);
+  }
   if (res && !isnan(res->mu_demand)) {
     s->mu_demand = res->mu_demand;
     s->mu_demand_joint = (int64_t)res->mu_demand_joint;
