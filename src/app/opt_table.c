@@ -439,18 +439,26 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                       .help = "the page of a PDF (default: the locale's paper, LC_PAPER, else "
                               "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
-                    .cmds = C(PLOT_HISTORY),
+                    .cmds = C(PLOT_HISTORY) | C(PLOT_ARCH),
                     .help = "the run to draw: a group under /histories, e.g. "
-                            "00000_000_000 (default: the first run with histories)"},
+                            "00000_000_000 (default: the first run with histories; plot "
+                            "arch: a run of --model blocks, every voussoir as its history "
+                            "has it, at --at)"},
     [AQ_OPT_RECORD] = {.name = "record", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(record),
                        .cmds = C(PLOT_SPECTRUM),
                        .help = "the record (or --components pair) of a spectrum file to draw, "
                                "as its record column says or by file name (default: all)"},
     [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
                          .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
+                         .conflicts = OPTS(AQ_OPT_RUN),
                          .help = "draw the mechanism deformed at that rotation of body 1: "
                                  "the primary set if RAD > 0, the reverse set if RAD < 0, "
                                  "|RAD| <= q_c"},
+    [AQ_OPT_AT] = {.name = "at", .kind = AQ_ARG_LIST, .lo = -1e3, .hi = 1e5, .meta = "LIST",
+                   DEST_LIST(at_s, nat), .cmds = C(PLOT_ARCH), .requires = OPTS(AQ_OPT_RUN),
+                   .help = "with --run: the record times (s) to draw the voussoirs at, at "
+                           "most 6, e.g. 1.2,1.5 (within the run's history; default: the "
+                           "time of voussoir 0's largest |rotation|); the last is filled"},
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
@@ -876,6 +884,8 @@ static const char plot_head[] =
     "  arch --arch ARCH [--rotation RAD]   the arch to scale, its voussoirs and\n"
     "        both hinge sets; with --rotation the mechanism deformed at that\n"
     "        rotation of body 1\n"
+    "  arch RESULTS.h5 --run KEY [--at LIST]   a run of --model blocks stored\n"
+    "        with --history: every voussoir at those times over the arch\n"
     "  domain --arch ARCH [--ratios LIST] [--cor C]   the half-cycle collapse\n"
     "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
     "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
@@ -889,9 +899,10 @@ static const char plot_head[] =
     "        collapses, a tick at each change, its first collapse beside it\n"
     "        (R: it survives again above a collapse); below, the lognormal\n"
     "        fragility of IM (pga_g, pgv_m_s, pgd_m, arias_m_s, cav_m_s,\n"
-    "        pga_lambda0; default pga_g) over the empirical fraction of\n"
-    "        first collapses, censored records at their cap, and the band of\n"
-    "        the median's interval\n"
+    "        pga_lambda0, or a spectral measure the file's fits hold:\n"
+    "        sa_0.2s_g, sa_avg_0.1_1s_g; default pga_g) over the empirical\n"
+    "        fraction of first collapses, censored records at their cap, and\n"
+    "        the band of the median's interval\n"
     "  spectrum SPECTRA.h5 [--record NAME]   a file of archquake spectrum -o:\n"
     "        pseudo-spectral acceleration (g) against period (s, log axis), one\n"
     "        curve per record, component and damping\n"
@@ -1210,6 +1221,7 @@ void aq_opts_free(aq_opts *o)
   free(o->arches);
   free(o->scales);
   free(o->ratios);
+  free(o->at_s);
   free(o->periods);
   free(o->dampings);
   free(o->period_grid);
