@@ -597,3 +597,160 @@ AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
   if (getenv("AQ_TEST_VERBOSE"))
     printf("regions: %zu boxes, %zu points\n", boxes, points);
 }
+
+/* A run in which the arch never moves: the least friction with which a
+ * line of thrust stands at the record's peak (docs/demand.md, "A run that
+ * never moves").  The test scans its own samples for each direction's peak
+ * load a / (g + a_v) at the run's polarity and asks the linear program
+ * (friction.c, solved here at that load, not read from the arch's table)
+ * for the least friction there; the run's demand is the larger of the
+ * two, within the table's error (5.4e-5 relative on the shipped arches:
+ * test_arch_friction).  Over a limit between two of the record's running
+ * peaks, the run slides at the first sample whose load needs more than the
+ * limit (the least friction grows with the load: the first sample past it
+ * is a running peak of its direction). */
+#define STILL_REL 1e-4
+
+static double still_lp(const aq_arch *A, int act, double lam, size_t *joint)
+{
+  double mu = NAN;
+  aq_error e;
+  aq_check(aq_friction_least(aq_arch_geom(A), act, lam, &mu, joint, &e) == AQ_OK,
+           "the program at %g: %s", lam, e.message);
+  return mu;
+}
+
+AQ_TEST(arch_demand_still_is_the_statics_at_the_peak)
+{
+  gsl_set_error_handler_off();
+  unsigned long long rng = 0x5711ULL;
+  size_t runs = 0, slides = 0, joints = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    aq_arch_options o = {.friction_table = 1};
+    if (!aq_check(aq_arch_load_opts(shipped[f], &o, &A, &e) == AQ_OK, "load %s: %s",
+                  shipped[f], e.message))
+      continue;
+    const aq_path *p0 = aq_arch_path(A, 0), *p1 = aq_arch_path(A, 1);
+    double g = p0->g_mps2, lmin = INFINITY;
+    for (int k = 0; k < 2; k++)
+      if (aq_arch_path(A, k) && aq_arch_path(A, k)->admissible)
+        lmin = fmin(lmin, aq_arch_path(A, k)->lambda0);
+    for (int r = 0; r < 3; r++) {
+      /* below either set's threshold at either polarity; one direction
+       * larger than the other; r = 2 with a vertical acceleration */
+      enum { N = 600 };
+      double acc[N], av[N], fpos = r == 1 ? 0.35 : 0.9, fneg = r == 1 ? 0.9 : 0.5;
+      int vert = r == 2;
+      for (int i = 0; i < N; i++) {
+        double u = 2 * tds_rng(&rng) - 1;
+        av[i] = vert ? 0.2 * g * (2 * tds_rng(&rng) - 1) : 0;
+        acc[i] = u * lmin * (vert ? 0.8 : 1) * g * (u > 0 ? fpos : fneg);
+      }
+      aq_steps steps;
+      if (!aq_check(aq_steps_from_samples(acc, N, 0.01, 0.5, 0, &steps, &e) == AQ_OK, "steps"))
+        continue;
+      if (vert && !aq_check(aq_steps_set_vertical(&steps, av, &e) == AQ_OK, "vertical"))
+        continue;
+      for (int pol = -1; pol <= 1; pol += 2) {
+        /* the test's own peaks, and the running peaks in time */
+        double peak[2] = {0, 0}, mu[2];
+        size_t first[2] = {0, 0}, jt[2] = {0, 0};
+        double run_mu[N];
+        for (int i = 0; i < N; i++) {
+          double load = pol * acc[i] / (g + av[i]);
+          int k = load > 0;
+          run_mu[i] = NAN;
+          if (fabs(load) > peak[k]) {
+            peak[k] = fabs(load);
+            first[k] = (size_t)i;
+            run_mu[i] = still_lp(A, 2 * k - 1, peak[k], NULL);
+          }
+        }
+        for (int k = 0; k < 2; k++)
+          mu[k] = still_lp(A, 2 * k - 1, peak[k], &jt[k]);
+        int gk = mu[1] > mu[0] || (mu[1] == mu[0] && first[1] < first[0]);
+        double want = mu[gk];
+        /* a limit between the running largest demand before a sample and
+         * that sample's (a jump of more than 1 %, the last one): the first
+         * sample that needs more than the limit */
+        double lim = NAN, prev = still_lp(A, 1, 0, NULL), want_t = NAN;
+        for (int i = 0; i < N; i++) {
+          if (isnan(run_mu[i]))
+            continue;
+          if (run_mu[i] > prev * 1.01) {
+            lim = 0.5 * (prev + run_mu[i]);
+            want_t = 0.5 + 0.01 * i;
+          }
+          prev = fmax(prev, run_mu[i]);
+        }
+        for (int with = 0; with < 2; with++) {
+          aq_stepper *st = aq_stepper_alloc(p0, p1, AQ_MODEL_WORKPATH, &e);
+          aq_stepper_set_scale(st, pol);
+          aq_stepper_set_demand(st, aq_arch_demand_tracker(A, with ? lim : NAN, &e));
+          aq_result res;
+          if (!aq_check(aq_stepper_run(st, &steps, &res, &e) == AQ_OK, "runs: %s", e.message)) {
+            aq_stepper_free(st);
+            continue;
+          }
+          runs++;
+          aq_check(res.first_set < 0, "%s r %d pol %d: never moves", shipped[f], r, pol);
+          aq_check_rel(res.mu_demand, want, STILL_REL,
+                       "%s r %d pol %+d: mu_demand against the program at the peaks %g (-) %g (+)",
+                       shipped[f], r, pol, peak[0], peak[1]);
+          joints += res.mu_demand_joint == jt[gk];
+          aq_check(isnan(res.thrust_ecc_max), "no thrust eccentricity at rest");
+          if (with && !isnan(lim)) {
+            slides++;
+            aq_check(res.slide_time_s == want_t,
+                     "%s r %d pol %+d: slides over %g at %.17g, expected %.17g", shipped[f], r,
+                     pol, lim, res.slide_time_s, want_t);
+          } else {
+            aq_check(isnan(res.slide_time_s), "no limit: no slide");
+          }
+          aq_result_free(&res);
+          aq_stepper_free(st);
+        }
+      }
+      aq_steps_free(&steps);
+    }
+    /* a run that moves is the tracker's alone: the same results, to the
+     * bit, without the statics */
+    for (int k = 0; k < 2; k++) {
+      const aq_path *p = aq_arch_path(A, k);
+      if (!p || !p->admissible)
+        continue;
+      aq_steps steps;
+      double acc[60];
+      for (int i = 0; i < 60; i++)
+        acc[i] = i < 20 ? p->act_sign * 1.3 * p->lambda0 * g : 0;
+      if (!aq_check(aq_steps_from_samples(acc, 60, 0.01, 0, 0, &steps, &e) == AQ_OK, "steps"))
+        continue;
+      aq_result res[2];
+      for (int w = 0; w < 2; w++) {
+        aq_stepper *st = aq_stepper_alloc(p0, p1, AQ_MODEL_WORKPATH, &e);
+        aq_demand *d = aq_arch_demand_tracker(A, 0.5, &e);
+        if (w)
+          aq_demand_set_least(d, NULL, NULL);
+        aq_stepper_set_demand(st, d);
+        aq_check(aq_stepper_run(st, &steps, &res[w], &e) == AQ_OK, "runs");
+        aq_stepper_free(st);
+      }
+      aq_check(res[0].first_set == k, "%s: set %d moves", shipped[f], k);
+      aq_check(memcmp(&res[0].mu_demand, &res[1].mu_demand, sizeof(double)) == 0 &&
+                   res[0].mu_demand_joint == res[1].mu_demand_joint &&
+                   memcmp(&res[0].slide_time_s, &res[1].slide_time_s, sizeof(double)) == 0 &&
+                   memcmp(&res[0].thrust_ecc_max, &res[1].thrust_ecc_max, sizeof(double)) == 0,
+               "%s set %d: a run that moves, with and without the statics", shipped[f], k);
+      aq_result_free(&res[0]);
+      aq_result_free(&res[1]);
+      aq_steps_free(&steps);
+    }
+    aq_arch_free(A);
+  }
+  aq_check(slides >= runs / 4, "slides checked in %zu of %zu runs", slides, runs);
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("still runs %zu, slide times %zu, joints as the program's %zu\n", runs, slides,
+           joints);
+}

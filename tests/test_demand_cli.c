@@ -41,9 +41,10 @@ AQ_TEST(demand_cli_columns_and_marks)
   /* El Centro at 2 on oppenheim (fixed) and on search (free): both move */
   const char *recs = "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 records/RSN1616_DUZCE_362-E.AT2";
   char cmd[1024], buf[64];
-  double mu[2][2], ecc[2][2];
-  static const char *const fr[2] = {"0.6", "5"};
-  for (int f = 0; f < 2; f++) {
+  double mu[3][2], ecc[3][2];
+  static const char *const fr[3] = {"0.6", "5", "0.33"};
+  size_t still = 0, still_slides = 0;
+  for (int f = 0; f < 3; f++) {
     snprintf(cmd, sizeof cmd, "%s --arch arches/oppenheim.cfg --arch arches/search.cfg --scale 2 "
                               "--friction %s",
              recs, fr[f]);
@@ -65,12 +66,17 @@ AQ_TEST(demand_cli_columns_and_marks)
       str(out, row, cc, ctl, sizeof ctl);
       double m = num(out, row, cm), e = num(out, row, ce), ts = num(out, row, csl),
              te = num(out, row, ct), l0 = num(out, row, cl);
-      if (isnan(l0)) { /* never moved: nothing asked in motion */
-        aq_check(isnan(m) && isnan(e) && strcmp(st, "ok") == 0,
-                 "row %d never moved: mu %g ecc %g status %s", row, m, e, st);
+      double fric = strtod(fr[f], NULL);
+      if (isnan(l0)) { /* never moved: the statics at the record's peak, no thrust */
+        still++;
+        still_slides += m > fric;
+        aq_check(m > 0 && isfinite(m) && isnan(e) && isnan(te) &&
+                     strcmp(st, m > fric ? "slides" : "ok") == 0 &&
+                     (m > fric ? ts >= 0 : isnan(ts)),
+                 "row %d never moved (friction %s): mu %g ecc %g status %s slide %g", row,
+                 fr[f], m, e, st, ts);
         continue;
       }
-      double fric = strtod(fr[f], NULL);
       int slides = m > fric, beyond = strcmp(ctl, "free") == 0 && e > 1;
       const char *want = slides && beyond ? "slides+beyond" : slides ? "slides" : beyond ? "beyond" : "ok";
       aq_check(strcmp(st, want) == 0, "row %d (%s, friction %s, mu_demand %g, thrust %g): status %s, "
@@ -83,14 +89,17 @@ AQ_TEST(demand_cli_columns_and_marks)
         ecc[f][row / 2] = e;
       }
     }
-    aq_check(strcmp(str(out, 1, cs, buf, sizeof buf), f == 0 ? "slides" : "ok") == 0,
-             "El Centro x2 on oppenheim: it slides at mu = 0.6, not at 5 (%s)", buf);
-    aq_check(strcmp(str(out, 3, cs, buf, sizeof buf), f == 0 ? "beyond" : "beyond") == 0,
+    aq_check(strcmp(str(out, 1, cs, buf, sizeof buf), f == 1 ? "ok" : "slides") == 0,
+             "El Centro x2 on oppenheim: it slides at mu = 0.6 and 0.33, not at 5 (%s)", buf);
+    aq_check(strcmp(str(out, 3, cs, buf, sizeof buf), f == 2 ? "slides+beyond" : "beyond") == 0,
              "El Centro x2 on search (free): beyond (%s)", buf);
   }
   /* the friction marks the verdict, it does not change the motion */
   for (int a = 0; a < 2; a++)
-    aq_check(mu[0][a] == mu[1][a] && ecc[0][a] == ecc[1][a], "arch %d: the same demand at any friction", a);
+    aq_check(mu[0][a] == mu[1][a] && ecc[0][a] == ecc[1][a] && mu[2][a] == mu[1][a],
+             "arch %d: the same demand at any friction", a);
+  aq_check(still == 12 && still_slides >= 2, "runs that never moved: %zu, %zu of them slide",
+           still, still_slides);
   /* without a friction nothing slides */
   int rc = aq_test_run("records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch arches/oppenheim.cfg "
                        "--scale 2",

@@ -540,11 +540,20 @@ static const aq_demand_table *demand_get(void *ctx, int set)
   return aq_arch_demand_table(ctx, set);
 }
 
+/* A run that never moves: the statics' least friction (aq_arch_mu_least,
+ * NAN without the arch's table). */
+static double demand_least(void *ctx, int act_sign, double lambda, size_t *joint)
+{
+  return aq_arch_mu_least(ctx, act_sign, lambda, joint);
+}
+
 aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err)
 {
   aq_demand *d = aq_demand_alloc(demand_get, (void *)a, err);
-  if (d)
+  if (d) {
     aq_demand_set_limit(d, mu_limit);
+    aq_demand_set_least(d, demand_least, (void *)a);
+  }
   return d;
 }
 

@@ -28,6 +28,7 @@
 #include <stddef.h>
 
 #include "../error.h"
+#include "../signal/steps.h"
 #include "model.h"
 
 typedef struct {
@@ -125,6 +126,24 @@ void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, dou
  * in the distance, then the end itself, at record time t_s. */
 void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t rev,
                    double a_mps2, double g_mps2, double t_s);
+/* ---- a run in which the arch never moves ----
+ * Its demand is that of the statics: the least friction with which a line
+ * of thrust stands at the record's peak (docs/demand.md, "A run that never
+ * moves").  least(ctx, act_sign, lambda, joint) gives that friction under a
+ * ground acceleration lambda g of sign act_sign (lambda >= 0; INFINITY: no
+ * line of thrust stands; NAN: unknown), nondecreasing in lambda, and the
+ * joint where it is needed.  Without it (NULL) such a run's demand is NAN. */
+typedef double (*aq_demand_least_fn)(void *ctx, int act_sign, double lambda, size_t *joint);
+void aq_demand_set_least(aq_demand *d, aq_demand_least_fn least, void *ctx);
+/* The run that began with aq_demand_begin ended with the arch at rest
+ * throughout, on steps[0..n_end) scaled by scale (vertical by vscale) under
+ * gravity g_mps2: each direction's peak of the ground acceleration over
+ * g + a_v drives its own act_sign; the demand is the larger of the two
+ * directions' least friction, its joint, and (over the limit) the first
+ * step whose load needs more than the limit.  No effect on a run that
+ * moved. */
+void aq_demand_still(aq_demand *d, const aq_steps *steps, size_t n_end, double scale,
+                     double vscale, double g_mps2);
 void aq_demand_get(const aq_demand *d, aq_demand_result *r);
 /* For the tests: the box of set k's states (s0 s1 in rad, a/g, KE/g in
  * J s^2/m) in which no joint exceeds the running maxima; 0 when there is

@@ -670,6 +670,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->thrust_ecc_time_s = res->slide_time_s = NAN;
   if (dem) {
     aq_demand_result dr;
+    if (res->first_set < 0) /* never moved: the statics at the record's peak */
+      aq_demand_still(dem, steps, n_end, scale, vscale, g_min);
     aq_demand_get(dem, &dr);
     res->mu_demand = dr.mu_max;
     res->mu_demand_joint = dr.mu_joint;
