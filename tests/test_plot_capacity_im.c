@@ -110,3 +110,18 @@ AQ_TEST(plot_capacity_im_spectral_measure)
                strstr(err, "sa_avg_0.1_1s_g), got \"sa_3s_g\""),
            "an IM not in the file: exit %d %s", rc, err);
 }
+
+/* plot --help says so: the capacity figure's paragraph names the spectral
+ * measures among those --im takes, as --im's own line does. */
+AQ_TEST(plot_capacity_im_help)
+{
+  static char out[1 << 16];
+  char err[2048];
+  int rc = aq_test_run("plot --help", out, sizeof out, err, sizeof err);
+  const char *fig = strstr(out, "  capacity CAPACITY.h5");
+  const char *end = fig ? strstr(fig, "\n  spectrum SPECTRA.h5") : NULL;
+  const char *sa = fig ? strstr(fig, "sa_avg_0.1_1s_g") : NULL;
+  const char *opt = strstr(out, "  --im IM");
+  aq_check(rc == 0 && end && sa && sa < end && opt && strstr(opt, "sa_avg_0.1_1s_g"),
+           "plot --help: the capacity figure and --im both name sa_avg_0.1_1s_g:\n%s", out);
+}

@@ -8,12 +8,15 @@
  *   - a shortened name standing for one name only.
  * The figures: history (a collapse and a small response), arch (from a
  * .cfg, deformed, and from a results file), domain, suite, capacity (three
- * ways: --arch, --y pga --x rad, --im of a spectral measure) and spectrum,
+ * ways: --arch, --y pga --x rad, --im of a spectral measure), spectrum and
+ * spectrum of a select file (a target CSV of a long name with '#' in it),
  * drawn from records whose names are long and alike (two of them differ
  * only in their middle, as the Loma Prieta pair GIL067 and GIL337) and an
  * arch of a long name.
- * Besides: the capacity figure's fragility key on none of its data, and
- * aq_plot_ellipsize_set's labels against the names they shorten. */
+ * Besides: the capacity figure's fragility key on none of its data and its
+ * scale axis' ticks off its strips, the spectrum figures' keys shortening
+ * no name that fits, and aq_plot_ellipsize_set's labels against the names
+ * they shorten. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,15 +53,24 @@ static int make_inputs(const char *dir)
            dir, dir, dir);
   if (!aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "%s: %s", cmd, out))
     return 0;
-  const char *jobs[3] = {
+  const char *jobs[4] = {
       "'%s/" LONG_A "' '%s/" LONG_B "' " REC "IELC180.AT2 --arch arches/thin.cfg --arch "
       "arches/bridge.cfg --arch '%s/long.cfg' --scale 1,2 --history -q -o '%s/m.h5'",
       "capacity '%s/" LONG_A "' '%s/" LONG_B "' " REC "IELC180.AT2 --arch arches/thin.cfg "
       "--arch '%s/long.cfg' --scale-max 3 -o '%s/c.h5' > /dev/null",
       "spectrum '%s/" LONG_A "' '%s/" LONG_B "' --components " REC
       "RSN6_IMPVALL.I_I-ELC180-hor1.AT2," REC "RSN6_IMPVALL.I_I-ELC270-hor2.AT2 -o '%s/s.h5%s' "
-      "> /dev/null"};
-  for (int k = 0; k < 3; k++) {
+      "> /dev/null",
+      "select '%s/" LONG_A "' '%s/" LONG_B "' " REC "IELC180.AT2 " REC "ARL360.at2 " REC
+      "CHY028-N.AT2 " REC "RSN4843_CHUETSU_65006NS.AT2 --target '%s/target#A.csv' "
+      "--count 6 --scale-range 0.1,10 -o '%s/sel.h5' > /dev/null"};
+  /* a target of a long name with a '#' in it (drawn as it is) */
+  snprintf(cmd, sizeof cmd,
+           "printf 'period_s,psa_g\\n0.01,0.3\\n0.15,0.75\\n0.5,0.75\\n2,0.19\\n4,0.05\\n' "
+           "> '%s/target#A.csv'", dir);
+  if (!aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "%s: %s", cmd, out))
+    return 0;
+  for (int k = 0; k < 4; k++) {
     snprintf(cmd, sizeof cmd, jobs[k], dir, dir, dir, k == 2 ? "" : dir);
     int rc = aq_test_run(cmd, NULL, 0, err, sizeof err);
     if (!aq_check(rc == 0, "%s: exit %d %s", cmd, rc, err))
@@ -68,8 +80,9 @@ static int make_inputs(const char *dir)
   snprintf(cmd, sizeof cmd,
            "printf '%%s\\n' '" LONG_A "' '" LONG_B "' IELC180.AT2 thin bridge '" LONG_ARCH
            "' RSN6_IMPVALL.I_I-ELC180-hor1.AT2 RSN6_IMPVALL.I_I-ELC270-hor2.AT2 "
-           "'RSN6_IMPVALL.I_I-ELC{180-hor1,270-hor2}.AT2' > '%s/names.txt'",
-           dir);
+           "'RSN6_IMPVALL.I_I-ELC{180-hor1,270-hor2}.AT2' ARL360.at2 CHY028-N.AT2 "
+           "RSN4843_CHUETSU_65006NS.AT2 '%s/target#A.csv' > '%s/names.txt'",
+           dir, dir);
   return aq_check(aq_test_sh(cmd, out, sizeof out) == 0, "names: %s", out);
 }
 
@@ -93,7 +106,8 @@ AQ_TEST(plot_labels_every_figure)
       {"capacity", "capacity %1$s/c.h5"},
       {"capacity-pga", "capacity %1$s/c.h5 --arch " LONG_ARCH " --y pga --x rad"},
       {"capacity-sa", "capacity %1$s/c.h5 --im sa_avg_0.1_1s_g"},
-      {"spectrum", "spectrum %1$s/s.h5"}};
+      {"spectrum", "spectrum %1$s/s.h5"},
+      {"spectrum-select", "spectrum %1$s/sel.h5"}};
   enum { NFIG = sizeof fig / sizeof fig[0] };
   char list[8192], args[2048], a[1024], err[2048];
   size_t n = (size_t)snprintf(list, sizeof list, "--names '%s/names.txt'", dir);
@@ -120,6 +134,11 @@ AQ_TEST(plot_labels_every_figure)
   if (suite)
     sscanf(suite, "\nsuite: %d words (PDF), %d words (SVG), %d shortened", &npw, &nsw, &nshort);
   aq_check(nshort >= 2, "the suite's names shortened: %d (%d words)", nshort, npw);
+  /* a name with '#' drawn as it is, not "##" */
+  snprintf(cmd, sizeof cmd, "pdftotext -raw '%s/spectrum-select.pdf' -", dir);
+  rc = aq_test_sh(cmd, out, sizeof out);
+  aq_check(rc == 0 && strstr(out, "#A.csv") && !strstr(out, "##"),
+           "the target's name with its '#' once:\n%s", out);
 }
 
 /* The fragility's key is below its axis, on none of its data: every word
@@ -246,4 +265,95 @@ AQ_TEST(plot_labels_shortened_names_distinct)
   aq_plot_ellipsize_set(pair, 2, 30, out[0], sizeof out[0]);
   aq_check(strstr(out[0], "067") && strstr(out[1], "337"),
            "names alike but for their middle show it: \"%s\", \"%s\"", out[0], out[1]);
+}
+
+/* A key shortens a name only when the names do not fit whole: plot
+ * spectrum of a select file (the target, 90 %, the mean and six records:
+ * two columns) and of a spectrum file of nine records (two columns), every
+ * name at most 32 characters, the target "ec8:type=1,ground=B,ag=0.25":
+ * each written whole in the PDF (pdftotext), no ellipsis anywhere. */
+AQ_TEST(plot_labels_key_whole_where_it_fits)
+{
+  if (!have_tools())
+    return;
+  char dir[512], args[8192], err[2048], cmd[1024];
+  static char out[1 << 16];
+  aq_test_tmpdir(dir, sizeof dir);
+  static const char *const rec[] = {
+      "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
+      "RSN77_SFERN_PUL164-hor1.AT2", "RSN4843_CHUETSU_65006NS.AT2",
+      "RSN4013_SANSIMEO_36258021.AT2", "RSN763_LOMAP_GIL067.AT2", "RSN763_LOMAP_GIL337.AT2",
+      "RSN1616_DUZCE_362-E.AT2", "ARL360.at2"};
+  enum { NREC = sizeof rec / sizeof rec[0] };
+  char pool[2048];
+  size_t n = 0;
+  for (size_t i = 0; i < NREC; i++)
+    n += (size_t)snprintf(pool + n, sizeof pool - n, REC "%s ", rec[i]);
+  snprintf(args, sizeof args,
+           "select %s--target ec8:type=1,ground=B,ag=0.25 --count 6 --scale-range 0.1,10 "
+           "-o '%s/sel.h5' > /dev/null && %s spectrum %s-o '%s/s.h5' > /dev/null",
+           pool, dir, aq_test_bin(), pool, dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  if (!aq_check(rc == 0, "%s: exit %d %s", args, rc, err))
+    return;
+  static const char *const file[] = {"sel", "s"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(args, sizeof args, "plot spectrum '%s/%s.h5' -o '%s/%s.pdf'", dir, file[k], dir,
+             file[k]);
+    rc = aq_test_run(args, NULL, 0, err, sizeof err);
+    if (!aq_check(rc == 0, "%s: exit %d %s", args, rc, err))
+      continue;
+    snprintf(cmd, sizeof cmd, "pdftotext -raw '%s/%s.pdf' -", dir, file[k]);
+    rc = aq_test_sh(cmd, out, sizeof out);
+    size_t whole = 0;
+    for (size_t i = 0; i < NREC; i++)
+      whole += strstr(out, rec[i]) != NULL;
+    aq_check(rc == 0 && !strstr(out, "…") && whole >= (k ? NREC : 6) &&
+                 (k || strstr(out, "target ec8:type=1,ground=B,ag=0.25")),
+             "plot spectrum of the %s file: every name whole (%zu of the records, no "
+             "ellipsis):\n%s", k ? "spectrum" : "select", whole, out);
+  }
+}
+
+/* The capacity figure's scale axis ticks outwards, off the strips: the
+ * last strip ends a few points above the axis, and ticks drawn inwards
+ * crossed it.  Two records far apart in strength (CHY028 and RSN1616), so
+ * that each strip spans less of the axis than 40 % of the width.  The SVG
+ * drawn without its text (tests/plot_labels.py): the axis the topmost
+ * line dark over 40 % of the width; its tick marks the dark columns 3 and 4
+ * pixels below it; at most a fifth of them also dark 3 and 4 pixels above
+ * it (where a verdict's change line may reach the axis). */
+AQ_TEST(plot_labels_capacity_ticks_off_the_strips)
+{
+  if (!have_tools())
+    return;
+  char dir[512], args[2048], err[2048], cmd[2048];
+  static char out[1 << 12];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(args, sizeof args,
+           "capacity " REC "CHY028-N.AT2 " REC "RSN1616_DUZCE_362-E.AT2 --arch arches/thin.cfg "
+           "-o '%s/c.h5' > /dev/null && %s plot capacity '%s/c.h5' -o '%s/c.svg'",
+           dir, aq_test_bin(), dir, dir);
+  int rc = aq_test_run(args, NULL, 0, err, sizeof err);
+  if (!aq_check(rc == 0, "%s: exit %d %s", args, rc, err))
+    return;
+  snprintf(cmd, sizeof cmd,
+           "/usr/bin/python3 -c \"import sys, tempfile\n"
+           "sys.path.insert(0, 'tests')\n"
+           "import plot_labels as L\n"
+           "img = L.raster_without_text(sys.argv[1], tempfile.mkdtemp()).astype(int)\n"
+           "h, w, _ = img.shape\n"
+           "dark = img.max(axis=2) < 100\n"
+           "y = min(y for y in range(h) if dark[y].sum() > 0.4 * w)\n"
+           "xs = dark[y].nonzero()[0]\n"
+           "s = slice(xs.min() + 3, xs.max() - 3)\n"
+           "below = dark[y + 3, s] & dark[y + 4, s]\n"
+           "above = dark[y - 3, s] & dark[y - 4, s]\n"
+           "nb, both = int(below.sum()), int((below & above).sum())\n"
+           "print('axis at y %%d: %%d tick columns below it, %%d also marked above it' %% (y, nb, both))\n"
+           "sys.exit(0 if nb >= 5 and both <= 0.2 * nb else 1)\n"
+           "\" '%s/c.svg'",
+           dir);
+  rc = aq_test_sh(cmd, out, sizeof out);
+  aq_check(rc == 0, "the scale axis' ticks outwards, off the strips: %s", out);
 }

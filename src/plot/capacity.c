@@ -499,7 +499,7 @@ static int draw(void *ctx, aq_error *err)
     plmtex("rv", 0.8, ymid, 0, c->fc[k]);
   }
   plcol0(AQ_PC_FG);
-  plbox(c->logy ? "bnstlf" : "bnst", 0, 0, "", 0, 0);
+  plbox(c->logy ? "bnstlfi" : "bnsti", 0, 0, "", 0, 0); /* ticks out, off the last strip */
   plmtex("b", 3.0, 0.5, 0.5, yt);
   /* the titles and the column's head */
   page_mm(c);

@@ -160,6 +160,36 @@ void aq_plot_ellipsize(const char *s, size_t max_chars, char *out, size_t cap);
  * first differs from the others ("…LOMAP_GIL067…"). */
 void aq_plot_ellipsize_set(const char *const *names, size_t n, size_t max_chars, char *out,
                            size_t cap);
+/* The same measured: names[n] shortened alike (aq_plot_ellipsize_set) to
+ * the most characters at which each, escaped, is at most room_mm[i] wide
+ * at the current character height: every name whole when all fit. */
+void aq_plot_shorten_set_to(const char *const *names, size_t n, const double *room_mm,
+                            char *out, size_t cap);
+/* A key below a figure's plot: entry i a line (color, style, width) and
+ * the text pre + name + post (pre and post drawn as written, with PLplot's
+ * escapes; name escaped, and shortened only when it must be, the names
+ * kept distinct), in one or two columns filled down, then across.
+ * aq_plot_key_columns (before plinit) chooses them for a figure width_px
+ * wide, the key in x0 .. x1 of the width, its text text_mm high
+ * (aq_plot_text_height): one column up to
+ * AQ_PLOT_KEY_ONE_COLUMN entries; beyond, two when their whole texts fit
+ * side by side, else one up to AQ_PLOT_KEY_ROWS_MAX entries, else two.
+ * aq_plot_key_below (between plinit and plend, the character height as
+ * set) draws it in the viewport x0 .. x1, y0 .. y1 (fractions of the
+ * figure): the second column past the first's widest text, names whole
+ * where they fit; else each column a share of the width in proportion to
+ * its whole texts, their names shortened alike to fit it, measured. */
+enum { AQ_PLOT_KEY_ONE_COLUMN = 8, AQ_PLOT_KEY_ROWS_MAX = 20 };
+typedef struct {
+  int color, style;
+  double width;
+  const char *pre, *name, *post;
+} aq_plot_key;
+size_t aq_plot_key_columns(const aq_plot_key *key, size_t n, double x0, double x1, int width_px,
+                           double text_mm);
+size_t aq_plot_key_rows(size_t n, size_t ncol);
+void aq_plot_key_below(const aq_plot_key *key, size_t n, size_t ncol, double x0, double x1,
+                       double y0, double y1);
 /* Between plinit and plend: how many characters of a file name fit in
  * width_frac of the page's width at the current character height. */
 size_t aq_plot_chars_fit(double width_frac);
@@ -284,7 +314,8 @@ typedef struct {
   const aq_target *target;
   const char *target_name;    /* in the legend */
   double band;                /* 0.9 */
-  const char *title;
+  const char *title_pre, *title_name, *title_post; /* the title: title_name (a file's name,
+                                                      not escaped) shortened only to fit */
 } aq_plot_target_set;
 
 aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const char *data,

@@ -27,32 +27,21 @@ typedef struct {
   double tt[NTARGET], ta[NTARGET]; /* the target over them, s and g */
   size_t nt;
   double amax;
+  aq_plot_key *key; /* the target, 90 % of it, the mean, each record */
+  size_t nkey, ncol;
+  char band_text[80], mean_text[80];
 } fig;
 
-static size_t legend_rows(size_t n)
-{
-  size_t entries = n + 3; /* the records, the mean, the target, 90 % */
-  return entries > 8 ? (entries + 1) / 2 : entries;
-}
+/* the key's ends, fractions of the figure's width */
+static const double KEY_X0 = 0.03, KEY_X1 = 0.97;
 
-static int fig_height(size_t n)
-{
-  return TOP_PX + PLOT_PX + GAP_PX + ROW_PX * (int)legend_rows(n) + PAD_PX;
-}
+/* the text's height, mm of the figure (72 points an inch): the axes' and
+   title's, the key's; the same however tall the key makes the figure */
+static const double TEXT_MM = 5.85, KEY_MM = 4.9;
 
-static void legend_entry(size_t k, size_t nrow, size_t ncol, int color, int style, double w,
-                         const char *text)
+static int fig_height(size_t nrow)
 {
-  double x = ncol > 1 && k >= nrow ? 0.5 : 0.0, y = (double)(k % nrow) + 0.5;
-  PLFLT lx[2] = {x + 0.01, x + 0.07}, ly[2] = {y, y};
-  plcol0(color);
-  pllsty(style);
-  plwidth(w);
-  plline(2, lx, ly);
-  pllsty(1);
-  plwidth(1);
-  plcol0(AQ_PC_FG);
-  plptex(x + 0.085, y, 1, 0, 0, text);
+  return TOP_PX + PLOT_PX + GAP_PX + ROW_PX * (int)nrow + PAD_PX;
 }
 
 static int draw(void *ctx, aq_error *err)
@@ -62,8 +51,8 @@ static int draw(void *ctx, aq_error *err)
   const aq_plot_target_set *s = F->s;
   double x0 = log10(F->tlo), x1 = log10(F->thi), y1 = 1.08 * F->amax;
   pladv(0);
-  plschr(0, 0.95);
-  double h = (double)fig_height(s->n);
+  aq_plot_text_height(TEXT_MM);
+  double h = (double)fig_height(aq_plot_key_rows(F->nkey, F->ncol));
   double gap = GAP_PX / h, bottom = (h - PLOT_PX - TOP_PX) / h;
   plvpor(0.1, 0.96, bottom, 1 - TOP_PX / h);
   plwind(x0, x1, 0, y1);
@@ -119,32 +108,18 @@ static int draw(void *ctx, aq_error *err)
   free(y);
   plcol0(AQ_PC_FG);
   plbox("bclnst", 0, 0, "bcnstv", 0, 0);
-  char title[400];
-  snprintf(title, sizeof title, "%s", s->title);
+  char name[600], title[1000];
+  aq_plot_shorten_to(s->title_name,
+                     0.94 * aq_plot_page_w_mm() - aq_plot_text_mm(s->title_pre) -
+                         aq_plot_text_mm(s->title_post),
+                     name, sizeof name);
+  snprintf(title, sizeof title, "%s%s%s", s->title_pre, name, s->title_post);
   pllab(AX_X, AX_Y, title);
-  size_t entries = s->n + 3, ncol = entries > 8 ? 2 : 1, nrow = legend_rows(s->n);
+  size_t nrow = aq_plot_key_rows(F->nkey, F->ncol);
   double top = bottom - gap;
-  plvpor(0.1, 0.96, top - (double)(ROW_PX * nrow) / h, top);
-  plwind(0, 1, (double)nrow, 0);
-  plschr(0, 0.8);
-  char t[240], tn[160], te[200];
-  aq_plot_ellipsize(s->target_name, ncol > 1 ? 26 : 60, tn, sizeof tn);
-  aq_plot_escape(tn, te, sizeof te);
-  snprintf(t, sizeof t, "target %s", te);
-  legend_entry(0, nrow, ncol, AQ_PC_FG, 1, 2.5, t);
-  snprintf(t, sizeof t, "%g %% of the target", 100 * s->band);
-  legend_entry(1, nrow, ncol, AQ_PC_FG, 2, 1.5, t);
-  snprintf(t, sizeof t, "mean of the %zu scaled spectra", s->n);
-  legend_entry(2, nrow, ncol, AQ_PC_BLUE, 1, 3, t);
-  for (size_t i = 0; i < s->n; i++) {
-    char name[160];
-    const char *b = strrchr(s->label[i], '/'); /* a file name without its directories */
-    aq_plot_ellipsize(b && !strchr(b, ',') ? b + 1 : s->label[i], ncol > 1 ? 34 : 60, name,
-                      sizeof name);
-    char esc[200];
-    aq_plot_escape(name, esc, sizeof esc);
-    legend_entry(3 + i, nrow, ncol, COLOR[i % NCOLOR], 1, 1, esc);
-  }
+  aq_plot_text_height(KEY_MM);
+  aq_plot_key_below(F->key, F->nkey, F->ncol, KEY_X0, KEY_X1,
+                    top - (double)(ROW_PX * nrow) / h, top);
   return 0;
 }
 
@@ -180,7 +155,27 @@ aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const 
     F.ta[k] = aq_target_psa(s->target, F.tt[k]) / AQ_G0_MPS2;
     F.amax = fmax(F.amax, isfinite(F.ta[k]) ? F.ta[k] : 0);
   }
-  aq_status rc = aq_plot_render(target, WIDTH_PX, fig_height(s->n), draw, &F, draw_s, err);
+  /* the key: the target, 90 % of it, the mean, each record (a file name
+     without its directories; a --components pair whole) */
+  F.nkey = s->n + 3;
+  F.key = malloc(F.nkey * sizeof *F.key);
+  if (!F.key) {
+    free(F.mean);
+    return aq_error_set(err, AQ_ENOMEM, target, -1, -1, NULL, "out of memory");
+  }
+  snprintf(F.band_text, sizeof F.band_text, "%g %% of the target", 100 * s->band);
+  snprintf(F.mean_text, sizeof F.mean_text, "mean of the %zu scaled spectra", s->n);
+  F.key[0] = (aq_plot_key){AQ_PC_FG, 1, 2.5, "target ", s->target_name, ""};
+  F.key[1] = (aq_plot_key){AQ_PC_FG, 2, 1.5, F.band_text, NULL, ""};
+  F.key[2] = (aq_plot_key){AQ_PC_BLUE, 1, 3, F.mean_text, NULL, ""};
+  for (size_t i = 0; i < s->n; i++) {
+    const char *b = strrchr(s->label[i], '/');
+    F.key[3 + i] = (aq_plot_key){COLOR[i % NCOLOR], 1, 1, "",
+                                 b && !strchr(b, ',') ? b + 1 : s->label[i], ""};
+  }
+  F.ncol = aq_plot_key_columns(F.key, F.nkey, KEY_X0, KEY_X1, WIDTH_PX, KEY_MM);
+  aq_status rc = aq_plot_render(target, WIDTH_PX, fig_height(aq_plot_key_rows(F.nkey, F.ncol)),
+                                draw, &F, draw_s, err);
   if (rc == AQ_OK && data) {
     aq_outfile tmp;
     FILE *f = aq_plot_csv_open(data, &tmp, err);
@@ -190,18 +185,20 @@ aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const 
       aq_plot_csv_axes(f, 2, (const char *[]){AX_X, AX_Y});
       fprintf(f, "curve,period_s,psa_g\n");
       for (size_t k = 0; k < F.nt; k++)
-        fprintf(f, "target,%.17g,%.17g\n", F.tt[k], F.ta[k]);
+        fprintf(f, "target,%s,%s\n", AQ_TEXT_NUM(F.tt[k]), AQ_TEXT_NUM(F.ta[k]));
       for (size_t k = 0; k < s->nper; k++)
-        fprintf(f, "mean,%.17g,%.17g\n", s->period_s[k], F.mean[k]);
+        fprintf(f, "mean,%s,%s\n", AQ_TEXT_NUM(s->period_s[k]), AQ_TEXT_NUM(F.mean[k]));
       for (size_t i = 0; i < s->n; i++)
         for (size_t k = 0; k < s->nper; k++) {
           aq_plot_csv_text(f, s->label[i]);
-          fprintf(f, "%.17g,%.17g\n", s->period_s[k], s->psa_g[i * s->nper + k]);
+          fprintf(f, "%s,%s\n", AQ_TEXT_NUM(s->period_s[k]),
+                  AQ_TEXT_NUM(s->psa_g[i * s->nper + k]));
         }
       rc = aq_plot_csv_close(&tmp, err);
     }
   }
   free(F.mean);
+  free(F.key);
   return rc;
 }
 
@@ -223,13 +220,12 @@ aq_status aq_plot_select(const aq_h5_select_file *f, const aq_target *override,
     for (size_t k = 0; k < f->nper; k++)
       psa[i * f->nper + k] = f->scale[i] * f->psa_g[i * f->nper + k];
   const aq_target *tg = override ? override : &own;
-  char title[400], name[120];
+  char post[200];
   const char *b = strrchr(source, '/');
-  aq_plot_ellipsize(b ? b + 1 : source, 40, name, sizeof name);
-  snprintf(title, sizeof title, "the suite of %s: %zu records, misfit %.3g", name, f->n,
-           f->misfit);
+  snprintf(post, sizeof post, ": %zu records, misfit %.3g", f->n, f->misfit);
   aq_plot_target_set s = {f->n, f->nper, f->period_s, psa, (const char *const *)f->record,
-                          tg, tg->spec, f->band > 0 ? f->band : 0.9, title};
+                          tg, tg->spec, f->band > 0 ? f->band : 0.9, "the suite of ",
+                          b ? b + 1 : source, post};
   st = aq_plot_target(&s, target, data, draw_s, err);
   free(psa);
   if (!override)
@@ -285,11 +281,9 @@ aq_status aq_plot_spectra_target(const aq_h5_spectra_table *t, const char *recor
                       record ? "expected a record of the file, got \"%s\""
                              : "expected spectra in the file, got none%s", record ? record : "");
   if (st == AQ_OK) {
-    char title[400], name[120];
     const char *b = strrchr(source, '/');
-    aq_plot_ellipsize(b ? b + 1 : source, 40, name, sizeof name);
-    snprintf(title, sizeof title, "the spectra of %s against the target", name);
-    aq_plot_target_set s = {nc, nper, period, psa, label, tg, tg->spec, 0.9, title};
+    aq_plot_target_set s = {nc, nper, period, psa, label, tg, tg->spec, 0.9, "the spectra of ",
+                            b ? b + 1 : source, " against the target"};
     st = aq_plot_target(&s, target, data, draw_s, err);
   }
   free(period);

@@ -20,19 +20,26 @@ enum { NCOLOR = sizeof COLOR / sizeof COLOR[0], NSTYLE = 8 };
 
 /* The figure's layout, pixels of a PNG (points of SVG and PDF): the plot
  * PLOT_PX high under TOP_PX of title, then the axis title (GAP_PX), then
- * the legend, ROW_PX a row (two columns beyond 8 curves). */
+ * the key, ROW_PX a row (aq_plot_key_below). */
 enum { WIDTH_PX = 1000, TOP_PX = 58, PLOT_PX = 470, GAP_PX = 78, ROW_PX = 29, PAD_PX = 24 };
 
-static int fig_height(size_t ncurve)
+/* the key's ends, fractions of the figure's width */
+static const double KEY_X0 = 0.03, KEY_X1 = 0.97;
+
+/* the text's height, mm of the figure (72 points an inch): the axes' and
+   title's, the key's; the same however tall the key makes the figure */
+static const double TEXT_MM = 5.85, KEY_MM = 4.9;
+
+static int fig_height(size_t nrow)
 {
-  size_t rows = ncurve > 8 ? (ncurve + 1) / 2 : ncurve;
-  return TOP_PX + PLOT_PX + GAP_PX + ROW_PX * (int)rows + PAD_PX;
+  return TOP_PX + PLOT_PX + GAP_PX + ROW_PX * (int)nrow + PAD_PX;
 }
 
+enum { NAME = 600, POST = 240 };
 typedef struct {
   size_t start, n;  /* its rows of the table (periods, in the file's order) */
   int color, style;
-  char label[800];
+  char name[NAME], post[POST]; /* its key: the record whole, then the component and damping */
 } curve;
 
 typedef struct {
@@ -41,6 +48,8 @@ typedef struct {
   curve *c;
   size_t nc;
   double tlo, thi, amax; /* the plotted range: periods (s), PSA (g) */
+  aq_plot_key *key;      /* nc */
+  size_t ncol;           /* of the key */
 } fig;
 
 static const char *base(const char *path)
@@ -76,6 +85,7 @@ static void display_name(const char *record, char *out, size_t cap)
 
 static int draw(void *ctx, aq_error *err)
 {
+  (void)err;
   const fig *F = ctx;
   const aq_h5_spectra_table *t = F->t;
   double x0 = log10(F->tlo), x1 = log10(F->thi);
@@ -85,9 +95,9 @@ static int draw(void *ctx, aq_error *err)
   }
   double y1 = F->amax > 0 ? 1.08 * F->amax : 1;
   pladv(0);
-  plschr(0, 0.95);
+  aq_plot_text_height(TEXT_MM);
   /* the plot above (PLOT_PX high), the legend below it */
-  double h = (double)fig_height(F->nc);
+  double h = (double)fig_height(aq_plot_key_rows(F->nc, F->ncol));
   double gap = GAP_PX / h, bottom = (h - PLOT_PX - TOP_PX) / h;
   plvpor(0.1, 0.96, bottom, 1 - TOP_PX / h);
   plwind(x0, x1, 0, y1);
@@ -122,47 +132,14 @@ static int draw(void *ctx, aq_error *err)
   plcol0(AQ_PC_FG);
   plbox("bclnst", 0, 0, "bcnstv", 0, 0);
   pllab(AX_X, AX_Y, title);
-  /* the legend below, drawn here (a line and its text per curve, in up to
-   * two columns, no box): PLplot's own legend box is measured narrower
-   * than cairo draws its text on a PDF page scaled to the paper */
-  size_t ncol = F->nc > 8 ? 2 : 1, nrow = (F->nc + ncol - 1) / ncol;
+  /* the key below, drawn here (a line and its text per curve, no box):
+   * PLplot's own legend box is measured narrower than cairo draws its
+   * text on a PDF page scaled to the paper */
+  size_t nrow = aq_plot_key_rows(F->nc, F->ncol);
   double top = bottom - gap;
-  plvpor(0.1, 0.96, top - (double)(ROW_PX * nrow) / h, top);
-  plwind(0, 1, (double)nrow, 0);
-  plschr(0, 0.8);
-  /* the records' names, shortened alike and kept apart */
-  enum { NM = 600 };
-  char *full = malloc((F->nc ? F->nc : 1) * NM), *nm = malloc((F->nc ? F->nc : 1) * NM);
-  const char **fp = malloc((F->nc ? F->nc : 1) * sizeof *fp);
-  if (!full || !nm || !fp) {
-    free(full);
-    free(nm);
-    free(fp);
-    return aq_error_set(err, AQ_ENOMEM, F->source, -1, -1, NULL, "out of memory"), -1;
-  }
-  for (size_t k = 0; k < F->nc; k++) {
-    display_name(t->record[F->c[k].start], full + k * NM, NM);
-    fp[k] = full + k * NM;
-  }
-  aq_plot_ellipsize_set(fp, F->nc, ncol > 1 ? 28 : 56, nm, NM);
-  for (size_t k = 0; k < F->nc; k++) {
-    curve *c = &F->c[k];
-    snprintf(c->label, sizeof c->label, "%s  %s, #gz = %g %%", nm + k * NM,
-             t->component[c->start], 100 * t->damping[c->start]);
-    double x = ncol > 1 && k >= nrow ? 0.5 : 0.0, y = (double)(k % nrow) + 0.5;
-    PLFLT lx[2] = {x + 0.01, x + 0.07}, ly[2] = {y, y};
-    plcol0(c->color);
-    pllsty(c->style);
-    plwidth(1.5);
-    plline(2, lx, ly);
-    pllsty(1);
-    plwidth(1);
-    plcol0(AQ_PC_FG);
-    plptex(x + 0.085, y, 1, 0, 0, c->label);
-  }
-  free(full);
-  free(nm);
-  free(fp);
+  aq_plot_text_height(KEY_MM);
+  aq_plot_key_below(F->key, F->nc, F->ncol, KEY_X0, KEY_X1, top - (double)(ROW_PX * nrow) / h,
+                    top);
   return 0;
 }
 
@@ -177,7 +154,7 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err)
 {
-  fig F = {t, source, NULL, 0, INFINITY, 0, 0};
+  fig F = {t, source, NULL, 0, INFINITY, 0, 0, NULL, 1};
   F.c = calloc(AQ_PLOT_LEGEND_MAX + 1, sizeof *F.c);
   if (!F.c)
     return aq_error_set(err, AQ_ENOMEM, source, -1, -1, "spectra", "out of memory");
@@ -227,7 +204,22 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
     return rc;
   }
   F.nc = ncurve;
-  rc = aq_plot_render(target, WIDTH_PX, fig_height(F.nc), draw, &F, draw_s, err);
+  F.key = malloc(F.nc * sizeof *F.key);
+  if (!F.key) {
+    free(F.c);
+    return aq_error_set(err, AQ_ENOMEM, source, -1, -1, "spectra", "out of memory");
+  }
+  for (size_t k = 0; k < F.nc; k++) {
+    curve *c = &F.c[k];
+    display_name(t->record[c->start], c->name, sizeof c->name);
+    char comp[200];
+    aq_plot_escape(t->component[c->start], comp, sizeof comp);
+    snprintf(c->post, sizeof c->post, "  %s, #gz = %g %%", comp, 100 * t->damping[c->start]);
+    F.key[k] = (aq_plot_key){c->color, c->style, 1.5, "", c->name, c->post};
+  }
+  F.ncol = aq_plot_key_columns(F.key, F.nc, KEY_X0, KEY_X1, WIDTH_PX, KEY_MM);
+  rc = aq_plot_render(target, WIDTH_PX, fig_height(aq_plot_key_rows(F.nc, F.ncol)), draw, &F,
+                      draw_s, err);
   if (rc == AQ_OK && data) {
     aq_outfile tmp;
     FILE *f = aq_plot_csv_open(data, &tmp, err);
@@ -246,6 +238,7 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
       rc = aq_plot_csv_close(&tmp, err);
     }
   }
+  free(F.key);
   free(F.c);
   return rc;
 }
