@@ -15,7 +15,10 @@
  * spectra from `archquake select -o`), N = 7 of 43: the heuristic's misfit
  * against the exhaustive optimum over all C(43, 7) = 32,224,114 suites, and
  * N = 3 to 6 likewise.  AQ_BENCH_SELECT_POOL=N (default 1000) makes a
- * smaller pool for a quick look. */
+ * smaller pool for a quick look; AQ_BENCH_SELECT_BEFORE=PATH names another
+ * archquake (an earlier commit's build) whose cold runs alternate with
+ * ./archquake's, medians and ratios printed side by side; AQ_BENCH_SELECT_
+ * SPEED_ONLY=1 skips the distance. */
 #define _POSIX_C_SOURCE 200809L
 #include <gsl/gsl_errno.h>
 #include <hdf5.h>
@@ -149,7 +152,31 @@ static int run(const char *cmd, double *wall, double *cpu)
   return rc;
 }
 
-static void speed(size_t npool)
+/* The select command of binary bin into cmd. */
+static void select_cmd(char *cmd, size_t cap, const char *bin, const char *pooldir,
+                       const char *grid)
+{
+  snprintf(cmd, cap, "%s select %s --target ec8:type=1,ground=B,ag=0.25 "
+           "--count 7 --periods 0.05,3 --period-grid %s --scale-range 0.2,5 -j 2 "
+           "--cache-dir " DIR "/cache --text " DIR "/suite.tsv 2>" DIR "/stderr.txt",
+           bin, pooldir, grid);
+}
+
+static double loadavg1(void)
+{
+  double l = -1;
+  FILE *fp = fopen("/proc/loadavg", "r");
+  if (fp) {
+    if (fscanf(fp, "%lf", &l) != 1)
+      l = -1;
+    fclose(fp);
+  }
+  return l;
+}
+
+/* before: NULL, or another archquake (an earlier build) whose cold runs
+ * alternate with ./archquake's, the medians and ratios side by side. */
+static void speed(size_t npool, const char *before)
 {
   char pooldir[256], grid[NGRID * 24], cmd[NGRID * 24 + 1024];
   double t0 = aq_bench_now_s();
@@ -162,32 +189,40 @@ static void speed(size_t npool)
   for (int k = 0; k < NGRID; k++)
     w += (size_t)snprintf(grid + w, sizeof grid - w, "%s%.6g", k ? "," : "",
                           0.05 * pow(60.0, (double)k / (NGRID - 1)));
-  snprintf(cmd, sizeof cmd, "./archquake select %s --target ec8:type=1,ground=B,ag=0.25 "
-           "--count 7 --periods 0.05,3 --period-grid %s --scale-range 0.2,5 -j 2 "
-           "--cache-dir " DIR "/cache --text " DIR "/suite.tsv 2>" DIR "/stderr.txt",
-           pooldir, grid);
   printf("select 7 of %zu synthetic SAC records (%d samples at %g s), %d periods 0.05-3 s, "
-         "-j 2 (pool written in %.1f s)\n", npool, NPTS, DT, NGRID, made);
+         "-j 2 (pool written in %.1f s), load average %.2f\n", npool, NPTS, DT, NGRID, made,
+         loadavg1());
   printf("%-34s %5s %10s %10s\n", "case", "runs", "wall_s", "cpu_s");
   enum { COLD = 2, WARM = 7 };
-  double wall[WARM], cpu[WARM];
-  for (int i = 0; i < COLD; i++) {
-    if (system("rm -rf " DIR "/cache") != 0)
-      return;
-    if (run(cmd, &wall[i], &cpu[i]) != 0) {
-      printf("select failed: see " DIR "/stderr.txt\n");
-      return;
+  double wall[2][WARM], cpu[2][WARM];
+  for (int i = 0; i < COLD; i++)
+    for (int b = before ? 1 : 0; b >= 0; b--) {
+      select_cmd(cmd, sizeof cmd, b ? before : "./archquake", pooldir, grid);
+      if (system("rm -rf " DIR "/cache") != 0)
+        return;
+      if (run(cmd, &wall[b][i], &cpu[b][i]) != 0) {
+        printf("select failed: see " DIR "/stderr.txt\n");
+        return;
+      }
     }
+  double wa = aq_bench_median(wall[0], COLD), ca = aq_bench_median(cpu[0], COLD);
+  if (before) {
+    double wb = aq_bench_median(wall[1], COLD), cb = aq_bench_median(cpu[1], COLD);
+    printf("%-34s %5d %10.3f %10.3f\n", "cold, before (the other build)", COLD, wb, cb);
+    printf("%-34s %5d %10.3f %10.3f\n", "cold, after (./archquake)", COLD, wa, ca);
+    printf("%-34s %5s %9.2fx %9.2fx\n", "cold: before / after", "", wb / wa, cb / ca);
+  } else {
+    printf("%-34s %5d %10.3f %10.3f\n", "cold: read, process, spectra", COLD, wa, ca);
   }
-  printf("%-34s %5d %10.3f %10.3f\n", "cold: read, process, spectra", COLD,
-         aq_bench_median(wall, COLD), aq_bench_median(cpu, COLD));
+  select_cmd(cmd, sizeof cmd, "./archquake", pooldir, grid);
   for (int i = 0; i < WARM; i++)
-    if (run(cmd, &wall[i], &cpu[i]) != 0) {
+    if (run(cmd, &wall[0][i], &cpu[0][i]) != 0) {
       printf("select failed: see " DIR "/stderr.txt\n");
       return;
     }
   printf("%-34s %5d %10.3f %10.3f\n", "warm: the pool's spectra cached", WARM,
-         aq_bench_median(wall, WARM), aq_bench_median(cpu, WARM));
+         aq_bench_median(wall[0], WARM), aq_bench_median(cpu[0], WARM));
+  printf("load average after: %.2f\n", loadavg1());
 }
 
 /* ---- the heuristic against the optimum, 43 real records ------------------ */
@@ -295,7 +330,8 @@ int main(void)
   gsl_set_error_handler_off();
   const char *env = getenv("AQ_BENCH_SELECT_POOL");
   size_t npool = env ? (size_t)strtoul(env, NULL, 10) : 1000;
-  speed(npool ? npool : 1000);
-  distance();
+  speed(npool ? npool : 1000, getenv("AQ_BENCH_SELECT_BEFORE"));
+  if (!getenv("AQ_BENCH_SELECT_SPEED_ONLY"))
+    distance();
   return 0;
 }

@@ -582,7 +582,7 @@ AQ_TEST(plot_bad_input_one_line)
       {"plot history %s -o %s/x.jpg", h5, ".jpg", 2},
       {"plot history %s -o %s/no/such/dir/x.png", h5, "no/such/dir/x.png", 3},
       {"plot suite %s -o %s/x.png", "tests/data/records/ARL360.at2", "ARL360.at2", 1},
-      {"plot arch %s --arch " ARCH " -o %s/x.png", "--run=1", "not an option of this figure", 2},
+      {"plot arch %s --arch " ARCH " -o %s/x.png", "--record=1", "not an option of this figure", 2},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     char a[1200];

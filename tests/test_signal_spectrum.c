@@ -616,6 +616,118 @@ AQ_TEST(spectrum_rotd50_nga_west2_flatfile_rsn6)
   aq_record_free(&r2);
 }
 
+/* Many periods in one call, in any order, with T = 0 and periods PEER
+ * refines (T < 10 dt) among them: the peaks at the samples run several
+ * oscillators at a time (spectrum.c), so each period's PSA at the samples
+ * must equal max_k w^2 |u_k| of its own response history
+ * (aq_spectrum_response, checked against closed forms above) to the
+ * rounding of u = x / w^2 and back (2 ulps: 1e-15 is the bound), PEER's at
+ * N = 1 must be the samples' to the bit, and every PSA must be the one the
+ * period gets alone in a call, and with one_at_a_time (each oscillator's
+ * own loop, as before the grouping), to the bit.  37 periods: two full groups and
+ * a part one, whatever the group size up to 16. */
+AQ_TEST(spectrum_many_periods_in_one_call)
+{
+  const double dt = 0.005, z = 0.05;
+  const size_t n = 3000;
+  const double periods[] = {2.7,  0.0,   0.013, 0.33, 0.05,  1.9,  0.071, 0.6,  0.21, 4.0,
+                            0.11, 0.032, 0.9,   0.45, 0.08,  0.15, 3.3,   0.06, 1.2,  0.27,
+                            0.5,  0.095, 0.75,  2.2,  0.017, 0.38, 1.5,   0.12, 0.3,  0.057,
+                            6.0,  0.19,  1.05,  0.66, 0.24,  0.09, 0.41};
+  enum { NP = sizeof periods / sizeof *periods };
+  double *a = alloc_d(n), *u = alloc_d(n), *v = alloc_d(n);
+  for (size_t k = 0; k < n; k++) {
+    double t = (double)k * dt;
+    a[k] = (t < 3 ? t / 3 : exp(-(t - 3) / 5)) *
+           (1.3 * sin(2 * PI * 0.7 * t) + 0.8 * sin(2 * PI * 3.1 * t + 1) +
+            0.4 * sin(2 * PI * 11.3 * t + 2) + 0.2 * sin(2 * PI * 37 * t));
+  }
+  aq_spectrum_ws *ws = aq_spectrum_ws_alloc();
+  aq_check(ws != NULL, "workspace");
+  aq_spectrum_opts o;
+  aq_error e;
+  double smp[NP], peer[NP], sep[2][NP], one;
+  aq_spectrum_opts_default(&o);
+  o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, periods, NP, smp, &e) == AQ_OK, "samples");
+  o.peaks = AQ_SPECTRUM_PEAKS_PEER;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, periods, NP, peer, &e) == AQ_OK, "peer");
+  o.one_at_a_time = 1;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, periods, NP, sep[1], &e) == AQ_OK, "peer");
+  o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, periods, NP, sep[0], &e) == AQ_OK, "samples");
+  o.one_at_a_time = 0;
+  for (size_t i = 0; i < NP; i++) {
+    double T = periods[i], want = 0;
+    if (T > 0) {
+      double w = 2 * PI / T;
+      aq_check(aq_spectrum_response(a, n, dt, z, T, u, v, &e) == AQ_OK, "response");
+      for (size_t k = 0; k < n; k++)
+        want = fmax(want, w * w * fabs(u[k]));
+    } else {
+      for (size_t k = 0; k < n; k++)
+        want = fmax(want, fabs(a[k]));
+    }
+    aq_check_rel(smp[i], want, 1e-15, "T = %g s: PSA at the samples against the "
+                 "response history's peak", T);
+    if (10 * dt <= T)
+      aq_check(peer[i] == smp[i], "T = %g s: peer (N = 1) %.17g is the samples' %.17g",
+               T, peer[i], smp[i]);
+    else if (T > 0)
+      aq_check(peer[i] > smp[i], "T = %g s: peer (N > 1) %.17g above the samples' %.17g",
+               T, peer[i], smp[i]);
+    aq_check(sep[0][i] == smp[i] && sep[1][i] == peer[i], "T = %g s: one at a time "
+             "%.17g, %.17g; grouped %.17g, %.17g", T, sep[0][i], sep[1][i], smp[i], peer[i]);
+    for (int m = 0; m < 2; m++) {
+      o.peaks = m ? AQ_SPECTRUM_PEAKS_PEER : AQ_SPECTRUM_PEAKS_SAMPLES;
+      aq_check(aq_spectrum_psa(ws, &o, a, n, dt, z, &T, 1, &one, &e) == AQ_OK, "alone");
+      aq_check(one == (m ? peer[i] : smp[i]), "T = %g s, %s: alone %.17g, among %d "
+               "periods %.17g", T, aq_spectrum_peaks_names[o.peaks], one, (int)NP,
+               m ? peer[i] : smp[i]);
+    }
+  }
+  /* RotD's angles 0 and 90 degrees project on each component alone
+   * (1 x1 + 0 x2 = x1): its H1 and H2 at the samples are the components'
+   * own PSA at the samples, to the bit (the two responses run in one loop,
+   * spectrum.c's respond2) */
+  double *b = alloc_d(n), smp2[NP];
+  for (size_t k = 0; k < n; k++)
+    b[k] = 0.7 * a[n - 1 - k] + 0.3 * a[(7 * k) % n];
+  aq_rotd rd[NP];
+  o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+  aq_check(aq_spectrum_psa(ws, &o, b, n, dt, z, periods, NP, smp2, &e) == AQ_OK, "psa 2");
+  aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n, dt, z, periods, NP, rd, NULL, &e) == AQ_OK,
+           "rotd");
+  for (size_t i = 0; i < NP; i++)
+    aq_check(rd[i].psa1_mps2 == smp[i] && rd[i].psa2_mps2 == smp2[i],
+             "T = %g s: RotD's H1, H2 %.17g, %.17g; alone %.17g, %.17g", periods[i],
+             rd[i].psa1_mps2, rd[i].psa2_mps2, smp[i], smp2[i]);
+  /* and every RotD value as with each component in its own loop */
+  aq_rotd rs[NP];
+  for (int m = 0; m < 3; m++) {
+    o.peaks = (aq_spectrum_peaks)m;
+    o.one_at_a_time = 0;
+    aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n - 400, dt, z, periods, NP, rd, NULL, &e) ==
+                 AQ_OK, "rotd");
+    o.one_at_a_time = 1;
+    aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n - 400, dt, z, periods, NP, rs, NULL, &e) ==
+                 AQ_OK, "rotd one at a time");
+    for (size_t i = 0; i < NP; i++)
+      aq_check(rd[i].rotd50_mps2 == rs[i].rotd50_mps2 &&
+                   rd[i].rotd100_mps2 == rs[i].rotd100_mps2 &&
+                   rd[i].psa1_mps2 == rs[i].psa1_mps2 && rd[i].psa2_mps2 == rs[i].psa2_mps2,
+               "T = %g s, %s: RotD50 %.17g, RotD100 %.17g; one at a time %.17g, %.17g",
+               periods[i], aq_spectrum_peaks_names[m], rd[i].rotd50_mps2,
+               rd[i].rotd100_mps2, rs[i].rotd50_mps2, rs[i].rotd100_mps2);
+  }
+  o.one_at_a_time = 0;
+  free(b);
+  aq_spectrum_ws_free(ws);
+  free(a);
+  free(u);
+  free(v);
+}
+
 /* Every bad argument is refused, naming its field. */
 AQ_TEST(spectrum_bad_arguments)
 {

@@ -49,7 +49,9 @@ typedef struct {
   const char *input, *out, *data, *run, *arch, *im, *record, *target;
   int x_rad, y_pga; /* capacity: --x rad, --y pga */
   int paper;        /* an aq_plot_paper; -1: the locale's */
-  double rotation_rad, cor;
+  double rotation_rad, cor, friction;
+  double *at_s; /* plot arch --run: the times */
+  size_t nat;
   double *ratios;
   size_t nr;
 } plot_opts;
@@ -76,9 +78,13 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->paper = a.paper;
   o->rotation_rad = a.rotation_rad;
   o->cor = a.cor;
+  o->friction = a.friction;
   o->ratios = a.ratios; /* freed by the caller */
   o->nr = a.nratios;
   a.ratios = NULL;
+  o->at_s = a.at_s; /* freed by the caller */
+  o->nat = a.nat;
+  a.at_s = NULL;
   aq_opts_free(&a);
   if (o->fig == FIG_ARCH && optind < argc) /* a results file: its arch by name */
     o->input = argv[optind++];
@@ -94,7 +100,11 @@ static int parse(int argc, char **argv, plot_opts *o)
     }
   }
   aq_opt_no_operands("plot", argc, argv, optind, &nerr);
-  if (o->fig == FIG_ARCH && !o->input && !o->arch) { /* AQ_OPT_ARCH_DRAWN: not required */
+  if (o->fig == FIG_ARCH && o->run && !o->input) {
+    fprintf(stderr, "archquake: plot arch: --run: expected a results file to read the run "
+                    "from, got none\n");
+    nerr++;
+  } else if (o->fig == FIG_ARCH && !o->input && !o->arch) { /* AQ_OPT_ARCH_DRAWN */
     fprintf(stderr, "archquake: plot arch: expected --arch ARCH or a results file, got "
                     "neither\n");
     nerr++;
@@ -126,7 +136,7 @@ static int fail(const aq_error *err)
   aq_error_print(err, stderr);
   return err->status == AQ_EIO ? AQ_EXIT_OUTPUT
          : err->status == AQ_EOPTION || !strcmp(err->field, "--run") ||
-                 !strcmp(err->field, "--rotation") ||
+                 !strcmp(err->field, "--rotation") || !strcmp(err->field, "--at") ||
                  !strcmp(err->field, "--arch") || !strcmp(err->field, "--im") ||
                  !strcmp(err->field, "--record") ||
                  !strcmp(err->field, "--y")
@@ -225,6 +235,7 @@ int aq_cmd_plot(int argc, char **argv)
   int p = parse(argc - 1, argv + 1, &o);
   if (p) {
     free(o.ratios);
+    free(o.at_s);
     return p < 0 ? AQ_EXIT_OK : AQ_EXIT_USAGE;
   }
   aq_plot_set_paper(o.paper >= 0 ? (aq_plot_paper)o.paper : (aq_plot_paper)locale_paper());
@@ -235,7 +246,8 @@ int aq_cmd_plot(int argc, char **argv)
   aq_cleanup_install(); /* a signal while drawing removes the temporaries (util/outfile.h) */
   aq_plot_hold(o.data != NULL); /* the figure renamed once its data are written */
   if (o.arch && o.fig != FIG_CAPACITY && !(o.fig == FIG_ARCH && o.input) &&
-      aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+      aq_arch_load_opts(o.arch, &(aq_arch_options){.friction = o.friction}, &arch, &err) !=
+          AQ_OK) {
     rc = fail(&err);
     goto out;
   }
@@ -252,6 +264,12 @@ int aq_cmd_plot(int argc, char **argv)
     break;
   }
   case FIG_ARCH:
+    if (o.run) {
+      if (aq_plot_arch_run(o.input, o.arch, o.run, o.at_s, o.nat, o.out, o.data, NULL, &err) !=
+          AQ_OK)
+        rc = fail(&err);
+      break;
+    }
     if ((o.input ? aq_plot_arch_h5(o.input, o.arch, o.rotation_rad, o.out, o.data, NULL, &err)
                  : aq_plot_arch(arch, o.rotation_rad, o.out, o.data, NULL, &err)) != AQ_OK)
       rc = fail(&err);
@@ -292,5 +310,6 @@ out:
     rc = fail(&err);
   aq_arch_free(arch);
   free(o.ratios);
+  free(o.at_s);
   return rc;
 }

@@ -439,18 +439,26 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                       .help = "the page of a PDF (default: the locale's paper, LC_PAPER, else "
                               "A4); the figure is scaled to fit"},
     [AQ_OPT_RUN] = {.name = "run", .kind = AQ_ARG_STRING, .meta = "KEY", DEST(run),
-                    .cmds = C(PLOT_HISTORY),
+                    .cmds = C(PLOT_HISTORY) | C(PLOT_ARCH),
                     .help = "the run to draw: a group under /histories, e.g. "
-                            "00000_000_000 (default: the first run with histories)"},
+                            "00000_000_000 (default: the first run with histories; plot "
+                            "arch: a run of --model blocks, every voussoir as its history "
+                            "has it, at --at)"},
     [AQ_OPT_RECORD] = {.name = "record", .kind = AQ_ARG_STRING, .meta = "NAME", DEST(record),
                        .cmds = C(PLOT_SPECTRUM),
                        .help = "the record (or --components pair) of a spectrum file to draw, "
                                "as its record column says or by file name (default: all)"},
     [AQ_OPT_ROTATION] = {.name = "rotation", .kind = AQ_ARG_DOUBLE, .lo = -10, .hi = 10,
                          .meta = "RAD", DEST(rotation_rad), .cmds = C(PLOT_ARCH),
+                         .conflicts = OPTS(AQ_OPT_RUN),
                          .help = "draw the mechanism deformed at that rotation of body 1: "
                                  "the primary set if RAD > 0, the reverse set if RAD < 0, "
                                  "|RAD| <= q_c"},
+    [AQ_OPT_AT] = {.name = "at", .kind = AQ_ARG_LIST, .lo = -1e3, .hi = 1e5, .meta = "LIST",
+                   DEST_LIST(at_s, nat), .cmds = C(PLOT_ARCH), .requires = OPTS(AQ_OPT_RUN),
+                   .help = "with --run: the record times (s) to draw the voussoirs at, at "
+                           "most 6, e.g. 1.2,1.5 (within the run's history; default: the "
+                           "time of voussoir 0's largest |rotation|); the last is filled"},
     [AQ_OPT_IM] = {.name = "im", .kind = AQ_ARG_STRING, .meta = "IM", DEST(im),
                    .cmds = C(PLOT_CAPACITY),
                    .help = "the intensity measure of the fragility: pga_g (default), "
@@ -520,7 +528,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                             "momentum, which uses none)"},
     [AQ_OPT_FRICTION] = {.name = "friction", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e3,
                          .meta = "MU", DEST(friction),
-                         .cmds = DYNAMICS | C(MECHANISM),
+                         .cmds = DYNAMICS | C(MECHANISM) | C(PLOT_ARCH),
                          .help = "the Coulomb friction coefficient of every joint, springings "
                                  "included, 0 < MU <= 1000 (default: each arch's [contact] "
                                  "friction; none if it has none)"},
@@ -876,6 +884,8 @@ static const char plot_head[] =
     "  arch --arch ARCH [--rotation RAD]   the arch to scale, its voussoirs and\n"
     "        both hinge sets; with --rotation the mechanism deformed at that\n"
     "        rotation of body 1\n"
+    "  arch RESULTS.h5 --run KEY [--at LIST]   a run of --model blocks stored\n"
+    "        with --history: every voussoir at those times over the arch\n"
     "  domain --arch ARCH [--ratios LIST] [--cor C]   the half-cycle collapse\n"
     "        domain: shortest collapsing pulse against a/(lambda0 g)\n"
     "  suite RESULTS.h5   record x arch map of the verdict (worst over scales\n"
@@ -1211,6 +1221,7 @@ void aq_opts_free(aq_opts *o)
   free(o->arches);
   free(o->scales);
   free(o->ratios);
+  free(o->at_s);
   free(o->periods);
   free(o->dampings);
   free(o->period_grid);

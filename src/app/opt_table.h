@@ -109,6 +109,7 @@ typedef enum {
   AQ_OPT_RUN,
   AQ_OPT_RECORD, /* plot spectrum */
   AQ_OPT_ROTATION,
+  AQ_OPT_AT,       /* plot arch --run: the times */
   AQ_OPT_IM,
   AQ_OPT_X,
   AQ_OPT_Y,
@@ -288,6 +289,8 @@ typedef struct aq_opts {
   int x_rad, y_pga; /* --x, --y: index in their choices */
   int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;
+  double *at_s; /* plot arch --at */
+  size_t nat;
 } aq_opts;
 
 /* One option (a row of the table). */

@@ -612,7 +612,7 @@ double aq_demand_table_error(const aq_demand_table *t) { return t->err * DT_TOL;
 #define DM_WATCH 3         /* entries watched one by one, per set and quantity */
 #define DM_AMAX_PAD 2.0    /* the a/g range considered when none is given */
 #define DM_MOVES 4.0       /* a watched entry's range spans this many of the last moves in s */
-#define DM_REST_MOVES 48.0 /* the others' range and band span this many moves in s and KE/g */
+#define DM_REST_MOVES 8.0  /* the others' range and band span this many moves in s and KE/g */
 
 /* a*A + k*B <= C, a = a_g/g, k = KE/g */
 typedef struct {

@@ -10,7 +10,13 @@
  * is drawn over the undeformed outline, fill and masses moving with their
  * voussoirs, and the line of thrust is that set's at lambda(q) in the
  * deformed arch.  The frame holds the undeformed and the deformed arch
- * with a margin. */
+ * with a margin.  Below it, the friction each joint needs (|T|/N of the
+ * resultant across it) in each set's collapse state at its lambda0 (the
+ * 9x9 hinge reactions and each piece's statics, aq_arch_joint_friction),
+ * with the arch's friction coefficient when it has one.  A run of the
+ * block model (plot arch --run KEY --at T): every voussoir where its
+ * stored history has it at each time T (linear between samples), the last
+ * time filled, over the undeformed outline. */
 #include <hdf5.h>
 #include <math.h>
 #include <plplot.h>
@@ -27,6 +33,9 @@ static const char *const AX_X = "x (m)", *const AX_Y = "y (m)";
 #define PLOT_H 620        /* pixels above the legend */
 #define LEGEND_ROW 32     /* pixels per legend entry (2 character heights) */
 #define C_FILL 15         /* colour map 0's spare entry (plot.h uses 0..14): sand */
+#define PANEL_H 320       /* pixels of the friction panel, below the arch */
+#define RATIO_CAP 3.0     /* the friction panel's top at most: a larger demand (a joint
+                             that pulls needs infinite friction) is drawn at the top */
 
 typedef struct {
   const aq_arch *arch;
@@ -39,6 +48,14 @@ typedef struct {
   double thrust_lambda;/* its multiplier */
   size_t nthrust;      /* points of the line of thrust */
   aq_vec2 *thrust;     /* n + 1 */
+  double *ratio[2];    /* each set's friction demand |T|/N per joint at lambda0 (n + 1;
+                          NULL: inadmissible set) */
+  double ratio_max;    /* the panel's top */
+  /* the block model's voussoirs at nat times (none: 0): voussoir k at
+   * time i has its centroid at (bx, by)[i * n + k], turned by br[i * n + k] */
+  size_t nat;
+  const double *at_s, *bx, *by, *br;
+  const char *run;     /* the run's key */
   size_t nlegend;      /* legend entries */
   int height;          /* figure height, pixels */
 } fig;
@@ -50,9 +67,23 @@ static aq_vec2 rot_about(aq_vec2 p, aq_vec2 from, aq_vec2 to, double a)
   return v;
 }
 
-/* Point p of voussoir k, moved with its body when the set is deformed. */
-static aq_vec2 moved(const fig *f, size_t k, aq_vec2 p)
+/* Deformed layers drawn over the undeformed arch: the block model's
+ * times, or the one deformed set (or none). */
+static int layers(const fig *f)
 {
+  return f->nat ? (int)f->nat : f->set >= 0;
+}
+
+/* Point p of voussoir k in layer d (0: undeformed; 1..layers: the block
+ * model's time d - 1, or the deformed set). */
+static aq_vec2 moved(const fig *f, int d, size_t k, aq_vec2 p)
+{
+  if (d == 0)
+    return p;
+  if (f->nat) {
+    size_t i = (size_t)(d - 1) * f->g->p.voussoirs + k;
+    return rot_about(p, f->g->vous[k].c, (aq_vec2){f->bx[i], f->by[i]}, f->br[i]);
+  }
   if (f->set < 0)
     return p;
   const aq_mech *m = f->m;
@@ -113,8 +144,8 @@ static int thrust_line(fig *f, int s, const aq_mech_state *st, aq_error *err)
   return 0;
 }
 
-/* A closed polygon of pts[0..n), voussoir k's, moved when deformed. */
-static void polygon(const fig *f, size_t k, const aq_vec2 *pts, size_t n, int deformed,
+/* A closed polygon of pts[0..n), voussoir k's, moved to layer d. */
+static void polygon(const fig *f, size_t k, const aq_vec2 *pts, size_t n, int d,
                     int fill_color, int line_color, int style)
 {
   if (n < 2)
@@ -126,7 +157,7 @@ static void polygon(const fig *f, size_t k, const aq_vec2 *pts, size_t n, int de
     return;
   }
   for (size_t i = 0; i <= n; i++) {
-    aq_vec2 p = deformed ? moved(f, k, pts[i % n]) : pts[i % n];
+    aq_vec2 p = moved(f, d, k, pts[i % n]);
     x[i] = p.x;
     y[i] = p.y;
   }
@@ -151,26 +182,76 @@ static void extent(const fig *f, double *xlo, double *xhi, double *ylo, double *
   size_t n = g->p.voussoirs;
   *xlo = *ylo = HUGE_VAL;
   *xhi = *yhi = -HUGE_VAL;
-  for (int d = 0; d <= (f->set >= 0); d++)
+  for (int d = 0; d <= layers(f); d++)
     for (size_t k = 0; k < n; k++) {
       for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
-        aq_vec2 p = d ? moved(f, k, g->outline[i]) : g->outline[i];
+        aq_vec2 p = moved(f, d, k, g->outline[i]);
         *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
         *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
       }
       for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
-        aq_vec2 p = d ? moved(f, k, g->fill[i]) : g->fill[i];
+        aq_vec2 p = moved(f, d, k, g->fill[i]);
         *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
         *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
       }
     }
   for (size_t i = 0; i < g->p.nmass; i++)
-    for (int d = 0; d <= (f->set >= 0); d++) {
-      aq_vec2 p = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
+    for (int d = 0; d <= layers(f); d++) {
+      aq_vec2 p = moved(f, d, g->mass[i].voussoir, g->mass[i].p);
       *xlo = fmin(*xlo, p.x), *xhi = fmax(*xhi, p.x);
       *ylo = fmin(*ylo, p.y), *yhi = fmax(*yhi, p.y);
     }
 }
+
+/* The friction panel in the viewport's rows [y0, y1]: each set's |T|/N per
+ * joint at lambda0, the arch's friction coefficient dashed. */
+static void draw_friction(const fig *f, double y0, double y1)
+{
+  static const int color[2] = {AQ_PC_BLUE, AQ_PC_ORANGE};
+  size_t n = f->g->p.voussoirs;
+  double mu = aq_arch_friction(f->arch);
+  plvpor(0.13, 0.95, y0, y1);
+  plwind(-0.5, (double)n + 0.5, 0, f->ratio_max);
+  plcol0(AQ_PC_LIGHT);
+  plbox("g", 0, 0, "g", 0, 0);
+  plcol0(AQ_PC_FG);
+  plbox("bcnst", 0, 0, "bcnstv", 0, 0);
+  char title[200];
+  if (mu > 0)
+    snprintf(title, sizeof title, "friction needed at #gl#d0#u: primary blue, reverse orange; "
+                                  "#gm = %.3g dashed", mu);
+  else
+    snprintf(title, sizeof title, "friction needed at #gl#d0#u: primary blue, reverse orange");
+  pllab("joint", "|T| / N", title);
+  for (int s = 0; s < 2; s++) {
+    if (!f->ratio[s])
+      continue;
+    PLFLT *x = malloc((n + 1) * sizeof *x), *y = malloc((n + 1) * sizeof *y);
+    if (x && y) {
+      for (size_t j = 0; j <= n; j++)
+        x[j] = (PLFLT)j, y[j] = fmin(f->ratio[s][j], f->ratio_max);
+      plcol0(color[s]);
+      plwidth(2);
+      plline((PLINT)(n + 1), x, y);
+      plwidth(1);
+      plstring((PLINT)(n + 1), x, y, s ? "#(840)" : "#(841)");
+    }
+    free(x);
+    free(y);
+  }
+  if (mu > 0 && mu <= f->ratio_max) {
+    PLFLT x[2] = {-0.5, (double)n + 0.5}, y[2] = {mu, mu};
+    plcol0(AQ_PC_RED);
+    pllsty(2);
+    plline(2, x, y);
+    pllsty(1);
+  }
+}
+/* The colours of the block model's times. */
+static const int at_color[] = {AQ_PC_TEAL, AQ_PC_BROWN, AQ_PC_NAVY, AQ_PC_PINK, AQ_PC_OLIVE,
+                               AQ_PC_FG};
+#define N_AT_COLOR (sizeof at_color / sizeof at_color[0])
+_Static_assert(N_AT_COLOR >= AQ_PLOT_ARCH_AT_MAX, "a colour per time");
 
 static int draw(void *ctx, aq_error *err)
 {
@@ -186,7 +267,8 @@ static int draw(void *ctx, aq_error *err)
   plscol0(C_FILL, 232, 214, 170);
   plschr(0, 0.9);
   double legend = (double)(LEGEND_ROW * f->nlegend + 40) / f->height;
-  plvpas(0.1, 0.95, legend + 0.09, 0.93, (yhi - ylo) / (xhi - xlo)); /* equal scales */
+  double panel = f->ratio_max > 0 ? (double)PANEL_H / f->height : 0;
+  plvpas(0.1, 0.95, legend + panel + 0.11, 0.93, (yhi - ylo) / (xhi - xlo)); /* equal scales */
   plwind(xlo, xhi, ylo, yhi);
   plcol0(AQ_PC_LIGHT);
   plbox("g", 0, 0, "g", 0, 0);
@@ -200,7 +282,11 @@ static int draw(void *ctx, aq_error *err)
   double span = centre ? fabs(0.5 * (g->ji[0].x + g->je[0].x) - 0.5 * (g->ji[n].x + g->je[n].x))
                        : fabs(g->ji[0].x - g->ji[n].x);
   const char *what = centre ? "span" : "intrados span";
-  if (f->set >= 0)
+  if (f->nat == 1)
+    snprintf(rest, sizeof rest, "run %s, block model at %.6g s", f->run, f->at_s[0]);
+  else if (f->nat)
+    snprintf(rest, sizeof rest, "run %s, block model at %zu times", f->run, f->nat);
+  else if (f->set >= 0)
     snprintf(rest, sizeof rest, "%s set deformed at %.4g rad", f->set ? "reverse" : "primary",
              f->s_rad);
   else
@@ -220,17 +306,23 @@ static int draw(void *ctx, aq_error *err)
     plmtex("t", 3.0, 0.5, 0.5, title);
     plmtex("t", 1.6, 0.5, 0.5, rest);
   }
-  /* fill, then the voussoirs: undeformed (dashed when deformed), deformed */
-  for (int d = 0; d <= (f->set >= 0); d++) {
-    int ghost = f->set >= 0 && d == 0;
+  /* fill, then the voussoirs: undeformed (dashed when deformed), deformed
+   * (the block model's last time filled, then its earlier times over it as
+   * outlines in their colours) */
+  int nd = layers(f);
+  for (int j = 0; j <= nd; j++) {
+    int d = j <= 1 ? j * nd : j - 1; /* 0, nd, 1, ..., nd - 1 */
+    int ghost = nd > 0 && d == 0, bare = f->nat && d > 0 && d < nd;
+    int line = ghost ? AQ_PC_GREY : f->nat > 1 ? at_color[(d - 1) % N_AT_COLOR] : AQ_PC_FG;
     for (size_t k = 0; k < n; k++) {
       size_t a = g->fill_start[k], b = g->fill_start[k + 1];
-      polygon(f, k, g->fill + a, b - a, d, ghost ? -1 : C_FILL, ghost ? AQ_PC_GREY : -1, 2);
+      polygon(f, k, g->fill + a, b - a, d, ghost || bare ? -1 : C_FILL,
+              ghost ? AQ_PC_GREY : -1, 2);
     }
     for (size_t k = 0; k < n; k++) {
       size_t a = g->outline_start[k], b = g->outline_start[k + 1];
-      polygon(f, k, g->outline + a, b - a, d, ghost ? -1 : AQ_PC_LIGHT,
-              ghost ? AQ_PC_GREY : AQ_PC_FG, ghost ? 2 : 1);
+      polygon(f, k, g->outline + a, b - a, d, ghost || bare ? -1 : AQ_PC_LIGHT, line,
+              ghost ? 2 : 1);
     }
   }
   /* the line of thrust */
@@ -250,7 +342,7 @@ static int draw(void *ctx, aq_error *err)
   /* point masses, moved with their voussoirs */
   plschr(0, 1.1);
   for (size_t i = 0; i < g->p.nmass; i++) {
-    aq_vec2 p = moved(f, g->mass[i].voussoir, g->mass[i].p);
+    aq_vec2 p = moved(f, nd, g->mass[i].voussoir, g->mass[i].p);
     PLFLT px = p.x, py = p.y;
     plcol0(AQ_PC_PURPLE);
     plstring(1, &px, &py, SYM_MASS);
@@ -267,10 +359,10 @@ static int draw(void *ctx, aq_error *err)
     }
   }
   plschr(0, 0.9);
-  char txt[8][160];
-  const char *t[8];
-  int c[8], st[8];
-  const char *sy[8];
+  char txt[8 + AQ_PLOT_ARCH_AT_MAX][160];
+  const char *t[8 + AQ_PLOT_ARCH_AT_MAX];
+  int c[8 + AQ_PLOT_ARCH_AT_MAX], st[8 + AQ_PLOT_ARCH_AT_MAX];
+  const char *sy[8 + AQ_PLOT_ARCH_AT_MAX];
   size_t nl = 0;
   for (int s = 0; s < 2; s++) {
     const aq_path *p = aq_arch_path(f->arch, s);
@@ -304,19 +396,30 @@ static int draw(void *ctx, aq_error *err)
     t[nl] = txt[nl], c[nl] = AQ_PC_PURPLE, st[nl] = 0, sy[nl] = SYM_MASS;
     nl++;
   }
-  if (f->set >= 0) {
+  if (nd > 0) {
     t[nl] = "undeformed", c[nl] = AQ_PC_GREY, st[nl] = 2, sy[nl] = "";
+    nl++;
+  }
+  for (size_t i = 0; i < f->nat; i++) {
+    snprintf(txt[nl], sizeof txt[0], "t = %.6g s%s", f->at_s[i],
+             f->nat > 1 && i + 1 == f->nat ? " (filled)" : "");
+    t[nl] = txt[nl], c[nl] = f->nat > 1 ? at_color[i % N_AT_COLOR] : AQ_PC_FG, st[nl] = 1,
+    sy[nl] = "";
     nl++;
   }
   plvpor(0.1, 0.95, 0.01, legend);
   aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP, nl, t, c, st, sy);
+  if (panel > 0)
+    draw_friction(f, legend + 0.08, legend + panel);
   return 0;
 }
 
-/* series,index,x_m,y_m: voussoir corners (ext k, ext k+1, int k+1, int k),
- * outlines (curved faces sampled) and fills by voussoir, point masses,
+/* series,index,x_m,y_m,mu: voussoir corners (ext k, ext k+1, int k+1, int
+ * k), outlines (curved faces sampled) and fills by voussoir, point masses,
  * hinges of both sets, the line of thrust, and the deformed corners,
- * outlines, fills, masses and hinges. */
+ * outlines, fills, masses and hinges (mu nan); each set's friction demand
+ * |T|/N at each joint (series friction_primary, friction_reverse: index
+ * the joint, x_m, y_m its middle, mu the demand). */
 static aq_status write_data(const fig *f, const char *data, aq_error *err)
 {
   aq_outfile tmp;
@@ -326,47 +429,78 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
   if (!o)
     return err->status;
   aq_plot_csv_axes(o, 2, (const char *[]){AX_X, AX_Y});
-  fprintf(o, "series,index,x_m,y_m\n");
-  for (int d = 0; d <= (f->set >= 0); d++) {
-    const char *pre = d ? "deformed_" : "";
+  fprintf(o, "series,index,x_m,y_m,mu\n");
+  for (int d = 0; d <= layers(f); d++) {
+    char pre[48] = "";
+    if (f->nat && d)
+      snprintf(pre, sizeof pre, "at_%.6gs_", f->at_s[d - 1]);
+    else if (d)
+      snprintf(pre, sizeof pre, "deformed_");
     for (size_t k = 0; k < n; k++) {
       aq_vec2 p[4] = {g->je[k], g->je[k + 1], g->ji[k + 1], g->ji[k]};
       for (int i = 0; i < 4; i++) {
-        aq_vec2 q = d ? moved(f, k, p[i]) : p[i];
-        fprintf(o, "%scorner,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        aq_vec2 q = moved(f, d, k, p[i]);
+        fprintf(o, "%scorner,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
-        aq_vec2 q = d ? moved(f, k, g->outline[i]) : g->outline[i];
-        fprintf(o, "%soutline,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        aq_vec2 q = moved(f, d, k, g->outline[i]);
+        fprintf(o, "%soutline,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
-        aq_vec2 q = d ? moved(f, k, g->fill[i]) : g->fill[i];
-        fprintf(o, "%sfill,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        aq_vec2 q = moved(f, d, k, g->fill[i]);
+        fprintf(o, "%sfill,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t i = 0; i < g->p.nmass; i++) {
-      aq_vec2 q = d ? moved(f, g->mass[i].voussoir, g->mass[i].p) : g->mass[i].p;
-      fprintf(o, "%smass,%zu,%s,%s\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
+      aq_vec2 q = moved(f, d, g->mass[i].voussoir, g->mass[i].p);
+      fprintf(o, "%smass,%zu,%s,%s,nan\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
               AQ_TEXT_NUM(q.y));
     }
   }
   for (int s = 0; s < 2; s++) {
     const aq_mech *m = aq_workpath_mech(aq_arch_workpath(f->arch, s));
     for (int k = 0; k < 4; k++) {
-      fprintf(o, "%s_hinge_%c,%zu,%s,%s\n", s ? "reverse" : "primary", m->hs.face[k],
+      fprintf(o, "%s_hinge_%c,%zu,%s,%s,nan\n", s ? "reverse" : "primary", m->hs.face[k],
               m->hs.joint[k], AQ_TEXT_NUM(m->h[k].x), AQ_TEXT_NUM(m->h[k].y));
       if (s == f->set) {
         aq_vec2 h = hinge(f, s, k);
-        fprintf(o, "deformed_hinge_%c,%zu,%s,%s\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
+        fprintf(o, "deformed_hinge_%c,%zu,%s,%s,nan\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
                 AQ_TEXT_NUM(h.y));
       }
     }
   }
   for (size_t i = 0; i < f->nthrust; i++)
-    fprintf(o, "thrust,%zu,%s,%s\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
+    fprintf(o, "thrust,%zu,%s,%s,nan\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
+  for (int s = 0; s < 2; s++)
+    for (size_t j = 0; f->ratio[s] && j <= n; j++) {
+      aq_vec2 mid = {0.5 * (g->ji[j].x + g->je[j].x), 0.5 * (g->ji[j].y + g->je[j].y)};
+      fprintf(o, "friction_%s,%zu,%s,%s,%s\n", s ? "reverse" : "primary", j, AQ_TEXT_NUM(mid.x),
+              AQ_TEXT_NUM(mid.y), AQ_TEXT_NUM(f->ratio[s][j]));
+    }
   return aq_plot_csv_close(&tmp, err);
+}
+
+/* Draw f (its state set), write its data when asked, free its line of
+ * thrust and its friction demands. */
+static aq_status render(fig *f, const char *target, const char *data, double *draw_s,
+                        aq_error *err)
+{
+  const aq_geom *g = f->g;
+  f->nlegend = 4 + (f->nthrust > 1) + (g->fill_kg > 0) + (g->p.nmass > 0) + (layers(f) > 0) +
+               f->nat;
+  f->height = PLOT_H + LEGEND_ROW * (int)f->nlegend + 40 + (f->ratio_max > 0 ? PANEL_H : 0);
+  aq_status rc = aq_plot_render(target, FIG_W, f->height, draw, f, draw_s, err);
+  if (rc == AQ_OK && data)
+    rc = write_data(f, data, err);
+  free(f->thrust);
+  f->thrust = NULL;
+  for (int s = 0; s < 2; s++) {
+    free(f->ratio[s]);
+    f->ratio[s] = NULL;
+  }
+  return rc;
 }
 
 aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *target,
@@ -399,13 +533,18 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
     return err->status;
   }
   const aq_geom *g = f.g;
-  f.nlegend = 4 + (f.nthrust > 1) + (g->fill_kg > 0) + (g->p.nmass > 0) + (f.set >= 0);
-  f.height = PLOT_H + LEGEND_ROW * (int)f.nlegend + 40;
-  aq_status rc = aq_plot_render(target, FIG_W, f.height, draw, &f, draw_s, err);
-  if (rc == AQ_OK && data)
-    rc = write_data(&f, data, err);
-  free(f.thrust);
-  return rc;
+  size_t n = g->p.voussoirs;
+  for (int s = 0; s < 2; s++) { /* the friction each joint needs at lambda0 */
+    if (!aq_arch_path(arch, s)->admissible || !(f.ratio[s] = malloc((n + 1) * sizeof(double))))
+      continue;
+    aq_arch_joint_friction(arch, s, f.ratio[s], NULL);
+    for (size_t j = 0; j <= n; j++)
+      f.ratio_max = fmax(f.ratio_max, fmin(f.ratio[s][j], RATIO_CAP));
+  }
+  if (aq_arch_friction(arch) > 0 && f.ratio_max > 0)
+    f.ratio_max = fmax(f.ratio_max, fmin(aq_arch_friction(arch), RATIO_CAP));
+  f.ratio_max *= 1.1;
+  return render(&f, target, data, draw_s, err);
 }
 
 /* ---- an arch drawn again from a results file ---------------------------- */
@@ -538,18 +677,16 @@ static int hinges(const char *joints, const char *faces, aq_hinge_set *hs)
   return 1;
 }
 
-aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_rad,
-                          const char *target, const char *data, double *draw_s, aq_error *err)
+/* Arch `name` of open results file f (NULL: the first; want >= 0: the
+ * arch of that index, name then checked against it) into *arch, built from
+ * its stored geometry and hinge sets. */
+static aq_status file_arch(hid_t f, const char *path, const char *name, long want,
+                           aq_arch **out, aq_error *err)
 {
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0)
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                        "expected an archquake results file (HDF5), got one that cannot be "
-                        "opened as such");
   aq_status st = AQ_OK;
   char obj[64], got[128], first[128] = "", names[512] = "";
   long index = -1;
+  *out = NULL;
   for (long k = 0; k < 1000; k++) {
     snprintf(obj, sizeof obj, "/arches/%03ld", k);
     htri_t there = H5Lexists(f, "/arches", H5P_DEFAULT) > 0 ? H5Lexists(f, obj, H5P_DEFAULT) : 0;
@@ -561,7 +698,7 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
     if (!first[0])
       snprintf(first, sizeof first, "%s", got);
     snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", k ? ", " : "", got);
-    if (!name || !strcmp(name, got)) {
+    if (want >= 0 ? k == want : !name || !strcmp(name, got)) {
       index = k;
       break;
     }
@@ -571,9 +708,18 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
   int64_t *os = NULL, *fs = NULL;
   aq_arch *arch = NULL;
   if (index < 0) {
+    st = want >= 0 ? aq_error_set(err, AQ_EFORMAT, path, -1, -1, "--run",
+                                  "expected arch %ld of the run in the file's arches (%s), "
+                                  "got none", want, names[0] ? names : "none")
+                   : aq_error_set(err, AQ_EVALUE, path, -1, -1, "--arch",
+                                  "expected the name of one of the file's arches (%s), got "
+                                  "\"%s\"",
+                                  names[0] ? names : "none", name ? name : "");
+    goto done;
+  }
+  if (want >= 0 && name && strcmp(name, got) != 0) {
     st = aq_error_set(err, AQ_EVALUE, path, -1, -1, "--arch",
-                      "expected the name of one of the file's arches (%s), got \"%s\"",
-                      names[0] ? names : "none", name ? name : "");
+                      "expected the run's arch, %s, or no --arch, got \"%s\"", got, name);
     goto done;
   }
   char gname[64], pj[64], pf[8], rj[64], rf[8], shape[32];
@@ -589,6 +735,8 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
            hinges(rj, rf, &hs[1]);
   if (!attr_double(ga, "g_mps2", &dyn.g_mps2))
     attr_double(ga, "g_m_s2", &dyn.g_mps2); /* its name before it became the .cfg key's */
+  double mu = NAN; /* the runs' friction (files written before it have none) */
+  attr_double(ga, "friction", &mu);
   if (ga >= 0)
     H5Gclose(ga);
   hid_t gg = ok && H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 &&
@@ -630,12 +778,13 @@ aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_ra
   }
   aq_arch_drawing d = {shape, (size_t)nv, joints, parts, (size_t)no, (size_t)nf, outline, os,
                        fill, fs, (size_t)nm, mass, kg[0], kg[1], kg[2]};
-  st = aq_arch_from_drawing(&d, &hs[0], &hs[1], &dyn, got, &arch, err);
+  st = aq_arch_from_drawing(&d, &hs[0], &hs[1], &dyn, mu, got, &arch, err);
   if (st != AQ_OK) {
     snprintf(err->input, sizeof err->input, "%s", path);
     goto done;
   }
-  st = aq_plot_arch(arch, rotation_rad, target, data, draw_s, err);
+  *out = arch;
+  arch = NULL;
 done:
   aq_arch_free(arch);
   free(joints);
@@ -647,6 +796,121 @@ done:
   free(mass);
   free(os);
   free(fs);
+  return st;
+}
+
+aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_rad,
+                          const char *target, const char *data, double *draw_s, aq_error *err)
+{
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected an archquake results file (HDF5), got one that cannot be "
+                        "opened as such");
+  aq_arch *arch = NULL;
+  aq_status st = file_arch(f, path, name, -1, &arch, err);
   H5Fclose(f);
+  if (st == AQ_OK)
+    st = aq_plot_arch(arch, rotation_rad, target, data, draw_s, err);
+  aq_arch_free(arch);
+  return st;
+}
+
+/* Sample value of v (n samples x nv columns, column k) at time t between
+ * the samples of t_s (ascending; t within [t_s[0], t_s[n-1]]), linear. */
+static double at_time(const double *t_s, size_t n, const double *v, size_t nv, size_t k, double t)
+{
+  size_t lo = 0, hi = n - 1;
+  while (hi - lo > 1) { /* t_s[lo] <= t <= t_s[hi] */
+    size_t mid = lo + (hi - lo) / 2;
+    if (t_s[mid] <= t)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double a = v[lo * nv + k], b = v[hi * nv + k], dt = t_s[hi] - t_s[lo];
+  return dt > 0 ? a + (b - a) * (t - t_s[lo]) / dt : b;
+}
+
+aq_status aq_plot_arch_run(const char *path, const char *name, const char *key,
+                           const double *at_s, size_t nat, const char *target,
+                           const char *data, double *draw_s, aq_error *err)
+{
+  if (nat > AQ_PLOT_ARCH_AT_MAX)
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "--at",
+                        "expected at most %d times, got %zu", AQ_PLOT_ARCH_AT_MAX, nat);
+  aq_plot_run r;
+  aq_status st = aq_plot_run_read(path, key, &r, err);
+  if (st != AQ_OK)
+    return st;
+  aq_arch *arch = NULL;
+  double *buf = NULL, peak_s = 0;
+  if (r.nvous == 0 || r.n == 0) {
+    st = aq_error_set(err, AQ_EVALUE, path, -1, -1, "--run",
+                      "expected a run of --model blocks (its voussoirs' histories), got run "
+                      "%s without them (a four-hinge run: plot arch --rotation draws its "
+                      "mechanism)",
+                      r.key);
+    goto done;
+  }
+  double t0 = r.t_s[0], t1 = r.t_s[r.n - 1];
+  for (size_t i = 0; i < nat; i++)
+    if (!(at_s[i] >= t0 && at_s[i] <= t1)) {
+      st = aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "--at",
+                        "expected times within run %s's history, [%.6g, %.6g] s, got %g",
+                        r.key, t0, t1, at_s[i]);
+      goto done;
+    }
+  if (nat == 0) { /* the peak of voussoir 0's |rotation| */
+    double peak = -1;
+    for (size_t i = 0; i < r.n; i++)
+      if (fabs(r.vrot_rad[i * r.nvous]) > peak)
+        peak = fabs(r.vrot_rad[i * r.nvous]), peak_s = r.t_s[i];
+    at_s = &peak_s;
+    nat = 1;
+  }
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    st = aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "HDF5: cannot open");
+    goto done;
+  }
+  st = file_arch(f, path, name, r.arch_index, &arch, err);
+  H5Fclose(f);
+  if (st != AQ_OK)
+    goto done;
+  size_t nv = aq_arch_geom(arch)->p.voussoirs;
+  if (nv != r.nvous) {
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "--run",
+                      "expected run %s's history of the arch's %zu voussoirs, got %zu", r.key,
+                      nv, r.nvous);
+    goto done;
+  }
+  buf = malloc(3 * nat * nv * sizeof *buf);
+  if (!buf) {
+    st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    goto done;
+  }
+  fig fg;
+  memset(&fg, 0, sizeof fg);
+  fg.arch = arch;
+  fg.g = aq_arch_geom(arch);
+  fg.set = fg.thrust_set = -1;
+  fg.nat = nat;
+  fg.at_s = at_s;
+  fg.bx = buf, fg.by = buf + nat * nv, fg.br = buf + 2 * nat * nv;
+  fg.run = r.key;
+  for (size_t i = 0; i < nat; i++)
+    for (size_t k = 0; k < nv; k++) {
+      buf[i * nv + k] = at_time(r.t_s, r.n, r.vx_m, nv, k, at_s[i]);
+      buf[(nat + i) * nv + k] = at_time(r.t_s, r.n, r.vy_m, nv, k, at_s[i]);
+      buf[(2 * nat + i) * nv + k] = at_time(r.t_s, r.n, r.vrot_rad, nv, k, at_s[i]);
+    }
+  st = render(&fg, target, data, draw_s, err);
+done:
+  free(buf);
+  aq_arch_free(arch);
+  aq_plot_run_free(&r);
   return st;
 }

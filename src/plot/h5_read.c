@@ -78,7 +78,45 @@ void aq_plot_run_free(aq_plot_run *r)
   free(r->pe_j);
   free(r->set);
   free(r->ag_mps2);
+  free(r->vx_m);
+  free(r->vy_m);
+  free(r->vrot_rad);
   memset(r, 0, sizeof *r);
+}
+
+/* The block model's voussoir histories of run r->key under hist, if the
+ * file has them (--model blocks): 0 (read, or none there), -1 (there but
+ * not n x k doubles with n = r->n). */
+static int voussoirs(hid_t f, const char *hist, aq_plot_run *r)
+{
+  static const char *const names[3] = {"voussoir_x_m", "voussoir_y_m", "voussoir_rotation_rad"};
+  double **dst[3] = {&r->vx_m, &r->vy_m, &r->vrot_rad};
+  char obj[160];
+  size_t nv = 0;
+  for (int i = 0; i < 3; i++) {
+    snprintf(obj, sizeof obj, "%s/%s/%s", hist, r->key, names[i]);
+    if (H5Oexists_by_name(f, obj, H5P_DEFAULT) <= 0) {
+      H5Eclear2(H5E_DEFAULT);
+      if (i == 0)
+        return 0;
+      return -1;
+    }
+    hid_t d = H5Dopen2(f, obj, H5P_DEFAULT), s = d >= 0 ? H5Dget_space(d) : -1;
+    hsize_t dim[2] = {0, 0};
+    int ok = s >= 0 && H5Sget_simple_extent_ndims(s) == 2 &&
+             H5Sget_simple_extent_dims(s, dim, NULL) == 2 && dim[0] == r->n && dim[1] > 0 &&
+             (i == 0 || dim[1] == nv);
+    if (s >= 0)
+      H5Sclose(s);
+    if (d >= 0)
+      H5Dclose(d);
+    size_t cnt = 0;
+    if (!ok || dataset(f, obj, dst[i], &cnt) < 0 || cnt != r->n * dim[1])
+      return -1;
+    nv = dim[1];
+  }
+  r->nvous = nv;
+  return 0;
 }
 
 static void run_key(const aq_h5_run *u, char *buf, size_t n)
@@ -143,6 +181,7 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
   r->collapse_time_s = u->s.collapse_time_s;
   r->impacts = (long)u->s.impacts;
   r->energy_in_j = u->s.energy_in_j;
+  r->arch_index = (long)u->arch_index;
 
   static const char *const names[5] = {"time_s", "rotation_rad", "displacement_m",
                                        "kinetic_energy_j", "potential_energy_j"};
@@ -174,6 +213,13 @@ aq_status aq_plot_run_read(const char *path, const char *key, aq_plot_run *r,
       H5Dclose(d);
   }
   H5Eclear2(H5E_DEFAULT);
+  if (voussoirs(f, hist, r) < 0) {
+    snprintf(obj, sizeof obj, "%s/%s", hist, r->key);
+    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, obj,
+                      "expected the block model's voussoir histories as n x k doubles, n "
+                      "as long as time_s, got others");
+    goto done;
+  }
 
   /* the ground, as the run saw it (absent from a format-2 file written
    * without --store-records: the figure then goes without it) */

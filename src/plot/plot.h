@@ -66,6 +66,11 @@ typedef struct {
   double ag_dt_s, ag_t0_s; /* sample interval and time of sample 0, s */
   long n_orig;           /* samples of the record without its pads (0: unknown) */
   double rec_dt_s;       /* the record's sample interval, s (0: unknown) */
+  long arch_index;       /* the run's arch: /arches/NNN, /geometry/NNN */
+  /* --model blocks: every voussoir's centroid (m, m) and rotation (rad) at
+   * sample i, voussoir k at [i * nvous + k]; nvous 0 and NULL otherwise */
+  size_t nvous;
+  double *vx_m, *vy_m, *vrot_rad;
 } aq_plot_run;
 
 /* Read run `key` (NULL: the first run with histories) of results file
@@ -258,6 +263,18 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
  * without its .cfg.  Errors name the file (or --arch for an unknown name). */
 aq_status aq_plot_arch_h5(const char *path, const char *name, double rotation_rad,
                           const char *target, const char *data, double *draw_s, aq_error *err);
+/* The most times plot arch --run draws at once (--at). */
+#define AQ_PLOT_ARCH_AT_MAX 6
+/* Run `key` of results file path (NULL: the first with histories), a run
+ * of the block model stored with --history: every voussoir where the
+ * history has it at each of the nat times at_s (s, record time, within the
+ * history; linear between samples), over the undeformed arch (its stored
+ * geometry); nat 0: at the peak |rotation| of voussoir 0.  name: NULL, or
+ * the run's arch's name (checked).  Errors name --run (no such run; not a
+ * block model's run) or --at (outside the history, too many). */
+aq_status aq_plot_arch_run(const char *path, const char *name, const char *key,
+                           const double *at_s, size_t nat, const char *target,
+                           const char *data, double *draw_s, aq_error *err);
 
 /* domain.c: duration (s) against ratio for the n ratios, with the shortest
  * collapsing durations dur_s[] (INFINITY: none up to the search limit)

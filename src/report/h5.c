@@ -438,6 +438,57 @@ static herr_t dataset_doubles(aq_h5_writer *w, hid_t loc, const char *name, cons
                     units, 0, NULL, NULL, 1);
 }
 
+/* A history of every voussoir (the block model's): n samples x nv
+ * voussoirs, v[i * nv + k], chunked and compressed as the series are, with
+ * the columns v0 v1 ... and the same units for each. */
+static herr_t dataset_voussoirs(aq_h5_writer *w, hid_t loc, const char *name, const double *v,
+                                size_t n, size_t nv, const char *units)
+{
+  hsize_t dim[2] = {n, nv};
+  hsize_t rows = AQ_H5_SERIES_CHUNK / nv ? AQ_H5_SERIES_CHUNK / nv : 1;
+  hsize_t chunk[2] = {n < rows ? n : rows, nv};
+  hid_t dcpl = H5P_DEFAULT;
+  if (w->deflate > 0 && n > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (dcpl < 0 || H5Pset_chunk(dcpl, 2, chunk) < 0 || H5Pset_shuffle(dcpl) < 0 ||
+        H5Pset_deflate(dcpl, (unsigned)w->deflate) < 0) {
+      if (dcpl >= 0)
+        H5Pclose(dcpl);
+      return -1;
+    }
+  }
+  char *names = malloc(nv * 24);
+  const char **col = malloc(nv * sizeof *col), **un = malloc(nv * sizeof *un);
+  hid_t s = H5Screate_simple(2, dim, NULL);
+  hid_t d = s < 0 ? -1 : H5Dcreate2(loc, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  herr_t rc = d < 0 || !names || !col || !un ? -1 : 0;
+  for (size_t k = 0; rc == 0 && k < nv; k++) {
+    snprintf(names + 24 * k, 24, "v%zu", k);
+    col[k] = names + 24 * k;
+    un[k] = units;
+  }
+  if (rc == 0 && n > 0)
+    rc = H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
+  if (rc == 0)
+    sync_hint(w, n * nv * sizeof(double));
+  if (rc == 0)
+    rc = aq_h5_attr_strings(d, "columns", col, nv);
+  if (rc == 0)
+    rc = aq_h5_attr_strings(d, "units", un, nv);
+  if (d >= 0 && H5Dclose(d) < 0)
+    rc = -1;
+  if (s >= 0 && H5Sclose(s) < 0)
+    rc = -1;
+  if (s < 0)
+    rc = -1;
+  if (dcpl != H5P_DEFAULT)
+    H5Pclose(dcpl);
+  free(names);
+  free(col);
+  free(un);
+  return rc;
+}
+
 /* ---- tables ------------------------------------------------------------- */
 
 /* The bytes of column c in a row: its member's (a pointer for a
@@ -1014,6 +1065,9 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     CK(attr_str(w, g, "control", aq_hinge_control_names[aq_arch_control(a->arch)]),
        "arch attributes");
     CK(attr_double(w, g, "friction", aq_arch_friction(a->arch)), "arch attributes");
+    size_t jr;
+    CK(attr_double(w, g, "mu_rest", aq_arch_mu_rest(a->arch, &jr)), "arch attributes");
+    CK(attr_int(w, g, "mu_rest_joint", (int64_t)jr), "arch attributes");
   }
   if (a->dyn) {
     CK(attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
@@ -1040,6 +1094,18 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     CK(attr_double(w, g, nm, p ? p->s_c_rad : NAN), "arch attributes");
     snprintf(nm, sizeof nm, "%s_mass_kg", set_name[k]);
     CK(attr_double(w, g, nm, p ? p->mass_kg : NAN), "arch attributes");
+    if (a->arch && p) { /* its collapse state's friction, and the load with the arch's */
+      size_t mj;
+      double mu = aq_arch_joint_friction(a->arch, k, NULL, &mj);
+      snprintf(nm, sizeof nm, "%s_mu_required", set_name[k]);
+      CK(attr_double(w, g, nm, mu), "arch attributes");
+      snprintf(nm, sizeof nm, "%s_mu_joint", set_name[k]);
+      CK(attr_int(w, g, nm, mj == SIZE_MAX ? -1 : (int64_t)mj), "arch attributes");
+      snprintf(nm, sizeof nm, "%s_lambda_friction", set_name[k]);
+      CK(attr_double(w, g, nm,
+                     aq_arch_lambda_friction(a->arch, p->act_sign, aq_arch_friction(a->arch))),
+         "arch attributes");
+    }
   }
   CK(H5Gclose(g), "H5Gclose");
   g = -1;
@@ -1233,6 +1299,16 @@ aq_status aq_h5_write_run(aq_h5_writer *w, size_t ri, size_t ai, size_t si,
     CK(dataset_1d(w, g, "hinge_set", H5T_STD_I64LE, H5T_NATIVE_INT, h->set, h->n,
                   "1 (0 primary, 1 reverse, -1 at rest)", 0, NULL, NULL, 1),
        "hinge_set");
+  const aq_result_bodies *B = res->bodies;
+  if (B && B->hist_x_m && B->nvous > 0) { /* the block model's: every voussoir */
+    CK(dataset_voussoirs(w, g, "voussoir_x_m", B->hist_x_m, h->n, B->nvous, "m"),
+       "voussoir_x_m");
+    CK(dataset_voussoirs(w, g, "voussoir_y_m", B->hist_y_m, h->n, B->nvous, "m"),
+       "voussoir_y_m");
+    CK(dataset_voussoirs(w, g, "voussoir_rotation_rad", B->hist_rot_rad, h->n, B->nvous,
+                         "rad"),
+       "voussoir_rotation_rad");
+  }
   CK(H5Gclose(g), "H5Gclose");
   return AQ_OK;
 fail:
