@@ -2,10 +2,10 @@
  * 5 %) of a 20,000-sample record, one component and RotD over 180 angles,
  * with the peak at PEER's refined samples (the default), over continuous
  * time and at the samples only, side by side in one run; and the cost per
- * period per sample (CPU time).  One component's samples and peer rows are
- * also run with one_at_a_time (each oscillator's own loop, as before the
- * periods were grouped: the same values), and the grouping's speed-up
- * printed (before / after, CPU and wall).
+ * period per sample (CPU time).  The samples and peer rows are also run
+ * with one_at_a_time (each oscillator's own loop, as before the periods
+ * were grouped and RotD's two components joined in one loop: the same
+ * values), and the speed-up printed (before / after, CPU and wall).
  *
  * The record: two horizontal components of 100 s at dt = 0.005 s, each a
  * sum of 40 sines from 0.1 to 20 Hz with fixed pseudo-random phases under a
@@ -68,16 +68,16 @@ int main(void)
   double sink = 0;
   for (int rotd = 0; rotd < 2; rotd++) {
     double med[3];
-    /* samples first: the ratios are to it; one component also one period
-     * at a time (one_at_a_time: the loop before periods were grouped),
-     * before the grouped rows, and the speed-up of the grouping; "-": not
-     * grouped (exact and RotD keep each period's history) */
+    /* samples first: the ratios are to it; samples and peer also one
+     * period and component at a time (one_at_a_time: the loops before the
+     * periods were grouped and RotD's components joined), before the
+     * default rows, and the speed-up; exact: "-", the default only */
     static const aq_spectrum_peaks modes[3] = {AQ_SPECTRUM_PEAKS_SAMPLES,
                                                AQ_SPECTRUM_PEAKS_PEER,
                                                AQ_SPECTRUM_PEAKS_EXACT};
     double alone[3] = {0}, alone_wall[3] = {0}, grouped_wall[3] = {0};
     for (int m = 0; m < 3; m++)
-      for (int sep = rotd || m == 2 ? 0 : 1; sep >= 0; sep--) {
+      for (int sep = m == 2 ? 0 : 1; sep >= 0; sep--) {
         aq_spectrum_opts o;
         aq_spectrum_opts_default(&o);
         o.peaks = modes[m];
@@ -110,12 +110,13 @@ int main(void)
         printf("%s\t%s\t%s\t%.2f\t%.2f\t%.2f\t%.2f\n",
                rotd ? "rotd_180_angles" : "one_component",
                aq_spectrum_peaks_names[modes[m]],
-               sep ? "one_at_a_time" : rotd || m == 2 ? "-" : "grouped",
+               sep ? "one_at_a_time" : m == 2 ? "-" : rotd ? "two_in_one_loop" : "grouped",
                1e3 * wm, 1e3 * cm, 1e9 * cm / ((double)np * NPTS),
                cm / (sep ? alone[0] : med[0]));
       }
-    for (int m = 0; m < 2 && !rotd; m++)
-      printf("grouping speed-up, one component, %s: cpu %.2fx, wall %.2fx\n",
+    for (int m = 0; m < 2; m++)
+      printf("speed-up, %s, %s: cpu %.2fx, wall %.2fx\n",
+             rotd ? "rotd (components in one loop)" : "one component (periods grouped)",
              aq_spectrum_peaks_names[modes[m]], alone[m] / med[m],
              alone_wall[m] / grouped_wall[m]);
   }

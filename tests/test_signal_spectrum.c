@@ -686,6 +686,42 @@ AQ_TEST(spectrum_many_periods_in_one_call)
                m ? peer[i] : smp[i]);
     }
   }
+  /* RotD's angles 0 and 90 degrees project on each component alone
+   * (1 x1 + 0 x2 = x1): its H1 and H2 at the samples are the components'
+   * own PSA at the samples, to the bit (the two responses run in one loop,
+   * spectrum.c's respond2) */
+  double *b = alloc_d(n), smp2[NP];
+  for (size_t k = 0; k < n; k++)
+    b[k] = 0.7 * a[n - 1 - k] + 0.3 * a[(7 * k) % n];
+  aq_rotd rd[NP];
+  o.peaks = AQ_SPECTRUM_PEAKS_SAMPLES;
+  aq_check(aq_spectrum_psa(ws, &o, b, n, dt, z, periods, NP, smp2, &e) == AQ_OK, "psa 2");
+  aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n, dt, z, periods, NP, rd, NULL, &e) == AQ_OK,
+           "rotd");
+  for (size_t i = 0; i < NP; i++)
+    aq_check(rd[i].psa1_mps2 == smp[i] && rd[i].psa2_mps2 == smp2[i],
+             "T = %g s: RotD's H1, H2 %.17g, %.17g; alone %.17g, %.17g", periods[i],
+             rd[i].psa1_mps2, rd[i].psa2_mps2, smp[i], smp2[i]);
+  /* and every RotD value as with each component in its own loop */
+  aq_rotd rs[NP];
+  for (int m = 0; m < 3; m++) {
+    o.peaks = (aq_spectrum_peaks)m;
+    o.one_at_a_time = 0;
+    aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n - 400, dt, z, periods, NP, rd, NULL, &e) ==
+                 AQ_OK, "rotd");
+    o.one_at_a_time = 1;
+    aq_check(aq_spectrum_rotd(ws, &o, a, n, b, n - 400, dt, z, periods, NP, rs, NULL, &e) ==
+                 AQ_OK, "rotd one at a time");
+    for (size_t i = 0; i < NP; i++)
+      aq_check(rd[i].rotd50_mps2 == rs[i].rotd50_mps2 &&
+                   rd[i].rotd100_mps2 == rs[i].rotd100_mps2 &&
+                   rd[i].psa1_mps2 == rs[i].psa1_mps2 && rd[i].psa2_mps2 == rs[i].psa2_mps2,
+               "T = %g s, %s: RotD50 %.17g, RotD100 %.17g; one at a time %.17g, %.17g",
+               periods[i], aq_spectrum_peaks_names[m], rd[i].rotd50_mps2,
+               rd[i].rotd100_mps2, rs[i].rotd50_mps2, rs[i].rotd100_mps2);
+  }
+  o.one_at_a_time = 0;
+  free(b);
   aq_spectrum_ws_free(ws);
   free(a);
   free(u);

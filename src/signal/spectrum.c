@@ -750,8 +750,9 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "spectrum",
                         "out of memory for %zu samples", n);
   double amax = abs_max(acc_mps2, n);
-  /* the periods whose peak is at the samples only, BATCH at a time
-   * (peaks_batch); the others one by one, their history kept */
+  /* T = 0: the input's peak; the periods whose peak is at the samples
+   * only, BATCH at a time (peaks_batch); the others one by one, their
+   * history kept */
   sdof bo[BATCH];
   const sdof *bp[BATCH];
   size_t bi[BATCH], nb = 0;
@@ -766,6 +767,10 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
       st = peer_init(&sub, &steps, period_s[i], damping, dt_s, err);
       if (st != AQ_OK)
         return st;
+    }
+    if (o.pga && !opts->one_at_a_time) {
+      psa_mps2[i] = amax; /* x = -a, its peak the same under every rule */
+      continue;
     }
     int at_samples = opts->peaks == AQ_SPECTRUM_PEAKS_SAMPLES ||
                      (opts->peaks == AQ_SPECTRUM_PEAKS_PEER && steps < 2);
@@ -869,8 +874,66 @@ static size_t hull2(pt2 *p, size_t m, pt2 *h)
   return k - 1;
 }
 
-/* Directions of the lower bound of every angle's peak (below). */
+/* Directions of the lower bound of every angle's peak (below): 4, then
+ * LO_DIRS. */
 enum { LO_DIRS = 16 };
+
+/* The nd directions pi d / nd, d = 0..nd-1: cos into dc, sin into ds. */
+static void lo_dirs(int nd, double *dc, double *ds)
+{
+  for (int d = 0; d < nd; d++) {
+    dc[d] = cos(AQ_PI * d / nd);
+    ds[d] = sin(AQ_PI * d / nd);
+  }
+}
+
+/* Both components' responses at the samples, x1, y1 of a1 (n1 samples)
+ * and x2, y2 of a2 (n2), k = 0..nt-1, the input zero past its samples:
+ * each step respond()'s, the two in one loop (two independent chains, so
+ * one's wait is the other's work); and in the same loop the first pass of
+ * rotd_peaks(): for each of its 4 first directions, the first sample k
+ * where |c x1 + s x2| is largest, into q[4] (any points give a valid
+ * lower bound, so q decides only how many points the hull is taken of; the
+ * same as rotd_peaks' own scan, so the same work follows).  o is not the
+ * PGA's. */
+static void respond2(const sdof *o, const double *a1, size_t n1, const double *a2,
+                     size_t n2, size_t nt, double *x1, double *y1, double *x2,
+                     double *y2, size_t *q)
+{
+  double dc[4], ds[4], qm[4];
+  lo_dirs(4, dc, ds);
+  double p00 = o->p[0][0], p01 = o->p[0][1], p10 = o->p[1][0],
+         p11 = o->p[1][1];
+  double b00 = o->b[0][0], b01 = o->b[0][1], b10 = o->b[1][0],
+         b11 = o->b[1][1];
+  double xa = 0, ya = 0, xb = 0, yb = 0;
+  double aa = acc_at(a1, n1, 0), ab = acc_at(a2, n2, 0);
+  x1[0] = y1[0] = x2[0] = y2[0] = 0;
+  for (int d = 0; d < 4; d++) {
+    qm[d] = fabs(dc[d] * x1[0] + ds[d] * x2[0]);
+    q[d] = 0;
+  }
+  for (size_t k = 0; k + 1 < nt; k++) {
+    double na = acc_at(a1, n1, k + 1), nb = acc_at(a2, n2, k + 1);
+    double xn = p00 * xa + p01 * ya + b00 * aa + b01 * na;
+    double yn = p10 * xa + p11 * ya + b10 * aa + b11 * na;
+    double un = p00 * xb + p01 * yb + b00 * ab + b01 * nb;
+    double vn = p10 * xb + p11 * yb + b10 * ab + b11 * nb;
+    x1[k + 1] = xa = xn;
+    y1[k + 1] = ya = yn;
+    x2[k + 1] = xb = un;
+    y2[k + 1] = yb = vn;
+    aa = na;
+    ab = nb;
+    for (int d = 0; d < 4; d++) {
+      double v = fabs(dc[d] * xn + ds[d] * un);
+      if (v > qm[d]) {
+        qm[d] = v;
+        q[d] = k + 1;
+      }
+    }
+  }
+}
 
 /* PEER's refined points of both components, in the intervals where the
  * two components' bounds together (|c x1 + s x2| <= sqrt(b1^2 + b2^2))
@@ -919,7 +982,8 @@ static int rotd_refined(aq_spectrum_ws *ws, const sdof *o, const sdof *s, size_t
  * 0 when out of memory. */
 static int rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const sdof *sub, size_t steps,
                       const double *a1, size_t n1, const double *a2, size_t n2,
-                      size_t nt, size_t na, aq_spectrum_peaks peaks, double *peak)
+                      size_t nt, size_t na, aq_spectrum_peaks peaks, const size_t *q_first,
+                      double *peak)
 {
   const double *x1 = ws->x1, *x2 = ws->x2, *y1 = ws->y1, *y2 = ws->y2;
   const double *cs = ws->cs, *sn = ws->sn;
@@ -928,21 +992,21 @@ static int rotd_peaks(aq_spectrum_ws *ws, const sdof *o, const sdof *sub, size_t
    * taken of the points that can reach the smallest peak: a lower bound lo
    * of every angle's peak comes from the points that peak along a few
    * directions (first 4 over all points, then 16 over those above the
-   * first bound), and a point of norm below it is no angle's peak. */
+   * first bound), and a point of norm below it is no angle's peak.  The
+   * first 4 come from respond2 (q_first) unless NULL. */
   double lo = 0;
   size_t np = 0;
   for (int pass = 0; pass < 2; pass++) {
     int nd = pass ? LO_DIRS : 4;
     double dc[LO_DIRS], ds[LO_DIRS], qm[LO_DIRS];
     size_t q[LO_DIRS];
+    lo_dirs(nd, dc, ds);
     for (int d = 0; d < nd; d++) {
-      dc[d] = cos(AQ_PI * d / nd);
-      ds[d] = sin(AQ_PI * d / nd);
       qm[d] = -1;
-      q[d] = 0;
+      q[d] = pass || !q_first ? 0 : q_first[d];
     }
     size_t m = pass ? np : nt;
-    for (size_t i = 0; i < m; i++) {
+    for (size_t i = 0; i < m && (pass || !q_first); i++) {
       size_t k = pass ? ws->pts[i] : i;
       for (int d = 0; d < nd; d++) {
         double v = fabs(dc[d] * x1[k] + ds[d] * x2[k]);
@@ -1071,11 +1135,16 @@ aq_status aq_spectrum_rotd(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
       st = peer_init(&sub, &steps, period_s[i], damping, dt_s, err);
     if (st != AQ_OK)
       return st;
-    respond(&o, acc1_mps2, n1, n, ws->x1, ws->y1);
-    respond(&o, acc2_mps2, n2, n, ws->x2, ws->y2);
+    size_t q[4];
+    if (o.pga || opts->one_at_a_time) {
+      respond(&o, acc1_mps2, n1, n, ws->x1, ws->y1);
+      respond(&o, acc2_mps2, n2, n, ws->x2, ws->y2);
+    } else {
+      respond2(&o, acc1_mps2, n1, acc2_mps2, n2, n, ws->x1, ws->y1, ws->x2, ws->y2, q);
+    }
     double *pk = ws->sorted; /* the angles' peaks, then sorted in place */
     if (!rotd_peaks(ws, &o, &sub, steps, acc1_mps2, n1, acc2_mps2, n2, n, na, opts->peaks,
-                    pk))
+                    o.pga || opts->one_at_a_time ? NULL : q, pk))
       return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "spectrum",
                           "out of memory for the refined points of %zu samples", n);
     if (angle_peaks_mps2)

@@ -103,9 +103,10 @@ typedef struct {
   aq_spectrum_peaks peaks; /* where a peak is taken (default PEER) */
   int one_at_a_time; /* 0 (the default): the periods whose peak is at the
                         samples (SAMPLES; PEER where N = 1) run several at
-                        a time; 1: each on its own, as before they did (the
-                        same values to the bit; slower: for benches and
-                        tests) */
+                        a time, and RotD's two components in one loop; 1:
+                        each period and component on its own, as before
+                        they did (the same values to the bit; slower: for
+                        benches and tests) */
 } aq_spectrum_opts;
 
 void aq_spectrum_opts_default(aq_spectrum_opts *o);
