@@ -9,9 +9,11 @@
 
 #include "arch/model.h"
 
-/* lambda0 of hs by the 9x9 equilibrium, of either sign; 1 if every hinge
- * opens at first order and every hinge reaction is compressive. */
-static inline int aq_test_lambda0_eq(const aq_geom *g, const aq_hinge_set *hs, double *l0)
+/* lambda0 of hs by the 9x9 equilibrium, of either sign, and *act (if not
+ * NULL) the sign of the ground acceleration that drives it; 1 if every
+ * hinge opens at first order and every hinge reaction is compressive. */
+static inline int aq_test_lambda0_eq_act(const aq_geom *g, const aq_hinge_set *hs, double *l0,
+                                         int *act)
 {
   aq_mech m;
   aq_mech_state st;
@@ -38,7 +40,14 @@ static inline int aq_test_lambda0_eq(const aq_geom *g, const aq_hinge_set *hs, d
     if (!(eq.normal[k] > 0))
       return 0;
   *l0 = eq.lambda;
+  if (act)
+    *act = live.act_sign;
   return 1;
+}
+
+static inline int aq_test_lambda0_eq(const aq_geom *g, const aq_hinge_set *hs, double *l0)
+{
+  return aq_test_lambda0_eq_act(g, hs, l0, NULL);
 }
 
 /* The search's minimum lambda0 of the arch p describes (standard gravity),

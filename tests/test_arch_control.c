@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "arch/model.h"
+#include "arch_lambda0.h"
 #include "check.h"
 #include "units.h"
 
@@ -44,7 +45,7 @@ static aq_arch *load(const char *path, double friction)
   aq_arch *a = NULL;
   aq_error e;
   aq_error_clear(&e);
-  aq_arch_options o = {friction};
+  aq_arch_options o = {.friction = friction};
   aq_check(aq_arch_load_opts(path, &o, &a, &e) == AQ_OK, "%s loads: %s", path, e.message);
   return a;
 }
@@ -107,39 +108,6 @@ AQ_TEST(arch_control_defaults)
   }
 }
 
-/* The hinge sets' lambda0 and direction by the 9x9: lambda0 > 0, every
- * hinge opening at first order, every reaction compressive; *act the sign
- * of the ground acceleration whose inertia force does work as it opens. */
-static int by_equilibrium(const aq_geom *g, const aq_hinge_set *hs, double *l0, int *act)
-{
-  aq_mech m;
-  aq_mech_state st;
-  aq_equil eq;
-  aq_error e;
-  if (aq_mech_init(&m, g, hs, &e) != AQ_OK || aq_mech_eval(&m, 0.0, &st) != 0)
-    return 0;
-  int qs = hs->face[0] == 'i' ? 1 : -1; /* q grows as hinge 1 opens */
-  double rate[4] = {1, st.phi[1][1] - 1, st.phi[2][1] - st.phi[1][1], -st.phi[2][1]};
-  for (int k = 0; k < 4; k++)
-    if (!((hs->face[k] == 'i' ? 1 : -1) * qs * rate[k] > 0))
-      return 0;
-  double wx = 0; /* d(m_T x)/dq */
-  for (int b = 0; b < 3; b++)
-    wx += m.body[b].mass_kg * st.c[b][1].x;
-  if (wx == 0)
-    return 0;
-  /* the force -a_g m (a_g = act g) does work -act g qs wx > 0 as s grows */
-  *act = qs * wx > 0 ? -1 : 1;
-  aq_live live = {AQ_LIVE_HORIZONTAL, *act, {0, 0}, 0, 9.80665};
-  if (aq_mech_equilibrium(&m, &st, &live, &eq, &e) != AQ_OK)
-    return 0;
-  for (int k = 0; k < 4; k++)
-    if (!(eq.normal[k] > 0))
-      return 0;
-  *l0 = eq.lambda;
-  return *l0 > 0;
-}
-
 /* The lowest lambda0 of each direction (best[0]: act_sign -1, best[1]:
  * +1) over every set of four joints with alternating faces. */
 static void brute_minima(const aq_geom *g, double best[2])
@@ -156,7 +124,7 @@ static void brute_minima(const aq_geom *g, double best[2])
               hs = (aq_hinge_set){{a, b, c, d}, {'i', 'e', 'i', 'e'}};
             double l0;
             int act;
-            if (by_equilibrium(g, &hs, &l0, &act) && l0 < best[act > 0])
+            if (aq_test_lambda0_eq_act(g, &hs, &l0, &act) && l0 > 0 && l0 < best[act > 0])
               best[act > 0] = l0;
           }
 }
@@ -189,8 +157,8 @@ AQ_TEST(arch_control_free_sets_are_direction_minima)
     int act;
     aq_check(p->admissible && p->act_sign == (k ? 1 : -1), "set %d: act_sign %d", k,
              p->act_sign);
-    aq_check(by_equilibrium(aq_arch_geom(a), aq_arch_hinge_set(a, k), &l0, &act) &&
-                 act == p->act_sign,
+    aq_check(aq_test_lambda0_eq_act(aq_arch_geom(a), aq_arch_hinge_set(a, k), &l0, &act) &&
+                 l0 > 0 && act == p->act_sign,
              "set %d admissible by the 9x9, same direction", k);
     aq_check_rel(p->lambda0, best[k], TIE_TOL, "set %d: lambda0 = brute force's minimum of "
                  "act_sign %+d", k, k ? 1 : -1);

@@ -60,7 +60,8 @@ static const char *str(const char *tsv, int row, const char *name, char *buf, si
 
 /* Four records of the shared set (the runs whose two polarities differed
  * most when all twelve were measured) at 1.2 and 2.5 lambda0 g, with a
- * friction of 0.6, both polarities, on each shipped free arch.  What is
+ * friction of 0.7 (vertical needs 0.677 at rest: below it the arch is
+ * refused), both polarities, on each shipped free arch.  What is
  * independent of the coordinate each set measures its rotation in must be
  * alike: the verdict, status and impacts exactly; the energies to 5e-12 of
  * the energy put in (each set's motion follows its own work-path tables,
@@ -81,7 +82,7 @@ AQ_TEST(arch_free_mirror_answers_the_negated_record_alike)
   char err[4096], cmd[2048];
   size_t pairs = 0, collapses = 0, marked = 0;
   for (int s = 0; s < 2; s++) {
-    size_t len = (size_t)snprintf(cmd, sizeof cmd, "%s --scale-to-lambda0 %s --friction 0.6 "
+    size_t len = (size_t)snprintf(cmd, sizeof cmd, "%s --scale-to-lambda0 %s --friction 0.7 "
                                                    "--polarity both -j 2",
                                   recs, k[s]);
     for (size_t a = 0; a < NFREE; a++)

@@ -8,7 +8,8 @@
  * also read against its results file through h5py: each number reads
  * back to the double the file holds.  Checked: the main job's TSV,
  * capacity's TSV and --fragility, spectrum's TSV, mechanism, domain,
- * pulse and info, every figure's --data CSV, the report (its options table
+ * pulse and info, select's suite file, every figure's --data CSV (the
+ * suite's figure included), the report (its options table
  * and the data-v of its number cells), and compare's rows of the files'
  * settings (HDF5 attributes as text); `compare --rtol 0 --atol 0` of two
  * runs of one job still finds nothing. */
@@ -277,4 +278,26 @@ AQ_TEST(report_numbers_compare_rtol0_identical)
   aq_check(rc == 0 && aq_test_count_lines(out) == 1,
            "compare --rtol 0 --atol 0 of one job twice: exit %d, %zu lines: %.400s", rc,
            aq_test_count_lines(out), out);
+}
+
+/* select's suite file (--text: its scales and misfits) and the --data of
+ * the suite's figure (the target, the mean, each record at its scale),
+ * printed %.17g before (a misfit 0.019666248818411475 has a 16-digit
+ * shortest, 0.01966624881841148 or so: about half of such doubles do). */
+AQ_TEST(report_numbers_select_shortest)
+{
+  char dir[512], a[4096], err[2048], list[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(a, sizeof a,
+           "select " REC "RSN6_IMPVALL.I_I-ELC180-hor1.AT2 " REC "RSN763_LOMAP_GIL067.AT2 " REC
+           "ARL360.at2 " REC "CHY028-N.AT2 " REC "RSN4843_CHUETSU_65006NS.AT2 " REC
+           "IELC180.AT2 --target ec8:type=1,ground=B,ag=0.25 --count 4 --scale-range 0.1,10 "
+           "--text %s/suite.tsv -o %s/s.h5 > /dev/null && %s plot spectrum %s/s.h5 -o %s/s.svg "
+           "--data %s/s.csv",
+           dir, dir, aq_test_bin(), dir, dir, dir);
+  int rc = aq_test_run(a, NULL, 0, err, sizeof err);
+  if (!aq_check(rc == 0, "%s: exit %d %s", a, rc, err))
+    return;
+  snprintf(list, sizeof list, " tsv '%s/suite.tsv' csv '%s/s.csv'", dir, dir);
+  numbers_ok(dir, list, "select's suite file, the suite figure's --data");
 }

@@ -624,7 +624,7 @@ AQ_TEST(report_page_in_chromium)
     int page_no = 0;
     for (int pg = 1; pg <= (int)pages && !page_no; pg++) {
       snprintf(cmd, sizeof cmd, "pdftotext -f %d -l %d -layout '%s' -", pg, pg, pdf);
-      if (sh(cmd, text, BIG) == 0 && strstr(text, "Arch thin") && strstr(text, "Verdicts"))
+      if (sh(cmd, text, BIG) == 0 && strstr(text, "Arch thin")) /* its section's first */
         page_no = pg;
     }
     snprintf(cmd, sizeof cmd,

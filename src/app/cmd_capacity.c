@@ -228,7 +228,7 @@ int aq_cmd_capacity(int argc, char **argv)
   double merge_tol_g = opts.merge_tol_g, smax = opts.scale_max;
   aq_model model = (aq_model)opts.model;
   double cor = opts.cor;
-  aq_arch_options ao = {opts.friction};
+  aq_arch_options ao = {.friction = opts.friction, .friction_table = 1};
   aq_scan_opts so = {opts.resolution, opts.scan_tol};
   long threads = opts.threads;
   int pol = opts.polarity;

@@ -55,7 +55,7 @@ int aq_cmd_domain(int argc, char **argv)
   aq_arch *arch = NULL;
   int status = AQ_EXIT_FAIL;
   aq_stepper *st = NULL;
-  aq_arch_options ao = {o.friction};
+  aq_arch_options ao = {.friction = o.friction};
   if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     goto out;

@@ -37,12 +37,22 @@ static void print_set(const aq_arch *a, const aq_workpath *w, int searched)
   const aq_mech *m = aq_workpath_mech(w);
   char joints[64], faces[8];
   aq_hinge_set_format(&m->hs, joints, sizeof joints, faces, sizeof faces);
-  printf("%s\t%s\t%s\t%s\t%s\t%d\t%+d\t%+d\t%s\t%s\t%s\t%zu\t%s\t%s\t%d\t%s\t%s\n", p->name,
-         joints, faces, AQ_TEXT_NUM(p->lambda0), AQ_TEXT_NUM(p->s_c_rad), p->admissible,
-         p->act_sign, p->q_sign, AQ_TEXT_NUM(p->mass_kg), AQ_TEXT_NUM(p->impact_vel_ratio),
-         p->admissible ? end_name(aq_workpath_end(w)) : "-", aq_workpath_table_size(w),
-         AQ_TEXT_NUM(aq_workpath_table_error(w)), AQ_TEXT_NUM(aq_workpath_thrust0(w)), searched,
-         p->admissible ? "-" : aq_workpath_reason(w), aq_hinge_control_names[aq_arch_control(a)]);
+  size_t mj;
+  double mu = aq_workpath_friction(w, NULL, &mj);
+  char mjs[32] = "-";
+  if (mj != SIZE_MAX)
+    snprintf(mjs, sizeof mjs, "%zu", mj);
+  /* with a friction: the largest load of a line of thrust in this set's direction */
+  double lf = aq_arch_lambda_friction(a, p->act_sign, aq_arch_friction(a));
+  printf("%s\t%s\t%s\t%s\t%s\t%d\t%+d\t%+d\t%s\t%s\t%s\t%zu\t%s\t%s\t%d\t%s\t%s\t%s\t%s"
+         "\t%s\n",
+         p->name, joints, faces, AQ_TEXT_NUM(p->lambda0), AQ_TEXT_NUM(p->s_c_rad),
+         p->admissible, p->act_sign, p->q_sign, AQ_TEXT_NUM(p->mass_kg),
+         AQ_TEXT_NUM(p->impact_vel_ratio), p->admissible ? end_name(aq_workpath_end(w)) : "-",
+         aq_workpath_table_size(w), AQ_TEXT_NUM(aq_workpath_table_error(w)),
+         AQ_TEXT_NUM(aq_workpath_thrust0(w)), searched,
+         p->admissible ? "-" : aq_workpath_reason(w), aq_hinge_control_names[aq_arch_control(a)],
+         AQ_TEXT_NUM(mu), mjs, AQ_TEXT_NUM(lf));
 }
 
 /* The `minimum` rows: the arch's minimum-lambda0 set of each direction of
@@ -166,14 +176,14 @@ int aq_cmd_mechanism(int argc, char **argv)
   aq_arch *a = NULL;
   aq_error err;
   aq_error_clear(&err);
-  aq_arch_options ao = {o.friction};
+  aq_arch_options ao = {.friction = o.friction};
   if (aq_arch_load_opts(file, &ao, &a, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }
   printf("set\tjoints\tfaces\tlambda0\tq_c_rad\tadmissible\tact_sign\tq_sign\tmass_kg\t"
          "impact_vel_ratio\tend\ttable_n\ttable_err\tthrust_ecc\tsearched\treason\t"
-         "control\n");
+         "control\tmu_required\tmu_joint\tlambda_friction\n");
   for (int s = 0; s < 2; s++)
     print_set(a, aq_arch_workpath(a, s),
               aq_arch_searched(a) && (s == 0 || aq_arch_control(a) == AQ_CONTROL_FREE));

@@ -49,7 +49,7 @@ typedef struct {
   const char *input, *out, *data, *run, *arch, *im, *record, *target;
   int x_rad, y_pga; /* capacity: --x rad, --y pga */
   int paper;        /* an aq_plot_paper; -1: the locale's */
-  double rotation_rad, cor;
+  double rotation_rad, cor, friction;
   double *at_s; /* plot arch --run: the times */
   size_t nat;
   double *ratios;
@@ -78,6 +78,7 @@ static int parse(int argc, char **argv, plot_opts *o)
   o->paper = a.paper;
   o->rotation_rad = a.rotation_rad;
   o->cor = a.cor;
+  o->friction = a.friction;
   o->ratios = a.ratios; /* freed by the caller */
   o->nr = a.nratios;
   a.ratios = NULL;
@@ -245,7 +246,8 @@ int aq_cmd_plot(int argc, char **argv)
   aq_cleanup_install(); /* a signal while drawing removes the temporaries (util/outfile.h) */
   aq_plot_hold(o.data != NULL); /* the figure renamed once its data are written */
   if (o.arch && o.fig != FIG_CAPACITY && !(o.fig == FIG_ARCH && o.input) &&
-      aq_arch_load(o.arch, &arch, &err) != AQ_OK) {
+      aq_arch_load_opts(o.arch, &(aq_arch_options){.friction = o.friction}, &arch, &err) !=
+          AQ_OK) {
     rc = fail(&err);
     goto out;
   }

@@ -157,7 +157,7 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_error err;
   aq_error_clear(&err);
   aq_arch *arch = NULL;
-  aq_arch_options ao = {o.friction};
+  aq_arch_options ao = {.friction = o.friction};
   if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;

@@ -540,7 +540,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                             "momentum, which uses none)"},
     [AQ_OPT_FRICTION] = {.name = "friction", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 1e3,
                          .meta = "MU", DEST(friction),
-                         .cmds = DYNAMICS | C(MECHANISM),
+                         .cmds = DYNAMICS | C(MECHANISM) | C(PLOT_ARCH),
                          .help = "the Coulomb friction coefficient of every joint, springings "
                                  "included, 0 < MU <= 1000 (default: each arch's [contact] "
                                  "friction; none if it has none)"},

@@ -295,7 +295,7 @@ int aq_suite_arches(suite *S)
   for (size_t a = 0; a < c->narches; a++) {
     aq_error e;
     aq_error_clear(&e);
-    aq_arch_options ao = {c->friction};
+    aq_arch_options ao = {.friction = c->friction, .friction_table = 1};
     if (aq_arch_cache_load(c->arch_cache, c->arch_paths[a], &ao, NULL, &S->arches[a], &e) !=
         AQ_OK) {
       aq_error_print(&e, stderr);

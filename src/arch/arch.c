@@ -30,6 +30,7 @@ struct aq_arch {
   int min_known;        /* 0: the search found no admissible set (the file's [hinges] is used) */
   aq_hinge_control control; /* fixed, or free: each direction's own minimum */
   double friction;      /* Coulomb coefficient of every joint; 0: none */
+  aq_statics *statics;  /* the statics with friction (friction.c) */
   double e_n, spread_m; /* the block model's restitution and spread of the supports */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
@@ -52,6 +53,7 @@ void aq_arch_free(aq_arch *a)
     aq_workpath_free(a->wp[s]);
     aq_demand_table_free(a->demand[s]);
   }
+  aq_statics_free(a->statics);
   aq_geom_free(&a->geom);
   free(a->name);
   free(a->text);
@@ -142,7 +144,7 @@ const char *const aq_hinge_control_names[2] = {"fixed", "free"};
  * (src/job/arch_cache.h) so that a later build of the same arch reads
  * them instead: the search's result, the two hinge sets and both paths
  * (workpath.c), each double as its bits. */
-#define TABLES_FORMAT "archquake arch tables 2"
+#define TABLES_FORMAT "archquake arch tables 3"
 
 static void set_put(aq_bytes_out *b, const aq_hinge_set *hs)
 {
@@ -185,6 +187,7 @@ void aq_arch_tables_put(const aq_arch *a, aq_bytes_out *b)
     set_put(b, &a->hs[s]);
   for (int s = 0; s < 2; s++)
     aq_workpath_put(a->wp[s], b);
+  aq_statics_put(a->statics, b);
 }
 
 /* The search's result, the hinge sets and the paths from kept[0..n)
@@ -223,12 +226,15 @@ static int tables_get(aq_arch *a, const unsigned char *kept, size_t n,
   for (int s = 0; s < 2 && ok; s++)
     ok = aq_workpath_get(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &r, &a->wp[s],
                          NULL) == AQ_OK;
+  ok = ok && aq_statics_get(&r, nv, &a->statics) == AQ_OK;
   if (ok && r.at == r.n && aq_workpath_path(a->wp[0])->admissible)
     return 0;
   for (int s = 0; s < 2; s++) {
     aq_workpath_free(a->wp[s]);
     a->wp[s] = NULL;
   }
+  aq_statics_free(a->statics);
+  a->statics = NULL;
   a->searched = a->min_known = 0;
   memset(&a->min_hs, 0, sizeof a->min_hs);
   memset(&a->min_info, 0, sizeof a->min_info);
@@ -329,6 +335,11 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
     a->hs[1] = reverse ? *reverse : swap_faces(&a->hs[0]);
   }
   a->searched = !primary;
+  /* the statics with friction: an arch that cannot stand with its friction
+   * is refused here, before its paths are built */
+  st = aq_statics_build(&a->geom, a->friction, p->friction_table, &a->statics, err);
+  if (st != AQ_OK)
+    return st;
   for (int s = 0; s < 2; s++) {
     st = aq_workpath_build(&a->geom, &a->hs[s], a->dyn.g_mps2, set_names[s], &a->wp[s], err);
     if (st != AQ_OK) {
@@ -415,6 +426,35 @@ const aq_workpath *aq_arch_workpath(const aq_arch *a, int set)
 int aq_arch_searched(const aq_arch *a) { return a->searched; }
 aq_hinge_control aq_arch_control(const aq_arch *a) { return a->control; }
 double aq_arch_friction(const aq_arch *a) { return a->friction > 0 ? a->friction : NAN; }
+const aq_statics *aq_arch_statics(const aq_arch *a) { return a->statics; }
+
+double aq_arch_mu_rest(const aq_arch *a, size_t *joint)
+{
+  return aq_statics_mu_rest(a->statics, joint);
+}
+double aq_arch_mu_least(const aq_arch *a, int act_sign, double lambda, size_t *joint)
+{
+  return aq_statics_mu_least(a->statics, act_sign, lambda, joint);
+}
+double aq_arch_lambda_friction(const aq_arch *a, int act_sign, double mu)
+{
+  return mu == a->friction ? aq_statics_lambda_friction(a->statics, act_sign, NULL)
+                           : aq_statics_lambda_at(a->statics, act_sign, mu);
+}
+double aq_arch_lambda_static(const aq_arch *a, int act_sign)
+{
+  return aq_statics_lambda_top(a->statics, act_sign);
+}
+
+double aq_arch_joint_friction(const aq_arch *a, int set, double *ratio, size_t *joint)
+{
+  const aq_workpath *w = aq_arch_workpath(a, set);
+  if (w)
+    return aq_workpath_friction(w, ratio, joint);
+  if (joint)
+    *joint = SIZE_MAX;
+  return NAN;
+}
 double aq_arch_restitution(const aq_arch *a) { return a->e_n; }
 double aq_arch_spread(const aq_arch *a) { return a->spread_m; }
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
@@ -464,13 +504,15 @@ void aq_arch_sha256(const aq_arch *a, char hex[65])
 
 aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *primary,
                                const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
-                               const char *name, aq_arch **out, aq_error *err)
+                               double friction, const char *name, aq_arch **out,
+                               aq_error *err)
 {
   aq_arch_params p = aq_arch_circular(0, 0, 0, d->voussoirs, 1, 1);
   for (int s = 0; s < AQ_SHAPE_COUNT; s++)
     if (d->shape && !strcmp(d->shape, aq_shape_names[s]))
       p.shape = (aq_shape)s;
   p.stored = d;
+  p.friction = friction > 0 ? friction : 0;
   return aq_arch_build(&p, primary, reverse, dyn, name, out, err);
 }
 

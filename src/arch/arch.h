@@ -46,6 +46,10 @@ extern const char *const aq_hinge_control_names[2];
 typedef struct {
   double friction; /* --friction: the Coulomb coefficient of every joint, > 0 and
                       finite; 0 or NAN: the file's [contact] friction */
+  int friction_table; /* 1: the arch is built with its table of the least friction
+                         over the load (aq_arch_mu_least; about 10-30 ms of linear
+                         programs for a shipped arch), for the commands that read it
+                         for every run (the main job, capacity) */
 } aq_arch_options;
 
 aq_status aq_arch_load(const char *path, aq_arch **out, aq_error *err);
@@ -59,6 +63,7 @@ typedef struct {
   size_t ndata[2];
   double friction;   /* the command's friction over the file's (aq_arch_options),
                         or 0: none */
+  int friction_table; /* aq_arch_options' */
 } aq_arch_sources;
 
 /* As aq_arch_load with opt (NULL: none) over the file's values. */
@@ -174,5 +179,49 @@ const aq_demand_table *aq_arch_demand_table(const aq_arch *a, int set);
  * NULL (err) out of memory. */
 typedef struct aq_demand aq_demand;
 aq_demand *aq_arch_demand_tracker(const aq_arch *a, double mu_limit, aq_error *err);
+
+/* ---- Statics with friction (friction.c; docs/arch-model.md, "Friction")
+ * lambda is a horizontal ground acceleration of lambda g with the sign
+ * act_sign (-1 or +1), as path.h's lambda0: the arch carries gravity and
+ * the inertia force lambda g per unit mass along -act_sign x.  A "line of
+ * thrust stands" when, at every joint, the resultant it carries passes
+ * between the joint's ends and pushes, and (with a friction mu) its shear
+ * T and normal force N satisfy |T| <= mu N.  Every function below is a
+ * read of what the arch's build computed (no linear program is solved):
+ * safe from any thread. */
+
+/* The least friction with which a line of thrust stands at rest, and (if
+ * joint is not NULL) the joint that needs it.  An arch whose friction is
+ * below it is never built ("cannot stand with friction ..."). */
+double aq_arch_mu_rest(const aq_arch *a, size_t *joint);
+/* The least friction with which a line of thrust stands under lambda >= 0
+ * of direction act_sign, from the arch's table (built with
+ * aq_arch_options.friction_table; NAN without one: model.h
+ * aq_friction_least computes one value exactly, from one thread): exact
+ * values and slopes (the linear programs, friction.c) at nodes from 0 to
+ * aq_arch_lambda_static, a cubic between them, refined until it is within
+ * 1e-6 of the largest value at every interval's middle (within 5.4e-5
+ * relative anywhere on the shipped arches: test_arch_friction); INFINITY
+ * above aq_arch_lambda_static (no line of thrust at all), NAN for lambda
+ * < 0.  *joint (if not NULL): where the nearest node's line needs it. */
+double aq_arch_mu_least(const aq_arch *a, int act_sign, double lambda, size_t *joint);
+/* The largest lambda of direction act_sign at which a line of thrust stands
+ * with friction mu (lambda_friction): exact (the linear program) when mu is
+ * the arch's own friction, else from aq_arch_mu_least's table (NAN without
+ * one; model.h aq_friction_lambda computes it exactly); NAN when no line
+ * stands with mu even at rest. */
+double aq_arch_lambda_friction(const aq_arch *a, int act_sign, double mu);
+/* The largest lambda of direction act_sign at which a line of thrust
+ * stands without friction: that direction's minimum over every mechanism
+ * (the four-hinge minimum's lambda0, or a lift-off mechanism's below it:
+ * aq_arch_liftoff). */
+double aq_arch_lambda_static(const aq_arch *a, int act_sign);
+/* The friction that hinge set `set` (0, 1) needs at each joint in its
+ * collapse state (s = 0, lambda = its lambda0): ratio[j] = |T|/N, j =
+ * 0..n (model.h aq_mech_friction; ratio may be NULL), the forces from the
+ * 9x9 hinge reactions and each piece's statics between a hinge and the
+ * joint.  Returns the largest (mu_required) and its joint in *joint (if
+ * not NULL); NAN (and joint SIZE_MAX) for an inadmissible set. */
+double aq_arch_joint_friction(const aq_arch *a, int set, double *ratio, size_t *joint);
 
 #endif

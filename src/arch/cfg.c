@@ -516,6 +516,7 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
   }
   p.control = (aq_hinge_control)c->control;
   p.friction = src->friction > 0 ? src->friction : c->num[AQ_CFG_FRICTION]; /* 0: none */
+  p.friction_table = src->friction_table;
   p.e_n = c->num[AQ_CFG_EN];
   p.spread_m = c->num[AQ_CFG_SPREAD];
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
@@ -627,7 +628,7 @@ static aq_status load_string(const char *data, size_t len, const char *path,
   st = after_parse(&c, path, &J, err);
   double friction = opt && opt->friction > 0 && isfinite(opt->friction) ? opt->friction : 0;
   aq_arch_sources src = {text, len, {J.bytes[0], J.bytes[1]}, {J.nbytes[0], J.nbytes[1]},
-                         friction};
+                         friction, opt ? opt->friction_table : 0};
   if (st == AQ_OK)
     st = build_parsed(&c, path, &J, &src, store, &hit_, &a, err);
   free(c.mass);

@@ -2,10 +2,11 @@
  * archquake starts (src/util/lazylib.h): linked directly, libglpk and the
  * libraries it needs (AMD, COLAMD, SuiteSparse's config, GMP, ltdl) were
  * mapped and relocated by every command, `archquake --version` included,
- * though only search.c solves linear programs, and an arch read from the
+ * though only the arch's statics solve linear programs (lp4.c, for search.c and
+ * friction.c), and an arch read from the
  * disk cache needs no search at all.
  *
- * The GLPK functions search.c calls are defined here as trampolines
+ * The GLPK functions lp4.c calls are defined here as trampolines
  * through pointers set from the library; their prototypes come from
  * glpk.h, so a definition that does not match the library's declaration
  * does not compile.  A GLPK function not listed here fails to link
@@ -44,6 +45,7 @@
   R(double, glp_get_obj_val, (glp_prob *P), (P))                                          \
   R(double, glp_get_row_dual, (glp_prob *P, int i), (P, i))                               \
   R(int, glp_get_col_stat, (glp_prob *P, int j), (P, j))                                  \
+  R(double, glp_get_col_prim, (glp_prob *P, int j), (P, j))                               \
   R(int, glp_term_out, (int flag), (flag))
 
 AQ_GLPK_FUNCS(AQ_LAZYLIB_POINTER_V, AQ_LAZYLIB_POINTER_R)

@@ -285,9 +285,46 @@ double aq_mech_thrust(const aq_mech *m, const aq_mech_state *st,
   return aq_mech_thrust_line(m, st, live, eq, ecc, tension, NULL, NULL);
 }
 
+/* aq_mech_thrust_line, and (ratio not NULL) each joint's |T|/N (see
+ * aq_mech_friction). */
+static double thrust_core(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                          const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                          aq_vec2 *dir, double *ratio);
+
 double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
                            const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
                            aq_vec2 *dir)
+{
+  return thrust_core(m, st, live, eq, ecc, tension, pt, dir, NULL);
+}
+
+/* |T|/N of the force f across a joint of unit direction u (intrados to
+ * extrados), f pushing into the side that perp(u) points to when sign = 1
+ * (-1: the other side): INFINITY when it does not push. */
+static double slip_ratio(aq_vec2 f, aq_vec2 u, double sign)
+{
+  double nf = sign * dot(f, perp(u)), tf = fabs(dot(f, u));
+  return nf > 0 ? tf / nf : INFINITY;
+}
+
+double aq_mech_friction(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                        const aq_equil *eq, double *ecc, double *ratio, size_t *joint)
+{
+  size_t n = m->g->p.voussoirs;
+  thrust_core(m, st, live, eq, ecc, NULL, NULL, NULL, ratio);
+  double worst = -1;
+  for (size_t j = 0; j <= n; j++)
+    if (!(ratio[j] <= worst)) {
+      worst = ratio[j];
+      if (joint)
+        *joint = j;
+    }
+  return worst;
+}
+
+static double thrust_core(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                          const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
+                          aq_vec2 *dir, double *ratio)
 {
   const aq_geom *g = m->g;
   size_t n = g->p.voussoirs;
@@ -306,6 +343,9 @@ double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_l
         pt[j] = hc[k];
         dir[j] = v2(eq->h[k], eq->v[k]);
       }
+      if (ratio) /* the force on the counter-clockwise body, across its face */
+        ratio[j] = slip_ratio(v2(eq->h[k], eq->v[k]),
+                              rot(k < 3 ? st->phi[k][0] : 0.0, g->ju[j]), 1.0);
       continue;
     }
     /* the part j lies in (body index or -1 fixed), the hinge the sub-body
@@ -345,6 +385,8 @@ double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_l
     }
     aq_vec2 nrm = perp(u); /* into the counter-clockwise side */
     double push = dot(t, nrm) * (cut_ccw ? 1.0 : -1.0);
+    if (ratio)
+      ratio[j] = slip_ratio(t, u, cut_ccw ? 1.0 : -1.0);
     if (tension && !(push > 0))
       *tension = 1;
     if (fabs(ecc[j]) > worst)

@@ -136,6 +136,7 @@ typedef struct {
    * friction coefficient of every joint (> 0; 0: none) */
   aq_hinge_control control;
   double friction;
+  int friction_table; /* 1: with the table of the least friction over the load */
   /* the block model: the contacts' normal restitution [0, 1] and the
    * supports' spread (m, >= 0) */
   double e_n, spread_m;
@@ -148,7 +149,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0, 0};
+                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0, 0, 0};
   return p;
 }
 
@@ -339,6 +340,19 @@ double aq_mech_thrust_line(const aq_mech *m, const aq_mech_state *st, const aq_l
                            const aq_equil *eq, double *ecc, int *tension, aq_vec2 *pt,
                            aq_vec2 *dir);
 
+/* The friction each joint needs in the state st: ratio[j] = |T|/N (j =
+ * 0..n) of the resultant carried across joint j as aq_mech_thrust finds it
+ * (a hinge joint: the hinge reaction of eq; another joint: the hinge
+ * reaction plus the loads of the voussoirs between it and that hinge), T
+ * along the joint and N normal to it, both with the joint as it lies in
+ * st (a hinge joint: the counter-clockwise body's face); INFINITY where
+ * the resultant pulls (N <= 0).  Fills ecc as aq_mech_thrust does; returns
+ * the largest ratio and its joint in *joint (if not NULL; the lowest such
+ * joint).  The Coulomb condition |T| <= mu N holds at every joint exactly
+ * when mu >= the return value. */
+double aq_mech_friction(const aq_mech *m, const aq_mech_state *st, const aq_live *live,
+                        const aq_equil *eq, double *ecc, double *ratio, size_t *joint);
+
 /* Velocity field of a set at s = 0 per unit ds: for voussoir k, centroid
  * velocity u[k] (m/rad) and rotation rate w[k] (rad/rad), zero for fixed
  * voussoirs.  q_sign converts d/dq to d/ds. */
@@ -397,6 +411,52 @@ aq_status aq_workpath_get(const aq_geom *g, const aq_hinge_set *hs, double g_mps
                           const char *name, aq_bytes_in *r, aq_workpath **out,
                           aq_error *err);
 
+/* ---- lp4.c: linear programs in four free unknowns (GLPK) ------------ */
+
+/* One row G x <= h. */
+typedef struct {
+  double g[4], h;
+} aq_lp4_row;
+
+typedef enum { AQ_LP4_OPT, AQ_LP4_INFEASIBLE, AQ_LP4_UNBOUNDED, AQ_LP4_FAILED } aq_lp4_status;
+
+#define AQ_LP4_MAX_TIGHT 12
+typedef struct {
+  double opt_tol;   /* a row violated by more than this (in the rows' units) at GLPK's
+                       floating-point vertex: solved again in rational arithmetic */
+  double tight_tol; /* a nonbasic row within this of its bound is a tie (tight) */
+  size_t max_tight; /* tight rows reported at most (<= AQ_LP4_MAX_TIGHT) */
+  int exact;        /* 1: the vertex always settled in rational arithmetic */
+} aq_lp4_opts;
+
+typedef struct {
+  double x[4];                     /* the optimal x */
+  double obj;                      /* c.x there */
+  double *y;                       /* NULL, or n values: the rows' multipliers (the dual's
+                                      solution, >= 0; 0 for a row that is not tight),
+                                      filled when not NULL */
+  size_t tight[AQ_LP4_MAX_TIGHT];  /* the rows of the vertex (the dual's basic columns,
+                                      tight[0..nbasic)), then ties */
+  size_t ntight, nbasic;
+} aq_lp4_result;
+
+/* The 2 (n + 1) rows that keep a line of thrust inside the arch g
+ * (search.c's comment): row 2j the intrados end of joint j (moment >= 0),
+ * row 2j+1 the extrados end (moment <= 0), in the unknowns x = (R0x/W,
+ * R0y/W, m0/(W L), lambda): the force and moment the ground exerts across
+ * joint 0 (W the arch's weight, L the joints' extent, moments about the
+ * middle of their bounding box) and the horizontal body force s lambda g
+ * per unit mass; relax: x[3] is sigma instead, and every row is loosened
+ * by sigma times its joint's half length, lambda 0.  lp: 2 (n + 1) rows. */
+void aq_thrust_rows(const aq_geom *g, int s, int relax, aq_lp4_row *lp);
+
+/* maximize c.x over the rows row[0..n) (ex[i] != 0: row i left out; ex may
+ * be NULL), solved through its dual (lp4.c).  AQ_LP4_OPT and *out;
+ * AQ_LP4_INFEASIBLE, AQ_LP4_UNBOUNDED, or AQ_LP4_FAILED (GLPK failed or
+ * out of memory).  GLPK must be loaded (aq_glpk_load). */
+aq_lp4_status aq_lp4_solve(const aq_lp4_row *row, size_t n, const double c[4],
+                           const unsigned char *ex, const aq_lp4_opts *o, aq_lp4_result *out);
+
 /* ---- search.c ------------------------------------------------------ */
 
 /* What the search found besides the set. */
@@ -433,6 +493,77 @@ aq_status aq_search_direction(const aq_geom *g, double g_mps2, int act_sign,
  * range or order, a hinge that does not open). */
 int aq_search_act_sign(const aq_geom *g, const aq_hinge_set *hs);
 
+/* ---- friction.c: the static theorem with Coulomb friction ----------- */
+
+/* The friction the set of w needs at each joint in its collapse state (s =
+ * 0, lambda = its lambda0): ratio[j] = |T|/N (aq_mech_friction; ratio may
+ * be NULL, else n + 1 values); returns the largest and its joint (*joint,
+ * if not NULL).  NAN (joint SIZE_MAX) for an inadmissible set. */
+double aq_workpath_friction(const aq_workpath *w, double *ratio, size_t *joint);
+
+/* The largest lambda at which a line of thrust lies inside the arch g (at
+ * every joint its resultant between the joint's ends) and, when mu > 0 is
+ * finite, within every joint's friction cone |T| <= mu N, under gravity
+ * and a horizontal body force lambda g along -act_sign x (a ground
+ * acceleration lambda g of sign act_sign), into *lambda (below 0 when the
+ * arch needs a push the other way to stand with mu).  mu INFINITY or 0:
+ * without friction, the minimum multiplier of that direction over every
+ * mechanism.  *joint (if not NULL): a joint whose friction is exhausted at
+ * the optimum, SIZE_MAX when none is.  AQ_EINADMISSIBLE (field
+ * "friction") when no lambda at all lets a line of thrust stand with mu;
+ * AQ_EUNSUPPORTED when GLPK cannot be opened.  friction.c. */
+aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *lambda,
+                             size_t *joint, aq_error *err);
+
+/* The least Coulomb coefficient with which a line of thrust lies inside
+ * the arch g under gravity and the horizontal body force lambda g along
+ * -act_sign x: *mu (INFINITY when no line of thrust lies inside at lambda
+ * at all) and *joint (if not NULL) where that line's |T|/N is largest.
+ * AQ_ENUMERIC when a program fails.  friction.c. */
+aq_status aq_friction_least(const aq_geom *g, int act_sign, double lambda, double *mu,
+                            size_t *joint, aq_error *err);
+
+/* The arch's statics with friction, built once with the arch (friction.c;
+ * read-only after, safe to share between threads): the least friction at
+ * rest, and for each direction of ground acceleration (act_sign -1, +1)
+ * the largest load without friction and with the arch's, and a table of
+ * the least friction over the load (exact at its nodes from 0 to the
+ * largest, Steffen's monotone cubic between them, within 1e-6 at every
+ * interval's middle). */
+typedef struct aq_statics aq_statics;
+
+/* Build for g and the friction coefficient of its joints (0: none), with
+ * the tables of the least friction over the load when table is 1 (else
+ * aq_statics_mu_least and aq_statics_lambda_at give NAN).
+ * AQ_EINADMISSIBLE (field "friction") when the arch cannot stand at rest
+ * with that friction; errors of the programs as aq_friction_lambda's.
+ * Free with aq_statics_free (NULL accepted). */
+aq_status aq_statics_build(const aq_geom *g, double friction, int table, aq_statics **out,
+                           aq_error *err);
+void aq_statics_free(aq_statics *s);
+/* As bytes, for the arch's tables kept between processes (arch.c), and
+ * back (AQ_EFORMAT when the bytes are not such statics). */
+void aq_statics_put(const aq_statics *s, aq_bytes_out *b);
+aq_status aq_statics_get(aq_bytes_in *r, size_t voussoirs, aq_statics **out);
+/* The least friction with which a line of thrust stands at rest, and the
+ * joint (if not NULL) where it is needed. */
+double aq_statics_mu_rest(const aq_statics *s, size_t *joint);
+/* The largest lambda of direction act_sign at which a line of thrust
+ * stands, without friction. */
+double aq_statics_lambda_top(const aq_statics *s, int act_sign);
+/* ... with the arch's friction (NAN: none given); *joint where it is
+ * exhausted (SIZE_MAX: nowhere: the load is lambda_top's). */
+double aq_statics_lambda_friction(const aq_statics *s, int act_sign, size_t *joint);
+/* The least friction at lambda >= 0 (the table's interpolant; INFINITY
+ * above lambda_top, NAN below 0), *joint the nearest node's joint. */
+double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, size_t *joint);
+/* The nodes of direction act_sign's table (0: none). */
+int aq_statics_nodes(const aq_statics *s, int act_sign);
+/* The largest lambda >= 0 at which a line stands with friction mu, from
+ * the table (NAN when none does, not even at rest; lambda_top when mu
+ * is at least the table's last friction). */
+double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu);
+
 /* Open GLPK, which the search calls through glpk_lazy.c (once per process;
  * later calls return the first's outcome): AQ_OK, or AQ_EUNSUPPORTED with
  * err naming the library and the loader's reason. */
@@ -450,10 +581,12 @@ int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs,
  * joints, the voussoirs' mass properties, outlines, fill, point masses)
  * and its hinge sets: no integration, the stored masses as they are; for
  * drawing a result again without its .cfg.  shape names the shape (for
- * titles).  Errors as aq_arch_build's. */
+ * titles); friction: its joints' coefficient (0 or NAN: none).  Errors as
+ * aq_arch_build's. */
 aq_status aq_arch_from_drawing(const aq_arch_drawing *d, const aq_hinge_set *primary,
                                const aq_hinge_set *reverse, const aq_arch_dynamics *dyn,
-                               const char *name, aq_arch **out, aq_error *err);
+                               double friction, const char *name, aq_arch **out,
+                               aq_error *err);
 
 /* Build an arch from parameters (no file): primary NULL runs the search,
  * reverse NULL takes the primary's face swap; with p->control free, the
@@ -499,5 +632,8 @@ int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
  * *lambda (either may be NULL); archquake models four-hinge mechanisms
  * only, so its lambda0 then overestimates the arch's. */
 int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda);
+
+/* The arch's statics with friction (friction.c). */
+const aq_statics *aq_arch_statics(const aq_arch *a);
 
 #endif

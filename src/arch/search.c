@@ -77,7 +77,6 @@
  * lambda0 < 0, reported as the arch's minimum (not necessarily the lowest
  * such set).
  */
-#include <glpk.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -91,7 +90,7 @@
                              the arch's weight times its size) counts as tight */
 #define OPT_TOL 1e-13     /* a row's slack (scaled moment) this far below 0 is a violation */
 #define MAX_PROGRAMS 4096 /* programs solved at most in the branch and bound */
-#define MAX_TIGHT 12      /* tight rows examined at most (C(12, 4) = 495 subsets) */
+#define MAX_TIGHT AQ_LP4_MAX_TIGHT /* tight rows examined at most (C(12, 4) = 495 subsets) */
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -207,166 +206,37 @@ static int compressive(const aq_geom *g, const aq_hinge_set *hs, double g_mps2)
   return 1;
 }
 
-/* The rows' data in scaled form (see the file's comment): row 2j is the
- * intrados end of joint j, row 2j+1 the extrados end.  With O a reference
- * point, L a length and W = m_T g, the row's value
- *   c[0] R0x/W + c[1] R0y/W + c[2] m0/(W L) + c[3] lambda + c0
- * is M_j(P)/(W L); half: the joint's half length / L (for sigma). */
-typedef struct {
-  double c[4], c0, half;
-} lp_row;
-
-static void rows_fill(const aq_geom *g, int s, lp_row *row)
-{
-  size_t n = g->p.voussoirs;
-  double xlo = HUGE_VAL, xhi = -HUGE_VAL, ylo = HUGE_VAL, yhi = -HUGE_VAL;
-  for (size_t j = 0; j <= n; j++)
-    for (int f = 0; f < 2; f++) {
-      aq_vec2 p = aq_geom_joint_point(g, j, f ? 'e' : 'i');
-      xlo = fmin(xlo, p.x), xhi = fmax(xhi, p.x), ylo = fmin(ylo, p.y), yhi = fmax(yhi, p.y);
-    }
-  aq_vec2 o = {0.5 * (xlo + xhi), 0.5 * (ylo + yhi)};
-  double L = fmax(xhi - xlo, yhi - ylo), mt = g->mass_kg;
-  for (size_t j = 0; j <= n; j++) {
-    double mj = g->cum_m[j];
-    double sx = g->cum_mx[j] - mj * o.x, sy = g->cum_my[j] - mj * o.y;
-    aq_vec2 pi = aq_geom_joint_point(g, j, 'i'), pe = aq_geom_joint_point(g, j, 'e');
-    for (int f = 0; f < 2; f++) {
-      aq_vec2 p = f ? pe : pi;
-      double px = p.x - o.x, py = p.y - o.y;
-      lp_row *r = &row[2 * j + (size_t)f];
-      r->c[0] = py / L;
-      r->c[1] = -px / L;
-      r->c[2] = 1.0;
-      r->c[3] = (double)s * (py * mj - sy) / (mt * L);
-      r->c0 = (px * mj - sx) / (mt * L);
-      r->half = 0.5 * hypot(pe.x - pi.x, pe.y - pi.y) / L;
-    }
-  }
-}
-
 typedef enum { LP_OPT, LP_INFEASIBLE, LP_UNBOUNDED, LP_FAILED } lp_status;
 
-/* The reduced cost of the dual's column i (the slack of the primal's row
- * i) at the primal solution x (the dual's row duals), in long double:
- * h_i - G_i x. */
-static long double slack(const lp_row *r, size_t i, int relax, const long double x[4])
+/* One program (lp4.c): relax = 0 maximizes lambda; relax = 1 fixes
+ * lambda = 0 and minimizes sigma.  Its dual's variables, one per row, are
+ * the rotations of a hinge at that row's joint end; a row excluded (ex[i])
+ * has its rotation fixed at 0: no hinge there.  The vertex's rows (tight[0
+ * .. *nbasic-1]), then the rows within TIGHT_REL of their bound (ties);
+ * *obj: the optimum (lambda, or -sigma). */
+static lp_status lp_solve(const aq_lp4_row *lp, size_t nrows, int relax,
+                          const unsigned char *ex, size_t *tight, size_t *ntight,
+                          size_t *nbasic, double *obj)
 {
-  long double sgn = i % 2 == 0 ? -1.0L : 1.0L, h = -sgn * (long double)r->c0, gx = 0;
-  for (int k = 0; k < 4; k++)
-    gx += (k < 3 ? sgn * r->c[k] : relax ? -(long double)r->half : sgn * r->c[3]) * x[k];
-  return h - gx;
-}
-
-/* 1 if the floating-point simplex's vertex is optimal to OPT_TOL: every
- * row's slack at its primal solution, recomputed here, >= -OPT_TOL (the
- * dual's reduced costs; its basic columns are >= 0 by the simplex).  When
- * not, the rational simplex (glp_exact) settles it. */
-static int optimal_in_double(glp_prob *P, const lp_row *row, size_t nrows, int relax,
-                             const unsigned char *ex)
-{
-  long double x[4];
-  for (int k = 0; k < 4; k++)
-    x[k] = glp_get_row_dual(P, k + 1);
-  for (size_t i = 0; i < nrows; i++)
-    if (!ex[i] && slack(&row[i], i, relax, x) < -OPT_TOL)
-      return 0;
-  return 1;
-}
-
-/* One program, solved through its dual, whose basis has four rows whatever
- * the number of joints: relax = 0 maximizes lambda; relax = 1 fixes
- * lambda = 0 and minimizes sigma.  Written with every row as G x <= h
- * (intrados rows negated), the program max c.x has the dual
- *   min h.y  subject to  G^T y = c,  y >= 0,
- * one y per row: the rotation of a hinge at that row's joint end; a row
- * excluded (ex[i]) has its y fixed at 0: no hinge there.  The dual's basic
- * columns are the primal's tight rows (tight[0..*nbasic-1]); a nonbasic
- * column whose reduced cost (the primal row's slack) is within TIGHT_REL
- * of zero is a tie (appended).  *obj: the optimum (lambda, or -sigma).
- * The primal is infeasible when the dual is unbounded, unbounded when the
- * dual is infeasible. */
-static lp_status lp_solve(const lp_row *row, size_t nrows, int relax, const unsigned char *ex,
-                          size_t *tight, size_t *ntight, size_t *nbasic, double *obj)
-{
-  glp_prob *P = glp_create_prob();
-  size_t nz = nrows * 4;
-  int *ia = malloc((nz + 1) * sizeof *ia), *ja = malloc((nz + 1) * sizeof *ja);
-  double *ar = malloc((nz + 1) * sizeof *ar);
-  lp_status st = LP_FAILED;
-  *ntight = *nbasic = 0;
-  if (!P || !ia || !ja || !ar)
-    goto done;
-  glp_set_obj_dir(P, GLP_MIN);
-  glp_add_rows(P, 4);
-  for (int k = 0; k < 4; k++) /* c: lambda (max), or -sigma (max) */
-    glp_set_row_bnds(P, k + 1, GLP_FX, k < 3 ? 0.0 : relax ? -1.0 : 1.0, 0.0);
-  glp_add_cols(P, (int)nrows);
-  size_t z = 0;
-  for (size_t i = 0; i < nrows; i++) {
-    double sgn = i % 2 == 0 ? -1.0 : 1.0; /* intrados: M >= 0, i.e. -M <= 0 */
-    if (ex[i])
-      glp_set_col_bnds(P, (int)i + 1, GLP_FX, 0.0, 0.0);
-    else
-      glp_set_col_bnds(P, (int)i + 1, GLP_LO, 0.0, 0.0);
-    glp_set_obj_coef(P, (int)i + 1, -sgn * row[i].c0);
-    for (int k = 0; k < 4; k++) {
-      double v = k < 3 ? sgn * row[i].c[k] : relax ? -row[i].half : sgn * row[i].c[3];
-      if (v == 0)
-        continue;
-      z++;
-      ia[z] = k + 1;
-      ja[z] = (int)i + 1;
-      ar[z] = v;
-    }
-  }
-  glp_load_matrix(P, (int)z, ia, ja, ar);
-  glp_smcp parm;
-  glp_init_smcp(&parm);
-  parm.msg_lev = GLP_MSG_OFF;
-  glp_std_basis(P);
-  int rc = glp_simplex(P, &parm);
-  if (rc == 0 && glp_get_status(P) == GLP_OPT && !optimal_in_double(P, row, nrows, relax, ex))
-    rc = glp_exact(P, &parm);
-  if (rc != 0)
-    goto done;
-  int s = glp_get_status(P);
-  if (s == GLP_UNBND || s == GLP_NOFEAS) {
-    st = s == GLP_UNBND ? LP_INFEASIBLE : LP_UNBOUNDED;
-    goto done;
-  }
-  if (s != GLP_OPT)
-    goto done;
-  *obj = glp_get_obj_val(P);
-  /* the basic columns (the vertex), then the columns of zero reduced cost */
-  long double x[4];
-  for (int k = 0; k < 4; k++)
-    x[k] = glp_get_row_dual(P, k + 1);
-  for (int pass = 0; pass < 2; pass++)
-    for (size_t i = 0; i < nrows && *ntight < MAX_TIGHT; i++) {
-      int basic = glp_get_col_stat(P, (int)i + 1) == GLP_BS;
-      if (ex[i])
-        continue;
-      if (pass == 0 ? basic : (!basic && fabsl(slack(&row[i], i, relax, x)) <= TIGHT_REL))
-        tight[(*ntight)++] = i;
-      if (pass == 0)
-        *nbasic = *ntight;
-    }
-  st = LP_OPT;
-done:
-  free(ia);
-  free(ja);
-  free(ar);
-  if (P)
-    glp_delete_prob(P);
-  return st;
+  static const double c_max[4] = {0, 0, 0, 1}, c_relax[4] = {0, 0, 0, -1};
+  const aq_lp4_opts o = {OPT_TOL, TIGHT_REL, MAX_TIGHT, 0};
+  aq_lp4_result r = {.y = NULL};
+  aq_lp4_status s = aq_lp4_solve(lp, nrows, relax ? c_relax : c_max, ex, &o, &r);
+  *ntight = r.ntight;
+  *nbasic = r.nbasic;
+  for (size_t k = 0; k < r.ntight; k++)
+    tight[k] = r.tight[k];
+  if (s == AQ_LP4_OPT)
+    *obj = r.obj;
+  return s == AQ_LP4_OPT ? LP_OPT : s == AQ_LP4_INFEASIBLE ? LP_INFEASIBLE
+         : s == AQ_LP4_UNBOUNDED ? LP_UNBOUNDED : LP_FAILED;
 }
 
 /* The branch and bound over the programs (see the file's comment). */
 typedef struct {
   const aq_geom *g;
   double g_mps2;
-  lp_row *row;
+  aq_lp4_row *lp;      /* the program's rows (aq_thrust_rows) */
   size_t nrows;
   unsigned char *ex;   /* rows excluded in the current branch */
   int act;             /* 0: sets of either direction; -1, +1: only sets of that act_sign */
@@ -457,7 +327,7 @@ static lp_status node(bb *B, int relax, int depth)
     B->failed = 1;
     return LP_FAILED;
   }
-  lp_status st = lp_solve(B->row, B->nrows, relax, B->ex, tight, &nt, &nb, &obj);
+  lp_status st = lp_solve(B->lp, B->nrows, relax, B->ex, tight, &nt, &nb, &obj);
   if (st == LP_FAILED)
     B->failed = 1;
   if (st != LP_OPT)
@@ -497,27 +367,26 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
   B.g_mps2 = g_mps2;
   B.act = act;
   B.nrows = nrows;
-  B.row = malloc(nrows * sizeof *B.row);
+  B.lp = malloc(nrows * sizeof *B.lp);
   B.ex = calloc(nrows, 1);
-  if (!B.row || !B.ex) {
-    free(B.row);
+  if (!B.lp || !B.ex) {
+    free(B.lp);
     free(B.ex);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   }
-  glp_term_out(GLP_OFF);
   int infeasible = 0;
   for (int s = 1; s >= -1; s -= 2) { /* the body force s lambda g drives act_sign -s */
     if (act && s != -act)
       continue;
-    rows_fill(g, s, B.row);
+    aq_thrust_rows(g, s, 0, B.lp);
     infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
   }
   if (!act && !B.have && infeasible == 2 && !B.failed) {
     /* no line of thrust fits for any lambda: a set gravity drives */
-    rows_fill(g, 1, B.row);
+    aq_thrust_rows(g, 1, 1, B.lp);
     node(&B, 1, 0);
   }
-  free(B.row);
+  free(B.lp);
   free(B.ex);
   if (B.info.liftoff && B.have &&
       !(B.info.liftoff_lambda < B.lambda0 - TIE_REL * fabs(B.lambda0)))

@@ -16,6 +16,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #define FAST_DIGITS_MAX 19 /* 10^19 - 1 < 2^64 */
@@ -261,4 +262,28 @@ size_t aq_number_parse_unshaped_(aq_number_shape *sh, const char *s, size_t n, u
   (void)shape_learn;
 #endif
   return used;
+}
+
+void aq_number_format(char *buf, size_t n, double x)
+{
+  if (isnan(x)) {
+    snprintf(buf, n, "nan"); /* glibc would print "-nan" for a negative NaN */
+    return;
+  }
+  if (isinf(x)) {
+    snprintf(buf, n, "%s", x > 0 ? "inf" : "-inf");
+    return;
+  }
+  /* The fewest significant digits that read back to x.  15 digits always
+   * do when any decimal of 15 or fewer does: a double's half spacing is at
+   * most 2^-53 |x| (1.1e-16 |x|), less than half the spacing of 15-digit
+   * decimals near x (more than 5e-16 |x|), so such a decimal is the one
+   * nearest x, which is what %.15g prints (its zeros dropped).  Else 16
+   * digits, correctly rounded, read back if any 16-digit decimal does;
+   * else 17 always do (IEEE 754-2008, sec. 5.12.2). */
+  for (int p = 15; p <= 17; p++) {
+    snprintf(buf, n, "%.*g", p, x);
+    if (strtod(buf, NULL) == x)
+      return;
+  }
 }

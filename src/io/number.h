@@ -29,6 +29,13 @@ enum {
   AQ_NUMBER_FORTRAN_D = 1 /* also accept D or d as the exponent letter */
 };
 
+/* The writers' counterpart, the one formatter of every double archquake
+ * prints (TSV, CSV, HDF5 attributes as text, the report, the suite file):
+ * the shortest decimal that strtod reads back to x (%.15g, %.16g or %.17g,
+ * whichever is first to), "nan" for any NaN, "inf" and "-inf"; into buf[n]
+ * (n >= 32). */
+void aq_number_format(char *buf, size_t n, double x);
+
 /* The number starting exactly at s[0] (no blanks skipped) within s[0..n):
  * returns the characters it takes (0 if s does not start with a number, *x
  * untouched) and sets *x.  An exponent letter not followed by digits is not

@@ -24,6 +24,7 @@ void aq_arch_cache_key(const aq_arch_sources *src, aq_bytes_out *key)
     aq_bytes_put_str(key, hex, 0);
   }
   aq_bytes_put_f64(key, src->friction); /* a command's --friction: another build */
+  aq_bytes_put_i64(key, src->friction_table);
 }
 
 /* aq_arch_store over an aq_diskcache. */

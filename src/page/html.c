@@ -613,9 +613,26 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
                       "below assumes so.",
                    control ? "" : " (a file written before the control was recorded)");
   if (mu > 0)
-    aq_page_printf(b, "  Joint friction μ = %.4g.</p>\n", mu);
+    aq_page_printf(b, "  Joint friction μ = %.4g.", mu);
   else
-    aq_page_puts(b, "  No joint friction given: sliding is not checked.</p>\n");
+    aq_page_puts(b, "  No joint friction given: sliding is not checked.");
+  /* the friction the collapse states need (the figure's lower panel) */
+  double need[2] = {aq_page_attr_num(A, "primary_mu_required"),
+                    aq_page_attr_num(A, "reverse_mu_required")};
+  double lf[2] = {aq_page_attr_num(A, "primary_lambda_friction"),
+                  aq_page_attr_num(A, "reverse_lambda_friction")};
+  static const char *const set_word[2] = {"primary", "reverse"};
+  for (int k = 0; k < 2; k++) {
+    if (isnan(need[k]))
+      continue;
+    aq_page_printf(b, "  At its λ0 the %s set needs μ = %.3g (joint %.0f)", set_word[k], need[k],
+                   aq_page_attr_num(A, k ? "reverse_mu_joint" : "primary_mu_joint"));
+    if (mu > 0 && need[k] > mu)
+      aq_page_printf(b, ": <b>more than the arch's %.3g</b>, so a line of thrust stands only "
+                        "up to λ = %.4g in that direction", mu, lf[k]);
+    aq_page_puts(b, ".");
+  }
+  aq_page_puts(b, "</p>\n");
   if (nslide || nbeyond) {
     aq_page_puts(b, "<p><b>Beyond the four-hinge model:</b> ");
     if (nslide)
@@ -634,7 +651,8 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
   aq_error e;
   /* from its .cfg as read; an arch the .cfg alone does not make (a joints
    * arch's files) from the geometry the results file keeps */
-  aq_arch_options ao = {mu}; /* the friction the runs used (--friction over the file's) */
+  /* the friction the runs used (--friction over the file's); the page reads no table */
+  aq_arch_options ao = {.friction = mu};
   int loaded =
       cfg && aq_arch_load_string_opts(cfg, strlen(cfg), name, &ao, &arch, &e) == AQ_OK;
   if (loaded || has_geometry(p->in->results, a)) {
@@ -647,7 +665,10 @@ static aq_status section_arch(page *p, size_t a, size_t *nrows)
       return st;
     read_note(b, "The arch to scale.  Filled circles are hinges at the extrados (outer "
                  "face), open circles at the intrados; blue the primary set, orange the "
-                 "reverse set.");
+                 "reverse set.  Below it, the friction each joint needs at the set's λ0 "
+                 "(|T|/N of the force across it, from the hinge reactions), each set in its "
+                 "colour, the arch's friction coefficient dashed: where a set's curve passes "
+                 "it, that joint would slide before the set's hinges can turn.");
   } else {
     aq_page_puts(b, "<p><i>The arch's configuration could not be loaded: ");
     aq_page_esc(b, cfg ? e.message : "no config attribute");

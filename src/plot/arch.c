@@ -10,9 +10,13 @@
  * is drawn over the undeformed outline, fill and masses moving with their
  * voussoirs, and the line of thrust is that set's at lambda(q) in the
  * deformed arch.  The frame holds the undeformed and the deformed arch
- * with a margin.  A run of the block model (plot arch --run KEY --at T):
- * every voussoir where its stored history has it at each time T (linear
- * between samples), the last time filled, over the undeformed outline. */
+ * with a margin.  Below it, the friction each joint needs (|T|/N of the
+ * resultant across it) in each set's collapse state at its lambda0 (the
+ * 9x9 hinge reactions and each piece's statics, aq_arch_joint_friction),
+ * with the arch's friction coefficient when it has one.  A run of the
+ * block model (plot arch --run KEY --at T): every voussoir where its
+ * stored history has it at each time T (linear between samples), the last
+ * time filled, over the undeformed outline. */
 #include <hdf5.h>
 #include <math.h>
 #include <plplot.h>
@@ -29,6 +33,9 @@ static const char *const AX_X = "x (m)", *const AX_Y = "y (m)";
 #define PLOT_H 620        /* pixels above the legend */
 #define LEGEND_ROW 32     /* pixels per legend entry (2 character heights) */
 #define C_FILL 15         /* colour map 0's spare entry (plot.h uses 0..14): sand */
+#define PANEL_H 320       /* pixels of the friction panel, below the arch */
+#define RATIO_CAP 3.0     /* the friction panel's top at most: a larger demand (a joint
+                             that pulls needs infinite friction) is drawn at the top */
 
 typedef struct {
   const aq_arch *arch;
@@ -41,6 +48,9 @@ typedef struct {
   double thrust_lambda;/* its multiplier */
   size_t nthrust;      /* points of the line of thrust */
   aq_vec2 *thrust;     /* n + 1 */
+  double *ratio[2];    /* each set's friction demand |T|/N per joint at lambda0 (n + 1;
+                          NULL: inadmissible set) */
+  double ratio_max;    /* the panel's top */
   /* the block model's voussoirs at nat times (none: 0): voussoir k at
    * time i has its centroid at (bx, by)[i * n + k], turned by br[i * n + k] */
   size_t nat;
@@ -193,6 +203,50 @@ static void extent(const fig *f, double *xlo, double *xhi, double *ylo, double *
     }
 }
 
+/* The friction panel in the viewport's rows [y0, y1]: each set's |T|/N per
+ * joint at lambda0, the arch's friction coefficient dashed. */
+static void draw_friction(const fig *f, double y0, double y1)
+{
+  static const int color[2] = {AQ_PC_BLUE, AQ_PC_ORANGE};
+  size_t n = f->g->p.voussoirs;
+  double mu = aq_arch_friction(f->arch);
+  plvpor(0.13, 0.95, y0, y1);
+  plwind(-0.5, (double)n + 0.5, 0, f->ratio_max);
+  plcol0(AQ_PC_LIGHT);
+  plbox("g", 0, 0, "g", 0, 0);
+  plcol0(AQ_PC_FG);
+  plbox("bcnst", 0, 0, "bcnstv", 0, 0);
+  char title[200];
+  if (mu > 0)
+    snprintf(title, sizeof title, "friction needed at #gl#d0#u: primary blue, reverse orange; "
+                                  "#gm = %.3g dashed", mu);
+  else
+    snprintf(title, sizeof title, "friction needed at #gl#d0#u: primary blue, reverse orange");
+  pllab("joint", "|T| / N", title);
+  for (int s = 0; s < 2; s++) {
+    if (!f->ratio[s])
+      continue;
+    PLFLT *x = malloc((n + 1) * sizeof *x), *y = malloc((n + 1) * sizeof *y);
+    if (x && y) {
+      for (size_t j = 0; j <= n; j++)
+        x[j] = (PLFLT)j, y[j] = fmin(f->ratio[s][j], f->ratio_max);
+      plcol0(color[s]);
+      plwidth(2);
+      plline((PLINT)(n + 1), x, y);
+      plwidth(1);
+      plstring((PLINT)(n + 1), x, y, s ? "#(840)" : "#(841)");
+    }
+    free(x);
+    free(y);
+  }
+  if (mu > 0 && mu <= f->ratio_max) {
+    PLFLT x[2] = {-0.5, (double)n + 0.5}, y[2] = {mu, mu};
+    plcol0(AQ_PC_RED);
+    pllsty(2);
+    plline(2, x, y);
+    pllsty(1);
+  }
+}
 /* The colours of the block model's times. */
 static const int at_color[] = {AQ_PC_TEAL, AQ_PC_BROWN, AQ_PC_NAVY, AQ_PC_PINK, AQ_PC_OLIVE,
                                AQ_PC_FG};
@@ -213,7 +267,8 @@ static int draw(void *ctx, aq_error *err)
   plscol0(C_FILL, 232, 214, 170);
   plschr(0, 0.9);
   double legend = (double)(LEGEND_ROW * f->nlegend + 40) / f->height;
-  plvpas(0.1, 0.95, legend + 0.09, 0.93, (yhi - ylo) / (xhi - xlo)); /* equal scales */
+  double panel = f->ratio_max > 0 ? (double)PANEL_H / f->height : 0;
+  plvpas(0.1, 0.95, legend + panel + 0.11, 0.93, (yhi - ylo) / (xhi - xlo)); /* equal scales */
   plwind(xlo, xhi, ylo, yhi);
   plcol0(AQ_PC_LIGHT);
   plbox("g", 0, 0, "g", 0, 0);
@@ -354,13 +409,17 @@ static int draw(void *ctx, aq_error *err)
   }
   plvpor(0.1, 0.95, 0.01, legend);
   aq_plot_legend(PL_POSITION_INSIDE | PL_POSITION_TOP, nl, t, c, st, sy);
+  if (panel > 0)
+    draw_friction(f, legend + 0.08, legend + panel);
   return 0;
 }
 
-/* series,index,x_m,y_m: voussoir corners (ext k, ext k+1, int k+1, int k),
- * outlines (curved faces sampled) and fills by voussoir, point masses,
+/* series,index,x_m,y_m,mu: voussoir corners (ext k, ext k+1, int k+1, int
+ * k), outlines (curved faces sampled) and fills by voussoir, point masses,
  * hinges of both sets, the line of thrust, and the deformed corners,
- * outlines, fills, masses and hinges. */
+ * outlines, fills, masses and hinges (mu nan); each set's friction demand
+ * |T|/N at each joint (series friction_primary, friction_reverse: index
+ * the joint, x_m, y_m its middle, mu the demand). */
 static aq_status write_data(const fig *f, const char *data, aq_error *err)
 {
   aq_outfile tmp;
@@ -370,7 +429,7 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
   if (!o)
     return err->status;
   aq_plot_csv_axes(o, 2, (const char *[]){AX_X, AX_Y});
-  fprintf(o, "series,index,x_m,y_m\n");
+  fprintf(o, "series,index,x_m,y_m,mu\n");
   for (int d = 0; d <= layers(f); d++) {
     char pre[48] = "";
     if (f->nat && d)
@@ -381,56 +440,66 @@ static aq_status write_data(const fig *f, const char *data, aq_error *err)
       aq_vec2 p[4] = {g->je[k], g->je[k + 1], g->ji[k + 1], g->ji[k]};
       for (int i = 0; i < 4; i++) {
         aq_vec2 q = moved(f, d, k, p[i]);
-        fprintf(o, "%scorner,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        fprintf(o, "%scorner,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->outline_start[k]; i < g->outline_start[k + 1]; i++) {
         aq_vec2 q = moved(f, d, k, g->outline[i]);
-        fprintf(o, "%soutline,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        fprintf(o, "%soutline,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t k = 0; k < n; k++)
       for (size_t i = g->fill_start[k]; i < g->fill_start[k + 1]; i++) {
         aq_vec2 q = moved(f, d, k, g->fill[i]);
-        fprintf(o, "%sfill,%zu,%s,%s\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
+        fprintf(o, "%sfill,%zu,%s,%s,nan\n", pre, k, AQ_TEXT_NUM(q.x), AQ_TEXT_NUM(q.y));
       }
     for (size_t i = 0; i < g->p.nmass; i++) {
       aq_vec2 q = moved(f, d, g->mass[i].voussoir, g->mass[i].p);
-      fprintf(o, "%smass,%zu,%s,%s\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
+      fprintf(o, "%smass,%zu,%s,%s,nan\n", pre, g->mass[i].voussoir, AQ_TEXT_NUM(q.x),
               AQ_TEXT_NUM(q.y));
     }
   }
   for (int s = 0; s < 2; s++) {
     const aq_mech *m = aq_workpath_mech(aq_arch_workpath(f->arch, s));
     for (int k = 0; k < 4; k++) {
-      fprintf(o, "%s_hinge_%c,%zu,%s,%s\n", s ? "reverse" : "primary", m->hs.face[k],
+      fprintf(o, "%s_hinge_%c,%zu,%s,%s,nan\n", s ? "reverse" : "primary", m->hs.face[k],
               m->hs.joint[k], AQ_TEXT_NUM(m->h[k].x), AQ_TEXT_NUM(m->h[k].y));
       if (s == f->set) {
         aq_vec2 h = hinge(f, s, k);
-        fprintf(o, "deformed_hinge_%c,%zu,%s,%s\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
+        fprintf(o, "deformed_hinge_%c,%zu,%s,%s,nan\n", m->hs.face[k], m->hs.joint[k], AQ_TEXT_NUM(h.x),
                 AQ_TEXT_NUM(h.y));
       }
     }
   }
   for (size_t i = 0; i < f->nthrust; i++)
-    fprintf(o, "thrust,%zu,%s,%s\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
+    fprintf(o, "thrust,%zu,%s,%s,nan\n", i, AQ_TEXT_NUM(f->thrust[i].x), AQ_TEXT_NUM(f->thrust[i].y));
+  for (int s = 0; s < 2; s++)
+    for (size_t j = 0; f->ratio[s] && j <= n; j++) {
+      aq_vec2 mid = {0.5 * (g->ji[j].x + g->je[j].x), 0.5 * (g->ji[j].y + g->je[j].y)};
+      fprintf(o, "friction_%s,%zu,%s,%s,%s\n", s ? "reverse" : "primary", j, AQ_TEXT_NUM(mid.x),
+              AQ_TEXT_NUM(mid.y), AQ_TEXT_NUM(f->ratio[s][j]));
+    }
   return aq_plot_csv_close(&tmp, err);
 }
 
 /* Draw f (its state set), write its data when asked, free its line of
- * thrust. */
+ * thrust and its friction demands. */
 static aq_status render(fig *f, const char *target, const char *data, double *draw_s,
                         aq_error *err)
 {
   const aq_geom *g = f->g;
   f->nlegend = 4 + (f->nthrust > 1) + (g->fill_kg > 0) + (g->p.nmass > 0) + (layers(f) > 0) +
                f->nat;
-  f->height = PLOT_H + LEGEND_ROW * (int)f->nlegend + 40;
+  f->height = PLOT_H + LEGEND_ROW * (int)f->nlegend + 40 + (f->ratio_max > 0 ? PANEL_H : 0);
   aq_status rc = aq_plot_render(target, FIG_W, f->height, draw, f, draw_s, err);
   if (rc == AQ_OK && data)
     rc = write_data(f, data, err);
   free(f->thrust);
   f->thrust = NULL;
+  for (int s = 0; s < 2; s++) {
+    free(f->ratio[s]);
+    f->ratio[s] = NULL;
+  }
   return rc;
 }
 
@@ -463,6 +532,18 @@ aq_status aq_plot_arch(const aq_arch *arch, double rotation_rad, const char *tar
              thrust_line(&f, 0, &st0, err) != 0) {
     return err->status;
   }
+  const aq_geom *g = f.g;
+  size_t n = g->p.voussoirs;
+  for (int s = 0; s < 2; s++) { /* the friction each joint needs at lambda0 */
+    if (!aq_arch_path(arch, s)->admissible || !(f.ratio[s] = malloc((n + 1) * sizeof(double))))
+      continue;
+    aq_arch_joint_friction(arch, s, f.ratio[s], NULL);
+    for (size_t j = 0; j <= n; j++)
+      f.ratio_max = fmax(f.ratio_max, fmin(f.ratio[s][j], RATIO_CAP));
+  }
+  if (aq_arch_friction(arch) > 0 && f.ratio_max > 0)
+    f.ratio_max = fmax(f.ratio_max, fmin(aq_arch_friction(arch), RATIO_CAP));
+  f.ratio_max *= 1.1;
   return render(&f, target, data, draw_s, err);
 }
 
@@ -654,6 +735,8 @@ static aq_status file_arch(hid_t f, const char *path, const char *name, long wan
            hinges(rj, rf, &hs[1]);
   if (!attr_double(ga, "g_mps2", &dyn.g_mps2))
     attr_double(ga, "g_m_s2", &dyn.g_mps2); /* its name before it became the .cfg key's */
+  double mu = NAN; /* the runs' friction (files written before it have none) */
+  attr_double(ga, "friction", &mu);
   if (ga >= 0)
     H5Gclose(ga);
   hid_t gg = ok && H5Lexists(f, "/geometry", H5P_DEFAULT) > 0 &&
@@ -695,7 +778,7 @@ static aq_status file_arch(hid_t f, const char *path, const char *name, long wan
   }
   aq_arch_drawing d = {shape, (size_t)nv, joints, parts, (size_t)no, (size_t)nf, outline, os,
                        fill, fs, (size_t)nm, mass, kg[0], kg[1], kg[2]};
-  st = aq_arch_from_drawing(&d, &hs[0], &hs[1], &dyn, got, &arch, err);
+  st = aq_arch_from_drawing(&d, &hs[0], &hs[1], &dyn, mu, got, &arch, err);
   if (st != AQ_OK) {
     snprintf(err->input, sizeof err->input, "%s", path);
     goto done;

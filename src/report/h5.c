@@ -1065,6 +1065,9 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     CK(attr_str(w, g, "control", aq_hinge_control_names[aq_arch_control(a->arch)]),
        "arch attributes");
     CK(attr_double(w, g, "friction", aq_arch_friction(a->arch)), "arch attributes");
+    size_t jr;
+    CK(attr_double(w, g, "mu_rest", aq_arch_mu_rest(a->arch, &jr)), "arch attributes");
+    CK(attr_int(w, g, "mu_rest_joint", (int64_t)jr), "arch attributes");
   }
   if (a->dyn) {
     CK(attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
@@ -1091,6 +1094,18 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     CK(attr_double(w, g, nm, p ? p->s_c_rad : NAN), "arch attributes");
     snprintf(nm, sizeof nm, "%s_mass_kg", set_name[k]);
     CK(attr_double(w, g, nm, p ? p->mass_kg : NAN), "arch attributes");
+    if (a->arch && p) { /* its collapse state's friction, and the load with the arch's */
+      size_t mj;
+      double mu = aq_arch_joint_friction(a->arch, k, NULL, &mj);
+      snprintf(nm, sizeof nm, "%s_mu_required", set_name[k]);
+      CK(attr_double(w, g, nm, mu), "arch attributes");
+      snprintf(nm, sizeof nm, "%s_mu_joint", set_name[k]);
+      CK(attr_int(w, g, nm, mj == SIZE_MAX ? -1 : (int64_t)mj), "arch attributes");
+      snprintf(nm, sizeof nm, "%s_lambda_friction", set_name[k]);
+      CK(attr_double(w, g, nm,
+                     aq_arch_lambda_friction(a->arch, p->act_sign, aq_arch_friction(a->arch))),
+         "arch attributes");
+    }
   }
   CK(H5Gclose(g), "H5Gclose");
   g = -1;

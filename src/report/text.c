@@ -1,6 +1,8 @@
 /* text.c: the TSV summary writer (see text.h). */
 #include "text.h"
 
+#include "../io/number.h"
+
 #include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
@@ -8,26 +10,7 @@
 
 void aq_text_double(char *buf, size_t n, double x)
 {
-  if (isnan(x)) {
-    snprintf(buf, n, "nan"); /* glibc would print "-nan" for a negative NaN */
-    return;
-  }
-  if (isinf(x)) {
-    snprintf(buf, n, "%s", x > 0 ? "inf" : "-inf");
-    return;
-  }
-  /* The fewest significant digits that read back to x.  15 digits always
-   * do when any decimal of 15 or fewer does: a double's half spacing is at
-   * most 2^-53 |x| (1.1e-16 |x|), less than half the spacing of 15-digit
-   * decimals near x (more than 5e-16 |x|), so such a decimal is the one
-   * nearest x, which is what %.15g prints (its zeros dropped).  Else 16
-   * digits, correctly rounded, read back if any 16-digit decimal does;
-   * else 17 always do (IEEE 754-2008, sec. 5.12.2). */
-  for (int p = 15; p <= 17; p++) {
-    snprintf(buf, n, "%.*g", p, x);
-    if (strtod(buf, NULL) == x)
-      return;
-  }
+  aq_number_format(buf, n, x);
 }
 
 char *aq_text_num(char *buf, double x)

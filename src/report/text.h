@@ -14,9 +14,10 @@
 #include "report.h"
 
 /* x as every output of archquake prints a double (TSV, CSV, HDF5
- * attributes as text, the report): the shortest decimal that strtod reads
- * back to the same double (%.15g, %.16g or %.17g, whichever is first to),
- * "nan" for any NaN, "inf" and "-inf"; into buf (n >= AQ_TEXT_NUM_MAX). */
+ * attributes as text, the report): io/number.h's aq_number_format, the
+ * shortest decimal that strtod reads back to the same double (%.15g, %.16g
+ * or %.17g, whichever is first to), "nan" for any NaN, "inf" and "-inf";
+ * into buf (n >= AQ_TEXT_NUM_MAX). */
 enum { AQ_TEXT_NUM_MAX = 32 };
 void aq_text_double(char *buf, size_t n, double x);
 /* The same into buf[AQ_TEXT_NUM_MAX], returned, for a printf argument:

@@ -36,7 +36,10 @@ int aq_suite_file_write(FILE *f, const char *const *comment, size_t ncomment,
     put_field(f, rows[i].record);
     fputc('\t', f);
     put_field(f, rows[i].channel);
-    fprintf(f, "\t%.17g\t%.17g\t", rows[i].scale, rows[i].misfit);
+    char scale[32], misfit[32];
+    aq_number_format(scale, sizeof scale, rows[i].scale);
+    aq_number_format(misfit, sizeof misfit, rows[i].misfit);
+    fprintf(f, "\t%s\t%s\t", scale, misfit);
     put_field(f, rows[i].event);
     fputc('\n', f);
   }

@@ -1,0 +1,641 @@
+/* friction.c: the static theorem of limit analysis with Coulomb friction
+ * at the joints, as linear programs (lp4.c, GLPK).
+ *
+ * A line of thrust of the arch under its weight and a horizontal body
+ * force lambda g per unit mass (along -act_sign x: the inertia force of a
+ * ground acceleration lambda g of sign act_sign) is given, as in the
+ * mechanism search (search.c), by the force (R0x, R0y) and moment m0 that
+ * the ground exerts across joint 0: the resultant carried across joint j
+ * is then
+ *
+ *   F_j = (R0x + s lambda g m_j,  R0y - g m_j)        (s = -act_sign)
+ *
+ * with m_j the mass of voussoirs 0..j-1 (fill and point masses included),
+ * and its moments about the joint's ends are linear in (R0x, R0y, m0,
+ * lambda) (search.c's rows): the line lies inside the arch when at every
+ * joint the moment about the intrados end is >= 0 and about the extrados
+ * end <= 0, which also makes the normal force N_j = F_j . n_j >= 0 (n_j the
+ * joint's unit normal into voussoir j).  With T_j = F_j . u_j (u_j along
+ * the joint, intrados to extrados) Coulomb's condition |T_j| <= mu N_j is
+ * two more linear rows per joint,
+ *
+ *   ( u_j - mu n_j) . F_j <= 0,     (-u_j - mu n_j) . F_j <= 0,
+ *
+ * so that in the plane the friction cone is exact, not linearised
+ * (Gilbert, Casapulla & Ahmed 2006, "Limit analysis of masonry block
+ * structures with non-associative frictional joints using linear
+ * programming", Computers & Structures 84(13-14), 873-887, eq. (1)-(4),
+ * whose contact forces at a joint's two corners sum to the resultant used
+ * here).  A resultant with |T| <= mu N between the joint's ends splits into
+ * two corner forces parallel to it, each inside the cone, and two corner
+ * forces inside the cone sum to such a resultant, so the two forms are the
+ * same program.
+ *
+ * aq_friction_lambda maximizes lambda over these rows: by the static
+ * (lower-bound) theorem the largest lambda at which some line of thrust
+ * stands with friction mu.  With friction the theorem is a bound, not the
+ * collapse load (the flow rule of Coulomb friction is not associated: the
+ * joints slide without dilating), so lambda_friction is the load that
+ * archquake's rigid, non-sliding model may be trusted to: up to it a
+ * line of thrust within the arch and within every joint's friction cone
+ * exists.  Without friction (mu INFINITY) the rows are the search's, and
+ * the optimum is the arch's minimum multiplier over every mechanism of that
+ * direction (the kinematic theorem: the dual of the program), lambda0 of
+ * the direction's minimum four-hinge set, or below it where a mechanism
+ * with a joint lifting off governs (search.c).
+ *
+ * aq_friction_least finds, at a given lambda, the least mu for which such
+ * a line exists: min over the lines of thrust of max_j |T_j| / N_j, a
+ * generalised fractional program, solved by the Dinkelbach-type method of
+ * Crouzeix, Ferland & Schaible 1985 ("An algorithm for generalized
+ * fractional programs", Journal of Optimization Theory and Applications
+ * 47(1), 35-49): with mu_k the largest ratio of the line x_k found so far,
+ * the next line minimizes max_j (|T_j| - mu_k N_j) / N_j(x_k), a linear
+ * program, and mu_{k+1} is its largest ratio; the mu_k decrease to the
+ * least friction, each the largest ratio of an actual line of thrust.
+ *
+ * Forces are scaled by the arch's weight W = m_T g and moments by W L (L
+ * the joints' extent), as in search.c.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model.h"
+
+#define OPT_TOL 1e-13      /* a row (scaled) violated by more at GLPK's vertex: solved again
+                              in rational arithmetic (as search.c) */
+#define TIGHT_REL 1e-9     /* a row within this of its bound counts as tight */
+#define LEAST_MU_START 1e3 /* the first trial friction of aq_friction_least (any value
+                              works: the iteration falls from the first line's ratio) */
+#define LEAST_REL 1e-12    /* aq_friction_least stops when mu falls by less (relative) */
+#define LEAST_ITER 60      /* ... or after this many programs */
+#define LEAST_TIE 1e-9     /* joints whose ratios differ by less (relative) tie: the lowest is
+                              named (the least-friction line often needs it at several) */
+
+/* The friction rows of joint j for direction s and friction mu: rows[0]
+ * (u - mu n) . F <= 0 and rows[1] (-u - mu n) . F <= 0, F/W in the
+ * program's unknowns (R0x/W, R0y/W, m0/(W L), lambda). */
+static void friction_rows(const aq_geom *g, size_t j, int s, double mu, aq_lp4_row rows[2])
+{
+  aq_vec2 pi = aq_geom_joint_point(g, j, 'i'), pe = aq_geom_joint_point(g, j, 'e');
+  double len = hypot(pe.x - pi.x, pe.y - pi.y);
+  aq_vec2 u = {(pe.x - pi.x) / len, (pe.y - pi.y) / len}, n = {-u.y, u.x};
+  double mj = g->cum_m[j] / g->mass_kg;
+  for (int k = 0; k < 2; k++) {
+    double sg = k ? -1.0 : 1.0;
+    aq_vec2 v = {sg * u.x - mu * n.x, sg * u.y - mu * n.y};
+    /* F/W = (R0x/W + s lambda m_j/m_T, R0y/W - m_j/m_T) */
+    rows[k].g[0] = v.x;
+    rows[k].g[1] = v.y;
+    rows[k].g[2] = 0;
+    rows[k].g[3] = (double)s * v.x * mj;
+    rows[k].h = v.y * mj;
+  }
+}
+
+/* N_j and T_j (scaled by W) of joint j at the program's x (lambda in x[3]). */
+static void joint_force(const aq_geom *g, size_t j, int s, const double x[4], double *nf,
+                        double *tf)
+{
+  aq_vec2 pi = aq_geom_joint_point(g, j, 'i'), pe = aq_geom_joint_point(g, j, 'e');
+  double len = hypot(pe.x - pi.x, pe.y - pi.y);
+  aq_vec2 u = {(pe.x - pi.x) / len, (pe.y - pi.y) / len};
+  double mj = g->cum_m[j] / g->mass_kg;
+  aq_vec2 f = {x[0] + (double)s * x[3] * mj, x[1] - mj};
+  *nf = -f.x * u.y + f.y * u.x;
+  *tf = f.x * u.x + f.y * u.y;
+}
+
+aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *lambda,
+                             size_t *joint, aq_error *err)
+{
+  if (aq_glpk_load(err) != AQ_OK)
+    return AQ_EUNSUPPORTED;
+  size_t n = g->p.voussoirs, nm = 2 * (n + 1);
+  int fr = mu > 0 && isfinite(mu), s = act_sign < 0 ? 1 : -1;
+  size_t nrows = nm + (fr ? nm : 0);
+  aq_lp4_row *row = malloc(nrows * sizeof *row);
+  if (!row)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  aq_thrust_rows(g, s, 0, row);
+  for (size_t j = 0; fr && j <= n; j++)
+    friction_rows(g, j, s, mu, row + nm + 2 * j);
+  static const double c[4] = {0, 0, 0, 1};
+  const aq_lp4_opts o = {OPT_TOL, TIGHT_REL, AQ_LP4_MAX_TIGHT, 0};
+  aq_lp4_result r = {.y = NULL};
+  aq_lp4_status st = aq_lp4_solve(row, nrows, c, NULL, &o, &r);
+  free(row);
+  if (st == AQ_LP4_INFEASIBLE)
+    return aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "friction",
+                        "expected a line of thrust within the arch and within friction %g at "
+                        "some horizontal load, got none", mu);
+  if (st == AQ_LP4_UNBOUNDED) { /* no mechanism of that direction at all */
+    *lambda = INFINITY;
+    if (joint)
+      *joint = SIZE_MAX;
+    return AQ_OK;
+  }
+  if (st != AQ_LP4_OPT)
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                        "expected the largest load of a line of thrust with friction %g, "
+                        "got a failed program", mu);
+  *lambda = r.obj;
+  if (joint) { /* a friction row of the vertex: the joint that slides */
+    *joint = SIZE_MAX;
+    for (size_t k = 0; k < r.nbasic && *joint == SIZE_MAX; k++)
+      if (r.tight[k] >= nm)
+        *joint = (r.tight[k] - nm) / 2;
+  }
+  return AQ_OK;
+}
+
+/* aq_friction_least from a start: a line of thrust x0 (R0x/W, R0y/W,
+ * m0/(W L) at another load, or NULL) whose normal forces at lambda weigh
+ * the first program's rows, and mu0 its trial friction (its largest
+ * ratio, or any guess); the best line into x (if not NULL); *iters the
+ * programs solved. */
+static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0,
+                       const double *x0, double *mu, size_t *joint, double *x, double *dmu,
+                       int *iters, aq_error *err)
+{
+  if (aq_glpk_load(err) != AQ_OK)
+    return AQ_EUNSUPPORTED;
+  size_t n = g->p.voussoirs, nm = 2 * (n + 1), nrows = 2 * nm + 1;
+  int s = act_sign < 0 ? 1 : -1;
+  aq_lp4_row *row = malloc(nrows * sizeof *row);
+  double *w = malloc((n + 1) * sizeof *w), *y = malloc(nrows * sizeof *y);
+  double *g3 = malloc(nrows * sizeof *g3); /* each row's lambda coefficient */
+  if (!row || !w || !y || !g3) {
+    free(row);
+    free(w);
+    free(y);
+    free(g3);
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  }
+  /* the moment rows with lambda fixed: the fourth unknown is t */
+  aq_thrust_rows(g, s, 0, row);
+  for (size_t i = 0; i < nm; i++) {
+    g3[i] = row[i].g[3];
+    row[i].h -= row[i].g[3] * lambda;
+    row[i].g[3] = 0;
+  }
+  g3[nrows - 1] = 0;
+  row[nrows - 1] = (aq_lp4_row){{0, 0, 0, -1}, 1}; /* t >= -1: bounded */
+  for (size_t j = 0; j <= n; j++) {
+    double nf = 1, tf;
+    if (x0) {
+      double xs[4] = {x0[0], x0[1], x0[2], lambda};
+      joint_force(g, j, s, xs, &nf, &tf);
+    }
+    w[j] = nf > 0 ? nf : 1;
+  }
+  static const double c[4] = {0, 0, 0, -1}; /* minimize t */
+  const aq_lp4_opts o = {OPT_TOL, TIGHT_REL, AQ_LP4_MAX_TIGHT, 0};
+  double muk = mu0 > 0 && isfinite(mu0) ? mu0 : LEAST_MU_START, best = INFINITY;
+  size_t best_j = 0;
+  aq_status ret = AQ_OK;
+  *iters = 0;
+  for (int it = 0; it < LEAST_ITER; it++) {
+    /* (+-T_j - mu_k N_j) / w_j - t <= 0 */
+    for (size_t j = 0; j <= n; j++) {
+      aq_lp4_row fr[2];
+      friction_rows(g, j, s, muk, fr);
+      for (int k = 0; k < 2; k++) {
+        aq_lp4_row *r = &row[nm + 2 * j + (size_t)k];
+        r->g[0] = fr[k].g[0] / w[j];
+        r->g[1] = fr[k].g[1] / w[j];
+        r->g[2] = 0;
+        r->g[3] = -1;
+        r->h = (fr[k].h - fr[k].g[3] * lambda) / w[j];
+        g3[nm + 2 * j + (size_t)k] = fr[k].g[3] / w[j];
+      }
+    }
+    aq_lp4_result r = {.y = y};
+    aq_lp4_status st = aq_lp4_solve(row, nrows, c, NULL, &o, &r);
+    ++*iters;
+    if (st == AQ_LP4_INFEASIBLE) { /* no line of thrust at lambda at all */
+      best = INFINITY;
+      break;
+    }
+    if (st != AQ_LP4_OPT) {
+      ret = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                         "expected the least friction of a line of thrust at lambda = %g, "
+                         "got a failed program", lambda);
+      break;
+    }
+    double xr[4] = {r.x[0], r.x[1], r.x[2], lambda}, next = 0;
+    size_t next_j = 0;
+    /* with V(lambda, mu) = max -t and its multipliers y (the envelope
+     * theorem): dV/dlambda = -sum y_i (row i's lambda coefficient), dV/dmu =
+     * sum over the friction rows y_i N_j / w_j; the least friction keeps V
+     * at 0, so dmu/dlambda = -(dV/dlambda) / (dV/dmu) */
+    double dv_dl = 0, dv_dm = 0;
+    for (size_t i = 0; i < nrows; i++)
+      dv_dl -= y[i] * g3[i];
+    for (size_t j = 0; j <= n; j++) {
+      double nf, tf;
+      joint_force(g, j, s, xr, &nf, &tf);
+      dv_dm += (y[nm + 2 * j] + y[nm + 2 * j + 1]) * nf / w[j];
+      double ratio = nf > 0 ? fabs(tf) / nf : tf == 0 ? 0 : INFINITY;
+      if (ratio > next * (1 + LEAST_TIE)) /* the lowest of joints that tie */
+        next_j = j;
+      next = fmax(next, ratio);
+      w[j] = nf > 0 ? nf : 1;
+    }
+    if (dmu)
+      *dmu = dv_dm > 0 ? -dv_dl / dv_dm : NAN;
+    int improved = next < best * (1 - LEAST_REL);
+    if (next < best) {
+      best = next;
+      best_j = next_j;
+      if (x)
+        for (int k = 0; k < 3; k++)
+          x[k] = xr[k];
+    }
+    if (!improved && (isfinite(best) || muk > 1e12))
+      break;
+    /* a joint that does not push (N = 0) on that line: try a larger mu */
+    muk = isfinite(best) ? best : muk * 1e3;
+  }
+  free(row);
+  free(w);
+  free(y);
+  free(g3);
+  if (ret != AQ_OK)
+    return ret;
+  *mu = best;
+  if (joint)
+    *joint = best_j;
+  return AQ_OK;
+}
+
+aq_status aq_friction_least(const aq_geom *g, int act_sign, double lambda, double *mu,
+                            size_t *joint, aq_error *err)
+{
+  int iters;
+  return least(g, act_sign, lambda, 0, NULL, mu, joint, NULL, NULL, &iters, err);
+}
+
+double aq_workpath_friction(const aq_workpath *w, double *ratio, size_t *joint)
+{
+  const aq_path *p = aq_workpath_path(w);
+  const aq_mech *m = aq_workpath_mech(w);
+  size_t n = m->g->p.voussoirs;
+  if (joint)
+    *joint = SIZE_MAX;
+  for (size_t j = 0; ratio && j <= n; j++)
+    ratio[j] = NAN;
+  if (!p->admissible)
+    return NAN;
+  aq_mech_state st;
+  aq_equil eq;
+  aq_live live = {AQ_LIVE_HORIZONTAL, p->act_sign, {0, 0}, 0, p->g_mps2};
+  double *buf = malloc(2 * (n + 1) * sizeof *buf), worst = NAN;
+  if (buf && aq_mech_eval(m, 0.0, &st) == 0 &&
+      aq_mech_equilibrium(m, &st, &live, &eq, NULL) == AQ_OK) {
+    worst = aq_mech_friction(m, &st, &live, &eq, buf, buf + n + 1, joint);
+    for (size_t j = 0; ratio && j <= n; j++)
+      ratio[j] = buf[n + 1 + j];
+  }
+  free(buf);
+  return worst;
+}
+
+/* ---- The arch's statics with friction (aq_statics) --------------------
+ * Built once with the arch: the least friction at rest, the largest load
+ * of each direction without and with the arch's friction, and for each
+ * direction a table of the least friction over the load from 0 to the
+ * largest: its exact value and slope (least()) at the nodes, a cubic
+ * Hermite between them.  The least friction is smooth where one joint
+ * governs and has a kink where the joint that governs changes (catenary:
+ * from a springing to the crown at 0.68 of the largest load), so the table
+ * starts with STATICS_START equal intervals and halves every interval at
+ * whose middle the cubic is off the exact value by more than STATICS_TOL
+ * times the table's largest value, until none is or the table holds
+ * STATICS_MAX nodes: near a
+ * kink the halving goes on until the interval is so narrow that the slope
+ * that changes inside it no longer matters. */
+#define STATICS_START 8        /* intervals of the first table, per direction */
+#define STATICS_MAX 256        /* nodes at most, per direction */
+#define STATICS_TOL 1e-6       /* the cubic against the exact value at the middle of each
+                                  interval, relative to the table's largest value */
+#define STATICS_TOP_REL 1e-12  /* the table's last load: the largest, less this (relative),
+                                  where the line of thrust is unique and round-off may
+                                  leave the program none */
+
+struct aq_statics {
+  double friction;             /* the arch's, 0: none */
+  double mu_rest;              /* the least friction at rest (lambda 0) */
+  size_t mu_rest_joint;
+  double lambda_top[2];        /* act_sign -1, +1: the largest lambda without friction */
+  double lambda_fr[2];         /* ... with the arch's friction (NAN: none) */
+  size_t joint_fr[2];          /* where it slides (SIZE_MAX: nowhere) */
+  double lam[2][STATICS_MAX], mu[2][STATICS_MAX], dmu[2][STATICS_MAX];
+  size_t joint[2][STATICS_MAX];
+  int ntab[2];                 /* nodes in the table (0: none) */
+  int resolved[2];             /* 1: every interval within STATICS_TOL at its middle */
+};
+
+void aq_statics_free(aq_statics *s) { free(s); }
+
+/* The cubic Hermite of table k on its interval i at lambda. */
+static double hermite(const aq_statics *s, int k, int i, double lambda)
+{
+  double h = s->lam[k][i + 1] - s->lam[k][i], t = (lambda - s->lam[k][i]) / h;
+  double t2 = t * t, t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * s->mu[k][i] + (t3 - 2 * t2 + t) * h * s->dmu[k][i] +
+         (-2 * t3 + 3 * t2) * s->mu[k][i + 1] + (t3 - t2) * h * s->dmu[k][i + 1];
+}
+
+/* The interval of table k that holds lambda (lam[0] <= lambda <= lam[n-1]). */
+static int interval(const aq_statics *s, int k, double lambda)
+{
+  int lo = 0, hi = s->ntab[k] - 1;
+  while (hi - lo > 1) {
+    int mid = (lo + hi) / 2;
+    if (s->lam[k][mid] <= lambda)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/* Node i of table k at lambda (x: its line, for the next node's start). */
+static aq_status node_at(aq_statics *s, const aq_geom *g, int k, int i, double lambda,
+                         const double *x0, double mu0, double x[3], aq_error *err)
+{
+  int iters;
+  s->lam[k][i] = lambda;
+  return least(g, k ? 1 : -1, lambda, mu0, x0, &s->mu[k][i], &s->joint[k][i], x,
+               &s->dmu[k][i], &iters, err);
+}
+
+/* Table k (direction act) of s over [0, top]: the nodes, refined. */
+static aq_status statics_table(aq_statics *s, const aq_geom *g, int k, aq_error *err)
+{
+  int n = 0;
+  double top = s->lambda_top[k], x[STATICS_MAX][3];
+  unsigned char ok[STATICS_MAX] = {0}; /* interval i checked at its middle */
+  aq_status st = AQ_OK;
+  for (int i = 0; i <= STATICS_START && st == AQ_OK; i++, n++) {
+    double lam = i == STATICS_START ? top * (1 - STATICS_TOP_REL) : top * i / STATICS_START;
+    for (int back = 0; back < 4 && st == AQ_OK; back++) {
+      st = node_at(s, g, k, i, lam, i ? x[i - 1] : NULL, i ? s->mu[k][i - 1] : 0, x[i], err);
+      if (i < STATICS_START || isfinite(s->mu[k][i]))
+        break;
+      lam = top * (1 - STATICS_TOP_REL * pow(10, back + 1)); /* the rows' round-off */
+    }
+  }
+  /* the slope at rest from the right: at 0 a symmetric arch's two
+   * springings tie, and the program's multipliers may be the other's */
+  double xr[3], mur;
+  size_t jr;
+  int iters;
+  if (st == AQ_OK)
+    st = least(g, k ? 1 : -1, top * STATICS_TOP_REL, s->mu[k][0], x[0], &mur, &jr, xr,
+               &s->dmu[k][0], &iters, err);
+  s->ntab[k] = n;
+  double scale = s->mu[k][n - 1]; /* the largest least friction: the tolerance's unit */
+  for (int i = 0; i < n && st == AQ_OK; i++)
+    if (!isfinite(s->mu[k][i]) || !isfinite(s->dmu[k][i]))
+      st = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                        "expected a line of thrust at lambda = %.9g, below the largest "
+                        "%.9g, got none", s->lam[k][i], top);
+  for (int added = 1; added && st == AQ_OK && n < STATICS_MAX;) {
+    added = 0;
+    for (int i = 0; i + 1 < n && n < STATICS_MAX && st == AQ_OK; i++) {
+      if (ok[i])
+        continue;
+      double lam = 0.5 * (s->lam[k][i] + s->lam[k][i + 1]), cubic = hermite(s, k, i, lam);
+      /* make room for the middle as node i + 1 */
+      size_t tail = (size_t)(n - i - 1);
+      memmove(&s->lam[k][i + 2], &s->lam[k][i + 1], tail * sizeof(double));
+      memmove(&s->mu[k][i + 2], &s->mu[k][i + 1], tail * sizeof(double));
+      memmove(&s->dmu[k][i + 2], &s->dmu[k][i + 1], tail * sizeof(double));
+      memmove(&s->joint[k][i + 2], &s->joint[k][i + 1], tail * sizeof(size_t));
+      memmove(&x[i + 2], &x[i + 1], tail * sizeof x[0]);
+      memmove(&ok[i + 2], &ok[i + 1], tail);
+      st = node_at(s, g, k, i + 1, lam, x[i], s->mu[k][i], x[i + 1], err);
+      double mu = s->mu[k][i + 1];
+      if (st == AQ_OK && !(isfinite(mu) && isfinite(s->dmu[k][i + 1])))
+        st = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                          "expected a line of thrust at lambda = %.9g, below the largest "
+                          "%.9g, got none", lam, top);
+      n++;
+      if (st == AQ_OK && fabs(cubic - mu) <= STATICS_TOL * scale) {
+        /* within: the middle stays (it costs nothing more), both halves pass */
+        ok[i] = ok[i + 1] = 1;
+      } else {
+        ok[i] = ok[i + 1] = 0;
+        added = 1;
+      }
+      i++; /* the right half: checked on the next pass if it must be */
+    }
+  }
+  s->ntab[k] = n;
+  s->resolved[k] = st == AQ_OK;
+  for (int i = 0; i + 1 < n; i++)
+    s->resolved[k] &= ok[i];
+  return st;
+}
+
+/* 1 if g is its own mirror image in x = 0 (joint j's ends mirror joint n -
+ * j's, voussoir k's mass and centroid voussoir n-1-k's) to MIRROR_REL of
+ * its size: then each direction's statics are the other's mirrored. */
+#define MIRROR_REL 1e-12
+static int mirror_symmetric(const aq_geom *g)
+{
+  size_t n = g->p.voussoirs;
+  double size = 0;
+  for (size_t j = 0; j <= n; j++)
+    size = fmax(size, fmax(hypot(g->ji[j].x, g->ji[j].y), hypot(g->je[j].x, g->je[j].y)));
+  double tol = MIRROR_REL * size;
+  for (size_t j = 0; j <= n; j++) {
+    const aq_vec2 *a[2] = {&g->ji[j], &g->je[j]}, *b[2] = {&g->ji[n - j], &g->je[n - j]};
+    for (int f = 0; f < 2; f++)
+      if (!(fabs(a[f]->x + b[f]->x) <= tol && fabs(a[f]->y - b[f]->y) <= tol))
+        return 0;
+  }
+  for (size_t k = 0; k < n; k++) {
+    const aq_mass *a = &g->vous[k], *b = &g->vous[n - 1 - k];
+    if (!(fabs(a->mass_kg - b->mass_kg) <= MIRROR_REL * a->mass_kg &&
+          fabs(a->c.x + b->c.x) <= tol && fabs(a->c.y - b->c.y) <= tol))
+      return 0;
+  }
+  return 1;
+}
+
+/* Direction 1's statics as direction 0's mirrored (joint j -> n - j). */
+static void mirror_table(aq_statics *s, size_t n)
+{
+  s->lambda_top[1] = s->lambda_top[0];
+  s->lambda_fr[1] = s->lambda_fr[0];
+  s->joint_fr[1] = s->joint_fr[0] == SIZE_MAX ? SIZE_MAX : n - s->joint_fr[0];
+  s->ntab[1] = s->ntab[0];
+  s->resolved[1] = s->resolved[0];
+  for (int i = 0; i < s->ntab[0]; i++) {
+    s->lam[1][i] = s->lam[0][i];
+    s->mu[1][i] = s->mu[0][i];
+    s->dmu[1][i] = s->dmu[0][i];
+    s->joint[1][i] = n - s->joint[0][i];
+  }
+}
+
+aq_status aq_statics_build(const aq_geom *g, double friction, int table, aq_statics **out,
+                           aq_error *err)
+{
+  *out = NULL;
+  aq_statics *s = calloc(1, sizeof *s);
+  if (!s)
+    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+  s->friction = friction > 0 ? friction : 0;
+  aq_status st = aq_friction_least(g, -1, 0.0, &s->mu_rest, &s->mu_rest_joint, err);
+  if (st == AQ_OK && s->friction > 0 && s->friction < s->mu_rest)
+    st = aq_error_set(err, AQ_EINADMISSIBLE, NULL, -1, -1, "friction",
+                      "expected an arch that stands with friction %g, got one that cannot: "
+                      "it needs %.3g at rest, joint %zu",
+                      s->friction, s->mu_rest, s->mu_rest_joint);
+  int mirror = mirror_symmetric(g);
+  for (int k = 0; k < 2 && st == AQ_OK; k++) {
+    int act = k ? 1 : -1;
+    if (k == 1 && mirror) {
+      mirror_table(s, g->p.voussoirs);
+      break;
+    }
+    s->lambda_fr[k] = NAN;
+    s->joint_fr[k] = SIZE_MAX;
+    st = aq_friction_lambda(g, act, INFINITY, &s->lambda_top[k], NULL, err);
+    if (st == AQ_OK && s->friction > 0)
+      st = aq_friction_lambda(g, act, s->friction, &s->lambda_fr[k], &s->joint_fr[k], err);
+    if (st == AQ_OK && table && s->lambda_top[k] > 0 && isfinite(s->lambda_top[k]))
+      st = statics_table(s, g, k, err);
+    /* else no table: no line stands under any load of that direction, or every
+       load of it stands (no mechanism of that direction at all), or none asked */
+  }
+  if (st != AQ_OK) {
+    aq_statics_free(s);
+    return st;
+  }
+  *out = s;
+  return AQ_OK;
+}
+
+void aq_statics_put(const aq_statics *s, aq_bytes_out *b)
+{
+  aq_bytes_put_f64(b, s->friction);
+  aq_bytes_put_f64(b, s->mu_rest);
+  aq_bytes_put_i64(b, (int64_t)s->mu_rest_joint);
+  for (int k = 0; k < 2; k++) {
+    aq_bytes_put_f64(b, s->lambda_top[k]);
+    aq_bytes_put_f64(b, s->lambda_fr[k]);
+    aq_bytes_put_i64(b, s->joint_fr[k] == SIZE_MAX ? -1 : (int64_t)s->joint_fr[k]);
+    aq_bytes_put_i64(b, s->ntab[k]);
+    aq_bytes_put_i64(b, s->resolved[k]);
+    for (int i = 0; i < s->ntab[k]; i++) {
+      aq_bytes_put_f64(b, s->lam[k][i]);
+      aq_bytes_put_f64(b, s->mu[k][i]);
+      aq_bytes_put_f64(b, s->dmu[k][i]);
+      aq_bytes_put_i64(b, (int64_t)s->joint[k][i]);
+    }
+  }
+}
+
+aq_status aq_statics_get(aq_bytes_in *r, size_t voussoirs, aq_statics **out)
+{
+  *out = NULL;
+  aq_statics *s = calloc(1, sizeof *s);
+  if (!s)
+    return AQ_ENOMEM;
+  int64_t nj = (int64_t)voussoirs;
+  s->friction = aq_bytes_get_f64(r, "friction");
+  s->mu_rest = aq_bytes_get_f64(r, "mu_rest");
+  s->mu_rest_joint = (size_t)aq_bytes_get_int(r, 0, nj, "mu_rest joint");
+  for (int k = 0; k < 2; k++) {
+    s->lambda_top[k] = aq_bytes_get_f64(r, "lambda_top");
+    s->lambda_fr[k] = aq_bytes_get_f64(r, "lambda_friction");
+    int64_t j = aq_bytes_get_int(r, -1, nj, "lambda_friction joint");
+    s->joint_fr[k] = j < 0 ? SIZE_MAX : (size_t)j;
+    s->ntab[k] = (int)aq_bytes_get_int(r, 0, STATICS_MAX, "nodes");
+    s->resolved[k] = (int)aq_bytes_get_int(r, 0, 1, "resolved");
+    for (int i = 0; i < s->ntab[k]; i++) {
+      s->lam[k][i] = aq_bytes_get_f64(r, "node lambda");
+      s->mu[k][i] = aq_bytes_get_f64(r, "node mu");
+      s->dmu[k][i] = aq_bytes_get_f64(r, "node slope");
+      s->joint[k][i] = (size_t)aq_bytes_get_int(r, 0, nj, "node joint");
+    }
+    for (int i = 1; i < s->ntab[k]; i++)
+      if (!(s->lam[k][i] > s->lam[k][i - 1]) && !r->bad)
+        r->bad = "node lambda";
+  }
+  if (r->bad) {
+    aq_statics_free(s);
+    return AQ_EFORMAT;
+  }
+  *out = s;
+  return AQ_OK;
+}
+
+double aq_statics_mu_rest(const aq_statics *s, size_t *joint)
+{
+  if (joint)
+    *joint = s->mu_rest_joint;
+  return s->mu_rest;
+}
+
+double aq_statics_lambda_top(const aq_statics *s, int act_sign)
+{
+  return s->lambda_top[act_sign > 0];
+}
+
+double aq_statics_lambda_friction(const aq_statics *s, int act_sign, size_t *joint)
+{
+  if (joint)
+    *joint = s->joint_fr[act_sign > 0];
+  return s->lambda_fr[act_sign > 0];
+}
+
+double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, size_t *joint)
+{
+  int k = act_sign > 0, n = s->ntab[k];
+  if (joint)
+    *joint = s->mu_rest_joint;
+  if (!(lambda >= 0) || n < 2)
+    return lambda == 0 ? s->mu_rest : NAN;
+  if (lambda > s->lam[k][n - 1])
+    return lambda <= s->lambda_top[k] ? s->mu[k][n - 1] : INFINITY;
+  int i = interval(s, k, lambda);
+  if (joint) /* the nearer node's */
+    *joint = s->joint[k][lambda - s->lam[k][i] < s->lam[k][i + 1] - lambda ? i : i + 1];
+  return hermite(s, k, i, lambda);
+}
+
+double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu)
+{
+  int k = act_sign > 0, n = s->ntab[k];
+  if (n < 2 || !(mu > 0))
+    return NAN;
+  if (mu >= s->mu[k][n - 1])
+    return s->lambda_top[k];
+  /* the loads at which some line stands with mu form an interval (the
+   * program's feasible set is convex): its top is in the highest table
+   * interval whose lower node needs no more than mu */
+  int i = n - 2;
+  while (i >= 0 && s->mu[k][i] > mu)
+    i--;
+  if (i < 0)
+    return NAN; /* not even at rest */
+  double lo = s->lam[k][i], hi = s->lam[k][i + 1];
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (hermite(s, k, i, mid) <= mu)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+int aq_statics_nodes(const aq_statics *s, int act_sign) { return s->ntab[act_sign > 0]; }
