@@ -127,7 +127,8 @@ AQ_TEST(report_kinds_capacity_alone_and_any_order)
 }
 
 /* The options that do not apply, in words: a results file of the
- * defaults (no --cor, no low-pass, no --dt, --scale). */
+ * defaults (no --cor, no low-pass, no --dt, --scale); the flags (filter,
+ * history, store_records) as yes or no, not 1 or 0. */
 AQ_TEST(report_kinds_options_in_words)
 {
   char dir[512], a[2048];
@@ -151,7 +152,10 @@ AQ_TEST(report_kinds_options_in_words)
       {"lowpass_hz", "off"},
       {"dt_override_s", "none (each file's own interval)"},
       {"scale_to_pga_g", "none"},
-      {"scale_to_lambda0", "none"}};
+      {"scale_to_lambda0", "none"},
+      {"filter", "yes"},
+      {"history", "no"},
+      {"store_records", "no"}};
   for (size_t k = 0; k < sizeof want / sizeof want[0]; k++) {
     char row[256];
     snprintf(row, sizeof row, "<td class=\"mono\">%s</td><td>%s</td>", want[k][0], want[k][1]);

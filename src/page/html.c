@@ -275,9 +275,9 @@ static int is_option(const char *name)
   return strncmp(name, "timing_", 7) != 0;
 }
 
-/* An option's value as the page shows it: what a NaN (a value that does
- * not apply) means for that option, in words; every other value as the
- * file holds it. */
+/* An option's value as the page shows it: a flag's 0 or 1 as no or yes;
+ * what a NaN (a value that does not apply) means for that option, in
+ * words; every other value as the file holds it. */
 static const char *option_text(const char *name, const char *value, double num)
 {
   static const struct {
@@ -290,6 +290,10 @@ static const char *option_text(const char *name, const char *value, double num)
       {"scale_to_pga_g", "none"},
       {"scale_to_lambda0", "none"},
   };
+  static const char *const flags[] = {"filter", "history", "store_records"}; /* 0 or 1 */
+  for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+    if (strcmp(name, flags[k]) == 0 && (num == 0 || num == 1))
+      return num == 1 ? "yes" : "no";
   if (!isnan(num) || strcmp(value, "nan") != 0)
     return value;
   for (size_t k = 0; k < sizeof words / sizeof words[0]; k++)
