@@ -343,7 +343,7 @@ AQ_TEST(arch_friction_cocchetti_rizzi)
 }
 
 /* An arch that cannot stand with its friction is refused in one line,
- * nothing written; the issue's figures for oppenheim. */
+ * nothing written; the figures quoted for oppenheim; the help names every column. */
 AQ_TEST(arch_friction_cli)
 {
   char out[16384], err[4096];
@@ -368,7 +368,7 @@ AQ_TEST(arch_friction_cli)
                strstr(err, "slip.cfg:"),
            "the main job refuses it, naming the file and line: %d %s", rc, err);
   aq_check(aq_test_count_names(dir, "r.h5") == 0, "no results file");
-  /* the figures: 0.686 at the springing, lambda 0.412 -> 0.331 at 0.6 */
+  /* oppenheim's figures quoted before: 0.686 at the springing, lambda 0.412 -> 0.331 at 0.6 */
   rc = aq_test_run("mechanism --arch arches/oppenheim.cfg --friction 0.6", out, sizeof out, err,
                    sizeof err);
   char cell[64];
@@ -380,4 +380,21 @@ AQ_TEST(arch_friction_cli)
            "(%g at %d)", mu, joint);
   aq_check(fabs(l0 - 0.412) < 0.0005 && fabs(lf - 0.331) < 0.0005, "lambda0 0.412, with 0.6: "
            "0.331 (%g, %g)", l0, lf);
+  /* the help names every column the command prints */
+  static char help[1 << 14];
+  rc = aq_test_run("mechanism --help", help, sizeof help, err, sizeof err);
+  char *cols = strstr(help, "Columns: "), *end = cols ? strstr(cols, "Table columns:") : NULL;
+  if (!aq_check(rc == 0 && cols && end, "mechanism --help has its Columns: (exit %d)", rc))
+    return;
+  *end = '\0';
+  char *nl = strchr(out, '\n');
+  if (nl)
+    *nl = '\0';
+  for (char *c = strtok(out, "\t"); c; c = strtok(NULL, "\t")) {
+    int found = 0;
+    size_t n = strlen(c);
+    for (const char *p = strstr(cols, c); p && !found; p = strstr(p + 1, c))
+      found = (p[-1] == ' ') && (p[n] == ' ' || p[n] == '\n');
+    aq_check(found, "mechanism --help names the column %s", c);
+  }
 }

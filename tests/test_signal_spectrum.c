@@ -722,6 +722,45 @@ AQ_TEST(spectrum_many_periods_in_one_call)
   }
   o.one_at_a_time = 0;
   free(b);
+  /* PEER's refined periods, several at a time too: the same samples at
+   * dt = 0.02 s, where 14 of the periods have N = ceil(10 dt / T) > 1:
+   * each PSA against max w^2 |u| of the record resampled here (linearly)
+   * at dt / N (the piecewise-linear recursion run at dt / N reaches the
+   * same points by another path: 1e-10, measured 4e-14 at most), and
+   * against one_at_a_time to the bit */
+  const double dt2 = 0.02;
+  double pr[NP], pr1[NP];
+  o.peaks = AQ_SPECTRUM_PEAKS_PEER;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt2, z, periods, NP, pr, &e) == AQ_OK, "peer");
+  o.one_at_a_time = 1;
+  aq_check(aq_spectrum_psa(ws, &o, a, n, dt2, z, periods, NP, pr1, &e) == AQ_OK, "peer");
+  o.one_at_a_time = 0;
+  size_t refined = 0;
+  for (size_t i = 0; i < NP; i++) {
+    double T = periods[i];
+    aq_check(pr[i] == pr1[i], "dt = 0.02 s, T = %g s: peer %.17g, one at a time %.17g", T,
+             pr[i], pr1[i]);
+    size_t N = T > 0 ? (size_t)ceil(10 * dt2 / T - 1e-9) : 1;
+    if (N < 2)
+      continue;
+    refined++;
+    size_t nf = (n - 1) * N + 1;
+    double *f = alloc_d(nf), *uf = alloc_d(nf), *vf = alloc_d(nf), w = 2 * PI / T, want = 0;
+    for (size_t k = 0; k + 1 < n; k++)
+      for (size_t j = 0; j < N; j++)
+        f[k * N + j] = a[k] + (a[k + 1] - a[k]) * ((double)j / (double)N);
+    f[nf - 1] = a[n - 1];
+    aq_check(aq_spectrum_response(f, nf, dt2 / (double)N, z, T, uf, vf, &e) == AQ_OK,
+             "response at dt / N");
+    for (size_t k = 0; k < nf; k++)
+      want = fmax(want, w * w * fabs(uf[k]));
+    aq_check_rel(pr[i], want, 1e-10, "dt = 0.02 s, T = %g s: peer (N = %zu) against the "
+                 "record resampled at dt / N", T, N);
+    free(f);
+    free(uf);
+    free(vf);
+  }
+  aq_check(refined == 14, "%zu refined periods at dt = 0.02 s (want 14)", refined);
   aq_spectrum_ws_free(ws);
   free(a);
   free(u);

@@ -58,6 +58,7 @@ static const char *const impacts[] = {"cor", "momentum", NULL};
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
 static const char *const papers[] = {"a4", "letter", NULL}; /* aq_plot_paper */
+static const char *const checks[] = {"blocks", NULL}; /* --check */
 
 /* The handlers of the options that are more than a value. */
 static void add_arch(char *arg, aq_opts *o, int *nerr)
@@ -224,9 +225,20 @@ static void blocks_model_applies(aq_opts *o, int *nerr)
 
 static void blocks_dt_needs_blocks(aq_opts *o, int *nerr)
 {
-  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS) {
-    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks with it, got --model "
-                    "%s\n", aq_model_name((aq_model)o->model));
+  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS && o->check_blocks < 0) {
+    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks or --check blocks with "
+                    "it, got --model %s\n", aq_model_name((aq_model)o->model));
+    (*nerr)++;
+  }
+}
+
+/* --check blocks re-runs the four-hinge model's marked runs under the
+ * block model: not a check of the block model itself. */
+static void check_not_blocks(aq_opts *o, int *nerr)
+{
+  if (o->check_blocks >= 0 && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --check: expected a four-hinge --model with --check blocks "
+                    "(workpath, ode, paper, workpath-quad), got --model blocks\n");
     (*nerr)++;
   }
 }
@@ -535,8 +547,18 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_BLOCKS_DT] = {.name = "blocks-dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
                           .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE) | SUITES,
                           .help = "the block model's time step, s (default 0.002; only with "
-                                  "--model blocks)",
+                                  "--model blocks or --check blocks)",
                           .check = blocks_dt_needs_blocks},
+    [AQ_OPT_CHECK] = {.name = "check", .kind = AQ_ARG_CHOICE, .choices = checks,
+                      .meta = "blocks", DEST(check_blocks), .cmds = C(RUN),
+                      .check = check_not_blocks,
+                      .help = "re-run under --model blocks every run whose status the "
+                              "four-hinge model marks (slides, beyond): the block model's "
+                              "verdict in the columns check_blocks (agrees, differs, failed; "
+                              "- for a run not checked), check_collapsed, "
+                              "check_collapse_time_s, check_peak_rotation_rad, and what it "
+                              "saw in max_slip_m, hinges_observed, hinges_first_s, "
+                              "mechanism_changed_s (docs/blocks.md)"},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -861,7 +883,11 @@ static const char run_tail[] =
     "  model only up to that time, follow such a run with --model blocks);\n"
     "  last, with --model blocks: max_slip_m hinges_observed (the joints and\n"
     "  faces that opened, 0e,6i,...) hinges_first_s (when) mechanism_changed_s\n"
-    "  (when the open joints left the arch's sets); nan and - otherwise\n"
+    "  (when the open joints left the arch's sets); nan and - otherwise;\n"
+    "  then check_blocks check_collapsed check_collapse_time_s\n"
+    "  check_peak_rotation_rad: with --check blocks, a marked run's verdict\n"
+    "  under the block model (agrees, differs, failed) and its collapse and\n"
+    "  peak, the block columns filled from it; - and nan for a run not checked\n"
     "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -954,6 +980,7 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "minimum lambda0 is <= 0 cannot stand and is refused (exit 1), naming the set.\n",
          .tail = "Columns: set joints faces lambda0 q_c_rad admissible act_sign q_sign mass_kg\n"
                  "  impact_vel_ratio end table_n table_err thrust_ecc searched reason\n"
+                 "  control mu_required mu_joint lambda_friction\n"
                  "  q_c_rad is the rotation of body 1 about H1 at collapse (magnitude;\n"
                  "  q = q_sign * s); act_sign is the sign of the ground acceleration along +x\n"
                  "  that drives the set; end is why the path ends (peak: lambda = 0, toggle,\n"
@@ -963,6 +990,16 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "  at q = 0 (<= 1: the thrust stays inside, lambda0 is also a lower bound).\n"
                  "  impact_vel_ratio is the set's velocity after an impact arriving from the\n"
                  "  other set over the velocity before (momentum rule); <= 0: the arch stops.\n"
+                 "  control is the arch's hinges, fixed or free ([hinges] control).\n"
+                 "  mu_required is the largest |T|/N (shear over normal force) over every\n"
+                 "  joint in the set's collapse state at lambda0 (inf: the resultant pulls\n"
+                 "  on some joint; nan: no collapse state), mu_joint that joint.\n"
+                 "  lambda_friction, with a friction (--friction or [contact] friction;\n"
+                 "  else nan), is the largest lambda of the set's direction at which a line\n"
+                 "  of thrust lies inside the arch with |T| <= mu N at every joint: lambda0\n"
+                 "  of that direction's minimum when mu >= its mu_required, less below.  An\n"
+                 "  arch that needs more friction than given even at rest is refused (exit\n"
+                 "  1), naming the joint.\n"
                  "Table columns: set s_rad q_rad lambda lambda_eq x_m y_m pe_j mgen_kgm2\n"
                  "  min_normal_n (lambda by virtual work and by the 9x9 equilibrium; pe_j =\n"
                  "  m_T g y; min_normal_n the smallest compressive hinge force; thrust_ecc\n"
@@ -1209,6 +1246,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->domain_tol_s = 1e-9;
   o->max_duration_s = 100;
   o->paper = -1;
+  o->check_blocks = -1;
   o->rtol = AQ_COMPARE_RTOL_DEFAULT;
   o->range_s[0] = o->range_s[1] = NAN;
   o->scale_range[0] = AQ_SELECT_SCALE_LO_DEFAULT;

@@ -54,7 +54,9 @@
  * from the recursion at dt / N started from its first sample.  Only an
  * interval whose bound (above) passes the peak found so far can raise it,
  * so only those are refined: the peak is the refined samples' exactly,
- * at the cost of the continuous search.  For RotD the refined points of
+ * at the cost of the continuous search.  One component's periods run
+ * several at a time, the samples' peaks in one pass (peaks_batch) and the
+ * refined ones in two (refined_batch), the same values as alone.  For RotD the refined points of
  * both components join the samples' points, in the intervals where the
  * two bounds together could pass the smallest angle's peak.
  *
@@ -588,6 +590,14 @@ static size_t flush_batch(const sdof *const *o, const size_t *idx, size_t nb,
   return 0;
 }
 
+/* The chord bound's slack over every interval at once, from the largest
+ * |x| and |y| of the history and |a| of the input (top of file). */
+static double slack_of(const sdof *o, double xm, double ym, double amax)
+{
+  double th = o->theta;
+  return 0.125 * th * th * (amax + o->kappa * (xm + ym + amax * th));
+}
+
 /* The chord bound's slack over every interval at once: theta^2 / 8 times
  * the largest |x''| any interval can reach (top of file). */
 static double global_slack(const sdof *o, const double *x, const double *y,
@@ -598,8 +608,7 @@ static double global_slack(const sdof *o, const double *x, const double *y,
     xm = dmax(xm, fabs(x[k]));
     ym = dmax(ym, fabs(y[k]));
   }
-  double th = o->theta;
-  return 0.125 * th * th * (amax + o->kappa * (xm + ym + amax * th));
+  return slack_of(o, xm, ym, amax);
 }
 
 static double abs_max(const double *a, size_t n)
@@ -673,6 +682,93 @@ static double peak_refined(const sdof *o, const sdof *s, size_t steps, const dou
       best = dmax(best, substeps(s, steps, x[k], y[k], a0, a1, NULL));
   }
   return best;
+}
+
+/* peak_refined() for up to BATCH oscillators o[0..nb) (none the PGA's),
+ * s[j] each one's over dt / steps[j] (steps[j] >= 2), with no history
+ * kept: a first pass of the recursion gives each one's peak at the samples
+ * and largest |y|, so its slack g; a second pass, the same arithmetic so
+ * the same states, tests each interval as peak_refined() does, in the same
+ * order, and refines those that pass (one oscillator at a time: few do).
+ * The peaks into m[0..nb); amax: max |a|.  The same values to the bit. */
+BATCH_CLONES
+static void refined_batch(const sdof *const *o, const sdof *const *s, const size_t *steps,
+                          size_t nb, const double *a, size_t n, double amax, double *m)
+{
+  double p00[BATCH], p01[BATCH], p10[BATCH], p11[BATCH];
+  double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
+  double x[BATCH], y[BATCH], mx[BATCH], my[BATCH], g[BATCH], xo[BATCH], yo[BATCH];
+  int hit[BATCH];
+  for (size_t j = 0; j < BATCH; j++) {
+    const sdof *q = o[j < nb ? j : 0]; /* spare lanes repeat the first */
+    p00[j] = q->p[0][0];
+    p01[j] = q->p[0][1];
+    p10[j] = q->p[1][0];
+    p11[j] = q->p[1][1];
+    b00[j] = q->b[0][0];
+    b01[j] = q->b[0][1];
+    b10[j] = q->b[1][0];
+    b11[j] = q->b[1][1];
+    x[j] = y[j] = mx[j] = my[j] = 0;
+  }
+  double ak = a[0];
+  for (size_t k = 0; k + 1 < n; k++) {
+    double an = a[k + 1];
+    for (size_t j = 0; j < BATCH; j++) {
+      double xn = p00[j] * x[j] + p01[j] * y[j] + b00[j] * ak + b01[j] * an;
+      double yn = p10[j] * x[j] + p11[j] * y[j] + b10[j] * ak + b11[j] * an;
+      x[j] = xn;
+      y[j] = yn;
+      double ax = fabs(xn), ay = fabs(yn);
+      mx[j] = ax > mx[j] ? ax : mx[j];
+      my[j] = ay > my[j] ? ay : my[j];
+    }
+    ak = an;
+  }
+  for (size_t j = 0; j < BATCH; j++) {
+    g[j] = slack_of(o[j < nb ? j : 0], mx[j], my[j], amax);
+    x[j] = y[j] = 0;
+  }
+  ak = a[0];
+  for (size_t k = 0; k + 1 < n; k++) {
+    double an = a[k + 1];
+    int any = 0;
+    for (size_t j = 0; j < BATCH; j++) {
+      double xn = p00[j] * x[j] + p01[j] * y[j] + b00[j] * ak + b01[j] * an;
+      double yn = p10[j] * x[j] + p11[j] * y[j] + b10[j] * ak + b11[j] * an;
+      double ax = fabs(x[j]), axn = fabs(xn);
+      hit[j] = (ax > axn ? ax : axn) + g[j] > mx[j];
+      any |= hit[j];
+      xo[j] = x[j];
+      yo[j] = y[j];
+      x[j] = xn;
+      y[j] = yn;
+    }
+    for (size_t j = 0; any && j < nb; j++) {
+      if (!hit[j])
+        continue;
+      double sig = (an - ak) * o[j]->inv_theta;
+      if (piece_bound(o[j], o[j]->theta, xo[j], yo[j], x[j], ak, an, sig) > mx[j])
+        mx[j] = dmax(mx[j], substeps(s[j], steps[j], xo[j], yo[j], ak, an, NULL));
+    }
+    ak = an;
+  }
+  for (size_t j = 0; j < nb; j++)
+    m[j] = mx[j];
+}
+
+/* The nr (<= BATCH) refined oscillators gathered for refined_batch: their
+ * peaks into psa[idx[j]].  Returns 0, the batch's new size. */
+static size_t flush_refined(const sdof *const *o, const sdof *const *s, const size_t *steps,
+                            const size_t *idx, size_t nr, const double *a, size_t n,
+                            double amax, double *psa)
+{
+  double m[BATCH];
+  if (nr)
+    refined_batch(o, s, steps, nr, a, n, amax, m);
+  for (size_t j = 0; j < nr; j++)
+    psa[idx[j]] = m[j];
+  return 0;
 }
 
 /* The oscillator over PEER's refined step dt / steps of period_s (> 0 or
@@ -753,9 +849,9 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
   /* T = 0: the input's peak; the periods whose peak is at the samples
    * only, BATCH at a time (peaks_batch); the others one by one, their
    * history kept */
-  sdof bo[BATCH];
-  const sdof *bp[BATCH];
-  size_t bi[BATCH], nb = 0;
+  sdof bo[BATCH], ro[BATCH], rs[BATCH];
+  const sdof *bp[BATCH], *rp[BATCH], *rsp[BATCH];
+  size_t bi[BATCH], nb = 0, ri[BATCH], rn[BATCH], nr = 0;
   for (size_t i = 0; i < n_periods; i++) {
     sdof o;
     st = sdof_init(&o, period_s[i], damping, dt_s, err);
@@ -782,6 +878,17 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
         nb = flush_batch(bp, bi, nb, acc_mps2, n, psa_mps2);
       continue;
     }
+    if (!o.pga && !opts->one_at_a_time && opts->peaks == AQ_SPECTRUM_PEAKS_PEER) {
+      ro[nr] = o;
+      rs[nr] = sub;
+      rp[nr] = &ro[nr];
+      rsp[nr] = &rs[nr];
+      rn[nr] = steps;
+      ri[nr++] = i;
+      if (nr == BATCH)
+        nr = flush_refined(rp, rsp, rn, ri, nr, acc_mps2, n, amax, psa_mps2);
+      continue;
+    }
     double m = respond(&o, acc_mps2, n, n, ws->x1, ws->y1);
     if (opts->peaks == AQ_SPECTRUM_PEAKS_EXACT)
       m = peak_one(&o, acc_mps2, n, n, ws->x1, ws->y1, m, amax);
@@ -790,6 +897,7 @@ aq_status aq_spectrum_psa(aq_spectrum_ws *ws, const aq_spectrum_opts *opts,
     psa_mps2[i] = m;
   }
   flush_batch(bp, bi, nb, acc_mps2, n, psa_mps2);
+  flush_refined(rp, rsp, rn, ri, nr, acc_mps2, n, amax, psa_mps2);
   return AQ_OK;
 }
 

@@ -101,9 +101,9 @@ size_t aq_spectrum_peer_steps(double dt_s, double period_s);
 typedef struct {
   size_t n_angles; /* RotD angles over [0, 180) degrees (default 180: 1 degree) */
   aq_spectrum_peaks peaks; /* where a peak is taken (default PEER) */
-  int one_at_a_time; /* 0 (the default): the periods whose peak is at the
-                        samples (SAMPLES; PEER where N = 1) run several at
-                        a time, and RotD's two components in one loop; 1:
+  int one_at_a_time; /* 0 (the default): one component's periods under
+                        SAMPLES and PEER run several at a time, and RotD's
+                        two components in one loop; 1:
                         each period and component on its own, as before
                         they did (the same values to the bit; slower: for
                         benches and tests) */
