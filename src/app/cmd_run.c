@@ -173,6 +173,7 @@ int aq_cmd_run(int argc, char **argv)
   cfg.arch_paths = arches;
   cfg.model = (aq_model)o.model;
   cfg.blocks_dt_s = o.blocks_dt_s;
+  cfg.check_blocks = o.check_blocks == 0;
   cfg.cor = o.cor;
   cfg.friction = o.friction;
   cfg.units_text = o.units_text[0] ? o.units_text : NULL;

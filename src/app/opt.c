@@ -179,8 +179,9 @@ int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction)
 {
   if (!blocks || !isnan(friction))
     return 0;
-  fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for --model "
-                  "blocks ([contact] friction or --friction), got none\n", arch_path);
+  fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for the block "
+                  "model (--model blocks, --check blocks: [contact] friction or --friction), "
+                  "got none\n", arch_path);
   return 1;
 }
 

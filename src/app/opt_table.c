@@ -58,6 +58,7 @@ static const char *const impacts[] = {"cor", "momentum", NULL};
 static const char *const x_axes[] = {"qc", "rad", NULL};
 static const char *const y_axes[] = {"scale", "pga", NULL};
 static const char *const papers[] = {"a4", "letter", NULL}; /* aq_plot_paper */
+static const char *const checks[] = {"blocks", NULL}; /* --check */
 
 /* The handlers of the options that are more than a value. */
 static void add_arch(char *arg, aq_opts *o, int *nerr)
@@ -224,9 +225,20 @@ static void blocks_model_applies(aq_opts *o, int *nerr)
 
 static void blocks_dt_needs_blocks(aq_opts *o, int *nerr)
 {
-  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS) {
-    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks with it, got --model "
-                    "%s\n", aq_model_name((aq_model)o->model));
+  if (o->given[AQ_OPT_BLOCKS_DT] && o->model != AQ_MODEL_BLOCKS && o->check_blocks < 0) {
+    fprintf(stderr, "archquake: --blocks-dt: expected --model blocks or --check blocks with "
+                    "it, got --model %s\n", aq_model_name((aq_model)o->model));
+    (*nerr)++;
+  }
+}
+
+/* --check blocks re-runs the four-hinge model's marked runs under the
+ * block model: not a check of the block model itself. */
+static void check_not_blocks(aq_opts *o, int *nerr)
+{
+  if (o->check_blocks >= 0 && o->model == AQ_MODEL_BLOCKS) {
+    fprintf(stderr, "archquake: --check: expected a four-hinge --model with --check blocks "
+                    "(workpath, ode, paper, workpath-quad), got --model blocks\n");
     (*nerr)++;
   }
 }
@@ -535,8 +547,18 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
     [AQ_OPT_BLOCKS_DT] = {.name = "blocks-dt", .kind = AQ_ARG_DOUBLE_GT, .lo = 0, .hi = 0.1,
                           .meta = "S", DEST(blocks_dt_s), .cmds = C(PULSE) | SUITES,
                           .help = "the block model's time step, s (default 0.002; only with "
-                                  "--model blocks)",
+                                  "--model blocks or --check blocks)",
                           .check = blocks_dt_needs_blocks},
+    [AQ_OPT_CHECK] = {.name = "check", .kind = AQ_ARG_CHOICE, .choices = checks,
+                      .meta = "blocks", DEST(check_blocks), .cmds = C(RUN),
+                      .check = check_not_blocks,
+                      .help = "re-run under --model blocks every run whose status the "
+                              "four-hinge model marks (slides, beyond): the block model's "
+                              "verdict in the columns check_blocks (agrees, differs, failed; "
+                              "- for a run not checked), check_collapsed, "
+                              "check_collapse_time_s, check_peak_rotation_rad, and what it "
+                              "saw in max_slip_m, hinges_observed, hinges_first_s, "
+                              "mechanism_changed_s (docs/blocks.md)"},
     [AQ_OPT_IMPACT] = {.name = "impact", .kind = AQ_ARG_CHOICE, .choices = impacts,
                        .meta = "RULE", DEST(impact), .cmds = C(PULSE),
                        .help = "cor | momentum (default: the arch file's)",
@@ -863,7 +885,11 @@ static const char run_tail[] =
     "  model only up to that time, follow such a run with --model blocks);\n"
     "  last, with --model blocks: max_slip_m hinges_observed (the joints and\n"
     "  faces that opened, 0e,6i,...) hinges_first_s (when) mechanism_changed_s\n"
-    "  (when the open joints left the arch's sets); nan and - otherwise\n"
+    "  (when the open joints left the arch's sets); nan and - otherwise;\n"
+    "  then check_blocks check_collapsed check_collapse_time_s\n"
+    "  check_peak_rotation_rad: with --check blocks, a marked run's verdict\n"
+    "  under the block model (agrees, differs, failed) and its collapse and\n"
+    "  peak, the block columns filled from it; - and nan for a run not checked\n"
     "Exit status (the main job's; each command's --help gives its own):\n"
     "  0  every record read and every run done\n"
     "  1  some record or run failed (each reported on stderr; the others ran)\n"
@@ -1222,6 +1248,7 @@ void aq_opts_init(aq_opts *o, aq_cmd cmd)
   o->domain_tol_s = 1e-9;
   o->max_duration_s = 100;
   o->paper = -1;
+  o->check_blocks = -1;
   o->rtol = AQ_COMPARE_RTOL_DEFAULT;
   o->range_s[0] = o->range_s[1] = NAN;
   o->scale_range[0] = AQ_SELECT_SCALE_LO_DEFAULT;

@@ -110,6 +110,7 @@ typedef enum {
   AQ_OPT_RECORD, /* plot spectrum */
   AQ_OPT_ROTATION,
   AQ_OPT_AT,       /* plot arch --run: the times */
+  AQ_OPT_CHECK,    /* the main job: --check blocks */
   AQ_OPT_IM,
   AQ_OPT_X,
   AQ_OPT_Y,
@@ -290,6 +291,7 @@ typedef struct aq_opts {
   int paper;        /* --paper: 0 a4, 1 letter; -1 (default) the locale's */
   double rotation_rad;
   double *at_s; /* plot arch --at */
+  int check_blocks; /* --check blocks: 0; not given: -1 */
   size_t nat;
 } aq_opts;
 

@@ -63,6 +63,7 @@ typedef struct {
                             * (lambda0 the smaller of its hinge sets'); else 0 */
   aq_model model;          /* --model */
   double blocks_dt_s;      /* --blocks-dt: the block model's step, s */
+  int check_blocks;        /* --check blocks: re-run the marked runs under the block model */
   double cor;              /* --cor, or NAN for each arch's own */
   double friction;         /* --friction, or NAN for each arch's own */
   int polarity;            /* --polarity: AQ_POLARITY_NORMAL, _REVERSED or _BOTH (opt.h) */

@@ -173,6 +173,8 @@ int aq_suite_identity(const aq_suite_cfg *c, aq_arch *const *arches, char **out)
   line(&b, "archquake journal for %s", aq_build_string());
   line(&b, "model=%d cor=%a polarity=%s", (int)c->model, c->cor,
        aq_opt_polarity_names[c->polarity]);
+  if (c->model == AQ_MODEL_BLOCKS || c->check_blocks) /* the block model's step */
+    line(&b, "blocks_dt=%a check_blocks=%d", c->blocks_dt_s, c->check_blocks);
   line(&b, "detrend=%d taper=%a filter=%d highpass=%a highpass_auto=%d order=%d lowpass=%a",
        (int)p->detrend, p->taper_frac, p->filter, p->highpass_hz, p->highpass_auto,
        p->order, p->lowpass_hz);

@@ -203,6 +203,26 @@ int aq_suite_prepare(suite *S, rec_slot *r)
   return 1;
 }
 
+/* --check blocks: slot k's motion at azimuth az, factor sa, again under
+ * the block model of arch ai (a stepper of its own, made here: the marked
+ * runs are few), its verdict into s beside the four-hinge model's. */
+static void check_blocks(suite *S, rec_slot *r, size_t k, double az, double sa, size_t ai,
+                         aq_summary *s)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  aq_result b;
+  memset(&b, 0, sizeof b);
+  aq_stepper *st = aq_job_stepper_blocks(S->arches[ai], S->cfg->blocks_dt_s, 0, &e);
+  double pga_g = 0;
+  int failed = 0, ran = 0;
+  aq_status rs =
+      st ? aq_runs_run(&r->plan, k, az, sa, st, &b, &pga_g, &failed, &ran, &e) : AQ_EINTERNAL;
+  aq_summary_check(s, rs == AQ_OK && ran && !failed ? &b : NULL);
+  aq_result_free(&b);
+  aq_stepper_free(st);
+}
+
 /* Run i of prepared record r with this thread's steppers (st[a] NULL when
  * arch a cannot run). */
 void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
@@ -250,6 +270,8 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
            aq_hinge_control_names[aq_arch_control(S->arches[ai])]);
   aq_summary_mark(&u->sum, aq_arch_friction(S->arches[ai]),
                   aq_arch_control(S->arches[ai]) == AQ_CONTROL_FREE);
+  if (c->check_blocks && u->have_res && strcmp(u->sum.status, "ok") != 0)
+    check_blocks(S, r, k, r->motion ? c->azimuths_deg[z] : 0.0, sa, ai, &u->sum);
   u->run_s = aq_suite_now_s() - t0;
 }
 
@@ -297,7 +319,8 @@ int aq_suite_arches(suite *S)
         break;
       }
     aq_mechanism_warn_minimum(c->arch_paths[a], S->arches[a]);
-    bad_arch |= aq_opt_blocks_friction(c->arch_paths[a], c->model == AQ_MODEL_BLOCKS,
+    bad_arch |= aq_opt_blocks_friction(c->arch_paths[a],
+                                       c->model == AQ_MODEL_BLOCKS || c->check_blocks,
                                        aq_arch_friction(S->arches[a]));
     bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
                                     aq_arch_dynamics_of(S->arches[a])->impact ==

@@ -33,6 +33,7 @@
 #define AQ_SUMMARY_STATUS_MAX 48
 #define AQ_SUMMARY_POLARITY_MAX 16
 #define AQ_SUMMARY_CONTROL_MAX 8
+#define AQ_SUMMARY_CHECK_MAX 8 /* "agrees", "differs", "failed", "-" */
 #define AQ_SUMMARY_HINGES_MAX 160 /* the block model's hinge lists, truncated with ",..." */
 
 /* An integer result that a failed run did not compute (collapsed, impacts):
@@ -82,6 +83,12 @@ typedef struct {
                                                   "0e,6i,12e,19i" ("-": none) */
   char hinges_first_s[AQ_SUMMARY_HINGES_MAX];  /* their first opening times, s */
   double mechanism_changed_s;   /* first time the opened set left the arch's sets; NAN: never */
+  /* --check blocks: the block model's verdict on a run the four-hinge
+   * model marked ("-", NONE and NAN for a run not checked) */
+  char check_blocks[AQ_SUMMARY_CHECK_MAX]; /* "agrees", "differs", "failed" or "-" */
+  int64_t check_collapsed;      /* the block model's collapsed */
+  double check_collapse_time_s; /* its collapse_time_s */
+  double check_peak_rotation_rad; /* its peak_rotation_rad */
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -101,7 +108,10 @@ typedef struct {
  * impacts energy_in_j energy_dissipated_j polarity lambda0_first
  * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control mu_demand
  * mu_demand_joint thrust_ecc_max thrust_ecc_time_s slide_time_s max_slip_m
- * hinges_observed hinges_first_s mechanism_changed_s). */
+ * hinges_observed hinges_first_s mechanism_changed_s check_blocks
+ * check_collapsed check_collapse_time_s check_peak_rotation_rad). */
+/* The most fields a summary may have (fixed-size tables of columns). */
+#define AQ_SUMMARY_FIELDS_MAX 64
 extern const aq_summary_field aq_summary_fields[];
 extern const size_t aq_summary_nfields;
 
@@ -127,6 +137,10 @@ void aq_summary_normalise(aq_summary *s, const char *polarity, const aq_result *
  * left a joint's section, "slides+beyond" both; "ok" when neither.  A
  * failed run keeps its status (it has no verdict to mark). */
 void aq_summary_mark(aq_summary *s, double friction, int free_control);
+/* --check blocks: the block model's run b of the same motion as s's
+ * (NULL: it failed) into s's check columns and block columns; "agrees"
+ * when both say collapsed or both survived. */
+void aq_summary_check(aq_summary *s, const aq_result *b);
 
 /* 1 if status is a failure's ("stage:code"), 0 for "ok" and the marks. */
 int aq_summary_failed(const char *status);

@@ -42,9 +42,15 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(hinges_observed, AQ_SF_STR, 0),
     AQ_SF_ADDED(hinges_first_s, AQ_SF_STR, 0),
     AQ_SF_ADDED(mechanism_changed_s, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(check_blocks, AQ_SF_STR, 0),
+    AQ_SF_ADDED(check_collapsed, AQ_SF_INT, 0),
+    AQ_SF_ADDED(check_collapse_time_s, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(check_peak_rotation_rad, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
+_Static_assert(sizeof aq_summary_fields / sizeof aq_summary_fields[0] <= AQ_SUMMARY_FIELDS_MAX,
+               "every field has a column in the fixed tables (text.h aq_text_layout)");
 
 static void copy_str(char *dst, size_t n, const char *src)
 {
@@ -91,6 +97,9 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->max_slip_m = s->mechanism_changed_s = NAN;
   copy_str(s->hinges_observed, sizeof s->hinges_observed, "-");
   copy_str(s->hinges_first_s, sizeof s->hinges_first_s, "-");
+  copy_str(s->check_blocks, sizeof s->check_blocks, "-");
+  s->check_collapsed = AQ_SUMMARY_INT_NONE;
+  s->check_collapse_time_s = s->check_peak_rotation_rad = NAN;
   if (res && res->bodies) {
     s->max_slip_m = res->bodies->max_slip_m;
     s->mechanism_changed_s = res->bodies->mechanism_changed_s;
@@ -155,6 +164,25 @@ void aq_summary_mark(aq_summary *s, double friction, int free_control)
   if (slides || beyond)
     snprintf(s->status, sizeof s->status, "%s%s%s", slides ? "slides" : "",
              slides && beyond ? "+" : "", beyond ? "beyond" : "");
+}
+
+void aq_summary_check(aq_summary *s, const aq_result *b)
+{
+  if (!b) {
+    copy_str(s->check_blocks, sizeof s->check_blocks, "failed");
+    return;
+  }
+  s->check_collapsed = b->collapsed ? 1 : 0;
+  s->check_collapse_time_s = b->collapsed ? b->collapse_time_s : NAN;
+  s->check_peak_rotation_rad = b->peak_rotation_rad;
+  copy_str(s->check_blocks, sizeof s->check_blocks,
+           s->check_collapsed == s->collapsed ? "agrees" : "differs");
+  if (b->bodies) {
+    s->max_slip_m = b->bodies->max_slip_m;
+    s->mechanism_changed_s = b->bodies->mechanism_changed_s;
+    copy_list(s->hinges_observed, sizeof s->hinges_observed, b->bodies->hinges_observed);
+    copy_list(s->hinges_first_s, sizeof s->hinges_first_s, b->bodies->hinges_first_s);
+  }
 }
 
 int aq_summary_failed(const char *status) { return strchr(status, ':') != NULL; }

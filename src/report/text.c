@@ -81,7 +81,7 @@ int aq_text_row(FILE *f, const aq_summary *s)
 
 void aq_text_layout_init(aq_text_layout *L, size_t record_w, size_t arch_w)
 {
-  for (size_t i = 0; i < aq_summary_nfields && i < 32; i++) {
+  for (size_t i = 0; i < aq_summary_nfields; i++) {
     const aq_summary_field *f = &aq_summary_fields[i];
     size_t w = strlen(f->name);
     size_t want = f->kind == AQ_SF_STR ? (strcmp(f->name, "record") == 0 ? record_w

@@ -42,7 +42,7 @@ int aq_text_row(FILE *f, const aq_summary *s);
  * digits.  Widths are fixed before the first row (so rows can stream):
  * record_w and arch_w are the longest record path and arch name. */
 typedef struct {
-  int width[32]; /* per column of aq_summary_fields[] */
+  int width[AQ_SUMMARY_FIELDS_MAX]; /* per column of aq_summary_fields[] */
 } aq_text_layout;
 
 void aq_text_layout_init(aq_text_layout *L, size_t record_w, size_t arch_w);

@@ -1,0 +1,111 @@
+/* test_blocks_check.c: the main job's --check blocks.  Each run the
+ * four-hinge model marks (slides, beyond) is run again under the block
+ * model: its check columns must be the block model's own row for that run
+ * (the main job with --model blocks, run here apart), its verdict "agrees"
+ * exactly when both models say the same of collapse, and every column of
+ * the four-hinge row before the block model's stays as it is without
+ * --check; a run not marked is not checked ("-").  Bad input refused. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+
+/* elcentro at 2 and 6 on oppenheim and thick with friction 0.6, both
+ * polarities: slides on both at 6 and on oppenheim at 2, not on thick at
+ * 2; at 6 the block model collapses thick both ways and oppenheim reversed
+ * (the springings slide), the four-hinge model none. */
+#define JOB "records/elcentro_chopra.csv --arch arches/oppenheim.cfg --arch arches/thick.cfg " \
+            "--scale 2,6 --friction 0.6"
+
+static char tsv[3][1 << 16], err[8192];
+
+/* Column name of row (1-based) of t into buf ("" if none). */
+static const char *field(const char *t, int row, const char *name, char *buf, size_t n)
+{
+  char hdr[64];
+  buf[0] = 0;
+  for (int k = 0; *aq_test_tsv_field(t, 0, k, hdr, sizeof hdr); k++)
+    if (!strcmp(hdr, name))
+      return aq_test_tsv_field(t, row, k, buf, n);
+  return buf;
+}
+
+AQ_TEST(blocks_check_is_the_block_model)
+{
+  static const char *const args[3] = {JOB, JOB " --check blocks", JOB " --model blocks"};
+  for (int j = 0; j < 3; j++) {
+    int rc = aq_test_run(args[j], tsv[j], sizeof tsv[j], err, sizeof err);
+    if (!aq_check(rc == 0, "%s: exit 0 (%d): %s", args[j], rc, err))
+      return;
+  }
+  size_t rows = aq_test_count_lines(tsv[0]) - 1;
+  aq_check(rows == 8 && aq_test_count_lines(tsv[1]) == rows + 1 &&
+               aq_test_count_lines(tsv[2]) == rows + 1,
+           "8 rows each (%zu)", rows);
+  /* the four-hinge columns before the block model's, as without --check */
+  static const char *const four[] = {"record", "arch", "model", "scale", "status",
+                                     "collapsed", "collapse_time_s", "peak_rotation_rad",
+                                     "mu_demand", "slide_time_s"};
+  static const char *const same[][2] = {{"check_collapsed", "collapsed"},
+                                        {"check_collapse_time_s", "collapse_time_s"},
+                                        {"check_peak_rotation_rad", "peak_rotation_rad"},
+                                        {"max_slip_m", "max_slip_m"},
+                                        {"hinges_observed", "hinges_observed"},
+                                        {"hinges_first_s", "hinges_first_s"},
+                                        {"mechanism_changed_s", "mechanism_changed_s"}};
+  int checked = 0, differ = 0;
+  for (int r = 1; r <= (int)rows; r++) {
+    char a[256], b[256], st[64], v[64], c4[32], cb[32];
+    for (size_t i = 0; i < sizeof four / sizeof four[0]; i++)
+      aq_check(!strcmp(field(tsv[0], r, four[i], a, sizeof a),
+                       field(tsv[1], r, four[i], b, sizeof b)),
+               "row %d %s: %s without --check, %s with", r, four[i], a, b);
+    field(tsv[1], r, "status", st, sizeof st);
+    field(tsv[1], r, "check_blocks", v, sizeof v);
+    if (!strcmp(st, "ok")) { /* not marked: not checked */
+      aq_check(!strcmp(v, "-") && !strcmp(field(tsv[1], r, "hinges_observed", a, sizeof a), "-"),
+               "row %d (ok): check_blocks %s, hinges %s", r, v, a);
+      continue;
+    }
+    checked++;
+    for (size_t i = 0; i < sizeof same / sizeof same[0]; i++) {
+      field(tsv[1], r, same[i][0], a, sizeof a);
+      field(tsv[2], r, same[i][1], b, sizeof b);
+      aq_check(!strcmp(a, b), "row %d: %s %s, the block model's %s %s", r, same[i][0], a,
+               same[i][1], b);
+    }
+    field(tsv[1], r, "collapsed", c4, sizeof c4);
+    field(tsv[2], r, "collapsed", cb, sizeof cb);
+    differ += strcmp(c4, cb) != 0;
+    aq_check(!strcmp(v, strcmp(c4, cb) ? "differs" : "agrees"),
+             "row %d: collapsed %s (four-hinge) and %s (blocks): check_blocks %s", r, c4, cb,
+             v);
+  }
+  aq_check(checked == 6 && differ == 3, "6 runs checked (%d), 3 verdicts differ (%d)", checked,
+           differ);
+}
+
+/* Bad input: one line, exit 2, nothing written. */
+AQ_TEST(blocks_check_refusals)
+{
+  char dir[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  struct {
+    const char *args, *want;
+  } cases[] = {
+      {"--arch arches/oppenheim.cfg --friction 0.6 --check blocks --model blocks", "--check"},
+      {"--arch arches/oppenheim.cfg --friction 0.6 --check walls", "--check"},
+      {"--arch arches/oppenheim.cfg --friction 0.6 --blocks-dt 0.001", "--blocks-dt"},
+      {"--arch arches/thin.cfg --check blocks", "friction"}, /* none given */
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "records/elcentro_chopra.csv %s -o %s/x.h5", cases[i].args, dir);
+    int rc = aq_test_run(cmd, tsv[0], sizeof tsv[0], err, sizeof err);
+    aq_check(rc == 2 && aq_test_count_lines(err) == 1 && strstr(err, cases[i].want) &&
+                 !tsv[0][0] && aq_test_count_names(dir, "x.h5") == 0,
+             "%s: exit %d (want 2), \"%s\"", cmd, rc, err);
+  }
+}
