@@ -239,6 +239,8 @@ typedef struct {
   aq_lp4_row *lp;      /* the program's rows (aq_thrust_rows) */
   size_t nrows;
   unsigned char *ex;   /* rows excluded in the current branch */
+  uint64_t ex_key;     /* the excluded rows' key: XOR of row_key(r) over them */
+  uint64_t *seen;      /* keys of the branches solved (open addressing, 0 = empty) */
   int act;             /* 0: sets of either direction; -1, +1: only sets of that act_sign */
   int have;            /* best: the lowest admissible set so far */
   aq_hinge_set hs;
@@ -298,12 +300,45 @@ static int from_tight(bb *B, const size_t *tight, size_t nt, size_t nbasic, int 
   return vertex;
 }
 
+/* A branch is its set of excluded rows, whatever the order in which they
+ * were excluded: the four-way branching reaches the same set by many paths
+ * (excluding a then b, or b then a), and a branch solved once has had its
+ * sets read and its subtree searched (the bound only tightens after), so a
+ * second visit is skipped.  A set of rows is keyed by the XOR of a 64-bit
+ * key per row (Zobrist hashing; splitmix64 of the row): two different sets
+ * share a key with probability about 2^-64 per pair. */
+#define SEEN_SLOTS 16384 /* a power of two above 2 MAX_PROGRAMS */
+static uint64_t row_key(size_t r)
+{
+  uint64_t z = (uint64_t)r + 0x9e3779b97f4a7c15u;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+  return (z ^ (z >> 31)) | 1; /* never 0: 0 marks an empty slot */
+}
+
+/* 1 if the current branch was solved before; else records it and 0. */
+static int seen_before(bb *B)
+{
+  uint64_t k = B->ex_key ? B->ex_key : 1; /* the root: nothing excluded */
+  for (size_t i = (size_t)(k >> 7) & (SEEN_SLOTS - 1);; i = (i + 1) & (SEEN_SLOTS - 1)) {
+    if (B->seen[i] == k)
+      return 1;
+    if (!B->seen[i]) {
+      B->seen[i] = k;
+      return 0;
+    }
+  }
+}
+
 /* Solve the program with row r excluded as well, then restore it. */
 static lp_status node(bb *B, int relax, int depth);
 static void child(bb *B, size_t r, int relax, int depth)
 {
   B->ex[r] = 1;
-  node(B, relax, depth + 1);
+  B->ex_key ^= row_key(r);
+  if (!seen_before(B))
+    node(B, relax, depth + 1);
+  B->ex_key ^= row_key(r);
   B->ex[r] = 0;
 }
 
@@ -369,9 +404,11 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
   B.nrows = nrows;
   B.lp = malloc(nrows * sizeof *B.lp);
   B.ex = calloc(nrows, 1);
-  if (!B.lp || !B.ex) {
+  B.seen = malloc(SEEN_SLOTS * sizeof *B.seen);
+  if (!B.lp || !B.ex || !B.seen) {
     free(B.lp);
     free(B.ex);
+    free(B.seen);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
   }
   int infeasible = 0;
@@ -379,15 +416,18 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
     if (act && s != -act)
       continue;
     aq_thrust_rows(g, s, 0, B.lp);
+    memset(B.seen, 0, SEEN_SLOTS * sizeof *B.seen); /* each direction its own program */
     infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
   }
   if (!act && !B.have && infeasible == 2 && !B.failed) {
     /* no line of thrust fits for any lambda: a set gravity drives */
     aq_thrust_rows(g, 1, 1, B.lp);
+    memset(B.seen, 0, SEEN_SLOTS * sizeof *B.seen);
     node(&B, 1, 0);
   }
   free(B.lp);
   free(B.ex);
+  free(B.seen);
   if (B.info.liftoff && B.have &&
       !(B.info.liftoff_lambda < B.lambda0 - TIE_REL * fabs(B.lambda0)))
     B.info.liftoff = 0; /* no lower than the four-hinge minimum */
