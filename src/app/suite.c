@@ -385,7 +385,7 @@ written:
   if (J && aq_journal_remove(J, &oerr) != AQ_OK)
     aq_error_print(&oerr, stderr); /* the results are complete all the same */
   J = NULL;
-  if (rc == AQ_EXIT_OK && (stats.runs_failed || stats.records_failed))
+  if (rc == AQ_EXIT_OK && (stats.runs_failed || stats.records_failed || stats.checks_failed))
     rc = AQ_EXIT_FAIL;
   goto out;
 

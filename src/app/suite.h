@@ -93,6 +93,7 @@ typedef struct {
   size_t runs;           /* rows written */
   size_t runs_failed;    /* rows whose status is not ok */
   size_t records_failed; /* records that could not be read or processed */
+  size_t checks_failed;  /* --check blocks re-runs that failed (row: "failed") */
   double wall_s, read_s, process_s, run_s, write_s;
   double wait_s;         /* worker threads' time waiting for a record to
                           * prepare or run (room in the window, the last
@@ -109,9 +110,9 @@ int aq_suite_is_follower(void);
 int aq_suite_is_remote(void);
 
 /* Run the suite; returns the exit status (app.h): 0 all ran, 1 some record
- * or run failed (each reported on stderr), 2 an arch could not be loaded
- * (nothing ran), 3 the output could not be written (no partial file).
- * stats may be NULL. */
+ * or run failed, or a --check blocks re-run did (each reported on stderr),
+ * 2 an arch could not be loaded (nothing ran), 3 the output could not be
+ * written (no partial file).  stats may be NULL. */
 int aq_suite_run(const aq_suite_cfg *cfg, aq_suite_stats *stats);
 
 #endif

@@ -20,7 +20,7 @@
 #include "opt.h"
 
 enum { F_FAILED = 1, F_REC = 2, F_PROC = 4, F_IM = 8, F_RUNS = 16 };
-enum { R_RES = 1, R_FAILED = 2 };
+enum { R_RES = 1, R_FAILED = 2, R_CHECK_FAILED = 4 };
 
 /* A run's summary: its record as a string (up to AQ_SUMMARY_RECORD_MAX bytes,
  * mostly unused), the other fields as they are. */
@@ -73,7 +73,8 @@ void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
     aq_bytes_put(b, &r->subj.im, sizeof r->subj.im);
   for (size_t i = 0; r->runs && i < nruns; i++) {
     const run_slot *u = &r->runs[i];
-    unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0));
+    unsigned char g = (unsigned char)((u->have_res ? R_RES : 0) | (u->failed ? R_FAILED : 0) |
+                                      (u->check_failed ? R_CHECK_FAILED : 0));
     sum_put(b, &u->sum);
     aq_bytes_put(b, &g, 1);
     if (u->have_res) {
@@ -84,6 +85,8 @@ void aq_suite_slot_encode(const rec_slot *r, size_t nruns, aq_bytes_out *b)
     }
     if (u->failed)
       aq_bytes_put(b, &u->err, sizeof u->err);
+    if (u->check_failed)
+      aq_bytes_put(b, &u->check_err, sizeof u->check_err);
     aq_bytes_put(b, &u->run_s, sizeof u->run_s);
   }
 }
@@ -134,6 +137,9 @@ int aq_suite_slot_decode(const aq_journal_entry *e, size_t nruns, rec_slot *r)
     u->failed = (g & R_FAILED) != 0;
     if (u->failed)
       aq_bytes_get(&c, &u->err, sizeof u->err, NULL);
+    u->check_failed = (g & R_CHECK_FAILED) != 0;
+    if (u->check_failed)
+      aq_bytes_get(&c, &u->check_err, sizeof u->check_err, NULL);
     aq_bytes_get(&c, &u->run_s, sizeof u->run_s, NULL);
   }
   r->runs_done = r->runs ? nruns : 0;

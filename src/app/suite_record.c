@@ -205,20 +205,29 @@ int aq_suite_prepare(suite *S, rec_slot *r)
 
 /* --check blocks: slot k's motion at azimuth az, factor sa, again under
  * the block model of arch ai (a stepper of its own, made here: the marked
- * runs are few), its verdict into s beside the four-hinge model's. */
+ * runs are few), its verdict into u's summary beside the four-hinge
+ * model's; a re-run that fails leaves "failed" there and its error in
+ * u->check_err (u->check_failed = 1), reported when the record is written. */
 static void check_blocks(suite *S, rec_slot *r, size_t k, double az, double sa, size_t ai,
-                         aq_summary *s)
+                         run_slot *u)
 {
-  aq_error e;
-  aq_error_clear(&e);
+  aq_error *e = &u->check_err;
+  aq_error_clear(e);
   aq_result b;
   memset(&b, 0, sizeof b);
-  aq_stepper *st = aq_job_stepper_blocks(S->arches[ai], S->cfg->blocks_dt_s, 0, &e);
+  aq_stepper *st = aq_job_stepper_blocks(S->arches[ai], S->cfg->blocks_dt_s, 0, e);
   double pga_g = 0;
   int failed = 0, ran = 0;
   aq_status rs =
-      st ? aq_runs_run(&r->plan, k, az, sa, st, &b, &pga_g, &failed, &ran, &e) : AQ_EINTERNAL;
-  aq_summary_check(s, rs == AQ_OK && ran && !failed ? &b : NULL);
+      st ? aq_runs_run(&r->plan, k, az, sa, st, &b, &pga_g, &failed, &ran, e) : AQ_EINTERNAL;
+  int ok = rs == AQ_OK && ran && !failed;
+  aq_summary_check(&u->sum, ok ? &b : NULL);
+  u->check_failed = !ok;
+  if (!ok && e->status == AQ_OK) /* a failure that left no error of its own */
+    aq_error_set(e, rs != AQ_OK ? rs : AQ_EINTERNAL, NULL, -1, -1, NULL, "%s",
+                 !st     ? "the block model could not be set up for this arch"
+                 : !ran  ? "the block model ran nothing"
+                         : "the block model's run failed");
   aq_result_free(&b);
   aq_stepper_free(st);
 }
@@ -271,7 +280,7 @@ void aq_suite_run_one(suite *S, rec_slot *r, size_t i, aq_stepper **st)
   aq_summary_mark(&u->sum, aq_arch_friction(S->arches[ai]),
                   aq_arch_control(S->arches[ai]) == AQ_CONTROL_FREE);
   if (c->check_blocks && u->have_res && strcmp(u->sum.status, "ok") != 0)
-    check_blocks(S, r, k, r->motion ? c->azimuths_deg[z] : 0.0, sa, ai, &u->sum);
+    check_blocks(S, r, k, r->motion ? c->azimuths_deg[z] : 0.0, sa, ai, u);
   u->run_s = aq_suite_now_s() - t0;
 }
 

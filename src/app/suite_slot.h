@@ -39,6 +39,8 @@ typedef struct {
   int have_res;
   aq_error err;  /* when the run failed */
   int failed;
+  aq_error check_err; /* when its --check blocks re-run failed (its row: "failed") */
+  int check_failed;
   double run_s;
 } run_slot;
 

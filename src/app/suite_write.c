@@ -70,7 +70,7 @@ int aq_suite_has_diagnostics(const rec_slot *r)
     if (r->subj.have_rec[k] && aq_record_note(&r->subj.rec[k], 0, NULL))
       return 1;
   for (size_t i = 0; r->runs && i < r->nruns; i++)
-    if (r->runs[i].failed)
+    if (r->runs[i].failed || r->runs[i].check_failed)
       return 1;
   return 0;
 }
@@ -100,15 +100,18 @@ aq_status aq_suite_write_record(suite *S, rec_slot *r, aq_h5_writer *h5,
     run_slot *u = &r->runs[i];
     size_t ai, k, z;
     aq_suite_run_index(S, r, i, &ai, &k, &z);
-    if (u->failed && !r->failed && S->arch_ok[ai]) {
+    int run_failed = u->failed && !r->failed && S->arch_ok[ai];
+    if (u->check_failed)
+      stats->checks_failed++;
+    if (run_failed || u->check_failed) {
       char msg[1200], num[64], az[64] = "";
-      aq_error_format(&u->err, msg, sizeof msg);
+      aq_error_format(run_failed ? &u->err : &u->check_err, msg, sizeof msg);
       aq_text_double(num, sizeof num, u->sum.scale);
       if (r->motion)
         snprintf(az, sizeof az, ", azimuth %g deg", u->sum.azimuth_deg);
-      fprintf(stderr, "archquake: %s: arch %s, scale %s%s%s: %s\n", path,
+      fprintf(stderr, "archquake: %s: arch %s, scale %s%s%s: %s%s\n", path,
               aq_arch_name(S->arches[ai]), num, aq_suite_reversed(S, k) ? " reversed" : "",
-              az, msg);
+              az, run_failed ? "" : "check blocks: ", msg);
     }
   }
   if (h5) {
