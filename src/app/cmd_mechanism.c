@@ -194,6 +194,7 @@ int aq_cmd_mechanism(int argc, char **argv)
     return AQ_EXIT_FAIL;
   }
   aq_mechanism_warn_minimum(file, a);
+  aq_opt_spread_four_hinge(file, 1, aq_arch_spread(a));
   int rc = AQ_EXIT_OK;
   if (table) {
     printf("\nset\ts_rad\tq_rad\tlambda\tlambda_eq\tx_m\ty_m\tpe_j\tmgen_kgm2\tmin_normal_n"

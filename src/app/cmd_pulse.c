@@ -187,6 +187,7 @@ int aq_cmd_pulse(int argc, char **argv)
       goto out;
     status = AQ_EXIT_FAIL;
   } else {
+    aq_opt_spread_four_hinge(file, 1, aq_arch_spread(arch));
     st = aq_stepper_alloc(aq_arch_path(arch, 0), aq_arch_path(arch, 1), (aq_model)model,
                           &err);
     if (!st) {

@@ -3,6 +3,7 @@
 #include "opt.h"
 
 #include "../arch/arch.h"
+#include "../io/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -182,6 +183,18 @@ int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction)
   fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for the block "
                   "model (--model blocks, --check blocks: [contact] friction or --friction), "
                   "got none\n", arch_path);
+  return 1;
+}
+
+int aq_opt_spread_four_hinge(const char *arch_path, int four_hinge, double spread_m)
+{
+  if (!four_hinge || !(spread_m > 0))
+    return 0;
+  char num[64];
+  aq_number_format(num, sizeof num, spread_m);
+  fprintf(stderr, "archquake: %s: warning: spread_m: the supports' spread of %s m is the block "
+                  "model's (--model blocks); the four-hinge model runs the arch with its "
+                  "supports where the file draws them\n", arch_path, num);
   return 1;
 }
 

@@ -36,6 +36,10 @@ int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
 /* The block model needs a friction: 1 (after one line naming the arch
  * file) when blocks is set and the arch has none (friction NAN), else 0. */
 int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction);
+/* An arch file's [supports] spread_m (> 0) under a four-hinge model
+ * (four_hinge): one warning line, since only the block model spreads the
+ * supports; the four-hinge model runs the arch as drawn.  1 if warned. */
+int aq_opt_spread_four_hinge(const char *arch_path, int four_hinge, double spread_m);
 /* --polarity's words, indexed by AQ_POLARITY_*, NULL-terminated: the sign
  * of the records a command runs (the record as read, negated, or each
  * record both ways, each row saying which). */
