@@ -37,6 +37,7 @@ typedef struct {
   const int *event;
   size_t kmax;    /* 0: no limit */
   double lo, hi;
+  const int *recording; /* records that are one recording share a value >= 0; NULL: none */
 } pool;
 
 typedef struct {
@@ -59,6 +60,10 @@ static double own_scale(const pool *P, size_t i)
 static verdict judge(const pool *P, const size_t *idx, size_t n)
 {
   verdict v = {1, 0, 0, 0, 0};
+  for (size_t a = 0; P->recording && a < n; a++) /* one of each recording */
+    for (size_t b = a + 1; b < n; b++)
+      if (P->recording[idx[a]] >= 0 && P->recording[idx[a]] == P->recording[idx[b]])
+        v.ok = 0;
   for (size_t a = 0; P->event && P->kmax && a < n; a++) {
     size_t c = 0;
     for (size_t b = 0; b < n; b++)
@@ -134,7 +139,8 @@ static aq_select_problem problem_of(const pool *P, size_t N)
   return (aq_select_problem){.nrec = P->M, .nper = P->K, .psa_mps2 = P->psa,
                              .pga_mps2 = P->pga, .event = P->event, .target_mps2 = P->target,
                              .target0_mps2 = P->target0, .band = 0.9, .scale_lo = P->lo,
-                             .scale_hi = P->hi, .count = N, .max_per_event = P->kmax};
+                             .scale_hi = P->hi, .count = N, .max_per_event = P->kmax,
+                             .recording = P->recording};
 }
 
 static uint64_t rng = 0x2545F4914F6CDD1DULL;
@@ -170,7 +176,7 @@ AQ_TEST(select_search_synthetic_brute_force)
     for (int rule = 0; rule < 2; rule++)
       for (size_t kmax = 0; kmax <= 2; kmax += 1) {
         pool P = {M, K, psa, pga, target, rule ? 0.5 * G0 : 0, event, kmax, ranges[r][0],
-                  ranges[r][1]};
+                  ranges[r][1], NULL};
         size_t best[N];
         double count;
         verdict want = brute(&P, N, best, &count);
@@ -217,6 +223,70 @@ AQ_TEST(select_search_synthetic_brute_force)
       }
   aq_check(zero_raised > 0, "the zero-period rule raised the best suite in %d cases",
            zero_raised);
+}
+
+/* A pool holding one recording three times and another twice (their
+ * spectra within a few per cent of each other, as two processings are),
+ * the three the closest to the target, so that without the rule the best
+ * suites take two or three of them: with it, never two of one recording,
+ * and the exhaustive search and the heuristic (every start) find the brute
+ * force's suite, with and without the event rule, N = 3 to 5. */
+AQ_TEST(select_search_same_recording_brute_force)
+{
+  enum { M = 12, K = 9 };
+  double psa[M * K], target[K];
+  int event[M], recording[M];
+  rng = 0x2545F4914F6CDD1DULL; /* this pool whichever test ran before */
+  for (size_t k = 0; k < K; k++)
+    target[k] = (0.6 + 0.4 * sin(0.7 * (double)k)) * G0;
+  for (size_t i = 0; i < M; i++) {
+    int dup = i == 1 || i == 4 || i == 9;
+    double level = exp(1.5 * (uniform() - 0.5)), tilt = dup ? 0.01 : 0.3 * (uniform() - 0.5);
+    for (size_t k = 0; k < K; k++)
+      psa[i * K + k] = target[k] * level *
+                       exp(tilt * ((double)k - 4) + (dup ? 0.03 : 0.3) * (uniform() - 0.5));
+    recording[i] = dup ? 0 : i == 2 || i == 7 ? 1 : -1;
+    event[i] = (int)(i % 4);
+  }
+  for (size_t i = 0; i < K; i++) /* record 7 a second processing of 2 */
+    psa[7 * K + i] = psa[2 * K + i] * (1 + 0.04 * (uniform() - 0.5));
+  int took_two = 0;
+  for (size_t N = 3; N <= 5; N++)
+    for (size_t kmax = 0; kmax <= 2; kmax += 2) {
+      pool free_pool = {M, K, psa, NULL, target, 0, event, kmax, 0.25, 4, NULL};
+      pool P = free_pool;
+      P.recording = recording;
+      size_t best[5], unruled[5];
+      double count;
+      verdict want = brute(&P, N, best, &count);
+      verdict loose = brute(&free_pool, N, unruled, &count);
+      verdict strict = judge(&P, unruled, N);
+      took_two += loose.ok && !strict.ok;
+      aq_select_problem p = problem_of(&P, N);
+      aq_select_prepared q;
+      aq_error e;
+      aq_select_result ex, h;
+      if (!aq_check(aq_select_prepare(&p, &q, &e) == AQ_OK, "prepare"))
+        continue;
+      aq_check(aq_select_exhaustive(&q, 2, &ex, &e) == AQ_OK, "exhaustive");
+      aq_check(aq_select_heuristic(&q, M, AQ_SELECT_HEURISTIC_BUDGET, &h, &e) == AQ_OK,
+               "heuristic");
+      aq_check(want.ok && ex.found && h.found, "N %zu kmax %zu: found", N, kmax);
+      if (want.ok && ex.found && h.found) {
+        aq_check(!memcmp(ex.idx, best, N * sizeof *best), "N %zu kmax %zu: exhaustive, the "
+                 "brute force's suite", N, kmax);
+        aq_check(!memcmp(h.idx, best, N * sizeof *best), "N %zu kmax %zu: heuristic, the "
+                 "brute force's suite", N, kmax);
+        aq_check_rel(ex.eval.misfit, want.misfit, 1e-12, "N %zu kmax %zu: misfit", N, kmax);
+        aq_check(judge(&P, ex.idx, N).ok && judge(&P, h.idx, N).ok && aq_select_events_ok(&p, ex.idx, N),
+                 "N %zu kmax %zu: one of each recording", N, kmax);
+      }
+      aq_select_result_free(&ex);
+      aq_select_result_free(&h);
+      aq_select_prepared_free(&q);
+    }
+  aq_check(took_two >= 3, "without the rule the best suite holds one recording twice in %d "
+           "of 6 cases", took_two);
 }
 
 /* ---- the real pools, through archquake select -o ------------------------ */
@@ -338,7 +408,7 @@ AQ_TEST(select_search_pool12_exhaustive)
   double *target = malloc(s.K * sizeof *target);
   for (size_t k = 0; k < s.K; k++)
     target[k] = aq_test_ec8_b(s.period[k]);
-  pool P = {s.M, s.K, s.psa, s.pga, target, 0.25 * 1.2, NULL, 0, 0.25, 4};
+  pool P = {s.M, s.K, s.psa, s.pga, target, 0.25 * 1.2, NULL, 0, 0.25, 4, NULL};
   size_t best[7];
   double count;
   verdict want = brute(&P, 7, best, &count);
@@ -396,7 +466,7 @@ AQ_TEST(select_search_pool43_heuristic)
     s.psa[i] *= G0;
   for (size_t i = 0; i < s.M; i++)
     s.pga[i] *= G0;
-  pool P = {s.M, s.K, s.psa, s.pga, target, 0.3 * G0, NULL, 0, 0.01, 100};
+  pool P = {s.M, s.K, s.psa, s.pga, target, 0.3 * G0, NULL, 0, 0.01, 100, NULL};
   for (size_t N = 3; N <= 7; N++) {
     if (N == 6)
       continue;

@@ -17,6 +17,7 @@
 #include "../report/h5_select.h"
 #include "../select/choose.h"
 #include "../select/range.h"
+#include "../select/same.h"
 #include "../select/suite_file.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
@@ -85,6 +86,28 @@ static int write_h5(const char *path, const aq_select_input *in, const aq_select
   return st == AQ_OK ? 0 : -1;
 }
 
+/* The sentence on the members that are one recording, pairs[0..np) of the
+ * usable members use, into buf[n]: the pairs and their correlation, as many
+ * as the line holds. */
+static void same_sentence(const aq_same_pair *pairs, size_t np,
+                          aq_select_member *const *use, char *buf, size_t n)
+{
+  size_t w = (size_t)snprintf(buf, n, "%zu pair%s of the pool's records taken as one "
+                              "recording (peak normalised cross-correlation of the "
+                              "accelerations >= %g), at most one of each in the suite:",
+                              np, np == 1 ? "" : "s", AQ_SAME_RHO_MIN);
+  for (size_t k = 0; k < np && w < n; k++) {
+    char one[600];
+    snprintf(one, sizeof one, "%s %s and %s (%.3f)", k ? ";" : "", use[pairs[k].i]->name,
+             use[pairs[k].j]->name, pairs[k].rho);
+    if (w + strlen(one) + 24 >= n) {
+      snprintf(buf + w, n - w, "; and %zu more", np - k);
+      break;
+    }
+    w += (size_t)snprintf(buf + w, n - w, "%s", one);
+  }
+}
+
 int aq_cmd_select(int argc, char **argv)
 {
   aq_opts o;
@@ -113,6 +136,11 @@ int aq_cmd_select(int argc, char **argv)
   aq_select_member **use = NULL;
   double *psa = NULL, *psa0 = NULL;
   const char **keys = NULL;
+  aq_same_trace *traces = NULL;
+  aq_same_pair *pairs = NULL;
+  int *recording = NULL;
+  size_t npairs = 0, ngroups = 0;
+  char same[AQ_SELECTION_LINE_MAX - 32];
   aq_selection sel = {0};
   aq_diskcache *cache = NULL;
   int have_sel = 0;
@@ -280,10 +308,34 @@ int aq_cmd_select(int argc, char **argv)
     rc = AQ_EXIT_FAIL;
     goto done;
   }
+  /* the members that are one recording (select/same.h) */
+  traces = calloc(2 * M, sizeof *traces);
+  recording = malloc(M * sizeof *recording);
+  if (!traces || !recording) {
+    fprintf(stderr, "archquake: select: out of memory\n");
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  for (size_t i = 0; i < M; i++) {
+    traces[2 * i] = use[i]->trace[0];
+    traces[2 * i + 1] = use[i]->trace[1];
+  }
+  size_t compared = 0;
+  if (aq_same_groups(traces, M, psa, nper, psa0, AQ_SAME_RHO_MIN, o.threads, recording,
+                     &ngroups, &pairs, &npairs, &compared, &err) != AQ_OK) {
+    aq_error_print(&err, stderr);
+    rc = AQ_EXIT_FAIL;
+    goto done;
+  }
+  if (npairs) {
+    same_sentence(pairs, npairs, use, same, sizeof same);
+    fprintf(stderr, "archquake: select: note: same recording: %s\n", same);
+  }
   aq_select_input in = {.target = &target, .periods_s = grid, .nper = nper, .nrec = M,
                         .psa_mps2 = psa, .psa0_mps2 = psa0, .event_key = keys,
                         .count = o.count, .scale_lo = o.scale_range[0],
                         .scale_hi = o.scale_range[1], .max_per_event = o.max_per_event,
+                        .recording = recording,
                         .exhaustive_max = AQ_SELECT_EXHAUSTIVE_MAX, .threads = o.threads};
   if (aq_select_choose(&in, &sel, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
@@ -309,7 +361,8 @@ int aq_cmd_select(int argc, char **argv)
                                                : "none",
            o.proc.filter ? "pads and high-pass as the main job" : "no filter");
   aq_selection_context ctx = {aq_build_string(), range_from, aq_select_peaks_name(&P.sopts),
-                              aq_select_pair_name(P.pair_rule), proc_text, M};
+                              aq_select_pair_name(P.pair_rule), proc_text, M,
+                              npairs ? same : NULL};
   nlines = aq_selection_describe(&sel, &in, &ctx, lines);
   aq_cleanup_install();
   aq_outfile tout = {0};
@@ -352,6 +405,9 @@ done:
   free(psa);
   free(psa0);
   free(keys);
+  free(traces); /* the members' own arrays, freed with the pool */
+  free(pairs);
+  free(recording);
   aq_select_pool_free(&P);
   free(grid);
   aq_record_names_free(files, nfiles);

@@ -17,7 +17,7 @@
 #include "../util/bytes.h"
 #include "../util/pool.h"
 
-#define KEY_FORMAT "archquake select spectra 1\n"
+#define KEY_FORMAT "archquake select spectra 2\n"
 
 typedef struct {
   aq_select_pool *pool;
@@ -61,6 +61,11 @@ static void put_member(aq_bytes_out *b, const aq_select_member *m, size_t nper)
   aq_bytes_put_str(b, m->event_key, sizeof m->event_key);
   aq_bytes_put_f64(b, m->dt_s);
   aq_bytes_put_i64(b, (int64_t)m->npts);
+  for (size_t c = 0; c < 2; c++) {
+    aq_bytes_put_i64(b, (int64_t)m->trace[c].n);
+    for (size_t k = 0; k < m->trace[c].n; k++)
+      aq_bytes_put_f64(b, m->trace[c].x[k]);
+  }
 }
 
 static int get_member(aq_bytes_in *r, aq_select_member *m, size_t nper)
@@ -73,6 +78,16 @@ static int get_member(aq_bytes_in *r, aq_select_member *m, size_t nper)
   aq_bytes_get_str(r, m->event_key, sizeof m->event_key, NULL, "event_key");
   m->dt_s = aq_bytes_get_f64(r, "dt");
   m->npts = (size_t)aq_bytes_get_int(r, 0, INT64_MAX, "npts");
+  for (size_t c = 0; c < 2 && !r->bad; c++) {
+    size_t n = aq_bytes_get_count(r, sizeof(double), "trace");
+    if (r->bad || !n)
+      continue;
+    if (!(m->trace[c].x = malloc(n * sizeof *m->trace[c].x)))
+      return 0;
+    m->trace[c].n = n;
+    for (size_t k = 0; k < n; k++)
+      m->trace[c].x[k] = aq_bytes_get_f64(r, "trace");
+  }
   return !r->bad && r->at == r->n;
 }
 
@@ -98,6 +113,9 @@ static void prepare_member(void *vctx, size_t i)
       aq_bytes_in r = {v.data, v.n, 0, NULL, 0};
       int ok = get_member(&r, m, P->nper);
       aq_diskcache_release(&v);
+      if (!ok)
+        for (size_t c = 0; c < 2; c++)
+          aq_same_trace_free(&m->trace[c]);
       if (ok) {
         free(key.data);
         m->cached = 1;
@@ -140,6 +158,13 @@ static void prepare_member(void *vctx, size_t i)
       m->event_key[0] = '\0'; /* the two files name different events: none */
     m->dt_s = s.proc[0].dt_s;
     m->npts = r->npts;
+    for (size_t c = 0; m->st == AQ_OK && c < (m->path[1] ? 2u : 1u); c++) {
+      const aq_processed *pr = &s.proc[c]; /* the record's own span, pads left out */
+      m->st = aq_same_trace_make(pr->acc_mps2 + pr->pad_front, pr->n_orig, pr->dt_s,
+                                 &m->trace[c], &m->err);
+    }
+  }
+  if (m->st == AQ_OK) {
     if (keyed) {
       aq_bytes_out val = {0};
       put_member(&val, m, P->nper);
@@ -166,8 +191,11 @@ aq_status aq_select_pool_prepare(aq_select_pool *pool, long threads, aq_error *e
 
 void aq_select_pool_free(aq_select_pool *pool)
 {
-  for (size_t i = 0; pool->m && i < pool->n; i++)
+  for (size_t i = 0; pool->m && i < pool->n; i++) {
     free(pool->m[i].psa_mps2);
+    aq_same_trace_free(&pool->m[i].trace[0]);
+    aq_same_trace_free(&pool->m[i].trace[1]);
+  }
   free(pool->m);
   pool->m = NULL;
   pool->n = 0;

@@ -7,8 +7,9 @@
  * util/diskcache.h) under a key of everything they depend on: the prepared
  * subject's key (job/subject_cache.h: the files' SHA-256, the reading and
  * processing options, the libraries and build), the grid, the damping,
- * the peak convention and the pair rule.  A member found there is neither
- * read nor processed.
+ * the peak convention and the pair rule, with the traces by which
+ * members that are one recording are found (select/same.h).  A member
+ * found there is neither read nor processed.
  *
  * Units: periods s, PSA m/s^2.  The pool owns its members' arrays
  * (aq_select_pool_free).  Nothing prints: a member that cannot be read,
@@ -21,6 +22,7 @@
 #include "../error.h"
 #include "../io/record.h"
 #include "../select/pool.h"
+#include "../select/same.h"
 #include "../signal/signal.h"
 #include "../signal/spectrum.h"
 #include "../util/diskcache.h"
@@ -40,6 +42,7 @@ typedef struct {
   double dt_s;
   size_t npts;          /* samples as read */
   int cached;           /* 1: its spectrum came from the disk cache */
+  aq_same_trace trace[2]; /* its components' traces (select/same.h; n 0: none) */
 } aq_select_member;
 
 typedef struct {

@@ -47,7 +47,7 @@ aq_status aq_select_choose(const aq_select_input *in, aq_selection *s, aq_error 
                            .pga_mps2 = in->psa0_mps2, .event = s->event,
                            .target_mps2 = s->target_mps2, .band = AQ_SELECT_BAND,
                            .scale_lo = in->scale_lo, .scale_hi = in->scale_hi, .count = N,
-                           .max_per_event = in->max_per_event};
+                           .max_per_event = in->max_per_event, .recording = in->recording};
   if (in->target->kind == AQ_TARGET_EC8) /* EN 1998-1 3.2.3.1.2(4)a: a_g S */
     p->target0_mps2 = in->target->ag_mps2 * in->target->soil;
   aq_status st = aq_select_prepare(p, &s->prep, err);
@@ -91,9 +91,21 @@ void aq_selection_shortfall(const aq_selection *s, const aq_select_input *in, ch
                             size_t n)
 {
   if (!s->search.found) {
-    snprintf(buf, n, "no suite of %zu records holds at most %zu records of one event: the "
-             "pool's %zu usable records name %zu events", in->count, in->max_per_event,
-             in->nrec, s->nevents);
+    size_t alone = 0; /* records less those that repeat a recording */
+    for (size_t i = 0; i < in->nrec; i++) {
+      int first = 1;
+      for (size_t j = 0; in->recording && in->recording[i] >= 0 && j < i; j++)
+        first &= in->recording[j] != in->recording[i];
+      alone += first;
+    }
+    if (in->max_per_event)
+      snprintf(buf, n, "no suite of %zu records holds at most %zu records of one event and "
+               "one of each recording: the pool's %zu usable records name %zu events and "
+               "are %zu recordings", in->count, in->max_per_event, in->nrec, s->nevents,
+               alone);
+    else
+      snprintf(buf, n, "no suite of %zu records holds one of each recording: the pool's %zu "
+               "usable records are %zu recordings", in->count, in->nrec, alone);
     return;
   }
   size_t w = 0;
@@ -162,6 +174,8 @@ size_t aq_selection_describe(const aq_selection *s, const aq_select_input *in,
                ? "exhaustive (every combination)"
                : "greedy, then swaps (Jayaram, Lin & Baker 2011)",
            c->nusable, s->search.combinations, s->search.evaluated);
+  if (c->same)
+    snprintf(lines[n++], L, "same recording: %s", c->same);
   aq_selection_factor_note(s, in, t, sizeof t);
   snprintf(lines[n++], L, "common factor: %s", t);
   snprintf(lines[n++], L, "misfit: %.6g (mean over the periods of (ln mean scaled PSA - ln "

@@ -27,6 +27,8 @@ typedef struct {
   size_t count;              /* N */
   double scale_lo, scale_hi;
   size_t max_per_event;      /* 0: no limit */
+  const int *recording;      /* nrec: group of records that are one recording
+                                (same.h), -1 alone; NULL: none */
   double exhaustive_max;     /* AQ_SELECT_EXHAUSTIVE_MAX */
   long threads;
 } aq_select_input;
@@ -67,13 +69,15 @@ typedef struct {
   const char *pair_rule;  /* a pair's spectrum (pool.h's name) */
   const char *processing; /* the pool's processing in words */
   size_t nusable;         /* usable records of the pool */
+  const char *same;       /* which records are one recording (one sentence), or NULL */
 } aq_selection_context;
 
 /* The lines of the suite file's header (target, range, spectra, rule,
- * search, common factor, misfit, each check, whether all hold; no "# "
+ * search, the records that are one recording, common factor, misfit, each
+ * check, whether all hold; no "# "
  * and no newline), at most AQ_SELECTION_LINES_MAX of AQ_SELECTION_LINE_MAX
  * bytes into lines; returns their number. */
-#define AQ_SELECTION_LINES_MAX (9 + AQ_SELECT_CHECKS_MAX)
+#define AQ_SELECTION_LINES_MAX (10 + AQ_SELECT_CHECKS_MAX)
 #define AQ_SELECTION_LINE_MAX 1024
 size_t aq_selection_describe(const aq_selection *s, const aq_select_input *in,
                              const aq_selection_context *c,

@@ -139,6 +139,10 @@ int aq_select_better(const aq_select_eval *a, const aq_select_eval *b)
 
 int aq_select_events_ok(const aq_select_problem *p, const size_t *idx, size_t n)
 {
+  for (size_t j = 0; p->recording && j < n; j++)
+    for (size_t i = j + 1; i < n; i++)
+      if (p->recording[idx[j]] >= 0 && p->recording[idx[j]] == p->recording[idx[i]])
+        return 0;
   if (!p->event || p->max_per_event == 0)
     return 1;
   for (size_t j = 0; j < n; j++) {

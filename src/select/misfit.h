@@ -11,7 +11,8 @@
  *   - the code's conditions: m(T_k) >= band S(T_k) at every period of the
  *     range (band 0.9: EN 1998-1 3.2.3.1.2(4), ASCE 7-22 16.2.3); for
  *     Eurocode 8 also the mean zero-period value mean_i s_i PGA_i >= a_g S;
- *     at most K records of one event (where the files name it);
+ *     at most K records of one event (where the files name it); at most
+ *     one record of a group that is one recording (same.h);
  *   - a suite that falls short of them is raised by the one common factor
  *     f >= 1 that makes them hold, if every f s_i stays <= hi: the suite is
  *     then f s_i, and its misfit is that of the raised mean.
@@ -46,6 +47,9 @@ typedef struct {
   double scale_lo, scale_hi; /* the scale range, 0 < lo <= hi */
   size_t count;              /* N: records in a suite (>= 1) */
   size_t max_per_event;      /* K: at most K records of one event; 0: no limit */
+  const int *recording;      /* nrec: group of records that are one recording
+                                (same.h; >= 0), at most one of each in a suite;
+                                -1 alone; NULL: none */
 } aq_select_problem;
 
 /* A record's own scale: exp(mean_k (ln target_k - ln psa_k)) clipped to
@@ -99,7 +103,8 @@ void aq_select_evaluate(const aq_select_prepared *q, const size_t *idx, size_t n
  * misfit. */
 int aq_select_better(const aq_select_eval *a, const aq_select_eval *b);
 
-/* 1 if the suite idx[0..n) holds at most K records of each known event. */
+/* 1 if the suite idx[0..n) holds at most K records of each known event
+ * and at most one of each recording. */
 int aq_select_events_ok(const aq_select_problem *p, const size_t *idx, size_t n);
 
 #endif

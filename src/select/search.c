@@ -26,14 +26,20 @@ void aq_select_result_free(aq_select_result *r)
   r->idx = NULL;
 }
 
+/* Indices v[0..n) (NULL: none) that run 0..count-1 (-1: none): count. */
+static size_t index_count(const int *v, size_t n)
+{
+  int top = -1;
+  for (size_t i = 0; v && i < n; i++)
+    if (v[i] > top)
+      top = v[i];
+  return (size_t)(top + 1);
+}
+
 /* The events' indices run 0..nev-1. */
 static size_t event_count(const aq_select_problem *p)
 {
-  int top = -1;
-  for (size_t i = 0; p->event && i < p->nrec; i++)
-    if (p->event[i] > top)
-      top = p->event[i];
-  return (size_t)(top + 1);
+  return index_count(p->event, p->nrec);
 }
 
 static int limited(const aq_select_problem *p)
@@ -41,16 +47,29 @@ static int limited(const aq_select_problem *p)
   return p->event && p->max_per_event > 0;
 }
 
+/* The recordings' indices run 0..nrc-1. */
+static size_t recording_count(const aq_select_problem *p)
+{
+  return index_count(p->recording, p->nrec);
+}
+
+/* Record i's recording, -1: alone. */
+static int recording_of(const aq_select_problem *p, size_t i)
+{
+  return p->recording ? p->recording[i] : -1;
+}
+
 /* ---- exhaustive ---------------------------------------------------------- */
 
 typedef struct {
   const aq_select_prepared *q;
-  size_t nev;
+  size_t nev, nrc;
   struct branch {
     size_t *idx, *best_idx;
     double *sums; /* (N + 1) x nper: the running sums at each depth */
     double *zs, *ms;
     size_t *evc;
+    char *rcin; /* per recording: 1 if one of its records is in the suite */
     aq_select_eval best;
     int found;
     double evaluated;
@@ -64,8 +83,8 @@ static void dfs(const aq_select_prepared *q, struct branch *b, size_t j, size_t 
   size_t N = p->count, M = p->nrec, K = p->nper;
   int lim = limited(p);
   for (size_t i = start; i + (N - j) <= M; i++) {
-    int ev = lim ? p->event[i] : -1;
-    if (ev >= 0 && b->evc[ev] >= p->max_per_event)
+    int ev = lim ? p->event[i] : -1, rc = recording_of(p, i);
+    if ((ev >= 0 && b->evc[ev] >= p->max_per_event) || (rc >= 0 && b->rcin[rc]))
       continue;
     const double *y = q->y + i * K, *s0 = b->sums + j * K;
     double *s1 = b->sums + (j + 1) * K;
@@ -87,9 +106,13 @@ static void dfs(const aq_select_prepared *q, struct branch *b, size_t j, size_t 
     }
     if (ev >= 0)
       b->evc[ev]++;
+    if (rc >= 0)
+      b->rcin[rc] = 1;
     dfs(q, b, j + 1, i + 1);
     if (ev >= 0)
       b->evc[ev]--;
+    if (rc >= 0)
+      b->rcin[rc] = 0;
   }
 }
 
@@ -106,7 +129,8 @@ static void exh_task(void *ctx, size_t i0)
   b->zs = calloc(N + 1, sizeof *b->zs);
   b->ms = calloc(N + 1, sizeof *b->ms);
   b->evc = calloc(X->nev + 1, sizeof *b->evc);
-  if (!b->idx || !b->best_idx || !b->sums || !b->zs || !b->ms || !b->evc) {
+  b->rcin = calloc(X->nrc + 1, 1);
+  if (!b->idx || !b->best_idx || !b->sums || !b->zs || !b->ms || !b->evc || !b->rcin) {
     b->nomem = 1;
     return;
   }
@@ -127,6 +151,8 @@ static void exh_task(void *ctx, size_t i0)
   }
   if (ev >= 0)
     b->evc[ev]++;
+  if (recording_of(p, i0) >= 0)
+    b->rcin[recording_of(p, i0)] = 1;
   dfs(q, b, 1, i0 + 1);
 }
 
@@ -138,6 +164,7 @@ static void branch_free(struct branch *b)
   free(b->zs);
   free(b->ms);
   free(b->evc);
+  free(b->rcin);
 }
 
 aq_status aq_select_exhaustive(const aq_select_prepared *q, long threads,
@@ -150,7 +177,7 @@ aq_status aq_select_exhaustive(const aq_select_prepared *q, long threads,
   if (p->count == 0 || p->count > p->nrec)
     return AQ_OK;
   size_t nfirst = p->nrec - p->count + 1;
-  exh X = {q, event_count(p), calloc(nfirst, sizeof *X.b)};
+  exh X = {q, event_count(p), recording_count(p), calloc(nfirst, sizeof *X.b)};
   r->idx = malloc(p->count * sizeof *r->idx);
   aq_status st = X.b && r->idx ? aq_pool_for(nfirst, threads, exh_task, &X, err)
                                : aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "select",
@@ -184,6 +211,7 @@ typedef struct {
   size_t n;
   char *in;      /* nrec: 1 if in the set */
   size_t *evc;   /* per event */
+  size_t *rcc;   /* per recording: its records in the set */
   double *sum;   /* nper: sum of the set's y */
   double *trial; /* nper */
   double zsum;
@@ -220,10 +248,14 @@ static void try_swap(walk *w, size_t skip, size_t c, aq_select_eval *e)
   w->evaluated += 1;
 }
 
-/* 1 if c may replace set[skip] (or be added, skip == n) under the event rule. */
+/* 1 if c may replace set[skip] (or be added, skip == n) under the event
+ * rule and the rule of one record of a recording. */
 static int event_allows(const walk *w, size_t skip, size_t c)
 {
   const aq_select_problem *p = w->q->p;
+  int rc = recording_of(p, c);
+  if (rc >= 0 && w->rcc[rc] - (skip < w->n && recording_of(p, w->set[skip]) == rc) > 0)
+    return 0;
   if (!limited(p) || p->event[c] < 0)
     return 1;
   size_t have = w->evc[p->event[c]];
@@ -245,6 +277,8 @@ static void apply(walk *w, size_t skip, size_t c)
     w->in[o] = 0;
     if (limited(p) && p->event[o] >= 0)
       w->evc[p->event[o]]--;
+    if (recording_of(p, o) >= 0)
+      w->rcc[recording_of(p, o)]--;
     w->set[skip] = c;
   } else
     w->set[w->n++] = c;
@@ -254,6 +288,8 @@ static void apply(walk *w, size_t skip, size_t c)
   w->in[c] = 1;
   if (limited(p) && p->event[c] >= 0)
     w->evc[p->event[c]]++;
+  if (recording_of(p, c) >= 0)
+    w->rcc[recording_of(p, c)]++;
 }
 
 /* Greedy from record first, then swaps; *e the end's evaluation.  0 if
@@ -268,6 +304,7 @@ static int greedy_swaps(walk *w, size_t first, aq_select_eval *e)
   memset(w->sum, 0, p->nper * sizeof *w->sum);
   if (limited(p))
     memset(w->evc, 0, (event_count(p) + 1) * sizeof *w->evc);
+  memset(w->rcc, 0, (recording_count(p) + 1) * sizeof *w->rcc);
   apply(w, 0, first);
   while (w->n < N) {
     aq_select_eval best;
@@ -347,12 +384,13 @@ aq_status aq_select_heuristic(const aq_select_prepared *q, size_t starts, double
   w.set = malloc(N * sizeof *w.set);
   w.in = malloc(M);
   w.evc = calloc(event_count(p) + 1, sizeof *w.evc);
+  w.rcc = calloc(recording_count(p) + 1, sizeof *w.rcc);
   w.sum = malloc((K ? K : 1) * sizeof *w.sum);
   w.trial = malloc((K ? K : 1) * sizeof *w.trial);
   single_suite *single = malloc(M * sizeof *single);
   r->idx = malloc(N * sizeof *r->idx);
   aq_status st = AQ_OK;
-  if (!w.set || !w.in || !w.evc || !w.sum || !w.trial || !single || !r->idx) {
+  if (!w.set || !w.in || !w.evc || !w.rcc || !w.sum || !w.trial || !single || !r->idx) {
     st = aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "select", "out of memory");
     goto done;
   }
@@ -381,6 +419,7 @@ done:
   free(w.set);
   free(w.in);
   free(w.evc);
+  free(w.rcc);
   free(w.sum);
   free(w.trial);
   free(single);

@@ -2,7 +2,7 @@
  * docs/select.md).
  *
  * Among the suites of N records of the pool that hold at most K records of
- * one event, the best is the one that meets the conditions (raised by its
+ * one event and at most one record of each recording (same.h), the best is the one that meets the conditions (raised by its
  * common factor where needed, misfit.h) with the least misfit; if none can,
  * the one that comes closest (the smallest excess of the scale range), so
  * that the caller can say by how much it falls short.
