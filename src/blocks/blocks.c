@@ -187,6 +187,7 @@ aq_blocks *aq_blocks_alloc_bodies(const aq_body *body, size_t nb, const aq_vec2 
 }
 
 aq_moreau *aq_blocks_moreau(aq_blocks *b) { return b->m; }
+void aq_blocks_set_impact_law(aq_blocks *b, aq_impact_law law) { b->law = law; }
 const aq_bodies *aq_blocks_bodies(const aq_blocks *b) { return &b->bodies; }
 
 aq_status aq_blocks_set_friction(aq_blocks *b, double mu, aq_error *err)
@@ -476,6 +477,7 @@ aq_status aq_blocks_run(aq_blocks *b, const aq_steps *steps, aq_blocks_result *r
                         "or --friction)");
   if (steps->n == 0)
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "steps", "expected steps, got none");
+  aq_moreau_set_law(b->m, b->law);
   aq_moreau_set(b->m, b->mu, b->e_n, 0.5, b->direct, b->projection);
   aq_moreau_reset(b->m);
   memset(&b->counters, 0, sizeof b->counters);
