@@ -539,6 +539,25 @@ enum { BATCH = 16 };
 #define BATCH_CLONES
 #endif
 
+/* The recursion's coefficients (sdof p and b) of o[0..nb) into the lane
+ * arrays c[0..8) (p00 p01 p10 p11 b00 b01 b10 b11, BATCH values each): one
+ * array per coefficient with a lane per oscillator, so that the loops over
+ * the lanes vectorise; the spare lanes repeat the first. */
+static inline void lanes_load(double *const c[8], const sdof *const *o, size_t nb)
+{
+  for (size_t j = 0; j < BATCH; j++) {
+    const sdof *s = o[j < nb ? j : 0];
+    c[0][j] = s->p[0][0];
+    c[1][j] = s->p[0][1];
+    c[2][j] = s->p[1][0];
+    c[3][j] = s->p[1][1];
+    c[4][j] = s->b[0][0];
+    c[5][j] = s->b[0][1];
+    c[6][j] = s->b[1][0];
+    c[7][j] = s->b[1][1];
+  }
+}
+
 /* max |x_k| of the response at the samples of up to BATCH oscillators
  * (o[0..nb), none the PGA's) to the n samples of a, into m[0..nb). */
 BATCH_CLONES
@@ -548,18 +567,9 @@ static void peaks_batch(const sdof *const *o, size_t nb, const double *a, size_t
   double p00[BATCH], p01[BATCH], p10[BATCH], p11[BATCH];
   double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
   double x[BATCH], y[BATCH], mx[BATCH];
-  for (size_t j = 0; j < BATCH; j++) {
-    const sdof *s = o[j < nb ? j : 0]; /* spare lanes repeat the first */
-    p00[j] = s->p[0][0];
-    p01[j] = s->p[0][1];
-    p10[j] = s->p[1][0];
-    p11[j] = s->p[1][1];
-    b00[j] = s->b[0][0];
-    b01[j] = s->b[0][1];
-    b10[j] = s->b[1][0];
-    b11[j] = s->b[1][1];
+  lanes_load((double *const[8]){p00, p01, p10, p11, b00, b01, b10, b11}, o, nb);
+  for (size_t j = 0; j < BATCH; j++)
     x[j] = y[j] = mx[j] = 0;
-  }
   double ak = a[0];
   for (size_t k = 0; k + 1 < n; k++) {
     double an = a[k + 1];
@@ -699,18 +709,9 @@ static void refined_batch(const sdof *const *o, const sdof *const *s, const size
   double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
   double x[BATCH], y[BATCH], mx[BATCH], my[BATCH], g[BATCH], xo[BATCH], yo[BATCH];
   int hit[BATCH];
-  for (size_t j = 0; j < BATCH; j++) {
-    const sdof *q = o[j < nb ? j : 0]; /* spare lanes repeat the first */
-    p00[j] = q->p[0][0];
-    p01[j] = q->p[0][1];
-    p10[j] = q->p[1][0];
-    p11[j] = q->p[1][1];
-    b00[j] = q->b[0][0];
-    b01[j] = q->b[0][1];
-    b10[j] = q->b[1][0];
-    b11[j] = q->b[1][1];
+  lanes_load((double *const[8]){p00, p01, p10, p11, b00, b01, b10, b11}, o, nb);
+  for (size_t j = 0; j < BATCH; j++)
     x[j] = y[j] = mx[j] = my[j] = 0;
-  }
   double ak = a[0];
   for (size_t k = 0; k + 1 < n; k++) {
     double an = a[k + 1];
