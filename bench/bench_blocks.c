@@ -20,6 +20,13 @@
  *          arch under 1.5 lambda0 for 0.3 s, the block model's peak
  *          rotation and its time against the four-hinge model's (workpath),
  *          the hinges that opened and when the mechanism changed
+ *   energy e_n = 1, friction 10: oppenheim and thick, hinges fixed and
+ *          free, free after a pulse of 1.5 lambda0 for 0.152 s, to 1 s:
+ *          the largest drift of the energy (kinetic + potential, the
+ *          ground still) from its value at the pulse's end, and of the
+ *          energy less the work of friction, as the step halves, under the
+ *          global impact law (the model's) and Newton's law per corner (for
+ *          comparison)
  *   agree  (only when named; minutes) the verdicts of the block model
  *          against the four-hinge work path's on the AT2 records of a
  *          directory (the argument after agree; default records/): three
@@ -41,6 +48,7 @@
 #include "arch/stepper.h"
 #include "bench.h"
 #include "blocks/blocks.h"
+#include "blocks/blocks_run.h"
 #include "io/record.h"
 #include "job/job.h"
 #include "signal/signal.h"
@@ -415,7 +423,7 @@ static aq_arch *load_free(const char *path, double mu)
     }
     if (!hinges)
       k += (size_t)sprintf(out + k, "[hinges]\ncontrol = free\n");
-    aq_arch_options o = {mu};
+    aq_arch_options o = {.friction = mu};
     aq_error e;
     if (aq_arch_load_string_opts(out, k, path, &o, &a, &e) != AQ_OK)
       fprintf(stderr, "bench_blocks: %s free: %s\n", path, e.message);
@@ -423,6 +431,84 @@ static aq_arch *load_free(const char *path, double mu)
   free(text);
   free(out);
   return a;
+}
+
+/* The bodies' kinetic + potential energy (frame of the ground), J. */
+static double body_energy_j(const aq_bodies *s, const double *q, const double *v)
+{
+  double e = 0;
+  for (size_t b = 0; b < s->nb; b++) {
+    const double *w = v + 3 * b;
+    e += 0.5 * s->body[b].mass_kg * (w[0] * w[0] + w[1] * w[1]) +
+         0.5 * s->body[b].inertia_kgm2 * w[2] * w[2] +
+         s->body[b].mass_kg * s->g_mps2 * (q[3 * b + 1] - s->body[b].c0.y);
+  }
+  return e;
+}
+
+static void energy(void)
+{
+  static const char *const arches[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+  static const char *const laws[] = {"global", "newton"};
+  const double T = 0.152, end = 1.0;
+  printf("== energy: e_n = 1, friction 10, 1.5 lambda0 for %g s, then free to %g s: the "
+         "largest |E - E0| / E0 and |E - D - E0| / E0 after the pulse (E kinetic + "
+         "potential, E0 at the pulse's end, D the work of friction), the ratio of "
+         "successive balances, D / E0, steps with an impact, impact stages\n",
+         T, end);
+  printf("%-10s %-6s %-6s %10s %11s %11s %7s %10s %8s %7s %7s\n", "arch", "hinges", "law",
+         "dt_s", "E_drift", "balance", "ratio", "D/E0", "impacts", "stages", "cpu_s");
+  for (size_t a = 0; a < 2; a++)
+    for (int mode = 0; mode < 2; mode++)
+      for (int law = 0; law < 2; law++) {
+        aq_arch *A = mode ? load_free(arches[a], 10) : load(arches[a]);
+        if (!A)
+          continue;
+        const aq_path *p = aq_arch_path(A, 0);
+        double acc = p->act_sign * 1.5 * p->lambda0 * p->g_mps2, prev = NAN;
+        for (int i = 0; i < 6; i++) {
+          double h = 4e-3 / (1 << i);
+          aq_error e;
+          aq_blocks *B = aq_blocks_alloc(A, &e);
+          if (!B || (!mode && aq_blocks_set_control(B, AQ_BLOCKS_FIXED, &e) != AQ_OK)) {
+            aq_blocks_free(B);
+            continue;
+          }
+          aq_moreau *m = aq_blocks_moreau(B);
+          const aq_bodies *s = aq_blocks_bodies(B);
+          aq_moreau_set_law(m, law ? AQ_IMPACT_NEWTON : AQ_IMPACT_GLOBAL);
+          aq_moreau_set(m, 10, 1, 0.5, 1, 1);
+          aq_moreau_reset(m);
+          size_t n = (size_t)llround(end / h), n1 = (size_t)llround(T / h), imp = 0, st = 0;
+          double gx[2] = {0, 0}, e0 = NAN, d = 0, drift = 0, bal = 0, c0 = cpu_s();
+          int ok = 1;
+          for (size_t j = 0; j < n && ok; j++) {
+            aq_step_info info;
+            ok = aq_moreau_step(m, h, j < n1 ? acc : 0, 0, gx, &info, &e) == AQ_OK;
+            double en = body_energy_j(s, aq_moreau_q(m), aq_moreau_v(m));
+            if (j + 1 == n1)
+              e0 = en;
+            if (!ok || j + 1 <= n1)
+              continue;
+            imp += info.impact != 0;
+            st += (size_t)info.stage;
+            d += info.friction_j;
+            drift = fmax(drift, fabs(en / e0 - 1));
+            bal = fmax(bal, fabs((en - d) / e0 - 1));
+          }
+          if (!ok)
+            printf("%-10.10s %-6s %-6s %10.4g failed: %s\n", arches[a] + 7,
+                   mode ? "free" : "fixed", laws[law], h, e.message);
+          else
+            printf("%-10.10s %-6s %-6s %10.4g %11.3e %11.3e %7.3f %10.3e %8zu %7zu %7.2f\n",
+                   arches[a] + 7, mode ? "free" : "fixed", laws[law], h, drift, bal,
+                   prev / bal, d / e0, imp, st, cpu_s() - c0);
+          fflush(stdout);
+          prev = ok ? bal : NAN;
+          aq_blocks_free(B);
+        }
+        aq_arch_free(A);
+      }
 }
 
 static void agree(const char *dir)
@@ -458,7 +544,7 @@ static void agree(const char *dir)
   for (size_t a = 0; a < 3; a++)
     for (int mode = 0; mode < 2; mode++)
       for (int m = 0; m < 2; m++) {
-        aq_arch_options o = {mus[m]};
+        aq_arch_options o = {.friction = mus[m]};
         aq_arch *A = NULL;
         aq_error e;
         if (mode == 0) {
@@ -555,8 +641,8 @@ int main(int argc, char **argv)
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "agree"))
       agree(i + 1 < argc ? argv[i + 1] : "records");
-  for (int pass = 0; pass < 4; pass++) {
-    static const char *const names[] = {"speed", "conv", "dt", "free"};
+  for (int pass = 0; pass < 5; pass++) {
+    static const char *const names[] = {"speed", "conv", "dt", "free", "energy"};
     int want = all;
     for (int i = 1; i < argc; i++)
       want |= !strcmp(argv[i], names[pass]);
@@ -568,8 +654,10 @@ int main(int argc, char **argv)
       conv();
     else if (pass == 2)
       dt_study();
-    else
+    else if (pass == 3)
       free_half_cycle();
+    else
+      energy();
   }
   return 0;
 }

@@ -99,3 +99,47 @@ AQ_TEST(app_scale_to_pga_reaches_the_pga)
   aq_check_rel(scale * pga_rec, 0.3, 5e-6, "scale x the record's PGA (%.17g x %g)", scale,
                pga_rec);
 }
+
+/* An output named as another kind of file is refused before anything runs:
+ * -o writes HDF5 (a results file named out.tsv would be HDF5 under a text
+ * name), --text and --fragility write TSV.  Exit 2, one line naming the
+ * option, what was expected and the name, no file left; the names that
+ * fit (and names without an extension) run. */
+AQ_TEST(app_output_names_of_another_kind_refused)
+{
+  static const struct {
+    const char *cmd, *opt, *name;
+  } cs[] = {
+      {RUN, "-o", "out.tsv"},
+      {RUN, "-o", "out.CSV"},
+      {RUN, "-o", "out.html"},
+      {RUN, "--text", "out.h5"},
+      {RUN, "--text", "out.hdf5"},
+      {"spectrum " REC, "-o", "out.txt"},
+      {"select " REC " --target ec8:type=1,ground=B,ag=0.25 --count 1", "-o", "out.tsv"},
+      {"select " REC " --target ec8:type=1,ground=B,ag=0.25 --count 1", "--text", "out.h5"},
+      {"capacity " RUN, "--fragility", "out.h5"},
+      {"capacity " RUN, "-o", "out.png"},
+  };
+  char d[512], args[2048], out[8192], err[8192], path[700];
+  aq_test_tmpdir(d, sizeof d);
+  for (size_t k = 0; k < sizeof cs / sizeof cs[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", d, cs[k].name);
+    snprintf(args, sizeof args, "%s %s %s", cs[k].cmd, cs[k].opt, path);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    aq_check(rc == 2, "%s %s: exit 2, got %d", cs[k].opt, cs[k].name, rc);
+    aq_check(nlines(err) == 1 && strstr(err, cs[k].opt) && strstr(err, cs[k].name) &&
+                 strstr(err, "expected"),
+             "%s %s: one line naming the option, what was expected and the name: %s",
+             cs[k].opt, cs[k].name, err);
+    aq_check(access(path, F_OK) != 0, "%s %s: no file left", cs[k].opt, cs[k].name);
+  }
+  /* the names that fit run */
+  char h5[700], txt[700];
+  snprintf(h5, sizeof h5, "%s/results", d);
+  snprintf(txt, sizeof txt, "%s/rows.txt", d);
+  snprintf(args, sizeof args, RUN " -j 1 -o %s --text %s", h5, txt);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  aq_check(rc == 0, "-o without an extension, --text .txt: exit 0, got %d: %s", rc, err);
+  aq_check(access(h5, F_OK) == 0 && access(txt, F_OK) == 0, "both files written");
+}

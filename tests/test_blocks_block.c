@@ -236,12 +236,14 @@ AQ_TEST(blocks_block_newmark_sliding)
   aq_blocks_free(B);
 }
 
-/* e_n = 1: after a pulse the block rocks freely; its first impact (the
- * landing corner moves along the normal only) and the flights after it
- * keep the energy but for the scheme's error at each impact (Moreau-Jean
- * applies the step's weight and the impulse together: an O(h) error per
- * impact), so the energy lost over 1.85 s of free motion halves with the
- * step. */
+/* e_n = 1: after a pulse the block rocks freely; under the global impact
+ * law (docs/blocks.md) every impact keeps the energy exactly (it sticks:
+ * friction 10; the block leaves the ground on both corners) and the
+ * flights between are exact for the scheme, so what is lost over 1.85 s
+ * of free motion is the scheme's first-order error while a corner holds
+ * (measured 5.7e-4 at 0.0005 s, 2.9e-4 at 0.00025 s; Newton's law per
+ * corner with the impact inside the step lost 21 % and 9.7 %): below 2 h
+ * per second of step and halving with it. */
 AQ_TEST(blocks_block_energy_restitution_one)
 {
   block k = {0.15, 0.55, 850};
@@ -261,12 +263,70 @@ AQ_TEST(blocks_block_energy_restitution_one)
       double e1 = H->kinetic_energy_j[H->n - 1] + H->potential_energy_j[H->n - 1];
       lost[i] = 1 - e1 / e0;
       aq_check(r.r.impacts >= 10, "it bounces on (%zu impacts)", r.r.impacts);
-      aq_check(lost[i] >= 0 && lost[i] < (i ? 0.2 : 0.4),
-               "energy lost over the free motion, dt %g: %.3e", dt, lost[i]);
+      aq_check(fabs(lost[i]) < 2 * dt, "energy lost over the free motion, dt %g: %.3e", dt,
+               lost[i]);
       aq_blocks_result_free(&r);
     }
     aq_steps_free(&s);
     aq_blocks_free(B);
   }
-  aq_check(fabs(lost[0] / lost[1] - 2) < 0.6, "first order: %.3e -> %.3e", lost[0], lost[1]);
+  aq_check(fabs(lost[0] / lost[1] - 2) < 0.3, "first order: %.3e -> %.3e", lost[0], lost[1]);
+}
+
+/* The kinetic energy of the test's bodies at v. */
+static double kinetic_j(const aq_bodies *s, const double *v)
+{
+  double k = 0;
+  for (size_t b = 0; b < s->nb; b++)
+    k += 0.5 * s->body[b].mass_kg * (v[3 * b] * v[3 * b] + v[3 * b + 1] * v[3 * b + 1]) +
+         0.5 * s->body[b].inertia_kgm2 * v[3 * b + 2] * v[3 * b + 2];
+  return k;
+}
+
+/* The impact stage of the global law (docs/blocks.md) on a block rocking
+ * about its intrados corner whose extrados corner lands (turned by 1e-9
+ * rad, omega = -1.37 rad/s): the plastic impact is Housner's (1963: the
+ * block turns on about the landing corner at r omega, r = 1 - 3/2
+ * sin^2(alpha), the other corner lifting), and the law's v+ = v_p + e (v_p
+ * - v-) keeps (1 - (1 - e^2)(1 - r^2)) of the kinetic energy, all of it at
+ * e = 1 (a sticking impact: friction 10). */
+AQ_TEST(blocks_block_impact_stage_housner)
+{
+  block k = {0.15, 0.55, 850};
+  double alpha = atan2(k.b, k.h), rr = 1 - 1.5 * sin(alpha) * sin(alpha);
+  double th = 1e-9, w = -1.37, cs = cos(th), sn = sin(th);
+  /* about the intrados corner (-b, 0): the centroid at (-b, 0) + R(th) (b, h) */
+  double rx = cs * k.b - sn * k.h, ry = sn * k.b + cs * k.h;
+  double q[3] = {-k.b + rx, ry, th}, v[3] = {-w * ry, w * rx, w};
+  static const double es[] = {0, 0.5, 1};
+  for (int i = 0; i < 3; i++) {
+    double e_n = es[i];
+    aq_blocks *B = block_model(k, 10, e_n, 1e-3);
+    if (!B)
+      return;
+    aq_moreau *m = aq_blocks_moreau(B);
+    const aq_bodies *s = aq_blocks_bodies(B);
+    aq_moreau_set(m, 10, e_n, 0.5, 1, 1);
+    aq_jstate st[1] = {{AQ_JOINT_HINGE_I, 0}};
+    aq_moreau_set_state(m, q, v, st);
+    aq_step_info info;
+    aq_error e;
+    aq_error_clear(&e);
+    if (aq_check(aq_moreau_impact(m, 1e-3, &info, &e) == AQ_OK, "impact: %s", e.message) &&
+        aq_check(info.impact, "the extrados corner lands, e %g", e_n)) {
+      const double *vp = aq_moreau_v(m);
+      /* Housner's v_p: about the extrados corner (b, 0) at r w */
+      double wp = rr * w, px = -k.b, py = k.h; /* the centroid from (b, 0), flat */
+      double want[3] = {(1 + e_n) * -wp * py - e_n * v[0], (1 + e_n) * wp * px - e_n * v[1],
+                        (1 + e_n) * wp - e_n * v[2]};
+      for (int c = 0; c < 3; c++)
+        aq_check_abs(vp[c], want[c], 1e-7, "e %g: v+[%d] against Housner's", e_n, c);
+      double ke0 = kinetic_j(s, v), ke1 = kinetic_j(s, vp);
+      aq_check_rel(ke1 / ke0, 1 - (1 - e_n * e_n) * (1 - rr * rr), e_n == 1 ? 1e-12 : 1e-8,
+                   "e %g: kinetic energy kept", e_n);
+      aq_check(fabs(info.friction_j) <= 1e-12 * ke0, "e %g: it sticks (friction %g J)", e_n,
+               info.friction_j);
+    }
+    aq_blocks_free(B);
+  }
 }

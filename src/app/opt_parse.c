@@ -269,6 +269,8 @@ int aq_opts_parse(aq_cmd cmd, int argc, char **argv, aq_opts *o, int *nerr)
       break;
     }
   }
+  o->operands = argv + optind;
+  o->noperands = argc - optind;
   /* what the table says of cmd's options together */
   const aq_opt_command *k = &aq_opt_commands[cmd];
   for (int i = 0; i < AQ_OPT_N; i++) {

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -210,6 +211,71 @@ static void lowpass_above_highpass(aq_opts *o, int *nerr)
 static void ode_rtol_needs_ode(aq_opts *o, int *nerr)
 {
   aq_opt_ode_rtol(o->given[AQ_OPT_ODE_RTOL] > 0, aq_model_name((aq_model)o->model), nerr);
+}
+
+/* The extension of path's last component, without its dot ("" if none). */
+static const char *name_ext(const char *path)
+{
+  const char *base = strrchr(path, '/'), *dot;
+  base = base ? base + 1 : path;
+  dot = strrchr(base, '.');
+  return dot && dot != base ? dot + 1 : "";
+}
+
+/* 1 if path names an existing file that is an operand or an arch: the
+ * command refuses that (aq_opt_output_is_input) in its own one line. */
+static int names_an_input(const aq_opts *o, const char *path)
+{
+  struct stat so, si;
+  if (stat(path, &so) != 0 || !S_ISREG(so.st_mode))
+    return 0;
+  for (int i = 0; i < o->noperands + (int)o->narches; i++) {
+    const char *in = i < o->noperands ? o->operands[i] : o->arches[i - o->noperands];
+    if (stat(in, &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino)
+      return 1;
+  }
+  return 0;
+}
+
+/* 1 if ext (any case) is one of the NULL-ended list. */
+static int ext_in(const char *ext, const char *const *list)
+{
+  for (; *list; list++)
+    if (strcasecmp(ext, *list) == 0)
+      return 1;
+  return 0;
+}
+
+/* -o of the commands that write HDF5 and --text/--fragility (their TSV)
+ * each refuse a name that says it is another kind of file: a results
+ * file named out.tsv would be HDF5 under a text name, and a table named
+ * out.h5 text under an HDF5 name (plot and report check their own -o). */
+static const char *const not_hdf5[] = {"tsv", "txt", "csv", "dat", "html", "htm", "png", "svg",
+                                       "pdf", "json", "cfg", "at2", "sac", "mseed", NULL};
+static const char *const not_text[] = {"h5", "hdf5", "hdf", "he5", "html", "htm", "png",
+                                       "svg", "pdf", "cfg", "at2", "sac", "mseed", NULL};
+
+static void output_names_hdf5(aq_opts *o, int *nerr)
+{
+  if (o->output && ext_in(name_ext(o->output), not_hdf5) && !names_an_input(o, o->output)) {
+    fprintf(stderr, "archquake: -o: expected an HDF5 file name (FILE.h5), got \"%s\" "
+                    "(the table goes to stdout or --text FILE)\n", o->output);
+    (*nerr)++;
+  }
+}
+
+static void text_name(const aq_opts *o, const char *opt, const char *path, int *nerr)
+{
+  if (path && ext_in(name_ext(path), not_text) && !names_an_input(o, path)) {
+    fprintf(stderr, "archquake: %s: expected a text file name (FILE.tsv), got \"%s\" "
+                    "(the HDF5 results go to -o FILE.h5)\n", opt, path);
+    (*nerr)++;
+  }
+}
+static void text_names_text(aq_opts *o, int *nerr) { text_name(o, "--text", o->text, nerr); }
+static void fragility_names_text(aq_opts *o, int *nerr)
+{
+  text_name(o, "--fragility", o->fragility, nerr);
 }
 
 /* The block model runs in pulse, the main job and capacity
@@ -425,7 +491,7 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                                "1.02,1.05,1.1,1.2,1.35,1.5,1.75,2,2.5,3,4,5)"},
     [AQ_OPT_OUTPUT] = {.name = "output", .short_name = 'o', .kind = AQ_ARG_STRING,
                        .meta = "FILE.h5", DEST(output),
-                       .cmds = SUITES | C(SPECTRUM) | C(SELECT),
+                       .cmds = SUITES | C(SPECTRUM) | C(SELECT), .check = output_names_hdf5,
                        .help = "write the HDF5 results file (docs/hdf5-layout.md; capacity: "
                                "its results in a `capacity` group; spectrum: the spectra "
                                "in a `spectra` group; select: a `select` group)"},
@@ -438,10 +504,10 @@ const aq_opt_row aq_opt_rows[AQ_OPT_N] = {
                               .help = "the page",
                               .required = C(REPORT)},
     [AQ_OPT_TEXT] = {.name = "text", .kind = AQ_ARG_STRING, .meta = "FILE", DEST(text),
-                     .cmds = SUITES | C(SELECT),
+                     .cmds = SUITES | C(SELECT), .check = text_names_text,
                      .help = "write the TSV to FILE instead of stdout"},
     [AQ_OPT_FRAGILITY] = {.name = "fragility", .kind = AQ_ARG_STRING, .meta = "FILE",
-                          DEST(fragility), .cmds = C(CAPACITY),
+                          DEST(fragility), .cmds = C(CAPACITY), .check = fragility_names_text,
                           .help = "lognormal fragility fits, one row per (arch, IM)"},
     [AQ_OPT_DATA] = {.name = "data", .kind = AQ_ARG_STRING, .meta = "FILE.csv", DEST(data),
                      .cmds = PLOT_ALL,

@@ -216,6 +216,8 @@ typedef enum {
 typedef struct aq_opts {
   unsigned char given[AQ_OPT_N]; /* how often each option was given (<= 255) */
   int cmd;                       /* the aq_cmd being parsed */
+  char *const *operands;         /* after parsing: the operands (argv's own) */
+  int noperands;
   /* arches */
   char **arches;    /* --arch, repeatable: resolved paths (the array is malloc'd) */
   size_t narches;

@@ -70,6 +70,7 @@ struct aq_blocks {
   double mu, e_n, dt_s, spread_m, spread_max, scale;
   aq_blocks_control control;
   int history, rest_skip, direct, projection;
+  aq_impact_law law;
   int at_rest;
   double rest_since;
   double dv_floor_j;       /* the collapse rule's floor, J */
@@ -87,6 +88,9 @@ struct aq_blocks {
 aq_blocks *aq_blocks_alloc_bodies(const aq_body *body, size_t nb, const aq_vec2 (*ends)[2],
                                   size_t nj, double g_mps2, aq_error *err);
 aq_moreau *aq_blocks_moreau(aq_blocks *b);
+/* The impact law at e_n > 0 (model.h; default AQ_IMPACT_GLOBAL): for
+ * tests and the bench's comparison. */
+void aq_blocks_set_impact_law(aq_blocks *b, aq_impact_law law);
 const aq_bodies *aq_blocks_bodies(const aq_blocks *b);
 
 #endif

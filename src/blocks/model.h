@@ -217,7 +217,24 @@ typedef struct {
   int pivots;         /* Siconos's pivots or sweeps */
   int loose;          /* 1: Siconos's best answer met only LOOSE_REL (moreau.c) */
   int impact;         /* 1: a contact closed with an approach velocity */
+  int stage;          /* the global law's impact stages taken (a sequence) */
+  double friction_j;  /* the work of friction in the step (<= 0): at the
+                       * impact stages exactly, (1 + e_n) u_t . P_t; in the
+                       * step at the joints sliding at its start or end,
+                       * P_t times the mean of u_t at its start and end */
 } aq_step_info;
+
+/* The impact law at e_n > 0 (at e_n = 0 both are the plastic law and the
+ * step is the same). */
+typedef enum {
+  AQ_IMPACT_GLOBAL = 0, /* the default: at a step where a corner lands, the
+                         * plastic impact P_p of every active corner from the
+                         * velocities before it, without the step's forces,
+                         * applied (1 + e_n) times; then the step at e = 0 */
+  AQ_IMPACT_NEWTON      /* Newton's law per corner within the step:
+                         * u_n+ >= -e_n u_n- (the law before the global one;
+                         * kept for comparison) */
+} aq_impact_law;
 
 typedef struct aq_moreau aq_moreau;
 
@@ -229,6 +246,8 @@ void aq_moreau_free(aq_moreau *m);
  * by Siconos; projection 0: none. */
 void aq_moreau_set(aq_moreau *m, double mu, double e_n, double theta, int direct,
                    int projection);
+/* The impact law (default AQ_IMPACT_GLOBAL). */
+void aq_moreau_set_law(aq_moreau *m, aq_impact_law law);
 /* Back to rest, undeformed, supports at gx = 0. */
 void aq_moreau_reset(aq_moreau *m);
 /* Keep the state (one level) and return to it. */
@@ -236,9 +255,20 @@ void aq_moreau_save(aq_moreau *m);
 void aq_moreau_restore(aq_moreau *m);
 /* One step of h s under the ground acceleration (ax, ay) (m/s^2, y up:
  * body forces -m ax and -m (g + ay)), the supports moving to gx1 by its
- * end.  AQ_ENUMERIC (err) when the contact problem could not be solved. */
+ * end; at e_n > 0 under the global law, the impact stages of the corners
+ * that land in it first (moreau.c).  AQ_ENUMERIC (err) when a contact
+ * problem could not be solved. */
 aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const double gx1[2],
                          aq_step_info *info, aq_error *err);
+/* The global law's impact stage alone at the present state (no force,
+ * supports still): if an open corner lands within h s with an approach
+ * velocity (info->impact 1), v becomes v_p + e_n (v_p - v) with v_p the
+ * plastic impact of the active corners, and info->friction_j the work of
+ * friction in it; q and the states are unchanged.  AQ_ENUMERIC (err) when
+ * its contact problem could not be solved. */
+aq_status aq_moreau_impact(aq_moreau *m, double h, aq_step_info *info, aq_error *err);
+/* Set the state: q, v (3 nb) and the joints' states (nj), copied. */
+void aq_moreau_set_state(aq_moreau *m, const double *q, const double *v, const aq_jstate *st);
 /* The state (owned by m): q, v (3 nb each), the supports' offsets gx[2]
  * and velocities gvx[2], the joints' contact states (nj) and corners at q
  * (2 nj, after the last step). */

@@ -12,11 +12,21 @@
  *   q+ = q + h (theta v+ + (1 - theta) v-)
  *
  * with, at every corner that is active (its gap predicted at the end of
- * the step, gap + h u_n-, at most the activation threshold), Newton's
- * impact law and Coulomb's friction at the level of velocities and
- * impulses:  0 <= P_n  perp  u_n+ + e_n min(u_n-, 0) >= 0 (restitution of an
- * approach only),  |P_t| <= mu P_n, and
+ * the step, gap + h u_n-, at most the activation threshold), the contact
+ * and Coulomb's friction at the level of velocities and impulses:
+ * 0 <= P_n  perp  u_n+ + e_t min(u_n-, 0) >= 0,  |P_t| <= mu P_n, and
  * u_t+ = 0 while |P_t| < mu P_n, else P_t = -mu P_n sign(u_t+).
+ *
+ * Impacts (docs/blocks.md, "Impacts: the global law").  e_t = 0 but under
+ * Newton's law per corner (AQ_IMPACT_NEWTON, kept for comparison: e_t =
+ * e_n).  Under the global law, with e_n > 0, a step in which an open
+ * corner lands (approaching, its predicted gap negative, or carried
+ * through its contact by the step's positions) first takes an impact
+ * stage: the same problem from v- without the step's forces at e = 0 (the
+ * plastic impact v_p) and v+ = v_p + e_n (v_p - v-), which changes the
+ * kinetic energy by (e_n^2 - 1)/2 |v_p - v-|^2_M + (1 + e_n) u_t . P_t
+ * (<= 0; 0 at e_n = 1 and a sticking impact); impacts that follow within
+ * the step from v+ are staged in turn; then the step from v+ at e = 0.
  *
  * The problem is solved exactly, in one of two ways.  First the contact
  * state of the step before (which corners are closed, which joints stick
@@ -54,6 +64,9 @@
 /* Chain solves per step before Siconos is asked; passes of a step whose
  * positions carried an open corner through its contact. */
 enum { MAX_GUESSES = 8, MAX_LATE = 3 };
+/* Impact stages per step (the global law): a sequence of impacts longer
+ * than this ends in the step's plastic law. */
+enum { MAX_STAGES = 16 };
 /* The contact conditions of an accepted solution hold within this fraction
  * of the step's velocity scale (g h + the bodies' free velocities) and of
  * the impulse scale (the moving mass times it). */
@@ -74,6 +87,9 @@ struct aq_moreau {
   const aq_bodies *s;
   size_t nb, nj;
   double mu, e_n, theta;
+  double e_t;               /* the restitution in the step's own conditions:
+                             * e_n under Newton's law, 0 under the global law */
+  aq_impact_law law;
   int direct, projection;
   double closed_m;
   double *q, *v, *minv;
@@ -84,6 +100,9 @@ struct aq_moreau {
   double *un0, *ut0;        /* normal and tangential velocities at the step's start */
   double h;                 /* the step */
   unsigned char *active;
+  unsigned char *force;     /* corners that land within the step though not
+                             * predicted (the global law's impact stage) */
+  double *vstart;           /* v at the step's start */
   aq_jstate *proj;          /* the projection's states */
   double *vfree, *vnew, *dv, *q1;
   double *rhs, *x, *u;
@@ -113,6 +132,8 @@ void aq_moreau_free(aq_moreau *m)
   free(m->un0);
   free(m->ut0);
   free(m->active);
+  free(m->force);
+  free(m->vstart);
   free(m->proj);
   free(m->vfree);
   free(m->vnew);
@@ -164,6 +185,8 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->un0 = calloc(nc, sizeof *m->un0);
   m->ut0 = calloc(nc, sizeof *m->ut0);
   m->active = calloc(nc, 1);
+  m->force = calloc(nc, 1);
+  m->vstart = calloc(nb3, sizeof *m->vstart);
   m->proj = calloc(s->nj, sizeof *m->proj);
   m->vfree = calloc(nb3, sizeof *m->vfree);
   m->vnew = calloc(nb3, sizeof *m->vnew);
@@ -191,7 +214,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->sv = calloc(nb3, sizeof *m->sv);
   m->sst = calloc(s->nj, sizeof *m->sst);
   if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->cr2 || !m->un0 || !m->ut0 ||
-      !m->active || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
+      !m->active || !m->force || !m->vstart || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
       !m->u || !m->pn || !m->pt || !m->keep_v || !m->keep_pn || !m->keep_pt || !m->chain || !m->fc || !m->cidx || !m->W || !m->fq ||
       !m->fr || !m->fu || !m->fmu || !m->fd || !m->best_r || !m->sq || !m->sv || !m->sst) {
     aq_moreau_free(m);
@@ -215,9 +238,16 @@ void aq_moreau_set(aq_moreau *m, double mu, double e_n, double theta, int direct
 {
   m->mu = mu;
   m->e_n = e_n;
+  m->e_t = m->law == AQ_IMPACT_NEWTON ? e_n : 0;
   m->theta = theta;
   m->direct = direct;
   m->projection = projection;
+}
+
+void aq_moreau_set_law(aq_moreau *m, aq_impact_law law)
+{
+  m->law = law;
+  m->e_t = law == AQ_IMPACT_NEWTON ? m->e_n : 0;
 }
 
 void aq_moreau_reset(aq_moreau *m)
@@ -341,7 +371,7 @@ static int check(aq_moreau *m, aq_jstate *st, double tol_u, double tol_p)
     double un[2], ut[2];
     for (int k = 0; k < 2; k++) {
       const aq_corner *C = &m->cr[2 * j + k];
-      un[k] = aq_crow_dot(s, j, &C->n, m->vnew) + m->e_n * fmin(m->un0[2 * j + k], 0);
+      un[k] = aq_crow_dot(s, j, &C->n, m->vnew) + m->e_t * fmin(m->un0[2 * j + k], 0);
       ut[k] = aq_crow_dot(s, j, &C->t, m->vnew);
       closed[k] = st ? aq_jstate_closed(cur, k) : m->pn[2 * j + k] > tol_p;
       want[k] = closed[k];
@@ -410,7 +440,7 @@ static int solve_chain(aq_moreau *m, aq_jstate *st, int max, int *iters)
       aq_chain_row(m->chain, r, &j, &kind);
       double target = kind == AQ_CHAIN_ROW_T
                           ? 0
-                          : -m->e_n * fmin(m->un0[2 * j + (kind == AQ_CHAIN_ROW_N1)], 0);
+                          : -m->e_t * fmin(m->un0[2 * j + (kind == AQ_CHAIN_ROW_N1)], 0);
       m->rhs[r] = target - m->u[r];
     }
     aq_chain_solve(m->chain, m->rhs, m->x);
@@ -487,7 +517,7 @@ static aq_status solve_siconos(aq_moreau *m, int *pivots, int *loose, aq_error *
           }
       m->W[i + (size_t)n * (size_t)k] = w;
     }
-    m->fq[i] = aq_crow_dot(s, ji, ri, m->vfree) + (i % 2 ? 0 : m->e_n * fmin(m->un0[ci], 0));
+    m->fq[i] = aq_crow_dot(s, ji, ri, m->vfree) + (i % 2 ? 0 : m->e_t * fmin(m->un0[ci], 0));
     m->fr[i] = 0;
     if (i % 2 == 0)
       m->fmu[i / 2] = m->mu;
@@ -658,34 +688,37 @@ static void project(aq_moreau *m, const aq_jstate *st0, double *q1, const double
   }
 }
 
-aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const double gx1[2],
-                         aq_step_info *info, aq_error *err)
+/* The rows' velocities at the step's start (at v, rows cr). */
+static void start_velocities(aq_moreau *m)
+{
+  for (size_t c = 0; c < 2 * m->nj; c++) {
+    m->un0[c] = aq_crow_dot(m->s, c / 2, &m->cr[c].n, m->v);
+    m->ut0[c] = aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->v);
+  }
+}
+
+/* The step's problem at the start velocities: the active corners, the
+ * free velocities (forces 0: none, v itself, for the impact stage), the
+ * scales and the guess.  Returns 1 if an active corner that was open
+ * lands within the step with an approach velocity (an impact). */
+static int prepare(aq_moreau *m, double h, double ax, double ay, const double gvx1[2],
+                   int forces)
 {
   const aq_bodies *s = m->s;
-  size_t nc = 2 * m->nj, nb3 = 3 * m->nb;
-  memset(info, 0, sizeof *info);
-  double gvx1[2] = {(gx1[0] - m->gx[0]) / h, (gx1[1] - m->gx[1]) / h};
-  /* the corners at q; the normal velocities before the step */
-  aq_moreau_corners(m);
-  m->h = h;
-  for (size_t c = 0; c < nc; c++) {
-    m->un0[c] = aq_crow_dot(s, c / 2, &m->cr[c].n, m->v);
-    m->ut0[c] = aq_crow_dot(s, c / 2, &m->cr[c].t, m->v);
-  }
-  if (gvx1[0] != m->gvx[0] || gvx1[1] != m->gvx[1])
-    eval_corners(m, m->q, m->gx, gvx1, m->cr);
+  size_t nc = 2 * m->nj;
+  int impact = 0;
   /* active: closed in the step before (its rate, evaluated in the new
    * configuration, is O(h omega^2 d) either way), or predicted closed */
   for (size_t c = 0; c < nc; c++)
     m->active[c] = aq_jstate_closed(m->st[c / 2], (int)(c % 2)) ||
-                   m->cr[c].gap_m + h * m->un0[c] <= m->closed_m;
+                   m->cr[c].gap_m + h * m->un0[c] <= m->closed_m || m->force[c];
   /* the free velocities */
   double vmax = 0;
   for (size_t b = 0; b < m->nb; b++) {
     double *vf = m->vfree + 3 * b;
     const double *v = m->v + 3 * b;
-    vf[0] = v[0] - h * ax;
-    vf[1] = v[1] - h * (s->g_mps2 + ay);
+    vf[0] = forces ? v[0] - h * ax : v[0];
+    vf[1] = forces ? v[1] - h * (s->g_mps2 + ay) : v[1];
     vf[2] = v[2];
     vmax = fmax(vmax, fmax(fmax(fabs(vf[0]), fabs(vf[1])), fabs(vf[2]) * s->length_m));
   }
@@ -696,45 +729,130 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
     m->trial[j] = mask(m->st[j], m->active + 2 * j);
     for (int k = 0; k < 2; k++)
       if (m->active[2 * j + k] && m->un0[2 * j + k] < -CHECK_REL * m->vscale &&
-          m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] < 0 &&
+          (m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] < 0 || m->force[2 * j + k]) &&
           !aq_jstate_closed(m->st[j], k))
-        info->impact = 1;
+        impact = 1;
   }
-  /* solve; a corner left out as open that the step's positions carry
-   * through its contact (its predicted gap missed the step's
-   * acceleration) joins the problem and the step is solved again */
-  for (int pass = 0;; pass++) {
-    int ok = m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters);
-    if (!ok) {
-      info->path = AQ_STEP_SICONOS;
-      aq_status rc = solve_siconos(m, &info->pivots, &info->loose, err);
+  return impact;
+}
+
+/* The prepared problem solved: vnew, pn, pt and the states trial. */
+static aq_status solve_problem(aq_moreau *m, aq_step_info *info, aq_error *err)
+{
+  size_t nc = 2 * m->nj, nb3 = 3 * m->nb;
+  if (m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters))
+    return AQ_OK;
+  info->path = AQ_STEP_SICONOS;
+  aq_status rc = solve_siconos(m, &info->pivots, &info->loose, err);
+  if (rc != AQ_OK)
+    return rc;
+  states_of(m, m->trial);
+  /* the same state along the chain, when it determines the impulses */
+  memcpy(m->keep_v, m->vnew, nb3 * sizeof *m->keep_v);
+  memcpy(m->keep_pn, m->pn, nc * sizeof *m->keep_pn);
+  memcpy(m->keep_pt, m->pt, nc * sizeof *m->keep_pt);
+  if (!(m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters))) {
+    memcpy(m->vnew, m->keep_v, nb3 * sizeof *m->keep_v);
+    memcpy(m->pn, m->keep_pn, nc * sizeof *m->keep_pn);
+    memcpy(m->pt, m->keep_pt, nc * sizeof *m->keep_pt);
+    states_of(m, m->trial);
+  }
+  return AQ_OK;
+}
+
+/* The impact stage of the global law (prepared without forces): the
+ * plastic impact v_p (the step's problem with e = 0 and no force) and
+ * v+ = v- + (1 + e_n) (v_p - v-); then the start velocities again. */
+static aq_status impact_stage(aq_moreau *m, aq_step_info *info, aq_error *err)
+{
+  double e_t = m->e_t;
+  m->e_t = 0;
+  aq_status rc = solve_problem(m, info, err);
+  m->e_t = e_t;
+  if (rc != AQ_OK)
+    return rc;
+  /* the friction's work: (1 + e) u_t . P_t at v_p (0 at a sticking impact) */
+  for (size_t c = 0; c < 2 * m->nj; c++)
+    if (m->pt[c] != 0)
+      info->friction_j +=
+          (1 + m->e_n) * m->pt[c] * aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew);
+  for (size_t i = 0; i < 3 * m->nb; i++)
+    m->v[i] += (1 + m->e_n) * (m->vnew[i] - m->v[i]);
+  start_velocities(m);
+
+  return AQ_OK;
+}
+
+aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const double gx1[2],
+                         aq_step_info *info, aq_error *err)
+{
+  size_t nc = 2 * m->nj, nb3 = 3 * m->nb;
+  int global = m->law == AQ_IMPACT_GLOBAL && m->e_n > 0;
+  memset(info, 0, sizeof *info);
+  double gvx1[2] = {(gx1[0] - m->gx[0]) / h, (gx1[1] - m->gx[1]) / h};
+  /* the corners at q; the normal velocities before the step */
+  aq_moreau_corners(m);
+  m->h = h;
+  start_velocities(m);
+  if (gvx1[0] != m->gvx[0] || gvx1[1] != m->gvx[1])
+    eval_corners(m, m->q, m->gx, gvx1, m->cr);
+  if (global)
+    memcpy(m->vstart, m->v, nb3 * sizeof *m->v);
+  for (int redo = 0;; redo++) {
+    info->stage = 0;
+    info->friction_j = 0;
+    info->impact = prepare(m, h, ax, ay, gvx1, 1);
+    /* the global law: the impact first, apart from the step's forces,
+     * then the step with e = 0 from its velocities; an impact that sends
+     * other corners into their contacts within the step is followed by
+     * theirs (a sequence of impacts, each keeping the energy at e = 1) */
+    for (int k = 0; info->impact && global && k < MAX_STAGES; k++) {
+      prepare(m, h, ax, ay, gvx1, 0);
+      aq_status rc = impact_stage(m, info, err);
       if (rc != AQ_OK)
         return rc;
-      states_of(m, m->trial);
-      /* the same state along the chain, when it determines the impulses */
-      memcpy(m->keep_v, m->vnew, nb3 * sizeof *m->keep_v);
-      memcpy(m->keep_pn, m->pn, nc * sizeof *m->keep_pn);
-      memcpy(m->keep_pt, m->pt, nc * sizeof *m->keep_pt);
-      if (!(m->direct && solve_chain(m, m->trial, MAX_GUESSES, &info->iters))) {
-        memcpy(m->vnew, m->keep_v, nb3 * sizeof *m->keep_v);
-        memcpy(m->pn, m->keep_pn, nc * sizeof *m->keep_pn);
-        memcpy(m->pt, m->keep_pt, nc * sizeof *m->keep_pt);
-        states_of(m, m->trial);
-      }
+      info->stage++;
+      if (!prepare(m, h, ax, ay, gvx1, 1))
+        break;
     }
-    /* positions */
-    for (size_t i = 0; i < nb3; i++)
-      m->q1[i] = m->q[i] + h * (m->theta * m->vnew[i] + (1 - m->theta) * m->v[i]);
-    eval_corners(m, m->q1, gx1, gvx1, m->cr1);
-    int late = 0;
-    for (size_t c = 0; c < nc; c++)
-      if (!m->active[c] && m->cr1[c].gap_m < -m->closed_m) {
-        m->active[c] = 1;
-        late = 1;
-      }
-    if (!late || pass == MAX_LATE)
+    /* solve; a corner left out as open that the step's positions carry
+     * through its contact (its predicted gap missed the step's
+     * acceleration) joins the problem and the step is solved again; under
+     * the global law one that approaches lands in the impact stage: the
+     * step is taken again from its start with it */
+    int again = 0;
+    for (int pass = 0;; pass++) {
+      aq_status rc = solve_problem(m, info, err);
+      if (rc != AQ_OK)
+        return rc;
+      /* positions */
+      for (size_t i = 0; i < nb3; i++)
+        m->q1[i] = m->q[i] + h * (m->theta * m->vnew[i] + (1 - m->theta) * m->v[i]);
+      eval_corners(m, m->q1, gx1, gvx1, m->cr1);
+      int late = 0;
+      for (size_t c = 0; c < nc; c++)
+        if (!m->active[c] && m->cr1[c].gap_m < -m->closed_m) {
+          m->active[c] = 1;
+          late = 1;
+          if (global && redo < MAX_LATE && m->un0[c] < -CHECK_REL * m->vscale)
+            m->force[c] = again = 1;
+        }
+      if (again || !late || pass == MAX_LATE)
+        break;
+    }
+    if (!again)
       break;
+    memcpy(m->v, m->vstart, nb3 * sizeof *m->v);
+    start_velocities(m);
   }
+  if (global)
+    memset(m->force, 0, nc);
+  /* the friction's work at the joints that slide at the step's start or
+   * end: P_t times the tangential velocity at the step's middle */
+  for (size_t c = 0; c < nc; c++)
+    if (m->pt[c] != 0 && (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0))
+      info->friction_j +=
+          m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
   m->gvx[0] = gvx1[0];
   m->gvx[1] = gvx1[1];
   if (m->projection)
@@ -746,6 +864,28 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
   memcpy(m->st, m->trial, m->nj * sizeof *m->st);
   m->cr_valid = 0;
   return AQ_OK;
+}
+
+aq_status aq_moreau_impact(aq_moreau *m, double h, aq_step_info *info, aq_error *err)
+{
+  memset(info, 0, sizeof *info);
+  m->cr_valid = 0;
+  aq_moreau_corners(m);
+  m->h = h;
+  start_velocities(m);
+  info->impact = prepare(m, h, 0, 0, m->gvx, 0);
+  if (!info->impact)
+    return AQ_OK;
+  info->stage = 1;
+  return impact_stage(m, info, err);
+}
+
+void aq_moreau_set_state(aq_moreau *m, const double *q, const double *v, const aq_jstate *st)
+{
+  memcpy(m->q, q, 3 * m->nb * sizeof *m->q);
+  memcpy(m->v, v, 3 * m->nb * sizeof *m->v);
+  memcpy(m->st, st, m->nj * sizeof *m->st);
+  m->cr_valid = 0;
 }
 
 void aq_moreau_gravity_accel(aq_moreau *m, double *acc)
