@@ -423,7 +423,7 @@ static aq_arch *load_free(const char *path, double mu)
     }
     if (!hinges)
       k += (size_t)sprintf(out + k, "[hinges]\ncontrol = free\n");
-    aq_arch_options o = {mu};
+    aq_arch_options o = {.friction = mu};
     aq_error e;
     if (aq_arch_load_string_opts(out, k, path, &o, &a, &e) != AQ_OK)
       fprintf(stderr, "bench_blocks: %s free: %s\n", path, e.message);
@@ -544,7 +544,7 @@ static void agree(const char *dir)
   for (size_t a = 0; a < 3; a++)
     for (int mode = 0; mode < 2; mode++)
       for (int m = 0; m < 2; m++) {
-        aq_arch_options o = {mus[m]};
+        aq_arch_options o = {.friction = mus[m]};
         aq_arch *A = NULL;
         aq_error e;
         if (mode == 0) {

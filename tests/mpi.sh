@@ -149,6 +149,46 @@ check $? 2 "--history at N=2: a usage error"
 check "$(grep -c 'expected one rank' "$T/hist.err")" 1 "--history at N=2: one line saying why"
 check "$(ls "$T" | grep -c '^hist')" 1 "--history at N=2: no results file (only its stderr)"
 
+# --check blocks: the runs the four-hinge model marks (slides, beyond) run
+# again under the block model on the rank that ran them.  El Centro on
+# oppenheim with friction 0.6 at factors 1 (not marked) and 2 (both
+# polarities slide: checked): the rows, check columns included, must be
+# archquake -j 1's.
+BARGS="records/elcentro_chopra.csv --arch arches/oppenheim.cfg --scale 1,2 --friction 0.6
+       --check blocks"
+# shellcheck disable=SC2086
+"$BIN" -j 1 $BARGS -o "$T/bref.h5" >"$T/bref.tsv" 2>/dev/null
+check $? 0 "check blocks: archquake -j 1 exit status"
+col=$(head -n 1 "$T/bref.tsv" | tr '\t' '\n' | grep -nx check_blocks | cut -d: -f1)
+check "$(cut -f"${col:-1}" "$T/bref.tsv" | LC_ALL=C sort | uniq -c | tr -s ' \n' ' ')" \
+  " 2 - 2 agrees 1 check_blocks " "check blocks: the reference checks its two marked runs"
+for nj in "2 1" "3 2"; do
+  set -- $nj
+  # shellcheck disable=SC2086
+  $MPIRUN -n $1 "$MPIBIN" -j $2 $BARGS -o "$T/b$1$2.h5" >"$T/b$1$2.tsv" 2>/dev/null
+  check $? 0 "check blocks, N=$1 -j $2: exit status"
+  if cmp -s "$T/bref.tsv" "$T/b$1$2.tsv"; then ok "check blocks, N=$1 -j $2: TSV byte-identical"; else
+    bad "check blocks, N=$1 -j $2: TSV differs from archquake -j 1's"; fi
+  "$BIN" compare "$T/bref.h5" "$T/b$1$2.h5" >/dev/null 2>&1
+  check $? 0 "check blocks, N=$1 -j $2: compare with archquake -j 1's results file"
+done
+
+# An arch the block model could never set up (oppenheim's supports spread
+# by 50 m, beyond what its voussoirs reach across) is refused by every
+# rank before any run, as by archquake: one line, exit 2, nothing written.
+sed 's/^\[dynamics\]/[supports]\nspread_m = 50\n[dynamics]/' arches/oppenheim.cfg >"$T/spread.cfg"
+for n in 1 3; do
+  # shellcheck disable=SC2086
+  $MPIRUN -n $n "$MPIBIN" records/elcentro_chopra.csv --arch "$T/spread.cfg" --scale 2 \
+    --friction 0.6 --check blocks -o "$T/spread$n.h5" >"$T/spread$n.tsv" 2>"$T/spread$n.err"
+  check $? 2 "check blocks, spread beyond reach, N=$n: a usage error"
+  check "$(grep -c '^archquake' "$T/spread$n.err")" 1 "check blocks, spread beyond reach, N=$n: one line"
+  check "$(grep -c "spread.cfg: spread_m: expected 0 <= spread < .* got 50$" "$T/spread$n.err")" 1 \
+    "check blocks, spread beyond reach, N=$n: the line names the file, the field and the limit"
+  check "$(ls "$T" | grep -c "^spread$n\.h5")$(wc -c <"$T/spread$n.tsv" | tr -d ' ')" 00 \
+    "check blocks, spread beyond reach, N=$n: nothing written"
+done
+
 # capacity: (record, arch) tasks handed out by rank 0, each follower reading
 # and processing its records itself; -j 2 gives each rank two threads.
 CRECS="$R/ARL360.at2 $R/CHY028-N.AT2 $R/PROVENANCE.md $R/IELC180.AT2 $R/TCU052-N.AT2"

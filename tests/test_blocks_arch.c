@@ -391,12 +391,29 @@ AQ_TEST(blocks_arch_bad_options)
     aq_check(aq_blocks_set_dt(B, bad_dt[i], &e) == AQ_EVALUE &&
                  !strcmp(e.field, "blocks-dt") && strstr(e.message, "> 0"),
              "dt %g refused: %s", bad_dt[i], e.message);
+  /* the spread's limit: the voussoirs' diagonals end to end, less the
+   * springings' nearest distance; oppenheim's 20 sectors of 9 degrees
+   * between radii 4.375 and 5.625 m, springings 2 x 4.375 m apart */
+  double ri = 4.375, re = 5.625, dphi = 9.0 * 3.14159265358979323846 / 180.0;
+  double reach = 20 * sqrt(ri * ri + re * re - 2 * ri * re * cos(dphi)) - 2 * ri;
   double big = aq_blocks_spread_max(B);
+  aq_check_rel(big, reach, 1e-12, "the model's limit of the spread");
+  aq_check(aq_blocks_spread_reach(A) == big, "the commands' limit (%.17g) is the model's (%.17g)",
+           aq_blocks_spread_reach(A), big);
   double bad_sp[] = {-0.01, big, 2 * big, NAN};
-  for (size_t i = 0; i < 4; i++)
+  for (size_t i = 0; i < 4; i++) {
     aq_check(aq_blocks_set_spread(B, bad_sp[i], &e) == AQ_EVALUE &&
                  !strcmp(e.field, "spread_m") && strstr(e.message, "expected 0 <="),
              "spread %g refused: %s", bad_sp[i], e.message);
+    aq_check(aq_blocks_check_spread(A, bad_sp[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "spread_m") && strstr(e.message, "expected 0 <="),
+             "spread %g refused without a model: %s", bad_sp[i], e.message);
+  }
+  double good_sp[] = {0, 0.02, 0.999 * big};
+  for (size_t i = 0; i < 3; i++)
+    aq_check(aq_blocks_check_spread(A, good_sp[i], &e) == AQ_OK &&
+                 aq_blocks_set_spread(B, good_sp[i], &e) == AQ_OK,
+             "spread %g taken, with a model and without", good_sp[i]);
   aq_steps s;
   aq_blocks_result r;
   if (const_steps(1, 0.1, 0, &s)) {

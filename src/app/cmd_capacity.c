@@ -351,7 +351,8 @@ int aq_cmd_capacity(int argc, char **argv)
                                    aq_arch_dynamics_of(arches[a])->impact ==
                                        AQ_IMPACT_MOMENTUM) ||
                aq_opt_blocks_friction(arch_paths[a], model == AQ_MODEL_BLOCKS,
-                                      aq_arch_friction(arches[a]))) {
+                                      aq_arch_friction(arches[a])) ||
+               aq_opt_blocks_spread(arch_paths[a], model == AQ_MODEL_BLOCKS, arches[a])) {
       rc = AQ_EXIT_USAGE;
     } else {
       aq_opt_spread_four_hinge(arch_paths[a], model != AQ_MODEL_BLOCKS,

@@ -146,8 +146,9 @@ void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
   double ll;
   if (aq_arch_liftoff(a, &lj, &ll))
     fprintf(stderr, "archquake: %s: warning: a mechanism in which joint %zu lifts off has "
-                    "lambda = %.6g, below every four-hinge set's (%.6g): archquake models "
-                    "four-hinge mechanisms only, so it overestimates this arch\n",
+                    "lambda = %.6g, below every four-hinge set's (%.6g): the four-hinge "
+                    "models do not describe it and overestimate this arch; --model blocks "
+                    "follows it\n",
             path, lj, ll, ml0);
   if (aq_arch_searched(a) || !(ml0 < l0 - MIN_SET_TIE_REL * fabs(l0)))
     return;

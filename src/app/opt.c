@@ -3,6 +3,7 @@
 #include "opt.h"
 
 #include "../arch/arch.h"
+#include "../blocks/blocks.h"
 #include "../io/number.h"
 
 #include <errno.h>
@@ -183,6 +184,17 @@ int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction)
   fprintf(stderr, "archquake: %s: friction: expected a Coulomb coefficient for the block "
                   "model (--model blocks, --check blocks: [contact] friction or --friction), "
                   "got none\n", arch_path);
+  return 1;
+}
+
+int aq_opt_blocks_spread(const char *arch_path, int blocks, const aq_arch *arch)
+{
+  aq_error e;
+  aq_error_clear(&e);
+  if (!blocks || aq_blocks_check_spread(arch, aq_arch_spread(arch), &e) == AQ_OK)
+    return 0;
+  snprintf(e.input, sizeof e.input, "%s", arch_path);
+  aq_error_print(&e, stderr);
   return 1;
 }
 

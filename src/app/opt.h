@@ -36,6 +36,11 @@ int aq_opt_cor_momentum(const char *arch_path, int cor_given, int momentum);
 /* The block model needs a friction: 1 (after one line naming the arch
  * file) when blocks is set and the arch has none (friction NAN), else 0. */
 int aq_opt_blocks_friction(const char *arch_path, int blocks, double friction);
+/* The block model (blocks set) can never span supports spread farther
+ * than the arch's voussoirs reach ([supports] spread_m,
+ * aq_blocks_check_spread): 1 after one line naming the arch file, the
+ * field and the limit, else 0. */
+int aq_opt_blocks_spread(const char *arch_path, int blocks, const aq_arch *arch);
 /* An arch file's [supports] spread_m (> 0) under a four-hinge model
  * (four_hinge): one warning line, since only the block model spreads the
  * supports; the four-hinge model runs the arch as drawn.  1 if warned. */

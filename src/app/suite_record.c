@@ -328,10 +328,13 @@ int aq_suite_arches(suite *S)
         break;
       }
     aq_mechanism_warn_minimum(c->arch_paths[a], S->arches[a]);
-    aq_opt_spread_four_hinge(c->arch_paths[a], c->model != AQ_MODEL_BLOCKS,
-                             aq_arch_spread(S->arches[a]));
-    bad_arch |= aq_opt_blocks_friction(c->arch_paths[a],
-                                       c->model == AQ_MODEL_BLOCKS || c->check_blocks,
+    int blocks = c->model == AQ_MODEL_BLOCKS || c->check_blocks;
+    if (aq_opt_blocks_spread(c->arch_paths[a], blocks, S->arches[a]))
+      bad_arch = 1; /* the spread's refusal alone, not its warning too */
+    else
+      aq_opt_spread_four_hinge(c->arch_paths[a], c->model != AQ_MODEL_BLOCKS,
+                               aq_arch_spread(S->arches[a]));
+    bad_arch |= aq_opt_blocks_friction(c->arch_paths[a], blocks,
                                        aq_arch_friction(S->arches[a]));
     bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
                                     aq_arch_dynamics_of(S->arches[a])->impact ==

@@ -462,10 +462,13 @@ aq_lp4_status aq_lp4_solve(const aq_lp4_row *row, size_t n, const double c[4],
 /* What the search found besides the set. */
 typedef struct {
   size_t programs;       /* linear programs solved */
+  int enumerated;        /* 1: a direction's branch and bound ran out and every set was
+                            enumerated instead (search.c) */
   /* 1: a mechanism in which joint liftoff_joint lifts off (both its ends
    * open: no four-hinge set does that) has the multiplier liftoff_lambda,
-   * lower than the four-hinge minimum; archquake models four-hinge
-   * mechanisms only, so its lambda0 is then above the arch's */
+   * lower than the four-hinge minimum, whose lambda0 is then above the
+   * arch's (the four-hinge models do not describe the arch; the block
+   * model does) */
   int liftoff;
   size_t liftoff_joint;
   double liftoff_lambda;
@@ -629,8 +632,8 @@ int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0);
 
 /* 1 if a mechanism in which a joint lifts off (both its ends open) has a
  * lower multiplier than every four-hinge set (aq_search_info): *joint and
- * *lambda (either may be NULL); archquake models four-hinge mechanisms
- * only, so its lambda0 then overestimates the arch's. */
+ * *lambda (either may be NULL); the four-hinge models do not describe it,
+ * and their lambda0 then overestimates the arch's. */
 int aq_arch_liftoff(const aq_arch *a, size_t *joint, double *lambda);
 
 /* The arch's statics with friction (friction.c). */

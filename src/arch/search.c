@@ -53,6 +53,24 @@
  * is reported (aq_search_info), for the warning that the four-hinge
  * minimum is then above the arch's collapse multiplier.
  *
+ * When a lift-off governs, no four-hinge set is statically admissible: one
+ * whose line of thrust stayed inside the arch would be a feasible point of
+ * the program with lambda = its lambda0 (static theorem: <= the optimum)
+ * and a mechanism (kinematic theorem: >= the optimum), so it would tie the
+ * optimum and be among the vertex's tight rows.  The four-hinge minimum is
+ * then the lowest load at which a four-hinge mechanism can form, an upper
+ * bound above the lift-off's; its line of thrust leaves the section.
+ *
+ * The branch and bound is exact but can need many programs on flat arches
+ * (every four-hinge set there has its thrust outside the arch, so the
+ * bound, the line of thrust kept inside, is loose): a direction's branch
+ * and bound has a budget of programs, about the time of enumerating every
+ * set (budget()), and when it runs out every set of that direction is
+ * enumerated instead (enumerate(): lambda0_fast for each of the 16 C(n+1,
+ * 4), a screen by the program's rows, the 9x9 for the lowest in increasing
+ * order), up to ENUM_MAX sets (74 voussoirs).  Beyond that the search gives
+ * up in one line naming the lift-off that governs.
+ *
  * The set read from a vertex has its lambda0 computed again by virtual
  * work (lambda0_fast: the same formula and prefix sums for every set) and
  * checked with the 9x9 (eq. (3): every hinge reaction compressive).  Of
@@ -89,7 +107,12 @@
 #define TIGHT_REL 1e-9    /* a row within this of its bound (in the scaled moments, units of
                              the arch's weight times its size) counts as tight */
 #define OPT_TOL 1e-13     /* a row's slack (scaled moment) this far below 0 is a violation */
-#define MAX_PROGRAMS 4096 /* programs solved at most in the branch and bound */
+#define MAX_PROGRAMS 4096 /* programs solved at most in a direction's branch and bound */
+#define MIN_PROGRAMS 16   /* ... and at least, before it gives way to the enumeration */
+#define SETS_PER_PROGRAM 2500.0 /* sets enumerated in the time of one program (measured 20 ns
+                                   a set, 50-150 us a program at 20-74 voussoirs) */
+#define ENUM_MAX 2e7      /* sets enumerated at most when it runs out: 16 C(n + 1, 4),
+                             n <= 74 voussoirs */
 #define MAX_TIGHT AQ_LP4_MAX_TIGHT /* tight rows examined at most (C(12, 4) = 495 subsets) */
 
 static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
@@ -246,6 +269,9 @@ typedef struct {
   aq_hinge_set hs;
   double lambda0;
   int failed;          /* a program failed, or too many */
+  size_t dir_programs; /* programs solved in this direction */
+  size_t max_programs; /* at most (budget()) */
+  int ran_out;         /* this direction used its budget without settling */
   aq_search_info info;
 } bb;
 
@@ -358,8 +384,9 @@ static lp_status node(bb *B, int relax, int depth)
   double obj = 0;
   if (B->failed || (relax && B->have))
     return LP_FAILED;
-  if (++B->info.programs > MAX_PROGRAMS) {
-    B->failed = 1;
+  B->info.programs++;
+  if (++B->dir_programs > B->max_programs) {
+    B->failed = B->ran_out = 1;
     return LP_FAILED;
   }
   lp_status st = lp_solve(B->lp, B->nrows, relax, B->ex, tight, &nt, &nb, &obj);
@@ -387,6 +414,206 @@ static lp_status node(bb *B, int relax, int depth)
       child(B, tight[k], relax, depth);
   }
   return st;
+}
+
+/* ---- the exact enumeration, when the branch and bound runs out ------ */
+
+/* A set as one 32-bit key (n + 1 <= 128 joints): its face pattern (the
+ * order of ties, pattern()), then its joints, so that the order of keys is
+ * before()'s among sets of equal lambda0. */
+typedef struct {
+  double l0;
+  uint32_t key;
+} cand;
+
+static uint32_t set_key(int pat, const size_t j[4])
+{
+  return (uint32_t)pat << 28 | (uint32_t)j[0] << 21 | (uint32_t)j[1] << 14 |
+         (uint32_t)j[2] << 7 | (uint32_t)j[3];
+}
+
+static void key_set(uint32_t key, aq_hinge_set *hs)
+{
+  for (int k = 0; k < 4; k++) {
+    hs->joint[k] = (key >> (7 * (3 - k))) & 127;
+    hs->face[k] = (key >> (28 + 3 - k)) & 1 ? 'i' : 'e';
+  }
+}
+
+/* 1 if a comes after b: a larger lambda0, or an equal one and a larger key. */
+static int cand_after(const cand *a, const cand *b)
+{
+  return a->l0 > b->l0 || (a->l0 == b->l0 && a->key > b->key);
+}
+
+static int cand_cmp(const void *a, const void *b)
+{
+  return cand_after(a, b) - cand_after(b, a);
+}
+
+/* The sets enumerated: 16 C(n + 1, 4). */
+static double enum_count(size_t n)
+{
+  double m = (double)n + 1;
+  return 16 * m * (m - 1) * (m - 2) * (m - 3) / 24;
+}
+
+/* A cheap screen before the 9x9: 1 unless the line of thrust through the
+ * four hinge points r[0..3] (the program's rows made tight, a 4x4 solved
+ * by elimination) pulls across a hinge's joint, i.e. leaves the other end
+ * of that joint's row violated by more than ENUM_SCREEN (the rows' scaled
+ * units).  A singular system passes (the 9x9 decides). */
+#define ENUM_SCREEN 1e-9
+static int screen(const aq_lp4_row *lp, const size_t r[4])
+{
+  double A[4][5];
+  for (int i = 0; i < 4; i++) {
+    for (int k = 0; k < 4; k++)
+      A[i][k] = lp[r[i]].g[k];
+    A[i][4] = lp[r[i]].h;
+  }
+  for (int c = 0; c < 4; c++) {
+    int piv = c;
+    for (int i = c + 1; i < 4; i++)
+      if (fabs(A[i][c]) > fabs(A[piv][c]))
+        piv = i;
+    if (!(fabs(A[piv][c]) > 1e-14))
+      return 1;
+    for (int k = 0; k < 5; k++) {
+      double t = A[c][k];
+      A[c][k] = A[piv][k];
+      A[piv][k] = t;
+    }
+    for (int i = 0; i < 4; i++)
+      if (i != c) {
+        double f = A[i][c] / A[c][c];
+        for (int k = c; k < 5; k++)
+          A[i][k] -= f * A[c][k];
+      }
+  }
+  double x[4];
+  for (int k = 0; k < 4; k++)
+    x[k] = A[k][4] / A[k][k];
+  for (int i = 0; i < 4; i++) {
+    const aq_lp4_row *o = &lp[r[i] ^ 1];
+    double gx = 0;
+    for (int k = 0; k < 4; k++)
+      gx += o->g[k] * x[k];
+    if (o->h - gx < -ENUM_SCREEN)
+      return 0;
+  }
+  return 1;
+}
+
+/* Every set of every face pattern that ground acceleration of sign act
+ * drives, by lambda0_fast, in batches of the ENUM_BATCH lowest (above the
+ * previous batch, at most B's best) that pass screen(), each batch checked
+ * with the 9x9 in increasing order: the lowest admissible set merges into
+ * B (before()).  The rows B->lp must be those of the direction act drives
+ * (s = -act).  0, or -1 out of memory. */
+#define ENUM_BATCH 256
+static int enumerate(bb *B, int act)
+{
+  const aq_geom *g = B->g;
+  size_t n = g->p.voussoirs;
+  aq_vec2 *pt = malloc(2 * (n + 1) * sizeof *pt);
+  cand *heap = malloc(ENUM_BATCH * sizeof *heap);
+  if (!pt || !heap) {
+    free(pt);
+    free(heap);
+    return -1;
+  }
+  for (size_t j = 0; j <= n; j++) {
+    pt[2 * j] = aq_geom_joint_point(g, j, 'i');
+    pt[2 * j + 1] = aq_geom_joint_point(g, j, 'e');
+  }
+  cand floor = {-HUGE_VAL, 0};
+  int have_floor = 0;
+  B->info.enumerated = 1;
+  for (;;) {
+    size_t nh = 0;
+    double cap = B->have ? B->lambda0 + TIE_REL * fabs(B->lambda0) : HUGE_VAL;
+    for (int pat = 0; pat < 16; pat++) {
+      int open[4];
+      for (int k = 0; k < 4; k++)
+        open[k] = (pat >> (3 - k)) & 1 ? 1 : -1; /* i opens +1 */
+      size_t j[4];
+      for (j[0] = 0; j[0] + 3 <= n; j[0]++)
+        for (j[1] = j[0] + 1; j[1] + 2 <= n; j[1]++)
+          for (j[2] = j[1] + 1; j[2] + 1 <= n; j[2]++)
+            for (j[3] = j[2] + 1; j[3] <= n; j[3]++) {
+              size_t r[4];
+              aq_vec2 P[4];
+              for (int k = 0; k < 4; k++) {
+                r[k] = 2 * j[k] + (open[k] < 0);
+                P[k] = pt[r[k]];
+              }
+              double l0;
+              int a = 0;
+              if (!lambda0_fast(g, j, P, open[0], open, &l0, &a) || a != act ||
+                  !isfinite(l0) || l0 > cap)
+                continue;
+              cand c = {l0, set_key(pat, j)};
+              if ((have_floor && !cand_after(&c, &floor)) ||
+                  (nh == ENUM_BATCH && !cand_after(&heap[0], &c)) || !screen(B->lp, r))
+                continue;
+              size_t i = nh;
+              if (nh < ENUM_BATCH) { /* push, sift up */
+                nh++;
+                for (; i > 0 && cand_after(&c, &heap[(i - 1) / 2]); i = (i - 1) / 2)
+                  heap[i] = heap[(i - 1) / 2];
+              } else { /* replace the largest, sift down */
+                i = 0;
+                for (;;) {
+                  size_t ch = 2 * i + 1;
+                  if (ch >= nh)
+                    break;
+                  if (ch + 1 < nh && cand_after(&heap[ch + 1], &heap[ch]))
+                    ch++;
+                  if (!cand_after(&heap[ch], &c))
+                    break;
+                  heap[i] = heap[ch];
+                  i = ch;
+                }
+              }
+              heap[i] = c;
+            }
+    }
+    if (nh == 0)
+      break;
+    qsort(heap, nh, sizeof *heap, cand_cmp);
+    for (size_t i = 0; i < nh; i++) {
+      aq_hinge_set hs;
+      key_set(heap[i].key, &hs);
+      if (B->have && !before(heap[i].l0, &hs, B->lambda0, &B->hs))
+        continue;
+      if (!compressive(g, &hs, B->g_mps2))
+        continue;
+      B->have = 1;
+      B->hs = hs;
+      B->lambda0 = heap[i].l0;
+    }
+    if (nh < ENUM_BATCH || (B->have && heap[nh - 1].l0 > B->lambda0 + TIE_REL * fabs(B->lambda0)))
+      break; /* every candidate was in this batch, or the rest are above the minimum */
+    floor = heap[nh - 1];
+    have_floor = 1;
+  }
+  free(pt);
+  free(heap);
+  return 0;
+}
+
+/* The programs a direction's branch and bound may solve: about the time
+ * the enumeration would take (so that an arch the branch and bound does not
+ * settle costs at most twice the enumeration), within [MIN_PROGRAMS,
+ * MAX_PROGRAMS]; MAX_PROGRAMS when the enumeration is out of reach. */
+static size_t budget(size_t n)
+{
+  double e = enum_count(n);
+  if (e > ENUM_MAX)
+    return MAX_PROGRAMS;
+  double p = e / SETS_PER_PROGRAM;
+  return p < MIN_PROGRAMS ? MIN_PROGRAMS : p > MAX_PROGRAMS ? MAX_PROGRAMS : (size_t)p;
 }
 
 /* aq_search_minimum (act 0) and aq_search_direction (act -1 or +1). */
@@ -417,7 +644,21 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
       continue;
     aq_thrust_rows(g, s, 0, B.lp);
     memset(B.seen, 0, SEEN_SLOTS * sizeof *B.seen); /* each direction its own program */
+    B.dir_programs = 0;
+    B.ran_out = 0;
+    B.max_programs = budget(n);
     infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
+    if (B.ran_out) {
+      if (enum_count(n) > ENUM_MAX)
+        break; /* B.failed: no set settled */
+      B.failed = 0; /* the enumeration settles this direction exactly */
+      if (enumerate(&B, -s) != 0) {
+        free(B.lp);
+        free(B.ex);
+        free(B.seen);
+        return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+      }
+    }
   }
   if (!act && !B.have && infeasible == 2 && !B.failed) {
     /* no line of thrust fits for any lambda: a set gravity drives */
@@ -433,12 +674,15 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
     B.info.liftoff = 0; /* no lower than the four-hinge minimum */
   if (info)
     *info = B.info;
-  if (B.failed && B.info.programs > MAX_PROGRAMS)
+  if (B.failed && B.ran_out)
     return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
-                        "expected the minimum four-hinge mechanism within %d linear programs, "
-                        "got none settled (a mechanism with joint %zu lifting off has lambda "
-                        "= %.6g; archquake models four-hinge mechanisms only)",
-                        MAX_PROGRAMS, B.info.liftoff_joint, B.info.liftoff_lambda);
+                        "expected the minimum four-hinge mechanism, got none settled: %d "
+                        "linear programs left it open and the %.4g sets of %zu voussoirs are "
+                        "more than the %.4g enumerated at most (74 voussoirs); a mechanism "
+                        "with joint %zu lifting off has lambda = %.6g, below every four-hinge "
+                        "set: the four-hinge models do not describe it",
+                        MAX_PROGRAMS, enum_count(n), n, ENUM_MAX, B.info.liftoff_joint,
+                        B.info.liftoff_lambda);
   if (!B.have) {
     char dir[48] = "";
     if (act)

@@ -76,6 +76,47 @@ static aq_blocks *alloc_common(aq_error *err)
   return b;
 }
 
+/* The spread's limit: the chain of voussoirs reaches at most the sum of
+ * their longest spans from a point of one joint to a point of the next
+ * (the diagonals); supports spread farther than that less their nearest
+ * distance are out of its reach. */
+double aq_blocks_spread_reach(const aq_arch *arch)
+{
+  const aq_geom *g = aq_arch_geom(arch);
+  size_t n = g->p.voussoirs;
+  double reach = 0;
+  for (size_t k = 0; k < n; k++) {
+    aq_vec2 a[2] = {g->ji[k], g->je[k]}, c[2] = {g->ji[k + 1], g->je[k + 1]};
+    double d = 0;
+    for (int x = 0; x < 2; x++)
+      for (int y = 0; y < 2; y++)
+        d = fmax(d, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
+    reach += d;
+  }
+  double near = INFINITY;
+  aq_vec2 a[2] = {g->ji[0], g->je[0]}, c[2] = {g->ji[n], g->je[n]};
+  for (int x = 0; x < 2; x++)
+    for (int y = 0; y < 2; y++)
+      near = fmin(near, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
+  return reach - near;
+}
+
+/* spread_m against the limit spread_max (0 for bodies without an arch). */
+static aq_status spread_within(double spread_m, double spread_max, aq_error *err)
+{
+  if (!(spread_m >= 0) || !(spread_m < spread_max || spread_m == 0))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m",
+                        "expected 0 <= spread < %.6g m (beyond it the voussoirs cannot "
+                        "reach across the supports), got %g",
+                        spread_max, spread_m);
+  return AQ_OK;
+}
+
+aq_status aq_blocks_check_spread(const aq_arch *arch, double spread_m, aq_error *err)
+{
+  return spread_within(spread_m, aq_blocks_spread_reach(arch), err);
+}
+
 aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err)
 {
   aq_blocks *b = alloc_common(err);
@@ -103,26 +144,7 @@ aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err)
       barrier = fmin(barrier, p->mass_kg * p->g_mps2 * pt.y_m);
   }
   b->dv_floor_j = isfinite(barrier) ? COLLAPSE_FLOOR * barrier : 0;
-  /* the spread's limit: the chain of voussoirs reaches at most the sum of
-   * their longest spans from a point of one joint to a point of the next
-   * (the diagonals); supports spread farther than that less their
-   * nearest distance are out of its reach */
-  size_t n = g->p.voussoirs;
-  double reach = 0;
-  for (size_t k = 0; k < n; k++) {
-    aq_vec2 a[2] = {g->ji[k], g->je[k]}, c[2] = {g->ji[k + 1], g->je[k + 1]};
-    double d = 0;
-    for (int x = 0; x < 2; x++)
-      for (int y = 0; y < 2; y++)
-        d = fmax(d, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
-    reach += d;
-  }
-  double near = INFINITY;
-  aq_vec2 a[2] = {g->ji[0], g->je[0]}, c[2] = {g->ji[n], g->je[n]};
-  for (int x = 0; x < 2; x++)
-    for (int y = 0; y < 2; y++)
-      near = fmin(near, hypot(a[x].x - c[y].x, a[x].y - c[y].y));
-  b->spread_max = reach - near;
+  b->spread_max = aq_blocks_spread_reach(arch);
   return b;
 }
 
@@ -198,11 +220,9 @@ double aq_blocks_spread_max(const aq_blocks *b) { return b->spread_max; }
 
 aq_status aq_blocks_set_spread(aq_blocks *b, double spread_m, aq_error *err)
 {
-  if (!(spread_m >= 0) || !(spread_m < b->spread_max || spread_m == 0))
-    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m",
-                        "expected 0 <= spread < %.6g m (beyond it the voussoirs cannot "
-                        "reach across the supports), got %g",
-                        b->spread_max, spread_m);
+  aq_status rc = spread_within(spread_m, b->spread_max, err);
+  if (rc != AQ_OK)
+    return rc;
   b->spread_m = spread_m;
   return AQ_OK;
 }

@@ -99,6 +99,12 @@ aq_status aq_blocks_set_dt(aq_blocks *b, double dt_s, aq_error *err);      /* > 
  * record starts): 0 <= spread_m < the span's limit (aq_blocks_spread_max). */
 aq_status aq_blocks_set_spread(aq_blocks *b, double spread_m, aq_error *err);
 double aq_blocks_spread_max(const aq_blocks *b);
+/* The arch's limit of the spread (what aq_blocks_spread_max gives its
+ * model), and the check aq_blocks_set_spread makes of spread_m against it,
+ * without a model (no Siconos): for the commands to refuse an arch whose
+ * supports the block model could never span before any run. */
+double aq_blocks_spread_reach(const aq_arch *arch);
+aq_status aq_blocks_check_spread(const aq_arch *arch, double spread_m, aq_error *err);
 aq_status aq_blocks_set_control(aq_blocks *b, aq_blocks_control c, aq_error *err);
 void aq_blocks_set_history(aq_blocks *b, int on);
 /* Every step's acceleration times scale (its sign the polarity; the
