@@ -457,15 +457,60 @@ static aq_blocks *energy_model(const aq_arch *A, aq_blocks_control c, double e_n
   return B;
 }
 
+/* One run of arch A (hinges c, friction 10, e_n = 1, step h) through 1.5
+ * lambda0 for 0.152 s, then free to 1 s: the largest |E - D - E0| / E0
+ * after the pulse (E kinetic + potential, computed here; D the work of
+ * friction the stepper reports; E0 at the pulse's end), the impact stages,
+ * and the largest work friction did in one step (never > 0). */
+static double energy_balance(const aq_arch *A, aq_blocks_control c, double h, size_t *stages,
+                             double *gain)
+{
+  const aq_path *p = aq_arch_path(A, 0);
+  double a = p->act_sign * 1.5 * p->lambda0 * p->g_mps2;
+  aq_blocks *B = energy_model(A, c, 1);
+  if (!B)
+    return NAN;
+  aq_moreau *m = aq_blocks_moreau(B);
+  const aq_bodies *s = aq_blocks_bodies(B);
+  size_t n = (size_t)llround(1.0 / h), n1 = (size_t)llround(0.152 / h);
+  double gx[2] = {0, 0}, e0 = NAN, d = 0, w = 0, rest = 0;
+  /* E0 from the arch at rest (the potential's zero is arbitrary) */
+  for (size_t b = 0; b < s->nb; b++)
+    rest += s->body[b].mass_kg * s->g_mps2 * s->body[b].c0.y;
+  aq_error e;
+  aq_error_clear(&e);
+  *stages = 0;
+  *gain = 0;
+  for (size_t j = 0; j < n; j++) {
+    aq_step_info info;
+    if (!aq_check(aq_moreau_step(m, h, j < n1 ? a : 0, 0, gx, &info, &e) == AQ_OK,
+                  "step: %s", e.message)) {
+      w = NAN;
+      break;
+    }
+    double en = energy_j(s, aq_moreau_q(m), aq_moreau_v(m));
+    if (j + 1 == n1)
+      e0 = en;
+    if (j + 1 <= n1)
+      continue;
+    *stages += (size_t)info.stage;
+    *gain = fmax(*gain, info.friction_j / (e0 - rest));
+    d += info.friction_j;
+    w = fmax(w, fabs(en - d - e0));
+  }
+  aq_blocks_free(B);
+  return w / (e0 - rest);
+}
+
 /* e_n = 1, friction 10, the hinge-controlled arch (oppenheim, thick) after
  * 1.5 lambda0 for 0.152 s: over the next 0.85 s (dozens of impacts: the
  * voussoirs leave their hinges at the first, as rigid bodies with e = 1
  * do) the energy E (kinetic + potential, the ground still) less the work
  * D of friction (the impacts of corners that land sliding, even at
- * friction 10; D <= 0 at every step) stays within 0.5 h per second of
- * E0, its value at the pulse's end, and halves with the step (measured
- * 1.4e-4 and 6.9e-5 for oppenheim, 7.5e-5 and 3.7e-5 for thick at 0.0005
- * and 0.00025 s; Newton's law per corner drifted by up to 1 %). */
+ * friction 10; D never grows) stays within 0.5 h per second of E0, its
+ * value at the pulse's end, and halves with the step (measured 1.4e-4 and
+ * 6.9e-5 for oppenheim, 7.5e-5 and 3.7e-5 for thick at 0.0005 and
+ * 0.00025 s; Newton's law per corner moved E by 0.6 to 3.2 E0). */
 AQ_TEST(blocks_arch_energy_restitution_one)
 {
   static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
@@ -473,49 +518,47 @@ AQ_TEST(blocks_arch_energy_restitution_one)
     aq_arch *A = aq_test_arch_load(two[k]);
     if (!A)
       continue;
-    const aq_path *p = aq_arch_path(A, 0);
-    double a = p->act_sign * 1.5 * p->lambda0 * p->g_mps2, worst[2] = {NAN, NAN};
+    double worst[2];
     for (int i = 0; i < 2; i++) {
-      double h = i ? 2.5e-4 : 5e-4;
-      aq_blocks *B = energy_model(A, AQ_BLOCKS_FIXED, 1);
-      if (!B)
-        break;
-      aq_moreau *m = aq_blocks_moreau(B);
-      const aq_bodies *s = aq_blocks_bodies(B);
-      size_t n = (size_t)llround(1.0 / h), n1 = (size_t)llround(0.152 / h), stages = 0;
-      double gx[2] = {0, 0}, e0 = NAN, d = 0, w = 0, gain = 0;
-      aq_error e;
-      aq_error_clear(&e);
-      for (size_t j = 0; j < n; j++) {
-        aq_step_info info;
-        if (!aq_check(aq_moreau_step(m, h, j < n1 ? a : 0, 0, gx, &info, &e) == AQ_OK,
-                      "%s step: %s", two[k], e.message))
-          break;
-        double en = energy_j(s, aq_moreau_q(m), aq_moreau_v(m));
-        if (j + 1 == n1)
-          e0 = en;
-        if (j + 1 <= n1)
-          continue;
-        stages += (size_t)info.stage;
-        gain = fmax(gain, info.friction_j);
-        d += info.friction_j;
-        w = fmax(w, fabs(en - d - e0));
-      }
-      /* E0 from the arch at rest (the potential's zero is arbitrary) */
-      double rest = 0;
-      for (size_t b = 0; b < s->nb; b++)
-        rest += s->body[b].mass_kg * s->g_mps2 * s->body[b].c0.y;
-      worst[i] = w / (e0 - rest);
+      double h = i ? 2.5e-4 : 5e-4, gain;
+      size_t stages;
+      worst[i] = energy_balance(A, AQ_BLOCKS_FIXED, h, &stages, &gain);
       aq_check(stages >= 10, "%s, dt %g: impacts by the global law (%zu stages)", two[k], h,
                stages);
-      aq_check(gain <= 1e-12 * (e0 - rest), "%s, dt %g: friction never gives energy (%g J)",
-               two[k], h, gain);
+      aq_check(gain <= 1e-12, "%s, dt %g: friction never gives energy (%g E0)", two[k], h,
+               gain);
       aq_check(worst[i] < 0.5 * h, "%s, dt %g: |E - D - E0| / E0 = %.3e", two[k], h,
                worst[i]);
-      aq_blocks_free(B);
     }
     aq_check(worst[0] / worst[1] > 1.7 && worst[0] / worst[1] < 2.3,
              "%s: first order (%.3e, %.3e)", two[k], worst[0], worst[1]);
+    aq_arch_free(A);
+  }
+}
+
+/* The same with every joint free: the 20 voussoirs part at the first
+ * impact and slide down their joints (D reaches about E0: the potential
+ * energy falls); the balance
+ * holds within 0.5 % of E0 at 0.0005 s (measured 1.6e-3 oppenheim, 2.4e-3
+ * thick) but does not converge cleanly as the step halves
+ * (docs/blocks.md). */
+AQ_TEST(blocks_arch_energy_restitution_one_free)
+{
+  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+  for (size_t k = 0; k < 2; k++) {
+    aq_arch *A = aq_test_arch_load(two[k]);
+    if (!A)
+      continue;
+    double gain;
+    size_t stages;
+    double w = energy_balance(A, AQ_BLOCKS_FREE, 5e-4, &stages, &gain);
+    aq_check(stages >= 100, "%s: impacts by the global law (%zu stages)", two[k], stages);
+    /* a joint that closes in a step: its P_t times the mean of its
+     * tangential velocities is the scheme's estimate of the work, which
+     * may be slightly positive (1.3e-6 E0 measured) */
+    aq_check(gain <= 1e-5, "%s: friction gives no more than the scheme's error (%g E0)",
+             two[k], gain);
+    aq_check(w < 5e-3, "%s, free: |E - D - E0| / E0 = %.3e", two[k], w);
     aq_arch_free(A);
   }
 }

@@ -20,8 +20,9 @@
  * Impacts (docs/blocks.md, "Impacts: the global law").  e_t = 0 but under
  * Newton's law per corner (AQ_IMPACT_NEWTON, kept for comparison: e_t =
  * e_n).  Under the global law, with e_n > 0, a step in which an open
- * corner lands (approaching, its predicted gap negative, or carried
- * through its contact by the step's positions) first takes an impact
+ * corner lands (approaching, its predicted gap at most the activation
+ * threshold, or carried through its contact by the step's positions)
+ * first takes an impact
  * stage: the same problem from v- without the step's forces at e = 0 (the
  * plastic impact v_p) and v+ = v_p + e_n (v_p - v-), which changes the
  * kinetic energy by (e_n^2 - 1)/2 |v_p - v-|^2_M + (1 + e_n) u_t . P_t
@@ -66,7 +67,7 @@
 enum { MAX_GUESSES = 8, MAX_LATE = 3 };
 /* Impact stages per step (the global law): a sequence of impacts longer
  * than this ends in the step's plastic law. */
-enum { MAX_STAGES = 16 };
+enum { MAX_STAGES = 100 };
 /* The contact conditions of an accepted solution hold within this fraction
  * of the step's velocity scale (g h + the bodies' free velocities) and of
  * the impulse scale (the moving mass times it). */
@@ -706,7 +707,9 @@ static int prepare(aq_moreau *m, double h, double ax, double ay, const double gv
 {
   const aq_bodies *s = m->s;
   size_t nc = 2 * m->nj;
-  int impact = 0;
+  /* under the global law a corner predicted within the activation
+   * threshold lands too (at e = 0 the count of impacts is as it was) */
+  int impact = 0, global = m->law == AQ_IMPACT_GLOBAL && m->e_n > 0;
   /* active: closed in the step before (its rate, evaluated in the new
    * configuration, is O(h omega^2 d) either way), or predicted closed */
   for (size_t c = 0; c < nc; c++)
@@ -729,7 +732,8 @@ static int prepare(aq_moreau *m, double h, double ax, double ay, const double gv
     m->trial[j] = mask(m->st[j], m->active + 2 * j);
     for (int k = 0; k < 2; k++)
       if (m->active[2 * j + k] && m->un0[2 * j + k] < -CHECK_REL * m->vscale &&
-          (m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] < 0 || m->force[2 * j + k]) &&
+          (m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] < 0 || m->force[2 * j + k] ||
+           (global && m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] <= m->closed_m)) &&
           !aq_jstate_closed(m->st[j], k))
         impact = 1;
   }
@@ -848,9 +852,12 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
   if (global)
     memset(m->force, 0, nc);
   /* the friction's work at the joints that slide at the step's start or
-   * end: P_t times the tangential velocity at the step's middle */
+   * end, or close, open or change corners in it: P_t times the tangential
+   * velocity at the step's middle (a joint that sticks throughout does
+   * work only by the scheme's error) */
   for (size_t c = 0; c < nc; c++)
-    if (m->pt[c] != 0 && (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0))
+    if (m->pt[c] != 0 && (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0 ||
+                          m->trial[c / 2].kind != m->st[c / 2].kind))
       info->friction_j +=
           m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
   m->gvx[0] = gvx1[0];

@@ -20,7 +20,8 @@
  *             root attribute, the /records table and the /arches groups as
  *             text, the runs (aq_h5_read_suite) and the capacity tables;
  *             each file's kind checked first (aq_page_file_kind)
- *   html.c    the page
+ *   html.c    the page (its sections: html_run.c, html_arch.c,
+ *             html_capacity.c, html_spectrum.c, select.c; html_int.h)
  *   figure.c  a figure of src/plot as inline SVG
  *
  * Uses PLplot (global state) and HDF5: call from one thread.  Nothing here

@@ -317,6 +317,12 @@ aq_status aq_plot_capacity(const aq_h5_capacity_table *t, const aq_plot_capacity
 aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err);
+/* The --data CSV of a spectra figure (plot spectrum, plot select): its
+ * axes (period, PSA), the header line, then rows(f, ctx), through a
+ * temporary renamed onto data at the end (aq_plot_csv_open). */
+aq_status aq_plot_spectra_csv(const char *data, const char *header,
+                              void (*rows)(FILE *f, const void *ctx), const void *ctx,
+                              aq_error *err);
 
 /* select.c: spectra against a target: PSA (g) against period (s, log
  * axis), the target and band x target (dashed) from a third of the range's

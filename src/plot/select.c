@@ -123,6 +123,23 @@ static int draw(void *ctx, aq_error *err)
   return 0;
 }
 
+/* --data's rows: the target, the mean, each spectrum (curve, period_s,
+ * psa_g). */
+static void target_rows(FILE *f, const void *ctx)
+{
+  const fig *F = ctx;
+  const aq_plot_target_set *s = F->s;
+  for (size_t k = 0; k < F->nt; k++)
+    fprintf(f, "target,%s,%s\n", AQ_TEXT_NUM(F->tt[k]), AQ_TEXT_NUM(F->ta[k]));
+  for (size_t k = 0; k < s->nper; k++)
+    fprintf(f, "mean,%s,%s\n", AQ_TEXT_NUM(s->period_s[k]), AQ_TEXT_NUM(F->mean[k]));
+  for (size_t i = 0; i < s->n; i++)
+    for (size_t k = 0; k < s->nper; k++) {
+      aq_plot_csv_text(f, s->label[i]);
+      fprintf(f, "%s,%s\n", AQ_TEXT_NUM(s->period_s[k]), AQ_TEXT_NUM(s->psa_g[i * s->nper + k]));
+    }
+}
+
 aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const char *data,
                          double *draw_s, aq_error *err)
 {
@@ -176,27 +193,8 @@ aq_status aq_plot_target(const aq_plot_target_set *s, const char *target, const 
   F.ncol = aq_plot_key_columns(F.key, F.nkey, KEY_X0, KEY_X1, WIDTH_PX, KEY_MM);
   aq_status rc = aq_plot_render(target, WIDTH_PX, fig_height(aq_plot_key_rows(F.nkey, F.ncol)),
                                 draw, &F, draw_s, err);
-  if (rc == AQ_OK && data) {
-    aq_outfile tmp;
-    FILE *f = aq_plot_csv_open(data, &tmp, err);
-    if (!f)
-      rc = err->status;
-    else {
-      aq_plot_csv_axes(f, 2, (const char *[]){AX_X, AX_Y});
-      fprintf(f, "curve,period_s,psa_g\n");
-      for (size_t k = 0; k < F.nt; k++)
-        fprintf(f, "target,%s,%s\n", AQ_TEXT_NUM(F.tt[k]), AQ_TEXT_NUM(F.ta[k]));
-      for (size_t k = 0; k < s->nper; k++)
-        fprintf(f, "mean,%s,%s\n", AQ_TEXT_NUM(s->period_s[k]), AQ_TEXT_NUM(F.mean[k]));
-      for (size_t i = 0; i < s->n; i++)
-        for (size_t k = 0; k < s->nper; k++) {
-          aq_plot_csv_text(f, s->label[i]);
-          fprintf(f, "%s,%s\n", AQ_TEXT_NUM(s->period_s[k]),
-                  AQ_TEXT_NUM(s->psa_g[i * s->nper + k]));
-        }
-      rc = aq_plot_csv_close(&tmp, err);
-    }
-  }
+  if (rc == AQ_OK && data)
+    rc = aq_plot_spectra_csv(data, "curve,period_s,psa_g", target_rows, &F, err);
   free(F.mean);
   free(F.key);
   return rc;

@@ -150,6 +150,34 @@ static int wanted(const aq_h5_spectra_table *t, size_t i, const char *record)
          strcmp(base(t->record[i]), record) == 0;
 }
 
+aq_status aq_plot_spectra_csv(const char *data, const char *header,
+                              void (*rows)(FILE *f, const void *ctx), const void *ctx,
+                              aq_error *err)
+{
+  aq_outfile tmp;
+  FILE *f = aq_plot_csv_open(data, &tmp, err);
+  if (!f)
+    return err->status;
+  aq_plot_csv_axes(f, 2, (const char *[]){AX_X, AX_Y});
+  fprintf(f, "%s\n", header);
+  rows(f, ctx);
+  return aq_plot_csv_close(&tmp, err);
+}
+
+/* --data's rows: each curve's (record, component, damping, period_s, psa_g). */
+static void curve_rows(FILE *f, const void *ctx)
+{
+  const fig *F = ctx;
+  const aq_h5_spectra_table *t = F->t;
+  for (size_t k = 0; k < F->nc; k++)
+    for (size_t i = F->c[k].start; i < F->c[k].start + F->c[k].n; i++) {
+      aq_plot_csv_text(f, t->record[i]);
+      aq_plot_csv_text(f, t->component[i]);
+      fprintf(f, "%s,%s,%s\n", AQ_TEXT_NUM(t->damping[i]), AQ_TEXT_NUM(t->period_s[i]),
+              AQ_TEXT_NUM(t->psa_g[i]));
+    }
+}
+
 aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
                            const char *source, const char *target, const char *data,
                            double *draw_s, aq_error *err)
@@ -220,24 +248,9 @@ aq_status aq_plot_spectrum(const aq_h5_spectra_table *t, const char *record,
   F.ncol = aq_plot_key_columns(F.key, F.nc, KEY_X0, KEY_X1, WIDTH_PX, KEY_MM);
   rc = aq_plot_render(target, WIDTH_PX, fig_height(aq_plot_key_rows(F.nc, F.ncol)), draw, &F,
                       draw_s, err);
-  if (rc == AQ_OK && data) {
-    aq_outfile tmp;
-    FILE *f = aq_plot_csv_open(data, &tmp, err);
-    if (!f)
-      rc = err->status;
-    else {
-      aq_plot_csv_axes(f, 2, (const char *[]){AX_X, AX_Y});
-      fprintf(f, "record,component,damping,period_s,psa_g\n");
-      for (size_t k = 0; k < F.nc; k++)
-        for (size_t i = F.c[k].start; i < F.c[k].start + F.c[k].n; i++) {
-          aq_plot_csv_text(f, t->record[i]);
-          aq_plot_csv_text(f, t->component[i]);
-          fprintf(f, "%s,%s,%s\n", AQ_TEXT_NUM(t->damping[i]), AQ_TEXT_NUM(t->period_s[i]),
-                  AQ_TEXT_NUM(t->psa_g[i]));
-        }
-      rc = aq_plot_csv_close(&tmp, err);
-    }
-  }
+  if (rc == AQ_OK && data)
+    rc = aq_plot_spectra_csv(data, "record,component,damping,period_s,psa_g", curve_rows, &F,
+                             err);
   free(F.key);
   free(F.c);
   return rc;

@@ -396,20 +396,14 @@ static aq_status read_group(hid_t g, const char *path, aq_h5_select_file *f, aq_
 aq_status aq_h5_select_read(const char *path, aq_h5_select_file *f, aq_error *err)
 {
   memset(f, 0, sizeof *f);
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0)
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                        "expected an HDF5 file of archquake select -o, got one HDF5 cannot "
-                        "open");
-  hid_t g = H5Lexists(file, "select", H5P_DEFAULT) > 0 ? H5Gopen2(file, "select", H5P_DEFAULT)
-                                                        : -1;
-  aq_status st = g < 0 ? aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/select",
-                                      "expected the selection of archquake select -o, got a "
-                                      "file without it")
-                       : read_group(g, path, f, err);
-  if (g >= 0)
-    H5Gclose(g);
+  hid_t file, g;
+  aq_status st = aq_h5_open_output(path, "select", "select", H5I_GROUP,
+                                   "the selection of archquake select -o, got a file without it",
+                                   &file, &g, err);
+  if (st != AQ_OK)
+    return st;
+  st = read_group(g, path, f, err);
+  H5Oclose(g);
   H5Fclose(file);
   if (st != AQ_OK)
     aq_h5_select_file_free(f);

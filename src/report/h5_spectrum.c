@@ -123,33 +123,25 @@ static aq_status read_rows(hid_t d, const char *path, aq_h5_spectra_table *t,
 aq_status aq_h5_spectra_read(const char *path, aq_h5_spectra_table *t, aq_error *err)
 {
   memset(t, 0, sizeof *t);
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0)
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                        "expected an HDF5 file of archquake spectrum -o, "
-                        "got one HDF5 cannot open");
-  aq_status st;
-  hid_t d = H5Lexists(f, "spectra", H5P_DEFAULT) > 0 ? H5Dopen2(f, "spectra", H5P_DEFAULT) : -1;
-  if (d < 0) {
-    st = aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/spectra",
-                      "expected the spectra of archquake spectrum -o, got a file "
-                      "without them");
-  } else {
-    st = read_rows(d, path, t, err);
-    char peaks[16] = "";
-    hid_t a = H5Aexists(d, "peaks") > 0 ? H5Aopen(d, "peaks", H5P_DEFAULT) : -1;
-    if (a >= 0) {
-      hid_t at = H5Aget_type(a);
-      if (at >= 0 && H5Tget_size(at) < sizeof peaks)
-        H5Aread(a, at, peaks);
-      if (at >= 0)
-        H5Tclose(at);
-      H5Aclose(a);
-    }
-    t->peaks = aq_spectrum_peaks_parse(peaks);
-    H5Dclose(d);
+  hid_t f, d;
+  aq_status st = aq_h5_open_output(path, "spectrum", "spectra", H5I_DATASET,
+                                   "the spectra of archquake spectrum -o, got a file without them",
+                                   &f, &d, err);
+  if (st != AQ_OK)
+    return st;
+  st = read_rows(d, path, t, err);
+  char peaks[16] = "";
+  hid_t a = H5Aexists(d, "peaks") > 0 ? H5Aopen(d, "peaks", H5P_DEFAULT) : -1;
+  if (a >= 0) {
+    hid_t at = H5Aget_type(a);
+    if (at >= 0 && H5Tget_size(at) < sizeof peaks)
+      H5Aread(a, at, peaks);
+    if (at >= 0)
+      H5Tclose(at);
+    H5Aclose(a);
   }
+  t->peaks = aq_spectrum_peaks_parse(peaks);
+  H5Oclose(d);
   H5Fclose(f);
   if (st != AQ_OK)
     aq_h5_spectra_table_free(t);

@@ -235,3 +235,27 @@ herr_t aq_h5_array_write(hid_t g, const char *name, hid_t t, const void *buf, si
     rc = -1;
   return rc;
 }
+
+aq_status aq_h5_open_output(const char *path, const char *command, const char *name,
+                            H5I_type_t kind, const char *missing, hid_t *file, hid_t *obj,
+                            aq_error *err)
+{
+  *obj = -1;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  *file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (*file < 0)
+    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
+                        "expected an HDF5 file of archquake %s -o, got one HDF5 cannot open",
+                        command);
+  *obj = H5Lexists(*file, name, H5P_DEFAULT) > 0 ? H5Oopen(*file, name, H5P_DEFAULT) : -1;
+  if (*obj >= 0 && H5Iget_type(*obj) == kind)
+    return AQ_OK;
+  if (*obj >= 0)
+    H5Oclose(*obj);
+  *obj = -1;
+  H5Fclose(*file);
+  *file = -1;
+  char field[64];
+  snprintf(field, sizeof field, "/%s", name);
+  return aq_error_set(err, AQ_EFORMAT, path, -1, -1, field, "expected %s", missing);
+}

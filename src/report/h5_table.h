@@ -11,6 +11,8 @@
 #include <hdf5.h>
 #include <stddef.h>
 
+#include "../error.h"
+
 typedef enum {
   AQ_H5_STR = 0, /* char[size], fixed length, NUL-terminated */
   AQ_H5_VSTR,    /* const char * (NULL as ""), a variable-length string: never cut */
@@ -71,5 +73,15 @@ herr_t aq_h5_attr_strings(hid_t loc, const char *name, const char *const *v, siz
 /* Scalar string attribute (fixed length strlen + 1, NUL-terminated; NULL
  * as ""). */
 herr_t aq_h5_attr_string(hid_t loc, const char *name, const char *value);
+
+/* The file of `archquake COMMAND -o` at path, opened read-only (HDF5's
+ * automatic error printing off) into *file, and its object name, of kind
+ * H5I_GROUP or H5I_DATASET, into *obj; close them with H5Oclose and
+ * H5Fclose.  AQ_EIO when HDF5 cannot open the file, AQ_EFORMAT (field
+ * /name, "expected MISSING") when the file has no such object of that
+ * kind; nothing is left open then. */
+aq_status aq_h5_open_output(const char *path, const char *command, const char *name,
+                            H5I_type_t kind, const char *missing, hid_t *file, hid_t *obj,
+                            aq_error *err);
 
 #endif

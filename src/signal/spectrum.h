@@ -15,11 +15,11 @@
  *
  * Accuracy: the response at the samples is the exact solution for the input
  * linear between samples (Nigam & Jennings 1969), as a transition matrix
- * (spectrum.c).  The peak between samples is found wherever it could exceed
+ * (sdof.c).  The peak between samples is found wherever it could exceed
  * the peak at the samples (a rigorous bound per interval decides), as the
  * zero of the velocity inside the interval, to rounding: the PSA returned is
  * the true peak of the piecewise-linear input's response within
- * AQ_SPECTRUM_PEAK_REL (relative; the bound is stated in spectrum.c).
+ * AQ_SPECTRUM_PEAK_REL (relative; the bound is stated in sdof.c).
  * The peak is taken there (aq_spectrum_peaks EXACT), at the samples
  * (SAMPLES), or, by default, at the samples refined as PEER refines them
  * for the NGA-West2 spectra (PEER).
