@@ -134,3 +134,58 @@ AQ_TEST(demand_cli_failed_run_unmarked)
            "no demand without a run");
   remove("build/san/demand_bad.AT2");
 }
+
+AQ_TEST(demand_cli_paper_still_runs)
+{
+  /* --model paper: a run in which the arch never moves has the statics'
+   * demand, which no model changes (the work path's, to the digit), and
+   * is marked over the friction; once the arch moves the demand is nan
+   * (paper's fits carry no joint forces) and the run is not marked.  A
+   * friction under paper is named in one warning line per arch. */
+  const char *base = "records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 records/RSN1616_DUZCE_362-E.AT2 "
+                     "--arch arches/oppenheim.cfg --arch arches/search.cfg --scale 0.5,2 "
+                     "--polarity both --friction 0.33";
+  static char ref[1 << 16];
+  char cmd[1024], a[64], b[64], e2[8192];
+  snprintf(cmd, sizeof cmd, "%s --model workpath", base);
+  int rc = aq_test_run(cmd, ref, sizeof ref, e2, sizeof e2);
+  aq_check(rc == 0 && !strstr(e2, "warning: friction"), "workpath: exit 0 (%d), no warning: %s",
+           rc, e2);
+  snprintf(cmd, sizeof cmd, "%s --model paper", base);
+  rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+  const char *w = strstr(err, "warning: friction: 0.33 marks only the runs in which the arch "
+                              "never moves under --model paper");
+  const char *w2 = w ? strstr(w + 1, "warning: friction") : NULL;
+  aq_check(rc == 0 && w && w2 && !strstr(w2 + 1, "warning: friction"),
+           "paper: exit 0 (%d), one warning per arch: %s", rc, err);
+  int cl = column(out, "lambda0_first"), cs = column(out, "status");
+  static const char *const same[] = {"mu_demand", "mu_demand_joint", "slide_time_s",
+                                     "thrust_ecc_max", "thrust_ecc_time_s", "status"};
+  size_t still = 0, slides = 0, moved = 0;
+  for (int row = 1; row <= 16; row++) {
+    char l0[64];
+    str(ref, row, column(ref, "lambda0_first"), l0, sizeof l0);
+    aq_check(strcmp(str(out, row, cl, a, sizeof a), l0) == 0,
+             "row %d: the same runs move under both models (%s, %s)", row, a, l0);
+    if (strcmp(l0, "nan") == 0) { /* never moved */
+      still++;
+      slides += strcmp(str(out, row, cs, a, sizeof a), "slides") == 0;
+      for (size_t k = 0; k < sizeof same / sizeof same[0]; k++)
+        aq_check(strcmp(str(out, row, column(out, same[k]), a, sizeof a),
+                        str(ref, row, column(ref, same[k]), b, sizeof b)) == 0,
+                 "row %d never moved: %s %s under paper, %s under the work path", row, same[k],
+                 a, b);
+      aq_check(num(out, row, column(out, "mu_demand")) > 0, "row %d: a demand", row);
+    } else {
+      moved++;
+      char st[64];
+      str(out, row, cs, st, sizeof st);
+      aq_check(isnan(num(out, row, column(out, "mu_demand"))) &&
+                   isnan(num(out, row, column(out, "slide_time_s"))) && !strstr(st, "slides"),
+               "row %d moved under paper: mu_demand %g, status %s", row,
+               num(out, row, column(out, "mu_demand")), st);
+    }
+  }
+  aq_check(still >= 4 && moved >= 4 && slides >= 1,
+           "runs that never moved %zu (%zu slide), that moved %zu", still, slides, moved);
+}

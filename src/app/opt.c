@@ -210,6 +210,19 @@ int aq_opt_spread_four_hinge(const char *arch_path, int four_hinge, double sprea
   return 1;
 }
 
+int aq_opt_friction_paper(const char *arch_path, int paper, double friction)
+{
+  if (!paper || isnan(friction))
+    return 0;
+  char num[64];
+  aq_number_format(num, sizeof num, friction);
+  fprintf(stderr, "archquake: %s: warning: friction: %s marks only the runs in which the arch "
+                  "never moves under --model paper (its fits carry no joint forces: mu_demand "
+                  "is nan once the arch moves); --model workpath marks every run\n",
+          arch_path, num);
+  return 1;
+}
+
 int aq_opt_same_file(const char *a, const char *b)
 {
   struct stat sa, sb;

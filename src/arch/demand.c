@@ -832,19 +832,23 @@ static hp half_plane(const span *p, const double *n, const double *x, double m, 
 
 /* Narrow [*lo, *hi] (a/g, for sign g of a) to where h holds at both k0
  * and k1 (so between them: a convex region). */
-static void a_cut(const hp *h, double k0, double k1, double *lo, double *hi)
+static void a_cut_c(double A, double c, double *lo, double *hi)
 {
-  /* most half planes do not cut the range: four products tell */
-  double c0 = h->C - h->B * k0, c1 = h->C - h->B * k1;
-  double c = c0 < c1 ? c0 : c1;
-  if (h->A * *hi <= c && h->A * *lo <= c)
+  /* most half planes do not cut the range: two products tell */
+  if (A * *hi <= c && A * *lo <= c)
     return;
-  if (h->A > 0)
-    *hi = dmin(*hi, c / h->A);
-  else if (h->A < 0)
-    *lo = dmax(*lo, c / h->A);
+  if (A > 0)
+    *hi = dmin(*hi, c / A);
+  else if (A < 0)
+    *lo = dmax(*lo, c / A);
   else
     *lo = INFINITY; /* A = 0 and C - B k < 0: nowhere */
+}
+
+static void a_cut(const hp *h, double k0, double k1, double *lo, double *hi)
+{
+  double c0 = h->C - h->B * k0, c1 = h->C - h->B * k1;
+  a_cut_c(h->A, c0 < c1 ? c0 : c1, lo, hi);
 }
 
 /* The a/g range, about al, over the band [k0, k1] in which every half
@@ -967,11 +971,14 @@ static void full(aq_demand *d, const aq_demand_table *t, int k, const state *x, 
       if (m * nlo - xhi - e0 - e1 - e2 >= 0 && p.rm0 > 0)
         continue;
       double l[2] = {0, -d->amax}, h[2] = {d->amax, 0};
-      for (int gg = 0; gg < 2; gg++)
-        for (int e = 0; e < 2; e++) {
-          hp hh = half_plane(&p, v, v + xo, m, gg, e ? -1.0 : 1.0);
-          a_cut(&hh, k0, k1, &l[gg], &h[gg]);
-        }
+      for (int e = 0; e < 2; e++) { /* both signs of a share B and C */
+        double sx = e ? -1.0 : 1.0;
+        hp h0 = half_plane(&p, v, v + xo, m, 0, sx);
+        double A1 = p.rm0 > 0 ? sx * v[xo + 1] - p.ds * (p.dx[1] + m * p.dn[1]) - m * v[1] : 0;
+        double c0 = h0.C - h0.B * k0, c1 = h0.C - h0.B * k1, c = c0 < c1 ? c0 : c1;
+        a_cut_c(h0.A, c, &l[0], &h[0]);
+        a_cut_c(A1, c, &l[1], &h[1]);
+      }
       lo[j] = l[g], hi[j] = h[g];
       if (g == 0 && l[0] == 0 && l[1] <= h[1] && h[1] == 0) /* reaches across 0 */
         lo[j] = l[1];
@@ -981,26 +988,25 @@ static void full(aq_demand *d, const aq_demand_table *t, int k, const state *x, 
         lo[j] = hi[j] = NAN;
     }
     /* watched: those whose ranges bind the others' nearest to the state
-     * (an empty range first), one at a time */
-    int np = 0;
-    while (np < DM_WATCH) {
-      int best = -1;
-      double room = INFINITY;
-      for (size_t j = 0; j < nf; j++) {
-        if (q == 1 && t->entry[j].hinge >= 0)
-          continue;
-        int w = 0;
-        while (w < np && R->w[w].j != (int)j)
-          w++;
-        if (w < np)
-          continue;
-        double r = lo[j] == lo[j] ? dmin(x->al - lo[j], hi[j] - x->al) : -INFINITY;
-        if (r < room)
-          room = r, best = (int)j;
-      }
-      if (best < 0 || !(room < 2 * d->amax))
-        break;
-      R->w[np++].j = best;
+     * (an empty range first), the DM_WATCH smallest rooms in one pass, the
+     * first entry first among equal rooms; a room of 2 amax or more binds
+     * nothing */
+    int np = 0, bj[DM_WATCH];
+    double br[DM_WATCH];
+    for (size_t j = 0; j < nf; j++) {
+      if (q == 1 && t->entry[j].hinge >= 0)
+        continue;
+      double r = lo[j] == lo[j] ? dmin(x->al - lo[j], hi[j] - x->al) : -INFINITY;
+      if (!(r < 2 * d->amax) || (np == DM_WATCH && !(r < br[np - 1])))
+        continue;
+      int w = np < DM_WATCH ? np++ : np - 1;
+      for (; w > 0 && r < br[w - 1]; w--)
+        br[w] = br[w - 1], bj[w] = bj[w - 1];
+      br[w] = r, bj[w] = (int)j;
+    }
+    for (int w = 0; w < np; w++) { /* the watched leave the others' range free */
+      R->w[w].j = bj[w];
+      lo[bj[w]] = -INFINITY, hi[bj[w]] = INFINITY;
     }
     R->nw = np;
     box *b = &R->rest;
@@ -1008,11 +1014,6 @@ static void full(aq_demand *d, const aq_demand_table *t, int k, const state *x, 
     b->a0 = -d->amax, b->a1 = d->amax;
     for (size_t j = 0; j < nf; j++) {
       if (q == 1 && t->entry[j].hinge >= 0)
-        continue;
-      int w = 0;
-      while (w < np && R->w[w].j != (int)j)
-        w++;
-      if (w < np)
         continue;
       if (!(lo[j] <= hi[j])) { /* one of the others is over m here: no box */
         *b = no_box;

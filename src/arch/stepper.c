@@ -428,7 +428,11 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   double rest_since = steps->n ? aq_steps_t(steps, 0) : 0; /* at rest from the start */
   if (st->eom)
     aq_eom_reset(st->eom);
-  aq_demand *const dem = st->model == AQ_MODEL_PAPER ? NULL : st->demand;
+  /* the joints' demand: followed along the legs under every model but
+   * paper, whose printed fits carry no joint forces; a run in which the arch
+   * never moves has the statics' demand under every model (docs/demand.md) */
+  aq_demand *const dem = st->demand;
+  const int dem_legs = dem && st->model != AQ_MODEL_PAPER;
   aq_leg_stats S = {0};
   hist_turn_ctx hc = {&res->history, NULL, 0, 0, AQ_OK};
   if (st->history) {
@@ -539,11 +543,11 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       hc.t0_s = aq_steps_t(steps, i) + t_in;
       const double g_leg = avs ? st->pv[set].g_mps2 : st->path[set]->g_mps2;
       const size_t rev0 = S.reversals;
-      if (dem)
+      if (dem_legs)
         aq_demand_at(dem, set, m.s, m.ke_j, a, g_leg, hc.t0_s);
       rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
                &end, &S, err);
-      if (dem && rc == AQ_OK)
+      if (dem_legs && rc == AQ_OK)
         aq_demand_leg(dem, set, m.s, m.ke_j, m.dir, S.reversals - rev0, a, g_leg,
                       hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used));
       if (hc.rc != AQ_OK)
@@ -668,7 +672,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->max_kinetic_energy_j = S.peak_ke_j;
   res->mu_demand = res->thrust_ecc_max = NAN;
   res->thrust_ecc_time_s = res->slide_time_s = NAN;
-  if (dem) {
+  if (dem_legs || (dem && res->first_set < 0)) {
     aq_demand_result dr;
     if (res->first_set < 0) /* never moved: the statics at the record's peak */
       aq_demand_still(dem, steps, n_end, scale, vscale, g_min);

@@ -45,7 +45,7 @@ enum { F_X = 0, F_Y, F_DX, F_DY, F_M, F_B0 /* then 3 per body: x, y, phi */, NF 
 #define TABLE_FLOOR 1e-3       /* error floor of slopes, curvatures: this times their largest value */
 #define TABLE_REL_TOL 4e-12    /* target relative error of the tables (round-off floor ~1e-12) */
 #define TABLE_STALL 0.5        /* a split must at least halve the error ... */
-#define TABLE_ROUNDOFF 1e-8    /* ... unless it is this small already (round-off) */
+#define TABLE_ROUNDOFF 1e-8    /* ... unless it is this small already (round-off), times 2^depth */
 #define TABLE_T_DERIV 0.2763932 /* (5 - sqrt 5)/10: peak of t^2 (1-t)^2 (1-2t) */
 #define TABLE_MAX_INTERVALS 20000 /* at most this many intervals (shipped arches need < 200): a
                                      path that needs more is refused, never tabulated for minutes */
@@ -321,7 +321,11 @@ static double interval_error(const refine_ctx *rc, size_t slot, double h, double
  * error, proportional to t^3 (1-t)^3, peaks, and at t = TABLE_T_DERIV,
  * where the derivatives' error, proportional to t^2 (1-t)^2 (1-2t), peaks)
  * is below TABLE_REL_TOL, or splitting stopped halving an error already
- * below TABLE_ROUNDOFF (round-off), or
+ * below TABLE_ROUNDOFF 2^depth (round-off: the derivative of an interpolant
+ * over h carries the round-off of the exact values divided by h, so the
+ * bound doubles with each halving; without that a flat arch, whose exact
+ * dx/ds carries round-off of 1e-14 relative near the end of its path, was
+ * halved to TABLE_MAX_DEPTH there, past TABLE_MAX_INTERVALS), or
  * the interval is TABLE_MAX_DEPTH halvings deep; else split at the
  * midpoint (already evaluated) and refine both halves. */
 static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const fvals f1,
@@ -347,7 +351,7 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
   double e2 = interval_error(rc, w->n, h, TABLE_T_DERIV, fd);
   double err = e1 > e2 ? e1 : e2;
   if (err <= TABLE_REL_TOL || depth >= TABLE_MAX_DEPTH ||
-      (err > TABLE_STALL * parent_err && err < TABLE_ROUNDOFF)) {
+      (err > TABLE_STALL * parent_err && err < ldexp(TABLE_ROUNDOFF, depth))) {
     w->n++;
     if (err > rc->err)
       rc->err = err;
@@ -385,7 +389,8 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
  * division by M. */
 #define PIECE_DEG 14            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
 #define PIECE_TAIL_TOL 2e-15    /* Chebyshev tail / scale (about ten unit round-offs) */
-#define PIECE_ROUNDOFF 1e-11    /* a tail that halving no longer halves and is below this: round-off */
+#define PIECE_ROUNDOFF 1e-10    /* a tail that halving no longer halves and is below this: round-off
+                                   (flat arches: 1e-11 near their end) */
 #define PIECE_MAX_DEPTH 40      /* halvings of [0, s_c] at most */
 enum { PC_DX = 0, PC_DY, PC_M, PC_GC, PC_GA, PC_GB, NPC_F, PN = PIECE_DEG + 1 };
 _Static_assert(PIECE_DEG < AQ_PIECE_MAX_DEG, "x, y need degree PIECE_DEG + 1");
