@@ -85,4 +85,31 @@ static inline double aq_test_critical_thickness(aq_arch_params (*make)(double t,
   return 0.5 * (lo + hi);
 }
 
+/* The tests' brute forces: every hinge set of an arch of n >= 3 voussoirs,
+ * one per call, into *hs: the 16 face patterns in turn (*pat: faces read
+ * as binary digits, e 0 and i 1, so 0 is e e e e and 5 is e i e i), and
+ * within each the C(n+1, 4) joint choices in lexicographic order.  Start
+ * with *pat = -1; 0 when every set has been given. */
+static inline int aq_test_next_set(size_t n, int *pat, aq_hinge_set *hs)
+{
+  size_t *j = hs->joint;
+  int k = 3;
+  if (*pat >= 0)
+    while (k >= 0 && j[k] == n - (size_t)(3 - k))
+      k--;
+  if (*pat < 0 || k < 0) {
+    if (n < 3 || ++*pat == 16)
+      return 0;
+    for (int m = 0; m < 4; m++)
+      j[m] = (size_t)m;
+  } else {
+    j[k]++;
+    for (int m = k + 1; m < 4; m++)
+      j[m] = j[m - 1] + 1;
+  }
+  for (int m = 0; m < 4; m++)
+    hs->face[m] = (*pat >> (3 - m)) & 1 ? 'i' : 'e';
+  return 1;
+}
+
 #endif

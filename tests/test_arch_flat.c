@@ -137,17 +137,11 @@ static int admissible_sets(const aq_geom *g)
 {
   size_t n = g->p.voussoirs;
   int count = 0;
-  for (int pat = 0; pat < 16; pat++)
-    for (size_t a = 0; a <= n; a++)
-      for (size_t b = a + 1; b <= n; b++)
-        for (size_t c = b + 1; c <= n; c++)
-          for (size_t d = c + 1; d <= n; d++) {
-            aq_hinge_set hs = {{a, b, c, d}, {0, 0, 0, 0}};
-            for (int k = 0; k < 4; k++)
-              hs.face[k] = (pat >> (3 - k)) & 1 ? 'i' : 'e';
-            double l0;
-            count += aq_test_lambda0_eq(g, &hs, &l0);
-          }
+  aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+  for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+    double l0;
+    count += aq_test_lambda0_eq(g, &hs, &l0);
+  }
   return count;
 }
 

@@ -106,20 +106,14 @@ AQ_TEST(arch_friction_without_friction_brute_force)
         if (!aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry"))
           return;
         double best[2] = {HUGE_VAL, HUGE_VAL};
-        for (int pat = 0; pat < 16; pat++)
-          for (size_t a = 0; a <= n; a++)
-            for (size_t b = a + 1; b <= n; b++)
-              for (size_t c = b + 1; c <= n; c++)
-                for (size_t d = c + 1; d <= n; d++) {
-                  aq_hinge_set hs = {{a, b, c, d}, {0, 0, 0, 0}};
-                  for (int k = 0; k < 4; k++)
-                    hs.face[k] = (pat >> (3 - k)) & 1 ? 'i' : 'e';
-                  double l0;
-                  int act;
-                  if (aq_test_lambda0_eq_act(&g, &hs, &l0, &act) && l0 > 0 &&
-                      l0 < best[act > 0])
-                    best[act > 0] = l0;
-                }
+        aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+        for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+          double l0;
+          int act;
+          if (aq_test_lambda0_eq_act(&g, &hs, &l0, &act) && l0 > 0 &&
+              l0 < best[act > 0])
+            best[act > 0] = l0;
+        }
         for (int k = 0; k < 2; k++) {
           int act = k ? 1 : -1;
           double lp = NAN;

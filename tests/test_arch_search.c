@@ -202,23 +202,17 @@ AQ_TEST(arch_search_every_face_pattern)
           return;
         double best = HUGE_VAL;
         aq_hinge_set arg = {{0, 0, 0, 0}, {0, 0, 0, 0}};
-        for (int pat = 0; pat < 16; pat++)
-          for (size_t a = 0; a <= n; a++)
-            for (size_t b = a + 1; b <= n; b++)
-              for (size_t c = b + 1; c <= n; c++)
-                for (size_t d = c + 1; d <= n; d++) {
-                  aq_hinge_set hs = {{a, b, c, d}, {0, 0, 0, 0}};
-                  for (int k = 0; k < 4; k++)
-                    hs.face[k] = (pat >> (3 - k)) & 1 ? 'i' : 'e';
-                  double l0;
-                  if (aq_test_lambda0_eq(&g, &hs, &l0)) {
-                    nonalternating += pat != 5 && pat != 10;
-                    if (l0 < best * (1 - TIE_TOL)) {
-                      best = l0;
-                      arg = hs;
-                    }
-                  }
-                }
+        aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+        for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+          double l0;
+          if (aq_test_lambda0_eq(&g, &hs, &l0)) {
+            nonalternating += pat != 5 && pat != 10;
+            if (l0 < best * (1 - TIE_TOL)) {
+              best = l0;
+              arg = hs;
+            }
+          }
+        }
         aq_hinge_set found;
         double got = 0, eq = 0;
         aq_search_info info;
@@ -282,18 +276,12 @@ AQ_TEST(arch_search_shallow_parabolic_settles)
       return;
     size_t n = 20;
     double best = HUGE_VAL;
-    for (int pat = 0; pat < 16; pat++)
-      for (size_t a = 0; a <= n; a++)
-        for (size_t b = a + 1; b <= n; b++)
-          for (size_t c = b + 1; c <= n; c++)
-            for (size_t d = c + 1; d <= n; d++) {
-              aq_hinge_set hs = {{a, b, c, d}, {0, 0, 0, 0}};
-              for (int k = 0; k < 4; k++)
-                hs.face[k] = (pat >> (3 - k)) & 1 ? 'i' : 'e';
-              double l0;
-              if (aq_test_lambda0_eq(&g, &hs, &l0) && l0 < best)
-                best = l0;
-            }
+    aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+    for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+      double l0;
+      if (aq_test_lambda0_eq(&g, &hs, &l0) && l0 < best)
+        best = l0;
+    }
     aq_hinge_set found;
     double got = 0;
     aq_search_info info;
@@ -344,19 +332,13 @@ static void brute_minima(const aq_geom *g, double best[2])
 {
   size_t n = g->p.voussoirs;
   best[0] = best[1] = HUGE_VAL;
-  for (int pat = 0; pat < 16; pat++)
-    for (size_t a = 0; a <= n; a++)
-      for (size_t b = a + 1; b <= n; b++)
-        for (size_t c = b + 1; c <= n; c++)
-          for (size_t d = c + 1; d <= n; d++) {
-            aq_hinge_set hs = {{a, b, c, d}, {0, 0, 0, 0}};
-            for (int k = 0; k < 4; k++)
-              hs.face[k] = (pat >> (3 - k)) & 1 ? 'i' : 'e';
-            double l0;
-            int act;
-            if (aq_test_lambda0_eq_act(g, &hs, &l0, &act) && l0 < best[act > 0])
-              best[act > 0] = l0;
-          }
+  aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+  for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+    double l0;
+    int act;
+    if (aq_test_lambda0_eq_act(g, &hs, &l0, &act) && l0 < best[act > 0])
+      best[act > 0] = l0;
+  }
 }
 
 /* The largest eccentricity of the line of thrust of hs at s = 0 under its

@@ -757,18 +757,12 @@ AQ_TEST(arch_shapes_search_brute_force)
       continue;
     size_t n = g.p.voussoirs;
     double best = HUGE_VAL;
-    for (int pat = 0; pat < 16; pat++)
-      for (size_t a = 0; a <= n; a++)
-        for (size_t b = a + 1; b <= n; b++)
-          for (size_t cc = b + 1; cc <= n; cc++)
-            for (size_t d = cc + 1; d <= n; d++) {
-              aq_hinge_set hs = {{a, b, cc, d}, {0, 0, 0, 0}};
-              for (int q = 0; q < 4; q++)
-                hs.face[q] = (pat >> (3 - q)) & 1 ? 'i' : 'e';
-              double l0;
-              if (aq_test_lambda0_eq(&g, &hs, &l0) && l0 < best)
-                best = l0;
-            }
+    aq_hinge_set hs = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+    for (int pat = -1; aq_test_next_set(n, &pat, &hs);) {
+      double l0;
+      if (aq_test_lambda0_eq(&g, &hs, &l0) && l0 < best)
+        best = l0;
+    }
     aq_hinge_set found;
     double got = 0, eq = 0;
     aq_check(aq_search_minimum(&g, 9.80665, &found, &got, NULL, &e) == AQ_OK, "%s: search",
