@@ -9,11 +9,13 @@
  * and with one that does not, alternately, and each one's median taken.
  * Printed per arch: the sums of the medians, their ratio less one (the
  * demand's cost over the stepping), the states the tracker looked at, how
- * many with every joint evaluated and how many single joints it evaluated,
- * the moving steps, and the time to build both sets' demand tables (once
- * per arch, kept with it).  Then the totals, and the same stepping with the
- * tracker's reference (every joint at every state, aq_demand_set_every)
- * for scale (--no-reference leaves it out: quicker, for profiles). */
+ * many with every joint evaluated (outside the grid) and how many
+ * candidates it evaluated (looks), the moving steps, and the time to build
+ * both sets' demand tables and their grids (once per arch, kept with it).
+ * Then the totals, and the same stepping with the tracker's reference
+ * (every joint at every state, aq_demand_set_every) for scale
+ * (--no-reference leaves it out: quicker, for profiles; --only plain or
+ * --only demand times one stepper alone, for profiles of it). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -69,6 +71,10 @@ int main(int argc, char **argv)
 {
   /* --no-reference: leave out the every-joint runs (quicker; for profiles) */
   int reference = !(argc > 1 && strcmp(argv[1], "--no-reference") == 0);
+  /* --only plain|demand: time one stepper alone (for counters: perf stat) */
+  int only = argc > 2 && strcmp(argv[1], "--only") == 0 ? (strcmp(argv[2], "demand") == 0 ? 2 : 1) : 0;
+  if (only)
+    reference = 0;
   aq_error e;
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
@@ -132,6 +138,10 @@ int main(int argc, char **argv)
       double tp[REPS], td[REPS];
       for (int rep = 0; rep < REPS; rep++) {
         for (int m = 0; m < 2; m++) {
+          if (only && m != only - 1) {
+            (m ? td : tp)[rep] = 1;
+            continue;
+          }
           double t0 = aq_bench_now_s();
           if (aq_job_run_view(m ? dem : plain, &V[r], k, &res[m], &e) != AQ_OK) {
             aq_error_print(&e, stderr);
@@ -142,6 +152,8 @@ int main(int argc, char **argv)
             aq_result_free(&res[m]);
         }
       }
+      if (only)
+        memset(&res[only % 2], 0, sizeof res[0]);
       tt[0] += aq_bench_median(tp, REPS);
       tt[1] += aq_bench_median(td, REPS);
       if (reference)

@@ -344,7 +344,7 @@ AQ_TEST(arch_demand_tracker_vs_every_joint)
     double g = p0->g_mps2, l0 = p0->lambda0;
     for (int r = 0; r < 6; r++) {
       double amax = (0.5 + 3 * tds_rng(&rng)) * l0;
-      aq_demand_begin(d, amax);
+      aq_demand_begin(d);
       brute b = {0, 0, NAN, NAN};
       int set = 0;
       double s = 0, phase = 0, t_s = 0;
@@ -535,15 +535,16 @@ AQ_TEST(arch_demand_runs_as_with_every_joint_at_every_state)
            states, full);
 }
 
-AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
+AQ_TEST(arch_demand_grid_bounds_every_entry)
 {
-  /* the claim the tracker rests on: in the box where it looks at no joint,
-   * no joint exceeds the running maxima.  States of smooth swings (so that
-   * boxes are kept); after each, the box's eight corners and random points
-   * inside it, every joint evaluated there. */
+  /* the claim the tracker rests on: in the cell of the grid that holds a
+   * state, no entry exceeds the cell's bound, and every entry that is not
+   * a candidate is strictly below the largest candidate.  Random states of
+   * every set of every shipped arch, over the grid's range of a/g (and
+   * beyond it) and of KE/g, every entry evaluated from the tables. */
   gsl_set_error_handler_off();
   unsigned long long rng = 0xb0c5e5ULL;
-  size_t boxes = 0, points = 0;
+  size_t points = 0, outside = 0, cands = 0;
   for (size_t f = 0; f < NSHIPPED; f++) {
     aq_arch *A = NULL;
     aq_error e;
@@ -551,51 +552,68 @@ AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
       continue;
     size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
     aq_joint_form *fb = calloc(nf, sizeof *fb);
-    aq_demand *d = aq_arch_demand_tracker(A, NAN, &e);
+    size_t *cand = calloc(2 * nf, sizeof *cand);
+    double *r = calloc(2 * nf, sizeof *r);
     for (int set = 0; set < 2; set++) {
       const aq_path *p = aq_arch_path(A, set);
       const aq_demand_table *t = aq_arch_demand_table(A, set);
       if (!t)
         continue;
-      double g = p->g_mps2, amax = 2.5 * p->lambda0;
-      aq_demand_begin(d, amax);
-      double amp = 0.6 * p->s_c_rad, phase = 0;
-      for (int i = 0; i < 300; i++) {
-        phase += 0.02 + 0.05 * tds_rng(&rng);
-        double sn = sin(phase), s = fabs(amp * sn);
-        double ke = 0.3 * p->mass_kg * g * 0.01 * p->s_c_rad * (1 - sn * sn);
-        double a = (2 * tds_rng(&rng) - 1) * amax * g;
-        aq_demand_at(d, set, s, ke, a, g, 0.01 * i);
-        double bx[6];
-        if (!aq_demand_fast_box(d, set, bx))
+      aq_path_point pc;
+      aq_check(p->eval_exact(p->ctx, p->s_c_rad, &pc) == 0, "the path at s_c");
+      double ke_ref = p->mass_kg * pc.y_m; /* KE/g of the energy of collapse */
+      for (int i = 0; i < 2000; i++) {
+        double s = tds_rng(&rng) * p->s_c_rad;
+        double al = (2 * tds_rng(&rng) - 1) * 4.5 * p->lambda0;
+        double kg = i % 10 == 0 ? 0 : ke_ref * pow(2.0, 16 * tds_rng(&rng) - 12);
+        double u[2];
+        size_t nc[2];
+        int in = aq_demand_grid_cell(t, s, al, kg, u, cand, 2 * nf, nc);
+        aq_check(in >= 0, "cap");
+        if (in == 0) {
+          outside++;
           continue;
-        boxes++;
-        double mu = aq_demand_max(d, 0), ecc = aq_demand_max(d, 1);
-        for (int c = 0; c < 14; c++) {
-          double u[3];
-          for (int k = 0; k < 3; k++)
-            u[k] = c < 8 ? (c >> k & 1) : tds_rng(&rng);
-          double ss = bx[0] + u[0] * (bx[1] - bx[0]), al = bx[2] + u[1] * (bx[3] - bx[2]);
-          double kg = fmax(0, bx[4]) + u[2] * (fmin(bx[5], 1e30) - fmax(0, bx[4]));
-          if (!(ss >= 0 && ss <= p->s_c_rad) || !isfinite(kg))
-            continue;
-          brute b = {0, 0, NAN, NAN};
-          brute_at(t, fb, nf, ss, kg * g, al * g, g, 0, INFINITY, &b);
-          points++;
-          aq_check(b.mu <= mu * (1 + 1e-12) && b.ecc <= ecc * (1 + 1e-12),
-                   "%s set %d state %d: at s %.9g a/g %.6g KE/g %.6g in the box, |T|/N %.12g "
-                   "(max %.12g), ecc %.12g (max %.12g)",
-                   shipped[f], set, i, ss, al, kg, b.mu, mu, b.ecc, ecc);
         }
+        aq_demand_kin kin;
+        aq_demand_table_forms(t, s, fb, &kin);
+        double w = 2 * kg / kin.mgen_kgm2, best[2] = {0, 0};
+        for (size_t j = 0; j < nf; j++) {
+          double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
+          double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
+          double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
+          r[2 * j] = N > 0 ? T / N : INFINITY;
+          r[2 * j + 1] = fb[j].hinge < 0 ? (N > 0 ? E / N : INFINITY) : 0;
+          for (int q = 0; q < 2; q++)
+            aq_check(r[2 * j + q] <= u[q], "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu "
+                     "quantity %d %.17g above the cell's bound %.17g", shipped[f], set, s, al,
+                     kg, j, q, r[2 * j + q], u[q]);
+        }
+        for (int q = 0; q < 2; q++)
+          for (size_t m = 0; m < nc[q]; m++)
+            best[q] = fmax(best[q], r[2 * cand[(q ? nc[0] : 0) + m] + (size_t)q]);
+        for (size_t j = 0; j < nf; j++)
+          for (int q = 0; q < 2; q++) {
+            int is = 0;
+            for (size_t m = 0; m < nc[q]; m++)
+              is |= cand[(q ? nc[0] : 0) + m] == j;
+            if (!is && (q == 0 || fb[j].hinge < 0))
+              aq_check(r[2 * j + q] < best[q], "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry "
+                       "%zu (not a candidate) quantity %d %.17g, the candidates' largest %.17g",
+                       shipped[f], set, s, al, kg, j, q, r[2 * j + q], best[q]);
+          }
+        points++;
+        cands += nc[0] + nc[1];
       }
     }
-    aq_demand_free(d);
     free(fb);
+    free(cand);
+    free(r);
     aq_arch_free(A);
   }
-  aq_check(boxes > 1000, "boxes kept (%zu)", boxes);
+  aq_check(points > 20000 && outside > 1000, "states in cells %zu, outside %zu", points, outside);
   if (getenv("AQ_TEST_VERBOSE"))
-    printf("regions: %zu boxes, %zu points\n", boxes, points);
+    printf("grid: %zu states in cells (%.2f candidates each), %zu outside\n", points,
+           (double)cands / (double)points, outside);
 }
 
 /* A run in which the arch never moves: the least friction with which a
