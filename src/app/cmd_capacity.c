@@ -343,21 +343,23 @@ int aq_cmd_capacity(int argc, char **argv)
     rc = AQ_EXIT_FAIL;
     goto done;
   }
-  for (size_t a = 0; a < na; a++)
+  for (size_t a = 0; a < na; a++) {
     if (aq_arch_load_opts(arch_paths[a], &ao, &arches[a], &se) != AQ_OK) {
       aq_error_print(&se, stderr);
       rc = AQ_EXIT_USAGE;
-    } else if (aq_opt_cor_momentum(arch_paths[a], !isnan(cor),
-                                   aq_arch_dynamics_of(arches[a])->impact ==
-                                       AQ_IMPACT_MOMENTUM) ||
-               aq_opt_blocks_friction(arch_paths[a], model == AQ_MODEL_BLOCKS,
-                                      aq_arch_friction(arches[a])) ||
-               aq_opt_blocks_spread(arch_paths[a], model == AQ_MODEL_BLOCKS, arches[a])) {
+      continue;
+    }
+    aq_mechanism_warn_minimum(arch_paths[a], arches[a]); /* as the main job */
+    if (aq_opt_cor_momentum(arch_paths[a], !isnan(cor),
+                            aq_arch_dynamics_of(arches[a])->impact == AQ_IMPACT_MOMENTUM) ||
+        aq_opt_blocks_friction(arch_paths[a], model == AQ_MODEL_BLOCKS,
+                               aq_arch_friction(arches[a])) ||
+        aq_opt_blocks_spread(arch_paths[a], model == AQ_MODEL_BLOCKS, arches[a]))
       rc = AQ_EXIT_USAGE;
-    } else {
+    else
       aq_opt_spread_four_hinge(arch_paths[a], model != AQ_MODEL_BLOCKS,
                                aq_arch_spread(arches[a]));
-    }
+  }
   if (rc != AQ_EXIT_OK)
     goto done;
   /* both polarities unless every arch answers a record and its negation

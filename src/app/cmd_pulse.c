@@ -102,10 +102,15 @@ static aq_status write_history(const char *path, const aq_history *h,
 
 /* The block model of arch for pulse (aq_blocks_for_arch): 0 and *out, or
  * the exit status after one line naming the file and field (2 for the
- * friction it needs and was not given, 1 for a value of the arch file). */
+ * friction it needs and was not given and for a [supports] spread_m beyond
+ * the voussoirs' reach, as the main job and capacity refuse it; 1 for
+ * another value of the arch file). */
 static int pulse_blocks(const char *file, const aq_arch *arch, double dt_s, int history,
                         aq_blocks **out)
 {
+  *out = NULL;
+  if (!isnan(aq_arch_friction(arch)) && aq_opt_blocks_spread(file, 1, arch))
+    return AQ_EXIT_USAGE;
   aq_error err;
   aq_error_clear(&err);
   *out = aq_blocks_for_arch(arch, dt_s, &err);
@@ -162,6 +167,7 @@ int aq_cmd_pulse(int argc, char **argv)
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }
+  aq_mechanism_warn_minimum(file, arch); /* as mechanism and the main job */
   const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
   if (impact < 0 && aq_opt_cor_momentum(file, !isnan(cor), dyn->impact == AQ_IMPACT_MOMENTUM)) {
     aq_arch_free(arch);

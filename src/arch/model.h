@@ -375,6 +375,13 @@ typedef struct aq_workpath aq_workpath;
 aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
                             double g_mps2, const char *name, aq_workpath **out,
                             aq_error *err);
+/* aq_workpath_build with at most max_intervals table intervals and as many
+ * Taylor pieces (aq_workpath_build: 20000).  A path that needs more is
+ * refused, AQ_ENUMERIC on field "hinges", naming the tables or the pieces,
+ * their tolerance and where they ran out. */
+aq_status aq_workpath_build_max(const aq_geom *g, const aq_hinge_set *hs, double g_mps2,
+                                const char *name, size_t max_intervals, aq_workpath **out,
+                                aq_error *err);
 void aq_workpath_free(aq_workpath *w);
 const aq_path *aq_workpath_path(const aq_workpath *w);
 const aq_mech *aq_workpath_mech(const aq_workpath *w);

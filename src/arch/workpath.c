@@ -70,6 +70,12 @@ struct aq_workpath {
   size_t cap;         /* allocated intervals */
   double tab_err;
   double thrust0;     /* max |eccentricity| of the thrust at s = 0 */
+  size_t max_n;       /* table intervals and pieces at most (TABLE_MAX_INTERVALS) */
+  /* where the tables or the pieces ran out of intervals (build_tables -2):
+   * the start of the interval that found none left, rad, and the finest
+   * interval so far (its halvings of the first grid, its start, rad) */
+  double out_s, fine_s;
+  int fine_depth;
 };
 
 /* Exact values f[k][0..2] (value, d/ds, d2/ds2) of every tabled function. */
@@ -259,7 +265,7 @@ typedef struct {
   double scale[8]; /* largest magnitudes over the initial nodes */
   double err;      /* largest accepted error */
   int failed;
-  int too_many;    /* failed because of TABLE_MAX_INTERVALS */
+  int too_many;    /* failed because of w->max_n */
 } refine_ctx;
 
 static int append_interval(aq_workpath *w, double s0, const fvals f0, double s1,
@@ -336,9 +342,14 @@ static void refine(refine_ctx *rc, double s0, const fvals f0, double s1, const f
     return;
   double h = s1 - s0;
   fvals fm, fd;
-  if (w->n >= TABLE_MAX_INTERVALS) {
+  if (w->n >= w->max_n) {
     rc->failed = rc->too_many = 1;
+    w->out_s = s0;
     return;
+  }
+  if (depth > w->fine_depth) {
+    w->fine_depth = depth;
+    w->fine_s = s0;
   }
   if (append_interval(w, s0, f0, s1, f1) != 0 ||
       exact_f(w, s0 + 0.5 * h, fm, NULL) != 0 ||
@@ -527,9 +538,14 @@ static void piece_refine(piece_ctx *pc, double a, double b, int depth,
 {
   if (pc->failed)
     return;
-  if (pc->w->npc >= TABLE_MAX_INTERVALS) {
+  if (pc->w->npc >= pc->w->max_n) {
     pc->failed = pc->too_many = 1;
+    pc->w->out_s = a;
     return;
+  }
+  if (depth > pc->w->fine_depth) {
+    pc->w->fine_depth = depth;
+    pc->w->fine_s = a;
   }
   double c[NPC_F][PN], tail, fa[NF][3];
   if (piece_fit(pc, a, b, c, &tail, fa) != 0) {
@@ -565,8 +581,10 @@ static int build_pieces(aq_workpath *w)
 
 /* Tables over [0, s_c]: TABLE_N0 equal intervals, each refined by halving
  * where needed (refine), so that the grid is fine only where the path
- * varies fast (near a toggle).  -1 on failure (memory, or the linkage), -2
- * when more than TABLE_MAX_INTERVALS would be needed. */
+ * varies fast (near a toggle); then the Taylor leg's pieces.  -1 on failure
+ * (memory, or the linkage), -2 when the tables would need more than
+ * w->max_n intervals, -3 when the pieces would (w->out_s, fine_s and
+ * fine_depth say where). */
 static int build_tables(aq_workpath *w)
 {
   double sc = w->path.s_c_rad;
@@ -585,7 +603,10 @@ static int build_tables(aq_workpath *w)
   w->tab_err = rc.err;
   if (rc.too_many || rc.failed)
     return rc.too_many ? -2 : -1;
-  return build_pieces(w);
+  w->fine_depth = 0;
+  w->fine_s = 0;
+  int pr = build_pieces(w);
+  return pr == -2 ? -3 : pr;
 }
 
 static int hinges_open(const aq_workpath *w, const aq_mech_state *st)
@@ -690,11 +711,19 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
                             double g_mps2, const char *name, aq_workpath **out,
                             aq_error *err)
 {
+  return aq_workpath_build_max(g, hs, g_mps2, name, TABLE_MAX_INTERVALS, out, err);
+}
+
+aq_status aq_workpath_build_max(const aq_geom *g, const aq_hinge_set *hs, double g_mps2,
+                                const char *name, size_t max_intervals, aq_workpath **out,
+                                aq_error *err)
+{
   aq_status st = path_alloc(g, hs, g_mps2, name, out, err);
   if (st != AQ_OK)
     return st;
   aq_workpath *w = *out;
   *out = NULL;
+  w->max_n = max_intervals;
   aq_path *p = &w->path;
   p->act_sign = 1;
   p->admissible = 0;
@@ -760,14 +789,24 @@ aq_status aq_workpath_build(const aq_geom *g, const aq_hinge_set *hs,
   }
   p->admissible = 1;
   int tab = build_tables(w);
-  if (tab == -2) {
-    double lambda0 = p->lambda0, s_c = p->s_c_rad;
+  if (tab == -2 || tab == -3) {
+    /* what ran out and where: the tables (or the pieces) halve an interval
+     * until it meets its tolerance, so the count runs out where the path
+     * varies fastest or where round-off keeps an error from halving */
+    int pieces = tab == -3;
+    double lambda0 = p->lambda0, s_c = p->s_c_rad, out_s = w->out_s, fine_s = w->fine_s;
+    int depth = w->fine_depth;
+    size_t max_n = w->max_n;
     aq_workpath_free(w);
     return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
-                        "expected a work path that tables of at most %d intervals "
-                        "resolve to %g, got one that needs more (lambda0 = %g, "
-                        "q_c = %g rad: the arch barely stands)",
-                        TABLE_MAX_INTERVALS, TABLE_REL_TOL, lambda0, s_c);
+                        "expected a work path that %s of at most %zu intervals resolve to "
+                        "%g, got one that needs more: they ran out at s = %.6g rad of q_c = "
+                        "%.6g rad; the finest, %d halvings of %s, is at s = %.6g rad "
+                        "(lambda0 = %.6g)",
+                        pieces ? "the Taylor leg's pieces (Chebyshev tails)"
+                               : "the Hermite tables",
+                        max_n, pieces ? PIECE_TAIL_TOL : TABLE_REL_TOL, out_s, s_c, depth,
+                        pieces ? "[0, q_c]" : "one of the first 16", fine_s, lambda0);
   }
   if (tab != 0) {
     aq_workpath_free(w);

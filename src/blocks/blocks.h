@@ -118,9 +118,12 @@ void aq_blocks_set_direct(aq_blocks *b, int on);
 void aq_blocks_set_projection(aq_blocks *b, int on);
 
 /* Run from rest (after the spread, if any).  res is overwritten (free with
- * aq_blocks_result_free).  AQ_EVALUE when no friction was set; AQ_ENUMERIC
- * when a contact problem could not be solved ("at t = ... s");
- * AQ_ELIFTOFF when g + the vertical acceleration is <= 0 at rest. */
+ * aq_blocks_result_free).  AQ_EVALUE when no friction was set or steps
+ * holds none; AQ_ENUMERIC when a contact problem could not be solved ("at
+ * t = ... s") or the linear program of the static range at rest failed;
+ * AQ_ENOMEM.  A step with g + the vertical acceleration <= 0 is no error:
+ * the arch is not held at rest then, and the step is solved as any other
+ * (the voussoirs may leave their supports). */
 aq_status aq_blocks_run(aq_blocks *b, const aq_steps *steps, aq_blocks_result *res,
                         aq_error *err);
 

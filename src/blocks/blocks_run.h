@@ -47,7 +47,7 @@ int aq_events_step(aq_events *e, aq_moreau *m, double t, double h, double ax, do
                    int impact, int record);
 void aq_events_collapse(aq_events *e, double t);
 /* 1 if a body has turned by more than COLLAPSE_ROT_RAD or a joint parted
- * (opened, or slid, by more than its width). */
+ * (opened by more than its width, or its faces no longer overlap). */
 int aq_events_fallen(const aq_events *e, aq_moreau *m);
 /* 1 if the bodies move away from where they stood at the start. */
 int aq_events_away(const aq_events *e, aq_moreau *m);

@@ -35,6 +35,7 @@ static aq_status set_joint(aq_bodies *s, size_t k, aq_vec2 pi, aq_vec2 pe, aq_er
   J->t0 = (aq_vec2){dx / w, dy / w};
   J->n0 = (aq_vec2){-J->t0.y, J->t0.x};
   J->width_m = w;
+  J->ext_m[0] = J->ext_m[1] = 0;
   return AQ_OK;
 }
 
@@ -94,7 +95,21 @@ aq_status aq_bodies_init(aq_bodies *s, const aq_body *body, size_t nb,
     }
   }
   set_scale(s);
+  /* an arch's supports bear on their springing joints; the ground under a
+   * stack runs on */
+  if (nj == nb)
+    aq_bodies_set_support_extent(s, INFINITY);
   return AQ_OK;
+}
+
+void aq_bodies_set_support_extent(aq_bodies *s, double ext_m)
+{
+  for (size_t k = 0; k < s->nj; k++) {
+    if (s->joint[k].a < 0)
+      s->joint[k].ext_m[0] = ext_m;
+    if (s->joint[k].b < 0)
+      s->joint[k].ext_m[1] = ext_m;
+  }
 }
 
 aq_status aq_bodies_from_arch(aq_bodies *s, const aq_geom *g, const size_t *fj,

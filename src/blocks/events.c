@@ -34,9 +34,11 @@
  * range holds the load, when v = 0 is the step's exact solution). */
 static const double STILL_REL = 1e-6;
 static const double COLLAPSE_ROT_RAD = AQ_PI / 4;
-/* ... or slid along a joint by more than this fraction of its width (its
- * corner off the other side's face: the voussoirs have parted). */
-static const double COLLAPSE_SLIP = 1.0;
+/* ... or slid along a joint until its two faces no longer overlap
+ * (aq_contact_overlap < 0, by the slip at a closed end, or at both ends of
+ * an open joint: the voussoirs have parted; for a joint between
+ * voussoirs, and at a springing on its support's face as long as the
+ * joint, a slip of more than the joint's width). */
 
 aq_status aq_events_init(aq_events *e, const aq_bodies *s, aq_error *err)
 {
@@ -239,9 +241,17 @@ int aq_events_fallen(const aq_events *e, aq_moreau *m)
     double w = s->joint[j].width_m;
     if (cr[2 * j].gap_m > w && cr[2 * j + 1].gap_m > w)
       return 1;
+    /* the faces' overlap by the slip at a closed end, or at both ends of
+     * an open joint (a body that left the other's face in flight would
+     * land on its line beyond it) */
+    double ov[2];
     for (int k = 0; k < 2; k++)
-      if (aq_jstate_closed(st[j], k) && fabs(cr[2 * j + k].s_m - (k ? w : 0)) > COLLAPSE_SLIP * w)
+      ov[k] = aq_contact_overlap(s, j, cr[2 * j + k].s_m - (k ? w : 0));
+    for (int k = 0; k < 2; k++)
+      if (aq_jstate_closed(st[j], k) && ov[k] < 0)
         return 1;
+    if (st[j].kind == AQ_JOINT_OPEN && ov[0] < 0 && ov[1] < 0)
+      return 1;
   }
   return 0;
 }

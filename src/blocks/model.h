@@ -22,11 +22,14 @@
  * that the two supports may move apart (the spread): support k's x offset
  * gx[k] and its x velocity gvx[k] (k = 0: +x support, 1: -x support).
  *
- * Contacts (contact.c): each joint has two corner contacts, B's corners
- * against A's face line: gap (>= 0 open), the tangential coordinate s of
- * the corner along A's face from A's intrados end, and the rows of the
- * relative velocity of B's material point at the corner against A's
- * there, along A's normal and tangent (exactly the rates of gap and s).
+ * Contacts (contact.c): each joint has two contacts, at the intrados and
+ * extrados ends of the overlap of its two faces: at each end the corner
+ * of either side that lies on the other's face (B's corner against A's
+ * face line, or A's corner against B's), with its gap (>= 0 open), its
+ * tangential coordinate s (the joint's slip there plus 0 or the width,
+ * model.h aq_corner) and the rows of the relative velocity of B's
+ * material point at the contact point against A's there, along the
+ * bearing face's normal and tangent (exactly the rates of gap and s).
  *
  * Units: SI (m, kg, s, rad, N, N s for impulses).  Nothing here prints. */
 #ifndef AQ_BLOCKS_MODEL_H
@@ -55,6 +58,10 @@ typedef struct {
   aq_vec2 p[2];       /* undeformed ends: [0] intrados, [1] extrados, m */
   aq_vec2 t0, n0;     /* unit tangent p[0] -> p[1], unit normal A -> B */
   double width_m;     /* |p[1] - p[0]| */
+  double ext_m[2];    /* how far side A's [0] and side B's [1] faces run on
+                       * beyond both ends of the joint: 0 for a body, a
+                       * support's extent for the ground (INFINITY: the
+                       * ground under a stack) */
 } aq_bjoint;
 
 typedef struct {
@@ -72,6 +79,8 @@ typedef struct {
 
 /* Bodies from explicit data: nb bodies, nj = nb or nb + 1 joints with
  * their ends[k][0] (intrados) and ends[k][1] (extrados), gravity g_mps2.
+ * The supports' faces: an arch's (nj = nb + 1) are its springing joints
+ * (extent 0); the ground under a stack (nj = nb) runs on without end.
  * AQ_EVALUE/AQ_EGEOMETRY (field named) on bad data; aq_bodies_free. */
 aq_status aq_bodies_init(aq_bodies *s, const aq_body *body, size_t nb,
                          const aq_vec2 (*ends)[2], size_t nj, double g_mps2,
@@ -88,6 +97,9 @@ void aq_bodies_free(aq_bodies *s);
  * support) is in configuration q with support offsets gx. */
 aq_vec2 aq_bodies_point(const aq_bodies *s, int b, const double *q, const double gx[2],
                         aq_vec2 p0);
+/* The faces of the supports run ext_m (>= 0, INFINITY allowed) beyond
+ * both ends of the joints they bear (a test's support). */
+void aq_bodies_set_support_extent(aq_bodies *s, double ext_m);
 /* The undeformed configuration (q[3b] = c0, theta = 0). */
 void aq_bodies_rest(const aq_bodies *s, double *q);
 
@@ -101,15 +113,26 @@ typedef struct {
 } aq_crow;
 
 typedef struct {
-  double gap_m;   /* distance of B's corner from A's face line, > 0 open */
-  double s_m;     /* the corner's coordinate along A's face, from A's intrados end */
-  aq_crow n, t;   /* normal and tangential velocity rows */
+  double gap_m;   /* distance of the contact's corner from the other side's
+                   * face line, > 0 open */
+  double s_m;     /* k w plus the slip at end k: (B's point - A's point) . t
+                   * of the corner's two material points (the same point
+                   * undeformed), t the bearing face's tangent; for B's
+                   * corner on A's face, its coordinate along A's face from
+                   * A's intrados end */
+  int on_b;       /* 0: B's corner on A's face; 1: A's corner on B's face */
+  aq_crow n, t;   /* normal and tangential velocity rows (B against A,
+                   * along the bearing face's normal A -> B and tangent) */
 } aq_corner;
 
-/* Corners [0] (intrados) and [1] (extrados) of joint j at (q, gx), rows
- * with the supports' x velocities gvx. */
+/* Contacts [0] (intrados) and [1] (extrados) of joint j at (q, gx): the
+ * two ends of its faces' overlap; rows with the supports' x velocities
+ * gvx. */
 void aq_contact_eval(const aq_bodies *s, size_t j, const double *q, const double gx[2],
                      const double gvx[2], aq_corner c[2]);
+/* The length of the overlap of joint j's two faces at slip (contact
+ * s_m - k w): <= 0 when they have parted. */
+double aq_contact_overlap(const aq_bodies *s, size_t j, double slip_m);
 /* The velocity of row r at v (the supports' part included). */
 double aq_crow_dot(const aq_bodies *s, size_t j, const aq_crow *r, const double *v);
 
