@@ -60,9 +60,13 @@ void aq_dg_free(aq_demand_grid *g)
 {
   if (!g)
     return;
+  for (size_t r = 0; r < DG_NS * DG_NK; r++)
+    free(g->pool[r]);
+  for (size_t is = 0; is < DG_NS; is++)
+    free(g->rng[is]);
+  pthread_mutex_destroy(&g->lock);
   free(g->hu);
   free(g->cell);
-  free(g->pool);
   free(g);
 }
 
@@ -123,173 +127,201 @@ static void ebound(const double *c, const double *t, int q, double *u, double *l
   *l = nh > 0 ? axl / nh * (1 - DG_EPS_L) : INFINITY;
 }
 
+/* The a/g terms' ranges (lo, hi of N, T, e) of entry ranges x (R + 2 j
+ * DT_NV) over a/g in [a0, a1]. */
+static void a_terms(const double *x, double a0, double a1, double t[6])
+{
+  for (int f = 0; f < 3; f++)
+    prod_range(x[6 * f + 2], x[6 * f + 3], a0, a1, &t[2 * f], &t[2 * f + 1]);
+}
+
 enum { DG_AB = 8 }; /* a/g bins per block: the entries below the block's largest
                        lower bound are left out of its cells */
 
-/* Cell bounds of one s-range (its forms' ranges R: lo/hi per form, then
- * 1/M's), every a/g and KE/g bin, into cells[ik * NA + ia] and the pool. */
-typedef struct {
-  size_t nf;
-  const int *hinge;
-  double *at, *ab, *cw; /* per entry: the a/g terms' ranges per bin and per block
-                           (lo/hi of N T e), the constant and KE terms' for one KE/g bin */
-  double *u;            /* per entry: both quantities' bounds (u, l) */
-  uint16_t *tmp, *list;
-} slab_ws;
-
-static int slab(aq_demand_grid *g, const double *R, slab_ws *W, aq_dg_cell *cells, size_t *cap)
+/* The cells of row (is, ik), from range is's forms' ranges R (lo/hi per
+ * form, then 1/M's); the row's pool into g->pool.  0, or -1 (memory). */
+static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
 {
-  size_t nf = W->nf, nb = DG_NA / DG_AB;
-  double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1];
-  for (size_t j = 0; j < nf; j++)
+  const aq_demand_table *T = g->t;
+  size_t nf = T->nf, nb = DG_NA / DG_AB, row_i = is * DG_NK + ik;
+  aq_dg_cell *cells = g->cell + row_i * DG_NA;
+  double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1], k0, k1;
+  bin_k(g, ik, &k0, &k1);
+  double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
+  double *cw = malloc(nf * 6 * sizeof *cw), *u = malloc(nf * 4 * sizeof *u);
+  double *at = malloc(nf * 6 * sizeof *at);
+  size_t *stamp = calloc(nf, sizeof *stamp);
+  uint16_t *list = malloc(2 * nf * sizeof *list), *tmp = malloc(2 * nf * sizeof *tmp);
+  uint16_t *pool = NULL;
+  size_t cap = 0, np = 0;
+  int ok = cw && u && at && stamp && list && tmp;
+  for (size_t j = 0; ok && j < nf; j++) /* the constant and KE terms */
     for (int f = 0; f < 3; f++) {
-      const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f); /* x0 lo hi, x1 lo hi, x2 lo hi */
-      for (size_t ia = 0; ia < DG_NA; ia++) {
-        double a0, a1, *o = W->at + ((j * DG_NA + ia) * 3 + (size_t)f) * 2;
-        bin_a(g, ia, &a0, &a1);
-        prod_range(x[2], x[3], a0, a1, &o[0], &o[1]);
-        double *ob = W->ab + ((j * nb + ia / DG_AB) * 3 + (size_t)f) * 2;
-        if (ia % DG_AB == 0)
-          ob[0] = o[0], ob[1] = o[1];
-        ob[0] = o[0] < ob[0] ? o[0] : ob[0], ob[1] = o[1] > ob[1] ? o[1] : ob[1];
+      const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f);
+      double lo, hi, m0 = fmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
+      prod_range(x[4], x[5], w0, w1, &lo, &hi);
+      cw[6 * j + 2 * (size_t)f] = x[0] + lo - m0;
+      cw[6 * j + 2 * (size_t)f + 1] = x[1] + hi + m0;
+    }
+  for (size_t bl = 0; ok && bl < nb; bl++) {
+    /* the block's entries: those whose upper bound over the block reaches
+     * its largest lower bound, per quantity */
+    double a0, a1, e0, e1, t[6];
+    bin_a(g, bl * DG_AB, &a0, &e0);
+    bin_a(g, bl * DG_AB + DG_AB - 1, &e1, &a1);
+    size_t nq[2] = {0, 0};
+    uint16_t *lq[2] = {list, list + nf};
+    double Lm[2] = {0, 0};
+    for (size_t j = 0; j < nf; j++) {
+      double *uj = u + 4 * j;
+      if (rm0 > 0)
+        a_terms(R + 2 * j * DT_NV, a0, a1, t);
+      for (int q = 0; q < 2; q++) {
+        if (q == 1 && T->entry[j].hinge >= 0)
+          uj[2] = uj[3] = 0;
+        else if (!(rm0 > 0))
+          uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
+        else
+          ebound(cw + 6 * j, t, q, &uj[2 * q], &uj[2 * q + 1]);
+        Lm[q] = uj[2 * q + 1] > Lm[q] ? uj[2 * q + 1] : Lm[q];
       }
     }
-  for (size_t ik = 0; ik < DG_NK; ik++) {
-    double k0, k1;
-    bin_k(g, ik, &k0, &k1);
-    double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
-    for (size_t j = 0; j < nf; j++)
-      for (int f = 0; f < 3; f++) {
-        const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f);
-        double lo, hi, m0 = fmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
-        prod_range(x[4], x[5], w0, w1, &lo, &hi);
-        W->cw[6 * j + 2 * (size_t)f] = x[0] + lo - m0;
-        W->cw[6 * j + 2 * (size_t)f + 1] = x[1] + hi + m0;
-      }
-    for (size_t bl = 0; bl < nb; bl++) {
-      /* the block's entries: those whose upper bound over the block reaches
-       * its largest lower bound, per quantity */
-      size_t nq[2] = {0, 0};
-      uint16_t *lq[2] = {W->list, W->list + nf};
+    for (int q = 0; q < 2; q++)
+      for (size_t j = 0; j < nf; j++)
+        if ((q == 0 || T->entry[j].hinge < 0) && u[4 * j + 2 * (size_t)q] >= Lm[q])
+          lq[q][nq[q]++] = (uint16_t)j;
+    for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
+      aq_dg_cell *cl = cells + ia;
+      size_t c0 = 0;
+      bin_a(g, ia, &a0, &a1);
       for (int q = 0; q < 2; q++) {
-        double Lm = 0;
-        for (size_t j = 0; j < nf; j++) {
-          double *u = W->u + 2 * j;
-          if (q == 1 && W->hinge[j])
-            u[0] = u[1] = 0;
-          else if (!(rm0 > 0))
-            u[0] = INFINITY, u[1] = 0;
-          else
-            ebound(W->cw + 6 * j, W->ab + (j * nb + bl) * 6, q, &u[0], &u[1]);
-          Lm = u[1] > Lm ? u[1] : Lm;
-        }
-        for (size_t j = 0; j < nf; j++)
-          if ((q == 0 || !W->hinge[j]) && W->u[2 * j] >= Lm)
-            lq[q][nq[q]++] = (uint16_t)j;
-      }
-      for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
-        aq_dg_cell *cl = cells + ik * DG_NA + ia;
-        size_t c0 = 0;
-        for (int q = 0; q < 2; q++) {
-          double U = 0, L = 0;
-          for (size_t m = 0; m < nq[q]; m++) {
-            size_t j = lq[q][m];
-            double *u = W->u + 2 * j;
-            if (!(rm0 > 0))
-              u[0] = INFINITY, u[1] = 0;
-            else
-              ebound(W->cw + 6 * j, W->at + (j * DG_NA + ia) * 6, q, &u[0], &u[1]);
-            U = u[0] > U ? u[0] : U;
-            L = u[1] > L ? u[1] : L;
+        double U = 0, L = 0;
+        for (size_t m = 0; m < nq[q]; m++) {
+          size_t j = lq[q][m];
+          double *uj = u + 4 * j;
+          if (!(rm0 > 0)) {
+            uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
+          } else {
+            double *tj = at + 6 * j;
+            if (stamp[j] != ia + 1) { /* an entry of both lists: its terms once */
+              a_terms(R + 2 * j * DT_NV, a0, a1, tj);
+              stamp[j] = ia + 1;
+            }
+            ebound(cw + 6 * j, tj, q, &uj[2 * q], &uj[2 * q + 1]);
           }
-          size_t c = 0;
-          for (size_t m = 0; m < nq[q]; m++)
-            if (W->u[2 * (size_t)lq[q][m]] >= L)
-              W->tmp[c0 + c++] = lq[q][m];
-          cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
-          c0 += c < DG_ALL ? c : 0;
-          g->hu[2 * (size_t)(cl - g->cell) + (size_t)q] = upper16(U);
+          U = uj[2 * q] > U ? uj[2 * q] : U;
+          L = uj[2 * q + 1] > L ? uj[2 * q + 1] : L;
         }
-        if (c0 <= DG_INLINE) {
-          memcpy(cl->c, W->tmp, c0 * sizeof *W->tmp);
-          cl->off = 0;
-          continue;
-        }
-        if (g->npool + c0 > *cap) {
-          size_t nc = 2 * (g->npool + c0);
-          uint16_t *p = realloc(g->pool, nc * sizeof *p);
-          if (!p)
-            return -1;
-          g->pool = p, *cap = nc;
-        }
-        cl->off = (uint32_t)g->npool;
-        memcpy(g->pool + g->npool, W->tmp, c0 * sizeof *W->tmp);
-        g->npool += c0;
+        size_t c = 0;
+        for (size_t m = 0; m < nq[q]; m++)
+          if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
+            tmp[c0 + c++] = lq[q][m];
+        cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
+        c0 += c < DG_ALL ? c : 0;
+        g->hu[2 * (row_i * DG_NA + ia) + (size_t)q] = upper16(U);
       }
+      cl->off = 0;
+      if (c0 <= DG_INLINE) {
+        memcpy(cl->c, tmp, c0 * sizeof *tmp);
+        continue;
+      }
+      if (np + c0 > cap) {
+        size_t nc = 2 * (np + c0) + 64;
+        uint16_t *p = realloc(pool, nc * sizeof *p);
+        if (!p) {
+          ok = 0;
+          break;
+        }
+        pool = p, cap = nc;
+      }
+      cl->off = (uint32_t)np;
+      memcpy(pool + np, tmp, c0 * sizeof *tmp);
+      np += c0;
     }
   }
+  free(cw), free(u), free(at), free(stamp), free(list), free(tmp);
+  if (!ok) {
+    free(pool);
+    return -1;
+  }
+  g->pool[row_i] = pool;
   return 0;
 }
 
-aq_demand_grid *aq_dg_build(const aq_demand_table *t)
+/* The ranges of the nine forms of every entry and of 1/M over range is
+ * of s, into R (lo, hi each). */
+static void ranges(const aq_demand_table *t, size_t is, double *R)
 {
-  size_t nf = t->nf, nr = (size_t)DG_NS * DG_NK * DG_NA;
-  if (nf > UINT16_MAX || !(t->lambda0 > 0) || !(t->ke_ref > 0) || !(t->s_c > 0))
-    return NULL;
-  aq_demand_grid *g = calloc(1, sizeof *g);
-  size_t rstride = nf * 2 * DT_NV + 2;
-  double *R = malloc(DG_NS * rstride * sizeof *R);
-  int *hinge = malloc(nf * sizeof *hinge);
-  slab_ws W = {nf, hinge, malloc(nf * DG_NA * 6 * sizeof(double)),
-               malloc(nf * (DG_NA / DG_AB) * 6 * sizeof(double)), malloc(nf * 6 * sizeof(double)),
-               malloc(nf * 2 * sizeof(double)), malloc(2 * nf * sizeof(uint16_t)),
-               malloc(2 * nf * sizeof(uint16_t))};
-  size_t cap = 2 * nr;
-  if (g) {
-    g->cell = malloc(nr * sizeof *g->cell);
-    g->hu = malloc(2 * nr * sizeof *g->hu);
-    g->pool = malloc(cap * sizeof *g->pool);
-  }
-  int ok = g && R && hinge && W.at && W.ab && W.cw && W.u && W.tmp && W.list && g->cell && g->hu && g->pool;
-  if (ok) {
-    for (size_t j = 0; j < nf; j++)
-      hinge[j] = t->entry[j].hinge >= 0;
-    g->inv_ds = DG_NS / t->s_c;
-    g->da = t->lambda0 / 8, g->inv_da = 1 / g->da;
-    g->k0 = t->ke_ref / (double)(1 << 10), g->inv_k0 = 1 / g->k0;
-  }
-  for (size_t is = 0; ok && is < DG_NS; is++) {
-    double *Rs = R + is * rstride;
-    double s0 = t->s_c * (double)is / DG_NS, s1 = t->s_c * (double)(is + 1) / DG_NS;
-    double pad = DG_PAD * (s1 - s0);
-    s0 = fmax(0, s0 - pad), s1 = fmin(t->s_c, s1 + pad);
-    for (size_t k = 0; k < nf * DT_NV + 1; k++)
-      Rs[2 * k] = INFINITY, Rs[2 * k + 1] = -INFINITY;
-    for (size_t i = 0; i < t->nint; i++) {
-      if (t->bp[i + 1] < s0 || t->bp[i] > s1)
-        continue;
-      double ua = fmax(0, (s0 - t->bp[i]) * t->ih[i]), ubb = fmin(1, (s1 - t->bp[i]) * t->ih[i]);
-      const double *C = t->c + i * t->stride;
-      for (size_t k = 0; k <= nf * DT_NV; k++) {
-        const double *c = k < nf * DT_NV ? C + k * DT_NC : C + (nf * DT_NV + 3) * DT_NC;
-        double lo, hi;
-        cubic_range(c, ua, ubb, &lo, &hi);
-        Rs[2 * k] = fmin(Rs[2 * k], lo), Rs[2 * k + 1] = fmax(Rs[2 * k + 1], hi);
-      }
+  size_t nf = t->nf;
+  double s0 = t->s_c * (double)is / DG_NS, s1 = t->s_c * (double)(is + 1) / DG_NS;
+  double pad = DG_PAD * (s1 - s0);
+  s0 = fmax(0, s0 - pad), s1 = fmin(t->s_c, s1 + pad);
+  for (size_t k = 0; k < nf * DT_NV + 1; k++)
+    R[2 * k] = INFINITY, R[2 * k + 1] = -INFINITY;
+  for (size_t i = 0; i < t->nint; i++) {
+    if (t->bp[i + 1] < s0 || t->bp[i] > s1)
+      continue;
+    double ua = fmax(0, (s0 - t->bp[i]) * t->ih[i]), ub = fmin(1, (s1 - t->bp[i]) * t->ih[i]);
+    const double *C = t->c + i * t->stride;
+    for (size_t k = 0; k <= nf * DT_NV; k++) {
+      const double *c = k < nf * DT_NV ? C + k * DT_NC : C + (nf * DT_NV + 3) * DT_NC;
+      double lo, hi;
+      cubic_range(c, ua, ub, &lo, &hi);
+      R[2 * k] = fmin(R[2 * k], lo), R[2 * k + 1] = fmax(R[2 * k + 1], hi);
     }
-    ok = slab(g, Rs, &W, g->cell + is * DG_NK * DG_NA, &cap) == 0;
   }
-  for (size_t ia = 0; ok && ia < DG_NA; ia++)
+}
+
+/* The walls' bounds, once every row of KE/g 0 is made. */
+static void walls(aq_demand_grid *g)
+{
+  for (size_t ia = 0; ia < DG_NA; ia++)
     for (int q = 0; q < 2; q++) {
       double m = 0;
       for (size_t is = 0; is < DG_NS; is++)
         m = fmax(m, aq_dg_bound(g, (long)((is * DG_NK) * DG_NA + ia), q));
       g->wall[ia][q] = (float)m; /* a bound as stored: exact in a float */
     }
-  free(R), free(hinge), free(W.at), free(W.ab), free(W.cw), free(W.u), free(W.tmp), free(W.list);
-  if (!ok) {
-    aq_dg_free(g);
+  atomic_store_explicit(&g->walls, 1, memory_order_release);
+}
+
+int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik)
+{
+  size_t r = is * DG_NK + ik;
+  pthread_mutex_lock(&g->lock);
+  int b = atomic_load_explicit(&g->built[r], memory_order_relaxed);
+  if (b == 0) {
+    if (!g->rng[is] && (g->rng[is] = malloc((g->t->nf * 2 * DT_NV + 2) * sizeof(double))))
+      ranges(g->t, is, g->rng[is]);
+    b = g->rng[is] && row(g, is, ik, g->rng[is]) == 0 ? 1 : 2;
+    atomic_store_explicit(&g->built[r], b, memory_order_release);
+    if (b == 1 && ik == 0 && ++g->walls_made == DG_NS)
+      walls(g);
+  }
+  pthread_mutex_unlock(&g->lock);
+  return b == 1 ? 0 : -1;
+}
+
+aq_demand_grid *aq_dg_build(const aq_demand_table *t)
+{
+  size_t nr = (size_t)DG_NS * DG_NK * DG_NA;
+  if (t->nf > UINT16_MAX || !(t->lambda0 > 0) || !(t->ke_ref > 0) || !(t->s_c > 0))
+    return NULL;
+  aq_demand_grid *g = calloc(1, sizeof *g);
+  if (!g)
+    return NULL;
+  g->cell = malloc(nr * sizeof *g->cell); /* made row by row: pages touched then */
+  g->hu = malloc(2 * nr * sizeof *g->hu);
+  if (!g->cell || !g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
+    free(g->cell), free(g->hu), free(g);
     return NULL;
   }
+  g->t = t;
+  for (size_t r = 0; r < DG_NS * DG_NK; r++)
+    atomic_init(&g->built[r], 0);
+  atomic_init(&g->walls, 0);
+  g->inv_ds = DG_NS / t->s_c;
+  g->da = t->lambda0 / 8, g->inv_da = 1 / g->da;
+  g->k0 = t->ke_ref / (double)(1 << 10), g->inv_k0 = 1 / g->k0;
   return g;
 }

@@ -5,6 +5,8 @@
 #define AQ_ARCH_DEMAND_TAB_H
 
 #include <stddef.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <math.h>
 #include <string.h>
@@ -68,18 +70,33 @@ typedef struct aq_demand_grid {
   uint16_t *hu;      /* per cell, both quantities' upper bounds: the top half of a
                         float's bits, rounded up (aq_dg_bound) */
   aq_dg_cell *cell;  /* NS * NK * NA, index (is * NK + ik) * NA + ia */
-  uint16_t *pool;
-  size_t npool;
-  float wall[DG_NA][2]; /* per a/g bin, both quantities' bounds over the cells of
-                           KE/g 0 (the walls: states at rest) of every s */
+  uint16_t *pool[DG_NS * DG_NK]; /* per row (range of s, of KE/g): the candidates of
+                                    its cells that have more than DG_INLINE */
+  /* Each row of cells is made the first time a state falls in it (under
+   * lock, published by built[row]); a row that cannot be made (out of
+   * memory) leaves its states outside the grid. */
+  const struct aq_demand_table *t;
+  pthread_mutex_t lock;
+  double *rng[DG_NS];              /* per range of s, once one of its rows is made: each
+                                      entry's nine forms' ranges (lo, hi), then 1/M's */
+  atomic_int built[DG_NS * DG_NK]; /* 1: made, 2: failed */
+  size_t walls_made;               /* rows of KE/g 0 made (under lock) */
+  float wall[DG_NA][2];            /* once every row of KE/g 0 is made: per a/g bin,
+                                      both quantities' bounds over them (the walls:
+                                      states at rest) */
+  atomic_int walls;                /* 1: wall holds */
 } aq_demand_grid;
+
+/* Make row (is, ik) (demand_grid.c); 0, or -1 when it cannot be made. */
+int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik);
 
 /* The grid of table t (NULL: out of memory, or a table too large). */
 aq_demand_grid *aq_dg_build(const aq_demand_table *t);
 void aq_dg_free(aq_demand_grid *g);
 
-/* The cell of a state, or -1 (outside the grid). */
-static inline long aq_dg_index(const aq_demand_grid *g, double s, double al, double kg)
+/* The cell of a state, or -1 (outside the grid, or in a range of s that
+ * cannot be made).  Makes the state's range of s the first time. */
+static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg)
 {
   double xs = s * g->inv_ds, xa = al * g->inv_da + 0.5 * DG_NA, xk = kg * g->inv_k0;
   if (!(xs >= 0 && xs < DG_NS + 1.0 && xa >= 0 && xa < DG_NA && xk >= 0 &&
@@ -89,26 +106,31 @@ static inline long aq_dg_index(const aq_demand_grid *g, double s, double al, dou
   if (is >= DG_NS)
     is = DG_NS - 1;
   if (xk >= 1) {
-    uint64_t b;
-    memcpy(&b, &xk, sizeof b);
-    ik = 1 + ((size_t)(((b >> 52) & 0x7ff) - 1023) << DG_KB) +
-         (size_t)((b >> (52 - DG_KB)) & ((1u << DG_KB) - 1));
+    uint64_t bits;
+    memcpy(&bits, &xk, sizeof bits);
+    ik = 1 + ((size_t)(((bits >> 52) & 0x7ff) - 1023) << DG_KB) +
+         (size_t)((bits >> (52 - DG_KB)) & ((1u << DG_KB) - 1));
   }
+  int b = atomic_load_explicit(&g->built[is * DG_NK + ik], memory_order_acquire);
+  if (b != 1 && (b == 2 || aq_dg_make(g, is, ik) != 0))
+    return -1;
   return (long)((is * DG_NK + ik) * DG_NA + ia);
 }
 
-/* The candidates of cell c. */
-static inline const uint16_t *aq_dg_cands(const aq_demand_grid *g, const aq_dg_cell *c)
+/* The candidates of cell ic. */
+static inline const uint16_t *aq_dg_cands(const aq_demand_grid *g, long ic)
 {
+  const aq_dg_cell *c = g->cell + ic;
   size_t n = (c->n[0] == DG_ALL ? 0 : c->n[0]) + (c->n[1] == DG_ALL ? 0 : c->n[1]);
-  return n <= DG_INLINE ? c->c : g->pool + c->off;
+  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->off;
 }
 
-/* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2]. */
+/* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2] (known
+ * once every range of s is made). */
 static inline int aq_dg_wall_below(const aq_demand_grid *g, double al, const double m[2])
 {
   double xa = al * g->inv_da + 0.5 * DG_NA;
-  if (!(xa >= 0 && xa < DG_NA))
+  if (!(xa >= 0 && xa < DG_NA) || !atomic_load_explicit(&g->walls, memory_order_acquire))
     return 0;
   const float *w = g->wall[(size_t)xa];
   return !(w[0] > m[0]) && !(w[1] > m[1]);

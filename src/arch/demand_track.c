@@ -174,7 +174,7 @@ static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, doub
         note(d, 1, N > 0 ? E / N : INFINITY, t, j, t_s);
     }
   } else {
-    const uint16_t *p = aq_dg_cands(t->grid, cl);
+    const uint16_t *p = aq_dg_cands(t->grid, ic);
     for (int q = 0; q < 2; q++) {
       for (size_t m = 0; m < cl->n[q] && need[q]; m++) {
           d->looks++;
@@ -294,7 +294,7 @@ int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg
   if (ic < 0)
     return 0;
   const aq_dg_cell *cl = t->grid->cell + ic;
-  const uint16_t *p = aq_dg_cands(t->grid, cl);
+  const uint16_t *p = aq_dg_cands(t->grid, ic);
   size_t m = 0;
   for (int q = 0; q < 2; q++) {
     int all = cl->n[q] == DG_ALL;
