@@ -9,12 +9,14 @@
  *   - the tables against the exact forms;
  *   - the tracker against every joint evaluated at every state;
  *   - a run that barely passes lambda0 against the static demand. */
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "arch/demand.h"
+#include "arch/demand_tab.h"
 #include "arch/eom.h"
 #include "arch/model.h"
 #include "arch/stepper.h"
@@ -614,6 +616,153 @@ AQ_TEST(arch_demand_grid_bounds_every_entry)
   if (getenv("AQ_TEST_VERBOSE"))
     printf("grid: %zu states in cells (%.2f candidates each), %zu outside\n", points,
            (double)cands / (double)points, outside);
+}
+
+AQ_TEST(arch_demand_grid_cubic_range)
+{
+  /* the range of a cubic over a part of [0, 1], on which every bound of
+   * the grid rests: it holds the cubic's values at 2001 points (and it is
+   * tight: within 1e-7 (the points' spacing) of the extremes they find, the widening
+   * aside), for random cubics, most with a turning point inside */
+  unsigned long long rng = 0xc0b1cULL;
+  int inside = 0;
+  for (int i = 0; i < 2000; i++) {
+    double c[4], ua = 0.6 * tds_rng(&rng), ub = ua + 0.05 + 0.35 * tds_rng(&rng);
+    for (int k = 0; k < 4; k++)
+      c[k] = (2 * tds_rng(&rng) - 1) * (k == 3 && i % 7 == 0 ? 0 : 1);
+    double lo, hi, slo = INFINITY, shi = -INFINITY;
+    aq_dg_cubic_range(c, ua, ub, &lo, &hi);
+    for (int m = 0; m <= 2000; m++) {
+      double u = ua + (ub - ua) * m / 2000, v = aq_dt_cubic(c, u);
+      slo = fmin(slo, v), shi = fmax(shi, v);
+    }
+    double e0 = aq_dt_cubic(c, ua), e1 = aq_dt_cubic(c, ub);
+    inside += slo < fmin(e0, e1) - 1e-6 || shi > fmax(e0, e1) + 1e-6;
+    double w = 1e-14 * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]));
+    aq_check(lo <= slo && hi >= shi, "cubic %d: range [%.17g, %.17g], values [%.17g, %.17g]", i,
+             lo, hi, slo, shi);
+    aq_check(lo >= slo - w - 1e-7 && hi <= shi + w + 1e-7, "cubic %d: range [%.17g, %.17g] "
+             "looser than the values [%.17g, %.17g]", i, lo, hi, slo, shi);
+  }
+  aq_check(inside > 200, "cubics with an extreme inside: %d", inside);
+}
+
+AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
+{
+  /* where a cell's bound is tightest: at the corners of its ranges of a/g
+   * and KE/g (the forms are linear in both there), over s sampled densely
+   * through every range of s (a coefficient's turning point inside a range
+   * is where leaving it out would show), every entry evaluated */
+  gsl_set_error_handler_off();
+  size_t states = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fb = calloc(nf, sizeof *fb);
+    for (int set = 0; set < 2; set++) {
+      const aq_demand_table *t = aq_arch_demand_table(A, set);
+      if (!t || !t->grid)
+        continue;
+      const aq_demand_grid *G = t->grid;
+      static const int abin[] = {DG_NA / 2 + 7, DG_NA / 2 - 9}, kbin[] = {0, 9};
+      for (int ai = 0; ai < 2; ai++)
+        for (int ki = 0; ki < 2; ki++)
+          for (int corner = 0; corner < 4; corner++) {
+            double a0 = ((double)abin[ai] - 0.5 * DG_NA) * G->da, a1 = a0 + G->da;
+            double al = corner & 1 ? nextafter(a1, a0) : a0;
+            double k0 = kbin[ki] ? G->k0 * ldexp(1.0, (kbin[ki] - 1) >> DG_KB) : 0;
+            double k1 = kbin[ki] ? k0 * (1 + 1.0 / (1 << DG_KB)) : G->k0;
+            double kg = corner & 2 ? nextafter(k1, k0) : k0;
+            for (size_t is = 0; is < DG_NS; is++)
+              for (int m = 0; m < 7; m++) {
+                double s = t->s_c * ((double)is + (m + 0.5) / 7) / DG_NS;
+                double u[2];
+                size_t nc[2], cand[1024];
+                if (aq_demand_grid_cell(t, s, al, kg, u, cand, 1024, nc) != 1)
+                  continue;
+                aq_demand_kin kin;
+                aq_demand_table_forms(t, s, fb, &kin);
+                double w = 2 * kg / kin.mgen_kgm2;
+                for (size_t j = 0; j < nf; j++) {
+                  double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
+                  double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
+                  double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
+                  double r0 = N > 0 ? T / N : INFINITY, r1 = N > 0 ? E / N : INFINITY;
+                  aq_check(r0 <= u[0] && (fb[j].hinge >= 0 || r1 <= u[1]),
+                           "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu: %.17g %.17g, "
+                           "the cell's bounds %.17g %.17g", shipped[f], set, s, al, kg, j, r0,
+                           r1, u[0], u[1]);
+                }
+                states++;
+              }
+          }
+    }
+    free(fb);
+    aq_arch_free(A);
+  }
+  aq_check(states > 50000, "states %zu", states);
+}
+
+AQ_TEST(arch_demand_grid_walls_bound_states_at_rest)
+{
+  /* a leg's walls are found only when some state at rest under its a/g
+   * could exceed the maxima: each a/g bin's bound must hold at rest (KE 0)
+   * at every s.  Every row of KE/g 0 made, then states at rest sampled
+   * densely in s at both edges of each a/g bin, every entry evaluated. */
+  gsl_set_error_handler_off();
+  size_t states = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    aq_joint_form *fb = calloc(nf, sizeof *fb);
+    for (int set = 0; set < 2; set++) {
+      const aq_demand_table *t = aq_arch_demand_table(A, set);
+      if (!t || !t->grid)
+        continue;
+      const aq_demand_grid *G = t->grid;
+      double u[2];
+      size_t nc[2], cand[1024];
+      for (size_t is = 0; is < DG_NS; is++) /* every row of KE/g 0 */
+        aq_demand_grid_cell(t, t->s_c * ((double)is + 0.5) / DG_NS, 0, 0, u, cand, 1024, nc);
+      for (size_t ia = DG_NA / 2 - 12; ia < DG_NA / 2 + 12; ia += 3) {
+        double a0 = ((double)ia - 0.5 * DG_NA) * G->da, al[2] = {a0, nextafter(a0 + G->da, a0)};
+        double m[2] = {0, 0};
+        for (int c = 0; c < 2; c++)
+          for (int k = 0; k < 6 * DG_NS; k++) {
+            double s = t->s_c * (k + 0.5) / (6 * DG_NS);
+            aq_demand_kin kin;
+            aq_demand_table_forms(t, s, fb, &kin);
+            for (size_t j = 0; j < nf; j++) {
+              double N = fb[j].n[0] + al[c] * fb[j].n[1];
+              double T = fabs(fb[j].t[0] + al[c] * fb[j].t[1]);
+              double E = fabs(fb[j].e[0] + al[c] * fb[j].e[1]);
+              m[0] = fmax(m[0], N > 0 ? T / N : INFINITY);
+              if (fb[j].hinge < 0)
+                m[1] = fmax(m[1], N > 0 ? E / N : INFINITY);
+            }
+            states++;
+          }
+        /* the bounds say no state at rest exceeds a little less than the
+         * entries reach: wrong (an infinite demand: the bound must be too) */
+        for (int q = 0; q < 2; q++) {
+          double below[2] = {INFINITY, INFINITY};
+          below[q] = isinf(m[q]) ? DBL_MAX : m[q] * (1 - 1e-9);
+          aq_check(!aq_dg_wall_below(G, al[0], below), "%s set %d: a/g bin %zu: at rest "
+                   "quantity %d reaches %.9g, the walls' bound says less", shipped[f], set, ia,
+                   q, m[q]);
+        }
+      }
+    }
+    free(fb);
+    aq_arch_free(A);
+  }
+  aq_check(states > 50000, "states %zu", states);
 }
 
 /* A run in which the arch never moves: the least friction with which a

@@ -96,7 +96,7 @@ typedef struct {
   double slide_s;     /* first time |T|/N passed the friction limit, NAN: never (or none) */
   size_t samples;     /* states looked at */
   size_t full;        /* of them, with every joint evaluated */
-  size_t looks;       /* single joints evaluated */
+  size_t looks;       /* candidates evaluated (one entry each) */
 } aq_demand_result;
 
 typedef struct aq_demand aq_demand;

@@ -28,7 +28,7 @@
 #define DG_PAD 1e-9
 
 /* The range of cubic c over u in [ua, ub], widened for rounding. */
-static void cubic_range(const double c[4], double ua, double ub, double *lo, double *hi)
+void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi)
 {
   double a = aq_dt_cubic(c, ua), b = aq_dt_cubic(c, ub);
   double l = fmin(a, b), h = fmax(a, b);
@@ -266,7 +266,7 @@ static void ranges(const aq_demand_table *t, size_t is, double *R)
     for (size_t k = 0; k <= nf * DT_NV; k++) {
       const double *c = k < nf * DT_NV ? C + k * DT_NC : C + (nf * DT_NV + 3) * DT_NC;
       double lo, hi;
-      cubic_range(c, ua, ub, &lo, &hi);
+      aq_dg_cubic_range(c, ua, ub, &lo, &hi);
       R[2 * k] = fmin(R[2 * k], lo), R[2 * k + 1] = fmax(R[2 * k + 1], hi);
     }
   }

@@ -87,6 +87,10 @@ typedef struct aq_demand_grid {
   atomic_int walls;                /* 1: wall holds */
 } aq_demand_grid;
 
+/* The range of cubic c (aq_dt_cubic) over u in [ua, ub]: its ends and its
+ * turning points inside, widened by 1e-14 of the sum of its coefficients'
+ * magnitudes (for the rounding of aq_dt_cubic). */
+void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi);
 /* Make row (is, ik) (demand_grid.c); 0, or -1 when it cannot be made. */
 int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik);
 
