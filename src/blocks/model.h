@@ -243,8 +243,19 @@ typedef struct {
   int stage;          /* the global law's impact stages taken (a sequence) */
   double friction_j;  /* the work of friction in the step (<= 0): at the
                        * impact stages exactly, (1 + e_n) u_t . P_t; in the
-                       * step at the joints sliding at its start or end,
-                       * P_t times the mean of u_t at its start and end */
+                       * step at the joints sliding at its start (by their
+                       * state, or after an impact stage by their tangential
+                       * velocity) or end, P_t times the mean of u_t at its
+                       * start and end */
+  /* what the energy balance is made of (diagnostics, bench energy) */
+  int late_plastic;   /* 1: a corner that approached joined the step late
+                       * and landed by the step's plastic law (its impact
+                       * stage missed MAX_LATE times) */
+  double proj_pe_j;   /* the projection's change of potential energy, J
+                       * (gravity g, the ground still) */
+  double stick_j;     /* P_t times the mean of u_t at the joints that stick
+                       * throughout the step (no work but the scheme's
+                       * error; not in friction_j) */
 } aq_step_info;
 
 /* The impact law at e_n > 0 (at e_n = 0 both are the plastic law and the

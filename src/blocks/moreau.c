@@ -764,6 +764,15 @@ static aq_status solve_problem(aq_moreau *m, aq_step_info *info, aq_error *err)
   return AQ_OK;
 }
 
+/* The bodies' potential energy m g y, J (gravity g, the ground still). */
+static double potential_j(const aq_bodies *s, const double *q)
+{
+  double pe = 0;
+  for (size_t b = 0; b < s->nb; b++)
+    pe += s->body[b].mass_kg * s->g_mps2 * q[3 * b + 1];
+  return pe;
+}
+
 /* The impact stage of the global law (prepared without forces): the
  * plastic impact v_p (the step's problem with e = 0 and no force) and
  * v+ = v- + (1 + e_n) (v_p - v-); then the start velocities again. */
@@ -840,6 +849,8 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
           late = 1;
           if (global && redo < MAX_LATE && m->un0[c] < -CHECK_REL * m->vscale)
             m->force[c] = again = 1;
+          else if (global && m->un0[c] < -CHECK_REL * m->vscale)
+            info->late_plastic = 1;
         }
       if (again || !late || pass == MAX_LATE)
         break;
@@ -853,17 +864,29 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
     memset(m->force, 0, nc);
   /* the friction's work at the joints that slide at the step's start or
    * end, or close, open or change corners in it: P_t times the tangential
-   * velocity at the step's middle (a joint that sticks throughout does
-   * work only by the scheme's error) */
-  for (size_t c = 0; c < nc; c++)
-    if (m->pt[c] != 0 && (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0 ||
-                          m->trial[c / 2].kind != m->st[c / 2].kind))
-      info->friction_j +=
-          m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
+   * velocity at the step's middle.  After an impact stage a joint whose
+   * state sticks may slide at the step's start (the stage left its
+   * tangential velocity, -e_n times that before, at a corner the plastic
+   * impact stuck): stopping it is the friction's work too.  A joint that
+   * sticks throughout does work only by the scheme's error (stick_j). */
+  for (size_t c = 0; c < nc; c++) {
+    if (m->pt[c] == 0)
+      continue;
+    double w = m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
+    if (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0 ||
+        m->trial[c / 2].kind != m->st[c / 2].kind ||
+        (info->stage > 0 && fabs(m->ut0[c]) > SICONOS_CHECK_REL * m->vscale))
+      info->friction_j += w;
+    else
+      info->stick_j += w;
+  }
   m->gvx[0] = gvx1[0];
   m->gvx[1] = gvx1[1];
-  if (m->projection)
+  if (m->projection) {
+    double pe0 = potential_j(m->s, m->q1);
     project(m, m->trial, m->q1, gx1);
+    info->proj_pe_j = potential_j(m->s, m->q1) - pe0;
+  }
   memcpy(m->q, m->q1, nb3 * sizeof *m->q);
   memcpy(m->v, m->vnew, nb3 * sizeof *m->v);
   m->gx[0] = gx1[0];
