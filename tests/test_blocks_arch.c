@@ -57,6 +57,30 @@ static int by_time(const void *a, const void *b)
   return (x->time_s > y->time_s) - (x->time_s < y->time_s);
 }
 
+/* The two hinge-controlled arches of the checks below, oppenheim and
+ * thick, in turn: it->A (the one before it freed), it->name its file,
+ * it->k its index (0, 1); 0 when both are done.  One that does not load (a
+ * failed check) is skipped.  Start from {0}; the loop's body never frees
+ * it->A. */
+typedef struct {
+  size_t next, k;
+  aq_arch *A;
+  const char *name;
+} two_arches;
+
+static int next_of_two(two_arches *it)
+{
+  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
+  aq_arch_free(it->A);
+  it->A = NULL;
+  while (!it->A && it->next < 2) {
+    it->k = it->next++;
+    it->name = two[it->k];
+    it->A = aq_test_arch_load(it->name);
+  }
+  return it->A != NULL;
+}
+
 /* With friction 10, a constant ground acceleration of 0.97 lambda0 g (the
  * primary set's, in its direction) moves nothing, every step solved (no
  * creep: the prototype's capped Gauss-Seidel moved 1.7 mm in 1 s); 1.03
@@ -258,11 +282,8 @@ AQ_TEST(blocks_arch_onset_friction)
  * it collapses when the ode passes q_c, within a few steps. */
 AQ_TEST(blocks_arch_fixed_against_ode)
 {
-  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
-  for (size_t k = 0; k < 2; k++) {
-    aq_arch *A = aq_test_arch_load(two[k]);
-    if (!A)
-      continue;
+  for (two_arches it = {0}; next_of_two(&it);) {
+    aq_arch *A = it.A;
     const aq_path *p = aq_arch_path(A, 0);
     for (int collapse = 0; collapse < 2; collapse++) {
       double f = collapse ? 1.6 : 2.0, T = collapse ? 0.6 : 0.15;
@@ -290,14 +311,14 @@ AQ_TEST(blocks_arch_fixed_against_ode)
           if (collapse) {
             aq_check(r.r.collapsed && ro.collapsed &&
                          fabs(r.r.collapse_time_s - ro.collapse_time_s) <= 3 * dt,
-                     "%s: collapse at %g s, the ode's %g s", two[k], r.r.collapse_time_s,
+                     "%s: collapse at %g s, the ode's %g s", it.name, r.r.collapse_time_s,
                      ro.collapse_time_s);
           } else {
             err[i] = r.r.peak_rotation_rad / ro.peak_rotation_rad - 1;
             if (i == 0)
               aq_check_rel(r.r.peak_rotation_rad, ro.peak_rotation_rad, 1e-2,
-                           "%s: peak rotation at the default step", two[k]);
-            aq_check(!r.r.collapsed, "%s: no collapse", two[k]);
+                           "%s: peak rotation at the default step", it.name);
+            aq_check(!r.r.collapsed, "%s: no collapse", it.name);
           }
           aq_blocks_result_free(&r);
         }
@@ -306,13 +327,12 @@ AQ_TEST(blocks_arch_fixed_against_ode)
       if (!collapse)
         for (int i = 0; i < 2; i++)
           aq_check(fabs(err[i] / err[i + 1] - 2) < 0.3,
-                   "%s: first order: %.3e -> %.3e (ratio %.3f)", two[k], err[i], err[i + 1],
+                   "%s: first order: %.3e -> %.3e (ratio %.3f)", it.name, err[i], err[i + 1],
                    err[i] / err[i + 1]);
       aq_result_free(&ro);
       aq_stepper_free(st);
       aq_steps_free(&s);
     }
-    aq_arch_free(A);
   }
 }
 
@@ -514,27 +534,23 @@ static double energy_balance(const aq_arch *A, aq_blocks_control c, double h, si
  * to 3.2 E0). */
 AQ_TEST(blocks_arch_energy_restitution_one)
 {
-  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
-  for (size_t k = 0; k < 2; k++) {
-    aq_arch *A = aq_test_arch_load(two[k]);
-    if (!A)
-      continue;
+  for (two_arches it = {0}; next_of_two(&it);) {
+    aq_arch *A = it.A;
     double worst[3];
     for (int i = 0; i < 3; i++) {
       double h = 1e-3 / (1 << i), gain;
       size_t stages;
       worst[i] = energy_balance(A, AQ_BLOCKS_FIXED, h, &stages, &gain);
-      aq_check(stages >= 10, "%s, dt %g: impacts by the global law (%zu stages)", two[k], h,
+      aq_check(stages >= 10, "%s, dt %g: impacts by the global law (%zu stages)", it.name, h,
                stages);
-      aq_check(gain <= 1e-12, "%s, dt %g: friction never gives energy (%g E0)", two[k], h,
+      aq_check(gain <= 1e-12, "%s, dt %g: friction never gives energy (%g E0)", it.name, h,
                gain);
-      aq_check(worst[i] < 0.5 * h, "%s, dt %g: |E - D - E0| / E0 = %.3e", two[k], h,
+      aq_check(worst[i] < 0.5 * h, "%s, dt %g: |E - D - E0| / E0 = %.3e", it.name, h,
                worst[i]);
     }
     for (int i = 0; i < 2; i++)
       aq_check(worst[i] / worst[i + 1] > 1.7 && worst[i] / worst[i + 1] < 2.3,
-               "%s: first order (%.3e, %.3e)", two[k], worst[i], worst[i + 1]);
-    aq_arch_free(A);
+               "%s: first order (%.3e, %.3e)", it.name, worst[i], worst[i + 1]);
   }
 }
 
@@ -547,18 +563,15 @@ AQ_TEST(blocks_arch_energy_restitution_one)
  * 1.3e-3, 1.7e-4: docs/blocks.md, "Where the balance goes"). */
 AQ_TEST(blocks_arch_energy_restitution_one_free)
 {
-  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
   static const double H[2] = {1e-3, 5e-4}, TOL[2] = {2e-3, 5e-4};
-  for (size_t k = 0; k < 2; k++) {
-    aq_arch *A = aq_test_arch_load(two[k]);
-    if (!A)
-      continue;
+  for (two_arches it = {0}; next_of_two(&it);) {
+    aq_arch *A = it.A;
     double w[2];
     for (int i = 0; i < 2; i++) {
       double gain;
       size_t stages;
       w[i] = energy_balance(A, AQ_BLOCKS_FREE, H[i], &stages, &gain);
-      aq_check(stages >= 100, "%s, dt %g: impacts by the global law (%zu stages)", two[k],
+      aq_check(stages >= 100, "%s, dt %g: impacts by the global law (%zu stages)", it.name,
                H[i], stages);
       /* a joint that closes in a step, or one stopped within the step
        * after an impact stage: its P_t times the mean of its tangential
@@ -566,12 +579,11 @@ AQ_TEST(blocks_arch_energy_restitution_one_free)
        * the step's loads too, so a step's sum may be slightly positive
        * (1.4e-5 E0 measured, thick at 0.001 s) */
       aq_check(gain <= 5e-5, "%s, dt %g: friction gives no more than the scheme's error (%g E0)",
-               two[k], H[i], gain);
-      aq_check(w[i] < TOL[i], "%s, free, dt %g: |E - D - E0| / E0 = %.3e", two[k], H[i], w[i]);
+               it.name, H[i], gain);
+      aq_check(w[i] < TOL[i], "%s, free, dt %g: |E - D - E0| / E0 = %.3e", it.name, H[i], w[i]);
     }
-    aq_check(w[0] > 2 * w[1], "%s, free: falls as the step halves (%.3e, %.3e)", two[k], w[0],
+    aq_check(w[0] > 2 * w[1], "%s, free: falls as the step halves (%.3e, %.3e)", it.name, w[0],
              w[1]);
-    aq_arch_free(A);
   }
 }
 
@@ -583,18 +595,13 @@ AQ_TEST(blocks_arch_energy_restitution_one_free)
  * a sticking impact), and at e = 1 it keeps the energy to rounding. */
 AQ_TEST(blocks_arch_impact_stage_closed_form)
 {
-  static const char *const two[] = {"arches/oppenheim.cfg", "arches/thick.cfg"};
-  for (size_t k = 0; k < 2; k++) {
-    aq_arch *A = aq_test_arch_load(two[k]);
-    if (!A)
-      continue;
+  for (two_arches it = {0}; next_of_two(&it);) {
+    aq_arch *A = it.A;
     const aq_path *p = aq_arch_path(A, 0);
     double a = p->act_sign * 1.5 * p->lambda0 * p->g_mps2, h = 1e-3;
-    aq_blocks *B = energy_model(A, k ? AQ_BLOCKS_FIXED : AQ_BLOCKS_FREE, 1);
-    if (!B) {
-      aq_arch_free(A);
+    aq_blocks *B = energy_model(A, it.k ? AQ_BLOCKS_FIXED : AQ_BLOCKS_FREE, 1);
+    if (!B)
       continue;
-    }
     aq_moreau *m = aq_blocks_moreau(B);
     const aq_bodies *s = aq_blocks_bodies(B);
     aq_error e;
@@ -609,7 +616,7 @@ AQ_TEST(blocks_arch_impact_stage_closed_form)
         break;
       found = j >= 152 && info.stage > 0;
     }
-    if (aq_check(found, "%s: an impact", two[k])) {
+    if (aq_check(found, "%s: an impact", it.name)) {
       double ke[3], fw[3];
       static const double es[] = {0, 0.5, 1};
       for (int i = 0; i < 3; i++) {
@@ -619,25 +626,24 @@ AQ_TEST(blocks_arch_impact_stage_closed_form)
         aq_step_info info;
         ke[i] = fw[i] = NAN;
         if (aq_check(aq_moreau_impact(m, h, &info, &e) == AQ_OK && info.impact,
-                     "%s: the stage at e %g: %s", two[k], es[i], e.message)) {
+                     "%s: the stage at e %g: %s", it.name, es[i], e.message)) {
           ke[i] = kinetic_j(s, aq_moreau_v(m)) - ke0;
           fw[i] = info.friction_j;
         }
         if (i == 0)
-          aq_check(ke[0] < 0, "%s: the plastic impact loses %g J of %g", two[k], -ke[0], ke0);
+          aq_check(ke[0] < 0, "%s: the plastic impact loses %g J of %g", it.name, -ke[0], ke0);
       }
       double w0 = fw[0], d2 = w0 - ke[0]; /* |d|^2 / 2 */
       for (int i = 1; i < 3; i++) {
         double en = es[i], want = (en * en - 1) * d2 + (1 + en) * w0;
         aq_check_abs(ke[i], want, 1e-9 * d2, "%s: e %g: dKE against the closed form (W %g J)",
-                     two[k], en, w0);
+                     it.name, en, w0);
       }
       if (fabs(w0) <= 1e-12 * d2)
         aq_check_abs(ke[2], 0, 1e-10 * d2, "%s: e 1 keeps the energy at a sticking impact",
-                     two[k]);
+                     it.name);
     }
     aq_blocks_free(B);
-    aq_arch_free(A);
   }
 }
 

@@ -68,6 +68,26 @@ static void put_member(aq_bytes_out *b, const aq_select_member *m, size_t nper)
   }
 }
 
+/* 1 if the traces read are those a member of this pool has: one for each
+ * of its components (two for a pair, one for a record), none beyond, each
+ * of finite values, as aq_same_trace_make() makes them.  An entry whose
+ * traces are not (whole by its checksum, yet not what this build writes)
+ * is not used: the member is computed again, as for a damaged entry
+ * (docs/cache.md), and never compared by traces that would hide or invent
+ * a duplicate. */
+static int traces_whole(const aq_select_member *m)
+{
+  for (size_t c = 0; c < 2; c++) {
+    int want = c == 0 || m->path[1] != NULL;
+    if ((m->trace[c].n > 0) != want)
+      return 0;
+    for (size_t k = 0; k < m->trace[c].n; k++)
+      if (!isfinite(m->trace[c].x[k]))
+        return 0;
+  }
+  return 1;
+}
+
 static int get_member(aq_bytes_in *r, aq_select_member *m, size_t nper)
 {
   m->psa0_mps2 = aq_bytes_get_f64(r, "psa0");
@@ -88,7 +108,7 @@ static int get_member(aq_bytes_in *r, aq_select_member *m, size_t nper)
     for (size_t k = 0; k < n; k++)
       m->trace[c].x[k] = aq_bytes_get_f64(r, "trace");
   }
-  return !r->bad && r->at == r->n;
+  return !r->bad && r->at == r->n && traces_whole(m);
 }
 
 static void prepare_member(void *vctx, size_t i)

@@ -60,28 +60,7 @@ static herr_t ds_doubles(hid_t g, const char *name, const double *buf, size_t ro
   return aq_h5_array_write(g, name, H5T_NATIVE_DOUBLE, buf, rows, cols, units);
 }
 
-static herr_t attr_num(hid_t g, const char *name, hid_t t, const void *v)
-{
-  hid_t sp = H5Screate(H5S_SCALAR);
-  if (sp < 0)
-    return -1;
-  herr_t rc = aq_h5_attr_write(g, name, t, sp, v);
-  if (H5Sclose(sp) < 0)
-    rc = -1;
-  return rc;
-}
-
-static herr_t attr_d(hid_t g, const char *name, double v)
-{
-  return attr_num(g, name, H5T_NATIVE_DOUBLE, &v);
-}
-
-static herr_t attr_i(hid_t g, const char *name, int64_t v)
-{
-  return attr_num(g, name, H5T_NATIVE_INT64, &v);
-}
-
-static herr_t write_group(hid_t file, const aq_h5_select *s)
+static herr_t write_group(aq_h5_writer *w, hid_t file, const aq_h5_select *s)
 {
   const aq_select_input *in = s->input;
   const aq_selection *sel = s->sel;
@@ -99,26 +78,27 @@ static herr_t write_group(hid_t file, const aq_h5_select *s)
   }
   const aq_select_eval *e = &sel->search.eval;
   double f = N && sel->search.found ? sel->scale[0] / sel->prep.scale[sel->search.idx[0]] : 1;
-  herr_t rc = aq_h5_attr_string(g, "target", in->target->spec);
-  if (rc >= 0) rc = aq_h5_attr_string(g, "target_description", desc);
-  if (rc >= 0) rc = aq_h5_attr_string(g, "code", aq_target_code(in->target));
-  if (rc >= 0) rc = aq_h5_attr_string(g, "peaks", s->peaks);
-  if (rc >= 0) rc = aq_h5_attr_string(g, "pair_rule", s->pair_rule);
-  if (rc >= 0) rc = aq_h5_attr_string(g, "search", sel->search.kind == AQ_SEARCH_EXHAUSTIVE
+  herr_t rc = aq_h5_attr_text(w, g, "target", in->target->spec);
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "target_description", desc);
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "code", aq_target_code(in->target));
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "peaks", s->peaks);
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "pair_rule", s->pair_rule);
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "search", sel->search.kind == AQ_SEARCH_EXHAUSTIVE
                                                       ? "exhaustive" : "greedy-swaps");
-  if (rc >= 0) rc = aq_h5_attr_string(g, "suite_file_comments", comments);
-  if (rc >= 0) rc = attr_d(g, "damping", in->target->damping);
-  if (rc >= 0) rc = attr_d(g, "band", AQ_SELECT_BAND);
-  if (rc >= 0) rc = attr_d(g, "scale_lo", in->scale_lo);
-  if (rc >= 0) rc = attr_d(g, "scale_hi", in->scale_hi);
-  if (rc >= 0) rc = attr_d(g, "common_factor", f);
-  if (rc >= 0) rc = attr_d(g, "misfit", e->misfit);
-  if (rc >= 0) rc = attr_d(g, "combinations", sel->search.combinations);
-  if (rc >= 0) rc = attr_d(g, "evaluated", sel->search.evaluated);
-  if (rc >= 0) rc = attr_d(g, "target0_g", sel->problem.target0_mps2 / AQ_G0_MPS2);
-  if (rc >= 0) rc = attr_i(g, "count", (int64_t)N);
-  if (rc >= 0) rc = attr_i(g, "max_per_event", (int64_t)in->max_per_event);
-  if (rc >= 0) rc = attr_i(g, "conditions_hold", sel->all_hold);
+  if (rc >= 0) rc = aq_h5_attr_text(w, g, "suite_file_comments", comments);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "damping", in->target->damping);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "band", AQ_SELECT_BAND);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "scale_lo", in->scale_lo);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "scale_hi", in->scale_hi);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "common_factor", f);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "misfit", e->misfit);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "combinations", sel->search.combinations);
+  if (rc >= 0) rc = aq_h5_attr_double(w, g, "evaluated", sel->search.evaluated);
+  if (rc >= 0)
+    rc = aq_h5_attr_double(w, g, "target0_g", sel->problem.target0_mps2 / AQ_G0_MPS2);
+  if (rc >= 0) rc = aq_h5_attr_int(w, g, "count", (int64_t)N);
+  if (rc >= 0) rc = aq_h5_attr_int(w, g, "max_per_event", (int64_t)in->max_per_event);
+  if (rc >= 0) rc = aq_h5_attr_int(w, g, "conditions_hold", sel->all_hold);
   double *v = malloc(((M > N ? M : N) * (K ? K : 1) + K + 1) * sizeof *v);
   if (!v)
     rc = -1;
@@ -178,7 +158,7 @@ aq_status aq_h5_select_write(const char *target, const aq_h5_select *s, aq_error
                      .created = s->created, .proc = s->proc, .threads = s->input->threads,
                      .build = s->build};
   st = aq_h5_write_root_kind(w, &root, "select", err);
-  if (st == AQ_OK && write_group((hid_t)aq_h5_file_id(w), s) < 0)
+  if (st == AQ_OK && write_group(w, (hid_t)aq_h5_file_id(w), s) < 0)
     st = aq_error_set(err, AQ_EIO, target, -1, -1, "/select",
                       "could not write the selection (HDF5)");
   if (st == AQ_OK)
@@ -231,11 +211,6 @@ static int attr_text(hid_t g, const char *name, char *buf, size_t cap)
   H5Aclose(a);
   buf[cap - 1] = '\0';
   return rc;
-}
-
-static int attr_double(hid_t g, const char *name, double *v)
-{
-  return aq_h5_attr_num(g, name, H5T_NATIVE_DOUBLE, v);
 }
 
 /* A 1-D (cols 1) or rows x cols dataset of doubles into a new array. */
@@ -315,10 +290,11 @@ static aq_status read_group(hid_t g, const char *path, aq_h5_select_file *f, aq_
       attr_text(g, "target_description", f->description, sizeof f->description) < 0 ||
       attr_text(g, "code", f->code, sizeof f->code) < 0 ||
       attr_text(g, "peaks", f->peaks, sizeof f->peaks) < 0 ||
-      attr_double(g, "damping", &f->damping) < 0 || attr_double(g, "band", &f->band) < 0 ||
-      attr_double(g, "common_factor", &f->factor) < 0 ||
-      attr_double(g, "misfit", &f->misfit) < 0 ||
-      attr_double(g, "target0_g", &f->target0_g) < 0 ||
+      aq_h5_attr_num(g, "damping", H5T_NATIVE_DOUBLE, &f->damping) < 0 ||
+      aq_h5_attr_num(g, "band", H5T_NATIVE_DOUBLE, &f->band) < 0 ||
+      aq_h5_attr_num(g, "common_factor", H5T_NATIVE_DOUBLE, &f->factor) < 0 ||
+      aq_h5_attr_num(g, "misfit", H5T_NATIVE_DOUBLE, &f->misfit) < 0 ||
+      aq_h5_attr_num(g, "target0_g", H5T_NATIVE_DOUBLE, &f->target0_g) < 0 ||
       aq_h5_attr_num(g, "conditions_hold", H5T_NATIVE_INT, &f->conditions_hold) < 0)
     return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "/select",
                         "expected the attributes of archquake select -o, got a group "

@@ -42,18 +42,23 @@ static inline void lanes_load(double *const c[8], const aq_sdof *const *o, size_
   }
 }
 
-/* max |x_k| of the response at the samples of up to BATCH oscillators
- * (o[0..nb), none the PGA's) to the n samples of a, into m[0..nb). */
-BATCH_CLONES
-static void peaks_batch(const aq_sdof *const *o, size_t nb, const double *a, size_t n,
-                        double *m)
+/* One pass of the recursion of the BATCH lanes (coefficients c, as
+ * lanes_load fills them) over the n samples of a, from rest: each lane's
+ * largest |x_k| into mx[0..BATCH) and, when my is not NULL, its largest
+ * |y_k| into my.  Inlined into each caller (and each of its clones), where
+ * my is a constant: without it no |y| is taken. */
+static inline __attribute__((always_inline)) void lanes_pass(double *const c[8],
+                                                              const double *a, size_t n,
+                                                              double *mx, double *my)
 {
-  double p00[BATCH], p01[BATCH], p10[BATCH], p11[BATCH];
-  double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
-  double x[BATCH], y[BATCH], mx[BATCH];
-  lanes_load((double *const[8]){p00, p01, p10, p11, b00, b01, b10, b11}, o, nb);
-  for (size_t j = 0; j < BATCH; j++)
+  const double *p00 = c[0], *p01 = c[1], *p10 = c[2], *p11 = c[3];
+  const double *b00 = c[4], *b01 = c[5], *b10 = c[6], *b11 = c[7];
+  double x[BATCH], y[BATCH];
+  for (size_t j = 0; j < BATCH; j++) {
     x[j] = y[j] = mx[j] = 0;
+    if (my)
+      my[j] = 0;
+  }
   double ak = a[0];
   for (size_t k = 0; k + 1 < n; k++) {
     double an = a[k + 1];
@@ -64,9 +69,27 @@ static void peaks_batch(const aq_sdof *const *o, size_t nb, const double *a, siz
       y[j] = yn;
       double ax = fabs(xn);
       mx[j] = ax > mx[j] ? ax : mx[j];
+      if (my) {
+        double ay = fabs(yn);
+        my[j] = ay > my[j] ? ay : my[j];
+      }
     }
     ak = an;
   }
+}
+
+/* max |x_k| of the response at the samples of up to BATCH oscillators
+ * (o[0..nb), none the PGA's) to the n samples of a, into m[0..nb). */
+BATCH_CLONES
+static void peaks_batch(const aq_sdof *const *o, size_t nb, const double *a, size_t n,
+                        double *m)
+{
+  double p00[BATCH], p01[BATCH], p10[BATCH], p11[BATCH];
+  double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
+  double mx[BATCH];
+  double *const c[8] = {p00, p01, p10, p11, b00, b01, b10, b11};
+  lanes_load(c, o, nb);
+  lanes_pass(c, a, n, mx, NULL);
   for (size_t j = 0; j < nb; j++)
     m[j] = mx[j];
 }
@@ -97,28 +120,14 @@ static void refined_batch(const aq_sdof *const *o, const aq_sdof *const *s, cons
   double b00[BATCH], b01[BATCH], b10[BATCH], b11[BATCH];
   double x[BATCH], y[BATCH], mx[BATCH], my[BATCH], g[BATCH], xo[BATCH], yo[BATCH];
   int hit[BATCH];
-  lanes_load((double *const[8]){p00, p01, p10, p11, b00, b01, b10, b11}, o, nb);
-  for (size_t j = 0; j < BATCH; j++)
-    x[j] = y[j] = mx[j] = my[j] = 0;
-  double ak = a[0];
-  for (size_t k = 0; k + 1 < n; k++) {
-    double an = a[k + 1];
-    for (size_t j = 0; j < BATCH; j++) {
-      double xn = p00[j] * x[j] + p01[j] * y[j] + b00[j] * ak + b01[j] * an;
-      double yn = p10[j] * x[j] + p11[j] * y[j] + b10[j] * ak + b11[j] * an;
-      x[j] = xn;
-      y[j] = yn;
-      double ax = fabs(xn), ay = fabs(yn);
-      mx[j] = ax > mx[j] ? ax : mx[j];
-      my[j] = ay > my[j] ? ay : my[j];
-    }
-    ak = an;
-  }
+  double *const c[8] = {p00, p01, p10, p11, b00, b01, b10, b11};
+  lanes_load(c, o, nb);
+  lanes_pass(c, a, n, mx, my);
   for (size_t j = 0; j < BATCH; j++) {
     g[j] = slack_of(o[j < nb ? j : 0], mx[j], my[j], amax);
     x[j] = y[j] = 0;
   }
-  ak = a[0];
+  double ak = a[0];
   for (size_t k = 0; k + 1 < n; k++) {
     double an = a[k + 1];
     int any = 0;
