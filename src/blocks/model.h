@@ -102,6 +102,10 @@ aq_vec2 aq_bodies_point(const aq_bodies *s, int b, const double *q, const double
 void aq_bodies_set_support_extent(aq_bodies *s, double ext_m);
 /* The undeformed configuration (q[3b] = c0, theta = 0). */
 void aq_bodies_rest(const aq_bodies *s, double *q);
+/* The bodies' kinetic energy at velocities v, and their potential energy
+ * m g y at q (gravity g, the ground still), J. */
+double aq_bodies_kinetic_j(const aq_bodies *s, const double *v);
+double aq_bodies_potential_j(const aq_bodies *s, const double *q);
 
 /* ---- contact.c ------------------------------------------------------ */
 
@@ -256,6 +260,8 @@ typedef struct {
   double stick_j;     /* P_t times the mean of u_t at the joints that stick
                        * throughout the step (no work but the scheme's
                        * error; not in friction_j) */
+  double stage_err_j; /* the impact stages' change of kinetic energy less
+                       * their friction's work (0 to rounding by the law) */
 } aq_step_info;
 
 /* The impact law at e_n > 0 (at e_n = 0 both are the plastic law and the
