@@ -537,6 +537,23 @@ AQ_TEST(arch_demand_runs_as_with_every_joint_at_every_state)
            states, full);
 }
 
+/* Every entry's |T|/N and |e|/N (0 at a hinge) at the state (s, a/g al,
+ * KE/g kg) of t, from the tables, into r[2 nf]. */
+static void entry_ratios(const aq_demand_table *t, aq_joint_form *fb, size_t nf, double s,
+                         double al, double kg, double *r)
+{
+  aq_demand_kin kin;
+  aq_demand_table_forms(t, s, fb, &kin);
+  double w = 2 * kg / kin.mgen_kgm2;
+  for (size_t j = 0; j < nf; j++) {
+    double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
+    double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
+    double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
+    r[2 * j] = N > 0 ? T / N : INFINITY;
+    r[2 * j + 1] = fb[j].hinge < 0 ? (N > 0 ? E / N : INFINITY) : 0;
+  }
+}
+
 AQ_TEST(arch_demand_grid_bounds_every_entry)
 {
   /* the claim the tracker rests on: in the cell of the grid that holds a
@@ -576,15 +593,9 @@ AQ_TEST(arch_demand_grid_bounds_every_entry)
           outside++;
           continue;
         }
-        aq_demand_kin kin;
-        aq_demand_table_forms(t, s, fb, &kin);
-        double w = 2 * kg / kin.mgen_kgm2, best[2] = {0, 0};
+        double best[2] = {0, 0};
+        entry_ratios(t, fb, nf, s, al, kg, r);
         for (size_t j = 0; j < nf; j++) {
-          double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
-          double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
-          double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
-          r[2 * j] = N > 0 ? T / N : INFINITY;
-          r[2 * j + 1] = fb[j].hinge < 0 ? (N > 0 ? E / N : INFINITY) : 0;
           for (int q = 0; q < 2; q++)
             aq_check(r[2 * j + q] <= u[q], "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu "
                      "quantity %d %.17g above the cell's bound %.17g", shipped[f], set, s, al,
@@ -647,12 +658,11 @@ AQ_TEST(arch_demand_grid_cubic_range)
   aq_check(inside > 200, "cubics with an extreme inside: %d", inside);
 }
 
-AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
+/* fn on each set with a grid of every shipped arch; the states it counts. */
+typedef size_t (*grid_case)(const char *arch, int set, const aq_demand_table *t,
+                            aq_joint_form *fb, size_t nf, double *r);
+static size_t each_grid(grid_case fn)
 {
-  /* where a cell's bound is tightest: at the corners of its ranges of a/g
-   * and KE/g (the forms are linear in both there), over s sampled densely
-   * through every range of s (a coefficient's turning point inside a range
-   * is where leaving it out would show), every entry evaluated */
   gsl_set_error_handler_off();
   size_t states = 0;
   for (size_t f = 0; f < NSHIPPED; f++) {
@@ -660,50 +670,89 @@ AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
     aq_error e;
     if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
       continue;
-    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
+    size_t nf = aq_demand_nforms(aq_arch_geom(A)->p.voussoirs);
     aq_joint_form *fb = calloc(nf, sizeof *fb);
+    double *r = calloc(2 * nf, sizeof *r);
     for (int set = 0; set < 2; set++) {
       const aq_demand_table *t = aq_arch_demand_table(A, set);
-      if (!t || !t->grid)
-        continue;
-      const aq_demand_grid *G = t->grid;
-      static const int abin[] = {DG_NA / 2 + 7, DG_NA / 2 - 9}, kbin[] = {0, 9};
-      for (int ai = 0; ai < 2; ai++)
-        for (int ki = 0; ki < 2; ki++)
-          for (int corner = 0; corner < 4; corner++) {
-            double a0 = ((double)abin[ai] - 0.5 * DG_NA) * G->da, a1 = a0 + G->da;
-            double al = corner & 1 ? nextafter(a1, a0) : a0;
-            double k0 = kbin[ki] ? G->k0 * ldexp(1.0, (kbin[ki] - 1) >> DG_KB) : 0;
-            double k1 = kbin[ki] ? k0 * (1 + 1.0 / (1 << DG_KB)) : G->k0;
-            double kg = corner & 2 ? nextafter(k1, k0) : k0;
-            for (size_t is = 0; is < DG_NS; is++)
-              for (int m = 0; m < 7; m++) {
-                double s = t->s_c * ((double)is + (m + 0.5) / 7) / DG_NS;
-                double u[2];
-                size_t nc[2], cand[1024];
-                if (aq_demand_grid_cell(t, s, al, kg, u, cand, 1024, nc) != 1)
-                  continue;
-                aq_demand_kin kin;
-                aq_demand_table_forms(t, s, fb, &kin);
-                double w = 2 * kg / kin.mgen_kgm2;
-                for (size_t j = 0; j < nf; j++) {
-                  double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
-                  double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
-                  double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
-                  double r0 = N > 0 ? T / N : INFINITY, r1 = N > 0 ? E / N : INFINITY;
-                  aq_check(r0 <= u[0] && (fb[j].hinge >= 0 || r1 <= u[1]),
-                           "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu: %.17g %.17g, "
-                           "the cell's bounds %.17g %.17g", shipped[f], set, s, al, kg, j, r0,
-                           r1, u[0], u[1]);
-                }
-                states++;
-              }
-          }
+      if (t && t->grid)
+        states += fn(shipped[f], set, t, fb, nf, r);
     }
     free(fb);
+    free(r);
     aq_arch_free(A);
   }
+  return states;
+}
+
+static size_t corners(const char *arch, int set, const aq_demand_table *t, aq_joint_form *fb,
+                      size_t nf, double *r)
+{
+  const aq_demand_grid *G = t->grid;
+  static const int abin[] = {DG_NA / 2 + 7, DG_NA / 2 - 9}, kbin[] = {0, 9};
+  size_t states = 0;
+  for (int c = 0; c < 16; c++) { /* two bins of each, four corners */
+    int ai = c & 1, ki = c >> 1 & 1, corner = c >> 2;
+    double a0 = ((double)abin[ai] - 0.5 * DG_NA) * G->da, a1 = a0 + G->da;
+    double al = corner & 1 ? nextafter(a1, a0) : a0;
+    double k0 = kbin[ki] ? G->k0 * ldexp(1.0, (kbin[ki] - 1) >> DG_KB) : 0;
+    double k1 = kbin[ki] ? k0 * (1 + 1.0 / (1 << DG_KB)) : G->k0;
+    double kg = corner & 2 ? nextafter(k1, k0) : k0;
+    for (size_t is = 0; is < DG_NS; is++)
+      for (int m = 0; m < 7; m++) {
+        double s = t->s_c * ((double)is + (m + 0.5) / 7) / DG_NS, u[2];
+        size_t nc[2], cand[1024];
+        if (aq_demand_grid_cell(t, s, al, kg, u, cand, 1024, nc) != 1)
+          continue;
+        entry_ratios(t, fb, nf, s, al, kg, r);
+        for (size_t j = 0; j < nf; j++)
+          aq_check(r[2 * j] <= u[0] && r[2 * j + 1] <= u[1],
+                   "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu: %.17g %.17g, the cell's "
+                   "bounds %.17g %.17g", arch, set, s, al, kg, j, r[2 * j], r[2 * j + 1], u[0],
+                   u[1]);
+        states++;
+      }
+  }
+  return states;
+}
+
+AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
+{
+  /* where a cell's bound is tightest: at the corners of its ranges of a/g
+   * and KE/g (the forms are linear in both there), over s sampled densely
+   * through every range of s (a coefficient's turning point inside a range
+   * is where leaving it out would show), every entry evaluated */
+  size_t states = each_grid(corners);
   aq_check(states > 50000, "states %zu", states);
+}
+
+static size_t walls(const char *arch, int set, const aq_demand_table *t, aq_joint_form *fb,
+                    size_t nf, double *r)
+{
+  const aq_demand_grid *G = t->grid;
+  double u[2];
+  size_t nc[2], cand[1024], states = 0;
+  for (size_t is = 0; is < DG_NS; is++) /* every row of KE/g 0 */
+    aq_demand_grid_cell(t, t->s_c * ((double)is + 0.5) / DG_NS, 0, 0, u, cand, 1024, nc);
+  for (size_t ia = DG_NA / 2 - 12; ia < DG_NA / 2 + 12; ia += 3) {
+    double a0 = ((double)ia - 0.5 * DG_NA) * G->da, al[2] = {a0, nextafter(a0 + G->da, a0)};
+    double m[2] = {0, 0};
+    for (int c = 0; c < 2; c++)
+      for (int k = 0; k < 6 * DG_NS; k++, states++) {
+        entry_ratios(t, fb, nf, t->s_c * (k + 0.5) / (6 * DG_NS), al[c], 0, r);
+        for (size_t j = 0; j < 2 * nf; j++)
+          m[j % 2] = fmax(m[j % 2], r[j]);
+      }
+    /* the bounds say no state at rest exceeds a little less than the
+     * entries reach: wrong (an infinite demand: the bound must be too) */
+    for (int q = 0; q < 2; q++) {
+      double below[2] = {INFINITY, INFINITY};
+      below[q] = isinf(m[q]) ? DBL_MAX : m[q] * (1 - 1e-9);
+      aq_check(!aq_dg_wall_below(G, al[0], below), "%s set %d: a/g bin %zu: at rest "
+               "quantity %d reaches %.9g, the walls' bound says less", arch, set, ia, q, m[q]);
+    }
+  }
+  return states;
 }
 
 AQ_TEST(arch_demand_grid_walls_bound_states_at_rest)
@@ -712,56 +761,7 @@ AQ_TEST(arch_demand_grid_walls_bound_states_at_rest)
    * could exceed the maxima: each a/g bin's bound must hold at rest (KE 0)
    * at every s.  Every row of KE/g 0 made, then states at rest sampled
    * densely in s at both edges of each a/g bin, every entry evaluated. */
-  gsl_set_error_handler_off();
-  size_t states = 0;
-  for (size_t f = 0; f < NSHIPPED; f++) {
-    aq_arch *A = NULL;
-    aq_error e;
-    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
-      continue;
-    size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
-    aq_joint_form *fb = calloc(nf, sizeof *fb);
-    for (int set = 0; set < 2; set++) {
-      const aq_demand_table *t = aq_arch_demand_table(A, set);
-      if (!t || !t->grid)
-        continue;
-      const aq_demand_grid *G = t->grid;
-      double u[2];
-      size_t nc[2], cand[1024];
-      for (size_t is = 0; is < DG_NS; is++) /* every row of KE/g 0 */
-        aq_demand_grid_cell(t, t->s_c * ((double)is + 0.5) / DG_NS, 0, 0, u, cand, 1024, nc);
-      for (size_t ia = DG_NA / 2 - 12; ia < DG_NA / 2 + 12; ia += 3) {
-        double a0 = ((double)ia - 0.5 * DG_NA) * G->da, al[2] = {a0, nextafter(a0 + G->da, a0)};
-        double m[2] = {0, 0};
-        for (int c = 0; c < 2; c++)
-          for (int k = 0; k < 6 * DG_NS; k++) {
-            double s = t->s_c * (k + 0.5) / (6 * DG_NS);
-            aq_demand_kin kin;
-            aq_demand_table_forms(t, s, fb, &kin);
-            for (size_t j = 0; j < nf; j++) {
-              double N = fb[j].n[0] + al[c] * fb[j].n[1];
-              double T = fabs(fb[j].t[0] + al[c] * fb[j].t[1]);
-              double E = fabs(fb[j].e[0] + al[c] * fb[j].e[1]);
-              m[0] = fmax(m[0], N > 0 ? T / N : INFINITY);
-              if (fb[j].hinge < 0)
-                m[1] = fmax(m[1], N > 0 ? E / N : INFINITY);
-            }
-            states++;
-          }
-        /* the bounds say no state at rest exceeds a little less than the
-         * entries reach: wrong (an infinite demand: the bound must be too) */
-        for (int q = 0; q < 2; q++) {
-          double below[2] = {INFINITY, INFINITY};
-          below[q] = isinf(m[q]) ? DBL_MAX : m[q] * (1 - 1e-9);
-          aq_check(!aq_dg_wall_below(G, al[0], below), "%s set %d: a/g bin %zu: at rest "
-                   "quantity %d reaches %.9g, the walls' bound says less", shipped[f], set, ia,
-                   q, m[q]);
-        }
-      }
-    }
-    free(fb);
-    aq_arch_free(A);
-  }
+  size_t states = each_grid(walls);
   aq_check(states > 50000, "states %zu", states);
 }
 
