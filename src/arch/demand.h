@@ -179,7 +179,5 @@ void aq_demand_get(const aq_demand *d, aq_demand_result *r);
  * cand[cap]).  1, 0 for a state outside the grid, -1 when cap is short. */
 int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg, double u[2],
                         size_t *cand, size_t cap, size_t n[2]);
-/* The running maximum of quantity q (0: |T|/N, 1: eccentricity). */
-double aq_demand_max(const aq_demand *d, int q);
 
 #endif

@@ -308,8 +308,6 @@ int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg
   return 1;
 }
 
-double aq_demand_max(const aq_demand *d, int q) { return d->max[q ? 1 : 0]; }
-
 /* ---- a run in which the arch never moves (docs/demand.md) ---- */
 
 void aq_demand_set_least(aq_demand *d, aq_demand_least_fn least, void *ctx)
