@@ -26,7 +26,12 @@
  *          ground still) from its value at the pulse's end, and of the
  *          energy less the work of friction, as the step halves, under the
  *          global impact law (the model's) and Newton's law per corner (for
- *          comparison)
+ *          comparison); then, for the global law, where the balance goes:
+ *          each step's error by kind of step (a late landing closed by the
+ *          plastic law, an impact stage, the others), the projection's
+ *          change of potential energy, the work at joints that stick
+ *          throughout a step and the impact stages' own error; the free
+ *          arch under the global law down to 1.5625e-5 s
  *   agree  (only when named; minutes) the verdicts of the block model
  *          against the four-hinge work path's on the AT2 records of a
  *          directory (the argument after agree; default records/): three
@@ -458,6 +463,8 @@ static void energy(void)
          T, end);
   printf("%-10s %-6s %-6s %10s %11s %11s %7s %10s %8s %7s %7s\n", "arch", "hinges", "law",
          "dt_s", "E_drift", "balance", "ratio", "D/E0", "impacts", "stages", "cpu_s");
+  char why[40][176];
+  size_t nwhy = 0;
   for (size_t a = 0; a < 2; a++)
     for (int mode = 0; mode < 2; mode++)
       for (int law = 0; law < 2; law++) {
@@ -466,7 +473,9 @@ static void energy(void)
           continue;
         const aq_path *p = aq_arch_path(A, 0);
         double acc = p->act_sign * 1.5 * p->lambda0 * p->g_mps2, prev = NAN;
-        for (int i = 0; i < 6; i++) {
+        /* the free arch under the global law down to 1/256 of the first
+         * step (its order over the whole range) */
+        for (int i = 0; i < (mode && !law ? 9 : 6); i++) {
           double h = 4e-3 / (1 << i);
           aq_error e;
           aq_blocks *B = aq_blocks_alloc(A, &e);
@@ -481,6 +490,8 @@ static void energy(void)
           aq_moreau_reset(m);
           size_t n = (size_t)llround(end / h), n1 = (size_t)llround(T / h), imp = 0, st = 0;
           double gx[2] = {0, 0}, e0 = NAN, d = 0, drift = 0, bal = 0, c0 = cpu_s();
+          double eprev = 0, en_last = NAN, part[3] = {0, 0, 0}, proj = 0, stick = 0, imp_err = 0;
+          size_t nkind[3] = {0, 0, 0};
           int ok = 1;
           for (size_t j = 0; j < n && ok; j++) {
             aq_step_info info;
@@ -488,14 +499,32 @@ static void energy(void)
             double en = body_energy_j(s, aq_moreau_q(m), aq_moreau_v(m));
             if (j + 1 == n1)
               e0 = en;
-            if (!ok || j + 1 <= n1)
+            if (!ok || j + 1 <= n1) {
+              eprev = en;
               continue;
+            }
             imp += info.impact != 0;
             st += (size_t)info.stage;
             d += info.friction_j;
+            /* the balance's parts: the steps' errors by kind */
+            double de = en - eprev - info.friction_j;
+            int kind = info.late_plastic ? 0 : info.stage > 0 ? 1 : 2;
+            part[kind] += de;
+            nkind[kind]++;
+            proj += info.proj_pe_j;
+            stick += info.stick_j;
+            imp_err += info.stage_err_j;
             drift = fmax(drift, fabs(en / e0 - 1));
             bal = fmax(bal, fabs((en - d) / e0 - 1));
+            eprev = en_last = en;
           }
+          if (!law && ok && nwhy < sizeof why / sizeof why[0])
+            snprintf(why[nwhy++], sizeof why[0],
+                     "%-10.10s %-6s %10.4g %11.3e %6zu %11.3e %6zu %11.3e %6zu %11.3e %11.3e "
+                     "%11.3e %11.3e\n",
+                     arches[a] + 7, mode ? "free" : "fixed", h, (en_last - d) / e0 - 1,
+                     nkind[0], part[0] / e0, nkind[1], part[1] / e0, nkind[2],
+                     part[2] / e0, proj / e0, stick / e0, imp_err / e0);
           if (!ok)
             printf("%-10.10s %-6s %-6s %10.4g failed: %s\n", arches[a] + 7,
                    mode ? "free" : "fixed", laws[law], h, e.message);
@@ -509,6 +538,17 @@ static void energy(void)
         }
         aq_arch_free(A);
       }
+  printf("== energy: the global law's balance E - D - E0 at the end, over E0, and its "
+         "parts: the error of the steps where a late landing took the plastic law, of "
+         "the steps with an impact stage, of the others (count, sum), and three of their "
+         "terms: the projection's change of potential energy, the work at joints that "
+         "stick throughout a step (the scheme's error), the impact stages' change of "
+         "kinetic energy less their friction's work (0 by the law)\n");
+  printf("%-10s %-6s %10s %11s %6s %11s %6s %11s %6s %11s %11s %11s %11s\n", "arch",
+         "hinges", "dt_s", "balance", "late", "late_err", "stage", "stage_err", "other",
+         "other_err", "proj_pe", "stick", "impact");
+  for (size_t i = 0; i < nwhy; i++)
+    fputs(why[i], stdout);
 }
 
 static void agree(const char *dir)

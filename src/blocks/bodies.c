@@ -190,3 +190,22 @@ void aq_bodies_rest(const aq_bodies *s, double *q)
     q[3 * b + 2] = 0;
   }
 }
+
+double aq_bodies_kinetic_j(const aq_bodies *s, const double *v)
+{
+  double ke = 0;
+  for (size_t b = 0; b < s->nb; b++) {
+    const double *w = v + 3 * b;
+    ke += 0.5 * s->body[b].mass_kg * (w[0] * w[0] + w[1] * w[1]) +
+          0.5 * s->body[b].inertia_kgm2 * w[2] * w[2];
+  }
+  return ke;
+}
+
+double aq_bodies_potential_j(const aq_bodies *s, const double *q)
+{
+  double pe = 0;
+  for (size_t b = 0; b < s->nb; b++)
+    pe += s->body[b].mass_kg * s->g_mps2 * q[3 * b + 1];
+  return pe;
+}

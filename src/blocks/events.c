@@ -82,25 +82,6 @@ static double rot0(const aq_bodies *s, const double *q)
   return b >= 0 ? q[3 * b + 2] : 0;
 }
 
-static double potential(const aq_bodies *s, const double *q)
-{
-  double pe = 0;
-  for (size_t b = 0; b < s->nb; b++)
-    pe += s->body[b].mass_kg * s->g_mps2 * q[3 * b + 1];
-  return pe;
-}
-
-static double kinetic(const aq_bodies *s, const double *v)
-{
-  double ke = 0;
-  for (size_t b = 0; b < s->nb; b++) {
-    const double *w = v + 3 * b;
-    ke += 0.5 * s->body[b].mass_kg * (w[0] * w[0] + w[1] * w[1]) +
-          0.5 * s->body[b].inertia_kgm2 * w[2] * w[2];
-  }
-  return ke;
-}
-
 void aq_events_reset(aq_events *e, aq_moreau *m, const aq_hinge_set *sets, int history,
                      double dv_floor_j, aq_blocks_result *res)
 {
@@ -135,7 +116,7 @@ void aq_events_start(aq_events *e, aq_moreau *m, double t0)
   size_t nv = s->nvous ? s->nvous : s->nb;
   for (size_t k = 0; k < nv; k++)
     e->c0[k] = centroid(s, q, gx, k);
-  e->pe0 = potential(s, q);
+  e->pe0 = aq_bodies_potential_j(s, q);
   e->started = 1;
 }
 
@@ -193,7 +174,7 @@ static void record_step(aq_events *e, aq_moreau *m, double t, double ax, double 
     aq_vec2 c = centroid(s, q, gx, k);
     e->peak_disp = fmax(e->peak_disp, hypot(c.x - e->c0[k].x, c.y - e->c0[k].y));
   }
-  e->max_ke = fmax(e->max_ke, kinetic(s, v));
+  e->max_ke = fmax(e->max_ke, aq_bodies_kinetic_j(s, v));
   /* hinges and slip */
   const aq_corner *cr = aq_moreau_corners(m);
   const aq_jstate *st = aq_moreau_jstate(m);
@@ -277,7 +258,7 @@ static int collapse_rule(aq_events *e, aq_moreau *m)
     e->reversals++;
   e->away = away;
   /* moving away, going down, and up by a fraction of the arch's barrier */
-  int top = away && vy < 0 && potential(s, q) - e->pe0 >= e->dv_floor_j;
+  int top = away && vy < 0 && aq_bodies_potential_j(s, q) - e->pe0 >= e->dv_floor_j;
   int fire = top && e->armed;
   e->armed = !top;
   return fire ? 2 : 0;
@@ -371,8 +352,8 @@ aq_status aq_events_sample(aq_events *e, aq_moreau *m, double t, aq_blocks_resul
   H->time_s[i] = t;
   H->rotation_rad[i] = rot0(s, q) - rot0(s, e->q0);
   H->displacement_m[i] = (mx - mx0) / mt;
-  H->kinetic_energy_j[i] = kinetic(s, v);
-  H->potential_energy_j[i] = potential(s, q) - e->pe0;
+  H->kinetic_energy_j[i] = aq_bodies_kinetic_j(s, v);
+  H->potential_energy_j[i] = aq_bodies_potential_j(s, q) - e->pe0;
   int set = open_set(e, q);
   H->set[i] = H->kinetic_energy_j[i] == 0 && set < 0 ? -1 : set;
   return AQ_OK;
@@ -396,7 +377,8 @@ void aq_events_finish(aq_events *e, aq_moreau *m, aq_blocks_result *res)
   r->peak_displacement_m = e->peak_disp;
   r->max_kinetic_energy_j = e->max_ke;
   r->energy_in_j = e->energy_in;
-  double ke = kinetic(s, aq_moreau_v(m)), pe = potential(s, aq_moreau_q(m)) - e->pe0;
+  double ke = aq_bodies_kinetic_j(s, aq_moreau_v(m)),
+         pe = aq_bodies_potential_j(s, aq_moreau_q(m)) - e->pe0;
   r->energy_dissipated_j = e->started ? e->energy_in - ke - pe : 0;
   r->impacts = e->impacts;
   r->reversals = e->reversals;

@@ -102,6 +102,10 @@ aq_vec2 aq_bodies_point(const aq_bodies *s, int b, const double *q, const double
 void aq_bodies_set_support_extent(aq_bodies *s, double ext_m);
 /* The undeformed configuration (q[3b] = c0, theta = 0). */
 void aq_bodies_rest(const aq_bodies *s, double *q);
+/* The bodies' kinetic energy at velocities v, and their potential energy
+ * m g y at q (gravity g, the ground still), J. */
+double aq_bodies_kinetic_j(const aq_bodies *s, const double *v);
+double aq_bodies_potential_j(const aq_bodies *s, const double *q);
 
 /* ---- contact.c ------------------------------------------------------ */
 
@@ -243,8 +247,21 @@ typedef struct {
   int stage;          /* the global law's impact stages taken (a sequence) */
   double friction_j;  /* the work of friction in the step (<= 0): at the
                        * impact stages exactly, (1 + e_n) u_t . P_t; in the
-                       * step at the joints sliding at its start or end,
-                       * P_t times the mean of u_t at its start and end */
+                       * step at the joints sliding at its start (by their
+                       * state, or after an impact stage by their tangential
+                       * velocity) or end, P_t times the mean of u_t at its
+                       * start and end */
+  /* what the energy balance is made of (diagnostics, bench energy) */
+  int late_plastic;   /* 1: a corner that approached joined the step late
+                       * and landed by the step's plastic law (its impact
+                       * stage missed MAX_LATE times) */
+  double proj_pe_j;   /* the projection's change of potential energy, J
+                       * (gravity g, the ground still) */
+  double stick_j;     /* P_t times the mean of u_t at the joints that stick
+                       * throughout the step (no work but the scheme's
+                       * error; not in friction_j) */
+  double stage_err_j; /* the impact stages' change of kinetic energy less
+                       * their friction's work (0 to rounding by the law) */
 } aq_step_info;
 
 /* The impact law at e_n > 0 (at e_n = 0 both are the plastic law and the

@@ -27,7 +27,8 @@
  * plastic impact v_p) and v+ = v_p + e_n (v_p - v-), which changes the
  * kinetic energy by (e_n^2 - 1)/2 |v_p - v-|^2_M + (1 + e_n) u_t . P_t
  * (<= 0; 0 at e_n = 1 and a sticking impact); impacts that follow within
- * the step from v+ are staged in turn; then the step from v+ at e = 0.
+ * the step from v+ are staged in turn (a corner that lands, and a closed
+ * one the stage sent into its contact); then the step from v+ at e = 0.
  *
  * The problem is solved exactly, in one of two ways.  First the contact
  * state of the step before (which corners are closed, which joints stick
@@ -104,6 +105,9 @@ struct aq_moreau {
   unsigned char *force;     /* corners that land within the step though not
                              * predicted (the global law's impact stage) */
   double *vstart;           /* v at the step's start */
+  double *un_pre;           /* the corners' normal velocities at the step's
+                             * start, before its impact stages */
+  int staged;               /* an impact stage was taken in this step */
   aq_jstate *proj;          /* the projection's states */
   double *vfree, *vnew, *dv, *q1;
   double *rhs, *x, *u;
@@ -135,6 +139,7 @@ void aq_moreau_free(aq_moreau *m)
   free(m->active);
   free(m->force);
   free(m->vstart);
+  free(m->un_pre);
   free(m->proj);
   free(m->vfree);
   free(m->vnew);
@@ -188,6 +193,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->active = calloc(nc, 1);
   m->force = calloc(nc, 1);
   m->vstart = calloc(nb3, sizeof *m->vstart);
+  m->un_pre = calloc(nc, sizeof *m->un_pre);
   m->proj = calloc(s->nj, sizeof *m->proj);
   m->vfree = calloc(nb3, sizeof *m->vfree);
   m->vnew = calloc(nb3, sizeof *m->vnew);
@@ -215,7 +221,7 @@ aq_moreau *aq_moreau_alloc(const aq_bodies *s, aq_error *err)
   m->sv = calloc(nb3, sizeof *m->sv);
   m->sst = calloc(s->nj, sizeof *m->sst);
   if (!m->q || !m->v || !m->minv || !m->st || !m->trial || !m->cr || !m->cr1 || !m->cr2 || !m->un0 || !m->ut0 ||
-      !m->active || !m->force || !m->vstart || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
+      !m->active || !m->force || !m->vstart || !m->un_pre || !m->proj || !m->vfree || !m->vnew || !m->dv || !m->q1 || !m->rhs || !m->x ||
       !m->u || !m->pn || !m->pt || !m->keep_v || !m->keep_pn || !m->keep_pt || !m->chain || !m->fc || !m->cidx || !m->W || !m->fq ||
       !m->fr || !m->fu || !m->fmu || !m->fd || !m->best_r || !m->sq || !m->sv || !m->sst) {
     aq_moreau_free(m);
@@ -701,7 +707,9 @@ static void start_velocities(aq_moreau *m)
 /* The step's problem at the start velocities: the active corners, the
  * free velocities (forces 0: none, v itself, for the impact stage), the
  * scales and the guess.  Returns 1 if an active corner that was open
- * lands within the step with an approach velocity (an impact). */
+ * lands within the step with an approach velocity (an impact), or, after
+ * an impact stage of the step (global law), a closed one approaches faster
+ * than at the step's start. */
 static int prepare(aq_moreau *m, double h, double ax, double ay, const double gvx1[2],
                    int forces)
 {
@@ -736,6 +744,14 @@ static int prepare(aq_moreau *m, double h, double ax, double ay, const double gv
            (global && m->cr[2 * j + k].gap_m + h * m->un0[2 * j + k] <= m->closed_m)) &&
           !aq_jstate_closed(m->st[j], k))
         impact = 1;
+      else if (global && m->staged && aq_jstate_closed(m->st[j], k) &&
+               m->un0[2 * j + k] < -CHECK_REL * m->vscale &&
+               m->un0[2 * j + k] < m->un_pre[2 * j + k] - CHECK_REL * m->vscale)
+        /* a corner closed before the step that an impact stage of this
+         * step sent into its contact (it was lifting, and the plastic
+         * impact stopped it without pressing it: v+ = 2 v_p - v- reverses
+         * its velocity): its impact follows, as any other's */
+        impact = 1;
   }
   return impact;
 }
@@ -769,7 +785,7 @@ static aq_status solve_problem(aq_moreau *m, aq_step_info *info, aq_error *err)
  * v+ = v- + (1 + e_n) (v_p - v-); then the start velocities again. */
 static aq_status impact_stage(aq_moreau *m, aq_step_info *info, aq_error *err)
 {
-  double e_t = m->e_t;
+  double e_t = m->e_t, ke0 = aq_bodies_kinetic_j(m->s, m->v), w0 = info->friction_j;
   m->e_t = 0;
   aq_status rc = solve_problem(m, info, err);
   m->e_t = e_t;
@@ -782,6 +798,7 @@ static aq_status impact_stage(aq_moreau *m, aq_step_info *info, aq_error *err)
           (1 + m->e_n) * m->pt[c] * aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew);
   for (size_t i = 0; i < 3 * m->nb; i++)
     m->v[i] += (1 + m->e_n) * (m->vnew[i] - m->v[i]);
+  info->stage_err_j += aq_bodies_kinetic_j(m->s, m->v) - ke0 - (info->friction_j - w0);
   start_velocities(m);
 
   return AQ_OK;
@@ -800,11 +817,15 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
   start_velocities(m);
   if (gvx1[0] != m->gvx[0] || gvx1[1] != m->gvx[1])
     eval_corners(m, m->q, m->gx, gvx1, m->cr);
-  if (global)
+  if (global) {
     memcpy(m->vstart, m->v, nb3 * sizeof *m->v);
+    memcpy(m->un_pre, m->un0, nc * sizeof *m->un0);
+  }
   for (int redo = 0;; redo++) {
+    m->staged = 0;
     info->stage = 0;
     info->friction_j = 0;
+    info->stage_err_j = 0;
     info->impact = prepare(m, h, ax, ay, gvx1, 1);
     /* the global law: the impact first, apart from the step's forces,
      * then the step with e = 0 from its velocities; an impact that sends
@@ -816,6 +837,7 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
       if (rc != AQ_OK)
         return rc;
       info->stage++;
+      m->staged = 1;
       if (!prepare(m, h, ax, ay, gvx1, 1))
         break;
     }
@@ -840,6 +862,8 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
           late = 1;
           if (global && redo < MAX_LATE && m->un0[c] < -CHECK_REL * m->vscale)
             m->force[c] = again = 1;
+          else if (global && m->un0[c] < -CHECK_REL * m->vscale)
+            info->late_plastic = 1;
         }
       if (again || !late || pass == MAX_LATE)
         break;
@@ -853,17 +877,29 @@ aq_status aq_moreau_step(aq_moreau *m, double h, double ax, double ay, const dou
     memset(m->force, 0, nc);
   /* the friction's work at the joints that slide at the step's start or
    * end, or close, open or change corners in it: P_t times the tangential
-   * velocity at the step's middle (a joint that sticks throughout does
-   * work only by the scheme's error) */
-  for (size_t c = 0; c < nc; c++)
-    if (m->pt[c] != 0 && (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0 ||
-                          m->trial[c / 2].kind != m->st[c / 2].kind))
-      info->friction_j +=
-          m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
+   * velocity at the step's middle.  After an impact stage a joint whose
+   * state sticks may slide at the step's start (the stage left its
+   * tangential velocity, -e_n times that before, at a corner the plastic
+   * impact stuck): stopping it is the friction's work too.  A joint that
+   * sticks throughout does work only by the scheme's error (stick_j). */
+  for (size_t c = 0; c < nc; c++) {
+    if (m->pt[c] == 0)
+      continue;
+    double w = m->pt[c] * 0.5 * (aq_crow_dot(m->s, c / 2, &m->cr[c].t, m->vnew) + m->ut0[c]);
+    if (m->trial[c / 2].slide != 0 || m->st[c / 2].slide != 0 ||
+        m->trial[c / 2].kind != m->st[c / 2].kind ||
+        (info->stage > 0 && fabs(m->ut0[c]) > SICONOS_CHECK_REL * m->vscale))
+      info->friction_j += w;
+    else
+      info->stick_j += w;
+  }
   m->gvx[0] = gvx1[0];
   m->gvx[1] = gvx1[1];
-  if (m->projection)
+  if (m->projection) {
+    double pe0 = aq_bodies_potential_j(m->s, m->q1);
     project(m, m->trial, m->q1, gx1);
+    info->proj_pe_j = aq_bodies_potential_j(m->s, m->q1) - pe0;
+  }
   memcpy(m->q, m->q1, nb3 * sizeof *m->q);
   memcpy(m->v, m->vnew, nb3 * sizeof *m->v);
   m->gx[0] = gx1[0];
@@ -879,6 +915,7 @@ aq_status aq_moreau_impact(aq_moreau *m, double h, aq_step_info *info, aq_error 
   m->cr_valid = 0;
   aq_moreau_corners(m);
   m->h = h;
+  m->staged = 0;
   start_velocities(m);
   info->impact = prepare(m, h, 0, 0, m->gvx, 0);
   if (!info->impact)
