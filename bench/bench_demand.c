@@ -9,11 +9,13 @@
  * and with one that does not, alternately, and each one's median taken.
  * Printed per arch: the sums of the medians, their ratio less one (the
  * demand's cost over the stepping), the states the tracker looked at, how
- * many with every joint evaluated and how many single joints it evaluated,
- * the moving steps, and the time to build both sets' demand tables (once
- * per arch, kept with it).  Then the totals, and the same stepping with the
- * tracker's reference (every joint at every state, aq_demand_set_every)
- * for scale (--no-reference leaves it out: quicker, for profiles). */
+ * many with every joint evaluated (outside the grid) and how many
+ * candidates it evaluated (looks), the moving steps, and the time to build
+ * both sets' demand tables and their grids (once per arch, kept with it).
+ * Then the totals, and the same stepping with the tracker's reference
+ * (every joint at every state, aq_demand_set_every) for scale
+ * (--no-reference leaves it out: quicker, for profiles; --only plain or
+ * --only demand times one stepper alone, for profiles of it). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -69,6 +71,10 @@ int main(int argc, char **argv)
 {
   /* --no-reference: leave out the every-joint runs (quicker; for profiles) */
   int reference = !(argc > 1 && strcmp(argv[1], "--no-reference") == 0);
+  /* --only plain|demand: time one stepper alone (for counters: perf stat) */
+  int only = argc > 2 && strcmp(argv[1], "--only") == 0 ? (strcmp(argv[2], "demand") == 0 ? 2 : 1) : 0;
+  if (only)
+    reference = 0;
   aq_error e;
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
@@ -91,9 +97,9 @@ int main(int argc, char **argv)
   printf("bench_demand: the demand's cost beside the stepping, 12 AT2 records at 2.5 lambda0 g,\n"
          "work path, medians of %d, side by side\n\n",
          REPS);
-  printf("%-10s %10s %10s %7s %9s %9s %6s %10s %8s %9s\n", "arch", "step_ms", "demand_ms",
-         "ratio", "states", "full", "full%", "looks", "moving", "table_ms");
-  double T[3] = {0, 0, 0};
+  printf("%-10s %10s %10s %7s %9s %9s %6s %10s %8s %9s %8s %8s\n", "arch", "step_ms", "demand_ms",
+         "ratio", "states", "full", "full%", "looks", "moving", "table_ms", "cold_st", "cold_dm");
+  double T[3] = {0, 0, 0}, C[2] = {0, 0};
   size_t tot_states = 0, tot_full = 0;
   static double t[REPS];
   for (size_t a = 0; a < NARCH; a++) {
@@ -120,18 +126,25 @@ int main(int argc, char **argv)
     aq_stepper_set_demand(dem, d1);
     aq_demand_set_every(d2, 1);
     aq_stepper_set_demand(every, d2);
-    double l0 = aq_lambda0(A), tt[3] = {0, 0, 0};
+    double l0 = aq_lambda0(A), tt[3] = {0, 0, 0}, cold[2] = {0, 0};
     size_t ns = 0, nf = 0, nl = 0, mv = 0;
     for (size_t r = 0; r < NREC; r++) {
       double k = 2.5 * l0 * AQ_G0_MPS2 / V[r].peak_mps2;
       aq_result res[3];
-      for (int m = 0; m < 2; m++) /* warm: tables and caches */
+      for (int m = 0; m < 2; m++) { /* warm: tables, grids and caches (timed: cold) */
+        double t0 = aq_bench_now_s();
         if (aq_job_run_view(m ? dem : plain, &V[r], k, &res[m], &e) == AQ_OK)
           aq_result_free(&res[m]);
+        cold[m] += aq_bench_now_s() - t0;
+      }
       /* alternately, so that the machine's drift falls on both alike */
       double tp[REPS], td[REPS];
       for (int rep = 0; rep < REPS; rep++) {
         for (int m = 0; m < 2; m++) {
+          if (only && m != only - 1) {
+            (m ? td : tp)[rep] = 1;
+            continue;
+          }
           double t0 = aq_bench_now_s();
           if (aq_job_run_view(m ? dem : plain, &V[r], k, &res[m], &e) != AQ_OK) {
             aq_error_print(&e, stderr);
@@ -142,6 +155,8 @@ int main(int argc, char **argv)
             aq_result_free(&res[m]);
         }
       }
+      if (only)
+        memset(&res[only % 2], 0, sizeof res[0]);
       tt[0] += aq_bench_median(tp, REPS);
       tt[1] += aq_bench_median(td, REPS);
       if (reference)
@@ -155,9 +170,10 @@ int main(int argc, char **argv)
       for (int m = 0; m < 3; m++)
         aq_result_free(&res[m]);
     }
-    printf("%-10s %10.3f %10.3f %7.3f %9zu %9zu %6.1f %10zu %8zu %9.2f\n", arches[a],
+    printf("%-10s %10.3f %10.3f %7.3f %9zu %9zu %6.1f %10zu %8zu %9.2f %8.3f %8.3f\n", arches[a],
            tt[0] * 1e3, tt[1] * 1e3, tt[1] / tt[0] - 1, ns, nf, 100.0 * (double)nf / (double)ns,
-           nl, mv, tb * 1e3);
+           nl, mv, tb * 1e3, cold[0] * 1e3, cold[1] * 1e3);
+    C[0] += cold[0], C[1] += cold[1];
     for (int m = 0; m < 3; m++)
       T[m] += tt[m];
     tot_states += ns;
@@ -171,6 +187,9 @@ int main(int argc, char **argv)
          T[1] / T[0] - 1, tot_states, tot_full, 100.0 * (double)tot_full / (double)tot_states);
   printf("\nthe demand's cost over the stepping: %+.1f %% (target: at most +10 %%)\n",
          100 * (T[1] / T[0] - 1));
+  printf("the first run of each record (cold: the grids' ranges of s made as runs reach "
+         "them): %.3f ms against %.3f, %+.1f %%\n", C[1] * 1e3, C[0] * 1e3,
+         100 * (C[1] / C[0] - 1));
   if (reference)
     printf("every joint at every state (the tracker's reference): %.3f ms, %+.1f %%\n",
            T[2] * 1e3, 100 * (T[2] / T[0] - 1));

@@ -9,12 +9,14 @@
  *   - the tables against the exact forms;
  *   - the tracker against every joint evaluated at every state;
  *   - a run that barely passes lambda0 against the static demand. */
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "arch/demand.h"
+#include "arch/demand_tab.h"
 #include "arch/eom.h"
 #include "arch/model.h"
 #include "arch/stepper.h"
@@ -344,7 +346,7 @@ AQ_TEST(arch_demand_tracker_vs_every_joint)
     double g = p0->g_mps2, l0 = p0->lambda0;
     for (int r = 0; r < 6; r++) {
       double amax = (0.5 + 3 * tds_rng(&rng)) * l0;
-      aq_demand_begin(d, amax);
+      aq_demand_begin(d);
       brute b = {0, 0, NAN, NAN};
       int set = 0;
       double s = 0, phase = 0, t_s = 0;
@@ -535,15 +537,33 @@ AQ_TEST(arch_demand_runs_as_with_every_joint_at_every_state)
            states, full);
 }
 
-AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
+/* Every entry's |T|/N and |e|/N (0 at a hinge) at the state (s, a/g al,
+ * KE/g kg) of t, from the tables, into r[2 nf]. */
+static void entry_ratios(const aq_demand_table *t, aq_joint_form *fb, size_t nf, double s,
+                         double al, double kg, double *r)
 {
-  /* the claim the tracker rests on: in the box where it looks at no joint,
-   * no joint exceeds the running maxima.  States of smooth swings (so that
-   * boxes are kept); after each, the box's eight corners and random points
-   * inside it, every joint evaluated there. */
+  aq_demand_kin kin;
+  aq_demand_table_forms(t, s, fb, &kin);
+  double w = 2 * kg / kin.mgen_kgm2;
+  for (size_t j = 0; j < nf; j++) {
+    double N = fb[j].n[0] + al * fb[j].n[1] + w * fb[j].n[2];
+    double T = fabs(fb[j].t[0] + al * fb[j].t[1] + w * fb[j].t[2]);
+    double E = fabs(fb[j].e[0] + al * fb[j].e[1] + w * fb[j].e[2]);
+    r[2 * j] = N > 0 ? T / N : INFINITY;
+    r[2 * j + 1] = fb[j].hinge < 0 ? (N > 0 ? E / N : INFINITY) : 0;
+  }
+}
+
+AQ_TEST(arch_demand_grid_bounds_every_entry)
+{
+  /* the claim the tracker rests on: in the cell of the grid that holds a
+   * state, no entry exceeds the cell's bound, and every entry that is not
+   * a candidate is strictly below the largest candidate.  Random states of
+   * every set of every shipped arch, over the grid's range of a/g (and
+   * beyond it) and of KE/g, every entry evaluated from the tables. */
   gsl_set_error_handler_off();
   unsigned long long rng = 0xb0c5e5ULL;
-  size_t boxes = 0, points = 0;
+  size_t points = 0, outside = 0, cands = 0;
   for (size_t f = 0; f < NSHIPPED; f++) {
     aq_arch *A = NULL;
     aq_error e;
@@ -551,51 +571,198 @@ AQ_TEST(arch_demand_regions_hold_no_state_above_the_maximum)
       continue;
     size_t n = aq_arch_geom(A)->p.voussoirs, nf = aq_demand_nforms(n);
     aq_joint_form *fb = calloc(nf, sizeof *fb);
-    aq_demand *d = aq_arch_demand_tracker(A, NAN, &e);
+    size_t *cand = calloc(2 * nf, sizeof *cand);
+    double *r = calloc(2 * nf, sizeof *r);
     for (int set = 0; set < 2; set++) {
       const aq_path *p = aq_arch_path(A, set);
       const aq_demand_table *t = aq_arch_demand_table(A, set);
       if (!t)
         continue;
-      double g = p->g_mps2, amax = 2.5 * p->lambda0;
-      aq_demand_begin(d, amax);
-      double amp = 0.6 * p->s_c_rad, phase = 0;
-      for (int i = 0; i < 300; i++) {
-        phase += 0.02 + 0.05 * tds_rng(&rng);
-        double sn = sin(phase), s = fabs(amp * sn);
-        double ke = 0.3 * p->mass_kg * g * 0.01 * p->s_c_rad * (1 - sn * sn);
-        double a = (2 * tds_rng(&rng) - 1) * amax * g;
-        aq_demand_at(d, set, s, ke, a, g, 0.01 * i);
-        double bx[6];
-        if (!aq_demand_fast_box(d, set, bx))
+      aq_path_point pc;
+      aq_check(p->eval_exact(p->ctx, p->s_c_rad, &pc) == 0, "the path at s_c");
+      double ke_ref = p->mass_kg * pc.y_m; /* KE/g of the energy of collapse */
+      for (int i = 0; i < 2000; i++) {
+        double s = tds_rng(&rng) * p->s_c_rad;
+        double al = (2 * tds_rng(&rng) - 1) * 4.5 * p->lambda0;
+        double kg = i % 10 == 0 ? 0 : ke_ref * pow(2.0, 16 * tds_rng(&rng) - 12);
+        double u[2];
+        size_t nc[2];
+        int in = aq_demand_grid_cell(t, s, al, kg, u, cand, 2 * nf, nc);
+        aq_check(in >= 0, "cap");
+        if (in == 0) {
+          outside++;
           continue;
-        boxes++;
-        double mu = aq_demand_max(d, 0), ecc = aq_demand_max(d, 1);
-        for (int c = 0; c < 14; c++) {
-          double u[3];
-          for (int k = 0; k < 3; k++)
-            u[k] = c < 8 ? (c >> k & 1) : tds_rng(&rng);
-          double ss = bx[0] + u[0] * (bx[1] - bx[0]), al = bx[2] + u[1] * (bx[3] - bx[2]);
-          double kg = fmax(0, bx[4]) + u[2] * (fmin(bx[5], 1e30) - fmax(0, bx[4]));
-          if (!(ss >= 0 && ss <= p->s_c_rad) || !isfinite(kg))
-            continue;
-          brute b = {0, 0, NAN, NAN};
-          brute_at(t, fb, nf, ss, kg * g, al * g, g, 0, INFINITY, &b);
-          points++;
-          aq_check(b.mu <= mu * (1 + 1e-12) && b.ecc <= ecc * (1 + 1e-12),
-                   "%s set %d state %d: at s %.9g a/g %.6g KE/g %.6g in the box, |T|/N %.12g "
-                   "(max %.12g), ecc %.12g (max %.12g)",
-                   shipped[f], set, i, ss, al, kg, b.mu, mu, b.ecc, ecc);
         }
+        double best[2] = {0, 0};
+        entry_ratios(t, fb, nf, s, al, kg, r);
+        for (size_t j = 0; j < nf; j++) {
+          for (int q = 0; q < 2; q++)
+            aq_check(r[2 * j + q] <= u[q], "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu "
+                     "quantity %d %.17g above the cell's bound %.17g", shipped[f], set, s, al,
+                     kg, j, q, r[2 * j + q], u[q]);
+        }
+        for (int q = 0; q < 2; q++)
+          for (size_t m = 0; m < nc[q]; m++)
+            best[q] = fmax(best[q], r[2 * cand[(q ? nc[0] : 0) + m] + (size_t)q]);
+        for (size_t j = 0; j < nf; j++)
+          for (int q = 0; q < 2; q++) {
+            int is = 0;
+            for (size_t m = 0; m < nc[q]; m++)
+              is |= cand[(q ? nc[0] : 0) + m] == j;
+            if (!is && (q == 0 || fb[j].hinge < 0))
+              aq_check(r[2 * j + q] < best[q], "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry "
+                       "%zu (not a candidate) quantity %d %.17g, the candidates' largest %.17g",
+                       shipped[f], set, s, al, kg, j, q, r[2 * j + q], best[q]);
+          }
+        points++;
+        cands += nc[0] + nc[1];
       }
     }
-    aq_demand_free(d);
     free(fb);
+    free(cand);
+    free(r);
     aq_arch_free(A);
   }
-  aq_check(boxes > 1000, "boxes kept (%zu)", boxes);
+  aq_check(points > 20000 && outside > 1000, "states in cells %zu, outside %zu", points, outside);
   if (getenv("AQ_TEST_VERBOSE"))
-    printf("regions: %zu boxes, %zu points\n", boxes, points);
+    printf("grid: %zu states in cells (%.2f candidates each), %zu outside\n", points,
+           (double)cands / (double)points, outside);
+}
+
+AQ_TEST(arch_demand_grid_cubic_range)
+{
+  /* the range of a cubic over a part of [0, 1], on which every bound of
+   * the grid rests: it holds the cubic's values at 2001 points (and it is
+   * tight: within 1e-7 (the points' spacing) of the extremes they find, the widening
+   * aside), for random cubics, most with a turning point inside */
+  unsigned long long rng = 0xc0b1cULL;
+  int inside = 0;
+  for (int i = 0; i < 2000; i++) {
+    double c[4], ua = 0.6 * tds_rng(&rng), ub = ua + 0.05 + 0.35 * tds_rng(&rng);
+    for (int k = 0; k < 4; k++)
+      c[k] = (2 * tds_rng(&rng) - 1) * (k == 3 && i % 7 == 0 ? 0 : 1);
+    double lo, hi, slo = INFINITY, shi = -INFINITY;
+    aq_dg_cubic_range(c, ua, ub, &lo, &hi);
+    for (int m = 0; m <= 2000; m++) {
+      double u = ua + (ub - ua) * m / 2000, v = aq_dt_cubic(c, u);
+      slo = fmin(slo, v), shi = fmax(shi, v);
+    }
+    double e0 = aq_dt_cubic(c, ua), e1 = aq_dt_cubic(c, ub);
+    inside += slo < fmin(e0, e1) - 1e-6 || shi > fmax(e0, e1) + 1e-6;
+    double w = 1e-14 * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]));
+    aq_check(lo <= slo && hi >= shi, "cubic %d: range [%.17g, %.17g], values [%.17g, %.17g]", i,
+             lo, hi, slo, shi);
+    aq_check(lo >= slo - w - 1e-7 && hi <= shi + w + 1e-7, "cubic %d: range [%.17g, %.17g] "
+             "looser than the values [%.17g, %.17g]", i, lo, hi, slo, shi);
+  }
+  aq_check(inside > 200, "cubics with an extreme inside: %d", inside);
+}
+
+/* fn on each set with a grid of every shipped arch; the states it counts. */
+typedef size_t (*grid_case)(const char *arch, int set, const aq_demand_table *t,
+                            aq_joint_form *fb, size_t nf, double *r);
+static size_t each_grid(grid_case fn)
+{
+  gsl_set_error_handler_off();
+  size_t states = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    size_t nf = aq_demand_nforms(aq_arch_geom(A)->p.voussoirs);
+    aq_joint_form *fb = calloc(nf, sizeof *fb);
+    double *r = calloc(2 * nf, sizeof *r);
+    for (int set = 0; set < 2; set++) {
+      const aq_demand_table *t = aq_arch_demand_table(A, set);
+      if (t && t->grid)
+        states += fn(shipped[f], set, t, fb, nf, r);
+    }
+    free(fb);
+    free(r);
+    aq_arch_free(A);
+  }
+  return states;
+}
+
+static size_t corners(const char *arch, int set, const aq_demand_table *t, aq_joint_form *fb,
+                      size_t nf, double *r)
+{
+  const aq_demand_grid *G = t->grid;
+  static const int abin[] = {DG_NA / 2 + 7, DG_NA / 2 - 9}, kbin[] = {0, 9};
+  size_t states = 0;
+  for (int c = 0; c < 16; c++) { /* two bins of each, four corners */
+    int ai = c & 1, ki = c >> 1 & 1, corner = c >> 2;
+    double a0 = ((double)abin[ai] - 0.5 * DG_NA) * G->da, a1 = a0 + G->da;
+    double al = corner & 1 ? nextafter(a1, a0) : a0;
+    double k0 = kbin[ki] ? G->k0 * ldexp(1.0, (kbin[ki] - 1) >> DG_KB) : 0;
+    double k1 = kbin[ki] ? k0 * (1 + 1.0 / (1 << DG_KB)) : G->k0;
+    double kg = corner & 2 ? nextafter(k1, k0) : k0;
+    for (size_t is = 0; is < DG_NS; is++)
+      for (int m = 0; m < 7; m++) {
+        double s = t->s_c * ((double)is + (m + 0.5) / 7) / DG_NS, u[2];
+        size_t nc[2], cand[1024];
+        if (aq_demand_grid_cell(t, s, al, kg, u, cand, 1024, nc) != 1)
+          continue;
+        entry_ratios(t, fb, nf, s, al, kg, r);
+        for (size_t j = 0; j < nf; j++)
+          aq_check(r[2 * j] <= u[0] && r[2 * j + 1] <= u[1],
+                   "%s set %d: s %.9g a/g %.6g KE/g %.6g: entry %zu: %.17g %.17g, the cell's "
+                   "bounds %.17g %.17g", arch, set, s, al, kg, j, r[2 * j], r[2 * j + 1], u[0],
+                   u[1]);
+        states++;
+      }
+  }
+  return states;
+}
+
+AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
+{
+  /* where a cell's bound is tightest: at the corners of its ranges of a/g
+   * and KE/g (the forms are linear in both there), over s sampled densely
+   * through every range of s (a coefficient's turning point inside a range
+   * is where leaving it out would show), every entry evaluated */
+  size_t states = each_grid(corners);
+  aq_check(states > 50000, "states %zu", states);
+}
+
+static size_t walls(const char *arch, int set, const aq_demand_table *t, aq_joint_form *fb,
+                    size_t nf, double *r)
+{
+  const aq_demand_grid *G = t->grid;
+  double u[2];
+  size_t nc[2], cand[1024], states = 0;
+  for (size_t is = 0; is < DG_NS; is++) /* every row of KE/g 0 */
+    aq_demand_grid_cell(t, t->s_c * ((double)is + 0.5) / DG_NS, 0, 0, u, cand, 1024, nc);
+  for (size_t ia = DG_NA / 2 - 12; ia < DG_NA / 2 + 12; ia += 3) {
+    double a0 = ((double)ia - 0.5 * DG_NA) * G->da, al[2] = {a0, nextafter(a0 + G->da, a0)};
+    double m[2] = {0, 0};
+    for (int c = 0; c < 2; c++)
+      for (int k = 0; k < 6 * DG_NS; k++, states++) {
+        entry_ratios(t, fb, nf, t->s_c * (k + 0.5) / (6 * DG_NS), al[c], 0, r);
+        for (size_t j = 0; j < 2 * nf; j++)
+          m[j % 2] = fmax(m[j % 2], r[j]);
+      }
+    /* the bounds say no state at rest exceeds a little less than the
+     * entries reach: wrong (an infinite demand: the bound must be too) */
+    for (int q = 0; q < 2; q++) {
+      double below[2] = {INFINITY, INFINITY};
+      below[q] = isinf(m[q]) ? DBL_MAX : m[q] * (1 - 1e-9);
+      aq_check(!aq_dg_wall_below(G, al[0], below), "%s set %d: a/g bin %zu: at rest "
+               "quantity %d reaches %.9g, the walls' bound says less", arch, set, ia, q, m[q]);
+    }
+  }
+  return states;
+}
+
+AQ_TEST(arch_demand_grid_walls_bound_states_at_rest)
+{
+  /* a leg's walls are found only when some state at rest under its a/g
+   * could exceed the maxima: each a/g bin's bound must hold at rest (KE 0)
+   * at every s.  Every row of KE/g 0 made, then states at rest sampled
+   * densely in s at both edges of each a/g bin, every entry evaluated. */
+  size_t states = each_grid(walls);
+  aq_check(states > 50000, "states %zu", states);
 }
 
 /* A run in which the arch never moves: the least friction with which a

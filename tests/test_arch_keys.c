@@ -220,7 +220,7 @@ AQ_TEST(arch_keys_ranges_as_documented)
     aq_check(!strcmp(range, d->range), "%s: the parser's range %s, documented %s", key->name,
              range, d->range);
     double lo, hi;
-    int lo_open, hi_open;
+    int lo_open = 0, hi_open = 0;
     if (!aq_check(parse_range(d->range, &lo, &hi, &lo_open, &hi_open),
                   "%s: a range in the docs: \"%s\"", key->name, d->range))
       continue;

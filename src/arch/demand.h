@@ -96,7 +96,7 @@ typedef struct {
   double slide_s;     /* first time |T|/N passed the friction limit, NAN: never (or none) */
   size_t samples;     /* states looked at */
   size_t full;        /* of them, with every joint evaluated */
-  size_t looks;       /* single joints evaluated */
+  size_t looks;       /* candidates evaluated (one entry each) */
 } aq_demand_result;
 
 typedef struct aq_demand aq_demand;
@@ -112,8 +112,8 @@ void aq_demand_free(aq_demand *d);
 void aq_demand_set_every(aq_demand *d, int on);
 /* The friction coefficient a run is checked against (NAN: none). */
 void aq_demand_set_limit(aq_demand *d, double mu);
-/* Start a run whose steps' |a|/g are at most amax (NAN: unknown). */
-void aq_demand_begin(aq_demand *d, double amax);
+/* Start a run. */
+void aq_demand_begin(aq_demand *d);
 /* The state of a run on set k: position s (rad), kinetic energy ke_j (J),
  * ground acceleration a_mps2 along +x, gravity g_mps2 (g + a_v), record
  * time t_s. */
@@ -126,6 +126,34 @@ void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, dou
  * in the distance, then the end itself, at record time t_s. */
 void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t rev,
                    double a_mps2, double g_mps2, double t_s);
+/* ---- the stepper's hooks: a leg at a time, queued ----
+ * A leg of set k from (s0, ke0) at record time t0 to (s1, ke1) at t1,
+ * moving in direction dir at its end, with rev turning points inside it,
+ * under a_mps2 and g_mps2: aq_demand_at of its start, then aq_demand_leg
+ * of its end, done when the queue is full or flushed (the same states in
+ * the same order; the stepper's loop pays a few stores per leg). */
+typedef struct {
+  double s0, ke0, t0, s1, ke1, t1, a_mps2, g_mps2;
+  int k, dir;
+  size_t rev;
+} aq_demand_leg_rec;
+typedef struct {
+  aq_demand_leg_rec *rec;
+  size_t n, cap;
+  int closed; /* 1: nothing a leg could add (the maxima are infinite, or no table) */
+} aq_demand_queue;
+/* Look at every queued leg now (before aq_demand_still and aq_demand_get). */
+void aq_demand_flush(aq_demand *d);
+static inline void aq_demand_push(aq_demand *d, const aq_demand_leg_rec *r)
+{
+  aq_demand_queue *q = (aq_demand_queue *)(void *)d; /* the tracker's first member */
+  if (q->closed)
+    return;
+  if (q->n == q->cap)
+    aq_demand_flush(d);
+  q->rec[q->n++] = *r;
+}
+
 /* ---- a run in which the arch never moves ----
  * Its demand is that of the statics: the least friction with which a line
  * of thrust stands at the record's peak (docs/demand.md, "A run that never
@@ -145,10 +173,13 @@ void aq_demand_set_least(aq_demand *d, aq_demand_least_fn least, void *ctx);
 void aq_demand_still(aq_demand *d, const aq_steps *steps, size_t n_end, double scale,
                      double vscale, double g_mps2);
 void aq_demand_get(const aq_demand *d, aq_demand_result *r);
-/* For the tests: the box of set k's states (s0 s1 in rad, a/g, KE/g in
- * J s^2/m) in which no joint exceeds the running maxima; 0 when there is
- * none.  The running maximum of quantity q (0: |T|/N, 1: eccentricity). */
-int aq_demand_fast_box(const aq_demand *d, int k, double box[6]);
+/* For the tests: the cell of set t's grid that holds the state (s rad,
+ * a/g, KE/g): the upper bounds of both quantities over it (u), and its
+ * candidates, those of |T|/N then those of |e|/N (n[2] of them, into
+ * cand[cap]).  1, 0 for a state outside the grid, -1 when cap is short. */
+int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg, double u[2],
+                        size_t *cand, size_t cap, size_t n[2]);
+/* The running maximum of quantity q (0: |T|/N, 1: eccentricity). */
 double aq_demand_max(const aq_demand *d, int q);
 
 #endif

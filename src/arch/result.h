@@ -63,7 +63,7 @@ typedef struct {
   double slide_time_s;         /* first time mu_demand passed the friction given, NAN: never */
   size_t demand_samples;       /* states looked at */
   size_t demand_full;          /* of them, with every joint evaluated */
-  size_t demand_looks;         /* single joints evaluated */
+  size_t demand_looks;         /* candidates evaluated (one entry each) */
   aq_history history;          /* filled only when asked */
   aq_result_bodies *bodies;    /* the block model's own; NULL for the four-hinge models */
 } aq_result;

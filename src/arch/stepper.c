@@ -484,12 +484,8 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
     blo -= 4 * DBL_EPSILON * fabs(blo);
     bhi += 4 * DBL_EPSILON * fabs(bhi);
   }
-  if (dem) { /* the largest |a| / g of the run, from the quiet index's blocks */
-    double amax = 0;
-    for (size_t b = 0; b < steps->nblock; b++)
-      amax = fmax(amax, fmax(fabs(steps->block_min_mps2[b]), fabs(steps->block_max_mps2[b])));
-    aq_demand_begin(dem, fabs(scale) * amax / (g_min + av_min));
-  }
+  if (dem)
+    aq_demand_begin(dem);
   int rest = 1, set = -1;
   double smax[2] = {0, 0}; /* largest s reached on each set */
   aq_motion m = {0, 0, 1, 0, 0};
@@ -543,13 +539,15 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       hc.t0_s = aq_steps_t(steps, i) + t_in;
       const double g_leg = avs ? st->pv[set].g_mps2 : st->path[set]->g_mps2;
       const size_t rev0 = S.reversals;
-      if (dem_legs)
-        aq_demand_at(dem, set, m.s, m.ke_j, a, g_leg, hc.t0_s);
+      const double s0 = m.s, ke0 = m.ke_j;
       rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
                &end, &S, err);
-      if (dem_legs && rc == AQ_OK)
-        aq_demand_leg(dem, set, m.s, m.ke_j, m.dir, S.reversals - rev0, a, g_leg,
-                      hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used));
+      if (dem_legs && rc == AQ_OK) {
+        aq_demand_leg_rec r = {s0, ke0, hc.t0_s, m.s, m.ke_j,
+                               hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used), a, g_leg,
+                               set, m.dir, S.reversals - rev0};
+        aq_demand_push(dem, &r);
+      }
       if (hc.rc != AQ_OK)
         goto nomem;
       if (end == AQ_LEG_COLLAPSE)
@@ -674,6 +672,7 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
   res->thrust_ecc_time_s = res->slide_time_s = NAN;
   if (dem_legs || (dem && res->first_set < 0)) {
     aq_demand_result dr;
+    aq_demand_flush(dem);
     if (res->first_set < 0) /* never moved: the statics at the record's peak */
       aq_demand_still(dem, steps, n_end, scale, vscale, g_min);
     aq_demand_get(dem, &dr);

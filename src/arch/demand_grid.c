@@ -1,0 +1,327 @@
+/* demand_grid.c: bounds of a hinge set's joint demands over cells of states
+ * (demand_tab.h).
+ *
+ * A state of a set is (s, a/g, KE/g).  At a fixed s each entry's forms are
+ * linear in a/g and w = sdot^2/g = 2 (KE/g) / M(s), so over a cell (a range
+ * of s, of a/g and of KE/g) each coefficient lies in the range its cubic
+ * takes over the cell's s, 1/M in its own, and interval arithmetic bounds
+ * N, T and e: an upper and a lower bound of |T|/N and |e|/N for every entry
+ * over the whole cell.  The cell keeps the largest upper bound and the
+ * entries whose upper bound reaches the largest lower bound (the
+ * candidates: any other entry is, at every state of the cell, below a
+ * candidate's value there).
+ *
+ * The bounds must hold for the values the tracker computes in floating
+ * point (aq_dt_cubic, then n0 + a n1 + w n2 and the ratio): each cubic's
+ * range is widened by 1e-14 of the sum of its coefficients' magnitudes,
+ * each linear form's by 1e-13 of its terms' magnitudes, the ratios by
+ * 1e-13, the ranges of s, a/g and KE/g by 1e-9 of their widths. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "demand_tab.h"
+
+#define DG_EPS_C 1e-14
+#define DG_EPS_L 1e-13
+#define DG_PAD 1e-9
+
+/* The range of cubic c over u in [ua, ub], widened for rounding. */
+void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi)
+{
+  double a = aq_dt_cubic(c, ua), b = aq_dt_cubic(c, ub);
+  double l = fmin(a, b), h = fmax(a, b);
+  /* critical points: c1 + 2 c2 u + 3 c3 u^2 = 0 */
+  double A = 3 * c[3], B = 2 * c[2], C = c[1], r[2];
+  int nr = 0;
+  if (A == 0) {
+    if (B != 0)
+      r[nr++] = -C / B;
+  } else {
+    double disc = B * B - 4 * A * C;
+    if (disc >= 0) {
+      double q = -0.5 * (B + copysign(sqrt(disc), B));
+      r[nr++] = q / A;
+      if (q != 0)
+        r[nr++] = C / q;
+    }
+  }
+  for (int k = 0; k < nr; k++)
+    if (r[k] > ua && r[k] < ub) {
+      double v = aq_dt_cubic(c, r[k]);
+      l = fmin(l, v), h = fmax(h, v);
+    }
+  double e = DG_EPS_C * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]));
+  *lo = l - e, *hi = h + e;
+}
+
+void aq_dg_free(aq_demand_grid *g)
+{
+  if (!g)
+    return;
+  for (size_t r = 0; r < DG_NS * DG_NK; r++)
+    free(g->pool[r]);
+  for (size_t is = 0; is < DG_NS; is++)
+    free(g->rng[is]);
+  pthread_mutex_destroy(&g->lock);
+  free(g->hu);
+  free(g->cell);
+  free(g);
+}
+
+/* The range of a/g of bin ia and of KE/g of bin ik, widened. */
+static void bin_a(const aq_demand_grid *g, size_t ia, double *a0, double *a1)
+{
+  double lo = ((double)ia - 0.5 * DG_NA) * g->da, hi = lo + g->da;
+  *a0 = lo - DG_PAD * g->da, *a1 = hi + DG_PAD * g->da;
+}
+static void bin_k(const aq_demand_grid *g, size_t ik, double *k0, double *k1)
+{
+  if (ik == 0) {
+    *k0 = 0, *k1 = g->k0 * (1 + DG_PAD);
+    return;
+  }
+  size_t e = (ik - 1) >> DG_KB, m = (ik - 1) & ((1u << DG_KB) - 1);
+  double base = g->k0 * ldexp(1.0, (int)e), sub = 1.0 / (1 << DG_KB);
+  *k0 = base * (1 + sub * (double)m) * (1 - DG_PAD);
+  *k1 = base * (1 + sub * (double)(m + 1)) * (1 + DG_PAD);
+}
+
+/* The range of x a over x in [xl, xh], a in [a0, a1], widened. */
+static void prod_range(double xl, double xh, double a0, double a1, double *lo, double *hi)
+{
+  double p0 = xl * a0, p1 = xl * a1, p2 = xh * a0, p3 = xh * a1;
+  double l = p0 < p1 ? p0 : p1, h = p0 < p1 ? p1 : p0;
+  l = p2 < l ? p2 : l, h = p2 > h ? p2 : h;
+  l = p3 < l ? p3 : l, h = p3 > h ? p3 : h;
+  double m = (fabs(l) > fabs(h) ? fabs(l) : fabs(h)) * DG_EPS_L;
+  *lo = l - m, *hi = h + m;
+}
+
+/* The top half of the bits of a float at least u (u >= 0): an upper bound
+ * with 8 significant bits. */
+static uint16_t upper16(double u)
+{
+  if (!(u < 3e38))
+    return 0x7f80; /* INFINITY (and NAN: no bound) */
+  float f = (float)u;
+  if ((double)f < u)
+    f = nextafterf(f, INFINITY);
+  uint32_t b;
+  memcpy(&b, &f, sizeof b);
+  return (uint16_t)((b + 0xffffu) >> 16);
+}
+
+/* Bounds of quantity q (0: |T|/N, 1: |e|/N) of an entry over a box: c the
+ * ranges (lo, hi of N, T, e) of its constant and KE terms, t those of its
+ * a/g terms; *u an upper bound (INFINITY where N may be <= 0), *l a lower
+ * one (INFINITY where N <= 0 throughout). */
+static void ebound(const double *c, const double *t, int q, double *u, double *l)
+{
+  double nl = c[0] + t[0], nh = c[1] + t[1];
+  double xl = c[2 + 2 * q] + t[2 + 2 * q], xh = c[3 + 2 * q] + t[3 + 2 * q];
+  double axh = fabs(xl) > fabs(xh) ? fabs(xl) : fabs(xh);
+  double axl = xl > 0 ? xl : xh < 0 ? -xh : 0;
+  *u = nl > 0 ? axh / nl * (1 + DG_EPS_L) : INFINITY;
+  *l = nh > 0 ? axl / nh * (1 - DG_EPS_L) : INFINITY;
+}
+
+/* The a/g terms' ranges (lo, hi of N, T, e) of entry ranges x (R + 2 j
+ * DT_NV) over a/g in [a0, a1]. */
+static void a_terms(const double *x, double a0, double a1, double t[6])
+{
+  for (int f = 0; f < 3; f++)
+    prod_range(x[6 * f + 2], x[6 * f + 3], a0, a1, &t[2 * f], &t[2 * f + 1]);
+}
+
+enum { DG_AB = 8 }; /* a/g bins per block: the entries below the block's largest
+                       lower bound are left out of its cells */
+
+/* The cells of row (is, ik), from range is's forms' ranges R (lo/hi per
+ * form, then 1/M's); the row's pool into g->pool.  0, or -1 (memory). */
+static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
+{
+  const aq_demand_table *T = g->t;
+  size_t nf = T->nf, nb = DG_NA / DG_AB, row_i = is * DG_NK + ik;
+  aq_dg_cell *cells = g->cell + row_i * DG_NA;
+  double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1], k0, k1;
+  bin_k(g, ik, &k0, &k1);
+  double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
+  double *cw = malloc(nf * 6 * sizeof *cw), *u = malloc(nf * 4 * sizeof *u);
+  double *at = malloc(nf * 6 * sizeof *at);
+  size_t *stamp = calloc(nf, sizeof *stamp);
+  uint16_t *list = malloc(2 * nf * sizeof *list), *tmp = malloc(2 * nf * sizeof *tmp);
+  uint16_t *pool = NULL;
+  size_t cap = 0, np = 0;
+  int ok = cw && u && at && stamp && list && tmp;
+  for (size_t j = 0; ok && j < nf; j++) /* the constant and KE terms */
+    for (int f = 0; f < 3; f++) {
+      const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f);
+      double lo, hi, m0 = fmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
+      prod_range(x[4], x[5], w0, w1, &lo, &hi);
+      cw[6 * j + 2 * (size_t)f] = x[0] + lo - m0;
+      cw[6 * j + 2 * (size_t)f + 1] = x[1] + hi + m0;
+    }
+  for (size_t bl = 0; ok && bl < nb; bl++) {
+    /* the block's entries: those whose upper bound over the block reaches
+     * its largest lower bound, per quantity */
+    double a0, a1, e0, e1, t[6];
+    bin_a(g, bl * DG_AB, &a0, &e0);
+    bin_a(g, bl * DG_AB + DG_AB - 1, &e1, &a1);
+    size_t nq[2] = {0, 0};
+    uint16_t *lq[2] = {list, list + nf};
+    double Lm[2] = {0, 0};
+    for (size_t j = 0; j < nf; j++) {
+      double *uj = u + 4 * j;
+      if (rm0 > 0)
+        a_terms(R + 2 * j * DT_NV, a0, a1, t);
+      for (int q = 0; q < 2; q++) {
+        if (q == 1 && T->entry[j].hinge >= 0)
+          uj[2] = uj[3] = 0;
+        else if (!(rm0 > 0))
+          uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
+        else
+          ebound(cw + 6 * j, t, q, &uj[2 * q], &uj[2 * q + 1]);
+        Lm[q] = uj[2 * q + 1] > Lm[q] ? uj[2 * q + 1] : Lm[q];
+      }
+    }
+    for (int q = 0; q < 2; q++)
+      for (size_t j = 0; j < nf; j++)
+        if ((q == 0 || T->entry[j].hinge < 0) && u[4 * j + 2 * (size_t)q] >= Lm[q])
+          lq[q][nq[q]++] = (uint16_t)j;
+    for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
+      aq_dg_cell *cl = cells + ia;
+      size_t c0 = 0;
+      bin_a(g, ia, &a0, &a1);
+      for (int q = 0; q < 2; q++) {
+        double U = 0, L = 0;
+        for (size_t m = 0; m < nq[q]; m++) {
+          size_t j = lq[q][m];
+          double *uj = u + 4 * j;
+          if (!(rm0 > 0)) {
+            uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
+          } else {
+            double *tj = at + 6 * j;
+            if (stamp[j] != ia + 1) { /* an entry of both lists: its terms once */
+              a_terms(R + 2 * j * DT_NV, a0, a1, tj);
+              stamp[j] = ia + 1;
+            }
+            ebound(cw + 6 * j, tj, q, &uj[2 * q], &uj[2 * q + 1]);
+          }
+          U = uj[2 * q] > U ? uj[2 * q] : U;
+          L = uj[2 * q + 1] > L ? uj[2 * q + 1] : L;
+        }
+        size_t c = 0;
+        for (size_t m = 0; m < nq[q]; m++)
+          if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
+            tmp[c0 + c++] = lq[q][m];
+        cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
+        c0 += c < DG_ALL ? c : 0;
+        g->hu[2 * (row_i * DG_NA + ia) + (size_t)q] = upper16(U);
+      }
+      cl->off = 0;
+      if (c0 <= DG_INLINE) {
+        memcpy(cl->c, tmp, c0 * sizeof *tmp);
+        continue;
+      }
+      if (np + c0 > cap) {
+        size_t nc = 2 * (np + c0) + 64;
+        uint16_t *p = realloc(pool, nc * sizeof *p);
+        if (!p) {
+          ok = 0;
+          break;
+        }
+        pool = p, cap = nc;
+      }
+      cl->off = (uint32_t)np;
+      memcpy(pool + np, tmp, c0 * sizeof *tmp);
+      np += c0;
+    }
+  }
+  free(cw), free(u), free(at), free(stamp), free(list), free(tmp);
+  if (!ok) {
+    free(pool);
+    return -1;
+  }
+  g->pool[row_i] = pool;
+  return 0;
+}
+
+/* The ranges of the nine forms of every entry and of 1/M over range is
+ * of s, into R (lo, hi each). */
+static void ranges(const aq_demand_table *t, size_t is, double *R)
+{
+  size_t nf = t->nf;
+  double s0 = t->s_c * (double)is / DG_NS, s1 = t->s_c * (double)(is + 1) / DG_NS;
+  double pad = DG_PAD * (s1 - s0);
+  s0 = fmax(0, s0 - pad), s1 = fmin(t->s_c, s1 + pad);
+  for (size_t k = 0; k < nf * DT_NV + 1; k++)
+    R[2 * k] = INFINITY, R[2 * k + 1] = -INFINITY;
+  for (size_t i = 0; i < t->nint; i++) {
+    if (t->bp[i + 1] < s0 || t->bp[i] > s1)
+      continue;
+    double ua = fmax(0, (s0 - t->bp[i]) * t->ih[i]), ub = fmin(1, (s1 - t->bp[i]) * t->ih[i]);
+    const double *C = t->c + i * t->stride;
+    for (size_t k = 0; k <= nf * DT_NV; k++) {
+      const double *c = k < nf * DT_NV ? C + k * DT_NC : C + (nf * DT_NV + 3) * DT_NC;
+      double lo, hi;
+      aq_dg_cubic_range(c, ua, ub, &lo, &hi);
+      R[2 * k] = fmin(R[2 * k], lo), R[2 * k + 1] = fmax(R[2 * k + 1], hi);
+    }
+  }
+}
+
+/* The walls' bounds, once every row of KE/g 0 is made. */
+static void walls(aq_demand_grid *g)
+{
+  for (size_t ia = 0; ia < DG_NA; ia++)
+    for (int q = 0; q < 2; q++) {
+      double m = 0;
+      for (size_t is = 0; is < DG_NS; is++)
+        m = fmax(m, aq_dg_bound(g, (long)((is * DG_NK) * DG_NA + ia), q));
+      g->wall[ia][q] = (float)m; /* a bound as stored: exact in a float */
+    }
+  atomic_store_explicit(&g->walls, 1, memory_order_release);
+}
+
+int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik)
+{
+  size_t r = is * DG_NK + ik;
+  pthread_mutex_lock(&g->lock);
+  int b = atomic_load_explicit(&g->built[r], memory_order_relaxed);
+  if (b == 0) {
+    if (!g->rng[is] && (g->rng[is] = malloc((g->t->nf * 2 * DT_NV + 2) * sizeof(double))))
+      ranges(g->t, is, g->rng[is]);
+    b = g->rng[is] && row(g, is, ik, g->rng[is]) == 0 ? 1 : 2;
+    atomic_store_explicit(&g->built[r], b, memory_order_release);
+    if (b == 1 && ik == 0 && ++g->walls_made == DG_NS)
+      walls(g);
+  }
+  pthread_mutex_unlock(&g->lock);
+  return b == 1 ? 0 : -1;
+}
+
+aq_demand_grid *aq_dg_build(const aq_demand_table *t)
+{
+  size_t nr = (size_t)DG_NS * DG_NK * DG_NA;
+  if (t->nf > UINT16_MAX || !(t->lambda0 > 0) || !(t->ke_ref > 0) || !(t->s_c > 0))
+    return NULL;
+  aq_demand_grid *g = calloc(1, sizeof *g);
+  if (!g)
+    return NULL;
+  g->cell = malloc(nr * sizeof *g->cell); /* made row by row: pages touched then */
+  g->hu = malloc(2 * nr * sizeof *g->hu);
+  if (!g->cell || !g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
+    free(g->cell), free(g->hu), free(g);
+    return NULL;
+  }
+  g->t = t;
+  for (size_t r = 0; r < DG_NS * DG_NK; r++)
+    atomic_init(&g->built[r], 0);
+  atomic_init(&g->walls, 0);
+  g->inv_ds = DG_NS / t->s_c;
+  g->da = t->lambda0 / 8, g->inv_da = 1 / g->da;
+  g->k0 = t->ke_ref / (double)(1 << 10), g->inv_k0 = 1 / g->k0;
+  return g;
+}

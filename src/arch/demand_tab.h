@@ -1,0 +1,166 @@
+/* demand_tab.h: the layout of a hinge set's demand tables, shared by the
+ * files of the demand (demand.c builds them, demand_grid.c bounds them,
+ * demand_track.c reads them along a run).  Private to src/arch. */
+#ifndef AQ_ARCH_DEMAND_TAB_H
+#define AQ_ARCH_DEMAND_TAB_H
+
+#include <stddef.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <math.h>
+#include <string.h>
+
+#include "demand.h"
+
+/* Per entry and interval: the nine forms' cubics (n0 n1 n2 t0 t1 t2 e0 e1
+ * e2), 4 power coefficients each; per interval besides: sddot's three,
+ * 1/M and the moving bodies' centroid x, y (per m_T, absolute). */
+enum { DT_NV = 9, DT_NX = 6, DT_NC = 4 };
+
+struct aq_demand_table {
+  size_t n;         /* voussoirs */
+  size_t nf;        /* entries (aq_demand_nforms(n)) */
+  size_t nint;      /* intervals */
+  size_t stride;    /* doubles per interval: (nf DT_NV + DT_NX) DT_NC */
+  double *bp;       /* nint + 1 breakpoints, rad */
+  double *ih;       /* 1 / width of each interval, 1/rad */
+  double *c;        /* nint * stride cubic coefficients in u = (s - bp[i]) ih[i] */
+  aq_joint_form *entry; /* joint and hinge of each entry (forms unused) */
+  double s_c;       /* rad */
+  double mass_kg;   /* m_T, the forms' divisor */
+  double err;       /* largest error measured against the exact forms, / tol scale */
+  double scale;     /* the force scale of the tolerance (m/s^2 per m/s^2) */
+  double w_ref;     /* sdot^2 / g of the reference energy, 1/m... rad^2/m */
+  double lambda0;   /* the set's collapse multiplier (the grid's scale of a/g) */
+  double ke_ref;    /* KE / g of the energy of collapse, m_T y(s_c), kg m */
+  struct aq_demand_grid *grid; /* bounds over cells of states (demand_grid.c) */
+};
+
+static inline double aq_dt_cubic(const double c[4], double u)
+{
+  return c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+}
+
+/* ---- the grid (demand_grid.c) ----
+ * The states of a set, (s, a/g, KE/g), fall in cells: NS equal ranges of
+ * s, NA equal ranges of a/g about 0 (each lambda0 / 8 wide) and NK ranges
+ * of KE/g (0 to k0, then two per octave).  Per cell, an upper bound on
+ * each quantity (|T|/N, |e|/N at a joint that is not a hinge) over every
+ * entry and every state inside it, and the entries that may be the
+ * largest there (the candidates: every other entry is below some
+ * candidate's lower bound over the cell, so strictly below the state's
+ * largest).  A state outside the grid (|a/g| >= 4 lambda0, KE/g >= k0
+ * 2^DG_OCT) has no cell. */
+enum { DG_NS = 64, DG_NA = 64, DG_OCT = 14, DG_KB = 1, DG_NK = 1 + (DG_OCT << DG_KB) };
+#define DG_ALL 255 /* a count meaning: every entry */
+
+enum { DG_INLINE = 5 };
+typedef struct {
+  uint16_t c[DG_INLINE]; /* the candidates, those of |T|/N then those of |e|/N, when
+                            there are at most DG_INLINE; else pool[off ..] */
+  uint8_t n[2];          /* their counts (DG_ALL: every entry) */
+  uint32_t off;
+} aq_dg_cell;
+
+typedef struct aq_demand_grid {
+  double inv_ds;  /* NS / s_c */
+  double da, inv_da; /* a/g per bin */
+  double k0, inv_k0; /* KE/g of the first bin's top */
+  uint16_t *hu;      /* per cell, both quantities' upper bounds: the top half of a
+                        float's bits, rounded up (aq_dg_bound) */
+  aq_dg_cell *cell;  /* NS * NK * NA, index (is * NK + ik) * NA + ia */
+  uint16_t *pool[DG_NS * DG_NK]; /* per row (range of s, of KE/g): the candidates of
+                                    its cells that have more than DG_INLINE */
+  /* Each row of cells is made the first time a state falls in it (under
+   * lock, published by built[row]); a row that cannot be made (out of
+   * memory) leaves its states outside the grid. */
+  const struct aq_demand_table *t;
+  pthread_mutex_t lock;
+  double *rng[DG_NS];              /* per range of s, once one of its rows is made: each
+                                      entry's nine forms' ranges (lo, hi), then 1/M's */
+  atomic_int built[DG_NS * DG_NK]; /* 1: made, 2: failed */
+  size_t walls_made;               /* rows of KE/g 0 made (under lock) */
+  float wall[DG_NA][2];            /* once every row of KE/g 0 is made: per a/g bin,
+                                      both quantities' bounds over them (the walls:
+                                      states at rest) */
+  atomic_int walls;                /* 1: wall holds */
+} aq_demand_grid;
+
+/* The range of cubic c (aq_dt_cubic) over u in [ua, ub]: its ends and its
+ * turning points inside, widened by 1e-14 of the sum of its coefficients'
+ * magnitudes (for the rounding of aq_dt_cubic). */
+void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi);
+/* Make row (is, ik) (demand_grid.c); 0, or -1 when it cannot be made. */
+int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik);
+
+/* The grid of table t (NULL: out of memory, or a table too large). */
+aq_demand_grid *aq_dg_build(const aq_demand_table *t);
+void aq_dg_free(aq_demand_grid *g);
+
+/* The cell of a state, or -1 (outside the grid, or in a range of s that
+ * cannot be made).  Makes the state's range of s the first time. */
+static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg)
+{
+  double xs = s * g->inv_ds, xa = al * g->inv_da + 0.5 * DG_NA, xk = kg * g->inv_k0;
+  if (!(xs >= 0 && xs < DG_NS + 1.0 && xa >= 0 && xa < DG_NA && xk >= 0 &&
+        xk < (double)(1ULL << DG_OCT)))
+    return -1;
+  size_t is = (size_t)xs, ia = (size_t)xa, ik = 0;
+  if (is >= DG_NS)
+    is = DG_NS - 1;
+  if (xk >= 1) {
+    uint64_t bits;
+    memcpy(&bits, &xk, sizeof bits);
+    ik = 1 + ((size_t)(((bits >> 52) & 0x7ff) - 1023) << DG_KB) +
+         (size_t)((bits >> (52 - DG_KB)) & ((1u << DG_KB) - 1));
+  }
+  int b = atomic_load_explicit(&g->built[is * DG_NK + ik], memory_order_acquire);
+  if (b != 1 && (b == 2 || aq_dg_make(g, is, ik) != 0))
+    return -1;
+  return (long)((is * DG_NK + ik) * DG_NA + ia);
+}
+
+/* The candidates of cell ic. */
+static inline const uint16_t *aq_dg_cands(const aq_demand_grid *g, long ic)
+{
+  const aq_dg_cell *c = g->cell + ic;
+  size_t n = (c->n[0] == DG_ALL ? 0 : c->n[0]) + (c->n[1] == DG_ALL ? 0 : c->n[1]);
+  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->off;
+}
+
+/* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2] (known
+ * once every range of s is made). */
+static inline int aq_dg_wall_below(const aq_demand_grid *g, double al, const double m[2])
+{
+  double xa = al * g->inv_da + 0.5 * DG_NA;
+  if (!(xa >= 0 && xa < DG_NA) || !atomic_load_explicit(&g->walls, memory_order_acquire))
+    return 0;
+  const float *w = g->wall[(size_t)xa];
+  return !(w[0] > m[0]) && !(w[1] > m[1]);
+}
+
+/* The largest code whose bound is at most m (m >= 0): a cell's bound
+ * exceeds m exactly when its code exceeds this one. */
+static inline uint16_t aq_dg_floor16(double m)
+{
+  if (!(m < 3e38))
+    return 0x7f80;
+  float f = (float)m;
+  if ((double)f > m)
+    f = nextafterf(f, 0);
+  uint32_t b;
+  memcpy(&b, &f, sizeof b);
+  return (uint16_t)(b >> 16);
+}
+
+/* Cell c's upper bound of quantity q. */
+static inline double aq_dg_bound(const aq_demand_grid *g, long c, int q)
+{
+  uint32_t b = (uint32_t)g->hu[2 * c + q] << 16;
+  float f;
+  memcpy(&f, &b, sizeof f);
+  return f;
+}
+
+#endif

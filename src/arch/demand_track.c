@@ -1,0 +1,441 @@
+/* demand_track.c: what a run asks of the joints, followed state by state
+ * (demand.h, docs/demand.md).
+ *
+ * The tracker is told every state of a run (each leg's start, its end and
+ * the walls it turned at) and keeps the running maximum of each quantity
+ * (|T|/N at every entry, |e|/N at the joints that are not hinges), the
+ * entry and time where it occurred and the first time it passed its limit.
+ * It evaluates what can change them, and nothing else: a state falls in a
+ * cell of its set's grid (demand_grid.c), which bounds both quantities
+ * over every entry and every state inside it; when the bound does not
+ * exceed the running maximum the state cannot raise it (nor pass a limit
+ * that the maximum has not passed already), and it is left there.
+ * Otherwise the cell's candidates are evaluated, in the order of the
+ * entries: every other entry is below one of them at every state of the
+ * cell, so the state's largest value, the entry that has it first and
+ * every time noted are those of evaluating every entry, to the bit.  A
+ * state outside the grid, or in a cell with too many candidates, has every
+ * entry evaluated. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "demand.h"
+#include "demand_tab.h"
+
+enum { DM_QUEUE = 64 };
+
+struct aq_demand {
+  aq_demand_queue q; /* first: aq_demand_push reaches it */
+  aq_demand_leg_rec qbuf[DM_QUEUE];
+  const aq_demand_table *tab[2];
+  const aq_demand_table *(*get)(void *ctx, int set);
+  void *get_ctx;
+  int asked[2];     /* the table of set k was asked for */
+  double mu_limit;  /* the friction coefficient, NAN: none */
+  size_t iv[2];     /* the interval of each set's last evaluated state */
+  double g, ig;     /* the last gravity and its inverse */
+  double max[2];
+  uint16_t key[2];  /* aq_dg_floor16 of each maximum */
+  size_t joint[2];
+  double when[2];
+  double over_s[2]; /* first time over the limit (mu_limit, 1), NAN: never */
+  int moved, failed, done;
+  int every;        /* 1: every entry at every state (the reference) */
+  size_t samples, full, looks;
+  aq_demand_least_fn least; /* the statics' least friction, NULL: none */
+  void *least_ctx;
+  int still;        /* a run at rest throughout: the statics' demand below */
+  double still_mu, still_s, still_slide;
+  size_t still_joint;
+};
+
+aq_demand *aq_demand_alloc(const aq_demand_table *(*get)(void *ctx, int set), void *ctx,
+                           aq_error *err)
+{
+  aq_demand *d = calloc(1, sizeof *d);
+  if (!d) {
+    aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
+    return NULL;
+  }
+  d->q.rec = d->qbuf;
+  d->q.cap = DM_QUEUE;
+  d->get = get;
+  d->get_ctx = ctx;
+  d->mu_limit = NAN;
+  aq_demand_begin(d);
+  return d;
+}
+
+void aq_demand_free(aq_demand *d) { free(d); }
+
+void aq_demand_set_every(aq_demand *d, int on) { d->every = on != 0; }
+
+void aq_demand_set_limit(aq_demand *d, double mu)
+{
+  d->mu_limit = isfinite(mu) && mu > 0 ? mu : NAN;
+}
+
+void aq_demand_begin(aq_demand *d)
+{
+  d->q.n = 0;
+  d->q.closed = 0;
+  for (int k = 0; k < 2; k++) {
+    d->iv[k] = 0;
+    d->max[k] = 0;
+    d->key[k] = 0;
+    d->joint[k] = 0;
+    d->when[k] = NAN;
+    d->over_s[k] = NAN;
+  }
+  d->g = d->ig = NAN;
+  d->moved = d->failed = d->done = 0;
+  d->samples = d->full = d->looks = 0;
+  d->still = 0;
+}
+
+/* The table of set k (asked for once per tracker), or NULL. */
+static const aq_demand_table *table(aq_demand *d, int k)
+{
+  if (!d->asked[k]) {
+    d->asked[k] = 1;
+    d->tab[k] = d->get(d->get_ctx, k);
+  }
+  return d->tab[k];
+}
+
+/* The interval of s in t, from the last one i. */
+static size_t locate(const aq_demand_table *t, size_t i, double s)
+{
+  if (i >= t->nint)
+    i = 0;
+  while (i > 0 && s < t->bp[i])
+    i--;
+  while (i + 1 < t->nint && s > t->bp[i + 1])
+    i++;
+  return i;
+}
+
+/* A state's value v of quantity q at entry j: the running maximum and the
+ * first time over the limit. */
+static void note(aq_demand *d, int q, double v, const aq_demand_table *t, size_t j, double t_s)
+{
+  if (v > d->max[q]) {
+    d->max[q] = v;
+    d->key[q] = aq_dg_floor16(v);
+    d->joint[q] = t->entry[j].joint;
+    d->when[q] = t_s;
+  }
+  double lim = q == 0 ? d->mu_limit : 1.0;
+  if (v > lim && isnan(d->over_s[q]))
+    d->over_s[q] = t_s;
+}
+
+/* The cell of state (s, al, kg) of t, or -1 when the state must be looked
+ * at: outside the grid, or in a cell whose bound exceeds a running
+ * maximum.  -2: the cell's bounds do not exceed the running maxima. */
+static inline long cell_of(const aq_demand *d, const aq_demand_table *t, double s, double al,
+                           double kg)
+{
+  if (d->every || !t->grid)
+    return -1;
+  long ic = aq_dg_index(t->grid, s, al, kg);
+  if (ic >= 0 && t->grid->hu[2 * ic] <= d->key[0] && t->grid->hu[2 * ic + 1] <= d->key[1])
+    return -2;
+  return ic;
+}
+
+/* Look at one state of set k at (s, al = a/g, kg = KE/g), record time t_s,
+ * in cell ic (-1: none): its candidates, or every entry. */
+static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, double s, double al,
+                    double kg, double t_s)
+{
+  const aq_dg_cell *cl = ic >= 0 ? t->grid->cell + ic : NULL;
+  if (cl && (cl->n[0] == DG_ALL || cl->n[1] == DG_ALL))
+    cl = NULL;
+  int need[2] = {!cl || aq_dg_bound(t->grid, ic, 0) > d->max[0],
+                 !cl || aq_dg_bound(t->grid, ic, 1) > d->max[1]};
+  size_t i = d->iv[k] = locate(t, d->iv[k], s);
+  double u = (s - t->bp[i]) * t->ih[i];
+  const double *C = t->c + i * t->stride;
+  double w = 2.0 * kg * aq_dt_cubic(C + (t->nf * DT_NV + 3) * DT_NC, u);
+  if (!cl) { /* every entry */
+    d->full++;
+    for (size_t j = 0; j < t->nf; j++) {
+      const double *c = C + j * DT_NV * DT_NC;
+      double v[DT_NV];
+      for (int q = 0; q < DT_NV; q++)
+        v[q] = aq_dt_cubic(c + q * DT_NC, u);
+      double N = v[0] + al * v[1] + w * v[2];
+      double T = fabs(v[3] + al * v[4] + w * v[5]);
+      double E = fabs(v[6] + al * v[7] + w * v[8]);
+      note(d, 0, N > 0 ? T / N : INFINITY, t, j, t_s);
+      if (t->entry[j].hinge < 0)
+        note(d, 1, N > 0 ? E / N : INFINITY, t, j, t_s);
+    }
+  } else {
+    const uint16_t *p = aq_dg_cands(t->grid, ic);
+    for (int q = 0; q < 2; q++) {
+      for (size_t m = 0; m < cl->n[q] && need[q]; m++) {
+          d->looks++;
+          size_t j = p[m];
+          const double *c = C + j * DT_NV * DT_NC, *x = c + (3 + 3 * (size_t)q) * DT_NC;
+          double N = aq_dt_cubic(c, u) + al * aq_dt_cubic(c + DT_NC, u) +
+                     w * aq_dt_cubic(c + 2 * DT_NC, u);
+          double X = fabs(aq_dt_cubic(x, u) + al * aq_dt_cubic(x + DT_NC, u) +
+                          w * aq_dt_cubic(x + 2 * DT_NC, u));
+          /* X / N below the maximum by more than its rounding changes
+           * nothing (nor passes a limit: one not passed yet is above the
+           * maximum); the division is left out */
+          if (N > 0 && X < d->max[q] * N * (1 - 1e-12))
+            continue;
+          note(d, q, N > 0 ? X / N : INFINITY, t, j, t_s);
+        }
+      p += cl->n[q];
+    }
+  }
+  d->done = isinf(d->max[0]) && isinf(d->max[1]);
+}
+
+/* The table of set k, and 1/g for g; NULL when there is nothing to do. */
+static const aq_demand_table *ready(aq_demand *d, int k, double g)
+{
+  d->moved = 1;
+  if (d->failed || d->done)
+    return NULL;
+  const aq_demand_table *t = table(d, k);
+  if (!t) {
+    d->failed = 1;
+    return NULL;
+  }
+  if (g != d->g) {
+    d->g = g;
+    d->ig = 1.0 / g;
+  }
+  return t;
+}
+
+static inline void visit(aq_demand *d, const aq_demand_table *t, int k, double s, double al,
+                         double kg, double t_s)
+{
+  long ic = cell_of(d, t, s, al, kg);
+  if (ic != -2)
+    look_at(d, t, k, ic, s, al, kg, t_s);
+}
+
+void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, double g_mps2,
+                  double t_s)
+{
+  const aq_demand_table *t = ready(d, k, g_mps2);
+  if (!t)
+    return;
+  d->samples++;
+  visit(d, t, k, s, a_mps2 * d->ig, ke_j * d->ig, t_s);
+}
+
+/* The end of a leg of set k (aq_demand_leg), under al = a/g. */
+static inline void leg_end(aq_demand *d, const aq_demand_table *t, int k, double s, double kg,
+                           int dir, size_t rev, double al, double t_s)
+{
+  d->samples += 1 + (rev < 2 ? rev : 2);
+  /* no state at rest under al exceeds the maxima: the walls need not be found */
+  if (!d->every && t->grid && kg > 0 && rev > 0 && aq_dg_wall_below(t->grid, al, d->max))
+    rev = 0;
+  /* the walls the leg turned at (one behind the end, then the other):
+   * sdot^2 / g falls at 2 sddot / g per unit of s (d(sdot^2)/ds = 2 sddot),
+   * so from the end the wall is at s - w / (2 sddot / g), to second order
+   * in the distance, which is within the leg's travel */
+  for (size_t r = 0; r < rev && r < 2 && kg > 0 && !d->done; r++) {
+    int toward = r == 0 ? -dir : dir;
+    size_t i = d->iv[k] = locate(t, d->iv[k], s);
+    double u = (s - t->bp[i]) * t->ih[i];
+    const double *c = t->c + i * t->stride + t->nf * DT_NV * DT_NC;
+    double w = 2.0 * kg * aq_dt_cubic(c + 3 * DT_NC, u);
+    double sg = aq_dt_cubic(c, u) + al * aq_dt_cubic(c + DT_NC, u) + w * aq_dt_cubic(c + 2 * DT_NC, u);
+    double sw = s - w / (2 * sg);
+    if (!((sw - s) * toward > 0))
+      continue;
+    sw = sw < 0 ? 0 : sw > t->s_c ? t->s_c : sw;
+    visit(d, t, k, sw, al, 0, t_s);
+  }
+  if (!d->done)
+    visit(d, t, k, s, al, kg, t_s);
+}
+
+void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t rev,
+                   double a_mps2, double g_mps2, double t_s)
+{
+  const aq_demand_table *t = ready(d, k, g_mps2);
+  if (t)
+    leg_end(d, t, k, s, ke_j * d->ig, dir, rev, a_mps2 * d->ig, t_s);
+}
+
+void aq_demand_flush(aq_demand *d)
+{
+  for (size_t n = 0; n < d->q.n; n++) {
+    const aq_demand_leg_rec *r = d->q.rec + n;
+    const aq_demand_table *t = ready(d, r->k, r->g_mps2);
+    if (!t)
+      continue;
+    double al = r->a_mps2 * d->ig;
+    d->samples++;
+    visit(d, t, r->k, r->s0, al, r->ke0 * d->ig, r->t0);
+    if (!d->done)
+      leg_end(d, t, r->k, r->s1, r->ke1 * d->ig, r->dir, r->rev, al, r->t1);
+  }
+  d->q.n = 0;
+  d->q.closed = d->failed || d->done;
+}
+
+int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg, double u[2],
+                        size_t *cand, size_t cap, size_t n[2])
+{
+  long ic = t->grid ? aq_dg_index(t->grid, s, al, kg) : -1;
+  if (ic < 0)
+    return 0;
+  const aq_dg_cell *cl = t->grid->cell + ic;
+  const uint16_t *p = aq_dg_cands(t->grid, ic);
+  size_t m = 0;
+  for (int q = 0; q < 2; q++) {
+    int all = cl->n[q] == DG_ALL;
+    u[q] = aq_dg_bound(t->grid, ic, q);
+    n[q] = all ? t->nf : cl->n[q];
+    if (m + n[q] > cap)
+      return -1;
+    for (size_t k = 0; k < n[q]; k++)
+      cand[m++] = all ? k : *p++;
+  }
+  return 1;
+}
+
+double aq_demand_max(const aq_demand *d, int q) { return d->max[q ? 1 : 0]; }
+
+/* ---- a run in which the arch never moves (docs/demand.md) ---- */
+
+void aq_demand_set_least(aq_demand *d, aq_demand_least_fn least, void *ctx)
+{
+  d->least = least;
+  d->least_ctx = ctx;
+}
+
+/* Step i's load of direction sgn: sgn a / (g + a_v), a and a_v scaled. */
+static double still_load(const aq_steps *st, size_t i, double scale, double vscale,
+                         double g, int sgn)
+{
+  double gv = st->av_mps2 ? g + vscale * st->av_mps2[i] : g;
+  return sgn * scale * st->a_mps2[i] / gv;
+}
+
+/* The first step i < n_end whose load of direction sgn is at least lam
+ * (n_end: none).  Without a vertical acceleration the quiet index skips
+ * the steps below a bound loosened by 1e-12 (relative) and the exact load
+ * decides. */
+static size_t still_first(const aq_steps *st, size_t n_end, double scale, double vscale,
+                          double g, int sgn, double lam)
+{
+  size_t i = 0;
+  int index = !st->av_mps2 && scale != 0 && lam > 0;
+  double c = lam * g / (sgn * scale) * (1 - 1e-12);
+  double lo = sgn * scale > 0 ? -INFINITY : c, hi = sgn * scale > 0 ? c : INFINITY;
+  for (; i < n_end; i++) {
+    if (index && (i = aq_steps_next_outside(st, i, lo, hi)) >= n_end)
+      break;
+    if (still_load(st, i, scale, vscale, g, sgn) >= lam)
+      return i;
+  }
+  return n_end;
+}
+
+void aq_demand_still(aq_demand *d, const aq_steps *steps, size_t n_end, double scale,
+                     double vscale, double g_mps2)
+{
+  if (d->moved || !d->least || n_end == 0 || n_end > steps->n)
+    return;
+  /* each direction's peak load and its first step */
+  double lam[2] = {0, 0};
+  if (!steps->av_mps2 && steps->nblock) { /* from the quiet index */
+    double hi = -INFINITY, lo = INFINITY;
+    for (size_t b = 0; b < steps->nblock; b++) {
+      hi = fmax(hi, steps->block_max_mps2[b]);
+      lo = fmin(lo, steps->block_min_mps2[b]);
+    }
+    lam[1] = fmax(scale * (scale >= 0 ? hi : lo) / g_mps2, 0);
+    lam[0] = fmax(-scale * (scale >= 0 ? lo : hi) / g_mps2, 0);
+  } else {
+    for (size_t i = 0; i < n_end; i++)
+      for (int k = 0; k < 2; k++)
+        lam[k] = fmax(lam[k], still_load(steps, i, scale, vscale, g_mps2, 2 * k - 1));
+  }
+  double mu = NAN, t_s = NAN;
+  size_t joint = 0;
+  for (int k = 0; k < 2; k++) {
+    size_t j = 0;
+    double m = d->least(d->least_ctx, 2 * k - 1, lam[k], &j);
+    if (isnan(m))
+      return;
+    size_t i = lam[k] > 0 ? still_first(steps, n_end, scale, vscale, g_mps2, 2 * k - 1, lam[k])
+                          : 0;
+    double t = aq_steps_t(steps, i < n_end ? i : 0);
+    if (isnan(mu) || m > mu || (m == mu && t < t_s))
+      mu = m, t_s = t, joint = j;
+  }
+  d->still = 1;
+  d->still_mu = mu;
+  d->still_joint = joint;
+  d->still_s = t_s;
+  d->still_slide = NAN;
+  if (!(mu > d->mu_limit))
+    return;
+  /* the first step whose load needs more than the limit: in each direction
+   * the least load that does (the least friction is nondecreasing in the
+   * load), found by bisection, then the first step that reaches it */
+  for (int k = 0; k < 2; k++) {
+    double lo = 0, hi = lam[k];
+    if (!(d->least(d->least_ctx, 2 * k - 1, hi, NULL) > d->mu_limit))
+      continue;
+    if (d->least(d->least_ctx, 2 * k - 1, 0, NULL) > d->mu_limit)
+      hi = 0; /* at rest already */
+    for (int it = 0; it < 200 && hi > 0 && lo < hi; it++) {
+      double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi)
+        break;
+      if (d->least(d->least_ctx, 2 * k - 1, mid, NULL) > d->mu_limit)
+        hi = mid;
+      else
+        lo = mid;
+    }
+    size_t i = hi > 0 ? still_first(steps, n_end, scale, vscale, g_mps2, 2 * k - 1, hi) : 0;
+    if (i < n_end) {
+      double t = aq_steps_t(steps, i);
+      if (isnan(d->still_slide) || t < d->still_slide)
+        d->still_slide = t;
+    }
+  }
+}
+
+void aq_demand_get(const aq_demand *d, aq_demand_result *r)
+{
+  r->mu_max = r->ecc_max = NAN;
+  r->mu_joint = r->ecc_joint = 0;
+  r->mu_time_s = r->ecc_time_s = r->ecc_over_s = r->slide_s = NAN;
+  r->samples = d->samples;
+  r->full = d->full;
+  r->looks = d->looks;
+  if (d->still) {
+    r->mu_max = d->still_mu;
+    r->mu_joint = d->still_joint;
+    r->mu_time_s = d->still_s;
+    r->slide_s = d->still_slide;
+    return;
+  }
+  if (!d->moved || d->failed)
+    return;
+  r->mu_max = d->max[0];
+  r->mu_joint = d->joint[0];
+  r->mu_time_s = d->when[0];
+  r->ecc_max = d->max[1];
+  r->ecc_joint = d->joint[1];
+  r->ecc_time_s = d->when[1];
+  r->ecc_over_s = d->over_s[1];
+  r->slide_s = d->over_s[0];
+}
