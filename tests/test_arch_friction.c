@@ -286,6 +286,90 @@ AQ_TEST(arch_friction_table)
   aq_check(worst_lf <= 1e-4, "table: lambda_friction within 1e-4 lambda_top (%.3g)", worst_lf);
 }
 
+/* An arch whose largest load is a lift-off mechanism's: the parabola of
+ * span 10 m, t 0.6 m, rise 0.9 m, 20 voussoirs (joint 0 or 20 lifts off
+ * at lambda 8.2818).  Its least friction grows as c / (lambda_top -
+ * lambda) towards the top, so its table ends where the least friction
+ * passes 1e3 (the largest friction an arch may be given) and gives inf
+ * beyond.  Checked against the programs solved directly: the least
+ * friction at loads from 1e-1 to 1e-8 (relative) below the table's end
+ * and between its nodes (to 1e-4 of the larger of the value and 1,
+ * measured 6.7e-6 near the end, 2.8e-5 over the range); every load
+ * beyond the end needing at least 1e3; the least friction itself, by the
+ * other program (lambda_friction at that friction is the load); and
+ * lambda_friction(0.6) read from the table. */
+#define CAP 1e3
+AQ_TEST(arch_friction_table_liftoff)
+{
+  gsl_set_error_handler_off();
+  char dir[512], path[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(path, sizeof path, "%s/flat.cfg", dir);
+  FILE *f = fopen(path, "w");
+  if (!aq_check(f != NULL, "write %s", path))
+    return;
+  fputs("[arch]\nshape = parabolic\nspan_m = 10\nrise_m = 0.9\nthickness_m = 0.6\n"
+        "voussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1\n", f);
+  fclose(f);
+  aq_arch *a = load(path);
+  if (!a)
+    return;
+  const aq_geom *g = aq_arch_geom(a);
+  aq_error e;
+  double worst_top = 0, worst_range = 0;
+  for (int act = -1; act <= 1; act += 2) {
+    double top = aq_arch_lambda_static(a, act), lo = 0, hi = top;
+    aq_check_rel(top, 8.2818, 1e-4, "the lift-off's load");
+    for (int it = 0; it < 100; it++) { /* the table's end: the last finite value */
+      double mid = 0.5 * (lo + hi);
+      if (isfinite(aq_arch_mu_least(a, act, mid, NULL)))
+        lo = mid;
+      else
+        hi = mid;
+    }
+    double end = lo, ex = NAN;
+    aq_check(end > 0.999 * top && end < top, "the table ends just below the top (%.9g of %.9g)",
+             end, top);
+    aq_friction_least(g, act, end, &ex, NULL, &e);
+    /* (the programs there: lambda's relative distance to the pole, 6.5e-5, amplifies
+       their round-off to about 1e-5) */
+    aq_check(ex >= CAP * (1 - 1e-4) && ex < CAP * (1 + 1e-4), "at its end the least friction "
+             "is the cap: %.9g", ex);
+    for (int i = 0; i <= 70; i++) {
+      double lam = end * (1 - pow(10, -1 - i / 10.0)), got = aq_arch_mu_least(a, act, lam, NULL);
+      aq_friction_least(g, act, lam, &ex, NULL, &e);
+      worst_top = fmax(worst_top, fabs(got - ex) / fmax(ex, 1));
+    }
+    for (int i = 0; i < 200; i++) {
+      double lam = end * (i + 0.37) / 200, got = aq_arch_mu_least(a, act, lam, NULL);
+      aq_friction_least(g, act, lam, &ex, NULL, &e);
+      worst_range = fmax(worst_range, fabs(got - ex) / fmax(ex, 1));
+      if (i % 20 == 7 && lam > 0.8 * top) { /* the least friction, by lambda_friction */
+        double above = NAN, below = NAN;
+        aq_friction_lambda(g, act, ex * (1 + 1e-6), &above, NULL, &e);
+        aq_friction_lambda(g, act, ex * (1 - 1e-4), &below, NULL, &e);
+        aq_check(above >= lam * (1 - 1e-9) && below < lam, "%.6g at lambda %.6g is the least: "
+                 "lambda_friction %.9g just above it, %.9g just below", ex, lam, above, below);
+      }
+    }
+    for (int i = 1; i <= 8; i++) { /* beyond the end: inf, and more than the cap */
+      double lam = end + (top - end) * (1 - pow(0.25, i));
+      aq_friction_least(g, act, lam, &ex, NULL, &e);
+      aq_check(isinf(aq_arch_mu_least(a, act, lam, NULL)) && !(ex < CAP),
+               "beyond the end, %.12g: inf (the program: %.6g)", lam, ex);
+    }
+    double lf = NAN;
+    aq_friction_lambda(g, act, 0.6, &lf, NULL, &e);
+    aq_check(fabs(aq_arch_lambda_friction(a, act, 0.6) - lf) <= 1e-6 * top,
+             "lambda_friction(0.6) from the table %.9g, the program %.9g",
+             aq_arch_lambda_friction(a, act, 0.6), lf);
+    aq_check(isnan(aq_arch_lambda_friction(a, act, 2 * CAP)), "above the cap: not known");
+  }
+  aq_arch_free(a);
+  aq_check(worst_top <= 1e-4, "near the end within 1e-4 (%.3g)", worst_top);
+  aq_check(worst_range <= 1e-4, "over the range within 1e-4 (%.3g)", worst_range);
+}
+
 /* Cocchetti & Rizzi 2020 ("Analytical and numerical analysis on the
  * collapse modes of least-thickness circular masonry arches at decreasing
  * friction", Frattura ed Integrita Strutturale 51, 356-375): the complete

@@ -202,14 +202,18 @@ double aq_arch_mu_rest(const aq_arch *a, size_t *joint);
  * aq_arch_lambda_static, a cubic between them, refined until it is within
  * 1e-6 of the largest value at every interval's middle (within 5.4e-5
  * relative anywhere on the shipped arches: test_arch_friction); INFINITY
- * above aq_arch_lambda_static (no line of thrust at all), NAN for lambda
- * < 0.  *joint (if not NULL): where the nearest node's line needs it. */
+ * above aq_arch_lambda_static (no line of thrust at all), and above the
+ * load where the least friction passes 1e3 when that is below it (a
+ * lift-off's pole: the table ends there, docs/arch-model.md "Friction");
+ * NAN for lambda < 0.  *joint (if not NULL): where the nearest node's
+ * line needs it. */
 double aq_arch_mu_least(const aq_arch *a, int act_sign, double lambda, size_t *joint);
 /* The largest lambda of direction act_sign at which a line of thrust stands
  * with friction mu (lambda_friction): exact (the linear program) when mu is
  * the arch's own friction, else from aq_arch_mu_least's table (NAN without
  * one; model.h aq_friction_lambda computes it exactly); NAN when no line
- * stands with mu even at rest. */
+ * stands with mu even at rest, or (from a table that ends below the top)
+ * for mu above 1e3. */
 double aq_arch_lambda_friction(const aq_arch *a, int act_sign, double mu);
 /* The largest lambda of direction act_sign at which a line of thrust
  * stands without friction: that direction's minimum over every mechanism

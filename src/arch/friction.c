@@ -62,6 +62,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfg_keys.h"
 #include "model.h"
 
 #define OPT_TOL 1e-13      /* a row (scaled) violated by more at GLPK's vertex: solved again
@@ -182,7 +183,7 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
     row[i].g[3] = 0;
   }
   g3[nrows - 1] = 0;
-  row[nrows - 1] = (aq_lp4_row){{0, 0, 0, -1}, 1}; /* t >= -1: bounded */
+  row[nrows - 1] = (aq_lp4_row){{0, 0, 0, -1}, 1}; /* t >= -h: bounded (h below) */
   for (size_t j = 0; j <= n; j++) {
     double nf = 1, tf;
     if (x0) {
@@ -199,6 +200,10 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
   *iters = 0;
   for (int it = 0; it < LEAST_ITER; it++) {
     /* (+-T_j - mu_k N_j) / w_j - t <= 0 */
+    /* t >= -max(1, mu_k / 2): bounded, yet loose enough that a line whose
+       ratios are far below mu_k is reached in a few programs (t >= -1 let
+       mu_k fall by about 1 per program) */
+    row[nrows - 1].h = fmax(1, 0.5 * muk);
     for (size_t j = 0; j <= n; j++) {
       aq_lp4_row fr[2];
       friction_rows(g, j, s, muk, fr);
@@ -215,10 +220,9 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
     aq_lp4_result r = {.y = y};
     aq_lp4_status st = aq_lp4_solve(row, nrows, c, NULL, &o, &r);
     ++*iters;
-    if (st == AQ_LP4_INFEASIBLE) { /* no line of thrust at lambda at all */
-      best = INFINITY;
+    if (st == AQ_LP4_INFEASIBLE) /* no line of thrust at lambda at all; after a line was
+                                    found (it stays feasible), the vertex's round-off: keep it */
       break;
-    }
     if (st != AQ_LP4_OPT) {
       ret = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
                          "expected the least friction of a line of thrust at lambda = %g, "
@@ -316,7 +320,26 @@ double aq_workpath_friction(const aq_workpath *w, double *ratio, size_t *joint)
  * times the table's largest value, until none is or the table holds
  * STATICS_MAX nodes: near a
  * kink the halving goes on until the interval is so narrow that the slope
- * that changes inside it no longer matters. */
+ * that changes inside it no longer matters.
+ *
+ * Where the line of thrust of the largest load is a lift-off mechanism's
+ * (a joint whose resultant's normal force falls to 0 at that load), the
+ * least friction grows without bound towards the top, as c / (lambda_top -
+ * lambda) (the flat parabola of docs/arch-model.md: c = 0.54, 6.2 at 0.99
+ * of the top, 6.5e4 at 1 - 1e-6), and at the top itself no friction
+ * holds.  Such a table ends at lambda_end, the load (bisection on least())
+ * where the least friction reaches STATICS_MU_CAP, the largest friction
+ * an arch may be given: beyond it no line of thrust stands with any
+ * friction an arch may have, and aq_statics_mu_least gives INFINITY there,
+ * never a value extrapolated towards the pole.  The cubic of such a
+ * table is held to STATICS_TOL of the exact value at each middle (relative
+ * to that value, not to the table's largest, which is the cap). */
+#define STATICS_MU_CAP AQ_CFG_FRICTION_MAX /* the least friction where a table ends below
+                                              its top (cfg_keys.h: 1e3, the largest friction
+                                              --friction and [contact] friction accept) */
+#define STATICS_NU_FROM 1.0   /* a capped table's intervals whose nodes need at least this
+                                  are interpolated in 1/mu */
+#define STATICS_END_REL 1e-10  /* lambda_end's bisection stops this close (relative) */
 #define STATICS_START 8        /* intervals of the first table, per direction */
 #define STATICS_MAX 256        /* nodes at most, per direction */
 #define STATICS_TOL 1e-6       /* the cubic against the exact value at the middle of each
@@ -340,13 +363,25 @@ struct aq_statics {
 
 void aq_statics_free(aq_statics *s) { free(s); }
 
-/* The cubic Hermite of table k on its interval i at lambda. */
+/* The cubic Hermite of table k on its interval i at lambda: of the least
+ * friction mu, or, on an interval of a capped table whose nodes both need
+ * at least STATICS_NU_FROM, of its inverse 1/mu (which falls linearly to
+ * 0 at a pole c / (lambda_top - lambda), where a cubic in mu needs many
+ * nodes), the value given as mu. */
+static int capped(const aq_statics *s, int k);
 static double hermite(const aq_statics *s, int k, int i, double lambda)
 {
   double h = s->lam[k][i + 1] - s->lam[k][i], t = (lambda - s->lam[k][i]) / h;
   double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * s->mu[k][i] + (t3 - 2 * t2 + t) * h * s->dmu[k][i] +
-         (-2 * t3 + 3 * t2) * s->mu[k][i + 1] + (t3 - t2) * h * s->dmu[k][i + 1];
+  double y0 = s->mu[k][i], y1 = s->mu[k][i + 1], d0 = s->dmu[k][i], d1 = s->dmu[k][i + 1];
+  int inv = y0 >= STATICS_NU_FROM && y1 >= STATICS_NU_FROM && capped(s, k);
+  if (inv) { /* d(1/mu)/dlambda = -mu' / mu^2 */
+    d0 = -d0 / (y0 * y0), d1 = -d1 / (y1 * y1);
+    y0 = 1 / y0, y1 = 1 / y1;
+  }
+  double y = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 +
+             (t3 - t2) * h * d1;
+  return inv ? (y > 0 ? 1 / y : INFINITY) : y;
 }
 
 /* The interval of table k that holds lambda (lam[0] <= lambda <= lam[n-1]). */
@@ -373,31 +408,116 @@ static aq_status node_at(aq_statics *s, const aq_geom *g, int k, int i, double l
                &s->dmu[k][i], &iters, err);
 }
 
-/* Table k (direction act) of s over [0, top]: the nodes, refined. */
-static aq_status statics_table(aq_statics *s, const aq_geom *g, int k, aq_error *err)
+/* 1 if node i of table k needs less than the cap and has a slope. */
+static int below_cap(const aq_statics *s, int k, int i)
 {
-  int n = 0;
-  double top = s->lambda_top[k], x[STATICS_MAX][3];
-  unsigned char ok[STATICS_MAX] = {0}; /* interval i checked at its middle */
+  return s->mu[k][i] < STATICS_MU_CAP && isfinite(s->dmu[k][i]);
+}
+
+/* 1 if table k ends below its top, where the least friction passes the cap. */
+static int capped(const aq_statics *s, int k)
+{
+  return s->ntab[k] > 0 && !(s->mu[k][s->ntab[k] - 1] < STATICS_MU_CAP);
+}
+
+/* Nodes 0..STATICS_START-1 of table k: equal steps from 0 towards end,
+ * each line the start of the next node's. */
+static aq_status first_nodes(aq_statics *s, const aq_geom *g, int k, double end,
+                             double x[][3], aq_error *err)
+{
   aq_status st = AQ_OK;
-  for (int i = 0; i <= STATICS_START && st == AQ_OK; i++, n++) {
-    double lam = i == STATICS_START ? top * (1 - STATICS_TOP_REL) : top * i / STATICS_START;
-    for (int back = 0; back < 4 && st == AQ_OK; back++) {
-      st = node_at(s, g, k, i, lam, i ? x[i - 1] : NULL, i ? s->mu[k][i - 1] : 0, x[i], err);
-      if (i < STATICS_START || isfinite(s->mu[k][i]))
-        break;
-      lam = top * (1 - STATICS_TOP_REL * pow(10, back + 1)); /* the rows' round-off */
+  for (int i = 0; i < STATICS_START && st == AQ_OK; i++)
+    st = node_at(s, g, k, i, end * i / STATICS_START, i ? x[i - 1] : NULL,
+                 i ? s->mu[k][i - 1] : 0, x[i], err);
+  return st;
+}
+
+/* Node STATICS_START of table k at lambda_end: the least load whose least
+ * friction is at least the cap (with a slope), by bisection between node
+ * lo's load (below the cap) and top, to STATICS_END_REL of top. */
+static aq_status table_end(aq_statics *s, const aq_geom *g, int k, int lo, double top,
+                           double x[][3], aq_error *err)
+{
+  const int e = STATICS_START;
+  double a = s->lam[k][lo], b = top, mu_a = s->mu[k][lo], xa[3], xb[3];
+  double end[3] = {NAN, NAN, NAN}; /* lambda, mu, slope of the best b */
+  size_t joint = 0;
+  memcpy(xa, x[lo], sizeof xa);
+  aq_status st = AQ_OK;
+  while (st == AQ_OK && b - a > STATICS_END_REL * top) {
+    double mid = 0.5 * (a + b);
+    st = node_at(s, g, k, e, mid, xa, mu_a, x[e], err);
+    if (st != AQ_OK)
+      break;
+    if (below_cap(s, k, e)) {
+      a = mid;
+      mu_a = s->mu[k][e];
+      memcpy(xa, x[e], sizeof xa);
+    } else {
+      b = mid;
+      if (isfinite(s->mu[k][e]) && isfinite(s->dmu[k][e])) {
+        end[0] = mid, end[1] = s->mu[k][e], end[2] = s->dmu[k][e];
+        joint = s->joint[k][e];
+        memcpy(xb, x[e], sizeof xb);
+      }
     }
   }
+  if (st == AQ_OK && isnan(end[0]))
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                        "expected a line of thrust that needs %g friction below the largest "
+                        "load %.9g, got none", STATICS_MU_CAP, top);
+  if (st == AQ_OK) {
+    s->lam[k][e] = end[0];
+    s->mu[k][e] = end[1];
+    s->dmu[k][e] = end[2];
+    s->joint[k][e] = joint;
+    memcpy(x[e], xb, sizeof xb);
+  }
+  return st;
+}
+
+/* Table k (direction act) of s over [0, top], or over [0, lambda_end]
+ * where the least friction passes the cap below the top: the nodes,
+ * refined. */
+static aq_status statics_table(aq_statics *s, const aq_geom *g, int k, aq_error *err)
+{
+  const int e = STATICS_START;
+  double top = s->lambda_top[k], x[STATICS_MAX][3];
+  unsigned char ok[STATICS_MAX] = {0}; /* interval i checked at its middle */
+  aq_status st = first_nodes(s, g, k, top, x, err);
+  double lam = top * (1 - STATICS_TOP_REL);
+  for (int back = 0; back < 4 && st == AQ_OK; back++) {
+    st = node_at(s, g, k, e, lam, x[e - 1], s->mu[k][e - 1], x[e], err);
+    if (isfinite(s->mu[k][e]))
+      break;
+    lam = top * (1 - STATICS_TOP_REL * pow(10, back + 1)); /* the rows' round-off */
+  }
+  if (st == AQ_OK && !below_cap(s, k, e)) {
+    /* the least friction passes the cap below the top: end there */
+    int lo = e - 1;
+    while (lo >= 0 && !below_cap(s, k, lo))
+      lo--;
+    if (lo < 0) { /* the cap already at rest: a table of one node */
+      s->ntab[k] = 1;
+      s->resolved[k] = 1;
+      return AQ_OK;
+    }
+    st = table_end(s, g, k, lo, top, x, err);
+    if (st == AQ_OK)
+      st = first_nodes(s, g, k, s->lam[k][e], x, err);
+  }
+  int n = e + 1;
+  double end = s->lam[k][e];
   /* the slope at rest from the right: at 0 a symmetric arch's two
    * springings tie, and the program's multipliers may be the other's */
   double xr[3], mur;
   size_t jr;
   int iters;
   if (st == AQ_OK)
-    st = least(g, k ? 1 : -1, top * STATICS_TOP_REL, s->mu[k][0], x[0], &mur, &jr, xr,
-               &s->dmu[k][0], &iters, err);
+    st = least(g, k ? 1 : -1, (end < lam ? end : top) * STATICS_TOP_REL, s->mu[k][0], x[0],
+               &mur, &jr, xr, &s->dmu[k][0], &iters, err);
   s->ntab[k] = n;
+  int cap = capped(s, k);
   double scale = s->mu[k][n - 1]; /* the largest least friction: the tolerance's unit */
   for (int i = 0; i < n && st == AQ_OK; i++)
     if (!isfinite(s->mu[k][i]) || !isfinite(s->dmu[k][i]))
@@ -424,8 +544,8 @@ static aq_status statics_table(aq_statics *s, const aq_geom *g, int k, aq_error 
         st = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
                           "expected a line of thrust at lambda = %.9g, below the largest "
                           "%.9g, got none", lam, top);
-      n++;
-      if (st == AQ_OK && fabs(cubic - mu) <= STATICS_TOL * scale) {
+      s->ntab[k] = ++n; /* hermite() reads the table's end */
+      if (st == AQ_OK && fabs(cubic - mu) <= STATICS_TOL * (cap ? fmax(fabs(mu), 1) : scale)) {
         /* within: the middle stays (it costs nothing more), both halves pass */
         ok[i] = ok[i + 1] = 1;
       } else {
@@ -602,10 +722,17 @@ double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, siz
   int k = act_sign > 0, n = s->ntab[k];
   if (joint)
     *joint = s->mu_rest_joint;
-  if (!(lambda >= 0) || n < 2)
+  if (!(lambda >= 0) || n < 1 || (n < 2 && !capped(s, k)))
     return lambda == 0 ? s->mu_rest : NAN;
-  if (lambda > s->lam[k][n - 1])
-    return lambda <= s->lambda_top[k] ? s->mu[k][n - 1] : INFINITY;
+  if (lambda > s->lam[k][n - 1]) {
+    if (joint && n > 1)
+      *joint = s->joint[k][n - 1];
+    /* beyond a capped table's end more than the cap (the least friction
+       grows with the load): as good as none */
+    return lambda <= s->lambda_top[k] && !capped(s, k) ? s->mu[k][n - 1] : INFINITY;
+  }
+  if (n < 2)
+    return s->mu[k][0];
   int i = interval(s, k, lambda);
   if (joint) /* the nearer node's */
     *joint = s->joint[k][lambda - s->lam[k][i] < s->lam[k][i + 1] - lambda ? i : i + 1];
@@ -617,8 +744,8 @@ double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu)
   int k = act_sign > 0, n = s->ntab[k];
   if (n < 2 || !(mu > 0))
     return NAN;
-  if (mu >= s->mu[k][n - 1])
-    return s->lambda_top[k];
+  if (mu >= s->mu[k][n - 1]) /* beyond a capped table's end: not known from it */
+    return capped(s, k) ? NAN : s->lambda_top[k];
   /* the loads at which some line stands with mu form an interval (the
    * program's feasible set is convex): its top is in the highest table
    * interval whose lower node needs no more than mu */

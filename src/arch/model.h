@@ -538,8 +538,11 @@ aq_status aq_friction_least(const aq_geom *g, int act_sign, double lambda, doubl
  * rest, and for each direction of ground acceleration (act_sign -1, +1)
  * the largest load without friction and with the arch's, and a table of
  * the least friction over the load (exact at its nodes from 0 to the
- * largest, Steffen's monotone cubic between them, within 1e-6 at every
- * interval's middle). */
+ * largest, a cubic Hermite between them, within 1e-6 of the table's
+ * largest value at every interval's middle; where the least friction
+ * passes 1e3 (AQ_CFG_FRICTION_MAX) below the largest load, as below a
+ * lift-off mechanism's, the table ends there, its cubic in 1/mu where
+ * both nodes need at least 1, within 1e-6 of max(mu, 1)). */
 typedef struct aq_statics aq_statics;
 
 /* Build for g and the friction coefficient of its joints (0: none), with
@@ -565,13 +568,15 @@ double aq_statics_lambda_top(const aq_statics *s, int act_sign);
  * exhausted (SIZE_MAX: nowhere: the load is lambda_top's). */
 double aq_statics_lambda_friction(const aq_statics *s, int act_sign, size_t *joint);
 /* The least friction at lambda >= 0 (the table's interpolant; INFINITY
- * above lambda_top, NAN below 0), *joint the nearest node's joint. */
+ * above lambda_top, and above the end of a table that ends where the least
+ * friction passes 1e3; NAN below 0), *joint the nearest node's joint. */
 double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, size_t *joint);
 /* The nodes of direction act_sign's table (0: none). */
 int aq_statics_nodes(const aq_statics *s, int act_sign);
 /* The largest lambda >= 0 at which a line stands with friction mu, from
- * the table (NAN when none does, not even at rest; lambda_top when mu
- * is at least the table's last friction). */
+ * the table (NAN when none does, not even at rest, and when mu is above
+ * the 1e3 where a table ends below lambda_top; lambda_top when mu is at
+ * least the last friction of a table that reaches it). */
 double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu);
 
 /* Open GLPK, which the search calls through glpk_lazy.c (once per process;
