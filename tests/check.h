@@ -86,5 +86,8 @@ int aq_test_same_outputs(const char *dir, const char *a, const char *b);
 
 /* A fresh empty directory for this test under build/tmp (path in buf). */
 const char *aq_test_tmpdir(char *buf, size_t cap);
+/* A file name in a fresh directory for this test, holding text (path in
+ * buf); NULL (and a failed check) if it cannot be written. */
+const char *aq_test_tmpfile(char *buf, size_t cap, const char *name, const char *text);
 
 #endif

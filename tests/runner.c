@@ -287,6 +287,18 @@ const char *aq_test_tmpdir(char *buf, size_t cap)
   return buf;
 }
 
+const char *aq_test_tmpfile(char *buf, size_t cap, const char *name, const char *text)
+{
+  char dir[512];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(buf, cap, "%s/%s", dir, name);
+  FILE *f = fopen(buf, "w");
+  if (!aq_check(f != NULL, "write %s", buf))
+    return NULL;
+  fputs(text, f);
+  return fclose(f) == 0 ? buf : NULL;
+}
+
 int main(int argc, char **argv)
 {
   verbose = getenv("AQ_TEST_VERBOSE") != NULL;

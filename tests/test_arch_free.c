@@ -375,17 +375,12 @@ AQ_TEST(arch_free_impact_rule_between_two_sets)
 AQ_TEST(arch_free_impact_negative_ratio_stops)
 {
   gsl_set_error_handler_off();
-  char dir[512], path[700];
-  aq_test_tmpdir(dir, sizeof dir);
-  snprintf(path, sizeof path, "%s/flat.cfg", dir);
-  FILE *f = fopen(path, "w");
-  if (!aq_check(f != NULL, "write %s", path))
+  char path[700];
+  if (!aq_test_tmpfile(path, sizeof path, "flat.cfg",
+                       "[arch]\nname = flat\nshape = parabolic\nspan_m = 10\nrise_m = 1.2\n"
+                       "thickness_m = 0.6\nvoussoirs = 20\ndensity_kg_m3 = 2000\n"
+                       "depth_m = 1.0\n[dynamics]\nimpact = momentum\n"))
     return;
-  fputs("[arch]\nname = flat\nshape = parabolic\nspan_m = 10\nrise_m = 1.2\n"
-        "thickness_m = 0.6\nvoussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1.0\n"
-        "[dynamics]\nimpact = momentum\n",
-        f);
-  fclose(f);
   static const char *const files[2] = {NULL, "arches/search.cfg"};
   for (int c = 0; c < 2; c++) {
     aq_arch *a = load(c ? files[c] : path);

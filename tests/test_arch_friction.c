@@ -302,15 +302,11 @@ AQ_TEST(arch_friction_table)
 AQ_TEST(arch_friction_table_liftoff)
 {
   gsl_set_error_handler_off();
-  char dir[512], path[700];
-  aq_test_tmpdir(dir, sizeof dir);
-  snprintf(path, sizeof path, "%s/flat.cfg", dir);
-  FILE *f = fopen(path, "w");
-  if (!aq_check(f != NULL, "write %s", path))
+  char path[700];
+  if (!aq_test_tmpfile(path, sizeof path, "flat.cfg",
+                       "[arch]\nshape = parabolic\nspan_m = 10\nrise_m = 0.9\nthickness_m = 0.6\n"
+                       "voussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1\n"))
     return;
-  fputs("[arch]\nshape = parabolic\nspan_m = 10\nrise_m = 0.9\nthickness_m = 0.6\n"
-        "voussoirs = 20\ndensity_kg_m3 = 2000\ndepth_m = 1\n", f);
-  fclose(f);
   aq_arch *a = load(path);
   if (!a)
     return;
