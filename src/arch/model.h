@@ -23,8 +23,9 @@
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
  *
  * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
- * tables over s in [0, s_c] (eval, for the ode and workpath-quad) and
- * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search
+ * tables over s in [0, s_c] (eval, for the ode and workpath-quad;
+ * workpath_table.c) and Chebyshev-fitted polynomial pieces (piece, for the
+ * Taylor leg; workpath_piece.c).  Search
  * (search.c): the upper-bound mechanism, with GLPK opened on first use
  * (glpk_lazy.c).
  *
@@ -401,7 +402,7 @@ aq_end aq_workpath_end(const aq_workpath *w);
 size_t aq_workpath_table_size(const aq_workpath *w);
 double aq_workpath_table_error(const aq_workpath *w);
 /* The number of the Taylor leg's pieces (path.h aq_path_piece, Chebyshev
- * fits of the exact kinematics, workpath.c). */
+ * fits of the exact kinematics, workpath_piece.c). */
 size_t aq_workpath_piece_count(const aq_workpath *w);
 /* Largest |eccentricity| of the line of thrust over the joints at s = 0
  * (aq_mech_thrust): <= 1 when the thrust stays within the arch, i.e. the
