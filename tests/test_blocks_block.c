@@ -218,9 +218,13 @@ AQ_TEST(blocks_block_newmark_sliding)
     double f = above ? 1.001 : 0.999;
     if (two_levels(f * mu * G, 300, 0, 0, 1e-3, &s) && run(B, &s, &r)) {
       if (above)
-        aq_check(r.max_slip_m > 1e-9, "slides above mu g (%g m)", r.max_slip_m);
+        aq_check(r.max_slip_m > 1e-9 && r.friction_work_j > 0,
+                 "slides above mu g (%g m, friction's work %g J)", r.max_slip_m,
+                 r.friction_work_j);
       else
-        aq_check(r.max_slip_m < 1e-12, "stands below mu g (%g m)", r.max_slip_m);
+        aq_check(r.max_slip_m < 1e-12 && r.friction_work_j == 0,
+                 "stands below mu g (%g m, friction's work %g J)", r.max_slip_m,
+                 r.friction_work_j);
       aq_check(r.r.peak_rotation_rad < 1e-12, "does not rock (%g)", r.r.peak_rotation_rad);
       aq_blocks_result_free(&r);
     }
@@ -235,11 +239,55 @@ AQ_TEST(blocks_block_newmark_sliding)
   aq_blocks_result r;
   if (two_levels(A, 400, 0, 1600, 1e-3, &s) && run(B, &s, &r)) {
     aq_check_rel(r.max_slip_m, want, 1e-12, "Newmark's slip");
+    /* the friction mu m g slides the block by Newmark's slip, one way */
+    aq_check_rel(r.friction_work_j, mu * k.m * G * want, 1e-12, "friction's work: mu m g s");
     aq_check(!isnan(aq_blocks_rest_since(B)), "at rest again");
     aq_blocks_result_free(&r);
   }
   aq_steps_free(&s);
   aq_blocks_free(B);
+}
+
+/* Newmark's block pushed one way and then back by the same pulse: it
+ * slides by Newmark's s, stops, and slides back by s to where it stood.
+ * The friction's work counts the whole path, mu m g 2 s, where the slip
+ * (the largest offset) is s; under the pulse reversed, the same. */
+AQ_TEST(blocks_block_newmark_friction_work)
+{
+  block k = {0.6, 0.25, 1234.5};
+  double mu = 0.2, A = 0.45 * G, t0 = 0.4;
+  double s1 = A * t0 * t0 * (A - mu * G) / (2 * mu * G);
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    aq_blocks *B = block_model(k, mu, 0, 1e-3);
+    if (!B)
+      return;
+    /* +A for t0, still for 1.6 s (it stops within 0.6 s), -A for t0, still */
+    size_t n = 400 + 1600 + 400 + 1600;
+    double *t = malloc(n * sizeof *t), *d = malloc(n * sizeof *d), *a = malloc(n * sizeof *a);
+    aq_steps s;
+    aq_error e;
+    int ok = t && d && a;
+    for (size_t i = 0; ok && i < n; i++) {
+      t[i] = (double)i * 1e-3;
+      d[i] = 1e-3;
+      a[i] = i < 400 ? sgn * A : i >= 2000 && i < 2400 ? -sgn * A : 0;
+    }
+    ok = ok && aq_steps_from_list(t, d, a, n, &s, &e) == AQ_OK;
+    free(t);
+    free(d);
+    free(a);
+    aq_blocks_result r;
+    if (aq_check(ok, "steps") && run(B, &s, &r)) {
+      aq_check_rel(r.max_slip_m, s1, 1e-12, "sign %d: the slip, Newmark's s", sgn);
+      aq_check_rel(r.friction_work_j, 2 * mu * k.m * G * s1, 1e-12,
+                   "sign %d: friction's work mu m g 2 s", sgn);
+      aq_check(r.r.peak_rotation_rad < 1e-12, "sign %d: does not rock", sgn);
+      aq_blocks_result_free(&r);
+    }
+    if (ok)
+      aq_steps_free(&s);
+    aq_blocks_free(B);
+  }
 }
 
 /* e_n = 1: after a pulse the block rocks freely; under the global impact

@@ -57,7 +57,8 @@ AQ_TEST(blocks_check_is_the_block_model)
                                         {"max_slip_m", "max_slip_m"},
                                         {"hinges_observed", "hinges_observed"},
                                         {"hinges_first_s", "hinges_first_s"},
-                                        {"mechanism_changed_s", "mechanism_changed_s"}};
+                                        {"mechanism_changed_s", "mechanism_changed_s"},
+                                        {"friction_work_j", "friction_work_j"}};
   int checked = 0, differ = 0;
   for (int r = 1; r <= (int)rows; r++) {
     char a[256], b[256], st[64], v[64], c4[32], cb[32];

@@ -394,7 +394,7 @@ static aq_status advance(aq_blocks *b, double t, double dt, double ax, double ay
     b->counters.iters += (size_t)info.iters;
     b->counters.pivots += (size_t)info.pivots;
     b->counters.loose += (size_t)info.loose;
-    int ev = aq_events_step(&b->ev, b->m, tend, h, ax, ay, info.impact, record);
+    int ev = aq_events_step(&b->ev, b->m, tend, h, ax, ay, &info, record);
     if (ev == 2) {
       int fell = 0;
       rc = look_ahead(b, h, &fell, err);

@@ -59,6 +59,8 @@ typedef struct {
    * at the end; r.history (when asked): voussoir 0's rotation and the
    * whole arch's centroid. */
   double max_slip_m;         /* largest tangential slip at any joint, m */
+  double friction_work_j;    /* the work the joints' friction took from the record's start,
+                                J (>= 0; D of the energy balance, docs/blocks.md) */
   size_t nhinges;            /* opened (joint, face) pairs, by joint then face */
   aq_blocks_hinge *hinges;
   double mechanism_changed_s;/* first time the opened set is in neither of the

@@ -91,6 +91,7 @@ void aq_events_reset(aq_events *e, aq_moreau *m, const aq_hinge_set *sets, int h
   e->dv_floor_j = dv_floor_j;
   e->started = 0;
   e->peak_rot = e->peak_disp = e->max_ke = e->energy_in = e->max_slip = 0;
+  e->friction_work = 0;
   e->mech_changed = NAN;
   e->impacts = e->reversals = 0;
   e->away = 0;
@@ -265,12 +266,13 @@ static int collapse_rule(aq_events *e, aq_moreau *m)
 }
 
 int aq_events_step(aq_events *e, aq_moreau *m, double t, double h, double ax, double ay,
-                   int impact, int record)
+                   const aq_step_info *info, int record)
 {
   (void)h;
   if (record && e->started) {
     record_step(e, m, t, ax, ay);
-    e->impacts += impact != 0;
+    e->impacts += info->impact != 0;
+    e->friction_work -= info->friction_j;
   }
   memcpy(e->qprev, aq_moreau_q(m), 3 * e->s->nb * sizeof *e->qprev);
   int r = collapse_rule(e, m);
@@ -387,6 +389,7 @@ void aq_events_finish(aq_events *e, aq_moreau *m, aq_blocks_result *res)
   r->peak_rotation_set_rad[0] = e->peak_set_rot[0];
   r->peak_rotation_set_rad[1] = e->peak_set_rot[1];
   res->max_slip_m = e->max_slip;
+  res->friction_work_j = e->friction_work;
   res->mechanism_changed_s = e->mech_changed;
   size_t nh = 0;
   for (size_t k = 0; k < 2 * s->nj; k++)
