@@ -1,5 +1,5 @@
 /* test_arch_pieces.c: the Taylor leg's polynomial pieces (path.h
- * aq_path_piece, Chebyshev fits in workpath.c) against the exact
+ * aq_path_piece, Chebyshev fits in workpath_piece.c) against the exact
  * kinematics (eval_exact, closed-form linkage solution, an independent
  * path) at pseudo-random s, the acceleration's pieces (gc, ga, gb) against
  * their definitions from the exact M, M', x, y and slopes, and the pieces'
@@ -13,7 +13,7 @@
 #include "check.h"
 
 /* Stated accuracy: Chebyshev tails of the slopes and of M below 2e-15 of
- * their scale (workpath.c PIECE_TAIL_TOL), x and y their integrals; the
+ * their scale (workpath_impl.h PIECE_TAIL_TOL), x and y their integrals; the
  * power basis and the exact evaluation's own round-off add a few units.
  * Errors are relative to: x and y, the centroid's largest displacement
  * over the path (the exact x, y are differences of coordinates of the

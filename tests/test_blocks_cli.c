@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "report/h5.h"
 
 static char out[1 << 16], err[8192];
 
@@ -169,7 +170,8 @@ AQ_TEST(blocks_cli_main_job)
   double q4 = column(out, "peak_rotation_rad", NULL, 0);
   char hinges[256];
   column(out, "hinges_observed", hinges, sizeof hinges);
-  aq_check(!strcmp(hinges, "-") && isnan(column(out, "max_slip_m", NULL, 0)),
+  aq_check(!strcmp(hinges, "-") && isnan(column(out, "max_slip_m", NULL, 0)) &&
+               isnan(column(out, "friction_work_j", NULL, 0)),
            "the four-hinge model's row: - and nan (%s)", hinges);
   static char tsv[2][sizeof out];
   for (int j = 1; j <= 2; j++) {
@@ -194,6 +196,20 @@ AQ_TEST(blocks_cli_main_job)
   char h5[700];
   snprintf(h5, sizeof h5, "%s/r1.h5", dir);
   aq_check(access(h5, F_OK) == 0, "results file written");
+  /* the friction's work: in the row and in /summary, the same number */
+  double fw = column(out, "friction_work_j", NULL, 0);
+  aq_check(fw >= 0 && isfinite(fw), "friction_work_j %g J", fw);
+  aq_h5_suite su;
+  aq_error e;
+  aq_error_clear(&e);
+  if (aq_check(aq_h5_read_suite(h5, &su, &e) == AQ_OK, "read %s: %s", h5, e.message)) {
+    aq_check(su.nruns == 2, "2 runs (%zu)", su.nruns);
+    for (size_t i = 0; i < su.nruns; i++)
+      if (!strcmp(su.runs[i].s.polarity, "normal"))
+        aq_check(su.runs[i].s.friction_work_j == fw, "/summary friction_work_j %.17g, row %.17g",
+                 su.runs[i].s.friction_work_j, fw);
+    aq_h5_suite_free(&su);
+  }
 }
 
 /* Capacity runs the block model: its first collapse scale is one at which

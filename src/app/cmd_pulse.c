@@ -266,7 +266,8 @@ int aq_cmd_pulse(int argc, char **argv)
   printf("model\taccel_g\tduration_s\tend_s\tcollapsed\tcollapse_time_s\t"
          "peak_rotation_rad\tpeak_displacement_m\tmax_kinetic_energy_j\timpacts\t"
          "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals%s\n",
-         bk ? "\tmax_slip_m\thinges_observed\thinges_first_s\tmechanism_changed_s" : "");
+         bk ? "\tmax_slip_m\thinges_observed\thinges_first_s\tmechanism_changed_s"
+            "\tfriction_work_j" : "");
   printf("%s\t%s\t%s\t%s\t%d\t%s\t%s\t%s\t%s\t%zu\t%zu\t%s\t"
          "%s\t%zu\t%zu",
          aq_model_name((aq_model)model), AQ_TEXT_NUM(acc_g), AQ_TEXT_NUM(dur), AQ_TEXT_NUM(end),
@@ -284,8 +285,9 @@ int aq_cmd_pulse(int argc, char **argv)
       goto out;
     }
     aq_blocks_hinges_text(&bres, hb, cap, tb, cap);
-    printf("\t%s\t%s\t%s\t%s", AQ_TEXT_NUM(bres.max_slip_m), hb[0] ? hb : "-",
-           tb[0] ? tb : "-", AQ_TEXT_NUM(bres.mechanism_changed_s));
+    printf("\t%s\t%s\t%s\t%s\t%s", AQ_TEXT_NUM(bres.max_slip_m), hb[0] ? hb : "-",
+           tb[0] ? tb : "-", AQ_TEXT_NUM(bres.mechanism_changed_s),
+           AQ_TEXT_NUM(bres.friction_work_j));
     free(hb);
     free(tb);
   }

@@ -117,7 +117,7 @@ static double piece_val(const aq_path_piece *pc, const double *c, int n, double 
 #define PIECE_X(pc, s) piece_val((pc), (pc)->x, (pc)->deg + 1, (s))
 #define PIECE_Y(pc, s) piece_val((pc), (pc)->y, (pc)->deg + 1, (s))
 
-/* The degree of an arch's pieces (workpath.c): the per-step polynomial
+/* The degree of an arch's pieces (workpath_piece.c): the per-step polynomial
  * work is compiled for it with constant loop bounds (unrolled); any other
  * degree takes the same code with the bound read from the piece. */
 enum { TL_DEG_ARCH = 14 };

@@ -1,11 +1,12 @@
 /* model.h: the static arch model behind arch.h and path.h (internal to
  * src/arch, used by tests and bench).
  *
- * Geometry (geometry.c, shape.c, joints.c): an arch of n voussoirs between
- * n + 1 straight joints, numbered 0..n counter-clockwise from the
- * springing on the +x side; voussoir k lies between joints k and k+1.  A
- * circular arch has equal annular-sector voussoirs with radial joints, the
- * centre of its circle at the origin, joint j at polar angle
+ * Geometry (geometry.c, region.c, masses.c, strut.c, shape.c, joints.c):
+ * an arch of n voussoirs between n + 1 straight joints, numbered 0..n
+ * counter-clockwise from the springing on the +x side; voussoir k lies
+ * between joints k and k+1.  A circular arch has equal annular-sector
+ * voussoirs with radial joints, the centre of its circle at the origin,
+ * joint j at polar angle
  * theta_j = pi/2 - embrace/2 + j*embrace/n (closed forms); pointed,
  * elliptical, parabolic and catenary arches have joints normal to their
  * centre line at equal arc length and faces that are its exact offsets;
@@ -22,8 +23,9 @@
  * three bodies for h1..h4, v1..v4 and the multiplier, in any deformed state.
  *
  * Work path (workpath.c): the aq_path of one hinge set with quintic Hermite
- * tables over s in [0, s_c] (eval, for the ode and workpath-quad) and
- * Chebyshev-fitted polynomial pieces (piece, for the Taylor leg).  Search
+ * tables over s in [0, s_c] (eval, for the ode and workpath-quad;
+ * workpath_table.c) and Chebyshev-fitted polynomial pieces (piece, for the
+ * Taylor leg; workpath_piece.c).  Search
  * (search.c): the upper-bound mechanism, with GLPK opened on first use
  * (glpk_lazy.c).
  *
@@ -216,12 +218,18 @@ aq_vec2 aq_geom_joint_point(const aq_geom *g, size_t j, char face);
  * centroidal inertia (parallel-axis sum). */
 aq_mass aq_geom_body(const aq_geom *g, size_t j0, size_t j1);
 
+/* Used by aq_geom_init (masses.c): copy the point masses g->p.mass into
+ * g->mass and add each to its voussoir's mass properties, once the
+ * outlines and fills are built; AQ_EVALUE or AQ_EGEOMETRY (field: the
+ * mass's name) for a mass not on its voussoir. */
+aq_status aq_geom_add_masses(aq_geom *g, aq_error *err);
+
 /* The straight strut of an arch: the line y = a + b x that crosses every
  * joint between its ends, the intrados end on or below it and the
  * extrados end on or above it (the side on which a thrust pushing from the
  * +x springing towards the other keeps every joint in compression), with
  * the largest margin, the least vertical distance of an end from the line
- * on its side (geometry.c, aq_geom_strut).  A margin > 0: the strut fits
+ * on its side (strut.c, aq_geom_strut).  A margin > 0: the strut fits
  * inside the arch, and a thrust along it, made as large as needed, carries
  * any load: no four-hinge mechanism opens under any horizontal load. */
 typedef struct {
@@ -394,7 +402,7 @@ aq_end aq_workpath_end(const aq_workpath *w);
 size_t aq_workpath_table_size(const aq_workpath *w);
 double aq_workpath_table_error(const aq_workpath *w);
 /* The number of the Taylor leg's pieces (path.h aq_path_piece, Chebyshev
- * fits of the exact kinematics, workpath.c). */
+ * fits of the exact kinematics, workpath_piece.c). */
 size_t aq_workpath_piece_count(const aq_workpath *w);
 /* Largest |eccentricity| of the line of thrust over the joints at s = 0
  * (aq_mech_thrust): <= 1 when the thrust stays within the arch, i.e. the

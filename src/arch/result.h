@@ -34,6 +34,7 @@ typedef struct {
    * sample i, voussoir k at [i * nvous + k] (m, m, rad) */
   size_t nvous;
   double *hist_x_m, *hist_y_m, *hist_rot_rad;
+  double friction_work_j;     /* the work the joints' friction took, J (>= 0) */
 } aq_result_bodies;
 
 typedef struct {

@@ -21,6 +21,7 @@ typedef struct {
   double *open_t;          /* first opening time per joint and face (2 nj: e, i) */
   int started;             /* the record has started */
   double peak_rot, peak_disp, max_ke, energy_in, max_slip, mech_changed;
+  double friction_work;    /* the friction's work since the record started, J (>= 0) */
   size_t impacts, reversals;
   int away;                /* the distance from rest grew in the step before */
   int armed;               /* the collapse rule was off in the step before */
@@ -38,13 +39,14 @@ void aq_events_reset(aq_events *e, aq_moreau *m, const aq_hinge_set *sets, int h
                      double dv_floor_j, aq_blocks_result *res);
 /* The record starts at t0 from the present configuration. */
 void aq_events_start(aq_events *e, aq_moreau *m, double t0);
-/* After a time step ending at t (h long, under ax, ay): peaks, hinges,
- * energy, the collapse rule (record 0: the spread, only the collapse
+/* After a time step ending at t (h long, under ax, ay; the stepper's
+ * report of it, info): peaks, hinges, energy, the friction's work, the
+ * collapse rule (record 0: the spread, only the collapse
  * rule).  Returns 1 when the arch fell (collapsed at t), 2 when it is at
  * the top of the hill it climbs (the caller decides: aq_events_collapse),
  * else 0. */
 int aq_events_step(aq_events *e, aq_moreau *m, double t, double h, double ax, double ay,
-                   int impact, int record);
+                   const aq_step_info *info, int record);
 void aq_events_collapse(aq_events *e, double t);
 /* 1 if a body has turned by more than COLLAPSE_ROT_RAD or a joint parted
  * (opened by more than its width, or its faces no longer overlap). */
@@ -68,6 +70,7 @@ struct aq_blocks {
   aq_moreau *m;
   aq_events ev;
   double mu, e_n, dt_s, spread_m, spread_max, scale;
+  double abutment_m;       /* the supports' faces beyond the springings (NAN: as made) */
   aq_blocks_control control;
   int history, rest_skip, direct, projection;
   aq_impact_law law;

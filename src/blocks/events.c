@@ -91,6 +91,7 @@ void aq_events_reset(aq_events *e, aq_moreau *m, const aq_hinge_set *sets, int h
   e->dv_floor_j = dv_floor_j;
   e->started = 0;
   e->peak_rot = e->peak_disp = e->max_ke = e->energy_in = e->max_slip = 0;
+  e->friction_work = 0;
   e->mech_changed = NAN;
   e->impacts = e->reversals = 0;
   e->away = 0;
@@ -149,6 +150,23 @@ static int open_set(const aq_events *e, const double *q)
   return !any ? -1 : in[0] ? 0 : in[1] ? 1 : 2;
 }
 
+/* The slip of joint j: the tangential offset of its two faces from where
+ * they stood undeformed.  While a corner is closed, its slip (the first
+ * closed corner's, as the contacts take it); with both corners open (the
+ * faces apart: a body in flight), the smaller of the two ends' slips, the
+ * offset by which the faces' overlap falls short of its length, so that a
+ * joint whose faces part in flight counts its offset at the step they
+ * part (beyond the overlap's length: events_fallen ends the run there). */
+static double joint_slip(const aq_bodies *s, const aq_corner *cr, const aq_jstate *st,
+                         size_t j)
+{
+  double w = s->joint[j].width_m;
+  for (int k = 0; k < 2; k++)
+    if (aq_jstate_closed(st[j], k))
+      return fabs(cr[2 * j + k].s_m - (k ? w : 0));
+  return fmin(fabs(cr[2 * j].s_m), fabs(cr[2 * j + 1].s_m - w));
+}
+
 static void record_step(aq_events *e, aq_moreau *m, double t, double ax, double ay)
 {
   const aq_bodies *s = e->s;
@@ -187,12 +205,7 @@ static void record_step(aq_events *e, aq_moreau *m, double t, double ax, double 
       if (isnan(*ot))
         *ot = t;
     }
-    for (int k = 0; k < 2; k++)
-      if (aq_jstate_closed(st[j], k)) {
-        double slip = cr[2 * j + k].s_m - (k ? s->joint[j].width_m : 0);
-        e->max_slip = fmax(e->max_slip, fabs(slip));
-        break;
-      }
+    e->max_slip = fmax(e->max_slip, joint_slip(s, cr, st, j));
   }
 }
 
@@ -265,12 +278,13 @@ static int collapse_rule(aq_events *e, aq_moreau *m)
 }
 
 int aq_events_step(aq_events *e, aq_moreau *m, double t, double h, double ax, double ay,
-                   int impact, int record)
+                   const aq_step_info *info, int record)
 {
   (void)h;
   if (record && e->started) {
     record_step(e, m, t, ax, ay);
-    e->impacts += impact != 0;
+    e->impacts += info->impact != 0;
+    e->friction_work -= info->friction_j;
   }
   memcpy(e->qprev, aq_moreau_q(m), 3 * e->s->nb * sizeof *e->qprev);
   int r = collapse_rule(e, m);
@@ -387,6 +401,7 @@ void aq_events_finish(aq_events *e, aq_moreau *m, aq_blocks_result *res)
   r->peak_rotation_set_rad[0] = e->peak_set_rot[0];
   r->peak_rotation_set_rad[1] = e->peak_set_rot[1];
   res->max_slip_m = e->max_slip;
+  res->friction_work_j = e->friction_work;
   res->mechanism_changed_s = e->mech_changed;
   size_t nh = 0;
   for (size_t k = 0; k < 2 * s->nj; k++)

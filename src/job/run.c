@@ -39,7 +39,7 @@ static aq_status blocks_run(void *ctx, const aq_steps *steps, double scale, int 
   res->mu_demand = res->thrust_ecc_max = res->thrust_ecc_time_s = res->slide_time_s = NAN;
   *x = (aq_result_bodies){br.max_slip_m, hb, tb, br.mechanism_changed_s, br.steps_siconos,
                           br.steps_loose, br.nvous, br.hist_x_m, br.hist_y_m,
-                          br.hist_rot_rad};
+                          br.hist_rot_rad, br.friction_work_j};
   br.hist_x_m = br.hist_y_m = br.hist_rot_rad = NULL;
   res->bodies = x;
   aq_blocks_result_free(&br);

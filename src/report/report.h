@@ -89,6 +89,9 @@ typedef struct {
   int64_t check_collapsed;      /* the block model's collapsed */
   double check_collapse_time_s; /* its collapse_time_s */
   double check_peak_rotation_rad; /* its peak_rotation_rad */
+  /* the block model's (NAN as max_slip_m): the work its joints' friction
+   * took from the record's start, J */
+  double friction_work_j;
 } aq_summary;
 
 typedef enum { AQ_SF_STR = 0, AQ_SF_DOUBLE, AQ_SF_INT } aq_summary_kind;
@@ -109,7 +112,7 @@ typedef struct {
  * peak_rotation_over_qc pga_over_lambda0 azimuth_deg control mu_demand
  * mu_demand_joint thrust_ecc_max thrust_ecc_time_s slide_time_s max_slip_m
  * hinges_observed hinges_first_s mechanism_changed_s check_blocks
- * check_collapsed check_collapse_time_s check_peak_rotation_rad). */
+ * check_collapsed check_collapse_time_s check_peak_rotation_rad friction_work_j). */
 /* The most fields a summary may have (fixed-size tables of columns). */
 #define AQ_SUMMARY_FIELDS_MAX 64
 extern const aq_summary_field aq_summary_fields[];

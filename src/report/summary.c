@@ -46,6 +46,7 @@ const aq_summary_field aq_summary_fields[] = {
     AQ_SF_ADDED(check_collapsed, AQ_SF_INT, 0),
     AQ_SF_ADDED(check_collapse_time_s, AQ_SF_DOUBLE, 0),
     AQ_SF_ADDED(check_peak_rotation_rad, AQ_SF_DOUBLE, 0),
+    AQ_SF_ADDED(friction_work_j, AQ_SF_DOUBLE, 0),
 };
 const size_t aq_summary_nfields =
     sizeof aq_summary_fields / sizeof aq_summary_fields[0];
@@ -95,6 +96,7 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   s->mu_demand = s->thrust_ecc_max = s->thrust_ecc_time_s = s->slide_time_s = NAN;
   s->mu_demand_joint = AQ_SUMMARY_INT_NONE;
   s->max_slip_m = s->mechanism_changed_s = NAN;
+  s->friction_work_j = NAN;
   copy_str(s->hinges_observed, sizeof s->hinges_observed, "-");
   copy_str(s->hinges_first_s, sizeof s->hinges_first_s, "-");
   copy_str(s->check_blocks, sizeof s->check_blocks, "-");
@@ -103,6 +105,7 @@ void aq_summary_fill(aq_summary *s, const char *record, const char *arch,
   if (res && res->bodies) {
     s->max_slip_m = res->bodies->max_slip_m;
     s->mechanism_changed_s = res->bodies->mechanism_changed_s;
+    s->friction_work_j = res->bodies->friction_work_j;
     copy_list(s->hinges_observed, sizeof s->hinges_observed, res->bodies->hinges_observed);
     copy_list(s->hinges_first_s, sizeof s->hinges_first_s, res->bodies->hinges_first_s);
   }
@@ -180,6 +183,7 @@ void aq_summary_check(aq_summary *s, const aq_result *b)
   if (b->bodies) {
     s->max_slip_m = b->bodies->max_slip_m;
     s->mechanism_changed_s = b->bodies->mechanism_changed_s;
+    s->friction_work_j = b->bodies->friction_work_j;
     copy_list(s->hinges_observed, sizeof s->hinges_observed, b->bodies->hinges_observed);
     copy_list(s->hinges_first_s, sizeof s->hinges_first_s, b->bodies->hinges_first_s);
   }
