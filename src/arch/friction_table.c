@@ -466,3 +466,9 @@ double aq_statics_lambda_at(const aq_statics *s, int act_sign, double mu)
 }
 
 int aq_statics_nodes(const aq_statics *s, int act_sign) { return s->ntab[act_sign > 0]; }
+
+int aq_statics_resolved(const aq_statics *s, int act_sign)
+{
+  int k = act_sign > 0;
+  return s->ntab[k] < 2 || s->resolved[k];
+}
