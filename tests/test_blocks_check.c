@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "lazylib_sonames.h"
+#include "report/h5.h"
 
 /* elcentro at 2 and 6 on oppenheim and thick with friction 0.6, both
  * polarities: every run slides (thick at 2 never moves on four hinges,
@@ -179,5 +181,101 @@ AQ_TEST(blocks_spread_named_under_four_hinges)
     aq_check(rc == 0 && (blocks ? !w : w && !strstr(w + 1, "warning: spread_m")),
              "%s: exit 0 (%d), %s: %s", cmd, rc,
              blocks ? "no warning of the spread" : "one warning naming the spread", err);
+  }
+}
+
+/* A re-run that fails.  The block model cannot be set up when Siconos
+ * Numerics cannot be opened: here a file that is no library stands under
+ * its soname first on the library path.  oppenheim at 2 slides (marked,
+ * checked), at 1 it does not (unmarked), nor does thin at 1 and 2 (it
+ * collapses on four hinges).  The marked run keeps its four-hinge row as
+ * without --check, check_blocks "failed" and nothing of the failed re-run
+ * (the check and block columns nan and -); the unmarked rows are as
+ * without --check; one line on stderr names the record, the arch, the
+ * scale and the library; exit 1; the results file is written whole (no
+ * temporary left) with the same rows in /summary. */
+AQ_TEST(blocks_check_rerun_fails)
+{
+  char dir[512], lib[700], path[2048], h5[700], cmd[2048];
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(lib, sizeof lib, "%s/%s", dir, AQ_SICONOS_SONAME);
+  FILE *f = fopen(lib, "w");
+  if (!aq_check(f && fputs("not a library\n", f) >= 0 && fclose(f) == 0, "write %s", lib))
+    return;
+  const char *keep = getenv("LD_LIBRARY_PATH");
+  char *old = keep ? strdup(keep) : NULL;
+  snprintf(path, sizeof path, "%s%s%s", dir, old ? ":" : "", old ? old : "");
+  static const char *const job = "records/elcentro_chopra.csv --arch arches/oppenheim.cfg "
+                                 "--arch arches/thin.cfg --scale 1,2 --polarity normal "
+                                 "--friction 0.6";
+  snprintf(cmd, sizeof cmd, "%s", job);
+  int rc0 = aq_test_run(cmd, tsv[0], sizeof tsv[0], err, sizeof err);
+  snprintf(h5, sizeof h5, "%s/x.h5", dir);
+  snprintf(cmd, sizeof cmd, "%s --check blocks -o %s", job, h5);
+  setenv("LD_LIBRARY_PATH", path, 1);
+  int rc = aq_test_run(cmd, tsv[1], sizeof tsv[1], err, sizeof err);
+  if (old)
+    setenv("LD_LIBRARY_PATH", old, 1);
+  else
+    unsetenv("LD_LIBRARY_PATH");
+  free(old);
+  if (!aq_check(rc0 == 0, "without --check: exit 0 (%d)", rc0))
+    return;
+  char want[256];
+  snprintf(want, sizeof want, "%s", AQ_SICONOS_SONAME);
+  aq_check(rc == 1 && aq_test_count_lines(err) == 1 &&
+               strstr(err, "archquake: records/elcentro_chopra.csv: arch oppenheim, scale 2: ") &&
+               strstr(err, "check blocks") && strstr(err, want),
+           "exit 1 (%d), one line naming the record, arch, scale, the check and %s: %s", rc,
+           want, err);
+  size_t rows = aq_test_count_lines(tsv[0]) - 1;
+  aq_check(rows == 4 && aq_test_count_lines(tsv[1]) == rows + 1, "4 rows each (%zu)", rows);
+  /* every column before the check's as without --check */
+  static const char *const four[] = {
+      "record",         "arch",        "scale",        "status",        "collapsed",
+      "collapse_time_s", "peak_rotation_rad", "energy_in_j", "mu_demand", "max_slip_m",
+      "hinges_observed", "hinges_first_s",   "mechanism_changed_s"};
+  static const char *const none[][2] = {{"check_collapsed", "nan"},
+                                        {"check_collapse_time_s", "nan"},
+                                        {"check_peak_rotation_rad", "nan"},
+                                        {"friction_work_j", "nan"}};
+  int failed = 0;
+  for (int r = 1; r <= (int)rows; r++) {
+    char a[256], b[256], st[64], v[64];
+    for (size_t i = 0; i < sizeof four / sizeof four[0]; i++)
+      aq_check(!strcmp(field(tsv[0], r, four[i], a, sizeof a),
+                       field(tsv[1], r, four[i], b, sizeof b)),
+               "row %d %s: %s without --check, %s with", r, four[i], a, b);
+    field(tsv[1], r, "status", st, sizeof st);
+    field(tsv[1], r, "check_blocks", v, sizeof v);
+    int marked = strcmp(st, "ok") != 0;
+    failed += marked;
+    aq_check(!strcmp(v, marked ? "failed" : "-"), "row %d (%s): check_blocks %s", r, st, v);
+    for (size_t i = 0; i < sizeof none / sizeof none[0]; i++)
+      aq_check(!strcmp(field(tsv[1], r, none[i][0], a, sizeof a), none[i][1]),
+               "row %d: %s %s (want %s)", r, none[i][0], a, none[i][1]);
+  }
+  aq_check(failed == 1, "one run marked and its re-run failed (%d)", failed);
+  aq_check(aq_test_count_names(dir, "x.h5") == 1, "the results file and no temporary");
+  aq_h5_suite su;
+  aq_error e;
+  aq_error_clear(&e);
+  if (aq_check(aq_h5_read_suite(h5, &su, &e) == AQ_OK, "read %s: %s", h5, e.message)) {
+    int nf = 0;
+    for (size_t i = 0; i < su.nruns; i++) {
+      const aq_summary *s = &su.runs[i].s;
+      int marked = strcmp(s->status, "ok") != 0;
+      nf += marked;
+      aq_check(!strcmp(s->check_blocks, marked ? "failed" : "-") &&
+                   s->check_collapsed == AQ_SUMMARY_INT_NONE && isnan(s->friction_work_j) &&
+                   (s->collapsed == 0 || s->collapsed == 1),
+               "/summary run %zu (%s): check_blocks %s, check_collapsed %lld, its own verdict "
+               "%lld",
+               i, s->status, s->check_blocks, (long long)s->check_collapsed,
+               (long long)s->collapsed);
+    }
+    aq_check(su.nruns == 4 && nf == 1, "/summary: 4 runs (%zu), one failed check (%d)",
+             su.nruns, nf);
+    aq_h5_suite_free(&su);
   }
 }

@@ -68,6 +68,7 @@ static aq_blocks *alloc_common(aq_error *err)
     return NULL;
   }
   b->mu = NAN;
+  b->abutment_m = NAN;
   b->e_n = 0;
   b->dt_s = AQ_BLOCKS_DT_DEFAULT_S;
   b->scale = 1;
@@ -227,6 +228,26 @@ aq_status aq_blocks_set_spread(aq_blocks *b, double spread_m, aq_error *err)
   return AQ_OK;
 }
 
+/* The supports' faces run abutment_m beyond the springing joints (an
+ * arch's joints 0 and n, where a support bears on a voussoir; under fixed
+ * control a support that carries bonded voussoirs bears with a voussoir's
+ * joint, which keeps its own length), or beyond every joint of the ground
+ * (test bodies).  NAN: as aq_bodies made them. */
+static void apply_abutment(aq_blocks *b)
+{
+  aq_bodies *s = &b->bodies;
+  if (isnan(b->abutment_m))
+    return;
+  size_t n = s->nvous;
+  for (size_t k = 0; k < s->nj; k++) {
+    aq_bjoint *J = &s->joint[k];
+    if (J->a < 0 && (!b->arch || J->arch_joint == 0))
+      J->ext_m[0] = b->abutment_m;
+    if (J->b < 0 && (!b->arch || J->arch_joint == n))
+      J->ext_m[1] = b->abutment_m;
+  }
+}
+
 aq_status aq_blocks_set_control(aq_blocks *b, aq_blocks_control c, aq_error *err)
 {
   if (!b->arch)
@@ -257,7 +278,18 @@ aq_status aq_blocks_set_control(aq_blocks *b, aq_blocks_control c, aq_error *err
   aq_bodies_free(&b->bodies);
   b->bodies = nb;
   b->control = c;
+  apply_abutment(b);
   return init_model(b, err);
+}
+
+aq_status aq_blocks_set_abutment(aq_blocks *b, double abutment_m, aq_error *err)
+{
+  if (!(abutment_m >= 0) || !isfinite(abutment_m))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "abutment_m",
+                        "expected a finite length >= 0 m, got %g", abutment_m);
+  b->abutment_m = abutment_m;
+  apply_abutment(b);
+  return AQ_OK;
 }
 
 void aq_blocks_set_history(aq_blocks *b, int on) { b->history = on != 0; }

@@ -58,7 +58,9 @@ typedef struct {
    * r.energy_dissipated_j: energy in less the kinetic and potential energy
    * at the end; r.history (when asked): voussoir 0's rotation and the
    * whole arch's centroid. */
-  double max_slip_m;         /* largest tangential slip at any joint, m */
+  double max_slip_m;         /* largest slip of any joint: the tangential offset of its
+                                faces (closed: at its closed corner; open: the smaller of
+                                its ends'), m (docs/blocks.md) */
   double friction_work_j;    /* the work the joints' friction took from the record's start,
                                 J (>= 0; D of the energy balance, docs/blocks.md) */
   size_t nhinges;            /* opened (joint, face) pairs, by joint then face */
@@ -108,6 +110,10 @@ double aq_blocks_spread_max(const aq_blocks *b);
 double aq_blocks_spread_reach(const aq_arch *arch);
 aq_status aq_blocks_check_spread(const aq_arch *arch, double spread_m, aq_error *err);
 aq_status aq_blocks_set_control(aq_blocks *b, aq_blocks_control c, aq_error *err);
+/* How far each support's face runs beyond both ends of the springing joint
+ * it bears, m (>= 0, finite; default 0: the springing joint as drawn).  On
+ * test bodies, every face of the ground.  AQ_EVALUE (field "abutment_m"). */
+aq_status aq_blocks_set_abutment(aq_blocks *b, double abutment_m, aq_error *err);
 void aq_blocks_set_history(aq_blocks *b, int on);
 /* Every step's acceleration times scale (its sign the polarity; the
  * vertical at |scale|), default 1. */

@@ -70,6 +70,7 @@ struct aq_blocks {
   aq_moreau *m;
   aq_events ev;
   double mu, e_n, dt_s, spread_m, spread_max, scale;
+  double abutment_m;       /* the supports' faces beyond the springings (NAN: as made) */
   aq_blocks_control control;
   int history, rest_skip, direct, projection;
   aq_impact_law law;

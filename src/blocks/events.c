@@ -150,6 +150,23 @@ static int open_set(const aq_events *e, const double *q)
   return !any ? -1 : in[0] ? 0 : in[1] ? 1 : 2;
 }
 
+/* The slip of joint j: the tangential offset of its two faces from where
+ * they stood undeformed.  While a corner is closed, its slip (the first
+ * closed corner's, as the contacts take it); with both corners open (the
+ * faces apart: a body in flight), the smaller of the two ends' slips, the
+ * offset by which the faces' overlap falls short of its length, so that a
+ * joint whose faces part in flight counts its offset at the step they
+ * part (beyond the overlap's length: events_fallen ends the run there). */
+static double joint_slip(const aq_bodies *s, const aq_corner *cr, const aq_jstate *st,
+                         size_t j)
+{
+  double w = s->joint[j].width_m;
+  for (int k = 0; k < 2; k++)
+    if (aq_jstate_closed(st[j], k))
+      return fabs(cr[2 * j + k].s_m - (k ? w : 0));
+  return fmin(fabs(cr[2 * j].s_m), fabs(cr[2 * j + 1].s_m - w));
+}
+
 static void record_step(aq_events *e, aq_moreau *m, double t, double ax, double ay)
 {
   const aq_bodies *s = e->s;
@@ -188,12 +205,7 @@ static void record_step(aq_events *e, aq_moreau *m, double t, double ax, double 
       if (isnan(*ot))
         *ot = t;
     }
-    for (int k = 0; k < 2; k++)
-      if (aq_jstate_closed(st[j], k)) {
-        double slip = cr[2 * j + k].s_m - (k ? s->joint[j].width_m : 0);
-        e->max_slip = fmax(e->max_slip, fabs(slip));
-        break;
-      }
+    e->max_slip = fmax(e->max_slip, joint_slip(s, cr, st, j));
   }
 }
 
