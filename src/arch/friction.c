@@ -59,6 +59,7 @@
  */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,7 +72,10 @@
 #define LEAST_MU_START 1e3 /* the first trial friction of aq_friction_least (any value
                               works: the iteration falls from the first line's ratio) */
 #define LEAST_REL 1e-12    /* aq_friction_least stops when mu falls by less (relative) */
-#define LEAST_ITER 60      /* ... or after this many programs */
+#define LEAST_ITER 60      /* programs at most; unsettled after them: an error (the most
+                              measured is 21: docs/arch-model.md) */
+#define LEAST_W_FLOOR 1e-3 /* a friction row's weight at least this times the largest
+                              (weights()) */
 #define LEAST_TIE 1e-9     /* joints whose ratios differ by less (relative) tie: the lowest is
                               named (the least-friction line often needs it at several) */
 
@@ -109,6 +113,19 @@ static void joint_force(const aq_geom *g, size_t j, int s, const double x[4], do
   *tf = f.x * u.x + f.y * u.y;
 }
 
+/* A program of nrows rows that ended without its optimum (st): the error,
+ * on "friction", of the caller expecting what. */
+static aq_status lp_failed(aq_error *err, aq_lp4_status st, size_t nrows, const char *what)
+{
+  if (st == AQ_LP4_ITLIM)
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                        "expected %s, got a linear program of %zu rows that GLPK's simplex "
+                        "left unsolved at its limit of %d iterations",
+                        what, nrows, aq_lp4_iteration_limit(nrows));
+  return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                      "expected %s, got a linear program that GLPK failed to solve", what);
+}
+
 aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *lambda,
                              size_t *joint, aq_error *err)
 {
@@ -138,10 +155,11 @@ aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *
       *joint = SIZE_MAX;
     return AQ_OK;
   }
-  if (st != AQ_LP4_OPT)
-    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
-                        "expected the largest load of a line of thrust with friction %g, "
-                        "got a failed program", mu);
+  if (st != AQ_LP4_OPT) {
+    char what[96];
+    snprintf(what, sizeof what, "the largest load of a line of thrust with friction %g", mu);
+    return lp_failed(err, st, nrows, what);
+  }
   *lambda = r.obj;
   if (joint) { /* a friction row of the vertex: the joint that slides */
     *joint = SIZE_MAX;
@@ -150,6 +168,28 @@ aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *
         *joint = (r.tight[k] - nm) / 2;
   }
   return AQ_OK;
+}
+
+int aq_friction_least_cap = 0;
+
+/* The weights of the next program's friction rows from the normal forces
+ * w[0..n) of the line found (N_j / W): each its own, but at least
+ * LEAST_W_FLOOR times the largest (1 where none pushes).  Crouzeix, Ferland
+ * & Schaible weigh row j by N_j at the last line, for a superlinear rate;
+ * any positive weights keep the method's two properties (a program of
+ * optimum t < 0 gives a line whose every ratio is below mu_k; t = 0 proves
+ * mu_k the least), so the floor costs at most some rate.  Without it a
+ * line with one joint barely pushing (N/W about 1e-15 on a thick
+ * 120-degree circle, from the line of the table's previous node) scaled
+ * that joint's rows by 1e15: GLPK's vertex of such a program is its
+ * round-off, and the method stalled at 1.4e4 where the least is 1.06. */
+static void weights(double *w, size_t n)
+{
+  double top = 0;
+  for (size_t j = 0; j < n; j++)
+    top = fmax(top, w[j]);
+  for (size_t j = 0; j < n; j++)
+    w[j] = w[j] > 0 ? fmax(w[j], LEAST_W_FLOOR * top) : 1;
 }
 
 /* aq_friction_least from a start: a line of thrust x0 (R0x/W, R0y/W,
@@ -190,15 +230,20 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
       double xs[4] = {x0[0], x0[1], x0[2], lambda};
       joint_force(g, j, s, xs, &nf, &tf);
     }
-    w[j] = nf > 0 ? nf : 1;
+    w[j] = nf;
   }
+  weights(w, n + 1);
   static const double c[4] = {0, 0, 0, -1}; /* minimize t */
   const aq_lp4_opts o = {OPT_TOL, TIGHT_REL, AQ_LP4_MAX_TIGHT, 0};
   double muk = mu0 > 0 && isfinite(mu0) ? mu0 : LEAST_MU_START, best = INFINITY;
   size_t best_j = 0;
   aq_status ret = AQ_OK;
+  int settled = 0;      /* the method ended: no program lowered mu by LEAST_REL */
+  double before = NAN;  /* the best before the last program's */
   *iters = 0;
-  for (int it = 0; it < LEAST_ITER; it++) {
+  int programs = aq_friction_least_cap > 0 && aq_friction_least_cap < LEAST_ITER
+                     ? aq_friction_least_cap : LEAST_ITER;
+  for (int it = 0; it < programs && ret == AQ_OK; it++) {
     /* (+-T_j - mu_k N_j) / w_j - t <= 0 */
     /* t >= -max(1, mu_k / 2): bounded, yet loose enough that a line whose
        ratios are far below mu_k is reached in a few programs (t >= -1 let
@@ -220,13 +265,17 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
     aq_lp4_result r = {.y = y};
     aq_lp4_status st = aq_lp4_solve(row, nrows, c, NULL, &o, &r);
     ++*iters;
-    if (st == AQ_LP4_INFEASIBLE) /* no line of thrust at lambda at all; after a line was
-                                    found (it stays feasible), the vertex's round-off: keep it */
+    if (st == AQ_LP4_INFEASIBLE) { /* no line of thrust at lambda at all; after a line
+                                      was found (it stays feasible), the vertex's
+                                      round-off: keep it */
+      settled = 1;
       break;
+    }
     if (st != AQ_LP4_OPT) {
-      ret = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
-                         "expected the least friction of a line of thrust at lambda = %g, "
-                         "got a failed program", lambda);
+      char what[96];
+      snprintf(what, sizeof what, "the least friction of a line of thrust at lambda = %.9g",
+               lambda);
+      ret = lp_failed(err, st, nrows, what);
       break;
     }
     double xr[4] = {r.x[0], r.x[1], r.x[2], lambda}, next = 0;
@@ -246,11 +295,13 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
       if (ratio > next * (1 + LEAST_TIE)) /* the lowest of joints that tie */
         next_j = j;
       next = fmax(next, ratio);
-      w[j] = nf > 0 ? nf : 1;
+      w[j] = nf;
     }
+    weights(w, n + 1);
     if (dmu)
       *dmu = dv_dm > 0 ? -dv_dl / dv_dm : NAN;
     int improved = next < best * (1 - LEAST_REL);
+    before = best;
     if (next < best) {
       best = next;
       best_j = next_j;
@@ -258,8 +309,10 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
         for (int k = 0; k < 3; k++)
           x[k] = xr[k];
     }
-    if (!improved && (isfinite(best) || muk > 1e12))
+    if (!improved && (isfinite(best) || muk > 1e12)) {
+      settled = 1;
       break;
+    }
     /* a joint that does not push (N = 0) on that line: try a larger mu */
     muk = isfinite(best) ? best : muk * 1e3;
   }
@@ -267,6 +320,12 @@ static aq_status least(const aq_geom *g, int act_sign, double lambda, double mu0
   free(w);
   free(y);
   free(g3);
+  if (ret == AQ_OK && !settled) /* never a quiet unconverged value */
+    ret = aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "friction",
+                       "expected the least friction of a line of thrust at lambda = %.9g, got "
+                       "none settled: %d linear programs lowered it from %.9g to %.9g, by more "
+                       "than %g (relative) in the last",
+                       lambda, programs, before, best, LEAST_REL);
   if (ret != AQ_OK)
     return ret;
   *mu = best;

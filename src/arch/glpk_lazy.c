@@ -42,6 +42,7 @@
   R(int, glp_simplex, (glp_prob *P, const glp_smcp *parm), (P, parm))                     \
   R(int, glp_exact, (glp_prob *P, const glp_smcp *parm), (P, parm))                       \
   R(int, glp_get_status, (glp_prob *P), (P))                                              \
+  R(int, glp_get_it_cnt, (glp_prob *P), (P))                                              \
   R(double, glp_get_obj_val, (glp_prob *P), (P))                                          \
   R(double, glp_get_row_dual, (glp_prob *P, int i), (P, i))                               \
   R(int, glp_get_col_stat, (glp_prob *P, int j), (P, j))                                  \

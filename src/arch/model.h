@@ -434,7 +434,13 @@ typedef struct {
   double g[4], h;
 } aq_lp4_row;
 
-typedef enum { AQ_LP4_OPT, AQ_LP4_INFEASIBLE, AQ_LP4_UNBOUNDED, AQ_LP4_FAILED } aq_lp4_status;
+typedef enum {
+  AQ_LP4_OPT,
+  AQ_LP4_INFEASIBLE,
+  AQ_LP4_UNBOUNDED,
+  AQ_LP4_FAILED, /* GLPK failed, or ended with no optimum, or out of memory */
+  AQ_LP4_ITLIM   /* the simplex reached its iteration limit (aq_lp4_iteration_limit) */
+} aq_lp4_status;
 
 #define AQ_LP4_MAX_TIGHT 12
 typedef struct {
@@ -454,6 +460,7 @@ typedef struct {
   size_t tight[AQ_LP4_MAX_TIGHT];  /* the rows of the vertex (the dual's basic columns,
                                       tight[0..nbasic)), then ties */
   size_t ntight, nbasic;
+  size_t iterations;               /* simplex iterations used (floating-point and rational) */
 } aq_lp4_result;
 
 /* The 2 (n + 1) rows that keep a line of thrust inside the arch g
@@ -468,10 +475,17 @@ void aq_thrust_rows(const aq_geom *g, int s, int relax, aq_lp4_row *lp);
 
 /* maximize c.x over the rows row[0..n) (ex[i] != 0: row i left out; ex may
  * be NULL), solved through its dual (lp4.c).  AQ_LP4_OPT and *out;
- * AQ_LP4_INFEASIBLE, AQ_LP4_UNBOUNDED, or AQ_LP4_FAILED (GLPK failed or
+ * AQ_LP4_INFEASIBLE, AQ_LP4_UNBOUNDED, AQ_LP4_ITLIM (the simplex reached
+ * aq_lp4_iteration_limit(n) iterations) or AQ_LP4_FAILED (GLPK failed or
  * out of memory).  GLPK must be loaded (aq_glpk_load). */
 aq_lp4_status aq_lp4_solve(const aq_lp4_row *row, size_t n, const double c[4],
                            const unsigned char *ex, const aq_lp4_opts *o, aq_lp4_result *out);
+/* The simplex iterations a program of n rows is given (each call of GLPK's
+ * floating-point and rational simplex): deterministic, growing with n. */
+int aq_lp4_iteration_limit(size_t n);
+/* For tests only: when > 0, every program's iteration limit is at most
+ * this (0, the default: the limit above alone). */
+extern size_t aq_lp4_iteration_cap;
 
 /* ---- search.c ------------------------------------------------------ */
 
@@ -538,9 +552,15 @@ aq_status aq_friction_lambda(const aq_geom *g, int act_sign, double mu, double *
  * the arch g under gravity and the horizontal body force lambda g along
  * -act_sign x: *mu (INFINITY when no line of thrust lies inside at lambda
  * at all) and *joint (if not NULL) where that line's |T|/N is largest.
- * AQ_ENUMERIC when a program fails.  friction.c. */
+ * AQ_ENUMERIC when a program fails (GLPK's error or its iteration limit),
+ * and when its method has not settled after its limit of programs: never
+ * an unconverged value.  friction.c. */
 aq_status aq_friction_least(const aq_geom *g, int act_sign, double lambda, double *mu,
                             size_t *joint, aq_error *err);
+/* For tests only: when > 0, aq_friction_least (and the tables) solve at
+ * most this many programs at a load, fewer than its own limit (0, the
+ * default: that limit, 60). */
+extern int aq_friction_least_cap;
 
 /* The arch's statics with friction, built once with the arch (friction.c;
  * read-only after, safe to share between threads): the least friction at

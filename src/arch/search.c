@@ -683,6 +683,11 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
                         "set: the four-hinge models do not describe it",
                         MAX_PROGRAMS, enum_count(n), n, ENUM_MAX, B.info.liftoff_joint,
                         B.info.liftoff_lambda);
+  if (B.failed && !B.ran_out) /* a program without its optimum: no set is settled */
+    return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",
+                        "expected the minimum four-hinge mechanism, got a linear program of "
+                        "%zu rows that GLPK left unsolved (its limit: %d simplex iterations)",
+                        2 * (n + 1), aq_lp4_iteration_limit(2 * (n + 1)));
   if (!B.have) {
     char dir[48] = "";
     if (act)
