@@ -39,7 +39,11 @@
  *          lambda0 g, friction 10 and 0.6, hinges fixed (the file's) and
  *          free (the file with control = free and no reverse): how often
  *          both say collapse or both say it stands, and what the block
- *          model saw where they differ */
+ *          model saw where they differ
+ *   abutment  (only when named; minutes) the same for oppenheim at friction
+ *          0.6 with the supports' faces running 0, 0.25, 1.25 and 5 m
+ *          beyond the springings ([supports] abutment_m; the argument
+ *          after it: the records' directory) */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
@@ -551,16 +555,10 @@ static void energy(void)
     fputs(why[i], stdout);
 }
 
-static void agree(const char *dir)
+/* The AT2 records of dir, sorted (names[0..*nn), strdup'd; at most 64). */
+static size_t agree_records(const char *dir, char **names)
 {
-  static const char *const arches[] = {"arches/oppenheim.cfg", "arches/gothic.cfg",
-                                       "arches/thick.cfg"};
-  static const double ratios[] = {1.5, 2.0, 3.0}, mus[] = {10, 0.6};
-  printf("== agree: the AT2 records of %s at 1.5, 2 and 3 lambda0 g, step %g s: collapse "
-         "verdicts, four-hinge work path against the block model\n",
-         dir, AQ_BLOCKS_DT_DEFAULT_S);
   DIR *d = opendir(dir);
-  char *names[64];
   size_t nn = 0;
   struct dirent *de;
   while (d && (de = readdir(d)) && nn < 64) {
@@ -577,99 +575,144 @@ static void agree(const char *dir)
         names[i] = names[j];
         names[j] = t;
       }
+  return nn;
+}
+
+static void agree_header(void)
+{
   printf("(agree: the arch's own impact rule; agree_m: the momentum rule)\n");
-  printf("%-12s %-6s %5s %5s %6s %6s %6s %6s %8s %8s %6s %10s\n", "arch", "hinges", "mu",
-         "runs", "agree", "both_c", "4h_only", "bk_only", "agree_m", "failed", "loose",
-         "blocks_s");
+  printf("%-12s %-6s %5s %6s %5s %6s %6s %6s %6s %8s %8s %6s %10s\n", "arch", "hinges", "mu",
+         "abut_m", "runs", "agree", "both_c", "4h_only", "bk_only", "agree_m", "failed",
+         "loose", "blocks_s");
+}
+
+/* One row of agree: arch (its file, hinges fixed or free: mode), friction
+ * mu, the supports' faces abut m beyond the springings, over the records. */
+static void agree_row(const char *dir, char *const *names, size_t nn, const char *arch,
+                      int mode, double mu, double abut)
+{
+  static const double ratios[] = {1.5, 2.0, 3.0};
+  aq_arch_options o = {.friction = mu};
+  aq_arch *A = NULL;
+  aq_error e;
+  if (mode == 0) {
+    if (aq_arch_load_opts(arch, &o, &A, &e) != AQ_OK)
+      A = NULL;
+  } else {
+    A = load_free(arch, mu);
+  }
+  if (!A)
+    return;
+  const aq_path *p = aq_arch_path(A, 0);
+  size_t runs = 0, same = 0, both = 0, only4 = 0, onlyb = 0, failed = 0, agreem = 0, loose = 0;
+  double secs = 0;
+  char diffs[8192];
+  size_t dk = 0;
+  diffs[0] = 0;
+  for (size_t r = 0; r < nn; r++)
+    for (size_t k = 0; k < 3; k++) {
+      char path[1024];
+      snprintf(path, sizeof path, "%s/%s", dir, names[r]);
+      aq_steps s;
+      if (!record_steps(path, p, ratios[k], &s))
+        continue;
+      aq_stepper *st = aq_job_stepper(A, AQ_MODEL_WORKPATH, NAN, 0, 0, &e);
+      aq_result ro, rm;
+      aq_blocks_result rb;
+      double sec = 0;
+      int ok4 = st && aq_stepper_run(st, &s, &ro, &e) == AQ_OK;
+      /* the momentum rule: Housner's, which Newton's e_n = 0 gives a
+       * rocking mechanism */
+      int okm = 0;
+      if (ok4) {
+        aq_stepper_set_impact(st, 1);
+        okm = aq_stepper_run(st, &s, &rm, &e) == AQ_OK;
+      }
+      aq_blocks *B = aq_blocks_alloc(A, &e);
+      int okb = B && aq_blocks_set_friction(B, mu, &e) == AQ_OK &&
+                (mode || aq_blocks_set_control(B, AQ_BLOCKS_FIXED, &e) == AQ_OK) &&
+                aq_blocks_set_abutment(B, abut, &e) == AQ_OK;
+      double t0 = aq_bench_now_s();
+      okb = okb && aq_blocks_run(B, &s, &rb, &e) == AQ_OK;
+      sec = aq_bench_now_s() - t0;
+      runs++;
+      secs += sec;
+      if (!ok4 || !okb || !okm) {
+        failed++;
+        if (!okb)
+          fprintf(stderr, "bench_blocks: %s x%.1f: %s\n", names[r], ratios[k], e.message);
+      } else {
+        loose += rb.steps_loose;
+        agreem += rm.collapsed == rb.r.collapsed;
+        int c4 = ro.collapsed, cb = rb.r.collapsed;
+        same += c4 == cb;
+        both += c4 && cb;
+        only4 += c4 && !cb;
+        onlyb += cb && !c4;
+        if (c4 != cb && dk + 600 < sizeof diffs) {
+          char hb[256];
+          aq_blocks_hinges_text(&rb, hb, sizeof hb, NULL, 0);
+          dk += (size_t)snprintf(
+              diffs + dk, sizeof diffs - dk,
+              "    %s x%.1f: 4-hinge %s (peak %.4g rad; momentum rule: %s), blocks %s at "
+              "%.3g s (peak %.4g rad, slip %.3g m, changed %.3g s, hinges %s)\n",
+              names[r], ratios[k], c4 ? "collapses" : "stands", ro.peak_rotation_rad,
+              okm && rm.collapsed ? "collapses" : "stands", cb ? "collapses" : "stands",
+              rb.r.collapse_time_s, rb.r.peak_rotation_rad, rb.max_slip_m,
+              rb.mechanism_changed_s, hb);
+        }
+      }
+      if (ok4)
+        aq_result_free(&ro);
+      if (okm)
+        aq_result_free(&rm);
+      if (okb)
+        aq_blocks_result_free(&rb);
+      aq_blocks_free(B);
+      aq_stepper_free(st);
+      aq_steps_free(&s);
+    }
+  printf("%-12.12s %-6s %5g %6g %5zu %6zu %6zu %6zu %6zu %8zu %8zu %6zu %10.1f\n%s",
+         arch + 7, mode ? "free" : "fixed", mu, abut, runs, same, both, only4, onlyb, agreem,
+         failed, loose, secs, diffs);
+  fflush(stdout);
+  aq_arch_free(A);
+}
+
+static void agree(const char *dir)
+{
+  static const char *const arches[] = {"arches/oppenheim.cfg", "arches/gothic.cfg",
+                                       "arches/thick.cfg"};
+  static const double mus[] = {10, 0.6};
+  printf("== agree: the AT2 records of %s at 1.5, 2 and 3 lambda0 g, step %g s: collapse "
+         "verdicts, four-hinge work path against the block model\n",
+         dir, AQ_BLOCKS_DT_DEFAULT_S);
+  char *names[64];
+  size_t nn = agree_records(dir, names);
+  agree_header();
   for (size_t a = 0; a < 3; a++)
     for (int mode = 0; mode < 2; mode++)
-      for (int m = 0; m < 2; m++) {
-        aq_arch_options o = {.friction = mus[m]};
-        aq_arch *A = NULL;
-        aq_error e;
-        if (mode == 0) {
-          if (aq_arch_load_opts(arches[a], &o, &A, &e) != AQ_OK)
-            A = NULL;
-        } else {
-          A = load_free(arches[a], mus[m]);
-        }
-        if (!A)
-          continue;
-        const aq_path *p = aq_arch_path(A, 0);
-        size_t runs = 0, same = 0, both = 0, only4 = 0, onlyb = 0, failed = 0, agreem = 0,
-               loose = 0;
-        double secs = 0;
-        char diffs[8192];
-        size_t dk = 0;
-        diffs[0] = 0;
-        for (size_t r = 0; r < nn; r++)
-          for (size_t k = 0; k < 3; k++) {
-            char path[1024];
-            snprintf(path, sizeof path, "%s/%s", dir, names[r]);
-            aq_steps s;
-            if (!record_steps(path, p, ratios[k], &s))
-              continue;
-            aq_stepper *st = aq_job_stepper(A, AQ_MODEL_WORKPATH, NAN, 0, 0, &e);
-            aq_result ro, rm;
-            aq_blocks_result rb;
-            double sec = 0;
-            int ok4 = st && aq_stepper_run(st, &s, &ro, &e) == AQ_OK;
-            /* the momentum rule: Housner's, which Newton's e_n = 0 gives a
-             * rocking mechanism */
-            int okm = 0;
-            if (ok4) {
-              aq_stepper_set_impact(st, 1);
-              okm = aq_stepper_run(st, &s, &rm, &e) == AQ_OK;
-            }
-            aq_blocks *B = aq_blocks_alloc(A, &e);
-            int okb = B && aq_blocks_set_friction(B, mus[m], &e) == AQ_OK &&
-                      (mode || aq_blocks_set_control(B, AQ_BLOCKS_FIXED, &e) == AQ_OK);
-            double t0 = aq_bench_now_s();
-            okb = okb && aq_blocks_run(B, &s, &rb, &e) == AQ_OK;
-            sec = aq_bench_now_s() - t0;
-            runs++;
-            secs += sec;
-            if (!ok4 || !okb || !okm) {
-              failed++;
-              if (!okb)
-                fprintf(stderr, "bench_blocks: %s x%.1f: %s\n", names[r], ratios[k], e.message);
-            } else {
-              loose += rb.steps_loose;
-              agreem += rm.collapsed == rb.r.collapsed;
-              int c4 = ro.collapsed, cb = rb.r.collapsed;
-              same += c4 == cb;
-              both += c4 && cb;
-              only4 += c4 && !cb;
-              onlyb += cb && !c4;
-              if (c4 != cb && dk + 600 < sizeof diffs) {
-                char hb[256];
-                aq_blocks_hinges_text(&rb, hb, sizeof hb, NULL, 0);
-                dk += (size_t)snprintf(
-                    diffs + dk, sizeof diffs - dk,
-                    "    %s x%.1f: 4-hinge %s (peak %.4g rad; momentum rule: %s), blocks %s at "
-                    "%.3g s (peak %.4g rad, slip %.3g m, changed %.3g s, hinges %s)\n",
-                    names[r], ratios[k], c4 ? "collapses" : "stands", ro.peak_rotation_rad,
-                    okm && rm.collapsed ? "collapses" : "stands",
-                    cb ? "collapses" : "stands", rb.r.collapse_time_s, rb.r.peak_rotation_rad,
-                    rb.max_slip_m, rb.mechanism_changed_s, hb);
-              }
-            }
-            if (ok4)
-              aq_result_free(&ro);
-            if (okm)
-              aq_result_free(&rm);
-            if (okb)
-              aq_blocks_result_free(&rb);
-            aq_blocks_free(B);
-            aq_stepper_free(st);
-            aq_steps_free(&s);
-          }
-        printf("%-12.12s %-6s %5g %5zu %6zu %6zu %6zu %6zu %8zu %8zu %6zu %10.1f\n%s",
-               arches[a] + 7, mode ? "free" : "fixed", mus[m], runs, same, both, only4, onlyb,
-               agreem, failed, loose, secs, diffs);
-        fflush(stdout);
-        aq_arch_free(A);
-      }
+      for (int m = 0; m < 2; m++)
+        agree_row(dir, names, nn, arches[a], mode, mus[m], 0);
+  for (size_t i = 0; i < nn; i++)
+    free(names[i]);
+}
+
+/* The abutment's extent: oppenheim at friction 0.6, hinges fixed and free,
+ * with the supports' faces as drawn (0) and running on beyond the
+ * springings by 0.25, 1.25 (the ring's thickness) and 5 m. */
+static void abutment_study(const char *dir)
+{
+  static const double abut[] = {0, 0.25, 1.25, 5};
+  printf("== abutment: the AT2 records of %s at 1.5, 2 and 3 lambda0 g, step %g s: "
+         "oppenheim, friction 0.6, the supports' faces beyond the springings\n",
+         dir, AQ_BLOCKS_DT_DEFAULT_S);
+  char *names[64];
+  size_t nn = agree_records(dir, names);
+  agree_header();
+  for (int mode = 0; mode < 2; mode++)
+    for (size_t i = 0; i < sizeof abut / sizeof abut[0]; i++)
+      agree_row(dir, names, nn, "arches/oppenheim.cfg", mode, 0.6, abut[i]);
   for (size_t i = 0; i < nn; i++)
     free(names[i]);
 }
@@ -681,6 +724,8 @@ int main(int argc, char **argv)
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "agree"))
       agree(i + 1 < argc ? argv[i + 1] : "records");
+    else if (!strcmp(argv[i], "abutment"))
+      abutment_study(i + 1 < argc ? argv[i + 1] : "records");
   for (int pass = 0; pass < 5; pass++) {
     static const char *const names[] = {"speed", "conv", "dt", "free", "energy"};
     int want = all;

@@ -411,6 +411,11 @@ AQ_TEST(blocks_arch_bad_options)
     aq_check(aq_blocks_set_dt(B, bad_dt[i], &e) == AQ_EVALUE &&
                  !strcmp(e.field, "blocks-dt") && strstr(e.message, "> 0"),
              "dt %g refused: %s", bad_dt[i], e.message);
+  static const double bad_ab[] = {-0.01, NAN, INFINITY};
+  for (size_t i = 0; i < 3; i++)
+    aq_check(aq_blocks_set_abutment(B, bad_ab[i], &e) == AQ_EVALUE &&
+                 !strcmp(e.field, "abutment_m") && strstr(e.message, ">= 0"),
+             "abutment %g refused: %s", bad_ab[i], e.message);
   /* the spread's limit: the voussoirs' diagonals end to end, less the
    * springings' nearest distance; oppenheim's 20 sectors of 9 degrees
    * between radii 4.375 and 5.625 m, springings 2 x 4.375 m apart */
@@ -805,4 +810,60 @@ AQ_TEST(blocks_arch_friction_work_balance)
                c ? "free" : "fixed", w[0], w[1]);
       aq_steps_free(&s);
     }
+}
+
+/* [supports] abutment_m reaches the block model (aq_blocks_for_arch): the
+ * supports' faces run that far beyond both ends of the springing joints
+ * (joints 0 and 20 of oppenheim), and only there: under fixed control
+ * (0e 6i 12e 19i) the -x support carries voussoir 19 and bears with its
+ * joint 19, which keeps its own length.  Without the key, 0: the faces as
+ * drawn, as before the key existed. */
+AQ_TEST(blocks_arch_abutment_field)
+{
+  char dir[512], cfg[700];
+  aq_test_tmpdir(dir, sizeof dir);
+  for (int c = 0; c < 2; c++) {
+    double want = c ? 0.75 : 0;
+    if (!aq_test_edited_copy("arches/oppenheim.cfg", "[dynamics]",
+                             c ? "[contact]\nfriction = 0.6\n[supports]\nabutment_m = 0.75\n"
+                                 "[dynamics]"
+                               : "[contact]\nfriction = 0.6\n[dynamics]",
+                             dir, c ? "a.cfg" : "z.cfg", cfg, sizeof cfg))
+      return;
+    aq_arch *A = aq_test_arch_load(cfg);
+    if (!A)
+      return;
+    aq_check(aq_arch_abutment(A) == want, "abutment_m %g (want %g)", aq_arch_abutment(A), want);
+    aq_error e;
+    aq_error_clear(&e);
+    aq_blocks *B = aq_blocks_for_arch(A, AQ_BLOCKS_DT_DEFAULT_S, &e);
+    for (int free_ctl = 0; B && free_ctl < 2; free_ctl++) {
+      if (free_ctl && !aq_check(aq_blocks_set_control(B, AQ_BLOCKS_FREE, &e) == AQ_OK,
+                                "control free: %s", e.message))
+        break;
+      const aq_bodies *s = aq_blocks_bodies(B);
+      size_t n = s->nvous, faces = 0;
+      for (size_t j = 0; j < s->nj; j++) {
+        const aq_bjoint *J = &s->joint[j];
+        if (J->a < 0) {
+          faces++;
+          double w = J->arch_joint == 0 ? want : 0;
+          aq_check(J->ext_m[0] == w, "%s, joint %zu: the +x support's face %g m beyond (want %g)",
+                   free_ctl ? "free" : "fixed", J->arch_joint, J->ext_m[0], w);
+        }
+        if (J->b < 0) {
+          faces++;
+          double w = J->arch_joint == n ? want : 0;
+          aq_check(J->ext_m[1] == w, "%s, joint %zu: the -x support's face %g m beyond (want %g)",
+                   free_ctl ? "free" : "fixed", J->arch_joint, J->ext_m[1], w);
+        }
+      }
+      aq_check(faces == 2, "two supports' faces (%zu)", faces);
+      aq_check(free_ctl || s->joint[s->nj - 1].arch_joint == 19,
+               "fixed: the -x support bears with joint 19 (%zu)", s->joint[s->nj - 1].arch_joint);
+    }
+    aq_check(B != NULL, "block model: %s", e.message);
+    aq_blocks_free(B);
+    aq_arch_free(A);
+  }
 }

@@ -401,7 +401,16 @@ AQ_TEST(blocks_block_impact_stage_housner)
  * Both slides, +s and -s (mirror images).  Contacts at the block's
  * corners against the support's face line (running on beyond it) would
  * tip it at g b / h both ways, about its corner. */
+static aq_moreau *slid_block_on(block k, double s0, double ext_m, aq_bodies *S);
+
 static aq_moreau *slid_block(block k, double s0, aq_bodies *S)
+{
+  return slid_block_on(k, s0, 0, S);
+}
+
+/* The same on a support whose face runs ext_m beyond both ends of the
+ * joint ([supports] abutment_m). */
+static aq_moreau *slid_block_on(block k, double s0, double ext_m, aq_bodies *S)
 {
   aq_body body = {k.m, k.m * (4 * k.b * k.b + 4 * k.h * k.h) / 12, {0, k.h}, 0, 0};
   aq_vec2 ends[1][2] = {{{-k.b, 0}, {k.b, 0}}};
@@ -410,7 +419,7 @@ static aq_moreau *slid_block(block k, double s0, aq_bodies *S)
   if (!aq_check(aq_bodies_init(S, &body, 1, (const aq_vec2(*)[2])ends, 1, G, &e) == AQ_OK,
                 "bodies: %s", e.message))
     return NULL;
-  aq_bodies_set_support_extent(S, 0);
+  aq_bodies_set_support_extent(S, ext_m);
   aq_moreau *M = aq_moreau_alloc(S, &e);
   if (!aq_check(M != NULL, "stepper: %s", e.message)) {
     aq_bodies_free(S);
@@ -438,33 +447,44 @@ static int push(aq_moreau *M, double ax, double h, double T)
   return 1;
 }
 
+/* The block slid by s on a support whose face runs ext_m beyond the
+ * joint, under a constant ground acceleration of 0.999 (above 0) or 1.001
+ * (above 1) times g ta pushing it to tip towards the slide (dir 0) or away
+ * (dir 1) for 0.3 s: it stands (to 1e-12) or tips.  0 if the model could
+ * not be made. */
+static int stands_or_tips(block k, double s, double ext_m, int dir, int above, double ta)
+{
+  double f = above ? 1.001 : 0.999, sgn = s < 0 ? -1 : 1;
+  /* the body force -m ax points along the tipping side */
+  double ax = -(dir ? -sgn : sgn) * f * G * ta;
+  aq_bodies S;
+  aq_moreau *M = slid_block_on(k, s, ext_m, &S);
+  if (!M)
+    return 0;
+  if (push(M, ax, 1e-3, 0.3)) {
+    const double *q = aq_moreau_q(M);
+    if (above)
+      aq_check(fabs(q[2]) > 1e-6, "slid %+g on %g m, %s: %.3f of its onset tips (%g rad)", s,
+               ext_m, dir ? "away" : "towards", f, q[2]);
+    else
+      aq_check(fabs(q[2]) < 1e-12 && fabs(q[0] - s) < 1e-12,
+               "slid %+g on %g m, %s: %.3f of its onset stands (%g rad, x %g m)", s, ext_m,
+               dir ? "away" : "towards", f, q[2], q[0]);
+  }
+  aq_moreau_free(M);
+  aq_bodies_free(&S);
+  return 1;
+}
+
 AQ_TEST(blocks_block_slid_tips_about_overlap_end)
 {
   block k = {0.3, 0.6, 900};
   double s = 0.1, toward = (k.b - s) / k.h, away = k.b / k.h;
   for (int sgn = -1; sgn <= 1; sgn += 2)
     for (int dir = 0; dir < 2; dir++) /* 0 towards the slide, 1 away */
-      for (int above = 0; above < 2; above++) {
-        double f = above ? 1.001 : 0.999, ta = dir ? away : toward;
-        /* the body force -m ax points along the tipping side */
-        double ax = -(dir ? -sgn : sgn) * f * G * ta;
-        aq_bodies S;
-        aq_moreau *M = slid_block(k, sgn * s, &S);
-        if (!M)
+      for (int above = 0; above < 2; above++)
+        if (!stands_or_tips(k, sgn * s, 0, dir, above, dir ? away : toward))
           return;
-        if (push(M, ax, 1e-3, 0.3)) {
-          const double *q = aq_moreau_q(M);
-          if (above)
-            aq_check(fabs(q[2]) > 1e-6, "slid %+g, %s: %.3f g tan alpha' tips (%g rad)",
-                     sgn * s, dir ? "away" : "towards", f, q[2]);
-          else
-            aq_check(fabs(q[2]) < 1e-12 && fabs(q[0] - sgn * s) < 1e-12,
-                     "slid %+g, %s: %.3f g tan alpha' stands (%g rad, x %g m)", sgn * s,
-                     dir ? "away" : "towards", f, q[2], q[0]);
-        }
-        aq_moreau_free(M);
-        aq_bodies_free(&S);
-      }
   /* the motion about the support's corner */
   double Rp = hypot(k.b - s, k.h), R = hypot(k.b, k.h), ap = atan2(k.b - s, k.h);
   double A = 1.6 * G * toward, want = rock_angle(A, ap, Rp, R * R / 3 + Rp * Rp, 0.4);
@@ -590,4 +610,51 @@ AQ_TEST(blocks_block_slip_parts_in_flight)
   if (ok)
     aq_steps_free(&s);
   aq_blocks_free(B);
+}
+
+/* A block slid beyond the end of its support's joint still bears on a
+ * wider abutment.  The support's face runs e = 0.5 m on beyond both ends of
+ * the joint under the block's base (2b = 0.6 m, 2h = 1.2 m; [supports]
+ * abutment_m).  Slid by |s| = 0.61 m, past the joint's end (with e = 0 its
+ * faces have parted, blocks_block_faces_part), it bears on the overlap
+ * from its own corner to the abutment's, which lies b + e - |s| = 0.19 m
+ * beyond its centroid: it tips towards the slide about the abutment's
+ * corner at g (b + e - |s|) / h (the closed form g (b - |s|) / h of a
+ * support as wide as the base, the slide counted from the abutment's end,
+ * |s| - e), and away from it about its own corner at g b / h.  Slid by
+ * |s| = 0.3 m, within the abutment, it bears on its whole base and tips
+ * at g b / h both ways.  At 0.999 and 1.001 of each onset, for +s and -s:
+ * it stands (to 1e-12) and tips; its faces have not parted. */
+AQ_TEST(blocks_block_wide_abutment)
+{
+  block k = {0.3, 0.6, 900};
+  double ext = 0.5;
+  static const double slides[] = {0.61, 0.3};
+  for (size_t c = 0; c < 2; c++) {
+    double s = slides[c], reach = fmin(k.b, k.b + ext - s);
+    double toward = reach / k.h, away = k.b / k.h;
+    for (int sgn = -1; sgn <= 1; sgn += 2)
+      for (int dir = 0; dir < 2; dir++) /* 0 towards the slide, 1 away */
+        for (int above = 0; above < 2; above++)
+          if (!stands_or_tips(k, sgn * s, ext, dir, above, dir ? away : toward))
+            return;
+    /* it bears: its faces have not parted */
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      aq_bodies S;
+      aq_moreau *M = slid_block_on(k, sgn * s, ext, &S);
+      if (!M)
+        return;
+      aq_events ev;
+      aq_error e;
+      aq_blocks_result res = {0};
+      if (aq_check(aq_events_init(&ev, &S, &e) == AQ_OK, "events")) {
+        aq_events_reset(&ev, M, NULL, 0, 0, &res);
+        aq_check(!aq_events_fallen(&ev, M), "slid %+g on an abutment of %g m: it bears",
+                 sgn * s, ext);
+        aq_events_free(&ev);
+      }
+      aq_moreau_free(M);
+      aq_bodies_free(&S);
+    }
+  }
 }

@@ -126,6 +126,14 @@ AQ_TEST(blocks_cli_refusals)
       {"[dynamics]", "[supports]\nspread_m = -0.1\n[dynamics]", "--friction 10", "spread_m"},
       {"[dynamics]", "[supports]\nspread_m = 50\n[dynamics]", "--friction 10",
        "spread_m: expected 0 <= spread <"},
+      /* [supports] abutment_m: the file, its line (18: after [supports],
+       * which takes the place of [dynamics] at 17) and the field */
+      {"[dynamics]", "[supports]\nabutment_m = -0.1\n[dynamics]", "--friction 10",
+       ".cfg:18: abutment_m: expected a length in [0, 1000] m, got \"-0.1\""},
+      {"[dynamics]", "[supports]\nabutment_m = nan\n[dynamics]", "--friction 10",
+       ".cfg:18: abutment_m: expected a length in [0, 1000] m, got \"nan\""},
+      {"[dynamics]", "[supports]\nabutment_m = wide\n[dynamics]", "--friction 10",
+       ".cfg:18: abutment_m: expected a length in [0, 1000] m, got \"wide\""},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     snprintf(cfg, sizeof cfg, "arches/oppenheim.cfg");

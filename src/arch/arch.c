@@ -32,6 +32,7 @@ struct aq_arch {
   double friction;      /* Coulomb coefficient of every joint; 0: none */
   aq_statics *statics;  /* the statics with friction (friction.c) */
   double e_n, spread_m; /* the block model's restitution and spread of the supports */
+  double abutment_m;    /* the block model's supports' faces beyond the springings */
   char *data[2];        /* a joints arch's joints and faces files as read (or NULL) */
   size_t ndata[2];
   /* aq_arch_drawing's arrays (drawing_make) */
@@ -289,10 +290,14 @@ static aq_status build_core(aq_arch *a, const aq_arch_params *p,
   if (!(p->spread_m >= 0) || !isfinite(p->spread_m))
     return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "spread_m", "expected >= 0 m, got %g",
                         p->spread_m);
+  if (!(p->abutment_m >= 0) || !isfinite(p->abutment_m))
+    return aq_error_set(err, AQ_EVALUE, NULL, -1, -1, "abutment_m",
+                        "expected >= 0 m, got %g", p->abutment_m);
   a->control = p->control;
   a->friction = p->friction;
   a->e_n = p->e_n;
   a->spread_m = p->spread_m;
+  a->abutment_m = p->abutment_m;
   aq_status st = aq_geom_init(&a->geom, p, err);
   if (st != AQ_OK || (st = aq_geom_check_strut(&a->geom, err)) != AQ_OK)
     return st; /* a strut fits: no set of any hinges is a mechanism */
@@ -457,6 +462,7 @@ double aq_arch_joint_friction(const aq_arch *a, int set, double *ratio, size_t *
 }
 double aq_arch_restitution(const aq_arch *a) { return a->e_n; }
 double aq_arch_spread(const aq_arch *a) { return a->spread_m; }
+double aq_arch_abutment(const aq_arch *a) { return a->abutment_m; }
 const aq_hinge_set *aq_arch_hinge_set(const aq_arch *a, int set) { return &a->hs[set ? 1 : 0]; }
 int aq_arch_minimum(const aq_arch *a, aq_hinge_set *hs, double *lambda0)
 {

@@ -155,6 +155,9 @@ double aq_arch_friction(const aq_arch *a);
  * normal restitution (default 0) and the supports' spread, m (default 0). */
 double aq_arch_restitution(const aq_arch *a);
 double aq_arch_spread(const aq_arch *a);
+/* The block model's [supports] abutment_m: how far each support's face runs
+ * beyond both ends of its springing joint, m (default 0). */
+double aq_arch_abutment(const aq_arch *a);
 
 /* 1 if the arch is its own mirror image about the vertical line midway
  * between its springings: joints, voussoirs with their fill and point

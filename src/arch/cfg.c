@@ -519,6 +519,7 @@ static aq_status build_parsed(parse_ctx *c, const char *path, const aq_joints *J
   p.friction_table = src->friction_table;
   p.e_n = c->num[AQ_CFG_EN];
   p.spread_m = c->num[AQ_CFG_SPREAD];
+  p.abutment_m = c->num[AQ_CFG_ABUTMENT];
   aq_point_mass *pm = c->nmass ? malloc(c->nmass * sizeof *pm) : NULL;
   if (c->nmass && !pm)
     return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");

@@ -139,6 +139,13 @@ const aq_cfg_key aq_cfg_keys[AQ_CFG_NKEYS] = {
                        .help = "the block model's supports (--model blocks) move apart by "
                                "this much, quasi-statically, before the record starts; "
                                "less than the voussoirs can reach across"},
+    [AQ_CFG_ABUTMENT] = {"supports", "abutment_m", AQ_CFG_REAL, .what = "a length",
+                         .unit = "m", .lo = 0, .hi = AQ_CFG_LENGTH_MAX_M, .shapes = S_ALL,
+                         .deflt = "0",
+                         .help = "the block model's supports (--model blocks): how far each "
+                                 "support's face runs beyond both ends of the springing "
+                                 "joint it bears (an impost or pier wider than the ring); 0: "
+                                 "the springing joint as drawn"},
     [AQ_CFG_COR] = {"dynamics", "cor", AQ_CFG_REAL, .what = "a kinetic-energy ratio",
                     .unit = "", .lo = 0, .hi = 1, .shapes = S_ALL, .deflt = "0",
                     .help = "kinetic-energy ratio kept at an impact (not a velocity ratio), "

@@ -77,6 +77,7 @@ typedef enum {
   AQ_CFG_FRICTION,
   AQ_CFG_EN,
   AQ_CFG_SPREAD,
+  AQ_CFG_ABUTMENT,
   AQ_CFG_COR,
   AQ_CFG_IMPACT,
   AQ_CFG_G,

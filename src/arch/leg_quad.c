@@ -32,24 +32,22 @@
  * below the tolerance.  The position at the end of a step solves
  * time(psi) = dt by safeguarded Newton on that series.  A turning point
  * (KE = 0 with s > 0) ends a panel exactly; the motion reverses and the
- * step continues, so several events fit in one step.
+ * step continues, so several events fit in one step.  The panels' change of
+ * variable and the Chebyshev series are in quad_series.c.
  */
 #include "leg.h"
+#include "quad_series.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define WP_MAX_NODES 32
-static const double WP_PI = 3.14159265358979323846;
 enum { WP_DEFAULT_NODES = 12 };
 static const double WP_DEFAULT_TOL = 1e-12;  /* Chebyshev tail / mean, per panel */
 static const double WP_PANEL_FRAC = 0.125;   /* longest panel, fraction of s_c */
-static const double WP_NEAR_ZERO = 2.0;      /* a zero of KE within this many L is "near" */
 static const double WP_REACH_MARGIN = 1.3;   /* panel = margin * distance reachable in the step */
 static const double WP_NEAR_MIN_FRAC = 0.1;  /* KE minimum this small vs the ends: split there */
-static const double WP_NEAR_MIN_SPAN = 0.25; /* sinh map when the minimum's width is within this * L */
 static const double WP_NOISE_GAIN = 16;      /* tail floor = this * KE round-off at the nodes */
 static const double WP_STALL_GAIN = 0.125;   /* a halving must cut the tail by 8x */
 static const double WP_MIN_PANEL_FRAC = 1e-13; /* no halving below this fraction of s_c */
@@ -57,16 +55,6 @@ static const double WP_KES_TAIL = 1e-13;     /* dKE/dpsi series tail / KE scale:
 static const double WP_KES_MISMATCH = 1e-9;  /* turning-point mismatch / KE scale: sane */
 static const double WP_TP_MISMATCH_ULPS = 32; /* move a turning point when the mismatch exceeds this many ulps of the KE scale */
 static const size_t QUAD_MAX_PANELS = 2000000; /* per leg; beyond: no progress, an error */
-
-/* cos(pi k (j + 1/2) / n) for the current n (node j is row k = 1). */
-typedef struct {
-  int n;
-  double cs[WP_MAX_NODES][WP_MAX_NODES];
-  /* integral from -1 of the interpolant of nodal values v: at node j,
-   * sum_i iq[j][i] v_i; to +1, sum_i iw[i] v_i (cheb_quad_init) */
-  double iq[WP_MAX_NODES][WP_MAX_NODES];
-  double iw[WP_MAX_NODES];
-} wp_cos;
 
 struct aq_quad {
   double wp_tol;
@@ -139,221 +127,6 @@ static int wp_point(wp_ctx *c, double sigma, wp_pt *o)
   return 0;
 }
 
-/* Distance to a zero of the quadratic model ke + k1 z + k2/2 z^2 (z >= 0)
- * when ke > 0 and k1 < 0; INFINITY when the model has none. */
-static double zero_ahead(double ke, double k1, double k2)
-{
-  if (ke <= 0)
-    return 0;
-  if (!(k1 < 0))
-    return INFINITY;
-  double disc = k1 * k1 - 2 * k2 * ke;
-  if (disc < 0)
-    return INFINITY;
-  return 2 * ke / (-k1 + sqrt(disc));
-}
-
-/* The change of variable of one panel: psi in [-1, 1] -> sigma in [0, L]. */
-typedef struct {
-  int kind; /* 0 linear, 1 zero behind, 2 zero ahead, 3 both, 4/5 near-zero
-              minimum at the start / end (sinh) */
-  double L, za, zb, W, u0, u1;
-} wp_map;
-
-static void map_init(wp_map *mp, double L, double za, double zb)
-{
-  mp->L = L;
-  int near_a = za <= WP_NEAR_ZERO * L, near_b = zb <= WP_NEAR_ZERO * L;
-  mp->za = near_a ? za : 0;
-  mp->zb = near_b ? zb : 0;
-  if (near_a && near_b) {
-    mp->kind = 3;
-    mp->W = za + L + zb;
-    mp->u0 = 2 * asin(fmin(1.0, sqrt(za / mp->W)));
-    mp->u1 = 2 * asin(fmin(1.0, sqrt((za + L) / mp->W)));
-  } else if (near_a) {
-    mp->kind = 1;
-    mp->u0 = sqrt(za);
-    mp->u1 = sqrt(za + L);
-  } else if (near_b) {
-    mp->kind = 2;
-    mp->u0 = sqrt(L + zb);
-    mp->u1 = sqrt(zb);
-  } else {
-    mp->kind = 0;
-    mp->u0 = 0;
-    mp->u1 = L;
-  }
-}
-
-/* A near-zero minimum of KE at or just beyond an end, from the quadratic
- * model there: KE ~ KE_m + k2/2 (sigma - sigma_m)^2.  The substitution
- * sigma - sigma_m = h sinh(w), h = sqrt(2 KE_m / k2), makes KE ~ KE_m
- * cosh^2 w cancel the Jacobian h cosh w: the near-singular integrand of a
- * slow passage over a saddle becomes smooth.  Start side first. */
-static void map_near_min(wp_map *mp, double kea, double k1a, double k2a,
-                         double keb, double k1b, double k2b)
-{
-  double L = mp->L;
-  if (kea > 0 && k2a > 0 && k1a >= 0) {
-    double sm = -k1a / k2a, km = kea - k1a * k1a / (2 * k2a);
-    if (km > 0) {
-      double h = sqrt(2 * km / k2a);
-      if (-sm + h < WP_NEAR_MIN_SPAN * L) {
-        mp->kind = 4;
-        mp->W = h;
-        mp->za = sm; /* centre, relative to the start (<= 0) */
-        mp->u0 = asinh(-sm / h);
-        mp->u1 = asinh((L - sm) / h);
-        return;
-      }
-    }
-  }
-  if (keb > 0 && k2b > 0 && k1b <= 0) {
-    double sm = -k1b / k2b, km = keb - k1b * k1b / (2 * k2b);
-    if (km > 0) {
-      double h = sqrt(2 * km / k2b);
-      if (sm + h < WP_NEAR_MIN_SPAN * L) {
-        mp->kind = 5;
-        mp->W = h;
-        mp->zb = sm; /* centre, beyond the end (>= 0) */
-        mp->u0 = asinh((L + sm) / h);
-        mp->u1 = asinh(sm / h);
-      }
-    }
-  }
-}
-
-/* sigma(psi) and dsigma/dpsi. */
-static double map_sigma(const wp_map *mp, double psi, double *jac)
-{
-  double h = 0.5 * (mp->u1 - mp->u0);
-  double u = mp->u0 + h * (psi + 1);
-  double sg;
-  switch (mp->kind) {
-  case 3: {
-    double sn = sin(0.5 * u);
-    sg = -mp->za + mp->W * sn * sn;
-    *jac = 0.5 * mp->W * sin(u) * h;
-    break;
-  }
-  case 1:
-    sg = u * u - mp->za;
-    *jac = 2 * u * h;
-    break;
-  case 2:
-    sg = mp->L + mp->zb - u * u;
-    *jac = -2 * u * h;
-    break;
-  case 4:
-    sg = mp->za + mp->W * sinh(u);
-    *jac = mp->W * cosh(u) * h;
-    break;
-  case 5:
-    sg = mp->L + mp->zb - mp->W * sinh(u);
-    *jac = -mp->W * cosh(u) * h;
-    break;
-  default:
-    sg = u;
-    *jac = h;
-  }
-  if (sg < 0)
-    sg = 0;
-  if (sg > mp->L)
-    sg = mp->L;
-  return sg;
-}
-
-/* Chebyshev series helpers: f(x) = sum' c_k T_k(x) (c_0 halved). */
-static double cheb_eval(const double *c, int n, double x)
-{
-  double b1 = 0, b2 = 0;
-  for (int k = n - 1; k >= 1; k--) {
-    double b0 = 2 * x * b1 - b2 + c[k];
-    b2 = b1;
-    b1 = b0;
-  }
-  return x * b1 - b2 + 0.5 * c[0];
-}
-
-typedef struct {
-  int n;
-  double c[WP_MAX_NODES + 1];  /* integrand series */
-  double ci[WP_MAX_NODES + 2]; /* antiderivative series, zero at psi = -1 */
-  double total;                /* panel time, s */
-  double tail;                 /* |c_{n-1}| + |c_{n-2}| relative to |c_0| */
-} wp_cheb;
-
-static void cheb_cos_init(wp_cos *t, int n)
-{
-  t->n = n;
-  for (int k = 0; k < n; k++)
-    for (int j = 0; j < n; j++)
-      t->cs[k][j] = cos(WP_PI * k * (j + 0.5) / n);
-}
-
-static void cheb_build(wp_cheb *ch, const wp_cos *t, const double *g, int n)
-{
-  ch->n = n;
-  for (int k = 0; k < n; k++) {
-    double sum = 0;
-    for (int j = 0; j < n; j++)
-      sum += g[j] * t->cs[k][j];
-    ch->c[k] = 2.0 * sum / n;
-  }
-  ch->c[n] = 0;
-  /* antiderivative: C_k = (c_{k-1} - c_{k+1}) / (2k), c_0 taken whole */
-  for (int k = 1; k <= n; k++) {
-    double cm = k == 1 ? ch->c[0] : ch->c[k - 1];
-    double cp = k + 1 <= n ? ch->c[k + 1] : 0;
-    ch->ci[k] = (cm - cp) / (2.0 * k);
-  }
-  ch->ci[0] = 0;
-  double at_m1 = cheb_eval(ch->ci, n + 1, -1.0);
-  ch->ci[0] = -2 * at_m1;
-  ch->total = cheb_eval(ch->ci, n + 1, 1.0);
-  double mean = fabs(ch->c[0]) > 0 ? fabs(ch->c[0]) : 1;
-  ch->tail = (fabs(ch->c[n - 1]) + fabs(ch->c[n - 2])) / mean;
-}
-
-/* The integration weights of cheb_build's antiderivative at the nodes and
- * at +1, column by column (the map from nodal values is linear). */
-static void cheb_quad_init(wp_cos *t)
-{
-  const int n = t->n;
-  double e[WP_MAX_NODES] = {0};
-  wp_cheb ch;
-  for (int i = 0; i < n; i++) {
-    e[i] = 1;
-    cheb_build(&ch, t, e, n);
-    e[i] = 0;
-    for (int j = 0; j < n; j++)
-      t->iq[j][i] = cheb_eval(ch.ci, n + 1, t->cs[1][j]);
-    t->iw[i] = ch.total;
-  }
-}
-
-/* KE along a panel from the integral of dKE/dsigma (see wp_leg). */
-typedef struct {
-  int on;       /* 0: use eq. (19) as it stands */
-  int n;
-  double ke_a;  /* KE at the panel start, J */
-  double mis;   /* KE at a turning-point end by the series (0 by the end's location), J */
-  double L;     /* panel length, rad */
-  double total; /* integral of dKE/dpsi over the panel, J */
-  double fk[WP_MAX_NODES]; /* dKE/dpsi at the nodes, J */
-} wp_kes;
-
-/* KE at psi (sigma = sg) by the series: the start's KE plus the integral
- * of dKE/dpsi, less the mismatch at a turning-point end spread in
- * proportion to sigma (so that KE ~ (L - sigma) stays a smooth product). */
-static double kes_at(const wp_kes *k, const wp_cos *t, double psi, double sg)
-{
-  wp_cheb f;
-  cheb_build(&f, t, k->fk, k->n);
-  return k->ke_a + cheb_eval(f.ci, k->n + 1, psi) - k->mis * (sg / k->L);
-}
-
 typedef struct {
   double L;
   int kind;
@@ -362,30 +135,6 @@ typedef struct {
   wp_cheb ch;
   wp_kes ks;
 } wp_panel;
-
-/* psi in [-1, 1] where the time reaches tau (0 <= tau <= total). */
-static double cheb_solve(const wp_cheb *ch, double tau)
-{
-  double lo = -1, hi = 1;
-  double x = -1 + 2 * tau / ch->total;
-  for (int it = 0; it < 100; it++) {
-    double f = cheb_eval(ch->ci, ch->n + 1, x) - tau;
-    if (f > 0)
-      hi = x;
-    else
-      lo = x;
-    double d = cheb_eval(ch->c, ch->n, x);
-    double xn = d > 0 ? x - f / d : 0.5 * (lo + hi);
-    if (!(xn > lo && xn < hi))
-      xn = 0.5 * (lo + hi);
-    if (fabs(xn - x) <= 4 * DBL_EPSILON)
-      return xn;
-    x = xn;
-    if (hi - lo <= 1e-16)
-      break;
-  }
-  return x;
-}
 
 /* A zero of KE in (lo, hi]: lo.ke > 0 >= hi.ke.  Safeguarded Newton on KE;
  * the result is the turning point with ke set to 0. */
@@ -562,18 +311,18 @@ aq_status aq_quad_leg(aq_quad *st, const aq_path *p, double a,
         ch.total = 0;
         break;
       }
-      double za = c.ke_a <= 0 ? 0 : zero_ahead(c.ke_a, -P0.k1, P0.k2);
-      double zb = kind == 1 ? 0 : zero_ahead(PB.ke, PB.k1, PB.k2);
-      map_init(&mp, L, za, zb);
+      double za = c.ke_a <= 0 ? 0 : aq_quad_zero_ahead(c.ke_a, -P0.k1, P0.k2);
+      double zb = kind == 1 ? 0 : aq_quad_zero_ahead(PB.ke, PB.k1, PB.k2);
+      aq_quad_map_init(&mp, L, za, zb);
       if (mp.kind == 0)
-        map_near_min(&mp, c.ke_a, P0.k1, P0.k2, PB.ke, PB.k1, PB.k2);
+        aq_quad_map_near_min(&mp, c.ke_a, P0.k1, P0.k2, PB.ke, PB.k1, PB.k2);
       int redo = 0;
       double noise = 0; /* largest relative round-off of KE at the nodes */
       double fk[WP_MAX_NODES], kd[WP_MAX_NODES], sgs[WP_MAX_NODES],
           mj[WP_MAX_NODES], jb[WP_MAX_NODES];
       for (int j = 0; j < n; j++) {
         double psi = st->ccos.cs[1][j], jac;
-        double sg = map_sigma(&mp, psi, &jac);
+        double sg = aq_quad_map_sigma(&mp, psi, &jac);
         wp_pt q;
         if (wp_point(&c, sg, &q))
           return wp_fail(err, p, m->s + c.dir * sg);
@@ -663,7 +412,7 @@ aq_status aq_quad_leg(aq_quad *st, const aq_path *p, double a,
         }
         g[j] = sqrt(0.5 * mj[j]) / sqrt(ke) * jb[j];
       }
-      cheb_build(&ch, &st->ccos, g, n);
+      aq_quad_cheb_build(&ch, &st->ccos, g, n);
       /* the tail cannot fall below the round-off of the integrand (half
        * that of KE), amplified by the transform: accept it there */
       if (ch.tail <= fmax(st->wp_tol, WP_NOISE_GAIN * noise) ||
@@ -690,13 +439,13 @@ aq_status aq_quad_leg(aq_quad *st, const aq_path *p, double a,
 
     if (ch.total >= rem) {
       S->substeps++;
-      double psi = cheb_solve(&ch, rem), jac;
-      double sg = map_sigma(&mp, psi, &jac);
+      double psi = aq_quad_cheb_solve(&ch, rem), jac;
+      double sg = aq_quad_map_sigma(&mp, psi, &jac);
       wp_pt E;
       if (wp_point(&c, sg, &E))
         return wp_fail(err, p, m->s + c.dir * sg);
       if (ks.on) {
-        double ke = kes_at(&ks, &st->ccos, psi, sg);
+        double ke = aq_quad_kes_at(&ks, &st->ccos, psi, sg);
         E.ke = ke > 0 ? ke : 0;
       }
       m->s = E.s;
@@ -769,8 +518,8 @@ void aq_quad_set_nodes(aq_quad *w, int n)
 {
   if (n >= 4 && n <= WP_MAX_NODES) {
     w->wp_nodes = n;
-    cheb_cos_init(&w->ccos, n);
-    cheb_quad_init(&w->ccos);
+    aq_quad_cheb_cos_init(&w->ccos, n);
+    aq_quad_cheb_quad_init(&w->ccos);
   }
 }
 

@@ -142,6 +142,7 @@ typedef struct {
   /* the block model: the contacts' normal restitution [0, 1] and the
    * supports' spread (m, >= 0) */
   double e_n, spread_m;
+  double abutment_m; /* the block model's supports' faces beyond the springings, m (>= 0) */
 } aq_arch_params;
 
 /* The parameters of a circular arch (no fill, no point masses). */
@@ -151,7 +152,7 @@ static inline aq_arch_params aq_arch_circular(double radius_m, double thickness_
 {
   aq_arch_params p = {radius_m, thickness_m, embrace_rad, voussoirs, density_kg_m3, depth_m,
                       AQ_SHAPE_CIRCULAR, 0, 0, NULL, NULL, {NULL, NULL}, {NULL, NULL}, 0, 0,
-                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0, 0, 0};
+                      0, NULL, NULL, AQ_CONTROL_FIXED, 0, 0, 0, 0, 0};
   return p;
 }
 

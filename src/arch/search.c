@@ -69,7 +69,8 @@
  * enumerated instead (enumerate(): lambda0_fast for each of the 16 C(n+1,
  * 4), a screen by the program's rows, the 9x9 for the lowest in increasing
  * order), up to ENUM_MAX sets (74 voussoirs).  Beyond that the search gives
- * up in one line naming the lift-off that governs.
+ * up in one line naming the lift-off that governs (the enumeration is in
+ * search_enum.c).
  *
  * The set read from a vertex has its lambda0 computed again by virtual
  * work (lambda0_fast: the same formula and prefix sums for every set) and
@@ -102,8 +103,8 @@
 #include <string.h>
 
 #include "model.h"
+#include "search_impl.h"
 
-#define TIE_REL 1e-12     /* lambda0 within this (relative) of another is a tie */
 #define TIGHT_REL 1e-9    /* a row within this of its bound (in the scaled moments, units of
                              the arch's weight times its size) counts as tight */
 #define OPT_TOL 1e-13     /* a row's slack (scaled moment) this far below 0 is a violation */
@@ -120,8 +121,8 @@ static double cross(aq_vec2 a, aq_vec2 b) { return a.x * b.y - a.y * b.x; }
 /* First-order lambda0 from the hinge points P[k] and the joints; *act (if
  * not NULL): the sign of the ground acceleration that drives the set
  * (path.h act_sign), from the horizontal work rate of gravity's bodies. */
-static int lambda0_fast(const aq_geom *g, const size_t j[4], const aq_vec2 P[4],
-                        int open1, const int open[4], double *lambda0, int *act)
+int aq_search_lambda0_fast(const aq_geom *g, const size_t j[4], const aq_vec2 P[4],
+                           int open1, const int open[4], double *lambda0, int *act)
 {
   aq_vec2 v1 = {P[1].x - P[0].x, P[1].y - P[0].y};
   aq_vec2 v2 = {P[2].x - P[1].x, P[2].y - P[1].y};
@@ -149,7 +150,7 @@ static int lambda0_fast(const aq_geom *g, const size_t j[4], const aq_vec2 P[4],
   if (gx == 0)
     return 0;
   *lambda0 = (double)open1 * gy / fabs(gx);
-  if (act) /* a horizontal body force along -act_sign x does positive work (compressive()) */
+  if (act) /* a horizontal body force along -act_sign x does positive work (aq_search_compressive()) */
     *act = (double)open1 * gx > 0 ? -1 : 1;
   return 1;
 }
@@ -165,7 +166,7 @@ static int set_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0
     P[k] = aq_geom_joint_point(g, hs->joint[k], hs->face[k]);
     open[k] = hs->face[k] == 'i' ? 1 : -1;
   }
-  return lambda0_fast(g, hs->joint, P, open[0], open, lambda0, act);
+  return aq_search_lambda0_fast(g, hs->joint, P, open[0], open, lambda0, act);
 }
 
 int aq_search_lambda0(const aq_geom *g, const aq_hinge_set *hs, double *lambda0)
@@ -182,7 +183,7 @@ int aq_search_act_sign(const aq_geom *g, const aq_hinge_set *hs)
 
 /* Faces as binary digits (e 0, i 1, the first hinge's the highest): the
  * order of ties. */
-static int pattern(const aq_hinge_set *hs)
+int aq_search_pattern(const aq_hinge_set *hs)
 {
   int p = 0;
   for (int k = 0; k < 4; k++)
@@ -192,14 +193,14 @@ static int pattern(const aq_hinge_set *hs)
 
 /* 1 if (la, a) comes before (lb, b): a lower lambda0 by more than a tie,
  * else on a tie the lower face pattern, then the lower joints. */
-static int before(double la, const aq_hinge_set *a, double lb, const aq_hinge_set *b)
+int aq_search_before(double la, const aq_hinge_set *a, double lb, const aq_hinge_set *b)
 {
   if (la < lb - TIE_REL * fabs(lb))
     return 1;
   if (lb < la - TIE_REL * fabs(la))
     return 0;
-  if (pattern(a) != pattern(b))
-    return pattern(a) < pattern(b);
+  if (aq_search_pattern(a) != aq_search_pattern(b))
+    return aq_search_pattern(a) < aq_search_pattern(b);
   for (int k = 0; k < 4; k++)
     if (a->joint[k] != b->joint[k])
       return a->joint[k] < b->joint[k];
@@ -207,7 +208,7 @@ static int before(double la, const aq_hinge_set *a, double lb, const aq_hinge_se
 }
 
 /* 1 if every hinge reaction of hs is compressive at s = 0 by the 9x9. */
-static int compressive(const aq_geom *g, const aq_hinge_set *hs, double g_mps2)
+int aq_search_compressive(const aq_geom *g, const aq_hinge_set *hs, double g_mps2)
 {
   aq_mech m;
   aq_mech_state s0;
@@ -255,26 +256,6 @@ static lp_status lp_solve(const aq_lp4_row *lp, size_t nrows, int relax,
          : s == AQ_LP4_UNBOUNDED ? LP_UNBOUNDED : LP_FAILED;
 }
 
-/* The branch and bound over the programs (see the file's comment). */
-typedef struct {
-  const aq_geom *g;
-  double g_mps2;
-  aq_lp4_row *lp;      /* the program's rows (aq_thrust_rows) */
-  size_t nrows;
-  unsigned char *ex;   /* rows excluded in the current branch */
-  uint64_t ex_key;     /* the excluded rows' key: XOR of row_key(r) over them */
-  uint64_t *seen;      /* keys of the branches solved (open addressing, 0 = empty) */
-  int act;             /* 0: sets of either direction; -1, +1: only sets of that act_sign */
-  int have;            /* best: the lowest admissible set so far */
-  aq_hinge_set hs;
-  double lambda0;
-  int failed;          /* a program failed, or too many */
-  size_t dir_programs; /* programs solved in this direction */
-  size_t max_programs; /* at most (budget()) */
-  int ran_out;         /* this direction used its budget without settling */
-  aq_search_info info;
-} bb;
-
 /* The set of four rows r (joint 2r/2, face e for odd r), if they are on
  * distinct joints and make an admissible set: every hinge opens, and
  * unless relax compressive hinge reactions, or when relax lambda0 <= 0.
@@ -298,7 +279,7 @@ static int admissible(const bb *B, const size_t rows[4], int relax, aq_hinge_set
   int act = 0;
   if (!set_lambda0(B->g, hs, l0, &act) || !isfinite(*l0) || (B->act && act != B->act))
     return 0;
-  return relax ? *l0 <= 0 : compressive(B->g, hs, B->g_mps2);
+  return relax ? *l0 <= 0 : aq_search_compressive(B->g, hs, B->g_mps2);
 }
 
 /* Every four of the tight rows that make an admissible set: the best
@@ -317,7 +298,7 @@ static int from_tight(bb *B, const size_t *tight, size_t nt, size_t nbasic, int 
           if (!admissible(B, r, relax, &hs, &l0))
             continue;
           vertex |= nbasic == 4 && e == 3;
-          if (B->have && !before(l0, &hs, B->lambda0, &B->hs))
+          if (B->have && !aq_search_before(l0, &hs, B->lambda0, &B->hs))
             continue;
           B->have = 1;
           B->hs = hs;
@@ -416,200 +397,13 @@ static lp_status node(bb *B, int relax, int depth)
   return st;
 }
 
-/* ---- the exact enumeration, when the branch and bound runs out ------ */
-
-/* A set as one 32-bit key (n + 1 <= 128 joints): its face pattern (the
- * order of ties, pattern()), then its joints, so that the order of keys is
- * before()'s among sets of equal lambda0. */
-typedef struct {
-  double l0;
-  uint32_t key;
-} cand;
-
-static uint32_t set_key(int pat, const size_t j[4])
-{
-  return (uint32_t)pat << 28 | (uint32_t)j[0] << 21 | (uint32_t)j[1] << 14 |
-         (uint32_t)j[2] << 7 | (uint32_t)j[3];
-}
-
-static void key_set(uint32_t key, aq_hinge_set *hs)
-{
-  for (int k = 0; k < 4; k++) {
-    hs->joint[k] = (key >> (7 * (3 - k))) & 127;
-    hs->face[k] = (key >> (28 + 3 - k)) & 1 ? 'i' : 'e';
-  }
-}
-
-/* 1 if a comes after b: a larger lambda0, or an equal one and a larger key. */
-static int cand_after(const cand *a, const cand *b)
-{
-  return a->l0 > b->l0 || (a->l0 == b->l0 && a->key > b->key);
-}
-
-static int cand_cmp(const void *a, const void *b)
-{
-  return cand_after(a, b) - cand_after(b, a);
-}
-
-/* The sets enumerated: 16 C(n + 1, 4). */
-static double enum_count(size_t n)
-{
-  double m = (double)n + 1;
-  return 16 * m * (m - 1) * (m - 2) * (m - 3) / 24;
-}
-
-/* A cheap screen before the 9x9: 1 unless the line of thrust through the
- * four hinge points r[0..3] (the program's rows made tight, a 4x4 solved
- * by elimination) pulls across a hinge's joint, i.e. leaves the other end
- * of that joint's row violated by more than ENUM_SCREEN (the rows' scaled
- * units).  A singular system passes (the 9x9 decides). */
-#define ENUM_SCREEN 1e-9
-static int screen(const aq_lp4_row *lp, const size_t r[4])
-{
-  double A[4][5];
-  for (int i = 0; i < 4; i++) {
-    for (int k = 0; k < 4; k++)
-      A[i][k] = lp[r[i]].g[k];
-    A[i][4] = lp[r[i]].h;
-  }
-  for (int c = 0; c < 4; c++) {
-    int piv = c;
-    for (int i = c + 1; i < 4; i++)
-      if (fabs(A[i][c]) > fabs(A[piv][c]))
-        piv = i;
-    if (!(fabs(A[piv][c]) > 1e-14))
-      return 1;
-    for (int k = 0; k < 5; k++) {
-      double t = A[c][k];
-      A[c][k] = A[piv][k];
-      A[piv][k] = t;
-    }
-    for (int i = 0; i < 4; i++)
-      if (i != c) {
-        double f = A[i][c] / A[c][c];
-        for (int k = c; k < 5; k++)
-          A[i][k] -= f * A[c][k];
-      }
-  }
-  double x[4];
-  for (int k = 0; k < 4; k++)
-    x[k] = A[k][4] / A[k][k];
-  for (int i = 0; i < 4; i++) {
-    const aq_lp4_row *o = &lp[r[i] ^ 1];
-    double gx = 0;
-    for (int k = 0; k < 4; k++)
-      gx += o->g[k] * x[k];
-    if (o->h - gx < -ENUM_SCREEN)
-      return 0;
-  }
-  return 1;
-}
-
-/* Every set of every face pattern that ground acceleration of sign act
- * drives, by lambda0_fast, in batches of the ENUM_BATCH lowest (above the
- * previous batch, at most B's best) that pass screen(), each batch checked
- * with the 9x9 in increasing order: the lowest admissible set merges into
- * B (before()).  The rows B->lp must be those of the direction act drives
- * (s = -act).  0, or -1 out of memory. */
-#define ENUM_BATCH 256
-static int enumerate(bb *B, int act)
-{
-  const aq_geom *g = B->g;
-  size_t n = g->p.voussoirs;
-  aq_vec2 *pt = malloc(2 * (n + 1) * sizeof *pt);
-  cand *heap = malloc(ENUM_BATCH * sizeof *heap);
-  if (!pt || !heap) {
-    free(pt);
-    free(heap);
-    return -1;
-  }
-  for (size_t j = 0; j <= n; j++) {
-    pt[2 * j] = aq_geom_joint_point(g, j, 'i');
-    pt[2 * j + 1] = aq_geom_joint_point(g, j, 'e');
-  }
-  cand floor = {-HUGE_VAL, 0};
-  int have_floor = 0;
-  B->info.enumerated = 1;
-  for (;;) {
-    size_t nh = 0;
-    double cap = B->have ? B->lambda0 + TIE_REL * fabs(B->lambda0) : HUGE_VAL;
-    for (int pat = 0; pat < 16; pat++) {
-      int open[4];
-      for (int k = 0; k < 4; k++)
-        open[k] = (pat >> (3 - k)) & 1 ? 1 : -1; /* i opens +1 */
-      size_t j[4];
-      for (j[0] = 0; j[0] + 3 <= n; j[0]++)
-        for (j[1] = j[0] + 1; j[1] + 2 <= n; j[1]++)
-          for (j[2] = j[1] + 1; j[2] + 1 <= n; j[2]++)
-            for (j[3] = j[2] + 1; j[3] <= n; j[3]++) {
-              size_t r[4];
-              aq_vec2 P[4];
-              for (int k = 0; k < 4; k++) {
-                r[k] = 2 * j[k] + (open[k] < 0);
-                P[k] = pt[r[k]];
-              }
-              double l0;
-              int a = 0;
-              if (!lambda0_fast(g, j, P, open[0], open, &l0, &a) || a != act ||
-                  !isfinite(l0) || l0 > cap)
-                continue;
-              cand c = {l0, set_key(pat, j)};
-              if ((have_floor && !cand_after(&c, &floor)) ||
-                  (nh == ENUM_BATCH && !cand_after(&heap[0], &c)) || !screen(B->lp, r))
-                continue;
-              size_t i = nh;
-              if (nh < ENUM_BATCH) { /* push, sift up */
-                nh++;
-                for (; i > 0 && cand_after(&c, &heap[(i - 1) / 2]); i = (i - 1) / 2)
-                  heap[i] = heap[(i - 1) / 2];
-              } else { /* replace the largest, sift down */
-                i = 0;
-                for (;;) {
-                  size_t ch = 2 * i + 1;
-                  if (ch >= nh)
-                    break;
-                  if (ch + 1 < nh && cand_after(&heap[ch + 1], &heap[ch]))
-                    ch++;
-                  if (!cand_after(&heap[ch], &c))
-                    break;
-                  heap[i] = heap[ch];
-                  i = ch;
-                }
-              }
-              heap[i] = c;
-            }
-    }
-    if (nh == 0)
-      break;
-    qsort(heap, nh, sizeof *heap, cand_cmp);
-    for (size_t i = 0; i < nh; i++) {
-      aq_hinge_set hs;
-      key_set(heap[i].key, &hs);
-      if (B->have && !before(heap[i].l0, &hs, B->lambda0, &B->hs))
-        continue;
-      if (!compressive(g, &hs, B->g_mps2))
-        continue;
-      B->have = 1;
-      B->hs = hs;
-      B->lambda0 = heap[i].l0;
-    }
-    if (nh < ENUM_BATCH || (B->have && heap[nh - 1].l0 > B->lambda0 + TIE_REL * fabs(B->lambda0)))
-      break; /* every candidate was in this batch, or the rest are above the minimum */
-    floor = heap[nh - 1];
-    have_floor = 1;
-  }
-  free(pt);
-  free(heap);
-  return 0;
-}
-
 /* The programs a direction's branch and bound may solve: about the time
  * the enumeration would take (so that an arch the branch and bound does not
  * settle costs at most twice the enumeration), within [MIN_PROGRAMS,
  * MAX_PROGRAMS]; MAX_PROGRAMS when the enumeration is out of reach. */
 static size_t budget(size_t n)
 {
-  double e = enum_count(n);
+  double e = aq_search_enum_count(n);
   if (e > ENUM_MAX)
     return MAX_PROGRAMS;
   double p = e / SETS_PER_PROGRAM;
@@ -649,10 +443,10 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
     B.max_programs = budget(n);
     infeasible += node(&B, 0, 0) == LP_INFEASIBLE;
     if (B.ran_out) {
-      if (enum_count(n) > ENUM_MAX)
+      if (aq_search_enum_count(n) > ENUM_MAX)
         break; /* B.failed: no set settled */
       B.failed = 0; /* the enumeration settles this direction exactly */
-      if (enumerate(&B, -s) != 0) {
+      if (aq_search_enumerate(&B, -s) != 0) {
         free(B.lp);
         free(B.ex);
         free(B.seen);
@@ -681,7 +475,7 @@ static aq_status search(const aq_geom *g, double g_mps2, int act, aq_hinge_set *
                         "more than the %.4g enumerated at most (74 voussoirs); a mechanism "
                         "with joint %zu lifting off has lambda = %.6g, below every four-hinge "
                         "set: the four-hinge models do not describe it",
-                        MAX_PROGRAMS, enum_count(n), n, ENUM_MAX, B.info.liftoff_joint,
+                        MAX_PROGRAMS, aq_search_enum_count(n), n, ENUM_MAX, B.info.liftoff_joint,
                         B.info.liftoff_lambda);
   if (B.failed && !B.ran_out) /* a program without its optimum: no set is settled */
     return aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, "hinges",

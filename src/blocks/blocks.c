@@ -166,7 +166,8 @@ aq_blocks *aq_blocks_for_arch(const aq_arch *arch, double dt_s, aq_error *err)
       aq_blocks_set_dt(b, dt_s, err) != AQ_OK ||
       (aq_arch_control(arch) == AQ_CONTROL_FIXED &&
        aq_blocks_set_control(b, AQ_BLOCKS_FIXED, err) != AQ_OK) ||
-      aq_blocks_set_spread(b, aq_arch_spread(arch), err) != AQ_OK) {
+      aq_blocks_set_spread(b, aq_arch_spread(arch), err) != AQ_OK ||
+      aq_blocks_set_abutment(b, aq_arch_abutment(arch), err) != AQ_OK) {
     aq_blocks_free(b);
     return NULL;
   }

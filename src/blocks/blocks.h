@@ -90,7 +90,7 @@ void aq_blocks_result_free(aq_blocks_result *r);
 aq_blocks *aq_blocks_alloc(const aq_arch *arch, aq_error *err);
 /* The block model as the arch asks for it: its friction (required:
  * AQ_EVALUE, field "friction", without one), [contact] e_n, [supports]
- * spread_m, its hinge control (fixed: the arch's sets' joints free, every
+ * spread_m and abutment_m, its hinge control (fixed: the arch's sets' joints free, every
  * other bonded), the step dt_s.  Errors name the field (not the file). */
 aq_blocks *aq_blocks_for_arch(const aq_arch *arch, double dt_s, aq_error *err);
 void aq_blocks_free(aq_blocks *b);

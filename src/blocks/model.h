@@ -242,7 +242,7 @@ typedef struct {
   aq_step_path path;
   int iters;          /* chain solves */
   int pivots;         /* Siconos's pivots or sweeps */
-  int loose;          /* 1: Siconos's best answer met only LOOSE_REL (moreau.c) */
+  int loose;          /* 1: Siconos's best answer met only LOOSE_REL (moreau_solve.c) */
   int impact;         /* 1: a contact closed with an approach velocity */
   int stage;          /* the global law's impact stages taken (a sequence) */
   double friction_j;  /* the work of friction in the step (<= 0): at the

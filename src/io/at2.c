@@ -11,7 +11,8 @@
  * commas), E-format possibly without a leading zero (-.6403182E-02) and
  * possibly glued to a following negative value or to an "End Data" marker.
  * NPTS is authoritative: reading stops after NPTS values.  Line ends may be
- * LF, CRLF or CR.
+ * LF, CRLF or CR.  The header (units, the NPTS/DT line, the sniff) is read
+ * in at2_header.c.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -26,21 +27,14 @@
 #include "number.h"
 #include "reader.h"
 #include "units.h"
+#include "at2_impl.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
 #endif
 
-#define AT2_MAX_HEADER_LINES 64 /* the NPTS line is looked for in lines 1..64 */
-#define AT2_TEXT_LINES 8        /* text lines before it kept for units, event */
 #define AT2_CHANNEL_MAX 6       /* a component name is short ("180", "UP", "HN1") */
 #define AT2_TOKEN_MAX 64       /* longest number token accepted, characters */
-
-typedef struct {
-  const char *s;
-  size_t n, pos;
-  long line; /* 1-based line of pos */
-} at2_cur;
 
 /* Advance past one line end (LF, CRLF, CR, CR CR LF) at c->pos, if any. */
 static int skip_eol(at2_cur *c)
@@ -55,7 +49,7 @@ static int skip_eol(at2_cur *c)
 }
 
 /* The current line [*b, *e) and move to the next. */
-static void next_line(at2_cur *c, size_t *b, size_t *e)
+void aq_at2_next_line(at2_cur *c, size_t *b, size_t *e)
 {
   *b = c->pos;
   c->pos = aq_text_line_end(c->s, c->pos, c->n);
@@ -63,7 +57,7 @@ static void next_line(at2_cur *c, size_t *b, size_t *e)
   skip_eol(c);
 }
 
-static const char *find_ci(const char *s, size_t n, const char *needle)
+const char *aq_at2_find_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
   char c0 = (char)(needle[0] | 0x20); /* lower case of a letter (or itself) */
@@ -74,14 +68,14 @@ static const char *find_ci(const char *s, size_t n, const char *needle)
 }
 
 /* 1 if s[0..n) starts with needle, case-insensitive. */
-static int starts_ci(const char *s, size_t n, const char *needle)
+int aq_at2_starts_ci(const char *s, size_t n, const char *needle)
 {
   size_t m = strlen(needle);
   return n >= m && strncasecmp(s, needle, m) == 0;
 }
 
 /* Copy s[0..n) into out (NUL-terminated, truncated to cap-1), for messages. */
-static void quote(const char *s, size_t n, char *out, size_t cap)
+void aq_at2_quote(const char *s, size_t n, char *out, size_t cap)
 {
   size_t k = 0;
   for (size_t i = 0; i < n && k + 1 < cap; i++)
@@ -89,11 +83,11 @@ static void quote(const char *s, size_t n, char *out, size_t cap)
   out[k] = '\0';
 }
 
-static int is_digit(char c) { return c >= '0' && c <= '9'; }
+int aq_at2_is_digit(char c) { return c >= '0' && c <= '9'; }
 
-static int is_numchar(char c)
+int aq_at2_is_numchar(char c)
 {
-  return is_digit(c) || c == '.' || c == '+' || c == '-' || c == 'e' || c == 'E';
+  return aq_at2_is_digit(c) || c == '.' || c == '+' || c == '-' || c == 'e' || c == 'E';
 }
 
 /* Fixed-width fields may touch: after a value with an exponent, a point
@@ -220,270 +214,6 @@ static size_t plain_values(at2_cur *c, double *acc, size_t k, size_t npts)
   return k;
 }
 
-/* "UNITS OF X" in the text lines: X as acceleration units.  Returns 1 with
- * *u set, 0 if no units are stated, -1 (word in *what) if X is not
- * acceleration. */
-static int header_units(const char *s, size_t n, aq_units *u, char *what, size_t cap)
-{
-  const char *p = find_ci(s, n, "UNITS OF");
-  if (!p)
-    return 0;
-  p += 8;
-  const char *end = s + n;
-  while (p < end && *p == ' ')
-    p++;
-  size_t k = 0;
-  char word[32];
-  while (p + k < end && k + 1 < sizeof word && p[k] != ' ' && p[k] != ',' &&
-         p[k] != '\t')
-    word[k] = p[k], k++;
-  while (k > 0 && (word[k - 1] == '.' || word[k - 1] == ';'))
-    k--;
-  word[k] = '\0';
-  snprintf(what, cap, "%s", word);
-  if (aq_units_parse(word, u) && *u != AQ_UNITS_COUNTS)
-    return 1;
-  return -1;
-}
-
-/* ---- the NPTS/DT line ------------------------------------------------- */
-
-static int is_alpha(char ch) { return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z'); }
-
-/* Keyword kw as a word (no letter on either side) in s[0..n), case-
- * insensitive: its offset, or -1. */
-static long find_word(const char *s, size_t n, const char *kw)
-{
-  size_t m = strlen(kw);
-  if (m > n)
-    return -1;
-  char k0 = kw[0], k0l = (char)(k0 | 0x20); /* kw's first letter, upper and lower */
-  size_t last = n - m;                        /* the last place kw can start */
-  /* candidates: the next k0 and the next k0l (memchr: most lines have neither) */
-  const char *u = memchr(s, k0, last + 1), *l = memchr(s, k0l, last + 1);
-  while (u || l) {
-    const char *c = !l || (u && u < l) ? u : l;
-    size_t i = (size_t)(c - s);
-    if (strncasecmp(s + i, kw, m) == 0 && (i == 0 || !is_alpha(s[i - 1])) &&
-        (i + m == n || !is_alpha(s[i + m])))
-      return (long)i;
-    if (c == u)
-      u = i < last ? memchr(s + i + 1, k0, last - i) : NULL;
-    else
-      l = i < last ? memchr(s + i + 1, k0l, last - i) : NULL;
-  }
-  return -1;
-}
-
-/* A number token starting at s[i] and ending at a separator (blank, comma,
- * ';', end of line): 1 with *x and *end, else 0. */
-static int num_at(const char *s, size_t n, size_t i, double *x, size_t *end)
-{
-  if (i >= n)
-    return 0;
-  size_t used = aq_decimal_parse(s + i, n - i, x);
-  if (!used)
-    return 0;
-  size_t e = i + used;
-  if (e < n && !(s[e] == ' ' || s[e] == '\t' || s[e] == ',' || s[e] == ';'))
-    return 0;
-  *end = e;
-  return 1;
-}
-
-/* The number just after keyword end ke (blanks, '=' or ':' between). */
-static int num_after(const char *s, size_t n, size_t ke, double *x, size_t *end)
-{
-  size_t i = ke;
-  while (i < n && (s[i] == ' ' || s[i] == '\t' || s[i] == '=' || s[i] == ':'))
-    i++;
-  return num_at(s, n, i, x, end);
-}
-
-/* The number token ending just before offset kb (blanks and commas between). */
-static int num_before(const char *s, size_t kb, double *x, size_t *start)
-{
-  size_t e = kb;
-  while (e > 0 && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == ','))
-    e--;
-  size_t b = e;
-  while (b > 0 && is_numchar(s[b - 1]))
-    b--;
-  size_t end;
-  if (b == e || !num_at(s, e, b, x, &end) || end != e)
-    return 0;
-  *start = b;
-  return 1;
-}
-
-/* Parse an NPTS/DT line s[0..n): NPTS and DT as words in either order, each
- * with its number after it ("NPTS= 4000, DT= .01 SEC", "dt: 0.01 npts 4000")
- * or before it ("4000 NPTS, .01 DT"), or the pair "NPTS, DT" after or before
- * two numbers ("4000 0.0100 NPTS, DT").  Returns 1 (*npts, *dt, *tail the
- * offset after the last thing used), 0 if the line has no NPTS word, -1 if
- * NPTS lacks its number, -2 if DT or its number is missing. */
-static int npts_line(const char *s, size_t n, double *npts, double *dt, size_t *tail)
-{
-  long kn = find_word(s, n, "NPTS");
-  if (kn < 0)
-    return 0;
-  long kd = find_word(s, n, "DT");
-  if (kd < 0)
-    return -2;
-  size_t k1 = (size_t)(kn < kd ? kn : kd), k2 = (size_t)(kn < kd ? kd : kn);
-  size_t e1 = k1 + (kn < kd ? 4 : 2), e2 = k2 + (kn < kd ? 2 : 4);
-  double v[2];
-  size_t end = 0;
-  int ok = 0;
-  /* adjacent keywords ("NPTS, DT"): the pair of numbers after or before */
-  size_t i = e1;
-  while (i < k2 && (s[i] == ' ' || s[i] == '\t' || s[i] == ',' || s[i] == '/' ||
-                    s[i] == '&'))
-    i++;
-  if (i == k2) {
-    size_t e, j;
-    if (num_after(s, n, e2, &v[0], &e)) {
-      j = e;
-      while (j < n && (s[j] == ' ' || s[j] == '\t' || s[j] == ','))
-        j++;
-      ok = num_at(s, n, j, &v[1], &end);
-    }
-    size_t b1, b0;
-    if (!ok && num_before(s, k1, &v[1], &b1) && num_before(s, b1, &v[0], &b0)) {
-      ok = 1;
-      end = e2;
-    }
-  } else {
-    size_t e, b;
-    int g1 = num_after(s, k2, e1, &v[0], &e) || num_before(s, k1, &v[0], &b);
-    int g2 = num_after(s, n, e2, &v[1], &end);
-    if (!g2 && num_before(s, k2, &v[1], &b)) {
-      g2 = 1;
-      end = e2;
-    }
-    ok = g1 && g2;
-    if (!ok) /* which keyword lacks its number */
-      return (kn < kd ? !g1 : !g2) ? -1 : -2;
-  }
-  if (!ok)
-    return -1;
-  *npts = kn < kd ? v[0] : v[1];
-  *dt = kn < kd ? v[1] : v[0];
-  *tail = end;
-  return 1;
-}
-
-/* A line that starts like values: its first non-blank character is a
- * digit, a point or a sign, and it has a digit. */
-static int data_line(const char *s, size_t n)
-{
-  size_t i = 0;
-  while (i < n && (s[i] == ' ' || s[i] == '\t'))
-    i++;
-  if (i >= n || !(is_digit(s[i]) || s[i] == '.' || s[i] == '-' || s[i] == '+'))
-    return 0;
-  for (; i < n; i++)
-    if (is_digit(s[i]))
-      return 1;
-  return 0;
-}
-
-/* Find the header: the last line with an NPTS/DT pair that is followed
- * (after blank lines) by a line of values, among the first
- * AT2_MAX_HEADER_LINES (up to an end marker).  Lines before it are free text
- * (they may quote other numbers, even other NPTS lines).  On success fills *h (pos after the NPTS line)
- * and returns 1; returns 0 if none, with *bad_line the last line that had an
- * NPTS word but not its numbers (or -1). */
-typedef struct {
-  size_t line_b, line_e; /* the NPTS line */
-  long line;             /* its number */
-  size_t data_pos;       /* start of the values */
-  long data_line;        /* their first line */
-  double npts, dt;
-  size_t tail;           /* offset in the NPTS line after DT */
-  size_t text_b[AT2_TEXT_LINES], text_e[AT2_TEXT_LINES];
-  int ntext;             /* non-blank text lines before it (at most AT2_TEXT_LINES) */
-} at2_header;
-
-static int find_header(const char *s, size_t n, at2_header *h, long *bad_line,
-                       size_t *bad_b, size_t *bad_e, int *bad_kind)
-{
-  at2_cur c = {s, n, 0, 1};
-  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0)
-    c.pos = 3;
-  *bad_line = -1;
-  h->ntext = 0;
-  int found = 0, ntext = 0;
-  for (int k = 0; k < AT2_MAX_HEADER_LINES && c.pos < c.n; k++) {
-    long ln = c.line;
-    size_t b, e;
-    next_line(&c, &b, &e);
-    double np = 0, dt = 0;
-    size_t tail = 0;
-    size_t fb = b;
-    while (fb < e && (s[fb] == ' ' || s[fb] == '\t'))
-      fb++;
-    /* a commented line ('#', '%', '!') of another format is never the header */
-    int r = fb < e && (s[fb] == '#' || s[fb] == '%' || s[fb] == '!')
-                ? 0
-                : npts_line(s + b, e - b, &np, &dt, &tail);
-    if (r != 0) {
-      at2_cur d = c; /* the next non-blank line */
-      size_t db = d.pos, de = d.pos;
-      long dl = d.line;
-      while (d.pos < d.n) {
-        dl = d.line;
-        next_line(&d, &db, &de);
-        size_t i = db;
-        while (i < de && (s[i] == ' ' || s[i] == '\t'))
-          i++;
-        if (i < de)
-          break;
-      }
-      if (data_line(s + db, de - db)) {
-        /* the last such line is the header (earlier ones are quoted) */
-        found = r > 0;
-        if (r > 0) {
-          h->line_b = b, h->line_e = e, h->line = ln;
-          h->data_pos = db, h->data_line = dl;
-          h->npts = np, h->dt = dt, h->tail = tail;
-          h->ntext = ntext;
-          *bad_line = -1;
-        } else { /* the header by its place, but malformed */
-          *bad_line = ln, *bad_b = b, *bad_e = e, *bad_kind = r;
-        }
-      }
-    } else if ((found || *bad_line > 0) && fb < e &&
-               (s[fb] == '*' || ((s[fb] | 0x20) == 'e' && (starts_ci(s + fb, e - fb, "end data") ||
-                                                            starts_ci(s + fb, e - fb, "end of data"))))) {
-      break; /* an end marker: the data is over */
-    }
-    if (fb < e && ntext < AT2_TEXT_LINES) {
-      h->text_b[ntext] = b, h->text_e[ntext] = e;
-      ntext++;
-    }
-  }
-  return found;
-}
-
-int aq_at2_sniff(const unsigned char *buf, size_t n, size_t *text_lines_b,
-                 size_t *text_lines_e, int *ntext, int max_text)
-{
-  at2_header h;
-  long bl;
-  size_t bb, be;
-  int bk;
-  if (!find_header((const char *)buf, n, &h, &bl, &bb, &be, &bk)) {
-    *ntext = 0;
-    return bl > 0; /* a malformed header is still AT2: the parser says why */
-  }
-  int m = h.ntext < max_text ? h.ntext : max_text;
-  for (int i = 0; i < m; i++)
-    text_lines_b[i] = h.text_b[i], text_lines_e[i] = h.text_e[i];
-  *ntext = m;
-  return 1;
-}
-
 /* Copy s[b..e) trimmed of blanks into out. */
 static void trimmed(const char *s, size_t b, size_t e, char *out, size_t cap)
 {
@@ -491,7 +221,7 @@ static void trimmed(const char *s, size_t b, size_t e, char *out, size_t cap)
     b++;
   while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == ','))
     e--;
-  quote(s + b, e - b, out, cap);
+  aq_at2_quote(s + b, e - b, out, cap);
 }
 
 aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
@@ -505,9 +235,9 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   size_t bad_b = 0, bad_e = 0;
   int bad_kind = -1;
   char got[80];
-  if (!find_header(s, n, &h, &bad_line, &bad_b, &bad_e, &bad_kind)) {
+  if (!aq_at2_find_header(s, n, &h, &bad_line, &bad_b, &bad_e, &bad_kind)) {
     if (bad_line > 0) {
-      quote(s + bad_b, bad_e - bad_b, got, sizeof got);
+      aq_at2_quote(s + bad_b, bad_e - bad_b, got, sizeof got);
       if (bad_kind == -2)
         return aq_error_set(err, AQ_EFORMAT, name, bad_line, -1, "DT",
                             "expected DT= the sample interval in s, got \"%s\"", got);
@@ -522,7 +252,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
                         AT2_MAX_HEADER_LINES);
   }
   long npts_line = h.line;
-  quote(s + h.line_b, h.line_e - h.line_b, got, sizeof got);
+  aq_at2_quote(s + h.line_b, h.line_e - h.line_b, got, sizeof got);
   double npts_d = h.npts, dt = h.dt;
   if (!(npts_d >= 1) || npts_d != floor(npts_d) || npts_d > 1e12)
     return aq_error_set(err, AQ_EFORMAT, name, npts_line, -1, "NPTS",
@@ -540,7 +270,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   for (int k = 0; k < h.ntext; k++) {
     aq_units hu;
     char uword[32] = "";
-    int r = header_units(s + h.text_b[k], h.text_e[k] - h.text_b[k], &hu, uword,
+    int r = aq_at2_header_units(s + h.text_b[k], h.text_e[k] - h.text_b[k], &hu, uword,
                          sizeof uword);
     if (r == 1) {
       snprintf(ustated, sizeof ustated, "%s", aq_units_name(hu));
@@ -612,7 +342,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     }
     if (bad) { /* the message's parts, only on the error path */
       snprintf(field, sizeof field, "value %zu", k + 1);
-      quote(t, tl < AT2_TOKEN_MAX ? tl : AT2_TOKEN_MAX, tokq, sizeof tokq);
+      aq_at2_quote(t, tl < AT2_TOKEN_MAX ? tl : AT2_TOKEN_MAX, tokq, sizeof tokq);
     }
     if (!used) {
       free(acc);
@@ -720,7 +450,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
     last_field = cb != 0;
   }
   for (int k = 0; k < h.ntext && !cb; k++) {
-    const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "Component:");
+    const char *f = aq_at2_find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "Component:");
     if (f)
       cb = (size_t)(f - s) + 10, le = h.text_e[k];
   }
@@ -754,7 +484,7 @@ aq_status aq_at2_parse(const unsigned char *buf, size_t n, const char *name,
   char tailtxt[120];
   trimmed(s, tb, te, tailtxt, sizeof tailtxt);
   for (int k = 0; k < h.ntext && !raw->processing[0]; k++) {
-    const char *f = find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "FILTER");
+    const char *f = aq_at2_find_ci(s + h.text_b[k], h.text_e[k] - h.text_b[k], "FILTER");
     if (f)
       trimmed(s, (size_t)(f - s), h.text_e[k], raw->processing, sizeof raw->processing);
   }

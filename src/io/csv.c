@@ -28,6 +28,10 @@
  * UTC+9) and CWB's "#StartTime(GMT+08): 2018/02/06-23:50:29.000" (the zone
  * stated) are the time of the first row, reported in UTC (begin_s 0); a
  * time that does not parse is reported as unknown ("").
+ *
+ * The data rows and the time column's steps are read in csv_rows.c, the
+ * words (units, quantities, times, keys, channel names) in csv_names.c;
+ * csv_impl.h is what the three share.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -37,6 +41,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "csv_impl.h"
 #include "fixed.h"
 #include "number.h"
 #include "reader.h"
@@ -49,15 +54,6 @@
 /* The step from a time column, (t_last - t_0) / (n - 1), is rounded to this
  * many significant digits (removes binary noise: 31.18 / 1559 -> 0.02). */
 #define CSV_DT_SIG_DIGITS 9
-#define CSV_FIELD_MAX 128 /* characters kept of one field */
-#define CSV_NAME_MAX 64   /* characters kept of a column name */
-#define CSV_COLS_MAX 64   /* columns a file may have */
-
-typedef struct {
-  const char *s;
-  size_t n, pos;
-  long line; /* line number of the line last returned */
-} csv_cur;
 
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
 /* Next line [*b, *e) (without its end), or 0 at the end of the input. */
@@ -70,22 +66,22 @@ static int next_line(csv_cur *c, size_t *b, size_t *e)
 }
 
 /* isspace() of the C locale, without the library call. */
-static int is_space(char c)
+int aq_csv_is_space(char c)
 {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
 
 /* Strip a '#' comment and surrounding blanks. */
-static void trim_line(const char *s, size_t *b, size_t *e)
+void aq_csv_trim_line(const char *s, size_t *b, size_t *e)
 {
   for (size_t i = *b; i < *e; i++)
     if (s[i] == '#') {
       *e = i;
       break;
     }
-  while (*b < *e && is_space(s[*b]))
+  while (*b < *e && aq_csv_is_space(s[*b]))
     (*b)++;
-  while (*e > *b && is_space(s[*e - 1]))
+  while (*e > *b && aq_csv_is_space(s[*e - 1]))
     (*e)--;
 }
 
@@ -127,9 +123,9 @@ static size_t split(const char *s, size_t b, size_t e, char sep, span *f, size_t
       if (i < e)
         i++;
     }
-    while (fb < fe && is_space(s[fb]))
+    while (fb < fe && aq_csv_is_space(s[fb]))
       fb++;
-    while (fe > fb && is_space(s[fe - 1]))
+    while (fe > fb && aq_csv_is_space(s[fe - 1]))
       fe--;
     if (fe - fb >= 2 && s[fb] == '"' && s[fe - 1] == '"')
       fb++, fe--;
@@ -190,414 +186,6 @@ static void copy_field(const char *s, span f, char *out, size_t cap)
   out[k] = '\0';
 }
 
-/* The rows' arrays: each channel's values (in raw) and the times (when
- * there is a time column), cap rows each. */
-typedef struct {
-  aq_raw_file *raw;
-  double *tt;
-  size_t cap;
-} csv_rows;
-
-static int rows_grow(csv_rows *r, size_t cap, int with_time)
-{
-  for (size_t j = 0; j < r->raw->nchan; j++) {
-    double *v = realloc(r->raw->chan[j].values, cap * sizeof *v);
-    if (!v)
-      return 0;
-    r->raw->chan[j].values = v;
-  }
-  if (with_time) {
-    double *t = realloc(r->tt, cap * sizeof *t);
-    if (!t)
-      return 0;
-    r->tt = t;
-  }
-  r->cap = cap;
-  return 1;
-}
-
-static void rows_free_time(csv_rows *r)
-{
-  free(r->tt);
-  r->tt = NULL;
-}
-
-/* The line of row idx (0-based), the rows counted as the reading counts
- * them: the lines that are not blank once a '#' comment is cut, from the
- * first row's line (line0, starting at pos) on; -1 if there are fewer.
- * Only for messages: the rows' lines are not kept while reading. */
-static long row_line(const char *s, size_t n, size_t pos, long line0, size_t idx)
-{
-  long line = line0 - 1;
-  size_t b, e, row = 0;
-  while (aq_text_line(s, n, &pos, &b, &e)) {
-    line++;
-    trim_line(s, &b, &e);
-    if (b < e && row++ == idx)
-      return line;
-  }
-  return -1;
-}
-
-/* What a plain row is: ncols numbers separated by sep (' ': runs of blanks
- * and tabs), column tcol the time (or -1), chof[i] the channel of column i
- * (or -1). */
-typedef struct {
-  size_t ncols;
-  char sep;
-  long tcol;
-  const int *chof;
-  aq_number_shape *shape; /* each column's (number.h) */
-} plain_row;
-
-/* The bytes a shaped read needs from a field's start: a sign and the 16 the
- * shape's load reads (which hold the byte after the number, len <= 15). */
-#define CSV_SHAPED_ROOM (1 + AQ_NUMBER_SHAPE_WINDOW)
-
-/* The rows from *pp on that are numbers and separators only: ncols (a
- * constant where inlined) finite plain decimals separated by sep (not ' '),
- * nothing around them, then LF, CRLF, CR (or CRs then LF) or the end of the
- * input, each number read as plain_rows reads it (by its column's shape
- * when it fits, else the general reading, which learns the shape); into
- * the arrays from row k on.  Stops at the first row that is not so
- * (plain_rows reads it the general way) or at cap; returns the new k, with
- * *pp after the last row taken.  A row that stops part way may have
- * written values to row k: the row that fills k later overwrites them. */
-static inline size_t bare_rows(const char **pp, const char *end, size_t ncols, char sep,
-                               aq_number_shape *shape, double *const *dst, size_t k,
-                               size_t cap)
-{
-  const char *p = *pp;
-  while (k < cap) {
-    const char *q = p;
-    size_t i = 0;
-    for (; i < ncols; i++) {
-      aq_number_shape *sh = &shape[i];
-      double x;
-#if AQ_NUMBER_SHAPES
-      size_t off = q < end && (*q == '-' || *q == '+');
-      if (end - q >= CSV_SHAPED_ROOM && sh->len && aq_number_shape_read_(sh, q, off, &x)) {
-        q += off + sh->len;
-        if (sh->misses) /* as aq_number_parse_shaped does */
-          sh->misses = 0;
-      } else
-#endif
-      {
-        size_t used = aq_number_parse_unshaped_(sh, q, (size_t)(end - q), 0, &x);
-        if (!used)
-          break;
-        q += used;
-      }
-      if (i + 1 < ncols) {
-        if (q >= end || *q != sep)
-          break;
-        q++;
-      } else if (q < end && (*q == '\n' || *q == '\r')) {
-        q = aq_text_past_eol(q, end);
-      } else if (q < end) {
-        break;
-      }
-      if (dst[i])
-        dst[i][k] = x;
-    }
-    if (i < ncols)
-      break;
-    k++;
-    p = q;
-    if (p >= end)
-      break;
-  }
-  *pp = p;
-  return k;
-}
-
-/* The rows from c->pos on that are plain: ncols finite plain decimals, with
- * blanks (and tabs, unless sep is the tab) around them, separated by sep,
- * and a line end (LF, CRLF, CR, CR CR LF, or the end of the input) after
- * the last; into the arrays from row k on, bare rows (bare_rows) first.
- * Returns the new k, with c after the last row taken; any other line
- * (blank, a comment, quotes, a bad or missing field) is left to the
- * general reading, which reads it exactly as before. */
-static size_t plain_rows(csv_cur *c, const plain_row *pr, csv_rows *rows, size_t k)
-{
-  const char *s = c->s, *end = s + c->n;
-  const char *p = s + c->pos;
-  double *dst[CSV_COLS_MAX]; /* where each column's values go (NULL: nowhere) */
-  for (size_t i = 0; i < pr->ncols; i++)
-    dst[i] = pr->chof[i] >= 0 ? rows->raw->chan[pr->chof[i]].values
-             : (long)i == pr->tcol ? rows->tt
-                                   : NULL;
-  size_t k0 = k;
-  while (p < end && k < rows->cap) {
-    if (pr->sep != ' ') { /* the common rows first */
-      if (pr->ncols == 2) /* (time, acceleration): its own loop */
-        k = bare_rows(&p, end, 2, pr->sep, pr->shape, dst, k, rows->cap);
-      else
-        k = bare_rows(&p, end, pr->ncols, pr->sep, pr->shape, dst, k, rows->cap);
-      if (p >= end || k >= rows->cap)
-        break;
-    }
-    const char *q = p;
-    size_t i = 0;
-    for (; i < pr->ncols; i++) {
-      const char *fb = q;
-      while (q < end && (*q == ' ' || (*q == '\t' && pr->sep != '\t')))
-        q++;
-      if (i > 0 && pr->sep == ' ' && q == fb)
-        break; /* blank-separated fields need a blank between */
-      double x;
-      size_t used = aq_number_parse_shaped(&pr->shape[i], q, (size_t)(end - q), 0, &x);
-      if (!used)
-        break;
-      q += used;
-      while (q < end && (*q == ' ' || (*q == '\t' && pr->sep != '\t')))
-        q++;
-      if (i + 1 < pr->ncols) {
-        if (pr->sep != ' ') {
-          if (q >= end || *q != pr->sep)
-            break;
-          q++;
-        }
-      } else if (q < end && *q != '\n' && *q != '\r') {
-        break;
-      }
-      if (dst[i])
-        dst[i][k] = x;
-    }
-    if (i < pr->ncols)
-      break; /* not plain: values written to row k are overwritten later */
-    if (q < end) /* at LF or CR: the last field was checked above */
-      q = aq_text_past_eol(q, end);
-    k++;
-    p = q;
-  }
-  c->line += (long)(k - k0); /* one line per row */
-  c->pos = (size_t)(p - s);
-  return k;
-}
-
-/* Units named in a piece of text: 1 acceleration (*u set), -1 units that are
- * not acceleration (velocity, displacement, time), 0 none recognised. */
-static int units_in(const char *text, aq_units *u)
-{
-  static const char *const not_acc[] = {"cm/s", "m/s", "cm", "m", "mm", "in",
-                                         "in/s", "mm/s", "s", "sec", NULL};
-  char t[CSV_NAME_MAX];
-  snprintf(t, sizeof t, "%s", text);
-  /* inside () or [] */
-  char *o = strpbrk(t, "([");
-  if (o) {
-    char *cl = strpbrk(o + 1, ")]");
-    if (cl) {
-      *cl = '\0';
-      char *in = o + 1;
-      while (*in == ' ')
-        in++;
-      if (aq_units_parse(in, u))
-        return *u == AQ_UNITS_COUNTS ? 0 : 1;
-      for (int i = 0; not_acc[i]; i++)
-        if (strcasecmp(in, not_acc[i]) == 0)
-          return -1;
-    }
-    *o = '\0'; /* "gal(cm/s/s)" -> "gal" */
-  }
-  size_t l = strlen(t);
-  while (l > 0 && t[l - 1] == ' ')
-    t[--l] = '\0';
-  if (aq_units_parse(t, u) && *u != AQ_UNITS_COUNTS)
-    return 1;
-  char *sfx = strrchr(t, '_');
-  if (!sfx)
-    sfx = strrchr(t, ' ');
-  if (sfx && aq_units_parse(sfx + 1, u) && *u != AQ_UNITS_COUNTS)
-    return 1;
-  return 0;
-}
-
-/* The quantity the units in text measure ("vel (cm/s)", "disp_cm",
- * "cm/s"): the word in () or [], after the last '_' or blank, or the whole
- * text (aq_units_quantity). */
-static aq_quantity quantity_in(const char *text)
-{
-  char t[CSV_NAME_MAX];
-  snprintf(t, sizeof t, "%s", text);
-  char *o = strpbrk(t, "([");
-  if (o) {
-    char *cl = strpbrk(o + 1, ")]");
-    if (cl)
-      *cl = '\0';
-    char *in = o + 1;
-    while (*in == ' ')
-      in++;
-    return aq_units_quantity(in);
-  }
-  size_t l = strlen(t);
-  while (l > 0 && t[l - 1] == ' ')
-    t[--l] = '\0';
-  aq_quantity q = aq_units_quantity(t);
-  char *sfx = strrchr(t, '_');
-  if (!sfx)
-    sfx = strrchr(t, ' ');
-  return q != AQ_QUANTITY_UNSTATED || !sfx ? q : aq_units_quantity(sfx + 1);
-}
-
-static int is_time_name(const char *name)
-{
-  char base[CSV_NAME_MAX];
-  size_t k = 0;
-  for (const char *p = name; *p && k + 1 < sizeof base; p++) {
-    if (*p == '(' || *p == '[' || *p == '_' || *p == ' ')
-      break;
-    base[k++] = (char)tolower((unsigned char)*p);
-  }
-  base[k] = '\0';
-  return strcmp(base, "t") == 0 || strcmp(base, "time") == 0 ||
-         strcmp(base, "sec") == 0 || strcmp(base, "seconds") == 0 ||
-         strcmp(base, "zeit") == 0 || strcmp(base, "tiempo") == 0 ||
-         strcmp(base, "temps") == 0;
-}
-
-#define CSV_JST_OFFSET_H 9 /* JMA's times: Japan Standard Time, UTC+9 h */
-
-/* JMA: "INITIAL TIME = YYYY MM DD hh mm ss" (JST) in [v, e). */
-static int jma_start(const char *v, const char *e, char *out, size_t cap)
-{
-  char tmp[64];
-  size_t l = (size_t)(e - v) < sizeof tmp - 1 ? (size_t)(e - v) : sizeof tmp - 1;
-  memcpy(tmp, v, l);
-  tmp[l] = '\0';
-  int y, mo, d, h, mi, sec, used = 0;
-  if (sscanf(tmp, "%d %d %d %d %d %d%n", &y, &mo, &d, &h, &mi, &sec, &used) != 6 ||
-      tmp[used + strspn(tmp + used, " \t")] != '\0')
-    return 0;
-  return aq_iso_time_local(out, cap, y, mo, d, h, mi, sec, CSV_JST_OFFSET_H);
-}
-
-/* CWB: "#StartTime(GMT+08): YYYY/MM/DD-hh:mm:ss.sss" in s[b..e) (after '#'). */
-static int cwb_start(const char *s, size_t b, size_t e, char *out, size_t cap)
-{
-  static const char key[] = "StartTime(GMT";
-  size_t m = sizeof key - 1;
-  if (e - b < m || strncasecmp(s + b, key, m) != 0)
-    return 0;
-  char tmp[80];
-  size_t l = e - b - m < sizeof tmp - 1 ? e - b - m : sizeof tmp - 1;
-  memcpy(tmp, s + b + m, l);
-  tmp[l] = '\0';
-  char sign;
-  int oh, y, mo, d, h, mi, used = 0;
-  double sec;
-  if (sscanf(tmp, "%c%d): %d/%d/%d-%d:%d:%lf%n", &sign, &oh, &y, &mo, &d, &h, &mi, &sec,
-             &used) != 8 ||
-      (sign != '+' && sign != '-') || tmp[used + strspn(tmp + used, " \t")] != '\0')
-    return 0;
-  return aq_iso_time_local(out, cap, y, mo, d, h, mi, sec, sign == '-' ? -oh : oh);
-}
-
-/* "KEY = value" or "KEY: value" in a preamble line: returns the value's
- * start (in s) if the line's key starts with key (case-insensitive). */
-static const char *kv(const char *s, size_t b, size_t e, const char *key)
-{
-  size_t m = strlen(key);
-  if (e - b < m || strncasecmp(s + b, key, m) != 0)
-    return NULL;
-  size_t i = b + m;
-  while (i < e && s[i] != '=' && s[i] != ':')
-    if (!isalpha((unsigned char)s[i]) && s[i] != ' ' && s[i] != '_' && s[i] != '.')
-      return NULL;
-    else
-      i++;
-  if (i >= e)
-    return NULL;
-  i++;
-  while (i < e && s[i] == ' ')
-    i++;
-  return s + i;
-}
-
-/* The k-th smallest of d[0..n) (Hoare's selection; d is reordered). */
-static double select_kth(double *d, size_t n, size_t k)
-{
-  size_t lo = 0, hi = n - 1;
-  while (lo < hi) {
-    double pivot = d[lo + (hi - lo) / 2];
-    size_t i = lo, j = hi;
-    while (i <= j) {
-      while (d[i] < pivot)
-        i++;
-      while (d[j] > pivot)
-        j--;
-      if (i <= j) {
-        double t = d[i];
-        d[i] = d[j];
-        d[j] = t;
-        i++;
-        if (j == 0)
-          break;
-        j--;
-      }
-    }
-    if (k <= j)
-      hi = j;
-    else if (k >= i)
-      lo = i;
-    else
-      return d[k];
-  }
-  return d[k];
-}
-
-/* The smallest and largest of the n - 1 steps of t, and the first i
- * (0 if none) where |t_i - (t_0 + i est)| > tol, in one pass. */
-static size_t step_range(const double *t, size_t n, double est, double tol, double *lo,
-                         double *hi)
-{
-  double a = INFINITY, b = -INFINITY;
-  size_t off = 0;
-  for (size_t i = 1; i < n; i++) {
-    double d = t[i] - t[i - 1];
-    a = d < a ? d : a;
-    b = d > b ? d : b;
-    if (fabs(t[i] - (t[0] + (double)i * est)) > tol && !off)
-      off = i;
-  }
-  *lo = a;
-  *hi = b;
-  return off;
-}
-
-/* Median of the n - 1 steps of t (NaN if out of memory): the upper median,
- * element (n - 1) / 2 of the sorted steps. */
-static double median_step(const double *t, size_t n)
-{
-  double *d = malloc((n - 1) * sizeof *d);
-  if (!d)
-    return NAN;
-  for (size_t i = 1; i < n; i++)
-    d[i - 1] = t[i] - t[i - 1];
-  double m = select_kth(d, n - 1, (n - 1) / 2);
-  free(d);
-  return m;
-}
-
-/* A column's name as the channel's: as written when it fits; else without
- * its units in parentheses or brackets ("Acceleration (g)" ->
- * "Acceleration"); else none, never a cut phrase. */
-static void channel_name(const char *col, char *out, size_t cap)
-{
-  size_t n = strlen(col);
-  if (n >= cap) {
-    const char *u = strpbrk(col, "([");
-    n = u ? (size_t)(u - col) : n;
-    while (n > 0 && is_space(col[n - 1]))
-      n--;
-  }
-  if (n >= cap)
-    n = 0;
-  memcpy(out, col, n);
-  out[n] = '\0';
-}
-
 /* aq_csv_parse; with columns_only, *columns_only gets the count of
  * channels once the columns are known, and the rows are not read (raw stays
  * empty). */
@@ -640,28 +228,28 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
                           c.line);
     if (b < e && s[b] == '#') { /* CWB: "#AmplitudeUnit: gal.", "#DataSequence: Time U(+); N(+)" */
       const char *v;
-      if ((v = kv(s, b + 1, e, "AmplitudeUnit"))) {
+      if ((v = aq_csv_kv(s, b + 1, e, "AmplitudeUnit"))) {
         char val[CSV_NAME_MAX];
         copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
         val[strcspn(val, " \t")] = '\0';
         size_t l = strlen(val);
         if (l > 0 && val[l - 1] == '.')
           val[l - 1] = '\0';
-        int r = units_in(val, &pre_u);
+        int r = aq_csv_units_in(val, &pre_u);
         pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
         pre_line = c.line;
         snprintf(pre_said, sizeof pre_said, "%.40s", val);
-      } else if ((v = kv(s, b + 1, e, "DataSequence"))) {
+      } else if ((v = aq_csv_kv(s, b + 1, e, "DataSequence"))) {
         seq_b = (size_t)(v - s), seq_e = e, seq_line = c.line;
       } else if (e - b > 11 && strncasecmp(s + b + 1, "Origin Time", 11) == 0) {
         size_t l = e - b - 1 < sizeof event - 1 ? e - b - 1 : sizeof event - 1;
         memcpy(event, s + b + 1, l);
         event[l] = '\0';
       } else {
-        cwb_start(s, b + 1, e, start, sizeof start);
+        aq_csv_cwb_start(s, b + 1, e, start, sizeof start);
       }
     }
-    trim_line(s, &b, &e);
+    aq_csv_trim_line(s, &b, &e);
     if (b == e)
       continue;
     char sp = pick_sep(s, b, e);
@@ -683,7 +271,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     }
     const char *v;
     char val[CSV_NAME_MAX];
-    if ((v = kv(s, b, e, "SAMPLING RATE")) || (v = kv(s, b, e, "SAMPLING FREQ"))) {
+    if ((v = aq_csv_kv(s, b, e, "SAMPLING RATE")) || (v = aq_csv_kv(s, b, e, "SAMPLING FREQ"))) {
       char tmp[CSV_FIELD_MAX];
       copy_field(s, (span){(size_t)(v - s), e}, tmp, sizeof tmp);
       double hz = strtod(tmp, NULL);
@@ -691,7 +279,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
         return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "SAMPLING RATE",
                             "expected a rate > 0 Hz, got \"%s\"", tmp);
       pre_dt = 1.0 / hz;
-    } else if ((v = kv(s, b, e, "DT")) || (v = kv(s, b, e, "DELTA"))) {
+    } else if ((v = aq_csv_kv(s, b, e, "DT")) || (v = aq_csv_kv(s, b, e, "DELTA"))) {
       char tmp[CSV_FIELD_MAX];
       copy_field(s, (span){(size_t)(v - s), e}, tmp, sizeof tmp);
       double d = strtod(tmp, NULL);
@@ -699,12 +287,12 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
         return aq_error_set(err, AQ_EFORMAT, name, c.line, -1, "DT",
                             "expected a sample interval > 0 s, got \"%s\"", tmp);
       pre_dt = d;
-    } else if ((v = kv(s, b, e, "INITIAL TIME"))) {
-      if (!jma_start(v, s + e, start, sizeof start))
+    } else if ((v = aq_csv_kv(s, b, e, "INITIAL TIME"))) {
+      if (!aq_csv_jma_start(v, s + e, start, sizeof start))
         start[0] = '\0';
-    } else if ((v = kv(s, b, e, "UNITS")) || (v = kv(s, b, e, "UNIT"))) {
+    } else if ((v = aq_csv_kv(s, b, e, "UNITS")) || (v = aq_csv_kv(s, b, e, "UNIT"))) {
       copy_field(s, (span){(size_t)(v - s), e}, val, sizeof val);
-      int r = units_in(val, &pre_u);
+      int r = aq_csv_units_in(val, &pre_u);
       pre_units = r > 0 ? 1 : r < 0 ? -1 : 0;
       pre_line = c.line;
       snprintf(pre_said, sizeof pre_said, "%.40s", val);
@@ -759,7 +347,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
   long tcol = -1;
   if (have_names) {
     for (size_t i = 0; i < ncols; i++)
-      if (is_time_name(names[i])) {
+      if (aq_csv_is_time_name(names[i])) {
         tcol = (long)i;
         break;
       }
@@ -783,7 +371,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     if (have_names)
       for (size_t i = 0; i < ncols; i++) {
         aq_units cu;
-        if ((long)i != tcol && units_in(names[i], &cu) >= 0)
+        if ((long)i != tcol && aq_csv_units_in(names[i], &cu) >= 0)
           chcol[nch++] = i;
       }
     if (nch == 0) {
@@ -817,8 +405,8 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
   aq_status st = aq_raw_file_alloc(raw, nch, name, err);
   if (st != AQ_OK)
     return st;
-  if (!rows_grow(&rows, cap, tcol >= 0)) {
-    rows_free_time(&rows);
+  if (!aq_csv_rows_grow(&rows, cap, tcol >= 0)) {
+    aq_csv_rows_free_time(&rows);
     aq_raw_file_free(raw);
     return aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
   }
@@ -830,7 +418,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     shape[i].len = 0, shape[i].misses = 0;
   const plain_row pr = {ncols, sep, tcol, chof, shape};
   for (;;) {
-    if (k >= rows.cap && !rows_grow(&rows, 2 * rows.cap, tcol >= 0)) {
+    if (k >= rows.cap && !aq_csv_rows_grow(&rows, 2 * rows.cap, tcol >= 0)) {
       st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
       break;
     }
@@ -865,10 +453,10 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
       break;
     k++;
     if (!dcomma) /* the rows that follow, while they are plain */
-      k = plain_rows(&c, &pr, &rows, k);
+      k = aq_csv_plain_rows(&c, &pr, &rows, k);
     int more = 0;
     while (next_line(&c, &b, &e)) {
-      trim_line(s, &b, &e);
+      aq_csv_trim_line(s, &b, &e);
       if (b < e) {
         more = 1;
         break;
@@ -893,7 +481,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
       begin = tt[0];
       if (!(dt > 0) || !isfinite(dt)) {
         st = aq_error_set(err, AQ_EFORMAT, name,
-                          row_line(s, n, first_pos, first_line, k - 1), -1, "time",
+                          aq_csv_row_line(s, n, first_pos, first_line, k - 1), -1, "time",
                           "expected increasing times, got %.9g after %.9g at "
                           "line %ld",
                           tt[k - 1], tt[0], first_line);
@@ -901,25 +489,25 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
         /* a step that is off (a missing or repeated row) is named at its
          * line; then a slow drift of the times is caught cumulatively */
         double lo, hi;
-        size_t off = step_range(tt, k, est, CSV_TIME_TOL_REL * est, &lo, &hi);
+        size_t off = aq_csv_step_range(tt, k, est, CSV_TIME_TOL_REL * est, &lo, &hi);
         /* The median step lies in [lo, hi]: when hi - lo <= tol * lo, no
          * step is farther than tol * median from it (the differences of
          * steps so close are exact), and the median is not needed. */
         int even = lo > 0 && hi - lo <= CSV_TIME_TOL_REL * lo;
-        double med = even ? lo : median_step(tt, k);
+        double med = even ? lo : aq_csv_median_step(tt, k);
         if (isnan(med))
           st = aq_error_set(err, AQ_ENOMEM, name, -1, -1, NULL, "out of memory");
         for (size_t i = 1; i < k && st == AQ_OK && !even; i++)
           if (fabs(tt[i] - tt[i - 1] - med) > CSV_TIME_TOL_REL * med)
             st = aq_error_set(
-                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
+                err, AQ_EFORMAT, name, aq_csv_row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (step %.9g s within %g %%), got a "
                 "step of %.9g s from %.15g to %.15g",
                 med, 100 * CSV_TIME_TOL_REL, tt[i] - tt[i - 1], tt[i - 1], tt[i]);
         if (off && st == AQ_OK) {
           size_t i = off;
           st = aq_error_set(
-                err, AQ_EFORMAT, name, row_line(s, n, first_pos, first_line, i), -1, "time",
+                err, AQ_EFORMAT, name, aq_csv_row_line(s, n, first_pos, first_line, i), -1, "time",
                 "expected evenly spaced times (%.15g + k * %.9g s, within %g %% of "
                 "the step), got %.15g for sample %zu",
                 tt[0], dt, 100 * CSV_TIME_TOL_REL, tt[i], i);
@@ -946,16 +534,16 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     ch->begin_s = start[0] ? 0 : begin; /* a stated start is the first row's time */
     snprintf(ch->reference, sizeof ch->reference, "%s", start);
     aq_units cu;
-    int r = have_names ? units_in(names[col], &cu) : 0;
+    int r = have_names ? aq_csv_units_in(names[col], &cu) : 0;
     if (have_names)
-      channel_name(names[col], ch->channel, sizeof ch->channel);
+      aq_csv_channel_name(names[col], ch->channel, sizeof ch->channel);
     if (r > 0) {
       snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(cu));
       ch->units_line = hline;
     } else if (r < 0) {
       snprintf(ch->units_said, sizeof ch->units_said, "line %ld: column \"%.40s\"",
                hline, names[col]);
-      ch->quantity = (int)quantity_in(names[col]);
+      ch->quantity = (int)aq_csv_quantity_in(names[col]);
       snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s", ch->units_said);
     } else if (pre_units > 0) {
       snprintf(ch->units, sizeof ch->units, "%s", aq_units_name(pre_u));
@@ -963,7 +551,7 @@ static aq_status csv_parse(const unsigned char *buf, size_t n, const char *name,
     } else if (pre_units < 0) {
       snprintf(ch->units_said, sizeof ch->units_said, "line %ld: UNIT = %s",
                pre_line, pre_said);
-      ch->quantity = (int)quantity_in(pre_said);
+      ch->quantity = (int)aq_csv_quantity_in(pre_said);
       snprintf(ch->quantity_said, sizeof ch->quantity_said, "%s", ch->units_said);
     }
   }

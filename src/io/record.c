@@ -1,7 +1,9 @@
 /* record.c: reading a record file: its format sniffed from its content
  * (sniff.c), the parser of that format (reader.h), what the channel's
  * fields say beyond its values (evidence.c), and the one decision that
- * makes a record of what the parser reports (see record.h). */
+ * makes a record of what the parser reports (see record.h).  Reading one
+ * file is in record_read.c, expanding files into sets in record_set.c; the
+ * decision stays here. */
 #include "record.h"
 
 #include <ctype.h>
@@ -19,6 +21,7 @@
 
 #include "../units.h"
 #include "evidence.h"
+#include "record_impl.h"
 
 #if defined(__SSE2__) && !defined(AQ_NO_SIMD)
 #include <emmintrin.h>
@@ -70,59 +73,6 @@ static aq_status set_names(aq_record *rec, const char *name, aq_error *err)
   return AQ_OK;
 }
 
-/* ---- miniSEED and its StationXML ---------------------------------------- */
-
-#define MSEED_XML_SNIFF 1024            /* bytes looked at for "<FDSNStationXML" */
-
-/* aq_mseed_parse, then, with opts->responses, each channel's response
- * (evidence.c). */
-static aq_status mseed_read(const unsigned char *buf, size_t n, const char *name,
-                            const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
-{
-  aq_status s = aq_mseed_parse(buf, n, name, NULL, raw, err);
-  if (s != AQ_OK || !opts || !opts->nresponses)
-    return s;
-  size_t nx = opts->nresponses < AQ_RESPONSES_MAX ? opts->nresponses : AQ_RESPONSES_MAX;
-  s = aq_evidence_responses(opts->responses, nx, name, raw, err);
-  if (s != AQ_OK)
-    aq_raw_file_free(raw);
-  return s;
-}
-
-size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
-{
-  size_t k = 0, nx = 0;
-  char **xml = malloc((n ? n : 1) * sizeof *xml);
-  if (!xml)
-    return n; /* left as records: each refused as not one */
-  for (size_t i = 0; i < n; i++) {
-    char head[MSEED_XML_SNIFF + 1];
-    size_t got = 0;
-    FILE *f = fopen(paths[i], "rb");
-    if (f) {
-      got = fread(head, 1, MSEED_XML_SNIFF, f);
-      fclose(f);
-    }
-    head[got] = '\0';
-    int is_xml = got > 0 && memchr(head, '\0', got) == NULL && strstr(head, "<FDSNStationXML");
-    if (is_xml && ro->nresponses + nx < AQ_RESPONSES_MAX)
-      xml[nx++] = paths[i];
-    else
-      paths[k++] = paths[i];
-  }
-  if (k == 0) { /* nothing but StationXML: the reader refuses them as records */
-    memcpy(paths, xml, n * sizeof *xml);
-    free(xml);
-    return n;
-  }
-  for (size_t j = 0; j < nx; j++) {
-    ro->responses[ro->nresponses++] = xml[j];
-    paths[k + j] = xml[j];
-  }
-  free(xml);
-  return k;
-}
-
 /* ---- deciding -------------------------------------------------------- */
 
 /* A dip this far or farther from horizontal, deg, is vertical (SAC CMPINC 0
@@ -132,12 +82,9 @@ size_t aq_read_opts_take_stationxml(char **paths, size_t n, aq_read_opts *ro)
 
 /* "path" or "path#CHANNEL" (the channel's name, or its 1-based number when
  * it has none) into out. */
-/* A record's label: its path (at most PATH_MAX, 4096 bytes, or no file
- * could be opened by it), '#' and the channel's name (under 16). */
-#define RECORD_LABEL_MAX (4096 + 32)
 
-static void record_label(const aq_raw_file *raw, size_t ichan, const char *path,
-                         char *out, size_t cap)
+void aq_record_label(const aq_raw_file *raw, size_t ichan, const char *path,
+                     char *out, size_t cap)
 {
   if (raw->nchan <= 1)
     snprintf(out, cap, "%s", path);
@@ -242,9 +189,9 @@ static void decide_event_key(const char *name, char *key, size_t cap)
 /* aq_record_decide; with in_place (the channel's own values, which the
  * caller gives up on success), the samples are scaled there instead of in a
  * new array. */
-static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
-                        const aq_read_opts *opts, aq_record *rec, aq_error *err,
-                        double *in_place)
+aq_status aq_record_decide_in_place(const aq_raw_file *raw, size_t ichan, const char *path,
+                                    const aq_read_opts *opts, aq_record *rec, aq_error *err,
+                                    double *in_place)
 {
   memset(rec, 0, sizeof *rec);
   rec->azimuth_deg = rec->dip_deg = NAN;
@@ -253,7 +200,7 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
                         "channel %zu of %zu", ichan + 1, raw ? raw->nchan : 0);
   const aq_raw_channel *ch = &raw->chan[ichan];
   char label[RECORD_LABEL_MAX];
-  record_label(raw, ichan, path ? path : "", label, sizeof label);
+  aq_record_label(raw, ichan, path ? path : "", label, sizeof label);
   if (ch->npts == 0 || !ch->values)
     return aq_error_set(err, AQ_EFORMAT, label, -1, -1, NULL,
                         "expected at least one sample, got none");
@@ -468,11 +415,11 @@ static aq_status decide(const aq_raw_file *raw, size_t ichan, const char *path,
 aq_status aq_record_decide(const aq_raw_file *raw, size_t ichan, const char *path,
                            const aq_read_opts *opts, aq_record *rec, aq_error *err)
 {
-  return decide(raw, ichan, path, opts, rec, err, NULL);
+  return aq_record_decide_in_place(raw, ichan, path, opts, rec, err, NULL);
 }
 
 /* Why rec is vertical, for messages: "by its dip, 90 deg", ... */
-static void vertical_why(const aq_record *rec, char *why, size_t cap)
+void aq_record_vertical_why(const aq_record *rec, char *why, size_t cap)
 {
   if (rec->vertical_by == AQ_VERTICAL_BY_NAME_OVER_FIELD)
     aq_text_fit(why, cap, "by its channel name: %s", rec->vertical_note);
@@ -490,7 +437,7 @@ aq_status aq_record_check_horizontal(const aq_record *rec, const aq_read_opts *o
   if (!rec->vertical || (opts && opts->accept_vertical))
     return AQ_OK;
   char why[sizeof rec->vertical_note + 32];
-  vertical_why(rec, why, sizeof why);
+  aq_record_vertical_why(rec, why, sizeof why);
   return aq_error_set(err, AQ_EUNSUPPORTED, rec->path, -1, -1, "channel",
                       "expected a horizontal component, got channel \"%s\", which "
                       "the file identifies as vertical (%s); a vertical "
@@ -514,492 +461,4 @@ const char *aq_record_note(const aq_record *rec, size_t i, const char **topic)
       return note[k].text;
     }
   return NULL;
-}
-
-/* What a parser may be told of opts (NULL for NULL), in *ro. */
-static const aq_reader_opts *reader_opts(const aq_read_opts *opts, aq_reader_opts *ro)
-{
-  if (!opts)
-    return NULL;
-  ro->dt_s = opts->dt_s;
-  ro->column = opts->column;
-  return ro;
-}
-
-static atomic_ulong parses; /* aq_record_parses_ */
-
-unsigned long aq_record_parses_(void) { return atomic_load(&parses); }
-
-aq_status aq_raw_parse(const unsigned char *buf, size_t n, const char *name,
-                       const aq_read_opts *opts, aq_raw_file *raw, aq_error *err)
-{
-  memset(raw, 0, sizeof *raw);
-  atomic_fetch_add(&parses, 1);
-  aq_reader_opts ro;
-  const aq_reader_opts *rop = reader_opts(opts, &ro);
-  size_t bom = aq_sniff_bom(buf, n); /* a text's byte-order mark: its readers skip it */
-  buf += bom;
-  n -= bom;
-  aq_format fmt = aq_sniff_format(buf, n);
-  switch (fmt) {
-  case AQ_FMT_SAC:
-    return aq_sac_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_AT2:
-    return aq_at2_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_TEXT:
-    return aq_csv_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_COSMOS:
-    return aq_cosmos_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_MSEED:
-    return mseed_read(buf, n, name, opts, raw, err);
-  case AQ_FMT_SMC:
-    return aq_smc_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_ESM:
-    return aq_esm_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_KNET:
-    return aq_knet_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_GEONET:
-    return aq_geonet_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_RENADIC:
-    return aq_renadic_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_BHRC:
-    return aq_bhrc_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_ASA:
-    return aq_asa_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_NSMN:
-    return aq_nsmn_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_NPTS_DT:
-    return aq_nptsdt_parse(buf, n, name, rop, raw, err);
-  case AQ_FMT_EMPTY:
-    return aq_error_set(err, AQ_EFORMAT, name, -1, -1, NULL,
-                        "expected a record, got an empty file (0 bytes)");
-  case AQ_FMT_UNKNOWN_BINARY:
-    return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "expected a record: SAC or miniSEED (binary), or text "
-                        "(docs/agency-formats.md), got %s",
-                        aq_sniff_describe(fmt));
-  default:
-    return aq_error_set(err, AQ_EUNSUPPORTED, name, -1, -1, "format",
-                        "looks like %s", aq_sniff_describe(fmt));
-  }
-}
-
-/* The channel of raw that want names (exact, then case-insensitive, then a
- * 1-based number), or that a --component rule matching path names, or the
- * only one.  Returns AQ_OK with *ichan, or an error naming the channels. */
-static aq_status select_channel(const aq_raw_file *raw, const char *want,
-                                const char *path, const aq_read_opts *opts,
-                                size_t *ichan, aq_error *err)
-{
-  if (!want && opts && raw->nchan > 1) /* a rule chooses among several */
-    for (size_t i = opts->ncomponents < AQ_UNITS_RULES_MAX ? opts->ncomponents
-                                                           : AQ_UNITS_RULES_MAX;
-         i-- > 0;)
-      if (fnmatch(opts->components[i].glob, path, 0) == 0) {
-        want = opts->components[i].channel;
-        break;
-      }
-  char list[200] = "";
-  size_t len = 0;
-  for (size_t i = 0; i < raw->nchan && len + 20 < sizeof list; i++)
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "",
-                            raw->chan[i].channel[0] ? raw->chan[i].channel : "(unnamed)");
-  if (!want) {
-    if (raw->nchan == 1) {
-      *ichan = 0;
-      return AQ_OK;
-    }
-    return aq_error_set(err, AQ_EFORMAT, path, -1, -1, "channel",
-                        "expected one channel, the file holds %zu (%s): name one as "
-                        "FILE#CHANNEL or with --component 'GLOB=CHANNEL'",
-                        raw->nchan, list);
-  }
-  for (int pass = 0; pass < 2; pass++)
-    for (size_t i = 0; i < raw->nchan; i++)
-      if (pass ? strcasecmp(raw->chan[i].channel, want) == 0
-               : strcmp(raw->chan[i].channel, want) == 0) {
-        *ichan = i;
-        return AQ_OK;
-      }
-  char *end;
-  long k = strtol(want, &end, 10);
-  if (*want && !*end && k >= 1 && (size_t)k <= raw->nchan) {
-    *ichan = (size_t)k - 1;
-    return AQ_OK;
-  }
-  return aq_error_set(err, AQ_EOPTION, path, -1, -1, "channel",
-                      "expected one of the file's channels (%s), got \"%s\"", list,
-                      want);
-}
-
-/* Parse and decide channel want (NULL: the only one or a --component rule's). */
-static aq_status parse_one(const unsigned char *buf, size_t n, const char *path,
-                           const char *want, const aq_read_opts *opts,
-                           aq_record *rec, aq_error *err)
-{
-  aq_raw_file raw;
-  aq_status s = aq_raw_parse(buf, n, path, opts, &raw, err);
-  size_t ichan = 0;
-  if (s == AQ_OK)
-    s = select_channel(&raw, want, path, opts, &ichan, err);
-  if (s == AQ_OK) { /* the samples are scaled where the reader put them */
-    s = decide(&raw, ichan, path, opts, rec, err, raw.chan[ichan].values);
-    if (s == AQ_OK)
-      raw.chan[ichan].values = NULL; /* rec->acc_mps2 now */
-  }
-  aq_raw_file_free(&raw);
-  return s;
-}
-
-aq_status aq_record_parse(const unsigned char *buf, size_t n, const char *name,
-                          const aq_read_opts *opts, aq_record *rec,
-                          aq_error *err)
-{
-  memset(rec, 0, sizeof *rec);
-  return parse_one(buf, n, name, NULL, opts, rec, err);
-}
-
-/* The bytes of the regular file at path (*buf malloc'd, caller frees). */
-static aq_status read_bytes(const char *path, unsigned char **buf, size_t *size,
-                            aq_error *err)
-{
-  struct stat st;
-  *buf = NULL;
-  if (stat(path, &st) != 0)
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
-                        strerror(errno));
-  if (S_ISDIR(st.st_mode))
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                        "expected a record file, got a directory");
-  if (!S_ISREG(st.st_mode))
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL,
-                        "expected a regular record file, got a device, pipe "
-                        "or socket");
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return aq_error_set(err, AQ_EIO, path, -1, -1, NULL, "cannot open: %s",
-                        strerror(errno));
-  size_t n = (size_t)st.st_size;
-  unsigned char *b = malloc(n ? n : 1);
-  if (!b) {
-    fclose(f);
-    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL,
-                        "out of memory reading %zu bytes", n);
-  }
-  size_t got = fread(b, 1, n, f);
-  int rerr = ferror(f);
-  fclose(f);
-  if (rerr || got != n) {
-    free(b);
-    return aq_error_set(err, AQ_EIO, path, -1, (long)got, NULL,
-                        "read error: expected %zu bytes, got %zu", n, got);
-  }
-  *buf = b;
-  *size = n;
-  return AQ_OK;
-}
-
-/* FILE#CHANNEL names one channel of a file when no file has the whole name:
- * file (cap bytes) gets FILE and *want CHANNEL; otherwise *want is NULL and
- * file is path. */
-static void split_channel(const char *path, char *file, size_t cap, const char **want)
-{
-  struct stat st;
-  const char *hash = strrchr(path, '#');
-  *want = NULL;
-  snprintf(file, cap, "%s", path);
-  if (stat(path, &st) == 0 || !hash || hash == path || !hash[1] ||
-      (size_t)(hash - path) >= cap)
-    return;
-  memcpy(file, path, (size_t)(hash - path));
-  file[hash - path] = '\0';
-  if (stat(file, &st) == 0)
-    *want = hash + 1;
-  else
-    snprintf(file, cap, "%s", path);
-}
-
-const char *aq_record_file(const char *name, char *buf, size_t cap)
-{
-  const char *want;
-  split_channel(name, buf, cap, &want);
-  return buf;
-}
-
-aq_status aq_record_read(const char *path, const aq_read_opts *opts,
-                         aq_record *rec, aq_error *err)
-{
-  return aq_record_read_keep(path, opts, rec, NULL, NULL, err);
-}
-
-aq_status aq_record_read_keep(const char *path, const aq_read_opts *opts,
-                              aq_record *rec, unsigned char **bytes,
-                              size_t *nbytes, aq_error *err)
-{
-  memset(rec, 0, sizeof *rec);
-  if (bytes)
-    *bytes = NULL;
-  if (!path || !*path)
-    return aq_error_set(err, AQ_EIO, "", -1, -1, NULL,
-                        "expected a record file name, got an empty string");
-  char file[4096];
-  const char *want;
-  split_channel(path, file, sizeof file, &want);
-  unsigned char *buf;
-  size_t size = 0;
-  aq_status s = read_bytes(file, &buf, &size, err);
-  if (s != AQ_OK)
-    return s;
-  s = parse_one(buf, size, file, want, opts, rec, err);
-  if (bytes) { /* the file's bytes, whichever of its channels was read */
-    *bytes = buf;
-    *nbytes = size;
-  } else {
-    free(buf);
-  }
-  return s;
-}
-
-void aq_record_names_free(char **names, size_t n)
-{
-  for (size_t i = 0; names && i < n; i++)
-    free(names[i]);
-  free(names);
-}
-
-void aq_record_set_free(aq_record_set *set)
-{
-  if (!set)
-    return;
-  for (size_t i = 0; set->item && i < set->n; i++) {
-    free(set->item[i].name);
-    aq_record_free(&set->item[i].rec);
-  }
-  free(set->item);
-  free(set->bytes);
-  memset(set, 0, sizeof *set);
-}
-
-/* The last --component rule matching path, or NULL. */
-static const char *component_rule(const aq_read_opts *opts, const char *path)
-{
-  const char *ch = NULL;
-  for (size_t r = 0; opts && r < opts->ncomponents && r < AQ_UNITS_RULES_MAX; r++)
-    if (fnmatch(opts->components[r].glob, path, 0) == 0)
-      ch = opts->components[r].channel;
-  return ch;
-}
-
-/* Append an item named name (a copy) to set: its record from channel ichan
- * of raw (scaled in place, its values taken from raw), or the status s with
- * e when s is not AQ_OK.  AQ_OK, or AQ_ENOMEM for the set itself. */
-static aq_status add_item(aq_record_set *set, const char *name, aq_raw_file *raw, size_t ichan,
-                          const char *file, const aq_read_opts *opts, aq_status s,
-                          const aq_error *e)
-{
-  aq_record_item *it = realloc(set->item, (set->n + 1) * sizeof *it);
-  if (!it)
-    return AQ_ENOMEM;
-  set->item = it;
-  it += set->n;
-  memset(it, 0, sizeof *it);
-  if (!(it->name = strdup(name)))
-    return AQ_ENOMEM;
-  set->n++;
-  aq_error_clear(&it->err);
-  if (s == AQ_OK) {
-    s = decide(raw, ichan, file, opts, &it->rec, &it->err, raw->chan[ichan].values);
-    if (s == AQ_OK)
-      raw->chan[ichan].values = NULL; /* it->rec.acc_mps2 now */
-  } else {
-    it->err = *e;
-  }
-  it->status = s;
-  return AQ_OK;
-}
-
-/* aq_record_read_all of the bytes buf[0..size) of file, for the operand
- * path (want: the channel it names, or NULL). */
-static aq_status read_all_bytes(const unsigned char *buf, size_t size, const char *path,
-                                const char *file, const char *want,
-                                const aq_read_opts *opts, aq_record_set *set)
-{
-  aq_raw_file raw;
-  aq_error e;
-  aq_error_clear(&e);
-  aq_status s = aq_raw_parse(buf, size, file, opts, &raw, &e), st = AQ_OK;
-  if (s != AQ_OK)
-    return add_item(set, path, NULL, 0, file, opts, s, &e);
-  const char *rule = want ? NULL : component_rule(opts, path);
-  if (want || raw.nchan == 1 || rule) { /* one channel: as aq_record_read */
-    size_t ichan = 0;
-    char name[RECORD_LABEL_MAX];
-    snprintf(name, sizeof name, "%s", path);
-    if (!want && raw.nchan > 1)
-      snprintf(name, sizeof name, "%s#%s", path, rule);
-    s = select_channel(&raw, want, file, opts, &ichan, &e);
-    st = add_item(set, name, &raw, ichan, file, opts, s, &e);
-  } else {
-    for (size_t c = 0; c < raw.nchan && st == AQ_OK; c++) {
-      char label[RECORD_LABEL_MAX];
-      record_label(&raw, c, path, label, sizeof label);
-      st = add_item(set, label, &raw, c, file, opts, AQ_OK, NULL);
-    }
-  }
-  aq_raw_file_free(&raw);
-  return st;
-}
-
-aq_status aq_record_read_all(const char *path, const aq_read_opts *opts, int keep_bytes,
-                             aq_record_set *set, aq_error *err)
-{
-  memset(set, 0, sizeof *set);
-  aq_error e;
-  aq_error_clear(&e);
-  aq_status st;
-  if (!path || !*path) {
-    aq_error_set(&e, AQ_EIO, "", -1, -1, NULL,
-                 "expected a record file name, got an empty string");
-    st = add_item(set, path ? path : "", NULL, 0, "", opts, AQ_EIO, &e);
-  } else {
-    char file[4096];
-    const char *want;
-    split_channel(path, file, sizeof file, &want);
-    unsigned char *buf = NULL;
-    size_t size = 0;
-    aq_status s = read_bytes(file, &buf, &size, &e);
-    st = s == AQ_OK ? read_all_bytes(buf, size, path, file, want, opts, set)
-                    : add_item(set, path, NULL, 0, file, opts, s, &e);
-    if (keep_bytes && buf) {
-      set->bytes = buf;
-      set->nbytes = size;
-    } else {
-      free(buf);
-    }
-  }
-  if (st != AQ_OK) {
-    aq_record_set_free(set);
-    return aq_error_set(err, AQ_ENOMEM, path, -1, -1, NULL, "out of memory");
-  }
-  return AQ_OK;
-}
-
-/* Append to notes[0..*n) the line saying why item it, a channel the file
- * identifies as vertical, is left out of a run. */
-static aq_status add_note(char ***notes, size_t *n, const aq_record_item *it)
-{
-  char why[sizeof it->rec.vertical_note + 32], line[5400];
-  vertical_why(&it->rec, why, sizeof why);
-  aq_text_fit(line, sizeof line,
-              "%s: skipped: the file identifies channel \"%s\" as vertical (%s), which is "
-              "not horizontal excitation (give --accept-vertical to run it)",
-              it->name, it->rec.channel, why);
-  char **g = realloc(*notes, (*n + 1) * sizeof *g);
-  if (!g)
-    return AQ_ENOMEM;
-  *notes = g;
-  if (!(g[*n] = strdup(line)))
-    return AQ_ENOMEM;
-  (*n)++;
-  return AQ_OK;
-}
-
-/* Formats that hold one channel per file (SAC, AT2, K-NET, NPTS DT) are not
- * parsed here, nor text that has one column of acceleration (only its
- * columns are read); the others are read as aq_record_read_all reads them,
- * and named as it names them. */
-static aq_status expand(char *const *paths, size_t n, const aq_read_opts *opts, int skip_vertical,
-                        char ***out, size_t *nout, char ***notes, size_t *nnotes, aq_error *err)
-{
-  size_t cap = n + 1, k = 0;
-  char **names = malloc(cap * sizeof *names);
-  *out = NULL;
-  *nout = 0;
-  size_t nn = 0;
-  char **nt = NULL;
-  if (!names)
-    return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, NULL, "out of memory");
-  aq_status st = AQ_OK;
-  for (size_t i = 0; i < n && st == AQ_OK; i++) {
-    aq_record_set set;
-    memset(&set, 0, sizeof set);
-    char file[4096];
-    const char *want;
-    split_channel(paths[i], file, sizeof file, &want);
-    unsigned char *buf = NULL;
-    size_t size = 0;
-    aq_error ignored;
-    if (!want && read_bytes(paths[i], &buf, &size, &ignored) == AQ_OK) {
-      aq_format fmt = aq_sniff_format(buf, size);
-      int single = fmt == AQ_FMT_SAC || fmt == AQ_FMT_AT2 || fmt == AQ_FMT_KNET ||
-                   fmt == AQ_FMT_NPTS_DT;
-      size_t nch;
-      aq_reader_opts ro;
-      /* text of one channel, or that fails before its rows, keeps its name
-       * whatever its rows hold: only its columns are read */
-      if (fmt == AQ_FMT_TEXT &&
-          (aq_csv_channels(buf, size, paths[i], reader_opts(opts, &ro), &nch, &ignored) !=
-               AQ_OK ||
-           nch <= 1))
-        single = 1;
-      if (!single && read_all_bytes(buf, size, paths[i], paths[i], NULL, opts, &set) != AQ_OK)
-        st = AQ_ENOMEM;
-    }
-    free(buf);
-    size_t add = set.n > 1 ? set.n : 1;
-    if (st == AQ_OK && k + add > cap) {
-      size_t ncap = 2 * cap + add;
-      char **g = realloc(names, ncap * sizeof *names);
-      if (!g)
-        st = AQ_ENOMEM;
-      else {
-        names = g;
-        cap = ncap;
-      }
-    }
-    for (size_t c = 0; c < add && st == AQ_OK; c++) {
-      /* (a file that fails to parse is one item named as given: reported
-       * when it is read) */
-      const char *name = set.n ? set.item[c].name : paths[i];
-      if (skip_vertical && set.n > 1 && set.item[c].status == AQ_OK &&
-          set.item[c].rec.vertical && !(opts && opts->accept_vertical)) {
-        st = add_note(&nt, &nn, &set.item[c]);
-        continue;
-      }
-      if (!(names[k] = strdup(name)))
-        st = AQ_ENOMEM;
-      else
-        k++;
-    }
-    aq_record_set_free(&set);
-    if (st != AQ_OK)
-      aq_error_set(err, AQ_ENOMEM, paths[i], -1, -1, NULL, "out of memory");
-  }
-  if (st != AQ_OK) {
-    aq_record_names_free(names, k);
-    aq_record_names_free(nt, nn);
-    return st;
-  }
-  *out = names;
-  *nout = k;
-  if (notes) {
-    *notes = nt;
-    *nnotes = nn;
-  }
-  return AQ_OK;
-}
-
-aq_status aq_record_expand(char *const *paths, size_t n, const aq_read_opts *opts,
-                           char ***out, size_t *nout, aq_error *err)
-{
-  return expand(paths, n, opts, 0, out, nout, NULL, NULL, err);
-}
-
-aq_status aq_record_expand_horizontal(char *const *paths, size_t n, const aq_read_opts *opts,
-                                      char ***out, size_t *nout, char ***notes, size_t *nnotes,
-                                      aq_error *err)
-{
-  *notes = NULL;
-  *nnotes = 0;
-  return expand(paths, n, opts, 1, out, nout, notes, nnotes, err);
 }

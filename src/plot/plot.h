@@ -12,7 +12,8 @@
  *   select.c    a suite's spectra against its target (`archquake select`)
  * common.c renders (driver check, exit/abort handlers) and writes the
  * plotted data (--data FILE.csv), each through a temporary renamed when
- * complete (util/outfile.h: removed on a signal too);
+ * complete (util/outfile.h: removed on a signal too); labels.c measures
+ * and shortens the figures' texts, keys.c lays out their keys and legends;
  * h5_read.c reads a run's histories (the verdicts come from
  * aq_h5_read_suite).
  *
@@ -88,7 +89,7 @@ void aq_plot_run_free(aq_plot_run *run);
  * it, so every figure drawn through aq_plot_render has it. */
 aq_status aq_plot_load(aq_error *err);
 
-/* ---- common.c ------------------------------------------------------ */
+/* ---- common.c, labels.c, keys.c ------------------------------------ */
 
 /* Draws one figure between plinit and plend; returns 0, or non-zero after
  * filling err (the render then fails). */
