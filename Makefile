@@ -105,6 +105,8 @@ $(foreach d,rel san mut fz,build/$(d)/src/plot/plplot_lazy.o build/$(d)/src/io/x
 SICONOS_CFLAGS := -I/usr/include/siconos/numerics -I/usr/include/siconos
 $(foreach d,rel san mut fz,build/$(d)/src/blocks/siconos_lazy.o): build/lazylib_sonames.h
 $(foreach d,rel san mut fz,build/$(d)/src/blocks/siconos_lazy.o): AQ_CFLAGS += $(SICONOS_CFLAGS)
+# tests that name a library by its soname read it too
+$(TEST_OBJ) $(TEST_SRC:%.c=build/mut/%.o): build/lazylib_sonames.h
 
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
