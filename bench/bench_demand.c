@@ -15,7 +15,8 @@
  * Then the totals, and the same stepping with the tracker's reference
  * (every joint at every state, aq_demand_set_every) for scale
  * (--no-reference leaves it out: quicker, for profiles; --only plain or
- * --only demand times one stepper alone, for profiles of it). */
+ * --only demand times one stepper alone, for profiles of it; the environment's
+ * AQ_BENCH_REPS sets the repetitions, 15 by default). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -32,7 +33,8 @@
 #include "signal/signal.h"
 #include "units.h"
 
-enum { NREC = 12, NARCH = 9, REPS = 15 };
+enum { NREC = 12, NARCH = 9, REPS_MAX = 401 };
+static int REPS = 15; /* AQ_BENCH_REPS (at most REPS_MAX): more, for profiles */
 
 static const char *const recs[NREC] = {
     "ARL360.at2",
@@ -75,6 +77,9 @@ int main(int argc, char **argv)
   int only = argc > 2 && strcmp(argv[1], "--only") == 0 ? (strcmp(argv[2], "demand") == 0 ? 2 : 1) : 0;
   if (only)
     reference = 0;
+  const char *ev = getenv("AQ_BENCH_REPS");
+  if (ev && atoi(ev) > 0)
+    REPS = atoi(ev) < REPS_MAX ? atoi(ev) : REPS_MAX;
   aq_error e;
   aq_read_opts ro;
   memset(&ro, 0, sizeof ro);
@@ -101,7 +106,7 @@ int main(int argc, char **argv)
          "ratio", "states", "full", "full%", "looks", "moving", "table_ms", "cold_st", "cold_dm");
   double T[3] = {0, 0, 0}, C[2] = {0, 0};
   size_t tot_states = 0, tot_full = 0;
-  static double t[REPS];
+  static double t[REPS_MAX];
   for (size_t a = 0; a < NARCH; a++) {
     char path[256];
     snprintf(path, sizeof path, "arches/%s.cfg", arches[a]);
@@ -138,7 +143,7 @@ int main(int argc, char **argv)
         cold[m] += aq_bench_now_s() - t0;
       }
       /* alternately, so that the machine's drift falls on both alike */
-      double tp[REPS], td[REPS];
+      double tp[REPS_MAX], td[REPS_MAX];
       for (int rep = 0; rep < REPS; rep++) {
         for (int m = 0; m < 2; m++) {
           if (only && m != only - 1) {

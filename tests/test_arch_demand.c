@@ -394,6 +394,108 @@ AQ_TEST(arch_demand_tracker_vs_every_joint)
     printf("tracker: %zu runs, %zu states, %zu with every joint evaluated\n", runs, samples, full);
 }
 
+/* Two results equal to the bit (NAN equal to NAN). */
+static int same(double a, double b) { return (isnan(a) && isnan(b)) || a == b; }
+
+AQ_TEST(arch_demand_queued_legs_as_every_joint)
+{
+  /* the stepper's path (legs queued, then each queue looked at: its cells
+   * first, the state with the largest bound found ahead, then the states
+   * in order) against every joint evaluated at every state in order, on
+   * legs built to try it: swings that grow through each queue (the
+   * largest value late in it), states repeated exactly later (ties: the
+   * first keeps the maximum), walls, impacts to the other set, a varying
+   * gravity, and friction limits passed part-way; every result, the time
+   * and joint of each maximum included, to the bit */
+  gsl_set_error_handler_off();
+  unsigned long long rng = 0x51ab3c7ULL;
+  size_t runs = 0, over[2] = {0, 0}, pre = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    const aq_path *p0 = aq_arch_path(A, 0);
+    double g0 = p0->g_mps2, l0 = p0->lambda0;
+    for (int r = 0; r < 8; r++) {
+      double mu_limit = 0.1 + 1.5 * tds_rng(&rng);
+      aq_demand *d[2];
+      for (int k = 0; k < 2; k++) {
+        d[k] = aq_arch_demand_tracker(A, mu_limit, &e);
+        aq_demand_set_every(d[k], k);
+        aq_demand_begin(d[k]);
+      }
+      enum { NL = 400 };
+      static aq_demand_leg_rec leg[NL];
+      int set = 0;
+      double s = 0, ke = 0, t_s = 0, amax = (0.5 + 3 * tds_rng(&rng)) * l0;
+      for (size_t i = 0; i < NL; i++) {
+        aq_demand_leg_rec *L = leg + i;
+        if (i > 10 && tds_rng(&rng) < 0.05) { /* an earlier leg again, later */
+          *L = leg[(size_t)(tds_rng(&rng) * (double)(i - 1))];
+          L->t0 = t_s, L->t1 = t_s += 0.005;
+          set = L->k, s = L->s1, ke = L->ke1;
+          continue;
+        }
+        const aq_path *p = aq_arch_path(A, set);
+        double grow = 0.2 + 0.8 * (double)(i % 64) / 64; /* grows through a queue */
+        double amp = grow * (0.05 + 0.9 * tds_rng(&rng)) * p->s_c_rad;
+        double s1 = amp * tds_rng(&rng);
+        double ke1 = 0.5 * p->mass_kg * g0 * 0.02 * p->s_c_rad * grow * tds_rng(&rng);
+        double g = g0 * (tds_rng(&rng) < 0.2 ? 0.8 + 0.4 * tds_rng(&rng) : 1);
+        size_t rev = tds_rng(&rng) < 0.15 ? 1 + (size_t)(2 * tds_rng(&rng)) : 0;
+        *L = (aq_demand_leg_rec){s, ke, t_s, s1, ke1, t_s + 0.005,
+                                 (2 * tds_rng(&rng) - 1) * amax * g, g, set,
+                                 tds_rng(&rng) < 0.5 ? 1 : -1, rev};
+        t_s += 0.005;
+        s = s1, ke = ke1;
+        if (tds_rng(&rng) < 0.03 && aq_arch_path(A, 1 - set)->admissible) {
+          set = 1 - set; /* an impact: the next leg starts at 0 on the other set */
+          s = 0, ke *= 0.7;
+        }
+      }
+      for (int k = 0; k < 2; k++) {
+        for (size_t i = 0; i < NL; i++) {
+          aq_demand_leg_rec *L = aq_demand_slot(d[k]);
+          if (L)
+            *L = leg[i];
+        }
+        aq_demand_flush(d[k]);
+      }
+      aq_demand_result q, ev;
+      aq_demand_get(d[0], &q);
+      aq_demand_get(d[1], &ev);
+      runs++;
+      over[0] += !isnan(ev.slide_s), over[1] += !isnan(ev.ecc_over_s);
+      pre += q.samples == ev.samples && q.looks < ev.samples;
+      aq_check(same(q.mu_max, ev.mu_max) && q.mu_joint == ev.mu_joint &&
+                   same(q.mu_time_s, ev.mu_time_s),
+               "%s run %d: |T|/N %.17g at joint %zu, %.3f s; every joint %.17g at %zu, %.3f s",
+               shipped[f], r, q.mu_max, q.mu_joint, q.mu_time_s, ev.mu_max, ev.mu_joint,
+               ev.mu_time_s);
+      aq_check(same(q.ecc_max, ev.ecc_max) && q.ecc_joint == ev.ecc_joint &&
+                   same(q.ecc_time_s, ev.ecc_time_s),
+               "%s run %d: |e|/N %.17g at joint %zu, %.3f s; every joint %.17g at %zu, %.3f s",
+               shipped[f], r, q.ecc_max, q.ecc_joint, q.ecc_time_s, ev.ecc_max, ev.ecc_joint,
+               ev.ecc_time_s);
+      aq_check(same(q.slide_s, ev.slide_s) && same(q.ecc_over_s, ev.ecc_over_s),
+               "%s run %d (friction %.3f): over the friction at %.3f s, every joint %.3f; "
+               "thrust out at %.3f s, every joint %.3f", shipped[f], r, mu_limit, q.slide_s,
+               ev.slide_s, q.ecc_over_s, ev.ecc_over_s);
+      aq_demand_free(d[0]);
+      aq_demand_free(d[1]);
+    }
+    aq_arch_free(A);
+  }
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("queued: %zu runs, %zu over the friction, %zu thrust out, %zu looked at in part\n",
+           runs, over[0], over[1], pre);
+  /* the cases are there: limits passed part-way, runs looked at in part */
+  aq_check(over[0] >= runs / 4 && over[1] >= runs / 8 && pre >= runs / 2,
+           "%zu runs: %zu over the friction, %zu thrust out, %zu looked at in part", runs,
+           over[0], over[1], pre);
+}
+
 /* mu of the static collapse state at lambda0 on set p, by the 9x9 balance
  * and the line of thrust of kinematics.c: the largest |T|/N over every
  * joint (both faces of a hinge coincide at rest), infinite when a joint's

@@ -144,6 +144,17 @@ void aq_mechanism_warn_minimum(const char *path, const aq_arch *a)
   }
   size_t lj;
   double ll;
+  const aq_statics *st = aq_arch_statics(a);
+  for (int act = -1; st && act <= 1; act += 2)
+    if (!aq_statics_resolved(st, act)) {
+      fprintf(stderr, "archquake: %s: warning: the table of the least friction over the load "
+                      "(mu_demand) did not reach its 1e-6 in %d nodes (act_sign %+d): its "
+                      "kinks, where the line of thrust of least friction changes the joint "
+                      "faces it touches, need more; mu_demand is interpolated less closely "
+                      "there\n",
+              path, aq_statics_nodes(st, act), act);
+      break;
+    }
   if (aq_arch_liftoff(a, &lj, &ll))
     fprintf(stderr, "archquake: %s: warning: a mechanism in which joint %zu lifts off has "
                     "lambda = %.6g, below every four-hinge set's (%.6g): the four-hinge "

@@ -204,7 +204,8 @@ double aq_arch_mu_rest(const aq_arch *a, size_t *joint);
  * values and slopes (the linear programs, friction.c) at nodes from 0 to
  * aq_arch_lambda_static, a cubic between them, refined until it is within
  * 1e-6 of the largest value at every interval's middle (within 5.4e-5
- * relative anywhere on the shipped arches: test_arch_friction); INFINITY
+ * relative anywhere on the shipped arches: test_arch_friction), or until
+ * its 256 nodes run out (model.h aq_statics_resolved 0: flagged); INFINITY
  * above aq_arch_lambda_static (no line of thrust at all), and above the
  * load where the least friction passes 1e3 when that is below it (a
  * lift-off's pole: the table ends there, docs/arch-model.md "Friction");

@@ -129,9 +129,9 @@ void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t r
 /* ---- the stepper's hooks: a leg at a time, queued ----
  * A leg of set k from (s0, ke0) at record time t0 to (s1, ke1) at t1,
  * moving in direction dir at its end, with rev turning points inside it,
- * under a_mps2 and g_mps2: aq_demand_at of its start, then aq_demand_leg
- * of its end, done when the queue is full or flushed (the same states in
- * the same order; the stepper's loop pays a few stores per leg). */
+ * under a_mps2 and g_mps2: the results of aq_demand_at of its start, then
+ * aq_demand_leg of its end, to the bit, worked out when the queue is full
+ * or flushed (the stepper's loop fills a record per leg, aq_demand_slot). */
 typedef struct {
   double s0, ke0, t0, s1, ke1, t1, a_mps2, g_mps2;
   int k, dir;
@@ -144,16 +144,14 @@ typedef struct {
 } aq_demand_queue;
 /* Look at every queued leg now (before aq_demand_still and aq_demand_get). */
 void aq_demand_flush(aq_demand *d);
-static inline void aq_demand_push(aq_demand *d, const aq_demand_leg_rec *r)
+/* The next leg's record, to fill in (NULL: nothing a leg could add). */
+static inline aq_demand_leg_rec *aq_demand_slot(aq_demand *d)
 {
   aq_demand_queue *q = (aq_demand_queue *)(void *)d; /* the tracker's first member */
-  if (q->closed)
-    return;
-  if (q->n == q->cap)
+  if (q->n == q->cap && !q->closed)
     aq_demand_flush(d);
-  q->rec[q->n++] = *r;
+  return q->closed ? NULL : q->rec + q->n++;
 }
-
 /* ---- a run in which the arch never moves ----
  * Its demand is that of the statics: the least friction with which a line
  * of thrust stands at the record's peak (docs/demand.md, "A run that never

@@ -151,8 +151,8 @@ static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
   double *cw = malloc(nf * 6 * sizeof *cw), *u = malloc(nf * 4 * sizeof *u);
   double *at = malloc(nf * 6 * sizeof *at);
   size_t *stamp = calloc(nf, sizeof *stamp);
-  uint16_t *list = malloc(2 * nf * sizeof *list), *tmp = malloc(2 * nf * sizeof *tmp);
-  uint16_t *pool = NULL;
+  uint16_t *list = malloc(2 * nf * sizeof *list);
+  aq_dg_cand *tmp = malloc(2 * nf * sizeof *tmp), *pool = NULL;
   size_t cap = 0, np = 0;
   int ok = cw && u && at && stamp && list && tmp;
   for (size_t j = 0; ok && j < nf; j++) /* the constant and KE terms */
@@ -193,6 +193,7 @@ static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
     for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
       aq_dg_cell *cl = cells + ia;
       size_t c0 = 0;
+      uint32_t hc = 0;
       bin_a(g, ia, &a0, &a1);
       for (int q = 0; q < 2; q++) {
         double U = 0, L = 0;
@@ -215,26 +216,27 @@ static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
         size_t c = 0;
         for (size_t m = 0; m < nq[q]; m++)
           if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
-            tmp[c0 + c++] = lq[q][m];
+            tmp[c0 + c++] = (aq_dg_cand)upper16(u[4 * (size_t)lq[q][m] + 2 * (size_t)q]) << 16 |
+                            lq[q][m];
         cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
         c0 += c < DG_ALL ? c : 0;
-        g->hu[2 * (row_i * DG_NA + ia) + (size_t)q] = upper16(U);
+        hc |= (uint32_t)upper16(U) << (16 * q);
       }
-      cl->off = 0;
+      atomic_store_explicit(&g->hu[row_i * DG_NA + ia], hc, memory_order_relaxed);
       if (c0 <= DG_INLINE) {
         memcpy(cl->c, tmp, c0 * sizeof *tmp);
         continue;
       }
       if (np + c0 > cap) {
         size_t nc = 2 * (np + c0) + 64;
-        uint16_t *p = realloc(pool, nc * sizeof *p);
+        aq_dg_cand *p = realloc(pool, nc * sizeof *p);
         if (!p) {
           ok = 0;
           break;
         }
         pool = p, cap = nc;
       }
-      cl->off = (uint32_t)np;
+      cl->c[0] = (aq_dg_cand)np;
       memcpy(pool + np, tmp, c0 * sizeof *tmp);
       np += c0;
     }
@@ -311,12 +313,14 @@ aq_demand_grid *aq_dg_build(const aq_demand_table *t)
   if (!g)
     return NULL;
   g->cell = malloc(nr * sizeof *g->cell); /* made row by row: pages touched then */
-  g->hu = malloc(2 * nr * sizeof *g->hu);
+  g->hu = malloc(nr * sizeof *g->hu);
   if (!g->cell || !g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
     free(g->cell), free(g->hu), free(g);
     return NULL;
   }
   g->t = t;
+  for (size_t c = 0; c < nr; c++)
+    atomic_init(&g->hu[c], (uint32_t)DG_UNMADE << 16 | DG_UNMADE);
   for (size_t r = 0; r < DG_NS * DG_NK; r++)
     atomic_init(&g->built[r], 0);
   atomic_init(&g->walls, 0);

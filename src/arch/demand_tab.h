@@ -54,24 +54,30 @@ static inline double aq_dt_cubic(const double c[4], double u)
  * 2^DG_OCT) has no cell. */
 enum { DG_NS = 64, DG_NA = 64, DG_OCT = 14, DG_KB = 1, DG_NK = 1 + (DG_OCT << DG_KB) };
 #define DG_ALL 255 /* a count meaning: every entry */
+#define DG_UNMADE 0xffff /* the bounds of a cell whose row is not made: above every key */
 
 enum { DG_INLINE = 5 };
+/* A candidate: its entry in the low 16 bits, the code of its own upper
+ * bound over the cell (as the cell's, aq_dg_bound) in the high 16. */
+typedef uint32_t aq_dg_cand;
 typedef struct {
-  uint16_t c[DG_INLINE]; /* the candidates, those of |T|/N then those of |e|/N, when
-                            there are at most DG_INLINE; else pool[off ..] */
-  uint8_t n[2];          /* their counts (DG_ALL: every entry) */
-  uint32_t off;
+  aq_dg_cand c[DG_INLINE]; /* the candidates, those of |T|/N then those of |e|/N, when
+                              there are at most DG_INLINE; else c[0] is their offset
+                              in the row's pool */
+  uint8_t n[2];            /* their counts (DG_ALL: every entry) */
 } aq_dg_cell;
 
 typedef struct aq_demand_grid {
   double inv_ds;  /* NS / s_c */
   double da, inv_da; /* a/g per bin */
   double k0, inv_k0; /* KE/g of the first bin's top */
-  uint16_t *hu;      /* per cell, both quantities' upper bounds: the top half of a
-                        float's bits, rounded up (aq_dg_bound) */
+  _Atomic uint32_t *hu; /* per cell, both quantities' upper bounds (|T|/N's in the low
+                           half): the top half of a float's bits, rounded up
+                           (aq_dg_bound); DG_UNMADE until its row is made (written
+                           once, under lock; read without) */
   aq_dg_cell *cell;  /* NS * NK * NA, index (is * NK + ik) * NA + ia */
-  uint16_t *pool[DG_NS * DG_NK]; /* per row (range of s, of KE/g): the candidates of
-                                    its cells that have more than DG_INLINE */
+  aq_dg_cand *pool[DG_NS * DG_NK]; /* per row (range of s, of KE/g): the candidates
+                                      of its cells that have more than DG_INLINE */
   /* Each row of cells is made the first time a state falls in it (under
    * lock, published by built[row]); a row that cannot be made (out of
    * memory) leaves its states outside the grid. */
@@ -98,15 +104,14 @@ int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik);
 aq_demand_grid *aq_dg_build(const aq_demand_table *t);
 void aq_dg_free(aq_demand_grid *g);
 
-/* The cell of a state, or -1 (outside the grid, or in a range of s that
- * cannot be made).  Makes the state's range of s the first time. */
-static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg)
+/* The row of states (s, KE/g = kg), is * DG_NK + ik, or -1 (outside the
+ * grid).  The row may not be made yet (aq_dg_ready). */
+static inline long aq_dg_row(const aq_demand_grid *g, double s, double kg)
 {
-  double xs = s * g->inv_ds, xa = al * g->inv_da + 0.5 * DG_NA, xk = kg * g->inv_k0;
-  if (!(xs >= 0 && xs < DG_NS + 1.0 && xa >= 0 && xa < DG_NA && xk >= 0 &&
-        xk < (double)(1ULL << DG_OCT)))
+  double xs = s * g->inv_ds, xk = kg * g->inv_k0;
+  if (!(xs >= 0 && xs < DG_NS + 1.0 && xk >= 0 && xk < (double)(1ULL << DG_OCT)))
     return -1;
-  size_t is = (size_t)xs, ia = (size_t)xa, ik = 0;
+  size_t is = (size_t)xs, ik = 0;
   if (is >= DG_NS)
     is = DG_NS - 1;
   if (xk >= 1) {
@@ -115,18 +120,52 @@ static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg
     ik = 1 + ((size_t)(((bits >> 52) & 0x7ff) - 1023) << DG_KB) +
          (size_t)((bits >> (52 - DG_KB)) & ((1u << DG_KB) - 1));
   }
-  int b = atomic_load_explicit(&g->built[is * DG_NK + ik], memory_order_acquire);
-  if (b != 1 && (b == 2 || aq_dg_make(g, is, ik) != 0))
+  return (long)(is * DG_NK + ik);
+}
+
+/* 1: row r (aq_dg_row) is made, made now the first time; 0: it cannot be. */
+static inline int aq_dg_ready(aq_demand_grid *g, long r)
+{
+  int b = atomic_load_explicit(&g->built[r], memory_order_acquire);
+  return b == 1 || (b == 0 && aq_dg_make(g, (size_t)r / DG_NK, (size_t)r % DG_NK) == 0);
+}
+
+/* The cell of a/g al in row r (aq_dg_row), or -1 (r < 0, or al outside). */
+static inline long aq_dg_cell_in(const aq_demand_grid *g, long r, double al)
+{
+  double xa = al * g->inv_da + 0.5 * DG_NA;
+  if (r < 0 || !(xa >= 0 && xa < DG_NA))
     return -1;
-  return (long)((is * DG_NK + ik) * DG_NA + ia);
+  return r * DG_NA + (long)xa;
+}
+
+/* Cell c's bound codes, |T|/N's in the low half (DG_UNMADE in both: its
+ * row is not made). */
+static inline uint32_t aq_dg_codes(const aq_demand_grid *g, long c)
+{
+  return atomic_load_explicit(&g->hu[c], memory_order_relaxed);
+}
+
+/* Cell c's bound code of quantity q (DG_UNMADE: its row is not made). */
+static inline uint16_t aq_dg_code(const aq_demand_grid *g, long c, int q)
+{
+  return (uint16_t)(aq_dg_codes(g, c) >> (16 * q));
+}
+
+/* The cell of a state, or -1 (outside the grid, or in a row that cannot
+ * be made).  Makes the state's row the first time. */
+static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg)
+{
+  long r = aq_dg_row(g, s, kg), c = aq_dg_cell_in(g, r, al);
+  return c >= 0 && aq_dg_ready(g, r) ? c : -1;
 }
 
 /* The candidates of cell ic. */
-static inline const uint16_t *aq_dg_cands(const aq_demand_grid *g, long ic)
+static inline const aq_dg_cand *aq_dg_cands(const aq_demand_grid *g, long ic)
 {
   const aq_dg_cell *c = g->cell + ic;
   size_t n = (c->n[0] == DG_ALL ? 0 : c->n[0]) + (c->n[1] == DG_ALL ? 0 : c->n[1]);
-  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->off;
+  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->c[0];
 }
 
 /* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2] (known
@@ -157,7 +196,7 @@ static inline uint16_t aq_dg_floor16(double m)
 /* Cell c's upper bound of quantity q. */
 static inline double aq_dg_bound(const aq_demand_grid *g, long c, int q)
 {
-  uint32_t b = (uint32_t)g->hu[2 * c + q] << 16;
+  uint32_t b = (uint32_t)aq_dg_code(g, c, q) << 16;
   float f;
   memcpy(&f, &b, sizeof f);
   return f;

@@ -15,8 +15,14 @@
  * cell, so the state's largest value, the entry that has it first and
  * every time noted are those of evaluating every entry, to the bit.  A
  * state outside the grid, or in a cell with too many candidates, has every
- * entry evaluated. */
+ * entry evaluated.
+ *
+ * The stepper queues its legs; a full queue is looked at in two passes
+ * (flush_legs): every state's cell first, then, after evaluating ahead the
+ * state with the largest bound (a value the maximum will reach there), the
+ * states that may still change a result, in order. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,7 +32,7 @@
 enum { DM_QUEUE = 64 };
 
 struct aq_demand {
-  aq_demand_queue q; /* first: aq_demand_push reaches it */
+  aq_demand_queue q; /* first: aq_demand_slot reaches it */
   aq_demand_leg_rec qbuf[DM_QUEUE];
   const aq_demand_table *tab[2];
   const aq_demand_table *(*get)(void *ctx, int set);
@@ -37,6 +43,13 @@ struct aq_demand {
   double g, ig;     /* the last gravity and its inverse */
   double max[2];
   uint16_t key[2];  /* aq_dg_floor16 of each maximum */
+  /* A flush may first find a value v that a later state of the queue has
+   * (flush_legs): until that state, one whose quantity is below v cannot
+   * change the maximum, its entry or its time (that state raises the
+   * maximum past it), only the first time over the limit.  pre[q]: the
+   * largest code below v (0: none); eff[q]: the code a state's or a
+   * candidate's bound must exceed to be looked at (refresh). */
+  uint16_t pre[2], eff[2];
   size_t joint[2];
   double when[2];
   double over_s[2]; /* first time over the limit (mu_limit, 1), NAN: never */
@@ -84,6 +97,8 @@ void aq_demand_begin(aq_demand *d)
     d->iv[k] = 0;
     d->max[k] = 0;
     d->key[k] = 0;
+    d->pre[k] = 0;
+    d->eff[k] = 0;
     d->joint[k] = 0;
     d->when[k] = NAN;
     d->over_s[k] = NAN;
@@ -116,6 +131,20 @@ static size_t locate(const aq_demand_table *t, size_t i, double s)
   return i;
 }
 
+/* eff[q]: above the maximum's key, and, before the state holding a value
+ * found ahead (pre[q]), at least that value or, until the limit is first
+ * passed, above the limit. */
+static void refresh(aq_demand *d, int q)
+{
+  uint16_t e = d->pre[q];
+  if (e && isnan(d->over_s[q])) {
+    double lim = q == 0 ? d->mu_limit : 1.0;
+    uint16_t lk = isnan(lim) ? 0xffff : aq_dg_floor16(lim);
+    e = lk < e ? lk : e;
+  }
+  d->eff[q] = e > d->key[q] ? e : d->key[q];
+}
+
 /* A state's value v of quantity q at entry j: the running maximum and the
  * first time over the limit. */
 static void note(aq_demand *d, int q, double v, const aq_demand_table *t, size_t j, double t_s)
@@ -125,24 +154,29 @@ static void note(aq_demand *d, int q, double v, const aq_demand_table *t, size_t
     d->key[q] = aq_dg_floor16(v);
     d->joint[q] = t->entry[j].joint;
     d->when[q] = t_s;
+    refresh(d, q);
   }
   double lim = q == 0 ? d->mu_limit : 1.0;
-  if (v > lim && isnan(d->over_s[q]))
+  if (v > lim && isnan(d->over_s[q])) {
     d->over_s[q] = t_s;
+    refresh(d, q);
+  }
 }
 
-/* The cell of state (s, al, kg) of t, or -1 when the state must be looked
- * at: outside the grid, or in a cell whose bound exceeds a running
- * maximum.  -2: the cell's bounds do not exceed the running maxima. */
-static inline long cell_of(const aq_demand *d, const aq_demand_table *t, double s, double al,
-                           double kg)
+/* The row of states (s, kg) of t (aq_dg_row), -1: none (every entry is
+ * evaluated there). */
+static inline long row_of(const aq_demand *d, const aq_demand_table *t, double s, double kg)
 {
-  if (d->every || !t->grid)
-    return -1;
-  long ic = aq_dg_index(t->grid, s, al, kg);
-  if (ic >= 0 && t->grid->hu[2 * ic] <= d->key[0] && t->grid->hu[2 * ic + 1] <= d->key[1])
-    return -2;
-  return ic;
+  return d->every || !t->grid ? -1 : aq_dg_row(t->grid, s, kg);
+}
+
+/* An entry's N and |T| (q 0) or |e| (q 1) at u, al, w, from its cubics c. */
+static inline void forms(const double *c, int q, double u, double al, double w, double *N,
+                         double *X)
+{
+  const double *x = c + (3 + 3 * (size_t)q) * DT_NC;
+  *N = aq_dt_cubic(c, u) + al * aq_dt_cubic(c + DT_NC, u) + w * aq_dt_cubic(c + 2 * DT_NC, u);
+  *X = fabs(aq_dt_cubic(x, u) + al * aq_dt_cubic(x + DT_NC, u) + w * aq_dt_cubic(x + 2 * DT_NC, u));
 }
 
 /* Look at one state of set k at (s, al = a/g, kg = KE/g), record time t_s,
@@ -153,8 +187,8 @@ static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, doub
   const aq_dg_cell *cl = ic >= 0 ? t->grid->cell + ic : NULL;
   if (cl && (cl->n[0] == DG_ALL || cl->n[1] == DG_ALL))
     cl = NULL;
-  int need[2] = {!cl || aq_dg_bound(t->grid, ic, 0) > d->max[0],
-                 !cl || aq_dg_bound(t->grid, ic, 1) > d->max[1]};
+  int need[2] = {!cl || aq_dg_code(t->grid, ic, 0) > d->eff[0],
+                 !cl || aq_dg_code(t->grid, ic, 1) > d->eff[1]};
   size_t i = d->iv[k] = locate(t, d->iv[k], s);
   double u = (s - t->bp[i]) * t->ih[i];
   const double *C = t->c + i * t->stride;
@@ -174,16 +208,18 @@ static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, doub
         note(d, 1, N > 0 ? E / N : INFINITY, t, j, t_s);
     }
   } else {
-    const uint16_t *p = aq_dg_cands(t->grid, ic);
+    const aq_dg_cand *p = aq_dg_cands(t->grid, ic);
     for (int q = 0; q < 2; q++) {
       for (size_t m = 0; m < cl->n[q] && need[q]; m++) {
+          /* a candidate whose own bound does not exceed the maximum cannot
+           * raise it (nor pass a limit the maximum has not passed); nor one
+           * below a value found ahead (refresh) */
+          if ((p[m] >> 16) <= d->eff[q])
+            continue;
           d->looks++;
-          size_t j = p[m];
-          const double *c = C + j * DT_NV * DT_NC, *x = c + (3 + 3 * (size_t)q) * DT_NC;
-          double N = aq_dt_cubic(c, u) + al * aq_dt_cubic(c + DT_NC, u) +
-                     w * aq_dt_cubic(c + 2 * DT_NC, u);
-          double X = fabs(aq_dt_cubic(x, u) + al * aq_dt_cubic(x + DT_NC, u) +
-                          w * aq_dt_cubic(x + 2 * DT_NC, u));
+          size_t j = p[m] & 0xffff;
+          double N, X;
+          forms(C + j * DT_NV * DT_NC, q, u, al, w, &N, &X);
           /* X / N below the maximum by more than its rounding changes
            * nothing (nor passes a limit: one not passed yet is above the
            * maximum); the division is left out */
@@ -215,12 +251,31 @@ static const aq_demand_table *ready(aq_demand *d, int k, double g)
   return t;
 }
 
-static inline void visit(aq_demand *d, const aq_demand_table *t, int k, double s, double al,
-                         double kg, double t_s)
+/* A state in cell ic (-1: none) is looked at: no cell, a row not made,
+ * or bounds above the maxima. */
+static inline int exceeds(const aq_demand *d, const aq_demand_table *t, long ic)
 {
-  long ic = cell_of(d, t, s, al, kg);
-  if (ic != -2)
-    look_at(d, t, k, ic, s, al, kg, t_s);
+  if (ic < 0)
+    return 1;
+  uint32_t c = aq_dg_codes(t->grid, ic);
+  return (c & 0xffff) > d->eff[0] || c >> 16 > d->eff[1];
+}
+
+/* Cell ic (-1: none) once its row is made; -1 when it cannot be. */
+static inline long made(const aq_demand_table *t, long ic)
+{
+  return ic >= 0 && aq_dg_ready(t->grid, ic / DG_NA) ? ic : -1;
+}
+
+/* Visit state (s, al, kg) of set k in row r (row_of): look at it unless
+ * its cell's bounds do not exceed the running maxima. */
+static inline void visit(aq_demand *d, const aq_demand_table *t, int k, long r, double s,
+                         double al, double kg, double t_s)
+{
+  long ic = r >= 0 ? aq_dg_cell_in(t->grid, r, al) : -1;
+  if (!exceeds(d, t, ic))
+    return;
+  look_at(d, t, k, made(t, ic), s, al, kg, t_s);
 }
 
 void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, double g_mps2,
@@ -230,19 +285,20 @@ void aq_demand_at(aq_demand *d, int k, double s, double ke_j, double a_mps2, dou
   if (!t)
     return;
   d->samples++;
-  visit(d, t, k, s, a_mps2 * d->ig, ke_j * d->ig, t_s);
+  double kg = ke_j * d->ig;
+  visit(d, t, k, row_of(d, t, s, kg), s, a_mps2 * d->ig, kg, t_s);
 }
 
-/* The end of a leg of set k (aq_demand_leg), under al = a/g. */
-static inline void leg_end(aq_demand *d, const aq_demand_table *t, int k, double s, double kg,
-                           int dir, size_t rev, double al, double t_s)
+/* The walls a leg of set k that ended at (s, kg) moving in direction dir
+ * turned at (rev of them, one behind the end, then the other), under
+ * al = a/g. */
+static void walls(aq_demand *d, const aq_demand_table *t, int k, double s, double kg, int dir,
+                  size_t rev, double al, double t_s)
 {
-  d->samples += 1 + (rev < 2 ? rev : 2);
   /* no state at rest under al exceeds the maxima: the walls need not be found */
   if (!d->every && t->grid && kg > 0 && rev > 0 && aq_dg_wall_below(t->grid, al, d->max))
-    rev = 0;
-  /* the walls the leg turned at (one behind the end, then the other):
-   * sdot^2 / g falls at 2 sddot / g per unit of s (d(sdot^2)/ds = 2 sddot),
+    return;
+  /* sdot^2 / g falls at 2 sddot / g per unit of s (d(sdot^2)/ds = 2 sddot),
    * so from the end the wall is at s - w / (2 sddot / g), to second order
    * in the distance, which is within the leg's travel */
   for (size_t r = 0; r < rev && r < 2 && kg > 0 && !d->done; r++) {
@@ -256,32 +312,185 @@ static inline void leg_end(aq_demand *d, const aq_demand_table *t, int k, double
     if (!((sw - s) * toward > 0))
       continue;
     sw = sw < 0 ? 0 : sw > t->s_c ? t->s_c : sw;
-    visit(d, t, k, sw, al, 0, t_s);
+    visit(d, t, k, row_of(d, t, sw, 0), sw, al, 0, t_s);
   }
-  if (!d->done)
-    visit(d, t, k, s, al, kg, t_s);
 }
 
 void aq_demand_leg(aq_demand *d, int k, double s, double ke_j, int dir, size_t rev,
                    double a_mps2, double g_mps2, double t_s)
 {
   const aq_demand_table *t = ready(d, k, g_mps2);
-  if (t)
-    leg_end(d, t, k, s, ke_j * d->ig, dir, rev, a_mps2 * d->ig, t_s);
+  if (!t)
+    return;
+  double kg = ke_j * d->ig, al = a_mps2 * d->ig;
+  d->samples += 1 + (rev < 2 ? rev : 2);
+  walls(d, t, k, s, kg, dir, rev, al, t_s);
+  if (!d->done)
+    visit(d, t, k, row_of(d, t, s, kg), s, al, kg, t_s);
+}
+
+/* The largest value of quantity q at state (s, al, kg) of set k in cell
+ * ic over the candidates that may exceed the maximum (0 when none does,
+ * or the cell is not known). */
+static __attribute__((noinline)) double value_at(aq_demand *d, const aq_demand_table *t,
+                                                 int k, long ic, double s, double al, double kg,
+                                                 int q)
+{
+  const aq_dg_cell *cl = ic >= 0 ? t->grid->cell + ic : NULL;
+  if (!cl || cl->n[0] == DG_ALL || cl->n[1] == DG_ALL)
+    return 0;
+  size_t i = d->iv[k] = locate(t, d->iv[k], s);
+  double u = (s - t->bp[i]) * t->ih[i], best = 0;
+  const double *C = t->c + i * t->stride;
+  double w = 2.0 * kg * aq_dt_cubic(C + (t->nf * DT_NV + 3) * DT_NC, u);
+  const aq_dg_cand *p = aq_dg_cands(t->grid, ic) + (q ? cl->n[0] : 0);
+  for (size_t m = 0; m < cl->n[q]; m++) {
+    if ((p[m] >> 16) <= d->key[q])
+      continue;
+    d->looks++;
+    double N, X;
+    forms(C + (p[m] & 0xffff) * DT_NV * DT_NC, q, u, al, w, &N, &X);
+    double v = N > 0 ? X / N : INFINITY;
+    best = v > best ? v : best;
+  }
+  return best;
+}
+
+/* The state 2 n + e (0: start, 1: end of leg n) has been looked at: no
+ * value found ahead holds past it. */
+static void passed(aq_demand *d, size_t at[2], size_t st)
+{
+  for (int q = 0; q < 2; q++)
+    if (at[q] <= st) {
+      at[q] = SIZE_MAX;
+      d->pre[q] = 0;
+      refresh(d, q);
+    }
+}
+
+/* The queued legs [n0, n1) (at most 64) of sets whose tables are known:
+ * first every state's cell, and which legs have a state whose cell's
+ * bounds exceed the maxima or walls to find; then those legs in order,
+ * each state looked at when its cell's bounds exceed the maxima of that
+ * moment (they only grow, so a leg left out has nothing to look at). */
+static void flush_legs(aq_demand *d, size_t n0, size_t n1)
+{
+  const aq_demand_leg_rec *rec = d->q.rec;
+  double al[DM_QUEUE], kg[DM_QUEUE][2];
+  long cell[DM_QUEUE][2];
+  uint64_t mark = 0;
+  long prow = -1;
+  uint16_t best[2] = {0, 0};
+  size_t at[2] = {SIZE_MAX, SIZE_MAX}; /* 2 n + (0: start, 1: end) of the largest */
+  for (size_t n = n0; n < n1; n++) {
+    const aq_demand_leg_rec *r = rec + n;
+    const aq_demand_table *t = d->tab[r->k];
+    if (r->g_mps2 != d->g) {
+      d->g = r->g_mps2;
+      d->ig = 1.0 / r->g_mps2;
+    }
+    double a = r->a_mps2 * d->ig, k0 = r->ke0 * d->ig, k1 = r->ke1 * d->ig;
+    al[n] = a, kg[n][0] = k0, kg[n][1] = k1;
+    long c0 = -1, c1 = -1;
+    if (!d->every && t->grid) {
+      const aq_demand_grid *g = t->grid;
+      double xa = a * g->inv_da + 0.5 * DG_NA;
+      /* a leg starts where the one before ended (the same set, s, KE and
+       * g): in the row of that end, under the new a/g */
+      const aq_demand_leg_rec *p = r - 1;
+      long r0 = n > n0 && p->k == r->k && p->s1 == r->s0 && p->ke1 == r->ke0 &&
+                        p->g_mps2 == r->g_mps2
+                    ? prow
+                    : aq_dg_row(g, r->s0, k0);
+      long r1 = prow = aq_dg_row(g, r->s1, k1);
+      if (xa >= 0 && xa < DG_NA) {
+        long ia = (long)xa;
+        c0 = r0 >= 0 ? r0 * DG_NA + ia : -1;
+        c1 = r1 >= 0 ? r1 * DG_NA + ia : -1;
+      }
+    } else {
+      prow = -1;
+    }
+    cell[n][0] = c0, cell[n][1] = c1;
+    if (r->rev > 0 || exceeds(d, t, c0) || exceeds(d, t, c1))
+      mark |= (uint64_t)1 << (n - n0);
+  }
+  /* of the states to look at, the one whose bound is the largest, of each
+   * quantity: its value, when above the maximum, is one the maximum will
+   * reach at that state (worth finding when other states come before) */
+  for (uint64_t mk = mark & (mark - 1) ? mark : 0; mk; mk &= mk - 1) {
+    size_t n = n0 + (size_t)__builtin_ctzll(mk);
+    const aq_demand_table *t = d->tab[rec[n].k];
+    for (int e = 0; e < 2; e++)
+      for (int q = 0; q < 2 && cell[n][e] >= 0; q++) {
+        uint16_t code = aq_dg_code(t->grid, cell[n][e], q);
+        if (code > best[q] && code != DG_UNMADE)
+          best[q] = code, at[q] = 2 * n + (size_t)e;
+      }
+  }
+  for (int q = 0; q < 2; q++) {
+    if (best[q] <= d->key[q]) {
+      at[q] = SIZE_MAX;
+      continue;
+    }
+    size_t n = at[q] / 2;
+    int e = (int)(at[q] % 2);
+    const aq_demand_leg_rec *r = rec + n;
+    const aq_demand_table *t = d->tab[r->k];
+    double v = value_at(d, t, r->k, made(t, cell[n][e]), e ? r->s1 : r->s0, al[n], kg[n][e], q);
+    if (v > d->max[q] && v < 3e38) {
+      d->pre[q] = aq_dg_floor16(nextafter(v, 0));
+      refresh(d, q);
+    } else {
+      at[q] = SIZE_MAX;
+    }
+  }
+  /* each leg is two states (its start, its end) and the walls it turned at */
+  size_t next = n0, until = at[0] < at[1] ? at[0] : at[1];
+  while (mark && !d->done) {
+    size_t n = n0 + (size_t)__builtin_ctzll(mark);
+    mark &= mark - 1;
+    const aq_demand_leg_rec *r = rec + n;
+    const aq_demand_table *t = d->tab[r->k];
+    d->samples += 2 * (n - next) + 1;
+    next = n + 1;
+    if (exceeds(d, t, cell[n][0]))
+      look_at(d, t, r->k, made(t, cell[n][0]), r->s0, al[n], kg[n][0], r->t0);
+    if (2 * n >= until)
+      passed(d, at, 2 * n), until = at[0] < at[1] ? at[0] : at[1];
+    if (d->done)
+      break;
+    size_t rev = r->rev;
+    d->samples += 1 + (rev < 2 ? rev : 2);
+    if (rev > 0)
+      walls(d, t, r->k, r->s1, kg[n][1], r->dir, rev, al[n], r->t1);
+    if (!d->done && exceeds(d, t, cell[n][1]))
+      look_at(d, t, r->k, made(t, cell[n][1]), r->s1, al[n], kg[n][1], r->t1);
+    if (2 * n + 1 >= until)
+      passed(d, at, 2 * n + 1), until = at[0] < at[1] ? at[0] : at[1];
+  }
+  passed(d, at, SIZE_MAX - 1);
+  if (!d->done)
+    d->samples += 2 * (n1 - next);
 }
 
 void aq_demand_flush(aq_demand *d)
 {
-  for (size_t n = 0; n < d->q.n; n++) {
-    const aq_demand_leg_rec *r = d->q.rec + n;
-    const aq_demand_table *t = ready(d, r->k, r->g_mps2);
-    if (!t)
-      continue;
-    double al = r->a_mps2 * d->ig;
-    d->samples++;
-    visit(d, t, r->k, r->s0, al, r->ke0 * d->ig, r->t0);
-    if (!d->done)
-      leg_end(d, t, r->k, r->s1, r->ke1 * d->ig, r->dir, r->rev, al, r->t1);
+  size_t n0 = 0, nq = d->q.n;
+  if (nq)
+    d->moved = 1;
+  /* in runs of legs whose sets' tables are known; a set's table is asked
+   * for when its first leg comes, unless nothing is left to do */
+  while (n0 < nq && !d->failed && !d->done) {
+    size_t n1 = n0;
+    while (n1 < nq && (n1 == n0 || d->asked[d->q.rec[n1].k]) && n1 - n0 < 64)
+      n1++;
+    if (!table(d, d->q.rec[n0].k)) {
+      d->failed = 1;
+      break;
+    }
+    flush_legs(d, n0, n1);
+    n0 = n1;
   }
   d->q.n = 0;
   d->q.closed = d->failed || d->done;
@@ -294,7 +503,7 @@ int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg
   if (ic < 0)
     return 0;
   const aq_dg_cell *cl = t->grid->cell + ic;
-  const uint16_t *p = aq_dg_cands(t->grid, ic);
+  const aq_dg_cand *p = aq_dg_cands(t->grid, ic);
   size_t m = 0;
   for (int q = 0; q < 2; q++) {
     int all = cl->n[q] == DG_ALL;
@@ -303,7 +512,7 @@ int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg
     if (m + n[q] > cap)
       return -1;
     for (size_t k = 0; k < n[q]; k++)
-      cand[m++] = all ? k : *p++;
+      cand[m++] = all ? k : *p++ & 0xffff;
   }
   return 1;
 }

@@ -602,6 +602,13 @@ double aq_statics_lambda_friction(const aq_statics *s, int act_sign, size_t *joi
 double aq_statics_mu_least(const aq_statics *s, int act_sign, double lambda, size_t *joint);
 /* The nodes of direction act_sign's table (0: none). */
 int aq_statics_nodes(const aq_statics *s, int act_sign);
+/* 1 if direction act_sign's table met its tolerance at every interval (or
+ * has none); 0 if its nodes ran out first (256: the least friction's
+ * kinks, where its line of thrust changes the joint faces it touches, can
+ * need more): then aq_statics_mu_least is its interpolant, off by more
+ * than the tolerance somewhere (the commands that build the table warn:
+ * aq_mechanism_warn_minimum). */
+int aq_statics_resolved(const aq_statics *s, int act_sign);
 /* The largest lambda >= 0 at which a line stands with friction mu, from
  * the table (NAN when none does, not even at rest, and when mu is above
  * the 1e3 where a table ends below lambda_top; lambda_top when mu is at

@@ -542,12 +542,11 @@ aq_status aq_stepper_run(aq_stepper *st, const aq_steps *steps, aq_result *res,
       const double s0 = m.s, ke0 = m.ke_j;
       rc = leg(st, set, avs ? &st->pv[set] : st->path[set], a, &m, dt - t_in, &used,
                &end, &S, err);
-      if (dem_legs && rc == AQ_OK) {
-        aq_demand_leg_rec r = {s0, ke0, hc.t0_s, m.s, m.ke_j,
-                               hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used), a, g_leg,
-                               set, m.dir, S.reversals - rev0};
-        aq_demand_push(dem, &r);
-      }
+      aq_demand_leg_rec *r;
+      if (dem_legs && rc == AQ_OK && (r = aq_demand_slot(dem)))
+        *r = (aq_demand_leg_rec){s0, ke0, hc.t0_s, m.s, m.ke_j,
+                                 hc.t0_s + (end == AQ_LEG_TIME ? dt - t_in : used), a, g_leg,
+                                 set, m.dir, S.reversals - rev0};
       if (hc.rc != AQ_OK)
         goto nomem;
       if (end == AQ_LEG_COLLAPSE)
