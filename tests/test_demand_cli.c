@@ -117,14 +117,11 @@ AQ_TEST(demand_cli_failed_run_unmarked)
   /* a record that cannot be read: its rows fail, no demand, no mark (the
    * friction is the least oppenheim stands with at rest, 0.309, and a
    * little more: any run that moved would slide) */
-  FILE *f = fopen("build/san/demand_bad.AT2", "w");
-  if (!aq_check(f != NULL, "write a bad record"))
+  char path[512], cmd[768];
+  if (!aq_test_tmpfile(path, sizeof path, "demand_bad.AT2", "not an AT2 file\n"))
     return;
-  fputs("not an AT2 file\n", f);
-  fclose(f);
-  int rc = aq_test_run("build/san/demand_bad.AT2 --arch arches/oppenheim.cfg --friction 0.31 "
-                       "",
-                       out, sizeof out, err, sizeof err);
+  snprintf(cmd, sizeof cmd, "%s --arch arches/oppenheim.cfg --friction 0.31", path);
+  int rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
   aq_check(rc == 1, "exit 1, got %d", rc);
   char st[64];
   str(out, 1, column(out, "status"), st, sizeof st);
@@ -132,7 +129,6 @@ AQ_TEST(demand_cli_failed_run_unmarked)
   aq_check(isnan(num(out, 1, column(out, "mu_demand"))) &&
                isnan(num(out, 1, column(out, "thrust_ecc_max"))),
            "no demand without a run");
-  remove("build/san/demand_bad.AT2");
 }
 
 AQ_TEST(demand_cli_paper_still_runs)
