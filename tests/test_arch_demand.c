@@ -828,14 +828,12 @@ AQ_TEST(arch_demand_grid_bounds_at_cell_corners)
   aq_check(states > 50000, "states %zu", states);
 }
 
+static size_t walls_near, walls_seen;
 static size_t walls(const char *arch, int set, const aq_demand_table *t, aq_joint_form *fb,
                     size_t nf, double *r)
 {
-  const aq_demand_grid *G = t->grid;
-  double u[2];
-  size_t nc[2], cand[1024], states = 0;
-  for (size_t is = 0; is < DG_NS; is++) /* every row of KE/g 0 */
-    aq_demand_grid_cell(t, t->s_c * ((double)is + 0.5) / DG_NS, 0, 0, u, cand, 1024, nc);
+  aq_demand_grid *G = t->grid;
+  size_t states = 0;
   for (size_t ia = DG_NA / 2 - 12; ia < DG_NA / 2 + 12; ia += 3) {
     double a0 = ((double)ia - 0.5 * DG_NA) * G->da, al[2] = {a0, nextafter(a0 + G->da, a0)};
     double m[2] = {0, 0};
@@ -847,6 +845,15 @@ static size_t walls(const char *arch, int set, const aq_demand_table *t, aq_join
       }
     /* the bounds say no state at rest exceeds a little less than the
      * entries reach: wrong (an infinite demand: the bound must be too) */
+    /* and it is near what they reach (a bound far above would leave every
+     * wall to be found) */
+    for (int q = 0; q < 2; q++)
+      if (isfinite(m[q]) && m[q] > 0) {
+        double above[2] = {INFINITY, INFINITY};
+        above[q] = 1.25 * m[q];
+        walls_near += aq_dg_wall_below(G, al[0], above);
+        walls_seen++;
+      }
     for (int q = 0; q < 2; q++) {
       double below[2] = {INFINITY, INFINITY};
       below[q] = isinf(m[q]) ? DBL_MAX : m[q] * (1 - 1e-9);
@@ -861,10 +868,14 @@ AQ_TEST(arch_demand_grid_walls_bound_states_at_rest)
 {
   /* a leg's walls are found only when some state at rest under its a/g
    * could exceed the maxima: each a/g bin's bound must hold at rest (KE 0)
-   * at every s.  Every row of KE/g 0 made, then states at rest sampled
-   * densely in s at both edges of each a/g bin, every entry evaluated. */
+   * at every s.  States at rest sampled densely in s (six to each range of
+   * s of the grid's rows) at both edges of each a/g bin, every entry
+   * evaluated. */
   size_t states = each_grid(walls);
   aq_check(states > 50000, "states %zu", states);
+  aq_check(walls_seen > 100 && walls_near >= walls_seen * 8 / 10,
+           "the walls' bound within 1.25 of the states at rest in %zu of %zu a/g bins",
+           walls_near, walls_seen);
 }
 
 /* A run in which the arch never moves: the least friction with which a

@@ -65,6 +65,7 @@ void aq_dg_free(aq_demand_grid *g)
   for (size_t is = 0; is < DG_NS; is++)
     free(g->rng[is]);
   pthread_mutex_destroy(&g->lock);
+  free(g->wrng);
   free(g->hu);
   free(g->cell);
   free(g);
@@ -250,12 +251,11 @@ static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
   return 0;
 }
 
-/* The ranges of the nine forms of every entry and of 1/M over range is
- * of s, into R (lo, hi each). */
-static void ranges(const aq_demand_table *t, size_t is, double *R)
+/* The ranges of the nine forms of every entry and of 1/M over s in
+ * [s0, s1] (widened), into R (lo, hi each). */
+static void ranges_in(const aq_demand_table *t, double s0, double s1, double *R)
 {
   size_t nf = t->nf;
-  double s0 = t->s_c * (double)is / DG_NS, s1 = t->s_c * (double)(is + 1) / DG_NS;
   double pad = DG_PAD * (s1 - s0);
   s0 = fmax(0, s0 - pad), s1 = fmin(t->s_c, s1 + pad);
   for (size_t k = 0; k < nf * DT_NV + 1; k++)
@@ -274,17 +274,69 @@ static void ranges(const aq_demand_table *t, size_t is, double *R)
   }
 }
 
-/* The walls' bounds, once every row of KE/g 0 is made. */
-static void walls(aq_demand_grid *g)
+/* The same over range is of s. */
+static void ranges(const aq_demand_table *t, size_t is, double *R)
 {
-  for (size_t ia = 0; ia < DG_NA; ia++)
-    for (int q = 0; q < 2; q++) {
-      double m = 0;
-      for (size_t is = 0; is < DG_NS; is++)
-        m = fmax(m, aq_dg_bound(g, (long)((is * DG_NK) * DG_NA + ia), q));
-      g->wall[ia][q] = (float)m; /* a bound as stored: exact in a float */
+  ranges_in(t, t->s_c * (double)is / DG_NS, t->s_c * (double)(is + 1) / DG_NS, R);
+}
+
+/* The bound of either quantity, as stored: a float at least u (INFINITY
+ * for no bound, NAN included). */
+static float upper_f(double u)
+{
+  if (!(u < 3e38))
+    return INFINITY;
+  float f = (float)u;
+  return (double)f < u ? nextafterf(f, INFINITY) : f;
+}
+
+/* The walls' bounds of a/g bin ia: over each range of s of wrng, each
+ * entry's forms at KE 0 (w = 0: the KE terms vanish, as in a row whose
+ * KE/g range is [0, 0]).  1, or 2 (out of memory). */
+static int wall_bin(aq_demand_grid *g, size_t ia)
+{
+  const aq_demand_table *T = g->t;
+  size_t nf = T->nf, per = 2 * (nf * DT_NV + 1);
+  if (!g->wrng) {
+    if (!(g->wrng = malloc(DG_WS * per * sizeof *g->wrng)))
+      return 2;
+    for (size_t ws = 0; ws < DG_WS; ws++)
+      ranges_in(T, T->s_c * (double)ws / DG_WS, T->s_c * (double)(ws + 1) / DG_WS,
+                g->wrng + ws * per);
+  }
+  double a0, a1, W[2] = {0, 0};
+  bin_a(g, ia, &a0, &a1);
+  for (size_t ws = 0; ws < DG_WS; ws++)
+    for (size_t j = 0; j < nf; j++) {
+      const double *R = g->wrng + ws * per, *x = R + 2 * j * DT_NV;
+      double c[6], t[6], u, l;
+      for (int f = 0; f < 3; f++) {
+        const double *y = x + 6 * f;
+        double m0 = fmax(fabs(y[0]), fabs(y[1])) * DG_EPS_L;
+        c[2 * f] = y[0] - m0, c[2 * f + 1] = y[1] + m0;
+      }
+      a_terms(x, a0, a1, t);
+      for (int q = 0; q < 2; q++) {
+        if (q == 1 && T->entry[j].hinge >= 0)
+          continue;
+        ebound(c, t, q, &u, &l);
+        W[q] = !(u <= W[q]) ? (isnan(u) ? INFINITY : u) : W[q];
+      }
     }
-  atomic_store_explicit(&g->walls, 1, memory_order_release);
+  g->wall[ia][0] = upper_f(W[0]), g->wall[ia][1] = upper_f(W[1]);
+  return 1;
+}
+
+int aq_dg_make_wall(aq_demand_grid *g, size_t ia)
+{
+  pthread_mutex_lock(&g->lock);
+  int b = atomic_load_explicit(&g->wall_made[ia], memory_order_relaxed);
+  if (b == 0) {
+    b = wall_bin(g, ia);
+    atomic_store_explicit(&g->wall_made[ia], b, memory_order_release);
+  }
+  pthread_mutex_unlock(&g->lock);
+  return b;
 }
 
 int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik)
@@ -297,8 +349,6 @@ int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik)
       ranges(g->t, is, g->rng[is]);
     b = g->rng[is] && row(g, is, ik, g->rng[is]) == 0 ? 1 : 2;
     atomic_store_explicit(&g->built[r], b, memory_order_release);
-    if (b == 1 && ik == 0 && ++g->walls_made == DG_NS)
-      walls(g);
   }
   pthread_mutex_unlock(&g->lock);
   return b == 1 ? 0 : -1;
@@ -323,7 +373,8 @@ aq_demand_grid *aq_dg_build(const aq_demand_table *t)
     atomic_init(&g->hu[c], (uint32_t)DG_UNMADE << 16 | DG_UNMADE);
   for (size_t r = 0; r < DG_NS * DG_NK; r++)
     atomic_init(&g->built[r], 0);
-  atomic_init(&g->walls, 0);
+  for (size_t ia = 0; ia < DG_NA; ia++)
+    atomic_init(&g->wall_made[ia], 0);
   g->inv_ds = DG_NS / t->s_c;
   g->da = t->lambda0 / 8, g->inv_da = 1 / g->da;
   g->k0 = t->ke_ref / (double)(1 << 10), g->inv_k0 = 1 / g->k0;

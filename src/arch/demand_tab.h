@@ -56,7 +56,7 @@ enum { DG_NS = 64, DG_NA = 64, DG_OCT = 14, DG_KB = 1, DG_NK = 1 + (DG_OCT << DG
 #define DG_ALL 255 /* a count meaning: every entry */
 #define DG_UNMADE 0xffff /* the bounds of a cell whose row is not made: above every key */
 
-enum { DG_INLINE = 5 };
+enum { DG_INLINE = 5, DG_WS = 16 };
 /* A candidate: its entry in the low 16 bits, the code of its own upper
  * bound over the cell (as the cell's, aq_dg_bound) in the high 16. */
 typedef uint32_t aq_dg_cand;
@@ -86,11 +86,14 @@ typedef struct aq_demand_grid {
   double *rng[DG_NS];              /* per range of s, once one of its rows is made: each
                                       entry's nine forms' ranges (lo, hi), then 1/M's */
   atomic_int built[DG_NS * DG_NK]; /* 1: made, 2: failed */
-  size_t walls_made;               /* rows of KE/g 0 made (under lock) */
-  float wall[DG_NA][2];            /* once every row of KE/g 0 is made: per a/g bin,
-                                      both quantities' bounds over them (the walls:
-                                      states at rest) */
-  atomic_int walls;                /* 1: wall holds */
+  /* The walls (states at rest, KE 0, at any s): per a/g bin, both
+   * quantities' upper bounds over them, made the first time a leg's walls
+   * under that a/g are asked about (aq_dg_wall_below), from each entry's
+   * forms' ranges over DG_WS equal ranges of s (wrng, made with the first
+   * bin; under lock, published by wall_made). */
+  float wall[DG_NA][2];
+  atomic_int wall_made[DG_NA]; /* 1: made, 2: failed (out of memory) */
+  double *wrng;
 } aq_demand_grid;
 
 /* The range of cubic c (aq_dt_cubic) over u in [ua, ub]: its ends and its
@@ -168,15 +171,23 @@ static inline const aq_dg_cand *aq_dg_cands(const aq_demand_grid *g, long ic)
   return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->c[0];
 }
 
-/* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2] (known
- * once every range of s is made). */
-static inline int aq_dg_wall_below(const aq_demand_grid *g, double al, const double m[2])
+/* Make the walls' bounds of a/g bin ia (demand_grid.c): 1, or 2 when they
+ * cannot be. */
+int aq_dg_make_wall(aq_demand_grid *g, size_t ia);
+
+/* 1: no state at rest (KE 0) under a/g al exceeds the maxima m[2] (its
+ * a/g bin's bounds made the first time). */
+static inline int aq_dg_wall_below(aq_demand_grid *g, double al, const double m[2])
 {
   double xa = al * g->inv_da + 0.5 * DG_NA;
-  if (!(xa >= 0 && xa < DG_NA) || !atomic_load_explicit(&g->walls, memory_order_acquire))
+  if (!(xa >= 0 && xa < DG_NA))
     return 0;
-  const float *w = g->wall[(size_t)xa];
-  return !(w[0] > m[0]) && !(w[1] > m[1]);
+  size_t ia = (size_t)xa;
+  int b = atomic_load_explicit(&g->wall_made[ia], memory_order_acquire);
+  if (b == 0)
+    b = aq_dg_make_wall(g, ia);
+  const float *w = g->wall[ia];
+  return b == 1 && !(w[0] > m[0]) && !(w[1] > m[1]);
 }
 
 /* The largest code whose bound is at most m (m >= 0): a cell's bound
