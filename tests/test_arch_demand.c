@@ -496,6 +496,115 @@ AQ_TEST(arch_demand_queued_legs_as_every_joint)
            over[0], over[1], pre);
 }
 
+/* Both quantities' maxima over what tracker d is told (a fresh run): a
+ * state (rev < 0) or a leg ending at that state that turned rev times. */
+static void told(aq_demand *d, int k, double s, double ke, int dir, int rev, double a, double g,
+                 double v[2])
+{
+  aq_demand_result r;
+  aq_demand_begin(d);
+  if (rev < 0)
+    aq_demand_at(d, k, s, ke, a, g, 0);
+  else
+    aq_demand_leg(d, k, s, ke, dir, (size_t)rev, a, g, 0);
+  aq_demand_get(d, &r);
+  v[0] = r.mu_max, v[1] = r.ecc_max;
+}
+
+AQ_TEST(arch_demand_walls_found_past_the_maxima)
+{
+  /* A queued leg is left out when neither end's cell can exceed the
+   * maxima and no state at rest under its a/g can: its walls (the states
+   * at rest where it turned) then need not be found.  Legs whose wall
+   * exceeds the bound of their end's cell, found by search, told after
+   * two states that raise the maxima past that bound but not past the
+   * wall: the queued tracker must find the wall, as every joint at every
+   * state does (the time and joint of each maximum included). */
+  unsigned long long rng = 0x3a11e7ULL;
+  size_t cases = 0, tried = 0;
+  for (size_t f = 0; f < NSHIPPED; f++) {
+    aq_arch *A = NULL;
+    aq_error e;
+    if (!aq_check(aq_arch_load(shipped[f], &A, &e) == AQ_OK, "load %s", shipped[f]))
+      continue;
+    aq_demand *q = aq_arch_demand_tracker(A, NAN, &e), *ev = aq_arch_demand_tracker(A, NAN, &e);
+    aq_demand_set_every(ev, 1);
+    for (int k = 0; k < 2 && q && ev; k++) {
+      const aq_path *p = aq_arch_path(A, k);
+      const aq_demand_table *t = aq_arch_demand_table(A, k);
+      if (!p || !p->admissible || !t || !t->grid)
+        continue;
+      double g = p->g_mps2, sc = p->s_c_rad, ke_top = 0.01 * p->mass_kg * g * sc;
+      enum { NP = 400 };
+      static double pool[NP][5]; /* s, KE, a, both quantities there */
+      for (size_t i = 0; i < NP; i++) {
+        pool[i][0] = sc * tds_rng(&rng), pool[i][1] = ke_top * tds_rng(&rng);
+        pool[i][2] = (2 * tds_rng(&rng) - 1) * 1.5 * p->lambda0 * g;
+        told(ev, k, pool[i][0], pool[i][1], 0, -1, pool[i][2], g, pool[i] + 3);
+      }
+      size_t found = 0;
+      for (int trial = 0; trial < 3000 && found < 2; trial++) {
+        double s = 0.9 * sc * tds_rng(&rng), ke = ke_top * tds_rng(&rng);
+        double a = (2 * tds_rng(&rng) - 1) * 1.5 * p->lambda0 * g, vw[2], v0[2], u[2];
+        int dir = tds_rng(&rng) < 0.5 ? 1 : -1, x = -1;
+        size_t nc[2], cand[1024];
+        told(ev, k, s, ke, dir, 1, a, g, vw);
+        told(ev, k, s, ke, dir, 0, a, g, v0);
+        if (aq_demand_grid_cell(t, s, a / g, ke / g, u, cand, 1024, nc) != 1)
+          continue;
+        for (int m = 0; m < 2; m++) /* the wall exceeds the end and its cell's bound */
+          if (vw[m] > v0[m] && vw[m] > u[m] && isfinite(vw[m]))
+            x = m;
+        if (x < 0)
+          continue;
+        tried++;
+        /* states that raise quantity x into [u, wall) and the other past its bound */
+        long sa = -1, sb = -1;
+        for (long i = 0; i < NP; i++) {
+          const double *v = pool[i] + 3;
+          if (sa < 0 && v[x] >= u[x] && v[x] < vw[x])
+            sa = i;
+          if (sb < 0 && v[1 - x] >= u[1 - x] && !(v[x] >= vw[x]))
+            sb = i;
+        }
+        if (sa < 0 || sb < 0)
+          continue;
+        aq_demand_result r[2];
+        for (int m = 0; m < 2; m++) {
+          aq_demand *d = m ? ev : q;
+          aq_demand_begin(d);
+          aq_demand_at(d, k, pool[sa][0], pool[sa][1], pool[sa][2], g, 0);
+          aq_demand_at(d, k, pool[sb][0], pool[sb][1], pool[sb][2], g, 0.005);
+          aq_demand_leg_rec *L = aq_demand_slot(d);
+          if (L)
+            *L = (aq_demand_leg_rec){s, ke, 0.01, s, ke, 0.015, a, g, k, dir, 1};
+          aq_demand_flush(d);
+          aq_demand_get(d, &r[m]);
+        }
+        aq_check(r[1].mu_max >= u[0] && r[1].ecc_max >= u[1] &&
+                     (x ? r[1].ecc_time_s : r[1].mu_time_s) == 0.015,
+                 "%s set %d: the case is not one (a wall past maxima above the end's bounds)",
+                 shipped[f], k);
+        aq_check(same(r[0].mu_max, r[1].mu_max) && r[0].mu_joint == r[1].mu_joint &&
+                     same(r[0].mu_time_s, r[1].mu_time_s) && same(r[0].ecc_max, r[1].ecc_max) &&
+                     r[0].ecc_joint == r[1].ecc_joint && same(r[0].ecc_time_s, r[1].ecc_time_s),
+                 "%s set %d: s %.6g KE %.6g J a %.6g: |T|/N %.17g (%.3f s), |e|/N %.17g (%.3f "
+                 "s); every joint %.17g (%.3f s), %.17g (%.3f s)", shipped[f], k, s, ke, a,
+                 r[0].mu_max, r[0].mu_time_s, r[0].ecc_max, r[0].ecc_time_s, r[1].mu_max,
+                 r[1].mu_time_s, r[1].ecc_max, r[1].ecc_time_s);
+        found++, cases++;
+      }
+    }
+    aq_demand_free(q);
+    aq_demand_free(ev);
+    aq_arch_free(A);
+  }
+  if (getenv("AQ_TEST_VERBOSE"))
+    printf("walls past the maxima: %zu cases of %zu legs whose wall exceeds its end's bound\n",
+           cases, tried);
+  aq_check(cases >= 8, "%zu cases of a wall past the maxima", cases);
+}
+
 /* mu of the static collapse state at lambda0 on set p, by the 9x9 balance
  * and the line of thrust of kinematics.c: the largest |T|/N over every
  * joint (both faces of a hinge coincide at rest), infinite when a joint's

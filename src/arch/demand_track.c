@@ -338,7 +338,8 @@ static void passed(aq_demand *d, size_t at[2], size_t st)
 
 /* The queued legs [n0, n1) (at most 64) of sets whose tables are known:
  * first every state's cell, and which legs have a state whose cell's
- * bounds exceed the maxima or walls to find; then those legs in order,
+ * bounds exceed the maxima or walls to find (a state at rest under their
+ * a/g that may exceed them, aq_dg_wall_below); then those legs in order,
  * each state looked at when its cell's bounds exceed the maxima of that
  * moment (they only grow, so a leg left out has nothing to look at). */
 static void flush_legs(aq_demand *d, size_t n0, size_t n1)
@@ -346,10 +347,12 @@ static void flush_legs(aq_demand *d, size_t n0, size_t n1)
   const aq_demand_leg_rec *rec = d->q.rec;
   double al[DM_QUEUE], kg[DM_QUEUE][2];
   long cell[DM_QUEUE][2];
+  uint16_t wsum[DM_QUEUE + 1]; /* the walls of the legs before each, of those left out */
   uint64_t mark = 0;
   long prow = -1;
   uint16_t best[2] = {0, 0};
   size_t at[2] = {SIZE_MAX, SIZE_MAX}; /* 2 n + (0: start, 1: end) of the largest */
+  wsum[0] = 0;
   for (size_t n = n0; n < n1; n++) {
     const aq_demand_leg_rec *r = rec + n;
     const aq_demand_table *t = d->tab[r->k];
@@ -360,8 +363,8 @@ static void flush_legs(aq_demand *d, size_t n0, size_t n1)
     double a = r->a_mps2 * d->ig, k0 = r->ke0 * d->ig, k1 = r->ke1 * d->ig;
     al[n] = a, kg[n][0] = k0, kg[n][1] = k1;
     long c0 = -1, c1 = -1;
-    if (!d->every && t->grid) {
-      const aq_demand_grid *g = t->grid;
+    aq_demand_grid *g = d->every ? NULL : t->grid;
+    if (g) {
       double xa = a * g->inv_da + 0.5 * DG_NA;
       /* a leg starts where the one before ended (the same set, s, KE and
        * g): in the row of that end, under the new a/g */
@@ -380,8 +383,13 @@ static void flush_legs(aq_demand *d, size_t n0, size_t n1)
       prow = -1;
     }
     cell[n][0] = c0, cell[n][1] = c1;
-    if (r->rev > 0 || exceeds(d, t, c0) || exceeds(d, t, c1))
-      mark |= (uint64_t)1 << (n - n0);
+    /* its walls are looked for unless no state at rest under its a/g can
+     * exceed the maxima (they only grow) */
+    int walls_in = r->rev > 0 && k1 > 0 && !(g && aq_dg_wall_below(g, a, d->max));
+    size_t w = r->rev < 2 ? r->rev : 2;
+    if (walls_in || exceeds(d, t, c0) || exceeds(d, t, c1))
+      mark |= (uint64_t)1 << (n - n0), w = 0;
+    wsum[n - n0 + 1] = (uint16_t)(wsum[n - n0] + w);
   }
   /* of the states to look at, the one whose bound is the largest, of each
    * quantity: its value, when above the maximum, is one the maximum will
@@ -420,7 +428,7 @@ static void flush_legs(aq_demand *d, size_t n0, size_t n1)
     mark &= mark - 1;
     const aq_demand_leg_rec *r = rec + n;
     const aq_demand_table *t = d->tab[r->k];
-    d->samples += 2 * (n - next) + 1;
+    d->samples += 2 * (n - next) + wsum[n - n0] - wsum[next - n0] + 1;
     next = n + 1;
     if (exceeds(d, t, cell[n][0]))
       look_at(d, t, r->k, made(t, cell[n][0]), r->s0, al[n], kg[n][0], r->t0);
@@ -439,7 +447,7 @@ static void flush_legs(aq_demand *d, size_t n0, size_t n1)
   }
   passed(d, at, SIZE_MAX - 1);
   if (!d->done)
-    d->samples += 2 * (n1 - next);
+    d->samples += 2 * (n1 - next) + wsum[n1 - n0] - wsum[next - n0];
 }
 
 void aq_demand_flush(aq_demand *d)
