@@ -191,15 +191,21 @@ AQ_TEST(arch_control_free_symmetric_mirror)
   }
 }
 
-/* The control and the friction in the results file (/arches/NNN). */
+/* The control and the friction in the results file (/arches/NNN), with
+ * the block model's contacts and supports (the arch file's, or 0). */
 AQ_TEST(arch_control_in_results_file)
 {
-  char dir[512], h5[600], args[2048], out[8192], err[4096];
+  char dir[512], h5[600], args[2048], out[8192], err[4096], cfg[700];
   aq_test_tmpdir(dir, sizeof dir);
   snprintf(h5, sizeof h5, "%s/r.h5", dir);
+  if (!aq_test_edited_copy("arches/oppenheim.cfg", "[dynamics]",
+                           "[contact]\ne_n = 0.25\n[supports]\nspread_m = 0.002\n"
+                           "abutment_m = 0.75\n[dynamics]",
+                           dir, "o.cfg", cfg, sizeof cfg))
+    return;
   snprintf(args, sizeof args,
-           "records/RSN1616_DUZCE_362-E.AT2 --arch arches/oppenheim.cfg --arch arches/gothic.cfg "
-           "--friction 0.537 --polarity normal --no-cache -j 1 -o %s", h5);
+           "records/RSN1616_DUZCE_362-E.AT2 --arch %s --arch arches/gothic.cfg "
+           "--friction 0.537 --polarity normal --no-cache -j 1 -o %s", cfg, h5);
   int rc = aq_test_run(args, out, sizeof out, err, sizeof err);
   if (!aq_check(rc == 0, "runs: %d %s", rc, err))
     return;
@@ -231,6 +237,15 @@ AQ_TEST(arch_control_in_results_file)
     H5Aread(at, H5T_NATIVE_DOUBLE, &mu);
     H5Aclose(at);
     aq_check(mu == 0.537, "%s friction 0.537, got %g", g, mu);
+    static const char *const blk[3] = {"e_n", "spread_m", "abutment_m"};
+    static const double bwant[2][3] = {{0.25, 0.002, 0.75}, {0, 0, 0}};
+    for (int b = 0; b < 3; b++) {
+      double v = NAN;
+      at = H5Aopen(grp, blk[b], H5P_DEFAULT);
+      if (at >= 0)
+        H5Aread(at, H5T_NATIVE_DOUBLE, &v), H5Aclose(at);
+      aq_check(v == bwant[k][b], "%s %s %g, got %g", g, blk[b], bwant[k][b], v);
+    }
     H5Gclose(grp);
   }
   H5Fclose(file);

@@ -132,6 +132,10 @@ aq_status aq_h5_write_arch(aq_h5_writer *w, size_t index, const aq_h5_arch *a,
     size_t jr;
     CK(aq_h5w_attr_double(w, g, "mu_rest", aq_arch_mu_rest(a->arch, &jr)), "arch attributes");
     CK(aq_h5w_attr_int(w, g, "mu_rest_joint", (int64_t)jr), "arch attributes");
+    /* the block model's contacts and supports (defaults 0) */
+    CK(aq_h5w_attr_double(w, g, "e_n", aq_arch_restitution(a->arch)), "arch attributes");
+    CK(aq_h5w_attr_double(w, g, "spread_m", aq_arch_spread(a->arch)), "arch attributes");
+    CK(aq_h5w_attr_double(w, g, "abutment_m", aq_arch_abutment(a->arch)), "arch attributes");
   }
   if (a->dyn) {
     CK(aq_h5w_attr_double(w, g, "cor", a->dyn->cor), "arch attributes");
