@@ -12,9 +12,11 @@
  *      --help within a group);
  *   2. its row in aq_opt_rows[] (opt_table.c): name, short letter or 0,
  *      kind (AQ_ARG_*), metavariable, range lo..hi, destination
- *      (DEST(field) of aq_opts, or a handler for AQ_ARG_CUSTOM), the
+ *      (DEST(field) of aq_opts, or a handler for AQ_ARG_CUSTOM, in
+ *      opt_handlers.c and declared in opt_table_impl.h), the
  *      commands it applies to (C(RUN) | C(CAPACITY) ...), group, help;
- *   3. its field in aq_opts, and its default in aq_opts_init if not 0.
+ *   3. its field in aq_opts, and its default in aq_opts_init
+ *      (opt_commands.c) if not 0.
  *   The message of a bad value names the option as "--name", or "-x" if it
  *   has a letter.  .required: the commands that cannot run without it.
  *   .requires, .conflicts, .not_below, .not_above: the options it needs,
@@ -29,7 +31,7 @@
  *
  * To add a command:
  *   1. an id in aq_cmd (before AQ_CMD_PLOT: plot's figures stay last, in a
- *      row) and its row in aq_opt_commands[] (opt_table.c): its name, title,
+ *      row) and its row in aq_opt_commands[] (opt_commands.c): its name, title,
  *      synopsis and summary (archquake --help's list of commands), usage
  *      line and description, and the end of its --help (columns, exit
  *      status);
@@ -327,8 +329,8 @@ typedef struct {
                          --name META, got none" when it is not given */
   /* Rules between this option and others, declared here once and made by
    * aq_opts_parse when this option is given, for every command that takes
-   * both: each a list of option ids ending in -1 (OPTS(...) in
-   * opt_table.c), NULL for none.  A broken rule is one line naming both
+   * both: each a list of option ids ending in -1 (OPTS(...) of
+   * opt_table_impl.h), NULL for none.  A broken rule is one line naming both
    * options; nothing is run. */
   const int *requires;  /* each of these must be given too */
   const int *conflicts; /* none of these may be given with it */
