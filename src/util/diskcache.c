@@ -7,7 +7,6 @@
 
 #include "../error.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -28,40 +27,8 @@
 
 #include "cleanup.h"
 
-#define MAGIC "AQCACHE2"
-#define HEAD (8 + 2 * sizeof(uint64_t)) /* magic, key bytes, value bytes */
-#define TAIL sizeof(uint64_t)           /* the checksum */
-#define NOTES_MAX 4096                  /* bytes of notes kept; later ones dropped */
-/* A read touches an entry's time only when it is older than this, s: the
- * order of use is kept to the minute, and a warm run repeated at once
- * writes no inode. */
-#define TOUCH_AFTER_S 60
-/* A temporary older than this, s, was left by a writer that was killed
- * (a write takes milliseconds): removed by a scan. */
-#define STALE_TMP_S 3600
-/* An entry's name: 32 hex digits and ".aqc". */
-#define NAME_LEN (32 + 4)
-/* The bytes of an entry read to tell its build: the head and the start of
- * its key (the identity's two lines). */
-#define PEEK (HEAD + 1024)
+#include "diskcache_impl.h"
 
-struct aq_diskcache {
-  char *top;     /* the store's directory */
-  char *dir;     /* <top>/<kind> */
-  unsigned char *id; /* the identity every key is prefixed with */
-  size_t nid;
-  char *build;   /* its second line, the build ("build-id HEX\n") */
-  pthread_mutex_t evict_lock; /* one scan at a time; guards what follows */
-  unsigned long long max; /* the cap of every entry under top, bytes */
-  long long used;  /* bytes under top: the last scan's and this store's writes since; -1: no scan yet */
-  long long dirty; /* bytes this store wrote since its last scan */
-  pthread_mutex_t lock; /* guards what follows */
-  int write_failed;     /* 1: a write failed (noted once) */
-  unsigned long tmp_seq;
-  char notes[NOTES_MAX];
-  size_t nnotes;
-  aq_diskcache_counts counts;
-};
 
 /* The cap of the stores opened next (aq_diskcache_set_default_max). */
 static _Atomic unsigned long long default_max = AQ_DISKCACHE_MAX_DEFAULT;
@@ -162,14 +129,13 @@ aq_diskcache *aq_diskcache_open(const char *dir, const char *kind, const char *v
   return c;
 }
 
-static long long evict(aq_diskcache *c);
 
 void aq_diskcache_close(aq_diskcache *c)
 {
   if (!c)
     return;
   if (c->build && c->dirty > 0) /* the last check of the cap (under no lock: the store's last use) */
-    evict(c);
+    aq_dc_evict(c);
   if (c->build) {
     pthread_mutex_destroy(&c->lock);
     pthread_mutex_destroy(&c->evict_lock);
@@ -401,195 +367,6 @@ static int make_dirs(const aq_diskcache *c)
   return make_dir(c->top) == 0 && make_dir(c->dir) == 0 ? 0 : -1;
 }
 
-/* An entry of the directory, as a scan found it. */
-typedef struct {
-  char name[NAME_LEN + 1]; /* in its kind's directory */
-  int kind;                /* the index of its kind's directory in the scan */
-  int other;               /* 1: another build's (or not readable as ours) */
-  long long size;          /* bytes */
-  struct timespec mtime;   /* its last use */
-} scanned;
-
-typedef struct {
-  scanned *e;
-  size_t n, cap;
-  char **kinds; /* the kinds' directory names */
-  size_t nkinds;
-} scan_list;
-
-static void scan_free(scan_list *l)
-{
-  for (size_t i = 0; i < l->nkinds; i++)
-    free(l->kinds[i]);
-  free(l->kinds);
-  free(l->e);
-  memset(l, 0, sizeof *l);
-}
-
-/* 1 if name is an entry's: 32 lower-case hex digits and ".aqc". */
-static int entry_name(const char *name)
-{
-  if (strlen(name) != NAME_LEN || strcmp(name + 32, ".aqc") != 0)
-    return 0;
-  for (int i = 0; i < 32; i++)
-    if (!((name[i] >= '0' && name[i] <= '9') || (name[i] >= 'a' && name[i] <= 'f')))
-      return 0;
-  return 1;
-}
-
-/* 1 if the entry open as fd is another build's: its key does not begin
- * with "archquake VERSION\n" and this build's line (any version: the
- * stores of one build may name it differently).  An entry too short to
- * tell, or not ours at all, counts as another's: it can never be read. */
-static int other_build(const aq_diskcache *c, int fd)
-{
-  unsigned char b[PEEK];
-  ssize_t got = pread(fd, b, sizeof b, 0);
-  if (got < (ssize_t)HEAD || memcmp(b, MAGIC, 8) != 0)
-    return 1;
-  const unsigned char *k = b + HEAD, *end = b + got;
-  static const char arch[] = "archquake ";
-  if (end - k < (ptrdiff_t)sizeof arch - 1 || memcmp(k, arch, sizeof arch - 1) != 0)
-    return 1;
-  const unsigned char *nl = memchr(k, '\n', (size_t)(end - k));
-  size_t nb = strlen(c->build);
-  return !nl || (size_t)(end - nl - 1) < nb || memcmp(nl + 1, c->build, nb) != 0;
-}
-
-/* Every entry under c->top (each directory there is a kind's), its size
- * and time into *l, and the total bytes; stale temporaries are removed on
- * the way. */
-static long long scan(const aq_diskcache *c, scan_list *l)
-{
-  long long total = 0;
-  DIR *top = opendir(c->top);
-  if (!top)
-    return 0;
-  struct timespec now;
-  clock_gettime(CLOCK_REALTIME, &now);
-  for (struct dirent *t; (t = readdir(top));) {
-    if (t->d_name[0] == '.')
-      continue;
-    int kfd = openat(dirfd(top), t->d_name, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (kfd < 0)
-      continue; /* not a directory (the FFTW wisdom file), or gone */
-    DIR *kd = fdopendir(kfd);
-    if (!kd) {
-      close(kfd);
-      continue;
-    }
-    int kind = -1;
-    char **k = realloc(l->kinds, (l->nkinds + 1) * sizeof *k);
-    if (k && (k[l->nkinds] = strdup(t->d_name))) {
-      l->kinds = k;
-      kind = (int)l->nkinds++;
-    } else if (k)
-      l->kinds = k;
-    for (struct dirent *e; (e = readdir(kd));) {
-      struct stat sb;
-      int is_entry = entry_name(e->d_name);
-      if (!is_entry && !strstr(e->d_name, ".aqc.tmp."))
-        continue;
-      if (fstatat(kfd, e->d_name, &sb, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(sb.st_mode))
-        continue;
-      if (!is_entry) { /* a temporary: a writer's at work, or a killed one's */
-        if (now.tv_sec - sb.st_mtim.tv_sec > STALE_TMP_S)
-          unlinkat(kfd, e->d_name, 0);
-        continue;
-      }
-      total += (long long)sb.st_size;
-      if (kind < 0)
-        continue; /* out of memory: not a candidate, it stays */
-      if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 256;
-        scanned *m = realloc(l->e, cap * sizeof *m);
-        if (!m)
-          continue; /* not a candidate: it stays */
-        l->e = m;
-        l->cap = cap;
-      }
-      scanned *s = &l->e[l->n++];
-      memcpy(s->name, e->d_name, NAME_LEN + 1);
-      s->kind = kind;
-      s->size = (long long)sb.st_size;
-      s->mtime = sb.st_mtim;
-      s->other = 0;
-    }
-    closedir(kd);
-  }
-  closedir(top);
-  return total;
-}
-
-/* The order of eviction: other builds' entries first, then the least
- * recently used; a tie by name, so that every process removes the same. */
-static int evict_order(const void *pa, const void *pb)
-{
-  const scanned *a = pa, *b = pb;
-  if (a->other != b->other)
-    return b->other - a->other;
-  if (a->mtime.tv_sec != b->mtime.tv_sec)
-    return a->mtime.tv_sec < b->mtime.tv_sec ? -1 : 1;
-  if (a->mtime.tv_nsec != b->mtime.tv_nsec)
-    return a->mtime.tv_nsec < b->mtime.tv_nsec ? -1 : 1;
-  return strcmp(a->name, b->name);
-}
-
-/* A scan, and when the directory holds more than the cap, removal of
- * entries until it holds at most 9/10 of it (so that the next eviction is
- * a tenth of the cap's writes away); returns the bytes left.  Under
- * evict_lock (or at close).  Another process removing the same entry at
- * once is fine: its unlink or ours fails with ENOENT, and both count it
- * gone. */
-static long long evict(aq_diskcache *c)
-{
-  scan_list l = {0};
-  long long total = scan(c, &l);
-  long long target = (long long)(c->max - c->max / 10);
-  size_t removed = 0;
-  if (total > (long long)c->max) {
-    char path[PATH_MAX];
-    for (size_t i = 0; i < l.n; i++) { /* whose build: read only when evicting */
-      snprintf(path, sizeof path, "%s/%s/%s", c->top, l.kinds[l.e[i].kind], l.e[i].name);
-      int fd = open(path, O_RDONLY | O_CLOEXEC);
-      l.e[i].other = fd < 0 || other_build(c, fd);
-      if (fd >= 0)
-        close(fd);
-    }
-    qsort(l.e, l.n, sizeof *l.e, evict_order);
-    for (size_t i = 0; i < l.n && total > target; i++) {
-      snprintf(path, sizeof path, "%s/%s/%s", c->top, l.kinds[l.e[i].kind], l.e[i].name);
-      if (unlink(path) == 0)
-        removed++;
-      else if (errno != ENOENT)
-        continue; /* it stays: its bytes too */
-      total -= l.e[i].size;
-    }
-  }
-  scan_free(&l);
-  c->dirty = 0;
-  pthread_mutex_lock(&c->lock);
-  c->counts.scans++;
-  c->counts.evicted += removed;
-  pthread_mutex_unlock(&c->lock);
-  return total;
-}
-
-/* After a write of n bytes: the total as known, and a scan (with eviction
- * if the directory is over the cap) when it passes the cap, or when this
- * store has written a tenth of the cap since its last scan (other
- * processes may have written too). */
-static void bound(aq_diskcache *c, long long n)
-{
-  pthread_mutex_lock(&c->evict_lock);
-  c->dirty += n;
-  if (c->used >= 0)
-    c->used += n;
-  if (c->used > (long long)c->max || c->dirty > (long long)(c->max / 10))
-    c->used = evict(c);
-  pthread_mutex_unlock(&c->evict_lock);
-}
-
 static int write_failed(aq_diskcache *c, const char *what, int e)
 {
   pthread_mutex_lock(&c->lock);
@@ -656,6 +433,6 @@ int aq_diskcache_put(aq_diskcache *c, const void *key, size_t nkey, const void *
   if (bad)
     return write_failed(c, "write", e);
   count(c, &c->counts.writes);
-  bound(c, (long long)(HEAD + nk + nv + TAIL));
+  aq_dc_bound(c, (long long)(HEAD + nk + nv + TAIL));
   return 1;
 }
