@@ -60,12 +60,13 @@ void aq_dg_free(aq_demand_grid *g)
 {
   if (!g)
     return;
-  for (size_t r = 0; r < DG_NS * DG_NK; r++)
-    free(g->pool[r]);
+  for (size_t b = 0; b < DG_NBLK; b++)
+    free(g->pool[b]);
   for (size_t is = 0; is < DG_NS; is++)
     free(g->rng[is]);
   pthread_mutex_destroy(&g->lock);
   free(g->wrng);
+  free(g->scratch);
   free(g->hu);
   free(g->cell);
   free(g);
@@ -136,27 +137,27 @@ static void a_terms(const double *x, double a0, double a1, double t[6])
     prod_range(x[6 * f + 2], x[6 * f + 3], a0, a1, &t[2 * f], &t[2 * f + 1]);
 }
 
-enum { DG_AB = 8 }; /* a/g bins per block: the entries below the block's largest
-                       lower bound are left out of its cells */
-
-/* The cells of row (is, ik), from range is's forms' ranges R (lo/hi per
- * form, then 1/M's); the row's pool into g->pool.  0, or -1 (memory). */
-static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
+/* The cells of block bl (DG_AB a/g bins) of row (is, ik), from range is's
+ * forms' ranges R (lo/hi per form, then 1/M's); the block's pool into
+ * g->pool.  0, or -1 (memory). */
+static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const double *R)
 {
   const aq_demand_table *T = g->t;
-  size_t nf = T->nf, nb = DG_NA / DG_AB, row_i = is * DG_NK + ik;
+  size_t nf = T->nf, row_i = is * DG_NK + ik, bi = row_i * DG_NB + bl;
   aq_dg_cell *cells = g->cell + row_i * DG_NA;
   double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1], k0, k1;
   bin_k(g, ik, &k0, &k1);
   double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
-  double *cw = malloc(nf * 6 * sizeof *cw), *u = malloc(nf * 4 * sizeof *u);
-  double *at = malloc(nf * 6 * sizeof *at);
-  size_t *stamp = calloc(nf, sizeof *stamp);
-  uint16_t *list = malloc(2 * nf * sizeof *list);
-  aq_dg_cand *tmp = malloc(2 * nf * sizeof *tmp), *pool = NULL;
+  if (!g->scratch && !(g->scratch = malloc(nf * 20 * sizeof *g->scratch)))
+    return -1;
+  /* per entry: cw 6, u 4, at 6, then (as integers) the stamp and both lists */
+  double *cw = g->scratch, *u = cw + 6 * nf, *at = u + 4 * nf;
+  size_t *stamp = (size_t *)(void *)(at + 6 * nf);
+  uint16_t *list = (uint16_t *)(void *)(stamp + nf);
+  aq_dg_cand *tmp = (aq_dg_cand *)(void *)(list + 2 * nf), *pool = NULL;
   size_t cap = 0, np = 0;
-  int ok = cw && u && at && stamp && list && tmp;
-  for (size_t j = 0; ok && j < nf; j++) /* the constant and KE terms */
+  memset(stamp, 0, nf * sizeof *stamp);
+  for (size_t j = 0; j < nf; j++) /* the constant and KE terms */
     for (int f = 0; f < 3; f++) {
       const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f);
       double lo, hi, m0 = fmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
@@ -164,90 +165,83 @@ static int row(aq_demand_grid *g, size_t is, size_t ik, const double *R)
       cw[6 * j + 2 * (size_t)f] = x[0] + lo - m0;
       cw[6 * j + 2 * (size_t)f + 1] = x[1] + hi + m0;
     }
-  for (size_t bl = 0; ok && bl < nb; bl++) {
-    /* the block's entries: those whose upper bound over the block reaches
-     * its largest lower bound, per quantity */
-    double a0, a1, e0, e1, t[6];
-    bin_a(g, bl * DG_AB, &a0, &e0);
-    bin_a(g, bl * DG_AB + DG_AB - 1, &e1, &a1);
-    size_t nq[2] = {0, 0};
-    uint16_t *lq[2] = {list, list + nf};
-    double Lm[2] = {0, 0};
-    for (size_t j = 0; j < nf; j++) {
-      double *uj = u + 4 * j;
-      if (rm0 > 0)
-        a_terms(R + 2 * j * DT_NV, a0, a1, t);
-      for (int q = 0; q < 2; q++) {
-        if (q == 1 && T->entry[j].hinge >= 0)
-          uj[2] = uj[3] = 0;
-        else if (!(rm0 > 0))
+  /* the block's entries: those whose upper bound over the block reaches
+   * its largest lower bound, per quantity */
+  double a0, a1, e0, e1, t[6];
+  bin_a(g, bl * DG_AB, &a0, &e0);
+  bin_a(g, bl * DG_AB + DG_AB - 1, &e1, &a1);
+  size_t nq[2] = {0, 0};
+  uint16_t *lq[2] = {list, list + nf};
+  double Lm[2] = {0, 0};
+  for (size_t j = 0; j < nf; j++) {
+    double *uj = u + 4 * j;
+    if (rm0 > 0)
+      a_terms(R + 2 * j * DT_NV, a0, a1, t);
+    for (int q = 0; q < 2; q++) {
+      if (q == 1 && T->entry[j].hinge >= 0)
+        uj[2] = uj[3] = 0;
+      else if (!(rm0 > 0))
+        uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
+      else
+        ebound(cw + 6 * j, t, q, &uj[2 * q], &uj[2 * q + 1]);
+      Lm[q] = uj[2 * q + 1] > Lm[q] ? uj[2 * q + 1] : Lm[q];
+    }
+  }
+  for (int q = 0; q < 2; q++)
+    for (size_t j = 0; j < nf; j++)
+      if ((q == 0 || T->entry[j].hinge < 0) && u[4 * j + 2 * (size_t)q] >= Lm[q])
+        lq[q][nq[q]++] = (uint16_t)j;
+  for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
+    aq_dg_cell *cl = cells + ia;
+    size_t c0 = 0;
+    uint32_t hc = 0;
+    bin_a(g, ia, &a0, &a1);
+    for (int q = 0; q < 2; q++) {
+      double U = 0, L = 0;
+      for (size_t m = 0; m < nq[q]; m++) {
+        size_t j = lq[q][m];
+        double *uj = u + 4 * j;
+        if (!(rm0 > 0)) {
           uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
-        else
-          ebound(cw + 6 * j, t, q, &uj[2 * q], &uj[2 * q + 1]);
-        Lm[q] = uj[2 * q + 1] > Lm[q] ? uj[2 * q + 1] : Lm[q];
-      }
-    }
-    for (int q = 0; q < 2; q++)
-      for (size_t j = 0; j < nf; j++)
-        if ((q == 0 || T->entry[j].hinge < 0) && u[4 * j + 2 * (size_t)q] >= Lm[q])
-          lq[q][nq[q]++] = (uint16_t)j;
-    for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
-      aq_dg_cell *cl = cells + ia;
-      size_t c0 = 0;
-      uint32_t hc = 0;
-      bin_a(g, ia, &a0, &a1);
-      for (int q = 0; q < 2; q++) {
-        double U = 0, L = 0;
-        for (size_t m = 0; m < nq[q]; m++) {
-          size_t j = lq[q][m];
-          double *uj = u + 4 * j;
-          if (!(rm0 > 0)) {
-            uj[2 * q] = INFINITY, uj[2 * q + 1] = 0;
-          } else {
-            double *tj = at + 6 * j;
-            if (stamp[j] != ia + 1) { /* an entry of both lists: its terms once */
-              a_terms(R + 2 * j * DT_NV, a0, a1, tj);
-              stamp[j] = ia + 1;
-            }
-            ebound(cw + 6 * j, tj, q, &uj[2 * q], &uj[2 * q + 1]);
+        } else {
+          double *tj = at + 6 * j;
+          if (stamp[j] != ia + 1) { /* an entry of both lists: its terms once */
+            a_terms(R + 2 * j * DT_NV, a0, a1, tj);
+            stamp[j] = ia + 1;
           }
-          U = uj[2 * q] > U ? uj[2 * q] : U;
-          L = uj[2 * q + 1] > L ? uj[2 * q + 1] : L;
+          ebound(cw + 6 * j, tj, q, &uj[2 * q], &uj[2 * q + 1]);
         }
-        size_t c = 0;
-        for (size_t m = 0; m < nq[q]; m++)
-          if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
-            tmp[c0 + c++] = (aq_dg_cand)upper16(u[4 * (size_t)lq[q][m] + 2 * (size_t)q]) << 16 |
-                            lq[q][m];
-        cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
-        c0 += c < DG_ALL ? c : 0;
-        hc |= (uint32_t)upper16(U) << (16 * q);
+        U = uj[2 * q] > U ? uj[2 * q] : U;
+        L = uj[2 * q + 1] > L ? uj[2 * q + 1] : L;
       }
-      atomic_store_explicit(&g->hu[row_i * DG_NA + ia], hc, memory_order_relaxed);
-      if (c0 <= DG_INLINE) {
-        memcpy(cl->c, tmp, c0 * sizeof *tmp);
-        continue;
-      }
-      if (np + c0 > cap) {
-        size_t nc = 2 * (np + c0) + 64;
-        aq_dg_cand *p = realloc(pool, nc * sizeof *p);
-        if (!p) {
-          ok = 0;
-          break;
-        }
-        pool = p, cap = nc;
-      }
-      cl->c[0] = (aq_dg_cand)np;
-      memcpy(pool + np, tmp, c0 * sizeof *tmp);
-      np += c0;
+      size_t c = 0;
+      for (size_t m = 0; m < nq[q]; m++)
+        if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
+          tmp[c0 + c++] = (aq_dg_cand)upper16(u[4 * (size_t)lq[q][m] + 2 * (size_t)q]) << 16 |
+                          lq[q][m];
+      cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
+      c0 += c < DG_ALL ? c : 0;
+      hc |= (uint32_t)upper16(U) << (16 * q);
     }
+    atomic_store_explicit(&g->hu[row_i * DG_NA + ia], hc, memory_order_relaxed);
+    if (c0 <= DG_INLINE) {
+      memcpy(cl->c, tmp, c0 * sizeof *tmp);
+      continue;
+    }
+    if (np + c0 > cap) {
+      size_t nc = 2 * (np + c0) + 64;
+      aq_dg_cand *p = realloc(pool, nc * sizeof *p);
+      if (!p) {
+        free(pool);
+        return -1;
+      }
+      pool = p, cap = nc;
+    }
+    cl->c[0] = (aq_dg_cand)np;
+    memcpy(pool + np, tmp, c0 * sizeof *tmp);
+    np += c0;
   }
-  free(cw), free(u), free(at), free(stamp), free(list), free(tmp);
-  if (!ok) {
-    free(pool);
-    return -1;
-  }
-  g->pool[row_i] = pool;
+  g->pool[bi] = pool;
   return 0;
 }
 
@@ -339,16 +333,16 @@ int aq_dg_make_wall(aq_demand_grid *g, size_t ia)
   return b;
 }
 
-int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik)
+int aq_dg_make(aq_demand_grid *g, size_t k)
 {
-  size_t r = is * DG_NK + ik;
+  size_t is = k / (DG_NK * DG_NB), ik = k / DG_NB % DG_NK;
   pthread_mutex_lock(&g->lock);
-  int b = atomic_load_explicit(&g->built[r], memory_order_relaxed);
+  int b = atomic_load_explicit(&g->built[k], memory_order_relaxed);
   if (b == 0) {
     if (!g->rng[is] && (g->rng[is] = malloc((g->t->nf * 2 * DT_NV + 2) * sizeof(double))))
       ranges(g->t, is, g->rng[is]);
-    b = g->rng[is] && row(g, is, ik, g->rng[is]) == 0 ? 1 : 2;
-    atomic_store_explicit(&g->built[r], b, memory_order_release);
+    b = g->rng[is] && block(g, is, ik, k % DG_NB, g->rng[is]) == 0 ? 1 : 2;
+    atomic_store_explicit(&g->built[k], b, memory_order_release);
   }
   pthread_mutex_unlock(&g->lock);
   return b == 1 ? 0 : -1;
@@ -362,7 +356,7 @@ aq_demand_grid *aq_dg_build(const aq_demand_table *t)
   aq_demand_grid *g = calloc(1, sizeof *g);
   if (!g)
     return NULL;
-  g->cell = malloc(nr * sizeof *g->cell); /* made row by row: pages touched then */
+  g->cell = malloc(nr * sizeof *g->cell); /* made block by block: pages touched then */
   g->hu = malloc(nr * sizeof *g->hu);
   if (!g->cell || !g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
     free(g->cell), free(g->hu), free(g);
@@ -371,8 +365,8 @@ aq_demand_grid *aq_dg_build(const aq_demand_table *t)
   g->t = t;
   for (size_t c = 0; c < nr; c++)
     atomic_init(&g->hu[c], (uint32_t)DG_UNMADE << 16 | DG_UNMADE);
-  for (size_t r = 0; r < DG_NS * DG_NK; r++)
-    atomic_init(&g->built[r], 0);
+  for (size_t b = 0; b < DG_NBLK; b++)
+    atomic_init(&g->built[b], 0);
   for (size_t ia = 0; ia < DG_NA; ia++)
     atomic_init(&g->wall_made[ia], 0);
   g->inv_ds = DG_NS / t->s_c;

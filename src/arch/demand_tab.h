@@ -57,6 +57,10 @@ enum { DG_NS = 64, DG_NA = 64, DG_OCT = 14, DG_KB = 1, DG_NK = 1 + (DG_OCT << DG
 #define DG_UNMADE 0xffff /* the bounds of a cell whose row is not made: above every key */
 
 enum { DG_INLINE = 5, DG_WS = 16 };
+/* The cells are made a block at a time: DG_AB a/g bins of a row (the
+ * entries below the block's largest lower bound are left out of its
+ * cells), the first time a state falls in one of them. */
+enum { DG_AB = 4, DG_NB = DG_NA / DG_AB, DG_NBLK = DG_NS * DG_NK * DG_NB };
 /* A candidate: its entry in the low 16 bits, the code of its own upper
  * bound over the cell (as the cell's, aq_dg_bound) in the high 16. */
 typedef uint32_t aq_dg_cand;
@@ -76,16 +80,17 @@ typedef struct aq_demand_grid {
                            (aq_dg_bound); DG_UNMADE until its row is made (written
                            once, under lock; read without) */
   aq_dg_cell *cell;  /* NS * NK * NA, index (is * NK + ik) * NA + ia */
-  aq_dg_cand *pool[DG_NS * DG_NK]; /* per row (range of s, of KE/g): the candidates
-                                      of its cells that have more than DG_INLINE */
-  /* Each row of cells is made the first time a state falls in it (under
-   * lock, published by built[row]); a row that cannot be made (out of
+  aq_dg_cand *pool[DG_NBLK]; /* per block (cell index / DG_AB): the candidates of its
+                                cells that have more than DG_INLINE */
+  /* Each block of cells is made the first time a state falls in it (under
+   * lock, published by built[block]); a block that cannot be made (out of
    * memory) leaves its states outside the grid. */
   const struct aq_demand_table *t;
   pthread_mutex_t lock;
-  double *rng[DG_NS];              /* per range of s, once one of its rows is made: each
-                                      entry's nine forms' ranges (lo, hi), then 1/M's */
-  atomic_int built[DG_NS * DG_NK]; /* 1: made, 2: failed */
+  double *rng[DG_NS];        /* per range of s, once one of its blocks is made: each
+                                entry's nine forms' ranges (lo, hi), then 1/M's */
+  double *scratch;           /* the making's work space (under lock) */
+  atomic_int built[DG_NBLK]; /* 1: made, 2: failed */
   /* The walls (states at rest, KE 0, at any s): per a/g bin, both
    * quantities' upper bounds over them, made the first time a leg's walls
    * under that a/g are asked about (aq_dg_wall_below), from each entry's
@@ -100,15 +105,16 @@ typedef struct aq_demand_grid {
  * turning points inside, widened by 1e-14 of the sum of its coefficients'
  * magnitudes (for the rounding of aq_dt_cubic). */
 void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi);
-/* Make row (is, ik) (demand_grid.c); 0, or -1 when it cannot be made. */
-int aq_dg_make(aq_demand_grid *g, size_t is, size_t ik);
+/* Make block b of cells (cell index / DG_AB; demand_grid.c); 0, or -1
+ * when it cannot be made. */
+int aq_dg_make(aq_demand_grid *g, size_t b);
 
 /* The grid of table t (NULL: out of memory, or a table too large). */
 aq_demand_grid *aq_dg_build(const aq_demand_table *t);
 void aq_dg_free(aq_demand_grid *g);
 
 /* The row of states (s, KE/g = kg), is * DG_NK + ik, or -1 (outside the
- * grid).  The row may not be made yet (aq_dg_ready). */
+ * grid).  Its cells may not be made yet (aq_dg_ready). */
 static inline long aq_dg_row(const aq_demand_grid *g, double s, double kg)
 {
   double xs = s * g->inv_ds, xk = kg * g->inv_k0;
@@ -126,11 +132,12 @@ static inline long aq_dg_row(const aq_demand_grid *g, double s, double kg)
   return (long)(is * DG_NK + ik);
 }
 
-/* 1: row r (aq_dg_row) is made, made now the first time; 0: it cannot be. */
-static inline int aq_dg_ready(aq_demand_grid *g, long r)
+/* 1: cell c's block is made, made now the first time; 0: it cannot be. */
+static inline int aq_dg_ready(aq_demand_grid *g, long c)
 {
-  int b = atomic_load_explicit(&g->built[r], memory_order_acquire);
-  return b == 1 || (b == 0 && aq_dg_make(g, (size_t)r / DG_NK, (size_t)r % DG_NK) == 0);
+  size_t k = (size_t)c / DG_AB;
+  int b = atomic_load_explicit(&g->built[k], memory_order_acquire);
+  return b == 1 || (b == 0 && aq_dg_make(g, k) == 0);
 }
 
 /* The cell of a/g al in row r (aq_dg_row), or -1 (r < 0, or al outside). */
@@ -143,24 +150,24 @@ static inline long aq_dg_cell_in(const aq_demand_grid *g, long r, double al)
 }
 
 /* Cell c's bound codes, |T|/N's in the low half (DG_UNMADE in both: its
- * row is not made). */
+ * block is not made). */
 static inline uint32_t aq_dg_codes(const aq_demand_grid *g, long c)
 {
   return atomic_load_explicit(&g->hu[c], memory_order_relaxed);
 }
 
-/* Cell c's bound code of quantity q (DG_UNMADE: its row is not made). */
+/* Cell c's bound code of quantity q (DG_UNMADE: its block is not made). */
 static inline uint16_t aq_dg_code(const aq_demand_grid *g, long c, int q)
 {
   return (uint16_t)(aq_dg_codes(g, c) >> (16 * q));
 }
 
-/* The cell of a state, or -1 (outside the grid, or in a row that cannot
- * be made).  Makes the state's row the first time. */
+/* The cell of a state, or -1 (outside the grid, or in a block that
+ * cannot be made).  Makes the state's block the first time. */
 static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg)
 {
-  long r = aq_dg_row(g, s, kg), c = aq_dg_cell_in(g, r, al);
-  return c >= 0 && aq_dg_ready(g, r) ? c : -1;
+  long c = aq_dg_cell_in(g, aq_dg_row(g, s, kg), al);
+  return c >= 0 && aq_dg_ready(g, c) ? c : -1;
 }
 
 /* The candidates of cell ic. */
@@ -168,7 +175,7 @@ static inline const aq_dg_cand *aq_dg_cands(const aq_demand_grid *g, long ic)
 {
   const aq_dg_cell *c = g->cell + ic;
   size_t n = (c->n[0] == DG_ALL ? 0 : c->n[0]) + (c->n[1] == DG_ALL ? 0 : c->n[1]);
-  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_NA] + c->c[0];
+  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_AB] + c->c[0];
 }
 
 /* Make the walls' bounds of a/g bin ia (demand_grid.c): 1, or 2 when they

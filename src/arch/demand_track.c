@@ -219,7 +219,7 @@ static const aq_demand_table *ready(aq_demand *d, int k, double g)
   return t;
 }
 
-/* A state in cell ic (-1: none) is looked at: no cell, a row not made,
+/* A state in cell ic (-1: none) is looked at: no cell, a block not made,
  * or bounds above the maxima. */
 static inline int exceeds(const aq_demand *d, const aq_demand_table *t, long ic)
 {
@@ -229,10 +229,10 @@ static inline int exceeds(const aq_demand *d, const aq_demand_table *t, long ic)
   return (c & 0xffff) > d->eff[0] || c >> 16 > d->eff[1];
 }
 
-/* Cell ic (-1: none) once its row is made; -1 when it cannot be. */
+/* Cell ic (-1: none) once its block is made; -1 when it cannot be. */
 static inline long made(const aq_demand_table *t, long ic)
 {
-  return ic >= 0 && aq_dg_ready(t->grid, ic / DG_NA) ? ic : -1;
+  return ic >= 0 && aq_dg_ready(t->grid, ic) ? ic : -1;
 }
 
 /* Visit state (s, al, kg) of set k in row r (row_of): look at it unless
