@@ -60,15 +60,16 @@ void aq_dg_free(aq_demand_grid *g)
 {
   if (!g)
     return;
-  for (size_t b = 0; b < DG_NBLK; b++)
-    free(g->pool[b]);
+  for (unsigned char *c = g->chunk, *up; c; c = up) {
+    memcpy(&up, c, sizeof up);
+    free(c);
+  }
   for (size_t is = 0; is < DG_NS; is++)
     free(g->rng[is]);
   pthread_mutex_destroy(&g->lock);
   free(g->wrng);
   free(g->scratch);
   free(g->hu);
-  free(g->cell);
   free(g);
 }
 
@@ -137,25 +138,47 @@ static void a_terms(const double *x, double a0, double a1, double t[6])
     prod_range(x[6 * f + 2], x[6 * f + 3], a0, a1, &t[2 * f], &t[2 * f + 1]);
 }
 
+enum { DG_CHUNK = 1 << 16 }; /* bytes of a chunk of made blocks */
+
+/* n bytes (a multiple of 8) of the grid's chunks, never moved; NULL: out
+ * of memory. */
+static void *chunk_take(aq_demand_grid *g, size_t n)
+{
+  size_t head = sizeof(double);
+  if (!g->chunk || g->chunk_used + n > g->chunk_cap) {
+    size_t cap = head + (n > DG_CHUNK ? n : DG_CHUNK);
+    unsigned char *c = malloc(cap);
+    if (!c)
+      return NULL;
+    memcpy(c, &g->chunk, sizeof g->chunk);
+    g->chunk = c, g->chunk_used = head, g->chunk_cap = cap;
+  }
+  void *p = g->chunk + g->chunk_used;
+  g->chunk_used += n;
+  return p;
+}
+
 /* The cells of block bl (DG_AB a/g bins) of row (is, ik), from range is's
- * forms' ranges R (lo/hi per form, then 1/M's); the block's pool into
- * g->pool.  0, or -1 (memory). */
+ * forms' ranges R (lo/hi per form, then 1/M's), packed with their pool
+ * into g->blk.  0, or -1 (memory). */
 static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const double *R)
 {
   const aq_demand_table *T = g->t;
   size_t nf = T->nf, row_i = is * DG_NK + ik, bi = row_i * DG_NB + bl;
-  aq_dg_cell *cells = g->cell + row_i * DG_NA;
+  aq_dg_cell cells[DG_AB];
+  uint32_t codes[DG_AB];
   double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1], k0, k1;
   bin_k(g, ik, &k0, &k1);
   double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
-  if (!g->scratch && !(g->scratch = malloc(nf * 20 * sizeof *g->scratch)))
+  if (!g->scratch && !(g->scratch = malloc(nf * 24 * sizeof *g->scratch)))
     return -1;
-  /* per entry: cw 6, u 4, at 6, then (as integers) the stamp and both lists */
+  /* per entry: cw 6, u 4, at 6, then (as integers) the stamp, both lists
+   * and the block's candidates (at most 2 DG_AB per entry) */
   double *cw = g->scratch, *u = cw + 6 * nf, *at = u + 4 * nf;
   size_t *stamp = (size_t *)(void *)(at + 6 * nf);
   uint16_t *list = (uint16_t *)(void *)(stamp + nf);
-  aq_dg_cand *tmp = (aq_dg_cand *)(void *)(list + 2 * nf), *pool = NULL;
-  size_t cap = 0, np = 0;
+  aq_dg_cand *pool = (aq_dg_cand *)(void *)(list + 2 * nf);
+  size_t np = 0;
   memset(stamp, 0, nf * sizeof *stamp);
   for (size_t j = 0; j < nf; j++) /* the constant and KE terms */
     for (int f = 0; f < 3; f++) {
@@ -192,7 +215,8 @@ static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const doubl
       if ((q == 0 || T->entry[j].hinge < 0) && u[4 * j + 2 * (size_t)q] >= Lm[q])
         lq[q][nq[q]++] = (uint16_t)j;
   for (size_t ia = bl * DG_AB; ia < (bl + 1) * DG_AB; ia++) {
-    aq_dg_cell *cl = cells + ia;
+    aq_dg_cell *cl = cells + ia % DG_AB;
+    aq_dg_cand *tmp = pool + np;
     size_t c0 = 0;
     uint32_t hc = 0;
     bin_a(g, ia, &a0, &a1);
@@ -223,25 +247,23 @@ static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const doubl
       c0 += c < DG_ALL ? c : 0;
       hc |= (uint32_t)upper16(U) << (16 * q);
     }
-    atomic_store_explicit(&g->hu[row_i * DG_NA + ia], hc, memory_order_relaxed);
+    codes[ia % DG_AB] = hc;
     if (c0 <= DG_INLINE) {
       memcpy(cl->c, tmp, c0 * sizeof *tmp);
       continue;
     }
-    if (np + c0 > cap) {
-      size_t nc = 2 * (np + c0) + 64;
-      aq_dg_cand *p = realloc(pool, nc * sizeof *p);
-      if (!p) {
-        free(pool);
-        return -1;
-      }
-      pool = p, cap = nc;
-    }
-    cl->c[0] = (aq_dg_cand)np;
-    memcpy(pool + np, tmp, c0 * sizeof *tmp);
+    cl->c[0] = (aq_dg_cand)np; /* kept where they are: the pool */
     np += c0;
   }
-  g->pool[bi] = pool;
+  aq_dg_cell *b = chunk_take(g, (sizeof cells + np * sizeof *pool + 7) / 8 * 8);
+  if (!b)
+    return -1;
+  memcpy(b, cells, sizeof cells);
+  memcpy(b + DG_AB, pool, np * sizeof *pool);
+  g->blk[bi] = b;
+  for (size_t m = 0; m < DG_AB; m++)
+    atomic_store_explicit(&g->hu[row_i * DG_NA + bl * DG_AB + m], codes[m],
+                          memory_order_relaxed);
   return 0;
 }
 
@@ -356,10 +378,9 @@ aq_demand_grid *aq_dg_build(const aq_demand_table *t)
   aq_demand_grid *g = calloc(1, sizeof *g);
   if (!g)
     return NULL;
-  g->cell = malloc(nr * sizeof *g->cell); /* made block by block: pages touched then */
   g->hu = malloc(nr * sizeof *g->hu);
-  if (!g->cell || !g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
-    free(g->cell), free(g->hu), free(g);
+  if (!g->hu || pthread_mutex_init(&g->lock, NULL) != 0) {
+    free(g->hu), free(g);
     return NULL;
   }
   g->t = t;

@@ -54,7 +54,7 @@ static inline double aq_dt_cubic(const double c[4], double u)
  * 2^DG_OCT) has no cell. */
 enum { DG_NS = 64, DG_NA = 64, DG_OCT = 14, DG_KB = 1, DG_NK = 1 + (DG_OCT << DG_KB) };
 #define DG_ALL 255 /* a count meaning: every entry */
-#define DG_UNMADE 0xffff /* the bounds of a cell whose row is not made: above every key */
+#define DG_UNMADE 0xffff /* the bounds of a cell whose block is not made: above every key */
 
 enum { DG_INLINE = 5, DG_WS = 16 };
 /* The cells are made a block at a time: DG_AB a/g bins of a row (the
@@ -67,7 +67,7 @@ typedef uint32_t aq_dg_cand;
 typedef struct {
   aq_dg_cand c[DG_INLINE]; /* the candidates, those of |T|/N then those of |e|/N, when
                               there are at most DG_INLINE; else c[0] is their offset
-                              in the row's pool */
+                              in the block's pool */
   uint8_t n[2];            /* their counts (DG_ALL: every entry) */
 } aq_dg_cell;
 
@@ -77,14 +77,18 @@ typedef struct aq_demand_grid {
   double k0, inv_k0; /* KE/g of the first bin's top */
   _Atomic uint32_t *hu; /* per cell, both quantities' upper bounds (|T|/N's in the low
                            half): the top half of a float's bits, rounded up
-                           (aq_dg_bound); DG_UNMADE until its row is made (written
-                           once, under lock; read without) */
-  aq_dg_cell *cell;  /* NS * NK * NA, index (is * NK + ik) * NA + ia */
-  aq_dg_cand *pool[DG_NBLK]; /* per block (cell index / DG_AB): the candidates of its
-                                cells that have more than DG_INLINE */
+                           (aq_dg_bound); DG_UNMADE until its block is made (written
+                           once, under lock; read without); index (is * NK + ik) * NA
+                           + ia */
   /* Each block of cells is made the first time a state falls in it (under
    * lock, published by built[block]); a block that cannot be made (out of
-   * memory) leaves its states outside the grid. */
+   * memory) leaves its states outside the grid.  A made block is its
+   * DG_AB cells, then its pool (the candidates of its cells that have
+   * more than DG_INLINE), packed one after another in chunks of memory
+   * that never move, so that the pages a run touches are few. */
+  aq_dg_cell *blk[DG_NBLK];  /* per block (cell index / DG_AB), once made */
+  unsigned char *chunk;      /* the chunk being filled (its first bytes: the one before) */
+  size_t chunk_used, chunk_cap;
   const struct aq_demand_table *t;
   pthread_mutex_t lock;
   double *rng[DG_NS];        /* per range of s, once one of its blocks is made: each
@@ -170,12 +174,20 @@ static inline long aq_dg_index(aq_demand_grid *g, double s, double al, double kg
   return c >= 0 && aq_dg_ready(g, c) ? c : -1;
 }
 
-/* The candidates of cell ic. */
+/* Cell ic, of a made block (aq_dg_ready). */
+static inline const aq_dg_cell *aq_dg_cell_at(const aq_demand_grid *g, long ic)
+{
+  return g->blk[(size_t)ic / DG_AB] + (size_t)ic % DG_AB;
+}
+
+/* The candidates of cell ic, of a made block. */
 static inline const aq_dg_cand *aq_dg_cands(const aq_demand_grid *g, long ic)
 {
-  const aq_dg_cell *c = g->cell + ic;
+  const aq_dg_cell *c = aq_dg_cell_at(g, ic);
   size_t n = (c->n[0] == DG_ALL ? 0 : c->n[0]) + (c->n[1] == DG_ALL ? 0 : c->n[1]);
-  return n <= DG_INLINE ? c->c : g->pool[(size_t)ic / DG_AB] + c->c[0];
+  return n <= DG_INLINE ? c->c
+                        : (const aq_dg_cand *)(const void *)(g->blk[(size_t)ic / DG_AB] + DG_AB) +
+                              c->c[0];
 }
 
 /* Make the walls' bounds of a/g bin ia (demand_grid.c): 1, or 2 when they

@@ -152,7 +152,7 @@ static inline void forms(const double *c, int q, double u, double al, double w, 
 static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, double s, double al,
                     double kg, double t_s)
 {
-  const aq_dg_cell *cl = ic >= 0 ? t->grid->cell + ic : NULL;
+  const aq_dg_cell *cl = ic >= 0 ? aq_dg_cell_at(t->grid, ic) : NULL;
   if (cl && (cl->n[0] == DG_ALL || cl->n[1] == DG_ALL))
     cl = NULL;
   int need[2] = {!cl || aq_dg_code(t->grid, ic, 0) > d->eff[0],
@@ -304,7 +304,7 @@ static __attribute__((noinline)) double value_at(aq_demand *d, const aq_demand_t
                                                  int k, long ic, double s, double al, double kg,
                                                  int q)
 {
-  const aq_dg_cell *cl = ic >= 0 ? t->grid->cell + ic : NULL;
+  const aq_dg_cell *cl = ic >= 0 ? aq_dg_cell_at(t->grid, ic) : NULL;
   if (!cl || cl->n[0] == DG_ALL || cl->n[1] == DG_ALL)
     return 0;
   size_t i = d->iv[k] = locate(t, d->iv[k], s);
@@ -478,7 +478,7 @@ int aq_demand_grid_cell(const aq_demand_table *t, double s, double al, double kg
   long ic = t->grid ? aq_dg_index(t->grid, s, al, kg) : -1;
   if (ic < 0)
     return 0;
-  const aq_dg_cell *cl = t->grid->cell + ic;
+  const aq_dg_cell *cl = aq_dg_cell_at(t->grid, ic);
   const aq_dg_cand *p = aq_dg_cands(t->grid, ic);
   size_t m = 0;
   for (int q = 0; q < 2; q++) {
