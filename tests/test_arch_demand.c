@@ -840,6 +840,35 @@ AQ_TEST(arch_demand_grid_bounds_every_entry)
            (double)cands / (double)points, outside);
 }
 
+AQ_TEST(arch_demand_grid_code_bounds)
+{
+  /* a cell's code is a bound: the value it stands for (aq_dg_bound's
+   * float) is at least the bound it was made from, and within 1/128 of
+   * it; at floats whose low 16 bits are zero and just above them, at
+   * random values of every scale, 0 and the infinite */
+  unsigned long long rng = 0xb0b16ULL;
+  for (int i = 0; i < 20000; i++) {
+    double u;
+    if (i < 2000) { /* a float with 8 significant bits, then the next double or float up */
+      uint32_t b = (uint32_t)(0x00800000u + (tds_rng(&rng) * 0x7e000000u)) & 0xffff0000u;
+      float f;
+      memcpy(&f, &b, sizeof f);
+      u = i % 2 ? nextafter((double)f, INFINITY) : (double)nextafterf(f, INFINITY);
+    } else {
+      u = ldexp(0.5 + 0.5 * tds_rng(&rng), (int)(tds_rng(&rng) * 200) - 100); /* normal floats */
+    }
+    uint32_t b = (uint32_t)aq_dg_upper16(u) << 16;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    aq_check((double)f >= u && (double)f <= u * (1 + 1.0 / 128),
+             "u %.17g: code %#x stands for %.17g", u, (unsigned)(b >> 16), (double)f);
+  }
+  aq_check(aq_dg_upper16(0) == 0 && aq_dg_upper16(INFINITY) == 0x7f80 &&
+               aq_dg_upper16(NAN) == 0x7f80,
+           "0, INFINITY, NAN: %#x %#x %#x", aq_dg_upper16(0), aq_dg_upper16(INFINITY),
+           aq_dg_upper16(NAN));
+}
+
 AQ_TEST(arch_demand_grid_cubic_range)
 {
   /* the range of a cubic over a part of [0, 1], on which every bound of

@@ -27,15 +27,26 @@
 #define DG_EPS_L 1e-13
 #define DG_PAD 1e-9
 
+/* fmin and fmax (either NaN: the other), inline. */
+static inline double dmin(double a, double b) { return a < b || b != b ? a : b; }
+static inline double dmax(double a, double b) { return a > b || b != b ? a : b; }
+
 /* The range of cubic c over u in [ua, ub], widened for rounding. */
 void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, double *hi)
 {
   double a = aq_dt_cubic(c, ua), b = aq_dt_cubic(c, ub);
-  double l = fmin(a, b), h = fmax(a, b);
+  double l = dmin(a, b), h = dmax(a, b);
   /* critical points: c1 + 2 c2 u + 3 c3 u^2 = 0 */
   double A = 3 * c[3], B = 2 * c[2], C = c[1], r[2];
+  /* none inside when the derivative's Bernstein coefficients over [ua,
+   * ub] share a strict sign (it lies within their hull; its rounding moves
+   * the ends by a few ulps of the coefficients, well inside the widening) */
+  double d0 = C + ua * (B + ua * A), d2 = C + ub * (B + ub * A);
+  double d1 = d0 + 0.5 * (ub - ua) * (B + 2 * A * ua);
   int nr = 0;
-  if (A == 0) {
+  if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) {
+    /* monotone: the ends */
+  } else if (A == 0) {
     if (B != 0)
       r[nr++] = -C / B;
   } else {
@@ -50,7 +61,7 @@ void aq_dg_cubic_range(const double c[4], double ua, double ub, double *lo, doub
   for (int k = 0; k < nr; k++)
     if (r[k] > ua && r[k] < ub) {
       double v = aq_dt_cubic(c, r[k]);
-      l = fmin(l, v), h = fmax(h, v);
+      l = dmin(l, v), h = dmax(h, v);
     }
   double e = DG_EPS_C * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]));
   *lo = l - e, *hi = h + e;
@@ -100,20 +111,6 @@ static void prod_range(double xl, double xh, double a0, double a1, double *lo, d
   l = p3 < l ? p3 : l, h = p3 > h ? p3 : h;
   double m = (fabs(l) > fabs(h) ? fabs(l) : fabs(h)) * DG_EPS_L;
   *lo = l - m, *hi = h + m;
-}
-
-/* The top half of the bits of a float at least u (u >= 0): an upper bound
- * with 8 significant bits. */
-static uint16_t upper16(double u)
-{
-  if (!(u < 3e38))
-    return 0x7f80; /* INFINITY (and NAN: no bound) */
-  float f = (float)u;
-  if ((double)f < u)
-    f = nextafterf(f, INFINITY);
-  uint32_t b;
-  memcpy(&b, &f, sizeof b);
-  return (uint16_t)((b + 0xffffu) >> 16);
 }
 
 /* Bounds of quantity q (0: |T|/N, 1: |e|/N) of an entry over a box: c the
@@ -183,7 +180,7 @@ static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const doubl
   for (size_t j = 0; j < nf; j++) /* the constant and KE terms */
     for (int f = 0; f < 3; f++) {
       const double *x = R + 2 * (j * DT_NV + 3 * (size_t)f);
-      double lo, hi, m0 = fmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
+      double lo, hi, m0 = dmax(fabs(x[0]), fabs(x[1])) * DG_EPS_L;
       prod_range(x[4], x[5], w0, w1, &lo, &hi);
       cw[6 * j + 2 * (size_t)f] = x[0] + lo - m0;
       cw[6 * j + 2 * (size_t)f + 1] = x[1] + hi + m0;
@@ -241,11 +238,11 @@ static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const doubl
       size_t c = 0;
       for (size_t m = 0; m < nq[q]; m++)
         if (u[4 * (size_t)lq[q][m] + 2 * (size_t)q] >= L)
-          tmp[c0 + c++] = (aq_dg_cand)upper16(u[4 * (size_t)lq[q][m] + 2 * (size_t)q]) << 16 |
+          tmp[c0 + c++] = (aq_dg_cand)aq_dg_upper16(u[4 * (size_t)lq[q][m] + 2 * (size_t)q]) << 16 |
                           lq[q][m];
       cl->n[q] = c < DG_ALL ? (uint8_t)c : DG_ALL;
       c0 += c < DG_ALL ? c : 0;
-      hc |= (uint32_t)upper16(U) << (16 * q);
+      hc |= (uint32_t)aq_dg_upper16(U) << (16 * q);
     }
     codes[ia % DG_AB] = hc;
     if (c0 <= DG_INLINE) {
@@ -273,19 +270,19 @@ static void ranges_in(const aq_demand_table *t, double s0, double s1, double *R)
 {
   size_t nf = t->nf;
   double pad = DG_PAD * (s1 - s0);
-  s0 = fmax(0, s0 - pad), s1 = fmin(t->s_c, s1 + pad);
+  s0 = dmax(0, s0 - pad), s1 = dmin(t->s_c, s1 + pad);
   for (size_t k = 0; k < nf * DT_NV + 1; k++)
     R[2 * k] = INFINITY, R[2 * k + 1] = -INFINITY;
   for (size_t i = 0; i < t->nint; i++) {
     if (t->bp[i + 1] < s0 || t->bp[i] > s1)
       continue;
-    double ua = fmax(0, (s0 - t->bp[i]) * t->ih[i]), ub = fmin(1, (s1 - t->bp[i]) * t->ih[i]);
+    double ua = dmax(0, (s0 - t->bp[i]) * t->ih[i]), ub = dmin(1, (s1 - t->bp[i]) * t->ih[i]);
     const double *C = t->c + i * t->stride;
     for (size_t k = 0; k <= nf * DT_NV; k++) {
       const double *c = k < nf * DT_NV ? C + k * DT_NC : C + (nf * DT_NV + 3) * DT_NC;
       double lo, hi;
       aq_dg_cubic_range(c, ua, ub, &lo, &hi);
-      R[2 * k] = fmin(R[2 * k], lo), R[2 * k + 1] = fmax(R[2 * k + 1], hi);
+      R[2 * k] = dmin(R[2 * k], lo), R[2 * k + 1] = dmax(R[2 * k + 1], hi);
     }
   }
 }
@@ -328,7 +325,7 @@ static int wall_bin(aq_demand_grid *g, size_t ia)
       double c[6], t[6], u, l;
       for (int f = 0; f < 3; f++) {
         const double *y = x + 6 * f;
-        double m0 = fmax(fabs(y[0]), fabs(y[1])) * DG_EPS_L;
+        double m0 = dmax(fabs(y[0]), fabs(y[1])) * DG_EPS_L;
         c[2 * f] = y[0] - m0, c[2 * f + 1] = y[1] + m0;
       }
       a_terms(x, a0, a1, t);

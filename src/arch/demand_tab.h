@@ -209,6 +209,19 @@ static inline int aq_dg_wall_below(aq_demand_grid *g, double al, const double m[
   return b == 1 && !(w[0] > m[0]) && !(w[1] > m[1]);
 }
 
+/* The code of a bound at least u (u >= 0): the top half of the bits of a
+ * float at least u, rounded up (8 significant bits; aq_dg_bound). */
+static inline uint16_t aq_dg_upper16(double u)
+{
+  if (!(u < 3e38))
+    return 0x7f80; /* INFINITY (and NAN: no bound) */
+  float f = (float)u;
+  uint32_t b;
+  memcpy(&b, &f, sizeof b);
+  b += (double)f < u; /* the next float up (f >= 0) */
+  return (uint16_t)((b + 0xffffu) >> 16);
+}
+
 /* The largest code whose bound is at most m (m >= 0): a cell's bound
  * exceeds m exactly when its code exceeds this one. */
 static inline uint16_t aq_dg_floor16(double m)
