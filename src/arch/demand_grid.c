@@ -167,10 +167,12 @@ static int block(aq_demand_grid *g, size_t is, size_t ik, size_t bl, const doubl
   double rm0 = R[2 * nf * DT_NV], rm1 = R[2 * nf * DT_NV + 1], k0, k1;
   bin_k(g, ik, &k0, &k1);
   double w0 = 2 * k0 * rm0 * (1 - DG_EPS_L), w1 = 2 * k1 * rm1 * (1 + DG_EPS_L);
-  if (!g->scratch && !(g->scratch = malloc(nf * 24 * sizeof *g->scratch)))
-    return -1;
   /* per entry: cw 6, u 4, at 6, then (as integers) the stamp, both lists
    * and the block's candidates (at most 2 DG_AB per entry) */
+  if (!g->scratch && !(g->scratch = malloc(nf * (16 * sizeof(double) + sizeof(size_t) +
+                                                 2 * sizeof(uint16_t) +
+                                                 2 * DG_AB * sizeof(aq_dg_cand)))))
+    return -1;
   double *cw = g->scratch, *u = cw + 6 * nf, *at = u + 4 * nf;
   size_t *stamp = (size_t *)(void *)(at + 6 * nf);
   uint16_t *list = (uint16_t *)(void *)(stamp + nf);
