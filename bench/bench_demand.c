@@ -192,7 +192,7 @@ int main(int argc, char **argv)
          T[1] / T[0] - 1, tot_states, tot_full, 100.0 * (double)tot_full / (double)tot_states);
   printf("\nthe demand's cost over the stepping: %+.1f %% (target: at most +10 %%)\n",
          100 * (T[1] / T[0] - 1));
-  printf("the first run of each record (cold: the grids' ranges of s made as runs reach "
+  printf("the first run of each record (cold: the grids' blocks of cells made as runs reach "
          "them): %.3f ms against %.3f, %+.1f %%\n", C[1] * 1e3, C[0] * 1e3,
          100 * (C[1] / C[0] - 1));
   if (reference)
