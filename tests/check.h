@@ -84,8 +84,12 @@ int aq_test_count_names(const char *dir, const char *part);
  * tolerance (archquake compare --rtol 0 --atol 0). */
 int aq_test_same_outputs(const char *dir, const char *a, const char *b);
 
-/* A fresh empty directory for this test under build/tmp (path in buf). */
+/* A fresh empty directory for this test under build/tmp (path in buf),
+ * removed when the test passes. */
 const char *aq_test_tmpdir(char *buf, size_t cap);
+/* A fresh empty directory for a fixture that several tests use (made
+ * once per runner), kept until the end of the run. */
+const char *aq_test_shared_dir(char *buf, size_t cap);
 /* A file name in a fresh directory for this test, holding text (path in
  * buf); NULL (and a failed check) if it cannot be written. */
 const char *aq_test_tmpfile(char *buf, size_t cap, const char *name, const char *text);

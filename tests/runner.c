@@ -1,9 +1,16 @@
 /* runner.c: runs every registered test (or those whose names contain
  * argv[1]); last line "N passed, N failed"; exit 1 if any failed.
- * AQ_TEST_STOP_FIRST set: stop after the first failed test (make mutate). */
+ * AQ_TEST_STOP_FIRST set: stop after the first failed test (make mutate).
+ * A test's folders under build/tmp are removed when it passes, so that a
+ * whole run needs little disk; a failed test's stay, to be looked at, and
+ * AQ_TEST_KEEP set keeps every one.  The folders of fixtures that several
+ * tests use (aq_test_shared_dir) stay to the end of the run, and go then
+ * if every test passed. */
+#define _XOPEN_SOURCE 700 /* nftw */
 #include "check.h"
 
 #include <dirent.h>
+#include <ftw.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -23,6 +30,8 @@ static size_t ntests;
 static size_t checks_failed_in_test;
 static int verbose;
 static const char *current;
+static unsigned tmp_made;    /* folders made by aq_test_tmpdir so far */
+static unsigned shared_made; /* and by aq_test_shared_dir */
 
 void aq_test_register(const char *name, aq_test_fn fn)
 {
@@ -273,18 +282,49 @@ int aq_test_same_outputs(const char *dir, const char *a, const char *b)
   return same && aq_test_run(args, NULL, 0, NULL, 0) == 0;
 }
 
-const char *aq_test_tmpdir(char *buf, size_t cap)
+static void tmp_name(char *buf, size_t cap, int shared, unsigned k)
 {
-  static unsigned counter;
+  snprintf(buf, cap, "build/tmp/%s-%ld-%u", shared ? "shared" : current ? current : "t",
+           (long)getpid(), k);
+}
+
+static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+  (void)st, (void)flag, (void)ftw;
+  remove(path);
+  return 0;
+}
+
+/* Remove the folders made from the from-th to the to-th (excluded). */
+static void remove_tmp(int shared, unsigned from, unsigned to)
+{
+  char dir[512];
+  for (unsigned k = from; k < to; k++) {
+    tmp_name(dir, sizeof dir, shared, k);
+    nftw(dir, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+  }
+}
+
+static const char *make_dir(char *buf, size_t cap, int shared)
+{
   mkdir("build", 0777);
   mkdir("build/tmp", 0777);
-  snprintf(buf, cap, "build/tmp/%s-%ld-%u", current ? current : "t",
-           (long)getpid(), counter++);
+  tmp_name(buf, cap, shared, shared ? shared_made++ : tmp_made++);
   char cmd[1200];
   snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", buf, buf);
   if (system(cmd) != 0)
     fprintf(stderr, "runner: cannot make %s\n", buf);
   return buf;
+}
+
+const char *aq_test_tmpdir(char *buf, size_t cap)
+{
+  return make_dir(buf, cap, 0);
+}
+
+const char *aq_test_shared_dir(char *buf, size_t cap)
+{
+  return make_dir(buf, cap, 1);
 }
 
 const char *aq_test_tmpfile(char *buf, size_t cap, const char *name, const char *text)
@@ -303,12 +343,14 @@ int main(int argc, char **argv)
 {
   verbose = getenv("AQ_TEST_VERBOSE") != NULL;
   const int stop_first = getenv("AQ_TEST_STOP_FIRST") != NULL;
+  const int keep = getenv("AQ_TEST_KEEP") != NULL;
   size_t passed = 0, failed = 0;
   for (size_t i = 0; i < ntests; i++) {
     if (argc > 1 && !strstr(tests[i].name, argv[1]))
       continue;
     current = tests[i].name;
     checks_failed_in_test = 0;
+    const unsigned tmp_from = tmp_made;
     tests[i].fn();
     if (checks_failed_in_test) {
       failed++;
@@ -320,11 +362,15 @@ int main(int argc, char **argv)
       }
     } else {
       passed++;
+      if (!keep)
+        remove_tmp(0, tmp_from, tmp_made);
       if (verbose)
         fprintf(stderr, "PASS %s\n", tests[i].name);
     }
     fflush(stderr);
   }
+  if (!failed && !keep)
+    remove_tmp(1, 0, shared_made);
   printf("%zu passed, %zu failed\n", passed, failed);
   return failed ? 1 : 0;
 }

@@ -28,7 +28,7 @@ static const char *results(void)
   if (path[0])
     return path;
   char dir[512], args[1400], err[2048];
-  aq_test_tmpdir(dir, sizeof dir);
+  aq_test_shared_dir(dir, sizeof dir);
   snprintf(path, sizeof path, "%s/hist.h5", dir);
   snprintf(args, sizeof args,
            RECORD " --arch " ARCH " --scale 5,10 --polarity normal --history --store-records -o %s",

@@ -69,7 +69,7 @@ static const char *suite_h5(char *tsv, size_t cap)
   static char rows[1 << 16];
   if (!path[0]) {
     char dir[512], args[2048], err[2048];
-    aq_test_tmpdir(dir, sizeof dir);
+    aq_test_shared_dir(dir, sizeof dir);
     snprintf(path, sizeof path, "%s/suite.h5", dir);
     snprintf(args, sizeof args,
              REC "ARL360.at2 " REC "IELC180.AT2 --arch " ARCHES "oppenheim.cfg --arch " ARCHES
@@ -88,7 +88,7 @@ static const char *capacity_h5(void)
   static char path[600];
   if (!path[0]) {
     char dir[512], args[2048], err[2048];
-    aq_test_tmpdir(dir, sizeof dir);
+    aq_test_shared_dir(dir, sizeof dir);
     snprintf(path, sizeof path, "%s/cap.h5", dir);
     snprintf(args, sizeof args,
              "capacity " REC "RSN77_SFERN_PUL164-hor1.AT2 " REC "IELC180.AT2 --arch " ARCHES
