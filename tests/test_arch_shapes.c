@@ -18,6 +18,7 @@
  *    over every four-hinge set with the 9x9 against the search.
  */
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -881,6 +882,121 @@ AQ_TEST(arch_shapes_energy_and_ode)
     aq_arch_free(a);
   }
   shape_cases_free(c, nc);
+}
+
+/* A thick circle of 120 degrees (R 5 m, t 2 m, 8 voussoirs), whose
+ * minimum mechanism (joints 0 3 6 7, faces e i i e) ends at a toggle: M
+ * grows as 1/(s_c - s) and the exact kinematics lose digits as s nears
+ * s_c (a relative round-off of about 1e-15 / (s_c - s)).  The Taylor leg's
+ * pieces are built in a few hundred intervals and follow the exact path to
+ * that round-off; the Hermite tables cannot follow it, and the ode and
+ * workpath-quad, which read them, are refused in one line.  Pushed from
+ * rest by a constant 8 g, the Taylor leg collapses at the time
+ * t_c = int_0^s_c sqrt(M / 2W) ds of the exact path (W = -m_T (g y + a x),
+ * the work of gravity and the load), integrated by GSL's QAGS, which
+ * handles the two ends' singularities (1/sqrt(s) at rest, 1/sqrt(s_c - s)
+ * at the toggle). */
+typedef struct {
+  const aq_path *p;
+  double a;
+} toggle_ctx;
+
+static double toggle_dt_ds(double s, void *v)
+{
+  const toggle_ctx *c = v;
+  aq_path_point pt;
+  if (c->p->eval_exact(c->p->ctx, s, &pt) != 0)
+    return NAN;
+  double work = -c->p->mass_kg * (c->p->g_mps2 * pt.y_m + c->a * pt.x_m);
+  return sqrt(pt.mgen_kgm2 / (2 * work));
+}
+
+static double piece_value(const double *c, int deg, double t)
+{
+  double v = c[deg];
+  for (int k = deg - 1; k >= 0; k--)
+    v = v * t + c[k];
+  return v;
+}
+
+AQ_TEST(arch_toggle_end_taylor_leg)
+{
+  gsl_set_error_handler_off();
+  aq_arch_params pp = aq_arch_circular(5.0, 2.0, 2 * AQ_PI / 3, 8, 2000.0, 1.0);
+  const aq_hinge_set hs = {{0, 3, 6, 7}, {'e', 'i', 'i', 'e'}};
+  aq_geom g;
+  aq_error e;
+  aq_workpath *w = NULL;
+  if (!aq_check(aq_geom_init(&g, &pp, &e) == AQ_OK, "geometry: %s", e.message))
+    return;
+  if (!aq_check(aq_workpath_build(&g, &hs, 9.80665, "primary", &w, &e) == AQ_OK,
+                "the path builds: %s", e.message)) {
+    aq_geom_free(&g);
+    return;
+  }
+  const aq_path *p = aq_workpath_path(w);
+  const double sc = p->s_c_rad;
+  size_t np = aq_workpath_piece_count(w);
+  aq_check(p->admissible && aq_workpath_end(w) == AQ_END_TOGGLE,
+           "admissible (%s), its end a toggle (%d)", aq_workpath_reason(w),
+           (int)aq_workpath_end(w));
+  aq_check(np >= 20 && np <= 400, "pieces: %zu", np);
+  /* the pieces against the exact path, up to 1e-6 of s_c from the toggle */
+  double worst = 0, worst_at = 0;
+  for (int i = 0; i <= 240; i++) {
+    double x = 0.025 * i, s = sc * (1 - pow(10, -x)) * (i ? 1 : 0.5), t;
+    aq_path_piece pc;
+    aq_path_point pt;
+    if (!aq_check(p->piece(p->ctx, s, 1, &pc) == 0 && p->eval_exact(p->ctx, s, &pt) == 0,
+                  "evaluations at s = %.17g", s))
+      break;
+    t = (s - pc.s_lo) * pc.iscale;
+    double ed = fabs(piece_value(pc.dx, pc.deg, t) - pt.dx_m) / fabs(pt.dx_m);
+    double em = fabs(piece_value(pc.m, pc.deg, t) - pt.mgen_kgm2) / pt.mgen_kgm2;
+    double r = fmax(ed, em) / (1e-13 + 1e-14 / (sc - s));
+    if (r > worst)
+      worst = r, worst_at = s;
+  }
+  aq_check(worst <= 1, "pieces vs exact: %.3g of 1e-13 + 1e-14 / (s_c - s), at s_c - s = %.3g",
+           worst, sc - worst_at);
+  /* the models that read the tables are refused */
+  aq_check(aq_workpath_table_error(w) > AQ_PATH_TABLE_ERR_MAX, "tables: %.3g",
+           aq_workpath_table_error(w));
+  for (int m = 0; m < 2; m++) {
+    aq_error_clear(&e);
+    aq_stepper *st = aq_stepper_alloc(p, NULL, m ? AQ_MODEL_WORKPATH_QUAD : AQ_MODEL_ODE, &e);
+    aq_check(!st && strstr(e.message, "--model workpath, the default, follows it") &&
+                 !strchr(e.message, '\n'),
+             "%s refused: %s", m ? "workpath-quad" : "ode", e.message);
+    aq_stepper_free(st);
+  }
+  /* the time to collapse under a constant 8 g */
+  toggle_ctx c = {p, p->act_sign * 8 * p->g_mps2};
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+  gsl_function f = {toggle_dt_ds, &c};
+  double tc_ref = NAN, abserr = NAN;
+  int qs = ws ? gsl_integration_qags(&f, 0, sc, 0, 1e-11, 1000, ws, &tc_ref, &abserr) : -1;
+  gsl_integration_workspace_free(ws);
+  /* the time over the last two pieces' width d = 2^-39 s_c (the pieces'
+   * finest, accepted at 40 halvings with a tail of a few per cent), where
+   * M (s_c - s) and W are constant to 1e-12: 2 d dt/ds at s_c - d */
+  double d = ldexp(sc, -39), t_end = 2 * d * toggle_dt_ds(sc - d, &c);
+  aq_check(qs == GSL_SUCCESS && abserr <= 1e-10 * tc_ref, "QAGS: %d, %.6g +- %.3g s", qs,
+           tc_ref, abserr);
+  aq_error_clear(&e);
+  aq_stepper *st = aq_stepper_alloc(p, NULL, AQ_MODEL_WORKPATH, &e);
+  aq_result r;
+  if (aq_check(st != NULL, "workpath stepper: %s", e.message) &&
+      pulse(st, c.a, 2.0, 2.0, 0.01, &r)) {
+    aq_check(r.collapsed, "collapses under 8 g");
+    aq_check(fabs(r.collapse_time_s - tc_ref) <= t_end + 1e-12 * tc_ref,
+             "collapse time, Taylor leg %.15g s vs QAGS %.15g s: within %.3g s, the time over "
+             "the last 2^-39 of s_c", r.collapse_time_s, tc_ref, t_end);
+    aq_result_free(&r);
+  }
+  aq_stepper_free(st);
+  aq_workpath_free(w);
+  aq_geom_free(&g);
 }
 
 /* The half-cycle domain of the shipped arches of every new shape: the

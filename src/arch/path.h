@@ -107,6 +107,15 @@ typedef struct {
    * sampled; 0 when unknown): the peak displacement up to any s there is
    * |x(s)|. */
   double x_mono_rad;
+  /* The measured relative error of the Hermite tables (eval), which the ode
+   * and workpath-quad read; at a toggle end they cannot follow the branch
+   * point and the error is large (aq_stepper_alloc refuses those models
+   * then; the Taylor leg's pieces follow it). */
+  double table_err;
 } aq_path;
+
+/* The largest table_err the ode and workpath-quad accept (the tables of
+ * every admissible set away from a toggle: 1e-12 .. 2e-9). */
+#define AQ_PATH_TABLE_ERR_MAX 1e-6
 
 #endif

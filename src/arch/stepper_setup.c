@@ -44,6 +44,23 @@ aq_stepper *aq_stepper_alloc(const aq_path *primary, const aq_path *reverse,
                  "expected workpath, ode, paper or workpath-quad, got %d", (int)model);
     return NULL;
   }
+  /* the ode and workpath-quad read the Hermite tables (unless set to the
+   * exact path): a path they resolve only coarsely (a toggle end) would
+   * give them a wrong time to collapse, silently */
+  for (int k = 0; k < 2 && (model == AQ_MODEL_ODE || model == AQ_MODEL_WORKPATH_QUAD); k++) {
+    const aq_path *p = k ? reverse : primary;
+    if (k && !path_usable(p))
+      break;
+    if (!(p->table_err <= AQ_PATH_TABLE_ERR_MAX)) {
+      aq_error_set(err, AQ_ENUMERIC, NULL, -1, -1, p->name,
+                   "expected a work path that the Hermite tables of --model %s resolve to "
+                   "%g, got one they resolve only to %.3g (q_c = %.6g rad); --model "
+                   "workpath, the default, follows it",
+                   model == AQ_MODEL_ODE ? "ode" : "workpath-quad", AQ_PATH_TABLE_ERR_MAX,
+                   p->table_err, p->s_c_rad);
+      return NULL;
+    }
+  }
   aq_stepper *st = calloc(1, sizeof *st);
   if (!st) {
     aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "stepper", "out of memory");

@@ -322,6 +322,7 @@ aq_status aq_workpath_build_max(const aq_geom *g, const aq_hinge_set *hs, double
                         "out of memory (or the linkage failed) building tables");
   }
   p->x_mono_rad = aq_workpath_x_mono(w);
+  p->table_err = w->tab_err;
   *out = w;
   return AQ_OK;
 }
@@ -441,7 +442,7 @@ aq_status aq_workpath_get(const aq_geom *g, const aq_hinge_set *hs, double g_mps
   }
   w->end = (aq_end)aq_bytes_get_int(r, AQ_END_PEAK, AQ_END_NONE, "end");
   aq_bytes_get_str(r, w->reason, sizeof w->reason, NULL, "reason");
-  w->tab_err = aq_bytes_get_f64(r, "table_error");
+  w->tab_err = p->table_err = aq_bytes_get_f64(r, "table_error");
   w->thrust0 = aq_bytes_get_f64(r, "thrust0");
   w->n = w->cap = (size_t)aq_bytes_get_int(r, 0, TABLE_MAX_INTERVALS, "table_n");
   void *bp, *coef, *pbp, *piece;

@@ -32,7 +32,18 @@
  * displacements from s_lo) are fitted alike from the exact M, M', x, y and
  * slopes, with their constant terms exact at s_lo, and share the test of
  * the tails (gc alone, ga and gb together), so that the leg needs no
- * division by M. */
+ * division by M.
+ *
+ * At a toggle end the path has a branch point at s_c (dx/ds grows as
+ * (s_c - s)^-1/2, M as (s_c - s)^-1), and the exact evaluation loses digits
+ * as s nears it: measured on a 120-degree circle, t/R 0.4, 8 voussoirs, a
+ * relative round-off of about 9e-16 / (s_c - s), 3e-10 at 3e-6 rad from the
+ * end, which no halving takes below PIECE_ROUNDOFF.  There, an interval is
+ * also accepted when halving no longer halves its tail and the branch point
+ * alone would leave a tail below PIECE_TAIL_TOL: for an interval of
+ * half-width h whose middle is d from s_c, Chebyshev coefficients decay as
+ * rho^-k, rho = d/h + sqrt((d/h)^2 - 1) (the Bernstein ellipse through
+ * s_c), so what is left of the tail is the evaluation's own round-off. */
 #define PIECE_DEG 14            /* of the fits; x, y one more (< AQ_PIECE_MAX_DEG) */
 #define PIECE_ROUNDOFF 1e-10    /* a tail that halving no longer halves and is below this: round-off
                                    (flat arches: 1e-11 near their end) */
@@ -167,6 +178,17 @@ static int piece_append(aq_workpath *w, double a, double b, double c[NPC_F][PN],
   return 0;
 }
 
+/* 1 when s_c is a toggle and [a, b] is far enough from it that the branch
+ * point there would leave a tail (degree PN - 3) below PIECE_TAIL_TOL. */
+static int piece_clear_of_toggle(const aq_workpath *w, double a, double b)
+{
+  double h = 0.5 * (b - a), d = w->path.s_c_rad - (a + h);
+  if (w->end != AQ_END_TOGGLE || !(d > h))
+    return 0;
+  double r = d / h, rho = r + sqrt(r * r - 1);
+  return pow(rho, -(PN - 3)) <= PIECE_TAIL_TOL;
+}
+
 static void piece_refine(piece_ctx *pc, double a, double b, int depth,
                          double parent_tail)
 {
@@ -186,8 +208,9 @@ static void piece_refine(piece_ctx *pc, double a, double b, int depth,
     pc->failed = 1;
     return;
   }
-  if (tail <= PIECE_TAIL_TOL || depth >= PIECE_MAX_DEPTH ||
-      (tail > TABLE_STALL * parent_tail && tail < PIECE_ROUNDOFF)) {
+  const int stalled = tail > TABLE_STALL * parent_tail;
+  if (tail <= PIECE_TAIL_TOL || depth >= PIECE_MAX_DEPTH || (stalled && tail < PIECE_ROUNDOFF) ||
+      (stalled && piece_clear_of_toggle(pc->w, a, b))) {
     if (piece_append(pc->w, a, b, c, fa) != 0)
       pc->failed = 1;
     return;
