@@ -721,3 +721,85 @@ AQ_TEST(capacity_points_none_when_never_moves)
   aq_check(read_points(h5, p) == 0, "scan_points is empty");
   free(out);
 }
+
+/* ---- what a capacity verdict rests on (docs/capacity.md, "Marks") --------
+ * Every scanned run of `capacity -o` against the main job at the same
+ * scale, friction and arch: the row's first_mark_scale is the lowest scale
+ * whose main-job run is marked (slides, beyond), and its status the union
+ * of the marks of the runs up to the first collapse.  On the shipped search
+ * arch (free hinges, so "beyond" can apply) with a friction of 0.6, and on
+ * oppenheim with 0.45, below what either of its sets needs at rest
+ * (mechanism's mu_required): there the first run of the scan, just above
+ * the scale at which the arch first moves, already slides; with 1.0, above
+ * both, the first marked run lies inside the scan, below the first
+ * collapse.  Without a friction, a fixed arch carries no mark. */
+static void marks_case(const char *arch, const char *friction, const char *proc,
+                       const char *want_first)
+{
+  char *out = malloc(BIG), *main_out = malloc(BIG), *args = malloc(MAXP * 26 + 512);
+  point *p = malloc(MAXP * sizeof *p);
+  char dir[512], h5[600], cell[256], status[64], fms[64];
+  if (!out || !main_out || !args || !p)
+    goto done;
+  aq_test_tmpdir(dir, sizeof dir);
+  snprintf(h5, sizeof h5, "%s/cap.h5", dir);
+  snprintf(args, 2048, "capacity " REC " --arch %s%s%s%s --polarity normal --scale-max 4 -j 2 -o %s",
+           arch, friction[0] ? " --friction " : "", friction, proc, h5);
+  int rc = aq_test_run(args, out, BIG, NULL, 0);
+  long n = read_points(h5, p);
+  field(out, 1, 3, status, sizeof status);
+  field(out, 1, 12, fms, sizeof fms);
+  double fcs = strtod(field(out, 1, 5, cell, sizeof cell), NULL);
+  if (!aq_check(rc == 0 && n > 10 && !strcmp(field(out, 0, 12, cell, sizeof cell),
+                                              "first_mark_scale"),
+                "%s %s: capacity exit %d, %ld points, column 12 \"%s\"", arch, friction, rc, n,
+                cell))
+    goto done;
+  size_t k = (size_t)snprintf(args, 512, REC " --arch %s%s%s%s --polarity normal -j 2 --scale ",
+                              arch, friction[0] ? " --friction " : "", friction, proc);
+  for (long i = 0; i < n; i++)
+    k += (size_t)snprintf(args + k, 26, "%s%.17g", i ? "," : "", p[i].scale);
+  rc = aq_test_run(args, main_out, BIG, NULL, 0);
+  aq_check(rc == 0, "%s %s: main job exit %d", arch, friction, rc);
+  double first = NAN;
+  int slides = 0, beyond = 0;
+  for (long i = 0; i < n; i++) {
+    const char *st = field(main_out, (int)i + 1, 5, cell, sizeof cell);
+    int marked = strstr(st, "slides") || strstr(st, "beyond");
+    if (marked && isnan(first))
+      first = p[i].scale;
+    if (!(p[i].scale > fcs)) {
+      slides |= strstr(st, "slides") != NULL;
+      beyond |= strstr(st, "beyond") != NULL;
+    }
+  }
+  char want[64];
+  snprintf(want, sizeof want, "%s%s%s", slides ? "slides" : "", slides && beyond ? "+" : "",
+           beyond ? "beyond" : "");
+  aq_check(!strcmp(status, want[0] ? want : "ok"),
+           "%s %s: status %s, the main job's runs up to the first collapse %.9g: %s", arch,
+           friction, status, fcs, want[0] ? want : "ok");
+  double got = strtod(fms, NULL);
+  aq_check(isnan(first) ? isnan(got) : got == first,
+           "%s %s: first_mark_scale %s, the main job's first marked run %.17g", arch, friction,
+           fms, first);
+  if (want_first)
+    aq_check(!strcmp(want_first, "first")    ? got == p[0].scale
+             : !strcmp(want_first, "inside") ? got > p[0].scale && got < fcs
+                                             : isnan(got),
+             "%s %s: first_mark_scale %s (%s; the scan's first run %.17g)", arch, friction,
+             fms, want_first, p[0].scale);
+done:
+  free(out);
+  free(main_out);
+  free(args);
+  free(p);
+}
+
+AQ_TEST(capacity_cli_marks_against_the_main_job)
+{
+  marks_case("arches/search.cfg", "0.6", "", NULL); /* impact = momentum: no --cor */
+  marks_case(ARCH, "0.45", PROC, "first");
+  marks_case(ARCH, "1.0", PROC, "inside"); /* above both sets' mu_required at rest */
+  marks_case(ARCH, "", PROC, "none");
+}

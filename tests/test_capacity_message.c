@@ -28,13 +28,16 @@ static void sample(aq_capacity *c, aq_scan_interval *iv, aq_capacity_point *pt)
   c->scale_max = INFINITY;
   c->first_collapse_scale = 9.9193993489725258;
   c->resurrection = 1;
+  c->marks = AQ_MARK_SLIDES | AQ_MARK_BEYOND;
+  c->first_mark_scale = 1.3507631189624345;
   iv[0] = (aq_scan_interval){9.9193993489725258, 10.344043128593729};
   iv[1] = (aq_scan_interval){11.113704981458142, INFINITY};
   c->scan = (aq_scan_result){2, iv, 313, 290, 23};
-  pt[0] = (aq_capacity_point){1.3373892266954797, 0.0071828182845, 0.031415926535, NAN, 0};
+  pt[0] = (aq_capacity_point){1.3373892266954797, 0.0071828182845, 0.031415926535, NAN, 0,
+                              0};
   pt[1] = (aq_capacity_point){9.9193993489725258, 0.43429448190325, 1.0000000000000002,
-                              12.340000000000001, 1};
-  pt[2] = (aq_capacity_point){10.5, 0.0, 0.0, NAN, 0};
+                              12.340000000000001, 1, AQ_MARK_SLIDES};
+  pt[2] = (aq_capacity_point){10.5, 0.0, 0.0, NAN, 0, AQ_MARK_SLIDES | AQ_MARK_BEYOND};
   c->npoint = 3;
   c->point = pt;
 }
@@ -48,9 +51,10 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
   aq_bytes_out w = {0};
   aq_capacity_encode(&c, &w);
   /* 5 words, 3 strings with their lengths, 4 doubles, 4 counters, the
-     interval count and 2 intervals, the point count and 3 points of 5 words */
+     marks and the first marked scale, the interval count and 2 intervals,
+     the point count and 3 points of 6 words */
   size_t n = 5 * 8 + 3 * 8 + strlen("records/x.AT2") + strlen("t") + strlen(c.err.message) +
-             4 * 8 + 4 * 8 + 8 + 2 * 16 + 8 + 3 * 40;
+             4 * 8 + 4 * 8 + 2 * 8 + 8 + 2 * 16 + 8 + 3 * 48;
   aq_check(!w.oom && w.n == n, "encode writes the layout's %zu bytes: %zu", n, w.n);
   unsigned char *b = malloc(n + 8);
   aq_check(b != NULL, "buffer");
@@ -77,6 +81,8 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
                same_bits(d.first_collapse_scale, c.first_collapse_scale),
            "scales bit for bit (move %.17g, first collapse %.17g)", d.move_scale,
            d.first_collapse_scale);
+  aq_check(d.marks == c.marks && same_bits(d.first_mark_scale, c.first_mark_scale),
+           "marks %d, first marked scale %.17g", d.marks, d.first_mark_scale);
   aq_check(d.resurrection == 1 && d.scan.runs == 313 && d.scan.grid_runs == 290 &&
                d.scan.bisect_runs == 23,
            "counters");
@@ -91,7 +97,7 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
                  same_bits(d.point[k].peak_rotation_rad, pt[k].peak_rotation_rad) &&
                  same_bits(d.point[k].peak_rotation_over_qc, pt[k].peak_rotation_over_qc) &&
                  same_bits(d.point[k].collapse_time_s, pt[k].collapse_time_s) &&
-                 d.point[k].collapsed == pt[k].collapsed,
+                 d.point[k].collapsed == pt[k].collapsed && d.point[k].marks == pt[k].marks,
              "point %zu bit for bit (scale %.17g)", k, d.point[k].scale);
   aq_capacity_free(&d);
 
@@ -147,12 +153,12 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
   }
   aq_check(refused == n, "every cut short of %zu bytes refused, with a field: %zu", n,
            refused);
-  /* the interval count (after 16 words and 3 strings) made huge */
+  /* the interval count (after 18 words and 3 strings) made huge */
   size_t at = 5 * 8 + 3 * 8 + strlen("records/x.AT2") + strlen("t") +
-              strlen(c.err.message) + 4 * 8 + 4 * 8;
-  int64_t huge = INT64_MAX / 4, two = 2;
+              strlen(c.err.message) + 4 * 8 + 4 * 8 + 2 * 8;
+  int64_t huge = INT64_MAX / 4, two = 2, four = 4;
   /* the point count, after the 2 intervals, made huge; the last point's
-     collapse flag made 2 */
+     collapse flag made 2, its marks 4 */
   unsigned char *b2 = malloc(n);
   if (b2) {
     memcpy(b2, b, n);
@@ -163,13 +169,21 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
              "a huge point count refused: field \"%s\"", e.field);
     aq_capacity_free(&d);
     memcpy(b2, b, n);
-    memcpy(b2 + n - 8, &two, sizeof two);
+    memcpy(b2 + n - 16, &two, sizeof two);
     r = (aq_bytes_in){b2, n, 0, NULL, 0};
     s = aq_capacity_decode(&r, &d, &e);
     aq_check(s == AQ_EFORMAT && strcmp(e.field, "point collapsed") == 0 &&
-                 e.byte_offset == (long)(n - 8),
+                 e.byte_offset == (long)(n - 16),
              "a collapse flag of 2 refused: field \"%s\" at byte %ld", e.field,
              e.byte_offset);
+    aq_capacity_free(&d);
+    memcpy(b2, b, n);
+    memcpy(b2 + n - 8, &four, sizeof four);
+    r = (aq_bytes_in){b2, n, 0, NULL, 0};
+    s = aq_capacity_decode(&r, &d, &e);
+    aq_check(s == AQ_EFORMAT && strcmp(e.field, "point marks") == 0 &&
+                 e.byte_offset == (long)(n - 8),
+             "marks of 4 refused: field \"%s\" at byte %ld", e.field, e.byte_offset);
     aq_capacity_free(&d);
     free(b2);
   }

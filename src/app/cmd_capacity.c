@@ -40,7 +40,8 @@ static void pair_status(const aq_cap_item *r, const aq_capacity *c, char *st, si
   else if (c->status == AQ_CAPACITY_FAILED)
     aq_summary_status(st, n, "run", c->run_status);
   else
-    snprintf(st, n, "%s", c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : "ok");
+    snprintf(st, n, "%s",
+             c->status == AQ_CAPACITY_NEVER_MOVES ? "never_moves" : aq_result_marks_name(c->marks));
 }
 
 /* Per arch: the fits of every IM over the records that were read (stderr

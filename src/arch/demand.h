@@ -112,6 +112,13 @@ void aq_demand_free(aq_demand *d);
 void aq_demand_set_every(aq_demand *d, int on);
 /* The friction coefficient a run is checked against (NAN: none). */
 void aq_demand_set_limit(aq_demand *d, double mu);
+/* Marks only (capacity, docs/capacity.md): a run's results are asked for
+ * whether |T|/N passed the limit (slide 1) and whether the eccentricity
+ * passed 1 (ecc 1), and nothing more.  Each quantity is left once it has
+ * passed (or from the start when it is not asked for), so the maxima, their
+ * entries and times are those of the run up to there only; slide_s and
+ * ecc_over_s, and so the marks, are the full tracker's, to the bit. */
+void aq_demand_set_marks_only(aq_demand *d, int slide, int ecc);
 /* Start a run. */
 void aq_demand_begin(aq_demand *d);
 /* The state of a run on set k: position s (rad), kinetic energy ke_j (J),

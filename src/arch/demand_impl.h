@@ -36,6 +36,11 @@ struct aq_demand {
   double over_s[2]; /* first time over the limit (mu_limit, 1), NAN: never */
   int moved, failed, done;
   int every;        /* 1: every entry at every state (the reference) */
+  /* marks only (aq_demand_set_marks_only): want[q], quantity q's mark can
+   * apply; once it has passed its limit (or when it cannot apply), the
+   * quantity is no longer looked at, and the run's tracking ends when
+   * neither is */
+  int marks_only, want[2];
   size_t samples, full, looks;
   aq_demand_least_fn least; /* the statics' least friction, NULL: none */
   void *least_ctx;

@@ -57,6 +57,21 @@ void aq_demand_set_limit(aq_demand *d, double mu)
   d->mu_limit = isfinite(mu) && mu > 0 ? mu : NAN;
 }
 
+void aq_demand_set_marks_only(aq_demand *d, int slide, int ecc)
+{
+  d->marks_only = 1;
+  d->want[0] = slide != 0;
+  d->want[1] = ecc != 0;
+  aq_demand_begin(d);
+}
+
+/* Marks only: quantity q is no longer looked at (not asked for, or its
+ * limit passed). */
+static inline int left(const aq_demand *d, int q)
+{
+  return d->marks_only && (!d->want[q] || !isnan(d->over_s[q]));
+}
+
 void aq_demand_begin(aq_demand *d)
 {
   d->q.n = 0;
@@ -75,6 +90,10 @@ void aq_demand_begin(aq_demand *d)
   d->moved = d->failed = d->done = 0;
   d->samples = d->full = d->looks = 0;
   d->still = 0;
+  for (int k = 0; k < 2; k++)
+    if (left(d, k))
+      d->eff[k] = 0xffff;
+  d->done = left(d, 0) && left(d, 1);
 }
 
 /* The table of set k (asked for once per tracker), or NULL. */
@@ -104,6 +123,10 @@ static size_t locate(const aq_demand_table *t, size_t i, double s)
  * passed, above the limit. */
 static void refresh(aq_demand *d, int q)
 {
+  if (left(d, q)) { /* no code exceeds it: nothing of q is looked at */
+    d->eff[q] = 0xffff;
+    return;
+  }
   uint16_t e = d->pre[q];
   if (e && isnan(d->over_s[q])) {
     double lim = q == 0 ? d->mu_limit : 1.0;
@@ -198,7 +221,7 @@ static void look_at(aq_demand *d, const aq_demand_table *t, int k, long ic, doub
       p += cl->n[q];
     }
   }
-  d->done = isinf(d->max[0]) && isinf(d->max[1]);
+  d->done = (isinf(d->max[0]) && isinf(d->max[1])) || (left(d, 0) && left(d, 1));
 }
 
 /* The table of set k, and 1/g for g; NULL when there is nothing to do. */

@@ -42,3 +42,16 @@ double aq_result_peak_over_qc(const aq_result *r, const aq_path *primary, const 
   }
   return over;
 }
+
+int aq_result_marks(double mu_demand, double thrust_ecc_max, double friction, int free_control)
+{
+  int slides = !isnan(friction) && mu_demand > friction; /* NAN compares false */
+  int beyond = free_control && thrust_ecc_max > 1;
+  return (slides ? AQ_MARK_SLIDES : 0) | (beyond ? AQ_MARK_BEYOND : 0);
+}
+
+const char *aq_result_marks_name(int marks)
+{
+  static const char *const name[4] = {"ok", "slides", "beyond", "slides+beyond"};
+  return name[marks & 3];
+}

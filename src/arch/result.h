@@ -76,4 +76,13 @@ void aq_result_free(aq_result *r);
  * at q_c), 0 if it never moved, NAN if it moved on a set with no path. */
 double aq_result_peak_over_qc(const aq_result *r, const aq_path *primary, const aq_path *reverse);
 
+/* The marks of a run against the four-hinge models' assumptions
+ * (docs/demand.md): AQ_MARK_SLIDES when a friction was given (NAN: none)
+ * and the run's friction demand passed it, AQ_MARK_BEYOND under free
+ * control when the thrust left a joint's section (thrust_ecc_max > 1). */
+enum { AQ_MARK_SLIDES = 1, AQ_MARK_BEYOND = 2 };
+int aq_result_marks(double mu_demand, double thrust_ecc_max, double friction, int free_control);
+/* marks as a status: "ok" (none), "slides", "beyond" or "slides+beyond". */
+const char *aq_result_marks_name(int marks);
+
 #endif

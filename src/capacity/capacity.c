@@ -51,7 +51,19 @@ typedef struct {
   aq_stepper *st;
   aq_capacity *out; /* gets a point per run */
   size_t cap;       /* points allocated */
+  int marks;        /* 1: the runs' marks are followed (friction, free_control) */
+  double friction;  /* the arch's, NAN: none */
+  int free_control;
 } run_ctx;
+
+/* 1 when a run of job can carry a mark: a friction given or free hinges,
+ * under a four-hinge model that follows the joints' forces. */
+static int marks_apply(const aq_capacity_job *job)
+{
+  return job->model != AQ_MODEL_BLOCKS && job->model != AQ_MODEL_PAPER &&
+         (!isnan(aq_arch_friction(job->arch)) ||
+          aq_arch_control(job->arch) == AQ_CONTROL_FREE);
+}
 
 /* Record the run at scale in c->out's points. */
 static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_error *err)
@@ -71,7 +83,10 @@ static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_er
                                        aq_arch_path(c->job->arch, 1));
   o->point[o->npoint++] = (aq_capacity_point){
       scale, res->peak_rotation_rad, over,
-      res->collapsed ? res->collapse_time_s : NAN, res->collapsed ? 1 : 0};
+      res->collapsed ? res->collapse_time_s : NAN, res->collapsed ? 1 : 0,
+      c->marks ? aq_result_marks(res->mu_demand, res->thrust_ecc_max, c->friction,
+                                 c->free_control)
+               : 0};
   return AQ_OK;
 }
 
@@ -116,7 +131,7 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
                            aq_error *err)
 {
   memset(out, 0, sizeof *out);
-  out->first_collapse_scale = NAN;
+  out->first_collapse_scale = out->first_mark_scale = NAN;
   const aq_steps *v = &job->view->steps; /* one step per sample: the series */
   out->move_scale = aq_capacity_move_scale(job->arch, v->a_mps2, v->av_mps2, v->n,
                                            job->reversed ? -1.0 : 1.0, &out->lambda0);
@@ -134,10 +149,14 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
   }
   aq_stepper *st = job->model == AQ_MODEL_BLOCKS
                        ? aq_job_stepper_blocks(job->arch, job->blocks_dt_s, 0, err)
-                       : aq_job_stepper(job->arch, job->model, job->cor, 0, 0, err);
+                       : aq_job_stepper(job->arch, job->model, job->cor, 0,
+                                        marks_apply(job) ? AQ_JOB_DEMAND_MARKS
+                                                         : AQ_JOB_DEMAND_NONE,
+                                        err);
   if (!st)
     return err->status;
-  run_ctx c = {job, st, out, 0};
+  run_ctx c = {job, st, out, 0, marks_apply(job), aq_arch_friction(job->arch),
+               aq_arch_control(job->arch) == AQ_CONTROL_FREE};
   aq_status s = aq_scan_run(out->move_scale, out->scale_max, &job->scan, run_at,
                             &c, &out->scan, &out->err);
   aq_stepper_free(st);
@@ -154,6 +173,13 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
   if (r->ninterval) {
     out->first_collapse_scale = r->interval[0].lo;
     out->resurrection = r->ninterval > 1 || isfinite(r->interval[0].hi);
+  }
+  for (size_t k = 0; k < out->npoint; k++) { /* by increasing scale */
+    const aq_capacity_point *q = &out->point[k];
+    if (q->marks && isnan(out->first_mark_scale))
+      out->first_mark_scale = q->scale;
+    if (!(q->scale > out->first_collapse_scale)) /* all when it never collapses */
+      out->marks |= q->marks;
   }
   return AQ_OK;
 }
@@ -197,6 +223,8 @@ void aq_capacity_encode(const aq_capacity *c, aq_bytes_out *w)
   aq_bytes_put_f64(w, c->scale_max);
   aq_bytes_put_f64(w, c->first_collapse_scale);
   aq_bytes_put_i64(w, c->resurrection);
+  aq_bytes_put_i64(w, c->marks);
+  aq_bytes_put_f64(w, c->first_mark_scale);
   aq_bytes_put_i64(w, (int64_t)c->scan.runs);
   aq_bytes_put_i64(w, (int64_t)c->scan.grid_runs);
   aq_bytes_put_i64(w, (int64_t)c->scan.bisect_runs);
@@ -213,6 +241,7 @@ void aq_capacity_encode(const aq_capacity *c, aq_bytes_out *w)
     aq_bytes_put_f64(w, q->peak_rotation_over_qc);
     aq_bytes_put_f64(w, q->collapse_time_s);
     aq_bytes_put_i64(w, q->collapsed);
+    aq_bytes_put_i64(w, q->marks);
   }
 }
 
@@ -234,6 +263,8 @@ aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err)
   out->scale_max = aq_bytes_get_f64(r, "scale_max");
   out->first_collapse_scale = aq_bytes_get_f64(r, "first_collapse_scale");
   out->resurrection = (int)aq_bytes_get_int(r, 0, 1, "resurrection");
+  out->marks = (int)aq_bytes_get_int(r, 0, 3, "marks");
+  out->first_mark_scale = aq_bytes_get_f64(r, "first_mark_scale");
   out->scan.runs = (size_t)aq_bytes_get_i64(r, "runs");
   out->scan.grid_runs = (size_t)aq_bytes_get_i64(r, "grid_runs");
   out->scan.bisect_runs = (size_t)aq_bytes_get_i64(r, "bisect_runs");
@@ -248,7 +279,7 @@ aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err)
       out->scan.interval[k].hi = aq_bytes_get_f64(r, "interval");
     }
   }
-  size_t np = aq_bytes_get_count(r, 5 * sizeof(int64_t), "npoint");
+  size_t np = aq_bytes_get_count(r, 6 * sizeof(int64_t), "npoint");
   if (!r->bad && np) {
     out->point = malloc(np * sizeof *out->point);
     if (!out->point) {
@@ -263,6 +294,7 @@ aq_status aq_capacity_decode(aq_bytes_in *r, aq_capacity *out, aq_error *err)
       q->peak_rotation_over_qc = aq_bytes_get_f64(r, "point");
       q->collapse_time_s = aq_bytes_get_f64(r, "point");
       q->collapsed = (int)aq_bytes_get_int(r, 0, 1, "point collapsed");
+      q->marks = (int)aq_bytes_get_int(r, 0, 3, "point marks");
     }
   }
   if (r->bad) {

@@ -125,6 +125,8 @@ typedef struct {
   double peak_rotation_over_qc; /* peak over q_c of the set it peaked in (0: never moved) */
   double collapse_time_s;       /* s in record time; NAN if it survived */
   int collapsed;                /* 1 or 0 */
+  int marks;                    /* the run's marks (arch/result.h AQ_MARK_*): it
+                                   slides, or its thrust leaves the section */
 } aq_capacity_point;
 
 typedef struct {
@@ -136,6 +138,13 @@ typedef struct {
   double scale_max;            /* cap used */
   double first_collapse_scale; /* interval[0].lo, or NAN */
   int resurrection;            /* 1: survives some scale above its first collapse */
+  /* What the verdict rests on (docs/capacity.md, "Marks"): the marks of the
+   * runs up to the first collapse (every run when it never collapses), and
+   * the lowest scale of a marked run (NAN: none).  Followed when a mark can
+   * apply: a friction given, or free hinges, under a four-hinge model but
+   * paper (whose fits carry no joint forces); else 0 and NAN. */
+  int marks;
+  double first_mark_scale;
   aq_scan_result scan;
   size_t npoint;               /* = scan.runs (fewer only after a failed run) */
   aq_capacity_point *point;    /* malloc'd, by increasing scale; NULL when none */

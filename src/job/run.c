@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../arch/demand.h"
 #include "../blocks/blocks.h"
 #include "../units.h"
 
@@ -84,6 +85,9 @@ aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int 
     aq_stepper_free(st);
     return NULL;
   }
+  if (demand == AQ_JOB_DEMAND_MARKS)
+    aq_demand_set_marks_only(dm, !isnan(aq_arch_friction(arch)),
+                             aq_arch_control(arch) == AQ_CONTROL_FREE);
   aq_stepper_set_demand(st, dm);
   return st;
 }

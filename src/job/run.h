@@ -23,9 +23,13 @@
 #include "subject.h"
 
 /* A stepper for arch: model, cor (NAN: the arch's own), the arch's impact
- * rule, histories kept or not, and (demand 1) what each run asks of the
- * joints tracked against the arch's friction (docs/demand.md).  NULL (err)
- * when it cannot be made. */
+ * rule, histories kept or not, and (demand AQ_JOB_DEMAND_FULL) what each
+ * run asks of the joints tracked against the arch's friction
+ * (docs/demand.md), or (AQ_JOB_DEMAND_MARKS) only whether it slides or,
+ * with free hinges, its thrust leaves the section (aq_demand_set_marks_only:
+ * the marks to the bit, the maxima partial).  NULL (err) when it cannot be
+ * made. */
+enum { AQ_JOB_DEMAND_NONE = 0, AQ_JOB_DEMAND_FULL = 1, AQ_JOB_DEMAND_MARKS = 2 };
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            int demand, aq_error *err);
 

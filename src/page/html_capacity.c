@@ -38,11 +38,16 @@ aq_status aq_html_section_capacity(aq_html_page *p, const char *path, size_t ind
                "is the lognormal probability of collapse against an intensity measure "
                "(IM), fitted to the records' first collapses, with the band of its median's "
                "90 % confidence interval; records that never collapse count as censored "
-               "at their cap.");
+               "at their cap.  A status <b>slides</b> or <b>beyond</b>: a run up to the "
+               "first collapse asked more friction of a joint than it has, or (free "
+               "hinges) put the thrust outside a joint; the verdict is then the four-hinge "
+               "model's, which the arch has left (<i>marked from</i> gives the lowest such "
+               "scale; --model blocks follows those runs).");
   aq_page_puts(b, "<table class=\"wide\"><thead><tr><th>record</th><th>arch</th>"
                   "<th>polarity</th><th>status</th><th>moves from scale</th>"
                   "<th>first collapse scale</th><th>its PGA (g)</th>"
-                  "<th>collapse intervals (scale)</th><th>resurrection</th></tr></thead>"
+                  "<th>collapse intervals (scale)</th><th>resurrection</th>"
+                  "<th>marked from scale</th></tr></thead>"
                   "<tbody>\n");
   for (size_t k = 0; k < t.n; k++) {
     const aq_h5_capacity_row *r = &t.row[k];
@@ -66,6 +71,7 @@ aq_status aq_html_section_capacity(aq_html_page *p, const char *path, size_t ind
     }
     aq_page_puts(b, r->i[3] ? "</td>" : "none up to the cap</td>");
     aq_page_puts(b, r->i[0] > 0 ? "<td class=\"v-c\">R: yes</td>" : "<td>no</td>");
+    aq_html_num_td(b, r->d[6], "%.4g"); /* first_mark_scale */
     aq_page_puts(b, "</tr>\n");
   }
   aq_page_puts(b, "</tbody></table>\n");

@@ -71,7 +71,7 @@ static herr_t write_points(hid_t g, const aq_h5_capacity *c)
 typedef struct {
   const char *record, *arch, *polarity, *status;
   double move_scale, first_collapse_scale, first_collapse_pga_g, first_collapse_pgv_m_s,
-      scale_max, lambda0;
+      scale_max, lambda0, first_mark_scale;
   int64_t resurrection, runs, interval_start, interval_count;
 } pair_row;
 
@@ -86,6 +86,7 @@ static const aq_h5_col pair_cols[] = {
     AQ_H5_COL(pair_row, first_collapse_pgv_m_s, AQ_H5_DOUBLE, "m/s"),
     AQ_H5_COL(pair_row, scale_max, AQ_H5_DOUBLE, "1"),
     AQ_H5_COL(pair_row, lambda0, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(pair_row, first_mark_scale, AQ_H5_DOUBLE, "1"),
     AQ_H5_COL(pair_row, resurrection, AQ_H5_INT, "1"),
     AQ_H5_COL(pair_row, runs, AQ_H5_INT, "1"),
     AQ_H5_COL(pair_row, interval_start, AQ_H5_INT, "1"),
@@ -113,10 +114,10 @@ static const aq_h5_col fit_cols[] = {
     AQ_H5_COL(fit_row, beta_per_power, AQ_H5_DOUBLE, "1")};
 enum { NFIT_COLS = sizeof fit_cols / sizeof fit_cols[0] };
 
-/* The reader's names of the numeric columns (pair_cols' 5th to 14th). */
+/* The reader's names of the numeric columns (pair_cols' 5th to 15th). */
 const char *const aq_h5_capacity_double_names[AQ_H5_CAP_NDOUBLE] = {
     "move_scale", "first_collapse_scale", "first_collapse_pga_g",
-    "first_collapse_pgv_m_s", "scale_max", "lambda0"};
+    "first_collapse_pgv_m_s", "scale_max", "lambda0", "first_mark_scale"};
 const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT] = {
     "resurrection", "runs", "interval_start", "interval_count"};
 
@@ -169,6 +170,7 @@ static int fill(const aq_h5_capacity *c, columns *k)
                             fc * r->pgv_mps,
                             v ? a->scale_max : NAN,
                             v ? a->lambda0 : NAN,
+                            v ? a->first_mark_scale : NAN,
                             v ? a->resurrection : 0,
                             v ? (int64_t)a->scan.runs : 0,
                             (int64_t)k->niv,

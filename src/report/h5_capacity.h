@@ -30,7 +30,7 @@ aq_status aq_h5_write_capacity(aq_h5_writer *w, const char *target,
 
 /* ---- reading back and comparing (archquake compare) ---------------------- */
 
-enum { AQ_H5_CAP_NDOUBLE = 6, AQ_H5_CAP_NINT = 4 };
+enum { AQ_H5_CAP_NDOUBLE = 7, AQ_H5_CAP_NINT = 4 };
 /* The most intensity measures a row holds: the six of the fits, then the
  * spectral ones (Sa(T) at each period, Sa_avg). */
 enum { AQ_H5_CAP_NIM_MAX = AQ_FRAGILITY_NIM + AQ_IM_SA_MAX + 1 };
@@ -41,7 +41,8 @@ extern const char *const aq_h5_capacity_int_names[AQ_H5_CAP_NINT];
 typedef struct {
   char record[AQ_SUMMARY_RECORD_MAX], arch[AQ_SUMMARY_ARCH_MAX], polarity[16], status[48];
   double d[AQ_H5_CAP_NDOUBLE]; /* move_scale first_collapse_scale first_collapse_pga_g
-                                  first_collapse_pgv_m_s scale_max lambda0 */
+                                  first_collapse_pgv_m_s scale_max lambda0
+                                  first_mark_scale (NAN in files written before it) */
   int64_t i[AQ_H5_CAP_NINT];   /* resurrection runs interval_start interval_count */
   /* the fragility IMs (the table's im_name: aq_fragility_im_names, then the
      spectral ones) at first collapse (NAN: none) and at the cap; NAN when

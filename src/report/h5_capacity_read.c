@@ -230,7 +230,7 @@ static int read_points(hid_t g, aq_h5_capacity_table *t, const char **what)
       r->point_start = i;
     t->point[i] = (aq_capacity_point){q->scale, q->peak_rotation_rad,
                                       q->peak_rotation_over_qc, q->collapse_time_s,
-                                      q->collapsed != 0};
+                                      q->collapsed != 0, 0};
   }
   if (ok) {
     t->npoint = (size_t)n;
@@ -316,6 +316,11 @@ aq_status aq_h5_capacity_read(const char *path, aq_h5_capacity_table *t, int *pr
                              sizeof t->row->status) >= 0;
   for (int j = 0; ok && j < AQ_H5_CAP_NDOUBLE; j++) {
     what = dnames[j];
+    if (j == AQ_H5_CAP_NDOUBLE - 1 && H5Lexists(g, dnames[j], H5P_DEFAULT) <= 0) {
+      for (size_t i = 0; i < t->n; i++) /* first_mark_scale: a file written before it */
+        t->row[i].d[j] = NAN;
+      continue;
+    }
     ok = ds_read(g, dnames[j], H5T_NATIVE_DOUBLE, col, n, 1) >= 0;
     for (size_t i = 0; ok && i < t->n; i++)
       t->row[i].d[j] = col[i];

@@ -162,11 +162,9 @@ void aq_summary_mark(aq_summary *s, double friction, int free_control)
 {
   if (strcmp(s->status, "ok") != 0)
     return;
-  int slides = !isnan(friction) && s->mu_demand > friction; /* NAN compares false */
-  int beyond = free_control && s->thrust_ecc_max > 1;
-  if (slides || beyond)
-    snprintf(s->status, sizeof s->status, "%s%s%s", slides ? "slides" : "",
-             slides && beyond ? "+" : "", beyond ? "beyond" : "");
+  int marks = aq_result_marks(s->mu_demand, s->thrust_ecc_max, friction, free_control);
+  if (marks)
+    snprintf(s->status, sizeof s->status, "%s", aq_result_marks_name(marks));
 }
 
 void aq_summary_check(aq_summary *s, const aq_result *b)

@@ -29,7 +29,7 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
     return -1;
   fputs("record\tarch\tpolarity\tstatus\tmove_scale\tfirst_collapse_scale\t"
         "first_collapse_pga_g\tfirst_collapse_pgv_m_s\tcollapse_intervals\t"
-        "resurrection\truns\tscale_max", f);
+        "resurrection\truns\tscale_max\tfirst_mark_scale", f);
   int ori = n && rows[0].oriented;
   fputs(ori ? "\tazimuth_deg\tfirst_collapse_scale_min\tfirst_collapse_scale_max\n"
             : "\n", f);
@@ -37,19 +37,20 @@ int aq_text_capacity(FILE *f, const aq_capacity_row *rows, size_t n)
     const aq_capacity_row *r = &rows[i];
     const aq_capacity *c = r->cap;
     double fc = c ? c->first_collapse_scale : NAN;
-    char v[5][40];
+    char v[6][40];
     aq_text_double(v[0], sizeof v[0], c ? c->move_scale : NAN);
     aq_text_double(v[1], sizeof v[1], fc);
     aq_text_double(v[2], sizeof v[2], fc * r->pga_g);
     aq_text_double(v[3], sizeof v[3], fc * r->pgv_mps);
     aq_text_double(v[4], sizeof v[4], c ? c->scale_max : NAN);
+    aq_text_double(v[5], sizeof v[5], c ? c->first_mark_scale : NAN);
     if (c)
       aq_text_capacity_intervals(&c->scan, iv, cap);
     else
       snprintf(iv, cap, "-");
-    fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s", r->record, r->arch,
+    fprintf(f, "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%d\t%zu\t%s\t%s", r->record, r->arch,
             r->polarity, r->status, v[0], v[1], v[2], v[3], iv, c ? c->resurrection : 0,
-            c ? c->scan.runs : 0, v[4]);
+            c ? c->scan.runs : 0, v[4], v[5]);
     if (ori) {
       char w[3][40];
       aq_text_double(w[0], sizeof w[0], r->azimuth_deg);
