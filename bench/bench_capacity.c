@@ -23,6 +23,11 @@
  *    how far the two agree (rows with the same status, first collapse
  *    scales equal as printed or within 1e-5 relative, the largest relative
  *    difference, runs of each).  `bench_capacity models` runs it alone.
+ * 5. The marks (docs/capacity.md, "Marks"): the suite of section 3 without
+ *    a friction and with --friction 0.6, in turn, MARK_REPS times each: CPU
+ *    medians, their ratio, and the rows of each status (search has free
+ *    hinges, so its runs are followed in both).  `bench_capacity marks`
+ *    runs it alone.
  * 4. `bench_capacity ab BIN_A BIN_B [N]` (alone, not in make bench): the
  *    suite of 3 under the default model with two programs, e.g. main's and
  *    a branch's, N times each (default 3) in turn: CPU medians, their ratio,
@@ -202,7 +207,7 @@ static int suite(void)
     int r = atoi(c[9]);
     last_res |= r;
     res += r;
-    failed += strcmp(c[3], "ok") != 0 && strcmp(c[3], "never_moves") != 0;
+    failed += strchr(c[3], ':') != NULL; /* stage:code; the marks are verdicts */
     if (n < 1024)
       rv[n] = atof(c[10]);
     runs += (size_t)atol(c[10]);
@@ -335,6 +340,55 @@ static int models(void)
   return 0;
 }
 
+/* Section 5: the cost of the marks, and what they say. */
+enum { MARK_REPS = 3 };
+static int marks(void)
+{
+  static const char *const fr[2] = {"", " --friction 0.6"};
+  double cpu[2][MARK_REPS], wall[2][MARK_REPS];
+  for (int r = 0; r < MARK_REPS; r++)
+    for (int k = 0; k < 2; k++) {
+      char cmd[1024];
+      snprintf(cmd, sizeof cmd,
+               "./archquake capacity tests/data/records/*.AT2 --arch arches/oppenheim.cfg "
+               "--arch arches/thin.cfg --arch arches/thick.cfg --arch arches/segmental.cfg "
+               "--arch arches/search.cfg -j 2%s --text build/bench/capacity_marks%d.tsv "
+               "2>/dev/null", fr[k], k);
+      double c0 = children_cpu_s(), t0 = aq_bench_now_s();
+      (void)system(cmd); /* a failed row is a row */
+      wall[k][r] = aq_bench_now_s() - t0;
+      cpu[k][r] = children_cpu_s() - c0;
+    }
+  double l[3] = {NAN, NAN, NAN};
+  if (getloadavg(l, 3) != 3)
+    l[0] = NAN;
+  printf("\nMarks: the suite of the models section, default model, -j 2, without a "
+         "friction and with --friction 0.6, %d runs of each in turn (load %.2f):\n",
+         MARK_REPS, l[0]);
+  double mc[2];
+  enum { MAXROWS = 1024 };
+  cap_row *rows = calloc(MAXROWS, sizeof *rows);
+  for (int k = 0; k < 2; k++) {
+    mc[k] = aq_bench_median(cpu[k], MARK_REPS);
+    char path[64];
+    snprintf(path, sizeof path, "build/bench/capacity_marks%d.tsv", k);
+    long n = rows ? read_rows(path, rows, MAXROWS) : -1;
+    static const char *const st[5] = {"ok", "never_moves", "slides", "beyond",
+                                      "slides+beyond"};
+    long count[5] = {0, 0, 0, 0, 0};
+    for (long i = 0; i < n; i++)
+      for (int s = 0; s < 5; s++)
+        count[s] += strcmp(rows[i].status, st[s]) == 0;
+    printf("  %-16s cpu median %7.2f s  wall median %7.2f s  rows %ld: ok %ld, never_moves "
+           "%ld, slides %ld, beyond %ld, slides+beyond %ld\n",
+           k ? "--friction 0.6" : "no friction", mc[k], aq_bench_median(wall[k], MARK_REPS),
+           n, count[0], count[1], count[2], count[3], count[4]);
+  }
+  printf("  friction / none: cpu %.3fx\n", mc[1] / mc[0]);
+  free(rows);
+  return 0;
+}
+
 /* Two programs (before and after a change), the default model: the suite
  * of section 3 run by each in turn, reps times, alternating; CPU medians,
  * their ratio, and whether the tables are byte-identical. */
@@ -383,6 +437,8 @@ int main(int argc, char **argv)
   gsl_set_error_handler_off();
   if (argc == 2 && strcmp(argv[1], "models") == 0) /* section 3 alone */
     return models() == 0 ? 0 : 1;
+  if (argc == 2 && strcmp(argv[1], "marks") == 0) /* section 5 alone */
+    return marks() == 0 ? 0 : 1;
   if ((argc == 4 || argc == 5) && strcmp(argv[1], "ab") == 0) {
     const char *bin[2] = {argv[2], argv[3]};
     return ab(bin, argc == 5 ? atoi(argv[4]) : 3) == 0 ? 0 : 1;
@@ -391,5 +447,7 @@ int main(int argc, char **argv)
     return 1;
   if (suite() != 0)
     return 1;
-  return models() == 0 ? 0 : 1;
+  if (models() != 0)
+    return 1;
+  return marks() == 0 ? 0 : 1;
 }
