@@ -127,6 +127,23 @@ AQ_TEST(capacity_message_round_trip_is_bit_exact)
   free(b);
 }
 
+/* b (n bytes) copied into b2 with the word at byte at set to v: refused,
+ * naming field at that byte. */
+static void word_refused(const unsigned char *b, unsigned char *b2, size_t n, size_t at,
+                         int64_t v, const char *field)
+{
+  aq_capacity d;
+  aq_error e;
+  memcpy(b2, b, n);
+  memcpy(b2 + at, &v, sizeof v);
+  aq_bytes_in r = {b2, n, 0, NULL, 0};
+  aq_status s = aq_capacity_decode(&r, &d, &e);
+  aq_check(s == AQ_EFORMAT && strcmp(e.field, field) == 0 && e.byte_offset == (long)at,
+           "%s of %lld refused: field \"%s\" at byte %ld", field, (long long)v, e.field,
+           e.byte_offset);
+  aq_capacity_free(&d);
+}
+
 AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
 {
   aq_scan_interval iv[2];
@@ -168,23 +185,8 @@ AQ_TEST(capacity_message_cut_or_corrupt_is_refused)
     aq_check(s == AQ_EFORMAT && strcmp(e.field, "npoint") == 0 && d.point == NULL,
              "a huge point count refused: field \"%s\"", e.field);
     aq_capacity_free(&d);
-    memcpy(b2, b, n);
-    memcpy(b2 + n - 16, &two, sizeof two);
-    r = (aq_bytes_in){b2, n, 0, NULL, 0};
-    s = aq_capacity_decode(&r, &d, &e);
-    aq_check(s == AQ_EFORMAT && strcmp(e.field, "point collapsed") == 0 &&
-                 e.byte_offset == (long)(n - 16),
-             "a collapse flag of 2 refused: field \"%s\" at byte %ld", e.field,
-             e.byte_offset);
-    aq_capacity_free(&d);
-    memcpy(b2, b, n);
-    memcpy(b2 + n - 8, &four, sizeof four);
-    r = (aq_bytes_in){b2, n, 0, NULL, 0};
-    s = aq_capacity_decode(&r, &d, &e);
-    aq_check(s == AQ_EFORMAT && strcmp(e.field, "point marks") == 0 &&
-                 e.byte_offset == (long)(n - 8),
-             "marks of 4 refused: field \"%s\" at byte %ld", e.field, e.byte_offset);
-    aq_capacity_free(&d);
+    word_refused(b, b2, n, n - 16, two, "point collapsed");
+    word_refused(b, b2, n, n - 8, four, "point marks");
     free(b2);
   }
   memcpy(b + at, &huge, sizeof huge);
