@@ -185,3 +185,62 @@ AQ_TEST(demand_cli_paper_still_runs)
   aq_check(still >= 4 && moved >= 4 && slides >= 1,
            "runs that never moved %zu (%zu slide), that moved %zu", still, slides, moved);
 }
+
+/* `pulse` reports what its run asks of the joints and marks it, as the main
+ * job does.  Just above lambda0 (1.001 lambda0 g, opening oppenheim's
+ * primary set), the friction demand is that of the set's collapse state
+ * at rest, mechanism's mu_required (0.686 at joint 0), to the load's excess
+ * (measured 9e-5); the run slides at 0.6 from its start, not at 0.7.  A
+ * pulse that never moves the arch has the statics' demand at its peak, as
+ * the main job's still runs.  The block model's row has its own columns,
+ * not these; --model paper with a friction says, once, what it marks. */
+AQ_TEST(demand_cli_pulse_marks)
+{
+  int rc = aq_test_run("mechanism --arch arches/oppenheim.cfg", out, sizeof out, err, sizeof err);
+  double l0 = num(out, 1, column(out, "lambda0")), mu = num(out, 1, column(out, "mu_required"));
+  if (!aq_check(rc == 0 && l0 > 0.4 && mu > 0.6, "mechanism: lambda0 %g, mu_required %g", l0,
+                mu))
+    return;
+  char cmd[512], st[64], j[16];
+  static const char *const fr[2] = {"0.6", "0.7"};
+  for (int f = 0; f < 2; f++) {
+    snprintf(cmd, sizeof cmd, "pulse --arch arches/oppenheim.cfg --accel-g %.17g --duration 0.2 "
+                              "--friction %s", -1.001 * l0, fr[f]);
+    rc = aq_test_run(cmd, out, sizeof out, err, sizeof err);
+    int cs = column(out, "status"), cm = column(out, "mu_demand");
+    aq_check(rc == 0 && cs == 15 && cm == 16 && column(out, "slide_time_s") == 20,
+             "%s: exit %d, the columns after evals", cmd, rc);
+    double m = num(out, 1, cm), ts = num(out, 1, column(out, "slide_time_s"));
+    aq_check(m >= mu && m <= mu * (1 + 2e-4) &&
+                 !strcmp(str(out, 1, column(out, "mu_demand_joint"), j, sizeof j), "0"),
+             "friction %s: mu_demand %.9g at joint %s, mu_required %.9g", fr[f], m, j, mu);
+    str(out, 1, cs, st, sizeof st);
+    aq_check(f == 0 ? !strcmp(st, "slides") && ts == 0 : !strcmp(st, "ok") && isnan(ts),
+             "friction %s: status %s, slide_time_s %g", fr[f], st, ts);
+  }
+  /* still: the statics at the pulse's peak, marked over a friction below it */
+  rc = aq_test_run("pulse --arch arches/thin.cfg --accel-g 0.01 --duration 0.5 --friction 0.385",
+                   out, sizeof out, err, sizeof err);
+  double m = num(out, 1, column(out, "mu_demand"));
+  aq_check(rc == 0 && num(out, 1, column(out, "peak_rotation_rad")) == 0 && m > 0.385 &&
+               m < 0.4 && !strcmp(str(out, 1, column(out, "status"), st, sizeof st), "slides") &&
+               isnan(num(out, 1, column(out, "thrust_ecc_max"))),
+           "thin at 0.01 g never moves: mu_demand %g (the statics, above its 0.381 at rest), "
+           "status %s", m, st);
+  rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.5 --duration 0.2 --model "
+                   "paper --friction 0.7", out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && strstr(err, "warning: friction: 0.7 marks only the runs in which the arch "
+                                  "never moves under --model paper") &&
+               isnan(num(out, 1, column(out, "mu_demand"))),
+           "paper: one warning, no demand once it moves: %s", err);
+  rc = aq_test_run("pulse --arch arches/oppenheim.cfg --accel-g -0.5 --duration 0.2 --model "
+                   "blocks --friction 0.7", out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && column(out, "status") < 0 && column(out, "max_slip_m") == 15,
+           "blocks: its own columns (exit %d)", rc);
+  rc = aq_test_run("capacity records/RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --arch "
+                   "arches/oppenheim.cfg --model paper --friction 0.7 --scale-max 2 "
+                   "--resolution 0.5", out, sizeof out, err, sizeof err);
+  aq_check(rc == 0 && strstr(err, "warning: friction: 0.7 marks no run under --model paper") &&
+               !strcmp(str(out, 1, column(out, "status"), st, sizeof st), "ok"),
+           "capacity under paper: one warning, no mark (%s): %s", st, err);
+}

@@ -360,6 +360,8 @@ int aq_cmd_capacity(int argc, char **argv)
     else
       aq_opt_spread_four_hinge(arch_paths[a], model != AQ_MODEL_BLOCKS,
                                aq_arch_spread(arches[a]));
+    aq_opt_friction_paper(arch_paths[a], model == AQ_MODEL_PAPER, aq_arch_friction(arches[a]),
+                          0);
   }
   if (rc != AQ_EXIT_OK)
     goto done;

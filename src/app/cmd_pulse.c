@@ -162,12 +162,15 @@ int aq_cmd_pulse(int argc, char **argv)
   aq_error err;
   aq_error_clear(&err);
   aq_arch *arch = NULL;
-  aq_arch_options ao = {.friction = o.friction};
+  /* with its table of the least friction: a pulse that never moves the
+   * arch has the statics' demand at its peak, as in the main job */
+  aq_arch_options ao = {.friction = o.friction, .friction_table = model != AQ_MODEL_BLOCKS};
   if (aq_arch_load_opts(file, &ao, &arch, &err) != AQ_OK) {
     aq_error_print(&err, stderr);
     return AQ_EXIT_FAIL;
   }
   aq_mechanism_warn_minimum(file, arch); /* as mechanism and the main job */
+  aq_opt_friction_paper(file, model == AQ_MODEL_PAPER, aq_arch_friction(arch), 1);
   const aq_arch_dynamics *dyn = aq_arch_dynamics_of(arch);
   if (impact < 0 && aq_opt_cor_momentum(file, !isnan(cor), dyn->impact == AQ_IMPACT_MOMENTUM)) {
     aq_arch_free(arch);
@@ -204,6 +207,14 @@ int aq_cmd_pulse(int argc, char **argv)
     aq_stepper_set_impact(st, impact);
     aq_stepper_set_ode_rtol(st, rtol);
     aq_stepper_set_history(st, hist != NULL);
+    /* what the pulse asks of the joints, against the friction, and the
+     * run's marks, as the main job's (docs/demand.md) */
+    aq_demand *dm = aq_arch_demand_tracker(arch, aq_arch_friction(arch), &err);
+    if (!dm) {
+      aq_error_print(&err, stderr);
+      goto out;
+    }
+    aq_stepper_set_demand(st, dm);
   }
   /* Default end: runs to duration + k chunks with k = 1, 2, 4, ... (each
    * from the start, so that the row is that of --end) until the arch rests
@@ -267,7 +278,9 @@ int aq_cmd_pulse(int argc, char **argv)
          "peak_rotation_rad\tpeak_displacement_m\tmax_kinetic_energy_j\timpacts\t"
          "reversals\tenergy_in_j\tenergy_dissipated_j\tsteps_moving\tevals%s\n",
          bk ? "\tmax_slip_m\thinges_observed\thinges_first_s\tmechanism_changed_s"
-            "\tfriction_work_j" : "");
+            "\tfriction_work_j"
+            : "\tstatus\tmu_demand\tmu_demand_joint\tthrust_ecc_max\tthrust_ecc_time_s"
+              "\tslide_time_s");
   printf("%s\t%s\t%s\t%s\t%d\t%s\t%s\t%s\t%s\t%zu\t%zu\t%s\t"
          "%s\t%zu\t%zu",
          aq_model_name((aq_model)model), AQ_TEXT_NUM(acc_g), AQ_TEXT_NUM(dur), AQ_TEXT_NUM(end),
@@ -290,6 +303,16 @@ int aq_cmd_pulse(int argc, char **argv)
            AQ_TEXT_NUM(bres.friction_work_j));
     free(hb);
     free(tb);
+  } else {
+    int marks = aq_result_marks(R->mu_demand, R->thrust_ecc_max, aq_arch_friction(arch),
+                                aq_arch_control(arch) == AQ_CONTROL_FREE);
+    printf("\t%s\t%s\t", aq_result_marks_name(marks), AQ_TEXT_NUM(R->mu_demand));
+    if (isnan(R->mu_demand))
+      fputs("-", stdout);
+    else
+      printf("%zu", R->mu_demand_joint);
+    printf("\t%s\t%s\t%s", AQ_TEXT_NUM(R->thrust_ecc_max), AQ_TEXT_NUM(R->thrust_ecc_time_s),
+           AQ_TEXT_NUM(R->slide_time_s));
   }
   putchar('\n');
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;

@@ -210,16 +210,17 @@ int aq_opt_spread_four_hinge(const char *arch_path, int four_hinge, double sprea
   return 1;
 }
 
-int aq_opt_friction_paper(const char *arch_path, int paper, double friction)
+int aq_opt_friction_paper(const char *arch_path, int paper, double friction, int still_runs)
 {
   if (!paper || isnan(friction))
     return 0;
   char num[64];
   aq_number_format(num, sizeof num, friction);
-  fprintf(stderr, "archquake: %s: warning: friction: %s marks only the runs in which the arch "
-                  "never moves under --model paper (its fits carry no joint forces: mu_demand "
-                  "is nan once the arch moves); --model workpath marks every run\n",
-          arch_path, num);
+  fprintf(stderr, "archquake: %s: warning: friction: %s marks %s under --model paper (its fits "
+                  "carry no joint forces: mu_demand is nan once the arch moves); --model "
+                  "workpath marks every run\n",
+          arch_path, num,
+          still_runs ? "only the runs in which the arch never moves" : "no run");
   return 1;
 }
 

@@ -47,8 +47,9 @@ int aq_opt_blocks_spread(const char *arch_path, int blocks, const aq_arch *arch)
 int aq_opt_spread_four_hinge(const char *arch_path, int four_hinge, double spread_m);
 /* A friction (not NAN) under --model paper (paper): one warning line, since
  * it marks only the runs in which the arch never moves (the statics' demand;
- * paper's fits carry no joint forces once it moves).  1 if warned. */
-int aq_opt_friction_paper(const char *arch_path, int paper, double friction);
+ * paper's fits carry no joint forces once it moves), and none at all for a
+ * command whose runs all move (still_runs 0: capacity).  1 if warned. */
+int aq_opt_friction_paper(const char *arch_path, int paper, double friction, int still_runs);
 /* --polarity's words, indexed by AQ_POLARITY_*, NULL-terminated: the sign
  * of the records a command runs (the record as read, negated, or each
  * record both ways, each row saying which). */

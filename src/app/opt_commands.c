@@ -188,7 +188,12 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "t = 0 for S seconds, then zero; prints one TSV row (header + row).\n",
          .tail = "Columns: model accel_g duration_s end_s collapsed collapse_time_s\n"
                  "  peak_rotation_rad peak_displacement_m max_kinetic_energy_j impacts\n"
-                 "  reversals energy_in_j energy_dissipated_j steps_moving evals\n"
+                 "  reversals energy_in_j energy_dissipated_j steps_moving evals, then\n"
+                 "  under the four-hinge models status (ok, slides, beyond, slides+beyond:\n"
+                 "  the main job's marks) mu_demand mu_demand_joint thrust_ecc_max\n"
+                 "  thrust_ecc_time_s slide_time_s (docs/demand.md), under --model blocks\n"
+                 "  max_slip_m hinges_observed hinges_first_s mechanism_changed_s\n"
+                 "  friction_work_j (docs/blocks.md)\n"
                  "Exit status: 0 success, 1 an arch file that cannot be loaded, or the run\n"
                  "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
                  "with impact momentum), 3 the history could not be written.\n"},

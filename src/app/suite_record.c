@@ -335,7 +335,7 @@ int aq_suite_arches(suite *S)
       aq_opt_spread_four_hinge(c->arch_paths[a], c->model != AQ_MODEL_BLOCKS,
                                aq_arch_spread(S->arches[a]));
     aq_opt_friction_paper(c->arch_paths[a], c->model == AQ_MODEL_PAPER,
-                          aq_arch_friction(S->arches[a]));
+                          aq_arch_friction(S->arches[a]), 1);
     bad_arch |= aq_opt_blocks_friction(c->arch_paths[a], blocks,
                                        aq_arch_friction(S->arches[a]));
     bad_arch |= aq_opt_cor_momentum(c->arch_paths[a], !isnan(c->cor),
