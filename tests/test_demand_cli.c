@@ -244,3 +244,34 @@ AQ_TEST(demand_cli_pulse_marks)
                !strcmp(str(out, 1, column(out, "status"), st, sizeof st), "ok"),
            "capacity under paper: one warning, no mark (%s): %s", st, err);
 }
+
+/* `domain` marks each ratio's shortest collapsing pulse: that run, made
+ * again with `pulse` at the printed acceleration and duration, has the
+ * same status; the durations do not depend on the friction. */
+AQ_TEST(demand_cli_domain_marks)
+{
+  static char ref[4096];
+  int rc = aq_test_run("domain --arch arches/oppenheim.cfg --ratios 1.1,4", ref, sizeof ref, err,
+                       sizeof err);
+  aq_check(rc == 0 && column(ref, "status") == 3, "domain without a friction: exit %d", rc);
+  rc = aq_test_run("domain --arch arches/oppenheim.cfg --ratios 1.1,4 --friction 0.9", out,
+                   sizeof out, err, sizeof err);
+  aq_check(rc == 0, "domain with 0.9: exit %d", rc);
+  static const char *const want[2] = {"ok", "slides"};
+  for (int row = 1; row <= 2; row++) {
+    char a[64], b[64], st[64], ps[64], cmd[512];
+    aq_check(!strcmp(str(out, row, 2, a, sizeof a), str(ref, row, 2, b, sizeof b)) &&
+                 !strcmp(str(ref, row, 3, st, sizeof st), "ok"),
+             "row %d: the same duration (%s, %s), ok without a friction (%s)", row, a, b, st);
+    str(out, row, 3, st, sizeof st);
+    snprintf(cmd, sizeof cmd, "pulse --arch arches/oppenheim.cfg --accel-g %s --duration %s "
+                              "--friction 0.9", str(out, row, 1, a, sizeof a),
+             str(out, row, 2, b, sizeof b));
+    static char p[4096];
+    rc = aq_test_run(cmd, p, sizeof p, err, sizeof err);
+    aq_check(rc == 0 && num(p, 1, column(p, "collapsed")) == 1 &&
+                 !strcmp(str(p, 1, column(p, "status"), ps, sizeof ps), st) &&
+                 !strcmp(st, want[row - 1]),
+             "row %d: domain's %s, pulse's %s (want %s)", row, st, ps, want[row - 1]);
+  }
+}

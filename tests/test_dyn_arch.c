@@ -147,7 +147,7 @@ AQ_TEST(dyn_arch_domain_workpath_vs_ode)
                         "--ode-rtol 1e-12",
                         o2, sizeof o2, e1, sizeof e1);
   aq_check(rc1 == 0 && rc2 == 0, "domain runs: %d %d %s", rc1, rc2, e1);
-  aq_check(strncmp(o1, "ratio\taccel_g\tmin_duration_s\n", 29) == 0,
+  aq_check(strncmp(o1, "ratio\taccel_g\tmin_duration_s\tstatus\n", 36) == 0,
            "header: %.40s", o1);
   char *l1 = strchr(o1, '\n'), *l2 = strchr(o2, '\n');
   int rows = 0;

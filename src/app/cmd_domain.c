@@ -66,21 +66,34 @@ int aq_cmd_domain(int argc, char **argv)
     goto out;
   }
   const aq_path *pp = aq_arch_path(arch, 0);
-  st = aq_job_stepper(arch, (aq_model)model, cor, 0, 0, &err);
+  /* each row's shortest collapsing pulse marked as the main job's runs
+   * (docs/demand.md), when a mark can apply */
+  const double fric = aq_arch_friction(arch);
+  const int free_ctl = aq_arch_control(arch) == AQ_CONTROL_FREE,
+            marks = model != AQ_MODEL_PAPER && (!isnan(fric) || free_ctl);
+  aq_opt_friction_paper(file, model == AQ_MODEL_PAPER, fric, 0);
+  st = aq_job_stepper(arch, (aq_model)model, cor, 0,
+                      marks ? AQ_JOB_DEMAND_MARKS : AQ_JOB_DEMAND_NONE, &err);
   if (!st) {
     aq_error_print(&err, stderr);
     goto out;
   }
   aq_stepper_set_ode_rtol(st, rtol);
-  printf("ratio\taccel_g\tmin_duration_s\n");
+  printf("ratio\taccel_g\tmin_duration_s\tstatus\n");
   for (size_t i = 0; i < nr; i++) {
     double a, dur;
-    if (aq_domain_min_duration(st, pp, ratios[i], tol, tmax, &a, &dur, &err) != AQ_OK)
+    aq_result run;
+    if (aq_domain_min_duration_run(st, pp, ratios[i], tol, tmax, &a, &dur, &run, &err) !=
+        AQ_OK) {
+      aq_result_free(&run);
       goto runfail;
-    if (isinf(dur))
-      printf("%s\t%s\tinf\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2));
-    else
-      printf("%s\t%s\t%s\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2), AQ_TEXT_NUM(dur));
+    }
+    int mk = marks && !isinf(dur)
+                 ? aq_result_marks(run.mu_demand, run.thrust_ecc_max, fric, free_ctl)
+                 : 0;
+    aq_result_free(&run);
+    printf("%s\t%s\t%s\t%s\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2),
+           isinf(dur) ? "inf" : AQ_TEXT_NUM(dur), isinf(dur) ? "-" : aq_result_marks_name(mk));
   }
   status = fflush(stdout) == 0 ? AQ_EXIT_OK : AQ_EXIT_OUTPUT;
   goto out;

@@ -209,7 +209,9 @@ const aq_opt_command aq_opt_commands[AQ_CMD_N] = {
                  "the arch, by bisection (the direction is the set's own, so domain takes no\n"
                  "--polarity).\n",
          .tail = "Columns: ratio accel_g min_duration_s (inf: no collapse up to\n"
-                 "  --max-duration)\n"
+                 "  --max-duration) status (the shortest collapsing pulse's run marked as\n"
+                 "  the main job's: ok, slides with a friction given, beyond with free\n"
+                 "  hinges, slides+beyond; - when none collapses)\n"
                  "Exit status: 0 success, 1 an arch file that cannot be loaded, or a run\n"
                  "failed, 2 bad options (or an option the arch makes ineffective, as --cor\n"
                  "with impact momentum).\n"},

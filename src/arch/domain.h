@@ -20,5 +20,11 @@ aq_status aq_domain_min_duration(aq_stepper *st, const aq_path *primary,
                                  double ratio, double tol_s, double tmax_s,
                                  double *accel_mps2, double *dur_s,
                                  aq_error *err);
+/* As aq_domain_min_duration, and *run (not NULL) the result of the run of
+ * the shortest collapsing pulse (its marks: what the verdict rests on),
+ * zeroed when none collapses; free it with aq_result_free. */
+aq_status aq_domain_min_duration_run(aq_stepper *st, const aq_path *primary, double ratio,
+                                     double tol_s, double tmax_s, double *accel_mps2,
+                                     double *dur_s, aq_result *run, aq_error *err);
 
 #endif
