@@ -803,3 +803,62 @@ AQ_TEST(capacity_cli_marks_against_the_main_job)
   marks_case(ARCH, "1.0", PROC, "inside"); /* above both sets' mu_required at rest */
   marks_case(ARCH, "", PROC, "none");
 }
+
+/* The fragility fits count the records whose governing row is marked (the
+ * polarity that collapses first; a record that never collapses, either):
+ * every measure's `marked` equals that count from the rows, for three
+ * records on thin with the friction 0.5, where ARL360's normal row slides
+ * and its reversed row, which collapses first, does not (so the rule, not
+ * any marked row, decides), and none without a friction. */
+AQ_TEST(capacity_cli_fragility_counts_marked_records)
+{
+  static const char *const fr[2] = {" --friction 0.5", ""};
+  for (int f = 0; f < 2; f++) {
+    char *out = malloc(BIG), dir[512], frag[600], args[2048], cell[256];
+    if (!out)
+      return;
+    aq_test_tmpdir(dir, sizeof dir);
+    snprintf(frag, sizeof frag, "%s/f.tsv", dir);
+    snprintf(args, sizeof args,
+             "capacity tests/data/records/ARL360.at2 tests/data/records/IELC180.AT2 " REC
+             " --arch arches/thin.cfg%s --resolution 0.1 --fragility %s", fr[f], frag);
+    int rc = aq_test_run(args, out, BIG, NULL, 0);
+    /* rows: 3 records x 2 polarities, in order */
+    int want = 0, marked_rows = 0, mixed = 0;
+    for (int r = 0; r < 3; r++) {
+      double s[2];
+      int mk[2];
+      for (int p = 0; p < 2; p++) {
+        s[p] = strtod(field(out, 1 + 2 * r + p, 5, cell, sizeof cell), NULL);
+        field(out, 1 + 2 * r + p, 3, cell, sizeof cell);
+        mk[p] = strstr(cell, "slides") || strstr(cell, "beyond");
+        marked_rows += mk[p];
+      }
+      mixed += mk[0] != mk[1];
+      if (isnan(s[0]) && isnan(s[1]))
+        want += mk[0] || mk[1];
+      else
+        want += isnan(s[1]) || (!isnan(s[0]) && s[0] <= s[1]) ? mk[0] : mk[1];
+    }
+    size_t n = 0;
+    char *txt = aq_test_read_file(frag, &n);
+    int rows = 0, bad = 0;
+    for (int r = 1; txt && r < 64; r++) {
+      if (!field(txt, r, 0, cell, sizeof cell)[0])
+        break;
+      rows++;
+      bad += atoi(field(txt, r, 10, cell, sizeof cell)) != want;
+    }
+    aq_check(rc == 0 && rows >= 6 && bad == 0 && !strcmp(field(txt, 0, 10, cell, sizeof cell),
+                                                           "marked"),
+             "%s: exit %d, %d fits, %d of them not counting the %d marked records (%d marked "
+             "rows)", fr[f][0] ? fr[f] : "no friction", rc, rows, bad, want, marked_rows);
+    if (f == 0)
+      aq_check(want >= 1 && mixed >= 1, "with 0.5: %d marked records, %d marked rows, %d records "
+               "marked in one polarity only", want, marked_rows, mixed);
+    else
+      aq_check(want == 0 && marked_rows == 0, "without a friction: none marked");
+    free(txt);
+    free(out);
+  }
+}

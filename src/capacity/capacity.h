@@ -211,6 +211,9 @@ typedef struct {
   int rank;         /* aq_fragility_fit_records_n: 1 for the measure of the
                        arch's smallest dispersion (per power of the scale,
                        aq_fragility_im_power), 2 the next...; 0 unfitted */
+  size_t nmarked;   /* aq_fragility_fit_records_n: data whose row is marked
+                       (docs/capacity.md, "Marks"): the polarity that collapses
+                       first, or for a censored record either */
 } aq_fragility;
 
 #define AQ_FRAGILITY_CI_DEFAULT 0.90

@@ -179,7 +179,7 @@ static double ci_end(ci_ctx *c, double dir)
 aq_status aq_fragility_fit(const double *x, const int *censored, size_t n,
                            double ci, aq_fragility *out, aq_error *err)
 {
-  *out = (aq_fragility){n, 0, NAN, NAN, NAN, NAN, NAN, 0};
+  *out = (aq_fragility){n, 0, NAN, NAN, NAN, NAN, NAN, 0, 0};
   double sum = 0, sum2 = 0, xmin = INFINITY, xmax = -INFINITY;
   size_t nc = 0;
   for (size_t i = 0; i < n; i++) {
@@ -301,24 +301,27 @@ aq_status aq_fragility_fit_records_n(const aq_capacity *cap, size_t nrec, size_t
   int *cen = malloc((nrec ? nrec : 1) * sizeof *cen);
   aq_status st = AQ_OK;
   for (int m = 0; m < nim; m++)
-    fits[m] = (aq_fragility){0, 0, NAN, NAN, NAN, NAN, NAN, 0};
+    fits[m] = (aq_fragility){0, 0, NAN, NAN, NAN, NAN, NAN, 0, 0};
   if (!x || !cen) {
     free(x);
     free(cen);
     return aq_error_set(err, AQ_ENOMEM, NULL, -1, -1, "fragility", "out of memory");
   }
   for (int m = 0; m < nim; m++) {
-    size_t n = 0;
+    size_t n = 0, nmarked = 0;
     for (size_t r = 0; r < nrec; r++) {
       if (!im[r])
         continue;
       double s = INFINITY, top = NAN, l0 = NAN;
-      int bad = 0;
+      int bad = 0, marked = 0, any_marked = 0;
       for (size_t p = 0; p < npol; p++) { /* the worse polarity governs */
         const aq_capacity *c = &cap[r * stride + p];
         bad |= c->status == AQ_CAPACITY_FAILED;
-        if (!isnan(c->first_collapse_scale))
-          s = fmin(s, c->first_collapse_scale);
+        any_marked |= c->marks != 0;
+        if (!isnan(c->first_collapse_scale) && c->first_collapse_scale < s) {
+          s = c->first_collapse_scale;
+          marked = c->marks != 0;
+        }
         top = c->scale_max;
         l0 = c->lambda0;
       }
@@ -326,11 +329,14 @@ aq_status aq_fragility_fit_records_n(const aq_capacity *cap, size_t nrec, size_t
         continue;
       cen[n] = !isfinite(s);
       x[n] = aq_fragility_im_at(im[r], l0, m, cen[n] ? top : s);
-      if (x[n] > 0 && isfinite(x[n])) /* a record of zeros has no intensity */
+      if (x[n] > 0 && isfinite(x[n])) { /* a record of zeros has no intensity */
         n++;
+        nmarked += cen[n - 1] ? any_marked : marked;
+      }
     }
     aq_error e;
     aq_status s = aq_fragility_fit(x, cen, n, ci, &fits[m], &e);
+    fits[m].nmarked = nmarked;
     if (s != AQ_OK) {
       fits[m].median = fits[m].beta = fits[m].median_lo = fits[m].median_hi = NAN;
       if (st == AQ_OK) {

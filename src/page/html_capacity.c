@@ -126,7 +126,7 @@ aq_status aq_html_section_capacity(aq_html_page *p, const char *path, size_t ind
       aq_page_puts(b, "</p>\n<table><thead><tr><th>rank</th><th>measure</th>"
                       "<th>median</th><th>β</th><th>ranked by: β per power of the scale</th>"
                       "<th>median 90 % interval</th><th>records</th>"
-                      "<th>censored</th></tr></thead><tbody>\n");
+                      "<th>censored</th><th>marked</th></tr></thead><tbody>\n");
       for (size_t i = 0; i < n; i++) {
         const aq_h5_fragility_fit *f = &t.fit[order[i]];
         if (f->rank > 0) /* the file's rank */
@@ -140,6 +140,7 @@ aq_status aq_html_section_capacity(aq_html_page *p, const char *path, size_t ind
         aq_page_printf(b, "<td class=\"n\">%.4g – %.4g</td>", f->median_lo, f->median_hi);
         aq_html_num_td(b, (double)f->records, "%.0f");
         aq_html_num_td(b, (double)f->censored, "%.0f");
+        aq_html_num_td(b, f->marked >= 0 ? (double)f->marked : NAN, "%.0f");
         aq_page_puts(b, "</tr>\n");
       }
       aq_page_puts(b, "</tbody></table>\n");

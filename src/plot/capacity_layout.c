@@ -143,16 +143,18 @@ int aq_plot_cap_plan(cap *c)
   /* the fragility: its title, frame, axis and key */
   const frag *f = &c->f;
   const aq_h5_fragility_fit *q = f->fit;
-  char ftitle[400], med[48] = "";
+  char ftitle[400], med[48] = "", mk[48] = "";
+  if (q && q->marked > 0) /* the fit rests on runs the four-hinge models do not describe */
+    snprintf(mk, sizeof mk, ", %lld marked", (long long)q->marked);
   if (q && isfinite(q->median) && q->beta > 0) {
     snprintf(med, sizeof med, "%.3g", q->median);
     snprintf(ftitle, sizeof ftitle,
-             "fragility of arch %.100s: median %s %s, #gb %.3g (%zu records, %zu censored)",
-             c->arch, med, c->im_unit, q->beta, f->n, f->n - f->ncol);
+             "fragility of arch %.100s: median %s %s, #gb %.3g (%zu records, %zu censored%s)",
+             c->arch, med, c->im_unit, q->beta, f->n, f->n - f->ncol, mk);
   } else
-    snprintf(ftitle, sizeof ftitle, "fragility of arch %.100s: %s (%zu records, %zu censored)",
+    snprintf(ftitle, sizeof ftitle, "fragility of arch %.100s: %s (%zu records, %zu censored%s)",
              c->arch, q ? "no fit, < 2 collapse values" : "no fit in the file", f->n,
-             f->n - f->ncol);
+             f->n - f->ncol, mk);
   split_title(ftitle, w - 2 * MARGIN_MM, TITLE_MM, c->ftitle, &c->ftitle_lines);
   c->ftitle_y = y + lt / 2;
   y += c->ftitle_lines * lt + 0.5 * lp;

@@ -99,6 +99,7 @@ typedef struct {
   double median, beta, median_lo, median_hi; /* the median's units: per row, below */
   int64_t rank;
   double beta_per_power; /* what rank orders: beta / the IM's power of the scale */
+  int64_t marked;        /* records whose row is marked (docs/capacity.md, "Marks") */
 } fit_row;
 
 static const aq_h5_col fit_cols[] = {
@@ -111,7 +112,8 @@ static const aq_h5_col fit_cols[] = {
     AQ_H5_COL(fit_row, median_lo, AQ_H5_DOUBLE, NULL),
     AQ_H5_COL(fit_row, median_hi, AQ_H5_DOUBLE, NULL),
     AQ_H5_COL(fit_row, rank, AQ_H5_INT, "1"),
-    AQ_H5_COL(fit_row, beta_per_power, AQ_H5_DOUBLE, "1")};
+    AQ_H5_COL(fit_row, beta_per_power, AQ_H5_DOUBLE, "1"),
+    AQ_H5_COL(fit_row, marked, AQ_H5_INT, "1")};
 enum { NFIT_COLS = sizeof fit_cols / sizeof fit_cols[0] };
 
 /* The reader's names of the numeric columns (pair_cols' 5th to 15th). */
@@ -193,7 +195,7 @@ static int fill(const aq_h5_capacity *c, columns *k)
     const char *im = c->fit[i].im;
     k->fit[i] = (fit_row){c->fit[i].arch, im, (int64_t)q->n, (int64_t)q->ncensored,
                           q->median, q->beta, q->median_lo, q->median_hi, q->rank,
-                          aq_fragility_row_ranked(im, q->beta)};
+                          aq_fragility_row_ranked(im, q->beta), (int64_t)q->nmarked};
     k->med_units[i] = "1";
     for (int m = 0; m < AQ_FRAGILITY_NIM; m++)
       if (im && strcmp(im, aq_fragility_im_names[m]) == 0)

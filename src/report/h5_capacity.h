@@ -58,6 +58,7 @@ typedef struct {
   int64_t records, censored;
   int64_t rank;          /* 1 for the arch's best measure; 0 unfitted (or not in the file) */
   double beta_per_power; /* what rank orders: beta over the IM's power of the scale */
+  int64_t marked;        /* records whose row is marked; -1 in a file written before it */
 } aq_h5_fragility_fit;
 
 typedef struct {

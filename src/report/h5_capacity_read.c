@@ -196,6 +196,12 @@ static int read_fits(hid_t g, aq_h5_capacity_table *t, const char **what)
     t->fit[i].beta_per_power =
         have_ranked ? v[i] : aq_fragility_row_ranked(t->fit[i].im, t->fit[i].beta);
   }
+  /* the marked records (files written before them: -1) */
+  int have_marked = ok && H5Lexists(gf, "marked", H5P_DEFAULT) > 0;
+  if (have_marked)
+    ok = ds_read(gf, "marked", H5T_NATIVE_INT64, iv, n, 1) >= 0;
+  for (size_t i = 0; ok && i < t->nfit; i++)
+    t->fit[i].marked = have_marked ? iv[i] : -1;
   free(v);
   free(iv);
   if (gf >= 0)

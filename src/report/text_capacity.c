@@ -76,7 +76,7 @@ double aq_fragility_row_ranked(const char *im, double beta)
 int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
 {
   fputs("arch\tim\trecords\tcensored\tmedian\tbeta\tmedian_lo\tmedian_hi\trank\t"
-        "beta_per_power\n", f);
+        "beta_per_power\tmarked\n", f);
   for (size_t i = 0; i < n; i++) {
     const aq_fragility *fit = rows[i].fit;
     char v[4][40];
@@ -90,7 +90,8 @@ int aq_text_fragility(FILE *f, const aq_fragility_row *rows, size_t n)
       fprintf(f, "%d\t", fit->rank);
     else
       fputs("nan\t", f);
-    fprintf(f, "%s\n", AQ_TEXT_NUM(aq_fragility_row_ranked(rows[i].im, fit->beta)));
+    fprintf(f, "%s\t%zu\n", AQ_TEXT_NUM(aq_fragility_row_ranked(rows[i].im, fit->beta)),
+            fit->nmarked);
   }
   return ferror(f) ? -1 : 0;
 }

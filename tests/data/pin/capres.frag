@@ -1,11 +1,11 @@
-arch	im	records	censored	median	beta	median_lo	median_hi	rank	beta_per_power
-oppenheim	pga_g	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	pgv_m_s	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	pgd_m	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	arias_m_s	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	cav_m_s	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	pga_lambda0	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	sa_0.2s_g	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	sa_0.5s_g	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	sa_1s_g	1	0	nan	nan	nan	nan	nan	nan
-oppenheim	sa_avg_0.1_1s_g	1	0	nan	nan	nan	nan	nan	nan
+arch	im	records	censored	median	beta	median_lo	median_hi	rank	beta_per_power	marked
+oppenheim	pga_g	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	pgv_m_s	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	pgd_m	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	arias_m_s	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	cav_m_s	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	pga_lambda0	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	sa_0.2s_g	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	sa_0.5s_g	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	sa_1s_g	1	0	nan	nan	nan	nan	nan	nan	0
+oppenheim	sa_avg_0.1_1s_g	1	0	nan	nan	nan	nan	nan	nan	0
