@@ -809,19 +809,23 @@ AQ_TEST(capacity_cli_marks_against_the_main_job)
  * every measure's `marked` equals that count from the rows, for three
  * records on thin with the friction 0.5, where ARL360's normal row slides
  * and its reversed row, which collapses first, does not (so the rule, not
- * any marked row, decides), and none without a friction. */
+ * any marked row, decides), and none without a friction.  The capacity
+ * figure says it too: each marked row's first collapse is followed by its
+ * mark, and the fragility's title counts the marked records. */
 AQ_TEST(capacity_cli_fragility_counts_marked_records)
 {
   static const char *const fr[2] = {" --friction 0.5", ""};
   for (int f = 0; f < 2; f++) {
-    char *out = malloc(BIG), dir[512], frag[600], args[2048], cell[256];
+    char *out = malloc(BIG), dir[512], frag[600], h5[600], args[2048], cell[256];
     if (!out)
       return;
     aq_test_tmpdir(dir, sizeof dir);
     snprintf(frag, sizeof frag, "%s/f.tsv", dir);
+    snprintf(h5, sizeof h5, "%s/c.h5", dir);
     snprintf(args, sizeof args,
              "capacity tests/data/records/ARL360.at2 tests/data/records/IELC180.AT2 " REC
-             " --arch arches/thin.cfg%s --resolution 0.1 --fragility %s", fr[f], frag);
+             " --arch arches/thin.cfg%s --resolution 0.1 --fragility %s -o %s", fr[f], frag,
+             h5);
     int rc = aq_test_run(args, out, BIG, NULL, 0);
     /* rows: 3 records x 2 polarities, in order */
     int want = 0, marked_rows = 0, mixed = 0;
@@ -858,6 +862,23 @@ AQ_TEST(capacity_cli_fragility_counts_marked_records)
                "marked in one polarity only", want, marked_rows, mixed);
     else
       aq_check(want == 0 && marked_rows == 0, "without a friction: none marked");
+    /* the figure's text (pdftotext, poppler-utils: make deps-dev) */
+    char sh[4096], *txt2 = malloc(BIG);
+    snprintf(sh, sizeof sh, "%s plot capacity %s --arch thin -o %s/c.pdf && pdftotext %s/c.pdf -",
+             getenv("AQ_BIN") ? getenv("AQ_BIN") : "./archquake", h5, dir, dir);
+    if (txt2 && aq_test_sh(sh, txt2, BIG) == 0) {
+      int said = 0;
+      for (const char *p = txt2; (p = strstr(p, "slides")); p++)
+        said++;
+      char title[64];
+      snprintf(title, sizeof title, "censored%s", want ? "," : ")");
+      aq_check(said == marked_rows && strstr(txt2, title) &&
+                   (!want || (snprintf(title, sizeof title, "%d marked)", want), strstr(txt2, title))),
+               "the figure: %d marks beside the first collapses (%d rows), the fragility's "
+               "title with %d marked", said, marked_rows, want);
+    } else
+      aq_check(0, "plot capacity to PDF and pdftotext: %s", sh);
+    free(txt2);
     free(txt);
     free(out);
   }

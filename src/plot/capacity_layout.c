@@ -98,10 +98,18 @@ int aq_plot_cap_plan(cap *c)
     if (strcmp(r->status, "ok") != 0 && strncmp(r->status, "collapse", 8) != 0 && isnan(f) &&
         r->point_count == 0)
       snprintf(c->fc[k], sizeof c->fc[k], "%s", r->status);
-    else if (isfinite(f))
-      snprintf(c->fc[k], sizeof c->fc[k], "%.3g%s", aq_plot_cap_y_of(c, k, f), r->i[0] > 0 ? "  R" : "");
-    else
-      snprintf(c->fc[k], sizeof c->fc[k], "none");
+    else {
+      /* a marked row says so beside its verdict (docs/capacity.md, "Marks") */
+      const char *mk = !strcmp(r->status, "slides") || !strcmp(r->status, "beyond") ||
+                               !strcmp(r->status, "slides+beyond")
+                           ? r->status
+                           : "";
+      if (isfinite(f))
+        snprintf(c->fc[k], sizeof c->fc[k], "%.3g%s%s%s", aq_plot_cap_y_of(c, k, f),
+                 r->i[0] > 0 ? "  R" : "", mk[0] ? "  " : "", mk);
+      else
+        snprintf(c->fc[k], sizeof c->fc[k], "none%s%s", mk[0] ? "  " : "", mk);
+    }
     fc_w = fmax(fc_w, aq_plot_cap_width_mm(c->fc[k], TXT_MM));
   }
   free(names);
