@@ -53,6 +53,10 @@ BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 FUZZ_SRC  := $(sort $(wildcard fuzz/fuzz_*.c))
 HDRS      := $(wildcard src/*.h src/*/*.h tests/*.h bench/*.h)
 
+# Each object depends on the headers it includes, as the compiler lists
+# them (-MMD: build/.../X.d beside X.o, read below; -MP: a header removed
+# is no error), so a header's change rebuilds only what includes it.
+DEPFLAGS = -MMD -MP
 REL_OBJ := $(LIB_SRC:%.c=build/rel/%.o)
 SAN_OBJ := $(LIB_SRC:%.c=build/san/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
@@ -111,13 +115,13 @@ $(TEST_OBJ) $(TEST_SRC:%.c=build/mut/%.o): build/lazylib_sonames.h
 archquake: build/rel/src/main.o $(REL_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 
-build/rel/%.o: %.c $(HDRS)
+build/rel/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(CC) $(AQ_CFLAGS) $(CFLAGS) $(DEPFLAGS) -c -o $@ $<
 
-build/san/%.o: %.c $(HDRS)
+build/san/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(AQ_CFLAGS) -O1 -g $(SAN) -c -o $@ $<
+	$(CC) $(AQ_CFLAGS) -O1 -g $(SAN) $(DEPFLAGS) -c -o $@ $<
 
 build/san/archquake: build/san/src/main.o $(SAN_OBJ)
 	$(CC) $(SAN) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -139,9 +143,9 @@ check: build/san/runner build/san/archquake
 # alone writes, with the serial HDF5 library.  Only `make mpi` needs MPI.
 MPICC ?= mpicc
 mpi: archquake-mpi
-build/mpi/mpi.o: src/app/mpi.c $(HDRS)
+build/mpi/mpi.o: src/app/mpi.c
 	@mkdir -p $(dir $@)
-	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(MPICC) $(AQ_CFLAGS) $(CFLAGS) $(DEPFLAGS) -c -o $@ $<
 archquake-mpi: build/mpi/mpi.o $(REL_OBJ)
 	$(MPICC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
 
@@ -154,9 +158,9 @@ check-mpi: archquake archquake-mpi
 
 # Mutation testing (tests/mutate.py): the tests without sanitizers at -O1
 # (fast to rebuild and run); each mutant recompiles one file and relinks.
-build/mut/%.o: %.c $(HDRS)
+build/mut/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(AQ_CFLAGS) -O1 -g -c -o $@ $<
+	$(CC) $(AQ_CFLAGS) -O1 -g $(DEPFLAGS) -c -o $@ $<
 
 build/mut/runner: $(MUT_OBJ)
 	$(CC) $(LDFLAGS) -o $@ $^ $(AQ_LIBS)
@@ -195,9 +199,9 @@ FUZZ_OBJ := $(LIB_SRC:%.c=build/fz/%.o)
 # 1 s at -O0; no harness steps an arch, so only speed is given up.
 FUZZ_OPT := -O1
 build/fz/src/arch/leg_taylor.o: FUZZ_OPT := -O0
-build/fz/%.o: %.c $(HDRS)
+build/fz/%.o: %.c
 	@mkdir -p $(dir $@)
-	clang $(AQ_CFLAGS) $(FUZZ_OPT) -g -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c -o $@ $<
+	clang $(AQ_CFLAGS) $(FUZZ_OPT) -g -fsanitize=fuzzer-no-link $(FUZZ_SAN) $(DEPFLAGS) -c -o $@ $<
 # The harnesses link an archive of it, so that each takes only the members
 # its reader needs: linked as objects, every harness held the whole program
 # (18 harnesses, 345 MB of disk).
@@ -312,3 +316,6 @@ print-deps-dev:
 
 clean:
 	rm -rf build archquake archquake-mpi
+
+# the objects' header dependencies (DEPFLAGS), once they have been built
+-include $(wildcard build/*/*.d build/*/*/*.d build/*/*/*/*.d)
