@@ -68,10 +68,8 @@ int aq_cmd_domain(int argc, char **argv)
   const aq_path *pp = aq_arch_path(arch, 0);
   /* each row's shortest collapsing pulse marked as the main job's runs
    * (docs/demand.md), when a mark can apply */
-  const double fric = aq_arch_friction(arch);
-  const int free_ctl = aq_arch_control(arch) == AQ_CONTROL_FREE,
-            marks = model != AQ_MODEL_PAPER && (!isnan(fric) || free_ctl);
-  aq_opt_friction_paper(file, model == AQ_MODEL_PAPER, fric, 0);
+  const int marks = aq_job_marks_apply(arch, (aq_model)model);
+  aq_opt_friction_paper(file, model == AQ_MODEL_PAPER, aq_arch_friction(arch), 0);
   st = aq_job_stepper(arch, (aq_model)model, cor, 0,
                       marks ? AQ_JOB_DEMAND_MARKS : AQ_JOB_DEMAND_NONE, &err);
   if (!st) {
@@ -88,9 +86,7 @@ int aq_cmd_domain(int argc, char **argv)
       aq_result_free(&run);
       goto runfail;
     }
-    int mk = marks && !isinf(dur)
-                 ? aq_result_marks(run.mu_demand, run.thrust_ecc_max, fric, free_ctl)
-                 : 0;
+    int mk = marks && !isinf(dur) ? aq_job_run_marks(arch, &run) : 0;
     aq_result_free(&run);
     printf("%s\t%s\t%s\t%s\n", AQ_TEXT_NUM(ratios[i]), AQ_TEXT_NUM(a / AQ_G0_MPS2),
            isinf(dur) ? "inf" : AQ_TEXT_NUM(dur), isinf(dur) ? "-" : aq_result_marks_name(mk));

@@ -14,6 +14,7 @@
 #include "../arch/arch.h"
 #include "../arch/stepper.h"
 #include "../blocks/blocks.h"
+#include "../job/run.h"
 #include "../units.h"
 #include "../util/cleanup.h"
 #include "../util/outfile.h"
@@ -304,9 +305,8 @@ int aq_cmd_pulse(int argc, char **argv)
     free(hb);
     free(tb);
   } else {
-    int marks = aq_result_marks(R->mu_demand, R->thrust_ecc_max, aq_arch_friction(arch),
-                                aq_arch_control(arch) == AQ_CONTROL_FREE);
-    printf("\t%s\t%s\t", aq_result_marks_name(marks), AQ_TEXT_NUM(R->mu_demand));
+    printf("\t%s\t%s\t", aq_result_marks_name(aq_job_run_marks(arch, R)),
+           AQ_TEXT_NUM(R->mu_demand));
     if (isnan(R->mu_demand))
       fputs("-", stdout);
     else

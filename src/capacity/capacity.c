@@ -51,19 +51,8 @@ typedef struct {
   aq_stepper *st;
   aq_capacity *out; /* gets a point per run */
   size_t cap;       /* points allocated */
-  int marks;        /* 1: the runs' marks are followed (friction, free_control) */
-  double friction;  /* the arch's, NAN: none */
-  int free_control;
+  int marks;        /* 1: the runs' marks are followed (aq_job_marks_apply) */
 } run_ctx;
-
-/* 1 when a run of job can carry a mark: a friction given or free hinges,
- * under a four-hinge model that follows the joints' forces. */
-static int marks_apply(const aq_capacity_job *job)
-{
-  return job->model != AQ_MODEL_BLOCKS && job->model != AQ_MODEL_PAPER &&
-         (!isnan(aq_arch_friction(job->arch)) ||
-          aq_arch_control(job->arch) == AQ_CONTROL_FREE);
-}
 
 /* Record the run at scale in c->out's points. */
 static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_error *err)
@@ -84,9 +73,7 @@ static aq_status add_point(run_ctx *c, double scale, const aq_result *res, aq_er
   o->point[o->npoint++] = (aq_capacity_point){
       scale, res->peak_rotation_rad, over,
       res->collapsed ? res->collapse_time_s : NAN, res->collapsed ? 1 : 0,
-      c->marks ? aq_result_marks(res->mu_demand, res->thrust_ecc_max, c->friction,
-                                 c->free_control)
-               : 0};
+      c->marks ? aq_job_run_marks(c->job->arch, res) : 0};
   return AQ_OK;
 }
 
@@ -147,16 +134,14 @@ aq_status aq_capacity_pair(const aq_capacity_job *job, aq_capacity *out,
     out->status = AQ_CAPACITY_NEVER_MOVES;
     return AQ_OK;
   }
+  const int marks = aq_job_marks_apply(job->arch, job->model);
   aq_stepper *st = job->model == AQ_MODEL_BLOCKS
                        ? aq_job_stepper_blocks(job->arch, job->blocks_dt_s, 0, err)
                        : aq_job_stepper(job->arch, job->model, job->cor, 0,
-                                        marks_apply(job) ? AQ_JOB_DEMAND_MARKS
-                                                         : AQ_JOB_DEMAND_NONE,
-                                        err);
+                                        marks ? AQ_JOB_DEMAND_MARKS : AQ_JOB_DEMAND_NONE, err);
   if (!st)
     return err->status;
-  run_ctx c = {job, st, out, 0, marks_apply(job), aq_arch_friction(job->arch),
-               aq_arch_control(job->arch) == AQ_CONTROL_FREE};
+  run_ctx c = {job, st, out, 0, marks};
   aq_status s = aq_scan_run(out->move_scale, out->scale_max, &job->scan, run_at,
                             &c, &out->scan, &out->err);
   aq_stepper_free(st);

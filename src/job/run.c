@@ -64,6 +64,18 @@ aq_stepper *aq_job_stepper_blocks(const aq_arch *arch, double dt_s, int history,
   return st;
 }
 
+int aq_job_marks_apply(const aq_arch *arch, aq_model model)
+{
+  return model != AQ_MODEL_BLOCKS && model != AQ_MODEL_PAPER &&
+         (!isnan(aq_arch_friction(arch)) || aq_arch_control(arch) == AQ_CONTROL_FREE);
+}
+
+int aq_job_run_marks(const aq_arch *arch, const aq_result *res)
+{
+  return aq_result_marks(res->mu_demand, res->thrust_ecc_max, aq_arch_friction(arch),
+                         aq_arch_control(arch) == AQ_CONTROL_FREE);
+}
+
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            int demand, aq_error *err)
 {

@@ -30,6 +30,14 @@
  * the marks to the bit, the maxima partial).  NULL (err) when it cannot be
  * made. */
 enum { AQ_JOB_DEMAND_NONE = 0, AQ_JOB_DEMAND_FULL = 1, AQ_JOB_DEMAND_MARKS = 2 };
+
+/* 1 when a run of arch under model can carry a mark (docs/demand.md): a
+ * friction given or free hinges, under a four-hinge model that follows the
+ * joints' forces (not paper, whose fits carry none, nor blocks). */
+int aq_job_marks_apply(const aq_arch *arch, aq_model model);
+/* The marks of res, a run of arch (arch/result.h AQ_MARK_*), against the
+ * arch's friction and hinge control. */
+int aq_job_run_marks(const aq_arch *arch, const aq_result *res);
 aq_stepper *aq_job_stepper(const aq_arch *arch, aq_model model, double cor, int history,
                            int demand, aq_error *err);
 
